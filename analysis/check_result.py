@@ -1,0 +1,174 @@
+#!/usr/bin/python3
+"""Checks a hexdyn-result/1 file against the contract (DESIGN.md section 4).
+
+    /usr/bin/python3 analysis/check_result.py FILE.h5 [--expect-mass 6.7] [--dynamics]
+
+Checks: schema and /meta attributes; every model and kinematic dataset present with
+its shape, element type and `units`; finite values; URDF total mass = /model/total_mass
+(and = --expect-mass within 1e-9); URDF forward kinematics from /base/position,
+/base/orientation and /joints/position reproduces /feet/position within 1e-9 m at
+every sample. With --dynamics, the dynamics datasets as well. Prints one line per
+failure and a summary "check_result: P passed, F failed"; exits 1 on any failure.
+"""
+
+import argparse
+import os
+import re
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+
+import numpy as np  # noqa: E402
+import yaml  # noqa: E402
+
+import hexdyn_results as hr  # noqa: E402
+from urdf_fk import UrdfRobot  # noqa: E402
+
+FK_TOLERANCE_M = 1e-9
+MASS_TOLERANCE_KG = 1e-9
+
+
+class Checks:
+    def __init__(self, verbose=False):
+        self.passed = 0
+        self.failed = 0
+        self.verbose = verbose
+
+    def check(self, ok, what, detail=""):
+        if ok:
+            self.passed += 1
+            if self.verbose:
+                print(f"  ok    {what}")
+        else:
+            self.failed += 1
+            print(f"  FAIL  {what}" + (f": {detail}" if detail else ""))
+        return ok
+
+
+def dtype_name(value):
+    if isinstance(value, (str, list)):
+        return "string"
+    return np.asarray(value).dtype.name
+
+
+def check_datasets(c, res, table, samples, impacts=None, messages=None):
+    for path, (shape, units, element) in table.items():
+        if not c.check(path in res, f"{path} present"):
+            continue
+        want = hr.expected_shape(shape, samples, impacts, messages)
+        got = res.shapes[path]
+        c.check(got == want, f"{path} shape {want}", f"got {got}")
+        c.check(dtype_name(res[path]) == element, f"{path} element {element}",
+                f"got {dtype_name(res[path])}")
+        c.check(res.units.get(path) == units, f"{path} units {units!r}",
+                f"got {res.units.get(path)!r}")
+        if element == "float64":
+            c.check(bool(np.all(np.isfinite(res[path]))), f"{path} finite",
+                    "NaN or infinity present")
+
+
+def check_meta(c, res):
+    for key in hr.META_ATTRIBUTES:
+        c.check(key in res.meta, f"/meta attribute {key}")
+    created = str(res.meta.get("created_utc", ""))
+    c.check(re.fullmatch(r"\d{4}-\d\d-\d\dT\d\d:\d\d:\d\dZ", created) is not None,
+            "/meta created_utc is ISO 8601 UTC", repr(created))
+    try:
+        config = yaml.safe_load(res.meta.get("config_yaml", ""))
+        c.check(isinstance(config, dict), "/meta config_yaml is a YAML mapping",
+                f"got {type(config).__name__}")
+    except yaml.YAMLError as e:
+        c.check(False, "/meta config_yaml parses", str(e).splitlines()[0])
+
+
+def check_kinematics(c, res, expect_mass):
+    T = res.samples
+    check_datasets(c, res, hr.MODEL_DATASETS, T)
+    check_datasets(c, res, hr.KINEMATIC_DATASETS, T)
+    if "/model/joint_names" in res:
+        c.check(tuple(res["/model/joint_names"]) == hr.JOINT_NAMES, "/model/joint_names order")
+    if "/model/leg_names" in res:
+        c.check(tuple(res["/model/leg_names"]) == hr.LEG_NAMES, "/model/leg_names order")
+    if "/time" in res and T > 1:
+        c.check(bool(np.all(np.diff(res["/time"]) > 0)), "/time strictly increasing")
+    if "/base/orientation" in res:
+        err = np.max(np.abs(np.linalg.norm(res["/base/orientation"], axis=1) - 1.0), initial=0.0)
+        c.check(err < 1e-9, "/base/orientation unit quaternions", f"max |norm - 1| = {err:.3g}")
+    if "/contacts/phase" in res:
+        c.check(bool(np.isin(res["/contacts/phase"], (0, 1, 2)).all()),
+                "/contacts/phase values in {0, 1, 2}")
+
+    try:
+        robot = UrdfRobot(res.urdf)
+    except Exception as e:  # any parse problem is a failed check, not a crash
+        c.check(False, "/model/urdf parses", str(e))
+        return
+    c.check(True, "/model/urdf parses")
+    c.check(robot.foot_links == tuple(f"L{i}_foot" for i in range(1, 7)),
+            "URDF has links L1_foot..L6_foot", f"got {robot.foot_links}")
+    if "/model/total_mass" in res:
+        stored = float(res["/model/total_mass"])
+        c.check(abs(robot.total_mass - stored) <= MASS_TOLERANCE_KG,
+                "URDF total mass = /model/total_mass",
+                f"URDF {robot.total_mass!r} kg, dataset {stored!r} kg")
+    if expect_mass is not None:
+        c.check(abs(robot.total_mass - expect_mass) <= MASS_TOLERANCE_KG,
+                f"URDF total mass = {expect_mass} kg", f"got {robot.total_mass!r} kg")
+    needed = ("/base/position", "/base/orientation", "/joints/position", "/feet/position")
+    if all(p in res for p in needed) and len(robot.foot_links) == 6 and T > 0:
+        try:
+            feet = robot.foot_positions(res["/base/position"], res["/base/orientation"],
+                                        res["/joints/position"])
+        except ValueError as e:
+            c.check(False, "URDF FK runs", str(e))
+            return
+        err = np.linalg.norm(feet - res["/feet/position"], axis=2)
+        t_worst, leg_worst = np.unravel_index(np.argmax(err), err.shape)
+        c.check(err.max() <= FK_TOLERANCE_M,
+                f"URDF FK reproduces /feet/position within {FK_TOLERANCE_M:g} m ({T} samples)",
+                f"max error {err.max():.3g} m at sample {t_worst} "
+                f"(t = {res['/time'][t_worst]:.6g} s), leg L{leg_worst + 1}")
+
+
+def check_dynamics(c, res):
+    T = res.samples
+    n = res.shapes.get("/impacts/leg", (None,))[0]
+    m = res.shapes.get("/solver/messages", (None,))[0]
+    check_datasets(c, res, hr.DYNAMICS_DATASETS, T, n, m)
+    if "/impacts/leg" in res:
+        legs = np.asarray(res["/impacts/leg"])
+        c.check(bool(np.all((legs >= 1) & (legs <= 6))), "/impacts/leg values in 1..6")
+    if "/solver/status" in res:
+        c.check(bool(np.isin(res["/solver/status"], (0, 1, 2)).all()),
+                "/solver/status values in {0, 1, 2}")
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("file", help="hexdyn-result/1 HDF5 file")
+    parser.add_argument("--expect-mass", type=float, default=None, metavar="KG",
+                        help="also require the URDF total mass to equal KG (within 1e-9)")
+    parser.add_argument("--dynamics", action="store_true",
+                        help="also require the dynamics datasets")
+    parser.add_argument("-v", "--verbose", action="store_true", help="list passed checks too")
+    args = parser.parse_args(argv)
+
+    c = Checks(args.verbose)
+    print(f"check_result: {args.file}")
+    try:
+        res = hr.open_result(args.file)
+    except (OSError, ValueError) as e:
+        c.check(False, "open as hexdyn-result/1", str(e))
+        print(f"check_result: {c.passed} passed, {c.failed} failed")
+        return 1
+    c.check(True, "open as hexdyn-result/1")
+    check_meta(c, res)
+    check_kinematics(c, res, args.expect_mass)
+    if args.dynamics:
+        check_dynamics(c, res)
+    print(f"check_result: {c.passed} passed, {c.failed} failed")
+    return 0 if c.failed == 0 else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())

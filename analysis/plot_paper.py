@@ -1,0 +1,145 @@
+#!/usr/bin/python3
+"""The paper's figures from a hexdyn-result/1 file.
+
+usage: /usr/bin/python3 analysis/plot_paper.py RESULT.h5 OUTDIR
+
+Writes, atomically:
+  fig3a_normal_forces.png    normal foot forces F_iz of all six legs (paper Fig. 3a)
+  fig3b_impacts_legs_3_4.png close view of the first touchdowns of legs 3 and 4 (Fig. 3b)
+  fig4a_torques_leg1.png     joint torques of leg 1 (Fig. 4a)
+  fig4b_torques_leg2.png     joint torques of leg 2 (Fig. 4b)
+  fig5_total_power.png       total instantaneous power P_in = sum |tau omega| (Fig. 5)
+"""
+import os
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+
+import matplotlib  # noqa: E402
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+from hexdyn_results import open_result  # noqa: E402
+from plot_kinematics import save_atomically  # noqa: E402
+
+G = 9.81
+LEG_STYLE = {0: "-", 1: "--"}  # left solid, right dashed
+JOINTS = ("coxa (joint 1)", "femur (joint 2)", "tibia (joint 3)")
+
+
+def shade_relaxed(ax, t, status):
+    """Grey bands where the allocation had to relax a constraint (status 1) or failed."""
+    bad = status != 0
+    if not bad.any():
+        return
+    edges = np.flatnonzero(np.diff(np.concatenate(([0], bad.astype(int), [0]))))
+    for a, b in zip(edges[::2], edges[1::2]):
+        ax.axvspan(t[a], t[b - 1], color="0.85", lw=0, zorder=0)
+
+
+def fig3a(res, outdir):
+    t = res["/time"]
+    F = res["/contacts/force"]
+    fig, ax = plt.subplots(figsize=(9, 4.5))
+    for leg in range(6):
+        ax.plot(t, F[:, leg, 2], LEG_STYLE[leg % 2], lw=1.0, label=f"leg {leg + 1}")
+    total = F[:, :, 2].sum(axis=1)
+    ax.plot(t, total, color="k", lw=0.8, alpha=0.6, label="sum")
+    weight = float(res["/model/total_mass"]) * G
+    ax.axhline(weight, color="k", ls=":", lw=0.8, label=f"weight {weight:.1f} N")
+    shade_relaxed(ax, t, res["/solver/status"])
+    ax.set_xlabel("time t [s]")
+    ax.set_ylabel("normal foot force $F_{iz}$ [N]")
+    ax.set_title("Normal foot forces, duty factor 1/2, staircase climb (cf. paper Fig. 3a)")
+    ax.legend(ncol=4, fontsize=8, loc="upper right")
+    ax.grid(alpha=0.3)
+    return save_atomically(fig, outdir, "fig3a_normal_forces.png")
+
+
+def fig3b(res, outdir):
+    t = res["/time"]
+    F = res["/contacts/force"]
+    legs = res["/impacts/leg"].astype(int)
+    starts = res["/impacts/t_start"]
+    durations = res["/impacts/duration"]
+    fig, axes = plt.subplots(1, 2, figsize=(10, 4))
+    for ax, leg in zip(axes, (3, 4)):
+        k = np.flatnonzero(legs == leg)
+        if k.size == 0:
+            ax.text(0.5, 0.5, f"no impact of leg {leg}", transform=ax.transAxes, ha="center")
+            continue
+        t0, d = starts[k[0]], durations[k[0]]
+        window = (t >= t0 - 4 * d) & (t <= t0 + 6 * d)
+        ax.plot((t[window] - t0) * 1e3, F[window, leg - 1, 2], "o-", ms=2.5, lw=1.0,
+                label=f"leg {leg}, touchdown at t = {t0:.3f} s")
+        coarse = np.arange(0.0, t[-1] + 1e-9, 0.05)
+        near = coarse[(coarse >= t0 - 4 * d) & (coarse <= t0 + 6 * d)]
+        for c in near:
+            ax.axvline((c - t0) * 1e3, color="r", ls=":", lw=0.8)
+        ax.set_xlabel("time since touchdown [ms]")
+        ax.set_ylabel(f"$F_{{{leg}z}}$ [N]")
+        ax.set_title(f"Impact of leg {leg}: peak {res['/impacts/peak_force'][k[0]]:.1f} N, "
+                     f"{d * 1e3:.2f} ms")
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=8)
+    fig.suptitle("Touchdown transients (red dotted: the paper's 0.05 s samples, if any fall here)",
+                 fontsize=10)
+    return save_atomically(fig, outdir, "fig3b_impacts_legs_3_4.png")
+
+
+def fig4(res, outdir, leg, name, panel):
+    t = res["/time"]
+    tau = res["/joints/torque"]
+    fig, ax = plt.subplots(figsize=(9, 4))
+    for j in range(3):
+        ax.plot(t, tau[:, 3 * (leg - 1) + j], lw=1.0, label=JOINTS[j])
+    limit = res.config.get("allocation", {}).get("torque_limit")
+    if limit:
+        for s in (-1, 1):
+            ax.axhline(s * limit, color="k", ls=":", lw=0.8)
+    shade_relaxed(ax, t, res["/solver/status"])
+    ax.set_xlabel("time t [s]")
+    ax.set_ylabel("joint torque [N m]")
+    ax.set_title(f"Joint torques of leg {leg} (cf. paper Fig. 4{panel})")
+    ax.legend(fontsize=8)
+    ax.grid(alpha=0.3)
+    return save_atomically(fig, outdir, name)
+
+
+def fig5(res, outdir):
+    t = res["/time"]
+    P = res["/power/total"]
+    fig, ax = plt.subplots(figsize=(9, 4))
+    ax.plot(t, P, lw=1.0, color="C3")
+    shade_relaxed(ax, t, res["/solver/status"])
+    ax.set_xlabel("time t [s]")
+    ax.set_ylabel(r"$P_{in} = \sum |\tau_{ij}\,\omega_{ij}|$ [W]")
+    ax.set_title(f"Total instantaneous power (cf. paper Fig. 5); energy "
+                 f"{float(res['/energy/total']):.2f} J")
+    ax.grid(alpha=0.3)
+    return save_atomically(fig, outdir, "fig5_total_power.png")
+
+
+def main(argv=None):
+    argv = sys.argv[1:] if argv is None else argv
+    if len(argv) != 2:
+        print(__doc__.strip().splitlines()[2], file=sys.stderr)
+        return 2
+    res = open_result(argv[0])
+    if not res.has_dynamics:
+        print(f"plot_paper: {argv[0]} has no dynamics datasets", file=sys.stderr)
+        return 2
+    os.makedirs(argv[1], exist_ok=True)
+    written = [fig3a(res, argv[1]), fig3b(res, argv[1]),
+               fig4(res, argv[1], 1, "fig4a_torques_leg1.png", "a"),
+               fig4(res, argv[1], 2, "fig4b_torques_leg2.png", "b"),
+               fig5(res, argv[1])]
+    for w in written:
+        print(f"plot_paper: wrote {w}", file=sys.stderr)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,17 @@
+#!/usr/bin/env bash
+# The paper scenario end to end: install what is missing, build, run
+# configs/paper.yaml and draw the figures into results/paper/.
+set -euo pipefail
+source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
+hexdyn_install
+hexdyn_build
+
+out="$HEXDYN_ROOT/results/paper"
+mkdir -p "$out"
+"$HEXDYN_BUILD/hexdyn" run "$HEXDYN_ROOT/configs/paper.yaml" -o "$out/paper.h5"
+"$HEXDYN_PYTHON" "$HEXDYN_ROOT/analysis/plot_kinematics.py" "$out/paper.h5" "$out"
+if [ -f "$HEXDYN_ROOT/analysis/plot_paper.py" ]; then
+  "$HEXDYN_PYTHON" "$HEXDYN_ROOT/analysis/plot_paper.py" "$out/paper.h5" "$out"
+fi
+echo "paper: results in $out:" >&2
+ls -1 "$out" >&2

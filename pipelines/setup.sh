@@ -1,0 +1,41 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages hexdyn needs (only those missing) and builds it in
+# build/ (Release). Sourced by the other pipelines; safe to run on its own.
+set -euo pipefail
+HEXDYN_ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+export HEXDYN_ROOT
+HEXDYN_BUILD="${HEXDYN_BUILD:-$HEXDYN_ROOT/build}"
+export HEXDYN_BUILD
+# Python analysis runs with Debian's interpreter: another python3 may come first on PATH.
+export HEXDYN_PYTHON=/usr/bin/python3
+
+HEXDYN_PACKAGES=(
+  build-essential cmake pkg-config git
+  libeigen3-dev coinor-libipopt-dev libhdf5-dev hdf5-tools libgsl-dev catch2
+  libopenmpi-dev openmpi-bin libyaml-cpp-dev libbenchmark-dev
+  python3 python3-h5py python3-numpy python3-matplotlib python3-yaml
+)
+
+hexdyn_install() {
+  local missing=()
+  for p in "${HEXDYN_PACKAGES[@]}"; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+  done
+  if ((${#missing[@]})); then
+    echo "setup: installing ${missing[*]}" >&2
+    local sudo=""
+    [ "$(id -u)" -eq 0 ] || sudo="sudo"
+    $sudo apt-get update -qq
+    DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >&2
+  fi
+}
+
+hexdyn_build() {
+  cmake -S "$HEXDYN_ROOT" -B "$HEXDYN_BUILD" -DCMAKE_BUILD_TYPE=Release >/dev/null
+  cmake --build "$HEXDYN_BUILD" -j"$(nproc)"
+}
+
+if [[ "${BASH_SOURCE[0]}" == "$0" ]]; then
+  hexdyn_install
+  hexdyn_build
+fi

@@ -1,0 +1,584 @@
+/// \file allocation_ipopt.cpp
+/// The Ipopt back end of the allocation (allocation_qp.hpp).
+///
+/// Each solve tries the problem as posed ("strict"). If Ipopt does not report success, or
+/// its answer violates a row, the problem is solved again with penalised slack variables
+/// (DESIGN.md §3): each inequality row with a finite bound gets s_i ≥ 0,
+///     lower_i − s_i ≤ C_i x ≤ upper_i + s_i,
+/// each cone k gets s_k ≥ 0 with √(t1² + t2²) ≤ μ n + s_k, and the objective gains the
+/// exact L1 penalty ρ Σ s_i/‖C_i‖ + ρ Σ s_k/√(1+μ²). Equality rows stay hard.
+///
+/// Ipopt form. Variables (x, s). Constraints, in order: equality rows; then either the
+/// inequality rows (strict) or one constraint per finite side of each slacked row
+/// (C_i x + s_i ≥ lower_i, C_i x − s_i ≤ upper_i); then one row per cone,
+///     μ n (+ s) − (√(t1² + t2² + ε²) − ε) ≥ 0,
+/// a smooth form of the cone (ε = IpoptOptions::cone_smoothing_N). It implies μ n (+ s) ≥ 0,
+/// is exact at the apex, admits at most ε of tangential excess elsewhere, and its gradient
+/// never vanishes (∂/∂n = μ), so a solution at the apex (an unloaded foot) has multipliers;
+/// the squared form μ²n² − t² ≥ 0 has none there.
+/// Ipopt's Lagrangian is f + λᵀ g, so hexdyn's multipliers are −λ_ipopt.
+#include <IpIpoptApplication.hpp>
+#include <IpIpoptData.hpp>
+#include <IpTNLP.hpp>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <sstream>
+
+#include "hexdyn/allocation_qp.hpp"
+#include "hexdyn/errors.hpp"
+
+namespace hexdyn {
+namespace {
+
+using Ipopt::Index;
+using Ipopt::Number;
+
+constexpr double kIpoptInf = 2e19;  // beyond Ipopt's nlp_{lower,upper}_bound_inf (±1e19)
+
+enum class Mode { kStrict, kSlack };
+
+const char* return_status_name(Ipopt::ApplicationReturnStatus s) {
+  switch (s) {
+    case Ipopt::Solve_Succeeded: return "Solve_Succeeded";
+    case Ipopt::Solved_To_Acceptable_Level: return "Solved_To_Acceptable_Level";
+    case Ipopt::Infeasible_Problem_Detected: return "Infeasible_Problem_Detected";
+    case Ipopt::Search_Direction_Becomes_Too_Small: return "Search_Direction_Becomes_Too_Small";
+    case Ipopt::Diverging_Iterates: return "Diverging_Iterates";
+    case Ipopt::User_Requested_Stop: return "User_Requested_Stop";
+    case Ipopt::Feasible_Point_Found: return "Feasible_Point_Found";
+    case Ipopt::Maximum_Iterations_Exceeded: return "Maximum_Iterations_Exceeded";
+    case Ipopt::Restoration_Failed: return "Restoration_Failed";
+    case Ipopt::Error_In_Step_Computation: return "Error_In_Step_Computation";
+    case Ipopt::Maximum_CpuTime_Exceeded: return "Maximum_CpuTime_Exceeded";
+    case Ipopt::Not_Enough_Degrees_Of_Freedom: return "Not_Enough_Degrees_Of_Freedom";
+    case Ipopt::Invalid_Problem_Definition: return "Invalid_Problem_Definition";
+    case Ipopt::Invalid_Option: return "Invalid_Option";
+    case Ipopt::Invalid_Number_Detected: return "Invalid_Number_Detected";
+    case Ipopt::Unrecoverable_Exception: return "Unrecoverable_Exception";
+    case Ipopt::NonIpopt_Exception_Thrown: return "NonIpopt_Exception_Thrown";
+    case Ipopt::Insufficient_Memory: return "Insufficient_Memory";
+    case Ipopt::Internal_Error: return "Internal_Error";
+  }
+  return "unknown Ipopt status";
+}
+
+bool succeeded(Ipopt::ApplicationReturnStatus s) {
+  return s == Ipopt::Solve_Succeeded || s == Ipopt::Solved_To_Acceptable_Level;
+}
+
+double clamp_bound(double v) {
+  if (!(v > -kQpInfinity)) return -kIpoptInf;
+  if (!(v < kQpInfinity)) return kIpoptInf;
+  return v;
+}
+
+/// One relaxed side of an inequality row (slack mode).
+struct Piece {
+  int row = 0;
+  int slack = 0;      ///< index of s among the slack variables
+  bool lower = true;  ///< C x + s ≥ lower (true) or C x − s ≤ upper (false)
+};
+
+/// The QP (strict or with slacks) in Ipopt's TNLP form. Reconfigured by `setup` before
+/// every solve; the object itself lives as long as the backend.
+class QpTnlp : public Ipopt::TNLP {
+ public:
+  // --- input, set by the backend before OptimizeTNLP ---
+  const QpProblem* p = nullptr;
+  Eigen::MatrixXd H;  ///< full symmetric H
+  Mode mode = Mode::kStrict;
+  std::vector<Piece> pieces;
+  std::vector<int> row_slack;       ///< slack mode: slack index of each row, −1 for none
+  std::vector<double> slack_weight; ///< ρ per slack variable
+  int n = 0, n_slack = 0, m_eq = 0, m_in = 0, n_cones = 0;
+  double eps = 1e-9;                ///< cone smoothing [N]
+  Eigen::VectorXd start_x;          ///< n + n_slack
+  bool start_multipliers = false;
+  Eigen::VectorXd start_lambda;     ///< Ipopt multipliers of all constraints
+  Eigen::VectorXd start_z_lower;    ///< n + n_slack
+
+  // --- output, written by finalize_solution ---
+  bool finalized = false;
+  Eigen::VectorXd x_out;       ///< n + n_slack
+  Eigen::VectorXd lambda_out;  ///< Ipopt sign
+  Eigen::VectorXd z_lower_out;
+  int iterations_out = 0;
+
+  void setup(const QpProblem& problem, Mode m, double rho, double cone_eps) {
+    p = &problem;
+    eps = cone_eps;
+    mode = m;
+    n = problem.variables();
+    m_eq = problem.equalities();
+    m_in = problem.inequalities();
+    n_cones = static_cast<int>(problem.cones.size());
+    H = problem.H.selfadjointView<Eigen::Lower>();
+    pieces.clear();
+    row_slack.assign(static_cast<std::size_t>(m_in), -1);
+    slack_weight.clear();
+    n_slack = 0;
+    if (mode == Mode::kSlack) {
+      for (int i = 0; i < m_in; ++i) {
+        const bool lo = problem.lower[i] > -kQpInfinity, up = problem.upper[i] < kQpInfinity;
+        if (!lo && !up) continue;
+        const double norm = problem.C.row(i).norm();
+        row_slack[i] = n_slack;
+        slack_weight.push_back(rho / std::max(norm, 1e-12));
+        if (lo) pieces.push_back({i, n_slack, true});
+        if (up) pieces.push_back({i, n_slack, false});
+        ++n_slack;
+      }
+      for (const SecondOrderCone& c : problem.cones) {
+        slack_weight.push_back(rho / std::sqrt(1.0 + c.mu * c.mu));
+        ++n_slack;
+      }
+    }
+    finalized = false;
+  }
+
+  int cone_slack(int k) const { return n_slack - n_cones + k; }  // slack mode only
+  int first_cone_row() const {
+    return m_eq + (mode == Mode::kStrict ? m_in : static_cast<int>(pieces.size()));
+  }
+  int constraints() const { return first_cone_row() + n_cones; }
+  int nv() const { return n + n_slack; }
+  int hess_x_entries() const { return n * (n + 1) / 2; }
+  static int tri(int i, int j) { return i * (i + 1) / 2 + j; }  // i ≥ j
+
+  bool get_nlp_info(Index& nv_out, Index& m, Index& nnz_jac_g, Index& nnz_h_lag,
+                    IndexStyleEnum& index_style) override {
+    nv_out = nv();
+    m = constraints();
+    const bool slack = mode == Mode::kSlack;
+    nnz_jac_g = m_eq * n + (slack ? static_cast<int>(pieces.size()) * (n + 1) : m_in * n) +
+                n_cones * (slack ? 4 : 3);
+    nnz_h_lag = hess_x_entries();
+    index_style = C_STYLE;
+    return true;
+  }
+
+  bool get_bounds_info(Index nv_in, Number* x_l, Number* x_u, Index m, Number* g_l,
+                       Number* g_u) override {
+    for (Index j = 0; j < nv_in; ++j) {
+      x_l[j] = j < n ? -kIpoptInf : 0.0;
+      x_u[j] = kIpoptInf;
+    }
+    for (int i = 0; i < m_eq; ++i) g_l[i] = g_u[i] = p->b[i];
+    int r = m_eq;
+    if (mode == Mode::kStrict) {
+      for (int i = 0; i < m_in; ++i, ++r) {
+        g_l[r] = clamp_bound(p->lower[i]);
+        g_u[r] = clamp_bound(p->upper[i]);
+      }
+    } else {
+      for (const Piece& pc : pieces) {
+        g_l[r] = pc.lower ? p->lower[pc.row] : -kIpoptInf;
+        g_u[r] = pc.lower ? kIpoptInf : p->upper[pc.row];
+        ++r;
+      }
+    }
+    for (int k = 0; k < n_cones; ++k) {
+      g_l[r] = 0.0;
+      g_u[r++] = kIpoptInf;
+    }
+    return r == m;
+  }
+
+  bool get_starting_point(Index nv_in, bool init_x, Number* x, bool init_z, Number* z_L,
+                          Number* z_U, Index m, bool init_lambda, Number* lambda) override {
+    if (init_x) {
+      if (start_x.size() != nv_in) return false;
+      std::copy(start_x.data(), start_x.data() + nv_in, x);
+    }
+    if (init_z) {
+      if (!start_multipliers || start_z_lower.size() != nv_in) return false;
+      std::copy(start_z_lower.data(), start_z_lower.data() + nv_in, z_L);
+      std::fill(z_U, z_U + nv_in, 0.0);
+    }
+    if (init_lambda) {
+      if (!start_multipliers || start_lambda.size() != m) return false;
+      std::copy(start_lambda.data(), start_lambda.data() + m, lambda);
+    }
+    return true;
+  }
+
+  /// √(t1² + t2² + ε²) of cone k.
+  double smooth_norm(const Number* x, int k) const {
+    const SecondOrderCone& c = p->cones[k];
+    return std::sqrt(x[c.tangent1] * x[c.tangent1] + x[c.tangent2] * x[c.tangent2] + eps * eps);
+  }
+
+  double mu_n_plus_slack(const Number* x, int k) const {
+    const SecondOrderCone& c = p->cones[k];
+    double v = c.mu * x[c.normal];
+    if (mode == Mode::kSlack) v += x[n + cone_slack(k)];
+    return v;
+  }
+
+  bool eval_f(Index, const Number* x, bool, Number& obj) override {
+    Eigen::Map<const Eigen::VectorXd> xv(x, n);
+    obj = 0.5 * xv.dot(H * xv) + p->g.dot(xv) + p->constant;
+    for (int j = 0; j < n_slack; ++j) obj += slack_weight[j] * x[n + j];
+    return true;
+  }
+
+  bool eval_grad_f(Index, const Number* x, bool, Number* grad) override {
+    Eigen::Map<const Eigen::VectorXd> xv(x, n);
+    Eigen::Map<Eigen::VectorXd>(grad, n) = H * xv + p->g;
+    for (int j = 0; j < n_slack; ++j) grad[n + j] = slack_weight[j];
+    return true;
+  }
+
+  bool eval_g(Index, const Number* x, bool, Index m, Number* g) override {
+    Eigen::Map<const Eigen::VectorXd> xv(x, n);
+    int r = 0;
+    for (int i = 0; i < m_eq; ++i) g[r++] = p->A.row(i).dot(xv);
+    if (mode == Mode::kStrict) {
+      for (int i = 0; i < m_in; ++i) g[r++] = p->C.row(i).dot(xv);
+    } else {
+      for (const Piece& pc : pieces) {
+        const double s = x[n + pc.slack];
+        g[r++] = p->C.row(pc.row).dot(xv) + (pc.lower ? s : -s);
+      }
+    }
+    for (int k = 0; k < n_cones; ++k) g[r++] = mu_n_plus_slack(x, k) - (smooth_norm(x, k) - eps);
+    return r == m;
+  }
+
+  bool eval_jac_g(Index, const Number* x, bool, Index, Index nele, Index* iRow, Index* jCol,
+                  Number* values) override {
+    const bool slack = mode == Mode::kSlack;
+    int e = 0, r = 0;
+    if (values == nullptr) {
+      for (int i = 0; i < m_eq; ++i, ++r)
+        for (int j = 0; j < n; ++j, ++e) iRow[e] = r, jCol[e] = j;
+      if (!slack) {
+        for (int i = 0; i < m_in; ++i, ++r)
+          for (int j = 0; j < n; ++j, ++e) iRow[e] = r, jCol[e] = j;
+      } else {
+        for (const Piece& pc : pieces) {
+          for (int j = 0; j < n; ++j, ++e) iRow[e] = r, jCol[e] = j;
+          iRow[e] = r, jCol[e] = n + pc.slack, ++e;
+          ++r;
+        }
+      }
+      for (int k = 0; k < n_cones; ++k) {
+        const SecondOrderCone& c = p->cones[k];
+        iRow[e] = r, jCol[e] = c.tangent1, ++e;
+        iRow[e] = r, jCol[e] = c.tangent2, ++e;
+        iRow[e] = r, jCol[e] = c.normal, ++e;
+        if (slack) iRow[e] = r, jCol[e] = n + cone_slack(k), ++e;
+        ++r;
+      }
+      return e == nele;
+    }
+    for (int i = 0; i < m_eq; ++i)
+      for (int j = 0; j < n; ++j) values[e++] = p->A(i, j);
+    if (!slack) {
+      for (int i = 0; i < m_in; ++i)
+        for (int j = 0; j < n; ++j) values[e++] = p->C(i, j);
+    } else {
+      for (const Piece& pc : pieces) {
+        for (int j = 0; j < n; ++j) values[e++] = p->C(pc.row, j);
+        values[e++] = pc.lower ? 1.0 : -1.0;
+      }
+    }
+    for (int k = 0; k < n_cones; ++k) {
+      const SecondOrderCone& c = p->cones[k];
+      const double r = smooth_norm(x, k);
+      values[e++] = -x[c.tangent1] / r;
+      values[e++] = -x[c.tangent2] / r;
+      values[e++] = c.mu;
+      if (slack) values[e++] = 1.0;
+    }
+    return e == nele;
+  }
+
+  bool eval_h(Index, const Number* x, bool, Number obj_factor, Index, const Number* lambda, bool,
+              Index nele, Index* iRow, Index* jCol, Number* values) override {
+    if (values == nullptr) {
+      for (int i = 0; i < n; ++i)
+        for (int j = 0; j <= i; ++j) iRow[tri(i, j)] = i, jCol[tri(i, j)] = j;
+      return hess_x_entries() == nele;
+    }
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j <= i; ++j) values[tri(i, j)] = obj_factor * H(i, j);
+    const int r0 = first_cone_row();
+    for (int k = 0; k < n_cones; ++k) {
+      // ∇²(−√(t1² + t2² + ε²)) = −(r² I − t tᵀ)/r³ on (t1, t2).
+      const SecondOrderCone& c = p->cones[k];
+      const double t1 = x[c.tangent1], t2 = x[c.tangent2];
+      const double r = smooth_norm(x, k);
+      const double w = lambda[r0 + k] / (r * r * r);
+      values[tri(c.tangent1, c.tangent1)] -= w * (t2 * t2 + eps * eps);
+      values[tri(c.tangent2, c.tangent2)] -= w * (t1 * t1 + eps * eps);
+      const int hi = std::max(c.tangent1, c.tangent2), lo = std::min(c.tangent1, c.tangent2);
+      values[tri(hi, lo)] += w * t1 * t2;
+    }
+    return true;
+  }
+
+  void finalize_solution(Ipopt::SolverReturn, Index nv_in, const Number* x, const Number* z_L,
+                         const Number*, Index m, const Number*, const Number* lambda, Number,
+                         const Ipopt::IpoptData* ip_data,
+                         Ipopt::IpoptCalculatedQuantities*) override {
+    finalized = true;
+    x_out = Eigen::Map<const Eigen::VectorXd>(x, nv_in);
+    z_lower_out = Eigen::Map<const Eigen::VectorXd>(z_L, nv_in);
+    lambda_out = Eigen::Map<const Eigen::VectorXd>(lambda, m);
+    iterations_out = ip_data ? static_cast<int>(ip_data->iter_count()) : 0;
+  }
+};
+
+class IpoptBackend final : public AllocationBackend {
+ public:
+  explicit IpoptBackend(const IpoptOptions& options) : opt_(options) {
+    if (!(opt_.tolerance > 0.0) || !(opt_.slack_penalty > 0.0) || opt_.max_iterations < 1 ||
+        !(opt_.max_cpu_seconds > 0.0)) {
+      std::ostringstream os;
+      os << "Ipopt options: tolerance, slack_penalty, max_cpu_seconds must be > 0 and "
+            "max_iterations >= 1, got "
+         << opt_.tolerance << ", " << opt_.slack_penalty << ", " << opt_.max_cpu_seconds << ", "
+         << opt_.max_iterations;
+      throw ConfigError(os.str());
+    }
+    app_ = IpoptApplicationFactory();
+    Ipopt::OptionsList& o = *app_->Options();
+    o.SetIntegerValue("print_level", 0);
+    o.SetStringValue("sb", "yes");
+    o.SetStringValue("hessian_approximation", "exact");
+    o.SetNumericValue("tol", opt_.tolerance);
+    o.SetNumericValue("constr_viol_tol", opt_.tolerance);
+    o.SetNumericValue("acceptable_tol", std::max(1e-6, 1e3 * opt_.tolerance));
+    o.SetNumericValue("acceptable_constr_viol_tol", std::max(1e-6, 1e3 * opt_.tolerance));
+    o.SetIntegerValue("max_iter", opt_.max_iterations);
+    o.SetNumericValue("max_cpu_time", opt_.max_cpu_seconds);
+    o.SetStringValue("linear_solver", opt_.linear_solver);
+    o.SetStringValue("jac_c_constant", "yes");
+    // Rows are limits such as ±6 N·m: keep them exact rather than relaxed by 1e-8 relative.
+    o.SetNumericValue("bound_relax_factor", 0.0);
+    // The empty parameter-file name keeps a stray ipopt.opt in the working directory out.
+    const Ipopt::ApplicationReturnStatus st = app_->Initialize("");
+    if (st != Ipopt::Solve_Succeeded)
+      throw SolverError(std::string("Ipopt initialisation failed: ") + return_status_name(st));
+    tnlp_ = new QpTnlp();
+  }
+
+  void reset_warm_start() override { have_warm_ = false; }
+
+  const QpOutcome& solve(const QpProblem& problem) override {
+    const auto t0 = std::chrono::steady_clock::now();
+    validate_qp_sizes(problem);
+    solve_impl(problem);
+    out_.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return out_;
+  }
+
+ private:
+  /// Feasibility threshold of a row, relative to max(1, |bound|).
+  double feasibility_tol() const { return std::max(1e-6, 1e3 * opt_.tolerance); }
+
+  void set_per_solve_options(bool linear_constraints, bool warm) {
+    Ipopt::OptionsList& o = *app_->Options();
+    o.SetStringValue("jac_d_constant", linear_constraints ? "yes" : "no");
+    o.SetStringValue("hessian_constant", linear_constraints ? "yes" : "no");
+    if (warm) {
+      o.SetStringValue("warm_start_init_point", "yes");
+      o.SetNumericValue("warm_start_bound_push", 1e-9);
+      o.SetNumericValue("warm_start_bound_frac", 1e-9);
+      o.SetNumericValue("warm_start_slack_bound_push", 1e-9);
+      o.SetNumericValue("warm_start_slack_bound_frac", 1e-9);
+      o.SetNumericValue("warm_start_mult_bound_push", 1e-9);
+      o.SetNumericValue("mu_init", 1e-6);
+    } else {
+      o.SetStringValue("warm_start_init_point", "no");
+      o.SetNumericValue("mu_init", 0.1);
+    }
+  }
+
+  /// Runs Ipopt on the configured TNLP (the application and its options persist; the
+  /// algorithm objects are rebuilt, which costs little next to the factorisations).
+  Ipopt::ApplicationReturnStatus run(int& iterations) {
+    Ipopt::ApplicationReturnStatus st = Ipopt::Internal_Error;
+    try {
+      st = app_->OptimizeTNLP(tnlp_);
+    } catch (...) {
+      st = Ipopt::NonIpopt_Exception_Thrown;
+    }
+    iterations += tnlp_->finalized ? tnlp_->iterations_out : 0;
+    return st;
+  }
+
+  void fill_multipliers() {
+    QpTnlp& t = *tnlp_;
+    const Eigen::VectorXd& lam = t.lambda_out;
+    out_.lambda_eq = -lam.head(t.m_eq);
+    out_.lambda_ineq.setZero(t.m_in);
+    if (t.mode == Mode::kStrict) {
+      out_.lambda_ineq = -lam.segment(t.m_eq, t.m_in);
+    } else {
+      for (std::size_t q = 0; q < t.pieces.size(); ++q)
+        out_.lambda_ineq[t.pieces[q].row] -= lam[t.m_eq + static_cast<int>(q)];
+    }
+    out_.lambda_cone.resize(t.n_cones);
+    for (int k = 0; k < t.n_cones; ++k) out_.lambda_cone[k] = -lam[t.first_cone_row() + k];
+  }
+
+  void fail_with_fallback(const QpProblem& p, const std::string& why) {
+    out_.status = 2;
+    out_.x = qp_fallback_point(p);
+    out_.lambda_eq.setZero(p.equalities());
+    out_.lambda_ineq.setZero(p.inequalities());
+    out_.lambda_cone.setZero(static_cast<int>(p.cones.size()));
+    double viol = 0.0;
+    const std::string v = describe_violations(p, out_.x, feasibility_tol(), &viol);
+    out_.max_violation = viol;
+    out_.objective = p.objective(out_.x);
+    if (!std::isfinite(out_.objective)) out_.objective = 0.0;
+    if (!std::isfinite(out_.max_violation)) out_.max_violation = std::numeric_limits<double>::max();
+    out_.message = "failed: " + why + "; fallback x = least-squares solution of the equalities";
+    if (!v.empty()) out_.message += "; violated: " + v;
+    have_warm_ = false;
+  }
+
+  std::string first_non_finite(const QpProblem& p) const {
+    if (!p.H.allFinite()) return "H";
+    if (!p.g.allFinite()) return "g";
+    if (!std::isfinite(p.constant)) return "constant";
+    if (!p.A.allFinite()) return "A";
+    if (!p.b.allFinite()) return "b";
+    if (!p.C.allFinite()) return "C";
+    for (int i = 0; i < p.inequalities(); ++i)
+      if (std::isnan(p.lower[i]) || std::isnan(p.upper[i])) return "bounds of " + p.ineq_name(i);
+    return {};
+  }
+
+  void solve_impl(const QpProblem& p) {
+    const int n = p.variables(), m_eq = p.equalities(), m_in = p.inequalities();
+    const int n_cones = static_cast<int>(p.cones.size());
+    out_.iterations = 0;
+    out_.message.clear();
+    if (const std::string bad = first_non_finite(p); !bad.empty()) {
+      fail_with_fallback(p, "non-finite entries in " + bad);
+      return;
+    }
+    if (n == 0) {
+      out_.x.resize(0);
+      out_.lambda_eq.setZero(m_eq);
+      out_.lambda_ineq.setZero(m_in);
+      out_.lambda_cone.resize(0);
+      out_.objective = p.constant;
+      const std::string v = describe_violations(p, out_.x, feasibility_tol(), &out_.max_violation);
+      out_.status = v.empty() ? 0 : 2;
+      out_.message = v.empty() ? std::string() : "failed: no variables; violated: " + v;
+      return;
+    }
+    const bool linear = n_cones == 0;
+
+    // --- strict attempt (warm if possible; a failed warm start is retried cold) ---
+    QpTnlp& t = *tnlp_;
+    const bool warm = opt_.warm_start && have_warm_ && warm_n_ == n && warm_m_eq_ == m_eq &&
+                      warm_m_in_ == m_in && warm_cones_ == n_cones;
+    std::string strict_note;
+    for (const bool use_warm : {true, false}) {
+      if (use_warm && !warm) continue;
+      t.setup(p, Mode::kStrict, opt_.slack_penalty, opt_.cone_smoothing_N);
+      if (use_warm) {
+        t.start_x = warm_x_;
+        t.start_multipliers = true;
+        t.start_lambda = warm_lambda_;
+        t.start_z_lower.setZero(n);
+      } else {
+        t.start_x = qp_fallback_point(p);
+        t.start_multipliers = false;
+      }
+      set_per_solve_options(linear, use_warm);
+      const Ipopt::ApplicationReturnStatus st = run(out_.iterations);
+      if (!strict_note.empty()) strict_note += ", then cold ";
+      strict_note += return_status_name(st);
+      if (!(t.finalized && t.x_out.allFinite() && t.lambda_out.allFinite() && succeeded(st)))
+        continue;
+      const Eigen::VectorXd x = t.x_out.head(n);
+      double viol = 0.0;
+      const std::string v = describe_violations(p, x, feasibility_tol(), &viol);
+      if (!v.empty()) {
+        strict_note += " but violated " + v;
+        continue;
+      }
+      out_.status = 0;
+      out_.x = x;
+      fill_multipliers();
+      out_.objective = p.objective(x);
+      out_.max_violation = viol;
+      if (st == Ipopt::Solved_To_Acceptable_Level)
+        out_.message = "solved to Ipopt's acceptable level only";
+      have_warm_ = true;
+      warm_n_ = n, warm_m_eq_ = m_eq, warm_m_in_ = m_in, warm_cones_ = n_cones;
+      warm_x_ = x;
+      warm_lambda_ = t.lambda_out;
+      return;
+    }
+    have_warm_ = false;
+
+    // --- penalised slack attempt ---
+    Eigen::VectorXd x0 = t.finalized && t.x_out.allFinite() && t.x_out.size() >= n
+                             ? Eigen::VectorXd(t.x_out.head(n))
+                             : qp_fallback_point(p);
+    t.setup(p, Mode::kSlack, opt_.slack_penalty, opt_.cone_smoothing_N);
+    t.start_x.resize(t.nv());
+    t.start_x.head(n) = x0;
+    for (int i = 0; i < m_in; ++i) {
+      if (t.row_slack[i] < 0) continue;
+      const double c = p.C.row(i).dot(x0);
+      double v = 0.0;
+      if (p.lower[i] > -kQpInfinity) v = std::max(v, p.lower[i] - c);
+      if (p.upper[i] < kQpInfinity) v = std::max(v, c - p.upper[i]);
+      t.start_x[n + t.row_slack[i]] = v + 1e-2;
+    }
+    for (int k = 0; k < n_cones; ++k) {
+      const SecondOrderCone& c = p.cones[k];
+      const double v = std::hypot(x0[c.tangent1], x0[c.tangent2]) - c.mu * x0[c.normal];
+      t.start_x[n + t.cone_slack(k)] = std::max(v, 0.0) + 1.0;
+    }
+    t.start_multipliers = false;
+    set_per_solve_options(linear, false);
+    const Ipopt::ApplicationReturnStatus st2 = run(out_.iterations);
+    if (!(t.finalized && t.x_out.allFinite() && t.lambda_out.allFinite() && succeeded(st2))) {
+      fail_with_fallback(p, "strict solve " + strict_note + "; penalised solve " +
+                                return_status_name(st2));
+      return;
+    }
+    out_.x = t.x_out.head(n);
+    fill_multipliers();
+    out_.objective = p.objective(out_.x);
+    const std::string v = describe_violations(p, out_.x, feasibility_tol(), &out_.max_violation);
+    if (v.empty()) {
+      out_.status = 0;
+      out_.message = "strict solve " + strict_note + "; the penalised solve needed no slack";
+    } else {
+      out_.status = 1;
+      out_.message = "relaxed: " + v;
+    }
+    // The slack problem's iterate does not warm-start the next strict problem.
+    have_warm_ = false;
+  }
+
+  IpoptOptions opt_;
+  Ipopt::SmartPtr<Ipopt::IpoptApplication> app_;
+  Ipopt::SmartPtr<QpTnlp> tnlp_;
+  QpOutcome out_;
+  bool have_warm_ = false;
+  int warm_n_ = -1, warm_m_eq_ = -1, warm_m_in_ = -1, warm_cones_ = -1;
+  Eigen::VectorXd warm_x_, warm_lambda_;
+};
+
+}  // namespace
+
+std::unique_ptr<AllocationBackend> make_ipopt_backend(const IpoptOptions& options) {
+  return std::make_unique<IpoptBackend>(options);
+}
+
+}  // namespace hexdyn

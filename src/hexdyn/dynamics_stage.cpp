@@ -1,0 +1,372 @@
+#include "hexdyn/dynamics_stage.hpp"
+
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_interp.h>
+
+#include <Eigen/Cholesky>
+#include <cmath>
+#include <limits>
+#include <ostream>
+#include <sstream>
+
+#include "hexdyn/errors.hpp"
+
+namespace hexdyn {
+namespace {
+
+int friction_faces(FrictionModel m) {
+  switch (m) {
+    case FrictionModel::kPyramid4: return 4;
+    case FrictionModel::kPyramid8: return 8;
+    case FrictionModel::kCone: return 0;
+  }
+  return 4;
+}
+
+constexpr const char* kTrunkRowNames[6] = {"trunk force x",  "trunk force y",  "trunk force z",
+                                           "trunk moment x", "trunk moment y", "trunk moment z"};
+/// Impact legs keep a fixed normal force, so their friction limit is a polygon even in
+/// the exact-cone model: an inscribed 16-gon (within 2% of the circle).
+constexpr int kImpactConeFaces = 16;
+
+}  // namespace
+
+Mat3 contact_frame(const Vec3& n_W) {
+  const Vec3 n = n_W.normalized();
+  Vec3 t1 = Vec3::UnitX() - n.x() * n;
+  if (t1.norm() < 1e-9) t1 = Vec3::UnitY() - n.y() * n;
+  t1.normalize();
+  Mat3 R;
+  R.col(0) = t1;
+  R.col(1) = n.cross(t1);
+  R.col(2) = n;
+  return R;
+}
+
+double foot_effective_mass(const RobotModel& model, RobotData& data, const BaseState& base, const VecJ& q,
+                           int leg, const Vec3& n_W) {
+  crba(model, data, base, q);
+  foot_jacobians(model, data, base, q);
+  const int c = 6 + joint_index(leg, 0);
+  const Mat3 M_ll = data.M.block<3, 3>(c, c);
+  const Mat3 J = data.J_foot_W[leg].block<3, 3>(0, c);
+  const Mat3 Lambda_inv = J * M_ll.llt().solve(J.transpose());
+  return 1.0 / (n_W.transpose() * Lambda_inv * n_W);
+}
+
+BaseState base_state_at(const KinematicsResult& kin, int i) {
+  BaseState b;
+  const auto o = kin.base_orientation_wxyz.row(i);
+  b.W_R_B = Quat(o(0), o(1), o(2), o(3)).normalized().toRotationMatrix();
+  b.p_W = kin.base_position.row(i).transpose();
+  b.v_W = kin.base_linear_velocity.row(i).transpose();
+  b.omega_W = kin.base_angular_velocity.row(i).transpose();
+  b.a_W = kin.base_linear_acceleration.row(i).transpose();
+  b.omegadot_W = kin.base_angular_acceleration.row(i).transpose();
+  return b;
+}
+
+std::vector<Touchdown> resolve_touchdowns(const RobotModel& model, RobotData& data, const MotionPlan& plan,
+                                          const ContactParams& contact) {
+  std::vector<Touchdown> out;
+  RobotKinematicState s;
+  for (int leg = 0; leg < kLegs; ++leg) {
+    for (const Swing& sw : plan.gait.legs[leg].swings) {
+      Touchdown td;
+      td.leg = leg;
+      td.t_s = sw.t_touchdown_s;
+      td.normal_W = plan.terrain.normal(sw.p_touchdown_W.x(), sw.p_touchdown_W.y());
+      const FootMotion arrival = swing_foot_motion(sw, sw.t_touchdown_s);
+      td.approach_speed_mps = -arrival.v_W.dot(td.normal_W);
+      robot_state_at(model, plan, td.t_s, s);
+      BaseState base;
+      base.W_R_B = s.trunk.W_R_B;
+      base.p_W = s.trunk.p_W;
+      td.effective_mass_kg = foot_effective_mass(model, data, base, s.q, leg, td.normal_W);
+      td.transient = simulate_touchdown(contact, td.effective_mass_kg, td.approach_speed_mps, ImpactOptions{});
+      out.push_back(std::move(td));
+    }
+  }
+  std::sort(out.begin(), out.end(), [](const Touchdown& a, const Touchdown& b) {
+    return a.t_s < b.t_s || (a.t_s == b.t_s && a.leg < b.leg);
+  });
+  return out;
+}
+
+std::unique_ptr<AllocationBackend> make_allocation_backend(const AllocationParams& params) {
+  switch (params.solver) {
+    case AllocationSolver::kIpopt: return make_ipopt_backend(ipopt_options_from(params));
+  }
+  throw SolverError("allocation.solver: no back end");
+}
+
+double build_allocation_problem(const AllocationParams& alloc, const ContactParams& contact,
+                                const ContactSplit& split, const std::array<ContactPhase, kLegs>& phase,
+                                const std::array<double, kLegs>& impact_force_N,
+                                const std::array<Mat3, kLegs>& W_R_c, QpProblem& qp,
+                                std::array<int, kLegs>& offset, std::string* constant_violation) {
+  const int faces = friction_faces(alloc.friction);
+  const double mu = contact.friction_coefficient;
+  // Layout and sizes.
+  int n = 0, m_in = 6;  // six trunk rows (lower = upper, so that they can be relaxed)
+  for (int l = 0; l < kLegs; ++l) {
+    offset[l] = -1;
+    if (phase[l] == ContactPhase::kSwing) continue;
+    offset[l] = n;
+    const bool support = phase[l] == ContactPhase::kSupport;
+    n += support ? 3 : 2;
+    m_in += kJointsPerLeg;                 // torque rows
+    if (support) m_in += 1;                // normal force row
+    m_in += support ? faces : (faces ? faces : kImpactConeFaces);
+  }
+  qp.resize(n, 0, m_in);
+  // Known forces: the normal force of impact legs.
+  VecJ tau_known = split.tau0;
+  Vec6 trunk_rhs = split.trunk_rhs;
+  for (int l = 0; l < kLegs; ++l) {
+    if (phase[l] != ContactPhase::kImpact) continue;
+    const Vec3 F_fixed = impact_force_N[l] * W_R_c[l].col(2);
+    tau_known -= split.JjT[l] * F_fixed;
+    trunk_rhs -= split.JbT[l] * F_fixed;
+  }
+  // Torques τ = tau_known − G x; trunk rows B x = trunk_rhs.
+  Eigen::Matrix<double, kJoints, Eigen::Dynamic> G = Eigen::Matrix<double, kJoints, Eigen::Dynamic>::Zero(kJoints, n);
+  Eigen::Matrix<double, 6, Eigen::Dynamic> B = Eigen::Matrix<double, 6, Eigen::Dynamic>::Zero(6, n);
+  for (int l = 0; l < kLegs; ++l) {
+    if (offset[l] < 0) continue;
+    const int k = phase[l] == ContactPhase::kSupport ? 3 : 2;
+    G.middleCols(offset[l], k) = split.JjT[l] * W_R_c[l].leftCols(k);
+    B.middleCols(offset[l], k) = split.JbT[l] * W_R_c[l].leftCols(k);
+  }
+  // Objective Σ τ² = |tau_known − G x|² = ½ xᵀ (2 GᵀG) x − 2 (Gᵀ tau_known)ᵀ x + |tau_known|².
+  qp.H = 2.0 * G.transpose() * G;
+  qp.g = -2.0 * G.transpose() * tau_known;
+  qp.constant = tau_known.squaredNorm();
+  int row = 0;
+  for (int r = 0; r < 6; ++r, ++row) {
+    qp.C.row(row) = B.row(r);
+    qp.lower[row] = qp.upper[row] = trunk_rhs[r];
+    qp.ineq_names[row] = kTrunkRowNames[r];
+  }
+  const double tmax = alloc.torque_limit_Nm;
+  double worst_constant = 0.0;
+  for (int l = 0; l < kLegs; ++l) {
+    if (offset[l] < 0) {
+      for (int j = 0; j < kJointsPerLeg; ++j) {
+        const double excess = std::abs(tau_known[joint_index(l, j)]) - tmax;
+        if (excess > worst_constant) {
+          worst_constant = excess;
+          if (constant_violation)
+            *constant_violation = "torque " + joint_name(l, j) + " (swing leg) by " + std::to_string(excess);
+        }
+      }
+      continue;
+    }
+    const int o = offset[l];
+    for (int j = 0; j < kJointsPerLeg; ++j, ++row) {
+      const int kk = joint_index(l, j);
+      qp.C.row(row) = G.row(kk);
+      qp.lower[row] = tau_known[kk] - tmax;
+      qp.upper[row] = tau_known[kk] + tmax;
+      qp.ineq_names[row] = "torque " + joint_name(l, j);
+    }
+    const bool support = phase[l] == ContactPhase::kSupport;
+    if (support) {
+      qp.C(row, o + 2) = 1.0;
+      qp.lower[row] = alloc.min_normal_force_N;
+      qp.upper[row] = std::numeric_limits<double>::infinity();
+      qp.ineq_names[row++] = "normal " + leg_name(l);
+    }
+    const int nf = faces ? faces : (support ? 0 : kImpactConeFaces);
+    // Inscribed N-gon: face normals at 2πk/N, at distance μ f_n cos(π/N).
+    for (int f = 0; f < nf; ++f, ++row) {
+      const double a = 2.0 * M_PI * f / nf;
+      const double reach = mu * std::cos(M_PI / nf);
+      qp.C(row, o) = std::cos(a);
+      qp.C(row, o + 1) = std::sin(a);
+      qp.lower[row] = -std::numeric_limits<double>::infinity();
+      if (support) {
+        qp.C(row, o + 2) = -reach;
+        qp.upper[row] = 0.0;
+      } else {
+        qp.upper[row] = reach * impact_force_N[l];
+      }
+      qp.ineq_names[row] = "friction " + leg_name(l) + " face " + std::to_string(f + 1);
+    }
+    if (!faces && support) qp.cones.push_back({o, o + 1, o + 2, mu, "friction cone " + leg_name(l)});
+  }
+  return worst_constant;
+}
+
+void forces_from_solution(const ContactSplit& split, const std::array<ContactPhase, kLegs>& phase,
+                          const std::array<double, kLegs>& impact_force_N, const std::array<Mat3, kLegs>& W_R_c,
+                          const std::array<int, kLegs>& offset, const Eigen::VectorXd& x,
+                          std::array<Vec3, kLegs>& F_W, VecJ& tau) {
+  tau = split.tau0;
+  for (int l = 0; l < kLegs; ++l) {
+    F_W[l].setZero();
+    if (phase[l] == ContactPhase::kSupport) {
+      F_W[l] = W_R_c[l] * x.segment<3>(offset[l]);
+    } else if (phase[l] == ContactPhase::kImpact) {
+      F_W[l] = W_R_c[l].leftCols<2>() * x.segment<2>(offset[l]) + impact_force_N[l] * W_R_c[l].col(2);
+    }
+    tau -= split.JjT[l] * F_W[l];
+  }
+}
+
+double integrate_series(const std::vector<double>& t, const double* y, int stride) {
+  const std::size_t n = t.size();
+  if (n < 2) return 0.0;
+  std::vector<double> ys(n);
+  for (std::size_t i = 0; i < n; ++i) ys[i] = y[i * stride];
+  gsl_interp* interp = gsl_interp_alloc(gsl_interp_linear, n);
+  gsl_interp_accel* acc = gsl_interp_accel_alloc();
+  gsl_interp_init(interp, t.data(), ys.data(), n);
+  const double value = gsl_interp_eval_integ(interp, t.data(), ys.data(), t.front(), t.back(), acc);
+  gsl_interp_accel_free(acc);
+  gsl_interp_free(interp);
+  return value;
+}
+
+void compute_power(const KinematicsResult& kin, double total_mass_kg, double distance_m, DynamicsResult& dyn) {
+  const int T = kin.samples();
+  dyn.joint_power = dyn.joint_torque.cwiseProduct(kin.joint_velocity);
+  dyn.total_power_W.assign(T, 0.0);
+  RowMatrix abs_power = dyn.joint_power.cwiseAbs();
+  for (int i = 0; i < T; ++i) dyn.total_power_W[i] = abs_power.row(i).sum();
+  dyn.energy_total_J = integrate_series(kin.time_s, dyn.total_power_W.data());
+  dyn.energy_joint_J.assign(kJoints, 0.0);
+  for (int k = 0; k < kJoints; ++k)
+    dyn.energy_joint_J[k] = integrate_series(kin.time_s, abs_power.data() + k, kJoints);
+  dyn.distance_m = distance_m;
+  dyn.cost_of_transport = dyn.energy_total_J / (total_mass_kg * kGravity * distance_m);
+}
+
+DynamicsResult solve_dynamics(const Scene& scene, const RobotModel& model, const MotionPlan& plan,
+                              KinematicsResult& kin, const std::vector<Touchdown>& touchdowns, std::ostream* log) {
+  const int T = kin.samples();
+  DynamicsResult dyn;
+  dyn.present = true;
+  dyn.joint_torque.setZero(T, kJoints);
+  dyn.contact_force.setZero(T, 3 * kLegs);
+  dyn.penetration.setZero(T, kLegs);
+  dyn.solver_status.assign(T, 0);
+  dyn.solver_iterations.assign(T, 0.0);
+  dyn.solver_objective.assign(T, 0.0);
+  dyn.solver_seconds.assign(T, 0.0);
+  dyn.solver_messages.assign(T, std::string());
+  for (const Touchdown& td : touchdowns) {
+    ImpactRecord r;
+    r.leg = td.leg;
+    r.t_start_s = td.t_s;
+    r.duration_s = td.transient.duration_s;
+    r.peak_force_N = td.transient.peak_force_N;
+    r.impulse_Ns = td.transient.impulse_Ns;
+    r.effective_mass_kg = td.effective_mass_kg;
+    r.approach_speed_mps = td.approach_speed_mps;
+    if (td.transient.occurred) dyn.impacts.push_back(r);
+  }
+
+  RobotData data(model);
+  auto backend = make_allocation_backend(scene.allocation);
+  QpProblem qp;
+  std::array<int, kLegs> offset{};
+  std::array<ContactPhase, kLegs> phase{};
+  std::array<double, kLegs> f_impact{};
+  std::array<Mat3, kLegs> W_R_c;
+  std::array<Vec3, kLegs> F_W;
+  VecJ tau;
+  // Episode of consecutive non-optimal samples, for the log.
+  int episode_count = 0, episode_status = 0;
+  double episode_start = 0.0, episode_end = 0.0, episode_worst = -1.0;
+  std::string episode_message;
+  auto flush_episode = [&]() {
+    if (episode_count > 0 && log) {
+      *log << "hexdyn: t = [" << episode_start << ", " << episode_end << "] s: " << episode_count
+           << (episode_status == 1 ? " sample(s) relaxed: " : " sample(s) failed: ") << episode_message << "\n";
+    }
+    episode_count = 0;
+    episode_worst = -1.0;
+  };
+
+  std::size_t first_td = 0;  // touchdowns are sorted by time
+  for (int i = 0; i < T; ++i) {
+    const double t = kin.time_s[i];
+    const BaseState base = base_state_at(kin, i);
+    const VecJ q = kin.joint_position.row(i).transpose();
+    const VecJ qd = kin.joint_velocity.row(i).transpose();
+    const VecJ qdd = kin.joint_acceleration.row(i).transpose();
+    const ContactSplit& split = contact_split(model, data, base, q, qd, qdd);
+    for (int l = 0; l < kLegs; ++l) {
+      phase[l] = kin.contact_phase(i, l) == static_cast<std::int8_t>(ContactPhase::kSwing) ? ContactPhase::kSwing
+                                                                                          : ContactPhase::kSupport;
+      f_impact[l] = 0.0;
+      const Vec3 p = kin.foot_position.row(i).segment<3>(3 * l).transpose();
+      W_R_c[l] = contact_frame(plan.terrain.normal(p.x(), p.y()));
+    }
+    while (first_td < touchdowns.size() &&
+           touchdowns[first_td].t_s + touchdowns[first_td].transient.duration_s < t)
+      ++first_td;
+    for (std::size_t k = first_td; k < touchdowns.size() && touchdowns[k].t_s <= t; ++k) {
+      const Touchdown& td = touchdowns[k];
+      if (!td.transient.occurred || t >= td.t_s + td.transient.duration_s) continue;
+      if (phase[td.leg] == ContactPhase::kSwing) continue;
+      phase[td.leg] = ContactPhase::kImpact;
+      f_impact[td.leg] = transient_force_at(td.transient, t - td.t_s);
+    }
+    std::string constant_violation;
+    const double constant_excess = build_allocation_problem(scene.allocation, scene.contact, split, phase, f_impact,
+                                                            W_R_c, qp, offset, &constant_violation);
+    const QpOutcome& outcome = backend->solve(qp);
+    forces_from_solution(split, phase, f_impact, W_R_c, offset, outcome.x, F_W, tau);
+    int status = outcome.status;
+    std::string message = outcome.message;
+    if (constant_excess > scene.allocation.tolerance && status == 0) {
+      status = 1;
+      message = "relaxed: " + constant_violation;
+    } else if (constant_excess > scene.allocation.tolerance) {
+      message += ", " + constant_violation;
+    }
+    dyn.solver_status[i] = static_cast<std::int8_t>(status);
+    dyn.solver_iterations[i] = outcome.iterations;
+    dyn.solver_objective[i] = tau.squaredNorm();
+    dyn.solver_seconds[i] = outcome.seconds;
+    dyn.joint_torque.row(i) = tau.transpose();
+    for (int l = 0; l < kLegs; ++l) {
+      dyn.contact_force.row(i).segment<3>(3 * l) = F_W[l].transpose();
+      double delta = 0.0;
+      if (phase[l] == ContactPhase::kSupport) {
+        delta = static_penetration(scene.contact, std::max(0.0, F_W[l].dot(W_R_c[l].col(2))));
+      } else if (phase[l] == ContactPhase::kImpact) {
+        for (const Touchdown& td : touchdowns)
+          if (td.leg == l && t >= td.t_s && t < td.t_s + td.transient.duration_s)
+            delta = transient_penetration_at(td.transient, t - td.t_s);
+      }
+      dyn.penetration(i, l) = delta;
+      kin.contact_phase(i, l) = static_cast<std::int8_t>(phase[l]);
+    }
+    if (status != 0) {
+      std::string legs;
+      for (int l = 0; l < kLegs; ++l)
+        if (phase[l] == ContactPhase::kImpact) legs += " " + leg_name(l);
+      if (!legs.empty()) message += " (impact" + legs + ")";
+      dyn.solver_messages[i] = message;
+      if (episode_count == 0) episode_start = t;
+      episode_end = t;
+      ++episode_count;
+      episode_status = std::max(episode_status, status);
+      if (outcome.max_violation > episode_worst) {
+        episode_worst = outcome.max_violation;
+        episode_message = message;
+      }
+    } else {
+      flush_episode();
+      episode_status = 0;
+    }
+  }
+  flush_episode();
+  compute_power(kin, model.total_mass_kg, plan.trunk.total_travel_m(), dyn);
+  return dyn;
+}
+
+}  // namespace hexdyn

@@ -1,0 +1,86 @@
+#pragma once
+/// \file dynamics_stage.hpp
+/// The dynamic half of the pipeline (DESIGN.md §3): touchdown transients, per-sample
+/// torque-optimal foot-force allocation, joint power and energy.
+///
+/// Contact frame of a foot: n the terrain normal (+z on treads), t1 the world x axis
+/// made orthogonal to n, t2 = n × t1. Allocation variables per sample, stacked by leg:
+/// (f_t1, f_t2, f_n) for a support leg, (f_t1, f_t2) for a leg in its impact transient
+/// (f_n is the transient's force, a known input), nothing for a swing leg (F = 0).
+#include <memory>
+#include <vector>
+
+#include "hexdyn/allocation_qp.hpp"
+#include "hexdyn/contact.hpp"
+#include "hexdyn/dynamics.hpp"
+#include "hexdyn/kinematics.hpp"
+#include "hexdyn/result.hpp"
+#include "hexdyn/scene.hpp"
+
+namespace hexdyn {
+
+/// One touchdown and its resolved transient.
+struct Touchdown {
+  int leg = 0;
+  double t_s = 0.0;                  ///< instant the foot reaches the terrain
+  double approach_speed_mps = 0.0;   ///< foot speed into the terrain along −n
+  double effective_mass_kg = 0.0;    ///< 1 / (nᵀ J M_leg⁻¹ Jᵀ n), trunk held fixed
+  Vec3 normal_W = Vec3::UnitZ();
+  ImpactTransient transient;
+};
+
+/// Effective mass of leg `leg`'s foot along n_W: the leg's operational-space inertia
+/// Λ = (J M_ll⁻¹ Jᵀ)⁻¹ with M_ll the leg's 3×3 joint block of M(q) and J its
+/// world-frame foot Jacobian (joint columns), i.e. the trunk held by the other legs.
+double foot_effective_mass(const RobotModel& model, RobotData& data, const BaseState& base,
+                           const VecJ& q, int leg, const Vec3& n_W);
+
+/// Every touchdown of the plan with its transient integrated (contact.hpp).
+std::vector<Touchdown> resolve_touchdowns(const RobotModel& model, RobotData& data,
+                                          const MotionPlan& plan, const ContactParams& contact);
+
+/// The trunk state of sample i of a kinematics result.
+BaseState base_state_at(const KinematicsResult& kin, int i);
+
+/// Creates the allocation back end named by the scene (allocation.solver).
+std::unique_ptr<AllocationBackend> make_allocation_backend(const AllocationParams& params);
+
+/// Builds the allocation problem of one sample. Legs in `phase` kSwing carry no force,
+/// kImpact legs carry the known normal force `impact_force_N[l]`. `layout_offset[l]`
+/// receives the index of the leg's first variable (−1 without variables).
+/// Returns the largest excess of a swing-leg torque over the limit (constant rows that no
+/// force can change), 0 when none; `*constant_violation` names it.
+double build_allocation_problem(const AllocationParams& alloc, const ContactParams& contact,
+                                const ContactSplit& split,
+                                const std::array<ContactPhase, kLegs>& phase,
+                                const std::array<double, kLegs>& impact_force_N,
+                                const std::array<Mat3, kLegs>& W_R_contact, QpProblem& qp,
+                                std::array<int, kLegs>& layout_offset,
+                                std::string* constant_violation);
+
+/// Foot forces (world) and joint torques of a solution x of build_allocation_problem.
+void forces_from_solution(const ContactSplit& split, const std::array<ContactPhase, kLegs>& phase,
+                          const std::array<double, kLegs>& impact_force_N,
+                          const std::array<Mat3, kLegs>& W_R_contact,
+                          const std::array<int, kLegs>& layout_offset, const Eigen::VectorXd& x,
+                          std::array<Vec3, kLegs>& F_W, VecJ& tau);
+
+/// Contact frame [t1 t2 n] (columns, world axes) for the terrain normal n_W.
+Mat3 contact_frame(const Vec3& n_W);
+
+/// Runs contact, allocation and power over the samples of `kin` (whose contact_phase is
+/// updated with the impact windows). `log` receives one line per episode of relaxed or
+/// failed samples (may be null).
+DynamicsResult solve_dynamics(const Scene& scene, const RobotModel& model, const MotionPlan& plan,
+                              KinematicsResult& kin, const std::vector<Touchdown>& touchdowns,
+                              std::ostream* log);
+
+/// Joint power P = τ ω, total P_in = Σ|τ ω|, energies E = ∫ P_in dt and per joint
+/// (GSL, exact for the piecewise-linear series), and the cost of transport E/(m g d).
+void compute_power(const KinematicsResult& kin, double total_mass_kg, double distance_m,
+                   DynamicsResult& dyn);
+
+/// ∫ y dt over the samples (GSL piecewise-linear interpolation integral).
+double integrate_series(const std::vector<double>& t, const double* y, int stride = 1);
+
+}  // namespace hexdyn

@@ -1,0 +1,54 @@
+#pragma once
+/// \file errors.hpp
+/// The exception family. Every message is one line naming what was wrong and what
+/// is allowed; the CLI prints it and exits with status 2 (input errors) or 3 (a
+/// scenario that cannot be computed). A sweep catches `hexdyn::Error`, records the
+/// scenario as failed with the message, and goes on.
+#include <stdexcept>
+#include <string>
+
+namespace hexdyn {
+
+/// Base of all hexdyn errors.
+class Error : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+  virtual int exit_status() const { return 3; }
+};
+
+/// A configuration key is missing, mistyped, non-finite, unknown or out of range;
+/// the YAML cannot be parsed; a file cannot be read. Message names key path and value.
+class ConfigError : public Error {
+ public:
+  using Error::Error;
+  int exit_status() const override { return 2; }
+};
+
+/// An output file cannot be written.
+class IoError : public Error {
+ public:
+  using Error::Error;
+  int exit_status() const override { return 2; }
+};
+
+/// A foot target outside a leg's workspace or too close to a singularity:
+/// the message names the leg, the time and the margin.
+class ReachError : public Error {
+ public:
+  using Error::Error;
+};
+
+/// A planning failure (no foothold on a tread, a swing path that cannot clear).
+class PlanningError : public Error {
+ public:
+  using Error::Error;
+};
+
+/// A numerical solver could not produce a usable answer at all (not the flagged,
+/// relaxed samples, which are values, not exceptions).
+class SolverError : public Error {
+ public:
+  using Error::Error;
+};
+
+}  // namespace hexdyn

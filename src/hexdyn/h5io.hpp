@@ -1,0 +1,111 @@
+#pragma once
+/// \file h5io.hpp
+/// A small RAII layer over the HDF5 C API: write a file of plain datasets (every one
+/// with a `units` attribute) and read it back. Paths are absolute HDF5 paths
+/// ("/joints/torque"); parent groups are created on demand. Arrays are contiguous and
+/// row-major (C order), shapes given as `dims` (outermost first; {} is a scalar).
+/// Strings are variable-length UTF-8. No compression, no chunking.
+///
+/// Every HDF5 failure throws `IoError` naming the file and the object path; HDF5's own
+/// error printing is switched off. Not thread-safe (neither is serial HDF5).
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace hexdyn {
+
+/// Switches off HDF5's automatic error-stack printing (idempotent).
+void silence_hdf5_errors();
+
+/// Creates (truncates) an HDF5 file and writes datasets and attributes into it.
+/// The file is closed by `close()` (which reports errors) or by the destructor.
+class H5Writer {
+ public:
+  /// Creates `file_path`, replacing an existing file. Throws IoError.
+  explicit H5Writer(const std::string& file_path);
+  ~H5Writer();
+  H5Writer(const H5Writer&) = delete;
+  H5Writer& operator=(const H5Writer&) = delete;
+
+  const std::string& file_path() const { return file_path_; }
+
+  /// Creates the group and any missing parents; no-op if it exists.
+  void create_group(const std::string& group_path);
+
+  /// Double array of shape `dims` from `values` (row-major, size = product of dims).
+  void write_doubles(const std::string& dataset_path, const std::vector<std::size_t>& dims,
+                     std::span<const double> values, const std::string& units);
+  /// Scalar double (dataspace rank 0).
+  void write_scalar(const std::string& dataset_path, double value, const std::string& units);
+  void write_int8(const std::string& dataset_path, const std::vector<std::size_t>& dims,
+                  std::span<const std::int8_t> values, const std::string& units);
+  void write_int32(const std::string& dataset_path, const std::vector<std::size_t>& dims,
+                   std::span<const std::int32_t> values, const std::string& units);
+  /// Scalar variable-length UTF-8 string.
+  void write_string(const std::string& dataset_path, const std::string& value,
+                    const std::string& units);
+  /// 1-D array of variable-length UTF-8 strings (may be empty).
+  void write_strings(const std::string& dataset_path, const std::vector<std::string>& values,
+                     const std::string& units);
+
+  /// Attributes on an existing group or dataset ("/" is the root); replaced if present.
+  void set_string_attribute(const std::string& object_path, const std::string& name,
+                            const std::string& value);
+  void set_double_attribute(const std::string& object_path, const std::string& name, double value);
+  void set_int_attribute(const std::string& object_path, const std::string& name,
+                         std::int64_t value);
+
+  /// Flushes and closes the file; throws IoError if HDF5 cannot finish it.
+  void close();
+
+ private:
+  std::int64_t file_ = -1;  ///< hid_t of the open file, -1 when closed
+  std::string file_path_;
+};
+
+/// Values of a numeric dataset converted to double, with its shape.
+struct H5DoubleArray {
+  std::vector<std::size_t> dims;  ///< {} for a scalar
+  std::vector<double> values;     ///< row-major
+};
+
+/// Opens an HDF5 file read-only (for tests and tools).
+class H5Reader {
+ public:
+  /// Throws IoError if the file cannot be opened as HDF5.
+  explicit H5Reader(const std::string& file_path);
+  ~H5Reader();
+  H5Reader(const H5Reader&) = delete;
+  H5Reader& operator=(const H5Reader&) = delete;
+
+  /// True if a group or dataset exists at the path (parents may be missing).
+  bool exists(const std::string& object_path) const;
+  bool is_dataset(const std::string& object_path) const;
+  bool is_group(const std::string& object_path) const;
+  /// Shape of a dataset; {} for a scalar.
+  std::vector<std::size_t> dims(const std::string& dataset_path) const;
+  /// Stored element type: "float64", "int8", "int32", "int64", "string" or "other".
+  std::string element_type(const std::string& dataset_path) const;
+
+  /// Any numeric dataset, converted to double.
+  H5DoubleArray read_doubles(const std::string& dataset_path) const;
+  /// Any integer dataset, converted to int64.
+  std::vector<std::int64_t> read_ints(const std::string& dataset_path) const;
+  /// Scalar string dataset (variable- or fixed-length).
+  std::string read_string(const std::string& dataset_path) const;
+  /// 1-D string dataset (variable- or fixed-length).
+  std::vector<std::string> read_strings(const std::string& dataset_path) const;
+
+  bool has_attribute(const std::string& object_path, const std::string& name) const;
+  std::string string_attribute(const std::string& object_path, const std::string& name) const;
+  double double_attribute(const std::string& object_path, const std::string& name) const;
+  std::int64_t int_attribute(const std::string& object_path, const std::string& name) const;
+
+ private:
+  std::int64_t file_ = -1;  ///< hid_t
+  std::string file_path_;
+};
+
+}  // namespace hexdyn
