@@ -16,13 +16,6 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-std::vector<std::string> split_path(const std::string& path) {
-  std::vector<std::string> keys;
-  std::stringstream ss(path);
-  std::string key;
-  while (std::getline(ss, key, '.')) keys.push_back(key);
-  return keys;
-}
 
 std::string show(const YAML::Node& node) {
   if (!node.IsDefined() || node.IsNull()) return "null";
@@ -197,7 +190,7 @@ class Reader {
   YAML::Node lookup(const std::string& path) const {
     YAML::Node cur = YAML::Clone(root_);
     std::string so_far;
-    for (const auto& key : split_path(path)) {
+    for (const auto& key : split_key_path(path)) {
       if (!cur.IsDefined() || cur.IsNull()) return YAML::Node(YAML::NodeType::Undefined);
       if (!cur.IsMap()) fail_value(so_far.empty() ? "(top level)" : so_far, cur, "a mapping of keys");
       YAML::Node next = cur[key];
@@ -208,7 +201,7 @@ class Reader {
   }
 
   void set_resolved(const std::string& path, const YAML::Node& value) {
-    const auto keys = split_path(path);
+    const auto keys = split_key_path(path);
     YAML::Node cur = resolved_;
     for (std::size_t i = 0; i + 1 < keys.size(); ++i) {
       YAML::Node next = cur[keys[i]];
@@ -415,6 +408,14 @@ void read_output(Reader& r, OutputParams& o) {
 
 }  // namespace
 
+std::vector<std::string> split_key_path(const std::string& path) {
+  std::vector<std::string> keys;
+  std::stringstream ss(path);
+  std::string key;
+  while (std::getline(ss, key, '.')) keys.push_back(key);
+  return keys;
+}
+
 Override parse_override(const std::string& text) {
   const auto eq = text.find('=');
   if (eq == std::string::npos || eq == 0)
@@ -450,7 +451,7 @@ void apply_override(YAML::Node& root, const Override& ov, const std::string& sou
   } catch (const YAML::ParserException& e) {
     throw ConfigError("--set " + ov.key_path + "=" + ov.value + ": YAML syntax error in the value: " + e.msg);
   }
-  const auto keys = split_path(ov.key_path);
+  const auto keys = split_key_path(ov.key_path);
   for (const auto& k : keys)
     if (k.empty()) throw ConfigError("--set " + ov.key_path + ": empty key in the path");
   YAML::Node cur = root;

@@ -21,6 +21,9 @@ struct Override {
   std::string value;
 };
 
+/// "a.b.c" → {"a", "b", "c"}.
+std::vector<std::string> split_key_path(const std::string& path);
+
 /// Parses "key.path=value"; throws ConfigError on a malformed string.
 Override parse_override(const std::string& text);
 

@@ -93,6 +93,28 @@ std::vector<Touchdown> resolve_touchdowns(const RobotModel& model, RobotData& da
   return out;
 }
 
+void sample_contacts(const KinematicsResult& kin, int i, const Terrain& terrain,
+                     const std::vector<Touchdown>& touchdowns, SampleContacts& out) {
+  const double t = kin.time_s[i];
+  out.impacting_legs = 0;
+  for (int l = 0; l < kLegs; ++l) {
+    out.phase[l] = kin.contact_phase(i, l) == static_cast<std::int8_t>(ContactPhase::kSwing) ? ContactPhase::kSwing
+                                                                                           : ContactPhase::kSupport;
+    out.impact_force_N[l] = 0.0;
+    out.impact_penetration_m[l] = 0.0;
+    const Vec3 p = kin.foot_position.row(i).segment<3>(3 * l).transpose();
+    out.W_R_contact[l] = contact_frame(terrain.normal(p.x(), p.y()));
+  }
+  for (const Touchdown& td : touchdowns) {
+    if (!td.transient.occurred || t < td.t_s || t >= td.t_s + td.transient.duration_s) continue;
+    if (out.phase[td.leg] == ContactPhase::kSwing) continue;
+    out.phase[td.leg] = ContactPhase::kImpact;
+    out.impact_force_N[td.leg] = transient_force_at(td.transient, t - td.t_s);
+    out.impact_penetration_m[td.leg] = transient_penetration_at(td.transient, t - td.t_s);
+    ++out.impacting_legs;
+  }
+}
+
 std::unique_ptr<AllocationBackend> make_allocation_backend(const AllocationParams& params) {
   switch (params.solver) {
     case AllocationSolver::kIpopt: return make_ipopt_backend(ipopt_options_from(params));
@@ -271,9 +293,7 @@ DynamicsResult solve_dynamics(const Scene& scene, const RobotModel& model, const
   auto backend = make_allocation_backend(scene.allocation);
   QpProblem qp;
   std::array<int, kLegs> offset{};
-  std::array<ContactPhase, kLegs> phase{};
-  std::array<double, kLegs> f_impact{};
-  std::array<Mat3, kLegs> W_R_c;
+  SampleContacts c;
   std::array<Vec3, kLegs> F_W;
   VecJ tau;
   // Episode of consecutive non-optimal samples, for the log.
@@ -286,10 +306,10 @@ DynamicsResult solve_dynamics(const Scene& scene, const RobotModel& model, const
            << (episode_status == 1 ? " sample(s) relaxed: " : " sample(s) failed: ") << episode_message << "\n";
     }
     episode_count = 0;
+    episode_status = 0;
     episode_worst = -1.0;
   };
 
-  std::size_t first_td = 0;  // touchdowns are sorted by time
   for (int i = 0; i < T; ++i) {
     const double t = kin.time_s[i];
     const BaseState base = base_state_at(kin, i);
@@ -297,28 +317,13 @@ DynamicsResult solve_dynamics(const Scene& scene, const RobotModel& model, const
     const VecJ qd = kin.joint_velocity.row(i).transpose();
     const VecJ qdd = kin.joint_acceleration.row(i).transpose();
     const ContactSplit& split = contact_split(model, data, base, q, qd, qdd);
-    for (int l = 0; l < kLegs; ++l) {
-      phase[l] = kin.contact_phase(i, l) == static_cast<std::int8_t>(ContactPhase::kSwing) ? ContactPhase::kSwing
-                                                                                          : ContactPhase::kSupport;
-      f_impact[l] = 0.0;
-      const Vec3 p = kin.foot_position.row(i).segment<3>(3 * l).transpose();
-      W_R_c[l] = contact_frame(plan.terrain.normal(p.x(), p.y()));
-    }
-    while (first_td < touchdowns.size() &&
-           touchdowns[first_td].t_s + touchdowns[first_td].transient.duration_s < t)
-      ++first_td;
-    for (std::size_t k = first_td; k < touchdowns.size() && touchdowns[k].t_s <= t; ++k) {
-      const Touchdown& td = touchdowns[k];
-      if (!td.transient.occurred || t >= td.t_s + td.transient.duration_s) continue;
-      if (phase[td.leg] == ContactPhase::kSwing) continue;
-      phase[td.leg] = ContactPhase::kImpact;
-      f_impact[td.leg] = transient_force_at(td.transient, t - td.t_s);
-    }
+    sample_contacts(kin, i, plan.terrain, touchdowns, c);
     std::string constant_violation;
-    const double constant_excess = build_allocation_problem(scene.allocation, scene.contact, split, phase, f_impact,
-                                                            W_R_c, qp, offset, &constant_violation);
+    const double constant_excess = build_allocation_problem(scene.allocation, scene.contact, split, c.phase,
+                                                            c.impact_force_N, c.W_R_contact, qp, offset,
+                                                            &constant_violation);
     const QpOutcome& outcome = backend->solve(qp);
-    forces_from_solution(split, phase, f_impact, W_R_c, offset, outcome.x, F_W, tau);
+    forces_from_solution(split, c.phase, c.impact_force_N, c.W_R_contact, offset, outcome.x, F_W, tau);
     int status = outcome.status;
     std::string message = outcome.message;
     if (constant_excess > scene.allocation.tolerance && status == 0) {
@@ -334,21 +339,16 @@ DynamicsResult solve_dynamics(const Scene& scene, const RobotModel& model, const
     dyn.joint_torque.row(i) = tau.transpose();
     for (int l = 0; l < kLegs; ++l) {
       dyn.contact_force.row(i).segment<3>(3 * l) = F_W[l].transpose();
-      double delta = 0.0;
-      if (phase[l] == ContactPhase::kSupport) {
-        delta = static_penetration(scene.contact, std::max(0.0, F_W[l].dot(W_R_c[l].col(2))));
-      } else if (phase[l] == ContactPhase::kImpact) {
-        for (const Touchdown& td : touchdowns)
-          if (td.leg == l && t >= td.t_s && t < td.t_s + td.transient.duration_s)
-            delta = transient_penetration_at(td.transient, t - td.t_s);
-      }
+      double delta = c.impact_penetration_m[l];
+      if (c.phase[l] == ContactPhase::kSupport)
+        delta = static_penetration(scene.contact, std::max(0.0, F_W[l].dot(c.W_R_contact[l].col(2))));
       dyn.penetration(i, l) = delta;
-      kin.contact_phase(i, l) = static_cast<std::int8_t>(phase[l]);
+      kin.contact_phase(i, l) = static_cast<std::int8_t>(c.phase[l]);
     }
     if (status != 0) {
       std::string legs;
       for (int l = 0; l < kLegs; ++l)
-        if (phase[l] == ContactPhase::kImpact) legs += " " + leg_name(l);
+        if (c.phase[l] == ContactPhase::kImpact) legs += " " + leg_name(l);
       if (!legs.empty()) message += " (impact" + legs + ")";
       dyn.solver_messages[i] = message;
       if (episode_count == 0) episode_start = t;
@@ -361,7 +361,6 @@ DynamicsResult solve_dynamics(const Scene& scene, const RobotModel& model, const
       }
     } else {
       flush_episode();
-      episode_status = 0;
     }
   }
   flush_episode();

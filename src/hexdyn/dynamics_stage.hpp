@@ -42,6 +42,20 @@ std::vector<Touchdown> resolve_touchdowns(const RobotModel& model, RobotData& da
 /// The trunk state of sample i of a kinematics result.
 BaseState base_state_at(const KinematicsResult& kin, int i);
 
+/// Contact state of every leg at one sample: its phase (swing and support from the
+/// kinematics; impact while a touchdown transient lasts), the transient's normal force
+/// and penetration, and the contact frame of the terrain under the foot.
+struct SampleContacts {
+  std::array<ContactPhase, kLegs> phase{};
+  std::array<double, kLegs> impact_force_N{};
+  std::array<double, kLegs> impact_penetration_m{};
+  std::array<Mat3, kLegs> W_R_contact;
+  int impacting_legs = 0;
+};
+/// Fills `out` for sample i of `kin` (whose contact_phase holds swing/support).
+void sample_contacts(const KinematicsResult& kin, int i, const Terrain& terrain,
+                     const std::vector<Touchdown>& touchdowns, SampleContacts& out);
+
 /// Creates the allocation back end named by the scene (allocation.solver).
 std::unique_ptr<AllocationBackend> make_allocation_backend(const AllocationParams& params);
 

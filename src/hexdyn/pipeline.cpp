@@ -3,22 +3,15 @@
 #include <chrono>
 #include <iostream>
 
-#include "hexdyn/dynamics_stage.hpp"
-#include "hexdyn/kinematics.hpp"
-#include "hexdyn/robot_model.hpp"
 #include "hexdyn/urdf.hpp"
 
 namespace hexdyn {
 
-RunResult run_scene(const Scene& scene, std::ostream* log) {
-  const auto start = std::chrono::steady_clock::now();
-  const RobotModel model = build_robot_model(scene.robot);
-  const MotionPlan plan = plan_motion(scene, model);
+PreparedScene prepare_scene(const Scene& scene) {
+  RobotModel model = build_robot_model(scene.robot);
+  MotionPlan plan = plan_motion(scene, model);
   RobotData data(model);
-  const std::vector<Touchdown> touchdowns = resolve_touchdowns(model, data, plan, scene.contact);
-
-  // Output grid: refined at every lift-off and touchdown; extended past the end of the
-  // motion when a final touchdown's transient outlasts it.
+  std::vector<Touchdown> touchdowns = resolve_touchdowns(model, data, plan, scene.contact);
   std::vector<GridEvent> events;
   double t_end = plan.trunk.duration_s();
   for (const LegPlan& leg : plan.gait.legs)
@@ -28,14 +21,19 @@ RunResult run_scene(const Scene& scene, std::ostream* log) {
     events.push_back({td.t_s, d, td.transient.time_of_peak_s});
     t_end = std::max(t_end, td.t_s + d);
   }
-  const std::vector<double> grid = build_output_grid(scene.output, t_end, events);
+  std::vector<double> grid = build_output_grid(scene.output, t_end, events);
+  return PreparedScene{std::move(model), std::move(plan), std::move(touchdowns), std::move(grid)};
+}
 
+RunResult run_scene(const Scene& scene, std::ostream* log) {
+  const auto start = std::chrono::steady_clock::now();
+  const PreparedScene prep = prepare_scene(scene);
   RunResult result;
-  result.kin = sample_kinematics(model, plan, grid);
-  result.dyn = solve_dynamics(scene, model, plan, result.kin, touchdowns, log);
+  result.kin = sample_kinematics(prep.model, prep.plan, prep.grid);
+  result.dyn = solve_dynamics(scene, prep.model, prep.plan, result.kin, prep.touchdowns, log);
   result.config_yaml = scene.resolved_yaml;
-  result.urdf = robot_urdf(model, "hexdyn_hexapod");
-  result.total_mass_kg = model.total_mass_kg;
+  result.urdf = robot_urdf(prep.model, "hexdyn_hexapod");
+  result.total_mass_kg = prep.model.total_mass_kg;
   result.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }
