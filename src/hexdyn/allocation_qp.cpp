@@ -23,6 +23,7 @@ void QpProblem::resize(int n, int m_eq, int m_in) {
   upper.setConstant(m_in, std::numeric_limits<double>::infinity());
   eq_names.assign(static_cast<std::size_t>(m_eq), std::string());
   ineq_names.assign(static_cast<std::size_t>(m_in), std::string());
+  ineq_penalty.setOnes(m_in);
   cones.clear();
   constant = 0.0;
 }
@@ -60,6 +61,16 @@ void validate_qp_sizes(const QpProblem& p) {
     fail("number of equality row names", m_eq, static_cast<long>(p.eq_names.size()));
   if (!p.ineq_names.empty() && static_cast<int>(p.ineq_names.size()) != m_in)
     fail("number of inequality row names", m_in, static_cast<long>(p.ineq_names.size()));
+  if (p.ineq_penalty.size() != 0 && p.ineq_penalty.size() != m_in)
+    fail("size of ineq_penalty (or 0)", m_in, p.ineq_penalty.size());
+  for (int i = 0; i < p.ineq_penalty.size(); ++i) {
+    if (!(std::isfinite(p.ineq_penalty[i]) && p.ineq_penalty[i] > 0.0)) {
+      std::ostringstream os;
+      os << "QP: ineq_penalty of " << p.ineq_name(i) << " must be finite and > 0, got "
+         << p.ineq_penalty[i];
+      throw SolverError(os.str());
+    }
+  }
   for (std::size_t k = 0; k < p.cones.size(); ++k) {
     const SecondOrderCone& c = p.cones[k];
     for (int idx : {c.tangent1, c.tangent2, c.normal}) {
@@ -78,6 +89,11 @@ void validate_qp_sizes(const QpProblem& p) {
     if (!(std::isfinite(c.mu) && c.mu >= 0.0)) {
       std::ostringstream os;
       os << "QP: cone " << k << " friction coefficient must be finite and >= 0, got " << c.mu;
+      throw SolverError(os.str());
+    }
+    if (!(std::isfinite(c.penalty) && c.penalty > 0.0)) {
+      std::ostringstream os;
+      os << "QP: cone " << k << " penalty must be finite and > 0, got " << c.penalty;
       throw SolverError(os.str());
     }
   }
@@ -105,7 +121,8 @@ std::string describe_violations(const QpProblem& p, const Eigen::VectorXd& x, do
   double worst = 0.0;
   auto consider = [&](double violation, double bound, auto&& name) {
     if (!(violation <= 0.0)) {  // also catches NaN
-      const double v = std::isfinite(violation) ? violation : std::numeric_limits<double>::infinity();
+      const double v =
+          std::isfinite(violation) ? violation : std::numeric_limits<double>::infinity();
       worst = std::max(worst, v);
       if (!(v <= tol * std::max(1.0, std::abs(bound)))) list.emplace_back(v, name());
     }
@@ -167,12 +184,14 @@ bool check_kkt(const QpProblem& p, const QpOutcome& out, double tol, std::string
     return fail("check_kkt: non-finite x or multipliers");
   const Eigen::VectorXd& x = out.x;
   const Eigen::VectorXd Hx = p.H.selfadjointView<Eigen::Lower>() * x;
-  const Eigen::VectorXd At_l = m_eq > 0 ? Eigen::VectorXd(p.A.transpose() * out.lambda_eq)
-                                        : Eigen::VectorXd::Zero(n);
-  const Eigen::VectorXd Ct_l = m_in > 0 ? Eigen::VectorXd(p.C.transpose() * out.lambda_ineq)
-                                        : Eigen::VectorXd::Zero(n);
+  const Eigen::VectorXd At_l =
+      m_eq > 0 ? Eigen::VectorXd(p.A.transpose() * out.lambda_eq) : Eigen::VectorXd::Zero(n);
+  const Eigen::VectorXd Ct_l =
+      m_in > 0 ? Eigen::VectorXd(p.C.transpose() * out.lambda_ineq) : Eigen::VectorXd::Zero(n);
   const Eigen::VectorXd r = Hx + p.g - At_l - Ct_l;
-  auto inf_norm = [](const Eigen::VectorXd& v) { return v.size() ? v.lpNorm<Eigen::Infinity>() : 0.0; };
+  auto inf_norm = [](const Eigen::VectorXd& v) {
+    return v.size() ? v.lpNorm<Eigen::Infinity>() : 0.0;
+  };
   const double scale =
       1.0 + std::max({inf_norm(Hx), inf_norm(p.g), inf_norm(At_l), inf_norm(Ct_l)});
   std::ostringstream os;
@@ -202,11 +221,13 @@ bool check_kkt(const QpProblem& p, const QpOutcome& out, double tol, std::string
       return fail(os.str());
     }
     if (!lo && lam > tol * lambda_scale) {
-      os << "inequality " << p.ineq_name(i) << " has no lower bound but multiplier " << lam << " > 0";
+      os << "inequality " << p.ineq_name(i) << " has no lower bound but multiplier " << lam
+         << " > 0";
       return fail(os.str());
     }
     if (!up && lam < -tol * lambda_scale) {
-      os << "inequality " << p.ineq_name(i) << " has no upper bound but multiplier " << lam << " < 0";
+      os << "inequality " << p.ineq_name(i) << " has no upper bound but multiplier " << lam
+         << " < 0";
       return fail(os.str());
     }
     const double compl_scale = (1.0 + std::abs(lam)) * (1.0 + std::abs(c));

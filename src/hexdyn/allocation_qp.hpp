@@ -29,16 +29,23 @@ inline constexpr double kQpInfinity = 1e19;
 
 /// √(x[t1]² + x[t2]²) ≤ mu · x[normal]: the exact friction cone of one foot.
 struct SecondOrderCone {
-  int tangent1 = 0;   ///< index of f_t1 in x
-  int tangent2 = 1;   ///< index of f_t2 in x
-  int normal = 2;     ///< index of f_n in x
-  double mu = 0.3;    ///< friction coefficient, ≥ 0
-  std::string name;   ///< e.g. "cone L3"
+  int tangent1 = 0;      ///< index of f_t1 in x
+  int tangent2 = 1;      ///< index of f_t2 in x
+  int normal = 2;        ///< index of f_n in x
+  double mu = 0.3;       ///< friction coefficient, ≥ 0
+  std::string name;      ///< e.g. "cone L3"
+  double penalty = 1.0;  ///< relative weight of this cone's slack when relaxed, > 0
 };
 
 /// Dense QP of n ≤ ~18 variables. Sizes: H n×n (symmetric; only its lower triangle is
 /// read), g n, A m_eq×n, b m_eq, C m_in×n, lower/upper m_in. Names: empty, or one per
 /// row (used in messages; empty names become "eq[i]" / "ineq[i]").
+///
+/// When the rows cannot all hold, a back end relaxes inequality rows and cones with slacks
+/// s ≥ 0 measured in the row's own units (N, N·m) under the L1 penalty ρ Σ w_i s_i; the
+/// weights w (ineq_penalty, SecondOrderCone::penalty, default 1) set which rows give way
+/// first: a row that must hold unless nothing else helps (e.g. a trunk equation written as
+/// an l = u row) gets a large weight such as 1e3. Equality rows are never relaxed.
 struct QpProblem {
   Eigen::MatrixXd H;
   Eigen::VectorXd g;
@@ -51,13 +58,14 @@ struct QpProblem {
   std::vector<std::string> eq_names;
   std::vector<std::string> ineq_names;
   std::vector<SecondOrderCone> cones;
+  Eigen::VectorXd ineq_penalty;  ///< m_in weights w_i > 0, or empty for all 1
 
   int variables() const { return static_cast<int>(g.size()); }
   int equalities() const { return static_cast<int>(b.size()); }
   int inequalities() const { return static_cast<int>(lower.size()); }
 
   /// Sets every size (H, A, C zero; g, b zero; bounds unbounded; names cleared to
-  /// the right count of empty strings; cones cleared).
+  /// the right count of empty strings; penalty weights 1; cones cleared).
   void resize(int n, int m_eq, int m_in);
   /// Name of an equality / inequality row for messages.
   std::string eq_name(int i) const;
@@ -71,20 +79,25 @@ void validate_qp_sizes(const QpProblem& p);
 
 /// The solver's answer, a value recorded per sample.
 struct QpOutcome {
-  /// 0 optimal, 1 relaxed (penalised slack was needed: some rows or cones do not hold),
-  /// 2 failed (x is a finite fallback: the least-squares solution of A x = b, or zeros).
+  /// 0 optimal, 1 relaxed (penalised slack was needed: some rows or cones do not hold;
+  /// or an approximate answer, see message), 2 failed (x is a finite fallback: the
+  /// least-squares solution of A x = b, or zeros).
   int status = 2;
-  Eigen::VectorXd x;          ///< n
-  Eigen::VectorXd lambda_eq;  ///< m_eq, sign convention in the file comment
+  Eigen::VectorXd x;            ///< n
+  Eigen::VectorXd lambda_eq;    ///< m_eq, sign convention in the file comment
   Eigen::VectorXd lambda_ineq;  ///< m_in, ≥ 0 at an active lower bound, ≤ 0 at an upper
-  /// Per cone, multiplier of μ x_n − √(x_t1² + x_t2²) ≥ 0 (≥ 0, positive when active).
+  /// Per cone, multiplier of μ x_n − √(x_t1² + x_t2²) ≥ 0 (≥ 0, positive when active;
+  /// 0 when the cones were replaced by polygons).
   Eigen::VectorXd lambda_cone;
-  int iterations = 0;         ///< interior-point iterations, all attempts
-  double objective = 0.0;     ///< ½ xᵀHx + gᵀx + constant at x (without penalties)
-  double seconds = 0.0;       ///< wall time of the call
-  double max_violation = 0.0; ///< largest violation of a row or cone at x (row units)
-  /// Empty when optimal; otherwise what gave way, largest violation first, e.g.
-  /// "relaxed: torque L1_femur by 0.73, friction L3 +y by 0.02", or why it failed.
+  int iterations = 0;          ///< interior-point iterations, all attempts
+  double objective = 0.0;      ///< ½ xᵀHx + gᵀx + constant at x (without penalties)
+  double seconds = 0.0;        ///< wall time of the call
+  double max_violation = 0.0;  ///< largest violation of a row or cone at x (row units)
+  /// Status 0: empty, or a note that Ipopt reached only its acceptable tolerance.
+  /// Status 1: "relaxed: " and what gave way, largest violation first, e.g.
+  /// "relaxed: torque L1_femur by 0.73, friction L3 +y by 0.02", with a note in
+  /// parentheses if the cones were replaced by inscribed polygons; "approximate: ..." when
+  /// that replacement was needed although nothing gave way. Status 2: "failed: " and why.
   std::string message;
 };
 
@@ -100,13 +113,17 @@ class AllocationBackend {
 };
 
 struct IpoptOptions {
-  double tolerance = 1e-9;     ///< Ipopt `tol`, also used for the constraint violation
-  int max_iterations = 200;    ///< per attempt
+  /// Ipopt `tol` and `constr_viol_tol` of the problem as posed (penalised runs use
+  /// max(tolerance, 1e-7)). Rows count as violated beyond max(1e-6, 1e3·tolerance)
+  /// relative to max(1, |bound|).
+  double tolerance = 1e-9;
+  int max_iterations = 200;       ///< per attempt
   double max_cpu_seconds = 10.0;  ///< per attempt
-  /// ρ of the L1 penalty ρ Σ s/‖C_i‖ on the slacks of relaxed rows (each row's slack is
-  /// divided by its coefficient norm, so every slack is measured in units of x) [1/N].
+  /// ρ of the L1 penalty ρ Σ w_i s_i on the slacks of relaxed rows and cones (row units).
+  /// Exact (the relaxed solution equals the strict one when that exists) once ρ w_i
+  /// exceeds the rows' multipliers, i.e. the marginal cost of each bound.
   double slack_penalty = 1e6;
-  bool warm_start = true;      ///< warm start from the previous solution of the same size
+  bool warm_start = true;  ///< warm start from the previous solution of the same size
   /// ε of the smooth cone μ n ≥ √(t1² + t2² + ε²) − ε handed to Ipopt: exact at the apex,
   /// at most ε [N] of tangential excess elsewhere.
   double cone_smoothing_N = 1e-9;
@@ -117,6 +134,11 @@ struct IpoptOptions {
 IpoptOptions ipopt_options_from(const AllocationParams& params);
 
 /// Ipopt through its C++ TNLP interface; the application is created and initialised once.
+/// Each solve tries the problem as posed (warm-started from the previous solution when the
+/// sizes match), then the penalised problem if that fails; after a relaxed solve it goes to
+/// the penalised problem directly while the sizes stay the same (its solution is the
+/// strict optimum when no slack is needed). Details in allocation_ipopt.cpp.
+/// Throws ConfigError for non-positive options and SolverError if Ipopt cannot start.
 std::unique_ptr<AllocationBackend> make_ipopt_backend(const IpoptOptions& options = {});
 
 /// Rows and cones that x violates by more than tol·max(1, |bound|), largest first, as

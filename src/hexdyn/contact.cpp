@@ -55,9 +55,9 @@ void disable_gsl_abort() {
 /// c = C_max D/(m v) and S the STEP from 0 at u = 0 to 1 at u = p/D.
 struct ScaledImpact {
   double e = 1.0;
-  double spring = 1.0;  ///< (e+1)/2
-  double damping = 0.0; ///< c
-  double p_hat = 1.0;   ///< p/D
+  double spring = 1.0;   ///< (e+1)/2
+  double damping = 0.0;  ///< c
+  double p_hat = 1.0;    ///< p/D
 
   double step(double u) const { return impact_step(u, 0.0, 0.0, p_hat, 1.0); }
   /// K δ^e + C STEP δ̇ before the clip, natural units; 0 out of contact.
@@ -106,9 +106,15 @@ int impact_jacobian(double /*t*/, const double y[], double* dfdy, double dfdt[],
   double f_u = 0.0, f_w = 0.0;
   s.force_gradient(y[0], y[1], f_u, f_w);
   // Row-major 3×3.
-  dfdy[0] = 0.0;  dfdy[1] = 1.0;   dfdy[2] = 0.0;
-  dfdy[3] = -f_u; dfdy[4] = -f_w;  dfdy[5] = 0.0;
-  dfdy[6] = f_u;  dfdy[7] = f_w;   dfdy[8] = 0.0;
+  dfdy[0] = 0.0;
+  dfdy[1] = 1.0;
+  dfdy[2] = 0.0;
+  dfdy[3] = -f_u;
+  dfdy[4] = -f_w;
+  dfdy[5] = 0.0;
+  dfdy[6] = f_u;
+  dfdy[7] = f_w;
+  dfdy[8] = 0.0;
   dfdt[0] = dfdt[1] = dfdt[2] = 0.0;
   return GSL_SUCCESS;
 }
@@ -125,7 +131,8 @@ void check_contact_params(const ContactParams& c) {
     os << "contact: " << what << ", got " << got;
     throw ConfigError(os.str());
   };
-  if (!(std::isfinite(c.stiffness) && c.stiffness > 0.0)) bad("stiffness K must be > 0", c.stiffness);
+  if (!(std::isfinite(c.stiffness) && c.stiffness > 0.0))
+    bad("stiffness K must be > 0", c.stiffness);
   if (!(std::isfinite(c.exponent) && c.exponent >= 1.0)) bad("exponent e must be >= 1", c.exponent);
   if (!(std::isfinite(c.damping_max_Nspm) && c.damping_max_Nspm >= 0.0))
     bad("damping C_max must be >= 0", c.damping_max_Nspm);
@@ -178,11 +185,12 @@ ImpactTransient simulate_touchdown(const ContactParams& c, double effective_mass
 
   const double m = effective_mass_kg, v = approach_speed_mps, e = c.exponent;
   // D from K D^(e+1) = (e+1) m v²/2, in logarithms so that extreme inputs stay finite.
-  const double log_D = (std::log((e + 1.0) * m / (2.0 * c.stiffness)) + 2.0 * std::log(v)) / (e + 1.0);
+  const double log_D =
+      (std::log((e + 1.0) * m / (2.0 * c.stiffness)) + 2.0 * std::log(v)) / (e + 1.0);
   const double D = std::exp(log_D);
-  const double time_scale = D / v;            // [s] per unit τ
-  const double force_scale = m * v * v / D;   // [N] per unit f
-  const double impulse_scale = m * v;         // [N s] per unit j
+  const double time_scale = D / v;           // [s] per unit τ
+  const double force_scale = m * v * v / D;  // [N] per unit f
+  const double impulse_scale = m * v;        // [N s] per unit j
 
   ScaledImpact s;
   s.e = e;
@@ -196,16 +204,16 @@ ImpactTransient simulate_touchdown(const ContactParams& c, double effective_mass
 
   gsl_odeiv2_system sys{impact_rhs, impact_jacobian, 3, &s};
   const double h_start = std::min(tau_contact / n_out, std::max(s.p_hat, 1e-6)) * 1e-2;
-  DriverPtr drv(gsl_odeiv2_driver_alloc_y_new(&sys, gsl_odeiv2_step_rk4imp, h_start,
-                                              options.absolute_tolerance,
-                                              options.relative_tolerance),
-                gsl_odeiv2_driver_free);
+  DriverPtr drv(
+      gsl_odeiv2_driver_alloc_y_new(&sys, gsl_odeiv2_step_rk4imp, h_start,
+                                    options.absolute_tolerance, options.relative_tolerance),
+      gsl_odeiv2_driver_free);
   // A second stepper re-takes partial steps from the last accepted state to locate events,
   // leaving the evolving stepper's internal state untouched.
-  DriverPtr probe(gsl_odeiv2_driver_alloc_y_new(&sys, gsl_odeiv2_step_rk4imp, h_start,
-                                                options.absolute_tolerance,
-                                                options.relative_tolerance),
-                  gsl_odeiv2_driver_free);
+  DriverPtr probe(
+      gsl_odeiv2_driver_alloc_y_new(&sys, gsl_odeiv2_step_rk4imp, h_start,
+                                    options.absolute_tolerance, options.relative_tolerance),
+      gsl_odeiv2_driver_free);
   if (!drv || !probe) throw SolverError("touchdown: cannot allocate the GSL ODE driver");
 
   const std::size_t expected = static_cast<std::size_t>(4 * options.samples_per_contact_time + 16);
@@ -258,8 +266,9 @@ ImpactTransient simulate_touchdown(const ContactParams& c, double effective_mass
   while (true) {
     if (tr.steps >= options.max_steps) {
       tr.truncated = true;
-      tr.message = "stopped by the step-count guard (max_steps = " +
-                   std::to_string(options.max_steps) + ") before the force returned to zero";
+      tr.message =
+          "stopped by the step-count guard (max_steps = " + std::to_string(options.max_steps) +
+          ") before the force returned to zero";
       break;
     }
     if (!(tau < tau_max)) {
@@ -275,7 +284,8 @@ ImpactTransient simulate_touchdown(const ContactParams& c, double effective_mass
     const double cap = std::max(tau_contact, tau) / n_out;
     const double tau_target = std::min(tau + cap, tau_max);
     h = std::min(h, cap);
-    const int status = gsl_odeiv2_evolve_apply(drv->e, drv->c, drv->s, &sys, &tau, tau_target, &h, y);
+    const int status =
+        gsl_odeiv2_evolve_apply(drv->e, drv->c, drv->s, &sys, &tau, tau_target, &h, y);
     ++tr.steps;
     if (status != GSL_SUCCESS || !std::isfinite(y[0]) || !std::isfinite(y[1]) ||
         !std::isfinite(y[2]) || !(tau > tau_prev)) {
@@ -299,20 +309,21 @@ ImpactTransient simulate_touchdown(const ContactParams& c, double effective_mass
     double y_end[3];
     double dtau_end = h_step;
     if (s.ended(y)) {
-      dtau_end = locate(tau_prev, y_prev, h_step, y, [&](const double* z) { return s.ended(z); },
-                        y_end);
+      dtau_end = locate(
+          tau_prev, y_prev, h_step, y, [&](const double* z) { return s.ended(z); }, y_end);
       ends_here = true;
     }
     if (y_prev[1] > 0.0 && !(y[1] > 0.0)) {
       Event ev;
-      ev.dtau = locate(tau_prev, y_prev, h_step, y, [](const double* z) { return !(z[1] > 0.0); },
-                       ev.y);
+      ev.dtau = locate(
+          tau_prev, y_prev, h_step, y, [](const double* z) { return !(z[1] > 0.0); }, ev.y);
       if (!ends_here || ev.dtau <= dtau_end) events[n_events++] = ev;
     }
     if (s.force_rate(y_prev) > 0.0 && !(s.force_rate(y) > 0.0)) {
       Event ev;
-      ev.dtau = locate(tau_prev, y_prev, h_step, y,
-                       [&](const double* z) { return !(s.force_rate(z) > 0.0); }, ev.y);
+      ev.dtau = locate(
+          tau_prev, y_prev, h_step, y, [&](const double* z) { return !(s.force_rate(z) > 0.0); },
+          ev.y);
       if (!ends_here || ev.dtau <= dtau_end) events[n_events++] = ev;
     }
     if (n_events == 2 && events[1].dtau < events[0].dtau) std::swap(events[0], events[1]);

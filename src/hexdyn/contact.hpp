@@ -51,16 +51,16 @@ struct ImpactOptions {
 
 /// One touchdown transient of a foot of effective mass m along the surface normal.
 struct ImpactTransient {
-  bool occurred = false;            ///< false for a zero (or separating) approach speed
-  bool truncated = false;           ///< a guard stopped the integration before the end
-  double duration_s = 0.0;          ///< touchdown to the first return of F_n to zero
-  double peak_force_N = 0.0;        ///< largest F_n, located to solver precision
-  double time_of_peak_s = 0.0;      ///< since touchdown
-  double impulse_Ns = 0.0;          ///< ∫ F_n dt over the transient (integrated as a state)
-  double rebound_speed_mps = 0.0;   ///< −δ̇ at the end (≥ 0 when the foot moves away)
-  double max_penetration_m = 0.0;   ///< largest δ
-  long steps = 0;                   ///< accepted ODE steps
-  std::string message;              ///< why the integration ended, in words
+  bool occurred = false;           ///< false for a zero (or separating) approach speed
+  bool truncated = false;          ///< a guard stopped the integration before the end
+  double duration_s = 0.0;         ///< touchdown to the first return of F_n to zero
+  double peak_force_N = 0.0;       ///< largest F_n, located to solver precision
+  double time_of_peak_s = 0.0;     ///< since touchdown
+  double impulse_Ns = 0.0;         ///< ∫ F_n dt over the transient (integrated as a state)
+  double rebound_speed_mps = 0.0;  ///< −δ̇ at the end (≥ 0 when the foot moves away)
+  double max_penetration_m = 0.0;  ///< largest δ
+  long steps = 0;                  ///< accepted ODE steps
+  std::string message;             ///< why the integration ended, in words
   /// Dense samples, increasing time from 0 (touchdown) to duration_s, including the
   /// instants of peak force, of maximum penetration and of the end.
   std::vector<double> t_s;            ///< [s] since touchdown

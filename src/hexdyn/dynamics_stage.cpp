@@ -25,6 +25,14 @@ int friction_faces(FrictionModel m) {
 
 constexpr const char* kTrunkRowNames[6] = {"trunk force x",  "trunk force y",  "trunk force z",
                                            "trunk moment x", "trunk moment y", "trunk moment z"};
+/// Slack weights (allocation_qp.hpp ineq_penalty) set which rows give way when the
+/// constraints cannot all hold: torque limits first (weight 1: the actuators are too
+/// weak), then the trunk rows (the prescribed motion cannot be produced, as during a
+/// touchdown transient with no other foot on the ground), and the contact rows last
+/// (the ground cannot pull; more friction than μ means slipping, which the model
+/// excludes).
+constexpr double kTrunkRowPenaltyWeight = 1e2;
+constexpr double kContactRowPenaltyWeight = 1e3;
 /// Impact legs keep a fixed normal force, so their friction limit is a polygon even in
 /// the exact-cone model: an inscribed 16-gon (within 2% of the circle).
 constexpr int kImpactConeFaces = 16;
@@ -169,6 +177,7 @@ double build_allocation_problem(const AllocationParams& alloc, const ContactPara
     qp.C.row(row) = B.row(r);
     qp.lower[row] = qp.upper[row] = trunk_rhs[r];
     qp.ineq_names[row] = kTrunkRowNames[r];
+    qp.ineq_penalty[row] = kTrunkRowPenaltyWeight;
   }
   const double tmax = alloc.torque_limit_Nm;
   double worst_constant = 0.0;
@@ -197,6 +206,7 @@ double build_allocation_problem(const AllocationParams& alloc, const ContactPara
       qp.C(row, o + 2) = 1.0;
       qp.lower[row] = alloc.min_normal_force_N;
       qp.upper[row] = std::numeric_limits<double>::infinity();
+      qp.ineq_penalty[row] = kContactRowPenaltyWeight;
       qp.ineq_names[row++] = "normal " + leg_name(l);
     }
     const int nf = faces ? faces : (support ? 0 : kImpactConeFaces);
@@ -213,9 +223,11 @@ double build_allocation_problem(const AllocationParams& alloc, const ContactPara
       } else {
         qp.upper[row] = reach * impact_force_N[l];
       }
+      qp.ineq_penalty[row] = kContactRowPenaltyWeight;
       qp.ineq_names[row] = "friction " + leg_name(l) + " face " + std::to_string(f + 1);
     }
-    if (!faces && support) qp.cones.push_back({o, o + 1, o + 2, mu, "friction cone " + leg_name(l)});
+    if (!faces && support)
+      qp.cones.push_back({o, o + 1, o + 2, mu, "friction cone " + leg_name(l), kContactRowPenaltyWeight});
   }
   return worst_constant;
 }

@@ -3,9 +3,8 @@
 // the closed-form KKT system for equality-only QPs, the KKT conditions and random feasible
 // points for inequality QPs, the closed-form projection onto a friction cone, and the
 // inscribed pyramid for cone problems.
-#include <catch2/catch.hpp>
-
 #include <Eigen/Dense>
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -99,8 +98,8 @@ TEST_CASE("Ipopt back end: equality-constrained QPs match the closed-form KKT so
   std::mt19937 rng(20240601);
   auto backend = make_ipopt_backend();
   for (int trial = 0; trial < 12; ++trial) {
-    const int n = 6 + trial % 7;       // 6..12
-    const int m_eq = 3 + trial % 4;    // 3..6
+    const int n = 6 + trial % 7;     // 6..12
+    const int m_eq = 3 + trial % 4;  // 3..6
     CAPTURE(trial, n, m_eq);
     const QpProblem p = random_equality_qp(rng, n, m_eq);
     // [H  −Aᵀ; A  0] [x; λ] = [−g; b]  (stationarity H x + g − Aᵀ λ = 0).
@@ -113,7 +112,8 @@ TEST_CASE("Ipopt back end: equality-constrained QPs match the closed-form KKT so
     const Eigen::VectorXd sol = K.fullPivLu().solve(rhs);
     const QpOutcome& out = backend->solve(p);
     REQUIRE(out.status == 0);
-    CHECK((out.x - sol.head(n)).lpNorm<Eigen::Infinity>() < 1e-7 * (1.0 + sol.head(n).lpNorm<Eigen::Infinity>()));
+    CHECK((out.x - sol.head(n)).lpNorm<Eigen::Infinity>() <
+          1e-7 * (1.0 + sol.head(n).lpNorm<Eigen::Infinity>()));
     CHECK((out.lambda_eq - sol.tail(m_eq)).lpNorm<Eigen::Infinity>() <
           1e-7 * (1.0 + sol.tail(m_eq).lpNorm<Eigen::Infinity>()));
     CHECK(out.objective == Approx(p.objective(sol.head(n))).epsilon(1e-9));
@@ -181,7 +181,8 @@ TEST_CASE("Ipopt back end: an equality written as an l = u row gives the same so
   const QpOutcome& out = backend->solve(rows);
   REQUIRE(out.status == 0);
   CHECK((out.x - x_eq).lpNorm<Eigen::Infinity>() < 1e-7 * (1.0 + x_eq.lpNorm<Eigen::Infinity>()));
-  CHECK((out.lambda_ineq - l_eq).lpNorm<Eigen::Infinity>() < 1e-6 * (1.0 + l_eq.lpNorm<Eigen::Infinity>()));
+  CHECK((out.lambda_ineq - l_eq).lpNorm<Eigen::Infinity>() <
+        1e-6 * (1.0 + l_eq.lpNorm<Eigen::Infinity>()));
   std::string why;
   CHECK(check_kkt(rows, out, 1e-7, &why));
 }
@@ -289,6 +290,72 @@ TEST_CASE("Ipopt back end: an infeasible problem is relaxed and names the row th
   }
 }
 
+TEST_CASE("Ipopt back end: a feasible problem after a relaxed one is solved to optimality",
+          "[allocation]") {
+  // Same sizes: the second solve goes to the penalised form first; with no slack needed
+  // its answer must be the strict optimum.
+  std::mt19937 rng(21);
+  QpProblem feasible = random_equality_qp(rng, 9, 6);
+  const Eigen::VectorXd x0 = particular_solution(feasible, rng);
+  add_inequalities(rng, feasible, x0, 9, 21);
+  feasible.g = -feasible.H * (x0 + 2.0 * random_vector(rng, 9));
+  QpProblem infeasible = feasible;
+  infeasible.lower[3] = infeasible.upper[3] + 1.0;  // crossed bounds on one row
+
+  auto fresh = make_ipopt_backend();
+  const QpOutcome reference = fresh->solve(feasible);
+  REQUIRE(reference.status == 0);
+
+  auto backend = make_ipopt_backend();
+  REQUIRE(backend->solve(infeasible).status == 1);
+  const QpOutcome after = backend->solve(feasible);
+  CHECK(after.status == 0);
+  CHECK(after.message.empty());
+  CHECK((after.x - reference.x).lpNorm<Eigen::Infinity>() <
+        1e-6 * (1.0 + reference.x.lpNorm<Eigen::Infinity>()));
+  std::string why;
+  CHECK(check_kkt(feasible, after, 1e-6, &why));
+  INFO(why);
+  // And the one after that is solved as posed again.
+  const QpOutcome again = backend->solve(feasible);
+  CHECK(again.status == 0);
+  CHECK((again.x - reference.x).lpNorm<Eigen::Infinity>() <
+        1e-7 * (1.0 + reference.x.lpNorm<Eigen::Infinity>()));
+}
+
+TEST_CASE("Ipopt back end: penalty weights choose the row that gives way", "[allocation]") {
+  // x0 + x1 = 10 written as an l = u row, against x0 ≤ 2 and x1 ≤ 3: 5 units must give.
+  QpProblem p;
+  p.resize(2, 0, 3);
+  p.H.setIdentity();
+  p.C << 1, 1, 1, 0, 0, 1;
+  p.lower << 10.0, -kInf, -kInf;
+  p.upper << 10.0, 2.0, 3.0;
+  p.ineq_names = {"trunk force z", "torque L1_femur", "torque L2_femur"};
+  auto backend = make_ipopt_backend();
+  SECTION("a heavy trunk row holds and the torques give way") {
+    p.ineq_penalty << 1e3, 1.0, 1.0;
+    const QpOutcome& out = backend->solve(p);
+    REQUIRE(out.status == 1);
+    CHECK(out.x.sum() == Approx(10.0).margin(1e-6));
+    CHECK(out.message.find("trunk") == std::string::npos);
+    CHECK(out.message.find("torque") != std::string::npos);
+    CHECK(out.max_violation < 5.0 + 1e-6);
+  }
+  SECTION("heavy torque rows hold and the trunk row gives way") {
+    p.ineq_penalty << 1.0, 1e3, 1e3;
+    const QpOutcome& out = backend->solve(p);
+    REQUIRE(out.status == 1);
+    CHECK(out.x[0] == Approx(2.0).margin(1e-6));
+    CHECK(out.x[1] == Approx(3.0).margin(1e-6));
+    CHECK(out.message == "relaxed: trunk force z by 5");
+  }
+  SECTION("non-positive weights are rejected") {
+    p.ineq_penalty << 1.0, 0.0, 1.0;
+    CHECK_THROWS_AS(backend->solve(p), SolverError);
+  }
+}
+
 TEST_CASE("Ipopt back end: inconsistent sizes throw SolverError", "[allocation]") {
   auto backend = make_ipopt_backend();
   QpProblem p;
@@ -322,7 +389,8 @@ TEST_CASE("Ipopt back end: a warm start does not cost iterations on a perturbed 
   const QpOutcome warm = backend->solve(q);
   REQUIRE(warm.status == 0);
   CHECK(warm.iterations <= cold.iterations);
-  CHECK((warm.x - cold.x).lpNorm<Eigen::Infinity>() < 1e-6 * (1.0 + cold.x.lpNorm<Eigen::Infinity>()));
+  CHECK((warm.x - cold.x).lpNorm<Eigen::Infinity>() <
+        1e-6 * (1.0 + cold.x.lpNorm<Eigen::Infinity>()));
   CHECK(check_kkt(q, warm, 1e-6));
   // Without warm starts the iterations are those of the cold solve.
   IpoptOptions no_warm;
@@ -336,8 +404,8 @@ TEST_CASE("Ipopt back end: the exact friction cone", "[allocation]") {
   auto backend = make_ipopt_backend();
   const double mu = 0.3;
   SECTION("projection onto one cone matches the closed form") {
-    const Eigen::Vector3d targets[] = {{5.0, -2.0, 4.0}, {0.5, 0.2, 10.0}, {3.0, 4.0, -1.0},
-                                       {1.0, 1.0, -20.0}, {0.0, 2.0, 1.0}};
+    const Eigen::Vector3d targets[] = {
+        {5.0, -2.0, 4.0}, {0.5, 0.2, 10.0}, {3.0, 4.0, -1.0}, {1.0, 1.0, -20.0}, {0.0, 2.0, 1.0}};
     for (const Eigen::Vector3d& f_hat : targets) {
       CAPTURE(f_hat.transpose());
       // min ½|f − f̂|² = ½ fᵀ f − f̂ᵀ f + ½|f̂|².

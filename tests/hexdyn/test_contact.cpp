@@ -3,7 +3,6 @@
 // closed-form undamped Hertz-type impact, the analytic damped linear oscillator, and
 // momentum and energy balances.
 #include <catch2/catch.hpp>
-
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -88,7 +87,8 @@ TEST_CASE("impact_step: endpoints, midpoint and the cubic in between", "[contact
   CHECK(impact_step_derivative(3.0, 1.0, 5.0, 3.0, 9.0) == 0.0);
   // Derivative against a central difference.
   const double x = 1.3, h = 1e-6;
-  const double fd = (impact_step(x + h, 1.0, 5.0, 3.0, 9.0) - impact_step(x - h, 1.0, 5.0, 3.0, 9.0)) / (2 * h);
+  const double fd =
+      (impact_step(x + h, 1.0, 5.0, 3.0, 9.0) - impact_step(x - h, 1.0, 5.0, 3.0, 9.0)) / (2 * h);
   CHECK(impact_step_derivative(x, 1.0, 5.0, 3.0, 9.0) == Approx(fd).epsilon(1e-6));
 }
 
@@ -201,8 +201,8 @@ TEST_CASE("simulate_touchdown: undamped impact against the closed form", "[conta
       const double n = e + 1.0;
       const double F_peak = std::pow(K, 1.0 / n) * std::pow(n * m * v * v / 2.0, e / n);
       const double D = undamped_depth(K, e, m, v);
-      const double T = 2.0 * (D / v) * std::sqrt(M_PI) * std::tgamma(1.0 + 1.0 / n) /
-                       std::tgamma(0.5 + 1.0 / n);
+      const double T =
+          2.0 * (D / v) * std::sqrt(M_PI) * std::tgamma(1.0 + 1.0 / n) / std::tgamma(0.5 + 1.0 / n);
       CHECK(rel_err(tr.peak_force_N, F_peak) < 1e-6);
       CHECK(rel_err(tr.max_penetration_m, D) < 1e-6);
       CHECK(rel_err(tr.rebound_speed_mps, v) < 1e-6);
