@@ -95,7 +95,7 @@ def statements(res):
     rms = np.array([np.sqrt(np.mean(tau[:, :, j][support] ** 2)) for j in range(3)])
     ok3 = bool(np.argmax(peak) == 1 and np.argmin(peak) == 0 and np.argmax(rms) == 1 and np.argmin(rms) == 0)
     out.append(("S3", "joint 2 carries the largest torque, joint 1 the smallest", ok3,
-                "support samples: peak |tau| coxa/femur/tibia = " + "/".join(f"{x:.2f}" for x in peak) +
+                "support samples: peak abs(τ) coxa/femur/tibia = " + "/".join(f"{x:.2f}" for x in peak) +
                 " N m, RMS = " + "/".join(f"{x:.2f}" for x in rms) + " N m"))
 
     # S4: the highest power peak at a stance change.

@@ -10,8 +10,8 @@ out="$HEXDYN_ROOT/results/paper"
 mkdir -p "$out"
 "$HEXDYN_BUILD/hexdyn" run "$HEXDYN_ROOT/configs/paper.yaml" -o "$out/paper.h5"
 "$HEXDYN_PYTHON" "$HEXDYN_ROOT/analysis/plot_kinematics.py" "$out/paper.h5" "$out"
-if [ -f "$HEXDYN_ROOT/analysis/plot_paper.py" ]; then
-  "$HEXDYN_PYTHON" "$HEXDYN_ROOT/analysis/plot_paper.py" "$out/paper.h5" "$out"
-fi
+"$HEXDYN_PYTHON" "$HEXDYN_ROOT/analysis/plot_paper.py" "$out/paper.h5" "$out"
+# The paper's statements against this run (README "Results against the paper").
+"$HEXDYN_PYTHON" "$HEXDYN_ROOT/analysis/paper_statements.py" "$out/paper.h5"
 echo "paper: results in $out:" >&2
 ls -1 "$out" >&2
