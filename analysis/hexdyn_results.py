@@ -12,6 +12,13 @@ symbols "T" (samples), "n" (touchdowns) and "m" (solver messages).
     res.config["terrain"]            # the resolved configuration (dict)
     res.urdf                         # robot as simulated (str)
 
+    from hexdyn_results import open_sweep
+    sw = open_sweep("results/sweeps/smoke/smoke.h5")
+    sw.axes[0].key, sw.axes[0].values  # "terrain.riser_height", array([0.04, 0.08])
+    sw.table["energy"]               # one value per scenario [J], NaN where failed
+    sw.grid("energy")                # the same on the grid: shape sw.shape
+    sw.run(5)                        # a Result from /runs/000005 (sweeps run with --keep-runs)
+
 Requires h5py, numpy and PyYAML (Debian: /usr/bin/python3).
 """
 
@@ -221,17 +228,162 @@ def open_result(path, group="/"):
                                  f"{path}:{group}")
 
 
+SWEEP_META_ATTRIBUTES = ("schema", "schema_version", "version", "git_commit", "created_utc",
+                         "name", "sweep_yaml", "base_config_yaml", "scenarios", "keep_runs",
+                         "wall_time_s", "ranks", "resumed_scenarios")
+
+# /scenarios/*: one row per scenario (N rows, A axes); mirrors src/hexdyn/sweep.cpp.
+# Metrics are NaN where status != 0. Per-axis columns /scenarios/axis_<i> hold each
+# scenario's value of axis i (float64, or strings for an axis of words).
+SCENARIO_DATASETS = {
+    "id": (("N",), "1", "string"),
+    "axis_index": (("N", "A"), "1", "int32"),
+    "status": (("N",), "1", "int8"),  # SWEEP_STATUS[code]
+    "message": (("N",), "1", "string"),
+    "samples": (("N",), "1", "int32"),
+    "duration": (("N",), "s", "float64"),
+    "distance": (("N",), "m", "float64"),
+    "energy": (("N",), "J", "float64"),
+    "cost_of_transport": (("N",), "1", "float64"),
+    "peak_impact_force": (("N",), "N", "float64"),
+    "peak_torque": (("N", 18), "N m", "float64"),  # max over samples of |tau_k|
+    "rms_torque": (("N", 18), "N m", "float64"),   # time-weighted RMS of tau_k
+    "relaxed_samples": (("N",), "1", "int32"),
+    "failed_samples": (("N",), "1", "int32"),
+    "wall_time_s": (("N",), "s", "float64"),       # timing: differs between runs
+}
+
+SWEEP_STATUS = ("ok", "config", "reach", "planning", "solver", "error", "internal")
+
+
+class SweepAxis:
+    """One swept key: `key` (dotted path), `values` (float array, or list of str for an
+    axis of words), `labels` (as written in the sweep file, e.g. "2/3"), `numeric`."""
+
+    def __init__(self, key, values, labels):
+        self.key = key
+        self.values = values
+        self.labels = labels
+        self.numeric = isinstance(values, np.ndarray)
+
+    def __len__(self):
+        return len(self.labels)
+
+    def __repr__(self):
+        return f"SweepAxis({self.key!r}, {list(self.labels)})"
+
+
+class Sweep:
+    """A hexdyn-sweep/1 file read into memory (the file is closed).
+
+    sw.axes             list of SweepAxis; scenario index is row-major over them
+    sw.shape            tuple of the axis lengths
+    sw.table[name]      numpy array, one row per scenario (SCENARIO_DATASETS)
+    sw.units[name]      `units` attribute of /scenarios/<name>
+    sw.ok               boolean mask of the scenarios computed (status 0)
+    sw.status_names     status of each scenario as a word ("ok", "reach", ...)
+    sw.meta             /meta attributes; sw.config the base scene (dict);
+                        sw.spec the sweep file (dict)
+    sw.grid(name)       a column reshaped to sw.shape (+ the column's own dims)
+    sw.scenario(i)      {axis key: value} of scenario i
+    sw.run(i)           Result of scenario i (index or id) from /runs/<id>
+    """
+
+    def __init__(self, path, meta, axes, table, units, joint_names, run_ids):
+        self.path = str(path)
+        self.meta = meta
+        self.axes = axes
+        self.table = table
+        self.units = units
+        self.joint_names = joint_names
+        self.run_ids = run_ids
+
+    @property
+    def shape(self):
+        return tuple(len(a) for a in self.axes)
+
+    @property
+    def size(self):
+        return len(self.table["id"])
+
+    @property
+    def ok(self):
+        return np.asarray(self.table["status"]) == 0
+
+    @property
+    def status_names(self):
+        return [SWEEP_STATUS[int(c)] if 0 <= int(c) < len(SWEEP_STATUS) else str(int(c))
+                for c in self.table["status"]]
+
+    @property
+    def config(self):
+        return yaml.safe_load(self.meta.get("base_config_yaml", "") or "") or {}
+
+    @property
+    def spec(self):
+        return yaml.safe_load(self.meta.get("sweep_yaml", "") or "") or {}
+
+    @property
+    def has_runs(self):
+        return bool(self.run_ids)
+
+    def grid(self, name):
+        """Column `name` as an array of shape sw.shape + its trailing dims."""
+        col = np.asarray(self.table[name])
+        return col.reshape(self.shape + col.shape[1:])
+
+    def scenario(self, i):
+        i = self._index(i)
+        return {a.key: (float(a.values[j]) if a.numeric else a.values[j])
+                for a, j in zip(self.axes, self.table["axis_index"][i])}
+
+    def run(self, i):
+        """The full result of scenario `i` (index or id string)."""
+        scenario_id = self.table["id"][self._index(i)]
+        if scenario_id not in self.run_ids:
+            raise KeyError(f"{self.path}: no /runs/{scenario_id} (sweep run without --keep-runs, "
+                           f"or scenario not computed: {self.status_names[self._index(i)]})")
+        return open_result(self.path, group=f"/runs/{scenario_id}")
+
+    def _index(self, i):
+        if isinstance(i, str):
+            return list(self.table["id"]).index(i)
+        return int(i)
+
+    def __repr__(self):
+        return (f"Sweep({self.path!r}, {self.size} scenarios, axes="
+                f"{[a.key for a in self.axes]}, ok={int(self.ok.sum())})")
+
+
 def open_sweep(path):
-    """Opens a hexdyn-sweep/1 file read-only after checking its schema; returns the
-    h5py.File (the caller closes it)."""
-    f = h5py.File(path, "r")
-    try:
-        check_filetype_version(f, SWEEP_SCHEMA, SWEEP_SCHEMA_VERSION, str(path),
-                               require_version=False)
-    except Exception:
-        f.close()
-        raise
-    return f
+    """Opens a hexdyn-sweep/1 file, checks its schema and version and returns a Sweep
+    with the axes and the scenario table in memory (the file is closed on return)."""
+    with h5py.File(path, "r") as f:
+        check_filetype_version(f, SWEEP_SCHEMA, SWEEP_SCHEMA_VERSION, str(path))
+        meta = {}
+        for key, value in f["meta"].attrs.items():
+            value = _text(value)
+            if isinstance(value, np.generic):
+                value = value.item()
+            meta[key] = value
+        axes = []
+        for i in range(len(f["axes"])):
+            g = f["axes"][str(i)]
+            values = _read_dataset(g["values"])
+            if not isinstance(values, list):
+                values = np.asarray(values, dtype=float)
+            axes.append(SweepAxis(_read_dataset(g["key"]), values, _read_dataset(g["labels"])))
+        table, units = {}, {}
+        for name, ds in f["scenarios"].items():
+            value = _read_dataset(ds)
+            table[name] = value if isinstance(value, list) else np.asarray(value)
+            units[name] = _text(ds.attrs.get("units", ""))
+        joint_names = _read_dataset(f["joint_names"]) if "joint_names" in f else list(JOINT_NAMES)
+        run_ids = set(f["runs"].keys()) if "runs" in f else set()
+    n = len(table["id"])
+    if int(np.prod([len(a) for a in axes])) != n:
+        raise ValueError(f"{path}: {n} scenarios for axes of lengths {[len(a) for a in axes]}")
+    return Sweep(path, meta, axes, table, units, joint_names, run_ids)
 
 
 def expected_shape(shape, samples, impacts=None, messages=None):

@@ -6,6 +6,7 @@
 
 #include "hexdyn/config.hpp"
 #include "hexdyn/errors.hpp"
+#include "hexdyn/mpi_sweep.hpp"
 #include "hexdyn/output.hpp"
 #include "hexdyn/pipeline.hpp"
 #include "hexdyn/version.hpp"
@@ -17,18 +18,43 @@ constexpr const char* kUsage = R"(hexdyn — inverse dynamics of a legged robot 
 usage:
   hexdyn run CONFIG -o FILE [--set key.path=value ...]   run a scene, write hexdyn-result/1
   hexdyn validate CONFIG [--set key.path=value ...]      check a scene file and exit
+  hexdyn sweep SWEEP -o FILE [--keep-runs] [--resume] [-v] [--progress SECONDS]
+                                                         run a parameter sweep, write hexdyn-sweep/1
   hexdyn --help | --version
 
 CONFIG is a YAML scene (see configs/paper.yaml for every key). --set overrides one key
 by dotted path, the value parsed as YAML (e.g. --set gait.duty_factor=0.75,
 --set motion.cycle_durations=[3,2.6,3]). Exit status: 0 success, 2 bad input (config,
 arguments, output path), 3 a scene that cannot be computed (unreachable foothold, ...).
+
+SWEEP is a sweep file (see configs/sweeps/stairs.yaml): a base scene and axes over its
+keys; every combination is a scenario. Run it under `mpirun -np N` or plainly (one
+rank). Scenarios that cannot be computed are rows with a status and a message; the exit
+status is 0 once FILE is written. --keep-runs also stores each scenario's full result
+under /runs/<id>. Finished scenarios are kept in FILE.checkpoint/ until FILE is
+complete; --resume continues an interrupted sweep from there. -v prints one line per
+scenario; progress lines come at most every --progress seconds (default 5).
 )";
 
 struct Args {
   std::string command, config, output;
   std::vector<hexdyn::Override> overrides;
+  bool keep_runs = false, resume = false, verbose = false, progress_given = false;
+  double progress_s = 5.0;
 };
+
+double parse_seconds(const std::string& text) {
+  std::size_t used = 0;
+  double v = -1.0;
+  try {
+    v = std::stod(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used != text.size() || !(v >= 0.0 && v <= 86400.0))
+    throw hexdyn::ConfigError("--progress: got " + text + ", expected seconds in [0, 86400]");
+  return v;
+}
 
 Args parse_args(int argc, char** argv) {
   Args a;
@@ -43,11 +69,24 @@ Args parse_args(int argc, char** argv) {
     if (arg == "-o" || arg == "--output") a.output = value("-o");
     else if (arg == "--set") a.overrides.push_back(hexdyn::parse_override(value("--set")));
     else if (arg.rfind("--set=", 0) == 0) a.overrides.push_back(hexdyn::parse_override(arg.substr(6)));
+    else if (arg == "--keep-runs") a.keep_runs = true;
+    else if (arg == "--resume") a.resume = true;
+    else if (arg == "-v" || arg == "--verbose") a.verbose = true;
+    else if (arg == "--progress") {
+      a.progress_s = parse_seconds(value("--progress"));
+      a.progress_given = true;
+    }
     else if (!arg.empty() && arg[0] == '-') throw hexdyn::ConfigError("unknown option " + arg + "; run 'hexdyn --help'");
     else if (a.config.empty()) a.config = arg;
     else throw hexdyn::ConfigError("unexpected argument " + arg + "; run 'hexdyn --help'");
   }
-  if (a.config.empty()) throw hexdyn::ConfigError(a.command + ": missing CONFIG file");
+  if (a.config.empty())
+    throw hexdyn::ConfigError(a.command + ": missing " + (a.command == "sweep" ? "SWEEP" : "CONFIG") + " file");
+  const bool sweep_flags = a.keep_runs || a.resume || a.verbose || a.progress_given;
+  if (a.command == "sweep" && !a.overrides.empty())
+    throw hexdyn::ConfigError("sweep: --set is not available; fix keys with set: in the sweep file");
+  if (a.command != "sweep" && sweep_flags)
+    throw hexdyn::ConfigError(a.command + ": --keep-runs, --resume, -v and --progress belong to 'hexdyn sweep'");
   return a;
 }
 
@@ -79,9 +118,14 @@ int main(int argc, char** argv) {
                 << result.wall_time_s << " s)\n";
       return 0;
     }
+    if (args.command == "sweep") {
+      if (args.output.empty()) throw hexdyn::ConfigError("sweep: missing -o FILE");
+      return hexdyn::run_sweep({args.config, args.output, args.keep_runs, args.resume,
+                                args.verbose, args.progress_s});
+    }
     throw hexdyn::ConfigError("unknown command '" + args.command + "'; run 'hexdyn --help'");
   } catch (const hexdyn::Error& e) {
-    std::cerr << "hexdyn: error: " << e.what() << "\n";
+    if (!hexdyn::launched_as_secondary_rank()) std::cerr << "hexdyn: error: " << e.what() << "\n";
     return e.exit_status();
   } catch (const std::exception& e) {
     std::cerr << "hexdyn: internal error: " << e.what() << "\n";

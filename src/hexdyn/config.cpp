@@ -413,6 +413,7 @@ std::vector<std::string> split_key_path(const std::string& path) {
   std::stringstream ss(path);
   std::string key;
   while (std::getline(ss, key, '.')) keys.push_back(key);
+  if (!path.empty() && path.back() == '.') keys.emplace_back();  // "a." names an empty key
   return keys;
 }
 

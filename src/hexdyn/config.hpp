@@ -21,7 +21,7 @@ struct Override {
   std::string value;
 };
 
-/// "a.b.c" → {"a", "b", "c"}.
+/// "a.b.c" → {"a", "b", "c"}; empty keys are kept ("a..b", "a." name empty keys).
 std::vector<std::string> split_key_path(const std::string& path);
 
 /// Parses "key.path=value"; throws ConfigError on a malformed string.

@@ -1,0 +1,28 @@
+# Parameter sweeps under MPI: whole-program tests of `hexdyn sweep` run plainly and under
+# mpirun (scripts in tests/sweep/, Python checks with /usr/bin/python3). Included by
+# tests/CMakeLists.txt. Each test works in build/tests/sweep_tests/<name>/; the tests
+# take the lock `hexdyn_mpi` so that they do not share the cores with each other.
+set(HEXDYN_MPIEXEC "${MPIEXEC_EXECUTABLE}")
+if(NOT HEXDYN_MPIEXEC)
+  set(HEXDYN_MPIEXEC mpirun)
+endif()
+
+# test name -> script in tests/sweep/
+set(HEXDYN_SWEEP_TESTS
+  "rank_invariance_1_2_4=rank_invariance"        # same scenario table (and runs) for 1, 2, 4 ranks
+  "resume_after_kill=resume_after_kill"          # kill -9 of mpirun, --resume: same file, only missing recomputed
+  "failing_scenario_recorded=failing_scenario"   # unreachable / out-of-range rows with messages; others complete
+  "python_reader_and_heatmaps=reader_and_heatmaps"  # analysis/hexdyn_results.py reads it, plot_sweep.py draws it
+  "bad_sweep_file_before_any_work=bad_sweep_file"   # exit 2, one line, no output, checkpoint kept
+)
+foreach(entry IN LISTS HEXDYN_SWEEP_TESTS)
+  string(REPLACE "=" ";" pair "${entry}")
+  list(GET pair 0 test_name)
+  list(GET pair 1 script)
+  add_test(NAME sweep.${test_name}
+           COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/sweep/${script}.sh $<TARGET_FILE:hexdyn>
+                   ${CMAKE_SOURCE_DIR} ${CMAKE_CURRENT_BINARY_DIR}/sweep_tests/${test_name}
+                   ${HEXDYN_MPIEXEC} ${HEXDYN_PYTHON})
+  set_tests_properties(sweep.${test_name} PROPERTIES
+                       PROCESSORS 2 RESOURCE_LOCK hexdyn_mpi TIMEOUT 300 LABELS "sweep;mpi")
+endforeach()
