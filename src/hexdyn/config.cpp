@@ -17,13 +17,7 @@ namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 
-std::string show(const YAML::Node& node) {
-  if (!node.IsDefined() || node.IsNull()) return "null";
-  if (node.IsScalar()) return node.Scalar();
-  YAML::Emitter out;
-  out << YAML::Flow << node;
-  return out.c_str();
-}
+std::string show(const YAML::Node& node) { return yaml_inline(node); }
 
 std::string fmt(double x) {
   if (x == kInf) return "inf";
@@ -407,6 +401,14 @@ void read_output(Reader& r, OutputParams& o) {
 }
 
 }  // namespace
+
+std::string yaml_inline(const YAML::Node& node) {
+  if (!node.IsDefined() || node.IsNull()) return "null";
+  if (node.IsScalar()) return node.Scalar();
+  YAML::Emitter out;
+  out << YAML::Flow << node;
+  return out.c_str();
+}
 
 std::vector<std::string> split_key_path(const std::string& path) {
   std::vector<std::string> keys;

@@ -21,6 +21,9 @@ struct Override {
   std::string value;
 };
 
+/// A YAML value on one line, as messages show it ("null" when absent).
+std::string yaml_inline(const YAML::Node& node);
+
 /// "a.b.c" → {"a", "b", "c"}; empty keys are kept ("a..b", "a." name empty keys).
 std::vector<std::string> split_key_path(const std::string& path);
 

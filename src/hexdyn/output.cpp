@@ -152,16 +152,6 @@ void write_dynamics(H5Writer& w, const std::string& prefix, const DynamicsResult
   w.write_strings(prefix + s::kSolverMessages.path, d.solver_messages, s::kSolverMessages.units);
 }
 
-/// Forces the file's data to disk so that the rename publishes a complete file.
-void sync_file(const std::string& path) {
-  const int fd = ::open(path.c_str(), O_RDONLY);
-  if (fd < 0) throw_output_error(path, std::strerror(errno));
-  const int rc = ::fsync(fd);
-  const int err = errno;
-  ::close(fd);
-  if (rc != 0) throw_output_error(path, std::string("fsync failed: ") + std::strerror(err));
-}
-
 }  // namespace
 
 std::string utc_timestamp_now() {
@@ -206,7 +196,7 @@ void write_result_file(const std::string& path, const RunResult& result) {
       write_result_layout(writer, result);
       writer.close();
     }
-    sync_file(tmp);
+    sync_file_to_disk(tmp);
     if (std::rename(tmp.c_str(), path.c_str()) != 0)
       throw_output_error(path, "cannot rename '" + tmp + "' to it: " + std::strerror(errno));
   } catch (...) {
@@ -214,6 +204,15 @@ void write_result_file(const std::string& path, const RunResult& result) {
     fs::remove(tmp, ec);
     throw;
   }
+}
+
+void sync_file_to_disk(const std::string& path) {
+  const int fd = ::open(path.c_str(), O_RDONLY);
+  if (fd < 0) throw_output_error(path, std::strerror(errno));
+  const int rc = ::fsync(fd);
+  const int err = errno;
+  ::close(fd);
+  if (rc != 0) throw_output_error(path, std::string("fsync failed: ") + std::strerror(err));
 }
 
 }  // namespace hexdyn

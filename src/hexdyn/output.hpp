@@ -33,4 +33,8 @@ void write_result_layout(H5Writer& writer, const RunResult& result, const std::s
 /// Current UTC time as ISO 8601 "YYYY-MM-DDTHH:MM:SSZ".
 std::string utc_timestamp_now();
 
+/// Forces a written file's data to disk (fsync) so that a following rename publishes a
+/// complete file; throws IoError naming the path.
+void sync_file_to_disk(const std::string& path);
+
 }  // namespace hexdyn

@@ -40,13 +40,7 @@ constexpr const char* kCheckpointSchema = "hexdyn-sweep-checkpoint/1";
 
 // ------------------------------------------------------------------ sweep file parsing
 
-std::string show(const YAML::Node& node) {
-  if (!node.IsDefined() || node.IsNull()) return "null";
-  if (node.IsScalar()) return node.Scalar();
-  YAML::Emitter out;
-  out << YAML::Flow << node;
-  return out.c_str();
-}
+std::string show(const YAML::Node& node) { return yaml_inline(node); }
 
 std::string emit(const YAML::Node& node) {
   YAML::Emitter out;
@@ -518,14 +512,6 @@ void write_bytes_atomically(const std::string& path, const char* data, std::size
   }
 }
 
-void fsync_path(const std::string& path) {
-  const int fd = ::open(path.c_str(), O_RDONLY);
-  if (fd < 0) io_fail(path, std::strerror(errno));
-  const int rc = ::fsync(fd);
-  const int err = errno;
-  ::close(fd);
-  if (rc != 0) io_fail(path, std::string("fsync failed: ") + std::strerror(err));
-}
 
 std::span<const double> span_of(const std::array<double, kJoints>& a) {
   return {a.data(), a.size()};
@@ -650,7 +636,7 @@ void write_manifest(const std::string& dir, const ManifestFields& m) {
     w.set_int_attribute("/meta", "scenarios", m.scenarios);
     w.close();
   }
-  fsync_path(tmp);
+  sync_file_to_disk(tmp);
   const std::string final_path = dir + "/" + kManifest;
   if (std::rename(tmp.c_str(), final_path.c_str()) != 0)
     io_fail(final_path, std::string("cannot rename: ") + std::strerror(errno));
@@ -946,7 +932,7 @@ void write_sweep_file(const std::string& path, const SweepSpec& spec,
       w.close();
     }
     if (runs_from != nullptr) copy_runs(tmp, spec, rows, *runs_from);
-    fsync_path(tmp);
+    sync_file_to_disk(tmp);
     if (std::rename(tmp.c_str(), path.c_str()) != 0)
       io_fail(path, "cannot rename '" + tmp + "' to it: " + std::strerror(errno));
   } catch (...) {
