@@ -111,7 +111,8 @@ void run_pair(benchmark::State& state, const Pair& pr, bool active_set) {
   auto backend = make_backend(active_set);
   backend->solve(pr.a);  // the previous sample's solution is the warm start
   std::vector<double> times;
-  times.reserve(static_cast<std::size_t>(std::min<benchmark::IterationCount>(state.max_iterations, 1 << 22)));
+  times.reserve(
+      static_cast<std::size_t>(std::min<benchmark::IterationCount>(state.max_iterations, 1 << 22)));
   long iterations = 0, solves = 0, allocations = 0;
   int status = 0;
   bool flip = false;

@@ -239,7 +239,8 @@ class DualActiveSet {
       int kept = 0;
       for (int i = 0; i < ne; ++i) {
         const RowRef r = e[i];
-        if (state_[r.row] == RowState::kElastic && residual(r.row, r.side) > side_tol(r.row, r.side)) {
+        if (state_[r.row] == RowState::kElastic &&
+            residual(r.row, r.side) > side_tol(r.row, r.side)) {
           changed = true;
           ++dropped;
           continue;
@@ -481,9 +482,7 @@ class DualActiveSet {
 
   // --- rows ---
 
-  bool finite_side(int k, int side) const {
-    return side > 0 ? lo_[k] > -kInf : hi_[k] < kInf;
-  }
+  bool finite_side(int k, int side) const { return side > 0 ? lo_[k] > -kInf : hi_[k] < kInf; }
   /// β of row k on a side: the row reads side·a_kᵀx ≥ β.
   double beta(int k, int side) const { return side > 0 ? lo_[k] : -hi_[k]; }
   /// side·a_kᵀx − β (≥ 0 when that side holds).
@@ -825,14 +824,13 @@ class ActiveSetBackend final : public AllocationBackend {
                         " cones; use allocation.solver: ipopt or a friction pyramid)");
     if (p.variables() > kN) {
       std::ostringstream os;
-      os << "active-set back end: variables: expected at most " << kN << ", got "
-         << p.variables();
+      os << "active-set back end: variables: expected at most " << kN << ", got " << p.variables();
       throw SolverError(os.str());
     }
     if (p.equalities() + p.inequalities() > kM) {
       std::ostringstream os;
-      os << "active-set back end: rows (equality + inequality): expected at most " << kM
-         << ", got " << p.equalities() + p.inequalities();
+      os << "active-set back end: rows (equality + inequality): expected at most " << kM << ", got "
+         << p.equalities() + p.inequalities();
       throw SolverError(os.str());
     }
   }
@@ -914,8 +912,7 @@ class ActiveSetBackend final : public AllocationBackend {
 
   std::string regularisation_note() const {
     char buf[96];
-    std::snprintf(buf, sizeof buf,
-                  "objective Hessian not positive definite: regularised by %.3g I",
+    std::snprintf(buf, sizeof buf, "objective Hessian not positive definite: regularised by %.3g I",
                   core_->regularisation());
     return buf;
   }
@@ -1003,8 +1000,8 @@ class ActiveSetBackend final : public AllocationBackend {
       int dropped = 0;
       if (use_warm) {
         if (skip_strict && warm) {
-          s.start_warm(warm_active_.data(), warm_active_n_, warm_elastic_.data(),
-                       warm_elastic_n_, dropped);
+          s.start_warm(warm_active_.data(), warm_active_n_, warm_elastic_.data(), warm_elastic_n_,
+                       dropped);
         } else if (strict_ran) {
           // The strict attempt's final active set.
           std::array<RowRef, kN> rows;

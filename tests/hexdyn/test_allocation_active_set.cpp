@@ -99,7 +99,9 @@ QpProblem random_qp(std::mt19937& rng, int n, int m_eq, int lu, int boxes, int g
 /// within rounding (1e-12·(1 + |bound|)) count as 0, or ρ w_i (up to 1e9) would turn them
 /// into differences far above those of the objective.
 double penalised_objective(const QpProblem& p, const Eigen::VectorXd& x, double rho) {
-  auto beyond = [](double v, double bound) { return v > 1e-12 * (1.0 + std::abs(bound)) ? v : 0.0; };
+  auto beyond = [](double v, double bound) {
+    return v > 1e-12 * (1.0 + std::abs(bound)) ? v : 0.0;
+  };
   double v = 0.0;
   for (int i = 0; i < p.inequalities(); ++i) {
     const double c = p.C.row(i).dot(x);
@@ -286,9 +288,10 @@ TEST_CASE("active-set back end: equality-constrained QPs match the closed-form K
   }
 }
 
-TEST_CASE("active-set back end: random QPs with equalities, l = u rows, boxes and general rows "
-          "match Ipopt",
-          "[allocation][active_set]") {
+TEST_CASE(
+    "active-set back end: random QPs with equalities, l = u rows, boxes and general rows "
+    "match Ipopt",
+    "[allocation][active_set]") {
   std::mt19937 rng(7);
   auto backend = make_active_set_backend();
   auto ipopt = make_ipopt_backend(reference_ipopt());
@@ -411,11 +414,11 @@ TEST_CASE("active-set back end: degenerate problems", "[allocation][active_set]"
     q.upper.conservativeResize(m + 4);
     q.C.bottomRows(4).setZero();
     q.C.row(m) = random_matrix(rng, 1, 8);
-    q.lower[m] = -kInf, q.upper[m] = kInf;                   // no bounds
+    q.lower[m] = -kInf, q.upper[m] = kInf;  // no bounds
     q.C.row(m + 1) = random_matrix(rng, 1, 8);
-    q.lower[m + 1] = -2e19, q.upper[m + 1] = 1e19;           // "no bound" by magnitude
-    q.lower[m + 2] = -1.0, q.upper[m + 2] = 1.0;             // zero row, holds
-    q.lower[m + 3] = q.upper[m + 3] = 0.0;                   // zero row, l = u = 0
+    q.lower[m + 1] = -2e19, q.upper[m + 1] = 1e19;  // "no bound" by magnitude
+    q.lower[m + 2] = -1.0, q.upper[m + 2] = 1.0;    // zero row, holds
+    q.lower[m + 3] = q.upper[m + 3] = 0.0;          // zero row, l = u = 0
     q.ineq_names.resize(static_cast<std::size_t>(m + 4), "extra");
     q.ineq_penalty.setOnes(m + 4);
     const QpOutcome ref = backend->solve(p);
@@ -489,7 +492,7 @@ TEST_CASE("active-set back end: infeasible problems are relaxed as Ipopt relaxes
     CHECK(out.message == "relaxed: torque L1_femur by 1");
     CHECK(out.x[0] == Approx(2.0).margin(1e-14));
     CHECK(out.max_violation == Approx(1.0).margin(1e-14));
-    CHECK(out.lambda_ineq[0] == Approx(-1e6));  // the penalty's slope
+    CHECK(out.lambda_ineq[0] == Approx(-1e6));   // the penalty's slope
     CHECK(inf_norm(p.A * out.x - p.b) < 1e-13);  // equalities stay hard
     const QpOutcome& ref = ipopt->solve(p);
     CHECK(ref.status == 1);
@@ -628,6 +631,86 @@ TEST_CASE("active-set back end: infeasible problems are relaxed as Ipopt relaxes
       CHECK(inf_norm(extended_precision_x(p, out, rho) - out.x) < 1e-10 * (1.0 + inf_norm(out.x)));
     }
   }
+}
+
+TEST_CASE("active-set back end: random degenerate problems are solved to certified optimality",
+          "[allocation][active_set]") {
+  // Duplicated and scaled rows, zero rows, l = u rows, crossed bounds, infeasible shifts,
+  // and slowly changing sequences (warm starts), up to the size limits. Every answer is
+  // certified by the KKT conditions of the problem (status 0) or of the penalised problem
+  // (status 1), and the warm-started back end agrees with a cold one.
+  std::mt19937 rng(12345);
+  std::normal_distribution<double> N(0.0, 1.0);
+  std::uniform_real_distribution<double> U(0.0, 1.0);
+  auto warm = make_active_set_backend();
+  auto cold = make_active_set_backend(active_set(1e6, false));
+  QpProblem previous;
+  int counts[3] = {0, 0, 0}, certified = 0, agreed = 0, trials = 0;
+  std::string first_failure;
+  for (int t = 0; t < 1500; ++t) {
+    QpProblem p;
+    if (t > 0 && U(rng) < 0.4) {
+      p = previous;  // the next sample of a slowly changing sequence
+      p.g += 0.01 * Eigen::VectorXd::NullaryExpr(p.variables(), [&] { return N(rng); });
+    } else {
+      const int n = 1 + static_cast<int>(rng() % kActiveSetMaxVariables);
+      const int m_eq = n > 3 ? static_cast<int>(rng() % 3) : 0;
+      const int m_in = static_cast<int>(rng() % 60);
+      p.resize(n, m_eq, m_in);
+      const Eigen::MatrixXd M = random_matrix(rng, n, n);
+      p.H = M * M.transpose() + 0.01 * Eigen::MatrixXd::Identity(n, n);
+      p.g = 3.0 * random_vector(rng, n);
+      const Eigen::VectorXd x0 = random_vector(rng, n);
+      p.A = random_matrix(rng, m_eq, n);
+      p.b = p.A * x0;
+      const bool infeasible = U(rng) < 0.3;
+      for (int i = 0; i < m_in; ++i) {
+        const double kind = U(rng);
+        if (kind < 0.2) {
+          p.C(i, static_cast<int>(rng() % n)) = 1.0;  // a box
+        } else if (kind < 0.25 && i > 0) {
+          p.C.row(i) = p.C.row(static_cast<int>(rng() % i)) * (U(rng) < 0.5 ? 1.0 : 2.0);
+        } else if (kind >= 0.28) {  // else a zero row
+          p.C.row(i) = random_matrix(rng, 1, n);
+        }
+        const double c = p.C.row(i).dot(x0), bounds = U(rng);
+        if (bounds < 0.2) {
+          p.lower[i] = p.upper[i] = c;
+        } else if (bounds < 0.4) {
+          p.lower[i] = c - U(rng);
+        } else if (bounds < 0.6) {
+          p.upper[i] = c + U(rng);
+        } else if (bounds < 0.97) {
+          p.lower[i] = c - U(rng), p.upper[i] = c + U(rng);
+        }
+        if (infeasible && U(rng) < 0.15) {  // may cross the bounds
+          if (p.lower[i] > -kQpInfinity)
+            p.lower[i] += 3.0 + 5.0 * U(rng);
+          else if (p.upper[i] < kQpInfinity)
+            p.upper[i] -= 3.0 + 5.0 * U(rng);
+        }
+        p.ineq_penalty[i] = U(rng) < 0.5 ? 1.0 : 1.0 + 100.0 * U(rng);
+        p.ineq_names[i] = "row " + std::to_string(i);
+      }
+    }
+    previous = p;
+    const QpOutcome a = warm->solve(p);
+    const QpOutcome& b = cold->solve(p);
+    ++trials;
+    ++counts[a.status];
+    std::string why;
+    const bool ok = a.status == 0   ? check_kkt(p, a, 1e-8, &why)
+                    : a.status == 1 ? check_penalised_kkt(p, a, 1e6, 1e-8, &why)
+                                    : false;
+    certified += ok;
+    if (!ok && first_failure.empty())
+      first_failure = std::to_string(t) + ": " + a.message + " " + why;
+    agreed += a.status == b.status && inf_norm(a.x - b.x) <= 1e-6 * (1.0 + inf_norm(b.x));
+  }
+  INFO("statuses " << counts[0] << "/" << counts[1] << "/" << counts[2] << "; " << first_failure);
+  CHECK(certified == trials);
+  CHECK(agreed == trials);
+  CHECK(counts[1] > 200);  // relaxed answers were exercised
 }
 
 TEST_CASE("active-set back end: a feasible problem after a relaxed one is solved to optimality",
@@ -771,13 +854,13 @@ RunComparison compare_backends(const Scene& scene) {
   RunComparison r;
   auto note = [&](int i, const std::string& what) {
     if (r.first_problem.empty())
-      r.first_problem = "sample " + std::to_string(i) + " t = " + std::to_string(kin.time_s[i]) +
-                        ": " + what;
+      r.first_problem =
+          "sample " + std::to_string(i) + " t = " + std::to_string(kin.time_s[i]) + ": " + what;
   };
   for (int i = 0; i < kin.samples(); ++i) {
-    const ContactSplit& split =
-        contact_split(prep.model, data, base_state_at(kin, i), kin.joint_position.row(i).transpose(),
-                      kin.joint_velocity.row(i).transpose(), kin.joint_acceleration.row(i).transpose());
+    const ContactSplit& split = contact_split(
+        prep.model, data, base_state_at(kin, i), kin.joint_position.row(i).transpose(),
+        kin.joint_velocity.row(i).transpose(), kin.joint_acceleration.row(i).transpose());
     sample_contacts(kin, i, prep.plan.terrain, prep.touchdowns, contacts);
     build_allocation_problem(scene.allocation, scene.contact, split, contacts.phase,
                              contacts.impact_force_N, contacts.W_R_contact, qp, offset, nullptr);
@@ -800,8 +883,8 @@ RunComparison compare_backends(const Scene& scene) {
         ++r.name_mismatches;
         note(i, out.message + " vs Ipopt " + ref.message);
       }
-      r.max_violation_diff = std::max(r.max_violation_diff,
-                                      inf_norm(row_violations(qp, out.x) - row_violations(qp, ref.x)));
+      r.max_violation_diff = std::max(
+          r.max_violation_diff, inf_norm(row_violations(qp, out.x) - row_violations(qp, ref.x)));
     }
     if (!check_penalised_kkt(qp, out, rho, 1e-9, &why)) ++r.kkt_failures, note(i, why);
     // Ipopt's penalised answers are not exact: F(x_ipopt) − F(x*) ≥ ½ μ |x_ipopt − x*|² for
