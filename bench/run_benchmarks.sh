@@ -4,6 +4,9 @@
 #   bash bench/run_benchmarks.sh [BUILD_DIR] [extra Google Benchmark flags...]
 # BUILD_DIR defaults to build/ next to this directory. The paper-run benchmark alone takes
 # five whole paper runs (about 100 s).
+# bench_dynamics_dart (the inverse dynamics against DART's) needs Debian's libdart-dev: run
+# as root, the script installs it when missing and configures and builds the benchmarks
+# again; otherwise that benchmark is skipped.
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 build="${1:-$here/../build}"
@@ -13,12 +16,48 @@ if ! ls "$bench_dir"/bench_* >/dev/null 2>&1; then
   echo "run_benchmarks.sh: no benchmark executables in $bench_dir (build with Google Benchmark installed)" >&2
   exit 2
 fi
+
+# DART for bench_dynamics_dart (benchmark only; the library never links it).
+src="$(cd "$here/.." && pwd)"
+rebuild=0
+dart=1
+if ! dpkg -s libdart-dev >/dev/null 2>&1; then
+  dart=0
+  if [ "$(id -u)" -eq 0 ]; then
+    echo "run_benchmarks.sh: installing libdart-dev for bench_dynamics_dart ..." >&2
+    if DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends libdart-dev \
+         >&2 ||
+       { DEBIAN_FRONTEND=noninteractive apt-get update >&2 &&
+         DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends libdart-dev \
+           >&2; }; then
+      rebuild=1
+      dart=1
+    else
+      echo "run_benchmarks.sh: installing libdart-dev failed: bench_dynamics_dart skipped" >&2
+    fi
+  else
+    echo "run_benchmarks.sh: libdart-dev not installed (run as root to install it):" \
+         "bench_dynamics_dart skipped" >&2
+  fi
+elif [ ! -x "$bench_dir/bench_dynamics_dart" ]; then
+  rebuild=1  # DART installed after this build directory was configured
+fi
+if [ "$rebuild" -eq 1 ]; then
+  echo "run_benchmarks.sh: configuring $build and building the benchmarks ..." >&2
+  cmake -S "$src" -B "$build" >&2
+  targets=()
+  for source in "$here"/bench_*.cpp; do targets+=("$(basename "$source" .cpp)"); done
+  cmake --build "$build" -j"$(nproc)" --target "${targets[@]}" >&2
+fi
+
 out="$(mktemp -d)"
 trap 'rm -rf "$out"' EXIT
-export HEXDYN_SOURCE_DIR="$(cd "$here/.." && pwd)"
+export HEXDYN_SOURCE_DIR="$src"
 for exe in "$bench_dir"/bench_*; do
   [ -x "$exe" ] && [ -f "$exe" ] || continue
   name="$(basename "$exe")"
+  # A bench_dynamics_dart left from before libdart-dev was removed cannot load DART.
+  [ "$name" = bench_dynamics_dart ] && [ "$dart" -eq 0 ] && continue
   echo "running $name ..." >&2
   "$exe" --benchmark_repetitions=5 --benchmark_report_aggregates_only=true \
          --benchmark_out="$out/$name.json" --benchmark_out_format=json "$@" >"$out/$name.txt" 2>&1 ||
@@ -28,15 +67,21 @@ done
 import json, pathlib, sys
 rows = []
 for path in sorted(pathlib.Path(sys.argv[1]).glob("*.json")):
-    data = json.loads(path.read_text())
+    text = path.read_text()
+    if not text.strip():  # a --benchmark_filter that matched nothing in this executable
+        continue
+    data = json.loads(text)
     for b in data["benchmarks"]:
         if b.get("aggregate_name") != "median":
             continue
         counters = {k: v for k, v in b.items()
-                    if k in ("ipopt_iterations", "status", "samples", "relaxed_samples")}
+                    if k in ("ipopt_iterations", "status", "samples", "relaxed_samples",
+                             "ipopt_ratio", "hexdyn_us", "dart_us", "dart_ratio",
+                             "max_abs_diff")}
         extra = " ".join(f"{k}={v:g}" for k, v in counters.items())
         rows.append((path.stem, b["run_name"], b["real_time"], b["cpu_time"], b["time_unit"], extra))
-print(f"{'executable':<18} {'benchmark':<30} {'median wall':>14} {'median CPU':>14}  counters")
+w = max([18] + [len(r[0]) for r in rows])
+print(f"{'executable':<{w}} {'benchmark':<30} {'median wall':>14} {'median CPU':>14}  counters")
 for exe, name, real, cpu, unit, extra in rows:
-    print(f"{exe:<18} {name:<30} {real:>11.4g} {unit:<2} {cpu:>11.4g} {unit:<2}  {extra}")
+    print(f"{exe:<{w}} {name:<30} {real:>11.4g} {unit:<2} {cpu:>11.4g} {unit:<2}  {extra}")
 PY

@@ -113,9 +113,9 @@ class AllocationBackend {
 };
 
 struct IpoptOptions {
-  /// Ipopt `tol` and `constr_viol_tol` of the problem as posed (penalised runs use
-  /// max(tolerance, 1e-7)). Rows count as violated beyond max(1e-6, 1e3·tolerance)
-  /// relative to max(1, |bound|).
+  /// Ipopt `tol` and `constr_viol_tol` (penalised runs also `compl_inf_tol` =
+  /// 1e-3·tolerance). Rows count as violated beyond max(1e-6, 1e3·tolerance) relative to
+  /// max(1, |bound|).
   double tolerance = 1e-9;
   int max_iterations = 200;       ///< per attempt
   double max_cpu_seconds = 10.0;  ///< per attempt

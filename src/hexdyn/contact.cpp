@@ -204,14 +204,20 @@ ImpactTransient simulate_touchdown(const ContactParams& c, double effective_mass
 
   gsl_odeiv2_system sys{impact_rhs, impact_jacobian, 3, &s};
   const double h_start = std::min(tau_contact / n_out, std::max(s.p_hat, 1e-6)) * 1e-2;
+  // Stepper: the explicit Runge–Kutta–Prince–Dormand (8, 9) pair while the damping rate
+  // (scaled) allows output-sized steps, h·damping < 1 at h = τ_contact / n_out (the paper's
+  // touchdowns: ~10× faster than the implicit stepper at the same tolerances); the implicit
+  // 4th-order Gauss stepper (rk4imp, with the analytic Jacobian) for stiffer damping.
+  const gsl_odeiv2_step_type* stepper =
+      s.damping * tau_contact / n_out < 1.0 ? gsl_odeiv2_step_rk8pd : gsl_odeiv2_step_rk4imp;
   DriverPtr drv(
-      gsl_odeiv2_driver_alloc_y_new(&sys, gsl_odeiv2_step_rk4imp, h_start,
+      gsl_odeiv2_driver_alloc_y_new(&sys, stepper, h_start,
                                     options.absolute_tolerance, options.relative_tolerance),
       gsl_odeiv2_driver_free);
   // A second stepper re-takes partial steps from the last accepted state to locate events,
   // leaving the evolving stepper's internal state untouched.
   DriverPtr probe(
-      gsl_odeiv2_driver_alloc_y_new(&sys, gsl_odeiv2_step_rk4imp, h_start,
+      gsl_odeiv2_driver_alloc_y_new(&sys, stepper, h_start,
                                     options.absolute_tolerance, options.relative_tolerance),
       gsl_odeiv2_driver_free);
   if (!drv || !probe) throw SolverError("touchdown: cannot allocate the GSL ODE driver");
@@ -281,7 +287,17 @@ ImpactTransient simulate_touchdown(const ContactParams& c, double effective_mass
     }
     const double tau_prev = tau;
     const double y_prev[3] = {y[0], y[1], y[2]};
-    const double cap = std::max(tau_contact, tau) / n_out;
+    double cap = std::max(tau_contact, tau) / n_out;
+    // While the damping ramps in (u < p̂) the force curves sharply: sample the ramp with at
+    // least 32 steps, so that linear interpolation of the samples stays accurate there.
+    if (y[0] < s.p_hat && y[1] > 0.0) cap = std::min(cap, std::max(s.p_hat / (32.0 * y[1]), 1e-12));
+    // And a step changes the force by at most ~1/32 of its largest value so far, or of the
+    // natural scale ½ (the undamped peak is (e+1)/2 ≥ 1): the explicit stepper's steps are
+    // otherwise set by accuracy alone, and sparse samples would make the interpolated force
+    // coarse where the contact lasts much longer than the undamped one.
+    const double f_scale = std::max({s.force(y[0], y[1]), peak_f, 0.5});
+    const double rate = std::abs(s.force_rate(y));
+    if (rate > 0.0) cap = std::min(cap, std::max(f_scale / (32.0 * rate), 1e-12));
     const double tau_target = std::min(tau + cap, tau_max);
     h = std::min(h, cap);
     const int status =

@@ -9,6 +9,7 @@
 #include <ostream>
 #include <sstream>
 
+#include "hexdyn/allocation_active_set.hpp"
 #include "hexdyn/errors.hpp"
 
 namespace hexdyn {
@@ -36,6 +37,25 @@ constexpr double kContactRowPenaltyWeight = 1e3;
 /// Impact legs keep a fixed normal force, so their friction limit is a polygon even in
 /// the exact-cone model: an inscribed 16-gon (within 2% of the circle).
 constexpr int kImpactConeFaces = 16;
+
+/// Row names, built once: building them per sample would cost more than the solve.
+struct RowNames {
+  std::array<std::string, kJoints> torque;
+  std::array<std::string, kLegs> normal;
+  std::array<std::array<std::string, kImpactConeFaces>, kLegs> face;
+  RowNames() {
+    for (int l = 0; l < kLegs; ++l) {
+      for (int j = 0; j < kJointsPerLeg; ++j) torque[joint_index(l, j)] = "torque " + joint_name(l, j);
+      normal[l] = "normal " + leg_name(l);
+      for (int f = 0; f < kImpactConeFaces; ++f)
+        face[l][f] = "friction " + leg_name(l) + " face " + std::to_string(f + 1);
+    }
+  }
+};
+const RowNames& row_names() {
+  static const RowNames names;
+  return names;
+}
 
 }  // namespace
 
@@ -126,6 +146,7 @@ void sample_contacts(const KinematicsResult& kin, int i, const Terrain& terrain,
 std::unique_ptr<AllocationBackend> make_allocation_backend(const AllocationParams& params) {
   switch (params.solver) {
     case AllocationSolver::kIpopt: return make_ipopt_backend(ipopt_options_from(params));
+    case AllocationSolver::kActiveSet: return make_active_set_backend(active_set_options_from(params));
   }
   throw SolverError("allocation.solver: no back end");
 }
@@ -159,9 +180,11 @@ double build_allocation_problem(const AllocationParams& alloc, const ContactPara
     tau_known -= split.JjT[l] * F_fixed;
     trunk_rhs -= split.JbT[l] * F_fixed;
   }
-  // Torques τ = tau_known − G x; trunk rows B x = trunk_rhs.
-  Eigen::Matrix<double, kJoints, Eigen::Dynamic> G = Eigen::Matrix<double, kJoints, Eigen::Dynamic>::Zero(kJoints, n);
-  Eigen::Matrix<double, 6, Eigen::Dynamic> B = Eigen::Matrix<double, 6, Eigen::Dynamic>::Zero(6, n);
+  // Torques τ = tau_known − G x; trunk rows B x = trunk_rhs (at most 18 variables: on the stack).
+  using GMatrix = Eigen::Matrix<double, kJoints, Eigen::Dynamic, Eigen::ColMajor, kJoints, 3 * kLegs>;
+  using BMatrix = Eigen::Matrix<double, 6, Eigen::Dynamic, Eigen::ColMajor, 6, 3 * kLegs>;
+  GMatrix G = GMatrix::Zero(kJoints, n);
+  BMatrix B = BMatrix::Zero(6, n);
   for (int l = 0; l < kLegs; ++l) {
     if (offset[l] < 0) continue;
     const int k = phase[l] == ContactPhase::kSupport ? 3 : 2;
@@ -199,7 +222,7 @@ double build_allocation_problem(const AllocationParams& alloc, const ContactPara
       qp.C.row(row) = G.row(kk);
       qp.lower[row] = tau_known[kk] - tmax;
       qp.upper[row] = tau_known[kk] + tmax;
-      qp.ineq_names[row] = "torque " + joint_name(l, j);
+      qp.ineq_names[row] = row_names().torque[kk];
     }
     const bool support = phase[l] == ContactPhase::kSupport;
     if (support) {
@@ -207,7 +230,7 @@ double build_allocation_problem(const AllocationParams& alloc, const ContactPara
       qp.lower[row] = alloc.min_normal_force_N;
       qp.upper[row] = std::numeric_limits<double>::infinity();
       qp.ineq_penalty[row] = kContactRowPenaltyWeight;
-      qp.ineq_names[row++] = "normal " + leg_name(l);
+      qp.ineq_names[row++] = row_names().normal[l];
     }
     const int nf = faces ? faces : (support ? 0 : kImpactConeFaces);
     // Inscribed N-gon: face normals at 2πk/N, at distance μ f_n cos(π/N).
@@ -224,7 +247,7 @@ double build_allocation_problem(const AllocationParams& alloc, const ContactPara
         qp.upper[row] = reach * impact_force_N[l];
       }
       qp.ineq_penalty[row] = kContactRowPenaltyWeight;
-      qp.ineq_names[row] = "friction " + leg_name(l) + " face " + std::to_string(f + 1);
+      qp.ineq_names[row] = row_names().face[l][f];
     }
     if (!faces && support)
       qp.cones.push_back({o, o + 1, o + 2, mu, "friction cone " + leg_name(l), kContactRowPenaltyWeight});

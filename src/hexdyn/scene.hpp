@@ -83,11 +83,14 @@ struct ContactParams {
   double friction_coefficient = 0.3;         ///< μ
 };
 
-enum class AllocationSolver { kIpopt };
+/// Allocation back end: the dense dual active-set QP (allocation_active_set.hpp, the
+/// default for friction pyramids) or Ipopt (allocation_ipopt.cpp: the exact-cone NLP and
+/// the reference).
+enum class AllocationSolver { kActiveSet, kIpopt };
 enum class FrictionModel { kPyramid4, kPyramid8, kCone };
 
 struct AllocationParams {
-  AllocationSolver solver = AllocationSolver::kIpopt;
+  AllocationSolver solver = AllocationSolver::kActiveSet;
   FrictionModel friction = FrictionModel::kPyramid4;
   double torque_limit_Nm = 6.0;
   double min_normal_force_N = 0.0;
