@@ -285,6 +285,10 @@ void read_robot(Reader& r, RobotParams& p) {
     p.hip_yaw_rad[leg] = left ? M_PI - yaw[row] : yaw[row];
   }
   p.ik_min_margin_m = r.number_or("robot.ik_min_margin", 1e-4, nonnegative(0.1));
+  const std::string def_legs = "full";
+  p.leg_inertia = r.choice("robot.leg_inertia", {"full", "massless"}, &def_legs) == "massless"
+                      ? LegInertia::kMassless
+                      : LegInertia::kFull;
 }
 
 void read_terrain(Reader& r, TerrainParams& t) {
@@ -366,6 +370,9 @@ void read_motion(Reader& r, const GaitParams& g, const TerrainParams& t, MotionP
 }
 
 void read_contact(Reader& r, ContactParams& c) {
+  const std::string def_model = "compliant";
+  c.model = r.choice("contact.model", {"compliant", "rigid"}, &def_model) == "rigid" ? ContactModel::kRigid
+                                                                                   : ContactModel::kCompliant;
   c.stiffness = r.number("contact.stiffness", positive(1e15));
   c.exponent = r.number("contact.exponent", closed(1.0, 5.0));
   c.damping_max_Nspm = r.number("contact.damping_max", nonnegative(1e12));

@@ -111,7 +111,9 @@ std::vector<Touchdown> resolve_touchdowns(const RobotModel& model, RobotData& da
       base.W_R_B = s.trunk.W_R_B;
       base.p_W = s.trunk.p_W;
       td.effective_mass_kg = foot_effective_mass(model, data, base, s.q, leg, td.normal_W);
-      td.transient = simulate_touchdown(contact, td.effective_mass_kg, td.approach_speed_mps, ImpactOptions{});
+      // Rigid contact: no transient (occurred = false), the foot supports from touchdown on.
+      if (contact.model == ContactModel::kCompliant)
+        td.transient = simulate_touchdown(contact, td.effective_mass_kg, td.approach_speed_mps, ImpactOptions{});
       out.push_back(std::move(td));
     }
   }
@@ -375,7 +377,7 @@ DynamicsResult solve_dynamics(const Scene& scene, const RobotModel& model, const
     for (int l = 0; l < kLegs; ++l) {
       dyn.contact_force.row(i).segment<3>(3 * l) = F_W[l].transpose();
       double delta = c.impact_penetration_m[l];
-      if (c.phase[l] == ContactPhase::kSupport)
+      if (c.phase[l] == ContactPhase::kSupport && scene.contact.model == ContactModel::kCompliant)
         delta = static_penetration(scene.contact, std::max(0.0, F_W[l].dot(c.W_R_contact[l].col(2))));
       dyn.penetration(i, l) = delta;
       kin.contact_phase(i, l) = static_cast<std::int8_t>(c.phase[l]);

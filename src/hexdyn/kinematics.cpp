@@ -45,6 +45,18 @@ void robot_state_at(const RobotModel& model, const MotionPlan& plan, double t, R
     const Vec3 qd = lu.solve(B_R_H.transpose() * rd_B);
     const Mat3 Jd = leg_jacobian_dot_H(model, leg, ik.q, qd);
     const Vec3 qdd = lu.solve(B_R_H.transpose() * rdd_B - Jd * qd);
+    if (!qd.allFinite() || !qdd.allFinite()) {
+      // IK accepted the target (robot.ik_min_margin = 0 allows a leg exactly at full
+      // extension or fold) but the leg Jacobian is singular there: the joint rates that
+      // would move the foot as planned do not exist. Without this check they would be
+      // inf/NaN and poison every later dataset.
+      std::ostringstream msg;
+      msg << "leg " << leg_name(leg) << " at t = " << t << " s: foot target (" << f.p_W.x() << ", "
+          << f.p_W.y() << ", " << f.p_W.z() << ") m at a singular leg configuration (full extension or fold): "
+          << "joint rates undefined (margin " << ik.margin_m << " m, required >= " << model.ik_min_margin_m
+          << " m; raise robot.ik_min_margin)";
+      throw ReachError(msg.str());
+    }
     out.q.segment<3>(joint_index(leg, 0)) = ik.q;
     out.qd.segment<3>(joint_index(leg, 0)) = qd;
     out.qdd.segment<3>(joint_index(leg, 0)) = qdd;

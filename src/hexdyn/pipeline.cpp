@@ -10,8 +10,14 @@ namespace hexdyn {
 PreparedScene prepare_scene(const Scene& scene) {
   RobotModel model = build_robot_model(scene.robot);
   MotionPlan plan = plan_motion(scene, model);
-  RobotData data(model);
-  std::vector<Touchdown> touchdowns = resolve_touchdowns(model, data, plan, scene.contact);
+  // Touchdown transients are those of the physical legs, also when the dynamics treat the
+  // legs as massless (robot.leg_inertia): a massless foot has no effective mass.
+  RobotParams full_legs = scene.robot;
+  full_legs.leg_inertia = LegInertia::kFull;
+  const RobotModel touchdown_model =
+      scene.robot.leg_inertia == LegInertia::kFull ? model : build_robot_model(full_legs);
+  RobotData data(touchdown_model);
+  std::vector<Touchdown> touchdowns = resolve_touchdowns(touchdown_model, data, plan, scene.contact);
   std::vector<GridEvent> events;
   double t_end = plan.trunk.duration_s();
   for (const LegPlan& leg : plan.gait.legs)

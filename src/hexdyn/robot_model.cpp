@@ -72,7 +72,19 @@ RobotModel build_robot_model(const RobotParams& params) {
     m.R_parent_joint[b_tibia].setIdentity();
     m.p_parent_joint[b_tibia] = Vec3(l2, m.d3_signed_m[leg], 0.0);
     m.axis[b_tibia] = minus_y;
-    for (int j = 0; j < kJointsPerLeg; ++j) m.inertia[b_coxa + j] = to_inertia(params.link[j]);
+    for (int j = 0; j < kJointsPerLeg; ++j) {
+      m.inertia[b_coxa + j] = to_inertia(params.link[j]);
+      if (params.leg_inertia == LegInertia::kMassless && params.link[j].mass_kg > 0.0) {
+        // Massless legs: the link's mass becomes a point mass at the hip, part of the trunk
+        // (and of the trunk link of the URDF, so that the total mass is unchanged).
+        RigidInertia point;
+        point.mass_kg = params.link[j].mass_kg;
+        point.com_m = m.p_hip_B[leg];
+        m.inertia[0] = combine(m.inertia[0], point);
+        m.trunk_only = combine(m.trunk_only, point);
+        m.inertia[b_coxa + j] = RigidInertia{};
+      }
+    }
   }
   m.total_mass_kg = 0.0;
   for (const auto& in : m.inertia) m.total_mass_kg += in.mass_kg;

@@ -18,6 +18,10 @@ struct BodyParams {
   Vec3 com_m = Vec3::Zero();         ///< COM in the body frame [m]
 };
 
+/// Leg inertia model: the full coupled dynamics of the 18 links, or massless legs whose
+/// link masses are lumped into the trunk as point masses at their hips (coxa joints).
+enum class LegInertia { kFull, kMassless };
+
 struct RobotParams {
   BodyParams trunk;    ///< trunk structure, frame L0 at P0
   BodyParams payload;  ///< rigidly fixed to the trunk; com_m in the trunk frame
@@ -40,6 +44,7 @@ struct RobotParams {
   /// Smallest allowed distance of the wrist point to the boundary of the leg's
   /// planar workspace (full extension or full fold) [m]: below it IK refuses.
   double ik_min_margin_m = 1e-4;
+  LegInertia leg_inertia = LegInertia::kFull;  ///< robot.leg_inertia
 };
 
 enum class TerrainType { kFlat, kSlope, kStairs };
@@ -75,7 +80,12 @@ struct MotionParams {
   int cycles = 3;
 };
 
+/// Touchdown model: the compliant IMPACT transient (contact.hpp), or rigid: the foot is a
+/// support leg from the instant of touchdown, its impulse not resolved in time.
+enum class ContactModel { kCompliant, kRigid };
+
 struct ContactParams {
+  ContactModel model = ContactModel::kCompliant;  ///< contact.model
   double stiffness = 1e5;                    ///< K [N/m^e]
   double exponent = 2.2;                     ///< e
   double damping_max_Nspm = 10.0;            ///< C_max [N·s/m]
