@@ -39,7 +39,7 @@ void report(benchmark::State& state, long iterations, long solves, int status) {
 
 void BM_AllocationSupportWarm(benchmark::State& state) {
   const Problems pr = support_problems();
-  auto backend = make_allocation_backend(bench::paper_setup().scene.allocation);
+  auto backend = make_ipopt_backend(ipopt_options_from(bench::paper_setup().scene.allocation));
   backend->solve(pr.a);  // the previous sample's solution is the warm start
   long iterations = 0, solves = 0;
   int status = 0;
@@ -58,7 +58,7 @@ BENCHMARK(BM_AllocationSupportWarm)->Unit(benchmark::kMillisecond);
 
 void BM_AllocationSupportCold(benchmark::State& state) {
   const Problems pr = support_problems();
-  auto backend = make_allocation_backend(bench::paper_setup().scene.allocation);
+  auto backend = make_ipopt_backend(ipopt_options_from(bench::paper_setup().scene.allocation));
   long iterations = 0, solves = 0;
   int status = 0;
   for (auto _ : state) {
@@ -80,7 +80,7 @@ void BM_AllocationImpactRelaxed(benchmark::State& state) {
   const int i = bench::sample_at(p.kin, 3.0001);
   if (bench::sample_problem(p, data, i, qp) == 0)
     throw std::logic_error("bench_allocation: the impact sample has no leg in a transient");
-  auto backend = make_allocation_backend(p.scene.allocation);
+  auto backend = make_ipopt_backend(ipopt_options_from(p.scene.allocation));
   long iterations = 0, solves = 0;
   int status = 0;
   for (auto _ : state) {

@@ -212,8 +212,12 @@ double build_allocation_problem(const AllocationParams& alloc, const ContactPara
         const double excess = std::abs(tau_known[joint_index(l, j)]) - tmax;
         if (excess > worst_constant) {
           worst_constant = excess;
-          if (constant_violation)
-            *constant_violation = "torque " + joint_name(l, j) + " (swing leg) by " + std::to_string(excess);
+          if (constant_violation) {
+            std::ostringstream os;
+            os.precision(3);
+            os << "torque " << joint_name(l, j) << " (swing leg) by " << excess;
+            *constant_violation = os.str();
+          }
         }
       }
       continue;
@@ -315,6 +319,9 @@ DynamicsResult solve_dynamics(const Scene& scene, const RobotModel& model, const
   dyn.solver_seconds.assign(T, 0.0);
   dyn.solver_messages.assign(T, std::string());
   for (const Touchdown& td : touchdowns) {
+    if (td.transient.truncated && log)
+      *log << "hexdyn: touchdown of " << leg_name(td.leg) << " at t = " << td.t_s
+           << " s: transient " << td.transient.message << "\n";
     ImpactRecord r;
     r.leg = td.leg;
     r.t_start_s = td.t_s;

@@ -165,11 +165,11 @@ LegIkResult leg_inverse_kinematics(const RobotModel& m, int leg, const Vec3& p) 
   const double margin_fold = dist - std::abs(L[1] - L[2]);
   r.margin_m = std::min(margin_ext, margin_fold);
   if (margin_ext < m.ik_min_margin_m) {
-    r.reason = "beyond full extension";
+    r.reason = margin_ext < 0.0 ? "beyond full extension" : "within robot.ik_min_margin of full extension";
     return r;
   }
   if (margin_fold < m.ik_min_margin_m) {
-    r.reason = "inside full fold";
+    r.reason = margin_fold < 0.0 ? "inside full fold" : "within robot.ik_min_margin of full fold";
     return r;
   }
   const double cos3 = (u * u + v * v - L[1] * L[1] - L[2] * L[2]) / (2.0 * L[1] * L[2]);
