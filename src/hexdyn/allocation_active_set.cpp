@@ -813,9 +813,8 @@ class ActiveSetBackend final : public AllocationBackend {
   }
 
  private:
-  /// Feasibility threshold of a row for the status, relative to max(1, |bound|) (as in the
-  /// Ipopt back end).
-  double feasibility_tol() const { return std::max(1e-6, 1e3 * opt_.tolerance); }
+  /// Feasibility threshold of a row for the status (allocation_qp.hpp).
+  double feasibility_tol() const { return qp_feasibility_tolerance(opt_.tolerance); }
 
   static void check_supported(const QpProblem& p) {
     if (!p.cones.empty())
@@ -835,32 +834,8 @@ class ActiveSetBackend final : public AllocationBackend {
     }
   }
 
-  std::string first_non_finite(const QpProblem& p) const {
-    if (!p.H.allFinite()) return "H";
-    if (!p.g.allFinite()) return "g";
-    if (!std::isfinite(p.constant)) return "constant";
-    if (!p.A.allFinite()) return "A";
-    if (!p.b.allFinite()) return "b";
-    if (!p.C.allFinite()) return "C";
-    for (int i = 0; i < p.inequalities(); ++i)
-      if (std::isnan(p.lower[i]) || std::isnan(p.upper[i])) return "bounds of " + p.ineq_name(i);
-    return {};
-  }
-
   void fail_with_fallback(const QpProblem& p, const std::string& why) {
-    out_.status = 2;
-    out_.x = qp_fallback_point(p);
-    out_.lambda_eq.setZero(p.equalities());
-    out_.lambda_ineq.setZero(p.inequalities());
-    out_.lambda_cone.setZero(static_cast<int>(p.cones.size()));
-    double viol = 0.0;
-    const std::string v = describe_violations(p, out_.x, feasibility_tol(), &viol);
-    out_.max_violation = viol;
-    out_.objective = p.objective(out_.x);
-    if (!std::isfinite(out_.objective)) out_.objective = 0.0;
-    if (!std::isfinite(out_.max_violation)) out_.max_violation = std::numeric_limits<double>::max();
-    out_.message = "failed: " + why + "; fallback x = least-squares solution of the equalities";
-    if (!v.empty()) out_.message += "; violated: " + v;
+    qp_fail_with_fallback(p, feasibility_tol(), why, out_);
     have_warm_ = false;
     last_relaxed_ = false;
   }
@@ -922,23 +897,15 @@ class ActiveSetBackend final : public AllocationBackend {
     out_.iterations = 0;
     out_.message.clear();
     if (n == 0) {
-      if (const std::string bad = first_non_finite(p); !bad.empty()) {
+      if (const std::string bad = qp_first_non_finite(p); !bad.empty())
         fail_with_fallback(p, "non-finite entries in " + bad);
-        return;
-      }
-      out_.x.resize(0);
-      out_.lambda_eq.setZero(m_eq);
-      out_.lambda_ineq.setZero(m_in);
-      out_.lambda_cone.resize(0);
-      out_.objective = p.constant;
-      const std::string v = describe_violations(p, out_.x, feasibility_tol(), &out_.max_violation);
-      out_.status = v.empty() ? 0 : 2;
-      out_.message = v.empty() ? std::string() : "failed: no variables; violated: " + v;
+      else
+        qp_solve_without_variables(p, feasibility_tol(), out_);
       return;
     }
     DualActiveSet& s = *core_;
     if (!s.load(p, opt_.slack_penalty, opt_.tolerance)) {
-      fail_with_fallback(p, "non-finite entries in " + first_non_finite(p));
+      fail_with_fallback(p, "non-finite entries in " + qp_first_non_finite(p));
       return;
     }
     if (!s.convex()) {

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <sstream>
 #include <utility>
 
@@ -169,6 +170,47 @@ Eigen::VectorXd qp_fallback_point(const QpProblem& p) {
   Eigen::VectorXd ls = p.A.completeOrthogonalDecomposition().solve(p.b);
   if (ls.allFinite()) x = ls;
   return x;
+}
+
+double qp_feasibility_tolerance(double tolerance) { return std::max(1e-6, 1e3 * tolerance); }
+
+std::string qp_first_non_finite(const QpProblem& p) {
+  if (!p.H.allFinite()) return "H";
+  if (!p.g.allFinite()) return "g";
+  if (!std::isfinite(p.constant)) return "constant";
+  if (!p.A.allFinite()) return "A";
+  if (!p.b.allFinite()) return "b";
+  if (!p.C.allFinite()) return "C";
+  for (int i = 0; i < p.inequalities(); ++i)
+    if (std::isnan(p.lower[i]) || std::isnan(p.upper[i])) return "bounds of " + p.ineq_name(i);
+  return {};
+}
+
+void qp_fail_with_fallback(const QpProblem& p, double feasibility_tol, const std::string& why,
+                           QpOutcome& out) {
+  out.status = 2;
+  out.x = qp_fallback_point(p);
+  out.lambda_eq.setZero(p.equalities());
+  out.lambda_ineq.setZero(p.inequalities());
+  out.lambda_cone.setZero(static_cast<int>(p.cones.size()));
+  double viol = 0.0;
+  const std::string v = describe_violations(p, out.x, feasibility_tol, &viol);
+  out.max_violation = std::isfinite(viol) ? viol : std::numeric_limits<double>::max();
+  out.objective = p.objective(out.x);
+  if (!std::isfinite(out.objective)) out.objective = 0.0;
+  out.message = "failed: " + why + "; fallback x = least-squares solution of the equalities";
+  if (!v.empty()) out.message += "; violated: " + v;
+}
+
+void qp_solve_without_variables(const QpProblem& p, double feasibility_tol, QpOutcome& out) {
+  out.x.resize(0);
+  out.lambda_eq.setZero(p.equalities());
+  out.lambda_ineq.setZero(p.inequalities());
+  out.lambda_cone.resize(0);
+  out.objective = p.constant;
+  const std::string v = describe_violations(p, out.x, feasibility_tol, &out.max_violation);
+  out.status = v.empty() ? 0 : 2;
+  out.message = v.empty() ? std::string() : "failed: no variables; violated: " + v;
 }
 
 bool check_kkt(const QpProblem& p, const QpOutcome& out, double tol, std::string* why) {

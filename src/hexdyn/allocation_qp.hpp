@@ -152,6 +152,26 @@ std::string describe_violations(const QpProblem& problem, const Eigen::VectorXd&
 /// (zeros without equality rows or with non-finite data).
 Eigen::VectorXd qp_fallback_point(const QpProblem& problem);
 
+// --- outcome bookkeeping shared by the back ends ---
+
+/// Threshold beyond which a row counts as violated in an outcome's status, relative to
+/// max(1, |bound|), for a back end run at `tolerance`: max(1e-6, 1e3·tolerance).
+double qp_feasibility_tolerance(double tolerance);
+
+/// Name of the first non-finite part of the problem ("H", "g", ..., "bounds of <row>"),
+/// empty when every entry is finite (infinite bounds are allowed).
+std::string qp_first_non_finite(const QpProblem& problem);
+
+/// Fills `out` (all but iterations and seconds) for a failed solve: status 2, x =
+/// qp_fallback_point, zero multipliers, finite objective and max_violation, and the
+/// message "failed: <why>; fallback x = ...; violated: ...".
+void qp_fail_with_fallback(const QpProblem& problem, double feasibility_tol,
+                           const std::string& why, QpOutcome& out);
+
+/// Fills `out` (all but iterations and seconds) for a problem without variables: status 0
+/// when its constant rows hold, 2 naming them otherwise.
+void qp_solve_without_variables(const QpProblem& problem, double feasibility_tol, QpOutcome& out);
+
 /// KKT conditions of a problem without cones at (x, λ) of `outcome`, each residual
 /// relative to the size of its terms: stationarity, primal feasibility of equality and
 /// inequality rows, dual sign and complementarity. Returns false with the first failure

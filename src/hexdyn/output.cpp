@@ -185,17 +185,20 @@ void write_result_layout(H5Writer& w, const RunResult& result, const std::string
 
 void write_result_file(const std::string& path, const RunResult& result) {
   check_output_path_writable(path);
-  const std::string dir = parent_directory(path);
-  std::string tmp_name = ".";
-  tmp_name += fs::path(path).filename().string();
-  tmp_name += ".tmp." + std::to_string(::getpid());
-  const std::string tmp = (fs::path(dir) / tmp_name).string();
+  publish_atomically(path, [&](const std::string& tmp) {
+    H5Writer writer(tmp);
+    write_result_layout(writer, result);
+    writer.close();
+  });
+}
+
+void publish_atomically(const std::string& path, const std::function<void(const std::string& tmp)>& write) {
+  const std::string tmp =
+      (fs::path(parent_directory(path)) / ("." + fs::path(path).filename().string() + ".tmp." +
+                                           std::to_string(::getpid())))
+          .string();
   try {
-    {
-      H5Writer writer(tmp);
-      write_result_layout(writer, result);
-      writer.close();
-    }
+    write(tmp);
     sync_file_to_disk(tmp);
     if (std::rename(tmp.c_str(), path.c_str()) != 0)
       throw_output_error(path, "cannot rename '" + tmp + "' to it: " + std::strerror(errno));

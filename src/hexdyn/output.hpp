@@ -1,6 +1,7 @@
 #pragma once
 /// \file output.hpp
 /// Writing a run as one `hexdyn-result/1` HDF5 file (DESIGN.md §4, result_schema.hpp).
+#include <functional>
 #include <string>
 
 #include "hexdyn/h5io.hpp"
@@ -36,5 +37,11 @@ std::string utc_timestamp_now();
 /// Forces a written file's data to disk (fsync) so that a following rename publishes a
 /// complete file; throws IoError naming the path.
 void sync_file_to_disk(const std::string& path);
+
+/// Publishes a file atomically: `write(tmp)` builds it as `.<basename>.tmp.<pid>` in the
+/// directory of `path`, then it is synced to disk and renamed over `path`. When `write`,
+/// the sync or the rename throws, the temporary file is removed, an existing file at
+/// `path` is left untouched, and the exception is rethrown (the rename's as IoError).
+void publish_atomically(const std::string& path, const std::function<void(const std::string& tmp)>& write);
 
 }  // namespace hexdyn

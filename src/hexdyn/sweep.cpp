@@ -623,8 +623,7 @@ ManifestFields manifest_of(const SweepSpec& spec, bool keep_runs) {
 }
 
 void write_manifest(const std::string& dir, const ManifestFields& m) {
-  const std::string tmp = dir + "/." + kManifest + ".tmp";
-  {
+  publish_atomically(dir + "/" + kManifest, [&](const std::string& tmp) {
     H5Writer w(tmp);
     w.create_group("/meta");
     w.set_string_attribute("/meta", schema::kAttrSchema, kCheckpointSchema);
@@ -635,11 +634,7 @@ void write_manifest(const std::string& dir, const ManifestFields& m) {
     w.set_int_attribute("/meta", "keep_runs", m.keep_runs);
     w.set_int_attribute("/meta", "scenarios", m.scenarios);
     w.close();
-  }
-  sync_file_to_disk(tmp);
-  const std::string final_path = dir + "/" + kManifest;
-  if (std::rename(tmp.c_str(), final_path.c_str()) != 0)
-    io_fail(final_path, std::string("cannot rename: ") + std::strerror(errno));
+  });
 }
 
 /// Empty when `found` matches `want`, else what differs.
@@ -829,10 +824,7 @@ void write_sweep_file(const std::string& path, const SweepSpec& spec,
       throw IoError("cannot write '" + path + "': row " + std::to_string(i) + " holds scenario " +
                     std::to_string(rows[i].index));
   check_output_path_writable(path);
-  const fs::path p(path);
-  const std::string tmp = (p.parent_path().empty() ? fs::path(".") : p.parent_path()) /
-                          ("." + p.filename().string() + ".tmp." + std::to_string(::getpid()));
-  try {
+  publish_atomically(path, [&](const std::string& tmp) {
     {
       H5Writer w(tmp);
       w.create_group("/meta");
@@ -932,14 +924,7 @@ void write_sweep_file(const std::string& path, const SweepSpec& spec,
       w.close();
     }
     if (runs_from != nullptr) copy_runs(tmp, spec, rows, *runs_from);
-    sync_file_to_disk(tmp);
-    if (std::rename(tmp.c_str(), path.c_str()) != 0)
-      io_fail(path, "cannot rename '" + tmp + "' to it: " + std::strerror(errno));
-  } catch (...) {
-    std::error_code ec;
-    fs::remove(tmp, ec);
-    throw;
-  }
+  });
 }
 
 // ------------------------------------------------------------------ progress

@@ -78,4 +78,14 @@ inline VecJ random_joint_vector(std::mt19937& rng, double lo, double hi) {
   return v;
 }
 
+/// IMPACT contact parameters K [N/m^e], e, C_max [N·s/m], p [m] (μ left at its default).
+inline ContactParams contact_params(double K, double e, double C, double p) {
+  ContactParams c;
+  c.stiffness = K;
+  c.exponent = e;
+  c.damping_max_Nspm = C;
+  c.full_damping_depth_m = p;
+  return c;
+}
+
 }  // namespace hexdyn::test

@@ -23,19 +23,16 @@
 #include "hexdyn/kinematics.hpp"
 #include "hexdyn/pipeline.hpp"
 #include "hexdyn/sweep.hpp"
+#include "qp_test_problems.hpp"
 
 using namespace hexdyn;
 
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
-
-Eigen::MatrixXd random_matrix(std::mt19937& rng, int rows, int cols) {
-  std::normal_distribution<double> N(0.0, 1.0);
-  return Eigen::MatrixXd::NullaryExpr(rows, cols, [&] { return N(rng); });
-}
-
-Eigen::VectorXd random_vector(std::mt19937& rng, int n) { return random_matrix(rng, n, 1); }
+using test::add_rows_around;
+using test::kInf;
+using test::random_matrix;
+using test::random_vector;
 
 double inf_norm(const Eigen::VectorXd& v) { return v.size() ? v.lpNorm<Eigen::Infinity>() : 0.0; }
 
@@ -61,7 +58,6 @@ ActiveSetOptions active_set(double slack_penalty = 1e6, bool warm = true) {
 /// from x0 so that rows bind. *x0_out (if given) receives x0.
 QpProblem random_qp(std::mt19937& rng, int n, int m_eq, int lu, int boxes, int general,
                     Eigen::VectorXd* x0_out = nullptr) {
-  std::uniform_real_distribution<double> U(0.05, 0.6);
   const int m_in = lu + boxes + general;
   QpProblem p;
   p.resize(n, m_eq, m_in);
@@ -71,24 +67,12 @@ QpProblem random_qp(std::mt19937& rng, int n, int m_eq, int lu, int boxes, int g
   p.A = random_matrix(rng, m_eq, n);
   p.b = p.A * x0;
   for (int i = 0; i < m_eq; ++i) p.eq_names[i] = "eq " + std::to_string(i);
-  for (int i = 0; i < m_in; ++i) {
-    if (i < lu) {
-      p.C.row(i) = random_matrix(rng, 1, n);
-      p.lower[i] = p.upper[i] = p.C.row(i).dot(x0);
-      p.ineq_names[i] = "trunk " + std::to_string(i);
-      continue;
-    }
-    if (i < lu + boxes) {
-      p.C(i, (i - lu) % n) = 1.0;
-      p.ineq_names[i] = "box x" + std::to_string((i - lu) % n);
-    } else {
-      p.C.row(i) = random_matrix(rng, 1, n);
-      p.ineq_names[i] = "row " + std::to_string(i);
-    }
-    const double c = p.C.row(i).dot(x0);
-    p.lower[i] = (i % 4 == 1) ? -kInf : c - U(rng);
-    p.upper[i] = (i % 4 == 2) ? kInf : c + U(rng);
+  for (int i = 0; i < lu; ++i) {
+    p.C.row(i) = random_matrix(rng, 1, n);
+    p.lower[i] = p.upper[i] = p.C.row(i).dot(x0);
+    p.ineq_names[i] = "trunk " + std::to_string(i);
   }
+  add_rows_around(rng, p, x0, lu, boxes, general);
   p.g = -p.H * (x0 + 3.0 * random_vector(rng, n));
   p.constant = 0.25;
   if (x0_out) *x0_out = x0;

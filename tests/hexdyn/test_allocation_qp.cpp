@@ -11,19 +11,16 @@
 
 #include "hexdyn/allocation_qp.hpp"
 #include "hexdyn/errors.hpp"
+#include "qp_test_problems.hpp"
 
 using namespace hexdyn;
 
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
-
-Eigen::MatrixXd random_matrix(std::mt19937& rng, int rows, int cols) {
-  std::normal_distribution<double> N(0.0, 1.0);
-  return Eigen::MatrixXd::NullaryExpr(rows, cols, [&] { return N(rng); });
-}
-
-Eigen::VectorXd random_vector(std::mt19937& rng, int n) { return random_matrix(rng, n, 1); }
+using test::add_rows_around;
+using test::kInf;
+using test::random_matrix;
+using test::random_vector;
 
 /// Random strictly convex objective and full-rank equality rows.
 QpProblem random_equality_qp(std::mt19937& rng, int n, int m_eq) {
@@ -43,24 +40,12 @@ QpProblem random_equality_qp(std::mt19937& rng, int n, int m_eq) {
 /// one-sided. The unconstrained minimiser is pushed outside so that rows become active.
 void add_inequalities(std::mt19937& rng, QpProblem& p, const Eigen::VectorXd& x0, int boxes,
                       int general) {
-  std::uniform_real_distribution<double> U(0.05, 0.6);
   const int n = p.variables(), m_in = boxes + general;
   p.C = Eigen::MatrixXd::Zero(m_in, n);
   p.lower.resize(m_in);
   p.upper.resize(m_in);
   p.ineq_names.assign(static_cast<std::size_t>(m_in), std::string());
-  for (int i = 0; i < m_in; ++i) {
-    if (i < boxes) {
-      p.C(i, i % n) = 1.0;
-      p.ineq_names[i] = "box x" + std::to_string(i % n);
-    } else {
-      p.C.row(i) = random_matrix(rng, 1, n);
-      p.ineq_names[i] = "row " + std::to_string(i);
-    }
-    const double c = p.C.row(i).dot(x0);
-    p.lower[i] = (i % 4 == 1) ? -kInf : c - U(rng);
-    p.upper[i] = (i % 4 == 2) ? kInf : c + U(rng);
-  }
+  add_rows_around(rng, p, x0, 0, boxes, general);
 }
 
 Eigen::VectorXd particular_solution(const QpProblem& p, std::mt19937& rng) {

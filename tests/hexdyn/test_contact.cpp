@@ -9,6 +9,7 @@
 
 #include "hexdyn/contact.hpp"
 #include "hexdyn/errors.hpp"
+#include "sample_models.hpp"
 
 using namespace hexdyn;
 
@@ -24,14 +25,6 @@ ContactParams paper_contact() {
   return c;
 }
 
-ContactParams contact(double K, double e, double C, double p) {
-  ContactParams c;
-  c.stiffness = K;
-  c.exponent = e;
-  c.damping_max_Nspm = C;
-  c.full_damping_depth_m = p;
-  return c;
-}
 
 double rel_err(double got, double want) { return std::abs(got - want) / std::abs(want); }
 
@@ -195,7 +188,7 @@ TEST_CASE("simulate_touchdown: undamped impact against the closed form", "[conta
     for (double K : {1e4, 1e5, 1e8}) {
       const double m = 0.25, v = 0.1;
       CAPTURE(e, K);
-      const ImpactTransient tr = simulate_touchdown(contact(K, e, 0.0, 1e-5), m, v);
+      const ImpactTransient tr = simulate_touchdown(test::contact_params(K, e, 0.0, 1e-5), m, v);
       REQUIRE(tr.occurred);
       REQUIRE_FALSE(tr.truncated);
       const double n = e + 1.0;
@@ -218,7 +211,7 @@ TEST_CASE("simulate_touchdown: the linear spring against the harmonic oscillator
   // and linear interpolation on an arbitrary grid.
   const double K = 2e4, m = 0.5, v = 0.2;
   const double w = std::sqrt(K / m);
-  const ImpactTransient tr = simulate_touchdown(contact(K, 1.0, 0.0, 1e-6), m, v);
+  const ImpactTransient tr = simulate_touchdown(test::contact_params(K, 1.0, 0.0, 1e-6), m, v);
   REQUIRE_FALSE(tr.truncated);
   CHECK(rel_err(tr.duration_s, M_PI / w) < 1e-8);
   const double F_peak = m * v * w;
@@ -249,7 +242,7 @@ TEST_CASE("simulate_touchdown: damped linear contact against the analytic soluti
   // F > 0 right after touchdown and < 0 at the end of the first half period.
   const double t_end = bisect(force, 1e-9, M_PI / wd);
   const double t_peak = bisect(force_rate, 0.0, t_end);
-  const ImpactTransient tr = simulate_touchdown(contact(K, 1.0, C, p), m, v);
+  const ImpactTransient tr = simulate_touchdown(test::contact_params(K, 1.0, C, p), m, v);
   REQUIRE_FALSE(tr.truncated);
   CHECK(rel_err(tr.duration_s, t_end) < 1e-6);
   CHECK(rel_err(tr.rebound_speed_mps, -rate(t_end)) < 1e-6);
@@ -268,7 +261,7 @@ TEST_CASE("simulate_touchdown: hard and extreme parameters stay finite and termi
       for (double m : {0.01, 10.0}) {
         for (double C : {0.0, 10.0}) {
           CAPTURE(e, m, C);
-          const ImpactTransient tr = simulate_touchdown(contact(1e9, e, C, 1e-9), m, 1.0);
+          const ImpactTransient tr = simulate_touchdown(test::contact_params(1e9, e, C, 1e-9), m, 1.0);
           REQUIRE(tr.occurred);
           CHECK_FALSE(tr.truncated);
           CHECK(all_finite(tr));
@@ -287,7 +280,7 @@ TEST_CASE("simulate_touchdown: hard and extreme parameters stay finite and termi
             for (double m : {0.01, 10.0})
               for (double C : {0.0, 10.0, 1e3}) {
                 CAPTURE(K, e, p, v, m, C);
-                const ImpactTransient tr = simulate_touchdown(contact(K, e, C, p), m, v);
+                const ImpactTransient tr = simulate_touchdown(test::contact_params(K, e, C, p), m, v);
                 CHECK(all_finite(tr));
                 CHECK(tr.steps <= ImpactOptions{}.max_steps);
                 CHECK(tr.duration_s <= ImpactOptions{}.max_duration_s * (1.0 + 1e-12));
@@ -313,10 +306,10 @@ TEST_CASE("simulate_touchdown: hard and extreme parameters stay finite and termi
 }
 
 TEST_CASE("simulate_touchdown: invalid input is rejected at the boundary", "[contact]") {
-  CHECK_THROWS_AS(simulate_touchdown(contact(0.0, 2.2, 10, 1e-5), 0.3, 0.05), ConfigError);
-  CHECK_THROWS_AS(simulate_touchdown(contact(1e5, 0.5, 10, 1e-5), 0.3, 0.05), ConfigError);
-  CHECK_THROWS_AS(simulate_touchdown(contact(1e5, 2.2, -1, 1e-5), 0.3, 0.05), ConfigError);
-  CHECK_THROWS_AS(simulate_touchdown(contact(1e5, 2.2, 10, 0.0), 0.3, 0.05), ConfigError);
+  CHECK_THROWS_AS(simulate_touchdown(test::contact_params(0.0, 2.2, 10, 1e-5), 0.3, 0.05), ConfigError);
+  CHECK_THROWS_AS(simulate_touchdown(test::contact_params(1e5, 0.5, 10, 1e-5), 0.3, 0.05), ConfigError);
+  CHECK_THROWS_AS(simulate_touchdown(test::contact_params(1e5, 2.2, -1, 1e-5), 0.3, 0.05), ConfigError);
+  CHECK_THROWS_AS(simulate_touchdown(test::contact_params(1e5, 2.2, 10, 0.0), 0.3, 0.05), ConfigError);
   CHECK_THROWS_AS(simulate_touchdown(paper_contact(), 0.0, 0.05), SolverError);
   CHECK_THROWS_AS(simulate_touchdown(paper_contact(), std::nan(""), 0.05), SolverError);
   CHECK_THROWS_AS(simulate_touchdown(paper_contact(), 0.3, std::numeric_limits<double>::infinity()),

@@ -28,6 +28,7 @@
 #include "hexdyn/pipeline.hpp"
 #include "hexdyn/robot_model.hpp"
 #include "hexdyn/terrain.hpp"
+#include "sample_models.hpp"
 
 namespace hexdyn {
 namespace {
@@ -164,14 +165,6 @@ double energy_between(const RunResult& r, double t0, double t1) {
   return e;
 }
 
-ContactParams contact_of(double K, double e, double C, double p) {
-  ContactParams c;
-  c.stiffness = K;
-  c.exponent = e;
-  c.damping_max_Nspm = C;
-  c.full_damping_depth_m = p;
-  return c;
-}
 
 }  // namespace
 
@@ -189,7 +182,7 @@ TEST_CASE("hard: stiff touchdown ODE, K to 1e9, e 1 to 3, p to 1e-9 m, v to 1 m/
       for (double p : {1e-5, 1e-9})
         for (double v : {0.05, 1.0})
           for (double C : {0.0, 10.0, 1e4}) {
-            const ContactParams c = contact_of(K, e, C, p);
+            const ContactParams c = test::contact_params(K, e, C, p);
             INFO("K " << K << " e " << e << " p " << p << " v " << v << " C " << C);
             const ImpactTransient tr = simulate_touchdown(c, m, v);
             ++n;
