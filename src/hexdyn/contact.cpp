@@ -85,9 +85,29 @@ struct ScaledImpact {
     force_gradient(y[0], y[1], f_u, f_w);
     return f_u * y[1] - f_w * f;
   }
+  /// The clipped force and `force_rate` at y, with a single power evaluation.
+  void force_and_rate(const double y[], double& f, double& rate) const {
+    const double u = y[0], w = y[1];
+    f = 0.0;
+    rate = -1.0;
+    if (!(u > 0.0)) return;
+    const double u_e = std::pow(u, e);
+    const double S = step(u);
+    const double raw = spring * u_e + damping * S * w;
+    if (!(raw > 0.0)) return;
+    f = raw;
+    const double f_u = spring * e * (u_e / u) + damping * impact_step_derivative(u, 0.0, 0.0, p_hat, 1.0) * w;
+    rate = f_u * w - damping * S * f;
+  }
   /// The transient is over: rebounding (w < 0) and the force back at zero.
   bool ended(const double y[]) const {
     return y[1] < 0.0 && (!(y[0] > 0.0) || !(raw_force(y[0], y[1]) > 0.0));
+  }
+  /// An event function of the end, <= 0 exactly when `ended`: while rebounding (w < 0)
+  /// the smaller of u and the unclipped force, both continuous; 1 otherwise.
+  double end_function(const double y[]) const {
+    if (!(y[1] < 0.0)) return 1.0;
+    return y[0] > 0.0 ? std::min(y[0], raw_force(y[0], y[1])) : y[0];
   }
 };
 
@@ -204,12 +224,14 @@ ImpactTransient simulate_touchdown(const ContactParams& c, double effective_mass
 
   gsl_odeiv2_system sys{impact_rhs, impact_jacobian, 3, &s};
   const double h_start = std::min(tau_contact / n_out, std::max(s.p_hat, 1e-6)) * 1e-2;
-  // Stepper: the explicit Runge–Kutta–Prince–Dormand (8, 9) pair while the damping rate
-  // (scaled) allows output-sized steps, h·damping < 1 at h = τ_contact / n_out (the paper's
-  // touchdowns: ~10× faster than the implicit stepper at the same tolerances); the implicit
-  // 4th-order Gauss stepper (rk4imp, with the analytic Jacobian) for stiffer damping.
+  // Stepper: the explicit Runge–Kutta–Cash–Karp (4, 5) pair while the damping rate (scaled)
+  // allows output-sized steps, h·damping < 1 at h = τ_contact / n_out; the implicit
+  // 4th-order Gauss stepper (rk4imp, with the analytic Jacobian) for stiffer damping. The
+  // output sampling caps the steps, so the 6-stage pair reaches the tolerance in as many
+  // steps as the 13-stage Prince–Dormand (8, 9) pair at half its cost (the paper's
+  // touchdowns: peaks agree to 1e-11, durations to 1e-8; ~20× faster than rk4imp).
   const gsl_odeiv2_step_type* stepper =
-      s.damping * tau_contact / n_out < 1.0 ? gsl_odeiv2_step_rk8pd : gsl_odeiv2_step_rk4imp;
+      s.damping * tau_contact / n_out < 1.0 ? gsl_odeiv2_step_rkck : gsl_odeiv2_step_rk4imp;
   DriverPtr drv(
       gsl_odeiv2_driver_alloc_y_new(&sys, stepper, h_start,
                                     options.absolute_tolerance, options.relative_tolerance),
@@ -226,44 +248,60 @@ ImpactTransient simulate_touchdown(const ContactParams& c, double effective_mass
   tr.t_s.reserve(expected);
   tr.force_N.reserve(expected);
   tr.penetration_m.reserve(expected);
-  auto push_sample = [&](double tau, const double y[]) {
+  auto push_sample = [&](double tau, const double y[], double f) {
     const double t = tau * time_scale;
     if (!tr.t_s.empty() && !(t > tr.t_s.back())) return;
     tr.t_s.push_back(t);
-    tr.force_N.push_back(s.force(y[0], y[1]) * force_scale);
+    tr.force_N.push_back(f * force_scale);
     tr.penetration_m.push_back(std::max(0.0, y[0]) * D);
   };
 
   double tau = 0.0;
   double y[3] = {0.0, 1.0, 0.0};
   double h = h_start;
-  push_sample(tau, y);
+  // Force and its rate at the current state, carried from step to step.
+  double f_now = 0.0, rate_now = 0.0;
+  s.force_and_rate(y, f_now, rate_now);
+  push_sample(tau, y, f_now);
 
   double peak_f = 0.0, peak_tau = 0.0, max_u = 0.0;
   bool ended = false;
 
-  // Locates the first time in (tau_prev, tau_prev + h_step] where pred becomes true, by
-  // bisection on the length of a single step from the accepted state y_prev.
-  // Returns the step length at which pred holds and the state there in y_out.
+  // Locates a time in (tau_prev, tau_prev + h_step] where the event function g (continuous
+  // along the step, > 0 at its start, <= 0 at its end) reaches 0: regula falsi with the
+  // Illinois modification, bisecting whenever a secant point would not fall inside the
+  // bracket, each trial a single step of that length from the accepted state y_prev.
+  // Returns the step length at the bracket's end where g <= 0, the state there in y_out.
   auto locate = [&](double tau_prev, const double y_prev[], double h_step, const double y_new[],
-                    auto&& pred, double y_out[]) {
+                    auto&& g, double y_out[]) {
     double lo = 0.0, hi = h_step;
+    double g_lo = g(y_prev), g_hi = g(y_new);
     std::copy(y_new, y_new + 3, y_out);
     double y_try[3], y_err[3];
+    int side = 0;  // which end moved last (−1 lo, +1 hi), for the Illinois halving
     for (int it = 0; it < 200; ++it) {
-      const double mid = 0.5 * (lo + hi);
-      if (!(mid > lo && mid < hi)) break;
       if (hi - lo <= 1e-15 * std::max(tau_prev + hi, 1e-300)) break;
+      double x = (g_lo > 0.0 && g_hi <= 0.0 && g_lo - g_hi > 0.0) ? lo + (hi - lo) * g_lo / (g_lo - g_hi)
+                                                                 : 0.5 * (lo + hi);
+      if (!(x > lo && x < hi)) x = 0.5 * (lo + hi);
+      if (!(x > lo && x < hi)) break;
       std::copy(y_prev, y_prev + 3, y_try);
       gsl_odeiv2_step_reset(probe->s);
-      if (gsl_odeiv2_step_apply(probe->s, tau_prev, mid, y_try, y_err, nullptr, nullptr, &sys) !=
-          GSL_SUCCESS)
+      if (gsl_odeiv2_step_apply(probe->s, tau_prev, x, y_try, y_err, nullptr, nullptr, &sys) != GSL_SUCCESS)
         break;
-      if (pred(y_try)) {
-        hi = mid;
+      const double g_x = g(y_try);
+      if (g_x <= 0.0) {
+        hi = x;
+        g_hi = g_x;
         std::copy(y_try, y_try + 3, y_out);
+        if (g_x == 0.0) break;
+        if (side == +1) g_lo *= 0.5;
+        side = +1;
       } else {
-        lo = mid;
+        lo = x;
+        g_lo = g_x;
+        if (side == -1) g_hi *= 0.5;
+        side = -1;
       }
     }
     return hi;
@@ -295,8 +333,8 @@ ImpactTransient simulate_touchdown(const ContactParams& c, double effective_mass
     // natural scale ½ (the undamped peak is (e+1)/2 ≥ 1): the explicit stepper's steps are
     // otherwise set by accuracy alone, and sparse samples would make the interpolated force
     // coarse where the contact lasts much longer than the undamped one.
-    const double f_scale = std::max({s.force(y[0], y[1]), peak_f, 0.5});
-    const double rate = std::abs(s.force_rate(y));
+    const double f_scale = std::max({f_now, peak_f, 0.5});
+    const double rate = std::abs(rate_now);
     if (rate > 0.0) cap = std::min(cap, std::max(f_scale / (32.0 * rate), 1e-12));
     const double tau_target = std::min(tau + cap, tau_max);
     h = std::min(h, cap);
@@ -312,6 +350,8 @@ ImpactTransient simulate_touchdown(const ContactParams& c, double effective_mass
       break;
     }
     const double h_step = tau - tau_prev;
+    double f_new = 0.0, rate_new = 0.0;
+    s.force_and_rate(y, f_new, rate_new);
 
     // Events inside the step: maximum penetration and force maximum (in time order),
     // then the end.
@@ -325,21 +365,17 @@ ImpactTransient simulate_touchdown(const ContactParams& c, double effective_mass
     double y_end[3];
     double dtau_end = h_step;
     if (s.ended(y)) {
-      dtau_end = locate(
-          tau_prev, y_prev, h_step, y, [&](const double* z) { return s.ended(z); }, y_end);
+      dtau_end = locate(tau_prev, y_prev, h_step, y, [&](const double* z) { return s.end_function(z); }, y_end);
       ends_here = true;
     }
     if (y_prev[1] > 0.0 && !(y[1] > 0.0)) {
       Event ev;
-      ev.dtau = locate(
-          tau_prev, y_prev, h_step, y, [](const double* z) { return !(z[1] > 0.0); }, ev.y);
+      ev.dtau = locate(tau_prev, y_prev, h_step, y, [](const double* z) { return z[1]; }, ev.y);
       if (!ends_here || ev.dtau <= dtau_end) events[n_events++] = ev;
     }
-    if (s.force_rate(y_prev) > 0.0 && !(s.force_rate(y) > 0.0)) {
+    if (rate_now > 0.0 && !(rate_new > 0.0)) {
       Event ev;
-      ev.dtau = locate(
-          tau_prev, y_prev, h_step, y, [&](const double* z) { return !(s.force_rate(z) > 0.0); },
-          ev.y);
+      ev.dtau = locate(tau_prev, y_prev, h_step, y, [&](const double* z) { return s.force_rate(z); }, ev.y);
       if (!ends_here || ev.dtau <= dtau_end) events[n_events++] = ev;
     }
     if (n_events == 2 && events[1].dtau < events[0].dtau) std::swap(events[0], events[1]);
@@ -351,7 +387,7 @@ ImpactTransient simulate_touchdown(const ContactParams& c, double effective_mass
         peak_f = f;
         peak_tau = tau_prev + ev.dtau;
       }
-      push_sample(tau_prev + ev.dtau, ev.y);
+      push_sample(tau_prev + ev.dtau, ev.y, f);
     }
     if (ends_here) {
       tau = tau_prev + dtau_end;
@@ -360,12 +396,13 @@ ImpactTransient simulate_touchdown(const ContactParams& c, double effective_mass
       break;
     }
     max_u = std::max(max_u, y[0]);
-    const double f = s.force(y[0], y[1]);
-    if (f > peak_f) {
-      peak_f = f;
+    if (f_new > peak_f) {
+      peak_f = f_new;
       peak_tau = tau;
     }
-    push_sample(tau, y);
+    push_sample(tau, y, f_new);
+    f_now = f_new;
+    rate_now = rate_new;
   }
 
   if (ended) {

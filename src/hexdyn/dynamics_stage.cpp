@@ -37,6 +37,8 @@ constexpr double kContactRowPenaltyWeight = 1e3;
 /// Impact legs keep a fixed normal force, so their friction limit is a polygon even in
 /// the exact-cone model: an inscribed 16-gon (within 2% of the circle).
 constexpr int kImpactConeFaces = 16;
+/// How far before a contact event its left limit is evaluated [s].
+constexpr double kEventLeftLimit_s = 1e-10;
 
 /// Row names, built once: building them per sample would cost more than the solve.
 struct RowNames {
@@ -278,29 +280,67 @@ void forces_from_solution(const ContactSplit& split, const std::array<ContactPha
 }
 
 double integrate_series(const std::vector<double>& t, const double* y, int stride) {
-  const std::size_t n = t.size();
+  return integrate_pieces(t, y, stride, {}, {});
+}
+
+namespace {
+
+/// ∫ over points (t_k, y_k), k < n (integrate_pieces explains the rule).
+double integrate_piece(const double* t, const double* y, std::size_t n) {
   if (n < 2) return 0.0;
-  std::vector<double> ys(n);
-  for (std::size_t i = 0; i < n; ++i) ys[i] = y[i * stride];
-  gsl_interp* interp = gsl_interp_alloc(gsl_interp_linear, n);
+  if (n == 2) return 0.5 * (t[1] - t[0]) * (y[0] + y[1]);
+  gsl_interp* interp = gsl_interp_alloc(gsl_interp_steffen, n);
   gsl_interp_accel* acc = gsl_interp_accel_alloc();
-  gsl_interp_init(interp, t.data(), ys.data(), n);
-  const double value = gsl_interp_eval_integ(interp, t.data(), ys.data(), t.front(), t.back(), acc);
+  gsl_interp_init(interp, t, y, n);
+  const double value = gsl_interp_eval_integ(interp, t, y, t[0], t[n - 1], acc);
   gsl_interp_accel_free(acc);
   gsl_interp_free(interp);
   return value;
 }
 
-void compute_power(const KinematicsResult& kin, double total_mass_kg, double distance_m, DynamicsResult& dyn) {
+}  // namespace
+
+double integrate_pieces(const std::vector<double>& t, const double* y, int stride,
+                        const std::vector<int>& break_index, const std::vector<double>& left_value) {
+  const std::size_t n = t.size();
+  if (n < 2) return 0.0;
+  std::vector<double> ys;
+  ys.reserve(n);
+  double total = 0.0;
+  std::size_t a = 0;  // first sample of the current piece
+  auto close_piece = [&](std::size_t b, double y_end) {
+    ys.clear();
+    for (std::size_t k = a; k < b; ++k) ys.push_back(y[k * stride]);
+    ys.push_back(y_end);
+    total += integrate_piece(t.data() + a, ys.data(), b - a + 1);
+    a = b;
+  };
+  for (std::size_t k = 0; k < break_index.size(); ++k) {
+    const auto b = static_cast<std::size_t>(break_index[k]);
+    if (b <= a || b >= n) continue;
+    close_piece(b, left_value[k]);
+  }
+  close_piece(n - 1, y[(n - 1) * stride]);
+  return total;
+}
+
+void compute_power(const KinematicsResult& kin, double total_mass_kg, double distance_m,
+                   const std::vector<PowerJump>& jumps, DynamicsResult& dyn) {
   const int T = kin.samples();
   dyn.joint_power = dyn.joint_torque.cwiseProduct(kin.joint_velocity);
   dyn.total_power_W.assign(T, 0.0);
   RowMatrix abs_power = dyn.joint_power.cwiseAbs();
   for (int i = 0; i < T; ++i) dyn.total_power_W[i] = abs_power.row(i).sum();
-  dyn.energy_total_J = integrate_series(kin.time_s, dyn.total_power_W.data());
+  std::vector<int> breaks;
+  for (const PowerJump& j : jumps) breaks.push_back(j.index);
+  std::vector<double> left(jumps.size());
   dyn.energy_joint_J.assign(kJoints, 0.0);
-  for (int k = 0; k < kJoints; ++k)
-    dyn.energy_joint_J[k] = integrate_series(kin.time_s, abs_power.data() + k, kJoints);
+  dyn.energy_total_J = 0.0;
+  for (int j = 0; j < kJoints; ++j) {
+    for (std::size_t k = 0; k < jumps.size(); ++k) left[k] = jumps[k].abs_power_left_W(j);
+    dyn.energy_joint_J[j] = integrate_pieces(kin.time_s, abs_power.data() + j, kJoints, breaks, left);
+    dyn.energy_total_J += dyn.energy_joint_J[j];
+  }
   dyn.distance_m = distance_m;
   dyn.cost_of_transport = dyn.energy_total_J / (total_mass_kg * kGravity * distance_m);
 }
@@ -354,27 +394,63 @@ DynamicsResult solve_dynamics(const Scene& scene, const RobotModel& model, const
     episode_worst = -1.0;
   };
 
+  // One sample of `k`: contacts into `cs`, forces and torques into F_out, tau_out.
+  std::string constant_violation;
+  double constant_excess = 0.0;
+  auto solve_sample = [&](const KinematicsResult& k, int i, AllocationBackend& be, SampleContacts& cs,
+                          std::array<Vec3, kLegs>& F_out, VecJ& tau_out) -> const QpOutcome& {
+    const BaseState base = base_state_at(k, i);
+    const VecJ q = k.joint_position.row(i).transpose();
+    const VecJ qd = k.joint_velocity.row(i).transpose();
+    const VecJ qdd = k.joint_acceleration.row(i).transpose();
+    const ContactSplit& split = contact_split(model, data, base, q, qd, qdd);
+    sample_contacts(k, i, plan.terrain, touchdowns, cs);
+    constant_violation.clear();
+    constant_excess = build_allocation_problem(scene.allocation, scene.contact, split, cs.phase,
+                                               cs.impact_force_N, cs.W_R_contact, qp, offset, &constant_violation);
+    const QpOutcome& outcome = be.solve(qp);
+    forces_from_solution(split, cs.phase, cs.impact_force_N, cs.W_R_contact, offset, outcome.x, F_out, tau_out);
+    return outcome;
+  };
+
+  // Left limits at contact events (compute_power): the sample solved again an instant
+  // before, by a back end of its own so that the run's warm starts stay as they are.
+  std::vector<PowerJump> jumps;
+  std::unique_ptr<AllocationBackend> left_backend;
+  SampleContacts c_left;
+  std::array<Vec3, kLegs> F_left;
+  VecJ tau_left;
+  std::array<ContactPhase, kLegs> previous_phase{};
+
   for (int i = 0; i < T; ++i) {
     const double t = kin.time_s[i];
-    const BaseState base = base_state_at(kin, i);
-    const VecJ q = kin.joint_position.row(i).transpose();
-    const VecJ qd = kin.joint_velocity.row(i).transpose();
-    const VecJ qdd = kin.joint_acceleration.row(i).transpose();
-    const ContactSplit& split = contact_split(model, data, base, q, qd, qdd);
-    sample_contacts(kin, i, plan.terrain, touchdowns, c);
-    std::string constant_violation;
-    const double constant_excess = build_allocation_problem(scene.allocation, scene.contact, split, c.phase,
-                                                            c.impact_force_N, c.W_R_contact, qp, offset,
-                                                            &constant_violation);
-    const QpOutcome& outcome = backend->solve(qp);
-    forces_from_solution(split, c.phase, c.impact_force_N, c.W_R_contact, offset, outcome.x, F_W, tau);
+    const QpOutcome& outcome = solve_sample(kin, i, *backend, c, F_W, tau);
+    const double sample_constant_excess = constant_excess;
+    const std::string sample_constant_violation = constant_violation;
+    if (i > 0 && c.phase != previous_phase) {
+      // The instant before: far below any grid step (merged at 1e-9 s), far above the
+      // rounding of t.
+      const double t_left = t - kEventLeftLimit_s;
+      if (!left_backend) left_backend = make_allocation_backend(scene.allocation);
+      const KinematicsResult k_left = sample_kinematics(model, plan, {t_left});
+      solve_sample(k_left, 0, *left_backend, c_left, F_left, tau_left);
+      // A proper left limit only when the event is at this sample (adaptive grid); on a
+      // grid that steps over the event the series is integrated across the jump.
+      if (c_left.phase == previous_phase) {
+        PowerJump jump;
+        jump.index = i;
+        jump.abs_power_left_W = tau_left.cwiseProduct(k_left.joint_velocity.row(0).transpose()).cwiseAbs();
+        jumps.push_back(jump);
+      }
+    }
+    previous_phase = c.phase;
     int status = outcome.status;
     std::string message = outcome.message;
-    if (constant_excess > scene.allocation.tolerance && status == 0) {
+    if (sample_constant_excess > scene.allocation.tolerance && status == 0) {
       status = 1;
-      message = "relaxed: " + constant_violation;
-    } else if (constant_excess > scene.allocation.tolerance) {
-      message += ", " + constant_violation;
+      message = "relaxed: " + sample_constant_violation;
+    } else if (sample_constant_excess > scene.allocation.tolerance) {
+      message += ", " + sample_constant_violation;
     }
     dyn.solver_status[i] = static_cast<std::int8_t>(status);
     dyn.solver_iterations[i] = outcome.iterations;
@@ -408,7 +484,7 @@ DynamicsResult solve_dynamics(const Scene& scene, const RobotModel& model, const
     }
   }
   flush_episode();
-  compute_power(kin, model.total_mass_kg, plan.trunk.total_travel_m(), dyn);
+  compute_power(kin, model.total_mass_kg, plan.trunk.total_travel_m(), jumps, dyn);
   return dyn;
 }
 

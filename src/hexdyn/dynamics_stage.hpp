@@ -89,12 +89,31 @@ DynamicsResult solve_dynamics(const Scene& scene, const RobotModel& model, const
                               KinematicsResult& kin, const std::vector<Touchdown>& touchdowns,
                               std::ostream* log);
 
-/// Joint power P = τ ω, total P_in = Σ|τ ω|, energies E = ∫ P_in dt and per joint
-/// (GSL, exact for the piecewise-linear series), and the cost of transport E/(m g d).
-void compute_power(const KinematicsResult& kin, double total_mass_kg, double distance_m,
-                   DynamicsResult& dyn);
+/// The limit from the left of |τ_k ω_k| [W] (18) at sample `index`, the first sample of
+/// a new contact phase (a touchdown, the end of its transient, a lift-off): the power
+/// just before the event, where the sampled series holds the value just after it.
+struct PowerJump {
+  int index = 0;
+  VecJ abs_power_left_W = VecJ::Zero();
+};
 
-/// ∫ y dt over the samples (GSL piecewise-linear interpolation integral).
+/// Joint power P = τ ω, total P_in = Σ|τ ω|, energies per joint E_k = ∫ |τ_k ω_k| dt and
+/// in total E = Σ E_k (= ∫ P_in dt), and the cost of transport E/(m g d). The power jumps
+/// at contact events, so each integral is taken piece by piece between the samples of
+/// `jumps` (sorted by index), each piece ending on the jump's left limit (integrate_pieces).
+void compute_power(const KinematicsResult& kin, double total_mass_kg, double distance_m,
+                   const std::vector<PowerJump>& jumps, DynamicsResult& dyn);
+
+/// ∫ y dt over the samples t (increasing), y[k·stride], split into pieces at the samples
+/// `break_index` (increasing): the piece ending at break k uses `left_value[k]` there in
+/// place of the sample, and the next piece starts from the sample. Within a piece: the
+/// integral of GSL's Steffen interpolant (a monotone piecewise cubic: third order where
+/// the series is smooth, never below 0 for data ≥ 0 and no overshoot at the kinks of
+/// |τ ω|); the trapezoid for a piece of one interval.
+double integrate_pieces(const std::vector<double>& t, const double* y, int stride,
+                        const std::vector<int>& break_index, const std::vector<double>& left_value);
+
+/// integrate_pieces without breaks.
 double integrate_series(const std::vector<double>& t, const double* y, int stride = 1);
 
 }  // namespace hexdyn

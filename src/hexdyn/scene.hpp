@@ -113,8 +113,8 @@ enum class OutputGrid { kUniform, kAdaptive };
 struct OutputParams {
   double sample_step_s = 0.05;
   OutputGrid grid = OutputGrid::kAdaptive;
-  int impact_samples = 40;       ///< adaptive grid: intervals across each impact transient
-  double event_step_s = 1e-3;    ///< adaptive grid: finest step next to touchdowns and lift-offs
+  int impact_samples = 16;       ///< adaptive grid: intervals across each impact transient
+  double event_step_s = 5e-3;    ///< adaptive grid: finest step next to touchdowns and lift-offs
 };
 
 struct Scene {

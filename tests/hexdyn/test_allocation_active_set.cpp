@@ -885,9 +885,7 @@ void check_comparison(const RunComparison& r) {
   CHECK(r.kkt_failures == 0);
   CHECK(r.objective_failures == 0);
   CHECK(r.max_dx_optimal < 1e-6);
-  // Relaxed samples: Ipopt's penalised answers carry its own inexactness at degenerate
-  // optima (README "Allocation"), ~2e-6 N at worst on the paper run.
-  CHECK(r.max_dx_relaxed < 5e-6);
+  CHECK(r.max_dx_relaxed < 1e-6);
   CHECK(r.max_violation_diff < 1e-6);
   CHECK(r.max_dx_extended < 1e-6);
 }
@@ -896,18 +894,31 @@ void check_comparison(const RunComparison& r) {
 
 TEST_CASE("active-set back end: every sample of the paper run agrees with Ipopt",
           "[allocation][active_set][paper]") {
-  // Optimal samples: the same forces. Relaxed samples: the same rows give way by the same
-  // amounts; the forces are the exact penalised optimum (KKT certificate, extended-precision
-  // re-solve), and Ipopt's differ from them by its own inexactness at degenerate optima
-  // (rows that hold with zero multipliers, with ρ w up to 1e9 in the same problem).
-  const Scene scene = load_scene(HEXDYN_SOURCE_DIR "/configs/paper.yaml");
-  const RunComparison r = compare_backends(scene);
-  CHECK(r.samples > 1000);
-  CHECK(r.relaxed > 100);  // touchdown transients
-  check_comparison(r);
-  WARN("paper run: " << r.samples << " samples (" << r.relaxed << " relaxed): max |Δx| vs Ipopt "
-                     << r.max_dx_optimal << " N optimal, " << r.max_dx_relaxed
-                     << " N relaxed; vs extended precision " << r.max_dx_extended << " N");
+  // Every sample: the same status, the same rows giving way by the same amounts, forces
+  // within 1e-6 N. Relaxed samples also: the active-set forces are the exact penalised
+  // optimum (KKT certificate, extended-precision re-solve).
+  SECTION("the paper's grid: 1e-6 N on every sample") {
+    const RunComparison r = compare_backends(load_scene(HEXDYN_SOURCE_DIR "/configs/paper.yaml"));
+    CHECK(r.samples > 500);
+    CHECK(r.relaxed > 100);  // touchdown transients
+    check_comparison(r);
+    WARN("paper run: " << r.samples << " samples (" << r.relaxed << " relaxed): max |Δx| vs Ipopt "
+                       << r.max_dx_optimal << " N optimal, " << r.max_dx_relaxed
+                       << " N relaxed; vs extended precision " << r.max_dx_extended << " N");
+  }
+  SECTION("the denser grid of 40 samples per transient and 1 ms event steps: 1e-6 N too") {
+    // 648 relaxed samples. Degenerate penalised optima (rows that hold with zero
+    // multipliers next to ρ w up to 1e9) are where Ipopt's own inexactness would show;
+    // the KKT certificate and the extended-precision re-solve check our side of them.
+    const RunComparison r = compare_backends(
+        load_scene(HEXDYN_SOURCE_DIR "/configs/paper.yaml", {{"output.impact_samples", "40"}, {"output.event_step", "1e-3"}}));
+    CHECK(r.samples > 1000);
+    CHECK(r.relaxed > 500);
+    check_comparison(r);
+    WARN("paper run, 40 samples per transient: " << r.samples << " samples (" << r.relaxed
+                                                 << " relaxed): max |Δx| vs Ipopt " << r.max_dx_optimal
+                                                 << " N optimal, " << r.max_dx_relaxed << " N relaxed");
+  }
 }
 
 TEST_CASE("active-set back end: every sample of the smoke sweep agrees with Ipopt",
