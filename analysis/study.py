@@ -39,7 +39,10 @@ in the grid and tolerance series).
 The verdict (the issue's adaptive-grid targets) is the default configuration (the
 scene as it is) against the `converged` reference: err_peak <= targets.peak,
 err_energy <= targets.energy and wall_time(default) / wall_time(reference) <=
-targets.cost.
+targets.cost. With `repeats.paired: N` the two wall times of the verdict come from N
+further runs of each, alternating default and reference at the end of the study
+(minimum of each), so that a machine whose speed drifts during the study (other jobs,
+clock changes) moves both sides of the ratio alike.
 
 Output, hexdyn-study/1 (written to a temporary name in the same directory, renamed
 when complete; an error leaves no file):
@@ -63,7 +66,8 @@ when complete; an error leaves no file):
                      reference). Datasets impact_leg, impact_t_start, impact_duration,
                      sampled_peak_N, sampled_impulse_Ns (one per touchdown).
   /verdict attrs     label, reference, err_peak, err_energy, wall_time_s,
-                     reference_wall_time_s, cost_ratio, samples, reference_samples,
+                     reference_wall_time_s, cost_ratio, cost_pairs (0: wall times
+                     of the rows), samples, reference_samples,
                      samples_ratio, target_peak, target_energy, target_cost, pass_peak,
                      pass_energy, pass_cost, pass_all (int8 0/1)
 
@@ -208,10 +212,12 @@ def load_study(path):
     targets = {k: _positive(f"{path}: targets.{k}", v) for k, v in targets.items()}
 
     rep = spec["repeats"]
-    _check_keys(f"{path}: repeats", rep, ("fast", "slow", "slow_s"), ("fast", "slow", "slow_s"))
+    _check_keys(f"{path}: repeats", rep, ("fast", "slow", "slow_s", "paired"), ("fast", "slow", "slow_s"))
     repeats = {"fast": _positive(f"{path}: repeats.fast", rep["fast"], integer=True),
                "slow": _positive(f"{path}: repeats.slow", rep["slow"], integer=True),
-               "slow_s": _positive(f"{path}: repeats.slow_s", rep["slow_s"])}
+               "slow_s": _positive(f"{path}: repeats.slow_s", rep["slow_s"]),
+               "paired": (_positive(f"{path}: repeats.paired", rep["paired"], integer=True)
+                          if "paired" in rep else 0)}
 
     refs = spec["references"]
     if not isinstance(refs, dict) or CONVERGED not in refs:
@@ -409,6 +415,20 @@ def errors(run, ref_name, ref):
             "err_energy": rel(run.energy, ref.energy),
             "err_tau_peak": rel(run.tau_peak, ref.tau_peak),
             "err_tau_rms": rel(run.tau_rms, ref.tau_rms)}
+
+
+def timed_runs(specs, hexdyn, scene, workdir, rounds, counter):
+    """Runs each of `specs` in turn, `rounds` times over; the smallest wall time of each."""
+    out = os.path.join(workdir, "timed.h5")
+    best = [math.inf] * len(specs)
+    for _ in range(rounds):
+        for k, spec in enumerate(specs):
+            run_hexdyn(hexdyn, scene, spec, out)
+            counter[0] += 1
+            with h5py.File(out, "r") as f:
+                best[k] = min(best[k], float(f["meta"].attrs["wall_time_s"]))
+    os.remove(out)
+    return best
 
 
 def execute(spec, hexdyn, scene, workdir, repeats, keep_dir, quiet, counter, prefix=""):
@@ -632,6 +652,15 @@ def main(argv=None):
                 measure_against_references(s)
                 s.result.drop_arrays()
 
+        pairs = study["repeats"]["paired"]
+        paired_walls = None
+        if pairs:
+            log(f"cost of the verdict: default and reference {CONVERGED}, alternating, "
+                f"{pairs} runs each", args.quiet)
+            default_spec = rows[0]["spec"]
+            paired_walls = timed_runs([default_spec, ref_specs[CONVERGED]], hexdyn,
+                                      study["scene"], workdir, pairs, counter)
+
     out_rows = []
     for r in rows:
         m = r["spec"].result
@@ -672,11 +701,13 @@ def main(argv=None):
     default = out_rows[0]
     ref = ref_specs[CONVERGED].result
     t = study["targets"]
-    cost_ratio = default["wall_time_s"] / ref.wall_time_s
+    default_wall, ref_wall = paired_walls or (default["wall_time_s"], ref.wall_time_s)
+    cost_ratio = default_wall / ref_wall
     verdict = {"label": DEFAULT_LABEL, "reference": CONVERGED,
                "err_peak": default["err_peak"], "err_energy": default["err_energy"],
-               "wall_time_s": default["wall_time_s"], "reference_wall_time_s": ref.wall_time_s,
-               "cost_ratio": cost_ratio, "samples": default["samples"],
+               "wall_time_s": default_wall, "reference_wall_time_s": ref_wall,
+               "cost_ratio": cost_ratio, "cost_pairs": np.int32(pairs),
+               "samples": default["samples"],
                "reference_samples": ref.samples,
                "samples_ratio": default["samples"] / ref.samples,
                "target_peak": t["peak"], "target_energy": t["energy"], "target_cost": t["cost"],
@@ -709,8 +740,8 @@ def main(argv=None):
     print(f"adaptive grid (default) vs converged reference: "
           f"peak {verdict['err_peak']:.2e} <= {t['peak']:g}: {word(verdict['pass_peak'])}; "
           f"energy {verdict['err_energy']:.2e} <= {t['energy']:g}: "
-          f"{word(verdict['pass_energy'])}; cost {default['wall_time_s']:.4g} s / "
-          f"{ref.wall_time_s:.4g} s = {cost_ratio:.1%} <= {t['cost']:.0%}: "
+          f"{word(verdict['pass_energy'])}; cost {default_wall:.4g} s / "
+          f"{ref_wall:.4g} s = {cost_ratio:.1%} <= {t['cost']:.0%}: "
           f"{word(verdict['pass_cost'])} (samples {default['samples']}/{ref.samples} = "
           f"{verdict['samples_ratio']:.1%})")
     return 0

@@ -13,12 +13,6 @@ Vec3 foot_point_tibia(const RobotModel& model) { return Vec3(model.link_length_m
 
 Inertia to_spatial(const RigidInertia& r) { return Inertia{r.mass_kg, r.com_m, r.inertia_com}; }
 
-/// Rotation by `angle` about the unit vector `axis` (Rodrigues).
-Mat3 axis_rotation(const Vec3& axis, double angle) {
-  const Mat3 K = skew(axis);
-  return Mat3::Identity() + std::sin(angle) * K + (1.0 - std::cos(angle)) * K * K;
-}
-
 /// Spatial velocity and acceleration of the trunk in trunk coordinates from the base
 /// state. The spatial linear acceleration is that of the body-fixed point at P0 seen
 /// from a fixed point of space: a_P0 − ω × v_P0. `gravity_W` is subtracted from the
@@ -69,6 +63,14 @@ void fill_foot_jacobians(const RobotModel& model, RobotData& data, const BaseSta
 
 RobotData::RobotData(const RobotModel& model) {
   for (int b = 0; b < kBodies; ++b) I_body[b] = to_spatial(model.inertia[b]);
+  R_fixed[0] = R_cos[0] = R_sin[0] = Mat3::Zero();
+  for (int b = 1; b < kBodies; ++b) {
+    const Vec3& a = model.axis[b];
+    const Mat3 A = a * a.transpose();
+    R_fixed[b] = model.R_parent_joint[b] * A;
+    R_cos[b] = model.R_parent_joint[b] * (Mat3::Identity() - A);
+    R_sin[b] = model.R_parent_joint[b] * skew(a);
+  }
   for (int l = 0; l < kLegs; ++l) {
     J_foot_W[l].setZero();
     p_foot_W[l].setZero();
@@ -89,9 +91,11 @@ void update_kinematics(const RobotModel& model, RobotData& data, const BaseState
   data.X_parent_body[0] = Transform::Identity();
   data.X_world_body[0] = Transform{state.W_R_B, state.p_W};
   for (int b = 1; b < kBodies; ++b) {
-    data.X_parent_body[b] = Transform{
-        model.R_parent_joint[b] * axis_rotation(model.axis[b], q[b - 1]), model.p_parent_joint[b]};
-    data.X_world_body[b] = data.X_world_body[model.parent[b]] * data.X_parent_body[b];
+    const double c = std::cos(q[b - 1]), s = std::sin(q[b - 1]);
+    Transform& X = data.X_parent_body[b];
+    X.R = data.R_fixed[b] + c * data.R_cos[b] + s * data.R_sin[b];
+    X.p = model.p_parent_joint[b];
+    data.X_world_body[b] = data.X_world_body[model.parent[b]] * X;
   }
 }
 
