@@ -407,7 +407,7 @@ void read_output(Reader& r, OutputParams& o) {
                                                                                     : OutputGrid::kAdaptive;
   const int def_samples = 16;
   o.impact_samples = r.integer("output.impact_samples", 1, 100000, &def_samples);
-  o.event_step_s = r.number_or("output.event_step", 5e-3, positive(100.0));
+  o.event_step_s = r.number_or("output.event_step", 1e-2, positive(100.0));
   if (o.event_step_s > o.sample_step_s)
     r.fail("output.event_step", "got " + fmt(o.event_step_s) + ", expected at most output.sample_step (" +
                                     fmt(o.sample_step_s) + ")");

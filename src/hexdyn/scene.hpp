@@ -114,7 +114,7 @@ struct OutputParams {
   double sample_step_s = 0.05;
   OutputGrid grid = OutputGrid::kAdaptive;
   int impact_samples = 16;       ///< adaptive grid: intervals across each impact transient
-  double event_step_s = 5e-3;    ///< adaptive grid: finest step next to touchdowns and lift-offs
+  double event_step_s = 1e-2;    ///< adaptive grid: finest step next to touchdowns and lift-offs
 };
 
 struct Scene {

@@ -1,5 +1,6 @@
 #include "hexdyn/urdf.hpp"
 
+#include <charconv>
 #include <cmath>
 #include <iomanip>
 #include <sstream>
@@ -35,9 +36,10 @@ std::string xml_escape(const std::string& s) {
 
 /// Numbers with 17 significant digits (round-trip exact); −0 printed as 0.
 std::string number(double x) {
-  std::ostringstream s;
-  s << std::setprecision(17) << (x == 0.0 ? 0.0 : x);
-  return s.str();
+  // As %.17g (what setprecision(17) gives), without a stream per number.
+  char buf[32];
+  const auto r = std::to_chars(buf, buf + sizeof buf, x == 0.0 ? 0.0 : x, std::chars_format::general, 17);
+  return std::string(buf, r.ptr);
 }
 
 std::string triple(const Vec3& v) {

@@ -396,7 +396,7 @@ TEST_CASE("config: the resolved YAML spells out defaults of absent optional keys
   CHECK(num(r["allocation"]["slack_penalty"]) == 1e6);
   CHECK(r["output"]["grid"].as<std::string>() == "adaptive");
   CHECK(num(r["output"]["impact_samples"]) == 16);
-  CHECK(num(r["output"]["event_step"]) == 5e-3);
+  CHECK(num(r["output"]["event_step"]) == 1e-2);
   CHECK(num(r["robot"]["ik_min_margin"]) == 1e-4);
   CHECK(num(r["robot"]["hips"]["z"]) == 0.0);
   CHECK(num(r["terrain"]["ground_height"]) == 0.0);
