@@ -417,16 +417,21 @@ def errors(run, ref_name, ref):
             "err_tau_rms": rel(run.tau_rms, ref.tau_rms)}
 
 
+def timed_run(hexdyn, scene, spec, out, counter):
+    """One run of `spec` into `out`; its /meta wall_time_s."""
+    run_hexdyn(hexdyn, scene, spec, out)
+    counter[0] += 1
+    with h5py.File(out, "r") as f:
+        return float(f["meta"].attrs["wall_time_s"])
+
+
 def timed_runs(specs, hexdyn, scene, workdir, rounds, counter):
     """Runs each of `specs` in turn, `rounds` times over; the smallest wall time of each."""
     out = os.path.join(workdir, "timed.h5")
     best = [math.inf] * len(specs)
     for _ in range(rounds):
         for k, spec in enumerate(specs):
-            run_hexdyn(hexdyn, scene, spec, out)
-            counter[0] += 1
-            with h5py.File(out, "r") as f:
-                best[k] = min(best[k], float(f["meta"].attrs["wall_time_s"]))
+            best[k] = min(best[k], timed_run(hexdyn, scene, spec, out, counter))
     os.remove(out)
     return best
 
@@ -434,17 +439,10 @@ def timed_runs(specs, hexdyn, scene, workdir, rounds, counter):
 def execute(spec, hexdyn, scene, workdir, repeats, keep_dir, quiet, counter, prefix=""):
     """Runs `spec` (repeated as `repeats` says) and returns its Measured."""
     out = os.path.join(workdir, "run.h5")
-    run_hexdyn(hexdyn, scene, spec, out)
-    counter[0] += 1
-    walls = []
-    with h5py.File(out, "r") as f:
-        walls.append(float(f["meta"].attrs["wall_time_s"]))
+    walls = [timed_run(hexdyn, scene, spec, out, counter)]
     n = repeats["fast"] if walls[0] < repeats["slow_s"] else repeats["slow"]
     for _ in range(n - 1):
-        run_hexdyn(hexdyn, scene, spec, out)
-        counter[0] += 1
-        with h5py.File(out, "r") as f:
-            walls.append(float(f["meta"].attrs["wall_time_s"]))
+        walls.append(timed_run(hexdyn, scene, spec, out, counter))
     m = Measured(out)
     m.wall_times = walls
     m.wall_time_s = min(walls)

@@ -48,7 +48,6 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -798,20 +797,6 @@ class ActiveSetBackend final : public AllocationBackend {
     core_ = std::make_unique<DualActiveSet>();
   }
 
-  void reset_warm_start() override {
-    have_warm_ = false;
-    last_relaxed_ = false;
-  }
-
-  const QpOutcome& solve(const QpProblem& problem) override {
-    const auto t0 = std::chrono::steady_clock::now();
-    validate_qp_sizes(problem);
-    check_supported(problem);
-    solve_impl(problem);
-    out_.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    return out_;
-  }
-
  private:
   /// Feasibility threshold of a row for the status (allocation_qp.hpp).
   double feasibility_tol() const { return qp_feasibility_tolerance(opt_.tolerance); }
@@ -892,7 +877,8 @@ class ActiveSetBackend final : public AllocationBackend {
     return buf;
   }
 
-  void solve_impl(const QpProblem& p) {
+  void solve_impl(const QpProblem& p) override {
+    check_supported(p);
     const int n = p.variables(), m_eq = p.equalities(), m_in = p.inequalities();
     out_.iterations = 0;
     out_.message.clear();
@@ -1023,9 +1009,6 @@ class ActiveSetBackend final : public AllocationBackend {
 
   ActiveSetOptions opt_;
   std::unique_ptr<DualActiveSet> core_;
-  QpOutcome out_;
-  bool have_warm_ = false;
-  bool last_relaxed_ = false;  ///< the previous solve needed slack
   int warm_n_ = -1, warm_m_eq_ = -1, warm_m_in_ = -1;
   std::vector<std::string> warm_eq_names_, warm_ineq_names_;
   std::array<RowRef, kN> warm_active_{};

@@ -36,7 +36,6 @@
 #include <IpIpoptData.hpp>
 #include <IpTNLP.hpp>
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <sstream>
 
@@ -426,19 +425,6 @@ class IpoptBackend final : public AllocationBackend {
     tnlp_ = new QpTnlp();
   }
 
-  void reset_warm_start() override {
-    have_warm_ = false;
-    last_relaxed_ = false;
-  }
-
-  const QpOutcome& solve(const QpProblem& problem) override {
-    const auto t0 = std::chrono::steady_clock::now();
-    validate_qp_sizes(problem);
-    solve_impl(problem);
-    out_.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    return out_;
-  }
-
  private:
   /// Feasibility threshold of a row for the status (allocation_qp.hpp).
   double feasibility_tol() const { return qp_feasibility_tolerance(opt_.tolerance); }
@@ -508,7 +494,7 @@ class IpoptBackend final : public AllocationBackend {
     have_warm_ = false;
   }
 
-  void solve_impl(const QpProblem& p) {
+  void solve_impl(const QpProblem& p) override {
     const int n = p.variables(), m_eq = p.equalities(), m_in = p.inequalities();
     const int n_cones = static_cast<int>(p.cones.size());
     out_.iterations = 0;
@@ -767,12 +753,9 @@ class IpoptBackend final : public AllocationBackend {
   IpoptOptions opt_;
   Ipopt::SmartPtr<Ipopt::IpoptApplication> app_;
   Ipopt::SmartPtr<QpTnlp> tnlp_;
-  QpOutcome out_;
   QpProblem poly_;          ///< penalised polygon version of a cone problem (workspace)
   Eigen::VectorXd poly_x_;  ///< its solution
   Eigen::VectorXd polish_x_, polish_lambda_;  ///< start of a polishing strict run
-  bool have_warm_ = false;
-  bool last_relaxed_ = false;  ///< the previous solve needed slack
   int warm_n_ = -1, warm_m_eq_ = -1, warm_m_in_ = -1, warm_cones_ = -1;
   Eigen::VectorXd warm_x_, warm_lambda_;
 };

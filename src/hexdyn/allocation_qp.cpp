@@ -2,6 +2,7 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -13,6 +14,14 @@
 namespace hexdyn {
 
 AllocationBackend::~AllocationBackend() = default;
+
+const QpOutcome& AllocationBackend::solve(const QpProblem& problem) {
+  const auto t0 = std::chrono::steady_clock::now();
+  validate_qp_sizes(problem);
+  solve_impl(problem);
+  out_.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return out_;
+}
 
 void QpProblem::resize(int n, int m_eq, int m_in) {
   H.setZero(n, n);

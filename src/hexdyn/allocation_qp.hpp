@@ -102,14 +102,28 @@ struct QpOutcome {
 };
 
 /// A QP/NLP back end. `solve` never throws for numerical trouble (that is the outcome's
-/// status); it throws SolverError only for inconsistent sizes. The reference stays valid
-/// until the next call. Not thread-safe: one backend per thread.
+/// status); it throws SolverError only for inconsistent sizes (or a problem the back end
+/// does not support). The reference stays valid until the next call. Not thread-safe:
+/// one backend per thread.
 class AllocationBackend {
  public:
   virtual ~AllocationBackend();
-  virtual const QpOutcome& solve(const QpProblem& problem) = 0;
+  /// Checks the sizes (validate_qp_sizes), solves (solve_impl) and records the time taken
+  /// in the outcome's `seconds`.
+  const QpOutcome& solve(const QpProblem& problem);
   /// Forget the previous solution: the next solve starts cold.
-  virtual void reset_warm_start() = 0;
+  void reset_warm_start() {
+    have_warm_ = false;
+    last_relaxed_ = false;
+  }
+
+ protected:
+  /// Fills out_ (all but `seconds`) for a problem of consistent sizes.
+  virtual void solve_impl(const QpProblem& problem) = 0;
+
+  QpOutcome out_;
+  bool have_warm_ = false;     ///< a previous solution to start the next solve from
+  bool last_relaxed_ = false;  ///< the previous solve needed slack
 };
 
 struct IpoptOptions {

@@ -77,15 +77,8 @@ struct ScaledImpact {
           damping * impact_step_derivative(u, 0.0, 0.0, p_hat, 1.0) * w;
     f_w = damping * step(u);
   }
-  /// df/dτ along the motion (u' = w, w' = −f); negative out of contact.
-  double force_rate(const double y[]) const {
-    const double f = raw_force(y[0], y[1]);
-    if (!(f > 0.0)) return -1.0;
-    double f_u = 0.0, f_w = 0.0;
-    force_gradient(y[0], y[1], f_u, f_w);
-    return f_u * y[1] - f_w * f;
-  }
-  /// The clipped force and `force_rate` at y, with a single power evaluation.
+  /// The clipped force f and df/dτ along the motion (u' = w, w' = −f; −1 out of contact
+  /// or clipped), with a single power evaluation.
   void force_and_rate(const double y[], double& f, double& rate) const {
     const double u = y[0], w = y[1];
     f = 0.0;
@@ -99,16 +92,19 @@ struct ScaledImpact {
     const double f_u = spring * e * (u_e / u) + damping * impact_step_derivative(u, 0.0, 0.0, p_hat, 1.0) * w;
     rate = f_u * w - damping * S * f;
   }
-  /// The transient is over: rebounding (w < 0) and the force back at zero.
-  bool ended(const double y[]) const {
-    return y[1] < 0.0 && (!(y[0] > 0.0) || !(raw_force(y[0], y[1]) > 0.0));
+  double force_rate(const double y[]) const {
+    double f = 0.0, rate = 0.0;
+    force_and_rate(y, f, rate);
+    return rate;
   }
-  /// An event function of the end, <= 0 exactly when `ended`: while rebounding (w < 0)
-  /// the smaller of u and the unclipped force, both continuous; 1 otherwise.
+  /// An event function of the end of the transient, <= 0 exactly when it is over:
+  /// rebounding (w < 0) and the force back at zero. While rebounding, the smaller of u and
+  /// the unclipped force, both continuous; 1 otherwise.
   double end_function(const double y[]) const {
     if (!(y[1] < 0.0)) return 1.0;
     return y[0] > 0.0 ? std::min(y[0], raw_force(y[0], y[1])) : y[0];
   }
+  bool ended(const double y[]) const { return end_function(y) <= 0.0; }
 };
 
 /// State y = (u, w, j): u' = w, w' = −f, j' = f.

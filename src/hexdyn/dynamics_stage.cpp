@@ -394,20 +394,21 @@ DynamicsResult solve_dynamics(const Scene& scene, const RobotModel& model, const
     episode_worst = -1.0;
   };
 
-  // One sample of `k`: contacts into `cs`, forces and torques into F_out, tau_out.
-  std::string constant_violation;
-  double constant_excess = 0.0;
+  // One sample of `k`: contacts into `cs`, forces and torques into F_out, tau_out; the
+  // excess of constant rows over their limits (build_allocation_problem) into `excess`
+  // and `violation`.
   auto solve_sample = [&](const KinematicsResult& k, int i, AllocationBackend& be, SampleContacts& cs,
-                          std::array<Vec3, kLegs>& F_out, VecJ& tau_out) -> const QpOutcome& {
+                          std::array<Vec3, kLegs>& F_out, VecJ& tau_out, double& excess,
+                          std::string& violation) -> const QpOutcome& {
     const BaseState base = base_state_at(k, i);
     const VecJ q = k.joint_position.row(i).transpose();
     const VecJ qd = k.joint_velocity.row(i).transpose();
     const VecJ qdd = k.joint_acceleration.row(i).transpose();
     const ContactSplit& split = contact_split(model, data, base, q, qd, qdd);
     sample_contacts(k, i, plan.terrain, touchdowns, cs);
-    constant_violation.clear();
-    constant_excess = build_allocation_problem(scene.allocation, scene.contact, split, cs.phase,
-                                               cs.impact_force_N, cs.W_R_contact, qp, offset, &constant_violation);
+    violation.clear();
+    excess = build_allocation_problem(scene.allocation, scene.contact, split, cs.phase, cs.impact_force_N,
+                                      cs.W_R_contact, qp, offset, &violation);
     const QpOutcome& outcome = be.solve(qp);
     forces_from_solution(split, cs.phase, cs.impact_force_N, cs.W_R_contact, offset, outcome.x, F_out, tau_out);
     return outcome;
@@ -421,19 +422,20 @@ DynamicsResult solve_dynamics(const Scene& scene, const RobotModel& model, const
   std::array<Vec3, kLegs> F_left;
   VecJ tau_left;
   std::array<ContactPhase, kLegs> previous_phase{};
+  double constant_excess = 0.0, left_excess = 0.0;
+  std::string constant_violation, left_violation;
 
   for (int i = 0; i < T; ++i) {
     const double t = kin.time_s[i];
-    const QpOutcome& outcome = solve_sample(kin, i, *backend, c, F_W, tau);
-    const double sample_constant_excess = constant_excess;
-    const std::string sample_constant_violation = constant_violation;
+    const QpOutcome& outcome =
+        solve_sample(kin, i, *backend, c, F_W, tau, constant_excess, constant_violation);
     if (i > 0 && c.phase != previous_phase) {
       // The instant before: far below any grid step (merged at 1e-9 s), far above the
       // rounding of t.
       const double t_left = t - kEventLeftLimit_s;
       if (!left_backend) left_backend = make_allocation_backend(scene.allocation);
       const KinematicsResult k_left = sample_kinematics(model, plan, {t_left});
-      solve_sample(k_left, 0, *left_backend, c_left, F_left, tau_left);
+      solve_sample(k_left, 0, *left_backend, c_left, F_left, tau_left, left_excess, left_violation);
       // A proper left limit only when the event is at this sample (adaptive grid); on a
       // grid that steps over the event the series is integrated across the jump.
       if (c_left.phase == previous_phase) {
@@ -446,11 +448,11 @@ DynamicsResult solve_dynamics(const Scene& scene, const RobotModel& model, const
     previous_phase = c.phase;
     int status = outcome.status;
     std::string message = outcome.message;
-    if (sample_constant_excess > scene.allocation.tolerance && status == 0) {
+    if (constant_excess > scene.allocation.tolerance && status == 0) {
       status = 1;
-      message = "relaxed: " + sample_constant_violation;
-    } else if (sample_constant_excess > scene.allocation.tolerance) {
-      message += ", " + sample_constant_violation;
+      message = "relaxed: " + constant_violation;
+    } else if (constant_excess > scene.allocation.tolerance) {
+      message += ", " + constant_violation;
     }
     dyn.solver_status[i] = static_cast<std::int8_t>(status);
     dyn.solver_iterations[i] = outcome.iterations;

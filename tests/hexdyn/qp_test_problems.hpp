@@ -44,4 +44,17 @@ inline void add_rows_around(std::mt19937& rng, QpProblem& p, const Eigen::Vector
   }
 }
 
+/// min ½|x|² s.t. x0 ≥ 1 (lower active) and x1 ≤ −2 (upper active), x2 free: x = (1, −2, 0),
+/// stationarity x − Cᵀλ = 0 gives λ = (1, −2), objective 2.5. Checks the sign convention of
+/// the multipliers.
+inline QpProblem sign_convention_problem() {
+  QpProblem p;
+  p.resize(3, 0, 2);
+  p.H.setIdentity();
+  p.C << 1, 0, 0, 0, 1, 0;
+  p.lower << 1.0, -kInf;
+  p.upper << kInf, -2.0;
+  return p;
+}
+
 }  // namespace hexdyn::test

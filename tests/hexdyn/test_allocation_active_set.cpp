@@ -306,13 +306,7 @@ TEST_CASE(
 
 TEST_CASE("active-set back end: multiplier signs follow the documented convention",
           "[allocation][active_set]") {
-  // min ½|x|² s.t. x0 ≥ 1 (lower active) and x1 ≤ −2 (upper active): λ = (1, −2).
-  QpProblem p;
-  p.resize(3, 0, 2);
-  p.H.setIdentity();
-  p.C << 1, 0, 0, 0, 1, 0;
-  p.lower << 1.0, -kInf;
-  p.upper << kInf, -2.0;
+  const QpProblem p = test::sign_convention_problem();  // λ = (1, −2)
   auto backend = make_active_set_backend();
   const QpOutcome& out = backend->solve(p);
   REQUIRE(out.status == 0);

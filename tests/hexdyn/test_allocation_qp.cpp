@@ -173,14 +173,7 @@ TEST_CASE("Ipopt back end: an equality written as an l = u row gives the same so
 }
 
 TEST_CASE("Ipopt back end: multiplier signs follow the documented convention", "[allocation]") {
-  // min ½|x|² s.t. x0 ≥ 1 (lower active) and x1 ≤ −2 (upper active), x2 free:
-  // x = (1, −2, 0), stationarity x − Cᵀλ = 0 gives λ = (1, −2).
-  QpProblem p;
-  p.resize(3, 0, 2);
-  p.H.setIdentity();
-  p.C << 1, 0, 0, 0, 1, 0;
-  p.lower << 1.0, -kInf;
-  p.upper << kInf, -2.0;
+  QpProblem p = test::sign_convention_problem();  // x = (1, −2, 0), λ = (1, −2)
   auto backend = make_ipopt_backend();
   const QpOutcome& out = backend->solve(p);
   REQUIRE(out.status == 0);
