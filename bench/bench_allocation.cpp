@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "bench_paper.hpp"
+#include "hexdyn/allocation/ipopt.hpp"
 
 namespace {
 

@@ -20,7 +20,8 @@
 #include <vector>
 
 #include "bench_paper.hpp"
-#include "hexdyn/allocation_active_set.hpp"
+#include "hexdyn/allocation/active_set.hpp"
+#include "hexdyn/allocation/ipopt.hpp"
 
 // Heap allocations of this program, counted to show that a warm solve makes none.
 namespace {

@@ -6,12 +6,12 @@
 #include <string>
 #include <vector>
 
-#include "hexdyn/config.hpp"
-#include "hexdyn/dynamics.hpp"
-#include "hexdyn/dynamics_stage.hpp"
-#include "hexdyn/kinematics.hpp"
-#include "hexdyn/pipeline.hpp"
-#include "hexdyn/robot_model.hpp"
+#include "hexdyn/io/config.hpp"
+#include "hexdyn/dynamics/rnea.hpp"
+#include "hexdyn/pipeline/dynamics_stage.hpp"
+#include "hexdyn/kinematics/kinematics.hpp"
+#include "hexdyn/pipeline/pipeline.hpp"
+#include "hexdyn/model/robot_model.hpp"
 
 namespace hexdyn::bench {
 

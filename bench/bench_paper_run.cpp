@@ -4,7 +4,7 @@
 #include <benchmark/benchmark.h>
 
 #include "bench_paper.hpp"
-#include "hexdyn/pipeline.hpp"
+#include "hexdyn/pipeline/pipeline.hpp"
 
 namespace {
 

@@ -4,8 +4,8 @@
 /// long enough to stand) with random reachable leg states.
 #include <random>
 
-#include "hexdyn/robot_model.hpp"
-#include "hexdyn/scene.hpp"
+#include "hexdyn/model/robot_model.hpp"
+#include "hexdyn/core/scene.hpp"
 
 namespace hexdyn::test {
 

@@ -1,0 +1,17 @@
+#include "hexdyn/allocation/backends.hpp"
+
+#include "hexdyn/allocation/active_set.hpp"
+#include "hexdyn/allocation/ipopt.hpp"
+#include "hexdyn/core/errors.hpp"
+
+namespace hexdyn {
+
+std::unique_ptr<AllocationBackend> make_allocation_backend(const AllocationParams& params) {
+  switch (params.solver) {
+    case AllocationSolver::kIpopt: return make_ipopt_backend(ipopt_options_from(params));
+    case AllocationSolver::kActiveSet: return make_active_set_backend(active_set_options_from(params));
+  }
+  throw SolverError("allocation.solver: no back end");
+}
+
+}  // namespace hexdyn

@@ -1,0 +1,291 @@
+#include "hexdyn/allocation/qp.hpp"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <sstream>
+#include <utility>
+
+#include "hexdyn/core/errors.hpp"
+
+namespace hexdyn {
+
+AllocationBackend::~AllocationBackend() = default;
+
+const QpOutcome& AllocationBackend::solve(const QpProblem& problem) {
+  const auto t0 = std::chrono::steady_clock::now();
+  validate_qp_sizes(problem);
+  solve_impl(problem);
+  out_.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return out_;
+}
+
+void QpProblem::resize(int n, int m_eq, int m_in) {
+  H.setZero(n, n);
+  g.setZero(n);
+  A.setZero(m_eq, n);
+  b.setZero(m_eq);
+  C.setZero(m_in, n);
+  lower.setConstant(m_in, -std::numeric_limits<double>::infinity());
+  upper.setConstant(m_in, std::numeric_limits<double>::infinity());
+  eq_names.assign(static_cast<std::size_t>(m_eq), std::string());
+  ineq_names.assign(static_cast<std::size_t>(m_in), std::string());
+  ineq_penalty.setOnes(m_in);
+  cones.clear();
+  constant = 0.0;
+}
+
+std::string QpProblem::eq_name(int i) const {
+  if (i >= 0 && i < static_cast<int>(eq_names.size()) && !eq_names[i].empty()) return eq_names[i];
+  return "eq[" + std::to_string(i) + "]";
+}
+
+std::string QpProblem::ineq_name(int i) const {
+  if (i >= 0 && i < static_cast<int>(ineq_names.size()) && !ineq_names[i].empty())
+    return ineq_names[i];
+  return "ineq[" + std::to_string(i) + "]";
+}
+
+double QpProblem::objective(const Eigen::VectorXd& x) const {
+  return 0.5 * x.dot(H.selfadjointView<Eigen::Lower>() * x) + g.dot(x) + constant;
+}
+
+void validate_qp_sizes(const QpProblem& p) {
+  const int n = p.variables(), m_eq = p.equalities(), m_in = p.inequalities();
+  auto fail = [](const std::string& what, long expected, long got) {
+    std::ostringstream os;
+    os << "QP: " << what << ": expected " << expected << ", got " << got;
+    throw SolverError(os.str());
+  };
+  if (p.H.rows() != n) fail("rows of H (= size of g)", n, p.H.rows());
+  if (p.H.cols() != n) fail("columns of H (= size of g)", n, p.H.cols());
+  if (p.A.rows() != m_eq) fail("rows of A (= size of b)", m_eq, p.A.rows());
+  if (m_eq > 0 && p.A.cols() != n) fail("columns of A (= size of g)", n, p.A.cols());
+  if (p.C.rows() != m_in) fail("rows of C (= size of lower)", m_in, p.C.rows());
+  if (m_in > 0 && p.C.cols() != n) fail("columns of C (= size of g)", n, p.C.cols());
+  if (p.upper.size() != m_in) fail("size of upper (= size of lower)", m_in, p.upper.size());
+  if (!p.eq_names.empty() && static_cast<int>(p.eq_names.size()) != m_eq)
+    fail("number of equality row names", m_eq, static_cast<long>(p.eq_names.size()));
+  if (!p.ineq_names.empty() && static_cast<int>(p.ineq_names.size()) != m_in)
+    fail("number of inequality row names", m_in, static_cast<long>(p.ineq_names.size()));
+  if (p.ineq_penalty.size() != 0 && p.ineq_penalty.size() != m_in)
+    fail("size of ineq_penalty (or 0)", m_in, p.ineq_penalty.size());
+  for (int i = 0; i < p.ineq_penalty.size(); ++i) {
+    if (!(std::isfinite(p.ineq_penalty[i]) && p.ineq_penalty[i] > 0.0)) {
+      std::ostringstream os;
+      os << "QP: ineq_penalty of " << p.ineq_name(i) << " must be finite and > 0, got "
+         << p.ineq_penalty[i];
+      throw SolverError(os.str());
+    }
+  }
+  for (std::size_t k = 0; k < p.cones.size(); ++k) {
+    const SecondOrderCone& c = p.cones[k];
+    for (int idx : {c.tangent1, c.tangent2, c.normal}) {
+      if (idx < 0 || idx >= n) {
+        std::ostringstream os;
+        os << "QP: cone " << k << " index out of range [0, " << n << "): got " << idx;
+        throw SolverError(os.str());
+      }
+    }
+    if (c.tangent1 == c.tangent2 || c.tangent1 == c.normal || c.tangent2 == c.normal) {
+      std::ostringstream os;
+      os << "QP: cone " << k << " needs three distinct indices, got (" << c.tangent1 << ", "
+         << c.tangent2 << ", " << c.normal << ")";
+      throw SolverError(os.str());
+    }
+    if (!(std::isfinite(c.mu) && c.mu >= 0.0)) {
+      std::ostringstream os;
+      os << "QP: cone " << k << " friction coefficient must be finite and >= 0, got " << c.mu;
+      throw SolverError(os.str());
+    }
+    if (!(std::isfinite(c.penalty) && c.penalty > 0.0)) {
+      std::ostringstream os;
+      os << "QP: cone " << k << " penalty must be finite and > 0, got " << c.penalty;
+      throw SolverError(os.str());
+    }
+  }
+}
+
+namespace {
+bool has_lower(double l) { return l > -kQpInfinity; }
+bool has_upper(double u) { return u < kQpInfinity; }
+
+std::string cone_label(const QpProblem& p, std::size_t k) {
+  return p.cones[k].name.empty() ? "cone[" + std::to_string(k) + "]" : p.cones[k].name;
+}
+}  // namespace
+
+std::string describe_violations(const QpProblem& p, const Eigen::VectorXd& x, double tol,
+                                double* max_violation) {
+  std::vector<std::pair<double, std::string>> list;
+  double worst = 0.0;
+  auto consider = [&](double violation, double bound, auto&& name) {
+    if (!(violation <= 0.0)) {  // also catches NaN
+      const double v =
+          std::isfinite(violation) ? violation : std::numeric_limits<double>::infinity();
+      worst = std::max(worst, v);
+      if (!(v <= tol * std::max(1.0, std::abs(bound)))) list.emplace_back(v, name());
+    }
+  };
+  if (x.size() == p.variables()) {
+    for (int i = 0; i < p.equalities(); ++i) {
+      const double r = p.A.row(i).dot(x) - p.b[i];
+      consider(std::abs(r), p.b[i], [&] { return p.eq_name(i); });
+    }
+    for (int i = 0; i < p.inequalities(); ++i) {
+      const double c = p.C.row(i).dot(x);
+      const double below = has_lower(p.lower[i]) ? p.lower[i] - c : -1.0;
+      const double above = has_upper(p.upper[i]) ? c - p.upper[i] : -1.0;
+      if (below >= above && has_lower(p.lower[i]))
+        consider(below, p.lower[i], [&] { return p.ineq_name(i); });
+      else if (has_upper(p.upper[i]))
+        consider(above, p.upper[i], [&] { return p.ineq_name(i); });
+    }
+    for (std::size_t k = 0; k < p.cones.size(); ++k) {
+      const SecondOrderCone& c = p.cones[k];
+      const double bound = c.mu * x[c.normal];
+      consider(std::hypot(x[c.tangent1], x[c.tangent2]) - bound, bound,
+               [&] { return cone_label(p, k); });
+    }
+  }
+  if (max_violation) *max_violation = worst;
+  std::stable_sort(list.begin(), list.end(),
+                   [](const auto& a, const auto& b) { return a.first > b.first; });
+  std::string text;
+  char buf[32];
+  for (const auto& [v, name] : list) {
+    if (!text.empty()) text += ", ";
+    std::snprintf(buf, sizeof buf, "%.3g", v);
+    text += name + " by " + buf;
+  }
+  return text;
+}
+
+Eigen::VectorXd qp_fallback_point(const QpProblem& p) {
+  const int n = p.variables();
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(n);
+  if (n == 0 || p.equalities() == 0 || p.A.cols() != n || !p.A.allFinite() || !p.b.allFinite())
+    return x;
+  Eigen::VectorXd ls = p.A.completeOrthogonalDecomposition().solve(p.b);
+  if (ls.allFinite()) x = ls;
+  return x;
+}
+
+double qp_feasibility_tolerance(double tolerance) { return std::max(1e-6, 1e3 * tolerance); }
+
+std::string qp_first_non_finite(const QpProblem& p) {
+  if (!p.H.allFinite()) return "H";
+  if (!p.g.allFinite()) return "g";
+  if (!std::isfinite(p.constant)) return "constant";
+  if (!p.A.allFinite()) return "A";
+  if (!p.b.allFinite()) return "b";
+  if (!p.C.allFinite()) return "C";
+  for (int i = 0; i < p.inequalities(); ++i)
+    if (std::isnan(p.lower[i]) || std::isnan(p.upper[i])) return "bounds of " + p.ineq_name(i);
+  return {};
+}
+
+void qp_fail_with_fallback(const QpProblem& p, double feasibility_tol, const std::string& why,
+                           QpOutcome& out) {
+  out.status = 2;
+  out.x = qp_fallback_point(p);
+  out.lambda_eq.setZero(p.equalities());
+  out.lambda_ineq.setZero(p.inequalities());
+  out.lambda_cone.setZero(static_cast<int>(p.cones.size()));
+  double viol = 0.0;
+  const std::string v = describe_violations(p, out.x, feasibility_tol, &viol);
+  out.max_violation = std::isfinite(viol) ? viol : std::numeric_limits<double>::max();
+  out.objective = p.objective(out.x);
+  if (!std::isfinite(out.objective)) out.objective = 0.0;
+  out.message = "failed: " + why + "; fallback x = least-squares solution of the equalities";
+  if (!v.empty()) out.message += "; violated: " + v;
+}
+
+void qp_solve_without_variables(const QpProblem& p, double feasibility_tol, QpOutcome& out) {
+  out.x.resize(0);
+  out.lambda_eq.setZero(p.equalities());
+  out.lambda_ineq.setZero(p.inequalities());
+  out.lambda_cone.resize(0);
+  out.objective = p.constant;
+  const std::string v = describe_violations(p, out.x, feasibility_tol, &out.max_violation);
+  out.status = v.empty() ? 0 : 2;
+  out.message = v.empty() ? std::string() : "failed: no variables; violated: " + v;
+}
+
+bool check_kkt(const QpProblem& p, const QpOutcome& out, double tol, std::string* why) {
+  auto fail = [&](const std::string& text) {
+    if (why) *why = text;
+    return false;
+  };
+  const int n = p.variables(), m_eq = p.equalities(), m_in = p.inequalities();
+  if (!p.cones.empty()) return fail("check_kkt: problems with cones are not checked");
+  if (out.x.size() != n || out.lambda_eq.size() != m_eq || out.lambda_ineq.size() != m_in)
+    return fail("check_kkt: sizes of x / lambda_eq / lambda_ineq do not match the problem");
+  if (!out.x.allFinite() || !out.lambda_eq.allFinite() || !out.lambda_ineq.allFinite())
+    return fail("check_kkt: non-finite x or multipliers");
+  const Eigen::VectorXd& x = out.x;
+  const Eigen::VectorXd Hx = p.H.selfadjointView<Eigen::Lower>() * x;
+  const Eigen::VectorXd At_l =
+      m_eq > 0 ? Eigen::VectorXd(p.A.transpose() * out.lambda_eq) : Eigen::VectorXd::Zero(n);
+  const Eigen::VectorXd Ct_l =
+      m_in > 0 ? Eigen::VectorXd(p.C.transpose() * out.lambda_ineq) : Eigen::VectorXd::Zero(n);
+  const Eigen::VectorXd r = Hx + p.g - At_l - Ct_l;
+  auto inf_norm = [](const Eigen::VectorXd& v) {
+    return v.size() ? v.lpNorm<Eigen::Infinity>() : 0.0;
+  };
+  const double scale =
+      1.0 + std::max({inf_norm(Hx), inf_norm(p.g), inf_norm(At_l), inf_norm(Ct_l)});
+  std::ostringstream os;
+  os.precision(3);
+  if (n > 0 && inf_norm(r) > tol * scale) {
+    os << "stationarity residual " << inf_norm(r) << " > " << tol * scale;
+    return fail(os.str());
+  }
+  for (int i = 0; i < m_eq; ++i) {
+    const double res = p.A.row(i).dot(x) - p.b[i];
+    if (std::abs(res) > tol * (1.0 + std::abs(p.b[i]))) {
+      os << "equality " << p.eq_name(i) << " residual " << res;
+      return fail(os.str());
+    }
+  }
+  const double lambda_scale = 1.0 + inf_norm(out.lambda_ineq);
+  for (int i = 0; i < m_in; ++i) {
+    const double c = p.C.row(i).dot(x);
+    const double l = p.lower[i], u = p.upper[i], lam = out.lambda_ineq[i];
+    const bool lo = has_lower(l), up = has_upper(u);
+    if (lo && l - c > tol * (1.0 + std::abs(l))) {
+      os << "inequality " << p.ineq_name(i) << " below its lower bound by " << l - c;
+      return fail(os.str());
+    }
+    if (up && c - u > tol * (1.0 + std::abs(u))) {
+      os << "inequality " << p.ineq_name(i) << " above its upper bound by " << c - u;
+      return fail(os.str());
+    }
+    if (!lo && lam > tol * lambda_scale) {
+      os << "inequality " << p.ineq_name(i) << " has no lower bound but multiplier " << lam
+         << " > 0";
+      return fail(os.str());
+    }
+    if (!up && lam < -tol * lambda_scale) {
+      os << "inequality " << p.ineq_name(i) << " has no upper bound but multiplier " << lam
+         << " < 0";
+      return fail(os.str());
+    }
+    const double compl_scale = (1.0 + std::abs(lam)) * (1.0 + std::abs(c));
+    if (lo && lam > 0.0 && lam * (c - l) > tol * compl_scale) {
+      os << "inequality " << p.ineq_name(i) << " complementarity λ(Cx − l) = " << lam * (c - l);
+      return fail(os.str());
+    }
+    if (up && lam < 0.0 && -lam * (u - c) > tol * compl_scale) {
+      os << "inequality " << p.ineq_name(i) << " complementarity λ(u − Cx) = " << -lam * (u - c);
+      return fail(os.str());
+    }
+  }
+  if (why) why->clear();
+  return true;
+}
+
+}  // namespace hexdyn

@@ -1,0 +1,167 @@
+#pragma once
+/// \file allocation/qp.hpp
+/// The solver side of the foot-force allocation (DESIGN.md §3 "Allocation"): a small dense
+/// QP (optionally with second-order friction cones, then an NLP), one solver interface
+/// behind which back ends are swapped, and a KKT check used by the tests.
+///
+///   minimise    ½ xᵀ H x + gᵀ x + constant
+///   subject to  A x = b                                  (equality rows, "eq")
+///               lower ≤ C x ≤ upper                      (inequality rows, "ineq")
+///               √(x[t1]² + x[t2]²) ≤ μ x[n]              (cones, optional)
+///
+/// Multiplier sign convention (Lagrangian L = f − λ_eqᵀ(A x − b) − λ_inᵀ(C x − ·)):
+///   stationarity   H x + g − Aᵀ λ_eq − Cᵀ λ_in (− cone terms) = 0,
+///   λ_in[i] ≥ 0 when the lower bound of row i is active, ≤ 0 when its upper bound is,
+///   0 when the row is inactive. λ is the sensitivity of the optimal objective:
+///   raising lower[i] (or b[i]) by ε changes it by about +λ[i]·ε.
+#include <Eigen/Core>
+#include <limits>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "hexdyn/core/scene.hpp"
+
+namespace hexdyn {
+
+/// A bound at or beyond this magnitude, or ±infinity, means "no bound".
+inline constexpr double kQpInfinity = 1e19;
+
+/// √(x[t1]² + x[t2]²) ≤ mu · x[normal]: the exact friction cone of one foot.
+struct SecondOrderCone {
+  int tangent1 = 0;      ///< index of f_t1 in x
+  int tangent2 = 1;      ///< index of f_t2 in x
+  int normal = 2;        ///< index of f_n in x
+  double mu = 0.3;       ///< friction coefficient, ≥ 0
+  std::string name;      ///< e.g. "cone L3"
+  double penalty = 1.0;  ///< relative weight of this cone's slack when relaxed, > 0
+};
+
+/// Dense QP of n ≤ ~18 variables. Sizes: H n×n (symmetric; only its lower triangle is
+/// read), g n, A m_eq×n, b m_eq, C m_in×n, lower/upper m_in. Names: empty, or one per
+/// row (used in messages; empty names become "eq[i]" / "ineq[i]").
+///
+/// When the rows cannot all hold, a back end relaxes inequality rows and cones with slacks
+/// s ≥ 0 measured in the row's own units (N, N·m) under the L1 penalty ρ Σ w_i s_i; the
+/// weights w (ineq_penalty, SecondOrderCone::penalty, default 1) set which rows give way
+/// first: a row that must hold unless nothing else helps (e.g. a trunk equation written as
+/// an l = u row) gets a large weight such as 1e3. Equality rows are never relaxed.
+struct QpProblem {
+  Eigen::MatrixXd H;
+  Eigen::VectorXd g;
+  double constant = 0.0;
+  Eigen::MatrixXd A;
+  Eigen::VectorXd b;
+  Eigen::MatrixXd C;
+  Eigen::VectorXd lower;  ///< −infinity (or ≤ −kQpInfinity) for none
+  Eigen::VectorXd upper;  ///< +infinity (or ≥ kQpInfinity) for none
+  std::vector<std::string> eq_names;
+  std::vector<std::string> ineq_names;
+  std::vector<SecondOrderCone> cones;
+  Eigen::VectorXd ineq_penalty;  ///< m_in weights w_i > 0, or empty for all 1
+
+  int variables() const { return static_cast<int>(g.size()); }
+  int equalities() const { return static_cast<int>(b.size()); }
+  int inequalities() const { return static_cast<int>(lower.size()); }
+
+  /// Sets every size (H, A, C zero; g, b zero; bounds unbounded; names cleared to
+  /// the right count of empty strings; penalty weights 1; cones cleared).
+  void resize(int n, int m_eq, int m_in);
+  /// Name of an equality / inequality row for messages.
+  std::string eq_name(int i) const;
+  std::string ineq_name(int i) const;
+  /// ½ xᵀ H x + gᵀ x + constant (H read as symmetric from its lower triangle).
+  double objective(const Eigen::VectorXd& x) const;
+};
+
+/// Throws SolverError naming the first inconsistent size or index (expected vs got).
+void validate_qp_sizes(const QpProblem& p);
+
+/// The solver's answer, a value recorded per sample.
+struct QpOutcome {
+  /// 0 optimal, 1 relaxed (penalised slack was needed: some rows or cones do not hold;
+  /// or an approximate answer, see message), 2 failed (x is a finite fallback: the
+  /// least-squares solution of A x = b, or zeros).
+  int status = 2;
+  Eigen::VectorXd x;            ///< n
+  Eigen::VectorXd lambda_eq;    ///< m_eq, sign convention in the file comment
+  Eigen::VectorXd lambda_ineq;  ///< m_in, ≥ 0 at an active lower bound, ≤ 0 at an upper
+  /// Per cone, multiplier of μ x_n − √(x_t1² + x_t2²) ≥ 0 (≥ 0, positive when active;
+  /// 0 when the cones were replaced by polygons).
+  Eigen::VectorXd lambda_cone;
+  int iterations = 0;          ///< interior-point iterations, all attempts
+  double objective = 0.0;      ///< ½ xᵀHx + gᵀx + constant at x (without penalties)
+  double seconds = 0.0;        ///< wall time of the call
+  double max_violation = 0.0;  ///< largest violation of a row or cone at x (row units)
+  /// Status 0: empty, or a note that Ipopt reached only its acceptable tolerance.
+  /// Status 1: "relaxed: " and what gave way, largest violation first, e.g.
+  /// "relaxed: torque L1_femur by 0.73, friction L3 +y by 0.02", with a note in
+  /// parentheses if the cones were replaced by inscribed polygons; "approximate: ..." when
+  /// that replacement was needed although nothing gave way. Status 2: "failed: " and why.
+  std::string message;
+};
+
+/// A QP/NLP back end. `solve` never throws for numerical trouble (that is the outcome's
+/// status); it throws SolverError only for inconsistent sizes (or a problem the back end
+/// does not support). The reference stays valid until the next call. Not thread-safe:
+/// one backend per thread.
+class AllocationBackend {
+ public:
+  virtual ~AllocationBackend();
+  /// Checks the sizes (validate_qp_sizes), solves (solve_impl) and records the time taken
+  /// in the outcome's `seconds`.
+  const QpOutcome& solve(const QpProblem& problem);
+  /// Forget the previous solution: the next solve starts cold.
+  void reset_warm_start() {
+    have_warm_ = false;
+    last_relaxed_ = false;
+  }
+
+ protected:
+  /// Fills out_ (all but `seconds`) for a problem of consistent sizes.
+  virtual void solve_impl(const QpProblem& problem) = 0;
+
+  QpOutcome out_;
+  bool have_warm_ = false;     ///< a previous solution to start the next solve from
+  bool last_relaxed_ = false;  ///< the previous solve needed slack
+};
+
+/// Rows and cones that x violates by more than tol·max(1, |bound|), largest first, as
+/// "torque L1_femur by 0.73, friction L3 +y by 0.02" (empty when none). Violations are in
+/// row units (equalities |A_i x − b_i|; cones √(t1² + t2²) − μ n). *max_violation (if
+/// given) receives the largest violation of any row or cone, whatever its size.
+std::string describe_violations(const QpProblem& problem, const Eigen::VectorXd& x, double tol,
+                                double* max_violation = nullptr);
+
+/// A finite point for a failed solve: the minimum-norm least-squares solution of A x = b
+/// (zeros without equality rows or with non-finite data).
+Eigen::VectorXd qp_fallback_point(const QpProblem& problem);
+
+// --- outcome bookkeeping shared by the back ends ---
+
+/// Threshold beyond which a row counts as violated in an outcome's status, relative to
+/// max(1, |bound|), for a back end run at `tolerance`: max(1e-6, 1e3·tolerance).
+double qp_feasibility_tolerance(double tolerance);
+
+/// Name of the first non-finite part of the problem ("H", "g", ..., "bounds of <row>"),
+/// empty when every entry is finite (infinite bounds are allowed).
+std::string qp_first_non_finite(const QpProblem& problem);
+
+/// Fills `out` (all but iterations and seconds) for a failed solve: status 2, x =
+/// qp_fallback_point, zero multipliers, finite objective and max_violation, and the
+/// message "failed: <why>; fallback x = ...; violated: ...".
+void qp_fail_with_fallback(const QpProblem& problem, double feasibility_tol,
+                           const std::string& why, QpOutcome& out);
+
+/// Fills `out` (all but iterations and seconds) for a problem without variables: status 0
+/// when its constant rows hold, 2 naming them otherwise.
+void qp_solve_without_variables(const QpProblem& problem, double feasibility_tol, QpOutcome& out);
+
+/// KKT conditions of a problem without cones at (x, λ) of `outcome`, each residual
+/// relative to the size of its terms: stationarity, primal feasibility of equality and
+/// inequality rows, dual sign and complementarity. Returns false with the first failure
+/// in *why (if given). Problems with cones are not checked (false, with a reason).
+bool check_kkt(const QpProblem& problem, const QpOutcome& outcome, double tol,
+               std::string* why = nullptr);
+
+}  // namespace hexdyn

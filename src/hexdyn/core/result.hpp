@@ -1,0 +1,82 @@
+#pragma once
+/// \file result.hpp
+/// Per-run result arrays, one row per output sample, in the units and frames of the
+/// `hexdyn-result/1` contract (result_schema.hpp). Matrices are row-major so that a
+/// (T, n) dataset is written straight from `.data()`; (T, 6, 3) datasets are stored
+/// as T × 18 with leg-major columns (3 l + axis).
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "hexdyn/core/common.hpp"
+
+namespace hexdyn {
+
+using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+using RowMatrixI8 = Eigen::Matrix<std::int8_t, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
+/// Contact phase per leg and sample (/contacts/phase).
+enum class ContactPhase : std::int8_t { kSwing = 0, kImpact = 1, kSupport = 2 };
+
+/// Output of the kinematic stages (gait, motion, IK) sampled on the output grid.
+struct KinematicsResult {
+  std::vector<double> time_s;         ///< T
+  RowMatrix base_position;            ///< T×3, P0 in G0 [m]
+  RowMatrix base_orientation_wxyz;    ///< T×4, quaternion body → world
+  RowMatrix base_linear_velocity;     ///< T×3, world [m/s]
+  RowMatrix base_angular_velocity;    ///< T×3, world [rad/s]
+  RowMatrix base_linear_acceleration; ///< T×3, world [m/s²]
+  RowMatrix base_angular_acceleration;///< T×3, world [rad/s²]
+  RowMatrix joint_position;           ///< T×18 [rad]
+  RowMatrix joint_velocity;           ///< T×18 [rad/s]
+  RowMatrix joint_acceleration;       ///< T×18 [rad/s²]
+  RowMatrix foot_position;            ///< T×18 = (T,6,3), world [m]
+  RowMatrix foot_velocity;            ///< T×18 = (T,6,3), world [m/s]
+  RowMatrix com_position;             ///< T×3, whole-robot COM in G0 [m]
+  RowMatrixI8 contact_phase;          ///< T×6, ContactPhase values
+  int samples() const { return static_cast<int>(time_s.size()); }
+  void resize(int samples);
+};
+
+/// One touchdown transient (/impacts/*).
+struct ImpactRecord {
+  int leg = 0;                 ///< 0-based leg index (written 1-based)
+  double t_start_s = 0.0;
+  double duration_s = 0.0;
+  double peak_force_N = 0.0;
+  double impulse_Ns = 0.0;
+  double effective_mass_kg = 0.0;
+  double approach_speed_mps = 0.0;
+};
+
+/// Output of the dynamic stages (inverse dynamics, contact, allocation, power).
+struct DynamicsResult {
+  RowMatrix joint_torque;        ///< T×18 [N m]
+  RowMatrix contact_force;       ///< T×18 = (T,6,3), terrain on foot, world [N]
+  RowMatrix penetration;         ///< T×6 [m]
+  std::vector<ImpactRecord> impacts;
+  RowMatrix joint_power;         ///< T×18 [W]
+  std::vector<double> total_power_W;  ///< T, Σ|τ ω|
+  double energy_total_J = 0.0;
+  std::vector<double> energy_joint_J;  ///< 18, ∫|τ_k ω_k| dt
+  double distance_m = 0.0;        ///< trunk travel for the cost of transport
+  double cost_of_transport = 0.0; ///< E / (m g d)
+  std::vector<std::int8_t> solver_status;  ///< T: 0 optimal, 1 relaxed, 2 failed
+  std::vector<double> solver_iterations;   ///< T
+  std::vector<double> solver_objective;    ///< T [N² m²]
+  std::vector<double> solver_seconds;      ///< T
+  std::vector<std::string> solver_messages;  ///< one per relaxed/failed sample
+  bool present = false;
+};
+
+/// What a run produces: the arrays and the provenance for /meta.
+struct RunResult {
+  KinematicsResult kin;
+  DynamicsResult dyn;
+  std::string config_yaml;   ///< fully resolved
+  std::string urdf;          ///< robot exactly as simulated
+  double total_mass_kg = 0.0;
+  double wall_time_s = 0.0;
+};
+
+}  // namespace hexdyn

@@ -1,0 +1,133 @@
+#pragma once
+/// \file scene.hpp
+/// The typed, validated scene a run is made of. Produced by `load_scene` (config.hpp)
+/// from YAML; every field is SI. Field comments give units; which values come from
+/// the paper and which are assumptions is said in configs/paper.yaml.
+#include <string>
+#include <vector>
+
+#include "hexdyn/core/common.hpp"
+
+namespace hexdyn {
+
+/// Mass and principal moments of one rigid body about its centre of mass,
+/// in the body's own frame.
+struct BodyParams {
+  double mass_kg = 0.0;
+  Vec3 inertia_kgm2 = Vec3::Zero();  ///< (Ixx, Iyy, Izz) about the COM, body axes
+  Vec3 com_m = Vec3::Zero();         ///< COM in the body frame [m]
+};
+
+/// Leg inertia model: the full coupled dynamics of the 18 links, or massless legs whose
+/// link masses are lumped into the trunk as point masses at their hips (coxa joints).
+enum class LegInertia { kFull, kMassless };
+
+struct RobotParams {
+  BodyParams trunk;    ///< trunk structure, frame L0 at P0
+  BodyParams payload;  ///< rigidly fixed to the trunk; com_m in the trunk frame
+  /// Links of every leg: coxa (i1), femur (i2), tibia (i3). COM and axes in the link frame
+  /// (x along the link from its joint, z the trunk normal at zero angles).
+  std::array<BodyParams, kJointsPerLeg> link;
+  std::array<double, kJointsPerLeg> link_length_m{};  ///< l1, l2, l3
+  /// DH joint offsets (assumed meaning): d1 along the coxa axis (femur axis below the
+  /// coxa link), d2 and d3 along the femur and tibia axes (lateral link offsets,
+  /// mirrored on the left so that every offset points forward at zero coxa angle).
+  std::array<double, kJointsPerLeg> joint_offset_m{};
+  /// Coxa joint positions in the trunk frame, legs 1..6 [m] (assumption).
+  std::array<Vec3, kLegs> hip_position_m;
+  /// Hip yaw: angle about the trunk z axis from trunk +x to the leg's outward axis;
+  /// right legs 0, left legs π when the legs stand straight out [rad].
+  std::array<double, kLegs> hip_yaw_rad{};
+  /// Joint-angle limits used by IK checks [rad]: min, max per joint of a leg.
+  std::array<double, kJointsPerLeg> joint_min_rad{};
+  std::array<double, kJointsPerLeg> joint_max_rad{};
+  /// Smallest allowed distance of the wrist point to the boundary of the leg's
+  /// planar workspace (full extension or full fold) [m]: below it IK refuses.
+  double ik_min_margin_m = 1e-4;
+  LegInertia leg_inertia = LegInertia::kFull;  ///< robot.leg_inertia
+};
+
+enum class TerrainType { kFlat, kSlope, kStairs };
+
+struct TerrainParams {
+  TerrainType type = TerrainType::kStairs;
+  double ground_height_m = 0.0;  ///< flat: height; stairs: height before the first riser
+  double slope_rad = 0.0;        ///< slope: inclination, rising along +y
+  double slope_origin_y_m = 0.0; ///< slope: y where the slope starts from ground height
+  double riser_height_m = 0.05;  ///< stairs: h_s
+  double tread_depth_m = 0.25;   ///< stairs: b_s
+  int steps = 10;                ///< stairs: number of risers; the top tread is endless
+  double first_riser_y_m = 0.0;  ///< stairs: y of the first riser
+};
+
+struct GaitParams {
+  double duty_factor = 0.5;           ///< β ∈ [1/2, 1): support fraction of each leg
+  double stroke_m = 0.125;            ///< s0: foot travel relative to the trunk per stance
+  double foot_lateral_m = 0.17;       ///< horizontal outward distance of footholds from hip
+  double foothold_margin_m = 0.02;    ///< minimum distance of a foothold from nosing and riser
+  double swing_clearance_m = 0.002;   ///< Δh over the highest terrain under the swing path
+  double touchdown_speed_mps = 0.05;  ///< downward foot speed at touchdown
+  double lift_fraction = 0.3;         ///< share of swing time spent lifting
+  double lower_fraction = 0.2;        ///< nominal share of swing time spent lowering
+};
+
+struct MotionParams {
+  /// Cycle durations [s]; either given (paper) or derived from peak speed and ramp.
+  std::vector<double> cycle_durations_s;
+  double peak_speed_mps = 0.1;   ///< cruise speed of the trunk along the slope
+  double ramp_duration_s = 0.8;  ///< duration of the C² speed ramps at start and end
+  Vec3 initial_position_m{0.0, 0.412, 0.235};  ///< trunk P0 in G0 at t = 0
+  int cycles = 3;
+};
+
+/// Touchdown model: the compliant IMPACT transient (contact.hpp), or rigid: the foot is a
+/// support leg from the instant of touchdown, its impulse not resolved in time.
+enum class ContactModel { kCompliant, kRigid };
+
+struct ContactParams {
+  ContactModel model = ContactModel::kCompliant;  ///< contact.model
+  double stiffness = 1e5;                    ///< K [N/m^e]
+  double exponent = 2.2;                     ///< e
+  double damping_max_Nspm = 10.0;            ///< C_max [N·s/m]
+  double full_damping_depth_m = 1e-5;        ///< p [m]
+  double friction_coefficient = 0.3;         ///< μ
+};
+
+/// Allocation back end: the dense dual active-set QP (allocation_active_set.hpp, the
+/// default for friction pyramids) or Ipopt (allocation_ipopt.cpp: the exact-cone NLP and
+/// the reference).
+enum class AllocationSolver { kActiveSet, kIpopt };
+enum class FrictionModel { kPyramid4, kPyramid8, kCone };
+
+struct AllocationParams {
+  AllocationSolver solver = AllocationSolver::kActiveSet;
+  FrictionModel friction = FrictionModel::kPyramid4;
+  double torque_limit_Nm = 6.0;
+  double min_normal_force_N = 0.0;
+  double tolerance = 1e-9;
+  double slack_penalty = 1e6;
+};
+
+enum class OutputGrid { kUniform, kAdaptive };
+
+struct OutputParams {
+  double sample_step_s = 0.05;
+  OutputGrid grid = OutputGrid::kAdaptive;
+  int impact_samples = 16;       ///< adaptive grid: intervals across each impact transient
+  double event_step_s = 1e-2;    ///< adaptive grid: finest step next to touchdowns and lift-offs
+};
+
+struct Scene {
+  std::string name;
+  RobotParams robot;
+  TerrainParams terrain;
+  GaitParams gait;
+  MotionParams motion;
+  ContactParams contact;
+  AllocationParams allocation;
+  OutputParams output;
+  std::string resolved_yaml;  ///< the fully resolved configuration, as YAML
+  std::string source_path;    ///< the file it was read from
+};
+
+}  // namespace hexdyn

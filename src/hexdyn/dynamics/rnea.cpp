@@ -1,0 +1,255 @@
+#include "hexdyn/dynamics/rnea.hpp"
+
+#include <cmath>
+
+namespace hexdyn {
+namespace {
+
+const Vec3 kGravity_W(0.0, 0.0, -kGravity);
+
+int tibia_body(int leg) { return 1 + joint_index(leg, 2); }
+
+Vec3 foot_point_tibia(const RobotModel& model) { return Vec3(model.link_length_m[2], 0.0, 0.0); }
+
+Inertia to_spatial(const RigidInertia& r) { return Inertia{r.mass_kg, r.com_m, r.inertia_com}; }
+
+/// Spatial velocity and acceleration of the trunk in trunk coordinates from the base
+/// state. The spatial linear acceleration is that of the body-fixed point at P0 seen
+/// from a fixed point of space: a_P0 − ω × v_P0. `gravity_W` is subtracted from the
+/// acceleration (Featherstone's fictitious upward acceleration).
+void base_motion(const BaseState& s, const Vec3& a_P0_W, const Vec3& omegadot_W,
+                 const Vec3& gravity_W, Motion& v0_B, Motion& a0_B) {
+  const Mat3 B_R_W = s.W_R_B.transpose();
+  v0_B = Motion{B_R_W * s.omega_W, B_R_W * s.v_W};
+  a0_B = Motion{B_R_W * omegadot_W, B_R_W * (a_P0_W - gravity_W) - v0_B.angular.cross(v0_B.linear)};
+}
+
+/// Forward pass of the recursive Newton–Euler algorithm: body velocities and
+/// accelerations in body coordinates, from the trunk's and the joint rates.
+void forward_motion_pass(const RobotModel& model, RobotData& data, const Motion& v0_B,
+                         const Motion& a0_B, const VecJ& qd, const VecJ* qdd) {
+  data.v_body[0] = v0_B;
+  data.a_body[0] = a0_B;
+  for (int b = 1; b < kBodies; ++b) {
+    const int p = model.parent[b];
+    const Transform& X = data.X_parent_body[b];
+    const Motion S{model.axis[b], Vec3::Zero()};  // joint axis, body coordinates
+    const Motion v_joint = qd[b - 1] * S;
+    data.v_body[b] = X.apply_inverse(data.v_body[p]) + v_joint;
+    data.a_body[b] = X.apply_inverse(data.a_body[p]) + cross(data.v_body[b], v_joint);
+    if (qdd != nullptr) data.a_body[b] += (*qdd)[b - 1] * S;
+  }
+}
+
+/// Foot points and Jacobians from the body poses already in data.X_world_body.
+void fill_foot_jacobians(const RobotModel& model, RobotData& data, const BaseState& state) {
+  const Vec3 r_foot = foot_point_tibia(model);
+  for (int l = 0; l < kLegs; ++l) {
+    const Vec3 p_foot_W = data.X_world_body[tibia_body(l)].apply_point(r_foot);
+    data.p_foot_W[l] = p_foot_W;
+    FootJacobian& J = data.J_foot_W[l];
+    J.setZero();
+    J.block<3, 3>(0, 0).setIdentity();
+    J.block<3, 3>(0, 3) = -skew(p_foot_W - state.p_W);
+    for (int j = 0; j < kJointsPerLeg; ++j) {
+      const int k = joint_index(l, j);
+      const Transform& X = data.X_world_body[1 + k];
+      J.col(6 + k) = (X.R * model.axis[1 + k]).cross(p_foot_W - X.p);
+    }
+  }
+}
+
+}  // namespace
+
+RobotData::RobotData(const RobotModel& model) {
+  for (int b = 0; b < kBodies; ++b) I_body[b] = to_spatial(model.inertia[b]);
+  R_fixed[0] = R_cos[0] = R_sin[0] = Mat3::Zero();
+  for (int b = 1; b < kBodies; ++b) {
+    const Vec3& a = model.axis[b];
+    const Mat3 A = a * a.transpose();
+    R_fixed[b] = model.R_parent_joint[b] * A;
+    R_cos[b] = model.R_parent_joint[b] * (Mat3::Identity() - A);
+    R_sin[b] = model.R_parent_joint[b] * skew(a);
+  }
+  for (int l = 0; l < kLegs; ++l) {
+    J_foot_W[l].setZero();
+    p_foot_W[l].setZero();
+    a_foot_bias_W[l].setZero();
+    split.JjT[l].setZero();
+    split.JbT[l].setZero();
+  }
+  for (int b = 0; b < kBodies; ++b) {
+    omega_body_W[b].setZero();
+    v_com_body_W[b].setZero();
+  }
+}
+
+RobotData make_robot_data(const RobotModel& model) { return RobotData(model); }
+
+void update_kinematics(const RobotModel& model, RobotData& data, const BaseState& state,
+                       const VecJ& q) {
+  data.X_parent_body[0] = Transform::Identity();
+  data.X_world_body[0] = Transform{state.W_R_B, state.p_W};
+  for (int b = 1; b < kBodies; ++b) {
+    const double c = std::cos(q[b - 1]), s = std::sin(q[b - 1]);
+    Transform& X = data.X_parent_body[b];
+    X.R = data.R_fixed[b] + c * data.R_cos[b] + s * data.R_sin[b];
+    X.p = model.p_parent_joint[b];
+    data.X_world_body[b] = data.X_world_body[model.parent[b]] * X;
+  }
+}
+
+const VecDof& rnea(const RobotModel& model, RobotData& data, const BaseState& state, const VecJ& q,
+                   const VecJ& qd, const VecJ& qdd, const std::array<Vec3, kLegs>* foot_forces_W) {
+  update_kinematics(model, data, state, q);
+  Motion v0_B, a0_B;
+  base_motion(state, state.a_W, state.omegadot_W, kGravity_W, v0_B, a0_B);
+  forward_motion_pass(model, data, v0_B, a0_B, qd, &qdd);
+
+  // Net force on each body: f = I a + v ×* I v (Newton–Euler in body coordinates).
+  for (int b = 0; b < kBodies; ++b) {
+    const Inertia& I = data.I_body[b];
+    data.f_body[b] = I * data.a_body[b] + cross(data.v_body[b], I * data.v_body[b]);
+  }
+  // Terrain forces act on the tibias at the foot points; they relieve the joints.
+  if (foot_forces_W != nullptr) {
+    const Vec3 r_foot = foot_point_tibia(model);
+    for (int l = 0; l < kLegs; ++l) {
+      const int b = tibia_body(l);
+      const Vec3 F_b = data.X_world_body[b].R.transpose() * (*foot_forces_W)[l];
+      data.f_body[b] -= Force{r_foot.cross(F_b), F_b};
+    }
+  }
+  // Backward pass: joint torques, and the subtree forces accumulate onto the trunk.
+  for (int b = kBodies - 1; b >= 1; --b) {
+    data.tau[6 + b - 1] = model.axis[b].dot(data.f_body[b].angular);
+    data.f_body[model.parent[b]] += data.X_parent_body[b].apply(data.f_body[b]);
+  }
+  // Trunk wrench about P0, from trunk axes to world axes.
+  data.tau.head<3>() = state.W_R_B * data.f_body[0].linear;
+  data.tau.segment<3>(3) = state.W_R_B * data.f_body[0].angular;
+  return data.tau;
+}
+
+const MatDof& crba(const RobotModel& model, RobotData& data, const BaseState& state,
+                   const VecJ& q) {
+  update_kinematics(model, data, state, q);
+  for (int b = 0; b < kBodies; ++b) data.Ic_body[b] = data.I_body[b];
+  for (int b = kBodies - 1; b >= 1; --b)
+    data.Ic_body[model.parent[b]] =
+        data.Ic_body[model.parent[b]] + data.X_parent_body[b].apply(data.Ic_body[b]);
+
+  MatDof& M = data.M;
+  // Joint rows: the momentum F = Ic S of the subtree at b moving with joint b alone,
+  // carried towards the root, projected on each ancestor's axis.
+  for (int b = 1; b < kBodies; ++b) {
+    const int k = 6 + b - 1;
+    Force F = data.Ic_body[b] * Motion{model.axis[b], Vec3::Zero()};
+    M(k, k) = model.axis[b].dot(F.angular);
+    int j = b;
+    while (model.parent[j] != 0) {
+      F = data.X_parent_body[j].apply(F);
+      j = model.parent[j];
+      M(6 + j - 1, k) = M(k, 6 + j - 1) = model.axis[j].dot(F.angular);
+    }
+    F = data.X_parent_body[j].apply(F);  // into trunk coordinates, moment about P0
+    // Coupling with the trunk: the generalised base momentum is (linear, angular about
+    // P0) in world axes.
+    M.block<3, 1>(0, k) = state.W_R_B * F.linear;
+    M.block<3, 1>(3, k) = state.W_R_B * F.angular;
+    M.block<1, 3>(k, 0) = M.block<3, 1>(0, k).transpose();
+    M.block<1, 3>(k, 3) = M.block<3, 1>(3, k).transpose();
+  }
+  // Zero the joint-joint entries of legs that do not share a chain.
+  for (int la = 0; la < kLegs; ++la)
+    for (int lb = 0; lb < kLegs; ++lb)
+      if (la != lb) M.block<3, 3>(6 + 3 * la, 6 + 3 * lb).setZero();
+
+  // Trunk block from the whole-robot composite inertia, in world axes about P0:
+  //   [[m 1, −m [c]], [m [c], I_c − m [c]²]]   for ν = (v_W, ω_W), c = COM − P0.
+  const Inertia& Ic0 = data.Ic_body[0];
+  const Vec3 c_W = state.W_R_B * Ic0.com;
+  const Mat3 C = skew(c_W);
+  const Mat3 I_com_W = state.W_R_B * Ic0.I_com * state.W_R_B.transpose();
+  M.block<3, 3>(0, 0) = Ic0.mass * Mat3::Identity();
+  M.block<3, 3>(0, 3) = -Ic0.mass * C;
+  M.block<3, 3>(3, 0) = Ic0.mass * C;
+  M.block<3, 3>(3, 3) = I_com_W - Ic0.mass * C * C;
+  return M;
+}
+
+void foot_jacobians(const RobotModel& model, RobotData& data, const BaseState& state,
+                    const VecJ& q) {
+  update_kinematics(model, data, state, q);
+  fill_foot_jacobians(model, data, state);
+}
+
+const std::array<Vec3, kLegs>& foot_bias_accelerations(const RobotModel& model, RobotData& data,
+                                                       const BaseState& state, const VecJ& q,
+                                                       const VecJ& qd) {
+  update_kinematics(model, data, state, q);
+  Motion v0_B, a0_B;
+  base_motion(state, Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), v0_B, a0_B);
+  forward_motion_pass(model, data, v0_B, a0_B, qd, nullptr);
+  const Vec3 r = foot_point_tibia(model);
+  for (int l = 0; l < kLegs; ++l) {
+    const int b = tibia_body(l);
+    const Motion& v = data.v_body[b];
+    const Motion& a = data.a_body[b];
+    // Classical acceleration of the body-fixed point r: a_O + ω̇ × r + ω × (v_O + ω × r),
+    // with the classical a_O = spatial a.linear + ω × v_O.
+    const Vec3 a_point_b =
+        a.linear + a.angular.cross(r) + v.angular.cross(v.linear + v.angular.cross(r));
+    data.a_foot_bias_W[l] = data.X_world_body[b].R * a_point_b;
+  }
+  return data.a_foot_bias_W;
+}
+
+const Momentum& robot_momentum(const RobotModel& model, RobotData& data, const BaseState& state,
+                               const VecJ& q, const VecJ& qd) {
+  update_kinematics(model, data, state, q);
+  // Body velocities in world axes: a revolute joint adds axis_W q̇ to the angular
+  // velocity and leaves the velocity of the joint origin (the child's origin) unchanged.
+  std::array<Vec3, kBodies>& omega = data.omega_body_W;
+  std::array<Vec3, kBodies> v_origin_W;  // velocity of each body frame's origin
+  omega[0] = state.omega_W;
+  v_origin_W[0] = state.v_W;
+  Momentum& h = data.momentum;
+  h = Momentum{};
+  for (int b = 0; b < kBodies; ++b) {
+    const Transform& X = data.X_world_body[b];
+    if (b > 0) {
+      const int p = model.parent[b];
+      omega[b] = omega[p] + (X.R * model.axis[b]) * qd[b - 1];
+      v_origin_W[b] = v_origin_W[p] + omega[p].cross(X.p - data.X_world_body[p].p);
+    }
+    const RigidInertia& in = model.inertia[b];
+    const Vec3 c_W = X.apply_point(in.com_m);
+    const Vec3 v_c_W = v_origin_W[b] + omega[b].cross(c_W - X.p);
+    data.v_com_body_W[b] = v_c_W;
+    const Vec3 p_lin = in.mass_kg * v_c_W;
+    h.linear_W += p_lin;
+    h.angular_O_W += X.R * (in.inertia_com * (X.R.transpose() * omega[b])) + c_W.cross(p_lin);
+    h.com_W += in.mass_kg * c_W;
+    h.mass_kg += in.mass_kg;
+  }
+  h.com_W /= h.mass_kg;
+  h.angular_com_W = h.angular_O_W - h.com_W.cross(h.linear_W);
+  return h;
+}
+
+const ContactSplit& contact_split(const RobotModel& model, RobotData& data, const BaseState& state,
+                                  const VecJ& q, const VecJ& qd, const VecJ& qdd) {
+  rnea(model, data, state, q, qd, qdd, nullptr);
+  fill_foot_jacobians(model, data, state);  // kinematics already updated by rnea
+  ContactSplit& s = data.split;
+  s.trunk_rhs = data.tau.head<6>();
+  s.tau0 = data.tau.tail<kJoints>();
+  for (int l = 0; l < kLegs; ++l) {
+    s.JbT[l] = data.J_foot_W[l].leftCols<6>().transpose();
+    s.JjT[l] = data.J_foot_W[l].rightCols<kJoints>().transpose();
+  }
+  return s;
+}
+
+}  // namespace hexdyn

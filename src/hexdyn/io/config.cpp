@@ -1,0 +1,561 @@
+#include "hexdyn/io/config.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "hexdyn/core/errors.hpp"
+
+namespace hexdyn {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+
+std::string show(const YAML::Node& node) { return yaml_inline(node); }
+
+std::string fmt(double x) {
+  if (x == kInf) return "inf";
+  if (x == -kInf) return "-inf";
+  std::ostringstream s;
+  s << x;
+  return s.str();
+}
+
+/// Allowed interval of a number, with a readable description.
+struct Range {
+  double lo = -kInf, hi = kInf;
+  bool lo_open = false, hi_open = false;
+  bool contains(double x) const {
+    return (lo_open ? x > lo : x >= lo) && (hi_open ? x < hi : x <= hi);
+  }
+  std::string describe() const {
+    if (lo == -kInf && hi == kInf) return "a finite number";
+    return std::string("a number in ") + (lo_open ? "(" : "[") + fmt(lo) + ", " + fmt(hi) +
+           (hi_open ? ")" : "]");
+  }
+};
+Range closed(double lo, double hi) { return {lo, hi, false, false}; }
+Range positive(double hi = kInf) { return {0.0, hi, true, false}; }
+Range nonnegative(double hi = kInf) { return {0.0, hi, false, false}; }
+
+/// Reads keys by dotted path, records every key it was asked for (so unknown keys can
+/// be reported with the allowed ones), and builds the resolved tree with defaults.
+class Reader {
+ public:
+  Reader(const YAML::Node& root, std::string source) : root_(root), source_(std::move(source)) {
+    resolved_ = YAML::Node(YAML::NodeType::Map);
+  }
+
+  [[noreturn]] void fail(const std::string& path, const std::string& what) const {
+    throw ConfigError(source_ + ": " + path + ": " + what);
+  }
+  [[noreturn]] void fail_value(const std::string& path, const YAML::Node& node,
+                               const std::string& expected) const {
+    fail(path, "got " + show(node) + ", expected " + expected);
+  }
+
+  bool has(const std::string& path) {
+    asked_.insert(path);
+    const YAML::Node n = lookup(path);
+    return n.IsDefined() && !n.IsNull();
+  }
+
+  double number(const std::string& path, Range r) { return number_impl(path, r, nullptr); }
+  double number_or(const std::string& path, double def, Range r) {
+    return number_impl(path, r, &def);
+  }
+
+  int integer(const std::string& path, int lo, int hi, const int* def = nullptr) {
+    const YAML::Node n = fetch(path, def != nullptr);
+    const std::string expected = "an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
+    if (!n.IsDefined()) {
+      set_resolved(path, YAML::Node(*def));
+      return *def;
+    }
+    long long v = 0;
+    if (!n.IsScalar() || !YAML::convert<long long>::decode(n, v) || v < lo || v > hi)
+      fail_value(path, n, expected);
+    set_resolved(path, YAML::Node(v));
+    return static_cast<int>(v);
+  }
+
+  std::vector<double> numbers(const std::string& path, std::size_t min_n, std::size_t max_n,
+                              Range r, const std::vector<double>* def = nullptr) {
+    const YAML::Node n = fetch(path, def != nullptr);
+    std::string expected = "a list of " + (min_n == max_n ? std::to_string(min_n)
+                                                           : std::to_string(min_n) + " to " +
+                                                                 std::to_string(max_n)) +
+                           " numbers, each " + r.describe();
+    std::vector<double> out;
+    if (!n.IsDefined()) {
+      out = *def;
+    } else {
+      if (!n.IsSequence() || n.size() < min_n || n.size() > max_n) fail_value(path, n, expected);
+      for (const auto& e : n) {
+        double v = 0.0;
+        if (!e.IsScalar() || !YAML::convert<double>::decode(e, v) || !std::isfinite(v) ||
+            !r.contains(v))
+          fail_value(path, n, expected);
+        out.push_back(v);
+      }
+    }
+    YAML::Node seq(YAML::NodeType::Sequence);
+    for (double v : out) seq.push_back(v);
+    seq.SetStyle(YAML::EmitterStyle::Flow);
+    set_resolved(path, seq);
+    return out;
+  }
+
+  Vec3 vec3(const std::string& path, Range r, const Vec3* def = nullptr) {
+    std::vector<double> d;
+    if (def) d = {def->x(), def->y(), def->z()};
+    const auto v = numbers(path, 3, 3, r, def ? &d : nullptr);
+    return Vec3(v[0], v[1], v[2]);
+  }
+
+  std::string choice(const std::string& path, const std::vector<std::string>& allowed,
+                     const std::string* def = nullptr) {
+    const YAML::Node n = fetch(path, def != nullptr);
+    std::string expected = "one of";
+    for (std::size_t i = 0; i < allowed.size(); ++i) expected += (i ? ", " : " ") + allowed[i];
+    std::string v;
+    if (!n.IsDefined()) {
+      v = *def;
+    } else {
+      if (!n.IsScalar()) fail_value(path, n, expected);
+      v = n.Scalar();
+      bool ok = false;
+      for (const auto& a : allowed) ok = ok || a == v;
+      if (!ok) fail_value(path, n, expected);
+    }
+    set_resolved(path, YAML::Node(v));
+    return v;
+  }
+
+  std::string string_or(const std::string& path, const std::string& def) {
+    const YAML::Node n = fetch(path, true);
+    std::string v = def;
+    if (n.IsDefined()) {
+      if (!n.IsScalar()) fail_value(path, n, "a string");
+      v = n.Scalar();
+    }
+    set_resolved(path, YAML::Node(v));
+    return v;
+  }
+
+  /// Every key of the file must have been asked for; reports the first unknown one.
+  void check_unknown() const { walk(root_, ""); }
+
+  const YAML::Node& resolved() const { return resolved_; }
+  const std::string& source() const { return source_; }
+
+ private:
+  double number_impl(const std::string& path, Range r, const double* def) {
+    const YAML::Node n = fetch(path, def != nullptr);
+    if (!n.IsDefined()) {
+      set_resolved(path, YAML::Node(*def));
+      return *def;
+    }
+    double v = 0.0;
+    if (!n.IsScalar() || !YAML::convert<double>::decode(n, v)) fail_value(path, n, r.describe());
+    if (!std::isfinite(v)) fail_value(path, n, "a finite number (" + r.describe() + ")");
+    if (!r.contains(v)) fail_value(path, n, r.describe());
+    set_resolved(path, YAML::Node(v));
+    return v;
+  }
+
+  /// The node at `path`; undefined when absent and optional; error when absent and required.
+  YAML::Node fetch(const std::string& path, bool optional) {
+    asked_.insert(path);
+    YAML::Node n = lookup(path);
+    if (!n.IsDefined() || n.IsNull()) {
+      if (!optional) fail(path, "missing, this key is required");
+      return YAML::Node(YAML::NodeType::Undefined);
+    }
+    return n;
+  }
+
+  YAML::Node lookup(const std::string& path) const {
+    YAML::Node cur = YAML::Clone(root_);
+    std::string so_far;
+    for (const auto& key : split_key_path(path)) {
+      if (!cur.IsDefined() || cur.IsNull()) return YAML::Node(YAML::NodeType::Undefined);
+      if (!cur.IsMap()) fail_value(so_far.empty() ? "(top level)" : so_far, cur, "a mapping of keys");
+      YAML::Node next = cur[key];
+      cur.reset(next);
+      so_far += (so_far.empty() ? "" : ".") + key;
+    }
+    return cur;
+  }
+
+  void set_resolved(const std::string& path, const YAML::Node& value) {
+    const auto keys = split_key_path(path);
+    YAML::Node cur = resolved_;
+    for (std::size_t i = 0; i + 1 < keys.size(); ++i) {
+      YAML::Node next = cur[keys[i]];
+      if (!next.IsMap()) {
+        cur[keys[i]] = YAML::Node(YAML::NodeType::Map);
+        next.reset(cur[keys[i]]);
+      }
+      cur.reset(next);
+    }
+    cur[keys.back()] = value;
+  }
+
+  void walk(const YAML::Node& node, const std::string& prefix) const {
+    if (!node.IsMap()) return;
+    for (const auto& kv : node) {
+      const std::string key = kv.first.Scalar();
+      const std::string path = prefix.empty() ? key : prefix + "." + key;
+      bool known = asked_.count(path) > 0;
+      if (!known) {
+        for (const auto& a : asked_)
+          if (a.rfind(path + ".", 0) == 0) known = true;
+      }
+      if (!known) {
+        std::set<std::string> allowed;
+        for (const auto& a : asked_) {
+          if (prefix.empty() || a.rfind(prefix + ".", 0) == 0) {
+            const std::string rest = prefix.empty() ? a : a.substr(prefix.size() + 1);
+            allowed.insert(rest.substr(0, rest.find('.')));
+          }
+        }
+        std::string list;
+        for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
+        fail(path, "unknown key, allowed here: " + list);
+      }
+      if (asked_.count(path) == 0) walk(kv.second, path);
+    }
+  }
+
+  YAML::Node root_;
+  std::string source_;
+  std::set<std::string> asked_;
+  YAML::Node resolved_;
+};
+
+BodyParams read_body(Reader& r, const std::string& path, bool has_com_default, const Vec3& com_default) {
+  BodyParams b;
+  b.mass_kg = r.number(path + ".mass", positive(1e4));
+  b.inertia_kgm2 = r.vec3(path + ".inertia", positive(1e3));
+  const Vec3& I = b.inertia_kgm2;
+  if (I.x() + I.y() < I.z() || I.y() + I.z() < I.x() || I.x() + I.z() < I.y()) {
+    r.fail(path + ".inertia", "got [" + fmt(I.x()) + ", " + fmt(I.y()) + ", " + fmt(I.z()) +
+                                  "], expected principal moments with each at most the sum of the other two");
+  }
+  b.com_m = r.vec3(path + ".com", closed(-10.0, 10.0), has_com_default ? &com_default : nullptr);
+  return b;
+}
+
+void read_robot(Reader& r, RobotParams& p) {
+  p.trunk = read_body(r, "robot.trunk", true, Vec3::Zero());
+  p.payload = read_body(r, "robot.payload", true, Vec3::Zero());
+  const char* names[kJointsPerLeg] = {"coxa", "femur", "tibia"};
+  for (int j = 0; j < kJointsPerLeg; ++j) {
+    const std::string base = std::string("robot.") + names[j];
+    p.link_length_m[j] = r.number(base + ".length", positive(10.0));
+    p.joint_offset_m[j] = r.number(base + ".offset", nonnegative(1.0));
+    p.link[j] = read_body(r, base, true, Vec3(0.5 * p.link_length_m[j], 0.0, 0.0));
+    const auto lim = r.numbers(base + ".limits", 2, 2, closed(-M_PI, M_PI));
+    if (lim[0] >= lim[1])
+      r.fail(base + ".limits", "got [" + fmt(lim[0]) + ", " + fmt(lim[1]) + "], expected [lower, upper] with lower < upper");
+    p.joint_min_rad[j] = lim[0];
+    p.joint_max_rad[j] = lim[1];
+  }
+  const double hip_x = r.number("robot.hips.x", positive(5.0));
+  const auto hip_y = r.numbers("robot.hips.y", 3, 3, closed(-5.0, 5.0));
+  if (!(hip_y[0] > hip_y[1] && hip_y[1] > hip_y[2]))
+    r.fail("robot.hips.y", "got [" + fmt(hip_y[0]) + ", " + fmt(hip_y[1]) + ", " + fmt(hip_y[2]) +
+                               "], expected [front, middle, rear] decreasing");
+  const double hip_z = r.number_or("robot.hips.z", 0.0, closed(-5.0, 5.0));
+  const std::vector<double> zero3{0.0, 0.0, 0.0};
+  const auto yaw = r.numbers("robot.hips.yaw", 3, 3, {-M_PI / 2, M_PI / 2, true, true}, &zero3);
+  for (int leg = 0; leg < kLegs; ++leg) {
+    const int row = leg / 2;  // 0 front, 1 middle, 2 rear
+    const bool left = is_left(leg);
+    p.hip_position_m[leg] = Vec3(left ? -hip_x : hip_x, hip_y[row], hip_z);
+    // Yaw offsets are given for the right legs (positive turns the leg forward);
+    // left legs mirror them.
+    p.hip_yaw_rad[leg] = left ? M_PI - yaw[row] : yaw[row];
+  }
+  p.ik_min_margin_m = r.number_or("robot.ik_min_margin", 1e-4, nonnegative(0.1));
+  const std::string def_legs = "full";
+  p.leg_inertia = r.choice("robot.leg_inertia", {"full", "massless"}, &def_legs) == "massless"
+                      ? LegInertia::kMassless
+                      : LegInertia::kFull;
+}
+
+void read_terrain(Reader& r, TerrainParams& t) {
+  const std::string type = r.choice("terrain.type", {"stairs", "flat", "slope"});
+  if (type == "flat") {
+    t.type = TerrainType::kFlat;
+    t.ground_height_m = r.number_or("terrain.height", 0.0, closed(-100.0, 100.0));
+  } else if (type == "slope") {
+    t.type = TerrainType::kSlope;
+    t.slope_rad = r.number("terrain.angle", {-M_PI / 3, M_PI / 3, true, true});
+    t.slope_origin_y_m = r.number_or("terrain.origin_y", 0.0, closed(-100.0, 100.0));
+    t.ground_height_m = r.number_or("terrain.ground_height", 0.0, closed(-100.0, 100.0));
+  } else {
+    t.type = TerrainType::kStairs;
+    t.riser_height_m = r.number("terrain.riser_height", nonnegative(1.0));
+    t.tread_depth_m = r.number("terrain.tread_depth", positive(10.0));
+    t.steps = r.integer("terrain.steps", 1, 100000);
+    t.first_riser_y_m = r.number("terrain.first_riser_y", closed(-100.0, 100.0));
+    t.ground_height_m = r.number_or("terrain.ground_height", 0.0, closed(-100.0, 100.0));
+  }
+}
+
+void read_gait(Reader& r, GaitParams& g) {
+  g.duty_factor = r.number("gait.duty_factor", {0.5, 1.0, false, true});
+  g.stroke_m = r.number("gait.stroke", positive(2.0));
+  g.foot_lateral_m = r.number("gait.foot_lateral", positive(2.0));
+  g.foothold_margin_m = r.number_or("gait.foothold_margin", 0.02, nonnegative(1.0));
+  g.swing_clearance_m = r.number("gait.swing_clearance", positive(1.0));
+  g.touchdown_speed_mps = r.number("gait.touchdown_speed", nonnegative(10.0));
+  g.lift_fraction = r.number_or("gait.lift_fraction", 0.3, {0.0, 1.0, true, true});
+  g.lower_fraction = r.number_or("gait.lower_fraction", 0.2, {0.0, 1.0, true, true});
+  if (g.lift_fraction + g.lower_fraction >= 0.95)
+    r.fail("gait.lower_fraction", "got " + fmt(g.lower_fraction) + " with gait.lift_fraction " +
+                                      fmt(g.lift_fraction) + ", expected a sum below 0.95 (time must remain to move forward)");
+}
+
+double mean_slope(const TerrainParams& t) {
+  switch (t.type) {
+    case TerrainType::kStairs: return std::atan2(t.riser_height_m, t.tread_depth_m);
+    case TerrainType::kSlope: return t.slope_rad;
+    case TerrainType::kFlat: return 0.0;
+  }
+  return 0.0;
+}
+
+void read_motion(Reader& r, const GaitParams& g, const TerrainParams& t, MotionParams& m) {
+  m.initial_position_m = r.vec3("motion.initial_position", closed(-100.0, 100.0));
+  // Stride: trunk travel per gait cycle along the slope (s0/β horizontally).
+  const double stride_along_slope = (g.stroke_m / g.duty_factor) / std::cos(mean_slope(t));
+  const bool by_durations = r.has("motion.cycle_durations");
+  const bool by_speed = r.has("motion.peak_speed") || r.has("motion.cycles") || r.has("motion.ramp_duration");
+  if (by_durations && by_speed)
+    r.fail("motion", "got both cycle_durations and peak_speed/cycles/ramp_duration, expected one of the two forms");
+  if (by_durations) {
+    m.cycle_durations_s = r.numbers("motion.cycle_durations", 3, 10000, positive(1e4));
+    const auto& d = m.cycle_durations_s;
+    const double first = d.front(), mid = d[1];
+    bool ok = std::abs(d.back() - first) < 1e-9 && first > mid;
+    for (std::size_t i = 1; i + 1 < d.size(); ++i) ok = ok && std::abs(d[i] - mid) < 1e-9;
+    if (!ok)
+      r.fail("motion.cycle_durations", "got " + show(YAML::Node(d)) +
+                                           ", expected [ramp-up, cruise..., ramp-down] with equal cruise cycles and equal first and last cycles longer than the cruise ones");
+    m.cycles = static_cast<int>(d.size());
+    m.peak_speed_mps = stride_along_slope / mid;
+    m.ramp_duration_s = 2.0 * (first - mid);
+    if (m.ramp_duration_s > first)
+      r.fail("motion.cycle_durations", "got " + show(YAML::Node(d)) +
+                                           ", expected a first cycle at most twice the cruise cycle (the speed ramp must end inside it)");
+  } else {
+    m.cycles = r.integer("motion.cycles", 1, 100000);
+    m.peak_speed_mps = r.number("motion.peak_speed", positive(10.0));
+    m.ramp_duration_s = r.number("motion.ramp_duration", positive(1e4));
+    const double cruise_time = m.cycles * stride_along_slope / m.peak_speed_mps;
+    if (m.ramp_duration_s > cruise_time)
+      r.fail("motion.ramp_duration", "got " + fmt(m.ramp_duration_s) + ", expected at most " + fmt(cruise_time) +
+                                         " s (the ramps at start and end must not overlap at this speed)");
+    m.cycle_durations_s.clear();
+  }
+}
+
+void read_contact(Reader& r, ContactParams& c) {
+  const std::string def_model = "compliant";
+  c.model = r.choice("contact.model", {"compliant", "rigid"}, &def_model) == "rigid" ? ContactModel::kRigid
+                                                                                   : ContactModel::kCompliant;
+  c.stiffness = r.number("contact.stiffness", positive(1e15));
+  c.exponent = r.number("contact.exponent", closed(1.0, 5.0));
+  c.damping_max_Nspm = r.number("contact.damping_max", nonnegative(1e12));
+  c.full_damping_depth_m = r.number("contact.full_damping_depth", positive(1.0));
+  c.friction_coefficient = r.number("contact.friction_coefficient", positive(10.0));
+}
+
+void read_allocation(Reader& r, AllocationParams& a) {
+  const std::string def_friction = "pyramid4";
+  const std::string friction = r.choice("allocation.friction", {"pyramid4", "pyramid8", "cone"}, &def_friction);
+  a.friction = friction == "cone" ? FrictionModel::kCone
+               : friction == "pyramid8" ? FrictionModel::kPyramid8 : FrictionModel::kPyramid4;
+  // auto: the active-set QP for the pyramids, Ipopt for the exact cone (a nonlinear
+  // constraint); asking for the active-set back end with the cone is an error.
+  const std::string def_solver = "auto";
+  const std::string solver = r.choice("allocation.solver", {"auto", "active-set", "ipopt"}, &def_solver);
+  a.solver = solver == "ipopt" || (solver == "auto" && friction == "cone") ? AllocationSolver::kIpopt
+                                                                           : AllocationSolver::kActiveSet;
+  if (a.solver == AllocationSolver::kActiveSet && a.friction == FrictionModel::kCone)
+    r.fail("allocation.solver", "got 'active-set' with allocation.friction 'cone', expected 'ipopt' "
+                                "(the exact cone needs the NLP back end) or a pyramid friction model");
+  a.torque_limit_Nm = r.number("allocation.torque_limit", positive(1e6));
+  a.min_normal_force_N = r.number_or("allocation.min_normal_force", 0.0, nonnegative(1e6));
+  a.tolerance = r.number_or("allocation.tolerance", 1e-9, {0.0, 1e-2, true, false});
+  a.slack_penalty = r.number_or("allocation.slack_penalty", 1e6, positive(1e12));
+}
+
+void read_output(Reader& r, OutputParams& o) {
+  o.sample_step_s = r.number("output.sample_step", positive(100.0));
+  const std::string def_grid = "adaptive";
+  o.grid = r.choice("output.grid", {"uniform", "adaptive"}, &def_grid) == "uniform" ? OutputGrid::kUniform
+                                                                                    : OutputGrid::kAdaptive;
+  const int def_samples = 16;
+  o.impact_samples = r.integer("output.impact_samples", 1, 100000, &def_samples);
+  o.event_step_s = r.number_or("output.event_step", 1e-2, positive(100.0));
+  if (o.event_step_s > o.sample_step_s)
+    r.fail("output.event_step", "got " + fmt(o.event_step_s) + ", expected at most output.sample_step (" +
+                                    fmt(o.sample_step_s) + ")");
+}
+
+}  // namespace
+
+std::string yaml_inline(const YAML::Node& node) {
+  if (!node.IsDefined() || node.IsNull()) return "null";
+  if (node.IsScalar()) return node.Scalar();
+  YAML::Emitter out;
+  out << YAML::Flow << node;
+  return out.c_str();
+}
+
+std::vector<std::string> split_key_path(const std::string& path) {
+  std::vector<std::string> keys;
+  std::stringstream ss(path);
+  std::string key;
+  while (std::getline(ss, key, '.')) keys.push_back(key);
+  if (!path.empty() && path.back() == '.') keys.emplace_back();  // "a." names an empty key
+  return keys;
+}
+
+Override parse_override(const std::string& text) {
+  const auto eq = text.find('=');
+  if (eq == std::string::npos || eq == 0)
+    throw ConfigError("--set " + text + ": expected key.path=value");
+  return {text.substr(0, eq), text.substr(eq + 1)};
+}
+
+std::string read_text_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw ConfigError(path + ": cannot read the configuration file (missing or unreadable)");
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  if (in.bad()) throw ConfigError(path + ": cannot read the configuration file");
+  return ss.str();
+}
+
+YAML::Node parse_yaml_text(const std::string& text, const std::string& source_name) {
+  try {
+    YAML::Node root = YAML::Load(text);
+    if (!root.IsMap())
+      throw ConfigError(source_name + ": got " + show(root) + " at the top level, expected a mapping of keys");
+    return root;
+  } catch (const YAML::ParserException& e) {
+    throw ConfigError(source_name + ":" + std::to_string(e.mark.line + 1) + ":" +
+                      std::to_string(e.mark.column + 1) + ": YAML syntax error: " + e.msg);
+  }
+}
+
+void apply_override(YAML::Node& root, const Override& ov, const std::string& source_name) {
+  YAML::Node value;
+  try {
+    value = YAML::Load(ov.value);
+  } catch (const YAML::ParserException& e) {
+    throw ConfigError("--set " + ov.key_path + "=" + ov.value + ": YAML syntax error in the value: " + e.msg);
+  }
+  const auto keys = split_key_path(ov.key_path);
+  for (const auto& k : keys)
+    if (k.empty()) throw ConfigError("--set " + ov.key_path + ": empty key in the path");
+  YAML::Node cur = root;
+  std::string so_far;
+  for (std::size_t i = 0; i + 1 < keys.size(); ++i) {
+    so_far += (so_far.empty() ? "" : ".") + keys[i];
+    YAML::Node next = cur[keys[i]];
+    if (!next.IsDefined() || next.IsNull()) {
+      cur[keys[i]] = YAML::Node(YAML::NodeType::Map);
+      next.reset(cur[keys[i]]);
+    } else if (!next.IsMap()) {
+      throw ConfigError(source_name + ": --set " + ov.key_path + ": " + so_far + " is not a mapping");
+    }
+    cur.reset(next);
+  }
+  cur[keys.back()] = value;
+}
+
+Scene scene_from_yaml(const YAML::Node& root, const std::string& source_name) {
+  Scene s;
+  s.source_path = source_name;
+  Reader r(root, source_name);
+  s.name = r.string_or("name", "scene");
+  read_robot(r, s.robot);
+  read_terrain(r, s.terrain);
+  read_gait(r, s.gait);
+  read_motion(r, s.gait, s.terrain, s.motion);
+  read_contact(r, s.contact);
+  read_allocation(r, s.allocation);
+  read_output(r, s.output);
+  r.check_unknown();
+  YAML::Emitter out;
+  out << r.resolved();
+  s.resolved_yaml = std::string(out.c_str()) + "\n";
+  return s;
+}
+
+Scene load_scene_from_string(const std::string& yaml_text, const std::string& source_name,
+                             const std::vector<Override>& overrides) {
+  YAML::Node root = parse_yaml_text(yaml_text, source_name);
+  for (const auto& ov : overrides) apply_override(root, ov, source_name);
+  return scene_from_yaml(root, source_name);
+}
+
+namespace {
+
+/// Deep merge: maps merge key by key, anything else in `top` replaces `base`.
+YAML::Node merge_nodes(const YAML::Node& base, const YAML::Node& top) {
+  if (!base.IsMap() || !top.IsMap()) return YAML::Clone(top);
+  YAML::Node out = YAML::Clone(base);
+  for (const auto& kv : top) {
+    const std::string key = kv.first.Scalar();
+    out[key] = out[key].IsDefined() ? merge_nodes(out[key], kv.second) : YAML::Clone(kv.second);
+  }
+  return out;
+}
+
+std::string directory_of(const std::string& path) {
+  const auto slash = path.find_last_of('/');
+  return slash == std::string::npos ? std::string(".") : path.substr(0, slash);
+}
+
+YAML::Node load_with_inheritance(const std::string& path, std::vector<std::string>& chain) {
+  for (const auto& p : chain)
+    if (p == path) throw ConfigError(path + ": inherit: cycle through " + chain.front());
+  chain.push_back(path);
+  YAML::Node root = parse_yaml_text(read_text_file(path), path);
+  const YAML::Node parent = root["inherit"];
+  if (!parent.IsDefined()) return root;
+  if (!parent.IsScalar())
+    throw ConfigError(path + ": inherit: got " + show(parent) + ", expected the path of a scene file");
+  const std::string parent_path =
+      parent.Scalar().rfind('/', 0) == 0 ? parent.Scalar() : directory_of(path) + "/" + parent.Scalar();
+  root.remove("inherit");
+  return merge_nodes(load_with_inheritance(parent_path, chain), root);
+}
+
+}  // namespace
+
+YAML::Node load_scene_tree(const std::string& path) {
+  std::vector<std::string> chain;
+  return load_with_inheritance(path, chain);
+}
+
+Scene load_scene(const std::string& path, const std::vector<Override>& overrides) {
+  YAML::Node root = load_scene_tree(path);
+  for (const auto& ov : overrides) apply_override(root, ov, path);
+  return scene_from_yaml(root, path);
+}
+
+}  // namespace hexdyn

@@ -1,0 +1,58 @@
+#pragma once
+/// \file config.hpp
+/// YAML scene files → validated `Scene`. Every key is checked before any work: a
+/// missing, mistyped, non-finite, unknown or out-of-range value throws ConfigError
+/// with one line "FILE: key.path: got VALUE, expected WHAT". YAML syntax errors name
+/// file, line and column. The key reference is configs/paper.yaml.
+#include <string>
+#include <vector>
+
+#include "hexdyn/core/scene.hpp"
+
+namespace YAML {
+class Node;
+}
+
+namespace hexdyn {
+
+/// One `--set key.path=value` override; value is parsed as YAML (scalar or [list]).
+struct Override {
+  std::string key_path;
+  std::string value;
+};
+
+/// A YAML value on one line, as messages show it ("null" when absent).
+std::string yaml_inline(const YAML::Node& node);
+
+/// "a.b.c" → {"a", "b", "c"}; empty keys are kept ("a..b", "a." name empty keys).
+std::vector<std::string> split_key_path(const std::string& path);
+
+/// Parses "key.path=value"; throws ConfigError on a malformed string.
+Override parse_override(const std::string& text);
+
+/// Reads a scene file into a tree, resolving `inherit: OTHER.yaml` (a path relative to
+/// the file): the file's keys are deep-merged over those of OTHER (maps merge key by
+/// key; scalars and lists replace). Throws ConfigError on a cycle or unreadable file.
+YAML::Node load_scene_tree(const std::string& path);
+
+/// Reads (with inheritance), overrides and validates a scene file.
+Scene load_scene(const std::string& path, const std::vector<Override>& overrides = {});
+
+/// Same, from YAML text (`source_name` is used in messages, e.g. a sweep scenario id).
+Scene load_scene_from_string(const std::string& yaml_text, const std::string& source_name,
+                             const std::vector<Override>& overrides = {});
+
+/// Validates an already-parsed YAML tree (used by the sweep, which builds scenario trees).
+Scene scene_from_yaml(const YAML::Node& root, const std::string& source_name);
+
+/// Parses YAML text into a tree, turning syntax errors into ConfigError with line/column.
+YAML::Node parse_yaml_text(const std::string& text, const std::string& source_name);
+
+/// Reads a whole text file; throws ConfigError naming the path if it cannot be read.
+std::string read_text_file(const std::string& path);
+
+/// Applies one override to a tree (creating intermediate maps); throws ConfigError when
+/// the path runs through a non-map value.
+void apply_override(YAML::Node& root, const Override& ov, const std::string& source_name);
+
+}  // namespace hexdyn

@@ -1,0 +1,516 @@
+#include "hexdyn/io/h5io.hpp"
+
+#include <hdf5.h>
+
+#include <type_traits>
+#include <utility>
+
+#include "hexdyn/core/errors.hpp"
+
+namespace hexdyn {
+
+static_assert(std::is_same_v<hid_t, std::int64_t>, "h5io.hpp stores hid_t as std::int64_t");
+
+namespace {
+
+/// Owns one HDF5 identifier and closes it with the matching H5?close.
+class Handle {
+ public:
+  using Closer = herr_t (*)(hid_t);
+  Handle(hid_t id, Closer closer) : id_(id), closer_(closer) {}
+  ~Handle() { reset(); }
+  Handle(const Handle&) = delete;
+  Handle& operator=(const Handle&) = delete;
+  Handle(Handle&& other) noexcept : id_(std::exchange(other.id_, -1)), closer_(other.closer_) {}
+  Handle& operator=(Handle&& other) noexcept {
+    if (this != &other) {
+      reset();
+      id_ = std::exchange(other.id_, -1);
+      closer_ = other.closer_;
+    }
+    return *this;
+  }
+  hid_t get() const { return id_; }
+  bool valid() const { return id_ >= 0; }
+  void reset() {
+    if (id_ >= 0) closer_(id_);
+    id_ = -1;
+  }
+
+ private:
+  hid_t id_;
+  Closer closer_;
+};
+
+herr_t innermost_error(unsigned n, const H5E_error2_t* err, void* client_data) {
+  if (n == 0 && err != nullptr && err->desc != nullptr)
+    *static_cast<std::string*>(client_data) = err->desc;
+  return 0;
+}
+
+/// The most specific message on HDF5's error stack (empty if none); clears the stack.
+std::string hdf5_error_detail() {
+  std::string detail;
+  H5Ewalk2(H5E_DEFAULT, H5E_WALK_UPWARD, innermost_error, &detail);
+  H5Eclear2(H5E_DEFAULT);
+  return detail;
+}
+
+[[noreturn]] void fail(const std::string& file, const std::string& what, const std::string& object,
+                       const std::string& reason = {}) {
+  std::string msg = "HDF5 file '" + file + "': cannot " + what + " '" + object + "'";
+  const std::string hdf5_detail = hdf5_error_detail();  // also clears the stack
+  const std::string detail = reason.empty() ? hdf5_detail : reason;
+  if (!detail.empty()) msg += ": " + detail;
+  throw IoError(msg);
+}
+
+std::string join_dims(const std::vector<std::size_t>& dims) {
+  std::string s = "(";
+  for (std::size_t i = 0; i < dims.size(); ++i) {
+    if (i > 0) s += ',';
+    s += std::to_string(dims[i]);
+  }
+  return s + ")";
+}
+
+std::size_t element_count(const std::vector<std::size_t>& dims) {
+  std::size_t n = 1;
+  for (std::size_t d : dims) n *= d;
+  return n;
+}
+
+/// Prefixes "/a", "/a/b", ... of an absolute path "/a/b/c", without the path itself.
+std::vector<std::string> parent_prefixes(const std::string& path) {
+  std::vector<std::string> out;
+  for (std::size_t pos = path.find('/', 1); pos != std::string::npos; pos = path.find('/', pos + 1))
+    out.push_back(path.substr(0, pos));
+  return out;
+}
+
+bool link_chain_exists(hid_t file, const std::string& path) {
+  if (path == "/") return true;
+  for (const std::string& prefix : parent_prefixes(path))
+    if (H5Lexists(file, prefix.c_str(), H5P_DEFAULT) <= 0) return false;
+  return H5Lexists(file, path.c_str(), H5P_DEFAULT) > 0;
+}
+
+Handle make_space(const std::vector<std::size_t>& dims) {
+  if (dims.empty()) return Handle(H5Screate(H5S_SCALAR), H5Sclose);
+  std::vector<hsize_t> h(dims.begin(), dims.end());
+  return Handle(H5Screate_simple(static_cast<int>(h.size()), h.data(), nullptr), H5Sclose);
+}
+
+Handle make_utf8_vlen_type() {
+  Handle t(H5Tcopy(H5T_C_S1), H5Tclose);
+  if (t.valid() &&
+      (H5Tset_size(t.get(), H5T_VARIABLE) < 0 || H5Tset_cset(t.get(), H5T_CSET_UTF8) < 0))
+    t.reset();
+  return t;
+}
+
+/// A dataset or an attribute, read through the same calls.
+struct Source {
+  hid_t id;
+  bool attribute;
+  hid_t type() const { return attribute ? H5Aget_type(id) : H5Dget_type(id); }
+  hid_t space() const { return attribute ? H5Aget_space(id) : H5Dget_space(id); }
+  herr_t read(hid_t mem_type, void* buf) const {
+    return attribute ? H5Aread(id, mem_type, buf)
+                     : H5Dread(id, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf);
+  }
+};
+
+herr_t reclaim_vlen(hid_t mem_type, hid_t space, void* buf) {
+#if H5_VERSION_GE(1, 12, 0)
+  return H5Treclaim(mem_type, space, H5P_DEFAULT, buf);
+#else
+  return H5Dvlen_reclaim(mem_type, space, H5P_DEFAULT, buf);
+#endif
+}
+
+/// All strings of a string dataset or attribute (variable- or fixed-length).
+/// `file` and `where` name the object in error messages.
+std::vector<std::string> read_string_values(const Source& src, const std::string& file,
+                                            const std::string& where) {
+  Handle ftype(src.type(), H5Tclose);
+  Handle space(src.space(), H5Sclose);
+  if (!ftype.valid() || !space.valid()) fail(file, "query type of", where);
+  if (H5Tget_class(ftype.get()) != H5T_STRING)
+    fail(file, "read strings from", where, "not a string");
+  const hssize_t n_signed = H5Sget_simple_extent_npoints(space.get());
+  if (n_signed < 0) fail(file, "query size of", where);
+  const auto n = static_cast<std::size_t>(n_signed);
+  std::vector<std::string> out;
+  out.reserve(n);
+  const H5T_cset_t cset = H5Tget_cset(ftype.get());
+  Handle mtype(H5Tcopy(H5T_C_S1), H5Tclose);
+  if (H5Tis_variable_str(ftype.get()) > 0) {
+    H5Tset_size(mtype.get(), H5T_VARIABLE);
+    H5Tset_cset(mtype.get(), cset);
+    std::vector<char*> ptrs(n, nullptr);
+    if (n > 0 && src.read(mtype.get(), ptrs.data()) < 0) fail(file, "read strings from", where);
+    for (char* p : ptrs) out.emplace_back(p ? p : "");
+    if (n > 0) reclaim_vlen(mtype.get(), space.get(), ptrs.data());
+  } else {
+    const std::size_t size = H5Tget_size(ftype.get());
+    H5Tset_size(mtype.get(), size);
+    H5Tset_cset(mtype.get(), cset);
+    H5Tset_strpad(mtype.get(), H5T_STR_NULLPAD);
+    std::vector<char> buf(n * size + 1, '\0');
+    if (n > 0 && src.read(mtype.get(), buf.data()) < 0) fail(file, "read strings from", where);
+    for (std::size_t i = 0; i < n; ++i) {
+      const char* begin = buf.data() + i * size;
+      std::size_t len = 0;
+      while (len < size && begin[len] != '\0') ++len;
+      out.emplace_back(begin, len);
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+void silence_hdf5_errors() { H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); }
+
+// ------------------------------------------------------------------ H5Writer
+
+H5Writer::H5Writer(const std::string& file_path) : file_path_(file_path) {
+  silence_hdf5_errors();
+  file_ = H5Fcreate(file_path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  if (file_ < 0) fail(file_path_, "create file", file_path_);
+}
+
+H5Writer::~H5Writer() {
+  if (file_ >= 0) H5Fclose(file_);
+}
+
+void H5Writer::close() {
+  if (file_ < 0) return;
+  const herr_t flushed = H5Fflush(file_, H5F_SCOPE_GLOBAL);
+  const herr_t closed = H5Fclose(file_);
+  file_ = -1;
+  if (flushed < 0 || closed < 0) fail(file_path_, "close file", file_path_);
+}
+
+void H5Writer::create_group(const std::string& group_path) {
+  if (file_ < 0) fail(file_path_, "create group", group_path, "file is closed");
+  if (group_path.empty() || group_path[0] != '/')
+    fail(file_path_, "create group", group_path, "path must be absolute");
+  if (group_path == "/") return;
+  std::vector<std::string> chain = parent_prefixes(group_path);
+  chain.push_back(group_path);
+  for (const std::string& g : chain) {
+    const htri_t exists = H5Lexists(file_, g.c_str(), H5P_DEFAULT);
+    if (exists > 0) continue;
+    if (exists < 0) fail(file_path_, "look up group", g);
+    Handle h(H5Gcreate2(file_, g.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose);
+    if (!h.valid()) fail(file_path_, "create group", g);
+  }
+}
+
+namespace {
+
+void write_units(const std::string& file, hid_t dset, const std::string& path,
+                 const std::string& units) {
+  Handle type = make_utf8_vlen_type();
+  Handle space(H5Screate(H5S_SCALAR), H5Sclose);
+  Handle attr(H5Acreate2(dset, "units", type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT),
+              H5Aclose);
+  const char* ptr = units.c_str();
+  if (!attr.valid() || H5Awrite(attr.get(), type.get(), &ptr) < 0)
+    fail(file, "write attribute 'units' of", path);
+}
+
+/// Parent groups of `path` must exist; `count` elements of `mem_type` at `data`.
+void write_dataset(const std::string& file, hid_t file_id, const std::string& path,
+                   const std::vector<std::size_t>& dims, hid_t file_type, hid_t mem_type,
+                   const void* data, std::size_t count, const std::string& units) {
+  if (count != element_count(dims))
+    fail(file, "write dataset", path,
+         "got " + std::to_string(count) + " values for shape " + join_dims(dims) + " (" +
+             std::to_string(element_count(dims)) + " expected)");
+  Handle space = make_space(dims);
+  if (!space.valid()) fail(file, "create dataspace for", path);
+  Handle dset(H5Dcreate2(file_id, path.c_str(), file_type, space.get(), H5P_DEFAULT, H5P_DEFAULT,
+                         H5P_DEFAULT),
+              H5Dclose);
+  if (!dset.valid()) fail(file, "create dataset", path);
+  if (count > 0 && H5Dwrite(dset.get(), mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0)
+    fail(file, "write dataset", path);
+  write_units(file, dset.get(), path, units);
+}
+
+std::string parent_of(const std::string& path) {
+  const std::size_t pos = path.rfind('/');
+  return (pos == 0 || pos == std::string::npos) ? "/" : path.substr(0, pos);
+}
+
+}  // namespace
+
+void H5Writer::write_doubles(const std::string& path, const std::vector<std::size_t>& dims,
+                             std::span<const double> values, const std::string& units) {
+  create_group(parent_of(path));
+  write_dataset(file_path_, file_, path, dims, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, values.data(),
+                values.size(), units);
+}
+
+void H5Writer::write_scalar(const std::string& path, double value, const std::string& units) {
+  write_doubles(path, {}, std::span<const double>(&value, 1), units);
+}
+
+void H5Writer::write_int8(const std::string& path, const std::vector<std::size_t>& dims,
+                          std::span<const std::int8_t> values, const std::string& units) {
+  create_group(parent_of(path));
+  write_dataset(file_path_, file_, path, dims, H5T_STD_I8LE, H5T_NATIVE_INT8, values.data(),
+                values.size(), units);
+}
+
+void H5Writer::write_int32(const std::string& path, const std::vector<std::size_t>& dims,
+                           std::span<const std::int32_t> values, const std::string& units) {
+  create_group(parent_of(path));
+  write_dataset(file_path_, file_, path, dims, H5T_STD_I32LE, H5T_NATIVE_INT32, values.data(),
+                values.size(), units);
+}
+
+void H5Writer::write_string(const std::string& path, const std::string& value,
+                            const std::string& units) {
+  create_group(parent_of(path));
+  Handle type = make_utf8_vlen_type();
+  if (!type.valid()) fail(file_path_, "create string type for", path);
+  const char* ptr = value.c_str();
+  write_dataset(file_path_, file_, path, {}, type.get(), type.get(), &ptr, 1, units);
+}
+
+void H5Writer::write_strings(const std::string& path, const std::vector<std::string>& values,
+                             const std::string& units) {
+  create_group(parent_of(path));
+  Handle type = make_utf8_vlen_type();
+  if (!type.valid()) fail(file_path_, "create string type for", path);
+  std::vector<const char*> ptrs;
+  ptrs.reserve(values.size());
+  for (const std::string& s : values) ptrs.push_back(s.c_str());
+  write_dataset(file_path_, file_, path, {values.size()}, type.get(), type.get(), ptrs.data(),
+                ptrs.size(), units);
+}
+
+namespace {
+
+void write_attribute(const std::string& file, hid_t file_id, const std::string& object_path,
+                     const std::string& name, hid_t file_type, hid_t mem_type, const void* buf) {
+  const std::string where = object_path + "@" + name;
+  if (!link_chain_exists(file_id, object_path))
+    fail(file, "write attribute", where, "object does not exist");
+  Handle obj(H5Oopen(file_id, object_path.c_str(), H5P_DEFAULT), H5Oclose);
+  if (!obj.valid()) fail(file, "open object for attribute", where);
+  const htri_t exists = H5Aexists(obj.get(), name.c_str());
+  if (exists < 0 || (exists > 0 && H5Adelete(obj.get(), name.c_str()) < 0))
+    fail(file, "replace attribute", where);
+  Handle space(H5Screate(H5S_SCALAR), H5Sclose);
+  Handle attr(H5Acreate2(obj.get(), name.c_str(), file_type, space.get(), H5P_DEFAULT, H5P_DEFAULT),
+              H5Aclose);
+  if (!attr.valid()) fail(file, "create attribute", where);
+  if (H5Awrite(attr.get(), mem_type, buf) < 0) fail(file, "write attribute", where);
+}
+
+}  // namespace
+
+void H5Writer::set_string_attribute(const std::string& object_path, const std::string& name,
+                                    const std::string& value) {
+  Handle type = make_utf8_vlen_type();
+  if (!type.valid()) fail(file_path_, "create string type for", object_path);
+  const char* ptr = value.c_str();
+  write_attribute(file_path_, file_, object_path, name, type.get(), type.get(), &ptr);
+}
+
+void H5Writer::set_double_attribute(const std::string& object_path, const std::string& name,
+                                    double value) {
+  write_attribute(file_path_, file_, object_path, name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, &value);
+}
+
+void H5Writer::set_int_attribute(const std::string& object_path, const std::string& name,
+                                 std::int64_t value) {
+  write_attribute(file_path_, file_, object_path, name, H5T_STD_I64LE, H5T_NATIVE_INT64, &value);
+}
+
+// ------------------------------------------------------------------ H5Reader
+
+H5Reader::H5Reader(const std::string& file_path) : file_path_(file_path) {
+  silence_hdf5_errors();
+  file_ = H5Fopen(file_path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  if (file_ < 0) fail(file_path_, "open file", file_path_);
+}
+
+H5Reader::~H5Reader() {
+  if (file_ >= 0) H5Fclose(file_);
+}
+
+bool H5Reader::exists(const std::string& path) const {
+  const bool found = !path.empty() && path[0] == '/' && link_chain_exists(file_, path);
+  H5Eclear2(H5E_DEFAULT);
+  return found;
+}
+
+namespace {
+
+H5I_type_t object_kind(hid_t file, const std::string& path) {
+  if (!link_chain_exists(file, path)) return H5I_BADID;
+  Handle obj(H5Oopen(file, path.c_str(), H5P_DEFAULT), H5Oclose);
+  return obj.valid() ? H5Iget_type(obj.get()) : H5I_BADID;
+}
+
+Handle open_dataset(const std::string& file, hid_t file_id, const std::string& path) {
+  if (!link_chain_exists(file_id, path)) fail(file, "open dataset", path, "no such dataset");
+  Handle d(H5Dopen2(file_id, path.c_str(), H5P_DEFAULT), H5Dclose);
+  if (!d.valid()) fail(file, "open dataset", path);
+  return d;
+}
+
+Handle open_attribute(const std::string& file, hid_t file_id, const std::string& object_path,
+                      const std::string& name) {
+  const std::string where = object_path + "@" + name;
+  if (!link_chain_exists(file_id, object_path))
+    fail(file, "read attribute", where, "object does not exist");
+  Handle obj(H5Oopen(file_id, object_path.c_str(), H5P_DEFAULT), H5Oclose);
+  if (!obj.valid()) fail(file, "open object of attribute", where);
+  if (H5Aexists(obj.get(), name.c_str()) <= 0)
+    fail(file, "read attribute", where, "no such attribute");
+  Handle attr(H5Aopen(obj.get(), name.c_str(), H5P_DEFAULT), H5Aclose);
+  if (!attr.valid()) fail(file, "open attribute", where);
+  return attr;
+}
+
+std::vector<std::size_t> space_dims(hid_t space) {
+  const int rank = H5Sget_simple_extent_ndims(space);
+  if (rank <= 0) return {};
+  std::vector<hsize_t> h(static_cast<std::size_t>(rank));
+  H5Sget_simple_extent_dims(space, h.data(), nullptr);
+  return std::vector<std::size_t>(h.begin(), h.end());
+}
+
+}  // namespace
+
+bool H5Reader::is_dataset(const std::string& path) const {
+  const bool r = object_kind(file_, path) == H5I_DATASET;
+  H5Eclear2(H5E_DEFAULT);
+  return r;
+}
+
+bool H5Reader::is_group(const std::string& path) const {
+  const bool r = object_kind(file_, path) == H5I_GROUP;
+  H5Eclear2(H5E_DEFAULT);
+  return r;
+}
+
+std::vector<std::size_t> H5Reader::dims(const std::string& path) const {
+  Handle d = open_dataset(file_path_, file_, path);
+  Handle space(H5Dget_space(d.get()), H5Sclose);
+  if (!space.valid()) fail(file_path_, "read shape of", path);
+  return space_dims(space.get());
+}
+
+std::string H5Reader::element_type(const std::string& path) const {
+  Handle d = open_dataset(file_path_, file_, path);
+  Handle type(H5Dget_type(d.get()), H5Tclose);
+  if (!type.valid()) fail(file_path_, "read type of", path);
+  const std::size_t size = H5Tget_size(type.get());
+  switch (H5Tget_class(type.get())) {
+    case H5T_FLOAT:
+      return size == 8 ? "float64" : "other";
+    case H5T_INTEGER:
+      if (H5Tget_sign(type.get()) != H5T_SGN_2) return "other";
+      return size == 1 ? "int8" : size == 4 ? "int32" : size == 8 ? "int64" : "other";
+    case H5T_STRING:
+      return "string";
+    default:
+      return "other";
+  }
+}
+
+H5DoubleArray H5Reader::read_doubles(const std::string& path) const {
+  Handle d = open_dataset(file_path_, file_, path);
+  Handle type(H5Dget_type(d.get()), H5Tclose);
+  const H5T_class_t cls = H5Tget_class(type.get());
+  if (cls != H5T_FLOAT && cls != H5T_INTEGER)
+    fail(file_path_, "read numbers from", path, "not numeric");
+  Handle space(H5Dget_space(d.get()), H5Sclose);
+  H5DoubleArray out;
+  out.dims = space_dims(space.get());
+  out.values.resize(element_count(out.dims));
+  if (!out.values.empty() &&
+      H5Dread(d.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.values.data()) < 0)
+    fail(file_path_, "read dataset", path);
+  return out;
+}
+
+std::vector<std::int64_t> H5Reader::read_ints(const std::string& path) const {
+  Handle d = open_dataset(file_path_, file_, path);
+  Handle type(H5Dget_type(d.get()), H5Tclose);
+  if (H5Tget_class(type.get()) != H5T_INTEGER)
+    fail(file_path_, "read integers from", path, "not an integer dataset");
+  Handle space(H5Dget_space(d.get()), H5Sclose);
+  std::vector<std::int64_t> out(element_count(space_dims(space.get())));
+  if (!out.empty() &&
+      H5Dread(d.get(), H5T_NATIVE_INT64, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) < 0)
+    fail(file_path_, "read dataset", path);
+  return out;
+}
+
+std::string H5Reader::read_string(const std::string& path) const {
+  const std::vector<std::string> all = read_strings(path);
+  if (all.size() != 1)
+    fail(file_path_, "read string", path, "holds " + std::to_string(all.size()) + " strings");
+  return all.front();
+}
+
+std::vector<std::string> H5Reader::read_strings(const std::string& path) const {
+  Handle d = open_dataset(file_path_, file_, path);
+  return read_string_values(Source{d.get(), false}, file_path_, path);
+}
+
+bool H5Reader::has_attribute(const std::string& object_path, const std::string& name) const {
+  bool found = false;
+  if (link_chain_exists(file_, object_path)) {
+    Handle obj(H5Oopen(file_, object_path.c_str(), H5P_DEFAULT), H5Oclose);
+    found = obj.valid() && H5Aexists(obj.get(), name.c_str()) > 0;
+  }
+  H5Eclear2(H5E_DEFAULT);
+  return found;
+}
+
+std::string H5Reader::string_attribute(const std::string& object_path,
+                                       const std::string& name) const {
+  const std::string where = object_path + "@" + name;
+  Handle attr = open_attribute(file_path_, file_, object_path, name);
+  std::vector<std::string> all = read_string_values(Source{attr.get(), true}, file_path_, where);
+  if (all.size() != 1)
+    fail(file_path_, "read string attribute", where,
+         "holds " + std::to_string(all.size()) + " strings");
+  return all.front();
+}
+
+double H5Reader::double_attribute(const std::string& object_path, const std::string& name) const {
+  Handle attr = open_attribute(file_path_, file_, object_path, name);
+  Handle type(H5Aget_type(attr.get()), H5Tclose);
+  Handle space(H5Aget_space(attr.get()), H5Sclose);
+  const H5T_class_t cls = H5Tget_class(type.get());
+  double value = 0.0;
+  if ((cls != H5T_FLOAT && cls != H5T_INTEGER) || H5Sget_simple_extent_npoints(space.get()) != 1 ||
+      H5Aread(attr.get(), H5T_NATIVE_DOUBLE, &value) < 0)
+    fail(file_path_, "read number attribute", object_path + "@" + name, "not a numeric scalar");
+  return value;
+}
+
+std::int64_t H5Reader::int_attribute(const std::string& object_path,
+                                     const std::string& name) const {
+  Handle attr = open_attribute(file_path_, file_, object_path, name);
+  Handle type(H5Aget_type(attr.get()), H5Tclose);
+  Handle space(H5Aget_space(attr.get()), H5Sclose);
+  std::int64_t value = 0;
+  if (H5Tget_class(type.get()) != H5T_INTEGER || H5Sget_simple_extent_npoints(space.get()) != 1 ||
+      H5Aread(attr.get(), H5T_NATIVE_INT64, &value) < 0)
+    fail(file_path_, "read integer attribute", object_path + "@" + name, "not an integer scalar");
+  return value;
+}
+
+}  // namespace hexdyn

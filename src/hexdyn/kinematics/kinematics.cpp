@@ -1,0 +1,148 @@
+#include "hexdyn/kinematics/kinematics.hpp"
+
+#include <Eigen/LU>
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "hexdyn/core/errors.hpp"
+
+namespace hexdyn {
+
+MotionPlan plan_motion(const Scene& scene, const RobotModel& model) {
+  Terrain terrain(scene.terrain);
+  TrunkMotion trunk(scene.motion, scene.gait, terrain);
+  GaitPlan gait = plan_gait(model, scene.gait, trunk, terrain);
+  return MotionPlan{terrain, trunk, gait};
+}
+
+void robot_state_at(const RobotModel& model, const MotionPlan& plan, double t, RobotKinematicState& out) {
+  out.trunk = plan.trunk.at(t);
+  const Mat3& W_R_B = out.trunk.W_R_B;
+  const Vec3 omega_B = W_R_B.transpose() * out.trunk.omega_W;
+  const Vec3 omegadot_B = W_R_B.transpose() * out.trunk.omegadot_W;
+  for (int leg = 0; leg < kLegs; ++leg) {
+    const FootMotion f = leg_foot_motion(plan.gait.legs[leg], t);
+    out.feet[leg] = f;
+    // Foot relative to the trunk in trunk axes, and its first two derivatives as seen
+    // from the (possibly rotating) trunk frame.
+    const Vec3 r_B = W_R_B.transpose() * (f.p_W - out.trunk.p_W);
+    const Vec3 rd_B = W_R_B.transpose() * (f.v_W - out.trunk.v_W) - omega_B.cross(r_B);
+    const Vec3 rdd_B = W_R_B.transpose() * (f.a_W - out.trunk.a_W) - 2.0 * omega_B.cross(rd_B) -
+                       omegadot_B.cross(r_B) - omega_B.cross(omega_B.cross(r_B));
+    const Mat3& B_R_H = model.R_B_H[leg];
+    const Vec3 p_H = B_R_H.transpose() * (r_B - model.p_hip_B[leg]);
+    const LegIkResult ik = leg_inverse_kinematics(model, leg, p_H);
+    if (!ik.ok) {
+      std::ostringstream msg;
+      msg << "leg " << leg_name(leg) << " at t = " << t << " s: foot target (" << f.p_W.x() << ", "
+          << f.p_W.y() << ", " << f.p_W.z() << ") m not reachable: " << ik.reason << " (margin "
+          << ik.margin_m << " m, required >= " << model.ik_min_margin_m << " m)";
+      throw ReachError(msg.str());
+    }
+    const Mat3 J = leg_jacobian_H(model, leg, ik.q);
+    const Eigen::PartialPivLU<Mat3> lu(J);
+    const Vec3 qd = lu.solve(B_R_H.transpose() * rd_B);
+    const Mat3 Jd = leg_jacobian_dot_H(model, leg, ik.q, qd);
+    const Vec3 qdd = lu.solve(B_R_H.transpose() * rdd_B - Jd * qd);
+    if (!qd.allFinite() || !qdd.allFinite()) {
+      // IK accepted the target (robot.ik_min_margin = 0 allows a leg exactly at full
+      // extension or fold) but the leg Jacobian is singular there: the joint rates that
+      // would move the foot as planned do not exist. Without this check they would be
+      // inf/NaN and poison every later dataset.
+      std::ostringstream msg;
+      msg << "leg " << leg_name(leg) << " at t = " << t << " s: foot target (" << f.p_W.x() << ", "
+          << f.p_W.y() << ", " << f.p_W.z() << ") m at a singular leg configuration (full extension or fold): "
+          << "joint rates undefined (margin " << ik.margin_m << " m, required >= " << model.ik_min_margin_m
+          << " m; raise robot.ik_min_margin)";
+      throw ReachError(msg.str());
+    }
+    out.q.segment<3>(joint_index(leg, 0)) = ik.q;
+    out.qd.segment<3>(joint_index(leg, 0)) = qd;
+    out.qdd.segment<3>(joint_index(leg, 0)) = qdd;
+  }
+}
+
+void KinematicsResult::resize(int T) {
+  time_s.assign(T, 0.0);
+  for (RowMatrix* m : {&base_position, &base_linear_velocity, &base_angular_velocity,
+                       &base_linear_acceleration, &base_angular_acceleration, &com_position})
+    m->setZero(T, 3);
+  base_orientation_wxyz.setZero(T, 4);
+  for (RowMatrix* m : {&joint_position, &joint_velocity, &joint_acceleration, &foot_position, &foot_velocity})
+    m->setZero(T, kJoints);
+  contact_phase.setZero(T, kLegs);
+}
+
+KinematicsResult sample_kinematics(const RobotModel& model, const MotionPlan& plan,
+                                   const std::vector<double>& times) {
+  KinematicsResult k;
+  const int T = static_cast<int>(times.size());
+  k.resize(T);
+  RobotKinematicState s;
+  BodyPoses poses;
+  for (int i = 0; i < T; ++i) {
+    const double t = times[i];
+    robot_state_at(model, plan, t, s);
+    k.time_s[i] = t;
+    k.base_position.row(i) = s.trunk.p_W.transpose();
+    const Quat q(s.trunk.W_R_B);
+    k.base_orientation_wxyz.row(i) << q.w(), q.x(), q.y(), q.z();
+    k.base_linear_velocity.row(i) = s.trunk.v_W.transpose();
+    k.base_angular_velocity.row(i) = s.trunk.omega_W.transpose();
+    k.base_linear_acceleration.row(i) = s.trunk.a_W.transpose();
+    k.base_angular_acceleration.row(i) = s.trunk.omegadot_W.transpose();
+    k.joint_position.row(i) = s.q.transpose();
+    k.joint_velocity.row(i) = s.qd.transpose();
+    k.joint_acceleration.row(i) = s.qdd.transpose();
+    for (int leg = 0; leg < kLegs; ++leg) {
+      k.foot_position.row(i).segment<3>(3 * leg) = s.feet[leg].p_W.transpose();
+      k.foot_velocity.row(i).segment<3>(3 * leg) = s.feet[leg].v_W.transpose();
+      k.contact_phase(i, leg) = static_cast<std::int8_t>(s.feet[leg].in_swing ? ContactPhase::kSwing
+                                                                              : ContactPhase::kSupport);
+    }
+    forward_kinematics_tree(model, s.q, poses);
+    k.com_position.row(i) = (s.trunk.p_W + s.trunk.W_R_B * center_of_mass_B(model, poses)).transpose();
+  }
+  return k;
+}
+
+std::vector<double> build_output_grid(const OutputParams& out, double T, const std::vector<GridEvent>& events) {
+  std::vector<double> t;
+  const int n = static_cast<int>(std::floor(T / out.sample_step_s + 1e-9));
+  for (int i = 0; i <= n; ++i) t.push_back(i * out.sample_step_s);
+  t.push_back(T);
+  if (out.grid == OutputGrid::kAdaptive) {
+    for (const GridEvent& e : events) {
+      const double h = out.event_step_s;
+      const double t0 = e.t_s, t1 = e.t_s + e.duration_s;
+      if (e.duration_s > 0.0) {
+        const int m = std::max(1, out.impact_samples);
+        for (int j = 0; j <= m; ++j) t.push_back(t0 + e.duration_s * j / m);
+        t.push_back(t0 + e.peak_offset_s);
+      }
+      t.push_back(t0);
+      // Geometric grading away from the event on both sides, up to the uniform step.
+      for (double d = h; d < out.sample_step_s; d *= 2.0) {
+        t.push_back(t0 - d);
+        t.push_back(t1 + d);
+      }
+    }
+  }
+  std::sort(t.begin(), t.end());
+  // Points closer than 1e-9 s are merged into the later one, so that the sample at an
+  // event is never before it (a touchdown sample is the first one on the ground).
+  std::vector<double> grid;
+  for (double x : t) {
+    if (x < 0.0 || x > T) continue;
+    if (!grid.empty() && x - grid.back() < 1e-9) {
+      grid.back() = x;
+      continue;
+    }
+    grid.push_back(x);
+  }
+  if (grid.back() < T - 1e-9) grid.push_back(T);
+  return grid;
+}
+
+}  // namespace hexdyn

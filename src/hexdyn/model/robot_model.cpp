@@ -1,0 +1,213 @@
+#include "hexdyn/model/robot_model.hpp"
+
+#include <cmath>
+
+namespace hexdyn {
+namespace {
+
+RigidInertia to_inertia(const BodyParams& p) {
+  RigidInertia r;
+  r.mass_kg = p.mass_kg;
+  r.com_m = p.com_m;
+  r.inertia_com = p.inertia_kgm2.asDiagonal();
+  return r;
+}
+
+/// Sum of two bodies expressed in the same frame (parallel-axis theorem).
+RigidInertia combine(const RigidInertia& a, const RigidInertia& b) {
+  RigidInertia r;
+  r.mass_kg = a.mass_kg + b.mass_kg;
+  r.com_m = (a.mass_kg * a.com_m + b.mass_kg * b.com_m) / r.mass_kg;
+  auto shift = [&](const RigidInertia& x) {
+    const Vec3 d = x.com_m - r.com_m;
+    return Mat3(x.inertia_com + x.mass_kg * (d.squaredNorm() * Mat3::Identity() - d * d.transpose()));
+  };
+  r.inertia_com = shift(a) + shift(b);
+  return r;
+}
+
+Mat3 rot_z(double a) { return Eigen::AngleAxisd(a, Vec3::UnitZ()).toRotationMatrix(); }
+
+Mat3 rot_axis(const Vec3& axis, double angle) {
+  return Eigen::AngleAxisd(angle, axis).toRotationMatrix();
+}
+
+}  // namespace
+
+RobotModel build_robot_model(const RobotParams& params) {
+  RobotModel m;
+  const double l1 = params.link_length_m[0], l2 = params.link_length_m[1];
+  m.link_length_m = params.link_length_m;
+  m.d1_m = params.joint_offset_m[0];
+  m.trunk_only = to_inertia(params.trunk);
+  m.payload = to_inertia(params.payload);
+  m.parent[0] = -1;
+  m.R_parent_joint[0].setIdentity();
+  m.p_parent_joint[0].setZero();
+  m.axis[0].setZero();
+  m.inertia[0] = combine(m.trunk_only, m.payload);
+  m.joint_min_rad = params.joint_min_rad;
+  m.joint_max_rad = params.joint_max_rad;
+  m.ik_min_margin_m = params.ik_min_margin_m;
+  const Vec3 minus_y(0.0, -1.0, 0.0);
+  for (int leg = 0; leg < kLegs; ++leg) {
+    const double side = is_left(leg) ? -1.0 : 1.0;
+    m.p_hip_B[leg] = params.hip_position_m[leg];
+    m.R_B_H[leg] = rot_z(params.hip_yaw_rad[leg]);
+    m.d2_signed_m[leg] = side * params.joint_offset_m[1];
+    m.d3_signed_m[leg] = side * params.joint_offset_m[2];
+    m.lateral_m[leg] = m.d2_signed_m[leg] + m.d3_signed_m[leg];
+    const int b_coxa = 1 + joint_index(leg, 0);
+    const int b_femur = b_coxa + 1;
+    const int b_tibia = b_coxa + 2;
+    m.parent[b_coxa] = 0;
+    m.R_parent_joint[b_coxa] = m.R_B_H[leg];
+    m.p_parent_joint[b_coxa] = m.p_hip_B[leg];
+    m.axis[b_coxa] = Vec3::UnitZ();
+    m.parent[b_femur] = b_coxa;
+    m.R_parent_joint[b_femur].setIdentity();
+    m.p_parent_joint[b_femur] = Vec3(l1, m.d2_signed_m[leg], -m.d1_m);
+    m.axis[b_femur] = minus_y;
+    m.parent[b_tibia] = b_femur;
+    m.R_parent_joint[b_tibia].setIdentity();
+    m.p_parent_joint[b_tibia] = Vec3(l2, m.d3_signed_m[leg], 0.0);
+    m.axis[b_tibia] = minus_y;
+    for (int j = 0; j < kJointsPerLeg; ++j) {
+      m.inertia[b_coxa + j] = to_inertia(params.link[j]);
+      if (params.leg_inertia == LegInertia::kMassless && params.link[j].mass_kg > 0.0) {
+        // Massless legs: the link's mass becomes a point mass at the hip, part of the trunk
+        // (and of the trunk link of the URDF, so that the total mass is unchanged).
+        RigidInertia point;
+        point.mass_kg = params.link[j].mass_kg;
+        point.com_m = m.p_hip_B[leg];
+        m.inertia[0] = combine(m.inertia[0], point);
+        m.trunk_only = combine(m.trunk_only, point);
+        m.inertia[b_coxa + j] = RigidInertia{};
+      }
+    }
+  }
+  m.total_mass_kg = 0.0;
+  for (const auto& in : m.inertia) m.total_mass_kg += in.mass_kg;
+  return m;
+}
+
+// Foot in the coxa frame: f(β2, β3) = (l1 + l2 c2 + l3 c23, w, −d1 + l2 s2 + l3 s23);
+// p_H = Rz(θ1) f.
+Vec3 leg_foot_position_H(const RobotModel& m, int leg, const Vec3& q) {
+  const auto& L = m.link_length_m;
+  const double c1 = std::cos(q[0]), s1 = std::sin(q[0]);
+  const double rho = L[0] + L[1] * std::cos(q[1]) + L[2] * std::cos(q[1] + q[2]);
+  const double z = -m.d1_m + L[1] * std::sin(q[1]) + L[2] * std::sin(q[1] + q[2]);
+  const double w = m.lateral_m[leg];
+  return Vec3(c1 * rho - s1 * w, s1 * rho + c1 * w, z);
+}
+
+Mat3 leg_jacobian_H(const RobotModel& m, int leg, const Vec3& q) {
+  const auto& L = m.link_length_m;
+  const double c1 = std::cos(q[0]), s1 = std::sin(q[0]);
+  const double s2 = std::sin(q[1]), c2 = std::cos(q[1]);
+  const double s23 = std::sin(q[1] + q[2]), c23 = std::cos(q[1] + q[2]);
+  const double rho = L[0] + L[1] * c2 + L[2] * c23;
+  const double w = m.lateral_m[leg];
+  const double drho2 = -L[1] * s2 - L[2] * s23, drho3 = -L[2] * s23;
+  const double dz2 = L[1] * c2 + L[2] * c23, dz3 = L[2] * c23;
+  Mat3 J;
+  J << -s1 * rho - c1 * w, c1 * drho2, c1 * drho3,  //
+      c1 * rho - s1 * w, s1 * drho2, s1 * drho3,    //
+      0.0, dz2, dz3;
+  return J;
+}
+
+Mat3 leg_jacobian_dot_H(const RobotModel& m, int leg, const Vec3& q, const Vec3& qd) {
+  const auto& L = m.link_length_m;
+  const double c1 = std::cos(q[0]), s1 = std::sin(q[0]);
+  const double s2 = std::sin(q[1]), c2 = std::cos(q[1]);
+  const double s23 = std::sin(q[1] + q[2]), c23 = std::cos(q[1] + q[2]);
+  const double w = m.lateral_m[leg];
+  const double t1 = qd[0], t2 = qd[1], t23 = qd[1] + qd[2];
+  const double rho = L[0] + L[1] * c2 + L[2] * c23;
+  const double drho2 = -L[1] * s2 - L[2] * s23, drho3 = -L[2] * s23;
+  // time derivatives of rho, drho2, drho3, dz2, dz3
+  const double rho_t = drho2 * t2 + drho3 * qd[2];
+  const double drho2_t = -L[1] * c2 * t2 - L[2] * c23 * t23;
+  const double drho3_t = -L[2] * c23 * t23;
+  const double dz2_t = -L[1] * s2 * t2 - L[2] * s23 * t23;
+  const double dz3_t = -L[2] * s23 * t23;
+  Mat3 Jd;
+  Jd(0, 0) = -c1 * t1 * rho - s1 * rho_t + s1 * t1 * w;
+  Jd(1, 0) = -s1 * t1 * rho + c1 * rho_t - c1 * t1 * w;
+  Jd(2, 0) = 0.0;
+  Jd(0, 1) = -s1 * t1 * drho2 + c1 * drho2_t;
+  Jd(1, 1) = c1 * t1 * drho2 + s1 * drho2_t;
+  Jd(2, 1) = dz2_t;
+  Jd(0, 2) = -s1 * t1 * drho3 + c1 * drho3_t;
+  Jd(1, 2) = c1 * t1 * drho3 + s1 * drho3_t;
+  Jd(2, 2) = dz3_t;
+  return Jd;
+}
+
+LegIkResult leg_inverse_kinematics(const RobotModel& m, int leg, const Vec3& p) {
+  LegIkResult r;
+  const auto& L = m.link_length_m;
+  const double w = m.lateral_m[leg];
+  const double r2 = p.x() * p.x() + p.y() * p.y();
+  if (r2 <= w * w + 1e-12) {
+    r.reason = "foot inside the lateral offset of the coxa axis";
+    r.margin_m = std::sqrt(r2) - std::abs(w);
+    return r;
+  }
+  const double rho = std::sqrt(r2 - w * w);
+  const double theta1 = std::atan2(p.y(), p.x()) - std::atan2(w, rho);
+  const double u = rho - L[0];
+  const double v = p.z() + m.d1_m;
+  const double dist = std::hypot(u, v);
+  const double margin_ext = (L[1] + L[2]) - dist;
+  const double margin_fold = dist - std::abs(L[1] - L[2]);
+  r.margin_m = std::min(margin_ext, margin_fold);
+  if (margin_ext < m.ik_min_margin_m) {
+    r.reason = margin_ext < 0.0 ? "beyond full extension" : "within robot.ik_min_margin of full extension";
+    return r;
+  }
+  if (margin_fold < m.ik_min_margin_m) {
+    r.reason = margin_fold < 0.0 ? "inside full fold" : "within robot.ik_min_margin of full fold";
+    return r;
+  }
+  const double cos3 = (u * u + v * v - L[1] * L[1] - L[2] * L[2]) / (2.0 * L[1] * L[2]);
+  const double beta3 = -std::acos(std::clamp(cos3, -1.0, 1.0));  // knee up
+  const double beta2 =
+      std::atan2(v, u) - std::atan2(L[2] * std::sin(beta3), L[1] + L[2] * std::cos(beta3));
+  r.q = Vec3(std::remainder(theta1, 2.0 * M_PI), std::remainder(beta2, 2.0 * M_PI), beta3);
+  for (int j = 0; j < kJointsPerLeg; ++j) {
+    if (r.q[j] < m.joint_min_rad[j] || r.q[j] > m.joint_max_rad[j]) {
+      r.reason = "joint " + joint_name(leg, j) + " outside its limits";
+      r.margin_m = std::min(r.q[j] - m.joint_min_rad[j], m.joint_max_rad[j] - r.q[j]);
+      return r;
+    }
+  }
+  r.ok = true;
+  return r;
+}
+
+void forward_kinematics_tree(const RobotModel& m, const VecJ& q, BodyPoses& out) {
+  out.R_B[0].setIdentity();
+  out.p_B[0].setZero();
+  for (int b = 1; b < kBodies; ++b) {
+    const int p = m.parent[b];
+    out.p_B[b] = out.p_B[p] + out.R_B[p] * m.p_parent_joint[b];
+    out.R_B[b] = out.R_B[p] * m.R_parent_joint[b] * rot_axis(m.axis[b], q[b - 1]);
+  }
+}
+
+Vec3 tree_foot_position_B(const RobotModel& m, const BodyPoses& poses, int leg) {
+  const int b_tibia = 1 + joint_index(leg, 2);
+  return poses.p_B[b_tibia] + poses.R_B[b_tibia] * Vec3(m.link_length_m[2], 0.0, 0.0);
+}
+
+Vec3 center_of_mass_B(const RobotModel& m, const BodyPoses& poses) {
+  Vec3 c = Vec3::Zero();
+  for (int b = 0; b < kBodies; ++b)
+    c += m.inertia[b].mass_kg * (poses.p_B[b] + poses.R_B[b] * m.inertia[b].com_m);
+  return c / m.total_mass_kg;
+}
+
+}  // namespace hexdyn

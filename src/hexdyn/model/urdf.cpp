@@ -1,0 +1,149 @@
+#include "hexdyn/model/urdf.hpp"
+
+#include <charconv>
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+
+namespace hexdyn {
+namespace {
+
+std::string xml_escape(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    switch (c) {
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      case '\'':
+        out += "&apos;";
+        break;
+      default:
+        out += c;
+    }
+  }
+  return out;
+}
+
+/// Numbers with 17 significant digits (round-trip exact); −0 printed as 0.
+std::string number(double x) {
+  // As %.17g (what setprecision(17) gives), without a stream per number.
+  char buf[32];
+  const auto r = std::to_chars(buf, buf + sizeof buf, x == 0.0 ? 0.0 : x, std::chars_format::general, 17);
+  return std::string(buf, r.ptr);
+}
+
+std::string triple(const Vec3& v) {
+  return number(v.x()) + ' ' + number(v.y()) + ' ' + number(v.z());
+}
+
+/// Output document; numbers go through number() / triple().
+class UrdfStream {
+ public:
+  std::ostringstream& os() { return os_; }
+  std::string triple(const Vec3& v) { return hexdyn::triple(v); }
+  std::string number(double x) { return hexdyn::number(x); }
+
+ private:
+  std::ostringstream os_;
+};
+
+void write_inertial(UrdfStream& u, const RigidInertia& in) {
+  const Mat3& I = in.inertia_com;
+  auto& os = u.os();
+  os << "    <inertial>\n"
+     << "      <origin xyz=\"" << u.triple(in.com_m) << "\" rpy=\"0 0 0\"/>\n"
+     << "      <mass value=\"" << u.number(in.mass_kg) << "\"/>\n"
+     << "      <inertia ixx=\"" << u.number(I(0, 0)) << "\" ixy=\"" << u.number(I(0, 1))
+     << "\" ixz=\"" << u.number(I(0, 2)) << "\" iyy=\"" << u.number(I(1, 1)) << "\" iyz=\""
+     << u.number(I(1, 2)) << "\" izz=\"" << u.number(I(2, 2)) << "\"/>\n"
+     << "    </inertial>\n";
+}
+
+void write_link(UrdfStream& u, const std::string& name, const RigidInertia* inertia) {
+  if (inertia == nullptr) {
+    u.os() << "  <link name=\"" << name << "\"/>\n";
+    return;
+  }
+  u.os() << "  <link name=\"" << name << "\">\n";
+  write_inertial(u, *inertia);
+  u.os() << "  </link>\n";
+}
+
+struct JointLimit {
+  double lower_rad, upper_rad;
+};
+
+void write_joint(UrdfStream& u, const std::string& name, const std::string& type,
+                 const std::string& parent, const std::string& child, const Vec3& p, const Mat3& R,
+                 const Vec3* axis, const JointLimit* limit) {
+  auto& os = u.os();
+  os << "  <joint name=\"" << name << "\" type=\"" << type << "\">\n"
+     << "    <parent link=\"" << parent << "\"/>\n"
+     << "    <child link=\"" << child << "\"/>\n"
+     << "    <origin xyz=\"" << u.triple(p) << "\" rpy=\"" << u.triple(rotation_to_rpy(R))
+     << "\"/>\n";
+  if (axis != nullptr) os << "    <axis xyz=\"" << u.triple(*axis) << "\"/>\n";
+  if (limit != nullptr)
+    os << "    <limit lower=\"" << u.number(limit->lower_rad) << "\" upper=\""
+       << u.number(limit->upper_rad) << "\" effort=\"" << u.number(kUrdfEffortLimitNm)
+       << "\" velocity=\"" << u.number(kUrdfVelocityLimitRadps) << "\"/>\n";
+  os << "  </joint>\n";
+}
+
+}  // namespace
+
+Vec3 rotation_to_rpy(const Mat3& R) {
+  // R = Rz(y) Ry(p) Rx(r): R(2,0) = −sin p, R(2,1) = cos p sin r, R(2,2) = cos p cos r,
+  // R(0,0) = cos y cos p, R(1,0) = sin y cos p.
+  const double cos_pitch = std::hypot(R(0, 0), R(1, 0));
+  const double pitch = std::atan2(-R(2, 0), cos_pitch);
+  if (cos_pitch < 1e-12) {
+    // Gimbal lock: only yaw ∓ roll is defined; take roll = 0.
+    return Vec3(0.0, pitch, std::atan2(-R(0, 1), R(1, 1)));
+  }
+  return Vec3(std::atan2(R(2, 1), R(2, 2)), pitch, std::atan2(R(1, 0), R(0, 0)));
+}
+
+std::string robot_urdf(const RobotModel& model, const std::string& robot_name) {
+  static const char* kLinkSuffix[kJointsPerLeg] = {"coxa_link", "femur_link", "tibia_link"};
+  UrdfStream u;
+  auto& os = u.os();
+  os << "<?xml version=\"1.0\"?>\n"
+     << "<!-- Robot as simulated by hexdyn: link frames are the simulation's body frames;\n"
+     << "     trunk = body frame L0 at P0 (x right, y forward, z up). SI units. -->\n"
+     << "<robot name=\"" << xml_escape(robot_name) << "\">\n";
+  write_link(u, "trunk", &model.trunk_only);
+  write_link(u, "payload", &model.payload);
+  write_joint(u, "payload_mount", "fixed", "trunk", "payload", Vec3::Zero(), Mat3::Identity(),
+              nullptr, nullptr);
+  for (int leg = 0; leg < kLegs; ++leg) {
+    const std::string prefix = leg_name(leg) + "_";
+    std::string parent = "trunk";
+    for (int j = 0; j < kJointsPerLeg; ++j) {
+      const int b = 1 + joint_index(leg, j);
+      const std::string child = prefix + kLinkSuffix[j];
+      const JointLimit limit{model.joint_min_rad[j], model.joint_max_rad[j]};
+      write_link(u, child, &model.inertia[b]);
+      write_joint(u, joint_name(leg, j), "revolute", parent, child, model.p_parent_joint[b],
+                  model.R_parent_joint[b], &model.axis[b], &limit);
+      parent = child;
+    }
+    write_link(u, prefix + "foot", nullptr);
+    write_joint(u, prefix + "foot_fixed", "fixed", parent, prefix + "foot",
+                Vec3(model.link_length_m[2], 0.0, 0.0), Mat3::Identity(), nullptr, nullptr);
+  }
+  os << "</robot>\n";
+  return os.str();
+}
+
+}  // namespace hexdyn

@@ -1,0 +1,34 @@
+#pragma once
+/// \file urdf.hpp
+/// The robot exactly as simulated, as URDF text (DESIGN.md §4 `/model/urdf`).
+///
+/// Links and joints (i = 1..6 is the leg number, leg index l = i − 1):
+///   trunk               root; its frame is the body frame L0 at P0; trunk structure inertial
+///   payload             on fixed joint `payload_mount` (identity origin); payload inertial
+///   L{i}_coxa_link      on revolute `L{i}_coxa`  (parent trunk)
+///   L{i}_femur_link     on revolute `L{i}_femur` (parent L{i}_coxa_link)
+///   L{i}_tibia_link     on revolute `L{i}_tibia` (parent L{i}_femur_link)
+///   L{i}_foot           massless, on fixed joint `L{i}_foot_fixed` at (l3, 0, 0) of the tibia
+/// Each link frame is the simulation's body frame (RobotModel body b = 1 + k for joint
+/// k = joint_index(l, j)), so joint origins are RobotModel::p_parent_joint /
+/// R_parent_joint (rpy fixed-axis, R = Rz(yaw) Ry(pitch) Rx(roll)), axes are
+/// RobotModel::axis, zero angles and signs are the simulation's. Inertials: mass [kg],
+/// COM origin [m] and the full inertia tensor about the COM in link axes [kg m²].
+/// Numbers are printed with 17 significant digits (round-trip exact).
+#include <string>
+
+#include "hexdyn/model/robot_model.hpp"
+
+namespace hexdyn {
+
+inline constexpr double kUrdfEffortLimitNm = 6.0;  ///< `<limit effort>`, DESIGN.md §2 torque limit
+inline constexpr double kUrdfVelocityLimitRadps = 10.0;  ///< `<limit velocity>` [rad/s]
+
+/// URDF document of `model` with `<robot name="robot_name">`.
+std::string robot_urdf(const RobotModel& model, const std::string& robot_name);
+
+/// Fixed-axis roll, pitch, yaw of a rotation matrix, R = Rz(yaw) Ry(pitch) Rx(roll) [rad];
+/// pitch in [−π/2, π/2], roll = 0 at the gimbal lock.
+Vec3 rotation_to_rpy(const Mat3& R);
+
+}  // namespace hexdyn

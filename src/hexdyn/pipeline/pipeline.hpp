@@ -1,0 +1,32 @@
+#pragma once
+/// \file pipeline.hpp
+/// One scene, end to end: the library call behind `hexdyn run` and every sweep
+/// scenario. Throws a hexdyn::Error subclass when the scene cannot be computed.
+#include <iosfwd>
+
+#include <vector>
+
+#include "hexdyn/pipeline/dynamics_stage.hpp"
+#include "hexdyn/kinematics/kinematics.hpp"
+#include "hexdyn/core/result.hpp"
+#include "hexdyn/model/robot_model.hpp"
+#include "hexdyn/core/scene.hpp"
+
+namespace hexdyn {
+
+/// Everything a scene determines before the per-sample loop: the model, the plan, the
+/// touchdown transients and the output grid (refined at every lift-off and touchdown,
+/// extended past the end of the motion when a final transient outlasts it).
+struct PreparedScene {
+  RobotModel model;
+  MotionPlan plan;
+  std::vector<Touchdown> touchdowns;
+  std::vector<double> grid;
+};
+PreparedScene prepare_scene(const Scene& scene);
+
+/// Plans, samples and solves a scene. `log` (may be null) receives one line per episode
+/// of relaxed or failed allocation samples.
+RunResult run_scene(const Scene& scene, std::ostream* log = nullptr);
+
+}  // namespace hexdyn

@@ -1,0 +1,128 @@
+#include "hexdyn/planning/gait.hpp"
+
+#include <cmath>
+
+#include "hexdyn/core/errors.hpp"
+
+namespace hexdyn {
+namespace {
+
+double frac(double x) { return x - std::floor(x); }
+
+// Smootherstep and derivatives on [0, 1].
+double S(double u) { return u * u * u * (10.0 + u * (-15.0 + 6.0 * u)); }
+double dS(double u) { return 30.0 * u * u * (1.0 - u) * (1.0 - u); }
+double ddS(double u) { return 60.0 * u * (1.0 - u) * (1.0 - 2.0 * u); }
+
+Vec3 foothold(const RobotModel& model, const GaitParams& gait, const TrunkMotion& trunk,
+              const Terrain& terrain, int leg, double tau_nominal) {
+  const Vec3 hip_W = trunk.position_at_phase(tau_nominal) + trunk.W_R_B() * model.p_hip_B[leg];
+  const double outward = is_left(leg) ? -1.0 : 1.0;
+  const double x = hip_W.x() + outward * gait.foot_lateral_m;
+  const double y = terrain.nearest_valid_foothold_y(hip_W.y() + 0.5 * gait.stroke_m, gait.foothold_margin_m);
+  return Vec3(x, y, terrain.height(x, y));
+}
+
+}  // namespace
+
+std::array<double, kLegs> wave_gait_phases(double beta) {
+  const double s = 1.0 - beta;
+  // legs 0-based: 0 FL, 1 FR, 2 ML, 3 MR, 4 RL, 5 RR
+  return {frac(0.5 + 2.0 * s), frac(2.0 * s), frac(0.5 + s), frac(s), 0.5, 0.0};
+}
+
+GaitPlan plan_gait(const RobotModel& model, const GaitParams& gait, const TrunkMotion& trunk,
+                   const Terrain& terrain) {
+  GaitPlan plan;
+  const double beta = gait.duty_factor;
+  plan.duty_factor = beta;
+  plan.liftoff_phase = wave_gait_phases(beta);
+  const double n = trunk.cycles();
+  constexpr double kMinSwingPhase = 1e-9;
+  for (int leg = 0; leg < kLegs; ++leg) {
+    LegPlan& lp = plan.legs[leg];
+    bool first = true;
+    Vec3 p_current = Vec3::Zero();
+    for (int k = -1; k <= trunk.cycles(); ++k) {
+      const double a = k + plan.liftoff_phase[leg];
+      const double b = a + (1.0 - beta);
+      const double a_cut = std::max(a, 0.0), b_cut = std::min(b, n);
+      if (b_cut - a_cut <= kMinSwingPhase) continue;
+      if (first) {
+        p_current = foothold(model, gait, trunk, terrain, leg, a - beta);
+        lp.p_initial_W = p_current;
+        first = false;
+      }
+      Swing sw;
+      sw.t_liftoff_s = trunk.time_at_phase(a_cut);
+      sw.t_touchdown_s = trunk.time_at_phase(b_cut);
+      sw.p_liftoff_W = p_current;
+      sw.p_touchdown_W = foothold(model, gait, trunk, terrain, leg, b_cut);
+      sw.apex_z_m = terrain.max_height_along(sw.p_liftoff_W, sw.p_touchdown_W) + gait.swing_clearance_m;
+      sw.apex_z_m = std::max({sw.apex_z_m, sw.p_liftoff_W.z() + gait.swing_clearance_m,
+                              sw.p_touchdown_W.z() + gait.swing_clearance_m});
+      sw.touchdown_speed_mps = gait.touchdown_speed_mps;
+      const double D = sw.t_touchdown_s - sw.t_liftoff_s;
+      double lower = gait.lower_fraction;
+      // The quartic descent is monotone iff v_td · (lower · D) ≤ 4 (z_a − z_td).
+      if (gait.touchdown_speed_mps > 0.0)
+        lower = std::min(lower, 4.0 * (sw.apex_z_m - sw.p_touchdown_W.z()) / (gait.touchdown_speed_mps * D));
+      sw.lift_end_u = gait.lift_fraction;
+      sw.lower_start_u = 1.0 - lower;
+      lp.swings.push_back(sw);
+      p_current = sw.p_touchdown_W;
+    }
+    if (first)  // never swings (cannot happen for β < 1 and n ≥ 1, kept for safety)
+      lp.p_initial_W = foothold(model, gait, trunk, terrain, leg, 0.0);
+  }
+  return plan;
+}
+
+FootMotion swing_foot_motion(const Swing& sw, double t) {
+  FootMotion f;
+  f.in_swing = true;
+  const double D = sw.t_touchdown_s - sw.t_liftoff_s;
+  const double u = std::clamp((t - sw.t_liftoff_s) / D, 0.0, 1.0);
+  const double ul = sw.lift_end_u, ud = sw.lower_start_u;
+  const Vec3& p0 = sw.p_liftoff_W;
+  const Vec3& p1 = sw.p_touchdown_W;
+  // Horizontal transfer on [ul, ud].
+  const double Dt = (ud - ul) * D;
+  const double sigma = std::clamp((u - ul) / (ud - ul), 0.0, 1.0);
+  const Eigen::Vector2d dxy = p1.head<2>() - p0.head<2>();
+  f.p_W.head<2>() = p0.head<2>() + dxy * S(sigma);
+  f.v_W.head<2>() = dxy * (dS(sigma) / Dt);
+  f.a_W.head<2>() = dxy * (ddS(sigma) / (Dt * Dt));
+  // Vertical: lift, hold, descend.
+  const double za = sw.apex_z_m;
+  if (u < ul) {
+    const double Dl = ul * D, w = u / ul, h = za - p0.z();
+    f.p_W.z() = p0.z() + h * S(w);
+    f.v_W.z() = h * dS(w) / Dl;
+    f.a_W.z() = h * ddS(w) / (Dl * Dl);
+  } else if (u <= ud) {
+    f.p_W.z() = za;
+  } else {
+    const double Dd = (1.0 - ud) * D, w = (u - ud) / (1.0 - ud);
+    const double delta = p1.z() - za, vD = sw.touchdown_speed_mps * Dd;
+    const double b = -vD - 3.0 * delta, a = 4.0 * delta + vD;
+    f.p_W.z() = za + w * w * w * (a + b * w);
+    f.v_W.z() = w * w * (3.0 * a + 4.0 * b * w) / Dd;
+    f.a_W.z() = w * (6.0 * a + 12.0 * b * w) / (Dd * Dd);
+  }
+  return f;
+}
+
+FootMotion leg_foot_motion(const LegPlan& leg, double t) {
+  Vec3 p = leg.p_initial_W;
+  for (const Swing& sw : leg.swings) {
+    if (t < sw.t_liftoff_s) break;
+    if (t < sw.t_touchdown_s) return swing_foot_motion(sw, t);
+    p = sw.p_touchdown_W;
+  }
+  FootMotion f;
+  f.p_W = p;
+  return f;
+}
+
+}  // namespace hexdyn

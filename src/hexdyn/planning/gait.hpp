@@ -1,0 +1,74 @@
+#pragma once
+/// \file gait.hpp
+/// Gait planning: periodic wave gaits of six legs for any duty factor β ∈ [1/2, 1),
+/// footholds on the terrain, and C² swing-foot paths.
+///
+/// Phases (fraction of a cycle at which a leg lifts off): on each side the wave runs
+/// from rear to front, each leg lifting when the one behind it touches down, and the
+/// left side lags the right by half a cycle (Song & Waldron's wave gait):
+///   φ6 = 0, φ4 = 1−β, φ2 = 2(1−β), φ5 = ½, φ3 = ½+(1−β), φ1 = ½+2(1−β)  (mod 1).
+/// At β = ½ this is the paper's tripod: legs 2-3-6 swing first, then 1-4-5.
+/// Swings that straddle the start or the end of the run are shortened to it, so the
+/// robot starts and ends with all feet on the ground.
+///
+/// Footholds: a stance that (nominally) begins at phase τ* stands at the hip's
+/// horizontal position at τ* moved s0/2 forward and `foot_lateral` outward, moved along
+/// y to the nearest point at least `foothold_margin` from every nosing and riser.
+///
+/// Swing path, u = (t − t_lo)/(t_td − t_lo): a vertical lift (smootherstep) to the apex
+/// z_a = H_m + Δh, H_m the highest terrain under the horizontal segment; a horizontal
+/// transfer at z_a (smootherstep); a vertical descent reaching the foothold with the
+/// downward touchdown speed. Position is C² inside the swing, velocity and acceleration
+/// are zero at lift-off; the descent is shortened when needed so that it is monotone.
+#include <vector>
+
+#include "hexdyn/core/common.hpp"
+#include "hexdyn/planning/motion.hpp"
+#include "hexdyn/model/robot_model.hpp"
+#include "hexdyn/core/scene.hpp"
+#include "hexdyn/planning/terrain.hpp"
+
+namespace hexdyn {
+
+struct Swing {
+  double t_liftoff_s = 0.0, t_touchdown_s = 0.0;
+  Vec3 p_liftoff_W = Vec3::Zero(), p_touchdown_W = Vec3::Zero();
+  double apex_z_m = 0.0;           ///< z of the transfer segment
+  double lift_end_u = 0.3;         ///< normalised time at which the lift ends
+  double lower_start_u = 0.8;      ///< normalised time at which the descent starts
+  double touchdown_speed_mps = 0.0;
+};
+
+/// Foot position, velocity and acceleration in the world frame.
+struct FootMotion {
+  Vec3 p_W = Vec3::Zero(), v_W = Vec3::Zero(), a_W = Vec3::Zero();
+  bool in_swing = false;
+};
+
+struct LegPlan {
+  Vec3 p_initial_W = Vec3::Zero();  ///< foothold at t = 0
+  std::vector<Swing> swings;        ///< in time order, non-overlapping
+};
+
+struct GaitPlan {
+  double duty_factor = 0.5;
+  std::array<double, kLegs> liftoff_phase{};
+  std::array<LegPlan, kLegs> legs;
+};
+
+/// Lift-off phases φ_l ∈ [0, 1) of the wave gait above, legs 0-based.
+std::array<double, kLegs> wave_gait_phases(double duty_factor);
+
+/// Plans every swing of every leg over the whole run. Throws PlanningError when no
+/// foothold satisfies the margin.
+GaitPlan plan_gait(const RobotModel& model, const GaitParams& gait, const TrunkMotion& trunk,
+                   const Terrain& terrain);
+
+/// Foot of one swing at time t ∈ [t_liftoff, t_touchdown].
+FootMotion swing_foot_motion(const Swing& swing, double t_s);
+
+/// Foot of a leg at time t: on its path during a swing (t_lo ≤ t < t_td), fixed at its
+/// foothold otherwise.
+FootMotion leg_foot_motion(const LegPlan& leg, double t_s);
+
+}  // namespace hexdyn

@@ -1,0 +1,57 @@
+#pragma once
+/// \file motion.hpp
+/// Trunk motion along the mean terrain slope (DESIGN.md §2): the trunk frame keeps
+/// Bryant angles (α0, 0, 0) with α0 the mean slope, and P0 travels along
+/// e = (0, cos α0, sin α0) with a C² speed profile: a smootherstep ramp from rest to
+/// the cruise speed, cruise, and the mirrored ramp to rest. One gait cycle is one
+/// stride of travel, s0/β horizontally, so the gait phase τ = travel / stride.
+#include "hexdyn/core/common.hpp"
+#include "hexdyn/core/scene.hpp"
+#include "hexdyn/planning/terrain.hpp"
+
+namespace hexdyn {
+
+/// Trunk state at one instant; all world frame.
+struct TrunkState {
+  Vec3 p_W = Vec3::Zero();            ///< P0 [m]
+  Vec3 v_W = Vec3::Zero();            ///< [m/s]
+  Vec3 a_W = Vec3::Zero();            ///< [m/s²]
+  Mat3 W_R_B = Mat3::Identity();      ///< trunk → world
+  Vec3 omega_W = Vec3::Zero();        ///< [rad/s]
+  Vec3 omegadot_W = Vec3::Zero();     ///< [rad/s²]
+};
+
+class TrunkMotion {
+ public:
+  TrunkMotion(const MotionParams& motion, const GaitParams& gait, const Terrain& terrain);
+
+  TrunkState at(double t_s) const;
+  /// Travel along the slope s(t) [m], speed ṡ and acceleration s̈.
+  double travel(double t_s) const;
+  double speed(double t_s) const;
+  double acceleration(double t_s) const;
+  /// Inverse of travel(): the time at which the trunk has travelled s (0 ≤ s ≤ total).
+  double time_at_travel(double s_m) const;
+  /// Gait phase in cycles, τ(t) = s(t) / stride, and its inverse.
+  double phase(double t_s) const { return travel(t_s) / stride_m_; }
+  double time_at_phase(double tau) const { return time_at_travel(tau * stride_m_); }
+  /// P0 when the trunk has travelled τ strides; extrapolated linearly outside [0, cycles].
+  Vec3 position_at_phase(double tau) const { return p0_W_ + tau * stride_m_ * direction_W_; }
+
+  double duration_s() const { return duration_s_; }
+  double stride_m() const { return stride_m_; }           ///< along the slope, per cycle
+  double total_travel_m() const { return cycles_ * stride_m_; }
+  int cycles() const { return cycles_; }
+  double cruise_speed_mps() const { return v_cruise_; }
+  double ramp_duration_s() const { return t_ramp_; }
+  const Mat3& W_R_B() const { return W_R_B_; }
+  double pitch_rad() const { return pitch_rad_; }
+
+ private:
+  Vec3 p0_W_, direction_W_;
+  Mat3 W_R_B_;
+  double pitch_rad_ = 0.0, stride_m_ = 0.0, v_cruise_ = 0.0, t_ramp_ = 0.0, duration_s_ = 0.0;
+  int cycles_ = 0;
+};
+
+}  // namespace hexdyn

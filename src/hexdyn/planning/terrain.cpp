@@ -1,0 +1,86 @@
+#include "hexdyn/planning/terrain.hpp"
+
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "hexdyn/core/errors.hpp"
+
+namespace hexdyn {
+
+Terrain::Terrain(const TerrainParams& params) : params_(params) {}
+
+int Terrain::tread_index(double y) const {
+  const double k = std::floor((y - params_.first_riser_y_m) / params_.tread_depth_m) + 1.0;
+  return static_cast<int>(std::clamp(k, 0.0, static_cast<double>(params_.steps)));
+}
+
+double Terrain::height(double /*x*/, double y) const {
+  switch (params_.type) {
+    case TerrainType::kFlat:
+      return params_.ground_height_m;
+    case TerrainType::kSlope:
+      return params_.ground_height_m + std::tan(params_.slope_rad) * (y - params_.slope_origin_y_m);
+    case TerrainType::kStairs:
+      return params_.ground_height_m + params_.riser_height_m * tread_index(y);
+  }
+  return 0.0;
+}
+
+Vec3 Terrain::normal(double /*x*/, double /*y*/) const {
+  if (params_.type == TerrainType::kSlope)
+    return Vec3(0.0, -std::sin(params_.slope_rad), std::cos(params_.slope_rad));
+  return Vec3::UnitZ();
+}
+
+double Terrain::max_height_along(const Vec3& a, const Vec3& b) const {
+  if (params_.type != TerrainType::kStairs) return std::max(height(a.x(), a.y()), height(b.x(), b.y()));
+  // Stairs: height depends on y only and is monotone non-decreasing in y.
+  return height(0.0, std::max(a.y(), b.y()));
+}
+
+double Terrain::mean_slope_rad() const {
+  switch (params_.type) {
+    case TerrainType::kStairs: return std::atan2(params_.riser_height_m, params_.tread_depth_m);
+    case TerrainType::kSlope: return params_.slope_rad;
+    case TerrainType::kFlat: return 0.0;
+  }
+  return 0.0;
+}
+
+double Terrain::edge_distance(double y) const {
+  if (params_.type != TerrainType::kStairs || params_.riser_height_m == 0.0)
+    return std::numeric_limits<double>::infinity();
+  const int k = tread_index(y);
+  const double inf = std::numeric_limits<double>::infinity();
+  // Tread k spans [y_r + (k−1) b, y_r + k b); the ground (k = 0) has no nosing behind,
+  // the top tread (k = steps) no riser ahead.
+  const double start = k == 0 ? -inf : params_.first_riser_y_m + (k - 1) * params_.tread_depth_m;
+  const double end = k == params_.steps ? inf : params_.first_riser_y_m + k * params_.tread_depth_m;
+  return std::min(y - start, end - y);
+}
+
+double Terrain::nearest_valid_foothold_y(double y, double margin) const {
+  if (edge_distance(y) >= margin) return y;
+  if (2.0 * margin > params_.tread_depth_m)
+    throw PlanningError("no foothold near y = " + std::to_string(y) + " m: tread depth " +
+                        std::to_string(params_.tread_depth_m) + " m is less than twice the foothold margin " +
+                        std::to_string(margin) + " m");
+  // Candidates: the valid ends of the tread containing y and of its neighbours.
+  const double b = params_.tread_depth_m, y0 = params_.first_riser_y_m;
+  double best = y, best_d = std::numeric_limits<double>::infinity();
+  const int k = tread_index(y);
+  for (int kk = std::max(0, k - 1); kk <= std::min(params_.steps, k + 1); ++kk) {
+    const double start = y0 + (kk - 1) * b, end = y0 + kk * b;
+    for (double c : {start + margin, end - margin}) {
+      if (edge_distance(c) + 1e-12 < margin) continue;
+      if (std::abs(c - y) < best_d) {
+        best_d = std::abs(c - y);
+        best = c;
+      }
+    }
+  }
+  return best;
+}
+
+}  // namespace hexdyn

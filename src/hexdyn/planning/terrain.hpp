@@ -1,0 +1,39 @@
+#pragma once
+/// \file terrain.hpp
+/// Terrain height and surface-normal queries in G0 (z up, climbing along +y):
+/// flat ground, a constant slope rising along +y, or a staircase of `steps` risers
+/// whose k-th riser (k = 1..steps) stands at y = first_riser_y + (k−1)·tread_depth
+/// and lifts the tread behind it by riser_height. Heights are independent of x.
+#include "hexdyn/core/common.hpp"
+#include "hexdyn/core/scene.hpp"
+
+namespace hexdyn {
+
+class Terrain {
+ public:
+  explicit Terrain(const TerrainParams& params);
+
+  /// Terrain height under (x, y) [m]. At a riser's y the upper tread counts.
+  double height(double x, double y) const;
+  /// Upward unit normal of the surface a foot stands on at (x, y): +z on treads.
+  Vec3 normal(double x, double y) const;
+  /// Highest terrain under the horizontal segment from a to b (z ignored) [m].
+  double max_height_along(const Vec3& a, const Vec3& b) const;
+  /// Mean inclination along +y [rad]: atan(h_s/b_s) on stairs (DESIGN.md §2).
+  double mean_slope_rad() const;
+  /// Stairs: distance from y to the nearest tread edge (nosing behind, riser ahead)
+  /// of the tread containing y; +inf on flat ground and slopes [m].
+  double edge_distance(double y) const;
+  /// The y closest to `y` whose edge distance is at least `margin` (y itself if it is);
+  /// throws PlanningError naming y when no tread is deep enough.
+  double nearest_valid_foothold_y(double y, double margin) const;
+
+  const TerrainParams& params() const { return params_; }
+
+ private:
+  /// Index of the tread containing y: 0 = ground before the first riser, steps = top.
+  int tread_index(double y) const;
+  TerrainParams params_;
+};
+
+}  // namespace hexdyn

@@ -1,0 +1,187 @@
+// The hexdyn command line (src/main.cpp), run as a separate process in a scratch
+// directory: exit statuses, one-line error messages naming the key or the file, and
+// output files that are either complete or untouched.
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <catch2/catch.hpp>
+#include <cctype>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "hexdyn/io/config.hpp"
+
+namespace hexdyn {
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::string kBinary = HEXDYN_BINARY;
+const std::string kPaperConfig = std::string(HEXDYN_SOURCE_DIR) + "/configs/paper.yaml";
+/// A coarse uniform grid keeps a whole run short; everything else is the paper scene.
+const std::vector<std::string> kCoarse = {"--set", "output.grid=uniform", "--set", "output.sample_step=0.5"};
+
+std::string quote(const std::string& s) {
+  std::string q = "'";
+  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+std::string read_file(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+void write_file(const fs::path& p, const std::string& bytes) {
+  std::ofstream out(p, std::ios::binary);
+  out << bytes;
+}
+
+/// A scratch directory `work` for the runs and a sibling `capture` for their output.
+struct Scratch {
+  fs::path root, work, capture;
+  Scratch() {
+    static int counter = 0;
+    root = fs::temp_directory_path() /
+           ("hexdyn_cli_test_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
+    fs::remove_all(root);
+    work = root / "work";
+    capture = root / "capture";
+    fs::create_directories(work);
+    fs::create_directories(capture);
+  }
+  ~Scratch() {
+    std::error_code ec;
+    fs::remove_all(root, ec);
+  }
+  Scratch(const Scratch&) = delete;
+  Scratch& operator=(const Scratch&) = delete;
+
+  std::set<std::string> listing() const {
+    std::set<std::string> names;
+    for (const auto& e : fs::directory_iterator(work)) names.insert(e.path().filename().string());
+    return names;
+  }
+};
+
+struct Outcome {
+  int status = -1;
+  std::string out, err;
+};
+
+/// Runs `hexdyn args...` inside the scratch work directory.
+Outcome run_cli(const Scratch& s, const std::vector<std::string>& args) {
+  std::string cmd = "cd " + quote(s.work.string()) + " && " + quote(kBinary);
+  for (const auto& a : args) cmd += " " + quote(a);
+  cmd += " > " + quote((s.capture / "stdout").string()) + " 2> " + quote((s.capture / "stderr").string());
+  const int raw = std::system(cmd.c_str());
+  Outcome o;
+  REQUIRE(raw != -1);
+  REQUIRE(WIFEXITED(raw));
+  o.status = WEXITSTATUS(raw);
+  o.out = read_file(s.capture / "stdout");
+  o.err = read_file(s.capture / "stderr");
+  return o;
+}
+
+std::vector<std::string> concat(std::vector<std::string> a, const std::vector<std::string>& b) {
+  a.insert(a.end(), b.begin(), b.end());
+  return a;
+}
+
+TEST_CASE("cli: --help and validate succeed", "[cli]") {
+  Scratch s;
+  const Outcome help = run_cli(s, {"--help"});
+  CHECK(help.status == 0);
+  CHECK(help.out.find("usage") != std::string::npos);
+  const Outcome ok = run_cli(s, {"validate", kPaperConfig});
+  INFO(ok.err);
+  CHECK(ok.status == 0);
+  CHECK(ok.err.empty());
+  CHECK(s.listing().empty());
+}
+
+/// One bad invocation: the arguments before `-o FILE`, and what stderr must name.
+struct BadCase {
+  std::string what;
+  std::vector<std::string> args;
+  std::string names;
+};
+
+TEST_CASE("cli: bad input exits 2 with one line and leaves output files alone", "[cli]") {
+  Scratch s;
+  const std::string known_bytes = std::string("previous result \x01\x02\x03\n") + std::string(100, 'x');
+  write_file(s.work / "existing.h5", known_bytes);
+  // A scene file with a YAML syntax error.
+  std::string text = read_text_file(kPaperConfig);
+  const std::string key = "  stroke: 0.125";
+  const auto at = text.find(key);
+  REQUIRE(at != std::string::npos);
+  text.replace(at, key.size(), "  stroke: 0.125: 0.2");
+  write_file(s.work / "broken.yaml", text);
+
+  const std::vector<BadCase> cases = {
+      {"out of range", {"run", kPaperConfig, "--set", "gait.duty_factor=1.5"}, "gait.duty_factor"},
+      {"unknown key", {"run", kPaperConfig, "--set", "gait.bogus=1"}, "gait.bogus"},
+      {"mistyped", {"run", kPaperConfig, "--set", "contact.stiffness=abc"}, "contact.stiffness"},
+      {"non-finite", {"run", kPaperConfig, "--set", "robot.trunk.mass=.nan"}, "robot.trunk.mass"},
+      {"missing file", {"run", "no-such-scene.yaml"}, "no-such-scene.yaml"},
+      {"YAML syntax", {"run", "broken.yaml"}, "broken.yaml:"},
+  };
+  const std::set<std::string> before = s.listing();
+  for (const BadCase& c : cases) {
+    for (const std::string& target : {std::string("fresh.h5"), std::string("existing.h5")}) {
+      const Outcome o = run_cli(s, concat(c.args, {"-o", target}));
+      INFO(c.what << " -> " << target << "\nstderr: " << o.err);
+      CHECK(o.status == 2);
+      CHECK(o.err.find(c.names) != std::string::npos);
+      REQUIRE(!o.err.empty());
+      CHECK(o.err.find('\n') == o.err.size() - 1);  // exactly one line
+      CHECK_FALSE(fs::exists(s.work / "fresh.h5"));
+      CHECK(read_file(s.work / "existing.h5") == known_bytes);
+      CHECK(s.listing() == before);
+    }
+  }
+  // The YAML syntax error gives line and column.
+  const Outcome yaml = run_cli(s, {"validate", "broken.yaml"});
+  CHECK(yaml.status == 2);
+  CHECK(yaml.err.find("broken.yaml:") != std::string::npos);
+  std::size_t colon = yaml.err.find("broken.yaml:") + std::string("broken.yaml:").size();
+  CHECK(std::isdigit(static_cast<unsigned char>(yaml.err[colon])));
+  // validate refuses the same bad keys.
+  const Outcome v = run_cli(s, {"validate", kPaperConfig, "--set", "gait.duty_factor=1.5"});
+  CHECK(v.status == 2);
+  CHECK(v.err.find("gait.duty_factor") != std::string::npos);
+
+  // An output path in a directory that does not exist.
+  const Outcome nodir = run_cli(s, concat({"run", kPaperConfig, "-o", "no-such-dir/out.h5"}, kCoarse));
+  INFO("stderr: " << nodir.err);
+  CHECK(nodir.status == 2);
+  CHECK(nodir.err.find("no-such-dir/out.h5") != std::string::npos);
+  CHECK(nodir.err.find('\n') == nodir.err.size() - 1);
+  CHECK_FALSE(fs::exists(s.work / "no-such-dir"));
+  CHECK(read_file(s.work / "existing.h5") == known_bytes);
+  CHECK(s.listing() == before);
+}
+
+TEST_CASE("cli: a good run writes the result file and nothing else", "[cli]") {
+  Scratch s;
+  const Outcome o = run_cli(s, concat({"run", kPaperConfig, "-o", "OUT.h5"}, kCoarse));
+  INFO("stderr: " << o.err);
+  REQUIRE(o.status == 0);
+  REQUIRE(fs::exists(s.work / "OUT.h5"));
+  const std::string bytes = read_file(s.work / "OUT.h5");
+  CHECK(bytes.size() > 1000);
+  CHECK(bytes.substr(0, 8) == std::string("\x89HDF\r\n\x1a\n", 8));
+  CHECK(s.listing() == std::set<std::string>{"OUT.h5"});
+}
+
+}  // namespace
+}  // namespace hexdyn

@@ -1,0 +1,430 @@
+// Floating-base dynamics (dynamics.hpp, spatial.hpp), each result checked against a
+// second, independent computation: CRBA against RNEA, foot Jacobians against finite
+// differences of the tree FK, RNEA against the whole-robot momentum rate, the mass
+// matrix against the kinetic energy and the momentum, the contact split against RNEA.
+#include <Eigen/Eigenvalues>
+#include <Eigen/LU>
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "hexdyn/dynamics/rnea.hpp"
+#include "hexdyn/sample_models.hpp"
+#include "hexdyn/core/spatial.hpp"
+
+namespace hexdyn {
+namespace {
+
+constexpr int kRandomRobots = 24;
+constexpr int kStatesPerRobot = 3;
+
+double uniform(std::mt19937& rng, double lo, double hi) {
+  return std::uniform_real_distribution<double>(lo, hi)(rng);
+}
+
+Vec3 random_vec3(std::mt19937& rng, double lo, double hi) {
+  return Vec3(uniform(rng, lo, hi), uniform(rng, lo, hi), uniform(rng, lo, hi));
+}
+
+Mat3 random_rotation(std::mt19937& rng) {
+  std::normal_distribution<double> n(0.0, 1.0);
+  Quat qr(n(rng), n(rng), n(rng), n(rng));
+  qr.normalize();
+  return qr.toRotationMatrix();
+}
+
+/// exp of the skew matrix of φ (Rodrigues), with series near φ = 0.
+Mat3 so3_exp(const Vec3& phi) {
+  const double th = phi.norm();
+  const Mat3 P = skew(phi);
+  const double a = th < 1e-4 ? 1.0 - th * th / 6.0 : std::sin(th) / th;
+  const double b = th < 1e-4 ? 0.5 - th * th / 24.0 : (1.0 - std::cos(th)) / (th * th);
+  return Mat3::Identity() + a * P + b * P * P;
+}
+
+/// Left Jacobian of SO(3): d/dt exp(φ) · exp(φ)ᵀ = skew(J_l(φ) φ̇).
+Mat3 so3_left_jacobian(const Vec3& phi) {
+  const double th = phi.norm();
+  const Mat3 P = skew(phi);
+  const double b =
+      th < 1e-2 ? 0.5 - th * th / 24.0 + std::pow(th, 4) / 720.0 : (1.0 - std::cos(th)) / (th * th);
+  const double c = th < 1e-2 ? 1.0 / 6.0 - th * th / 120.0 + std::pow(th, 4) / 5040.0
+                             : (th - std::sin(th)) / (th * th * th);
+  return Mat3::Identity() + b * P + c * P * P;
+}
+
+struct Sample {
+  BaseState state;
+  VecJ q, qd, qdd;
+};
+
+Sample random_sample(std::mt19937& rng) {
+  Sample s;
+  s.state.W_R_B = random_rotation(rng);
+  s.state.p_W = random_vec3(rng, -1.0, 1.0);
+  s.state.v_W = random_vec3(rng, -1.0, 1.0);
+  s.state.omega_W = random_vec3(rng, -2.0, 2.0);
+  s.state.a_W = random_vec3(rng, -3.0, 3.0);
+  s.state.omegadot_W = random_vec3(rng, -5.0, 5.0);
+  for (int l = 0; l < kLegs; ++l) s.q.segment<3>(3 * l) = test::random_leg_angles(rng);
+  s.qd = test::random_joint_vector(rng, -2.0, 2.0);
+  s.qdd = test::random_joint_vector(rng, -5.0, 5.0);
+  return s;
+}
+
+std::array<Vec3, kLegs> random_forces(std::mt19937& rng) {
+  std::array<Vec3, kLegs> F;
+  for (auto& f : F) f = random_vec3(rng, -20.0, 20.0);
+  return F;
+}
+
+VecDof velocity_vector(const Sample& s) {
+  VecDof nu;
+  nu << s.state.v_W, s.state.omega_W, s.qd;
+  return nu;
+}
+
+VecDof acceleration_vector(const Sample& s) {
+  VecDof a;
+  a << s.state.a_W, s.state.omegadot_W, s.qdd;
+  return a;
+}
+
+/// The paper's robot and kRandomRobots random robots (fixed seed).
+const std::vector<RobotModel>& sample_models() {
+  static const std::vector<RobotModel> models = [] {
+    std::vector<RobotModel> m;
+    m.push_back(build_robot_model(test::paper_robot_params()));
+    std::mt19937 rng(20240611);
+    for (int i = 0; i < kRandomRobots; ++i)
+      m.push_back(build_robot_model(test::random_robot_params(rng)));
+    return m;
+  }();
+  return models;
+}
+
+/// World poses of all bodies through forward_kinematics_tree and the trunk pose.
+struct WorldPoses {
+  std::array<Mat3, kBodies> R;
+  std::array<Vec3, kBodies> p;
+};
+
+WorldPoses world_poses(const RobotModel& model, const BaseState& s, const VecJ& q) {
+  BodyPoses b;
+  forward_kinematics_tree(model, q, b);
+  WorldPoses w;
+  for (int i = 0; i < kBodies; ++i) {
+    w.R[i] = s.W_R_B * b.R_B[i];
+    w.p[i] = s.p_W + s.W_R_B * b.p_B[i];
+  }
+  return w;
+}
+
+Vec3 foot_position_W(const RobotModel& model, const BaseState& s, const VecJ& q, int leg) {
+  BodyPoses b;
+  forward_kinematics_tree(model, q, b);
+  return s.p_W + s.W_R_B * tree_foot_position_B(model, b, leg);
+}
+
+/// Smooth trajectory through a sample at t = 0: quadratic joints and trunk position,
+/// trunk rotation R(t) = exp(ω₀ t + ½ ω̇₀ t²) R₀, so the state at t = 0 is the sample.
+struct Trajectory {
+  Sample s0;
+  Sample at(double t) const {
+    Sample s = s0;
+    const Vec3 phi = s0.state.omega_W * t + 0.5 * s0.state.omegadot_W * t * t;
+    const Vec3 phi_dot = s0.state.omega_W + s0.state.omegadot_W * t;
+    s.state.W_R_B = so3_exp(phi) * s0.state.W_R_B;
+    s.state.omega_W = so3_left_jacobian(phi) * phi_dot;
+    s.state.p_W = s0.state.p_W + s0.state.v_W * t + 0.5 * s0.state.a_W * t * t;
+    s.state.v_W = s0.state.v_W + s0.state.a_W * t;
+    s.q = s0.q + s0.qd * t + 0.5 * s0.qdd * t * t;
+    s.qd = s0.qd + s0.qdd * t;
+    return s;  // accelerations are only exact at t = 0 and unused elsewhere
+  }
+};
+
+/// Fourth-order central difference of f at t = 0.
+template <class F>
+auto central_difference(F&& f, double h) {
+  return ((f(-2.0 * h) - 8.0 * f(-h) + 8.0 * f(h) - f(2.0 * h)) / (12.0 * h)).eval();
+}
+
+template <class A, class B>
+double relative_error(const A& got, const B& expected) {
+  return (got - expected).norm() / std::max(1.0, expected.norm());
+}
+
+}  // namespace
+
+TEST_CASE("spatial algebra agrees with its 6x6 matrix forms", "[dynamics][spatial]") {
+  std::mt19937 rng(7);
+  for (int trial = 0; trial < 20; ++trial) {
+    const Transform X{random_rotation(rng), random_vec3(rng, -1.0, 1.0)};
+    const Motion m{random_vec3(rng, -1.0, 1.0), random_vec3(rng, -1.0, 1.0)};
+    const Motion a{random_vec3(rng, -1.0, 1.0), random_vec3(rng, -1.0, 1.0)};
+    const Force f{random_vec3(rng, -1.0, 1.0), random_vec3(rng, -1.0, 1.0)};
+    const Mat6 Xm = X.motion_matrix(), Xf = X.force_matrix();
+    CHECK((X.apply(m).vector() - Xm * m.vector()).norm() < 1e-13);
+    CHECK((X.apply(f).vector() - Xf * f.vector()).norm() < 1e-13);
+    CHECK((X.apply_inverse(X.apply(m)).vector() - m.vector()).norm() < 1e-13);
+    CHECK((X.apply_inverse(X.apply(f)).vector() - f.vector()).norm() < 1e-13);
+    CHECK((X.inverse().motion_matrix() - Xm.inverse()).norm() < 1e-12);
+    CHECK((Xf - Xm.inverse().transpose()).norm() < 1e-12);
+    CHECK(std::abs(dot(X.apply(f), X.apply(m)) - dot(f, m)) < 1e-13);  // power invariance
+    const Transform Y{random_rotation(rng), random_vec3(rng, -1.0, 1.0)};
+    CHECK(((X * Y).motion_matrix() - Xm * Y.motion_matrix()).norm() < 1e-12);
+    // crf(a) = −crm(a)ᵀ, and a × a = 0
+    Mat6 crm, crf;
+    for (int i = 0; i < 6; ++i) {
+      crm.col(i) = cross(a, Motion::from_vector(Vec6::Unit(i))).vector();
+      crf.col(i) = cross(a, Force::from_vector(Vec6::Unit(i))).vector();
+    }
+    CHECK((crf + crm.transpose()).norm() < 1e-13);
+    CHECK(cross(a, a).vector().norm() < 1e-13);
+    // Inertia: h = I v, transformation X* I X⁻¹, sum of matrices.
+    const Inertia I{uniform(rng, 0.1, 2.0), random_vec3(rng, -0.2, 0.2),
+                    Mat3(test::random_inertia(rng, 0.1).asDiagonal())};
+    const Inertia J{uniform(rng, 0.1, 2.0), random_vec3(rng, -0.2, 0.2),
+                    Mat3(test::random_inertia(rng, 0.1).asDiagonal())};
+    CHECK(((I * m).vector() - I.matrix() * m.vector()).norm() < 1e-13);
+    CHECK((X.apply(I).matrix() - Xf * I.matrix() * Xm.inverse()).norm() < 1e-12);
+    CHECK(((I + J).matrix() - I.matrix() - J.matrix()).norm() < 1e-12);
+  }
+}
+
+TEST_CASE("rnea equals crba M times acceleration plus rnea at zero acceleration", "[dynamics]") {
+  std::mt19937 rng(11);
+  for (const RobotModel& model : sample_models()) {
+    RobotData data(model);
+    for (int n = 0; n < kStatesPerRobot; ++n) {
+      const Sample s = random_sample(rng);
+      const VecDof tau = rnea(model, data, s.state, s.q, s.qd, s.qdd);
+      BaseState s0 = s.state;
+      s0.a_W.setZero();
+      s0.omegadot_W.setZero();
+      const VecDof h = rnea(model, data, s0, s.q, s.qd, VecJ::Zero());
+      const MatDof M = crba(model, data, s.state, s.q);
+      const VecDof expected = M * acceleration_vector(s) + h;
+      CHECK((tau - expected).norm() <= 1e-10 * std::max(1.0, tau.norm()));
+      CHECK((M - M.transpose()).norm() <= 1e-14 * M.norm());
+      const Eigen::SelfAdjointEigenSolver<MatDof> eig(M);
+      CHECK(eig.eigenvalues().minCoeff() > 0.0);
+      // Trunk block: total mass times identity.
+      CHECK((M.topLeftCorner<3, 3>() - model.total_mass_kg * Mat3::Identity()).norm() < 1e-12);
+    }
+  }
+}
+
+TEST_CASE("rnea at rest holds the weight of the robot", "[dynamics]") {
+  std::mt19937 rng(13);
+  for (const RobotModel& model : sample_models()) {
+    RobotData data(model);
+    Sample s = random_sample(rng);
+    s.state.v_W.setZero();
+    s.state.omega_W.setZero();
+    s.state.a_W.setZero();
+    s.state.omegadot_W.setZero();
+    const VecDof tau = rnea(model, data, s.state, s.q, VecJ::Zero(), VecJ::Zero());
+    const WorldPoses w = world_poses(model, s.state, s.q);
+    const Vec3 g(0.0, 0.0, -kGravity);
+    // Trunk rows: the wrench about P0 that supports the whole robot against gravity.
+    BodyPoses b;
+    forward_kinematics_tree(model, s.q, b);
+    const Vec3 c_W = s.state.p_W + s.state.W_R_B * center_of_mass_B(model, b);
+    const Vec3 support = -model.total_mass_kg * g;
+    CHECK((tau.head<3>() - support).norm() < 1e-10 * support.norm());
+    CHECK((tau.segment<3>(3) - (c_W - s.state.p_W).cross(support)).norm() < 1e-10 * support.norm());
+    // Joint rows: each joint holds the gravity moment of the bodies outboard of it.
+    for (int k = 0; k < kJoints; ++k) {
+      const int bj = 1 + k;
+      const Vec3 axis_W = w.R[bj] * model.axis[bj];
+      double expected = 0.0;
+      for (int d = bj; d < kBodies; ++d) {
+        int a = d;
+        while (a > bj) a = model.parent[a];
+        if (a != bj) continue;  // d is not in the subtree of bj
+        const Vec3 c_d = w.p[d] + w.R[d] * model.inertia[d].com_m;
+        expected -= axis_W.dot((c_d - w.p[bj]).cross(model.inertia[d].mass_kg * g));
+      }
+      CHECK(tau[6 + k] == Approx(expected).margin(1e-12));
+    }
+  }
+}
+
+TEST_CASE("foot Jacobians match finite differences of the tree kinematics", "[dynamics]") {
+  std::mt19937 rng(17);
+  const double h = 1e-6;
+  for (const RobotModel& model : sample_models()) {
+    RobotData data(model);
+    const Sample s = random_sample(rng);
+    foot_jacobians(model, data, s.state, s.q);
+    for (int l = 0; l < kLegs; ++l) {
+      CHECK((data.p_foot_W[l] - foot_position_W(model, s.state, s.q, l)).norm() < 1e-14);
+      FootJacobian J_fd;
+      for (int i = 0; i < kDof; ++i) {
+        // Move along generalised velocity e_i: p(t) = p + v t, R(t) = exp(ω t) R, q + q̇ t.
+        auto foot_at = [&](double t) {
+          BaseState st = s.state;
+          const VecDof e = VecDof::Unit(i);
+          st.p_W += e.head<3>() * t;
+          st.W_R_B = so3_exp(e.segment<3>(3) * t) * s.state.W_R_B;
+          const VecJ q = s.q + e.tail<kJoints>() * t;
+          return foot_position_W(model, st, q, l);
+        };
+        J_fd.col(i) = (foot_at(h) - foot_at(-h)) / (2.0 * h);
+      }
+      CHECK((data.J_foot_W[l] - J_fd).cwiseAbs().maxCoeff() < 1e-7);
+    }
+  }
+}
+
+TEST_CASE("rnea with foot forces equals rnea without minus J^T F", "[dynamics]") {
+  std::mt19937 rng(19);
+  for (const RobotModel& model : sample_models()) {
+    RobotData data(model);
+    for (int n = 0; n < kStatesPerRobot; ++n) {
+      const Sample s = random_sample(rng);
+      const auto F = random_forces(rng);
+      const VecDof tau_free = rnea(model, data, s.state, s.q, s.qd, s.qdd);
+      const VecDof tau_forced = rnea(model, data, s.state, s.q, s.qd, s.qdd, &F);
+      foot_jacobians(model, data, s.state, s.q);
+      VecDof expected = tau_free;
+      for (int l = 0; l < kLegs; ++l) expected -= data.J_foot_W[l].transpose() * F[l];
+      CHECK((tau_forced - expected).norm() <= 1e-10 * std::max(1.0, tau_forced.norm()));
+    }
+  }
+}
+
+TEST_CASE("momentum rate equals gravity plus trunk wrench plus foot forces", "[dynamics]") {
+  std::mt19937 rng(23);
+  const Vec3 g(0.0, 0.0, -kGravity);
+  const double h = 1e-3;
+  for (const RobotModel& model : sample_models()) {
+    RobotData data(model);
+    const Trajectory traj{random_sample(rng)};
+    const auto F = random_forces(rng);
+    auto momentum_at = [&](double t) {
+      const Sample s = traj.at(t);
+      const Momentum& m = robot_momentum(model, data, s.state, s.q, s.qd);
+      Vec6 out;
+      out << m.linear_W, m.angular_O_W;
+      return out;
+    };
+    const Vec6 rate = central_difference(momentum_at, h);
+
+    const Sample& s = traj.s0;
+    const Momentum m0 = robot_momentum(model, data, s.state, s.q, s.qd);
+    const VecDof tau = rnea(model, data, s.state, s.q, s.qd, s.qdd, &F);
+    foot_jacobians(model, data, s.state, s.q);
+    BodyPoses b;
+    forward_kinematics_tree(model, s.q, b);
+    const Vec3 c_W = s.state.p_W + s.state.W_R_B * center_of_mass_B(model, b);
+    CHECK((m0.com_W - c_W).norm() < 1e-14);
+    // External wrench about the world origin: gravity at the COM, trunk wrench at P0,
+    // terrain forces at the feet.
+    const Vec3 f_base = tau.head<3>(), n_base = tau.segment<3>(3);
+    Vec3 force = model.total_mass_kg * g + f_base;
+    Vec3 moment = c_W.cross(model.total_mass_kg * g) + s.state.p_W.cross(f_base) + n_base;
+    for (int l = 0; l < kLegs; ++l) {
+      force += F[l];
+      moment += data.p_foot_W[l].cross(F[l]);
+    }
+    Vec6 expected;
+    expected << force, moment;
+    CHECK(relative_error(rate, expected) < 1e-6);
+  }
+}
+
+TEST_CASE("kinetic energy and momentum agree with the mass matrix", "[dynamics]") {
+  std::mt19937 rng(29);
+  for (const RobotModel& model : sample_models()) {
+    RobotData data(model);
+    for (int n = 0; n < kStatesPerRobot; ++n) {
+      const Sample s = random_sample(rng);
+      const VecDof nu = velocity_vector(s);
+      const MatDof& M = crba(model, data, s.state, s.q);
+      const VecDof Mnu = M * nu;
+      const double T_matrix = 0.5 * nu.dot(Mnu);
+
+      // Body by body from geometric Jacobian columns of the tree FK.
+      const WorldPoses w = world_poses(model, s.state, s.q);
+      double T_direct = 0.0;
+      Vec3 L = Vec3::Zero(), H_P0 = Vec3::Zero();
+      for (int b = 0; b < kBodies; ++b) {
+        const Vec3 c = w.p[b] + w.R[b] * model.inertia[b].com_m;
+        Vec3 omega = s.state.omega_W;
+        Vec3 v_c = s.state.v_W + s.state.omega_W.cross(c - s.state.p_W);
+        for (int a = b; a > 0; a = model.parent[a]) {
+          const Vec3 axis_W = w.R[a] * model.axis[a];
+          omega += axis_W * s.qd[a - 1];
+          v_c += axis_W.cross(c - w.p[a]) * s.qd[a - 1];
+        }
+        const double m = model.inertia[b].mass_kg;
+        const Mat3 I_W = w.R[b] * model.inertia[b].inertia_com * w.R[b].transpose();
+        T_direct += 0.5 * (m * v_c.squaredNorm() + omega.dot(I_W * omega));
+        L += m * v_c;
+        H_P0 += I_W * omega + (c - s.state.p_W).cross(m * v_c);
+      }
+      CHECK(T_matrix == Approx(T_direct).epsilon(1e-12));
+      // ∂T/∂ν of the trunk rows: linear momentum and angular momentum about P0.
+      CHECK(relative_error(Mnu.head<3>(), L) < 1e-12);
+      CHECK(relative_error(Mnu.segment<3>(3), H_P0) < 1e-12);
+      const Momentum& mom = robot_momentum(model, data, s.state, s.q, s.qd);
+      CHECK(relative_error(mom.linear_W, L) < 1e-12);
+      CHECK(relative_error(mom.angular_O_W - s.state.p_W.cross(mom.linear_W), H_P0) < 1e-12);
+      CHECK(relative_error(mom.angular_com_W, H_P0 - (mom.com_W - s.state.p_W).cross(L)) < 1e-12);
+    }
+  }
+}
+
+TEST_CASE("foot bias accelerations match finite differences of foot positions", "[dynamics]") {
+  std::mt19937 rng(31);
+  const double h = 1e-3;
+  for (const RobotModel& model : sample_models()) {
+    RobotData data(model);
+    const Trajectory traj{random_sample(rng)};
+    const Sample& s = traj.s0;
+    foot_jacobians(model, data, s.state, s.q);
+    const auto J = data.J_foot_W;
+    const auto bias = foot_bias_accelerations(model, data, s.state, s.q, s.qd);
+    for (int l = 0; l < kLegs; ++l) {
+      auto velocity_at = [&](double t) {
+        const Sample st = traj.at(t);
+        foot_jacobians(model, data, st.state, st.q);
+        return (data.J_foot_W[l] * velocity_vector(st)).eval();
+      };
+      const Vec3 a_fd = central_difference(velocity_at, h);
+      const Vec3 a = J[l] * acceleration_vector(s) + bias[l];
+      CHECK(relative_error(a, a_fd) < 1e-6);
+    }
+  }
+}
+
+TEST_CASE("contact split reproduces rnea with foot forces", "[dynamics]") {
+  std::mt19937 rng(37);
+  for (const RobotModel& model : sample_models()) {
+    RobotData data(model);
+    for (int n = 0; n < kStatesPerRobot; ++n) {
+      const Sample s = random_sample(rng);
+      const auto F = random_forces(rng);
+      const ContactSplit split = contact_split(model, data, s.state, s.q, s.qd, s.qdd);
+      const VecDof tau = rnea(model, data, s.state, s.q, s.qd, s.qdd, &F);
+      Vec6 trunk = split.trunk_rhs;
+      VecJ joints = split.tau0;
+      for (int l = 0; l < kLegs; ++l) {
+        trunk -= split.JbT[l] * F[l];
+        joints -= split.JjT[l] * F[l];
+        // Leg l's forces load only leg l's joints.
+        Eigen::Matrix<double, kJoints, 3> other_legs = split.JjT[l];
+        other_legs.middleRows<3>(3 * l).setZero();
+        CHECK(other_legs.norm() == 0.0);
+      }
+      CHECK((trunk - tau.head<6>()).norm() <= 1e-10 * std::max(1.0, tau.norm()));
+      CHECK((joints - tau.tail<kJoints>()).norm() <= 1e-10 * std::max(1.0, tau.norm()));
+    }
+  }
+}
+
+}  // namespace hexdyn

@@ -1,0 +1,274 @@
+// Whole-robot kinematics (kinematics.hpp) on the paper scene: analytic joint and foot
+// rates against central finite differences of the sampled positions, with the O(h²)
+// error order checked; the centre of mass against a sum over the bodies done in the
+// test from the tree FK and the parameter masses; the trunk orientation against the
+// stair slope; and the output grid against its definition.
+#include <algorithm>
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "hexdyn/io/config.hpp"
+#include "hexdyn/kinematics/kinematics.hpp"
+#include "hexdyn/model/robot_model.hpp"
+
+namespace hexdyn {
+namespace {
+
+const std::string kPaperConfig = std::string(HEXDYN_SOURCE_DIR) + "/configs/paper.yaml";
+
+struct Planned {
+  Scene scene;
+  RobotModel model;
+  MotionPlan plan;
+};
+
+Planned plan_scene(const std::vector<Override>& overrides = {}) {
+  Scene scene = load_scene(kPaperConfig, overrides);
+  RobotModel model = build_robot_model(scene.robot);
+  MotionPlan plan = plan_motion(scene, model);
+  return Planned{std::move(scene), model, std::move(plan)};
+}
+
+/// Instants where the foot path is not smooth to third order: lift-offs, touchdowns
+/// (velocity jump), and the ends of the lift and the start of the descent (jerk jump).
+std::vector<double> kinks(const GaitPlan& gait) {
+  std::vector<double> t;
+  for (const LegPlan& leg : gait.legs)
+    for (const Swing& sw : leg.swings) {
+      const double D = sw.t_touchdown_s - sw.t_liftoff_s;
+      t.insert(t.end(), {sw.t_liftoff_s, sw.t_touchdown_s, sw.t_liftoff_s + sw.lift_end_u * D,
+                         sw.t_liftoff_s + sw.lower_start_u * D});
+    }
+  return t;
+}
+
+/// Evenly spread instants at least `window` from every kink and from both ends.
+std::vector<double> smooth_times(const Planned& p, int n, double window) {
+  const double T = p.plan.trunk.duration_s();
+  std::vector<double> k = kinks(p.plan.gait);
+  k.push_back(0.0);
+  k.push_back(T);
+  std::vector<double> out;
+  for (int i = 1; i < n; ++i) {
+    const double t = T * i / n;
+    bool near = false;
+    for (double e : k) near = near || std::abs(t - e) < window;
+    if (!near) out.push_back(t);
+  }
+  return out;
+}
+
+struct FdErrors {
+  double qd = 0.0, qdd = 0.0, foot_v = 0.0;
+};
+
+FdErrors fd_errors(const Planned& p, const std::vector<double>& times, double h) {
+  FdErrors e;
+  RobotKinematicState s, sp, sm;
+  for (double t : times) {
+    robot_state_at(p.model, p.plan, t, s);
+    robot_state_at(p.model, p.plan, t + h, sp);
+    robot_state_at(p.model, p.plan, t - h, sm);
+    e.qd = std::max(e.qd, (s.qd - (sp.q - sm.q) / (2 * h)).cwiseAbs().maxCoeff());
+    e.qdd = std::max(e.qdd, (s.qdd - (sp.q - 2.0 * s.q + sm.q) / (h * h)).cwiseAbs().maxCoeff());
+    for (int leg = 0; leg < kLegs; ++leg) {
+      const Vec3 v_fd = (sp.feet[leg].p_W - sm.feet[leg].p_W) / (2 * h);
+      e.foot_v = std::max(e.foot_v, (s.feet[leg].v_W - v_fd).cwiseAbs().maxCoeff());
+    }
+  }
+  return e;
+}
+
+TEST_CASE("kinematics: joint and foot rates match finite differences to O(h^2)", "[kinematics]") {
+  const Planned p = plan_scene();
+  const std::vector<double> times = smooth_times(p, 800, 0.01);
+  REQUIRE(times.size() > 300);
+  // Size of the quantities, for relative bounds.
+  double qd_peak = 0.0, qdd_peak = 0.0, v_peak = 0.0;
+  RobotKinematicState s;
+  for (double t : times) {
+    robot_state_at(p.model, p.plan, t, s);
+    qd_peak = std::max(qd_peak, s.qd.cwiseAbs().maxCoeff());
+    qdd_peak = std::max(qdd_peak, s.qdd.cwiseAbs().maxCoeff());
+    for (const FootMotion& f : s.feet) v_peak = std::max(v_peak, f.v_W.cwiseAbs().maxCoeff());
+  }
+  REQUIRE(qd_peak > 0.0);
+  REQUIRE(qdd_peak > 0.0);
+  REQUIRE(v_peak > 0.0);
+  const FdErrors e1 = fd_errors(p, times, 1e-3);
+  const FdErrors e2 = fd_errors(p, times, 5e-4);
+  INFO("qd " << e1.qd << " -> " << e2.qd << " (peak " << qd_peak << ")");
+  INFO("qdd " << e1.qdd << " -> " << e2.qdd << " (peak " << qdd_peak << ")");
+  INFO("foot v " << e1.foot_v << " -> " << e2.foot_v << " (peak " << v_peak << ")");
+  // Halving the step quarters the error: the analytic rates are the derivatives.
+  CHECK(e1.qd / e2.qd >= 3.0);
+  CHECK(e1.qd / e2.qd <= 5.0);
+  CHECK(e1.qdd / e2.qdd >= 3.0);
+  CHECK(e1.qdd / e2.qdd <= 5.0);
+  CHECK(e1.foot_v / e2.foot_v >= 3.0);
+  CHECK(e1.foot_v / e2.foot_v <= 5.0);
+  // And it is small.
+  CHECK(e2.qd <= 1e-4 * qd_peak);
+  CHECK(e2.qdd <= 1e-4 * qdd_peak);
+  CHECK(e2.foot_v <= 1e-4 * v_peak);
+}
+
+TEST_CASE("kinematics: sampled joints put the feet where the gait plan wants them", "[kinematics]") {
+  const Planned p = plan_scene();
+  const double T = p.plan.trunk.duration_s();
+  std::vector<double> times;
+  for (int i = 0; i <= 300; ++i) times.push_back(T * i / 300.0);
+  const KinematicsResult k = sample_kinematics(p.model, p.plan, times);
+  BodyPoses poses;
+  for (int i = 0; i < k.samples(); ++i) {
+    const VecJ q = k.joint_position.row(i).transpose();
+    forward_kinematics_tree(p.model, q, poses);
+    const TrunkState trunk = p.plan.trunk.at(times[i]);
+    for (int leg = 0; leg < kLegs; ++leg) {
+      const Vec3 foot_W = trunk.p_W + trunk.W_R_B * tree_foot_position_B(p.model, poses, leg);
+      const Vec3 planned = leg_foot_motion(p.plan.gait.legs[leg], times[i]).p_W;
+      const Vec3 sampled = k.foot_position.row(i).segment<3>(3 * leg).transpose();
+      INFO("t " << times[i] << " leg " << leg);
+      CHECK((foot_W - planned).cwiseAbs().maxCoeff() <= 1e-12);
+      CHECK((sampled - planned).cwiseAbs().maxCoeff() == 0.0);
+      const int phase = k.contact_phase(i, leg);
+      CHECK(phase == (leg_foot_motion(p.plan.gait.legs[leg], times[i]).in_swing ? 0 : 2));
+    }
+  }
+}
+
+TEST_CASE("kinematics: /com/position equals the mass-weighted mean of the bodies", "[kinematics]") {
+  // Off-centre trunk, payload and link COMs so that every term counts.
+  const Planned p = plan_scene({{"robot.payload.com", "[0.01, -0.02, 0.03]"},
+                                {"robot.trunk.com", "[-0.005, 0.01, 0.0]"},
+                                {"robot.femur.com", "[0.05, 0.004, -0.003]"},
+                                {"robot.tibia.com", "[0.04, -0.002, 0.005]"}});
+  const RobotParams& rp = p.scene.robot;
+  const double T = p.plan.trunk.duration_s();
+  std::vector<double> times;
+  for (int i = 0; i <= 200; ++i) times.push_back(T * i / 200.0);
+  const KinematicsResult k = sample_kinematics(p.model, p.plan, times);
+  double total = rp.trunk.mass_kg + rp.payload.mass_kg;
+  for (int j = 0; j < kJointsPerLeg; ++j) total += kLegs * rp.link[j].mass_kg;
+  BodyPoses poses;
+  double moved = 0.0;
+  for (int i = 0; i < k.samples(); ++i) {
+    const VecJ q = k.joint_position.row(i).transpose();
+    forward_kinematics_tree(p.model, q, poses);
+    Vec3 first_moment = rp.trunk.mass_kg * rp.trunk.com_m + rp.payload.mass_kg * rp.payload.com_m;
+    for (int leg = 0; leg < kLegs; ++leg)
+      for (int j = 0; j < kJointsPerLeg; ++j) {
+        const int b = 1 + joint_index(leg, j);
+        first_moment += rp.link[j].mass_kg * (poses.p_B[b] + poses.R_B[b] * rp.link[j].com_m);
+      }
+    const TrunkState trunk = p.plan.trunk.at(times[i]);
+    const Vec3 com_W = trunk.p_W + trunk.W_R_B * (first_moment / total);
+    const Vec3 sampled = k.com_position.row(i).transpose();
+    INFO("t " << times[i] << " expected " << com_W.transpose() << " sampled " << sampled.transpose());
+    CHECK((sampled - com_W).cwiseAbs().maxCoeff() <= 1e-12);
+    moved = std::max(moved, (com_W - trunk.p_W).norm());
+  }
+  CHECK(moved > 1e-3);  // the COM is not simply P0
+}
+
+TEST_CASE("kinematics: base orientation is the stair slope pitch", "[kinematics]") {
+  const Planned p = plan_scene();
+  const double alpha = std::atan(p.scene.terrain.riser_height_m / p.scene.terrain.tread_depth_m);
+  const Mat3 R = bryant_to_rotation(Vec3(alpha, 0.0, 0.0));
+  const double T = p.plan.trunk.duration_s();
+  std::vector<double> times;
+  for (int i = 0; i <= 50; ++i) times.push_back(T * i / 50.0);
+  const KinematicsResult k = sample_kinematics(p.model, p.plan, times);
+  for (int i = 0; i < k.samples(); ++i) {
+    const Quat q(k.base_orientation_wxyz(i, 0), k.base_orientation_wxyz(i, 1), k.base_orientation_wxyz(i, 2),
+                 k.base_orientation_wxyz(i, 3));
+    CHECK(std::abs(q.norm() - 1.0) <= 1e-14);
+    CHECK((q.toRotationMatrix() - R).cwiseAbs().maxCoeff() <= 1e-14);
+    // A pitch about x by α: (cos α/2, sin α/2, 0, 0), up to sign.
+    const double sign = q.w() < 0 ? -1.0 : 1.0;
+    CHECK(std::abs(sign * q.w() - std::cos(alpha / 2)) <= 1e-14);
+    CHECK(std::abs(sign * q.x() - std::sin(alpha / 2)) <= 1e-14);
+    CHECK(std::abs(q.y()) <= 1e-14);
+    CHECK(std::abs(q.z()) <= 1e-14);
+    CHECK(k.base_angular_velocity.row(i).norm() == 0.0);
+  }
+}
+
+bool contains(const std::vector<double>& grid, double t, double tol) {
+  const auto it = std::lower_bound(grid.begin(), grid.end(), t - tol);
+  return it != grid.end() && *it <= t + tol;
+}
+
+void check_increasing(const std::vector<double>& grid, double T) {
+  REQUIRE(!grid.empty());
+  CHECK(grid.front() == 0.0);
+  CHECK(grid.back() == T);
+  for (std::size_t i = 1; i < grid.size(); ++i) {
+    INFO("i " << i << " " << grid[i - 1] << " " << grid[i]);
+    REQUIRE(grid[i] > grid[i - 1]);
+  }
+}
+
+TEST_CASE("output grid: uniform", "[kinematics]") {
+  OutputParams out;
+  out.grid = OutputGrid::kUniform;
+  out.sample_step_s = 0.05;
+  for (double T : {8.6, 1.234, 0.05, 3.0}) {
+    INFO("T " << T);
+    const std::vector<double> grid = build_output_grid(out, T, {{1.0, 0.01, 0.002}});
+    check_increasing(grid, T);
+    int multiples = 0;
+    for (int k = 0; k * 0.05 <= T + 1e-9; ++k) {
+      ++multiples;
+      CHECK(contains(grid, k * 0.05, 1e-9));
+    }
+    // Nothing else: every point is a multiple of the step or the end time.
+    for (double t : grid) {
+      const double r = t / 0.05 - std::round(t / 0.05);
+      CHECK((std::abs(r) <= 1e-9 || t == T));
+    }
+    const bool T_is_multiple = std::abs(T / 0.05 - std::round(T / 0.05)) <= 1e-9;
+    CHECK(grid.size() == static_cast<std::size_t>(multiples + (T_is_multiple ? 0 : 1)));
+  }
+}
+
+TEST_CASE("output grid: adaptive contains every event and is strictly increasing", "[kinematics]") {
+  const Planned p = plan_scene();
+  const double T = p.plan.trunk.duration_s();
+  std::vector<GridEvent> events;
+  for (const LegPlan& leg : p.plan.gait.legs)
+    for (const Swing& sw : leg.swings) {
+      events.push_back({sw.t_liftoff_s, 0.0, 0.0});
+      events.push_back({sw.t_touchdown_s, 0.004, 0.0015});
+    }
+  events.push_back({2.02, 0.0, 0.0});  // on a uniform point of the grid
+  OutputParams out = p.scene.output;
+  REQUIRE(out.grid == OutputGrid::kAdaptive);
+  const std::vector<double> grid = build_output_grid(out, T, events);
+  check_increasing(grid, T);
+  for (int k = 0; k * out.sample_step_s <= T + 1e-9; ++k) CHECK(contains(grid, k * out.sample_step_s, 1e-9));
+  for (const GridEvent& e : events) {
+    INFO("event " << e.t_s);
+    CHECK(contains(grid, e.t_s, 1e-9));
+    // Points of a transient that ends after T are cut off.
+    if (e.duration_s > 0.0) {
+      if (e.t_s + e.peak_offset_s <= T) CHECK(contains(grid, e.t_s + e.peak_offset_s, 1e-9));
+      for (int j = 0; j <= out.impact_samples; ++j)
+        if (e.t_s + e.duration_s * j / out.impact_samples <= T)
+          CHECK(contains(grid, e.t_s + e.duration_s * j / out.impact_samples, 1e-9));
+    }
+    // The finest step next to the event (on each side that lies inside the run).
+    if (e.t_s - out.event_step_s >= 0.0) CHECK(contains(grid, e.t_s - out.event_step_s, 1e-9));
+    if (e.t_s + e.duration_s + out.event_step_s <= T)
+      CHECK(contains(grid, e.t_s + e.duration_s + out.event_step_s, 1e-9));
+  }
+  // Refinement only adds points: it is denser than the uniform grid.
+  OutputParams uniform = out;
+  uniform.grid = OutputGrid::kUniform;
+  CHECK(grid.size() > build_output_grid(uniform, T, events).size());
+}
+
+}  // namespace
+}  // namespace hexdyn

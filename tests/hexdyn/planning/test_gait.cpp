@@ -1,0 +1,404 @@
+// Gait and trunk motion planning (gait.hpp, motion.hpp) on the paper scene and on
+// variants of it, checked against quantities measured in the test: support fractions
+// from the swing times, support counts from densely sampled feet, clearances from
+// terrain scans along every swing, derivatives from central finite differences.
+#include <algorithm>
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "hexdyn/io/config.hpp"
+#include "hexdyn/planning/gait.hpp"
+#include "hexdyn/kinematics/kinematics.hpp"
+#include "hexdyn/planning/motion.hpp"
+#include "hexdyn/model/robot_model.hpp"
+
+namespace hexdyn {
+namespace {
+
+const std::string kPaperConfig = std::string(HEXDYN_SOURCE_DIR) + "/configs/paper.yaml";
+
+std::string exact(double x) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.17g", x);
+  return buf;
+}
+
+struct Planned {
+  Scene scene;
+  RobotModel model;
+  MotionPlan plan;
+};
+
+Planned plan_scene(const std::vector<Override>& overrides) {
+  Scene scene = load_scene(kPaperConfig, overrides);
+  RobotModel model = build_robot_model(scene.robot);
+  MotionPlan plan = plan_motion(scene, model);
+  return Planned{std::move(scene), model, std::move(plan)};
+}
+
+/// Five cycles, the middle three steady.
+const std::string kFiveCycles = "[3.0, 2.6, 2.6, 2.6, 3.0]";
+
+Planned plan_duty(double beta, const std::string& durations = kFiveCycles) {
+  return plan_scene({{"gait.duty_factor", exact(beta)}, {"motion.cycle_durations", durations}});
+}
+
+const std::vector<double> kDutyFactors = {0.5, 2.0 / 3.0, 0.75, 5.0 / 6.0};
+
+/// Every lift-off and touchdown time of the plan.
+std::vector<double> event_times(const GaitPlan& gait) {
+  std::vector<double> t;
+  for (const LegPlan& leg : gait.legs)
+    for (const Swing& sw : leg.swings) {
+      t.push_back(sw.t_liftoff_s);
+      t.push_back(sw.t_touchdown_s);
+    }
+  return t;
+}
+
+int support_count(const GaitPlan& gait, double t) {
+  int n = 0;
+  for (const LegPlan& leg : gait.legs) n += leg_foot_motion(leg, t).in_swing ? 0 : 1;
+  return n;
+}
+
+TEST_CASE("gait: swings of every leg are ordered, disjoint and inside the run", "[gait]") {
+  for (double beta : kDutyFactors) {
+    const Planned p = plan_duty(beta);
+    const double T = p.plan.trunk.duration_s();
+    for (int leg = 0; leg < kLegs; ++leg) {
+      const auto& swings = p.plan.gait.legs[leg].swings;
+      INFO("beta " << beta << " leg " << leg);
+      REQUIRE(swings.size() >= static_cast<std::size_t>(p.plan.trunk.cycles()));
+      for (std::size_t i = 0; i < swings.size(); ++i) {
+        CHECK(swings[i].t_liftoff_s >= 0.0);
+        CHECK(swings[i].t_touchdown_s <= T);
+        CHECK(swings[i].t_touchdown_s > swings[i].t_liftoff_s);
+        if (i > 0) CHECK(swings[i].t_liftoff_s > swings[i - 1].t_touchdown_s);
+      }
+    }
+  }
+}
+
+TEST_CASE("gait: steady-cycle support fraction equals the duty factor", "[gait]") {
+  for (double beta : kDutyFactors) {
+    const Planned p = plan_duty(beta);
+    const TrunkMotion& trunk = p.plan.trunk;
+    const int n = trunk.cycles();
+    REQUIRE(n == 5);
+    for (int leg = 0; leg < kLegs; ++leg) {
+      for (int k = 0; k < n; ++k) {
+        // Swing time of this cycle in phase units, from the planned swing times.
+        double swing = 0.0;
+        for (const Swing& sw : p.plan.gait.legs[leg].swings) {
+          const double a = trunk.phase(sw.t_liftoff_s), b = trunk.phase(sw.t_touchdown_s);
+          swing += std::max(0.0, std::min(b, k + 1.0) - std::max(a, static_cast<double>(k)));
+        }
+        INFO("beta " << beta << " leg " << leg << " cycle " << k << " swing phase " << swing);
+        if (k == 0 || k == n - 1)
+          CHECK(1.0 - swing >= beta - 1e-9);  // start and end may keep feet down longer
+        else
+          CHECK(std::abs((1.0 - swing) - beta) <= 1e-9);
+      }
+    }
+  }
+}
+
+TEST_CASE("gait: at least three feet support the robot at every instant", "[gait]") {
+  for (double beta : kDutyFactors) {
+    const Planned p = plan_duty(beta);
+    const double T = p.plan.trunk.duration_s();
+    int fewest = kLegs;
+    for (int i = 0; i <= 20000; ++i) fewest = std::min(fewest, support_count(p.plan.gait, T * i / 20000.0));
+    for (double t : event_times(p.plan.gait)) fewest = std::min(fewest, support_count(p.plan.gait, t));
+    INFO("beta " << beta);
+    CHECK(fewest >= 3);
+    // The gait does lift legs: with β < 1 some instant has fewer than six in support.
+    CHECK(fewest < kLegs);
+  }
+}
+
+TEST_CASE("gait: the tripod alternates {1,4,5} and {2,3,6}, legs 2,3,6 first", "[gait]") {
+  const Planned p = plan_duty(0.5);
+  const GaitPlan& g = p.plan.gait;
+  const double T = p.plan.trunk.duration_s();
+  // 0-based groups: legs 2,3,6 → {1,2,5}; legs 1,4,5 → {0,3,4}.
+  const std::array<bool, kLegs> first_group{false, true, true, false, false, true};
+  int seen_first = 0, seen_second = 0;
+  for (int i = 0; i <= 20000; ++i) {
+    const double t = T * i / 20000.0;
+    std::array<bool, kLegs> swinging{};
+    int count = 0;
+    for (int leg = 0; leg < kLegs; ++leg) {
+      swinging[leg] = leg_foot_motion(g.legs[leg], t).in_swing;
+      count += swinging[leg];
+    }
+    INFO("t " << t);
+    if (count == 0) continue;
+    REQUIRE(count == 3);
+    const bool first = swinging == first_group;
+    std::array<bool, kLegs> second_group;
+    for (int leg = 0; leg < kLegs; ++leg) second_group[leg] = !first_group[leg];
+    CHECK((first || swinging == second_group));
+    (first ? seen_first : seen_second) += 1;
+  }
+  CHECK(seen_first > 0);
+  CHECK(seen_second > 0);
+  // Legs 2, 3, 6 lift together at the start; 1, 4, 5 after they have touched down.
+  for (int leg : {1, 2, 5}) CHECK(g.legs[leg].swings.front().t_liftoff_s == 0.0);
+  for (int leg : {0, 3, 4}) {
+    CHECK(g.legs[leg].swings.front().t_liftoff_s > 0.0);
+    CHECK(g.legs[leg].swings.front().t_liftoff_s >= g.legs[1].swings.front().t_touchdown_s);
+  }
+  // Members of a group share their swing times.
+  for (const auto& group : {std::array<int, 3>{1, 2, 5}, std::array<int, 3>{0, 3, 4}}) {
+    const auto& ref = g.legs[group[0]].swings;
+    for (int leg : group) {
+      REQUIRE(g.legs[leg].swings.size() == ref.size());
+      for (std::size_t i = 0; i < ref.size(); ++i) {
+        CHECK(g.legs[leg].swings[i].t_liftoff_s == ref[i].t_liftoff_s);
+        CHECK(g.legs[leg].swings[i].t_touchdown_s == ref[i].t_touchdown_s);
+      }
+    }
+  }
+}
+
+TEST_CASE("gait: support feet stay at their touchdown point", "[gait]") {
+  for (double beta : kDutyFactors) {
+    const Planned p = plan_duty(beta);
+    const double T = p.plan.trunk.duration_s();
+    for (int leg = 0; leg < kLegs; ++leg) {
+      const LegPlan& lp = p.plan.gait.legs[leg];
+      INFO("beta " << beta << " leg " << leg);
+      // Stance intervals [start, end) and the point the foot must hold.
+      struct Stance {
+        double start, end;
+        Vec3 p;
+      };
+      std::vector<Stance> stances;
+      double start = 0.0;
+      Vec3 hold = lp.p_initial_W;
+      for (const Swing& sw : lp.swings) {
+        CHECK(sw.p_liftoff_W == hold);  // lifts off where it stood
+        stances.push_back({start, sw.t_liftoff_s, hold});
+        // The swing path ends at its touchdown point.
+        CHECK((swing_foot_motion(sw, sw.t_touchdown_s).p_W - sw.p_touchdown_W).cwiseAbs().maxCoeff() <= 1e-12);
+        CHECK((leg_foot_motion(lp, sw.t_touchdown_s - 1e-9).p_W - sw.p_touchdown_W).cwiseAbs().maxCoeff() <= 1e-9);
+        start = sw.t_touchdown_s;
+        hold = sw.p_touchdown_W;
+      }
+      stances.push_back({start, T, hold});
+      for (const Stance& s : stances) {
+        if (s.end <= s.start) continue;
+        for (int i = 0; i <= 50; ++i) {
+          const double t = s.start + (s.end - s.start) * i / 51.0;
+          const FootMotion f = leg_foot_motion(lp, t);
+          INFO("t " << t);
+          CHECK_FALSE(f.in_swing);
+          CHECK(f.p_W == s.p);
+          CHECK(f.v_W == Vec3::Zero());
+          CHECK(f.a_W == Vec3::Zero());
+        }
+      }
+      // Footholds stand on the terrain.
+      for (const Stance& s : stances) CHECK(s.p.z() == p.plan.terrain.height(s.p.x(), s.p.y()));
+    }
+  }
+}
+
+TEST_CASE("gait: swing paths clear the terrain by the swing clearance", "[gait]") {
+  for (double beta : kDutyFactors) {
+    const Planned p = plan_duty(beta);
+    const Terrain& terrain = p.plan.terrain;
+    const double clearance = p.scene.gait.swing_clearance_m;
+    for (int leg = 0; leg < kLegs; ++leg) {
+      for (const Swing& sw : p.plan.gait.legs[leg].swings) {
+        INFO("beta " << beta << " leg " << leg << " swing at " << sw.t_liftoff_s);
+        const Vec3 &a = sw.p_liftoff_W, &b = sw.p_touchdown_W;
+        // Highest terrain under the horizontal segment, by scanning.
+        double highest = -std::numeric_limits<double>::infinity();
+        for (int i = 0; i <= 5000; ++i) {
+          const Vec3 q = a + (b - a) * (i / 5000.0);
+          highest = std::max(highest, terrain.height(q.x(), q.y()));
+        }
+        double top = -std::numeric_limits<double>::infinity();
+        int transfer_points = 0;
+        const int N = 2000;
+        for (int i = 0; i <= N; ++i) {
+          const double t = sw.t_liftoff_s + (sw.t_touchdown_s - sw.t_liftoff_s) * i / N;
+          const Vec3 f = swing_foot_motion(sw, t).p_W;
+          const double ground = terrain.height(f.x(), f.y());
+          top = std::max(top, f.z());
+          CHECK(f.z() >= ground - 1e-12);
+          const bool at_end = f.head<2>() == a.head<2>() || f.head<2>() == b.head<2>();
+          if (!at_end) {
+            ++transfer_points;
+            if (f.z() - ground < clearance - 1e-12) {
+              INFO("t " << t << " foot " << f.transpose() << " ground " << ground);
+              CHECK(f.z() - ground >= clearance - 1e-12);
+            }
+          }
+        }
+        CHECK(transfer_points > 50);
+        CHECK(std::abs(top - (highest + clearance)) <= 1e-12);
+        CHECK(std::abs(sw.apex_z_m - (highest + clearance)) <= 1e-12);
+      }
+    }
+  }
+}
+
+TEST_CASE("gait: touchdown speed, rest at lift-off, C2 swing paths", "[gait]") {
+  for (double beta : kDutyFactors) {
+    const Planned p = plan_duty(beta);
+    const double v_td = p.scene.gait.touchdown_speed_mps;
+    REQUIRE(v_td > 0.0);
+    for (int leg = 0; leg < kLegs; ++leg) {
+      for (const Swing& sw : p.plan.gait.legs[leg].swings) {
+        INFO("beta " << beta << " leg " << leg << " swing at " << sw.t_liftoff_s);
+        const double t0 = sw.t_liftoff_s, t1 = sw.t_touchdown_s, D = t1 - t0;
+        // Touchdown: straight down at the touchdown speed, at t_td and just before it.
+        const FootMotion td = swing_foot_motion(sw, t1);
+        CHECK((td.v_W - Vec3(0, 0, -v_td)).cwiseAbs().maxCoeff() <= 1e-12);
+        CHECK((leg_foot_motion(p.plan.gait.legs[leg], t1 - 1e-9).v_W - Vec3(0, 0, -v_td)).cwiseAbs().maxCoeff() <= 1e-6);
+        // Lift-off: at rest.
+        const FootMotion lo = swing_foot_motion(sw, t0);
+        CHECK(lo.v_W.cwiseAbs().maxCoeff() <= 1e-12);
+        CHECK(lo.a_W.cwiseAbs().maxCoeff() <= 1e-12);
+        CHECK((lo.p_W - sw.p_liftoff_W).cwiseAbs().maxCoeff() <= 1e-15);
+        // Continuity of position, velocity and acceleration across the phase boundaries.
+        REQUIRE(sw.lift_end_u > 0.0);
+        REQUIRE(sw.lower_start_u > sw.lift_end_u);
+        REQUIRE(sw.lower_start_u < 1.0);
+        const double tb[2] = {t0 + sw.lift_end_u * D, t0 + sw.lower_start_u * D};
+        for (double t : tb) {
+          const double eps = 1e-9;
+          const FootMotion m = swing_foot_motion(sw, t - eps), pl = swing_foot_motion(sw, t + eps);
+          INFO("boundary " << t);
+          CHECK((pl.p_W - m.p_W).cwiseAbs().maxCoeff() <= 1e-9);
+          CHECK((pl.v_W - m.v_W).cwiseAbs().maxCoeff() <= 1e-6);
+          CHECK((pl.a_W - m.a_W).cwiseAbs().maxCoeff() <= 1e-4);
+        }
+        // Velocity and acceleration against central differences, away from the
+        // boundaries (where the jerk jumps) and the ends.
+        const double h = 1e-5;
+        double v_peak = 0.0, a_peak = 0.0;
+        for (int i = 0; i <= 400; ++i) {
+          const FootMotion f = swing_foot_motion(sw, t0 + D * i / 400.0);
+          v_peak = std::max(v_peak, f.v_W.norm());
+          a_peak = std::max(a_peak, f.a_W.norm());
+        }
+        double v_err = 0.0, a_err = 0.0;
+        for (int i = 1; i < 400; ++i) {
+          const double t = t0 + D * i / 400.0;
+          if (std::abs(t - tb[0]) < 3 * h || std::abs(t - tb[1]) < 3 * h) continue;
+          const FootMotion f = swing_foot_motion(sw, t);
+          const Vec3 v_fd = (swing_foot_motion(sw, t + h).p_W - swing_foot_motion(sw, t - h).p_W) / (2 * h);
+          const Vec3 a_fd = (swing_foot_motion(sw, t + h).v_W - swing_foot_motion(sw, t - h).v_W) / (2 * h);
+          v_err = std::max(v_err, (f.v_W - v_fd).norm());
+          a_err = std::max(a_err, (f.a_W - a_fd).norm());
+        }
+        CHECK(v_peak > 0.0);
+        CHECK(a_peak > 0.0);
+        CHECK(v_err <= 1e-5 * v_peak);
+        CHECK(a_err <= 1e-5 * a_peak);
+      }
+    }
+  }
+}
+
+TEST_CASE("gait: footholds keep the margin from every nosing and riser", "[gait]") {
+  for (double beta : kDutyFactors) {
+    const Planned p = plan_duty(beta);
+    const double margin = p.scene.gait.foothold_margin_m;
+    REQUIRE(margin > 0.0);
+    for (int leg = 0; leg < kLegs; ++leg) {
+      const LegPlan& lp = p.plan.gait.legs[leg];
+      INFO("beta " << beta << " leg " << leg);
+      CHECK(p.plan.terrain.edge_distance(lp.p_initial_W.y()) >= margin - 1e-12);
+      for (const Swing& sw : lp.swings) CHECK(p.plan.terrain.edge_distance(sw.p_touchdown_W.y()) >= margin - 1e-12);
+    }
+  }
+}
+
+TEST_CASE("trunk: parallel to the slope, at rest at both ends, C2 speed", "[gait]") {
+  const Planned p = plan_scene({});
+  const TrunkMotion& trunk = p.plan.trunk;
+  const double hs = p.scene.terrain.riser_height_m, bs = p.scene.terrain.tread_depth_m;
+  const Vec3 slope_dir = Vec3(0.0, bs, hs).normalized();
+  const double T = trunk.duration_s();
+  double v_max = 0.0, a_max = 0.0;
+  for (int i = 0; i <= 2000; ++i) {
+    const double t = T * i / 2000.0;
+    const TrunkState s = trunk.at(t);
+    INFO("t " << t);
+    CHECK((s.W_R_B.col(1) - slope_dir).cwiseAbs().maxCoeff() <= 1e-14);
+    CHECK((s.W_R_B.col(0) - Vec3::UnitX()).cwiseAbs().maxCoeff() <= 1e-14);
+    // The trunk moves along the slope.
+    CHECK((s.v_W - s.v_W.dot(slope_dir) * slope_dir).norm() <= 1e-15);
+    v_max = std::max(v_max, s.v_W.norm());
+    a_max = std::max(a_max, s.a_W.norm());
+  }
+  CHECK(trunk.at(0.0).v_W.norm() == 0.0);
+  CHECK(trunk.at(T).v_W.norm() == 0.0);
+  CHECK(trunk.speed(0.0) == 0.0);
+  CHECK(trunk.speed(T) == 0.0);
+  CHECK((trunk.at(0.0).p_W - p.scene.motion.initial_position_m).norm() <= 1e-15);
+  // Cruise speed: one stride along the slope (s0/β horizontally) per 2.6 s cruise cycle.
+  const double stride = std::hypot(0.125 / 0.5, 0.125 / 0.5 * hs / bs);
+  CHECK(std::abs(trunk.cruise_speed_mps() - stride / 2.6) <= 1e-12);
+  CHECK(v_max <= trunk.cruise_speed_mps() * (1.0 + 1e-15));
+  CHECK(v_max >= trunk.cruise_speed_mps() * (1.0 - 1e-12));  // it is reached
+  // Velocity and acceleration against central differences of the position.
+  const double h = 1e-4;
+  double v_err = 0.0, a_err = 0.0, a2_err = 0.0;
+  for (int i = 1; i < 2000; ++i) {
+    const double t = T * i / 2000.0;
+    if (t - 2 * h <= 0.0 || t + 2 * h >= T) continue;
+    const TrunkState s = trunk.at(t), sp = trunk.at(t + h), sm = trunk.at(t - h);
+    v_err = std::max(v_err, (s.v_W - (sp.p_W - sm.p_W) / (2 * h)).norm());
+    a_err = std::max(a_err, (s.a_W - (sp.v_W - sm.v_W) / (2 * h)).norm());
+    const double H = 1e-3;
+    const Vec3 a_pp = (trunk.at(t + H).p_W - 2.0 * s.p_W + trunk.at(t - H).p_W) / (H * H);
+    a2_err = std::max(a2_err, (s.a_W - a_pp).norm());
+  }
+  INFO("v_err " << v_err << " a_err " << a_err << " a2_err " << a2_err << " a_max " << a_max);
+  CHECK(a_max > 0.0);
+  CHECK(v_err <= 1e-6 * v_max);
+  CHECK(a_err <= 1e-5 * a_max);
+  CHECK(a2_err <= 1e-4 * a_max);
+  // Speed and acceleration are continuous at the ends of the ramps.
+  for (double t : {trunk.ramp_duration_s(), T - trunk.ramp_duration_s()}) {
+    CHECK(std::abs(trunk.speed(t + 1e-9) - trunk.speed(t - 1e-9)) <= 1e-10);
+    CHECK(std::abs(trunk.acceleration(t + 1e-9) - trunk.acceleration(t - 1e-9)) <= 1e-8);
+  }
+}
+
+TEST_CASE("trunk: cycle boundaries reproduce the paper's cycle durations", "[gait]") {
+  const Planned p = plan_scene({});
+  const TrunkMotion& trunk = p.plan.trunk;
+  REQUIRE(trunk.cycles() == 3);
+  const double expected[3] = {3.0, 2.6, 3.0};
+  for (int k = 0; k < 3; ++k) {
+    const double d = trunk.time_at_phase(k + 1.0) - trunk.time_at_phase(k);
+    INFO("cycle " << k << " duration " << d);
+    CHECK(std::abs(d - expected[k]) <= 1e-9);
+  }
+  CHECK(std::abs(trunk.duration_s() - 8.6) <= 1e-9);
+  CHECK(trunk.time_at_phase(0.0) == 0.0);
+  // Each cycle advances the trunk one stride along the slope.
+  for (int k = 0; k <= 3; ++k) {
+    const Vec3 pos = trunk.at(trunk.time_at_phase(k)).p_W;
+    CHECK((pos - trunk.position_at_phase(k)).norm() <= 1e-9);
+  }
+  // The changed duty factor keeps the cycle durations.
+  const Planned q = plan_scene({{"gait.duty_factor", "0.75"}});
+  for (int k = 0; k < 3; ++k)
+    CHECK(std::abs(q.plan.trunk.time_at_phase(k + 1.0) - q.plan.trunk.time_at_phase(k) - expected[k]) <= 1e-9);
+}
+
+}  // namespace
+}  // namespace hexdyn
