@@ -62,10 +62,30 @@ def read(obj):
     return obj[()]
 
 
-def compare(ga, gb, path, sweep, out):
+class Rules:
+    """What compare() skips and how it compares dataset values. This class: exact
+    equality (NaN equal to NaN) with the timing fields above ignored; tests/regression/
+    compare_results.py derives a tolerance on floats from it."""
+
+    def __init__(self, sweep):
+        self.sweep = sweep
+
+    def ignored_attrs(self, path):
+        return ignored_attrs(path, self.sweep)
+
+    def ignored_dataset(self, path):
+        return ignored_dataset(path)
+
+    def values_differ(self, path, a, b):
+        """None when the values of datasets a and b (same shape and type) agree, else a
+        short description."""
+        return None if values_equal(read(a), read(b)) else "values differ"
+
+
+def compare(ga, gb, path, rules, out):
     """Appends one line per difference between groups ga and gb (at `path`)."""
     attrs_a, attrs_b = set(ga.attrs), set(gb.attrs)
-    skip = ignored_attrs(path or "/", sweep)
+    skip = rules.ignored_attrs(path or "/")
     for name in sorted((attrs_a | attrs_b) - skip):
         if name not in attrs_a or name not in attrs_b:
             out.append(f"{path or '/'}@{name}: present in one file only")
@@ -82,17 +102,19 @@ def compare(ga, gb, path, sweep, out):
             out.append(f"{p}: group in one file, dataset in the other")
             continue
         if isinstance(a, h5py.Group):
-            compare(a, b, p, sweep, out)
+            compare(a, b, p, rules, out)
             continue
-        compare_attrs_only = ignored_dataset(p)
+        compare_attrs_only = rules.ignored_dataset(p)
         if not compare_attrs_only:
             if a.shape != b.shape or a.dtype != b.dtype:
                 out.append(f"{p}: shape/type {a.shape} {a.dtype} vs {b.shape} {b.dtype}")
-            elif not values_equal(read(a), read(b)):
-                out.append(f"{p}: values differ")
+            else:
+                message = rules.values_differ(p, a, b)
+                if message:
+                    out.append(f"{p}: {message}")
         elif a.shape != b.shape:
             out.append(f"{p}: shape {a.shape} vs {b.shape}")
-        compare(a, b, p, sweep, out)
+        compare(a, b, p, rules, out)
 
 
 def open_target(spec):
@@ -114,7 +136,7 @@ def main():
     fb, gb = open_target(args.b)
     with fa, fb:
         diffs = []
-        compare(ga, gb, "", not args.result, diffs)
+        compare(ga, gb, "", Rules(sweep=not args.result), diffs)
     for d in diffs:
         print(f"compare_sweeps: {d}", file=sys.stderr)
     if diffs:
