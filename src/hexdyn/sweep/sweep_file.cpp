@@ -3,6 +3,7 @@
 #include <hdf5.h>
 
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <filesystem>
 
@@ -113,31 +114,35 @@ void write_axes(H5Writer& w, const SweepSpec& spec) {
 void write_scenarios(H5Writer& w, const SweepSpec& spec, const std::vector<ScenarioSummary>& rows) {
   const std::size_t n = rows.size();
   const std::size_t A = spec.axes.size();
+  // One column of a summary field, in scenario order.
+  const auto doubles = [&](const s::DatasetSpec& d, double ScenarioSummary::*field) {
+    std::vector<double> v(n);
+    for (std::size_t i = 0; i < n; ++i) v[i] = rows[i].*field;
+    write_doubles(w, d, {n}, v);
+  };
+  const auto counts = [&](const s::DatasetSpec& d, int ScenarioSummary::*field) {
+    std::vector<std::int32_t> v(n);
+    for (std::size_t i = 0; i < n; ++i) v[i] = rows[i].*field;
+    write_int32(w, d, {n}, v);
+  };
+  using JointArray = std::array<double, kJoints>;
+  const auto per_joint = [&](const s::DatasetSpec& d, JointArray ScenarioSummary::*field) {
+    std::vector<double> v(n * kJoints);
+    for (std::size_t i = 0; i < n; ++i)
+      std::copy((rows[i].*field).begin(), (rows[i].*field).end(),
+                v.begin() + static_cast<std::ptrdiff_t>(i * kJoints));
+    write_doubles(w, d, {n, kJoints}, v);
+  };
+
   std::vector<std::string> ids(n), messages(n);
-  std::vector<std::int32_t> axis_index(n * A), samples(n), relaxed(n), failed(n);
+  std::vector<std::int32_t> axis_index(n * A);
   std::vector<std::int8_t> status(n);
-  std::vector<double> duration(n), distance(n), energy(n), cot(n), impact(n), wall(n);
-  std::vector<double> peak(n * kJoints), rms(n * kJoints);
   for (std::size_t i = 0; i < n; ++i) {
-    const ScenarioSummary& r = rows[i];
     ids[i] = scenario_id(spec, i);
-    messages[i] = r.message;
+    messages[i] = rows[i].message;
+    status[i] = static_cast<std::int8_t>(rows[i].status);
     const auto gp = grid_point(spec, i);
     for (std::size_t a = 0; a < A; ++a) axis_index[i * A + a] = static_cast<std::int32_t>(gp[a]);
-    status[i] = static_cast<std::int8_t>(r.status);
-    samples[i] = r.samples;
-    relaxed[i] = r.relaxed_samples;
-    failed[i] = r.failed_samples;
-    duration[i] = r.duration_s;
-    distance[i] = r.distance_m;
-    energy[i] = r.energy_J;
-    cot[i] = r.cost_of_transport;
-    impact[i] = r.peak_impact_force_N;
-    wall[i] = r.wall_time_s;
-    std::copy(r.peak_torque_Nm.begin(), r.peak_torque_Nm.end(),
-              peak.begin() + static_cast<std::ptrdiff_t>(i * kJoints));
-    std::copy(r.rms_torque_Nm.begin(), r.rms_torque_Nm.end(),
-              rms.begin() + static_cast<std::ptrdiff_t>(i * kJoints));
   }
   w.write_strings(s::kScenarioId.path, ids, s::kScenarioId.units);
   write_int32(w, s::kScenarioAxisIndex, {n, A}, axis_index);
@@ -160,17 +165,17 @@ void write_scenarios(H5Writer& w, const SweepSpec& spec, const std::vector<Scena
   w.write_int8(s::kScenarioStatus.path, {n}, status, s::kScenarioStatus.units);
   set_attribute(w, s::kScenarioStatusCodes, status_codes_text());
   w.write_strings(s::kScenarioMessage.path, messages, s::kScenarioMessage.units);
-  write_int32(w, s::kScenarioSamples, {n}, samples);
-  write_doubles(w, s::kScenarioDuration, {n}, duration);
-  write_doubles(w, s::kScenarioDistance, {n}, distance);
-  write_doubles(w, s::kScenarioEnergy, {n}, energy);
-  write_doubles(w, s::kScenarioCostOfTransport, {n}, cot);
-  write_doubles(w, s::kScenarioPeakImpactForce, {n}, impact);
-  write_doubles(w, s::kScenarioPeakTorque, {n, kJoints}, peak);
-  write_doubles(w, s::kScenarioRmsTorque, {n, kJoints}, rms);
-  write_int32(w, s::kScenarioRelaxedSamples, {n}, relaxed);
-  write_int32(w, s::kScenarioFailedSamples, {n}, failed);
-  write_doubles(w, s::kScenarioWallTime, {n}, wall);
+  counts(s::kScenarioSamples, &ScenarioSummary::samples);
+  doubles(s::kScenarioDuration, &ScenarioSummary::duration_s);
+  doubles(s::kScenarioDistance, &ScenarioSummary::distance_m);
+  doubles(s::kScenarioEnergy, &ScenarioSummary::energy_J);
+  doubles(s::kScenarioCostOfTransport, &ScenarioSummary::cost_of_transport);
+  doubles(s::kScenarioPeakImpactForce, &ScenarioSummary::peak_impact_force_N);
+  per_joint(s::kScenarioPeakTorque, &ScenarioSummary::peak_torque_Nm);
+  per_joint(s::kScenarioRmsTorque, &ScenarioSummary::rms_torque_Nm);
+  counts(s::kScenarioRelaxedSamples, &ScenarioSummary::relaxed_samples);
+  counts(s::kScenarioFailedSamples, &ScenarioSummary::failed_samples);
+  doubles(s::kScenarioWallTime, &ScenarioSummary::wall_time_s);
   set_attribute(w, s::kScenariosMissingValues,
                 std::string("metrics are NaN for scenarios whose status is not 0 (ok)"));
 }
