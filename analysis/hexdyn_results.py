@@ -1,7 +1,7 @@
 """Reader for hexdyn result files (`hexdyn-result/1`) and sweep files (`hexdyn-sweep/1`).
 
 The layout is the contract of DESIGN.md section 4; the tables below mirror
-src/hexdyn/result_schema.hpp (path -> (shape, units, element type)). Shapes use the
+src/hexdyn/schema.hpp (path -> (shape, units, element type)). Shapes use the
 symbols "T" (samples), "n" (touchdowns) and "m" (solver messages).
 
     from hexdyn_results import open_result
@@ -22,66 +22,147 @@ symbols "T" (samples), "n" (touchdowns) and "m" (solver messages).
 Requires h5py, numpy and PyYAML (Debian: /usr/bin/python3).
 """
 
+import os
+import re
+
 import h5py
 import numpy as np
 import yaml
 
-RESULT_SCHEMA = "hexdyn-result/1"
-RESULT_SCHEMA_VERSION = 1
-SWEEP_SCHEMA = "hexdyn-sweep/1"
-SWEEP_SCHEMA_VERSION = 1
+# ---------------------------------------------------------------------------- the schema
+# The layout is declared once, in the C++ header src/hexdyn/io/schema.hpp; this module
+# parses that header at import. The header is looked for, in this order, at
+# $HEXDYN_SCHEMA_HPP, next to this module (schema.hpp, an installed copy) and in the
+# source tree (../src/hexdyn/io/schema.hpp from this folder).
+_HERE = os.path.dirname(os.path.abspath(__file__))
+SCHEMA_HEADER_CANDIDATES = tuple(p for p in (
+    os.environ.get("HEXDYN_SCHEMA_HPP"),
+    os.path.join(_HERE, "schema.hpp"),
+    os.path.join(_HERE, "..", "src", "hexdyn", "io", "schema.hpp"),
+) if p)
 
-META_GROUP = "/meta"
-META_ATTRIBUTES = ("schema", "schema_version", "version", "git_commit", "created_utc",
-                   "config_yaml", "wall_time_s")
 
-MODEL_DATASETS = {
-    "/model/urdf": ((), "1", "string"),
-    "/model/joint_names": ((18,), "1", "string"),
-    "/model/leg_names": ((6,), "1", "string"),
-    "/model/total_mass": ((), "kg", "float64"),
-}
+class DatasetSpec:
+    """A dataset of the contract: path (may hold "{i}" or "{id}"), units, shape (a tuple
+    of ints and size symbols "T", "n", "m", "N", "A", "V"), element ("float64", "int8",
+    "int32", "int64", "string"); `name` is the C++ constant (kTime)."""
 
-KINEMATIC_DATASETS = {
-    "/time": (("T",), "s", "float64"),
-    "/base/position": (("T", 3), "m", "float64"),
-    "/base/orientation": (("T", 4), "1", "float64"),  # quaternion w, x, y, z; body -> world
-    "/base/linear_velocity": (("T", 3), "m/s", "float64"),
-    "/base/angular_velocity": (("T", 3), "rad/s", "float64"),
-    "/base/linear_acceleration": (("T", 3), "m/s^2", "float64"),
-    "/base/angular_acceleration": (("T", 3), "rad/s^2", "float64"),
-    "/joints/position": (("T", 18), "rad", "float64"),
-    "/joints/velocity": (("T", 18), "rad/s", "float64"),
-    "/joints/acceleration": (("T", 18), "rad/s^2", "float64"),
-    "/feet/position": (("T", 6, 3), "m", "float64"),
-    "/feet/velocity": (("T", 6, 3), "m/s", "float64"),
-    "/com/position": (("T", 3), "m", "float64"),
-    "/contacts/phase": (("T", 6), "1", "int8"),  # 0 swing, 1 impact, 2 support
-}
+    def __init__(self, name, path, units, shape, element):
+        self.name, self.path, self.units, self.shape, self.element = (
+            name, path, units, shape, element)
 
-DYNAMICS_DATASETS = {
-    "/joints/torque": (("T", 18), "N m", "float64"),
-    "/contacts/force": (("T", 6, 3), "N", "float64"),  # terrain on foot, world frame
-    "/contacts/penetration": (("T", 6), "m", "float64"),
-    "/impacts/leg": (("n",), "1", "int32"),  # 1-based leg number
-    "/impacts/t_start": (("n",), "s", "float64"),
-    "/impacts/duration": (("n",), "s", "float64"),
-    "/impacts/peak_force": (("n",), "N", "float64"),
-    "/impacts/impulse": (("n",), "N s", "float64"),
-    "/impacts/effective_mass": (("n",), "kg", "float64"),
-    "/impacts/approach_speed": (("n",), "m/s", "float64"),
-    "/power/joint": (("T", 18), "W", "float64"),
-    "/power/total": (("T",), "W", "float64"),
-    "/energy/total": ((), "J", "float64"),
-    "/energy/joint": ((18,), "J", "float64"),
-    "/energy/cost_of_transport": ((), "1", "float64"),
-    "/energy/distance": ((), "m", "float64"),
-    "/solver/status": (("T",), "1", "int8"),  # 0 optimal, 1 relaxed, 2 failed
-    "/solver/iterations": (("T",), "1", "float64"),
-    "/solver/objective": (("T",), "N^2 m^2", "float64"),
-    "/solver/seconds": (("T",), "s", "float64"),
-    "/solver/messages": (("m",), "1", "string"),
-}
+    def __iter__(self):  # (shape, units, element), the tuples of the tables below
+        return iter((self.shape, self.units, self.element))
+
+    def __repr__(self):
+        return f"DatasetSpec({self.path!r}, {self.units!r}, {self.shape}, {self.element!r})"
+
+
+class AttributeSpec:
+    """An attribute of the contract: `name` on the object `object` (may hold "{i}")."""
+
+    def __init__(self, const, obj, name, element):
+        self.const, self.object, self.name, self.element = const, obj, name, element
+
+    def __repr__(self):
+        return f"AttributeSpec({self.object!r}, {self.name!r}, {self.element!r})"
+
+
+def _strip_comments(text):
+    return re.sub(r'("(?:[^"\\]|\\.)*")|//[^\n]*', lambda m: m.group(1) or "", text)
+
+
+def _split_args(text):
+    return [a.strip() for a in re.findall(r'"(?:[^"\\]|\\.)*"|[^,]+', text) if a.strip()]
+
+
+def parse_schema_header(text):
+    """The declarations of schema.hpp as a dict: constant name -> str, int, DatasetSpec,
+    AttributeSpec or list (the std::array lists). Raises ValueError on a declaration
+    this parser does not understand (keep the header on its regular pattern)."""
+    shapes = {}
+    enum = re.search(r"enum class Shape \{(.*?)\};", text, re.S)
+    if not enum:
+        raise ValueError("schema header: no `enum class Shape`")
+    for name, dims in re.findall(r"(k\w+),\s*///<\s*\(([^)]*)\)", enum.group(1)):
+        shapes[name] = tuple(int(d) if d.strip().isdigit() else d.strip()
+                             for d in dims.split(",") if d.strip())
+    code = _strip_comments(text)
+    decls = {}
+
+    def value(token):
+        if token.startswith('"'):
+            return token[1:-1]
+        if token in decls:
+            return decls[token]
+        raise ValueError(f"schema header: unknown name {token!r}")
+
+    def element(token):
+        m = re.fullmatch(r"Element::k(\w+)", token)
+        if not m:
+            raise ValueError(f"schema header: {token!r} is not an Element")
+        return m.group(1).lower()
+
+    pattern = re.compile(r"inline\s+constexpr\s+(const\s+char\s*\*|std::int64_t|DatasetSpec|"
+                         r"AttributeSpec|std::array)\s+(k\w+)\s*(?:=\s*([^;]*?)|\{([^;]*?)\})\s*;",
+                         re.S)
+    found = pattern.findall(code)
+    if len(found) != len(re.findall(r"inline\s+constexpr", code)):
+        raise ValueError("schema header: a declaration off the pattern `inline constexpr TYPE kName"
+                         "{...};` or `= ...;` (TYPE const char*, std::int64_t, DatasetSpec, "
+                         "AttributeSpec, std::array)")
+    for kind, name, assigned, braced in found:
+        kind = re.sub(r"\s+", " ", kind)
+        if kind.startswith("const char"):
+            decls[name] = value(assigned.strip())
+        elif kind == "std::int64_t":
+            decls[name] = int(assigned.strip())
+        elif kind == "DatasetSpec":
+            args = _split_args(braced)
+            shape = re.fullmatch(r"Shape::(k\w+)", args[2] if len(args) > 2 else "Shape::kScalar")
+            decls[name] = DatasetSpec(name, value(args[0]), value(args[1]),
+                                      shapes[shape.group(1)],
+                                      element(args[3]) if len(args) > 3 else "float64")
+        elif kind == "AttributeSpec":
+            args = _split_args(braced)
+            decls[name] = AttributeSpec(name, value(args[0]), value(args[1]),
+                                        element(args[2]) if len(args) > 2 else "string")
+        else:
+            decls[name] = [value(a) for a in _split_args(braced)]
+    return decls
+
+
+def load_schema(candidates=SCHEMA_HEADER_CANDIDATES):
+    """Parses the first schema header found among `candidates`; (path, declarations)."""
+    for path in candidates:
+        if os.path.isfile(path):
+            with open(path, encoding="utf-8") as f:
+                return os.path.abspath(path), parse_schema_header(f.read())
+    raise ImportError("hexdyn_results: cannot find the schema header src/hexdyn/io/schema.hpp "
+                      f"(looked at {', '.join(candidates)}); set HEXDYN_SCHEMA_HPP")
+
+
+SCHEMA_HEADER, SCHEMA = load_schema()
+
+RESULT_SCHEMA = SCHEMA["kResultSchema"]
+RESULT_SCHEMA_VERSION = SCHEMA["kResultSchemaVersion"]
+SWEEP_SCHEMA = SCHEMA["kSweepSchema"]
+SWEEP_SCHEMA_VERSION = SCHEMA["kSweepSchemaVersion"]
+
+META_GROUP = SCHEMA["kMetaGroup"]
+META_ATTRIBUTES = tuple(a.name for a in SCHEMA["kResultMetaAttributes"])
+SWEEP_META_ATTRIBUTES = tuple(a.name for a in SCHEMA["kSweepMetaAttributes"])
+
+# path -> DatasetSpec, which unpacks as (shape, units, element)
+MODEL_DATASETS = {d.path: d for d in SCHEMA["kModelDatasets"]}
+KINEMATIC_DATASETS = {d.path: d for d in SCHEMA["kKinematicDatasets"]}
+DYNAMICS_DATASETS = {d.path: d for d in SCHEMA["kDynamicsDatasets"]}
+
+# /scenarios/<name>: one row per scenario (N rows, A axes), keyed by <name>. Metrics are
+# NaN where status != 0. The per-axis columns /scenarios/axis_<i> (SCHEMA
+# "kScenarioAxisNumbers" / "kScenarioAxisWords") hold each scenario's value of axis i.
+SCENARIOS_GROUP = SCHEMA["kScenariosGroup"]
+SCENARIO_DATASETS = {d.path[len(SCENARIOS_GROUP) + 1:]: d for d in SCHEMA["kScenarioDatasets"]}
 
 PHASE_SWING, PHASE_IMPACT, PHASE_SUPPORT = 0, 1, 2
 LEG_NAMES = tuple(f"L{i}" for i in range(1, 7))
@@ -228,31 +309,6 @@ def open_result(path, group="/"):
                                  f"{path}:{group}")
 
 
-SWEEP_META_ATTRIBUTES = ("schema", "schema_version", "version", "git_commit", "created_utc",
-                         "name", "sweep_yaml", "base_config_yaml", "scenarios", "keep_runs",
-                         "wall_time_s", "ranks", "resumed_scenarios")
-
-# /scenarios/*: one row per scenario (N rows, A axes); mirrors src/hexdyn/sweep.cpp.
-# Metrics are NaN where status != 0. Per-axis columns /scenarios/axis_<i> hold each
-# scenario's value of axis i (float64, or strings for an axis of words).
-SCENARIO_DATASETS = {
-    "id": (("N",), "1", "string"),
-    "axis_index": (("N", "A"), "1", "int32"),
-    "status": (("N",), "1", "int8"),  # SWEEP_STATUS[code]
-    "message": (("N",), "1", "string"),
-    "samples": (("N",), "1", "int32"),
-    "duration": (("N",), "s", "float64"),
-    "distance": (("N",), "m", "float64"),
-    "energy": (("N",), "J", "float64"),
-    "cost_of_transport": (("N",), "1", "float64"),
-    "peak_impact_force": (("N",), "N", "float64"),
-    "peak_torque": (("N", 18), "N m", "float64"),  # max over samples of |tau_k|
-    "rms_torque": (("N", 18), "N m", "float64"),   # time-weighted RMS of tau_k
-    "relaxed_samples": (("N",), "1", "int32"),
-    "failed_samples": (("N",), "1", "int32"),
-    "wall_time_s": (("N",), "s", "float64"),       # timing: differs between runs
-}
-
 SWEEP_STATUS = ("ok", "config", "reach", "planning", "solver", "error", "internal")
 
 
@@ -386,7 +442,8 @@ def open_sweep(path):
     return Sweep(path, meta, axes, table, units, joint_names, run_ids)
 
 
-def expected_shape(shape, samples, impacts=None, messages=None):
-    """Concrete shape of a contract shape tuple ("T" -> samples, "n", "m")."""
-    sizes = {"T": samples, "n": impacts, "m": messages}
+def expected_shape(shape, samples=None, impacts=None, messages=None, **sizes):
+    """Concrete shape of a contract shape tuple ("T" -> samples, "n", "m"; other
+    symbols by keyword, e.g. N=8, A=3)."""
+    sizes = {"T": samples, "n": impacts, "m": messages, **sizes}
     return tuple(sizes[d] if isinstance(d, str) else d for d in shape)

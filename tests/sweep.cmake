@@ -14,6 +14,7 @@ set(HEXDYN_SWEEP_TESTS
   "failing_scenario_recorded=failing_scenario"   # unreachable / out-of-range rows with messages; others complete
   "python_reader_and_heatmaps=reader_and_heatmaps"  # analysis/hexdyn_results.py reads it, plot_sweep.py draws it
   "bad_sweep_file_before_any_work=bad_sweep_file"   # exit 2, one line, no output, checkpoint kept
+  "schema_declared_equals_written=schema_declared"  # io/schema.hpp as Python parses it = the files written
 )
 foreach(entry IN LISTS HEXDYN_SWEEP_TESTS)
   string(REPLACE "=" ";" pair "${entry}")

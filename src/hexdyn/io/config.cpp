@@ -10,14 +10,12 @@
 #include <sstream>
 
 #include "hexdyn/core/errors.hpp"
+#include "hexdyn/io/paths.hpp"
 
 namespace hexdyn {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
-
-
-std::string show(const YAML::Node& node) { return yaml_inline(node); }
 
 std::string fmt(double x) {
   if (x == kInf) return "inf";
@@ -57,7 +55,7 @@ class Reader {
   }
   [[noreturn]] void fail_value(const std::string& path, const YAML::Node& node,
                                const std::string& expected) const {
-    fail(path, "got " + show(node) + ", expected " + expected);
+    fail(path, "got " + yaml_inline(node) + ", expected " + expected);
   }
 
   bool has(const std::string& path) {
@@ -349,13 +347,13 @@ void read_motion(Reader& r, const GaitParams& g, const TerrainParams& t, MotionP
     bool ok = std::abs(d.back() - first) < 1e-9 && first > mid;
     for (std::size_t i = 1; i + 1 < d.size(); ++i) ok = ok && std::abs(d[i] - mid) < 1e-9;
     if (!ok)
-      r.fail("motion.cycle_durations", "got " + show(YAML::Node(d)) +
+      r.fail("motion.cycle_durations", "got " + yaml_inline(YAML::Node(d)) +
                                            ", expected [ramp-up, cruise..., ramp-down] with equal cruise cycles and equal first and last cycles longer than the cruise ones");
     m.cycles = static_cast<int>(d.size());
     m.peak_speed_mps = stride_along_slope / mid;
     m.ramp_duration_s = 2.0 * (first - mid);
     if (m.ramp_duration_s > first)
-      r.fail("motion.cycle_durations", "got " + show(YAML::Node(d)) +
+      r.fail("motion.cycle_durations", "got " + yaml_inline(YAML::Node(d)) +
                                            ", expected a first cycle at most twice the cruise cycle (the speed ramp must end inside it)");
   } else {
     m.cycles = r.integer("motion.cycles", 1, 100000);
@@ -452,7 +450,7 @@ YAML::Node parse_yaml_text(const std::string& text, const std::string& source_na
   try {
     YAML::Node root = YAML::Load(text);
     if (!root.IsMap())
-      throw ConfigError(source_name + ": got " + show(root) + " at the top level, expected a mapping of keys");
+      throw ConfigError(source_name + ": got " + yaml_inline(root) + " at the top level, expected a mapping of keys");
     return root;
   } catch (const YAML::ParserException& e) {
     throw ConfigError(source_name + ":" + std::to_string(e.mark.line + 1) + ":" +
@@ -525,11 +523,6 @@ YAML::Node merge_nodes(const YAML::Node& base, const YAML::Node& top) {
   return out;
 }
 
-std::string directory_of(const std::string& path) {
-  const auto slash = path.find_last_of('/');
-  return slash == std::string::npos ? std::string(".") : path.substr(0, slash);
-}
-
 YAML::Node load_with_inheritance(const std::string& path, std::vector<std::string>& chain) {
   for (const auto& p : chain)
     if (p == path) throw ConfigError(path + ": inherit: cycle through " + chain.front());
@@ -538,9 +531,8 @@ YAML::Node load_with_inheritance(const std::string& path, std::vector<std::strin
   const YAML::Node parent = root["inherit"];
   if (!parent.IsDefined()) return root;
   if (!parent.IsScalar())
-    throw ConfigError(path + ": inherit: got " + show(parent) + ", expected the path of a scene file");
-  const std::string parent_path =
-      parent.Scalar().rfind('/', 0) == 0 ? parent.Scalar() : directory_of(path) + "/" + parent.Scalar();
+    throw ConfigError(path + ": inherit: got " + yaml_inline(parent) + ", expected the path of a scene file");
+  const std::string parent_path = path_beside(path, parent.Scalar());
   root.remove("inherit");
   return merge_nodes(load_with_inheritance(parent_path, chain), root);
 }

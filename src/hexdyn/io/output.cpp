@@ -1,6 +1,5 @@
 #include "hexdyn/io/output.hpp"
 
-#include <fcntl.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -12,7 +11,9 @@
 #include <system_error>
 
 #include "hexdyn/core/errors.hpp"
-#include "hexdyn/io/result_schema.hpp"
+#include "hexdyn/io/atomic_file.hpp"
+#include "hexdyn/io/paths.hpp"
+#include "hexdyn/io/schema.hpp"
 #include "hexdyn/version.hpp"
 
 namespace hexdyn {
@@ -20,11 +21,6 @@ namespace {
 
 namespace fs = std::filesystem;
 using schema::DatasetSpec;
-
-std::string parent_directory(const std::string& path) {
-  const fs::path parent = fs::path(path).parent_path();
-  return parent.empty() ? std::string(".") : parent.string();
-}
 
 [[noreturn]] void throw_output_error(const std::string& path, const std::string& reason) {
   throw IoError("cannot write output '" + path + "': " + reason);
@@ -167,7 +163,7 @@ void check_output_path_writable(const std::string& path) {
   if (path.empty()) throw IoError("cannot write output '': empty path");
   std::error_code ec;
   if (fs::is_directory(path, ec)) throw_output_error(path, "it is a directory");
-  const std::string dir = parent_directory(path);
+  const std::string dir = directory_of(path);
   const fs::file_status st = fs::status(dir, ec);
   if (!fs::exists(st)) throw_output_error(path, "directory '" + dir + "' does not exist");
   if (!fs::is_directory(st)) throw_output_error(path, "'" + dir + "' is not a directory");
@@ -190,32 +186,6 @@ void write_result_file(const std::string& path, const RunResult& result) {
     write_result_layout(writer, result);
     writer.close();
   });
-}
-
-void publish_atomically(const std::string& path, const std::function<void(const std::string& tmp)>& write) {
-  const std::string tmp =
-      (fs::path(parent_directory(path)) / ("." + fs::path(path).filename().string() + ".tmp." +
-                                           std::to_string(::getpid())))
-          .string();
-  try {
-    write(tmp);
-    sync_file_to_disk(tmp);
-    if (std::rename(tmp.c_str(), path.c_str()) != 0)
-      throw_output_error(path, "cannot rename '" + tmp + "' to it: " + std::strerror(errno));
-  } catch (...) {
-    std::error_code ec;
-    fs::remove(tmp, ec);
-    throw;
-  }
-}
-
-void sync_file_to_disk(const std::string& path) {
-  const int fd = ::open(path.c_str(), O_RDONLY);
-  if (fd < 0) throw_output_error(path, std::strerror(errno));
-  const int rc = ::fsync(fd);
-  const int err = errno;
-  ::close(fd);
-  if (rc != 0) throw_output_error(path, std::string("fsync failed: ") + std::strerror(err));
 }
 
 }  // namespace hexdyn

@@ -1,7 +1,6 @@
 #pragma once
 /// \file output.hpp
-/// Writing a run as one `hexdyn-result/1` HDF5 file (DESIGN.md §4, result_schema.hpp).
-#include <functional>
+/// Writing a run as one `hexdyn-result/1` HDF5 file (DESIGN.md §4, schema.hpp).
 #include <string>
 
 #include "hexdyn/io/h5io.hpp"
@@ -33,15 +32,5 @@ void write_result_layout(H5Writer& writer, const RunResult& result, const std::s
 
 /// Current UTC time as ISO 8601 "YYYY-MM-DDTHH:MM:SSZ".
 std::string utc_timestamp_now();
-
-/// Forces a written file's data to disk (fsync) so that a following rename publishes a
-/// complete file; throws IoError naming the path.
-void sync_file_to_disk(const std::string& path);
-
-/// Publishes a file atomically: `write(tmp)` builds it as `.<basename>.tmp.<pid>` in the
-/// directory of `path`, then it is synced to disk and renamed over `path`. When `write`,
-/// the sync or the rename throws, the temporary file is removed, an existing file at
-/// `path` is left untouched, and the exception is rethrown (the rename's as IoError).
-void publish_atomically(const std::string& path, const std::function<void(const std::string& tmp)>& write);
 
 }  // namespace hexdyn

@@ -24,6 +24,7 @@
 
 #include "hexdyn/core/errors.hpp"
 #include "hexdyn/io/output.hpp"
+#include "hexdyn/mpi/messages.hpp"
 #include "hexdyn/sweep/sweep.hpp"
 
 namespace hexdyn {
@@ -70,58 +71,6 @@ class MpiSession {
   int thread_level_ = MPI_THREAD_SINGLE, rank_ = 0, size_ = 1;
 };
 
-// ---- byte packing of messages: fixed-size header fields, then a string or file
-
-void put_i64(std::vector<char>& b, std::int64_t v) {
-  const char* p = reinterpret_cast<const char*>(&v);
-  b.insert(b.end(), p, p + sizeof v);
-}
-void put_f64(std::vector<char>& b, double v) {
-  const char* p = reinterpret_cast<const char*>(&v);
-  b.insert(b.end(), p, p + sizeof v);
-}
-void put_bytes(std::vector<char>& b, const char* data, std::size_t n) {
-  put_i64(b, static_cast<std::int64_t>(n));
-  b.insert(b.end(), data, data + n);
-}
-
-class Unpacker {
- public:
-  explicit Unpacker(const std::vector<char>& b) : b_(b) {}
-  std::int64_t i64() { return pod<std::int64_t>(); }
-  double f64() { return pod<double>(); }
-  std::string text() {
-    const auto n = static_cast<std::size_t>(i64());
-    need(n);
-    std::string s(b_.data() + at_, n);
-    at_ += n;
-    return s;
-  }
-  std::vector<char> bytes() {
-    const auto n = static_cast<std::size_t>(i64());
-    need(n);
-    std::vector<char> v(b_.begin() + static_cast<std::ptrdiff_t>(at_),
-                        b_.begin() + static_cast<std::ptrdiff_t>(at_ + n));
-    at_ += n;
-    return v;
-  }
-
- private:
-  template <class T>
-  T pod() {
-    need(sizeof(T));
-    T v;
-    std::memcpy(&v, b_.data() + at_, sizeof v);
-    at_ += sizeof v;
-    return v;
-  }
-  void need(std::size_t n) const {
-    if (at_ + n > b_.size()) throw Error("sweep: truncated message between ranks");
-  }
-  const std::vector<char>& b_;
-  std::size_t at_ = 0;
-};
-
 void send(const std::vector<char>& bytes, int dest, int tag) {
   if (bytes.size() > static_cast<std::size_t>(std::numeric_limits<int>::max()))
     throw Error("sweep: message of " + std::to_string(bytes.size()) + " bytes exceeds MPI's limit");
@@ -136,53 +85,6 @@ std::vector<char> receive(const MPI_Status& st) {
   MPI_Recv(bytes.data(), count, MPI_BYTE, st.MPI_SOURCE, st.MPI_TAG, MPI_COMM_WORLD,
            MPI_STATUS_IGNORE);
   return bytes;
-}
-
-std::vector<char> pack_work(const ScenarioInput& in, bool keep_runs) {
-  std::vector<char> b;
-  put_i64(b, static_cast<std::int64_t>(in.index));
-  put_i64(b, keep_runs ? 1 : 0);
-  put_bytes(b, in.id.data(), in.id.size());
-  put_bytes(b, in.yaml.data(), in.yaml.size());
-  return b;
-}
-
-std::vector<char> pack_stop() {
-  std::vector<char> b;
-  put_i64(b, -1);
-  return b;
-}
-
-/// A finished scenario on its way to the checkpoint.
-struct Finished {
-  std::size_t index = 0;
-  ScenarioStatus status = ScenarioStatus::kOk;
-  std::string message;
-  double wall_time_s = 0.0;
-  int rank = 0;
-  std::vector<char> checkpoint;  ///< encode_checkpoint bytes
-};
-
-std::vector<char> pack_result(const Finished& f) {
-  std::vector<char> b;
-  put_i64(b, static_cast<std::int64_t>(f.index));
-  put_i64(b, static_cast<std::int64_t>(f.status));
-  put_f64(b, f.wall_time_s);
-  put_bytes(b, f.message.data(), f.message.size());
-  put_bytes(b, f.checkpoint.data(), f.checkpoint.size());
-  return b;
-}
-
-Finished unpack_result(const std::vector<char>& bytes, int rank) {
-  Unpacker u(bytes);
-  Finished f;
-  f.index = static_cast<std::size_t>(u.i64());
-  f.status = static_cast<ScenarioStatus>(u.i64());
-  f.wall_time_s = u.f64();
-  f.message = u.text();
-  f.checkpoint = u.bytes();
-  f.rank = rank;
-  return f;
 }
 
 /// Computes one scenario and encodes its checkpoint (any rank, any thread; no MPI).
@@ -208,16 +110,9 @@ int worker_loop(int rank) {
   for (;;) {
     MPI_Status st;
     MPI_Probe(0, kTagWork, MPI_COMM_WORLD, &st);
-    const std::vector<char> msg = receive(st);
-    Unpacker u(msg);
-    const std::int64_t index = u.i64();
-    if (index < 0) break;
-    ScenarioInput in;
-    in.index = static_cast<std::size_t>(index);
-    const bool keep_runs = u.i64() != 0;
-    in.id = u.text();
-    in.yaml = u.text();
-    send(pack_result(compute(in, keep_runs, rank, scratch)), 0, kTagResult);
+    const std::optional<Work> work = unpack_work(receive(st));
+    if (!work) break;
+    send(pack_result(compute(work->input, work->keep_runs, rank, scratch)), 0, kTagResult);
   }
   return 0;
 }

@@ -4,7 +4,7 @@
 /// mpirun is one rank). The only part of hexdyn that uses MPI.
 ///
 /// Rank 0 validates the sweep file (every error before any work, one line, exit 2),
-/// opens the checkpoint (sweep.hpp) and coordinates: it hands out scenario indices one
+/// opens the checkpoint (sweep/checkpoint.hpp) and coordinates: it hands out scenario indices one
 /// at a time to whichever rank asks (dynamic work sharing; scenario costs differ a
 /// lot), stores every finished scenario in the checkpoint as it arrives, prints
 /// progress, and at the end writes the `hexdyn-sweep/1` file from the checkpoint and

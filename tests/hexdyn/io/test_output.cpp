@@ -19,7 +19,7 @@
 #include "hexdyn/core/errors.hpp"
 #include "hexdyn/io/h5io.hpp"
 #include "hexdyn/io/output.hpp"
-#include "hexdyn/io/result_schema.hpp"
+#include "hexdyn/io/schema.hpp"
 #include "hexdyn/sample_models.hpp"
 #include "hexdyn/model/urdf.hpp"
 #include "hexdyn/version.hpp"
@@ -177,6 +177,11 @@ std::vector<std::size_t> expected_dims(schema::Shape shape, std::size_t T, std::
       return {T, 6, 3};
     case Shape::kN:
       return {n};
+    case Shape::kScenarios:
+    case Shape::kScenarioAxes:
+    case Shape::kScenarioJoints:
+    case Shape::kAxisValues:
+      break;  // shapes of the sweep file, never of a result dataset
   }
   return {};
 }
@@ -189,6 +194,8 @@ const char* element_name(schema::Element e) {
       return "int8";
     case schema::Element::kInt32:
       return "int32";
+    case schema::Element::kInt64:
+      return "int64";
     case schema::Element::kString:
       return "string";
   }

@@ -1,0 +1,296 @@
+#pragma once
+/// \file schema.hpp
+/// The two HDF5 contracts of hexdyn (DESIGN.md §4) in one place: `hexdyn-result/1` (one
+/// run) and `hexdyn-sweep/1` (a parameter sweep), each with its schema name and version,
+/// every /meta attribute, and for every dataset its path, shape, element type and
+/// `units` attribute. The writers (output.cpp, sweep/sweep_file.cpp) take every path and
+/// units string from here; analysis/hexdyn_results.py parses this header at import (the
+/// `inline constexpr` lines below, and the shape comments of `Shape`), so the layout is
+/// typed once. Keep declarations on the regular pattern
+///     inline constexpr DatasetSpec kName{"path", "units", Shape::kX, Element::kY};
+/// (a name of a `const char*` constant may stand for a string). A change of layout is a
+/// new schema version.
+///
+/// Shapes: T output samples, 6 legs, 18 joints, n touchdowns, m solver messages; in a
+/// sweep file N scenarios, A axes, V values of one axis. (T,6,3) datasets are leg-major
+/// (index [t][leg][axis]); all vectors are in the world frame G0 unless the name says
+/// otherwise. Units strings: "1" marks dimensionless numbers (quaternions, status codes,
+/// counts, ratios) and text; "SI" marks an axis value in the SI unit of its scene key.
+/// Paths with "{i}" (axis number 0..A−1) or "{id}" (scenario id) are templates: at().
+#include <array>
+#include <cstdint>
+#include <string>
+
+namespace hexdyn::schema {
+
+inline constexpr const char* kResultSchema = "hexdyn-result/1";  ///< /meta attr `schema`
+inline constexpr std::int64_t kResultSchemaVersion = 1;          ///< /meta attr `schema_version`
+inline constexpr const char* kSweepSchema = "hexdyn-sweep/1";    ///< sweep files' `schema`
+inline constexpr std::int64_t kSweepSchemaVersion = 1;           ///< sweep files' `schema_version`
+
+/// Shape of a dataset in terms of the run's sizes.
+enum class Shape {
+  kScalar,          ///< ()
+  kText,            ///< () variable-length UTF-8 string
+  kTextList,        ///< (m) variable-length UTF-8 strings, m may be 0
+  kJointNames,      ///< (18) strings
+  kLegNames,        ///< (6) strings
+  kJ,               ///< (18)
+  kT,               ///< (T)
+  kT3,              ///< (T,3)
+  kT4,              ///< (T,4)
+  kT6,              ///< (T,6)
+  kT18,             ///< (T,18)
+  kT6x3,            ///< (T,6,3)
+  kN,               ///< (n), one entry per touchdown, n may be 0
+  kScenarios,       ///< (N), one entry per scenario, index order
+  kScenarioAxes,    ///< (N,A), one row per scenario, one column per axis
+  kScenarioJoints,  ///< (N,18), one row per scenario, one column per joint
+  kAxisValues,      ///< (V), one entry per value of an axis
+};
+
+/// Element type stored in the file.
+enum class Element { kFloat64, kInt8, kInt32, kInt64, kString };
+
+/// One dataset of the contract.
+struct DatasetSpec {
+  const char* path;   ///< absolute HDF5 path
+  const char* units;  ///< value of the mandatory `units` attribute
+  Shape shape = Shape::kScalar;
+  Element element = Element::kFloat64;
+};
+
+/// One attribute of the contract: on the object `object`, named `name`.
+struct AttributeSpec {
+  const char* object;  ///< absolute HDF5 path of the group or dataset (may be a template)
+  const char* name;
+  Element element = Element::kString;  ///< stored as a scalar of this type
+};
+
+/// `path` with its placeholder "{i}" or "{id}" replaced by `value` ("/axes/{i}/key", "2"
+/// → "/axes/2/key"); `path` unchanged when it has none.
+inline std::string at(const char* path, const std::string& value) {
+  std::string s(path);
+  for (const char* placeholder : {"{i}", "{id}"}) {
+    const auto p = s.find(placeholder);
+    if (p != std::string::npos)
+      return s.replace(p, std::char_traits<char>::length(placeholder), value);
+  }
+  return s;
+}
+
+// ======================================================================= hexdyn-result/1
+
+// ---- /meta: a group with attributes only ----
+inline constexpr const char* kMetaGroup = "/meta";
+inline constexpr const char* kAttrSchema = "schema";  ///< string, kResultSchema
+inline constexpr const char* kAttrSchemaVersion =
+    "schema_version";                                          ///< int64, kResultSchemaVersion
+inline constexpr const char* kAttrVersion = "version";         ///< string, hexdyn release
+inline constexpr const char* kAttrGitCommit = "git_commit";    ///< string
+inline constexpr const char* kAttrCreatedUtc = "created_utc";  ///< string, ISO 8601 "…Z"
+inline constexpr const char* kAttrConfigYaml = "config_yaml";  ///< string, fully resolved
+inline constexpr const char* kAttrWallTime = "wall_time_s";    ///< double [s]
+inline constexpr const char* kUnitsAttribute = "units";        ///< on every dataset
+
+inline constexpr AttributeSpec kMetaSchema{kMetaGroup, kAttrSchema, Element::kString};
+inline constexpr AttributeSpec kMetaSchemaVersion{kMetaGroup, kAttrSchemaVersion, Element::kInt64};
+inline constexpr AttributeSpec kMetaVersion{kMetaGroup, kAttrVersion, Element::kString};
+inline constexpr AttributeSpec kMetaGitCommit{kMetaGroup, kAttrGitCommit, Element::kString};
+inline constexpr AttributeSpec kMetaCreatedUtc{kMetaGroup, kAttrCreatedUtc, Element::kString};
+inline constexpr AttributeSpec kMetaConfigYaml{kMetaGroup, kAttrConfigYaml, Element::kString};
+inline constexpr AttributeSpec kMetaWallTime{kMetaGroup, kAttrWallTime, Element::kFloat64};
+/// Every /meta attribute of a result file.
+inline constexpr std::array kResultMetaAttributes{
+    kMetaSchema,     kMetaSchemaVersion, kMetaVersion, kMetaGitCommit,
+    kMetaCreatedUtc, kMetaConfigYaml,    kMetaWallTime};
+
+// ---- /model ----
+inline constexpr DatasetSpec kModelUrdf{"/model/urdf", "1", Shape::kText, Element::kString};
+inline constexpr DatasetSpec kModelJointNames{"/model/joint_names", "1", Shape::kJointNames,
+                                              Element::kString};
+inline constexpr DatasetSpec kModelLegNames{"/model/leg_names", "1", Shape::kLegNames,
+                                            Element::kString};
+inline constexpr DatasetSpec kModelTotalMass{"/model/total_mass", "kg", Shape::kScalar};
+
+// ---- kinematics: always written ----
+inline constexpr DatasetSpec kTime{"/time", "s", Shape::kT};
+inline constexpr DatasetSpec kBasePosition{"/base/position", "m", Shape::kT3};
+/// Quaternion w, x, y, z of the rotation body → world.
+inline constexpr DatasetSpec kBaseOrientation{"/base/orientation", "1", Shape::kT4};
+inline constexpr DatasetSpec kBaseLinearVelocity{"/base/linear_velocity", "m/s", Shape::kT3};
+inline constexpr DatasetSpec kBaseAngularVelocity{"/base/angular_velocity", "rad/s", Shape::kT3};
+inline constexpr DatasetSpec kBaseLinearAcceleration{"/base/linear_acceleration", "m/s^2",
+                                                     Shape::kT3};
+inline constexpr DatasetSpec kBaseAngularAcceleration{"/base/angular_acceleration", "rad/s^2",
+                                                      Shape::kT3};
+inline constexpr DatasetSpec kJointPosition{"/joints/position", "rad", Shape::kT18};
+inline constexpr DatasetSpec kJointVelocity{"/joints/velocity", "rad/s", Shape::kT18};
+inline constexpr DatasetSpec kJointAcceleration{"/joints/acceleration", "rad/s^2", Shape::kT18};
+inline constexpr DatasetSpec kFeetPosition{"/feet/position", "m", Shape::kT6x3};
+inline constexpr DatasetSpec kFeetVelocity{"/feet/velocity", "m/s", Shape::kT6x3};
+inline constexpr DatasetSpec kComPosition{"/com/position", "m", Shape::kT3};
+/// 0 swing, 1 impact, 2 support (ContactPhase).
+inline constexpr DatasetSpec kContactPhase{"/contacts/phase", "1", Shape::kT6, Element::kInt8};
+
+// ---- dynamics: written only when the dynamic stages ran ----
+inline constexpr DatasetSpec kJointTorque{"/joints/torque", "N m", Shape::kT18};
+/// Force of the terrain on the foot, world frame.
+inline constexpr DatasetSpec kContactForce{"/contacts/force", "N", Shape::kT6x3};
+inline constexpr DatasetSpec kContactPenetration{"/contacts/penetration", "m", Shape::kT6};
+/// Leg of each touchdown, 1-based (1..6) as in the leg names.
+inline constexpr DatasetSpec kImpactLeg{"/impacts/leg", "1", Shape::kN, Element::kInt32};
+inline constexpr DatasetSpec kImpactStart{"/impacts/t_start", "s", Shape::kN};
+inline constexpr DatasetSpec kImpactDuration{"/impacts/duration", "s", Shape::kN};
+inline constexpr DatasetSpec kImpactPeakForce{"/impacts/peak_force", "N", Shape::kN};
+inline constexpr DatasetSpec kImpactImpulse{"/impacts/impulse", "N s", Shape::kN};
+inline constexpr DatasetSpec kImpactEffectiveMass{"/impacts/effective_mass", "kg", Shape::kN};
+inline constexpr DatasetSpec kImpactApproachSpeed{"/impacts/approach_speed", "m/s", Shape::kN};
+inline constexpr DatasetSpec kJointPower{"/power/joint", "W", Shape::kT18};
+inline constexpr DatasetSpec kTotalPower{"/power/total", "W", Shape::kT};
+inline constexpr DatasetSpec kEnergyTotal{"/energy/total", "J", Shape::kScalar};
+inline constexpr DatasetSpec kEnergyJoint{"/energy/joint", "J", Shape::kJ};
+inline constexpr DatasetSpec kCostOfTransport{"/energy/cost_of_transport", "1", Shape::kScalar};
+inline constexpr DatasetSpec kEnergyDistance{"/energy/distance", "m", Shape::kScalar};
+/// 0 optimal, 1 relaxed (slack used), 2 failed.
+inline constexpr DatasetSpec kSolverStatus{"/solver/status", "1", Shape::kT, Element::kInt8};
+inline constexpr DatasetSpec kSolverIterations{"/solver/iterations", "1", Shape::kT};
+inline constexpr DatasetSpec kSolverObjective{"/solver/objective", "N^2 m^2", Shape::kT};
+inline constexpr DatasetSpec kSolverSeconds{"/solver/seconds", "s", Shape::kT};
+/// One message per relaxed or failed sample.
+inline constexpr DatasetSpec kSolverMessages{"/solver/messages", "1", Shape::kTextList,
+                                             Element::kString};
+
+/// Every dataset present in every result file.
+inline constexpr std::array kModelDatasets{kModelUrdf, kModelJointNames, kModelLegNames,
+                                           kModelTotalMass};
+inline constexpr std::array kKinematicDatasets{kTime,
+                                               kBasePosition,
+                                               kBaseOrientation,
+                                               kBaseLinearVelocity,
+                                               kBaseAngularVelocity,
+                                               kBaseLinearAcceleration,
+                                               kBaseAngularAcceleration,
+                                               kJointPosition,
+                                               kJointVelocity,
+                                               kJointAcceleration,
+                                               kFeetPosition,
+                                               kFeetVelocity,
+                                               kComPosition,
+                                               kContactPhase};
+/// Datasets present when the dynamic stages ran.
+inline constexpr std::array kDynamicsDatasets{
+    kJointTorque,         kContactForce,        kContactPenetration, kImpactLeg,
+    kImpactStart,         kImpactDuration,      kImpactPeakForce,    kImpactImpulse,
+    kImpactEffectiveMass, kImpactApproachSpeed, kJointPower,         kTotalPower,
+    kEnergyTotal,         kEnergyJoint,         kCostOfTransport,    kEnergyDistance,
+    kSolverStatus,        kSolverIterations,    kSolverObjective,    kSolverSeconds,
+    kSolverMessages};
+
+// ======================================================================= hexdyn-sweep/1
+// One row per scenario (N = product of the axis sizes, scenario i at the row-major grid
+// point, last axis fastest); metrics are NaN where /scenarios/status != 0.
+
+// ---- /meta: the result's identification attributes, then the sweep's ----
+inline constexpr AttributeSpec kMetaSweepName{kMetaGroup, "name", Element::kString};
+/// The sweep file's text.
+inline constexpr AttributeSpec kMetaSweepYaml{kMetaGroup, "sweep_yaml", Element::kString};
+/// The base scene after `inherit:` and `set:`, validated and fully resolved.
+inline constexpr AttributeSpec kMetaBaseConfigYaml{kMetaGroup, "base_config_yaml",
+                                                   Element::kString};
+inline constexpr AttributeSpec kMetaScenarios{kMetaGroup, "scenarios", Element::kInt64};  ///< N
+/// 1 when /runs holds each computed scenario's result, else 0.
+inline constexpr AttributeSpec kMetaKeepRuns{kMetaGroup, "keep_runs", Element::kInt64};
+inline constexpr AttributeSpec kMetaRanks{kMetaGroup, "ranks", Element::kInt64};  ///< MPI ranks
+/// Rows taken from an earlier run's checkpoint (--resume).
+inline constexpr AttributeSpec kMetaResumedScenarios{kMetaGroup, "resumed_scenarios",
+                                                     Element::kInt64};
+/// Every /meta attribute of a sweep file (wall_time_s: the whole sweep [s]).
+inline constexpr std::array kSweepMetaAttributes{
+    kMetaSchema,    kMetaSchemaVersion, kMetaVersion,         kMetaGitCommit, kMetaCreatedUtc,
+    kMetaSweepName, kMetaSweepYaml,     kMetaBaseConfigYaml,  kMetaScenarios, kMetaKeepRuns,
+    kMetaWallTime,  kMetaRanks,         kMetaResumedScenarios};
+
+// ---- /axes/{i}: axis i = 0..A−1 of the sweep file, in file order ----
+inline constexpr const char* kAxesGroup = "/axes";
+/// Dotted scene key of the axis, e.g. "gait.duty_factor".
+inline constexpr DatasetSpec kAxisKey{"/axes/{i}/key", "1", Shape::kText, Element::kString};
+/// Values of an axis of numbers (p/q evaluated), in the SI unit of the key.
+inline constexpr DatasetSpec kAxisNumbers{"/axes/{i}/values", "SI", Shape::kAxisValues};
+/// Values of an axis of words (an axis whose values are not all numbers).
+inline constexpr DatasetSpec kAxisWords{"/axes/{i}/values", "1", Shape::kAxisValues,
+                                        Element::kString};
+/// Values as written in the sweep file ("2/3").
+inline constexpr DatasetSpec kAxisLabels{"/axes/{i}/labels", "1", Shape::kAxisValues,
+                                         Element::kString};
+inline constexpr DatasetSpec kSweepJointNames{"/joint_names", "1", Shape::kJointNames,
+                                              Element::kString};
+
+// ---- /scenarios: the table ----
+inline constexpr const char* kScenariosGroup = "/scenarios";
+inline constexpr AttributeSpec kScenariosMissingValues{kScenariosGroup, "missing_values",
+                                                       Element::kString};
+/// Scenario id: the index zero-padded to at least 6 digits ("000012").
+inline constexpr DatasetSpec kScenarioId{"/scenarios/id", "1", Shape::kScenarios, Element::kString};
+/// Index of each scenario's value into each axis.
+inline constexpr DatasetSpec kScenarioAxisIndex{"/scenarios/axis_index", "1", Shape::kScenarioAxes,
+                                                Element::kInt32};
+/// Each scenario's value of axis i: numbers (SI) or words, as /axes/{i}/values.
+inline constexpr DatasetSpec kScenarioAxisNumbers{"/scenarios/axis_{i}", "SI", Shape::kScenarios};
+inline constexpr DatasetSpec kScenarioAxisWords{"/scenarios/axis_{i}", "1", Shape::kScenarios,
+                                                Element::kString};
+/// The axis key, on each /scenarios/axis_{i}.
+inline constexpr AttributeSpec kScenarioAxisKey{"/scenarios/axis_{i}", "key", Element::kString};
+/// 0 ok, 1 config, 2 reach, 3 planning, 4 solver, 5 error, 6 internal (ScenarioStatus).
+inline constexpr DatasetSpec kScenarioStatus{"/scenarios/status", "1", Shape::kScenarios,
+                                             Element::kInt8};
+/// "0 ok, 1 config, ...", on /scenarios/status.
+inline constexpr AttributeSpec kScenarioStatusCodes{"/scenarios/status", "codes", Element::kString};
+/// The error's one-line message; "" when ok.
+inline constexpr DatasetSpec kScenarioMessage{"/scenarios/message", "1", Shape::kScenarios,
+                                              Element::kString};
+inline constexpr DatasetSpec kScenarioSamples{"/scenarios/samples", "1", Shape::kScenarios,
+                                              Element::kInt32};
+inline constexpr DatasetSpec kScenarioDuration{"/scenarios/duration", "s", Shape::kScenarios};
+inline constexpr DatasetSpec kScenarioDistance{"/scenarios/distance", "m", Shape::kScenarios};
+inline constexpr DatasetSpec kScenarioEnergy{"/scenarios/energy", "J", Shape::kScenarios};
+inline constexpr DatasetSpec kScenarioCostOfTransport{"/scenarios/cost_of_transport", "1",
+                                                      Shape::kScenarios};
+inline constexpr DatasetSpec kScenarioPeakImpactForce{"/scenarios/peak_impact_force", "N",
+                                                      Shape::kScenarios};
+/// Max over samples of |τ_k|.
+inline constexpr DatasetSpec kScenarioPeakTorque{"/scenarios/peak_torque", "N m",
+                                                 Shape::kScenarioJoints};
+/// Time-weighted RMS of τ_k (trapezoidal ∫τ² dt over the duration).
+inline constexpr DatasetSpec kScenarioRmsTorque{"/scenarios/rms_torque", "N m",
+                                                Shape::kScenarioJoints};
+inline constexpr DatasetSpec kScenarioRelaxedSamples{"/scenarios/relaxed_samples", "1",
+                                                     Shape::kScenarios, Element::kInt32};
+inline constexpr DatasetSpec kScenarioFailedSamples{"/scenarios/failed_samples", "1",
+                                                    Shape::kScenarios, Element::kInt32};
+/// Time to compute each scenario [s] (timing: differs between runs).
+inline constexpr DatasetSpec kScenarioWallTime{"/scenarios/wall_time_s", "s", Shape::kScenarios};
+/// The columns of /scenarios other than the per-axis /scenarios/axis_{i}, in file order
+/// (status, then message, after the axis columns).
+inline constexpr std::array kScenarioDatasets{kScenarioId,
+                                              kScenarioAxisIndex,
+                                              kScenarioStatus,
+                                              kScenarioMessage,
+                                              kScenarioSamples,
+                                              kScenarioDuration,
+                                              kScenarioDistance,
+                                              kScenarioEnergy,
+                                              kScenarioCostOfTransport,
+                                              kScenarioPeakImpactForce,
+                                              kScenarioPeakTorque,
+                                              kScenarioRmsTorque,
+                                              kScenarioRelaxedSamples,
+                                              kScenarioFailedSamples,
+                                              kScenarioWallTime};
+
+// ---- /runs/{id}: with --keep-runs, each computed scenario in the hexdyn-result/1 layout
+// (its own /meta, /model, kinematic and dynamic datasets below the group) ----
+inline constexpr const char* kRunsGroup = "/runs";
+inline constexpr const char* kRunGroup = "/runs/{id}";
+
+}  // namespace hexdyn::schema

@@ -1,0 +1,136 @@
+#include "hexdyn/sweep/scenario.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+#include "hexdyn/core/errors.hpp"
+#include "hexdyn/io/config.hpp"
+#include "hexdyn/pipeline/pipeline.hpp"
+
+namespace hexdyn {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+}  // namespace
+
+const char* status_name(ScenarioStatus status) {
+  switch (status) {
+    case ScenarioStatus::kOk:
+      return "ok";
+    case ScenarioStatus::kConfig:
+      return "config";
+    case ScenarioStatus::kReach:
+      return "reach";
+    case ScenarioStatus::kPlanning:
+      return "planning";
+    case ScenarioStatus::kSolver:
+      return "solver";
+    case ScenarioStatus::kError:
+      return "error";
+    case ScenarioStatus::kInternal:
+      return "internal";
+  }
+  return "internal";
+}
+
+std::string status_codes_text() {
+  std::string s;
+  for (int c = 0; c <= static_cast<int>(ScenarioStatus::kInternal); ++c)
+    s += (s.empty() ? "" : ", ") + std::to_string(c) + " " +
+         status_name(static_cast<ScenarioStatus>(c));
+  return s;
+}
+
+ScenarioStatus classify_exception(const std::exception& e) {
+  if (dynamic_cast<const ConfigError*>(&e)) return ScenarioStatus::kConfig;
+  if (dynamic_cast<const ReachError*>(&e)) return ScenarioStatus::kReach;
+  if (dynamic_cast<const PlanningError*>(&e)) return ScenarioStatus::kPlanning;
+  if (dynamic_cast<const SolverError*>(&e)) return ScenarioStatus::kSolver;
+  if (dynamic_cast<const Error*>(&e)) return ScenarioStatus::kError;
+  return ScenarioStatus::kInternal;
+}
+
+ScenarioSummary failed_summary(std::size_t index, ScenarioStatus status,
+                               const std::string& message) {
+  ScenarioSummary s;
+  s.index = index;
+  s.status = status;
+  s.message = message;
+  s.duration_s = s.distance_m = s.energy_J = s.cost_of_transport = s.peak_impact_force_N = kNaN;
+  s.peak_torque_Nm.fill(kNaN);
+  s.rms_torque_Nm.fill(kNaN);
+  return s;
+}
+
+ScenarioSummary summarize_run(const RunResult& run, std::size_t index) {
+  ScenarioSummary s;
+  s.index = index;
+  const auto& t = run.kin.time_s;
+  const int T = run.kin.samples();
+  s.samples = T;
+  s.duration_s = T > 0 ? t.back() - t.front() : 0.0;
+  const DynamicsResult& d = run.dyn;
+  if (!d.present || d.joint_torque.rows() != T || d.joint_torque.cols() != kJoints) {
+    ScenarioSummary f = failed_summary(index, ScenarioStatus::kOk, "");
+    f.samples = T;
+    f.duration_s = s.duration_s;
+    return f;
+  }
+  s.distance_m = d.distance_m;
+  s.energy_J = d.energy_total_J;
+  s.cost_of_transport = d.cost_of_transport;
+  for (const ImpactRecord& im : d.impacts)
+    s.peak_impact_force_N = std::max(s.peak_impact_force_N, im.peak_force_N);
+  for (int k = 0; k < kJoints; ++k) {
+    double peak = 0.0, integral = 0.0;
+    for (int i = 0; i < T; ++i) peak = std::max(peak, std::abs(d.joint_torque(i, k)));
+    for (int i = 0; i + 1 < T; ++i) {
+      const double a = d.joint_torque(i, k), b = d.joint_torque(i + 1, k);
+      integral += 0.5 * (a * a + b * b) * (t[i + 1] - t[i]);
+    }
+    s.peak_torque_Nm[k] = peak;
+    s.rms_torque_Nm[k] = (T >= 2 && s.duration_s > 0.0)
+                             ? std::sqrt(integral / s.duration_s)
+                             : (T > 0 ? std::abs(d.joint_torque(0, k)) : 0.0);
+  }
+  for (std::int8_t st : d.solver_status) {
+    if (st == 1) ++s.relaxed_samples;
+    if (st == 2) ++s.failed_samples;
+  }
+  return s;
+}
+
+std::optional<ScenarioSummary> check_scenario(const ScenarioInput& input) {
+  const std::string source = scenario_source_name(input.id);
+  try {
+    (void)scene_from_yaml(parse_yaml_text(input.yaml, source), source);
+    return std::nullopt;
+  } catch (const std::exception& e) {
+    return failed_summary(input.index, classify_exception(e), e.what());
+  }
+}
+
+ScenarioOutcome run_scenario(const ScenarioInput& input, bool keep_run) {
+  const auto start = std::chrono::steady_clock::now();
+  const std::string source = scenario_source_name(input.id);
+  ScenarioOutcome out;
+  try {
+    const Scene scene = scene_from_yaml(parse_yaml_text(input.yaml, source), source);
+    RunResult run = run_scene(scene, nullptr);
+    out.summary = summarize_run(run, input.index);
+    if (keep_run) out.run = std::move(run);
+  } catch (const std::exception& e) {
+    out.summary = failed_summary(input.index, classify_exception(e), e.what());
+    out.run.reset();
+  }
+  out.summary.wall_time_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+}  // namespace hexdyn

@@ -1,0 +1,80 @@
+#pragma once
+/// \file scenario.hpp
+/// One scenario of a sweep: run (or only validated) as `hexdyn run` would, and reduced
+/// to its summary row of /scenarios (schema.hpp, hexdyn-sweep/1). A scenario that cannot
+/// be computed is a row with a status and a message, never an exception.
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <exception>
+#include <optional>
+#include <string>
+
+#include "hexdyn/core/common.hpp"
+#include "hexdyn/core/result.hpp"
+#include "hexdyn/sweep/spec.hpp"
+
+namespace hexdyn {
+
+/// Outcome of a scenario, stored in /scenarios/status (int8).
+enum class ScenarioStatus : std::int8_t {
+  kOk = 0,        ///< computed (relaxed samples are counted, not failures)
+  kConfig = 1,    ///< a value out of range for its key (ConfigError)
+  kReach = 2,     ///< a foothold or foot target out of reach (ReachError)
+  kPlanning = 3,  ///< PlanningError
+  kSolver = 4,    ///< SolverError
+  kError = 5,     ///< another hexdyn::Error
+  kInternal = 6,  ///< any other exception (a bug)
+};
+
+/// "ok", "config", "reach", "planning", "solver", "error", "internal".
+const char* status_name(ScenarioStatus status);
+/// "0 ok, 1 config, ..." for the `codes` attribute of /scenarios/status.
+std::string status_codes_text();
+
+/// One row of /scenarios. Dynamic metrics are NaN when status != kOk.
+struct ScenarioSummary {
+  std::size_t index = 0;
+  ScenarioStatus status = ScenarioStatus::kOk;
+  std::string message;               ///< the error's one-line message; "" when ok
+  int samples = 0;                   ///< T output samples
+  double duration_s = 0.0;           ///< last minus first sample time [s]
+  double distance_m = 0.0;           ///< trunk travel used by the cost of transport [m]
+  double energy_J = 0.0;             ///< E = ∫ Σ|τ ω| dt [J]
+  double cost_of_transport = 0.0;    ///< E / (m g d) [1]
+  double peak_impact_force_N = 0.0;  ///< largest touchdown peak; 0 without touchdowns [N]
+  std::array<double, kJoints> peak_torque_Nm{};  ///< max over samples of |τ_k| [N m]
+  std::array<double, kJoints> rms_torque_Nm{};   ///< time-weighted RMS of τ_k [N m]
+  int relaxed_samples = 0;                       ///< samples with solver status 1
+  int failed_samples = 0;                        ///< samples with solver status 2
+  double wall_time_s = 0.0;  ///< time to compute the scenario [s] (timing field)
+};
+
+/// Summary metrics of a computed scenario. RMS is over time, with the trapezoidal
+/// rule on the output grid: sqrt(∫ τ² dt / (t_end − t_0)), so that a grid refined near
+/// touchdowns does not weigh them more (|τ_0| for a single sample).
+ScenarioSummary summarize_run(const RunResult& run, std::size_t index);
+
+/// A row for a scenario that could not be computed: metrics NaN, counts 0.
+ScenarioSummary failed_summary(std::size_t index, ScenarioStatus status,
+                               const std::string& message);
+
+/// Status of an exception thrown by a scenario (by its hexdyn::Error subclass).
+ScenarioStatus classify_exception(const std::exception& e);
+
+/// A scenario run: its row and, when kept and computed, its full result.
+struct ScenarioOutcome {
+  ScenarioSummary summary;
+  std::optional<RunResult> run;
+};
+
+/// Validates the scenario's scene (ConfigError → status kConfig) without running it.
+/// Returns the failed row, or nothing when the scene is valid.
+std::optional<ScenarioSummary> check_scenario(const ScenarioInput& input);
+
+/// Runs one scenario with the same library call as `hexdyn run` (run_scene). Never
+/// throws for a scenario that cannot be computed: the exception becomes the row's
+/// status and message. `keep_run` keeps the RunResult of a computed scenario.
+ScenarioOutcome run_scenario(const ScenarioInput& input, bool keep_run);
+
+}  // namespace hexdyn

@@ -1,0 +1,317 @@
+#include "hexdyn/sweep/spec.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <regex>
+#include <set>
+#include <system_error>
+
+#include "hexdyn/core/errors.hpp"
+#include "hexdyn/io/paths.hpp"
+
+namespace hexdyn {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string emit(const YAML::Node& node) {
+  YAML::Emitter out;
+  out << node;
+  return std::string(out.c_str()) + "\n";
+}
+
+/// Reports errors of one sweep file as "FILE: path: message".
+class SweepReader {
+ public:
+  explicit SweepReader(std::string file) : file_(std::move(file)) {}
+  [[noreturn]] void fail(const std::string& path, const std::string& what) const {
+    throw ConfigError(file_ + ": " + path + ": " + what);
+  }
+  [[noreturn]] void fail_value(const std::string& path, const YAML::Node& node,
+                               const std::string& expected) const {
+    fail(path, "got " + yaml_inline(node) + ", expected " + expected);
+  }
+  /// Every key of the map `node` at `path` must be one of `allowed`.
+  void check_keys(const YAML::Node& node, const std::string& path,
+                  const std::vector<std::string>& allowed) const {
+    for (const auto& kv : node) {
+      const std::string key = kv.first.IsScalar() ? kv.first.Scalar() : yaml_inline(kv.first);
+      if (std::find(allowed.begin(), allowed.end(), key) == allowed.end()) {
+        const std::set<std::string> sorted(allowed.begin(), allowed.end());
+        std::string list;
+        for (const auto& a : sorted) list += (list.empty() ? "" : ", ") + a;
+        fail(path.empty() ? key : path + "." + key, "unknown key, allowed here: " + list);
+      }
+    }
+  }
+  const std::string& file() const { return file_; }
+
+ private:
+  std::string file_;
+};
+
+std::string format_number(double x, int digits) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*g", digits, x);
+  return buf;
+}
+
+bool parse_finite_number(const YAML::Node& node, double& out) {
+  return node.IsScalar() && YAML::convert<double>::decode(node, out) && std::isfinite(out);
+}
+
+/// "p/q" with integers p and q ≠ 0 → p/q; nothing otherwise.
+std::optional<double> parse_fraction(const std::string& text) {
+  static const std::regex fraction(R"(^\s*([+-]?[0-9]+)\s*/\s*([0-9]+)\s*$)");
+  std::smatch m;
+  if (!std::regex_match(text, m, fraction)) return std::nullopt;
+  const double q = std::stod(m[2].str());
+  if (q == 0.0) return std::nullopt;
+  return std::stod(m[1].str()) / q;
+}
+
+/// The node at a dotted path of a tree of maps; undefined if absent.
+YAML::Node lookup(const YAML::Node& root, const std::vector<std::string>& keys) {
+  YAML::Node cur = YAML::Clone(root);
+  for (const auto& k : keys) {
+    if (!cur.IsMap()) return YAML::Node(YAML::NodeType::Undefined);
+    YAML::Node next = cur[k];
+    if (!next.IsDefined()) return YAML::Node(YAML::NodeType::Undefined);
+    cur.reset(next);
+  }
+  return cur;
+}
+
+/// Keys of the deepest existing map along `keys` (for "allowed here" hints).
+std::string keys_near(const YAML::Node& root, const std::vector<std::string>& keys) {
+  YAML::Node cur = YAML::Clone(root);
+  std::string prefix;
+  for (const auto& k : keys) {
+    if (!cur.IsMap() || !cur[k].IsDefined() || !cur[k].IsMap()) break;
+    YAML::Node next = cur[k];
+    cur.reset(next);
+    prefix += k + ".";
+  }
+  std::string list;
+  if (cur.IsMap())
+    for (const auto& kv : cur) list += (list.empty() ? "" : ", ") + prefix + kv.first.Scalar();
+  return list;
+}
+
+void read_values(const SweepReader& r, const YAML::Node& values, const std::string& path,
+                 SweepAxis& axis) {
+  const std::string expected = "a non-empty list of single values (numbers, p/q or words)";
+  if (!values.IsSequence() || values.size() == 0) r.fail_value(path, values, expected);
+  for (std::size_t k = 0; k < values.size(); ++k) {
+    const YAML::Node v = values[k];
+    if (!v.IsScalar()) r.fail_value(path + "[" + std::to_string(k) + "]", v, "a single value");
+    const std::string text = v.Scalar();
+    axis.labels.push_back(text);
+    if (const auto q = parse_fraction(text)) {
+      axis.values.push_back(format_number(*q, 17));
+    } else {
+      axis.values.push_back(text);
+    }
+  }
+}
+
+void read_range(const SweepReader& r, const YAML::Node& range, const std::string& path,
+                SweepAxis& axis) {
+  if (!range.IsMap()) r.fail_value(path, range, "a mapping {from: A, to: B, count: N}");
+  r.check_keys(range, path, {"from", "to", "count"});
+  double lo = 0.0, hi = 0.0;
+  if (!parse_finite_number(range["from"], lo))
+    r.fail_value(path + ".from", range["from"], "a finite number");
+  if (!parse_finite_number(range["to"], hi))
+    r.fail_value(path + ".to", range["to"], "a finite number");
+  long long count = 0;
+  const YAML::Node c = range["count"];
+  if (!c.IsScalar() || !YAML::convert<long long>::decode(c, count) || count < 2 || count > 100000)
+    r.fail_value(path + ".count", c, "an integer in [2, 100000]");
+  if (lo == hi) r.fail(path, "got from = to = " + format_number(lo, 12) + ", expected from != to");
+  for (long long k = 0; k < count; ++k) {
+    // Rounded to 12 significant digits so that 0.05 + 3 × 0.05 is written 0.2.
+    const double v = lo + (hi - lo) * static_cast<double>(k) / static_cast<double>(count - 1);
+    const std::string text = format_number(v, 12);
+    axis.values.push_back(text);
+    axis.labels.push_back(text);
+  }
+}
+
+void finish_axis(const SweepReader& r, const std::string& path, SweepAxis& axis) {
+  axis.numeric = true;
+  for (const auto& v : axis.values) {
+    double x = 0.0;
+    if (!parse_finite_number(YAML::Node(v), x)) {
+      axis.numeric = false;
+      break;
+    }
+    axis.numbers.push_back(x);
+  }
+  if (!axis.numeric) axis.numbers.clear();
+  std::map<double, std::size_t> seen_numbers;
+  std::map<std::string, std::size_t> seen_words;
+  for (std::size_t a = 0; a < axis.size(); ++a) {
+    std::size_t first = a;
+    if (axis.numeric)
+      first = seen_numbers.emplace(axis.numbers[a], a).first->second;
+    else
+      first = seen_words.emplace(axis.values[a], a).first->second;
+    if (first != a)
+      r.fail(path, "got " + axis.labels[a] + " twice (values " + std::to_string(first) + " and " +
+                       std::to_string(a) + "), expected distinct values");
+  }
+}
+
+}  // namespace
+
+std::size_t SweepSpec::scenario_count() const {
+  std::size_t n = 1;
+  for (const auto& a : axes) n *= a.size();
+  return n;
+}
+
+SweepSpec load_sweep(const std::string& path) {
+  SweepSpec spec;
+  spec.sweep_yaml = read_text_file(path);
+  const YAML::Node root = parse_yaml_text(spec.sweep_yaml, path);
+  const SweepReader r(path);
+  r.check_keys(root, "", {"name", "base", "set", "axes"});
+
+  const YAML::Node name = root["name"];
+  if (name.IsDefined() && !name.IsNull()) {
+    if (!name.IsScalar()) r.fail_value("name", name, "a string");
+    spec.name = name.Scalar();
+  } else {
+    spec.name = fs::path(path).stem().string();
+  }
+
+  const YAML::Node base = root["base"];
+  if (!base.IsDefined() || base.IsNull())
+    r.fail("base", "missing, this key is required (the scene file the axes vary)");
+  if (!base.IsScalar() || base.Scalar().empty())
+    r.fail_value("base", base, "the path of a scene file");
+  spec.base_path = path_beside(path, base.Scalar());
+  std::error_code ec;
+  if (!fs::is_regular_file(spec.base_path, ec))
+    r.fail_value("base", base,
+                 "the path of a scene file, relative to the sweep file (" + spec.base_path +
+                     " is not a file)");
+  YAML::Node tree = load_scene_tree(spec.base_path);
+
+  const YAML::Node set = root["set"];
+  std::set<std::string> fixed_keys;
+  if (set.IsDefined() && !set.IsNull()) {
+    if (!set.IsMap()) r.fail_value("set", set, "a mapping of dotted key paths to values");
+    for (const auto& kv : set) {
+      const std::string key = kv.first.Scalar();
+      for (const auto& k : split_key_path(key))
+        if (k.empty()) r.fail("set." + key, "empty key in the dotted path");
+      if (kv.second.IsMap())
+        r.fail_value("set." + key, kv.second,
+                     "a value or a list (write nested keys as dotted paths)");
+      spec.fixed.push_back({key, yaml_inline(kv.second)});
+      fixed_keys.insert(key);
+    }
+  }
+  const std::string base_source = path + " (base " + spec.base_path + ")";
+  for (const auto& ov : spec.fixed) apply_override(tree, ov, base_source);
+  spec.base_tree_yaml = emit(tree);
+  const Scene base_scene = scene_from_yaml(tree, base_source);
+  spec.base_config_yaml = base_scene.resolved_yaml;
+  const YAML::Node resolved = YAML::Load(spec.base_config_yaml);
+
+  const YAML::Node axes = root["axes"];
+  if (!axes.IsDefined() || axes.IsNull())
+    r.fail("axes", "missing, this key is required (a list of {key, values} or {key, range})");
+  if (!axes.IsSequence() || axes.size() == 0)
+    r.fail_value("axes", axes, "a non-empty list of {key, values} or {key, range}");
+  std::set<std::string> axis_keys;
+  std::size_t count = 1;
+  for (std::size_t i = 0; i < axes.size(); ++i) {
+    const std::string at = "axes[" + std::to_string(i) + "]";
+    const YAML::Node a = axes[i];
+    if (!a.IsMap())
+      r.fail_value(at, a, "a mapping {key: K, values: [...]} or {key: K, range: {...}}");
+    r.check_keys(a, at, {"key", "values", "range"});
+    SweepAxis axis;
+    const YAML::Node key = a["key"];
+    if (!key.IsDefined() || key.IsNull()) r.fail(at + ".key", "missing, this key is required");
+    if (!key.IsScalar() || key.Scalar().empty())
+      r.fail_value(at + ".key", key, "a dotted key path");
+    axis.key = key.Scalar();
+    const auto keys = split_key_path(axis.key);
+    for (const auto& k : keys)
+      if (k.empty()) r.fail_value(at + ".key", key, "a dotted key path without empty parts");
+    const YAML::Node target = lookup(resolved, keys);
+    if (!target.IsDefined()) {
+      const std::string near = keys_near(resolved, keys);
+      r.fail_value(at + ".key", key,
+                   "a key of the base scene " + spec.base_path +
+                       (near.empty() ? std::string() : " (near: " + near + ")"));
+    }
+    if (!target.IsScalar())
+      r.fail_value(at + ".key", key,
+                   std::string("a key holding a single value (it holds a ") +
+                       (target.IsMap() ? "group of keys" : "list") + ")");
+    if (fixed_keys.count(axis.key)) r.fail_value(at + ".key", key, "a key not also fixed by set:");
+    if (!axis_keys.insert(axis.key).second)
+      r.fail_value(at + ".key", key, "each key on one axis only");
+
+    const bool has_values = a["values"].IsDefined(), has_range = a["range"].IsDefined();
+    if (has_values == has_range)
+      r.fail(at, std::string("got ") +
+                     (has_values ? "both values and range" : "neither values nor range") +
+                     ", expected exactly one of them");
+    if (has_values)
+      read_values(r, a["values"], at + ".values", axis);
+    else
+      read_range(r, a["range"], at + ".range", axis);
+    finish_axis(r, at + (has_values ? ".values" : ".range"), axis);
+    count *= axis.size();
+    if (count > kMaxScenarios)
+      r.fail("axes", "got more than " + std::to_string(kMaxScenarios) +
+                         " scenarios, expected at most that many");
+    spec.axes.push_back(std::move(axis));
+  }
+  return spec;
+}
+
+std::vector<std::size_t> grid_point(const SweepSpec& spec, std::size_t index) {
+  std::vector<std::size_t> p(spec.axes.size());
+  for (std::size_t a = spec.axes.size(); a-- > 0;) {
+    p[a] = index % spec.axes[a].size();
+    index /= spec.axes[a].size();
+  }
+  return p;
+}
+
+std::string scenario_id(const SweepSpec& spec, std::size_t index) {
+  const std::size_t n = spec.scenario_count();
+  const std::size_t width = std::max<std::size_t>(6, std::to_string(n > 0 ? n - 1 : 0).size());
+  std::string s = std::to_string(index);
+  return std::string(width > s.size() ? width - s.size() : 0, '0') + s;
+}
+
+std::string scenario_source_name(const std::string& id) { return "scenario " + id; }
+
+ScenarioInput scenario_input(const SweepSpec& spec, std::size_t index) {
+  ScenarioInput in;
+  in.index = index;
+  in.id = scenario_id(spec, index);
+  const std::string source = scenario_source_name(in.id);
+  YAML::Node tree = parse_yaml_text(spec.base_tree_yaml, source);
+  const auto p = grid_point(spec, index);
+  for (std::size_t a = 0; a < spec.axes.size(); ++a)
+    apply_override(tree, {spec.axes[a].key, spec.axes[a].values[p[a]]}, source);
+  in.yaml = emit(tree);
+  return in;
+}
+
+}  // namespace hexdyn

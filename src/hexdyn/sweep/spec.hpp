@@ -1,0 +1,83 @@
+#pragma once
+/// \file spec.hpp
+/// The sweep file (`hexdyn sweep SWEEP.yaml`): its validated form SweepSpec, the grid of
+/// scenarios it spans, and the scene of one scenario. Nothing here runs a scenario
+/// (scenario.hpp) or touches an output file.
+///
+/// A sweep file (see configs/sweeps/stairs.yaml):
+///
+///     name: stairs                     # optional
+///     base: stairs_base.yaml           # a scene file, relative to the sweep file
+///     set:                             # optional: keys fixed for every scenario
+///       output.grid: uniform
+///     axes:                            # the grid is the product, last axis fastest
+///       - key: terrain.riser_height    # any key of the base scene, by dotted path
+///         range: {from: 0.02, to: 0.10, count: 5}
+///       - key: gait.duty_factor
+///         values: [1/2, 2/3, 3/4, 5/6] # scalars; p/q is the number p divided by q
+///
+/// Errors in the sweep file itself — YAML syntax, unknown or missing keys, malformed
+/// axes, an axis key the base scene does not have, a base scene (with `set:`) that is
+/// not valid on its own — throw ConfigError with one line "FILE: path: got X, expected
+/// Y" before any work. A scenario whose value is out of range for its key is not an
+/// error of the sweep: it becomes a row with status `kConfig` and the message
+/// (scenario.hpp).
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "hexdyn/io/config.hpp"
+
+namespace hexdyn {
+
+/// One swept key and its values.
+struct SweepAxis {
+  std::string key;                  ///< dotted path of a scene key, e.g. "gait.duty_factor"
+  std::vector<std::string> values;  ///< YAML scalar text given to apply_override
+  std::vector<std::string> labels;  ///< each value as written in the sweep file ("2/3")
+  bool numeric = true;              ///< every value is a finite number
+  std::vector<double> numbers;      ///< values as numbers when `numeric`, else empty
+  std::size_t size() const { return values.size(); }
+};
+
+/// A validated sweep file.
+struct SweepSpec {
+  std::string name;              ///< `name:` or the file's stem
+  std::string sweep_yaml;        ///< the sweep file's text, stored in /meta
+  std::string base_path;         ///< the base scene file, as resolved from the sweep file
+  std::vector<Override> fixed;   ///< `set:` entries, in file order
+  std::vector<SweepAxis> axes;   ///< at least one
+  std::string base_tree_yaml;    ///< base scene after `inherit:` and `set:`, unvalidated YAML
+  std::string base_config_yaml;  ///< the same, validated and fully resolved (defaults filled)
+  /// Number of scenarios: the product of the axis sizes.
+  std::size_t scenario_count() const;
+};
+
+/// Reads and validates a sweep file and its base scene (inherit: resolved). Throws
+/// ConfigError (one line naming file, path, value and what is allowed).
+SweepSpec load_sweep(const std::string& path);
+
+/// Upper bound on the number of scenarios of one sweep.
+inline constexpr std::size_t kMaxScenarios = 1000000;
+
+/// Index into each axis's values of scenario `index` < scenario_count(), row-major:
+/// the last axis varies fastest.
+std::vector<std::size_t> grid_point(const SweepSpec& spec, std::size_t index);
+
+/// Scenario id: the index zero-padded to at least 6 digits ("000012"); names /runs/<id>.
+std::string scenario_id(const SweepSpec& spec, std::size_t index);
+
+/// What one scenario is made of: the base scene tree with the axis values applied.
+struct ScenarioInput {
+  std::size_t index = 0;
+  std::string id;
+  std::string yaml;  ///< the scene as YAML text (unvalidated; validated when it runs)
+};
+
+ScenarioInput scenario_input(const SweepSpec& spec, std::size_t index);
+
+/// Name of a scenario in its messages: "scenario 000012" (independent of paths and
+/// rank counts, so that files compare equal).
+std::string scenario_source_name(const std::string& id);
+
+}  // namespace hexdyn

@@ -1,0 +1,210 @@
+#include "hexdyn/sweep/sweep_file.hpp"
+
+#include <hdf5.h>
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <filesystem>
+
+#include "hexdyn/core/errors.hpp"
+#include "hexdyn/io/atomic_file.hpp"
+#include "hexdyn/io/h5io.hpp"
+#include "hexdyn/io/output.hpp"
+#include "hexdyn/io/schema.hpp"
+#include "hexdyn/version.hpp"
+
+namespace hexdyn {
+namespace {
+
+namespace fs = std::filesystem;
+
+[[noreturn]] void io_fail(const std::string& path, const std::string& what) {
+  throw IoError("cannot write '" + path + "': " + what);
+}
+
+/// Copies `/run` of each kept checkpoint file to `/runs/<id>` of the open file `dst_path`.
+void copy_runs(const std::string& dst_path, const SweepSpec& spec,
+               const std::vector<ScenarioSummary>& rows, const Checkpoint& cp) {
+  silence_hdf5_errors();
+  const hid_t dst = H5Fopen(dst_path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  if (dst < 0) io_fail(dst_path, "cannot reopen it to copy the runs");
+  const hid_t lcpl = H5Pcreate(H5P_LINK_CREATE);
+  H5Pset_create_intermediate_group(lcpl, 1);
+  std::string error;
+  for (const ScenarioSummary& row : rows) {
+    if (row.status != ScenarioStatus::kOk) continue;
+    const std::string src_path = cp.scenario_path(row.index);
+    if (!fs::exists(src_path)) continue;
+    const hid_t src = H5Fopen(src_path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+    if (src < 0) {
+      error = "cannot open checkpoint '" + src_path + "'";
+      break;
+    }
+    if (H5Lexists(src, kCheckpointRunGroup, H5P_DEFAULT) > 0) {
+      const std::string to = schema::at(schema::kRunGroup, scenario_id(spec, row.index));
+      if (H5Ocopy(src, kCheckpointRunGroup, dst, to.c_str(), H5P_DEFAULT, lcpl) < 0)
+        error = "cannot copy the run of scenario " + scenario_id(spec, row.index);
+    }
+    H5Fclose(src);
+    if (!error.empty()) break;
+  }
+  H5Pclose(lcpl);
+  const herr_t closed = H5Fclose(dst);
+  H5Eclear2(H5E_DEFAULT);
+  if (!error.empty()) io_fail(dst_path, error);
+  if (closed < 0) io_fail(dst_path, "cannot close it after copying the runs");
+}
+
+namespace s = schema;
+
+void set_attribute(H5Writer& w, const s::AttributeSpec& a, const std::string& value) {
+  w.set_string_attribute(a.object, a.name, value);
+}
+void set_attribute(H5Writer& w, const s::AttributeSpec& a, std::int64_t value) {
+  w.set_int_attribute(a.object, a.name, value);
+}
+
+void write_doubles(H5Writer& w, const s::DatasetSpec& d, const std::vector<std::size_t>& dims,
+                   const std::vector<double>& values) {
+  w.write_doubles(d.path, dims, values, d.units);
+}
+void write_int32(H5Writer& w, const s::DatasetSpec& d, const std::vector<std::size_t>& dims,
+                 const std::vector<std::int32_t>& values) {
+  w.write_int32(d.path, dims, values, d.units);
+}
+
+void write_meta(H5Writer& w, const SweepSpec& spec, bool keep_runs, const SweepRunInfo& info) {
+  w.create_group(s::kMetaGroup);
+  set_attribute(w, s::kMetaSchema, s::kSweepSchema);
+  set_attribute(w, s::kMetaSchemaVersion, s::kSweepSchemaVersion);
+  set_attribute(w, s::kMetaVersion, kVersion);
+  set_attribute(w, s::kMetaGitCommit, kGitCommit);
+  set_attribute(w, s::kMetaCreatedUtc, utc_timestamp_now());
+  set_attribute(w, s::kMetaSweepName, spec.name);
+  set_attribute(w, s::kMetaSweepYaml, spec.sweep_yaml);
+  set_attribute(w, s::kMetaBaseConfigYaml, spec.base_config_yaml);
+  set_attribute(w, s::kMetaScenarios, static_cast<std::int64_t>(spec.scenario_count()));
+  set_attribute(w, s::kMetaKeepRuns, std::int64_t{keep_runs ? 1 : 0});
+  w.set_double_attribute(s::kMetaWallTime.object, s::kMetaWallTime.name, info.wall_time_s);
+  set_attribute(w, s::kMetaRanks, std::int64_t{info.ranks});
+  set_attribute(w, s::kMetaResumedScenarios, static_cast<std::int64_t>(info.resumed_scenarios));
+}
+
+void write_axes(H5Writer& w, const SweepSpec& spec) {
+  w.create_group(s::kAxesGroup);
+  for (std::size_t a = 0; a < spec.axes.size(); ++a) {
+    const SweepAxis& ax = spec.axes[a];
+    const std::string i = std::to_string(a);
+    w.write_string(s::at(s::kAxisKey.path, i), ax.key, s::kAxisKey.units);
+    if (ax.numeric)
+      w.write_doubles(s::at(s::kAxisNumbers.path, i), {ax.size()}, ax.numbers,
+                      s::kAxisNumbers.units);
+    else
+      w.write_strings(s::at(s::kAxisWords.path, i), ax.values, s::kAxisWords.units);
+    w.write_strings(s::at(s::kAxisLabels.path, i), ax.labels, s::kAxisLabels.units);
+  }
+  std::vector<std::string> joints;
+  for (int leg = 0; leg < kLegs; ++leg)
+    for (int j = 0; j < kJointsPerLeg; ++j) joints.push_back(joint_name(leg, j));
+  w.write_strings(s::kSweepJointNames.path, joints, s::kSweepJointNames.units);
+}
+
+/// /scenarios: one row per scenario; rows[i].index == i.
+void write_scenarios(H5Writer& w, const SweepSpec& spec, const std::vector<ScenarioSummary>& rows) {
+  const std::size_t n = rows.size();
+  const std::size_t A = spec.axes.size();
+  // One column of a summary field, in scenario order.
+  const auto doubles = [&](const s::DatasetSpec& d, double ScenarioSummary::*field) {
+    std::vector<double> v(n);
+    for (std::size_t i = 0; i < n; ++i) v[i] = rows[i].*field;
+    write_doubles(w, d, {n}, v);
+  };
+  const auto counts = [&](const s::DatasetSpec& d, int ScenarioSummary::*field) {
+    std::vector<std::int32_t> v(n);
+    for (std::size_t i = 0; i < n; ++i) v[i] = rows[i].*field;
+    write_int32(w, d, {n}, v);
+  };
+  using JointArray = std::array<double, kJoints>;
+  const auto per_joint = [&](const s::DatasetSpec& d, JointArray ScenarioSummary::*field) {
+    std::vector<double> v(n * kJoints);
+    for (std::size_t i = 0; i < n; ++i)
+      std::copy((rows[i].*field).begin(), (rows[i].*field).end(),
+                v.begin() + static_cast<std::ptrdiff_t>(i * kJoints));
+    write_doubles(w, d, {n, kJoints}, v);
+  };
+
+  std::vector<std::string> ids(n), messages(n);
+  std::vector<std::int32_t> axis_index(n * A);
+  std::vector<std::int8_t> status(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    ids[i] = scenario_id(spec, i);
+    messages[i] = rows[i].message;
+    status[i] = static_cast<std::int8_t>(rows[i].status);
+    const auto gp = grid_point(spec, i);
+    for (std::size_t a = 0; a < A; ++a) axis_index[i * A + a] = static_cast<std::int32_t>(gp[a]);
+  }
+  w.write_strings(s::kScenarioId.path, ids, s::kScenarioId.units);
+  write_int32(w, s::kScenarioAxisIndex, {n, A}, axis_index);
+  for (std::size_t a = 0; a < A; ++a) {
+    const SweepAxis& ax = spec.axes[a];
+    const std::string d = s::at(s::kScenarioAxisNumbers.path, std::to_string(a));
+    if (ax.numeric) {
+      std::vector<double> v(n);
+      for (std::size_t i = 0; i < n; ++i)
+        v[i] = ax.numbers[static_cast<std::size_t>(axis_index[i * A + a])];
+      w.write_doubles(d, {n}, v, s::kScenarioAxisNumbers.units);
+    } else {
+      std::vector<std::string> v(n);
+      for (std::size_t i = 0; i < n; ++i)
+        v[i] = ax.values[static_cast<std::size_t>(axis_index[i * A + a])];
+      w.write_strings(d, v, s::kScenarioAxisWords.units);
+    }
+    w.set_string_attribute(d, s::kScenarioAxisKey.name, ax.key);
+  }
+  w.write_int8(s::kScenarioStatus.path, {n}, status, s::kScenarioStatus.units);
+  set_attribute(w, s::kScenarioStatusCodes, status_codes_text());
+  w.write_strings(s::kScenarioMessage.path, messages, s::kScenarioMessage.units);
+  counts(s::kScenarioSamples, &ScenarioSummary::samples);
+  doubles(s::kScenarioDuration, &ScenarioSummary::duration_s);
+  doubles(s::kScenarioDistance, &ScenarioSummary::distance_m);
+  doubles(s::kScenarioEnergy, &ScenarioSummary::energy_J);
+  doubles(s::kScenarioCostOfTransport, &ScenarioSummary::cost_of_transport);
+  doubles(s::kScenarioPeakImpactForce, &ScenarioSummary::peak_impact_force_N);
+  per_joint(s::kScenarioPeakTorque, &ScenarioSummary::peak_torque_Nm);
+  per_joint(s::kScenarioRmsTorque, &ScenarioSummary::rms_torque_Nm);
+  counts(s::kScenarioRelaxedSamples, &ScenarioSummary::relaxed_samples);
+  counts(s::kScenarioFailedSamples, &ScenarioSummary::failed_samples);
+  doubles(s::kScenarioWallTime, &ScenarioSummary::wall_time_s);
+  set_attribute(w, s::kScenariosMissingValues,
+                std::string("metrics are NaN for scenarios whose status is not 0 (ok)"));
+}
+
+}  // namespace
+
+void write_sweep_file(const std::string& path, const SweepSpec& spec,
+                      const std::vector<ScenarioSummary>& rows, const Checkpoint* runs_from,
+                      const SweepRunInfo& info) {
+  const std::size_t n = spec.scenario_count();
+  if (rows.size() != n)
+    throw IoError("cannot write '" + path + "': " + std::to_string(rows.size()) + " rows for " +
+                  std::to_string(n) + " scenarios");
+  for (std::size_t i = 0; i < n; ++i)
+    if (rows[i].index != i)
+      throw IoError("cannot write '" + path + "': row " + std::to_string(i) + " holds scenario " +
+                    std::to_string(rows[i].index));
+  check_output_path_writable(path);
+  publish_atomically(path, [&](const std::string& tmp) {
+    {
+      H5Writer w(tmp);
+      write_meta(w, spec, runs_from != nullptr, info);
+      write_axes(w, spec);
+      write_scenarios(w, spec, rows);
+      if (runs_from != nullptr) w.create_group(schema::kRunsGroup);
+      w.close();
+    }
+    if (runs_from != nullptr) copy_runs(tmp, spec, rows, *runs_from);
+  });
+}
+
+}  // namespace hexdyn
