@@ -242,7 +242,7 @@ YAML::Node load_with_inheritance(const std::string& path, std::vector<ChainLink>
     std::string cycle;
     for (std::size_t k = i; k < chain.size(); ++k) cycle += display_path(chain[k].canonical) + " -> ";
     cycle += display_path(canonical);
-    throw ConfigError(chain.back().path + ": inherit: cycle " + cycle);
+    throw ConfigError(display_path(chain.back().canonical) + ": inherit: cycle " + cycle);
   }
   chain.push_back({path, canonical});
   YAML::Node root = parse_yaml_text(read_text_file(path), path);
