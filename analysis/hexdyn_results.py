@@ -397,8 +397,14 @@ class Sweep:
         """The full result of scenario `i` (index or id string)."""
         scenario_id = self.table["id"][self._index(i)]
         if scenario_id not in self.run_ids:
-            raise KeyError(f"{self.path}: no /runs/{scenario_id} (sweep run without --keep-runs, "
-                           f"or scenario not computed: {self.status_names[self._index(i)]})")
+            status = self.status_names[self._index(i)]
+            if not int(self.meta.get("keep_runs", 0)):
+                why = ("runs are not stored in this file: the sweep was run without "
+                       "--keep-runs; `hexdyn sweep SWEEP -o FILE --keep-runs` stores each "
+                       "scenario's full result under /runs/<id>")
+            else:
+                why = f"the scenario was not computed (status {status})"
+            raise KeyError(f"{self.path}: no /runs/{scenario_id}: {why}")
         return open_result(self.path, group=f"/runs/{scenario_id}")
 
     def _index(self, i):

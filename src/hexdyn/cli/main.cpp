@@ -1,4 +1,6 @@
 // hexdyn command line: thin driver over the library (pipeline.hpp).
+#include <yaml-cpp/yaml.h>
+
 #include <cstring>
 #include <iostream>
 #include <string>
@@ -9,23 +11,31 @@
 #include "hexdyn/mpi/mpi_sweep.hpp"
 #include "hexdyn/io/output.hpp"
 #include "hexdyn/pipeline/pipeline.hpp"
+#include "hexdyn/sweep/sweep.hpp"
 #include "hexdyn/version.hpp"
 
 namespace {
 
-constexpr const char* kUsage = R"(hexdyn — inverse dynamics of a legged robot on stairs
+constexpr const char* kRunUsage = R"(usage: hexdyn run CONFIG -o FILE [--set key.path=value ...]
+  Runs a scene and writes its hexdyn-result/1 file to FILE.
 
-usage:
-  hexdyn run CONFIG -o FILE [--set key.path=value ...]   run a scene, write hexdyn-result/1
-  hexdyn validate CONFIG [--set key.path=value ...]      check a scene file and exit
-  hexdyn sweep SWEEP -o FILE [--keep-runs] [--resume] [-v] [--progress SECONDS]
-                                                         run a parameter sweep, write hexdyn-sweep/1
-  hexdyn --help | --version
+CONFIG is a YAML scene (see configs/paper.yaml for every key); `inherit: OTHER.yaml`
+takes the keys of another scene file. --set overrides one key by dotted path, the value
+parsed as YAML: --set gait.duty_factor=0.75, --set gait.duty_factor=3/4 (p/q is p
+divided by q, as in sweep files), --set motion.cycle_durations=[3,2.6,3].
+)";
 
-CONFIG is a YAML scene (see configs/paper.yaml for every key). --set overrides one key
-by dotted path, the value parsed as YAML (e.g. --set gait.duty_factor=0.75,
---set motion.cycle_durations=[3,2.6,3]). Exit status: 0 success, 2 bad input (config,
-arguments, output path), 3 a scene that cannot be computed (unreachable foothold, ...).
+constexpr const char* kValidateUsage = R"(usage: hexdyn validate FILE [--set key.path=value ...]
+  Checks a scene file, or a sweep file, and exits without computing anything.
+
+A file with a top-level `axes:` key is a sweep file: it is checked as `hexdyn sweep`
+would check it (its keys, axes and base scene), and each scenario's scene is validated;
+scenarios with a value out of range are counted (exit status 0: `hexdyn sweep` records
+them as rows with status config). --set applies to scene files only.
+)";
+
+constexpr const char* kSweepUsage = R"(usage: hexdyn sweep SWEEP -o FILE [--keep-runs] [--resume] [-v] [--progress SECONDS]
+  Runs a parameter sweep and writes its hexdyn-sweep/1 file to FILE.
 
 SWEEP is a sweep file (see configs/sweeps/stairs.yaml): a base scene and axes over its
 keys; every combination is a scenario. Run it under `mpirun -np N` or plainly (one
@@ -34,6 +44,22 @@ status is 0 once FILE is written. --keep-runs also stores each scenario's full r
 under /runs/<id>. Finished scenarios are kept in FILE.checkpoint/ until FILE is
 complete; --resume continues an interrupted sweep from there. -v prints one line per
 scenario; progress lines come at most every --progress seconds (default 5).
+)";
+
+constexpr const char* kUsage = R"(hexdyn — inverse dynamics of a legged robot on stairs
+
+usage:
+  hexdyn run CONFIG -o FILE [--set key.path=value ...]   run a scene, write hexdyn-result/1
+  hexdyn validate FILE [--set key.path=value ...]        check a scene or sweep file and exit
+  hexdyn sweep SWEEP -o FILE [--keep-runs] [--resume] [-v] [--progress SECONDS]
+                                                         run a parameter sweep, write hexdyn-sweep/1
+  hexdyn COMMAND --help                                  help on one command
+  hexdyn --help | --version
+
+Exit status: 0 success, 2 bad input (config, arguments, output path), 3 a scene that
+cannot be computed (unreachable foothold, ...). Configuration files must be regular
+files of at most 1 MiB, without duplicate keys.
+
 )";
 
 struct Args {
@@ -81,7 +107,7 @@ Args parse_args(int argc, char** argv) {
     else throw hexdyn::ConfigError("unexpected argument " + arg + "; run 'hexdyn --help'");
   }
   if (a.config.empty())
-    throw hexdyn::ConfigError(a.command + ": missing " + (a.command == "sweep" ? "SWEEP" : "CONFIG") + " file");
+    throw hexdyn::ConfigError(a.command + ": missing " + (a.command == "sweep" ? "SWEEP" : a.command == "validate" ? "FILE" : "CONFIG") + " file");
   const bool sweep_flags = a.keep_runs || a.resume || a.verbose || a.progress_given;
   if (a.command == "sweep" && !a.overrides.empty())
     throw hexdyn::ConfigError("sweep: --set is not available; fix keys with set: in the sweep file");
@@ -90,24 +116,89 @@ Args parse_args(int argc, char** argv) {
   return a;
 }
 
+/// The usage text of one command; nullptr for an unknown command.
+const char* command_usage(const std::string& command) {
+  if (command == "run") return kRunUsage;
+  if (command == "validate") return kValidateUsage;
+  if (command == "sweep") return kSweepUsage;
+  return nullptr;
+}
+
+bool is_help(const char* arg) { return !std::strcmp(arg, "--help") || !std::strcmp(arg, "-h"); }
+
+/// `hexdyn validate` of a sweep file: load_sweep's checks, then each scenario's scene.
+int validate_sweep(const Args& args) {
+  if (!args.overrides.empty())
+    throw hexdyn::ConfigError("validate: --set applies to scene files; " + args.config +
+                              " is a sweep file (it has axes:), fix keys with set: in it");
+  const hexdyn::SweepSpec spec = hexdyn::load_sweep(args.config);
+  const std::size_t n = spec.scenario_count();
+  std::cout << args.config << ": valid sweep '" << spec.name << "', base scene " << spec.base_path << ", " << n
+            << " scenario" << (n == 1 ? "" : "s") << " over";
+  for (const auto& axis : spec.axes) std::cout << " " << axis.key << " (" << axis.size() << ")";
+  std::cout << "\n";
+  std::size_t out_of_range = 0;
+  std::string first;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (const auto row = hexdyn::check_scenario(hexdyn::scenario_input(spec, i))) {
+      if (out_of_range++ == 0) first = row->message;
+    }
+  }
+  if (out_of_range > 0)
+    std::cout << args.config << ": " << out_of_range << " of " << n
+              << " scenarios have a value out of range and would be rows with status config; first: " << first
+              << "\n";
+  return 0;
+}
+
+int validate(const Args& args) {
+  // A sweep file is recognised by its top-level axes: key (no scene has one).
+  const YAML::Node root = hexdyn::parse_yaml_text(hexdyn::read_text_file(args.config), args.config);
+  if (root["axes"].IsDefined()) return validate_sweep(args);
+  const hexdyn::Scene scene = hexdyn::load_scene(args.config, args.overrides);
+  std::cout << args.config << ": valid scene '" << scene.name << "'\n";
+  return 0;
+}
+
+/// An error message on one line: line breaks from quoted values are written as "\\n".
+std::string one_line(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    if (c == '\n') out += "\\n";
+    else if (c == '\r') out += "\\r";
+    else out += c;
+  }
+  return out;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc >= 2 && (!std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h"))) {
-    std::cout << kUsage;
+  if (argc >= 2 && is_help(argv[1])) {
+    std::cout << kUsage << kRunUsage << "\n" << kValidateUsage << "\n" << kSweepUsage;
     return 0;
   }
   if (argc >= 2 && !std::strcmp(argv[1], "--version")) {
     std::cout << "hexdyn " << hexdyn::kVersion << " (" << hexdyn::kGitCommit << ")\n";
     return 0;
   }
+  // `hexdyn COMMAND ... --help` prints that command's usage, whatever else is given.
+  if (argc >= 2 && command_usage(argv[1])) {
+    for (int i = 2; i < argc; ++i) {
+      if (!std::strcmp(argv[i], "--set") || !std::strcmp(argv[i], "-o") || !std::strcmp(argv[i], "--output") ||
+          !std::strcmp(argv[i], "--progress")) {
+        ++i;  // a flag's value is not a request for help
+        continue;
+      }
+      if (is_help(argv[i])) {
+        std::cout << command_usage(argv[1]);
+        return 0;
+      }
+    }
+  }
   try {
     const Args args = parse_args(argc, argv);
-    if (args.command == "validate") {
-      const hexdyn::Scene scene = hexdyn::load_scene(args.config, args.overrides);
-      std::cout << args.config << ": valid scene '" << scene.name << "'\n";
-      return 0;
-    }
+    if (args.command == "validate") return validate(args);
     if (args.command == "run") {
       if (args.output.empty()) throw hexdyn::ConfigError("run: missing -o FILE");
       const hexdyn::Scene scene = hexdyn::load_scene(args.config, args.overrides);
@@ -125,10 +216,10 @@ int main(int argc, char** argv) {
     }
     throw hexdyn::ConfigError("unknown command '" + args.command + "'; run 'hexdyn --help'");
   } catch (const hexdyn::Error& e) {
-    if (!hexdyn::launched_as_secondary_rank()) std::cerr << "hexdyn: error: " << e.what() << "\n";
+    if (!hexdyn::launched_as_secondary_rank()) std::cerr << "hexdyn: error: " << one_line(e.what()) << "\n";
     return e.exit_status();
   } catch (const std::exception& e) {
-    std::cerr << "hexdyn: internal error: " << e.what() << "\n";
+    std::cerr << "hexdyn: internal error: " << one_line(e.what()) << "\n";
     return 4;
   }
 }

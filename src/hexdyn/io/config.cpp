@@ -3,14 +3,13 @@
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
-#include <fstream>
 #include <limits>
 #include <map>
 #include <set>
 #include <sstream>
 
 #include "hexdyn/core/errors.hpp"
-#include "hexdyn/io/paths.hpp"
+#include "hexdyn/io/yaml_load.hpp"
 
 namespace hexdyn {
 namespace {
@@ -434,37 +433,12 @@ Override parse_override(const std::string& text) {
   const auto eq = text.find('=');
   if (eq == std::string::npos || eq == 0)
     throw ConfigError("--set " + text + ": expected key.path=value");
-  return {text.substr(0, eq), text.substr(eq + 1)};
-}
-
-std::string read_text_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw ConfigError(path + ": cannot read the configuration file (missing or unreadable)");
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  if (in.bad()) throw ConfigError(path + ": cannot read the configuration file");
-  return ss.str();
-}
-
-YAML::Node parse_yaml_text(const std::string& text, const std::string& source_name) {
-  try {
-    YAML::Node root = YAML::Load(text);
-    if (!root.IsMap())
-      throw ConfigError(source_name + ": got " + yaml_inline(root) + " at the top level, expected a mapping of keys");
-    return root;
-  } catch (const YAML::ParserException& e) {
-    throw ConfigError(source_name + ":" + std::to_string(e.mark.line + 1) + ":" +
-                      std::to_string(e.mark.column + 1) + ": YAML syntax error: " + e.msg);
-  }
+  // p/q as in sweep files: "--set gait.duty_factor=3/4".
+  return {text.substr(0, eq), fraction_to_number_text(text.substr(eq + 1))};
 }
 
 void apply_override(YAML::Node& root, const Override& ov, const std::string& source_name) {
-  YAML::Node value;
-  try {
-    value = YAML::Load(ov.value);
-  } catch (const YAML::ParserException& e) {
-    throw ConfigError("--set " + ov.key_path + "=" + ov.value + ": YAML syntax error in the value: " + e.msg);
-  }
+  const YAML::Node value = parse_yaml_checked(ov.value, "--set " + ov.key_path + "=" + ov.value);
   const auto keys = split_key_path(ov.key_path);
   for (const auto& k : keys)
     if (k.empty()) throw ConfigError("--set " + ov.key_path + ": empty key in the path");
@@ -508,40 +482,6 @@ Scene load_scene_from_string(const std::string& yaml_text, const std::string& so
   YAML::Node root = parse_yaml_text(yaml_text, source_name);
   for (const auto& ov : overrides) apply_override(root, ov, source_name);
   return scene_from_yaml(root, source_name);
-}
-
-namespace {
-
-/// Deep merge: maps merge key by key, anything else in `top` replaces `base`.
-YAML::Node merge_nodes(const YAML::Node& base, const YAML::Node& top) {
-  if (!base.IsMap() || !top.IsMap()) return YAML::Clone(top);
-  YAML::Node out = YAML::Clone(base);
-  for (const auto& kv : top) {
-    const std::string key = kv.first.Scalar();
-    out[key] = out[key].IsDefined() ? merge_nodes(out[key], kv.second) : YAML::Clone(kv.second);
-  }
-  return out;
-}
-
-YAML::Node load_with_inheritance(const std::string& path, std::vector<std::string>& chain) {
-  for (const auto& p : chain)
-    if (p == path) throw ConfigError(path + ": inherit: cycle through " + chain.front());
-  chain.push_back(path);
-  YAML::Node root = parse_yaml_text(read_text_file(path), path);
-  const YAML::Node parent = root["inherit"];
-  if (!parent.IsDefined()) return root;
-  if (!parent.IsScalar())
-    throw ConfigError(path + ": inherit: got " + yaml_inline(parent) + ", expected the path of a scene file");
-  const std::string parent_path = path_beside(path, parent.Scalar());
-  root.remove("inherit");
-  return merge_nodes(load_with_inheritance(parent_path, chain), root);
-}
-
-}  // namespace
-
-YAML::Node load_scene_tree(const std::string& path) {
-  std::vector<std::string> chain;
-  return load_with_inheritance(path, chain);
 }
 
 Scene load_scene(const std::string& path, const std::vector<Override>& overrides) {

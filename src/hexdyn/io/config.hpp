@@ -27,12 +27,16 @@ std::string yaml_inline(const YAML::Node& node);
 /// "a.b.c" → {"a", "b", "c"}; empty keys are kept ("a..b", "a." name empty keys).
 std::vector<std::string> split_key_path(const std::string& path);
 
-/// Parses "key.path=value"; throws ConfigError on a malformed string.
+/// Parses "key.path=value"; a value p/q (integers) becomes the number p divided by q, as
+/// in sweep files. Throws ConfigError on a malformed string.
 Override parse_override(const std::string& text);
 
 /// Reads a scene file into a tree, resolving `inherit: OTHER.yaml` (a path relative to
 /// the file): the file's keys are deep-merged over those of OTHER (maps merge key by
-/// key; scalars and lists replace). Throws ConfigError on a cycle or unreadable file.
+/// key; scalars and lists replace). Throws ConfigError on an unreadable file, an
+/// `inherit:` that is not a regular file, or a cycle (files compared by canonical path,
+/// so `./cfg.yaml` and `../dir/cfg.yaml` are found; the message shows the chain).
+/// Every file goes through read_text_file and parse_yaml_text.
 YAML::Node load_scene_tree(const std::string& path);
 
 /// Reads (with inheritance), overrides and validates a scene file.
@@ -45,10 +49,15 @@ Scene load_scene_from_string(const std::string& yaml_text, const std::string& so
 /// Validates an already-parsed YAML tree (used by the sweep, which builds scenario trees).
 Scene scene_from_yaml(const YAML::Node& root, const std::string& source_name);
 
-/// Parses YAML text into a tree, turning syntax errors into ConfigError with line/column.
+/// Parses YAML text into a tree, turning syntax errors into ConfigError with line/column;
+/// refuses duplicate keys, nesting deeper than kMaxYamlDepth and a second document
+/// (yaml_load.hpp), and a top level that is not a map ("FILE: top level: got a list,
+/// expected a map of sections"). Scenes, inherited files and sweep files all come here.
 YAML::Node parse_yaml_text(const std::string& text, const std::string& source_name);
 
-/// Reads a whole text file; throws ConfigError naming the path if it cannot be read.
+/// Reads a whole configuration file; throws ConfigError naming the path if it cannot be
+/// read, is not a regular file (directories, devices, FIFOs and sockets are refused by
+/// their type before any open that could block) or is larger than kMaxConfigBytes (1 MiB).
 std::string read_text_file(const std::string& path);
 
 /// Applies one override to a tree (creating intermediate maps); throws ConfigError when

@@ -14,6 +14,7 @@
 
 #include "hexdyn/core/errors.hpp"
 #include "hexdyn/io/paths.hpp"
+#include "hexdyn/io/yaml_load.hpp"
 
 namespace hexdyn {
 namespace {
@@ -64,16 +65,6 @@ std::string format_number(double x, int digits) {
 
 bool parse_finite_number(const YAML::Node& node, double& out) {
   return node.IsScalar() && YAML::convert<double>::decode(node, out) && std::isfinite(out);
-}
-
-/// "p/q" with integers p and q ≠ 0 → p/q; nothing otherwise.
-std::optional<double> parse_fraction(const std::string& text) {
-  static const std::regex fraction(R"(^\s*([+-]?[0-9]+)\s*/\s*([0-9]+)\s*$)");
-  std::smatch m;
-  if (!std::regex_match(text, m, fraction)) return std::nullopt;
-  const double q = std::stod(m[2].str());
-  if (q == 0.0) return std::nullopt;
-  return std::stod(m[1].str()) / q;
 }
 
 /// The node at a dotted path of a tree of maps; undefined if absent.

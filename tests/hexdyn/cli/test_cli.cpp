@@ -1,100 +1,19 @@
 // The hexdyn command line (src/main.cpp), run as a separate process in a scratch
 // directory: exit statuses, one-line error messages naming the key or the file, and
 // output files that are either complete or untouched.
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <catch2/catch.hpp>
 #include <cctype>
-#include <cstdlib>
-#include <filesystem>
-#include <fstream>
 #include <set>
-#include <sstream>
 #include <string>
 #include <vector>
 
+#include "hexdyn/cli/cli_harness.hpp"
 #include "hexdyn/io/config.hpp"
 
 namespace hexdyn {
 namespace {
 
-namespace fs = std::filesystem;
-
-const std::string kBinary = HEXDYN_BINARY;
-const std::string kPaperConfig = std::string(HEXDYN_SOURCE_DIR) + "/configs/paper.yaml";
-/// A coarse uniform grid keeps a whole run short; everything else is the paper scene.
-const std::vector<std::string> kCoarse = {"--set", "output.grid=uniform", "--set", "output.sample_step=0.5"};
-
-std::string quote(const std::string& s) {
-  std::string q = "'";
-  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
-}
-
-std::string read_file(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-void write_file(const fs::path& p, const std::string& bytes) {
-  std::ofstream out(p, std::ios::binary);
-  out << bytes;
-}
-
-/// A scratch directory `work` for the runs and a sibling `capture` for their output.
-struct Scratch {
-  fs::path root, work, capture;
-  Scratch() {
-    static int counter = 0;
-    root = fs::temp_directory_path() /
-           ("hexdyn_cli_test_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
-    fs::remove_all(root);
-    work = root / "work";
-    capture = root / "capture";
-    fs::create_directories(work);
-    fs::create_directories(capture);
-  }
-  ~Scratch() {
-    std::error_code ec;
-    fs::remove_all(root, ec);
-  }
-  Scratch(const Scratch&) = delete;
-  Scratch& operator=(const Scratch&) = delete;
-
-  std::set<std::string> listing() const {
-    std::set<std::string> names;
-    for (const auto& e : fs::directory_iterator(work)) names.insert(e.path().filename().string());
-    return names;
-  }
-};
-
-struct Outcome {
-  int status = -1;
-  std::string out, err;
-};
-
-/// Runs `hexdyn args...` inside the scratch work directory.
-Outcome run_cli(const Scratch& s, const std::vector<std::string>& args) {
-  std::string cmd = "cd " + quote(s.work.string()) + " && " + quote(kBinary);
-  for (const auto& a : args) cmd += " " + quote(a);
-  cmd += " > " + quote((s.capture / "stdout").string()) + " 2> " + quote((s.capture / "stderr").string());
-  const int raw = std::system(cmd.c_str());
-  Outcome o;
-  REQUIRE(raw != -1);
-  REQUIRE(WIFEXITED(raw));
-  o.status = WEXITSTATUS(raw);
-  o.out = read_file(s.capture / "stdout");
-  o.err = read_file(s.capture / "stderr");
-  return o;
-}
-
-std::vector<std::string> concat(std::vector<std::string> a, const std::vector<std::string>& b) {
-  a.insert(a.end(), b.begin(), b.end());
-  return a;
-}
+using namespace cli_test;
 
 TEST_CASE("cli: --help and validate succeed", "[cli]") {
   Scratch s;

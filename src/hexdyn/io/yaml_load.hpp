@@ -1,0 +1,50 @@
+#pragma once
+/// \file yaml_load.hpp
+/// The one way hexdyn reads YAML (scene files, inherited files, sweep files, `--set`
+/// values): size- and type-checked file reading, and a parse that refuses what yaml-cpp
+/// would accept silently. Every refusal is a ConfigError with one line naming the file
+/// (and line, and key path where there is one).
+///
+/// Beyond YAML syntax, the parse refuses
+/// - a key given twice in one map ("FILE: a.b: duplicate key, first at line 12, again at
+///   line 30"); yaml-cpp keeps both and lookups see the first, while Python's YAML keeps
+///   the last, so a file with duplicates would mean different things to different readers;
+/// - maps and lists nested deeper than kMaxYamlDepth levels;
+/// - keys that are lists, maps or aliases (no hexdyn key is one);
+/// - a second document ("---") in one file.
+/// The declarations of read_text_file, parse_yaml_text and load_scene_tree are in
+/// config.hpp; they are implemented here with the checks above.
+#include <cstddef>
+#include <optional>
+#include <string>
+
+namespace YAML {
+class Node;
+}
+
+namespace hexdyn {
+
+/// Largest configuration or sweep file read [bytes] (1 MiB; configs/paper.yaml is 5 kB).
+inline constexpr std::size_t kMaxConfigBytes = std::size_t{1} << 20;
+
+/// Deepest nesting of maps and lists accepted (a scene needs 4: robot.femur.limits[0]).
+inline constexpr int kMaxYamlDepth = 64;
+
+/// Why `path` cannot be read as a configuration file without opening it, or nothing
+/// when it names a regular file (symbolic links followed): "does not exist", "is a
+/// directory", "is a device", "is a FIFO (named pipe)", "is a socket", ...
+std::optional<std::string> why_not_regular_file(const std::string& path);
+
+/// Parses YAML text with the checks above, any document shape (a `--set` value may be a
+/// scalar or a list). `source_name` starts every message. Throws ConfigError.
+YAML::Node parse_yaml_checked(const std::string& text, const std::string& source_name);
+
+/// "p/q" with integers p and q ≠ 0 (spaces allowed around '/') → p divided by q;
+/// nothing for any other text. Sweep axis values and `--set` values use it.
+std::optional<double> parse_fraction(const std::string& text);
+
+/// `text` with a p/q fraction replaced by its value, written with 17 significant digits
+/// (so that it reads back to the same double); any other text unchanged.
+std::string fraction_to_number_text(const std::string& text);
+
+}  // namespace hexdyn
