@@ -279,10 +279,10 @@ RunResult linear_torque_run(double t0, double t1, std::vector<double>& a, std::v
     b[k] = 0.1 * ((k * 7) % 5 - 2);
     for (int i = 0; i < T; ++i) r.dyn.joint_torque(i, k) = a[k] + b[k] * t[i];
   }
-  r.dyn.solver_status.assign(T, 0);
-  r.dyn.solver_status[3] = 1;
-  r.dyn.solver_status[4] = 1;
-  r.dyn.solver_status[9] = 2;
+  r.dyn.solver_status.assign(T, SolverStatus::kOptimal);
+  r.dyn.solver_status[3] = SolverStatus::kRelaxed;
+  r.dyn.solver_status[4] = SolverStatus::kRelaxed;
+  r.dyn.solver_status[9] = SolverStatus::kFailed;
   r.dyn.energy_total_J = 12.5;
   r.dyn.cost_of_transport = 0.8;
   r.dyn.distance_m = 0.25;
@@ -327,7 +327,7 @@ TEST_CASE("sweep: summary of a constant torque and of a single sample", "[sweep]
   r.kin.time_s = {0.0, 0.1, 0.35, 1.0};
   r.dyn.present = true;
   r.dyn.joint_torque = RowMatrix::Constant(4, kJoints, -1.5);
-  r.dyn.solver_status.assign(4, 0);
+  r.dyn.solver_status.assign(4, SolverStatus::kOptimal);
   const ScenarioSummary s = summarize_run(r, 0);
   CHECK(s.peak_impact_force_N == 0.0);
   for (int k = 0; k < kJoints; ++k) {
@@ -336,7 +336,7 @@ TEST_CASE("sweep: summary of a constant torque and of a single sample", "[sweep]
   }
   r.kin.time_s = {0.2};
   r.dyn.joint_torque = RowMatrix::Constant(1, kJoints, 2.0);
-  r.dyn.solver_status.assign(1, 0);
+  r.dyn.solver_status.assign(1, SolverStatus::kOptimal);
   const ScenarioSummary one = summarize_run(r, 0);
   CHECK(one.duration_s == 0.0);
   CHECK(one.rms_torque_Nm[0] == 2.0);
