@@ -867,6 +867,20 @@ class ActiveSetBackend final : public AllocationBackend {
     return same;
   }
 
+  /// Polishes the final point of an attempt that ended optimal and fills the outcome from
+  /// it; returns the rows it violates (violations()).
+  std::string finish_attempt(const QpProblem& p) {
+    core_->polish();
+    fill_solution(p);
+    return violations(p);
+  }
+
+  /// Status optimal, with a note when H had to be regularised.
+  void mark_optimal() {
+    out_.status = SolverStatus::kOptimal;
+    if (core_->regularisation() > 0.0) out_.message = regularisation_note();
+  }
+
   std::string regularisation_note() const {
     char buf[96];
     std::snprintf(buf, sizeof buf, "objective Hessian not positive definite: regularised by %.3g I",
@@ -929,12 +943,9 @@ class ActiveSetBackend final : public AllocationBackend {
         strict_ran = true;
         strict_res = res;
         if (res == ActiveSetExit::kOptimal) {
-          s.polish();
-          fill_solution(p);
-          const std::string v = violations(p);
+          const std::string v = finish_attempt(p);
           if (v.empty()) {
-            out_.status = SolverStatus::kOptimal;
-            if (s.regularisation() > 0.0) out_.message = regularisation_note();
+            mark_optimal();
             store_warm();
             return;
           }
@@ -988,13 +999,10 @@ class ActiveSetBackend final : public AllocationBackend {
       fail_with_fallback(p, note);
       return;
     }
-    s.polish();
-    fill_solution(p);
-    const std::string v = violations(p);
+    const std::string v = finish_attempt(p);
     if (v.empty()) {
       // No slack needed: by exactness of the penalty this is the strict optimum.
-      out_.status = SolverStatus::kOptimal;
-      if (s.regularisation() > 0.0) out_.message = regularisation_note();
+      mark_optimal();
     } else {
       out_.status = SolverStatus::kRelaxed;
       out_.message = "relaxed: " + v;
