@@ -49,7 +49,7 @@ void BM_AllocationSupportWarm(benchmark::State& state) {
     const QpOutcome& out = backend->solve(flip ? pr.a : pr.b);
     flip = !flip;
     iterations += out.iterations;
-    status = std::max(status, out.status);
+    status = std::max(status, static_cast<int>(out.status));
     ++solves;
     benchmark::DoNotOptimize(out.x.data());
   }
@@ -66,7 +66,7 @@ void BM_AllocationSupportCold(benchmark::State& state) {
     backend->reset_warm_start();
     const QpOutcome& out = backend->solve(pr.a);
     iterations += out.iterations;
-    status = std::max(status, out.status);
+    status = std::max(status, static_cast<int>(out.status));
     ++solves;
     benchmark::DoNotOptimize(out.x.data());
   }
@@ -88,7 +88,7 @@ void BM_AllocationImpactRelaxed(benchmark::State& state) {
     backend->reset_warm_start();
     const QpOutcome& out = backend->solve(qp);
     iterations += out.iterations;
-    status = std::max(status, out.status);
+    status = std::max(status, static_cast<int>(out.status));
     ++solves;
     benchmark::DoNotOptimize(out.x.data());
   }

@@ -127,7 +127,7 @@ void run_pair(benchmark::State& state, const Pair& pr, bool active_set) {
       times.push_back(std::chrono::duration<double>(t1 - t0).count());
     flip = !flip;
     iterations += out.iterations;
-    status = std::max(status, out.status);
+    status = std::max(status, static_cast<int>(out.status));
     ++solves;
     benchmark::DoNotOptimize(out.x.data());
   }

@@ -8,7 +8,9 @@
 
 #include "hexdyn/io/config.hpp"
 #include "hexdyn/dynamics/rnea.hpp"
-#include "hexdyn/pipeline/dynamics_stage.hpp"
+#include "hexdyn/allocation/backends.hpp"
+#include "hexdyn/allocation/problem.hpp"
+#include "hexdyn/contact/touchdowns.hpp"
 #include "hexdyn/kinematics/kinematics.hpp"
 #include "hexdyn/pipeline/pipeline.hpp"
 #include "hexdyn/model/robot_model.hpp"

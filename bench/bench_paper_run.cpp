@@ -18,7 +18,7 @@ void run_paper(benchmark::State& state, AllocationSolver solver) {
     const RunResult r = run_scene(scene);
     samples = r.kin.samples();
     relaxed = 0;
-    for (auto st : r.dyn.solver_status) relaxed += st != 0;
+    for (SolverStatus st : r.dyn.solver_status) relaxed += st != SolverStatus::kOptimal;
     benchmark::DoNotOptimize(r.dyn.energy_total_J);
   }
   state.counters["samples"] = samples;

@@ -1,5 +1,5 @@
-/// \file allocation_active_set.cpp
-/// The dual active-set back end of the allocation (allocation_active_set.hpp).
+/// \file allocation/active_set.cpp
+/// The dual active-set back end of the allocation (allocation/active_set.hpp).
 ///
 /// Method. Goldfarb & Idnani, "A numerically stable dual method for solving strictly convex
 /// quadratic programs", Math. Programming 27 (1983) 1–33, as in quadprog, extended with
@@ -33,9 +33,9 @@
 /// Attempts (as in the Ipopt back end): the problem as posed, then, if it is infeasible,
 /// the penalised problem, started from the strict attempt's active set; after a relaxed
 /// sample a problem of the same sizes goes to the penalised form directly. Warm starts
-/// begin with the previous solve's active (and elastic) rows when the sizes and row names
-/// match: the equality-constrained solution on those rows is computed (Cholesky factor of
-/// NᵀH⁻¹N), rows with multipliers outside their box are dropped (or made elastic) and
+/// begin with the previous solve's active (and elastic) rows when the sizes and the
+/// structural key (QpProblem::structure) match: the equality-constrained solution on those
+/// rows is computed (Cholesky factor of NᵀH⁻¹N), rows with multipliers outside their box are dropped (or made elastic) and
 /// elastic rows that hold are released until the set is dual feasible; the iteration then
 /// proceeds as usual, and the Goldfarb–Idnani factors are only built if it has to move.
 /// A final point reached by moving is recomputed from its active set with one step of
@@ -73,17 +73,17 @@ using VecN = Eigen::Matrix<double, kN, 1>;
 using RowNormals = Eigen::Matrix<double, kN, kM>;  ///< column k: the normal of row k
 
 enum class RowState : std::int8_t { kInactive, kActive, kElastic };
-enum class RunResult { kOptimal, kInfeasible, kIterationLimit, kNumerical };
+enum class ActiveSetExit { kOptimal, kInfeasible, kIterationLimit, kNumerical };
 
-const char* run_result_name(RunResult r) {
+const char* exit_name(ActiveSetExit r) {
   switch (r) {
-    case RunResult::kOptimal:
+    case ActiveSetExit::kOptimal:
       return "optimal";
-    case RunResult::kInfeasible:
+    case ActiveSetExit::kInfeasible:
       return "infeasible";
-    case RunResult::kIterationLimit:
+    case ActiveSetExit::kIterationLimit:
       return "stopped at the iteration limit";
-    case RunResult::kNumerical:
+    case ActiveSetExit::kNumerical:
       return "stopped by a numerically dependent row";
   }
   return "unknown";
@@ -255,11 +255,11 @@ class DualActiveSet {
 
   /// The dual iteration from the current (dual feasible) state; `changes` counts the
   /// active-set changes.
-  RunResult run(int max_changes, int& changes) {
+  ActiveSetExit run(int max_changes, int& changes) {
     while (true) {
       int side = 0;
       const int p = most_violated(side);
-      if (p < 0) return RunResult::kOptimal;
+      if (p < 0) return ActiveSetExit::kOptimal;
       if (!gi_valid_ && !build_gi()) {
         start_cold();  // the warm set did not factorise: start again from scratch
         continue;
@@ -267,14 +267,14 @@ class DualActiveSet {
       moved_ = true;
       if (a_.col(p).head(n_).squaredNorm() == 0.0) {
         // A zero row whose bounds exclude 0: only relaxation helps.
-        if (!(relaxed_ && cap_[p] < kInf)) return RunResult::kInfeasible;
+        if (!(relaxed_ && cap_[p] < kInf)) return ActiveSetExit::kInfeasible;
         make_elastic(p, side);
-        if (++changes > max_changes) return RunResult::kIterationLimit;
+        if (++changes > max_changes) return ActiveSetExit::kIterationLimit;
         continue;
       }
       double u_plus = 0.0;  // multiplier of p
       for (;;) {
-        if (++changes > max_changes) return RunResult::kIterationLimit;
+        if (++changes > max_changes) return ActiveSetExit::kIterationLimit;
         // d = Jᵀ n⁺ (n⁺ = side·a_p), z = J₂ d₂, r = R⁻¹ d₁.
         for (int i = 0; i < n_; ++i) d_[i] = side * J_.col(i).head(n_).dot(a_.col(p).head(n_));
         double d2 = 0.0, dn = 0.0;
@@ -327,13 +327,13 @@ class DualActiveSet {
             if (ti < t && independent(k)) t = ti, block = Block::kCross, which = k;
           }
         }
-        if (!(t < kInf) || block == Block::kNone) return RunResult::kInfeasible;
+        if (!(t < kInf) || block == Block::kNone) return ActiveSetExit::kInfeasible;
         // Step.
         if (!dependent) x_.head(n_) += t * z_.head(n_);
         for (int i = 0; i < q_; ++i) u_[i] -= t * r_[i];
         u_plus += t;
         if (block == Block::kFull) {
-          if (!add_row(p, side, u_plus)) return RunResult::kNumerical;
+          if (!add_row(p, side, u_plus)) return ActiveSetExit::kNumerical;
           break;  // p holds: select the next row
         }
         if (block == Block::kPlusCap) {
@@ -342,7 +342,7 @@ class DualActiveSet {
         }
         if (block == Block::kCross) {
           release_elastic(which);
-          if (!add_row(which, side_[which], cap_[which])) return RunResult::kNumerical;
+          if (!add_row(which, side_[which], cap_[which])) return ActiveSetExit::kNumerical;
           continue;
         }
         const int k = act_[which];
@@ -798,7 +798,7 @@ class ActiveSetBackend final : public AllocationBackend {
   }
 
  private:
-  /// Feasibility threshold of a row for the status (allocation_qp.hpp).
+  /// Feasibility threshold of a row for the status (allocation/qp.hpp).
   double feasibility_tol() const { return qp_feasibility_tolerance(opt_.tolerance); }
 
   static void check_supported(const QpProblem& p) {
@@ -859,15 +859,26 @@ class ActiveSetBackend final : public AllocationBackend {
     have_warm_ = true;
   }
 
-  /// Same sizes and row names as the last problem (and remembers these names).
+  /// Same sizes and structural key (QpProblem::structure) as the last problem (and
+  /// remembers the key).
   bool same_structure(const QpProblem& p, bool same_sizes) {
-    const bool same =
-        same_sizes && p.eq_names == warm_eq_names_ && p.ineq_names == warm_ineq_names_;
-    if (!same) {
-      warm_eq_names_ = p.eq_names;
-      warm_ineq_names_ = p.ineq_names;
-    }
+    const bool same = same_sizes && p.structure == warm_structure_;
+    warm_structure_ = p.structure;
     return same;
+  }
+
+  /// Polishes the final point of an attempt that ended optimal and fills the outcome from
+  /// it; returns the rows it violates (violations()).
+  std::string finish_attempt(const QpProblem& p) {
+    core_->polish();
+    fill_solution(p);
+    return violations(p);
+  }
+
+  /// Status optimal, with a note when H had to be regularised.
+  void mark_optimal() {
+    out_.status = SolverStatus::kOptimal;
+    if (core_->regularisation() > 0.0) out_.message = regularisation_note();
   }
 
   std::string regularisation_note() const {
@@ -908,13 +919,13 @@ class ActiveSetBackend final : public AllocationBackend {
     const int max_changes = opt_.max_iterations;
 
     // --- strict attempt ---
-    RunResult strict_res = RunResult::kInfeasible;
+    ActiveSetExit strict_res = ActiveSetExit::kInfeasible;
     std::string strict_violated;  // an optimal strict answer that violates rows (not expected)
     bool strict_ran = false;
     if (!skip_strict) {
       if (s.crossed_row() < 0) {
         s.set_mode(false);
-        RunResult res = RunResult::kNumerical;
+        ActiveSetExit res = ActiveSetExit::kNumerical;
         for (const bool use_warm : {true, false}) {
           if (use_warm && !warm) continue;
           int dropped = 0;
@@ -927,17 +938,14 @@ class ActiveSetBackend final : public AllocationBackend {
           out_.iterations += changes;
           // An exact method reaches the same verdict from any start: retry cold only
           // after an iteration limit or numerical trouble.
-          if (res == RunResult::kOptimal || res == RunResult::kInfeasible) break;
+          if (res == ActiveSetExit::kOptimal || res == ActiveSetExit::kInfeasible) break;
         }
         strict_ran = true;
         strict_res = res;
-        if (res == RunResult::kOptimal) {
-          s.polish();
-          fill_solution(p);
-          const std::string v = violations(p);
+        if (res == ActiveSetExit::kOptimal) {
+          const std::string v = finish_attempt(p);
           if (v.empty()) {
-            out_.status = 0;
-            if (s.regularisation() > 0.0) out_.message = regularisation_note();
+            mark_optimal();
             store_warm();
             return;
           }
@@ -948,7 +956,7 @@ class ActiveSetBackend final : public AllocationBackend {
 
     // --- penalised attempt ---
     s.set_mode(true);
-    RunResult res = RunResult::kNumerical;
+    ActiveSetExit res = ActiveSetExit::kNumerical;
     for (const bool use_warm : {true, false}) {
       int dropped = 0;
       if (use_warm) {
@@ -970,9 +978,9 @@ class ActiveSetBackend final : public AllocationBackend {
       int changes = dropped;
       res = s.run(max_changes, changes);
       out_.iterations += changes;
-      if (res == RunResult::kOptimal || res == RunResult::kInfeasible) break;
+      if (res == ActiveSetExit::kOptimal || res == ActiveSetExit::kInfeasible) break;
     }
-    if (res != RunResult::kOptimal) {
+    if (res != ActiveSetExit::kOptimal) {
       std::string note = "strict solve ";
       if (skip_strict) {
         note += "skipped after a relaxed sample";
@@ -983,34 +991,31 @@ class ActiveSetBackend final : public AllocationBackend {
       } else if (!strict_violated.empty()) {
         note += "optimal but violated " + strict_violated;
       } else {
-        note += run_result_name(strict_res);
+        note += exit_name(strict_res);
       }
       note += "; penalised solve ";
-      note += run_result_name(res);
-      if (res == RunResult::kInfeasible) note += " (equality rows)";
+      note += exit_name(res);
+      if (res == ActiveSetExit::kInfeasible) note += " (equality rows)";
       fail_with_fallback(p, note);
       return;
     }
-    s.polish();
-    fill_solution(p);
-    const std::string v = violations(p);
+    const std::string v = finish_attempt(p);
     if (v.empty()) {
       // No slack needed: by exactness of the penalty this is the strict optimum.
-      out_.status = 0;
-      if (s.regularisation() > 0.0) out_.message = regularisation_note();
+      mark_optimal();
     } else {
-      out_.status = 1;
+      out_.status = SolverStatus::kRelaxed;
       out_.message = "relaxed: " + v;
       if (s.regularisation() > 0.0) out_.message += " (" + regularisation_note() + ")";
     }
     store_warm();
-    last_relaxed_ = out_.status != 0;
+    last_relaxed_ = out_.status != SolverStatus::kOptimal;
   }
 
   ActiveSetOptions opt_;
   std::unique_ptr<DualActiveSet> core_;
   int warm_n_ = -1, warm_m_eq_ = -1, warm_m_in_ = -1;
-  std::vector<std::string> warm_eq_names_, warm_ineq_names_;
+  std::uint64_t warm_structure_ = 0;  ///< QpProblem::structure of the last problem
   std::array<RowRef, kN> warm_active_{};
   int warm_active_n_ = 0;
   std::array<RowRef, kM> warm_elastic_{};

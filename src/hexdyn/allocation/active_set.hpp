@@ -1,13 +1,13 @@
 #pragma once
-/// \file allocation_active_set.hpp
+/// \file allocation/active_set.hpp
 /// An exact dense QP back end of the allocation (DESIGN.md §3 "Allocation",
 /// `allocation.solver: active-set`): a dual active-set method in the Goldfarb–Idnani style
-/// for the small problems of allocation_qp.hpp without cones,
+/// for the small problems of allocation/qp.hpp without cones,
 ///
 ///   minimise    ½ xᵀ H x + gᵀ x + constant
 ///   subject to  A x = b,   lower ≤ C x ≤ upper,
 ///
-/// with the same problem semantics as the Ipopt back end (allocation_ipopt.cpp): the
+/// with the same problem semantics as the Ipopt back end (allocation/ipopt.cpp): the
 /// problem as posed first; when it is infeasible, the exact L1-penalised problem
 ///
 ///   minimise    ½ xᵀ H x + gᵀ x + ρ Σ_i w_i · dist(C_i x, [lower_i, upper_i])
@@ -31,10 +31,10 @@
 ///    with cones, since that is a configuration error rather than numerical trouble; the
 ///    pipeline selects this back end only with friction pyramids.
 ///
-/// Outcome fields: x, λ (signs of allocation_qp.hpp; for a relaxed row whose slack is used,
+/// Outcome fields: x, λ (signs of allocation/qp.hpp; for a relaxed row whose slack is used,
 /// λ_i = ±ρ w_i), iterations = active-set changes over all attempts (adding, dropping or
 /// relaxing a row), objective without penalties, max_violation, seconds, message.
-/// After the problem's sizes and row names have been seen once, a solve that ends with
+/// After the problem's sizes and structural key have been seen once, a solve that ends with
 /// status 0 allocates no heap memory (status 1 builds its message).
 #include <memory>
 
@@ -57,15 +57,16 @@ struct ActiveSetOptions {
   double slack_penalty = 1e6;
   /// Active-set changes per attempt (strict, then penalised) before giving up.
   int max_iterations = 500;
-  /// Start from the previous solve's active set when the sizes and row names match
-  /// (verified: rows with multipliers of the wrong sign or dependent normals are dropped).
+  /// Start from the previous solve's active set when the sizes and the structural key
+  /// (QpProblem::structure) match (verified: rows with multipliers of the wrong sign or
+  /// dependent normals are dropped).
   bool warm_start = true;
 };
 
 /// Maps the scene's allocation settings (tolerance, slack_penalty) to the options.
 ActiveSetOptions active_set_options_from(const AllocationParams& params);
 
-/// The dual active-set back end; details in allocation_active_set.cpp. Throws ConfigError
+/// The dual active-set back end; details in allocation/active_set.cpp. Throws ConfigError
 /// for non-positive tolerance or slack_penalty or max_iterations < 1.
 std::unique_ptr<AllocationBackend> make_active_set_backend(const ActiveSetOptions& options = {});
 

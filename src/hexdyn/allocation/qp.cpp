@@ -36,6 +36,7 @@ void QpProblem::resize(int n, int m_eq, int m_in) {
   ineq_penalty.setOnes(m_in);
   cones.clear();
   constant = 0.0;
+  structure = 0;
 }
 
 std::string QpProblem::eq_name(int i) const {
@@ -190,7 +191,7 @@ std::string qp_first_non_finite(const QpProblem& p) {
 
 void qp_fail_with_fallback(const QpProblem& p, double feasibility_tol, const std::string& why,
                            QpOutcome& out) {
-  out.status = 2;
+  out.status = SolverStatus::kFailed;
   out.x = qp_fallback_point(p);
   out.lambda_eq.setZero(p.equalities());
   out.lambda_ineq.setZero(p.inequalities());
@@ -211,7 +212,7 @@ void qp_solve_without_variables(const QpProblem& p, double feasibility_tol, QpOu
   out.lambda_cone.resize(0);
   out.objective = p.constant;
   const std::string v = describe_violations(p, out.x, feasibility_tol, &out.max_violation);
-  out.status = v.empty() ? 0 : 2;
+  out.status = v.empty() ? SolverStatus::kOptimal : SolverStatus::kFailed;
   out.message = v.empty() ? std::string() : "failed: no variables; violated: " + v;
 }
 

@@ -15,11 +15,13 @@
 ///   0 when the row is inactive. λ is the sensitivity of the optimal objective:
 ///   raising lower[i] (or b[i]) by ε changes it by about +λ[i]·ε.
 #include <Eigen/Core>
+#include <cstdint>
 #include <limits>
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "hexdyn/core/result.hpp"
 #include "hexdyn/core/scene.hpp"
 
 namespace hexdyn {
@@ -39,7 +41,7 @@ struct SecondOrderCone {
 
 /// Dense QP of n ≤ ~18 variables. Sizes: H n×n (symmetric; only its lower triangle is
 /// read), g n, A m_eq×n, b m_eq, C m_in×n, lower/upper m_in. Names: empty, or one per
-/// row (used in messages; empty names become "eq[i]" / "ineq[i]").
+/// row (used in messages only; empty names become "eq[i]" / "ineq[i]").
 ///
 /// When the rows cannot all hold, a back end relaxes inequality rows and cones with slacks
 /// s ≥ 0 measured in the row's own units (N, N·m) under the L1 penalty ρ Σ w_i s_i; the
@@ -59,13 +61,19 @@ struct QpProblem {
   std::vector<std::string> ineq_names;
   std::vector<SecondOrderCone> cones;
   Eigen::VectorXd ineq_penalty;  ///< m_in weights w_i > 0, or empty for all 1
+  /// Structural key, set by the problem's builder: two problems of the same sizes and the
+  /// same key have rows of the same kind at every index, so that a back end may start one
+  /// from the other's working set (the active-set back end's warm start). 0 when the
+  /// builder sets none: then the sizes alone decide. build_allocation_problem encodes the
+  /// friction model and each leg's contact phase.
+  std::uint64_t structure = 0;
 
   int variables() const { return static_cast<int>(g.size()); }
   int equalities() const { return static_cast<int>(b.size()); }
   int inequalities() const { return static_cast<int>(lower.size()); }
 
   /// Sets every size (H, A, C zero; g, b zero; bounds unbounded; names cleared to
-  /// the right count of empty strings; penalty weights 1; cones cleared).
+  /// the right count of empty strings; penalty weights 1; cones cleared; structure 0).
   void resize(int n, int m_eq, int m_in);
   /// Name of an equality / inequality row for messages.
   std::string eq_name(int i) const;
@@ -79,10 +87,10 @@ void validate_qp_sizes(const QpProblem& p);
 
 /// The solver's answer, a value recorded per sample.
 struct QpOutcome {
-  /// 0 optimal, 1 relaxed (penalised slack was needed: some rows or cones do not hold;
-  /// or an approximate answer, see message), 2 failed (x is a finite fallback: the
-  /// least-squares solution of A x = b, or zeros).
-  int status = 2;
+  /// kOptimal; kRelaxed (penalised slack was needed: some rows or cones do not hold; or an
+  /// approximate answer, see message); kFailed (x is a finite fallback: the least-squares
+  /// solution of A x = b, or zeros).
+  SolverStatus status = SolverStatus::kFailed;
   Eigen::VectorXd x;            ///< n
   Eigen::VectorXd lambda_eq;    ///< m_eq, sign convention in the file comment
   Eigen::VectorXd lambda_ineq;  ///< m_in, ≥ 0 at an active lower bound, ≤ 0 at an upper
@@ -93,11 +101,11 @@ struct QpOutcome {
   double objective = 0.0;      ///< ½ xᵀHx + gᵀx + constant at x (without penalties)
   double seconds = 0.0;        ///< wall time of the call
   double max_violation = 0.0;  ///< largest violation of a row or cone at x (row units)
-  /// Status 0: empty, or a note that Ipopt reached only its acceptable tolerance.
-  /// Status 1: "relaxed: " and what gave way, largest violation first, e.g.
+  /// kOptimal: empty, or a note that Ipopt reached only its acceptable tolerance.
+  /// kRelaxed: "relaxed: " and what gave way, largest violation first, e.g.
   /// "relaxed: torque L1_femur by 0.73, friction L3 +y by 0.02", with a note in
   /// parentheses if the cones were replaced by inscribed polygons; "approximate: ..." when
-  /// that replacement was needed although nothing gave way. Status 2: "failed: " and why.
+  /// that replacement was needed although nothing gave way. kFailed: "failed: " and why.
   std::string message;
 };
 
@@ -147,14 +155,14 @@ double qp_feasibility_tolerance(double tolerance);
 /// empty when every entry is finite (infinite bounds are allowed).
 std::string qp_first_non_finite(const QpProblem& problem);
 
-/// Fills `out` (all but iterations and seconds) for a failed solve: status 2, x =
+/// Fills `out` (all but iterations and seconds) for a failed solve: kFailed, x =
 /// qp_fallback_point, zero multipliers, finite objective and max_violation, and the
 /// message "failed: <why>; fallback x = ...; violated: ...".
 void qp_fail_with_fallback(const QpProblem& problem, double feasibility_tol,
                            const std::string& why, QpOutcome& out);
 
-/// Fills `out` (all but iterations and seconds) for a problem without variables: status 0
-/// when its constant rows hold, 2 naming them otherwise.
+/// Fills `out` (all but iterations and seconds) for a problem without variables: kOptimal
+/// when its constant rows hold, kFailed naming them otherwise.
 void qp_solve_without_variables(const QpProblem& problem, double feasibility_tol, QpOutcome& out);
 
 /// KKT conditions of a problem without cones at (x, λ) of `outcome`, each residual

@@ -1,5 +1,5 @@
 #pragma once
-/// \file contact.hpp
+/// \file impact.hpp
 /// The compliant normal contact law (paper eq. 7–8, the MSC.ADAMS IMPACT function) and
 /// the touchdown transient it produces (DESIGN.md §3 "Contact", "Impact").
 ///
@@ -69,13 +69,17 @@ struct ImpactTransient {
 };
 
 /// Integrates the touchdown transient m δ̈ = −F_n(δ, δ̇) from δ = 0, δ̇ = approach speed,
-/// with an implicit (stiff-capable) GSL Runge–Kutta stepper and an analytic Jacobian.
+/// in scaled variables with GSL's adaptive drivers: the explicit Runge–Kutta–Cash–Karp
+/// (4, 5) pair while the scaled damping allows output-sized steps, otherwise the implicit
+/// 4th-order Gauss stepper (rk4imp) with the analytic Jacobian.
 /// Gravity and the leg's drive are left out: the transient is short compared with the
 /// motion, and its force is what the impact adds to the quasi-static support.
 ///
-/// The transient ends at the first return of F_n to zero after touchdown, located by
-/// bisection: the foot leaves the surface (δ = 0) or the damper cancels the spring on
-/// rebound (the max(0,·) clip). After a clip the foot moves away freely; any later force
+/// The transient ends at the first return of F_n to zero after touchdown, located within
+/// the step by regula falsi with the Illinois modification (falling back to bisection when
+/// a secant point leaves the bracket), as are the force peak (zero of Ḟ_n) and the
+/// largest penetration (zero of δ̇). The end comes when the foot leaves the surface
+/// (δ = 0) or the damper cancels the spring on rebound (the max(0,·) clip). After a clip the foot moves away freely; any later force
 /// while δ < p is below K p^e and is ignored.
 ///
 /// effective_mass_kg: foot's effective mass along the normal, > 0.

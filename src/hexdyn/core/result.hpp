@@ -1,10 +1,11 @@
 #pragma once
 /// \file result.hpp
 /// Per-run result arrays, one row per output sample, in the units and frames of the
-/// `hexdyn-result/1` contract (result_schema.hpp). Matrices are row-major so that a
+/// `hexdyn-result/1` contract (io/schema.hpp). Matrices are row-major so that a
 /// (T, n) dataset is written straight from `.data()`; (T, 6, 3) datasets are stored
 /// as T × 18 with leg-major columns (3 l + axis).
 #include <cstdint>
+#include <iosfwd>
 #include <string>
 #include <vector>
 
@@ -17,6 +18,17 @@ using RowMatrixI8 = Eigen::Matrix<std::int8_t, Eigen::Dynamic, Eigen::Dynamic, E
 
 /// Contact phase per leg and sample (/contacts/phase).
 enum class ContactPhase : std::int8_t { kSwing = 0, kImpact = 1, kSupport = 2 };
+
+/// Outcome of one allocation solve (/solver/status, the values are the file's codes):
+/// optimal; relaxed (some rows or cones gave way, or an approximate answer; the message
+/// says which); failed (a finite fallback answer).
+enum class SolverStatus : std::int8_t { kOptimal = 0, kRelaxed = 1, kFailed = 2 };
+
+/// "optimal", "relaxed" or "failed".
+std::ostream& operator<<(std::ostream& os, SolverStatus status);
+
+/// The file codes of `status` (0, 1, 2 per SolverStatus), for /solver/status.
+std::vector<std::int8_t> solver_status_codes(const std::vector<SolverStatus>& status);
 
 /// Output of the kinematic stages (gait, motion, IK) sampled on the output grid.
 struct KinematicsResult {
@@ -33,7 +45,9 @@ struct KinematicsResult {
   RowMatrix foot_position;            ///< T×18 = (T,6,3), world [m]
   RowMatrix foot_velocity;            ///< T×18 = (T,6,3), world [m/s]
   RowMatrix com_position;             ///< T×3, whole-robot COM in G0 [m]
-  RowMatrixI8 contact_phase;          ///< T×6, ContactPhase values
+  /// T×6, ContactPhase values: swing/support from the gait (sample_kinematics); in a
+  /// RunResult, the contact schedule's phases with the touchdown transients (kImpact).
+  RowMatrixI8 contact_phase;
   int samples() const { return static_cast<int>(time_s.size()); }
   void resize(int samples);
 };
@@ -61,7 +75,7 @@ struct DynamicsResult {
   std::vector<double> energy_joint_J;  ///< 18, ∫|τ_k ω_k| dt
   double distance_m = 0.0;        ///< trunk travel for the cost of transport
   double cost_of_transport = 0.0; ///< E / (m g d)
-  std::vector<std::int8_t> solver_status;  ///< T: 0 optimal, 1 relaxed, 2 failed
+  std::vector<SolverStatus> solver_status;  ///< T
   std::vector<double> solver_iterations;   ///< T
   std::vector<double> solver_objective;    ///< T [N² m²]
   std::vector<double> solver_seconds;      ///< T

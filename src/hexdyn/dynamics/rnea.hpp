@@ -1,5 +1,5 @@
 #pragma once
-/// \file dynamics.hpp
+/// \file rnea.hpp
 /// Floating-base rigid-body dynamics of the hexapod (DESIGN.md §3): recursive
 /// Newton–Euler (RNEA), composite-rigid-body mass matrix (CRBA), foot Jacobians,
 /// whole-robot momentum and the affine split τ = τ₀ − Σ J_jᵀ F used by allocation.
@@ -31,6 +31,7 @@
 /// k, its frame is the joint frame rotated by q_k about the joint axis (robot_model.hpp).
 #include <array>
 
+#include "hexdyn/core/base_state.hpp"
 #include "hexdyn/core/common.hpp"
 #include "hexdyn/model/robot_model.hpp"
 #include "hexdyn/core/spatial.hpp"
@@ -40,16 +41,6 @@ namespace hexdyn {
 using VecDof = Eigen::Matrix<double, kDof, 1>;        ///< 24 generalised values
 using MatDof = Eigen::Matrix<double, kDof, kDof>;     ///< 24×24
 using FootJacobian = Eigen::Matrix<double, 3, kDof>;  ///< 3×24, world axes
-
-/// Trunk pose, twist and its time derivative, all in world frame G0 (see file comment).
-struct BaseState {
-  Mat3 W_R_B = Mat3::Identity();   ///< trunk (body) axes → world axes, orthonormal
-  Vec3 p_W = Vec3::Zero();         ///< trunk origin P0 [m]
-  Vec3 v_W = Vec3::Zero();         ///< velocity of P0 [m/s]
-  Vec3 omega_W = Vec3::Zero();     ///< trunk angular velocity [rad/s]
-  Vec3 a_W = Vec3::Zero();         ///< classical acceleration of P0, d v_W/dt [m/s²]
-  Vec3 omegadot_W = Vec3::Zero();  ///< d omega_W/dt [rad/s²]
-};
 
 /// Total momentum of the whole robot (trunk, payload and all 18 links).
 struct Momentum {

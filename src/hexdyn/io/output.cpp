@@ -141,7 +141,7 @@ void write_dynamics(H5Writer& w, const std::string& prefix, const DynamicsResult
     throw IoError("cannot write '" + w.file_path() + "': " + s::kSolverStatus.path + " has " +
                   std::to_string(d.solver_status.size()) + " entries, expected " +
                   std::to_string(t));
-  w.write_int8(prefix + s::kSolverStatus.path, {t}, d.solver_status, s::kSolverStatus.units);
+  w.write_int8(prefix + s::kSolverStatus.path, {t}, solver_status_codes(d.solver_status), s::kSolverStatus.units);
   write_vector(w, prefix, s::kSolverIterations, d.solver_iterations, t);
   write_vector(w, prefix, s::kSolverObjective, d.solver_objective, t);
   write_vector(w, prefix, s::kSolverSeconds, d.solver_seconds, t);

@@ -9,13 +9,6 @@
 
 namespace hexdyn {
 
-MotionPlan plan_motion(const Scene& scene, const RobotModel& model) {
-  Terrain terrain(scene.terrain);
-  TrunkMotion trunk(scene.motion, scene.gait, terrain);
-  GaitPlan gait = plan_gait(model, scene.gait, trunk, terrain);
-  return MotionPlan{terrain, trunk, gait};
-}
-
 void robot_state_at(const RobotModel& model, const MotionPlan& plan, double t, RobotKinematicState& out) {
   out.trunk = plan.trunk.at(t);
   const Mat3& W_R_B = out.trunk.W_R_B;
@@ -63,15 +56,16 @@ void robot_state_at(const RobotModel& model, const MotionPlan& plan, double t, R
   }
 }
 
-void KinematicsResult::resize(int T) {
-  time_s.assign(T, 0.0);
-  for (RowMatrix* m : {&base_position, &base_linear_velocity, &base_angular_velocity,
-                       &base_linear_acceleration, &base_angular_acceleration, &com_position})
-    m->setZero(T, 3);
-  base_orientation_wxyz.setZero(T, 4);
-  for (RowMatrix* m : {&joint_position, &joint_velocity, &joint_acceleration, &foot_position, &foot_velocity})
-    m->setZero(T, kJoints);
-  contact_phase.setZero(T, kLegs);
+BaseState base_state_at(const KinematicsResult& kin, int i) {
+  BaseState b;
+  const auto o = kin.base_orientation_wxyz.row(i);
+  b.W_R_B = Quat(o(0), o(1), o(2), o(3)).normalized().toRotationMatrix();
+  b.p_W = kin.base_position.row(i).transpose();
+  b.v_W = kin.base_linear_velocity.row(i).transpose();
+  b.omega_W = kin.base_angular_velocity.row(i).transpose();
+  b.a_W = kin.base_linear_acceleration.row(i).transpose();
+  b.omegadot_W = kin.base_angular_acceleration.row(i).transpose();
+  return b;
 }
 
 KinematicsResult sample_kinematics(const RobotModel& model, const MotionPlan& plan,
@@ -105,44 +99,6 @@ KinematicsResult sample_kinematics(const RobotModel& model, const MotionPlan& pl
     k.com_position.row(i) = (s.trunk.p_W + s.trunk.W_R_B * center_of_mass_B(model, poses)).transpose();
   }
   return k;
-}
-
-std::vector<double> build_output_grid(const OutputParams& out, double T, const std::vector<GridEvent>& events) {
-  std::vector<double> t;
-  const int n = static_cast<int>(std::floor(T / out.sample_step_s + 1e-9));
-  for (int i = 0; i <= n; ++i) t.push_back(i * out.sample_step_s);
-  t.push_back(T);
-  if (out.grid == OutputGrid::kAdaptive) {
-    for (const GridEvent& e : events) {
-      const double h = out.event_step_s;
-      const double t0 = e.t_s, t1 = e.t_s + e.duration_s;
-      if (e.duration_s > 0.0) {
-        const int m = std::max(1, out.impact_samples);
-        for (int j = 0; j <= m; ++j) t.push_back(t0 + e.duration_s * j / m);
-        t.push_back(t0 + e.peak_offset_s);
-      }
-      t.push_back(t0);
-      // Geometric grading away from the event on both sides, up to the uniform step.
-      for (double d = h; d < out.sample_step_s; d *= 2.0) {
-        t.push_back(t0 - d);
-        t.push_back(t1 + d);
-      }
-    }
-  }
-  std::sort(t.begin(), t.end());
-  // Points closer than 1e-9 s are merged into the later one, so that the sample at an
-  // event is never before it (a touchdown sample is the first one on the ground).
-  std::vector<double> grid;
-  for (double x : t) {
-    if (x < 0.0 || x > T) continue;
-    if (!grid.empty() && x - grid.back() < 1e-9) {
-      grid.back() = x;
-      continue;
-    }
-    grid.push_back(x);
-  }
-  if (grid.back() < T - 1e-9) grid.push_back(T);
-  return grid;
 }
 
 }  // namespace hexdyn

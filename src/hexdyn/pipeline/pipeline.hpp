@@ -1,16 +1,23 @@
 #pragma once
 /// \file pipeline.hpp
 /// One scene, end to end: the library call behind `hexdyn run` and every sweep
-/// scenario. Throws a hexdyn::Error subclass when the scene cannot be computed.
+/// scenario. The stages run in one direction, each reading what the ones before made:
+///
+///   robot model (model/) → plan: terrain, trunk motion, gait (planning/plan.hpp)
+///     → touchdowns and their transients (contact/touchdowns.hpp)
+///     → output grid (planning/grid.hpp, refined at the plan's and touchdowns' events)
+///     → kinematics on the grid (kinematics/) → contact schedule (contact/touchdowns.hpp)
+///     → dynamics, allocation and power (pipeline/solve_dynamics.hpp).
+///
+/// Throws a hexdyn::Error subclass when the scene cannot be computed.
 #include <iosfwd>
-
 #include <vector>
 
-#include "hexdyn/pipeline/dynamics_stage.hpp"
-#include "hexdyn/kinematics/kinematics.hpp"
+#include "hexdyn/contact/touchdowns.hpp"
 #include "hexdyn/core/result.hpp"
-#include "hexdyn/model/robot_model.hpp"
 #include "hexdyn/core/scene.hpp"
+#include "hexdyn/model/robot_model.hpp"
+#include "hexdyn/planning/plan.hpp"
 
 namespace hexdyn {
 
@@ -21,7 +28,7 @@ struct PreparedScene {
   RobotModel model;
   MotionPlan plan;
   std::vector<Touchdown> touchdowns;
-  std::vector<double> grid;
+  std::vector<double> grid;  ///< [s], increasing
 };
 PreparedScene prepare_scene(const Scene& scene);
 

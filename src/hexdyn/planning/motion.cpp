@@ -60,8 +60,8 @@ double TrunkMotion::time_at_travel(double s) const {
   return 0.5 * (lo + hi);
 }
 
-TrunkState TrunkMotion::at(double t) const {
-  TrunkState x;
+BaseState TrunkMotion::at(double t) const {
+  BaseState x;
   x.p_W = p0_W_ + travel(t) * direction_W_;
   x.v_W = speed(t) * direction_W_;
   x.a_W = acceleration(t) * direction_W_;

@@ -5,27 +5,19 @@
 /// e = (0, cos α0, sin α0) with a C² speed profile: a smootherstep ramp from rest to
 /// the cruise speed, cruise, and the mirrored ramp to rest. One gait cycle is one
 /// stride of travel, s0/β horizontally, so the gait phase τ = travel / stride.
+#include "hexdyn/core/base_state.hpp"
 #include "hexdyn/core/common.hpp"
 #include "hexdyn/core/scene.hpp"
 #include "hexdyn/planning/terrain.hpp"
 
 namespace hexdyn {
 
-/// Trunk state at one instant; all world frame.
-struct TrunkState {
-  Vec3 p_W = Vec3::Zero();            ///< P0 [m]
-  Vec3 v_W = Vec3::Zero();            ///< [m/s]
-  Vec3 a_W = Vec3::Zero();            ///< [m/s²]
-  Mat3 W_R_B = Mat3::Identity();      ///< trunk → world
-  Vec3 omega_W = Vec3::Zero();        ///< [rad/s]
-  Vec3 omegadot_W = Vec3::Zero();     ///< [rad/s²]
-};
-
 class TrunkMotion {
  public:
   TrunkMotion(const MotionParams& motion, const GaitParams& gait, const Terrain& terrain);
 
-  TrunkState at(double t_s) const;
+  /// Trunk state at t (ω and ω̇ zero: the attitude is constant).
+  BaseState at(double t_s) const;
   /// Travel along the slope s(t) [m], speed ṡ and acceleration s̈.
   double travel(double t_s) const;
   double speed(double t_s) const;

@@ -98,9 +98,9 @@ ScenarioSummary summarize_run(const RunResult& run, std::size_t index) {
                              ? std::sqrt(integral / s.duration_s)
                              : (T > 0 ? std::abs(d.joint_torque(0, k)) : 0.0);
   }
-  for (std::int8_t st : d.solver_status) {
-    if (st == 1) ++s.relaxed_samples;
-    if (st == 2) ++s.failed_samples;
+  for (SolverStatus st : d.solver_status) {
+    if (st == SolverStatus::kRelaxed) ++s.relaxed_samples;
+    if (st == SolverStatus::kFailed) ++s.failed_samples;
   }
   return s;
 }

@@ -97,7 +97,7 @@ TEST_CASE("Ipopt back end: equality-constrained QPs match the closed-form KKT so
     rhs << -p.g, p.b;
     const Eigen::VectorXd sol = K.fullPivLu().solve(rhs);
     const QpOutcome& out = backend->solve(p);
-    REQUIRE(out.status == 0);
+    REQUIRE(out.status == SolverStatus::kOptimal);
     CHECK((out.x - sol.head(n)).lpNorm<Eigen::Infinity>() <
           1e-7 * (1.0 + sol.head(n).lpNorm<Eigen::Infinity>()));
     CHECK((out.lambda_eq - sol.tail(m_eq)).lpNorm<Eigen::Infinity>() <
@@ -125,7 +125,7 @@ TEST_CASE("Ipopt back end: inequality QPs satisfy KKT and beat random feasible p
     // Push the unconstrained optimum away from x0 so that some rows bind.
     p.g = -p.H * (x0 + 3.0 * random_vector(rng, n));
     const QpOutcome& out = backend->solve(p);
-    REQUIRE(out.status == 0);
+    REQUIRE(out.status == SolverStatus::kOptimal);
     std::string why;
     const bool kkt = check_kkt(p, out, 1e-6, &why);
     INFO(why);
@@ -165,7 +165,7 @@ TEST_CASE("Ipopt back end: an equality written as an l = u row gives the same so
   const Eigen::VectorXd x_eq = backend->solve(eq).x;
   const Eigen::VectorXd l_eq = backend->solve(eq).lambda_eq;
   const QpOutcome& out = backend->solve(rows);
-  REQUIRE(out.status == 0);
+  REQUIRE(out.status == SolverStatus::kOptimal);
   CHECK((out.x - x_eq).lpNorm<Eigen::Infinity>() < 1e-7 * (1.0 + x_eq.lpNorm<Eigen::Infinity>()));
   CHECK((out.lambda_ineq - l_eq).lpNorm<Eigen::Infinity>() <
         1e-6 * (1.0 + l_eq.lpNorm<Eigen::Infinity>()));
@@ -177,7 +177,7 @@ TEST_CASE("Ipopt back end: multiplier signs follow the documented convention", "
   QpProblem p = test::sign_convention_problem();  // x = (1, −2, 0), λ = (1, −2)
   auto backend = make_ipopt_backend();
   const QpOutcome& out = backend->solve(p);
-  REQUIRE(out.status == 0);
+  REQUIRE(out.status == SolverStatus::kOptimal);
   CHECK(out.x[0] == Approx(1.0).margin(1e-7));
   CHECK(out.x[1] == Approx(-2.0).margin(1e-7));
   CHECK(out.x[2] == Approx(0.0).margin(1e-7));
@@ -213,7 +213,7 @@ TEST_CASE("Ipopt back end: an infeasible problem is relaxed and names the row th
     p.eq_names = {"trunk Fz", "trunk Mx"};
     p.ineq_names = {"torque L1_femur", "friction L3 +x"};
     const QpOutcome& out = backend->solve(p);
-    CHECK(out.status == 1);
+    CHECK(out.status == SolverStatus::kRelaxed);
     CHECK(out.x.allFinite());
     CHECK(out.message.find("torque L1_femur") != std::string::npos);
     CHECK(out.message.find("friction L3 +x") == std::string::npos);
@@ -233,7 +233,7 @@ TEST_CASE("Ipopt back end: an infeasible problem is relaxed and names the row th
     p.upper << 4.0, 2.9;
     p.ineq_names = {"normal L2", "torque L4_tibia"};
     const QpOutcome& out = backend->solve(p);
-    CHECK(out.status == 1);
+    CHECK(out.status == SolverStatus::kRelaxed);
     CHECK(out.x.allFinite());
     const auto a = out.message.find("normal L2"), b = out.message.find("torque L4_tibia");
     REQUIRE(a != std::string::npos);
@@ -250,7 +250,7 @@ TEST_CASE("Ipopt back end: an infeasible problem is relaxed and names the row th
     p.lower << 0.0;
     p.upper << 1.0;
     const QpOutcome& out = backend->solve(p);
-    CHECK(out.status == 2);
+    CHECK(out.status == SolverStatus::kFailed);
     CHECK(out.x.allFinite());
     CHECK(out.x[0] == Approx(1.5).margin(1e-9));  // least squares of x0 = 1, x0 = 2
     CHECK_FALSE(out.message.empty());
@@ -260,12 +260,12 @@ TEST_CASE("Ipopt back end: an infeasible problem is relaxed and names the row th
     QpProblem p = random_equality_qp(rng, 6, 3);
     p.g[2] = std::nan("");
     const QpOutcome& out = backend->solve(p);
-    CHECK(out.status == 2);
+    CHECK(out.status == SolverStatus::kFailed);
     CHECK(out.x.allFinite());
     CHECK(std::isfinite(out.objective));
     CHECK(out.message.find("non-finite") != std::string::npos);
     p.g[2] = 0.5;
-    CHECK(backend->solve(p).status == 0);
+    CHECK(backend->solve(p).status == SolverStatus::kOptimal);
   }
 }
 
@@ -283,12 +283,12 @@ TEST_CASE("Ipopt back end: a feasible problem after a relaxed one is solved to o
 
   auto fresh = make_ipopt_backend();
   const QpOutcome reference = fresh->solve(feasible);
-  REQUIRE(reference.status == 0);
+  REQUIRE(reference.status == SolverStatus::kOptimal);
 
   auto backend = make_ipopt_backend();
-  REQUIRE(backend->solve(infeasible).status == 1);
+  REQUIRE(backend->solve(infeasible).status == SolverStatus::kRelaxed);
   const QpOutcome after = backend->solve(feasible);
-  CHECK(after.status == 0);
+  CHECK(after.status == SolverStatus::kOptimal);
   CHECK(after.message.empty());
   CHECK((after.x - reference.x).lpNorm<Eigen::Infinity>() <
         1e-6 * (1.0 + reference.x.lpNorm<Eigen::Infinity>()));
@@ -297,7 +297,7 @@ TEST_CASE("Ipopt back end: a feasible problem after a relaxed one is solved to o
   INFO(why);
   // And the one after that is solved as posed again.
   const QpOutcome again = backend->solve(feasible);
-  CHECK(again.status == 0);
+  CHECK(again.status == SolverStatus::kOptimal);
   CHECK((again.x - reference.x).lpNorm<Eigen::Infinity>() <
         1e-7 * (1.0 + reference.x.lpNorm<Eigen::Infinity>()));
 }
@@ -315,7 +315,7 @@ TEST_CASE("Ipopt back end: penalty weights choose the row that gives way", "[all
   SECTION("a heavy trunk row holds and the torques give way") {
     p.ineq_penalty << 1e3, 1.0, 1.0;
     const QpOutcome& out = backend->solve(p);
-    REQUIRE(out.status == 1);
+    REQUIRE(out.status == SolverStatus::kRelaxed);
     CHECK(out.x.sum() == Approx(10.0).margin(1e-6));
     CHECK(out.message.find("trunk") == std::string::npos);
     CHECK(out.message.find("torque") != std::string::npos);
@@ -324,7 +324,7 @@ TEST_CASE("Ipopt back end: penalty weights choose the row that gives way", "[all
   SECTION("heavy torque rows hold and the trunk row gives way") {
     p.ineq_penalty << 1.0, 1e3, 1e3;
     const QpOutcome& out = backend->solve(p);
-    REQUIRE(out.status == 1);
+    REQUIRE(out.status == SolverStatus::kRelaxed);
     CHECK(out.x[0] == Approx(2.0).margin(1e-6));
     CHECK(out.x[1] == Approx(3.0).margin(1e-6));
     CHECK(out.message == "relaxed: trunk force z by 5");
@@ -362,11 +362,11 @@ TEST_CASE("Ipopt back end: a warm start does not cost iterations on a perturbed 
 
   auto backend = make_ipopt_backend();
   const QpOutcome cold = backend->solve(q);
-  REQUIRE(cold.status == 0);
+  REQUIRE(cold.status == SolverStatus::kOptimal);
   backend->reset_warm_start();
-  REQUIRE(backend->solve(p).status == 0);
+  REQUIRE(backend->solve(p).status == SolverStatus::kOptimal);
   const QpOutcome warm = backend->solve(q);
-  REQUIRE(warm.status == 0);
+  REQUIRE(warm.status == SolverStatus::kOptimal);
   CHECK(warm.iterations <= cold.iterations);
   CHECK((warm.x - cold.x).lpNorm<Eigen::Infinity>() <
         1e-6 * (1.0 + cold.x.lpNorm<Eigen::Infinity>()));
@@ -395,7 +395,7 @@ TEST_CASE("Ipopt back end: the exact friction cone", "[allocation]") {
       p.constant = 0.5 * f_hat.squaredNorm();
       p.cones.push_back({0, 1, 2, mu, "cone L1"});
       const QpOutcome& out = backend->solve(p);
-      REQUIRE(out.status == 0);
+      REQUIRE(out.status == SolverStatus::kOptimal);
       const Eigen::Vector3d want = project_onto_cone(f_hat, mu);
       CHECK((out.x - want).norm() < 1e-6 * (1.0 + want.norm()));
       CHECK(std::hypot(out.x[0], out.x[1]) <= mu * out.x[2] + 1e-7);
@@ -417,7 +417,7 @@ TEST_CASE("Ipopt back end: the exact friction cone", "[allocation]") {
     cone.cones.push_back({0, 1, 2, mu, "cone L1"});
     cone.cones.push_back({3, 4, 5, mu, "cone L2"});
     const QpOutcome out_cone = backend->solve(cone);
-    REQUIRE(out_cone.status == 0);
+    REQUIRE(out_cone.status == SolverStatus::kOptimal);
     for (int foot = 0; foot < 2; ++foot)
       CHECK(std::hypot(out_cone.x[3 * foot], out_cone.x[3 * foot + 1]) <=
             mu * out_cone.x[3 * foot + 2] + 1e-7);
@@ -440,7 +440,7 @@ TEST_CASE("Ipopt back end: the exact friction cone", "[allocation]") {
           ++row;
         }
     const QpOutcome& out_pyr = backend->solve(pyr);
-    REQUIRE(out_pyr.status == 0);
+    REQUIRE(out_pyr.status == SolverStatus::kOptimal);
     CHECK(check_kkt(pyr, out_pyr, 1e-6));
     CHECK(out_cone.objective <= out_pyr.objective + 1e-7);
     // The cone was binding somewhere, otherwise the comparison says nothing.
@@ -461,7 +461,7 @@ TEST_CASE("Ipopt back end: the exact friction cone", "[allocation]") {
     p.ineq_names = {"normal L3"};
     p.cones.push_back({0, 1, 2, mu, "friction cone L3"});
     const QpOutcome& out = backend->solve(p);
-    CHECK(out.status == 1);
+    CHECK(out.status == SolverStatus::kRelaxed);
     CHECK(out.x.allFinite());
     CHECK(out.message.find("friction cone L3") != std::string::npos);
   }

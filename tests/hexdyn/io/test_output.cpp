@@ -140,7 +140,7 @@ RunResult make_result(int T, bool dynamics, int impacts, int messages, unsigned 
   d.energy_joint_J = random_vector(rng, kJoints);
   d.distance_m = 0.75;
   d.cost_of_transport = 0.253;
-  for (int t = 0; t < T; ++t) d.solver_status.push_back(static_cast<std::int8_t>(t % 3));
+  for (int t = 0; t < T; ++t) d.solver_status.push_back(static_cast<SolverStatus>(t % 3));
   d.solver_iterations = random_vector(rng, T);
   d.solver_objective = random_vector(rng, T);
   d.solver_seconds = random_vector(rng, T);
@@ -334,7 +334,8 @@ TEST_CASE("output: every dataset of the contract round-trips (dynamics present)"
   check_values(in, s::kCostOfTransport.path, std::vector<double>{d.cost_of_transport});
   check_values(in, s::kEnergyDistance.path, std::vector<double>{d.distance_m});
   const std::vector<std::int64_t> status = in.read_ints(s::kSolverStatus.path);
-  CHECK(status == std::vector<std::int64_t>(d.solver_status.begin(), d.solver_status.end()));
+  const std::vector<std::int8_t> codes = solver_status_codes(d.solver_status);
+  CHECK(status == std::vector<std::int64_t>(codes.begin(), codes.end()));
   check_values(in, s::kSolverIterations.path, d.solver_iterations);
   check_values(in, s::kSolverObjective.path, d.solver_objective);
   check_values(in, s::kSolverSeconds.path, d.solver_seconds);

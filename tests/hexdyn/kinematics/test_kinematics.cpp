@@ -2,7 +2,7 @@
 // rates against central finite differences of the sampled positions, with the O(h²)
 // error order checked; the centre of mass against a sum over the bodies done in the
 // test from the tree FK and the parameter masses; the trunk orientation against the
-// stair slope; and the output grid against its definition.
+// stair slope.
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -125,7 +125,7 @@ TEST_CASE("kinematics: sampled joints put the feet where the gait plan wants the
   for (int i = 0; i < k.samples(); ++i) {
     const VecJ q = k.joint_position.row(i).transpose();
     forward_kinematics_tree(p.model, q, poses);
-    const TrunkState trunk = p.plan.trunk.at(times[i]);
+    const BaseState trunk = p.plan.trunk.at(times[i]);
     for (int leg = 0; leg < kLegs; ++leg) {
       const Vec3 foot_W = trunk.p_W + trunk.W_R_B * tree_foot_position_B(p.model, poses, leg);
       const Vec3 planned = leg_foot_motion(p.plan.gait.legs[leg], times[i]).p_W;
@@ -163,7 +163,7 @@ TEST_CASE("kinematics: /com/position equals the mass-weighted mean of the bodies
         const int b = 1 + joint_index(leg, j);
         first_moment += rp.link[j].mass_kg * (poses.p_B[b] + poses.R_B[b] * rp.link[j].com_m);
       }
-    const TrunkState trunk = p.plan.trunk.at(times[i]);
+    const BaseState trunk = p.plan.trunk.at(times[i]);
     const Vec3 com_W = trunk.p_W + trunk.W_R_B * (first_moment / total);
     const Vec3 sampled = k.com_position.row(i).transpose();
     INFO("t " << times[i] << " expected " << com_W.transpose() << " sampled " << sampled.transpose());
@@ -194,80 +194,6 @@ TEST_CASE("kinematics: base orientation is the stair slope pitch", "[kinematics]
     CHECK(std::abs(q.z()) <= 1e-14);
     CHECK(k.base_angular_velocity.row(i).norm() == 0.0);
   }
-}
-
-bool contains(const std::vector<double>& grid, double t, double tol) {
-  const auto it = std::lower_bound(grid.begin(), grid.end(), t - tol);
-  return it != grid.end() && *it <= t + tol;
-}
-
-void check_increasing(const std::vector<double>& grid, double T) {
-  REQUIRE(!grid.empty());
-  CHECK(grid.front() == 0.0);
-  CHECK(grid.back() == T);
-  for (std::size_t i = 1; i < grid.size(); ++i) {
-    INFO("i " << i << " " << grid[i - 1] << " " << grid[i]);
-    REQUIRE(grid[i] > grid[i - 1]);
-  }
-}
-
-TEST_CASE("output grid: uniform", "[kinematics]") {
-  OutputParams out;
-  out.grid = OutputGrid::kUniform;
-  out.sample_step_s = 0.05;
-  for (double T : {8.6, 1.234, 0.05, 3.0}) {
-    INFO("T " << T);
-    const std::vector<double> grid = build_output_grid(out, T, {{1.0, 0.01, 0.002}});
-    check_increasing(grid, T);
-    int multiples = 0;
-    for (int k = 0; k * 0.05 <= T + 1e-9; ++k) {
-      ++multiples;
-      CHECK(contains(grid, k * 0.05, 1e-9));
-    }
-    // Nothing else: every point is a multiple of the step or the end time.
-    for (double t : grid) {
-      const double r = t / 0.05 - std::round(t / 0.05);
-      CHECK((std::abs(r) <= 1e-9 || t == T));
-    }
-    const bool T_is_multiple = std::abs(T / 0.05 - std::round(T / 0.05)) <= 1e-9;
-    CHECK(grid.size() == static_cast<std::size_t>(multiples + (T_is_multiple ? 0 : 1)));
-  }
-}
-
-TEST_CASE("output grid: adaptive contains every event and is strictly increasing", "[kinematics]") {
-  const Planned p = plan_scene();
-  const double T = p.plan.trunk.duration_s();
-  std::vector<GridEvent> events;
-  for (const LegPlan& leg : p.plan.gait.legs)
-    for (const Swing& sw : leg.swings) {
-      events.push_back({sw.t_liftoff_s, 0.0, 0.0});
-      events.push_back({sw.t_touchdown_s, 0.004, 0.0015});
-    }
-  events.push_back({2.02, 0.0, 0.0});  // on a uniform point of the grid
-  OutputParams out = p.scene.output;
-  REQUIRE(out.grid == OutputGrid::kAdaptive);
-  const std::vector<double> grid = build_output_grid(out, T, events);
-  check_increasing(grid, T);
-  for (int k = 0; k * out.sample_step_s <= T + 1e-9; ++k) CHECK(contains(grid, k * out.sample_step_s, 1e-9));
-  for (const GridEvent& e : events) {
-    INFO("event " << e.t_s);
-    CHECK(contains(grid, e.t_s, 1e-9));
-    // Points of a transient that ends after T are cut off.
-    if (e.duration_s > 0.0) {
-      if (e.t_s + e.peak_offset_s <= T) CHECK(contains(grid, e.t_s + e.peak_offset_s, 1e-9));
-      for (int j = 0; j <= out.impact_samples; ++j)
-        if (e.t_s + e.duration_s * j / out.impact_samples <= T)
-          CHECK(contains(grid, e.t_s + e.duration_s * j / out.impact_samples, 1e-9));
-    }
-    // The finest step next to the event (on each side that lies inside the run).
-    if (e.t_s - out.event_step_s >= 0.0) CHECK(contains(grid, e.t_s - out.event_step_s, 1e-9));
-    if (e.t_s + e.duration_s + out.event_step_s <= T)
-      CHECK(contains(grid, e.t_s + e.duration_s + out.event_step_s, 1e-9));
-  }
-  // Refinement only adds points: it is denser than the uniform grid.
-  OutputParams uniform = out;
-  uniform.grid = OutputGrid::kUniform;
-  CHECK(grid.size() > build_output_grid(uniform, T, events).size());
 }
 
 }  // namespace

@@ -19,7 +19,9 @@
 
 #include "hexdyn/io/config.hpp"
 #include "hexdyn/dynamics/rnea.hpp"
-#include "hexdyn/pipeline/dynamics_stage.hpp"
+#include "hexdyn/allocation/backends.hpp"
+#include "hexdyn/allocation/problem.hpp"
+#include "hexdyn/contact/touchdowns.hpp"
 #include "hexdyn/allocation/ipopt.hpp"
 #include "hexdyn/kinematics/kinematics.hpp"
 #include "hexdyn/pipeline/pipeline.hpp"
@@ -83,12 +85,7 @@ MomentumRate momentum_rate(const RobotModel& model, RobotData& data, const Motio
   RobotKinematicState s;
   auto momentum_at = [&](double tt) {
     robot_state_at(model, plan, tt, s);
-    BaseState b;
-    b.W_R_B = s.trunk.W_R_B;
-    b.p_W = s.trunk.p_W;
-    b.v_W = s.trunk.v_W;
-    b.omega_W = s.trunk.omega_W;
-    return robot_momentum(model, data, b, s.q, s.qd);
+    return robot_momentum(model, data, s.trunk, s.q, s.qd);
   };
   MomentumRate r;
   const double* w = nullptr;
@@ -204,14 +201,14 @@ TEST_CASE("paper run: physics holds on every sample", "[paper][pipeline]") {
 
   for (int i = 0; i < T; ++i) {
     const double t = kin.time_s[i];
-    const int status = dyn.solver_status[i];
+    const SolverStatus status = dyn.solver_status[i];
     const std::string& msg = dyn.solver_messages[i];
     INFO("sample " << i << " t = " << t << " s, status " << status << ", message '" << msg << "'");
-    status0 += status == 0;
-    relaxed += status == 1;
-    failed += status == 2;
-    CHECK((status == 0 || status == 1));
-    CHECK(msg.empty() == (status == 0));
+    status0 += status == SolverStatus::kOptimal;
+    relaxed += status == SolverStatus::kRelaxed;
+    failed += status == SolverStatus::kFailed;
+    CHECK((status == SolverStatus::kOptimal || status == SolverStatus::kRelaxed));
+    CHECK(msg.empty() == (status == SolverStatus::kOptimal));
 
     std::array<Vec3, kLegs> F;
     std::array<Vec3, kLegs> n_W;
@@ -224,8 +221,8 @@ TEST_CASE("paper run: physics holds on every sample", "[paper][pipeline]") {
     }
     impact_samples += any_impact;
     // Outside touchdown transients every sample is solved exactly.
-    if (!any_impact) CHECK(status == 0);
-    if (status != 0) CHECK(contains(msg, "(impact"));
+    if (!any_impact) CHECK(status == SolverStatus::kOptimal);
+    if (status != SolverStatus::kOptimal) CHECK(contains(msg, "(impact"));
 
     // --- contact phases, forces and penetration per leg ---
     for (int l = 0; l < kLegs; ++l) {
@@ -263,7 +260,7 @@ TEST_CASE("paper run: physics holds on every sample", "[paper][pipeline]") {
       }
       const bool friction_ok = f_t <= mu * f_n * (1.0 + 1e-9) + 1e-9;
       const bool normal_ok = phase != 2 || f_n >= f_min - 1e-9;
-      if (status == 0) {
+      if (status == SolverStatus::kOptimal) {
         CHECK(friction_ok);
         CHECK(normal_ok);
       } else {
@@ -293,7 +290,7 @@ TEST_CASE("paper run: physics holds on every sample", "[paper][pipeline]") {
     worst_tau_res = std::max(worst_tau_res, tau_res / tau_scale);
     CHECK(tau_res <= 1e-9 * tau_scale);
     for (int k = 0; k < kJoints; ++k) {
-      if (status == 0) {
+      if (status == SolverStatus::kOptimal) {
         CHECK(std::abs(tau_stored[k]) <= tau_max + 1e-6);
       } else if (std::abs(tau_stored[k]) > tau_max + unnamed_tol) {
         CHECK(contains(msg, "torque " + joint_name(k / kJointsPerLeg, k % kJointsPerLeg)));
@@ -308,7 +305,7 @@ TEST_CASE("paper run: physics holds on every sample", "[paper][pipeline]") {
         trunk_force_res <= 1e-8 * std::max(mg, split.trunk_rhs.head<3>().cwiseAbs().maxCoeff()) &&
         trunk_moment_res <=
             1e-8 * std::max(mg * 1.0, split.trunk_rhs.tail<3>().cwiseAbs().maxCoeff());
-    if (status == 0) {
+    if (status == SolverStatus::kOptimal) {
       worst_trunk_res = std::max({worst_trunk_res, trunk_force_res / mg, trunk_moment_res / mg});
       CHECK(trunk_holds);
     } else if (!trunk_holds) {
@@ -329,7 +326,7 @@ TEST_CASE("paper run: physics holds on every sample", "[paper][pipeline]") {
       const double f_res = (rate.linear - force).cwiseAbs().maxCoeff();
       const double m_res = (rate.angular_O - moment).cwiseAbs().maxCoeff();
       INFO("momentum rate residual: force " << f_res << " N, moment " << m_res << " N m");
-      if (status == 0) {
+      if (status == SolverStatus::kOptimal) {
         worst_force_res = std::max(worst_force_res, f_res);
         worst_moment_res = std::max(worst_moment_res, m_res);
         CHECK(f_res <= force_tol);
@@ -340,7 +337,7 @@ TEST_CASE("paper run: physics holds on every sample", "[paper][pipeline]") {
       }
     }
 
-    if (status == 0) (any_impact ? kkt_impact_candidates : kkt_candidates).push_back(i);
+    if (status == SolverStatus::kOptimal) (any_impact ? kkt_impact_candidates : kkt_candidates).push_back(i);
   }
 
   INFO("samples " << T << ": " << status0 << " optimal, " << relaxed << " relaxed, " << failed
@@ -414,7 +411,7 @@ TEST_CASE("paper run: physics holds on every sample", "[paper][pipeline]") {
     CHECK(excess == 0.0);
     backend->reset_warm_start();
     const QpOutcome& out = backend->solve(qp);
-    REQUIRE(out.status == 0);
+    REQUIRE(out.status == SolverStatus::kOptimal);
     std::string why;
     const bool kkt = check_kkt(qp, out, 1e-6, &why);
     INFO(why);

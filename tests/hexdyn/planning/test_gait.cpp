@@ -12,7 +12,7 @@
 
 #include "hexdyn/io/config.hpp"
 #include "hexdyn/planning/gait.hpp"
-#include "hexdyn/kinematics/kinematics.hpp"
+#include "hexdyn/planning/plan.hpp"
 #include "hexdyn/planning/motion.hpp"
 #include "hexdyn/model/robot_model.hpp"
 
@@ -333,7 +333,7 @@ TEST_CASE("trunk: parallel to the slope, at rest at both ends, C2 speed", "[gait
   double v_max = 0.0, a_max = 0.0;
   for (int i = 0; i <= 2000; ++i) {
     const double t = T * i / 2000.0;
-    const TrunkState s = trunk.at(t);
+    const BaseState s = trunk.at(t);
     INFO("t " << t);
     CHECK((s.W_R_B.col(1) - slope_dir).cwiseAbs().maxCoeff() <= 1e-14);
     CHECK((s.W_R_B.col(0) - Vec3::UnitX()).cwiseAbs().maxCoeff() <= 1e-14);
@@ -358,7 +358,7 @@ TEST_CASE("trunk: parallel to the slope, at rest at both ends, C2 speed", "[gait
   for (int i = 1; i < 2000; ++i) {
     const double t = T * i / 2000.0;
     if (t - 2 * h <= 0.0 || t + 2 * h >= T) continue;
-    const TrunkState s = trunk.at(t), sp = trunk.at(t + h), sm = trunk.at(t - h);
+    const BaseState s = trunk.at(t), sp = trunk.at(t + h), sm = trunk.at(t - h);
     v_err = std::max(v_err, (s.v_W - (sp.p_W - sm.p_W) / (2 * h)).norm());
     a_err = std::max(a_err, (s.a_W - (sp.v_W - sm.v_W) / (2 * h)).norm());
     const double H = 1e-3;

@@ -98,10 +98,10 @@ inline hexdyn::RunResult linear_torque_run(double t0, double t1, std::vector<dou
     b[k] = 0.1 * ((k * 7) % 5 - 2);
     for (int i = 0; i < T; ++i) r.dyn.joint_torque(i, k) = a[k] + b[k] * t[i];
   }
-  r.dyn.solver_status.assign(T, 0);
-  r.dyn.solver_status[3] = 1;
-  r.dyn.solver_status[4] = 1;
-  r.dyn.solver_status[9] = 2;
+  r.dyn.solver_status.assign(T, SolverStatus::kOptimal);
+  r.dyn.solver_status[3] = SolverStatus::kRelaxed;
+  r.dyn.solver_status[4] = SolverStatus::kRelaxed;
+  r.dyn.solver_status[9] = SolverStatus::kFailed;
   r.dyn.energy_total_J = 12.5;
   r.dyn.cost_of_transport = 0.8;
   r.dyn.distance_m = 0.25;

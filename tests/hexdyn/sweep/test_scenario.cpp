@@ -83,7 +83,7 @@ TEST_CASE("sweep: summary of a constant torque and of a single sample", "[sweep]
   r.kin.time_s = {0.0, 0.1, 0.35, 1.0};
   r.dyn.present = true;
   r.dyn.joint_torque = RowMatrix::Constant(4, kJoints, -1.5);
-  r.dyn.solver_status.assign(4, 0);
+  r.dyn.solver_status.assign(4, SolverStatus::kOptimal);
   const ScenarioSummary s = summarize_run(r, 0);
   CHECK(s.peak_impact_force_N == 0.0);
   for (int k = 0; k < kJoints; ++k) {
@@ -92,7 +92,7 @@ TEST_CASE("sweep: summary of a constant torque and of a single sample", "[sweep]
   }
   r.kin.time_s = {0.2};
   r.dyn.joint_torque = RowMatrix::Constant(1, kJoints, 2.0);
-  r.dyn.solver_status.assign(1, 0);
+  r.dyn.solver_status.assign(1, SolverStatus::kOptimal);
   const ScenarioSummary one = summarize_run(r, 0);
   CHECK(one.duration_s == 0.0);
   CHECK(one.rms_torque_Nm[0] == 2.0);

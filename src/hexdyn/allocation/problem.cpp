@@ -1,0 +1,198 @@
+#include "hexdyn/allocation/problem.hpp"
+
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <sstream>
+
+#include "hexdyn/allocation/friction.hpp"
+
+namespace hexdyn {
+namespace {
+
+int friction_faces(FrictionModel m) {
+  switch (m) {
+    case FrictionModel::kPyramid4:
+      return 4;
+    case FrictionModel::kPyramid8:
+      return 8;
+    case FrictionModel::kCone:
+      return 0;
+  }
+  return 4;
+}
+
+/// The row layout as a key (QpProblem::structure): the friction faces per leg in the low
+/// byte, then two bits per leg for its phase. Equal keys give equal row kinds and names.
+std::uint64_t structure_key(int faces, const std::array<ContactPhase, kLegs>& phase) {
+  std::uint64_t key = static_cast<std::uint64_t>(faces);
+  for (int l = 0; l < kLegs; ++l)
+    key |= static_cast<std::uint64_t>(static_cast<std::uint8_t>(phase[l])) << (8 + 2 * l);
+  return key;
+}
+
+constexpr const char* kTrunkRowNames[6] = {"trunk force x",  "trunk force y",  "trunk force z",
+                                           "trunk moment x", "trunk moment y", "trunk moment z"};
+/// Slack weights (allocation/qp.hpp ineq_penalty) set which rows give way when the
+/// constraints cannot all hold: torque limits first (weight 1: the actuators are too
+/// weak), then the trunk rows (the prescribed motion cannot be produced, as during a
+/// touchdown transient with no other foot on the ground), and the contact rows last
+/// (the ground cannot pull; more friction than μ means slipping, which the model
+/// excludes).
+constexpr double kTrunkRowPenaltyWeight = 1e2;
+constexpr double kContactRowPenaltyWeight = 1e3;
+/// Impact legs keep a fixed normal force, so their friction limit is a polygon even in
+/// the exact-cone model (friction.hpp).
+constexpr int kImpactConeFaces = kInscribedConeFaces;
+
+/// Row names, built once: building them per sample would cost more than the solve.
+struct RowNames {
+  std::array<std::string, kJoints> torque;
+  std::array<std::string, kLegs> normal;
+  std::array<std::array<std::string, kImpactConeFaces>, kLegs> face;
+  RowNames() {
+    for (int l = 0; l < kLegs; ++l) {
+      for (int j = 0; j < kJointsPerLeg; ++j)
+        torque[joint_index(l, j)] = "torque " + joint_name(l, j);
+      normal[l] = "normal " + leg_name(l);
+      for (int f = 0; f < kImpactConeFaces; ++f)
+        face[l][f] = "friction " + leg_name(l) + " face " + std::to_string(f + 1);
+    }
+  }
+};
+const RowNames& row_names() {
+  static const RowNames names;
+  return names;
+}
+
+}  // namespace
+
+double build_allocation_problem(const AllocationParams& alloc, const ContactParams& contact,
+                                const ContactSplit& split,
+                                const std::array<ContactPhase, kLegs>& phase,
+                                const std::array<double, kLegs>& impact_force_N,
+                                const std::array<Mat3, kLegs>& W_R_c, QpProblem& qp,
+                                std::array<int, kLegs>& offset, std::string* constant_violation) {
+  const int faces = friction_faces(alloc.friction);
+  const double mu = contact.friction_coefficient;
+  // Layout and sizes.
+  int n = 0, m_in = 6;  // six trunk rows (lower = upper, so that they can be relaxed)
+  for (int l = 0; l < kLegs; ++l) {
+    offset[l] = -1;
+    if (phase[l] == ContactPhase::kSwing) continue;
+    offset[l] = n;
+    const bool support = phase[l] == ContactPhase::kSupport;
+    n += support ? 3 : 2;
+    m_in += kJointsPerLeg;   // torque rows
+    if (support) m_in += 1;  // normal force row
+    m_in += support ? faces : (faces ? faces : kImpactConeFaces);
+  }
+  qp.resize(n, 0, m_in);
+  qp.structure = structure_key(faces, phase);
+  // Known forces: the normal force of impact legs.
+  VecJ tau_known = split.tau0;
+  Vec6 trunk_rhs = split.trunk_rhs;
+  for (int l = 0; l < kLegs; ++l) {
+    if (phase[l] != ContactPhase::kImpact) continue;
+    const Vec3 F_fixed = impact_force_N[l] * W_R_c[l].col(2);
+    tau_known -= split.JjT[l] * F_fixed;
+    trunk_rhs -= split.JbT[l] * F_fixed;
+  }
+  // Torques τ = tau_known − G x; trunk rows B x = trunk_rhs (at most 18 variables: on the stack).
+  using GMatrix =
+      Eigen::Matrix<double, kJoints, Eigen::Dynamic, Eigen::ColMajor, kJoints, 3 * kLegs>;
+  using BMatrix = Eigen::Matrix<double, 6, Eigen::Dynamic, Eigen::ColMajor, 6, 3 * kLegs>;
+  GMatrix G = GMatrix::Zero(kJoints, n);
+  BMatrix B = BMatrix::Zero(6, n);
+  for (int l = 0; l < kLegs; ++l) {
+    if (offset[l] < 0) continue;
+    const int k = phase[l] == ContactPhase::kSupport ? 3 : 2;
+    G.middleCols(offset[l], k) = split.JjT[l] * W_R_c[l].leftCols(k);
+    B.middleCols(offset[l], k) = split.JbT[l] * W_R_c[l].leftCols(k);
+  }
+  // Objective Σ τ² = |tau_known − G x|² = ½ xᵀ (2 GᵀG) x − 2 (Gᵀ tau_known)ᵀ x + |tau_known|².
+  qp.H = 2.0 * G.transpose() * G;
+  qp.g = -2.0 * G.transpose() * tau_known;
+  qp.constant = tau_known.squaredNorm();
+  int row = 0;
+  for (int r = 0; r < 6; ++r, ++row) {
+    qp.C.row(row) = B.row(r);
+    qp.lower[row] = qp.upper[row] = trunk_rhs[r];
+    qp.ineq_names[row] = kTrunkRowNames[r];
+    qp.ineq_penalty[row] = kTrunkRowPenaltyWeight;
+  }
+  const double tmax = alloc.torque_limit_Nm;
+  double worst_constant = 0.0;
+  for (int l = 0; l < kLegs; ++l) {
+    if (offset[l] < 0) {
+      for (int j = 0; j < kJointsPerLeg; ++j) {
+        const double excess = std::abs(tau_known[joint_index(l, j)]) - tmax;
+        if (excess > worst_constant) {
+          worst_constant = excess;
+          if (constant_violation) {
+            std::ostringstream os;
+            os.precision(3);
+            os << "torque " << joint_name(l, j) << " (swing leg) by " << excess;
+            *constant_violation = os.str();
+          }
+        }
+      }
+      continue;
+    }
+    const int o = offset[l];
+    for (int j = 0; j < kJointsPerLeg; ++j, ++row) {
+      const int kk = joint_index(l, j);
+      qp.C.row(row) = G.row(kk);
+      qp.lower[row] = tau_known[kk] - tmax;
+      qp.upper[row] = tau_known[kk] + tmax;
+      qp.ineq_names[row] = row_names().torque[kk];
+    }
+    const bool support = phase[l] == ContactPhase::kSupport;
+    if (support) {
+      qp.C(row, o + 2) = 1.0;
+      qp.lower[row] = alloc.min_normal_force_N;
+      qp.upper[row] = std::numeric_limits<double>::infinity();
+      qp.ineq_penalty[row] = kContactRowPenaltyWeight;
+      qp.ineq_names[row++] = row_names().normal[l];
+    }
+    const int nf = faces ? faces : (support ? 0 : kImpactConeFaces);
+    for (int f = 0; f < nf; ++f, ++row) {
+      const FrictionFace face = inscribed_friction_face(f, nf, mu);
+      qp.C(row, o) = face.cos_a;
+      qp.C(row, o + 1) = face.sin_a;
+      qp.lower[row] = -std::numeric_limits<double>::infinity();
+      if (support) {
+        qp.C(row, o + 2) = -face.reach;
+        qp.upper[row] = 0.0;
+      } else {
+        qp.upper[row] = face.reach * impact_force_N[l];
+      }
+      qp.ineq_penalty[row] = kContactRowPenaltyWeight;
+      qp.ineq_names[row] = row_names().face[l][f];
+    }
+    if (!faces && support)
+      qp.cones.push_back(
+          {o, o + 1, o + 2, mu, "friction cone " + leg_name(l), kContactRowPenaltyWeight});
+  }
+  return worst_constant;
+}
+
+void forces_from_solution(const ContactSplit& split, const std::array<ContactPhase, kLegs>& phase,
+                          const std::array<double, kLegs>& impact_force_N,
+                          const std::array<Mat3, kLegs>& W_R_c,
+                          const std::array<int, kLegs>& offset, const Eigen::VectorXd& x,
+                          std::array<Vec3, kLegs>& F_W, VecJ& tau) {
+  tau = split.tau0;
+  for (int l = 0; l < kLegs; ++l) {
+    F_W[l].setZero();
+    if (phase[l] == ContactPhase::kSupport) {
+      F_W[l] = W_R_c[l] * x.segment<3>(offset[l]);
+    } else if (phase[l] == ContactPhase::kImpact) {
+      F_W[l] =
+          W_R_c[l].leftCols<2>() * x.segment<2>(offset[l]) + impact_force_N[l] * W_R_c[l].col(2);
+    }
+    tau -= split.JjT[l] * F_W[l];
+  }
+}
+
+}  // namespace hexdyn

@@ -1,0 +1,111 @@
+#include "hexdyn/contact/touchdowns.hpp"
+
+#include <Eigen/Cholesky>
+#include <algorithm>
+
+namespace hexdyn {
+
+double foot_effective_mass(const RobotModel& model, RobotData& data, const BaseState& base,
+                           const VecJ& q, int leg, const Vec3& n_W) {
+  crba(model, data, base, q);
+  foot_jacobians(model, data, base, q);
+  const int c = 6 + joint_index(leg, 0);
+  const Mat3 M_ll = data.M.block<3, 3>(c, c);
+  const Mat3 J = data.J_foot_W[leg].block<3, 3>(0, c);
+  const Mat3 Lambda_inv = J * M_ll.llt().solve(J.transpose());
+  return 1.0 / (n_W.transpose() * Lambda_inv * n_W);
+}
+
+std::vector<Touchdown> resolve_touchdowns(const RobotModel& model, RobotData& data,
+                                          const MotionPlan& plan, const ContactParams& contact) {
+  std::vector<Touchdown> out;
+  RobotKinematicState s;
+  for (int leg = 0; leg < kLegs; ++leg) {
+    for (const Swing& sw : plan.gait.legs[leg].swings) {
+      Touchdown td;
+      td.leg = leg;
+      td.t_s = sw.t_touchdown_s;
+      td.normal_W = plan.terrain.normal(sw.p_touchdown_W.x(), sw.p_touchdown_W.y());
+      const FootMotion arrival = swing_foot_motion(sw, sw.t_touchdown_s);
+      td.approach_speed_mps = -arrival.v_W.dot(td.normal_W);
+      robot_state_at(model, plan, td.t_s, s);
+      td.effective_mass_kg = foot_effective_mass(model, data, s.trunk, s.q, leg, td.normal_W);
+      // Rigid contact: no transient (occurred = false), the foot supports from touchdown on.
+      if (contact.model == ContactModel::kCompliant)
+        td.transient = simulate_touchdown(contact, td.effective_mass_kg, td.approach_speed_mps,
+                                          ImpactOptions{});
+      out.push_back(std::move(td));
+    }
+  }
+  std::sort(out.begin(), out.end(), [](const Touchdown& a, const Touchdown& b) {
+    return a.t_s < b.t_s || (a.t_s == b.t_s && a.leg < b.leg);
+  });
+  return out;
+}
+
+std::vector<ImpactRecord> impact_records(const std::vector<Touchdown>& touchdowns) {
+  std::vector<ImpactRecord> out;
+  for (const Touchdown& td : touchdowns) {
+    if (!td.transient.occurred) continue;
+    ImpactRecord r;
+    r.leg = td.leg;
+    r.t_start_s = td.t_s;
+    r.duration_s = td.transient.duration_s;
+    r.peak_force_N = td.transient.peak_force_N;
+    r.impulse_Ns = td.transient.impulse_Ns;
+    r.effective_mass_kg = td.effective_mass_kg;
+    r.approach_speed_mps = td.approach_speed_mps;
+    out.push_back(r);
+  }
+  return out;
+}
+
+Mat3 contact_frame(const Vec3& n_W) {
+  const Vec3 n = n_W.normalized();
+  Vec3 t1 = Vec3::UnitX() - n.x() * n;
+  if (t1.norm() < 1e-9) t1 = Vec3::UnitY() - n.y() * n;
+  t1.normalize();
+  Mat3 R;
+  R.col(0) = t1;
+  R.col(1) = n.cross(t1);
+  R.col(2) = n;
+  return R;
+}
+
+void sample_contacts(const KinematicsResult& kin, int i, const Terrain& terrain,
+                     const std::vector<Touchdown>& touchdowns, SampleContacts& out) {
+  const double t = kin.time_s[i];
+  out.impacting_legs = 0;
+  for (int l = 0; l < kLegs; ++l) {
+    out.phase[l] = kin.contact_phase(i, l) == static_cast<std::int8_t>(ContactPhase::kSwing)
+                       ? ContactPhase::kSwing
+                       : ContactPhase::kSupport;
+    out.impact_force_N[l] = 0.0;
+    out.impact_penetration_m[l] = 0.0;
+    const Vec3 p = kin.foot_position.row(i).segment<3>(3 * l).transpose();
+    out.W_R_contact[l] = contact_frame(terrain.normal(p.x(), p.y()));
+  }
+  for (const Touchdown& td : touchdowns) {
+    if (!td.transient.occurred || t < td.t_s || t >= td.t_s + td.transient.duration_s) continue;
+    if (out.phase[td.leg] == ContactPhase::kSwing) continue;
+    out.phase[td.leg] = ContactPhase::kImpact;
+    out.impact_force_N[td.leg] = transient_force_at(td.transient, t - td.t_s);
+    out.impact_penetration_m[td.leg] = transient_penetration_at(td.transient, t - td.t_s);
+    ++out.impacting_legs;
+  }
+}
+
+ContactSchedule schedule_contacts(const KinematicsResult& kin, const Terrain& terrain,
+                                  const std::vector<Touchdown>& touchdowns) {
+  const int T = kin.samples();
+  ContactSchedule s;
+  s.samples.resize(T);
+  s.phase.setZero(T, kLegs);
+  for (int i = 0; i < T; ++i) {
+    sample_contacts(kin, i, terrain, touchdowns, s.samples[i]);
+    for (int l = 0; l < kLegs; ++l) s.phase(i, l) = static_cast<std::int8_t>(s.samples[i].phase[l]);
+  }
+  return s;
+}
+
+}  // namespace hexdyn

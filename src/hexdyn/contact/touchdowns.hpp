@@ -1,0 +1,72 @@
+#pragma once
+/// \file touchdowns.hpp
+/// The contact stage (DESIGN.md §3 "Contact", "Impact"): every touchdown of a plan with
+/// its transient (impact.hpp), and the contact state of every leg at every sample.
+///
+/// Contact frame of a foot: n the terrain normal (+z on treads), t1 the world x axis
+/// made orthogonal to n, t2 = n × t1.
+#include <array>
+#include <vector>
+
+#include "hexdyn/contact/impact.hpp"
+#include "hexdyn/core/result.hpp"
+#include "hexdyn/core/scene.hpp"
+#include "hexdyn/dynamics/rnea.hpp"
+#include "hexdyn/kinematics/kinematics.hpp"
+#include "hexdyn/planning/plan.hpp"
+
+namespace hexdyn {
+
+/// One touchdown and its resolved transient.
+struct Touchdown {
+  int leg = 0;
+  double t_s = 0.0;                  ///< instant the foot reaches the terrain
+  double approach_speed_mps = 0.0;   ///< foot speed into the terrain along −n
+  double effective_mass_kg = 0.0;    ///< 1 / (nᵀ J M_leg⁻¹ Jᵀ n), trunk held fixed
+  Vec3 normal_W = Vec3::UnitZ();
+  ImpactTransient transient;
+};
+
+/// Effective mass of leg `leg`'s foot along n_W [kg]: the leg's operational-space inertia
+/// Λ = (J M_ll⁻¹ Jᵀ)⁻¹ with M_ll the leg's 3×3 joint block of M(q) and J its
+/// world-frame foot Jacobian (joint columns), i.e. the trunk held by the other legs.
+/// Uses only the pose of `base`; q: 18 joint angles [rad].
+double foot_effective_mass(const RobotModel& model, RobotData& data, const BaseState& base,
+                           const VecJ& q, int leg, const Vec3& n_W);
+
+/// Every touchdown of the plan with its transient integrated (impact.hpp; none for rigid
+/// contact), sorted by time then leg.
+std::vector<Touchdown> resolve_touchdowns(const RobotModel& model, RobotData& data,
+                                          const MotionPlan& plan, const ContactParams& contact);
+
+/// The /impacts records of the touchdowns whose transient occurred, in their order.
+std::vector<ImpactRecord> impact_records(const std::vector<Touchdown>& touchdowns);
+
+/// Contact frame [t1 t2 n] (columns, world axes) for the terrain normal n_W.
+Mat3 contact_frame(const Vec3& n_W);
+
+/// Contact state of every leg at one sample: its phase (swing and support from the
+/// kinematics; impact while a touchdown transient lasts), the transient's normal force
+/// and penetration, and the contact frame of the terrain under the foot.
+struct SampleContacts {
+  std::array<ContactPhase, kLegs> phase{};
+  std::array<double, kLegs> impact_force_N{};
+  std::array<double, kLegs> impact_penetration_m{};
+  std::array<Mat3, kLegs> W_R_contact;
+  int impacting_legs = 0;
+};
+/// Fills `out` for sample i of `kin` (whose contact_phase holds swing/support, as
+/// sample_kinematics leaves it).
+void sample_contacts(const KinematicsResult& kin, int i, const Terrain& terrain,
+                     const std::vector<Touchdown>& touchdowns, SampleContacts& out);
+
+/// The contact state of every sample of a kinematics result.
+struct ContactSchedule {
+  std::vector<SampleContacts> samples;  ///< T
+  RowMatrixI8 phase;                    ///< T×6, ContactPhase values (/contacts/phase)
+};
+/// sample_contacts for every sample of `kin`.
+ContactSchedule schedule_contacts(const KinematicsResult& kin, const Terrain& terrain,
+                                  const std::vector<Touchdown>& touchdowns);
+
+}  // namespace hexdyn

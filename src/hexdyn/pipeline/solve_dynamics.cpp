@@ -1,0 +1,239 @@
+#include "hexdyn/pipeline/solve_dynamics.hpp"
+
+#include <algorithm>
+#include <memory>
+#include <optional>
+#include <ostream>
+#include <string>
+
+#include "hexdyn/allocation/backends.hpp"
+#include "hexdyn/allocation/problem.hpp"
+#include "hexdyn/core/errors.hpp"
+#include "hexdyn/dynamics/rnea.hpp"
+#include "hexdyn/kinematics/kinematics.hpp"
+#include "hexdyn/power/power.hpp"
+
+namespace hexdyn {
+namespace {
+
+/// How far before a contact event its left limit is evaluated [s]: far below any grid
+/// step (merged at 1e-9 s), far above the rounding of t.
+constexpr double kEventLeftLimit_s = 1e-10;
+
+/// The allocation of one sample with its workspace: the dynamics buffers, the problem and
+/// the back end, whose warm start carries from one solve to the next.
+class SampleSolver {
+ public:
+  SampleSolver(const Scene& scene, const RobotModel& model)
+      : scene_(scene),
+        model_(model),
+        data_(model),
+        backend_(make_allocation_backend(scene.allocation)) {}
+
+  /// Solves sample i of `kin` under contacts `c`: the back end's outcome (valid until the
+  /// next call), and foot_forces_W, joint_torque and the constant rows' excess.
+  const QpOutcome& solve(const KinematicsResult& kin, int i, const SampleContacts& c) {
+    const BaseState base = base_state_at(kin, i);
+    const VecJ q = kin.joint_position.row(i).transpose();
+    const VecJ qd = kin.joint_velocity.row(i).transpose();
+    const VecJ qdd = kin.joint_acceleration.row(i).transpose();
+    const ContactSplit& split = contact_split(model_, data_, base, q, qd, qdd);
+    constant_violation_.clear();
+    constant_excess_ = build_allocation_problem(scene_.allocation, scene_.contact, split, c.phase,
+                                                c.impact_force_N, c.W_R_contact, qp_, offset_,
+                                                &constant_violation_);
+    const QpOutcome& outcome = backend_->solve(qp_);
+    forces_from_solution(split, c.phase, c.impact_force_N, c.W_R_contact, offset_, outcome.x, F_W_,
+                         tau_);
+    return outcome;
+  }
+
+  const std::array<Vec3, kLegs>& foot_forces_W() const { return F_W_; }  ///< [N], world
+  const VecJ& joint_torque() const { return tau_; }                      ///< [N m]
+  /// Excess of the constant rows over their limits [N m] (build_allocation_problem).
+  double constant_excess() const { return constant_excess_; }
+  const std::string& constant_violation() const { return constant_violation_; }
+
+ private:
+  const Scene& scene_;
+  const RobotModel& model_;
+  RobotData data_;
+  std::unique_ptr<AllocationBackend> backend_;
+  QpProblem qp_;
+  std::array<int, kLegs> offset_{};
+  std::array<Vec3, kLegs> F_W_;
+  VecJ tau_ = VecJ::Zero();
+  double constant_excess_ = 0.0;
+  std::string constant_violation_;
+};
+
+/// The left limit of the power at sample i (time t_s), whose contact phases differ from
+/// `previous_phase`: the sample solved again an instant before the event. A jump only when
+/// the event is at this sample (adaptive grid); on a grid that steps over the event the
+/// series is integrated across it.
+std::optional<PowerJump> left_limit(SampleSolver& solver, const RobotModel& model,
+                                    const MotionPlan& plan,
+                                    const std::vector<Touchdown>& touchdowns, int i, double t_s,
+                                    const std::array<ContactPhase, kLegs>& previous_phase) {
+  const KinematicsResult k_left = sample_kinematics(model, plan, {t_s - kEventLeftLimit_s});
+  SampleContacts c_left;
+  sample_contacts(k_left, 0, plan.terrain, touchdowns, c_left);
+  solver.solve(k_left, 0, c_left);
+  if (c_left.phase != previous_phase) return std::nullopt;
+  PowerJump jump;
+  jump.index = i;
+  jump.abs_power_left_W =
+      solver.joint_torque().cwiseProduct(k_left.joint_velocity.row(0).transpose()).cwiseAbs();
+  return jump;
+}
+
+/// A sample's status and message: the back end's, relaxed when a constant row (a
+/// swing-leg torque that no force can change) exceeds its limit, with the legs in their
+/// impact transient named.
+struct SampleVerdict {
+  SolverStatus status = SolverStatus::kOptimal;
+  std::string message;  ///< empty for an optimal sample
+};
+
+SampleVerdict sample_verdict(const QpOutcome& outcome, const SampleSolver& solver,
+                             const SampleContacts& c, double tolerance) {
+  SampleVerdict v{outcome.status, outcome.message};
+  const bool constant_violated = solver.constant_excess() > tolerance;
+  if (constant_violated && v.status == SolverStatus::kOptimal) {
+    v.status = SolverStatus::kRelaxed;
+    v.message = "relaxed: " + solver.constant_violation();
+  } else if (constant_violated) {
+    v.message += ", " + solver.constant_violation();
+  }
+  if (v.status == SolverStatus::kOptimal) {
+    v.message.clear();
+    return v;
+  }
+  std::string legs;
+  for (int l = 0; l < kLegs; ++l)
+    if (c.phase[l] == ContactPhase::kImpact) legs += " " + leg_name(l);
+  if (!legs.empty()) v.message += " (impact" + legs + ")";
+  return v;
+}
+
+/// Runs of consecutive relaxed or failed samples: one log line per run with its time span,
+/// its count and the message of its worst sample (largest violation).
+class EpisodeLog {
+ public:
+  explicit EpisodeLog(std::ostream* log) : log_(log) {}
+
+  void add(double t_s, SolverStatus status, double max_violation, const std::string& message) {
+    if (count_ == 0) start_s_ = t_s;
+    end_s_ = t_s;
+    ++count_;
+    status_ = std::max(status_, status);
+    if (max_violation > worst_) {
+      worst_ = max_violation;
+      message_ = message;
+    }
+  }
+
+  /// Ends the current run (at an optimal sample or the last one) and writes its line.
+  void close() {
+    if (count_ > 0 && log_) {
+      // Outcome messages start with their status word ("relaxed: ", "failed: "): print it once.
+      const std::string word = status_ == SolverStatus::kRelaxed ? "relaxed: " : "failed: ";
+      const bool prefixed = message_.compare(0, word.size(), word) == 0;
+      *log_ << "hexdyn: t = [" << start_s_ << ", " << end_s_ << "] s: " << count_ << " sample(s) "
+            << word << (prefixed ? message_.substr(word.size()) : message_) << "\n";
+    }
+    count_ = 0;
+    status_ = SolverStatus::kOptimal;
+    worst_ = -1.0;
+  }
+
+ private:
+  std::ostream* log_;
+  int count_ = 0;
+  SolverStatus status_ = SolverStatus::kOptimal;
+  double start_s_ = 0.0, end_s_ = 0.0, worst_ = -1.0;
+  std::string message_;
+};
+
+/// A result of T samples, every per-sample field zero.
+DynamicsResult empty_result(int T) {
+  DynamicsResult dyn;
+  dyn.present = true;
+  dyn.joint_torque.setZero(T, kJoints);
+  dyn.contact_force.setZero(T, 3 * kLegs);
+  dyn.penetration.setZero(T, kLegs);
+  dyn.solver_status.assign(T, SolverStatus::kOptimal);
+  dyn.solver_iterations.assign(T, 0.0);
+  dyn.solver_objective.assign(T, 0.0);
+  dyn.solver_seconds.assign(T, 0.0);
+  dyn.solver_messages.assign(T, std::string());
+  return dyn;
+}
+
+}  // namespace
+
+DynamicsResult solve_dynamics(const Scene& scene, const RobotModel& model, const MotionPlan& plan,
+                              const KinematicsResult& kin, const ContactSchedule& contacts,
+                              const std::vector<Touchdown>& touchdowns, std::ostream* log) {
+  const int T = kin.samples();
+  if (static_cast<int>(contacts.samples.size()) != T)
+    throw SolverError("solve_dynamics: contact schedule of " +
+                      std::to_string(contacts.samples.size()) + " samples, expected " +
+                      std::to_string(T));
+  DynamicsResult dyn = empty_result(T);
+  for (const Touchdown& td : touchdowns)
+    if (td.transient.truncated && log)
+      *log << "hexdyn: touchdown of " << leg_name(td.leg) << " at t = " << td.t_s
+           << " s: transient " << td.transient.message << "\n";
+  dyn.impacts = impact_records(touchdowns);
+
+  SampleSolver solver(scene, model);
+  std::optional<SampleSolver>
+      left_solver;  // its own back end: the run's warm starts stay as they are
+  std::vector<PowerJump> jumps;
+  EpisodeLog episodes(log);
+  for (int i = 0; i < T; ++i) {
+    const double t = kin.time_s[i];
+    const SampleContacts& c = contacts.samples[i];
+    const QpOutcome& outcome = solver.solve(kin, i, c);
+    if (i > 0 && c.phase != contacts.samples[i - 1].phase) {
+      if (!left_solver) left_solver.emplace(scene, model);
+      if (auto jump = left_limit(*left_solver, model, plan, touchdowns, i, t,
+                                 contacts.samples[i - 1].phase))
+        jumps.push_back(*jump);
+    }
+    const SampleVerdict verdict = sample_verdict(outcome, solver, c, scene.allocation.tolerance);
+    const VecJ& tau = solver.joint_torque();
+    dyn.solver_status[i] = verdict.status;
+    dyn.solver_iterations[i] = outcome.iterations;
+    dyn.solver_objective[i] = tau.squaredNorm();
+    dyn.solver_seconds[i] = outcome.seconds;
+    dyn.solver_messages[i] = verdict.message;
+    dyn.joint_torque.row(i) = tau.transpose();
+    for (int l = 0; l < kLegs; ++l) {
+      const Vec3& F_W = solver.foot_forces_W()[l];
+      dyn.contact_force.row(i).segment<3>(3 * l) = F_W.transpose();
+      double delta = c.impact_penetration_m[l];
+      if (c.phase[l] == ContactPhase::kSupport && scene.contact.model == ContactModel::kCompliant)
+        delta = static_penetration(scene.contact, std::max(0.0, F_W.dot(c.W_R_contact[l].col(2))));
+      dyn.penetration(i, l) = delta;
+    }
+    if (verdict.status != SolverStatus::kOptimal)
+      episodes.add(t, verdict.status, outcome.max_violation, verdict.message);
+    else
+      episodes.close();
+  }
+  episodes.close();
+
+  PowerResult power =
+      compute_power(kin, dyn.joint_torque, model.total_mass_kg, plan.trunk.total_travel_m(), jumps);
+  dyn.joint_power = std::move(power.joint_power);
+  dyn.total_power_W = std::move(power.total_power_W);
+  dyn.energy_joint_J = std::move(power.energy_joint_J);
+  dyn.energy_total_J = power.energy_total_J;
+  dyn.distance_m = power.distance_m;
+  dyn.cost_of_transport = power.cost_of_transport;
+  return dyn;
+}
+
+}  // namespace hexdyn

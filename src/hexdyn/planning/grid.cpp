@@ -1,0 +1,47 @@
+#include "hexdyn/planning/grid.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace hexdyn {
+
+std::vector<double> build_output_grid(const OutputParams& out, double duration_s,
+                                      const std::vector<GridEvent>& events) {
+  std::vector<double> t;
+  const int n = static_cast<int>(std::floor(duration_s / out.sample_step_s + 1e-9));
+  for (int i = 0; i <= n; ++i) t.push_back(i * out.sample_step_s);
+  t.push_back(duration_s);
+  if (out.grid == OutputGrid::kAdaptive) {
+    for (const GridEvent& e : events) {
+      const double h = out.event_step_s;
+      const double t0 = e.t_s, t1 = e.t_s + e.duration_s;
+      if (e.duration_s > 0.0) {
+        const int m = std::max(1, out.impact_samples);
+        for (int j = 0; j <= m; ++j) t.push_back(t0 + e.duration_s * j / m);
+        t.push_back(t0 + e.peak_offset_s);
+      }
+      t.push_back(t0);
+      // Geometric grading away from the event on both sides, up to the uniform step.
+      for (double d = h; d < out.sample_step_s; d *= 2.0) {
+        t.push_back(t0 - d);
+        t.push_back(t1 + d);
+      }
+    }
+  }
+  std::sort(t.begin(), t.end());
+  // Points closer than 1e-9 s are merged into the later one, so that the sample at an
+  // event is never before it (a touchdown sample is the first one on the ground).
+  std::vector<double> grid;
+  for (double x : t) {
+    if (x < 0.0 || x > duration_s) continue;
+    if (!grid.empty() && x - grid.back() < 1e-9) {
+      grid.back() = x;
+      continue;
+    }
+    grid.push_back(x);
+  }
+  if (grid.back() < duration_s - 1e-9) grid.push_back(duration_s);
+  return grid;
+}
+
+}  // namespace hexdyn
