@@ -6,7 +6,8 @@
 # slurmd, munge; installed with apt-get when missing), submits the sweep job on
 # tests/slurm/small.yaml with 2 tasks, cancels it with scancel once the checkpoint holds
 # finished work, resubmits it, and checks that the final file equals a plain run's
-# (compare_sweeps.py) and that the resubmitted job took scenarios from the checkpoint.
+# (compare_sweeps.py; --keep-runs, so every scenario's full result is compared) and that
+# the resubmitted job took scenarios from the checkpoint.
 # The first job starts its ranks as the script chooses them (HEXDYN_LAUNCHER=auto:
 # srun --mpi=pmix where Slurm offers PMIx), the resubmitted one with
 # HEXDYN_LAUNCHER=mpirun, so that both launch paths run.
@@ -178,10 +179,10 @@ echo "slurm test: Slurm $(sinfo -V | awk '{print $2}') up in $((SECONDS - t0)) s
 
 # --- The sweep: plain reference, then the job cancelled and resubmitted -----------------
 t=$SECONDS
-"$HEXDYN" sweep "$SWEEP" -o plain.h5 2> plain.log || { cat plain.log >&2; fail "plain run"; }
+"$HEXDYN" sweep "$SWEEP" -o plain.h5 --keep-runs 2> plain.log || { cat plain.log >&2; fail "plain run"; }
 echo "slurm test: plain run $((SECONDS - t)) s" >&2
 
-export HEXDYN_BIN="$HEXDYN" HEXDYN_PLOT=0
+export HEXDYN_BIN="$HEXDYN" HEXDYN_PLOT=0 HEXDYN_SWEEP_ARGS=--keep-runs
 # Open MPI refuses root without these; mpirun runs 2 ranks on however many cores.
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 export OMPI_MCA_rmaps_base_oversubscribe=1
@@ -216,7 +217,8 @@ launcher_of() {
 }
 
 # Finished work in the checkpoint: any non-empty file in it but a manifest (one file per
-# scenario today; per-rank journals would count once they hold a record).
+# scenario today; a per-rank journal counts once non-empty, so the job is cancelled a
+# second after that, and the end checks that the resubmission took work from it).
 progress() {
   find slurm.h5.checkpoint -type f -size +0 ! -name 'manifest*' 2>/dev/null | wc -l
 }
@@ -230,6 +232,7 @@ while [ "$(progress)" -lt 1 ]; do
   [ "$SECONDS" -lt "$deadline" ] || fail "no checkpoint progress of job $job1 within 90 s"
   sleep 0.1
 done
+sleep 1
 scancel "$job1"
 wait_state "$job1" 60 CANCELLED
 # The job's processes are gone once the node has no job left.
