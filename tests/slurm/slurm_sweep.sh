@@ -216,29 +216,37 @@ launcher_of() {
   echo "${line%% "$HEXDYN" *}"
 }
 
-# Finished work in the checkpoint: any non-empty file in it but a manifest (one file per
-# scenario today; a per-rank journal counts once non-empty, so the job is cancelled a
-# second after that, and the end checks that the resubmission took work from it).
-progress() {
-  find slurm.h5.checkpoint -type f -size +0 ! -name 'manifest*' 2>/dev/null | wc -l
+# Bytes of finished work in the checkpoint: its files but temporaries (hidden), the
+# manifest and a lock. A scenario has finished once they grow after first appearing: a
+# second per-scenario file (the format today), or a record after a per-rank journal's
+# header.
+data_bytes() {
+  find slurm.h5.checkpoint -type f ! -name '.*' ! -name 'manifest*' ! -name 'lock*' \
+    -printf '%s\n' 2>/dev/null | awk '{ s += $1 } END { print s + 0 }'
+}
+# wait_data_above ID BYTES: wait while the job runs until the data exceed BYTES.
+wait_data_above() {
+  local deadline=$((SECONDS + 90))
+  while [ "$(data_bytes)" -le "$2" ]; do
+    [ "$(job_state "$1")" = RUNNING ] || fail "job $1 is $(job_state "$1") before enough checkpoint progress"
+    [ "$SECONDS" -lt "$deadline" ] || fail "no checkpoint progress of job $1 within 90 s"
+    sleep 0.05
+  done
 }
 
 t=$SECONDS
 job1="$(HEXDYN_LAUNCHER=auto submit)"
 wait_state "$job1" 60 RUNNING COMPLETED FAILED
-deadline=$((SECONDS + 90))
-while [ "$(progress)" -lt 1 ]; do
-  [ "$(job_state "$job1")" = RUNNING ] || fail "job $job1 is $(job_state "$job1") before any checkpoint file"
-  [ "$SECONDS" -lt "$deadline" ] || fail "no checkpoint progress of job $job1 within 90 s"
-  sleep 0.1
-done
-sleep 1
+wait_data_above "$job1" 0
+wait_data_above "$job1" "$(data_bytes)"
+sleep 0.5  # a record being appended is complete by then
 scancel "$job1"
 wait_state "$job1" 60 CANCELLED
 # The job's processes are gone once the node has no job left.
 for _ in $(seq 100); do [ -z "$(squeue -h -o %i)" ] && break; sleep 0.2; done
 [ ! -e slurm.h5 ] || fail "the cancelled job wrote its output file"
-echo "slurm test: job $job1 cancelled after $((SECONDS - t)) s with $(progress) checkpoint file(s)" >&2
+echo "slurm test: job $job1 cancelled after $((SECONDS - t)) s with $(data_bytes) bytes of checkpoint" \
+     "($(find slurm.h5.checkpoint -type f ! -name '.*' | wc -l) files)" >&2
 launcher1="$(launcher_of "$job1")"
 
 t=$SECONDS
