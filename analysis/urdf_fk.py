@@ -8,7 +8,11 @@ revolute rotations about <axis> from the root link reproduces /feet/position.
     mass, feet_fk = load_urdf(urdf_text)
     feet = feet_fk(base_position, base_quat_wxyz, q)   # (T,3), (T,4), (T,18) -> (T,6,3)
 
-Joint angle order: L1_coxa, L1_femur, L1_tibia, L2_coxa, ..., L6_tibia.
+Joint angle order: L1_coxa, L1_femur, L1_tibia, L2_coxa, ..., L6_tibia for hexdyn's own
+URDF; any other URDF (a real robot's) takes its joint names in hexdyn's order, e.g.
+/model/joint_names of a result, and its foot links: UrdfRobot(text, joint_order=...,
+foot_links=...). Fixed joints are composed like any other; continuous joints rotate like
+revolute ones; a link without <inertial> is massless.
 """
 
 import re
@@ -71,7 +75,8 @@ class UrdfJoint:
 class UrdfRobot:
     """Links (name -> mass [kg], COM [m]) and joints of a URDF, with FK."""
 
-    def __init__(self, text):
+    def __init__(self, text, joint_order=JOINT_ORDER, foot_links=None):
+        self.joint_order = tuple(joint_order)
         root = ET.fromstring(text)
         if root.tag != "robot":
             raise ValueError("URDF: root element is not <robot>")
@@ -105,8 +110,14 @@ class UrdfRobot:
             raise ValueError(f"URDF: expected one root link, found {roots}")
         self.root = roots[0]
         self.total_mass = float(sum(self.link_mass.values()))
-        feet = sorted((n for n in self.link_mass if re.fullmatch(r"L\d+_foot", n)),
-                      key=lambda n: int(n[1:-5]))
+        if foot_links is None:
+            feet = sorted((n for n in self.link_mass if re.fullmatch(r"L\d+_foot", n)),
+                          key=lambda n: int(n[1:-5]))
+        else:
+            feet = list(foot_links)
+            missing = [n for n in feet if n not in self.link_mass]
+            if missing:
+                raise ValueError(f"URDF: no foot links {missing}")
         self.foot_links = tuple(feet)
 
     def link_poses(self, base_position, base_quat_wxyz, q, links=None):
@@ -115,9 +126,9 @@ class UrdfRobot:
         p0 = np.atleast_2d(np.asarray(base_position, dtype=float))
         R0 = quaternion_to_matrix(np.atleast_2d(base_quat_wxyz))
         q = np.atleast_2d(np.asarray(q, dtype=float))
-        if q.shape[1] != len(JOINT_ORDER):
-            raise ValueError(f"expected {len(JOINT_ORDER)} joint angles, got {q.shape[1]}")
-        angle = {name: q[:, k] for k, name in enumerate(JOINT_ORDER)}
+        if q.shape[1] != len(self.joint_order):
+            raise ValueError(f"expected {len(self.joint_order)} joint angles, got {q.shape[1]}")
+        angle = {name: q[:, k] for k, name in enumerate(self.joint_order)}
         cache = {self.root: (R0, p0)}
 
         def pose(link):
@@ -139,7 +150,8 @@ class UrdfRobot:
         return {link: pose(link) for link in (links or self.link_mass)}
 
     def foot_positions(self, base_position, base_quat_wxyz, q):
-        """World positions of L1_foot..L6_foot: (T,6,3), or (6,3) for one sample."""
+        """World positions of the foot links (L1_foot..L6_foot by default): (T,6,3), or
+        (6,3) for one sample."""
         single = np.ndim(q) == 1
         poses = self.link_poses(base_position, base_quat_wxyz, q, self.foot_links)
         out = np.stack([poses[name][1] for name in self.foot_links], axis=1)

@@ -12,7 +12,7 @@ export HEXDYN_PYTHON=/usr/bin/python3
 HEXDYN_PACKAGES=(
   build-essential cmake pkg-config git
   libeigen3-dev coinor-libipopt-dev libhdf5-dev hdf5-tools libgsl-dev catch2
-  libopenmpi-dev openmpi-bin libyaml-cpp-dev libbenchmark-dev
+  libopenmpi-dev openmpi-bin libyaml-cpp-dev libbenchmark-dev liburdfdom-dev
   python3 python3-h5py python3-numpy python3-matplotlib python3-yaml
 )
 

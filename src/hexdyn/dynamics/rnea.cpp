@@ -9,7 +9,7 @@ const Vec3 kGravity_W(0.0, 0.0, -kGravity);
 
 int tibia_body(int leg) { return 1 + joint_index(leg, 2); }
 
-Vec3 foot_point_tibia(const RobotModel& model) { return Vec3(model.link_length_m[2], 0.0, 0.0); }
+Vec3 foot_point_tibia(const RobotModel& model, int leg) { return model.p_foot_last[leg]; }
 
 Inertia to_spatial(const RigidInertia& r) { return Inertia{r.mass_kg, r.com_m, r.inertia_com}; }
 
@@ -43,8 +43,8 @@ void forward_motion_pass(const RobotModel& model, RobotData& data, const Motion&
 
 /// Foot points and Jacobians from the body poses already in data.X_world_body.
 void fill_foot_jacobians(const RobotModel& model, RobotData& data, const BaseState& state) {
-  const Vec3 r_foot = foot_point_tibia(model);
   for (int l = 0; l < kLegs; ++l) {
+    const Vec3 r_foot = foot_point_tibia(model, l);
     const Vec3 p_foot_W = data.X_world_body[tibia_body(l)].apply_point(r_foot);
     data.p_foot_W[l] = p_foot_W;
     FootJacobian& J = data.J_foot_W[l];
@@ -113,8 +113,8 @@ const VecDof& rnea(const RobotModel& model, RobotData& data, const BaseState& st
   }
   // Terrain forces act on the tibias at the foot points; they relieve the joints.
   if (foot_forces_W != nullptr) {
-    const Vec3 r_foot = foot_point_tibia(model);
     for (int l = 0; l < kLegs; ++l) {
+      const Vec3 r_foot = foot_point_tibia(model, l);
       const int b = tibia_body(l);
       const Vec3 F_b = data.X_world_body[b].R.transpose() * (*foot_forces_W)[l];
       data.f_body[b] -= Force{r_foot.cross(F_b), F_b};
@@ -191,8 +191,8 @@ const std::array<Vec3, kLegs>& foot_bias_accelerations(const RobotModel& model, 
   Motion v0_B, a0_B;
   base_motion(state, Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), v0_B, a0_B);
   forward_motion_pass(model, data, v0_B, a0_B, qd, nullptr);
-  const Vec3 r = foot_point_tibia(model);
   for (int l = 0; l < kLegs; ++l) {
+    const Vec3 r = foot_point_tibia(model, l);
     const int b = tibia_body(l);
     const Motion& v = data.v_body[b];
     const Motion& a = data.a_body[b];

@@ -1,6 +1,9 @@
 #include "hexdyn/model/robot_model.hpp"
 
 #include <cmath>
+#include <limits>
+
+#include "hexdyn/model/leg_chain.hpp"
 
 namespace hexdyn {
 namespace {
@@ -46,8 +49,19 @@ RobotModel build_robot_model(const RobotParams& params) {
   m.p_parent_joint[0].setZero();
   m.axis[0].setZero();
   m.inertia[0] = combine(m.trunk_only, m.payload);
-  m.joint_min_rad = params.joint_min_rad;
-  m.joint_max_rad = params.joint_max_rad;
+  constexpr double kNone = std::numeric_limits<double>::infinity();
+  for (int leg = 0; leg < kLegs; ++leg) {
+    for (int j = 0; j < kJointsPerLeg; ++j) {
+      const int k = joint_index(leg, j);
+      m.joint_lower_rad[k] = params.joint_min_rad[j];
+      m.joint_upper_rad[k] = params.joint_max_rad[j];
+      m.effort_limit_Nm[k] = kNone;  // the scene's allocation.torque_limit applies
+      m.velocity_limit_radps[k] = kNone;
+      m.joint_source_names[k] = joint_name(leg, j);
+    }
+    m.p_foot_last[leg] = Vec3(params.link_length_m[2], 0.0, 0.0);
+  }
+  m.leg_geometry = LegGeometry::kPaperPlanar;
   m.ik_min_margin_m = params.ik_min_margin_m;
   const Vec3 minus_y(0.0, -1.0, 0.0);
   for (int leg = 0; leg < kLegs; ++leg) {
@@ -88,12 +102,16 @@ RobotModel build_robot_model(const RobotParams& params) {
   }
   m.total_mass_kg = 0.0;
   for (const auto& in : m.inertia) m.total_mass_kg += in.mass_kg;
+  // Fills leg_ik (used only if the model is switched to kChain, as tests do); p_hip_B and
+  // R_B_H are rewritten with the same values (the coxa joint placements set above).
+  prepare_leg_chains(m);
   return m;
 }
 
 // Foot in the coxa frame: f(β2, β3) = (l1 + l2 c2 + l3 c23, w, −d1 + l2 s2 + l3 s23);
 // p_H = Rz(θ1) f.
 Vec3 leg_foot_position_H(const RobotModel& m, int leg, const Vec3& q) {
+  if (m.leg_geometry == LegGeometry::kChain) return chain_foot_position_H(m, leg, q);
   const auto& L = m.link_length_m;
   const double c1 = std::cos(q[0]), s1 = std::sin(q[0]);
   const double rho = L[0] + L[1] * std::cos(q[1]) + L[2] * std::cos(q[1] + q[2]);
@@ -103,6 +121,7 @@ Vec3 leg_foot_position_H(const RobotModel& m, int leg, const Vec3& q) {
 }
 
 Mat3 leg_jacobian_H(const RobotModel& m, int leg, const Vec3& q) {
+  if (m.leg_geometry == LegGeometry::kChain) return chain_jacobian_H(m, leg, q);
   const auto& L = m.link_length_m;
   const double c1 = std::cos(q[0]), s1 = std::sin(q[0]);
   const double s2 = std::sin(q[1]), c2 = std::cos(q[1]);
@@ -119,6 +138,7 @@ Mat3 leg_jacobian_H(const RobotModel& m, int leg, const Vec3& q) {
 }
 
 Mat3 leg_jacobian_dot_H(const RobotModel& m, int leg, const Vec3& q, const Vec3& qd) {
+  if (m.leg_geometry == LegGeometry::kChain) return chain_jacobian_dot_H(m, leg, q, qd);
   const auto& L = m.link_length_m;
   const double c1 = std::cos(q[0]), s1 = std::sin(q[0]);
   const double s2 = std::sin(q[1]), c2 = std::cos(q[1]);
@@ -147,6 +167,7 @@ Mat3 leg_jacobian_dot_H(const RobotModel& m, int leg, const Vec3& q, const Vec3&
 }
 
 LegIkResult leg_inverse_kinematics(const RobotModel& m, int leg, const Vec3& p) {
+  if (m.leg_geometry == LegGeometry::kChain) return chain_inverse_kinematics(m, leg, p);
   LegIkResult r;
   const auto& L = m.link_length_m;
   const double w = m.lateral_m[leg];
@@ -178,9 +199,10 @@ LegIkResult leg_inverse_kinematics(const RobotModel& m, int leg, const Vec3& p) 
       std::atan2(v, u) - std::atan2(L[2] * std::sin(beta3), L[1] + L[2] * std::cos(beta3));
   r.q = Vec3(std::remainder(theta1, 2.0 * M_PI), std::remainder(beta2, 2.0 * M_PI), beta3);
   for (int j = 0; j < kJointsPerLeg; ++j) {
-    if (r.q[j] < m.joint_min_rad[j] || r.q[j] > m.joint_max_rad[j]) {
+    const double lo = m.joint_lower_rad[joint_index(leg, j)], hi = m.joint_upper_rad[joint_index(leg, j)];
+    if (r.q[j] < lo || r.q[j] > hi) {
       r.reason = "joint " + joint_name(leg, j) + " outside its limits";
-      r.margin_m = std::min(r.q[j] - m.joint_min_rad[j], m.joint_max_rad[j] - r.q[j]);
+      r.margin_m = std::min(r.q[j] - lo, hi - r.q[j]);
       return r;
     }
   }
@@ -200,7 +222,7 @@ void forward_kinematics_tree(const RobotModel& m, const VecJ& q, BodyPoses& out)
 
 Vec3 tree_foot_position_B(const RobotModel& m, const BodyPoses& poses, int leg) {
   const int b_tibia = 1 + joint_index(leg, 2);
-  return poses.p_B[b_tibia] + poses.R_B[b_tibia] * Vec3(m.link_length_m[2], 0.0, 0.0);
+  return poses.p_B[b_tibia] + poses.R_B[b_tibia] * m.p_foot_last[leg];
 }
 
 Vec3 center_of_mass_B(const RobotModel& m, const BodyPoses& poses) {

@@ -8,10 +8,22 @@
 /// joint k (flat index, DESIGN.md §2), its parent is the trunk for a coxa and the
 /// previous link otherwise.
 ///
-/// Leg frame H_l ("hip frame"): origin at the coxa joint, z along the trunk normal,
-/// x the leg's outward direction at zero coxa angle. Link frames at zero angles are
-/// parallel to H_l with x along the link. Positive femur/tibia angles raise the
-/// link (rotation about −y of the link frame). Foot point: tibia frame (l3, 0, 0).
+/// Leg frame H_l ("hip frame"): the coxa joint frame at zero coxa angle, origin at the
+/// coxa joint (p_hip_B, R_B_H = R_parent_joint of the coxa body). The foot point is
+/// p_foot_last[l] in the frame of the leg's third link (the tibia body).
+///
+/// Two leg geometries (LegGeometry):
+///  - kPaperPlanar, the paper robot described in YAML (build_robot_model(RobotParams)):
+///    z of H_l along the trunk normal, x the leg's outward direction at zero coxa angle;
+///    link frames at zero angles parallel to H_l with x along the link; positive
+///    femur/tibia angles raise the link (rotation about −y); foot at (l3, 0, 0) of the
+///    tibia. FK, Jacobian, J̇ and IK are the closed forms in link lengths and offsets.
+///  - kChain, any leg of three revolute joints (a URDF robot, urdf_robot.hpp): joint
+///    placements, axes, zero poses and signs as the description gives them. FK is the
+///    composition of the joint transforms; Jacobian columns a_k × (p_foot − p_k) and J̇
+///    analytic; IK in closed form for the yaw–pitch–pitch family (the second and third
+///    axes parallel, the first not parallel to them), Levenberg–Marquardt on the FK
+///    otherwise (leg_chain.cpp).
 #include "hexdyn/core/common.hpp"
 #include "hexdyn/core/scene.hpp"
 
@@ -22,6 +34,34 @@ struct RigidInertia {
   double mass_kg = 0.0;
   Vec3 com_m = Vec3::Zero();           ///< centre of mass in the body frame
   Mat3 inertia_com = Mat3::Zero();     ///< rotational inertia about the COM, body axes [kg m²]
+};
+
+/// How the legs' kinematics are evaluated (file comment).
+enum class LegGeometry { kPaperPlanar, kChain };
+
+/// Inverse kinematics of a kChain leg, chosen from the geometry when the model is built.
+enum class LegIkMethod {
+  kYawPitchPitch,  ///< closed form: axes 2 and 3 parallel, axis 1 not parallel to them
+  kNumeric,        ///< Levenberg–Marquardt on the FK with the analytic Jacobian
+};
+
+/// Precomputed data of a kChain leg's IK (prepare_leg_chains). Frames: H (= the coxa joint
+/// frame), J1 (the femur joint frame at zero femur angle, fixed in the coxa link).
+struct LegIkData {
+  LegIkMethod method = LegIkMethod::kNumeric;
+  Vec3 a0_H = Vec3::UnitZ();        ///< coxa axis, H (unit)
+  Vec3 w1_H = Vec3::UnitY();        ///< femur axis at zero coxa angle, H (unit)
+  Vec3 o1_H = Vec3::Zero();         ///< femur joint origin at zero coxa angle, H [m]
+  Mat3 H_R_J1 = Mat3::Identity();   ///< femur joint frame → coxa link frame
+  Vec3 a1_J1 = Vec3::UnitY();       ///< femur axis, J1 (unit)
+  Vec3 e1_J1 = Vec3::UnitX(), e2_J1 = Vec3::UnitZ();  ///< plane basis ⊥ a1, e2 = a1 × e1
+  double l2_m = 0.0, alpha_rad = 0.0;  ///< femur joint → tibia joint, in-plane length, angle
+  double l3_m = 0.0, gamma_rad = 0.0;  ///< tibia joint → foot at zero tibia angle, in plane
+  double axis_sign = 1.0;           ///< tibia axis = axis_sign · femur axis
+  double kappa_m = 0.0;             ///< w1(q0)·p_foot for every foot of the leg [m]
+  Vec3 outward_H = Vec3::UnitX();   ///< outward direction at zero coxa angle (⊥ up), H
+  Vec3 up_H = Vec3::UnitZ();        ///< trunk normal, H
+  Vec3 q_start = Vec3::Zero();      ///< numeric IK: starting joint angles [rad]
 };
 
 struct RobotModel {
@@ -41,13 +81,29 @@ struct RobotModel {
   std::array<double, kLegs> d2_signed_m{}, d3_signed_m{};
   std::array<Vec3, kLegs> p_hip_B;        ///< coxa joint in the trunk frame [m]
   std::array<Mat3, kLegs> R_B_H;          ///< hip frame → trunk frame
-  std::array<double, kJointsPerLeg> joint_min_rad{}, joint_max_rad{};
+  /// Joint limits per joint, flat index [rad] (±inf: a continuous joint).
+  std::array<double, kJoints> joint_lower_rad{}, joint_upper_rad{};
+  /// Effort limit per joint from the description [N m]; +inf when it gives none.
+  std::array<double, kJoints> effort_limit_Nm{};
+  /// Velocity limit per joint from the description [rad/s]; +inf when it gives none.
+  std::array<double, kJoints> velocity_limit_radps{};
   double ik_min_margin_m = 1e-4;
   double total_mass_kg = 0.0;
+  // --- leg geometry (file comment) ---
+  LegGeometry leg_geometry = LegGeometry::kPaperPlanar;
+  std::array<Vec3, kLegs> p_foot_last;    ///< foot point in the leg's third link frame [m]
+  std::array<LegIkData, kLegs> leg_ik;    ///< kChain only
+  /// Joint names in the description, flat order (URDF: its own names; YAML: L{i}_coxa …).
+  std::array<std::string, kJoints> joint_source_names;
 };
 
 /// Builds the model from validated parameters (no checks beyond those of load_scene).
 RobotModel build_robot_model(const RobotParams& params);
+
+/// Fills p_hip_B, R_B_H and leg_ik of every leg from the tree (parent, placements, axes),
+/// p_foot_last and the joint limits. Called by the builders of kChain models; call it
+/// again after editing the tree of a model by hand.
+void prepare_leg_chains(RobotModel& model);
 
 /// Foot position of leg `leg` in its hip frame for joint angles q = (θ1, β2, β3) [m].
 Vec3 leg_foot_position_H(const RobotModel& model, int leg, const Vec3& q);
@@ -58,7 +114,9 @@ Mat3 leg_jacobian_H(const RobotModel& model, int leg, const Vec3& q);
 /// Time derivative of the foot Jacobian for joint rates qd (3×3), hip frame.
 Mat3 leg_jacobian_dot_H(const RobotModel& model, int leg, const Vec3& q, const Vec3& qd);
 
-/// Closed-form IK (knee-up branch, foot outside the coxa axis).
+/// IK, knee-up branch with the foot outside the coxa axis: the paper's closed form
+/// (kPaperPlanar), the yaw–pitch–pitch closed form or Levenberg–Marquardt (kChain; see
+/// leg_chain.cpp for the branch rules and the margin).
 struct LegIkResult {
   Vec3 q = Vec3::Zero();
   double margin_m = 0.0;  ///< distance to the nearest workspace boundary (≥ ik_min_margin)

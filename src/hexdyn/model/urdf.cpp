@@ -70,7 +70,9 @@ void write_inertial(UrdfStream& u, const RigidInertia& in) {
 }
 
 void write_link(UrdfStream& u, const std::string& name, const RigidInertia* inertia) {
-  if (inertia == nullptr) {
+  // A massless body (massless legs, no payload) has no <inertial>, as the URDF
+  // specification says: an <inertial> with zero mass is not a valid body.
+  if (inertia == nullptr || inertia->mass_kg == 0.0) {
     u.os() << "  <link name=\"" << name << "\"/>\n";
     return;
   }
@@ -80,7 +82,7 @@ void write_link(UrdfStream& u, const std::string& name, const RigidInertia* iner
 }
 
 struct JointLimit {
-  double lower_rad, upper_rad;
+  double lower_rad, upper_rad, effort_Nm, velocity_radps;
 };
 
 void write_joint(UrdfStream& u, const std::string& name, const std::string& type,
@@ -93,10 +95,13 @@ void write_joint(UrdfStream& u, const std::string& name, const std::string& type
      << "    <origin xyz=\"" << u.triple(p) << "\" rpy=\"" << u.triple(rotation_to_rpy(R))
      << "\"/>\n";
   if (axis != nullptr) os << "    <axis xyz=\"" << u.triple(*axis) << "\"/>\n";
-  if (limit != nullptr)
+  if (limit != nullptr && type == "continuous")
+    os << "    <limit effort=\"" << u.number(limit->effort_Nm) << "\" velocity=\""
+       << u.number(limit->velocity_radps) << "\"/>\n";
+  else if (limit != nullptr)
     os << "    <limit lower=\"" << u.number(limit->lower_rad) << "\" upper=\""
-       << u.number(limit->upper_rad) << "\" effort=\"" << u.number(kUrdfEffortLimitNm)
-       << "\" velocity=\"" << u.number(kUrdfVelocityLimitRadps) << "\"/>\n";
+       << u.number(limit->upper_rad) << "\" effort=\"" << u.number(limit->effort_Nm)
+       << "\" velocity=\"" << u.number(limit->velocity_radps) << "\"/>\n";
   os << "  </joint>\n";
 }
 
@@ -132,15 +137,22 @@ std::string robot_urdf(const RobotModel& model, const std::string& robot_name) {
     for (int j = 0; j < kJointsPerLeg; ++j) {
       const int b = 1 + joint_index(leg, j);
       const std::string child = prefix + kLinkSuffix[j];
-      const JointLimit limit{model.joint_min_rad[j], model.joint_max_rad[j]};
+      const int k = joint_index(leg, j);
+      const JointLimit limit{
+          model.joint_lower_rad[k], model.joint_upper_rad[k],
+          std::isfinite(model.effort_limit_Nm[k]) ? model.effort_limit_Nm[k] : kUrdfEffortLimitNm,
+          std::isfinite(model.velocity_limit_radps[k]) ? model.velocity_limit_radps[k]
+                                                       : kUrdfVelocityLimitRadps};
+      const bool continuous =
+          !std::isfinite(limit.lower_rad) && !std::isfinite(limit.upper_rad);
       write_link(u, child, &model.inertia[b]);
-      write_joint(u, joint_name(leg, j), "revolute", parent, child, model.p_parent_joint[b],
-                  model.R_parent_joint[b], &model.axis[b], &limit);
+      write_joint(u, joint_name(leg, j), continuous ? "continuous" : "revolute", parent, child,
+                  model.p_parent_joint[b], model.R_parent_joint[b], &model.axis[b], &limit);
       parent = child;
     }
     write_link(u, prefix + "foot", nullptr);
     write_joint(u, prefix + "foot_fixed", "fixed", parent, prefix + "foot",
-                Vec3(model.link_length_m[2], 0.0, 0.0), Mat3::Identity(), nullptr, nullptr);
+                model.p_foot_last[leg], Mat3::Identity(), nullptr, nullptr);
   }
   os << "</robot>\n";
   return os.str();

@@ -8,12 +8,14 @@
 ///   L{i}_coxa_link      on revolute `L{i}_coxa`  (parent trunk)
 ///   L{i}_femur_link     on revolute `L{i}_femur` (parent L{i}_coxa_link)
 ///   L{i}_tibia_link     on revolute `L{i}_tibia` (parent L{i}_femur_link)
-///   L{i}_foot           massless, on fixed joint `L{i}_foot_fixed` at (l3, 0, 0) of the tibia
+///   L{i}_foot           massless, on fixed joint `L{i}_foot_fixed` at the foot point
+///                       (RobotModel::p_foot_last; the paper robot: (l3, 0, 0) of the tibia)
 /// Each link frame is the simulation's body frame (RobotModel body b = 1 + k for joint
 /// k = joint_index(l, j)), so joint origins are RobotModel::p_parent_joint /
 /// R_parent_joint (rpy fixed-axis, R = Rz(yaw) Ry(pitch) Rx(roll)), axes are
-/// RobotModel::axis, zero angles and signs are the simulation's. Inertials: mass [kg],
-/// COM origin [m] and the full inertia tensor about the COM in link axes [kg m²].
+/// RobotModel::axis, zero angles and signs are the simulation's; joints with infinite
+/// limits are `continuous`. Inertials: mass [kg], COM origin [m] and the full inertia
+/// tensor about the COM in link axes [kg m²]; a massless body has no <inertial>.
 /// Numbers are printed with 17 significant digits (round-trip exact).
 #include <string>
 
@@ -21,8 +23,10 @@
 
 namespace hexdyn {
 
-inline constexpr double kUrdfEffortLimitNm = 6.0;  ///< `<limit effort>`, DESIGN.md §2 torque limit
-inline constexpr double kUrdfVelocityLimitRadps = 10.0;  ///< `<limit velocity>` [rad/s]
+/// `<limit effort>` of a joint whose model gives none (a YAML robot): DESIGN.md §2 torque limit.
+inline constexpr double kUrdfEffortLimitNm = 6.0;
+/// `<limit velocity>` of a joint whose model gives none [rad/s].
+inline constexpr double kUrdfVelocityLimitRadps = 10.0;
 
 /// URDF document of `model` with `<robot name="robot_name">`.
 std::string robot_urdf(const RobotModel& model, const std::string& robot_name);

@@ -211,8 +211,8 @@ TEST_CASE("urdf: structure, names, limits and total mass of the paper robot", "[
       CHECK(jt.type == "revolute");
       CHECK(jt.has_axis);
       REQUIRE(jt.has_limit);
-      CHECK(jt.lower == model.joint_min_rad[j]);
-      CHECK(jt.upper == model.joint_max_rad[j]);
+      CHECK(jt.lower == model.joint_lower_rad[hexdyn::joint_index(leg, j)]);
+      CHECK(jt.upper == model.joint_upper_rad[hexdyn::joint_index(leg, j)]);
       CHECK(jt.effort == 6.0);
       CHECK(jt.velocity == 10.0);
       CHECK(doc.links.at(jt.child).has_inertial);

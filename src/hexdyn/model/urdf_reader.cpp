@@ -1,0 +1,508 @@
+#include "hexdyn/model/urdf_reader.hpp"
+
+#include <console_bridge/console.h>
+#include <tinyxml.h>
+#include <urdf_parser/urdf_parser.h>
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <mutex>
+#include <set>
+#include <sstream>
+
+#include "hexdyn/core/errors.hpp"
+
+namespace hexdyn {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+/// Rigid placement of a frame in another: p [m], R (frame axes → other axes).
+struct Placement {
+  Vec3 p = Vec3::Zero();
+  Mat3 R = Mat3::Identity();
+  Placement operator*(const Placement& b) const { return {p + R * b.p, R * b.R}; }
+  Placement inverse() const { return {-(R.transpose() * p), R.transpose()}; }
+};
+
+std::string num(double x) {
+  std::ostringstream s;
+  s << x;
+  return s.str();
+}
+
+std::string one_line(std::string s) {
+  std::replace(s.begin(), s.end(), '\n', ' ');
+  std::replace(s.begin(), s.end(), '\r', ' ');
+  while (!s.empty() && s.back() == ' ') s.pop_back();
+  return s;
+}
+
+/// Collects urdfdom's error messages (console_bridge) instead of printing them.
+class CaptureErrors : public console_bridge::OutputHandler {
+ public:
+  void log(const std::string& text, console_bridge::LogLevel level, const char*, int) override {
+    if (level >= console_bridge::CONSOLE_BRIDGE_LOG_ERROR) errors.push_back(one_line(text));
+  }
+  std::vector<std::string> errors;
+};
+
+/// NaN and inf in numeric attributes, before urdfdom reads them (it turns some into 0
+/// without a word, and refuses others without naming the link or joint): the first
+/// non-finite number names its <link> or <joint>, element and attribute.
+void check_finite_numbers(const std::string& text, const std::string& source) {
+  TiXmlDocument doc;
+  doc.Parse(text.c_str());
+  if (doc.Error()) return;  // urdfdom reports XML errors
+  static const std::set<std::string> kNumeric = {"xyz", "rpy", "value", "ixx", "ixy", "ixz", "iyy", "iyz",
+                                                 "izz", "lower", "upper", "effort", "velocity"};
+  std::vector<std::pair<const TiXmlElement*, std::string>> todo;
+  if (doc.RootElement() != nullptr) todo.emplace_back(doc.RootElement(), "");
+  while (!todo.empty()) {
+    const auto [el, owner_in] = todo.back();
+    todo.pop_back();
+    std::string owner = owner_in;
+    const std::string tag = el->Value();
+    if ((tag == "link" || tag == "joint") && el->Attribute("name") != nullptr)
+      owner = tag + " '" + el->Attribute("name") + "'";
+    for (const TiXmlAttribute* a = el->FirstAttribute(); a != nullptr; a = a->Next()) {
+      if (!kNumeric.count(a->Name())) continue;
+      std::istringstream tokens(a->Value());
+      std::string tok;
+      while (tokens >> tok) {
+        char* end = nullptr;
+        const double x = std::strtod(tok.c_str(), &end);
+        if (end != tok.c_str() && *end == '\0' && !std::isfinite(x))
+          throw ConfigError(source + ": " + (owner.empty() ? std::string("robot") : owner) + ": <" + tag + " " +
+                            a->Name() + "=\"" + a->Value() + "\"> is not finite, expected finite numbers");
+      }
+    }
+    for (const TiXmlElement* c = el->FirstChildElement(); c != nullptr; c = c->NextSiblingElement())
+      todo.emplace_back(c, owner);
+  }
+}
+
+class Reader {
+ public:
+  Reader(std::string source, const UrdfReadOptions& options) : source_(std::move(source)), opt_(options) {}
+
+  [[noreturn]] void fail(const std::string& what) const { throw ConfigError(source_ + ": " + what); }
+
+  UrdfRobot read(const std::string& text);
+
+ private:
+  void check_links();
+  void check_joints();
+  void check_tree();
+  void collect_trunk();
+  /// Links fixed below `link` (itself included), with their placements in its frame.
+  std::vector<std::pair<std::string, Placement>> fixed_group(const std::string& link) const;
+  RigidInertia group_inertia(const std::vector<std::pair<std::string, Placement>>& group) const;
+  std::vector<urdf::JointConstSharedPtr> moving_children(
+      const std::vector<std::pair<std::string, Placement>>& group) const;
+  UrdfLeg read_chain(const urdf::JointConstSharedPtr& first, const Placement& U_X_parent,
+                     int chain_index);
+  void map_legs(std::vector<UrdfLeg>& chains, UrdfRobot& robot) const;
+
+  std::string source_;
+  UrdfReadOptions opt_;
+  urdf::ModelInterfaceSharedPtr model_;
+  std::map<std::string, std::vector<urdf::JointConstSharedPtr>> child_joints_;  ///< by parent link
+  std::map<std::string, urdf::JointConstSharedPtr> parent_joint_;               ///< by child link
+  std::map<std::string, Placement> trunk_group_;  ///< links of the trunk body, in the trunk link frame
+  std::map<std::string, int> foot_link_used_;
+};
+
+Placement to_placement(const urdf::Pose& pose) {
+  Placement x;
+  x.p = Vec3(pose.position.x, pose.position.y, pose.position.z);
+  x.R = Eigen::Quaterniond(pose.rotation.w, pose.rotation.x, pose.rotation.y, pose.rotation.z)
+            .normalized()
+            .toRotationMatrix();
+  return x;
+}
+
+bool finite_pose(const urdf::Pose& p) {
+  return std::isfinite(p.position.x) && std::isfinite(p.position.y) && std::isfinite(p.position.z) &&
+         std::isfinite(p.rotation.x) && std::isfinite(p.rotation.y) && std::isfinite(p.rotation.z) &&
+         std::isfinite(p.rotation.w);
+}
+
+const char* type_name(int type) {
+  switch (type) {
+    case urdf::Joint::REVOLUTE: return "revolute";
+    case urdf::Joint::CONTINUOUS: return "continuous";
+    case urdf::Joint::PRISMATIC: return "prismatic";
+    case urdf::Joint::FLOATING: return "floating";
+    case urdf::Joint::PLANAR: return "planar";
+    case urdf::Joint::FIXED: return "fixed";
+    default: return "unknown";
+  }
+}
+
+bool is_moving(const urdf::Joint& j) { return j.type != urdf::Joint::FIXED; }
+
+/// Sum of two bodies in one frame (parallel-axis theorem); massless parts add nothing.
+RigidInertia combine(const RigidInertia& a, const RigidInertia& b) {
+  if (b.mass_kg == 0.0) return a;
+  if (a.mass_kg == 0.0) return b;
+  RigidInertia r;
+  r.mass_kg = a.mass_kg + b.mass_kg;
+  r.com_m = (a.mass_kg * a.com_m + b.mass_kg * b.com_m) / r.mass_kg;
+  auto shift = [&](const RigidInertia& x) {
+    const Vec3 d = x.com_m - r.com_m;
+    return Mat3(x.inertia_com + x.mass_kg * (d.squaredNorm() * Mat3::Identity() - d * d.transpose()));
+  };
+  r.inertia_com = shift(a) + shift(b);
+  return r;
+}
+
+/// A link's <inertial> in the link frame: COM = origin position, tensor rotated from the
+/// inertial frame into the link axes.
+RigidInertia link_inertia(const urdf::Link& link) {
+  RigidInertia r;
+  if (!link.inertial) return r;
+  const urdf::Inertial& in = *link.inertial;
+  const Placement o = to_placement(in.origin);
+  Mat3 I;
+  I << in.ixx, in.ixy, in.ixz, in.ixy, in.iyy, in.iyz, in.ixz, in.iyz, in.izz;
+  r.mass_kg = in.mass;
+  r.com_m = o.p;
+  r.inertia_com = o.R * I * o.R.transpose();
+  return r;
+}
+
+RigidInertia transformed(const RigidInertia& in, const Placement& X) {
+  RigidInertia r = in;
+  r.com_m = X.p + X.R * in.com_m;
+  r.inertia_com = X.R * in.inertia_com * X.R.transpose();
+  return r;
+}
+
+UrdfRobot Reader::read(const std::string& text) {
+  check_finite_numbers(text, source_);
+  {
+    static std::mutex console_mutex;  // console_bridge's output handler is global
+    std::lock_guard<std::mutex> lock(console_mutex);
+    CaptureErrors capture;
+    console_bridge::useOutputHandler(&capture);
+    try {
+      model_ = urdf::parseURDF(text);
+    } catch (const std::exception& e) {
+      capture.errors.push_back(one_line(e.what()));
+      model_.reset();
+    }
+    console_bridge::restorePreviousOutputHandler();
+    if (!model_) {
+      std::string why = capture.errors.empty() ? "urdfdom gave no reason" : capture.errors.front();
+      // urdfdom's missing-link message goes on with advice over several sentences.
+      if (const auto cut = why.find(".  "); cut != std::string::npos) why.erase(cut + 1);
+      if (capture.errors.size() > 1 && capture.errors.back() != why) why += "; " + capture.errors.back();
+      fail("not a valid URDF (urdfdom: " + why + ")");
+    }
+  }
+  for (const auto& [name, joint] : model_->joints_) {
+    child_joints_[joint->parent_link_name].push_back(joint);
+    if (parent_joint_.count(joint->child_link_name))
+      fail("link '" + joint->child_link_name + "': child of two joints, '" +
+           parent_joint_[joint->child_link_name]->name + "' and '" + name +
+           "' (a kinematic loop; a URDF must be a tree)");
+    parent_joint_[joint->child_link_name] = joint;
+  }
+  check_tree();
+  check_links();
+  check_joints();
+  collect_trunk();
+
+  UrdfRobot robot;
+  robot.name = model_->getName();
+  robot.source_path = source_;
+  robot.trunk_link = opt_.trunk_link.empty() ? model_->getRoot()->name : opt_.trunk_link;
+  robot.forward_axis = opt_.forward_axis;
+  // Trunk axes: forward → +y, up (+z) → +z, right = forward × up → +x.
+  Vec3 fwd;
+  if (opt_.forward_axis == "+x") fwd = Vec3::UnitX();
+  else if (opt_.forward_axis == "-x") fwd = -Vec3::UnitX();
+  else if (opt_.forward_axis == "+y") fwd = Vec3::UnitY();
+  else if (opt_.forward_axis == "-y") fwd = -Vec3::UnitY();
+  else fail("forward axis '" + opt_.forward_axis + "', expected one of +x, -x, +y, -y");
+  const Vec3 up = Vec3::UnitZ();
+  robot.B_R_U.row(0) = fwd.cross(up).transpose();
+  robot.B_R_U.row(1) = fwd.transpose();
+  robot.B_R_U.row(2) = up.transpose();
+  const Placement B_X_U{Vec3::Zero(), robot.B_R_U};
+
+  std::vector<std::pair<std::string, Placement>> trunk(trunk_group_.begin(), trunk_group_.end());
+  robot.trunk = transformed(group_inertia(trunk), B_X_U);
+  for (const auto& [name, link] : model_->links_) robot.total_mass_kg += link_inertia(*link).mass_kg;
+
+  const auto legs = moving_children(trunk);
+  if (legs.size() != kLegs) {
+    std::string list;
+    for (const auto& j : legs) list += (list.empty() ? "" : ", ") + j->name;
+    fail("trunk '" + robot.trunk_link + "': " + std::to_string(legs.size()) +
+         " moving joints leave the trunk (" + (list.empty() ? "none" : list) +
+         "), expected six legs of three revolute joints");
+  }
+  if (!opt_.foot_links.empty() && opt_.foot_links.size() != kLegs)
+    fail("robot.foot_links: " + std::to_string(opt_.foot_links.size()) + " names, expected 6");
+  for (const auto& f : opt_.foot_links) {
+    if (!model_->getLink(f)) fail("robot.foot_links: no link '" + f + "' in the description");
+    foot_link_used_[f] = 0;
+  }
+  std::vector<UrdfLeg> chains;
+  for (std::size_t i = 0; i < legs.size(); ++i) {
+    UrdfLeg leg = read_chain(legs[i], B_X_U * trunk_group_.at(legs[i]->parent_link_name), static_cast<int>(i));
+    chains.push_back(leg);
+  }
+  for (const auto& [f, n] : foot_link_used_)
+    if (n != 1) fail("robot.foot_links: link '" + f + "' is not fixed to the last link of exactly one leg chain");
+  map_legs(chains, robot);
+  return robot;
+}
+
+void Reader::check_tree() {
+  // Every link reachable from the root: links on a cycle of joints are not.
+  const std::string root = model_->getRoot()->name;
+  std::set<std::string> seen{root};
+  std::vector<std::string> todo{root};
+  while (!todo.empty()) {
+    const std::string l = todo.back();
+    todo.pop_back();
+    for (const auto& j : child_joints_[l])
+      if (seen.insert(j->child_link_name).second) todo.push_back(j->child_link_name);
+  }
+  for (const auto& [name, link] : model_->links_)
+    if (!seen.count(name))
+      fail("link '" + name + "': not connected to the root link '" + root +
+           "' (a cycle of joints; a URDF must be a tree)");
+}
+
+void Reader::check_links() {
+  for (const auto& [name, link] : model_->links_) {
+    if (!link->inertial) continue;
+    const urdf::Inertial& in = *link->inertial;
+    const std::string who = "link '" + name + "': ";
+    const double v[] = {in.mass, in.ixx, in.ixy, in.ixz, in.iyy, in.iyz, in.izz};
+    for (double x : v)
+      if (!std::isfinite(x)) fail(who + "<inertial> holds " + num(x) + ", expected finite numbers");
+    if (!finite_pose(in.origin)) fail(who + "<inertial><origin> is not finite");
+    if (!(in.mass > 0.0))
+      fail(who + "mass " + num(in.mass) + " kg, expected > 0 (a massless link has no <inertial>)");
+    Mat3 I;
+    I << in.ixx, in.ixy, in.ixz, in.ixy, in.iyy, in.iyz, in.ixz, in.iyz, in.izz;
+    if (I.isZero(0.0)) continue;  // a point mass
+    const Vec3 m = Eigen::SelfAdjointEigenSolver<Mat3>(I, Eigen::EigenvaluesOnly).eigenvalues();
+    const std::string moments = "principal moments (" + num(m[0]) + ", " + num(m[1]) + ", " + num(m[2]) + ") kg m2";
+    if (!(m[0] > 0.0)) fail(who + "inertia not positive definite: " + moments);
+    // Sorted ascending: the largest must not exceed the sum of the other two.
+    if (m[2] > (m[0] + m[1]) * (1.0 + 1e-9))
+      fail(who + "inertia breaks the triangle inequality of principal moments (each at most the sum of the other two): " +
+           moments);
+  }
+}
+
+void Reader::check_joints() {
+  for (const auto& [name, j] : model_->joints_) {
+    const std::string who = "joint '" + name + "': ";
+    if (!finite_pose(j->parent_to_joint_origin_transform)) fail(who + "<origin> is not finite");
+    if (j->type != urdf::Joint::FIXED && j->type != urdf::Joint::REVOLUTE && j->type != urdf::Joint::CONTINUOUS)
+      fail(who + "type " + type_name(j->type) + " not supported (hexdyn reads fixed, revolute and continuous joints)");
+    if (!is_moving(*j)) continue;
+    const Vec3 a(j->axis.x, j->axis.y, j->axis.z);
+    if (!a.allFinite() || a.norm() < 1e-12) fail(who + "axis (" + num(a.x()) + ", " + num(a.y()) + ", " + num(a.z()) + ") is not a direction");
+    if (j->limits) {
+      const urdf::JointLimits& l = *j->limits;
+      if (!std::isfinite(l.effort) || l.effort < 0.0) fail(who + "effort limit " + num(l.effort) + ", expected a finite number >= 0");
+      if (!std::isfinite(l.velocity) || l.velocity < 0.0) fail(who + "velocity limit " + num(l.velocity) + ", expected a finite number >= 0");
+      if (j->type == urdf::Joint::REVOLUTE) {
+        if (!std::isfinite(l.lower) || !std::isfinite(l.upper)) fail(who + "limits are not finite");
+        if (l.lower > l.upper) fail(who + "lower limit " + num(l.lower) + " above upper limit " + num(l.upper));
+      }
+    }
+  }
+}
+
+void Reader::collect_trunk() {
+  const std::string trunk = opt_.trunk_link.empty() ? model_->getRoot()->name : opt_.trunk_link;
+  if (!model_->getLink(trunk)) fail("robot.trunk_link: no link '" + trunk + "' in the description");
+  // The fixed-joint component of the trunk link, both up and down the tree.
+  trunk_group_[trunk] = Placement{};
+  std::vector<std::string> todo{trunk};
+  while (!todo.empty()) {
+    const std::string l = todo.back();
+    todo.pop_back();
+    const Placement T_X_l = trunk_group_.at(l);
+    for (const auto& j : child_joints_[l]) {
+      if (is_moving(*j) || trunk_group_.count(j->child_link_name)) continue;
+      trunk_group_[j->child_link_name] = T_X_l * to_placement(j->parent_to_joint_origin_transform);
+      todo.push_back(j->child_link_name);
+    }
+    const auto up = parent_joint_.find(l);
+    if (up == parent_joint_.end() || trunk_group_.count(up->second->parent_link_name)) continue;
+    if (is_moving(*up->second))
+      fail("joint '" + up->second->name + "': a moving joint above the trunk link '" + trunk +
+           "' (the trunk must be the root, or fixed to it)");
+    trunk_group_[up->second->parent_link_name] =
+        T_X_l * to_placement(up->second->parent_to_joint_origin_transform).inverse();
+    todo.push_back(up->second->parent_link_name);
+  }
+}
+
+std::vector<std::pair<std::string, Placement>> Reader::fixed_group(const std::string& link) const {
+  std::vector<std::pair<std::string, Placement>> out{{link, Placement{}}};
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    const auto it = child_joints_.find(out[i].first);
+    if (it == child_joints_.end()) continue;
+    for (const auto& j : it->second)
+      if (!is_moving(*j)) out.emplace_back(j->child_link_name, out[i].second * to_placement(j->parent_to_joint_origin_transform));
+  }
+  return out;
+}
+
+RigidInertia Reader::group_inertia(const std::vector<std::pair<std::string, Placement>>& group) const {
+  RigidInertia r;
+  for (const auto& [name, X] : group) r = combine(r, transformed(link_inertia(*model_->getLink(name)), X));
+  return r;
+}
+
+std::vector<urdf::JointConstSharedPtr> Reader::moving_children(
+    const std::vector<std::pair<std::string, Placement>>& group) const {
+  std::vector<urdf::JointConstSharedPtr> out;
+  for (const auto& [name, X] : group) {
+    const auto it = child_joints_.find(name);
+    if (it == child_joints_.end()) continue;
+    for (const auto& j : it->second)
+      if (is_moving(*j)) out.push_back(j);
+  }
+  return out;
+}
+
+UrdfLeg Reader::read_chain(const urdf::JointConstSharedPtr& first, const Placement& B_X_parent, int) {
+  UrdfLeg leg;
+  const std::string chain = "chain '" + first->name + "': ";
+  urdf::JointConstSharedPtr joint = first;
+  Placement X_parent = B_X_parent;  // the joint's parent link in its body's frame
+  std::vector<std::pair<std::string, Placement>> group;
+  for (int j = 0; j < kJointsPerLeg; ++j) {
+    const Placement X = X_parent * to_placement(joint->parent_to_joint_origin_transform);
+    leg.joint_names[j] = joint->name;
+    leg.link_names[j] = joint->child_link_name;
+    leg.p_parent_joint[j] = X.p;
+    leg.R_parent_joint[j] = X.R;
+    leg.axis[j] = Vec3(joint->axis.x, joint->axis.y, joint->axis.z).normalized();
+    const bool continuous = joint->type == urdf::Joint::CONTINUOUS;
+    const auto& lim = joint->limits;
+    leg.lower_rad[j] = continuous || !lim ? -kInf : lim->lower;
+    leg.upper_rad[j] = continuous || !lim ? kInf : lim->upper;
+    leg.effort_Nm[j] = lim && lim->effort > 0.0 ? lim->effort : kInf;
+    leg.velocity_radps[j] = lim && lim->velocity > 0.0 ? lim->velocity : kInf;
+    group = fixed_group(joint->child_link_name);
+    leg.inertia[j] = group_inertia(group);
+    const auto next = moving_children(group);
+    if (j < kJointsPerLeg - 1) {
+      if (next.size() != 1) {
+        std::string list;
+        for (const auto& n : next) list += (list.empty() ? "" : ", ") + n->name;
+        fail(chain + "not a chain of three revolute joints: link '" + joint->child_link_name + "' carries " +
+             std::to_string(next.size()) + " moving joints after joint '" + joint->name + "'" +
+             (list.empty() ? "" : " (" + list + ")"));
+      }
+      joint = next.front();
+      for (const auto& [name, Xl] : group)
+        if (name == joint->parent_link_name) X_parent = Xl;
+    } else if (!next.empty()) {
+      fail(chain + "not a chain of three revolute joints: joint '" + next.front()->name + "' follows the third joint '" +
+           joint->name + "'");
+    }
+  }
+  // Foot point in the third link's frame.
+  const std::string last = leg.link_names[2];
+  bool found = false;
+  for (const auto& f : opt_.foot_links) {
+    for (const auto& [name, Xl] : group) {
+      if (name != f) continue;
+      leg.p_foot_last = Xl.p;
+      leg.foot_source = f;
+      ++foot_link_used_[f];
+      found = true;
+    }
+  }
+  if (!opt_.foot_links.empty() && !found)
+    fail(chain + "none of robot.foot_links is fixed to its last link '" + last + "'");
+  if (!found && opt_.foot_offset) {
+    leg.p_foot_last = *opt_.foot_offset;
+    leg.foot_source = "robot.foot_offset";
+    found = true;
+  }
+  if (!found) {
+    // The end of the chain of links fixed to the last link.
+    std::string end = last;
+    Placement X_end;
+    for (;;) {
+      std::vector<std::pair<std::string, Placement>> kids;
+      for (const auto& [name, Xl] : group) {
+        const auto pj = parent_joint_.find(name);
+        if (name != last && pj != parent_joint_.end() && pj->second->parent_link_name == end) kids.emplace_back(name, Xl);
+      }
+      if (kids.empty()) break;
+      if (kids.size() > 1)
+        fail(chain + "links '" + kids[0].first + "' and '" + kids[1].first + "' are both fixed to '" + end +
+             "': name the foot links (robot.foot_links) or give robot.foot_offset");
+      end = kids[0].first;
+      X_end = kids[0].second;
+    }
+    leg.p_foot_last = X_end.p;
+    leg.foot_source = end;
+  }
+  const Vec3& a = leg.axis[2];
+  if ((leg.p_foot_last - a.dot(leg.p_foot_last) * a).norm() < 1e-6)
+    fail(chain + "foot (" + leg.foot_source + ") lies on the axis of its last joint '" + leg.joint_names[2] +
+         "': the description has no foot frame; name the foot links (robot.foot_links) or give robot.foot_offset");
+  return leg;
+}
+
+void Reader::map_legs(std::vector<UrdfLeg>& chains, UrdfRobot& robot) const {
+  std::vector<int> left, right;
+  for (int i = 0; i < static_cast<int>(chains.size()); ++i) {
+    const Vec3& h = chains[i].p_parent_joint[0];
+    if (std::abs(h.x()) < 1e-9)
+      fail("chain '" + chains[i].joint_names[0] + "': hip on the trunk's forward axis (" + num(h.x()) +
+           " m to the side): cannot tell left from right; set robot.forward_axis (now " + opt_.forward_axis + ")");
+    (h.x() < 0.0 ? left : right).push_back(i);
+  }
+  if (left.size() != 3 || right.size() != 3)
+    fail("legs: " + std::to_string(left.size()) + " hips on the left and " + std::to_string(right.size()) +
+         " on the right of the trunk (forward axis " + opt_.forward_axis + "), expected 3 and 3; set robot.forward_axis");
+  auto by_y = [&](int a, int b) { return chains[a].p_parent_joint[0].y() > chains[b].p_parent_joint[0].y(); };
+  std::sort(left.begin(), left.end(), by_y);
+  std::sort(right.begin(), right.end(), by_y);
+  for (int row = 0; row < 3; ++row) {
+    robot.legs[2 * row] = chains[left[row]];
+    robot.legs[2 * row + 1] = chains[right[row]];
+  }
+}
+
+}  // namespace
+
+UrdfRobot read_urdf_robot_from_string(const std::string& urdf_text, const std::string& source_name,
+                                      const UrdfReadOptions& options) {
+  Reader reader(source_name, options);
+  return reader.read(urdf_text);
+}
+
+UrdfRobot read_urdf_robot(const std::string& path, const UrdfReadOptions& options) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw ConfigError(path + ": cannot read the URDF file");
+  std::ostringstream s;
+  s << in.rdbuf();
+  if (in.bad()) throw ConfigError(path + ": cannot read the URDF file");
+  return read_urdf_robot_from_string(s.str(), path, options);
+}
+
+}  // namespace hexdyn

@@ -1,0 +1,59 @@
+#pragma once
+/// \file urdf_reader.hpp
+/// Reads a hexapod from a URDF file with urdfdom (Debian liburdfdom-dev, the parser
+/// Pinocchio and DART use) into a UrdfRobot (urdf_robot.hpp). Its own CMake target,
+/// hexdyn_urdf_reader: only it links urdfdom.
+///
+/// What is read (URDF specification, and the choices hexdyn makes):
+///  - Trunk: the root link, or options.trunk_link; every link joined to it by fixed
+///    joints (in either direction) is merged into the trunk body.
+///  - Fixed joints are merged: each link's <inertial> (mass, COM origin, rotated inertial
+///    frame, full tensor with products of inertia) is moved into the body it is fixed to
+///    (parallel-axis theorem). A link without <inertial> is massless.
+///  - Legs: the moving joints leaving the trunk body; there must be six, each a chain of
+///    exactly three revolute or continuous joints (each link of the chain carrying one
+///    moving joint, the last none).
+///  - Foot: options.foot_links (six link names, any order, each fixed to the last link of
+///    a chain), else options.foot_offset (a point in the chain's last link frame [m]), else
+///    the origin of the chain's last link: the end of the chain of links fixed to the
+///    third joint's child (the child itself when none is fixed to it). A foot on the third
+///    joint's axis is refused (the joint would not move it).
+///  - Trunk axes: options.forward_axis of the trunk link ("+x" default, ROS REP-103;
+///    "-x", "+y", "-y") becomes hexdyn's +y (forward), the link's +z stays up, x = y × z
+///    (right). Legs map to L1 … L6 by their coxa joints in that frame: x < 0 left, x > 0
+///    right; front, middle, rear by decreasing y.
+///  - Limits: <limit lower upper> (continuous: ±inf), effort [N m], velocity [rad/s].
+///
+/// Validation: a broken description throws ConfigError (exit 2) with one line
+/// "FILE: link|joint|chain 'NAME': RULE BROKEN" for: XML or URDF structure urdfdom refuses
+/// (its message; duplicate link or joint names, a missing parent or child link, unknown
+/// joint types, malformed numbers such as nan or inf); NaN or inf anywhere; a link with two
+/// parent joints or not connected to the root (cycles); joint types other than fixed,
+/// revolute, continuous; a zero axis; lower > upper; negative effort or velocity; mass ≤ 0
+/// in an <inertial>; an inertia that is not positive definite (an all-zero tensor is
+/// accepted as a point mass, e.g. Kraby's end caps) or whose principal moments break the
+/// triangle inequality; a leg count other than six; a chain that is not 3R; a foot that
+/// cannot be found; legs that cannot be mapped.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "hexdyn/model/urdf_robot.hpp"
+
+namespace hexdyn {
+
+struct UrdfReadOptions {
+  std::string trunk_link;                ///< empty: the root link
+  std::string forward_axis = "+x";       ///< "+x", "-x", "+y", "-y" of the trunk link
+  std::vector<std::string> foot_links;   ///< empty, or six link names (one per chain)
+  std::optional<Vec3> foot_offset;       ///< foot point in each chain's last link frame [m]
+};
+
+/// Reads and validates `path`; throws ConfigError (message names `path`).
+UrdfRobot read_urdf_robot(const std::string& path, const UrdfReadOptions& options = {});
+
+/// Same, from URDF text; `source_name` is used in messages and as source_path.
+UrdfRobot read_urdf_robot_from_string(const std::string& urdf_text, const std::string& source_name,
+                                      const UrdfReadOptions& options = {});
+
+}  // namespace hexdyn

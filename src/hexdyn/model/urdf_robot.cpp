@@ -1,0 +1,57 @@
+#include "hexdyn/model/urdf_robot.hpp"
+
+#include <sstream>
+
+namespace hexdyn {
+
+RobotModel build_robot_model(const UrdfRobot& robot, double ik_min_margin_m) {
+  RobotModel m;
+  m.leg_geometry = LegGeometry::kChain;
+  m.parent[0] = -1;
+  m.R_parent_joint[0].setIdentity();
+  m.p_parent_joint[0].setZero();
+  m.axis[0].setZero();
+  m.inertia[0] = robot.trunk;
+  m.trunk_only = robot.trunk;
+  m.payload = RigidInertia{};
+  m.link_length_m = {0.0, 0.0, 0.0};  // kPaperPlanar parameters: unused by a kChain model
+  m.d1_m = 0.0;
+  m.ik_min_margin_m = ik_min_margin_m;
+  for (int leg = 0; leg < kLegs; ++leg) {
+    const UrdfLeg& l = robot.legs[leg];
+    m.lateral_m[leg] = m.d2_signed_m[leg] = m.d3_signed_m[leg] = 0.0;
+    for (int j = 0; j < kJointsPerLeg; ++j) {
+      const int k = joint_index(leg, j);
+      const int b = 1 + k;
+      m.parent[b] = j == 0 ? 0 : b - 1;
+      m.p_parent_joint[b] = l.p_parent_joint[j];
+      m.R_parent_joint[b] = l.R_parent_joint[j];
+      m.axis[b] = l.axis[j];
+      m.inertia[b] = l.inertia[j];
+      m.joint_lower_rad[k] = l.lower_rad[j];
+      m.joint_upper_rad[k] = l.upper_rad[j];
+      m.effort_limit_Nm[k] = l.effort_Nm[j];
+      m.velocity_limit_radps[k] = l.velocity_radps[j];
+      m.joint_source_names[k] = l.joint_names[j];
+    }
+    m.p_foot_last[leg] = l.p_foot_last;
+  }
+  m.total_mass_kg = 0.0;
+  for (const auto& in : m.inertia) m.total_mass_kg += in.mass_kg;
+  prepare_leg_chains(m);
+  return m;
+}
+
+std::string leg_mapping_text(const UrdfRobot& robot) {
+  std::ostringstream s;
+  for (int leg = 0; leg < kLegs; ++leg) {
+    const UrdfLeg& l = robot.legs[leg];
+    const Vec3& h = l.p_parent_joint[0];
+    s << leg_name(leg) << " <- " << l.joint_names[0] << " / " << l.joint_names[1] << " / "
+      << l.joint_names[2] << ", hip (" << h.x() << ", " << h.y() << ", " << h.z()
+      << ") m in the trunk frame, foot " << l.foot_source << "\n";
+  }
+  return s.str();
+}
+
+}  // namespace hexdyn

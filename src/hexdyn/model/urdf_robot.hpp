@@ -1,0 +1,55 @@
+#pragma once
+/// \file urdf_robot.hpp
+/// A hexapod read from a URDF (urdf_reader.hpp), in hexdyn's conventions, and the
+/// RobotModel built from it. Nothing here depends on the URDF parser.
+///
+/// Trunk frame B (DESIGN.md §2: x right, y forward, z up) has its origin at the URDF
+/// trunk link's origin; its axes are the trunk link's rotated by B_R_U, which maps the
+/// description's forward axis (UrdfReadOptions::forward_axis, default +x as in ROS
+/// REP-103) to +y and its +z to +z. Every link joined to the trunk link by fixed joints is
+/// part of the trunk body. Each leg is a chain of three revolute (or continuous) joints
+/// from the trunk; link k of the chain is the child link of its joint k together with the
+/// links fixed to it. Link frames are the URDF child link frames; joint angles, axes,
+/// signs and zero poses are the URDF's.
+#include <string>
+
+#include "hexdyn/model/robot_model.hpp"
+
+namespace hexdyn {
+
+/// One leg as read from the description, in hexdyn's leg order.
+struct UrdfLeg {
+  std::array<std::string, kJointsPerLeg> joint_names;  ///< URDF joint names, hip → foot
+  std::array<std::string, kJointsPerLeg> link_names;   ///< their child links
+  /// Joint frame in the parent link frame (joint 0: in the trunk frame B) [m].
+  std::array<Vec3, kJointsPerLeg> p_parent_joint;
+  std::array<Mat3, kJointsPerLeg> R_parent_joint;
+  std::array<Vec3, kJointsPerLeg> axis;                ///< unit, joint frame
+  std::array<RigidInertia, kJointsPerLeg> inertia;     ///< merged link bodies, link frames
+  std::array<double, kJointsPerLeg> lower_rad{}, upper_rad{};  ///< ±inf: continuous
+  std::array<double, kJointsPerLeg> effort_Nm{};       ///< +inf: none given
+  std::array<double, kJointsPerLeg> velocity_radps{};  ///< +inf: none given
+  Vec3 p_foot_last = Vec3::Zero();  ///< foot point in the third link frame [m]
+  std::string foot_source;          ///< the link whose origin is the foot, or "robot.foot_offset"
+};
+
+struct UrdfRobot {
+  std::string name;         ///< <robot name>
+  std::string source_path;  ///< the file read
+  std::string trunk_link;   ///< the URDF link whose frame is the trunk frame
+  std::string forward_axis; ///< "+x", "-x", "+y" or "-y" of the trunk link
+  Mat3 B_R_U = Mat3::Identity();  ///< URDF trunk link axes → trunk frame B
+  RigidInertia trunk;       ///< trunk body (links fixed to the trunk link), frame B
+  std::array<UrdfLeg, kLegs> legs;  ///< L1 … L6 (common.hpp)
+  double total_mass_kg = 0.0;       ///< sum over every <inertial> of the file [kg]
+};
+
+/// The RobotModel of a URDF robot: LegGeometry::kChain, tree and inertias from `robot`,
+/// no payload. ik_min_margin_m: RobotParams::ik_min_margin_m.
+RobotModel build_robot_model(const UrdfRobot& robot, double ik_min_margin_m = 1e-4);
+
+/// "L1 <- right_front_coxa/right_front_femur/right_front_tibia, hip (x, y, z) m, foot pxmark4/…"
+/// one line per leg: the mapping of the description's chains to hexdyn's legs.
+std::string leg_mapping_text(const UrdfRobot& robot);
+
+}  // namespace hexdyn
