@@ -78,17 +78,7 @@ LegIkResult ik_yaw_pitch_pitch(const RobotModel& m, int leg, const Vec3& p) {
   const double tx = t.dot(d.e1_J1), ty = t.dot(d.e2_J1);
   const double dist = std::hypot(tx, ty);
   const double l2 = d.l2_m, l3 = d.l3_m;
-  const double margin_ext = (l2 + l3) - dist;
-  const double margin_fold = dist - std::abs(l2 - l3);
-  r.margin_m = std::min(margin_ext, margin_fold);
-  if (margin_ext < m.ik_min_margin_m) {
-    r.reason = margin_ext < 0.0 ? "beyond full extension" : "within robot.ik_min_margin of full extension";
-    return r;
-  }
-  if (margin_fold < m.ik_min_margin_m) {
-    r.reason = margin_fold < 0.0 ? "inside full fold" : "within robot.ik_min_margin of full fold";
-    return r;
-  }
+  if (!planar_reach_ok(dist, l2, l3, m.ik_min_margin_m, r)) return r;
   const double cos_delta = (dist * dist - l2 * l2 - l3 * l3) / (2.0 * l2 * l3);
   // Knee up: (chord × femur)·n > 0 with n = outward × up; the sign of that product is
   // −sign(δ)·sign(a1·n), so δ takes the sign of −a1·n.

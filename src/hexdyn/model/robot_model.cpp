@@ -16,18 +16,6 @@ RigidInertia to_inertia(const BodyParams& p) {
   return r;
 }
 
-/// Sum of two bodies expressed in the same frame (parallel-axis theorem).
-RigidInertia combine(const RigidInertia& a, const RigidInertia& b) {
-  RigidInertia r;
-  r.mass_kg = a.mass_kg + b.mass_kg;
-  r.com_m = (a.mass_kg * a.com_m + b.mass_kg * b.com_m) / r.mass_kg;
-  auto shift = [&](const RigidInertia& x) {
-    const Vec3 d = x.com_m - r.com_m;
-    return Mat3(x.inertia_com + x.mass_kg * (d.squaredNorm() * Mat3::Identity() - d * d.transpose()));
-  };
-  r.inertia_com = shift(a) + shift(b);
-  return r;
-}
 
 Mat3 rot_z(double a) { return Eigen::AngleAxisd(a, Vec3::UnitZ()).toRotationMatrix(); }
 
@@ -48,7 +36,7 @@ RobotModel build_robot_model(const RobotParams& params) {
   m.R_parent_joint[0].setIdentity();
   m.p_parent_joint[0].setZero();
   m.axis[0].setZero();
-  m.inertia[0] = combine(m.trunk_only, m.payload);
+  m.inertia[0] = combine_inertias(m.trunk_only, m.payload);
   constexpr double kNone = std::numeric_limits<double>::infinity();
   for (int leg = 0; leg < kLegs; ++leg) {
     for (int j = 0; j < kJointsPerLeg; ++j) {
@@ -94,8 +82,8 @@ RobotModel build_robot_model(const RobotParams& params) {
         RigidInertia point;
         point.mass_kg = params.link[j].mass_kg;
         point.com_m = m.p_hip_B[leg];
-        m.inertia[0] = combine(m.inertia[0], point);
-        m.trunk_only = combine(m.trunk_only, point);
+        m.inertia[0] = combine_inertias(m.inertia[0], point);
+        m.trunk_only = combine_inertias(m.trunk_only, point);
         m.inertia[b_coxa + j] = RigidInertia{};
       }
     }
@@ -182,17 +170,7 @@ LegIkResult leg_inverse_kinematics(const RobotModel& m, int leg, const Vec3& p) 
   const double u = rho - L[0];
   const double v = p.z() + m.d1_m;
   const double dist = std::hypot(u, v);
-  const double margin_ext = (L[1] + L[2]) - dist;
-  const double margin_fold = dist - std::abs(L[1] - L[2]);
-  r.margin_m = std::min(margin_ext, margin_fold);
-  if (margin_ext < m.ik_min_margin_m) {
-    r.reason = margin_ext < 0.0 ? "beyond full extension" : "within robot.ik_min_margin of full extension";
-    return r;
-  }
-  if (margin_fold < m.ik_min_margin_m) {
-    r.reason = margin_fold < 0.0 ? "inside full fold" : "within robot.ik_min_margin of full fold";
-    return r;
-  }
+  if (!planar_reach_ok(dist, L[1], L[2], m.ik_min_margin_m, r)) return r;
   const double cos3 = (u * u + v * v - L[1] * L[1] - L[2] * L[2]) / (2.0 * L[1] * L[2]);
   const double beta3 = -std::acos(std::clamp(cos3, -1.0, 1.0));  // knee up
   const double beta2 =
@@ -230,6 +208,35 @@ Vec3 center_of_mass_B(const RobotModel& m, const BodyPoses& poses) {
   for (int b = 0; b < kBodies; ++b)
     c += m.inertia[b].mass_kg * (poses.p_B[b] + poses.R_B[b] * m.inertia[b].com_m);
   return c / m.total_mass_kg;
+}
+
+RigidInertia combine_inertias(const RigidInertia& a, const RigidInertia& b) {
+  if (b.mass_kg == 0.0) return a;
+  if (a.mass_kg == 0.0) return b;
+  RigidInertia r;
+  r.mass_kg = a.mass_kg + b.mass_kg;
+  r.com_m = (a.mass_kg * a.com_m + b.mass_kg * b.com_m) / r.mass_kg;
+  auto shift = [&](const RigidInertia& x) {
+    const Vec3 d = x.com_m - r.com_m;
+    return Mat3(x.inertia_com + x.mass_kg * (d.squaredNorm() * Mat3::Identity() - d * d.transpose()));
+  };
+  r.inertia_com = shift(a) + shift(b);
+  return r;
+}
+
+bool planar_reach_ok(double dist_m, double l2_m, double l3_m, double min_margin_m, LegIkResult& r) {
+  const double margin_ext = (l2_m + l3_m) - dist_m;
+  const double margin_fold = dist_m - std::abs(l2_m - l3_m);
+  r.margin_m = std::min(margin_ext, margin_fold);
+  if (margin_ext < min_margin_m) {
+    r.reason = margin_ext < 0.0 ? "beyond full extension" : "within robot.ik_min_margin of full extension";
+    return false;
+  }
+  if (margin_fold < min_margin_m) {
+    r.reason = margin_fold < 0.0 ? "inside full fold" : "within robot.ik_min_margin of full fold";
+    return false;
+  }
+  return true;
 }
 
 }  // namespace hexdyn

@@ -36,6 +36,10 @@ struct RigidInertia {
   Mat3 inertia_com = Mat3::Zero();     ///< rotational inertia about the COM, body axes [kg m²]
 };
 
+/// Sum of two bodies expressed in the same frame (parallel-axis theorem); a massless part
+/// adds nothing (and two massless parts give a massless body).
+RigidInertia combine_inertias(const RigidInertia& a, const RigidInertia& b);
+
 /// How the legs' kinematics are evaluated (file comment).
 enum class LegGeometry { kPaperPlanar, kChain };
 
@@ -123,6 +127,12 @@ struct LegIkResult {
   bool ok = false;
   std::string reason;     ///< why not ok: "beyond full extension", "joint limit", ...
 };
+
+/// Planar two-link workspace check of the closed-form IK: the wrist point at `dist_m` from the
+/// femur axis, links l2, l3. Sets `r.margin_m` to the distance from full extension or full
+/// fold and returns false with `r.reason` set when that is below `min_margin_m`.
+bool planar_reach_ok(double dist_m, double l2_m, double l3_m, double min_margin_m, LegIkResult& r);
+
 /// p_H: foot target in the hip frame. Never throws; callers turn !ok into ReachError.
 LegIkResult leg_inverse_kinematics(const RobotModel& model, int leg, const Vec3& p_H);
 

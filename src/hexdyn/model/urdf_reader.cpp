@@ -147,21 +147,6 @@ const char* type_name(int type) {
 
 bool is_moving(const urdf::Joint& j) { return j.type != urdf::Joint::FIXED; }
 
-/// Sum of two bodies in one frame (parallel-axis theorem); massless parts add nothing.
-RigidInertia combine(const RigidInertia& a, const RigidInertia& b) {
-  if (b.mass_kg == 0.0) return a;
-  if (a.mass_kg == 0.0) return b;
-  RigidInertia r;
-  r.mass_kg = a.mass_kg + b.mass_kg;
-  r.com_m = (a.mass_kg * a.com_m + b.mass_kg * b.com_m) / r.mass_kg;
-  auto shift = [&](const RigidInertia& x) {
-    const Vec3 d = x.com_m - r.com_m;
-    return Mat3(x.inertia_com + x.mass_kg * (d.squaredNorm() * Mat3::Identity() - d * d.transpose()));
-  };
-  r.inertia_com = shift(a) + shift(b);
-  return r;
-}
-
 /// A link's <inertial> in the link frame: COM = origin position, tensor rotated from the
 /// inertial frame into the link axes.
 RigidInertia link_inertia(const urdf::Link& link) {
@@ -367,7 +352,7 @@ std::vector<std::pair<std::string, Placement>> Reader::fixed_group(const std::st
 
 RigidInertia Reader::group_inertia(const std::vector<std::pair<std::string, Placement>>& group) const {
   RigidInertia r;
-  for (const auto& [name, X] : group) r = combine(r, transformed(link_inertia(*model_->getLink(name)), X));
+  for (const auto& [name, X] : group) r = combine_inertias(r, transformed(link_inertia(*model_->getLink(name)), X));
   return r;
 }
 
