@@ -93,9 +93,9 @@ struct ContactParams {
   double friction_coefficient = 0.3;         ///< μ
 };
 
-/// Allocation back end: the dense dual active-set QP (allocation_active_set.hpp, the
-/// default for friction pyramids) or Ipopt (allocation_ipopt.cpp: the exact-cone NLP and
-/// the reference).
+/// Allocation back end: the dense dual active-set QP (allocation/active_set.hpp; with the
+/// exact cone, its sequential outer approximation, allocation/cone.hpp), the default for
+/// every friction model, or Ipopt (allocation/ipopt.cpp: the reference).
 enum class AllocationSolver { kActiveSet, kIpopt };
 enum class FrictionModel { kPyramid4, kPyramid8, kCone };
 

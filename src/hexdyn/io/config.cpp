@@ -382,15 +382,12 @@ void read_allocation(Reader& r, AllocationParams& a) {
   const std::string friction = r.choice("allocation.friction", {"pyramid4", "pyramid8", "cone"}, &def_friction);
   a.friction = friction == "cone" ? FrictionModel::kCone
                : friction == "pyramid8" ? FrictionModel::kPyramid8 : FrictionModel::kPyramid4;
-  // auto: the active-set QP for the pyramids, Ipopt for the exact cone (a nonlinear
-  // constraint); asking for the active-set back end with the cone is an error.
+  // auto = active-set: the dual active-set QP for the pyramids, and for the exact cone the
+  // same QP under sequential outer approximation (allocation/cone.hpp); ipopt: the NLP
+  // reference for every friction model.
   const std::string def_solver = "auto";
   const std::string solver = r.choice("allocation.solver", {"auto", "active-set", "ipopt"}, &def_solver);
-  a.solver = solver == "ipopt" || (solver == "auto" && friction == "cone") ? AllocationSolver::kIpopt
-                                                                           : AllocationSolver::kActiveSet;
-  if (a.solver == AllocationSolver::kActiveSet && a.friction == FrictionModel::kCone)
-    r.fail("allocation.solver", "got 'active-set' with allocation.friction 'cone', expected 'ipopt' "
-                                "(the exact cone needs the NLP back end) or a pyramid friction model");
+  a.solver = solver == "ipopt" ? AllocationSolver::kIpopt : AllocationSolver::kActiveSet;
   a.torque_limit_Nm = r.number("allocation.torque_limit", positive(1e6));
   a.min_normal_force_N = r.number_or("allocation.min_normal_force", 0.0, nonnegative(1e6));
   a.tolerance = r.number_or("allocation.tolerance", 1e-9, {0.0, 1e-2, true, false});
