@@ -96,8 +96,8 @@ int run_pass(AllocationBackend& backend, const std::vector<QpProblem>& problems,
     const QpOutcome& out = backend.solve(qp);
     const long made = g_allocations.load(std::memory_order_relaxed) - before;
     s.push_back(out.seconds);
-    status = std::max(status, out.status);
-    if (count && out.status == 0) count->allocations += made, ++count->solves;
+    status = std::max(status, static_cast<int>(out.status));
+    if (count && out.status == SolverStatus::kOptimal) count->allocations += made, ++count->solves;
   }
   return status;
 }

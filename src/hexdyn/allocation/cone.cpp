@@ -255,7 +255,7 @@ class ConeBackend final : public AllocationBackend {
       r = &qp_->solve(w_);
       ++passes;
       out_.iterations += r->iterations;
-      if (r->status == 2) {
+      if (r->status == SolverStatus::kFailed) {
         fail(p, "pass " + std::to_string(passes) + " of the outer approximation: " + r->message);
         return;
       }
@@ -277,7 +277,7 @@ class ConeBackend final : public AllocationBackend {
         for (int j = 0; j < kCutsPerCone; ++j) lam -= r->lambda_ineq[m_in + kCutsPerCone * k + j];
         // Another half-space of this cone violated at a penalised answer would count the
         // cone's penalty twice: it is dropped for the rest of the sample.
-        if (r->status == 1) {
+        if (r->status == SolverStatus::kRelaxed) {
           for (int j = 1; j < kCutsPerCone; ++j) {
             if (on_[k][j] && cut_[k][j].x() * t1 + cut_[k][j].y() * t2 - c.mu * r->x[c.normal] >
                                  feasibility_tol()) {
@@ -349,15 +349,15 @@ class ConeBackend final : public AllocationBackend {
       std::snprintf(buf, sizeof buf, "outer approximation of %s converged only to %.3g after %d passes",
                     p.cones[worst_cone].name.empty() ? "a cone" : p.cones[worst_cone].name.c_str(), worst_gap,
                     passes);
-      out_.status = 1;
+      out_.status = SolverStatus::kRelaxed;
       out_.message = v.empty() ? std::string("approximate: ") + buf : "relaxed: " + v + " (" + buf + ")";
       return;
     }
     if (v.empty()) {
-      out_.status = 0;
-      if (r->status == 0) out_.message = r->message;  // e.g. a regularisation note
+      out_.status = SolverStatus::kOptimal;
+      if (r->status == SolverStatus::kOptimal) out_.message = r->message;  // e.g. a regularisation note
     } else {
-      out_.status = 1;
+      out_.status = SolverStatus::kRelaxed;
       out_.message = "relaxed: " + v;
     }
   }

@@ -23,7 +23,8 @@
 #include "hexdyn/core/errors.hpp"
 #include "hexdyn/io/config.hpp"
 #include "hexdyn/kinematics/kinematics.hpp"
-#include "hexdyn/pipeline/dynamics_stage.hpp"
+#include "hexdyn/allocation/problem.hpp"
+#include "hexdyn/contact/touchdowns.hpp"
 #include "hexdyn/pipeline/pipeline.hpp"
 #include "hexdyn/sweep/sweep.hpp"
 
@@ -314,10 +315,10 @@ RunComparison compare_with_ipopt(const Scene& scene, int stride = 1) {
     const double dx = inf_norm(out.x - ref.x);
     if (out.status != ref.status) {
       ++r.status_mismatches;
-      note(i, "status " + std::to_string(out.status) + " (" + out.message + ") vs Ipopt " +
-                  std::to_string(ref.status) + " (" + ref.message + ")");
+      note(i, "status " + std::to_string(static_cast<int>(out.status)) + " (" + out.message + ") vs Ipopt " +
+                  std::to_string(static_cast<int>(ref.status)) + " (" + ref.message + ")");
     }
-    if (out.status == 0) {
+    if (out.status == SolverStatus::kOptimal) {
       ++r.optimal;
       r.max_dx_optimal = std::max(r.max_dx_optimal, dx);
       if (!qp.cones.empty()) r.max_cone_violation = std::max(r.max_cone_violation, worst_cone_violation(qp, out.x));
@@ -382,7 +383,7 @@ TEST_CASE("cone back end: one foot is the closed-form projection onto its cone",
       // n ≥ 0 never binds apart from the apex: the projection has n ≥ 0.
       const Eigen::Vector3d expected = project_onto_cone(a, mu);
       const QpOutcome& out = backend->solve(p);
-      REQUIRE(out.status == 0);
+      REQUIRE(out.status == SolverStatus::kOptimal);
       CHECK(inf_norm(out.x - expected) < 1e-10 * (1.0 + a.norm()));
       std::string why;
       CHECK(check_cone_kkt(p, out, 1e-9, &why));
@@ -499,7 +500,7 @@ QpOutcome check_against_ipopt(const QpProblem& p, double dx = 1e-6) {
   CHECK(named_rows(out.message) == named_rows(ref.message));
   CHECK(inf_norm(out.x - ref.x) < dx);
   std::string why;
-  if (out.status == 0) {
+  if (out.status == SolverStatus::kOptimal) {
     CHECK(check_cone_kkt(p, out, 1e-9, &why));
     INFO(why);
     CHECK(worst_cone_violation(p, out.x) <= 1e-11);
@@ -522,14 +523,14 @@ TEST_CASE("cone back end: hard cases agree with Ipopt at 1e-12 and the KKT condi
   std::mt19937 rng(2718);
   SECTION("mu = 5: wide cones, the friction limit far away") {
     const QpProblem p = trunk_problem(rng, kTripod, 5.0, kWeight + Eigen::Vector3d(3, 8, 0), {1, -2, 0.5}, 6.0);
-    CHECK(check_against_ipopt(p).status == 0);
+    CHECK(check_against_ipopt(p).status == SolverStatus::kOptimal);
   }
   SECTION("mu = 0.001: the trunk's horizontal force cannot be carried, the cones give way") {
     // A horizontal demand of 8 N through cones of μ = 0.001 (≤ 0.07 N in all): the trunk
     // rows (weight 1e2) give way rather than the cones (1e3).
     const QpProblem p = trunk_problem(rng, kTripod, 0.001, kWeight + Eigen::Vector3d(0, 8, 0), {0, 0, 0}, 6.0);
     const QpOutcome out = check_against_ipopt(p, 1e-5);
-    CHECK(out.status == 1);
+    CHECK(out.status == SolverStatus::kRelaxed);
     CHECK(out.message.find("trunk force y") != std::string::npos);
   }
   SECTION("mu = 0.001 with a purely vertical load: optimal, cones nearly closed") {
@@ -539,14 +540,14 @@ TEST_CASE("cone back end: hard cases agree with Ipopt at 1e-12 and the KKT condi
     const QpProblem p = trunk_problem(rng, kTripod, 0.001, kWeight, {0, 0, 0}, 6.0);
     auto backend = cone_backend();
     const QpOutcome& out = backend->solve(p);
-    REQUIRE(out.status == 0);
+    REQUIRE(out.status == SolverStatus::kOptimal);
     std::string why;
     CHECK(check_cone_kkt(p, out, 1e-9, &why));
     INFO(why);
     CHECK(worst_cone_violation(p, out.x) <= 1e-11);
     auto ipopt = reference_ipopt();
     const QpOutcome& ref = ipopt->solve(p);
-    CHECK((ref.status == 0 || ref.message.rfind("approximate", 0) == 0));
+    CHECK((ref.status == SolverStatus::kOptimal || ref.message.rfind("approximate", 0) == 0));
     CHECK(penalised_objective(p, out.x, 1e6) <= penalised_objective(p, ref.x, 1e6) + 1e-10);
   }
   SECTION("a foot at the apex of its cone: unloaded at the optimum") {
@@ -560,7 +561,7 @@ TEST_CASE("cone back end: hard cases agree with Ipopt at 1e-12 and the KKT condi
     p.g.segment<3>(6) = -2.0 * G3.transpose() * (G3 * Eigen::Vector3d(2, -1, -5));
     for (int j = 0; j < 3; ++j) p.C.row(6 + 8 + j).setZero(), p.C(6 + 8 + j, 6 + j) = 0.1;
     const QpOutcome out = check_against_ipopt(p);
-    REQUIRE(out.status == 0);
+    REQUIRE(out.status == SolverStatus::kOptimal);
     CHECK(out.x.segment<3>(6).norm() < 1e-9);
   }
   SECTION("a foot near the apex: f_n small but positive on the boundary") {
@@ -573,7 +574,7 @@ TEST_CASE("cone back end: hard cases agree with Ipopt at 1e-12 and the KKT condi
       const QpProblem p = single_foot(a, 0.3);
       auto backend = cone_backend();
       const QpOutcome& out = backend->solve(p);
-      REQUIRE(out.status == 0);
+      REQUIRE(out.status == SolverStatus::kOptimal);
       CHECK(inf_norm(out.x - project_onto_cone(a, 0.3)) < 2e-9);
       CHECK(out.x[2] > 0.0);
       CHECK(worst_cone_violation(p, out.x) <= 1e-9);
@@ -585,7 +586,7 @@ TEST_CASE("cone back end: hard cases agree with Ipopt at 1e-12 and the KKT condi
                                               {0.25, 0, 0},   {-0.2, -0.3, 0}, {0.2, -0.3, 0}};
     const QpProblem p = trunk_problem(rng, six, 0.3, kWeight + Eigen::Vector3d(12.0, 15.0, 0.0), {0, 0, 0}, 60.0);
     const QpOutcome out = check_against_ipopt(p);
-    REQUIRE(out.status == 0);
+    REQUIRE(out.status == SolverStatus::kOptimal);
     int active = 0;
     for (std::size_t k = 0; k < p.cones.size(); ++k) {
       const SecondOrderCone& c = p.cones[k];
@@ -597,7 +598,7 @@ TEST_CASE("cone back end: hard cases agree with Ipopt at 1e-12 and the KKT condi
     QpProblem p = trunk_problem(rng, kTripod, 0.1, kWeight + Eigen::Vector3d(0, 15.0, 0), {0, 0, 0}, 60.0);
     for (SecondOrderCone& c : p.cones) c.penalty = 1.0;  // cones give way before the trunk rows
     const QpOutcome out = check_against_ipopt(p, 1e-5);
-    REQUIRE(out.status == 1);
+    REQUIRE(out.status == SolverStatus::kRelaxed);
     CHECK(out.message.find("friction cone") != std::string::npos);
     CHECK(out.message.find("trunk") == std::string::npos);
     CHECK(out.max_violation > 0.1);
@@ -613,7 +614,7 @@ TEST_CASE("cone back end: hard cases agree with Ipopt at 1e-12 and the KKT condi
   SECTION("torque limits active together with the cone") {
     const QpProblem loose = trunk_problem(rng, kTripod, 0.3, kWeight + Eigen::Vector3d(4, 9, 0), {0.5, 0, 0}, 60.0);
     const QpOutcome free = check_against_ipopt(loose);
-    REQUIRE(free.status == 0);
+    REQUIRE(free.status == SolverStatus::kOptimal);
     // Tighten the limit until it binds but stays feasible: 97 % of the largest |τ| at the
     // answer with loose limits.
     QpProblem p = loose;
@@ -627,7 +628,7 @@ TEST_CASE("cone back end: hard cases agree with Ipopt at 1e-12 and the KKT condi
       p.lower[i] = mid - limit, p.upper[i] = mid + limit;
     }
     const QpOutcome out = check_against_ipopt(p);
-    REQUIRE(out.status == 0);
+    REQUIRE(out.status == SolverStatus::kOptimal);
     int torque_active = 0, cone_active = 0;
     for (int i = 6; i < p.inequalities(); ++i)
       torque_active += p.ineq_names[i].rfind("torque", 0) == 0 && std::abs(out.lambda_ineq[i]) > 1e-9;
@@ -671,7 +672,7 @@ TEST_CASE("cone back end: warm starts, problems without cones, options", "[alloc
     p.g[1] = std::nan("");
     auto backend = cone_backend();
     const QpOutcome& out = backend->solve(p);
-    CHECK(out.status == 2);
+    CHECK(out.status == SolverStatus::kFailed);
     CHECK(out.x.allFinite());
     CHECK(out.message.rfind("failed: non-finite", 0) == 0);
   }
@@ -696,7 +697,7 @@ TEST_CASE("cone back end: warm starts, problems without cones, options", "[alloc
     auto backend = make_allocation_backend(params);
     const QpProblem p = single_foot(Eigen::Vector3d(1, 0, 1), 0.3);
     const QpOutcome& out = backend->solve(p);  // the plain active-set back end would throw
-    CHECK(out.status == 0);
+    CHECK(out.status == SolverStatus::kOptimal);
     CHECK(inf_norm(out.x - project_onto_cone(Eigen::Vector3d(1, 0, 1), 0.3)) < 1e-12);
   }
 }
