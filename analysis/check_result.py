@@ -7,8 +7,19 @@ Checks: schema and /meta attributes; every model and kinematic dataset present w
 its shape, element type and `units`; finite values; URDF total mass = /model/total_mass
 (and = --expect-mass within 1e-9); URDF forward kinematics from /base/position,
 /base/orientation and /joints/position reproduces /feet/position within 1e-9 m at
-every sample. With --dynamics, the dynamics datasets as well. Prints one line per
-failure and a summary "check_result: P passed, F failed"; exits 1 on any failure.
+every sample. With --dynamics, the dynamics datasets as well, and on every sample with
+/solver/status 0 (optimal) the constraints the allocation must meet, evaluated from the
+file's data alone, against the fixed threshold VIOLATION_THRESHOLD * max(1, |bound|) of
+allocation/qp.hpp kViolationThreshold (1e-6 N or N m):
+  - sum of the foot forces = sum over the URDF's links of m (a_com - g), with each link's
+    COM acceleration from a forward recursion over the URDF from /base/* and /joints/*
+    (the three force rows of the trunk equations; independent of hexdyn's RNEA);
+  - |tau_k| <= allocation.torque_limit for every joint;
+  - feet in support: F_n >= allocation.min_normal_force and |F_t| <= mu F_n (the exact
+    cone, which contains every inscribed pyramid); feet in swing: F = 0;
+with the limits, mu and the terrain normal read from /meta config_yaml.
+Prints one line per failure and a summary "check_result: P passed, F failed"; exits 1 on
+any failure.
 """
 
 import argparse
@@ -26,6 +37,8 @@ from urdf_fk import UrdfRobot  # noqa: E402
 
 FK_TOLERANCE_M = 1e-9
 MASS_TOLERANCE_KG = 1e-9
+VIOLATION_THRESHOLD = 1e-6  # N or N m, times max(1, |bound|): allocation/qp.hpp kViolationThreshold
+GRAVITY = np.array([0.0, 0.0, -9.81])
 
 
 class Checks:
@@ -143,6 +156,114 @@ def check_dynamics(c, res):
                 "/solver/status values in {0, 1, 2}")
 
 
+def link_com_accelerations(robot, res):
+    """{link: COM acceleration (T,3)} in the world frame, by a forward recursion of angular
+    velocity, angular acceleration and origin acceleration over the URDF tree."""
+    from urdf_fk import axis_rotation, quaternion_to_matrix
+    q = np.asarray(res["/joints/position"], float)
+    qd = np.asarray(res["/joints/velocity"], float)
+    qdd = np.asarray(res["/joints/acceleration"], float)
+    index = {name: k for k, name in enumerate(robot.joint_order)}
+    R0 = quaternion_to_matrix(np.asarray(res["/base/orientation"], float))
+    state = {robot.root: (R0, np.asarray(res["/base/angular_velocity"], float),
+                          np.asarray(res["/base/angular_acceleration"], float),
+                          np.asarray(res["/base/linear_acceleration"], float))}
+
+    def motion(link):
+        if link in state:
+            return state[link]
+        joint = robot.joint_of_child[link]
+        R_p, w_p, al_p, a_p = motion(joint.parent)
+        r = np.einsum("tij,j->ti", R_p, joint.xyz)
+        a = a_p + np.cross(al_p, r) + np.cross(w_p, np.cross(w_p, r))
+        R = R_p @ joint.R_origin
+        w, al = w_p, al_p
+        if joint.type in ("revolute", "continuous"):
+            k = index[joint.name]
+            z = np.einsum("tij,j->ti", R, joint.axis)
+            w = w_p + z * qd[:, k:k + 1]
+            al = al_p + z * qdd[:, k:k + 1] + np.cross(w_p, z * qd[:, k:k + 1])
+            R = R @ axis_rotation(joint.axis, q[:, k])
+        state[link] = (R, w, al, a)
+        return state[link]
+
+    out = {}
+    for link in robot.link_mass:
+        R, w, al, a = motion(link)
+        c = np.einsum("tij,j->ti", R, robot.link_com[link])
+        out[link] = a + np.cross(al, c) + np.cross(w, np.cross(w, c))
+    return out
+
+
+def terrain_normal(config, feet):
+    """Unit normals (T,6,3) of the terrain under the feet (treads and flat ground: +z)."""
+    n = np.zeros(feet.shape)
+    n[..., 2] = 1.0
+    terrain = config.get("terrain", {}) or {}
+    if terrain.get("type") == "slope":
+        a = float(terrain["angle"])
+        n[...] = (0.0, -np.sin(a), np.cos(a))
+    return n
+
+
+def check_allocation(c, res):
+    """The constraints of every optimal sample, from the file's data (module docstring)."""
+    needed = ("/solver/status", "/contacts/force", "/contacts/phase", "/joints/torque",
+              "/base/linear_acceleration", "/joints/acceleration")
+    if not all(p in res for p in needed):
+        return
+    config = yaml.safe_load(res.meta.get("config_yaml", "")) or {}
+    alloc = config.get("allocation", {}) or {}
+    contact = config.get("contact", {}) or {}
+    tmax = float(alloc.get("torque_limit", np.inf))
+    fmin = float(alloc.get("min_normal_force", 0.0))
+    mu = float(contact.get("friction_coefficient", np.inf))
+    status = np.asarray(res["/solver/status"])
+    ok = status == 0
+    time = np.asarray(res["/time"])
+    F = np.asarray(res["/contacts/force"], float)
+    phase = np.asarray(res["/contacts/phase"])
+    tau = np.asarray(res["/joints/torque"], float)
+
+    def report(bad, excess, what):
+        idx = np.flatnonzero(bad & ok)
+        worst = idx[np.argmax(excess[idx])] if idx.size else None
+        c.check(idx.size == 0, f"optimal samples: {what}",
+                "" if worst is None else f"{idx.size} samples violate it, worst by {excess[worst]:.3g} "
+                f"at sample {worst} (t = {time[worst]:.6g} s)")
+
+    # Trunk force rows: sum of foot forces = sum of m (a_com - g) over the links.
+    try:
+        robot = UrdfRobot(res.urdf)
+        acc = link_com_accelerations(robot, res)
+        rhs = sum(robot.link_mass[l] * (acc[l] - GRAVITY) for l in robot.link_mass)
+        excess = np.abs(F.sum(axis=1) - rhs) - VIOLATION_THRESHOLD * np.maximum(1.0, np.abs(rhs))
+        report((excess > 0).any(axis=1), excess.max(axis=1) + VIOLATION_THRESHOLD,
+               "sum of foot forces = total mass x COM acceleration - weight (trunk force rows) [N]")
+    except (ValueError, KeyError) as e:
+        c.check(False, "trunk force rows evaluated", str(e))
+    # Torque limits.
+    excess = np.abs(tau) - tmax
+    report((excess > VIOLATION_THRESHOLD * max(1.0, tmax)).any(axis=1), excess.max(axis=1),
+           f"|torque| <= {tmax:g} N m")
+    # Contact rows: swing feet carry nothing; support feet push and stay in the cone.
+    normal = terrain_normal(config, F)
+    fn = np.einsum("tlk,tlk->tl", F, normal)
+    ft = np.linalg.norm(F - fn[..., None] * normal, axis=2)
+    swing = phase == 0
+    fmag = np.where(swing, np.linalg.norm(F, axis=2), 0.0)
+    report((fmag > VIOLATION_THRESHOLD).any(axis=1), fmag.max(axis=1), "swing feet carry no force")
+    support = phase == 2
+    below = np.where(support, fmin - fn, -np.inf)
+    report((below > VIOLATION_THRESHOLD * max(1.0, fmin)).any(axis=1), below.max(axis=1),
+           f"support feet: normal force >= {fmin:g} N")
+    contact_feet = phase != 0
+    cone = np.where(contact_feet, ft - mu * fn, -np.inf)
+    bound = np.maximum(1.0, np.abs(mu * fn))
+    report((cone > VIOLATION_THRESHOLD * bound).any(axis=1), cone.max(axis=1),
+           f"feet in contact: |F_t| <= {mu:g} F_n (friction cone)")
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("file", help="hexdyn-result/1 HDF5 file")
@@ -166,6 +287,7 @@ def main(argv=None):
     check_kinematics(c, res, args.expect_mass)
     if args.dynamics:
         check_dynamics(c, res)
+        check_allocation(c, res)
     print(f"check_result: {c.passed} passed, {c.failed} failed")
     return 0 if c.failed == 0 else 1
 

@@ -26,6 +26,17 @@
 
 namespace hexdyn {
 
+/// The fixed physical threshold of a violated constraint, independent of any solver
+/// tolerance: a row or cone counts as violated when it misses its bound by more than
+/// kViolationThreshold · max(1, |bound|) in its own units — N for the trunk force rows,
+/// normal-force rows and friction faces or cones (|F_t| − μ F_n), N·m for the trunk
+/// moment rows and the joint torque limits. 1e-6 N is about 1.5e-8 of the paper robot's
+/// weight (65.7 N) and 1e-6 N·m about 2e-7 of its torque limit: far below anything
+/// physical, far above the rounding of the rows (about 1e-13 relative). After every
+/// solve the pipeline measures the solution against it (describe_violations) and flags
+/// the sample relaxed when any row is beyond it, whatever the back end reported.
+inline constexpr double kViolationThreshold = 1e-6;
+
 /// A bound at or beyond this magnitude, or ±infinity, means "no bound".
 inline constexpr double kQpInfinity = 1e19;
 

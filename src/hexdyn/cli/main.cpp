@@ -1,6 +1,7 @@
 // hexdyn command line: thin driver over the library (pipeline.hpp).
 #include <yaml-cpp/yaml.h>
 
+#include <cstdio>
 #include <cstring>
 #include <iostream>
 #include <string>
@@ -10,14 +11,21 @@
 #include "hexdyn/core/errors.hpp"
 #include "hexdyn/mpi/mpi_sweep.hpp"
 #include "hexdyn/io/output.hpp"
+#include "hexdyn/io/yaml_load.hpp"
 #include "hexdyn/pipeline/pipeline.hpp"
 #include "hexdyn/sweep/sweep.hpp"
 #include "hexdyn/version.hpp"
 
 namespace {
 
-constexpr const char* kRunUsage = R"(usage: hexdyn run CONFIG -o FILE [--set key.path=value ...]
+constexpr const char* kRunUsage = R"(usage: hexdyn run CONFIG -o FILE [--set key.path=value ...] [--allow-large]
   Runs a scene and writes its hexdyn-result/1 file to FILE.
+
+FILE must be a new path or an existing regular file that is none of the run's inputs
+(CONFIG and the files it inherits); devices, FIFOs, directories and symbolic links are
+refused, and FILE's folder must take a new file, all checked before computing. A run of
+more than 200000 output samples (about 290 MB) stops before computing unless
+--allow-large is given.
 
 CONFIG is a YAML scene (see configs/paper.yaml for every key); `inherit: OTHER.yaml`
 takes the keys of another scene file. --set overrides one key by dotted path, the value
@@ -49,7 +57,8 @@ scenario; progress lines come at most every --progress seconds (default 5).
 constexpr const char* kUsage = R"(hexdyn — inverse dynamics of a legged robot on stairs
 
 usage:
-  hexdyn run CONFIG -o FILE [--set key.path=value ...]   run a scene, write hexdyn-result/1
+  hexdyn run CONFIG -o FILE [--set key.path=value ...] [--allow-large]
+                                                         run a scene, write hexdyn-result/1
   hexdyn validate FILE [--set key.path=value ...]        check a scene or sweep file and exit
   hexdyn sweep SWEEP -o FILE [--keep-runs] [--resume] [-v] [--progress SECONDS]
                                                          run a parameter sweep, write hexdyn-sweep/1
@@ -65,7 +74,7 @@ files of at most 1 MiB, without duplicate keys.
 struct Args {
   std::string command, config, output;
   std::vector<hexdyn::Override> overrides;
-  bool keep_runs = false, resume = false, verbose = false, progress_given = false;
+  bool keep_runs = false, resume = false, verbose = false, progress_given = false, allow_large = false;
   double progress_s = 5.0;
 };
 
@@ -97,6 +106,7 @@ Args parse_args(int argc, char** argv) {
     else if (arg.rfind("--set=", 0) == 0) a.overrides.push_back(hexdyn::parse_override(arg.substr(6)));
     else if (arg == "--keep-runs") a.keep_runs = true;
     else if (arg == "--resume") a.resume = true;
+    else if (arg == "--allow-large") a.allow_large = true;
     else if (arg == "-v" || arg == "--verbose") a.verbose = true;
     else if (arg == "--progress") {
       a.progress_s = parse_seconds(value("--progress"));
@@ -111,6 +121,8 @@ Args parse_args(int argc, char** argv) {
   const bool sweep_flags = a.keep_runs || a.resume || a.verbose || a.progress_given;
   if (a.command == "sweep" && !a.overrides.empty())
     throw hexdyn::ConfigError("sweep: --set is not available; fix keys with set: in the sweep file");
+  if (a.command != "run" && a.allow_large)
+    throw hexdyn::ConfigError(a.command + ": --allow-large belongs to 'hexdyn run'");
   if (a.command != "sweep" && sweep_flags)
     throw hexdyn::ConfigError(a.command + ": --keep-runs, --resume, -v and --progress belong to 'hexdyn sweep'");
   return a;
@@ -160,6 +172,17 @@ int validate(const Args& args) {
   return 0;
 }
 
+/// Refuses a run of more than kLargeResultSamples samples unless --allow-large was given.
+void check_run_size(std::size_t samples, bool allow_large) {
+  if (samples <= hexdyn::kLargeResultSamples || allow_large) return;
+  char size[64];
+  std::snprintf(size, sizeof size, "%.2g GB", hexdyn::estimated_result_file_bytes(samples) / 1e9);
+  throw hexdyn::ConfigError("run: " + std::to_string(samples) + " output samples, a result file of about " +
+                            size + "; more than " + std::to_string(hexdyn::kLargeResultSamples) +
+                            " samples (about 0.29 GB) are refused as a likely typing error in output.* "
+                            "(sample_step, impact_samples, event_step); pass --allow-large to run it");
+}
+
 /// An error message on one line: line breaks from quoted values are written as "\\n".
 std::string one_line(const std::string& text) {
   std::string out;
@@ -202,8 +225,12 @@ int main(int argc, char** argv) {
     if (args.command == "run") {
       if (args.output.empty()) throw hexdyn::ConfigError("run: missing -o FILE");
       const hexdyn::Scene scene = hexdyn::load_scene(args.config, args.overrides);
-      hexdyn::check_output_path_writable(args.output);
-      const hexdyn::RunResult result = hexdyn::run_scene(scene, &std::cerr);
+      // Before any computing: the output is a new path or a regular file that is none of the inputs.
+      hexdyn::check_output_target(args.output, hexdyn::scene_input_files(args.config));
+      // Before the allocation: the grid's size, against the large-run limit.
+      const hexdyn::PreparedScene prep = hexdyn::prepare_scene(scene);
+      check_run_size(prep.grid.size(), args.allow_large);
+      const hexdyn::RunResult result = hexdyn::run_prepared_scene(scene, prep, &std::cerr);
       hexdyn::write_result_file(args.output, result);
       std::cerr << "hexdyn: wrote " << args.output << " (" << result.kin.samples() << " samples, "
                 << result.wall_time_s << " s)\n";
@@ -211,6 +238,13 @@ int main(int argc, char** argv) {
     }
     if (args.command == "sweep") {
       if (args.output.empty()) throw hexdyn::ConfigError("sweep: missing -o FILE");
+      {
+        // The sweep file, its base scene and the base's inherited files are inputs: never the output.
+        const hexdyn::SweepSpec spec = hexdyn::load_sweep(args.config);
+        std::vector<std::string> inputs = hexdyn::scene_input_files(spec.base_path);
+        inputs.insert(inputs.begin(), args.config);
+        hexdyn::check_output_target(args.output, inputs);
+      }
       return hexdyn::run_sweep({args.config, args.output, args.keep_runs, args.resume,
                                 args.verbose, args.progress_s});
     }
@@ -218,6 +252,14 @@ int main(int argc, char** argv) {
   } catch (const hexdyn::Error& e) {
     if (!hexdyn::launched_as_secondary_rank()) std::cerr << "hexdyn: error: " << one_line(e.what()) << "\n";
     return e.exit_status();
+  } catch (const YAML::Exception& e) {
+    // A YAML lookup that a reader did not guard (e.g. a missing key read as a scalar) still
+    // comes from the user's file: bad input, not a crash. Each such case is a reader bug to
+    // fix where it is thrown; this keeps the exit status and the one line meanwhile.
+    if (!hexdyn::launched_as_secondary_rank())
+      std::cerr << "hexdyn: error: " << one_line(argc >= 3 ? argv[2] : "input") << ": unexpected YAML structure: "
+                << one_line(e.what()) << "\n";
+    return 2;
   } catch (const std::exception& e) {
     std::cerr << "hexdyn: internal error: " << one_line(e.what()) << "\n";
     return 4;

@@ -8,20 +8,37 @@
 /// names start with '.', so a directory listing can tell them from finished files.
 #include <cstddef>
 #include <functional>
+#include <optional>
 #include <string>
 
 namespace hexdyn {
 
 /// Publishes a file atomically: `write(tmp)` builds it at the temporary path `tmp`, then
-/// it is synced to disk and renamed over `path`. When `write`, the sync or the rename
+/// it is synced to disk and renamed over `path`. Right before the rename `path` is
+/// checked again with why_not_replaceable: a device, FIFO, socket, directory or symbolic
+/// link that appeared there meanwhile is never replaced (IoError). When `write`, the sync or the rename
 /// throws, the temporary file is removed, an existing file at `path` is left untouched,
 /// and the exception is rethrown (the sync's and the rename's as IoError naming the path).
 /// Precondition: the directory of `path` exists and is writable.
+/// The temporary path is temporary_path_for(path).
 void publish_atomically(const std::string& path,
                         const std::function<void(const std::string& tmp)>& write);
 
+/// Why an existing `path` must not be replaced by a published file, or nothing when it
+/// may be: nothing when `path` does not exist or is a regular file; otherwise "is a
+/// symbolic link", "is a directory", "is a character device", "is a block device", "is a
+/// FIFO (named pipe)", "is a socket". Symbolic links are refused, not followed: renaming
+/// over a link replaces the link, and following it could replace a file outside the
+/// output's folder. Uses lstat(2); other lstat failures than "does not exist" (a name
+/// too long, a path through a non-directory, no permission) are returned with the OS
+/// reason.
+std::optional<std::string> why_not_replaceable(const std::string& path);
+
 /// Publishes `size` bytes at `data` as the file `path` (publish_atomically). Throws IoError.
 void write_bytes_atomically(const std::string& path, const char* data, std::size_t size);
+
+/// The temporary name of `path` while it is written: `.<basename>.tmp.<pid>` beside it.
+std::string temporary_path_for(const std::string& path);
 
 /// Forces a written file's data to disk (fsync) so that a following rename publishes a
 /// complete file; throws IoError naming the path.

@@ -1,5 +1,7 @@
 #include "hexdyn/io/output.hpp"
 
+#include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -159,17 +161,71 @@ std::string utc_timestamp_now() {
   return buf;
 }
 
-void check_output_path_writable(const std::string& path) {
+void check_output_target(const std::string& path, const std::vector<std::string>& inputs) {
   if (path.empty()) throw IoError("cannot write output '': empty path");
-  std::error_code ec;
-  if (fs::is_directory(path, ec)) throw_output_error(path, "it is a directory");
+  struct stat target {};
+  if (::lstat(path.c_str(), &target) == 0) {
+    if (const auto why = why_not_replaceable(path)) throw_output_error(path, "it " + *why);
+    for (const std::string& input : inputs) {
+      struct stat in {};
+      if (::stat(input.c_str(), &in) != 0) continue;
+      if (in.st_dev == target.st_dev && in.st_ino == target.st_ino)
+        throw_output_error(path, "it is the input file '" + input +
+                                     "' of this run (same device and inode), which the output would destroy");
+    }
+  } else if (errno != ENOENT) {
+    const int err = errno;
+    const std::string dir = directory_of(path);
+    if (err == ENOTDIR) throw_output_error(path, "'" + dir + "' is not a directory");
+    throw_output_error(path, std::strerror(err));
+  }
   const std::string dir = directory_of(path);
-  const fs::file_status st = fs::status(dir, ec);
-  if (!fs::exists(st)) throw_output_error(path, "directory '" + dir + "' does not exist");
-  if (!fs::is_directory(st)) throw_output_error(path, "'" + dir + "' is not a directory");
-  if (::access(dir.c_str(), W_OK | X_OK) != 0)
-    throw_output_error(path,
-                       "directory '" + dir + "' is not writable (" + std::strerror(errno) + ")");
+  struct stat d {};
+  if (::stat(dir.c_str(), &d) != 0) {
+    if (errno == ENOENT) throw_output_error(path, "directory '" + dir + "' does not exist");
+    if (errno == ENOTDIR) throw_output_error(path, "'" + dir + "' is not a directory");
+    throw_output_error(path, "directory '" + dir + "': " + std::strerror(errno));
+  }
+  if (!S_ISDIR(d.st_mode)) throw_output_error(path, "'" + dir + "' is not a directory");
+  // The temporary file is where the output is built: creating it is the test.
+  const std::string tmp = temporary_path_for(path);
+  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
+  if (fd < 0) {
+    const int err = errno;
+    if (err == EEXIST && !why_not_replaceable(tmp)) return;  // a stale one of this pid: overwritten later
+    if (err == EACCES || err == EPERM)
+      throw_output_error(path, "directory '" + dir + "' is not writable (" + std::strerror(err) + ")");
+    throw_output_error(path, "cannot create a file in directory '" + dir + "' (" + std::strerror(err) + ")");
+  }
+  ::close(fd);
+  ::unlink(tmp.c_str());
+}
+
+void check_output_path_writable(const std::string& path) { check_output_target(path, {}); }
+
+double estimated_result_file_bytes(std::size_t samples) {
+  namespace s = schema;
+  double row = 0.0;  // bytes per sample
+  for (const DatasetSpec* d :
+       {&s::kTime, &s::kBasePosition, &s::kBaseOrientation, &s::kBaseLinearVelocity,
+        &s::kBaseAngularVelocity, &s::kBaseLinearAcceleration, &s::kBaseAngularAcceleration,
+        &s::kJointPosition, &s::kJointVelocity, &s::kJointAcceleration, &s::kFeetPosition,
+        &s::kFeetVelocity, &s::kComPosition, &s::kContactPhase, &s::kJointTorque, &s::kContactForce,
+        &s::kContactPenetration, &s::kJointPower, &s::kTotalPower, &s::kSolverStatus,
+        &s::kSolverIterations, &s::kSolverObjective, &s::kSolverSeconds}) {
+    double columns = 1.0;
+    switch (d->shape) {
+      case s::Shape::kT3: columns = 3; break;
+      case s::Shape::kT4: columns = 4; break;
+      case s::Shape::kT6: columns = 6; break;
+      case s::Shape::kT18: case s::Shape::kT6x3: columns = 18; break;
+      default: break;
+    }
+    row += columns * (d->element == s::Element::kInt8 ? 1.0 : 8.0);
+  }
+  constexpr double kMessageBytes = 32.0;  // a variable-length string's reference and heap entry
+  constexpr double kFixedBytes = 64.0 * 1024.0;
+  return static_cast<double>(samples) * (row + kMessageBytes) + kFixedBytes;
 }
 
 void write_result_layout(H5Writer& w, const RunResult& result, const std::string& prefix) {

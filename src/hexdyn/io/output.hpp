@@ -1,16 +1,33 @@
 #pragma once
 /// \file output.hpp
 /// Writing a run as one `hexdyn-result/1` HDF5 file (DESIGN.md §4, schema.hpp).
+#include <cstddef>
 #include <string>
+#include <vector>
 
 #include "hexdyn/io/h5io.hpp"
 #include "hexdyn/core/result.hpp"
 
 namespace hexdyn {
 
-/// Checks, before any work, that a result can later be written to `path`: its
-/// directory exists and is writable (access(2)), and `path` is not a directory.
-/// Creates and modifies nothing. Throws IoError with one line naming path and reason.
+/// Checks, before any work, that an output file may later be published at `out`
+/// (publish_atomically), and throws IoError with one line naming `out` and the reason
+/// (the OS's words where the OS refused) when not:
+/// - `out` is a new path, or an existing regular file: a directory, device, FIFO, socket
+///   or symbolic link is never replaced (why_not_replaceable; symbolic links are refused,
+///   not resolved, so no file outside the output's folder is ever replaced);
+/// - `out` is not the same file as any of `inputs` (every file the run reads: the scene
+///   and each file it inherits, or the sweep file, its base scene and the base's inherited
+///   files), compared by identity (st_dev, st_ino), so that another name or a hard link
+///   of an input is refused too; inputs that cannot be stat'ed are skipped;
+/// - the folder of `out` exists and a file can be created in it: the temporary file of
+///   `out` (temporary_path_for) is created with O_EXCL and removed again, so a missing
+///   folder, a read-only or virtual file system (/proc, /sys), a name too long or a
+///   full inode table are found before any computing.
+/// Leaves the file system as it found it.
+void check_output_target(const std::string& out, const std::vector<std::string>& inputs);
+
+/// check_output_target(path, {}): the checks that need no list of inputs.
 void check_output_path_writable(const std::string& path);
 
 /// Writes `result` to `path` atomically: the file is built as `.<basename>.tmp.<pid>`
@@ -29,6 +46,18 @@ void write_result_file(const std::string& path, const RunResult& result);
 /// Writes the datasets and /meta of `result` into an open file below the root `prefix`
 /// ("" for the file root, "/runs/<id>" inside a sweep file).
 void write_result_layout(H5Writer& writer, const RunResult& result, const std::string& prefix = "");
+
+/// Result files of more samples than this are refused before computing unless the run
+/// is asked for explicitly (`hexdyn run --allow-large`): about 290 MB, 200 times the
+/// paper run, and beyond it a typing error (output.impact_samples: 100000 gives 1.1 M
+/// samples and a 1.7 GB file) is far likelier than a wish.
+inline constexpr std::size_t kLargeResultSamples = 200000;
+
+/// Size of a `hexdyn-result/1` file of `samples` samples [bytes], estimated from the
+/// schema: every per-sample dataset's row (schema.hpp shapes and element types, about
+/// 1.45 kB) plus 32 bytes per solver message and 64 kB for /meta and /model. Within
+/// about 10% of the files written (tests/hexdyn/io/test_output_target.cpp).
+double estimated_result_file_bytes(std::size_t samples);
 
 /// Current UTC time as ISO 8601 "YYYY-MM-DDTHH:MM:SSZ".
 std::string utc_timestamp_now();

@@ -320,6 +320,14 @@ YAML::Node load_scene_tree(const std::string& path) {
   return load_with_inheritance(path, chain);
 }
 
+std::vector<std::string> scene_input_files(const std::string& path) {
+  std::vector<ChainLink> chain;
+  load_with_inheritance(path, chain);
+  std::vector<std::string> files;
+  for (const ChainLink& link : chain) files.push_back(link.path);
+  return files;
+}
+
 std::optional<double> parse_fraction(const std::string& text) {
   static const std::regex fraction(R"(^\s*([+-]?[0-9]+)\s*/\s*([0-9]+)\s*$)");
   std::smatch m;

@@ -47,7 +47,14 @@ PreparedScene prepare_scene(const Scene& scene) {
 
 RunResult run_scene(const Scene& scene, std::ostream* log) {
   const auto start = std::chrono::steady_clock::now();
-  const PreparedScene prep = prepare_scene(scene);
+  RunResult result = run_prepared_scene(scene, prepare_scene(scene), log);
+  result.wall_time_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+RunResult run_prepared_scene(const Scene& scene, const PreparedScene& prep, std::ostream* log) {
+  const auto start = std::chrono::steady_clock::now();
   RunResult result;
   result.kin = sample_kinematics(prep.model, prep.plan, prep.grid);
   ContactSchedule contacts = schedule_contacts(result.kin, prep.plan.terrain, prep.touchdowns);

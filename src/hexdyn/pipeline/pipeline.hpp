@@ -32,6 +32,12 @@ struct PreparedScene {
 };
 PreparedScene prepare_scene(const Scene& scene);
 
+/// Samples and solves a scene prepared by prepare_scene(scene): what run_scene does after
+/// the preparation, so that a caller can look at the grid first (the CLI's size guard).
+/// wall_time_s counts from this call.
+RunResult run_prepared_scene(const Scene& scene, const PreparedScene& prep,
+                             std::ostream* log = nullptr);
+
 /// Plans, samples and solves a scene. `log` (may be null) receives one line per episode
 /// of relaxed or failed allocation samples.
 RunResult run_scene(const Scene& scene, std::ostream* log = nullptr);

@@ -45,8 +45,17 @@ class SampleSolver {
     const QpOutcome& outcome = backend_->solve(qp_);
     forces_from_solution(split, c.phase, c.impact_force_N, c.W_R_contact, offset_, outcome.x, F_W_,
                          tau_);
+    // Measured from the solution, not taken from the back end: every row and cone against
+    // the fixed threshold (allocation/qp.hpp kViolationThreshold).
+    measured_ = describe_violations(qp_, outcome.x, kViolationThreshold, &measured_max_);
     return outcome;
   }
+
+  /// Rows and cones the last solution violates beyond kViolationThreshold, largest first
+  /// ("trunk force z by 120, torque L1_femur by 0.45"), empty when none.
+  const std::string& measured_violations() const { return measured_; }
+  /// Largest violation of any row or cone of the last solution [N or N m].
+  double measured_max_violation() const { return measured_max_; }
 
   const std::array<Vec3, kLegs>& foot_forces_W() const { return F_W_; }  ///< [N], world
   const VecJ& joint_torque() const { return tau_; }                      ///< [N m]
@@ -65,6 +74,8 @@ class SampleSolver {
   VecJ tau_ = VecJ::Zero();
   double constant_excess_ = 0.0;
   std::string constant_violation_;
+  std::string measured_;
+  double measured_max_ = 0.0;
 };
 
 /// The left limit of the power at sample i (time t_s), whose contact phases differ from
@@ -87,18 +98,28 @@ std::optional<PowerJump> left_limit(SampleSolver& solver, const RobotModel& mode
   return jump;
 }
 
-/// A sample's status and message: the back end's, relaxed when a constant row (a
-/// swing-leg torque that no force can change) exceeds its limit, with the legs in their
-/// impact transient named.
+/// A sample's status and message: the back end's, made relaxed when the solution itself
+/// violates a row or cone beyond the fixed threshold (kViolationThreshold; the back end's
+/// own threshold follows allocation.tolerance and may be far looser) or when a constant
+/// row (a swing-leg torque that no force can change) exceeds its limit by more than the
+/// same threshold; the legs in their impact transient are named.
 struct SampleVerdict {
   SolverStatus status = SolverStatus::kOptimal;
-  std::string message;  ///< empty for an optimal sample
+  std::string message;      ///< empty for an optimal sample
+  double max_violation = 0.0;  ///< largest measured violation [N or N m]
 };
 
 SampleVerdict sample_verdict(const QpOutcome& outcome, const SampleSolver& solver,
-                             const SampleContacts& c, double tolerance) {
-  SampleVerdict v{outcome.status, outcome.message};
-  const bool constant_violated = solver.constant_excess() > tolerance;
+                             const SampleContacts& c, double torque_limit_Nm) {
+  SampleVerdict v{outcome.status, outcome.message,
+                  std::max(outcome.max_violation, solver.measured_max_violation())};
+  if (v.status == SolverStatus::kOptimal && !solver.measured_violations().empty()) {
+    v.status = SolverStatus::kRelaxed;
+    v.message = "relaxed: " + solver.measured_violations();
+  }
+  const bool constant_violated =
+      solver.constant_excess() > kViolationThreshold * std::max(1.0, torque_limit_Nm);
+  if (constant_violated) v.max_violation = std::max(v.max_violation, solver.constant_excess());
   if (constant_violated && v.status == SolverStatus::kOptimal) {
     v.status = SolverStatus::kRelaxed;
     v.message = "relaxed: " + solver.constant_violation();
@@ -202,7 +223,7 @@ DynamicsResult solve_dynamics(const Scene& scene, const RobotModel& model, const
                                  contacts.samples[i - 1].phase))
         jumps.push_back(*jump);
     }
-    const SampleVerdict verdict = sample_verdict(outcome, solver, c, scene.allocation.tolerance);
+    const SampleVerdict verdict = sample_verdict(outcome, solver, c, scene.allocation.torque_limit_Nm);
     const VecJ& tau = solver.joint_torque();
     dyn.solver_status[i] = verdict.status;
     dyn.solver_iterations[i] = outcome.iterations;
@@ -219,7 +240,7 @@ DynamicsResult solve_dynamics(const Scene& scene, const RobotModel& model, const
       dyn.penetration(i, l) = delta;
     }
     if (verdict.status != SolverStatus::kOptimal)
-      episodes.add(t, verdict.status, outcome.max_violation, verdict.message);
+      episodes.add(t, verdict.status, verdict.max_violation, verdict.message);
     else
       episodes.close();
   }
