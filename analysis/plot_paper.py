@@ -96,6 +96,8 @@ def fig4(res, outdir, leg, name, panel):
     for j in range(3):
         ax.plot(t, tau[:, 3 * (leg - 1) + j], lw=1.0, label=JOINTS[j])
     limit = res.config.get("allocation", {}).get("torque_limit")
+    if not isinstance(limit, (int, float)):  # "effort": a URDF robot's per-joint limits
+        limit = None
     if limit:
         for s in (-1, 1):
             ax.axhline(s * limit, color="k", ls=":", lw=0.8)

@@ -127,7 +127,10 @@ def check_result(f, root, source):
         sizes["n"] = f[c.full(S["kImpactLeg"].path)].shape[0]
     if c.full(S["kSolverMessages"].path) in f:
         sizes["m"] = f[c.full(S["kSolverMessages"].path)].shape[0]
-    for table in ("kModelDatasets", "kKinematicDatasets", "kDynamicsDatasets"):
+    tables = ["kModelDatasets", "kKinematicDatasets", "kDynamicsDatasets"]
+    if c.full(S["kModelLegMapping"].path) in f:  # a robot read from a URDF
+        tables.append("kUrdfRobotDatasets")
+    for table in tables:
         for spec in S[table]:
             c.dataset(spec, sizes)
     c.undeclared()

@@ -121,12 +121,15 @@ double build_allocation_problem(const AllocationParams& alloc, const ContactPara
     qp.ineq_names[row] = kTrunkRowNames[r];
     qp.ineq_penalty[row] = kTrunkRowPenaltyWeight;
   }
-  const double tmax = alloc.torque_limit_Nm;
+  // Per-joint limits (a URDF robot's effort limits) or one limit for every joint.
+  const auto tmax_of = [&alloc](int k) {
+    return alloc.joint_torque_limit_Nm ? (*alloc.joint_torque_limit_Nm)[k] : alloc.torque_limit_Nm;
+  };
   double worst_constant = 0.0;
   for (int l = 0; l < kLegs; ++l) {
     if (offset[l] < 0) {
       for (int j = 0; j < kJointsPerLeg; ++j) {
-        const double excess = std::abs(tau_known[joint_index(l, j)]) - tmax;
+        const double excess = std::abs(tau_known[joint_index(l, j)]) - tmax_of(joint_index(l, j));
         if (excess > worst_constant) {
           worst_constant = excess;
           if (constant_violation) {
@@ -142,6 +145,7 @@ double build_allocation_problem(const AllocationParams& alloc, const ContactPara
     const int o = offset[l];
     for (int j = 0; j < kJointsPerLeg; ++j, ++row) {
       const int kk = joint_index(l, j);
+      const double tmax = tmax_of(kk);
       qp.C.row(row) = G.row(kk);
       qp.lower[row] = tau_known[kk] - tmax;
       qp.upper[row] = tau_known[kk] + tmax;

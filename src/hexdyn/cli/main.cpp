@@ -9,6 +9,7 @@
 
 #include "hexdyn/io/config.hpp"
 #include "hexdyn/core/errors.hpp"
+#include "hexdyn/model/urdf_robot.hpp"
 #include "hexdyn/mpi/mpi_sweep.hpp"
 #include "hexdyn/io/output.hpp"
 #include "hexdyn/io/yaml_load.hpp"
@@ -18,8 +19,9 @@
 
 namespace {
 
-constexpr const char* kRunUsage = R"(usage: hexdyn run CONFIG -o FILE [--set key.path=value ...] [--allow-large]
-  Runs a scene and writes its hexdyn-result/1 file to FILE.
+constexpr const char* kRunUsage = R"(usage: hexdyn run CONFIG -o FILE [--set key.path=value ...] [--allow-large] [-v]
+  Runs a scene and writes its hexdyn-result/1 file to FILE. -v prints a URDF robot's
+  leg mapping (which chain of the description is L1 ... L6).
 
 FILE must be a new path or an existing regular file that is none of the run's inputs
 (CONFIG and the files it inherits); devices, FIFOs, directories and symbolic links are
@@ -33,7 +35,7 @@ parsed as YAML: --set gait.duty_factor=0.75, --set gait.duty_factor=3/4 (p/q is 
 divided by q, as in sweep files), --set motion.cycle_durations=[3,2.6,3].
 )";
 
-constexpr const char* kValidateUsage = R"(usage: hexdyn validate FILE [--set key.path=value ...]
+constexpr const char* kValidateUsage = R"(usage: hexdyn validate FILE [--set key.path=value ...] [-v]
   Checks a scene file, or a sweep file, and exits without computing anything.
 
 A file with a top-level `axes:` key is a sweep file: it is checked as `hexdyn sweep`
@@ -118,13 +120,14 @@ Args parse_args(int argc, char** argv) {
   }
   if (a.config.empty())
     throw hexdyn::ConfigError(a.command + ": missing " + (a.command == "sweep" ? "SWEEP" : a.command == "validate" ? "FILE" : "CONFIG") + " file");
-  const bool sweep_flags = a.keep_runs || a.resume || a.verbose || a.progress_given;
+  // -v also belongs to run and validate: it prints a URDF robot's leg mapping.
+  const bool sweep_flags = a.keep_runs || a.resume || a.progress_given;
   if (a.command == "sweep" && !a.overrides.empty())
     throw hexdyn::ConfigError("sweep: --set is not available; fix keys with set: in the sweep file");
   if (a.command != "run" && a.allow_large)
     throw hexdyn::ConfigError(a.command + ": --allow-large belongs to 'hexdyn run'");
   if (a.command != "sweep" && sweep_flags)
-    throw hexdyn::ConfigError(a.command + ": --keep-runs, --resume, -v and --progress belong to 'hexdyn sweep'");
+    throw hexdyn::ConfigError(a.command + ": --keep-runs, --resume and --progress belong to 'hexdyn sweep'");
   return a;
 }
 
@@ -163,11 +166,22 @@ int validate_sweep(const Args& args) {
   return 0;
 }
 
+/// -v: a URDF robot's leg mapping (the description's chains → L1 … L6), one line per leg.
+void print_leg_mapping(const hexdyn::Scene& scene, std::ostream& os) {
+  if (!scene.robot.urdf) return;
+  const hexdyn::UrdfRobot& robot = *scene.robot.urdf;
+  os << "hexdyn: robot '" << robot.name << "' from " << robot.source_path << ", trunk link " << robot.trunk_link
+     << " (forward " << robot.forward_axis << "), legs:\n"
+     << hexdyn::leg_mapping_text(robot) << "hexdyn: footholds " << scene.gait.foot_lateral_m
+     << " m from the hips along their outward directions (gait.foot_lateral)\n";
+}
+
 int validate(const Args& args) {
   // A sweep file is recognised by its top-level axes: key (no scene has one).
   const YAML::Node root = hexdyn::parse_yaml_text(hexdyn::read_text_file(args.config), args.config);
   if (root["axes"].IsDefined()) return validate_sweep(args);
   const hexdyn::Scene scene = hexdyn::load_scene(args.config, args.overrides);
+  if (args.verbose) print_leg_mapping(scene, std::cout);
   std::cout << args.config << ": valid scene '" << scene.name << "'\n";
   return 0;
 }
@@ -225,6 +239,7 @@ int main(int argc, char** argv) {
     if (args.command == "run") {
       if (args.output.empty()) throw hexdyn::ConfigError("run: missing -o FILE");
       const hexdyn::Scene scene = hexdyn::load_scene(args.config, args.overrides);
+      if (args.verbose) print_leg_mapping(scene, std::cerr);
       // Before any computing: the output is a new path or a regular file that is none of the inputs.
       hexdyn::check_output_target(args.output, hexdyn::scene_input_files(args.config));
       // Before the allocation: the grid's size, against the large-run limit.

@@ -89,6 +89,12 @@ struct RunResult {
   DynamicsResult dyn;
   std::string config_yaml;   ///< fully resolved
   std::string urdf;          ///< robot exactly as simulated
+  /// /model/joint_names: the description's joint names in flat joint order (a URDF
+  /// robot's own names; empty: hexdyn's L{i}_coxa … names).
+  std::vector<std::string> joint_names;
+  /// /model/leg_mapping (URDF robots only, else empty): one entry per leg
+  /// (model/urdf_robot.hpp leg_mapping_entries).
+  std::vector<std::string> leg_mapping;
   double total_mass_kg = 0.0;
   double wall_time_s = 0.0;
 };

@@ -3,12 +3,16 @@
 /// The typed, validated scene a run is made of. Produced by `load_scene` (config.hpp)
 /// from YAML; every field is SI. Field comments give units; which values come from
 /// the paper and which are assumptions is said in configs/paper.yaml.
+#include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "hexdyn/core/common.hpp"
 
 namespace hexdyn {
+
+struct UrdfRobot;  // model/urdf_robot.hpp: a hexapod read from a URDF file
 
 /// Mass and principal moments of one rigid body about its centre of mass,
 /// in the body's own frame.
@@ -45,6 +49,10 @@ struct RobotParams {
   /// planar workspace (full extension or full fold) [m]: below it IK refuses.
   double ik_min_margin_m = 1e-4;
   LegInertia leg_inertia = LegInertia::kFull;  ///< robot.leg_inertia
+  /// A robot read from its URDF (robot.urdf, io/robot_config.cpp), or null for the robot
+  /// described by the YAML keys above. When set, build_robot_model builds the model from
+  /// it and every field above except ik_min_margin_m is unused.
+  std::shared_ptr<const UrdfRobot> urdf;
 };
 
 enum class TerrainType { kFlat, kSlope, kStairs };
@@ -63,7 +71,10 @@ struct TerrainParams {
 struct GaitParams {
   double duty_factor = 0.5;           ///< β ∈ [1/2, 1): support fraction of each leg
   double stroke_m = 0.125;            ///< s0: foot travel relative to the trunk per stance
-  double foot_lateral_m = 0.17;       ///< horizontal outward distance of footholds from hip
+  /// Horizontal distance of footholds from the hip along the hip's outward direction
+  /// (RobotModel::hip_outward_B; the paper robot: straight out, ±x) [m]. A URDF robot's
+  /// default is its nominal stance radius (io/robot_config.hpp).
+  double foot_lateral_m = 0.17;
   double foothold_margin_m = 0.02;    ///< minimum distance of a foothold from nosing and riser
   double swing_clearance_m = 0.002;   ///< Δh over the highest terrain under the swing path
   double touchdown_speed_mps = 0.05;  ///< downward foot speed at touchdown
@@ -102,7 +113,11 @@ enum class FrictionModel { kPyramid4, kPyramid8, kCone };
 struct AllocationParams {
   AllocationSolver solver = AllocationSolver::kActiveSet;
   FrictionModel friction = FrictionModel::kPyramid4;
-  double torque_limit_Nm = 6.0;
+  double torque_limit_Nm = 6.0;  ///< |τ| bound of every joint, unless joint_torque_limit_Nm is set
+  /// Per-joint |τ| bounds in flat joint order [N m]: a URDF robot's effort limits when the
+  /// scene gives no allocation.torque_limit (+inf for a joint without one); unset: the
+  /// scalar torque_limit_Nm for every joint.
+  std::optional<std::array<double, kJoints>> joint_torque_limit_Nm;
   double min_normal_force_N = 0.0;
   double tolerance = 1e-9;
   double slack_penalty = 1e6;

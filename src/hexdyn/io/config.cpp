@@ -2,6 +2,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -10,6 +11,7 @@
 
 #include "hexdyn/core/errors.hpp"
 #include "hexdyn/io/plausibility.hpp"
+#include "hexdyn/io/robot_config.hpp"
 #include "hexdyn/io/yaml_load.hpp"
 
 namespace hexdyn {
@@ -147,6 +149,33 @@ class Reader {
     return v;
   }
 
+  /// A list of `n` non-empty strings, or nothing when absent.
+  std::vector<std::string> strings_or_none(const std::string& path, std::size_t n) {
+    const YAML::Node node = fetch(path, true);
+    std::vector<std::string> out;
+    if (!node.IsDefined()) return out;
+    const std::string expected = "a list of " + std::to_string(n) + " names";
+    if (!node.IsSequence() || node.size() != n) fail_value(path, node, expected);
+    YAML::Node seq(YAML::NodeType::Sequence);
+    for (const auto& e : node) {
+      if (!e.IsScalar() || e.Scalar().empty()) fail_value(path, node, expected);
+      out.push_back(e.Scalar());
+      seq.push_back(e.Scalar());
+    }
+    seq.SetStyle(YAML::EmitterStyle::Flow);
+    set_resolved(path, seq);
+    return out;
+  }
+
+  /// True when the key is absent or holds the word `word` (then recorded as `word` in the
+  /// resolved tree); false when it holds anything else.
+  bool absent_or_word(const std::string& path, const std::string& word) {
+    const YAML::Node n = fetch(path, true);
+    if (n.IsDefined() && (!n.IsScalar() || n.Scalar() != word)) return false;
+    set_resolved(path, YAML::Node(word));
+    return true;
+  }
+
   /// Every key of the file must have been asked for; reports the first unknown one.
   void check_unknown() const { walk(root_, ""); }
 
@@ -251,7 +280,34 @@ BodyParams read_body(Reader& r, const std::string& path, bool has_com_default, c
   return b;
 }
 
-void read_robot(Reader& r, RobotParams& p) {
+/// robot: {urdf: ...}: the robot read from its URDF (io/robot_config.hpp). Returns the
+/// nominal stance radius, gait.foot_lateral's default [m].
+double read_urdf_robot_keys(Reader& r, RobotParams& p, LoadedUrdfRobot& loaded) {
+  UrdfRobotKeys k;
+  k.path = r.string_or("robot.urdf", "");
+  if (k.path.empty()) r.fail("robot.urdf", "got an empty path, expected the path of a URDF file");
+  if (const auto why = why_not_regular_file(k.path))
+    r.fail("robot.urdf", "got " + k.path + ", which " + *why + ", expected a URDF file (relative to the scene file)");
+  k.trunk_link = r.string_or("robot.trunk_link", "");
+  const std::string def_axis = "+x";
+  k.forward_axis = r.choice("robot.forward_axis", {"+x", "-x", "+y", "-y"}, &def_axis);
+  k.foot_links = r.strings_or_none("robot.foot_links", kLegs);
+  if (r.has("robot.foot_offset")) k.foot_offset_m = r.vec3("robot.foot_offset", closed(-10.0, 10.0));
+  if (r.has("robot.nominal_pose")) k.nominal_pose_rad = r.vec3("robot.nominal_pose", closed(-2.0 * M_PI, 2.0 * M_PI));
+  k.ik_min_margin_m = p.ik_min_margin_m = r.number_or("robot.ik_min_margin", 1e-4, nonnegative(0.1));
+  loaded = load_urdf_robot(k);
+  p.urdf = loaded.robot;
+  if (!(loaded.stance_radius_m > 0.0))
+    r.fail("robot.nominal_pose", "puts the feet on the coxa axes (stance radius " + fmt(loaded.stance_radius_m) +
+                                     " m), expected a pose with the feet outward; or give gait.foot_lateral");
+  return loaded.stance_radius_m;
+}
+
+void read_robot(Reader& r, RobotParams& p, LoadedUrdfRobot& loaded) {
+  if (r.has("robot.urdf")) {
+    read_urdf_robot_keys(r, p, loaded);
+    return;
+  }
   p.trunk = read_body(r, "robot.trunk", true, Vec3::Zero());
   p.payload = read_body(r, "robot.payload", true, Vec3::Zero());
   const char* names[kJointsPerLeg] = {"coxa", "femur", "tibia"};
@@ -309,10 +365,12 @@ void read_terrain(Reader& r, TerrainParams& t) {
   }
 }
 
-void read_gait(Reader& r, GaitParams& g) {
+void read_gait(Reader& r, GaitParams& g, const LoadedUrdfRobot& urdf) {
   g.duty_factor = r.number("gait.duty_factor", {0.5, 1.0, false, true});
   g.stroke_m = r.number("gait.stroke", positive(2.0));
-  g.foot_lateral_m = r.number("gait.foot_lateral", positive(2.0));
+  // A URDF robot's footholds default to its nominal stance radius (io/robot_config.hpp).
+  g.foot_lateral_m = urdf.robot ? r.number_or("gait.foot_lateral", urdf.stance_radius_m, positive(2.0))
+                                : r.number("gait.foot_lateral", positive(2.0));
   g.foothold_margin_m = r.number_or("gait.foothold_margin", 0.02, nonnegative(1.0));
   g.swing_clearance_m = r.number("gait.swing_clearance", positive(1.0));
   g.touchdown_speed_mps = r.number("gait.touchdown_speed", nonnegative(10.0));
@@ -378,7 +436,7 @@ void read_contact(Reader& r, ContactParams& c) {
   c.friction_coefficient = r.number("contact.friction_coefficient", positive(10.0));
 }
 
-void read_allocation(Reader& r, AllocationParams& a) {
+void read_allocation(Reader& r, AllocationParams& a, const LoadedUrdfRobot& urdf) {
   const std::string def_friction = "pyramid4";
   const std::string friction = r.choice("allocation.friction", {"pyramid4", "pyramid8", "cone"}, &def_friction);
   a.friction = friction == "cone" ? FrictionModel::kCone
@@ -389,7 +447,15 @@ void read_allocation(Reader& r, AllocationParams& a) {
   const std::string def_solver = "auto";
   const std::string solver = r.choice("allocation.solver", {"auto", "active-set", "ipopt"}, &def_solver);
   a.solver = solver == "ipopt" ? AllocationSolver::kIpopt : AllocationSolver::kActiveSet;
-  a.torque_limit_Nm = r.number("allocation.torque_limit", positive(1e6));
+  // A URDF robot: its effort limits per joint unless the scene gives one limit for all
+  // (allocation.torque_limit: effort names the default).
+  if (urdf.robot && r.absent_or_word("allocation.torque_limit", "effort")) {
+    a.joint_torque_limit_Nm = urdf.effort_limit_Nm;
+    a.torque_limit_Nm = 0.0;
+    for (double e : urdf.effort_limit_Nm) a.torque_limit_Nm = std::max(a.torque_limit_Nm, e);
+  } else {
+    a.torque_limit_Nm = r.number("allocation.torque_limit", positive(1e6));
+  }
   a.min_normal_force_N = r.number_or("allocation.min_normal_force", 0.0, nonnegative(1e6));
   // The loosest tolerance at which both back ends still meet the fixed violation threshold
   // (allocation/qp.hpp kViolationThreshold) on the paper scene: from 1e-9 to 1e-5 the
@@ -470,12 +536,13 @@ Scene scene_from_yaml(const YAML::Node& root, const std::string& source_name) {
   s.source_path = source_name;
   Reader r(root, source_name);
   s.name = r.string_or("name", "scene");
-  read_robot(r, s.robot);
+  LoadedUrdfRobot urdf;
+  read_robot(r, s.robot, urdf);
   read_terrain(r, s.terrain);
-  read_gait(r, s.gait);
+  read_gait(r, s.gait, urdf);
   read_motion(r, s.gait, s.terrain, s.motion);
   read_contact(r, s.contact);
-  read_allocation(r, s.allocation);
+  read_allocation(r, s.allocation, urdf);
   read_output(r, s.output);
   r.check_unknown();
   check_physical_plausibility(s, source_name);  // timings that no physical motion has

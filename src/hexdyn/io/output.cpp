@@ -62,11 +62,17 @@ void write_meta(H5Writer& w, const std::string& prefix, const RunResult& r) {
 }
 
 void write_model(H5Writer& w, const std::string& prefix, const RunResult& r) {
-  std::vector<std::string> joints, legs;
+  std::vector<std::string> joints = r.joint_names, legs;
   for (int leg = 0; leg < kLegs; ++leg) {
     legs.push_back(leg_name(leg));
-    for (int j = 0; j < kJointsPerLeg; ++j) joints.push_back(joint_name(leg, j));
+    if (r.joint_names.empty())
+      for (int j = 0; j < kJointsPerLeg; ++j) joints.push_back(joint_name(leg, j));
   }
+  if (joints.size() != static_cast<std::size_t>(kJoints))
+    throw IoError("cannot write '" + w.file_path() + "': " + schema::kModelJointNames.path + " has " +
+                  std::to_string(joints.size()) + " names, expected 18");
+  if (!r.leg_mapping.empty())
+    w.write_strings(prefix + schema::kModelLegMapping.path, r.leg_mapping, schema::kModelLegMapping.units);
   w.write_string(prefix + schema::kModelUrdf.path, r.urdf, schema::kModelUrdf.units);
   w.write_strings(prefix + schema::kModelJointNames.path, joints, schema::kModelJointNames.units);
   w.write_strings(prefix + schema::kModelLegNames.path, legs, schema::kModelLegNames.units);

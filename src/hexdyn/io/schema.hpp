@@ -112,6 +112,11 @@ inline constexpr DatasetSpec kModelJointNames{"/model/joint_names", "1", Shape::
 inline constexpr DatasetSpec kModelLegNames{"/model/leg_names", "1", Shape::kLegNames,
                                             Element::kString};
 inline constexpr DatasetSpec kModelTotalMass{"/model/total_mass", "kg", Shape::kScalar};
+/// A URDF robot's legs L1 … L6: "L1: JOINT1 JOINT2 JOINT3 foot FOOT", the description's
+/// joint names hip to foot and the foot's link (or "offset X Y Z LINK", m in that link's
+/// frame). Written only for a robot read from a URDF (kUrdfRobotDatasets).
+inline constexpr DatasetSpec kModelLegMapping{"/model/leg_mapping", "1", Shape::kLegNames,
+                                              Element::kString};
 
 // ---- kinematics: always written ----
 inline constexpr DatasetSpec kTime{"/time", "s", Shape::kT};
@@ -178,6 +183,8 @@ inline constexpr std::array kKinematicDatasets{kTime,
                                                kFeetVelocity,
                                                kComPosition,
                                                kContactPhase};
+/// Datasets present when the robot was read from a URDF.
+inline constexpr std::array kUrdfRobotDatasets{kModelLegMapping};
 /// Datasets present when the dynamic stages ran.
 inline constexpr std::array kDynamicsDatasets{
     kJointTorque,         kContactForce,        kContactPenetration, kImpactLeg,

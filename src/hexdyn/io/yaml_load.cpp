@@ -22,6 +22,7 @@
 
 #include "hexdyn/core/errors.hpp"
 #include "hexdyn/io/config.hpp"
+#include "hexdyn/io/robot_config.hpp"
 
 namespace hexdyn {
 namespace {
@@ -247,6 +248,7 @@ YAML::Node load_with_inheritance(const std::string& path, std::vector<ChainLink>
   }
   chain.push_back({path, canonical});
   YAML::Node root = parse_yaml_text(read_text_file(path), path);
+  resolve_file_relative_keys(root, path);  // robot.urdf names a file beside this one
   const YAML::Node parent = root["inherit"];
   if (!parent.IsDefined()) return root;
   if (!parent.IsScalar() || parent.Scalar().empty())

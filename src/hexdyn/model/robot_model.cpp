@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "hexdyn/model/leg_chain.hpp"
+#include "hexdyn/model/urdf_robot.hpp"
 
 namespace hexdyn {
 namespace {
@@ -26,6 +27,7 @@ Mat3 rot_axis(const Vec3& axis, double angle) {
 }  // namespace
 
 RobotModel build_robot_model(const RobotParams& params) {
+  if (params.urdf) return build_robot_model(*params.urdf, params.ik_min_margin_m);
   RobotModel m;
   const double l1 = params.link_length_m[0], l2 = params.link_length_m[1];
   m.link_length_m = params.link_length_m;
@@ -56,6 +58,10 @@ RobotModel build_robot_model(const RobotParams& params) {
     const double side = is_left(leg) ? -1.0 : 1.0;
     m.p_hip_B[leg] = params.hip_position_m[leg];
     m.R_B_H[leg] = rot_z(params.hip_yaw_rad[leg]);
+    // The outward direction from the right-side yaw ψ (hip_yaw = π − ψ on the left, mirrored
+    // in x), so that legs straight out get exactly (±1, 0, 0).
+    const double psi = is_left(leg) ? M_PI - params.hip_yaw_rad[leg] : params.hip_yaw_rad[leg];
+    m.hip_outward_B[leg] = Vec3(side * std::cos(psi), std::sin(psi), 0.0);
     m.d2_signed_m[leg] = side * params.joint_offset_m[1];
     m.d3_signed_m[leg] = side * params.joint_offset_m[2];
     m.lateral_m[leg] = m.d2_signed_m[leg] + m.d3_signed_m[leg];

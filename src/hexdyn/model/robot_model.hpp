@@ -99,6 +99,14 @@ struct RobotModel {
   std::array<LegIkData, kLegs> leg_ik;    ///< kChain only
   /// Joint names in the description, flat order (URDF: its own names; YAML: L{i}_coxa …).
   std::array<std::string, kJoints> joint_source_names;
+  /// Each hip's outward direction at zero coxa angle, horizontal in the trunk frame (unit,
+  /// z = 0): footholds lie along it (planning/gait.hpp). The paper robot: ±x exactly (its
+  /// legs stand straight out); a URDF robot: R_B_H · leg_ik.outward_H.
+  std::array<Vec3, kLegs> hip_outward_B;
+  /// The description's root link frame in the trunk frame B: the frame /base/* and the
+  /// root link of /model/urdf describe (a YAML robot: B itself).
+  Vec3 p_B_root = Vec3::Zero();      ///< [m]
+  Mat3 B_R_root = Mat3::Identity();  ///< root link axes → trunk axes
 };
 
 /// Builds the model from validated parameters (no checks beyond those of load_scene).

@@ -127,7 +127,15 @@ std::string robot_urdf(const RobotModel& model, const std::string& robot_name) {
      << "<!-- Robot as simulated by hexdyn: link frames are the simulation's body frames;\n"
      << "     trunk = body frame L0 at P0 (x right, y forward, z up). SI units. -->\n"
      << "<robot name=\"" << xml_escape(robot_name) << "\">\n";
-  write_link(u, "trunk", &model.trunk_only);
+  // The root link is the description's root link frame (a YAML robot: the trunk frame).
+  const bool root_moved = !(model.p_B_root.isZero(0.0) && model.B_R_root == Mat3::Identity());
+  const Mat3 root_R_B = model.B_R_root.transpose();
+  RigidInertia trunk = model.trunk_only;
+  if (root_moved) {
+    trunk.com_m = root_R_B * (trunk.com_m - model.p_B_root);
+    trunk.inertia_com = root_R_B * trunk.inertia_com * model.B_R_root;
+  }
+  write_link(u, "trunk", &trunk);
   write_link(u, "payload", &model.payload);
   write_joint(u, "payload_mount", "fixed", "trunk", "payload", Vec3::Zero(), Mat3::Identity(),
               nullptr, nullptr);
@@ -146,8 +154,14 @@ std::string robot_urdf(const RobotModel& model, const std::string& robot_name) {
       const bool continuous =
           !std::isfinite(limit.lower_rad) && !std::isfinite(limit.upper_rad);
       write_link(u, child, &model.inertia[b]);
-      write_joint(u, joint_name(leg, j), continuous ? "continuous" : "revolute", parent, child,
-                  model.p_parent_joint[b], model.R_parent_joint[b], &model.axis[b], &limit);
+      Vec3 p = model.p_parent_joint[b];
+      Mat3 R = model.R_parent_joint[b];
+      if (j == 0 && root_moved) {
+        p = root_R_B * (p - model.p_B_root);
+        R = root_R_B * R;
+      }
+      write_joint(u, model.joint_source_names[k], continuous ? "continuous" : "revolute", parent, child, p, R,
+                  &model.axis[b], &limit);
       parent = child;
     }
     write_link(u, prefix + "foot", nullptr);

@@ -3,8 +3,12 @@
 /// The robot exactly as simulated, as URDF text (DESIGN.md §4 `/model/urdf`).
 ///
 /// Links and joints (i = 1..6 is the leg number, leg index l = i − 1):
-///   trunk               root; its frame is the body frame L0 at P0; trunk structure inertial
+///   trunk               root; its frame is the body frame L0 at P0 (a URDF robot: its own
+///                       root link frame, RobotModel::p_B_root / B_R_root, the frame of
+///                       /base/*); trunk structure inertial
 ///   payload             on fixed joint `payload_mount` (identity origin); payload inertial
+///   (joint names: RobotModel::joint_source_names, L{i}_coxa … for a YAML robot, a URDF
+///   robot's own names otherwise)
 ///   L{i}_coxa_link      on revolute `L{i}_coxa`  (parent trunk)
 ///   L{i}_femur_link     on revolute `L{i}_femur` (parent L{i}_coxa_link)
 ///   L{i}_tibia_link     on revolute `L{i}_tibia` (parent L{i}_femur_link)

@@ -225,6 +225,10 @@ UrdfRobot Reader::read(const std::string& text) {
   std::vector<std::pair<std::string, Placement>> trunk(trunk_group_.begin(), trunk_group_.end());
   robot.trunk = transformed(group_inertia(trunk), B_X_U);
   for (const auto& [name, link] : model_->links_) robot.total_mass_kg += link_inertia(*link).mass_kg;
+  robot.root_link = model_->getRoot()->name;
+  const Placement B_X_root = B_X_U * trunk_group_.at(robot.root_link);  // the root is fixed to the trunk
+  robot.p_B_root = B_X_root.p;
+  robot.B_R_root = B_X_root.R;
 
   const auto legs = moving_children(trunk);
   if (legs.size() != kLegs) {

@@ -38,7 +38,14 @@ RobotModel build_robot_model(const UrdfRobot& robot, double ik_min_margin_m) {
   }
   m.total_mass_kg = 0.0;
   for (const auto& in : m.inertia) m.total_mass_kg += in.mass_kg;
+  m.p_B_root = robot.p_B_root;
+  m.B_R_root = robot.B_R_root;
   prepare_leg_chains(m);
+  for (int leg = 0; leg < kLegs; ++leg) {
+    Vec3 out = m.R_B_H[leg] * m.leg_ik[leg].outward_H;
+    out.z() = 0.0;
+    m.hip_outward_B[leg] = out.normalized();
+  }
   return m;
 }
 
@@ -52,6 +59,24 @@ std::string leg_mapping_text(const UrdfRobot& robot) {
       << ") m in the trunk frame, foot " << l.foot_source << "\n";
   }
   return s.str();
+}
+
+std::array<std::string, kLegs> leg_mapping_entries(const UrdfRobot& robot) {
+  std::array<std::string, kLegs> out;
+  for (int leg = 0; leg < kLegs; ++leg) {
+    const UrdfLeg& l = robot.legs[leg];
+    std::ostringstream s;
+    s.precision(17);
+    s << leg_name(leg) << ": " << l.joint_names[0] << " " << l.joint_names[1] << " " << l.joint_names[2]
+      << " foot ";
+    if (l.foot_source == "robot.foot_offset")
+      s << "offset " << l.p_foot_last.x() << " " << l.p_foot_last.y() << " " << l.p_foot_last.z() << " "
+        << l.link_names[2];
+    else
+      s << l.foot_source;
+    out[leg] = s.str();
+  }
+  return out;
 }
 
 }  // namespace hexdyn

@@ -42,14 +42,24 @@ struct UrdfRobot {
   RigidInertia trunk;       ///< trunk body (links fixed to the trunk link), frame B
   std::array<UrdfLeg, kLegs> legs;  ///< L1 … L6 (common.hpp)
   double total_mass_kg = 0.0;       ///< sum over every <inertial> of the file [kg]
+  std::string root_link;            ///< the URDF's root link (the trunk link or fixed to it)
+  Vec3 p_B_root = Vec3::Zero();     ///< root link origin in the trunk frame B [m]
+  Mat3 B_R_root = Mat3::Identity(); ///< root link axes → B
 };
 
 /// The RobotModel of a URDF robot: LegGeometry::kChain, tree and inertias from `robot`,
 /// no payload. ik_min_margin_m: RobotParams::ik_min_margin_m.
 RobotModel build_robot_model(const UrdfRobot& robot, double ik_min_margin_m = 1e-4);
 
-/// "L1 <- right_front_coxa/right_front_femur/right_front_tibia, hip (x, y, z) m, foot pxmark4/…"
-/// one line per leg: the mapping of the description's chains to hexdyn's legs.
+/// "L1 <- right_front_coxa / right_front_femur / right_front_tibia, hip (x, y, z) m in the
+/// trunk frame, foot pxmark4/…" one line per leg: the mapping of the description's chains
+/// to hexdyn's legs.
 std::string leg_mapping_text(const UrdfRobot& robot);
+
+/// The same mapping, one entry per leg L1 … L6 for /model/leg_mapping (io/schema.hpp):
+/// "L1: JOINT1 JOINT2 JOINT3 foot FOOT" with the URDF's joint names, hip to foot, and the
+/// foot's source: a link name (the foot point is that link's origin) or
+/// "offset X Y Z LINK" (robot.foot_offset in the third link's frame) [m].
+std::array<std::string, kLegs> leg_mapping_entries(const UrdfRobot& robot);
 
 }  // namespace hexdyn

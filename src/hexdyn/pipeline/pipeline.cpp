@@ -6,6 +6,7 @@
 #include "hexdyn/dynamics/rnea.hpp"
 #include "hexdyn/kinematics/kinematics.hpp"
 #include "hexdyn/model/urdf.hpp"
+#include "hexdyn/model/urdf_robot.hpp"
 #include "hexdyn/pipeline/solve_dynamics.hpp"
 #include "hexdyn/planning/grid.hpp"
 
@@ -22,6 +23,27 @@ std::vector<Touchdown> physical_touchdowns(const Scene& scene, const RobotModel&
       scene.robot.leg_inertia == LegInertia::kFull ? model : build_robot_model(full_legs);
   RobotData data(touchdown_model);
   return resolve_touchdowns(touchdown_model, data, plan, scene.contact);
+}
+
+/// /base/* of a URDF robot describe its root link frame (DESIGN.md §3 "Robots"): the
+/// trunk frame's pose, velocities and accelerations moved to the root link, a fixed frame
+/// at p_B_root with axes B_R_root. A YAML robot's root link is the trunk frame: unchanged.
+void describe_base_at_root_link(const RobotModel& model, KinematicsResult& kin) {
+  if (model.p_B_root.isZero(0.0) && model.B_R_root == Mat3::Identity()) return;
+  for (int i = 0; i < kin.samples(); ++i) {
+    const Eigen::Vector4d q = kin.base_orientation_wxyz.row(i).transpose();
+    const Mat3 W_R_B = Eigen::Quaterniond(q[0], q[1], q[2], q[3]).normalized().toRotationMatrix();
+    const Vec3 r_W = W_R_B * model.p_B_root;
+    const Vec3 w = kin.base_angular_velocity.row(i).transpose();
+    const Vec3 alpha = kin.base_angular_acceleration.row(i).transpose();
+    kin.base_position.row(i) += r_W.transpose();
+    kin.base_linear_velocity.row(i) += w.cross(r_W).transpose();
+    kin.base_linear_acceleration.row(i) += (alpha.cross(r_W) + w.cross(w.cross(r_W))).transpose();
+    Eigen::Quaterniond q_root(W_R_B * model.B_R_root);
+    q_root.normalize();
+    if (q_root.w() < 0.0) q_root.coeffs() *= -1.0;
+    kin.base_orientation_wxyz.row(i) << q_root.w(), q_root.x(), q_root.y(), q_root.z();
+  }
 }
 
 }  // namespace
@@ -61,8 +83,14 @@ RunResult run_prepared_scene(const Scene& scene, const PreparedScene& prep, std:
   result.dyn =
       solve_dynamics(scene, prep.model, prep.plan, result.kin, contacts, prep.touchdowns, log);
   result.kin.contact_phase = std::move(contacts.phase);
+  describe_base_at_root_link(prep.model, result.kin);  // after the dynamics, which use the trunk frame
   result.config_yaml = scene.resolved_yaml;
-  result.urdf = robot_urdf(prep.model, "hexdyn_hexapod");
+  result.urdf = robot_urdf(prep.model, scene.robot.urdf ? scene.robot.urdf->name : "hexdyn_hexapod");
+  result.joint_names.assign(prep.model.joint_source_names.begin(), prep.model.joint_source_names.end());
+  if (scene.robot.urdf) {
+    const auto mapping = leg_mapping_entries(*scene.robot.urdf);
+    result.leg_mapping.assign(mapping.begin(), mapping.end());
+  }
   result.total_mass_kg = prep.model.total_mass_kg;
   result.wall_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

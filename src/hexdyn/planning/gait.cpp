@@ -17,9 +17,13 @@ double ddS(double u) { return 60.0 * u * (1.0 - u) * (1.0 - 2.0 * u); }
 Vec3 foothold(const RobotModel& model, const GaitParams& gait, const TrunkMotion& trunk,
               const Terrain& terrain, int leg, double tau_nominal) {
   const Vec3 hip_W = trunk.position_at_phase(tau_nominal) + trunk.W_R_B() * model.p_hip_B[leg];
-  const double outward = is_left(leg) ? -1.0 : 1.0;
-  const double x = hip_W.x() + outward * gait.foot_lateral_m;
-  const double y = terrain.nearest_valid_foothold_y(hip_W.y() + 0.5 * gait.stroke_m, gait.foothold_margin_m);
+  // The hip's outward direction, horizontal in the world (the paper robot: exactly ±x).
+  Vec3 out_W = trunk.W_R_B() * model.hip_outward_B[leg];
+  out_W.z() = 0.0;
+  out_W.normalize();
+  const double x = hip_W.x() + out_W.x() * gait.foot_lateral_m;
+  const double y_nominal = hip_W.y() + out_W.y() * gait.foot_lateral_m;
+  const double y = terrain.nearest_valid_foothold_y(y_nominal + 0.5 * gait.stroke_m, gait.foothold_margin_m);
   return Vec3(x, y, terrain.height(x, y));
 }
 

@@ -12,8 +12,10 @@
 /// robot starts and ends with all feet on the ground.
 ///
 /// Footholds: a stance that (nominally) begins at phase τ* stands at the hip's
-/// horizontal position at τ* moved s0/2 forward and `foot_lateral` outward, moved along
-/// y to the nearest point at least `foothold_margin` from every nosing and riser.
+/// horizontal position at τ* moved `foot_lateral` along the hip's outward direction
+/// (RobotModel::hip_outward_B, made horizontal in the world; the paper robot's legs stand
+/// straight out, ±x) and s0/2 forward, moved along y to the nearest point at least
+/// `foothold_margin` from every nosing and riser.
 ///
 /// Swing path, u = (t − t_lo)/(t_td − t_lo): a vertical lift (smootherstep) to the apex
 /// z_a = H_m + Δh, H_m the highest terrain under the horizontal segment; a horizontal

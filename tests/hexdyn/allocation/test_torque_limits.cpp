@@ -1,0 +1,61 @@
+// Per-joint torque limits (AllocationParams::joint_torque_limit_Nm, a URDF robot's effort
+// limits): each joint's torque row of the allocation problem is bounded by its own limit,
+// |τ_k| ≤ limit_k with τ = τ₀ − G x, and the scalar limit applies to every joint when no
+// per-joint limits are set; a swing leg's torque beyond its own limit is reported.
+#include <catch2/catch.hpp>
+#include <random>
+
+#include "hexdyn/allocation/problem.hpp"
+
+namespace hexdyn {
+
+TEST_CASE("allocation: torque rows use each joint's own limit", "[allocation][limits]") {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  ContactSplit split;
+  for (int k = 0; k < kJoints; ++k) split.tau0[k] = u(rng);
+  for (int l = 0; l < kLegs; ++l) {
+    for (int c = 0; c < 3; ++c) {
+      for (int r = 0; r < kJoints; ++r) split.JjT[l](r, c) = u(rng);
+      for (int r = 0; r < 6; ++r) split.JbT[l](r, c) = u(rng);
+    }
+  }
+  std::array<ContactPhase, kLegs> phase;
+  phase.fill(ContactPhase::kSupport);
+  phase[1] = ContactPhase::kSwing;  // leg L2 swings: its torques are constants
+  std::array<double, kLegs> impact{};
+  std::array<Mat3, kLegs> R;
+  R.fill(Mat3::Identity());
+  AllocationParams alloc;
+  ContactParams contact;
+  std::array<double, kJoints> limits;
+  for (int k = 0; k < kJoints; ++k) limits[k] = 0.5 + 0.1 * k;
+  for (const bool per_joint : {true, false}) {
+    alloc.joint_torque_limit_Nm.reset();
+    if (per_joint) alloc.joint_torque_limit_Nm = limits;
+    QpProblem qp;
+    std::array<int, kLegs> offset;
+    std::string violation;
+    const double worst = build_allocation_problem(alloc, contact, split, phase, impact, R, qp, offset, &violation);
+    int rows = 0;
+    for (int i = 0; i < qp.inequalities(); ++i) {
+      for (int k = 0; k < kJoints; ++k) {
+        if (qp.ineq_names[i] != "torque " + joint_name(k / 3, k % 3)) continue;
+        const double lim = per_joint ? limits[k] : alloc.torque_limit_Nm;
+        // Row value C x = G x; τ = τ₀ − G x within ±lim  ⇔  τ₀ − lim ≤ G x ≤ τ₀ + lim.
+        CHECK(qp.lower[i] == Approx(split.tau0[k] - lim).margin(1e-15));
+        CHECK(qp.upper[i] == Approx(split.tau0[k] + lim).margin(1e-15));
+        ++rows;
+      }
+    }
+    CHECK(rows == 15);  // five support legs
+    double expect = 0.0;
+    for (int j = 0; j < 3; ++j) {
+      const int k = joint_index(1, j);
+      expect = std::max(expect, std::abs(split.tau0[k]) - (per_joint ? limits[k] : alloc.torque_limit_Nm));
+    }
+    CHECK(worst == Approx(expect).margin(1e-15));
+  }
+}
+
+}  // namespace hexdyn
