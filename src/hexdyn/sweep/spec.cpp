@@ -280,7 +280,7 @@ SweepSpec load_sweep(const std::string& path) {
       YAML::Node one = YAML::Clone(tree);
       try {
         apply_override(one, {axis.key, axis.values[v]}, source);
-        (void)scene_from_yaml(one, source);
+        (void)scene_from_yaml(one, source, false);
       } catch (const Error& e) {
         axis.errors[v] = e.what();
       }
