@@ -309,7 +309,8 @@ def open_result(path, group="/"):
                                  f"{path}:{group}")
 
 
-SWEEP_STATUS = ("ok", "config", "reach", "planning", "solver", "error", "internal")
+# Status names by code (/scenarios/status), as declared in schema.hpp.
+SWEEP_STATUS = tuple(SCHEMA["kScenarioStatusNames"])
 
 
 class SweepAxis:

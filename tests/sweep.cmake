@@ -15,6 +15,7 @@ set(HEXDYN_SWEEP_TESTS
   "python_reader_and_heatmaps=reader_and_heatmaps"  # analysis/hexdyn_results.py reads it, plot_sweep.py draws it
   "bad_sweep_file_before_any_work=bad_sweep_file"   # exit 2, one line, no output, checkpoint kept
   "schema_declared_equals_written=schema_declared"  # io/schema.hpp as Python parses it = the files written
+  "crash_contained=crash_contained"              # a scenario that aborts its process: crashed row, sweep completes, also on --resume
 )
 foreach(entry IN LISTS HEXDYN_SWEEP_TESTS)
   string(REPLACE "=" ";" pair "${entry}")

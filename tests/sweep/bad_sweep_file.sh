@@ -38,12 +38,12 @@ done
 
 # An interrupted sweep's checkpoint without --resume: refused, left as it is.
 mkdir out.h5.checkpoint
-touch out.h5.checkpoint/000003.h5
+printf 'journal' > out.h5.checkpoint/journal-0001.hxj
 set +e
 "$HEXDYN" sweep "$SRC/configs/sweeps/smoke.yaml" -o out.h5 2> err.txt
 status=$?
 set -e
 [ "$status" -eq 2 ] || { cat err.txt; fail "existing checkpoint: exit status $status, expected 2"; }
 grep -q "out.h5.checkpoint: the checkpoint of an interrupted sweep exists; continue it with --resume" err.txt || { cat err.txt; fail "existing checkpoint message"; }
-if [ ! -e out.h5.checkpoint/000003.h5 ] || [ -e out.h5 ]; then fail "existing checkpoint touched"; fi
+if [ "$(cat out.h5.checkpoint/journal-0001.hxj)" != journal ] || [ -e out.h5 ]; then fail "existing checkpoint touched"; fi
 echo "bad sweep file: ok"

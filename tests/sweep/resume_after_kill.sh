@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Kill -9 of mpirun part-way through a sweep, then --resume: the final file equals an
 # uninterrupted run's (timing fields excepted) and the resumed run computes exactly the
-# scenarios that had no checkpoint file.
+# scenarios that had no intact checkpoint record. Then the same with a damaged
+# checkpoint: bytes flipped in one record and the journal cut short in another are
+# named in warnings, those scenarios are computed again, and the file is still equal.
 source "$(dirname "$0")/common.sh"
 sweep="$SRC/tests/sweep/resume.yaml"
 mpi 2 sweep "$sweep" -o ref.h5 --keep-runs 2> ref.log || { cat ref.log; fail "reference run"; }
@@ -12,11 +14,11 @@ launcher=$!
 cp=cut.h5.checkpoint
 deadline=$((SECONDS + 120))
 while :; do
-  n=$(find "$cp" -maxdepth 1 -name '[0-9]*.h5' 2>/dev/null | wc -l || true)
+  n=$("$PY" "$SRC/tests/sweep/journal_rows.py" "$cp" 2>/dev/null | wc -l || true)
   [ "$n" -ge 6 ] && break
   kill -0 "$launcher" 2>/dev/null || { cat cut.log; fail "the sweep ended before it could be killed"; }
   [ "$SECONDS" -lt "$deadline" ] || fail "no checkpoint files after 120 s"
-  sleep 0.05
+  sleep 0.1
 done
 ranks=$(children_of "$launcher")
 kill -9 "$launcher"
@@ -30,7 +32,8 @@ for _ in $(seq 100); do
 done
 for p in $alive; do kill -9 "$p" 2>/dev/null || true; done
 [ ! -e cut.h5 ] || fail "the killed sweep wrote its output file"
-for f in "$cp"/[0-9]*.h5; do [ -e "$f" ] && basename "$f" .h5; done | sort > before.txt
+[ "$(find "$cp" -name '*.hxj' | wc -l)" -eq 1 ] || fail "expected one checkpoint journal, found: $(ls "$cp")"
+"$PY" "$SRC/tests/sweep/journal_rows.py" "$cp" > before.txt
 before=$(wc -l < before.txt)
 total=24
 [ "$before" -lt "$total" ] || fail "every scenario was checkpointed before the kill"
@@ -52,3 +55,56 @@ PY
 compare ref.h5 cut.h5
 [ ! -e "$cp" ] || fail "checkpoint left behind after the resumed sweep completed"
 echo "resume after kill: ok ($computed recomputed, $before from the checkpoint)"
+
+# --- A damaged checkpoint: a killed run again, then bytes flipped and a journal cut.
+"$MPIEXEC" --oversubscribe -np 2 "$HEXDYN" sweep "$sweep" -o dmg.h5 --keep-runs 2> dmg.log &
+launcher=$!
+cp=dmg.h5.checkpoint
+deadline=$((SECONDS + 120))
+while :; do
+  n=$("$PY" "$SRC/tests/sweep/journal_rows.py" "$cp" 2>/dev/null | wc -l || true)
+  [ "$n" -ge 8 ] && break
+  kill -0 "$launcher" 2>/dev/null || { cat dmg.log; fail "the sweep ended before it could be killed"; }
+  [ "$SECONDS" -lt "$deadline" ] || fail "no checkpoint records after 120 s"
+  sleep 0.1
+done
+ranks=$(children_of "$launcher")
+kill -9 "$launcher"
+wait "$launcher" 2>/dev/null || true
+for _ in $(seq 100); do
+  alive=""
+  for p in $ranks; do kill -0 "$p" 2>/dev/null && alive="$alive $p"; done
+  [ -z "$alive" ] && break
+  sleep 0.1
+done
+for p in $alive; do kill -9 "$p" 2>/dev/null || true; done
+journal=$(ls "$cp"/*.hxj)
+"$PY" - "$journal" "$SRC/tests/sweep" > damaged.txt <<'PY'
+# Flips a byte in the second record's payload and cuts the journal in the middle of its
+# last record; prints the ids of the two damaged scenarios.
+import sys
+sys.path.insert(0, sys.argv[2])
+from journal_rows import records
+path = sys.argv[1]
+data = bytearray(open(path, "rb").read())
+recs = [(i, at) for k, i, at in records(bytes(data)) if k == 1]
+assert len(recs) >= 4, recs
+flip_index, flip_at = recs[1]
+cut_index, cut_at = recs[-1]
+data[flip_at + 60] ^= 0xFF
+del data[cut_at + 50:]
+open(path, "wb").write(data)
+print(f"{flip_index:06d}")
+print(f"{cut_index:06d}")
+PY
+"$PY" "$SRC/tests/sweep/journal_rows.py" "$cp" > intact.txt
+mpi 2 sweep "$sweep" -o dmg.h5 --keep-runs --resume -v 2> dmg_resume.log || { cat dmg_resume.log; fail "resume of a damaged checkpoint"; }
+for id in $(cat damaged.txt); do
+  grep -q "warning: .*record of scenario $id" dmg_resume.log ||
+    { cat dmg_resume.log; fail "no warning names damaged scenario $id"; }
+  grep -q "scenario $id .*(rank" dmg_resume.log || { cat dmg_resume.log; fail "damaged scenario $id not computed again"; }
+done
+sed -n 's/^hexdyn: sweep: scenario \([0-9]*\) .*(rank.*/\1/p' dmg_resume.log | sort > dmg_computed.txt
+[ -z "$(comm -12 intact.txt dmg_computed.txt)" ] || fail "resume recomputed intact records: $(comm -12 intact.txt dmg_computed.txt | tr '\n' ' ')"
+compare ref.h5 dmg.h5
+echo "resume after damage: ok ($(wc -l < damaged.txt) damaged records recomputed)"

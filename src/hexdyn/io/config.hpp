@@ -47,7 +47,10 @@ Scene load_scene_from_string(const std::string& yaml_text, const std::string& so
                              const std::vector<Override>& overrides = {});
 
 /// Validates an already-parsed YAML tree (used by the sweep, which builds scenario trees).
-Scene scene_from_yaml(const YAML::Node& root, const std::string& source_name);
+/// With `emit_resolved` false, Scene::resolved_yaml is left empty (writing it is a third
+/// of the validation's cost; a sweep needs it only for the runs it keeps).
+Scene scene_from_yaml(const YAML::Node& root, const std::string& source_name,
+                      bool emit_resolved = true);
 
 /// Parses YAML text into a tree, turning syntax errors into ConfigError with line/column;
 /// refuses duplicate keys, nesting deeper than kMaxYamlDepth and a second document

@@ -248,9 +248,14 @@ inline constexpr DatasetSpec kScenarioAxisWords{"/scenarios/axis_{i}", "1", Shap
                                                 Element::kString};
 /// The axis key, on each /scenarios/axis_{i}.
 inline constexpr AttributeSpec kScenarioAxisKey{"/scenarios/axis_{i}", "key", Element::kString};
-/// 0 ok, 1 config, 2 reach, 3 planning, 4 solver, 5 error, 6 internal (ScenarioStatus).
+/// 0 ok, 1 config, 2 reach, 3 planning, 4 solver, 5 error, 6 internal, 7 crashed
+/// (ScenarioStatus; kScenarioStatusNames).
 inline constexpr DatasetSpec kScenarioStatus{"/scenarios/status", "1", Shape::kScenarios,
                                              Element::kInt8};
+/// The name of each status code, by code: 7 `crashed` is a scenario whose process died
+/// twice (signal, abort, out-of-memory kill) and was not tried again.
+inline constexpr std::array kScenarioStatusNames{"ok",     "config", "reach",    "planning",
+                                                 "solver", "error",  "internal", "crashed"};
 /// "0 ok, 1 config, ...", on /scenarios/status.
 inline constexpr AttributeSpec kScenarioStatusCodes{"/scenarios/status", "codes", Element::kString};
 /// The error's one-line message; "" when ok.

@@ -19,27 +19,33 @@ void put_bytes(std::vector<char>& b, const char* data, std::size_t n) {
   put_i64(b, static_cast<std::int64_t>(n));
   put_raw(b, data, n);
 }
+void put_text(std::vector<char>& b, const std::string& s) { put_bytes(b, s.data(), s.size()); }
 
 class Unpacker {
  public:
   explicit Unpacker(const std::vector<char>& b) : b_(b) {}
   std::int64_t i64() { return pod<std::int64_t>(); }
   double f64() { return pod<double>(); }
+  std::size_t length() {
+    const std::int64_t n = i64();
+    if (n < 0) throw Error("sweep: malformed message between ranks");
+    need(static_cast<std::size_t>(n));
+    return static_cast<std::size_t>(n);
+  }
   std::string text() {
-    const auto n = static_cast<std::size_t>(i64());
-    need(n);
+    const std::size_t n = length();
     std::string s(b_.data() + at_, n);
     at_ += n;
     return s;
   }
   std::vector<char> bytes() {
-    const auto n = static_cast<std::size_t>(i64());
-    need(n);
+    const std::size_t n = length();
     std::vector<char> v(b_.begin() + static_cast<std::ptrdiff_t>(at_),
                         b_.begin() + static_cast<std::ptrdiff_t>(at_ + n));
     at_ += n;
     return v;
   }
+  bool done() const { return at_ == b_.size(); }
 
  private:
   template <class T>
@@ -51,7 +57,7 @@ class Unpacker {
     return v;
   }
   void need(std::size_t n) const {
-    if (at_ + n > b_.size()) throw Error("sweep: truncated message between ranks");
+    if (n > b_.size() - at_) throw Error("sweep: truncated message between ranks");
   }
   const std::vector<char>& b_;
   std::size_t at_ = 0;
@@ -59,12 +65,50 @@ class Unpacker {
 
 }  // namespace
 
-std::vector<char> pack_work(const ScenarioInput& in, bool keep_runs) {
+std::vector<char> pack_spec(const SweepSpec& spec, bool keep_runs) {
   std::vector<char> b;
-  put_i64(b, static_cast<std::int64_t>(in.index));
   put_i64(b, keep_runs ? 1 : 0);
-  put_bytes(b, in.id.data(), in.id.size());
-  put_bytes(b, in.yaml.data(), in.yaml.size());
+  put_text(b, spec.name);
+  put_text(b, spec.base_path);
+  put_text(b, spec.base_tree_yaml);
+  put_i64(b, static_cast<std::int64_t>(spec.axes.size()));
+  for (const SweepAxis& a : spec.axes) {
+    put_text(b, a.key);
+    put_i64(b, static_cast<std::int64_t>(a.size()));
+    for (std::size_t v = 0; v < a.size(); ++v) {
+      put_text(b, a.values[v]);
+      put_text(b, a.labels[v]);
+    }
+  }
+  return b;
+}
+
+SweepSpec unpack_spec(const std::vector<char>& bytes, bool& keep_runs) {
+  Unpacker u(bytes);
+  SweepSpec spec;
+  keep_runs = u.i64() != 0;
+  spec.name = u.text();
+  spec.base_path = u.text();
+  spec.base_tree_yaml = u.text();
+  const std::int64_t axes = u.i64();
+  for (std::int64_t i = 0; i < axes; ++i) {
+    SweepAxis a;
+    a.key = u.text();
+    const std::int64_t n = u.i64();
+    for (std::int64_t v = 0; v < n; ++v) {
+      a.values.push_back(u.text());
+      a.labels.push_back(u.text());
+    }
+    spec.axes.push_back(std::move(a));
+  }
+  return spec;
+}
+
+std::vector<char> pack_work(const std::vector<std::size_t>& indices) {
+  std::vector<char> b;
+  b.reserve(8 * (indices.size() + 1));
+  put_i64(b, static_cast<std::int64_t>(indices.size()));
+  for (std::size_t i : indices) put_i64(b, static_cast<std::int64_t>(i));
   return b;
 }
 
@@ -74,38 +118,36 @@ std::vector<char> pack_stop() {
   return b;
 }
 
-std::vector<char> pack_result(const Finished& f) {
-  std::vector<char> b;
+std::optional<std::vector<std::size_t>> unpack_work(const std::vector<char>& bytes) {
+  Unpacker u(bytes);
+  const std::int64_t n = u.i64();
+  if (n < 0) return std::nullopt;
+  std::vector<std::size_t> indices(static_cast<std::size_t>(n));
+  for (auto& i : indices) i = static_cast<std::size_t>(u.i64());
+  return indices;
+}
+
+void append_result(std::vector<char>& b, const Finished& f) {
   put_i64(b, static_cast<std::int64_t>(f.index));
-  put_i64(b, static_cast<std::int64_t>(f.status));
-  put_f64(b, f.wall_time_s);
-  put_bytes(b, f.message.data(), f.message.size());
-  put_bytes(b, f.checkpoint.data(), f.checkpoint.size());
-  return b;
+  put_f64(b, f.cost_s);
+  put_i64(b, f.crashed ? 1 : 0);
+  put_text(b, f.reason);
+  put_bytes(b, f.payload.data(), f.payload.size());
 }
 
-Finished unpack_result(const std::vector<char>& bytes, int rank) {
+std::vector<Finished> unpack_results(const std::vector<char>& bytes) {
   Unpacker u(bytes);
-  Finished f;
-  f.index = static_cast<std::size_t>(u.i64());
-  f.status = static_cast<ScenarioStatus>(u.i64());
-  f.wall_time_s = u.f64();
-  f.message = u.text();
-  f.checkpoint = u.bytes();
-  f.rank = rank;
-  return f;
-}
-
-std::optional<Work> unpack_work(const std::vector<char>& bytes) {
-  Unpacker u(bytes);
-  const std::int64_t index = u.i64();
-  if (index < 0) return std::nullopt;
-  Work w;
-  w.input.index = static_cast<std::size_t>(index);
-  w.keep_runs = u.i64() != 0;
-  w.input.id = u.text();
-  w.input.yaml = u.text();
-  return w;
+  std::vector<Finished> out;
+  while (!u.done()) {
+    Finished f;
+    f.index = static_cast<std::size_t>(u.i64());
+    f.cost_s = u.f64();
+    f.crashed = u.i64() != 0;
+    f.reason = u.text();
+    f.payload = u.bytes();
+    out.push_back(std::move(f));
+  }
+  return out;
 }
 
 }  // namespace hexdyn

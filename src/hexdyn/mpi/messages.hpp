@@ -1,44 +1,46 @@
 #pragma once
 /// \file messages.hpp
-/// The messages between the ranks of a sweep (mpi_sweep.cpp) as bytes, without MPI: a
-/// scenario to compute (or the order to stop) from rank 0, and a finished scenario with
-/// its checkpoint record back. Fields are int64 and float64 in the host's byte order
-/// (all ranks of one job run the same binary), strings and byte blocks as an int64
-/// length then the bytes. Unpacking a truncated message throws hexdyn::Error.
+/// The messages between the ranks of a sweep (mpi_sweep.cpp) as bytes, without MPI:
+/// the sweep itself (broadcast once, so that every rank builds its scenarios' scenes
+/// itself), a batch of scenario indices to compute (or the order to stop), and a batch
+/// of finished scenarios back (each with its record, record.hpp, or the crash that
+/// ended its process). Fields are int64 and float64 in the host's byte order (all ranks
+/// of one job run the same binary), strings and byte blocks as an int64 length then the
+/// bytes. Unpacking a truncated message throws hexdyn::Error.
 #include <cstddef>
 #include <optional>
 #include <string>
 #include <vector>
 
-#include "hexdyn/sweep/scenario.hpp"
 #include "hexdyn/sweep/spec.hpp"
 
 namespace hexdyn {
 
-/// A scenario handed to a rank: its input and whether to keep its full result.
-struct Work {
-  ScenarioInput input;
-  bool keep_runs = false;
-};
+/// What a worker needs of the sweep: name, base scene tree and paths, axes (keys,
+/// values, labels). The validation results (SweepAxis::errors) stay on rank 0.
+std::vector<char> pack_spec(const SweepSpec& spec, bool keep_runs);
+SweepSpec unpack_spec(const std::vector<char>& bytes, bool& keep_runs);
 
-std::vector<char> pack_work(const ScenarioInput& in, bool keep_runs);
+/// A batch of scenario indices to compute, in order.
+std::vector<char> pack_work(const std::vector<std::size_t>& indices);
 /// The message that stops a worker rank.
 std::vector<char> pack_stop();
-/// The scenario of a work message; nothing for the stop message.
-std::optional<Work> unpack_work(const std::vector<char>& bytes);
+/// The indices of a work message; nothing for the stop message.
+std::optional<std::vector<std::size_t>> unpack_work(const std::vector<char>& bytes);
 
-/// A finished scenario on its way to the checkpoint.
+/// A finished scenario on its way to the coordinator.
 struct Finished {
   std::size_t index = 0;
-  ScenarioStatus status = ScenarioStatus::kOk;
-  std::string message;
-  double wall_time_s = 0.0;
-  int rank = 0;
-  std::vector<char> checkpoint;  ///< encode_checkpoint bytes
+  double cost_s = 0.0;          ///< scene construction + physics [s], for the scheduling
+  bool crashed = false;         ///< its process died (payload empty, reason set)
+  std::string reason;           ///< how the process died
+  std::vector<char> payload;    ///< encode_record bytes
 };
 
-std::vector<char> pack_result(const Finished& f);
-/// `rank` is the sender, recorded in Finished::rank (not part of the message).
-Finished unpack_result(const std::vector<char>& bytes, int rank);
+/// Appends one finished scenario to a result message under construction (start with an
+/// empty vector).
+void append_result(std::vector<char>& message, const Finished& f);
+/// The finished scenarios of a result message, in order.
+std::vector<Finished> unpack_results(const std::vector<char>& bytes);
 
 }  // namespace hexdyn

@@ -4,6 +4,7 @@
 #define MPICH_SKIP_MPICXX 1
 #include <mpi.h>
 
+#include <algorithm>
 #include <chrono>
 #include <condition_variable>
 #include <cstdint>
@@ -25,6 +26,9 @@
 #include "hexdyn/core/errors.hpp"
 #include "hexdyn/io/output.hpp"
 #include "hexdyn/mpi/messages.hpp"
+#include "hexdyn/mpi/worker.hpp"
+#include "hexdyn/sweep/coordinator.hpp"
+#include "hexdyn/sweep/scenario_factory.hpp"
 #include "hexdyn/sweep/sweep.hpp"
 
 namespace hexdyn {
@@ -33,8 +37,8 @@ namespace {
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
-/// Message tags. A worker sends kReady once, then one kResult per scenario (which also
-/// asks for the next one); rank 0 answers each with kWork (an index, or −1 to stop).
+/// Message tags. A worker sends kReady once, then kResult messages (finished scenarios,
+/// several at a time); rank 0 sends kWork (a batch of indices, or the stop).
 enum Tag : int { kTagReady = 1, kTagResult = 2, kTagWork = 3 };
 
 /// MPI_Init_thread / MPI_Finalize for the lifetime of the sweep.
@@ -77,7 +81,7 @@ void send(const std::vector<char>& bytes, int dest, int tag) {
   MPI_Send(bytes.data(), static_cast<int>(bytes.size()), MPI_BYTE, dest, tag, MPI_COMM_WORLD);
 }
 
-/// Receives the message announced by `st` (from MPI_Probe / MPI_Iprobe).
+/// Receives the message announced by `st` (from MPI_Iprobe).
 std::vector<char> receive(const MPI_Status& st) {
   int count = 0;
   MPI_Get_count(&st, MPI_BYTE, &count);
@@ -87,68 +91,75 @@ std::vector<char> receive(const MPI_Status& st) {
   return bytes;
 }
 
-/// Computes one scenario and encodes its checkpoint (any rank, any thread; no MPI).
-Finished compute(const ScenarioInput& in, bool keep_runs, int rank, const std::string& scratch) {
-  const ScenarioOutcome out = run_scenario(in, keep_runs);
-  Finished f;
-  f.index = in.index;
-  f.status = out.summary.status;
-  f.message = out.summary.message;
-  f.wall_time_s = out.summary.wall_time_s;
-  f.rank = rank;
-  f.checkpoint = encode_checkpoint(out, scratch);
-  return f;
+/// Waits for a non-blocking request without spinning (Open MPI's blocking calls poll at
+/// full speed): MPI_Test with sleeps growing from 50 µs to 10 ms.
+void quiet_wait(MPI_Request& req) {
+  auto pause = std::chrono::microseconds(50);
+  for (int done = 0;;) {
+    MPI_Test(&req, &done, MPI_STATUS_IGNORE);
+    if (done) return;
+    std::this_thread::sleep_for(pause);
+    pause = std::min(pause * 2, std::chrono::microseconds(10000));
+  }
+}
+
+/// MPI_Bcast from rank 0 of a byte block, waiting quietly.
+void broadcast_bytes(std::vector<char>& bytes) {
+  long long size = static_cast<long long>(bytes.size());
+  MPI_Request req;
+  MPI_Ibcast(&size, 1, MPI_LONG_LONG, 0, MPI_COMM_WORLD, &req);
+  quiet_wait(req);
+  bytes.resize(static_cast<std::size_t>(size));
+  if (size > std::numeric_limits<int>::max()) throw Error("sweep: sweep description too large");
+  MPI_Ibcast(bytes.data(), static_cast<int>(size), MPI_BYTE, 0, MPI_COMM_WORLD, &req);
+  quiet_wait(req);
+}
+
+void broadcast_status(int& status) {
+  MPI_Request req;
+  MPI_Ibcast(&status, 1, MPI_INT, 0, MPI_COMM_WORLD, &req);
+  quiet_wait(req);
+}
+
+/// Waits for every rank without spinning.
+void quiet_barrier() {
+  MPI_Request req;
+  MPI_Ibarrier(MPI_COMM_WORLD, &req);
+  quiet_wait(req);
 }
 
 std::string scratch_directory() { return fs::temp_directory_path().string(); }
 
 // ---- worker ranks
 
-int worker_loop(int rank) {
-  const std::string scratch = scratch_directory();
-  send({}, 0, kTagReady);
-  for (;;) {
+void worker_rank(const ScenarioFactory& factory, bool keep_runs) {
+  WorkerOptions wo;
+  wo.keep_runs = keep_runs;
+  wo.isolate = isolation_from_environment();
+  wo.scratch_dir = scratch_directory();
+  WorkerLink link;
+  link.send_ready = [] { send({}, 0, kTagReady); };
+  link.send_results = [](std::vector<char>&& msg) { send(msg, 0, kTagResult); };
+  link.poll_work = []() -> std::optional<std::optional<std::vector<std::size_t>>> {
+    int flag = 0;
     MPI_Status st;
-    MPI_Probe(0, kTagWork, MPI_COMM_WORLD, &st);
-    const std::optional<Work> work = unpack_work(receive(st));
-    if (!work) break;
-    send(pack_result(compute(work->input, work->keep_runs, rank, scratch)), 0, kTagResult);
-  }
-  return 0;
-}
-
-/// Waits for every rank without spinning: workers poll a non-blocking barrier with
-/// short sleeps, so they leave their cores to rank 0 while it writes the sweep file.
-void quiet_barrier() {
-  MPI_Request req;
-  MPI_Ibarrier(MPI_COMM_WORLD, &req);
-  int done = 0;
-  for (;;) {
-    MPI_Test(&req, &done, MPI_STATUS_IGNORE);
-    if (done) return;
-    std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  }
+    MPI_Iprobe(0, kTagWork, MPI_COMM_WORLD, &flag, &st);
+    if (!flag) return std::nullopt;
+    return unpack_work(receive(st));
+  };
+  run_worker(factory, wo, link);
 }
 
 // ---- rank 0
 
-/// The queue of scenarios shared by rank 0's coordinator and its compute thread.
-struct WorkQueue {
+/// The messages between rank 0's coordinator (main thread) and its compute thread.
+struct LocalLink {
   std::mutex mutex;
   std::condition_variable changed;
-  std::deque<std::size_t> pending;
-  std::vector<Finished> finished;  ///< computed by the local thread, not yet stored
-  bool local_running = false;
-  bool stop = false;
-  std::exception_ptr local_error;
-
-  std::optional<std::size_t> take() {
-    std::lock_guard<std::mutex> lock(mutex);
-    if (stop || pending.empty()) return std::nullopt;
-    const std::size_t i = pending.front();
-    pending.pop_front();
-    return i;
-  }
+  std::deque<std::optional<std::vector<std::size_t>>> work;  ///< nothing = stop
+  std::deque<std::vector<char>> results;
+  bool ready = false, running = false;
+  std::exception_ptr error;
 };
 
 class Coordinator {
@@ -157,155 +168,178 @@ class Coordinator {
 
   /// Reads and validates everything; throws hexdyn::Error before any work.
   void prepare() {
+    start_ = Clock::now();
     spec_ = load_sweep(opt_.sweep_path);
     check_output_path_writable(opt_.output_path);
     checkpoint_ =
         std::make_unique<Checkpoint>(opt_.output_path, spec_, opt_.keep_runs, opt_.resume);
-    const std::size_t n = spec_.scenario_count();
-    state_.assign(n, State::kPending);
-    invalid_.resize(n);
-    for (std::size_t i : checkpoint_->finished()) {
-      state_[i] = State::kDone;
-      ++resumed_;
-      if (read_checkpoint_summary(checkpoint_->scenario_path(i)).status != ScenarioStatus::kOk)
-        ++failed_;
-    }
-    for (std::size_t i = 0; i < n; ++i) {
-      if (state_[i] == State::kDone) continue;
-      if (auto bad = check_scenario(scenario_input(spec_, i))) {
-        invalid_[i] = std::move(*bad);
-        state_[i] = State::kDone;
-        ++failed_;
-        ++invalid_count_;
-      } else {
-        queue_.pending.push_back(i);
-      }
-    }
+    factory_ = std::make_unique<ScenarioFactory>(spec_);
   }
 
-  /// Distributes the pending scenarios and writes the sweep file. Returns 0.
+  const SweepSpec& spec() const { return spec_; }
+  const ScenarioFactory& factory() const { return *factory_; }
+
+  /// Distributes the scenarios and writes the sweep file. Returns 0.
   int run() {
-    const auto start = Clock::now();
     const std::size_t n = spec_.scenario_count();
-    done_ = n - queue_.pending.size();
+    std::vector<std::size_t> sizes;
+    for (const auto& a : spec_.axes) sizes.push_back(a.size());
+    coord_ = std::make_unique<SweepCoordinator>(n, sizes, mpi_.size());
+    for (const ScenarioSummary& r : checkpoint_->finished()) {
+      coord_->mark_finished(r.index);
+      if (r.status != ScenarioStatus::kOk) ++failed_;
+    }
+    for (std::size_t i : checkpoint_->crash_attempts()) coord_->mark_crashed_once(i);
+    resumed_ = checkpoint_->finished().size();
+    for (const std::string& w : checkpoint_->warnings()) std::cerr << "hexdyn: warning: " << w << "\n";
     announce();
-    ProgressMeter meter(n, done_, opt_.progress_interval_s, start);
+    ProgressMeter meter(n, resumed_, opt_.progress_interval_s, start_);
+    std::cerr << meter.line(Clock::now()) << "\n";
 
     const bool local_compute = mpi_.size() == 1 || mpi_.threads_allowed();
     std::thread local;
-    if (local_compute && !queue_.pending.empty()) {
-      queue_.local_running = true;
+    if (local_compute && !coord_->finished()) {
+      local_.running = true;
       local = std::thread([this] { local_loop(); });
     }
+    std::vector<Assignment> out;
+    auto last_flush = Clock::now(), last_sync = Clock::now();
     try {
-      int remote_active = mpi_.size() - 1;
+      remote_active_ = mpi_.size() - 1;
       for (;;) {
-        bool progressed = store_local();
-        if (mpi_.size() > 1) progressed = serve_remote(remote_active) || progressed;
-        if (auto line = meter.update(done_, failed_, Clock::now())) std::cerr << *line << "\n";
-        bool local_running = false;
-        {
-          std::unique_lock<std::mutex> lock(queue_.mutex);
-          if (queue_.local_error) std::rethrow_exception(queue_.local_error);
-          local_running = queue_.local_running || !queue_.finished.empty();
-          if (!local_running && remote_active == 0) break;
-          if (!progressed) {
-            // Wake at once for a local result; poll remote ranks every millisecond.
-            const auto wait =
-                mpi_.size() > 1 ? std::chrono::milliseconds(1) : std::chrono::milliseconds(200);
-            queue_.changed.wait_for(lock, wait, [this] { return !queue_.finished.empty(); });
-          }
+        bool progressed = serve_local(out);
+        if (mpi_.size() > 1) progressed = serve_remote(out) || progressed;
+        dispatch(out);
+        const auto now = Clock::now();
+        if (checkpoint_->buffered() > (1u << 20) || seconds(now - last_flush) > 0.5) {
+          const bool sync = seconds(now - last_sync) > 5.0;
+          checkpoint_->flush(sync);
+          last_flush = now;
+          if (sync) last_sync = now;
+        }
+        if (auto line = meter.update(done_ + resumed_, failed_, now)) std::cerr << *line << "\n";
+        std::unique_lock<std::mutex> lock(local_.mutex);
+        if (local_.error) std::rethrow_exception(local_.error);
+        if (!local_.running && local_.results.empty() && remote_active_ == 0) break;
+        if (!progressed) {
+          const auto wait = mpi_.size() > 1 ? std::chrono::milliseconds(1)
+                                            : std::chrono::milliseconds(200);
+          local_.changed.wait_for(lock, wait, [this] {
+            return !local_.results.empty() || (local_.ready && !local_ready_seen_) ||
+                   !local_.running;
+          });
         }
       }
     } catch (...) {
-      {
-        std::lock_guard<std::mutex> lock(queue_.mutex);
-        queue_.stop = true;
+      stop_local(local);
+      try {
+        checkpoint_->flush(true);
+      } catch (...) {
       }
-      if (local.joinable()) local.join();
       throw;
     }
-    if (local.joinable()) local.join();
-    if (queue_.local_error) std::rethrow_exception(queue_.local_error);
-
-    std::vector<ScenarioSummary> rows(n);
-    for (std::size_t i = 0; i < n; ++i)
-      rows[i] = invalid_[i] ? *invalid_[i] : read_checkpoint_summary(checkpoint_->scenario_path(i));
-    const double wall = std::chrono::duration<double>(Clock::now() - start).count();
-    write_sweep_file(opt_.output_path, spec_, rows, opt_.keep_runs ? checkpoint_.get() : nullptr,
-                     {mpi_.size(), wall, resumed_});
-    try {
-      checkpoint_->remove();
-    } catch (const Error& e) {
-      std::cerr << "hexdyn: warning: " << e.what() << "\n";
-    }
-    std::size_t ok = 0;
-    for (const auto& r : rows) ok += r.status == ScenarioStatus::kOk ? 1 : 0;
-    std::cerr << "hexdyn: sweep: wrote " << opt_.output_path << ": " << n << " scenarios, " << ok
-              << " ok, " << n - ok << " failed; " << computed_ << " computed by this run, "
-              << resumed_ << " taken from the checkpoint; " << mpi_.size() << " rank"
-              << (mpi_.size() > 1 ? "s" : "") << ", " << format_duration(wall) << "\n";
-    return 0;
+    stop_local(local);
+    if (local_.error) std::rethrow_exception(local_.error);
+    if (!coord_->finished()) throw Error("sweep: workers stopped before every scenario finished");
+    checkpoint_->flush(true);
+    return finish();
   }
 
  private:
-  enum class State { kPending, kDone };
+  static double seconds(Clock::duration d) { return std::chrono::duration<double>(d).count(); }
 
   void announce() const {
     const std::size_t n = spec_.scenario_count();
     std::ostringstream s;
     s << "hexdyn: sweep '" << spec_.name << "': " << n << " scenario" << (n == 1 ? "" : "s")
       << " over " << spec_.axes.size() << " ax" << (spec_.axes.size() == 1 ? "is" : "es") << " on "
-      << mpi_.size() << " rank" << (mpi_.size() > 1 ? "s" : "") << "; " << queue_.pending.size()
+      << mpi_.size() << " rank" << (mpi_.size() > 1 ? "s" : "") << "; " << n - resumed_
       << " to compute";
     if (resumed_ > 0) s << ", " << resumed_ << " from the checkpoint";
-    if (invalid_count_ > 0) {
-      s << ", " << invalid_count_ << " with values out of range (recorded as failed";
-      for (const auto& r : invalid_)
-        if (r) {
-          s << "; first: " << r->message;
-          break;
-        }
-      s << ")";
+    // Scenarios holding a value that is not valid on its own (checked once per value).
+    std::size_t valid = 1;
+    std::string first;
+    for (const SweepAxis& a : spec_.axes) {
+      std::size_t ok = 0;
+      for (const std::string& e : a.errors) {
+        if (e.empty()) ++ok;
+        else if (first.empty()) first = e;
+      }
+      valid *= ok;
     }
+    if (valid < n)
+      s << ", " << n - valid << " with values out of range (recorded as failed; first: " << first
+        << ")";
+    s << "; checkpoint " << checkpoint_->directory();
     std::cerr << s.str() << "\n";
   }
 
   void local_loop() {
     try {
-      const std::string scratch = scratch_directory();
-      while (const auto i = queue_.take()) {
-        Finished f = compute(scenario_input(spec_, *i), opt_.keep_runs, 0, scratch);
+      WorkerOptions wo;
+      wo.keep_runs = opt_.keep_runs;
+      wo.isolate = isolation_from_environment();
+      wo.scratch_dir = scratch_directory();
+      WorkerLink link;
+      link.send_ready = [this] {
         {
-          std::lock_guard<std::mutex> lock(queue_.mutex);
-          queue_.finished.push_back(std::move(f));
+          std::lock_guard<std::mutex> lock(local_.mutex);
+          local_.ready = true;
         }
-        queue_.changed.notify_one();
-      }
+        local_.changed.notify_one();
+      };
+      link.send_results = [this](std::vector<char>&& msg) {
+        {
+          std::lock_guard<std::mutex> lock(local_.mutex);
+          local_.results.push_back(std::move(msg));
+        }
+        local_.changed.notify_one();
+      };
+      link.poll_work = [this]() -> std::optional<std::optional<std::vector<std::size_t>>> {
+        std::lock_guard<std::mutex> lock(local_.mutex);
+        if (local_.work.empty()) return std::nullopt;
+        std::optional<std::optional<std::vector<std::size_t>>> w(std::in_place);
+        w->swap(local_.work.front());
+        local_.work.pop_front();
+        return w;
+      };
+      run_worker(*factory_, wo, link);
     } catch (...) {
-      std::lock_guard<std::mutex> lock(queue_.mutex);
-      queue_.local_error = std::current_exception();
+      std::lock_guard<std::mutex> lock(local_.mutex);
+      local_.error = std::current_exception();
     }
     {
-      std::lock_guard<std::mutex> lock(queue_.mutex);
-      queue_.local_running = false;
+      std::lock_guard<std::mutex> lock(local_.mutex);
+      local_.running = false;
     }
-    queue_.changed.notify_one();
+    local_.changed.notify_one();
   }
 
-  /// Stores what the local thread finished; true if there was anything.
-  bool store_local() {
-    std::vector<Finished> got;
+  void stop_local(std::thread& local) {
     {
-      std::lock_guard<std::mutex> lock(queue_.mutex);
-      got.swap(queue_.finished);
+      std::lock_guard<std::mutex> lock(local_.mutex);
+      local_.work.push_back(std::nullopt);
     }
-    for (const Finished& f : got) store(f);
-    return !got.empty();
+    if (local.joinable()) local.join();
+  }
+
+  /// Handles what rank 0's compute thread sent; true if anything.
+  bool serve_local(std::vector<Assignment>& out) {
+    std::deque<std::vector<char>> got;
+    bool ready = false;
+    {
+      std::lock_guard<std::mutex> lock(local_.mutex);
+      got.swap(local_.results);
+      ready = local_.ready && !local_ready_seen_;
+      if (ready) local_ready_seen_ = true;
+    }
+    if (ready) coord_->on_ready(0, out);
+    for (const auto& msg : got) take_results(0, msg, out);
+    return ready || !got.empty();
   }
 
   /// Answers every waiting message of the worker ranks; true if there was any.
-  bool serve_remote(int& remote_active) {
+  bool serve_remote(std::vector<Assignment>& out) {
     bool any = false;
     for (;;) {
       int flag = 0;
@@ -314,39 +348,119 @@ class Coordinator {
       if (!flag) return any;
       any = true;
       const std::vector<char> msg = receive(st);
-      if (st.MPI_TAG == kTagResult) store(unpack_result(msg, st.MPI_SOURCE));
-      if (const auto i = queue_.take()) {
-        send(pack_work(scenario_input(spec_, *i), opt_.keep_runs), st.MPI_SOURCE, kTagWork);
-      } else {
-        send(pack_stop(), st.MPI_SOURCE, kTagWork);
-        --remote_active;
-      }
+      if (st.MPI_TAG == kTagReady)
+        coord_->on_ready(st.MPI_SOURCE, out);
+      else
+        take_results(st.MPI_SOURCE, msg, out);
+      dispatch(out);
     }
   }
 
-  void store(const Finished& f) {
-    checkpoint_->store(f.index, f.checkpoint);
-    state_[f.index] = State::kDone;
+  void dispatch(std::vector<Assignment>& out) {
+    for (Assignment& a : out) {
+      if (a.worker == 0) {
+        {
+          std::lock_guard<std::mutex> lock(local_.mutex);
+          if (a.stop)
+            local_.work.push_back(std::nullopt);
+          else
+            local_.work.push_back(std::move(a.indices));
+        }
+        continue;
+      }
+      if (a.stop) --remote_active_;
+      send(a.stop ? pack_stop() : pack_work(a.indices), a.worker, kTagWork);
+    }
+    out.clear();
+  }
+
+  void take_results(int worker, const std::vector<char>& msg, std::vector<Assignment>& out) {
+    for (Finished& f : unpack_results(msg)) {
+      if (f.crashed) {
+        if (!coord_->on_crash(worker, f.index, out)) {
+          checkpoint_->append_crash(f.index, f.reason);
+          std::cerr << "hexdyn: warning: scenario " << scenario_id(spec_, f.index) << ": "
+                    << f.reason << " (rank " << worker << "); it is computed once more\n";
+          continue;
+        }
+        ScenarioRecord r;
+        r.summary = failed_summary(f.index, ScenarioStatus::kCrashed,
+                                   scenario_source_name(scenario_id(spec_, f.index)) +
+                                       ": crashed twice, not retried: " + f.reason);
+        f.payload = encode_record(r);
+        store(worker, f, r.summary);
+        continue;
+      }
+      ScenarioRecord r = decode_record(f.payload.data(), f.payload.size(), false);
+      if (r.summary.index != f.index) throw Error("sweep: a result names the wrong scenario");
+      coord_->on_result(worker, f.index, f.cost_s, out);
+      store(worker, f, r.summary);
+    }
+  }
+
+  void store(int worker, const Finished& f, ScenarioSummary& row) {
+    checkpoint_->append_row(f.index, f.payload.data(), f.payload.size());
     ++done_;
-    ++computed_;
-    if (f.status != ScenarioStatus::kOk) ++failed_;
+    if (row.status != ScenarioStatus::kOk) ++failed_;
     if (opt_.verbose) {
       std::cerr << "hexdyn: sweep: scenario " << scenario_id(spec_, f.index) << " "
-                << status_name(f.status) << " (rank " << f.rank << ", " << std::fixed
-                << std::setprecision(2) << f.wall_time_s << std::defaultfloat << " s)";
-      if (!f.message.empty()) std::cerr << ": " << f.message;
+                << status_name(row.status) << " (rank " << worker << ", " << std::fixed
+                << std::setprecision(2) << row.wall_time_s << std::defaultfloat << " s)";
+      if (!row.message.empty()) std::cerr << ": " << row.message;
       std::cerr << "\n";
     }
+    rows_.push_back(std::move(row));
+  }
+
+  int finish() {
+    const std::size_t n = spec_.scenario_count();
+    std::vector<ScenarioSummary> rows(n);
+    std::vector<char> have(n, 0);
+    for (const std::vector<ScenarioSummary>* list :
+         std::initializer_list<const std::vector<ScenarioSummary>*>{&checkpoint_->finished(), &rows_})
+      for (const ScenarioSummary& r : *list)
+        if (!have[r.index]) {
+          have[r.index] = 1;
+          rows[r.index] = r;
+        }
+    for (std::size_t i = 0; i < n; ++i)
+      if (!have[i]) throw Error("sweep: scenario " + scenario_id(spec_, i) + " has no result");
+    const double wall = seconds(Clock::now() - start_);
+    write_sweep_file(opt_.output_path, spec_, rows, opt_.keep_runs ? checkpoint_.get() : nullptr,
+                     {mpi_.size(), wall, resumed_});
+    const std::size_t journals = checkpoint_->journal_count();
+    try {
+      checkpoint_->remove();
+    } catch (const Error& e) {
+      std::cerr << "hexdyn: warning: " << e.what() << "\n";
+    }
+    std::size_t ok = 0, crashed = 0;
+    for (const auto& r : rows) {
+      ok += r.status == ScenarioStatus::kOk ? 1 : 0;
+      crashed += r.status == ScenarioStatus::kCrashed ? 1 : 0;
+    }
+    std::cerr << "hexdyn: sweep: wrote " << opt_.output_path << ": " << n << " scenarios, " << ok
+              << " ok, " << n - ok << " failed";
+    if (crashed > 0) std::cerr << " (" << crashed << " crashed)";
+    std::cerr << "; " << done_ << " computed by this run, " << resumed_
+              << " taken from the checkpoint (" << journals << " journal"
+              << (journals == 1 ? "" : "s") << "); " << mpi_.size() << " rank"
+              << (mpi_.size() > 1 ? "s" : "") << ", " << format_duration(wall) << "\n";
+    return 0;
   }
 
   const SweepOptions& opt_;
   const MpiSession& mpi_;
+  Clock::time_point start_;
   SweepSpec spec_;
   std::unique_ptr<Checkpoint> checkpoint_;
-  std::vector<State> state_;
-  std::vector<std::optional<ScenarioSummary>> invalid_;
-  WorkQueue queue_;
-  std::size_t done_ = 0, failed_ = 0, computed_ = 0, resumed_ = 0, invalid_count_ = 0;
+  std::unique_ptr<ScenarioFactory> factory_;
+  std::unique_ptr<SweepCoordinator> coord_;
+  LocalLink local_;
+  bool local_ready_seen_ = false;
+  int remote_active_ = 0;  ///< worker ranks not yet told to stop
+  std::vector<ScenarioSummary> rows_;  ///< computed by this run, in arrival order
+  std::size_t done_ = 0, failed_ = 0, resumed_ = 0;
 };
 
 }  // namespace
@@ -355,10 +469,15 @@ int run_sweep(const SweepOptions& options) {
   MpiSession mpi;
   if (mpi.rank() != 0) {
     int status = 0;
-    MPI_Bcast(&status, 1, MPI_INT, 0, MPI_COMM_WORLD);
+    broadcast_status(status);
     if (status != 0) return status;
     try {
-      worker_loop(mpi.rank());
+      std::vector<char> bytes;
+      broadcast_bytes(bytes);
+      bool keep_runs = false;
+      const SweepSpec spec = unpack_spec(bytes, keep_runs);
+      const ScenarioFactory factory(spec);
+      worker_rank(factory, keep_runs);
     } catch (const std::exception& e) {
       std::cerr << "hexdyn: error: rank " << mpi.rank() << ": " << e.what() << "\n";
       MPI_Abort(MPI_COMM_WORLD, 4);
@@ -378,10 +497,14 @@ int run_sweep(const SweepOptions& options) {
     std::cerr << "hexdyn: internal error: " << e.what() << "\n";
     status = 4;
   }
-  MPI_Bcast(&status, 1, MPI_INT, 0, MPI_COMM_WORLD);
+  broadcast_status(status);
   if (status != 0) return status;
 
   try {
+    if (mpi.size() > 1) {
+      std::vector<char> bytes = pack_spec(coordinator.spec(), options.keep_runs);
+      broadcast_bytes(bytes);
+    }
     status = coordinator.run();
   } catch (const std::exception& e) {
     const bool input = dynamic_cast<const Error*>(&e) != nullptr;

@@ -3,16 +3,20 @@
 /// `hexdyn sweep` over the ranks of MPI_COMM_WORLD (Open MPI; a plain start without
 /// mpirun is one rank). The only part of hexdyn that uses MPI.
 ///
-/// Rank 0 validates the sweep file (every error before any work, one line, exit 2),
-/// opens the checkpoint (sweep/checkpoint.hpp) and coordinates: it hands out scenario indices one
-/// at a time to whichever rank asks (dynamic work sharing; scenario costs differ a
-/// lot), stores every finished scenario in the checkpoint as it arrives, prints
-/// progress, and at the end writes the `hexdyn-sweep/1` file from the checkpoint and
-/// removes the checkpoint. Rank 0 also computes: a second thread of rank 0 takes
-/// scenarios from the same queue while its main thread, the only one calling MPI,
-/// polls for requests between 1 ms sleeps (if the MPI library does not allow threads,
-/// MPI_THREAD_FUNNELED, rank 0 only coordinates when there are other ranks). Each
-/// scenario is `run_scene`, the call behind `hexdyn run`, inside the rank's process.
+/// Rank 0 validates the sweep file (every error before any work, one line, exit 2; each
+/// axis value once, nothing per scenario), opens the checkpoint (sweep/checkpoint.hpp)
+/// and sends the sweep to the other ranks, which build each scenario's scene themselves
+/// when it starts. Rank 0 coordinates with a SweepCoordinator (sweep/coordinator.hpp):
+/// batches of indices sized to the measured cost, costly ones first in the tail, a
+/// crashed scenario retried once. Finished scenarios come back in batches and are
+/// appended to the checkpoint journal as they arrive; progress lines from the start; at
+/// the end rank 0 writes the `hexdyn-sweep/1` file and removes the checkpoint. Rank 0 also
+/// computes: a second thread of rank 0 is worker 0 while its main thread, the only one
+/// calling MPI, polls for messages between 1 ms waits (if the MPI library does not allow
+/// threads, MPI_THREAD_FUNNELED, rank 0 only coordinates when there are other ranks).
+/// Every worker computes in a child process (sweep/scenario_process.hpp; set
+/// HEXDYN_SWEEP_ISOLATION=none to compute in the rank itself, without crash containment)
+/// and waits for messages with MPI_Iprobe and sleeps, never in a spinning blocking call.
 #include <string>
 
 namespace hexdyn {

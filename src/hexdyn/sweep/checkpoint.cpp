@@ -2,24 +2,18 @@
 
 #include <fcntl.h>
 #include <sys/file.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
-#include <atomic>
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <regex>
-#include <span>
 #include <system_error>
 
 #include "hexdyn/core/errors.hpp"
-#include "hexdyn/io/atomic_file.hpp"
-#include "hexdyn/io/h5io.hpp"
-#include "hexdyn/io/output.hpp"
-#include "hexdyn/io/schema.hpp"
 #include "hexdyn/version.hpp"
 
 namespace hexdyn {
@@ -27,274 +21,293 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr const char* kCheckpointSchema = "hexdyn-sweep-checkpoint/1";
+const char* kLockName = "lock";
 
-[[noreturn]] void io_fail(const std::string& path, const std::string& what) {
-  throw IoError("cannot write '" + path + "': " + what);
-}
+std::string errno_text(int err) { return std::strerror(err); }
 
-std::vector<char> read_bytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw IoError("cannot read '" + path + "'");
-  return std::vector<char>(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-}
-
-std::span<const double> span_of(const std::array<double, kJoints>& a) {
-  return {a.data(), a.size()};
-}
-
-/// Summary datasets of one row below `prefix` (checkpoint files).
-void write_summary(H5Writer& w, const std::string& prefix, const ScenarioSummary& s) {
-  const std::int8_t status = static_cast<std::int8_t>(s.status);
-  w.write_int8(prefix + "/status", {}, std::span<const std::int8_t>(&status, 1), "1");
-  w.write_string(prefix + "/message", s.message, "1");
-  const std::int32_t counts[3] = {s.samples, s.relaxed_samples, s.failed_samples};
-  w.write_int32(prefix + "/samples", {}, std::span<const std::int32_t>(&counts[0], 1), "1");
-  w.write_int32(prefix + "/relaxed_samples", {}, std::span<const std::int32_t>(&counts[1], 1), "1");
-  w.write_int32(prefix + "/failed_samples", {}, std::span<const std::int32_t>(&counts[2], 1), "1");
-  w.write_scalar(prefix + "/duration", s.duration_s, "s");
-  w.write_scalar(prefix + "/distance", s.distance_m, "m");
-  w.write_scalar(prefix + "/energy", s.energy_J, "J");
-  w.write_scalar(prefix + "/cost_of_transport", s.cost_of_transport, "1");
-  w.write_scalar(prefix + "/peak_impact_force", s.peak_impact_force_N, "N");
-  w.write_doubles(prefix + "/peak_torque", {kJoints}, span_of(s.peak_torque_Nm), "N m");
-  w.write_doubles(prefix + "/rms_torque", {kJoints}, span_of(s.rms_torque_Nm), "N m");
-  w.write_scalar(prefix + "/wall_time_s", s.wall_time_s, "s");
-}
-
-double read_scalar(const H5Reader& r, const std::string& path) {
-  const H5DoubleArray a = r.read_doubles(path);
-  if (a.values.size() != 1) throw IoError("'" + path + "' is not a scalar");
-  return a.values[0];
-}
-
-void read_joint_array(const H5Reader& r, const std::string& path,
-                      std::array<double, kJoints>& out) {
-  const H5DoubleArray a = r.read_doubles(path);
-  if (a.values.size() != kJoints) throw IoError("'" + path + "' does not hold 18 values");
-  std::copy(a.values.begin(), a.values.end(), out.begin());
-}
-
-std::atomic<unsigned> scratch_counter{0};
-
-}  // namespace
-
-std::vector<char> encode_checkpoint(const ScenarioOutcome& outcome,
-                                    const std::string& scratch_dir) {
-  const std::string tmp =
-      (fs::path(scratch_dir) / ("hexdyn-scenario-" + std::to_string(::getpid()) + "-" +
-                                std::to_string(scratch_counter++) + ".h5"))
-          .string();
-  try {
-    {
-      H5Writer w(tmp);
-      w.create_group("/meta");
-      w.set_string_attribute("/meta", schema::kAttrSchema, kCheckpointSchema);
-      w.set_int_attribute("/meta", "index", static_cast<std::int64_t>(outcome.summary.index));
-      write_summary(w, "/summary", outcome.summary);
-      if (outcome.run) write_result_layout(w, *outcome.run, kCheckpointRunGroup);
-      w.close();
+/// A read-only view of a whole file (mmap; empty files have no mapping).
+class MappedFile {
+ public:
+  explicit MappedFile(const std::string& path) {
+    const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+    if (fd < 0) throw IoError("cannot read checkpoint journal '" + path + "': " + errno_text(errno));
+    struct stat st {};
+    if (::fstat(fd, &st) != 0) {
+      const int err = errno;
+      ::close(fd);
+      throw IoError("cannot read checkpoint journal '" + path + "': " + errno_text(err));
     }
-    std::vector<char> bytes = read_bytes(tmp);
-    fs::remove(tmp);
-    return bytes;
-  } catch (...) {
-    std::error_code ec;
-    fs::remove(tmp, ec);
-    throw;
+    size_ = static_cast<std::size_t>(st.st_size);
+    if (size_ > 0) {
+      void* p = ::mmap(nullptr, size_, PROT_READ, MAP_PRIVATE, fd, 0);
+      if (p == MAP_FAILED) {
+        const int err = errno;
+        ::close(fd);
+        throw IoError("cannot map checkpoint journal '" + path + "': " + errno_text(err));
+      }
+      data_ = static_cast<const char*>(p);
+    }
+    ::close(fd);
   }
-}
+  ~MappedFile() {
+    if (data_) ::munmap(const_cast<char*>(data_), size_);
+  }
+  MappedFile(const MappedFile&) = delete;
+  MappedFile& operator=(const MappedFile&) = delete;
+  const char* data() const { return data_; }
+  std::size_t size() const { return size_; }
 
-ScenarioSummary read_checkpoint_summary(const std::string& path) {
-  const H5Reader r(path);
-  if (!r.has_attribute("/meta", schema::kAttrSchema) ||
-      r.string_attribute("/meta", schema::kAttrSchema) != kCheckpointSchema)
-    throw IoError("'" + path + "' is not a sweep checkpoint file");
-  ScenarioSummary s;
-  s.index = static_cast<std::size_t>(r.int_attribute("/meta", "index"));
-  const auto status = r.read_ints("/summary/status");
-  if (status.size() != 1 || status[0] < 0 ||
-      status[0] > static_cast<int>(ScenarioStatus::kInternal))
-    throw IoError("'" + path + "': bad /summary/status");
-  s.status = static_cast<ScenarioStatus>(status[0]);
-  s.message = r.read_string("/summary/message");
-  s.samples = static_cast<int>(read_scalar(r, "/summary/samples"));
-  s.relaxed_samples = static_cast<int>(read_scalar(r, "/summary/relaxed_samples"));
-  s.failed_samples = static_cast<int>(read_scalar(r, "/summary/failed_samples"));
-  s.duration_s = read_scalar(r, "/summary/duration");
-  s.distance_m = read_scalar(r, "/summary/distance");
-  s.energy_J = read_scalar(r, "/summary/energy");
-  s.cost_of_transport = read_scalar(r, "/summary/cost_of_transport");
-  s.peak_impact_force_N = read_scalar(r, "/summary/peak_impact_force");
-  read_joint_array(r, "/summary/peak_torque", s.peak_torque_Nm);
-  read_joint_array(r, "/summary/rms_torque", s.rms_torque_Nm);
-  s.wall_time_s = read_scalar(r, "/summary/wall_time_s");
-  return s;
-}
-
-// ------------------------------------------------------------------ Checkpoint
-
-namespace {
-
-const char* kManifest = "manifest.h5";
-
-struct ManifestFields {
-  std::string sweep_yaml, base_config_yaml, version, git_commit;
-  std::int64_t keep_runs = 0, scenarios = 0;
+ private:
+  const char* data_ = nullptr;
+  std::size_t size_ = 0;
 };
 
-ManifestFields manifest_of(const SweepSpec& spec, bool keep_runs) {
-  return {spec.sweep_yaml, spec.base_config_yaml, kVersion,
-          kGitCommit,      keep_runs ? 1 : 0,     static_cast<std::int64_t>(spec.scenario_count())};
-}
-
-void write_manifest(const std::string& dir, const ManifestFields& m) {
-  publish_atomically(dir + "/" + kManifest, [&](const std::string& tmp) {
-    H5Writer w(tmp);
-    w.create_group("/meta");
-    w.set_string_attribute("/meta", schema::kAttrSchema, kCheckpointSchema);
-    w.set_string_attribute("/meta", "sweep_yaml", m.sweep_yaml);
-    w.set_string_attribute("/meta", "base_config_yaml", m.base_config_yaml);
-    w.set_string_attribute("/meta", schema::kAttrVersion, m.version);
-    w.set_string_attribute("/meta", schema::kAttrGitCommit, m.git_commit);
-    w.set_int_attribute("/meta", "keep_runs", m.keep_runs);
-    w.set_int_attribute("/meta", "scenarios", m.scenarios);
-    w.close();
-  });
-}
-
-/// Empty when `found` matches `want`, else what differs.
-std::string manifest_difference(const ManifestFields& found, const ManifestFields& want) {
-  if (found.sweep_yaml != want.sweep_yaml) return "the sweep file's text differs";
-  if (found.base_config_yaml != want.base_config_yaml) return "the resolved base scene differs";
-  if (found.keep_runs != want.keep_runs)
-    return std::string("it was made ") + (found.keep_runs ? "with" : "without") + " --keep-runs";
-  if (found.version != want.version || found.git_commit != want.git_commit)
-    return "it was made by hexdyn " + found.version + " (" + found.git_commit + "), this is " +
-           want.version + " (" + want.git_commit + ")";
-  if (found.scenarios != want.scenarios) return "the number of scenarios differs";
-  return {};
-}
-
-ManifestFields read_manifest(const std::string& path) {
-  const H5Reader r(path);
-  if (!r.has_attribute("/meta", schema::kAttrSchema) ||
-      r.string_attribute("/meta", schema::kAttrSchema) != kCheckpointSchema)
-    throw IoError("'" + path + "' is not a sweep checkpoint manifest");
-  return {r.string_attribute("/meta", "sweep_yaml"),
-          r.string_attribute("/meta", "base_config_yaml"),
-          r.string_attribute("/meta", schema::kAttrVersion),
-          r.string_attribute("/meta", schema::kAttrGitCommit),
-          r.int_attribute("/meta", "keep_runs"),
-          r.int_attribute("/meta", "scenarios")};
-}
-
-bool is_scenario_file(const std::string& name, std::size_t& index) {
-  static const std::regex pattern(R"(^([0-9]+)\.h5$)");
+bool is_journal_name(const std::string& name, unsigned& number) {
+  static const std::regex pattern(R"(^journal-([0-9]{4,9})\.hxj$)");
   std::smatch m;
   if (!std::regex_match(name, m, pattern)) return false;
-  index = static_cast<std::size_t>(std::stoull(m[1].str()));
+  number = static_cast<unsigned>(std::stoul(m[1].str()));
   return true;
 }
 
+void write_all(int fd, const char* data, std::size_t n, const std::string& path) {
+  while (n > 0) {
+    const ssize_t w = ::write(fd, data, n);
+    if (w < 0) {
+      if (errno == EINTR) continue;
+      throw IoError("cannot write checkpoint journal '" + path + "': " + errno_text(errno));
+    }
+    data += w;
+    n -= static_cast<std::size_t>(w);
+  }
+}
+
 }  // namespace
+
+std::string build_identity() {
+  return std::string("hexdyn ") + kVersion + " (" + kGitCommit + ")";
+}
 
 Checkpoint::Checkpoint(const std::string& output_path, const SweepSpec& spec, bool keep_runs,
                        bool resume)
-    : dir_(output_path + ".checkpoint"), spec_(&spec) {
-  std::error_code ec;
-  const bool existed = fs::exists(dir_, ec);
-  if (existed && !resume)
-    throw ConfigError(dir_ +
-                      ": the checkpoint of an interrupted sweep exists; continue it with "
-                      "--resume, or remove the directory to start afresh");
-  if (existed && !fs::is_directory(dir_, ec))
-    throw IoError("cannot use checkpoint '" + dir_ + "': not a directory");
-  if (!existed && !fs::create_directory(dir_, ec))
-    throw IoError("cannot create checkpoint directory '" + dir_ + "': " + ec.message());
-
-  const std::string lock_path = dir_ + "/lock";
-  lock_fd_ = ::open(lock_path.c_str(), O_RDWR | O_CREAT, 0644);
-  if (lock_fd_ < 0) io_fail(lock_path, std::strerror(errno));
-  if (::flock(lock_fd_, LOCK_EX | LOCK_NB) != 0 && (errno == EWOULDBLOCK || errno == EINTR)) {
-    ::close(lock_fd_);
-    lock_fd_ = -1;
-    throw IoError("checkpoint '" + dir_ + "' is in use by another running sweep");
+    : dir_(output_path + ".checkpoint"),
+      identity_(make_identity(spec.sweep_yaml, spec.base_config_yaml, build_identity(),
+                              spec.scenario_count(), keep_runs)) {
+  // mkdir first and take the lock second, so that two sweeps starting together on one
+  // output find each other through the lock whichever of them made the directory.
+  if (::mkdir(dir_.c_str(), 0755) != 0) {
+    const int err = errno;
+    std::error_code ec;
+    if (err != EEXIST)
+      throw IoError("cannot create checkpoint directory '" + dir_ + "': " + errno_text(err));
+    if (!fs::is_directory(dir_, ec))
+      throw IoError("cannot use checkpoint '" + dir_ + "': it exists and is not a directory");
   }
-
+  take_lock();
   try {
-    scan(spec, keep_runs);
+    scan_journals(spec, resume);
   } catch (...) {
-    ::close(lock_fd_);
-    lock_fd_ = -1;
+    release_lock();
     throw;
   }
 }
 
-void Checkpoint::scan(const SweepSpec& spec, bool keep_runs) {
-  std::error_code ec;
-  const ManifestFields want = manifest_of(spec, keep_runs);
-  const std::string manifest_path = dir_ + "/" + kManifest;
-  const std::size_t n = spec.scenario_count();
-  if (fs::exists(manifest_path, ec)) {
-    ManifestFields found;
-    try {
-      found = read_manifest(manifest_path);
-    } catch (const IoError& e) {
-      throw ConfigError(dir_ + ": unreadable checkpoint manifest (" + e.what() +
-                        "); remove the directory to start afresh");
-    }
-    const std::string diff = manifest_difference(found, want);
-    if (!diff.empty())
-      throw ConfigError(dir_ + ": the checkpoint belongs to another sweep (" + diff +
-                        "); remove the directory to start afresh");
-  } else {
-    write_manifest(dir_, want);
+void Checkpoint::take_lock() {
+  const std::string lock_path = dir_ + "/" + kLockName;
+  lock_fd_ = ::open(lock_path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  if (lock_fd_ < 0)
+    throw IoError("cannot open checkpoint lock '" + lock_path + "': " + errno_text(errno));
+  int rc = 0;
+  do rc = ::flock(lock_fd_, LOCK_EX | LOCK_NB);
+  while (rc != 0 && errno == EINTR);
+  if (rc != 0) {
+    const int err = errno;
+    char holder[256] = {0};
+    const ssize_t got = ::pread(lock_fd_, holder, sizeof holder - 1, 0);
+    ::close(lock_fd_);
+    lock_fd_ = -1;
+    if (err != EWOULDBLOCK)
+      throw IoError("cannot lock checkpoint '" + lock_path + "': " + errno_text(err));
+    std::string who(holder, got > 0 ? static_cast<std::size_t>(got) : 0);
+    while (!who.empty() && (who.back() == '\n' || who.back() == ' ')) who.pop_back();
+    throw IoError("output '" + dir_.substr(0, dir_.size() - std::string(".checkpoint").size()) +
+                  "' is being written by a sweep that is still running" +
+                  (who.empty() ? std::string() : " (process " + who + ")") +
+                  "; wait for it to finish or stop it, or write to another output");
   }
+  char host[128] = {0};
+  ::gethostname(host, sizeof host - 1);
+  const std::string me = std::to_string(::getpid()) + " on " + host + "\n";
+  if (::ftruncate(lock_fd_, 0) == 0) {
+    const ssize_t w = ::pwrite(lock_fd_, me.data(), me.size(), 0);
+    (void)w;  // the holder's name only improves a message
+  }
+}
 
-  std::vector<std::string> names;
-  for (const auto& e : fs::directory_iterator(dir_)) names.push_back(e.path().filename().string());
-  std::sort(names.begin(), names.end());
-  for (const std::string& name : names) {
-    const std::string p = dir_ + "/" + name;
-    std::size_t index = 0;
+void Checkpoint::release_lock() {
+  if (lock_fd_ >= 0) ::close(lock_fd_);
+  lock_fd_ = -1;
+}
+
+void Checkpoint::scan_journals(const SweepSpec& spec, bool resume) {
+  std::error_code ec;
+  std::vector<std::pair<unsigned, std::string>> found;
+  unsigned last = 0;
+  for (const auto& e : fs::directory_iterator(dir_)) {
+    const std::string name = e.path().filename().string();
+    unsigned number = 0;
     if (!name.empty() && name[0] == '.') {
-      fs::remove(p, ec);  // a temporary file of an interrupted write
-    } else if (is_scenario_file(name, index)) {
-      bool ok = index < n && name == scenario_id(spec, index) + ".h5";
-      if (ok) {
-        try {
-          ok = read_checkpoint_summary(p).index == index;
-        } catch (const Error&) {
-          ok = false;
-        }
-      }
-      if (ok)
-        finished_.push_back(index);
-      else
-        fs::remove(p, ec);  // not of this sweep, or damaged: computed again
+      fs::remove(e.path(), ec);  // a temporary of an interrupted run
+    } else if (is_journal_name(name, number)) {
+      found.emplace_back(number, e.path().string());
+      last = std::max(last, number);
+    } else if (name != kLockName) {
+      throw ConfigError(dir_ + ": not a checkpoint of this hexdyn (unexpected file '" + name +
+                        "'; an older hexdyn's checkpoint cannot be resumed); remove the "
+                        "directory to start afresh");
     }
   }
-  std::sort(finished_.begin(), finished_.end());
+  std::sort(found.begin(), found.end());
+  if (!found.empty() && !resume)
+    throw ConfigError(dir_ +
+                      ": the checkpoint of an interrupted sweep exists; continue it with "
+                      "--resume, or remove the directory to start afresh");
+
+  const std::size_t n = spec.scenario_count();
+  std::vector<char> seen(found.empty() ? 0 : n, 0);
+  std::vector<char> crashed(found.empty() ? 0 : n, 0);
+  for (const auto& [number, path] : found) {
+    const MappedFile file(path);
+    const JournalScan scan = scan_journal(file.data(), file.size(), path, identity_);
+    if (scan.header_ok && scan.header.id != identity_.id)
+      throw ConfigError(dir_ + ": the checkpoint belongs to another sweep (" +
+                        identity_.difference(scan.header) + ", journal " +
+                        fs::path(path).filename().string() +
+                        "); remove the directory to start afresh, or write to another output");
+    if (scan.foreign_record)
+      throw ConfigError(dir_ + ": the checkpoint belongs to another sweep (journal " +
+                        fs::path(path).filename().string() +
+                        " holds records of another sweep); remove the directory to start "
+                        "afresh, or write to another output");
+    for (const std::string& d : scan.damage) warnings_.push_back(d);
+    const auto journal = static_cast<std::uint32_t>(journals_.size());
+    journals_.push_back(path);
+    for (const JournalEntry& e : scan.entries) {
+      if (e.index >= n) continue;  // cannot happen with a matching identity
+      if (e.kind == RecordKind::kCrashAttempt) {
+        if (!crashed[e.index]) crash_attempts_.push_back(e.index);
+        crashed[e.index] = 1;
+        continue;
+      }
+      if (seen[e.index]) continue;
+      std::size_t image_offset = 0, image_size = 0;
+      ScenarioRecord r;
+      try {
+        r = decode_record(file.data() + e.payload_offset, e.payload_size, false, &image_offset,
+                          &image_size);
+      } catch (const IoError& err) {
+        warnings_.push_back(path + ": record of scenario " + scenario_id(spec, e.index) +
+                            " unreadable (" + err.what() + "); its scenario is computed again");
+        continue;
+      }
+      if (r.summary.index != e.index) continue;
+      seen[e.index] = 1;
+      if (image_size > 0)
+        images_[e.index] = {journal, e.payload_offset + image_offset, image_size};
+      finished_.push_back(std::move(r.summary));
+    }
+  }
+  // A crash attempt of a scenario finished since then is history.
+  std::erase_if(crash_attempts_, [&](std::size_t i) { return seen[i] != 0; });
+  char name[32];
+  std::snprintf(name, sizeof name, "journal-%04u.hxj", last + 1);
+  own_journal_ = dir_ + "/" + name;
 }
 
 Checkpoint::~Checkpoint() {
-  if (lock_fd_ >= 0) ::close(lock_fd_);
+  try {
+    if (journal_fd_ >= 0) flush(false);
+  } catch (...) {
+  }
+  if (journal_fd_ >= 0) ::close(journal_fd_);
+  release_lock();
 }
 
-std::string Checkpoint::scenario_path(std::size_t index) const {
-  return dir_ + "/" + scenario_id(*spec_, index) + ".h5";
+std::size_t Checkpoint::journal_count() const { return journals_.size(); }
+
+void Checkpoint::append_row(std::size_t index, const char* payload, std::size_t size) {
+  if (journal_fd_ < 0 && buffer_.empty()) {
+    const std::vector<char> header = journal_header(identity_);
+    buffer_.insert(buffer_.end(), header.begin(), header.end());
+  }
+  const std::uint64_t at = journal_size_ + buffer_.size();
+  append_journal_record(buffer_, RecordKind::kRow, index, identity_, payload, size);
+  if (identity_.keep_runs) {
+    std::size_t image_offset = 0, image_size = 0;
+    (void)decode_record(payload, size, false, &image_offset, &image_size);
+    if (image_size > 0)
+      images_[index] = {static_cast<std::uint32_t>(journals_.size()),
+                        at + kRecordHeaderBytes + image_offset, image_size};
+  }
 }
 
-void Checkpoint::store(std::size_t index, const std::vector<char>& bytes) {
-  write_bytes_atomically(scenario_path(index), bytes.data(), bytes.size());
+void Checkpoint::append_crash(std::size_t index, const std::string& reason) {
+  if (journal_fd_ < 0 && buffer_.empty()) {
+    const std::vector<char> header = journal_header(identity_);
+    buffer_.insert(buffer_.end(), header.begin(), header.end());
+  }
+  append_journal_record(buffer_, RecordKind::kCrashAttempt, index, identity_, reason.data(),
+                        reason.size());
+}
+
+void Checkpoint::flush(bool sync) {
+  if (buffer_.empty() && !(sync && journal_fd_ >= 0)) return;
+  if (journal_fd_ < 0) {
+    journal_fd_ = ::open(own_journal_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_APPEND | O_CLOEXEC,
+                         0644);
+    if (journal_fd_ < 0)
+      throw IoError("cannot create checkpoint journal '" + own_journal_ + "': " +
+                    errno_text(errno));
+    journals_.push_back(own_journal_);
+  }
+  write_all(journal_fd_, buffer_.data(), buffer_.size(), own_journal_);
+  journal_size_ += buffer_.size();
+  buffer_.clear();
+  if (sync && ::fdatasync(journal_fd_) != 0)
+    throw IoError("cannot sync checkpoint journal '" + own_journal_ + "': " + errno_text(errno));
+}
+
+std::vector<char> Checkpoint::run_image(std::size_t index) const {
+  const auto it = images_.find(index);
+  if (it == images_.end()) return {};
+  const ImageAt& at = it->second;
+  const std::string& path = at.journal < journals_.size() ? journals_[at.journal] : own_journal_;
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) throw IoError("cannot read checkpoint journal '" + path + "': " + errno_text(errno));
+  std::vector<char> bytes(at.size);
+  std::size_t got = 0;
+  while (got < bytes.size()) {
+    const ssize_t r = ::pread(fd, bytes.data() + got, bytes.size() - got,
+                              static_cast<off_t>(at.offset + got));
+    if (r <= 0) {
+      if (r < 0 && errno == EINTR) continue;
+      ::close(fd);
+      throw IoError("cannot read the run of scenario " + std::to_string(index) + " from '" +
+                    path + "'");
+    }
+    got += static_cast<std::size_t>(r);
+  }
+  ::close(fd);
+  return bytes;
 }
 
 void Checkpoint::remove() {
+  if (journal_fd_ >= 0) ::close(journal_fd_);
+  journal_fd_ = -1;
+  buffer_.clear();
   std::error_code ec;
   fs::remove_all(dir_, ec);
-  if (lock_fd_ >= 0) ::close(lock_fd_);
-  lock_fd_ = -1;
+  release_lock();
   if (ec) throw IoError("cannot remove checkpoint '" + dir_ + "': " + ec.message());
 }
 

@@ -1,64 +1,94 @@
 #pragma once
 /// \file checkpoint.hpp
-/// Per-scenario checkpoint records of a running sweep and the checkpoint directory that
-/// holds them, with its manifest and lock. Each record is published atomically
-/// (io/atomic_file.hpp), so a record present is complete; `--resume` continues from them.
+/// The checkpoint of a running sweep: the directory `<output>.checkpoint/` with
+///   lock               held (flock) by the sweep writing to it, released when its process
+///                      dies; holds "pid host" of the holder for messages;
+///   journal-NNNN.hxj   one append-only journal per run of the sweep (journal.hpp): a
+///                      requeued or resumed job adds one, so the count is the number of
+///                      runs, never the number of scenarios;
+///   .*                 temporaries (removed when the checkpoint is opened).
+/// `--resume` continues from the records of all journals. Every journal header and every
+/// record carries the sweep's identity (journal.hpp), so a checkpoint of another sweep is
+/// refused whole whatever files of it remain; damaged or truncated records are named in a
+/// warning and their scenarios computed again. Not thread-safe.
 #include <cstddef>
+#include <cstdint>
+#include <memory>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
+#include "hexdyn/sweep/journal.hpp"
+#include "hexdyn/sweep/record.hpp"
 #include "hexdyn/sweep/scenario.hpp"
 #include "hexdyn/sweep/spec.hpp"
 
 namespace hexdyn {
 
-/// Group of a checkpoint record that holds the kept run (`hexdyn-result/1` layout).
-inline constexpr const char* kCheckpointRunGroup = "/run";
+/// The build as it enters a sweep's identity: "hexdyn VERSION (COMMIT)".
+std::string build_identity();
 
-/// A scenario as a checkpoint file (`hexdyn-sweep-checkpoint/1`, HDF5): /meta (schema,
-/// index), /summary/* (the row) and, when the run is kept, /run/* in the
-/// `hexdyn-result/1` layout. Built in a temporary file under `scratch_dir` (which must
-/// be writable) and returned as the file's bytes, so that it can travel between ranks.
-std::vector<char> encode_checkpoint(const ScenarioOutcome& outcome, const std::string& scratch_dir);
-
-/// Reads the row of a checkpoint file; throws IoError if it is not one.
-ScenarioSummary read_checkpoint_summary(const std::string& path);
-
-/// The checkpoint directory of a sweep output, `<output>.checkpoint/`: a manifest
-/// naming the sweep it belongs to, one `<id>.h5` per finished scenario (written to a
-/// temporary name and renamed, so a file present is complete) and a lock held while
-/// a sweep runs. Not thread-safe; store() does not call HDF5.
 class Checkpoint {
  public:
   /// Opens the checkpoint of `output_path` for `spec` (rank 0, before any work).
-  /// Without `resume`: an existing directory is an error (an interrupted sweep would
-  /// be lost). With `resume`: an existing directory must have been made by the same
-  /// sweep (same sweep file text, same resolved base scene, same --keep-runs, same
-  /// hexdyn version and commit), else ConfigError; a missing one starts afresh.
-  /// Leftover temporary files are removed; unreadable scenario files are removed and
-  /// recomputed. Throws IoError if the directory is locked by a running sweep.
+  /// - Another live sweep holds the lock: IoError saying so (its process and host).
+  /// - Without `resume`, journals present (an interrupted sweep): ConfigError advising
+  ///   --resume (or removing the directory; it is not in use).
+  /// - With `resume`, any journal (header or intact record) of another identity:
+  ///   ConfigError naming what differs; nothing of the checkpoint is used.
+  /// Damaged records: warnings(), their scenarios are not finished.
   Checkpoint(const std::string& output_path, const SweepSpec& spec, bool keep_runs, bool resume);
   ~Checkpoint();
   Checkpoint(const Checkpoint&) = delete;
   Checkpoint& operator=(const Checkpoint&) = delete;
 
   const std::string& directory() const { return dir_; }
-  /// Indices found finished when the checkpoint was opened, ascending.
-  const std::vector<std::size_t>& finished() const { return finished_; }
-  /// Path of scenario `index`'s file.
-  std::string scenario_path(std::size_t index) const;
-  /// Writes a scenario's checkpoint bytes atomically (temporary name, fsync, rename).
-  void store(std::size_t index, const std::vector<char>& bytes);
+  const SweepIdentity& identity() const { return identity_; }
+  /// Rows found finished when the checkpoint was opened (one per scenario, journal order).
+  const std::vector<ScenarioSummary>& finished() const { return finished_; }
+  /// Scenarios whose process died once in an earlier run (not finished).
+  const std::vector<std::size_t>& crash_attempts() const { return crash_attempts_; }
+  /// One line per damaged stretch of a journal found when opening.
+  const std::vector<std::string>& warnings() const { return warnings_; }
+  /// Number of journal files, this run's included once it has written.
+  std::size_t journal_count() const;
+
+  /// Appends a finished scenario's record (payload of encode_record) to this run's
+  /// journal, created at the first append. Buffered: written by flush().
+  void append_row(std::size_t index, const char* payload, std::size_t size);
+  /// Appends the first crash of a scenario (`reason`: how its process died).
+  void append_crash(std::size_t index, const std::string& reason);
+  /// Writes the buffered records to the journal (write(2): a killed process loses none
+  /// of them); with `sync`, fsync as well (a crashed machine loses none). Throws IoError.
+  void flush(bool sync);
+  /// Bytes buffered and not yet flushed.
+  std::size_t buffered() const { return buffer_.size(); }
+
+  /// The run image of a finished scenario kept with --keep-runs; empty if none.
+  std::vector<char> run_image(std::size_t index) const;
   /// Removes the directory (after the sweep file is complete) and releases the lock.
   void remove();
 
  private:
-  /// Checks or writes the manifest and lists the finished scenarios (lock held).
-  void scan(const SweepSpec& spec, bool keep_runs);
+  struct ImageAt {
+    std::uint32_t journal = 0;
+    std::uint64_t offset = 0, size = 0;
+  };
+  void take_lock();
+  void scan_journals(const SweepSpec& spec, bool resume);
+  void release_lock();
 
   std::string dir_;
-  const SweepSpec* spec_;
-  std::vector<std::size_t> finished_;
+  SweepIdentity identity_;
+  std::vector<std::string> journals_;  ///< paths; this run's last once created
+  std::vector<ScenarioSummary> finished_;
+  std::vector<std::size_t> crash_attempts_;
+  std::vector<std::string> warnings_;
+  std::unordered_map<std::size_t, ImageAt> images_;
+  std::string own_journal_;  ///< path of this run's journal
+  int journal_fd_ = -1;
+  std::uint64_t journal_size_ = 0;  ///< bytes written to this run's journal
+  std::vector<char> buffer_;
   int lock_fd_ = -1;
 };
 

@@ -10,6 +10,7 @@
 #include "hexdyn/core/errors.hpp"
 #include "hexdyn/io/config.hpp"
 #include "hexdyn/pipeline/pipeline.hpp"
+#include "hexdyn/sweep/scenario_factory.hpp"
 
 namespace hexdyn {
 namespace {
@@ -34,13 +35,15 @@ const char* status_name(ScenarioStatus status) {
       return "error";
     case ScenarioStatus::kInternal:
       return "internal";
+    case ScenarioStatus::kCrashed:
+      return "crashed";
   }
   return "internal";
 }
 
 std::string status_codes_text() {
   std::string s;
-  for (int c = 0; c <= static_cast<int>(ScenarioStatus::kInternal); ++c)
+  for (int c = 0; c <= static_cast<int>(kLastScenarioStatus); ++c)
     s += (s.empty() ? "" : ", ") + std::to_string(c) + " " +
          status_name(static_cast<ScenarioStatus>(c));
   return s;
@@ -130,6 +133,32 @@ ScenarioOutcome run_scenario(const ScenarioInput& input, bool keep_run) {
   }
   out.summary.wall_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+ScenarioOutcome run_scenario(const ScenarioFactory& factory, std::size_t index, bool keep_run,
+                             ScenarioTiming* timing) {
+  using Clock = std::chrono::steady_clock;
+  const auto t0 = Clock::now();
+  auto t1 = t0, t2 = t0;
+  ScenarioOutcome out;
+  try {
+    const Scene scene = factory.scene(index, keep_run);
+    t1 = Clock::now();
+    RunResult run = run_scene(scene, nullptr);
+    t2 = Clock::now();
+    out.summary = summarize_run(run, index);
+    if (keep_run) out.run = std::move(run);
+  } catch (const std::exception& e) {
+    if (t1 == t0) t1 = Clock::now();
+    t2 = Clock::now();
+    out.summary = failed_summary(index, classify_exception(e), e.what());
+    out.run.reset();
+  }
+  const auto t3 = Clock::now();
+  const auto seconds = [](Clock::duration d) { return std::chrono::duration<double>(d).count(); };
+  out.summary.wall_time_s = seconds(t2 - t0);
+  if (timing) *timing = {seconds(t1 - t0), seconds(t2 - t1), seconds(t3 - t2)};
   return out;
 }
 

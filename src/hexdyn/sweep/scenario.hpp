@@ -25,9 +25,12 @@ enum class ScenarioStatus : std::int8_t {
   kSolver = 4,    ///< SolverError
   kError = 5,     ///< another hexdyn::Error
   kInternal = 6,  ///< any other exception (a bug)
+  kCrashed = 7,   ///< its process died twice (signal, abort, out-of-memory kill): not retried
 };
+/// The largest status code.
+inline constexpr ScenarioStatus kLastScenarioStatus = ScenarioStatus::kCrashed;
 
-/// "ok", "config", "reach", "planning", "solver", "error", "internal".
+/// "ok", "config", "reach", "planning", "solver", "error", "internal", "crashed".
 const char* status_name(ScenarioStatus status);
 /// "0 ok, 1 config, ..." for the `codes` attribute of /scenarios/status.
 std::string status_codes_text();
@@ -76,5 +79,18 @@ std::optional<ScenarioSummary> check_scenario(const ScenarioInput& input);
 /// throws for a scenario that cannot be computed: the exception becomes the row's
 /// status and message. `keep_run` keeps the RunResult of a computed scenario.
 ScenarioOutcome run_scenario(const ScenarioInput& input, bool keep_run);
+
+class ScenarioFactory;
+
+/// Where a scenario's time went [s]: building and validating its scene, the physics
+/// (run_scene), and the summary row.
+struct ScenarioTiming {
+  double config_s = 0.0, physics_s = 0.0, summary_s = 0.0;
+};
+
+/// Runs scenario `index` of a sweep with the scene from `factory` (scenario_factory.hpp);
+/// otherwise as above. The row's wall_time_s is the scene's construction plus the physics.
+ScenarioOutcome run_scenario(const ScenarioFactory& factory, std::size_t index, bool keep_run,
+                             ScenarioTiming* timing = nullptr);
 
 }  // namespace hexdyn

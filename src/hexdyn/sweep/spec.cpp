@@ -271,6 +271,21 @@ SweepSpec load_sweep(const std::string& path) {
                          " scenarios, expected at most that many");
     spec.axes.push_back(std::move(axis));
   }
+  // Each value once against its key, on the base scene: a value out of range is found
+  // here without looking at any combination of values.
+  for (SweepAxis& axis : spec.axes) {
+    axis.errors.assign(axis.size(), std::string());
+    for (std::size_t v = 0; v < axis.size(); ++v) {
+      const std::string source = axis.key + "=" + axis.labels[v];
+      YAML::Node one = YAML::Clone(tree);
+      try {
+        apply_override(one, {axis.key, axis.values[v]}, source);
+        (void)scene_from_yaml(one, source, false);
+      } catch (const Error& e) {
+        axis.errors[v] = e.what();
+      }
+    }
+  }
   return spec;
 }
 

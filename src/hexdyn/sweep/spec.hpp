@@ -16,7 +16,9 @@
 ///       - key: gait.duty_factor
 ///         values: [1/2, 2/3, 3/4, 5/6] # scalars; p/q is the number p divided by q
 ///
-/// Errors in the sweep file itself — YAML syntax, unknown or missing keys, malformed
+/// Each axis value is validated once against the base scene (SweepAxis::errors); no work
+/// is done per scenario (the cost of load_sweep grows with the number of axis values, not
+/// of scenarios). Errors in the sweep file itself — YAML syntax, unknown or missing keys, malformed
 /// axes, an axis key the base scene does not have, a base scene (with `set:`) that is
 /// not valid on its own — throw ConfigError with one line "FILE: path: got X, expected
 /// Y" before any work. A scenario whose value is out of range for its key is not an
@@ -37,6 +39,10 @@ struct SweepAxis {
   std::vector<std::string> labels;  ///< each value as written in the sweep file ("2/3")
   bool numeric = true;              ///< every value is a finite number
   std::vector<double> numbers;      ///< values as numbers when `numeric`, else empty
+  /// Per value: why the base scene with only this value set is not valid (the
+  /// ConfigError's message), "" when it is. Checked once per value, not per scenario;
+  /// a scenario holding such a value fails its own validation (a row with status config).
+  std::vector<std::string> errors;
   std::size_t size() const { return values.size(); }
 };
 

@@ -1,14 +1,24 @@
 #pragma once
 /// \file sweep.hpp
 /// Parameter sweeps without MPI (DESIGN.md §4), one header per concern:
-///   spec.hpp        the sweep file, its grid of scenarios and each scenario's scene;
-///   scenario.hpp    one scenario run as a summary row (status, metrics);
-///   checkpoint.hpp  per-scenario checkpoint records, the checkpoint directory and lock;
-///   sweep_file.hpp  the `hexdyn-sweep/1` writer (layout in io/schema.hpp);
-///   progress.hpp    progress lines.
-/// The distribution over ranks is in mpi/mpi_sweep.hpp. This header includes all five.
+///   spec.hpp              the sweep file, its grid of scenarios, each value validated once;
+///   scenario_factory.hpp  a scenario's scene, built when it starts from the base tree;
+///   scenario.hpp          one scenario run as a summary row (status, metrics);
+///   scenario_process.hpp  scenarios in a child process (crash containment);
+///   coordinator.hpp       who computes what next (adaptive batches, costly first, retries);
+///   record.hpp            a finished scenario as bytes, checksums;
+///   journal.hpp           the checkpoint journal's format;
+///   checkpoint.hpp        the checkpoint directory: journals, identity, lock;
+///   sweep_file.hpp        the `hexdyn-sweep/1` writer (layout in io/schema.hpp);
+///   progress.hpp          progress lines.
+/// The distribution over ranks is in mpi/mpi_sweep.hpp. This header includes them all.
 #include "hexdyn/sweep/checkpoint.hpp"
+#include "hexdyn/sweep/coordinator.hpp"
+#include "hexdyn/sweep/journal.hpp"
 #include "hexdyn/sweep/progress.hpp"
+#include "hexdyn/sweep/record.hpp"
 #include "hexdyn/sweep/scenario.hpp"
+#include "hexdyn/sweep/scenario_factory.hpp"
+#include "hexdyn/sweep/scenario_process.hpp"
 #include "hexdyn/sweep/spec.hpp"
 #include "hexdyn/sweep/sweep_file.hpp"

@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
-#include <filesystem>
 
 #include "hexdyn/core/errors.hpp"
 #include "hexdyn/io/atomic_file.hpp"
@@ -17,13 +16,12 @@
 namespace hexdyn {
 namespace {
 
-namespace fs = std::filesystem;
-
 [[noreturn]] void io_fail(const std::string& path, const std::string& what) {
   throw IoError("cannot write '" + path + "': " + what);
 }
 
-/// Copies `/run` of each kept checkpoint file to `/runs/<id>` of the open file `dst_path`.
+/// Copies `/run` of each kept run image (from the checkpoint's journals) to `/runs/<id>`
+/// of the file `dst_path`. An image is opened in memory (HDF5 core driver).
 void copy_runs(const std::string& dst_path, const SweepSpec& spec,
                const std::vector<ScenarioSummary>& rows, const Checkpoint& cp) {
   silence_hdf5_errors();
@@ -34,16 +32,27 @@ void copy_runs(const std::string& dst_path, const SweepSpec& spec,
   std::string error;
   for (const ScenarioSummary& row : rows) {
     if (row.status != ScenarioStatus::kOk) continue;
-    const std::string src_path = cp.scenario_path(row.index);
-    if (!fs::exists(src_path)) continue;
-    const hid_t src = H5Fopen(src_path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
-    if (src < 0) {
-      error = "cannot open checkpoint '" + src_path + "'";
+    std::vector<char> image;
+    try {
+      image = cp.run_image(row.index);
+    } catch (const Error& e) {
+      error = e.what();
       break;
     }
-    if (H5Lexists(src, kCheckpointRunGroup, H5P_DEFAULT) > 0) {
+    if (image.empty()) continue;
+    const hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
+    H5Pset_fapl_core(fapl, 1 << 20, 0);
+    H5Pset_file_image(fapl, image.data(), image.size());
+    const std::string name = "run-" + scenario_id(spec, row.index) + ".h5";
+    const hid_t src = H5Fopen(name.c_str(), H5F_ACC_RDONLY, fapl);
+    H5Pclose(fapl);
+    if (src < 0) {
+      error = "cannot open the kept run of scenario " + scenario_id(spec, row.index);
+      break;
+    }
+    if (H5Lexists(src, kRunImageGroup, H5P_DEFAULT) > 0) {
       const std::string to = schema::at(schema::kRunGroup, scenario_id(spec, row.index));
-      if (H5Ocopy(src, kCheckpointRunGroup, dst, to.c_str(), H5P_DEFAULT, lcpl) < 0)
+      if (H5Ocopy(src, kRunImageGroup, dst, to.c_str(), H5P_DEFAULT, lcpl) < 0)
         error = "cannot copy the run of scenario " + scenario_id(spec, row.index);
     }
     H5Fclose(src);

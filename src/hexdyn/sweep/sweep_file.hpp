@@ -23,7 +23,8 @@ struct SweepRunInfo {
 /// Writes the `hexdyn-sweep/1` file atomically (temporary name, fsync, rename):
 /// /meta, /axes/<i>/{key,values,labels}, /joint_names, /scenarios/* (one row per
 /// scenario, index order) and, when `runs_from` is given, each computed scenario's
-/// /run group copied from its checkpoint file to /runs/<id>. `rows` holds every
+/// run image copied from the checkpoint's journals (Checkpoint::run_image, flushed) to
+/// /runs/<id>. `rows` holds every
 /// scenario, rows[i].index == i. Throws IoError.
 void write_sweep_file(const std::string& path, const SweepSpec& spec,
                       const std::vector<ScenarioSummary>& rows, const Checkpoint* runs_from,

@@ -1,6 +1,6 @@
-// Messages between the ranks of a sweep (src/hexdyn/mpi/messages.*): work, stop and
-// result messages round-trip every field, including empty and binary blocks, and a
-// truncated message is an error rather than garbage.
+// Messages between the ranks of a sweep (src/hexdyn/mpi/messages.*): the sweep, work
+// batches, the stop and result batches round-trip every field, including empty and
+// binary blocks, and a truncated message is an error rather than garbage.
 #include <catch2/catch.hpp>
 #include <string>
 #include <vector>
@@ -10,55 +10,71 @@
 
 using namespace hexdyn;
 
-TEST_CASE("mpi messages: work and stop round-trip", "[mpi]") {
-  ScenarioInput in;
-  in.index = 123456789012ULL;
-  in.id = "123456789012";
-  in.yaml = "terrain:\n  riser_height: 0.04\n";
-  const auto work = unpack_work(pack_work(in, true));
+TEST_CASE("mpi messages: work batches and stop round-trip", "[mpi]") {
+  const std::vector<std::size_t> batch{123456789012ULL, 0, 7};
+  const auto work = unpack_work(pack_work(batch));
   REQUIRE(work.has_value());
-  CHECK(work->input.index == in.index);
-  CHECK(work->input.id == in.id);
-  CHECK(work->input.yaml == in.yaml);
-  CHECK(work->keep_runs);
-  CHECK_FALSE(unpack_work(pack_work(in, false))->keep_runs);
+  CHECK(*work == batch);
+  CHECK(unpack_work(pack_work({}))->empty());
   CHECK_FALSE(unpack_work(pack_stop()).has_value());
 }
 
-TEST_CASE("mpi messages: a finished scenario round-trips, the sender from the envelope",
-          "[mpi]") {
+TEST_CASE("mpi messages: the sweep round-trips what a worker needs", "[mpi]") {
+  SweepSpec spec;
+  spec.name = "s";
+  spec.base_path = "/x/base.yaml";
+  spec.base_tree_yaml = "terrain:\n  riser_height: 0.04\n";
+  SweepAxis a;
+  a.key = "gait.duty_factor";
+  a.values = {"0.5", "0.66666666666666663"};
+  a.labels = {"1/2", "2/3"};
+  spec.axes.push_back(a);
+  bool keep = false;
+  const SweepSpec back = unpack_spec(pack_spec(spec, true), keep);
+  CHECK(keep);
+  CHECK(back.name == "s");
+  CHECK(back.base_path == spec.base_path);
+  CHECK(back.base_tree_yaml == spec.base_tree_yaml);
+  REQUIRE(back.axes.size() == 1);
+  CHECK(back.axes[0].key == a.key);
+  CHECK(back.axes[0].values == a.values);
+  CHECK(back.axes[0].labels == a.labels);
+}
+
+TEST_CASE("mpi messages: finished scenarios round-trip in order", "[mpi]") {
   Finished f;
   f.index = 7;
-  f.status = ScenarioStatus::kReach;
-  f.message = "scenario 000007: foothold out of reach";
-  f.wall_time_s = 0.125;
-  f.rank = 99;  // not sent: the receiver takes the rank from MPI's envelope
-  f.checkpoint = {'\0', '\x89', 'H', 'D', 'F', '\0', '\xff'};
-  const Finished g = unpack_result(pack_result(f), 3);
-  CHECK(g.index == 7);
-  CHECK(g.status == ScenarioStatus::kReach);
-  CHECK(g.message == f.message);
-  CHECK(g.wall_time_s == 0.125);
-  CHECK(g.rank == 3);
-  CHECK(g.checkpoint == f.checkpoint);
-
-  Finished empty;
-  const Finished h = unpack_result(pack_result(empty), 1);
-  CHECK(h.message.empty());
-  CHECK(h.checkpoint.empty());
+  f.cost_s = 0.125;
+  f.payload = {'\0', '\x89', 'H', 'D', 'F', '\0', '\xff'};
+  Finished c;
+  c.index = 9;
+  c.crashed = true;
+  c.reason = "its process was killed by signal 6 (SIGABRT)";
+  std::vector<char> msg;
+  append_result(msg, f);
+  append_result(msg, c);
+  const std::vector<Finished> got = unpack_results(msg);
+  REQUIRE(got.size() == 2);
+  CHECK(got[0].index == 7);
+  CHECK(got[0].cost_s == 0.125);
+  CHECK_FALSE(got[0].crashed);
+  CHECK(got[0].payload == f.payload);
+  CHECK(got[1].index == 9);
+  CHECK(got[1].crashed);
+  CHECK(got[1].reason == c.reason);
+  CHECK(got[1].payload.empty());
+  CHECK(unpack_results({}).empty());
 }
 
 TEST_CASE("mpi messages: a truncated message throws", "[mpi]") {
-  ScenarioInput in;
-  in.id = "000001";
-  in.yaml = "a: 1\n";
-  std::vector<char> work = pack_work(in, false);
+  std::vector<char> work = pack_work({1, 2});
   work.pop_back();
   CHECK_THROWS_AS(unpack_work(work), Error);
   Finished f;
-  f.checkpoint.assign(100, 'x');
-  std::vector<char> result = pack_result(f);
+  f.payload.assign(100, 'x');
+  std::vector<char> result;
+  append_result(result, f);
   result.resize(result.size() - 1);
-  CHECK_THROWS_AS(unpack_result(result, 1), Error);
+  CHECK_THROWS_AS(unpack_results(result), Error);
   CHECK_THROWS_AS(unpack_work({}), Error);
 }

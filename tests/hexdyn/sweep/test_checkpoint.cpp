@@ -1,11 +1,14 @@
-// Checkpoints (src/hexdyn/sweep/checkpoint.*): records round-trip a row; the checkpoint
-// directory's resume rules, lock and damaged files.
+// Checkpoints (src/hexdyn/sweep/record.*, journal.*, checkpoint.*): records round-trip a
+// row; journals detect damaged, truncated and foreign records; the checkpoint directory's
+// resume rules, identity and lock.
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <cstring>
+#include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
-#include "hexdyn/io/h5io.hpp"
 #include "hexdyn/sweep/checkpoint.hpp"
 #include "sweep_test_support.hpp"
 
@@ -13,85 +16,209 @@ using namespace hexdyn;
 using namespace sweep_test;
 namespace fs = std::filesystem;
 
-TEST_CASE("sweep: checkpoint files round-trip a row", "[sweep]") {
-  TempDir dir;
-  std::vector<double> a, b;
-  ScenarioSummary s = summarize_run(linear_torque_run(0.0, 1.0, a, b), 42);
-  s.wall_time_s = 1.25;
-  const std::vector<char> bytes = encode_checkpoint({s, std::nullopt}, dir.path.string());
-  const std::string p = dir.write("x.h5", std::string(bytes.begin(), bytes.end()));
-  const ScenarioSummary r = read_checkpoint_summary(p);
-  CHECK(r.index == 42);
-  CHECK(r.status == s.status);
-  CHECK(r.message == s.message);
-  CHECK(r.samples == s.samples);
-  CHECK(r.energy_J == s.energy_J);
-  CHECK(r.peak_impact_force_N == s.peak_impact_force_N);
-  CHECK(r.peak_torque_Nm == s.peak_torque_Nm);
-  CHECK(r.rms_torque_Nm == s.rms_torque_Nm);
-  CHECK(r.relaxed_samples == 2);
-  CHECK(r.failed_samples == 1);
-  CHECK(r.wall_time_s == 1.25);
-  const ScenarioSummary f =
-      failed_summary(3, ScenarioStatus::kReach, "leg L2 at t = 0.3 s: out of reach");
-  const std::vector<char> fb = encode_checkpoint({f, std::nullopt}, dir.path.string());
-  const ScenarioSummary g =
-      read_checkpoint_summary(dir.write("y.h5", std::string(fb.begin(), fb.end())));
-  CHECK(g.status == ScenarioStatus::kReach);
-  CHECK(g.message == f.message);
-  CHECK(std::isnan(g.energy_J));
-  // Nothing is left in the scratch directory but the two files written here.
-  CHECK(std::distance(fs::directory_iterator(dir.path), fs::directory_iterator()) == 2);
-  CHECK_THROWS_AS(read_checkpoint_summary(dir.write("z.h5", "not hdf5")), IoError);
+namespace {
+
+ScenarioSummary some_row(std::size_t index) {
+  ScenarioSummary s;
+  s.index = index;
+  s.samples = 61;
+  s.energy_J = 12.5 + static_cast<double>(index);
+  s.cost_of_transport = 0.25;
+  s.duration_s = 3.0;
+  s.distance_m = 0.25;
+  s.peak_impact_force_N = 40.0;
+  for (int k = 0; k < kJoints; ++k) {
+    s.peak_torque_Nm[static_cast<std::size_t>(k)] = 0.1 * k;
+    s.rms_torque_Nm[static_cast<std::size_t>(k)] = 0.01 * k;
+  }
+  s.relaxed_samples = 3;
+  s.wall_time_s = 0.5;
+  return s;
 }
 
-TEST_CASE("sweep: checkpoint directory, resume rules and lock", "[sweep]") {
+std::vector<char> payload_of(const ScenarioSummary& s) { return encode_record({s, {}}); }
+
+std::vector<char> read_all(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+void write_all(const std::string& path, const std::vector<char>& bytes) {
+  std::ofstream(path, std::ios::binary).write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+}
+
+std::string only_journal(const std::string& dir) {
+  std::string found;
+  for (const auto& e : fs::directory_iterator(dir))
+    if (e.path().extension() == ".hxj") found = e.path().string();
+  return found;
+}
+
+}  // namespace
+
+TEST_CASE("sweep: CRC-32 is zlib's (check value of \"123456789\")", "[sweep]") {
+  CHECK(crc32("123456789", 9) == 0xCBF43926u);
+  // Incremental = at once.
+  CHECK(crc32("56789", 5, crc32("1234", 4)) == 0xCBF43926u);
+  CHECK(crc32("", 0) == 0u);
+}
+
+TEST_CASE("sweep: a record round-trips a row and its run image", "[sweep]") {
+  ScenarioRecord r{some_row(7), {'\0', '\x89', 'H', 'D', 'F'}};
+  r.summary.message = "scenario 000007: foothold out of reach";
+  const std::vector<char> b = encode_record(r);
+  const ScenarioRecord back = decode_record(b.data(), b.size());
+  CHECK(back.summary.index == 7);
+  CHECK(back.summary.message == r.summary.message);
+  CHECK(back.summary.energy_J == r.summary.energy_J);
+  CHECK(back.summary.peak_torque_Nm == r.summary.peak_torque_Nm);
+  CHECK(back.summary.rms_torque_Nm == r.summary.rms_torque_Nm);
+  CHECK(back.summary.relaxed_samples == 3);
+  CHECK(back.run_image == r.run_image);
+  const ScenarioSummary failed = failed_summary(3, ScenarioStatus::kCrashed, "died");
+  const std::vector<char> fb = payload_of(failed);
+  const ScenarioSummary f = decode_record(fb.data(), fb.size()).summary;
+  CHECK(f.status == ScenarioStatus::kCrashed);
+  CHECK(std::isnan(f.energy_J));
+  CHECK_THROWS_AS(decode_record(b.data(), b.size() - 1), IoError);
+}
+
+TEST_CASE("sweep: a journal finds damaged, truncated and foreign records", "[sweep]") {
+  const SweepIdentity id = make_identity("sweep", "base", "build", 10, false);
+  std::vector<char> j = journal_header(id);
+  std::vector<std::size_t> starts;
+  for (std::size_t i = 0; i < 4; ++i) {
+    starts.push_back(j.size());
+    const auto p = payload_of(some_row(i));
+    append_journal_record(j, RecordKind::kRow, i, id, p.data(), p.size());
+  }
+  SECTION("intact") {
+    const JournalScan s = scan_journal(j.data(), j.size(), "J", id);
+    CHECK(s.header_ok);
+    CHECK(s.header.id == id.id);
+    CHECK(s.damage.empty());
+    REQUIRE(s.entries.size() == 4);
+    CHECK(s.entries[3].index == 3);
+  }
+  SECTION("a flipped byte in a payload: that record only, named") {
+    j[starts[1] + 40] ^= 0x5A;
+    const JournalScan s = scan_journal(j.data(), j.size(), "J", id);
+    REQUIRE(s.entries.size() == 3);
+    CHECK(s.entries[1].index == 2);
+    REQUIRE(s.damage.size() == 1);
+    CHECK_THAT(s.damage[0], Catch::Contains("scenario 000001") && Catch::Contains("checksum"));
+  }
+  SECTION("a flipped byte in a length field: found again at the next record") {
+    j[starts[2] + 24 + 5] ^= 0x01;
+    const JournalScan s = scan_journal(j.data(), j.size(), "J", id);
+    CHECK(s.entries.size() == 3);
+    CHECK(s.damage.size() == 1);
+  }
+  SECTION("a cut-off last record") {
+    j.resize(j.size() - 7);
+    const JournalScan s = scan_journal(j.data(), j.size(), "J", id);
+    CHECK(s.entries.size() == 3);
+    REQUIRE(s.damage.size() == 1);
+    CHECK_THAT(s.damage[0], Catch::Contains("truncated"));
+  }
+  SECTION("a damaged header: records still checked one by one") {
+    j[3] ^= 0x20;
+    const JournalScan s = scan_journal(j.data(), j.size(), "J", id);
+    CHECK_FALSE(s.header_ok);
+    CHECK(s.entries.size() == 4);
+  }
+  SECTION("records of another sweep") {
+    const SweepIdentity other = make_identity("sweep2", "base", "build", 10, false);
+    const JournalScan s = scan_journal(j.data(), j.size(), "J", other);
+    CHECK(s.foreign_record);
+    CHECK(s.entries.empty());
+  }
+}
+
+TEST_CASE("sweep: checkpoint directory, resume rules, identity and lock", "[sweep]") {
   TempDir dir;
   const SweepSpec spec = load_sweep(sweep_file(dir, kSmallAxes));
   const std::string out = (dir.path / "out.h5").string();
-  auto bytes_of = [&](std::size_t i, ScenarioStatus st) {
-    ScenarioSummary s = failed_summary(i, st, st == ScenarioStatus::kOk ? "" : "failed");
-    return encode_checkpoint({s, std::nullopt}, dir.path.string());
-  };
+  const std::string cpdir = out + ".checkpoint";
   {
     Checkpoint cp(out, spec, false, false);
-    CHECK(cp.directory() == out + ".checkpoint");
     CHECK(cp.finished().empty());
-    CHECK(fs::exists(cp.directory() + "/manifest.h5"));
-    // A second sweep on the same checkpoint while this one runs.
-    CHECK_THROWS_AS(Checkpoint(out, spec, false, true), IoError);
-    cp.store(3, bytes_of(3, ScenarioStatus::kOk));
-    cp.store(10, bytes_of(10, ScenarioStatus::kReach));
-    CHECK(fs::exists(cp.scenario_path(3)));
-    CHECK(fs::path(cp.scenario_path(10)).filename() == "000010.h5");
+    // A second sweep on the same output while this one runs: refused, saying so.
+    try {
+      Checkpoint second(out, spec, false, true);
+      FAIL("a second sweep took a live checkpoint");
+    } catch (const IoError& e) {
+      CHECK_THAT(std::string(e.what()), Catch::Contains("still running") &&
+                                            !Catch::Contains("remove"));
+    }
+    for (std::size_t i : {4u, 1u, 6u}) {
+      const auto p = payload_of(some_row(i));
+      cp.append_row(i, p.data(), p.size());
+    }
+    cp.append_crash(9, "killed by signal 6");
+    cp.flush(true);
+    CHECK(cp.journal_count() == 1);
   }
-  // A leftover temporary file and a damaged scenario file, as a kill can leave them.
-  dir.write("out.h5.checkpoint/.000011.h5.tmp", "partial");
-  dir.write("out.h5.checkpoint/000012.h5", "damaged");
-  // Without --resume an existing checkpoint is an error (one line, naming it).
-  try {
-    Checkpoint cp(out, spec, false, false);
-    FAIL("no error");
-  } catch (const ConfigError& e) {
-    CHECK(std::string(e.what()) ==
-          out +
-              ".checkpoint: the checkpoint of an interrupted sweep exists; "
-              "continue it with --resume, or remove the directory to start afresh");
-  }
-  // Another sweep file, or --keep-runs changed: refused.
-  const SweepSpec other = load_sweep(sweep_file(dir, kSmallAxes + "name: other\n", "other.yaml"));
-  CHECK_THROWS_WITH(Checkpoint(out, other, false, true),
-                    Catch::Contains("the sweep file's text differs"));
-  CHECK_THROWS_WITH(Checkpoint(out, spec, true, true), Catch::Contains("made without --keep-runs"));
+  // Not resumed: an interrupted sweep is not overwritten.
+  CHECK_THROWS_WITH(Checkpoint(out, spec, false, false), Catch::Contains("--resume"));
   {
     Checkpoint cp(out, spec, false, true);
-    CHECK(cp.finished() == std::vector<std::size_t>{3, 10});
-    CHECK_FALSE(fs::exists(cp.directory() + "/.000011.h5.tmp"));
-    CHECK_FALSE(fs::exists(cp.directory() + "/000012.h5"));
-    cp.remove();
-    CHECK_FALSE(fs::exists(cp.directory()));
+    REQUIRE(cp.finished().size() == 3);
+    CHECK(cp.finished()[1].index == 1);
+    CHECK(cp.finished()[1].energy_J == some_row(1).energy_J);
+    CHECK(cp.crash_attempts() == std::vector<std::size_t>{9});
+    CHECK(cp.warnings().empty());
+    const auto p = payload_of(some_row(2));
+    cp.append_row(2, p.data(), p.size());
+    cp.flush(false);
+    CHECK(cp.journal_count() == 2);  // one journal per run, not per scenario
   }
-  // --resume without a checkpoint starts afresh.
-  Checkpoint fresh(out, spec, false, true);
-  CHECK(fresh.finished().empty());
+  // Another sweep, or the same one with another --keep-runs: refused whole.
+  const SweepSpec other = load_sweep(sweep_file(dir, kSmallAxes + "# other\n", "t.yaml"));
+  CHECK_THROWS_WITH(Checkpoint(out, other, false, true), Catch::Contains("another sweep") &&
+                                                            Catch::Contains("sweep file"));
+  CHECK_THROWS_WITH(Checkpoint(out, spec, true, true), Catch::Contains("without --keep-runs"));
+  // Every journal's header lost: the records still name their sweep.
+  for (const auto& e : fs::directory_iterator(cpdir))
+    if (e.path().extension() == ".hxj") {
+      std::vector<char> b = read_all(e.path().string());
+      std::memset(b.data(), 'X', 64);
+      write_all(e.path().string(), b);
+    }
+  CHECK_THROWS_WITH(Checkpoint(out, other, false, true), Catch::Contains("another sweep"));
+  {
+    Checkpoint cp(out, spec, false, true);
+    CHECK(cp.finished().size() == 4);
+    CHECK(cp.warnings().size() == 2);  // one damaged header per journal
+  }
+  // A checkpoint that is done is removed with its lock.
+  Checkpoint last(out, spec, false, true);
+  last.remove();
+  CHECK_FALSE(fs::exists(cpdir));
+}
+
+TEST_CASE("sweep: a damaged record is named and its scenario recomputed", "[sweep]") {
+  TempDir dir;
+  const SweepSpec spec = load_sweep(sweep_file(dir, kSmallAxes));
+  const std::string out = (dir.path / "out.h5").string();
+  {
+    Checkpoint cp(out, spec, false, false);
+    for (std::size_t i = 0; i < 5; ++i) {
+      const auto p = payload_of(some_row(i));
+      cp.append_row(i, p.data(), p.size());
+    }
+    cp.flush(false);
+  }
+  const std::string journal = only_journal(out + ".checkpoint");
+  std::vector<char> b = read_all(journal);
+  const std::size_t record = (b.size() - 64) / 5;  // records of equal size
+  b[64 + 2 * record + 100] ^= 0x10;                // inside scenario 2's record
+  b.resize(b.size() - 3);                          // and the last one cut short
+  write_all(journal, b);
+  Checkpoint cp(out, spec, false, true);
+  std::vector<std::size_t> got;
+  for (const auto& r : cp.finished()) got.push_back(r.index);
+  CHECK(got == std::vector<std::size_t>{0, 1, 3});
+  REQUIRE(cp.warnings().size() == 2);
+  CHECK_THAT(cp.warnings()[0], Catch::Contains("scenario 000002"));
+  CHECK_THAT(cp.warnings()[1], Catch::Contains("truncated"));
 }

@@ -11,6 +11,7 @@
 
 #include "hexdyn/io/config.hpp"
 #include "hexdyn/pipeline/pipeline.hpp"
+#include "hexdyn/io/schema.hpp"
 #include "hexdyn/sweep/scenario.hpp"
 #include "sweep_test_support.hpp"
 
@@ -45,7 +46,12 @@ TEST_CASE("sweep: exceptions map to statuses", "[sweep]") {
   CHECK(classify_exception(IoError("x")) == ScenarioStatus::kError);
   CHECK(classify_exception(std::runtime_error("x")) == ScenarioStatus::kInternal);
   CHECK(status_codes_text() ==
-        "0 ok, 1 config, 2 reach, 3 planning, 4 solver, 5 error, 6 internal");
+        "0 ok, 1 config, 2 reach, 3 planning, 4 solver, 5 error, 6 internal, 7 crashed");
+  // The names the schema declares (and the Python reader parses) are the program's.
+  REQUIRE(schema::kScenarioStatusNames.size() == static_cast<std::size_t>(kLastScenarioStatus) + 1);
+  for (std::size_t c = 0; c < schema::kScenarioStatusNames.size(); ++c)
+    CHECK(std::string(schema::kScenarioStatusNames[c]) ==
+          status_name(static_cast<ScenarioStatus>(c)));
 }
 
 TEST_CASE("sweep: summary metrics against closed forms", "[sweep]") {

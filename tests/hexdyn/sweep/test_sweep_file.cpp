@@ -7,6 +7,7 @@
 
 #include "hexdyn/io/h5io.hpp"
 #include "hexdyn/io/schema.hpp"
+#include "hexdyn/sweep/scenario_process.hpp"
 #include "hexdyn/sweep/sweep_file.hpp"
 #include "sweep_test_support.hpp"
 
@@ -23,12 +24,14 @@ TEST_CASE("sweep: the sweep file holds axes, rows in index order and kept runs",
                  "  - key: allocation.friction\n    values: [pyramid4, cone]\n"));
   const std::string out = (dir.path / "sweep.h5").string();
   Checkpoint cp(out, spec, true, false);
+  const ScenarioFactory factory(spec);
   std::vector<ScenarioSummary> rows(spec.scenario_count());
   for (std::size_t i = rows.size(); i-- > 0;) {  // completion order need not be index order
-    const ScenarioOutcome o = run_scenario(scenario_input(spec, i), true);
-    cp.store(i, encode_checkpoint(o, dir.path.string()));
-    rows[i] = read_checkpoint_summary(cp.scenario_path(i));
+    const ScenarioEvent ev = compute_scenario(factory, i, true, dir.path.string());
+    cp.append_row(i, ev.payload.data(), ev.payload.size());
+    rows[i] = decode_record(ev.payload.data(), ev.payload.size()).summary;
   }
+  cp.flush(false);
   write_sweep_file(out, spec, rows, &cp, {2, 3.5, 1});
   const H5Reader r(out);
   CHECK(r.string_attribute("/meta", "schema") == schema::kSweepSchema);
@@ -59,7 +62,10 @@ TEST_CASE("sweep: the sweep file holds axes, rows in index order and kept runs",
   CHECK(r.string_attribute("/runs/000001/meta", "schema") == schema::kResultSchema);
   CHECK(r.read_doubles("/runs/000001/energy/total").values[0] == rows[1].energy_J);
   CHECK_FALSE(r.exists("/runs/000002"));
-  // The file is complete: no temporary files next to it.
-  for (const auto& e : fs::directory_iterator(dir.path))
+  // The file is complete: no temporary files next to it (run images are built in
+  // hidden temporaries and removed).
+  for (const auto& e : fs::directory_iterator(dir.path)) {
     CHECK(e.path().filename().string().find(".tmp") == std::string::npos);
+    CHECK(e.path().filename().string().rfind(".hexdyn-run", 0) != 0);
+  }
 }

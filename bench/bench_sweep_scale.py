@@ -1,0 +1,125 @@
+#!/usr/bin/python3
+"""Issue 12's whole-program sweep figures: start time and parallel efficiency.
+
+    /usr/bin/python3 bench/bench_sweep_scale.py [--hexdyn build/hexdyn] [--start] [--grid]
+                                                [--repeat 3]
+
+--start  Time from launching `hexdyn sweep -v` (one rank, no mpirun) to the start of the
+         first scenario (its line's arrival minus its own time) and to the first
+         progress line, for sweeps of 10^3, 10^5 and 10^6 scenarios (axes over
+         configs/sweeps/stairs_base.yaml); the sweep is stopped after that.
+--grid   The 1,000-scenario grid bench/sweep_1000.yaml on 1 and 2 ranks (mpirun for
+         both, so both include MPI's start-up), end to end: wall time, summed scenario
+         time Σ (scene construction + physics, /scenarios/wall_time_s), parallel
+         efficiency T1 / (2 T2), and wall / (Σ / ranks) (target ≤ 1.15). Also the CPU
+         time of the processes, so that a machine busy with other work shows.
+Prints Markdown tables (medians of --repeat runs). Writes into a temporary directory.
+"""
+
+import argparse
+import os
+import resource
+import signal
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+
+import h5py
+import numpy as np
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+
+
+def sweep_file(work, counts):
+    base = os.path.join(ROOT, "configs", "sweeps", "stairs_base.yaml")
+    path = os.path.join(work, f"start_{'x'.join(map(str, counts))}.yaml")
+    with open(path, "w") as f:
+        f.write(f"base: {base}\nset:\n  output.grid: uniform\n  motion.cycles: 1\naxes:\n")
+        f.write(f"  - key: terrain.riser_height\n    range: {{from: 0.02, to: 0.08, count: {counts[0]}}}\n")
+        f.write(f"  - key: motion.peak_speed\n    range: {{from: 0.05, to: 0.2, count: {counts[1]}}}\n")
+        f.write(f"  - key: gait.duty_factor\n    range: {{from: 0.5, to: 0.8, count: {counts[2]}}}\n")
+    return path
+
+
+def start_time(hexdyn, sweep, work):
+    out = os.path.join(work, "start.h5")
+    t0 = time.perf_counter()
+    proc = subprocess.Popen([hexdyn, "sweep", sweep, "-o", out, "-v"], env=ENV,
+                            stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True,
+                            start_new_session=True)
+    progress = first = None
+    for line in proc.stderr:
+        now = time.perf_counter() - t0
+        if progress is None and "/" in line and " done" in line:
+            progress = now
+        if "(rank" in line and line.startswith("hexdyn: sweep: scenario"):
+            own = float(line.split("(rank", 1)[1].split(",")[1].split("s)")[0])
+            first = now - own
+            break
+    os.killpg(proc.pid, signal.SIGKILL)
+    proc.wait()
+    subprocess.run(["rm", "-rf", out + ".checkpoint"])
+    return first, progress
+
+
+def grid_run(hexdyn, sweep, ranks, work):
+    out = os.path.join(work, f"grid_{ranks}.h5")
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    t0 = time.perf_counter()
+    subprocess.run(["mpirun", "--oversubscribe", "-np", str(ranks), hexdyn, "sweep", sweep,
+                    "-o", out], env=ENV, check=True, stdout=subprocess.DEVNULL,
+                   stderr=subprocess.DEVNULL)
+    wall = time.perf_counter() - t0
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+    with h5py.File(out, "r") as f:
+        busy = float(np.sum(f["scenarios/wall_time_s"][()]))
+        n = int(f["meta"].attrs["scenarios"])
+    os.remove(out)
+    return wall, busy, cpu, n
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--hexdyn", default=os.path.join(ROOT, "build", "hexdyn"))
+    ap.add_argument("--start", action="store_true")
+    ap.add_argument("--grid", action="store_true")
+    ap.add_argument("--repeat", type=int, default=3)
+    args = ap.parse_args()
+    if not (args.start or args.grid):
+        args.start = args.grid = True
+    with tempfile.TemporaryDirectory(prefix="hexdyn_scale_") as work:
+        if args.start:
+            print("| scenarios | first scenario starts [s] | first progress line [s] |")
+            print("|---:|---:|---:|")
+            for counts in ((10, 10, 10), (100, 100, 10), (100, 100, 100)):
+                path = sweep_file(work, counts)
+                runs = [start_time(args.hexdyn, path, work) for _ in range(args.repeat)]
+                n = counts[0] * counts[1] * counts[2]
+                print(f"| {n:,} | {statistics.median(r[0] for r in runs):.2f} "
+                      f"| {statistics.median(r[1] for r in runs):.2f} |", flush=True)
+            print()
+        if args.grid:
+            sweep = os.path.join(ROOT, "bench", "sweep_1000.yaml")
+            rows = {}
+            for ranks in (1, 2):
+                runs = [grid_run(args.hexdyn, sweep, ranks, work) for _ in range(args.repeat)]
+                runs.sort()
+                rows[ranks] = runs[len(runs) // 2]
+                print(f"bench_sweep_scale: {ranks} rank(s): "
+                      f"{', '.join(f'{r[0]:.2f}' for r in runs)} s", file=sys.stderr)
+            t1 = rows[1][0]
+            print("| ranks | wall [s] | Σ scenario time [s] | wall / (Σ / ranks) "
+                  "| efficiency T1/(N·TN) | CPU time [s] |")
+            print("|---:|---:|---:|---:|---:|---:|")
+            for ranks, (wall, busy, cpu, n) in rows.items():
+                print(f"| {ranks} | {wall:.2f} | {busy:.2f} | {wall / (busy / ranks):.3f} "
+                      f"| {t1 / (ranks * wall):.0%} | {cpu:.2f} |")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,172 @@
+#include "hexdyn/sweep/journal.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <cstring>
+
+#include "hexdyn/sweep/record.hpp"
+
+namespace hexdyn {
+namespace {
+
+constexpr char kJournalMagic[8] = {'H', 'X', 'D', 'J', 'R', 'N', '0', '1'};
+constexpr std::uint32_t kRecordMagic = 0x31525848u;  // "HXR1" in little-endian memory order
+/// Largest payload accepted when reading (a kept run is a few MB).
+constexpr std::uint64_t kMaxPayload = std::uint64_t{1} << 34;
+
+template <class T>
+void put(std::vector<char>& b, const T& v) {
+  const std::size_t at = b.size();
+  b.resize(at + sizeof v);
+  std::memcpy(b.data() + at, &v, sizeof v);
+}
+template <class T>
+T get(const char* p) {
+  T v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+
+std::string padded(std::uint64_t index) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%06llu", static_cast<unsigned long long>(index));
+  return buf;
+}
+
+}  // namespace
+
+std::string SweepIdentity::difference(const SweepIdentity& o) const {
+  if (sweep_file != o.sweep_file) return "the sweep file's text differs";
+  if (base_scene != o.base_scene) return "the resolved base scene differs";
+  if (keep_runs != o.keep_runs)
+    return std::string("it was made ") + (o.keep_runs ? "with" : "without") + " --keep-runs";
+  if (build != o.build) return "it was made by another build of hexdyn (version or commit)";
+  if (scenarios != o.scenarios) return "the number of scenarios differs";
+  if (id != o.id) return "its identity differs";
+  return {};
+}
+
+SweepIdentity make_identity(const std::string& sweep_yaml, const std::string& base_config_yaml,
+                            const std::string& build, std::uint64_t scenarios, bool keep_runs) {
+  SweepIdentity s;
+  s.sweep_file = fnv1a64(sweep_yaml);
+  s.base_scene = fnv1a64(base_config_yaml);
+  s.build = fnv1a64(build);
+  s.scenarios = scenarios;
+  s.keep_runs = keep_runs;
+  std::string all;
+  for (std::uint64_t v : {s.sweep_file, s.base_scene, s.build, s.scenarios,
+                          static_cast<std::uint64_t>(keep_runs ? 1 : 0)})
+    all.append(reinterpret_cast<const char*>(&v), sizeof v);
+  s.id = fnv1a64(all);
+  return s;
+}
+
+std::vector<char> journal_header(const SweepIdentity& s) {
+  std::vector<char> b(kJournalMagic, kJournalMagic + 8);
+  for (std::uint64_t v : {s.id, s.sweep_file, s.base_scene, s.build, s.scenarios}) put(b, v);
+  put(b, static_cast<std::uint64_t>(s.keep_runs ? 1 : 0));
+  put(b, crc32(b.data(), b.size()));
+  put(b, std::uint32_t{0});
+  return b;
+}
+
+void append_journal_record(std::vector<char>& out, RecordKind kind, std::uint64_t index,
+                           const SweepIdentity& identity, const char* payload, std::size_t size) {
+  const std::size_t start = out.size();
+  out.reserve(start + kRecordHeaderBytes + size + kRecordTrailerBytes);
+  put(out, kRecordMagic);
+  put(out, static_cast<std::uint32_t>(kind));
+  put(out, index);
+  put(out, identity.id);
+  put(out, static_cast<std::uint64_t>(size));
+  out.insert(out.end(), payload, payload + size);
+  put(out, crc32(out.data() + start + 4, out.size() - start - 4));
+}
+
+JournalScan scan_journal(const char* data, std::size_t size, const std::string& name,
+                         const SweepIdentity& expected) {
+  JournalScan scan;
+  std::size_t at = 0;
+  if (size >= kJournalHeaderBytes && std::memcmp(data, kJournalMagic, 8) == 0 &&
+      get<std::uint32_t>(data + 56) == crc32(data, 56)) {
+    scan.header_ok = true;
+    SweepIdentity& h = scan.header;
+    h.id = get<std::uint64_t>(data + 8);
+    h.sweep_file = get<std::uint64_t>(data + 16);
+    h.base_scene = get<std::uint64_t>(data + 24);
+    h.build = get<std::uint64_t>(data + 32);
+    h.scenarios = get<std::uint64_t>(data + 40);
+    h.keep_runs = get<std::uint64_t>(data + 48) != 0;
+    at = kJournalHeaderBytes;
+  } else {
+    scan.damage.push_back(name + ": damaged header (" +
+                          (size < kJournalHeaderBytes ? std::string("file of ") +
+                                                            std::to_string(size) + " bytes"
+                                                      : std::string("checksum mismatch")) +
+                          "); its records are read by their own checksums");
+    at = std::min(size, kJournalHeaderBytes);  // the header has a fixed size
+  }
+
+  // One damaged stretch [bad_from, next good record) is reported once.
+  std::size_t bad_from = SIZE_MAX;
+  std::string bad_what;
+  const auto end_damage = [&](std::size_t upto) {
+    if (bad_from == SIZE_MAX) return;
+    scan.damage.push_back(name + ": " + bad_what + " at byte " + std::to_string(bad_from) +
+                          (upto > bad_from ? " (" + std::to_string(upto - bad_from) +
+                                                 " bytes skipped)"
+                                           : std::string()) +
+                          "; its scenario is computed again");
+    bad_from = SIZE_MAX;
+  };
+  const auto mark_bad = [&](std::size_t pos, const std::string& what) {
+    if (bad_from == SIZE_MAX) {
+      bad_from = pos;
+      bad_what = what;
+    }
+  };
+
+  while (at < size) {
+    if (size - at < 4 || get<std::uint32_t>(data + at) != kRecordMagic) {
+      if (bad_from == SIZE_MAX) mark_bad(at, "unreadable record");
+      ++at;
+      continue;
+    }
+    if (size - at < kRecordHeaderBytes + kRecordTrailerBytes) {
+      mark_bad(at, "truncated record (" + std::to_string(size - at) + " bytes)");
+      break;
+    }
+    const auto kind = get<std::uint32_t>(data + at + 4);
+    const auto index = get<std::uint64_t>(data + at + 8);
+    const auto ident = get<std::uint64_t>(data + at + 16);
+    const auto psize = get<std::uint64_t>(data + at + 24);
+    const std::string which = "record of scenario " + padded(index);
+    if (psize > kMaxPayload || psize > size - at - kRecordHeaderBytes - kRecordTrailerBytes) {
+      // A length past the end: a cut-off last record, or a damaged length field.
+      mark_bad(at, (psize > kMaxPayload ? "damaged " : "truncated ") + which);
+      ++at;
+      continue;
+    }
+    const std::size_t body = kRecordHeaderBytes + static_cast<std::size_t>(psize);
+    const auto crc = get<std::uint32_t>(data + at + body);
+    if (crc != crc32(data + at + 4, body - 4)) {
+      mark_bad(at, "damaged " + which + " (checksum mismatch)");
+      ++at;
+      continue;
+    }
+    end_damage(at);
+    if (ident != expected.id) {
+      scan.foreign_record = true;
+    } else if (kind == static_cast<std::uint32_t>(RecordKind::kRow) ||
+               kind == static_cast<std::uint32_t>(RecordKind::kCrashAttempt)) {
+      scan.entries.push_back({static_cast<RecordKind>(kind), index, at + kRecordHeaderBytes,
+                              static_cast<std::size_t>(psize)});
+    }
+    at += body + kRecordTrailerBytes;
+  }
+  end_damage(size);
+  return scan;
+}
+
+}  // namespace hexdyn

@@ -1,0 +1,186 @@
+#include "hexdyn/sweep/record.hpp"
+
+#include <unistd.h>
+
+#include <array>
+#include <atomic>
+#include <bit>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <system_error>
+
+#include "hexdyn/core/errors.hpp"
+#include "hexdyn/io/h5io.hpp"
+#include "hexdyn/io/output.hpp"
+
+namespace hexdyn {
+namespace {
+
+namespace fs = std::filesystem;
+
+/// Slicing-by-8 tables of the reflected polynomial 0xEDB88320.
+struct CrcTables {
+  std::array<std::array<std::uint32_t, 256>, 8> t{};
+  CrcTables() {
+    for (std::uint32_t i = 0; i < 256; ++i) {
+      std::uint32_t c = i;
+      for (int k = 0; k < 8; ++k) c = (c & 1u) ? 0xEDB88320u ^ (c >> 1) : c >> 1;
+      t[0][i] = c;
+    }
+    for (std::uint32_t i = 0; i < 256; ++i)
+      for (int s = 1; s < 8; ++s) t[s][i] = (t[s - 1][i] >> 8) ^ t[0][t[s - 1][i] & 0xFFu];
+  }
+};
+const CrcTables kCrc;
+static_assert(std::endian::native == std::endian::little,
+              "crc32's slicing reads words in little-endian order");
+
+template <class T>
+void put(std::vector<char>& b, const T& v) {
+  const std::size_t at = b.size();
+  b.resize(at + sizeof v);
+  std::memcpy(b.data() + at, &v, sizeof v);
+}
+void put_bytes(std::vector<char>& b, const char* data, std::size_t n) {
+  put(b, static_cast<std::uint64_t>(n));
+  b.insert(b.end(), data, data + n);
+}
+
+class Reader {
+ public:
+  Reader(const char* data, std::size_t size) : d_(data), n_(size) {}
+  template <class T>
+  T get() {
+    need(sizeof(T));
+    T v;
+    std::memcpy(&v, d_ + at_, sizeof v);
+    at_ += sizeof v;
+    return v;
+  }
+  std::size_t length() {
+    const auto n = get<std::uint64_t>();
+    need(n);
+    return static_cast<std::size_t>(n);
+  }
+  std::size_t at() const { return at_; }
+  void skip(std::size_t n) { at_ += n; }
+  const char* here() const { return d_ + at_; }
+  bool done() const { return at_ == n_; }
+
+ private:
+  void need(std::uint64_t k) const {
+    if (k > n_ - at_) throw IoError("scenario record: truncated payload");
+  }
+  const char* d_;
+  std::size_t n_, at_ = 0;
+};
+
+std::atomic<unsigned> scratch_counter{0};
+
+}  // namespace
+
+std::uint32_t crc32(const void* data, std::size_t size, std::uint32_t crc) {
+  const auto* p = static_cast<const unsigned char*>(data);
+  std::uint32_t c = ~crc;
+  while (size >= 8) {
+    std::uint32_t lo, hi;
+    std::memcpy(&lo, p, 4);
+    std::memcpy(&hi, p + 4, 4);
+    lo ^= c;  // little-endian hosts (x86-64, aarch64): bytes in memory order
+    c = kCrc.t[7][lo & 0xFF] ^ kCrc.t[6][(lo >> 8) & 0xFF] ^ kCrc.t[5][(lo >> 16) & 0xFF] ^
+        kCrc.t[4][lo >> 24] ^ kCrc.t[3][hi & 0xFF] ^ kCrc.t[2][(hi >> 8) & 0xFF] ^
+        kCrc.t[1][(hi >> 16) & 0xFF] ^ kCrc.t[0][hi >> 24];
+    p += 8;
+    size -= 8;
+  }
+  while (size-- > 0) c = kCrc.t[0][(c ^ *p++) & 0xFF] ^ (c >> 8);
+  return ~c;
+}
+
+std::uint64_t fnv1a64(std::string_view text, std::uint64_t h) {
+  for (unsigned char ch : text) {
+    h ^= ch;
+    h *= 0x100000001b3ULL;
+  }
+  return h;
+}
+
+void append_record(std::vector<char>& b, const ScenarioRecord& r) {
+  const ScenarioSummary& s = r.summary;
+  put(b, static_cast<std::uint64_t>(s.index));
+  put(b, static_cast<std::int8_t>(s.status));
+  put_bytes(b, s.message.data(), s.message.size());
+  put(b, static_cast<std::int32_t>(s.samples));
+  put(b, static_cast<std::int32_t>(s.relaxed_samples));
+  put(b, static_cast<std::int32_t>(s.failed_samples));
+  for (double v : {s.duration_s, s.distance_m, s.energy_J, s.cost_of_transport,
+                   s.peak_impact_force_N, s.wall_time_s})
+    put(b, v);
+  for (double v : s.peak_torque_Nm) put(b, v);
+  for (double v : s.rms_torque_Nm) put(b, v);
+  put_bytes(b, r.run_image.data(), r.run_image.size());
+}
+
+std::vector<char> encode_record(const ScenarioRecord& record) {
+  std::vector<char> b;
+  b.reserve(400 + record.summary.message.size() + record.run_image.size());
+  append_record(b, record);
+  return b;
+}
+
+ScenarioRecord decode_record(const char* data, std::size_t size, bool with_image,
+                             std::size_t* image_offset, std::size_t* image_size) {
+  Reader u(data, size);
+  ScenarioRecord r;
+  ScenarioSummary& s = r.summary;
+  s.index = static_cast<std::size_t>(u.get<std::uint64_t>());
+  const auto status = u.get<std::int8_t>();
+  if (status < 0 || status > static_cast<int>(kLastScenarioStatus))
+    throw IoError("scenario record: status " + std::to_string(status) + " out of range");
+  s.status = static_cast<ScenarioStatus>(status);
+  const std::size_t m = u.length();
+  s.message.assign(u.here(), m);
+  u.skip(m);
+  s.samples = u.get<std::int32_t>();
+  s.relaxed_samples = u.get<std::int32_t>();
+  s.failed_samples = u.get<std::int32_t>();
+  for (double* v : {&s.duration_s, &s.distance_m, &s.energy_J, &s.cost_of_transport,
+                    &s.peak_impact_force_N, &s.wall_time_s})
+    *v = u.get<double>();
+  for (double& v : s.peak_torque_Nm) v = u.get<double>();
+  for (double& v : s.rms_torque_Nm) v = u.get<double>();
+  const std::size_t k = u.length();
+  if (image_offset) *image_offset = u.at();
+  if (image_size) *image_size = k;
+  if (with_image) r.run_image.assign(u.here(), u.here() + k);
+  u.skip(k);
+  if (!u.done()) throw IoError("scenario record: bytes after the payload");
+  return r;
+}
+
+std::vector<char> encode_run_image(const RunResult& run, const std::string& scratch_dir) {
+  const std::string tmp =
+      (fs::path(scratch_dir) / (".hexdyn-run-" + std::to_string(::getpid()) + "-" +
+                                std::to_string(scratch_counter++) + ".h5"))
+          .string();
+  try {
+    {
+      H5Writer w(tmp);
+      write_result_layout(w, run, kRunImageGroup);
+      w.close();
+    }
+    std::ifstream in(tmp, std::ios::binary);
+    if (!in) throw IoError("cannot read '" + tmp + "'");
+    std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    fs::remove(tmp);
+    return bytes;
+  } catch (...) {
+    std::error_code ec;
+    fs::remove(tmp, ec);
+    throw;
+  }
+}
+
+}  // namespace hexdyn

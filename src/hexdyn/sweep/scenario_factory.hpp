@@ -1,0 +1,45 @@
+#pragma once
+/// \file scenario_factory.hpp
+/// The scenes of a sweep's scenarios, made one at a time when a scenario starts: the
+/// base scene tree (after `inherit:` and `set:`) is parsed once and each axis value
+/// once; a scenario's scene is a copy of the tree with its values set, validated by
+/// scene_from_yaml (so cross-key constraints are checked per scenario, and a failure
+/// is that scenario's row). Nothing is done per scenario before the scenario runs.
+#include <cstddef>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "hexdyn/core/scene.hpp"
+#include "hexdyn/sweep/spec.hpp"
+
+namespace hexdyn {
+
+class ScenarioFactory {
+ public:
+  /// From a validated sweep (load_sweep) or one received from rank 0; throws
+  /// ConfigError if its base tree or a value does not parse (cannot happen for a
+  /// SweepSpec from load_sweep).
+  explicit ScenarioFactory(const SweepSpec& spec);
+  ~ScenarioFactory();
+  ScenarioFactory(ScenarioFactory&&) noexcept;
+  ScenarioFactory& operator=(ScenarioFactory&&) noexcept;
+
+  std::size_t scenario_count() const { return count_; }
+  /// The scene of scenario `index` < scenario_count(); its messages name
+  /// "scenario <id>". Throws ConfigError (a value out of range, a cross-key constraint)
+  /// like load_scene. With `resolved_yaml` false, Scene::resolved_yaml stays empty
+  /// (needed only for a run that is kept: it becomes the run's /meta config_yaml).
+  Scene scene(std::size_t index, bool resolved_yaml = true) const;
+  /// The same scene as YAML text (unvalidated), as scenario_input gives it.
+  std::string yaml(std::size_t index) const;
+  /// Scenario id ("000012"), as scenario_id.
+  std::string id(std::size_t index) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  std::size_t count_ = 0;
+};
+
+}  // namespace hexdyn
