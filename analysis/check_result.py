@@ -168,7 +168,9 @@ def link_com_accelerations(robot, res):
     q = np.asarray(res["/joints/position"], float)
     qd = np.asarray(res["/joints/velocity"], float)
     qdd = np.asarray(res["/joints/acceleration"], float)
-    index = {name: k for k, name in enumerate(robot.joint_order)}
+    # Joint columns by the file's own names (a URDF robot keeps its description's names).
+    names = [n.decode() if isinstance(n, bytes) else str(n) for n in res["/model/joint_names"]]
+    index = {name: k for k, name in enumerate(names)}
     R0 = quaternion_to_matrix(np.asarray(res["/base/orientation"], float))
     state = {robot.root: (R0, np.asarray(res["/base/angular_velocity"], float),
                           np.asarray(res["/base/angular_acceleration"], float),
@@ -211,6 +213,26 @@ def terrain_normal(config, feet):
     return n
 
 
+def torque_limits(setting, res):
+    """Per-joint torque limits (18) in the file's joint order: the scene's one number, or with
+    `effort` (a URDF robot) each joint's <limit effort> of /model/urdf, found by the names in
+    /model/joint_names."""
+    if not isinstance(setting, str):
+        return np.full(18, float(setting))
+    import xml.etree.ElementTree as ET
+    effort = {}
+    for j in ET.fromstring(res.urdf).iter("joint"):
+        lim = j.find("limit")
+        if lim is not None and lim.get("effort") is not None:
+            effort[j.get("name")] = float(lim.get("effort"))
+    names = [n.decode() if isinstance(n, bytes) else str(n) for n in res["/model/joint_names"]]
+    return np.array([effort.get(n, np.inf) for n in names])
+
+
+def limit_text(tmax):
+    return f"{tmax[0]:g}" if np.all(tmax == tmax[0]) else f"[{tmax.min():g} .. {tmax.max():g}]"
+
+
 def check_allocation(c, res):
     """The constraints of every optimal sample, from the file's data (module docstring)."""
     needed = ("/solver/status", "/contacts/force", "/contacts/phase", "/joints/torque",
@@ -220,7 +242,7 @@ def check_allocation(c, res):
     config = yaml.safe_load(res.meta.get("config_yaml", "")) or {}
     alloc = config.get("allocation", {}) or {}
     contact = config.get("contact", {}) or {}
-    tmax = float(alloc.get("torque_limit", np.inf))
+    tmax = torque_limits(alloc.get("torque_limit", np.inf), res)
     fmin = float(alloc.get("min_normal_force", 0.0))
     mu = float(contact.get("friction_coefficient", np.inf))
     status = np.asarray(res["/solver/status"])
@@ -249,8 +271,8 @@ def check_allocation(c, res):
         c.check(False, "trunk force rows evaluated", str(e))
     # Torque limits.
     excess = np.abs(tau) - tmax
-    report((excess > VIOLATION_THRESHOLD * max(1.0, tmax)).any(axis=1), excess.max(axis=1),
-           f"|torque| <= {tmax:g} N m")
+    report((excess > VIOLATION_THRESHOLD * np.maximum(1.0, tmax)).any(axis=1), excess.max(axis=1),
+           f"|torque| <= {limit_text(tmax)} N m")
     # Contact rows: swing feet carry nothing; support feet push and stay in the cone.
     normal = terrain_normal(config, F)
     fn = np.einsum("tlk,tlk->tl", F, normal)
