@@ -36,6 +36,7 @@ class SweepReader {
   }
   [[noreturn]] void fail_value(const std::string& path, const YAML::Node& node,
                                const std::string& expected) const {
+    if (!node.IsDefined()) fail(path, "missing, expected " + expected);
     fail(path, "got " + yaml_inline(node) + ", expected " + expected);
   }
   /// Every key of the map `node` at `path` must be one of `allowed`.
@@ -64,7 +65,7 @@ std::string format_number(double x, int digits) {
 }
 
 bool parse_finite_number(const YAML::Node& node, double& out) {
-  return node.IsScalar() && YAML::convert<double>::decode(node, out) && std::isfinite(out);
+  return node.IsDefined() && node.IsScalar() && YAML::convert<double>::decode(node, out) && std::isfinite(out);
 }
 
 /// The node at a dotted path of a tree of maps; undefined if absent.
@@ -123,7 +124,8 @@ void read_range(const SweepReader& r, const YAML::Node& range, const std::string
     r.fail_value(path + ".to", range["to"], "a finite number");
   long long count = 0;
   const YAML::Node c = range["count"];
-  if (!c.IsScalar() || !YAML::convert<long long>::decode(c, count) || count < 2 || count > 100000)
+  if (!c.IsDefined() || !c.IsScalar() || !YAML::convert<long long>::decode(c, count) || count < 2 ||
+      count > 100000)
     r.fail_value(path + ".count", c, "an integer in [2, 100000]");
   if (lo == hi) r.fail(path, "got from = to = " + format_number(lo, 12) + ", expected from != to");
   for (long long k = 0; k < count; ++k) {
