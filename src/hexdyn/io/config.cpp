@@ -353,6 +353,7 @@ double mean_slope(const TerrainParams& t) {
 void read_posture(Reader& r, MotionParams& m) {
   const bool absolute = r.has("motion.initial_position");
   const bool relative = r.given("motion.posture");
+  if (!relative) (void)r.has("motion.posture");  // a null posture counts as absent
   if (absolute && relative)
     r.fail("motion", "got both initial_position and posture, expected one of the two (an absolute start or one relative to the terrain)");
   PostureParams& p = m.posture;

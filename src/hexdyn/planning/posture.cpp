@@ -46,7 +46,9 @@ SampleMargin leg_margin(const RobotModel& m, int leg, const Vec3& p_H, Kinematic
   if (!ik.ok && !joint_refusal) {
     // Out of reach: no joint angles; the IK's margin (negative or below the minimum).
     s.value_m = ik.margin_m;
-    s.constraint = "reach: " + ik.reason;
+    s.constraint = ik.reason.find("extension") != std::string::npos ? "reach: full extension"
+                   : ik.reason.find("fold") != std::string::npos    ? "reach: full fold"
+                                                                    : "reach: " + ik.reason;
     out.reach_m = std::min(out.reach_m, ik.margin_m);
     return s;
   }
@@ -228,6 +230,23 @@ KinematicMargin motion_kinematic_margin(const RobotModel& model, const MotionPla
 }
 
 PostureChoice choose_posture(const Scene& scene, const RobotModel& model) {
+  PostureChoice c = best_posture(scene, model);
+  if (c.mode != PostureMode::kAuto || c.margin.admitted) return c;
+  const PostureParams& p = scene.motion.posture;
+  const double h_lo = std::max(p.height_min_m < p.height_max_m ? p.height_min_m : 0.0,
+                               terrain_rise_above_reference(scene.terrain) + p.trunk_clearance_m);
+  std::ostringstream msg;
+  msg << "no trunk posture admits the motion (motion.posture.height: auto): the best, height " << c.height_m
+      << " m above the terrain's reference line with gait.foot_lateral " << c.foot_lateral_m << " m, leaves "
+      << c.margin.describe() << "; required: reach margin >= robot.ik_min_margin (" << model.ik_min_margin_m
+      << " m) and every joint inside its limits";
+  if (c.height_m - h_lo < 1e-3)
+    msg << " (the height is the lowest the trunk clearance allows: " << h_lo
+        << " m = riser/2 + motion.posture.trunk_clearance)";
+  throw ReachError(msg.str());
+}
+
+PostureChoice best_posture(const Scene& scene, const RobotModel& model) {
   const PostureParams& p = scene.motion.posture;
   PostureChoice c;
   c.mode = p.mode;
@@ -279,16 +298,6 @@ PostureChoice choose_posture(const Scene& scene, const RobotModel& model) {
   c.p0_W = relative_start_position(scene.terrain, best.height_m, p.start_y_m);
   c.margin = dense.margin;
   c.evaluations = search.evaluations();
-  if (!dense.margin.admitted) {
-    std::ostringstream msg;
-    msg << "no trunk posture admits the motion (motion.posture.height: auto): the best, height " << best.height_m
-        << " m above the terrain's reference line with gait.foot_lateral " << best.foot_lateral_m << " m, leaves "
-        << dense.margin.describe() << "; required: reach margin >= robot.ik_min_margin (" << model.ik_min_margin_m
-        << " m) and every joint inside its limits";
-    if (best.height_m - h_lo < 1e-3)
-      msg << " (the height is the lowest the trunk clearance allows: " << h_lo << " m = riser/2 + motion.posture.trunk_clearance)";
-    throw ReachError(msg.str());
-  }
   return c;
 }
 

@@ -117,6 +117,10 @@ struct PostureChoice {
 /// searched range admits the motion, PlanningError from the gait planner.
 PostureChoice choose_posture(const Scene& scene, const RobotModel& model);
 
+/// As choose_posture, but for kAuto the best posture found is returned also when it does
+/// not admit the motion (margin.admitted false) instead of throwing.
+PostureChoice best_posture(const Scene& scene, const RobotModel& model);
+
 /// The motion planned with an explicit start and foot spread (the scene's posture keys
 /// ignored). Throws PlanningError.
 MotionPlan plan_motion_with(const Scene& scene, const RobotModel& model, const Vec3& p0_W,

@@ -105,8 +105,8 @@ TEST_CASE("sweep: a bad sweep file is one ConfigError line naming file, key and 
       {"axis key is a group", base + "axes:\n  - key: gait\n    values: [0.5]\n",
        "axes[0].key: got gait, expected a key holding a single value (it holds a group of keys)"},
       {"axis key holds a list",
-       base + "axes:\n  - key: motion.initial_position\n    values: [0.5]\n",
-       "axes[0].key: got motion.initial_position, expected a key holding a single value (it holds "
+       base + "axes:\n  - key: robot.hips.y\n    values: [0.5]\n",
+       "axes[0].key: got robot.hips.y, expected a key holding a single value (it holds "
        "a list)"},
       {"axis key twice", base + axis + "  - key: gait.duty_factor\n    values: [0.6]\n",
        "axes[1].key: got gait.duty_factor, expected each key on one axis only"},
