@@ -9,6 +9,7 @@
 
 #include "hexdyn/io/config.hpp"
 #include "hexdyn/core/errors.hpp"
+#include "hexdyn/envelope/envelope.hpp"
 #include "hexdyn/model/urdf_robot.hpp"
 #include "hexdyn/mpi/mpi_sweep.hpp"
 #include "hexdyn/io/output.hpp"
@@ -64,6 +65,7 @@ usage:
   hexdyn validate FILE [--set key.path=value ...]        check a scene or sweep file and exit
   hexdyn sweep SWEEP -o FILE [--keep-runs] [--resume] [-v] [--progress SECONDS]
                                                          run a parameter sweep, write hexdyn-sweep/1
+  hexdyn envelope ENVELOPE -o FILE [-v]                  find the climbable riser, write hexdyn-envelope/1
   hexdyn COMMAND --help                                  help on one command
   hexdyn --help | --version
 
@@ -219,6 +221,8 @@ int main(int argc, char** argv) {
     std::cout << "hexdyn " << hexdyn::kVersion << " (" << hexdyn::kGitCommit << ")\n";
     return 0;
   }
+  // `hexdyn envelope` parses its own arguments (envelope/envelope.hpp).
+  if (argc >= 2 && !std::strcmp(argv[1], "envelope")) return hexdyn::envelope_command(argc - 1, argv + 1);
   // `hexdyn COMMAND ... --help` prints that command's usage, whatever else is given.
   if (argc >= 2 && command_usage(argv[1])) {
     for (int i = 2; i < argc; ++i) {

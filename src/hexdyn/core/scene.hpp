@@ -82,12 +82,43 @@ struct GaitParams {
   double lower_fraction = 0.2;        ///< nominal share of swing time spent lowering
 };
 
+/// How the trunk's start P0(0) is given (README "Posture"; planning/posture.hpp).
+enum class PostureMode {
+  kAbsolute,  ///< motion.initial_position: P0(0) in G0 as given
+  kRelative,  ///< motion.posture.height and start_y: P0(0) relative to the terrain
+  kAuto,      ///< motion.posture.height: auto, chosen for the largest kinematic margin
+};
+
+/// The trunk's posture relative to the terrain (planning/posture.hpp has the definitions).
+struct PostureParams {
+  PostureMode mode = PostureMode::kAbsolute;
+  /// kRelative: vertical height of P0 above the terrain's reference line (the mean slope
+  /// line through the tread centres on stairs, the surface on slopes and flat ground) [m].
+  double height_m = 0.0;
+  /// kRelative, kAuto: y of P0 at t = 0 measured from the terrain's origin (the first
+  /// riser on stairs, the foot of a slope, y = 0 on flat ground); negative before it [m].
+  double start_y_m = 0.0;
+  /// kAuto: range searched for the trunk height [m].
+  double height_min_m = 0.0, height_max_m = 0.0;
+  /// kAuto: when true, gait.foot_lateral may be changed within [min, max] (only when the
+  /// height alone leaves a smallest margin below target_margin_m) [m].
+  bool vary_foot_lateral = false;
+  double foot_lateral_min_m = 0.0, foot_lateral_max_m = 0.0;
+  double target_margin_m = 0.01;  ///< kAuto: see vary_foot_lateral [m]
+  /// kAuto: smallest vertical distance of P0 above the highest terrain under the trunk
+  /// (planning/posture.hpp: h − h_s/2 on stairs) [m].
+  double trunk_clearance_m = 0.05;
+};
+
 struct MotionParams {
   /// Cycle durations [s]; either given (paper) or derived from peak speed and ramp.
   std::vector<double> cycle_durations_s;
   double peak_speed_mps = 0.1;   ///< cruise speed of the trunk along the slope
   double ramp_duration_s = 0.8;  ///< duration of the C² speed ramps at start and end
-  Vec3 initial_position_m{0.0, 0.412, 0.235};  ///< trunk P0 in G0 at t = 0
+  /// Trunk P0 in G0 at t = 0 when posture.mode is kAbsolute; otherwise planning
+  /// (plan_motion) computes it from `posture` and this value is not used.
+  Vec3 initial_position_m{0.0, 0.412, 0.235};
+  PostureParams posture;
   int cycles = 3;
 };
 

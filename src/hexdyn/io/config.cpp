@@ -60,6 +60,23 @@ class Reader {
     fail(path, "got " + yaml_inline(node) + ", expected " + expected);
   }
 
+  /// True when the key holds the scalar `word` (then recorded as resolved); the key
+  /// counts as asked for either way.
+  bool holds_word(const std::string& path, const std::string& word) {
+    asked_.insert(path);
+    const YAML::Node n = lookup(path);
+    if (!n.IsDefined() || !n.IsScalar() || n.Scalar() != word) return false;
+    set_resolved(path, YAML::Node(word));
+    return true;
+  }
+
+  /// True when the key is present and not null, without counting it as asked for (for a
+  /// mapping whose own keys are then read and checked one by one).
+  bool given(const std::string& path) const {
+    const YAML::Node n = lookup(path);
+    return n.IsDefined() && !n.IsNull();
+  }
+
   bool has(const std::string& path) {
     asked_.insert(path);
     const YAML::Node n = lookup(path);
@@ -395,8 +412,50 @@ double mean_slope(const TerrainParams& t) {
   return 0.0;
 }
 
+/// The trunk's start: motion.initial_position (absolute) or motion.posture (relative to the
+/// terrain, or auto). The definitions are those of planning/posture.hpp.
+void read_posture(Reader& r, MotionParams& m) {
+  const bool absolute = r.has("motion.initial_position");
+  const bool relative = r.given("motion.posture");
+  if (!relative) (void)r.has("motion.posture");  // a null posture counts as absent
+  if (absolute && relative)
+    r.fail("motion", "got both initial_position and posture, expected one of the two (an absolute start or one relative to the terrain)");
+  PostureParams& p = m.posture;
+  if (!relative) {
+    if (!absolute)
+      r.fail("motion.posture", "missing, expected motion.posture {height, start_y} (relative to the terrain) or motion.initial_position");
+    p.mode = PostureMode::kAbsolute;
+    m.initial_position_m = r.vec3("motion.initial_position", closed(-100.0, 100.0));
+    return;
+  }
+  p.start_y_m = r.number("motion.posture.start_y", closed(-100.0, 100.0));
+  if (!r.holds_word("motion.posture.height", "auto")) {
+    p.mode = PostureMode::kRelative;
+    p.height_m = r.number("motion.posture.height", closed(-100.0, 100.0));
+    return;
+  }
+  p.mode = PostureMode::kAuto;
+  // Search range of the height; [0, 0] lets planning derive it from the legs' reach.
+  const std::vector<double> no_range{0.0, 0.0};
+  const auto h = r.numbers("motion.posture.height_range", 2, 2, closed(-10.0, 10.0), &no_range);
+  if (h != no_range && !(h[0] < h[1]))
+    r.fail("motion.posture.height_range", "got " + yaml_inline(YAML::Node(h)) + ", expected [lower, upper] with lower < upper");
+  p.height_min_m = h[0];
+  p.height_max_m = h[1];
+  p.target_margin_m = r.number_or("motion.posture.target_margin", 0.01, nonnegative(1.0));
+  p.trunk_clearance_m = r.number_or("motion.posture.trunk_clearance", 0.05, closed(-1.0, 10.0));
+  p.vary_foot_lateral = r.given("motion.posture.foot_lateral");
+  if (p.vary_foot_lateral) {
+    const auto w = r.numbers("motion.posture.foot_lateral", 2, 2, positive(2.0));
+    if (!(w[0] <= w[1]))
+      r.fail("motion.posture.foot_lateral", "got " + yaml_inline(YAML::Node(w)) + ", expected [lower, upper] with lower <= upper (the range auto may choose gait.foot_lateral from)");
+    p.foot_lateral_min_m = w[0];
+    p.foot_lateral_max_m = w[1];
+  }
+}
+
 void read_motion(Reader& r, const GaitParams& g, const TerrainParams& t, MotionParams& m) {
-  m.initial_position_m = r.vec3("motion.initial_position", closed(-100.0, 100.0));
+  read_posture(r, m);
   // Stride: trunk travel per gait cycle along the slope (s0/β horizontally).
   const double stride_along_slope = (g.stroke_m / g.duty_factor) / std::cos(mean_slope(t));
   const bool by_durations = r.has("motion.cycle_durations");

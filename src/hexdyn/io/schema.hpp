@@ -1,9 +1,11 @@
 #pragma once
 /// \file schema.hpp
-/// The two HDF5 contracts of hexdyn (DESIGN.md §4) in one place: `hexdyn-result/1` (one
-/// run) and `hexdyn-sweep/1` (a parameter sweep), each with its schema name and version,
+/// The HDF5 contracts of hexdyn (DESIGN.md §4) in one place: `hexdyn-result/1` (one
+/// run), `hexdyn-sweep/1` (a parameter sweep) and `hexdyn-envelope/1` (the climbable
+/// envelope, envelope/envelope.hpp), each with its schema name and version,
 /// every /meta attribute, and for every dataset its path, shape, element type and
-/// `units` attribute. The writers (output.cpp, sweep/sweep_file.cpp) take every path and
+/// `units` attribute. The writers (output.cpp, sweep/sweep_file.cpp,
+/// envelope/envelope_file.cpp) take every path and
 /// units string from here; analysis/hexdyn_results.py parses this header at import (the
 /// `inline constexpr` lines below, and the shape comments of `Shape`), so the layout is
 /// typed once. Keep declarations on the regular pattern
@@ -27,6 +29,8 @@ inline constexpr const char* kResultSchema = "hexdyn-result/1";  ///< /meta attr
 inline constexpr std::int64_t kResultSchemaVersion = 1;          ///< /meta attr `schema_version`
 inline constexpr const char* kSweepSchema = "hexdyn-sweep/1";    ///< sweep files' `schema`
 inline constexpr std::int64_t kSweepSchemaVersion = 1;           ///< sweep files' `schema_version`
+inline constexpr const char* kEnvelopeSchema = "hexdyn-envelope/1";  ///< envelope files' `schema`
+inline constexpr std::int64_t kEnvelopeSchemaVersion = 1;            ///< envelope files' `schema_version`
 
 /// Shape of a dataset in terms of the run's sizes.
 enum class Shape {
@@ -47,6 +51,14 @@ enum class Shape {
   kScenarioAxes,    ///< (N,A), one row per scenario, one column per axis
   kScenarioJoints,  ///< (N,18), one row per scenario, one column per joint
   kAxisValues,      ///< (V), one entry per value of an axis
+  kEnvelopeTreads,  ///< (W), tread depths of an envelope
+  kEnvelopeDuties,  ///< (B), duty factors of an envelope
+  kEnvelopeSpeeds,  ///< (S), peak speeds of an envelope
+  kEnvelopeCriteria,  ///< (C), criteria of an envelope
+  kEnvelopeCells,   ///< (W,B,S), one entry per tread, duty factor and speed
+  kEnvelopeGrid,    ///< (W,B,S,C), one entry per cell and criterion
+  kEnvelopeGridText,  ///< (G) strings, G = W·B·S·C: the (W,B,S,C) grid flattened row-major
+  kEnvelopeProbes,  ///< (P), one entry per probe (a criterion evaluated at one riser)
 };
 
 /// Element type stored in the file.
@@ -304,5 +316,82 @@ inline constexpr std::array kScenarioDatasets{kScenarioId,
 // (its own /meta, /model, kinematic and dynamic datasets below the group) ----
 inline constexpr const char* kRunsGroup = "/runs";
 inline constexpr const char* kRunGroup = "/runs/{id}";
+
+// ===================================================================== hexdyn-envelope/1
+// The climbable envelope (envelope/envelope.hpp): W tread depths × B duty factors × S peak
+// speeds, C criteria ("kinematic", "torque", "friction"), P probes. Risers are NaN where
+// not found: riser_max when even the lowest riser fails, riser_fail when none fails up to
+// the top of the searched range.
+
+// ---- /meta: kMetaSchema … kMetaWallTime as a result file's (config_yaml: the envelope
+// file's text), then ----
+/// The base scene after inherit: and set:, validated and fully resolved.
+inline constexpr AttributeSpec kMetaEnvelopeBaseConfigYaml{kMetaGroup, "base_config_yaml",
+                                                           Element::kString};
+inline constexpr AttributeSpec kMetaEnvelopeName{kMetaGroup, "name", Element::kString};
+/// Bisection tolerance and scan step of the riser search [m].
+inline constexpr AttributeSpec kMetaEnvelopeTolerance{kMetaGroup, "riser_tolerance", Element::kFloat64};
+inline constexpr AttributeSpec kMetaEnvelopeStep{kMetaGroup, "riser_step", Element::kFloat64};
+/// Every /meta attribute of an envelope file.
+inline constexpr std::array kEnvelopeMetaAttributes{
+    kMetaSchema,     kMetaSchemaVersion, kMetaVersion,     kMetaGitCommit,
+    kMetaCreatedUtc, kMetaConfigYaml,    kMetaWallTime,    kMetaEnvelopeBaseConfigYaml,
+    kMetaEnvelopeName, kMetaEnvelopeTolerance, kMetaEnvelopeStep};
+
+// ---- the grid ----
+inline constexpr DatasetSpec kEnvelopeTreadDepth{"/axes/tread_depth", "m", Shape::kEnvelopeTreads};
+inline constexpr DatasetSpec kEnvelopeDutyFactor{"/axes/duty_factor", "1", Shape::kEnvelopeDuties};
+inline constexpr DatasetSpec kEnvelopePeakSpeed{"/axes/peak_speed", "m/s", Shape::kEnvelopeSpeeds};
+inline constexpr DatasetSpec kEnvelopeCriteria{"/axes/criteria", "1", Shape::kEnvelopeCriteria,
+                                               Element::kString};
+/// Searched riser range [m]: from, to.
+inline constexpr DatasetSpec kEnvelopeRiserFrom{"/axes/riser_from", "m", Shape::kScalar};
+inline constexpr DatasetSpec kEnvelopeRiserTo{"/axes/riser_to", "m", Shape::kScalar};
+
+// ---- /envelope: the boundary per cell and criterion ----
+/// Largest riser found climbable (every probe at or below it passed) [m].
+inline constexpr DatasetSpec kEnvelopeRiserMax{"/envelope/riser_max", "m", Shape::kEnvelopeGrid};
+/// Smallest riser found to fail (riser_fail − riser_max ≤ the tolerance) [m].
+inline constexpr DatasetSpec kEnvelopeRiserFail{"/envelope/riser_fail", "m", Shape::kEnvelopeGrid};
+/// What fails at riser_fail: "leg L4 reach: full extension", "torque L1_femur", "friction
+/// cone L2", "trunk force z", "reach", "planning", ...; "" where nothing fails.
+inline constexpr DatasetSpec kEnvelopeLimit{"/envelope/limit", "1", Shape::kEnvelopeGridText,
+                                            Element::kString};
+/// The failing probe's one-line message (leg, instant, constraint, margin or violation).
+inline constexpr DatasetSpec kEnvelopeMessage{"/envelope/message", "1", Shape::kEnvelopeGridText,
+                                              Element::kString};
+/// The automatic posture at the kinematic riser_max (NaN when the posture is not auto):
+/// trunk height above the tread-centre slope line, gait.foot_lateral, smallest margin.
+inline constexpr DatasetSpec kEnvelopePostureHeight{"/envelope/posture_height", "m",
+                                                    Shape::kEnvelopeCells};
+inline constexpr DatasetSpec kEnvelopePostureFootLateral{"/envelope/posture_foot_lateral", "m",
+                                                         Shape::kEnvelopeCells};
+inline constexpr DatasetSpec kEnvelopePostureMargin{"/envelope/posture_margin", "m",
+                                                    Shape::kEnvelopeCells};
+
+// ---- /probes: every evaluation, in the order made ----
+/// Cell index into (W,B,S), row-major.
+inline constexpr DatasetSpec kProbeCell{"/probes/cell", "1", Shape::kEnvelopeProbes, Element::kInt32};
+/// Criterion index into /axes/criteria.
+inline constexpr DatasetSpec kProbeCriterion{"/probes/criterion", "1", Shape::kEnvelopeProbes,
+                                             Element::kInt32};
+inline constexpr DatasetSpec kProbeRiser{"/probes/riser", "m", Shape::kEnvelopeProbes};
+/// 1 passed, 0 failed.
+inline constexpr DatasetSpec kProbePassed{"/probes/passed", "1", Shape::kEnvelopeProbes,
+                                          Element::kInt8};
+inline constexpr DatasetSpec kProbeLimit{"/probes/limit", "1", Shape::kEnvelopeProbes,
+                                         Element::kString};
+inline constexpr DatasetSpec kProbeMessage{"/probes/message", "1", Shape::kEnvelopeProbes,
+                                           Element::kString};
+
+/// Every dataset of an envelope file.
+inline constexpr std::array kEnvelopeDatasets{
+    kEnvelopeTreadDepth,  kEnvelopeDutyFactor,   kEnvelopePeakSpeed,
+    kEnvelopeCriteria,    kEnvelopeRiserFrom,    kEnvelopeRiserTo,
+    kEnvelopeRiserMax,    kEnvelopeRiserFail,    kEnvelopeLimit,
+    kEnvelopeMessage,     kEnvelopePostureHeight, kEnvelopePostureFootLateral,
+    kEnvelopePostureMargin, kProbeCell,          kProbeCriterion,
+    kProbeRiser,          kProbePassed,          kProbeLimit,
+    kProbeMessage};
 
 }  // namespace hexdyn::schema

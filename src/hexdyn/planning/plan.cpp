@@ -2,11 +2,23 @@
 
 namespace hexdyn {
 
-MotionPlan plan_motion(const Scene& scene, const RobotModel& model) {
+MotionPlan plan_motion_with(const Scene& scene, const RobotModel& model, const Vec3& p0_W,
+                            double foot_lateral_m) {
   Terrain terrain(scene.terrain);
-  TrunkMotion trunk(scene.motion, scene.gait, terrain);
-  GaitPlan gait = plan_gait(model, scene.gait, trunk, terrain);
-  return MotionPlan{terrain, trunk, gait};
+  MotionParams motion = scene.motion;
+  motion.initial_position_m = p0_W;
+  GaitParams gait_params = scene.gait;
+  gait_params.foot_lateral_m = foot_lateral_m;
+  TrunkMotion trunk(motion, gait_params, terrain);
+  GaitPlan gait = plan_gait(model, gait_params, trunk, terrain);
+  return MotionPlan{terrain, trunk, gait, PostureChoice{}};
+}
+
+MotionPlan plan_motion(const Scene& scene, const RobotModel& model) {
+  const PostureChoice posture = choose_posture(scene, model);
+  MotionPlan plan = plan_motion_with(scene, model, posture.p0_W, posture.foot_lateral_m);
+  plan.posture = posture;
+  return plan;
 }
 
 }  // namespace hexdyn

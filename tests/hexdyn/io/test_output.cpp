@@ -182,6 +182,15 @@ std::vector<std::size_t> expected_dims(schema::Shape shape, std::size_t T, std::
     case Shape::kScenarioJoints:
     case Shape::kAxisValues:
       break;  // shapes of the sweep file, never of a result dataset
+    case Shape::kEnvelopeTreads:
+    case Shape::kEnvelopeDuties:
+    case Shape::kEnvelopeSpeeds:
+    case Shape::kEnvelopeCriteria:
+    case Shape::kEnvelopeCells:
+    case Shape::kEnvelopeGrid:
+    case Shape::kEnvelopeGridText:
+    case Shape::kEnvelopeProbes:
+      break;  // shapes of the envelope file
   }
   return {};
 }

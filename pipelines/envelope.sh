@@ -1,0 +1,15 @@
+#!/usr/bin/env bash
+# The climbable envelope of the paper robot end to end: install what is missing, build,
+# run configs/envelope/paper.yaml (README "Climbable envelope") and draw the plot and the
+# table into results/envelope/.
+set -euo pipefail
+source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
+hexdyn_install
+hexdyn_build
+
+out="$HEXDYN_ROOT/results/envelope"
+mkdir -p "$out"
+"$HEXDYN_BUILD/hexdyn" envelope "$HEXDYN_ROOT/configs/envelope/paper.yaml" -o "$out/paper.h5" -v 2> "$out/paper.log"
+"$HEXDYN_PYTHON" "$HEXDYN_ROOT/analysis/plot_envelope.py" "$out/paper.h5" "$out" --check --table | tee "$out/paper.txt"
+echo "envelope: results in $out:" >&2
+ls -1 "$out" >&2

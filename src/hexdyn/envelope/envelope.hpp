@@ -1,0 +1,105 @@
+#pragma once
+/// \file envelope.hpp
+/// The climbable envelope (README "Climbable envelope"): the largest stair riser a robot
+/// can climb, per tread depth, duty factor and peak speed, under three criteria:
+///
+///   kinematic  the planned motion is admitted by the legs (planning/posture.hpp): with
+///              motion.posture.height auto, some trunk height keeps every foot target
+///              at least robot.ik_min_margin (or the envelope's kinematic_margin) from
+///              full extension and fold with every joint inside its limits; with a
+///              given posture, that posture does.
+///   torque     the whole run (run_scene) has no relaxed support sample with the torque
+///              limit of the scene and friction lifted (μ = 10);
+///   friction   the whole run has no relaxed support sample with the scene's friction
+///              and the torque limit lifted (10⁶ N m).
+/// A relaxed support sample is an allocation sample whose status is relaxed or failed
+/// while no leg is in a touchdown transient (/contacts/phase ≠ 1 for every leg): the
+/// transients prescribe impact forces that the trunk rows cannot always balance (the
+/// paper run has 270 such samples, all inside transients), so they do not count. Each
+/// dynamic criterion is run on its own, with the other limit lifted, because the
+/// allocation's slack weights let the torque rows give way first whatever is binding:
+/// one run could not say which limit it met. A run that throws (reach, planning) fails
+/// every criterion with its message.
+///
+/// Search, per cell and criterion: the riser is scanned from `from` in steps of `step`
+/// up to `to` until the first failure, then bisected between the last success and that
+/// failure down to `tolerance`. The scan makes the answer the lower boundary of the
+/// climbable set (a riser below it that fails would be found by a finer step, not
+/// skipped by the bisection); the dynamic criteria are not probed above the kinematic
+/// boundary, where they fail for kinematic reasons.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "hexdyn/core/scene.hpp"
+
+namespace hexdyn {
+
+enum class EnvelopeCriterion : std::int8_t { kKinematic = 0, kTorque = 1, kFriction = 2 };
+const char* criterion_name(EnvelopeCriterion c);
+
+/// An envelope file (configs/envelope/paper.yaml documents every key).
+struct EnvelopeSpec {
+  std::string name;
+  std::string spec_yaml;         ///< the file's text
+  std::string base_path;         ///< the base scene (relative paths resolved)
+  std::string base_tree_yaml;    ///< the base scene tree after inherit: and set:
+  std::string base_config_yaml;  ///< the base scene validated and fully resolved
+  double riser_from_m = 0.0, riser_to_m = 0.3, riser_step_m = 0.01, tolerance_m = 0.001;
+  std::vector<double> tread_depth_m;    ///< W values (the base scene's when not given)
+  std::vector<double> duty_factor;      ///< B values
+  std::vector<double> peak_speed_mps;   ///< V values
+  std::vector<EnvelopeCriterion> criteria;  ///< C values, in file order
+  double kinematic_margin_m = -1.0;     ///< required reach margin; < 0: robot.ik_min_margin
+};
+
+/// Reads and checks an envelope file; the base scene is validated. Throws ConfigError.
+EnvelopeSpec load_envelope_spec(const std::string& path);
+
+/// One evaluation of a criterion at one riser.
+struct EnvelopeProbe {
+  int cell = 0;                 ///< index into the (W, B, V) grid, row-major
+  EnvelopeCriterion criterion = EnvelopeCriterion::kKinematic;
+  double riser_m = 0.0;
+  bool passed = false;
+  std::string limit;            ///< short name of what failed ("" when passed)
+  std::string message;          ///< one line: why it failed ("" when passed)
+};
+
+/// The boundary of one cell and criterion.
+struct EnvelopeBoundary {
+  double riser_max_m = 0.0;   ///< largest riser found climbable; NaN if `from` fails
+  double riser_fail_m = 0.0;  ///< smallest failing riser found; NaN if none up to `to`
+  std::string limit;          ///< what fails at riser_fail ("" if none)
+  std::string message;
+};
+
+struct EnvelopeResult {
+  /// (W, B, V, C) row-major: [((w·B + b)·V + v)·C + c].
+  std::vector<EnvelopeBoundary> boundary;
+  /// (W, B, V): the automatic posture at the kinematic riser_max (NaN when not auto or
+  /// not found), and its smallest kinematic margin [m].
+  std::vector<double> posture_height_m, posture_foot_lateral_m, posture_margin_m;
+  std::vector<EnvelopeProbe> probes;
+  double wall_time_s = 0.0;
+};
+
+/// A probe's scene: the base tree with the cell's tread, duty factor and speed, the riser
+/// and the criterion's lifted limit. Throws ConfigError.
+Scene envelope_probe_scene(const EnvelopeSpec& spec, int cell, double riser_m, EnvelopeCriterion c);
+
+/// Evaluates one criterion at one riser (never throws for a scene that cannot be
+/// computed: that is a failed probe).
+EnvelopeProbe evaluate_probe(const EnvelopeSpec& spec, int cell, double riser_m, EnvelopeCriterion c);
+
+/// The whole envelope. `log` (may be null) gets one line per cell and criterion.
+EnvelopeResult compute_envelope(const EnvelopeSpec& spec, std::ostream* log);
+
+/// Writes the hexdyn-envelope/1 file (io/schema.hpp) atomically. Throws IoError.
+void write_envelope_file(const std::string& path, const EnvelopeSpec& spec, const EnvelopeResult& result);
+
+/// `hexdyn envelope ENVELOPE.yaml -o FILE.h5 [-v]`: argv[0] is "envelope". Returns the
+/// exit status (0, 2 bad input, 3 cannot compute) after printing errors on one line.
+int envelope_command(int argc, char** argv);
+
+}  // namespace hexdyn

@@ -1,0 +1,155 @@
+// The hexdyn-envelope/1 file (io/schema.hpp) and the `hexdyn envelope` command.
+#include <cstring>
+#include <iostream>
+
+#include "hexdyn/core/errors.hpp"
+#include "hexdyn/envelope/envelope.hpp"
+#include "hexdyn/io/atomic_file.hpp"
+#include "hexdyn/io/h5io.hpp"
+#include "hexdyn/io/output.hpp"
+#include "hexdyn/io/schema.hpp"
+#include "hexdyn/version.hpp"
+
+namespace hexdyn {
+namespace {
+
+namespace s = schema;
+
+void write_doubles(H5Writer& w, const s::DatasetSpec& spec, const std::vector<std::size_t>& dims,
+                   const std::vector<double>& v) {
+  w.write_doubles(spec.path, dims, v, spec.units);
+}
+
+void write_file(H5Writer& w, const EnvelopeSpec& spec, const EnvelopeResult& r) {
+  w.create_group(s::kMetaGroup);
+  const std::string meta = s::kMetaGroup;
+  w.set_string_attribute(meta, s::kAttrSchema, s::kEnvelopeSchema);
+  w.set_int_attribute(meta, s::kAttrSchemaVersion, s::kEnvelopeSchemaVersion);
+  w.set_string_attribute(meta, s::kAttrVersion, kVersion);
+  w.set_string_attribute(meta, s::kAttrGitCommit, kGitCommit);
+  w.set_string_attribute(meta, s::kAttrCreatedUtc, utc_timestamp_now());
+  w.set_string_attribute(meta, s::kAttrConfigYaml, spec.spec_yaml);
+  w.set_double_attribute(meta, s::kAttrWallTime, r.wall_time_s);
+  w.set_string_attribute(meta, s::kMetaEnvelopeBaseConfigYaml.name, spec.base_config_yaml);
+  w.set_string_attribute(meta, s::kMetaEnvelopeName.name, spec.name);
+  w.set_double_attribute(meta, s::kMetaEnvelopeTolerance.name, spec.tolerance_m);
+  w.set_double_attribute(meta, s::kMetaEnvelopeStep.name, spec.riser_step_m);
+
+  const std::size_t W = spec.tread_depth_m.size(), B = spec.duty_factor.size(), S = spec.peak_speed_mps.size(),
+                    C = spec.criteria.size();
+  write_doubles(w, s::kEnvelopeTreadDepth, {W}, spec.tread_depth_m);
+  write_doubles(w, s::kEnvelopeDutyFactor, {B}, spec.duty_factor);
+  write_doubles(w, s::kEnvelopePeakSpeed, {S}, spec.peak_speed_mps);
+  std::vector<std::string> names;
+  for (EnvelopeCriterion c : spec.criteria) names.push_back(criterion_name(c));
+  w.write_strings(s::kEnvelopeCriteria.path, names, s::kEnvelopeCriteria.units);
+  w.write_scalar(s::kEnvelopeRiserFrom.path, spec.riser_from_m, s::kEnvelopeRiserFrom.units);
+  w.write_scalar(s::kEnvelopeRiserTo.path, spec.riser_to_m, s::kEnvelopeRiserTo.units);
+
+  std::vector<double> rmax, rfail;
+  std::vector<std::string> limit, message;
+  for (const EnvelopeBoundary& b : r.boundary) {
+    rmax.push_back(b.riser_max_m);
+    rfail.push_back(b.riser_fail_m);
+    limit.push_back(b.limit);
+    message.push_back(b.message);
+  }
+  write_doubles(w, s::kEnvelopeRiserMax, {W, B, S, C}, rmax);
+  write_doubles(w, s::kEnvelopeRiserFail, {W, B, S, C}, rfail);
+  w.write_strings(s::kEnvelopeLimit.path, limit, s::kEnvelopeLimit.units);
+  w.write_strings(s::kEnvelopeMessage.path, message, s::kEnvelopeMessage.units);
+  write_doubles(w, s::kEnvelopePostureHeight, {W, B, S}, r.posture_height_m);
+  write_doubles(w, s::kEnvelopePostureFootLateral, {W, B, S}, r.posture_foot_lateral_m);
+  write_doubles(w, s::kEnvelopePostureMargin, {W, B, S}, r.posture_margin_m);
+
+  std::vector<std::int32_t> cell, crit;
+  std::vector<double> riser;
+  std::vector<std::int8_t> passed;
+  std::vector<std::string> plimit, pmessage;
+  for (const EnvelopeProbe& p : r.probes) {
+    cell.push_back(p.cell);
+    std::int32_t ci = 0;
+    for (std::size_t i = 0; i < C; ++i)
+      if (spec.criteria[i] == p.criterion) ci = static_cast<std::int32_t>(i);
+    crit.push_back(ci);
+    riser.push_back(p.riser_m);
+    passed.push_back(p.passed ? 1 : 0);
+    plimit.push_back(p.limit);
+    pmessage.push_back(p.message);
+  }
+  const std::size_t P = r.probes.size();
+  w.write_int32(s::kProbeCell.path, {P}, cell, s::kProbeCell.units);
+  w.write_int32(s::kProbeCriterion.path, {P}, crit, s::kProbeCriterion.units);
+  write_doubles(w, s::kProbeRiser, {P}, riser);
+  w.write_int8(s::kProbePassed.path, {P}, passed, s::kProbePassed.units);
+  w.write_strings(s::kProbeLimit.path, plimit, s::kProbeLimit.units);
+  w.write_strings(s::kProbeMessage.path, pmessage, s::kProbeMessage.units);
+}
+
+constexpr const char* kUsage = R"(usage: hexdyn envelope ENVELOPE -o FILE [-v]
+  Finds the largest stair riser the robot climbs, per tread depth, duty factor and peak
+  speed, under the kinematic, torque and friction criteria, and writes the
+  hexdyn-envelope/1 file FILE (README "Climbable envelope"; configs/envelope/paper.yaml
+  documents the keys). -v prints one line per cell and criterion.
+)";
+
+std::string one_line(const std::string& text) {
+  std::string out;
+  for (char c : text) out += c == '\n' ? std::string("\\n") : std::string(1, c);
+  return out;
+}
+
+}  // namespace
+
+void write_envelope_file(const std::string& path, const EnvelopeSpec& spec, const EnvelopeResult& result) {
+  silence_hdf5_errors();
+  publish_atomically(path, [&](const std::string& tmp) {
+    H5Writer w(tmp);
+    write_file(w, spec, result);
+    w.close();
+  });
+}
+
+int envelope_command(int argc, char** argv) {
+  std::string config, output;
+  bool verbose = false;
+  for (int i = 1; i < argc; ++i)
+    if (!std::strcmp(argv[i], "--help") || !std::strcmp(argv[i], "-h")) {
+      std::cout << kUsage;
+      return 0;
+    }
+  try {
+    for (int i = 1; i < argc; ++i) {
+      const std::string arg = argv[i];
+      if (arg == "-o" || arg == "--output") {
+        if (i + 1 >= argc) throw ConfigError("-o: missing value");
+        output = argv[++i];
+      } else if (arg == "-v" || arg == "--verbose") {
+        verbose = true;
+      } else if (!arg.empty() && arg[0] == '-') {
+        throw ConfigError("unknown option " + arg + "; run 'hexdyn envelope --help'");
+      } else if (config.empty()) {
+        config = arg;
+      } else {
+        throw ConfigError("unexpected argument " + arg + "; run 'hexdyn envelope --help'");
+      }
+    }
+    if (config.empty()) throw ConfigError("envelope: missing ENVELOPE file");
+    if (output.empty()) throw ConfigError("envelope: missing -o FILE");
+    const EnvelopeSpec spec = load_envelope_spec(config);
+    check_output_path_writable(output);
+    const EnvelopeResult result = compute_envelope(spec, verbose ? &std::cerr : nullptr);
+    write_envelope_file(output, spec, result);
+    std::cerr << "hexdyn: wrote " << output << " (" << result.probes.size() << " probes, " << result.wall_time_s
+              << " s)\n";
+    return 0;
+  } catch (const Error& e) {
+    std::cerr << "hexdyn: error: " << one_line(e.what()) << "\n";
+    return e.exit_status();
+  } catch (const std::exception& e) {
+    std::cerr << "hexdyn: internal error: " << one_line(e.what()) << "\n";
+    return 4;
+  }
+}
+
+}  // namespace hexdyn

@@ -1,0 +1,304 @@
+#include "hexdyn/planning/posture.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "hexdyn/core/errors.hpp"
+#include "hexdyn/planning/plan.hpp"
+
+namespace hexdyn {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+/// Angle of a joint to its nearer limit [rad], +inf for a continuous joint; negative when
+/// outside. A revolute joint may be turned by ±2π into its limits (as the IK does).
+double joint_clearance_rad(double q, double lo, double hi) {
+  double best = -kInf;
+  for (double shift : {0.0, 2.0 * M_PI, -2.0 * M_PI}) best = std::max(best, std::min(q + shift - lo, hi - q - shift));
+  return best;
+}
+
+/// Which of the reach boundaries limits a paper-geometry leg at target p_H; the other
+/// geometries report the IK's margin without naming the boundary.
+std::string reach_boundary(const RobotModel& m, int leg, const Vec3& p_H) {
+  if (m.leg_geometry != LegGeometry::kPaperPlanar) return "reach: workspace boundary";
+  const auto& L = m.link_length_m;
+  const double w = m.lateral_m[leg];
+  const double rho = std::sqrt(std::max(p_H.x() * p_H.x() + p_H.y() * p_H.y() - w * w, 0.0));
+  const double dist = std::hypot(rho - L[0], p_H.z() + m.d1_m);
+  return (L[1] + L[2]) - dist <= dist - std::abs(L[1] - L[2]) ? "reach: full extension" : "reach: full fold";
+}
+
+struct SampleMargin {
+  double value_m = kInf;
+  std::string constraint;
+};
+
+/// Margins of one leg at one instant, folded into `out` (file comment of posture.hpp).
+SampleMargin leg_margin(const RobotModel& m, int leg, const Vec3& p_H, KinematicMargin& out) {
+  SampleMargin s;
+  const LegIkResult ik = leg_inverse_kinematics(m, leg, p_H);
+  const bool joint_refusal = !ik.ok && ik.reason.rfind("joint ", 0) == 0;
+  if (!ik.ok) out.admitted = false;
+  if (!ik.ok && !joint_refusal) {
+    // Out of reach: no joint angles; the IK's margin (negative or below the minimum).
+    s.value_m = ik.margin_m;
+    s.constraint = ik.reason.find("extension") != std::string::npos ? "reach: full extension"
+                   : ik.reason.find("fold") != std::string::npos    ? "reach: full fold"
+                                                                    : "reach: " + ik.reason;
+    out.reach_m = std::min(out.reach_m, ik.margin_m);
+    return s;
+  }
+  if (ik.ok) {
+    out.reach_m = std::min(out.reach_m, ik.margin_m);
+    s.value_m = ik.margin_m;
+    s.constraint = reach_boundary(m, leg, p_H);
+  }
+  const Mat3 J = leg_jacobian_H(m, leg, ik.q);
+  for (int j = 0; j < kJointsPerLeg; ++j) {
+    const int k = joint_index(leg, j);
+    const double lo = m.joint_lower_rad[k], hi = m.joint_upper_rad[k];
+    const double c = joint_clearance_rad(ik.q[j], lo, hi);
+    if (!std::isfinite(c)) continue;
+    out.joint_rad = std::min(out.joint_rad, c);
+    const double c_m = c * J.col(j).norm();
+    out.joint_m = std::min(out.joint_m, c_m);
+    if (c_m < s.value_m) {
+      s.value_m = c_m;
+      const bool lower = std::abs(ik.q[j] - lo) <= std::abs(hi - ik.q[j]);
+      s.constraint = "joint " + m.joint_source_names[k] + (lower ? " lower" : " upper") + " limit";
+    }
+  }
+  return s;
+}
+
+/// Result of one candidate posture.
+struct Candidate {
+  double height_m = 0.0, foot_lateral_m = 0.0;
+  KinematicMargin margin;
+  bool planned = false;
+  std::string planning_error;
+};
+
+class PostureSearch {
+ public:
+  PostureSearch(const Scene& scene, const RobotModel& model) : scene_(scene), model_(model) {}
+
+  Candidate evaluate(double h, double w, int uniform) {
+    ++evaluations_;
+    Candidate c;
+    c.height_m = h;
+    c.foot_lateral_m = w;
+    const PostureParams& p = scene_.motion.posture;
+    try {
+      const MotionPlan plan = plan_motion_with(scene_, model_, relative_start_position(scene_.terrain, h, p.start_y_m), w);
+      c.margin = motion_kinematic_margin(model_, plan, uniform);
+      c.planned = true;
+    } catch (const PlanningError& e) {
+      c.margin.value_m = -kInf;
+      c.planning_error = e.what();
+    }
+    return c;
+  }
+
+  /// Best height for spread w: a scan, then golden section around the best scan point.
+  Candidate best_height(double w, double h_lo, double h_hi) {
+    constexpr int kScan = 25;
+    constexpr int kUniform = 200;
+    std::vector<Candidate> scan;
+    int best = 0;
+    for (int i = 0; i < kScan; ++i) {
+      scan.push_back(evaluate(h_lo + (h_hi - h_lo) * i / (kScan - 1), w, kUniform));
+      if (scan[i].margin.value_m > scan[best].margin.value_m) best = i;
+    }
+    if (!scan[best].planned) return scan[best];
+    double a = scan[std::max(best - 1, 0)].height_m, b = scan[std::min(best + 1, kScan - 1)].height_m;
+    const double g = 0.5 * (std::sqrt(5.0) - 1.0);
+    Candidate x1 = evaluate(b - g * (b - a), w, kUniform), x2 = evaluate(a + g * (b - a), w, kUniform);
+    Candidate top = scan[best];
+    while (b - a > 1e-4) {
+      if (x1.margin.value_m >= x2.margin.value_m) {
+        b = x2.height_m;
+        x2 = x1;
+        x1 = evaluate(b - g * (b - a), w, kUniform);
+      } else {
+        a = x1.height_m;
+        x1 = x2;
+        x2 = evaluate(a + g * (b - a), w, kUniform);
+      }
+      for (const Candidate* c : {&x1, &x2})
+        if (c->margin.value_m > top.margin.value_m) top = *c;
+    }
+    return top;
+  }
+
+  int evaluations() const { return evaluations_; }
+
+ private:
+  const Scene& scene_;
+  const RobotModel& model_;
+  int evaluations_ = 0;
+};
+
+/// Default upper end of the height search: the longest foot distance from its hip with
+/// the joints at zero (every leg of the paper robot stands straight out there) [m].
+double leg_length_m(const RobotModel& model) {
+  double r = 0.0;
+  for (int leg = 0; leg < kLegs; ++leg) r = std::max(r, leg_foot_position_H(model, leg, Vec3::Zero()).norm());
+  return r;
+}
+
+}  // namespace
+
+double reference_line_height(const TerrainParams& t, double y) {
+  switch (t.type) {
+    case TerrainType::kStairs:
+      return t.ground_height_m + t.riser_height_m * ((y - t.first_riser_y_m) / t.tread_depth_m + 0.5);
+    case TerrainType::kSlope:
+      return t.ground_height_m + std::tan(t.slope_rad) * (y - t.slope_origin_y_m);
+    case TerrainType::kFlat:
+      return t.ground_height_m;
+  }
+  return 0.0;
+}
+
+double terrain_rise_above_reference(const TerrainParams& t) {
+  return t.type == TerrainType::kStairs ? 0.5 * t.riser_height_m : 0.0;
+}
+
+double terrain_origin_y(const TerrainParams& t) {
+  switch (t.type) {
+    case TerrainType::kStairs: return t.first_riser_y_m;
+    case TerrainType::kSlope: return t.slope_origin_y_m;
+    case TerrainType::kFlat: return 0.0;
+  }
+  return 0.0;
+}
+
+Vec3 relative_start_position(const TerrainParams& t, double height_m, double start_y_m) {
+  const double y = terrain_origin_y(t) + start_y_m;
+  return Vec3(0.0, y, reference_line_height(t, y) + height_m);
+}
+
+std::string KinematicMargin::describe() const {
+  std::ostringstream s;
+  s << "leg " << leg_name(leg) << " at t = " << t_s << " s: " << constraint << " (margin " << value_m << " m)";
+  return s.str();
+}
+
+std::vector<double> margin_sample_times(const MotionPlan& plan, int uniform) {
+  const double T = plan.trunk.duration_s();
+  const int n = std::max(uniform, 2);
+  std::vector<double> t;
+  for (int i = 0; i < n; ++i) t.push_back(T * i / (n - 1));
+  for (const LegPlan& leg : plan.gait.legs)
+    for (const Swing& sw : leg.swings) {
+      const double D = sw.t_touchdown_s - sw.t_liftoff_s;
+      for (double u : {0.0, sw.lift_end_u, sw.lower_start_u}) t.push_back(sw.t_liftoff_s + u * D);
+      t.push_back(sw.t_touchdown_s);
+    }
+  std::sort(t.begin(), t.end());
+  t.erase(std::unique(t.begin(), t.end()), t.end());
+  return t;
+}
+
+KinematicMargin motion_kinematic_margin(const RobotModel& model, const MotionPlan& plan, int uniform) {
+  KinematicMargin out;
+  out.value_m = out.reach_m = out.joint_m = out.joint_rad = kInf;
+  out.admitted = true;
+  const std::vector<double> times = margin_sample_times(plan, uniform);
+  out.samples = static_cast<int>(times.size());
+  for (double t : times) {
+    const BaseState trunk = plan.trunk.at(t);
+    for (int leg = 0; leg < kLegs; ++leg) {
+      const FootMotion f = leg_foot_motion(plan.gait.legs[leg], t);
+      const Vec3 r_B = trunk.W_R_B.transpose() * (f.p_W - trunk.p_W);
+      const Vec3 p_H = model.R_B_H[leg].transpose() * (r_B - model.p_hip_B[leg]);
+      const SampleMargin s = leg_margin(model, leg, p_H, out);
+      if (s.value_m < out.value_m) {
+        out.value_m = s.value_m;
+        out.leg = leg;
+        out.t_s = t;
+        out.constraint = s.constraint;
+      }
+    }
+  }
+  return out;
+}
+
+PostureChoice choose_posture(const Scene& scene, const RobotModel& model) {
+  PostureChoice c = best_posture(scene, model);
+  if (c.mode != PostureMode::kAuto || c.margin.admitted) return c;
+  const PostureParams& p = scene.motion.posture;
+  const double h_lo = std::max(p.height_min_m < p.height_max_m ? p.height_min_m : 0.0,
+                               terrain_rise_above_reference(scene.terrain) + p.trunk_clearance_m);
+  std::ostringstream msg;
+  msg << "no trunk posture admits the motion (motion.posture.height: auto): the best, height " << c.height_m
+      << " m above the terrain's reference line with gait.foot_lateral " << c.foot_lateral_m << " m, leaves "
+      << c.margin.describe() << "; required: reach margin >= robot.ik_min_margin (" << model.ik_min_margin_m
+      << " m) and every joint inside its limits";
+  if (c.height_m - h_lo < 1e-3)
+    msg << " (the height is the lowest the trunk clearance allows: " << h_lo
+        << " m = riser/2 + motion.posture.trunk_clearance)";
+  throw ReachError(msg.str());
+}
+
+PostureChoice best_posture(const Scene& scene, const RobotModel& model) {
+  const PostureParams& p = scene.motion.posture;
+  PostureChoice c;
+  c.mode = p.mode;
+  c.foot_lateral_m = scene.gait.foot_lateral_m;
+  if (p.mode == PostureMode::kAbsolute) {
+    c.p0_W = scene.motion.initial_position_m;
+    c.height_m = c.p0_W.z() - reference_line_height(scene.terrain, c.p0_W.y());
+    return c;
+  }
+  if (p.mode == PostureMode::kRelative) {
+    c.height_m = p.height_m;
+    c.p0_W = relative_start_position(scene.terrain, p.height_m, p.start_y_m);
+    return c;
+  }
+  PostureSearch search(scene, model);
+  double h_lo = p.height_min_m, h_hi = p.height_max_m;
+  if (!(h_lo < h_hi)) {
+    h_lo = 0.0;
+    h_hi = leg_length_m(model);
+  }
+  // The trunk keeps its clearance above the terrain: no height below this is searched.
+  const double h_clear = terrain_rise_above_reference(scene.terrain) + p.trunk_clearance_m;
+  if (h_clear >= h_hi) {
+    std::ostringstream msg;
+    msg << "no trunk posture admits the motion (motion.posture.height: auto): the trunk clearance needs a height of at "
+           "least "
+        << h_clear << " m above the terrain's reference line (highest terrain " << terrain_rise_above_reference(scene.terrain)
+        << " m above it + motion.posture.trunk_clearance " << p.trunk_clearance_m << " m), above the searched range's top "
+        << h_hi << " m";
+    throw ReachError(msg.str());
+  }
+  h_lo = std::max(h_lo, h_clear);
+  Candidate best = search.best_height(scene.gait.foot_lateral_m, h_lo, h_hi);
+  if (p.vary_foot_lateral && best.margin.value_m < p.target_margin_m) {
+    constexpr int kSpreads = 9;
+    for (int i = 0; i < kSpreads; ++i) {
+      const double w = p.foot_lateral_min_m + (p.foot_lateral_max_m - p.foot_lateral_min_m) * i / (kSpreads - 1);
+      Candidate c_w = search.best_height(w, h_lo, h_hi);
+      if (c_w.margin.value_m > best.margin.value_m) best = c_w;
+    }
+  }
+  if (!best.planned) throw PlanningError(best.planning_error);
+  // The chosen posture on a dense grid (a sample at least every 5 ms).
+  const double duration_s = TrunkMotion(scene.motion, scene.gait, Terrain(scene.terrain)).duration_s();
+  const Candidate dense =
+      search.evaluate(best.height_m, best.foot_lateral_m, static_cast<int>(std::ceil(duration_s / 0.005)) + 1);
+  c.height_m = best.height_m;
+  c.foot_lateral_m = best.foot_lateral_m;
+  c.p0_W = relative_start_position(scene.terrain, best.height_m, p.start_y_m);
+  c.margin = dense.margin;
+  c.evaluations = search.evaluations();
+  return c;
+}
+
+}  // namespace hexdyn

@@ -1,0 +1,129 @@
+#pragma once
+/// \file posture.hpp
+/// The trunk's posture relative to the terrain, and the automatic posture (README
+/// "Posture").
+///
+/// Reference line. The trunk travels parallel to the terrain's mean slope (DESIGN.md §2),
+/// so its height above a line of that slope is constant. The reference line is, in the
+/// y-z plane of G0 (heights independent of x):
+///   stairs  the mean slope line through the tread centres,
+///           z_ref(y) = ground + h_s ((y − y_r)/b_s + 1/2), y_r the first riser
+///           (it passes through the centre of the ground tread before y_r as well);
+///   slope   the surface, z_ref(y) = ground + tan(angle) (y − origin_y);
+///   flat    the ground, z_ref = height.
+/// A riser of 0 gives the flat line, so stairs flatten continuously into flat ground.
+///
+/// Relative posture (motion.posture {height: h, start_y: s}): P0(0) = (0, y0, z_ref(y0) + h)
+/// with y0 = y_origin + s, y_origin the first riser (stairs), the slope's origin_y (slope)
+/// or 0 (flat). h is measured vertically (along z); the distance normal to the line is
+/// h cos α. The paper's start (0, 0.412, 0.235) m on its stairs (h_s 0.05, b_s 0.25,
+/// y_r 0) is h = 0.1276 m, s = 0.412 m, and the arithmetic gives back 0.412 and 0.235 to
+/// the last bit (tests/hexdyn/planning/test_posture.cpp).
+///
+/// Kinematic margin of a planned motion (motion_kinematic_margin): over sample instants
+/// (a uniform grid plus every swing's lift-off, end of lift, start of descent and
+/// touchdown) and every leg, the IK of the foot target in the hip frame gives
+///   reach margin  the IK's margin_m: distance of the leg's wrist point from full
+///                 extension and from full fold (LegIkResult), [m];
+///   joint margin  for each joint, the angle to its nearer limit times the foot's lever
+///                 arm about that joint (|∂p_foot/∂q_k|, the Jacobian column): how far
+///                 the foot may move before that joint stops, to first order [m].
+/// The criterion is the smallest of the two over the whole motion, value_m. A sample is
+/// admitted when the IK accepts it (reach margin ≥ robot.ik_min_margin, joints inside
+/// their limits). Swing paths clear the terrain by gait.swing_clearance by construction
+/// (gait.hpp) whatever the posture, so clearance is not a term of the criterion.
+///
+/// Trunk clearance. The trunk travels parallel to the reference line at height h, and
+/// the terrain rises at most h_s/2 above the line (at the back of each tread, just past
+/// its riser), which the trunk passes over: its vertical clearance is h − h_s/2 (the
+/// trunk's axis taken as a line through P0 at least one tread long). The automatic
+/// posture keeps it at least motion.posture.trunk_clearance (ASSUMPTION, default 0.05 m:
+/// half a trunk thickness the paper does not give and a gap). The legs' links are not
+/// checked against the nosings.
+///
+/// Automatic posture (motion.posture.height: auto): the trunk height h maximising value_m,
+/// searched on height_range (default [0, the leg's full length]), raised to at least
+/// h_s/2 + trunk_clearance (default 0.05 m), by a scan of 25 heights
+/// and a golden-section refinement (to 0.1 mm) around the best. When the best margin is
+/// below target_margin and motion.posture.foot_lateral gives a range, gait.foot_lateral
+/// is searched as well (9 values over the range, each with its best height) and the pair
+/// with the largest margin wins; otherwise the scene's gait.foot_lateral is kept. Only h
+/// and gait.foot_lateral change; start, attitude, speed, gait timing and footholds' y
+/// are those of the scene. The chosen posture is checked on a dense grid (5 ms); when no
+/// posture is admitted, plan_motion throws ReachError naming the limiting leg, instant,
+/// constraint and margin at the best posture found.
+#include <string>
+#include <vector>
+
+#include "hexdyn/core/common.hpp"
+#include "hexdyn/core/scene.hpp"
+#include "hexdyn/model/robot_model.hpp"
+
+namespace hexdyn {
+
+struct MotionPlan;
+
+/// Height of the terrain's reference line at y [m] (file comment).
+double reference_line_height(const TerrainParams& terrain, double y_m);
+
+/// Highest rise of the terrain above its reference line [m]: h_s/2 on stairs (at the
+/// back of every tread, just past its riser), 0 on slopes and flat ground.
+double terrain_rise_above_reference(const TerrainParams& terrain);
+
+/// The terrain's origin along y: first riser, slope origin or 0 [m].
+double terrain_origin_y(const TerrainParams& terrain);
+
+/// P0(0) of a relative posture: (0, y_origin + start_y, z_ref + height) [m, G0].
+Vec3 relative_start_position(const TerrainParams& terrain, double height_m, double start_y_m);
+
+/// The smallest kinematic margin of a planned motion and where it occurs.
+struct KinematicMargin {
+  double value_m = 0.0;    ///< the criterion: min(reach_m, joint_m) over the motion [m]
+  double reach_m = 0.0;    ///< smallest reach margin over the samples the IK solved [m]
+  double joint_m = 0.0;    ///< smallest joint margin [m] (angle to the limit × lever arm)
+  double joint_rad = 0.0;  ///< smallest angle to a joint limit [rad]
+  bool admitted = false;   ///< every sampled foot target accepted by the IK
+  // The limiting sample: where value_m occurs.
+  int leg = 0;             ///< 0-based
+  double t_s = 0.0;
+  std::string constraint;  ///< "reach: beyond full extension", "joint L3_tibia upper limit", ...
+  int samples = 0;         ///< instants evaluated
+  /// One line: "leg L3 at t = 1.2 s: reach: beyond full extension (margin -0.004 m)".
+  std::string describe() const;
+};
+
+/// Sample instants of a plan [s], increasing: `uniform` points over [0, duration] (at
+/// least 2) and every swing's lift-off, end of lift, start of descent and touchdown.
+std::vector<double> margin_sample_times(const MotionPlan& plan, int uniform);
+
+/// The kinematic margin of `plan` on margin_sample_times(plan, uniform) (file comment).
+KinematicMargin motion_kinematic_margin(const RobotModel& model, const MotionPlan& plan,
+                                        int uniform = 200);
+
+/// The posture a scene is planned with.
+struct PostureChoice {
+  Vec3 p0_W = Vec3::Zero();      ///< P0 at t = 0 [m, G0]
+  double height_m = 0.0;         ///< above the reference line (computed for kAbsolute) [m]
+  double foot_lateral_m = 0.0;   ///< gait.foot_lateral used [m]
+  PostureMode mode = PostureMode::kAbsolute;
+  /// kAuto only: the margin of the chosen posture on the dense check grid, and the number
+  /// of candidate postures evaluated.
+  KinematicMargin margin;
+  int evaluations = 0;
+};
+
+/// Resolves the scene's posture (file comment). For kAbsolute and kRelative nothing is
+/// searched and nothing is thrown; for kAuto, throws ReachError when no posture in the
+/// searched range admits the motion, PlanningError from the gait planner.
+PostureChoice choose_posture(const Scene& scene, const RobotModel& model);
+
+/// As choose_posture, but for kAuto the best posture found is returned also when it does
+/// not admit the motion (margin.admitted false) instead of throwing.
+PostureChoice best_posture(const Scene& scene, const RobotModel& model);
+
+/// The motion planned with an explicit start and foot spread (the scene's posture keys
+/// ignored). Throws PlanningError.
+MotionPlan plan_motion_with(const Scene& scene, const RobotModel& model, const Vec3& p0_W,
+                            double foot_lateral_m);
+
+}  // namespace hexdyn

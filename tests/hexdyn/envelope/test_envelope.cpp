@@ -1,0 +1,152 @@
+// The climbable envelope (envelope/envelope.hpp): its boundaries checked by runs of the
+// pipeline made here, not through the envelope's own probes: just below a boundary the
+// run succeeds, just above it it fails for the reason the envelope names; the file it
+// writes holds the declared layout.
+#include <unistd.h>
+
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "hexdyn/core/errors.hpp"
+#include "hexdyn/envelope/envelope.hpp"
+#include "hexdyn/io/config.hpp"
+#include "hexdyn/io/h5io.hpp"
+#include "hexdyn/io/schema.hpp"
+#include "hexdyn/pipeline/pipeline.hpp"
+
+namespace hexdyn {
+namespace {
+
+namespace fs = std::filesystem;
+const std::string kConfigs = std::string(HEXDYN_SOURCE_DIR) + "/configs";
+
+std::string exact(double x) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.17g", x);
+  return buf;
+}
+
+/// A one-cell envelope file in a temporary directory.
+struct TempSpec {
+  fs::path dir;
+  std::string path;
+  explicit TempSpec(const std::string& body) {
+    static int count = 0;
+    dir = fs::temp_directory_path() /
+          ("hexdyn_envelope_test_" + std::to_string(::getpid()) + "_" + std::to_string(count++));
+    fs::create_directories(dir);
+    path = (dir / "envelope.yaml").string();
+    std::ofstream(path) << "base: " << kConfigs << "/sweeps/stairs_base.yaml\n" << body;
+  }
+  ~TempSpec() { fs::remove_all(dir); }
+};
+
+Scene stairs(double riser, double tread, double beta, double speed, std::vector<Override> extra = {}) {
+  extra.push_back({"terrain.riser_height", exact(riser)});
+  extra.push_back({"terrain.tread_depth", exact(tread)});
+  extra.push_back({"gait.duty_factor", exact(beta)});
+  extra.push_back({"motion.peak_speed", exact(speed)});
+  return load_scene(kConfigs + "/sweeps/stairs_base.yaml", extra);
+}
+
+/// Relaxed or failed allocation samples while no leg is in a touchdown transient, and
+/// the message of the first.
+int support_relaxed(const RunResult& run, std::string* first) {
+  int n = 0;
+  for (int i = 0; i < run.kin.samples(); ++i) {
+    if (run.dyn.solver_status[i] == SolverStatus::kOptimal) continue;
+    bool impact = false;
+    for (int leg = 0; leg < kLegs; ++leg) impact = impact || run.kin.contact_phase(i, leg) == 1;
+    if (!impact && n++ == 0 && first) *first = run.dyn.solver_messages[i];
+  }
+  return n;
+}
+
+TEST_CASE("envelope: kinematic boundary at the paper tread: below it runs, above it is out of reach",
+          "[envelope]") {
+  TempSpec t("riser: {from: 0.06, to: 0.20, step: 0.02, tolerance: 0.001}\n"
+             "tread_depth: [0.25]\nduty_factor: [1/2]\npeak_speed: [0.1]\ncriteria: [kinematic]\n");
+  const EnvelopeSpec spec = load_envelope_spec(t.path);
+  const EnvelopeResult r = compute_envelope(spec, nullptr);
+  REQUIRE(r.boundary.size() == 1);
+  const EnvelopeBoundary& b = r.boundary[0];
+  INFO("riser_max " << b.riser_max_m << " riser_fail " << b.riser_fail_m << ": " << b.message);
+  // The requirement: nothing kinematic forbids risers below 6 cm at 0.25 m treads.
+  REQUIRE(std::isfinite(b.riser_max_m));
+  CHECK(b.riser_max_m >= 0.06);
+  REQUIRE(std::isfinite(b.riser_fail_m));
+  CHECK(b.riser_fail_m - b.riser_max_m <= 0.001 + 1e-12);
+  // Just below: the whole pipeline runs (no reach error on its adaptive grid).
+  const RunResult below = run_scene(stairs(b.riser_max_m, 0.25, 0.5, 0.1));
+  CHECK(below.kin.samples() > 100);
+  // Just above: the run is refused, naming the leg and the constraint the envelope names.
+  const std::string constraint = b.limit.substr(b.limit.find(' ', 4) + 1);  // after "leg Lx "
+  try {
+    (void)run_scene(stairs(b.riser_fail_m, 0.25, 0.5, 0.1));
+    FAIL("riser " << b.riser_fail_m << " ran");
+  } catch (const ReachError& e) {
+    const std::string m = e.what();
+    INFO(m);
+    CHECK(m.find(b.limit.substr(0, 6)) != std::string::npos);  // "leg Lx"
+    CHECK(m.find(constraint) != std::string::npos);
+  }
+}
+
+TEST_CASE("envelope: torque boundary: below it no relaxed support sample, above it the named torque",
+          "[envelope]") {
+  // β = 3/4 at 0.2 m/s: near full extension the swing legs need more than 6 N m.
+  TempSpec t("riser: {from: 0.15, to: 0.17, step: 0.01, tolerance: 0.001}\n"
+             "tread_depth: [0.25]\nduty_factor: [3/4]\npeak_speed: [0.2]\ncriteria: [torque]\n");
+  const EnvelopeSpec spec = load_envelope_spec(t.path);
+  const EnvelopeResult r = compute_envelope(spec, nullptr);
+  const EnvelopeBoundary& b = r.boundary[0];
+  INFO("riser_max " << b.riser_max_m << " riser_fail " << b.riser_fail_m << ": " << b.message);
+  REQUIRE(std::isfinite(b.riser_max_m));
+  REQUIRE(std::isfinite(b.riser_fail_m));
+  REQUIRE(b.limit.rfind("torque L", 0) == 0);
+  const std::vector<Override> lifted{{"contact.friction_coefficient", "10"}};
+  std::string first;
+  CHECK(support_relaxed(run_scene(stairs(b.riser_max_m, 0.25, 0.75, 0.2, lifted)), &first) == 0);
+  CHECK(support_relaxed(run_scene(stairs(b.riser_fail_m, 0.25, 0.75, 0.2, lifted)), &first) > 0);
+  INFO(first);
+  CHECK(first.find(b.limit) != std::string::npos);
+}
+
+TEST_CASE("envelope: the file holds the declared layout and the boundaries", "[envelope]") {
+  TempSpec t("riser: {from: 0.0, to: 0.04, step: 0.02, tolerance: 0.01}\n"
+             "duty_factor: [1/2, 3/4]\npeak_speed: [0.1]\ncriteria: [kinematic, friction]\n");
+  const EnvelopeSpec spec = load_envelope_spec(t.path);
+  CHECK(spec.tread_depth_m == std::vector<double>{0.25});  // the base scene's
+  const EnvelopeResult r = compute_envelope(spec, nullptr);
+  const std::string file = (t.dir / "envelope.h5").string();
+  write_envelope_file(file, spec, r);
+  const H5Reader h(file);
+  CHECK(h.string_attribute("/meta", "schema") == schema::kEnvelopeSchema);
+  for (const auto& d : schema::kEnvelopeDatasets) {
+    INFO(d.path);
+    CHECK(h.exists(d.path));
+  }
+  CHECK(h.dims(schema::kEnvelopeRiserMax.path) == std::vector<std::size_t>{1, 2, 1, 2});
+  const auto rmax = h.read_doubles(schema::kEnvelopeRiserMax.path).values;
+  for (std::size_t i = 0; i < rmax.size(); ++i) CHECK(rmax[i] == 0.04);  // nothing fails up to 4 cm
+  CHECK(h.read_strings(schema::kProbeMessage.path).size() == r.probes.size());
+}
+
+TEST_CASE("envelope: a bad envelope file is refused with the key named", "[envelope]") {
+  TempSpec t("riser: {from: 0.1, to: 0.05}\nduty_factor: [1/2]\npeak_speed: [0.1]\n");
+  try {
+    (void)load_envelope_spec(t.path);
+    FAIL("accepted");
+  } catch (const ConfigError& e) {
+    CHECK(std::string(e.what()).find("riser.to: got 0.05") != std::string::npos);
+  }
+  TempSpec u("riser: {from: 0.0, to: 0.1}\nduty_factor: [1/2]\npeak_speed: [0.1]\ncriteria: [grip]\n");
+  CHECK_THROWS_AS(load_envelope_spec(u.path), ConfigError);
+}
+
+}  // namespace
+}  // namespace hexdyn
