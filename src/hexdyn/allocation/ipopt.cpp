@@ -112,12 +112,13 @@ class IpoptBackend final : public AllocationBackend {
  public:
   explicit IpoptBackend(const IpoptOptions& options) : opt_(options) {
     if (!(opt_.tolerance > 0.0) || !(opt_.slack_penalty > 0.0) || opt_.max_iterations < 1 ||
-        !(opt_.max_cpu_seconds > 0.0) || !(opt_.cone_smoothing_N > 0.0)) {
+        !(opt_.max_cpu_seconds > 0.0) || !(opt_.cone_smoothing_N > 0.0) ||
+        !(opt_.dual_inf_tol > 0.0)) {
       std::ostringstream os;
-      os << "Ipopt options: tolerance, slack_penalty, max_cpu_seconds, cone_smoothing_N must "
-            "be > 0 and max_iterations >= 1, got "
+      os << "Ipopt options: tolerance, slack_penalty, max_cpu_seconds, cone_smoothing_N, "
+            "dual_inf_tol must be > 0 and max_iterations >= 1, got "
          << opt_.tolerance << ", " << opt_.slack_penalty << ", " << opt_.max_cpu_seconds << ", "
-         << opt_.cone_smoothing_N << ", " << opt_.max_iterations;
+         << opt_.cone_smoothing_N << ", " << opt_.dual_inf_tol << ", " << opt_.max_iterations;
       throw ConfigError(os.str());
     }
     app_ = IpoptApplicationFactory();
@@ -156,6 +157,7 @@ class IpoptBackend final : public AllocationBackend {
     o.SetNumericValue("tol", tol);
     o.SetNumericValue("constr_viol_tol", tol);
     o.SetNumericValue("compl_inf_tol", penalised ? 1e-3 * tol : 1e-4);
+    o.SetNumericValue("dual_inf_tol", opt_.dual_inf_tol);
     o.SetStringValue("jac_d_constant", linear_constraints ? "yes" : "no");
     o.SetStringValue("hessian_constant", linear_constraints ? "yes" : "no");
     if (warm) {

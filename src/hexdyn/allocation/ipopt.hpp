@@ -25,6 +25,12 @@ struct IpoptOptions {
   /// ε of the smooth cone μ n ≥ √(t1² + t2² + ε²) − ε handed to Ipopt: exact at the apex,
   /// at most ε [N] of tangential excess elsewhere.
   double cone_smoothing_N = 1e-9;
+  /// Ipopt `dual_inf_tol`: the absolute (unscaled) stationarity error allowed at the
+  /// answer, on top of `tol`, which Ipopt scales by the mean multiplier. Ipopt's default 1
+  /// leaves `tol` in charge. On penalised runs (multipliers ρ w up to 1e9) the scaled test
+  /// admits ~1e-7 of unscaled error, a few µN of force; a reference that must be exact to
+  /// better than that lowers this (tests/hexdyn/allocation/test_cone.cpp).
+  double dual_inf_tol = 1.0;
   std::string linear_solver = "mumps";
 };
 
