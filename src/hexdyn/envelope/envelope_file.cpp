@@ -21,13 +21,8 @@ void write_doubles(H5Writer& w, const s::DatasetSpec& spec, const std::vector<st
 }
 
 void write_file(H5Writer& w, const EnvelopeSpec& spec, const EnvelopeResult& r) {
-  w.create_group(s::kMetaGroup);
   const std::string meta = s::kMetaGroup;
-  w.set_string_attribute(meta, s::kAttrSchema, s::kEnvelopeSchema);
-  w.set_int_attribute(meta, s::kAttrSchemaVersion, s::kEnvelopeSchemaVersion);
-  w.set_string_attribute(meta, s::kAttrVersion, kVersion);
-  w.set_string_attribute(meta, s::kAttrGitCommit, kGitCommit);
-  w.set_string_attribute(meta, s::kAttrCreatedUtc, utc_timestamp_now());
+  write_meta_header(w, meta, s::kEnvelopeSchema, s::kEnvelopeSchemaVersion);
   w.set_string_attribute(meta, s::kAttrConfigYaml, spec.spec_yaml);
   w.set_double_attribute(meta, s::kAttrWallTime, r.wall_time_s);
   w.set_string_attribute(meta, s::kMetaEnvelopeBaseConfigYaml.name, spec.base_config_yaml);

@@ -12,32 +12,16 @@
 #include "hexdyn/envelope/envelope.hpp"
 #include "hexdyn/io/config.hpp"
 #include "hexdyn/io/paths.hpp"
+#include "hexdyn/io/spec_reader.hpp"
 #include "hexdyn/io/yaml_load.hpp"
 
 namespace hexdyn {
 namespace {
 
-class SpecReader {
+/// The envelope file's reader: the study-file errors plus its lists of numbers.
+class EnvelopeReader : public SpecReader {
  public:
-  explicit SpecReader(std::string file) : file_(std::move(file)) {}
-  [[noreturn]] void fail(const std::string& path, const std::string& what) const {
-    throw ConfigError(file_ + ": " + path + ": " + what);
-  }
-  [[noreturn]] void fail_value(const std::string& path, const YAML::Node& node, const std::string& expected) const {
-    fail(path, "got " + yaml_inline(node) + ", expected " + expected);
-  }
-  void check_keys(const YAML::Node& node, const std::string& path, const std::vector<std::string>& allowed) const {
-    if (!node.IsMap()) fail_value(path.empty() ? "(top level)" : path, node, "a mapping of keys");
-    for (const auto& kv : node) {
-      const std::string key = kv.first.IsScalar() ? kv.first.Scalar() : yaml_inline(kv.first);
-      if (std::find(allowed.begin(), allowed.end(), key) == allowed.end()) {
-        const std::set<std::string> sorted(allowed.begin(), allowed.end());
-        std::string list;
-        for (const auto& a : sorted) list += (list.empty() ? "" : ", ") + a;
-        fail(path.empty() ? key : path + "." + key, "unknown key, allowed here: " + list);
-      }
-    }
-  }
+  using SpecReader::SpecReader;
   /// A number (p/q allowed) inside [lo, hi].
   double number(const YAML::Node& n, const std::string& path, double lo, double hi) const {
     const std::string expected = "a number in [" + fmt(lo) + ", " + fmt(hi) + "]";
@@ -64,8 +48,6 @@ class SpecReader {
     return s.str();
   }
 
- private:
-  std::string file_;
 };
 
 bool given(const YAML::Node& n) { return n.IsDefined() && !n.IsNull(); }
@@ -85,7 +67,7 @@ EnvelopeSpec load_envelope_spec(const std::string& path) {
   EnvelopeSpec spec;
   spec.spec_yaml = read_text_file(path);
   const YAML::Node root = parse_yaml_text(spec.spec_yaml, path);
-  const SpecReader r(path);
+  const EnvelopeReader r(path);
   r.check_keys(root, "", {"name", "base", "set", "riser", "tread_depth", "duty_factor", "peak_speed", "criteria",
                           "kinematic_margin"});
   spec.name = given(root["name"]) ? root["name"].Scalar() : std::filesystem::path(path).stem().string();
@@ -120,8 +102,8 @@ EnvelopeSpec load_envelope_spec(const std::string& path) {
   spec.riser_from_m = r.number(riser["from"], "riser.from", 0.0, 1.0);
   spec.riser_to_m = r.number(riser["to"], "riser.to", 0.0, 1.0);
   if (!(spec.riser_from_m < spec.riser_to_m))
-    r.fail("riser.to", "got " + SpecReader::fmt(spec.riser_to_m) + ", expected more than riser.from (" +
-                           SpecReader::fmt(spec.riser_from_m) + ")");
+    r.fail("riser.to", "got " + EnvelopeReader::fmt(spec.riser_to_m) + ", expected more than riser.from (" +
+                           EnvelopeReader::fmt(spec.riser_from_m) + ")");
   const double span = spec.riser_to_m - spec.riser_from_m;
   spec.riser_step_m = given(riser["step"]) ? r.number(riser["step"], "riser.step", 1e-5, span) : std::min(0.01, span);
   spec.tolerance_m =

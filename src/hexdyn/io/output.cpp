@@ -51,12 +51,7 @@ void write_vector(H5Writer& w, const std::string& prefix, const DatasetSpec& spe
 
 void write_meta(H5Writer& w, const std::string& prefix, const RunResult& r) {
   const std::string meta = prefix + schema::kMetaGroup;
-  w.create_group(meta);
-  w.set_string_attribute(meta, schema::kAttrSchema, schema::kResultSchema);
-  w.set_int_attribute(meta, schema::kAttrSchemaVersion, schema::kResultSchemaVersion);
-  w.set_string_attribute(meta, schema::kAttrVersion, kVersion);
-  w.set_string_attribute(meta, schema::kAttrGitCommit, kGitCommit);
-  w.set_string_attribute(meta, schema::kAttrCreatedUtc, utc_timestamp_now());
+  write_meta_header(w, meta, schema::kResultSchema, schema::kResultSchemaVersion);
   w.set_string_attribute(meta, schema::kAttrConfigYaml, r.config_yaml);
   w.set_double_attribute(meta, schema::kAttrWallTime, r.wall_time_s);
 }
@@ -157,6 +152,16 @@ void write_dynamics(H5Writer& w, const std::string& prefix, const DynamicsResult
 }
 
 }  // namespace
+
+void write_meta_header(H5Writer& w, const std::string& meta, const char* schema_name,
+                       std::int64_t schema_version) {
+  w.create_group(meta);
+  w.set_string_attribute(meta, schema::kAttrSchema, schema_name);
+  w.set_int_attribute(meta, schema::kAttrSchemaVersion, schema_version);
+  w.set_string_attribute(meta, schema::kAttrVersion, kVersion);
+  w.set_string_attribute(meta, schema::kAttrGitCommit, kGitCommit);
+  w.set_string_attribute(meta, schema::kAttrCreatedUtc, utc_timestamp_now());
+}
 
 std::string utc_timestamp_now() {
   const std::time_t now = std::time(nullptr);

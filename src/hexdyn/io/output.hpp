@@ -59,6 +59,12 @@ inline constexpr std::size_t kLargeResultSamples = 200000;
 /// about 10% of the files written (tests/hexdyn/io/test_output_target.cpp).
 double estimated_result_file_bytes(std::size_t samples);
 
+/// Creates the group `meta_path` and writes the attributes every hexdyn file's /meta opens
+/// with (schema.hpp): `schema` = `schema_name`, `schema_version`, `version`, `git_commit`
+/// and `created_utc` (now). The caller adds its layout's own attributes.
+void write_meta_header(H5Writer& writer, const std::string& meta_path, const char* schema_name,
+                       std::int64_t schema_version);
+
 /// Current UTC time as ISO 8601 "YYYY-MM-DDTHH:MM:SSZ".
 std::string utc_timestamp_now();
 

@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <cstring>
 
+#include "hexdyn/core/bytes.hpp"
 #include "hexdyn/core/errors.hpp"
 
 namespace hexdyn {
@@ -13,8 +14,8 @@ void put_raw(std::vector<char>& b, const void* data, std::size_t n) {
   b.resize(at + n);
   if (n > 0) std::memcpy(b.data() + at, data, n);
 }
-void put_i64(std::vector<char>& b, std::int64_t v) { put_raw(b, &v, sizeof v); }
-void put_f64(std::vector<char>& b, double v) { put_raw(b, &v, sizeof v); }
+void put_i64(std::vector<char>& b, std::int64_t v) { put_pod(b, v); }
+void put_f64(std::vector<char>& b, double v) { put_pod(b, v); }
 void put_bytes(std::vector<char>& b, const char* data, std::size_t n) {
   put_i64(b, static_cast<std::int64_t>(n));
   put_raw(b, data, n);
@@ -51,8 +52,7 @@ class Unpacker {
   template <class T>
   T pod() {
     need(sizeof(T));
-    T v;
-    std::memcpy(&v, b_.data() + at_, sizeof v);
+    const T v = get_pod<T>(b_.data() + at_);
     at_ += sizeof v;
     return v;
   }

@@ -1,3 +1,4 @@
+#include "hexdyn/core/bytes.hpp"
 #include "hexdyn/sweep/journal.hpp"
 
 #include <algorithm>
@@ -14,18 +15,6 @@ constexpr std::uint32_t kRecordMagic = 0x31525848u;  // "HXR1" in little-endian 
 /// Largest payload accepted when reading (a kept run is a few MB).
 constexpr std::uint64_t kMaxPayload = std::uint64_t{1} << 34;
 
-template <class T>
-void put(std::vector<char>& b, const T& v) {
-  const std::size_t at = b.size();
-  b.resize(at + sizeof v);
-  std::memcpy(b.data() + at, &v, sizeof v);
-}
-template <class T>
-T get(const char* p) {
-  T v;
-  std::memcpy(&v, p, sizeof v);
-  return v;
-}
 
 std::string padded(std::uint64_t index) {
   char buf[32];
@@ -64,10 +53,10 @@ SweepIdentity make_identity(const std::string& sweep_yaml, const std::string& ba
 
 std::vector<char> journal_header(const SweepIdentity& s) {
   std::vector<char> b(kJournalMagic, kJournalMagic + 8);
-  for (std::uint64_t v : {s.id, s.sweep_file, s.base_scene, s.build, s.scenarios}) put(b, v);
-  put(b, static_cast<std::uint64_t>(s.keep_runs ? 1 : 0));
-  put(b, crc32(b.data(), b.size()));
-  put(b, std::uint32_t{0});
+  for (std::uint64_t v : {s.id, s.sweep_file, s.base_scene, s.build, s.scenarios}) put_pod(b, v);
+  put_pod(b, static_cast<std::uint64_t>(s.keep_runs ? 1 : 0));
+  put_pod(b, crc32(b.data(), b.size()));
+  put_pod(b, std::uint32_t{0});
   return b;
 }
 
@@ -75,13 +64,13 @@ void append_journal_record(std::vector<char>& out, RecordKind kind, std::uint64_
                            const SweepIdentity& identity, const char* payload, std::size_t size) {
   const std::size_t start = out.size();
   out.reserve(start + kRecordHeaderBytes + size + kRecordTrailerBytes);
-  put(out, kRecordMagic);
-  put(out, static_cast<std::uint32_t>(kind));
-  put(out, index);
-  put(out, identity.id);
-  put(out, static_cast<std::uint64_t>(size));
+  put_pod(out, kRecordMagic);
+  put_pod(out, static_cast<std::uint32_t>(kind));
+  put_pod(out, index);
+  put_pod(out, identity.id);
+  put_pod(out, static_cast<std::uint64_t>(size));
   out.insert(out.end(), payload, payload + size);
-  put(out, crc32(out.data() + start + 4, out.size() - start - 4));
+  put_pod(out, crc32(out.data() + start + 4, out.size() - start - 4));
 }
 
 JournalScan scan_journal(const char* data, std::size_t size, const std::string& name,
@@ -89,15 +78,15 @@ JournalScan scan_journal(const char* data, std::size_t size, const std::string& 
   JournalScan scan;
   std::size_t at = 0;
   if (size >= kJournalHeaderBytes && std::memcmp(data, kJournalMagic, 8) == 0 &&
-      get<std::uint32_t>(data + 56) == crc32(data, 56)) {
+      get_pod<std::uint32_t>(data + 56) == crc32(data, 56)) {
     scan.header_ok = true;
     SweepIdentity& h = scan.header;
-    h.id = get<std::uint64_t>(data + 8);
-    h.sweep_file = get<std::uint64_t>(data + 16);
-    h.base_scene = get<std::uint64_t>(data + 24);
-    h.build = get<std::uint64_t>(data + 32);
-    h.scenarios = get<std::uint64_t>(data + 40);
-    h.keep_runs = get<std::uint64_t>(data + 48) != 0;
+    h.id = get_pod<std::uint64_t>(data + 8);
+    h.sweep_file = get_pod<std::uint64_t>(data + 16);
+    h.base_scene = get_pod<std::uint64_t>(data + 24);
+    h.build = get_pod<std::uint64_t>(data + 32);
+    h.scenarios = get_pod<std::uint64_t>(data + 40);
+    h.keep_runs = get_pod<std::uint64_t>(data + 48) != 0;
     at = kJournalHeaderBytes;
   } else {
     scan.damage.push_back(name + ": damaged header (" +
@@ -128,7 +117,7 @@ JournalScan scan_journal(const char* data, std::size_t size, const std::string& 
   };
 
   while (at < size) {
-    if (size - at < 4 || get<std::uint32_t>(data + at) != kRecordMagic) {
+    if (size - at < 4 || get_pod<std::uint32_t>(data + at) != kRecordMagic) {
       if (bad_from == SIZE_MAX) mark_bad(at, "unreadable record");
       ++at;
       continue;
@@ -137,10 +126,10 @@ JournalScan scan_journal(const char* data, std::size_t size, const std::string& 
       mark_bad(at, "truncated record (" + std::to_string(size - at) + " bytes)");
       break;
     }
-    const auto kind = get<std::uint32_t>(data + at + 4);
-    const auto index = get<std::uint64_t>(data + at + 8);
-    const auto ident = get<std::uint64_t>(data + at + 16);
-    const auto psize = get<std::uint64_t>(data + at + 24);
+    const auto kind = get_pod<std::uint32_t>(data + at + 4);
+    const auto index = get_pod<std::uint64_t>(data + at + 8);
+    const auto ident = get_pod<std::uint64_t>(data + at + 16);
+    const auto psize = get_pod<std::uint64_t>(data + at + 24);
     const std::string which = "record of scenario " + padded(index);
     if (psize > kMaxPayload || psize > size - at - kRecordHeaderBytes - kRecordTrailerBytes) {
       // A length past the end: a cut-off last record, or a damaged length field.
@@ -149,7 +138,7 @@ JournalScan scan_journal(const char* data, std::size_t size, const std::string& 
       continue;
     }
     const std::size_t body = kRecordHeaderBytes + static_cast<std::size_t>(psize);
-    const auto crc = get<std::uint32_t>(data + at + body);
+    const auto crc = get_pod<std::uint32_t>(data + at + body);
     if (crc != crc32(data + at + 4, body - 4)) {
       mark_bad(at, "damaged " + which + " (checksum mismatch)");
       ++at;

@@ -1,3 +1,4 @@
+#include "hexdyn/core/bytes.hpp"
 #include "hexdyn/sweep/record.hpp"
 
 #include <unistd.h>
@@ -37,14 +38,8 @@ const CrcTables kCrc;
 static_assert(std::endian::native == std::endian::little,
               "crc32's slicing reads words in little-endian order");
 
-template <class T>
-void put(std::vector<char>& b, const T& v) {
-  const std::size_t at = b.size();
-  b.resize(at + sizeof v);
-  std::memcpy(b.data() + at, &v, sizeof v);
-}
 void put_bytes(std::vector<char>& b, const char* data, std::size_t n) {
-  put(b, static_cast<std::uint64_t>(n));
+  put_pod(b, static_cast<std::uint64_t>(n));
   b.insert(b.end(), data, data + n);
 }
 
@@ -54,8 +49,7 @@ class Reader {
   template <class T>
   T get() {
     need(sizeof(T));
-    T v;
-    std::memcpy(&v, d_ + at_, sizeof v);
+    const T v = get_pod<T>(d_ + at_);
     at_ += sizeof v;
     return v;
   }
@@ -109,17 +103,17 @@ std::uint64_t fnv1a64(std::string_view text, std::uint64_t h) {
 
 void append_record(std::vector<char>& b, const ScenarioRecord& r) {
   const ScenarioSummary& s = r.summary;
-  put(b, static_cast<std::uint64_t>(s.index));
-  put(b, static_cast<std::int8_t>(s.status));
+  put_pod(b, static_cast<std::uint64_t>(s.index));
+  put_pod(b, static_cast<std::int8_t>(s.status));
   put_bytes(b, s.message.data(), s.message.size());
-  put(b, static_cast<std::int32_t>(s.samples));
-  put(b, static_cast<std::int32_t>(s.relaxed_samples));
-  put(b, static_cast<std::int32_t>(s.failed_samples));
+  put_pod(b, static_cast<std::int32_t>(s.samples));
+  put_pod(b, static_cast<std::int32_t>(s.relaxed_samples));
+  put_pod(b, static_cast<std::int32_t>(s.failed_samples));
   for (double v : {s.duration_s, s.distance_m, s.energy_J, s.cost_of_transport,
                    s.peak_impact_force_N, s.wall_time_s})
-    put(b, v);
-  for (double v : s.peak_torque_Nm) put(b, v);
-  for (double v : s.rms_torque_Nm) put(b, v);
+    put_pod(b, v);
+  for (double v : s.peak_torque_Nm) put_pod(b, v);
+  for (double v : s.rms_torque_Nm) put_pod(b, v);
   put_bytes(b, r.run_image.data(), r.run_image.size());
 }
 

@@ -1,3 +1,4 @@
+#include "hexdyn/core/bytes.hpp"
 #include "hexdyn/sweep/scenario_process.hpp"
 
 #include <poll.h>
@@ -58,18 +59,6 @@ bool read_exact(int fd, char* data, std::size_t n) {
   return true;
 }
 
-template <class T>
-void put(std::vector<char>& b, const T& v) {
-  const std::size_t at = b.size();
-  b.resize(at + sizeof v);
-  std::memcpy(b.data() + at, &v, sizeof v);
-}
-template <class T>
-T get(const char* p) {
-  T v;
-  std::memcpy(&v, p, sizeof v);
-  return v;
-}
 
 [[noreturn]] void child_main(const ScenarioFactory& factory, bool keep_runs,
                              const std::string& scratch, int in_fd, pid_t parent) {
@@ -87,10 +76,10 @@ T get(const char* p) {
     const ScenarioEvent ev = compute_scenario(factory, static_cast<std::size_t>(index), keep_runs,
                                               scratch);
     frame.clear();
-    put(frame, index);
+    put_pod(frame, index);
     for (double t : {ev.timing.config_s, ev.timing.physics_s, ev.timing.summary_s, ev.encode_s})
-      put(frame, t);
-    put(frame, static_cast<std::uint64_t>(ev.payload.size()));
+      put_pod(frame, t);
+    put_pod(frame, static_cast<std::uint64_t>(ev.payload.size()));
     frame.insert(frame.end(), ev.payload.begin(), ev.payload.end());
     if (!send_all(in_fd, frame.data(), frame.size())) ::_exit(0);
   }
@@ -159,7 +148,7 @@ void ScenarioProcess::start_child() {
   inbox_.clear();
   ++children_;
   std::vector<char> ids;
-  for (std::size_t i : pending_) put(ids, static_cast<std::uint64_t>(i));
+  for (std::size_t i : pending_) put_pod(ids, static_cast<std::uint64_t>(i));
   if (!ids.empty()) send_all(to_child_, ids.data(), ids.size());  // a dead child shows in wait()
 }
 
@@ -194,7 +183,7 @@ void ScenarioProcess::submit(const std::vector<std::size_t>& indices) {
     return;
   }
   std::vector<char> ids;
-  for (std::size_t i : indices) put(ids, static_cast<std::uint64_t>(i));
+  for (std::size_t i : indices) put_pod(ids, static_cast<std::uint64_t>(i));
   send_all(to_child_, ids.data(), ids.size());
 }
 
@@ -203,12 +192,12 @@ std::vector<ScenarioEvent> ScenarioProcess::read_frames() {
   std::size_t at = 0;
   while (inbox_.size() - at >= kFrameHeader) {
     const char* p = inbox_.data() + at;
-    const auto size = get<std::uint64_t>(p + 40);
+    const auto size = get_pod<std::uint64_t>(p + 40);
     if (inbox_.size() - at - kFrameHeader < size) break;
     ScenarioEvent ev;
-    ev.index = static_cast<std::size_t>(get<std::uint64_t>(p));
-    ev.timing = {get<double>(p + 8), get<double>(p + 16), get<double>(p + 24)};
-    ev.encode_s = get<double>(p + 32);
+    ev.index = static_cast<std::size_t>(get_pod<std::uint64_t>(p));
+    ev.timing = {get_pod<double>(p + 8), get_pod<double>(p + 16), get_pod<double>(p + 24)};
+    ev.encode_s = get_pod<double>(p + 32);
     ev.payload.assign(p + kFrameHeader, p + kFrameHeader + size);
     at += kFrameHeader + static_cast<std::size_t>(size);
     if (pending_.empty() || pending_.front() != ev.index)

@@ -14,6 +14,7 @@
 
 #include "hexdyn/core/errors.hpp"
 #include "hexdyn/io/paths.hpp"
+#include "hexdyn/io/spec_reader.hpp"
 #include "hexdyn/io/yaml_load.hpp"
 
 namespace hexdyn {
@@ -26,37 +27,6 @@ std::string emit(const YAML::Node& node) {
   out << node;
   return std::string(out.c_str()) + "\n";
 }
-
-/// Reports errors of one sweep file as "FILE: path: message".
-class SweepReader {
- public:
-  explicit SweepReader(std::string file) : file_(std::move(file)) {}
-  [[noreturn]] void fail(const std::string& path, const std::string& what) const {
-    throw ConfigError(file_ + ": " + path + ": " + what);
-  }
-  [[noreturn]] void fail_value(const std::string& path, const YAML::Node& node,
-                               const std::string& expected) const {
-    if (!node.IsDefined()) fail(path, "missing, expected " + expected);
-    fail(path, "got " + yaml_inline(node) + ", expected " + expected);
-  }
-  /// Every key of the map `node` at `path` must be one of `allowed`.
-  void check_keys(const YAML::Node& node, const std::string& path,
-                  const std::vector<std::string>& allowed) const {
-    for (const auto& kv : node) {
-      const std::string key = kv.first.IsScalar() ? kv.first.Scalar() : yaml_inline(kv.first);
-      if (std::find(allowed.begin(), allowed.end(), key) == allowed.end()) {
-        const std::set<std::string> sorted(allowed.begin(), allowed.end());
-        std::string list;
-        for (const auto& a : sorted) list += (list.empty() ? "" : ", ") + a;
-        fail(path.empty() ? key : path + "." + key, "unknown key, allowed here: " + list);
-      }
-    }
-  }
-  const std::string& file() const { return file_; }
-
- private:
-  std::string file_;
-};
 
 std::string format_number(double x, int digits) {
   char buf[64];
@@ -96,7 +66,7 @@ std::string keys_near(const YAML::Node& root, const std::vector<std::string>& ke
   return list;
 }
 
-void read_values(const SweepReader& r, const YAML::Node& values, const std::string& path,
+void read_values(const SpecReader& r, const YAML::Node& values, const std::string& path,
                  SweepAxis& axis) {
   const std::string expected = "a non-empty list of single values (numbers, p/q or words)";
   if (!values.IsSequence() || values.size() == 0) r.fail_value(path, values, expected);
@@ -113,7 +83,7 @@ void read_values(const SweepReader& r, const YAML::Node& values, const std::stri
   }
 }
 
-void read_range(const SweepReader& r, const YAML::Node& range, const std::string& path,
+void read_range(const SpecReader& r, const YAML::Node& range, const std::string& path,
                 SweepAxis& axis) {
   if (!range.IsMap()) r.fail_value(path, range, "a mapping {from: A, to: B, count: N}");
   r.check_keys(range, path, {"from", "to", "count"});
@@ -137,7 +107,7 @@ void read_range(const SweepReader& r, const YAML::Node& range, const std::string
   }
 }
 
-void finish_axis(const SweepReader& r, const std::string& path, SweepAxis& axis) {
+void finish_axis(const SpecReader& r, const std::string& path, SweepAxis& axis) {
   axis.numeric = true;
   for (const auto& v : axis.values) {
     double x = 0.0;
@@ -174,7 +144,7 @@ SweepSpec load_sweep(const std::string& path) {
   SweepSpec spec;
   spec.sweep_yaml = read_text_file(path);
   const YAML::Node root = parse_yaml_text(spec.sweep_yaml, path);
-  const SweepReader r(path);
+  const SpecReader r(path);
   r.check_keys(root, "", {"name", "base", "set", "axes"});
 
   const YAML::Node name = root["name"];

@@ -84,12 +84,7 @@ void write_int32(H5Writer& w, const s::DatasetSpec& d, const std::vector<std::si
 }
 
 void write_meta(H5Writer& w, const SweepSpec& spec, bool keep_runs, const SweepRunInfo& info) {
-  w.create_group(s::kMetaGroup);
-  set_attribute(w, s::kMetaSchema, s::kSweepSchema);
-  set_attribute(w, s::kMetaSchemaVersion, s::kSweepSchemaVersion);
-  set_attribute(w, s::kMetaVersion, kVersion);
-  set_attribute(w, s::kMetaGitCommit, kGitCommit);
-  set_attribute(w, s::kMetaCreatedUtc, utc_timestamp_now());
+  write_meta_header(w, s::kMetaGroup, s::kSweepSchema, s::kSweepSchemaVersion);
   set_attribute(w, s::kMetaSweepName, spec.name);
   set_attribute(w, s::kMetaSweepYaml, spec.sweep_yaml);
   set_attribute(w, s::kMetaBaseConfigYaml, spec.base_config_yaml);
