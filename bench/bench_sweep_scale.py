@@ -13,6 +13,13 @@
          time Σ (scene construction + physics, /scenarios/wall_time_s), parallel
          efficiency T1 / (2 T2), and wall / (Σ / ranks) (target ≤ 1.15). Also the CPU
          time of the processes, so that a machine busy with other work shows.
+--idle   Idle ranks: a sweep of one scenario (the paper run with the Ipopt back end, about
+         5 s) on 3 ranks (--oversubscribe), so that one process computes and every other
+         waits. The CPU time of each hexdyn process (/proc/PID/stat, utime + stime) is read
+         twice, 1 s and 3 s after the start, and its share of that window printed: a
+         waiting rank that spins shows ~100 %, one that sleeps ~0 %. With --max-idle F
+         (a fraction), exits 1 if a process other than the computing one used more than
+         F of a core over the window (ctest sweep.idle_ranks_do_not_spin).
 Prints Markdown tables (medians of --repeat runs). Writes into a temporary directory.
 """
 
@@ -82,15 +89,74 @@ def grid_run(hexdyn, sweep, ranks, work):
     return wall, busy, cpu, n
 
 
+def process_cpu_seconds(pid):
+    """utime + stime of a process [s], or None once it is gone."""
+    try:
+        with open(f"/proc/{pid}/stat") as f:
+            fields = f.read().rsplit(")", 1)[1].split()
+    except OSError:
+        return None
+    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
+
+
+def hexdyn_processes(sweep):
+    """PIDs of the processes running `hexdyn sweep SWEEP` (the ranks and their forked
+    scenario processes, which keep the rank's command line)."""
+    pids = []
+    for name in os.listdir("/proc"):
+        if not name.isdigit():
+            continue
+        try:
+            with open(f"/proc/{name}/cmdline", "rb") as f:
+                argv = f.read().split(b"\0")
+        except OSError:
+            continue
+        if b"sweep" in argv and sweep.encode() in argv and not argv[0].endswith(b"mpirun"):
+            pids.append(int(name))
+    return pids
+
+
+def idle_cpu(hexdyn, work, ranks=3):
+    """[(pid, share of a core over the window)], sorted by share, largest first."""
+    sweep = os.path.join(work, "idle.yaml")
+    with open(sweep, "w") as f:
+        f.write(f"base: {os.path.join(ROOT, 'configs', 'paper.yaml')}\n"
+                "set: {allocation.solver: ipopt}\n"
+                "axes:\n  - key: gait.duty_factor\n    values: [1/2]\n")
+    out = os.path.join(work, "idle.h5")
+    proc = subprocess.Popen(["mpirun", "--oversubscribe", "-np", str(ranks), hexdyn, "sweep", sweep,
+                             "-o", out], env=ENV, stdout=subprocess.DEVNULL,
+                            stderr=subprocess.DEVNULL, start_new_session=True)
+    try:
+        time.sleep(1.0)
+        pids = hexdyn_processes(sweep)
+        t0 = time.perf_counter()
+        c0 = {p: process_cpu_seconds(p) for p in pids}
+        time.sleep(2.0)
+        c1 = {p: process_cpu_seconds(p) for p in pids}
+        window = time.perf_counter() - t0
+        alive = proc.poll() is None
+    finally:
+        os.killpg(proc.pid, signal.SIGKILL)
+        proc.wait()
+        subprocess.run(["rm", "-rf", out, out + ".checkpoint"])
+    if not alive:
+        raise RuntimeError("the one-scenario sweep ended within the window: no idle time measured")
+    shares = [(p, (c1[p] - c0[p]) / window) for p in pids if c0[p] is not None and c1[p] is not None]
+    return sorted(shares, key=lambda x: -x[1])
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--hexdyn", default=os.path.join(ROOT, "build", "hexdyn"))
     ap.add_argument("--start", action="store_true")
     ap.add_argument("--grid", action="store_true")
+    ap.add_argument("--idle", action="store_true")
+    ap.add_argument("--max-idle", type=float, default=None)
     ap.add_argument("--repeat", type=int, default=3)
     args = ap.parse_args()
-    if not (args.start or args.grid):
-        args.start = args.grid = True
+    if not (args.start or args.grid or args.idle):
+        args.start = args.grid = args.idle = True
     with tempfile.TemporaryDirectory(prefix="hexdyn_scale_") as work:
         if args.start:
             print("| scenarios | first scenario starts [s] | first progress line [s] |")
@@ -102,6 +168,20 @@ def main():
                 print(f"| {n:,} | {statistics.median(r[0] for r in runs):.2f} "
                       f"| {statistics.median(r[1] for r in runs):.2f} |", flush=True)
             print()
+        if args.idle:
+            shares = idle_cpu(args.hexdyn, work)
+            print("| process (3 ranks, each with its scenario process) | CPU share of a core over 2 s |")
+            print("|---|---:|")
+            for i, (pid, share) in enumerate(shares):
+                print(f"| {'computing' if i == 0 else 'waiting'} (pid {pid}) | {share:.1%} |")
+            print(flush=True)
+            if len(shares) < 4:
+                print(f"bench_sweep_scale: found only {len(shares)} hexdyn processes", file=sys.stderr)
+                return 1
+            if args.max_idle is not None and any(s > args.max_idle for _, s in shares[1:]):
+                print(f"bench_sweep_scale: a waiting process used more than {args.max_idle:.0%} of a core",
+                      file=sys.stderr)
+                return 1
         if args.grid:
             sweep = os.path.join(ROOT, "bench", "sweep_1000.yaml")
             rows = {}

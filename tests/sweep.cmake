@@ -16,6 +16,7 @@ set(HEXDYN_SWEEP_TESTS
   "bad_sweep_file_before_any_work=bad_sweep_file"   # exit 2, one line, no output, checkpoint kept
   "schema_declared_equals_written=schema_declared"  # io/schema.hpp as Python parses it = the files written
   "crash_contained=crash_contained"              # a scenario that aborts its process: crashed row, sweep completes, also on --resume
+  "idle_ranks_do_not_spin=idle_ranks"            # ranks waiting for work use at most 10 % of a core each
 )
 foreach(entry IN LISTS HEXDYN_SWEEP_TESTS)
   string(REPLACE "=" ";" pair "${entry}")

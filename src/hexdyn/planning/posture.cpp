@@ -143,12 +143,34 @@ class PostureSearch {
   int evaluations_ = 0;
 };
 
-/// Default upper end of the height search: the longest foot distance from its hip with
-/// the joints at zero (every leg of the paper robot stands straight out there) [m].
+/// The legs' reach, the span of the default height search [m]. The paper robot: the
+/// longest foot distance from its hip at zero joint angles, where every leg stands straight
+/// out. A chain leg (URDF) need not be extended at zero (Kraby's femur rests at 45°): the
+/// sum of its segments, hip → femur joint → tibia joint → foot, bounds its reach instead.
 double leg_length_m(const RobotModel& model) {
   double r = 0.0;
-  for (int leg = 0; leg < kLegs; ++leg) r = std::max(r, leg_foot_position_H(model, leg, Vec3::Zero()).norm());
+  for (int leg = 0; leg < kLegs; ++leg) {
+    double reach = leg_foot_position_H(model, leg, Vec3::Zero()).norm();
+    if (model.leg_geometry == LegGeometry::kChain) {
+      const int femur = 1 + joint_index(leg, 1), tibia = 1 + joint_index(leg, 2);
+      reach = std::max(reach, model.p_parent_joint[femur].norm() + model.p_parent_joint[tibia].norm() +
+                                  model.p_foot_last[leg].norm());
+    }
+    r = std::max(r, reach);
+  }
   return r;
+}
+
+/// Height of the hip plane above P0, measured vertically [m]: the lowest hip's offset z
+/// along the trunk normal over cos α, α the trunk's pitch (the trunk is parallel to the
+/// reference line, so a point at z along its normal stands z / cos α higher above the line
+/// than P0, wherever it is along the trunk). 0 for the paper robot (its hips lie in the
+/// trunk plane); 0.208 m for Kraby, whose trunk frame is at the bottom of its legs.
+double hip_plane_offset_m(const Scene& scene, const RobotModel& model) {
+  double z = kInf;
+  for (int leg = 0; leg < kLegs; ++leg) z = std::min(z, model.p_hip_B[leg].z());
+  const double pitch = TrunkMotion(scene.motion, scene.gait, Terrain(scene.terrain)).pitch_rad();
+  return z / std::cos(pitch);
 }
 
 }  // namespace
@@ -233,8 +255,9 @@ PostureChoice choose_posture(const Scene& scene, const RobotModel& model) {
   PostureChoice c = best_posture(scene, model);
   if (c.mode != PostureMode::kAuto || c.margin.admitted) return c;
   const PostureParams& p = scene.motion.posture;
-  const double h_lo = std::max(p.height_min_m < p.height_max_m ? p.height_min_m : 0.0,
-                               terrain_rise_above_reference(scene.terrain) + p.trunk_clearance_m);
+  const double hip_m = hip_plane_offset_m(scene, model);
+  const double h_lo = std::max(p.height_min_m < p.height_max_m ? p.height_min_m : -hip_m,
+                               terrain_rise_above_reference(scene.terrain) + p.trunk_clearance_m - hip_m);
   std::ostringstream msg;
   msg << "no trunk posture admits the motion (motion.posture.height: auto): the best, height " << c.height_m
       << " m above the terrain's reference line with gait.foot_lateral " << c.foot_lateral_m << " m, leaves "
@@ -242,7 +265,7 @@ PostureChoice choose_posture(const Scene& scene, const RobotModel& model) {
       << " m) and every joint inside its limits";
   if (c.height_m - h_lo < 1e-3)
     msg << " (the height is the lowest the trunk clearance allows: " << h_lo
-        << " m = riser/2 + motion.posture.trunk_clearance)";
+        << " m = riser/2 + motion.posture.trunk_clearance - the hip plane's height above P0)";
   throw ReachError(msg.str());
 }
 
@@ -262,13 +285,15 @@ PostureChoice best_posture(const Scene& scene, const RobotModel& model) {
     return c;
   }
   PostureSearch search(scene, model);
+  // Heights are P0's; the default range and the trunk clearance are the hip plane's.
+  const double hip_m = hip_plane_offset_m(scene, model);
   double h_lo = p.height_min_m, h_hi = p.height_max_m;
   if (!(h_lo < h_hi)) {
-    h_lo = 0.0;
-    h_hi = leg_length_m(model);
+    h_lo = -hip_m;
+    h_hi = leg_length_m(model) - hip_m;
   }
   // The trunk keeps its clearance above the terrain: no height below this is searched.
-  const double h_clear = terrain_rise_above_reference(scene.terrain) + p.trunk_clearance_m;
+  const double h_clear = terrain_rise_above_reference(scene.terrain) + p.trunk_clearance_m - hip_m;
   if (h_clear >= h_hi) {
     std::ostringstream msg;
     msg << "no trunk posture admits the motion (motion.posture.height: auto): the trunk clearance needs a height of at "

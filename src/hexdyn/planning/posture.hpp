@@ -33,17 +33,25 @@
 /// their limits). Swing paths clear the terrain by gait.swing_clearance by construction
 /// (gait.hpp) whatever the posture, so clearance is not a term of the criterion.
 ///
+/// Hip plane. The trunk's body is taken to lie about the plane of its lowest hip joint,
+/// z_hip = min over legs of p_hip_B.z along the trunk normal; that plane stands
+/// e_hip = z_hip / cos α above P0 (vertically; α the trunk's pitch, the trunk parallel to
+/// the line). The paper robot's hips lie in the trunk plane (e_hip = 0); a URDF robot's
+/// trunk frame may be anywhere (Kraby's is at ground level, e_hip = 0.208 m).
+///
 /// Trunk clearance. The trunk travels parallel to the reference line at height h, and
 /// the terrain rises at most h_s/2 above the line (at the back of each tread, just past
-/// its riser), which the trunk passes over: its vertical clearance is h − h_s/2 (the
-/// trunk's axis taken as a line through P0 at least one tread long). The automatic
-/// posture keeps it at least motion.posture.trunk_clearance (ASSUMPTION, default 0.05 m:
-/// half a trunk thickness the paper does not give and a gap). The legs' links are not
-/// checked against the nosings.
+/// its riser), which the trunk passes over: its vertical clearance is h + e_hip − h_s/2
+/// (the trunk's axis taken as a line in the hip plane at least one tread long). The
+/// automatic posture keeps it at least motion.posture.trunk_clearance (ASSUMPTION,
+/// default 0.05 m: half a trunk thickness the paper does not give and a gap). The legs'
+/// links are not checked against the nosings.
 ///
 /// Automatic posture (motion.posture.height: auto): the trunk height h maximising value_m,
-/// searched on height_range (default [0, the leg's full length]), raised to at least
-/// h_s/2 + trunk_clearance (default 0.05 m), by a scan of 25 heights
+/// searched on height_range (default: the hip plane from 0 to the legs' reach above the
+/// line, [−e_hip, reach − e_hip]; the reach is the foot's distance at zero angles for the
+/// paper robot, the sum of the segments of a URDF leg), raised to at least
+/// h_s/2 + trunk_clearance − e_hip, by a scan of 25 heights
 /// and a golden-section refinement (to 0.1 mm) around the best. When the best margin is
 /// below target_margin and motion.posture.foot_lateral gives a range, gait.foot_lateral
 /// is searched as well (9 values over the range, each with its best height) and the pair

@@ -17,6 +17,7 @@
 #include "hexdyn/model/robot_model.hpp"
 #include "hexdyn/planning/plan.hpp"
 #include "hexdyn/planning/posture.hpp"
+#include "hexdyn/planning/terrain.hpp"
 
 namespace hexdyn {
 namespace {
@@ -206,6 +207,53 @@ TEST_CASE("posture: flat ground and slopes work with the automatic posture", "[p
     CHECK(plan.posture.margin.admitted);
     CHECK(plan.posture.margin.value_m > 0.01);
   }
+}
+
+// A URDF robot's trunk frame may lie anywhere (Kraby's is at the bottom of its legs): the
+// automatic posture places the hips. Moving the trunk frame by -d along the trunk normal
+// (the coxa joints by +d in it) with the start moved so that the hips start where they
+// did (start_y + d sin(pitch): the trunk is pitched) must move the chosen P0 height by
+// -d / cos(pitch) and leave the foot spread and the margin as they were. Second
+// computation: the same model with its coxa joints moved in the tree and its legs prepared
+// again; the hips' clearance over the terrain measured on the plan.
+TEST_CASE("posture: the automatic posture places the hips wherever the trunk frame is", "[posture][robots]") {
+  const Scene scene = load_scene(kConfigs + "/robots/kraby_stairs.yaml");
+  const RobotModel model = build_robot_model(scene.robot);
+  const PostureChoice c0 = choose_posture(scene, model);
+  REQUIRE(c0.margin.admitted);
+  const double pitch = std::atan(scene.terrain.riser_height_m / scene.terrain.tread_depth_m);
+  for (double d : {-0.15, 0.1}) {
+    INFO("coxa joints moved by " << d << " m along the trunk normal");
+    RobotModel moved = model;
+    for (int leg = 0; leg < kLegs; ++leg) moved.p_parent_joint[1 + joint_index(leg, 0)].z() += d;
+    prepare_leg_chains(moved);
+    Scene shifted = scene;
+    shifted.motion.posture.start_y_m += d * std::sin(pitch);
+    const PostureChoice c = choose_posture(shifted, moved);
+    CHECK(c.margin.admitted);
+    CHECK(c.height_m == Approx(c0.height_m - d / std::cos(pitch)).margin(1e-5));
+    CHECK(c.margin.value_m == Approx(c0.margin.value_m).margin(1e-8));
+    CHECK(c.foot_lateral_m == Approx(c0.foot_lateral_m).margin(1e-9));
+  }
+  // The trunk, taken as the segment of its hip plane from the rearmost to the foremost hip,
+  // keeps the trunk clearance over the terrain straight beneath it along the whole motion.
+  const MotionPlan plan = plan_motion(scene, model);
+  const Terrain terrain(scene.terrain);
+  double y_rear = 1e9, y_front = -1e9, z_hip = 1e9;
+  for (int leg = 0; leg < kLegs; ++leg) {
+    y_rear = std::min(y_rear, model.p_hip_B[leg].y());
+    y_front = std::max(y_front, model.p_hip_B[leg].y());
+    z_hip = std::min(z_hip, model.p_hip_B[leg].z());
+  }
+  double lowest = 1e9;
+  for (double t = 0.0; t <= plan.trunk.duration_s(); t += 0.01) {
+    const BaseState b = plan.trunk.at(t);
+    for (double y = y_rear; y <= y_front; y += 0.001) {
+      const Vec3 p_W = b.p_W + b.W_R_B * Vec3(0.0, y, z_hip);
+      lowest = std::min(lowest, p_W.z() - terrain.height(p_W.x(), p_W.y()));
+    }
+  }
+  CHECK(lowest >= scene.motion.posture.trunk_clearance_m - 1e-9);
 }
 
 TEST_CASE("posture: beyond the robot's reach the error names leg, instant, constraint and margin",

@@ -40,8 +40,8 @@ TEST_CASE("footholds lie along each hip's direction at foot_lateral", "[gait][ro
         }
         const Vec3 hip_W = plan.trunk.position_at_phase(phase) + plan.trunk.W_R_B() * hip_B;
         const double dx = sw.p_touchdown_W.x() - hip_W.x();
-        CHECK(dx == Approx(s.gait.foot_lateral_m * d_W.x()).margin(1e-12));
-        if (name == "paper") CHECK(sw.p_touchdown_W.x() == hip_W.x() + d_B.x() * s.gait.foot_lateral_m);
+        CHECK(dx == Approx(plan.posture.foot_lateral_m * d_W.x()).margin(1e-12));
+        if (name == "paper") CHECK(sw.p_touchdown_W.x() == hip_W.x() + d_B.x() * plan.posture.foot_lateral_m);
         ++checked;
       }
       CHECK(checked > 0);

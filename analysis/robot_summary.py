@@ -1,0 +1,78 @@
+#!/usr/bin/python3
+"""What a robot's run needs and climbs, from its hexdyn-result/1 file alone.
+
+    /usr/bin/python3 analysis/robot_summary.py RESULT.h5
+
+Prints one block (README "Robots from URDF", pipelines/robots.sh): the robot's mass and
+effort limits (from /model/urdf, the robot as simulated), the stairs, the trunk posture the
+run used (P0 at t = 0 and its height above the tread-centre line; the foothold spread of
+the resolved configuration is the scene's, the posture's own choice is in the log), travel
+and duration, peak |tau| per joint kind outside the touchdown transients (samples where no
+leg is in its impact phase) and inside them, with the fraction of the smallest effort limit,
+the solver status counts, energy and cost of transport.
+"""
+
+import os
+import sys
+import xml.etree.ElementTree as ET
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+
+import numpy as np  # noqa: E402
+
+import hexdyn_results as hr  # noqa: E402
+
+KINDS = ("coxa", "femur", "tibia")
+
+
+def main(argv):
+    if len(argv) != 2:
+        print(__doc__.strip().splitlines()[2].strip(), file=sys.stderr)
+        return 2
+    res = hr.open_result(argv[1])
+    cfg = res.config
+    urdf = ET.fromstring(hr._text(res["/model/urdf"]))
+    efforts = [float(lim.get("effort")) for j in urdf.iter("joint")
+               if j.get("type") == "revolute" and (lim := j.find("limit")) is not None
+               and lim.get("effort") is not None]
+    mass = float(res["/model/total_mass"])
+    t = res["/time"]
+    tau = np.abs(res["/joints/torque"])                    # (T, 18)
+    phase = res["/contacts/phase"]                         # (T, 6): 0 swing, 1 impact, 2 support
+    status = res["/solver/status"]
+    transient = (phase == 1).any(axis=1)
+    terrain = cfg["terrain"]
+    p0 = res["/base/position"][0]
+    line = terrain.get("ground_height", 0.0) + terrain["riser_height"] * (
+        (p0[1] - terrain.get("first_riser_y", 0.0)) / terrain["tread_depth"] + 0.5)
+    travel = float(np.linalg.norm(res["/base/position"][-1] - p0))
+    limit = min(efforts) if efforts else float("nan")
+
+    def peaks(mask):
+        if not mask.any():
+            return [float("nan")] * 3
+        return [float(tau[mask][:, k::3].max()) for k in range(3)]
+
+    calm, hard = peaks(~transient), peaks(transient)
+    print(f"robot: {cfg.get('name', argv[1])}  ({argv[1]})")
+    print(f"  mass {mass:.3f} kg; effort limits {min(efforts):g}–{max(efforts):g} N m" if efforts
+          else f"  mass {mass:.3f} kg; no effort limits in the description")
+    print(f"  stairs: riser {terrain['riser_height']:g} m, tread {terrain['tread_depth']:g} m")
+    print(f"  trunk origin at t = 0: ({p0[0]:.4f}, {p0[1]:.4f}, {p0[2]:.4f}) m, "
+          f"{p0[2] - line:+.4f} m above the tread-centre line")
+    print(f"  travel {travel:.3f} m in {t[-1] - t[0]:.2f} s; gait duty factor {cfg['gait']['duty_factor']:g}, "
+          f"stroke {cfg['gait']['stroke']:g} m")
+    print("  peak |tau| coxa/femur/tibia outside touchdown transients: "
+          + " / ".join(f"{v:.3f}" for v in calm) + f" N m ({max(calm) / limit:.0%} of the limit)")
+    print("  peak |tau| coxa/femur/tibia inside touchdown transients:  "
+          + " / ".join(f"{v:.3f}" for v in hard) + f" N m ({max(hard) / limit:.0%} of the limit)")
+    relaxed_calm = int(((status == 1) & ~transient).sum())
+    print(f"  samples {len(t)}: optimal {int((status == 0).sum())}, relaxed {int((status == 1).sum())} "
+          f"({relaxed_calm} outside touchdown transients), failed {int((status == 2).sum())}")
+    print(f"  energy {float(res['/energy/total']):.3f} J, cost of transport "
+          f"{float(res['/energy/cost_of_transport']):.3f}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))
