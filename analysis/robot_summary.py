@@ -5,8 +5,8 @@
 
 Prints one block (README "Robots from URDF", pipelines/robots.sh): the robot's mass and
 effort limits (from /model/urdf, the robot as simulated), the stairs, the trunk posture the
-run used (P0 at t = 0 and its height above the tread-centre line; the foothold spread of
-the resolved configuration is the scene's, the posture's own choice is in the log), travel
+run used (P0 at t = 0 and its height above the tread-centre line; the foothold spread the
+automatic posture chose is not in the file), travel
 and duration, peak |tau| per joint kind outside the touchdown transients (samples where no
 leg is in its impact phase) and inside them, with the fraction of the smallest effort limit,
 the solver status counts, energy and cost of transport.
@@ -21,9 +21,6 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import numpy as np  # noqa: E402
 
 import hexdyn_results as hr  # noqa: E402
-
-KINDS = ("coxa", "femur", "tibia")
-
 
 def main(argv):
     if len(argv) != 2:

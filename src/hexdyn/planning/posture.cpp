@@ -173,6 +173,26 @@ double hip_plane_offset_m(const Scene& scene, const RobotModel& model) {
   return z / std::cos(pitch);
 }
 
+/// The heights the automatic posture searches [m, P0 above the reference line]: the
+/// scene's height_range or the hip plane's default, its lower end raised to the trunk
+/// clearance (clear_m, which may lie above hi_m: then nothing can be searched).
+struct HeightRange {
+  double lo_m = 0.0, hi_m = 0.0, clear_m = 0.0;
+};
+
+HeightRange searched_heights(const Scene& scene, const RobotModel& model) {
+  const PostureParams& p = scene.motion.posture;
+  const double hip_m = hip_plane_offset_m(scene, model);
+  HeightRange r{p.height_min_m, p.height_max_m, 0.0};
+  if (!(r.lo_m < r.hi_m)) {
+    r.lo_m = -hip_m;
+    r.hi_m = leg_length_m(model) - hip_m;
+  }
+  r.clear_m = terrain_rise_above_reference(scene.terrain) + p.trunk_clearance_m - hip_m;
+  r.lo_m = std::max(r.lo_m, r.clear_m);
+  return r;
+}
+
 }  // namespace
 
 double reference_line_height(const TerrainParams& t, double y) {
@@ -254,10 +274,7 @@ KinematicMargin motion_kinematic_margin(const RobotModel& model, const MotionPla
 PostureChoice choose_posture(const Scene& scene, const RobotModel& model) {
   PostureChoice c = best_posture(scene, model);
   if (c.mode != PostureMode::kAuto || c.margin.admitted) return c;
-  const PostureParams& p = scene.motion.posture;
-  const double hip_m = hip_plane_offset_m(scene, model);
-  const double h_lo = std::max(p.height_min_m < p.height_max_m ? p.height_min_m : -hip_m,
-                               terrain_rise_above_reference(scene.terrain) + p.trunk_clearance_m - hip_m);
+  const double h_lo = searched_heights(scene, model).lo_m;
   std::ostringstream msg;
   msg << "no trunk posture admits the motion (motion.posture.height: auto): the best, height " << c.height_m
       << " m above the terrain's reference line with gait.foot_lateral " << c.foot_lateral_m << " m, leaves "
@@ -285,15 +302,10 @@ PostureChoice best_posture(const Scene& scene, const RobotModel& model) {
     return c;
   }
   PostureSearch search(scene, model);
-  // Heights are P0's; the default range and the trunk clearance are the hip plane's.
-  const double hip_m = hip_plane_offset_m(scene, model);
-  double h_lo = p.height_min_m, h_hi = p.height_max_m;
-  if (!(h_lo < h_hi)) {
-    h_lo = -hip_m;
-    h_hi = leg_length_m(model) - hip_m;
-  }
-  // The trunk keeps its clearance above the terrain: no height below this is searched.
-  const double h_clear = terrain_rise_above_reference(scene.terrain) + p.trunk_clearance_m - hip_m;
+  // Heights are P0's; the default range and the trunk clearance are the hip plane's. The
+  // trunk keeps its clearance above the terrain: no height below it is searched.
+  const HeightRange range = searched_heights(scene, model);
+  const double h_clear = range.clear_m, h_hi = range.hi_m, h_lo = range.lo_m;
   if (h_clear >= h_hi) {
     std::ostringstream msg;
     msg << "no trunk posture admits the motion (motion.posture.height: auto): the trunk clearance needs a height of at "
@@ -303,7 +315,6 @@ PostureChoice best_posture(const Scene& scene, const RobotModel& model) {
         << h_hi << " m";
     throw ReachError(msg.str());
   }
-  h_lo = std::max(h_lo, h_clear);
   Candidate best = search.best_height(scene.gait.foot_lateral_m, h_lo, h_hi);
   if (p.vary_foot_lateral && best.margin.value_m < p.target_margin_m) {
     constexpr int kSpreads = 9;
