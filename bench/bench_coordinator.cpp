@@ -1,7 +1,8 @@
 // The sweep coordinator at cluster scale (issue 12, item 4): the real SweepCoordinator,
 // with the real work and result messages, row decoding and journal records, driven by
 // simulated workers in virtual time. Each worker computes fake scenarios of 10 ms ± 30 %
-// and talks to the coordinator as mpi/worker.cpp does (results sent when down to the
+// and talks to the coordinator as mpi/worker.cpp does (each row sent as its complete
+// journal record, checksum included; results sent when down to the
 // last scenario in hand, a message latency of 5 µs each way). The coordinator is one
 // server: every message it handles occupies it for the CPU time its handling really
 // takes here (measured per message), so a coordinator too slow for the workers shows as
@@ -90,10 +91,11 @@ Outcome simulate(int workers, std::size_t n) {
       coord.on_ready(from, out);
     } else {
       for (const hexdyn::Finished& f : hexdyn::unpack_results(*msg)) {
-        const hexdyn::ScenarioRecord r =
-            hexdyn::decode_record(f.payload.data(), f.payload.size(), false);
-        hexdyn::append_journal_record(journal, hexdyn::RecordKind::kRow, f.index, id,
-                                      f.payload.data(), f.payload.size());
+        // As Checkpoint::append_row_record: the worker built the journal record.
+        const hexdyn::BuiltRecord b = hexdyn::check_built_record(
+            f.payload.data(), f.payload.size(), hexdyn::RecordKind::kRow, f.index, id);
+        journal.insert(journal.end(), f.payload.begin(), f.payload.end());
+        const hexdyn::ScenarioRecord r = hexdyn::decode_record(b.payload, b.size, false);
         if (journal.size() > (1u << 22)) journal.clear();  // written out by flush()
         coord.on_result(from, f.index, f.cost_s, out);
         (void)r;
@@ -130,7 +132,7 @@ Outcome simulate(int workers, std::size_t n) {
   for (int k = 0; k < workers; ++k) handle(kLatency_s, k, nullptr);
 
   hexdyn::Finished f;
-  f.payload = hexdyn::encode_record({row, {}});
+  const std::vector<char> payload = hexdyn::encode_record({row, {}});
   while (!events.empty()) {
     const Event e = events.top();
     events.pop();
@@ -152,6 +154,8 @@ Outcome simulate(int workers, std::size_t n) {
     makespan = std::max(makespan, e.t);
     f.index = i;
     f.cost_s = fake_cost(i);
+    f.payload.clear();  // the worker's side (mpi/worker.cpp): the row's journal record
+    hexdyn::append_journal_record(f.payload, hexdyn::RecordKind::kRow, i, id, payload.data(), payload.size());
     hexdyn::append_result(x.results, f);
     --x.in_hand;
     start_next(e.worker, e.t);

@@ -65,9 +65,11 @@ class Unpacker {
 
 }  // namespace
 
-std::vector<char> pack_spec(const SweepSpec& spec, bool keep_runs) {
+std::vector<char> pack_spec(const SweepSpec& spec, const SweepIdentity& identity) {
   std::vector<char> b;
-  put_i64(b, keep_runs ? 1 : 0);
+  for (std::uint64_t v : {identity.id, identity.sweep_file, identity.base_scene, identity.build, identity.scenarios})
+    put_pod(b, v);
+  put_i64(b, identity.keep_runs ? 1 : 0);
   put_text(b, spec.name);
   put_text(b, spec.base_path);
   put_text(b, spec.base_tree_yaml);
@@ -83,10 +85,13 @@ std::vector<char> pack_spec(const SweepSpec& spec, bool keep_runs) {
   return b;
 }
 
-SweepSpec unpack_spec(const std::vector<char>& bytes, bool& keep_runs) {
+SweepSpec unpack_spec(const std::vector<char>& bytes, SweepIdentity& identity) {
   Unpacker u(bytes);
   SweepSpec spec;
-  keep_runs = u.i64() != 0;
+  for (std::uint64_t* v : {&identity.id, &identity.sweep_file, &identity.base_scene, &identity.build,
+                           &identity.scenarios})
+    *v = static_cast<std::uint64_t>(u.i64());
+  identity.keep_runs = u.i64() != 0;
   spec.name = u.text();
   spec.base_path = u.text();
   spec.base_tree_yaml = u.text();

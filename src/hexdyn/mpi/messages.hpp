@@ -12,14 +12,17 @@
 #include <string>
 #include <vector>
 
+#include "hexdyn/sweep/journal.hpp"
 #include "hexdyn/sweep/spec.hpp"
 
 namespace hexdyn {
 
 /// What a worker needs of the sweep: name, base scene tree and paths, axes (keys,
-/// values, labels). The validation results (SweepAxis::errors) stay on rank 0.
-std::vector<char> pack_spec(const SweepSpec& spec, bool keep_runs);
-SweepSpec unpack_spec(const std::vector<char>& bytes, bool& keep_runs);
+/// values, labels), and the sweep's identity as rank 0's checkpoint has it (with
+/// --keep-runs in it), under which the worker builds its rows' journal records. The
+/// validation results (SweepAxis::errors) stay on rank 0.
+std::vector<char> pack_spec(const SweepSpec& spec, const SweepIdentity& identity);
+SweepSpec unpack_spec(const std::vector<char>& bytes, SweepIdentity& identity);
 
 /// A batch of scenario indices to compute, in order.
 std::vector<char> pack_work(const std::vector<std::size_t>& indices);
@@ -34,7 +37,7 @@ struct Finished {
   double cost_s = 0.0;          ///< scene construction + physics [s], for the scheduling
   bool crashed = false;         ///< its process died (payload empty, reason set)
   std::string reason;           ///< how the process died
-  std::vector<char> payload;    ///< encode_record bytes
+  std::vector<char> payload;    ///< the row's journal record (journal.hpp; encode_record payload)
 };
 
 /// Appends one finished scenario to a result message under construction (start with an

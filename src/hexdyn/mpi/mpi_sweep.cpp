@@ -132,9 +132,10 @@ std::string scratch_directory() { return fs::temp_directory_path().string(); }
 
 // ---- worker ranks
 
-void worker_rank(const ScenarioFactory& factory, bool keep_runs) {
+void worker_rank(const ScenarioFactory& factory, const SweepIdentity& identity) {
   WorkerOptions wo;
-  wo.keep_runs = keep_runs;
+  wo.keep_runs = identity.keep_runs;
+  wo.identity = identity;
   wo.isolate = isolation_from_environment();
   wo.scratch_dir = scratch_directory();
   WorkerLink link;
@@ -177,6 +178,7 @@ class Coordinator {
   }
 
   const SweepSpec& spec() const { return spec_; }
+  const SweepIdentity& identity() const { return checkpoint_->identity(); }
   const ScenarioFactory& factory() const { return *factory_; }
 
   /// Distributes the scenarios and writes the sweep file. Returns 0.
@@ -284,6 +286,7 @@ class Coordinator {
     try {
       WorkerOptions wo;
       wo.keep_runs = opt_.keep_runs;
+      wo.identity = checkpoint_->identity();
       wo.isolate = isolation_from_environment();
       wo.scratch_dir = scratch_directory();
       WorkerLink link;
@@ -393,19 +396,21 @@ class Coordinator {
         r.summary = failed_summary(f.index, ScenarioStatus::kCrashed,
                                    scenario_source_name(scenario_id(spec_, f.index)) +
                                        ": crashed twice, not retried: " + f.reason);
-        f.payload = encode_record(r);
-        store(worker, f, r.summary);
+        const std::vector<char> payload = encode_record(r);
+        checkpoint_->append_row(f.index, payload.data(), payload.size());
+        count(worker, f, r.summary);
         continue;
       }
-      ScenarioRecord r = decode_record(f.payload.data(), f.payload.size(), false);
+      // The worker built the journal record (checksum included): it is appended as it is.
+      const BuiltRecord b = checkpoint_->append_row_record(f.index, f.payload.data(), f.payload.size());
+      ScenarioRecord r = decode_record(b.payload, b.size, false);
       if (r.summary.index != f.index) throw Error("sweep: a result names the wrong scenario");
       coord_->on_result(worker, f.index, f.cost_s, out);
-      store(worker, f, r.summary);
+      count(worker, f, r.summary);
     }
   }
 
-  void store(int worker, const Finished& f, ScenarioSummary& row) {
-    checkpoint_->append_row(f.index, f.payload.data(), f.payload.size());
+  void count(int worker, const Finished& f, ScenarioSummary& row) {
     ++done_;
     if (row.status != ScenarioStatus::kOk) ++failed_;
     if (opt_.verbose) {
@@ -480,10 +485,10 @@ int run_sweep(const SweepOptions& options) {
     try {
       std::vector<char> bytes;
       broadcast_bytes(bytes);
-      bool keep_runs = false;
-      const SweepSpec spec = unpack_spec(bytes, keep_runs);
+      SweepIdentity identity;
+      const SweepSpec spec = unpack_spec(bytes, identity);
       const ScenarioFactory factory(spec);
-      worker_rank(factory, keep_runs);
+      worker_rank(factory, identity);
     } catch (const std::exception& e) {
       std::cerr << "hexdyn: error: rank " << mpi.rank() << ": " << e.what() << "\n";
       MPI_Abort(MPI_COMM_WORLD, 4);
@@ -508,7 +513,7 @@ int run_sweep(const SweepOptions& options) {
 
   try {
     if (mpi.size() > 1) {
-      std::vector<char> bytes = pack_spec(coordinator.spec(), options.keep_runs);
+      std::vector<char> bytes = pack_spec(coordinator.spec(), coordinator.identity());
       broadcast_bytes(bytes);
     }
     status = coordinator.run();

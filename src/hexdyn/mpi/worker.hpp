@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "hexdyn/sweep/journal.hpp"
 #include "hexdyn/sweep/scenario_factory.hpp"
 
 namespace hexdyn {
@@ -32,6 +33,10 @@ struct WorkerOptions {
   bool isolate = true;             ///< compute in a child process (crash containment)
   double flush_interval_s = 0.5;   ///< longest time a finished scenario waits to be sent
   std::string scratch_dir;         ///< for kept runs' temporary files
+  /// The sweep's identity (rank 0's checkpoint's, sent with the spec): a finished scenario is sent as
+  /// its complete journal record (journal.hpp, checksum included), built here rather than
+  /// on rank 0, whose time per result bounds the sweep's scale.
+  SweepIdentity identity;
 };
 
 /// Runs until the stop message; throws hexdyn::Error if no scenario process can start.

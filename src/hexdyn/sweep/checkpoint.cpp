@@ -88,11 +88,15 @@ std::string build_identity() {
   return std::string("hexdyn ") + kVersion + " (" + kGitCommit + ")";
 }
 
+SweepIdentity sweep_identity(const SweepSpec& spec, bool keep_runs) {
+  return make_identity(spec.sweep_yaml, spec.base_config_yaml, build_identity(), spec.scenario_count(),
+                       keep_runs);
+}
+
 Checkpoint::Checkpoint(const std::string& output_path, const SweepSpec& spec, bool keep_runs,
                        bool resume)
     : dir_(output_path + ".checkpoint"),
-      identity_(make_identity(spec.sweep_yaml, spec.base_config_yaml, build_identity(),
-                              spec.scenario_count(), keep_runs)) {
+      identity_(sweep_identity(spec, keep_runs)) {
   // mkdir first and take the lock second, so that two sweeps starting together on one
   // output find each other through the lock whichever of them made the directory.
   if (::mkdir(dir_.c_str(), 0755) != 0) {
@@ -235,27 +239,41 @@ Checkpoint::~Checkpoint() {
 
 std::size_t Checkpoint::journal_count() const { return journals_.size(); }
 
-void Checkpoint::append_row(std::size_t index, const char* payload, std::size_t size) {
+void Checkpoint::start_buffer() {
   if (journal_fd_ < 0 && buffer_.empty()) {
     const std::vector<char> header = journal_header(identity_);
     buffer_.insert(buffer_.end(), header.begin(), header.end());
-  }
-  const std::uint64_t at = journal_size_ + buffer_.size();
-  append_journal_record(buffer_, RecordKind::kRow, index, identity_, payload, size);
-  if (identity_.keep_runs) {
-    std::size_t image_offset = 0, image_size = 0;
-    (void)decode_record(payload, size, false, &image_offset, &image_size);
-    if (image_size > 0)
-      images_[index] = {static_cast<std::uint32_t>(journals_.size()),
-                        at + kRecordHeaderBytes + image_offset, image_size};
   }
 }
 
+void Checkpoint::note_image(std::size_t index, std::uint64_t record_at, const char* payload,
+                            std::size_t size) {
+  if (!identity_.keep_runs) return;
+  std::size_t image_offset = 0, image_size = 0;
+  (void)decode_record(payload, size, false, &image_offset, &image_size);
+  if (image_size > 0)
+    images_[index] = {static_cast<std::uint32_t>(journals_.size()),
+                      record_at + kRecordHeaderBytes + image_offset, image_size};
+}
+
+void Checkpoint::append_row(std::size_t index, const char* payload, std::size_t size) {
+  start_buffer();
+  const std::uint64_t at = journal_size_ + buffer_.size();
+  append_journal_record(buffer_, RecordKind::kRow, index, identity_, payload, size);
+  note_image(index, at, payload, size);
+}
+
+BuiltRecord Checkpoint::append_row_record(std::size_t index, const char* record, std::size_t size) {
+  const BuiltRecord r = check_built_record(record, size, RecordKind::kRow, index, identity_);
+  start_buffer();
+  const std::uint64_t at = journal_size_ + buffer_.size();
+  buffer_.insert(buffer_.end(), record, record + size);
+  note_image(index, at, r.payload, r.size);
+  return r;
+}
+
 void Checkpoint::append_crash(std::size_t index, const std::string& reason) {
-  if (journal_fd_ < 0 && buffer_.empty()) {
-    const std::vector<char> header = journal_header(identity_);
-    buffer_.insert(buffer_.end(), header.begin(), header.end());
-  }
+  start_buffer();
   append_journal_record(buffer_, RecordKind::kCrashAttempt, index, identity_, reason.data(),
                         reason.size());
 }

@@ -28,6 +28,10 @@ namespace hexdyn {
 /// The build as it enters a sweep's identity: "hexdyn VERSION (COMMIT)".
 std::string build_identity();
 
+/// The identity of `spec`'s sweep (journal.hpp) with `keep_runs`, as the checkpoint and the
+/// workers (who build their rows' journal records) compute it.
+SweepIdentity sweep_identity(const SweepSpec& spec, bool keep_runs);
+
 class Checkpoint {
  public:
   /// Opens the checkpoint of `output_path` for `spec` (rank 0, before any work).
@@ -56,6 +60,10 @@ class Checkpoint {
   /// Appends a finished scenario's record (payload of encode_record) to this run's
   /// journal, created at the first append. Buffered: written by flush().
   void append_row(std::size_t index, const char* payload, std::size_t size);
+  /// The same for a record a worker built (append_journal_record of kind kRow with this
+  /// checkpoint's identity): its header is checked (check_built_record), its bytes appended.
+  /// Returns where the record's payload is (inside `record`).
+  BuiltRecord append_row_record(std::size_t index, const char* record, std::size_t size);
   /// Appends the first crash of a scenario (`reason`: how its process died).
   void append_crash(std::size_t index, const std::string& reason);
   /// Writes the buffered records to the journal (write(2): a killed process loses none
@@ -74,6 +82,8 @@ class Checkpoint {
     std::uint32_t journal = 0;
     std::uint64_t offset = 0, size = 0;
   };
+  void start_buffer();
+  void note_image(std::size_t index, std::uint64_t record_at, const char* payload, std::size_t size);
   void take_lock();
   void scan_journals(const SweepSpec& spec, bool resume);
   void release_lock();

@@ -49,22 +49,13 @@ std::size_t SweepCoordinator::batch_size() const {
   return std::max<std::size_t>(1, std::min(b, share));
 }
 
-double SweepCoordinator::predicted_log_cost(std::size_t index) const {
+double SweepCoordinator::predicted_log_cost(std::size_t index, const std::vector<double>& axis_mean) const {
   double sum = 0.0;
   for (std::size_t a = axis_sizes_.size(); a-- > 0;) {
     const std::size_t v = index % axis_sizes_[a];
     index /= axis_sizes_[a];
-    if (log_n_[a][v] > 0) {
-      sum += log_sum_[a][v] / log_n_[a][v];
-    } else {  // a value not seen yet: the axis's mean
-      double s = 0.0;
-      std::size_t n = 0;
-      for (std::size_t k = 0; k < log_n_[a].size(); ++k) {
-        s += log_sum_[a][k];
-        n += log_n_[a][k];
-      }
-      sum += n > 0 ? s / static_cast<double>(n) : 0.0;
-    }
+    // A value not seen yet: the axis's mean.
+    sum += log_n_[a][v] > 0 ? log_sum_[a][v] / log_n_[a][v] : axis_mean[a];
   }
   return sum;
 }
@@ -76,7 +67,18 @@ void SweepCoordinator::sort_tail() {
     if (state_[cursor_] == kPending) tail_.push_back(cursor_);
   std::vector<std::pair<double, std::size_t>> keyed;
   keyed.reserve(tail_.size());
-  for (std::size_t i : tail_) keyed.emplace_back(predicted_log_cost(i), i);
+  // Each axis's mean log cost over the values seen, once (the fallback of unseen values).
+  std::vector<double> axis_mean(axis_sizes_.size(), 0.0);
+  for (std::size_t a = 0; a < axis_sizes_.size(); ++a) {
+    double sum = 0.0;
+    std::size_t n = 0;
+    for (std::size_t k = 0; k < log_n_[a].size(); ++k) {
+      sum += log_sum_[a][k];
+      n += log_n_[a][k];
+    }
+    axis_mean[a] = n > 0 ? sum / static_cast<double>(n) : 0.0;
+  }
+  for (std::size_t i : tail_) keyed.emplace_back(predicted_log_cost(i, axis_mean), i);
   // Costliest last (taken from the back); ties in index order.
   std::stable_sort(keyed.begin(), keyed.end(), [](const auto& x, const auto& y) {
     return x.first < y.first || (x.first == y.first && x.second > y.second);

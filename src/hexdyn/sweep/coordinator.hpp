@@ -83,7 +83,9 @@ class SweepCoordinator {
   void finish(std::size_t index);
   void stop_idle(std::vector<Assignment>& out);
   void sort_tail();
-  double predicted_log_cost(std::size_t index) const;
+  /// Log cost of `index` predicted from the axis values seen; `axis_mean`: each axis's mean
+  /// log cost, for values not seen yet.
+  double predicted_log_cost(std::size_t index, const std::vector<double>& axis_mean) const;
 
   std::size_t count_;
   std::vector<std::size_t> axis_sizes_;

@@ -1,10 +1,11 @@
-#include "hexdyn/core/bytes.hpp"
 #include "hexdyn/sweep/journal.hpp"
 
 #include <algorithm>
 #include <cstdio>
 #include <cstring>
 
+#include "hexdyn/core/bytes.hpp"
+#include "hexdyn/core/errors.hpp"
 #include "hexdyn/sweep/record.hpp"
 
 namespace hexdyn {
@@ -71,6 +72,21 @@ void append_journal_record(std::vector<char>& out, RecordKind kind, std::uint64_
   put_pod(out, static_cast<std::uint64_t>(size));
   out.insert(out.end(), payload, payload + size);
   put_pod(out, crc32(out.data() + start + 4, out.size() - start - 4));
+}
+
+BuiltRecord check_built_record(const char* record, std::size_t size, RecordKind kind,
+                               std::uint64_t index, const SweepIdentity& identity) {
+  const auto bad = [&](const char* what) {
+    return Error("sweep: the journal record of scenario " + padded(index) + " from a worker " + what);
+  };
+  if (size < kRecordHeaderBytes + kRecordTrailerBytes || get_pod<std::uint32_t>(record) != kRecordMagic)
+    throw bad("is not a record");
+  if (get_pod<std::uint32_t>(record + 4) != static_cast<std::uint32_t>(kind)) throw bad("is of another kind");
+  if (get_pod<std::uint64_t>(record + 8) != index) throw bad("names another scenario");
+  if (get_pod<std::uint64_t>(record + 16) != identity.id) throw bad("is of another sweep");
+  const auto payload = get_pod<std::uint64_t>(record + 24);
+  if (payload != size - kRecordHeaderBytes - kRecordTrailerBytes) throw bad("has the wrong length");
+  return {record + kRecordHeaderBytes, static_cast<std::size_t>(payload)};
 }
 
 JournalScan scan_journal(const char* data, std::size_t size, const std::string& name,

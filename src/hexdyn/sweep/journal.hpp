@@ -56,6 +56,18 @@ std::vector<char> journal_header(const SweepIdentity& identity);
 void append_journal_record(std::vector<char>& out, RecordKind kind, std::uint64_t index,
                            const SweepIdentity& identity, const char* payload, std::size_t size);
 
+/// The payload of a record built by append_journal_record elsewhere (a worker builds the
+/// records of its rows, checksum included, so that rank 0 only appends their bytes).
+struct BuiltRecord {
+  const char* payload = nullptr;
+  std::size_t size = 0;
+};
+/// Checks a record's header (magic, `kind`, `index`, `identity`'s id) and its length
+/// against `size`; the checksum is its builder's and is checked when the journal is read.
+/// Throws Error naming what does not match.
+BuiltRecord check_built_record(const char* record, std::size_t size, RecordKind kind,
+                               std::uint64_t index, const SweepIdentity& identity);
+
 /// A record found in a journal: where its payload is.
 struct JournalEntry {
   RecordKind kind = RecordKind::kRow;

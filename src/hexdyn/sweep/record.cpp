@@ -1,4 +1,3 @@
-#include "hexdyn/core/bytes.hpp"
 #include "hexdyn/sweep/record.hpp"
 
 #include <unistd.h>
@@ -12,6 +11,7 @@
 #include <iterator>
 #include <system_error>
 
+#include "hexdyn/core/bytes.hpp"
 #include "hexdyn/core/errors.hpp"
 #include "hexdyn/io/h5io.hpp"
 #include "hexdyn/io/output.hpp"

@@ -1,4 +1,3 @@
-#include "hexdyn/core/bytes.hpp"
 #include "hexdyn/sweep/scenario_process.hpp"
 
 #include <poll.h>
@@ -15,6 +14,7 @@
 #include <cstring>
 #include <exception>
 
+#include "hexdyn/core/bytes.hpp"
 #include "hexdyn/core/errors.hpp"
 
 namespace hexdyn {

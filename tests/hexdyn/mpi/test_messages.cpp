@@ -29,9 +29,12 @@ TEST_CASE("mpi messages: the sweep round-trips what a worker needs", "[mpi]") {
   a.values = {"0.5", "0.66666666666666663"};
   a.labels = {"1/2", "2/3"};
   spec.axes.push_back(a);
-  bool keep = false;
-  const SweepSpec back = unpack_spec(pack_spec(spec, true), keep);
-  CHECK(keep);
+  const SweepIdentity id = make_identity("sweep: text", "base: text", "hexdyn x", 7, true);
+  SweepIdentity got;
+  const SweepSpec back = unpack_spec(pack_spec(spec, id), got);
+  CHECK(got.keep_runs);
+  CHECK(got.difference(id).empty());
+  CHECK(got.id == id.id);
   CHECK(back.name == "s");
   CHECK(back.base_path == spec.base_path);
   CHECK(back.base_tree_yaml == spec.base_tree_yaml);

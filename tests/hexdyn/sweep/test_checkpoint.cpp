@@ -222,3 +222,60 @@ TEST_CASE("sweep: a damaged record is named and its scenario recomputed", "[swee
   CHECK_THAT(cp.warnings()[0], Catch::Contains("scenario 000002"));
   CHECK_THAT(cp.warnings()[1], Catch::Contains("truncated"));
 }
+
+// A worker builds its rows' journal records (mpi/worker.cpp) and rank 0 appends them
+// (append_row_record): the journal must be byte for byte the one rank 0 writes when it builds
+// the records itself (append_row), resume must read it back, and a record whose header does
+// not match (kind, scenario, sweep, length, magic) must be refused before it is appended.
+TEST_CASE("sweep: a record built by a worker is appended as rank 0 would build it", "[sweep]") {
+  TempDir dir;
+  const SweepSpec spec = load_sweep(sweep_file(dir, kSmallAxes));
+  const SweepIdentity id = sweep_identity(spec, false);
+  std::vector<std::vector<char>> journals;
+  for (bool built_by_worker : {false, true}) {
+    const std::string out = (dir.path / (built_by_worker ? "w.h5" : "r.h5")).string();
+    {
+      Checkpoint cp(out, spec, false, false);
+      CHECK(cp.identity().id == id.id);
+      for (std::size_t i : {3u, 0u, 5u}) {
+        const auto p = payload_of(some_row(i));
+        if (!built_by_worker) {
+          cp.append_row(i, p.data(), p.size());
+          continue;
+        }
+        std::vector<char> record;
+        append_journal_record(record, RecordKind::kRow, i, id, p.data(), p.size());
+        const BuiltRecord b = cp.append_row_record(i, record.data(), record.size());
+        CHECK(std::vector<char>(b.payload, b.payload + b.size) == p);
+      }
+      cp.flush(true);
+      journals.push_back(read_all(only_journal(out + ".checkpoint")));
+    }
+    Checkpoint resumed(out, spec, false, true);
+    REQUIRE(resumed.finished().size() == 3);
+    CHECK(resumed.finished()[2].energy_J == some_row(5).energy_J);
+    CHECK(resumed.warnings().empty());
+  }
+  CHECK(journals[0] == journals[1]);
+
+  const auto p = payload_of(some_row(1));
+  std::vector<char> good;
+  append_journal_record(good, RecordKind::kRow, 1, id, p.data(), p.size());
+  const SweepIdentity other = sweep_identity(spec, true);
+  std::vector<char> foreign, crash;
+  append_journal_record(foreign, RecordKind::kRow, 1, other, p.data(), p.size());
+  append_journal_record(crash, RecordKind::kCrashAttempt, 1, id, p.data(), p.size());
+  std::vector<char> bad_magic = good;
+  bad_magic[0] ^= 1;
+  const char* g = good.data();
+  CHECK(check_built_record(g, good.size(), RecordKind::kRow, 1, id).size == p.size());
+  CHECK_THROWS_WITH(check_built_record(g, good.size(), RecordKind::kRow, 2, id), Catch::Contains("another scenario"));
+  CHECK_THROWS_WITH(check_built_record(g, good.size() - 1, RecordKind::kRow, 1, id), Catch::Contains("wrong length"));
+  CHECK_THROWS_WITH(check_built_record(foreign.data(), foreign.size(), RecordKind::kRow, 1, id),
+                    Catch::Contains("another sweep"));
+  CHECK_THROWS_WITH(check_built_record(crash.data(), crash.size(), RecordKind::kRow, 1, id),
+                    Catch::Contains("another kind"));
+  CHECK_THROWS_WITH(check_built_record(bad_magic.data(), bad_magic.size(), RecordKind::kRow, 1, id),
+                    Catch::Contains("not a record"));
+  CHECK_THROWS_WITH(check_built_record(g, 20, RecordKind::kRow, 1, id), Catch::Contains("not a record"));
+}
