@@ -186,7 +186,7 @@ void BM_CoordinatorScale(benchmark::State& state) {
   state.counters["makespan_s"] = o.makespan;
 }
 BENCHMARK(BM_CoordinatorScale)
-    ->Arg(100)->Arg(1000)->Arg(5000)->Arg(10000)->Arg(20000)->Arg(40000)
+    ->Arg(100)->Arg(1000)->Arg(5000)->Arg(10000)->Arg(15000)->Arg(20000)->Arg(40000)
     ->Unit(benchmark::kMillisecond)->Iterations(1);
 
 }  // namespace
