@@ -56,9 +56,7 @@ std::vector<QpProblem> paper_problems(FrictionModel friction) {
     const ContactSplit& split = contact_split(p.model, data, s.base, s.q, s.qd, s.qdd);
     SampleContacts c;
     sample_contacts(p.kin, i, p.plan.terrain, p.touchdowns, c);
-    std::array<int, kLegs> offset{};
-    build_allocation_problem(alloc, p.scene.contact, split, c.phase, c.impact_force_N, c.W_R_contact, v[i], offset,
-                             nullptr);
+    build_allocation_problem(alloc, p.scene.contact, split, c.phase, c.impact_force_N, c.W_R_contact, v[i]);
   }
   return v;
 }

@@ -72,9 +72,8 @@ inline int sample_problem(const PaperSetup& p, RobotData& data, int i, QpProblem
   const ContactSplit& split = contact_split(p.model, data, s.base, s.q, s.qd, s.qdd);
   SampleContacts c;
   sample_contacts(p.kin, i, p.plan.terrain, p.touchdowns, c);
-  std::array<int, kLegs> offset{};
   build_allocation_problem(p.scene.allocation, p.scene.contact, split, c.phase, c.impact_force_N,
-                           c.W_R_contact, qp, offset, nullptr);
+                           c.W_R_contact, qp);
   return c.impacting_legs;
 }
 

@@ -1,6 +1,6 @@
 #pragma once
 /// \file allocation/active_set.hpp
-/// An exact dense QP back end of the allocation (DESIGN.md §3 "Allocation",
+/// An exact dense QP back end of the allocation (docs/theory/allocation.md#back-ends,
 /// `allocation.solver: active-set`): a dual active-set method in the Goldfarb–Idnani style
 /// for the small problems of allocation/qp.hpp without cones,
 ///
@@ -38,15 +38,11 @@
 /// status 0 allocates no heap memory (status 1 builds its message).
 #include <memory>
 
+#include "hexdyn/allocation/dual_active_set.hpp"  // kActiveSetMaxVariables, kActiveSetMaxRows
 #include "hexdyn/allocation/qp.hpp"
 #include "hexdyn/core/scene.hpp"
 
 namespace hexdyn {
-
-/// Largest number of variables the active-set back end accepts.
-inline constexpr int kActiveSetMaxVariables = 18;
-/// Largest number of rows (equality plus inequality) it accepts.
-inline constexpr int kActiveSetMaxRows = 160;
 
 struct ActiveSetOptions {
   /// A row counts as violated, and is added to the active set, beyond
@@ -66,7 +62,8 @@ struct ActiveSetOptions {
 /// Maps the scene's allocation settings (tolerance, slack_penalty) to the options.
 ActiveSetOptions active_set_options_from(const AllocationParams& params);
 
-/// The dual active-set back end; details in allocation/active_set.cpp. Throws ConfigError
+/// The dual active-set back end (the solver: allocation/dual_active_set.hpp; the attempt
+/// policy: allocation/strict_then_penalised.hpp; warm starts: allocation/active_set.cpp). Throws ConfigError
 /// for non-positive tolerance or slack_penalty or max_iterations < 1.
 std::unique_ptr<AllocationBackend> make_active_set_backend(const ActiveSetOptions& options = {});
 

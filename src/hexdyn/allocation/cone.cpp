@@ -103,8 +103,8 @@ class ConeBackend final : public AllocationBackend {
  private:
   double feasibility_tol() const { return qp_feasibility_tolerance(opt_.qp.tolerance); }
 
-  /// Same sizes, names and cone indices as the previous problem; remembers them if not.
-  bool same_structure(const QpProblem& p) {
+  /// Same sizes, names and cone indices as the previous problem. A query.
+  bool same_structure(const QpProblem& p) const {
     const int n_cones = static_cast<int>(p.cones.size());
     bool same = n_ == p.variables() && m_eq_ == p.equalities() && m_in_ == p.inequalities() &&
                 n_cones == static_cast<int>(dir_.size()) && p.eq_names == eq_names_ &&
@@ -114,7 +114,12 @@ class ConeBackend final : public AllocationBackend {
       same = c.tangent1 == cone_index_[3 * k] && c.tangent2 == cone_index_[3 * k + 1] &&
              c.normal == cone_index_[3 * k + 2];
     }
-    if (same) return true;
+    return same;
+  }
+
+  /// Takes p's structure as the current one, with fresh per-cone state.
+  void remember_structure(const QpProblem& p) {
+    const int n_cones = static_cast<int>(p.cones.size());
     n_ = p.variables(), m_eq_ = p.equalities(), m_in_ = p.inequalities();
     eq_names_ = p.eq_names;
     ineq_names_ = p.ineq_names;
@@ -131,7 +136,6 @@ class ConeBackend final : public AllocationBackend {
     cut_.assign(static_cast<std::size_t>(n_cones), {});
     on_.assign(static_cast<std::size_t>(n_cones), {});
     next_memory_.assign(static_cast<std::size_t>(n_cones), kFirstMemory);
-    return false;
   }
 
   /// Copies the posed problem into the working one (sizes set once per structure).
@@ -201,8 +205,16 @@ class ConeBackend final : public AllocationBackend {
 
   void fail(const QpProblem& p, const std::string& why) {
     qp_fail_with_fallback(p, feasibility_tol(), why, out_);
-    have_warm_ = false;
+    have_directions_ = false;
   }
+
+ public:
+  void reset_warm_start() override {
+    have_directions_ = false;
+    qp_->reset_warm_start();
+  }
+
+ private:
 
   void solve_impl(const QpProblem& p) override {
     if (p.cones.empty()) {
@@ -226,7 +238,8 @@ class ConeBackend final : public AllocationBackend {
       return;
     }
     const bool same = same_structure(p);
-    if (!same || !have_warm_ || !opt_.warm_start) {
+    if (!same) remember_structure(p);
+    if (!same || !have_directions_ || !opt_.warm_start) {
       qp_->reset_warm_start();
       for (int k = 0; k < n_cones; ++k) {
         dir_[k] = Eigen::Vector2d::UnitX();
@@ -343,7 +356,7 @@ class ConeBackend final : public AllocationBackend {
     }
     out_.objective = r->objective - curvature_term;
     const std::string v = describe_violations(p, out_.x, feasibility_tol(), &out_.max_violation);
-    have_warm_ = true;
+    have_directions_ = true;
     if (!converged) {
       char buf[160];
       std::snprintf(buf, sizeof buf, "outer approximation of %s converged only to %.3g after %d passes",
@@ -377,6 +390,9 @@ class ConeBackend final : public AllocationBackend {
   std::vector<std::array<Eigen::Vector2d, kCutsPerCone>> cut_;  ///< half-space directions
   std::vector<std::array<bool, kCutsPerCone>> on_;               ///< which are in force
   std::vector<int> next_memory_;                                 ///< next ring slot
+  /// The warm start of the next sample of the same structure: dir_, lambda_ and norm_ hold
+  /// the last sample's answer.
+  bool have_directions_ = false;
 };
 
 }  // namespace

@@ -1,6 +1,6 @@
 #pragma once
 /// \file allocation/cone.hpp
-/// The exact friction cone on the dual active-set QP (DESIGN.md §3 "Allocation",
+/// The exact friction cone on the dual active-set QP (docs/theory/allocation.md#exact-friction-cone,
 /// `allocation.solver: active-set` or `auto` with `allocation.friction: cone`): the problem
 /// of allocation/qp.hpp with second-order cones
 ///

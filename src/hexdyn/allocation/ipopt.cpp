@@ -2,10 +2,11 @@
 /// The Ipopt back end of the allocation (allocation/qp.hpp); the TNLP adapter that poses
 /// the problem to Ipopt is in allocation/ipopt_nlp.cpp.
 ///
-/// Each solve tries the problem as posed ("strict"), warm-started from the previous
-/// solution when the sizes match (and cold if that fails). If Ipopt does not converge, or
+/// The attempts follow the policy of allocation/strict_then_penalised.hpp. The strict
+/// attempt is warm-started from the last strict solution (point and multipliers) when the
+/// problem's shape matches, and retried cold if that fails. If Ipopt does not converge, or
 /// its answer violates a row, the problem is solved again with penalised slack variables
-/// (DESIGN.md §3): each inequality row gets s⁺_i ≥ 0 if its lower bound is finite and
+/// (docs/theory/allocation.md#exact-l1-penalty): each inequality row gets s⁺_i ≥ 0 if its lower bound is finite and
 /// s⁻_i ≥ 0 if its upper bound is,
 ///     lower_i ≤ C_i x + s⁺_i − s⁻_i ≤ upper_i,
 /// each cone k gets s_k ≥ 0 with √(t1² + t2²) ≤ μ n + s_k, and the objective gains the
@@ -15,8 +16,8 @@
 /// rows sharing a slack do not, and Ipopt then stalls near the solution. (A row with
 /// lower > upper does become two one-sided rows: Ipopt rejects crossed bounds.)
 /// After a relaxed solve, the next problem of the same sizes goes to the penalised form
-/// directly: infeasible samples come in runs, and Ipopt spends many iterations before it
-/// declares a problem infeasible.
+/// directly (the policy): Ipopt spends many iterations before it declares a problem
+/// infeasible.
 /// With cones, the penalised problem is first solved with each cone replaced by its
 /// inscribed 16-gon (a QP), whose solution starts the penalised cone NLP and stands in for
 /// it (flagged) if that fails. A run that stalls (e.g. Restoration_Failed) is accepted when
@@ -41,6 +42,7 @@
 #include "hexdyn/allocation/friction.hpp"
 #include "hexdyn/allocation/ipopt.hpp"
 #include "hexdyn/allocation/ipopt_nlp.hpp"
+#include "hexdyn/allocation/strict_then_penalised.hpp"
 #include "hexdyn/core/errors.hpp"
 
 namespace hexdyn {
@@ -108,7 +110,7 @@ bool stalled(Ipopt::ApplicationReturnStatus s) {
 
 
 
-class IpoptBackend final : public AllocationBackend {
+class IpoptBackend final : public StrictThenPenalisedBackend {
  public:
   explicit IpoptBackend(const IpoptOptions& options) : opt_(options) {
     if (!(opt_.tolerance > 0.0) || !(opt_.slack_penalty > 0.0) || opt_.max_iterations < 1 ||
@@ -143,14 +145,26 @@ class IpoptBackend final : public AllocationBackend {
 
  private:
   /// Feasibility threshold of a row for the status (allocation/qp.hpp).
-  double feasibility_tol() const { return qp_feasibility_tolerance(opt_.tolerance); }
+  double feasibility_tol() const override { return qp_feasibility_tolerance(opt_.tolerance); }
+
+  bool can_warm_start(const ProblemShape& shape) const override {
+    return opt_.warm_start && start_.valid && start_.shape == shape;
+  }
+  void drop_warm_start() override { start_.valid = false; }
+  /// Keeps x and the TNLP's multipliers as the warm start of the next problem of p's shape.
+  void store_start(const QpProblem& p, const Eigen::VectorXd& x) {
+    start_.valid = true;
+    start_.shape = ProblemShape::of(p);
+    start_.x = x;
+    start_.lambda = tnlp_->lambda_out;
+  }
 
   /// Options that differ between runs. Penalised runs have multipliers ρ w up to 1e9, to
   /// which Ipopt scales its optimality test, and their optima are often degenerate (rows
   /// that hold with a zero multiplier at an impact foot's friction polygon): an interior
   /// point then sits ~√(complementarity) inside such a row. They therefore also get an
   /// absolute complementarity tolerance of 1e-3·tolerance, which brings their forces to
-  /// within ~2e-6 N of the exact penalised optimum on the paper run (README "Allocation").
+  /// within ~2e-6 N of the exact penalised optimum on the paper run (docs/validation/allocation.md#active-set-against-ipopt-friction-pyramids).
   void set_per_solve_options(bool linear_constraints, bool warm, bool penalised) {
     Ipopt::OptionsList& o = *app_->Options();
     const double tol = opt_.tolerance;
@@ -206,47 +220,20 @@ class IpoptBackend final : public AllocationBackend {
       for (int k = 0; k < t.n_cones; ++k) out_.lambda_cone[k] = -lam[t.first_cone_row() + k];
   }
 
-  void fail_with_fallback(const QpProblem& p, const std::string& why) {
-    qp_fail_with_fallback(p, feasibility_tol(), why, out_);
-    have_warm_ = false;
-  }
-
-  void solve_impl(const QpProblem& p) override {
-    const int n = p.variables(), m_eq = p.equalities(), m_in = p.inequalities();
-    const int n_cones = static_cast<int>(p.cones.size());
-    out_.iterations = 0;
-    out_.message.clear();
-    if (const std::string bad = qp_first_non_finite(p); !bad.empty()) {
-      fail_with_fallback(p, "non-finite entries in " + bad);
-      return;
-    }
-    if (n == 0) {
-      qp_solve_without_variables(p, feasibility_tol(), out_);
-      return;
-    }
-    const bool linear = n_cones == 0;
-
-    // --- strict attempt (warm if possible; a failed warm start is retried cold) ---
-    // Infeasible samples come in runs, and Ipopt needs many iterations to declare a
-    // problem infeasible: after a relaxed sample of the same sizes the penalised problem
-    // is solved directly (its solution is the strict optimum when no slack is needed).
+  Attempt solve_strict(const QpProblem& p, bool warm) override {
+    const int n = p.variables(), m_in = p.inequalities();
+    const bool linear = p.cones.empty();
     QpTnlp& t = *tnlp_;
-    const bool same_sizes =
-        warm_n_ == n && warm_m_eq_ == m_eq && warm_m_in_ == m_in && warm_cones_ == n_cones;
-    const bool skip_strict = last_relaxed_ && same_sizes;
-    const bool warm = opt_.warm_start && have_warm_ && same_sizes;
-    warm_n_ = n, warm_m_eq_ = m_eq, warm_m_in_ = m_in, warm_cones_ = n_cones;
-    last_relaxed_ = false;
     t.finalized = false;
-    std::string strict_note = skip_strict ? "skipped after a relaxed sample" : "";
+    Attempt a;
+    // Warm if possible; a failed warm start is retried cold.
     for (const bool use_warm : {true, false}) {
-      if (skip_strict) break;
       if (use_warm && !warm) continue;
       t.setup(p, Mode::kStrict, opt_.slack_penalty, opt_.cone_smoothing_N);
       if (use_warm) {
-        t.start_x = warm_x_;
+        t.start_x = start_.x;
         t.start_multipliers = true;
-        t.start_lambda = warm_lambda_;
+        t.start_lambda = start_.lambda;
         t.start_z_lower.setZero(n);
       } else {
         t.start_x = qp_fallback_point(p);
@@ -254,8 +241,8 @@ class IpoptBackend final : public AllocationBackend {
       }
       set_per_solve_options(linear, use_warm, false);
       const Ipopt::ApplicationReturnStatus st = run(out_.iterations);
-      if (!strict_note.empty()) strict_note += ", then cold ";
-      strict_note += return_status_name(st);
+      if (!a.note.empty()) a.note += ", then cold ";
+      a.note += return_status_name(st);
       if (!run_usable(st)) {
         // Linear constraints that Ipopt finds infeasible are infeasible from any start.
         if (linear && st == Ipopt::Infeasible_Problem_Detected) break;
@@ -265,7 +252,7 @@ class IpoptBackend final : public AllocationBackend {
       double viol = 0.0;
       const std::string v = describe_violations(p, x, feasibility_tol(), &viol);
       if (!v.empty()) {
-        strict_note += " but violated " + v;
+        a.note += " but violated " + v;
         continue;
       }
       out_.status = SolverStatus::kOptimal;
@@ -275,29 +262,34 @@ class IpoptBackend final : public AllocationBackend {
       out_.max_violation = viol;
       if (!succeeded(st) || st == Ipopt::Solved_To_Acceptable_Level)
         out_.message = acceptable_note(st);
-      have_warm_ = true;
-      warm_x_ = x;
-      warm_lambda_ = t.lambda_out;
-      return;
+      store_start(p, x);
+      a.solved = true;
+      return a;
     }
-    have_warm_ = false;
+    drop_warm_start();
+    a.left_state = t.finalized;
+    return a;
+  }
 
-    // --- penalised slack attempts ---
+  Attempt solve_penalised(const QpProblem& p, const AttemptPlan& plan, bool after_strict) override {
+    const int n = p.variables();
+    QpTnlp& t = *tnlp_;
     // Start from the strict run's last point, or after a skipped strict run from the
     // previous (relaxed) sample's solution.
     const Eigen::VectorXd x0 =
-        t.finalized && t.x_out.allFinite() && t.x_out.size() >= n ? Eigen::VectorXd(t.x_out.head(n))
-        : skip_strict && out_.x.size() == n && out_.x.allFinite() ? out_.x
-                                                                  : qp_fallback_point(p);
-    const std::string strict_part = "strict solve " + strict_note;
-    if (n_cones == 0) {
+        after_strict && t.x_out.allFinite() && t.x_out.size() >= n ? Eigen::VectorXd(t.x_out.head(n))
+        : !plan.strict && out_.x.size() == n && out_.x.allFinite() ? out_.x
+                                                                   : qp_fallback_point(p);
+    Attempt a;
+    if (p.cones.empty()) {
       const Ipopt::ApplicationReturnStatus st = run_slack(p, x0);
       if (!run_usable(st)) {
-        fail_with_fallback(p, strict_part + "; penalised solve " + return_status_name(st));
-        return;
+        a.note = std::string("penalised solve ") + return_status_name(st);
+        return a;
       }
       finish_relaxed(p, true, "");
-      return;
+      a.solved = true;
+      return a;
     }
     // With cones the penalised NLP is hard for Ipopt from a poor start (iterates stall near
     // the apex of cones of unloaded feet). First solve the penalised QP with every cone
@@ -310,18 +302,20 @@ class IpoptBackend final : public AllocationBackend {
     const Ipopt::ApplicationReturnStatus st_cone = run_slack(p, poly_ok ? poly_x_ : x0);
     if (run_usable(st_cone)) {
       finish_relaxed(p, true, "");
-      return;
+      a.solved = true;
+      return a;
     }
     if (!poly_ok) {
-      fail_with_fallback(p, strict_part + "; penalised polygon solve " +
-                                return_status_name(st_poly) + "; penalised cone solve " +
-                                return_status_name(st_cone));
-      return;
+      a.note = std::string("penalised polygon solve ") + return_status_name(st_poly) +
+               "; penalised cone solve " + return_status_name(st_cone);
+      return a;
     }
     run_slack(poly_, poly_x_);  // restores the polygon solution and its multipliers
     finish_relaxed(p, false,
                    std::string("cones replaced by inscribed ") + std::to_string(kPolygonFaces) +
                        "-gons, the penalised cone solve ended with " + return_status_name(st_cone));
+    a.solved = true;
+    return a;
   }
 
   /// Ipopt's point is an answer: converged, or stalled with its optimality error within the
@@ -373,21 +367,19 @@ class IpoptBackend final : public AllocationBackend {
     out_.objective = p.objective(out_.x);
     const std::string v = describe_violations(p, out_.x, feasibility_tol(), &out_.max_violation);
     // The slack problem's iterate does not warm-start the next strict problem.
-    have_warm_ = false;
+    drop_warm_start();
     if (v.empty() && note.empty()) {
       // No slack needed: by exactness of the penalty this is the strict optimum, but only
       // to the penalised run's tolerance, which Ipopt scales by its multipliers (up to ρ w).
       // Polish it by the problem as posed, warm-started from here.
       out_.status = SolverStatus::kOptimal;
       out_.message = "optimal to the penalised solve's tolerance only";
-      last_relaxed_ = false;
       polish_strict(p);
       return;
     }
     out_.status = SolverStatus::kRelaxed;
     out_.message = v.empty() ? "approximate: " + note
                              : "relaxed: " + v + (note.empty() ? "" : " (" + note + ")");
-    last_relaxed_ = true;
   }
 
   /// Solves p as posed, warm-started from the penalised run in the TNLP (point and
@@ -420,9 +412,7 @@ class IpoptBackend final : public AllocationBackend {
     out_.max_violation = viol;
     out_.message = succeeded(st) && st != Ipopt::Solved_To_Acceptable_Level ? std::string()
                                                                             : acceptable_note(st);
-    have_warm_ = true;
-    warm_x_ = x;
-    warm_lambda_ = t.lambda_out;
+    store_start(p, x);
   }
 
   /// p with every cone replaced by the kPolygonFaces rows of its inscribed polygon
@@ -473,8 +463,12 @@ class IpoptBackend final : public AllocationBackend {
   QpProblem poly_;          ///< penalised polygon version of a cone problem (workspace)
   Eigen::VectorXd poly_x_;  ///< its solution
   Eigen::VectorXd polish_x_, polish_lambda_;  ///< start of a polishing strict run
-  int warm_n_ = -1, warm_m_eq_ = -1, warm_m_in_ = -1, warm_cones_ = -1;
-  Eigen::VectorXd warm_x_, warm_lambda_;
+  /// The warm start: the last strict solution with its multipliers, and its problem's shape.
+  struct {
+    bool valid = false;
+    ProblemShape shape;
+    Eigen::VectorXd x, lambda;
+  } start_;
 };
 
 }  // namespace

@@ -67,26 +67,30 @@ const RowNames& row_names() {
 
 }  // namespace
 
-double build_allocation_problem(const AllocationParams& alloc, const ContactParams& contact,
-                                const ContactSplit& split,
-                                const std::array<ContactPhase, kLegs>& phase,
-                                const std::array<double, kLegs>& impact_force_N,
-                                const std::array<Mat3, kLegs>& W_R_c, QpProblem& qp,
-                                std::array<int, kLegs>& offset, std::string* constant_violation) {
+AllocationLayout build_allocation_problem(const AllocationParams& alloc,
+                                          const ContactParams& contact, const ContactSplit& split,
+                                          const std::array<ContactPhase, kLegs>& phase,
+                                          const std::array<double, kLegs>& impact_force_N,
+                                          const std::array<Mat3, kLegs>& W_R_c, QpProblem& qp) {
   const int faces = friction_faces(alloc.friction);
   const double mu = contact.friction_coefficient;
   // Layout and sizes.
+  AllocationLayout layout;
   int n = 0, m_in = 6;  // six trunk rows (lower = upper, so that they can be relaxed)
   for (int l = 0; l < kLegs; ++l) {
-    offset[l] = -1;
+    AllocationLayout::Leg& leg = layout.legs[l];
+    leg.W_R_contact = W_R_c[l];
     if (phase[l] == ContactPhase::kSwing) continue;
-    offset[l] = n;
     const bool support = phase[l] == ContactPhase::kSupport;
+    leg.offset = n;
+    leg.count = support ? 3 : 2;
+    if (!support) leg.known_normal_force_N = impact_force_N[l];
     n += support ? 3 : 2;
     m_in += kJointsPerLeg;   // torque rows
     if (support) m_in += 1;  // normal force row
     m_in += support ? faces : (faces ? faces : kImpactConeFaces);
   }
+  layout.variables = n;
   qp.resize(n, 0, m_in);
   qp.structure = structure_key(faces, phase);
   // Known forces: the normal force of impact legs.
@@ -105,10 +109,11 @@ double build_allocation_problem(const AllocationParams& alloc, const ContactPara
   GMatrix G = GMatrix::Zero(kJoints, n);
   BMatrix B = BMatrix::Zero(6, n);
   for (int l = 0; l < kLegs; ++l) {
-    if (offset[l] < 0) continue;
-    const int k = phase[l] == ContactPhase::kSupport ? 3 : 2;
-    G.middleCols(offset[l], k) = split.JjT[l] * W_R_c[l].leftCols(k);
-    B.middleCols(offset[l], k) = split.JbT[l] * W_R_c[l].leftCols(k);
+    const AllocationLayout::Leg& leg = layout.legs[l];
+    if (leg.offset < 0) continue;
+    const int k = leg.count;
+    G.middleCols(leg.offset, k) = split.JjT[l] * W_R_c[l].leftCols(k);
+    B.middleCols(leg.offset, k) = split.JbT[l] * W_R_c[l].leftCols(k);
   }
   // Objective Σ τ² = |tau_known − G x|² = ½ xᵀ (2 GᵀG) x − 2 (Gᵀ tau_known)ᵀ x + |tau_known|².
   qp.H = 2.0 * G.transpose() * G;
@@ -125,24 +130,21 @@ double build_allocation_problem(const AllocationParams& alloc, const ContactPara
   const auto tmax_of = [&alloc](int k) {
     return alloc.joint_torque_limit_Nm ? (*alloc.joint_torque_limit_Nm)[k] : alloc.torque_limit_Nm;
   };
-  double worst_constant = 0.0;
   for (int l = 0; l < kLegs; ++l) {
-    if (offset[l] < 0) {
+    if (layout.legs[l].offset < 0) {
       for (int j = 0; j < kJointsPerLeg; ++j) {
         const double excess = std::abs(tau_known[joint_index(l, j)]) - tmax_of(joint_index(l, j));
-        if (excess > worst_constant) {
-          worst_constant = excess;
-          if (constant_violation) {
-            std::ostringstream os;
-            os.precision(3);
-            os << "torque " << joint_name(l, j) << " (swing leg) by " << excess;
-            *constant_violation = os.str();
-          }
+        if (excess > layout.constant_excess_Nm) {
+          layout.constant_excess_Nm = excess;
+          std::ostringstream os;
+          os.precision(3);
+          os << "torque " << joint_name(l, j) << " (swing leg) by " << excess;
+          layout.constant_violation = os.str();
         }
       }
       continue;
     }
-    const int o = offset[l];
+    const int o = layout.legs[l].offset;
     for (int j = 0; j < kJointsPerLeg; ++j, ++row) {
       const int kk = joint_index(l, j);
       const double tmax = tmax_of(kk);
@@ -178,22 +180,20 @@ double build_allocation_problem(const AllocationParams& alloc, const ContactPara
       qp.cones.push_back(
           {o, o + 1, o + 2, mu, "friction cone " + leg_name(l), kContactRowPenaltyWeight});
   }
-  return worst_constant;
+  return layout;
 }
 
-void forces_from_solution(const ContactSplit& split, const std::array<ContactPhase, kLegs>& phase,
-                          const std::array<double, kLegs>& impact_force_N,
-                          const std::array<Mat3, kLegs>& W_R_c,
-                          const std::array<int, kLegs>& offset, const Eigen::VectorXd& x,
-                          std::array<Vec3, kLegs>& F_W, VecJ& tau) {
+void forces_from_solution(const ContactSplit& split, const AllocationLayout& layout,
+                          const Eigen::VectorXd& x, std::array<Vec3, kLegs>& F_W, VecJ& tau) {
   tau = split.tau0;
   for (int l = 0; l < kLegs; ++l) {
+    const AllocationLayout::Leg& leg = layout.legs[l];
     F_W[l].setZero();
-    if (phase[l] == ContactPhase::kSupport) {
-      F_W[l] = W_R_c[l] * x.segment<3>(offset[l]);
-    } else if (phase[l] == ContactPhase::kImpact) {
-      F_W[l] =
-          W_R_c[l].leftCols<2>() * x.segment<2>(offset[l]) + impact_force_N[l] * W_R_c[l].col(2);
+    if (leg.count == 3) {
+      F_W[l] = leg.W_R_contact * x.segment<3>(leg.offset);
+    } else if (leg.count == 2) {
+      F_W[l] = leg.W_R_contact.leftCols<2>() * x.segment<2>(leg.offset) +
+               leg.known_normal_force_N * leg.W_R_contact.col(2);
     }
     tau -= split.JjT[l] * F_W[l];
   }

@@ -1,6 +1,7 @@
 #pragma once
 /// \file problem.hpp
-/// The allocation problem of one sample (DESIGN.md §3 "Allocation"): torque-optimal foot
+/// The allocation problem of one sample (docs/theory/allocation.md#variables,
+/// docs/theory/allocation.md#rows): torque-optimal foot
 /// forces under the trunk equations, torque limits, minimum normal forces and friction.
 ///
 /// Variables, stacked by leg in the contact frame [t1 t2 n] of each foot
@@ -22,28 +23,43 @@
 
 namespace hexdyn {
 
-/// Builds the allocation problem of one sample into `qp` (resized). Legs in `phase`
-/// kSwing carry no force, kImpact legs carry the known normal force `impact_force_N[l]`
-/// [N] along the third column of W_R_contact[l] (the contact frames, world axes).
-/// `layout_offset[l]` receives the index of the leg's first variable (−1 without
-/// variables). Sets qp.structure to a key of the row layout (the friction model and each
+/// Where each leg's force lives among the problem's variables, and the forces that are
+/// known: the one description of the variable layout, returned by the builder and read by
+/// forces_from_solution.
+struct AllocationLayout {
+  struct Leg {
+    int offset = -1;  ///< index of the leg's first variable, −1 without variables
+    /// Variables of the leg: 3 for a support leg (f_t1, f_t2, f_n), 2 for a leg in its
+    /// impact transient (f_t1, f_t2), 0 for a swing leg.
+    int count = 0;
+    Mat3 W_R_contact = Mat3::Identity();  ///< contact frame [t1 t2 n] in world axes
+    double known_normal_force_N = 0.0;    ///< an impact leg's transient force along n [N]
+  };
+  std::array<Leg, kLegs> legs;
+  int variables = 0;
+  /// Largest excess [N m] of a swing-leg torque over its limit (a constant row that no
+  /// force can change), 0 when none.
+  double constant_excess_Nm = 0.0;
+  /// Names that row ("torque L1_femur (swing leg) by 0.3"), empty when none.
+  std::string constant_violation;
+};
+
+/// Builds the allocation problem of one sample into `qp` (resized) and returns its layout.
+/// Legs in `phase` kSwing carry no force, kImpact legs carry the known normal force
+/// `impact_force_N[l]` [N] along the third column of W_R_contact[l] (the contact frames,
+/// world axes). Sets qp.structure to a key of the row layout (the friction model and each
 /// leg's phase), so that back ends recognise problems built alike.
-/// Returns the largest excess [N m] of a swing-leg torque over the limit (constant rows
-/// that no force can change), 0 when none; `*constant_violation` (may be null) names it.
-double build_allocation_problem(const AllocationParams& alloc, const ContactParams& contact,
-                                const ContactSplit& split,
-                                const std::array<ContactPhase, kLegs>& phase,
-                                const std::array<double, kLegs>& impact_force_N,
-                                const std::array<Mat3, kLegs>& W_R_contact, QpProblem& qp,
-                                std::array<int, kLegs>& layout_offset,
-                                std::string* constant_violation);
+AllocationLayout build_allocation_problem(const AllocationParams& alloc,
+                                          const ContactParams& contact, const ContactSplit& split,
+                                          const std::array<ContactPhase, kLegs>& phase,
+                                          const std::array<double, kLegs>& impact_force_N,
+                                          const std::array<Mat3, kLegs>& W_R_contact,
+                                          QpProblem& qp);
 
 /// Foot forces F_W [N] (world axes, terrain on foot) and joint torques tau [N m] of a
-/// solution x of build_allocation_problem with the same inputs: τ = τ₀ − Σ J_jᵀ F.
-void forces_from_solution(const ContactSplit& split, const std::array<ContactPhase, kLegs>& phase,
-                          const std::array<double, kLegs>& impact_force_N,
-                          const std::array<Mat3, kLegs>& W_R_contact,
-                          const std::array<int, kLegs>& layout_offset, const Eigen::VectorXd& x,
-                          std::array<Vec3, kLegs>& F_W, VecJ& tau);
+/// solution x (size layout.variables) of the problem `layout` was built with:
+/// τ = τ₀ − Σ J_jᵀ F.
+void forces_from_solution(const ContactSplit& split, const AllocationLayout& layout,
+                          const Eigen::VectorXd& x, std::array<Vec3, kLegs>& F_W, VecJ& tau);
 
 }  // namespace hexdyn

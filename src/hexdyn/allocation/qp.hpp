@@ -1,8 +1,9 @@
 #pragma once
 /// \file allocation/qp.hpp
-/// The solver side of the foot-force allocation (DESIGN.md §3 "Allocation"): a small dense
+/// The solver side of the foot-force allocation (docs/theory/allocation.md#rows,
+/// docs/theory/allocation.md#exact-l1-penalty): a small dense
 /// QP (optionally with second-order friction cones, then an NLP), one solver interface
-/// behind which back ends are swapped, and a KKT check used by the tests.
+/// behind which back ends are swapped.
 ///
 ///   minimise    ½ xᵀ H x + gᵀ x + constant
 ///   subject to  A x = b                                  (equality rows, "eq")
@@ -122,27 +123,23 @@ struct QpOutcome {
 
 /// A QP/NLP back end. `solve` never throws for numerical trouble (that is the outcome's
 /// status); it throws SolverError only for inconsistent sizes (or a problem the back end
-/// does not support). The reference stays valid until the next call. Not thread-safe:
-/// one backend per thread.
+/// does not support). The reference stays valid until the next call. A back end may carry
+/// a warm start from one solve to the next (each back end says what it keeps); it is not
+/// thread-safe: one back end per thread.
 class AllocationBackend {
  public:
   virtual ~AllocationBackend();
   /// Checks the sizes (validate_qp_sizes), solves (solve_impl) and records the time taken
   /// in the outcome's `seconds`.
   const QpOutcome& solve(const QpProblem& problem);
-  /// Forget the previous solution: the next solve starts cold.
-  void reset_warm_start() {
-    have_warm_ = false;
-    last_relaxed_ = false;
-  }
+  /// Forget everything carried from earlier solves: the next solve starts cold.
+  virtual void reset_warm_start() = 0;
 
  protected:
   /// Fills out_ (all but `seconds`) for a problem of consistent sizes.
   virtual void solve_impl(const QpProblem& problem) = 0;
 
   QpOutcome out_;
-  bool have_warm_ = false;     ///< a previous solution to start the next solve from
-  bool last_relaxed_ = false;  ///< the previous solve needed slack
 };
 
 /// Rows and cones that x violates by more than tol·max(1, |bound|), largest first, as
@@ -175,12 +172,5 @@ void qp_fail_with_fallback(const QpProblem& problem, double feasibility_tol,
 /// Fills `out` (all but iterations and seconds) for a problem without variables: kOptimal
 /// when its constant rows hold, kFailed naming them otherwise.
 void qp_solve_without_variables(const QpProblem& problem, double feasibility_tol, QpOutcome& out);
-
-/// KKT conditions of a problem without cones at (x, λ) of `outcome`, each residual
-/// relative to the size of its terms: stationarity, primal feasibility of equality and
-/// inequality rows, dual sign and complementarity. Returns false with the first failure
-/// in *why (if given). Problems with cones are not checked (false, with a reason).
-bool check_kkt(const QpProblem& problem, const QpOutcome& outcome, double tol,
-               std::string* why = nullptr);
 
 }  // namespace hexdyn

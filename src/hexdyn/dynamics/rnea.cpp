@@ -84,7 +84,6 @@ RobotData::RobotData(const RobotModel& model) {
   }
 }
 
-RobotData make_robot_data(const RobotModel& model) { return RobotData(model); }
 
 void update_kinematics(const RobotModel& model, RobotData& data, const BaseState& state,
                        const VecJ& q) {

@@ -99,9 +99,6 @@ struct RobotData {
   ContactSplit split;                        ///< contact_split
 };
 
-/// Same as the RobotData constructor.
-RobotData make_robot_data(const RobotModel& model);
-
 /// Fills data.X_parent_body and data.X_world_body for the trunk pose of `state`
 /// (W_R_B, p_W only) and joint angles q (18) [rad].
 void update_kinematics(const RobotModel& model, RobotData& data, const BaseState& state,

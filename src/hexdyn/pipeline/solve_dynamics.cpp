@@ -20,6 +20,25 @@ namespace {
 /// step (merged at 1e-9 s), far above the rounding of t.
 constexpr double kEventLeftLimit_s = 1e-10;
 
+/// The allocation of one sample: the back end's answer, the forces and torques of its
+/// solution, and what the solution itself violates.
+struct SampleSolution {
+  /// The back end's outcome (status, iterations, seconds, message); valid until the
+  /// solver's next solve.
+  const QpOutcome* outcome = nullptr;
+  std::array<Vec3, kLegs> foot_forces_W;  ///< [N], terrain on foot, world axes
+  VecJ joint_torque = VecJ::Zero();       ///< [N m]
+  /// Rows and cones the solution violates beyond kViolationThreshold, measured on it
+  /// whatever the back end reported, largest first ("trunk force z by 120, torque L1_femur
+  /// by 0.45"); empty when none.
+  std::string measured_violations;
+  double measured_max_violation = 0.0;  ///< largest violation of any row or cone [N or N m]
+  /// Excess of the constant rows (swing-leg torques) over their limits [N m], and its name
+  /// (AllocationLayout).
+  double constant_excess_Nm = 0.0;
+  std::string constant_violation;
+};
+
 /// The allocation of one sample with its workspace: the dynamics buffers, the problem and
 /// the back end, whose warm start carries from one solve to the next.
 class SampleSolver {
@@ -30,38 +49,26 @@ class SampleSolver {
         data_(model),
         backend_(make_allocation_backend(scene.allocation)) {}
 
-  /// Solves sample i of `kin` under contacts `c`: the back end's outcome (valid until the
-  /// next call), and foot_forces_W, joint_torque and the constant rows' excess.
-  const QpOutcome& solve(const KinematicsResult& kin, int i, const SampleContacts& c) {
+  /// Solves sample i of `kin` under contacts `c`.
+  SampleSolution solve(const KinematicsResult& kin, int i, const SampleContacts& c) {
     const BaseState base = base_state_at(kin, i);
     const VecJ q = kin.joint_position.row(i).transpose();
     const VecJ qd = kin.joint_velocity.row(i).transpose();
     const VecJ qdd = kin.joint_acceleration.row(i).transpose();
     const ContactSplit& split = contact_split(model_, data_, base, q, qd, qdd);
-    constant_violation_.clear();
-    constant_excess_ = build_allocation_problem(scene_.allocation, scene_.contact, split, c.phase,
-                                                c.impact_force_N, c.W_R_contact, qp_, offset_,
-                                                &constant_violation_);
-    const QpOutcome& outcome = backend_->solve(qp_);
-    forces_from_solution(split, c.phase, c.impact_force_N, c.W_R_contact, offset_, outcome.x, F_W_,
-                         tau_);
+    const AllocationLayout layout = build_allocation_problem(
+        scene_.allocation, scene_.contact, split, c.phase, c.impact_force_N, c.W_R_contact, qp_);
+    SampleSolution s;
+    s.outcome = &backend_->solve(qp_);
+    forces_from_solution(split, layout, s.outcome->x, s.foot_forces_W, s.joint_torque);
     // Measured from the solution, not taken from the back end: every row and cone against
     // the fixed threshold (allocation/qp.hpp kViolationThreshold).
-    measured_ = describe_violations(qp_, outcome.x, kViolationThreshold, &measured_max_);
-    return outcome;
+    s.measured_violations =
+        describe_violations(qp_, s.outcome->x, kViolationThreshold, &s.measured_max_violation);
+    s.constant_excess_Nm = layout.constant_excess_Nm;
+    s.constant_violation = layout.constant_violation;
+    return s;
   }
-
-  /// Rows and cones the last solution violates beyond kViolationThreshold, largest first
-  /// ("trunk force z by 120, torque L1_femur by 0.45"), empty when none.
-  const std::string& measured_violations() const { return measured_; }
-  /// Largest violation of any row or cone of the last solution [N or N m].
-  double measured_max_violation() const { return measured_max_; }
-
-  const std::array<Vec3, kLegs>& foot_forces_W() const { return F_W_; }  ///< [N], world
-  const VecJ& joint_torque() const { return tau_; }                      ///< [N m]
-  /// Excess of the constant rows over their limits [N m] (build_allocation_problem).
-  double constant_excess() const { return constant_excess_; }
-  const std::string& constant_violation() const { return constant_violation_; }
 
  private:
   const Scene& scene_;
@@ -69,13 +76,6 @@ class SampleSolver {
   RobotData data_;
   std::unique_ptr<AllocationBackend> backend_;
   QpProblem qp_;
-  std::array<int, kLegs> offset_{};
-  std::array<Vec3, kLegs> F_W_;
-  VecJ tau_ = VecJ::Zero();
-  double constant_excess_ = 0.0;
-  std::string constant_violation_;
-  std::string measured_;
-  double measured_max_ = 0.0;
 };
 
 /// The left limit of the power at sample i (time t_s), whose contact phases differ from
@@ -89,12 +89,12 @@ std::optional<PowerJump> left_limit(SampleSolver& solver, const RobotModel& mode
   const KinematicsResult k_left = sample_kinematics(model, plan, {t_s - kEventLeftLimit_s});
   SampleContacts c_left;
   sample_contacts(k_left, 0, plan.terrain, touchdowns, c_left);
-  solver.solve(k_left, 0, c_left);
+  const SampleSolution left = solver.solve(k_left, 0, c_left);
   if (c_left.phase != previous_phase) return std::nullopt;
   PowerJump jump;
   jump.index = i;
   jump.abs_power_left_W =
-      solver.joint_torque().cwiseProduct(k_left.joint_velocity.row(0).transpose()).cwiseAbs();
+      left.joint_torque.cwiseProduct(k_left.joint_velocity.row(0).transpose()).cwiseAbs();
   return jump;
 }
 
@@ -109,22 +109,23 @@ struct SampleVerdict {
   double max_violation = 0.0;  ///< largest measured violation [N or N m]
 };
 
-SampleVerdict sample_verdict(const QpOutcome& outcome, const SampleSolver& solver,
-                             const SampleContacts& c, double torque_limit_Nm) {
+SampleVerdict sample_verdict(const SampleSolution& s, const SampleContacts& c,
+                             double torque_limit_Nm) {
+  const QpOutcome& outcome = *s.outcome;
   SampleVerdict v{outcome.status, outcome.message,
-                  std::max(outcome.max_violation, solver.measured_max_violation())};
-  if (v.status == SolverStatus::kOptimal && !solver.measured_violations().empty()) {
+                  std::max(outcome.max_violation, s.measured_max_violation)};
+  if (v.status == SolverStatus::kOptimal && !s.measured_violations.empty()) {
     v.status = SolverStatus::kRelaxed;
-    v.message = "relaxed: " + solver.measured_violations();
+    v.message = "relaxed: " + s.measured_violations;
   }
   const bool constant_violated =
-      solver.constant_excess() > kViolationThreshold * std::max(1.0, torque_limit_Nm);
-  if (constant_violated) v.max_violation = std::max(v.max_violation, solver.constant_excess());
+      s.constant_excess_Nm > kViolationThreshold * std::max(1.0, torque_limit_Nm);
+  if (constant_violated) v.max_violation = std::max(v.max_violation, s.constant_excess_Nm);
   if (constant_violated && v.status == SolverStatus::kOptimal) {
     v.status = SolverStatus::kRelaxed;
-    v.message = "relaxed: " + solver.constant_violation();
+    v.message = "relaxed: " + s.constant_violation;
   } else if (constant_violated) {
-    v.message += ", " + solver.constant_violation();
+    v.message += ", " + s.constant_violation;
   }
   if (v.status == SolverStatus::kOptimal) {
     v.message.clear();
@@ -216,23 +217,23 @@ DynamicsResult solve_dynamics(const Scene& scene, const RobotModel& model, const
   for (int i = 0; i < T; ++i) {
     const double t = kin.time_s[i];
     const SampleContacts& c = contacts.samples[i];
-    const QpOutcome& outcome = solver.solve(kin, i, c);
+    const SampleSolution solution = solver.solve(kin, i, c);
     if (i > 0 && c.phase != contacts.samples[i - 1].phase) {
       if (!left_solver) left_solver.emplace(scene, model);
       if (auto jump = left_limit(*left_solver, model, plan, touchdowns, i, t,
                                  contacts.samples[i - 1].phase))
         jumps.push_back(*jump);
     }
-    const SampleVerdict verdict = sample_verdict(outcome, solver, c, scene.allocation.torque_limit_Nm);
-    const VecJ& tau = solver.joint_torque();
+    const SampleVerdict verdict = sample_verdict(solution, c, scene.allocation.torque_limit_Nm);
+    const VecJ& tau = solution.joint_torque;
     dyn.solver_status[i] = verdict.status;
-    dyn.solver_iterations[i] = outcome.iterations;
+    dyn.solver_iterations[i] = solution.outcome->iterations;
     dyn.solver_objective[i] = tau.squaredNorm();
-    dyn.solver_seconds[i] = outcome.seconds;
+    dyn.solver_seconds[i] = solution.outcome->seconds;
     dyn.solver_messages[i] = verdict.message;
     dyn.joint_torque.row(i) = tau.transpose();
     for (int l = 0; l < kLegs; ++l) {
-      const Vec3& F_W = solver.foot_forces_W()[l];
+      const Vec3& F_W = solution.foot_forces_W[l];
       dyn.contact_force.row(i).segment<3>(3 * l) = F_W.transpose();
       double delta = c.impact_penetration_m[l];
       if (c.phase[l] == ContactPhase::kSupport && scene.contact.model == ContactModel::kCompliant)

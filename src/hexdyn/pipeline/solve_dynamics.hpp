@@ -1,6 +1,7 @@
 #pragma once
 /// \file solve_dynamics.hpp
-/// The dynamics stage's driver (DESIGN.md §3): for every sample, the affine split of the
+/// The dynamics stage's driver (docs/theory/stages.md#inverse-dynamics,
+/// docs/theory/allocation.md#measured-violation-flags): for every sample, the affine split of the
 /// equations of motion (dynamics/rnea.hpp), the allocation problem (allocation/problem.hpp)
 /// solved by the scene's back end, and the foot forces, joint torques and penetrations;
 /// then joint power and energy (power/power.hpp), with the left limits of the power at

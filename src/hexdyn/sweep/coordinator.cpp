@@ -162,7 +162,6 @@ void SweepCoordinator::on_result(int w, std::size_t index, double cost_s,
   if (wk.outstanding > 0) --wk.outstanding;
   finish(index);
   if (cost_s > 0.0 && std::isfinite(cost_s)) {
-    cost_sum_ += cost_s;
     ++costs_seen_;
     ema_cost_ = costs_seen_ == 1 ? cost_s : 0.9 * ema_cost_ + 0.1 * cost_s;
     const double lc = std::log(cost_s);

@@ -62,10 +62,7 @@ class SweepCoordinator {
 
   /// Every scenario finished (ok, failed or crashed).
   bool finished() const { return finished_count_ == count_; }
-  std::size_t finished_count() const { return finished_count_; }
   std::size_t count() const { return count_; }
-  /// Mean measured cost [s] of the scenarios finished in this run (0 before any).
-  double mean_cost_s() const { return costs_seen_ ? cost_sum_ / static_cast<double>(costs_seen_) : 0.0; }
   /// Batch size the next assignment would have.
   std::size_t batch_size() const;
   /// Scenarios handed out and not yet finished, of worker `w`.
@@ -77,7 +74,6 @@ class SweepCoordinator {
     std::size_t outstanding = 0;
     bool ready = false, stopped = false;
   };
-  std::size_t undispatched() const { return undispatched_; }
   bool take(std::size_t& index);
   void refill(int w, std::vector<Assignment>& out, std::size_t at_least = 1);
   void finish(std::size_t index);
@@ -98,7 +94,6 @@ class SweepCoordinator {
   std::vector<std::size_t> tail_;     ///< sorted rest, costliest last (taken from the back)
   std::deque<std::size_t> retry_;     ///< crashed once, handed out first
   std::size_t undispatched_ = 0, finished_count_ = 0;
-  double cost_sum_ = 0.0;
   std::size_t costs_seen_ = 0;
   double ema_cost_ = 0.0;
   /// Per axis, per value: sum of log cost and count (the cost model).

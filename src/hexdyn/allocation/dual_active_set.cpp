@@ -1,0 +1,589 @@
+/// \file allocation/dual_active_set.cpp
+/// The dual active-set QP solver (allocation/dual_active_set.hpp).
+///
+/// Warm starts begin with the rows of an earlier solve: the equality-constrained solution
+/// on those rows is computed with the direct factors (Cholesky factor of NᵀH⁻¹N), rows with
+/// multipliers outside their box are dropped (or made elastic) and elastic rows that hold
+/// are released until the set is dual feasible; the iteration then proceeds as usual, and
+/// the Goldfarb–Idnani factors are only built if it has to move. A final point reached by
+/// moving is recomputed from its active set with one step of iterative refinement, so
+/// that active rows hold to rounding.
+#include "hexdyn/allocation/dual_active_set.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <utility>
+
+namespace hexdyn {
+namespace {
+constexpr double kInf = std::numeric_limits<double>::infinity();
+}  // namespace
+
+const char* exit_name(ActiveSetExit r) {
+  switch (r) {
+    case ActiveSetExit::kOptimal:
+      return "optimal";
+    case ActiveSetExit::kInfeasible:
+      return "infeasible";
+    case ActiveSetExit::kIterationLimit:
+      return "stopped at the iteration limit";
+    case ActiveSetExit::kNumerical:
+      return "stopped by a numerically dependent row";
+  }
+  return "unknown";
+}
+
+/// Copies the problem (sizes checked by the caller, n ≥ 1) and factorises H. Returns
+/// false, without factorising, when an entry is not finite (or a bound is NaN).
+bool DualActiveSetQp::load(const QpProblem& p, double rho, double tolerance) {
+  n_ = p.variables();
+  m_eq_ = p.equalities();
+  m_ = m_eq_ + p.inequalities();
+  tolerance_ = tolerance;
+  // Σ 0·v is 0 exactly when every v is finite.
+  double nonfinite = 0.0 * p.constant;
+  for (int j = 0; j < n_; ++j) {
+    for (int i = 0; i < j; ++i) nonfinite += 0.0 * p.H(i, j);  // upper triangle: checked only
+    for (int i = j; i < n_; ++i) {
+      H_(i, j) = H_(j, i) = p.H(i, j);
+      nonfinite += 0.0 * H_(i, j);
+    }
+    g_[j] = p.g[j];
+    nonfinite += 0.0 * g_[j];
+  }
+  any_crossed_ = -1;
+  for (int k = 0; k < m_; ++k) {
+    double lo, hi;
+    if (k < m_eq_) {
+      for (int j = 0; j < n_; ++j) a_(j, k) = p.A(k, j);
+      lo = hi = p.b[k];
+      nonfinite += 0.0 * lo;
+      cap_[k] = kInf;
+    } else {
+      const int i = k - m_eq_;
+      for (int j = 0; j < n_; ++j) a_(j, k) = p.C(i, j);
+      lo = p.lower[i] > -kQpInfinity ? p.lower[i] : -kInf;
+      hi = p.upper[i] < kQpInfinity ? p.upper[i] : kInf;
+      if (std::isnan(p.lower[i]) || std::isnan(p.upper[i])) nonfinite = kInf;
+      cap_[k] = rho * (p.ineq_penalty.size() ? p.ineq_penalty[i] : 1.0);
+    }
+    for (int j = 0; j < n_; ++j) nonfinite += 0.0 * a_(j, k);
+    lo0_[k] = lo;
+    hi0_[k] = hi;
+    if (lo > hi && any_crossed_ < 0) any_crossed_ = k;
+  }
+  if (nonfinite != 0.0) return false;
+  convex_ = factorize();
+  return true;
+}
+
+/// False when H is indefinite (after load).
+
+/// First row with lower > upper, or −1.
+/// δ added to H's diagonal (0 when H was positive definite).
+
+/// Selects the strict (multipliers unbounded) or penalised problem; the penalised one
+/// exchanges crossed bounds.
+void DualActiveSetQp::set_mode(bool relaxed) {
+  relaxed_ = relaxed;
+  for (int k = 0; k < m_; ++k) {
+    lo_[k] = lo0_[k], hi_[k] = hi0_[k];
+    if (relaxed && lo_[k] > hi_[k]) std::swap(lo_[k], hi_[k]);
+    eqtype_[k] = lo_[k] == hi_[k];
+  }
+}
+
+/// Unconstrained minimiser, empty working sets.
+void DualActiveSetQp::start_cold() {
+  clear_sets();
+  ensure_j0();
+  J_.topLeftCorner(n_, n_) = J0_.topLeftCorner(n_, n_);
+  gi_valid_ = true;
+  solve_eqp();
+}
+
+/// Starts from the rows `active` (and `elastic`, penalised mode only), made dual feasible
+/// as described in the file comment. Returns false (and leaves a cold start) when that
+/// does not settle. `dropped` counts the rows given up.
+bool DualActiveSetQp::start_warm(const ActiveRow* active, int n_active, const ActiveRow* elastic, int n_elastic,
+                int& dropped) {
+  std::array<ActiveRow, kN> w;
+  std::array<ActiveRow, kM> e;
+  int nw = 0, ne = 0;
+  for (int i = 0; i < n_active && nw < n_; ++i)
+    if (active[i].row < m_ && finite_side(active[i].row, active[i].side)) w[nw++] = active[i];
+  if (relaxed_)
+    for (int i = 0; i < n_elastic && ne < m_; ++i)
+      if (elastic[i].row < m_ && elastic[i].row >= m_eq_ && cap_[elastic[i].row] < kInf &&
+          finite_side(elastic[i].row, elastic[i].side))
+        e[ne++] = elastic[i];
+  for (int round = 0; round <= 2 * (nw + ne) + 1; ++round) {
+    clear_sets();
+    gi_valid_ = false;
+    for (int i = 0; i < ne; ++i)
+      if (state_[e[i].row] == RowState::kInactive) make_elastic(e[i].row, e[i].side);
+    for (int i = 0; i < nw; ++i) {
+      const ActiveRow r = w[i];
+      if (state_[r.row] != RowState::kInactive || !direct_add(r.row, r.side)) ++dropped;
+    }
+    solve_eqp();
+    // Rows outside their multiplier box leave (or turn elastic); elastic rows that
+    // hold are released.
+    bool changed = false;
+    nw = 0;
+    for (int i = 0; i < q_; ++i) {
+      const int k = act_[i];
+      if (u_[i] < lower_multiplier(k)) {
+        changed = true;
+        ++dropped;
+        if (eqtype_[k] && relaxed_ && ne < kM) e[ne++] = {k, -side_[k]};
+      } else if (u_[i] > upper_multiplier(k)) {
+        changed = true;
+        ++dropped;
+        if (ne < kM) e[ne++] = {k, side_[k]};
+      } else {
+        w[nw++] = {k, side_[k]};
+      }
+    }
+    int kept = 0;
+    for (int i = 0; i < ne; ++i) {
+      const ActiveRow r = e[i];
+      if (state_[r.row] == RowState::kElastic &&
+          residual(r.row, r.side) > side_tol(r.row, r.side)) {
+        changed = true;
+        ++dropped;
+        continue;
+      }
+      e[kept++] = r;
+    }
+    ne = kept;
+    if (!changed) return true;
+  }
+  start_cold();
+  return false;
+}
+
+/// The dual iteration from the current (dual feasible) state; `changes` counts the
+/// active-set changes.
+ActiveSetExit DualActiveSetQp::run(int max_changes, int& changes) {
+  while (true) {
+    int side = 0;
+    const int p = most_violated(side);
+    if (p < 0) return ActiveSetExit::kOptimal;
+    if (!gi_valid_ && !build_gi()) {
+      start_cold();  // the warm set did not factorise: start again from scratch
+      continue;
+    }
+    moved_ = true;
+    if (a_.col(p).head(n_).squaredNorm() == 0.0) {
+      // A zero row whose bounds exclude 0: only relaxation helps.
+      if (!(relaxed_ && cap_[p] < kInf)) return ActiveSetExit::kInfeasible;
+      make_elastic(p, side);
+      if (++changes > max_changes) return ActiveSetExit::kIterationLimit;
+      continue;
+    }
+    double u_plus = 0.0;  // multiplier of p
+    for (;;) {
+      if (++changes > max_changes) return ActiveSetExit::kIterationLimit;
+      // d = Jᵀ n⁺ (n⁺ = side·a_p), z = J₂ d₂, r = R⁻¹ d₁.
+      bool dependent = false;
+      const double d2 = project_row(p, side, dependent);
+      if (!dependent) {
+        z_.head(n_).setZero();
+        for (int i = q_; i < n_; ++i) z_.head(n_) += d_[i] * J_.col(i).head(n_);
+      }
+      upper_solve(R_, q_, d_.data(), r_.data(), rinv_.data());
+      // Step lengths: full step (p holds), a multiplier reaching a bound of its box,
+      // p's multiplier reaching its cap, an elastic row coming to hold.
+      enum class Block { kNone, kFull, kDrop, kCap, kPlusCap, kCross };
+      Block block = Block::kNone;
+      double t = kInf;
+      int which = -1;
+      if (!dependent) {
+        t = std::max(0.0, -residual(p, side) / d2);
+        block = Block::kFull;
+      }
+      for (int i = 0; i < q_; ++i) {
+        const int k = act_[i];
+        if (r_[i] > 0.0) {
+          const double lb = lower_multiplier(k);
+          if (lb > -kInf) {
+            const double ti = std::max(0.0, (u_[i] - lb) / r_[i]);
+            if (ti < t) t = ti, block = Block::kDrop, which = i;
+          }
+        } else if (r_[i] < 0.0) {
+          const double ub = upper_multiplier(k);
+          if (ub < kInf) {
+            const double ti = std::max(0.0, (ub - u_[i]) / -r_[i]);
+            if (ti < t) t = ti, block = Block::kCap, which = i;
+          }
+        }
+      }
+      if (relaxed_ && cap_[p] < kInf) {
+        const double ti = std::max(0.0, cap_[p] - u_plus);
+        if (ti < t) t = ti, block = Block::kPlusCap;
+      }
+      if (relaxed_ && !dependent) {
+        for (int k = m_eq_; k < m_; ++k) {
+          if (state_[k] != RowState::kElastic) continue;
+          const double slope = side_[k] * a_.col(k).head(n_).dot(z_.head(n_));
+          if (!(slope > 0.0)) continue;
+          const double ti = std::max(0.0, -residual(k, side_[k]) / slope);
+          // A row that depends on the active rows keeps its value along z (the slope is
+          // rounding): it cannot come to hold.
+          if (ti < t && independent(k)) t = ti, block = Block::kCross, which = k;
+        }
+      }
+      if (!(t < kInf) || block == Block::kNone) return ActiveSetExit::kInfeasible;
+      // Step.
+      if (!dependent) x_.head(n_) += t * z_.head(n_);
+      for (int i = 0; i < q_; ++i) u_[i] -= t * r_[i];
+      u_plus += t;
+      if (block == Block::kFull) {
+        if (!add_row(p, side, u_plus)) return ActiveSetExit::kNumerical;
+        break;  // p holds: select the next row
+      }
+      if (block == Block::kPlusCap) {
+        make_elastic(p, side);
+        break;
+      }
+      if (block == Block::kCross) {
+        release_elastic(which);
+        if (!add_row(which, side_[which], cap_[which])) return ActiveSetExit::kNumerical;
+        continue;
+      }
+      const int k = act_[which];
+      const int s = side_[k];
+      drop_position(which);
+      if (block == Block::kCap)
+        make_elastic(k, s);
+      else if (eqtype_[k])
+        make_elastic(k, -s);  // an l = u row at −ρ w (penalised mode)
+    }
+  }
+}
+
+/// Recomputes x and the multipliers from the working sets (with one refinement step)
+/// after the iteration moved; a warm start that needed no iteration is already refined.
+void DualActiveSetQp::polish() {
+  if (moved_) solve_eqp();
+}
+
+// --- results ---
+/// Multipliers of all rows into `out` (size rows()), hexdyn's sign.
+void DualActiveSetQp::lambdas(double* out) const {
+  for (int k = 0; k < m_; ++k)
+    out[k] = state_[k] == RowState::kElastic ? side_[k] * cap_[k] : 0.0;
+  for (int i = 0; i < q_; ++i) out[act_[i]] = side_[act_[i]] * u_[i];
+}
+/// Largest violation of any row at x (row units, as describe_violations), and whether a
+/// row is violated beyond tol·max(1, |bound|).
+double DualActiveSetQp::max_violation(double tol, bool& beyond) const {
+  double worst = 0.0;
+  beyond = false;
+  for (int k = 0; k < m_; ++k) {
+    const double c = a_.col(k).head(n_).dot(x_.head(n_));
+    const double lo = lo0_[k], hi = hi0_[k];
+    const double below = lo > -kInf ? lo - c : -1.0;
+    const double above = hi < kInf ? c - hi : -1.0;
+    const bool use_lo = below >= above && lo > -kInf;
+    const double v = use_lo ? below : above;
+    const double bound = use_lo ? lo : hi;
+    if (!(v <= 0.0)) {
+      worst = std::max(worst, v);
+      if (!(v <= tol * std::max(1.0, std::abs(bound)))) beyond = true;
+    }
+  }
+  return worst;
+}
+double DualActiveSetQp::objective(double constant) const {
+  const auto x = x_.head(n_);
+  return 0.5 * (x.dot(H_.topLeftCorner(n_, n_) * x) - delta_ * x.squaredNorm()) +
+         g_.head(n_).dot(x) + constant;
+}
+/// Elastic rows into `out` (capacity kM); returns their number.
+int DualActiveSetQp::elastic_rows(ActiveRow* out) const {
+  int ne = 0;
+  for (int k = 0; k < m_; ++k)
+    if (state_[k] == RowState::kElastic) out[ne++] = {k, side_[k]};
+  return ne;
+}
+
+// --- H = L Lᵀ ---
+
+/// Factorises H (regularised if singular); false when H is indefinite.
+bool DualActiveSetQp::factorize() {
+  double max_diag = 0.0;
+  for (int i = 0; i < n_; ++i) max_diag = std::max(max_diag, std::abs(H_(i, i)));
+  delta_ = 0.0;
+  // A pivot below 1e-9 of the largest diagonal entry: H is singular to working accuracy
+  // (the dual iteration would lose about as many digits as cond(H) has).
+  const double scale = max_diag > 0.0 ? max_diag : 1.0;
+  if (!cholesky(H_, n_, 1e-9 * scale, L_, linv_.data())) {
+    delta_ = 1e-9 * scale;
+    for (int i = 0; i < n_; ++i) H_(i, i) += delta_;
+    if (!cholesky(H_, n_, 0.0, L_, linv_.data())) return false;  // indefinite: not a convex QP
+  }
+  j0_valid_ = false;
+  return true;
+}
+
+/// J₀ = L⁻ᵀ, computed once per problem when the dual iteration first needs it.
+void DualActiveSetQp::ensure_j0() {
+  if (j0_valid_) return;
+  inverse_transpose_of_lower(L_, linv_.data(), n_, J0_);
+  j0_valid_ = true;
+}
+
+// --- rows ---
+
+bool DualActiveSetQp::finite_side(int k, int side) const { return side > 0 ? lo_[k] > -kInf : hi_[k] < kInf; }
+/// β of row k on a side: the row reads side·a_kᵀx ≥ β.
+double DualActiveSetQp::beta(int k, int side) const { return side > 0 ? lo_[k] : -hi_[k]; }
+/// side·a_kᵀx − β (≥ 0 when that side holds).
+double DualActiveSetQp::residual(int k, int side) const {
+  return side * a_.col(k).head(n_).dot(x_.head(n_)) - beta(k, side);
+}
+double DualActiveSetQp::side_tol(int k, int side) const {
+  return tolerance_ * std::max(1.0, std::abs(side > 0 ? lo_[k] : hi_[k]));
+}
+double DualActiveSetQp::lower_multiplier(int k) const {
+  if (!eqtype_[k]) return 0.0;
+  return relaxed_ ? -cap_[k] : -kInf;
+}
+double DualActiveSetQp::upper_multiplier(int k) const { return relaxed_ ? cap_[k] : kInf; }
+
+/// The row with the largest violation / ‖a_k‖ among inactive rows, or −1.
+int DualActiveSetQp::most_violated(int& side) const {
+  int best = -1;
+  double best_score = 0.0;
+  for (int k = 0; k < m_; ++k) {
+    if (state_[k] != RowState::kInactive) continue;
+    const bool lo = lo_[k] > -kInf, hi = hi_[k] < kInf;
+    if (!lo && !hi) continue;
+    const double c = a_.col(k).head(n_).dot(x_.head(n_));
+    double v = 0.0;
+    int s = 0;
+    if (lo && lo_[k] - c > side_tol(k, 1)) {
+      v = lo_[k] - c, s = 1;
+    } else if (hi && c - hi_[k] > side_tol(k, -1)) {
+      v = c - hi_[k], s = -1;
+    } else {
+      continue;
+    }
+    const double norm = a_.col(k).head(n_).norm();
+    const double score = norm > 0.0 ? v / norm : kInf;
+    if (best < 0 || score > best_score) best = k, best_score = score, side = s;
+  }
+  return best;
+}
+
+// --- working sets ---
+
+void DualActiveSetQp::clear_sets() {
+  q_ = 0;
+  for (int k = 0; k < m_; ++k) state_[k] = RowState::kInactive;
+  geff_.head(n_) = g_.head(n_);
+  moved_ = false;
+}
+
+void DualActiveSetQp::make_elastic(int k, int side) {
+  state_[k] = RowState::kElastic;
+  side_[k] = static_cast<std::int8_t>(side);
+  geff_.head(n_) -= (cap_[k] * side) * a_.col(k).head(n_);
+}
+
+void DualActiveSetQp::release_elastic(int k) {
+  state_[k] = RowState::kInactive;
+  geff_.head(n_) += (cap_[k] * side_[k]) * a_.col(k).head(n_);
+}
+
+/// Appends row k to the active set in the direct factorisation (multiplier 0 until
+/// solve_eqp); false when it depends on the active rows.
+bool DualActiveSetQp::direct_add(int k, int side) {
+  if (q_ >= n_) return false;
+  double* m = M_.col(q_).data();
+  for (int j = 0; j < n_; ++j) m[j] = side * a_(j, k);
+  lower_solve(L_, linv_.data(), n_, m);
+  double dn = 0.0;
+  for (int j = 0; j < n_; ++j) dn += m[j] * m[j];
+  // Row q of S_L: S_L y = (M_iᵀ m)_i, pivot² = mᵀm − yᵀy.
+  double yy = 0.0;
+  for (int i = 0; i < q_; ++i) {
+    double s = M_.col(i).head(n_).dot(M_.col(q_).head(n_));
+    for (int j = 0; j < i; ++j) s -= S_(i, j) * S_(q_, j);
+    S_(q_, i) = s * sinv_[i];
+    yy += S_(q_, i) * S_(q_, i);
+  }
+  const double pivot2 = dn - yy;
+  if (dependent_row(pivot2, dn)) return false;
+  S_(q_, q_) = std::sqrt(pivot2);
+  sinv_[q_] = 1.0 / S_(q_, q_);
+  act_[q_] = k;
+  u_[q_] = 0.0;
+  state_[k] = RowState::kActive;
+  side_[k] = static_cast<std::int8_t>(side);
+  ++q_;
+  return true;
+}
+
+/// Builds J and R for the current active set (multipliers kept); false if a row turns
+/// out dependent.
+bool DualActiveSetQp::build_gi() {
+  ensure_j0();
+  J_.topLeftCorner(n_, n_) = J0_.topLeftCorner(n_, n_);
+  const int q = q_;
+  q_ = 0;
+  for (int i = 0; i < q; ++i) {
+    if (!gi_append(act_[i], side_[act_[i]])) {
+      q_ = q;
+      return false;
+    }
+    ++q_;
+  }
+  gi_valid_ = true;
+  return true;
+}
+
+/// d_ = Jᵀ(side·a_k), the row's normal in the coordinates of J. Returns the squared norm of
+/// its part outside the span of the active rows (entries q_ … n−1); `dependent` receives
+/// dependent_row's verdict on it.
+double DualActiveSetQp::project_row(int k, int side, bool& dependent) {
+  for (int i = 0; i < n_; ++i) d_[i] = side * J_.col(i).head(n_).dot(a_.col(k).head(n_));
+  double d2 = 0.0, dn = 0.0;
+  for (int i = 0; i < n_; ++i) dn += d_[i] * d_[i];
+  for (int i = q_; i < n_; ++i) d2 += d_[i] * d_[i];
+  dependent = dependent_row(d2, dn);
+  return d2;
+}
+
+/// Givens update of J and R for row k as active row number q_ (q_ not changed); false
+/// when it depends on the active rows.
+bool DualActiveSetQp::gi_append(int k, int side) {
+  if (q_ >= n_) return false;
+  bool dependent = false;
+  project_row(k, side, dependent);
+  if (dependent) return false;
+  for (int i = n_ - 1; i > q_; --i) {
+    if (d_[i] == 0.0) continue;
+    double c, s, rho;
+    givens(d_[i - 1], d_[i], c, s, rho);
+    d_[i - 1] = rho;
+    d_[i] = 0.0;
+    rotate_columns(J_, n_, i - 1, i, c, s);
+  }
+  for (int i = 0; i <= q_; ++i) R_(i, q_) = d_[i];
+  return true;
+}
+
+/// Whether row k's normal is independent of the active normals (the test of gi_append;
+/// overwrites d_).
+bool DualActiveSetQp::independent(int k) {
+  bool dependent = false;
+  project_row(k, side_[k], dependent);
+  return q_ < n_ && !dependent;
+}
+
+/// Adds row k on `side` with multiplier u to the active set (Givens update of J and R).
+/// False, with nothing changed, when its normal depends on the active normals.
+bool DualActiveSetQp::add_row(int k, int side, double u) {
+  if (!gi_append(k, side)) return false;
+  act_[q_] = k;
+  u_[q_] = u;
+  ++q_;
+  state_[k] = RowState::kActive;
+  side_[k] = static_cast<std::int8_t>(side);
+  return true;
+}
+
+/// Removes the active row at position `pos` (its row becomes inactive).
+void DualActiveSetQp::drop_position(int pos) {
+  state_[act_[pos]] = RowState::kInactive;
+  for (int j = pos; j + 1 < q_; ++j) {
+    for (int i = 0; i <= j + 1; ++i) R_(i, j) = R_(i, j + 1);
+    act_[j] = act_[j + 1];
+    u_[j] = u_[j + 1];
+  }
+  --q_;
+  for (int j = pos; j < q_; ++j) {
+    double c, s, rho;
+    givens(R_(j, j), R_(j + 1, j), c, s, rho);
+    R_(j, j) = rho;
+    R_(j + 1, j) = 0.0;
+    for (int col = j + 1; col < q_; ++col) {
+      const double a = R_(j, col), b = R_(j + 1, col);
+      R_(j, col) = c * a + s * b;
+      R_(j + 1, col) = -s * a + c * b;
+    }
+    rotate_columns(J_, n_, j, j + 1, c, s);
+  }
+}
+
+// --- equality-constrained solutions on the active set ---
+
+/// Minimiser of ½xᵀHx + gradᵀx on the active rows side·a_kᵀx = rhs_k and its
+/// multipliers u, with the Goldfarb–Idnani factors: x₀ = −J Jᵀ grad,
+/// v = R⁻ᵀ(rhs − Nᵀx₀), x = x₀ + J₁ v, u = R⁻¹ v.
+void DualActiveSetQp::eqp_gi(const SmallVector& grad, const double* rhs, SmallVector& x, double* u) {
+  for (int i = 0; i < n_; ++i) w_[i] = J_.col(i).head(n_).dot(grad.head(n_));
+  x.head(n_).setZero();
+  for (int i = 0; i < n_; ++i) x.head(n_) -= w_[i] * J_.col(i).head(n_);
+  for (int i = 0; i < q_; ++i) {
+    const int k = act_[i];
+    t_[i] = rhs[i] - side_[k] * a_.col(k).head(n_).dot(x.head(n_));
+  }
+  upper_transpose_solve(R_, q_, t_.data(), v_.data(), rinv_.data());
+  for (int i = 0; i < q_; ++i) x.head(n_) += v_[i] * J_.col(i).head(n_);
+  upper_solve(R_, q_, v_.data(), u, rinv_.data());
+}
+
+/// The same with the direct factors: y = L⁻¹ grad, S u = rhs + Mᵀy,
+/// x = L⁻ᵀ(M u − y).
+void DualActiveSetQp::eqp_direct(const SmallVector& grad, const double* rhs, SmallVector& x, double* u) {
+  double* y = w_.data();
+  for (int j = 0; j < n_; ++j) y[j] = grad[j];
+  lower_solve(L_, linv_.data(), n_, y);
+  // S_L S_Lᵀ u = t.
+  for (int i = 0; i < q_; ++i) {
+    double s = rhs[i];
+    for (int j = 0; j < n_; ++j) s += M_(j, i) * y[j];
+    for (int j = 0; j < i; ++j) s -= S_(i, j) * v_[j];
+    v_[i] = s * sinv_[i];
+  }
+  for (int i = q_ - 1; i >= 0; --i) {
+    double s = v_[i];
+    for (int j = i + 1; j < q_; ++j) s -= S_(j, i) * u[j];
+    u[i] = s * sinv_[i];
+  }
+  for (int j = 0; j < n_; ++j) x[j] = -y[j];
+  for (int i = 0; i < q_; ++i) x.head(n_) += u[i] * M_.col(i).head(n_);
+  lower_transpose_solve(L_, linv_.data(), n_, x.data());
+}
+
+void DualActiveSetQp::eqp(const SmallVector& grad, const double* rhs, SmallVector& x, double* u) {
+  if (gi_valid_)
+    eqp_gi(grad, rhs, x, u);
+  else
+    eqp_direct(grad, rhs, x, u);
+}
+
+/// x and u on the working sets, with one step of iterative refinement (the gradient
+/// holds ±ρ w terms of elastic rows, much larger than the answer).
+void DualActiveSetQp::solve_eqp() {
+  moved_ = false;
+  for (int i = 0; i < q_; ++i) rhs_[i] = beta(act_[i], side_[act_[i]]);
+  eqp(geff_, rhs_.data(), x_, u_.data());
+  // Residuals: stationarity H x + g_eff − N u, rows rhs − Nᵀx.
+  res_.head(n_) = H_.topLeftCorner(n_, n_) * x_.head(n_) + geff_.head(n_);
+  for (int i = 0; i < q_; ++i) {
+    const int k = act_[i];
+    res_.head(n_) -= (side_[k] * u_[i]) * a_.col(k).head(n_);
+    rhs_[i] -= side_[k] * a_.col(k).head(n_).dot(x_.head(n_));
+  }
+  eqp(res_, rhs_.data(), dx_, du_.data());
+  x_.head(n_) += dx_.head(n_);
+  for (int i = 0; i < q_; ++i) u_[i] += du_[i];
+}
+
+}  // namespace hexdyn
