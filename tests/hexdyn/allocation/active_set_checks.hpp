@@ -14,6 +14,7 @@
 #include "hexdyn/allocation/active_set.hpp"
 #include "hexdyn/allocation/ipopt.hpp"
 #include "hexdyn/allocation/qp.hpp"
+#include "hexdyn/allocation/kkt_check.hpp"
 #include "hexdyn/allocation/qp_test_problems.hpp"
 
 namespace hexdyn::test {
@@ -79,65 +80,6 @@ inline double penalised_objective(const QpProblem& p, const Eigen::VectorXd& x, 
     if (p.upper[i] < kQpInfinity) v += w * beyond(c - p.upper[i], p.upper[i]);
   }
   return p.objective(x) + rho * v;
-}
-
-/// KKT conditions of the L1-penalised problem (allocation_qp.hpp) at (x, λ): stationarity
-/// H x + g − Aᵀλ_eq − Cᵀλ = 0 (relative to the size of its terms), equality rows hold, and
-/// per inequality row the subgradient condition: λ_i = ρw_i below the lower bound, −ρw_i
-/// above the upper bound, 0 strictly inside, within [0, ρw_i] at the lower bound and
-/// [−ρw_i, 0] at the upper one. With H positive definite these certify the unique optimum.
-inline bool check_penalised_kkt(const QpProblem& p, const QpOutcome& out, double rho, double tol,
-                         std::string* why) {
-  std::ostringstream os;
-  const Eigen::VectorXd& x = out.x;
-  const Eigen::MatrixXd H = p.H.selfadjointView<Eigen::Lower>();
-  Eigen::VectorXd r = H * x + p.g;
-  Eigen::VectorXd scale = (H * x).cwiseAbs() + p.g.cwiseAbs();
-  if (p.equalities() > 0) {
-    r -= p.A.transpose() * out.lambda_eq;
-    scale += p.A.cwiseAbs().transpose() * out.lambda_eq.cwiseAbs();
-  }
-  if (p.inequalities() > 0) {
-    r -= p.C.transpose() * out.lambda_ineq;
-    scale += p.C.cwiseAbs().transpose() * out.lambda_ineq.cwiseAbs();
-  }
-  for (int j = 0; j < p.variables(); ++j) {
-    if (std::abs(r[j]) > tol * (1.0 + scale[j])) {
-      os << "stationarity residual " << r[j] << " in variable " << j;
-      *why = os.str();
-      return false;
-    }
-  }
-  for (int i = 0; i < p.equalities(); ++i) {
-    if (std::abs(p.A.row(i).dot(x) - p.b[i]) > tol * (1.0 + std::abs(p.b[i]))) {
-      *why = "equality " + p.eq_name(i) + " violated";
-      return false;
-    }
-  }
-  for (int i = 0; i < p.inequalities(); ++i) {
-    const double kappa = rho * (p.ineq_penalty.size() ? p.ineq_penalty[i] : 1.0);
-    const double c = p.C.row(i).dot(x), lam = out.lambda_ineq[i];
-    const double lo = p.lower[i], hi = p.upper[i];
-    const bool has_lo = lo > -kQpInfinity, has_hi = hi < kQpInfinity;
-    const double dlo = tol * (1.0 + std::abs(lo)), dhi = tol * (1.0 + std::abs(hi));
-    // λ is minus the slope of the penalty: ρw below the lower bound, −ρw above the upper one
-    // (both, cancelling, between crossed bounds); at a kink (within the tolerance d) any
-    // value between the slopes on either side.
-    auto minus_slope = [&](double at) {
-      return (has_lo && at < lo ? kappa : 0.0) - (has_hi && at > hi ? kappa : 0.0);
-    };
-    const double d = std::max(has_lo ? dlo : 0.0, has_hi ? dhi : 0.0);
-    const double lmin = std::min(minus_slope(c - d), minus_slope(c + d));
-    const double lmax = std::max(minus_slope(c - d), minus_slope(c + d));
-    const double ltol = tol * (1.0 + kappa);
-    if (lam < lmin - ltol || lam > lmax + ltol) {
-      os << p.ineq_name(i) << ": C x = " << c << " in [" << lo << ", " << hi << "], λ = " << lam
-         << " not in [" << lmin << ", " << lmax << "]";
-      *why = os.str();
-      return false;
-    }
-  }
-  return true;
 }
 
 /// x of the equality-constrained problem that an answer's rows define, solved again in

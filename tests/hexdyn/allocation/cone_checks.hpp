@@ -2,8 +2,7 @@
 /// \file cone_checks.hpp
 /// Independent checks of answers to cone problems (allocation/cone.hpp), shared by
 /// test_cone.cpp (agreement over whole runs) and test_cone_hard.cpp (hard cases): the KKT
-/// conditions of the cone problem and of its L1-penalised form, which need no cone
-/// multiplier from the back end; the closed-form projection onto one cone; the penalised
+/// conditions by the one checker of kkt_check.hpp; the closed-form projection onto one cone; the penalised
 /// objective; and the penalised problem re-solved in extended precision on the structure
 /// an answer identifies.
 #include <Eigen/Dense>
@@ -17,9 +16,14 @@
 #include "hexdyn/allocation/cone.hpp"
 #include "hexdyn/allocation/ipopt.hpp"
 #include "hexdyn/allocation/qp.hpp"
+#include "hexdyn/allocation/kkt_check.hpp"
 #include "hexdyn/allocation/qp_test_problems.hpp"
 
 namespace hexdyn::test::cone {
+
+using test::check_kkt;
+using test::check_penalised_kkt;
+using test::KktVerdict;
 
 inline double inf_norm(const Eigen::VectorXd& v) { return v.size() ? v.lpNorm<Eigen::Infinity>() : 0.0; }
 
@@ -56,57 +60,6 @@ inline double worst_cone_violation(const QpProblem& p, const Eigen::VectorXd& x)
   return worst;
 }
 
-/// KKT conditions of a cone problem at an answer of status 0, with its row multipliers
-/// only: y = H x + g − Aᵀλ_eq − Cᵀλ_in must vanish off the cones and, on each cone's
-/// (t1, t2, n), lie in the dual cone {μ‖y_t‖ ≤ y_n} and be complementary, yᵀ(t, n) = 0;
-/// the rows' own conditions (feasibility, multiplier signs, complementarity) by check_kkt
-/// on the problem without cones whose gradient absorbs y. The cones must hold. Also
-/// compares the back end's λ_cone with y_n / μ where the cone is active away from its apex.
-inline bool check_cone_kkt(const QpProblem& p, const QpOutcome& out, double tol, std::string* why) {
-  std::ostringstream os;
-  const Eigen::VectorXd& x = out.x;
-  const Eigen::MatrixXd H = p.H.selfadjointView<Eigen::Lower>();
-  Eigen::VectorXd y = H * x + p.g;
-  double scale = 1.0 + inf_norm(H * x) + inf_norm(p.g);
-  if (p.equalities() > 0) y -= p.A.transpose() * out.lambda_eq;
-  if (p.inequalities() > 0) {
-    y -= p.C.transpose() * out.lambda_ineq;
-    scale += inf_norm(p.C.transpose() * out.lambda_ineq);
-  }
-  QpProblem q = p;
-  q.cones.clear();
-  for (std::size_t k = 0; k < p.cones.size(); ++k) {
-    const SecondOrderCone& c = p.cones[k];
-    const Eigen::Vector2d yt(y[c.tangent1], y[c.tangent2]);
-    const double yn = y[c.normal];
-    const Eigen::Vector2d t(x[c.tangent1], x[c.tangent2]);
-    const double n = x[c.normal];
-    if (t.norm() - c.mu * n > tol * std::max(1.0, t.norm())) {
-      os << "cone " << k << " violated by " << t.norm() - c.mu * n;
-      *why = os.str();
-      return false;
-    }
-    if (c.mu * yt.norm() > yn + tol * scale) {
-      os << "cone " << k << ": residual (" << yt.transpose() << ", " << yn << ") not in the dual cone";
-      *why = os.str();
-      return false;
-    }
-    if (std::abs(yt.dot(t) + yn * n) > tol * scale * (1.0 + t.norm() + std::abs(n))) {
-      os << "cone " << k << ": complementarity " << yt.dot(t) + yn * n;
-      *why = os.str();
-      return false;
-    }
-    if (out.lambda_cone.size() == static_cast<int>(p.cones.size()) && t.norm() > 1e-6 && c.mu > 0.0 &&
-        std::abs(out.lambda_cone[k] - yn / c.mu) > 1e-6 * scale / c.mu) {
-      os << "cone " << k << ": λ_cone " << out.lambda_cone[k] << " vs y_n/μ " << yn / c.mu;
-      *why = os.str();
-      return false;
-    }
-    for (int idx : {c.tangent1, c.tangent2, c.normal}) q.g[idx] -= y[idx];
-  }
-  return check_kkt(q, out, tol, why);
-}
-
 /// ½xᵀHx + gᵀx + c + ρ Σ w · (violation of each row and cone), in row units; violations
 /// within rounding (1e-12·(1 + |bound|)) count as 0.
 inline double penalised_objective(const QpProblem& p, const Eigen::VectorXd& x, double rho) {
@@ -123,87 +76,6 @@ inline double penalised_objective(const QpProblem& p, const Eigen::VectorXd& x, 
     v += c.penalty * beyond(std::hypot(x[c.tangent1], x[c.tangent2]) - bound, bound);
   }
   return p.objective(x) + rho * v;
-}
-
-/// KKT conditions of the L1-penalised cone problem at an answer (status 0 or 1), with its
-/// row multipliers only. y = H x + g − Aᵀλ_eq − Cᵀλ_in; off the cones y = 0; per
-/// inequality row λ_i in the subdifferential of its penalty (ρw below the lower bound, −ρw
-/// above the upper one, 0 inside, in between at a bound); per cone, y on (t, n) in minus
-/// the subdifferential of ρw max(0, ‖t‖ − μn): ρw(−t/‖t‖, μ) where the cone is violated, 0
-/// strictly inside, s(−u, μ) with s ∈ [0, ρw], ‖u‖ ≤ 1 and s(‖t‖ − μ n) = 0 on its
-/// boundary. With H positive definite these certify the unique penalised optimum.
-inline bool check_penalised_cone_kkt(const QpProblem& p, const QpOutcome& out, double rho, double tol,
-                              std::string* why) {
-  std::ostringstream os;
-  const Eigen::VectorXd& x = out.x;
-  const Eigen::MatrixXd H = p.H.selfadjointView<Eigen::Lower>();
-  Eigen::VectorXd y = H * x + p.g;
-  Eigen::VectorXd scale = (H * x).cwiseAbs() + p.g.cwiseAbs();
-  if (p.equalities() > 0) {
-    y -= p.A.transpose() * out.lambda_eq;
-    scale += p.A.cwiseAbs().transpose() * out.lambda_eq.cwiseAbs();
-  }
-  if (p.inequalities() > 0) {
-    y -= p.C.transpose() * out.lambda_ineq;
-    scale += p.C.cwiseAbs().transpose() * out.lambda_ineq.cwiseAbs();
-  }
-  std::vector<bool> on_cone(static_cast<std::size_t>(p.variables()), false);
-  for (std::size_t k = 0; k < p.cones.size(); ++k) {
-    const SecondOrderCone& c = p.cones[k];
-    const double kappa = rho * c.penalty;
-    const Eigen::Vector2d t(x[c.tangent1], x[c.tangent2]), yt(y[c.tangent1], y[c.tangent2]);
-    const double yn = y[c.normal], r = t.norm(), excess = r - c.mu * x[c.normal];
-    const double ytol = tol * (1.0 + kappa + scale[c.tangent1] + scale[c.tangent2] + scale[c.normal]);
-    const double d = tol * (1.0 + r);
-    bool ok = true;
-    if (excess > d) {
-      ok = (yt + kappa * t / r).norm() <= ytol && std::abs(yn - kappa * c.mu) <= ytol;
-    } else if (excess < -d) {
-      ok = yt.norm() <= ytol && std::abs(yn) <= ytol;
-    } else {
-      ok = yn >= -ytol && yn <= kappa * c.mu + ytol && c.mu * yt.norm() <= yn + ytol &&
-           std::abs(yt.dot(t) + yn * x[c.normal]) <= ytol * (1.0 + r + std::abs(x[c.normal]));
-    }
-    if (!ok) {
-      os << "cone " << k << ": excess " << excess << ", residual (" << yt.transpose() << ", " << yn
-         << ") not in the penalty's subdifferential (ρw = " << kappa << ")";
-      *why = os.str();
-      return false;
-    }
-    for (int idx : {c.tangent1, c.tangent2, c.normal}) on_cone[static_cast<std::size_t>(idx)] = true;
-  }
-  for (int j = 0; j < p.variables(); ++j) {
-    if (!on_cone[static_cast<std::size_t>(j)] && std::abs(y[j]) > tol * (1.0 + scale[j])) {
-      os << "stationarity residual " << y[j] << " in variable " << j;
-      *why = os.str();
-      return false;
-    }
-  }
-  for (int i = 0; i < p.equalities(); ++i) {
-    if (std::abs(p.A.row(i).dot(x) - p.b[i]) > tol * (1.0 + std::abs(p.b[i]))) {
-      *why = "equality " + p.eq_name(i) + " violated";
-      return false;
-    }
-  }
-  for (int i = 0; i < p.inequalities(); ++i) {
-    const double kappa = rho * (p.ineq_penalty.size() ? p.ineq_penalty[i] : 1.0);
-    const double c = p.C.row(i).dot(x), lam = out.lambda_ineq[i];
-    const double lo = p.lower[i], hi = p.upper[i];
-    const bool has_lo = lo > -kQpInfinity, has_hi = hi < kQpInfinity;
-    auto minus_slope = [&](double at) {
-      return (has_lo && at < lo ? kappa : 0.0) - (has_hi && at > hi ? kappa : 0.0);
-    };
-    const double d = std::max(has_lo ? tol * (1.0 + std::abs(lo)) : 0.0, has_hi ? tol * (1.0 + std::abs(hi)) : 0.0);
-    const double lmin = std::min(minus_slope(c - d), minus_slope(c + d));
-    const double lmax = std::max(minus_slope(c - d), minus_slope(c + d));
-    if (lam < lmin - tol * (1.0 + kappa) || lam > lmax + tol * (1.0 + kappa)) {
-      os << p.ineq_name(i) << ": C x = " << c << " in [" << lo << ", " << hi << "], λ = " << lam << " not in ["
-         << lmin << ", " << lmax << "]";
-      *why = os.str();
-      return false;
-    }
-  }
-  return true;
 }
 
 /// Projection of (t, n) onto {‖t‖ ≤ μ n} in the metric ½|·|²: closed form.

@@ -93,13 +93,12 @@ TEST_CASE("active-set back end: random degenerate problems are solved to certifi
     const QpOutcome& b = cold->solve(p);
     ++trials;
     ++counts[static_cast<int>(a.status)];
-    std::string why;
-    const bool ok = a.status == SolverStatus::kOptimal   ? check_kkt(p, a, 1e-8, &why)
-                    : a.status == SolverStatus::kRelaxed ? check_penalised_kkt(p, a, 1e6, 1e-8, &why)
-                                    : false;
-    certified += ok;
-    if (!ok && first_failure.empty())
-      first_failure = std::to_string(t) + ": " + a.message + " " + why;
+    const KktVerdict kkt = a.status == SolverStatus::kOptimal   ? check_kkt(p, a, 1e-8)
+                           : a.status == SolverStatus::kRelaxed ? check_penalised_kkt(p, a, 1e6, 1e-8)
+                                                                : KktVerdict{false, "failed"};
+    certified += kkt.ok;
+    if (!kkt.ok && first_failure.empty())
+      first_failure = std::to_string(t) + ": " + a.message + " " + kkt.why;
     agreed += a.status == b.status && inf_norm(a.x - b.x) <= 1e-6 * (1.0 + inf_norm(b.x));
   }
   INFO("statuses " << counts[0] << "/" << counts[1] << "/" << counts[2] << "; " << first_failure);
@@ -208,7 +207,6 @@ RunComparison compare_backends(const Scene& scene) {
   auto ipopt = make_ipopt_backend(io);
   auto active = make_active_set_backend(active_set_options_from(scene.allocation));
   QpProblem qp;
-  std::array<int, kLegs> offset{};
   SampleContacts contacts;
   RunComparison r;
   auto note = [&](int i, const std::string& what) {
@@ -222,7 +220,7 @@ RunComparison compare_backends(const Scene& scene) {
         kin.joint_velocity.row(i).transpose(), kin.joint_acceleration.row(i).transpose());
     sample_contacts(kin, i, prep.plan.terrain, prep.touchdowns, contacts);
     build_allocation_problem(scene.allocation, scene.contact, split, contacts.phase,
-                             contacts.impact_force_N, contacts.W_R_contact, qp, offset, nullptr);
+                             contacts.impact_force_N, contacts.W_R_contact, qp);
     const QpOutcome ref = ipopt->solve(qp);
     const QpOutcome& out = active->solve(qp);
     ++r.samples;
@@ -231,10 +229,9 @@ RunComparison compare_backends(const Scene& scene) {
       ++r.status_mismatches;
       note(i, "status " + std::to_string(static_cast<int>(out.status)) + " vs Ipopt " + std::to_string(static_cast<int>(ref.status)));
     }
-    std::string why;
     if (out.status == SolverStatus::kOptimal) {
       r.max_dx_optimal = std::max(r.max_dx_optimal, dx);
-      if (!check_kkt(qp, out, 1e-9, &why)) ++r.kkt_failures, note(i, why);
+      if (const KktVerdict kkt = check_kkt(qp, out, 1e-9); !kkt) ++r.kkt_failures, note(i, kkt.why);
     } else {
       ++r.relaxed;
       r.max_dx_relaxed = std::max(r.max_dx_relaxed, dx);
@@ -245,7 +242,8 @@ RunComparison compare_backends(const Scene& scene) {
       r.max_violation_diff = std::max(
           r.max_violation_diff, inf_norm(row_violations(qp, out.x) - row_violations(qp, ref.x)));
     }
-    if (!check_penalised_kkt(qp, out, rho, 1e-9, &why)) ++r.kkt_failures, note(i, why);
+    if (const KktVerdict kkt = check_penalised_kkt(qp, out, rho, 1e-9); !kkt)
+      ++r.kkt_failures, note(i, kkt.why);
     // The active-set answer is the exact penalised optimum: Ipopt's penalised objective is
     // not below it (to rounding of F, which holds ρ w times the violations).
     const double gap = penalised_objective(qp, ref.x, rho) - penalised_objective(qp, out.x, rho);

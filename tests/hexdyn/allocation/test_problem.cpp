@@ -74,7 +74,6 @@ int paper_problem_at(const Scene& scene, double t, QpProblem& qp) {
   std::array<ContactPhase, kLegs> phase{};
   std::array<double, kLegs> f_impact{};
   std::array<Mat3, kLegs> W_R_c;
-  std::array<int, kLegs> offset{};
   int impacts = 0;
   for (int l = 0; l < kLegs; ++l) {
     phase[l] = s.feet[l].in_swing ? ContactPhase::kSwing : ContactPhase::kSupport;
@@ -86,8 +85,7 @@ int paper_problem_at(const Scene& scene, double t, QpProblem& qp) {
     f_impact[td.leg] = transient_force_at(td.transient, t - td.t_s);
     ++impacts;
   }
-  build_allocation_problem(scene.allocation, scene.contact, split, phase, f_impact, W_R_c, qp,
-                           offset, nullptr);
+  build_allocation_problem(scene.allocation, scene.contact, split, phase, f_impact, W_R_c, qp);
   return impacts;
 }
 
@@ -170,9 +168,7 @@ TEST_CASE("allocation problem: the structural key tells row layouts apart as the
           frames[l] = Quat(g(rng), g(rng), g(rng), g(rng)).normalized().toRotationMatrix();
         }
         QpProblem qp;
-        std::array<int, kLegs> offset{};
-        build_allocation_problem(alloc, scene.contact, split, phase, f_impact, frames, qp, offset,
-                                 nullptr);
+        build_allocation_problem(alloc, scene.contact, split, phase, f_impact, frames, qp);
         keys[rep] = qp.structure;
         names[rep] = qp.ineq_names;
         for (const SecondOrderCone& c : qp.cones) names[rep].push_back(c.name);

@@ -34,9 +34,9 @@ TEST_CASE("allocation: torque rows use each joint's own limit", "[allocation][li
     alloc.joint_torque_limit_Nm.reset();
     if (per_joint) alloc.joint_torque_limit_Nm = limits;
     QpProblem qp;
-    std::array<int, kLegs> offset;
-    std::string violation;
-    const double worst = build_allocation_problem(alloc, contact, split, phase, impact, R, qp, offset, &violation);
+    const AllocationLayout layout = build_allocation_problem(alloc, contact, split, phase, impact, R, qp);
+    const double worst = layout.constant_excess_Nm;
+    const std::string& violation = layout.constant_violation;
     int rows = 0;
     for (int i = 0; i < qp.inequalities(); ++i) {
       for (int k = 0; k < kJoints; ++k) {

@@ -23,12 +23,14 @@
 #include "hexdyn/allocation/problem.hpp"
 #include "hexdyn/contact/touchdowns.hpp"
 #include "hexdyn/allocation/ipopt.hpp"
+#include "hexdyn/allocation/kkt_check.hpp"
 #include "hexdyn/kinematics/kinematics.hpp"
 #include "hexdyn/pipeline/pipeline.hpp"
 #include "hexdyn/model/robot_model.hpp"
 
 namespace hexdyn {
 namespace {
+using test::check_kkt;
 
 /// Step of the momentum finite differences [s]. The stencils below are 4th order:
 /// truncation ~h⁴·d⁵p/dt⁵ ≈ 1e-14 N, round-off ~10·ε·|p|/h ≈ 1e-11 N for |p| ≈ 1.
@@ -381,7 +383,6 @@ TEST_CASE("paper run: physics holds on every sample", "[paper][pipeline]") {
   reference_options.tolerance = 1e-12;
   auto backend = make_ipopt_backend(reference_options);
   QpProblem qp;
-  std::array<int, kLegs> offset{};
   int kkt_with_impact = 0;
   double worst_force_diff = 0.0;
   for (int i : kkt_samples) {
@@ -404,18 +405,13 @@ TEST_CASE("paper run: physics holds on every sample", "[paper][pipeline]") {
                         : 0.0;
       kkt_with_impact += phase[l] == ContactPhase::kImpact;
     }
-    std::string constant_violation;
-    const double excess =
-        build_allocation_problem(scene.allocation, scene.contact, split, phase, f_impact, W_R_c, qp,
-                                 offset, &constant_violation);
-    CHECK(excess == 0.0);
+    const AllocationLayout layout =
+        build_allocation_problem(scene.allocation, scene.contact, split, phase, f_impact, W_R_c, qp);
+    CHECK(layout.constant_excess_Nm == 0.0);
     backend->reset_warm_start();
     const QpOutcome& out = backend->solve(qp);
     REQUIRE(out.status == SolverStatus::kOptimal);
-    std::string why;
-    const bool kkt = check_kkt(qp, out, 1e-6, &why);
-    INFO(why);
-    CHECK(kkt);
+    CHECK(check_kkt(qp, out, 1e-6));
     // The QP is strictly convex (each support leg's J_j is invertible), so the stored
     // solution is this one up to the solver's accuracy: the objective to ~1e-11 relative,
     // the forces to ~1e-5 N where the smallest eigenvalue of H is ~0.01 m² (Ipopt's tol
@@ -423,7 +419,7 @@ TEST_CASE("paper run: physics holds on every sample", "[paper][pipeline]") {
     CHECK(std::abs(out.objective - dyn.solver_objective[i]) <= 1e-9 * (1.0 + out.objective));
     std::array<Vec3, kLegs> F_new;
     VecJ tau_new;
-    forces_from_solution(split, phase, f_impact, W_R_c, offset, out.x, F_new, tau_new);
+    forces_from_solution(split, layout, out.x, F_new, tau_new);
     for (int l = 0; l < kLegs; ++l) {
       const double d = (F_new[l] - foot_vec(dyn.contact_force, i, l)).cwiseAbs().maxCoeff();
       worst_force_diff = std::max(worst_force_diff, d);
