@@ -1,5 +1,6 @@
 #!/usr/bin/python3
-"""Checks a hexdyn-result/1 file against the contract (DESIGN.md section 4).
+"""Checks a hexdyn-result/1 file against the contract (src/hexdyn/io/schema.hpp,
+docs/user/output.md).
 
     /usr/bin/python3 analysis/check_result.py FILE.h5 [--expect-mass 6.7] [--dynamics]
 

@@ -1,7 +1,7 @@
 """Reader for hexdyn result files (`hexdyn-result/1`) and sweep files (`hexdyn-sweep/1`).
 
-The layout is the contract of DESIGN.md section 4; the tables below mirror
-src/hexdyn/schema.hpp (path -> (shape, units, element type)). Shapes use the
+The layout is the contract of docs/user/output.md; the tables below mirror
+src/hexdyn/io/schema.hpp (path -> (shape, units, element type)). Shapes use the
 symbols "T" (samples), "n" (touchdowns) and "m" (solver messages).
 
     from hexdyn_results import open_result

@@ -1,5 +1,5 @@
-# `cmake --install build --prefix P` (README "Installation"): everything a cluster module
-# needs, laid out so that the installed share/hexdyn/ mirrors the repository:
+# `cmake --install build --prefix P` (docs/user/sweeps.md#an-installed-hexdyn): everything a
+# cluster module needs, laid out so that the installed share/hexdyn/ mirrors the repository:
 #   P/bin/hexdyn                                  the program
 #   P/share/hexdyn/configs/                       scenes, sweeps, variants, study files
 #   P/share/hexdyn/pipelines/                     shell pipelines and slurm_sweep.sbatch

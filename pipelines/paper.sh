@@ -11,7 +11,7 @@ mkdir -p "$out"
 "$HEXDYN_BUILD/hexdyn" run "$HEXDYN_ROOT/configs/paper.yaml" -o "$out/paper.h5"
 "$HEXDYN_PYTHON" "$HEXDYN_ROOT/analysis/plot_kinematics.py" "$out/paper.h5" "$out"
 "$HEXDYN_PYTHON" "$HEXDYN_ROOT/analysis/plot_paper.py" "$out/paper.h5" "$out"
-# The paper's statements against this run (README "Results against the paper").
+# The paper's statements against this run (docs/validation/paper.md).
 "$HEXDYN_PYTHON" "$HEXDYN_ROOT/analysis/paper_statements.py" "$out/paper.h5"
 echo "paper: results in $out:" >&2
 ls -1 "$out" >&2

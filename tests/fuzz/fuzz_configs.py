@@ -176,7 +176,7 @@ def mutate_text(text, rng):
 def nan_free(path):
     """None if every float dataset of an HDF5 file is finite, else the first bad path. In
     a sweep file the metrics of scenarios that were not computed (status != 0) are NaN by
-    contract (README "Parameter sweeps"); only the computed rows are checked there."""
+    contract (docs/user/sweeps.md); only the computed rows are checked there."""
     import h5py
     bad = []
 

@@ -19,7 +19,7 @@ reference, got, tolerance); exit status 1 if any does, 0 if all agree. ctest run
 `update` is the explicit switch that rewrites the reference (temporary file + rename).
 It requires --reason, a sentence on the deliberate change that moved the results, which
 is stored in the file so that it shows in the diff; it first prints how every quantity
-moved. No test runs it. When an update is legitimate: README, "Regression reference".
+moved. No test runs it. When an update is legitimate: docs/dev/testing.md#updating-the-pin.
 
 `noise` reruns both with one input of configs/paper.yaml at a time moved by a few units
 in the last place and prints, per quantity, the largest change against its rtol: the
@@ -78,7 +78,8 @@ DEFAULT_REFERENCE = os.path.join(HERE, "reference.json")
 DEFAULT_SOURCE = os.path.normpath(os.path.join(HERE, "..", ".."))
 PAPER_CONFIG = "configs/paper.yaml"
 SMOKE_SWEEP = "configs/sweeps/smoke.yaml"
-STANDARD_GRAVITY = 9.81  # m/s², DESIGN.md §2; only for the weight in fz_between_impacts
+# m/s², docs/theory/conventions.md#frames; only for the weight in fz_between_impacts
+STANDARD_GRAVITY = 9.81
 
 # Tolerances. One binary gives bit-identical files run after run, and a Debug (-O0)
 # build of the same commit gives the same bits as the Release build; but any change of
@@ -91,7 +92,7 @@ STANDARD_GRAVITY = 9.81  # m/s², DESIGN.md §2; only for the weight in fz_betwe
 # quantity, relative to its scale, is in the comment. Every rtol is at least ~15 times
 # that and as tight as it allows (a build with -march=native -ffp-contract=fast, i.e.
 # FMA, moves the quantities by as much as these perturbations and passes); quantities outside the transients stay at 1e-9, which
-# catches a 1e-8 change of gravity (README, "Regression reference").
+# catches a 1e-8 change of gravity (docs/dev/testing.md#regression-pin).
 EXACT = 0.0
 SMOOTH = 1e-9        # no transient sample involved: noise <= 1e-14
 EVENT = 1e-8         # touchdown ODE with event location: noise <= 5e-11
@@ -434,8 +435,8 @@ def build_reference(results, meta, reason):
         "format": FORMAT,
         "about": ("Pinned key results of the paper run and the smoke sweep; checked by "
                   "tests/regression/regression.py check (ctest regression.paper_and_smoke). "
-                  "Written only by `regression.py update --reason`; see README, "
-                  "'Regression reference'."),
+                  "Written only by `regression.py update --reason`; see "
+                  "docs/dev/testing.md#updating-the-pin."),
         "tolerance_rule": ("|got_i - ref_i| <= rtol * scale for every element, scale = max "
                            "|ref| over the quantity (NaN ignored; 1 if all are 0); null is "
                            "NaN and must match NaN; rtol 0 is exact"),
@@ -504,7 +505,7 @@ def cmd_check(args):
         print(f"regression: FAILED: {len(lines)} of {n} quantities differ from "
               f"{args.reference} (hexdyn {meta['git_commit'][:12]}; reference from "
               f"{reference['generated']['hexdyn_git_commit'][:12]}). If the change is "
-              f"deliberate, see README 'Regression reference' before updating.")
+              f"deliberate, see docs/dev/testing.md#updating-the-pin before updating.")
         return 1
     print(f"regression: {n} quantities of the paper run and the smoke sweep agree with "
           f"{args.reference}")

@@ -31,7 +31,7 @@ for f in bin/hexdyn share/hexdyn/configs/paper.yaml share/hexdyn/configs/sweeps/
 done
 [ -x "$S/pipelines/slurm_sweep.sbatch" ] || fail "installed slurm_sweep.sbatch is not executable"
 
-# What a module sets (README "Installation").
+# What a module sets (docs/user/sweeps.md#an-installed-hexdyn).
 export PATH="$P/bin:$PATH" PYTHONPATH="$S/analysis${PYTHONPATH:+:$PYTHONPATH}" HEXDYN_SHARE="$S"
 cd "$WORK/run"
 version="$(hexdyn --version)" || fail "hexdyn --version"

@@ -1,7 +1,7 @@
 #pragma once
 /// \file impact.hpp
 /// The compliant normal contact law (paper eq. 7–8, the MSC.ADAMS IMPACT function) and
-/// the touchdown transient it produces (DESIGN.md §3 "Contact", "Impact").
+/// the touchdown transient it produces (docs/theory/contact.md).
 ///
 /// Sign conventions: δ = z1 − z is the penetration of the foot into the terrain [m],
 /// positive in contact; δ̇ [m/s] is positive while the foot moves into the terrain.
@@ -21,7 +21,7 @@ double impact_step(double x, double x0, double h0, double x1, double h1);
 /// x-derivative of `impact_step` (0 outside (x0, x1)).
 double impact_step_derivative(double x, double x0, double h0, double x1, double h1);
 
-/// Normal force of the IMPACT law [N] (DESIGN.md §3):
+/// Normal force of the IMPACT law [N] (docs/theory/contact.md#compliant-impact-law):
 ///   F_n = max(0, K δ^e + C_max · STEP(δ; 0 → 0, p → 1) · δ̇)  for δ > 0,  0 otherwise.
 /// delta_m: penetration δ [m]; delta_rate_mps: δ̇ [m/s], > 0 moving into the terrain.
 /// The clip removes the sticky pull of the damper on a fast rebound.

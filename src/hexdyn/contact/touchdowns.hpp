@@ -1,7 +1,7 @@
 #pragma once
 /// \file touchdowns.hpp
-/// The contact stage (DESIGN.md §3 "Contact", "Impact"): every touchdown of a plan with
-/// its transient (impact.hpp), and the contact state of every leg at every sample.
+/// The contact stage (docs/theory/contact.md): every touchdown of a plan with its
+/// transient (impact.hpp), and the contact state of every leg at every sample.
 ///
 /// Contact frame of a foot: n the terrain normal (+z on treads), t1 the world x axis
 /// made orthogonal to n, t2 = n × t1.

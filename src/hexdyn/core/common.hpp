@@ -1,6 +1,7 @@
 #pragma once
 /// \file common.hpp
-/// Sizes, Eigen types and naming conventions shared by every stage (DESIGN.md §2).
+/// Sizes, Eigen types and naming conventions shared by every stage
+/// (docs/theory/conventions.md).
 ///
 /// Legs: 1 front-left, 2 front-right, 3 middle-left, 4 middle-right, 5 rear-left,
 /// 6 rear-right; in code legs are 0-based (leg index l = i - 1). Joints per leg:

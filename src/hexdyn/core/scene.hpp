@@ -82,7 +82,7 @@ struct GaitParams {
   double lower_fraction = 0.2;        ///< nominal share of swing time spent lowering
 };
 
-/// How the trunk's start P0(0) is given (README "Posture"; planning/posture.hpp).
+/// How the trunk's start P0(0) is given (docs/theory/stages.md#posture; planning/posture.hpp).
 enum class PostureMode {
   kAbsolute,  ///< motion.initial_position: P0(0) in G0 as given
   kRelative,  ///< motion.posture.height and start_y: P0(0) relative to the terrain

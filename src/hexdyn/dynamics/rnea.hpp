@@ -1,7 +1,7 @@
 #pragma once
 /// \file rnea.hpp
-/// Floating-base rigid-body dynamics of the hexapod (DESIGN.md §3): recursive
-/// Newton–Euler (RNEA), composite-rigid-body mass matrix (CRBA), foot Jacobians,
+/// Floating-base rigid-body dynamics of the hexapod (docs/theory/stages.md#inverse-dynamics):
+/// recursive Newton–Euler (RNEA), composite-rigid-body mass matrix (CRBA), foot Jacobians,
 /// whole-robot momentum and the affine split τ = τ₀ − Σ J_jᵀ F used by allocation.
 ///
 /// Calling convention (Pinocchio's Model/Data): the `RobotModel` is const; every
@@ -9,7 +9,7 @@
 /// the workspace and returns a const reference to its result. No algorithm allocates.
 ///
 /// Generalised coordinates (24 velocities, trunk first, then the 18 joints in flat
-/// joint order k = 3 l + j of DESIGN.md §2):
+/// joint order k = 3 l + j, docs/theory/conventions.md#flat-joint-index):
 ///
 ///   ν  = [ v_W ; ω_W ; q̇ ]     v_W: velocity of the trunk origin P0 [m/s], world axes
 ///                               ω_W: trunk angular velocity [rad/s], world axes
@@ -52,7 +52,8 @@ struct Momentum {
   double mass_kg = 0.0;               ///< total mass [kg]
 };
 
-/// Affine split of the equations of motion in the foot forces (DESIGN.md §3):
+/// Affine split of the equations of motion in the foot forces
+/// (docs/theory/stages.md#inverse-dynamics):
 ///   trunk rows:  Σ_l JbT[l] F_l = trunk_rhs          (6 equations)
 ///   joint rows:  τ = tau0 − Σ_l JjT[l] F_l           (18 torques)
 /// F_l: force of the terrain on foot l [N], world axes. Rows of JbT are (force [N],
@@ -138,7 +139,8 @@ const std::array<Vec3, kLegs>& foot_bias_accelerations(const RobotModel& model, 
 const Momentum& robot_momentum(const RobotModel& model, RobotData& data, const BaseState& state,
                                const VecJ& q, const VecJ& qd);
 
-/// The affine split of DESIGN.md §3 for the prescribed motion (state, q, qd, qdd).
+/// The affine split (docs/theory/stages.md#inverse-dynamics) for the prescribed motion
+/// (state, q, qd, qdd).
 /// Runs rnea without foot forces (data.tau holds its result afterwards) and
 /// foot_jacobians. Result in data.split.
 const ContactSplit& contact_split(const RobotModel& model, RobotData& data, const BaseState& state,

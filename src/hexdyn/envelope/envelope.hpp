@@ -1,6 +1,6 @@
 #pragma once
 /// \file envelope.hpp
-/// The climbable envelope (README "Climbable envelope"): the largest stair riser a robot
+/// The climbable envelope (docs/user/envelope.md): the largest stair riser a robot
 /// can climb, per tread depth, duty factor and peak speed, under three criteria:
 ///
 ///   kinematic  the planned motion is admitted by the legs (planning/posture.hpp): with

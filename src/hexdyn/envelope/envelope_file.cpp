@@ -84,7 +84,7 @@ void write_file(H5Writer& w, const EnvelopeSpec& spec, const EnvelopeResult& r) 
 constexpr const char* kUsage = R"(usage: hexdyn envelope ENVELOPE -o FILE [-v]
   Finds the largest stair riser the robot climbs, per tread depth, duty factor and peak
   speed, under the kinematic, torque and friction criteria, and writes the
-  hexdyn-envelope/1 file FILE (README "Climbable envelope"; configs/envelope/paper.yaml
+  hexdyn-envelope/1 file FILE (docs/user/envelope.md; configs/envelope/paper.yaml
   documents the keys). -v prints one line per cell and criterion.
 )";
 

@@ -255,7 +255,7 @@ void read_allocation(Reader& r, AllocationParams& a, const LoadedUrdfRobot& urdf
   // The loosest tolerance at which both back ends still meet the fixed violation threshold
   // (allocation/qp.hpp kViolationThreshold) on the paper scene: from 1e-9 to 1e-5 the
   // active-set and Ipopt runs flag the same 270 of 560 samples; at 1e-4 Ipopt flags 19 more,
-  // at 1e-2 the active set 16 more (README "Measured-violation flags").
+  // at 1e-2 the active set 16 more (docs/theory/allocation.md#measured-violation-flags).
   constexpr double kLoosestTolerance = 1e-5;
   a.tolerance = r.number_or("allocation.tolerance", 1e-9, positive());
   if (a.tolerance > kLoosestTolerance)

@@ -1,6 +1,6 @@
 #pragma once
 /// \file output.hpp
-/// Writing a run as one `hexdyn-result/1` HDF5 file (DESIGN.md §4, schema.hpp).
+/// Writing a run as one `hexdyn-result/1` HDF5 file (schema.hpp; docs/user/output.md).
 #include <cstddef>
 #include <string>
 #include <vector>

@@ -1,6 +1,7 @@
 #pragma once
 /// \file schema.hpp
-/// The HDF5 contracts of hexdyn (DESIGN.md §4) in one place: `hexdyn-result/1` (one
+/// The HDF5 contracts of hexdyn in one place (described in docs/user/output.md, whose
+/// tables are generated from this header): `hexdyn-result/1` (one
 /// run), `hexdyn-sweep/1` (a parameter sweep) and `hexdyn-envelope/1` (the climbable
 /// envelope, envelope/envelope.hpp), each with its schema name and version,
 /// every /meta attribute, and for every dataset its path, shape, element type and

@@ -5,8 +5,8 @@
 /// Jacobian and its time derivative).
 ///
 /// Tree: body 0 is the trunk (trunk + payload, floating); body b = 1 + k is moved by
-/// joint k (flat index, DESIGN.md §2), its parent is the trunk for a coxa and the
-/// previous link otherwise.
+/// joint k (flat index, docs/theory/conventions.md#flat-joint-index), its parent is the
+/// trunk for a coxa and the previous link otherwise.
 ///
 /// Leg frame H_l ("hip frame"): the coxa joint frame at zero coxa angle, origin at the
 /// coxa joint (p_hip_B, R_B_H = R_parent_joint of the coxa body). The foot point is

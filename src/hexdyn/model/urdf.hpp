@@ -1,6 +1,7 @@
 #pragma once
 /// \file urdf.hpp
-/// The robot exactly as simulated, as URDF text (DESIGN.md §4 `/model/urdf`).
+/// The robot exactly as simulated, as URDF text (`/model/urdf`,
+/// docs/theory/conventions.md#robots-from-urdf).
 ///
 /// Links and joints (i = 1..6 is the leg number, leg index l = i − 1):
 ///   trunk               root; its frame is the body frame L0 at P0 (a URDF robot: its own
@@ -27,7 +28,8 @@
 
 namespace hexdyn {
 
-/// `<limit effort>` of a joint whose model gives none (a YAML robot): DESIGN.md §2 torque limit.
+/// `<limit effort>` of a joint whose model gives none (a YAML robot): the paper robot's
+/// torque limit (docs/theory/allocation.md#torque-limits).
 inline constexpr double kUrdfEffortLimitNm = 6.0;
 /// `<limit velocity>` of a joint whose model gives none [rad/s].
 inline constexpr double kUrdfVelocityLimitRadps = 10.0;

@@ -3,8 +3,8 @@
 /// A hexapod read from a URDF (urdf_reader.hpp), in hexdyn's conventions, and the
 /// RobotModel built from it. Nothing here depends on the URDF parser.
 ///
-/// Trunk frame B (DESIGN.md §2: x right, y forward, z up) has its origin at the URDF
-/// trunk link's origin; its axes are the trunk link's rotated by B_R_U, which maps the
+/// Trunk frame B (docs/theory/conventions.md#frames: x right, y forward, z up) has its origin at
+/// the URDF trunk link's origin; its axes are the trunk link's rotated by B_R_U, which maps the
 /// description's forward axis (UrdfReadOptions::forward_axis, default +x as in ROS
 /// REP-103) to +y and its +z to +z. Every link joined to the trunk link by fixed joints is
 /// part of the trunk body. Each leg is a chain of three revolute (or continuous) joints

@@ -25,9 +25,10 @@ std::vector<Touchdown> physical_touchdowns(const Scene& scene, const RobotModel&
   return resolve_touchdowns(touchdown_model, data, plan, scene.contact);
 }
 
-/// /base/* of a URDF robot describe its root link frame (DESIGN.md §3 "Robots"): the
-/// trunk frame's pose, velocities and accelerations moved to the root link, a fixed frame
-/// at p_B_root with axes B_R_root. A YAML robot's root link is the trunk frame: unchanged.
+/// /base/* of a URDF robot describe its root link frame
+/// (docs/theory/conventions.md#robots-from-urdf): the trunk frame's pose, velocities and
+/// accelerations moved to the root link, a fixed frame at p_B_root with axes B_R_root. A YAML
+/// robot's root link is the trunk frame: unchanged.
 void describe_base_at_root_link(const RobotModel& model, KinematicsResult& kin) {
   if (model.p_B_root.isZero(0.0) && model.B_R_root == Mat3::Identity()) return;
   for (int i = 0; i < kin.samples(); ++i) {

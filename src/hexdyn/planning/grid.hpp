@@ -1,6 +1,6 @@
 #pragma once
 /// \file grid.hpp
-/// The output grid (README "Output grid"): the instants at which a run is sampled,
+/// The output grid (docs/theory/output-grid.md): the instants at which a run is sampled,
 /// uniform, or refined around contact events.
 #include <vector>
 

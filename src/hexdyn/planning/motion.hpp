@@ -1,7 +1,7 @@
 #pragma once
 /// \file motion.hpp
-/// Trunk motion along the mean terrain slope (DESIGN.md §2): the trunk frame keeps
-/// Bryant angles (α0, 0, 0) with α0 the mean slope, and P0 travels along
+/// Trunk motion along the mean terrain slope (docs/theory/stages.md#motion-planning): the
+/// trunk frame keeps Bryant angles (α0, 0, 0) with α0 the mean slope, and P0 travels along
 /// e = (0, cos α0, sin α0) with a C² speed profile: a smootherstep ramp from rest to
 /// the cruise speed, cruise, and the mirrored ramp to rest. One gait cycle is one
 /// stride of travel, s0/β horizontally, so the gait phase τ = travel / stride.

@@ -1,11 +1,11 @@
 #pragma once
 /// \file posture.hpp
-/// The trunk's posture relative to the terrain, and the automatic posture (README
-/// "Posture").
+/// The trunk's posture relative to the terrain, and the automatic posture
+/// (docs/theory/stages.md#posture).
 ///
-/// Reference line. The trunk travels parallel to the terrain's mean slope (DESIGN.md §2),
-/// so its height above a line of that slope is constant. The reference line is, in the
-/// y-z plane of G0 (heights independent of x):
+/// Reference line. The trunk travels parallel to the terrain's mean slope
+/// (docs/theory/stages.md#motion-planning), so its height above a line of that slope is
+/// constant. The reference line is, in the y-z plane of G0 (heights independent of x):
 ///   stairs  the mean slope line through the tread centres,
 ///           z_ref(y) = ground + h_s ((y − y_r)/b_s + 1/2), y_r the first riser
 ///           (it passes through the centre of the ground tread before y_r as well);

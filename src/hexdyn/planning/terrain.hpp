@@ -19,7 +19,8 @@ class Terrain {
   Vec3 normal(double x, double y) const;
   /// Highest terrain under the horizontal segment from a to b (z ignored) [m].
   double max_height_along(const Vec3& a, const Vec3& b) const;
-  /// Mean inclination along +y [rad]: atan(h_s/b_s) on stairs (DESIGN.md §2).
+  /// Mean inclination along +y [rad]: atan(h_s/b_s) on stairs
+  /// (docs/theory/conventions.md#trunk-orientation-bryant-angles).
   double mean_slope_rad() const;
   /// Stairs: distance from y to the nearest tread edge (nosing behind, riser ahead)
   /// of the tread containing y; +inf on flat ground and slopes [m].

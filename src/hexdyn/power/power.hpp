@@ -1,8 +1,8 @@
 #pragma once
 /// \file power.hpp
-/// The power stage (paper eq. 18): joint power from the torques and joint rates, its
-/// integral (the energy) piece by piece between the jumps at contact events, and the cost
-/// of transport.
+/// The power stage (docs/theory/stages.md#power-and-energy; the paper's P_in of its
+/// Fig. 5): joint power from the torques and joint rates, its integral (the energy) piece
+/// by piece between the jumps at contact events, and the cost of transport.
 #include <vector>
 
 #include "hexdyn/core/result.hpp"

@@ -1,6 +1,7 @@
 #pragma once
 /// \file sweep.hpp
-/// Parameter sweeps without MPI (DESIGN.md §4), one header per concern:
+/// Parameter sweeps without MPI (docs/user/sweeps.md; the file layout:
+/// docs/user/output.md), one header per concern:
 ///   spec.hpp              the sweep file, its grid of scenarios, each value validated once;
 ///   scenario_factory.hpp  a scenario's scene, built when it starts from the base tree;
 ///   scenario.hpp          one scenario run as a summary row (status, metrics);

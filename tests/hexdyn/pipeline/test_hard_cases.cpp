@@ -1,6 +1,6 @@
-// Hard cases (README "Hard cases") of kinematics, allocation and gait; the contact and
-// grid ones are in test_hard_contact.cpp: each runs the real pipeline (or the touchdown ODE
-// alone) on a scene at the edge of what the model can do and checks exactly what comes
+// Hard cases (docs/validation/hard-cases.md) of kinematics, allocation and gait; the contact and
+// grid ones are in test_hard_contact.cpp: each runs the real pipeline (or the touchdown ODE alone)
+// on a scene at the edge of what the model can do and checks exactly what comes
 // out — finite datasets with the flags set where they must be, or one named exception —
 // and, where possible, the numbers against a second computation made here:
 //  - a leg within 1e-6 rad of full extension: the IK margin scanned here on the run's

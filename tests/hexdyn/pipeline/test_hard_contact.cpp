@@ -1,6 +1,6 @@
-// Hard cases (README "Hard cases") of contact and sampling: each runs the real pipeline (or
-// the touchdown ODE alone) on a scene at the edge of what the model can do and checks
-// exactly what comes out, and the numbers against a second computation made here:
+// Hard cases (docs/validation/hard-cases.md) of contact and sampling: each runs the real pipeline
+// (or the touchdown ODE alone) on a scene at the edge of what the model can do and checks exactly
+// what comes out, and the numbers against a second computation made here:
 //  - stiff contact: momentum balance of every touchdown, the closed-form undamped impact,
 //    the sampled impact peak against the ODE's located peak, and the trunk's vertical
 //    balance (the other feet cannot pull) against the flags;
