@@ -3,7 +3,7 @@
 
     /usr/bin/python3 analysis/robot_summary.py RESULT.h5
 
-Prints one block (README "Robots from URDF", pipelines/robots.sh): the robot's mass and
+Prints one block (docs/user/robots.md, pipelines/robots.sh): the robot's mass and
 effort limits (from /model/urdf, the robot as simulated), the stairs, the trunk posture the
 run used (P0 at t = 0 and its height above the tread-centre line; the foothold spread the
 automatic posture chose is not in the file), travel

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The climbable envelope of the paper robot end to end: install what is missing, build,
-# run configs/envelope/paper.yaml (README "Climbable envelope") and draw the plot and the
+# run configs/envelope/paper.yaml (docs/user/envelope.md) and draw the plot and the
 # table into results/envelope/.
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"

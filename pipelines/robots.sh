@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The real robots from their URDF end to end (README "Robots from URDF"): install what is
+# The real robots from their URDF end to end (docs/user/robots.md): install what is
 # missing, build, and for the Trossen PhantomX Mark IV and Kraby write into
 # results/robots/<robot>/:
 #   - the stairs run (configs/robots/<robot>_stairs.yaml) and its figures, with the joint
