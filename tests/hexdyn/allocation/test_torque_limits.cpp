@@ -55,6 +55,9 @@ TEST_CASE("allocation: torque rows use each joint's own limit", "[allocation][li
       expect = std::max(expect, std::abs(split.tau0[k]) - (per_joint ? limits[k] : alloc.torque_limit_Nm));
     }
     CHECK(worst == Approx(expect).margin(1e-15));
+    // The excess is named, with its swing-leg joint, exactly when there is one.
+    CHECK(violation.empty() == !(expect > 0.0));
+    if (expect > 0.0) CHECK(violation.find("(swing leg)") != std::string::npos);
   }
 }
 
