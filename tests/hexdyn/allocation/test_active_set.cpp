@@ -199,73 +199,8 @@ TEST_CASE("active-set back end: infeasible problems are relaxed as Ipopt relaxes
   auto backend = make_active_set_backend();
   auto ipopt = make_ipopt_backend(reference_ipopt());
 
-  SECTION("a torque row against equalities") {
-    // x0 + x1 = 10 and x1 = 8 (equality rows), torque row x0 ≤ 1: violated by 1.
-    QpProblem p;
-    p.resize(3, 2, 2);
-    p.H.setIdentity();
-    p.A << 1, 1, 0, 0, 1, 0;
-    p.b << 10, 8;
-    p.C << 1, 0, 0, 0, 0, 1;
-    p.lower << -kInf, -1.0;
-    p.upper << 1.0, 1.0;
-    p.eq_names = {"trunk Fz", "trunk Mx"};
-    p.ineq_names = {"torque L1_femur", "friction L3 +x"};
-    const QpOutcome& out = backend->solve(p);
-    CHECK(out.status == SolverStatus::kRelaxed);
-    CHECK(out.message == "relaxed: torque L1_femur by 1");
-    CHECK(out.x[0] == Approx(2.0).margin(1e-14));
-    CHECK(out.max_violation == Approx(1.0).margin(1e-14));
-    CHECK(out.lambda_ineq[0] == Approx(-1e6));   // the penalty's slope
-    CHECK(inf_norm(p.A * out.x - p.b) < 1e-13);  // equalities stay hard
-    const QpOutcome& ref = ipopt->solve(p);
-    CHECK(ref.status == SolverStatus::kRelaxed);
-    CHECK(ref.message == out.message);
-  }
-  SECTION("crossed bounds on a row, largest violation first") {
-    QpProblem p;
-    p.resize(2, 0, 2);
-    p.H.setIdentity();
-    p.C << 1, 0, 0, 1;
-    p.lower << 5.0, 3.0;
-    p.upper << 4.0, 2.9;
-    p.ineq_names = {"normal L2", "torque L4_tibia"};
-    const QpOutcome& out = backend->solve(p);
-    CHECK(out.status == SolverStatus::kRelaxed);
-    // Each row sits at the end of [upper, lower] nearer the unconstrained optimum 0.
-    CHECK(inf_norm(out.x - Eigen::Vector2d(4.0, 2.9)) < 1e-14);
-    CHECK(out.message == "relaxed: normal L2 by 1, torque L4_tibia by 0.1");
-    CHECK(ipopt->solve(p).message == out.message);
-  }
-  SECTION("penalty weights choose the row that gives way") {
-    // x0 + x1 = 10 as an l = u row against x0 ≤ 2 and x1 ≤ 3: 5 units must give.
-    QpProblem p;
-    p.resize(2, 0, 3);
-    p.H.setIdentity();
-    p.C << 1, 1, 1, 0, 0, 1;
-    p.lower << 10.0, -kInf, -kInf;
-    p.upper << 10.0, 2.0, 3.0;
-    p.ineq_names = {"trunk force z", "torque L1_femur", "torque L2_femur"};
-    p.ineq_penalty << 1.0, 1e3, 1e3;
-    const QpOutcome& out = backend->solve(p);
-    REQUIRE(out.status == SolverStatus::kRelaxed);
-    CHECK(out.x[0] == Approx(2.0).margin(1e-13));
-    CHECK(out.x[1] == Approx(3.0).margin(1e-13));
-    CHECK(out.message == "relaxed: trunk force z by 5");
-    CHECK(out.lambda_ineq[0] == Approx(1e6));
-    p.ineq_penalty << 1e3, 1.0, 1.0;
-    const QpOutcome& other = backend->solve(p);
-    REQUIRE(other.status == SolverStatus::kRelaxed);
-    // Both torque rows give way; with the penalty the same for any split of the 5 units,
-    // ½|x|² on x0 + x1 = 10 decides: x = (5, 5).
-    CHECK(other.x[0] == Approx(5.0).margin(1e-12));
-    CHECK(other.x[1] == Approx(5.0).margin(1e-12));
-    CHECK(other.message == "relaxed: torque L1_femur by 3, torque L2_femur by 2");
-    const QpOutcome& ref = ipopt->solve(p);
-    CHECK(ref.message == other.message);
-    // Ipopt's penalised solves stop at a tolerance relative to multipliers ρ w = 1e9.
-    CHECK(inf_norm(ref.x - other.x) < 1e-5);
-  }
+  // The small infeasible problems of the interface (a torque row against equalities,
+  // crossed bounds, penalty weights) are in test_backends.cpp, on every back end.
   SECTION("two l = u rows that contradict each other") {
     // x0 + x1 = 1 and x0 + x1 = 2: the penalty is flat between, ½|x|² picks x0 + x1 = 1.
     // A moderate ρ keeps Ipopt's penalised solve accurate to compare with.

@@ -85,14 +85,18 @@ Eigen::Vector3d project_onto_cone(const Eigen::Vector3d& f, double mu) {
   return f.dot(d) * d;
 }
 
-/// A back end under test and the accuracy it promises on x and λ (relative).
+/// A back end under test and the accuracy it promises on x and λ (relative): Ipopt to its
+/// interior-point tolerance (on penalised problems, whose multipliers ρ w reach 1e9, to
+/// about 1e-6), the exact back ends to rounding.
 struct BackendCase {
   const char* name;
-  double tol;
-  bool cones;  ///< takes problems with friction cones
+  double tol;          ///< problems as posed
+  double relaxed_tol;  ///< penalised problems
+  bool cones;          ///< takes problems with friction cones
 };
-constexpr BackendCase kBackends[] = {
-    {"ipopt", 1e-7, true}, {"active-set", 1e-10, false}, {"cone", 1e-10, true}};
+constexpr BackendCase kBackends[] = {{"ipopt", 1e-7, 1e-5, true},
+                                     {"active-set", 1e-10, 1e-12, false},
+                                     {"cone", 1e-10, 1e-12, true}};
 
 std::unique_ptr<AllocationBackend> make_backend(const BackendCase& c, bool warm_start = true) {
   const std::string name = c.name;
@@ -260,10 +264,11 @@ TEST_CASE("back ends: an infeasible problem is relaxed and names the row that ga
     CHECK(out.x.allFinite());
     CHECK(out.message.find("torque L1_femur") != std::string::npos);
     CHECK(out.message.find("friction L3 +x") == std::string::npos);
-    CHECK(out.message.rfind("relaxed: ", 0) == 0);
-    CHECK(out.x[0] == Approx(2.0).margin(1e-6));
-    CHECK(out.max_violation == Approx(1.0).margin(1e-6));
-    CHECK((p.A * out.x - p.b).norm() < 1e-7);  // equalities stay hard
+    CHECK(out.message == "relaxed: torque L1_femur by 1");
+    CHECK(out.x[0] == Approx(2.0).margin(bc.relaxed_tol));
+    CHECK(out.max_violation == Approx(1.0).margin(bc.relaxed_tol));
+    CHECK(out.lambda_ineq[0] == Approx(-1e6).epsilon(1e-6));  // the penalty's slope
+    CHECK((p.A * out.x - p.b).norm() < 1e-7);                 // equalities stay hard
     CHECK_FALSE(check_kkt(p, out, 1e-6));  // not primal feasible
   }
   SECTION("contradictory bounds on one row, largest violation first") {
@@ -277,10 +282,10 @@ TEST_CASE("back ends: an infeasible problem is relaxed and names the row that ga
     const QpOutcome& out = backend->solve(p);
     CHECK(out.status == SolverStatus::kRelaxed);
     CHECK(out.x.allFinite());
-    const auto a = out.message.find("normal L2"), b = out.message.find("torque L4_tibia");
-    REQUIRE(a != std::string::npos);
-    REQUIRE(b != std::string::npos);
-    CHECK(a < b);  // 0.5 before 0.05
+    // Each row sits at the end of [upper, lower] nearer the unconstrained optimum 0; the
+    // larger violation is named first.
+    CHECK((out.x - Eigen::Vector2d(4.0, 2.9)).lpNorm<Eigen::Infinity>() < bc.relaxed_tol);
+    CHECK(out.message == "relaxed: normal L2 by 1, torque L4_tibia by 0.1");
   }
   SECTION("unsatisfiable equalities fail with a finite fallback") {
     QpProblem p;
@@ -361,17 +366,21 @@ TEST_CASE("back ends: penalty weights choose the row that gives way", "[allocati
     const QpOutcome& out = backend->solve(p);
     REQUIRE(out.status == SolverStatus::kRelaxed);
     CHECK(out.x.sum() == Approx(10.0).margin(1e-6));
-    CHECK(out.message.find("trunk") == std::string::npos);
-    CHECK(out.message.find("torque") != std::string::npos);
+    // Both torque rows give way; with the penalty the same for any split of the 5 units,
+    // ½|x|² on x0 + x1 = 10 decides: x = (5, 5).
+    CHECK(out.x[0] == Approx(5.0).margin(10.0 * bc.relaxed_tol));
+    CHECK(out.x[1] == Approx(5.0).margin(10.0 * bc.relaxed_tol));
+    CHECK(out.message == "relaxed: torque L1_femur by 3, torque L2_femur by 2");
     CHECK(out.max_violation < 5.0 + 1e-6);
   }
   SECTION("heavy torque rows hold and the trunk row gives way") {
     p.ineq_penalty << 1.0, 1e3, 1e3;
     const QpOutcome& out = backend->solve(p);
     REQUIRE(out.status == SolverStatus::kRelaxed);
-    CHECK(out.x[0] == Approx(2.0).margin(1e-6));
-    CHECK(out.x[1] == Approx(3.0).margin(1e-6));
+    CHECK(out.x[0] == Approx(2.0).margin(bc.relaxed_tol));
+    CHECK(out.x[1] == Approx(3.0).margin(bc.relaxed_tol));
     CHECK(out.message == "relaxed: trunk force z by 5");
+    CHECK(out.lambda_ineq[0] == Approx(1e6).epsilon(1e-6));
   }
   SECTION("non-positive weights are rejected") {
     p.ineq_penalty << 1.0, 0.0, 1.0;
