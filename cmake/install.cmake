@@ -1,6 +1,7 @@
 # `cmake --install build --prefix P` (README "Installation"): everything a cluster module
 # needs, laid out so that the installed share/hexdyn/ mirrors the repository:
 #   P/bin/hexdyn                                  the program
+#   P/libexec/hexdyn/hexdyn-sweep                 `hexdyn sweep` (MPI), run by P/bin/hexdyn
 #   P/share/hexdyn/configs/                       scenes, sweeps, variants, study files
 #   P/share/hexdyn/pipelines/                     shell pipelines and slurm_sweep.sbatch
 #   P/share/hexdyn/analysis/*.py                  Python checks and plots (they import the
@@ -11,6 +12,8 @@ include(GNUInstallDirs)
 set(HEXDYN_INSTALL_SHARE ${CMAKE_INSTALL_DATADIR}/hexdyn)
 
 install(TARGETS hexdyn RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+# `hexdyn sweep` runs this one (cli/main.cpp): P/libexec/hexdyn/hexdyn-sweep.
+install(TARGETS hexdyn_sweep_cli RUNTIME DESTINATION ${CMAKE_INSTALL_LIBEXECDIR}/hexdyn)
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/configs/ DESTINATION ${HEXDYN_INSTALL_SHARE}/configs)
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/pipelines/ DESTINATION ${HEXDYN_INSTALL_SHARE}/pipelines
         FILE_PERMISSIONS OWNER_READ OWNER_WRITE OWNER_EXECUTE GROUP_READ GROUP_EXECUTE
