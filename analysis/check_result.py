@@ -28,12 +28,11 @@ import os
 import re
 import sys
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
 import numpy as np  # noqa: E402
 import yaml  # noqa: E402
 
-import hexdyn_results as hr  # noqa: E402
+from hexdyn import results as hr  # noqa: E402
 from urdf_fk import UrdfRobot  # noqa: E402
 
 FK_TOLERANCE_M = 1e-9

@@ -19,11 +19,10 @@ Prints one line per statement (or a Markdown table) and a closing
 import os
 import sys
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
 import numpy as np  # noqa: E402
 
-from hexdyn_results import open_result  # noqa: E402
+from hexdyn.results import open_result  # noqa: E402
 
 G = 9.81
 

@@ -13,7 +13,6 @@ import argparse
 import os
 import sys
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
 import matplotlib  # noqa: E402
 
@@ -22,7 +21,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 from matplotlib.patches import Patch  # noqa: E402
 import numpy as np  # noqa: E402
 
-import hexdyn_results as hr  # noqa: E402
+from hexdyn import results as hr  # noqa: E402
 
 SUPPORT_COLOR = "tab:blue"
 IMPACT_COLOR = "tab:red"

@@ -13,7 +13,6 @@ Writes, atomically:
 import os
 import sys
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
 import matplotlib  # noqa: E402
 
@@ -21,7 +20,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from hexdyn_results import open_result  # noqa: E402
+from hexdyn.results import open_result  # noqa: E402
 from plot_kinematics import save_atomically  # noqa: E402
 
 G = 9.81

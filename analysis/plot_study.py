@@ -33,7 +33,6 @@ import math
 import os
 import sys
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
 import h5py  # noqa: E402
 import matplotlib  # noqa: E402
@@ -42,7 +41,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-import hexdyn_results as hr  # noqa: E402
+from hexdyn import results as hr  # noqa: E402
 from plot_kinematics import save_atomically  # noqa: E402
 
 STUDY_SCHEMA = "hexdyn-study/1"

@@ -16,11 +16,10 @@ import os
 import sys
 import xml.etree.ElementTree as ET
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
 import numpy as np  # noqa: E402
 
-import hexdyn_results as hr  # noqa: E402
+from hexdyn import results as hr  # noqa: E402
 
 def main(argv):
     if len(argv) != 2:

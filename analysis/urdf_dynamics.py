@@ -33,7 +33,6 @@ from pathlib import Path
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
 from urdf_fk import axis_rotation, quaternion_to_matrix, rpy_to_matrix  # noqa: E402
 
 GRAVITY_W = np.array([0.0, 0.0, -9.81])

@@ -2,7 +2,7 @@
 
 The file layouts hexdyn writes (hexdyn-result/1, hexdyn-sweep/1, hexdyn-envelope/1) are
 declared once, in the C++ header src/hexdyn/io/schema.hpp. The declarations are read with
-the parser of the Python reader (analysis/hexdyn_results.py `parse_schema_header`), so the
+the parser of the Python reader (`hexdyn.results.parse_schema_header`, bindings/python/), so the
 tables say what the writers write and what the reader checks. Each table's "meaning"
 column is the `///` comment of its declaration in the header.
 
@@ -15,8 +15,10 @@ docs/user/output.md holds one region per file kind between marker comments:
 (regions `result`, `sweep`, `envelope`). This script rewrites the regions and leaves the
 text around them alone.
 
-    /usr/bin/python3 docs/gen_output_tables.py            # rewrite the regions
-    /usr/bin/python3 docs/gen_output_tables.py --check    # exit 1 naming each stale region
+    PYTHONPATH=build/python /usr/bin/python3 docs/gen_output_tables.py          # rewrite
+    PYTHONPATH=build/python /usr/bin/python3 docs/gen_output_tables.py --check  # exit 1 if stale
+
+(build/python: the package hexdyn of the build tree, or an installed one.)
 
 Exit status: 0 up to date (or rewritten), 1 a region differs (--check), 2 the document or
 the header cannot be used (missing or unknown markers, an unreadable header).
@@ -29,9 +31,7 @@ import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
-sys.path.insert(0, os.path.join(ROOT, "analysis"))
-
-from hexdyn_results import AttributeSpec, DatasetSpec, parse_schema_header  # noqa: E402
+from hexdyn.results import AttributeSpec, DatasetSpec, parse_schema_header
 
 DEFAULT_SCHEMA = os.path.join(ROOT, "src", "hexdyn", "io", "schema.hpp")
 DEFAULT_DOC = os.path.join(HERE, "user", "output.md")

@@ -8,12 +8,15 @@ HEXDYN_BUILD="${HEXDYN_BUILD:-$HEXDYN_ROOT/build}"
 export HEXDYN_BUILD
 # Python analysis runs with Debian's interpreter: another python3 may come first on PATH.
 export HEXDYN_PYTHON=/usr/bin/python3
+# The Python package hexdyn (reader and module) from the build tree, for the analysis scripts.
+export PYTHONPATH="$HEXDYN_BUILD/python${PYTHONPATH:+:$PYTHONPATH}"
 
 HEXDYN_PACKAGES=(
   build-essential cmake pkg-config git
   libeigen3-dev coinor-libipopt-dev libhdf5-dev hdf5-tools libgsl-dev catch2
   libopenmpi-dev openmpi-bin libyaml-cpp-dev libbenchmark-dev liburdfdom-dev
   python3 python3-h5py python3-numpy python3-matplotlib python3-yaml
+  python3-dev pybind11-dev python3-pybind11 python3-scipy
 )
 
 hexdyn_install() {

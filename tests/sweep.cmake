@@ -12,7 +12,7 @@ set(HEXDYN_SWEEP_TESTS
   "rank_invariance_1_2_4=rank_invariance"        # same scenario table (and runs) for 1, 2, 4 ranks
   "resume_after_kill=resume_after_kill"          # kill -9 of mpirun, --resume: same file, only missing recomputed
   "failing_scenario_recorded=failing_scenario"   # unreachable / out-of-range rows with messages; others complete
-  "python_reader_and_heatmaps=reader_and_heatmaps"  # analysis/hexdyn_results.py reads it, plot_sweep.py draws it
+  "python_reader_and_heatmaps=reader_and_heatmaps"  # hexdyn.open_sweep reads it, plot_sweep.py draws it
   "bad_sweep_file_before_any_work=bad_sweep_file"   # exit 2, one line, no output, checkpoint kept
   "schema_declared_equals_written=schema_declared"  # io/schema.hpp as Python parses it = the files written
   "crash_contained=crash_contained"              # a scenario that aborts its process: crashed row, sweep completes, also on --resume

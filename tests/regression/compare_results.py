@@ -26,8 +26,13 @@ import sys
 
 import numpy as np
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "sweep"))
-import compare_sweeps  # noqa: E402  (tests/sweep/compare_sweeps.py: tree walk, reading)
+import importlib.util  # noqa: E402
+
+# tests/sweep/compare_sweeps.py (tree walk, reading), loaded by its path.
+_spec = importlib.util.spec_from_file_location(
+    "compare_sweeps", os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "sweep", "compare_sweeps.py"))
+compare_sweeps = importlib.util.module_from_spec(_spec)
+_spec.loader.exec_module(compare_sweeps)
 
 IGNORED_META_ATTRS = {"created_utc", "wall_time_s", "git_commit"}
 

@@ -3,8 +3,9 @@
 #   install_prefix.sh CMAKE BUILD_DIR WORK_DIR [PYTHON]
 #
 # The installed tree alone, without the repository: P/bin/hexdyn runs the installed paper
-# scene, the installed analysis checks the file and imports from PYTHONPATH, the schema
-# header sits where the reader looks for it (same relative path as in the repository),
+# scene, the installed analysis checks the file and imports the installed Python package
+# hexdyn (P/lib/python3.X/dist-packages, on PYTHONPATH as a module sets it), whose reader
+# finds the schema header next to itself,
 # and the installed slurm_sweep.sbatch, run as a plain script (HEXDYN_LAUNCHER=mpirun,
 # 2 tasks) from a directory without build/, finds hexdyn on PATH and the installed plot
 # script through HEXDYN_SHARE, as under a cluster module.
@@ -24,22 +25,27 @@ P="$WORK/prefix"
 "$CMAKE" --install "$BUILD" --prefix "$P" > install.log 2>&1 || { cat install.log >&2; fail "cmake --install"; }
 S="$P/share/hexdyn"
 for f in bin/hexdyn share/hexdyn/configs/paper.yaml share/hexdyn/configs/sweeps/smoke.yaml \
-         share/hexdyn/pipelines/slurm_sweep.sbatch share/hexdyn/analysis/hexdyn_results.py \
+         share/hexdyn/pipelines/slurm_sweep.sbatch \
          share/hexdyn/analysis/check_result.py share/hexdyn/analysis/plot_sweep.py \
          share/hexdyn/src/hexdyn/io/schema.hpp; do
   [ -f "$P/$f" ] || fail "not installed: $f"
 done
 [ -x "$S/pipelines/slurm_sweep.sbatch" ] || fail "installed slurm_sweep.sbatch is not executable"
 
+SITE="$P/$("$PY" -c 'import sys; print("lib/python%d.%d/dist-packages" % sys.version_info[:2])')"
+for f in __init__.py results.py _version.py schema.hpp; do
+  [ -f "$SITE/hexdyn/$f" ] || fail "not installed: $SITE/hexdyn/$f"
+done
+
 # What a module sets (docs/user/sweeps.md#an-installed-hexdyn).
-export PATH="$P/bin:$PATH" PYTHONPATH="$S/analysis${PYTHONPATH:+:$PYTHONPATH}" HEXDYN_SHARE="$S"
+export PATH="$P/bin:$PATH" PYTHONPATH="$SITE" HEXDYN_SHARE="$S"
 cd "$WORK/run"
 version="$(hexdyn --version)" || fail "hexdyn --version"
 echo "installed: $version" >&2
 hexdyn run "$S/configs/paper.yaml" -o paper.h5 2> run.log || { cat run.log >&2; fail "installed hexdyn run paper.yaml"; }
 "$PY" "$S/analysis/check_result.py" paper.h5 --dynamics --expect-mass 6.7
-"$PY" -c "import hexdyn_results as hr; r = hr.open_result('paper.h5'); print('hexdyn_results from', hr.__file__)" \
-  | grep -q "from $S/analysis/hexdyn_results.py" || fail "hexdyn_results not imported from the prefix"
+"$PY" -c "import hexdyn; r = hexdyn.open_result('paper.h5'); print('hexdyn from', hexdyn.results.__file__)" \
+  | grep -q "from $SITE/hexdyn/results.py" || fail "hexdyn not imported from the prefix"
 
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
 env -u HEXDYN_BIN HEXDYN_LAUNCHER=mpirun SLURM_NTASKS=2 SLURM_SUBMIT_DIR="$WORK/run" HEXDYN_PYTHON="$PY" \

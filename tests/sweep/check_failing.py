@@ -6,11 +6,9 @@ import math
 import os
 import sys
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..",
-                                "analysis"))
 import numpy as np  # noqa: E402
 
-import hexdyn_results as hr  # noqa: E402
+from hexdyn import results as hr  # noqa: E402
 
 sw = hr.open_sweep(sys.argv[1])
 assert sw.shape == (2, 3), sw.shape

@@ -1,15 +1,13 @@
 #!/usr/bin/python3
-"""Reads the smoke sweep file (argument) with analysis/hexdyn_results.open_sweep and
+"""Reads the smoke sweep file (argument) with hexdyn.open_sweep (bindings/python/hexdyn/results.py) and
 checks it against the sweep file and against its own kept runs: axes and grid order,
 table shapes and units, and per-scenario metrics recomputed from /runs/<id>."""
 import os
 import sys
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..",
-                                "analysis"))
 import numpy as np  # noqa: E402
 
-import hexdyn_results as hr  # noqa: E402
+from hexdyn import results as hr  # noqa: E402
 
 sw = hr.open_sweep(sys.argv[1])
 assert sw.meta["schema"] == hr.SWEEP_SCHEMA and sw.meta["schema_version"] == 1

@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """Checks files against the layout declared in src/hexdyn/io/schema.hpp, as
-analysis/hexdyn_results.py parses it (the same declaration the C++ writers use):
+hexdyn.results (bindings/python/hexdyn/results.py) parses it (the same declaration the C++ writers use):
 
   check_schema.py --result RESULT.h5 [--sweep SWEEP.h5 ...]
 
@@ -14,12 +14,10 @@ import os
 import re
 import sys
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..",
-                                "analysis"))
 import h5py  # noqa: E402
 import numpy as np  # noqa: E402
 
-import hexdyn_results as hr  # noqa: E402
+from hexdyn import results as hr  # noqa: E402
 
 S = hr.SCHEMA
 problems = []

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The smoke sweep under 2 ranks with --keep-runs, read back by analysis/hexdyn_results.py
+# The smoke sweep under 2 ranks with --keep-runs, read back by hexdyn.results (bindings/python/hexdyn/results.py)
 # (check_reader.py) and drawn by analysis/plot_sweep.py. Progress lines (--progress 0:
 # one per finished scenario) give done/total, rate and time left.
 source "$(dirname "$0")/common.sh"

@@ -1,5 +1,13 @@
 // hexdyn command line: thin driver over the library (pipeline.hpp).
+//
+// Built twice (src/CMakeLists.txt): `hexdyn`, which links no MPI and hands `hexdyn sweep` to
+// `hexdyn-sweep` (exec, same arguments, same process), and `hexdyn-sweep`
+// (HEXDYN_CLI_MPI), which runs the sweep over MPI (mpi/mpi_sweep.hpp). So run, validate
+// and envelope start without loading or initialising MPI.
+#include <unistd.h>
 #include <yaml-cpp/yaml.h>
+
+#include <cerrno>
 
 #include <cstdio>
 #include <cstring>
@@ -11,7 +19,10 @@
 #include "hexdyn/core/errors.hpp"
 #include "hexdyn/envelope/envelope.hpp"
 #include "hexdyn/model/urdf_robot.hpp"
+#include "hexdyn/mpi/launch.hpp"
+#ifdef HEXDYN_CLI_MPI
 #include "hexdyn/mpi/mpi_sweep.hpp"
+#endif
 #include "hexdyn/io/output.hpp"
 #include "hexdyn/io/yaml_load.hpp"
 #include "hexdyn/pipeline/pipeline.hpp"
@@ -188,31 +199,36 @@ int validate(const Args& args) {
   return 0;
 }
 
-/// Refuses a run of more than kLargeResultSamples samples unless --allow-large was given.
-void check_run_size(std::size_t samples, bool allow_large) {
-  if (samples <= hexdyn::kLargeResultSamples || allow_large) return;
-  char size[64];
-  std::snprintf(size, sizeof size, "%.2g GB", hexdyn::estimated_result_file_bytes(samples) / 1e9);
-  throw hexdyn::ConfigError("run: " + std::to_string(samples) + " output samples, a result file of about " +
-                            size + "; more than " + std::to_string(hexdyn::kLargeResultSamples) +
-                            " samples (about 0.29 GB) are refused as a likely typing error in output.* "
-                            "(sample_step, impact_samples, event_step); pass --allow-large to run it");
-}
-
-/// An error message on one line: line breaks from quoted values are written as "\\n".
-std::string one_line(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    if (c == '\n') out += "\\n";
-    else if (c == '\r') out += "\\r";
-    else out += c;
+#ifndef HEXDYN_CLI_MPI
+/// `hexdyn sweep ...`: replaces this process by hexdyn-sweep with the same arguments, found
+/// next to this program (the build tree) or in ../libexec/hexdyn/ (an installation).
+/// Returns only when it cannot, with the exit status of an internal error.
+int exec_sweep_program(char** argv) {
+  char self[4096];
+  const ssize_t n = ::readlink("/proc/self/exe", self, sizeof self - 1);
+  std::string dir = ".";
+  if (n > 0) {
+    self[n] = '\0';
+    dir = std::string(self);
+    dir = dir.substr(0, dir.find_last_of('/'));
   }
-  return out;
+  std::string tried;
+  for (const std::string& path : {dir + "/hexdyn-sweep", dir + "/../libexec/hexdyn/hexdyn-sweep"}) {
+    ::execv(path.c_str(), argv);
+    tried += (tried.empty() ? "" : ", ") + path + " (" + std::strerror(errno) + ")";
+  }
+  if (!hexdyn::launched_as_secondary_rank())
+    std::cerr << "hexdyn: internal error: sweep: cannot start hexdyn-sweep: " << tried << "\n";
+  return 4;
 }
+#endif
 
 }  // namespace
 
 int main(int argc, char** argv) {
+#ifndef HEXDYN_CLI_MPI
+  if (argc >= 2 && !std::strcmp(argv[1], "sweep")) return exec_sweep_program(argv);
+#endif
   if (argc >= 2 && is_help(argv[1])) {
     std::cout << kUsage << kRunUsage << "\n" << kValidateUsage << "\n" << kSweepUsage;
     return 0;
@@ -248,7 +264,7 @@ int main(int argc, char** argv) {
       hexdyn::check_output_target(args.output, hexdyn::scene_input_files(args.config));
       // Before the allocation: the grid's size, against the large-run limit.
       const hexdyn::PreparedScene prep = hexdyn::prepare_scene(scene);
-      check_run_size(prep.grid.size(), args.allow_large);
+      hexdyn::check_run_size(prep.grid.size(), args.allow_large);
       const hexdyn::RunResult result = hexdyn::run_prepared_scene(scene, prep, &std::cerr);
       hexdyn::write_result_file(args.output, result);
       std::cerr << "hexdyn: wrote " << args.output << " (" << result.kin.samples() << " samples, "
@@ -264,23 +280,25 @@ int main(int argc, char** argv) {
         inputs.insert(inputs.begin(), args.config);
         hexdyn::check_output_target(args.output, inputs);
       }
+#ifdef HEXDYN_CLI_MPI
       return hexdyn::run_sweep({args.config, args.output, args.keep_runs, args.resume,
                                 args.verbose, args.progress_s});
+#endif
     }
     throw hexdyn::ConfigError("unknown command '" + args.command + "'; run 'hexdyn --help'");
   } catch (const hexdyn::Error& e) {
-    if (!hexdyn::launched_as_secondary_rank()) std::cerr << "hexdyn: error: " << one_line(e.what()) << "\n";
+    if (!hexdyn::launched_as_secondary_rank()) std::cerr << "hexdyn: error: " << hexdyn::one_line(e.what()) << "\n";
     return e.exit_status();
   } catch (const YAML::Exception& e) {
     // A YAML lookup that a reader did not guard (e.g. a missing key read as a scalar) still
     // comes from the user's file: bad input, not a crash. Each such case is a reader bug to
     // fix where it is thrown; this keeps the exit status and the one line meanwhile.
     if (!hexdyn::launched_as_secondary_rank())
-      std::cerr << "hexdyn: error: " << one_line(argc >= 3 ? argv[2] : "input") << ": unexpected YAML structure: "
-                << one_line(e.what()) << "\n";
+      std::cerr << "hexdyn: error: " << hexdyn::one_line(argc >= 3 ? argv[2] : "input") << ": unexpected YAML structure: "
+                << hexdyn::one_line(e.what()) << "\n";
     return 2;
   } catch (const std::exception& e) {
-    std::cerr << "hexdyn: internal error: " << one_line(e.what()) << "\n";
+    std::cerr << "hexdyn: internal error: " << hexdyn::one_line(e.what()) << "\n";
     return 4;
   }
 }

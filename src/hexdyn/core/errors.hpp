@@ -51,4 +51,16 @@ class SolverError : public Error {
   using Error::Error;
 };
 
+/// `text` on one line, as the CLI prints an error (and the Python module raises it):
+/// line breaks from quoted values are written as "\\n" and "\\r".
+inline std::string one_line(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    if (c == '\n') out += "\\n";
+    else if (c == '\r') out += "\\r";
+    else out += c;
+  }
+  return out;
+}
+
 }  // namespace hexdyn

@@ -88,12 +88,6 @@ constexpr const char* kUsage = R"(usage: hexdyn envelope ENVELOPE -o FILE [-v]
   documents the keys). -v prints one line per cell and criterion.
 )";
 
-std::string one_line(const std::string& text) {
-  std::string out;
-  for (char c : text) out += c == '\n' ? std::string("\\n") : std::string(1, c);
-  return out;
-}
-
 }  // namespace
 
 void write_envelope_file(const std::string& path, const EnvelopeSpec& spec, const EnvelopeResult& result) {

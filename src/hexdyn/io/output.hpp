@@ -7,6 +7,7 @@
 
 #include "hexdyn/io/h5io.hpp"
 #include "hexdyn/core/result.hpp"
+#include "hexdyn/io/result_layout.hpp"
 
 namespace hexdyn {
 
@@ -44,8 +45,17 @@ void check_output_path_writable(const std::string& path);
 void write_result_file(const std::string& path, const RunResult& result);
 
 /// Writes the datasets and /meta of `result` into an open file below the root `prefix`
-/// ("" for the file root, "/runs/<id>" inside a sweep file).
+/// ("" for the file root, "/runs/<id>" inside a sweep file): result_layout(result)
+/// (result_layout.hpp), then write_layout.
 void write_result_layout(H5Writer& writer, const RunResult& result, const std::string& prefix = "");
+
+/// Writes a layout's attributes (creating their groups) and datasets below `prefix`.
+void write_layout(H5Writer& writer, const ResultLayout& layout, const std::string& prefix = "");
+
+/// Refuses a run of more than kLargeResultSamples output samples unless `allow_large`:
+/// throws ConfigError naming the count and the estimated file size (`hexdyn run
+/// --allow-large`, hexdyn.run(..., allow_large=True)).
+void check_run_size(std::size_t samples, bool allow_large);
 
 /// Result files of more samples than this are refused before computing unless the run
 /// is asked for explicitly (`hexdyn run --allow-large`): about 290 MB, 200 times the

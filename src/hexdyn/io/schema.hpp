@@ -5,9 +5,9 @@
 /// run), `hexdyn-sweep/1` (a parameter sweep) and `hexdyn-envelope/1` (the climbable
 /// envelope, envelope/envelope.hpp), each with its schema name and version,
 /// every /meta attribute, and for every dataset its path, shape, element type and
-/// `units` attribute. The writers (output.cpp, sweep/sweep_file.cpp,
-/// envelope/envelope_file.cpp) take every path and
-/// units string from here; analysis/hexdyn_results.py parses this header at import (the
+/// `units` attribute. The writers (io/result_layout.cpp, sweep/sweep_file.cpp,
+/// envelope/envelope_file.cpp) take every path and units string from here; the Python
+/// reader hexdyn.results (bindings/python/hexdyn/results.py) parses this header at import (the
 /// `inline constexpr` lines below, and the shape comments of `Shape`), so the layout is
 /// typed once. Keep declarations on the regular pattern
 ///     inline constexpr DatasetSpec kName{"path", "units", Shape::kX, Element::kY};

@@ -529,12 +529,4 @@ int run_sweep(const SweepOptions& options) {
   return status;
 }
 
-bool launched_as_secondary_rank() {
-  for (const char* name : {"OMPI_COMM_WORLD_RANK", "PMIX_RANK", "PMI_RANK", "SLURM_PROCID"}) {
-    const char* value = std::getenv(name);
-    if (value != nullptr && *value != '\0') return std::strcmp(value, "0") != 0;
-  }
-  return false;
-}
-
 }  // namespace hexdyn

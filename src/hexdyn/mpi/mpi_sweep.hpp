@@ -19,6 +19,8 @@
 /// and waits for messages with MPI_Iprobe and sleeps, never in a spinning blocking call.
 #include <string>
 
+#include "hexdyn/mpi/launch.hpp"  // launched_as_secondary_rank
+
 namespace hexdyn {
 
 /// Options of `hexdyn sweep SWEEP.yaml -o FILE`.
@@ -36,10 +38,5 @@ struct SweepOptions {
 /// (failed scenarios are rows, not errors), 2 for a bad sweep file, arguments or
 /// output path (before any work), 4 for an internal error.
 int run_sweep(const SweepOptions& options);
-
-/// True when this process was started by an MPI or Slurm launcher as a rank other than
-/// 0 (from OMPI_COMM_WORLD_RANK, PMIX_RANK, PMI_RANK or SLURM_PROCID; MPI is not
-/// initialised). The CLI uses it to print an argument error once, not once per rank.
-bool launched_as_secondary_rank();
 
 }  // namespace hexdyn

@@ -4,7 +4,7 @@ The layout is the contract of docs/user/output.md; the tables below mirror
 src/hexdyn/io/schema.hpp (path -> (shape, units, element type)). Shapes use the
 symbols "T" (samples), "n" (touchdowns) and "m" (solver messages).
 
-    from hexdyn_results import open_result
+    from hexdyn import open_result
     res = open_result("results/paper/paper.h5")
     t = res["/time"]                 # numpy array, shape (T,)
     feet = res["/feet/position"]     # (T, 6, 3), world frame [m]
@@ -12,7 +12,7 @@ symbols "T" (samples), "n" (touchdowns) and "m" (solver messages).
     res.config["terrain"]            # the resolved configuration (dict)
     res.urdf                         # robot as simulated (str)
 
-    from hexdyn_results import open_sweep
+    from hexdyn import open_sweep
     sw = open_sweep("results/sweeps/smoke/smoke.h5")
     sw.axes[0].key, sw.axes[0].values  # "terrain.riser_height", array([0.04, 0.08])
     sw.table["energy"]               # one value per scenario [J], NaN where failed
@@ -32,13 +32,14 @@ import yaml
 # ---------------------------------------------------------------------------- the schema
 # The layout is declared once, in the C++ header src/hexdyn/io/schema.hpp; this module
 # parses that header at import. The header is looked for, in this order, at
-# $HEXDYN_SCHEMA_HPP, next to this module (schema.hpp, an installed copy) and in the
-# source tree (../src/hexdyn/io/schema.hpp from this folder).
+# $HEXDYN_SCHEMA_HPP, next to this module (schema.hpp: the copy the build tree and an
+# installation put there) and in the source tree (../../../src/hexdyn/io/schema.hpp from
+# bindings/python/hexdyn/).
 _HERE = os.path.dirname(os.path.abspath(__file__))
 SCHEMA_HEADER_CANDIDATES = tuple(p for p in (
     os.environ.get("HEXDYN_SCHEMA_HPP"),
     os.path.join(_HERE, "schema.hpp"),
-    os.path.join(_HERE, "..", "src", "hexdyn", "io", "schema.hpp"),
+    os.path.join(_HERE, "..", "..", "..", "src", "hexdyn", "io", "schema.hpp"),
 ) if p)
 
 
@@ -138,7 +139,7 @@ def load_schema(candidates=SCHEMA_HEADER_CANDIDATES):
         if os.path.isfile(path):
             with open(path, encoding="utf-8") as f:
                 return os.path.abspath(path), parse_schema_header(f.read())
-    raise ImportError("hexdyn_results: cannot find the schema header src/hexdyn/io/schema.hpp "
+    raise ImportError("hexdyn.results: cannot find the schema header src/hexdyn/io/schema.hpp "
                       f"(looked at {', '.join(candidates)}); set HEXDYN_SCHEMA_HPP")
 
 

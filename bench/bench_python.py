@@ -1,0 +1,112 @@
+#!/usr/bin/env python3
+"""hexdyn from Python, in process against the subprocess path, and from 2 threads.
+
+    PYTHONPATH=build/python /usr/bin/python3 bench/bench_python.py [--hexdyn build/hexdyn]
+        [--scene configs/paper.yaml] [--repeat 20]
+
+Reports, for the scene, medians over --repeat calls (after one warm-up):
+  compute    the scene's compute time, /meta wall_time_s (run_prepared_scene: sampling and
+             solving, what the library times itself)
+  in process hexdyn.run(scene) (reading the scene, planning, computing, the arrays to numpy),
+             and its ratio to compute
+  subprocess `hexdyn run scene -o FILE` then h5py reading every dataset (the path a script
+             had before the module), and its ratio to compute
+and the speed-up of 2 threads over 1 on 8 scenes (duty factors 0.55 ... 0.9), one run each,
+next to the speed-up of a control load that surely runs in parallel (hashlib.sha256 over 16
+MB, which releases the GIL): where the control is below 2, the machine has no second core
+free, and the scenes' speed-up says nothing about hexdyn.
+Dated results go to bench/RESULTS.md.
+"""
+
+import argparse
+import os
+import statistics
+import subprocess
+import tempfile
+import time
+from concurrent.futures import ThreadPoolExecutor
+
+import hashlib
+
+import h5py
+
+import hexdyn
+
+
+def median_time(f, repeat):
+    f()
+    times = []
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        f()
+        times.append(time.perf_counter() - t0)
+    return statistics.median(times)
+
+
+def read_all(path):
+    with h5py.File(path, "r") as f:
+        f.visititems(lambda n, o: o[()] if isinstance(o, h5py.Dataset) else None)
+
+
+def main():
+    here = os.path.dirname(os.path.abspath(__file__))
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--hexdyn", default=os.path.join(here, "..", "build", "hexdyn"))
+    ap.add_argument("--scene", default=os.path.join(here, "..", "configs", "paper.yaml"))
+    ap.add_argument("--repeat", type=int, default=20)
+    a = ap.parse_args()
+
+    compute = []
+
+    def in_process():
+        compute.append(float(hexdyn.run(a.scene).attrs["wall_time_s"]))
+
+    t_in = median_time(in_process, a.repeat)
+    t_compute = statistics.median(compute)
+    with tempfile.TemporaryDirectory() as d:
+        out = os.path.join(d, "r.h5")
+
+        def via_subprocess():
+            subprocess.run([a.hexdyn, "run", a.scene, "-o", out], check=True, capture_output=True)
+            read_all(out)
+
+        t_sub = median_time(via_subprocess, a.repeat)
+
+    duty = [0.55, 0.6, 0.65, 0.7, 0.75, 0.8, 0.85, 0.9]
+
+    def one(x):
+        return hexdyn.run(a.scene, set={"gait.duty_factor": x})["/energy/total"].tobytes()
+
+    one(0.75)
+    t0 = time.perf_counter()
+    serial = [one(x) for x in duty]
+    t1 = time.perf_counter()
+    with ThreadPoolExecutor(2) as pool:
+        parallel = list(pool.map(one, duty))
+    t2 = time.perf_counter()
+
+    def control(_):
+        data = b"x" * (1 << 24)
+        for _ in range(4):
+            hashlib.sha256(data).digest()
+
+    t3 = time.perf_counter()
+    for x in duty:
+        control(x)
+    t4 = time.perf_counter()
+    with ThreadPoolExecutor(2) as pool:
+        list(pool.map(control, duty))
+    t5 = time.perf_counter()
+
+    print(f"hexdyn {hexdyn.__version__} ({hexdyn.__git_commit__[:12]}), scene {os.path.basename(a.scene)}, "
+          f"medians of {a.repeat}")
+    print(f"  compute (wall_time_s)        {1e3 * t_compute:8.1f} ms")
+    print(f"  in process, hexdyn.run       {1e3 * t_in:8.1f} ms   {t_in / t_compute:5.2f} x compute")
+    print(f"  subprocess, hexdyn run + h5py{1e3 * t_sub:8.1f} ms   {t_sub / t_compute:5.2f} x compute")
+    print(f"  8 scenes: 1 thread {t1 - t0:.3f} s, 2 threads {t2 - t1:.3f} s, speed-up {(t1 - t0) / (t2 - t1):.2f}x "
+          f"on {os.cpu_count()} cores, results {'identical' if serial == parallel else 'DIFFERENT'}")
+    print(f"  control (sha256, GIL released): speed-up {(t4 - t3) / (t5 - t4):.2f}x")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,234 @@
+// hexdyn._hexdyn: the compiled part of the Python module `hexdyn` (bindings/python/hexdyn/).
+// Thin: it converts at the edge and adds no logic. Every call goes through the C++ entry
+// points of <hexdyn/hexdyn.hpp>; the arrays are those of result_layout (io/result_layout.hpp),
+// the list the HDF5 writer writes, handed to numpy without a copy. The GIL is released
+// while a scene is read and computed. Errors cross as the exception family of
+// core/errors.hpp (hexdyn.ConfigError ... , registered below), with the CLI's one-line
+// message.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+#include <yaml-cpp/yaml.h>
+
+#include <memory>
+#include <mutex>
+#include <string>
+#include <utility>
+#include <variant>
+#include <vector>
+
+#include "hexdyn/hexdyn.hpp"
+#include "hexdyn/io/result_layout.hpp"
+#include "hexdyn/sweep/sweep.hpp"
+
+namespace py = pybind11;
+
+namespace {
+
+/// One computed scene: the C++ result (for write) and the scene file it came from.
+struct RunHandle {
+  hexdyn::RunResult result;
+  std::string scene_path;
+};
+
+/// The Ipopt back end (allocation.solver: ipopt) runs Ipopt with Debian's sequential
+/// MUMPS, whose stand-in MPI library keeps global state and is not documented as
+/// thread-safe: scenes with that back end run one at a time in this process. The default
+/// back end (active set) keeps no state outside its call and runs in parallel.
+std::mutex ipopt_mutex;
+
+std::vector<hexdyn::Override> overrides_of(const std::vector<std::string>& texts) {
+  std::vector<hexdyn::Override> out;
+  for (const std::string& t : texts) out.push_back(hexdyn::parse_override(t));
+  return out;
+}
+
+/// Runs `f`, turning a YAML lookup that a reader did not guard into the ConfigError the CLI
+/// reports for it (cli/main.cpp): bad input, named by the scene path.
+template <class F>
+auto guard_yaml(const std::string& scene_path, F&& f) {
+  try {
+    return f();
+  } catch (const YAML::Exception& e) {
+    throw hexdyn::ConfigError(scene_path + ": unexpected YAML structure: " + e.what());
+  }
+}
+
+/// A numpy array owning `values` (moved, no copy), of shape `dims`.
+template <class T>
+py::array to_numpy(std::vector<T>&& values, const std::vector<std::size_t>& dims) {
+  auto* owned = new std::vector<T>(std::move(values));
+  py::capsule free_when_done(owned, [](void* p) { delete static_cast<std::vector<T>*>(p); });
+  std::vector<py::ssize_t> shape(dims.begin(), dims.end());
+  return py::array_t<T>(shape, owned->data(), free_when_done);
+}
+
+/// A dataset as Python sees it: numbers as numpy arrays of the file's dtype (float64,
+/// int8, int32; a 0-d array for a scalar), a list of strings as a numpy array of str
+/// objects, a scalar text as str.
+py::object to_python(hexdyn::LayoutDataset&& d) {
+  if (auto* v = std::get_if<std::vector<double>>(&d.values)) return to_numpy(std::move(*v), d.dims);
+  if (auto* v8 = std::get_if<std::vector<std::int8_t>>(&d.values)) return to_numpy(std::move(*v8), d.dims);
+  if (auto* v32 = std::get_if<std::vector<std::int32_t>>(&d.values)) return to_numpy(std::move(*v32), d.dims);
+  if (auto* texts = std::get_if<std::vector<std::string>>(&d.values)) {
+    py::object np_asarray = py::module_::import("numpy").attr("asarray");
+    py::list items;
+    for (const std::string& t : *texts) items.append(py::str(t));
+    return np_asarray(items, py::arg("dtype") = py::dtype("O"));
+  }
+  return py::str(std::get<std::string>(d.values));
+}
+
+/// run(scene, overrides, allow_large) → (handle, {path: array}, {attribute: value}).
+py::tuple run_file(const std::string& scene_path, const std::vector<std::string>& override_texts, bool allow_large) {
+  auto handle = std::make_shared<RunHandle>();
+  hexdyn::ResultLayout layout;
+  {
+    py::gil_scoped_release no_gil;
+    guard_yaml(scene_path, [&] {
+      const hexdyn::Scene scene = hexdyn::load_scene(scene_path, overrides_of(override_texts));
+      const hexdyn::PreparedScene prep = hexdyn::prepare_scene(scene);
+      hexdyn::check_run_size(prep.grid.size(), allow_large);
+      std::unique_lock<std::mutex> lock(ipopt_mutex, std::defer_lock);
+      if (scene.allocation.solver == hexdyn::AllocationSolver::kIpopt) lock.lock();
+      handle->result = hexdyn::run_prepared_scene(scene, prep);
+      return 0;
+    });
+    handle->scene_path = scene_path;
+    layout = hexdyn::result_layout(handle->result);
+  }
+  py::dict datasets, attributes;
+  for (hexdyn::LayoutDataset& d : layout.datasets) {
+    const char* path = d.spec->path;
+    datasets[py::str(path)] = to_python(std::move(d));
+  }
+  for (const hexdyn::LayoutAttribute& a : layout.attributes)
+    std::visit([&](const auto& v) { attributes[py::str(a.spec->name)] = py::cast(v); }, a.value);
+  return py::make_tuple(handle, datasets, attributes);
+}
+
+/// write(handle, path): the CLI's checks on the output path (a new path or a regular file
+/// that is none of the scene's input files, in a folder that takes a new file), then the
+/// file, atomically. Holds the GIL: serial HDF5 is not thread-safe.
+void write_file(const RunHandle& handle, const std::string& path) {
+  hexdyn::check_output_target(path, hexdyn::scene_input_files(handle.scene_path));
+  hexdyn::write_result_file(path, handle.result);
+}
+
+/// validate(path, overrides) → dict: what `hexdyn validate` checks and prints.
+py::dict validate_file(const std::string& path, const std::vector<std::string>& override_texts) {
+  py::dict out;
+  std::string kind, name, first;
+  std::size_t scenarios = 0, out_of_range = 0;
+  {
+    py::gil_scoped_release no_gil;
+    guard_yaml(path, [&] {
+      const YAML::Node root = hexdyn::parse_yaml_text(hexdyn::read_text_file(path), path);
+      if (!root["axes"].IsDefined()) {
+        const hexdyn::Scene scene = hexdyn::load_scene(path, overrides_of(override_texts));
+        kind = "scene";
+        name = scene.name;
+        return 0;
+      }
+      if (!override_texts.empty())
+        throw hexdyn::ConfigError("validate: --set applies to scene files; " + path +
+                                  " is a sweep file (it has axes:), fix keys with set: in it");
+      const hexdyn::SweepSpec spec = hexdyn::load_sweep(path);
+      kind = "sweep";
+      name = spec.name;
+      scenarios = spec.scenario_count();
+      for (std::size_t i = 0; i < scenarios; ++i)
+        if (const auto row = hexdyn::check_scenario(hexdyn::scenario_input(spec, i)))
+          if (out_of_range++ == 0) first = row->message;
+      return 0;
+    });
+  }
+  out["kind"] = kind;
+  out["name"] = name;
+  if (kind == "sweep") {
+    out["scenarios"] = scenarios;
+    out["out_of_range"] = out_of_range;
+    out["first_out_of_range"] = first;
+  }
+  return out;
+}
+
+/// A new exception class hexdyn.NAME with the given bases.
+py::object new_exception(py::module_& m, const char* name, py::tuple bases, const char* doc) {
+  const std::string qualified = std::string("hexdyn.") + name;
+  py::dict attrs;
+  attrs["__doc__"] = doc;
+  PyObject* type = PyErr_NewException(qualified.c_str(), bases.ptr(), attrs.ptr());
+  if (type == nullptr) throw py::error_already_set();
+  py::object cls = py::reinterpret_steal<py::object>(type);
+  m.attr(name) = cls;
+  return cls;
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_hexdyn, m) {
+  m.doc() = "hexdyn's compiled part; use the package `hexdyn` (run, validate, Result).";
+  m.attr("version") = hexdyn::kVersion;
+  m.attr("git_commit") = hexdyn::kGitCommit;
+
+  // The family of core/errors.hpp. The objects live as long as the module (kept in static
+  // handles, never released: the interpreter owns them through the module).
+  static py::object error = new_exception(m, "Error", py::make_tuple(py::handle(PyExc_Exception)),
+                                          "Base of hexdyn's errors (C++ hexdyn::Error).");
+  static py::object config_error = new_exception(
+      m, "ConfigError", py::make_tuple(error, py::handle(PyExc_ValueError)),
+      "A scene or sweep file, or an override, is wrong: missing, mistyped or out-of-range key, "
+      "unreadable file (CLI exit status 2).");
+  static py::object io_error = new_exception(m, "IoError", py::make_tuple(error, py::handle(PyExc_OSError)),
+                                             "An output file cannot be written (CLI exit status 2).");
+  static py::object reach_error = new_exception(m, "ReachError", py::make_tuple(error),
+                                                "A foot target outside a leg's workspace (exit status 3).");
+  static py::object planning_error = new_exception(m, "PlanningError", py::make_tuple(error),
+                                                   "The motion cannot be planned (exit status 3).");
+  static py::object solver_error = new_exception(m, "SolverError", py::make_tuple(error),
+                                                 "A solver gave no usable answer (exit status 3).");
+  static py::object internal_error = new_exception(
+      m, "InternalError", py::make_tuple(error, py::handle(PyExc_RuntimeError)),
+      "A defect of hexdyn (CLI: 'internal error', exit status 4); please report it.");
+
+  py::register_exception_translator([](std::exception_ptr p) {
+    auto raise = [](const py::object& type, const std::string& message) {
+      PyErr_SetString(type.ptr(), hexdyn::one_line(message).c_str());
+    };
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const py::error_already_set&) {
+      throw;
+    } catch (const py::builtin_exception&) {
+      throw;
+    } catch (const hexdyn::ConfigError& e) {
+      raise(config_error, e.what());
+    } catch (const hexdyn::IoError& e) {
+      raise(io_error, e.what());
+    } catch (const hexdyn::ReachError& e) {
+      raise(reach_error, e.what());
+    } catch (const hexdyn::PlanningError& e) {
+      raise(planning_error, e.what());
+    } catch (const hexdyn::SolverError& e) {
+      raise(solver_error, e.what());
+    } catch (const hexdyn::Error& e) {
+      raise(error, e.what());
+    } catch (const std::bad_alloc&) {
+      PyErr_SetString(PyExc_MemoryError, "hexdyn: out of memory");
+    } catch (const std::exception& e) {
+      raise(internal_error, std::string("internal error: ") + e.what());
+    } catch (...) {
+      raise(internal_error, "internal error: unknown C++ exception");
+    }
+  });
+
+  py::class_<RunHandle, std::shared_ptr<RunHandle>>(m, "RunHandle",
+                                                    "A computed scene, kept for Result.write.");
+  m.def("run", &run_file, py::arg("scene"), py::arg("overrides"), py::arg("allow_large"),
+        "Computes a scene: (handle, {HDF5 path: array}, {/meta attribute: value}).");
+  m.def("write", &write_file, py::arg("handle"), py::arg("path"),
+        "Writes a computed scene's hexdyn-result/1 file, with the CLI's checks on the path.");
+  m.def("validate", &validate_file, py::arg("scene"), py::arg("overrides"),
+        "Checks a scene or sweep file as `hexdyn validate` does.");
+}

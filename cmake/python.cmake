@@ -1,0 +1,54 @@
+# The Python module `hexdyn` (bindings/python/): the package's Python files and its compiled
+# part hexdyn/_hexdyn*.so (pybind11), laid out as a package in the build tree,
+#   build/python/hexdyn/{__init__,results,_version}.py, schema.hpp, _hexdyn*.so
+# (PYTHONPATH=build/python imports it: the tests and the pipelines set it), and installed to
+#   P/lib/python3.X/dist-packages/hexdyn/
+# which for the default prefix /usr/local is on Debian's /usr/bin/python3 path with no
+# environment set (HEXDYN_PYTHON_INSTALL_DIR changes it). Included by the top-level
+# CMakeLists.txt.
+if(NOT DEFINED Python3_EXECUTABLE AND EXISTS /usr/bin/python3)
+  # Debian's interpreter (numpy, h5py): another python3 may come first on PATH.
+  set(Python3_EXECUTABLE /usr/bin/python3)
+endif()
+find_package(Python3 COMPONENTS Interpreter Development.Module)
+if(Python3_FOUND)
+  find_package(pybind11 CONFIG QUIET)
+endif()
+set(hexdyn_python_default OFF)
+if(Python3_FOUND AND pybind11_FOUND)
+  set(hexdyn_python_default ON)
+endif()
+option(HEXDYN_BUILD_PYTHON "Build the Python module hexdyn (pybind11)" ${hexdyn_python_default})
+if(NOT HEXDYN_BUILD_PYTHON)
+  message(STATUS "Python module hexdyn not built (needs python3-dev and pybind11-dev)")
+  return()
+endif()
+if(NOT pybind11_FOUND)
+  message(FATAL_ERROR "HEXDYN_BUILD_PYTHON=ON needs pybind11 (Debian: pybind11-dev, python3-dev)")
+endif()
+
+set(HEXDYN_PYTHON_PACKAGE_DIR ${CMAKE_BINARY_DIR}/python/hexdyn)
+# lib/, not CMAKE_INSTALL_LIBDIR: Python's own layout, also on multiarch systems.
+set(HEXDYN_PYTHON_INSTALL_DIR lib/python${Python3_VERSION_MAJOR}.${Python3_VERSION_MINOR}/dist-packages
+    CACHE STRING "Folder (relative to the prefix) the Python package hexdyn is installed into")
+
+pybind11_add_module(hexdyn_python MODULE ${PROJECT_SOURCE_DIR}/bindings/python/module.cpp)
+target_link_libraries(hexdyn_python PRIVATE hexdyn_pipeline hexdyn_io hexdyn_sweep yaml-cpp)
+target_compile_options(hexdyn_python PRIVATE ${HEXDYN_WARNINGS})
+set_target_properties(hexdyn_python PROPERTIES OUTPUT_NAME _hexdyn
+                      LIBRARY_OUTPUT_DIRECTORY ${HEXDYN_PYTHON_PACKAGE_DIR})
+
+# The pure-Python files, the version and the schema header the reader parses.
+set(hexdyn_python_files __init__.py results.py)
+foreach(f IN LISTS hexdyn_python_files)
+  configure_file(${PROJECT_SOURCE_DIR}/bindings/python/hexdyn/${f} ${HEXDYN_PYTHON_PACKAGE_DIR}/${f} COPYONLY)
+endforeach()
+configure_file(${PROJECT_SOURCE_DIR}/bindings/python/hexdyn/_version.py.in
+               ${HEXDYN_PYTHON_PACKAGE_DIR}/_version.py @ONLY)
+configure_file(${PROJECT_SOURCE_DIR}/src/hexdyn/io/schema.hpp ${HEXDYN_PYTHON_PACKAGE_DIR}/schema.hpp COPYONLY)
+
+install(TARGETS hexdyn_python LIBRARY DESTINATION ${HEXDYN_PYTHON_INSTALL_DIR}/hexdyn)
+list(TRANSFORM hexdyn_python_files PREPEND ${HEXDYN_PYTHON_PACKAGE_DIR}/)
+install(FILES ${hexdyn_python_files} ${HEXDYN_PYTHON_PACKAGE_DIR}/_version.py
+              ${HEXDYN_PYTHON_PACKAGE_DIR}/schema.hpp
+        DESTINATION ${HEXDYN_PYTHON_INSTALL_DIR}/hexdyn)

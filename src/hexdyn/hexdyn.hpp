@@ -1,0 +1,36 @@
+#pragma once
+/// \file hexdyn.hpp
+/// hexdyn as a library: the one header a program includes (installed as
+/// <hexdyn/hexdyn.hpp>; CMake target hexdyn::hexdyn, pkg-config hexdyn). The stable
+/// entry points, the same words as the command line and the Python module:
+///
+///     hexdyn::Scene scene = hexdyn::load_scene("paper.yaml",
+///                                              {hexdyn::parse_override("gait.duty_factor=3/4")});
+///     hexdyn::RunResult r = hexdyn::run_scene(scene);     // computes; throws hexdyn::Error
+///     double energy_J = r.dyn.energy_total_J;
+///     hexdyn::write_result_file("out.h5", r);             // hexdyn-result/1, as `hexdyn run`
+///
+/// - load_scene(path, overrides) reads, inherits, overrides and validates a scene file
+///   (io/config.hpp); parse_override("key.path=value") is one `--set`.
+/// - run_scene(scene, log) plans, samples and solves it (pipeline/pipeline.hpp); the
+///   RunResult (core/result.hpp) holds every array of the result file, SI units.
+/// - write_result_file(path, result) writes it atomically (io/output.hpp);
+///   check_output_target(path, scene_input_files(scene_path)) is the CLI's check of an
+///   output path before computing.
+/// - result_layout(result) (io/result_layout.hpp) lists the file's datasets and /meta
+///   attributes in memory, as the file would hold them.
+/// - Errors (core/errors.hpp): hexdyn::Error and its family ConfigError, IoError (exit
+///   status 2), ReachError, PlanningError, SolverError (3); each message is one line.
+///
+/// Thread safety: a Scene and a RunResult are plain values; run_scene may be called from
+/// several threads at once on different scenes (the library keeps no global state).
+/// write_result_file and the HDF5 reader are not thread-safe (serial HDF5): call them from
+/// one thread at a time.
+#include "hexdyn/core/errors.hpp"
+#include "hexdyn/core/result.hpp"
+#include "hexdyn/core/scene.hpp"
+#include "hexdyn/io/config.hpp"
+#include "hexdyn/io/output.hpp"
+#include "hexdyn/io/yaml_load.hpp"
+#include "hexdyn/pipeline/pipeline.hpp"
+#include "hexdyn/version.hpp"

@@ -1,0 +1,155 @@
+#include "hexdyn/io/result_layout.hpp"
+
+#include <utility>
+
+#include "hexdyn/core/errors.hpp"
+#include "hexdyn/version.hpp"
+#include "hexdyn/io/output.hpp"
+
+namespace hexdyn {
+namespace {
+
+using schema::DatasetSpec;
+
+std::size_t to_size(int n) { return static_cast<std::size_t>(n); }
+
+class Builder {
+ public:
+  explicit Builder(ResultLayout& layout) : layout_(layout) {}
+
+  void add(const DatasetSpec& spec, std::vector<std::size_t> dims, LayoutValues values) {
+    layout_.datasets.push_back({&spec, std::move(dims), std::move(values)});
+  }
+
+  /// A rows × cols matrix as a dataset of shape `dims`, checked.
+  template <class Matrix>
+  void matrix(const DatasetSpec& spec, const Matrix& m, int rows, int cols, std::vector<std::size_t> dims) {
+    if (m.rows() != rows || m.cols() != cols)
+      throw IoError(std::string(spec.path) + " is " + std::to_string(m.rows()) + "x" + std::to_string(m.cols()) +
+                    ", expected " + std::to_string(rows) + "x" + std::to_string(cols));
+    using Scalar = typename Matrix::Scalar;
+    add(spec, std::move(dims), std::vector<Scalar>(m.data(), m.data() + m.size()));
+  }
+
+  void vector(const DatasetSpec& spec, const std::vector<double>& v, std::size_t expected) {
+    if (v.size() != expected)
+      throw IoError(std::string(spec.path) + " has " + std::to_string(v.size()) + " entries, expected " +
+                    std::to_string(expected));
+    add(spec, {v.size()}, v);
+  }
+
+  void scalar(const DatasetSpec& spec, double value) { add(spec, {}, std::vector<double>{value}); }
+
+ private:
+  ResultLayout& layout_;
+};
+
+void add_meta(ResultLayout& layout, const RunResult& r) {
+  namespace s = schema;
+  layout.attributes = {{&s::kMetaSchema, std::string(s::kResultSchema)},
+                       {&s::kMetaSchemaVersion, s::kResultSchemaVersion},
+                       {&s::kMetaVersion, std::string(kVersion)},
+                       {&s::kMetaGitCommit, std::string(kGitCommit)},
+                       {&s::kMetaCreatedUtc, utc_timestamp_now()},
+                       {&s::kMetaConfigYaml, r.config_yaml},
+                       {&s::kMetaWallTime, r.wall_time_s}};
+}
+
+void add_model(Builder& b, const RunResult& r) {
+  namespace s = schema;
+  std::vector<std::string> joints = r.joint_names, legs;
+  for (int leg = 0; leg < kLegs; ++leg) {
+    legs.push_back(leg_name(leg));
+    if (r.joint_names.empty())
+      for (int j = 0; j < kJointsPerLeg; ++j) joints.push_back(joint_name(leg, j));
+  }
+  if (joints.size() != static_cast<std::size_t>(kJoints))
+    throw IoError(std::string(s::kModelJointNames.path) + " has " + std::to_string(joints.size()) +
+                  " names, expected 18");
+  if (!r.leg_mapping.empty()) b.add(s::kModelLegMapping, {r.leg_mapping.size()}, r.leg_mapping);
+  b.add(s::kModelUrdf, {}, r.urdf);
+  b.add(s::kModelJointNames, {joints.size()}, std::move(joints));
+  b.add(s::kModelLegNames, {legs.size()}, std::move(legs));
+  b.scalar(s::kModelTotalMass, r.total_mass_kg);
+}
+
+void add_kinematics(Builder& b, const KinematicsResult& k) {
+  namespace s = schema;
+  const int T = k.samples();
+  const std::size_t t = to_size(T);
+  b.vector(s::kTime, k.time_s, t);
+  b.matrix(s::kBasePosition, k.base_position, T, 3, {t, 3});
+  b.matrix(s::kBaseOrientation, k.base_orientation_wxyz, T, 4, {t, 4});
+  b.matrix(s::kBaseLinearVelocity, k.base_linear_velocity, T, 3, {t, 3});
+  b.matrix(s::kBaseAngularVelocity, k.base_angular_velocity, T, 3, {t, 3});
+  b.matrix(s::kBaseLinearAcceleration, k.base_linear_acceleration, T, 3, {t, 3});
+  b.matrix(s::kBaseAngularAcceleration, k.base_angular_acceleration, T, 3, {t, 3});
+  b.matrix(s::kJointPosition, k.joint_position, T, kJoints, {t, kJoints});
+  b.matrix(s::kJointVelocity, k.joint_velocity, T, kJoints, {t, kJoints});
+  b.matrix(s::kJointAcceleration, k.joint_acceleration, T, kJoints, {t, kJoints});
+  b.matrix(s::kFeetPosition, k.foot_position, T, 3 * kLegs, {t, kLegs, 3});
+  b.matrix(s::kFeetVelocity, k.foot_velocity, T, 3 * kLegs, {t, kLegs, 3});
+  b.matrix(s::kComPosition, k.com_position, T, 3, {t, 3});
+  b.matrix(s::kContactPhase, k.contact_phase, T, kLegs, {t, kLegs});
+}
+
+void add_dynamics(Builder& b, const DynamicsResult& d, int T) {
+  namespace s = schema;
+  const std::size_t t = to_size(T);
+  b.matrix(s::kJointTorque, d.joint_torque, T, kJoints, {t, kJoints});
+  b.matrix(s::kContactForce, d.contact_force, T, 3 * kLegs, {t, kLegs, 3});
+  b.matrix(s::kContactPenetration, d.penetration, T, kLegs, {t, kLegs});
+
+  const std::size_t n = d.impacts.size();
+  std::vector<std::int32_t> leg(n);
+  std::vector<double> start(n), duration(n), peak(n), impulse(n), mass(n), speed(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const ImpactRecord& im = d.impacts[i];
+    if (im.leg < 0 || im.leg >= kLegs)
+      throw IoError("impact " + std::to_string(i) + " has leg index " + std::to_string(im.leg) + ", expected 0..5");
+    leg[i] = im.leg + 1;
+    start[i] = im.t_start_s;
+    duration[i] = im.duration_s;
+    peak[i] = im.peak_force_N;
+    impulse[i] = im.impulse_Ns;
+    mass[i] = im.effective_mass_kg;
+    speed[i] = im.approach_speed_mps;
+  }
+  b.add(s::kImpactLeg, {n}, std::move(leg));
+  b.vector(s::kImpactStart, start, n);
+  b.vector(s::kImpactDuration, duration, n);
+  b.vector(s::kImpactPeakForce, peak, n);
+  b.vector(s::kImpactImpulse, impulse, n);
+  b.vector(s::kImpactEffectiveMass, mass, n);
+  b.vector(s::kImpactApproachSpeed, speed, n);
+
+  b.matrix(s::kJointPower, d.joint_power, T, kJoints, {t, kJoints});
+  b.vector(s::kTotalPower, d.total_power_W, t);
+  b.scalar(s::kEnergyTotal, d.energy_total_J);
+  b.vector(s::kEnergyJoint, d.energy_joint_J, kJoints);
+  b.scalar(s::kCostOfTransport, d.cost_of_transport);
+  b.scalar(s::kEnergyDistance, d.distance_m);
+
+  if (d.solver_status.size() != t)
+    throw IoError(std::string(s::kSolverStatus.path) + " has " + std::to_string(d.solver_status.size()) +
+                  " entries, expected " + std::to_string(t));
+  b.add(s::kSolverStatus, {t}, solver_status_codes(d.solver_status));
+  b.vector(s::kSolverIterations, d.solver_iterations, t);
+  b.vector(s::kSolverObjective, d.solver_objective, t);
+  b.vector(s::kSolverSeconds, d.solver_seconds, t);
+  b.add(s::kSolverMessages, {d.solver_messages.size()}, d.solver_messages);
+}
+
+}  // namespace
+
+ResultLayout result_layout(const RunResult& result) {
+  ResultLayout layout;
+  Builder b(layout);
+  add_meta(layout, result);
+  add_model(b, result);
+  add_kinematics(b, result.kin);
+  if (result.dyn.present) add_dynamics(b, result.dyn, result.kin.samples());
+  return layout;
+}
+
+}  // namespace hexdyn

@@ -1,0 +1,58 @@
+#pragma once
+/// \file result_layout.hpp
+/// A run's `hexdyn-result/1` layout in memory: every dataset the file holds (path, units,
+/// dims and values, in the element type of io/schema.hpp) and every /meta attribute, in
+/// the order the file is written. The one source of what a result file contains: the HDF5
+/// writer (output.hpp, write_result_layout) writes this list, and the Python module
+/// (bindings/python/) hands the same arrays to numpy, so both see the same bytes.
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "hexdyn/core/result.hpp"
+#include "hexdyn/io/schema.hpp"
+
+namespace hexdyn {
+
+/// The values of one dataset, row-major, in the element type stored in the file
+/// (schema::Element: kFloat64, kInt8, kInt32, kString for a list of strings); a scalar
+/// text dataset (Shape::kText) is a single std::string.
+using LayoutValues = std::variant<std::vector<double>, std::vector<std::int8_t>,
+                                  std::vector<std::int32_t>, std::vector<std::string>, std::string>;
+
+/// One dataset: its contract entry (path and units, schema.hpp), its shape `dims`
+/// (outermost first; {} a scalar) and its values (product of dims entries; one string for
+/// a scalar text).
+struct LayoutDataset {
+  const schema::DatasetSpec* spec = nullptr;
+  std::vector<std::size_t> dims;
+  LayoutValues values;
+};
+
+/// One attribute of the file (the /meta group's): its contract entry and its value.
+struct LayoutAttribute {
+  const schema::AttributeSpec* spec = nullptr;
+  std::variant<std::string, std::int64_t, double> value;
+};
+
+/// A whole result file in memory.
+struct ResultLayout {
+  std::vector<LayoutAttribute> attributes;  ///< /meta, in the order written
+  std::vector<LayoutDataset> datasets;      ///< /model, kinematics, dynamics, in the order written
+};
+
+/// The layout of `result`: /meta (created_utc = now), /model, the kinematic datasets and,
+/// when result.dyn.present, the dynamic ones (schema.hpp's kModelDatasets,
+/// kUrdfRobotDatasets when the robot came from a URDF, kKinematicDatasets,
+/// kDynamicsDatasets). Copies the arrays.
+///
+/// Preconditions (checked; a mismatch throws IoError "PATH is RxC, expected ..." naming the
+/// dataset): every kinematic array has result.kin.samples() = T rows and its dataset's
+/// column count (T×3, T×4, T×6 or T×18); when result.dyn.present, the dynamics arrays have
+/// T rows (or T entries), energy_joint_J 18 entries, every impact a leg index 0..5
+/// (written 1-based); 18 joint names (or none: then L1_coxa … L6_tibia).
+ResultLayout result_layout(const RunResult& result);
+
+}  // namespace hexdyn

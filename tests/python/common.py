@@ -1,0 +1,69 @@
+"""Shared by the Python module's tests (tests/install.cmake): the hexdyn binary and the
+source tree from the command line, the CLI's output read with h5py."""
+
+import os
+import subprocess
+import sys
+
+import h5py
+import numpy as np
+
+
+def args():
+    """(hexdyn binary, source dir) from argv."""
+    if len(sys.argv) != 3:
+        sys.exit(f"usage: {sys.argv[0]} HEXDYN_BINARY SOURCE_DIR")
+    return sys.argv[1], os.path.realpath(sys.argv[2])
+
+
+def cli_run(hexdyn, scene, out, sets=()):
+    """`hexdyn run scene -o out --set ...`; returns (exit status, stderr)."""
+    cmd = [hexdyn, "run", scene, "-o", out]
+    for s in sets:
+        cmd += ["--set", s]
+    p = subprocess.run(cmd, capture_output=True, text=True)
+    return p.returncode, p.stderr
+
+
+def cli_error(hexdyn, argv):
+    """The one-line message the CLI prints for a failing command, without its prefix."""
+    p = subprocess.run([hexdyn] + argv, capture_output=True, text=True)
+    assert p.returncode != 0, f"hexdyn {argv} succeeded"
+    line = p.stderr.strip().splitlines()[-1]
+    assert line.startswith("hexdyn: error: "), line
+    return p.returncode, line[len("hexdyn: error: "):]
+
+
+def file_datasets(path):
+    """{"/path": value} of every dataset of an HDF5 file, as h5py reads it."""
+    out = {}
+    with h5py.File(path, "r") as f:
+        def visit(name, obj):
+            if isinstance(obj, h5py.Dataset):
+                out["/" + name] = (obj[()], obj.dtype, obj.attrs["units"])
+        f.visititems(visit)
+        attrs = {k: (v.decode() if isinstance(v, bytes) else v) for k, v in f["/meta"].attrs.items()}
+    return out, attrs
+
+
+def text(v):
+    return v.decode() if isinstance(v, bytes) else str(v)
+
+
+def same_dataset(path, file_value, file_dtype, mine):
+    """None when `mine` (hexdyn.Result's value) equals the file's dataset bit for bit: same
+    dtype, shape and bytes for numbers; the same strings for text."""
+    if file_dtype.kind in "fiu":
+        a = np.asarray(mine)
+        if a.dtype != file_dtype:
+            return f"{path}: dtype {a.dtype}, file {file_dtype}"
+        if a.shape != np.shape(file_value):
+            return f"{path}: shape {a.shape}, file {np.shape(file_value)}"
+        if a.tobytes() != np.asarray(file_value).tobytes():
+            return f"{path}: values differ (max |diff| {np.max(np.abs(a - file_value))})"
+        return None
+    if np.ndim(file_value) == 0:
+        return None if isinstance(mine, str) and mine == text(file_value) else f"{path}: text differs"
+    want = [text(v) for v in file_value]
+    got = list(mine)
+    return None if got == want and all(isinstance(g, str) for g in got) else f"{path}: strings differ"
