@@ -24,6 +24,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <random>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -173,10 +174,13 @@ RunComparison compare_with_ipopt(const Scene& scene, int stride = 1, bool with_r
       if (dr > 1e-6) {
         ++r.run_ipopt_over;
         const double ours = penalised_objective(qp, out.x, rho);
-        if (ours_certified_unique && penalised_objective(qp, run_ref.x, rho) >= ours - 1e-10 * (1.0 + std::abs(ours)))
+        if (ours_certified_unique && penalised_objective(qp, run_ref.x, rho) >= ours - 1e-10 * (1.0 + std::abs(ours))) {
           ++r.run_ipopt_explained;
-        else
-          note(i, "Ipopt at its own dual_inf_tol " + std::to_string(dr) + " N away, not explained");
+        } else {
+          std::ostringstream os;
+          os << "Ipopt at its own dual_inf_tol " << dr << " N away, not explained";
+          note(i, os.str());
+        }
       }
     }
   }
