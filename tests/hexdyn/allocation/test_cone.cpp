@@ -4,12 +4,27 @@
 // answer is also checked by computations that need neither back end (cone_checks.hpp): the
 // KKT conditions of the cone problem on optimal samples and of its L1-penalised form on
 // every sample, and on relaxed samples the penalised problem re-solved in extended
-// precision on the structure of our answer. Hard cases are in test_cone_hard.cpp.
+// precision on the structure of our answer, whose optimum is unique (H positive definite).
+// Hard cases are in test_cone_hard.cpp.
+//
+// The reference is Ipopt at tolerance 1e-12 with an absolute stationarity tolerance
+// (kReferenceDualInfTol). The paper run is also compared with Ipopt as a run with
+// `allocation.solver: ipopt`, `allocation.tolerance: 1e-12` configures it (Ipopt's own
+// dual_inf_tol); there one relaxed sample (t = 3.000234 s, three impact feet, six
+// variables) lands 3.4e-6 N from ours. That run ends "Solved To Acceptable Level": its
+// compl_inf_tol (1e-3·tolerance, unscaled) is out of reach next to an objective of 6.4e9
+// (ρ w = 1e8 on three trunk rows), and Ipopt stops once 15 iterates meet its acceptable
+// level, tested on the problem whose objective it scaled by 1e-7; that iterate keeps a
+// complementarity of 1e-10, which lets it stand up to ~1e-6 inside friction faces held
+// with multipliers of 1e-4. The optimum is unique and our answer is it (within 7e-17 N of the
+// extended-precision re-solve): the difference is where Ipopt stopped, and the test
+// requires that every such difference be explained so.
 #include <Eigen/Dense>
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <random>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -46,10 +61,29 @@ struct RunComparison {
   /// largest distances of our answer and of Ipopt's from the certified one.
   int uncertified = 0;
   double max_dx_ours_exact = 0.0, max_dx_ipopt_exact = 0.0;
+  /// Uniqueness of the penalised optimum on relaxed samples: the smallest ratio of H's
+  /// extreme eigenvalues (H positive definite makes the penalised objective strictly
+  /// convex, so the certified KKT point is the only optimum) and the smallest eigenvalue.
+  double min_eig_ratio = kInf, min_eig = kInf;
+  /// Optional second reference: Ipopt with its own dual_inf_tol (a run's Ipopt at
+  /// tolerance 1e-12). Samples more than 1e-6 N from ours; those explained (ours the
+  /// certified unique optimum to 1e-7 N, Ipopt's penalised objective not below ours);
+  /// the largest difference and where.
+  int run_ipopt_over = 0, run_ipopt_explained = 0;
+  double max_dx_run_ipopt = 0.0, run_ipopt_worst_t = 0.0, run_ipopt_worst_ipopt_exact = 0.0;
   std::string first_problem;
 };
 
-RunComparison compare_with_ipopt(const Scene& scene, int stride = 1) {
+/// Smallest eigenvalue of H and its ratio to the largest.
+std::pair<double, double> extreme_eigenvalues(const QpProblem& qp) {
+  const Eigen::MatrixXd H = qp.H.selfadjointView<Eigen::Lower>();
+  const Eigen::VectorXd ev = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(H, Eigen::EigenvaluesOnly).eigenvalues();
+  return {ev.minCoeff(), ev.minCoeff() / ev.maxCoeff()};
+}
+
+/// `with_run_ipopt`: also compare with Ipopt as a run configures it at tolerance 1e-12
+/// (RunComparison::run_ipopt_*).
+RunComparison compare_with_ipopt(const Scene& scene, int stride = 1, bool with_run_ipopt = false) {
   const PreparedScene prep = prepare_scene(scene);
   const KinematicsResult kin = sample_kinematics(prep.model, prep.plan, prep.grid);
   RobotData data(prep.model);
@@ -58,6 +92,9 @@ RunComparison compare_with_ipopt(const Scene& scene, int stride = 1) {
   io.tolerance = 1e-12;
   io.dual_inf_tol = kReferenceDualInfTol;
   auto ipopt = make_ipopt_backend(io);
+  IpoptOptions run_io = ipopt_options_from(scene.allocation);
+  run_io.tolerance = 1e-12;
+  auto run_ipopt = with_run_ipopt ? make_ipopt_backend(run_io) : nullptr;
   auto cone = make_allocation_backend(scene.allocation);
   QpProblem qp;
   SampleContacts contacts;
@@ -74,8 +111,11 @@ RunComparison compare_with_ipopt(const Scene& scene, int stride = 1) {
     build_allocation_problem(scene.allocation, scene.contact, split, contacts.phase, contacts.impact_force_N,
                              contacts.W_R_contact, qp);
     const QpOutcome ref = ipopt->solve(qp);
+    const QpOutcome run_ref = run_ipopt ? run_ipopt->solve(qp) : QpOutcome{};
     const QpOutcome& out = cone->solve(qp);
     ++r.samples;
+    bool ours_certified_unique = false;  // ours within 1e-7 N of the unique optimum
+    Eigen::VectorXd unique_optimum;
     const double dx = inf_norm(out.x - ref.x);
     if (out.status != ref.status) {
       ++r.status_mismatches;
@@ -86,7 +126,12 @@ RunComparison compare_with_ipopt(const Scene& scene, int stride = 1) {
       ++r.optimal;
       r.max_dx_optimal = std::max(r.max_dx_optimal, dx);
       if (!qp.cones.empty()) r.max_cone_violation = std::max(r.max_cone_violation, worst_cone_violation(qp, out.x));
-      if (const KktVerdict kkt = check_kkt(qp, out, 1e-9); !kkt) ++r.kkt_failures, note(i, kkt.why);
+      if (const KktVerdict kkt = check_kkt(qp, out, 1e-9); !kkt) {
+        ++r.kkt_failures, note(i, kkt.why);
+      } else {
+        ours_certified_unique = extreme_eigenvalues(qp).second > 1e-6;
+        unique_optimum = out.x;
+      }
       for (int k = 0; k < out.lambda_cone.size(); ++k) r.active_cones += out.lambda_cone[k] > 1e-9;
     } else {
       ++r.relaxed;
@@ -103,12 +148,39 @@ RunComparison compare_with_ipopt(const Scene& scene, int stride = 1) {
         r.max_dx_ours_exact = std::max(r.max_dx_ours_exact, inf_norm(out.x - exact.x));
         r.max_dx_ipopt_exact = std::max(r.max_dx_ipopt_exact, inf_norm(ref.x - exact.x));
       }
+      const auto [lmin, ratio] = extreme_eigenvalues(qp);
+      r.min_eig = std::min(r.min_eig, lmin);
+      r.min_eig_ratio = std::min(r.min_eig_ratio, ratio);
+      ours_certified_unique = exact.certified && ratio > 1e-6 && inf_norm(out.x - exact.x) < 1e-7;
+      unique_optimum = exact.x;
     }
     if (const KktVerdict kkt = check_penalised_kkt(qp, out, rho, 1e-9); !kkt)
       ++r.kkt_failures, note(i, kkt.why);
     const double gap = penalised_objective(qp, ref.x, rho) - penalised_objective(qp, out.x, rho);
     if (gap < -1e-10 * (1.0 + std::abs(penalised_objective(qp, ref.x, rho))))
       ++r.objective_failures, note(i, "penalised objective above Ipopt's");
+    if (run_ipopt) {
+      // Ipopt as a run configures it: a difference beyond 1e-6 N is explained when the
+      // optimum is unique (H positive definite, the penalised objective strictly convex),
+      // ours is it to 1e-7 N (certified), and Ipopt's point is no better: Ipopt is then
+      // more than 9e-7 N from the only optimum.
+      const double dr = inf_norm(out.x - run_ref.x);
+      if (dr > r.max_dx_run_ipopt) {
+        r.max_dx_run_ipopt = dr, r.run_ipopt_worst_t = kin.time_s[i];
+        r.run_ipopt_worst_ipopt_exact = unique_optimum.size() ? inf_norm(run_ref.x - unique_optimum) : -1.0;
+      }
+      if (dr > 1e-6) {
+        ++r.run_ipopt_over;
+        const double ours = penalised_objective(qp, out.x, rho);
+        if (ours_certified_unique && penalised_objective(qp, run_ref.x, rho) >= ours - 1e-10 * (1.0 + std::abs(ours))) {
+          ++r.run_ipopt_explained;
+        } else {
+          std::ostringstream os;
+          os << "Ipopt at its own dual_inf_tol " << dr << " N away, not explained";
+          note(i, os.str());
+        }
+      }
+    }
   }
   return r;
 }
@@ -118,7 +190,9 @@ void check_comparison(const RunComparison& r) {
                  << " N, relaxed " << r.max_dx_relaxed << " N; violations " << r.max_violation_diff
                  << "; cone " << r.max_cone_violation << "; relaxed vs extended precision: ours "
                  << r.max_dx_ours_exact << " N, Ipopt " << r.max_dx_ipopt_exact << " N, " << r.uncertified
-                 << " not certified. " << r.first_problem);
+                 << " not certified; H's eigenvalue ratio on relaxed samples >= " << r.min_eig_ratio
+                 << "; Ipopt at its own dual_inf_tol: " << r.run_ipopt_over << " beyond 1e-6 N, "
+                 << r.run_ipopt_explained << " explained. " << r.first_problem);
   CHECK(r.status_mismatches == 0);
   CHECK(r.name_mismatches == 0);
   CHECK(r.kkt_failures == 0);
@@ -133,6 +207,10 @@ void check_comparison(const RunComparison& r) {
   CHECK(r.max_dx_ours_exact < 1e-6);
   CHECK(r.max_dx_ipopt_exact < 1e-6);
   CHECK(r.max_cone_violation <= 1e-11);
+  // The penalised optimum of every relaxed sample is unique: H positive definite with a
+  // margin far above rounding.
+  CHECK((r.relaxed == 0 || r.min_eig_ratio > 1e-6));
+  CHECK(r.run_ipopt_explained == r.run_ipopt_over);
 }
 
 Scene paper_with(std::vector<std::pair<std::string, std::string>> overrides) {
@@ -178,7 +256,7 @@ TEST_CASE("cone back end: every sample of the paper run with the exact cone agre
   // Same status, same rows and cones giving way by the same amounts, forces within 1e-6 N of
   // Ipopt at tolerance 1e-12; optimal samples also satisfy the cone problem's KKT conditions
   // and hold their cones to 1e-11 relative.
-  const RunComparison r = compare_with_ipopt(paper_with({}));
+  const RunComparison r = compare_with_ipopt(paper_with({}), 1, true);
   CHECK(r.samples > 500);
   CHECK(r.relaxed > 100);  // touchdown transients
   CHECK(r.active_cones > 250);  // the torque-optimal forces ride the friction limit
@@ -188,7 +266,13 @@ TEST_CASE("cone back end: every sample of the paper run with the exact cone agre
                            << " N optimal, " << r.max_dx_relaxed << " N relaxed; worst cone "
                            << r.max_cone_violation << " relative; relaxed samples vs extended precision: ours "
                            << r.max_dx_ours_exact << " N, Ipopt " << r.max_dx_ipopt_exact << " N ("
-                           << r.uncertified << " not certified)");
+                           << r.uncertified << " not certified); H's smallest eigenvalue on relaxed samples "
+                           << r.min_eig << ", ratio to its largest >= " << r.min_eig_ratio
+                           << "; Ipopt at its own dual_inf_tol (a run with tolerance 1e-12): max |Δx| "
+                           << r.max_dx_run_ipopt << " N at t = " << r.run_ipopt_worst_t << " s ("
+                           << r.run_ipopt_worst_ipopt_exact << " N from the unique optimum), "
+                           << r.run_ipopt_over << " sample(s) beyond 1e-6 N, " << r.run_ipopt_explained
+                           << " explained");
 }
 
 TEST_CASE("cone back end: every sample of the smoke sweep with the exact cone agrees with Ipopt",
