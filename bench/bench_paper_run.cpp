@@ -28,6 +28,17 @@ void run_paper(benchmark::State& state, AllocationSolver solver) {
 void BM_PaperRun(benchmark::State& state) { run_paper(state, AllocationSolver::kActiveSet); }
 BENCHMARK(BM_PaperRun)->Unit(benchmark::kMillisecond);
 
+/// What hexdyn.run(scene) does in C++: read and validate the scene file, then compute it. The
+/// denominator of the Python module's cost ratio (bench/bench_python.py).
+void BM_PaperLoadAndRun(benchmark::State& state) {
+  for (auto _ : state) {
+    const Scene scene = load_scene(bench::paper_scene_path());
+    const RunResult r = run_scene(scene);
+    benchmark::DoNotOptimize(r.dyn.energy_total_J);
+  }
+}
+BENCHMARK(BM_PaperLoadAndRun)->Unit(benchmark::kMillisecond);
+
 void BM_PaperRunIpopt(benchmark::State& state) { run_paper(state, AllocationSolver::kIpopt); }
 BENCHMARK(BM_PaperRunIpopt)->Unit(benchmark::kMillisecond)->Iterations(1);
 
