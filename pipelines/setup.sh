@@ -14,6 +14,7 @@ HEXDYN_PACKAGES=(
   libeigen3-dev coinor-libipopt-dev libhdf5-dev hdf5-tools libgsl-dev catch2
   libopenmpi-dev openmpi-bin libyaml-cpp-dev libbenchmark-dev liburdfdom-dev
   python3 python3-h5py python3-numpy python3-matplotlib python3-yaml
+  clang-format
 )
 
 hexdyn_install() {
