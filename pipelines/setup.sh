@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages hexdyn needs (only those missing) and builds it in
-# build/ (Release). Sourced by the other pipelines; safe to run on its own.
+# build/ (Release). Sourced by the other pipelines (`hexdyn_build hexdyn` builds only the
+# binary); run on its own, it builds everything.
 set -euo pipefail
 HEXDYN_ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 export HEXDYN_ROOT
@@ -31,9 +32,13 @@ hexdyn_install() {
   fi
 }
 
+# hexdyn_build [TARGET...]: configures build/ and builds the named targets (and what they
+# need), or everything -- libraries, hexdyn, tests and benchmarks -- when none is named.
 hexdyn_build() {
   cmake -S "$HEXDYN_ROOT" -B "$HEXDYN_BUILD" -DCMAKE_BUILD_TYPE=Release >/dev/null
-  cmake --build "$HEXDYN_BUILD" -j"$(nproc)"
+  local targets=()
+  for t in "$@"; do targets+=(--target "$t"); done
+  cmake --build "$HEXDYN_BUILD" -j"$(nproc)" "${targets[@]}"
 }
 
 if [[ "${BASH_SOURCE[0]}" == "$0" ]]; then
