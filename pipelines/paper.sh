@@ -1,10 +1,11 @@
 #!/usr/bin/env bash
-# The paper scenario end to end: install what is missing, build, run
-# configs/paper.yaml and draw the figures into results/paper/.
+# The paper scenario end to end: install what is missing, build the hexdyn binary (only
+# it: the tests and benchmarks are built by pipelines/test.sh), run configs/paper.yaml and
+# draw the figures into results/paper/.
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
 hexdyn_install
-hexdyn_build
+hexdyn_build hexdyn
 
 out="$HEXDYN_ROOT/results/paper"
 mkdir -p "$out"

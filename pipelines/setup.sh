@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages hexdyn needs (only those missing) and builds it in
-# build/ (Release). Sourced by the other pipelines; safe to run on its own.
+# build/ (Release). Sourced by the other pipelines (`hexdyn_build hexdyn` builds only the
+# binary); run on its own, it builds everything.
 set -euo pipefail
 HEXDYN_ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 export HEXDYN_ROOT
@@ -17,6 +18,7 @@ HEXDYN_PACKAGES=(
   libopenmpi-dev openmpi-bin libyaml-cpp-dev libbenchmark-dev liburdfdom-dev
   python3 python3-h5py python3-numpy python3-matplotlib python3-yaml
   python3-dev pybind11-dev python3-pybind11 python3-scipy
+  clang-format
 )
 
 hexdyn_install() {
@@ -33,9 +35,13 @@ hexdyn_install() {
   fi
 }
 
+# hexdyn_build [TARGET...]: configures build/ and builds the named targets (and what they
+# need), or everything -- libraries, hexdyn, tests and benchmarks -- when none is named.
 hexdyn_build() {
   cmake -S "$HEXDYN_ROOT" -B "$HEXDYN_BUILD" -DCMAKE_BUILD_TYPE=Release >/dev/null
-  cmake --build "$HEXDYN_BUILD" -j"$(nproc)"
+  local targets=()
+  for t in "$@"; do targets+=(--target "$t"); done
+  cmake --build "$HEXDYN_BUILD" -j"$(nproc)" "${targets[@]}"
 }
 
 if [[ "${BASH_SOURCE[0]}" == "$0" ]]; then
