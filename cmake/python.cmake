@@ -14,6 +14,16 @@ find_package(Python3 COMPONENTS Interpreter Development.Module)
 if(Python3_FOUND)
   find_package(pybind11 CONFIG QUIET)
 endif()
+set(HEXDYN_PYTHON_PACKAGE_DIR ${CMAKE_BINARY_DIR}/python/hexdyn)
+# The pure-Python files, the version and the schema header the reader parses: laid out at
+# configure time, so that reading files (and the analysis scripts) needs no compiled part.
+set(hexdyn_python_files __init__.py results.py)
+foreach(f IN LISTS hexdyn_python_files)
+  configure_file(${PROJECT_SOURCE_DIR}/bindings/python/hexdyn/${f} ${HEXDYN_PYTHON_PACKAGE_DIR}/${f} COPYONLY)
+endforeach()
+configure_file(${PROJECT_SOURCE_DIR}/bindings/python/hexdyn/_version.py.in
+               ${HEXDYN_PYTHON_PACKAGE_DIR}/_version.py @ONLY)
+configure_file(${PROJECT_SOURCE_DIR}/src/hexdyn/io/schema.hpp ${HEXDYN_PYTHON_PACKAGE_DIR}/schema.hpp COPYONLY)
 set(hexdyn_python_default OFF)
 if(Python3_FOUND AND pybind11_FOUND)
   set(hexdyn_python_default ON)
@@ -27,25 +37,18 @@ if(NOT pybind11_FOUND)
   message(FATAL_ERROR "HEXDYN_BUILD_PYTHON=ON needs pybind11 (Debian: pybind11-dev, python3-dev)")
 endif()
 
-set(HEXDYN_PYTHON_PACKAGE_DIR ${CMAKE_BINARY_DIR}/python/hexdyn)
 # lib/, not CMAKE_INSTALL_LIBDIR: Python's own layout, also on multiarch systems.
 set(HEXDYN_PYTHON_INSTALL_DIR lib/python${Python3_VERSION_MAJOR}.${Python3_VERSION_MINOR}/dist-packages
     CACHE STRING "Folder (relative to the prefix) the Python package hexdyn is installed into")
 
-pybind11_add_module(hexdyn_python MODULE ${PROJECT_SOURCE_DIR}/bindings/python/module.cpp)
+# NO_EXTRAS: no link-time optimisation of the glue (the libraries it links are not built
+# for LTO; GCC would only warn about serial LTRANS jobs).
+pybind11_add_module(hexdyn_python MODULE NO_EXTRAS ${PROJECT_SOURCE_DIR}/bindings/python/module.cpp)
 target_link_libraries(hexdyn_python PRIVATE hexdyn_pipeline hexdyn_io hexdyn_sweep yaml-cpp)
 target_compile_options(hexdyn_python PRIVATE ${HEXDYN_WARNINGS})
 set_target_properties(hexdyn_python PROPERTIES OUTPUT_NAME _hexdyn
                       LIBRARY_OUTPUT_DIRECTORY ${HEXDYN_PYTHON_PACKAGE_DIR})
 
-# The pure-Python files, the version and the schema header the reader parses.
-set(hexdyn_python_files __init__.py results.py)
-foreach(f IN LISTS hexdyn_python_files)
-  configure_file(${PROJECT_SOURCE_DIR}/bindings/python/hexdyn/${f} ${HEXDYN_PYTHON_PACKAGE_DIR}/${f} COPYONLY)
-endforeach()
-configure_file(${PROJECT_SOURCE_DIR}/bindings/python/hexdyn/_version.py.in
-               ${HEXDYN_PYTHON_PACKAGE_DIR}/_version.py @ONLY)
-configure_file(${PROJECT_SOURCE_DIR}/src/hexdyn/io/schema.hpp ${HEXDYN_PYTHON_PACKAGE_DIR}/schema.hpp COPYONLY)
 
 install(TARGETS hexdyn_python LIBRARY DESTINATION ${HEXDYN_PYTHON_INSTALL_DIR}/hexdyn)
 list(TRANSFORM hexdyn_python_files PREPEND ${HEXDYN_PYTHON_PACKAGE_DIR}/)
