@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
-# Formatting check (ctest format.clang_format): every C++ file under src/, tests/ and bench/
-# of SOURCE_DIR -- *.cpp, *.hpp, *.h and their .in templates -- must be exactly what
-# clang-format makes of it with SOURCE_DIR/.clang-format. In a git checkout the files are the
-# tracked ones plus untracked files not ignored; elsewhere every such file found.
+# Formatting check (ctest format.clang_format): every C++ file under src/, tests/, bench/,
+# bindings/ and examples/ of SOURCE_DIR -- *.cpp, *.hpp, *.h and their .in templates -- must
+# be exactly what clang-format makes of it with SOURCE_DIR/.clang-format. In a git checkout
+# the files are the tracked ones plus untracked files not ignored; elsewhere every such file
+# found.
 #
 #   tests/format/check_format.sh SOURCE_DIR
 #
@@ -35,17 +36,17 @@ files=()
 if git -C "$root" rev-parse --is-inside-work-tree >/dev/null 2>&1; then
   while IFS= read -r -d '' f; do
     [[ -f "$f" ]] && files+=("$f")
-  done < <(git ls-files -z --cached --others --exclude-standard -- src tests bench |
+  done < <(git ls-files -z --cached --others --exclude-standard -- src tests bench bindings examples |
            grep -zE '\.(cpp|hpp|h)(\.in)?$' | sort -zu)
 else
   while IFS= read -r -d '' f; do
     files+=("${f#./}")
-  done < <(find src tests bench -type f \( -name '*.cpp' -o -name '*.hpp' -o -name '*.h' \
+  done < <(find src tests bench bindings examples -type f \( -name '*.cpp' -o -name '*.hpp' -o -name '*.h' \
              -o -name '*.cpp.in' -o -name '*.hpp.in' -o -name '*.h.in' \) -print0 2>/dev/null |
            sort -z)
 fi
 if ((${#files[@]} == 0)); then
-  echo "format: no C++ file under src/, tests/ or bench/ of $root" >&2
+  echo "format: no C++ file under src/, tests/, bench/, bindings/ or examples/ of $root" >&2
   exit 1
 fi
 
