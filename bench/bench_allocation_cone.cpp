@@ -8,7 +8,8 @@
 // (ipopt_cone_us_per_sample), measured in alternation inside the same benchmark run, the
 // ratios cone / pyramid4 (target ≤ 3) and Ipopt / cone, the cone back end's total
 // allocation time per run [ms] (cone_ms_per_run) and its heap allocations per optimal
-// sample after the first pass (relaxed samples build their messages). BM_Pyramid4PaperRun and BM_IpoptConePaperRun time whole passes alone.
+// sample after the first pass (relaxed samples build their messages). BM_Pyramid4PaperRun and
+// BM_IpoptConePaperRun time whole passes alone.
 //
 //   build/bench/bench_allocation_cone --benchmark_filter=ConePaperRun
 #include <benchmark/benchmark.h>
@@ -56,7 +57,8 @@ std::vector<QpProblem> paper_problems(FrictionModel friction) {
     const ContactSplit& split = contact_split(p.model, data, s.base, s.q, s.qd, s.qdd);
     SampleContacts c;
     sample_contacts(p.kin, i, p.plan.terrain, p.touchdowns, c);
-    build_allocation_problem(alloc, p.scene.contact, split, c.phase, c.impact_force_N, c.W_R_contact, v[i]);
+    build_allocation_problem(alloc, p.scene.contact, split, c.phase, c.impact_force_N,
+                             c.W_R_contact, v[i]);
   }
   return v;
 }
@@ -85,8 +87,8 @@ struct AllocationCount {
 
 /// One pass over a run, cold at its start as a run is: per-sample seconds into `s`
 /// (appended), and the worst status; allocations of optimal solves into *count if given.
-int run_pass(AllocationBackend& backend, const std::vector<QpProblem>& problems, std::vector<double>& s,
-             AllocationCount* count = nullptr) {
+int run_pass(AllocationBackend& backend, const std::vector<QpProblem>& problems,
+             std::vector<double>& s, AllocationCount* count = nullptr) {
   backend.reset_warm_start();
   int status = 0;
   for (const QpProblem& qp : problems) {
@@ -139,7 +141,8 @@ void BM_ConePaperRun(benchmark::State& state) {
   state.counters["cone_ms_per_run"] = median(cone_run_ms);
   state.counters["ipopt_cone_ms_per_run"] = 1e3 * sum(ipopt_s, 0);
   state.counters["allocs_per_optimal_sample"] =
-      count.solves ? static_cast<double>(count.allocations) / static_cast<double>(count.solves) : 0.0;
+      count.solves ? static_cast<double>(count.allocations) / static_cast<double>(count.solves)
+                   : 0.0;
   state.counters["worst_status"] = status;
 }
 BENCHMARK(BM_ConePaperRun)->Unit(benchmark::kMillisecond)->MinTime(2.0);

@@ -14,7 +14,6 @@
 //
 //   build/bench/bench_coordinator              (about a minute)
 #include <benchmark/benchmark.h>
-
 #include <time.h>
 
 #include <algorithm>
@@ -155,7 +154,8 @@ Outcome simulate(int workers, std::size_t n) {
     f.index = i;
     f.cost_s = fake_cost(i);
     f.payload.clear();  // the worker's side (mpi/worker.cpp): the row's journal record
-    hexdyn::append_journal_record(f.payload, hexdyn::RecordKind::kRow, i, id, payload.data(), payload.size());
+    hexdyn::append_journal_record(f.payload, hexdyn::RecordKind::kRow, i, id, payload.data(),
+                                  payload.size());
     hexdyn::append_result(x.results, f);
     --x.in_hand;
     start_next(e.worker, e.t);
@@ -170,7 +170,8 @@ Outcome simulate(int workers, std::size_t n) {
   o.efficiency = total_cost / (static_cast<double>(workers) * makespan);
   o.busy = coord_busy / makespan;
   o.per_result_us = 1e6 * result_time / static_cast<double>(results);
-  o.per_dispatch_us = 1e6 * dispatch_time / static_cast<double>(std::max<std::size_t>(dispatches, 1));
+  o.per_dispatch_us =
+      1e6 * dispatch_time / static_cast<double>(std::max<std::size_t>(dispatches, 1));
   return o;
 }
 
@@ -186,8 +187,15 @@ void BM_CoordinatorScale(benchmark::State& state) {
   state.counters["makespan_s"] = o.makespan;
 }
 BENCHMARK(BM_CoordinatorScale)
-    ->Arg(100)->Arg(1000)->Arg(5000)->Arg(10000)->Arg(15000)->Arg(20000)->Arg(40000)
-    ->Unit(benchmark::kMillisecond)->Iterations(1);
+    ->Arg(100)
+    ->Arg(1000)
+    ->Arg(5000)
+    ->Arg(10000)
+    ->Arg(15000)
+    ->Arg(20000)
+    ->Arg(40000)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1);
 
 }  // namespace
 

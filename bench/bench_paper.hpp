@@ -6,14 +6,14 @@
 #include <string>
 #include <vector>
 
-#include "hexdyn/io/config.hpp"
-#include "hexdyn/dynamics/rnea.hpp"
 #include "hexdyn/allocation/backends.hpp"
 #include "hexdyn/allocation/problem.hpp"
 #include "hexdyn/contact/touchdowns.hpp"
+#include "hexdyn/dynamics/rnea.hpp"
+#include "hexdyn/io/config.hpp"
 #include "hexdyn/kinematics/kinematics.hpp"
-#include "hexdyn/pipeline/pipeline.hpp"
 #include "hexdyn/model/robot_model.hpp"
+#include "hexdyn/pipeline/pipeline.hpp"
 
 namespace hexdyn::bench {
 

@@ -26,10 +26,13 @@
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+double since(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
 
 std::string bench_file(const char* name) {
-  if (const char* dir = std::getenv("HEXDYN_SOURCE_DIR")) return std::string(dir) + "/bench/" + name;
+  if (const char* dir = std::getenv("HEXDYN_SOURCE_DIR"))
+    return std::string(dir) + "/bench/" + name;
   std::string here = __FILE__;
   return here.substr(0, here.find_last_of('/')) + "/" + name;
 }
@@ -94,8 +97,8 @@ void BM_SweepScenarioOverhead(benchmark::State& state) {
       messages += since(t);
 
       t = Clock::now();
-      hexdyn::append_journal_record(journal_buffer, hexdyn::RecordKind::kRow, i, id,
-                                    payload.data(), payload.size());
+      hexdyn::append_journal_record(journal_buffer, hexdyn::RecordKind::kRow, i, id, payload.data(),
+                                    payload.size());
       if (journal_buffer.size() > (1u << 20)) journal_buffer.clear();
       journal += since(t);
 

@@ -68,8 +68,10 @@ py::array to_numpy(std::vector<T>&& values, const std::vector<std::size_t>& dims
 /// objects, a scalar text as str.
 py::object to_python(hexdyn::LayoutDataset&& d) {
   if (auto* v = std::get_if<std::vector<double>>(&d.values)) return to_numpy(std::move(*v), d.dims);
-  if (auto* v8 = std::get_if<std::vector<std::int8_t>>(&d.values)) return to_numpy(std::move(*v8), d.dims);
-  if (auto* v32 = std::get_if<std::vector<std::int32_t>>(&d.values)) return to_numpy(std::move(*v32), d.dims);
+  if (auto* v8 = std::get_if<std::vector<std::int8_t>>(&d.values))
+    return to_numpy(std::move(*v8), d.dims);
+  if (auto* v32 = std::get_if<std::vector<std::int32_t>>(&d.values))
+    return to_numpy(std::move(*v32), d.dims);
   if (auto* texts = std::get_if<std::vector<std::string>>(&d.values)) {
     py::object np_asarray = py::module_::import("numpy").attr("asarray");
     py::list items;
@@ -80,7 +82,8 @@ py::object to_python(hexdyn::LayoutDataset&& d) {
 }
 
 /// run(scene, overrides, allow_large) → (handle, {path: array}, {attribute: value}).
-py::tuple run_file(const std::string& scene_path, const std::vector<std::string>& override_texts, bool allow_large) {
+py::tuple run_file(const std::string& scene_path, const std::vector<std::string>& override_texts,
+                   bool allow_large) {
   auto handle = std::make_shared<RunHandle>();
   hexdyn::ResultLayout layout;
   {
@@ -180,17 +183,19 @@ PYBIND11_MODULE(_hexdyn, m) {
       m, "ConfigError", py::make_tuple(error, py::handle(PyExc_ValueError)),
       "A scene or sweep file, or an override, is wrong: missing, mistyped or out-of-range key, "
       "unreadable file (CLI exit status 2).");
-  static py::object io_error = new_exception(m, "IoError", py::make_tuple(error, py::handle(PyExc_OSError)),
-                                             "An output file cannot be written (CLI exit status 2).");
-  static py::object reach_error = new_exception(m, "ReachError", py::make_tuple(error),
-                                                "A foot target outside a leg's workspace (exit status 3).");
+  static py::object io_error =
+      new_exception(m, "IoError", py::make_tuple(error, py::handle(PyExc_OSError)),
+                    "An output file cannot be written (CLI exit status 2).");
+  static py::object reach_error =
+      new_exception(m, "ReachError", py::make_tuple(error),
+                    "A foot target outside a leg's workspace (exit status 3).");
   static py::object planning_error = new_exception(m, "PlanningError", py::make_tuple(error),
                                                    "The motion cannot be planned (exit status 3).");
   static py::object solver_error = new_exception(m, "SolverError", py::make_tuple(error),
                                                  "A solver gave no usable answer (exit status 3).");
-  static py::object internal_error = new_exception(
-      m, "InternalError", py::make_tuple(error, py::handle(PyExc_RuntimeError)),
-      "A defect of hexdyn (CLI: 'internal error', exit status 4); please report it.");
+  static py::object internal_error =
+      new_exception(m, "InternalError", py::make_tuple(error, py::handle(PyExc_RuntimeError)),
+                    "A defect of hexdyn (CLI: 'internal error', exit status 4); please report it.");
 
   py::register_exception_translator([](std::exception_ptr p) {
     auto raise = [](const py::object& type, const std::string& message) {

@@ -4,8 +4,8 @@
 /// long enough to stand) with random reachable leg states.
 #include <random>
 
-#include "hexdyn/model/robot_model.hpp"
 #include "hexdyn/core/scene.hpp"
+#include "hexdyn/model/robot_model.hpp"
 
 namespace hexdyn::test {
 
@@ -47,8 +47,10 @@ inline RobotParams random_robot_params(std::mt19937& rng) {
   std::uniform_real_distribution<double> u(0.0, 1.0);
   auto in = [&](double a, double b) { return a + (b - a) * u(rng); };
   RobotParams p = paper_robot_params();
-  p.trunk = {in(0.3, 2.0), random_inertia(rng, 1e-2), Vec3(in(-0.02, 0.02), in(-0.02, 0.02), in(-0.01, 0.01))};
-  p.payload = {in(0.5, 5.0), random_inertia(rng, 5e-3), Vec3(in(-0.03, 0.03), in(-0.03, 0.03), in(0.0, 0.05))};
+  p.trunk = {in(0.3, 2.0), random_inertia(rng, 1e-2),
+             Vec3(in(-0.02, 0.02), in(-0.02, 0.02), in(-0.01, 0.01))};
+  p.payload = {in(0.5, 5.0), random_inertia(rng, 5e-3),
+               Vec3(in(-0.03, 0.03), in(-0.03, 0.03), in(0.0, 0.05))};
   for (int j = 0; j < kJointsPerLeg; ++j) {
     p.link_length_m[j] = in(0.05, 0.15);
     p.link[j] = {in(0.02, 0.3), random_inertia(rng, 1e-4),
@@ -56,7 +58,8 @@ inline RobotParams random_robot_params(std::mt19937& rng) {
     p.joint_offset_m[j] = in(0.0, 0.03);
   }
   for (int leg = 0; leg < kLegs; ++leg) {
-    p.hip_position_m[leg] = Vec3(in(0.04, 0.12) * (is_left(leg) ? -1 : 1), in(-0.25, 0.25), in(-0.02, 0.02));
+    p.hip_position_m[leg] =
+        Vec3(in(0.04, 0.12) * (is_left(leg) ? -1 : 1), in(-0.25, 0.25), in(-0.02, 0.02));
     p.hip_yaw_rad[leg] = (is_left(leg) ? M_PI : 0.0) + in(-0.5, 0.5);
   }
   return p;

@@ -182,8 +182,7 @@ class ActiveSetBackend final : public StrictThenPenalisedBackend {
     return a;
   }
 
-  Attempt solve_penalised(const QpProblem& p, const AttemptPlan& plan,
-                          bool after_strict) override {
+  Attempt solve_penalised(const QpProblem& p, const AttemptPlan& plan, bool after_strict) override {
     DualActiveSetQp& s = *core_;
     // The start: the stored sets after a skipped strict attempt, else the strict attempt's
     // final active set (copied: the run overwrites it).
@@ -199,8 +198,7 @@ class ActiveSetBackend final : public StrictThenPenalisedBackend {
       active = strict_rows_.data();
     }
     s.set_mode(true);
-    const ActiveSetExit exit =
-        run_attempt(active != nullptr, active, n_active, elastic, n_elastic);
+    const ActiveSetExit exit = run_attempt(active != nullptr, active, n_active, elastic, n_elastic);
     Attempt a;
     if (exit != ActiveSetExit::kOptimal) {
       a.note = std::string("penalised solve ") + exit_name(exit);

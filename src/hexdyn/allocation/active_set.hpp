@@ -63,8 +63,8 @@ struct ActiveSetOptions {
 ActiveSetOptions active_set_options_from(const AllocationParams& params);
 
 /// The dual active-set back end (the solver: allocation/dual_active_set.hpp; the attempt
-/// policy: allocation/strict_then_penalised.hpp; warm starts: allocation/active_set.cpp). Throws ConfigError
-/// for non-positive tolerance or slack_penalty or max_iterations < 1.
+/// policy: allocation/strict_then_penalised.hpp; warm starts: allocation/active_set.cpp). Throws
+/// ConfigError for non-positive tolerance or slack_penalty or max_iterations < 1.
 std::unique_ptr<AllocationBackend> make_active_set_backend(const ActiveSetOptions& options = {});
 
 }  // namespace hexdyn

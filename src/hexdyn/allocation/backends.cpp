@@ -9,10 +9,12 @@ namespace hexdyn {
 
 std::unique_ptr<AllocationBackend> make_allocation_backend(const AllocationParams& params) {
   switch (params.solver) {
-    case AllocationSolver::kIpopt: return make_ipopt_backend(ipopt_options_from(params));
+    case AllocationSolver::kIpopt:
+      return make_ipopt_backend(ipopt_options_from(params));
     case AllocationSolver::kActiveSet:
       // The exact cone by outer approximation on the active-set QP (allocation/cone.hpp).
-      if (params.friction == FrictionModel::kCone) return make_cone_backend(cone_options_from(params));
+      if (params.friction == FrictionModel::kCone)
+        return make_cone_backend(cone_options_from(params));
       return make_active_set_backend(active_set_options_from(params));
   }
   throw SolverError("allocation.solver: no back end");

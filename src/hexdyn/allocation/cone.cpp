@@ -215,7 +215,6 @@ class ConeBackend final : public AllocationBackend {
   }
 
  private:
-
   void solve_impl(const QpProblem& p) override {
     if (p.cones.empty()) {
       out_ = qp_->solve(p);
@@ -261,7 +260,8 @@ class ConeBackend final : public AllocationBackend {
     const QpOutcome* r = nullptr;
     bool converged = false;
     double worst_gap = 0.0;
-    double curvature_term = 0.0;  // ½ Σ κ |(I − d dᵀ) t|² of the last pass: not in the posed objective
+    double curvature_term =
+        0.0;  // ½ Σ κ |(I − d dᵀ) t|² of the last pass: not in the posed objective
     int worst_cone = 0, passes = 0;
     while (!converged && passes < opt_.max_passes) {
       set_cones(p);
@@ -282,7 +282,8 @@ class ConeBackend final : public AllocationBackend {
         const Eigen::Vector2d& d = dir_[k];
         double support = -kInf;
         for (int j = 0; j < kCutsPerCone; ++j)
-          if (j == 0 || on_[k][j]) support = std::max(support, cut_[k][j].x() * t1 + cut_[k][j].y() * t2);
+          if (j == 0 || on_[k][j])
+            support = std::max(support, cut_[k][j].x() * t1 + cut_[k][j].y() * t2);
         const double gap = norm - support;
         const double across = d.x() * t2 - d.y() * t1;  // |(I − d dᵀ) t|, signed
         curvature_term += 0.5 * kappa_[k] * across * across;
@@ -317,7 +318,8 @@ class ConeBackend final : public AllocationBackend {
             // t sits on the cone at a vertex of the current tangent and an older half-space,
             // which holds it there (the passes would creep, linearly): the older one has
             // done its work (bounding the iterates) and is dropped for this sample.
-            if (j >= kFirstMemory && on_cone && off > kStationarityTolerance * (1.0 + lambda_[k])) on_[k][j] = false;
+            if (j >= kFirstMemory && on_cone && off > kStationarityTolerance * (1.0 + lambda_[k]))
+              on_[k][j] = false;
           }
         }
         if (gap > opt_.cone_tolerance * std::max(1.0, norm) ||
@@ -359,16 +361,19 @@ class ConeBackend final : public AllocationBackend {
     have_directions_ = true;
     if (!converged) {
       char buf[160];
-      std::snprintf(buf, sizeof buf, "outer approximation of %s converged only to %.3g after %d passes",
-                    p.cones[worst_cone].name.empty() ? "a cone" : p.cones[worst_cone].name.c_str(), worst_gap,
-                    passes);
+      std::snprintf(buf, sizeof buf,
+                    "outer approximation of %s converged only to %.3g after %d passes",
+                    p.cones[worst_cone].name.empty() ? "a cone" : p.cones[worst_cone].name.c_str(),
+                    worst_gap, passes);
       out_.status = SolverStatus::kRelaxed;
-      out_.message = v.empty() ? std::string("approximate: ") + buf : "relaxed: " + v + " (" + buf + ")";
+      out_.message =
+          v.empty() ? std::string("approximate: ") + buf : "relaxed: " + v + " (" + buf + ")";
       return;
     }
     if (v.empty()) {
       out_.status = SolverStatus::kOptimal;
-      if (r->status == SolverStatus::kOptimal) out_.message = r->message;  // e.g. a regularisation note
+      if (r->status == SolverStatus::kOptimal)
+        out_.message = r->message;  // e.g. a regularisation note
     } else {
       out_.status = SolverStatus::kRelaxed;
       out_.message = "relaxed: " + v;
@@ -388,8 +393,8 @@ class ConeBackend final : public AllocationBackend {
   std::vector<Eigen::Vector2d> dir_;
   std::vector<double> lambda_, norm_, kappa_;
   std::vector<std::array<Eigen::Vector2d, kCutsPerCone>> cut_;  ///< half-space directions
-  std::vector<std::array<bool, kCutsPerCone>> on_;               ///< which are in force
-  std::vector<int> next_memory_;                                 ///< next ring slot
+  std::vector<std::array<bool, kCutsPerCone>> on_;              ///< which are in force
+  std::vector<int> next_memory_;                                ///< next ring slot
   /// The warm start of the next sample of the same structure: dir_, lambda_ and norm_ hold
   /// the last sample's answer.
   bool have_directions_ = false;

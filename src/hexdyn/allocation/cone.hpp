@@ -1,8 +1,8 @@
 #pragma once
 /// \file allocation/cone.hpp
-/// The exact friction cone on the dual active-set QP (docs/theory/allocation.md#exact-friction-cone,
-/// `allocation.solver: active-set` or `auto` with `allocation.friction: cone`): the problem
-/// of allocation/qp.hpp with second-order cones
+/// The exact friction cone on the dual active-set QP
+/// (docs/theory/allocation.md#exact-friction-cone, `allocation.solver: active-set` or `auto` with
+/// `allocation.friction: cone`): the problem of allocation/qp.hpp with second-order cones
 ///
 ///   minimise    ½ xᵀ H x + gᵀ x + constant
 ///   subject to  A x = b,   lower ≤ C x ≤ upper,   √(x_t1² + x_t2²) ≤ μ x_n  (per cone),

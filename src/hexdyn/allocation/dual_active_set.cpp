@@ -106,8 +106,8 @@ void DualActiveSetQp::start_cold() {
 /// Starts from the rows `active` (and `elastic`, penalised mode only), made dual feasible
 /// as described in the file comment. Returns false (and leaves a cold start) when that
 /// does not settle. `dropped` counts the rows given up.
-bool DualActiveSetQp::start_warm(const ActiveRow* active, int n_active, const ActiveRow* elastic, int n_elastic,
-                int& dropped) {
+bool DualActiveSetQp::start_warm(const ActiveRow* active, int n_active, const ActiveRow* elastic,
+                                 int n_elastic, int& dropped) {
   std::array<ActiveRow, kN> w;
   std::array<ActiveRow, kM> e;
   int nw = 0, ne = 0;
@@ -273,8 +273,7 @@ void DualActiveSetQp::polish() {
 // --- results ---
 /// Multipliers of all rows into `out` (size rows()), hexdyn's sign.
 void DualActiveSetQp::lambdas(double* out) const {
-  for (int k = 0; k < m_; ++k)
-    out[k] = state_[k] == RowState::kElastic ? side_[k] * cap_[k] : 0.0;
+  for (int k = 0; k < m_; ++k) out[k] = state_[k] == RowState::kElastic ? side_[k] * cap_[k] : 0.0;
   for (int i = 0; i < q_; ++i) out[act_[i]] = side_[act_[i]] * u_[i];
 }
 /// Largest violation of any row at x (row units, as describe_violations), and whether a
@@ -338,7 +337,9 @@ void DualActiveSetQp::ensure_j0() {
 
 // --- rows ---
 
-bool DualActiveSetQp::finite_side(int k, int side) const { return side > 0 ? lo_[k] > -kInf : hi_[k] < kInf; }
+bool DualActiveSetQp::finite_side(int k, int side) const {
+  return side > 0 ? lo_[k] > -kInf : hi_[k] < kInf;
+}
 /// β of row k on a side: the row reads side·a_kᵀx ≥ β.
 double DualActiveSetQp::beta(int k, int side) const { return side > 0 ? lo_[k] : -hi_[k]; }
 /// side·a_kᵀx − β (≥ 0 when that side holds).
@@ -525,7 +526,8 @@ void DualActiveSetQp::drop_position(int pos) {
 /// Minimiser of ½xᵀHx + gradᵀx on the active rows side·a_kᵀx = rhs_k and its
 /// multipliers u, with the Goldfarb–Idnani factors: x₀ = −J Jᵀ grad,
 /// v = R⁻ᵀ(rhs − Nᵀx₀), x = x₀ + J₁ v, u = R⁻¹ v.
-void DualActiveSetQp::eqp_gi(const SmallVector& grad, const double* rhs, SmallVector& x, double* u) {
+void DualActiveSetQp::eqp_gi(const SmallVector& grad, const double* rhs, SmallVector& x,
+                             double* u) {
   for (int i = 0; i < n_; ++i) w_[i] = J_.col(i).head(n_).dot(grad.head(n_));
   x.head(n_).setZero();
   for (int i = 0; i < n_; ++i) x.head(n_) -= w_[i] * J_.col(i).head(n_);
@@ -540,7 +542,8 @@ void DualActiveSetQp::eqp_gi(const SmallVector& grad, const double* rhs, SmallVe
 
 /// The same with the direct factors: y = L⁻¹ grad, S u = rhs + Mᵀy,
 /// x = L⁻ᵀ(M u − y).
-void DualActiveSetQp::eqp_direct(const SmallVector& grad, const double* rhs, SmallVector& x, double* u) {
+void DualActiveSetQp::eqp_direct(const SmallVector& grad, const double* rhs, SmallVector& x,
+                                 double* u) {
   double* y = w_.data();
   for (int j = 0; j < n_; ++j) y[j] = grad[j];
   lower_solve(L_, linv_.data(), n_, y);

@@ -6,8 +6,8 @@
 /// attempt is warm-started from the last strict solution (point and multipliers) when the
 /// problem's shape matches, and retried cold if that fails. If Ipopt does not converge, or
 /// its answer violates a row, the problem is solved again with penalised slack variables
-/// (docs/theory/allocation.md#exact-l1-penalty): each inequality row gets s⁺_i ≥ 0 if its lower bound is finite and
-/// s⁻_i ≥ 0 if its upper bound is,
+/// (docs/theory/allocation.md#exact-l1-penalty): each inequality row gets s⁺_i ≥ 0 if its lower
+/// bound is finite and s⁻_i ≥ 0 if its upper bound is,
 ///     lower_i ≤ C_i x + s⁺_i − s⁻_i ≤ upper_i,
 /// each cone k gets s_k ≥ 0 with √(t1² + t2²) ≤ μ n + s_k, and the objective gains the
 /// exact L1 penalty ρ (Σ w_i (s⁺_i + s⁻_i) + Σ w_k s_k) (weights from the problem, slacks
@@ -32,6 +32,8 @@
 /// never vanishes (∂/∂n = μ), so a solution at the apex (an unloaded foot) has multipliers;
 /// the squared form μ²n² − t² ≥ 0 has none there.
 /// Ipopt's Lagrangian is f + λᵀ g, so hexdyn's multipliers are −λ_ipopt.
+#include "hexdyn/allocation/ipopt.hpp"
+
 #include <Eigen/Dense>
 #include <IpIpoptApplication.hpp>
 #include <algorithm>
@@ -40,7 +42,6 @@
 #include <sstream>
 
 #include "hexdyn/allocation/friction.hpp"
-#include "hexdyn/allocation/ipopt.hpp"
 #include "hexdyn/allocation/ipopt_nlp.hpp"
 #include "hexdyn/allocation/strict_then_penalised.hpp"
 #include "hexdyn/core/errors.hpp"
@@ -108,8 +109,6 @@ bool stalled(Ipopt::ApplicationReturnStatus s) {
          s == Ipopt::Maximum_CpuTime_Exceeded;
 }
 
-
-
 class IpoptBackend final : public StrictThenPenalisedBackend {
  public:
   explicit IpoptBackend(const IpoptOptions& options) : opt_(options) {
@@ -164,7 +163,8 @@ class IpoptBackend final : public StrictThenPenalisedBackend {
   /// that hold with a zero multiplier at an impact foot's friction polygon): an interior
   /// point then sits ~√(complementarity) inside such a row. They therefore also get an
   /// absolute complementarity tolerance of 1e-3·tolerance, which brings their forces to
-  /// within ~2e-6 N of the exact penalised optimum on the paper run (docs/validation/allocation.md#active-set-against-ipopt-friction-pyramids).
+  /// within ~2e-6 N of the exact penalised optimum on the paper run
+  /// (docs/validation/allocation.md#active-set-against-ipopt-friction-pyramids).
   void set_per_solve_options(bool linear_constraints, bool warm, bool penalised) {
     Ipopt::OptionsList& o = *app_->Options();
     const double tol = opt_.tolerance;
@@ -276,10 +276,11 @@ class IpoptBackend final : public StrictThenPenalisedBackend {
     QpTnlp& t = *tnlp_;
     // Start from the strict run's last point, or after a skipped strict run from the
     // previous (relaxed) sample's solution.
-    const Eigen::VectorXd x0 =
-        after_strict && t.x_out.allFinite() && t.x_out.size() >= n ? Eigen::VectorXd(t.x_out.head(n))
-        : !plan.strict && out_.x.size() == n && out_.x.allFinite() ? out_.x
-                                                                   : qp_fallback_point(p);
+    const Eigen::VectorXd x0 = after_strict && t.x_out.allFinite() && t.x_out.size() >= n
+                                   ? Eigen::VectorXd(t.x_out.head(n))
+                               : !plan.strict && out_.x.size() == n && out_.x.allFinite()
+                                   ? out_.x
+                                   : qp_fallback_point(p);
     Attempt a;
     if (p.cones.empty()) {
       const Ipopt::ApplicationReturnStatus st = run_slack(p, x0);

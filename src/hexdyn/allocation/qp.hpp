@@ -166,8 +166,8 @@ std::string qp_first_non_finite(const QpProblem& problem);
 /// Fills `out` (all but iterations and seconds) for a failed solve: kFailed, x =
 /// qp_fallback_point, zero multipliers, finite objective and max_violation, and the
 /// message "failed: <why>; fallback x = ...; violated: ...".
-void qp_fail_with_fallback(const QpProblem& problem, double feasibility_tol,
-                           const std::string& why, QpOutcome& out);
+void qp_fail_with_fallback(const QpProblem& problem, double feasibility_tol, const std::string& why,
+                           QpOutcome& out);
 
 /// Fills `out` (all but iterations and seconds) for a problem without variables: kOptimal
 /// when its constant rows hold, kFailed naming them otherwise.

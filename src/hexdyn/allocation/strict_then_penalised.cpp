@@ -8,8 +8,8 @@ ProblemShape ProblemShape::of(const QpProblem& p) {
 }
 
 bool ProblemShape::same_sizes(const ProblemShape& o) const {
-  return variables == o.variables && equalities == o.equalities &&
-         inequalities == o.inequalities && cones == o.cones;
+  return variables == o.variables && equalities == o.equalities && inequalities == o.inequalities &&
+         cones == o.cones;
 }
 
 AttemptPlan plan_attempts(const ProblemShape& last, bool last_relaxed, const ProblemShape& now,

@@ -8,16 +8,15 @@
 #include <yaml-cpp/yaml.h>
 
 #include <cerrno>
-
 #include <cstdio>
 #include <cstring>
 #include <iostream>
 #include <string>
 #include <vector>
 
-#include "hexdyn/io/config.hpp"
 #include "hexdyn/core/errors.hpp"
 #include "hexdyn/envelope/envelope.hpp"
+#include "hexdyn/io/config.hpp"
 #include "hexdyn/model/urdf_robot.hpp"
 #include "hexdyn/mpi/launch.hpp"
 #ifdef HEXDYN_CLI_MPI
@@ -31,7 +30,8 @@
 
 namespace {
 
-constexpr const char* kRunUsage = R"(usage: hexdyn run CONFIG -o FILE [--set key.path=value ...] [--allow-large] [-v]
+constexpr const char* kRunUsage =
+    R"(usage: hexdyn run CONFIG -o FILE [--set key.path=value ...] [--allow-large] [-v]
   Runs a scene and writes its hexdyn-result/1 file to FILE. -v prints a URDF robot's
   leg mapping (which chain of the description is L1 ... L6).
 
@@ -47,7 +47,8 @@ parsed as YAML: --set gait.duty_factor=0.75, --set gait.duty_factor=3/4 (p/q is 
 divided by q, as in sweep files), --set motion.cycle_durations=[3,2.6,3].
 )";
 
-constexpr const char* kValidateUsage = R"(usage: hexdyn validate FILE [--set key.path=value ...] [-v]
+constexpr const char* kValidateUsage =
+    R"(usage: hexdyn validate FILE [--set key.path=value ...] [-v]
   Checks a scene file, or a sweep file, and exits without computing anything.
 
 A file with a top-level `axes:` key is a sweep file: it is checked as `hexdyn sweep`
@@ -56,7 +57,8 @@ scenarios with a value out of range are counted (exit status 0: `hexdyn sweep` r
 them as rows with status config). --set applies to scene files only.
 )";
 
-constexpr const char* kSweepUsage = R"(usage: hexdyn sweep SWEEP -o FILE [--keep-runs] [--resume] [-v] [--progress SECONDS]
+constexpr const char* kSweepUsage =
+    R"(usage: hexdyn sweep SWEEP -o FILE [--keep-runs] [--resume] [-v] [--progress SECONDS]
   Runs a parameter sweep and writes its hexdyn-sweep/1 file to FILE.
 
 SWEEP is a sweep file (see configs/sweeps/stairs.yaml): a base scene and axes over its
@@ -89,7 +91,8 @@ files of at most 1 MiB, without duplicate keys.
 struct Args {
   std::string command, config, output;
   std::vector<hexdyn::Override> overrides;
-  bool keep_runs = false, resume = false, verbose = false, progress_given = false, allow_large = false;
+  bool keep_runs = false, resume = false, verbose = false, progress_given = false,
+       allow_large = false;
   double progress_s = 5.0;
 };
 
@@ -116,31 +119,46 @@ Args parse_args(int argc, char** argv) {
       if (i + 1 >= argc) throw hexdyn::ConfigError(std::string(flag) + ": missing value");
       return std::string(argv[++i]);
     };
-    if (arg == "-o" || arg == "--output") a.output = value("-o");
-    else if (arg == "--set") a.overrides.push_back(hexdyn::parse_override(value("--set")));
-    else if (arg.rfind("--set=", 0) == 0) a.overrides.push_back(hexdyn::parse_override(arg.substr(6)));
-    else if (arg == "--keep-runs") a.keep_runs = true;
-    else if (arg == "--resume") a.resume = true;
-    else if (arg == "--allow-large") a.allow_large = true;
-    else if (arg == "-v" || arg == "--verbose") a.verbose = true;
+    if (arg == "-o" || arg == "--output")
+      a.output = value("-o");
+    else if (arg == "--set")
+      a.overrides.push_back(hexdyn::parse_override(value("--set")));
+    else if (arg.rfind("--set=", 0) == 0)
+      a.overrides.push_back(hexdyn::parse_override(arg.substr(6)));
+    else if (arg == "--keep-runs")
+      a.keep_runs = true;
+    else if (arg == "--resume")
+      a.resume = true;
+    else if (arg == "--allow-large")
+      a.allow_large = true;
+    else if (arg == "-v" || arg == "--verbose")
+      a.verbose = true;
     else if (arg == "--progress") {
       a.progress_s = parse_seconds(value("--progress"));
       a.progress_given = true;
-    }
-    else if (!arg.empty() && arg[0] == '-') throw hexdyn::ConfigError("unknown option " + arg + "; run 'hexdyn --help'");
-    else if (a.config.empty()) a.config = arg;
-    else throw hexdyn::ConfigError("unexpected argument " + arg + "; run 'hexdyn --help'");
+    } else if (!arg.empty() && arg[0] == '-')
+      throw hexdyn::ConfigError("unknown option " + arg + "; run 'hexdyn --help'");
+    else if (a.config.empty())
+      a.config = arg;
+    else
+      throw hexdyn::ConfigError("unexpected argument " + arg + "; run 'hexdyn --help'");
   }
   if (a.config.empty())
-    throw hexdyn::ConfigError(a.command + ": missing " + (a.command == "sweep" ? "SWEEP" : a.command == "validate" ? "FILE" : "CONFIG") + " file");
+    throw hexdyn::ConfigError(a.command + ": missing " +
+                              (a.command == "sweep"      ? "SWEEP"
+                               : a.command == "validate" ? "FILE"
+                                                         : "CONFIG") +
+                              " file");
   // -v also belongs to run and validate: it prints a URDF robot's leg mapping.
   const bool sweep_flags = a.keep_runs || a.resume || a.progress_given;
   if (a.command == "sweep" && !a.overrides.empty())
-    throw hexdyn::ConfigError("sweep: --set is not available; fix keys with set: in the sweep file");
+    throw hexdyn::ConfigError(
+        "sweep: --set is not available; fix keys with set: in the sweep file");
   if (a.command != "run" && a.allow_large)
     throw hexdyn::ConfigError(a.command + ": --allow-large belongs to 'hexdyn run'");
   if (a.command != "sweep" && sweep_flags)
-    throw hexdyn::ConfigError(a.command + ": --keep-runs, --resume and --progress belong to 'hexdyn sweep'");
+    throw hexdyn::ConfigError(a.command +
+                              ": --keep-runs, --resume and --progress belong to 'hexdyn sweep'");
   return a;
 }
 
@@ -161,8 +179,8 @@ int validate_sweep(const Args& args) {
                               " is a sweep file (it has axes:), fix keys with set: in it");
   const hexdyn::SweepSpec spec = hexdyn::load_sweep(args.config);
   const std::size_t n = spec.scenario_count();
-  std::cout << args.config << ": valid sweep '" << spec.name << "', base scene " << spec.base_path << ", " << n
-            << " scenario" << (n == 1 ? "" : "s") << " over";
+  std::cout << args.config << ": valid sweep '" << spec.name << "', base scene " << spec.base_path
+            << ", " << n << " scenario" << (n == 1 ? "" : "s") << " over";
   for (const auto& axis : spec.axes) std::cout << " " << axis.key << " (" << axis.size() << ")";
   std::cout << "\n";
   std::size_t out_of_range = 0;
@@ -173,9 +191,10 @@ int validate_sweep(const Args& args) {
     }
   }
   if (out_of_range > 0)
-    std::cout << args.config << ": " << out_of_range << " of " << n
-              << " scenarios have a value out of range and would be rows with status config; first: " << first
-              << "\n";
+    std::cout
+        << args.config << ": " << out_of_range << " of " << n
+        << " scenarios have a value out of range and would be rows with status config; first: "
+        << first << "\n";
   return 0;
 }
 
@@ -183,8 +202,8 @@ int validate_sweep(const Args& args) {
 void print_leg_mapping(const hexdyn::Scene& scene, std::ostream& os) {
   if (!scene.robot.urdf) return;
   const hexdyn::UrdfRobot& robot = *scene.robot.urdf;
-  os << "hexdyn: robot '" << robot.name << "' from " << robot.source_path << ", trunk link " << robot.trunk_link
-     << " (forward " << robot.forward_axis << "), legs:\n"
+  os << "hexdyn: robot '" << robot.name << "' from " << robot.source_path << ", trunk link "
+     << robot.trunk_link << " (forward " << robot.forward_axis << "), legs:\n"
      << hexdyn::leg_mapping_text(robot) << "hexdyn: footholds " << scene.gait.foot_lateral_m
      << " m from the hips along their outward directions (gait.foot_lateral)\n";
 }
@@ -238,12 +257,13 @@ int main(int argc, char** argv) {
     return 0;
   }
   // `hexdyn envelope` parses its own arguments (envelope/envelope.hpp).
-  if (argc >= 2 && !std::strcmp(argv[1], "envelope")) return hexdyn::envelope_command(argc - 1, argv + 1);
+  if (argc >= 2 && !std::strcmp(argv[1], "envelope"))
+    return hexdyn::envelope_command(argc - 1, argv + 1);
   // `hexdyn COMMAND ... --help` prints that command's usage, whatever else is given.
   if (argc >= 2 && command_usage(argv[1])) {
     for (int i = 2; i < argc; ++i) {
-      if (!std::strcmp(argv[i], "--set") || !std::strcmp(argv[i], "-o") || !std::strcmp(argv[i], "--output") ||
-          !std::strcmp(argv[i], "--progress")) {
+      if (!std::strcmp(argv[i], "--set") || !std::strcmp(argv[i], "-o") ||
+          !std::strcmp(argv[i], "--output") || !std::strcmp(argv[i], "--progress")) {
         ++i;  // a flag's value is not a request for help
         continue;
       }
@@ -260,7 +280,8 @@ int main(int argc, char** argv) {
       if (args.output.empty()) throw hexdyn::ConfigError("run: missing -o FILE");
       const hexdyn::Scene scene = hexdyn::load_scene(args.config, args.overrides);
       if (args.verbose) print_leg_mapping(scene, std::cerr);
-      // Before any computing: the output is a new path or a regular file that is none of the inputs.
+      // Before any computing: the output is a new path or a regular file that is none of the
+      // inputs.
       hexdyn::check_output_target(args.output, hexdyn::scene_input_files(args.config));
       // Before the allocation: the grid's size, against the large-run limit.
       const hexdyn::PreparedScene prep = hexdyn::prepare_scene(scene);
@@ -274,28 +295,30 @@ int main(int argc, char** argv) {
     if (args.command == "sweep") {
       if (args.output.empty()) throw hexdyn::ConfigError("sweep: missing -o FILE");
       {
-        // The sweep file, its base scene and the base's inherited files are inputs: never the output.
+        // The sweep file, its base scene and the base's inherited files are inputs: never the
+        // output.
         const hexdyn::SweepSpec spec = hexdyn::load_sweep(args.config);
         std::vector<std::string> inputs = hexdyn::scene_input_files(spec.base_path);
         inputs.insert(inputs.begin(), args.config);
         hexdyn::check_output_target(args.output, inputs);
       }
 #ifdef HEXDYN_CLI_MPI
-      return hexdyn::run_sweep({args.config, args.output, args.keep_runs, args.resume,
-                                args.verbose, args.progress_s});
+      return hexdyn::run_sweep(
+          {args.config, args.output, args.keep_runs, args.resume, args.verbose, args.progress_s});
 #endif
     }
     throw hexdyn::ConfigError("unknown command '" + args.command + "'; run 'hexdyn --help'");
   } catch (const hexdyn::Error& e) {
-    if (!hexdyn::launched_as_secondary_rank()) std::cerr << "hexdyn: error: " << hexdyn::one_line(e.what()) << "\n";
+    if (!hexdyn::launched_as_secondary_rank())
+      std::cerr << "hexdyn: error: " << hexdyn::one_line(e.what()) << "\n";
     return e.exit_status();
   } catch (const YAML::Exception& e) {
     // A YAML lookup that a reader did not guard (e.g. a missing key read as a scalar) still
     // comes from the user's file: bad input, not a crash. Each such case is a reader bug to
     // fix where it is thrown; this keeps the exit status and the one line meanwhile.
     if (!hexdyn::launched_as_secondary_rank())
-      std::cerr << "hexdyn: error: " << hexdyn::one_line(argc >= 3 ? argv[2] : "input") << ": unexpected YAML structure: "
-                << hexdyn::one_line(e.what()) << "\n";
+      std::cerr << "hexdyn: error: " << hexdyn::one_line(argc >= 3 ? argv[2] : "input")
+                << ": unexpected YAML structure: " << hexdyn::one_line(e.what()) << "\n";
     return 2;
   } catch (const std::exception& e) {
     std::cerr << "hexdyn: internal error: " << hexdyn::one_line(e.what()) << "\n";

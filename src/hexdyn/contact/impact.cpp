@@ -89,7 +89,8 @@ struct ScaledImpact {
     const double raw = spring * u_e + damping * S * w;
     if (!(raw > 0.0)) return;
     f = raw;
-    const double f_u = spring * e * (u_e / u) + damping * impact_step_derivative(u, 0.0, 0.0, p_hat, 1.0) * w;
+    const double f_u =
+        spring * e * (u_e / u) + damping * impact_step_derivative(u, 0.0, 0.0, p_hat, 1.0) * w;
     rate = f_u * w - damping * S * f;
   }
   double force_rate(const double y[]) const {
@@ -228,16 +229,14 @@ ImpactTransient simulate_touchdown(const ContactParams& c, double effective_mass
   // touchdowns: peaks agree to 1e-11, durations to 1e-8; ~20× faster than rk4imp).
   const gsl_odeiv2_step_type* stepper =
       s.damping * tau_contact / n_out < 1.0 ? gsl_odeiv2_step_rkck : gsl_odeiv2_step_rk4imp;
-  DriverPtr drv(
-      gsl_odeiv2_driver_alloc_y_new(&sys, stepper, h_start,
-                                    options.absolute_tolerance, options.relative_tolerance),
-      gsl_odeiv2_driver_free);
+  DriverPtr drv(gsl_odeiv2_driver_alloc_y_new(&sys, stepper, h_start, options.absolute_tolerance,
+                                              options.relative_tolerance),
+                gsl_odeiv2_driver_free);
   // A second stepper re-takes partial steps from the last accepted state to locate events,
   // leaving the evolving stepper's internal state untouched.
-  DriverPtr probe(
-      gsl_odeiv2_driver_alloc_y_new(&sys, stepper, h_start,
-                                    options.absolute_tolerance, options.relative_tolerance),
-      gsl_odeiv2_driver_free);
+  DriverPtr probe(gsl_odeiv2_driver_alloc_y_new(&sys, stepper, h_start, options.absolute_tolerance,
+                                                options.relative_tolerance),
+                  gsl_odeiv2_driver_free);
   if (!drv || !probe) throw SolverError("touchdown: cannot allocate the GSL ODE driver");
 
   const std::size_t expected = static_cast<std::size_t>(4 * options.samples_per_contact_time + 16);
@@ -277,13 +276,15 @@ ImpactTransient simulate_touchdown(const ContactParams& c, double effective_mass
     int side = 0;  // which end moved last (−1 lo, +1 hi), for the Illinois halving
     for (int it = 0; it < 200; ++it) {
       if (hi - lo <= 1e-15 * std::max(tau_prev + hi, 1e-300)) break;
-      double x = (g_lo > 0.0 && g_hi <= 0.0 && g_lo - g_hi > 0.0) ? lo + (hi - lo) * g_lo / (g_lo - g_hi)
-                                                                 : 0.5 * (lo + hi);
+      double x = (g_lo > 0.0 && g_hi <= 0.0 && g_lo - g_hi > 0.0)
+                     ? lo + (hi - lo) * g_lo / (g_lo - g_hi)
+                     : 0.5 * (lo + hi);
       if (!(x > lo && x < hi)) x = 0.5 * (lo + hi);
       if (!(x > lo && x < hi)) break;
       std::copy(y_prev, y_prev + 3, y_try);
       gsl_odeiv2_step_reset(probe->s);
-      if (gsl_odeiv2_step_apply(probe->s, tau_prev, x, y_try, y_err, nullptr, nullptr, &sys) != GSL_SUCCESS)
+      if (gsl_odeiv2_step_apply(probe->s, tau_prev, x, y_try, y_err, nullptr, nullptr, &sys) !=
+          GSL_SUCCESS)
         break;
       const double g_x = g(y_try);
       if (g_x <= 0.0) {
@@ -361,17 +362,20 @@ ImpactTransient simulate_touchdown(const ContactParams& c, double effective_mass
     double y_end[3];
     double dtau_end = h_step;
     if (s.ended(y)) {
-      dtau_end = locate(tau_prev, y_prev, h_step, y, [&](const double* z) { return s.end_function(z); }, y_end);
+      dtau_end = locate(
+          tau_prev, y_prev, h_step, y, [&](const double* z) { return s.end_function(z); }, y_end);
       ends_here = true;
     }
     if (y_prev[1] > 0.0 && !(y[1] > 0.0)) {
       Event ev;
-      ev.dtau = locate(tau_prev, y_prev, h_step, y, [](const double* z) { return z[1]; }, ev.y);
+      ev.dtau = locate(
+          tau_prev, y_prev, h_step, y, [](const double* z) { return z[1]; }, ev.y);
       if (!ends_here || ev.dtau <= dtau_end) events[n_events++] = ev;
     }
     if (rate_now > 0.0 && !(rate_new > 0.0)) {
       Event ev;
-      ev.dtau = locate(tau_prev, y_prev, h_step, y, [&](const double* z) { return s.force_rate(z); }, ev.y);
+      ev.dtau = locate(
+          tau_prev, y_prev, h_step, y, [&](const double* z) { return s.force_rate(z); }, ev.y);
       if (!ends_here || ev.dtau <= dtau_end) events[n_events++] = ev;
     }
     if (n_events == 2 && events[1].dtau < events[0].dtau) std::swap(events[0], events[1]);

@@ -79,8 +79,8 @@ struct ImpactTransient {
 /// the step by regula falsi with the Illinois modification (falling back to bisection when
 /// a secant point leaves the bracket), as are the force peak (zero of Ḟ_n) and the
 /// largest penetration (zero of δ̇). The end comes when the foot leaves the surface
-/// (δ = 0) or the damper cancels the spring on rebound (the max(0,·) clip). After a clip the foot moves away freely; any later force
-/// while δ < p is below K p^e and is ignored.
+/// (δ = 0) or the damper cancels the spring on rebound (the max(0,·) clip). After a clip the foot
+/// moves away freely; any later force while δ < p is below K p^e and is ignored.
 ///
 /// effective_mass_kg: foot's effective mass along the normal, > 0.
 /// approach_speed_mps: δ̇ at touchdown; ≤ 0 gives `occurred = false` and zero force.

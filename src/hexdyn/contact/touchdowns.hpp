@@ -20,9 +20,9 @@ namespace hexdyn {
 /// One touchdown and its resolved transient.
 struct Touchdown {
   int leg = 0;
-  double t_s = 0.0;                  ///< instant the foot reaches the terrain
-  double approach_speed_mps = 0.0;   ///< foot speed into the terrain along −n
-  double effective_mass_kg = 0.0;    ///< 1 / (nᵀ J M_leg⁻¹ Jᵀ n), trunk held fixed
+  double t_s = 0.0;                 ///< instant the foot reaches the terrain
+  double approach_speed_mps = 0.0;  ///< foot speed into the terrain along −n
+  double effective_mass_kg = 0.0;   ///< 1 / (nᵀ J M_leg⁻¹ Jᵀ n), trunk held fixed
   Vec3 normal_W = Vec3::UnitZ();
   ImpactTransient transient;
 };

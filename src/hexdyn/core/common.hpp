@@ -16,9 +16,9 @@ namespace hexdyn {
 inline constexpr int kLegs = 6;
 inline constexpr int kJointsPerLeg = 3;
 inline constexpr int kJoints = kLegs * kJointsPerLeg;  ///< 18 actuated joints
-inline constexpr int kDof = 6 + kJoints;                ///< 24: trunk pose then joints
-inline constexpr int kBodies = 1 + kJoints;             ///< trunk, then 3 links per leg
-inline constexpr double kGravity = 9.81;                ///< m/s², along −z of G0
+inline constexpr int kDof = 6 + kJoints;               ///< 24: trunk pose then joints
+inline constexpr int kBodies = 1 + kJoints;            ///< trunk, then 3 links per leg
+inline constexpr double kGravity = 9.81;               ///< m/s², along −z of G0
 
 using Vec3 = Eigen::Vector3d;
 using Mat3 = Eigen::Matrix3d;

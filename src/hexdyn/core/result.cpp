@@ -10,16 +10,20 @@ void KinematicsResult::resize(int T) {
                        &base_linear_acceleration, &base_angular_acceleration, &com_position})
     m->setZero(T, 3);
   base_orientation_wxyz.setZero(T, 4);
-  for (RowMatrix* m : {&joint_position, &joint_velocity, &joint_acceleration, &foot_position, &foot_velocity})
+  for (RowMatrix* m :
+       {&joint_position, &joint_velocity, &joint_acceleration, &foot_position, &foot_velocity})
     m->setZero(T, kJoints);
   contact_phase.setZero(T, kLegs);
 }
 
 std::ostream& operator<<(std::ostream& os, SolverStatus status) {
   switch (status) {
-    case SolverStatus::kOptimal: return os << "optimal";
-    case SolverStatus::kRelaxed: return os << "relaxed";
-    case SolverStatus::kFailed: return os << "failed";
+    case SolverStatus::kOptimal:
+      return os << "optimal";
+    case SolverStatus::kRelaxed:
+      return os << "relaxed";
+    case SolverStatus::kFailed:
+      return os << "failed";
   }
   return os << "unknown";
 }

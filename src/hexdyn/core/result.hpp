@@ -32,19 +32,19 @@ std::vector<std::int8_t> solver_status_codes(const std::vector<SolverStatus>& st
 
 /// Output of the kinematic stages (gait, motion, IK) sampled on the output grid.
 struct KinematicsResult {
-  std::vector<double> time_s;         ///< T
-  RowMatrix base_position;            ///< T×3, P0 in G0 [m]
-  RowMatrix base_orientation_wxyz;    ///< T×4, quaternion body → world
-  RowMatrix base_linear_velocity;     ///< T×3, world [m/s]
-  RowMatrix base_angular_velocity;    ///< T×3, world [rad/s]
-  RowMatrix base_linear_acceleration; ///< T×3, world [m/s²]
-  RowMatrix base_angular_acceleration;///< T×3, world [rad/s²]
-  RowMatrix joint_position;           ///< T×18 [rad]
-  RowMatrix joint_velocity;           ///< T×18 [rad/s]
-  RowMatrix joint_acceleration;       ///< T×18 [rad/s²]
-  RowMatrix foot_position;            ///< T×18 = (T,6,3), world [m]
-  RowMatrix foot_velocity;            ///< T×18 = (T,6,3), world [m/s]
-  RowMatrix com_position;             ///< T×3, whole-robot COM in G0 [m]
+  std::vector<double> time_s;           ///< T
+  RowMatrix base_position;              ///< T×3, P0 in G0 [m]
+  RowMatrix base_orientation_wxyz;      ///< T×4, quaternion body → world
+  RowMatrix base_linear_velocity;       ///< T×3, world [m/s]
+  RowMatrix base_angular_velocity;      ///< T×3, world [rad/s]
+  RowMatrix base_linear_acceleration;   ///< T×3, world [m/s²]
+  RowMatrix base_angular_acceleration;  ///< T×3, world [rad/s²]
+  RowMatrix joint_position;             ///< T×18 [rad]
+  RowMatrix joint_velocity;             ///< T×18 [rad/s]
+  RowMatrix joint_acceleration;         ///< T×18 [rad/s²]
+  RowMatrix foot_position;              ///< T×18 = (T,6,3), world [m]
+  RowMatrix foot_velocity;              ///< T×18 = (T,6,3), world [m/s]
+  RowMatrix com_position;               ///< T×3, whole-robot COM in G0 [m]
   /// T×6, ContactPhase values: swing/support from the gait (sample_kinematics); in a
   /// RunResult, the contact schedule's phases with the touchdown transients (kImpact).
   RowMatrixI8 contact_phase;
@@ -54,7 +54,7 @@ struct KinematicsResult {
 
 /// One touchdown transient (/impacts/*).
 struct ImpactRecord {
-  int leg = 0;                 ///< 0-based leg index (written 1-based)
+  int leg = 0;  ///< 0-based leg index (written 1-based)
   double t_start_s = 0.0;
   double duration_s = 0.0;
   double peak_force_N = 0.0;
@@ -65,20 +65,20 @@ struct ImpactRecord {
 
 /// Output of the dynamic stages (inverse dynamics, contact, allocation, power).
 struct DynamicsResult {
-  RowMatrix joint_torque;        ///< T×18 [N m]
-  RowMatrix contact_force;       ///< T×18 = (T,6,3), terrain on foot, world [N]
-  RowMatrix penetration;         ///< T×6 [m]
+  RowMatrix joint_torque;   ///< T×18 [N m]
+  RowMatrix contact_force;  ///< T×18 = (T,6,3), terrain on foot, world [N]
+  RowMatrix penetration;    ///< T×6 [m]
   std::vector<ImpactRecord> impacts;
-  RowMatrix joint_power;         ///< T×18 [W]
+  RowMatrix joint_power;              ///< T×18 [W]
   std::vector<double> total_power_W;  ///< T, Σ|τ ω|
   double energy_total_J = 0.0;
-  std::vector<double> energy_joint_J;  ///< 18, ∫|τ_k ω_k| dt
-  double distance_m = 0.0;        ///< trunk travel for the cost of transport
-  double cost_of_transport = 0.0; ///< E / (m g d)
-  std::vector<SolverStatus> solver_status;  ///< T
-  std::vector<double> solver_iterations;   ///< T
-  std::vector<double> solver_objective;    ///< T [N² m²]
-  std::vector<double> solver_seconds;      ///< T
+  std::vector<double> energy_joint_J;        ///< 18, ∫|τ_k ω_k| dt
+  double distance_m = 0.0;                   ///< trunk travel for the cost of transport
+  double cost_of_transport = 0.0;            ///< E / (m g d)
+  std::vector<SolverStatus> solver_status;   ///< T
+  std::vector<double> solver_iterations;     ///< T
+  std::vector<double> solver_objective;      ///< T [N² m²]
+  std::vector<double> solver_seconds;        ///< T
   std::vector<std::string> solver_messages;  ///< one per relaxed/failed sample
   bool present = false;
 };
@@ -87,8 +87,8 @@ struct DynamicsResult {
 struct RunResult {
   KinematicsResult kin;
   DynamicsResult dyn;
-  std::string config_yaml;   ///< fully resolved
-  std::string urdf;          ///< robot exactly as simulated
+  std::string config_yaml;  ///< fully resolved
+  std::string urdf;         ///< robot exactly as simulated
   /// /model/joint_names: the description's joint names in flat joint order (a URDF
   /// robot's own names; empty: hexdyn's L{i}_coxa … names).
   std::vector<std::string> joint_names;

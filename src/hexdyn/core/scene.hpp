@@ -59,18 +59,18 @@ enum class TerrainType { kFlat, kSlope, kStairs };
 
 struct TerrainParams {
   TerrainType type = TerrainType::kStairs;
-  double ground_height_m = 0.0;  ///< flat: height; stairs: height before the first riser
-  double slope_rad = 0.0;        ///< slope: inclination, rising along +y
-  double slope_origin_y_m = 0.0; ///< slope: y where the slope starts from ground height
-  double riser_height_m = 0.05;  ///< stairs: h_s
-  double tread_depth_m = 0.25;   ///< stairs: b_s
-  int steps = 10;                ///< stairs: number of risers; the top tread is endless
-  double first_riser_y_m = 0.0;  ///< stairs: y of the first riser
+  double ground_height_m = 0.0;   ///< flat: height; stairs: height before the first riser
+  double slope_rad = 0.0;         ///< slope: inclination, rising along +y
+  double slope_origin_y_m = 0.0;  ///< slope: y where the slope starts from ground height
+  double riser_height_m = 0.05;   ///< stairs: h_s
+  double tread_depth_m = 0.25;    ///< stairs: b_s
+  int steps = 10;                 ///< stairs: number of risers; the top tread is endless
+  double first_riser_y_m = 0.0;   ///< stairs: y of the first riser
 };
 
 struct GaitParams {
-  double duty_factor = 0.5;           ///< β ∈ [1/2, 1): support fraction of each leg
-  double stroke_m = 0.125;            ///< s0: foot travel relative to the trunk per stance
+  double duty_factor = 0.5;  ///< β ∈ [1/2, 1): support fraction of each leg
+  double stroke_m = 0.125;   ///< s0: foot travel relative to the trunk per stance
   /// Horizontal distance of footholds from the hip along the hip's outward direction
   /// (RobotModel::hip_outward_B; the paper robot: straight out, ±x) [m]. A URDF robot's
   /// default is its nominal stance radius (io/robot_config.hpp).
@@ -128,11 +128,11 @@ enum class ContactModel { kCompliant, kRigid };
 
 struct ContactParams {
   ContactModel model = ContactModel::kCompliant;  ///< contact.model
-  double stiffness = 1e5;                    ///< K [N/m^e]
-  double exponent = 2.2;                     ///< e
-  double damping_max_Nspm = 10.0;            ///< C_max [N·s/m]
-  double full_damping_depth_m = 1e-5;        ///< p [m]
-  double friction_coefficient = 0.3;         ///< μ
+  double stiffness = 1e5;                         ///< K [N/m^e]
+  double exponent = 2.2;                          ///< e
+  double damping_max_Nspm = 10.0;                 ///< C_max [N·s/m]
+  double full_damping_depth_m = 1e-5;             ///< p [m]
+  double friction_coefficient = 0.3;              ///< μ
 };
 
 /// Allocation back end: the dense dual active-set QP (allocation/active_set.hpp; with the
@@ -159,8 +159,8 @@ enum class OutputGrid { kUniform, kAdaptive };
 struct OutputParams {
   double sample_step_s = 0.05;
   OutputGrid grid = OutputGrid::kAdaptive;
-  int impact_samples = 16;       ///< adaptive grid: intervals across each impact transient
-  double event_step_s = 1e-2;    ///< adaptive grid: finest step next to touchdowns and lift-offs
+  int impact_samples = 16;     ///< adaptive grid: intervals across each impact transient
+  double event_step_s = 1e-2;  ///< adaptive grid: finest step next to touchdowns and lift-offs
 };
 
 struct Scene {

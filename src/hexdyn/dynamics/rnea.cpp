@@ -84,7 +84,6 @@ RobotData::RobotData(const RobotModel& model) {
   }
 }
 
-
 void update_kinematics(const RobotModel& model, RobotData& data, const BaseState& state,
                        const VecJ& q) {
   data.X_parent_body[0] = Transform::Identity();

@@ -33,8 +33,8 @@
 
 #include "hexdyn/core/base_state.hpp"
 #include "hexdyn/core/common.hpp"
-#include "hexdyn/model/robot_model.hpp"
 #include "hexdyn/core/spatial.hpp"
+#include "hexdyn/model/robot_model.hpp"
 
 namespace hexdyn {
 
@@ -77,7 +77,8 @@ struct RobotData {
   std::array<Transform, kBodies> X_world_body;   ///< W_X_b: body b's frame in G0 (R: b → world)
   std::array<Inertia, kBodies> I_body;           ///< body inertias in body frames (from the model)
   /// The joint rotations of the model, expanded once (Rodrigues, axis a, K = [a]×):
-  /// parent_R_b(q) = R_pj (a aᵀ + cos q (1 − a aᵀ) + sin q K) = R_fixed + cos q R_cos + sin q R_sin.
+  /// parent_R_b(q) = R_pj (a aᵀ + cos q (1 − a aᵀ) + sin q K) = R_fixed + cos q R_cos + sin q
+  /// R_sin.
   std::array<Mat3, kBodies> R_fixed, R_cos, R_sin;
 
   // --- recursive passes, body coordinates ---

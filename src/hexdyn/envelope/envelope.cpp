@@ -36,13 +36,14 @@ EnvelopeProbe kinematic_probe(const Scene& scene, EnvelopeProbe p) {
   const KinematicMargin m =
       posture.mode == PostureMode::kAuto
           ? posture.margin
-          : motion_kinematic_margin(model, plan_motion_with(scene, model, posture.p0_W, posture.foot_lateral_m), 2000);
+          : motion_kinematic_margin(
+                model, plan_motion_with(scene, model, posture.p0_W, posture.foot_lateral_m), 2000);
   p.passed = m.admitted;
   if (!p.passed) {
     p.limit = "leg " + leg_name(m.leg) + " " + m.constraint;
     std::ostringstream s;
-    s << "no posture admits the motion; the best (trunk height " << posture.height_m << " m, gait.foot_lateral "
-      << posture.foot_lateral_m << " m) leaves " << m.describe();
+    s << "no posture admits the motion; the best (trunk height " << posture.height_m
+      << " m, gait.foot_lateral " << posture.foot_lateral_m << " m) leaves " << m.describe();
     p.message = s.str();
   }
   return p;
@@ -56,7 +57,8 @@ EnvelopeProbe dynamic_probe(const Scene& scene, EnvelopeProbe p) {
     if (d.solver_status[i] == SolverStatus::kOptimal) continue;
     bool impact = false;
     for (int leg = 0; leg < kLegs; ++leg)
-      impact = impact || run.kin.contact_phase(i, leg) == static_cast<std::int8_t>(ContactPhase::kImpact);
+      impact = impact ||
+               run.kin.contact_phase(i, leg) == static_cast<std::int8_t>(ContactPhase::kImpact);
     if (impact) continue;
     if (support_relaxed++ == 0) first = i;
   }
@@ -65,7 +67,8 @@ EnvelopeProbe dynamic_probe(const Scene& scene, EnvelopeProbe p) {
     const std::string& msg = d.solver_messages[first];
     p.limit = first_constraint(msg);
     std::ostringstream s;
-    s << support_relaxed << " relaxed support sample(s), first at t = " << run.kin.time_s[first] << " s: " << msg;
+    s << support_relaxed << " relaxed support sample(s), first at t = " << run.kin.time_s[first]
+      << " s: " << msg;
     p.message = s.str();
   }
   return p;
@@ -81,7 +84,8 @@ std::string exception_limit(const std::exception& e) {
 
 }  // namespace
 
-EnvelopeProbe evaluate_probe(const EnvelopeSpec& spec, int cell, double riser_m, EnvelopeCriterion c) {
+EnvelopeProbe evaluate_probe(const EnvelopeSpec& spec, int cell, double riser_m,
+                             EnvelopeCriterion c) {
   EnvelopeProbe p;
   p.cell = cell;
   p.criterion = c;
@@ -103,8 +107,10 @@ EnvelopeProbe evaluate_probe(const EnvelopeSpec& spec, int cell, double riser_m,
       std::ostringstream mu;
       mu << scene.contact.friction_coefficient;
       p.limit = (balance ? "balance: " : "friction (mu " + mu.str() + "): ") + p.limit;
-      p.message = (balance ? "the support legs cannot produce the trunk motion even without torque and friction limits: "
-                           : "friction mu = " + mu.str() + " cannot produce the trunk motion (it can with mu = 10): ") +
+      p.message = (balance ? "the support legs cannot produce the trunk motion even without torque "
+                             "and friction limits: "
+                           : "friction mu = " + mu.str() +
+                                 " cannot produce the trunk motion (it can with mu = 10): ") +
                   p.message;
     }
     return p;
@@ -120,7 +126,8 @@ EnvelopeResult compute_envelope(const EnvelopeSpec& spec, std::ostream* log) {
   const auto start = std::chrono::steady_clock::now();
   EnvelopeResult out;
   const int C = static_cast<int>(spec.criteria.size());
-  const int cells = static_cast<int>(spec.tread_depth_m.size() * spec.duty_factor.size() * spec.peak_speed_mps.size());
+  const int cells = static_cast<int>(spec.tread_depth_m.size() * spec.duty_factor.size() *
+                                     spec.peak_speed_mps.size());
   out.boundary.resize(static_cast<std::size_t>(cells) * C);
   out.posture_height_m.assign(cells, kNaN);
   out.posture_foot_lateral_m.assign(cells, kNaN);
@@ -132,7 +139,8 @@ EnvelopeResult compute_envelope(const EnvelopeSpec& spec, std::ostream* log) {
     for (int ci = 0; ci < C; ++ci) {
       const EnvelopeCriterion c = spec.criteria[ci];
       auto probe = [&](double r) {
-        if (c != EnvelopeCriterion::kKinematic && std::isfinite(kinematic_fail) && r >= kinematic_fail - 1e-12) {
+        if (c != EnvelopeCriterion::kKinematic && std::isfinite(kinematic_fail) &&
+            r >= kinematic_fail - 1e-12) {
           EnvelopeProbe p = kinematic_fail_probe;
           p.criterion = c;
           p.riser_m = r;
@@ -147,7 +155,8 @@ EnvelopeResult compute_envelope(const EnvelopeSpec& spec, std::ostream* log) {
       double pass = kNaN;
       EnvelopeProbe fail;
       bool failed = false;
-      const int steps = static_cast<int>(std::ceil((spec.riser_to_m - spec.riser_from_m) / spec.riser_step_m - 1e-9));
+      const int steps = static_cast<int>(
+          std::ceil((spec.riser_to_m - spec.riser_from_m) / spec.riser_step_m - 1e-9));
       for (int k = 0; k <= steps; ++k) {
         const double r = std::min(spec.riser_from_m + k * spec.riser_step_m, spec.riser_to_m);
         const EnvelopeProbe p = probe(r);
@@ -163,8 +172,10 @@ EnvelopeResult compute_envelope(const EnvelopeSpec& spec, std::ostream* log) {
         while (fail.riser_m - pass > spec.tolerance_m) {
           const double mid = 0.5 * (pass + fail.riser_m);
           const EnvelopeProbe p = probe(mid);
-          if (p.passed) pass = mid;
-          else fail = p;
+          if (p.passed)
+            pass = mid;
+          else
+            fail = p;
         }
       }
       bd.riser_max_m = pass;
@@ -193,9 +204,9 @@ EnvelopeResult compute_envelope(const EnvelopeSpec& spec, std::ostream* log) {
       out.boundary[static_cast<std::size_t>(cell) * C + ci] = bd;
       if (log) {
         const std::size_t V = spec.peak_speed_mps.size(), B = spec.duty_factor.size();
-        *log << "envelope: tread " << spec.tread_depth_m[cell / (V * B)] << " m, duty " << spec.duty_factor[(cell / V) % B]
-             << ", speed " << spec.peak_speed_mps[cell % V] << " m/s, " << criterion_name(c) << ": riser <= "
-             << bd.riser_max_m * 1e3 << " mm";
+        *log << "envelope: tread " << spec.tread_depth_m[cell / (V * B)] << " m, duty "
+             << spec.duty_factor[(cell / V) % B] << ", speed " << spec.peak_speed_mps[cell % V]
+             << " m/s, " << criterion_name(c) << ": riser <= " << bd.riser_max_m * 1e3 << " mm";
         if (failed) *log << ", fails at " << bd.riser_fail_m * 1e3 << " mm: " << bd.message;
         *log << "\n";
       }

@@ -46,11 +46,11 @@ struct EnvelopeSpec {
   std::string base_tree_yaml;    ///< the base scene tree after inherit: and set:
   std::string base_config_yaml;  ///< the base scene validated and fully resolved
   double riser_from_m = 0.0, riser_to_m = 0.3, riser_step_m = 0.01, tolerance_m = 0.001;
-  std::vector<double> tread_depth_m;    ///< W values (the base scene's when not given)
-  std::vector<double> duty_factor;      ///< B values
-  std::vector<double> peak_speed_mps;   ///< V values
+  std::vector<double> tread_depth_m;        ///< W values (the base scene's when not given)
+  std::vector<double> duty_factor;          ///< B values
+  std::vector<double> peak_speed_mps;       ///< V values
   std::vector<EnvelopeCriterion> criteria;  ///< C values, in file order
-  double kinematic_margin_m = -1.0;     ///< required reach margin; < 0: robot.ik_min_margin
+  double kinematic_margin_m = -1.0;         ///< required reach margin; < 0: robot.ik_min_margin
 };
 
 /// Reads and checks an envelope file; the base scene is validated. Throws ConfigError.
@@ -58,12 +58,12 @@ EnvelopeSpec load_envelope_spec(const std::string& path);
 
 /// One evaluation of a criterion at one riser.
 struct EnvelopeProbe {
-  int cell = 0;                 ///< index into the (W, B, V) grid, row-major
+  int cell = 0;  ///< index into the (W, B, V) grid, row-major
   EnvelopeCriterion criterion = EnvelopeCriterion::kKinematic;
   double riser_m = 0.0;
   bool passed = false;
-  std::string limit;            ///< short name of what failed ("" when passed)
-  std::string message;          ///< one line: why it failed ("" when passed)
+  std::string limit;    ///< short name of what failed ("" when passed)
+  std::string message;  ///< one line: why it failed ("" when passed)
 };
 
 /// The boundary of one cell and criterion.
@@ -90,13 +90,15 @@ Scene envelope_probe_scene(const EnvelopeSpec& spec, int cell, double riser_m, E
 
 /// Evaluates one criterion at one riser (never throws for a scene that cannot be
 /// computed: that is a failed probe).
-EnvelopeProbe evaluate_probe(const EnvelopeSpec& spec, int cell, double riser_m, EnvelopeCriterion c);
+EnvelopeProbe evaluate_probe(const EnvelopeSpec& spec, int cell, double riser_m,
+                             EnvelopeCriterion c);
 
 /// The whole envelope. `log` (may be null) gets one line per cell and criterion.
 EnvelopeResult compute_envelope(const EnvelopeSpec& spec, std::ostream* log);
 
 /// Writes the hexdyn-envelope/1 file (io/schema.hpp) atomically. Throws IoError.
-void write_envelope_file(const std::string& path, const EnvelopeSpec& spec, const EnvelopeResult& result);
+void write_envelope_file(const std::string& path, const EnvelopeSpec& spec,
+                         const EnvelopeResult& result);
 
 /// `hexdyn envelope ENVELOPE.yaml -o FILE.h5 [-v]`: argv[0] is "envelope". Returns the
 /// exit status (0, 2 bad input, 3 cannot compute) after printing errors on one line.

@@ -30,8 +30,8 @@ void write_file(H5Writer& w, const EnvelopeSpec& spec, const EnvelopeResult& r) 
   w.set_double_attribute(meta, s::kMetaEnvelopeTolerance.name, spec.tolerance_m);
   w.set_double_attribute(meta, s::kMetaEnvelopeStep.name, spec.riser_step_m);
 
-  const std::size_t W = spec.tread_depth_m.size(), B = spec.duty_factor.size(), S = spec.peak_speed_mps.size(),
-                    C = spec.criteria.size();
+  const std::size_t W = spec.tread_depth_m.size(), B = spec.duty_factor.size(),
+                    S = spec.peak_speed_mps.size(), C = spec.criteria.size();
   write_doubles(w, s::kEnvelopeTreadDepth, {W}, spec.tread_depth_m);
   write_doubles(w, s::kEnvelopeDutyFactor, {B}, spec.duty_factor);
   write_doubles(w, s::kEnvelopePeakSpeed, {S}, spec.peak_speed_mps);
@@ -90,7 +90,8 @@ constexpr const char* kUsage = R"(usage: hexdyn envelope ENVELOPE -o FILE [-v]
 
 }  // namespace
 
-void write_envelope_file(const std::string& path, const EnvelopeSpec& spec, const EnvelopeResult& result) {
+void write_envelope_file(const std::string& path, const EnvelopeSpec& spec,
+                         const EnvelopeResult& result) {
   silence_hdf5_errors();
   publish_atomically(path, [&](const std::string& tmp) {
     H5Writer w(tmp);
@@ -129,8 +130,8 @@ int envelope_command(int argc, char** argv) {
     check_output_path_writable(output);
     const EnvelopeResult result = compute_envelope(spec, verbose ? &std::cerr : nullptr);
     write_envelope_file(output, spec, result);
-    std::cerr << "hexdyn: wrote " << output << " (" << result.probes.size() << " probes, " << result.wall_time_s
-              << " s)\n";
+    std::cerr << "hexdyn: wrote " << output << " (" << result.probes.size() << " probes, "
+              << result.wall_time_s << " s)\n";
     return 0;
   } catch (const Error& e) {
     std::cerr << "hexdyn: error: " << one_line(e.what()) << "\n";

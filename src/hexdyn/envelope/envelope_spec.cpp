@@ -27,16 +27,20 @@ class EnvelopeReader : public SpecReader {
     const std::string expected = "a number in [" + fmt(lo) + ", " + fmt(hi) + "]";
     if (!n.IsScalar()) fail_value(path, n, expected);
     double v = 0.0;
-    if (const auto f = parse_fraction(n.Scalar())) v = *f;
-    else if (!YAML::convert<double>::decode(n, v)) fail_value(path, n, expected);
+    if (const auto f = parse_fraction(n.Scalar()))
+      v = *f;
+    else if (!YAML::convert<double>::decode(n, v))
+      fail_value(path, n, expected);
     if (!std::isfinite(v) || v < lo || v > hi) fail_value(path, n, expected);
     return v;
   }
-  std::vector<double> numbers(const YAML::Node& n, const std::string& path, double lo, double hi) const {
+  std::vector<double> numbers(const YAML::Node& n, const std::string& path, double lo,
+                              double hi) const {
     if (!n.IsSequence() || n.size() == 0)
       fail_value(path, n, "a non-empty list of numbers in [" + fmt(lo) + ", " + fmt(hi) + "]");
     std::vector<double> v;
-    for (std::size_t i = 0; i < n.size(); ++i) v.push_back(number(n[i], path + "[" + std::to_string(i) + "]", lo, hi));
+    for (std::size_t i = 0; i < n.size(); ++i)
+      v.push_back(number(n[i], path + "[" + std::to_string(i) + "]", lo, hi));
     for (std::size_t i = 0; i < v.size(); ++i)
       for (std::size_t j = 0; j < i; ++j)
         if (v[i] == v[j]) fail_value(path, n, "distinct values");
@@ -47,7 +51,6 @@ class EnvelopeReader : public SpecReader {
     s << x;
     return s.str();
   }
-
 };
 
 bool given(const YAML::Node& n) { return n.IsDefined() && !n.IsNull(); }
@@ -56,9 +59,12 @@ bool given(const YAML::Node& n) { return n.IsDefined() && !n.IsNull(); }
 
 const char* criterion_name(EnvelopeCriterion c) {
   switch (c) {
-    case EnvelopeCriterion::kKinematic: return "kinematic";
-    case EnvelopeCriterion::kTorque: return "torque";
-    case EnvelopeCriterion::kFriction: return "friction";
+    case EnvelopeCriterion::kKinematic:
+      return "kinematic";
+    case EnvelopeCriterion::kTorque:
+      return "torque";
+    case EnvelopeCriterion::kFriction:
+      return "friction";
   }
   return "kinematic";
 }
@@ -68,22 +74,31 @@ EnvelopeSpec load_envelope_spec(const std::string& path) {
   spec.spec_yaml = read_text_file(path);
   const YAML::Node root = parse_yaml_text(spec.spec_yaml, path);
   const EnvelopeReader r(path);
-  r.check_keys(root, "", {"name", "base", "set", "riser", "tread_depth", "duty_factor", "peak_speed", "criteria",
-                          "kinematic_margin"});
-  spec.name = given(root["name"]) ? root["name"].Scalar() : std::filesystem::path(path).stem().string();
+  r.check_keys(root, "",
+               {"name", "base", "set", "riser", "tread_depth", "duty_factor", "peak_speed",
+                "criteria", "kinematic_margin"});
+  spec.name =
+      given(root["name"]) ? root["name"].Scalar() : std::filesystem::path(path).stem().string();
   const YAML::Node base = root["base"];
-  if (!given(base)) r.fail("base", "missing, this key is required (the scene file whose riser is searched)");
-  if (!base.IsScalar() || base.Scalar().empty()) r.fail_value("base", base, "the path of a scene file");
+  if (!given(base))
+    r.fail("base", "missing, this key is required (the scene file whose riser is searched)");
+  if (!base.IsScalar() || base.Scalar().empty())
+    r.fail_value("base", base, "the path of a scene file");
   spec.base_path = path_beside(path, base.Scalar());
   if (const auto why = why_not_regular_file(spec.base_path))
-    r.fail_value("base", base, "the path of a scene file, relative to the envelope file (" + spec.base_path + " " + *why + ")");
+    r.fail_value("base", base,
+                 "the path of a scene file, relative to the envelope file (" + spec.base_path +
+                     " " + *why + ")");
   YAML::Node tree = load_scene_tree(spec.base_path);
   const YAML::Node set = root["set"];
   if (given(set)) {
     if (!set.IsMap()) r.fail_value("set", set, "a mapping of dotted key paths to values");
     for (const auto& kv : set) {
-      if (kv.second.IsMap()) r.fail_value("set." + kv.first.Scalar(), kv.second, "a value or a list (write nested keys as dotted paths)");
-      apply_override(tree, {kv.first.Scalar(), yaml_inline(kv.second)}, path + " (base " + spec.base_path + ")");
+      if (kv.second.IsMap())
+        r.fail_value("set." + kv.first.Scalar(), kv.second,
+                     "a value or a list (write nested keys as dotted paths)");
+      apply_override(tree, {kv.first.Scalar(), yaml_inline(kv.second)},
+                     path + " (base " + spec.base_path + ")");
     }
   }
   YAML::Emitter emit;
@@ -92,54 +107,71 @@ EnvelopeSpec load_envelope_spec(const std::string& path) {
   const Scene base_scene = scene_from_yaml(tree, path + " (base " + spec.base_path + ")");
   spec.base_config_yaml = base_scene.resolved_yaml;
   if (base_scene.terrain.type != TerrainType::kStairs)
-    r.fail("base", "the base scene's terrain.type is not stairs, expected a staircase (its riser is searched)");
+    r.fail("base",
+           "the base scene's terrain.type is not stairs, expected a staircase (its riser is "
+           "searched)");
 
   const YAML::Node riser = root["riser"];
-  if (!given(riser)) r.fail("riser", "missing, this key is required ({from, to, step, tolerance} in m)");
+  if (!given(riser))
+    r.fail("riser", "missing, this key is required ({from, to, step, tolerance} in m)");
   r.check_keys(riser, "riser", {"from", "to", "step", "tolerance"});
   for (const char* k : {"from", "to"})
     if (!given(riser[k])) r.fail(std::string("riser.") + k, "missing, this key is required");
   spec.riser_from_m = r.number(riser["from"], "riser.from", 0.0, 1.0);
   spec.riser_to_m = r.number(riser["to"], "riser.to", 0.0, 1.0);
   if (!(spec.riser_from_m < spec.riser_to_m))
-    r.fail("riser.to", "got " + EnvelopeReader::fmt(spec.riser_to_m) + ", expected more than riser.from (" +
+    r.fail("riser.to", "got " + EnvelopeReader::fmt(spec.riser_to_m) +
+                           ", expected more than riser.from (" +
                            EnvelopeReader::fmt(spec.riser_from_m) + ")");
   const double span = spec.riser_to_m - spec.riser_from_m;
-  spec.riser_step_m = given(riser["step"]) ? r.number(riser["step"], "riser.step", 1e-5, span) : std::min(0.01, span);
-  spec.tolerance_m =
-      given(riser["tolerance"]) ? r.number(riser["tolerance"], "riser.tolerance", 1e-6, spec.riser_step_m) : std::min(1e-3, spec.riser_step_m);
+  spec.riser_step_m = given(riser["step"]) ? r.number(riser["step"], "riser.step", 1e-5, span)
+                                           : std::min(0.01, span);
+  spec.tolerance_m = given(riser["tolerance"])
+                         ? r.number(riser["tolerance"], "riser.tolerance", 1e-6, spec.riser_step_m)
+                         : std::min(1e-3, spec.riser_step_m);
 
-  spec.tread_depth_m = given(root["tread_depth"]) ? r.numbers(root["tread_depth"], "tread_depth", 1e-3, 10.0)
-                                                  : std::vector<double>{base_scene.terrain.tread_depth_m};
+  spec.tread_depth_m = given(root["tread_depth"])
+                           ? r.numbers(root["tread_depth"], "tread_depth", 1e-3, 10.0)
+                           : std::vector<double>{base_scene.terrain.tread_depth_m};
   for (const char* k : {"duty_factor", "peak_speed"})
     if (!given(root[k])) r.fail(k, "missing, this key is required (a list of values)");
   spec.duty_factor = r.numbers(root["duty_factor"], "duty_factor", 0.5, 0.999999);
   spec.peak_speed_mps = r.numbers(root["peak_speed"], "peak_speed", 1e-6, 10.0);
   const YAML::Node crit = root["criteria"];
   if (given(crit)) {
-    if (!crit.IsSequence() || crit.size() == 0) r.fail_value("criteria", crit, "a non-empty list of kinematic, torque, friction");
+    if (!crit.IsSequence() || crit.size() == 0)
+      r.fail_value("criteria", crit, "a non-empty list of kinematic, torque, friction");
     for (const auto& c : crit) {
       const std::string name = c.IsScalar() ? c.Scalar() : "";
-      if (name == "kinematic") spec.criteria.push_back(EnvelopeCriterion::kKinematic);
-      else if (name == "torque") spec.criteria.push_back(EnvelopeCriterion::kTorque);
-      else if (name == "friction") spec.criteria.push_back(EnvelopeCriterion::kFriction);
-      else r.fail_value("criteria", crit, "a list of kinematic, torque, friction");
+      if (name == "kinematic")
+        spec.criteria.push_back(EnvelopeCriterion::kKinematic);
+      else if (name == "torque")
+        spec.criteria.push_back(EnvelopeCriterion::kTorque);
+      else if (name == "friction")
+        spec.criteria.push_back(EnvelopeCriterion::kFriction);
+      else
+        r.fail_value("criteria", crit, "a list of kinematic, torque, friction");
     }
-    if (std::set<EnvelopeCriterion>(spec.criteria.begin(), spec.criteria.end()).size() != spec.criteria.size())
+    if (std::set<EnvelopeCriterion>(spec.criteria.begin(), spec.criteria.end()).size() !=
+        spec.criteria.size())
       r.fail_value("criteria", crit, "each criterion at most once");
   } else {
-    spec.criteria = {EnvelopeCriterion::kKinematic, EnvelopeCriterion::kTorque, EnvelopeCriterion::kFriction};
+    spec.criteria = {EnvelopeCriterion::kKinematic, EnvelopeCriterion::kTorque,
+                     EnvelopeCriterion::kFriction};
   }
   if (given(root["kinematic_margin"]))
     spec.kinematic_margin_m = r.number(root["kinematic_margin"], "kinematic_margin", 0.0, 0.1);
   // Every cell's scene at the lowest riser must be valid (speed against ramp, ...).
-  const int cells = static_cast<int>(spec.tread_depth_m.size() * spec.duty_factor.size() * spec.peak_speed_mps.size());
+  const int cells = static_cast<int>(spec.tread_depth_m.size() * spec.duty_factor.size() *
+                                     spec.peak_speed_mps.size());
   for (int cell = 0; cell < cells; ++cell)
-    for (EnvelopeCriterion c : spec.criteria) (void)envelope_probe_scene(spec, cell, spec.riser_from_m, c);
+    for (EnvelopeCriterion c : spec.criteria)
+      (void)envelope_probe_scene(spec, cell, spec.riser_from_m, c);
   return spec;
 }
 
-Scene envelope_probe_scene(const EnvelopeSpec& spec, int cell, double riser_m, EnvelopeCriterion c) {
+Scene envelope_probe_scene(const EnvelopeSpec& spec, int cell, double riser_m,
+                           EnvelopeCriterion c) {
   const std::size_t V = spec.peak_speed_mps.size(), B = spec.duty_factor.size();
   const std::size_t v = cell % V, b = (cell / V) % B, w = cell / (V * B);
   YAML::Node tree = YAML::Load(spec.base_tree_yaml);
@@ -157,7 +189,8 @@ Scene envelope_probe_scene(const EnvelopeSpec& spec, int cell, double riser_m, E
   if (c == EnvelopeCriterion::kFriction) ov.push_back({"allocation.torque_limit", "1e6"});
   if (c == EnvelopeCriterion::kKinematic && spec.kinematic_margin_m >= 0.0)
     ov.push_back({"robot.ik_min_margin", text(spec.kinematic_margin_m)});
-  const std::string source = spec.name + " envelope cell " + std::to_string(cell) + " riser " + text(riser_m);
+  const std::string source =
+      spec.name + " envelope cell " + std::to_string(cell) + " riser " + text(riser_m);
   for (const auto& o : ov) apply_override(tree, o, source);
   return scene_from_yaml(tree, source);
 }

@@ -32,7 +32,8 @@ std::optional<std::string> why_not_replaceable(const std::string& path) {
   }
   if (S_ISREG(st.st_mode)) return std::nullopt;
   if (S_ISLNK(st.st_mode))
-    return std::string("is a symbolic link (hexdyn replaces only regular files; name the link's target)");
+    return std::string(
+        "is a symbolic link (hexdyn replaces only regular files; name the link's target)");
   if (S_ISDIR(st.st_mode)) return std::string("is a directory");
   if (S_ISCHR(st.st_mode)) return std::string("is a character device");
   if (S_ISBLK(st.st_mode)) return std::string("is a block device");

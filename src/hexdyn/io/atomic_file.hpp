@@ -16,9 +16,9 @@ namespace hexdyn {
 /// Publishes a file atomically: `write(tmp)` builds it at the temporary path `tmp`, then
 /// it is synced to disk and renamed over `path`. Right before the rename `path` is
 /// checked again with why_not_replaceable: a device, FIFO, socket, directory or symbolic
-/// link that appeared there meanwhile is never replaced (IoError). When `write`, the sync or the rename
-/// throws, the temporary file is removed, an existing file at `path` is left untouched,
-/// and the exception is rethrown (the sync's and the rename's as IoError naming the path).
+/// link that appeared there meanwhile is never replaced (IoError). When `write`, the sync or the
+/// rename throws, the temporary file is removed, an existing file at `path` is left untouched, and
+/// the exception is rethrown (the sync's and the rename's as IoError naming the path).
 /// Precondition: the directory of `path` exists and is writable.
 /// The temporary path is temporary_path_for(path).
 void publish_atomically(const std::string& path,

@@ -20,14 +20,16 @@ namespace {
 
 using namespace scene_keys;
 
-BodyParams read_body(Reader& r, const std::string& path, bool has_com_default, const Vec3& com_default) {
+BodyParams read_body(Reader& r, const std::string& path, bool has_com_default,
+                     const Vec3& com_default) {
   BodyParams b;
   b.mass_kg = r.number(path + ".mass", positive(1e4));
   b.inertia_kgm2 = r.vec3(path + ".inertia", positive(1e3));
   const Vec3& I = b.inertia_kgm2;
   if (I.x() + I.y() < I.z() || I.y() + I.z() < I.x() || I.x() + I.z() < I.y()) {
-    r.fail(path + ".inertia", "got [" + fmt(I.x()) + ", " + fmt(I.y()) + ", " + fmt(I.z()) +
-                                  "], expected principal moments with each at most the sum of the other two");
+    r.fail(path + ".inertia",
+           "got [" + fmt(I.x()) + ", " + fmt(I.y()) + ", " + fmt(I.z()) +
+               "], expected principal moments with each at most the sum of the other two");
   }
   b.com_m = r.vec3(path + ".com", closed(-10.0, 10.0), has_com_default ? &com_default : nullptr);
   return b;
@@ -40,19 +42,24 @@ double read_urdf_robot_keys(Reader& r, RobotParams& p, LoadedUrdfRobot& loaded) 
   k.path = r.string_or("robot.urdf", "");
   if (k.path.empty()) r.fail("robot.urdf", "got an empty path, expected the path of a URDF file");
   if (const auto why = why_not_regular_file(k.path))
-    r.fail("robot.urdf", "got " + k.path + ", which " + *why + ", expected a URDF file (relative to the scene file)");
+    r.fail("robot.urdf", "got " + k.path + ", which " + *why +
+                             ", expected a URDF file (relative to the scene file)");
   k.trunk_link = r.string_or("robot.trunk_link", "");
   const std::string def_axis = "+x";
   k.forward_axis = r.choice("robot.forward_axis", {"+x", "-x", "+y", "-y"}, &def_axis);
   k.foot_links = r.strings_or_none("robot.foot_links", kLegs);
-  if (r.has("robot.foot_offset")) k.foot_offset_m = r.vec3("robot.foot_offset", closed(-10.0, 10.0));
-  if (r.has("robot.nominal_pose")) k.nominal_pose_rad = r.vec3("robot.nominal_pose", closed(-2.0 * M_PI, 2.0 * M_PI));
-  k.ik_min_margin_m = p.ik_min_margin_m = r.number_or("robot.ik_min_margin", 1e-4, nonnegative(0.1));
+  if (r.has("robot.foot_offset"))
+    k.foot_offset_m = r.vec3("robot.foot_offset", closed(-10.0, 10.0));
+  if (r.has("robot.nominal_pose"))
+    k.nominal_pose_rad = r.vec3("robot.nominal_pose", closed(-2.0 * M_PI, 2.0 * M_PI));
+  k.ik_min_margin_m = p.ik_min_margin_m =
+      r.number_or("robot.ik_min_margin", 1e-4, nonnegative(0.1));
   loaded = load_urdf_robot(k);
   p.urdf = loaded.robot;
   if (!(loaded.stance_radius_m > 0.0))
-    r.fail("robot.nominal_pose", "puts the feet on the coxa axes (stance radius " + fmt(loaded.stance_radius_m) +
-                                     " m), expected a pose with the feet outward; or give gait.foot_lateral");
+    r.fail("robot.nominal_pose",
+           "puts the feet on the coxa axes (stance radius " + fmt(loaded.stance_radius_m) +
+               " m), expected a pose with the feet outward; or give gait.foot_lateral");
   return loaded.stance_radius_m;
 }
 
@@ -71,7 +78,8 @@ void read_robot(Reader& r, RobotParams& p, LoadedUrdfRobot& loaded) {
     p.link[j] = read_body(r, base, true, Vec3(0.5 * p.link_length_m[j], 0.0, 0.0));
     const auto lim = r.numbers(base + ".limits", 2, 2, closed(-M_PI, M_PI));
     if (lim[0] >= lim[1])
-      r.fail(base + ".limits", "got [" + fmt(lim[0]) + ", " + fmt(lim[1]) + "], expected [lower, upper] with lower < upper");
+      r.fail(base + ".limits", "got [" + fmt(lim[0]) + ", " + fmt(lim[1]) +
+                                   "], expected [lower, upper] with lower < upper");
     p.joint_min_rad[j] = lim[0];
     p.joint_max_rad[j] = lim[1];
   }
@@ -122,23 +130,28 @@ void read_gait(Reader& r, GaitParams& g, const LoadedUrdfRobot& urdf) {
   g.duty_factor = r.number("gait.duty_factor", {0.5, 1.0, false, true});
   g.stroke_m = r.number("gait.stroke", positive(2.0));
   // A URDF robot's footholds default to its nominal stance radius (io/robot_config.hpp).
-  g.foot_lateral_m = urdf.robot ? r.number_or("gait.foot_lateral", urdf.stance_radius_m, positive(2.0))
-                                : r.number("gait.foot_lateral", positive(2.0));
+  g.foot_lateral_m = urdf.robot
+                         ? r.number_or("gait.foot_lateral", urdf.stance_radius_m, positive(2.0))
+                         : r.number("gait.foot_lateral", positive(2.0));
   g.foothold_margin_m = r.number_or("gait.foothold_margin", 0.02, nonnegative(1.0));
   g.swing_clearance_m = r.number("gait.swing_clearance", positive(1.0));
   g.touchdown_speed_mps = r.number("gait.touchdown_speed", nonnegative(10.0));
   g.lift_fraction = r.number_or("gait.lift_fraction", 0.3, {0.0, 1.0, true, true});
   g.lower_fraction = r.number_or("gait.lower_fraction", 0.2, {0.0, 1.0, true, true});
   if (g.lift_fraction + g.lower_fraction >= 0.95)
-    r.fail("gait.lower_fraction", "got " + fmt(g.lower_fraction) + " with gait.lift_fraction " +
-                                      fmt(g.lift_fraction) + ", expected a sum below 0.95 (time must remain to move forward)");
+    r.fail("gait.lower_fraction",
+           "got " + fmt(g.lower_fraction) + " with gait.lift_fraction " + fmt(g.lift_fraction) +
+               ", expected a sum below 0.95 (time must remain to move forward)");
 }
 
 double mean_slope(const TerrainParams& t) {
   switch (t.type) {
-    case TerrainType::kStairs: return std::atan2(t.riser_height_m, t.tread_depth_m);
-    case TerrainType::kSlope: return t.slope_rad;
-    case TerrainType::kFlat: return 0.0;
+    case TerrainType::kStairs:
+      return std::atan2(t.riser_height_m, t.tread_depth_m);
+    case TerrainType::kSlope:
+      return t.slope_rad;
+    case TerrainType::kFlat:
+      return 0.0;
   }
   return 0.0;
 }
@@ -150,11 +163,15 @@ void read_posture(Reader& r, MotionParams& m) {
   const bool relative = r.given("motion.posture");
   if (!relative) (void)r.has("motion.posture");  // a null posture counts as absent
   if (absolute && relative)
-    r.fail("motion", "got both initial_position and posture, expected one of the two (an absolute start or one relative to the terrain)");
+    r.fail("motion",
+           "got both initial_position and posture, expected one of the two (an absolute start or "
+           "one relative to the terrain)");
   PostureParams& p = m.posture;
   if (!relative) {
     if (!absolute)
-      r.fail("motion.posture", "missing, expected motion.posture {height, start_y} (relative to the terrain) or motion.initial_position");
+      r.fail("motion.posture",
+             "missing, expected motion.posture {height, start_y} (relative to the terrain) or "
+             "motion.initial_position");
     p.mode = PostureMode::kAbsolute;
     m.initial_position_m = r.vec3("motion.initial_position", closed(-100.0, 100.0));
     return;
@@ -170,7 +187,8 @@ void read_posture(Reader& r, MotionParams& m) {
   const std::vector<double> no_range{0.0, 0.0};
   const auto h = r.numbers("motion.posture.height_range", 2, 2, closed(-10.0, 10.0), &no_range);
   if (h != no_range && !(h[0] < h[1]))
-    r.fail("motion.posture.height_range", "got " + yaml_inline(YAML::Node(h)) + ", expected [lower, upper] with lower < upper");
+    r.fail("motion.posture.height_range",
+           "got " + yaml_inline(YAML::Node(h)) + ", expected [lower, upper] with lower < upper");
   p.height_min_m = h[0];
   p.height_max_m = h[1];
   p.target_margin_m = r.number_or("motion.posture.target_margin", 0.01, nonnegative(1.0));
@@ -179,7 +197,10 @@ void read_posture(Reader& r, MotionParams& m) {
   if (p.vary_foot_lateral) {
     const auto w = r.numbers("motion.posture.foot_lateral", 2, 2, positive(2.0));
     if (!(w[0] <= w[1]))
-      r.fail("motion.posture.foot_lateral", "got " + yaml_inline(YAML::Node(w)) + ", expected [lower, upper] with lower <= upper (the range auto may choose gait.foot_lateral from)");
+      r.fail("motion.posture.foot_lateral",
+             "got " + yaml_inline(YAML::Node(w)) +
+                 ", expected [lower, upper] with lower <= upper (the range auto may choose "
+                 "gait.foot_lateral from)");
     p.foot_lateral_min_m = w[0];
     p.foot_lateral_max_m = w[1];
   }
@@ -190,9 +211,12 @@ void read_motion(Reader& r, const GaitParams& g, const TerrainParams& t, MotionP
   // Stride: trunk travel per gait cycle along the slope (s0/β horizontally).
   const double stride_along_slope = (g.stroke_m / g.duty_factor) / std::cos(mean_slope(t));
   const bool by_durations = r.has("motion.cycle_durations");
-  const bool by_speed = r.has("motion.peak_speed") || r.has("motion.cycles") || r.has("motion.ramp_duration");
+  const bool by_speed =
+      r.has("motion.peak_speed") || r.has("motion.cycles") || r.has("motion.ramp_duration");
   if (by_durations && by_speed)
-    r.fail("motion", "got both cycle_durations and peak_speed/cycles/ramp_duration, expected one of the two forms");
+    r.fail("motion",
+           "got both cycle_durations and peak_speed/cycles/ramp_duration, expected one of the two "
+           "forms");
   if (by_durations) {
     m.cycle_durations_s = r.numbers("motion.cycle_durations", 3, 10000, positive(1e4));
     const auto& d = m.cycle_durations_s;
@@ -200,30 +224,35 @@ void read_motion(Reader& r, const GaitParams& g, const TerrainParams& t, MotionP
     bool ok = std::abs(d.back() - first) < 1e-9 && first > mid;
     for (std::size_t i = 1; i + 1 < d.size(); ++i) ok = ok && std::abs(d[i] - mid) < 1e-9;
     if (!ok)
-      r.fail("motion.cycle_durations", "got " + yaml_inline(YAML::Node(d)) +
-                                           ", expected [ramp-up, cruise..., ramp-down] with equal cruise cycles and equal first and last cycles longer than the cruise ones");
+      r.fail("motion.cycle_durations",
+             "got " + yaml_inline(YAML::Node(d)) +
+                 ", expected [ramp-up, cruise..., ramp-down] with equal cruise cycles and equal "
+                 "first and last cycles longer than the cruise ones");
     m.cycles = static_cast<int>(d.size());
     m.peak_speed_mps = stride_along_slope / mid;
     m.ramp_duration_s = 2.0 * (first - mid);
     if (m.ramp_duration_s > first)
       r.fail("motion.cycle_durations", "got " + yaml_inline(YAML::Node(d)) +
-                                           ", expected a first cycle at most twice the cruise cycle (the speed ramp must end inside it)");
+                                           ", expected a first cycle at most twice the cruise "
+                                           "cycle (the speed ramp must end inside it)");
   } else {
     m.cycles = r.integer("motion.cycles", 1, 100000);
     m.peak_speed_mps = r.number("motion.peak_speed", positive(10.0));
     m.ramp_duration_s = r.number("motion.ramp_duration", positive(1e4));
     const double cruise_time = m.cycles * stride_along_slope / m.peak_speed_mps;
     if (m.ramp_duration_s > cruise_time)
-      r.fail("motion.ramp_duration", "got " + fmt(m.ramp_duration_s) + ", expected at most " + fmt(cruise_time) +
-                                         " s (the ramps at start and end must not overlap at this speed)");
+      r.fail("motion.ramp_duration",
+             "got " + fmt(m.ramp_duration_s) + ", expected at most " + fmt(cruise_time) +
+                 " s (the ramps at start and end must not overlap at this speed)");
     m.cycle_durations_s.clear();
   }
 }
 
 void read_contact(Reader& r, ContactParams& c) {
   const std::string def_model = "compliant";
-  c.model = r.choice("contact.model", {"compliant", "rigid"}, &def_model) == "rigid" ? ContactModel::kRigid
-                                                                                   : ContactModel::kCompliant;
+  c.model = r.choice("contact.model", {"compliant", "rigid"}, &def_model) == "rigid"
+                ? ContactModel::kRigid
+                : ContactModel::kCompliant;
   c.stiffness = r.number("contact.stiffness", positive(1e15));
   c.exponent = r.number("contact.exponent", closed(1.0, 5.0));
   c.damping_max_Nspm = r.number("contact.damping_max", nonnegative(1e12));
@@ -233,14 +262,17 @@ void read_contact(Reader& r, ContactParams& c) {
 
 void read_allocation(Reader& r, AllocationParams& a, const LoadedUrdfRobot& urdf) {
   const std::string def_friction = "pyramid4";
-  const std::string friction = r.choice("allocation.friction", {"pyramid4", "pyramid8", "cone"}, &def_friction);
-  a.friction = friction == "cone" ? FrictionModel::kCone
-               : friction == "pyramid8" ? FrictionModel::kPyramid8 : FrictionModel::kPyramid4;
+  const std::string friction =
+      r.choice("allocation.friction", {"pyramid4", "pyramid8", "cone"}, &def_friction);
+  a.friction = friction == "cone"       ? FrictionModel::kCone
+               : friction == "pyramid8" ? FrictionModel::kPyramid8
+                                        : FrictionModel::kPyramid4;
   // auto = active-set: the dual active-set QP for the pyramids, and for the exact cone the
   // same QP under sequential outer approximation (allocation/cone.hpp); ipopt: the NLP
   // reference for every friction model.
   const std::string def_solver = "auto";
-  const std::string solver = r.choice("allocation.solver", {"auto", "active-set", "ipopt"}, &def_solver);
+  const std::string solver =
+      r.choice("allocation.solver", {"auto", "active-set", "ipopt"}, &def_solver);
   a.solver = solver == "ipopt" ? AllocationSolver::kIpopt : AllocationSolver::kActiveSet;
   // A URDF robot: its effort limits per joint unless the scene gives one limit for all
   // (allocation.torque_limit: effort names the default).
@@ -259,22 +291,25 @@ void read_allocation(Reader& r, AllocationParams& a, const LoadedUrdfRobot& urdf
   constexpr double kLoosestTolerance = 1e-5;
   a.tolerance = r.number_or("allocation.tolerance", 1e-9, positive());
   if (a.tolerance > kLoosestTolerance)
-    r.fail("allocation.tolerance", "got " + fmt(a.tolerance) + ", expected a number in (0, " + fmt(kLoosestTolerance) +
-                                       "]: looser solves miss the 1e-6 N / N m violation threshold, so samples would be "
-                                       "flagged for the solver's inaccuracy rather than for physics");
+    r.fail("allocation.tolerance",
+           "got " + fmt(a.tolerance) + ", expected a number in (0, " + fmt(kLoosestTolerance) +
+               "]: looser solves miss the 1e-6 N / N m violation threshold, so samples would be "
+               "flagged for the solver's inaccuracy rather than for physics");
   a.slack_penalty = r.number_or("allocation.slack_penalty", 1e6, positive(1e12));
 }
 
 void read_output(Reader& r, OutputParams& o) {
   o.sample_step_s = r.number("output.sample_step", positive(100.0));
   const std::string def_grid = "adaptive";
-  o.grid = r.choice("output.grid", {"uniform", "adaptive"}, &def_grid) == "uniform" ? OutputGrid::kUniform
-                                                                                    : OutputGrid::kAdaptive;
+  o.grid = r.choice("output.grid", {"uniform", "adaptive"}, &def_grid) == "uniform"
+               ? OutputGrid::kUniform
+               : OutputGrid::kAdaptive;
   const int def_samples = 16;
   o.impact_samples = r.integer("output.impact_samples", 1, 100000, &def_samples);
   o.event_step_s = r.number_or("output.event_step", 1e-2, positive(100.0));
   if (o.event_step_s > o.sample_step_s)
-    r.fail("output.event_step", "got " + fmt(o.event_step_s) + ", expected at most output.sample_step (" +
+    r.fail("output.event_step", "got " + fmt(o.event_step_s) +
+                                    ", expected at most output.sample_step (" +
                                     fmt(o.sample_step_s) + ")");
 }
 
@@ -319,15 +354,15 @@ void apply_override(YAML::Node& root, const Override& ov, const std::string& sou
       cur[keys[i]] = YAML::Node(YAML::NodeType::Map);
       next.reset(cur[keys[i]]);
     } else if (!next.IsMap()) {
-      throw ConfigError(source_name + ": --set " + ov.key_path + ": " + so_far + " is not a mapping");
+      throw ConfigError(source_name + ": --set " + ov.key_path + ": " + so_far +
+                        " is not a mapping");
     }
     cur.reset(next);
   }
   cur[keys.back()] = value;
 }
 
-Scene scene_from_yaml(const YAML::Node& root, const std::string& source_name,
-                      bool emit_resolved) {
+Scene scene_from_yaml(const YAML::Node& root, const std::string& source_name, bool emit_resolved) {
   Scene s;
   s.source_path = source_name;
   Reader r(root, source_name);

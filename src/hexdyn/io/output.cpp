@@ -35,8 +35,10 @@ void write_dataset(H5Writer& w, const std::string& prefix, const LayoutDataset& 
   const std::string path = prefix + d.spec->path;
   const std::string units = d.spec->units;
   if (const auto* v = std::get_if<std::vector<double>>(&d.values)) {
-    if (d.dims.empty()) w.write_scalar(path, v->at(0), units);
-    else w.write_doubles(path, d.dims, *v, units);
+    if (d.dims.empty())
+      w.write_scalar(path, v->at(0), units);
+    else
+      w.write_doubles(path, d.dims, *v, units);
   } else if (const auto* v8 = std::get_if<std::vector<std::int8_t>>(&d.values)) {
     w.write_int8(path, d.dims, *v8, units);
   } else if (const auto* v32 = std::get_if<std::vector<std::int32_t>>(&d.values)) {
@@ -50,9 +52,12 @@ void write_dataset(H5Writer& w, const std::string& prefix, const LayoutDataset& 
 
 void write_attribute(H5Writer& w, const std::string& prefix, const LayoutAttribute& a) {
   const std::string object = prefix + a.spec->object;
-  if (const auto* text = std::get_if<std::string>(&a.value)) w.set_string_attribute(object, a.spec->name, *text);
-  else if (const auto* i = std::get_if<std::int64_t>(&a.value)) w.set_int_attribute(object, a.spec->name, *i);
-  else w.set_double_attribute(object, a.spec->name, std::get<double>(a.value));
+  if (const auto* text = std::get_if<std::string>(&a.value))
+    w.set_string_attribute(object, a.spec->name, *text);
+  else if (const auto* i = std::get_if<std::int64_t>(&a.value))
+    w.set_int_attribute(object, a.spec->name, *i);
+  else
+    w.set_double_attribute(object, a.spec->name, std::get<double>(a.value));
 }
 
 }  // namespace
@@ -85,8 +90,9 @@ void check_output_target(const std::string& path, const std::vector<std::string>
       struct stat in {};
       if (::stat(input.c_str(), &in) != 0) continue;
       if (in.st_dev == target.st_dev && in.st_ino == target.st_ino)
-        throw_output_error(path, "it is the input file '" + input +
-                                     "' of this run (same device and inode), which the output would destroy");
+        throw_output_error(
+            path, "it is the input file '" + input +
+                      "' of this run (same device and inode), which the output would destroy");
     }
   } else if (errno != ENOENT) {
     const int err = errno;
@@ -107,10 +113,13 @@ void check_output_target(const std::string& path, const std::vector<std::string>
   const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
   if (fd < 0) {
     const int err = errno;
-    if (err == EEXIST && !why_not_replaceable(tmp)) return;  // a stale one of this pid: overwritten later
+    if (err == EEXIST && !why_not_replaceable(tmp))
+      return;  // a stale one of this pid: overwritten later
     if (err == EACCES || err == EPERM)
-      throw_output_error(path, "directory '" + dir + "' is not writable (" + std::strerror(err) + ")");
-    throw_output_error(path, "cannot create a file in directory '" + dir + "' (" + std::strerror(err) + ")");
+      throw_output_error(path,
+                         "directory '" + dir + "' is not writable (" + std::strerror(err) + ")");
+    throw_output_error(
+        path, "cannot create a file in directory '" + dir + "' (" + std::strerror(err) + ")");
   }
   ::close(fd);
   ::unlink(tmp.c_str());
@@ -122,8 +131,8 @@ void check_run_size(std::size_t samples, bool allow_large) {
   if (samples <= kLargeResultSamples || allow_large) return;
   char size[64];
   std::snprintf(size, sizeof size, "%.2g GB", estimated_result_file_bytes(samples) / 1e9);
-  throw ConfigError("run: " + std::to_string(samples) + " output samples, a result file of about " + size +
-                    "; more than " + std::to_string(kLargeResultSamples) +
+  throw ConfigError("run: " + std::to_string(samples) + " output samples, a result file of about " +
+                    size + "; more than " + std::to_string(kLargeResultSamples) +
                     " samples (about 0.29 GB) are refused as a likely typing error in output.* "
                     "(sample_step, impact_samples, event_step); pass --allow-large to run it");
 }
@@ -131,20 +140,46 @@ void check_run_size(std::size_t samples, bool allow_large) {
 double estimated_result_file_bytes(std::size_t samples) {
   namespace s = schema;
   double row = 0.0;  // bytes per sample
-  for (const DatasetSpec* d :
-       {&s::kTime, &s::kBasePosition, &s::kBaseOrientation, &s::kBaseLinearVelocity,
-        &s::kBaseAngularVelocity, &s::kBaseLinearAcceleration, &s::kBaseAngularAcceleration,
-        &s::kJointPosition, &s::kJointVelocity, &s::kJointAcceleration, &s::kFeetPosition,
-        &s::kFeetVelocity, &s::kComPosition, &s::kContactPhase, &s::kJointTorque, &s::kContactForce,
-        &s::kContactPenetration, &s::kJointPower, &s::kTotalPower, &s::kSolverStatus,
-        &s::kSolverIterations, &s::kSolverObjective, &s::kSolverSeconds}) {
+  for (const DatasetSpec* d : {&s::kTime,
+                               &s::kBasePosition,
+                               &s::kBaseOrientation,
+                               &s::kBaseLinearVelocity,
+                               &s::kBaseAngularVelocity,
+                               &s::kBaseLinearAcceleration,
+                               &s::kBaseAngularAcceleration,
+                               &s::kJointPosition,
+                               &s::kJointVelocity,
+                               &s::kJointAcceleration,
+                               &s::kFeetPosition,
+                               &s::kFeetVelocity,
+                               &s::kComPosition,
+                               &s::kContactPhase,
+                               &s::kJointTorque,
+                               &s::kContactForce,
+                               &s::kContactPenetration,
+                               &s::kJointPower,
+                               &s::kTotalPower,
+                               &s::kSolverStatus,
+                               &s::kSolverIterations,
+                               &s::kSolverObjective,
+                               &s::kSolverSeconds}) {
     double columns = 1.0;
     switch (d->shape) {
-      case s::Shape::kT3: columns = 3; break;
-      case s::Shape::kT4: columns = 4; break;
-      case s::Shape::kT6: columns = 6; break;
-      case s::Shape::kT18: case s::Shape::kT6x3: columns = 18; break;
-      default: break;
+      case s::Shape::kT3:
+        columns = 3;
+        break;
+      case s::Shape::kT4:
+        columns = 4;
+        break;
+      case s::Shape::kT6:
+        columns = 6;
+        break;
+      case s::Shape::kT18:
+      case s::Shape::kT6x3:
+        columns = 18;
+        break;
+      default:
+        break;
     }
     row += columns * (d->element == s::Element::kInt8 ? 1.0 : 8.0);
   }

@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "hexdyn/io/h5io.hpp"
 #include "hexdyn/core/result.hpp"
+#include "hexdyn/io/h5io.hpp"
 #include "hexdyn/io/result_layout.hpp"
 
 namespace hexdyn {

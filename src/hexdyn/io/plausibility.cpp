@@ -29,9 +29,12 @@ std::string given(double x) {
 
 double mean_slope_rad(const TerrainParams& t) {
   switch (t.type) {
-    case TerrainType::kStairs: return std::atan2(t.riser_height_m, t.tread_depth_m);
-    case TerrainType::kSlope: return t.slope_rad;
-    case TerrainType::kFlat: return 0.0;
+    case TerrainType::kStairs:
+      return std::atan2(t.riser_height_m, t.tread_depth_m);
+    case TerrainType::kSlope:
+      return t.slope_rad;
+    case TerrainType::kFlat:
+      return 0.0;
   }
   return 0.0;
 }
@@ -48,7 +51,8 @@ void check_physical_plausibility(const Scene& scene, const std::string& source) 
   const MotionParams& m = scene.motion;
   const double a = kMaxPlannedAcceleration;
   const std::string why =
-      " when no foot or trunk accelerates beyond 100 g (981 m/s^2, far beyond any legged robot's actuators)";
+      " when no foot or trunk accelerates beyond 100 g (981 m/s^2, far beyond any legged robot's "
+      "actuators)";
   auto fail = [&](const std::string& key, const std::string& what) {
     throw ConfigError(source + ": " + key + ": " + what);
   };
@@ -63,34 +67,40 @@ void check_physical_plausibility(const Scene& scene, const std::string& source) 
   const double t_lower_min = t_lift_min;
   const double t_swing_min = t_lift_min + t_lower_min + min_move_time(stride_m);
   const std::string motion_value =
-      by_durations ? "a cruise cycle of " + given(cycle_s) + " s" : given(m.peak_speed_mps) + " m/s (a cruise cycle of " + num(cycle_s) + " s)";
+      by_durations ? "a cruise cycle of " + given(cycle_s) + " s"
+                   : given(m.peak_speed_mps) + " m/s (a cruise cycle of " + num(cycle_s) + " s)";
   if (swing_s < t_swing_min) {
-    const std::string need = "expected a swing time (1 - duty factor) x cycle of at least " + num(t_swing_min) +
-                             " s (lift by the clearance " + num(clearance) + " m, carry the foot " + num(stride_m) +
-                             " m, lower it)" + why;
+    const std::string need = "expected a swing time (1 - duty factor) x cycle of at least " +
+                             num(t_swing_min) + " s (lift by the clearance " + num(clearance) +
+                             " m, carry the foot " + num(stride_m) + " m, lower it)" + why;
     // Blame the motion when even the tripod (β = 1/2) could not swing in time.
     if (0.5 * cycle_s < t_swing_min)
-      fail(motion_key, "got " + motion_value + ", which leaves a swing of " + num(swing_s) + " s; " + need);
-    fail("gait.duty_factor", "got " + given(g.duty_factor) + ", which leaves a swing of " + num(swing_s) +
-                                 " s in the cruise cycle of " + num(cycle_s) + " s; " + need +
-                                 ": a duty factor of at most " + num(1.0 - t_swing_min / cycle_s));
+      fail(motion_key,
+           "got " + motion_value + ", which leaves a swing of " + num(swing_s) + " s; " + need);
+    fail("gait.duty_factor", "got " + given(g.duty_factor) + ", which leaves a swing of " +
+                                 num(swing_s) + " s in the cruise cycle of " + num(cycle_s) +
+                                 " s; " + need + ": a duty factor of at most " +
+                                 num(1.0 - t_swing_min / cycle_s));
   }
   if (g.lift_fraction * swing_s < t_lift_min)
-    fail("gait.lift_fraction", "got " + given(g.lift_fraction) + ", a lift time of " + num(g.lift_fraction * swing_s) +
-                                   " s in the " + num(swing_s) + " s swing; expected at least " + num(t_lift_min) +
-                                   " s to lift the foot by the clearance " + num(clearance) + " m" + why +
-                                   ": a lift fraction of at least " + num(t_lift_min / swing_s));
+    fail("gait.lift_fraction",
+         "got " + given(g.lift_fraction) + ", a lift time of " + num(g.lift_fraction * swing_s) +
+             " s in the " + num(swing_s) + " s swing; expected at least " + num(t_lift_min) +
+             " s to lift the foot by the clearance " + num(clearance) + " m" + why +
+             ": a lift fraction of at least " + num(t_lift_min / swing_s));
   if (g.lower_fraction * swing_s < t_lower_min)
     fail("gait.lower_fraction", "got " + given(g.lower_fraction) + ", a lowering time of " +
                                     num(g.lower_fraction * swing_s) + " s in the " + num(swing_s) +
                                     " s swing; expected at least " + num(t_lower_min) +
-                                    " s to lower the foot by the clearance " + num(clearance) + " m" + why +
-                                    ": a lower fraction of at least " + num(t_lower_min / swing_s));
+                                    " s to lower the foot by the clearance " + num(clearance) +
+                                    " m" + why + ": a lower fraction of at least " +
+                                    num(t_lower_min / swing_s));
   const double t_ramp_min = 1.875 * m.peak_speed_mps / a;
   if (m.ramp_duration_s < t_ramp_min)
     fail(by_durations ? "motion.cycle_durations" : "motion.ramp_duration",
          "got a speed ramp of " + num(m.ramp_duration_s) + " s to " + num(m.peak_speed_mps) +
-             " m/s, expected at least " + num(t_ramp_min) + " s (the ramp's peak trunk acceleration is 1.875 v / ramp)" + why);
+             " m/s, expected at least " + num(t_ramp_min) +
+             " s (the ramp's peak trunk acceleration is 1.875 v / ramp)" + why);
 }
 
 }  // namespace hexdyn

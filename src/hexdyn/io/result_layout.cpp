@@ -3,8 +3,8 @@
 #include <utility>
 
 #include "hexdyn/core/errors.hpp"
-#include "hexdyn/version.hpp"
 #include "hexdyn/io/output.hpp"
+#include "hexdyn/version.hpp"
 
 namespace hexdyn {
 namespace {
@@ -23,18 +23,20 @@ class Builder {
 
   /// A rows × cols matrix as a dataset of shape `dims`, checked.
   template <class Matrix>
-  void matrix(const DatasetSpec& spec, const Matrix& m, int rows, int cols, std::vector<std::size_t> dims) {
+  void matrix(const DatasetSpec& spec, const Matrix& m, int rows, int cols,
+              std::vector<std::size_t> dims) {
     if (m.rows() != rows || m.cols() != cols)
-      throw IoError(std::string(spec.path) + " is " + std::to_string(m.rows()) + "x" + std::to_string(m.cols()) +
-                    ", expected " + std::to_string(rows) + "x" + std::to_string(cols));
+      throw IoError(std::string(spec.path) + " is " + std::to_string(m.rows()) + "x" +
+                    std::to_string(m.cols()) + ", expected " + std::to_string(rows) + "x" +
+                    std::to_string(cols));
     using Scalar = typename Matrix::Scalar;
     add(spec, std::move(dims), std::vector<Scalar>(m.data(), m.data() + m.size()));
   }
 
   void vector(const DatasetSpec& spec, const std::vector<double>& v, std::size_t expected) {
     if (v.size() != expected)
-      throw IoError(std::string(spec.path) + " has " + std::to_string(v.size()) + " entries, expected " +
-                    std::to_string(expected));
+      throw IoError(std::string(spec.path) + " has " + std::to_string(v.size()) +
+                    " entries, expected " + std::to_string(expected));
     add(spec, {v.size()}, v);
   }
 
@@ -106,7 +108,8 @@ void add_dynamics(Builder& b, const DynamicsResult& d, int T) {
   for (std::size_t i = 0; i < n; ++i) {
     const ImpactRecord& im = d.impacts[i];
     if (im.leg < 0 || im.leg >= kLegs)
-      throw IoError("impact " + std::to_string(i) + " has leg index " + std::to_string(im.leg) + ", expected 0..5");
+      throw IoError("impact " + std::to_string(i) + " has leg index " + std::to_string(im.leg) +
+                    ", expected 0..5");
     leg[i] = im.leg + 1;
     start[i] = im.t_start_s;
     duration[i] = im.duration_s;
@@ -131,8 +134,9 @@ void add_dynamics(Builder& b, const DynamicsResult& d, int T) {
   b.scalar(s::kEnergyDistance, d.distance_m);
 
   if (d.solver_status.size() != t)
-    throw IoError(std::string(s::kSolverStatus.path) + " has " + std::to_string(d.solver_status.size()) +
-                  " entries, expected " + std::to_string(t));
+    throw IoError(std::string(s::kSolverStatus.path) + " has " +
+                  std::to_string(d.solver_status.size()) + " entries, expected " +
+                  std::to_string(t));
   b.add(s::kSolverStatus, {t}, solver_status_codes(d.solver_status));
   b.vector(s::kSolverIterations, d.solver_iterations, t);
   b.vector(s::kSolverObjective, d.solver_objective, t);

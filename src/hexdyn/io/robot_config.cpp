@@ -17,7 +17,8 @@ void resolve_file_relative_keys(YAML::Node& root, const std::string& file) {
   YAML::Node robot = root["robot"];
   if (!robot.IsDefined() || !robot.IsMap()) return;
   YAML::Node urdf = robot["urdf"];
-  if (!urdf.IsDefined() || !urdf.IsScalar() || urdf.Scalar().empty()) return;  // config.cpp reports it
+  if (!urdf.IsDefined() || !urdf.IsScalar() || urdf.Scalar().empty())
+    return;  // config.cpp reports it
   const std::string& name = urdf.Scalar();
   std::error_code ec;
   const std::filesystem::path p = std::filesystem::absolute(path_beside(file, name), ec);
@@ -26,7 +27,8 @@ void resolve_file_relative_keys(YAML::Node& root, const std::string& file) {
 
 LoadedUrdfRobot load_urdf_robot(const UrdfRobotKeys& keys) {
   if (const auto why = why_not_regular_file(keys.path))
-    throw ConfigError("robot.urdf: got " + keys.path + ", which " + *why + ", expected a URDF file");
+    throw ConfigError("robot.urdf: got " + keys.path + ", which " + *why +
+                      ", expected a URDF file");
   UrdfReadOptions opt;
   opt.trunk_link = keys.trunk_link;
   opt.forward_axis = keys.forward_axis;
@@ -36,12 +38,14 @@ LoadedUrdfRobot load_urdf_robot(const UrdfRobotKeys& keys) {
   auto robot = std::make_shared<UrdfRobot>(read_urdf_robot(keys.path, opt));
   const RobotModel model = build_robot_model(*robot, keys.ik_min_margin_m);
   for (int leg = 0; leg < kLegs; ++leg) {
-    const NominalStance s = keys.nominal_pose_rad ? stance_at_pose(model, leg, *keys.nominal_pose_rad)
-                                                  : default_nominal_stance(model, leg);
+    const NominalStance s = keys.nominal_pose_rad
+                                ? stance_at_pose(model, leg, *keys.nominal_pose_rad)
+                                : default_nominal_stance(model, leg);
     out.nominal_q_rad[leg] = s.q;
     out.stance_radius_m += s.radius_m / kLegs;
     out.stance_depth_m += s.depth_m / kLegs;
-    for (int j = 0; j < kJointsPerLeg; ++j) out.effort_limit_Nm[joint_index(leg, j)] = robot->legs[leg].effort_Nm[j];
+    for (int j = 0; j < kJointsPerLeg; ++j)
+      out.effort_limit_Nm[joint_index(leg, j)] = robot->legs[leg].effort_Nm[j];
   }
   out.robot = std::move(robot);
   return out;

@@ -95,7 +95,8 @@ class Reader {
 
   int integer(const std::string& path, int lo, int hi, const int* def = nullptr) {
     const YAML::Node n = fetch(path, def != nullptr);
-    const std::string expected = "an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
+    const std::string expected =
+        "an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
     if (!n.IsDefined()) {
       set_resolved(path, YAML::Node(*def));
       return *def;
@@ -110,10 +111,11 @@ class Reader {
   std::vector<double> numbers(const std::string& path, std::size_t min_n, std::size_t max_n,
                               Range r, const std::vector<double>* def = nullptr) {
     const YAML::Node n = fetch(path, def != nullptr);
-    std::string expected = "a list of " + (min_n == max_n ? std::to_string(min_n)
-                                                           : std::to_string(min_n) + " to " +
-                                                                 std::to_string(max_n)) +
-                           " numbers, each " + r.describe();
+    std::string expected =
+        "a list of " +
+        (min_n == max_n ? std::to_string(min_n)
+                        : std::to_string(min_n) + " to " + std::to_string(max_n)) +
+        " numbers, each " + r.describe();
     std::vector<double> out;
     if (!n.IsDefined()) {
       out = *def;
@@ -238,7 +240,8 @@ class Reader {
     std::string so_far;
     for (const auto& key : split_key_path(path)) {
       if (!cur.IsDefined() || cur.IsNull()) return YAML::Node(YAML::NodeType::Undefined);
-      if (!cur.IsMap()) fail_value(so_far.empty() ? "(top level)" : so_far, cur, "a mapping of keys");
+      if (!cur.IsMap())
+        fail_value(so_far.empty() ? "(top level)" : so_far, cur, "a mapping of keys");
       const YAML::Node& here = cur;
       YAML::Node next = here[key];
       if (!next.IsDefined()) return YAML::Node(YAML::NodeType::Undefined);

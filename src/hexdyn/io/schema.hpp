@@ -31,35 +31,35 @@ inline constexpr std::int64_t kResultSchemaVersion = 1;          ///< /meta attr
 inline constexpr const char* kSweepSchema = "hexdyn-sweep/1";    ///< sweep files' `schema`
 inline constexpr std::int64_t kSweepSchemaVersion = 1;           ///< sweep files' `schema_version`
 inline constexpr const char* kEnvelopeSchema = "hexdyn-envelope/1";  ///< envelope files' `schema`
-inline constexpr std::int64_t kEnvelopeSchemaVersion = 1;            ///< envelope files' `schema_version`
+inline constexpr std::int64_t kEnvelopeSchemaVersion = 1;  ///< envelope files' `schema_version`
 
 /// Shape of a dataset in terms of the run's sizes.
 enum class Shape {
-  kScalar,          ///< ()
-  kText,            ///< () variable-length UTF-8 string
-  kTextList,        ///< (m) variable-length UTF-8 strings, m may be 0
-  kJointNames,      ///< (18) strings
-  kLegNames,        ///< (6) strings
-  kJ,               ///< (18)
-  kT,               ///< (T)
-  kT3,              ///< (T,3)
-  kT4,              ///< (T,4)
-  kT6,              ///< (T,6)
-  kT18,             ///< (T,18)
-  kT6x3,            ///< (T,6,3)
-  kN,               ///< (n), one entry per touchdown, n may be 0
-  kScenarios,       ///< (N), one entry per scenario, index order
-  kScenarioAxes,    ///< (N,A), one row per scenario, one column per axis
-  kScenarioJoints,  ///< (N,18), one row per scenario, one column per joint
-  kAxisValues,      ///< (V), one entry per value of an axis
-  kEnvelopeTreads,  ///< (W), tread depths of an envelope
-  kEnvelopeDuties,  ///< (B), duty factors of an envelope
-  kEnvelopeSpeeds,  ///< (S), peak speeds of an envelope
+  kScalar,            ///< ()
+  kText,              ///< () variable-length UTF-8 string
+  kTextList,          ///< (m) variable-length UTF-8 strings, m may be 0
+  kJointNames,        ///< (18) strings
+  kLegNames,          ///< (6) strings
+  kJ,                 ///< (18)
+  kT,                 ///< (T)
+  kT3,                ///< (T,3)
+  kT4,                ///< (T,4)
+  kT6,                ///< (T,6)
+  kT18,               ///< (T,18)
+  kT6x3,              ///< (T,6,3)
+  kN,                 ///< (n), one entry per touchdown, n may be 0
+  kScenarios,         ///< (N), one entry per scenario, index order
+  kScenarioAxes,      ///< (N,A), one row per scenario, one column per axis
+  kScenarioJoints,    ///< (N,18), one row per scenario, one column per joint
+  kAxisValues,        ///< (V), one entry per value of an axis
+  kEnvelopeTreads,    ///< (W), tread depths of an envelope
+  kEnvelopeDuties,    ///< (B), duty factors of an envelope
+  kEnvelopeSpeeds,    ///< (S), peak speeds of an envelope
   kEnvelopeCriteria,  ///< (C), criteria of an envelope
-  kEnvelopeCells,   ///< (W,B,S), one entry per tread, duty factor and speed
-  kEnvelopeGrid,    ///< (W,B,S,C), one entry per cell and criterion
+  kEnvelopeCells,     ///< (W,B,S), one entry per tread, duty factor and speed
+  kEnvelopeGrid,      ///< (W,B,S,C), one entry per cell and criterion
   kEnvelopeGridText,  ///< (G) strings, G = W·B·S·C: the (W,B,S,C) grid flattened row-major
-  kEnvelopeProbes,  ///< (P), one entry per probe (a criterion evaluated at one riser)
+  kEnvelopeProbes,    ///< (P), one entry per probe (a criterion evaluated at one riser)
 };
 
 /// Element type stored in the file.
@@ -331,12 +331,13 @@ inline constexpr AttributeSpec kMetaEnvelopeBaseConfigYaml{kMetaGroup, "base_con
                                                            Element::kString};
 inline constexpr AttributeSpec kMetaEnvelopeName{kMetaGroup, "name", Element::kString};
 /// Bisection tolerance and scan step of the riser search [m].
-inline constexpr AttributeSpec kMetaEnvelopeTolerance{kMetaGroup, "riser_tolerance", Element::kFloat64};
+inline constexpr AttributeSpec kMetaEnvelopeTolerance{kMetaGroup, "riser_tolerance",
+                                                      Element::kFloat64};
 inline constexpr AttributeSpec kMetaEnvelopeStep{kMetaGroup, "riser_step", Element::kFloat64};
 /// Every /meta attribute of an envelope file.
 inline constexpr std::array kEnvelopeMetaAttributes{
-    kMetaSchema,     kMetaSchemaVersion, kMetaVersion,     kMetaGitCommit,
-    kMetaCreatedUtc, kMetaConfigYaml,    kMetaWallTime,    kMetaEnvelopeBaseConfigYaml,
+    kMetaSchema,       kMetaSchemaVersion,     kMetaVersion,     kMetaGitCommit,
+    kMetaCreatedUtc,   kMetaConfigYaml,        kMetaWallTime,    kMetaEnvelopeBaseConfigYaml,
     kMetaEnvelopeName, kMetaEnvelopeTolerance, kMetaEnvelopeStep};
 
 // ---- the grid ----
@@ -372,7 +373,8 @@ inline constexpr DatasetSpec kEnvelopePostureMargin{"/envelope/posture_margin", 
 
 // ---- /probes: every evaluation, in the order made ----
 /// Cell index into (W,B,S), row-major.
-inline constexpr DatasetSpec kProbeCell{"/probes/cell", "1", Shape::kEnvelopeProbes, Element::kInt32};
+inline constexpr DatasetSpec kProbeCell{"/probes/cell", "1", Shape::kEnvelopeProbes,
+                                        Element::kInt32};
 /// Criterion index into /axes/criteria.
 inline constexpr DatasetSpec kProbeCriterion{"/probes/criterion", "1", Shape::kEnvelopeProbes,
                                              Element::kInt32};
@@ -386,13 +388,15 @@ inline constexpr DatasetSpec kProbeMessage{"/probes/message", "1", Shape::kEnvel
                                            Element::kString};
 
 /// Every dataset of an envelope file.
-inline constexpr std::array kEnvelopeDatasets{
-    kEnvelopeTreadDepth,  kEnvelopeDutyFactor,   kEnvelopePeakSpeed,
-    kEnvelopeCriteria,    kEnvelopeRiserFrom,    kEnvelopeRiserTo,
-    kEnvelopeRiserMax,    kEnvelopeRiserFail,    kEnvelopeLimit,
-    kEnvelopeMessage,     kEnvelopePostureHeight, kEnvelopePostureFootLateral,
-    kEnvelopePostureMargin, kProbeCell,          kProbeCriterion,
-    kProbeRiser,          kProbePassed,          kProbeLimit,
-    kProbeMessage};
+inline constexpr std::array kEnvelopeDatasets{kEnvelopeTreadDepth,    kEnvelopeDutyFactor,
+                                              kEnvelopePeakSpeed,     kEnvelopeCriteria,
+                                              kEnvelopeRiserFrom,     kEnvelopeRiserTo,
+                                              kEnvelopeRiserMax,      kEnvelopeRiserFail,
+                                              kEnvelopeLimit,         kEnvelopeMessage,
+                                              kEnvelopePostureHeight, kEnvelopePostureFootLateral,
+                                              kEnvelopePostureMargin, kProbeCell,
+                                              kProbeCriterion,        kProbeRiser,
+                                              kProbePassed,           kProbeLimit,
+                                              kProbeMessage};
 
 }  // namespace hexdyn::schema

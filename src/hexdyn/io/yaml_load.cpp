@@ -1,5 +1,4 @@
 #include "hexdyn/io/yaml_load.hpp"
-#include "hexdyn/io/paths.hpp"
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -11,8 +10,8 @@
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
-#include <cstdlib>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <map>
@@ -22,6 +21,7 @@
 
 #include "hexdyn/core/errors.hpp"
 #include "hexdyn/io/config.hpp"
+#include "hexdyn/io/paths.hpp"
 #include "hexdyn/io/robot_config.hpp"
 
 namespace hexdyn {
@@ -88,13 +88,17 @@ class StructureCheck : public YAML::EventHandler {
     std::size_t index = 0;            ///< lists: index of the next item
   };
 
-  bool key_expected() const { return !stack_.empty() && stack_.back().is_map && stack_.back().want_key; }
+  bool key_expected() const {
+    return !stack_.empty() && stack_.back().is_map && stack_.back().want_key;
+  }
 
-  std::string where() const { return stack_.empty() || stack_.back().path.empty() ? "top level" : stack_.back().path; }
+  std::string where() const {
+    return stack_.empty() || stack_.back().path.empty() ? "top level" : stack_.back().path;
+  }
 
   [[noreturn]] void fail_key(const YAML::Mark& mark, const std::string& what) const {
-    throw ConfigError(source_ + ":" + std::to_string(mark.line + 1) + ": " + where() + ": got " + what +
-                      " as a key, expected a plain name");
+    throw ConfigError(source_ + ":" + std::to_string(mark.line + 1) + ": " + where() + ": got " +
+                      what + " as a key, expected a plain name");
   }
 
   /// Path of the node that comes next in the innermost container (a value, not a key).
@@ -119,8 +123,8 @@ class StructureCheck : public YAML::EventHandler {
       const auto [it, fresh] = f.seen.emplace(key_text, line);
       if (!fresh) {
         const std::string path = f.path.empty() ? key_text : f.path + "." + key_text;
-        throw ConfigError(source_ + ": " + path + ": duplicate key, first at line " + std::to_string(it->second) +
-                          ", again at line " + std::to_string(line));
+        throw ConfigError(source_ + ": " + path + ": duplicate key, first at line " +
+                          std::to_string(it->second) + ", again at line " + std::to_string(line));
       }
       f.key = key_text;
       f.want_key = false;
@@ -135,8 +139,10 @@ class StructureCheck : public YAML::EventHandler {
     std::string path = stack_.empty() ? std::string() : child_path();
     if (static_cast<int>(stack_.size()) >= kMaxYamlDepth) {
       std::string at = path.substr(0, std::min(path.find('['), std::size_t{60}));
-      if (at.empty()) at = "top level";
-      else if (at.size() < path.size()) at += "...";
+      if (at.empty())
+        at = "top level";
+      else if (at.size() < path.size())
+        at += "...";
       throw ConfigError(source_ + ":" + std::to_string(mark.line + 1) + ": " + at +
                         ": maps and lists nested deeper than " + std::to_string(kMaxYamlDepth) +
                         " levels, expected at most " + std::to_string(kMaxYamlDepth));
@@ -169,10 +175,13 @@ StructureCheck::Top check_structure(const std::string& text, const std::string& 
     void OnDocumentEnd() override {}
     void OnNull(const YAML::Mark&, YAML::anchor_t) override {}
     void OnAlias(const YAML::Mark&, YAML::anchor_t) override {}
-    void OnScalar(const YAML::Mark&, const std::string&, YAML::anchor_t, const std::string&) override {}
-    void OnSequenceStart(const YAML::Mark&, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override {}
+    void OnScalar(const YAML::Mark&, const std::string&, YAML::anchor_t,
+                  const std::string&) override {}
+    void OnSequenceStart(const YAML::Mark&, const std::string&, YAML::anchor_t,
+                         YAML::EmitterStyle::value) override {}
     void OnSequenceEnd() override {}
-    void OnMapStart(const YAML::Mark&, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override {}
+    void OnMapStart(const YAML::Mark&, const std::string&, YAML::anchor_t,
+                    YAML::EmitterStyle::value) override {}
     void OnMapEnd() override {}
   } second;
   try {
@@ -187,16 +196,17 @@ StructureCheck::Top check_structure(const std::string& text, const std::string& 
   return check.top();
 }
 
-YAML::Node parse_checked(const std::string& text, const std::string& source_name, StructureCheck::Top* top,
-                         std::string* top_scalar) {
+YAML::Node parse_checked(const std::string& text, const std::string& source_name,
+                         StructureCheck::Top* top, std::string* top_scalar) {
   try {
     const StructureCheck::Top t = check_structure(text, source_name, top_scalar);
     if (top) *top = t;
     return YAML::Load(text);
   } catch (const YAML::DeepRecursion& e) {
-    throw ConfigError(source_name + ":" + std::to_string(e.mark.line + 1) + ":" + std::to_string(e.mark.column + 1) +
-                      ": maps and lists nested too deeply, expected at most " + std::to_string(kMaxYamlDepth) +
-                      " levels");
+    throw ConfigError(source_name + ":" + std::to_string(e.mark.line + 1) + ":" +
+                      std::to_string(e.mark.column + 1) +
+                      ": maps and lists nested too deeply, expected at most " +
+                      std::to_string(kMaxYamlDepth) + " levels");
   } catch (const YAML::ParserException& e) {
     throw ConfigError(source_name + ":" + std::to_string(e.mark.line + 1) + ":" +
                       std::to_string(e.mark.column + 1) + ": YAML syntax error: " + e.msg);
@@ -242,7 +252,8 @@ YAML::Node load_with_inheritance(const std::string& path, std::vector<ChainLink>
   for (std::size_t i = 0; i < chain.size(); ++i) {
     if (chain[i].canonical != canonical) continue;
     std::string cycle;
-    for (std::size_t k = i; k < chain.size(); ++k) cycle += display_path(chain[k].canonical) + " -> ";
+    for (std::size_t k = i; k < chain.size(); ++k)
+      cycle += display_path(chain[k].canonical) + " -> ";
     cycle += display_path(canonical);
     throw ConfigError(display_path(chain.back().canonical) + ": inherit: cycle " + cycle);
   }
@@ -252,7 +263,8 @@ YAML::Node load_with_inheritance(const std::string& path, std::vector<ChainLink>
   const YAML::Node parent = root["inherit"];
   if (!parent.IsDefined()) return root;
   if (!parent.IsScalar() || parent.Scalar().empty())
-    throw ConfigError(path + ": inherit: got " + yaml_inline(parent) + ", expected the path of a scene file");
+    throw ConfigError(path + ": inherit: got " + yaml_inline(parent) +
+                      ", expected the path of a scene file");
   const std::string& name = parent.Scalar();
   const std::string parent_path = path_beside(path, name);
   if (const auto why = why_not_regular_file(parent_path))
@@ -285,7 +297,8 @@ std::string read_text_file(const std::string& path) {
     throw ConfigError(path + ": cannot read the configuration file (" + std::strerror(errno) + ")");
   struct stat st {};
   if (::fstat(f.fd, &st) != 0 || !S_ISREG(st.st_mode))  // replaced since the stat above
-    throw ConfigError(path + ": " + kind_of(st.st_mode) + ", expected a configuration file (a regular YAML file)");
+    throw ConfigError(path + ": " + kind_of(st.st_mode) +
+                      ", expected a configuration file (a regular YAML file)");
   const std::string too_big = path + ": larger than " + std::to_string(kMaxConfigBytes) +
                               " bytes (1 MiB), expected a configuration file of at most that size";
   if (static_cast<unsigned long long>(st.st_size) > kMaxConfigBytes) throw ConfigError(too_big);
@@ -294,7 +307,9 @@ std::string read_text_file(const std::string& path) {
   for (;;) {
     const ssize_t n = ::read(f.fd, buf, sizeof buf);
     if (n < 0 && errno == EINTR) continue;
-    if (n < 0) throw ConfigError(path + ": cannot read the configuration file (" + std::strerror(errno) + ")");
+    if (n < 0)
+      throw ConfigError(path + ": cannot read the configuration file (" + std::strerror(errno) +
+                        ")");
     if (n == 0) break;
     text.append(buf, static_cast<std::size_t>(n));
     if (text.size() > kMaxConfigBytes) throw ConfigError(too_big);  // grew while read

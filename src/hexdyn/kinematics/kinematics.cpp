@@ -9,7 +9,8 @@
 
 namespace hexdyn {
 
-void robot_state_at(const RobotModel& model, const MotionPlan& plan, double t, RobotKinematicState& out) {
+void robot_state_at(const RobotModel& model, const MotionPlan& plan, double t,
+                    RobotKinematicState& out) {
   out.trunk = plan.trunk.at(t);
   const Mat3& W_R_B = out.trunk.W_R_B;
   const Vec3 omega_B = W_R_B.transpose() * out.trunk.omega_W;
@@ -45,9 +46,10 @@ void robot_state_at(const RobotModel& model, const MotionPlan& plan, double t, R
       // inf/NaN and poison every later dataset.
       std::ostringstream msg;
       msg << "leg " << leg_name(leg) << " at t = " << t << " s: foot target (" << f.p_W.x() << ", "
-          << f.p_W.y() << ", " << f.p_W.z() << ") m at a singular leg configuration (full extension or fold): "
-          << "joint rates undefined (margin " << ik.margin_m << " m, required >= " << model.ik_min_margin_m
-          << " m; raise robot.ik_min_margin)";
+          << f.p_W.y() << ", " << f.p_W.z()
+          << ") m at a singular leg configuration (full extension or fold): "
+          << "joint rates undefined (margin " << ik.margin_m
+          << " m, required >= " << model.ik_min_margin_m << " m; raise robot.ik_min_margin)";
       throw ReachError(msg.str());
     }
     out.q.segment<3>(joint_index(leg, 0)) = ik.q;
@@ -92,11 +94,12 @@ KinematicsResult sample_kinematics(const RobotModel& model, const MotionPlan& pl
     for (int leg = 0; leg < kLegs; ++leg) {
       k.foot_position.row(i).segment<3>(3 * leg) = s.feet[leg].p_W.transpose();
       k.foot_velocity.row(i).segment<3>(3 * leg) = s.feet[leg].v_W.transpose();
-      k.contact_phase(i, leg) = static_cast<std::int8_t>(s.feet[leg].in_swing ? ContactPhase::kSwing
-                                                                              : ContactPhase::kSupport);
+      k.contact_phase(i, leg) = static_cast<std::int8_t>(
+          s.feet[leg].in_swing ? ContactPhase::kSwing : ContactPhase::kSupport);
     }
     forward_kinematics_tree(model, s.q, poses);
-    k.com_position.row(i) = (s.trunk.p_W + s.trunk.W_R_B * center_of_mass_B(model, poses)).transpose();
+    k.com_position.row(i) =
+        (s.trunk.p_W + s.trunk.W_R_B * center_of_mass_B(model, poses)).transpose();
   }
   return k;
 }

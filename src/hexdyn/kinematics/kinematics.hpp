@@ -16,9 +16,9 @@ namespace hexdyn {
 
 /// The whole robot's kinematic state at one instant.
 struct RobotKinematicState {
-  BaseState trunk;                                                ///< world frame
+  BaseState trunk;                                               ///< world frame
   VecJ q = VecJ::Zero(), qd = VecJ::Zero(), qdd = VecJ::Zero();  ///< 18, flat joint order
-  std::array<FootMotion, kLegs> feet;                             ///< world frame
+  std::array<FootMotion, kLegs> feet;                            ///< world frame
 };
 
 /// Fills `out` at time t. Throws ReachError naming the leg, the time and the margin

@@ -108,10 +108,8 @@ LegIkResult ik_numeric(const RobotModel& m, int leg, const Vec3& p) {
   starts[0] = d.q_start;
   int n = 1;
   for (double s1 : {-0.8, 0.8})
-    for (double s2 : {-1.2, 1.2})
-      starts[n++] = d.q_start + Vec3(0.0, s1, s2);
-  for (double s0 : {-0.6, 0.6})
-    starts[n++] = d.q_start + Vec3(s0, 0.0, 0.0);
+    for (double s2 : {-1.2, 1.2}) starts[n++] = d.q_start + Vec3(0.0, s1, s2);
+  for (double s0 : {-0.6, 0.6}) starts[n++] = d.q_start + Vec3(s0, 0.0, 0.0);
   starts[n++] = Vec3::Zero();
   for (int s = 0; s < n; ++s) {
     Vec3 q = starts[s];
@@ -141,7 +139,8 @@ LegIkResult ik_numeric(const RobotModel& m, int leg, const Vec3& p) {
       continue;
     }
     const Mat3 J = chain_jacobian_H(m, leg, r.q);
-    const Vec3 ev = Eigen::SelfAdjointEigenSolver<Mat3>(J.transpose() * J, Eigen::EigenvaluesOnly).eigenvalues();
+    const Vec3 ev = Eigen::SelfAdjointEigenSolver<Mat3>(J.transpose() * J, Eigen::EigenvaluesOnly)
+                        .eigenvalues();
     r.margin_m = std::sqrt(std::max(ev[0], 0.0));  // smallest singular value of J
     if (r.margin_m < m.ik_min_margin_m) {
       r.reason = "within robot.ik_min_margin of a singular configuration";

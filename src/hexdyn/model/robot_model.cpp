@@ -17,7 +17,6 @@ RigidInertia to_inertia(const BodyParams& p) {
   return r;
 }
 
-
 Mat3 rot_z(double a) { return Eigen::AngleAxisd(a, Vec3::UnitZ()).toRotationMatrix(); }
 
 Mat3 rot_axis(const Vec3& axis, double angle) {
@@ -183,7 +182,8 @@ LegIkResult leg_inverse_kinematics(const RobotModel& m, int leg, const Vec3& p) 
       std::atan2(v, u) - std::atan2(L[2] * std::sin(beta3), L[1] + L[2] * std::cos(beta3));
   r.q = Vec3(std::remainder(theta1, 2.0 * M_PI), std::remainder(beta2, 2.0 * M_PI), beta3);
   for (int j = 0; j < kJointsPerLeg; ++j) {
-    const double lo = m.joint_lower_rad[joint_index(leg, j)], hi = m.joint_upper_rad[joint_index(leg, j)];
+    const double lo = m.joint_lower_rad[joint_index(leg, j)],
+                 hi = m.joint_upper_rad[joint_index(leg, j)];
     if (r.q[j] < lo || r.q[j] > hi) {
       r.reason = "joint " + joint_name(leg, j) + " outside its limits";
       r.margin_m = std::min(r.q[j] - lo, hi - r.q[j]);
@@ -224,7 +224,8 @@ RigidInertia combine_inertias(const RigidInertia& a, const RigidInertia& b) {
   r.com_m = (a.mass_kg * a.com_m + b.mass_kg * b.com_m) / r.mass_kg;
   auto shift = [&](const RigidInertia& x) {
     const Vec3 d = x.com_m - r.com_m;
-    return Mat3(x.inertia_com + x.mass_kg * (d.squaredNorm() * Mat3::Identity() - d * d.transpose()));
+    return Mat3(x.inertia_com +
+                x.mass_kg * (d.squaredNorm() * Mat3::Identity() - d * d.transpose()));
   };
   r.inertia_com = shift(a) + shift(b);
   return r;
@@ -235,7 +236,8 @@ bool planar_reach_ok(double dist_m, double l2_m, double l3_m, double min_margin_
   const double margin_fold = dist_m - std::abs(l2_m - l3_m);
   r.margin_m = std::min(margin_ext, margin_fold);
   if (margin_ext < min_margin_m) {
-    r.reason = margin_ext < 0.0 ? "beyond full extension" : "within robot.ik_min_margin of full extension";
+    r.reason =
+        margin_ext < 0.0 ? "beyond full extension" : "within robot.ik_min_margin of full extension";
     return false;
   }
   if (margin_fold < min_margin_m) {

@@ -32,8 +32,8 @@ namespace hexdyn {
 /// One rigid body's spatial inertia parameters in its own frame.
 struct RigidInertia {
   double mass_kg = 0.0;
-  Vec3 com_m = Vec3::Zero();           ///< centre of mass in the body frame
-  Mat3 inertia_com = Mat3::Zero();     ///< rotational inertia about the COM, body axes [kg m²]
+  Vec3 com_m = Vec3::Zero();        ///< centre of mass in the body frame
+  Mat3 inertia_com = Mat3::Zero();  ///< rotational inertia about the COM, body axes [kg m²]
 };
 
 /// Sum of two bodies expressed in the same frame (parallel-axis theorem); a massless part
@@ -53,38 +53,38 @@ enum class LegIkMethod {
 /// frame), J1 (the femur joint frame at zero femur angle, fixed in the coxa link).
 struct LegIkData {
   LegIkMethod method = LegIkMethod::kNumeric;
-  Vec3 a0_H = Vec3::UnitZ();        ///< coxa axis, H (unit)
-  Vec3 w1_H = Vec3::UnitY();        ///< femur axis at zero coxa angle, H (unit)
-  Vec3 o1_H = Vec3::Zero();         ///< femur joint origin at zero coxa angle, H [m]
-  Mat3 H_R_J1 = Mat3::Identity();   ///< femur joint frame → coxa link frame
-  Vec3 a1_J1 = Vec3::UnitY();       ///< femur axis, J1 (unit)
+  Vec3 a0_H = Vec3::UnitZ();       ///< coxa axis, H (unit)
+  Vec3 w1_H = Vec3::UnitY();       ///< femur axis at zero coxa angle, H (unit)
+  Vec3 o1_H = Vec3::Zero();        ///< femur joint origin at zero coxa angle, H [m]
+  Mat3 H_R_J1 = Mat3::Identity();  ///< femur joint frame → coxa link frame
+  Vec3 a1_J1 = Vec3::UnitY();      ///< femur axis, J1 (unit)
   Vec3 e1_J1 = Vec3::UnitX(), e2_J1 = Vec3::UnitZ();  ///< plane basis ⊥ a1, e2 = a1 × e1
   double l2_m = 0.0, alpha_rad = 0.0;  ///< femur joint → tibia joint, in-plane length, angle
   double l3_m = 0.0, gamma_rad = 0.0;  ///< tibia joint → foot at zero tibia angle, in plane
-  double axis_sign = 1.0;           ///< tibia axis = axis_sign · femur axis
-  double kappa_m = 0.0;             ///< w1(q0)·p_foot for every foot of the leg [m]
-  Vec3 outward_H = Vec3::UnitX();   ///< outward direction at zero coxa angle (⊥ up), H
-  Vec3 up_H = Vec3::UnitZ();        ///< trunk normal, H
-  Vec3 q_start = Vec3::Zero();      ///< numeric IK: starting joint angles [rad]
+  double axis_sign = 1.0;              ///< tibia axis = axis_sign · femur axis
+  double kappa_m = 0.0;                ///< w1(q0)·p_foot for every foot of the leg [m]
+  Vec3 outward_H = Vec3::UnitX();      ///< outward direction at zero coxa angle (⊥ up), H
+  Vec3 up_H = Vec3::UnitZ();           ///< trunk normal, H
+  Vec3 q_start = Vec3::Zero();         ///< numeric IK: starting joint angles [rad]
 };
 
 struct RobotModel {
   // --- tree (bodies 0..18) ---
-  std::array<int, kBodies> parent{};           ///< parent[0] = -1
-  std::array<Mat3, kBodies> R_parent_joint;    ///< joint frame orientation in parent frame
-  std::array<Vec3, kBodies> p_parent_joint;    ///< joint frame origin in parent frame [m]
-  std::array<Vec3, kBodies> axis;              ///< revolute axis in the joint frame (unit)
-  std::array<RigidInertia, kBodies> inertia;   ///< body 0: trunk and payload combined
+  std::array<int, kBodies> parent{};          ///< parent[0] = -1
+  std::array<Mat3, kBodies> R_parent_joint;   ///< joint frame orientation in parent frame
+  std::array<Vec3, kBodies> p_parent_joint;   ///< joint frame origin in parent frame [m]
+  std::array<Vec3, kBodies> axis;             ///< revolute axis in the joint frame (unit)
+  std::array<RigidInertia, kBodies> inertia;  ///< body 0: trunk and payload combined
   // --- separate parts kept for the URDF ---
-  RigidInertia trunk_only;    ///< trunk structure alone, trunk frame
-  RigidInertia payload;       ///< payload alone, trunk frame
+  RigidInertia trunk_only;  ///< trunk structure alone, trunk frame
+  RigidInertia payload;     ///< payload alone, trunk frame
   // --- analytic leg parameters ---
   std::array<double, 3> link_length_m{};  ///< l1, l2, l3
   double d1_m = 0.0;                      ///< femur axis below the coxa link [m]
   std::array<double, kLegs> lateral_m{};  ///< signed lateral foot offset side·(d2+d3) [m]
   std::array<double, kLegs> d2_signed_m{}, d3_signed_m{};
-  std::array<Vec3, kLegs> p_hip_B;        ///< coxa joint in the trunk frame [m]
-  std::array<Mat3, kLegs> R_B_H;          ///< hip frame → trunk frame
+  std::array<Vec3, kLegs> p_hip_B;  ///< coxa joint in the trunk frame [m]
+  std::array<Mat3, kLegs> R_B_H;    ///< hip frame → trunk frame
   /// Joint limits per joint, flat index [rad] (±inf: a continuous joint).
   std::array<double, kJoints> joint_lower_rad{}, joint_upper_rad{};
   /// Effort limit per joint from the description [N m]; +inf when it gives none.
@@ -95,8 +95,8 @@ struct RobotModel {
   double total_mass_kg = 0.0;
   // --- leg geometry (file comment) ---
   LegGeometry leg_geometry = LegGeometry::kPaperPlanar;
-  std::array<Vec3, kLegs> p_foot_last;    ///< foot point in the leg's third link frame [m]
-  std::array<LegIkData, kLegs> leg_ik;    ///< kChain only
+  std::array<Vec3, kLegs> p_foot_last;  ///< foot point in the leg's third link frame [m]
+  std::array<LegIkData, kLegs> leg_ik;  ///< kChain only
   /// Joint names in the description, flat order (URDF: its own names; YAML: L{i}_coxa …).
   std::array<std::string, kJoints> joint_source_names;
   /// Each hip's outward direction at zero coxa angle, horizontal in the trunk frame (unit,
@@ -133,7 +133,7 @@ struct LegIkResult {
   Vec3 q = Vec3::Zero();
   double margin_m = 0.0;  ///< distance to the nearest workspace boundary (≥ ik_min_margin)
   bool ok = false;
-  std::string reason;     ///< why not ok: "beyond full extension", "joint limit", ...
+  std::string reason;  ///< why not ok: "beyond full extension", "joint limit", ...
 };
 
 /// Planar two-link workspace check of the closed-form IK: the wrist point at `dist_m` from the

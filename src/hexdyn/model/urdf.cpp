@@ -38,7 +38,8 @@ std::string xml_escape(const std::string& s) {
 std::string number(double x) {
   // As %.17g (what setprecision(17) gives), without a stream per number.
   char buf[32];
-  const auto r = std::to_chars(buf, buf + sizeof buf, x == 0.0 ? 0.0 : x, std::chars_format::general, 17);
+  const auto r =
+      std::to_chars(buf, buf + sizeof buf, x == 0.0 ? 0.0 : x, std::chars_format::general, 17);
   return std::string(buf, r.ptr);
 }
 
@@ -151,8 +152,7 @@ std::string robot_urdf(const RobotModel& model, const std::string& robot_name) {
           std::isfinite(model.effort_limit_Nm[k]) ? model.effort_limit_Nm[k] : kUrdfEffortLimitNm,
           std::isfinite(model.velocity_limit_radps[k]) ? model.velocity_limit_radps[k]
                                                        : kUrdfVelocityLimitRadps};
-      const bool continuous =
-          !std::isfinite(limit.lower_rad) && !std::isfinite(limit.upper_rad);
+      const bool continuous = !std::isfinite(limit.lower_rad) && !std::isfinite(limit.upper_rad);
       write_link(u, child, &model.inertia[b]);
       Vec3 p = model.p_parent_joint[b];
       Mat3 R = model.R_parent_joint[b];
@@ -160,13 +160,13 @@ std::string robot_urdf(const RobotModel& model, const std::string& robot_name) {
         p = root_R_B * (p - model.p_B_root);
         R = root_R_B * R;
       }
-      write_joint(u, model.joint_source_names[k], continuous ? "continuous" : "revolute", parent, child, p, R,
-                  &model.axis[b], &limit);
+      write_joint(u, model.joint_source_names[k], continuous ? "continuous" : "revolute", parent,
+                  child, p, R, &model.axis[b], &limit);
       parent = child;
     }
     write_link(u, prefix + "foot", nullptr);
-    write_joint(u, prefix + "foot_fixed", "fixed", parent, prefix + "foot",
-                model.p_foot_last[leg], Mat3::Identity(), nullptr, nullptr);
+    write_joint(u, prefix + "foot_fixed", "fixed", parent, prefix + "foot", model.p_foot_last[leg],
+                Mat3::Identity(), nullptr, nullptr);
   }
   os << "</robot>\n";
   return os.str();

@@ -59,8 +59,9 @@ void check_finite_numbers(const std::string& text, const std::string& source) {
   TiXmlDocument doc;
   doc.Parse(text.c_str());
   if (doc.Error()) return;  // urdfdom reports XML errors
-  static const std::set<std::string> kNumeric = {"xyz", "rpy", "value", "ixx", "ixy", "ixz", "iyy", "iyz",
-                                                 "izz", "lower", "upper", "effort", "velocity"};
+  static const std::set<std::string> kNumeric = {"xyz",   "rpy",    "value",   "ixx", "ixy",
+                                                 "ixz",   "iyy",    "iyz",     "izz", "lower",
+                                                 "upper", "effort", "velocity"};
   std::vector<std::pair<const TiXmlElement*, std::string>> todo;
   if (doc.RootElement() != nullptr) todo.emplace_back(doc.RootElement(), "");
   while (!todo.empty()) {
@@ -78,8 +79,9 @@ void check_finite_numbers(const std::string& text, const std::string& source) {
         char* end = nullptr;
         const double x = std::strtod(tok.c_str(), &end);
         if (end != tok.c_str() && *end == '\0' && !std::isfinite(x))
-          throw ConfigError(source + ": " + (owner.empty() ? std::string("robot") : owner) + ": <" + tag + " " +
-                            a->Name() + "=\"" + a->Value() + "\"> is not finite, expected finite numbers");
+          throw ConfigError(source + ": " + (owner.empty() ? std::string("robot") : owner) + ": <" +
+                            tag + " " + a->Name() + "=\"" + a->Value() +
+                            "\"> is not finite, expected finite numbers");
       }
     }
     for (const TiXmlElement* c = el->FirstChildElement(); c != nullptr; c = c->NextSiblingElement())
@@ -89,9 +91,12 @@ void check_finite_numbers(const std::string& text, const std::string& source) {
 
 class Reader {
  public:
-  Reader(std::string source, const UrdfReadOptions& options) : source_(std::move(source)), opt_(options) {}
+  Reader(std::string source, const UrdfReadOptions& options)
+      : source_(std::move(source)), opt_(options) {}
 
-  [[noreturn]] void fail(const std::string& what) const { throw ConfigError(source_ + ": " + what); }
+  [[noreturn]] void fail(const std::string& what) const {
+    throw ConfigError(source_ + ": " + what);
+  }
 
   UrdfRobot read(const std::string& text);
 
@@ -114,7 +119,8 @@ class Reader {
   urdf::ModelInterfaceSharedPtr model_;
   std::map<std::string, std::vector<urdf::JointConstSharedPtr>> child_joints_;  ///< by parent link
   std::map<std::string, urdf::JointConstSharedPtr> parent_joint_;               ///< by child link
-  std::map<std::string, Placement> trunk_group_;  ///< links of the trunk body, in the trunk link frame
+  std::map<std::string, Placement>
+      trunk_group_;  ///< links of the trunk body, in the trunk link frame
   std::map<std::string, int> foot_link_used_;
 };
 
@@ -128,20 +134,27 @@ Placement to_placement(const urdf::Pose& pose) {
 }
 
 bool finite_pose(const urdf::Pose& p) {
-  return std::isfinite(p.position.x) && std::isfinite(p.position.y) && std::isfinite(p.position.z) &&
-         std::isfinite(p.rotation.x) && std::isfinite(p.rotation.y) && std::isfinite(p.rotation.z) &&
-         std::isfinite(p.rotation.w);
+  return std::isfinite(p.position.x) && std::isfinite(p.position.y) &&
+         std::isfinite(p.position.z) && std::isfinite(p.rotation.x) &&
+         std::isfinite(p.rotation.y) && std::isfinite(p.rotation.z) && std::isfinite(p.rotation.w);
 }
 
 const char* type_name(int type) {
   switch (type) {
-    case urdf::Joint::REVOLUTE: return "revolute";
-    case urdf::Joint::CONTINUOUS: return "continuous";
-    case urdf::Joint::PRISMATIC: return "prismatic";
-    case urdf::Joint::FLOATING: return "floating";
-    case urdf::Joint::PLANAR: return "planar";
-    case urdf::Joint::FIXED: return "fixed";
-    default: return "unknown";
+    case urdf::Joint::REVOLUTE:
+      return "revolute";
+    case urdf::Joint::CONTINUOUS:
+      return "continuous";
+    case urdf::Joint::PRISMATIC:
+      return "prismatic";
+    case urdf::Joint::FLOATING:
+      return "floating";
+    case urdf::Joint::PLANAR:
+      return "planar";
+    case urdf::Joint::FIXED:
+      return "fixed";
+    default:
+      return "unknown";
   }
 }
 
@@ -187,7 +200,8 @@ UrdfRobot Reader::read(const std::string& text) {
       std::string why = capture.errors.empty() ? "urdfdom gave no reason" : capture.errors.front();
       // urdfdom's missing-link message goes on with advice over several sentences.
       if (const auto cut = why.find(".  "); cut != std::string::npos) why.erase(cut + 1);
-      if (capture.errors.size() > 1 && capture.errors.back() != why) why += "; " + capture.errors.back();
+      if (capture.errors.size() > 1 && capture.errors.back() != why)
+        why += "; " + capture.errors.back();
       fail("not a valid URDF (urdfdom: " + why + ")");
     }
   }
@@ -211,11 +225,16 @@ UrdfRobot Reader::read(const std::string& text) {
   robot.forward_axis = opt_.forward_axis;
   // Trunk axes: forward → +y, up (+z) → +z, right = forward × up → +x.
   Vec3 fwd;
-  if (opt_.forward_axis == "+x") fwd = Vec3::UnitX();
-  else if (opt_.forward_axis == "-x") fwd = -Vec3::UnitX();
-  else if (opt_.forward_axis == "+y") fwd = Vec3::UnitY();
-  else if (opt_.forward_axis == "-y") fwd = -Vec3::UnitY();
-  else fail("forward axis '" + opt_.forward_axis + "', expected one of +x, -x, +y, -y");
+  if (opt_.forward_axis == "+x")
+    fwd = Vec3::UnitX();
+  else if (opt_.forward_axis == "-x")
+    fwd = -Vec3::UnitX();
+  else if (opt_.forward_axis == "+y")
+    fwd = Vec3::UnitY();
+  else if (opt_.forward_axis == "-y")
+    fwd = -Vec3::UnitY();
+  else
+    fail("forward axis '" + opt_.forward_axis + "', expected one of +x, -x, +y, -y");
   const Vec3 up = Vec3::UnitZ();
   robot.B_R_U.row(0) = fwd.cross(up).transpose();
   robot.B_R_U.row(1) = fwd.transpose();
@@ -224,9 +243,11 @@ UrdfRobot Reader::read(const std::string& text) {
 
   std::vector<std::pair<std::string, Placement>> trunk(trunk_group_.begin(), trunk_group_.end());
   robot.trunk = transformed(group_inertia(trunk), B_X_U);
-  for (const auto& [name, link] : model_->links_) robot.total_mass_kg += link_inertia(*link).mass_kg;
+  for (const auto& [name, link] : model_->links_)
+    robot.total_mass_kg += link_inertia(*link).mass_kg;
   robot.root_link = model_->getRoot()->name;
-  const Placement B_X_root = B_X_U * trunk_group_.at(robot.root_link);  // the root is fixed to the trunk
+  const Placement B_X_root =
+      B_X_U * trunk_group_.at(robot.root_link);  // the root is fixed to the trunk
   robot.p_B_root = B_X_root.p;
   robot.B_R_root = B_X_root.R;
 
@@ -246,11 +267,14 @@ UrdfRobot Reader::read(const std::string& text) {
   }
   std::vector<UrdfLeg> chains;
   for (std::size_t i = 0; i < legs.size(); ++i) {
-    UrdfLeg leg = read_chain(legs[i], B_X_U * trunk_group_.at(legs[i]->parent_link_name), static_cast<int>(i));
+    UrdfLeg leg = read_chain(legs[i], B_X_U * trunk_group_.at(legs[i]->parent_link_name),
+                             static_cast<int>(i));
     chains.push_back(leg);
   }
   for (const auto& [f, n] : foot_link_used_)
-    if (n != 1) fail("robot.foot_links: link '" + f + "' is not fixed to the last link of exactly one leg chain");
+    if (n != 1)
+      fail("robot.foot_links: link '" + f +
+           "' is not fixed to the last link of exactly one leg chain");
   map_legs(chains, robot);
   return robot;
 }
@@ -287,11 +311,14 @@ void Reader::check_links() {
     I << in.ixx, in.ixy, in.ixz, in.ixy, in.iyy, in.iyz, in.ixz, in.iyz, in.izz;
     if (I.isZero(0.0)) continue;  // a point mass
     const Vec3 m = Eigen::SelfAdjointEigenSolver<Mat3>(I, Eigen::EigenvaluesOnly).eigenvalues();
-    const std::string moments = "principal moments (" + num(m[0]) + ", " + num(m[1]) + ", " + num(m[2]) + ") kg m2";
+    const std::string moments =
+        "principal moments (" + num(m[0]) + ", " + num(m[1]) + ", " + num(m[2]) + ") kg m2";
     if (!(m[0] > 0.0)) fail(who + "inertia not positive definite: " + moments);
     // Sorted ascending: the largest must not exceed the sum of the other two.
     if (m[2] > (m[0] + m[1]) * (1.0 + 1e-9))
-      fail(who + "inertia breaks the triangle inequality of principal moments (each at most the sum of the other two): " +
+      fail(who +
+           "inertia breaks the triangle inequality of principal moments (each at most the sum of "
+           "the other two): " +
            moments);
   }
 }
@@ -300,18 +327,25 @@ void Reader::check_joints() {
   for (const auto& [name, j] : model_->joints_) {
     const std::string who = "joint '" + name + "': ";
     if (!finite_pose(j->parent_to_joint_origin_transform)) fail(who + "<origin> is not finite");
-    if (j->type != urdf::Joint::FIXED && j->type != urdf::Joint::REVOLUTE && j->type != urdf::Joint::CONTINUOUS)
-      fail(who + "type " + type_name(j->type) + " not supported (hexdyn reads fixed, revolute and continuous joints)");
+    if (j->type != urdf::Joint::FIXED && j->type != urdf::Joint::REVOLUTE &&
+        j->type != urdf::Joint::CONTINUOUS)
+      fail(who + "type " + type_name(j->type) +
+           " not supported (hexdyn reads fixed, revolute and continuous joints)");
     if (!is_moving(*j)) continue;
     const Vec3 a(j->axis.x, j->axis.y, j->axis.z);
-    if (!a.allFinite() || a.norm() < 1e-12) fail(who + "axis (" + num(a.x()) + ", " + num(a.y()) + ", " + num(a.z()) + ") is not a direction");
+    if (!a.allFinite() || a.norm() < 1e-12)
+      fail(who + "axis (" + num(a.x()) + ", " + num(a.y()) + ", " + num(a.z()) +
+           ") is not a direction");
     if (j->limits) {
       const urdf::JointLimits& l = *j->limits;
-      if (!std::isfinite(l.effort) || l.effort < 0.0) fail(who + "effort limit " + num(l.effort) + ", expected a finite number >= 0");
-      if (!std::isfinite(l.velocity) || l.velocity < 0.0) fail(who + "velocity limit " + num(l.velocity) + ", expected a finite number >= 0");
+      if (!std::isfinite(l.effort) || l.effort < 0.0)
+        fail(who + "effort limit " + num(l.effort) + ", expected a finite number >= 0");
+      if (!std::isfinite(l.velocity) || l.velocity < 0.0)
+        fail(who + "velocity limit " + num(l.velocity) + ", expected a finite number >= 0");
       if (j->type == urdf::Joint::REVOLUTE) {
         if (!std::isfinite(l.lower) || !std::isfinite(l.upper)) fail(who + "limits are not finite");
-        if (l.lower > l.upper) fail(who + "lower limit " + num(l.lower) + " above upper limit " + num(l.upper));
+        if (l.lower > l.upper)
+          fail(who + "lower limit " + num(l.lower) + " above upper limit " + num(l.upper));
       }
     }
   }
@@ -349,14 +383,18 @@ std::vector<std::pair<std::string, Placement>> Reader::fixed_group(const std::st
     const auto it = child_joints_.find(out[i].first);
     if (it == child_joints_.end()) continue;
     for (const auto& j : it->second)
-      if (!is_moving(*j)) out.emplace_back(j->child_link_name, out[i].second * to_placement(j->parent_to_joint_origin_transform));
+      if (!is_moving(*j))
+        out.emplace_back(j->child_link_name,
+                         out[i].second * to_placement(j->parent_to_joint_origin_transform));
   }
   return out;
 }
 
-RigidInertia Reader::group_inertia(const std::vector<std::pair<std::string, Placement>>& group) const {
+RigidInertia Reader::group_inertia(
+    const std::vector<std::pair<std::string, Placement>>& group) const {
   RigidInertia r;
-  for (const auto& [name, X] : group) r = combine_inertias(r, transformed(link_inertia(*model_->getLink(name)), X));
+  for (const auto& [name, X] : group)
+    r = combine_inertias(r, transformed(link_inertia(*model_->getLink(name)), X));
   return r;
 }
 
@@ -372,7 +410,8 @@ std::vector<urdf::JointConstSharedPtr> Reader::moving_children(
   return out;
 }
 
-UrdfLeg Reader::read_chain(const urdf::JointConstSharedPtr& first, const Placement& B_X_parent, int) {
+UrdfLeg Reader::read_chain(const urdf::JointConstSharedPtr& first, const Placement& B_X_parent,
+                           int) {
   UrdfLeg leg;
   const std::string chain = "chain '" + first->name + "': ";
   urdf::JointConstSharedPtr joint = first;
@@ -398,16 +437,16 @@ UrdfLeg Reader::read_chain(const urdf::JointConstSharedPtr& first, const Placeme
       if (next.size() != 1) {
         std::string list;
         for (const auto& n : next) list += (list.empty() ? "" : ", ") + n->name;
-        fail(chain + "not a chain of three revolute joints: link '" + joint->child_link_name + "' carries " +
-             std::to_string(next.size()) + " moving joints after joint '" + joint->name + "'" +
-             (list.empty() ? "" : " (" + list + ")"));
+        fail(chain + "not a chain of three revolute joints: link '" + joint->child_link_name +
+             "' carries " + std::to_string(next.size()) + " moving joints after joint '" +
+             joint->name + "'" + (list.empty() ? "" : " (" + list + ")"));
       }
       joint = next.front();
       for (const auto& [name, Xl] : group)
         if (name == joint->parent_link_name) X_parent = Xl;
     } else if (!next.empty()) {
-      fail(chain + "not a chain of three revolute joints: joint '" + next.front()->name + "' follows the third joint '" +
-           joint->name + "'");
+      fail(chain + "not a chain of three revolute joints: joint '" + next.front()->name +
+           "' follows the third joint '" + joint->name + "'");
     }
   }
   // Foot point in the third link's frame.
@@ -437,11 +476,13 @@ UrdfLeg Reader::read_chain(const urdf::JointConstSharedPtr& first, const Placeme
       std::vector<std::pair<std::string, Placement>> kids;
       for (const auto& [name, Xl] : group) {
         const auto pj = parent_joint_.find(name);
-        if (name != last && pj != parent_joint_.end() && pj->second->parent_link_name == end) kids.emplace_back(name, Xl);
+        if (name != last && pj != parent_joint_.end() && pj->second->parent_link_name == end)
+          kids.emplace_back(name, Xl);
       }
       if (kids.empty()) break;
       if (kids.size() > 1)
-        fail(chain + "links '" + kids[0].first + "' and '" + kids[1].first + "' are both fixed to '" + end +
+        fail(chain + "links '" + kids[0].first + "' and '" + kids[1].first +
+             "' are both fixed to '" + end +
              "': name the foot links (robot.foot_links) or give robot.foot_offset");
       end = kids[0].first;
       X_end = kids[0].second;
@@ -451,8 +492,10 @@ UrdfLeg Reader::read_chain(const urdf::JointConstSharedPtr& first, const Placeme
   }
   const Vec3& a = leg.axis[2];
   if ((leg.p_foot_last - a.dot(leg.p_foot_last) * a).norm() < 1e-6)
-    fail(chain + "foot (" + leg.foot_source + ") lies on the axis of its last joint '" + leg.joint_names[2] +
-         "': the description has no foot frame; name the foot links (robot.foot_links) or give robot.foot_offset");
+    fail(chain + "foot (" + leg.foot_source + ") lies on the axis of its last joint '" +
+         leg.joint_names[2] +
+         "': the description has no foot frame; name the foot links (robot.foot_links) or give "
+         "robot.foot_offset");
   return leg;
 }
 
@@ -461,14 +504,19 @@ void Reader::map_legs(std::vector<UrdfLeg>& chains, UrdfRobot& robot) const {
   for (int i = 0; i < static_cast<int>(chains.size()); ++i) {
     const Vec3& h = chains[i].p_parent_joint[0];
     if (std::abs(h.x()) < 1e-9)
-      fail("chain '" + chains[i].joint_names[0] + "': hip on the trunk's forward axis (" + num(h.x()) +
-           " m to the side): cannot tell left from right; set robot.forward_axis (now " + opt_.forward_axis + ")");
+      fail("chain '" + chains[i].joint_names[0] + "': hip on the trunk's forward axis (" +
+           num(h.x()) +
+           " m to the side): cannot tell left from right; set robot.forward_axis (now " +
+           opt_.forward_axis + ")");
     (h.x() < 0.0 ? left : right).push_back(i);
   }
   if (left.size() != 3 || right.size() != 3)
-    fail("legs: " + std::to_string(left.size()) + " hips on the left and " + std::to_string(right.size()) +
-         " on the right of the trunk (forward axis " + opt_.forward_axis + "), expected 3 and 3; set robot.forward_axis");
-  auto by_y = [&](int a, int b) { return chains[a].p_parent_joint[0].y() > chains[b].p_parent_joint[0].y(); };
+    fail("legs: " + std::to_string(left.size()) + " hips on the left and " +
+         std::to_string(right.size()) + " on the right of the trunk (forward axis " +
+         opt_.forward_axis + "), expected 3 and 3; set robot.forward_axis");
+  auto by_y = [&](int a, int b) {
+    return chains[a].p_parent_joint[0].y() > chains[b].p_parent_joint[0].y();
+  };
   std::sort(left.begin(), left.end(), by_y);
   std::sort(right.begin(), right.end(), by_y);
   for (int row = 0; row < 3; ++row) {

@@ -43,10 +43,10 @@
 namespace hexdyn {
 
 struct UrdfReadOptions {
-  std::string trunk_link;                ///< empty: the root link
-  std::string forward_axis = "+x";       ///< "+x", "-x", "+y", "-y" of the trunk link
-  std::vector<std::string> foot_links;   ///< empty, or six link names (one per chain)
-  std::optional<Vec3> foot_offset;       ///< foot point in each chain's last link frame [m]
+  std::string trunk_link;               ///< empty: the root link
+  std::string forward_axis = "+x";      ///< "+x", "-x", "+y", "-y" of the trunk link
+  std::vector<std::string> foot_links;  ///< empty, or six link names (one per chain)
+  std::optional<Vec3> foot_offset;      ///< foot point in each chain's last link frame [m]
 };
 
 /// Reads and validates `path`; throws ConfigError (message names `path`).

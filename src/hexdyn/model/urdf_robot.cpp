@@ -67,11 +67,11 @@ std::array<std::string, kLegs> leg_mapping_entries(const UrdfRobot& robot) {
     const UrdfLeg& l = robot.legs[leg];
     std::ostringstream s;
     s.precision(17);
-    s << leg_name(leg) << ": " << l.joint_names[0] << " " << l.joint_names[1] << " " << l.joint_names[2]
-      << " foot ";
+    s << leg_name(leg) << ": " << l.joint_names[0] << " " << l.joint_names[1] << " "
+      << l.joint_names[2] << " foot ";
     if (l.foot_source == "robot.foot_offset")
-      s << "offset " << l.p_foot_last.x() << " " << l.p_foot_last.y() << " " << l.p_foot_last.z() << " "
-        << l.link_names[2];
+      s << "offset " << l.p_foot_last.x() << " " << l.p_foot_last.y() << " " << l.p_foot_last.z()
+        << " " << l.link_names[2];
     else
       s << l.foot_source;
     out[leg] = s.str();

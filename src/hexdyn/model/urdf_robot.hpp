@@ -24,27 +24,27 @@ struct UrdfLeg {
   /// Joint frame in the parent link frame (joint 0: in the trunk frame B) [m].
   std::array<Vec3, kJointsPerLeg> p_parent_joint;
   std::array<Mat3, kJointsPerLeg> R_parent_joint;
-  std::array<Vec3, kJointsPerLeg> axis;                ///< unit, joint frame
-  std::array<RigidInertia, kJointsPerLeg> inertia;     ///< merged link bodies, link frames
+  std::array<Vec3, kJointsPerLeg> axis;                        ///< unit, joint frame
+  std::array<RigidInertia, kJointsPerLeg> inertia;             ///< merged link bodies, link frames
   std::array<double, kJointsPerLeg> lower_rad{}, upper_rad{};  ///< ±inf: continuous
-  std::array<double, kJointsPerLeg> effort_Nm{};       ///< +inf: none given
-  std::array<double, kJointsPerLeg> velocity_radps{};  ///< +inf: none given
+  std::array<double, kJointsPerLeg> effort_Nm{};               ///< +inf: none given
+  std::array<double, kJointsPerLeg> velocity_radps{};          ///< +inf: none given
   Vec3 p_foot_last = Vec3::Zero();  ///< foot point in the third link frame [m]
   std::string foot_source;          ///< the link whose origin is the foot, or "robot.foot_offset"
 };
 
 struct UrdfRobot {
-  std::string name;         ///< <robot name>
-  std::string source_path;  ///< the file read
-  std::string trunk_link;   ///< the URDF link whose frame is the trunk frame
-  std::string forward_axis; ///< "+x", "-x", "+y" or "-y" of the trunk link
-  Mat3 B_R_U = Mat3::Identity();  ///< URDF trunk link axes → trunk frame B
-  RigidInertia trunk;       ///< trunk body (links fixed to the trunk link), frame B
-  std::array<UrdfLeg, kLegs> legs;  ///< L1 … L6 (common.hpp)
-  double total_mass_kg = 0.0;       ///< sum over every <inertial> of the file [kg]
-  std::string root_link;            ///< the URDF's root link (the trunk link or fixed to it)
-  Vec3 p_B_root = Vec3::Zero();     ///< root link origin in the trunk frame B [m]
-  Mat3 B_R_root = Mat3::Identity(); ///< root link axes → B
+  std::string name;                  ///< <robot name>
+  std::string source_path;           ///< the file read
+  std::string trunk_link;            ///< the URDF link whose frame is the trunk frame
+  std::string forward_axis;          ///< "+x", "-x", "+y" or "-y" of the trunk link
+  Mat3 B_R_U = Mat3::Identity();     ///< URDF trunk link axes → trunk frame B
+  RigidInertia trunk;                ///< trunk body (links fixed to the trunk link), frame B
+  std::array<UrdfLeg, kLegs> legs;   ///< L1 … L6 (common.hpp)
+  double total_mass_kg = 0.0;        ///< sum over every <inertial> of the file [kg]
+  std::string root_link;             ///< the URDF's root link (the trunk link or fixed to it)
+  Vec3 p_B_root = Vec3::Zero();      ///< root link origin in the trunk frame B [m]
+  Mat3 B_R_root = Mat3::Identity();  ///< root link axes → B
 };
 
 /// The RobotModel of a URDF robot: LegGeometry::kChain, tree and inertias from `robot`,

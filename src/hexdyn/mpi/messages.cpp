@@ -67,7 +67,8 @@ class Unpacker {
 
 std::vector<char> pack_spec(const SweepSpec& spec, const SweepIdentity& identity) {
   std::vector<char> b;
-  for (std::uint64_t v : {identity.id, identity.sweep_file, identity.base_scene, identity.build, identity.scenarios})
+  for (std::uint64_t v :
+       {identity.id, identity.sweep_file, identity.base_scene, identity.build, identity.scenarios})
     put_pod(b, v);
   put_i64(b, identity.keep_runs ? 1 : 0);
   put_text(b, spec.name);
@@ -88,8 +89,8 @@ std::vector<char> pack_spec(const SweepSpec& spec, const SweepIdentity& identity
 SweepSpec unpack_spec(const std::vector<char>& bytes, SweepIdentity& identity) {
   Unpacker u(bytes);
   SweepSpec spec;
-  for (std::uint64_t* v : {&identity.id, &identity.sweep_file, &identity.base_scene, &identity.build,
-                           &identity.scenarios})
+  for (std::uint64_t* v : {&identity.id, &identity.sweep_file, &identity.base_scene,
+                           &identity.build, &identity.scenarios})
     *v = static_cast<std::uint64_t>(u.i64());
   identity.keep_runs = u.i64() != 0;
   spec.name = u.text();

@@ -34,10 +34,10 @@ std::optional<std::vector<std::size_t>> unpack_work(const std::vector<char>& byt
 /// A finished scenario on its way to the coordinator.
 struct Finished {
   std::size_t index = 0;
-  double cost_s = 0.0;          ///< scene construction + physics [s], for the scheduling
-  bool crashed = false;         ///< its process died (payload empty, reason set)
-  std::string reason;           ///< how the process died
-  std::vector<char> payload;    ///< the row's journal record (journal.hpp; encode_record payload)
+  double cost_s = 0.0;        ///< scene construction + physics [s], for the scheduling
+  bool crashed = false;       ///< its process died (payload empty, reason set)
+  std::string reason;         ///< how the process died
+  std::vector<char> payload;  ///< the row's journal record (journal.hpp; encode_record payload)
 };
 
 /// Appends one finished scenario to a result message under construction (start with an

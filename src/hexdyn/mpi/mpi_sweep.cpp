@@ -193,7 +193,8 @@ class Coordinator {
     }
     for (std::size_t i : checkpoint_->crash_attempts()) coord_->mark_crashed_once(i);
     resumed_ = checkpoint_->finished().size();
-    for (const std::string& w : checkpoint_->warnings()) std::cerr << "hexdyn: warning: " << w << "\n";
+    for (const std::string& w : checkpoint_->warnings())
+      std::cerr << "hexdyn: warning: " << w << "\n";
     announce();
     ProgressMeter meter(n, resumed_, opt_.progress_interval_s, start_);
     std::cerr << meter.line(Clock::now()) << "\n";
@@ -270,8 +271,10 @@ class Coordinator {
     for (const SweepAxis& a : spec_.axes) {
       std::size_t ok = 0;
       for (const std::string& e : a.errors) {
-        if (e.empty()) ++ok;
-        else if (first.empty()) first = e;
+        if (e.empty())
+          ++ok;
+        else if (first.empty())
+          first = e;
       }
       valid *= ok;
     }
@@ -402,7 +405,8 @@ class Coordinator {
         continue;
       }
       // The worker built the journal record (checksum included): it is appended as it is.
-      const BuiltRecord b = checkpoint_->append_row_record(f.index, f.payload.data(), f.payload.size());
+      const BuiltRecord b =
+          checkpoint_->append_row_record(f.index, f.payload.data(), f.payload.size());
       ScenarioRecord r = decode_record(b.payload, b.size, false);
       if (r.summary.index != f.index) throw Error("sweep: a result names the wrong scenario");
       coord_->on_result(worker, f.index, f.cost_s, out);
@@ -428,7 +432,8 @@ class Coordinator {
     std::vector<ScenarioSummary> rows(n);
     std::vector<char> have(n, 0);
     for (const std::vector<ScenarioSummary>* list :
-         std::initializer_list<const std::vector<ScenarioSummary>*>{&checkpoint_->finished(), &rows_})
+         std::initializer_list<const std::vector<ScenarioSummary>*>{&checkpoint_->finished(),
+                                                                    &rows_})
       for (const ScenarioSummary& r : *list)
         if (!have[r.index]) {
           have[r.index] = 1;
@@ -469,7 +474,7 @@ class Coordinator {
   std::unique_ptr<SweepCoordinator> coord_;
   LocalLink local_;
   bool local_ready_seen_ = false;
-  int remote_active_ = 0;  ///< worker ranks not yet told to stop
+  int remote_active_ = 0;              ///< worker ranks not yet told to stop
   std::vector<ScenarioSummary> rows_;  ///< computed by this run, in arrival order
   std::size_t done_ = 0, failed_ = 0, resumed_ = 0;
 };

@@ -57,8 +57,8 @@ void run_worker(const ScenarioFactory& factory, const WorkerOptions& options, Wo
       f.reason = std::move(ev.reason);
       f.cost_s = ev.timing.config_s + ev.timing.physics_s;
       if (!ev.crashed)
-        append_journal_record(f.payload, RecordKind::kRow, ev.index, options.identity, ev.payload.data(),
-                              ev.payload.size());
+        append_journal_record(f.payload, RecordKind::kRow, ev.index, options.identity,
+                              ev.payload.data(), ev.payload.size());
       append_result(results, f);
     }
     const double since = std::chrono::duration<double>(Clock::now() - last_send).count();

@@ -30,12 +30,12 @@ struct WorkerLink {
 
 struct WorkerOptions {
   bool keep_runs = false;
-  bool isolate = true;             ///< compute in a child process (crash containment)
-  double flush_interval_s = 0.5;   ///< longest time a finished scenario waits to be sent
-  std::string scratch_dir;         ///< for kept runs' temporary files
-  /// The sweep's identity (rank 0's checkpoint's, sent with the spec): a finished scenario is sent as
-  /// its complete journal record (journal.hpp, checksum included), built here rather than
-  /// on rank 0, whose time per result bounds the sweep's scale.
+  bool isolate = true;            ///< compute in a child process (crash containment)
+  double flush_interval_s = 0.5;  ///< longest time a finished scenario waits to be sent
+  std::string scratch_dir;        ///< for kept runs' temporary files
+  /// The sweep's identity (rank 0's checkpoint's, sent with the spec): a finished scenario is sent
+  /// as its complete journal record (journal.hpp, checksum included), built here rather than on
+  /// rank 0, whose time per result bounds the sweep's scale.
   SweepIdentity identity;
 };
 

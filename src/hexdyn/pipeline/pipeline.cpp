@@ -84,10 +84,13 @@ RunResult run_prepared_scene(const Scene& scene, const PreparedScene& prep, std:
   result.dyn =
       solve_dynamics(scene, prep.model, prep.plan, result.kin, contacts, prep.touchdowns, log);
   result.kin.contact_phase = std::move(contacts.phase);
-  describe_base_at_root_link(prep.model, result.kin);  // after the dynamics, which use the trunk frame
+  describe_base_at_root_link(prep.model,
+                             result.kin);  // after the dynamics, which use the trunk frame
   result.config_yaml = scene.resolved_yaml;
-  result.urdf = robot_urdf(prep.model, scene.robot.urdf ? scene.robot.urdf->name : "hexdyn_hexapod");
-  result.joint_names.assign(prep.model.joint_source_names.begin(), prep.model.joint_source_names.end());
+  result.urdf =
+      robot_urdf(prep.model, scene.robot.urdf ? scene.robot.urdf->name : "hexdyn_hexapod");
+  result.joint_names.assign(prep.model.joint_source_names.begin(),
+                            prep.model.joint_source_names.end());
   if (scene.robot.urdf) {
     const auto mapping = leg_mapping_entries(*scene.robot.urdf);
     result.leg_mapping.assign(mapping.begin(), mapping.end());

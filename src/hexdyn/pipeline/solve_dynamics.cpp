@@ -105,7 +105,7 @@ std::optional<PowerJump> left_limit(SampleSolver& solver, const RobotModel& mode
 /// same threshold; the legs in their impact transient are named.
 struct SampleVerdict {
   SolverStatus status = SolverStatus::kOptimal;
-  std::string message;      ///< empty for an optimal sample
+  std::string message;         ///< empty for an optimal sample
   double max_violation = 0.0;  ///< largest measured violation [N or N m]
 };
 

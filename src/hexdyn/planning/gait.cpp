@@ -23,7 +23,8 @@ Vec3 foothold(const RobotModel& model, const GaitParams& gait, const TrunkMotion
   out_W.normalize();
   const double x = hip_W.x() + out_W.x() * gait.foot_lateral_m;
   const double y_nominal = hip_W.y() + out_W.y() * gait.foot_lateral_m;
-  const double y = terrain.nearest_valid_foothold_y(y_nominal + 0.5 * gait.stroke_m, gait.foothold_margin_m);
+  const double y =
+      terrain.nearest_valid_foothold_y(y_nominal + 0.5 * gait.stroke_m, gait.foothold_margin_m);
   return Vec3(x, y, terrain.height(x, y));
 }
 
@@ -62,7 +63,8 @@ GaitPlan plan_gait(const RobotModel& model, const GaitParams& gait, const TrunkM
       sw.t_touchdown_s = trunk.time_at_phase(b_cut);
       sw.p_liftoff_W = p_current;
       sw.p_touchdown_W = foothold(model, gait, trunk, terrain, leg, b_cut);
-      sw.apex_z_m = terrain.max_height_along(sw.p_liftoff_W, sw.p_touchdown_W) + gait.swing_clearance_m;
+      sw.apex_z_m =
+          terrain.max_height_along(sw.p_liftoff_W, sw.p_touchdown_W) + gait.swing_clearance_m;
       sw.apex_z_m = std::max({sw.apex_z_m, sw.p_liftoff_W.z() + gait.swing_clearance_m,
                               sw.p_touchdown_W.z() + gait.swing_clearance_m});
       sw.touchdown_speed_mps = gait.touchdown_speed_mps;
@@ -70,7 +72,8 @@ GaitPlan plan_gait(const RobotModel& model, const GaitParams& gait, const TrunkM
       double lower = gait.lower_fraction;
       // The quartic descent is monotone iff v_td · (lower · D) ≤ 4 (z_a − z_td).
       if (gait.touchdown_speed_mps > 0.0)
-        lower = std::min(lower, 4.0 * (sw.apex_z_m - sw.p_touchdown_W.z()) / (gait.touchdown_speed_mps * D));
+        lower = std::min(
+            lower, 4.0 * (sw.apex_z_m - sw.p_touchdown_W.z()) / (gait.touchdown_speed_mps * D));
       sw.lift_end_u = gait.lift_fraction;
       sw.lower_start_u = 1.0 - lower;
       lp.swings.push_back(sw);

@@ -25,9 +25,9 @@
 #include <vector>
 
 #include "hexdyn/core/common.hpp"
-#include "hexdyn/planning/motion.hpp"
-#include "hexdyn/model/robot_model.hpp"
 #include "hexdyn/core/scene.hpp"
+#include "hexdyn/model/robot_model.hpp"
+#include "hexdyn/planning/motion.hpp"
 #include "hexdyn/planning/terrain.hpp"
 
 namespace hexdyn {
@@ -35,9 +35,9 @@ namespace hexdyn {
 struct Swing {
   double t_liftoff_s = 0.0, t_touchdown_s = 0.0;
   Vec3 p_liftoff_W = Vec3::Zero(), p_touchdown_W = Vec3::Zero();
-  double apex_z_m = 0.0;           ///< z of the transfer segment
-  double lift_end_u = 0.3;         ///< normalised time at which the lift ends
-  double lower_start_u = 0.8;      ///< normalised time at which the descent starts
+  double apex_z_m = 0.0;       ///< z of the transfer segment
+  double lift_end_u = 0.3;     ///< normalised time at which the lift ends
+  double lower_start_u = 0.8;  ///< normalised time at which the descent starts
   double touchdown_speed_mps = 0.0;
 };
 

@@ -13,7 +13,8 @@ double ramp_travel(double u) { return u * u * u * u * (2.5 + u * (-3.0 + u)); }
 
 }  // namespace
 
-TrunkMotion::TrunkMotion(const MotionParams& motion, const GaitParams& gait, const Terrain& terrain) {
+TrunkMotion::TrunkMotion(const MotionParams& motion, const GaitParams& gait,
+                         const Terrain& terrain) {
   pitch_rad_ = terrain.mean_slope_rad();
   direction_W_ = Vec3(0.0, std::cos(pitch_rad_), std::sin(pitch_rad_));
   W_R_B_ = bryant_to_rotation(Vec3(pitch_rad_, 0.0, 0.0));
@@ -44,7 +45,8 @@ double TrunkMotion::speed(double t) const {
 double TrunkMotion::acceleration(double t) const {
   if (t <= 0.0 || t >= duration_s_) return 0.0;
   if (t < t_ramp_) return v_cruise_ / t_ramp_ * ramp_speed_d(t / t_ramp_);
-  if (t > duration_s_ - t_ramp_) return -v_cruise_ / t_ramp_ * ramp_speed_d((duration_s_ - t) / t_ramp_);
+  if (t > duration_s_ - t_ramp_)
+    return -v_cruise_ / t_ramp_ * ramp_speed_d((duration_s_ - t) / t_ramp_);
   return 0.0;
 }
 

@@ -31,7 +31,7 @@ class TrunkMotion {
   Vec3 position_at_phase(double tau) const { return p0_W_ + tau * stride_m_ * direction_W_; }
 
   double duration_s() const { return duration_s_; }
-  double stride_m() const { return stride_m_; }           ///< along the slope, per cycle
+  double stride_m() const { return stride_m_; }  ///< along the slope, per cycle
   double total_travel_m() const { return cycles_ * stride_m_; }
   int cycles() const { return cycles_; }
   double cruise_speed_mps() const { return v_cruise_; }

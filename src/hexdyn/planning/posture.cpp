@@ -17,7 +17,8 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 /// outside. A revolute joint may be turned by ±2π into its limits (as the IK does).
 double joint_clearance_rad(double q, double lo, double hi) {
   double best = -kInf;
-  for (double shift : {0.0, 2.0 * M_PI, -2.0 * M_PI}) best = std::max(best, std::min(q + shift - lo, hi - q - shift));
+  for (double shift : {0.0, 2.0 * M_PI, -2.0 * M_PI})
+    best = std::max(best, std::min(q + shift - lo, hi - q - shift));
   return best;
 }
 
@@ -29,7 +30,8 @@ std::string reach_boundary(const RobotModel& m, int leg, const Vec3& p_H) {
   const double w = m.lateral_m[leg];
   const double rho = std::sqrt(std::max(p_H.x() * p_H.x() + p_H.y() * p_H.y() - w * w, 0.0));
   const double dist = std::hypot(rho - L[0], p_H.z() + m.d1_m);
-  return (L[1] + L[2]) - dist <= dist - std::abs(L[1] - L[2]) ? "reach: full extension" : "reach: full fold";
+  return (L[1] + L[2]) - dist <= dist - std::abs(L[1] - L[2]) ? "reach: full extension"
+                                                              : "reach: full fold";
 }
 
 struct SampleMargin {
@@ -94,7 +96,8 @@ class PostureSearch {
     c.foot_lateral_m = w;
     const PostureParams& p = scene_.motion.posture;
     try {
-      const MotionPlan plan = plan_motion_with(scene_, model_, relative_start_position(scene_.terrain, h, p.start_y_m), w);
+      const MotionPlan plan = plan_motion_with(
+          scene_, model_, relative_start_position(scene_.terrain, h, p.start_y_m), w);
       c.margin = motion_kinematic_margin(model_, plan, uniform);
       c.planned = true;
     } catch (const PlanningError& e) {
@@ -115,9 +118,11 @@ class PostureSearch {
       if (scan[i].margin.value_m > scan[best].margin.value_m) best = i;
     }
     if (!scan[best].planned) return scan[best];
-    double a = scan[std::max(best - 1, 0)].height_m, b = scan[std::min(best + 1, kScan - 1)].height_m;
+    double a = scan[std::max(best - 1, 0)].height_m,
+           b = scan[std::min(best + 1, kScan - 1)].height_m;
     const double g = 0.5 * (std::sqrt(5.0) - 1.0);
-    Candidate x1 = evaluate(b - g * (b - a), w, kUniform), x2 = evaluate(a + g * (b - a), w, kUniform);
+    Candidate x1 = evaluate(b - g * (b - a), w, kUniform),
+              x2 = evaluate(a + g * (b - a), w, kUniform);
     Candidate top = scan[best];
     while (b - a > 1e-4) {
       if (x1.margin.value_m >= x2.margin.value_m) {
@@ -153,8 +158,9 @@ double leg_length_m(const RobotModel& model) {
     double reach = leg_foot_position_H(model, leg, Vec3::Zero()).norm();
     if (model.leg_geometry == LegGeometry::kChain) {
       const int femur = 1 + joint_index(leg, 1), tibia = 1 + joint_index(leg, 2);
-      reach = std::max(reach, model.p_parent_joint[femur].norm() + model.p_parent_joint[tibia].norm() +
-                                  model.p_foot_last[leg].norm());
+      reach =
+          std::max(reach, model.p_parent_joint[femur].norm() + model.p_parent_joint[tibia].norm() +
+                              model.p_foot_last[leg].norm());
     }
     r = std::max(r, reach);
   }
@@ -198,7 +204,8 @@ HeightRange searched_heights(const Scene& scene, const RobotModel& model) {
 double reference_line_height(const TerrainParams& t, double y) {
   switch (t.type) {
     case TerrainType::kStairs:
-      return t.ground_height_m + t.riser_height_m * ((y - t.first_riser_y_m) / t.tread_depth_m + 0.5);
+      return t.ground_height_m +
+             t.riser_height_m * ((y - t.first_riser_y_m) / t.tread_depth_m + 0.5);
     case TerrainType::kSlope:
       return t.ground_height_m + std::tan(t.slope_rad) * (y - t.slope_origin_y_m);
     case TerrainType::kFlat:
@@ -213,9 +220,12 @@ double terrain_rise_above_reference(const TerrainParams& t) {
 
 double terrain_origin_y(const TerrainParams& t) {
   switch (t.type) {
-    case TerrainType::kStairs: return t.first_riser_y_m;
-    case TerrainType::kSlope: return t.slope_origin_y_m;
-    case TerrainType::kFlat: return 0.0;
+    case TerrainType::kStairs:
+      return t.first_riser_y_m;
+    case TerrainType::kSlope:
+      return t.slope_origin_y_m;
+    case TerrainType::kFlat:
+      return 0.0;
   }
   return 0.0;
 }
@@ -227,7 +237,8 @@ Vec3 relative_start_position(const TerrainParams& t, double height_m, double sta
 
 std::string KinematicMargin::describe() const {
   std::ostringstream s;
-  s << "leg " << leg_name(leg) << " at t = " << t_s << " s: " << constraint << " (margin " << value_m << " m)";
+  s << "leg " << leg_name(leg) << " at t = " << t_s << " s: " << constraint << " (margin "
+    << value_m << " m)";
   return s.str();
 }
 
@@ -247,7 +258,8 @@ std::vector<double> margin_sample_times(const MotionPlan& plan, int uniform) {
   return t;
 }
 
-KinematicMargin motion_kinematic_margin(const RobotModel& model, const MotionPlan& plan, int uniform) {
+KinematicMargin motion_kinematic_margin(const RobotModel& model, const MotionPlan& plan,
+                                        int uniform) {
   KinematicMargin out;
   out.value_m = out.reach_m = out.joint_m = out.joint_rad = kInf;
   out.admitted = true;
@@ -276,9 +288,10 @@ PostureChoice choose_posture(const Scene& scene, const RobotModel& model) {
   if (c.mode != PostureMode::kAuto || c.margin.admitted) return c;
   const double h_lo = searched_heights(scene, model).lo_m;
   std::ostringstream msg;
-  msg << "no trunk posture admits the motion (motion.posture.height: auto): the best, height " << c.height_m
-      << " m above the terrain's reference line with gait.foot_lateral " << c.foot_lateral_m << " m, leaves "
-      << c.margin.describe() << "; required: reach margin >= robot.ik_min_margin (" << model.ik_min_margin_m
+  msg << "no trunk posture admits the motion (motion.posture.height: auto): the best, height "
+      << c.height_m << " m above the terrain's reference line with gait.foot_lateral "
+      << c.foot_lateral_m << " m, leaves " << c.margin.describe()
+      << "; required: reach margin >= robot.ik_min_margin (" << model.ik_min_margin_m
       << " m) and every joint inside its limits";
   if (c.height_m - h_lo < 1e-3)
     msg << " (the height is the lowest the trunk clearance allows: " << h_lo
@@ -308,27 +321,31 @@ PostureChoice best_posture(const Scene& scene, const RobotModel& model) {
   const double h_clear = range.clear_m, h_hi = range.hi_m, h_lo = range.lo_m;
   if (h_clear >= h_hi) {
     std::ostringstream msg;
-    msg << "no trunk posture admits the motion (motion.posture.height: auto): the trunk clearance needs a height of at "
+    msg << "no trunk posture admits the motion (motion.posture.height: auto): the trunk clearance "
+           "needs a height of at "
            "least "
-        << h_clear << " m above the terrain's reference line (highest terrain " << terrain_rise_above_reference(scene.terrain)
-        << " m above it + motion.posture.trunk_clearance " << p.trunk_clearance_m << " m), above the searched range's top "
-        << h_hi << " m";
+        << h_clear << " m above the terrain's reference line (highest terrain "
+        << terrain_rise_above_reference(scene.terrain)
+        << " m above it + motion.posture.trunk_clearance " << p.trunk_clearance_m
+        << " m), above the searched range's top " << h_hi << " m";
     throw ReachError(msg.str());
   }
   Candidate best = search.best_height(scene.gait.foot_lateral_m, h_lo, h_hi);
   if (p.vary_foot_lateral && best.margin.value_m < p.target_margin_m) {
     constexpr int kSpreads = 9;
     for (int i = 0; i < kSpreads; ++i) {
-      const double w = p.foot_lateral_min_m + (p.foot_lateral_max_m - p.foot_lateral_min_m) * i / (kSpreads - 1);
+      const double w =
+          p.foot_lateral_min_m + (p.foot_lateral_max_m - p.foot_lateral_min_m) * i / (kSpreads - 1);
       Candidate c_w = search.best_height(w, h_lo, h_hi);
       if (c_w.margin.value_m > best.margin.value_m) best = c_w;
     }
   }
   if (!best.planned) throw PlanningError(best.planning_error);
   // The chosen posture on a dense grid (a sample at least every 5 ms).
-  const double duration_s = TrunkMotion(scene.motion, scene.gait, Terrain(scene.terrain)).duration_s();
-  const Candidate dense =
-      search.evaluate(best.height_m, best.foot_lateral_m, static_cast<int>(std::ceil(duration_s / 0.005)) + 1);
+  const double duration_s =
+      TrunkMotion(scene.motion, scene.gait, Terrain(scene.terrain)).duration_s();
+  const Candidate dense = search.evaluate(best.height_m, best.foot_lateral_m,
+                                          static_cast<int>(std::ceil(duration_s / 0.005)) + 1);
   c.height_m = best.height_m;
   c.foot_lateral_m = best.foot_lateral_m;
   c.p0_W = relative_start_position(scene.terrain, best.height_m, p.start_y_m);

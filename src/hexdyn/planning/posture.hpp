@@ -92,7 +92,7 @@ struct KinematicMargin {
   double joint_rad = 0.0;  ///< smallest angle to a joint limit [rad]
   bool admitted = false;   ///< every sampled foot target accepted by the IK
   // The limiting sample: where value_m occurs.
-  int leg = 0;             ///< 0-based
+  int leg = 0;  ///< 0-based
   double t_s = 0.0;
   std::string constraint;  ///< "reach: beyond full extension", "joint L3_tibia upper limit", ...
   int samples = 0;         ///< instants evaluated
@@ -110,9 +110,9 @@ KinematicMargin motion_kinematic_margin(const RobotModel& model, const MotionPla
 
 /// The posture a scene is planned with.
 struct PostureChoice {
-  Vec3 p0_W = Vec3::Zero();      ///< P0 at t = 0 [m, G0]
-  double height_m = 0.0;         ///< above the reference line (computed for kAbsolute) [m]
-  double foot_lateral_m = 0.0;   ///< gait.foot_lateral used [m]
+  Vec3 p0_W = Vec3::Zero();     ///< P0 at t = 0 [m, G0]
+  double height_m = 0.0;        ///< above the reference line (computed for kAbsolute) [m]
+  double foot_lateral_m = 0.0;  ///< gait.foot_lateral used [m]
   PostureMode mode = PostureMode::kAbsolute;
   /// kAuto only: the margin of the chosen posture on the dense check grid, and the number
   /// of candidate postures evaluated.

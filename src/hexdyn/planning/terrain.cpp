@@ -34,16 +34,20 @@ Vec3 Terrain::normal(double /*x*/, double /*y*/) const {
 }
 
 double Terrain::max_height_along(const Vec3& a, const Vec3& b) const {
-  if (params_.type != TerrainType::kStairs) return std::max(height(a.x(), a.y()), height(b.x(), b.y()));
+  if (params_.type != TerrainType::kStairs)
+    return std::max(height(a.x(), a.y()), height(b.x(), b.y()));
   // Stairs: height depends on y only and is monotone non-decreasing in y.
   return height(0.0, std::max(a.y(), b.y()));
 }
 
 double Terrain::mean_slope_rad() const {
   switch (params_.type) {
-    case TerrainType::kStairs: return std::atan2(params_.riser_height_m, params_.tread_depth_m);
-    case TerrainType::kSlope: return params_.slope_rad;
-    case TerrainType::kFlat: return 0.0;
+    case TerrainType::kStairs:
+      return std::atan2(params_.riser_height_m, params_.tread_depth_m);
+    case TerrainType::kSlope:
+      return params_.slope_rad;
+    case TerrainType::kFlat:
+      return 0.0;
   }
   return 0.0;
 }
@@ -64,8 +68,9 @@ double Terrain::nearest_valid_foothold_y(double y, double margin) const {
   if (edge_distance(y) >= margin) return y;
   if (2.0 * margin > params_.tread_depth_m)
     throw PlanningError("no foothold near y = " + std::to_string(y) + " m: tread depth " +
-                        std::to_string(params_.tread_depth_m) + " m is less than twice the foothold margin " +
-                        std::to_string(margin) + " m");
+                        std::to_string(params_.tread_depth_m) +
+                        " m is less than twice the foothold margin " + std::to_string(margin) +
+                        " m");
   // Candidates: the valid ends of the tread containing y and of its neighbours.
   const double b = params_.tread_depth_m, y0 = params_.first_riser_y_m;
   double best = y, best_d = std::numeric_limits<double>::infinity();

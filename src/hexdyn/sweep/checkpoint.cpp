@@ -30,7 +30,8 @@ class MappedFile {
  public:
   explicit MappedFile(const std::string& path) {
     const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-    if (fd < 0) throw IoError("cannot read checkpoint journal '" + path + "': " + errno_text(errno));
+    if (fd < 0)
+      throw IoError("cannot read checkpoint journal '" + path + "': " + errno_text(errno));
     struct stat st {};
     if (::fstat(fd, &st) != 0) {
       const int err = errno;
@@ -84,19 +85,16 @@ void write_all(int fd, const char* data, std::size_t n, const std::string& path)
 
 }  // namespace
 
-std::string build_identity() {
-  return std::string("hexdyn ") + kVersion + " (" + kGitCommit + ")";
-}
+std::string build_identity() { return std::string("hexdyn ") + kVersion + " (" + kGitCommit + ")"; }
 
 SweepIdentity sweep_identity(const SweepSpec& spec, bool keep_runs) {
-  return make_identity(spec.sweep_yaml, spec.base_config_yaml, build_identity(), spec.scenario_count(),
-                       keep_runs);
+  return make_identity(spec.sweep_yaml, spec.base_config_yaml, build_identity(),
+                       spec.scenario_count(), keep_runs);
 }
 
 Checkpoint::Checkpoint(const std::string& output_path, const SweepSpec& spec, bool keep_runs,
                        bool resume)
-    : dir_(output_path + ".checkpoint"),
-      identity_(sweep_identity(spec, keep_runs)) {
+    : dir_(output_path + ".checkpoint"), identity_(sweep_identity(spec, keep_runs)) {
   // mkdir first and take the lock second, so that two sweeps starting together on one
   // output find each other through the lock whichever of them made the directory.
   if (::mkdir(dir_.c_str(), 0755) != 0) {
@@ -216,8 +214,7 @@ void Checkpoint::scan_journals(const SweepSpec& spec, bool resume) {
       }
       if (r.summary.index != e.index) continue;
       seen[e.index] = 1;
-      if (image_size > 0)
-        images_[e.index] = {journal, e.payload_offset + image_offset, image_size};
+      if (image_size > 0) images_[e.index] = {journal, e.payload_offset + image_offset, image_size};
       finished_.push_back(std::move(r.summary));
     }
   }
@@ -281,11 +278,11 @@ void Checkpoint::append_crash(std::size_t index, const std::string& reason) {
 void Checkpoint::flush(bool sync) {
   if (buffer_.empty() && !(sync && journal_fd_ >= 0)) return;
   if (journal_fd_ < 0) {
-    journal_fd_ = ::open(own_journal_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_APPEND | O_CLOEXEC,
-                         0644);
+    journal_fd_ =
+        ::open(own_journal_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_APPEND | O_CLOEXEC, 0644);
     if (journal_fd_ < 0)
-      throw IoError("cannot create checkpoint journal '" + own_journal_ + "': " +
-                    errno_text(errno));
+      throw IoError("cannot create checkpoint journal '" + own_journal_ +
+                    "': " + errno_text(errno));
     journals_.push_back(own_journal_);
   }
   write_all(journal_fd_, buffer_.data(), buffer_.size(), own_journal_);
@@ -305,13 +302,13 @@ std::vector<char> Checkpoint::run_image(std::size_t index) const {
   std::vector<char> bytes(at.size);
   std::size_t got = 0;
   while (got < bytes.size()) {
-    const ssize_t r = ::pread(fd, bytes.data() + got, bytes.size() - got,
-                              static_cast<off_t>(at.offset + got));
+    const ssize_t r =
+        ::pread(fd, bytes.data() + got, bytes.size() - got, static_cast<off_t>(at.offset + got));
     if (r <= 0) {
       if (r < 0 && errno == EINTR) continue;
       ::close(fd);
-      throw IoError("cannot read the run of scenario " + std::to_string(index) + " from '" +
-                    path + "'");
+      throw IoError("cannot read the run of scenario " + std::to_string(index) + " from '" + path +
+                    "'");
     }
     got += static_cast<std::size_t>(r);
   }

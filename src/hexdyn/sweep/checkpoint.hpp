@@ -83,7 +83,8 @@ class Checkpoint {
     std::uint64_t offset = 0, size = 0;
   };
   void start_buffer();
-  void note_image(std::size_t index, std::uint64_t record_at, const char* payload, std::size_t size);
+  void note_image(std::size_t index, std::uint64_t record_at, const char* payload,
+                  std::size_t size);
   void take_lock();
   void scan_journals(const SweepSpec& spec, bool resume);
   void release_lock();

@@ -17,8 +17,8 @@ SweepCoordinator::SweepCoordinator(std::size_t count, std::vector<std::size_t> a
       state_(count, kPending),
       crashed_once_(count, 0),
       undispatched_(count) {
-  const std::size_t product = std::accumulate(axis_sizes_.begin(), axis_sizes_.end(),
-                                              std::size_t{1}, std::multiplies<>());
+  const std::size_t product =
+      std::accumulate(axis_sizes_.begin(), axis_sizes_.end(), std::size_t{1}, std::multiplies<>());
   if (axis_sizes_.empty() || product != count)
     throw Error("sweep coordinator: the axis sizes do not multiply to the scenario count");
   for (std::size_t s : axis_sizes_) {
@@ -49,7 +49,8 @@ std::size_t SweepCoordinator::batch_size() const {
   return std::max<std::size_t>(1, std::min(b, share));
 }
 
-double SweepCoordinator::predicted_log_cost(std::size_t index, const std::vector<double>& axis_mean) const {
+double SweepCoordinator::predicted_log_cost(std::size_t index,
+                                            const std::vector<double>& axis_mean) const {
   double sum = 0.0;
   for (std::size_t a = axis_sizes_.size(); a-- > 0;) {
     const std::size_t v = index % axis_sizes_[a];

@@ -89,10 +89,10 @@ class SweepCoordinator {
   std::vector<Worker> workers_;
   std::vector<std::uint8_t> state_;
   std::vector<std::uint8_t> crashed_once_;
-  std::size_t cursor_ = 0;            ///< next index to consider in index order
+  std::size_t cursor_ = 0;  ///< next index to consider in index order
   bool tail_sorted_ = false;
-  std::vector<std::size_t> tail_;     ///< sorted rest, costliest last (taken from the back)
-  std::deque<std::size_t> retry_;     ///< crashed once, handed out first
+  std::vector<std::size_t> tail_;  ///< sorted rest, costliest last (taken from the back)
+  std::deque<std::size_t> retry_;  ///< crashed once, handed out first
   std::size_t undispatched_ = 0, finished_count_ = 0;
   std::size_t costs_seen_ = 0;
   double ema_cost_ = 0.0;

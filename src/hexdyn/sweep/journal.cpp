@@ -16,7 +16,6 @@ constexpr std::uint32_t kRecordMagic = 0x31525848u;  // "HXR1" in little-endian 
 /// Largest payload accepted when reading (a kept run is a few MB).
 constexpr std::uint64_t kMaxPayload = std::uint64_t{1} << 34;
 
-
 std::string padded(std::uint64_t index) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%06llu", static_cast<unsigned long long>(index));
@@ -77,11 +76,14 @@ void append_journal_record(std::vector<char>& out, RecordKind kind, std::uint64_
 BuiltRecord check_built_record(const char* record, std::size_t size, RecordKind kind,
                                std::uint64_t index, const SweepIdentity& identity) {
   const auto bad = [&](const char* what) {
-    return Error("sweep: the journal record of scenario " + padded(index) + " from a worker " + what);
+    return Error("sweep: the journal record of scenario " + padded(index) + " from a worker " +
+                 what);
   };
-  if (size < kRecordHeaderBytes + kRecordTrailerBytes || get_pod<std::uint32_t>(record) != kRecordMagic)
+  if (size < kRecordHeaderBytes + kRecordTrailerBytes ||
+      get_pod<std::uint32_t>(record) != kRecordMagic)
     throw bad("is not a record");
-  if (get_pod<std::uint32_t>(record + 4) != static_cast<std::uint32_t>(kind)) throw bad("is of another kind");
+  if (get_pod<std::uint32_t>(record + 4) != static_cast<std::uint32_t>(kind))
+    throw bad("is of another kind");
   if (get_pod<std::uint64_t>(record + 8) != index) throw bad("names another scenario");
   if (get_pod<std::uint64_t>(record + 16) != identity.id) throw bad("is of another sweep");
   const auto payload = get_pod<std::uint64_t>(record + 24);
@@ -106,9 +108,9 @@ JournalScan scan_journal(const char* data, std::size_t size, const std::string& 
     at = kJournalHeaderBytes;
   } else {
     scan.damage.push_back(name + ": damaged header (" +
-                          (size < kJournalHeaderBytes ? std::string("file of ") +
-                                                            std::to_string(size) + " bytes"
-                                                      : std::string("checksum mismatch")) +
+                          (size < kJournalHeaderBytes
+                               ? std::string("file of ") + std::to_string(size) + " bytes"
+                               : std::string("checksum mismatch")) +
                           "); its records are read by their own checksums");
     at = std::min(size, kJournalHeaderBytes);  // the header has a fixed size
   }
@@ -119,9 +121,9 @@ JournalScan scan_journal(const char* data, std::size_t size, const std::string& 
   const auto end_damage = [&](std::size_t upto) {
     if (bad_from == SIZE_MAX) return;
     scan.damage.push_back(name + ": " + bad_what + " at byte " + std::to_string(bad_from) +
-                          (upto > bad_from ? " (" + std::to_string(upto - bad_from) +
-                                                 " bytes skipped)"
-                                           : std::string()) +
+                          (upto > bad_from
+                               ? " (" + std::to_string(upto - bad_from) + " bytes skipped)"
+                               : std::string()) +
                           "; its scenario is computed again");
     bad_from = SIZE_MAX;
   };

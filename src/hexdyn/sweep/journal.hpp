@@ -78,8 +78,8 @@ struct JournalEntry {
 
 /// What read_journal found.
 struct JournalScan {
-  bool header_ok = false;        ///< the header's checksum held
-  SweepIdentity header;          ///< when header_ok
+  bool header_ok = false;             ///< the header's checksum held
+  SweepIdentity header;               ///< when header_ok
   std::vector<JournalEntry> entries;  ///< intact records of the expected identity, file order
   std::vector<std::string> damage;    ///< one line per damaged or truncated stretch
   /// A record with an intact checksum but another identity (a foreign journal).

@@ -37,7 +37,8 @@ void append_record(std::vector<char>& out, const ScenarioRecord& record);
 /// Decodes a payload; with `with_image` false the run image is skipped (its offset
 /// within the payload is returned in `image_offset`, its size in `image_size`).
 ScenarioRecord decode_record(const char* data, std::size_t size, bool with_image = true,
-                             std::size_t* image_offset = nullptr, std::size_t* image_size = nullptr);
+                             std::size_t* image_offset = nullptr,
+                             std::size_t* image_size = nullptr);
 
 /// The run of a computed scenario as an HDF5 file image: /run in the `hexdyn-result/1`
 /// layout. Built in a temporary file under `scratch_dir` (removed). Throws IoError.

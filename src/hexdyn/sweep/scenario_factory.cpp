@@ -66,8 +66,6 @@ std::string ScenarioFactory::yaml(std::size_t index) const {
   return std::string(out.c_str()) + "\n";
 }
 
-std::string ScenarioFactory::id(std::size_t index) const {
-  return scenario_id(impl_->spec, index);
-}
+std::string ScenarioFactory::id(std::size_t index) const { return scenario_id(impl_->spec, index); }
 
 }  // namespace hexdyn

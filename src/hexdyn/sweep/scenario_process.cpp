@@ -59,7 +59,6 @@ bool read_exact(int fd, char* data, std::size_t n) {
   return true;
 }
 
-
 [[noreturn]] void child_main(const ScenarioFactory& factory, bool keep_runs,
                              const std::string& scratch, int in_fd, pid_t parent) {
   ::prctl(PR_SET_PDEATHSIG, SIGKILL);
@@ -73,8 +72,8 @@ bool read_exact(int fd, char* data, std::size_t n) {
     std::uint64_t index = 0;
     if (!read_exact(in_fd, reinterpret_cast<char*>(&index), sizeof index)) ::_exit(0);
     if (crash_at && *crash_at == index) std::abort();  // test-only (HEXDYN_TEST_CRASH_SCENARIO)
-    const ScenarioEvent ev = compute_scenario(factory, static_cast<std::size_t>(index), keep_runs,
-                                              scratch);
+    const ScenarioEvent ev =
+        compute_scenario(factory, static_cast<std::size_t>(index), keep_runs, scratch);
     frame.clear();
     put_pod(frame, index);
     for (double t : {ev.timing.config_s, ev.timing.physics_s, ev.timing.summary_s, ev.encode_s})
@@ -93,7 +92,8 @@ std::string describe_status(int status) {
            (name ? std::string(" (SIG") + name + ")" : std::string()) +
            (sig == SIGKILL ? ", as the out-of-memory killer does" : "");
   }
-  if (WIFEXITED(status)) return "its process exited with status " + std::to_string(WEXITSTATUS(status));
+  if (WIFEXITED(status))
+    return "its process exited with status " + std::to_string(WEXITSTATUS(status));
   return "its process ended";
 }
 
@@ -121,7 +121,10 @@ ScenarioEvent compute_scenario(const ScenarioFactory& factory, std::size_t index
 
 ScenarioProcess::ScenarioProcess(const ScenarioFactory& factory, bool keep_runs,
                                  std::string scratch_dir, bool isolate)
-    : factory_(factory), keep_runs_(keep_runs), scratch_(std::move(scratch_dir)), isolate_(isolate) {}
+    : factory_(factory),
+      keep_runs_(keep_runs),
+      scratch_(std::move(scratch_dir)),
+      isolate_(isolate) {}
 
 ScenarioProcess::~ScenarioProcess() { stop_child(); }
 

@@ -29,10 +29,10 @@ namespace hexdyn {
 struct ScenarioEvent {
   std::size_t index = 0;
   bool crashed = false;
-  std::string reason;          ///< how the process died, when crashed
-  std::vector<char> payload;   ///< encode_record bytes, when not crashed
-  ScenarioTiming timing;       ///< when not crashed
-  double encode_s = 0.0;       ///< time to encode the record (run image included)
+  std::string reason;         ///< how the process died, when crashed
+  std::vector<char> payload;  ///< encode_record bytes, when not crashed
+  ScenarioTiming timing;      ///< when not crashed
+  double encode_s = 0.0;      ///< time to encode the record (run image included)
 };
 
 /// Computes one scenario and encodes its record (what the child does per index).

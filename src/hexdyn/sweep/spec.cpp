@@ -35,7 +35,8 @@ std::string format_number(double x, int digits) {
 }
 
 bool parse_finite_number(const YAML::Node& node, double& out) {
-  return node.IsDefined() && node.IsScalar() && YAML::convert<double>::decode(node, out) && std::isfinite(out);
+  return node.IsDefined() && node.IsScalar() && YAML::convert<double>::decode(node, out) &&
+         std::isfinite(out);
 }
 
 /// The node at a dotted path of a tree of maps; undefined if absent.

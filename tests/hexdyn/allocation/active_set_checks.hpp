@@ -13,14 +13,15 @@
 
 #include "hexdyn/allocation/active_set.hpp"
 #include "hexdyn/allocation/ipopt.hpp"
-#include "hexdyn/allocation/qp.hpp"
 #include "hexdyn/allocation/kkt_check.hpp"
+#include "hexdyn/allocation/qp.hpp"
 #include "hexdyn/allocation/qp_test_problems.hpp"
 
 namespace hexdyn::test {
 
-
-inline double inf_norm(const Eigen::VectorXd& v) { return v.size() ? v.lpNorm<Eigen::Infinity>() : 0.0; }
+inline double inf_norm(const Eigen::VectorXd& v) {
+  return v.size() ? v.lpNorm<Eigen::Infinity>() : 0.0;
+}
 
 /// Ipopt as the reference: tight tolerance, cold starts.
 inline IpoptOptions reference_ipopt(double slack_penalty = 1e6) {
@@ -43,7 +44,7 @@ inline ActiveSetOptions active_set(double slack_penalty = 1e6, bool warm = true)
 /// and `general` dense rows (some one-sided); the unconstrained minimiser is pushed away
 /// from x0 so that rows bind. *x0_out (if given) receives x0.
 inline QpProblem random_qp(std::mt19937& rng, int n, int m_eq, int lu, int boxes, int general,
-                    Eigen::VectorXd* x0_out = nullptr) {
+                           Eigen::VectorXd* x0_out = nullptr) {
   const int m_in = lu + boxes + general;
   QpProblem p;
   p.resize(n, m_eq, m_in);

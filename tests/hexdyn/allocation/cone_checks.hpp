@@ -2,8 +2,8 @@
 /// \file cone_checks.hpp
 /// Independent checks of answers to cone problems (allocation/cone.hpp), shared by
 /// test_cone.cpp (agreement over whole runs) and test_cone_hard.cpp (hard cases): the KKT
-/// conditions by the one checker of kkt_check.hpp; the closed-form projection onto one cone; the penalised
-/// objective; and the penalised problem re-solved in extended precision on the structure
+/// conditions by the one checker of kkt_check.hpp; the closed-form projection onto one cone; the
+/// penalised objective; and the penalised problem re-solved in extended precision on the structure
 /// an answer identifies.
 #include <Eigen/Dense>
 #include <algorithm>
@@ -15,8 +15,8 @@
 
 #include "hexdyn/allocation/cone.hpp"
 #include "hexdyn/allocation/ipopt.hpp"
-#include "hexdyn/allocation/qp.hpp"
 #include "hexdyn/allocation/kkt_check.hpp"
+#include "hexdyn/allocation/qp.hpp"
 #include "hexdyn/allocation/qp_test_problems.hpp"
 
 namespace hexdyn::test::cone {
@@ -25,7 +25,9 @@ using test::check_kkt;
 using test::check_penalised_kkt;
 using test::KktVerdict;
 
-inline double inf_norm(const Eigen::VectorXd& v) { return v.size() ? v.lpNorm<Eigen::Infinity>() : 0.0; }
+inline double inf_norm(const Eigen::VectorXd& v) {
+  return v.size() ? v.lpNorm<Eigen::Infinity>() : 0.0;
+}
 
 /// Ipopt's absolute stationarity tolerance as a reference (IpoptOptions::dual_inf_tol).
 /// Penalised Ipopt runs at 1e-12 end at Ipopt's acceptable level, where dual_inf_tol is not
@@ -63,7 +65,9 @@ inline double worst_cone_violation(const QpProblem& p, const Eigen::VectorXd& x)
 /// ½xᵀHx + gᵀx + c + ρ Σ w · (violation of each row and cone), in row units; violations
 /// within rounding (1e-12·(1 + |bound|)) count as 0.
 inline double penalised_objective(const QpProblem& p, const Eigen::VectorXd& x, double rho) {
-  auto beyond = [](double v, double bound) { return v > 1e-12 * (1.0 + std::abs(bound)) ? v : 0.0; };
+  auto beyond = [](double v, double bound) {
+    return v > 1e-12 * (1.0 + std::abs(bound)) ? v : 0.0;
+  };
   double v = 0.0;
   for (int i = 0; i < p.inequalities(); ++i) {
     const double c = p.C.row(i).dot(x);
@@ -157,15 +161,16 @@ struct ExtendedSolution {
 ///    left out.
 /// Newton's method in long double on the resulting KKT system (stationarity, held rows,
 /// held cones), from out.x. `certified` when, at the new x, the system holds to 1e-12
-/// relative to max(|H x|, |g|) (multipliers of ρ w ≈ 1e6–1e9 set its rounding level), every multiplier lies in its penalty's subdifferential (ν between 0 and ρw on
-/// the side of its bound, ±ρw for l = u rows; s in [0, ρw]; at an apex (ν_t, y_n) in the
-/// subdifferential of the cone's penalty there, μ‖ν_t‖ ≤ y_n ≤ ρwμ, for some split of ν_n
-/// plus the multipliers of held rows on n alone into y_n and those rows' share within their
-/// own ranges) and every row and cone left out
-/// or penalised is still on the side it was identified on. Those are the KKT conditions of
-/// the penalised problem, which is convex: x is then its optimum to extended-precision
-/// rounding, whatever produced the structure.
-inline ExtendedSolution extended_precision_cone_x(const QpProblem& p, const QpOutcome& out, double rho) {
+/// relative to max(|H x|, |g|) (multipliers of ρ w ≈ 1e6–1e9 set its rounding level), every
+/// multiplier lies in its penalty's subdifferential (ν between 0 and ρw on the side of its bound,
+/// ±ρw for l = u rows; s in [0, ρw]; at an apex (ν_t, y_n) in the subdifferential of the cone's
+/// penalty there, μ‖ν_t‖ ≤ y_n ≤ ρwμ, for some split of ν_n plus the multipliers of held rows on n
+/// alone into y_n and those rows' share within their own ranges) and every row and cone left out or
+/// penalised is still on the side it was identified on. Those are the KKT conditions of the
+/// penalised problem, which is convex: x is then its optimum to extended-precision rounding,
+/// whatever produced the structure.
+inline ExtendedSolution extended_precision_cone_x(const QpProblem& p, const QpOutcome& out,
+                                                  double rho) {
   using LD = long double;
   using MatL = Eigen::Matrix<LD, Eigen::Dynamic, Eigen::Dynamic>;
   using VecL = Eigen::Matrix<LD, Eigen::Dynamic, 1>;
@@ -196,7 +201,8 @@ inline ExtendedSolution extended_precision_cone_x(const QpProblem& p, const QpOu
   std::vector<int> held_cones, apex_cones;
   for (std::size_t k = 0; k < p.cones.size(); ++k) {
     const SecondOrderCone& c = p.cones[k];
-    const double t = std::hypot(out.x[c.tangent1], out.x[c.tangent2]), excess = t - c.mu * out.x[c.normal];
+    const double t = std::hypot(out.x[c.tangent1], out.x[c.tangent2]),
+                 excess = t - c.mu * out.x[c.normal];
     if (excess > near(t)) {
       cone[k] = Cone::kViolated;
     } else if (excess >= -near(t)) {
@@ -255,8 +261,12 @@ inline ExtendedSolution extended_precision_cone_x(const QpProblem& p, const QpOu
       }
     };
     for (int j = 0; j < e; ++j) {
-      const SecondOrderCone& c = p.cones[static_cast<std::size_t>(apex_cones[static_cast<std::size_t>(j / 3)])];
-      const int v = j % 3 == 0 ? c.tangent1 : j % 3 == 1 ? c.tangent2 : c.normal, col = n + q + b + j;
+      const SecondOrderCone& c =
+          p.cones[static_cast<std::size_t>(apex_cones[static_cast<std::size_t>(j / 3)])];
+      const int v = j % 3 == 0   ? c.tangent1
+                    : j % 3 == 1 ? c.tangent2
+                                 : c.normal,
+                col = n + q + b + j;
       F[v] -= z[col];
       J(v, col) = -1, J(col, v) = 1;
       F[col] = x[v];
@@ -264,9 +274,11 @@ inline ExtendedSolution extended_precision_cone_x(const QpProblem& p, const QpOu
     for (std::size_t k = 0; k < p.cones.size(); ++k)
       if (cone[k] == Cone::kViolated) cone_terms(p.cones[k], LD(rho) * p.cones[k].penalty, -1);
     for (int j = 0; j < b; ++j)
-      cone_terms(p.cones[static_cast<std::size_t>(held_cones[static_cast<std::size_t>(j)])], z[n + q + j], n + q + j);
+      cone_terms(p.cones[static_cast<std::size_t>(held_cones[static_cast<std::size_t>(j)])],
+                 z[n + q + j], n + q + j);
   };
-  const LD scale = 1 + H.cwiseAbs().maxCoeff() * z.head(n).cwiseAbs().maxCoeff() + g.cwiseAbs().maxCoeff();
+  const LD scale =
+      1 + H.cwiseAbs().maxCoeff() * z.head(n).cwiseAbs().maxCoeff() + g.cwiseAbs().maxCoeff();
   LD residual = 0;
   for (int it = 0; it < 60; ++it) {
     evaluate();
@@ -288,22 +300,27 @@ inline ExtendedSolution extended_precision_cone_x(const QpProblem& p, const QpOu
     return p.C(i, normal) > 0.0;
   };
   for (int j = 0; j < static_cast<int>(apex_cones.size()); ++j) {
-    const SecondOrderCone& c = p.cones[static_cast<std::size_t>(apex_cones[static_cast<std::size_t>(j)])];
+    const SecondOrderCone& c =
+        p.cones[static_cast<std::size_t>(apex_cones[static_cast<std::size_t>(j)])];
     const int col = n + q + b + 3 * j;
     const double nu_t = std::hypot(static_cast<double>(z[col]), static_cast<double>(z[col + 1]));
     double total = static_cast<double>(z[col + 2]), row_lo = 0.0, row_hi = 0.0;
     for (int h = 0; h < q; ++h) {
       const int i = held[static_cast<std::size_t>(h)];
       if (!on_normal_only(i, c.normal)) continue;
-      const double a = p.C(i, c.normal), nu = static_cast<double>(z[n + h]), kappa = rho * weight(i);
+      const double a = p.C(i, c.normal), nu = static_cast<double>(z[n + h]),
+                   kappa = rho * weight(i);
       total += a * nu;
-      if (row[static_cast<std::size_t>(i)] == Row::kAtLower) row_hi += a * kappa;
-      else row_lo -= a * kappa;
+      if (row[static_cast<std::size_t>(i)] == Row::kAtLower)
+        row_hi += a * kappa;
+      else
+        row_lo -= a * kappa;
       row[static_cast<std::size_t>(i)] = Row::kOut;  // checked here, not alone
       z[n + h] = 0;
     }
     // y_n ∈ [μ‖ν_t‖, ρwμ] and total − y_n ∈ [row_lo, row_hi].
-    const double lo = std::max(c.mu * nu_t, total - row_hi), hi = std::min(rho * c.penalty * c.mu, total - row_lo);
+    const double lo = std::max(c.mu * nu_t, total - row_hi),
+                 hi = std::min(rho * c.penalty * c.mu, total - row_lo);
     if (lo > hi + mtol) os << c.name << " at its apex: ν_t " << nu_t << ", ν_n " << total << "; ";
   }
   for (int j = 0; j < q; ++j) {
@@ -315,7 +332,8 @@ inline ExtendedSolution extended_precision_cone_x(const QpProblem& p, const QpOu
     if (nu < lo - mtol || nu > hi + mtol) os << p.ineq_name(i) << ": ν = " << nu << "; ";
   }
   for (int j = 0; j < b; ++j) {
-    const SecondOrderCone& c = p.cones[static_cast<std::size_t>(held_cones[static_cast<std::size_t>(j)])];
+    const SecondOrderCone& c =
+        p.cones[static_cast<std::size_t>(held_cones[static_cast<std::size_t>(j)])];
     const double s = static_cast<double>(z[n + q + j]);
     if (s < -mtol || s > rho * c.penalty + mtol) os << c.name << ": s = " << s << "; ";
   }
@@ -324,13 +342,15 @@ inline ExtendedSolution extended_precision_cone_x(const QpProblem& p, const QpOu
     const Row r = row[static_cast<std::size_t>(i)];
     const bool ok = r == Row::kBelow   ? c <= lo + near(lo)
                     : r == Row::kAbove ? c >= hi - near(hi)
-                    : r == Row::kOut   ? (lo <= -kQpInfinity || c >= lo - near(lo)) && (hi >= kQpInfinity || c <= hi + near(hi))
-                                       : true;
+                    : r == Row::kOut   ? (lo <= -kQpInfinity || c >= lo - near(lo)) &&
+                                           (hi >= kQpInfinity || c <= hi + near(hi))
+                                     : true;
     if (!ok) os << p.ineq_name(i) << " changed side; ";
   }
   for (std::size_t k = 0; k < p.cones.size(); ++k) {
     const SecondOrderCone& c = p.cones[k];
-    const double t = std::hypot(res.x[c.tangent1], res.x[c.tangent2]), excess = t - c.mu * res.x[c.normal];
+    const double t = std::hypot(res.x[c.tangent1], res.x[c.tangent2]),
+                 excess = t - c.mu * res.x[c.normal];
     if ((cone[k] == Cone::kViolated && !(excess >= -near(t) && t > 0.0)) ||
         (cone[k] == Cone::kOut && excess > near(t)))
       os << c.name << " changed side; ";

@@ -95,7 +95,8 @@ inline KktVerdict check_kkt_conditions(const QpProblem& p, const QpOutcome& out,
       }
       ok = c.mu * yt.norm() <= yn + ytol && std::abs(yt.dot(t) + yn * xn) <= compl_tol;
       if (ok && out.lambda_cone.size() == static_cast<int>(p.cones.size()) && r > 1e-6 &&
-          c.mu > 0.0 && std::abs(out.lambda_cone[k] - yn / c.mu) > 1e-6 * (1.0 + ytol / tol) / c.mu) {
+          c.mu > 0.0 &&
+          std::abs(out.lambda_cone[k] - yn / c.mu) > 1e-6 * (1.0 + ytol / tol) / c.mu) {
         os << "cone " << k << ": λ_cone " << out.lambda_cone[k] << " vs y_n/μ " << yn / c.mu;
         return fail();
       }
@@ -113,7 +114,8 @@ inline KktVerdict check_kkt_conditions(const QpProblem& p, const QpOutcome& out,
          << " (ρw = " << kappa << ")";
       return fail();
     }
-    for (int idx : {c.tangent1, c.tangent2, c.normal}) on_cone[static_cast<std::size_t>(idx)] = true;
+    for (int idx : {c.tangent1, c.tangent2, c.normal})
+      on_cone[static_cast<std::size_t>(idx)] = true;
   }
 
   for (int j = 0; j < n; ++j) {
@@ -129,8 +131,7 @@ inline KktVerdict check_kkt_conditions(const QpProblem& p, const QpOutcome& out,
       return fail();
     }
   }
-  const double lambda_scale =
-      1.0 + (m_in > 0 ? out.lambda_ineq.lpNorm<Eigen::Infinity>() : 0.0);
+  const double lambda_scale = 1.0 + (m_in > 0 ? out.lambda_ineq.lpNorm<Eigen::Infinity>() : 0.0);
   for (int i = 0; i < m_in; ++i) {
     const double c = p.C.row(i).dot(x), lam = out.lambda_ineq[i];
     const double lo = p.lower[i], hi = p.upper[i];

@@ -292,4 +292,3 @@ TEST_CASE("active-set back end: unsupported problems and options are rejected",
   CHECK(from.tolerance == 1e-8);
   CHECK(from.slack_penalty == 123.0);
 }
-

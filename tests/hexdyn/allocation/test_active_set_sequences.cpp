@@ -16,8 +16,8 @@
 #include "hexdyn/allocation/active_set.hpp"
 #include "hexdyn/allocation/active_set_checks.hpp"
 #include "hexdyn/allocation/ipopt.hpp"
-#include "hexdyn/allocation/qp.hpp"
 #include "hexdyn/allocation/problem.hpp"
+#include "hexdyn/allocation/qp.hpp"
 #include "hexdyn/contact/touchdowns.hpp"
 #include "hexdyn/core/errors.hpp"
 #include "hexdyn/io/config.hpp"
@@ -93,9 +93,10 @@ TEST_CASE("active-set back end: random degenerate problems are solved to certifi
     const QpOutcome& b = cold->solve(p);
     ++trials;
     ++counts[static_cast<int>(a.status)];
-    const KktVerdict kkt = a.status == SolverStatus::kOptimal   ? check_kkt(p, a, 1e-8)
-                           : a.status == SolverStatus::kRelaxed ? check_penalised_kkt(p, a, 1e6, 1e-8)
-                                                                : KktVerdict{false, "failed"};
+    const KktVerdict kkt = a.status == SolverStatus::kOptimal ? check_kkt(p, a, 1e-8)
+                           : a.status == SolverStatus::kRelaxed
+                               ? check_penalised_kkt(p, a, 1e6, 1e-8)
+                               : KktVerdict{false, "failed"};
     certified += kkt.ok;
     if (!kkt.ok && first_failure.empty())
       first_failure = std::to_string(t) + ": " + a.message + " " + kkt.why;
@@ -106,7 +107,6 @@ TEST_CASE("active-set back end: random degenerate problems are solved to certifi
   CHECK(agreed == trials);
   CHECK(counts[1] > 200);  // relaxed answers were exercised
 }
-
 
 TEST_CASE("active-set back end: a feasible problem after a relaxed one is solved to optimality",
           "[allocation][active_set]") {
@@ -129,7 +129,6 @@ TEST_CASE("active-set back end: a feasible problem after a relaxed one is solved
   CHECK(inf_norm(again.x - reference.x) < 1e-10 * (1.0 + inf_norm(reference.x)));
   CHECK(again.iterations == 0);  // warm: the previous active set is the answer
 }
-
 
 TEST_CASE("active-set back end: warm starts give the cold answers with fewer changes",
           "[allocation][active_set]") {
@@ -179,7 +178,6 @@ TEST_CASE("active-set back end: warm starts give the cold answers with fewer cha
   CHECK(warm->solve(p).iterations == cold_iterations);
 }
 
-
 namespace {
 
 /// Agreement of the two back ends over every sample of a scene, solved in order as a run
@@ -227,7 +225,8 @@ RunComparison compare_backends(const Scene& scene) {
     const double dx = inf_norm(out.x - ref.x);
     if (out.status != ref.status) {
       ++r.status_mismatches;
-      note(i, "status " + std::to_string(static_cast<int>(out.status)) + " vs Ipopt " + std::to_string(static_cast<int>(ref.status)));
+      note(i, "status " + std::to_string(static_cast<int>(out.status)) + " vs Ipopt " +
+                  std::to_string(static_cast<int>(ref.status)));
     }
     if (out.status == SolverStatus::kOptimal) {
       r.max_dx_optimal = std::max(r.max_dx_optimal, dx);
@@ -290,16 +289,16 @@ TEST_CASE("active-set back end: every sample of the paper run agrees with Ipopt"
     // multipliers next to ρ w up to 1e9) are where Ipopt's own inexactness would show;
     // the KKT certificate and the extended-precision re-solve check our side of them.
     const RunComparison r = compare_backends(
-        load_scene(HEXDYN_SOURCE_DIR "/configs/paper.yaml", {{"output.impact_samples", "40"}, {"output.event_step", "1e-3"}}));
+        load_scene(HEXDYN_SOURCE_DIR "/configs/paper.yaml",
+                   {{"output.impact_samples", "40"}, {"output.event_step", "1e-3"}}));
     CHECK(r.samples > 1000);
     CHECK(r.relaxed > 500);
     check_comparison(r);
-    WARN("paper run, 40 samples per transient: " << r.samples << " samples (" << r.relaxed
-                                                 << " relaxed): max |Δx| vs Ipopt " << r.max_dx_optimal
-                                                 << " N optimal, " << r.max_dx_relaxed << " N relaxed");
+    WARN("paper run, 40 samples per transient: "
+         << r.samples << " samples (" << r.relaxed << " relaxed): max |Δx| vs Ipopt "
+         << r.max_dx_optimal << " N optimal, " << r.max_dx_relaxed << " N relaxed");
   }
 }
-
 
 TEST_CASE("active-set back end: every sample of the smoke sweep agrees with Ipopt",
           "[allocation][active_set][sweep]") {

@@ -13,13 +13,13 @@
 #include <memory>
 #include <random>
 
-#include "hexdyn/allocation/qp.hpp"
 #include "hexdyn/allocation/active_set.hpp"
 #include "hexdyn/allocation/cone.hpp"
 #include "hexdyn/allocation/ipopt.hpp"
-#include "hexdyn/core/errors.hpp"
 #include "hexdyn/allocation/kkt_check.hpp"
+#include "hexdyn/allocation/qp.hpp"
 #include "hexdyn/allocation/qp_test_problems.hpp"
+#include "hexdyn/core/errors.hpp"
 
 using namespace hexdyn;
 using namespace hexdyn::test;
@@ -94,9 +94,8 @@ struct BackendCase {
   double relaxed_tol;  ///< penalised problems
   bool cones;          ///< takes problems with friction cones
 };
-constexpr BackendCase kBackends[] = {{"ipopt", 1e-7, 1e-5, true},
-                                     {"active-set", 1e-10, 1e-12, false},
-                                     {"cone", 1e-10, 1e-12, true}};
+constexpr BackendCase kBackends[] = {
+    {"ipopt", 1e-7, 1e-5, true}, {"active-set", 1e-10, 1e-12, false}, {"cone", 1e-10, 1e-12, true}};
 
 std::unique_ptr<AllocationBackend> make_backend(const BackendCase& c, bool warm_start = true) {
   const std::string name = c.name;
@@ -115,14 +114,11 @@ std::unique_ptr<AllocationBackend> make_backend(const BackendCase& c, bool warm_
 }
 
 /// kBackends[index], for one run of a test case per back end (index from Catch2's GENERATE).
-const BackendCase& backend_case(int index) {
-  return kBackends[static_cast<std::size_t>(index)];
-}
+const BackendCase& backend_case(int index) { return kBackends[static_cast<std::size_t>(index)]; }
 
 }  // namespace
 
-TEST_CASE("back ends: equality-constrained QPs match the closed-form KKT solve",
-          "[allocation]") {
+TEST_CASE("back ends: equality-constrained QPs match the closed-form KKT solve", "[allocation]") {
   const BackendCase& bc = backend_case(GENERATE(0, 1, 2));
   CAPTURE(bc.name);
   std::mt19937 rng(20240601);
@@ -153,8 +149,7 @@ TEST_CASE("back ends: equality-constrained QPs match the closed-form KKT solve",
   }
 }
 
-TEST_CASE("back ends: inequality QPs satisfy KKT and beat random feasible points",
-          "[allocation]") {
+TEST_CASE("back ends: inequality QPs satisfy KKT and beat random feasible points", "[allocation]") {
   const BackendCase& bc = backend_case(GENERATE(0, 1, 2));
   CAPTURE(bc.name);
   std::mt19937 rng(7);
@@ -269,7 +264,7 @@ TEST_CASE("back ends: an infeasible problem is relaxed and names the row that ga
     CHECK(out.max_violation == Approx(1.0).margin(bc.relaxed_tol));
     CHECK(out.lambda_ineq[0] == Approx(-1e6).epsilon(1e-6));  // the penalty's slope
     CHECK((p.A * out.x - p.b).norm() < 1e-7);                 // equalities stay hard
-    CHECK_FALSE(check_kkt(p, out, 1e-6));  // not primal feasible
+    CHECK_FALSE(check_kkt(p, out, 1e-6));                     // not primal feasible
   }
   SECTION("contradictory bounds on one row, largest violation first") {
     QpProblem p;

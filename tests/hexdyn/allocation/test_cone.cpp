@@ -52,7 +52,7 @@ using test::kInf;
 struct RunComparison {
   int samples = 0, optimal = 0, relaxed = 0;
   int status_mismatches = 0, name_mismatches = 0, kkt_failures = 0;
-  int active_cones = 0;  ///< cones active (λ > 0) on optimal samples
+  int active_cones = 0;        ///< cones active (λ > 0) on optimal samples
   int objective_failures = 0;  ///< penalised objective above Ipopt's
   double max_dx_optimal = 0.0, max_dx_relaxed = 0.0, max_violation_diff = 0.0;
   double max_cone_violation = -kInf;  ///< relative, on optimal samples
@@ -77,7 +77,8 @@ struct RunComparison {
 /// Smallest eigenvalue of H and its ratio to the largest.
 std::pair<double, double> extreme_eigenvalues(const QpProblem& qp) {
   const Eigen::MatrixXd H = qp.H.selfadjointView<Eigen::Lower>();
-  const Eigen::VectorXd ev = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(H, Eigen::EigenvaluesOnly).eigenvalues();
+  const Eigen::VectorXd ev =
+      Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(H, Eigen::EigenvaluesOnly).eigenvalues();
   return {ev.minCoeff(), ev.minCoeff() / ev.maxCoeff()};
 }
 
@@ -101,15 +102,16 @@ RunComparison compare_with_ipopt(const Scene& scene, int stride = 1, bool with_r
   RunComparison r;
   auto note = [&](int i, const std::string& what) {
     if (r.first_problem.empty())
-      r.first_problem = "sample " + std::to_string(i) + " t = " + std::to_string(kin.time_s[i]) + ": " + what;
+      r.first_problem =
+          "sample " + std::to_string(i) + " t = " + std::to_string(kin.time_s[i]) + ": " + what;
   };
   for (int i = 0; i < kin.samples(); i += stride) {
     const ContactSplit& split = contact_split(
         prep.model, data, base_state_at(kin, i), kin.joint_position.row(i).transpose(),
         kin.joint_velocity.row(i).transpose(), kin.joint_acceleration.row(i).transpose());
     sample_contacts(kin, i, prep.plan.terrain, prep.touchdowns, contacts);
-    build_allocation_problem(scene.allocation, scene.contact, split, contacts.phase, contacts.impact_force_N,
-                             contacts.W_R_contact, qp);
+    build_allocation_problem(scene.allocation, scene.contact, split, contacts.phase,
+                             contacts.impact_force_N, contacts.W_R_contact, qp);
     const QpOutcome ref = ipopt->solve(qp);
     const QpOutcome run_ref = run_ipopt ? run_ipopt->solve(qp) : QpOutcome{};
     const QpOutcome& out = cone->solve(qp);
@@ -119,13 +121,15 @@ RunComparison compare_with_ipopt(const Scene& scene, int stride = 1, bool with_r
     const double dx = inf_norm(out.x - ref.x);
     if (out.status != ref.status) {
       ++r.status_mismatches;
-      note(i, "status " + std::to_string(static_cast<int>(out.status)) + " (" + out.message + ") vs Ipopt " +
-                  std::to_string(static_cast<int>(ref.status)) + " (" + ref.message + ")");
+      note(i, "status " + std::to_string(static_cast<int>(out.status)) + " (" + out.message +
+                  ") vs Ipopt " + std::to_string(static_cast<int>(ref.status)) + " (" +
+                  ref.message + ")");
     }
     if (out.status == SolverStatus::kOptimal) {
       ++r.optimal;
       r.max_dx_optimal = std::max(r.max_dx_optimal, dx);
-      if (!qp.cones.empty()) r.max_cone_violation = std::max(r.max_cone_violation, worst_cone_violation(qp, out.x));
+      if (!qp.cones.empty())
+        r.max_cone_violation = std::max(r.max_cone_violation, worst_cone_violation(qp, out.x));
       if (const KktVerdict kkt = check_kkt(qp, out, 1e-9); !kkt) {
         ++r.kkt_failures, note(i, kkt.why);
       } else {
@@ -140,7 +144,8 @@ RunComparison compare_with_ipopt(const Scene& scene, int stride = 1, bool with_r
         ++r.name_mismatches;
         note(i, out.message + " vs Ipopt " + ref.message);
       }
-      r.max_violation_diff = std::max(r.max_violation_diff, inf_norm(violations(qp, out.x) - violations(qp, ref.x)));
+      r.max_violation_diff =
+          std::max(r.max_violation_diff, inf_norm(violations(qp, out.x) - violations(qp, ref.x)));
       const ExtendedSolution exact = extended_precision_cone_x(qp, out, rho);
       if (!exact.certified) {
         ++r.uncertified, note(i, "extended-precision re-solve not certified: " + exact.why);
@@ -167,12 +172,14 @@ RunComparison compare_with_ipopt(const Scene& scene, int stride = 1, bool with_r
       const double dr = inf_norm(out.x - run_ref.x);
       if (dr > r.max_dx_run_ipopt) {
         r.max_dx_run_ipopt = dr, r.run_ipopt_worst_t = kin.time_s[i];
-        r.run_ipopt_worst_ipopt_exact = unique_optimum.size() ? inf_norm(run_ref.x - unique_optimum) : -1.0;
+        r.run_ipopt_worst_ipopt_exact =
+            unique_optimum.size() ? inf_norm(run_ref.x - unique_optimum) : -1.0;
       }
       if (dr > 1e-6) {
         ++r.run_ipopt_over;
         const double ours = penalised_objective(qp, out.x, rho);
-        if (ours_certified_unique && penalised_objective(qp, run_ref.x, rho) >= ours - 1e-10 * (1.0 + std::abs(ours))) {
+        if (ours_certified_unique &&
+            penalised_objective(qp, run_ref.x, rho) >= ours - 1e-10 * (1.0 + std::abs(ours))) {
           ++r.run_ipopt_explained;
         } else {
           std::ostringstream os;
@@ -189,7 +196,8 @@ void check_comparison(const RunComparison& r) {
   INFO(r.samples << " samples, " << r.relaxed << " relaxed; max |Δx| optimal " << r.max_dx_optimal
                  << " N, relaxed " << r.max_dx_relaxed << " N; violations " << r.max_violation_diff
                  << "; cone " << r.max_cone_violation << "; relaxed vs extended precision: ours "
-                 << r.max_dx_ours_exact << " N, Ipopt " << r.max_dx_ipopt_exact << " N, " << r.uncertified
+                 << r.max_dx_ours_exact << " N, Ipopt " << r.max_dx_ipopt_exact << " N, "
+                 << r.uncertified
                  << " not certified; H's eigenvalue ratio on relaxed samples >= " << r.min_eig_ratio
                  << "; Ipopt at its own dual_inf_tol: " << r.run_ipopt_over << " beyond 1e-6 N, "
                  << r.run_ipopt_explained << " explained. " << r.first_problem);
@@ -222,8 +230,8 @@ Scene paper_with(std::vector<std::pair<std::string, std::string>> overrides) {
 
 }  // namespace
 
-
-TEST_CASE("cone back end: one foot is the closed-form projection onto its cone", "[allocation][cone]") {
+TEST_CASE("cone back end: one foot is the closed-form projection onto its cone",
+          "[allocation][cone]") {
   // Inside, on the far side (apex), and the boundary cases in between, for μ from 0.001 to 5.
   auto backend = cone_backend();
   std::mt19937 rng(4);
@@ -258,21 +266,21 @@ TEST_CASE("cone back end: every sample of the paper run with the exact cone agre
   // and hold their cones to 1e-11 relative.
   const RunComparison r = compare_with_ipopt(paper_with({}), 1, true);
   CHECK(r.samples > 500);
-  CHECK(r.relaxed > 100);  // touchdown transients
+  CHECK(r.relaxed > 100);       // touchdown transients
   CHECK(r.active_cones > 250);  // the torque-optimal forces ride the friction limit
   check_comparison(r);
-  WARN("paper run, cone: " << r.samples << " samples (" << r.relaxed << " relaxed, " << r.active_cones
-                           << " active cones on optimal samples): max |Δx| vs Ipopt " << r.max_dx_optimal
-                           << " N optimal, " << r.max_dx_relaxed << " N relaxed; worst cone "
-                           << r.max_cone_violation << " relative; relaxed samples vs extended precision: ours "
-                           << r.max_dx_ours_exact << " N, Ipopt " << r.max_dx_ipopt_exact << " N ("
-                           << r.uncertified << " not certified); H's smallest eigenvalue on relaxed samples "
-                           << r.min_eig << ", ratio to its largest >= " << r.min_eig_ratio
-                           << "; Ipopt at its own dual_inf_tol (a run with tolerance 1e-12): max |Δx| "
-                           << r.max_dx_run_ipopt << " N at t = " << r.run_ipopt_worst_t << " s ("
-                           << r.run_ipopt_worst_ipopt_exact << " N from the unique optimum), "
-                           << r.run_ipopt_over << " sample(s) beyond 1e-6 N, " << r.run_ipopt_explained
-                           << " explained");
+  WARN("paper run, cone: "
+       << r.samples << " samples (" << r.relaxed << " relaxed, " << r.active_cones
+       << " active cones on optimal samples): max |Δx| vs Ipopt " << r.max_dx_optimal
+       << " N optimal, " << r.max_dx_relaxed << " N relaxed; worst cone " << r.max_cone_violation
+       << " relative; relaxed samples vs extended precision: ours " << r.max_dx_ours_exact
+       << " N, Ipopt " << r.max_dx_ipopt_exact << " N (" << r.uncertified
+       << " not certified); H's smallest eigenvalue on relaxed samples " << r.min_eig
+       << ", ratio to its largest >= " << r.min_eig_ratio
+       << "; Ipopt at its own dual_inf_tol (a run with tolerance 1e-12): max |Δx| "
+       << r.max_dx_run_ipopt << " N at t = " << r.run_ipopt_worst_t << " s ("
+       << r.run_ipopt_worst_ipopt_exact << " N from the unique optimum), " << r.run_ipopt_over
+       << " sample(s) beyond 1e-6 N, " << r.run_ipopt_explained << " explained");
 }
 
 TEST_CASE("cone back end: every sample of the smoke sweep with the exact cone agrees with Ipopt",
@@ -292,6 +300,6 @@ TEST_CASE("cone back end: every sample of the smoke sweep with the exact cone ag
     worst_optimal = std::max(worst_optimal, r.max_dx_optimal);
     worst_relaxed = std::max(worst_relaxed, r.max_dx_relaxed);
   }
-  WARN("smoke sweep, cone: max |Δx| vs Ipopt " << worst_optimal << " N optimal, " << worst_relaxed << " N relaxed");
+  WARN("smoke sweep, cone: max |Δx| vs Ipopt " << worst_optimal << " N optimal, " << worst_relaxed
+                                               << " N relaxed");
 }
-

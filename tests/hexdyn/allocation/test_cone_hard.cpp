@@ -31,12 +31,14 @@ namespace {
 /// leg, as the allocation's), trunk rows Σ F = f_W and Σ p × F = m_W as l = u rows
 /// (weight 1e2), normal ≥ 0 (1e3), |τ| ≤ limit (1), cones (1e3): the allocation's structure.
 QpProblem trunk_problem(std::mt19937& rng, const std::vector<Eigen::Vector3d>& feet, double mu,
-                        const Eigen::Vector3d& f_W, const Eigen::Vector3d& m_W, double torque_limit) {
+                        const Eigen::Vector3d& f_W, const Eigen::Vector3d& m_W,
+                        double torque_limit) {
   const int legs = static_cast<int>(feet.size()), n = 3 * legs;
   std::normal_distribution<double> N(0.0, 1.0);
   Eigen::MatrixXd G = Eigen::MatrixXd::Zero(n, n);
   for (int l = 0; l < legs; ++l)
-    G.block<3, 3>(3 * l, 3 * l) = 0.1 * Eigen::Matrix3d::Identity() + 0.03 * Eigen::Matrix3d::NullaryExpr([&] { return N(rng); });
+    G.block<3, 3>(3 * l, 3 * l) = 0.1 * Eigen::Matrix3d::Identity() +
+                                  0.03 * Eigen::Matrix3d::NullaryExpr([&] { return N(rng); });
   Eigen::VectorXd tau0(n);
   for (int j = 0; j < n; ++j) tau0[j] = 0.5 * N(rng);
   QpProblem p;
@@ -44,11 +46,13 @@ QpProblem trunk_problem(std::mt19937& rng, const std::vector<Eigen::Vector3d>& f
   p.H = 2.0 * G.transpose() * G;
   p.g = -2.0 * G.transpose() * tau0;
   p.constant = tau0.squaredNorm();
-  const char* trunk[6] = {"trunk force x", "trunk force y", "trunk force z", "trunk moment x", "trunk moment y", "trunk moment z"};
+  const char* trunk[6] = {"trunk force x",  "trunk force y",  "trunk force z",
+                          "trunk moment x", "trunk moment y", "trunk moment z"};
   for (int l = 0; l < legs; ++l) {
     p.C.block<3, 3>(0, 3 * l).setIdentity();
     Eigen::Matrix3d cross;
-    cross << 0, -feet[l].z(), feet[l].y(), feet[l].z(), 0, -feet[l].x(), -feet[l].y(), feet[l].x(), 0;
+    cross << 0, -feet[l].z(), feet[l].y(), feet[l].z(), 0, -feet[l].x(), -feet[l].y(), feet[l].x(),
+        0;
     p.C.block<3, 3>(3, 3 * l) = cross;
   }
   for (int r = 0; r < 6; ++r) {
@@ -98,18 +102,20 @@ QpOutcome check_against_ipopt(const QpProblem& p, double dx = 1e-6) {
     const ExtendedSolution exact = extended_precision_cone_x(p, out, 1e6);
     INFO(exact.why);
     CHECK(exact.certified);
-    WARN("relaxed hard case: |Δx| vs Ipopt " << inf_norm(out.x - ref.x) << " N; vs extended precision: ours "
-                                             << inf_norm(out.x - exact.x) << " N, Ipopt " << inf_norm(ref.x - exact.x)
-                                             << " N");
+    WARN("relaxed hard case: |Δx| vs Ipopt "
+         << inf_norm(out.x - ref.x) << " N; vs extended precision: ours "
+         << inf_norm(out.x - exact.x) << " N, Ipopt " << inf_norm(ref.x - exact.x) << " N");
     CHECK(inf_norm(out.x - exact.x) < dx);
   }
   // To rounding of F, which holds ρ w times the violations.
   CHECK(penalised_objective(p, out.x, 1e6) <=
-        penalised_objective(p, ref.x, 1e6) + 1e-10 * (1.0 + std::abs(penalised_objective(p, ref.x, 1e6))));
+        penalised_objective(p, ref.x, 1e6) +
+            1e-10 * (1.0 + std::abs(penalised_objective(p, ref.x, 1e6))));
   return out;
 }
 
-const std::vector<Eigen::Vector3d> kTripod = {{-0.2, 0.3, 0.0}, {0.25, 0.0, 0.0}, {-0.2, -0.3, 0.0}};
+const std::vector<Eigen::Vector3d> kTripod = {
+    {-0.2, 0.3, 0.0}, {0.25, 0.0, 0.0}, {-0.2, -0.3, 0.0}};
 const Eigen::Vector3d kWeight(0.0, 0.0, 65.7);
 
 }  // namespace
@@ -118,13 +124,15 @@ TEST_CASE("cone back end: hard cases agree with Ipopt at 1e-12 and the KKT condi
           "[allocation][cone][hard]") {
   std::mt19937 rng(2718);
   SECTION("mu = 5: wide cones, the friction limit far away") {
-    const QpProblem p = trunk_problem(rng, kTripod, 5.0, kWeight + Eigen::Vector3d(3, 8, 0), {1, -2, 0.5}, 6.0);
+    const QpProblem p =
+        trunk_problem(rng, kTripod, 5.0, kWeight + Eigen::Vector3d(3, 8, 0), {1, -2, 0.5}, 6.0);
     CHECK(check_against_ipopt(p).status == SolverStatus::kOptimal);
   }
   SECTION("mu = 0.001: the trunk's horizontal force cannot be carried, the cones give way") {
     // A horizontal demand of 8 N through cones of μ = 0.001 (≤ 0.07 N in all): the trunk
     // rows (weight 1e2) give way rather than the cones (1e3).
-    const QpProblem p = trunk_problem(rng, kTripod, 0.001, kWeight + Eigen::Vector3d(0, 8, 0), {0, 0, 0}, 6.0);
+    const QpProblem p =
+        trunk_problem(rng, kTripod, 0.001, kWeight + Eigen::Vector3d(0, 8, 0), {0, 0, 0}, 6.0);
     const QpOutcome out = check_against_ipopt(p);
     CHECK(out.status == SolverStatus::kRelaxed);
     CHECK(out.message.find("trunk force y") != std::string::npos);
@@ -147,8 +155,8 @@ TEST_CASE("cone back end: hard cases agree with Ipopt at 1e-12 and the KKT condi
   SECTION("a foot at the apex of its cone: unloaded at the optimum") {
     // Two feet carry a load between them; a third, far to the side, is pulled away from
     // the ground by its torques (τ₀ wants a negative normal force): f = 0 at the optimum.
-    QpProblem p = trunk_problem(rng, {{-0.1, 0.0, 0.0}, {0.1, 0.0, 0.0}, {0.0, 0.5, 0.0}}, 0.3, kWeight,
-                                {0, 0, 0}, 60.0);
+    QpProblem p = trunk_problem(rng, {{-0.1, 0.0, 0.0}, {0.1, 0.0, 0.0}, {0.0, 0.5, 0.0}}, 0.3,
+                                kWeight, {0, 0, 0}, 60.0);
     // τ of leg 3 = τ₀ − G₃ x₃: pull x₃ towards (2, −1, −5) N.
     const Eigen::Matrix3d G3 = Eigen::Matrix3d::Identity() * 0.1;
     p.H.block<3, 3>(6, 6) = 2.0 * G3.transpose() * G3;
@@ -176,9 +184,10 @@ TEST_CASE("cone back end: hard cases agree with Ipopt at 1e-12 and the KKT condi
   }
   SECTION("all feet friction-limited at once") {
     // A large horizontal demand that every foot must help carry, μ = 0.3.
-    const std::vector<Eigen::Vector3d> six = {{-0.2, 0.3, 0}, {0.2, 0.3, 0}, {-0.25, 0, 0},
+    const std::vector<Eigen::Vector3d> six = {{-0.2, 0.3, 0}, {0.2, 0.3, 0},   {-0.25, 0, 0},
                                               {0.25, 0, 0},   {-0.2, -0.3, 0}, {0.2, -0.3, 0}};
-    const QpProblem p = trunk_problem(rng, six, 0.3, kWeight + Eigen::Vector3d(12.0, 15.0, 0.0), {0, 0, 0}, 60.0);
+    const QpProblem p =
+        trunk_problem(rng, six, 0.3, kWeight + Eigen::Vector3d(12.0, 15.0, 0.0), {0, 0, 0}, 60.0);
     const QpOutcome out = check_against_ipopt(p);
     REQUIRE(out.status == SolverStatus::kOptimal);
     int active = 0;
@@ -189,7 +198,8 @@ TEST_CASE("cone back end: hard cases agree with Ipopt at 1e-12 and the KKT condi
     CHECK(active == 6);
   }
   SECTION("an infeasible sample must relax: a cone of lower weight gives way and is named") {
-    QpProblem p = trunk_problem(rng, kTripod, 0.1, kWeight + Eigen::Vector3d(0, 15.0, 0), {0, 0, 0}, 60.0);
+    QpProblem p =
+        trunk_problem(rng, kTripod, 0.1, kWeight + Eigen::Vector3d(0, 15.0, 0), {0, 0, 0}, 60.0);
     for (SecondOrderCone& c : p.cones) c.penalty = 1.0;  // cones give way before the trunk rows
     // Here the residue of 4.1e-6 N is ours (Ipopt is within 1e-9 N of the extended-precision
     // re-solve): cone L3 holds at the kink of its penalty (multiplier ρw(1 − 1.3e-7)) through
@@ -210,7 +220,8 @@ TEST_CASE("cone back end: hard cases agree with Ipopt at 1e-12 and the KKT condi
     CHECK(out.x.allFinite());
   }
   SECTION("torque limits active together with the cone") {
-    const QpProblem loose = trunk_problem(rng, kTripod, 0.3, kWeight + Eigen::Vector3d(4, 9, 0), {0.5, 0, 0}, 60.0);
+    const QpProblem loose =
+        trunk_problem(rng, kTripod, 0.3, kWeight + Eigen::Vector3d(4, 9, 0), {0.5, 0, 0}, 60.0);
     const QpOutcome free = check_against_ipopt(loose);
     REQUIRE(free.status == SolverStatus::kOptimal);
     // Tighten the limit until it binds but stays feasible: 97 % of the largest |τ| at the
@@ -218,7 +229,9 @@ TEST_CASE("cone back end: hard cases agree with Ipopt at 1e-12 and the KKT condi
     QpProblem p = loose;
     Eigen::VectorXd tau = Eigen::VectorXd::Zero(9);
     for (int i = 6; i < p.inequalities(); ++i)
-      if (p.ineq_names[i].rfind("torque", 0) == 0) tau[(i - 6) / 4 * 3 + (i - 6) % 4] = p.C.row(i).dot(free.x) - 0.5 * (p.lower[i] + p.upper[i]);
+      if (p.ineq_names[i].rfind("torque", 0) == 0)
+        tau[(i - 6) / 4 * 3 + (i - 6) % 4] =
+            p.C.row(i).dot(free.x) - 0.5 * (p.lower[i] + p.upper[i]);
     const double limit = 0.97 * tau.cwiseAbs().maxCoeff();
     for (int i = 6; i < p.inequalities(); ++i) {
       if (p.ineq_names[i].rfind("torque", 0) != 0) continue;
@@ -229,7 +242,8 @@ TEST_CASE("cone back end: hard cases agree with Ipopt at 1e-12 and the KKT condi
     REQUIRE(out.status == SolverStatus::kOptimal);
     int torque_active = 0, cone_active = 0;
     for (int i = 6; i < p.inequalities(); ++i)
-      torque_active += p.ineq_names[i].rfind("torque", 0) == 0 && std::abs(out.lambda_ineq[i]) > 1e-9;
+      torque_active +=
+          p.ineq_names[i].rfind("torque", 0) == 0 && std::abs(out.lambda_ineq[i]) > 1e-9;
     for (int k = 0; k < out.lambda_cone.size(); ++k) cone_active += out.lambda_cone[k] > 1e-9;
     CHECK(torque_active > 0);
     CHECK(cone_active > 0);
@@ -244,7 +258,8 @@ TEST_CASE("cone back end: warm starts, problems without cones, options", "[alloc
     o.warm_start = false;
     o.qp.warm_start = false;
     auto cold = make_cone_backend(o);
-    QpProblem p = trunk_problem(rng, kTripod, 0.3, kWeight + Eigen::Vector3d(3, 8, 0), {0.5, 0, 0}, 6.0);
+    QpProblem p =
+        trunk_problem(rng, kTripod, 0.3, kWeight + Eigen::Vector3d(3, 8, 0), {0.5, 0, 0}, 6.0);
     for (int k = 0; k < 40; ++k) {
       p.lower[1] = p.upper[1] = 8.0 + 0.2 * k;  // a growing forward push
       const QpOutcome a = warm->solve(p);

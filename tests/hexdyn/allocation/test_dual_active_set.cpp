@@ -45,9 +45,9 @@ Eigen::VectorXd kkt_solution_on_active_rows(const DualActiveSetQp& s, const QpPr
     const ActiveRow r = s.active_row(i);
     const bool eq = r.row < p.equalities();
     const Eigen::RowVectorXd a = eq ? p.A.row(r.row) : p.C.row(r.row - p.equalities());
-    const double bound = eq ? p.b[r.row]
-                            : (r.side > 0 ? p.lower[r.row - p.equalities()]
-                                          : p.upper[r.row - p.equalities()]);
+    const double bound =
+        eq ? p.b[r.row]
+           : (r.side > 0 ? p.lower[r.row - p.equalities()] : p.upper[r.row - p.equalities()]);
     K.block(0, n + i, n, 1) = -a.transpose();
     K.block(n + i, 0, 1, n) = a;
     rhs[n + i] = bound;
@@ -88,8 +88,9 @@ TEST_CASE("dual active set: the small dense kernels agree with Eigen", "[allocat
   R.topLeftCorner(n, n) = L_eigen.transpose();
   std::array<double, kSmallDenseMax> out{}, rinv{};
   upper_solve(R, n, v.data(), out.data(), rinv.data());
-  CHECK((L_eigen.transpose() * Eigen::Map<Eigen::VectorXd>(out.data(), n) - v).cwiseAbs().maxCoeff() <
-        1e-12);
+  CHECK(
+      (L_eigen.transpose() * Eigen::Map<Eigen::VectorXd>(out.data(), n) - v).cwiseAbs().maxCoeff() <
+      1e-12);
   upper_transpose_solve(R, n, v.data(), out.data(), rinv.data());
   CHECK((L_eigen * Eigen::Map<Eigen::VectorXd>(out.data(), n) - v).cwiseAbs().maxCoeff() < 1e-12);
   // A Givens rotation zeroes the second entry and keeps the norm.

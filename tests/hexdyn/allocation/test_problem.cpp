@@ -129,7 +129,6 @@ TEST_CASE("allocation problem: a relaxed allocation minimises the penalised viol
   }
 }
 
-
 TEST_CASE("allocation problem: the structural key tells row layouts apart as the row names do",
           "[problem]") {
   // Every contact-phase combination of the six legs under each friction model, built twice
@@ -159,8 +158,10 @@ TEST_CASE("allocation problem: the structural key tells row layouts apart as the
         ContactSplit split;
         split.trunk_rhs = Vec6::NullaryExpr([&] { return g(rng); });
         split.tau0 = VecJ::NullaryExpr([&] { return g(rng); });
-        for (auto& m : split.JjT) m = decltype(split.JjT)::value_type::NullaryExpr([&] { return g(rng); });
-        for (auto& m : split.JbT) m = decltype(split.JbT)::value_type::NullaryExpr([&] { return g(rng); });
+        for (auto& m : split.JjT)
+          m = decltype(split.JjT)::value_type::NullaryExpr([&] { return g(rng); });
+        for (auto& m : split.JbT)
+          m = decltype(split.JbT)::value_type::NullaryExpr([&] { return g(rng); });
         std::array<double, kLegs> f_impact{};
         std::array<Mat3, kLegs> frames;
         for (int l = 0; l < kLegs; ++l) {

@@ -34,7 +34,8 @@ TEST_CASE("allocation: torque rows use each joint's own limit", "[allocation][li
     alloc.joint_torque_limit_Nm.reset();
     if (per_joint) alloc.joint_torque_limit_Nm = limits;
     QpProblem qp;
-    const AllocationLayout layout = build_allocation_problem(alloc, contact, split, phase, impact, R, qp);
+    const AllocationLayout layout =
+        build_allocation_problem(alloc, contact, split, phase, impact, R, qp);
     const double worst = layout.constant_excess_Nm;
     const std::string& violation = layout.constant_violation;
     int rows = 0;
@@ -52,7 +53,8 @@ TEST_CASE("allocation: torque rows use each joint's own limit", "[allocation][li
     double expect = 0.0;
     for (int j = 0; j < 3; ++j) {
       const int k = joint_index(1, j);
-      expect = std::max(expect, std::abs(split.tau0[k]) - (per_joint ? limits[k] : alloc.torque_limit_Nm));
+      expect = std::max(expect,
+                        std::abs(split.tau0[k]) - (per_joint ? limits[k] : alloc.torque_limit_Nm));
     }
     CHECK(worst == Approx(expect).margin(1e-15));
     // The excess is named, with its swing-leg joint, exactly when there is one.

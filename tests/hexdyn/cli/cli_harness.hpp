@@ -22,7 +22,8 @@ inline const std::string kBinary = HEXDYN_BINARY;
 inline const std::string kSourceDir = HEXDYN_SOURCE_DIR;
 inline const std::string kPaperConfig = kSourceDir + "/configs/paper.yaml";
 /// A coarse uniform grid keeps a whole run short; everything else is the paper scene.
-inline const std::vector<std::string> kCoarse = {"--set", "output.grid=uniform", "--set", "output.sample_step=0.5"};
+inline const std::vector<std::string> kCoarse = {"--set", "output.grid=uniform", "--set",
+                                                 "output.sample_step=0.5"};
 
 inline std::string quote(const std::string& s) {
   std::string q = "'";
@@ -92,10 +93,11 @@ struct Outcome {
 /// Runs `hexdyn args...` inside the scratch work directory, killed after `limit_s`
 /// seconds (then the status is 124, which no test expects).
 inline Outcome run_cli(const Scratch& s, const std::vector<std::string>& args, int limit_s = 600) {
-  std::string cmd = "cd " + quote(s.work.string()) + " && timeout -s KILL " + std::to_string(limit_s) + " " +
-                    quote(kBinary);
+  std::string cmd = "cd " + quote(s.work.string()) + " && timeout -s KILL " +
+                    std::to_string(limit_s) + " " + quote(kBinary);
   for (const auto& a : args) cmd += " " + quote(a);
-  cmd += " > " + quote((s.capture / "stdout").string()) + " 2> " + quote((s.capture / "stderr").string());
+  cmd += " > " + quote((s.capture / "stdout").string()) + " 2> " +
+         quote((s.capture / "stderr").string());
   const int raw = std::system(cmd.c_str());
   Outcome o;
   REQUIRE(raw != -1);
@@ -106,7 +108,8 @@ inline Outcome run_cli(const Scratch& s, const std::vector<std::string>& args, i
   return o;
 }
 
-inline std::vector<std::string> concat(std::vector<std::string> a, const std::vector<std::string>& b) {
+inline std::vector<std::string> concat(std::vector<std::string> a,
+                                       const std::vector<std::string>& b) {
   a.insert(a.end(), b.begin(), b.end());
   return a;
 }

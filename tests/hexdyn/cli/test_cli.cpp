@@ -36,7 +36,8 @@ struct BadCase {
 
 TEST_CASE("cli: bad input exits 2 with one line and leaves output files alone", "[cli]") {
   Scratch s;
-  const std::string known_bytes = std::string("previous result \x01\x02\x03\n") + std::string(100, 'x');
+  const std::string known_bytes =
+      std::string("previous result \x01\x02\x03\n") + std::string(100, 'x');
   write_file(s.work / "existing.h5", known_bytes);
   // A scene file with a YAML syntax error.
   std::string text = read_text_file(kPaperConfig);
@@ -80,7 +81,8 @@ TEST_CASE("cli: bad input exits 2 with one line and leaves output files alone", 
   CHECK(v.err.find("gait.duty_factor") != std::string::npos);
 
   // An output path in a directory that does not exist.
-  const Outcome nodir = run_cli(s, concat({"run", kPaperConfig, "-o", "no-such-dir/out.h5"}, kCoarse));
+  const Outcome nodir =
+      run_cli(s, concat({"run", kPaperConfig, "-o", "no-such-dir/out.h5"}, kCoarse));
   INFO("stderr: " << nodir.err);
   CHECK(nodir.status == 2);
   CHECK(nodir.err.find("no-such-dir/out.h5") != std::string::npos);

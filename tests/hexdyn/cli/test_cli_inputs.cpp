@@ -62,10 +62,12 @@ void check_refused(const Scratch& s, const std::string& what, const std::vector<
 }
 
 std::string dup_message(const std::string& path, int first, int again) {
-  return path + ": duplicate key, first at line " + std::to_string(first) + ", again at line " + std::to_string(again);
+  return path + ": duplicate key, first at line " + std::to_string(first) + ", again at line " +
+         std::to_string(again);
 }
 
-TEST_CASE("cli inputs: duplicate keys in scenes, inherited files and sweep files", "[cli][inputs]") {
+TEST_CASE("cli inputs: duplicate keys in scenes, inherited files and sweep files",
+          "[cli][inputs]") {
   Scratch s;
   const std::string paper = read_file(kPaperConfig);
   write_file(s.work / "paper.yaml", paper);
@@ -87,20 +89,23 @@ TEST_CASE("cli inputs: duplicate keys in scenes, inherited files and sweep files
 
   // The duplicate is in an inherited file.
   write_file(s.work / "child.yaml", "inherit: duty.yaml\nname: child\n");
-  check_refused(s, "inherited file", {"run", "child.yaml", "-o", "out.h5"}, {"duty.yaml: " + duty_msg});
+  check_refused(s, "inherited file", {"run", "child.yaml", "-o", "out.h5"},
+                {"duty.yaml: " + duty_msg});
 
   // Sweep files: axes: twice, a set: key twice, a key twice inside an axis; and a base
   // scene with a duplicate.
   const std::string axis = "  - key: gait.duty_factor\n    values: [1/2, 3/4]\n";
   write_file(s.work / "axes2.yaml", "base: paper.yaml\naxes:\n" + axis + "axes:\n" + axis);
-  check_refused(s, "sweep axes twice", {"sweep", "axes2.yaml", "-o", "out.h5"}, {"axes2.yaml: " + dup_message("axes", 2, 5)});
+  check_refused(s, "sweep axes twice", {"sweep", "axes2.yaml", "-o", "out.h5"},
+                {"axes2.yaml: " + dup_message("axes", 2, 5)});
   write_file(s.work / "set2.yaml",
              "base: paper.yaml\nset:\n  gait.duty_factor: 0.6\n  gait.duty_factor: 0.7\naxes:\n"
              "  - key: gait.stroke\n    values: [0.125]\n");
   check_refused(s, "sweep set key twice", {"sweep", "set2.yaml", "-o", "out.h5"},
                 {"set2.yaml: " + dup_message("set.gait.duty_factor", 3, 4)});
   write_file(s.work / "axkey2.yaml",
-             "base: paper.yaml\naxes:\n  - key: gait.duty_factor\n    key: gait.stroke\n    values: [0.5]\n");
+             "base: paper.yaml\naxes:\n  - key: gait.duty_factor\n    key: gait.stroke\n    "
+             "values: [0.5]\n");
   check_refused(s, "sweep axis key twice", {"sweep", "axkey2.yaml", "-o", "out.h5"},
                 {"axkey2.yaml: " + dup_message("axes[0].key", 3, 4)});
   write_file(s.work / "terrain_base.yaml", "base: terrain.yaml\naxes:\n" + axis);
@@ -110,7 +115,8 @@ TEST_CASE("cli inputs: duplicate keys in scenes, inherited files and sweep files
                 {"terrain.yaml: " + dup_message("terrain", terrain, line_count(paper) + 1)});
 }
 
-TEST_CASE("cli inputs: configuration paths that are not regular files, or too large", "[cli][inputs]") {
+TEST_CASE("cli inputs: configuration paths that are not regular files, or too large",
+          "[cli][inputs]") {
   Scratch s;
   fs::create_directories(s.work / "dir");
   REQUIRE(::mkfifo((s.work / "fifo.yaml").c_str(), 0644) == 0);
@@ -124,13 +130,17 @@ TEST_CASE("cli inputs: configuration paths that are not regular files, or too la
     if (std::string(cmd) == "run") tail = {"-o", "out.h5"};
     check_refused(s, "directory", concat({cmd, "dir"}, tail), {"dir: is a directory"}, limit);
     check_refused(s, "FIFO", concat({cmd, "fifo.yaml"}, tail), {"fifo.yaml: is a FIFO"}, limit);
-    check_refused(s, "/dev/zero", concat({cmd, "/dev/zero"}, tail), {"/dev/zero: is a device"}, limit);
-    check_refused(s, "2 MiB", concat({cmd, "big.yaml"}, tail), {"big.yaml: larger than 1048576 bytes"}, limit);
+    check_refused(s, "/dev/zero", concat({cmd, "/dev/zero"}, tail), {"/dev/zero: is a device"},
+                  limit);
+    check_refused(s, "2 MiB", concat({cmd, "big.yaml"}, tail),
+                  {"big.yaml: larger than 1048576 bytes"}, limit);
     check_refused(s, "inherit: dir", concat({cmd, "inherit_dir.yaml"}, tail),
                   {"inherit_dir.yaml: inherit: got dir, which is a directory"}, limit);
   }
-  check_refused(s, "sweep of a FIFO", {"sweep", "fifo.yaml", "-o", "out.h5"}, {"fifo.yaml: is a FIFO"}, limit);
-  check_refused(s, "sweep of a directory", {"sweep", "dir", "-o", "out.h5"}, {"dir: is a directory"}, limit);
+  check_refused(s, "sweep of a FIFO", {"sweep", "fifo.yaml", "-o", "out.h5"},
+                {"fifo.yaml: is a FIFO"}, limit);
+  check_refused(s, "sweep of a directory", {"sweep", "dir", "-o", "out.h5"},
+                {"dir: is a directory"}, limit);
 }
 
 TEST_CASE("cli inputs: inheritance cycles are found by canonical path", "[cli][inputs]") {
@@ -140,7 +150,8 @@ TEST_CASE("cli inputs: inheritance cycles are found by canonical path", "[cli][i
   write_file(s.work / "cfg.yaml", "inherit: ./cfg.yaml\nname: x\n");
   write_file(s.work / "a" / "cfg.yaml", "inherit: ../b/cfg.yaml\n");
   write_file(s.work / "b" / "cfg.yaml", "inherit: ../a/cfg.yaml\n");
-  check_refused(s, "self", {"run", "cfg.yaml", "-o", "out.h5"}, {"inherit: cycle cfg.yaml -> cfg.yaml"}, 20);
+  check_refused(s, "self", {"run", "cfg.yaml", "-o", "out.h5"},
+                {"inherit: cycle cfg.yaml -> cfg.yaml"}, 20);
   check_refused(s, "two files through ../", {"run", "a/cfg.yaml", "-o", "out.h5"},
                 {"inherit: cycle a/cfg.yaml -> b/cfg.yaml -> a/cfg.yaml"}, 20);
   // The same cycle entered through a path that names the file differently.
@@ -148,13 +159,15 @@ TEST_CASE("cli inputs: inheritance cycles are found by canonical path", "[cli][i
                 {"inherit: cycle a/cfg.yaml -> b/cfg.yaml -> a/cfg.yaml"}, 20);
 }
 
-TEST_CASE("cli inputs: a top level that is not a map, and deep nesting, give one line", "[cli][inputs]") {
+TEST_CASE("cli inputs: a top level that is not a map, and deep nesting, give one line",
+          "[cli][inputs]") {
   Scratch s;
   write_file(s.work / "list.yaml", "- robot: {}\n- terrain: {}\n- gait:\n    duty_factor: 0.5\n");
   check_refused(s, "list", {"run", "list.yaml", "-o", "out.h5"},
                 {"list.yaml: top level: got a list, expected a map of sections"});
   write_file(s.work / "scalar.yaml", "just words\n");
-  check_refused(s, "scalar", {"validate", "scalar.yaml"}, {"scalar.yaml: top level: got a single value"});
+  check_refused(s, "scalar", {"validate", "scalar.yaml"},
+                {"scalar.yaml: top level: got a single value"});
   // 200 nested flow lists and 100 nested block maps.
   write_file(s.work / "deep.yaml", "gait: " + std::string(200, '[') + std::string(200, ']') + "\n");
   check_refused(s, "deep lists", {"run", "deep.yaml", "-o", "out.h5"},
@@ -162,10 +175,13 @@ TEST_CASE("cli inputs: a top level that is not a map, and deep nesting, give one
   std::string maps;
   for (int i = 0; i < 100; ++i) maps += std::string(2 * i, ' ') + "k:\n";
   write_file(s.work / "deepmap.yaml", maps);
-  check_refused(s, "deep maps", {"validate", "deepmap.yaml"}, {"deepmap.yaml:65: ", "nested deeper than 64 levels"});
+  check_refused(s, "deep maps", {"validate", "deepmap.yaml"},
+                {"deepmap.yaml:65: ", "nested deeper than 64 levels"});
   // The same cap inside a --set value.
-  check_refused(s, "deep --set", {"validate", kPaperConfig, "--set", "gait=" + std::string(100, '[') + std::string(100, ']')},
-                {"--set gait=", "nested deeper than 64 levels"});
+  check_refused(
+      s, "deep --set",
+      {"validate", kPaperConfig, "--set", "gait=" + std::string(100, '[') + std::string(100, ']')},
+      {"--set gait=", "nested deeper than 64 levels"});
 }
 
 TEST_CASE("cli inputs: per-command --help", "[cli][inputs]") {
@@ -185,7 +201,8 @@ TEST_CASE("cli inputs: per-command --help", "[cli][inputs]") {
     }
   }
   // A flag's value that reads "--help" is a value, not a request for help.
-  check_refused(s, "--set --help", {"validate", kPaperConfig, "--set", "--help"}, {"--set --help: expected key.path=value"});
+  check_refused(s, "--set --help", {"validate", kPaperConfig, "--set", "--help"},
+                {"--set --help: expected key.path=value"});
   CHECK(s.listing().empty());
 }
 
@@ -204,16 +221,20 @@ TEST_CASE("cli inputs: validate checks sweep files without running them", "[cli]
   CHECK(ok.out.find("8 scenarios") != std::string::npos);
   CHECK(s.snapshot() == before);
   // Scenarios out of range are counted, as the sweep records them as rows.
-  write_file(s.work / "sweeps" / "partly.yaml",
-             "base: stairs_base.yaml\naxes:\n  - key: gait.duty_factor\n    values: [1/2, 3/4, 1.2]\n");
+  write_file(
+      s.work / "sweeps" / "partly.yaml",
+      "base: stairs_base.yaml\naxes:\n  - key: gait.duty_factor\n    values: [1/2, 3/4, 1.2]\n");
   const Outcome partly = run_cli(s, {"validate", "sweeps/partly.yaml"});
   CHECK(partly.status == 0);
   CHECK(partly.out.find("1 of 3 scenarios have a value out of range") != std::string::npos);
   CHECK(partly.out.find("gait.duty_factor: got 1.2") != std::string::npos);
   // Errors of the sweep file itself.
-  write_file(s.work / "sweeps" / "bad.yaml", "base: stairs_base.yaml\naxes:\n  - key: gait.duty\n    values: [0.5]\n");
-  check_refused(s, "unknown axis key", {"validate", "sweeps/bad.yaml"}, {"sweeps/bad.yaml: axes[0].key: got gait.duty"});
-  check_refused(s, "--set with a sweep file", {"validate", "sweeps/smoke.yaml", "--set", "gait.stroke=0.1"},
+  write_file(s.work / "sweeps" / "bad.yaml",
+             "base: stairs_base.yaml\naxes:\n  - key: gait.duty\n    values: [0.5]\n");
+  check_refused(s, "unknown axis key", {"validate", "sweeps/bad.yaml"},
+                {"sweeps/bad.yaml: axes[0].key: got gait.duty"});
+  check_refused(s, "--set with a sweep file",
+                {"validate", "sweeps/smoke.yaml", "--set", "gait.stroke=0.1"},
                 {"--set applies to scene files"});
 }
 

@@ -46,7 +46,9 @@ TEST_CASE("cli outputs: special files are never replaced", "[cli][outputs]") {
   REQUIRE(::mkfifo((s.work / "fifo.h5").c_str(), 0644) == 0);
   write_file(s.work / "target.h5", "old bytes");
   fs::create_symlink("target.h5", s.work / "link.h5");
-  const auto run = [&](const std::string& out) { return concat({"run", "cfg.yaml", "-o", out}, kCoarse); };
+  const auto run = [&](const std::string& out) {
+    return concat({"run", "cfg.yaml", "-o", out}, kCoarse);
+  };
   check_refused(s, "directory", run("dir"), {"'dir'", "is a directory"});
   check_refused(s, "FIFO", run("fifo.h5"), {"'fifo.h5'", "is a FIFO"});
   check_refused(s, "symbolic link", run("link.h5"), {"'link.h5'", "is a symbolic link"});
@@ -79,10 +81,13 @@ TEST_CASE("cli outputs: no input of the run is ever the output", "[cli][outputs]
   check_refused(s, "the config itself", run("cfg.yaml", "cfg.yaml"), {"'cfg.yaml'", same});
   check_refused(s, "the config by another path", run("cfg.yaml", "sub/../cfg.yaml"), {same});
   check_refused(s, "an inherited file", run("child.yaml", "cfg.yaml"), {"'cfg.yaml'", same});
-  check_refused(s, "a hard link to the config", run("cfg.yaml", "hard.yaml"), {"'hard.yaml'", same});
+  check_refused(s, "a hard link to the config", run("cfg.yaml", "hard.yaml"),
+                {"'hard.yaml'", same});
   check_refused(s, "the sweep file", {"sweep", "sub/sweep.yaml", "-o", "sub/sweep.yaml"}, {same});
-  check_refused(s, "the sweep's base scene", {"sweep", "sub/sweep.yaml", "-o", "child.yaml"}, {same});
-  check_refused(s, "the base's inherited file", {"sweep", "sub/sweep.yaml", "-o", "hard.yaml"}, {same});
+  check_refused(s, "the sweep's base scene", {"sweep", "sub/sweep.yaml", "-o", "child.yaml"},
+                {same});
+  check_refused(s, "the base's inherited file", {"sweep", "sub/sweep.yaml", "-o", "hard.yaml"},
+                {same});
   // A regular file that is no input is replaced, as before.
   write_file(s.work / "old.h5", "old bytes");
   const Outcome o = run_cli(s, run("child.yaml", "old.h5"));
@@ -95,16 +100,21 @@ TEST_CASE("cli outputs: unwritable destinations are found before computing", "[c
   Scratch s;
   write_file(s.work / "cfg.yaml", read_file(kPaperConfig));
   // A scene that takes long to compute: a refusal within seconds shows nothing was computed.
-  const auto run = [&](const std::string& out) { return std::vector<std::string>{"run", "cfg.yaml", "-o", out}; };
+  const auto run = [&](const std::string& out) {
+    return std::vector<std::string>{"run", "cfg.yaml", "-o", out};
+  };
   check_refused(s, "/proc", run("/proc/x.h5"), {"'/proc/x.h5'", "directory '/proc'"});
-  check_refused(s, "missing folder", run("no/such/x.h5"), {"'no/such/x.h5'", "directory 'no/such' does not exist"});
-  check_refused(s, "300-character name", run(std::string(300, 'a') + ".h5"), {"File name too long"});
+  check_refused(s, "missing folder", run("no/such/x.h5"),
+                {"'no/such/x.h5'", "directory 'no/such' does not exist"});
+  check_refused(s, "300-character name", run(std::string(300, 'a') + ".h5"),
+                {"File name too long"});
   check_refused(s, "path through a file", run("cfg.yaml/x.h5"), {"not a directory"});
   if (fs::exists("/sys/kernel"))
     check_refused(s, "/sys", run("/sys/kernel/x.h5"), {"'/sys/kernel/x.h5'", "/sys/kernel"});
 }
 
-TEST_CASE("cli outputs: physically impossible timings are refused with the bound", "[cli][outputs][plausibility]") {
+TEST_CASE("cli outputs: physically impossible timings are refused with the bound",
+          "[cli][outputs][plausibility]") {
   Scratch s;
   write_file(s.work / "cfg.yaml", read_file(kPaperConfig));
   const auto run = [&](const std::string& set) {
@@ -112,12 +122,14 @@ TEST_CASE("cli outputs: physically impossible timings are refused with the bound
   };
   // The swing of the paper scene: (1 - β) 2.6 s; the bounds follow from 100 g, the 2 mm
   // clearance and the stride s0/β (src/hexdyn/io/plausibility.hpp).
-  check_refused(s, "duty factor", run("gait.duty_factor=0.99999"),
-                {"gait.duty_factor: got 0.99999", "swing of 2.6e-05 s", "100 g", "a duty factor of at most"});
+  check_refused(
+      s, "duty factor", run("gait.duty_factor=0.99999"),
+      {"gait.duty_factor: got 0.99999", "swing of 2.6e-05 s", "100 g", "a duty factor of at most"});
   check_refused(s, "cycle durations", run("motion.cycle_durations=[2e-9,1e-9,2e-9]"),
                 {"motion.cycle_durations: got a cruise cycle of 1e-09 s", "100 g"});
-  check_refused(s, "lift fraction", run("gait.lift_fraction=1e-9"),
-                {"gait.lift_fraction: got 1e-09", "clearance 0.002 m", "a lift fraction of at least"});
+  check_refused(
+      s, "lift fraction", run("gait.lift_fraction=1e-9"),
+      {"gait.lift_fraction: got 1e-09", "clearance 0.002 m", "a lift fraction of at least"});
   check_refused(s, "lower fraction", run("gait.lower_fraction=1e-9"),
                 {"gait.lower_fraction: got 1e-09", "a lower fraction of at least"});
   check_refused(s, "speed ramp", run("motion.cycle_durations=[2.60001,2.6,2.60001]"),
@@ -126,17 +138,21 @@ TEST_CASE("cli outputs: physically impossible timings are refused with the bound
                 {"allocation.tolerance: got 0.01", "(0, 1e-05]", "violation threshold"});
 }
 
-TEST_CASE("cli outputs: a run of more than 200000 samples needs --allow-large", "[cli][outputs][size]") {
+TEST_CASE("cli outputs: a run of more than 200000 samples needs --allow-large",
+          "[cli][outputs][size]") {
   Scratch s;
   write_file(s.work / "cfg.yaml", read_file(kPaperConfig));
-  check_refused(s, "impact samples", {"run", "cfg.yaml", "-o", "out.h5", "--set", "output.impact_samples=100000"},
+  check_refused(s, "impact samples",
+                {"run", "cfg.yaml", "-o", "out.h5", "--set", "output.impact_samples=100000"},
                 {"1109671 output samples", "1.6 GB", "--allow-large"});
-  check_refused(s, "--allow-large elsewhere", {"validate", "cfg.yaml", "--allow-large"}, {"--allow-large belongs to"});
+  check_refused(s, "--allow-large elsewhere", {"validate", "cfg.yaml", "--allow-large"},
+                {"--allow-large belongs to"});
   // Under the limit the flag changes nothing (the paper run, 560 samples).
   const Outcome o = run_cli(s, {"run", "cfg.yaml", "-o", "out.h5", "--allow-large"});
   CHECK(o.status == 0);
   REQUIRE(fs::exists(s.work / "out.h5"));
-  // The estimate behind the guard, against the written file: its samples are on stderr ("wrote out.h5 (N samples, ...)").
+  // The estimate behind the guard, against the written file: its samples are on stderr ("wrote
+  // out.h5 (N samples, ...)").
   const auto at = o.err.find("wrote out.h5 (");
   REQUIRE(at != std::string::npos);
   const std::size_t samples = std::stoul(o.err.substr(at + 14));

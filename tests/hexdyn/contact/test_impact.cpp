@@ -25,7 +25,6 @@ ContactParams paper_contact() {
   return c;
 }
 
-
 double rel_err(double got, double want) { return std::abs(got - want) / std::abs(want); }
 
 /// Maximum penetration of the undamped impact: K D^(e+1)/(e+1) = m v²/2.
@@ -261,7 +260,8 @@ TEST_CASE("simulate_touchdown: hard and extreme parameters stay finite and termi
       for (double m : {0.01, 10.0}) {
         for (double C : {0.0, 10.0}) {
           CAPTURE(e, m, C);
-          const ImpactTransient tr = simulate_touchdown(test::contact_params(1e9, e, C, 1e-9), m, 1.0);
+          const ImpactTransient tr =
+              simulate_touchdown(test::contact_params(1e9, e, C, 1e-9), m, 1.0);
           REQUIRE(tr.occurred);
           CHECK_FALSE(tr.truncated);
           CHECK(all_finite(tr));
@@ -280,7 +280,8 @@ TEST_CASE("simulate_touchdown: hard and extreme parameters stay finite and termi
             for (double m : {0.01, 10.0})
               for (double C : {0.0, 10.0, 1e3}) {
                 CAPTURE(K, e, p, v, m, C);
-                const ImpactTransient tr = simulate_touchdown(test::contact_params(K, e, C, p), m, v);
+                const ImpactTransient tr =
+                    simulate_touchdown(test::contact_params(K, e, C, p), m, v);
                 CHECK(all_finite(tr));
                 CHECK(tr.steps <= ImpactOptions{}.max_steps);
                 CHECK(tr.duration_s <= ImpactOptions{}.max_duration_s * (1.0 + 1e-12));
@@ -306,10 +307,14 @@ TEST_CASE("simulate_touchdown: hard and extreme parameters stay finite and termi
 }
 
 TEST_CASE("simulate_touchdown: invalid input is rejected at the boundary", "[contact]") {
-  CHECK_THROWS_AS(simulate_touchdown(test::contact_params(0.0, 2.2, 10, 1e-5), 0.3, 0.05), ConfigError);
-  CHECK_THROWS_AS(simulate_touchdown(test::contact_params(1e5, 0.5, 10, 1e-5), 0.3, 0.05), ConfigError);
-  CHECK_THROWS_AS(simulate_touchdown(test::contact_params(1e5, 2.2, -1, 1e-5), 0.3, 0.05), ConfigError);
-  CHECK_THROWS_AS(simulate_touchdown(test::contact_params(1e5, 2.2, 10, 0.0), 0.3, 0.05), ConfigError);
+  CHECK_THROWS_AS(simulate_touchdown(test::contact_params(0.0, 2.2, 10, 1e-5), 0.3, 0.05),
+                  ConfigError);
+  CHECK_THROWS_AS(simulate_touchdown(test::contact_params(1e5, 0.5, 10, 1e-5), 0.3, 0.05),
+                  ConfigError);
+  CHECK_THROWS_AS(simulate_touchdown(test::contact_params(1e5, 2.2, -1, 1e-5), 0.3, 0.05),
+                  ConfigError);
+  CHECK_THROWS_AS(simulate_touchdown(test::contact_params(1e5, 2.2, 10, 0.0), 0.3, 0.05),
+                  ConfigError);
   CHECK_THROWS_AS(simulate_touchdown(paper_contact(), 0.0, 0.05), SolverError);
   CHECK_THROWS_AS(simulate_touchdown(paper_contact(), std::nan(""), 0.05), SolverError);
   CHECK_THROWS_AS(simulate_touchdown(paper_contact(), 0.3, std::numeric_limits<double>::infinity()),

@@ -77,9 +77,8 @@ Mat3 random_rotation(std::mt19937& rng) {
 
 }  // namespace
 
-TEST_CASE(
-    "touchdowns: each paper touchdown gives one impact above the quasi-static weight share",
-    "[touchdowns]") {
+TEST_CASE("touchdowns: each paper touchdown gives one impact above the quasi-static weight share",
+          "[touchdowns]") {
   const Scene scene = load_scene(kPaper);
   const RobotModel model = build_robot_model(scene.robot);
   const MotionPlan plan = plan_motion(scene, model);
@@ -117,7 +116,6 @@ TEST_CASE(
   }
 }
 
-
 TEST_CASE("touchdowns: foot effective mass equals the minimum-energy normal impulse",
           "[touchdowns]") {
   // The paper's touchdowns, in the state at touchdown.
@@ -130,7 +128,8 @@ TEST_CASE("touchdowns: foot effective mass equals the minimum-energy normal impu
   RobotKinematicState s;
   for (const Touchdown& td : tds) {
     robot_state_at(model, plan, td.t_s, s);
-    const double expected = effective_mass_by_energy(model, data, s.trunk, s.q, td.leg, td.normal_W);
+    const double expected =
+        effective_mass_by_energy(model, data, s.trunk, s.q, td.leg, td.normal_W);
     INFO("leg L" << td.leg + 1 << " at t = " << td.t_s << " s: " << td.effective_mass_kg << " vs "
                  << expected);
     CHECK(std::abs(td.effective_mass_kg - expected) <= 1e-10 * expected);
@@ -162,7 +161,6 @@ TEST_CASE("touchdowns: foot effective mass equals the minimum-energy normal impu
   }
 }
 
-
 TEST_CASE("touchdowns: contact frames are orthonormal, right-handed, with n third",
           "[touchdowns]") {
   std::vector<Vec3> normals = {Vec3::UnitZ(),   -Vec3::UnitZ(),         Vec3::UnitX(),
@@ -187,6 +185,5 @@ TEST_CASE("touchdowns: contact frames are orthonormal, right-handed, with n thir
   // On a tread the frame is the world frame.
   CHECK((contact_frame(Vec3::UnitZ()) - Mat3::Identity()).cwiseAbs().maxCoeff() == 0.0);
 }
-
 
 }  // namespace hexdyn

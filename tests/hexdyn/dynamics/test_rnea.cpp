@@ -9,9 +9,9 @@
 #include <random>
 #include <vector>
 
+#include "hexdyn/core/spatial.hpp"
 #include "hexdyn/dynamics/rnea.hpp"
 #include "hexdyn/sample_models.hpp"
-#include "hexdyn/core/spatial.hpp"
 
 namespace hexdyn {
 namespace {

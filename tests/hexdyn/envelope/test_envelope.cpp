@@ -45,7 +45,8 @@ struct TempSpec {
   ~TempSpec() { fs::remove_all(dir); }
 };
 
-Scene stairs(double riser, double tread, double beta, double speed, std::vector<Override> extra = {}) {
+Scene stairs(double riser, double tread, double beta, double speed,
+             std::vector<Override> extra = {}) {
   extra.push_back({"terrain.riser_height", exact(riser)});
   extra.push_back({"terrain.tread_depth", exact(tread)});
   extra.push_back({"gait.duty_factor", exact(beta)});
@@ -66,10 +67,12 @@ int support_relaxed(const RunResult& run, std::string* first) {
   return n;
 }
 
-TEST_CASE("envelope: kinematic boundary at the paper tread: below it runs, above it is out of reach",
-          "[envelope]") {
-  TempSpec t("riser: {from: 0.06, to: 0.20, step: 0.02, tolerance: 0.001}\n"
-             "tread_depth: [0.25]\nduty_factor: [1/2]\npeak_speed: [0.1]\ncriteria: [kinematic]\n");
+TEST_CASE(
+    "envelope: kinematic boundary at the paper tread: below it runs, above it is out of reach",
+    "[envelope]") {
+  TempSpec t(
+      "riser: {from: 0.06, to: 0.20, step: 0.02, tolerance: 0.001}\n"
+      "tread_depth: [0.25]\nduty_factor: [1/2]\npeak_speed: [0.1]\ncriteria: [kinematic]\n");
   const EnvelopeSpec spec = load_envelope_spec(t.path);
   const EnvelopeResult r = compute_envelope(spec, nullptr);
   REQUIRE(r.boundary.size() == 1);
@@ -96,11 +99,13 @@ TEST_CASE("envelope: kinematic boundary at the paper tread: below it runs, above
   }
 }
 
-TEST_CASE("envelope: torque boundary: below it no relaxed support sample, above it the named torque",
-          "[envelope]") {
+TEST_CASE(
+    "envelope: torque boundary: below it no relaxed support sample, above it the named torque",
+    "[envelope]") {
   // β = 3/4 at 0.2 m/s: near full extension the swing legs need more than 6 N m.
-  TempSpec t("riser: {from: 0.15, to: 0.17, step: 0.01, tolerance: 0.001}\n"
-             "tread_depth: [0.25]\nduty_factor: [3/4]\npeak_speed: [0.2]\ncriteria: [torque]\n");
+  TempSpec t(
+      "riser: {from: 0.15, to: 0.17, step: 0.01, tolerance: 0.001}\n"
+      "tread_depth: [0.25]\nduty_factor: [3/4]\npeak_speed: [0.2]\ncriteria: [torque]\n");
   const EnvelopeSpec spec = load_envelope_spec(t.path);
   const EnvelopeResult r = compute_envelope(spec, nullptr);
   const EnvelopeBoundary& b = r.boundary[0];
@@ -117,8 +122,9 @@ TEST_CASE("envelope: torque boundary: below it no relaxed support sample, above 
 }
 
 TEST_CASE("envelope: the file holds the declared layout and the boundaries", "[envelope]") {
-  TempSpec t("riser: {from: 0.0, to: 0.04, step: 0.02, tolerance: 0.01}\n"
-             "duty_factor: [1/2, 3/4]\npeak_speed: [0.1]\ncriteria: [kinematic, friction]\n");
+  TempSpec t(
+      "riser: {from: 0.0, to: 0.04, step: 0.02, tolerance: 0.01}\n"
+      "duty_factor: [1/2, 3/4]\npeak_speed: [0.1]\ncriteria: [kinematic, friction]\n");
   const EnvelopeSpec spec = load_envelope_spec(t.path);
   CHECK(spec.tread_depth_m == std::vector<double>{0.25});  // the base scene's
   const EnvelopeResult r = compute_envelope(spec, nullptr);
@@ -144,7 +150,8 @@ TEST_CASE("envelope: a bad envelope file is refused with the key named", "[envel
   } catch (const ConfigError& e) {
     CHECK(std::string(e.what()).find("riser.to: got 0.05") != std::string::npos);
   }
-  TempSpec u("riser: {from: 0.0, to: 0.1}\nduty_factor: [1/2]\npeak_speed: [0.1]\ncriteria: [grip]\n");
+  TempSpec u(
+      "riser: {from: 0.0, to: 0.1}\nduty_factor: [1/2]\npeak_speed: [0.1]\ncriteria: [grip]\n");
   CHECK_THROWS_AS(load_envelope_spec(u.path), ConfigError);
 }
 

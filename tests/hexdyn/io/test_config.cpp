@@ -1,6 +1,7 @@
 // Configuration loading (config.hpp): the paper file gives the paper's numbers, every
 // kind of bad input is refused with a one-line ConfigError naming the key, and the
 // resolved YAML loads back to the same scene with the defaults spelt out.
+#include <unistd.h>
 #include <yaml-cpp/yaml.h>
 
 #include <catch2/catch.hpp>
@@ -10,11 +11,10 @@
 #include <regex>
 #include <sstream>
 #include <string>
-#include <unistd.h>
 #include <vector>
 
-#include "hexdyn/io/config.hpp"
 #include "hexdyn/core/errors.hpp"
+#include "hexdyn/io/config.hpp"
 #include "hexdyn/model/robot_model.hpp"
 #include "hexdyn/sample_models.hpp"
 
@@ -46,7 +46,8 @@ std::string without_lines(const std::string& text, const std::string& prefix) {
 }
 
 /// The text with the first line starting with `prefix` replaced; returns its 1-based number.
-std::string replace_line(const std::string& text, const std::string& prefix, const std::string& with, int* line_no) {
+std::string replace_line(const std::string& text, const std::string& prefix,
+                         const std::string& with, int* line_no) {
   std::istringstream in(text);
   std::string line, out;
   int n = 0;
@@ -197,11 +198,13 @@ TEST_CASE("config: out-of-range values are refused", "[config]") {
   check_override_refused("robot.coxa.limits", "[1.0, -1.0]");
   check_override_refused("robot.hips.y", "[0.0, 0.2, -0.2]");
   // Principal moments of a physical body obey the triangle inequality.
-  const std::string msg = config_error(paper_text(), {{"robot.trunk.inertia", "[1e-3, 1e-3, 5e-3]"}});
+  const std::string msg =
+      config_error(paper_text(), {{"robot.trunk.inertia", "[1e-3, 1e-3, 5e-3]"}});
   check_names(msg, "robot.trunk.inertia");
   check_override_refused("robot.tibia.inertia", "[1e-5, 1e-4, 1e-5]");
   // The boundary case of the triangle inequality (a flat plate) is allowed.
-  CHECK_NOTHROW(load_scene_from_string(paper_text(), kName, {{"robot.trunk.inertia", "[0.25, 0.5, 0.75]"}}));
+  CHECK_NOTHROW(
+      load_scene_from_string(paper_text(), kName, {{"robot.trunk.inertia", "[0.25, 0.5, 0.75]"}}));
   CHECK_NOTHROW(load_scene_from_string(paper_text(), kName, {{"gait.duty_factor", "0.5"}}));
 }
 
@@ -224,7 +227,8 @@ TEST_CASE("config: both motion forms at once are refused", "[config]") {
   // Either form alone is fine.
   const std::string by_speed = without_lines(paper_text(), "  cycle_durations:");
   const Scene s = load_scene_from_string(
-      by_speed, kName, {{"motion.cycles", "4"}, {"motion.peak_speed", "0.1"}, {"motion.ramp_duration", "0.8"}});
+      by_speed, kName,
+      {{"motion.cycles", "4"}, {"motion.peak_speed", "0.1"}, {"motion.ramp_duration", "0.8"}});
   CHECK(s.motion.cycles == 4);
   CHECK(s.motion.peak_speed_mps == 0.1);
   CHECK(s.motion.cycle_durations_s.empty());
@@ -266,9 +270,7 @@ TEST_CASE("config: YAML syntax errors give file, line and column", "[config]") {
       std::filesystem::temp_directory_path() / ("hexdyn_config_test_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   const std::string path = (dir / "broken.yaml").string();
-  {
-    std::ofstream(path) << bad;
-  }
+  { std::ofstream(path) << bad; }
   try {
     load_scene(path);
     FAIL("no ConfigError");
@@ -355,7 +357,9 @@ TEST_CASE("config: the resolved YAML loads back to the same scene", "[config]") 
   const std::vector<std::vector<Override>> variants = {
       {},
       {{"gait.duty_factor", "0.6666666666666666"}, {"robot.payload.com", "[0.01, -0.02, 0.03]"}},
-      {{"allocation.friction", "cone"}, {"output.grid", "uniform"}, {"robot.hips.yaw", "[0.1, 0.0, -0.1]"}},
+      {{"allocation.friction", "cone"},
+       {"output.grid", "uniform"},
+       {"robot.hips.yaw", "[0.1, 0.0, -0.1]"}},
   };
   for (const auto& ov : variants) {
     const Scene a = load_scene_from_string(paper_text(), kName, ov);
@@ -365,9 +369,9 @@ TEST_CASE("config: the resolved YAML loads back to the same scene", "[config]") 
     CHECK(b.resolved_yaml == a.resolved_yaml);
   }
   // The speed form of the motion and a flat terrain.
-  const Scene a = load_scene_from_string(without_lines(paper_text(), "  cycle_durations:"), kName,
-                                         {{"motion.cycles", "4"}, {"motion.peak_speed", "0.09"},
-                                          {"motion.ramp_duration", "0.7"}});
+  const Scene a = load_scene_from_string(
+      without_lines(paper_text(), "  cycle_durations:"), kName,
+      {{"motion.cycles", "4"}, {"motion.peak_speed", "0.09"}, {"motion.ramp_duration", "0.7"}});
   const Scene b = load_scene_from_string(a.resolved_yaml, "resolved.yaml");
   check_same_scene(a, b);
   CHECK(b.resolved_yaml == a.resolved_yaml);
@@ -375,10 +379,11 @@ TEST_CASE("config: the resolved YAML loads back to the same scene", "[config]") 
 
 TEST_CASE("config: the resolved YAML spells out defaults of absent optional keys", "[config]") {
   std::string text = paper_text();
-  for (const char* prefix : {"name:", "  foothold_margin:", "  lift_fraction:", "  lower_fraction:",
-                             "  friction:", "  grid:", "  impact_samples:", "  event_step:", "  ik_min_margin:",
-                             "    com: [0.0, 0.0, 0.0]", "    com: [0.060", "    yaw:", "    z:",
-                             "  ground_height:", "  min_normal_force:", "  tolerance:", "  slack_penalty:"})
+  for (const char* prefix :
+       {"name:", "  foothold_margin:", "  lift_fraction:", "  lower_fraction:", "  friction:",
+        "  grid:", "  impact_samples:", "  event_step:", "  ik_min_margin:",
+        "    com: [0.0, 0.0, 0.0]", "    com: [0.060", "    yaw:", "    z:", "  ground_height:",
+        "  min_normal_force:", "  tolerance:", "  slack_penalty:"})
     text = without_lines(text, prefix);
   const Scene s = load_scene_from_string(text, kName);
   const YAML::Node r = YAML::Load(s.resolved_yaml);
@@ -404,7 +409,8 @@ TEST_CASE("config: the resolved YAML spells out defaults of absent optional keys
     CHECK(r["robot"][body]["com"].as<std::vector<double>>() == std::vector<double>{0.0, 0.0, 0.0});
   CHECK(r["robot"]["hips"]["yaw"].as<std::vector<double>>() == std::vector<double>{0.0, 0.0, 0.0});
   // A link COM defaults to mid-length.
-  CHECK(r["robot"]["femur"]["com"].as<std::vector<double>>() == std::vector<double>{0.5 * 0.120, 0.0, 0.0});
+  CHECK(r["robot"]["femur"]["com"].as<std::vector<double>>() ==
+        std::vector<double>{0.5 * 0.120, 0.0, 0.0});
   // The paper file states exactly these defaults, so the scenes agree.
   check_same_scene(s, load_scene(kPaperConfig));
   // And the resolved text loads back to the same scene.

@@ -20,8 +20,8 @@
 #include "hexdyn/io/h5io.hpp"
 #include "hexdyn/io/output.hpp"
 #include "hexdyn/io/schema.hpp"
-#include "hexdyn/sample_models.hpp"
 #include "hexdyn/model/urdf.hpp"
+#include "hexdyn/sample_models.hpp"
 #include "hexdyn/version.hpp"
 
 namespace {

@@ -44,7 +44,8 @@ std::string text_of(const std::string& p) {
   return std::string(std::istreambuf_iterator<char>(in), {});
 }
 
-TEST_CASE("output target: special files and inputs are refused, by type and identity", "[output][target]") {
+TEST_CASE("output target: special files and inputs are refused, by type and identity",
+          "[output][target]") {
   Dir d;
   std::ofstream(d.file("cfg.yaml")) << "name: x\n";
   std::ofstream(d.file("other.yaml")) << "name: y\n";
@@ -55,14 +56,20 @@ TEST_CASE("output target: special files and inputs are refused, by type and iden
   const std::set<std::string> before = d.entries();
   const std::vector<std::string> inputs = {d.file("cfg.yaml")};
 
-  CHECK_THROWS_WITH(check_output_target(d.file("cfg.yaml"), inputs), Catch::Contains("same device and inode"));
-  CHECK_THROWS_WITH(check_output_target(d.file("hard.h5"), inputs), Catch::Contains("same device and inode"));
-  CHECK_THROWS_WITH(check_output_target(d.file("sub/../cfg.yaml"), inputs), Catch::Contains("same device and inode"));
-  CHECK_THROWS_WITH(check_output_target(d.file("link.h5"), inputs), Catch::Contains("is a symbolic link"));
+  CHECK_THROWS_WITH(check_output_target(d.file("cfg.yaml"), inputs),
+                    Catch::Contains("same device and inode"));
+  CHECK_THROWS_WITH(check_output_target(d.file("hard.h5"), inputs),
+                    Catch::Contains("same device and inode"));
+  CHECK_THROWS_WITH(check_output_target(d.file("sub/../cfg.yaml"), inputs),
+                    Catch::Contains("same device and inode"));
+  CHECK_THROWS_WITH(check_output_target(d.file("link.h5"), inputs),
+                    Catch::Contains("is a symbolic link"));
   CHECK_THROWS_WITH(check_output_target(d.file("fifo.h5"), inputs), Catch::Contains("is a FIFO"));
   CHECK_THROWS_WITH(check_output_target(d.file("sub"), inputs), Catch::Contains("is a directory"));
-  CHECK_THROWS_WITH(check_output_target("/dev/null", inputs), Catch::Contains("is a character device"));
-  CHECK_THROWS_WITH(check_output_target(d.file(std::string(300, 'x')), inputs), Catch::Contains("File name too long"));
+  CHECK_THROWS_WITH(check_output_target("/dev/null", inputs),
+                    Catch::Contains("is a character device"));
+  CHECK_THROWS_WITH(check_output_target(d.file(std::string(300, 'x')), inputs),
+                    Catch::Contains("File name too long"));
   CHECK_THROWS_AS(check_output_target("", inputs), IoError);
   // Allowed: a new name, and a regular file that is no input (other.yaml is not listed).
   CHECK_NOTHROW(check_output_target(d.file("new.h5"), inputs));
@@ -71,7 +78,8 @@ TEST_CASE("output target: special files and inputs are refused, by type and iden
   CHECK(text_of(d.file("cfg.yaml")) == "name: x\n");
 }
 
-TEST_CASE("output target: publish_atomically never renames over what appeared meanwhile", "[output][target]") {
+TEST_CASE("output target: publish_atomically never renames over what appeared meanwhile",
+          "[output][target]") {
   Dir d;
   const std::string out = d.file("out.h5");
   // The output became a FIFO / a symbolic link while the file was written.

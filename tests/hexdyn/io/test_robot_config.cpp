@@ -3,13 +3,14 @@
 // it, the URDF's effort limits as per-joint torque limits unless the scene gives one, the
 // default foothold radius from the nominal stance, and broken descriptions refused in one
 // line.
+#include <unistd.h>
+
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
-#include <unistd.h>
 
 #include "hexdyn/core/errors.hpp"
 #include "hexdyn/io/config.hpp"
@@ -78,14 +79,16 @@ std::string config_error(const std::string& path, const std::vector<Override>& o
 
 }  // namespace
 
-TEST_CASE("robot.urdf is relative to the file that names it, also when inherited", "[robot_config]") {
+TEST_CASE("robot.urdf is relative to the file that names it, also when inherited",
+          "[robot_config]") {
   TempDir dir;
   fs::create_directories(dir.path / "models");
   fs::copy_file(kMark4Urdf, dir.path / "models" / "robot.urdf");
   // models/base.yaml names robot.urdf beside itself; scenes/run.yaml inherits it from elsewhere.
-  const std::string base =
-      dir.write("models/base.yaml", mark4_scene_with("robot:\n  urdf: robot.urdf\n  forward_axis: +x\n"));
-  const std::string run = dir.write("scenes/run.yaml", "inherit: ../models/base.yaml\nname: inherited\n");
+  const std::string base = dir.write(
+      "models/base.yaml", mark4_scene_with("robot:\n  urdf: robot.urdf\n  forward_axis: +x\n"));
+  const std::string run =
+      dir.write("scenes/run.yaml", "inherit: ../models/base.yaml\nname: inherited\n");
   const Scene a = load_scene(base);
   const Scene b = load_scene(run);
   REQUIRE(a.robot.urdf);
@@ -99,13 +102,15 @@ TEST_CASE("robot.urdf is relative to the file that names it, also when inherited
   REQUIRE(c.robot.urdf);
   CHECK(c.gait.foot_lateral_m == b.gait.foot_lateral_m);
   // A missing file names the key and the path.
-  const std::string bad = dir.write("scenes/bad.yaml", "inherit: ../models/base.yaml\nrobot:\n  urdf: nowhere.urdf\n");
+  const std::string bad =
+      dir.write("scenes/bad.yaml", "inherit: ../models/base.yaml\nrobot:\n  urdf: nowhere.urdf\n");
   const std::string msg = config_error(bad);
   CHECK(msg.find("robot.urdf: got ") != std::string::npos);
   CHECK(msg.find("scenes/nowhere.urdf, which does not exist") != std::string::npos);
 }
 
-TEST_CASE("a URDF robot takes its effort limits per joint unless the scene gives one limit", "[robot_config]") {
+TEST_CASE("a URDF robot takes its effort limits per joint unless the scene gives one limit",
+          "[robot_config]") {
   const Scene s = load_scene(kMark4Scene);
   REQUIRE(s.robot.urdf);
   REQUIRE(s.allocation.joint_torque_limit_Nm);
@@ -126,7 +131,8 @@ TEST_CASE("a URDF robot takes its effort limits per joint unless the scene gives
 
 TEST_CASE("a URDF robot's footholds default to its nominal stance radius", "[robot_config]") {
   TempDir dir;
-  const std::string scene = dir.write("s.yaml", mark4_scene_with("robot:\n  urdf: " + kMark4Urdf + "\n"));
+  const std::string scene =
+      dir.write("s.yaml", mark4_scene_with("robot:\n  urdf: " + kMark4Urdf + "\n"));
   const Scene s = load_scene(scene);
   const RobotModel m = build_robot_model(s.robot);
   // Default pose "femur level, tibia plumb": the foot below the tibia joint, which is level
@@ -149,7 +155,8 @@ TEST_CASE("a URDF robot's footholds default to its nominal stance radius", "[rob
   CHECK(u.gait.foot_lateral_m == Approx((foot0 - coxa).head<2>().norm()).epsilon(1e-12));
 }
 
-TEST_CASE("a URDF robot's scene refuses the YAML robot's keys and broken descriptions", "[robot_config]") {
+TEST_CASE("a URDF robot's scene refuses the YAML robot's keys and broken descriptions",
+          "[robot_config]") {
   TempDir dir;
   const std::string extra = dir.write(
       "extra.yaml", mark4_scene_with("robot:\n  urdf: " + kMark4Urdf + "\n  hips:\n    x: 0.1\n"));
@@ -158,10 +165,10 @@ TEST_CASE("a URDF robot's scene refuses the YAML robot's keys and broken descrip
   CHECK(huma.find('\n') == std::string::npos);
   CHECK(huma.find("phantomx_humarobotics.urdf: link '") != std::string::npos);
   CHECK(huma.find("triangle inequality") != std::string::npos);
-  CHECK(config_error(kMark4Scene, {{"robot.forward_axis", "+z"}}).find("robot.forward_axis: got +z, expected one of") !=
-        std::string::npos);
-  CHECK(config_error(kMark4Scene, {{"robot.foot_links", "[a, b]"}}).find("robot.foot_links: got [a, b], expected a list of 6 names") !=
-        std::string::npos);
+  CHECK(config_error(kMark4Scene, {{"robot.forward_axis", "+z"}})
+            .find("robot.forward_axis: got +z, expected one of") != std::string::npos);
+  CHECK(config_error(kMark4Scene, {{"robot.foot_links", "[a, b]"}})
+            .find("robot.foot_links: got [a, b], expected a list of 6 names") != std::string::npos);
 }
 
 }  // namespace hexdyn

@@ -37,7 +37,8 @@ std::string parse_error(const std::string& text, const std::string& source = "f.
 /// `depth` maps nested in each other in block style: k:\n  k:\n ... with a value at the end.
 std::string nested_maps(int depth) {
   std::string text;
-  for (int i = 0; i < depth; ++i) text += std::string(2 * i, ' ') + "k:" + (i + 1 == depth ? " 1\n" : "\n");
+  for (int i = 0; i < depth; ++i)
+    text += std::string(2 * i, ' ') + "k:" + (i + 1 == depth ? " 1\n" : "\n");
   return text;
 }
 
@@ -45,7 +46,8 @@ struct TempDir {
   fs::path path;
   TempDir() {
     static int counter = 0;
-    path = fs::temp_directory_path() / ("hexdyn_yaml_load_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
+    path = fs::temp_directory_path() /
+           ("hexdyn_yaml_load_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
     fs::remove_all(path);
     fs::create_directories(path);
   }
@@ -82,11 +84,15 @@ std::string tree_error(const std::string& path) {
 }
 
 TEST_CASE("yaml load: duplicate keys name the path and both lines", "[config][yaml]") {
-  CHECK(parse_error("a: 1\nb: 2\na: 3\n") == "f.yaml: a: duplicate key, first at line 1, again at line 3");
-  CHECK(parse_error("a:\n  b:\n    c: 1\n\n    c: 2\n") == "f.yaml: a.b.c: duplicate key, first at line 3, again at line 5");
-  CHECK(parse_error("l:\n  - {x: 1, y: 2}\n  - x: 1\n    x: 2\n") == "f.yaml: l[1].x: duplicate key, first at line 3, again at line 4");
+  CHECK(parse_error("a: 1\nb: 2\na: 3\n") ==
+        "f.yaml: a: duplicate key, first at line 1, again at line 3");
+  CHECK(parse_error("a:\n  b:\n    c: 1\n\n    c: 2\n") ==
+        "f.yaml: a.b.c: duplicate key, first at line 3, again at line 5");
+  CHECK(parse_error("l:\n  - {x: 1, y: 2}\n  - x: 1\n    x: 2\n") ==
+        "f.yaml: l[1].x: duplicate key, first at line 3, again at line 4");
   // Quoted and plain spellings are the same key.
-  CHECK(parse_error("a: 1\n\"a\": 2\n") == "f.yaml: a: duplicate key, first at line 1, again at line 2");
+  CHECK(parse_error("a: 1\n\"a\": 2\n") ==
+        "f.yaml: a: duplicate key, first at line 1, again at line 2");
   // Equal keys in different maps are not duplicates.
   const YAML::Node ok = parse_yaml_text("a: {k: 1}\nb: {k: 2}\n", "f.yaml");
   CHECK(ok["b"]["k"].as<int>() == 2);
@@ -95,7 +101,8 @@ TEST_CASE("yaml load: duplicate keys name the path and both lines", "[config][ya
   CHECK(parse_error("a: &x k\n*x : 2\n").find("as a key") != std::string::npos);
   CHECK(parse_error("[a, b]: 1\n").find("got a list as a key") != std::string::npos);
   // One document per file.
-  CHECK(parse_error("a: 1\n---\nb: 2\n") == "f.yaml:2: a second YAML document (after '---'), expected one document per file");
+  CHECK(parse_error("a: 1\n---\nb: 2\n") ==
+        "f.yaml:2: a second YAML document (after '---'), expected one document per file");
 }
 
 TEST_CASE("yaml load: nesting is capped at kMaxYamlDepth levels", "[config][yaml]") {
@@ -114,9 +121,11 @@ TEST_CASE("yaml load: nesting is capped at kMaxYamlDepth levels", "[config][yaml
 
 TEST_CASE("yaml load: the top level must be a map", "[config][yaml]") {
   CHECK(parse_error("- 1\n- 2\n") == "f.yaml: top level: got a list, expected a map of sections");
-  CHECK(parse_error("hello\n") == "f.yaml: top level: got a single value 'hello', expected a map of sections");
+  CHECK(parse_error("hello\n") ==
+        "f.yaml: top level: got a single value 'hello', expected a map of sections");
   CHECK(parse_error("") == "f.yaml: top level: got an empty document, expected a map of sections");
-  CHECK(parse_error("# only a comment\n") == "f.yaml: top level: got an empty document, expected a map of sections");
+  CHECK(parse_error("# only a comment\n") ==
+        "f.yaml: top level: got an empty document, expected a map of sections");
   // A long multi-line scalar is shown short and on one line.
   const std::string msg = parse_error("|\n" + std::string(50, 'x') + "\n  y\n");
   CHECK(msg.find('\n') == std::string::npos);
@@ -124,14 +133,17 @@ TEST_CASE("yaml load: the top level must be a map", "[config][yaml]") {
 
 TEST_CASE("yaml load: only regular files up to 1 MiB are read", "[config][yaml]") {
   TempDir d;
-  CHECK(read_error(d.path.string()) == d.path.string() + ": is a directory, expected a configuration file (a regular YAML file)");
+  CHECK(read_error(d.path.string()) ==
+        d.path.string() + ": is a directory, expected a configuration file (a regular YAML file)");
   CHECK(read_error("/dev/zero").rfind("/dev/zero: is a device", 0) == 0);
   CHECK(read_error((d.path / "none.yaml").string()).find("does not exist") != std::string::npos);
   // The cap, at its boundary.
   const std::string at_cap = d.write("at_cap.yaml", std::string(kMaxConfigBytes, '#'));
   CHECK(read_text_file(at_cap).size() == kMaxConfigBytes);
   const std::string over = d.write("over.yaml", std::string(kMaxConfigBytes + 1, '#'));
-  CHECK(read_error(over) == over + ": larger than 1048576 bytes (1 MiB), expected a configuration file of at most that size");
+  CHECK(read_error(over) == over +
+                                ": larger than 1048576 bytes (1 MiB), expected a configuration "
+                                "file of at most that size");
 
   // A FIFO nobody writes to: refused at once. Run in a child so that a blocking open or
   // read fails the test after 10 s instead of hanging it.
@@ -143,7 +155,11 @@ TEST_CASE("yaml load: only regular files up to 1 MiB are read", "[config][yaml]"
     try {
       read_text_file(fifo);
     } catch (const ConfigError& e) {
-      ::_exit(std::string(e.what()) == fifo + ": is a FIFO (named pipe), expected a configuration file (a regular YAML file)" ? 0 : 1);
+      ::_exit(std::string(e.what()) == fifo +
+                                           ": is a FIFO (named pipe), expected a configuration "
+                                           "file (a regular YAML file)"
+                  ? 0
+                  : 1);
     }
     ::_exit(2);
   }
@@ -162,7 +178,8 @@ TEST_CASE("yaml load: only regular files up to 1 MiB are read", "[config][yaml]"
   CHECK(WEXITSTATUS(status) == 0);
 }
 
-TEST_CASE("yaml load: inherit: cycles by canonical path, directories and duplicates", "[config][yaml]") {
+TEST_CASE("yaml load: inherit: cycles by canonical path, directories and duplicates",
+          "[config][yaml]") {
   TempDir d;
   // A file inheriting itself, spelt differently.
   const std::string self = d.write("cfg.yaml", "inherit: ./cfg.yaml\n");
@@ -195,7 +212,8 @@ TEST_CASE("yaml load: inherit: cycles by canonical path, directories and duplica
   d.write("dup.yaml", "a: 1\na: 2\n");
   const std::string child = d.write("child.yaml", "inherit: dup.yaml\n");
   const std::string dup = tree_error(child);
-  CHECK(dup.find("dup.yaml: a: duplicate key, first at line 1, again at line 2") != std::string::npos);
+  CHECK(dup.find("dup.yaml: a: duplicate key, first at line 1, again at line 2") !=
+        std::string::npos);
 }
 
 TEST_CASE("yaml load: p/q values in --set and sweeps", "[config][yaml]") {

@@ -115,7 +115,8 @@ TEST_CASE("kinematics: joint and foot rates match finite differences to O(h^2)",
   CHECK(e2.foot_v <= 1e-4 * v_peak);
 }
 
-TEST_CASE("kinematics: sampled joints put the feet where the gait plan wants them", "[kinematics]") {
+TEST_CASE("kinematics: sampled joints put the feet where the gait plan wants them",
+          "[kinematics]") {
   const Planned p = plan_scene();
   const double T = p.plan.trunk.duration_s();
   std::vector<double> times;
@@ -166,7 +167,8 @@ TEST_CASE("kinematics: /com/position equals the mass-weighted mean of the bodies
     const BaseState trunk = p.plan.trunk.at(times[i]);
     const Vec3 com_W = trunk.p_W + trunk.W_R_B * (first_moment / total);
     const Vec3 sampled = k.com_position.row(i).transpose();
-    INFO("t " << times[i] << " expected " << com_W.transpose() << " sampled " << sampled.transpose());
+    INFO("t " << times[i] << " expected " << com_W.transpose() << " sampled "
+              << sampled.transpose());
     CHECK((sampled - com_W).cwiseAbs().maxCoeff() <= 1e-12);
     moved = std::max(moved, (com_W - trunk.p_W).norm());
   }
@@ -182,8 +184,8 @@ TEST_CASE("kinematics: base orientation is the stair slope pitch", "[kinematics]
   for (int i = 0; i <= 50; ++i) times.push_back(T * i / 50.0);
   const KinematicsResult k = sample_kinematics(p.model, p.plan, times);
   for (int i = 0; i < k.samples(); ++i) {
-    const Quat q(k.base_orientation_wxyz(i, 0), k.base_orientation_wxyz(i, 1), k.base_orientation_wxyz(i, 2),
-                 k.base_orientation_wxyz(i, 3));
+    const Quat q(k.base_orientation_wxyz(i, 0), k.base_orientation_wxyz(i, 1),
+                 k.base_orientation_wxyz(i, 2), k.base_orientation_wxyz(i, 3));
     CHECK(std::abs(q.norm() - 1.0) <= 1e-14);
     CHECK((q.toRotationMatrix() - R).cwiseAbs().maxCoeff() <= 1e-14);
     // A pitch about x by α: (cos α/2, sin α/2, 0, 0), up to sign.

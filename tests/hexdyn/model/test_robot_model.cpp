@@ -97,7 +97,9 @@ TEST_CASE("leg Jacobian matches central finite differences of the leg FK", "[rob
         for (int j = 0; j < 3; ++j) {
           Vec3 e = Vec3::Zero();
           e[j] = h;
-          J_fd.col(j) = (leg_foot_position_H(model, leg, q + e) - leg_foot_position_H(model, leg, q - e)) / (2 * h);
+          J_fd.col(j) =
+              (leg_foot_position_H(model, leg, q + e) - leg_foot_position_H(model, leg, q - e)) /
+              (2 * h);
         }
         worst = std::max(worst, (J - J_fd).cwiseAbs().maxCoeff());
         INFO("leg " << leg << " q " << q.transpose() << "\nJ\n" << J << "\nJ_fd\n" << J_fd);
@@ -119,11 +121,16 @@ TEST_CASE("leg Jacobian derivative matches finite differences along q + qd t", "
         const Vec3 q = test::random_leg_angles(rng);
         const Vec3 qd(rate(rng), rate(rng), rate(rng));
         const Mat3 Jd = leg_jacobian_dot_H(model, leg, q, qd);
-        const Mat3 Jd_fd = (leg_jacobian_H(model, leg, q + h * qd) - leg_jacobian_H(model, leg, q - h * qd)) / (2 * h);
-        INFO("leg " << leg << " q " << q.transpose() << " qd " << qd.transpose() << "\nJd\n" << Jd << "\nJd_fd\n" << Jd_fd);
+        const Mat3 Jd_fd =
+            (leg_jacobian_H(model, leg, q + h * qd) - leg_jacobian_H(model, leg, q - h * qd)) /
+            (2 * h);
+        INFO("leg " << leg << " q " << q.transpose() << " qd " << qd.transpose() << "\nJd\n"
+                    << Jd << "\nJd_fd\n"
+                    << Jd_fd);
         REQUIRE((Jd - Jd_fd).cwiseAbs().maxCoeff() <= 1e-7);
         // Jd is linear in qd: Jd(2 qd) = 2 Jd(qd) and Jd(0) = 0.
-        CHECK((leg_jacobian_dot_H(model, leg, q, 2.0 * qd) - 2.0 * Jd).cwiseAbs().maxCoeff() <= 1e-12);
+        CHECK((leg_jacobian_dot_H(model, leg, q, 2.0 * qd) - 2.0 * Jd).cwiseAbs().maxCoeff() <=
+              1e-12);
         CHECK(leg_jacobian_dot_H(model, leg, q, Vec3::Zero()).cwiseAbs().maxCoeff() == 0.0);
       }
     }
@@ -136,12 +143,14 @@ TEST_CASE("analytic leg FK equals the generic tree FK", "[robot_model]") {
     const RobotModel model = build_robot_model(params);
     for (int d = 0; d < 5; ++d) {
       VecJ q;
-      for (int leg = 0; leg < kLegs; ++leg) q.segment<3>(joint_index(leg, 0)) = test::random_leg_angles(rng);
+      for (int leg = 0; leg < kLegs; ++leg)
+        q.segment<3>(joint_index(leg, 0)) = test::random_leg_angles(rng);
       BodyPoses poses;
       forward_kinematics_tree(model, q, poses);
       for (int leg = 0; leg < kLegs; ++leg) {
         const Vec3 q_leg = q.segment<3>(joint_index(leg, 0));
-        const Vec3 analytic = model.p_hip_B[leg] + model.R_B_H[leg] * leg_foot_position_H(model, leg, q_leg);
+        const Vec3 analytic =
+            model.p_hip_B[leg] + model.R_B_H[leg] * leg_foot_position_H(model, leg, q_leg);
         const Vec3 tree = tree_foot_position_B(model, poses, leg);
         INFO("leg " << leg << " analytic " << analytic.transpose() << " tree " << tree.transpose());
         CHECK((analytic - tree).cwiseAbs().maxCoeff() <= 1e-12);
@@ -165,7 +174,8 @@ TEST_CASE("hip frames follow the parameters", "[robot_model]") {
       const double L = params.link_length_m[0] + params.link_length_m[1] + params.link_length_m[2];
       const double side = is_left(leg) ? -1.0 : 1.0;
       CHECK(std::abs(foot0.x() - L) <= 1e-15);
-      CHECK(std::abs(foot0.y() - side * (params.joint_offset_m[1] + params.joint_offset_m[2])) <= 1e-15);
+      CHECK(std::abs(foot0.y() - side * (params.joint_offset_m[1] + params.joint_offset_m[2])) <=
+            1e-15);
       CHECK(std::abs(foot0.z() + params.joint_offset_m[0]) <= 1e-15);
     }
   }
@@ -188,12 +198,14 @@ TEST_CASE("paper robot: lateral foot offsets point forward on both sides", "[rob
   const RobotParams p = test::paper_robot_params();
   const RobotModel model = build_robot_model(p);
   for (int leg = 0; leg < kLegs; ++leg) {
-    const Vec3 foot_B = model.p_hip_B[leg] + model.R_B_H[leg] * leg_foot_position_H(model, leg, Vec3::Zero());
+    const Vec3 foot_B =
+        model.p_hip_B[leg] + model.R_B_H[leg] * leg_foot_position_H(model, leg, Vec3::Zero());
     const double reach = p.link_length_m[0] + p.link_length_m[1] + p.link_length_m[2];
     const double side = is_left(leg) ? -1.0 : 1.0;
     INFO("leg " << leg << " foot " << foot_B.transpose());
     CHECK(std::abs(foot_B.x() - (p.hip_position_m[leg].x() + side * reach)) <= 1e-12);
-    CHECK(std::abs(foot_B.y() - (p.hip_position_m[leg].y() + p.joint_offset_m[1] + p.joint_offset_m[2])) <= 1e-12);
+    CHECK(std::abs(foot_B.y() - (p.hip_position_m[leg].y() + p.joint_offset_m[1] +
+                                 p.joint_offset_m[2])) <= 1e-12);
   }
 }
 
@@ -203,7 +215,7 @@ TEST_CASE("IK refuses a target beyond reach with a negative margin", "[robot_mod
     const double L = params.link_length_m[0] + params.link_length_m[1] + params.link_length_m[2];
     for (int leg = 0; leg < kLegs; ++leg) {
       for (const Vec3& target : {Vec3(L + 0.05, 0.0, 0.0), Vec3(0.3 * L, 0.2 * L, -1.2 * L),
-                                  Vec3(-0.8 * L, 1.1 * L, 0.3 * L)}) {
+                                 Vec3(-0.8 * L, 1.1 * L, 0.3 * L)}) {
         const LegIkResult ik = leg_inverse_kinematics(model, leg, target);
         INFO("leg " << leg << " target " << target.transpose() << " reason " << ik.reason);
         CHECK_FALSE(ik.ok);
@@ -230,7 +242,8 @@ TEST_CASE("IK refuses a target at full extension", "[robot_model]") {
         REQUIRE(std::abs(planar_distance(params, target) -
                          (params.link_length_m[1] + params.link_length_m[2])) <= 1e-11);
         const LegIkResult ik = leg_inverse_kinematics(model, leg, target);
-        INFO("leg " << leg << " q " << q.transpose() << " reason " << ik.reason << " margin " << ik.margin_m);
+        INFO("leg " << leg << " q " << q.transpose() << " reason " << ik.reason << " margin "
+                    << ik.margin_m);
         CHECK_FALSE(ik.ok);
         CHECK(ik.reason.find("extension") != std::string::npos);
         CHECK(ik.margin_m < model.ik_min_margin_m);
@@ -240,7 +253,8 @@ TEST_CASE("IK refuses a target at full extension", "[robot_model]") {
   }
 }
 
-TEST_CASE("IK solves a knee-up pose with the wrist behind and above the femur axis", "[robot_model]") {
+TEST_CASE("IK solves a knee-up pose with the wrist behind and above the femur axis",
+          "[robot_model]") {
   // A tibia longer than the femur, the femur pointing down and the tibia folded back
   // up: the wrist direction, measured from the femur axis, is β2 + φ < −π with
   // φ = atan2(l3 sin β3, l2 + l3 cos β3). The drawn angles are inside the limits,

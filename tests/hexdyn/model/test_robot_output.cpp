@@ -48,7 +48,8 @@ TEST_CASE("/model/urdf of a URDF robot reads back as the original description", 
     UrdfReadOptions o;
     o.forward_axis = c.forward;  // the written root link is the original root link frame
     for (int i = 1; i <= kLegs; ++i) o.foot_links.push_back("L" + std::to_string(i) + "_foot");
-    const UrdfRobot back = read_urdf_robot_from_string(robot_urdf(model, original.name), "written", o);
+    const UrdfRobot back =
+        read_urdf_robot_from_string(robot_urdf(model, original.name), "written", o);
     CHECK((back.B_R_U - original.B_R_U).cwiseAbs().maxCoeff() == 0.0);
     CHECK((back.B_R_root - original.B_R_root).cwiseAbs().maxCoeff() <= 1e-12);
     CHECK((back.p_B_root - original.p_B_root).cwiseAbs().maxCoeff() <= 1e-12);
@@ -79,12 +80,14 @@ TEST_CASE("/model/urdf of a URDF robot reads back as the original description", 
       forward_kinematics_tree(model, q, pa);
       forward_kinematics_tree(model_back, q, pb);
       for (int leg = 0; leg < kLegs; ++leg)
-        CHECK((tree_foot_position_B(model, pa, leg) - tree_foot_position_B(model_back, pb, leg)).norm() <= 1e-12);
+        CHECK((tree_foot_position_B(model, pa, leg) - tree_foot_position_B(model_back, pb, leg))
+                  .norm() <= 1e-12);
     }
   }
 }
 
-TEST_CASE("hip directions: the legs' zero-pose directions; the paper's exactly +-x", "[robot_output]") {
+TEST_CASE("hip directions: the legs' zero-pose directions; the paper's exactly +-x",
+          "[robot_output]") {
   for (const Case& c : kCases) {
     INFO(c.file);
     const RobotModel m = build_robot_model(read(c.file, c.forward));
@@ -102,7 +105,8 @@ TEST_CASE("hip directions: the legs' zero-pose directions; the paper's exactly +
     CHECK(paper.hip_outward_B[leg] == Vec3(is_left(leg) ? -1.0 : 1.0, 0.0, 0.0));
 }
 
-TEST_CASE("default nominal stance: femur level, tibia plumb, inside the joint limits", "[robot_output]") {
+TEST_CASE("default nominal stance: femur level, tibia plumb, inside the joint limits",
+          "[robot_output]") {
   for (const Case& c : kCases) {
     INFO(c.file);
     const RobotModel m = build_robot_model(read(c.file, c.forward));
@@ -121,8 +125,8 @@ TEST_CASE("default nominal stance: femur level, tibia plumb, inside the joint li
       const int b = 1 + joint_index(leg, 0);
       const Vec3 femur = poses.p_B[b + 1], tibia = poses.p_B[b + 2];
       const Vec3 foot = tree_foot_position_B(m, poses, leg);
-      CHECK(std::abs(tibia.z() - femur.z()) <= 1e-9);               // femur level
-      CHECK((foot - tibia).head<2>().norm() <= 1e-9);                // tibia plumb
+      CHECK(std::abs(tibia.z() - femur.z()) <= 1e-9);  // femur level
+      CHECK((foot - tibia).head<2>().norm() <= 1e-9);  // tibia plumb
       const Vec3 hip = m.p_parent_joint[b];
       CHECK(s.radius_m == Approx((foot - hip).head<2>().norm()).epsilon(1e-12));
       CHECK(s.depth_m == Approx(hip.z() - foot.z()).epsilon(1e-12));

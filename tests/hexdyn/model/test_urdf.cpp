@@ -8,8 +8,8 @@
 #include <sstream>
 #include <string>
 
-#include "hexdyn/sample_models.hpp"
 #include "hexdyn/model/urdf.hpp"
+#include "hexdyn/sample_models.hpp"
 
 namespace {
 

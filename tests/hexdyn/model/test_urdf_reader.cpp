@@ -46,18 +46,22 @@ std::string file_text(const std::string& path) {
 /// The URDF as urdfdom reads it, and the raw composition of its joints (second computation).
 struct RawUrdf {
   urdf::ModelInterfaceSharedPtr model;
-  explicit RawUrdf(const std::string& path) : model(urdf::parseURDF(file_text(path))) { REQUIRE(model); }
+  explicit RawUrdf(const std::string& path) : model(urdf::parseURDF(file_text(path))) {
+    REQUIRE(model);
+  }
 
   static Mat3 rotation(const urdf::Rotation& r) {
     return Eigen::Quaterniond(r.w, r.x, r.y, r.z).toRotationMatrix();
   }
 
   /// Pose of `link` in the root link frame, joint angles by URDF joint name (absent: 0).
-  std::pair<Mat3, Vec3> pose(const std::string& link, const std::map<std::string, double>& q) const {
+  std::pair<Mat3, Vec3> pose(const std::string& link,
+                             const std::map<std::string, double>& q) const {
     Mat3 R = Mat3::Identity();
     Vec3 p = Vec3::Zero();
     std::vector<urdf::JointConstSharedPtr> chain;
-    for (auto l = model->getLink(link); l->parent_joint; l = model->getLink(l->parent_joint->parent_link_name))
+    for (auto l = model->getLink(link); l->parent_joint;
+         l = model->getLink(l->parent_joint->parent_link_name))
       chain.push_back(l->parent_joint);
     for (auto it = chain.rbegin(); it != chain.rend(); ++it) {
       const urdf::Joint& j = **it;
@@ -67,7 +71,8 @@ struct RawUrdf {
       if (j.type != urdf::Joint::FIXED) {
         const auto a = q.find(j.name);
         const double angle = a == q.end() ? 0.0 : a->second;
-        R = R * Eigen::AngleAxisd(angle, Vec3(j.axis.x, j.axis.y, j.axis.z).normalized()).toRotationMatrix();
+        R = R * Eigen::AngleAxisd(angle, Vec3(j.axis.x, j.axis.y, j.axis.z).normalized())
+                    .toRotationMatrix();
       }
     }
     return {R, p};
@@ -93,7 +98,8 @@ struct RawUrdf {
       Ic << in.ixx, in.ixy, in.ixz, in.ixy, in.iyy, in.iyz, in.ixz, in.iyz, in.izz;
       const Vec3 c = p + R * Vec3(in.origin.position.x, in.origin.position.y, in.origin.position.z);
       mc += in.mass * c;
-      I_O += Ri * Ic * Ri.transpose() + in.mass * (c.squaredNorm() * Mat3::Identity() - c * c.transpose());
+      I_O += Ri * Ic * Ri.transpose() +
+             in.mass * (c.squaredNorm() * Mat3::Identity() - c * c.transpose());
     }
     return {mc / total_mass(), I_O};
   }
@@ -120,7 +126,8 @@ struct Loaded {
 
 std::vector<Loaded> real_robots() {
   std::vector<Loaded> out;
-  for (const auto& [path, opt] : {std::pair{kMark4, UrdfReadOptions{}}, std::pair{kKraby, kraby_options()}}) {
+  for (const auto& [path, opt] :
+       {std::pair{kMark4, UrdfReadOptions{}}, std::pair{kKraby, kraby_options()}}) {
     UrdfRobot r = read_urdf_robot(path, opt);
     RobotModel m = build_robot_model(r);
     out.push_back({path, r, m});
@@ -128,7 +135,8 @@ std::vector<Loaded> real_robots() {
   return out;
 }
 
-TEST_CASE("urdf reader: leg FK of the real robots equals the URDF's joints composed", "[urdf_reader]") {
+TEST_CASE("urdf reader: leg FK of the real robots equals the URDF's joints composed",
+          "[urdf_reader]") {
   std::mt19937 rng(3);
   for (const Loaded& l : real_robots()) {
     const RawUrdf raw(l.path);
@@ -140,7 +148,8 @@ TEST_CASE("urdf reader: leg FK of the real robots equals the URDF's joints compo
       forward_kinematics_tree(l.model, q, poses);
       for (int leg = 0; leg < kLegs; ++leg) {
         const Vec3 q_leg = q.segment<3>(joint_index(leg, 0));
-        const Vec3 p_B = l.model.p_hip_B[leg] + l.model.R_B_H[leg] * leg_foot_position_H(l.model, leg, q_leg);
+        const Vec3 p_B =
+            l.model.p_hip_B[leg] + l.model.R_B_H[leg] * leg_foot_position_H(l.model, leg, q_leg);
         const Vec3 expected_U = raw.pose(l.robot.legs[leg].foot_source, by_name).second;
         INFO(l.path << " leg " << leg << " foot " << l.robot.legs[leg].foot_source);
         CHECK((l.robot.B_R_U.transpose() * p_B - expected_U).norm() <= 1e-12);
@@ -175,7 +184,8 @@ TEST_CASE("urdf reader: legs map to L1..L6 by hip position, URDF names kept", "[
   }
 }
 
-TEST_CASE("urdf reader: mass, centre of mass and inertia equal the sum over the URDF's inertials", "[urdf_reader]") {
+TEST_CASE("urdf reader: mass, centre of mass and inertia equal the sum over the URDF's inertials",
+          "[urdf_reader]") {
   std::mt19937 rng(5);
   for (const Loaded& l : real_robots()) {
     const RawUrdf raw(l.path);
@@ -237,7 +247,8 @@ TEST_CASE("urdf reader: RNEA of the loaded robots equals M(q) a + h from CRBA", 
   }
 }
 
-TEST_CASE("urdf reader: chain Jacobian and its derivative match finite differences", "[urdf_reader]") {
+TEST_CASE("urdf reader: chain Jacobian and its derivative match finite differences",
+          "[urdf_reader]") {
   std::mt19937 rng(9);
   std::uniform_real_distribution<double> rate(-2.0, 2.0);
   const double h = 1e-6;
@@ -252,11 +263,14 @@ TEST_CASE("urdf reader: chain Jacobian and its derivative match finite differenc
         for (int j = 0; j < 3; ++j) {
           Vec3 e = Vec3::Zero();
           e[j] = h;
-          J_fd.col(j) = (leg_foot_position_H(l.model, leg, ql + e) - leg_foot_position_H(l.model, leg, ql - e)) / (2 * h);
+          J_fd.col(j) = (leg_foot_position_H(l.model, leg, ql + e) -
+                         leg_foot_position_H(l.model, leg, ql - e)) /
+                        (2 * h);
         }
         CHECK((leg_jacobian_H(l.model, leg, ql) - J_fd).cwiseAbs().maxCoeff() <= 1e-9);
-        const Mat3 Jd_fd =
-            (leg_jacobian_H(l.model, leg, ql + h * qd) - leg_jacobian_H(l.model, leg, ql - h * qd)) / (2 * h);
+        const Mat3 Jd_fd = (leg_jacobian_H(l.model, leg, ql + h * qd) -
+                            leg_jacobian_H(l.model, leg, ql - h * qd)) /
+                           (2 * h);
         CHECK((leg_jacobian_dot_H(l.model, leg, ql, qd) - Jd_fd).cwiseAbs().maxCoeff() <= 1e-8);
       }
     }
@@ -279,11 +293,12 @@ bool knee_up_outward(const RobotModel& m, int leg, const Vec3& q) {
   const Mat3 J = leg_jacobian_H(m, leg, q);
   const double sigma_min =
       std::sqrt(Eigen::SelfAdjointEigenSolver<Mat3>(J.transpose() * J).eigenvalues().minCoeff());
-  return knee.dot(up) > 2e-3 && foot_radial.dot(femur_radial) > 2e-2 && chord.dot(femur_radial) > 0.1 &&
-         sigma_min > 5e-3;
+  return knee.dot(up) > 2e-3 && foot_radial.dot(femur_radial) > 2e-2 &&
+         chord.dot(femur_radial) > 0.1 && sigma_min > 5e-3;
 }
 
-TEST_CASE("urdf reader: IK round trip on the real robots, closed form and numeric", "[urdf_reader]") {
+TEST_CASE("urdf reader: IK round trip on the real robots, closed form and numeric",
+          "[urdf_reader]") {
   std::mt19937 rng(13);
   for (const Loaded& l : real_robots()) {
     RobotModel numeric = l.model;
@@ -296,7 +311,8 @@ TEST_CASE("urdf reader: IK round trip on the real robots, closed form and numeri
         const Vec3 q = random_joints(l.model, rng, names).segment<3>(joint_index(leg, 0));
         const Vec3 p = leg_foot_position_H(l.model, leg, q);
         const LegIkResult ik = leg_inverse_kinematics(l.model, leg, p);
-        INFO(l.path << " leg " << leg << " q " << q.transpose() << " ik " << ik.q.transpose() << " " << ik.reason);
+        INFO(l.path << " leg " << leg << " q " << q.transpose() << " ik " << ik.q.transpose() << " "
+                    << ik.reason);
         ++draws;
         if (ik.ok) CHECK((leg_foot_position_H(l.model, leg, ik.q) - p).norm() <= 1e-12);
         if (knee_up_outward(l.model, leg, q)) {
@@ -311,8 +327,8 @@ TEST_CASE("urdf reader: IK round trip on the real robots, closed form and numeri
         }
       }
     }
-    INFO(l.path << ": " << recovered << " of " << draws << " draws knee-up and outward, " << numeric_solved
-                << " solved numerically");
+    INFO(l.path << ": " << recovered << " of " << draws << " draws knee-up and outward, "
+                << numeric_solved << " solved numerically");
     CHECK(recovered >= draws / 5);
     CHECK(numeric_solved >= 0.9 * draws);
   }
@@ -336,10 +352,12 @@ TEST_CASE("urdf reader: chain kinematics equal the paper robot's closed forms", 
         const Vec3 p = leg_foot_position_H(paper, leg, q);
         CHECK((leg_foot_position_H(chain, leg, q) - p).norm() <= 1e-15);
         CHECK((leg_jacobian_H(chain, leg, q) - leg_jacobian_H(paper, leg, q)).norm() <= 1e-14);
-        CHECK((leg_jacobian_dot_H(chain, leg, q, qd) - leg_jacobian_dot_H(paper, leg, q, qd)).norm() <= 1e-13);
-        const LegIkResult a = leg_inverse_kinematics(paper, leg, p), b = leg_inverse_kinematics(chain, leg, p);
-        INFO("leg " << leg << " q " << q.transpose() << " paper " << a.q.transpose() << " " << a.reason << " chain "
-                    << b.q.transpose() << " " << b.reason);
+        CHECK((leg_jacobian_dot_H(chain, leg, q, qd) - leg_jacobian_dot_H(paper, leg, q, qd))
+                  .norm() <= 1e-13);
+        const LegIkResult a = leg_inverse_kinematics(paper, leg, p),
+                          b = leg_inverse_kinematics(chain, leg, p);
+        INFO("leg " << leg << " q " << q.transpose() << " paper " << a.q.transpose() << " "
+                    << a.reason << " chain " << b.q.transpose() << " " << b.reason);
         CHECK(a.ok == b.ok);
         if (a.ok && b.ok) {
           CHECK((a.q - b.q).cwiseAbs().maxCoeff() <= 1e-12);
@@ -364,10 +382,12 @@ void check_same_model(const RobotModel& a, const RobotModel& b, double tol) {
     CHECK((a.inertia[k].com_m - b.inertia[k].com_m).norm() <= tol);
     CHECK((a.inertia[k].inertia_com - b.inertia[k].inertia_com).norm() <= tol);
   }
-  for (int leg = 0; leg < kLegs; ++leg) CHECK((a.p_foot_last[leg] - b.p_foot_last[leg]).norm() <= tol);
+  for (int leg = 0; leg < kLegs; ++leg)
+    CHECK((a.p_foot_last[leg] - b.p_foot_last[leg]).norm() <= tol);
 }
 
-TEST_CASE("urdf reader: the paper robot written as URDF and read back is the same model", "[urdf_reader]") {
+TEST_CASE("urdf reader: the paper robot written as URDF and read back is the same model",
+          "[urdf_reader]") {
   std::mt19937 rng(19);
   for (LegInertia legs : {LegInertia::kFull, LegInertia::kMassless}) {
     RobotParams params = test::paper_robot_params();
@@ -375,7 +395,8 @@ TEST_CASE("urdf reader: the paper robot written as URDF and read back is the sam
     const RobotModel paper = build_robot_model(params);
     UrdfReadOptions opt;
     opt.forward_axis = "+y";  // robot_urdf writes the trunk in hexdyn's axes
-    const UrdfRobot robot = read_urdf_robot_from_string(robot_urdf(paper, "paper"), "paper.urdf", opt);
+    const UrdfRobot robot =
+        read_urdf_robot_from_string(robot_urdf(paper, "paper"), "paper.urdf", opt);
     const RobotModel back = build_robot_model(robot, paper.ik_min_margin_m);
     CHECK(robot.B_R_U == Mat3::Identity());
     check_same_model(paper, back, 1e-12);
@@ -389,9 +410,11 @@ TEST_CASE("urdf reader: the paper robot written as URDF and read back is the sam
       for (int d = 0; d < 20; ++d) {
         const Vec3 q = test::random_leg_angles(rng);
         const Vec3 p_B = paper.p_hip_B[leg] + paper.R_B_H[leg] * leg_foot_position_H(paper, leg, q);
-        CHECK((back.p_hip_B[leg] + back.R_B_H[leg] * leg_foot_position_H(back, leg, q) - p_B).norm() <= 1e-12);
+        CHECK((back.p_hip_B[leg] + back.R_B_H[leg] * leg_foot_position_H(back, leg, q) - p_B)
+                  .norm() <= 1e-12);
         const Vec3 p_H = back.R_B_H[leg].transpose() * (p_B - back.p_hip_B[leg]);
-        const LegIkResult a = leg_inverse_kinematics(paper, leg, paper.R_B_H[leg].transpose() * (p_B - paper.p_hip_B[leg]));
+        const LegIkResult a = leg_inverse_kinematics(
+            paper, leg, paper.R_B_H[leg].transpose() * (p_B - paper.p_hip_B[leg]));
         const LegIkResult b = leg_inverse_kinematics(back, leg, p_H);
         CHECK(a.ok == b.ok);
         if (a.ok && b.ok) {
@@ -415,7 +438,8 @@ std::string refusal(const std::string& path, const UrdfReadOptions& opt = {}) {
   return "";
 }
 
-TEST_CASE("urdf reader: each broken description is refused with one line naming what and why", "[urdf_reader]") {
+TEST_CASE("urdf reader: each broken description is refused with one line naming what and why",
+          "[urdf_reader]") {
   struct Case {
     const char* file;
     std::vector<std::string> expected;
@@ -429,14 +453,16 @@ TEST_CASE("urdf reader: each broken description is refused with one line naming 
       {"inf_origin.urdf", {"joint 'hip'", "xyz=\"0 inf 0\"", "not finite"}},
       {"unknown_joint_type.urdf", {"not a valid URDF", "[hip]", "no known type [hinge]"}},
       {"prismatic_joint.urdf", {"joint 'hip'", "type prismatic not supported"}},
-      {"missing_parent.urdf", {"not a valid URDF", "parent link [thigh] of joint [knee] not found"}},
+      {"missing_parent.urdf",
+       {"not a valid URDF", "parent link [thigh] of joint [knee] not found"}},
       {"duplicate_link.urdf", {"link 'leg' is not unique"}},
       {"duplicate_joint.urdf", {"joint 'hip' is not unique"}},
       {"loop_two_parents.urdf", {"link 'b'", "child of two joints", "kinematic loop"}},
       {"cycle_detached.urdf", {"link 'a'", "not connected to the root link 'trunk'", "cycle"}},
       {"five_legs.urdf", {"5 moving joints leave the trunk", "expected six legs"}},
       {"leg_not_3r.urdf", {"chain 'leg3_coxa_joint'", "not a chain of three revolute joints"}},
-      {"no_foot_frame.urdf", {"chain 'leg0_coxa_joint'", "on the axis of its last joint", "robot.foot_links"}},
+      {"no_foot_frame.urdf",
+       {"chain 'leg0_coxa_joint'", "on the axis of its last joint", "robot.foot_links"}},
   };
   for (const Case& c : cases) {
     const std::string path = kData + c.file;

@@ -17,7 +17,9 @@ namespace hexdyn::hard {
 
 inline const std::string kPaper = HEXDYN_SOURCE_DIR "/configs/paper.yaml";
 
-inline Scene paper_with(const std::vector<Override>& overrides) { return load_scene(kPaper, overrides); }
+inline Scene paper_with(const std::vector<Override>& overrides) {
+  return load_scene(kPaper, overrides);
+}
 
 inline bool contains(const std::string& text, const std::string& what) {
   return text.find(what) != std::string::npos;
@@ -79,15 +81,18 @@ inline void check_run_finite(const RunResult& r) {
   }
   bool statuses_ok = true, messages_ok = true;
   for (int i = 0; i < k.samples(); ++i) {
-    statuses_ok = statuses_ok && (d.solver_status[i] == SolverStatus::kOptimal || d.solver_status[i] == SolverStatus::kRelaxed);
-    messages_ok = messages_ok && (d.solver_messages[i].empty() == (d.solver_status[i] == SolverStatus::kOptimal));
+    statuses_ok = statuses_ok && (d.solver_status[i] == SolverStatus::kOptimal ||
+                                  d.solver_status[i] == SolverStatus::kRelaxed);
+    messages_ok = messages_ok &&
+                  (d.solver_messages[i].empty() == (d.solver_status[i] == SolverStatus::kOptimal));
   }
   CHECK(statuses_ok);
   CHECK(messages_ok);
 }
 
 inline int count_status(const RunResult& r, SolverStatus status) {
-  return static_cast<int>(std::count(r.dyn.solver_status.begin(), r.dyn.solver_status.end(), status));
+  return static_cast<int>(
+      std::count(r.dyn.solver_status.begin(), r.dyn.solver_status.end(), status));
 }
 
 inline int legs_in_phase(const RunResult& r, int i, ContactPhase ph) {
@@ -97,7 +102,9 @@ inline int legs_in_phase(const RunResult& r, int i, ContactPhase ph) {
 }
 
 /// Normal force of foot l at sample i [N]: every foothold is on a tread (normal +z).
-inline double normal_force(const RunResult& r, int i, int l) { return r.dyn.contact_force(i, 3 * l + 2); }
+inline double normal_force(const RunResult& r, int i, int l) {
+  return r.dyn.contact_force(i, 3 * l + 2);
+}
 
 inline double sum_force(const RunResult& r, int i, int axis) {
   double s = 0.0;
@@ -143,7 +150,8 @@ inline double energy_between(const RunResult& r, double t0, double t1) {
   REQUIRE(b > a);
   double e = 0.0;
   for (int i = a; i < b; ++i)
-    e += 0.5 * (r.dyn.total_power_W[i] + r.dyn.total_power_W[i + 1]) * (r.kin.time_s[i + 1] - r.kin.time_s[i]);
+    e += 0.5 * (r.dyn.total_power_W[i] + r.dyn.total_power_W[i + 1]) *
+         (r.kin.time_s[i + 1] - r.kin.time_s[i]);
   return e;
 }
 

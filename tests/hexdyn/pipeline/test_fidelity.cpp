@@ -8,13 +8,13 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
-#include "hexdyn/io/config.hpp"
-#include "hexdyn/dynamics/rnea.hpp"
 #include "hexdyn/allocation/backends.hpp"
 #include "hexdyn/allocation/problem.hpp"
 #include "hexdyn/contact/touchdowns.hpp"
-#include "hexdyn/pipeline/pipeline.hpp"
+#include "hexdyn/dynamics/rnea.hpp"
+#include "hexdyn/io/config.hpp"
 #include "hexdyn/model/robot_model.hpp"
+#include "hexdyn/pipeline/pipeline.hpp"
 
 namespace hexdyn {
 namespace {
@@ -60,7 +60,8 @@ TEST_CASE("fidelity: with massless legs the torques are the statics of the foot 
       const Vec3 F = r.dyn.contact_force.row(i).segment<3>(3 * l).transpose();
       tau_static -= data.J_foot_W[l].middleCols<kJoints>(6).transpose() * F;
     }
-    worst = std::max(worst, (r.dyn.joint_torque.row(i).transpose() - tau_static).cwiseAbs().maxCoeff());
+    worst =
+        std::max(worst, (r.dyn.joint_torque.row(i).transpose() - tau_static).cwiseAbs().maxCoeff());
   }
   INFO("worst |τ + J_jᵀF| " << worst << " N m");
   CHECK(worst < 1e-10);
@@ -90,9 +91,9 @@ TEST_CASE("fidelity: rigid touchdowns have no transient and balance the trunk at
       CHECK(r.dyn.penetration(i, l) == 0.0);
     }
     // Trunk rows from the split of the prescribed motion with the stored forces.
-    const ContactSplit& split =
-        contact_split(model, data, base_state_at(r.kin, i), r.kin.joint_position.row(i).transpose(),
-                      r.kin.joint_velocity.row(i).transpose(), r.kin.joint_acceleration.row(i).transpose());
+    const ContactSplit& split = contact_split(
+        model, data, base_state_at(r.kin, i), r.kin.joint_position.row(i).transpose(),
+        r.kin.joint_velocity.row(i).transpose(), r.kin.joint_acceleration.row(i).transpose());
     Vec6 residual = split.trunk_rhs;
     for (int l = 0; l < kLegs; ++l)
       residual -= split.JbT[l] * r.dyn.contact_force.row(i).segment<3>(3 * l).transpose();
@@ -110,8 +111,8 @@ TEST_CASE("fidelity: unknown fidelity choices are configuration errors naming th
   CHECK_THROWS_WITH(load_scene(kPaper, {{"allocation.solver", "cone"}}),
                     Catch::Contains("allocation.solver") && Catch::Contains("ipopt"));
   // The exact cone on the active-set back end is the outer approximation (allocation/cone.hpp).
-  CHECK(load_scene(kPaper, {{"allocation.solver", "active-set"}, {"allocation.friction", "cone"}}).allocation.solver ==
-        AllocationSolver::kActiveSet);
+  CHECK(load_scene(kPaper, {{"allocation.solver", "active-set"}, {"allocation.friction", "cone"}})
+            .allocation.solver == AllocationSolver::kActiveSet);
 }
 
 }  // namespace hexdyn

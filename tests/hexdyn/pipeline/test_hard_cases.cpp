@@ -17,18 +17,18 @@
 #include <string>
 #include <vector>
 
-#include "hexdyn/io/config.hpp"
-#include "hexdyn/contact/impact.hpp"
 #include "hexdyn/allocation/backends.hpp"
 #include "hexdyn/allocation/problem.hpp"
+#include "hexdyn/contact/impact.hpp"
 #include "hexdyn/contact/touchdowns.hpp"
 #include "hexdyn/core/errors.hpp"
+#include "hexdyn/io/config.hpp"
 #include "hexdyn/kinematics/kinematics.hpp"
-#include "hexdyn/pipeline/pipeline.hpp"
 #include "hexdyn/model/robot_model.hpp"
+#include "hexdyn/pipeline/hard_case_checks.hpp"
+#include "hexdyn/pipeline/pipeline.hpp"
 #include "hexdyn/planning/grid.hpp"
 #include "hexdyn/planning/terrain.hpp"
-#include "hexdyn/pipeline/hard_case_checks.hpp"
 #include "hexdyn/sample_models.hpp"
 
 namespace hexdyn {
@@ -98,7 +98,8 @@ TEST_CASE("hard: a leg within 1e-6 rad of full extension", "[hard][kinematics]")
   const double gap = l2 * l3_reach * eps * eps / (2.0 * far.distance_m);
   const std::string l3 = num(l3_reach + gap);
   const std::string where = "leg " + leg_name(far.leg) + " at t = ";
-  INFO("farthest foot: " << leg_name(far.leg) << " at " << far.t_s << " s, " << far.distance_m << " m; tibia " << l3);
+  INFO("farthest foot: " << leg_name(far.leg) << " at " << far.t_s << " s, " << far.distance_m
+                         << " m; tibia " << l3);
 
   SECTION("default margin 1e-4 m: ReachError naming leg, time and margin") {
     const Scene scene = paper_with({{"output.grid", "uniform"}, {"robot.tibia.length", l3}});
@@ -120,7 +121,8 @@ TEST_CASE("hard: a leg within 1e-6 rad of full extension", "[hard][kinematics]")
   }
 
   SECTION("margin 0: finite output, the stretched leg's samples flagged") {
-    const Scene scene = paper_with({{"output.grid", "uniform"}, {"robot.tibia.length", l3}, {"robot.ik_min_margin", "0"}});
+    const Scene scene = paper_with(
+        {{"output.grid", "uniform"}, {"robot.tibia.length", l3}, {"robot.ik_min_margin", "0"}});
     const RunResult r = run_scene(scene);
     check_run_finite(r);
     const int i = sample_at(r, far.t_s);
@@ -145,7 +147,8 @@ TEST_CASE("hard: a leg within 1e-6 rad of full extension", "[hard][kinematics]")
     double l3_k = l3_reach;
     for (int k = 0; k < 16; ++k) l3_k = std::nextafter(l3_k, 0.0);
     for (int k = -16; k <= 16; ++k, l3_k = std::nextafter(l3_k, 1.0)) {
-      const Scene scene = paper_with({{"output.grid", "uniform"}, {"robot.tibia.length", num(l3_k)},
+      const Scene scene = paper_with({{"output.grid", "uniform"},
+                                      {"robot.tibia.length", num(l3_k)},
                                       {"robot.ik_min_margin", "0"}});
       INFO("tibia " << num(l3_k) << " (" << k << " ulp)");
       try {
@@ -189,7 +192,9 @@ TEST_CASE("hard: three support feet nearly collinear", "[hard][allocation]") {
   int tripods = 0;
   double worst_tipping = 0.0;
   for (int i = 0; i < r.kin.samples(); ++i) {
-    if (legs_in_phase(r, i, ContactPhase::kSupport) != 3 || legs_in_phase(r, i, ContactPhase::kImpact) != 0) continue;
+    if (legs_in_phase(r, i, ContactPhase::kSupport) != 3 ||
+        legs_in_phase(r, i, ContactPhase::kImpact) != 0)
+      continue;
     ++tripods;
     std::vector<Eigen::Vector2d> feet;
     double y_feet = 0.0;
@@ -240,7 +245,8 @@ TEST_CASE("hard: friction coefficient 0.01", "[hard][allocation]") {
     for (int l = 0; l < kLegs; ++l) {
       if (r.kin.contact_phase(i, l) != static_cast<std::int8_t>(ContactPhase::kSupport)) continue;
       const double fn = normal_force(r, i, l);
-      const double ft = std::max(std::abs(r.dyn.contact_force(i, 3 * l)), std::abs(r.dyn.contact_force(i, 3 * l + 1)));
+      const double ft = std::max(std::abs(r.dyn.contact_force(i, 3 * l)),
+                                 std::abs(r.dyn.contact_force(i, 3 * l + 1)));
       worst_friction = std::max(worst_friction, ft - reach * fn);
     }
     if (legs_in_phase(r, i, ContactPhase::kImpact) != 0) continue;
@@ -248,7 +254,8 @@ TEST_CASE("hard: friction coefficient 0.01", "[hard][allocation]") {
     CHECK(ref.dyn.solver_status[i] == SolverStatus::kOptimal);
     if (r.dyn.solver_status[i] == SolverStatus::kRelaxed) {
       ++flagged_support;
-      for (const std::string& row : named_rows(msg)) CHECK((row == "trunk force y" || row == "trunk force x" || row == "trunk moment z"));
+      for (const std::string& row : named_rows(msg))
+        CHECK((row == "trunk force y" || row == "trunk force x" || row == "trunk moment z"));
     }
     // The horizontal force the motion needs (the μ = 0.3 run, whose rows hold) beyond what
     // μ = 0.01 can give: that sample must be flagged at the trunk's y row.
@@ -300,13 +307,16 @@ TEST_CASE("hard: torque limit too low for the load", "[hard][allocation]") {
         const std::string joint = row.substr(10);
         const int j = joint == "coxa" ? 0 : joint == "femur" ? 1 : 2;
         // (The message prints 3 significant digits.)
-        CHECK(violation_of(msg, row) == Approx(std::abs(tau[joint_index(leg, j)]) - limit).epsilon(5e-3).margin(1e-6));
+        CHECK(violation_of(msg, row) ==
+              Approx(std::abs(tau[joint_index(leg, j)]) - limit).epsilon(5e-3).margin(1e-6));
       }
       CHECK(sum_force(r, i, 2) == Approx(mg).epsilon(0.03));
-    } else if (ref.dyn.joint_torque.row(i).cwiseAbs().maxCoeff() <= limit - 1e-9 && ref.dyn.solver_status[i] == SolverStatus::kOptimal) {
+    } else if (ref.dyn.joint_torque.row(i).cwiseAbs().maxCoeff() <= limit - 1e-9 &&
+               ref.dyn.solver_status[i] == SolverStatus::kOptimal) {
       // Where the 6 N m optimum is within 1 N m already, the low limit changes nothing.
       ++unchanged;
-      CHECK((r.dyn.joint_torque.row(i) - ref.dyn.joint_torque.row(i)).cwiseAbs().maxCoeff() <= 1e-6);
+      CHECK((r.dyn.joint_torque.row(i) - ref.dyn.joint_torque.row(i)).cwiseAbs().maxCoeff() <=
+            1e-6);
     }
   }
   CHECK(over > 100);
@@ -332,15 +342,16 @@ TEST_CASE("hard: 100 gait cycles are periodic and take linear time", "[hard][pip
   check_run_finite(r);
   CHECK(r.dyn.impacts.size() == 600);
   CHECK(r.wall_time_s < 30.0);
-  INFO("100 cycles: " << r.kin.samples() << " samples in " << r.wall_time_s << " s; paper: " << paper.kin.samples()
-                      << " in " << paper.wall_time_s << " s");
+  INFO("100 cycles: " << r.kin.samples() << " samples in " << r.wall_time_s << " s; paper: "
+                      << paper.kin.samples() << " in " << paper.wall_time_s << " s");
   // Samples grow linearly: 98 cruise cycles of the paper's cruise cycle.
   const int paper_cycle2 = sample_at(paper, 5.6) - sample_at(paper, 3.0);
   CHECK(r.kin.samples() == Approx(paper.kin.samples() + 97.0 * paper_cycle2).epsilon(0.01));
   // Every relaxed sample is inside a touchdown transient, as in the paper's run.
   int relaxed_outside = 0;
   for (int i = 0; i < r.kin.samples(); ++i)
-    relaxed_outside += r.dyn.solver_status[i] != SolverStatus::kOptimal && !contains(r.dyn.solver_messages[i], "(impact ");
+    relaxed_outside += r.dyn.solver_status[i] != SolverStatus::kOptimal &&
+                       !contains(r.dyn.solver_messages[i], "(impact ");
   CHECK(relaxed_outside == 0);
   // Energy per cycle: the cruise cycles repeat the paper's cruise cycle; first and last
   // are the paper's ramp cycles.
@@ -362,7 +373,8 @@ TEST_CASE("hard: 100 gait cycles are periodic and take linear time", "[hard][pip
   // hexdyn's own energy grows linearly with the cycles: the 100-cycle run costs the
   // three-cycle run plus 97 times what one more cruise cycle adds (a four-cycle run).
   const RunResult r3 = run_scene(paper_with({{"terrain.steps", "110"}}));
-  const RunResult r4 = run_scene(paper_with({{"motion.cycle_durations", "[3.0, 2.6, 2.6, 3.0]"}, {"terrain.steps", "110"}}));
+  const RunResult r4 = run_scene(
+      paper_with({{"motion.cycle_durations", "[3.0, 2.6, 2.6, 3.0]"}, {"terrain.steps", "110"}}));
   const double e_cycle = r4.dyn.energy_total_J - r3.dyn.energy_total_J;
   CHECK(e_cycle == Approx(e_cruise).epsilon(5e-3));
   CHECK(r.dyn.energy_total_J == Approx(r3.dyn.energy_total_J + 97.0 * e_cycle).epsilon(1e-6));
@@ -376,7 +388,8 @@ TEST_CASE("hard: swing over a 0.1 m riser with a 1 um clearance", "[hard][gait]"
   // Risers twice the paper's and a clearance of 1e-6 m: the straight line from lift-off to
   // touchdown runs through the riser; the planner lifts to the upper tread + Δh first.
   const double clearance = 1e-6, riser = 0.1;
-  const double z0 = riser * (0.412 / 0.25 + 0.5) + 0.13;  // the paper's 0.13 m above the tread-centre line
+  const double z0 =
+      riser * (0.412 / 0.25 + 0.5) + 0.13;  // the paper's 0.13 m above the tread-centre line
   const Scene scene = paper_with({{"gait.swing_clearance", num(clearance)},
                                   {"terrain.riser_height", num(riser)},
                                   {"motion.initial_position", "[0.0, 0.412, " + num(z0) + "]"}});
@@ -389,14 +402,18 @@ TEST_CASE("hard: swing over a 0.1 m riser with a 1 um clearance", "[hard][gait]"
   // Every sampled foot is on or above the terrain; support feet exactly on it.
   for (int i = 0; i < r.kin.samples(); ++i)
     for (int l = 0; l < kLegs; ++l) {
-      const double x = r.kin.foot_position(i, 3 * l), y = r.kin.foot_position(i, 3 * l + 1), z = r.kin.foot_position(i, 3 * l + 2);
-      INFO("t = " << r.kin.time_s[i] << " s, " << leg_name(l) << " at (" << x << ", " << y << ", " << z << ")");
+      const double x = r.kin.foot_position(i, 3 * l), y = r.kin.foot_position(i, 3 * l + 1),
+                   z = r.kin.foot_position(i, 3 * l + 2);
+      INFO("t = " << r.kin.time_s[i] << " s, " << leg_name(l) << " at (" << x << ", " << y << ", "
+                  << z << ")");
       CHECK(z >= terrain.height(x, y) - 1e-12);
       if (r.kin.contact_phase(i, l) != static_cast<std::int8_t>(ContactPhase::kSwing))
         CHECK(z == Approx(terrain.height(x, y)).margin(1e-12));
     }
   // Densely along every swing, and at every riser a swing crosses.
-  auto tread = [&](double y) { return static_cast<int>(std::floor((y - tp.first_riser_y_m) / tp.tread_depth_m)) + 1; };
+  auto tread = [&](double y) {
+    return static_cast<int>(std::floor((y - tp.first_riser_y_m) / tp.tread_depth_m)) + 1;
+  };
   int crossings = 0;
   for (int leg = 0; leg < kLegs; ++leg)
     for (const Swing& sw : prep.plan.gait.legs[leg].swings) {

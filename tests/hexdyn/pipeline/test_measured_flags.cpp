@@ -39,7 +39,8 @@ Worst worst_optimal_violation(const Scene& scene, const RunResult& r) {
     const double ratio = excess / (thr * std::max(1.0, std::abs(bound)));
     if (ratio > w.ratio) {
       w.ratio = ratio;
-      w.where = what + " at t = " + std::to_string(r.kin.time_s[i]) + " s, excess " + std::to_string(excess);
+      w.where = what + " at t = " + std::to_string(r.kin.time_s[i]) + " s, excess " +
+                std::to_string(excess);
     }
   };
   for (int i = 0; i < r.kin.samples(); ++i) {
@@ -53,9 +54,11 @@ Worst worst_optimal_violation(const Scene& scene, const RunResult& r) {
     for (int l = 0; l < kLegs; ++l) F[l] = r.dyn.contact_force.row(i).segment<3>(3 * l).transpose();
     const VecDof free = rnea(model, data, base, q, qd, qdd);  // right-hand side of the trunk rows
     const VecDof residual = rnea(model, data, base, q, qd, qdd, &F);
-    for (int k = 0; k < 6; ++k) consider(std::abs(residual[k]), free[k], "trunk row " + std::to_string(k), i);
+    for (int k = 0; k < 6; ++k)
+      consider(std::abs(residual[k]), free[k], "trunk row " + std::to_string(k), i);
     for (int k = 0; k < kJoints; ++k)
-      consider(std::abs(r.dyn.joint_torque(i, k)) - tmax, tmax, "torque " + joint_name(k / 3, k % 3), i);
+      consider(std::abs(r.dyn.joint_torque(i, k)) - tmax, tmax,
+               "torque " + joint_name(k / 3, k % 3), i);
     for (int l = 0; l < kLegs; ++l) {
       const auto phase = static_cast<ContactPhase>(r.kin.contact_phase(i, l));
       if (phase == ContactPhase::kSwing) {
@@ -77,7 +80,8 @@ TEST_CASE("measured flags: optimal samples meet every constraint at the loosest 
   for (const char* solver : {"active-set", "ipopt"}) {
     for (const char* tol : {"1e-9", "1e-5"}) {
       INFO(solver << " at tolerance " << tol);
-      const Scene scene = load_scene(kPaper, {{"allocation.solver", solver}, {"allocation.tolerance", tol}});
+      const Scene scene =
+          load_scene(kPaper, {{"allocation.solver", solver}, {"allocation.tolerance", tol}});
       const RunResult r = run_scene(scene);
       const Worst w = worst_optimal_violation(scene, r);
       INFO("worst: " << w.where << ", " << w.ratio << " x the threshold");
@@ -85,12 +89,14 @@ TEST_CASE("measured flags: optimal samples meet every constraint at the loosest 
       CHECK(w.ratio <= 1.0);
       // Every flagged sample names what gave way.
       for (int i = 0; i < r.kin.samples(); ++i)
-        if (r.dyn.solver_status[i] != SolverStatus::kOptimal) CHECK_FALSE(r.dyn.solver_messages[i].empty());
+        if (r.dyn.solver_status[i] != SolverStatus::kOptimal)
+          CHECK_FALSE(r.dyn.solver_messages[i].empty());
     }
   }
 }
 
-TEST_CASE("measured flags: a tolerance beyond what the solvers honour is refused", "[pipeline][flags]") {
+TEST_CASE("measured flags: a tolerance beyond what the solvers honour is refused",
+          "[pipeline][flags]") {
   CHECK_THROWS_WITH(load_scene(kPaper, {{"allocation.tolerance", "1e-2"}}),
                     Catch::Contains("allocation.tolerance: got 0.01") && Catch::Contains("1e-05"));
   CHECK_NOTHROW(load_scene(kPaper, {{"allocation.tolerance", "1e-5"}}));

@@ -17,16 +17,16 @@
 #include <string>
 #include <vector>
 
-#include "hexdyn/io/config.hpp"
-#include "hexdyn/dynamics/rnea.hpp"
 #include "hexdyn/allocation/backends.hpp"
-#include "hexdyn/allocation/problem.hpp"
-#include "hexdyn/contact/touchdowns.hpp"
 #include "hexdyn/allocation/ipopt.hpp"
 #include "hexdyn/allocation/kkt_check.hpp"
+#include "hexdyn/allocation/problem.hpp"
+#include "hexdyn/contact/touchdowns.hpp"
+#include "hexdyn/dynamics/rnea.hpp"
+#include "hexdyn/io/config.hpp"
 #include "hexdyn/kinematics/kinematics.hpp"
-#include "hexdyn/pipeline/pipeline.hpp"
 #include "hexdyn/model/robot_model.hpp"
+#include "hexdyn/pipeline/pipeline.hpp"
 
 namespace hexdyn {
 namespace {
@@ -339,7 +339,8 @@ TEST_CASE("paper run: physics holds on every sample", "[paper][pipeline]") {
       }
     }
 
-    if (status == SolverStatus::kOptimal) (any_impact ? kkt_impact_candidates : kkt_candidates).push_back(i);
+    if (status == SolverStatus::kOptimal)
+      (any_impact ? kkt_impact_candidates : kkt_candidates).push_back(i);
   }
 
   INFO("samples " << T << ": " << status0 << " optimal, " << relaxed << " relaxed, " << failed
@@ -405,8 +406,8 @@ TEST_CASE("paper run: physics holds on every sample", "[paper][pipeline]") {
                         : 0.0;
       kkt_with_impact += phase[l] == ContactPhase::kImpact;
     }
-    const AllocationLayout layout =
-        build_allocation_problem(scene.allocation, scene.contact, split, phase, f_impact, W_R_c, qp);
+    const AllocationLayout layout = build_allocation_problem(scene.allocation, scene.contact, split,
+                                                             phase, f_impact, W_R_c, qp);
     CHECK(layout.constant_excess_Nm == 0.0);
     backend->reset_warm_start();
     const QpOutcome& out = backend->solve(qp);

@@ -85,7 +85,8 @@ void check_torques_match_forces(const Scene& scene, const RunResult& r) {
 double trapezoid_energy(const RunResult& r) {
   double E = 0.0;
   for (int i = 0; i + 1 < r.kin.samples(); ++i)
-    E += 0.5 * (r.kin.time_s[i + 1] - r.kin.time_s[i]) * (r.dyn.total_power_W[i] + r.dyn.total_power_W[i + 1]);
+    E += 0.5 * (r.kin.time_s[i + 1] - r.kin.time_s[i]) *
+         (r.dyn.total_power_W[i] + r.dyn.total_power_W[i + 1]);
   return E;
 }
 
@@ -139,8 +140,9 @@ TEST_CASE("solve_dynamics: energy is the integral of the power series, and the c
     INFO("joint " << j);
     double E_joint_fine = 0.0;
     for (int i = 0; i + 1 < fine.kin.samples(); ++i)
-      E_joint_fine += 0.5 * (fine.kin.time_s[i + 1] - fine.kin.time_s[i]) *
-                      (std::abs(fine.dyn.joint_power(i, j)) + std::abs(fine.dyn.joint_power(i + 1, j)));
+      E_joint_fine +=
+          0.5 * (fine.kin.time_s[i + 1] - fine.kin.time_s[i]) *
+          (std::abs(fine.dyn.joint_power(i, j)) + std::abs(fine.dyn.joint_power(i + 1, j)));
     CHECK(std::abs(d.energy_joint_J[j] - E_joint_fine) <= 5e-3 * std::max(E_joint_fine, 1e-2 * E));
     sum_joint += d.energy_joint_J[j];
   }
@@ -178,7 +180,6 @@ TEST_CASE("solve_dynamics: energy is the integral of the power series, and the c
   }
 }
 
-
 TEST_CASE("solve_dynamics: a touchdown at zero approach speed produces no impact",
           "[solve_dynamics]") {
   // Adaptive grid: had a transient occurred, samples would fall inside it.
@@ -214,11 +215,11 @@ TEST_CASE("solve_dynamics: a touchdown at zero approach speed produces no impact
   CHECK(touchdown_samples > 0);
 }
 
-
 /// Checks every sample of `r`: none failed, each relaxed one's message passes `named`;
 /// with a torque limit > 0, each optimal one has no message and |τ| within the limit.
 /// Returns the number of relaxed samples.
-static int check_flagged_samples(const RunResult& r, const std::function<bool(const std::string&)>& named,
+static int check_flagged_samples(const RunResult& r,
+                                 const std::function<bool(const std::string&)>& named,
                                  double torque_limit_Nm = 0.0) {
   int relaxed = 0;
   for (int i = 0; i < r.kin.samples(); ++i) {
@@ -245,11 +246,11 @@ TEST_CASE(
   RunResult r;
   REQUIRE_NOTHROW(r = run_scene(scene));
   check_finite(r);
-  const int relaxed = check_flagged_samples(r, [](const std::string& msg) { return contains(msg, "torque"); }, 0.5);
+  const int relaxed = check_flagged_samples(
+      r, [](const std::string& msg) { return contains(msg, "torque"); }, 0.5);
   CHECK(relaxed > 0);
   check_torques_match_forces(scene, r);
 }
-
 
 TEST_CASE(
     "solve_dynamics: friction that cannot hold gives flagged, finite samples naming friction or "
@@ -259,11 +260,11 @@ TEST_CASE(
   RunResult r;
   REQUIRE_NOTHROW(r = run_scene(scene));
   check_finite(r);
-  const int relaxed = check_flagged_samples(
-      r, [](const std::string& msg) { return contains(msg, "friction") || contains(msg, "trunk"); });
+  const int relaxed = check_flagged_samples(r, [](const std::string& msg) {
+    return contains(msg, "friction") || contains(msg, "trunk");
+  });
   CHECK(relaxed > 0);
   check_torques_match_forces(scene, r);
 }
-
 
 }  // namespace hexdyn

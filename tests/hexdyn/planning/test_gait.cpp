@@ -11,10 +11,10 @@
 #include <vector>
 
 #include "hexdyn/io/config.hpp"
-#include "hexdyn/planning/gait.hpp"
-#include "hexdyn/planning/plan.hpp"
-#include "hexdyn/planning/motion.hpp"
 #include "hexdyn/model/robot_model.hpp"
+#include "hexdyn/planning/gait.hpp"
+#include "hexdyn/planning/motion.hpp"
+#include "hexdyn/planning/plan.hpp"
 
 namespace hexdyn {
 namespace {
@@ -113,8 +113,10 @@ TEST_CASE("gait: at least three feet support the robot at every instant", "[gait
     const Planned p = plan_duty(beta);
     const double T = p.plan.trunk.duration_s();
     int fewest = kLegs;
-    for (int i = 0; i <= 20000; ++i) fewest = std::min(fewest, support_count(p.plan.gait, T * i / 20000.0));
-    for (double t : event_times(p.plan.gait)) fewest = std::min(fewest, support_count(p.plan.gait, t));
+    for (int i = 0; i <= 20000; ++i)
+      fewest = std::min(fewest, support_count(p.plan.gait, T * i / 20000.0));
+    for (double t : event_times(p.plan.gait))
+      fewest = std::min(fewest, support_count(p.plan.gait, t));
     INFO("beta " << beta);
     CHECK(fewest >= 3);
     // The gait does lift legs: with β < 1 some instant has fewer than six in support.
@@ -186,8 +188,12 @@ TEST_CASE("gait: support feet stay at their touchdown point", "[gait]") {
         CHECK(sw.p_liftoff_W == hold);  // lifts off where it stood
         stances.push_back({start, sw.t_liftoff_s, hold});
         // The swing path ends at its touchdown point.
-        CHECK((swing_foot_motion(sw, sw.t_touchdown_s).p_W - sw.p_touchdown_W).cwiseAbs().maxCoeff() <= 1e-12);
-        CHECK((leg_foot_motion(lp, sw.t_touchdown_s - 1e-9).p_W - sw.p_touchdown_W).cwiseAbs().maxCoeff() <= 1e-9);
+        CHECK((swing_foot_motion(sw, sw.t_touchdown_s).p_W - sw.p_touchdown_W)
+                  .cwiseAbs()
+                  .maxCoeff() <= 1e-12);
+        CHECK((leg_foot_motion(lp, sw.t_touchdown_s - 1e-9).p_W - sw.p_touchdown_W)
+                  .cwiseAbs()
+                  .maxCoeff() <= 1e-9);
         start = sw.t_touchdown_s;
         hold = sw.p_touchdown_W;
       }
@@ -263,7 +269,9 @@ TEST_CASE("gait: touchdown speed, rest at lift-off, C2 swing paths", "[gait]") {
         // Touchdown: straight down at the touchdown speed, at t_td and just before it.
         const FootMotion td = swing_foot_motion(sw, t1);
         CHECK((td.v_W - Vec3(0, 0, -v_td)).cwiseAbs().maxCoeff() <= 1e-12);
-        CHECK((leg_foot_motion(p.plan.gait.legs[leg], t1 - 1e-9).v_W - Vec3(0, 0, -v_td)).cwiseAbs().maxCoeff() <= 1e-6);
+        CHECK((leg_foot_motion(p.plan.gait.legs[leg], t1 - 1e-9).v_W - Vec3(0, 0, -v_td))
+                  .cwiseAbs()
+                  .maxCoeff() <= 1e-6);
         // Lift-off: at rest.
         const FootMotion lo = swing_foot_motion(sw, t0);
         CHECK(lo.v_W.cwiseAbs().maxCoeff() <= 1e-12);
@@ -296,8 +304,10 @@ TEST_CASE("gait: touchdown speed, rest at lift-off, C2 swing paths", "[gait]") {
           const double t = t0 + D * i / 400.0;
           if (std::abs(t - tb[0]) < 3 * h || std::abs(t - tb[1]) < 3 * h) continue;
           const FootMotion f = swing_foot_motion(sw, t);
-          const Vec3 v_fd = (swing_foot_motion(sw, t + h).p_W - swing_foot_motion(sw, t - h).p_W) / (2 * h);
-          const Vec3 a_fd = (swing_foot_motion(sw, t + h).v_W - swing_foot_motion(sw, t - h).v_W) / (2 * h);
+          const Vec3 v_fd =
+              (swing_foot_motion(sw, t + h).p_W - swing_foot_motion(sw, t - h).p_W) / (2 * h);
+          const Vec3 a_fd =
+              (swing_foot_motion(sw, t + h).v_W - swing_foot_motion(sw, t - h).v_W) / (2 * h);
           v_err = std::max(v_err, (f.v_W - v_fd).norm());
           a_err = std::max(a_err, (f.a_W - a_fd).norm());
         }
@@ -319,7 +329,8 @@ TEST_CASE("gait: footholds keep the margin from every nosing and riser", "[gait]
       const LegPlan& lp = p.plan.gait.legs[leg];
       INFO("beta " << beta << " leg " << leg);
       CHECK(p.plan.terrain.edge_distance(lp.p_initial_W.y()) >= margin - 1e-12);
-      for (const Swing& sw : lp.swings) CHECK(p.plan.terrain.edge_distance(sw.p_touchdown_W.y()) >= margin - 1e-12);
+      for (const Swing& sw : lp.swings)
+        CHECK(p.plan.terrain.edge_distance(sw.p_touchdown_W.y()) >= margin - 1e-12);
     }
   }
 }
@@ -397,7 +408,8 @@ TEST_CASE("trunk: cycle boundaries reproduce the paper's cycle durations", "[gai
   // The changed duty factor keeps the cycle durations.
   const Planned q = plan_scene({{"gait.duty_factor", "0.75"}});
   for (int k = 0; k < 3; ++k)
-    CHECK(std::abs(q.plan.trunk.time_at_phase(k + 1.0) - q.plan.trunk.time_at_phase(k) - expected[k]) <= 1e-9);
+    CHECK(std::abs(q.plan.trunk.time_at_phase(k + 1.0) - q.plan.trunk.time_at_phase(k) -
+                   expected[k]) <= 1e-9);
 }
 
 }  // namespace

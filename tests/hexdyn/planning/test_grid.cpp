@@ -82,7 +82,8 @@ TEST_CASE("output grid: adaptive contains every event and is strictly increasing
   REQUIRE(out.grid == OutputGrid::kAdaptive);
   const std::vector<double> grid = build_output_grid(out, T, events);
   check_increasing(grid, T);
-  for (int k = 0; k * out.sample_step_s <= T + 1e-9; ++k) CHECK(contains(grid, k * out.sample_step_s, 1e-9));
+  for (int k = 0; k * out.sample_step_s <= T + 1e-9; ++k)
+    CHECK(contains(grid, k * out.sample_step_s, 1e-9));
   for (const GridEvent& e : events) {
     INFO("event " << e.t_s);
     CHECK(contains(grid, e.t_s, 1e-9));

@@ -30,7 +30,8 @@ std::string exact(double x) {
   return buf;
 }
 
-TEST_CASE("posture: the paper's relative posture gives its absolute start to the last bit", "[posture]") {
+TEST_CASE("posture: the paper's relative posture gives its absolute start to the last bit",
+          "[posture]") {
   const Scene absolute = load_scene(kConfigs + "/paper.yaml");
   const Scene relative = load_scene(kConfigs + "/variants/paper_relative_posture.yaml");
   REQUIRE(absolute.motion.posture.mode == PostureMode::kAbsolute);
@@ -54,7 +55,8 @@ TEST_CASE("posture: the paper's relative posture gives its absolute start to the
 
 TEST_CASE("posture: the stairs' reference line passes through the tread centres", "[posture]") {
   std::mt19937 rng(11);
-  std::uniform_real_distribution<double> riser(0.0, 0.2), tread(0.15, 0.4), y0(-1.0, 1.0), g(-0.5, 0.5);
+  std::uniform_real_distribution<double> riser(0.0, 0.2), tread(0.15, 0.4), y0(-1.0, 1.0),
+      g(-0.5, 0.5);
   for (int n = 0; n < 50; ++n) {
     TerrainParams t;
     t.type = TerrainType::kStairs;
@@ -97,8 +99,9 @@ TEST_CASE("posture: on random stairs inside the envelope every foot target is re
   std::mt19937 rng(2024);
   for (int n = 0; n < 8; ++n) {
     const Scene scene = random_stairs(rng);
-    INFO("riser " << scene.terrain.riser_height_m << " tread " << scene.terrain.tread_depth_m << " speed "
-                  << scene.motion.peak_speed_mps << " beta " << scene.gait.duty_factor);
+    INFO("riser " << scene.terrain.riser_height_m << " tread " << scene.terrain.tread_depth_m
+                  << " speed " << scene.motion.peak_speed_mps << " beta "
+                  << scene.gait.duty_factor);
     const RobotModel model = build_robot_model(scene.robot);
     const MotionPlan plan = plan_motion(scene, model);
     REQUIRE(plan.posture.mode == PostureMode::kAuto);
@@ -127,7 +130,8 @@ TEST_CASE("posture: on random stairs inside the envelope every foot target is re
       }
       forward_kinematics_tree(model, q, poses);
       for (int leg = 0; leg < kLegs; ++leg) {
-        worst_fk = std::max(worst_fk, (tree_foot_position_B(model, poses, leg) - target_B[leg]).norm());
+        worst_fk =
+            std::max(worst_fk, (tree_foot_position_B(model, poses, leg) - target_B[leg]).norm());
         // Distance from full extension and fold: the foot relative to the femur joint,
         // projected on the plane normal to the femur axis (the lateral offsets d2, d3 lie
         // along that axis), from the tree's body poses.
@@ -183,7 +187,8 @@ TEST_CASE("posture: the automatic height is a local maximum of the smallest marg
     const double h_low = scene.terrain.riser_height_m / 2 + scene.motion.posture.trunk_clearance_m;
     auto margin_at = [&](double h) {
       const MotionPlan plan = plan_motion_with(
-          scene, model, relative_start_position(scene.terrain, h, scene.motion.posture.start_y_m), c.foot_lateral_m);
+          scene, model, relative_start_position(scene.terrain, h, scene.motion.posture.start_y_m),
+          c.foot_lateral_m);
       return motion_kinematic_margin(model, plan, 400).value_m;
     };
     const double m0 = margin_at(c.height_m);
@@ -216,7 +221,8 @@ TEST_CASE("posture: flat ground and slopes work with the automatic posture", "[p
 // -d / cos(pitch) and leave the foot spread and the margin as they were. Second
 // computation: the same model with its coxa joints moved in the tree and its legs prepared
 // again; the hips' clearance over the terrain measured on the plan.
-TEST_CASE("posture: the automatic posture places the hips wherever the trunk frame is", "[posture][robots]") {
+TEST_CASE("posture: the automatic posture places the hips wherever the trunk frame is",
+          "[posture][robots]") {
   const Scene scene = load_scene(kConfigs + "/robots/kraby_stairs.yaml");
   const RobotModel model = build_robot_model(scene.robot);
   const PostureChoice c0 = choose_posture(scene, model);
@@ -258,7 +264,8 @@ TEST_CASE("posture: the automatic posture places the hips wherever the trunk fra
 
 TEST_CASE("posture: beyond the robot's reach the error names leg, instant, constraint and margin",
           "[posture]") {
-  const Scene scene = load_scene(kConfigs + "/sweeps/stairs_base.yaml", {{"terrain.riser_height", "0.25"}});
+  const Scene scene =
+      load_scene(kConfigs + "/sweeps/stairs_base.yaml", {{"terrain.riser_height", "0.25"}});
   const RobotModel model = build_robot_model(scene.robot);
   try {
     (void)plan_motion(scene, model);

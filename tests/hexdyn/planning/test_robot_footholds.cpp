@@ -15,7 +15,8 @@ TEST_CASE("footholds lie along each hip's direction at foot_lateral", "[gait][ro
   const std::string src = HEXDYN_SOURCE_DIR;
   for (const std::string name : {"phantomx_mark4_stairs", "kraby_stairs", "paper"}) {
     INFO(name);
-    const Scene s = load_scene(src + (name == "paper" ? "/configs/paper.yaml" : "/configs/robots/" + name + ".yaml"));
+    const Scene s = load_scene(
+        src + (name == "paper" ? "/configs/paper.yaml" : "/configs/robots/" + name + ".yaml"));
     const RobotModel m = build_robot_model(s.robot);
     const MotionPlan plan = plan_motion(s, m);
     // Each hip's direction from the legs' zero pose (generic tree FK), horizontal in the world.
@@ -41,7 +42,8 @@ TEST_CASE("footholds lie along each hip's direction at foot_lateral", "[gait][ro
         const Vec3 hip_W = plan.trunk.position_at_phase(phase) + plan.trunk.W_R_B() * hip_B;
         const double dx = sw.p_touchdown_W.x() - hip_W.x();
         CHECK(dx == Approx(plan.posture.foot_lateral_m * d_W.x()).margin(1e-12));
-        if (name == "paper") CHECK(sw.p_touchdown_W.x() == hip_W.x() + d_B.x() * plan.posture.foot_lateral_m);
+        if (name == "paper")
+          CHECK(sw.p_touchdown_W.x() == hip_W.x() + d_B.x() * plan.posture.foot_lateral_m);
         ++checked;
       }
       CHECK(checked > 0);

@@ -110,12 +110,13 @@ TEST_CASE("stairs: edge distance to the nearest nosing or riser", "[terrain]") {
     CHECK(std::abs(terrain.edge_distance(y) - listed_edge_distance(y)) <= 1e-15);
   }
   CHECK(terrain.edge_distance(0.625) == 0.125);  // mid-tread
-  CHECK(terrain.edge_distance(0.5) == 0.0);       // on a riser
-  CHECK(terrain.edge_distance(-3.0) == 3.5);      // ground: only the first riser ahead
-  CHECK(terrain.edge_distance(5.25) == 4.0);      // top: only the last nosing behind
+  CHECK(terrain.edge_distance(0.5) == 0.0);      // on a riser
+  CHECK(terrain.edge_distance(-3.0) == 3.5);     // ground: only the first riser ahead
+  CHECK(terrain.edge_distance(5.25) == 4.0);     // top: only the last nosing behind
 }
 
-TEST_CASE("stairs: nearest valid foothold keeps valid points, moves the others to the margin", "[terrain]") {
+TEST_CASE("stairs: nearest valid foothold keeps valid points, moves the others to the margin",
+          "[terrain]") {
   const Terrain terrain(test_stairs());
   const double margin = 0.03;
   int moved = 0;
@@ -200,7 +201,8 @@ TEST_CASE("slope: heights along the incline and normals perpendicular to it", "[
     // Highest point of a segment: the upper end, found by scanning.
     const Vec3 a(0.0, -0.5, 0.0), b(0.3, 1.5, 0.0);
     double m = -1e9;
-    for (int i = 0; i <= 1000; ++i) m = std::max(m, terrain.height(0.0, a.y() + (b.y() - a.y()) * i / 1000.0));
+    for (int i = 0; i <= 1000; ++i)
+      m = std::max(m, terrain.height(0.0, a.y() + (b.y() - a.y()) * i / 1000.0));
     CHECK(std::abs(terrain.max_height_along(a, b) - m) <= 1e-14);
     CHECK(std::isinf(terrain.edge_distance(0.3)));
     CHECK(terrain.mean_slope_rad() == angle);

@@ -8,10 +8,13 @@
 
 namespace hexdyn {
 
-TEST_CASE("integrate_pieces: piecewise-smooth series with jumps, against the closed form", "[power]") {
+TEST_CASE("integrate_pieces: piecewise-smooth series with jumps, against the closed form",
+          "[power]") {
   // y = 2 + sin(3t) on [0, 1), 5 + t² on [1, 1.5), 1 + cos t on [1.5, 2]: jumps at 1 and
   // 1.5, where the sample holds the value after the jump and the left limit is given.
-  auto y_of = [](double t) { return t < 1.0 ? 2.0 + std::sin(3.0 * t) : t < 1.5 ? 5.0 + t * t : 1.0 + std::cos(t); };
+  auto y_of = [](double t) {
+    return t < 1.0 ? 2.0 + std::sin(3.0 * t) : t < 1.5 ? 5.0 + t * t : 1.0 + std::cos(t);
+  };
   const double exact = (2.0 + (1.0 - std::cos(3.0)) / 3.0) + (2.5 + (1.5 * 1.5 * 1.5 - 1.0) / 3.0) +
                        (0.5 + std::sin(2.0) - std::sin(1.5));
   auto error_with = [&](int n_per_unit, bool with_breaks) {
@@ -36,7 +39,8 @@ TEST_CASE("integrate_pieces: piecewise-smooth series with jumps, against the clo
       }
     }
     REQUIRE(breaks.size() == 2);
-    const double value = with_breaks ? integrate_pieces(t, y.data(), 1, breaks, left) : integrate_series(t, y.data());
+    const double value = with_breaks ? integrate_pieces(t, y.data(), 1, breaks, left)
+                                     : integrate_series(t, y.data());
     return std::abs(value - exact);
   };
   // With the left limits: at least second order overall (the monotone interpolant loses
@@ -52,9 +56,9 @@ TEST_CASE("integrate_pieces: piecewise-smooth series with jumps, against the clo
   // Strided data and a piece of one interval (the trapezoid).
   const std::vector<double> t2{0.0, 1.0, 3.0};
   const double yy[6] = {1.0, -7.0, 3.0, -7.0, 10.0, -7.0};
-  CHECK(integrate_pieces(t2, yy, 2, {1}, {5.0}) == Approx(0.5 * (1.0 + 5.0) + 0.5 * 2.0 * (3.0 + 10.0)));
+  CHECK(integrate_pieces(t2, yy, 2, {1}, {5.0}) ==
+        Approx(0.5 * (1.0 + 5.0) + 0.5 * 2.0 * (3.0 + 10.0)));
 }
-
 
 TEST_CASE("integrate_pieces: never below zero for a power series with kinks", "[power]") {
   // |sin| sampled coarsely: kinks at the zeros, data ≥ 0. The monotone interpolant keeps
@@ -68,8 +72,8 @@ TEST_CASE("integrate_pieces: never below zero for a power series with kinks", "[
   const double exact = 3.0 * 2.0 + (1.0 - std::cos(12.0 - 3.0 * M_PI));  // ∫₀¹² |sin t| dt
   CHECK(E > 0.0);
   CHECK(E == Approx(exact).epsilon(0.02));
-  for (int k = 0; k + 3 < 41; ++k) CHECK(integrate_series({t[k], t[k + 1], t[k + 2], t[k + 3]}, &y[k]) >= 0.0);
+  for (int k = 0; k + 3 < 41; ++k)
+    CHECK(integrate_series({t[k], t[k + 1], t[k + 2], t[k + 3]}, &y[k]) >= 0.0);
 }
-
 
 }  // namespace hexdyn

@@ -43,7 +43,8 @@ std::vector<char> read_all(const std::string& path) {
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 void write_all(const std::string& path, const std::vector<char>& bytes) {
-  std::ofstream(path, std::ios::binary).write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  std::ofstream(path, std::ios::binary)
+      .write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
 }
 
 std::string only_journal(const std::string& dir) {
@@ -147,8 +148,8 @@ TEST_CASE("sweep: checkpoint directory, resume rules, identity and lock", "[swee
       Checkpoint second(out, spec, false, true);
       FAIL("a second sweep took a live checkpoint");
     } catch (const IoError& e) {
-      CHECK_THAT(std::string(e.what()), Catch::Contains("still running") &&
-                                            !Catch::Contains("remove"));
+      CHECK_THAT(std::string(e.what()),
+                 Catch::Contains("still running") && !Catch::Contains("remove"));
     }
     for (std::size_t i : {4u, 1u, 6u}) {
       const auto p = payload_of(some_row(i));
@@ -174,8 +175,8 @@ TEST_CASE("sweep: checkpoint directory, resume rules, identity and lock", "[swee
   }
   // Another sweep, or the same one with another --keep-runs: refused whole.
   const SweepSpec other = load_sweep(sweep_file(dir, kSmallAxes + "# other\n", "t.yaml"));
-  CHECK_THROWS_WITH(Checkpoint(out, other, false, true), Catch::Contains("another sweep") &&
-                                                            Catch::Contains("sweep file"));
+  CHECK_THROWS_WITH(Checkpoint(out, other, false, true),
+                    Catch::Contains("another sweep") && Catch::Contains("sweep file"));
   CHECK_THROWS_WITH(Checkpoint(out, spec, true, true), Catch::Contains("without --keep-runs"));
   // Every journal's header lost: the records still name their sweep.
   for (const auto& e : fs::directory_iterator(cpdir))
@@ -269,13 +270,16 @@ TEST_CASE("sweep: a record built by a worker is appended as rank 0 would build i
   bad_magic[0] ^= 1;
   const char* g = good.data();
   CHECK(check_built_record(g, good.size(), RecordKind::kRow, 1, id).size == p.size());
-  CHECK_THROWS_WITH(check_built_record(g, good.size(), RecordKind::kRow, 2, id), Catch::Contains("another scenario"));
-  CHECK_THROWS_WITH(check_built_record(g, good.size() - 1, RecordKind::kRow, 1, id), Catch::Contains("wrong length"));
+  CHECK_THROWS_WITH(check_built_record(g, good.size(), RecordKind::kRow, 2, id),
+                    Catch::Contains("another scenario"));
+  CHECK_THROWS_WITH(check_built_record(g, good.size() - 1, RecordKind::kRow, 1, id),
+                    Catch::Contains("wrong length"));
   CHECK_THROWS_WITH(check_built_record(foreign.data(), foreign.size(), RecordKind::kRow, 1, id),
                     Catch::Contains("another sweep"));
   CHECK_THROWS_WITH(check_built_record(crash.data(), crash.size(), RecordKind::kRow, 1, id),
                     Catch::Contains("another kind"));
   CHECK_THROWS_WITH(check_built_record(bad_magic.data(), bad_magic.size(), RecordKind::kRow, 1, id),
                     Catch::Contains("not a record"));
-  CHECK_THROWS_WITH(check_built_record(g, 20, RecordKind::kRow, 1, id), Catch::Contains("not a record"));
+  CHECK_THROWS_WITH(check_built_record(g, 20, RecordKind::kRow, 1, id),
+                    Catch::Contains("not a record"));
 }

@@ -2,8 +2,8 @@
 // every scenario is handed out exactly once (twice after a first crash), batches follow
 // the measured cost and shrink at the end, costly scenarios go first once their cost can
 // be predicted, and workers stop only when everything is finished.
-#include <catch2/catch.hpp>
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <deque>
 #include <functional>
@@ -31,9 +31,12 @@ struct Simulation {
   double now = 0.0;
 
   Simulation(SweepCoordinator& coord, int workers, std::function<double(std::size_t)> f)
-      : c(coord), cost(std::move(f)), queue(static_cast<std::size_t>(workers)),
+      : c(coord),
+        cost(std::move(f)),
+        queue(static_cast<std::size_t>(workers)),
         busy_until(static_cast<std::size_t>(workers), 0.0),
-        stopped(static_cast<std::size_t>(workers), false), handed(coord.count(), 0) {}
+        stopped(static_cast<std::size_t>(workers), false),
+        handed(coord.count(), 0) {}
 
   void take(std::vector<Assignment>& out) {
     for (const Assignment& a : out) {
@@ -65,9 +68,10 @@ struct Simulation {
       // The worker that finishes next.
       int next = -1;
       for (std::size_t w = 0; w < queue.size(); ++w)
-        if (!queue[w].empty() && (next < 0 || busy_until[w] + cost(queue[w].front()) <
-                                                  busy_until[static_cast<std::size_t>(next)] +
-                                                      cost(queue[static_cast<std::size_t>(next)].front())))
+        if (!queue[w].empty() &&
+            (next < 0 || busy_until[w] + cost(queue[w].front()) <
+                             busy_until[static_cast<std::size_t>(next)] +
+                                 cost(queue[static_cast<std::size_t>(next)].front())))
           next = static_cast<int>(w);
       if (next < 0) break;
       auto& q = queue[static_cast<std::size_t>(next)];
@@ -77,9 +81,8 @@ struct Simulation {
       busy_until[static_cast<std::size_t>(next)] += cost(i);
       now = std::max(now, busy_until[static_cast<std::size_t>(next)]);
       const int attempt = ++attempts[i];
-      const bool crash =
-          std::count(crash_always.begin(), crash_always.end(), i) > 0 ||
-          (attempt == 1 && std::count(crash_once.begin(), crash_once.end(), i) > 0);
+      const bool crash = std::count(crash_always.begin(), crash_always.end(), i) > 0 ||
+                         (attempt == 1 && std::count(crash_once.begin(), crash_once.end(), i) > 0);
       if (crash)
         c.on_crash(next, i, out);
       else

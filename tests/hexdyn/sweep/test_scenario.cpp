@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "hexdyn/io/config.hpp"
-#include "hexdyn/pipeline/pipeline.hpp"
 #include "hexdyn/io/schema.hpp"
+#include "hexdyn/pipeline/pipeline.hpp"
 #include "hexdyn/sweep/scenario.hpp"
 #include "sweep_test_support.hpp"
 

@@ -73,7 +73,8 @@ TEST_CASE("sweep: a scenario's scene is the base with --set overrides of its val
 TEST_CASE("sweep: the stairs study and the smoke sweep are valid", "[sweep]") {
   const SweepSpec stairs = load_sweep(kConfigs + "/sweeps/stairs.yaml");
   CHECK(stairs.scenario_count() == 512);
-  CHECK(stairs.axes[0].numbers == std::vector<double>{0.0, 0.02, 0.04, 0.06, 0.08, 0.10, 0.12, 0.14});
+  CHECK(stairs.axes[0].numbers ==
+        std::vector<double>{0.0, 0.02, 0.04, 0.06, 0.08, 0.10, 0.12, 0.14});
   CHECK(stairs.axes[1].numbers == std::vector<double>{0.20, 0.25, 0.30, 0.35});
   CHECK(stairs.axes[2].numbers == std::vector<double>{0.05, 0.1, 0.15, 0.2});
   CHECK(stairs.axes[3].numbers == std::vector<double>{0.5, 2.0 / 3.0, 0.75, 5.0 / 6.0});
@@ -105,8 +106,7 @@ TEST_CASE("sweep: a bad sweep file is one ConfigError line naming file, key and 
        "axes[0].key: got gait.duty, expected a key of the base scene"},
       {"axis key is a group", base + "axes:\n  - key: gait\n    values: [0.5]\n",
        "axes[0].key: got gait, expected a key holding a single value (it holds a group of keys)"},
-      {"axis key holds a list",
-       base + "axes:\n  - key: robot.hips.y\n    values: [0.5]\n",
+      {"axis key holds a list", base + "axes:\n  - key: robot.hips.y\n    values: [0.5]\n",
        "axes[0].key: got robot.hips.y, expected a key holding a single value (it holds "
        "a list)"},
       {"axis key twice", base + axis + "  - key: gait.duty_factor\n    values: [0.6]\n",
