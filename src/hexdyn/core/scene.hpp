@@ -3,6 +3,7 @@
 /// The typed, validated scene a run is made of. Produced by `load_scene` (config.hpp)
 /// from YAML; every field is SI. Field comments give units; which values come from
 /// the paper and which are assumptions is said in configs/paper.yaml.
+#include <cmath>
 #include <memory>
 #include <optional>
 #include <string>
@@ -67,6 +68,21 @@ struct TerrainParams {
   int steps = 10;                 ///< stairs: number of risers; the top tread is endless
   double first_riser_y_m = 0.0;   ///< stairs: y of the first riser
 };
+
+/// Inclination of the terrain's mean line along +y [rad]: atan(h_s / b_s) on stairs (the
+/// trunk's pitch α0, docs/theory/conventions.md#trunk-orientation-bryant-angles), the
+/// slope on a slope, 0 on flat ground.
+inline double mean_slope_rad(const TerrainParams& t) {
+  switch (t.type) {
+    case TerrainType::kStairs:
+      return std::atan2(t.riser_height_m, t.tread_depth_m);
+    case TerrainType::kSlope:
+      return t.slope_rad;
+    case TerrainType::kFlat:
+      return 0.0;
+  }
+  return 0.0;
+}
 
 struct GaitParams {
   double duty_factor = 0.5;  ///< β ∈ [1/2, 1): support fraction of each leg

@@ -144,18 +144,6 @@ void read_gait(Reader& r, GaitParams& g, const LoadedUrdfRobot& urdf) {
                ", expected a sum below 0.95 (time must remain to move forward)");
 }
 
-double mean_slope(const TerrainParams& t) {
-  switch (t.type) {
-    case TerrainType::kStairs:
-      return std::atan2(t.riser_height_m, t.tread_depth_m);
-    case TerrainType::kSlope:
-      return t.slope_rad;
-    case TerrainType::kFlat:
-      return 0.0;
-  }
-  return 0.0;
-}
-
 /// The trunk's start: motion.initial_position (absolute) or motion.posture (relative to the
 /// terrain, or auto). The definitions are those of planning/posture.hpp.
 void read_posture(Reader& r, MotionParams& m) {
@@ -209,7 +197,7 @@ void read_posture(Reader& r, MotionParams& m) {
 void read_motion(Reader& r, const GaitParams& g, const TerrainParams& t, MotionParams& m) {
   read_posture(r, m);
   // Stride: trunk travel per gait cycle along the slope (s0/β horizontally).
-  const double stride_along_slope = (g.stroke_m / g.duty_factor) / std::cos(mean_slope(t));
+  const double stride_along_slope = (g.stroke_m / g.duty_factor) / std::cos(mean_slope_rad(t));
   const bool by_durations = r.has("motion.cycle_durations");
   const bool by_speed =
       r.has("motion.peak_speed") || r.has("motion.cycles") || r.has("motion.ramp_duration");

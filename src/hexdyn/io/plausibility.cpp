@@ -27,18 +27,6 @@ std::string given(double x) {
   return s.str();
 }
 
-double mean_slope_rad(const TerrainParams& t) {
-  switch (t.type) {
-    case TerrainType::kStairs:
-      return std::atan2(t.riser_height_m, t.tread_depth_m);
-    case TerrainType::kSlope:
-      return t.slope_rad;
-    case TerrainType::kFlat:
-      return 0.0;
-  }
-  return 0.0;
-}
-
 /// Shortest time for a smootherstep move of `distance` at the acceleration bound [s].
 double min_move_time(double distance_m) {
   return std::sqrt(kSmootherstepPeak * distance_m / kMaxPlannedAcceleration);

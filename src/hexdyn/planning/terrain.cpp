@@ -40,17 +40,7 @@ double Terrain::max_height_along(const Vec3& a, const Vec3& b) const {
   return height(0.0, std::max(a.y(), b.y()));
 }
 
-double Terrain::mean_slope_rad() const {
-  switch (params_.type) {
-    case TerrainType::kStairs:
-      return std::atan2(params_.riser_height_m, params_.tread_depth_m);
-    case TerrainType::kSlope:
-      return params_.slope_rad;
-    case TerrainType::kFlat:
-      return 0.0;
-  }
-  return 0.0;
-}
+double Terrain::mean_slope_rad() const { return hexdyn::mean_slope_rad(params_); }
 
 double Terrain::edge_distance(double y) const {
   if (params_.type != TerrainType::kStairs || params_.riser_height_m == 0.0)
