@@ -52,7 +52,6 @@ class ActiveSetBackend final : public StrictThenPenalisedBackend {
       throw ConfigError(os.str());
     }
     core_ = std::make_unique<DualActiveSetQp>();
-    start_ = std::make_unique<WorkingSetStart>();
   }
 
  private:
@@ -84,7 +83,7 @@ class ActiveSetBackend final : public StrictThenPenalisedBackend {
   }
 
   bool can_warm_start(const ProblemShape& shape) const override {
-    return opt_.warm_start && have_start_ && start_->shape == shape;
+    return opt_.warm_start && have_start_ && start_.shape == shape;
   }
 
   void drop_warm_start() override { have_start_ = false; }
@@ -92,10 +91,10 @@ class ActiveSetBackend final : public StrictThenPenalisedBackend {
   /// Keeps the final working sets for the next solve.
   void store_start(const QpProblem& p) {
     const DualActiveSetQp& s = *core_;
-    start_->shape = ProblemShape::of(p);
-    start_->active_count = s.active_count();
-    for (int i = 0; i < start_->active_count; ++i) start_->active[i] = s.active_row(i);
-    start_->elastic_count = s.elastic_rows(start_->elastic.data());
+    start_.shape = ProblemShape::of(p);
+    start_.active_count = s.active_count();
+    for (int i = 0; i < start_.active_count; ++i) start_.active[i] = s.active_row(i);
+    start_.elastic_count = s.elastic_rows(start_.elastic.data());
     have_start_ = true;
   }
 
@@ -165,7 +164,7 @@ class ActiveSetBackend final : public StrictThenPenalisedBackend {
     }
     s.set_mode(false);
     const ActiveSetExit exit =
-        run_attempt(warm, start_->active.data(), start_->active_count, nullptr, 0);
+        run_attempt(warm, start_.active.data(), start_.active_count, nullptr, 0);
     a.left_state = true;
     if (exit != ActiveSetExit::kOptimal) {
       a.note = exit_name(exit);
@@ -190,8 +189,8 @@ class ActiveSetBackend final : public StrictThenPenalisedBackend {
     const ActiveRow* elastic = nullptr;
     int n_active = 0, n_elastic = 0;
     if (!plan.strict && plan.warm) {
-      active = start_->active.data(), n_active = start_->active_count;
-      elastic = start_->elastic.data(), n_elastic = start_->elastic_count;
+      active = start_.active.data(), n_active = start_.active_count;
+      elastic = start_.elastic.data(), n_elastic = start_.elastic_count;
     } else if (after_strict) {
       n_active = s.active_count();
       for (int i = 0; i < n_active; ++i) strict_rows_[i] = s.active_row(i);
@@ -221,7 +220,7 @@ class ActiveSetBackend final : public StrictThenPenalisedBackend {
 
   ActiveSetOptions opt_;
   std::unique_ptr<DualActiveSetQp> core_;
-  std::unique_ptr<WorkingSetStart> start_;  ///< valid when have_start_
+  WorkingSetStart start_;  ///< valid when have_start_
   bool have_start_ = false;
   std::array<ActiveRow, kN> strict_rows_{};  ///< scratch: the strict attempt's active set
   std::array<double, kM> lambda_all_{};      ///< scratch: multipliers of all rows

@@ -1,8 +1,9 @@
 #pragma once
 /// \file active_set_checks.hpp
-/// Second computations shared by the active-set back-end tests (test_active_set.cpp,
-/// test_active_set_sequences.cpp): random convex QPs, the L1-penalised objective and its
-/// KKT certificate, an extended-precision solve on an answer's active rows.
+/// Second computations shared by the active-set tests (test_active_set.cpp,
+/// test_active_set_sequences.cpp, test_dual_active_set.cpp): random convex QPs, the
+/// L1-penalised objective, an extended-precision solve on an answer's active rows. The KKT
+/// certificate is the one checker of kkt_check.hpp (included here).
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
