@@ -140,7 +140,7 @@ def check_file(root, path, readme_anchors, listing):
             problems.append(f"{where}: cites {m.group(0)}/…, outside the repository")
         for m in MD_CITATION.finditer(line):
             name, anchor = m.group(1), m.group(2)
-            if URL_BEFORE.search(line[:m.start()]) or name.endswith("DESIGN.md"):
+            if URL_BEFORE.search(line[:m.start()]) or OLD_DESIGN.search(name):
                 continue
             if line[m.start() - 1:m.start()] == "[" and line[m.end():m.end() + 2] == "](":
                 continue  # the text of a Markdown link; its target is checked instead
