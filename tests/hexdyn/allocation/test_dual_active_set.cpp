@@ -55,6 +55,20 @@ Eigen::VectorXd kkt_solution_on_active_rows(const DualActiveSetQp& s, const QpPr
   return K.fullPivLu().solve(rhs).head(n);
 }
 
+/// Runs the dual iteration on the loaded problem from a cold start, in the given mode, with
+/// at most `max_changes` active-set changes (counted into *changes if given), and polishes
+/// an optimal end.
+ActiveSetExit run_cold(DualActiveSetQp& s, bool penalised, int max_changes = 500,
+                       int* changes = nullptr) {
+  s.set_mode(penalised);
+  s.start_cold();
+  int count = 0;
+  const ActiveSetExit exit = s.run(max_changes, count);
+  if (exit == ActiveSetExit::kOptimal) s.polish();
+  if (changes) *changes = count;
+  return exit;
+}
+
 }  // namespace
 
 TEST_CASE("dual active set: the small dense kernels agree with Eigen", "[allocation][dual]") {
@@ -116,11 +130,8 @@ TEST_CASE("dual active set: cold runs end optimal on the KKT solution of their a
     REQUIRE(s.convex());
     CHECK(s.crossed_row() == -1);
     CHECK(s.regularisation() == 0.0);
-    s.set_mode(false);
-    s.start_cold();
     int changes = 0;
-    REQUIRE(s.run(500, changes) == ActiveSetExit::kOptimal);
-    s.polish();
+    REQUIRE(run_cold(s, false, 500, &changes) == ActiveSetExit::kOptimal);
     CHECK(changes >= s.active_count());
     const QpOutcome out = outcome_of(s, p);
     CHECK(check_kkt(p, out, 1e-10));
@@ -139,11 +150,7 @@ TEST_CASE("dual active set: a warm start from the answer's own rows needs no cha
   const QpProblem p = random_qp(rng, 10, 2, 1, 10, 14);
   DualActiveSetQp s;
   REQUIRE(s.load(p, 1e6, 1e-9));
-  s.set_mode(false);
-  s.start_cold();
-  int changes = 0;
-  REQUIRE(s.run(500, changes) == ActiveSetExit::kOptimal);
-  s.polish();
+  REQUIRE(run_cold(s, false) == ActiveSetExit::kOptimal);
   const Eigen::VectorXd x_cold = s.x().head(10);
   std::vector<ActiveRow> rows;
   for (int i = 0; i < s.active_count(); ++i) rows.push_back(s.active_row(i));
@@ -168,10 +175,7 @@ TEST_CASE("dual active set: exit statuses", "[allocation][dual]") {
     DualActiveSetQp s;
     REQUIRE(s.load(p, 1e6, 1e-9));
     for (const bool penalised : {false, true}) {
-      s.set_mode(penalised);
-      s.start_cold();
-      int changes = 0;
-      CHECK(s.run(500, changes) == ActiveSetExit::kInfeasible);
+      CHECK(run_cold(s, penalised) == ActiveSetExit::kInfeasible);
     }
   }
   SECTION("crossed bounds: reported, infeasible as posed, elastic when penalised") {
@@ -184,11 +188,7 @@ TEST_CASE("dual active set: exit statuses", "[allocation][dual]") {
     DualActiveSetQp s;
     REQUIRE(s.load(p, 10.0, 1e-9));
     CHECK(s.crossed_row() == 0);
-    s.set_mode(true);
-    s.start_cold();
-    int changes = 0;
-    REQUIRE(s.run(500, changes) == ActiveSetExit::kOptimal);
-    s.polish();
+    REQUIRE(run_cold(s, true) == ActiveSetExit::kOptimal);
     // Penalised optimum of ½x² + 10·dist(x, [4, 5]) + 10·(5 − 4): x = 4 with λ ∈ [0, 10].
     CHECK(s.x()[0] == Approx(4.0).margin(1e-12));
     CHECK(check_penalised_kkt(p, outcome_of(s, p), 10.0, 1e-10));
@@ -198,10 +198,7 @@ TEST_CASE("dual active set: exit statuses", "[allocation][dual]") {
     const QpProblem p = random_qp(rng, 12, 0, 0, 12, 20);
     DualActiveSetQp s;
     REQUIRE(s.load(p, 1e6, 1e-9));
-    s.set_mode(false);
-    s.start_cold();
-    int changes = 0;
-    CHECK(s.run(1, changes) == ActiveSetExit::kIterationLimit);
+    CHECK(run_cold(s, false, 1) == ActiveSetExit::kIterationLimit);
     CHECK(std::string(exit_name(ActiveSetExit::kIterationLimit)) ==
           "stopped at the iteration limit");
   }
@@ -235,11 +232,7 @@ TEST_CASE("dual active set: the dependence test", "[allocation][dual]") {
   p.upper << 1.0, 2.0;
   DualActiveSetQp s;
   REQUIRE(s.load(p, 1e6, 1e-9));
-  s.set_mode(false);
-  s.start_cold();
-  int changes = 0;
-  REQUIRE(s.run(500, changes) == ActiveSetExit::kOptimal);
-  s.polish();
+  REQUIRE(run_cold(s, false) == ActiveSetExit::kOptimal);
   CHECK(s.active_count() == 1);
   CHECK(s.x()[0] == Approx(1.0).margin(1e-14));
   CHECK(check_kkt(p, outcome_of(s, p), 1e-12));
