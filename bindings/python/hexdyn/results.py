@@ -292,13 +292,7 @@ def read_result_group(group, source="result"):
             units[path] = _text(obj.attrs["units"])
 
     group.visititems(visit)
-    meta = {}
-    for key, value in group["meta"].attrs.items():
-        value = _text(value)
-        if isinstance(value, np.generic):
-            value = value.item()
-        meta[key] = value
-    return Result(source, data, units, shapes, meta)
+    return Result(source, data, units, shapes, _meta_attributes(group))
 
 
 def open_result(path, group="/"):
@@ -419,17 +413,23 @@ class Sweep:
                 f"{[a.key for a in self.axes]}, ok={int(self.ok.sum())})")
 
 
+def _meta_attributes(group):
+    """The /meta attributes of a file (or of a kept run's group) as Python values."""
+    meta = {}
+    for key, value in group["meta"].attrs.items():
+        value = _text(value)
+        if isinstance(value, np.generic):
+            value = value.item()
+        meta[key] = value
+    return meta
+
+
 def open_sweep(path):
     """Opens a hexdyn-sweep/1 file, checks its schema and version and returns a Sweep
     with the axes and the scenario table in memory (the file is closed on return)."""
     with h5py.File(path, "r") as f:
         check_filetype_version(f, SWEEP_SCHEMA, SWEEP_SCHEMA_VERSION, str(path))
-        meta = {}
-        for key, value in f["meta"].attrs.items():
-            value = _text(value)
-            if isinstance(value, np.generic):
-                value = value.item()
-            meta[key] = value
+        meta = _meta_attributes(f)
         axes = []
         for i in range(len(f["axes"])):
             g = f["axes"][str(i)]

@@ -57,17 +57,16 @@ void StrictThenPenalisedBackend::solve_impl(const QpProblem& p) {
   last_shape_ = shape;
   last_relaxed_ = false;
 
-  std::string strict_note = "skipped after a relaxed sample";
-  bool after_strict = false;
+  // Notes are text only on the failure path: a solve that succeeds builds no string.
+  Attempt strict;
   if (plan.strict) {
-    const Attempt strict = solve_strict(p, plan.warm);
+    strict = solve_strict(p, plan.warm);
     if (strict.solved) return;
-    strict_note = strict.note;
-    after_strict = strict.left_state;
   }
-  const Attempt penalised = solve_penalised(p, plan, after_strict);
+  const Attempt penalised = solve_penalised(p, plan, strict.left_state);
   if (!penalised.solved) {
-    fail(p, "strict solve " + strict_note + "; " + penalised.note);
+    fail(p, "strict solve " + (plan.strict ? strict.note : "skipped after a relaxed sample") +
+                "; " + penalised.note);
     return;
   }
   last_relaxed_ = out_.status != SolverStatus::kOptimal;
