@@ -60,6 +60,8 @@ enum class Shape {
   kEnvelopeGrid,      ///< (W,B,S,C), one entry per cell and criterion
   kEnvelopeGridText,  ///< (G) strings, G = W·B·S·C: the (W,B,S,C) grid flattened row-major
   kEnvelopeProbes,    ///< (P), one entry per probe (a criterion evaluated at one riser)
+  kCycles,            ///< (Y), one entry per gait cycle
+  kTerrainPoints,     ///< (K), one entry per vertex of the terrain's height profile
 };
 
 /// Element type stored in the file.
@@ -71,6 +73,7 @@ struct DatasetSpec {
   const char* units;  ///< value of the mandatory `units` attribute
   Shape shape = Shape::kScalar;
   Element element = Element::kFloat64;
+  const char* long_name = "";  ///< CF `long_name`: what the values are, in words
 };
 
 /// One attribute of the contract: on the object `object`, named `name`.
