@@ -50,7 +50,10 @@ function show(i) {{
   label.textContent = "frame " + (current + 1) + " / " + frames.length + ", t = " +
                       (t0 + current / fps).toFixed(3) + " s";
 }}
-function stop() {{ if (timer) {{ clearInterval(timer); timer = null; }} playButton.textContent = "play"; }}
+function stop() {{
+  if (timer) {{ clearInterval(timer); timer = null; }}
+  playButton.textContent = "play";
+}}
 function play() {{
   stop();
   var speed = parseFloat(document.getElementById("speed").value);

@@ -32,6 +32,7 @@ saved under a temporary name in OUTDIR and renamed when complete.
 
 import argparse
 import itertools
+from fractions import Fraction
 import os
 import sys
 
@@ -294,8 +295,8 @@ def parse_sel(sweep, items):
         match = [k for k, label in enumerate(axis.labels) if label == value]
         if not match and axis.numeric:
             try:
-                v = float(eval(value, {"__builtins__": {}}, {})) if "/" in value else float(value)
-            except Exception:
+                v = float(Fraction(value))
+            except (ValueError, ZeroDivisionError):
                 v = None
             match = [k for k, x in enumerate(axis.values) if v is not None and np.isclose(x, v)]
         if not match:
