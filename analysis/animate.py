@@ -112,7 +112,7 @@ class Scene:
             self.quiver = self.ax.quiver(y0, y0, y0, y0, angles="xy", scale_units="xy", scale=1,
                                          color=FORCE_COLOR, width=0.004, zorder=5)
         self.clock = self.fig.text(0.08, 0.955, "", fontsize=10, family="monospace")
-        self.flag = self.fig.text(0.55, 0.955, "", fontsize=10, color=RELAXED_COLOR)
+        self.flag = self.fig.text(0.97, 0.955, "", fontsize=10, color=RELAXED_COLOR, ha="right")
         handles = [Line2D([], [], marker="o", ls="", color=c, mec="k", label=n)
                    for c, n in zip(PHASE_COLORS, PHASE_NAMES)]
         handles += [Line2D([], [], color="0.15", label="left legs"),
@@ -127,8 +127,7 @@ class Scene:
             self.ax.legend(handles=handles, fontsize=7, loc="upper left", ncol=2)
         self.strip = self.fig.add_subplot(grid[1])
         self._timeline()
-        self.fig.suptitle(f"{os.path.basename(motion.source)}", fontsize=9, x=0.97, ha="right",
-                          y=0.985)
+        self.fig.text(0.005, 0.005, os.path.basename(motion.source), fontsize=7, color="0.4")
 
     def _xy(self, pts):
         return self.p(np.asarray(pts))
