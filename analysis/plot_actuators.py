@@ -96,8 +96,8 @@ def draw(res):
 
 def main(argv=None):
     ap = argparse.ArgumentParser(
-        prog="plot_actuators.py", description=__doc__.strip().splitlines()[0],
-        epilog="\n".join(__doc__.strip().splitlines()[6:]),
+        prog="plot_actuators.py", description=__doc__.strip().split("\n\n")[0],
+        epilog=__doc__.strip().split("\n\n", 1)[1],
         formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("result", help="a hexdyn result file with dynamics")
     ap.add_argument("outdir")

@@ -389,8 +389,8 @@ def draw_lines(sweep, metric, x, hue, fixed):
 
 def main(argv=None):
     ap = argparse.ArgumentParser(
-        prog="plot_sweep.py", description=__doc__.strip().splitlines()[1],
-        epilog="\n".join(__doc__.strip().splitlines()[3:]),
+        prog="plot_sweep.py", description=__doc__.strip().split("\n\n")[0],
+        epilog=__doc__.strip().split("\n\n", 1)[1],
         formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("sweep", help="a hexdyn-sweep file")
     ap.add_argument("outdir")
