@@ -177,9 +177,10 @@ def load_motion(path, run=None):
 
 def frame_times(t0, duration, fps):
     """ceil(duration * fps) frame times t0 + i / fps (at least one frame); the product is
-    rounded to 1e-9 first, so that 8.6 s at 25 frames per second gives 215 frames."""
-    if not fps > 0:
-        raise InputError(f"--fps must be positive, got {fps}")
+    rounded to 1e-9 first, so that a duration of 0.7 s computed as 0.7000000000000001 gives 7
+    frames at 10 per second, not 8."""
+    if not (fps > 0 and math.isfinite(fps)):
+        raise InputError(f"--fps must be a positive number, got {fps}")
     n = max(1, math.ceil(round(duration * fps, 9)))
     return t0 + np.arange(n) / fps
 

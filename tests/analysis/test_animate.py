@@ -41,7 +41,7 @@ def check(ok, what, detail=""):
 
 
 def expected_frames(t, fps):
-    """ceil(duration * fps), the product taken to 1e-9 (8.6 s at 25 per second: 215)."""
+    """ceil(duration * fps), the product taken to 1e-9 (0.7000000000000001 s at 10 per second: 7)."""
     return max(1, math.ceil(round((t[-1] - t[0]) * fps, 9)))
 
 
