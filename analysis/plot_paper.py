@@ -6,8 +6,9 @@ usage: /usr/bin/python3 analysis/plot_paper.py RESULT.h5 OUTDIR
 Writes, atomically:
   fig3a_normal_forces.png    normal foot forces F_iz of all six legs (paper Fig. 3a)
   fig3b_impacts_legs_3_4.png close view of the first touchdowns of legs 3 and 4 (Fig. 3b)
-  fig4a_torques_leg1.png     joint torques of leg 1 (Fig. 4a)
-  fig4b_torques_leg2.png     joint torques of leg 2 (Fig. 4b)
+  fig4a_torques_leg1.png     joint torques of leg 1 (Fig. 4a), with the torque limit and
+                             the samples above it marked (relaxed: red crosses)
+  fig4b_torques_leg2.png     joint torques of leg 2 (Fig. 4b), the same
   fig5_total_power.png       total instantaneous power P_in = sum |tau omega| (Fig. 5)
 """
 import os
@@ -21,6 +22,8 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 from hexdyn.results import open_result  # noqa: E402
+from limits import (OPTIMAL_OVER_COLOR, RELAXED_COLOR, draw_limit_and_exceedances,  # noqa: E402
+                    torque_limits)
 from plot_kinematics import save_atomically  # noqa: E402
 
 G = 9.81
@@ -88,22 +91,51 @@ def fig3b(res, outdir):
     return save_atomically(fig, outdir, "fig3b_impacts_legs_3_4.png")
 
 
-def fig4(res, outdir, leg, name, panel):
+def draw_torques(ax, res, leg):
+    """The joint torques of leg `leg` (1-based) over time on `ax`, with each joint's torque
+    limit (allocation.torque_limit, or its URDF effort) as dotted lines and the samples above
+    it marked (red crosses: relaxed samples; black: failed; purple circles: optimal, not
+    expected), analysis/limits.py. Returns one dict of artists per joint
+    (limits.draw_limit_and_exceedances)."""
     t = res["/time"]
     tau = res["/joints/torque"]
-    fig, ax = plt.subplots(figsize=(9, 4))
+    names = list(res["/model/joint_names"])
+    limits, _ = torque_limits(res.config, res.urdf, names)
+    uniform = limits is not None and np.allclose(limits, limits[0])
+    drawn = []
     for j in range(3):
-        ax.plot(t, tau[:, 3 * (leg - 1) + j], lw=1.0, label=JOINTS[j])
-    limit = res.config.get("allocation", {}).get("torque_limit")
-    if not isinstance(limit, (int, float)):  # "effort": a URDF robot's per-joint limits
-        limit = None
-    if limit:
-        for s in (-1, 1):
-            ax.axhline(s * limit, color="k", ls=":", lw=0.8)
+        k = 3 * (leg - 1) + j
+        line = ax.plot(t, tau[:, k], lw=1.0, label=JOINTS[j])[0]
+        limit = None if limits is None else float(limits[k])
+        drawn.append(draw_limit_and_exceedances(
+            ax, t, tau[:, k], limit, res["/solver/status"],
+            color="k" if uniform else line.get_color(), label=False))
+        if drawn[-1]["limit"] and uniform and j > 0:
+            for a in drawn[-1]["limit"]:  # one pair of lines for a common limit
+                a.remove()
+            drawn[-1]["limit"] = drawn[0]["limit"]
+    if limits is not None:
+        ax.plot([], [], color="k", ls=":", lw=0.9,
+                label=f"torque limit ±{limits[0]:g} N m" if uniform else "torque limits")
+    counts = {key: sum(d["counts"][key] for d in drawn) for key in ("relaxed", "failed",
+                                                                    "optimal")}
+    for key, style in (("relaxed", dict(marker="x", color=RELAXED_COLOR, ls="")),
+                       ("failed", dict(marker="x", color="k", ls="")),
+                       ("optimal", dict(marker="o", mfc="none", mec=OPTIMAL_OVER_COLOR, ls=""))):
+        if counts[key]:
+            ax.plot([], [], label=f"above the limit: {key} sample ({counts[key]})", **style)
+    return drawn
+
+
+def fig4(res, outdir, leg, name, panel):
+    t = res["/time"]
+    fig, ax = plt.subplots(figsize=(9, 4))
+    draw_torques(ax, res, leg)
     shade_relaxed(ax, t, res["/solver/status"])
     ax.set_xlabel("time t [s]")
     ax.set_ylabel("joint torque [N m]")
-    ax.set_title(f"Joint torques of leg {leg} (cf. paper Fig. 4{panel})")
+    ax.set_title(f"Joint torques of leg {leg} (cf. paper Fig. 4{panel}); grey bands: relaxed "
+                 "or failed samples", fontsize=10)
     ax.legend(fontsize=8)
     ax.grid(alpha=0.3)
     return save_atomically(fig, outdir, name)

@@ -1,22 +1,42 @@
 #!/usr/bin/python3
-"""Heatmaps of a hexdyn-sweep/1 file: energy, cost of transport and peak joint torque
-over two swept keys.
+"""Heatmaps and line plots of a hexdyn-sweep file: energy, cost of transport and peak joint
+torque over the swept keys.
 
     /usr/bin/python3 analysis/plot_sweep.py SWEEP.h5 OUTDIR [--rows KEY] [--cols KEY]
+    /usr/bin/python3 analysis/plot_sweep.py SWEEP.h5 OUTDIR --x KEY [--hue KEY]
+                                            [--sel KEY=VALUE ...] [--metric NAME ...]
 
-Writes OUTDIR/sweep_energy.png, sweep_cost_of_transport.png and sweep_peak_torque.png
-(the largest peak |tau| over the 18 joints). Rows and columns default to the first two
-axes with more than one value; every other axis with more than one value gives one
-panel per value combination (up to 12 panels; beyond that each cell shows the minimum
-over those axes, and the title says so). Cells of scenarios that could not be computed
-are hatched grey and labelled with their status (reach, config, ...). Each figure is
+Heatmaps (default): OUTDIR/sweep_energy.png, sweep_cost_of_transport.png and
+sweep_peak_torque.png (the largest peak |tau| over the 18 joints). Rows and columns
+default to the first two axes with more than one value; every other axis with more than
+one value gives one panel per value combination (up to 12 panels; beyond that each cell
+shows the minimum over those axes, and the title says so). Cells of scenarios that could
+not be computed are hatched grey and labelled with their status (reach, config, ...).
+
+Torque limits: the peak-torque figures draw the torque limit (allocation.torque_limit of
+the base scene, or of each scenario when it is a swept axis; `effort`: each joint's URDF
+effort limit, read from a kept run's /model/urdf) and mark the scenarios whose peak exceeds
+it: a red frame (heatmap) or a red cross (line plot) when the scenario has relaxed samples
+(/scenarios/relaxed_samples > 0: the allocation keeps every optimal sample within the
+limit, so the excess comes from samples where it had to relax a constraint), a purple one
+when it has none.
+
+Line plots (--x KEY): OUTDIR/sweep_<metric>_vs_<KEY>.png, the metric against axis KEY, one
+line per value of axis --hue (e.g. cost of transport against terrain.riser_height, one line
+per gait.duty_factor). Every other axis with more than one value is fixed by
+--sel KEY=VALUE (VALUE as in the sweep file, e.g. gait.duty_factor=3/4) or else gives one
+panel per value combination (up to 12; more is an error naming the axes to fix). --metric
+chooses among energy, cost_of_transport, peak_torque (default all three). Each figure is
 saved under a temporary name in OUTDIR and renamed when complete.
 """
 
 import argparse
 import itertools
+from fractions import Fraction
 import os
 import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
 
 import matplotlib  # noqa: E402
@@ -27,6 +47,7 @@ from matplotlib.patches import Rectangle  # noqa: E402
 import numpy as np  # noqa: E402
 
 from hexdyn import results as hr  # noqa: E402
+from limits import OPTIMAL_OVER_COLOR, RELAXED_COLOR, exceeds, torque_limits  # noqa: E402
 from plot_kinematics import save_atomically  # noqa: E402
 
 MAX_PANELS = 12
@@ -46,6 +67,58 @@ def _nanmax_rows(a):
     finite = np.isfinite(a).any(axis=1)
     out[finite] = np.nanmax(a[finite], axis=1)
     return out
+
+
+LIMIT_KEY = "allocation.torque_limit"
+
+
+def scenario_torque_limits(sweep):
+    """Torque limits per scenario and joint, (N, J) N m, or None with the reason."""
+    joints = list(sweep.joint_names)
+    n = sweep.size
+    keys = [a.key for a in sweep.axes]
+    if LIMIT_KEY in keys and sweep.axes[keys.index(LIMIT_KEY)].numeric:
+        axis = sweep.axes[keys.index(LIMIT_KEY)]
+        col = np.asarray(sweep.table["axis_index"])[:, keys.index(LIMIT_KEY)]
+        return np.repeat(np.asarray(axis.values, dtype=float)[col][:, None], len(joints), 1), \
+            f"{LIMIT_KEY} (swept)"
+    config = sweep.config
+    value = config.get("allocation", {}).get("torque_limit")
+    urdf = ""
+    if value == "effort":
+        if not sweep.has_runs:
+            return None, "URDF effort limits: not in a sweep file without kept runs"
+        import h5py
+
+        with h5py.File(sweep.path, "r") as f:
+            first = sorted(f["runs"].keys())[0]
+            raw = f["runs"][first]["model"]["urdf"][()]
+            urdf = raw.decode() if isinstance(raw, bytes) else str(raw)
+    limits, source = torque_limits(config, urdf, joints)
+    if limits is None:
+        return None, source
+    return np.repeat(limits[None, :], n, 0), source
+
+
+def torque_ratio(sweep):
+    """Per scenario, the largest peak |tau_k| / limit_k over the joints (NaN where the
+    scenario failed), and the limits (N, J) or None."""
+    limits, source = scenario_torque_limits(sweep)
+    if limits is None:
+        return None, None, source
+    peak = np.asarray(sweep.table["peak_torque"], dtype=float)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        ratio = _nanmax_rows(peak / limits)
+    return ratio, limits, source
+
+
+def limit_text(limits, source):
+    if limits is None:
+        return None
+    finite = limits[np.isfinite(limits)]
+    if finite.size and np.allclose(finite, finite[0]):
+        return f"torque limit {finite[0]:g} N m ({source})"
+    return f"torque limits per joint or scenario ({source})"
 
 
 def choose_axes(sweep, rows_key=None, cols_key=None):
@@ -119,7 +192,20 @@ def panel_values(sweep, values, rows, cols, fixed, others):
 
 
 def draw(sweep, metric, rows, cols, outdir):
+    """Draws and saves one heatmap figure; returns its path."""
+    fig, _ = draw_heatmap(sweep, metric, rows, cols)
+    return save_atomically(fig, outdir, metric[0])
+
+
+def draw_heatmap(sweep, metric, rows, cols):
+    """The heatmap figure of `metric` and the artists of the torque limit: {"limit": [lines
+    on the colour bar], "relaxed": [cell frames], "optimal": [cell frames]}."""
     name, title, unit, getter = metric
+    marks = {"limit": [], "relaxed": [], "optimal": []}
+    ratio = limits = relaxed = limit_note = None
+    if name == "sweep_peak_torque.png":
+        ratio, limits, source = torque_ratio(sweep)
+        relaxed = np.asarray(sweep.table["relaxed_samples"], dtype=float)
     values = getter(sweep.table)
     plist, others = panels(sweep, rows, cols)
     n = len(plist)
@@ -139,6 +225,17 @@ def draw(sweep, metric, rows, cols, outdir):
         v, st = panel_values(sweep, values, rows, cols, fixed, others)
         image = ax.imshow(np.ma.masked_invalid(v), origin="lower", aspect="auto",
                           cmap="viridis", vmin=vmin, vmax=vmax)
+        if ratio is not None:
+            # Cells above the limit (the shown value, a minimum over hidden axes, included).
+            r, _ = panel_values(sweep, ratio, rows, cols, fixed, others)
+            nr, _ = panel_values(sweep, relaxed, rows, cols, fixed, others)
+            for (i, j), x in np.ndenumerate(r):
+                if np.isfinite(x) and exceeds(x, 1.0):
+                    key = "relaxed" if nr[i, j] > 0 else "optimal"
+                    marks[key].append(ax.add_patch(Rectangle(
+                        (j - 0.46, i - 0.46), 0.92, 0.92, fill=False, lw=2.2,
+                        edgecolor=RELAXED_COLOR if key == "relaxed" else OPTIMAL_OVER_COLOR,
+                        ls="-" if key == "relaxed" else "--")))
         for (i, j), x in np.ndenumerate(v):
             if np.isfinite(x):
                 shade = (x - vmin) / (vmax - vmin)
@@ -162,29 +259,175 @@ def draw(sweep, metric, rows, cols, outdir):
     for k in range(n, nrows * ncols):
         axs[k // ncols][k % ncols].set_visible(False)
     if image is not None:
-        fig.colorbar(image, ax=axs, label=f"{title} [{unit}]", shrink=0.9)
+        bar = fig.colorbar(image, ax=axs, label=f"{title} [{unit}]", shrink=0.9)
+        if limits is not None:
+            for lim in np.unique(limits[np.isfinite(limits)]):
+                marks["limit"].append(bar.ax.axhline(lim, color=RELAXED_COLOR, lw=2.0))
     notes = [f"{a.key} = {a.labels[0]}" for a in sweep.axes if len(a) == 1]
+    if limits is not None:
+        limit_note = (f"red line: {limit_text(limits, source)}; red frame: above it, with "
+                      "relaxed samples; purple dashed: above it, none relaxed")
+    elif ratio is None and name == "sweep_peak_torque.png":
+        limit_note = f"no torque limit drawn ({source})"
     failed = int((~sweep.ok).sum())
     if failed:
         notes.append(f"{failed} of {sweep.size} scenarios not computed: hatched, with their status")
     sup = f"{sweep.meta.get('name', 'sweep')}: {title}"
     if notes:
         sup += "\n" + "; ".join(notes)
-    fig.suptitle(sup, fontsize=10)
-    return save_atomically(fig, outdir, name)
+    if limit_note:
+        sup += "\n" + limit_note
+    fig.suptitle(sup, fontsize=9)
+    return fig, marks
+
+
+
+def parse_sel(sweep, items):
+    """--sel KEY=VALUE ... -> {axis index: value index}; SystemExit naming a bad item."""
+    keys = [a.key for a in sweep.axes]
+    fixed = {}
+    for item in items or []:
+        key, sep, value = item.partition("=")
+        if not sep or key not in keys:
+            raise SystemExit(f"plot_sweep: --sel {item!r}: expected KEY=VALUE with KEY one of "
+                             f"{keys}")
+        axis = sweep.axes[keys.index(key)]
+        match = [k for k, label in enumerate(axis.labels) if label == value]
+        if not match and axis.numeric:
+            try:
+                v = float(Fraction(value))
+            except (ValueError, ZeroDivisionError):
+                v = None
+            match = [k for k, x in enumerate(axis.values) if v is not None and np.isclose(x, v)]
+        if not match:
+            raise SystemExit(f"plot_sweep: --sel {item!r}: {key} has no value {value!r} "
+                             f"(values: {', '.join(axis.labels)})")
+        fixed[keys.index(key)] = match[0]
+    return fixed
+
+
+def draw_lines(sweep, metric, x, hue, fixed):
+    """The figure of `metric` against axis `x`, one line per value of axis `hue` (or one
+    line), a panel per combination of the other varied axes not in `fixed`. Returns (fig,
+    marks) with marks {"limit": [Line2D], "relaxed": [PathCollection], "optimal": [...]}."""
+    name, title, unit, getter = metric
+    values = getter(sweep.table)
+    grid = values.reshape(sweep.shape)
+    ratio = limits = None
+    if name == "sweep_peak_torque.png":
+        ratio, limits, source = torque_ratio(sweep)
+        relaxed = np.asarray(sweep.table["relaxed_samples"]).reshape(sweep.shape)
+    others = [i for i, a in enumerate(sweep.axes)
+              if len(a) > 1 and i not in (x, hue) and i not in fixed]
+    combos = list(itertools.product(*[range(len(sweep.axes[i])) for i in others]))
+    if len(combos) > MAX_PANELS:
+        raise SystemExit(f"plot_sweep: {len(combos)} panels for the axes "
+                         f"{[sweep.axes[i].key for i in others]}; fix some with --sel KEY=VALUE")
+    ncols = min(len(combos), 3)
+    nrows = (len(combos) + ncols - 1) // ncols
+    fig, axs = plt.subplots(nrows, ncols, figsize=(1.5 + 4.5 * ncols, 1.3 + 3.4 * nrows),
+                            squeeze=False, constrained_layout=True, sharey=True)
+    xa = sweep.axes[x]
+    xs = np.asarray(xa.values, dtype=float) if xa.numeric else np.arange(len(xa))
+    marks = {"limit": [], "relaxed": [], "optimal": []}
+    hue_values = range(len(sweep.axes[hue])) if hue is not None else [None]
+    for p, combo in enumerate(combos):
+        ax = axs[p // ncols][p % ncols]
+        where = dict(fixed)
+        where.update(zip(others, combo))
+        for h in hue_values:
+            index = [slice(None) if i == x else (h if i == hue else where.get(i, 0))
+                     for i in range(len(sweep.axes))]
+            label = f"{sweep.axes[hue].key} = {sweep.axes[hue].labels[h]}" if hue is not None \
+                else None
+            ys = grid[tuple(index)]
+            ax.plot(xs, ys, "o-", ms=4, lw=1.2, label=label)
+            if ratio is not None:
+                r = ratio.reshape(sweep.shape)[tuple(index)]
+                nr = relaxed[tuple(index)]
+                over = np.isfinite(r) & exceeds(np.nan_to_num(r), 1.0)
+                for key, sel, color in (("relaxed", over & (nr > 0), RELAXED_COLOR),
+                                        ("optimal", over & (nr == 0), OPTIMAL_OVER_COLOR)):
+                    if sel.any():
+                        marks[key].append(ax.scatter(xs[sel], ys[sel], marker="x", s=70, lw=2,
+                                                     color=color, zorder=5))
+        if limits is not None:
+            finite = np.unique(limits[np.isfinite(limits)])
+            for lim in finite[:4]:
+                marks["limit"].append(ax.axhline(lim, color=RELAXED_COLOR, ls=":", lw=1.2))
+        ax.set_xlabel(xa.key)
+        if not xa.numeric:
+            ax.set_xticks(xs, xa.labels)
+        if p % ncols == 0:
+            ax.set_ylabel(f"{title} [{unit}]")
+        ax.grid(alpha=0.3)
+        ptitle = ", ".join(f"{sweep.axes[i].key} = {sweep.axes[i].labels[j]}"
+                           for i, j in zip(others, combo))
+        if ptitle:
+            ax.set_title(ptitle, fontsize=9)
+        if hue is not None and p == 0:
+            ax.legend(fontsize=8)
+    for k in range(len(combos), nrows * ncols):
+        axs[k // ncols][k % ncols].set_visible(False)
+    notes = [f"{sweep.axes[i].key} = {sweep.axes[i].labels[j]}" for i, j in fixed.items()]
+    notes += [f"{a.key} = {a.labels[0]}" for i, a in enumerate(sweep.axes)
+              if len(a) == 1 and i not in fixed and i not in (x, hue)]
+    if limits is not None:
+        limit_note = (f"red dotted: {limit_text(limits, source)}; red cross: above it, with "
+                      "relaxed samples; purple: above it, none relaxed")
+    failed = int((~sweep.ok).sum())
+    if failed:
+        notes.append(f"{failed} scenario(s) not computed: gaps")
+    sup = f"{sweep.meta.get('name', 'sweep')}: {title} against {xa.key}"
+    if notes:
+        sup += "\n" + "; ".join(notes)
+    if limits is not None:
+        sup += "\n" + limit_note
+    fig.suptitle(sup, fontsize=9)
+    return fig, marks
 
 
 def main(argv=None):
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("sweep", help="a hexdyn-sweep/1 file")
+    ap = argparse.ArgumentParser(
+        prog="plot_sweep.py", description=__doc__.strip().split("\n\n")[0],
+        epilog=__doc__.strip().split("\n\n", 1)[1],
+        formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("sweep", help="a hexdyn-sweep file")
     ap.add_argument("outdir")
-    ap.add_argument("--rows", help="axis key for the heatmap rows")
-    ap.add_argument("--cols", help="axis key for the heatmap columns")
+    ap.add_argument("--rows", help="heatmaps: axis key for the rows")
+    ap.add_argument("--cols", help="heatmaps: axis key for the columns")
+    ap.add_argument("--x", help="line plots: axis key along x")
+    ap.add_argument("--hue", help="line plots: axis key with one line per value")
+    ap.add_argument("--sel", action="append", metavar="KEY=VALUE",
+                    help="line plots: fix an axis to one value (repeatable)")
+    ap.add_argument("--metric", action="append", choices=[m[0][6:-4] for m in METRICS],
+                    help="line plots: the metric(s) to draw (default all)")
     args = ap.parse_args(argv)
     sweep = hr.open_sweep(args.sweep)
     os.makedirs(args.outdir, exist_ok=True)
-    rows, cols = choose_axes(sweep, args.rows, args.cols)
-    written = [draw(sweep, m, rows, cols, args.outdir) for m in METRICS]
+    if args.x is None:
+        if args.hue or args.sel or args.metric:
+            raise SystemExit("plot_sweep: --hue, --sel and --metric go with --x KEY")
+        rows, cols = choose_axes(sweep, args.rows, args.cols)
+        written = [draw(sweep, m, rows, cols, args.outdir) for m in METRICS]
+    else:
+        keys = [a.key for a in sweep.axes]
+        for k in (args.x, args.hue):
+            if k is not None and k not in keys:
+                raise SystemExit(f"plot_sweep: {k!r} is not an axis of {sweep.path}; axes: {keys}")
+        x = keys.index(args.x)
+        hue = keys.index(args.hue) if args.hue else None
+        if hue == x:
+            raise SystemExit("plot_sweep: --x and --hue must be different axes")
+        fixed = parse_sel(sweep, args.sel)
+        if x in fixed or (hue is not None and hue in fixed):
+            raise SystemExit("plot_sweep: --sel fixes an axis given as --x or --hue")
+        chosen = [m for m in METRICS if not args.metric or m[0][6:-4] in args.metric]
+        written = []
+        for m in chosen:
+            fig, _ = draw_lines(sweep, m, x, hue, fixed)
+            written.append(save_atomically(fig, args.outdir,
+                                           f"{m[0][:-4]}_vs_{args.x}.png"))
     for path in written:
         print(f"plot_sweep: wrote {path}", file=sys.stderr)
     return 0

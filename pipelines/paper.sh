@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The paper scenario end to end: install what is missing, build the hexdyn binary (only
 # it: the tests and benchmarks are built by pipelines/test.sh), run configs/paper.yaml and
-# draw the figures into results/paper/.
+# draw the figures and the animation (paper.mp4, through ffmpeg) into results/paper/.
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
 hexdyn_install
@@ -12,6 +12,9 @@ mkdir -p "$out"
 "$HEXDYN_BUILD/hexdyn" run "$HEXDYN_ROOT/configs/paper.yaml" -o "$out/paper.h5"
 "$HEXDYN_PYTHON" "$HEXDYN_ROOT/analysis/plot_kinematics.py" "$out/paper.h5" "$out"
 "$HEXDYN_PYTHON" "$HEXDYN_ROOT/analysis/plot_paper.py" "$out/paper.h5" "$out"
+"$HEXDYN_PYTHON" "$HEXDYN_ROOT/analysis/plot_actuators.py" "$out/paper.h5" "$out"
+# The motion, side view, 10 frames per second at 640 x 448 pixels (docs/user/animation.md).
+"$HEXDYN_PYTHON" "$HEXDYN_ROOT/analysis/animate.py" "$out/paper.h5" -o "$out/paper.mp4" --fps 10
 # The paper's statements against this run (docs/validation/paper.md).
 "$HEXDYN_PYTHON" "$HEXDYN_ROOT/analysis/paper_statements.py" "$out/paper.h5"
 echo "paper: results in $out:" >&2

@@ -19,6 +19,8 @@ HEXDYN_PACKAGES=(
   python3 python3-h5py python3-numpy python3-matplotlib python3-yaml
   python3-dev pybind11-dev python3-pybind11 python3-scipy
   clang-format
+  # analysis/animate.py: GIF through Pillow, MP4 through ffmpeg (pipelines/paper.sh writes one)
+  python3-pil ffmpeg
 )
 
 hexdyn_install() {

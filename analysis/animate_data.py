@@ -1,0 +1,241 @@
+"""What analysis/animate.py draws, computed without drawing (h5py + numpy).
+
+    from animate_data import load_motion, frames_of
+    motion = load_motion("results/paper/paper.h5")           # or run="000003" on a sweep file
+    frames = frames_of(motion, fps=25)
+    frames.times        # (F,) s, F = ceil(duration * fps), frame i at t0 + i / fps
+    frames.feet         # (F,6,3) m, /feet/position interpolated linearly in /time
+    frames.legs         # six (F,P,3) arrays: hip ... foot link origins by forward kinematics
+    frames.phase        # (F,6) /contacts/phase of the last sample at or before each frame
+    frames.force        # (F,6,3) N, /contacts/force interpolated linearly (None without dynamics)
+    frames.relaxed      # (F,) relaxed samples (/solver/status 1) since the previous frame
+    motion.fk_error()   # max |FK(/base, /joints/position) - /feet/position| over the samples [m]
+
+The robot is the result's own /model/urdf (hexdyn's generated URDF for a robot given by
+parameters, the description itself for a URDF robot), joints in /model/joint_names order,
+feet L1_foot ... L6_foot; the forward kinematics is analysis/urdf_fk.py. The terrain is the
+height profile /terrain/y, /terrain/z (a polyline z(y), constant along x); a file without
+/terrain (hexdyn-result/1) has none.
+"""
+
+import math
+import os
+import sys
+
+import h5py
+import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from urdf_fk import UrdfRobot  # noqa: E402
+
+REQUIRED = ("/time", "/base/position", "/base/orientation", "/joints/position",
+            "/feet/position", "/model/urdf", "/model/joint_names")
+OPTIONAL = ("/contacts/phase", "/contacts/force", "/solver/status")
+
+
+class InputError(Exception):
+    """Bad input: the message is the one line the command prints."""
+
+
+def _text(value):
+    if isinstance(value, bytes):
+        return value.decode("utf-8")
+    if isinstance(value, np.ndarray) and value.shape == ():
+        return _text(value[()])
+    return str(value)
+
+
+def _schema(group):
+    if "meta" not in group or "schema" not in group["meta"].attrs:
+        return ""
+    return _text(group["meta"].attrs["schema"])
+
+
+def _run_ids(f):
+    return sorted(f["runs"].keys()) if "runs" in f else []
+
+
+def select_group(f, path, run=None):
+    """The h5py group holding the result to draw: the file root of a result file, or
+    /runs/<run> of a sweep file kept with --keep-runs. InputError names what is wrong."""
+    schema = _schema(f)
+    if schema.startswith("hexdyn-sweep/"):
+        ids = _run_ids(f)
+        if not ids:
+            raise InputError(f"{path} is a sweep file without kept runs (swept without "
+                             "--keep-runs): nothing to animate")
+        if run is None:
+            raise InputError(f"{path} is a sweep file: choose a kept run with --run ID "
+                             f"(available: {' '.join(ids)})")
+        match = [i for i in ids if i == run]
+        if not match and str(run).isdigit():
+            match = [i for i in ids if i.isdigit() and int(i) == int(run)]
+        if not match:
+            raise InputError(f"{path}: no kept run {run!r} (available: {' '.join(ids)})")
+        return f["runs"][match[0]], f"{path}:/runs/{match[0]}"
+    if not schema.startswith("hexdyn-result/"):
+        raise InputError(f"{path} is not a hexdyn result or sweep file "
+                         f"(/meta schema {schema or 'missing'})")
+    if run is not None:
+        raise InputError(f"{path} is a result file, not a sweep file: --run does not apply")
+    return f, str(path)
+
+
+def sign_continuous(quat):
+    """Quaternions (T,4) with signs flipped so that neighbours have a positive dot product
+    (q and -q are the same rotation; linear interpolation needs the near one)."""
+    q = np.array(quat, dtype=float)
+    for i in range(1, len(q)):
+        if np.dot(q[i], q[i - 1]) < 0:
+            q[i] = -q[i]
+    return q
+
+
+class Motion:
+    """One run's datasets as numpy arrays (the file is closed), the robot and the terrain."""
+
+    def __init__(self, source, data, terrain):
+        self.source = source
+        self.data = data
+        self.terrain = terrain  # (y (K,), z (K,), type) or None
+        self.time = np.asarray(data["/time"], dtype=float)
+        names = [_text(n) for n in np.asarray(data["/model/joint_names"]).ravel()]
+        self.joint_names = tuple(names)
+        self.robot = UrdfRobot(_text(data["/model/urdf"]), joint_order=self.joint_names)
+        if len(self.robot.foot_links) != 6:
+            raise InputError(f"{source}: /model/urdf has {len(self.robot.foot_links)} foot "
+                             "links L<i>_foot, expected 6")
+        self.chains = [self._chain(foot) for foot in self.robot.foot_links]
+        self.duration = float(self.time[-1] - self.time[0])
+
+    def _chain(self, foot):
+        """Links from the first link moved by a joint (the hip) to the foot."""
+        links = [foot]
+        while links[-1] in self.robot.joint_of_child:
+            links.append(self.robot.joint_of_child[links[-1]].parent)
+        links.reverse()  # root ... foot
+        for k in range(1, len(links)):
+            if self.robot.joint_of_child[links[k]].type in ("revolute", "continuous"):
+                return links[k:]
+        return links[-1:]
+
+    def has(self, path):
+        return path in self.data
+
+    def skeleton(self, base_position, base_quat, q):
+        """Six (F,P,3) arrays of link origins, hip to foot, by forward kinematics."""
+        needed = sorted({link for chain in self.chains for link in chain})
+        poses = self.robot.link_poses(base_position, base_quat, q, needed)
+        return [np.stack([poses[link][1] for link in chain], axis=1) for chain in self.chains]
+
+    def fk_error(self):
+        """Largest distance [m] between the feet by forward kinematics from /base/* and
+        /joints/position and the stored /feet/position, over every sample."""
+        feet = self.robot.foot_positions(self.data["/base/position"],
+                                         self.data["/base/orientation"],
+                                         self.data["/joints/position"])
+        return float(np.max(np.linalg.norm(feet - self.data["/feet/position"], axis=-1)))
+
+
+def read_terrain(group):
+    """(y (K,), z (K,), type) of /terrain in a result group, or None when absent."""
+    if "terrain" not in group:
+        return None
+    g = group["terrain"]
+    if "y" not in g or "z" not in g:
+        return None
+    y, z = np.asarray(g["y"][()], dtype=float), np.asarray(g["z"][()], dtype=float)
+    if y.shape != z.shape or y.ndim != 1 or y.size < 2:
+        raise InputError(f"/terrain/y and /terrain/z: shapes {y.shape} and {z.shape}, expected "
+                         "two equal (K,) with K >= 2")
+    kind = _text(g.attrs["type"]) if "type" in g.attrs else "terrain"
+    return y, z, kind
+
+
+def load_motion(path, run=None):
+    """Reads the run to draw from a result file (or a kept run of a sweep file)."""
+    if not os.path.isfile(path):
+        raise InputError(f"{path}: no such file")
+    try:
+        f = h5py.File(path, "r")
+    except OSError as e:
+        raise InputError(f"{path}: not an HDF5 file ({e})") from None
+    with f:
+        group, source = select_group(f, path, run)
+        data = {}
+        for p in REQUIRED + OPTIONAL:
+            if p.lstrip("/") in group:
+                data[p] = group[p.lstrip("/")][()]
+            elif p in REQUIRED:
+                raise InputError(f"{source}: no dataset {p}")
+        terrain = read_terrain(group)
+    t = np.asarray(data["/time"], dtype=float)
+    if t.ndim != 1 or t.size < 1 or (t.size > 1 and not np.all(np.diff(t) > 0)):
+        raise InputError(f"{source}: /time is not a strictly increasing series")
+    return Motion(source, data, terrain)
+
+
+def frame_times(t0, duration, fps):
+    """ceil(duration * fps) frame times t0 + i / fps (at least one frame); the product is
+    rounded to 1e-9 first, so that a duration of 0.7 s computed as 0.7000000000000001 gives 7
+    frames at 10 per second, not 8."""
+    if not (fps > 0 and math.isfinite(fps)):
+        raise InputError(f"--fps must be a positive number, got {fps}")
+    n = max(1, math.ceil(round(duration * fps, 9)))
+    return t0 + np.arange(n) / fps
+
+
+def _bracket(t, tf):
+    """Left sample index and weight of linear interpolation at each frame time."""
+    if t.size == 1:
+        return np.zeros(tf.size, dtype=int), np.zeros(tf.size)
+    i = np.clip(np.searchsorted(t, tf, side="right") - 1, 0, t.size - 2)
+    w = np.clip((tf - t[i]) / (t[i + 1] - t[i]), 0.0, 1.0)
+    return i, w
+
+
+def interpolate(t, values, tf):
+    """Piecewise-linear interpolation of values (T, ...) in t at tf (F,)."""
+    values = np.asarray(values, dtype=float)
+    i, w = _bracket(t, tf)
+    if t.size == 1:
+        return np.repeat(values[:1], tf.size, axis=0)
+    w = w.reshape((-1,) + (1,) * (values.ndim - 1))
+    return values[i] * (1.0 - w) + values[i + 1] * w
+
+
+class Frames:
+    """Per-frame quantities (see the module docstring)."""
+
+    def __init__(self, **fields):
+        self.__dict__.update(fields)
+
+    def __len__(self):
+        return len(self.times)
+
+
+def frames_of(motion, fps=25.0):
+    t = motion.time
+    tf = frame_times(float(t[0]), motion.duration, fps)
+    d = motion.data
+    base = interpolate(t, d["/base/position"], tf)
+    quat = interpolate(t, sign_continuous(d["/base/orientation"]), tf)
+    quat /= np.linalg.norm(quat, axis=1, keepdims=True)
+    q = interpolate(t, d["/joints/position"], tf)
+    hold = np.clip(np.searchsorted(t, tf, side="right") - 1, 0, t.size - 1)
+    phase = np.asarray(d["/contacts/phase"])[hold] if motion.has("/contacts/phase") else None
+    force = interpolate(t, d["/contacts/force"], tf) if motion.has("/contacts/force") else None
+    relaxed = failed = None
+    if motion.has("/solver/status"):
+        status = np.asarray(d["/solver/status"])
+        # Samples in (previous frame, this frame]; the first frame takes those at or before
+        # it, the last those after it too.
+        edges = np.searchsorted(t, tf, side="right")
+        edges[-1] = t.size
+        edges = np.concatenate(([0], edges))
+        relaxed = np.diff(np.concatenate(([0], np.cumsum(status == 1)))[edges])
+        failed = np.diff(np.concatenate(([0], np.cumsum(status == 2)))[edges])
+    return Frames(times=tf, base=base, quat=quat, q=q,
+                  feet=interpolate(t, d["/feet/position"], tf),
+                  legs=motion.skeleton(base, quat, q), phase=phase, force=force,
+                  relaxed=relaxed, failed=failed, fps=float(fps))
