@@ -68,7 +68,9 @@ def check_datasets(c, res, table, samples, impacts=None, messages=None):
     for path, (shape, units, element) in table.items():
         if not c.check(path in res, f"{path} present"):
             continue
-        want = hr.expected_shape(shape, samples, impacts, messages)
+        want = hr.expected_shape(shape, samples, impacts, messages,
+                                 Y=res.shapes.get("/gait/cycle_start", (None,))[0],
+                                 K=res.shapes.get("/terrain/y", (None,))[0])
         got = res.shapes[path]
         c.check(got == want, f"{path} shape {want}", f"got {got}")
         c.check(dtype_name(res[path]) == element, f"{path} element {element}",
@@ -159,6 +161,16 @@ def check_dynamics(c, res):
     if "/solver/status" in res:
         c.check(bool(np.isin(res["/solver/status"], (0, 1, 2)).all()),
                 "/solver/status values in {0, 1, 2}")
+    # The file integrates to what it reports (docs/theory/output-grid.md#energy-from-the-samples).
+    if all(p in res for p in ("/time", "/power/total", "/energy/total", "/energy/cycle")):
+        t, P = np.asarray(res["/time"], float), np.asarray(res["/power/total"], float)
+        E = float(res["/energy/total"])
+        trapezoid = float(np.sum(0.5 * np.diff(t) * (P[1:] + P[:-1])))
+        c.check(abs(trapezoid - E) <= 1e-9 * abs(E), "trapezoid of /power/total = /energy/total",
+                f"{trapezoid!r} against {E!r}")
+        cycles = float(np.sum(res["/energy/cycle"]))
+        c.check(abs(cycles - E) <= 1e-9 * abs(E), "sum of /energy/cycle = /energy/total",
+                f"{cycles!r} against {E!r}")
 
 
 def link_com_accelerations(robot, res):

@@ -105,8 +105,13 @@ py::tuple run_file(const std::string& scene_path, const std::vector<std::string>
     const char* path = d.spec->path;
     datasets[py::str(path)] = to_python(std::move(d));
   }
-  for (const hexdyn::LayoutAttribute& a : layout.attributes)
-    std::visit([&](const auto& v) { attributes[py::str(a.spec->name)] = py::cast(v); }, a.value);
+  // /meta attributes by name; any other object's as "OBJECT/NAME" ("/terrain/type").
+  for (const hexdyn::LayoutAttribute& a : layout.attributes) {
+    const std::string object = a.spec->object;
+    const std::string key = object == hexdyn::schema::kMetaGroup ? std::string(a.spec->name)
+                                                                 : object + "/" + a.spec->name;
+    std::visit([&](const auto& v) { attributes[py::str(key)] = py::cast(v); }, a.value);
+  }
   return py::make_tuple(handle, datasets, attributes);
 }
 

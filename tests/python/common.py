@@ -35,14 +35,19 @@ def cli_error(hexdyn, argv):
 
 
 def file_datasets(path):
-    """{"/path": value} of every dataset of an HDF5 file, as h5py reads it."""
-    out = {}
+    """{"/path": value} of every dataset of an HDF5 file, as h5py reads it, and the attributes:
+    /meta's by name, any other group's as "/group/name" (as hexdyn.Result.attrs)."""
+    out, attrs = {}, {}
     with h5py.File(path, "r") as f:
         def visit(name, obj):
             if isinstance(obj, h5py.Dataset):
                 out["/" + name] = (obj[()], obj.dtype, obj.attrs["units"])
+            elif name != "meta":
+                for k, v in obj.attrs.items():
+                    attrs[f"/{name}/{k}"] = v.decode() if isinstance(v, bytes) else v
         f.visititems(visit)
-        attrs = {k: (v.decode() if isinstance(v, bytes) else v) for k, v in f["/meta"].attrs.items()}
+        attrs.update({k: (v.decode() if isinstance(v, bytes) else v)
+                      for k, v in f["/meta"].attrs.items()})
     return out, attrs
 
 

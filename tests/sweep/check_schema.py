@@ -115,7 +115,7 @@ class FileCheck:
 
 def check_result(f, root, source):
     c = FileCheck(f, root, source)
-    sizes = {"T": None, "n": None, "m": None}
+    sizes = {"T": None, "n": None, "m": None, "Y": None, "K": None}
     for spec in S["kResultMetaAttributes"]:
         c.attribute(spec)
     c.group(S["kMetaGroup"])
@@ -125,6 +125,12 @@ def check_result(f, root, source):
         sizes["n"] = f[c.full(S["kImpactLeg"].path)].shape[0]
     if c.full(S["kSolverMessages"].path) in f:
         sizes["m"] = f[c.full(S["kSolverMessages"].path)].shape[0]
+    if c.full(S["kGaitCycleStart"].path) in f:
+        sizes["Y"] = f[c.full(S["kGaitCycleStart"].path)].shape[0]
+    if c.full(S["kTerrainY"].path) in f:
+        sizes["K"] = f[c.full(S["kTerrainY"].path)].shape[0]
+    c.attribute(S["kTerrainType"])
+    c.group(S["kTerrainGroup"])
     tables = ["kModelDatasets", "kKinematicDatasets", "kDynamicsDatasets"]
     if c.full(S["kModelLegMapping"].path) in f:  # a robot read from a URDF
         tables.append("kUrdfRobotDatasets")

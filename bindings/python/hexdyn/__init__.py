@@ -83,7 +83,8 @@ class Result(Mapping):
     """One computed scene: a read-only mapping from HDF5 path ("/joints/torque") to its
     dataset, as `hexdyn run` writes it: numpy arrays of the file's dtype and shape (0-d for a
     scalar), numpy arrays of str for string lists, str for /model/urdf.
-    `attrs` holds the /meta attributes, `config` the resolved configuration as a dict,
+    `attrs` holds the /meta attributes by name and the other groups' as "/terrain/type",
+    `config` the resolved configuration as a dict,
     `write(path)` writes the file."""
 
     def __init__(self, handle, datasets, attrs):

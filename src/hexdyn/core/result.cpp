@@ -14,6 +14,7 @@ void KinematicsResult::resize(int T) {
        {&joint_position, &joint_velocity, &joint_acceleration, &foot_position, &foot_velocity})
     m->setZero(T, kJoints);
   contact_phase.setZero(T, kLegs);
+  sample_kind.assign(T, 0);
 }
 
 std::ostream& operator<<(std::ostream& os, SolverStatus status) {

@@ -48,6 +48,9 @@ struct KinematicsResult {
   /// T×6, ContactPhase values: swing/support from the gait (sample_kinematics); in a
   /// RunResult, the contact schedule's phases with the touchdown transients (kImpact).
   RowMatrixI8 contact_phase;
+  /// T (or empty: every sample ordinary), /sample_kind: 0 an ordinary sample, 1 the left
+  /// limit of a contact event (docs/theory/output-grid.md#event-samples).
+  std::vector<std::int8_t> sample_kind;
   int samples() const { return static_cast<int>(time_s.size()); }
   void resize(int samples);
 };
@@ -69,10 +72,11 @@ struct DynamicsResult {
   RowMatrix contact_force;  ///< T×18 = (T,6,3), terrain on foot, world [N]
   RowMatrix penetration;    ///< T×6 [m]
   std::vector<ImpactRecord> impacts;
-  RowMatrix joint_power;              ///< T×18 [W]
-  std::vector<double> total_power_W;  ///< T, Σ|τ ω|
-  double energy_total_J = 0.0;
-  std::vector<double> energy_joint_J;        ///< 18, ∫|τ_k ω_k| dt
+  RowMatrix joint_power;                     ///< T×18 [W]
+  std::vector<double> total_power_W;         ///< T, Σ|τ ω|
+  double energy_total_J = 0.0;               ///< trapezoid of total_power_W over the samples
+  std::vector<double> energy_joint_J;        ///< 18, trapezoid of |τ_k ω_k| over the samples
+  std::vector<double> energy_cycle_J;        ///< Y, per gait cycle, sums to energy_total_J
   double distance_m = 0.0;                   ///< trunk travel for the cost of transport
   double cost_of_transport = 0.0;            ///< E / (m g d)
   std::vector<SolverStatus> solver_status;   ///< T
@@ -97,6 +101,14 @@ struct RunResult {
   std::vector<std::string> leg_mapping;
   double total_mass_kg = 0.0;
   double wall_time_s = 0.0;
+  /// /gait/cycle_start: Y start times of the gait cycles [s], the first 0 (empty: not
+  /// written).
+  std::vector<double> cycle_start_s;
+  /// /terrain: the height profile z(y) as a polyline in G0 [m] (K vertices; a vertical riser
+  /// is two vertices of equal y) and the terrain type "flat", "slope" or "stairs" (empty:
+  /// not written).
+  std::vector<double> terrain_y_m, terrain_z_m;
+  std::string terrain_type;
 };
 
 }  // namespace hexdyn

@@ -93,9 +93,23 @@ void add_kinematics(Builder& b, const KinematicsResult& k) {
   b.matrix(s::kFeetVelocity, k.foot_velocity, T, 3 * kLegs, {t, kLegs, 3});
   b.matrix(s::kComPosition, k.com_position, T, 3, {t, 3});
   b.matrix(s::kContactPhase, k.contact_phase, T, kLegs, {t, kLegs});
+  if (!k.sample_kind.empty() && k.sample_kind.size() != t)
+    throw IoError(std::string(s::kSampleKind.path) + " has " +
+                  std::to_string(k.sample_kind.size()) + " entries, expected " + std::to_string(t));
+  b.add(s::kSampleKind, {t},
+        k.sample_kind.empty() ? std::vector<std::int8_t>(t, 0) : k.sample_kind);
 }
 
-void add_dynamics(Builder& b, const DynamicsResult& d, int T) {
+/// /gait/cycle_start and /terrain (docs/theory/output-grid.md#event-samples).
+void add_gait_and_terrain(ResultLayout& layout, Builder& b, const RunResult& r) {
+  namespace s = schema;
+  b.vector(s::kGaitCycleStart, r.cycle_start_s, r.cycle_start_s.size());
+  b.vector(s::kTerrainY, r.terrain_y_m, r.terrain_y_m.size());
+  b.vector(s::kTerrainZ, r.terrain_z_m, r.terrain_y_m.size());
+  layout.attributes.push_back({&s::kTerrainType, r.terrain_type});
+}
+
+void add_dynamics(Builder& b, const DynamicsResult& d, int T, std::size_t cycles) {
   namespace s = schema;
   const std::size_t t = to_size(T);
   b.matrix(s::kJointTorque, d.joint_torque, T, kJoints, {t, kJoints});
@@ -130,6 +144,7 @@ void add_dynamics(Builder& b, const DynamicsResult& d, int T) {
   b.vector(s::kTotalPower, d.total_power_W, t);
   b.scalar(s::kEnergyTotal, d.energy_total_J);
   b.vector(s::kEnergyJoint, d.energy_joint_J, kJoints);
+  b.vector(s::kEnergyCycle, d.energy_cycle_J, cycles);
   b.scalar(s::kCostOfTransport, d.cost_of_transport);
   b.scalar(s::kEnergyDistance, d.distance_m);
 
@@ -152,7 +167,9 @@ ResultLayout result_layout(const RunResult& result) {
   add_meta(layout, result);
   add_model(b, result);
   add_kinematics(b, result.kin);
-  if (result.dyn.present) add_dynamics(b, result.dyn, result.kin.samples());
+  add_gait_and_terrain(layout, b, result);
+  if (result.dyn.present)
+    add_dynamics(b, result.dyn, result.kin.samples(), result.cycle_start_s.size());
   return layout;
 }
 

@@ -39,7 +39,7 @@ struct LayoutAttribute {
 
 /// A whole result file in memory.
 struct ResultLayout {
-  std::vector<LayoutAttribute> attributes;  ///< /meta, in the order written
+  std::vector<LayoutAttribute> attributes;  ///< /meta, then /terrain's, in the order written
   std::vector<LayoutDataset> datasets;      ///< /model, kinematics, dynamics, in the order written
 };
 
@@ -50,9 +50,11 @@ struct ResultLayout {
 ///
 /// Preconditions (checked; a mismatch throws IoError "PATH is RxC, expected ..." naming the
 /// dataset): every kinematic array has result.kin.samples() = T rows and its dataset's
-/// column count (T×3, T×4, T×6 or T×18); when result.dyn.present, the dynamics arrays have
-/// T rows (or T entries), energy_joint_J 18 entries, every impact a leg index 0..5
-/// (written 1-based); 18 joint names (or none: then L1_coxa … L6_tibia).
+/// column count (T×3, T×4, T×6 or T×18), kin.sample_kind T entries or none (all
+/// ordinary), terrain_z_m as many as terrain_y_m; when result.dyn.present, the dynamics
+/// arrays have T rows (or T entries), energy_joint_J 18 entries, energy_cycle_J one per
+/// cycle_start_s, every impact a leg index 0..5 (written 1-based); 18 joint names (or none: then
+/// L1_coxa … L6_tibia).
 ResultLayout result_layout(const RunResult& result);
 
 }  // namespace hexdyn

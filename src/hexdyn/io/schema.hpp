@@ -14,7 +14,8 @@
 /// (a name of a `const char*` constant may stand for a string). A change of layout is a
 /// new schema version.
 ///
-/// Shapes: T output samples, 6 legs, 18 joints, n touchdowns, m solver messages; in a
+/// Shapes: T output samples, 6 legs, 18 joints, n touchdowns, m solver messages, Y gait
+/// cycles, K vertices of the terrain profile; in a
 /// sweep file N scenarios, A axes, V values of one axis. (T,6,3) datasets are leg-major
 /// (index [t][leg][axis]); all vectors are in the world frame G0 unless the name says
 /// otherwise. Units strings: "1" marks dimensionless numbers (quaternions, status codes,
@@ -153,6 +154,25 @@ inline constexpr DatasetSpec kFeetVelocity{"/feet/velocity", "m/s", Shape::kT6x3
 inline constexpr DatasetSpec kComPosition{"/com/position", "m", Shape::kT3};
 /// 0 swing, 1 impact, 2 support (ContactPhase).
 inline constexpr DatasetSpec kContactPhase{"/contacts/phase", "1", Shape::kT6, Element::kInt8};
+/// 0 an ordinary sample, 1 the left limit of a contact event: a sample 1e-10 s before a
+/// touchdown, the end of a touchdown transient or a lift-off, holding every value just before
+/// it (docs/theory/output-grid.md#event-samples); adaptive grid only.
+inline constexpr DatasetSpec kSampleKind{"/sample_kind", "1", Shape::kT, Element::kInt8,
+                                         "kind of output sample"};
+/// Start of each gait cycle (phase τ = 0, 1, …), the first 0; the last cycle runs to the end.
+inline constexpr DatasetSpec kGaitCycleStart{"/gait/cycle_start", "s", Shape::kCycles,
+                                             Element::kFloat64, "start time of each gait cycle"};
+/// The terrain's height profile z(y), world frame, as a polyline (a vertical riser is two
+/// vertices of equal y); constant along x. Covers the run's feet and trunk with 0.25 m margin
+/// (stairs: every riser).
+inline constexpr DatasetSpec kTerrainY{"/terrain/y", "m", Shape::kTerrainPoints, Element::kFloat64,
+                                       "y of each terrain profile vertex"};
+/// Terrain height at each vertex of /terrain/y.
+inline constexpr DatasetSpec kTerrainZ{"/terrain/z", "m", Shape::kTerrainPoints, Element::kFloat64,
+                                       "terrain height at each profile vertex"};
+inline constexpr const char* kTerrainGroup = "/terrain";
+/// "flat", "slope" or "stairs" (terrain.type), on the group /terrain.
+inline constexpr AttributeSpec kTerrainType{kTerrainGroup, "type", Element::kString};
 
 // ---- dynamics: written only when the dynamic stages ran ----
 inline constexpr DatasetSpec kJointTorque{"/joints/torque", "N m", Shape::kT18};
@@ -169,8 +189,14 @@ inline constexpr DatasetSpec kImpactEffectiveMass{"/impacts/effective_mass", "kg
 inline constexpr DatasetSpec kImpactApproachSpeed{"/impacts/approach_speed", "m/s", Shape::kN};
 inline constexpr DatasetSpec kJointPower{"/power/joint", "W", Shape::kT18};
 inline constexpr DatasetSpec kTotalPower{"/power/total", "W", Shape::kT};
+/// Trapezoid rule over /time of /power/total (docs/theory/output-grid.md#energy-from-the-samples).
 inline constexpr DatasetSpec kEnergyTotal{"/energy/total", "J", Shape::kScalar};
+/// Trapezoid rule over /time of |τ_k ω_k| (/power/joint).
 inline constexpr DatasetSpec kEnergyJoint{"/energy/joint", "J", Shape::kJ};
+/// Energy of each gait cycle (from /gait/cycle_start to the next, the last to the end):
+/// the trapezoid with /power/total interpolated linearly at the bounds; sums to /energy/total.
+inline constexpr DatasetSpec kEnergyCycle{"/energy/cycle", "J", Shape::kCycles, Element::kFloat64,
+                                          "energy per gait cycle"};
 inline constexpr DatasetSpec kCostOfTransport{"/energy/cost_of_transport", "1", Shape::kScalar};
 inline constexpr DatasetSpec kEnergyDistance{"/energy/distance", "m", Shape::kScalar};
 /// 0 optimal, 1 relaxed (slack used), 2 failed.
@@ -198,7 +224,11 @@ inline constexpr std::array kKinematicDatasets{kTime,
                                                kFeetPosition,
                                                kFeetVelocity,
                                                kComPosition,
-                                               kContactPhase};
+                                               kContactPhase,
+                                               kSampleKind,
+                                               kGaitCycleStart,
+                                               kTerrainY,
+                                               kTerrainZ};
 /// Datasets present when the robot was read from a URDF.
 inline constexpr std::array kUrdfRobotDatasets{kModelLegMapping};
 /// Datasets present when the dynamic stages ran.
@@ -206,9 +236,9 @@ inline constexpr std::array kDynamicsDatasets{
     kJointTorque,         kContactForce,        kContactPenetration, kImpactLeg,
     kImpactStart,         kImpactDuration,      kImpactPeakForce,    kImpactImpulse,
     kImpactEffectiveMass, kImpactApproachSpeed, kJointPower,         kTotalPower,
-    kEnergyTotal,         kEnergyJoint,         kCostOfTransport,    kEnergyDistance,
-    kSolverStatus,        kSolverIterations,    kSolverObjective,    kSolverSeconds,
-    kSolverMessages};
+    kEnergyTotal,         kEnergyJoint,         kEnergyCycle,        kCostOfTransport,
+    kEnergyDistance,      kSolverStatus,        kSolverIterations,   kSolverObjective,
+    kSolverSeconds,       kSolverMessages};
 
 // ======================================================================= hexdyn-sweep/1
 // One row per scenario (N = product of the axis sizes, scenario i at the row-major grid

@@ -47,6 +47,25 @@ void describe_base_at_root_link(const RobotModel& model, KinematicsResult& kin) 
   }
 }
 
+/// How far the stored terrain profile reaches beyond the run's feet and trunk along y [m]
+/// (docs/theory/output-grid.md#the-terrain-in-the-file).
+constexpr double kTerrainProfileMargin_m = 0.25;
+
+/// /terrain: the height profile over the y-range of every foot and the trunk, with a margin.
+void add_terrain_profile(const TerrainParams& terrain, RunResult& result) {
+  const KinematicsResult& k = result.kin;
+  double y_min = k.base_position.col(1).minCoeff(), y_max = k.base_position.col(1).maxCoeff();
+  for (int l = 0; l < kLegs; ++l) {
+    y_min = std::min(y_min, k.foot_position.col(3 * l + 1).minCoeff());
+    y_max = std::max(y_max, k.foot_position.col(3 * l + 1).maxCoeff());
+  }
+  TerrainProfile profile =
+      terrain_profile(terrain, y_min - kTerrainProfileMargin_m, y_max + kTerrainProfileMargin_m);
+  result.terrain_y_m = std::move(profile.y_m);
+  result.terrain_z_m = std::move(profile.z_m);
+  result.terrain_type = terrain_type_name(terrain.type);
+}
+
 }  // namespace
 
 PreparedScene prepare_scene(const Scene& scene) {
@@ -64,8 +83,10 @@ PreparedScene prepare_scene(const Scene& scene) {
     events.push_back({td.t_s, d, td.transient.time_of_peak_s});
     t_end = std::max(t_end, td.t_s + d);
   }
-  std::vector<double> grid = build_output_grid(scene.output, t_end, events);
-  return PreparedScene{std::move(model), std::move(plan), std::move(touchdowns), std::move(grid)};
+  std::vector<std::int8_t> kind;
+  std::vector<double> grid = build_output_grid(scene.output, t_end, events, &kind);
+  return PreparedScene{std::move(model), std::move(plan), std::move(touchdowns), std::move(grid),
+                       std::move(kind)};
 }
 
 RunResult run_scene(const Scene& scene, std::ostream* log) {
@@ -80,6 +101,9 @@ RunResult run_prepared_scene(const Scene& scene, const PreparedScene& prep, std:
   const auto start = std::chrono::steady_clock::now();
   RunResult result;
   result.kin = sample_kinematics(prep.model, prep.plan, prep.grid);
+  result.kin.sample_kind = prep.sample_kind;
+  if (result.kin.sample_kind.size() != prep.grid.size())
+    result.kin.sample_kind.assign(prep.grid.size(), kSampleOrdinary);
   ContactSchedule contacts = schedule_contacts(result.kin, prep.plan.terrain, prep.touchdowns);
   result.dyn =
       solve_dynamics(scene, prep.model, prep.plan, result.kin, contacts, prep.touchdowns, log);
@@ -96,6 +120,8 @@ RunResult run_prepared_scene(const Scene& scene, const PreparedScene& prep, std:
     result.leg_mapping.assign(mapping.begin(), mapping.end());
   }
   result.total_mass_kg = prep.model.total_mass_kg;
+  result.cycle_start_s = prep.plan.trunk.cycle_start_times();
+  add_terrain_profile(prep.plan.terrain.params(), result);
   result.wall_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;

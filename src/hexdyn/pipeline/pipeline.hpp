@@ -10,6 +10,7 @@
 ///     → dynamics, allocation and power (pipeline/solve_dynamics.hpp).
 ///
 /// Throws a hexdyn::Error subclass when the scene cannot be computed.
+#include <cstdint>
 #include <iosfwd>
 #include <vector>
 
@@ -22,13 +23,15 @@
 namespace hexdyn {
 
 /// Everything a scene determines before the per-sample loop: the model, the plan, the
-/// touchdown transients and the output grid (refined at every lift-off and touchdown,
-/// extended past the end of the motion when a final transient outlasts it).
+/// touchdown transients and the output grid (refined at every lift-off and touchdown, with
+/// the left limit of every contact event on the adaptive grid, extended past the end of the
+/// motion when a final transient outlasts it).
 struct PreparedScene {
   RobotModel model;
   MotionPlan plan;
   std::vector<Touchdown> touchdowns;
-  std::vector<double> grid;  ///< [s], increasing
+  std::vector<double> grid;              ///< [s], strictly increasing
+  std::vector<std::int8_t> sample_kind;  ///< per grid point: planning/grid.hpp kSample*
 };
 PreparedScene prepare_scene(const Scene& scene);
 

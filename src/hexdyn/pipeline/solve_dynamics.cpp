@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <memory>
-#include <optional>
 #include <ostream>
 #include <string>
 
@@ -15,10 +14,6 @@
 
 namespace hexdyn {
 namespace {
-
-/// How far before a contact event its left limit is evaluated [s]: far below any grid
-/// step (merged at 1e-9 s), far above the rounding of t.
-constexpr double kEventLeftLimit_s = 1e-10;
 
 /// The allocation of one sample: the back end's answer, the forces and torques of its
 /// solution, and what the solution itself violates.
@@ -77,26 +72,6 @@ class SampleSolver {
   std::unique_ptr<AllocationBackend> backend_;
   QpProblem qp_;
 };
-
-/// The left limit of the power at sample i (time t_s), whose contact phases differ from
-/// `previous_phase`: the sample solved again an instant before the event. A jump only when
-/// the event is at this sample (adaptive grid); on a grid that steps over the event the
-/// series is integrated across it.
-std::optional<PowerJump> left_limit(SampleSolver& solver, const RobotModel& model,
-                                    const MotionPlan& plan,
-                                    const std::vector<Touchdown>& touchdowns, int i, double t_s,
-                                    const std::array<ContactPhase, kLegs>& previous_phase) {
-  const KinematicsResult k_left = sample_kinematics(model, plan, {t_s - kEventLeftLimit_s});
-  SampleContacts c_left;
-  sample_contacts(k_left, 0, plan.terrain, touchdowns, c_left);
-  const SampleSolution left = solver.solve(k_left, 0, c_left);
-  if (c_left.phase != previous_phase) return std::nullopt;
-  PowerJump jump;
-  jump.index = i;
-  jump.abs_power_left_W =
-      left.joint_torque.cwiseProduct(k_left.joint_velocity.row(0).transpose()).cwiseAbs();
-  return jump;
-}
 
 /// A sample's status and message: the back end's, made relaxed when the solution itself
 /// violates a row or cone beyond the fixed threshold (kViolationThreshold; the back end's
@@ -210,20 +185,11 @@ DynamicsResult solve_dynamics(const Scene& scene, const RobotModel& model, const
   dyn.impacts = impact_records(touchdowns);
 
   SampleSolver solver(scene, model);
-  std::optional<SampleSolver>
-      left_solver;  // its own back end: the run's warm starts stay as they are
-  std::vector<PowerJump> jumps;
   EpisodeLog episodes(log);
   for (int i = 0; i < T; ++i) {
     const double t = kin.time_s[i];
     const SampleContacts& c = contacts.samples[i];
     const SampleSolution solution = solver.solve(kin, i, c);
-    if (i > 0 && c.phase != contacts.samples[i - 1].phase) {
-      if (!left_solver) left_solver.emplace(scene, model);
-      if (auto jump = left_limit(*left_solver, model, plan, touchdowns, i, t,
-                                 contacts.samples[i - 1].phase))
-        jumps.push_back(*jump);
-    }
     const SampleVerdict verdict = sample_verdict(solution, c, scene.allocation.torque_limit_Nm);
     const VecJ& tau = solution.joint_torque;
     dyn.solver_status[i] = verdict.status;
@@ -247,12 +213,13 @@ DynamicsResult solve_dynamics(const Scene& scene, const RobotModel& model, const
   }
   episodes.close();
 
-  PowerResult power =
-      compute_power(kin, dyn.joint_torque, model.total_mass_kg, plan.trunk.total_travel_m(), jumps);
+  PowerResult power = compute_power(kin, dyn.joint_torque, model.total_mass_kg,
+                                    plan.trunk.total_travel_m(), plan.trunk.cycle_start_times());
   dyn.joint_power = std::move(power.joint_power);
   dyn.total_power_W = std::move(power.total_power_W);
   dyn.energy_joint_J = std::move(power.energy_joint_J);
   dyn.energy_total_J = power.energy_total_J;
+  dyn.energy_cycle_J = std::move(power.energy_cycle_J);
   dyn.distance_m = power.distance_m;
   dyn.cost_of_transport = power.cost_of_transport;
   return dyn;

@@ -4,8 +4,7 @@
 /// docs/theory/allocation.md#measured-violation-flags): for every sample, the affine split of the
 /// equations of motion (dynamics/rnea.hpp), the allocation problem (allocation/problem.hpp)
 /// solved by the scene's back end, and the foot forces, joint torques and penetrations;
-/// then joint power and energy (power/power.hpp), with the left limits of the power at
-/// contact events.
+/// then joint power and energy (power/power.hpp), per run and per gait cycle.
 #include <iosfwd>
 #include <vector>
 

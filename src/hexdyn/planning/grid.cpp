@@ -6,7 +6,8 @@
 namespace hexdyn {
 
 std::vector<double> build_output_grid(const OutputParams& out, double duration_s,
-                                      const std::vector<GridEvent>& events) {
+                                      const std::vector<GridEvent>& events,
+                                      std::vector<std::int8_t>* sample_kind) {
   std::vector<double> t;
   const int n = static_cast<int>(std::floor(duration_s / out.sample_step_s + 1e-9));
   for (int i = 0; i <= n; ++i) t.push_back(i * out.sample_step_s);
@@ -19,6 +20,7 @@ std::vector<double> build_output_grid(const OutputParams& out, double duration_s
         const int m = std::max(1, out.impact_samples);
         for (int j = 0; j <= m; ++j) t.push_back(t0 + e.duration_s * j / m);
         t.push_back(t0 + e.peak_offset_s);
+        t.push_back(t1);  // the end, exactly as the contact schedule computes it
       }
       t.push_back(t0);
       // Geometric grading away from the event on both sides, up to the uniform step.
@@ -41,7 +43,44 @@ std::vector<double> build_output_grid(const OutputParams& out, double duration_s
     grid.push_back(x);
   }
   if (grid.back() < duration_s - 1e-9) grid.push_back(duration_s);
-  return grid;
+
+  // Left limits (docs/theory/output-grid.md#event-samples). Every point closer than 1e-9 s
+  // before an event was merged into one at or after it, so none lies in [e − offset, e).
+  std::vector<double> left;
+  if (out.grid == OutputGrid::kAdaptive) {
+    for (const GridEvent& e : events) {
+      left.push_back(e.t_s - kLeftLimitOffset_s);
+      if (e.duration_s > 0.0) left.push_back(e.t_s + e.duration_s - kLeftLimitOffset_s);
+    }
+    std::sort(left.begin(), left.end());
+    std::vector<double> kept;
+    for (double x : left) {
+      if (x <= 0.0 || x >= duration_s) continue;
+      if (!kept.empty() && x - kept.back() < 1e-9) continue;  // merged into the earliest
+      kept.push_back(x);
+    }
+    left = std::move(kept);
+  }
+  std::vector<double> merged;
+  std::vector<std::int8_t> kind;
+  merged.reserve(grid.size() + left.size());
+  kind.reserve(grid.size() + left.size());
+  std::size_t a = 0, b = 0;
+  while (a < grid.size() || b < left.size()) {
+    if (b < left.size() && a < grid.size() && left[b] == grid[a]) {
+      ++b;  // cannot happen (see above); keeps the grid strictly increasing regardless
+      continue;
+    }
+    if (b < left.size() && (a == grid.size() || left[b] < grid[a])) {
+      merged.push_back(left[b++]);
+      kind.push_back(kSampleLeftLimit);
+    } else {
+      merged.push_back(grid[a++]);
+      kind.push_back(kSampleOrdinary);
+    }
+  }
+  if (sample_kind) *sample_kind = std::move(kind);
+  return merged;
 }
 
 }  // namespace hexdyn

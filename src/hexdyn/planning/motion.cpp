@@ -62,6 +62,12 @@ double TrunkMotion::time_at_travel(double s) const {
   return 0.5 * (lo + hi);
 }
 
+std::vector<double> TrunkMotion::cycle_start_times() const {
+  std::vector<double> t;
+  for (int k = 0; k < cycles_; ++k) t.push_back(k == 0 ? 0.0 : time_at_phase(k));
+  return t;
+}
+
 BaseState TrunkMotion::at(double t) const {
   BaseState x;
   x.p_W = p0_W_ + travel(t) * direction_W_;

@@ -5,6 +5,8 @@
 /// e = (0, cos α0, sin α0) with a C² speed profile: a smootherstep ramp from rest to
 /// the cruise speed, cruise, and the mirrored ramp to rest. One gait cycle is one
 /// stride of travel, s0/β horizontally, so the gait phase τ = travel / stride.
+#include <vector>
+
 #include "hexdyn/core/base_state.hpp"
 #include "hexdyn/core/common.hpp"
 #include "hexdyn/core/scene.hpp"
@@ -27,6 +29,10 @@ class TrunkMotion {
   /// Gait phase in cycles, τ(t) = s(t) / stride, and its inverse.
   double phase(double t_s) const { return travel(t_s) / stride_m_; }
   double time_at_phase(double tau) const { return time_at_travel(tau * stride_m_); }
+  /// Start of each gait cycle k = 0 … cycles−1, where the phase τ reaches k [s]: 0, then
+  /// the given cycle durations' partial sums (motion.cycle_durations) or, for a scene given
+  /// by its speed, the instants the trunk has travelled k strides.
+  std::vector<double> cycle_start_times() const;
   /// P0 when the trunk has travelled τ strides; extrapolated linearly outside [0, cycles].
   Vec3 position_at_phase(double tau) const { return p0_W_ + tau * stride_m_ * direction_W_; }
 

@@ -1,5 +1,6 @@
 #include "hexdyn/planning/terrain.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -76,6 +77,43 @@ double Terrain::nearest_valid_foothold_y(double y, double margin) const {
     }
   }
   return best;
+}
+
+TerrainProfile terrain_profile(const TerrainParams& p, double y_min, double y_max) {
+  const Terrain terrain(p);
+  TerrainProfile out;
+  auto vertex = [&](double y, double z) {
+    out.y_m.push_back(y);
+    out.z_m.push_back(z);
+  };
+  if (p.type != TerrainType::kStairs) {
+    vertex(y_min, terrain.height(0.0, y_min));
+    vertex(y_max, terrain.height(0.0, y_max));
+    return out;
+  }
+  const double last_riser_y = p.first_riser_y_m + (p.steps - 1) * p.tread_depth_m;
+  const double start = std::min(y_min, p.first_riser_y_m - p.tread_depth_m);
+  const double end = std::max(y_max, last_riser_y + p.tread_depth_m);
+  vertex(start, p.ground_height_m);
+  for (int k = 1; k <= p.steps; ++k) {
+    const double y = p.first_riser_y_m + (k - 1) * p.tread_depth_m;
+    vertex(y, p.ground_height_m + (k - 1) * p.riser_height_m);
+    vertex(y, p.ground_height_m + k * p.riser_height_m);
+  }
+  vertex(end, p.ground_height_m + p.steps * p.riser_height_m);
+  return out;
+}
+
+std::string terrain_type_name(TerrainType type) {
+  switch (type) {
+    case TerrainType::kFlat:
+      return "flat";
+    case TerrainType::kSlope:
+      return "slope";
+    case TerrainType::kStairs:
+      return "stairs";
+  }
+  return "unknown";
 }
 
 }  // namespace hexdyn

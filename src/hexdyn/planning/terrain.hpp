@@ -4,6 +4,9 @@
 /// flat ground, a constant slope rising along +y, or a staircase of `steps` risers
 /// whose k-th riser (k = 1..steps) stands at y = first_riser_y + (k−1)·tread_depth
 /// and lifts the tread behind it by riser_height. Heights are independent of x.
+#include <string>
+#include <vector>
+
 #include "hexdyn/core/common.hpp"
 #include "hexdyn/core/scene.hpp"
 
@@ -36,5 +39,19 @@ class Terrain {
   int tread_index(double y) const;
   TerrainParams params_;
 };
+
+/// The terrain's height profile z(y) [m] in G0 as a polyline (/terrain/y, /terrain/z): K ≥ 2
+/// vertices with non-decreasing y, linear in between; a vertical riser is two vertices of
+/// equal y (lower, then upper). Covers [y_min, y_max] (y_min < y_max) and, on stairs, every
+/// riser with at least one tread depth of ground before the first and of top tread after the
+/// last. Between vertices it equals Terrain(params).height(·, y) everywhere except exactly
+/// at a riser's y, where height() takes the upper tread.
+struct TerrainProfile {
+  std::vector<double> y_m, z_m;
+};
+TerrainProfile terrain_profile(const TerrainParams& params, double y_min, double y_max);
+
+/// "flat", "slope" or "stairs" (the `terrain.type` key's words).
+std::string terrain_type_name(TerrainType type);
 
 }  // namespace hexdyn

@@ -116,6 +116,12 @@ RunResult make_result(int T, bool dynamics, int impacts, int messages, unsigned 
   k.joint_velocity = random_matrix(rng, T, kJoints);
   k.joint_acceleration = random_matrix(rng, T, kJoints);
   k.foot_velocity = random_matrix(rng, T, 3 * kLegs);
+  k.sample_kind.assign(T, 0);
+  for (int t = 1; t < T; t += 3) k.sample_kind[t] = 1;
+  r.cycle_start_s = {0.0, 0.05 * T / 3.0, 0.1 * T / 3.0};  // kCycles
+  r.terrain_y_m = {-0.25, 0.0, 0.0, 1.0};                  // kTerrainPoints
+  r.terrain_z_m = {0.0, 0.0, 0.05, 0.05};
+  r.terrain_type = "stairs";
 
   DynamicsResult& d = r.dyn;
   d.present = dynamics;
@@ -138,6 +144,7 @@ RunResult make_result(int T, bool dynamics, int impacts, int messages, unsigned 
   d.total_power_W = random_vector(rng, T);
   d.energy_total_J = 12.5;
   d.energy_joint_J = random_vector(rng, kJoints);
+  d.energy_cycle_J = random_vector(rng, 3);
   d.distance_m = 0.75;
   d.cost_of_transport = 0.253;
   for (int t = 0; t < T; ++t) d.solver_status.push_back(static_cast<SolverStatus>(t % 3));
@@ -191,6 +198,10 @@ std::vector<std::size_t> expected_dims(schema::Shape shape, std::size_t T, std::
     case Shape::kEnvelopeGridText:
     case Shape::kEnvelopeProbes:
       break;  // shapes of the envelope file
+    case Shape::kCycles:
+      return {3};  // make_result's cycles
+    case Shape::kTerrainPoints:
+      return {4};  // make_result's terrain profile
   }
   return {};
 }
@@ -267,6 +278,12 @@ void check_kinematics(const H5Reader& in, const RunResult& r) {
   const std::vector<std::int64_t> phase = in.read_ints(s::kContactPhase.path);
   REQUIRE(phase.size() == static_cast<std::size_t>(k.contact_phase.size()));
   for (std::size_t i = 0; i < phase.size(); ++i) CHECK(phase[i] == k.contact_phase.data()[i]);
+  const std::vector<std::int64_t> kind = in.read_ints(s::kSampleKind.path);
+  CHECK(kind == std::vector<std::int64_t>(k.sample_kind.begin(), k.sample_kind.end()));
+  check_values(in, s::kGaitCycleStart.path, r.cycle_start_s);
+  check_values(in, s::kTerrainY.path, r.terrain_y_m);
+  check_values(in, s::kTerrainZ.path, r.terrain_z_m);
+  CHECK(in.string_attribute(s::kTerrainGroup, s::kTerrainType.name) == r.terrain_type);
   // (T,6,3) layout: [t][leg][axis] is column 3 leg + axis of the T×18 matrix.
   const H5DoubleArray feet = in.read_doubles(s::kFeetPosition.path);
   CHECK(feet.values[(1 * 6 + 4) * 3 + 2] == k.foot_position(1, 3 * 4 + 2));

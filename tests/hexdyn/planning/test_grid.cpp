@@ -105,5 +105,51 @@ TEST_CASE("output grid: adaptive contains every event and is strictly increasing
   CHECK(grid.size() > build_output_grid(uniform, T, events).size());
 }
 
+TEST_CASE("output grid: a left-limit point 1e-10 s before every contact event", "[grid]") {
+  OutputParams out;
+  out.sample_step_s = 0.05;
+  out.event_step_s = 0.01;
+  out.impact_samples = 4;
+  const double T = 2.0;
+  // A touchdown with a transient (events at 0.5 and 0.504), a lift-off on a uniform point
+  // (1.0), two events 5e-10 s apart (merged: one left limit, before the earlier), a lift-off
+  // at 0 (no left limit) and two more 2e-9 s apart (two left limits).
+  const std::vector<GridEvent> events{{0.5, 0.004, 0.0015},    {1.0, 0.0, 0.0}, {1.3, 0.0, 0.0},
+                                      {1.3 + 5e-10, 0.0, 0.0}, {0.0, 0.0, 0.0}, {1.7, 0.0, 0.0},
+                                      {1.7 + 2e-9, 0.0, 0.0}};
+  std::vector<std::int8_t> kind;
+  const std::vector<double> grid = build_output_grid(out, T, events, &kind);
+  check_increasing(grid, T);
+  REQUIRE(kind.size() == grid.size());
+  std::vector<double> expected_left{0.5 - 1e-10, 0.504 - 1e-10, 1.0 - 1e-10,
+                                    1.3 - 1e-10, 1.7 - 1e-10,   1.7 + 2e-9 - 1e-10};
+  std::vector<double> left;
+  for (std::size_t i = 0; i < grid.size(); ++i)
+    if (kind[i] == kSampleLeftLimit)
+      left.push_back(grid[i]);
+    else
+      CHECK(kind[i] == kSampleOrdinary);
+  REQUIRE(left.size() == expected_left.size());
+  for (std::size_t k = 0; k < left.size(); ++k) {
+    INFO("left limit " << k);
+    CHECK(left[k] == Approx(expected_left[k]).margin(1e-15));
+  }
+  // The event itself follows its left limit, nothing in between.
+  for (std::size_t i = 0; i + 1 < grid.size(); ++i)
+    if (kind[i] == kSampleLeftLimit) {
+      INFO("t " << grid[i]);
+      CHECK(kind[i + 1] == kSampleOrdinary);
+      CHECK(grid[i + 1] - grid[i] >= 1e-10 - 1e-15);
+      CHECK(grid[i + 1] - grid[i] <= 6e-10 + 1e-15);
+    }
+  CHECK(build_output_grid(out, T, events) == grid);  // the same grid without `kind`
+  // The uniform grid adds no event samples.
+  OutputParams uniform = out;
+  uniform.grid = OutputGrid::kUniform;
+  std::vector<std::int8_t> uniform_kind;
+  const std::vector<double> u = build_output_grid(uniform, T, events, &uniform_kind);
+  CHECK(uniform_kind == std::vector<std::int8_t>(u.size(), kSampleOrdinary));
+}
+
 }  // namespace
 }  // namespace hexdyn

@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <limits>
+#include <random>
 #include <vector>
 
 #include "hexdyn/core/errors.hpp"
@@ -207,6 +208,66 @@ TEST_CASE("slope: heights along the incline and normals perpendicular to it", "[
     CHECK(std::isinf(terrain.edge_distance(0.3)));
     CHECK(terrain.mean_slope_rad() == angle);
   }
+}
+
+/// The polyline's height at y: linear between the vertices around y (the upper of two
+/// vertices of equal y, as Terrain::height at a riser).
+double polyline_height(const TerrainProfile& p, double y) {
+  for (std::size_t k = p.y_m.size() - 1; k > 0; --k)
+    if (p.y_m[k - 1] <= y && y <= p.y_m[k]) {
+      if (p.y_m[k] == p.y_m[k - 1]) return p.z_m[k];
+      const double w = (y - p.y_m[k - 1]) / (p.y_m[k] - p.y_m[k - 1]);
+      return p.z_m[k - 1] + w * (p.z_m[k] - p.z_m[k - 1]);
+    }
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
+TEST_CASE("terrain profile: the polyline equals the height function at random y", "[terrain]") {
+  TerrainParams slope;
+  slope.type = TerrainType::kSlope;
+  slope.slope_rad = 0.2;
+  slope.slope_origin_y_m = 0.3;
+  slope.ground_height_m = 0.01;
+  TerrainParams flat;
+  flat.type = TerrainType::kFlat;
+  flat.ground_height_m = -0.02;
+  std::mt19937 rng(21);
+  for (const TerrainParams& params : {test_stairs(), slope, flat}) {
+    const Terrain terrain(params);
+    const double y_min = -0.4, y_max = 0.9;  // inside the stairs: the profile still covers all
+    const TerrainProfile p = terrain_profile(params, y_min, y_max);
+    REQUIRE(p.y_m.size() == p.z_m.size());
+    REQUIRE(p.y_m.size() >= 2);
+    CHECK(p.y_m.front() <= y_min);
+    CHECK(p.y_m.back() >= y_max);
+    for (std::size_t k = 1; k < p.y_m.size(); ++k) CHECK(p.y_m[k] >= p.y_m[k - 1]);
+    std::uniform_real_distribution<double> y_of(p.y_m.front(), p.y_m.back());
+    for (int i = 0; i < 2000; ++i) {
+      const double y = y_of(rng);
+      INFO("type " << static_cast<int>(params.type) << " y " << y);
+      CHECK(polyline_height(p, y) == Approx(terrain.height(0.0, y)).margin(1e-12));
+    }
+    if (params.type == TerrainType::kStairs) {
+      // Every riser, vertical: two vertices at its y, from the tread below to the one above;
+      // ground before the first and top tread after the last, a tread depth at least.
+      const std::vector<double> risers = riser_positions();
+      REQUIRE(p.y_m.size() == 2 * risers.size() + 2);
+      for (std::size_t k = 0; k < risers.size(); ++k) {
+        CHECK(p.y_m[1 + 2 * k] == risers[k]);
+        CHECK(p.y_m[2 + 2 * k] == risers[k]);
+        CHECK(p.z_m[1 + 2 * k] == 0.125 + 0.0625 * k);
+        CHECK(p.z_m[2 + 2 * k] == 0.125 + 0.0625 * (k + 1));
+      }
+      CHECK(p.y_m.front() <= 0.25);
+      CHECK(p.y_m.back() >= 1.5);
+      CHECK(p.z_m.back() == 0.125 + 4 * 0.0625);
+    } else {
+      CHECK(p.y_m.size() == 2);
+    }
+  }
+  CHECK(terrain_type_name(TerrainType::kStairs) == "stairs");
+  CHECK(terrain_type_name(TerrainType::kSlope) == "slope");
+  CHECK(terrain_type_name(TerrainType::kFlat) == "flat");
 }
 
 }  // namespace

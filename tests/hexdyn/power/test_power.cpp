@@ -1,79 +1,85 @@
-// The power stage's quadrature (power/power.hpp) against closed forms: a piecewise-smooth
-// series with jumps whose left limits are given, and a power-like series with kinks.
+// The power stage's quadrature (power/power.hpp) against closed forms: the trapezoid rule
+// over the samples, its restriction to sub-intervals with interpolated bounds (whose pieces
+// add up to the whole), and the energy of a series with jumps resolved by left-limit samples.
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <random>
 #include <vector>
 
 #include "hexdyn/power/power.hpp"
 
 namespace hexdyn {
 
-TEST_CASE("integrate_pieces: piecewise-smooth series with jumps, against the closed form",
-          "[power]") {
-  // y = 2 + sin(3t) on [0, 1), 5 + t² on [1, 1.5), 1 + cos t on [1.5, 2]: jumps at 1 and
-  // 1.5, where the sample holds the value after the jump and the left limit is given.
-  auto y_of = [](double t) {
-    return t < 1.0 ? 2.0 + std::sin(3.0 * t) : t < 1.5 ? 5.0 + t * t : 1.0 + std::cos(t);
-  };
-  const double exact = (2.0 + (1.0 - std::cos(3.0)) / 3.0) + (2.5 + (1.5 * 1.5 * 1.5 - 1.0) / 3.0) +
-                       (0.5 + std::sin(2.0) - std::sin(1.5));
-  auto error_with = [&](int n_per_unit, bool with_breaks) {
-    // Non-uniform steps: every other step 1.5 times the one before.
-    std::vector<double> t;
-    const double h = 1.0 / n_per_unit;
-    for (double x = 0.0; x < 2.0 - 1e-12;) {
-      t.push_back(x);
-      const double step = (t.size() % 2 ? 0.8 : 1.2) * h;
-      const double next_event = x < 1.0 ? 1.0 : x < 1.5 ? 1.5 : 2.0;
-      x = std::min(x + step, next_event);
-    }
-    t.push_back(2.0);
-    std::vector<double> y;
-    std::vector<int> breaks;
-    std::vector<double> left;
-    for (std::size_t k = 0; k < t.size(); ++k) {
-      y.push_back(y_of(t[k]));
-      if (t[k] == 1.0 || t[k] == 1.5) {
-        breaks.push_back(static_cast<int>(k));
-        left.push_back(t[k] == 1.0 ? 2.0 + std::sin(3.0) : 5.0 + 1.5 * 1.5);
-      }
-    }
-    REQUIRE(breaks.size() == 2);
-    const double value = with_breaks ? integrate_pieces(t, y.data(), 1, breaks, left)
-                                     : integrate_series(t, y.data());
-    return std::abs(value - exact);
-  };
-  // With the left limits: at least second order overall (the monotone interpolant loses
-  // an order next to extrema), 1e-5 at h = 1/64.
-  const double e16 = error_with(16, true), e64 = error_with(64, true);
-  const double s16 = error_with(16, false), s64 = error_with(64, false);
-  CAPTURE(e16, e64, s16, s64);
-  CHECK(e64 < 1e-5);
-  CHECK(e16 / e64 > 16.0);
-  // Without them each jump is smeared over a step: first order, far worse.
-  CHECK(s64 > 100.0 * e64);
-  CHECK(s16 / s64 == Approx(4.0).epsilon(0.3));
-  // Strided data and a piece of one interval (the trapezoid).
-  const std::vector<double> t2{0.0, 1.0, 3.0};
+TEST_CASE("trapezoid: exact for piecewise-linear data, second order for smooth data", "[power]") {
+  // A piecewise-linear function sampled at its kinks integrates exactly.
+  const std::vector<double> t{0.0, 0.5, 2.0, 2.25, 3.0};
+  const std::vector<double> y{1.0, 3.0, -1.0, 0.0, 4.0};
+  const double exact =
+      0.5 * (1 + 3) * 0.5 + 0.5 * (3 - 1) * 1.5 + 0.5 * (-1 + 0) * 0.25 + 0.5 * (0 + 4) * 0.75;
+  CHECK(trapezoid(t, y.data()) == Approx(exact).epsilon(1e-15));
+  // Strided data: every other value.
   const double yy[6] = {1.0, -7.0, 3.0, -7.0, 10.0, -7.0};
-  CHECK(integrate_pieces(t2, yy, 2, {1}, {5.0}) ==
-        Approx(0.5 * (1.0 + 5.0) + 0.5 * 2.0 * (3.0 + 10.0)));
+  CHECK(trapezoid({0.0, 1.0, 3.0}, yy, 2) == Approx(0.5 * (1.0 + 3.0) + 0.5 * 2.0 * (3.0 + 10.0)));
+  // sin on [0, π]: error ∝ h², the ratio 4 when h halves.
+  auto error = [](int n) {
+    std::vector<double> tt, yv;
+    for (int k = 0; k <= n; ++k) {
+      tt.push_back(M_PI * k / n);
+      yv.push_back(std::sin(tt.back()));
+    }
+    return std::abs(trapezoid(tt, yv.data()) - 2.0);
+  };
+  CHECK(error(32) / error(64) == Approx(4.0).epsilon(0.01));
 }
 
-TEST_CASE("integrate_pieces: never below zero for a power series with kinks", "[power]") {
-  // |sin| sampled coarsely: kinks at the zeros, data ≥ 0. The monotone interpolant keeps
-  // every piece's integral between 0 and max·length, and converges to the closed form.
-  std::vector<double> t, y;
-  for (int k = 0; k <= 40; ++k) {
-    t.push_back(0.3 * k);
-    y.push_back(std::abs(std::sin(t.back())));
+TEST_CASE("trapezoid: a jump resolved by a left-limit sample 1e-10 before it", "[power]") {
+  // y = 2 + t on [0, 1), 5 − t on [1, 2]: with a sample at 1 − 1e-10 holding the value before
+  // the jump, the trapezoid of the linear pieces is exact up to the 1e-10 sliver; without it
+  // the jump is smeared over the step before (error = jump · h / 2).
+  const double exact = 2.5 + 3.5;
+  std::vector<double> t, y, t_plain, y_plain;
+  for (int k = 0; k <= 8; ++k) {
+    const double x = 0.25 * k;
+    if (k == 4) {
+      t.push_back(1.0 - 1e-10);
+      y.push_back(3.0 - 1e-10);
+    }
+    t.push_back(x);
+    y.push_back(x < 1.0 ? 2.0 + x : 5.0 - x);
+    t_plain.push_back(x);
+    y_plain.push_back(y.back());
   }
-  const double E = integrate_series(t, y.data());
-  const double exact = 3.0 * 2.0 + (1.0 - std::cos(12.0 - 3.0 * M_PI));  // ∫₀¹² |sin t| dt
-  CHECK(E > 0.0);
-  CHECK(E == Approx(exact).epsilon(0.02));
-  for (int k = 0; k + 3 < 41; ++k)
-    CHECK(integrate_series({t[k], t[k + 1], t[k + 2], t[k + 3]}, &y[k]) >= 0.0);
+  CHECK(trapezoid(t, y.data()) == Approx(exact).epsilon(1e-9));
+  CHECK(std::abs(trapezoid(t_plain, y_plain.data()) - exact) == Approx(1.0 * 0.25 / 2.0));
+}
+
+TEST_CASE("trapezoid_between: pieces add up to the whole and interpolate at the bounds",
+          "[power]") {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> step(0.01, 0.3), value(0.0, 50.0);
+  std::vector<double> t{0.0}, y{value(rng)};
+  for (int k = 0; k < 60; ++k) {
+    t.push_back(t.back() + step(rng));
+    y.push_back(value(rng));
+  }
+  const double whole = trapezoid(t, y.data());
+  // Bounds between samples, on samples and at the ends.
+  for (std::vector<double> cuts :
+       {std::vector<double>{0.0, 1.234, 3.0, t[20], t.back()}, std::vector<double>{0.0, t.back()},
+        std::vector<double>{0.0, t[1], t[2], 0.5 * (t[2] + t[3]), t.back()}}) {
+    std::sort(cuts.begin(), cuts.end());
+    double sum = 0.0;
+    for (std::size_t k = 0; k + 1 < cuts.size(); ++k)
+      sum += trapezoid_between(t, y.data(), cuts[k], cuts[k + 1]);
+    CHECK(sum == Approx(whole).epsilon(1e-13));
+  }
+  // Inside one interval: the integral of the line through its two samples.
+  const double a = t[5] + 0.25 * (t[6] - t[5]), b = t[5] + 0.75 * (t[6] - t[5]);
+  const double slope = (y[6] - y[5]) / (t[6] - t[5]);
+  const double ya = y[5] + slope * (a - t[5]), yb = y[5] + slope * (b - t[5]);
+  CHECK(trapezoid_between(t, y.data(), a, b) == Approx(0.5 * (b - a) * (ya + yb)).epsilon(1e-13));
+  CHECK(trapezoid_between(t, y.data(), 2.0, 2.0) == 0.0);
 }
 
 }  // namespace hexdyn
