@@ -17,6 +17,7 @@
 #include "hexdyn/core/errors.hpp"
 #include "hexdyn/envelope/envelope.hpp"
 #include "hexdyn/io/config.hpp"
+#include "hexdyn/io/interrupt.hpp"
 #include "hexdyn/model/urdf_robot.hpp"
 #include "hexdyn/mpi/launch.hpp"
 #ifdef HEXDYN_CLI_MPI
@@ -278,6 +279,13 @@ int main(int argc, char** argv) {
     if (args.command == "validate") return validate(args);
     if (args.command == "run") {
       if (args.output.empty()) throw hexdyn::ConfigError("run: missing -o FILE");
+      // SIGTERM, SIGINT: the temporary file removed, the process ended at once; a run keeps
+      // nothing to resume (docs/user/faults.md#signals).
+      hexdyn::install_interrupt_handlers(
+          hexdyn::InterruptMode::kExitInHandler,
+          "hexdyn: run interrupted by {signal}: nothing written to " + args.output +
+              " (an existing file there is kept, no temporary file left); run the command "
+              "again to compute it");
       const hexdyn::Scene scene = hexdyn::load_scene(args.config, args.overrides);
       if (args.verbose) print_leg_mapping(scene, std::cerr);
       // Before any computing: the output is a new path or a regular file that is none of the

@@ -6,6 +6,7 @@
 #include "hexdyn/envelope/envelope.hpp"
 #include "hexdyn/io/atomic_file.hpp"
 #include "hexdyn/io/h5io.hpp"
+#include "hexdyn/io/interrupt.hpp"
 #include "hexdyn/io/output.hpp"
 #include "hexdyn/io/schema.hpp"
 #include "hexdyn/version.hpp"
@@ -126,6 +127,11 @@ int envelope_command(int argc, char** argv) {
     }
     if (config.empty()) throw ConfigError("envelope: missing ENVELOPE file");
     if (output.empty()) throw ConfigError("envelope: missing -o FILE");
+    install_interrupt_handlers(InterruptMode::kExitInHandler,
+                               "hexdyn: envelope interrupted by {signal}: nothing written to " +
+                                   output +
+                                   " (an existing file there is kept, no temporary file left); "
+                                   "run the command again to compute it");
     const EnvelopeSpec spec = load_envelope_spec(config);
     check_output_path_writable(output);
     const EnvelopeResult result = compute_envelope(spec, verbose ? &std::cerr : nullptr);

@@ -1,6 +1,7 @@
 #include "hexdyn/io/atomic_file.hpp"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -11,6 +12,7 @@
 #include <system_error>
 
 #include "hexdyn/core/errors.hpp"
+#include "hexdyn/io/interrupt.hpp"
 #include "hexdyn/io/paths.hpp"
 
 namespace hexdyn {
@@ -51,18 +53,62 @@ std::string temporary_path_for(const std::string& path) {
 void publish_atomically(const std::string& path,
                         const std::function<void(const std::string& tmp)>& write) {
   const std::string tmp = temporary_path_for(path);
+  // A SIGTERM or SIGINT from here on removes the temporary file (interrupt.hpp).
+  register_temporary(tmp);
   try {
     write(tmp);
     sync_file_to_disk(tmp);
+    check_interrupt();  // the handler removed the temporary file: never publish
     // The target may have changed since the run began: never rename over a special file.
     if (const auto why = why_not_replaceable(path)) throw_output_error(path, *why);
     if (std::rename(tmp.c_str(), path.c_str()) != 0)
       throw_output_error(path, "cannot rename '" + tmp + "' to it: " + std::strerror(errno));
+  } catch (const Interrupted&) {
+    std::error_code ec;
+    fs::remove(tmp, ec);
+    unregister_temporary(tmp);
+    throw;
+  } catch (const IoError& e) {
+    std::error_code ec;
+    fs::remove(tmp, ec);
+    unregister_temporary(tmp);
+    // The temporary name is the writer's business: the message names the output.
+    std::string msg = e.what();
+    for (std::size_t at = msg.find(tmp); at != std::string::npos; at = msg.find(tmp, at))
+      msg.replace(at, tmp.size(), path);
+    throw IoError(msg);
   } catch (...) {
     std::error_code ec;
     fs::remove(tmp, ec);
+    unregister_temporary(tmp);
     throw;
   }
+  unregister_temporary(tmp);
+}
+
+std::vector<std::string> remove_stale_temporaries(const std::string& path) {
+  std::vector<std::string> removed;
+  const std::string dir = directory_of(path);
+  const std::string prefix = "." + fs::path(path).filename().string() + ".tmp.";
+  std::error_code ec;
+  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (name.size() <= prefix.size() || name.compare(0, prefix.size(), prefix) != 0) continue;
+    const std::string digits = name.substr(prefix.size());
+    if (digits.size() > 9 || digits.find_first_not_of("0123456789") != std::string::npos) continue;
+    const pid_t pid = static_cast<pid_t>(std::stol(digits));
+    if (pid <= 0 || pid == ::getpid()) continue;
+    // Only a process that is gone, and only a regular file of ours (never a link).
+    if (::kill(pid, 0) == 0 || errno != ESRCH) continue;
+    struct stat st {};
+    const std::string full = it->path().string();
+    if (::lstat(full.c_str(), &st) != 0 || !S_ISREG(st.st_mode) || st.st_uid != ::geteuid())
+      continue;
+    if (::unlink(full.c_str()) == 0)
+      removed.push_back("removed '" + full + "', the temporary file of process " + digits +
+                        ", which is gone (an interrupted earlier run)");
+  }
+  return removed;
 }
 
 void write_bytes_atomically(const std::string& path, const char* data, std::size_t size) {

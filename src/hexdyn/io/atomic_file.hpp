@@ -10,6 +10,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace hexdyn {
 
@@ -18,7 +19,10 @@ namespace hexdyn {
 /// checked again with why_not_replaceable: a device, FIFO, socket, directory or symbolic
 /// link that appeared there meanwhile is never replaced (IoError). When `write`, the sync or the
 /// rename throws, the temporary file is removed, an existing file at `path` is left untouched, and
-/// the exception is rethrown (the sync's and the rename's as IoError naming the path).
+/// the exception is rethrown (the sync's and the rename's as IoError naming the path; an
+/// IoError naming the temporary path is rethrown naming `path` instead). The temporary
+/// file is registered with the signal handlers (interrupt.hpp) while it exists, and a
+/// signal received during `write` is never published (Interrupted).
 /// Precondition: the directory of `path` exists and is writable.
 /// The temporary path is temporary_path_for(path).
 void publish_atomically(const std::string& path,
@@ -33,6 +37,12 @@ void publish_atomically(const std::string& path,
 /// too long, a path through a non-directory, no permission) are returned with the OS
 /// reason.
 std::optional<std::string> why_not_replaceable(const std::string& path);
+
+/// Removes the temporary files `.<basename>.tmp.<pid>` of `path` left by processes that
+/// are gone (kill(pid, 0) fails with ESRCH): only regular files owned by this user, never
+/// a link, nor the file of a live process (a pid reused since is taken as live).
+/// Returns one line per removed file (docs/user/faults.md#leftovers).
+std::vector<std::string> remove_stale_temporaries(const std::string& path);
 
 /// Publishes `size` bytes at `data` as the file `path` (publish_atomically). Throws IoError.
 void write_bytes_atomically(const std::string& path, const char* data, std::size_t size);

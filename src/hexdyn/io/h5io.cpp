@@ -1,15 +1,28 @@
 #include "hexdyn/io/h5io.hpp"
 
+#include <fcntl.h>
 #include <hdf5.h>
+#include <unistd.h>
 
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
 #include <type_traits>
 #include <utility>
 
 #include "hexdyn/core/errors.hpp"
+#include "hexdyn/io/interrupt.hpp"
 
 namespace hexdyn {
 
 static_assert(std::is_same_v<hid_t, std::int64_t>, "h5io.hpp stores hid_t as std::int64_t");
+
+namespace {
+/// Growth step of a file built in memory (HDF5 core driver) [bytes].
+constexpr std::size_t kCoreIncrement = std::size_t{4} << 20;
+/// Bytes per write(2) of a finished file: a signal is looked at between chunks.
+constexpr std::size_t kWriteChunk = std::size_t{8} << 20;
+}  // namespace
 
 namespace {
 
@@ -177,21 +190,73 @@ void silence_hdf5_errors() { H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); }
 
 H5Writer::H5Writer(const std::string& file_path) : file_path_(file_path) {
   silence_hdf5_errors();
-  file_ = H5Fcreate(file_path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
-  if (file_ < 0) fail(file_path_, "create file", file_path_);
+  // The bytes go to disk through this descriptor, at close(); HDF5 writes to memory.
+  fd_ = ::open(file_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_NOFOLLOW | O_CLOEXEC, 0644);
+  if (fd_ < 0) throw IoError("cannot create '" + file_path_ + "': " + std::strerror(errno));
+  Handle fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose);
+  if (!fapl.valid() || H5Pset_fapl_core(fapl.get(), kCoreIncrement, 0) < 0 ||
+      H5Pset_fclose_degree(fapl.get(), H5F_CLOSE_STRONG) < 0)
+    fail(file_path_, "set up the in-memory file for", file_path_);
+  file_ = H5Fcreate(file_path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get());
+  if (file_ < 0) {
+    ::close(fd_);
+    fd_ = -1;
+    fail(file_path_, "create file", file_path_);
+  }
 }
 
 H5Writer::~H5Writer() {
+  // Memory only: closing cannot fail for want of disk space. H5F_CLOSE_STRONG closes any
+  // object left open, so H5_term_library at exit finds nothing half-closed.
   if (file_ >= 0) H5Fclose(file_);
+  H5Eclear2(H5E_DEFAULT);
+  if (fd_ >= 0) ::close(fd_);
 }
 
 void H5Writer::close() {
   if (file_ < 0) return;
-  const herr_t flushed = H5Fflush(file_, H5F_SCOPE_GLOBAL);
+  // The finished file as bytes, then the in-memory file closed (its memory freed) before
+  // the bytes are written.
+  std::vector<char> image;
+  herr_t flushed = H5Fflush(file_, H5F_SCOPE_GLOBAL);
+  const ssize_t size = flushed < 0 ? -1 : H5Fget_file_image(file_, nullptr, 0);
+  if (size >= 0) {
+    image.resize(static_cast<std::size_t>(size));
+    if (H5Fget_file_image(file_, image.data(), image.size()) != size) flushed = -1;
+  }
   const herr_t closed = H5Fclose(file_);
   file_ = -1;
-  if (flushed < 0 || closed < 0) fail(file_path_, "close file", file_path_);
+  if (flushed < 0 || size < 0 || closed < 0) {
+    ::close(fd_);
+    fd_ = -1;
+    fail(file_path_, "finish file", file_path_);
+  }
+  // write(2) tells why the disk refused (No space left on device, Disk quota exceeded).
+  const auto io_fail = [&](const char* what, int err) {
+    ::close(fd_);
+    fd_ = -1;
+    throw IoError("cannot write '" + file_path_ + "': " + what + std::strerror(err));
+  };
+  std::size_t done = 0;
+  while (done < image.size()) {
+    check_interrupt();
+    const std::size_t chunk = std::min<std::size_t>(image.size() - done, kWriteChunk);
+    const ssize_t w = ::write(fd_, image.data() + done, chunk);
+    if (w < 0) {
+      if (errno == EINTR) continue;
+      io_fail("", errno);
+    }
+    done += static_cast<std::size_t>(w);
+  }
+  if (::fsync(fd_) != 0) io_fail("fsync failed: ", errno);
+  if (::close(fd_) != 0) {
+    fd_ = -1;
+    throw IoError("cannot write '" + file_path_ + "': close failed: " + std::strerror(errno));
+  }
+  fd_ = -1;
 }
+
+std::int64_t H5Writer::native_handle() const { return file_; }
 
 void H5Writer::create_group(const std::string& group_path) {
   if (file_ < 0) fail(file_path_, "create group", group_path, "file is closed");

@@ -21,9 +21,19 @@ void silence_hdf5_errors();
 
 /// Creates (truncates) an HDF5 file and writes datasets and attributes into it.
 /// The file is closed by `close()` (which reports errors) or by the destructor.
+///
+/// Write path (docs/user/faults.md#full-disk): the file is built in memory (HDF5 core
+/// driver, no backing store) and close() writes its image with write(2) through a
+/// descriptor opened at construction. HDF5 hides the OS's errno behind its error
+/// stack, and a failed H5Fclose on a full disk leaves a half-closed file that crashed
+/// H5_term_library at exit; in memory HDF5 never meets the disk, and write(2) reports
+/// ENOSPC or EDQUOT as the OS's words. The cost is memory: the file's size, twice for a
+/// moment at close(). Objects are closed with H5F_CLOSE_STRONG, so an object left open by
+/// an error never keeps the file half-open.
 class H5Writer {
  public:
-  /// Creates `file_path`, replacing an existing file. Throws IoError.
+  /// Creates `file_path` (O_NOFOLLOW: a symbolic link is refused), replacing an existing
+  /// regular file. Throws IoError.
   explicit H5Writer(const std::string& file_path);
   ~H5Writer();
   H5Writer(const H5Writer&) = delete;
@@ -57,11 +67,18 @@ class H5Writer {
   void set_int_attribute(const std::string& object_path, const std::string& name,
                          std::int64_t value);
 
-  /// Flushes and closes the file; throws IoError if HDF5 cannot finish it.
+  /// Finishes the file and writes it to disk (write(2), fsync); throws IoError naming the
+  /// file and the OS's reason ("No space left on device"), or Interrupted when a SIGTERM
+  /// or SIGINT arrives meanwhile (interrupt.hpp). The file is closed in any case.
   void close();
+
+  /// The hid_t of the open (in-memory) file, for HDF5 calls this class does not wrap
+  /// (H5Ocopy of kept runs into a sweep file); -1 when closed.
+  std::int64_t native_handle() const;
 
  private:
   std::int64_t file_ = -1;  ///< hid_t of the open file, -1 when closed
+  int fd_ = -1;             ///< descriptor of `file_path_` on disk, until close()
   std::string file_path_;
 };
 

@@ -9,6 +9,7 @@
 #include <cstring>
 #include <ctime>
 #include <filesystem>
+#include <iostream>
 #include <span>
 #include <system_error>
 #include <variant>
@@ -18,6 +19,7 @@
 #include "hexdyn/io/paths.hpp"
 #include "hexdyn/io/result_layout.hpp"
 #include "hexdyn/io/schema.hpp"
+#include "hexdyn/mpi/launch.hpp"
 #include "hexdyn/version.hpp"
 
 namespace hexdyn {
@@ -123,6 +125,11 @@ void check_output_target(const std::string& path, const std::vector<std::string>
   }
   ::close(fd);
   ::unlink(tmp.c_str());
+  // Temporary files of earlier runs killed before they could remove them (under MPI, rank
+  // 0 alone looks).
+  if (!launched_as_secondary_rank())
+    for (const std::string& line : remove_stale_temporaries(path))
+      std::cerr << "hexdyn: " << line << "\n";
 }
 
 void check_output_path_writable(const std::string& path) { check_output_target(path, {}); }

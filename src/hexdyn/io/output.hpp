@@ -25,7 +25,9 @@ namespace hexdyn {
 ///   `out` (temporary_path_for) is created with O_EXCL and removed again, so a missing
 ///   folder, a read-only or virtual file system (/proc, /sys), a name too long or a
 ///   full inode table are found before any computing.
-/// Leaves the file system as it found it.
+/// Leaves the file system as it found it, except that temporary files of `out` left by
+/// earlier runs whose process is gone are removed and named on stderr, one line each
+/// (remove_stale_temporaries; docs/user/faults.md#leftovers).
 void check_output_target(const std::string& out, const std::vector<std::string>& inputs);
 
 /// check_output_target(path, {}): the checks that need no list of inputs.

@@ -24,7 +24,9 @@
 #include <vector>
 
 #include "hexdyn/core/errors.hpp"
+#include "hexdyn/io/interrupt.hpp"
 #include "hexdyn/io/output.hpp"
+#include "hexdyn/mpi/launch.hpp"
 #include "hexdyn/mpi/messages.hpp"
 #include "hexdyn/mpi/worker.hpp"
 #include "hexdyn/sweep/coordinator.hpp"
@@ -225,6 +227,7 @@ class Coordinator {
           if (sync) last_sync = now;
         }
         if (auto line = meter.update(done_ + resumed_, failed_, now)) std::cerr << *line << "\n";
+        check_interrupt();  // SIGTERM, SIGINT: between results (interrupt.hpp)
         std::unique_lock<std::mutex> lock(local_.mutex);
         if (local_.error) std::rethrow_exception(local_.error);
         if (!local_.running && local_.results.empty() && remote_active_ == 0) break;
@@ -239,6 +242,10 @@ class Coordinator {
           });
         }
       }
+    } catch (const Interrupted& e) {
+      stop_now(e);
+    } catch (const CheckpointLost& e) {
+      stop_now(e);
     } catch (...) {
       stop_local(local);
       try {
@@ -250,12 +257,47 @@ class Coordinator {
     stop_local(local);
     if (local_.error) std::rethrow_exception(local_.error);
     if (!coord_->finished()) throw Error("sweep: workers stopped before every scenario finished");
-    checkpoint_->flush(true);
-    return finish();
+    workers_done_ = true;
+    try {
+      checkpoint_->flush(true);
+      return finish();
+    } catch (const Interrupted& e) {
+      stop_now(e);
+    } catch (const CheckpointLost& e) {
+      stop_now(e);
+    }
   }
+
+  /// Every worker rank was told to stop (a failure after this point needs no MPI_Abort).
+  bool workers_done() const { return workers_done_; }
 
  private:
   static double seconds(Clock::duration d) { return std::chrono::duration<double>(d).count(); }
+
+  /// Ends the process at once after a signal (checkpoint flushed) or a lost checkpoint
+  /// (nothing written): one line, then _exit, without waiting for a scenario in progress
+  /// (its child dies with this process, PR_SET_PDEATHSIG); under mpirun the job ends
+  /// with this rank. docs/user/faults.md#signals
+  [[noreturn]] void stop_now(const Error& e) {
+    std::string kept;
+    if (dynamic_cast<const Interrupted*>(&e) != nullptr) {
+      try {
+        checkpoint_->flush(true);
+        const std::size_t n = checkpoint_->finished().size() + done_;
+        kept = ": " + std::to_string(n) + " finished scenario" + (n == 1 ? "" : "s") +
+               " kept in the checkpoint " + checkpoint_->directory() +
+               ", no temporary file left; continue with: hexdyn sweep " + opt_.sweep_path + " -o " +
+               opt_.output_path + (opt_.keep_runs ? " --keep-runs" : "") + " --resume";
+      } catch (const Error& f) {
+        kept = ": the checkpoint could not be flushed: " + std::string(f.what());
+      }
+      std::cerr << "hexdyn: sweep " << e.what() << kept << "\n";
+    } else {
+      std::cerr << "hexdyn: error: " << one_line(e.what()) << "\n";
+    }
+    std::cerr.flush();
+    ::_exit(e.exit_status());
+  }
 
   void announce() const {
     const std::size_t n = spec_.scenario_count();
@@ -474,7 +516,8 @@ class Coordinator {
   std::unique_ptr<SweepCoordinator> coord_;
   LocalLink local_;
   bool local_ready_seen_ = false;
-  int remote_active_ = 0;              ///< worker ranks not yet told to stop
+  int remote_active_ = 0;  ///< worker ranks not yet told to stop
+  bool workers_done_ = false;
   std::vector<ScenarioSummary> rows_;  ///< computed by this run, in arrival order
   std::size_t done_ = 0, failed_ = 0, resumed_ = 0;
 };
@@ -482,7 +525,10 @@ class Coordinator {
 }  // namespace
 
 int run_sweep(const SweepOptions& options) {
+  die_with_launcher();
   MpiSession mpi;
+  if (mpi.rank() == 0)
+    install_interrupt_handlers(InterruptMode::kPoll, "hexdyn: sweep interrupted");
   if (mpi.rank() != 0) {
     int status = 0;
     broadcast_status(status);
@@ -524,13 +570,24 @@ int run_sweep(const SweepOptions& options) {
     status = coordinator.run();
   } catch (const std::exception& e) {
     const bool input = dynamic_cast<const Error*>(&e) != nullptr;
-    std::cerr << "hexdyn: " << (input ? "error: " : "internal error: ") << e.what()
+    std::cerr << "hexdyn: " << (input ? "error: " : "internal error: ") << one_line(e.what())
               << " (finished scenarios are kept; continue with --resume)\n";
     status = input ? dynamic_cast<const Error&>(e).exit_status() : 4;
-    if (mpi.size() > 1) MPI_Abort(MPI_COMM_WORLD, status);
-    return status;
+    // After every worker rank was told to stop (the final write: a full disk), they wait
+    // at the barrier: meet them there instead of aborting the job.
+    if (!coordinator.workers_done()) {
+      if (mpi.size() > 1) MPI_Abort(MPI_COMM_WORLD, status);
+      return status;
+    }
   }
   quiet_barrier();
+  // A signal that came after the sweep file was complete: it is kept, nothing to resume.
+  if (const int sig = interrupted()) {
+    if (status == 0)
+      std::cerr << "hexdyn: sweep: " << signal_name(sig) << " arrived after " << options.output_path
+                << " was complete; nothing to resume\n";
+    return 128 + sig;
+  }
   return status;
 }
 

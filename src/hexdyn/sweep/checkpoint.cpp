@@ -1,5 +1,6 @@
 #include "hexdyn/sweep/checkpoint.hpp"
 
+#include <dirent.h>
 #include <fcntl.h>
 #include <sys/file.h>
 #include <sys/mman.h>
@@ -25,13 +26,55 @@ const char* kLockName = "lock";
 
 std::string errno_text(int err) { return std::strerror(err); }
 
+std::string base_name(const std::string& path) { return fs::path(path).filename().string(); }
+
+/// What a file that is not a regular file is, for messages.
+std::string kind_of(mode_t mode) {
+  if (S_ISLNK(mode)) return "a symbolic link";
+  if (S_ISDIR(mode)) return "a directory";
+  if (S_ISCHR(mode)) return "a character device";
+  if (S_ISBLK(mode)) return "a block device";
+  if (S_ISFIFO(mode)) return "a FIFO (named pipe)";
+  if (S_ISSOCK(mode)) return "a socket";
+  return "not a regular file";
+}
+
+[[noreturn]] void refuse(const std::string& what, const std::string& path, const std::string& why) {
+  throw IoError("cannot use " + what + " '" + path + "': it is " + why +
+                "; a checkpoint is a directory of regular files, and hexdyn never follows a "
+                "link or writes through anything else there (remove it, or write to another "
+                "output)");
+}
+
+/// Opens the existing regular file `path` (in the checkpoint directory `dir_fd`) without
+/// following a link and without blocking on a FIFO; anything else is refused (IoError).
+int open_regular(int dir_fd, const std::string& path, int flags, const std::string& what) {
+  const std::string name = base_name(path);
+  struct stat st {};
+  if (::fstatat(dir_fd, name.c_str(), &st, AT_SYMLINK_NOFOLLOW) == 0 && !S_ISREG(st.st_mode))
+    refuse(what, path, kind_of(st.st_mode));
+  const int fd = ::openat(dir_fd, name.c_str(), flags | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0) {
+    const int err = errno;
+    if (err == ELOOP) refuse(what, path, "a symbolic link");
+    throw IoError("cannot open " + what + " '" + path + "': " + errno_text(err));
+  }
+  if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+    ::close(fd);
+    refuse(what, path, kind_of(st.st_mode));
+  }
+  return fd;
+}
+
+bool same_file(const struct stat& a, const struct stat& b) {
+  return a.st_dev == b.st_dev && a.st_ino == b.st_ino;
+}
+
 /// A read-only view of a whole file (mmap; empty files have no mapping).
 class MappedFile {
  public:
-  explicit MappedFile(const std::string& path) {
-    const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-    if (fd < 0)
-      throw IoError("cannot read checkpoint journal '" + path + "': " + errno_text(errno));
+  MappedFile(int dir_fd, const std::string& path) {
+    const int fd = open_regular(dir_fd, path, O_RDONLY, "checkpoint journal");
     struct stat st {};
     if (::fstat(fd, &st) != 0) {
       const int err = errno;
@@ -99,26 +142,46 @@ Checkpoint::Checkpoint(const std::string& output_path, const SweepSpec& spec, bo
   // output find each other through the lock whichever of them made the directory.
   if (::mkdir(dir_.c_str(), 0755) != 0) {
     const int err = errno;
-    std::error_code ec;
     if (err != EEXIST)
       throw IoError("cannot create checkpoint directory '" + dir_ + "': " + errno_text(err));
-    if (!fs::is_directory(dir_, ec))
-      throw IoError("cannot use checkpoint '" + dir_ + "': it exists and is not a directory");
   }
-  take_lock();
+  // The directory itself, never a link to one: every file in it is opened from this
+  // descriptor (openat), so a link put in place of the directory later is never followed.
+  dir_fd_ = ::open(dir_.c_str(), O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
+  if (dir_fd_ < 0) {
+    const int err = errno;
+    struct stat st {};
+    if (::lstat(dir_.c_str(), &st) == 0 && !S_ISDIR(st.st_mode))
+      refuse("checkpoint directory", dir_, kind_of(st.st_mode));
+    throw IoError("cannot open checkpoint directory '" + dir_ + "': " + errno_text(err));
+  }
   try {
+    take_lock();
     scan_journals(spec, resume);
   } catch (...) {
     release_lock();
+    ::close(dir_fd_);
+    dir_fd_ = -1;
     throw;
   }
 }
 
 void Checkpoint::take_lock() {
   const std::string lock_path = dir_ + "/" + kLockName;
-  lock_fd_ = ::open(lock_path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
-  if (lock_fd_ < 0)
-    throw IoError("cannot open checkpoint lock '" + lock_path + "': " + errno_text(errno));
+  // A new lock is created (O_EXCL); an existing one must be a regular file of one link.
+  lock_fd_ = ::openat(dir_fd_, kLockName, O_RDWR | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
+  if (lock_fd_ < 0 && errno == EEXIST)
+    lock_fd_ = open_regular(dir_fd_, lock_path, O_RDWR, "checkpoint lock");
+  if (lock_fd_ < 0) {
+    const int err = errno;
+    if (err == ELOOP) refuse("checkpoint lock", lock_path, "a symbolic link");
+    throw IoError("cannot open checkpoint lock '" + lock_path + "': " + errno_text(err));
+  }
+  struct stat st {};
+  if (::fstat(lock_fd_, &st) != 0 || st.st_nlink != 1) {
+    release_lock();
+    refuse("checkpoint lock", lock_path, "a file with other (hard) links");
+  }
   int rc = 0;
   do rc = ::flock(lock_fd_, LOCK_EX | LOCK_NB);
   while (rc != 0 && errno == EINTR);
@@ -152,16 +215,19 @@ void Checkpoint::release_lock() {
 }
 
 void Checkpoint::scan_journals(const SweepSpec& spec, bool resume) {
-  std::error_code ec;
   std::vector<std::pair<unsigned, std::string>> found;
   unsigned last = 0;
-  for (const auto& e : fs::directory_iterator(dir_)) {
-    const std::string name = e.path().filename().string();
+  for (const std::string& name : entry_names()) {
     unsigned number = 0;
-    if (!name.empty() && name[0] == '.') {
-      fs::remove(e.path(), ec);  // a temporary of an interrupted run
+    if (name[0] == '.') {
+      ::unlinkat(dir_fd_, name.c_str(), 0);  // a temporary of an interrupted run (a link
+                                             // itself, never its target)
     } else if (is_journal_name(name, number)) {
-      found.emplace_back(number, e.path().string());
+      struct stat st {};
+      const std::string path = dir_ + "/" + name;
+      if (::fstatat(dir_fd_, name.c_str(), &st, AT_SYMLINK_NOFOLLOW) == 0 && !S_ISREG(st.st_mode))
+        refuse("checkpoint journal", path, kind_of(st.st_mode));
+      found.emplace_back(number, path);
       last = std::max(last, number);
     } else if (name != kLockName) {
       throw ConfigError(dir_ + ": not a checkpoint of this hexdyn (unexpected file '" + name +
@@ -179,7 +245,7 @@ void Checkpoint::scan_journals(const SweepSpec& spec, bool resume) {
   std::vector<char> seen(found.empty() ? 0 : n, 0);
   std::vector<char> crashed(found.empty() ? 0 : n, 0);
   for (const auto& [number, path] : found) {
-    const MappedFile file(path);
+    const MappedFile file(dir_fd_, path);
     const JournalScan scan = scan_journal(file.data(), file.size(), path, identity_);
     if (scan.header_ok && scan.header.id != identity_.id)
       throw ConfigError(dir_ + ": the checkpoint belongs to another sweep (" +
@@ -225,6 +291,46 @@ void Checkpoint::scan_journals(const SweepSpec& spec, bool resume) {
   own_journal_ = dir_ + "/" + name;
 }
 
+std::vector<std::string> Checkpoint::entry_names() const {
+  std::vector<std::string> names;
+  const int fd = ::dup(dir_fd_);
+  DIR* d = fd < 0 ? nullptr : ::fdopendir(fd);
+  if (d == nullptr) {
+    const int err = errno;
+    if (fd >= 0) ::close(fd);
+    throw IoError("cannot list checkpoint directory '" + dir_ + "': " + errno_text(err));
+  }
+  ::rewinddir(d);
+  while (const dirent* e = ::readdir(d)) {
+    const std::string name = e->d_name;
+    if (name != "." && name != "..") names.push_back(name);
+  }
+  ::closedir(d);
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+void Checkpoint::verify() const {
+  const auto lost = [&](const std::string& why) {
+    throw CheckpointLost("the checkpoint '" + dir_ + "' is no longer this sweep's: " + why +
+                         " (removed by hand, or another sweep took its place); this sweep "
+                         "stops without writing its output or touching that checkpoint");
+  };
+  struct stat mine {
+  }, now{};
+  if (::fstat(dir_fd_, &mine) != 0 || mine.st_nlink == 0) lost("its directory was removed");
+  if (::lstat(dir_.c_str(), &now) != 0 || !same_file(mine, now))
+    lost("its directory was removed or replaced");
+  if (::fstat(lock_fd_, &mine) != 0 ||
+      ::fstatat(dir_fd_, kLockName, &now, AT_SYMLINK_NOFOLLOW) != 0 || !same_file(mine, now))
+    lost("its lock was removed or replaced");
+  if (journal_fd_ >= 0 &&
+      (::fstat(journal_fd_, &mine) != 0 ||
+       ::fstatat(dir_fd_, base_name(own_journal_).c_str(), &now, AT_SYMLINK_NOFOLLOW) != 0 ||
+       !same_file(mine, now)))
+    lost("its journal " + base_name(own_journal_) + " was removed or replaced");
+}
+
 Checkpoint::~Checkpoint() {
   try {
     if (journal_fd_ >= 0) flush(false);
@@ -232,6 +338,7 @@ Checkpoint::~Checkpoint() {
   }
   if (journal_fd_ >= 0) ::close(journal_fd_);
   release_lock();
+  if (dir_fd_ >= 0) ::close(dir_fd_);
 }
 
 std::size_t Checkpoint::journal_count() const { return journals_.size(); }
@@ -254,6 +361,7 @@ void Checkpoint::note_image(std::size_t index, std::uint64_t record_at, const ch
 }
 
 void Checkpoint::append_row(std::size_t index, const char* payload, std::size_t size) {
+  verify();
   start_buffer();
   const std::uint64_t at = journal_size_ + buffer_.size();
   append_journal_record(buffer_, RecordKind::kRow, index, identity_, payload, size);
@@ -262,6 +370,7 @@ void Checkpoint::append_row(std::size_t index, const char* payload, std::size_t 
 
 BuiltRecord Checkpoint::append_row_record(std::size_t index, const char* record, std::size_t size) {
   const BuiltRecord r = check_built_record(record, size, RecordKind::kRow, index, identity_);
+  verify();
   start_buffer();
   const std::uint64_t at = journal_size_ + buffer_.size();
   buffer_.insert(buffer_.end(), record, record + size);
@@ -270,16 +379,18 @@ BuiltRecord Checkpoint::append_row_record(std::size_t index, const char* record,
 }
 
 void Checkpoint::append_crash(std::size_t index, const std::string& reason) {
+  verify();
   start_buffer();
   append_journal_record(buffer_, RecordKind::kCrashAttempt, index, identity_, reason.data(),
                         reason.size());
 }
 
 void Checkpoint::flush(bool sync) {
+  verify();  // never a byte into a checkpoint that is not this sweep's
   if (buffer_.empty() && !(sync && journal_fd_ >= 0)) return;
   if (journal_fd_ < 0) {
-    journal_fd_ =
-        ::open(own_journal_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_APPEND | O_CLOEXEC, 0644);
+    journal_fd_ = ::openat(dir_fd_, base_name(own_journal_).c_str(),
+                           O_WRONLY | O_CREAT | O_EXCL | O_APPEND | O_NOFOLLOW | O_CLOEXEC, 0644);
     if (journal_fd_ < 0)
       throw IoError("cannot create checkpoint journal '" + own_journal_ +
                     "': " + errno_text(errno));
@@ -297,8 +408,7 @@ std::vector<char> Checkpoint::run_image(std::size_t index) const {
   if (it == images_.end()) return {};
   const ImageAt& at = it->second;
   const std::string& path = at.journal < journals_.size() ? journals_[at.journal] : own_journal_;
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd < 0) throw IoError("cannot read checkpoint journal '" + path + "': " + errno_text(errno));
+  const int fd = open_regular(dir_fd_, path, O_RDONLY, "checkpoint journal");
   std::vector<char> bytes(at.size);
   std::size_t got = 0;
   while (got < bytes.size()) {
@@ -317,13 +427,27 @@ std::vector<char> Checkpoint::run_image(std::size_t index) const {
 }
 
 void Checkpoint::remove() {
+  verify();  // never remove a checkpoint that is not this sweep's
   if (journal_fd_ >= 0) ::close(journal_fd_);
   journal_fd_ = -1;
   buffer_.clear();
-  std::error_code ec;
-  fs::remove_all(dir_, ec);
+  // Only what a checkpoint holds, from the directory's descriptor; then the directory,
+  // if it still is this one.
+  for (const std::string& name : entry_names()) {
+    unsigned number = 0;
+    if (name[0] == '.' || is_journal_name(name, number) || name == kLockName)
+      ::unlinkat(dir_fd_, name.c_str(), 0);
+  }
+  struct stat mine {
+  }, now{};
+  const bool same =
+      ::fstat(dir_fd_, &mine) == 0 && ::lstat(dir_.c_str(), &now) == 0 && same_file(mine, now);
+  const int rc = same ? ::rmdir(dir_.c_str()) : 0;
+  const int err = errno;
   release_lock();
-  if (ec) throw IoError("cannot remove checkpoint '" + dir_ + "': " + ec.message());
+  ::close(dir_fd_);
+  dir_fd_ = -1;
+  if (rc != 0) throw IoError("cannot remove checkpoint '" + dir_ + "': " + errno_text(err));
 }
 
 }  // namespace hexdyn

@@ -18,6 +18,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "hexdyn/core/errors.hpp"
 #include "hexdyn/sweep/journal.hpp"
 #include "hexdyn/sweep/record.hpp"
 #include "hexdyn/sweep/scenario.hpp"
@@ -32,6 +33,19 @@ std::string build_identity();
 /// workers (who build their rows' journal records) compute it.
 SweepIdentity sweep_identity(const SweepSpec& spec, bool keep_runs);
 
+/// The checkpoint directory, its lock or this run's journal is no longer the one this
+/// sweep opened (removed, or replaced by another sweep's): the sweep must stop at once,
+/// write nothing and remove nothing (docs/user/faults.md#lost-checkpoint). Exit status 2.
+class CheckpointLost : public IoError {
+ public:
+  using IoError::IoError;
+};
+
+/// Nothing in a checkpoint follows a link (docs/user/faults.md#links): the directory is
+/// opened with O_NOFOLLOW | O_DIRECTORY and every file in it with openat from that
+/// descriptor, O_NOFOLLOW, O_EXCL on creation; a link, FIFO, device or other non-regular
+/// file in place of the directory, the lock or a journal is refused (IoError naming it),
+/// and a lock with other hard links too, before anything is written.
 class Checkpoint {
  public:
   /// Opens the checkpoint of `output_path` for `spec` (rank 0, before any work).
@@ -74,8 +88,14 @@ class Checkpoint {
 
   /// The run image of a finished scenario kept with --keep-runs; empty if none.
   std::vector<char> run_image(std::size_t index) const;
-  /// Removes the directory (after the sweep file is complete) and releases the lock.
+  /// Removes the directory (after the sweep file is complete) and releases the lock:
+  /// only its lock, journals and temporaries, from its descriptor, and the directory if
+  /// its path still names it. Throws CheckpointLost first when verify() fails.
   void remove();
+  /// Throws CheckpointLost unless the path still names this checkpoint's directory (same
+  /// device and inode as its descriptor), the directory still holds this sweep's lock
+  /// and this run's journal. Called by every append and flush.
+  void verify() const;
 
  private:
   struct ImageAt {
@@ -88,6 +108,8 @@ class Checkpoint {
   void take_lock();
   void scan_journals(const SweepSpec& spec, bool resume);
   void release_lock();
+  /// Names in the directory (from its descriptor), sorted, without "." and "..".
+  std::vector<std::string> entry_names() const;
 
   std::string dir_;
   SweepIdentity identity_;
@@ -101,6 +123,7 @@ class Checkpoint {
   std::uint64_t journal_size_ = 0;  ///< bytes written to this run's journal
   std::vector<char> buffer_;
   int lock_fd_ = -1;
+  int dir_fd_ = -1;  ///< the checkpoint directory, opened without following a link
 };
 
 }  // namespace hexdyn

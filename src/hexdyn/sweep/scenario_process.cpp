@@ -16,6 +16,7 @@
 
 #include "hexdyn/core/bytes.hpp"
 #include "hexdyn/core/errors.hpp"
+#include "hexdyn/io/interrupt.hpp"
 
 namespace hexdyn {
 namespace {
@@ -64,8 +65,15 @@ bool read_exact(int fd, char* data, std::size_t n) {
   ::prctl(PR_SET_PDEATHSIG, SIGKILL);
   if (::getppid() != parent) ::_exit(0);
   // A crash kills the child as it would a plain process: no handler inherited from the
-  // parent (MPI's backtrace printers, a test framework's) runs in it.
+  // parent (MPI's backtrace printers, a test framework's, the SIGTERM and SIGINT handlers
+  // of interrupt.hpp) runs in it.
   for (int sig : {SIGSEGV, SIGABRT, SIGBUS, SIGFPE, SIGILL}) ::signal(sig, SIG_DFL);
+  reset_interrupt_handlers_in_child();
+  // No descriptor of the parent's stays open here: the checkpoint's lock (flock) is held
+  // by its open file, so a child holding a copy would keep a killed sweep's lock until
+  // the child died (docs/user/faults.md#orphans).
+  if (in_fd > 3) ::close_range(3, static_cast<unsigned>(in_fd) - 1, 0);
+  ::close_range(static_cast<unsigned>(in_fd) + 1, ~0u, 0);
   const std::optional<std::size_t> crash_at = crash_switch();
   std::vector<char> frame;
   for (;;) {

@@ -9,6 +9,7 @@
 #include "hexdyn/core/errors.hpp"
 #include "hexdyn/io/atomic_file.hpp"
 #include "hexdyn/io/h5io.hpp"
+#include "hexdyn/io/interrupt.hpp"
 #include "hexdyn/io/output.hpp"
 #include "hexdyn/io/schema.hpp"
 #include "hexdyn/version.hpp"
@@ -21,17 +22,18 @@ namespace {
 }
 
 /// Copies `/run` of each kept run image (from the checkpoint's journals) to `/runs/<id>`
-/// of the file `dst_path`. An image is opened in memory (HDF5 core driver).
-void copy_runs(const std::string& dst_path, const SweepSpec& spec,
+/// of the open file `dst` (the writer's in-memory file, so that only H5Writer::close()
+/// meets the disk). An image is opened in memory (HDF5 core driver). Every identifier
+/// opened here is closed here, on every path.
+void copy_runs(hid_t dst, const std::string& dst_path, const SweepSpec& spec,
                const std::vector<ScenarioSummary>& rows, const Checkpoint& cp) {
   silence_hdf5_errors();
-  const hid_t dst = H5Fopen(dst_path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
-  if (dst < 0) io_fail(dst_path, "cannot reopen it to copy the runs");
   const hid_t lcpl = H5Pcreate(H5P_LINK_CREATE);
   H5Pset_create_intermediate_group(lcpl, 1);
   std::string error;
   for (const ScenarioSummary& row : rows) {
     if (row.status != ScenarioStatus::kOk) continue;
+    if (interrupted()) break;
     std::vector<char> image;
     try {
       image = cp.run_image(row.index);
@@ -42,6 +44,7 @@ void copy_runs(const std::string& dst_path, const SweepSpec& spec,
     if (image.empty()) continue;
     const hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
     H5Pset_fapl_core(fapl, 1 << 20, 0);
+    H5Pset_fclose_degree(fapl, H5F_CLOSE_STRONG);
     H5Pset_file_image(fapl, image.data(), image.size());
     const std::string name = "run-" + scenario_id(spec, row.index) + ".h5";
     const hid_t src = H5Fopen(name.c_str(), H5F_ACC_RDONLY, fapl);
@@ -59,10 +62,9 @@ void copy_runs(const std::string& dst_path, const SweepSpec& spec,
     if (!error.empty()) break;
   }
   H5Pclose(lcpl);
-  const herr_t closed = H5Fclose(dst);
   H5Eclear2(H5E_DEFAULT);
+  check_interrupt();
   if (!error.empty()) io_fail(dst_path, error);
-  if (closed < 0) io_fail(dst_path, "cannot close it after copying the runs");
 }
 
 namespace s = schema;
@@ -199,15 +201,15 @@ void write_sweep_file(const std::string& path, const SweepSpec& spec,
                     std::to_string(rows[i].index));
   check_output_path_writable(path);
   publish_atomically(path, [&](const std::string& tmp) {
-    {
-      H5Writer w(tmp);
-      write_meta(w, spec, runs_from != nullptr, info);
-      write_axes(w, spec);
-      write_scenarios(w, spec, rows);
-      if (runs_from != nullptr) w.create_group(schema::kRunsGroup);
-      w.close();
+    H5Writer w(tmp);
+    write_meta(w, spec, runs_from != nullptr, info);
+    write_axes(w, spec);
+    write_scenarios(w, spec, rows);
+    if (runs_from != nullptr) {
+      w.create_group(schema::kRunsGroup);
+      copy_runs(w.native_handle(), tmp, spec, rows, *runs_from);
     }
-    if (runs_from != nullptr) copy_runs(tmp, spec, rows, *runs_from);
+    w.close();
   });
 }
 
