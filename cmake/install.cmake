@@ -58,12 +58,13 @@ endforeach()
 
 # HDF5 is linked by the full paths FindHDF5 gave (src/CMakeLists.txt): installed, by the
 # pkg-config module hdf5 instead (hexdynConfig.cmake), which needs no C compiler in the
-# downstream project (FindHDF5 does) and no path of this machine.
+# downstream project (FindHDF5 does) and no path of this machine; its high-level library
+# (dimension scales, io/labels.cpp) is found next to it.
 foreach(target hexdyn_io hexdyn_sweep)
   get_target_property(libs ${target} INTERFACE_LINK_LIBRARIES)
   set(relinked "")
   foreach(l IN LISTS libs)
-    if(l IN_LIST HDF5_C_LIBRARIES)
+    if(l IN_LIST HDF5_C_LIBRARIES OR l IN_LIST HDF5_HL_LIBRARIES)
       list(APPEND relinked "$<BUILD_INTERFACE:${l}>")
     else()
       list(APPEND relinked "${l}")

@@ -2,6 +2,7 @@
 
 #include <hdf5.h>
 
+#include <algorithm>
 #include <type_traits>
 #include <utility>
 
@@ -173,11 +174,24 @@ std::vector<std::string> read_string_values(const Source& src, const std::string
 
 void silence_hdf5_errors() { H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); }
 
+std::int64_t file_access_properties() {
+  const hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
+  H5Pset_libver_bounds(fapl, H5F_LIBVER_V18, H5F_LIBVER_V18);
+  return fapl;
+}
+
 // ------------------------------------------------------------------ H5Writer
 
-H5Writer::H5Writer(const std::string& file_path) : file_path_(file_path) {
+H5Writer::H5Writer(const std::string& file_path, bool compress, bool open_existing)
+    : file_path_(file_path), compress_(compress) {
   silence_hdf5_errors();
-  file_ = H5Fcreate(file_path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  // Chunk B-tree nodes of 2·kChunkIndexK entries: HDF5's default (32) spends 2.5 kB on
+  // each chunked dataset, most of a small kept run's metadata.
+  Handle fcpl(H5Pcreate(H5P_FILE_CREATE), H5Pclose);
+  H5Pset_istore_k(fcpl.get(), kChunkIndexK);
+  Handle fapl(file_access_properties(), H5Pclose);
+  file_ = open_existing ? H5Fopen(file_path.c_str(), H5F_ACC_RDWR, fapl.get())
+                        : H5Fcreate(file_path.c_str(), H5F_ACC_TRUNC, fcpl.get(), fapl.get());
   if (file_ < 0) fail(file_path_, "create file", file_path_);
 }
 
@@ -213,6 +227,7 @@ namespace {
 
 void write_units(const std::string& file, hid_t dset, const std::string& path,
                  const std::string& units) {
+  if (units.empty()) return;  // text and flags: no units (schema.hpp)
   Handle type = make_utf8_vlen_type();
   Handle space(H5Screate(H5S_SCALAR), H5Sclose);
   Handle attr(H5Acreate2(dset, "units", type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT),
@@ -222,17 +237,38 @@ void write_units(const std::string& file, hid_t dset, const std::string& path,
     fail(file, "write attribute 'units' of", path);
 }
 
+/// Creation properties: chunked along the first axis with shuffle + deflate for a numeric
+/// dataset of at least kChunkMinBytes, else the default (contiguous).
+Handle creation_properties(const std::vector<std::size_t>& dims, hid_t file_type, bool compress) {
+  Handle dcpl(H5Pcreate(H5P_DATASET_CREATE), H5Pclose);
+  const std::size_t element = H5Tget_size(file_type);
+  if (!compress || dims.empty() || H5Tget_class(file_type) == H5T_STRING ||
+      element_count(dims) * element < kChunkMinBytes)
+    return dcpl;
+  std::vector<hsize_t> chunk(dims.begin(), dims.end());
+  const std::size_t row = element_count(dims) / dims[0] * element;
+  // As many chunks as kChunkBytes asks for, of equal rows (no mostly empty last chunk).
+  const std::size_t chunks = (dims[0] * row + kChunkBytes - 1) / kChunkBytes;
+  chunk[0] = std::max<hsize_t>((dims[0] + chunks - 1) / chunks, 1);
+  if (H5Pset_chunk(dcpl.get(), static_cast<int>(chunk.size()), chunk.data()) < 0 ||
+      H5Pset_shuffle(dcpl.get()) < 0 || H5Pset_deflate(dcpl.get(), kDeflateLevel) < 0)
+    dcpl.reset();
+  return dcpl;
+}
+
 /// Parent groups of `path` must exist; `count` elements of `mem_type` at `data`.
 void write_dataset(const std::string& file, hid_t file_id, const std::string& path,
                    const std::vector<std::size_t>& dims, hid_t file_type, hid_t mem_type,
-                   const void* data, std::size_t count, const std::string& units) {
+                   const void* data, std::size_t count, const std::string& units, bool compress) {
   if (count != element_count(dims))
     fail(file, "write dataset", path,
          "got " + std::to_string(count) + " values for shape " + join_dims(dims) + " (" +
              std::to_string(element_count(dims)) + " expected)");
   Handle space = make_space(dims);
   if (!space.valid()) fail(file, "create dataspace for", path);
-  Handle dset(H5Dcreate2(file_id, path.c_str(), file_type, space.get(), H5P_DEFAULT, H5P_DEFAULT,
+  Handle dcpl = creation_properties(dims, file_type, compress);
+  if (!dcpl.valid()) fail(file, "set the chunks and filters of", path);
+  Handle dset(H5Dcreate2(file_id, path.c_str(), file_type, space.get(), H5P_DEFAULT, dcpl.get(),
                          H5P_DEFAULT),
               H5Dclose);
   if (!dset.valid()) fail(file, "create dataset", path);
@@ -252,7 +288,7 @@ void H5Writer::write_doubles(const std::string& path, const std::vector<std::siz
                              std::span<const double> values, const std::string& units) {
   create_group(parent_of(path));
   write_dataset(file_path_, file_, path, dims, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, values.data(),
-                values.size(), units);
+                values.size(), units, compress_);
 }
 
 void H5Writer::write_scalar(const std::string& path, double value, const std::string& units) {
@@ -263,14 +299,14 @@ void H5Writer::write_int8(const std::string& path, const std::vector<std::size_t
                           std::span<const std::int8_t> values, const std::string& units) {
   create_group(parent_of(path));
   write_dataset(file_path_, file_, path, dims, H5T_STD_I8LE, H5T_NATIVE_INT8, values.data(),
-                values.size(), units);
+                values.size(), units, compress_);
 }
 
 void H5Writer::write_int32(const std::string& path, const std::vector<std::size_t>& dims,
                            std::span<const std::int32_t> values, const std::string& units) {
   create_group(parent_of(path));
   write_dataset(file_path_, file_, path, dims, H5T_STD_I32LE, H5T_NATIVE_INT32, values.data(),
-                values.size(), units);
+                values.size(), units, compress_);
 }
 
 void H5Writer::write_string(const std::string& path, const std::string& value,
@@ -279,19 +315,24 @@ void H5Writer::write_string(const std::string& path, const std::string& value,
   Handle type = make_utf8_vlen_type();
   if (!type.valid()) fail(file_path_, "create string type for", path);
   const char* ptr = value.c_str();
-  write_dataset(file_path_, file_, path, {}, type.get(), type.get(), &ptr, 1, units);
+  write_dataset(file_path_, file_, path, {}, type.get(), type.get(), &ptr, 1, units, compress_);
 }
 
 void H5Writer::write_strings(const std::string& path, const std::vector<std::string>& values,
                              const std::string& units) {
+  write_strings(path, {values.size()}, values, units);
+}
+
+void H5Writer::write_strings(const std::string& path, const std::vector<std::size_t>& dims,
+                             const std::vector<std::string>& values, const std::string& units) {
   create_group(parent_of(path));
   Handle type = make_utf8_vlen_type();
   if (!type.valid()) fail(file_path_, "create string type for", path);
   std::vector<const char*> ptrs;
   ptrs.reserve(values.size());
   for (const std::string& s : values) ptrs.push_back(s.c_str());
-  write_dataset(file_path_, file_, path, {values.size()}, type.get(), type.get(), ptrs.data(),
-                ptrs.size(), units);
+  write_dataset(file_path_, file_, path, dims, type.get(), type.get(), ptrs.data(), ptrs.size(),
+                units, compress_);
 }
 
 namespace {
@@ -323,6 +364,15 @@ void H5Writer::set_string_attribute(const std::string& object_path, const std::s
   write_attribute(file_path_, file_, object_path, name, type.get(), type.get(), &ptr);
 }
 
+void H5Writer::set_text_attribute(const std::string& object_path, const std::string& name,
+                                  const std::string& value) {
+  Handle type(H5Tcopy(H5T_C_S1), H5Tclose);
+  if (!type.valid() || H5Tset_size(type.get(), std::max<std::size_t>(value.size(), 1)) < 0 ||
+      H5Tset_cset(type.get(), H5T_CSET_UTF8) < 0 || H5Tset_strpad(type.get(), H5T_STR_NULLTERM) < 0)
+    fail(file_path_, "create string type for", object_path);
+  write_attribute(file_path_, file_, object_path, name, type.get(), type.get(), value.c_str());
+}
+
 void H5Writer::set_double_attribute(const std::string& object_path, const std::string& name,
                                     double value) {
   write_attribute(file_path_, file_, object_path, name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, &value);
@@ -331,6 +381,21 @@ void H5Writer::set_double_attribute(const std::string& object_path, const std::s
 void H5Writer::set_int_attribute(const std::string& object_path, const std::string& name,
                                  std::int64_t value) {
   write_attribute(file_path_, file_, object_path, name, H5T_STD_I64LE, H5T_NATIVE_INT64, &value);
+}
+
+void H5Writer::set_int_array_attribute_like(const std::string& object_path, const std::string& name,
+                                            const std::vector<std::int64_t>& values) {
+  const std::string where = object_path + "@" + name;
+  Handle d = Handle(H5Dopen2(file_, object_path.c_str(), H5P_DEFAULT), H5Dclose);
+  if (!d.valid()) fail(file_path_, "open dataset for attribute", where);
+  Handle type(H5Dget_type(d.get()), H5Tclose);
+  const hsize_t n = values.size();
+  Handle space(H5Screate_simple(1, &n, nullptr), H5Sclose);
+  if (H5Aexists(d.get(), name.c_str()) > 0) H5Adelete(d.get(), name.c_str());
+  Handle attr(H5Acreate2(d.get(), name.c_str(), type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT),
+              H5Aclose);
+  if (!attr.valid() || H5Awrite(attr.get(), H5T_NATIVE_INT64, values.data()) < 0)
+    fail(file_path_, "write attribute", where);
 }
 
 // ------------------------------------------------------------------ H5Reader

@@ -188,7 +188,6 @@ std::vector<std::size_t> expected_dims(schema::Shape shape, std::size_t T, std::
     case Shape::kEnvelopeCriteria:
     case Shape::kEnvelopeCells:
     case Shape::kEnvelopeGrid:
-    case Shape::kEnvelopeGridText:
     case Shape::kEnvelopeProbes:
       break;  // shapes of the envelope file
   }
