@@ -155,7 +155,7 @@ def check_dynamics(c, res):
     check_datasets(c, res, hr.DYNAMICS_DATASETS, T, n, m)
     if "/impacts/leg" in res:
         legs = np.asarray(res["/impacts/leg"])
-        c.check(bool(np.all((legs >= 1) & (legs <= 6))), "/impacts/leg values in 1..6")
+        c.check(bool(np.all((legs >= 0) & (legs <= 5))), "/impacts/leg values in 0..5")
     if "/solver/status" in res:
         c.check(bool(np.isin(res["/solver/status"], (0, 1, 2)).all()),
                 "/solver/status values in {0, 1, 2}")

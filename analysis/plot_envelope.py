@@ -69,7 +69,7 @@ def check_layout(path):
         P = f[S["kProbeRiser"].path].shape[0]
         sizes = {"W": W, "B": B, "S": V, "C": C, "P": P, "G": W * B * V * C}
         declared = set()
-        for spec in S["kEnvelopeDatasets"]:
+        for spec in list(S["kEnvelopeDatasets"]) + list(S["kEnvelopeCoordinates"]):
             declared.add(spec.path)
             if spec.path not in f:
                 raise SystemExit(f"plot_envelope: {path}: {spec.path} missing")
@@ -77,7 +77,7 @@ def check_layout(path):
             want = hr.expected_shape(spec.shape, **sizes)
             if ds.shape != want:
                 raise SystemExit(f"plot_envelope: {path}: {spec.path} shape {ds.shape}, expected {want}")
-            if hr._text(ds.attrs.get("units")) != spec.units:
+            if hr._text(ds.attrs.get("units", "")) != spec.units:
                 raise SystemExit(f"plot_envelope: {path}: {spec.path} units {ds.attrs.get('units')!r}, "
                                  f"expected {spec.units!r}")
             kind = "string" if h5py.check_string_dtype(ds.dtype) else str(ds.dtype)

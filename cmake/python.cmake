@@ -1,6 +1,6 @@
 # The Python module `hexdyn` (bindings/python/): the package's Python files and its compiled
 # part hexdyn/_hexdyn*.so (pybind11), laid out as a package in the build tree,
-#   build/python/hexdyn/{__init__,results,_version}.py, schema.hpp, _hexdyn*.so
+#   build/python/hexdyn/{__init__,results,xr,_version}.py, schema.hpp, _hexdyn*.so
 # (PYTHONPATH=build/python imports it: the tests and the pipelines set it), and installed to
 #   P/lib/python3.X/dist-packages/hexdyn/
 # which for the default prefix /usr/local is on Debian's /usr/bin/python3 path with no
@@ -17,7 +17,7 @@ endif()
 set(HEXDYN_PYTHON_PACKAGE_DIR ${CMAKE_BINARY_DIR}/python/hexdyn)
 # The pure-Python files, the version and the schema header the reader parses: laid out at
 # configure time, so that reading files (and the analysis scripts) needs no compiled part.
-set(hexdyn_python_files __init__.py results.py)
+set(hexdyn_python_files __init__.py results.py xr.py)
 foreach(f IN LISTS hexdyn_python_files)
   configure_file(${PROJECT_SOURCE_DIR}/bindings/python/hexdyn/${f} ${HEXDYN_PYTHON_PACKAGE_DIR}/${f} COPYONLY)
 endforeach()

@@ -35,10 +35,10 @@ Paper run (hexdyn-result/1) quantities:
     samples                     T, number of samples
     total_mass                  /model/total_mass [kg]
     duration                    /time[-1] - /time[0] [s]
-    energy_total, energy_joint  /energy/total, /energy/joint (18) [J]
+    energy_total, energy_joint  /energy/total, /energy/per_joint (18) [J]
     cost_of_transport, distance /energy/cost_of_transport [1], /energy/distance [m]
     impacts_count               n, number of touchdowns
-    impacts_leg                 /impacts/leg (n), 1-based
+    impacts_leg                 /impacts/leg (n) + 1: 1-based (the file counts from 0)
     impacts_t_start, impacts_duration, impacts_peak_force, impacts_impulse   (n) [s, s, N, N s]
     peak_torque                 max over samples of |tau_k|, per joint (18) [N m]
     rms_torque                  sqrt(int tau_k^2 dt / duration), the integral by the trapezoid
@@ -192,11 +192,12 @@ def paper_quantities(path):
             "total_mass": mass,
             "duration": float(t[-1] - t[0]),
             "energy_total": float(f["/energy/total"][()]),
-            "energy_joint": f["/energy/joint"][()],
+            "energy_joint": f["/energy/per_joint"][()],
             "cost_of_transport": float(f["/energy/cost_of_transport"][()]),
             "distance": float(f["/energy/distance"][()]),
             "impacts_count": int(f["/impacts/leg"].shape[0]),
-            "impacts_leg": f["/impacts/leg"][()].astype(np.int64),
+            # pinned 1-based; the file counts from 0 since hexdyn-result/2
+            "impacts_leg": f["/impacts/leg"][()].astype(np.int64) + 1,
             "impacts_t_start": f["/impacts/t_start"][()],
             "impacts_duration": f["/impacts/duration"][()],
             "impacts_peak_force": f["/impacts/peak_force"][()],
