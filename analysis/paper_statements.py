@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Checks the paper's qualitative statements (§5) on a hexdyn-result/1 file.
+"""Checks the paper's qualitative statements (§5) on a hexdyn-result/2 file.
 
 usage: /usr/bin/python3 analysis/paper_statements.py RESULT.h5 [--markdown]
 

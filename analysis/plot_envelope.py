@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Plot of a hexdyn-envelope/1 file (`hexdyn envelope`, docs/user/envelope.md):
+"""Plot of a hexdyn-envelope/2 file (`hexdyn envelope`, docs/user/envelope.md):
 the largest climbable riser over peak speed, one panel per tread depth, one colour per
 duty factor, one line style per criterion (kinematic, torque, friction).
 

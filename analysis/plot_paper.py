@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""The paper's figures from a hexdyn-result/1 file.
+"""The paper's figures from a hexdyn-result/2 file.
 
 usage: /usr/bin/python3 analysis/plot_paper.py RESULT.h5 OUTDIR
 

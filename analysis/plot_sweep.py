@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Heatmaps of a hexdyn-sweep/1 file: energy, cost of transport and peak joint torque
+"""Heatmaps of a hexdyn-sweep/2 file: energy, cost of transport and peak joint torque
 over two swept keys.
 
     /usr/bin/python3 analysis/plot_sweep.py SWEEP.h5 OUTDIR [--rows KEY] [--cols KEY]
@@ -176,7 +176,7 @@ def draw(sweep, metric, rows, cols, outdir):
 
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("sweep", help="a hexdyn-sweep/1 file")
+    ap.add_argument("sweep", help="a hexdyn-sweep/2 file")
     ap.add_argument("outdir")
     ap.add_argument("--rows", help="axis key for the heatmap rows")
     ap.add_argument("--cols", help="axis key for the heatmap columns")
