@@ -73,7 +73,7 @@ def check_datasets(c, res, table, samples, impacts=None, messages=None):
         c.check(got == want, f"{path} shape {want}", f"got {got}")
         c.check(dtype_name(res[path]) == element, f"{path} element {element}",
                 f"got {dtype_name(res[path])}")
-        c.check(res.units.get(path) == units, f"{path} units {units!r}",
+        c.check(res.units.get(path) == (units or None), f"{path} units {units or 'none'}",
                 f"got {res.units.get(path)!r}")
         if element == "float64":
             c.check(bool(np.all(np.isfinite(res[path]))), f"{path} finite",

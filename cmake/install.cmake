@@ -111,5 +111,8 @@ foreach(layer envelope sweep io pipeline power allocation_ipopt allocation conta
               kinematics planning urdf_reader model core)
   string(APPEND HEXDYN_PC_LIBS " -lhexdyn_${layer}")
 endforeach()
+# HDF5's high-level library (dimension scales, io/labels.cpp): in the directory pkg-config's
+# hdf5 module names with -L, which it does not list itself.
+string(APPEND HEXDYN_PC_LIBS " -lhdf5_hl")
 configure_file(${PROJECT_SOURCE_DIR}/cmake/hexdyn.pc.in ${CMAKE_BINARY_DIR}/package/hexdyn.pc @ONLY)
 install(FILES ${CMAKE_BINARY_DIR}/package/hexdyn.pc DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig)

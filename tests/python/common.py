@@ -40,7 +40,7 @@ def file_datasets(path):
     with h5py.File(path, "r") as f:
         def visit(name, obj):
             if isinstance(obj, h5py.Dataset):
-                out["/" + name] = (obj[()], obj.dtype, obj.attrs["units"])
+                out["/" + name] = (obj[()], obj.dtype, obj.attrs.get("units"))
         f.visititems(visit)
         attrs = {k: (v.decode() if isinstance(v, bytes) else v) for k, v in f["/meta"].attrs.items()}
     return out, attrs

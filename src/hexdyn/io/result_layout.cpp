@@ -156,6 +156,14 @@ void add_dynamics(Builder& b, const DynamicsResult& d, int T) {
   b.vector(s::kSolverObjective, d.solver_objective, t);
   b.vector(s::kSolverSeconds, d.solver_seconds, t);
   b.add(s::kSolverMessages, {d.solver_messages.size()}, d.solver_messages);
+  // The index coordinates of the dimensions `impact` and `message` (io/labels.hpp).
+  for (const auto& [coordinate, size] :
+       {std::pair{&s::kImpactCoordinate, n},
+        std::pair{&s::kMessageCoordinate, d.solver_messages.size()}}) {
+    std::vector<std::int32_t> index(size);
+    for (std::size_t i = 0; i < size; ++i) index[i] = static_cast<std::int32_t>(i);
+    b.add(*coordinate, {size}, std::move(index));
+  }
 }
 
 }  // namespace

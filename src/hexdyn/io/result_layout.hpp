@@ -45,9 +45,10 @@ struct ResultLayout {
 
 /// The layout of `result`: /meta (created_utc = now), /model, the labelled coordinates
 /// (kResultCoordinates: /leg, /joint, /xyz, /wxyz), the kinematic datasets and,
-/// when result.dyn.present, the dynamic ones (schema.hpp's kModelDatasets,
-/// kUrdfRobotDatasets when the robot came from a URDF, kKinematicDatasets,
-/// kDynamicsDatasets). Copies the arrays.
+/// when result.dyn.present, the dynamic ones and the index coordinates /impact and
+/// /message (schema.hpp's kModelDatasets, kUrdfRobotDatasets when the robot came from a
+/// URDF, kResultCoordinates, kKinematicDatasets, kDynamicsDatasets,
+/// kResultIndexCoordinates). Copies the arrays.
 ///
 /// Preconditions (checked; a mismatch throws IoError "PATH is RxC, expected ..." naming the
 /// dataset): every kinematic array has result.kin.samples() = T rows and its dataset's
