@@ -40,7 +40,8 @@ def read_envelope(path):
     """The envelope file as a dict: axes, criteria, riser_max/fail (W,B,S,C), limit and
     message (W,B,S,C) strings, posture (W,B,S), meta."""
     with h5py.File(path, "r") as f:
-        hr.check_filetype_version(f, S["kEnvelopeSchema"], S["kEnvelopeSchemaVersion"], path)
+        # Version 1 (no coordinates, flattened limit and message) plots too.
+        hr.check_filetype_version(f, S["kEnvelopeSchema"], (1, S["kEnvelopeSchemaVersion"]), path)
         d = {"meta": {k: hr._text(v) for k, v in f["meta"].attrs.items()}}
         d["tread"] = f[S["kEnvelopeTreadDepth"].path][()]
         d["duty"] = f[S["kEnvelopeDutyFactor"].path][()]
