@@ -287,8 +287,8 @@ inline constexpr DatasetSpec kXyzCoordinate{"/xyz", "", Shape::kXyz, Element::kS
                                             "Cartesian component, world frame G0"};
 inline constexpr DatasetSpec kWxyzCoordinate{"/wxyz", "", Shape::kWxyz, Element::kString,
                                              "quaternion component, scalar first"};
-/// Index coordinates 0..n−1 of the dimensions without labels, written with the first
-/// dataset that uses the dimension (io/labels.hpp).
+/// Index coordinates 0..n−1 of the dimensions without labels: /impact and /message in the
+/// result layout, the others created by io/labels.hpp when a dataset uses the dimension.
 inline constexpr DatasetSpec kImpactCoordinate{"/impact", "1", Shape::kN, Element::kInt32,
                                                "touchdown index"};
 inline constexpr DatasetSpec kMessageCoordinate{"/message", "1", Shape::kTextList, Element::kInt32,
