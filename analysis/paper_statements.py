@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Checks the paper's qualitative statements (§5) on a hexdyn-result/1 file.
+"""Checks the paper's qualitative statements (§5) on a hexdyn-result/2 file.
 
 usage: /usr/bin/python3 analysis/paper_statements.py RESULT.h5 [--markdown]
 
@@ -67,7 +67,7 @@ def statements(res):
         swing = phase[:, leg] == 0
         for i in np.flatnonzero(swing[:-1] & ~swing[1:]):
             touchdowns.append((leg + 1, t[i + 1]))
-    legs = res["/impacts/leg"].astype(int)
+    legs = res["/impacts/leg"].astype(int) + 1  # 0-based in the file (leg dimension)
     peaks = res["/impacts/peak_force"]
     fails = []
     worst_ratio = np.inf

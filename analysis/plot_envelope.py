@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Plot of a hexdyn-envelope/1 file (`hexdyn envelope`, docs/user/envelope.md):
+"""Plot of a hexdyn-envelope/2 file (`hexdyn envelope`, docs/user/envelope.md):
 the largest climbable riser over peak speed, one panel per tread depth, one colour per
 duty factor, one line style per criterion (kinematic, torque, friction).
 
@@ -40,7 +40,8 @@ def read_envelope(path):
     """The envelope file as a dict: axes, criteria, riser_max/fail (W,B,S,C), limit and
     message (W,B,S,C) strings, posture (W,B,S), meta."""
     with h5py.File(path, "r") as f:
-        hr.check_filetype_version(f, S["kEnvelopeSchema"], S["kEnvelopeSchemaVersion"], path)
+        # Version 1 (no coordinates, flattened limit and message) plots too.
+        hr.check_filetype_version(f, S["kEnvelopeSchema"], (1, S["kEnvelopeSchemaVersion"]), path)
         d = {"meta": {k: hr._text(v) for k, v in f["meta"].attrs.items()}}
         d["tread"] = f[S["kEnvelopeTreadDepth"].path][()]
         d["duty"] = f[S["kEnvelopeDutyFactor"].path][()]
@@ -69,7 +70,7 @@ def check_layout(path):
         P = f[S["kProbeRiser"].path].shape[0]
         sizes = {"W": W, "B": B, "S": V, "C": C, "P": P, "G": W * B * V * C}
         declared = set()
-        for spec in S["kEnvelopeDatasets"]:
+        for spec in list(S["kEnvelopeDatasets"]) + list(S["kEnvelopeCoordinates"]):
             declared.add(spec.path)
             if spec.path not in f:
                 raise SystemExit(f"plot_envelope: {path}: {spec.path} missing")
@@ -77,7 +78,7 @@ def check_layout(path):
             want = hr.expected_shape(spec.shape, **sizes)
             if ds.shape != want:
                 raise SystemExit(f"plot_envelope: {path}: {spec.path} shape {ds.shape}, expected {want}")
-            if hr._text(ds.attrs.get("units")) != spec.units:
+            if hr._text(ds.attrs.get("units", "")) != spec.units:
                 raise SystemExit(f"plot_envelope: {path}: {spec.path} units {ds.attrs.get('units')!r}, "
                                  f"expected {spec.units!r}")
             kind = "string" if h5py.check_string_dtype(ds.dtype) else str(ds.dtype)

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""The paper's figures from a hexdyn-result/1 file.
+"""The paper's figures from a hexdyn-result/2 file.
 
 usage: /usr/bin/python3 analysis/plot_paper.py RESULT.h5 OUTDIR
 
@@ -63,7 +63,7 @@ def fig3a(res, outdir):
 def fig3b(res, outdir):
     t = res["/time"]
     F = res["/contacts/force"]
-    legs = res["/impacts/leg"].astype(int)
+    legs = res["/impacts/leg"].astype(int) + 1  # 0-based in the file (leg dimension)
     starts = res["/impacts/t_start"]
     durations = res["/impacts/duration"]
     fig, axes = plt.subplots(1, 2, figsize=(10, 4))

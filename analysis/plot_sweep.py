@@ -1,6 +1,6 @@
 #!/usr/bin/python3
-"""Heatmaps and line plots of a hexdyn-sweep file: energy, cost of transport and peak joint
-torque over the swept keys.
+"""Heatmaps and line plots of a hexdyn-sweep file (schema 2, or 1): energy, cost of
+transport and peak joint torque over the swept keys.
 
     /usr/bin/python3 analysis/plot_sweep.py SWEEP.h5 OUTDIR [--rows KEY] [--cols KEY]
     /usr/bin/python3 analysis/plot_sweep.py SWEEP.h5 OUTDIR --x KEY [--hue KEY]

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""What a robot's run needs and climbs, from its hexdyn-result/1 file alone.
+"""What a robot's run needs and climbs, from its hexdyn-result/2 file alone.
 
     /usr/bin/python3 analysis/robot_summary.py RESULT.h5
 

@@ -177,7 +177,7 @@ class Measured:
             self.fz = f["/contacts/force"][()][:, :, 2]  # (T, 6): normal force on treads
             tau = f["/joints/torque"][()]
             self.energy = float(f["/energy/total"][()])
-            self.impact_leg = f["/impacts/leg"][()].astype(int)
+            self.impact_leg = f["/impacts/leg"][()].astype(int) + 1  # 1-based here
             self.impact_t0 = f["/impacts/t_start"][()]
             self.impact_duration = f["/impacts/duration"][()]
             status = f["/solver/status"][()]

@@ -21,6 +21,7 @@ install(DIRECTORY ${PROJECT_SOURCE_DIR}/pipelines/ DESTINATION ${HEXDYN_INSTALL_
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/analysis/ DESTINATION ${HEXDYN_INSTALL_SHARE}/analysis
         FILES_MATCHING PATTERN "*.py" PATTERN "__pycache__" EXCLUDE)
 install(FILES ${PROJECT_SOURCE_DIR}/src/hexdyn/io/schema.hpp
+              ${PROJECT_SOURCE_DIR}/src/hexdyn/io/schema_envelope.hpp
         DESTINATION ${HEXDYN_INSTALL_SHARE}/src/hexdyn/io)
 
 # ---------------------------------------------------------------- the C++ package
@@ -58,12 +59,13 @@ endforeach()
 
 # HDF5 is linked by the full paths FindHDF5 gave (src/CMakeLists.txt): installed, by the
 # pkg-config module hdf5 instead (hexdynConfig.cmake), which needs no C compiler in the
-# downstream project (FindHDF5 does) and no path of this machine.
+# downstream project (FindHDF5 does) and no path of this machine; its high-level library
+# (dimension scales, io/labels.cpp) is found next to it.
 foreach(target hexdyn_io hexdyn_sweep)
   get_target_property(libs ${target} INTERFACE_LINK_LIBRARIES)
   set(relinked "")
   foreach(l IN LISTS libs)
-    if(l IN_LIST HDF5_C_LIBRARIES)
+    if(l IN_LIST HDF5_C_LIBRARIES OR l IN_LIST HDF5_HL_LIBRARIES)
       list(APPEND relinked "$<BUILD_INTERFACE:${l}>")
     else()
       list(APPEND relinked "${l}")
@@ -89,7 +91,7 @@ install(TARGETS hexdyn_mpi EXPORT hexdynMpiTargets ARCHIVE DESTINATION ${CMAKE_I
 install(EXPORT hexdynTargets NAMESPACE hexdyn:: DESTINATION ${HEXDYN_INSTALL_CMAKEDIR})
 install(EXPORT hexdynMpiTargets NAMESPACE hexdyn:: DESTINATION ${HEXDYN_INSTALL_CMAKEDIR})
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/src/hexdyn/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/hexdyn
-        FILES_MATCHING PATTERN "*.hpp")
+        FILES_MATCHING PATTERN "*.hpp" PATTERN "h5_detail.hpp" EXCLUDE)
 install(FILES ${CMAKE_BINARY_DIR}/generated/hexdyn/version.hpp
         DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/hexdyn)
 
@@ -110,5 +112,8 @@ foreach(layer envelope sweep io pipeline power allocation_ipopt allocation conta
               kinematics planning urdf_reader model core)
   string(APPEND HEXDYN_PC_LIBS " -lhexdyn_${layer}")
 endforeach()
+# HDF5's high-level library (dimension scales, io/labels.cpp): in the directory pkg-config's
+# hdf5 module names with -L, which it does not list itself.
+string(APPEND HEXDYN_PC_LIBS " -lhdf5_hl")
 configure_file(${PROJECT_SOURCE_DIR}/cmake/hexdyn.pc.in ${CMAKE_BINARY_DIR}/package/hexdyn.pc @ONLY)
 install(FILES ${CMAKE_BINARY_DIR}/package/hexdyn.pc DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig)

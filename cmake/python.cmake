@@ -1,6 +1,6 @@
 # The Python module `hexdyn` (bindings/python/): the package's Python files and its compiled
 # part hexdyn/_hexdyn*.so (pybind11), laid out as a package in the build tree,
-#   build/python/hexdyn/{__init__,results,_version}.py, schema.hpp, _hexdyn*.so
+#   build/python/hexdyn/{__init__,results,xr,_version}.py, schema{,_envelope}.hpp, _hexdyn*.so
 # (PYTHONPATH=build/python imports it: the tests and the pipelines set it), and installed to
 #   P/lib/python3.X/dist-packages/hexdyn/
 # which for the default prefix /usr/local is on Debian's /usr/bin/python3 path with no
@@ -17,13 +17,15 @@ endif()
 set(HEXDYN_PYTHON_PACKAGE_DIR ${CMAKE_BINARY_DIR}/python/hexdyn)
 # The pure-Python files, the version and the schema header the reader parses: laid out at
 # configure time, so that reading files (and the analysis scripts) needs no compiled part.
-set(hexdyn_python_files __init__.py results.py)
+set(hexdyn_python_files __init__.py results.py xr.py)
 foreach(f IN LISTS hexdyn_python_files)
   configure_file(${PROJECT_SOURCE_DIR}/bindings/python/hexdyn/${f} ${HEXDYN_PYTHON_PACKAGE_DIR}/${f} COPYONLY)
 endforeach()
 configure_file(${PROJECT_SOURCE_DIR}/bindings/python/hexdyn/_version.py.in
                ${HEXDYN_PYTHON_PACKAGE_DIR}/_version.py @ONLY)
-configure_file(${PROJECT_SOURCE_DIR}/src/hexdyn/io/schema.hpp ${HEXDYN_PYTHON_PACKAGE_DIR}/schema.hpp COPYONLY)
+foreach(h schema.hpp schema_envelope.hpp)
+  configure_file(${PROJECT_SOURCE_DIR}/src/hexdyn/io/${h} ${HEXDYN_PYTHON_PACKAGE_DIR}/${h} COPYONLY)
+endforeach()
 set(hexdyn_python_default OFF)
 if(Python3_FOUND AND pybind11_FOUND)
   set(hexdyn_python_default ON)
@@ -53,5 +55,5 @@ set_target_properties(hexdyn_python PROPERTIES OUTPUT_NAME _hexdyn
 install(TARGETS hexdyn_python LIBRARY DESTINATION ${HEXDYN_PYTHON_INSTALL_DIR}/hexdyn)
 list(TRANSFORM hexdyn_python_files PREPEND ${HEXDYN_PYTHON_PACKAGE_DIR}/)
 install(FILES ${hexdyn_python_files} ${HEXDYN_PYTHON_PACKAGE_DIR}/_version.py
-              ${HEXDYN_PYTHON_PACKAGE_DIR}/schema.hpp
+              ${HEXDYN_PYTHON_PACKAGE_DIR}/schema.hpp ${HEXDYN_PYTHON_PACKAGE_DIR}/schema_envelope.hpp
         DESTINATION ${HEXDYN_PYTHON_INSTALL_DIR}/hexdyn)

@@ -1,6 +1,6 @@
 """Writes the tables of docs/user/output.md from src/hexdyn/io/schema.hpp.
 
-The file layouts hexdyn writes (hexdyn-result/1, hexdyn-sweep/1, hexdyn-envelope/1) are
+The file layouts hexdyn writes (hexdyn-result/2, hexdyn-sweep/2, hexdyn-envelope/2) are
 declared once, in the C++ header src/hexdyn/io/schema.hpp. The declarations are read with
 the parser of the Python reader (`hexdyn.results.parse_schema_header`, bindings/python/), so the
 tables say what the writers write and what the reader checks. Each table's "meaning"
@@ -31,7 +31,8 @@ import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
-from hexdyn.results import AttributeSpec, DatasetSpec, parse_schema_header
+from hexdyn.results import (AttributeSpec, DatasetSpec, FlagSpec, parse_schema_header,
+                            read_schema_text)
 
 DEFAULT_SCHEMA = os.path.join(ROOT, "src", "hexdyn", "io", "schema.hpp")
 DEFAULT_DOC = os.path.join(HERE, "user", "output.md")
@@ -39,7 +40,7 @@ DEFAULT_DOC = os.path.join(HERE, "user", "output.md")
 BEGIN = re.compile(r"^<!-- BEGIN GENERATED: (\w+) -->$")
 END = "<!-- END GENERATED -->"
 
-# Section banners of the header: "// ====...==== hexdyn-result/1".
+# Section banners of the header: "// ====...==== hexdyn-result/2".
 SECTION = re.compile(r"^// =+ (hexdyn-[a-z]+/\d+)\s*$", re.M)
 # The name of each declaration and where it starts (the declarations themselves are read
 # by parse_schema_header; this only places names in sections and finds their comments).
@@ -183,13 +184,16 @@ def other_attributes_table(schema, kind):
 
 def dataset_table(schema, kind, presence=None):
     datasets = schema.in_section(kind, DatasetSpec)
-    head = "| path | shape | type | units |"
-    rule = "|---|---|---|---|"
+    head = "| path | shape | dimensions | type | units | long_name |"
+    rule = "|---|---|---|---|---|---|"
     if presence is not None:
         head, rule = head + " written |", rule + "---|"
     rows = [head + " meaning |", rule + "---|"]
     for name, d in datasets:
-        row = f"| `{d.path}` | {shape_text(d.shape)} | {d.element} | {cell(d.units)} |"
+        dims = "(" + ", ".join(d.dims) + ")" if d.dims else "()"
+        units = {"": "—", "key": "of the key"}.get(d.units, f"`{d.units}`")
+        row = (f"| `{d.path}` | {shape_text(d.shape)} | {cell(dims)} | {d.element} | "
+               f"{cell(units)} | {cell(d.long_name)} |")
         if presence is not None:
             row += f" {presence.get(name, '')} |"
         rows.append(row + f" {cell(schema.comments.get(name, ''))} |")
@@ -210,6 +214,12 @@ def region_lines(schema, region):
     lines = meta_table(schema, kind) + [""]
     presence = result_presence(schema, kind) if region == "result" else None
     lines += dataset_table(schema, kind, presence)
+    flags = schema.in_section(kind, FlagSpec)
+    if flags:
+        lines += ["", "CF flags (`flag_values` 0, 1, ... and `flag_meanings`):", "",
+                  "| dataset | flag_meanings |", "|---|---|"]
+        lines += [f"| `{f.path}` | {' '.join(f'{i} `{w}`' for i, w in enumerate(f.meanings))} |"
+                  for _, f in flags]
     other = other_attributes_table(schema, kind)
     if other:
         lines += ["", "Other attributes:", ""] + other
@@ -277,8 +287,7 @@ def main(argv=None):
     args = ap.parse_args(argv)
     rel = os.path.relpath(args.doc, ROOT)
     try:
-        with open(args.schema, encoding="utf-8") as f:
-            schema = Schema(f.read())
+        schema = Schema(read_schema_text(args.schema))
         with open(args.doc, encoding="utf-8") as f:
             old = f.read()
         new = render(old, schema)

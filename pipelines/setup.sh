@@ -18,6 +18,7 @@ HEXDYN_PACKAGES=(
   libopenmpi-dev openmpi-bin libyaml-cpp-dev libbenchmark-dev liburdfdom-dev
   python3 python3-h5py python3-numpy python3-matplotlib python3-yaml
   python3-dev pybind11-dev python3-pybind11 python3-scipy
+  python3-xarray python3-h5netcdf python3-netcdf4 python3-pandas netcdf-bin udunits-bin
   clang-format
   # analysis/animate.py: GIF through Pillow, MP4 through ffmpeg (pipelines/paper.sh writes one)
   python3-pil ffmpeg

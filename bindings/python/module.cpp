@@ -238,7 +238,7 @@ PYBIND11_MODULE(_hexdyn, m) {
   m.def("run", &run_file, py::arg("scene"), py::arg("overrides"), py::arg("allow_large"),
         "Computes a scene: (handle, {HDF5 path: array}, {/meta attribute: value}).");
   m.def("write", &write_file, py::arg("handle"), py::arg("path"),
-        "Writes a computed scene's hexdyn-result/1 file, with the CLI's checks on the path.");
+        "Writes a computed scene's hexdyn-result/2 file, with the CLI's checks on the path.");
   m.def("validate", &validate_file, py::arg("scene"), py::arg("overrides"),
         "Checks a scene or sweep file as `hexdyn validate` does.");
 }

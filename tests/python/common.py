@@ -41,7 +41,7 @@ def file_datasets(path):
     with h5py.File(path, "r") as f:
         def visit(name, obj):
             if isinstance(obj, h5py.Dataset):
-                out["/" + name] = (obj[()], obj.dtype, obj.attrs["units"])
+                out["/" + name] = (obj[()], obj.dtype, obj.attrs.get("units"))
             elif name != "meta":
                 for k, v in obj.attrs.items():
                     attrs[f"/{name}/{k}"] = v.decode() if isinstance(v, bytes) else v

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Compare two hexdyn-result/1 files dataset by dataset, floats to a tolerance: the check
+"""Compare two hexdyn-result/2 files dataset by dataset, floats to a tolerance: the check
 that a refactor changed no result.
 
     /usr/bin/python3 tests/regression/compare_results.py A.h5 B.h5 [--rtol 1e-9]
@@ -83,8 +83,8 @@ class ToleranceRules(compare_sweeps.Rules):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("a", help="hexdyn-result/1 file (or FILE.h5:/runs/<id> of a sweep)")
-    ap.add_argument("b", help="hexdyn-result/1 file (or FILE.h5:/runs/<id> of a sweep)")
+    ap.add_argument("a", help="hexdyn-result/2 file (or FILE.h5:/runs/<id> of a sweep)")
+    ap.add_argument("b", help="hexdyn-result/2 file (or FILE.h5:/runs/<id> of a sweep)")
     ap.add_argument("--rtol", type=float, default=1e-9,
                     help="relative tolerance on float datasets (default 1e-9)")
     args = ap.parse_args()
@@ -95,8 +95,8 @@ def main():
             schema = g["meta"].attrs.get("schema") if "meta" in g else None
             if isinstance(schema, bytes):
                 schema = schema.decode()
-            if schema != "hexdyn-result/1":
-                print(f"compare_results: {name}: schema {schema!r}, expected 'hexdyn-result/1'",
+            if schema != "hexdyn-result/2":
+                print(f"compare_results: {name}: schema {schema!r}, expected 'hexdyn-result/2'",
                       file=sys.stderr)
                 return 1
         diffs = []

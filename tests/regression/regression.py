@@ -31,14 +31,14 @@ Tolerance rule, per quantity (rtol written next to each quantity in reference.js
 NaN must match NaN (written null in the JSON); rtol 0 means exact (integers, strings,
 counts, shapes). The rtol values are set in TOLERANCES below, with their reasons.
 
-Paper run (hexdyn-result/1) quantities:
+Paper run (hexdyn-result/2) quantities:
     samples                     T, number of samples
     total_mass                  /model/total_mass [kg]
     duration                    /time[-1] - /time[0] [s]
-    energy_total, energy_joint  /energy/total, /energy/joint (18) [J]
+    energy_total, energy_joint  /energy/total, /energy/per_joint (18) [J]
     cost_of_transport, distance /energy/cost_of_transport [1], /energy/distance [m]
     impacts_count               n, number of touchdowns
-    impacts_leg                 /impacts/leg (n), 1-based
+    impacts_leg                 /impacts/leg (n) + 1: 1-based (the file counts from 0)
     impacts_t_start, impacts_duration, impacts_peak_force, impacts_impulse   (n) [s, s, N, N s]
     peak_torque                 max over samples of |tau_k|, per joint (18) [N m]
     rms_torque                  sqrt(int tau_k^2 dt / duration), the integral by the trapezoid
@@ -53,7 +53,7 @@ Paper run (hexdyn-result/1) quantities:
                                 intervals between two consecutive such samples [s]), _mean (its
                                 trapezoid time integral over those intervals / _time [N]),
                                 _min, _max [N], _mean_over_weight (_mean / (total_mass * 9.81))
-Smoke sweep (hexdyn-sweep/1) quantities: scenarios (count), and the /scenarios columns
+Smoke sweep (hexdyn-sweep/2) quantities: scenarios (count), and the /scenarios columns
     id, status, message, axis_0.., energy, cost_of_transport, peak_impact_force, duration,
     distance, peak_torque (N,18), rms_torque (N,18), relaxed_samples, failed_samples, samples.
 """
@@ -180,7 +180,7 @@ def trapezoid(y, t, axis=0):
 
 def paper_quantities(path):
     with h5py.File(path, "r") as f:
-        check_schema(f, "hexdyn-result/1", path)
+        check_schema(f, "hexdyn-result/2", path)
         t = f["/time"][()]
         tau = f["/joints/torque"][()]
         phase = f["/contacts/phase"][()]
@@ -192,11 +192,12 @@ def paper_quantities(path):
             "total_mass": mass,
             "duration": float(t[-1] - t[0]),
             "energy_total": float(f["/energy/total"][()]),
-            "energy_joint": f["/energy/joint"][()],
+            "energy_joint": f["/energy/per_joint"][()],
             "cost_of_transport": float(f["/energy/cost_of_transport"][()]),
             "distance": float(f["/energy/distance"][()]),
             "impacts_count": int(f["/impacts/leg"].shape[0]),
-            "impacts_leg": f["/impacts/leg"][()].astype(np.int64),
+            # pinned 1-based; the file counts from 0 since hexdyn-result/2
+            "impacts_leg": f["/impacts/leg"][()].astype(np.int64) + 1,
             "impacts_t_start": f["/impacts/t_start"][()],
             "impacts_duration": f["/impacts/duration"][()],
             "impacts_peak_force": f["/impacts/peak_force"][()],
@@ -230,7 +231,7 @@ def paper_quantities(path):
 
 def smoke_quantities(path):
     with h5py.File(path, "r") as f:
-        check_schema(f, "hexdyn-sweep/1", path)
+        check_schema(f, "hexdyn-sweep/2", path)
         s = f["/scenarios"]
         q = {"scenarios": int(s["id"].shape[0])}
         names = list(SMOKE_COLUMNS)

@@ -10,7 +10,7 @@ import numpy as np  # noqa: E402
 from hexdyn import results as hr  # noqa: E402
 
 sw = hr.open_sweep(sys.argv[1])
-assert sw.meta["schema"] == hr.SWEEP_SCHEMA and sw.meta["schema_version"] == 1
+assert sw.meta["schema"] == hr.SWEEP_SCHEMA and sw.meta["schema_version"] == hr.SWEEP_SCHEMA_VERSION
 for key in hr.SWEEP_META_ATTRIBUTES:
     assert key in sw.meta, key
 spec = sw.spec

@@ -4,7 +4,8 @@ hexdyn.results (bindings/python/hexdyn/results.py) parses it (the same declarati
 
   check_schema.py --result RESULT.h5 [--sweep SWEEP.h5 ...]
 
-Every declared dataset is present with its `units`, shape and element type, every
+Every declared dataset is present with its `units` (none where declared ""; the unit of
+the key on a sweep axis), `long_name`, CF flags, dimension scales, shape and element type, every
 declared attribute with its element type, and the files hold nothing undeclared (no
 other dataset, group or attribute). A result file must hold the dynamics datasets; a
 sweep file is checked with its /runs/<id> groups as result layouts. Exit 1 with one
@@ -68,9 +69,27 @@ class FileCheck:
             problem(f"{where}: element {element_of(obj.dtype)}, declared {spec.element}")
         units = obj.attrs.get(S["kUnitsAttribute"])
         units = units.decode() if isinstance(units, bytes) else units
-        if units != spec.units:
+        if spec.units == "key":  # a sweep axis: the unit of its key, or none (words)
+            if units == "SI" or units == "":
+                problem(f"{where}: units {units!r}, declared the unit of the axis key")
+        elif units != (spec.units or None):
             problem(f"{where}: units {units!r}, declared {spec.units!r}")
-        self.seen_attributes.add((self.full(path), S["kUnitsAttribute"]))
+        long_name = hr._text(obj.attrs.get(S["kLongNameAttribute"]))
+        if long_name != spec.long_name:
+            problem(f"{where}: long_name {long_name!r}, declared {spec.long_name!r}")
+        if spec.path in hr.FLAGS:
+            meanings = hr._text(obj.attrs.get("flag_meanings", ""))
+            values = list(np.asarray(obj.attrs.get("flag_values", [])))
+            if meanings.split() != hr.FLAGS[spec.path] or values != list(range(len(hr.FLAGS[spec.path]))):
+                problem(f"{where}: flags {values} {meanings!r}, declared {hr.FLAGS[spec.path]}")
+            if np.asarray(obj.attrs.get("flag_values", [])).dtype != obj.dtype:
+                problem(f"{where}: flag_values not of the dataset's type")
+        # Dimension scales: a scale of its own name, or one attached per axis.
+        if obj.ndim > 0 and "CLASS" not in obj.attrs and len(obj.dims[0]) == 0:
+            problem(f"{where}: no dimension scale attached")
+        for name in (S["kUnitsAttribute"], S["kLongNameAttribute"], "flag_values", "flag_meanings",
+                     "DIMENSION_LIST", "CLASS", "NAME", "REFERENCE_LIST"):
+            self.seen_attributes.add((self.full(path), name))
         return obj
 
     def attribute(self, spec, obj_path=None):
@@ -134,9 +153,13 @@ def check_result(f, root, source):
     tables = ["kModelDatasets", "kKinematicDatasets", "kDynamicsDatasets"]
     if c.full(S["kModelLegMapping"].path) in f:  # a robot read from a URDF
         tables.append("kUrdfRobotDatasets")
-    for table in tables:
+    for table in tables + ["kResultCoordinates"]:
         for spec in S[table]:
             c.dataset(spec, sizes)
+    for spec in S["kResultIndexCoordinates"]:  # present when their dimension is used
+        if c.full(spec.path) in f:
+            c.dataset(spec, {**sizes, "Y": f[c.full(spec.path)].shape[0],
+                             "K": f[c.full(spec.path)].shape[0]})
     c.undeclared()
     return c
 
@@ -166,7 +189,12 @@ def check_sweep(f, source):
         c.dataset(S["kAxisLabels"], {"V": V}, concrete(S["kAxisLabels"].path, i))
         c.dataset(column, {"N": N}, concrete(column.path, i))
         c.attribute(S["kScenarioAxisKey"], concrete(S["kScenarioAxisKey"].object, i))
+        key = hr._text(f[concrete(S["kAxisKey"].path, i)][()])
+        coordinate = S["kAxisCoordinateNumbers"] if numeric else S["kAxisCoordinateWords"]
+        c.dataset(coordinate, {"V": V}, coordinate.path.replace("{key}", key))
     c.dataset(S["kSweepJointNames"], {})
+    for spec in S["kSweepCoordinates"]:
+        c.dataset(spec, {"N": N, "A": A})
     c.group(S["kScenariosGroup"])
     for spec in S["kScenarioDatasets"]:
         c.dataset(spec, {"N": N, "A": A})

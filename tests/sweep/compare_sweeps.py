@@ -10,7 +10,7 @@ except (sweep files):
     /scenarios/wall_time_s
     /runs/<id>/meta attributes created_utc, wall_time_s
     /runs/<id>/solver/seconds
-With --result the files are hexdyn-result/1 files (a run of `hexdyn run`, or a group
+With --result the files are hexdyn-result/2 files (a run of `hexdyn run`, or a group
 given as FILE.h5:/runs/<id>): /meta created_utc, wall_time_s and /solver/seconds are
 ignored. Exit status 0 when equal, 1 with one line per difference otherwise.
 """
@@ -82,6 +82,20 @@ class Rules:
         return None if values_equal(read(a), read(b)) else "values differ"
 
 
+def attribute(obj, name):
+    """An attribute's value; the dimension-scale attributes, which hold object references
+    (addresses in their file), as the paths they point to, below a kept run's group."""
+    value = obj.attrs[name]
+    if name not in ("DIMENSION_LIST", "REFERENCE_LIST"):
+        return value
+
+    def where(ref):
+        return re.sub(r"^/runs/[^/]+", "", obj.file[ref].name)
+    if name == "DIMENSION_LIST":
+        return [[where(r) for r in refs] for refs in value]
+    return sorted((where(r), int(i)) for r, i in value)
+
+
 def compare(ga, gb, path, rules, out):
     """Appends one line per difference between groups ga and gb (at `path`)."""
     attrs_a, attrs_b = set(ga.attrs), set(gb.attrs)
@@ -89,7 +103,7 @@ def compare(ga, gb, path, rules, out):
     for name in sorted((attrs_a | attrs_b) - skip):
         if name not in attrs_a or name not in attrs_b:
             out.append(f"{path or '/'}@{name}: present in one file only")
-        elif not values_equal(ga.attrs[name], gb.attrs[name]):
+        elif not values_equal(attribute(ga, name), attribute(gb, name)):
             out.append(f"{path or '/'}@{name}: differs")
     if not isinstance(ga, h5py.Group):
         return
@@ -130,7 +144,7 @@ def main():
     ap.add_argument("a")
     ap.add_argument("b")
     ap.add_argument("--result", action="store_true",
-                    help="compare hexdyn-result/1 layouts (FILE or FILE.h5:/runs/<id>)")
+                    help="compare hexdyn-result/2 layouts (FILE or FILE.h5:/runs/<id>)")
     args = ap.parse_args()
     fa, ga = open_target(args.a)
     fb, gb = open_target(args.b)

@@ -114,7 +114,7 @@ class Result(Mapping):
         return self._config
 
     def write(self, path):
-        """Writes the hexdyn-result/1 file `hexdyn run` would write, with its checks on the
+        """Writes the hexdyn-result/2 file `hexdyn run` would write, with its checks on the
         path (a new path or a regular file that is none of the scene's input files)."""
         _lib().write(self._handle, _path(path))
 

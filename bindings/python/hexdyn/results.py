@@ -1,4 +1,5 @@
-"""Reader for hexdyn result files (`hexdyn-result/1`) and sweep files (`hexdyn-sweep/1`).
+"""Reader for hexdyn result files (`hexdyn-result/2`) and sweep files (`hexdyn-sweep/2`);
+files of version 1 open too (their layout is mapped to version 2's on reading).
 
 The layout is the contract of docs/user/output.md; the tables below mirror
 src/hexdyn/io/schema.hpp (path -> (shape, units, element type)). Shapes use the
@@ -18,6 +19,7 @@ symbols "T" (samples), "n" (touchdowns) and "m" (solver messages).
     sw.table["energy"]               # one value per scenario [J], NaN where failed
     sw.grid("energy")                # the same on the grid: shape sw.shape
     sw.run(5)                        # a Result from /runs/000005 (sweeps run with --keep-runs)
+    sw.to_xarray(), sw.to_dataframe(), res.to_xarray()   # labelled (hexdyn.xr; xarray, pandas)
 
 Requires h5py, numpy and PyYAML (Debian: /usr/bin/python3).
 """
@@ -44,19 +46,32 @@ SCHEMA_HEADER_CANDIDATES = tuple(p for p in (
 
 
 class DatasetSpec:
-    """A dataset of the contract: path (may hold "{i}" or "{id}"), units, shape (a tuple
-    of ints and size symbols "T", "n", "m", "N", "A", "V"), element ("float64", "int8",
-    "int32", "int64", "string"); `name` is the C++ constant (kTime)."""
+    """A dataset of the contract: path (may hold "{i}", "{id}" or "{key}"), units ("" no
+    `units` attribute; "key" the unit of a sweep axis's key), shape (a tuple of ints and
+    size symbols "T", "n", "m", "N", "A", "V"), element ("float64", "int8", "int32",
+    "int64", "string"), long_name, dims (the netCDF dimension names of its axes);
+    `name` is the C++ constant (kTime)."""
 
-    def __init__(self, name, path, units, shape, element):
+    def __init__(self, name, path, units, shape, element, long_name="", dims=()):
         self.name, self.path, self.units, self.shape, self.element = (
             name, path, units, shape, element)
+        self.long_name, self.dims = long_name, dims
 
     def __iter__(self):  # (shape, units, element), the tuples of the tables below
         return iter((self.shape, self.units, self.element))
 
     def __repr__(self):
         return f"DatasetSpec({self.path!r}, {self.units!r}, {self.shape}, {self.element!r})"
+
+
+class FlagSpec:
+    """CF flags of a dataset of codes 0, 1, ...: `path` and the words of `meanings`."""
+
+    def __init__(self, const, path, meanings):
+        self.const, self.path, self.meanings = const, path, meanings.split()
+
+    def __repr__(self):
+        return f"FlagSpec({self.path!r}, {self.meanings})"
 
 
 class AttributeSpec:
@@ -74,7 +89,7 @@ def _strip_comments(text):
 
 
 def _split_args(text):
-    return [a.strip() for a in re.findall(r'"(?:[^"\\]|\\.)*"|[^,]+', text) if a.strip()]
+    return [a.strip() for a in re.findall(r'\s*("(?:[^"\\]|\\.)*"|[^,]+)', text) if a.strip()]
 
 
 def parse_schema_header(text):
@@ -89,6 +104,11 @@ def parse_schema_header(text):
         shapes[name] = tuple(int(d) if d.strip().isdigit() else d.strip()
                              for d in dims.split(",") if d.strip())
     code = _strip_comments(text)
+    dims = {name: tuple(names.split()) for name, names in
+            re.findall(r'case Shape::(k\w+): return "([^"]*)";', code)}
+    missing = set(shapes) - set(dims)
+    if missing:
+        raise ValueError(f"schema header: no dimension_names() case for {sorted(missing)}")
     decls = {}
 
     def value(token):
@@ -105,7 +125,7 @@ def parse_schema_header(text):
         return m.group(1).lower()
 
     pattern = re.compile(r"inline\s+constexpr\s+(const\s+char\s*\*|std::int64_t|DatasetSpec|"
-                         r"AttributeSpec|std::array)\s+(k\w+)\s*(?:=\s*([^;]*?)|\{([^;]*?)\})\s*;",
+                         r"AttributeSpec|FlagSpec|std::array)\s+(k\w+)\s*(?:=\s*([^;]*?)|\{([^;]*?)\})\s*;",
                          re.S)
     found = pattern.findall(code)
     if len(found) != len(re.findall(r"inline\s+constexpr", code)):
@@ -123,7 +143,12 @@ def parse_schema_header(text):
             shape = re.fullmatch(r"Shape::(k\w+)", args[2] if len(args) > 2 else "Shape::kScalar")
             decls[name] = DatasetSpec(name, value(args[0]), value(args[1]),
                                       shapes[shape.group(1)],
-                                      element(args[3]) if len(args) > 3 else "float64")
+                                      element(args[3]) if len(args) > 3 else "float64",
+                                      value(args[4]) if len(args) > 4 else "",
+                                      dims[shape.group(1)])
+        elif kind == "FlagSpec":
+            args = _split_args(braced)
+            decls[name] = FlagSpec(name, value(args[0]), value(args[1]))
         elif kind == "AttributeSpec":
             args = _split_args(braced)
             decls[name] = AttributeSpec(name, value(args[0]), value(args[1]),
@@ -133,12 +158,26 @@ def parse_schema_header(text):
     return decls
 
 
+_SCHEMA_PART = re.compile(r'^#include "hexdyn/io/(schema_\w+\.hpp)".*$', re.M)
+
+
+def read_schema_text(path):
+    """The text of the schema header at `path` with the parts it includes at its end
+    (`#include "hexdyn/io/schema_*.hpp"`, read from the same folder) put in place."""
+    with open(path, encoding="utf-8") as f:
+        text = f.read()
+
+    def part(m):
+        with open(os.path.join(os.path.dirname(path), m.group(1)), encoding="utf-8") as f:
+            return f.read()
+    return _SCHEMA_PART.sub(part, text)
+
+
 def load_schema(candidates=SCHEMA_HEADER_CANDIDATES):
     """Parses the first schema header found among `candidates`; (path, declarations)."""
     for path in candidates:
         if os.path.isfile(path):
-            with open(path, encoding="utf-8") as f:
-                return os.path.abspath(path), parse_schema_header(f.read())
+            return os.path.abspath(path), parse_schema_header(read_schema_text(path))
     raise ImportError("hexdyn.results: cannot find the schema header src/hexdyn/io/schema.hpp "
                       f"(looked at {', '.join(candidates)}); set HEXDYN_SCHEMA_HPP")
 
@@ -165,6 +204,19 @@ DYNAMICS_DATASETS = {d.path: d for d in SCHEMA["kDynamicsDatasets"]}
 SCENARIOS_GROUP = SCHEMA["kScenariosGroup"]
 SCENARIO_DATASETS = {d.path[len(SCENARIOS_GROUP) + 1:]: d for d in SCHEMA["kScenarioDatasets"]}
 
+# Every dataset declaration by its path (a result's, a sweep's, an envelope's; paths of
+# different file kinds do not collide but for the templates of the sweep axes).
+SPECS = {}
+for _spec in SCHEMA.values():
+    if isinstance(_spec, DatasetSpec):
+        SPECS.setdefault(_spec.path, _spec)
+FLAGS = {f.path: f.meanings for f in SCHEMA.values() if isinstance(f, FlagSpec)}
+
+# Versions this reader opens: the current one, and 1 (mapped on reading, V1_RENAMED).
+READABLE_VERSIONS = (1, RESULT_SCHEMA_VERSION)
+# hexdyn-result/1 paths renamed in version 2 (version 1 -> 2); /impacts/leg counted from 1.
+V1_RENAMED = {"/power/joint": "/power/per_joint", "/energy/joint": "/energy/per_joint"}
+
 PHASE_SWING, PHASE_IMPACT, PHASE_SUPPORT = 0, 1, 2
 LEG_NAMES = tuple(f"L{i}" for i in range(1, 7))
 JOINT_NAMES = tuple(f"L{i}_{j}" for i in range(1, 7) for j in ("coxa", "femur", "tibia"))
@@ -181,31 +233,39 @@ def _text(value):
 
 def check_filetype_version(h5_root, expected_schema, expected_version, source="file",
                            require_version=True):
-    """Raise ValueError unless <h5_root>/meta names `expected_schema` and version.
+    """Raise ValueError unless <h5_root>/meta names `expected_schema` and version
+    (`expected_version` an int or a tuple of the versions accepted); the version found.
 
-    `h5_root` is an open h5py File or Group; `source` names it in messages.
+    `h5_root` is an open h5py File or Group; `source` names it in messages. A schema
+    "hexdyn-result/1" is accepted for an expected "hexdyn-result/2" when 1 is among the
+    accepted versions.
     """
+    accepted = expected_version if isinstance(expected_version, tuple) else (expected_version,)
     if "meta" not in h5_root:
         raise ValueError(f"{source}: not a {expected_schema} file (no /meta group)")
     attrs = h5_root["meta"].attrs
     if "schema" not in attrs:
         raise ValueError(f"{source}: not a {expected_schema} file (/meta has no 'schema')")
     schema = _text(attrs["schema"])
+    base = expected_schema.rsplit("/", 1)[0]
+    if schema in {f"{base}/{v}" for v in accepted}:
+        schema = expected_schema
     if schema != expected_schema:
         raise ValueError(f"{source}: file schema is {schema!r}, expected {expected_schema!r}")
     if "schema_version" not in attrs:
         if require_version:
             raise ValueError(f"{source}: /meta has no 'schema_version' "
                              f"(expected {expected_version})")
-        return
+        return accepted[-1]
     version = attrs["schema_version"]
     try:
         version = int(np.asarray(version).item())
     except (TypeError, ValueError):
         raise ValueError(f"{source}: /meta schema_version {version!r} is not an integer")
-    if version != expected_version:
+    if version not in accepted:
         raise ValueError(f"{source}: {expected_schema} schema_version is {version}, this reader "
-                         f"supports {expected_version}")
+                         f"supports {', '.join(map(str, accepted))}")
+    return version
 
 
 class Result:
@@ -260,6 +320,15 @@ class Result:
     def has_dynamics(self):
         return "/joints/torque" in self.data
 
+    def to_xarray(self, group=None):
+        """The datasets as an xarray.Dataset with named dimensions and coordinates (time,
+        leg, joint, xyz, ...): `group` ("joints", "/contacts") gives that group's datasets
+        under their own names, as xarray.open_dataset(file, group=...) does; None all of
+        them in one Dataset, named by path ("joints/torque" -> "joints_torque"). Needs
+        xarray (hexdyn.xr)."""
+        from hexdyn import xr
+        return xr.result_to_xarray(self, group)
+
     def __repr__(self):
         return (f"Result({self.source!r}, T={self.samples}, "
                 f"dynamics={self.has_dynamics}, datasets={len(self.data)})")
@@ -278,7 +347,7 @@ def _read_dataset(ds):
 def read_result_group(group, source="result"):
     """Reads a result laid out under an open h5py File or Group (e.g. a sweep's
     /runs/<id>) after checking its schema. Returns a Result."""
-    check_filetype_version(group, RESULT_SCHEMA, RESULT_SCHEMA_VERSION, source)
+    version = check_filetype_version(group, RESULT_SCHEMA, READABLE_VERSIONS, source)
     data, units, shapes = {}, {}, {}
     base = group.name.rstrip("/")
 
@@ -286,7 +355,11 @@ def read_result_group(group, source="result"):
         if not isinstance(obj, h5py.Dataset):
             return
         path = obj.name[len(base):] if base else obj.name
+        if version == 1:
+            path = V1_RENAMED.get(path, path)
         data[path] = _read_dataset(obj)
+        if version == 1 and path == "/impacts/leg":
+            data[path] = data[path] - 1  # 1-based in version 1
         shapes[path] = tuple(obj.shape)
         if "units" in obj.attrs:
             units[path] = _text(obj.attrs["units"])
@@ -296,7 +369,7 @@ def read_result_group(group, source="result"):
 
 
 def open_result(path, group="/"):
-    """Opens a hexdyn-result/1 file, checks its schema and returns a Result with every
+    """Opens a hexdyn-result/2 file, checks its schema and returns a Result with every
     dataset in memory (the file is closed on return). `group` selects a result stored
     below the file root (e.g. "/runs/<id>" of a sweep file)."""
     with h5py.File(path, "r") as f:
@@ -326,7 +399,7 @@ class SweepAxis:
 
 
 class Sweep:
-    """A hexdyn-sweep/1 file read into memory (the file is closed).
+    """A hexdyn-sweep/2 file read into memory (the file is closed).
 
     sw.axes             list of SweepAxis; scenario index is row-major over them
     sw.shape            tuple of the axis lengths
@@ -403,6 +476,20 @@ class Sweep:
             raise KeyError(f"{self.path}: no /runs/{scenario_id}: {why}")
         return open_result(self.path, group=f"/runs/{scenario_id}")
 
+    def to_xarray(self):
+        """The scenario table as an xarray.Dataset with one dimension per axis, named by
+        its key, holding its values (plus `joint` for per-joint metrics):
+        ds.cost_of_transport.sel({"terrain.riser_height": 0.06}). Needs xarray."""
+        from hexdyn import xr
+        return xr.sweep_to_xarray(self)
+
+    def to_dataframe(self):
+        """The scenario table as a pandas.DataFrame, one row per scenario: the axis values
+        in columns named by key, each per-joint metric in one column per joint named
+        "metric[joint]" ("peak_torque[L2_femur]"). Needs pandas."""
+        from hexdyn import xr
+        return xr.sweep_to_dataframe(self)
+
     def _index(self, i):
         if isinstance(i, str):
             return list(self.table["id"]).index(i)
@@ -425,10 +512,10 @@ def _meta_attributes(group):
 
 
 def open_sweep(path):
-    """Opens a hexdyn-sweep/1 file, checks its schema and version and returns a Sweep
+    """Opens a hexdyn-sweep/2 file, checks its schema and version and returns a Sweep
     with the axes and the scenario table in memory (the file is closed on return)."""
     with h5py.File(path, "r") as f:
-        check_filetype_version(f, SWEEP_SCHEMA, SWEEP_SCHEMA_VERSION, str(path))
+        check_filetype_version(f, SWEEP_SCHEMA, READABLE_VERSIONS, str(path))
         meta = _meta_attributes(f)
         axes = []
         for i in range(len(f["axes"])):

@@ -33,7 +33,7 @@ namespace {
 
 constexpr const char* kRunUsage =
     R"(usage: hexdyn run CONFIG -o FILE [--set key.path=value ...] [--allow-large] [-v]
-  Runs a scene and writes its hexdyn-result/1 file to FILE. -v prints a URDF robot's
+  Runs a scene and writes its hexdyn-result/2 file to FILE. -v prints a URDF robot's
   leg mapping (which chain of the description is L1 ... L6).
 
 FILE must be a new path or an existing regular file that is none of the run's inputs
@@ -60,7 +60,7 @@ them as rows with status config). --set applies to scene files only.
 
 constexpr const char* kSweepUsage =
     R"(usage: hexdyn sweep SWEEP -o FILE [--keep-runs] [--resume] [-v] [--progress SECONDS]
-  Runs a parameter sweep and writes its hexdyn-sweep/1 file to FILE.
+  Runs a parameter sweep and writes its hexdyn-sweep/2 file to FILE.
 
 SWEEP is a sweep file (see configs/sweeps/stairs.yaml): a base scene and axes over its
 keys; every combination is a scenario. Run it under `mpirun -np N` or plainly (one
@@ -75,11 +75,11 @@ constexpr const char* kUsage = R"(hexdyn — inverse dynamics of a legged robot 
 
 usage:
   hexdyn run CONFIG -o FILE [--set key.path=value ...] [--allow-large]
-                                                         run a scene, write hexdyn-result/1
+                                                         run a scene, write hexdyn-result/2
   hexdyn validate FILE [--set key.path=value ...]        check a scene or sweep file and exit
   hexdyn sweep SWEEP -o FILE [--keep-runs] [--resume] [-v] [--progress SECONDS]
-                                                         run a parameter sweep, write hexdyn-sweep/1
-  hexdyn envelope ENVELOPE -o FILE [-v]                  find the climbable riser, write hexdyn-envelope/1
+                                                         run a parameter sweep, write hexdyn-sweep/2
+  hexdyn envelope ENVELOPE -o FILE [-v]                  find the climbable riser, write hexdyn-envelope/2
   hexdyn COMMAND --help                                  help on one command
   hexdyn --help | --version
 

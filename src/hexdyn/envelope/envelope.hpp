@@ -96,7 +96,7 @@ EnvelopeProbe evaluate_probe(const EnvelopeSpec& spec, int cell, double riser_m,
 /// The whole envelope. `log` (may be null) gets one line per cell and criterion.
 EnvelopeResult compute_envelope(const EnvelopeSpec& spec, std::ostream* log);
 
-/// Writes the hexdyn-envelope/1 file (io/schema.hpp) atomically. Throws IoError.
+/// Writes the hexdyn-envelope/2 file (io/schema.hpp) atomically. Throws IoError.
 void write_envelope_file(const std::string& path, const EnvelopeSpec& spec,
                          const EnvelopeResult& result);
 

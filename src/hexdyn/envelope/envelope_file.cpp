@@ -1,4 +1,4 @@
-// The hexdyn-envelope/1 file (io/schema.hpp) and the `hexdyn envelope` command.
+// The hexdyn-envelope/2 file (io/schema.hpp) and the `hexdyn envelope` command.
 #include <cstring>
 #include <iostream>
 
@@ -7,6 +7,7 @@
 #include "hexdyn/io/atomic_file.hpp"
 #include "hexdyn/io/h5io.hpp"
 #include "hexdyn/io/interrupt.hpp"
+#include "hexdyn/io/labels.hpp"
 #include "hexdyn/io/output.hpp"
 #include "hexdyn/io/schema.hpp"
 #include "hexdyn/version.hpp"
@@ -16,12 +17,18 @@ namespace {
 
 namespace s = schema;
 
-void write_doubles(H5Writer& w, const s::DatasetSpec& spec, const std::vector<std::size_t>& dims,
-                   const std::vector<double>& v) {
-  w.write_doubles(spec.path, dims, v, spec.units);
-}
-
 void write_file(H5Writer& w, const EnvelopeSpec& spec, const EnvelopeResult& r) {
+  Labeller labels(w, "");
+  const auto write_doubles = [&](const s::DatasetSpec& d, const std::vector<std::size_t>& dims,
+                                 const std::vector<double>& v) {
+    w.write_doubles(d.path, dims, v, d.units);
+    labels.add(d);
+  };
+  const auto write_strings = [&](const s::DatasetSpec& d, const std::vector<std::size_t>& dims,
+                                 const std::vector<std::string>& v) {
+    w.write_strings(d.path, dims, v, d.units);
+    labels.add(d);
+  };
   const std::string meta = s::kMetaGroup;
   write_meta_header(w, meta, s::kEnvelopeSchema, s::kEnvelopeSchemaVersion);
   w.set_string_attribute(meta, s::kAttrConfigYaml, spec.spec_yaml);
@@ -33,14 +40,18 @@ void write_file(H5Writer& w, const EnvelopeSpec& spec, const EnvelopeResult& r) 
 
   const std::size_t W = spec.tread_depth_m.size(), B = spec.duty_factor.size(),
                     S = spec.peak_speed_mps.size(), C = spec.criteria.size();
-  write_doubles(w, s::kEnvelopeTreadDepth, {W}, spec.tread_depth_m);
-  write_doubles(w, s::kEnvelopeDutyFactor, {B}, spec.duty_factor);
-  write_doubles(w, s::kEnvelopePeakSpeed, {S}, spec.peak_speed_mps);
+  write_doubles(s::kTreadDepthCoordinate, {W}, spec.tread_depth_m);
+  write_doubles(s::kDutyFactorCoordinate, {B}, spec.duty_factor);
+  write_doubles(s::kPeakSpeedCoordinate, {S}, spec.peak_speed_mps);
+  write_doubles(s::kEnvelopeTreadDepth, {W}, spec.tread_depth_m);
+  write_doubles(s::kEnvelopeDutyFactor, {B}, spec.duty_factor);
+  write_doubles(s::kEnvelopePeakSpeed, {S}, spec.peak_speed_mps);
   std::vector<std::string> names;
   for (EnvelopeCriterion c : spec.criteria) names.push_back(criterion_name(c));
-  w.write_strings(s::kEnvelopeCriteria.path, names, s::kEnvelopeCriteria.units);
-  w.write_scalar(s::kEnvelopeRiserFrom.path, spec.riser_from_m, s::kEnvelopeRiserFrom.units);
-  w.write_scalar(s::kEnvelopeRiserTo.path, spec.riser_to_m, s::kEnvelopeRiserTo.units);
+  write_strings(s::kCriterionCoordinate, {C}, names);
+  write_strings(s::kEnvelopeCriteria, {C}, names);
+  write_doubles(s::kEnvelopeRiserFrom, {}, {spec.riser_from_m});
+  write_doubles(s::kEnvelopeRiserTo, {}, {spec.riser_to_m});
 
   std::vector<double> rmax, rfail;
   std::vector<std::string> limit, message;
@@ -50,13 +61,13 @@ void write_file(H5Writer& w, const EnvelopeSpec& spec, const EnvelopeResult& r) 
     limit.push_back(b.limit);
     message.push_back(b.message);
   }
-  write_doubles(w, s::kEnvelopeRiserMax, {W, B, S, C}, rmax);
-  write_doubles(w, s::kEnvelopeRiserFail, {W, B, S, C}, rfail);
-  w.write_strings(s::kEnvelopeLimit.path, limit, s::kEnvelopeLimit.units);
-  w.write_strings(s::kEnvelopeMessage.path, message, s::kEnvelopeMessage.units);
-  write_doubles(w, s::kEnvelopePostureHeight, {W, B, S}, r.posture_height_m);
-  write_doubles(w, s::kEnvelopePostureFootLateral, {W, B, S}, r.posture_foot_lateral_m);
-  write_doubles(w, s::kEnvelopePostureMargin, {W, B, S}, r.posture_margin_m);
+  write_doubles(s::kEnvelopeRiserMax, {W, B, S, C}, rmax);
+  write_doubles(s::kEnvelopeRiserFail, {W, B, S, C}, rfail);
+  write_strings(s::kEnvelopeLimit, {W, B, S, C}, limit);
+  write_strings(s::kEnvelopeMessage, {W, B, S, C}, message);
+  write_doubles(s::kEnvelopePostureHeight, {W, B, S}, r.posture_height_m);
+  write_doubles(s::kEnvelopePostureFootLateral, {W, B, S}, r.posture_foot_lateral_m);
+  write_doubles(s::kEnvelopePostureMargin, {W, B, S}, r.posture_margin_m);
 
   std::vector<std::int32_t> cell, crit;
   std::vector<double> riser;
@@ -75,17 +86,21 @@ void write_file(H5Writer& w, const EnvelopeSpec& spec, const EnvelopeResult& r) 
   }
   const std::size_t P = r.probes.size();
   w.write_int32(s::kProbeCell.path, {P}, cell, s::kProbeCell.units);
+  labels.add(s::kProbeCell);
   w.write_int32(s::kProbeCriterion.path, {P}, crit, s::kProbeCriterion.units);
-  write_doubles(w, s::kProbeRiser, {P}, riser);
+  labels.add(s::kProbeCriterion);
+  write_doubles(s::kProbeRiser, {P}, riser);
   w.write_int8(s::kProbePassed.path, {P}, passed, s::kProbePassed.units);
-  w.write_strings(s::kProbeLimit.path, plimit, s::kProbeLimit.units);
-  w.write_strings(s::kProbeMessage.path, pmessage, s::kProbeMessage.units);
+  labels.add(s::kProbePassed);
+  write_strings(s::kProbeLimit, {P}, plimit);
+  write_strings(s::kProbeMessage, {P}, pmessage);
+  labels.finish();
 }
 
 constexpr const char* kUsage = R"(usage: hexdyn envelope ENVELOPE -o FILE [-v]
   Finds the largest stair riser the robot climbs, per tread depth, duty factor and peak
   speed, under the kinematic, torque and friction criteria, and writes the
-  hexdyn-envelope/1 file FILE (docs/user/envelope.md; configs/envelope/paper.yaml
+  hexdyn-envelope/2 file FILE (docs/user/envelope.md; configs/envelope/paper.yaml
   documents the keys). -v prints one line per cell and criterion.
 )";
 

@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "hexdyn/core/errors.hpp"
+#include "hexdyn/io/h5_detail.hpp"
 #include "hexdyn/io/interrupt.hpp"
 
 namespace hexdyn {
@@ -24,180 +25,33 @@ constexpr std::size_t kCoreIncrement = std::size_t{4} << 20;
 constexpr std::size_t kWriteChunk = std::size_t{8} << 20;
 }  // namespace
 
-namespace {
-
-/// Owns one HDF5 identifier and closes it with the matching H5?close.
-class Handle {
- public:
-  using Closer = herr_t (*)(hid_t);
-  Handle(hid_t id, Closer closer) : id_(id), closer_(closer) {}
-  ~Handle() { reset(); }
-  Handle(const Handle&) = delete;
-  Handle& operator=(const Handle&) = delete;
-  Handle(Handle&& other) noexcept : id_(std::exchange(other.id_, -1)), closer_(other.closer_) {}
-  Handle& operator=(Handle&& other) noexcept {
-    if (this != &other) {
-      reset();
-      id_ = std::exchange(other.id_, -1);
-      closer_ = other.closer_;
-    }
-    return *this;
-  }
-  hid_t get() const { return id_; }
-  bool valid() const { return id_ >= 0; }
-  void reset() {
-    if (id_ >= 0) closer_(id_);
-    id_ = -1;
-  }
-
- private:
-  hid_t id_;
-  Closer closer_;
-};
-
-herr_t innermost_error(unsigned n, const H5E_error2_t* err, void* client_data) {
-  if (n == 0 && err != nullptr && err->desc != nullptr)
-    *static_cast<std::string*>(client_data) = err->desc;
-  return 0;
-}
-
-/// The most specific message on HDF5's error stack (empty if none); clears the stack.
-std::string hdf5_error_detail() {
-  std::string detail;
-  H5Ewalk2(H5E_DEFAULT, H5E_WALK_UPWARD, innermost_error, &detail);
-  H5Eclear2(H5E_DEFAULT);
-  return detail;
-}
-
-[[noreturn]] void fail(const std::string& file, const std::string& what, const std::string& object,
-                       const std::string& reason = {}) {
-  std::string msg = "HDF5 file '" + file + "': cannot " + what + " '" + object + "'";
-  const std::string hdf5_detail = hdf5_error_detail();  // also clears the stack
-  const std::string detail = reason.empty() ? hdf5_detail : reason;
-  if (!detail.empty()) msg += ": " + detail;
-  throw IoError(msg);
-}
-
-std::string join_dims(const std::vector<std::size_t>& dims) {
-  std::string s = "(";
-  for (std::size_t i = 0; i < dims.size(); ++i) {
-    if (i > 0) s += ',';
-    s += std::to_string(dims[i]);
-  }
-  return s + ")";
-}
-
-std::size_t element_count(const std::vector<std::size_t>& dims) {
-  std::size_t n = 1;
-  for (std::size_t d : dims) n *= d;
-  return n;
-}
-
-/// Prefixes "/a", "/a/b", ... of an absolute path "/a/b/c", without the path itself.
-std::vector<std::string> parent_prefixes(const std::string& path) {
-  std::vector<std::string> out;
-  for (std::size_t pos = path.find('/', 1); pos != std::string::npos; pos = path.find('/', pos + 1))
-    out.push_back(path.substr(0, pos));
-  return out;
-}
-
-bool link_chain_exists(hid_t file, const std::string& path) {
-  if (path == "/") return true;
-  for (const std::string& prefix : parent_prefixes(path))
-    if (H5Lexists(file, prefix.c_str(), H5P_DEFAULT) <= 0) return false;
-  return H5Lexists(file, path.c_str(), H5P_DEFAULT) > 0;
-}
-
-Handle make_space(const std::vector<std::size_t>& dims) {
-  if (dims.empty()) return Handle(H5Screate(H5S_SCALAR), H5Sclose);
-  std::vector<hsize_t> h(dims.begin(), dims.end());
-  return Handle(H5Screate_simple(static_cast<int>(h.size()), h.data(), nullptr), H5Sclose);
-}
-
-Handle make_utf8_vlen_type() {
-  Handle t(H5Tcopy(H5T_C_S1), H5Tclose);
-  if (t.valid() &&
-      (H5Tset_size(t.get(), H5T_VARIABLE) < 0 || H5Tset_cset(t.get(), H5T_CSET_UTF8) < 0))
-    t.reset();
-  return t;
-}
-
-/// A dataset or an attribute, read through the same calls.
-struct Source {
-  hid_t id;
-  bool attribute;
-  hid_t type() const { return attribute ? H5Aget_type(id) : H5Dget_type(id); }
-  hid_t space() const { return attribute ? H5Aget_space(id) : H5Dget_space(id); }
-  herr_t read(hid_t mem_type, void* buf) const {
-    return attribute ? H5Aread(id, mem_type, buf)
-                     : H5Dread(id, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf);
-  }
-};
-
-herr_t reclaim_vlen(hid_t mem_type, hid_t space, void* buf) {
-#if H5_VERSION_GE(1, 12, 0)
-  return H5Treclaim(mem_type, space, H5P_DEFAULT, buf);
-#else
-  return H5Dvlen_reclaim(mem_type, space, H5P_DEFAULT, buf);
-#endif
-}
-
-/// All strings of a string dataset or attribute (variable- or fixed-length).
-/// `file` and `where` name the object in error messages.
-std::vector<std::string> read_string_values(const Source& src, const std::string& file,
-                                            const std::string& where) {
-  Handle ftype(src.type(), H5Tclose);
-  Handle space(src.space(), H5Sclose);
-  if (!ftype.valid() || !space.valid()) fail(file, "query type of", where);
-  if (H5Tget_class(ftype.get()) != H5T_STRING)
-    fail(file, "read strings from", where, "not a string");
-  const hssize_t n_signed = H5Sget_simple_extent_npoints(space.get());
-  if (n_signed < 0) fail(file, "query size of", where);
-  const auto n = static_cast<std::size_t>(n_signed);
-  std::vector<std::string> out;
-  out.reserve(n);
-  const H5T_cset_t cset = H5Tget_cset(ftype.get());
-  Handle mtype(H5Tcopy(H5T_C_S1), H5Tclose);
-  if (H5Tis_variable_str(ftype.get()) > 0) {
-    H5Tset_size(mtype.get(), H5T_VARIABLE);
-    H5Tset_cset(mtype.get(), cset);
-    std::vector<char*> ptrs(n, nullptr);
-    if (n > 0 && src.read(mtype.get(), ptrs.data()) < 0) fail(file, "read strings from", where);
-    for (char* p : ptrs) out.emplace_back(p ? p : "");
-    if (n > 0) reclaim_vlen(mtype.get(), space.get(), ptrs.data());
-  } else {
-    const std::size_t size = H5Tget_size(ftype.get());
-    H5Tset_size(mtype.get(), size);
-    H5Tset_cset(mtype.get(), cset);
-    H5Tset_strpad(mtype.get(), H5T_STR_NULLPAD);
-    std::vector<char> buf(n * size + 1, '\0');
-    if (n > 0 && src.read(mtype.get(), buf.data()) < 0) fail(file, "read strings from", where);
-    for (std::size_t i = 0; i < n; ++i) {
-      const char* begin = buf.data() + i * size;
-      std::size_t len = 0;
-      while (len < size && begin[len] != '\0') ++len;
-      out.emplace_back(begin, len);
-    }
-  }
-  return out;
-}
-
-}  // namespace
+using namespace h5detail;
 
 void silence_hdf5_errors() { H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); }
 
+std::int64_t file_access_properties() {
+  const hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
+  H5Pset_libver_bounds(fapl, H5F_LIBVER_V18, H5F_LIBVER_V18);
+  return fapl;
+}
+
 // ------------------------------------------------------------------ H5Writer
 
-H5Writer::H5Writer(const std::string& file_path) : file_path_(file_path) {
+H5Writer::H5Writer(const std::string& file_path, bool compress)
+    : file_path_(file_path), compress_(compress) {
   silence_hdf5_errors();
   // The bytes go to disk through this descriptor, at close(); HDF5 writes to memory.
   fd_ = ::open(file_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_NOFOLLOW | O_CLOEXEC, 0644);
   if (fd_ < 0) throw IoError("cannot create '" + file_path_ + "': " + std::strerror(errno));
-  Handle fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose);
-  if (!fapl.valid() || H5Pset_fapl_core(fapl.get(), kCoreIncrement, 0) < 0 ||
+  // Chunk B-tree nodes of 2·kChunkIndexK entries: HDF5's default (32) spends 2.5 kB on
+  // each chunked dataset, most of a small kept run's metadata.
+  Handle fcpl(H5Pcreate(H5P_FILE_CREATE), H5Pclose);
+  Handle fapl(file_access_properties(), H5Pclose);
+  if (!fcpl.valid() || !fapl.valid() || H5Pset_istore_k(fcpl.get(), kChunkIndexK) < 0 ||
+      H5Pset_fapl_core(fapl.get(), kCoreIncrement, 0) < 0 ||
       H5Pset_fclose_degree(fapl.get(), H5F_CLOSE_STRONG) < 0)
     fail(file_path_, "set up the in-memory file for", file_path_);
-  file_ = H5Fcreate(file_path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get());
+  file_ = H5Fcreate(file_path.c_str(), H5F_ACC_TRUNC, fcpl.get(), fapl.get());
   if (file_ < 0) {
     ::close(fd_);
     fd_ = -1;
@@ -256,8 +110,6 @@ void H5Writer::close() {
   fd_ = -1;
 }
 
-std::int64_t H5Writer::native_handle() const { return file_; }
-
 void H5Writer::create_group(const std::string& group_path) {
   if (file_ < 0) fail(file_path_, "create group", group_path, "file is closed");
   if (group_path.empty() || group_path[0] != '/')
@@ -278,6 +130,7 @@ namespace {
 
 void write_units(const std::string& file, hid_t dset, const std::string& path,
                  const std::string& units) {
+  if (units.empty()) return;  // text and flags: no units (schema.hpp)
   Handle type = make_utf8_vlen_type();
   Handle space(H5Screate(H5S_SCALAR), H5Sclose);
   Handle attr(H5Acreate2(dset, "units", type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT),
@@ -287,17 +140,38 @@ void write_units(const std::string& file, hid_t dset, const std::string& path,
     fail(file, "write attribute 'units' of", path);
 }
 
+/// Creation properties: chunked along the first axis with shuffle + deflate for a numeric
+/// dataset of at least kChunkMinBytes, else the default (contiguous).
+Handle creation_properties(const std::vector<std::size_t>& dims, hid_t file_type, bool compress) {
+  Handle dcpl(H5Pcreate(H5P_DATASET_CREATE), H5Pclose);
+  const std::size_t element = H5Tget_size(file_type);
+  if (!compress || dims.empty() || H5Tget_class(file_type) == H5T_STRING ||
+      element_count(dims) * element < kChunkMinBytes)
+    return dcpl;
+  std::vector<hsize_t> chunk(dims.begin(), dims.end());
+  const std::size_t row = element_count(dims) / dims[0] * element;
+  // As many chunks as kChunkBytes asks for, of equal rows (no mostly empty last chunk).
+  const std::size_t chunks = (dims[0] * row + kChunkBytes - 1) / kChunkBytes;
+  chunk[0] = std::max<hsize_t>((dims[0] + chunks - 1) / chunks, 1);
+  if (H5Pset_chunk(dcpl.get(), static_cast<int>(chunk.size()), chunk.data()) < 0 ||
+      H5Pset_shuffle(dcpl.get()) < 0 || H5Pset_deflate(dcpl.get(), kDeflateLevel) < 0)
+    dcpl.reset();
+  return dcpl;
+}
+
 /// Parent groups of `path` must exist; `count` elements of `mem_type` at `data`.
 void write_dataset(const std::string& file, hid_t file_id, const std::string& path,
                    const std::vector<std::size_t>& dims, hid_t file_type, hid_t mem_type,
-                   const void* data, std::size_t count, const std::string& units) {
+                   const void* data, std::size_t count, const std::string& units, bool compress) {
   if (count != element_count(dims))
     fail(file, "write dataset", path,
          "got " + std::to_string(count) + " values for shape " + join_dims(dims) + " (" +
              std::to_string(element_count(dims)) + " expected)");
   Handle space = make_space(dims);
   if (!space.valid()) fail(file, "create dataspace for", path);
-  Handle dset(H5Dcreate2(file_id, path.c_str(), file_type, space.get(), H5P_DEFAULT, H5P_DEFAULT,
+  Handle dcpl = creation_properties(dims, file_type, compress);
+  if (!dcpl.valid()) fail(file, "set the chunks and filters of", path);
+  Handle dset(H5Dcreate2(file_id, path.c_str(), file_type, space.get(), H5P_DEFAULT, dcpl.get(),
                          H5P_DEFAULT),
               H5Dclose);
   if (!dset.valid()) fail(file, "create dataset", path);
@@ -317,7 +191,7 @@ void H5Writer::write_doubles(const std::string& path, const std::vector<std::siz
                              std::span<const double> values, const std::string& units) {
   create_group(parent_of(path));
   write_dataset(file_path_, file_, path, dims, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, values.data(),
-                values.size(), units);
+                values.size(), units, compress_);
 }
 
 void H5Writer::write_scalar(const std::string& path, double value, const std::string& units) {
@@ -328,14 +202,14 @@ void H5Writer::write_int8(const std::string& path, const std::vector<std::size_t
                           std::span<const std::int8_t> values, const std::string& units) {
   create_group(parent_of(path));
   write_dataset(file_path_, file_, path, dims, H5T_STD_I8LE, H5T_NATIVE_INT8, values.data(),
-                values.size(), units);
+                values.size(), units, compress_);
 }
 
 void H5Writer::write_int32(const std::string& path, const std::vector<std::size_t>& dims,
                            std::span<const std::int32_t> values, const std::string& units) {
   create_group(parent_of(path));
   write_dataset(file_path_, file_, path, dims, H5T_STD_I32LE, H5T_NATIVE_INT32, values.data(),
-                values.size(), units);
+                values.size(), units, compress_);
 }
 
 void H5Writer::write_string(const std::string& path, const std::string& value,
@@ -344,19 +218,24 @@ void H5Writer::write_string(const std::string& path, const std::string& value,
   Handle type = make_utf8_vlen_type();
   if (!type.valid()) fail(file_path_, "create string type for", path);
   const char* ptr = value.c_str();
-  write_dataset(file_path_, file_, path, {}, type.get(), type.get(), &ptr, 1, units);
+  write_dataset(file_path_, file_, path, {}, type.get(), type.get(), &ptr, 1, units, compress_);
 }
 
 void H5Writer::write_strings(const std::string& path, const std::vector<std::string>& values,
                              const std::string& units) {
+  write_strings(path, {values.size()}, values, units);
+}
+
+void H5Writer::write_strings(const std::string& path, const std::vector<std::size_t>& dims,
+                             const std::vector<std::string>& values, const std::string& units) {
   create_group(parent_of(path));
   Handle type = make_utf8_vlen_type();
   if (!type.valid()) fail(file_path_, "create string type for", path);
   std::vector<const char*> ptrs;
   ptrs.reserve(values.size());
   for (const std::string& s : values) ptrs.push_back(s.c_str());
-  write_dataset(file_path_, file_, path, {values.size()}, type.get(), type.get(), ptrs.data(),
-                ptrs.size(), units);
+  write_dataset(file_path_, file_, path, dims, type.get(), type.get(), ptrs.data(), ptrs.size(),
+                units, compress_);
 }
 
 namespace {
@@ -388,6 +267,15 @@ void H5Writer::set_string_attribute(const std::string& object_path, const std::s
   write_attribute(file_path_, file_, object_path, name, type.get(), type.get(), &ptr);
 }
 
+void H5Writer::set_text_attribute(const std::string& object_path, const std::string& name,
+                                  const std::string& value) {
+  Handle type(H5Tcopy(H5T_C_S1), H5Tclose);
+  if (!type.valid() || H5Tset_size(type.get(), std::max<std::size_t>(value.size(), 1)) < 0 ||
+      H5Tset_cset(type.get(), H5T_CSET_UTF8) < 0 || H5Tset_strpad(type.get(), H5T_STR_NULLTERM) < 0)
+    fail(file_path_, "create string type for", object_path);
+  write_attribute(file_path_, file_, object_path, name, type.get(), type.get(), value.c_str());
+}
+
 void H5Writer::set_double_attribute(const std::string& object_path, const std::string& name,
                                     double value) {
   write_attribute(file_path_, file_, object_path, name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, &value);
@@ -396,6 +284,21 @@ void H5Writer::set_double_attribute(const std::string& object_path, const std::s
 void H5Writer::set_int_attribute(const std::string& object_path, const std::string& name,
                                  std::int64_t value) {
   write_attribute(file_path_, file_, object_path, name, H5T_STD_I64LE, H5T_NATIVE_INT64, &value);
+}
+
+void H5Writer::set_int_array_attribute_like(const std::string& object_path, const std::string& name,
+                                            const std::vector<std::int64_t>& values) {
+  const std::string where = object_path + "@" + name;
+  Handle d = Handle(H5Dopen2(file_, object_path.c_str(), H5P_DEFAULT), H5Dclose);
+  if (!d.valid()) fail(file_path_, "open dataset for attribute", where);
+  Handle type(H5Dget_type(d.get()), H5Tclose);
+  const hsize_t n = values.size();
+  Handle space(H5Screate_simple(1, &n, nullptr), H5Sclose);
+  if (H5Aexists(d.get(), name.c_str()) > 0) H5Adelete(d.get(), name.c_str());
+  Handle attr(H5Acreate2(d.get(), name.c_str(), type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT),
+              H5Aclose);
+  if (!attr.valid() || H5Awrite(attr.get(), H5T_NATIVE_INT64, values.data()) < 0)
+    fail(file_path_, "write attribute", where);
 }
 
 // ------------------------------------------------------------------ H5Reader

@@ -1,10 +1,14 @@
 #pragma once
 /// \file h5io.hpp
-/// A small RAII layer over the HDF5 C API: write a file of plain datasets (every one
-/// with a `units` attribute) and read it back. Paths are absolute HDF5 paths
+/// A small RAII layer over the HDF5 C API: write a file of plain datasets (each with a
+/// `units` attribute unless its units string is empty) and read it back. Paths are absolute HDF5
+/// paths
 /// ("/joints/torque"); parent groups are created on demand. Arrays are contiguous and
 /// row-major (C order), shapes given as `dims` (outermost first; {} is a scalar).
-/// Strings are variable-length UTF-8. No compression, no chunking.
+/// Strings are variable-length UTF-8. Numeric datasets of at least kChunkMinBytes are
+/// chunked along their first axis and compressed with shuffle + deflate (level
+/// kDeflateLevel), which every HDF5 and netCDF-4 reader decodes; smaller ones, scalars
+/// and strings are contiguous (docs/user/output.md#compression).
 ///
 /// Every HDF5 failure throws `IoError` naming the file and the object path; HDF5's own
 /// error printing is switched off. Not thread-safe (neither is serial HDF5).
@@ -16,8 +20,22 @@
 
 namespace hexdyn {
 
+/// Datasets of fewer bytes stay contiguous; larger numeric ones are chunked and compressed.
+inline constexpr std::size_t kChunkMinBytes = 4096;
+/// Target size of one chunk [bytes] (whole rows along the first axis).
+inline constexpr std::size_t kChunkBytes = 1024 * 1024;
+/// zlib level of the deflate filter.
+inline constexpr int kDeflateLevel = 4;
+/// Half the entries of a chunk-index B-tree node (HDF5's istore_k; its default is 32).
+inline constexpr unsigned kChunkIndexK = 2;
+
 /// Switches off HDF5's automatic error-stack printing (idempotent).
 void silence_hdf5_errors();
+
+/// A new file-access property list (hid_t; the caller closes it) for writing: objects in
+/// the HDF5 1.8 file format, as netCDF-4 writes them (compact groups without B-trees),
+/// readable by HDF5 1.8 and later.
+std::int64_t file_access_properties();
 
 /// Creates (truncates) an HDF5 file and writes datasets and attributes into it.
 /// The file is closed by `close()` (which reports errors) or by the destructor.
@@ -33,13 +51,17 @@ void silence_hdf5_errors();
 class H5Writer {
  public:
   /// Creates `file_path` (O_NOFOLLOW: a symbolic link is refused), replacing an existing
-  /// regular file. Throws IoError.
-  explicit H5Writer(const std::string& file_path);
+  /// regular file. Throws IoError. `compress` false writes every dataset contiguous and
+  /// uncompressed.
+  explicit H5Writer(const std::string& file_path, bool compress = true);
   ~H5Writer();
   H5Writer(const H5Writer&) = delete;
   H5Writer& operator=(const H5Writer&) = delete;
 
   const std::string& file_path() const { return file_path_; }
+  /// hid_t of the open (in-memory) file, for the HDF5 calls this class does not wrap
+  /// (io/labels.cpp; H5Ocopy of kept runs into a sweep file); -1 when closed.
+  std::int64_t id() const { return file_; }
 
   /// Creates the group and any missing parents; no-op if it exists.
   void create_group(const std::string& group_path);
@@ -59,27 +81,35 @@ class H5Writer {
   /// 1-D array of variable-length UTF-8 strings (may be empty).
   void write_strings(const std::string& dataset_path, const std::vector<std::string>& values,
                      const std::string& units);
+  /// Array of variable-length UTF-8 strings of shape `dims` (row-major).
+  void write_strings(const std::string& dataset_path, const std::vector<std::size_t>& dims,
+                     const std::vector<std::string>& values, const std::string& units);
 
   /// Attributes on an existing group or dataset ("/" is the root); replaced if present.
   void set_string_attribute(const std::string& object_path, const std::string& name,
                             const std::string& value);
+  /// A fixed-length UTF-8 string, stored in the object header (netCDF: a text attribute);
+  /// faster to read than a variable-length one, which lives in the file's global heap.
+  void set_text_attribute(const std::string& object_path, const std::string& name,
+                          const std::string& value);
   void set_double_attribute(const std::string& object_path, const std::string& name, double value);
   void set_int_attribute(const std::string& object_path, const std::string& name,
                          std::int64_t value);
+  /// 1-D attribute of integers stored in the element type of the dataset `object_path`
+  /// (CF `flag_values` must have the variable's type).
+  void set_int_array_attribute_like(const std::string& object_path, const std::string& name,
+                                    const std::vector<std::int64_t>& values);
 
   /// Finishes the file and writes it to disk (write(2), fsync); throws IoError naming the
   /// file and the OS's reason ("No space left on device"), or Interrupted when a SIGTERM
   /// or SIGINT arrives meanwhile (interrupt.hpp). The file is closed in any case.
   void close();
 
-  /// The hid_t of the open (in-memory) file, for HDF5 calls this class does not wrap
-  /// (H5Ocopy of kept runs into a sweep file); -1 when closed.
-  std::int64_t native_handle() const;
-
  private:
   std::int64_t file_ = -1;  ///< hid_t of the open file, -1 when closed
   int fd_ = -1;             ///< descriptor of `file_path_` on disk, until close()
   std::string file_path_;
+  bool compress_ = true;
 };
 
 /// Values of a numeric dataset converted to double, with its shape.

@@ -16,6 +16,7 @@
 
 #include "hexdyn/core/errors.hpp"
 #include "hexdyn/io/atomic_file.hpp"
+#include "hexdyn/io/labels.hpp"
 #include "hexdyn/io/paths.hpp"
 #include "hexdyn/io/result_layout.hpp"
 #include "hexdyn/io/schema.hpp"
@@ -46,7 +47,7 @@ void write_dataset(H5Writer& w, const std::string& prefix, const LayoutDataset& 
   } else if (const auto* v32 = std::get_if<std::vector<std::int32_t>>(&d.values)) {
     w.write_int32(path, d.dims, *v32, units);
   } else if (const auto* texts = std::get_if<std::vector<std::string>>(&d.values)) {
-    w.write_strings(path, *texts, units);
+    w.write_strings(path, d.dims, *texts, units);
   } else {
     w.write_string(path, std::get<std::string>(d.values), units);
   }
@@ -195,22 +196,29 @@ double estimated_result_file_bytes(std::size_t samples) {
   return static_cast<double>(samples) * (row + kMessageBytes) + kFixedBytes;
 }
 
-void write_layout(H5Writer& w, const ResultLayout& layout, const std::string& prefix) {
+void write_layout(H5Writer& w, const ResultLayout& layout, const std::string& prefix,
+                  bool dimension_scales) {
   for (const LayoutAttribute& a : layout.attributes) {
     w.create_group(prefix + a.spec->object);
     write_attribute(w, prefix, a);
   }
-  for (const LayoutDataset& d : layout.datasets) write_dataset(w, prefix, d);
+  Labeller labels(w, prefix, dimension_scales);
+  for (const LayoutDataset& d : layout.datasets) {
+    write_dataset(w, prefix, d);
+    labels.add(*d.spec);
+  }
+  labels.finish();
 }
 
-void write_result_layout(H5Writer& w, const RunResult& result, const std::string& prefix) {
+void write_result_layout(H5Writer& w, const RunResult& result, const std::string& prefix,
+                         bool dimension_scales) {
   ResultLayout layout;
   try {
     layout = result_layout(result);
   } catch (const IoError& e) {
     throw IoError("cannot write '" + w.file_path() + "': " + e.what());
   }
-  write_layout(w, layout, prefix);
+  write_layout(w, layout, prefix, dimension_scales);
 }
 
 void write_result_file(const std::string& path, const RunResult& result) {

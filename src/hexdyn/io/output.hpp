@@ -1,6 +1,6 @@
 #pragma once
 /// \file output.hpp
-/// Writing a run as one `hexdyn-result/1` HDF5 file (schema.hpp; docs/user/output.md).
+/// Writing a run as one `hexdyn-result/2` HDF5 file (schema.hpp; docs/user/output.md).
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -43,16 +43,20 @@ void check_output_path_writable(const std::string& path);
 /// dataset (T×3, T×4, T×6 or T×18); when result.dyn.present, the dynamics arrays
 /// have T rows (or T entries), energy_joint_J has 18 entries.
 /// Dynamics datasets are written only when result.dyn.present. `/impacts/leg` is int32,
-/// 1-based (1..6).
+/// 0-based (0..5). Every dataset is labelled (io/labels.hpp).
 void write_result_file(const std::string& path, const RunResult& result);
 
 /// Writes the datasets and /meta of `result` into an open file below the root `prefix`
 /// ("" for the file root, "/runs/<id>" inside a sweep file): result_layout(result)
-/// (result_layout.hpp), then write_layout.
-void write_result_layout(H5Writer& writer, const RunResult& result, const std::string& prefix = "");
+/// (result_layout.hpp), then write_layout. `dimension_scales` false leaves the
+/// dimension scales out (a kept run's image, labelled once copied: label_result_group).
+void write_result_layout(H5Writer& writer, const RunResult& result, const std::string& prefix = "",
+                         bool dimension_scales = true);
 
-/// Writes a layout's attributes (creating their groups) and datasets below `prefix`.
-void write_layout(H5Writer& writer, const ResultLayout& layout, const std::string& prefix = "");
+/// Writes a layout's attributes (creating their groups) and datasets below `prefix`, and
+/// labels them (io/labels.hpp).
+void write_layout(H5Writer& writer, const ResultLayout& layout, const std::string& prefix = "",
+                  bool dimension_scales = true);
 
 /// Refuses a run of more than kLargeResultSamples output samples unless `allow_large`:
 /// throws ConfigError naming the count and the estimated file size (`hexdyn run
@@ -65,7 +69,7 @@ void check_run_size(std::size_t samples, bool allow_large);
 /// samples and a 1.7 GB file) is far likelier than a wish.
 inline constexpr std::size_t kLargeResultSamples = 200000;
 
-/// Size of a `hexdyn-result/1` file of `samples` samples [bytes], estimated from the
+/// Size of a `hexdyn-result/2` file of `samples` samples [bytes], estimated from the
 /// schema: every per-sample dataset's row (schema.hpp shapes and element types, about
 /// 1.45 kB) plus 32 bytes per solver message and 64 kB for /meta and /model. Within
 /// about 10% of the files written (tests/hexdyn/io/test_output_target.cpp).

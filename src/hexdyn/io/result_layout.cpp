@@ -70,9 +70,23 @@ void add_model(Builder& b, const RunResult& r) {
                   " names, expected 18");
   if (!r.leg_mapping.empty()) b.add(s::kModelLegMapping, {r.leg_mapping.size()}, r.leg_mapping);
   b.add(s::kModelUrdf, {}, r.urdf);
-  b.add(s::kModelJointNames, {joints.size()}, std::move(joints));
-  b.add(s::kModelLegNames, {legs.size()}, std::move(legs));
+  b.add(s::kModelJointNames, {joints.size()}, joints);
+  b.add(s::kModelLegNames, {legs.size()}, legs);
   b.scalar(s::kModelTotalMass, r.total_mass_kg);
+}
+
+/// The labelled coordinate variables (schema::kResultCoordinates): leg and joint names,
+/// component labels.
+void add_coordinates(Builder& b, const ResultLayout& layout) {
+  namespace s = schema;
+  std::vector<LayoutDataset> names;  // copied: adding to layout.datasets moves it
+  for (const LayoutDataset& d : layout.datasets)
+    if (d.spec == &s::kModelLegNames || d.spec == &s::kModelJointNames) names.push_back(d);
+  for (LayoutDataset& d : names)
+    b.add(d.spec == &s::kModelLegNames ? s::kLegCoordinate : s::kJointCoordinate, d.dims,
+          std::move(d.values));
+  b.add(s::kXyzCoordinate, {3}, std::vector<std::string>{"x", "y", "z"});
+  b.add(s::kWxyzCoordinate, {4}, std::vector<std::string>{"w", "x", "y", "z"});
 }
 
 void add_kinematics(Builder& b, const KinematicsResult& k) {
@@ -124,7 +138,7 @@ void add_dynamics(Builder& b, const DynamicsResult& d, int T, std::size_t cycles
     if (im.leg < 0 || im.leg >= kLegs)
       throw IoError("impact " + std::to_string(i) + " has leg index " + std::to_string(im.leg) +
                     ", expected 0..5");
-    leg[i] = im.leg + 1;
+    leg[i] = im.leg;
     start[i] = im.t_start_s;
     duration[i] = im.duration_s;
     peak[i] = im.peak_force_N;
@@ -157,6 +171,14 @@ void add_dynamics(Builder& b, const DynamicsResult& d, int T, std::size_t cycles
   b.vector(s::kSolverObjective, d.solver_objective, t);
   b.vector(s::kSolverSeconds, d.solver_seconds, t);
   b.add(s::kSolverMessages, {d.solver_messages.size()}, d.solver_messages);
+  // The index coordinates of the dimensions `impact` and `message` (io/labels.hpp).
+  for (const auto& [coordinate, size] :
+       {std::pair{&s::kImpactCoordinate, n},
+        std::pair{&s::kMessageCoordinate, d.solver_messages.size()}}) {
+    std::vector<std::int32_t> index(size);
+    for (std::size_t i = 0; i < size; ++i) index[i] = static_cast<std::int32_t>(i);
+    b.add(*coordinate, {size}, std::move(index));
+  }
 }
 
 }  // namespace
@@ -166,6 +188,7 @@ ResultLayout result_layout(const RunResult& result) {
   Builder b(layout);
   add_meta(layout, result);
   add_model(b, result);
+  add_coordinates(b, layout);
   add_kinematics(b, result.kin);
   add_gait_and_terrain(layout, b, result);
   if (result.dyn.present)

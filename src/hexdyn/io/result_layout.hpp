@@ -1,6 +1,6 @@
 #pragma once
 /// \file result_layout.hpp
-/// A run's `hexdyn-result/1` layout in memory: every dataset the file holds (path, units,
+/// A run's `hexdyn-result/2` layout in memory: every dataset the file holds (path, units,
 /// dims and values, in the element type of io/schema.hpp) and every /meta attribute, in
 /// the order the file is written. The one source of what a result file contains: the HDF5
 /// writer (output.hpp, write_result_layout) writes this list, and the Python module
@@ -43,18 +43,20 @@ struct ResultLayout {
   std::vector<LayoutDataset> datasets;      ///< /model, kinematics, dynamics, in the order written
 };
 
-/// The layout of `result`: /meta (created_utc = now), /model, the kinematic datasets and,
-/// when result.dyn.present, the dynamic ones (schema.hpp's kModelDatasets,
-/// kUrdfRobotDatasets when the robot came from a URDF, kKinematicDatasets,
-/// kDynamicsDatasets). Copies the arrays.
+/// The layout of `result`: /meta (created_utc = now), /model, the labelled coordinates
+/// (kResultCoordinates: /leg, /joint, /xyz, /wxyz), the kinematic datasets and,
+/// when result.dyn.present, the dynamic ones and the index coordinates /impact and
+/// /message (schema.hpp's kModelDatasets, kUrdfRobotDatasets when the robot came from a
+/// URDF, kResultCoordinates, kKinematicDatasets, kDynamicsDatasets,
+/// kResultIndexCoordinates). Copies the arrays.
 ///
 /// Preconditions (checked; a mismatch throws IoError "PATH is RxC, expected ..." naming the
 /// dataset): every kinematic array has result.kin.samples() = T rows and its dataset's
 /// column count (T×3, T×4, T×6 or T×18), kin.sample_kind T entries or none (all
 /// ordinary), terrain_z_m as many as terrain_y_m; when result.dyn.present, the dynamics
 /// arrays have T rows (or T entries), energy_joint_J 18 entries, energy_cycle_J one per
-/// cycle_start_s, every impact a leg index 0..5 (written 1-based); 18 joint names (or none: then
-/// L1_coxa … L6_tibia).
+/// cycle_start_s, every impact a leg index 0..5 (written as is, 0-based); 18 joint names (or
+/// none: then L1_coxa … L6_tibia).
 ResultLayout result_layout(const RunResult& result);
 
 }  // namespace hexdyn

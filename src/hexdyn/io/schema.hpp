@@ -1,16 +1,18 @@
 #pragma once
 /// \file schema.hpp
 /// The HDF5 contracts of hexdyn in one place (described in docs/user/output.md, whose
-/// tables are generated from this header): `hexdyn-result/1` (one
-/// run), `hexdyn-sweep/1` (a parameter sweep) and `hexdyn-envelope/1` (the climbable
-/// envelope, envelope/envelope.hpp), each with its schema name and version,
-/// every /meta attribute, and for every dataset its path, shape, element type and
-/// `units` attribute. The writers (io/result_layout.cpp, sweep/sweep_file.cpp,
-/// envelope/envelope_file.cpp) take every path and units string from here; the Python
-/// reader hexdyn.results (bindings/python/hexdyn/results.py) parses this header at import (the
-/// `inline constexpr` lines below, and the shape comments of `Shape`), so the layout is
-/// typed once. Keep declarations on the regular pattern
-///     inline constexpr DatasetSpec kName{"path", "units", Shape::kX, Element::kY};
+/// tables are generated from this header): `hexdyn-result/2` (one run), `hexdyn-sweep/2`
+/// (a parameter sweep) and `hexdyn-envelope/2` (the climbable envelope,
+/// envelope/envelope.hpp), each with its schema name and version, every /meta attribute,
+/// and for every dataset its path, `units`, shape, element type and `long_name`. The
+/// writers (io/result_layout.cpp, sweep/sweep_file.cpp, envelope/envelope_file.cpp) take
+/// every path, units string and long name from here, and label every dataset with the
+/// dimensions of its shape (dimension_names(), io/labels.hpp), so that netCDF-4 readers
+/// (xarray, ncdump) open the files. The Python reader hexdyn.results
+/// (bindings/python/hexdyn/results.py) parses this header at import (the `inline
+/// constexpr` lines below, the shape comments of `Shape` and the cases of
+/// dimension_names()), so the layout is typed once. Keep declarations on the regular pattern
+///     inline constexpr DatasetSpec kName{"path", "units", Shape::kX, Element::kY, "long name"};
 /// (a name of a `const char*` constant may stand for a string). A change of layout is a
 /// new schema version.
 ///
@@ -18,21 +20,23 @@
 /// cycles, K vertices of the terrain profile; in a
 /// sweep file N scenarios, A axes, V values of one axis. (T,6,3) datasets are leg-major
 /// (index [t][leg][axis]); all vectors are in the world frame G0 unless the name says
-/// otherwise. Units strings: "1" marks dimensionless numbers (quaternions, status codes,
-/// counts, ratios) and text; "SI" marks an axis value in the SI unit of its scene key.
-/// Paths with "{i}" (axis number 0..A−1) or "{id}" (scenario id) are templates: at().
+/// otherwise. Units strings are UDUNITS-2 units: "1" marks dimensionless numbers
+/// (quaternions, counts, ratios); "" writes no `units` attribute: text and CF flag
+/// datasets (codes, see FlagSpec); "key" marks a sweep axis value, written in the SI unit
+/// of its scene key (io/key_units.hpp). Paths with "{i}" (axis number 0..A−1), "{id}"
+/// (scenario id) or "{key}" (an axis key) are templates: at().
 #include <array>
 #include <cstdint>
 #include <string>
 
 namespace hexdyn::schema {
 
-inline constexpr const char* kResultSchema = "hexdyn-result/1";  ///< /meta attr `schema`
-inline constexpr std::int64_t kResultSchemaVersion = 1;          ///< /meta attr `schema_version`
-inline constexpr const char* kSweepSchema = "hexdyn-sweep/1";    ///< sweep files' `schema`
-inline constexpr std::int64_t kSweepSchemaVersion = 1;           ///< sweep files' `schema_version`
-inline constexpr const char* kEnvelopeSchema = "hexdyn-envelope/1";  ///< envelope files' `schema`
-inline constexpr std::int64_t kEnvelopeSchemaVersion = 1;  ///< envelope files' `schema_version`
+inline constexpr const char* kResultSchema = "hexdyn-result/2";  ///< /meta attr `schema`
+inline constexpr std::int64_t kResultSchemaVersion = 2;          ///< /meta attr `schema_version`
+inline constexpr const char* kSweepSchema = "hexdyn-sweep/2";    ///< sweep files' `schema`
+inline constexpr std::int64_t kSweepSchemaVersion = 2;           ///< sweep files' `schema_version`
+inline constexpr const char* kEnvelopeSchema = "hexdyn-envelope/2";  ///< envelope files' `schema`
+inline constexpr std::int64_t kEnvelopeSchemaVersion = 2;  ///< envelope files' `schema_version`
 
 /// Shape of a dataset in terms of the run's sizes.
 enum class Shape {
@@ -59,11 +63,54 @@ enum class Shape {
   kEnvelopeCriteria,  ///< (C), criteria of an envelope
   kEnvelopeCells,     ///< (W,B,S), one entry per tread, duty factor and speed
   kEnvelopeGrid,      ///< (W,B,S,C), one entry per cell and criterion
-  kEnvelopeGridText,  ///< (G) strings, G = W·B·S·C: the (W,B,S,C) grid flattened row-major
   kEnvelopeProbes,    ///< (P), one entry per probe (a criterion evaluated at one riser)
   kCycles,            ///< (Y), one entry per gait cycle
   kTerrainPoints,     ///< (K), one entry per vertex of the terrain's height profile
+  kXyz,               ///< (3) strings "x", "y", "z"
+  kWxyz,              ///< (4) strings "w", "x", "y", "z"
+  kAxes,              ///< (A), one entry per sweep axis
 };
+
+/// The netCDF dimensions of a shape's axes, space-separated, outermost first ("" for a
+/// scalar); "{key}" is the dimension of a sweep axis, named by its key. A dimension D of
+/// a file (or of a kept run's group) has its coordinate variable at "/D" of that root
+/// (io/labels.hpp): the names, component labels or values along D, or the index 0..n−1.
+// clang-format off
+constexpr const char* dimension_names(Shape shape) {
+  switch (shape) {
+    case Shape::kScalar: return "";
+    case Shape::kText: return "";
+    case Shape::kTextList: return "message";
+    case Shape::kJointNames: return "joint";
+    case Shape::kLegNames: return "leg";
+    case Shape::kJ: return "joint";
+    case Shape::kT: return "time";
+    case Shape::kT3: return "time xyz";
+    case Shape::kT4: return "time wxyz";
+    case Shape::kT6: return "time leg";
+    case Shape::kT18: return "time joint";
+    case Shape::kT6x3: return "time leg xyz";
+    case Shape::kN: return "impact";
+    case Shape::kScenarios: return "scenario";
+    case Shape::kScenarioAxes: return "scenario axis";
+    case Shape::kScenarioJoints: return "scenario joint";
+    case Shape::kAxisValues: return "{key}";
+    case Shape::kEnvelopeTreads: return "tread_depth";
+    case Shape::kEnvelopeDuties: return "duty_factor";
+    case Shape::kEnvelopeSpeeds: return "peak_speed";
+    case Shape::kEnvelopeCriteria: return "criterion";
+    case Shape::kEnvelopeCells: return "tread_depth duty_factor peak_speed";
+    case Shape::kEnvelopeGrid: return "tread_depth duty_factor peak_speed criterion";
+    case Shape::kEnvelopeProbes: return "probe";
+    case Shape::kCycles: return "gait_cycle";
+    case Shape::kTerrainPoints: return "terrain_point";
+    case Shape::kXyz: return "xyz";
+    case Shape::kWxyz: return "wxyz";
+    case Shape::kAxes: return "axis";
+  }
+  return "";
+}
+// clang-format on
 
 /// Element type stored in the file.
 enum class Element { kFloat64, kInt8, kInt32, kInt64, kString };
@@ -84,11 +131,18 @@ struct AttributeSpec {
   Element element = Element::kString;  ///< stored as a scalar of this type
 };
 
-/// `path` with its placeholder "{i}" or "{id}" replaced by `value` ("/axes/{i}/key", "2"
+/// CF flags of a dataset of codes 0, 1, 2, ...: `flag_values` (the codes, in the
+/// dataset's element type) and `flag_meanings` (one word per code, space-separated).
+struct FlagSpec {
+  const char* path;      ///< absolute HDF5 path of the dataset (below a kept run's group too)
+  const char* meanings;  ///< CF `flag_meanings`, the word of code 0 first
+};
+
+/// `path` with its placeholder "{i}", "{id}" or "{key}" replaced by `value` ("/axes/{i}/key", "2"
 /// → "/axes/2/key"); `path` unchanged when it has none.
 inline std::string at(const char* path, const std::string& value) {
   std::string s(path);
-  for (const char* placeholder : {"{i}", "{id}"}) {
+  for (const char* placeholder : {"{i}", "{id}", "{key}"}) {
     const auto p = s.find(placeholder);
     if (p != std::string::npos)
       return s.replace(p, std::char_traits<char>::length(placeholder), value);
@@ -96,7 +150,7 @@ inline std::string at(const char* path, const std::string& value) {
   return s;
 }
 
-// ======================================================================= hexdyn-result/1
+// ======================================================================= hexdyn-result/2
 
 // ---- /meta: a group with attributes only ----
 inline constexpr const char* kMetaGroup = "/meta";
@@ -108,7 +162,9 @@ inline constexpr const char* kAttrGitCommit = "git_commit";    ///< string
 inline constexpr const char* kAttrCreatedUtc = "created_utc";  ///< string, ISO 8601 "…Z"
 inline constexpr const char* kAttrConfigYaml = "config_yaml";  ///< string, fully resolved
 inline constexpr const char* kAttrWallTime = "wall_time_s";    ///< double [s]
-inline constexpr const char* kUnitsAttribute = "units";        ///< on every dataset
+inline constexpr const char* kUnitsAttribute = "units";        ///< on every dataset with units
+/// CF `long_name`, on every dataset.
+inline constexpr const char* kLongNameAttribute = "long_name";
 
 inline constexpr AttributeSpec kMetaSchema{kMetaGroup, kAttrSchema, Element::kString};
 inline constexpr AttributeSpec kMetaSchemaVersion{kMetaGroup, kAttrSchemaVersion, Element::kInt64};
@@ -123,41 +179,57 @@ inline constexpr std::array kResultMetaAttributes{
     kMetaCreatedUtc, kMetaConfigYaml,    kMetaWallTime};
 
 // ---- /model ----
-inline constexpr DatasetSpec kModelUrdf{"/model/urdf", "1", Shape::kText, Element::kString};
-inline constexpr DatasetSpec kModelJointNames{"/model/joint_names", "1", Shape::kJointNames,
-                                              Element::kString};
-inline constexpr DatasetSpec kModelLegNames{"/model/leg_names", "1", Shape::kLegNames,
-                                            Element::kString};
-inline constexpr DatasetSpec kModelTotalMass{"/model/total_mass", "kg", Shape::kScalar};
+inline constexpr DatasetSpec kModelUrdf{"/model/urdf", "", Shape::kText, Element::kString,
+                                        "robot description (URDF) as simulated"};
+inline constexpr DatasetSpec kModelJointNames{"/model/joint_names", "", Shape::kJointNames,
+                                              Element::kString, "joint names, leg-major"};
+inline constexpr DatasetSpec kModelLegNames{"/model/leg_names", "", Shape::kLegNames,
+                                            Element::kString, "leg names"};
+inline constexpr DatasetSpec kModelTotalMass{"/model/total_mass", "kg", Shape::kScalar,
+                                             Element::kFloat64, "total mass of the robot"};
 /// A URDF robot's legs L1 … L6: "L1: JOINT1 JOINT2 JOINT3 foot FOOT", the description's
 /// joint names hip to foot and the foot's link (or "offset X Y Z LINK", m in that link's
 /// frame). Written only for a robot read from a URDF (kUrdfRobotDatasets).
-inline constexpr DatasetSpec kModelLegMapping{"/model/leg_mapping", "1", Shape::kLegNames,
-                                              Element::kString};
+inline constexpr DatasetSpec kModelLegMapping{"/model/leg_mapping", "", Shape::kLegNames,
+                                              Element::kString, "URDF joints and foot of each leg"};
 
 // ---- kinematics: always written ----
-inline constexpr DatasetSpec kTime{"/time", "s", Shape::kT};
-inline constexpr DatasetSpec kBasePosition{"/base/position", "m", Shape::kT3};
+inline constexpr DatasetSpec kTime{"/time", "s", Shape::kT, Element::kFloat64, "time"};
+inline constexpr DatasetSpec kBasePosition{"/base/position", "m", Shape::kT3, Element::kFloat64,
+                                           "trunk frame origin position"};
 /// Quaternion w, x, y, z of the rotation body → world.
-inline constexpr DatasetSpec kBaseOrientation{"/base/orientation", "1", Shape::kT4};
-inline constexpr DatasetSpec kBaseLinearVelocity{"/base/linear_velocity", "m/s", Shape::kT3};
-inline constexpr DatasetSpec kBaseAngularVelocity{"/base/angular_velocity", "rad/s", Shape::kT3};
+inline constexpr DatasetSpec kBaseOrientation{
+    "/base/orientation", "1", Shape::kT4, Element::kFloat64,
+    "trunk orientation quaternion (w, x, y, z), body to world"};
+inline constexpr DatasetSpec kBaseLinearVelocity{"/base/linear_velocity", "m/s", Shape::kT3,
+                                                 Element::kFloat64, "trunk linear velocity"};
+inline constexpr DatasetSpec kBaseAngularVelocity{"/base/angular_velocity", "rad/s", Shape::kT3,
+                                                  Element::kFloat64, "trunk angular velocity"};
 inline constexpr DatasetSpec kBaseLinearAcceleration{"/base/linear_acceleration", "m/s^2",
-                                                     Shape::kT3};
+                                                     Shape::kT3, Element::kFloat64,
+                                                     "trunk linear acceleration"};
 inline constexpr DatasetSpec kBaseAngularAcceleration{"/base/angular_acceleration", "rad/s^2",
-                                                      Shape::kT3};
-inline constexpr DatasetSpec kJointPosition{"/joints/position", "rad", Shape::kT18};
-inline constexpr DatasetSpec kJointVelocity{"/joints/velocity", "rad/s", Shape::kT18};
-inline constexpr DatasetSpec kJointAcceleration{"/joints/acceleration", "rad/s^2", Shape::kT18};
-inline constexpr DatasetSpec kFeetPosition{"/feet/position", "m", Shape::kT6x3};
-inline constexpr DatasetSpec kFeetVelocity{"/feet/velocity", "m/s", Shape::kT6x3};
-inline constexpr DatasetSpec kComPosition{"/com/position", "m", Shape::kT3};
-/// 0 swing, 1 impact, 2 support (ContactPhase).
-inline constexpr DatasetSpec kContactPhase{"/contacts/phase", "1", Shape::kT6, Element::kInt8};
+                                                      Shape::kT3, Element::kFloat64,
+                                                      "trunk angular acceleration"};
+inline constexpr DatasetSpec kJointPosition{"/joints/position", "rad", Shape::kT18,
+                                            Element::kFloat64, "joint angle"};
+inline constexpr DatasetSpec kJointVelocity{"/joints/velocity", "rad/s", Shape::kT18,
+                                            Element::kFloat64, "joint angular velocity"};
+inline constexpr DatasetSpec kJointAcceleration{"/joints/acceleration", "rad/s^2", Shape::kT18,
+                                                Element::kFloat64, "joint angular acceleration"};
+inline constexpr DatasetSpec kFeetPosition{"/feet/position", "m", Shape::kT6x3, Element::kFloat64,
+                                           "foot position"};
+inline constexpr DatasetSpec kFeetVelocity{"/feet/velocity", "m/s", Shape::kT6x3, Element::kFloat64,
+                                           "foot velocity"};
+inline constexpr DatasetSpec kComPosition{"/com/position", "m", Shape::kT3, Element::kFloat64,
+                                          "centre of mass position"};
+/// 0 swing, 1 impact, 2 support (ContactPhase; CF flags kContactPhaseFlags).
+inline constexpr DatasetSpec kContactPhase{"/contacts/phase", "", Shape::kT6, Element::kInt8,
+                                           "contact phase of each leg"};
 /// 0 an ordinary sample, 1 the left limit of a contact event: a sample 1e-10 s before a
 /// touchdown, the end of a touchdown transient or a lift-off, holding every value just before
-/// it (docs/theory/output-grid.md#event-samples); adaptive grid only.
-inline constexpr DatasetSpec kSampleKind{"/sample_kind", "1", Shape::kT, Element::kInt8,
+/// it (docs/theory/output-grid.md#event-samples); adaptive grid only (CF flags kSampleKindFlags).
+inline constexpr DatasetSpec kSampleKind{"/sample_kind", "", Shape::kT, Element::kInt8,
                                          "kind of output sample"};
 /// Start of each gait cycle (phase τ = 0, 1, …), the first 0; the last cycle runs to the end.
 inline constexpr DatasetSpec kGaitCycleStart{"/gait/cycle_start", "s", Shape::kCycles,
@@ -175,72 +247,116 @@ inline constexpr const char* kTerrainGroup = "/terrain";
 inline constexpr AttributeSpec kTerrainType{kTerrainGroup, "type", Element::kString};
 
 // ---- dynamics: written only when the dynamic stages ran ----
-inline constexpr DatasetSpec kJointTorque{"/joints/torque", "N m", Shape::kT18};
+inline constexpr DatasetSpec kJointTorque{"/joints/torque", "N m", Shape::kT18, Element::kFloat64,
+                                          "joint torque"};
 /// Force of the terrain on the foot, world frame.
-inline constexpr DatasetSpec kContactForce{"/contacts/force", "N", Shape::kT6x3};
-inline constexpr DatasetSpec kContactPenetration{"/contacts/penetration", "m", Shape::kT6};
-/// Leg of each touchdown, 1-based (1..6) as in the leg names.
-inline constexpr DatasetSpec kImpactLeg{"/impacts/leg", "1", Shape::kN, Element::kInt32};
-inline constexpr DatasetSpec kImpactStart{"/impacts/t_start", "s", Shape::kN};
-inline constexpr DatasetSpec kImpactDuration{"/impacts/duration", "s", Shape::kN};
-inline constexpr DatasetSpec kImpactPeakForce{"/impacts/peak_force", "N", Shape::kN};
-inline constexpr DatasetSpec kImpactImpulse{"/impacts/impulse", "N s", Shape::kN};
-inline constexpr DatasetSpec kImpactEffectiveMass{"/impacts/effective_mass", "kg", Shape::kN};
-inline constexpr DatasetSpec kImpactApproachSpeed{"/impacts/approach_speed", "m/s", Shape::kN};
-inline constexpr DatasetSpec kJointPower{"/power/joint", "W", Shape::kT18};
-inline constexpr DatasetSpec kTotalPower{"/power/total", "W", Shape::kT};
+inline constexpr DatasetSpec kContactForce{"/contacts/force", "N", Shape::kT6x3, Element::kFloat64,
+                                           "force of the terrain on the foot"};
+inline constexpr DatasetSpec kContactPenetration{"/contacts/penetration", "m", Shape::kT6,
+                                                 Element::kFloat64,
+                                                 "foot penetration into the terrain"};
+/// Leg of each touchdown, 0-based (0..5): an index into the `leg` dimension (L1 is 0).
+inline constexpr DatasetSpec kImpactLeg{"/impacts/leg", "", Shape::kN, Element::kInt32,
+                                        "leg of the touchdown, index into the leg dimension"};
+inline constexpr DatasetSpec kImpactStart{"/impacts/t_start", "s", Shape::kN, Element::kFloat64,
+                                          "touchdown start time"};
+inline constexpr DatasetSpec kImpactDuration{"/impacts/duration", "s", Shape::kN, Element::kFloat64,
+                                             "touchdown transient duration"};
+inline constexpr DatasetSpec kImpactPeakForce{
+    "/impacts/peak_force", "N", Shape::kN, Element::kFloat64, "peak normal force of the touchdown"};
+inline constexpr DatasetSpec kImpactImpulse{"/impacts/impulse", "N s", Shape::kN, Element::kFloat64,
+                                            "normal impulse of the touchdown"};
+inline constexpr DatasetSpec kImpactEffectiveMass{"/impacts/effective_mass", "kg", Shape::kN,
+                                                  Element::kFloat64,
+                                                  "effective mass of the touchdown"};
+inline constexpr DatasetSpec kImpactApproachSpeed{"/impacts/approach_speed", "m/s", Shape::kN,
+                                                  Element::kFloat64,
+                                                  "foot approach speed at touchdown"};
+inline constexpr DatasetSpec kJointPower{"/power/per_joint", "W", Shape::kT18, Element::kFloat64,
+                                         "signed joint power tau*omega"};
+inline constexpr DatasetSpec kTotalPower{"/power/total", "W", Shape::kT, Element::kFloat64,
+                                         "total absolute joint power sum |tau*omega|"};
 /// Trapezoid rule over /time of /power/total (docs/theory/output-grid.md#energy-from-the-samples).
-inline constexpr DatasetSpec kEnergyTotal{"/energy/total", "J", Shape::kScalar};
-/// Trapezoid rule over /time of |τ_k ω_k| (/power/joint).
-inline constexpr DatasetSpec kEnergyJoint{"/energy/joint", "J", Shape::kJ};
+inline constexpr DatasetSpec kEnergyTotal{"/energy/total", "J", Shape::kScalar, Element::kFloat64,
+                                          "energy: integral of total absolute joint power"};
+/// Trapezoid rule over /time of |τ_k ω_k| (/power/per_joint).
+inline constexpr DatasetSpec kEnergyJoint{"/energy/per_joint", "J", Shape::kJ, Element::kFloat64,
+                                          "energy per joint: integral of |tau*omega|"};
 /// Energy of each gait cycle (from /gait/cycle_start to the next, the last to the end):
 /// the trapezoid with /power/total interpolated linearly at the bounds; sums to /energy/total.
 inline constexpr DatasetSpec kEnergyCycle{"/energy/cycle", "J", Shape::kCycles, Element::kFloat64,
                                           "energy per gait cycle"};
-inline constexpr DatasetSpec kCostOfTransport{"/energy/cost_of_transport", "1", Shape::kScalar};
-inline constexpr DatasetSpec kEnergyDistance{"/energy/distance", "m", Shape::kScalar};
-/// 0 optimal, 1 relaxed (slack used), 2 failed.
-inline constexpr DatasetSpec kSolverStatus{"/solver/status", "1", Shape::kT, Element::kInt8};
-inline constexpr DatasetSpec kSolverIterations{"/solver/iterations", "1", Shape::kT};
-inline constexpr DatasetSpec kSolverObjective{"/solver/objective", "N^2 m^2", Shape::kT};
-inline constexpr DatasetSpec kSolverSeconds{"/solver/seconds", "s", Shape::kT};
+inline constexpr DatasetSpec kCostOfTransport{"/energy/cost_of_transport", "1", Shape::kScalar,
+                                              Element::kFloat64, "cost of transport E/(m g d)"};
+inline constexpr DatasetSpec kEnergyDistance{"/energy/distance", "m", Shape::kScalar,
+                                             Element::kFloat64, "distance travelled by the trunk"};
+/// 0 optimal, 1 relaxed (slack used), 2 failed (CF flags kSolverStatusFlags).
+inline constexpr DatasetSpec kSolverStatus{"/solver/status", "", Shape::kT, Element::kInt8,
+                                           "allocation solver status of the sample"};
+inline constexpr DatasetSpec kSolverIterations{"/solver/iterations", "1", Shape::kT,
+                                               Element::kFloat64, "allocation solver iterations"};
+inline constexpr DatasetSpec kSolverObjective{"/solver/objective", "N^2 m^2", Shape::kT,
+                                              Element::kFloat64, "allocation objective sum tau^2"};
+inline constexpr DatasetSpec kSolverSeconds{"/solver/seconds", "s", Shape::kT, Element::kFloat64,
+                                            "allocation solve time"};
 /// One message per relaxed or failed sample.
-inline constexpr DatasetSpec kSolverMessages{"/solver/messages", "1", Shape::kTextList,
-                                             Element::kString};
+inline constexpr DatasetSpec kSolverMessages{"/solver/messages", "", Shape::kTextList,
+                                             Element::kString,
+                                             "solver message of each relaxed or failed sample"};
+
+// ---- coordinate variables: one per dimension (dimension_names), at the root ----
+inline constexpr DatasetSpec kLegCoordinate{"/leg", "", Shape::kLegNames, Element::kString,
+                                            "leg name"};
+inline constexpr DatasetSpec kJointCoordinate{"/joint", "", Shape::kJointNames, Element::kString,
+                                              "joint name, leg-major"};
+inline constexpr DatasetSpec kXyzCoordinate{"/xyz", "", Shape::kXyz, Element::kString,
+                                            "Cartesian component, world frame G0"};
+inline constexpr DatasetSpec kWxyzCoordinate{"/wxyz", "", Shape::kWxyz, Element::kString,
+                                             "quaternion component, scalar first"};
+/// Index coordinates 0..n−1 of the dimensions without labels: /impact and /message in the
+/// result layout, the others created by io/labels.hpp when a dataset uses the dimension.
+inline constexpr DatasetSpec kImpactCoordinate{"/impact", "1", Shape::kN, Element::kInt32,
+                                               "touchdown index"};
+inline constexpr DatasetSpec kMessageCoordinate{"/message", "1", Shape::kTextList, Element::kInt32,
+                                                "solver message index"};
+inline constexpr DatasetSpec kCycleCoordinate{"/gait_cycle", "1", Shape::kCycles, Element::kInt32,
+                                              "gait cycle index"};
+inline constexpr DatasetSpec kTerrainPointCoordinate{
+    "/terrain_point", "1", Shape::kTerrainPoints, Element::kInt32, "terrain profile vertex index"};
+
+// ---- CF flags on the datasets of codes ----
+inline constexpr FlagSpec kContactPhaseFlags{"/contacts/phase", "swing impact support"};
+inline constexpr FlagSpec kSolverStatusFlags{"/solver/status", "optimal relaxed failed"};
+inline constexpr FlagSpec kSampleKindFlags{"/sample_kind", "ordinary left_limit"};
 
 /// Every dataset present in every result file.
 inline constexpr std::array kModelDatasets{kModelUrdf, kModelJointNames, kModelLegNames,
                                            kModelTotalMass};
-inline constexpr std::array kKinematicDatasets{kTime,
-                                               kBasePosition,
-                                               kBaseOrientation,
-                                               kBaseLinearVelocity,
-                                               kBaseAngularVelocity,
-                                               kBaseLinearAcceleration,
-                                               kBaseAngularAcceleration,
-                                               kJointPosition,
-                                               kJointVelocity,
-                                               kJointAcceleration,
-                                               kFeetPosition,
-                                               kFeetVelocity,
-                                               kComPosition,
-                                               kContactPhase,
-                                               kSampleKind,
-                                               kGaitCycleStart,
-                                               kTerrainY,
-                                               kTerrainZ};
+// clang-format off
+inline constexpr std::array kKinematicDatasets{
+    kTime, kBasePosition, kBaseOrientation, kBaseLinearVelocity, kBaseAngularVelocity,
+    kBaseLinearAcceleration, kBaseAngularAcceleration, kJointPosition, kJointVelocity,
+    kJointAcceleration, kFeetPosition, kFeetVelocity, kComPosition, kContactPhase, kSampleKind,
+    kGaitCycleStart, kTerrainY, kTerrainZ};
+// clang-format on
+/// The coordinate variables of every result file (the index ones when their dimension is
+/// used: /impact with the dynamics, /message with /solver/messages).
+inline constexpr std::array kResultCoordinates{kLegCoordinate, kJointCoordinate, kXyzCoordinate,
+                                               kWxyzCoordinate};
+inline constexpr std::array kResultIndexCoordinates{kImpactCoordinate, kMessageCoordinate,
+                                                    kCycleCoordinate, kTerrainPointCoordinate};
 /// Datasets present when the robot was read from a URDF.
 inline constexpr std::array kUrdfRobotDatasets{kModelLegMapping};
 /// Datasets present when the dynamic stages ran.
+// clang-format off
 inline constexpr std::array kDynamicsDatasets{
-    kJointTorque,         kContactForce,        kContactPenetration, kImpactLeg,
-    kImpactStart,         kImpactDuration,      kImpactPeakForce,    kImpactImpulse,
-    kImpactEffectiveMass, kImpactApproachSpeed, kJointPower,         kTotalPower,
-    kEnergyTotal,         kEnergyJoint,         kEnergyCycle,        kCostOfTransport,
-    kEnergyDistance,      kSolverStatus,        kSolverIterations,   kSolverObjective,
-    kSolverSeconds,       kSolverMessages};
+    kJointTorque, kContactForce, kContactPenetration, kImpactLeg, kImpactStart, kImpactDuration,
+    kImpactPeakForce, kImpactImpulse, kImpactEffectiveMass, kImpactApproachSpeed, kJointPower,
+    kTotalPower, kEnergyTotal, kEnergyJoint, kEnergyCycle, kCostOfTransport, kEnergyDistance,
+    kSolverStatus, kSolverIterations, kSolverObjective, kSolverSeconds, kSolverMessages};
+// clang-format on
 
-// ======================================================================= hexdyn-sweep/1
+// ======================================================================= hexdyn-sweep/2
 // One row per scenario (N = product of the axis sizes, scenario i at the row-major grid
 // point, last axis fastest); metrics are NaN where /scenarios/status != 0.
 
@@ -267,169 +383,115 @@ inline constexpr std::array kSweepMetaAttributes{
 // ---- /axes/{i}: axis i = 0..A−1 of the sweep file, in file order ----
 inline constexpr const char* kAxesGroup = "/axes";
 /// Dotted scene key of the axis, e.g. "gait.duty_factor".
-inline constexpr DatasetSpec kAxisKey{"/axes/{i}/key", "1", Shape::kText, Element::kString};
+inline constexpr DatasetSpec kAxisKey{"/axes/{i}/key", "", Shape::kText, Element::kString,
+                                      "dotted scene key of the axis"};
 /// Values of an axis of numbers (p/q evaluated), in the SI unit of the key.
-inline constexpr DatasetSpec kAxisNumbers{"/axes/{i}/values", "SI", Shape::kAxisValues};
+inline constexpr DatasetSpec kAxisNumbers{"/axes/{i}/values", "key", Shape::kAxisValues,
+                                          Element::kFloat64, "values of the swept key"};
 /// Values of an axis of words (an axis whose values are not all numbers).
-inline constexpr DatasetSpec kAxisWords{"/axes/{i}/values", "1", Shape::kAxisValues,
-                                        Element::kString};
+inline constexpr DatasetSpec kAxisWords{"/axes/{i}/values", "", Shape::kAxisValues,
+                                        Element::kString, "values of the swept key"};
 /// Values as written in the sweep file ("2/3").
-inline constexpr DatasetSpec kAxisLabels{"/axes/{i}/labels", "1", Shape::kAxisValues,
-                                         Element::kString};
-inline constexpr DatasetSpec kSweepJointNames{"/joint_names", "1", Shape::kJointNames,
-                                              Element::kString};
+inline constexpr DatasetSpec kAxisLabels{"/axes/{i}/labels", "", Shape::kAxisValues,
+                                         Element::kString, "values as written in the sweep file"};
+inline constexpr DatasetSpec kSweepJointNames{"/joint_names", "", Shape::kJointNames,
+                                              Element::kString, "joint names, leg-major"};
+
+// ---- coordinate variables (dimension_names): one dimension per axis, named by its key
+// ("terrain.riser_height"), its values as coordinate; scenario, axis and joint ----
+inline constexpr DatasetSpec kAxisCoordinateNumbers{"/{key}", "key", Shape::kAxisValues,
+                                                    Element::kFloat64, "values of the swept key"};
+inline constexpr DatasetSpec kAxisCoordinateWords{"/{key}", "", Shape::kAxisValues,
+                                                  Element::kString, "values of the swept key"};
+inline constexpr DatasetSpec kScenarioCoordinate{"/scenario", "1", Shape::kScenarios,
+                                                 Element::kInt32, "scenario index"};
+inline constexpr DatasetSpec kAxisCoordinate{"/axis", "", Shape::kAxes, Element::kString,
+                                             "dotted scene key of the axis"};
+inline constexpr DatasetSpec kSweepJointCoordinate{"/joint", "", Shape::kJointNames,
+                                                   Element::kString, "joint name, leg-major"};
+inline constexpr std::array kSweepCoordinates{kScenarioCoordinate, kAxisCoordinate,
+                                              kSweepJointCoordinate};
 
 // ---- /scenarios: the table ----
 inline constexpr const char* kScenariosGroup = "/scenarios";
 inline constexpr AttributeSpec kScenariosMissingValues{kScenariosGroup, "missing_values",
                                                        Element::kString};
 /// Scenario id: the index zero-padded to at least 6 digits ("000012").
-inline constexpr DatasetSpec kScenarioId{"/scenarios/id", "1", Shape::kScenarios, Element::kString};
+inline constexpr DatasetSpec kScenarioId{"/scenarios/id", "", Shape::kScenarios, Element::kString,
+                                         "scenario id"};
 /// Index of each scenario's value into each axis.
 inline constexpr DatasetSpec kScenarioAxisIndex{"/scenarios/axis_index", "1", Shape::kScenarioAxes,
-                                                Element::kInt32};
+                                                Element::kInt32,
+                                                "index of the scenario's value into each axis"};
 /// Each scenario's value of axis i: numbers (SI) or words, as /axes/{i}/values.
-inline constexpr DatasetSpec kScenarioAxisNumbers{"/scenarios/axis_{i}", "SI", Shape::kScenarios};
-inline constexpr DatasetSpec kScenarioAxisWords{"/scenarios/axis_{i}", "1", Shape::kScenarios,
-                                                Element::kString};
-/// The axis key, on each /scenarios/axis_{i}.
+inline constexpr DatasetSpec kScenarioAxisNumbers{"/scenarios/axis_{i}", "key", Shape::kScenarios,
+                                                  Element::kFloat64, "value of the swept key"};
+inline constexpr DatasetSpec kScenarioAxisWords{"/scenarios/axis_{i}", "", Shape::kScenarios,
+                                                Element::kString, "value of the swept key"};
+/// The axis key, on each /scenarios/axis_{i}: the name of the axis's dimension.
 inline constexpr AttributeSpec kScenarioAxisKey{"/scenarios/axis_{i}", "key", Element::kString};
 /// 0 ok, 1 config, 2 reach, 3 planning, 4 solver, 5 error, 6 internal, 7 crashed
 /// (ScenarioStatus; kScenarioStatusNames).
-inline constexpr DatasetSpec kScenarioStatus{"/scenarios/status", "1", Shape::kScenarios,
-                                             Element::kInt8};
+inline constexpr DatasetSpec kScenarioStatus{"/scenarios/status", "", Shape::kScenarios,
+                                             Element::kInt8, "scenario status"};
 /// The name of each status code, by code: 7 `crashed` is a scenario whose process died
 /// twice (signal, abort, out-of-memory kill) and was not tried again.
 inline constexpr std::array kScenarioStatusNames{"ok",     "config", "reach",    "planning",
                                                  "solver", "error",  "internal", "crashed"};
+inline constexpr FlagSpec kScenarioStatusFlags{
+    "/scenarios/status", "ok config reach planning solver error internal crashed"};
 /// "0 ok, 1 config, ...", on /scenarios/status.
 inline constexpr AttributeSpec kScenarioStatusCodes{"/scenarios/status", "codes", Element::kString};
 /// The error's one-line message; "" when ok.
-inline constexpr DatasetSpec kScenarioMessage{"/scenarios/message", "1", Shape::kScenarios,
-                                              Element::kString};
+inline constexpr DatasetSpec kScenarioMessage{"/scenarios/message", "", Shape::kScenarios,
+                                              Element::kString, "error message of the scenario"};
 inline constexpr DatasetSpec kScenarioSamples{"/scenarios/samples", "1", Shape::kScenarios,
-                                              Element::kInt32};
-inline constexpr DatasetSpec kScenarioDuration{"/scenarios/duration", "s", Shape::kScenarios};
-inline constexpr DatasetSpec kScenarioDistance{"/scenarios/distance", "m", Shape::kScenarios};
-inline constexpr DatasetSpec kScenarioEnergy{"/scenarios/energy", "J", Shape::kScenarios};
+                                              Element::kInt32, "output samples"};
+inline constexpr DatasetSpec kScenarioDuration{"/scenarios/duration", "s", Shape::kScenarios,
+                                               Element::kFloat64, "duration of the run"};
+inline constexpr DatasetSpec kScenarioDistance{"/scenarios/distance", "m", Shape::kScenarios,
+                                               Element::kFloat64,
+                                               "distance travelled by the trunk"};
+inline constexpr DatasetSpec kScenarioEnergy{"/scenarios/energy", "J", Shape::kScenarios,
+                                             Element::kFloat64,
+                                             "energy: integral of total absolute joint power"};
 inline constexpr DatasetSpec kScenarioCostOfTransport{"/scenarios/cost_of_transport", "1",
-                                                      Shape::kScenarios};
+                                                      Shape::kScenarios, Element::kFloat64,
+                                                      "cost of transport E/(m g d)"};
 inline constexpr DatasetSpec kScenarioPeakImpactForce{"/scenarios/peak_impact_force", "N",
-                                                      Shape::kScenarios};
+                                                      Shape::kScenarios, Element::kFloat64,
+                                                      "largest touchdown peak force"};
 /// Max over samples of |τ_k|.
 inline constexpr DatasetSpec kScenarioPeakTorque{"/scenarios/peak_torque", "N m",
-                                                 Shape::kScenarioJoints};
+                                                 Shape::kScenarioJoints, Element::kFloat64,
+                                                 "peak absolute joint torque"};
 /// Time-weighted RMS of τ_k (trapezoidal ∫τ² dt over the duration).
 inline constexpr DatasetSpec kScenarioRmsTorque{"/scenarios/rms_torque", "N m",
-                                                Shape::kScenarioJoints};
-inline constexpr DatasetSpec kScenarioRelaxedSamples{"/scenarios/relaxed_samples", "1",
-                                                     Shape::kScenarios, Element::kInt32};
-inline constexpr DatasetSpec kScenarioFailedSamples{"/scenarios/failed_samples", "1",
-                                                    Shape::kScenarios, Element::kInt32};
+                                                Shape::kScenarioJoints, Element::kFloat64,
+                                                "time-weighted RMS joint torque"};
+inline constexpr DatasetSpec kScenarioRelaxedSamples{
+    "/scenarios/relaxed_samples", "1", Shape::kScenarios, Element::kInt32, "relaxed samples"};
+inline constexpr DatasetSpec kScenarioFailedSamples{
+    "/scenarios/failed_samples", "1", Shape::kScenarios, Element::kInt32, "failed samples"};
 /// Time to compute each scenario [s] (timing: differs between runs).
-inline constexpr DatasetSpec kScenarioWallTime{"/scenarios/wall_time_s", "s", Shape::kScenarios};
+inline constexpr DatasetSpec kScenarioWallTime{"/scenarios/wall_time_s", "s", Shape::kScenarios,
+                                               Element::kFloat64, "time to compute the scenario"};
 /// The columns of /scenarios other than the per-axis /scenarios/axis_{i}, in file order
 /// (status, then message, after the axis columns).
-inline constexpr std::array kScenarioDatasets{kScenarioId,
-                                              kScenarioAxisIndex,
-                                              kScenarioStatus,
-                                              kScenarioMessage,
-                                              kScenarioSamples,
-                                              kScenarioDuration,
-                                              kScenarioDistance,
-                                              kScenarioEnergy,
-                                              kScenarioCostOfTransport,
-                                              kScenarioPeakImpactForce,
-                                              kScenarioPeakTorque,
-                                              kScenarioRmsTorque,
-                                              kScenarioRelaxedSamples,
-                                              kScenarioFailedSamples,
-                                              kScenarioWallTime};
+// clang-format off
+inline constexpr std::array kScenarioDatasets{
+    kScenarioId, kScenarioAxisIndex, kScenarioStatus, kScenarioMessage, kScenarioSamples,
+    kScenarioDuration, kScenarioDistance, kScenarioEnergy, kScenarioCostOfTransport,
+    kScenarioPeakImpactForce, kScenarioPeakTorque, kScenarioRmsTorque, kScenarioRelaxedSamples,
+    kScenarioFailedSamples, kScenarioWallTime};
+// clang-format on
 
-// ---- /runs/{id}: with --keep-runs, each computed scenario in the hexdyn-result/1 layout
+// ---- /runs/{id}: with --keep-runs, each computed scenario in the hexdyn-result/2 layout
 // (its own /meta, /model, kinematic and dynamic datasets below the group) ----
 inline constexpr const char* kRunsGroup = "/runs";
 inline constexpr const char* kRunGroup = "/runs/{id}";
 
-// ===================================================================== hexdyn-envelope/1
-// The climbable envelope (envelope/envelope.hpp): W tread depths × B duty factors × S peak
-// speeds, C criteria ("kinematic", "torque", "friction"), P probes. Risers are NaN where
-// not found: riser_max when even the lowest riser fails, riser_fail when none fails up to
-// the top of the searched range.
-
-// ---- /meta: kMetaSchema … kMetaWallTime as a result file's (config_yaml: the envelope
-// file's text), then ----
-/// The base scene after inherit: and set:, validated and fully resolved.
-inline constexpr AttributeSpec kMetaEnvelopeBaseConfigYaml{kMetaGroup, "base_config_yaml",
-                                                           Element::kString};
-inline constexpr AttributeSpec kMetaEnvelopeName{kMetaGroup, "name", Element::kString};
-/// Bisection tolerance and scan step of the riser search [m].
-inline constexpr AttributeSpec kMetaEnvelopeTolerance{kMetaGroup, "riser_tolerance",
-                                                      Element::kFloat64};
-inline constexpr AttributeSpec kMetaEnvelopeStep{kMetaGroup, "riser_step", Element::kFloat64};
-/// Every /meta attribute of an envelope file.
-inline constexpr std::array kEnvelopeMetaAttributes{
-    kMetaSchema,       kMetaSchemaVersion,     kMetaVersion,     kMetaGitCommit,
-    kMetaCreatedUtc,   kMetaConfigYaml,        kMetaWallTime,    kMetaEnvelopeBaseConfigYaml,
-    kMetaEnvelopeName, kMetaEnvelopeTolerance, kMetaEnvelopeStep};
-
-// ---- the grid ----
-inline constexpr DatasetSpec kEnvelopeTreadDepth{"/axes/tread_depth", "m", Shape::kEnvelopeTreads};
-inline constexpr DatasetSpec kEnvelopeDutyFactor{"/axes/duty_factor", "1", Shape::kEnvelopeDuties};
-inline constexpr DatasetSpec kEnvelopePeakSpeed{"/axes/peak_speed", "m/s", Shape::kEnvelopeSpeeds};
-inline constexpr DatasetSpec kEnvelopeCriteria{"/axes/criteria", "1", Shape::kEnvelopeCriteria,
-                                               Element::kString};
-/// Searched riser range [m]: from, to.
-inline constexpr DatasetSpec kEnvelopeRiserFrom{"/axes/riser_from", "m", Shape::kScalar};
-inline constexpr DatasetSpec kEnvelopeRiserTo{"/axes/riser_to", "m", Shape::kScalar};
-
-// ---- /envelope: the boundary per cell and criterion ----
-/// Largest riser found climbable (every probe at or below it passed) [m].
-inline constexpr DatasetSpec kEnvelopeRiserMax{"/envelope/riser_max", "m", Shape::kEnvelopeGrid};
-/// Smallest riser found to fail (riser_fail − riser_max ≤ the tolerance) [m].
-inline constexpr DatasetSpec kEnvelopeRiserFail{"/envelope/riser_fail", "m", Shape::kEnvelopeGrid};
-/// What fails at riser_fail: "leg L4 reach: full extension", "torque L1_femur", "friction
-/// cone L2", "trunk force z", "reach", "planning", ...; "" where nothing fails.
-inline constexpr DatasetSpec kEnvelopeLimit{"/envelope/limit", "1", Shape::kEnvelopeGridText,
-                                            Element::kString};
-/// The failing probe's one-line message (leg, instant, constraint, margin or violation).
-inline constexpr DatasetSpec kEnvelopeMessage{"/envelope/message", "1", Shape::kEnvelopeGridText,
-                                              Element::kString};
-/// The automatic posture at the kinematic riser_max (NaN when the posture is not auto):
-/// trunk height above the tread-centre slope line, gait.foot_lateral, smallest margin.
-inline constexpr DatasetSpec kEnvelopePostureHeight{"/envelope/posture_height", "m",
-                                                    Shape::kEnvelopeCells};
-inline constexpr DatasetSpec kEnvelopePostureFootLateral{"/envelope/posture_foot_lateral", "m",
-                                                         Shape::kEnvelopeCells};
-inline constexpr DatasetSpec kEnvelopePostureMargin{"/envelope/posture_margin", "m",
-                                                    Shape::kEnvelopeCells};
-
-// ---- /probes: every evaluation, in the order made ----
-/// Cell index into (W,B,S), row-major.
-inline constexpr DatasetSpec kProbeCell{"/probes/cell", "1", Shape::kEnvelopeProbes,
-                                        Element::kInt32};
-/// Criterion index into /axes/criteria.
-inline constexpr DatasetSpec kProbeCriterion{"/probes/criterion", "1", Shape::kEnvelopeProbes,
-                                             Element::kInt32};
-inline constexpr DatasetSpec kProbeRiser{"/probes/riser", "m", Shape::kEnvelopeProbes};
-/// 1 passed, 0 failed.
-inline constexpr DatasetSpec kProbePassed{"/probes/passed", "1", Shape::kEnvelopeProbes,
-                                          Element::kInt8};
-inline constexpr DatasetSpec kProbeLimit{"/probes/limit", "1", Shape::kEnvelopeProbes,
-                                         Element::kString};
-inline constexpr DatasetSpec kProbeMessage{"/probes/message", "1", Shape::kEnvelopeProbes,
-                                           Element::kString};
-
-/// Every dataset of an envelope file.
-inline constexpr std::array kEnvelopeDatasets{kEnvelopeTreadDepth,    kEnvelopeDutyFactor,
-                                              kEnvelopePeakSpeed,     kEnvelopeCriteria,
-                                              kEnvelopeRiserFrom,     kEnvelopeRiserTo,
-                                              kEnvelopeRiserMax,      kEnvelopeRiserFail,
-                                              kEnvelopeLimit,         kEnvelopeMessage,
-                                              kEnvelopePostureHeight, kEnvelopePostureFootLateral,
-                                              kEnvelopePostureMargin, kProbeCell,
-                                              kProbeCriterion,        kProbeRiser,
-                                              kProbePassed,           kProbeLimit,
-                                              kProbeMessage};
-
 }  // namespace hexdyn::schema
+
+// The envelope contract, in its own header (parsed as part of this one).
+#include "hexdyn/io/schema_envelope.hpp"  // IWYU pragma: export

@@ -162,7 +162,7 @@ std::vector<char> encode_run_image(const RunResult& run, const std::string& scra
   try {
     {
       H5Writer w(tmp);
-      write_result_layout(w, run, kRunImageGroup);
+      write_result_layout(w, run, kRunImageGroup, false);  // scales: once copied
       w.close();
     }
     std::ifstream in(tmp, std::ios::binary);

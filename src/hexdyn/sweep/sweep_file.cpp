@@ -10,6 +10,8 @@
 #include "hexdyn/io/atomic_file.hpp"
 #include "hexdyn/io/h5io.hpp"
 #include "hexdyn/io/interrupt.hpp"
+#include "hexdyn/io/key_units.hpp"
+#include "hexdyn/io/labels.hpp"
 #include "hexdyn/io/output.hpp"
 #include "hexdyn/io/schema.hpp"
 #include "hexdyn/version.hpp"
@@ -97,27 +99,46 @@ void write_meta(H5Writer& w, const SweepSpec& spec, bool keep_runs, const SweepR
   set_attribute(w, s::kMetaResumedScenarios, static_cast<std::int64_t>(info.resumed_scenarios));
 }
 
-void write_axes(H5Writer& w, const SweepSpec& spec) {
+/// /axes/{i}, /joint_names and the coordinates: one per axis at /{key}, /axis, /joint.
+void write_axes(H5Writer& w, Labeller& labels, const SweepSpec& spec) {
   w.create_group(s::kAxesGroup);
+  std::vector<std::string> keys;
   for (std::size_t a = 0; a < spec.axes.size(); ++a) {
     const SweepAxis& ax = spec.axes[a];
     const std::string i = std::to_string(a);
+    keys.push_back(ax.key);
     w.write_string(s::at(s::kAxisKey.path, i), ax.key, s::kAxisKey.units);
-    if (ax.numeric)
-      w.write_doubles(s::at(s::kAxisNumbers.path, i), {ax.size()}, ax.numbers,
-                      s::kAxisNumbers.units);
-    else
+    labels.add(s::kAxisKey, s::at(s::kAxisKey.path, i));
+    const std::string coordinate = s::at(s::kAxisCoordinateNumbers.path, ax.key);
+    if (ax.numeric) {
+      const std::string units = scene_key_units(ax.key);
+      w.write_doubles(s::at(s::kAxisNumbers.path, i), {ax.size()}, ax.numbers, units);
+      w.write_doubles(coordinate, {ax.size()}, ax.numbers, units);
+      labels.add(s::kAxisNumbers, s::at(s::kAxisNumbers.path, i), ax.key);
+      labels.add(s::kAxisCoordinateNumbers, coordinate, ax.key);
+    } else {
       w.write_strings(s::at(s::kAxisWords.path, i), ax.values, s::kAxisWords.units);
+      w.write_strings(coordinate, ax.values, s::kAxisCoordinateWords.units);
+      labels.add(s::kAxisWords, s::at(s::kAxisWords.path, i), ax.key);
+      labels.add(s::kAxisCoordinateWords, coordinate, ax.key);
+    }
     w.write_strings(s::at(s::kAxisLabels.path, i), ax.labels, s::kAxisLabels.units);
+    labels.add(s::kAxisLabels, s::at(s::kAxisLabels.path, i), ax.key);
   }
   std::vector<std::string> joints;
   for (int leg = 0; leg < kLegs; ++leg)
     for (int j = 0; j < kJointsPerLeg; ++j) joints.push_back(joint_name(leg, j));
   w.write_strings(s::kSweepJointNames.path, joints, s::kSweepJointNames.units);
+  labels.add(s::kSweepJointNames);
+  w.write_strings(s::kSweepJointCoordinate.path, joints, s::kSweepJointCoordinate.units);
+  labels.add(s::kSweepJointCoordinate);
+  w.write_strings(s::kAxisCoordinate.path, keys, s::kAxisCoordinate.units);
+  labels.add(s::kAxisCoordinate);
 }
 
 /// /scenarios: one row per scenario; rows[i].index == i.
-void write_scenarios(H5Writer& w, const SweepSpec& spec, const std::vector<ScenarioSummary>& rows) {
+void write_scenarios(H5Writer& w, Labeller& labels, const SweepSpec& spec,
+                     const std::vector<ScenarioSummary>& rows) {
   const std::size_t n = rows.size();
   const std::size_t A = spec.axes.size();
   // One column of a summary field, in scenario order.
@@ -125,11 +146,13 @@ void write_scenarios(H5Writer& w, const SweepSpec& spec, const std::vector<Scena
     std::vector<double> v(n);
     for (std::size_t i = 0; i < n; ++i) v[i] = rows[i].*field;
     write_doubles(w, d, {n}, v);
+    labels.add(d);
   };
   const auto counts = [&](const s::DatasetSpec& d, int ScenarioSummary::*field) {
     std::vector<std::int32_t> v(n);
     for (std::size_t i = 0; i < n; ++i) v[i] = rows[i].*field;
     write_int32(w, d, {n}, v);
+    labels.add(d);
   };
   using JointArray = std::array<double, kJoints>;
   const auto per_joint = [&](const s::DatasetSpec& d, JointArray ScenarioSummary::*field) {
@@ -138,6 +161,7 @@ void write_scenarios(H5Writer& w, const SweepSpec& spec, const std::vector<Scena
       std::copy((rows[i].*field).begin(), (rows[i].*field).end(),
                 v.begin() + static_cast<std::ptrdiff_t>(i * kJoints));
     write_doubles(w, d, {n, kJoints}, v);
+    labels.add(d);
   };
 
   std::vector<std::string> ids(n), messages(n);
@@ -151,7 +175,9 @@ void write_scenarios(H5Writer& w, const SweepSpec& spec, const std::vector<Scena
     for (std::size_t a = 0; a < A; ++a) axis_index[i * A + a] = static_cast<std::int32_t>(gp[a]);
   }
   w.write_strings(s::kScenarioId.path, ids, s::kScenarioId.units);
+  labels.add(s::kScenarioId);
   write_int32(w, s::kScenarioAxisIndex, {n, A}, axis_index);
+  labels.add(s::kScenarioAxisIndex);
   for (std::size_t a = 0; a < A; ++a) {
     const SweepAxis& ax = spec.axes[a];
     const std::string d = s::at(s::kScenarioAxisNumbers.path, std::to_string(a));
@@ -159,18 +185,22 @@ void write_scenarios(H5Writer& w, const SweepSpec& spec, const std::vector<Scena
       std::vector<double> v(n);
       for (std::size_t i = 0; i < n; ++i)
         v[i] = ax.numbers[static_cast<std::size_t>(axis_index[i * A + a])];
-      w.write_doubles(d, {n}, v, s::kScenarioAxisNumbers.units);
+      w.write_doubles(d, {n}, v, scene_key_units(ax.key));
+      labels.add(s::kScenarioAxisNumbers, d);
     } else {
       std::vector<std::string> v(n);
       for (std::size_t i = 0; i < n; ++i)
         v[i] = ax.values[static_cast<std::size_t>(axis_index[i * A + a])];
       w.write_strings(d, v, s::kScenarioAxisWords.units);
+      labels.add(s::kScenarioAxisWords, d);
     }
     w.set_string_attribute(d, s::kScenarioAxisKey.name, ax.key);
   }
   w.write_int8(s::kScenarioStatus.path, {n}, status, s::kScenarioStatus.units);
+  labels.add(s::kScenarioStatus);
   set_attribute(w, s::kScenarioStatusCodes, status_codes_text());
   w.write_strings(s::kScenarioMessage.path, messages, s::kScenarioMessage.units);
+  labels.add(s::kScenarioMessage);
   counts(s::kScenarioSamples, &ScenarioSummary::samples);
   doubles(s::kScenarioDuration, &ScenarioSummary::duration_s);
   doubles(s::kScenarioDistance, &ScenarioSummary::distance_m);
@@ -203,11 +233,18 @@ void write_sweep_file(const std::string& path, const SweepSpec& spec,
   publish_atomically(path, [&](const std::string& tmp) {
     H5Writer w(tmp);
     write_meta(w, spec, runs_from != nullptr, info);
-    write_axes(w, spec);
-    write_scenarios(w, spec, rows);
+    Labeller labels(w, "");
+    write_axes(w, labels, spec);
+    write_scenarios(w, labels, spec, rows);
+    labels.finish();
     if (runs_from != nullptr) {
       w.create_group(schema::kRunsGroup);
-      copy_runs(w.native_handle(), tmp, spec, rows, *runs_from);
+      copy_runs(w.id(), tmp, spec, rows, *runs_from);
+      // The images carry no dimension scales (HDF5 cannot copy their references).
+      for (const ScenarioSummary& row : rows)
+        if (const std::string run = schema::at(schema::kRunGroup, scenario_id(spec, row.index));
+            row.status == ScenarioStatus::kOk && H5Lexists(w.id(), run.c_str(), H5P_DEFAULT) > 0)
+          label_result_group(w, run);
     }
     w.close();
   });

@@ -1,4 +1,4 @@
-// hexdyn-result/1 writer: every dataset of the contract read back through the h5io
+// hexdyn-result/2 writer: every dataset of the contract read back through the h5io
 // readers with its shape, units and exact values; atomic replacement on failure.
 //
 // Setting HEXDYN_TEST_FIXTURE_DIR=<dir> keeps a copy of the synthetic result
@@ -184,6 +184,12 @@ std::vector<std::size_t> expected_dims(schema::Shape shape, std::size_t T, std::
       return {T, 6, 3};
     case Shape::kN:
       return {n};
+    case Shape::kXyz:
+      return {3};
+    case Shape::kWxyz:
+      return {4};
+    case Shape::kAxes:
+      break;  // not in this synthetic result
     case Shape::kScenarios:
     case Shape::kScenarioAxes:
     case Shape::kScenarioJoints:
@@ -195,7 +201,6 @@ std::vector<std::size_t> expected_dims(schema::Shape shape, std::size_t T, std::
     case Shape::kEnvelopeCriteria:
     case Shape::kEnvelopeCells:
     case Shape::kEnvelopeGrid:
-    case Shape::kEnvelopeGridText:
     case Shape::kEnvelopeProbes:
       break;  // shapes of the envelope file
     case Shape::kCycles:
@@ -230,8 +235,18 @@ void check_specs(const H5Reader& in, const std::array<schema::DatasetSpec, N>& s
     REQUIRE(in.is_dataset(spec.path));
     CHECK(in.dims(spec.path) == expected_dims(spec.shape, T, n, m));
     CHECK(in.element_type(spec.path) == element_name(spec.element));
-    REQUIRE(in.has_attribute(spec.path, schema::kUnitsAttribute));
-    CHECK(in.string_attribute(spec.path, schema::kUnitsAttribute) == spec.units);
+    if (*spec.units == '\0') {  // text and flags: no units
+      CHECK_FALSE(in.has_attribute(spec.path, schema::kUnitsAttribute));
+    } else {
+      REQUIRE(in.has_attribute(spec.path, schema::kUnitsAttribute));
+      CHECK(in.string_attribute(spec.path, schema::kUnitsAttribute) == spec.units);
+    }
+    REQUIRE(in.has_attribute(spec.path, schema::kLongNameAttribute));
+    CHECK(in.string_attribute(spec.path, schema::kLongNameAttribute) == spec.long_name);
+    // Every dataset with axes is labelled: a dimension scale, or one attached per axis.
+    if (!expected_dims(spec.shape, T, n, m).empty())
+      CHECK(
+          (in.has_attribute(spec.path, "DIMENSION_LIST") || in.has_attribute(spec.path, "CLASS")));
   }
 }
 
@@ -306,12 +321,13 @@ TEST_CASE("output: every dataset of the contract round-trips (dynamics present)"
   check_specs(in, schema::kModelDatasets, T, 4, 2);
   check_specs(in, schema::kKinematicDatasets, T, 4, 2);
   check_specs(in, schema::kDynamicsDatasets, T, 4, 2);
+  check_specs(in, schema::kResultCoordinates, T, 4, 2);
 
   namespace s = schema;
   const std::string meta = s::kMetaGroup;
   REQUIRE(in.is_group(meta));
-  CHECK(in.string_attribute(meta, s::kAttrSchema) == "hexdyn-result/1");
-  CHECK(in.int_attribute(meta, s::kAttrSchemaVersion) == 1);
+  CHECK(in.string_attribute(meta, s::kAttrSchema) == "hexdyn-result/2");
+  CHECK(in.int_attribute(meta, s::kAttrSchemaVersion) == 2);
   CHECK(in.string_attribute(meta, s::kAttrVersion) == kVersion);
   CHECK(in.string_attribute(meta, s::kAttrGitCommit) == kGitCommit);
   CHECK(in.string_attribute(meta, s::kAttrConfigYaml) == r.config_yaml);
@@ -337,7 +353,12 @@ TEST_CASE("output: every dataset of the contract round-trips (dynamics present)"
   check_values(in, s::kJointTorque.path, d.joint_torque);
   check_values(in, s::kContactForce.path, d.contact_force);
   check_values(in, s::kContactPenetration.path, d.penetration);
-  CHECK(in.read_ints(s::kImpactLeg.path) == std::vector<std::int64_t>{1, 2, 3, 4});
+  std::vector<std::int64_t> legs;  // 0-based, as the records
+  for (const ImpactRecord& im : d.impacts) legs.push_back(im.leg);
+  CHECK(in.read_ints(s::kImpactLeg.path) == legs);
+  CHECK(legs == std::vector<std::int64_t>{0, 1, 2, 3});
+  CHECK(in.string_attribute(s::kContactPhase.path, "flag_meanings") == "swing impact support");
+  CHECK(in.read_strings(s::kJointCoordinate.path) == joints);
   std::vector<double> start, duration, peak, impulse, mass, speed;
   for (const ImpactRecord& im : d.impacts) {
     start.push_back(im.t_start_s);

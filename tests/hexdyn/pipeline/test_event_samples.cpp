@@ -1,7 +1,7 @@
 // What a result holds integrates to what it reports (docs/theory/output-grid.md#event-samples):
 // on the paper scene, a speed-defined wave-gait scene and a URDF robot, every contact event
 // has a left-limit sample 1e-10 s before it in the pre-event phase; the trapezoid rule over
-// the samples, computed here, gives /energy/total and /energy/joint; the cycles' energies add
+// the samples, computed here, gives /energy/total and /energy/per_joint; the cycles' energies add
 // up to the total; the cycle starts match the motion's definition, worked out here from the
 // scene's parameters; the energy agrees with a fine uniform grid that has no event samples;
 // the stored terrain polyline carries every support foot.

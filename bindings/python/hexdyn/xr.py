@@ -1,0 +1,152 @@
+"""Labelled views of hexdyn files: xarray Datasets and pandas DataFrames.
+
+The dimensions are those of the files (docs/user/output.md#dimensions-and-coordinates), as
+declared in src/hexdyn/io/schema.hpp (`dimension_names`): time, leg, joint, xyz, wxyz,
+impact, message, one per sweep axis named by its key, scenario, and those of the envelope.
+Files of version 1, which carry no dimension scales, are labelled the same way from the
+declarations.
+
+    import hexdyn
+    res = hexdyn.open_result("paper.h5")
+    res.to_xarray("joints").torque.sel(joint="L2_femur")     # one group, its own names
+    res.to_xarray().joints_torque                            # all groups, named by path
+    sw = hexdyn.open_sweep("smoke.h5")
+    sw.to_xarray().cost_of_transport.sel({"terrain.riser_height": 0.04})
+    sw.to_dataframe()["peak_torque[L2_femur]"]
+    hexdyn.xr.open_envelope("envelope.h5").riser_max.sel(criterion="torque")
+
+xarray and pandas are imported when a function is called (Debian: python3-xarray,
+python3-pandas).
+"""
+
+import numpy as np
+
+from hexdyn import results as hr
+
+COMPONENTS = {"xyz": ["x", "y", "z"], "wxyz": ["w", "x", "y", "z"]}
+
+
+def _attrs(spec, units):
+    attrs = {}
+    if units:
+        attrs["units"] = units
+    if spec is not None and spec.long_name:
+        attrs["long_name"] = spec.long_name
+    if spec is not None and spec.path in hr.FLAGS:
+        meanings = hr.FLAGS[spec.path]
+        attrs["flag_values"] = np.arange(len(meanings), dtype=np.int8)
+        attrs["flag_meanings"] = " ".join(meanings)
+    return attrs
+
+
+def _values(value):
+    if isinstance(value, list):
+        return np.array(value, dtype=object)
+    return np.asarray(value)
+
+
+def _result_coordinates(res):
+    coords = {"time": ("time", np.asarray(res["/time"]), {"units": "s", "long_name": "time"})}
+    for dim, paths in (("leg", ("/leg", "/model/leg_names")),
+                       ("joint", ("/joint", "/model/joint_names"))):
+        for p in paths:
+            if p in res:
+                coords[dim] = (dim, _values(res[p]), {"long_name": f"{dim} name"})
+                break
+    for dim, labels in COMPONENTS.items():
+        coords[dim] = (dim, np.array(labels, dtype=object))
+    return coords
+
+
+def result_to_xarray(res, group=None):
+    """An xarray.Dataset of a hexdyn.results.Result (see Result.to_xarray)."""
+    import xarray as xr
+    if group is not None:
+        group = "/" + group.strip("/")
+    coords = _result_coordinates(res)
+    variables = {}
+    for path in res.paths():
+        parent, _, name = path.rpartition("/")
+        parent = parent or "/"
+        if name in coords and parent == "/":
+            continue  # a coordinate variable
+        if group is not None and parent != group:
+            continue
+        spec = hr.SPECS.get(path)
+        value = _values(res[path])
+        dims = spec.dims if spec is not None and len(spec.dims) == value.ndim else tuple(
+            f"{name}_dim_{k}" for k in range(value.ndim))
+        key = name if group is not None else path.strip("/").replace("/", "_")
+        variables[key] = (dims, value, _attrs(spec, res.units.get(path, "")))
+    used = {d for dims, _, _ in variables.values() for d in dims}
+    if group is None or group == "/":
+        used |= set(coords)
+    ds = xr.Dataset(variables, coords={k: v for k, v in coords.items() if k in used})
+    ds.attrs.update({k: v for k, v in res.meta.items() if isinstance(v, (str, int, float))})
+    return ds
+
+
+def _axis_coordinate(axis, units):
+    values = np.asarray(axis.values, dtype=float) if axis.numeric else np.array(
+        axis.values, dtype=object)
+    attrs = {"long_name": "values of the swept key"}
+    if axis.numeric and units and units not in ("SI", "key"):
+        attrs["units"] = units
+    return (axis.key, values, attrs)
+
+
+def _sweep_columns(sw):
+    """(name, values, spec) of the table's columns but the axis ones."""
+    for name, value in sw.table.items():
+        if name == "axis_index" or name.startswith("axis_"):
+            continue
+        yield name, _values(value), hr.SPECS.get(f"{hr.SCENARIOS_GROUP}/{name}")
+
+
+def sweep_to_xarray(sw):
+    """An xarray.Dataset of a hexdyn.results.Sweep, one dimension per axis."""
+    import xarray as xr
+    keys = [a.key for a in sw.axes]
+    coords = {}
+    for i, a in enumerate(sw.axes):
+        coords[a.key] = _axis_coordinate(a, sw.units.get(f"axis_{i}", ""))
+    coords["joint"] = ("joint", np.array(sw.joint_names, dtype=object),
+                       {"long_name": "joint name, leg-major"})
+    variables = {}
+    for name, value, spec in _sweep_columns(sw):
+        grid = value.reshape(sw.shape + value.shape[1:])
+        dims = tuple(keys) + (("joint",) if value.ndim == 2 else ())
+        variables[name] = (dims, grid, _attrs(spec, sw.units.get(name, "")))
+    ds = xr.Dataset(variables, coords=coords)
+    ds.attrs.update({k: v for k, v in sw.meta.items() if isinstance(v, (str, int, float))})
+    return ds
+
+
+def sweep_to_dataframe(sw):
+    """A pandas.DataFrame of a hexdyn.results.Sweep, one row per scenario."""
+    import pandas as pd
+    columns = {}
+    if "id" in sw.table:
+        columns["id"] = list(sw.table["id"])
+    index = np.asarray(sw.table["axis_index"]).reshape(sw.size, len(sw.axes))
+    for i, a in enumerate(sw.axes):
+        values = np.asarray(a.values, dtype=float) if a.numeric else np.array(a.values, object)
+        columns[a.key] = values[index[:, i]]
+    for name, value, _ in _sweep_columns(sw):
+        if name == "id":
+            continue
+        if value.ndim == 2:
+            for j, joint in enumerate(sw.joint_names):
+                columns[f"{name}[{joint}]"] = value[:, j]
+        else:
+            columns[name] = value
+    return pd.DataFrame(columns)
+
+
+def open_envelope(path, engine="h5netcdf"):
+    """The /envelope group of a hexdyn-envelope/2 file with the grid's coordinates
+    (tread_depth, duty_factor, peak_speed, criterion), as an xarray.Dataset."""
+    import xarray as xr
+    with xr.open_dataset(path, engine=engine) as root, \
+            xr.open_dataset(path, engine=engine, group="envelope") as env:
+        return env.assign_coords({d: root[d] for d in env.dims if d in root}).load()

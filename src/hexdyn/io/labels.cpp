@@ -1,0 +1,173 @@
+#include "hexdyn/io/labels.hpp"
+
+#include <hdf5.h>
+#include <hdf5_hl.h>
+
+#include <array>
+#include <cstdint>
+#include <map>
+#include <sstream>
+#include <string_view>
+
+#include "hexdyn/core/errors.hpp"
+
+namespace hexdyn {
+namespace {
+
+namespace s = schema;
+
+[[noreturn]] void fail(const H5Writer& w, const std::string& what) {
+  H5Eclear2(H5E_DEFAULT);
+  throw IoError("cannot write '" + w.file_path() + "': " + what);
+}
+
+std::vector<std::string> split(const char* words) {
+  std::istringstream in(words);
+  std::vector<std::string> out;
+  for (std::string word; in >> word;) out.push_back(word);
+  return out;
+}
+
+/// The coordinate of indices declared for dimension `dim`, or nullptr.
+const s::DatasetSpec* index_coordinate(const std::string& dim) {
+  for (const s::DatasetSpec& c : s::kResultIndexCoordinates)
+    if (dim == c.path + 1) return &c;
+  for (const s::DatasetSpec* c : {&s::kScenarioCoordinate, &s::kProbeCoordinate})
+    if (dim == c->path + 1) return c;
+  return nullptr;
+}
+
+/// Length of each axis of the dataset at `path`.
+std::vector<hsize_t> extent(const H5Writer& w, const std::string& path) {
+  const hid_t d = H5Dopen2(w.id(), path.c_str(), H5P_DEFAULT);
+  if (d < 0) fail(w, "cannot open '" + path + "' to label it");
+  const hid_t space = H5Dget_space(d);
+  const int rank = H5Sget_simple_extent_ndims(space);
+  std::vector<hsize_t> dims(static_cast<std::size_t>(std::max(rank, 0)));
+  if (rank > 0) H5Sget_simple_extent_dims(space, dims.data(), nullptr);
+  H5Sclose(space);
+  H5Dclose(d);
+  return dims;
+}
+
+/// Number of words of a space-separated list.
+std::int64_t word_count(const char* words) {
+  return static_cast<std::int64_t>(split(words).size());
+}
+
+}  // namespace
+
+void Labeller::add(const s::DatasetSpec& spec, const std::string& path, const std::string& key) {
+  std::vector<std::string> dims = split(s::dimension_names(spec.shape));
+  for (std::string& d : dims)
+    if (d == "{key}") d = key;
+  entries_.push_back({&spec, root_ + (path.empty() ? std::string(spec.path) : path), dims});
+}
+
+void Labeller::finish() {
+  // Long names and flags.
+  for (const Entry& e : entries_) {
+    w_.set_text_attribute(e.path, s::kLongNameAttribute, e.spec->long_name);
+    for (const s::FlagSpec& f : s::kFlags) {
+      if (std::string_view(f.path) != e.spec->path) continue;
+      std::vector<std::int64_t> codes;
+      for (std::int64_t c = 0; c < word_count(f.meanings); ++c) codes.push_back(c);
+      w_.set_int_array_attribute_like(e.path, "flag_values", codes);
+      w_.set_text_attribute(e.path, "flag_meanings", f.meanings);
+    }
+  }
+  // Each dimension's length, from the first dataset that uses it.
+  std::map<std::string, hsize_t> length;
+  std::vector<std::vector<hsize_t>> extents;
+  for (const Entry& e : entries_) {
+    extents.push_back(extent(w_, e.path));
+    if (extents.back().size() != e.dims.size())
+      fail(w_, e.path + " has " + std::to_string(extents.back().size()) + " axes, its shape " +
+                   std::to_string(e.dims.size()));
+    for (std::size_t k = 0; k < e.dims.size(); ++k) length.emplace(e.dims[k], extents.back()[k]);
+  }
+  // Coordinates: existing ones become scales; missing index ones are created.
+  if (!scales_) return;
+  std::map<std::string, hid_t> scales;
+  for (const auto& [dim, n] : length) {
+    const std::string path = root_ + "/" + dim;
+    if (H5Lexists(w_.id(), path.c_str(), H5P_DEFAULT) <= 0) {  // created (image) or here
+      const s::DatasetSpec* c = index_coordinate(dim);
+      if (c == nullptr) fail(w_, "dimension '" + dim + "' has no coordinate variable " + path);
+      std::vector<std::int32_t> index(n);
+      for (hsize_t i = 0; i < n; ++i) index[i] = static_cast<std::int32_t>(i);
+      w_.write_int32(path, {static_cast<std::size_t>(n)}, index, c->units);
+      w_.set_text_attribute(path, s::kLongNameAttribute, c->long_name);
+    }
+    const std::vector<hsize_t> own = extent(w_, path);
+    if (own.size() != 1 || own[0] != n)
+      fail(w_, path + " is not a coordinate of length " + std::to_string(n));
+    const hid_t id = H5Dopen2(w_.id(), path.c_str(), H5P_DEFAULT);
+    if (id < 0 || H5DSset_scale(id, dim.c_str()) < 0) {
+      if (id >= 0) H5Dclose(id);
+      for (auto& [name, sid] : scales) H5Dclose(sid);
+      fail(w_, "cannot make " + path + " a dimension scale");
+    }
+    scales[dim] = id;
+  }
+  std::string error;
+  for (std::size_t i = 0; i < entries_.size() && error.empty(); ++i) {
+    const Entry& e = entries_[i];
+    if (e.dims.empty() || e.path == root_ + "/" + e.dims[0]) continue;  // a scale itself
+    const hid_t d = H5Dopen2(w_.id(), e.path.c_str(), H5P_DEFAULT);
+    for (std::size_t k = 0; k < e.dims.size() && error.empty(); ++k) {
+      if (extents[i][k] != length[e.dims[k]])
+        error = e.path + " axis " + std::to_string(k) + " has " + std::to_string(extents[i][k]) +
+                " entries, dimension '" + e.dims[k] + "' " + std::to_string(length[e.dims[k]]);
+      else if (d < 0 || H5DSattach_scale(d, scales[e.dims[k]], static_cast<unsigned>(k)) < 0)
+        error = "cannot attach dimension '" + e.dims[k] + "' to " + e.path;
+    }
+    if (d >= 0) H5Dclose(d);
+  }
+  for (auto& [name, id] : scales) H5Dclose(id);
+  if (!error.empty()) fail(w_, error);
+}
+
+namespace {
+
+/// The declaration of a result dataset by its path below the result's root, or nullptr.
+const s::DatasetSpec* result_spec(const std::string& path) {
+  const s::DatasetSpec* found = nullptr;
+  const auto find = [&](const auto& list) {
+    for (const s::DatasetSpec& d : list)
+      if (path == d.path) found = &d;
+  };
+  find(s::kModelDatasets);
+  find(s::kUrdfRobotDatasets);
+  find(s::kKinematicDatasets);
+  find(s::kDynamicsDatasets);
+  find(s::kResultCoordinates);
+  find(s::kResultIndexCoordinates);
+  return found;
+}
+
+herr_t collect_dataset(hid_t, const char* name, const H5O_info_t* info, void* out) {
+  if (info->type == H5O_TYPE_DATASET)
+    static_cast<std::vector<std::string>*>(out)->push_back(std::string("/") + name);
+  return 0;
+}
+
+}  // namespace
+
+void label_result_group(H5Writer& w, const std::string& root) {
+  std::vector<std::string> paths;
+  const hid_t g = H5Gopen2(w.id(), root.c_str(), H5P_DEFAULT);
+  const herr_t visited =
+      g < 0 ? -1 : H5Ovisit(g, H5_INDEX_NAME, H5_ITER_NATIVE, collect_dataset, &paths);
+  if (g >= 0) H5Gclose(g);
+  if (visited < 0) fail(w, "cannot list the datasets of " + root);
+  Labeller labels(w, root);
+  for (const std::string& p : paths) {
+    const s::DatasetSpec* spec = result_spec(p);
+    if (spec == nullptr) fail(w, root + p + " is not declared in io/schema.hpp's result lists");
+    labels.add(*spec);
+  }
+  labels.finish();
+}
+
+}  // namespace hexdyn

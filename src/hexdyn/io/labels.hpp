@@ -1,0 +1,55 @@
+#pragma once
+/// \file labels.hpp
+/// Labels the datasets of a file for netCDF-4 readers (xarray, ncdump;
+/// docs/user/output.md#dimensions-and-coordinates): a `long_name` on each, CF
+/// `flag_values` and `flag_meanings` on the datasets of codes (schema::kFlags), and an
+/// HDF5 dimension scale per axis. The dimensions of a dataset are those of its shape
+/// (schema::dimension_names); dimension D is the coordinate variable at ROOT/D, ROOT being
+/// the file root or the group of a kept run, so that netCDF-4, which looks dimensions up
+/// the group tree, finds it from every group below. A coordinate of indices (/impact,
+/// /message, /scenario, /probe, ...) is created 0..n−1 when missing; labelled ones (/leg,
+/// /joint, an axis's values, ...) are written by the file's writer and recorded here.
+#include <string>
+#include <vector>
+
+#include "hexdyn/io/h5io.hpp"
+#include "hexdyn/io/schema.hpp"
+
+namespace hexdyn {
+
+class Labeller {
+ public:
+  /// Labels datasets below `root` ("" the file root, "/runs/000012" a kept run);
+  /// `dimension_scales` false writes long names, flags and index coordinates only.
+  Labeller(H5Writer& w, std::string root, bool dimension_scales = true)
+      : w_(w), root_(std::move(root)), scales_(dimension_scales) {}
+
+  /// Records the written dataset of `spec` at root + `path` (default: spec.path); `key`
+  /// names the dimension that stands for "{key}" (a sweep axis).
+  void add(const schema::DatasetSpec& spec, const std::string& path = {},
+           const std::string& key = {});
+
+  /// Writes long names and flags, creates the missing index coordinates, makes every
+  /// coordinate a dimension scale and attaches it to each recorded dataset's axis. Throws
+  /// IoError naming the dataset when an axis's length differs from its coordinate's, or a
+  /// dimension has no coordinate variable.
+  void finish();
+
+ private:
+  struct Entry {
+    const schema::DatasetSpec* spec;
+    std::string path;  ///< absolute in the file
+    std::vector<std::string> dims;
+  };
+  H5Writer& w_;
+  std::string root_;
+  bool scales_;
+  std::vector<Entry> entries_;
+};
+
+/// Labels the result below `root` of an open file (a kept run copied into a sweep file,
+/// whose object references HDF5 cannot copy): each dataset's declaration is looked up by
+/// its path in the result lists of schema.hpp. Throws IoError for an undeclared dataset.
+void label_result_group(H5Writer& w, const std::string& root);
+
+}  // namespace hexdyn

@@ -1,0 +1,119 @@
+#pragma once
+/// \file schema_envelope.hpp
+/// The `hexdyn-envelope/2` contract, part of io/schema.hpp (which includes this header at
+/// its end; the readers parse both as one text, in that order). Same conventions as there.
+#include "hexdyn/io/schema.hpp"
+
+namespace hexdyn::schema {
+
+// ===================================================================== hexdyn-envelope/2
+// The climbable envelope (envelope/envelope.hpp): W tread depths × B duty factors × S peak
+// speeds, C criteria ("kinematic", "torque", "friction"), P probes. Risers are NaN where
+// not found: riser_max when even the lowest riser fails, riser_fail when none fails up to
+// the top of the searched range.
+
+// ---- /meta: kMetaSchema … kMetaWallTime as a result file's (config_yaml: the envelope
+// file's text), then ----
+/// The base scene after inherit: and set:, validated and fully resolved.
+inline constexpr AttributeSpec kMetaEnvelopeBaseConfigYaml{kMetaGroup, "base_config_yaml",
+                                                           Element::kString};
+inline constexpr AttributeSpec kMetaEnvelopeName{kMetaGroup, "name", Element::kString};
+/// Bisection tolerance and scan step of the riser search [m].
+inline constexpr AttributeSpec kMetaEnvelopeTolerance{kMetaGroup, "riser_tolerance",
+                                                      Element::kFloat64};
+inline constexpr AttributeSpec kMetaEnvelopeStep{kMetaGroup, "riser_step", Element::kFloat64};
+/// Every /meta attribute of an envelope file.
+inline constexpr std::array kEnvelopeMetaAttributes{
+    kMetaSchema,       kMetaSchemaVersion,     kMetaVersion,     kMetaGitCommit,
+    kMetaCreatedUtc,   kMetaConfigYaml,        kMetaWallTime,    kMetaEnvelopeBaseConfigYaml,
+    kMetaEnvelopeName, kMetaEnvelopeTolerance, kMetaEnvelopeStep};
+
+// ---- the grid ----
+inline constexpr DatasetSpec kEnvelopeTreadDepth{"/axes/tread_depth", "m", Shape::kEnvelopeTreads,
+                                                 Element::kFloat64, "tread depth"};
+inline constexpr DatasetSpec kEnvelopeDutyFactor{"/axes/duty_factor", "1", Shape::kEnvelopeDuties,
+                                                 Element::kFloat64, "duty factor"};
+inline constexpr DatasetSpec kEnvelopePeakSpeed{"/axes/peak_speed", "m/s", Shape::kEnvelopeSpeeds,
+                                                Element::kFloat64, "peak speed"};
+inline constexpr DatasetSpec kEnvelopeCriteria{"/axes/criteria", "", Shape::kEnvelopeCriteria,
+                                               Element::kString, "criterion"};
+/// Searched riser range [m]: from, to.
+inline constexpr DatasetSpec kEnvelopeRiserFrom{"/axes/riser_from", "m", Shape::kScalar,
+                                                Element::kFloat64, "lowest riser searched"};
+inline constexpr DatasetSpec kEnvelopeRiserTo{"/axes/riser_to", "m", Shape::kScalar,
+                                              Element::kFloat64, "highest riser searched"};
+
+// ---- /envelope: the boundary per cell and criterion ----
+/// Largest riser found climbable (every probe at or below it passed) [m].
+inline constexpr DatasetSpec kEnvelopeRiserMax{"/envelope/riser_max", "m", Shape::kEnvelopeGrid,
+                                               Element::kFloat64, "largest riser found climbable"};
+/// Smallest riser found to fail (riser_fail − riser_max ≤ the tolerance) [m].
+inline constexpr DatasetSpec kEnvelopeRiserFail{"/envelope/riser_fail", "m", Shape::kEnvelopeGrid,
+                                                Element::kFloat64, "smallest riser found to fail"};
+/// What fails at riser_fail: "leg L4 reach: full extension", "torque L1_femur", "friction
+/// cone L2", "trunk force z", "reach", "planning", ...; "" where nothing fails.
+inline constexpr DatasetSpec kEnvelopeLimit{"/envelope/limit", "", Shape::kEnvelopeGrid,
+                                            Element::kString, "what fails at riser_fail"};
+/// The failing probe's one-line message (leg, instant, constraint, margin or violation).
+inline constexpr DatasetSpec kEnvelopeMessage{"/envelope/message", "", Shape::kEnvelopeGrid,
+                                              Element::kString, "message of the failing probe"};
+/// The automatic posture at the kinematic riser_max (NaN when the posture is not auto):
+/// trunk height above the tread-centre slope line, gait.foot_lateral, smallest margin.
+inline constexpr DatasetSpec kEnvelopePostureHeight{
+    "/envelope/posture_height", "m", Shape::kEnvelopeCells, Element::kFloat64,
+    "automatic trunk height at the kinematic riser_max"};
+inline constexpr DatasetSpec kEnvelopePostureFootLateral{
+    "/envelope/posture_foot_lateral", "m", Shape::kEnvelopeCells, Element::kFloat64,
+    "automatic foot lateral distance at the kinematic riser_max"};
+inline constexpr DatasetSpec kEnvelopePostureMargin{
+    "/envelope/posture_margin", "m", Shape::kEnvelopeCells, Element::kFloat64,
+    "smallest kinematic margin of the automatic posture"};
+
+// ---- /probes: every evaluation, in the order made ----
+/// Cell index into (W,B,S), row-major.
+inline constexpr DatasetSpec kProbeCell{
+    "/probes/cell", "1", Shape::kEnvelopeProbes, Element::kInt32,
+    "cell index into (tread_depth, duty_factor, peak_speed), row-major"};
+/// Criterion index into /axes/criteria.
+inline constexpr DatasetSpec kProbeCriterion{"/probes/criterion", "1", Shape::kEnvelopeProbes,
+                                             Element::kInt32,
+                                             "criterion index into the criterion dimension"};
+inline constexpr DatasetSpec kProbeRiser{"/probes/riser", "m", Shape::kEnvelopeProbes,
+                                         Element::kFloat64, "riser height probed"};
+/// 1 passed, 0 failed (CF flags kProbePassedFlags).
+inline constexpr DatasetSpec kProbePassed{"/probes/passed", "", Shape::kEnvelopeProbes,
+                                          Element::kInt8, "probe outcome"};
+inline constexpr DatasetSpec kProbeLimit{"/probes/limit", "", Shape::kEnvelopeProbes,
+                                         Element::kString, "what failed"};
+inline constexpr DatasetSpec kProbeMessage{"/probes/message", "", Shape::kEnvelopeProbes,
+                                           Element::kString, "message of the probe"};
+
+// ---- coordinate variables (dimension_names) ----
+inline constexpr DatasetSpec kTreadDepthCoordinate{"/tread_depth", "m", Shape::kEnvelopeTreads,
+                                                   Element::kFloat64, "tread depth"};
+inline constexpr DatasetSpec kDutyFactorCoordinate{"/duty_factor", "1", Shape::kEnvelopeDuties,
+                                                   Element::kFloat64, "duty factor"};
+inline constexpr DatasetSpec kPeakSpeedCoordinate{"/peak_speed", "m/s", Shape::kEnvelopeSpeeds,
+                                                  Element::kFloat64, "peak speed"};
+inline constexpr DatasetSpec kCriterionCoordinate{"/criterion", "", Shape::kEnvelopeCriteria,
+                                                  Element::kString, "criterion"};
+inline constexpr DatasetSpec kProbeCoordinate{"/probe", "1", Shape::kEnvelopeProbes,
+                                              Element::kInt32, "probe index"};
+inline constexpr std::array kEnvelopeCoordinates{kTreadDepthCoordinate, kDutyFactorCoordinate,
+                                                 kPeakSpeedCoordinate, kCriterionCoordinate,
+                                                 kProbeCoordinate};
+inline constexpr FlagSpec kProbePassedFlags{"/probes/passed", "failed passed"};
+/// Every CF flag declaration of the three file kinds.
+inline constexpr std::array kFlags{kContactPhaseFlags, kSolverStatusFlags, kSampleKindFlags,
+                                   kScenarioStatusFlags, kProbePassedFlags};
+
+/// Every dataset of an envelope file.
+// clang-format off
+inline constexpr std::array kEnvelopeDatasets{
+    kEnvelopeTreadDepth, kEnvelopeDutyFactor, kEnvelopePeakSpeed, kEnvelopeCriteria,
+    kEnvelopeRiserFrom, kEnvelopeRiserTo, kEnvelopeRiserMax, kEnvelopeRiserFail, kEnvelopeLimit,
+    kEnvelopeMessage, kEnvelopePostureHeight, kEnvelopePostureFootLateral, kEnvelopePostureMargin,
+    kProbeCell, kProbeCriterion, kProbeRiser, kProbePassed, kProbeLimit, kProbeMessage};
+// clang-format on
+
+}  // namespace hexdyn::schema

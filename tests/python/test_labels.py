@@ -1,0 +1,210 @@
+#!/usr/bin/python3
+"""The files as netCDF-4 readers see them (docs/user/output.md#dimensions-and-coordinates):
+
+  test_labels.py HEXDYN SOURCE_DIR
+
+Writes a result (configs/paper.yaml), a sweep with kept runs (configs/sweeps/smoke.yaml)
+and an envelope (tests/data/envelope_quick.yaml), then checks on each: `ncdump -h` reads
+it; xarray opens every group with both engines (h5netcdf, netcdf4) with named dimensions
+and no phony ones, each dataset on the dimensions its shape declares (schema.hpp's
+dimension_names), the coordinates holding the joint names, leg names, component labels
+and axis values read back independently with h5py; every `units` parses with UDUNITS-2
+(`udunits2`), every dataset has its declared `long_name`, the declared CF flags are
+there; Result/Sweep.to_xarray and Sweep.to_dataframe agree with the scenario table; a
+file of version 1 (made here from the result with h5py) reads as its version-2 original.
+Exit 0 when all hold; ncdump or udunits2 missing are skipped with a message.
+"""
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+import warnings
+
+import h5py
+import numpy as np
+import xarray as xr
+
+import hexdyn
+from hexdyn import results as hr
+from hexdyn import xr as hx
+
+HEXDYN, SRC = sys.argv[1], sys.argv[2]
+ENGINES = ("h5netcdf", "netcdf4")
+failures = []
+
+
+def check(ok, what):
+    if not ok:
+        failures.append(what)
+        print(f"FAIL {what}", file=sys.stderr)
+
+
+def run(*args):
+    subprocess.run([HEXDYN, *args], check=True, stderr=subprocess.DEVNULL,
+                   env=dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1",
+                            OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1"))
+
+
+def groups_and_datasets(path):
+    groups, datasets = ["/"], []
+    with h5py.File(path, "r") as f:
+        def visit(name, obj):
+            (groups if isinstance(obj, h5py.Group) else datasets).append("/" + name)
+        f.visititems(visit)
+    return groups, datasets
+
+
+def declared(path, root_key=None):
+    """The DatasetSpec of a dataset path (below a kept run's group too) and the dims it
+    declares ("{key}" replaced by the axis key of `root_key`)."""
+    rel = path
+    if path.startswith("/runs/"):
+        rel = "/" + path.split("/", 3)[3]
+    spec = hr.SPECS.get(rel)
+    if spec is None and rel.startswith("/axes/"):
+        spec = hr.SPECS.get("/axes/{i}/" + rel.rsplit("/", 1)[1])
+    if spec is None and rel.startswith("/scenarios/axis_") and rel != "/scenarios/axis_index":
+        spec = hr.SPECS["/scenarios/axis_{i}"]
+    if spec is None and root_key is not None and rel.strip("/") in root_key:
+        spec = hr.SPECS["/{key}"]
+    return spec
+
+
+def check_file(path, units_seen):
+    groups, datasets = groups_and_datasets(path)
+    with h5py.File(path, "r") as f:
+        keys = set()
+        if "axes" in f and isinstance(f["axes"].get("0"), h5py.Group):  # a sweep
+            keys = {hr._text(f["axes"][i]["key"][()]) for i in f["axes"]}
+        for p in datasets:
+            ds = f[p]
+            spec = declared(p, keys)
+            check(spec is not None, f"{path}:{p} declared")
+            if spec is None:
+                continue
+            check(hr._text(ds.attrs.get("long_name")) == spec.long_name, f"{path}:{p} long_name")
+            if "units" in ds.attrs:
+                units_seen.add(hr._text(ds.attrs["units"]))
+            if spec.path in hr.FLAGS:
+                check(hr._text(ds.attrs.get("flag_meanings", "")).split() == hr.FLAGS[spec.path],
+                      f"{path}:{p} flag_meanings")
+            want = tuple(d if d != "{key}" else None for d in spec.dims)
+            got = tuple(h5py.h5ds.get_scale_name(ds.dims[k][0].id).decode() if len(ds.dims[k])
+                        else "" for k in range(ds.ndim))
+            if "CLASS" in ds.attrs:  # a coordinate: its own scale
+                got = (p.rsplit("/", 1)[1],)
+            check(all(w is None or w == g for w, g in zip(want, got)) and len(want) == len(got),
+                  f"{path}:{p} dims {got}, declared {spec.dims}")
+        for name, value in f["meta"].attrs.items():  # numeric attributes with units
+            if name.endswith("_units"):
+                units_seen.add(hr._text(value))
+    if shutil.which("ncdump"):
+        check(subprocess.run(["ncdump", "-h", path], capture_output=True).returncode == 0,
+              f"ncdump -h {path}")
+    else:
+        print("skip: ncdump (Debian netcdf-bin) not installed")
+    # Every group, but of the kept runs (all alike) the first one only: time.
+    runs = sorted({g.split("/")[2] for g in groups if g.startswith("/runs/")})
+    groups = [g for g in groups if not g.startswith("/runs/") or g.split("/")[2] == runs[0]]
+    for engine in ENGINES:
+        for g in groups:
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")
+                with xr.open_dataset(path, engine=engine, group=g) as ds:
+                    phony = [d for d in ds.dims if str(d).startswith("phony_dim")]
+                    check(not phony, f"{path}:{g} ({engine}) phony dims {phony}")
+                    ds.load()
+    return groups
+
+
+def main():
+    tmp = tempfile.mkdtemp()
+    try:
+        result, sweep, envelope = (os.path.join(tmp, n) for n in ("r.h5", "s.h5", "e.h5"))
+        run("run", os.path.join(SRC, "configs", "paper.yaml"), "-o", result)
+        run("sweep", os.path.join(SRC, "configs", "sweeps", "smoke.yaml"), "-o", sweep,
+            "--keep-runs")
+        run("envelope", os.path.join(SRC, "tests", "data", "envelope_quick.yaml"), "-o", envelope)
+        units = set()
+        for path in (result, sweep, envelope):
+            check_file(path, units)
+
+        # Coordinates and values against h5py.
+        with h5py.File(result, "r") as f:
+            torque = f["joints/torque"][()]
+            legs0 = f["impacts/leg"][()]
+        for engine in ENGINES:
+            with xr.open_dataset(result, engine=engine) as root, \
+                    xr.open_dataset(result, engine=engine, group="joints") as j:
+                check(list(root.joint.values) == list(hr.JOINT_NAMES), f"joint names ({engine})")
+                check(list(root.leg.values) == list(hr.LEG_NAMES), f"leg names ({engine})")
+                check(list(root.wxyz.values) == list("wxyz"), f"wxyz labels ({engine})")
+                t = j.torque.assign_coords(joint=root.joint)
+                check(np.array_equal(t.sel(joint="L2_femur").values, torque[:, 4]),
+                      f"torque.sel(joint='L2_femur') ({engine})")
+                check(j.torque.attrs.get("units") == "N m", f"torque units ({engine})")
+                check(j.torque.dims == ("time", "joint"), f"torque dims ({engine})")
+        res = hexdyn.open_result(result)
+        ds = res.to_xarray("contacts")
+        check(ds.force.dims == ("time", "leg", "xyz") and list(ds.leg.values) == list(hr.LEG_NAMES),
+              "Result.to_xarray('contacts')")
+        check(set(legs0) <= set(range(6)) and res.to_xarray().impacts_leg.dims == ("impact",),
+              "/impacts/leg 0-based on the impact dimension")
+
+        sw = hexdyn.open_sweep(sweep)
+        with xr.open_dataset(sweep, engine="netcdf4") as root:
+            for a in sw.axes:
+                check(np.allclose(root[a.key].values, a.values), f"axis {a.key} coordinate")
+            check(root["terrain.riser_height"].attrs.get("units") == "m", "axis units m")
+            check(root["gait.duty_factor"].attrs.get("units") == "1", "axis units 1")
+        x = sw.to_xarray()
+        mask = np.isclose(np.asarray(sw.table["axis_0"]), 0.04)
+        sel = x.cost_of_transport.sel({"terrain.riser_height": 0.04}).values.ravel()
+        check(np.allclose(np.sort(sel), np.sort(sw.table["cost_of_transport"][mask])),
+              "Sweep.to_xarray sel by riser height")
+        check(x.peak_torque.dims[-1] == "joint", "per-joint metric on the joint dimension")
+        df = sw.to_dataframe()
+        check(np.allclose(df["peak_torque[L2_femur]"], sw.table["peak_torque"][:, 4]),
+              "to_dataframe per-joint column")
+        check(np.allclose(df["terrain.riser_height"], sw.table["axis_0"]), "to_dataframe axis")
+
+        env = hx.open_envelope(envelope)
+        with h5py.File(envelope, "r") as f:
+            criteria = [hr._text(c) for c in f["axes/criteria"][()]]
+        check(env.riser_max.dims == ("tread_depth", "duty_factor", "peak_speed", "criterion")
+              and list(env.criterion.values) == criteria, "envelope dims and criteria")
+
+        if shutil.which("udunits2"):
+            for u in sorted(units):
+                r = subprocess.run(["udunits2", "-H", u, "-W", ""], capture_output=True,
+                                   stdin=subprocess.DEVNULL)
+                check(r.returncode == 0 and not r.stderr, f"udunits2 parses {u!r}")
+        else:
+            print("skip: udunits2 (Debian udunits-bin) not installed")
+        check({"s", "m", "N m", "N^2 m^2", "1"} <= units, f"units seen {sorted(units)}")
+
+        # A version-1 file: the result with the version-1 names and 1-based legs.
+        v1 = os.path.join(tmp, "v1.h5")
+        shutil.copy(result, v1)
+        with h5py.File(v1, "r+") as f:
+            f["meta"].attrs["schema"] = "hexdyn-result/1"
+            f["meta"].attrs["schema_version"] = np.int64(1)
+            f.move("power/per_joint", "power/joint")
+            f.move("energy/per_joint", "energy/joint")
+            f["impacts/leg"][...] = f["impacts/leg"][()] + 1
+        old = hexdyn.open_result(v1)
+        check(np.array_equal(old["/impacts/leg"], res["/impacts/leg"]), "version 1: impact legs")
+        check(np.array_equal(old["/power/per_joint"], res["/power/per_joint"]),
+              "version 1: /power/joint read as /power/per_joint")
+        check(old.to_xarray("energy").per_joint.dims == ("joint",), "version 1: to_xarray")
+    finally:
+        shutil.rmtree(tmp, ignore_errors=True)
+    if failures:
+        print(f"test_labels: {len(failures)} failure(s)", file=sys.stderr)
+        sys.exit(1)
+    print("test_labels: ok")
+
+
+if __name__ == "__main__":
+    main()
