@@ -31,7 +31,7 @@ void silence_hdf5_errors() { H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); }
 
 std::int64_t file_access_properties() {
   const hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
-  H5Pset_libver_bounds(fapl, H5F_LIBVER_V18, H5F_LIBVER_V18);
+  H5Pset_libver_bounds(fapl, H5F_LIBVER_EARLIEST, H5F_LIBVER_V18);
   return fapl;
 }
 
@@ -48,6 +48,7 @@ H5Writer::H5Writer(const std::string& file_path, bool compress)
   Handle fcpl(H5Pcreate(H5P_FILE_CREATE), H5Pclose);
   Handle fapl(file_access_properties(), H5Pclose);
   if (!fcpl.valid() || !fapl.valid() || H5Pset_istore_k(fcpl.get(), kChunkIndexK) < 0 ||
+      H5Pset_link_creation_order(fcpl.get(), H5P_CRT_ORDER_TRACKED) < 0 ||
       H5Pset_fapl_core(fapl.get(), kCoreIncrement, 0) < 0 ||
       H5Pset_fclose_degree(fapl.get(), H5F_CLOSE_STRONG) < 0)
     fail(file_path_, "set up the in-memory file for", file_path_);
@@ -121,7 +122,10 @@ void H5Writer::create_group(const std::string& group_path) {
     const htri_t exists = H5Lexists(file_, g.c_str(), H5P_DEFAULT);
     if (exists > 0) continue;
     if (exists < 0) fail(file_path_, "look up group", g);
-    Handle h(H5Gcreate2(file_, g.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose);
+    Handle gcpl(H5Pcreate(H5P_GROUP_CREATE), H5Pclose);
+    if (!gcpl.valid() || H5Pset_link_creation_order(gcpl.get(), H5P_CRT_ORDER_TRACKED) < 0)
+      fail(file_path_, "set up group", g);
+    Handle h(H5Gcreate2(file_, g.c_str(), H5P_DEFAULT, gcpl.get(), H5P_DEFAULT), H5Gclose);
     if (!h.valid()) fail(file_path_, "create group", g);
   }
 }

@@ -33,8 +33,11 @@ inline constexpr unsigned kChunkIndexK = 2;
 void silence_hdf5_errors();
 
 /// A new file-access property list (hid_t; the caller closes it) for writing: objects in
-/// the HDF5 1.8 file format, as netCDF-4 writes them (compact groups without B-trees),
-/// readable by HDF5 1.8 and later.
+/// the oldest format that holds them, at most HDF5 1.8's, as netCDF-4 writes them; groups
+/// track link creation order (as netCDF-4's do), which makes them compact 1.8 groups without
+/// B-trees. The low bound stays the earliest: a 1.8 superblock (version 2) carries
+/// status flags that an in-memory file's image (H5Writer::close) leaves set, and such an
+/// image fails its checksum when read.
 std::int64_t file_access_properties();
 
 /// Creates (truncates) an HDF5 file and writes datasets and attributes into it.
