@@ -107,7 +107,11 @@ inline constexpr const char* kAttrGitCommit = "git_commit";    ///< string
 inline constexpr const char* kAttrCreatedUtc = "created_utc";  ///< string, ISO 8601 "…Z"
 inline constexpr const char* kAttrConfigYaml = "config_yaml";  ///< string, fully resolved
 inline constexpr const char* kAttrWallTime = "wall_time_s";    ///< double [s]
-inline constexpr const char* kUnitsAttribute = "units";        ///< on every dataset
+/// string: one line "SHA256  ABSOLUTE_PATH" per input file read (scene, inherited files,
+/// URDF; a sweep's and an envelope's own file first), `sha256sum -c` format
+/// (docs/user/output.md#provenance-of-the-inputs)
+inline constexpr const char* kAttrInputSha256 = "input_sha256";
+inline constexpr const char* kUnitsAttribute = "units";  ///< on every dataset
 
 inline constexpr AttributeSpec kMetaSchema{kMetaGroup, kAttrSchema, Element::kString};
 inline constexpr AttributeSpec kMetaSchemaVersion{kMetaGroup, kAttrSchemaVersion, Element::kInt64};
@@ -116,10 +120,11 @@ inline constexpr AttributeSpec kMetaGitCommit{kMetaGroup, kAttrGitCommit, Elemen
 inline constexpr AttributeSpec kMetaCreatedUtc{kMetaGroup, kAttrCreatedUtc, Element::kString};
 inline constexpr AttributeSpec kMetaConfigYaml{kMetaGroup, kAttrConfigYaml, Element::kString};
 inline constexpr AttributeSpec kMetaWallTime{kMetaGroup, kAttrWallTime, Element::kFloat64};
+inline constexpr AttributeSpec kMetaInputSha256{kMetaGroup, kAttrInputSha256, Element::kString};
 /// Every /meta attribute of a result file.
 inline constexpr std::array kResultMetaAttributes{
-    kMetaSchema,     kMetaSchemaVersion, kMetaVersion, kMetaGitCommit,
-    kMetaCreatedUtc, kMetaConfigYaml,    kMetaWallTime};
+    kMetaSchema,     kMetaSchemaVersion, kMetaVersion,  kMetaGitCommit,
+    kMetaCreatedUtc, kMetaConfigYaml,    kMetaWallTime, kMetaInputSha256};
 
 // ---- /model ----
 inline constexpr DatasetSpec kModelUrdf{"/model/urdf", "1", Shape::kText, Element::kString};
@@ -230,9 +235,9 @@ inline constexpr AttributeSpec kMetaResumedScenarios{kMetaGroup, "resumed_scenar
                                                      Element::kInt64};
 /// Every /meta attribute of a sweep file (wall_time_s: the whole sweep [s]).
 inline constexpr std::array kSweepMetaAttributes{
-    kMetaSchema,    kMetaSchemaVersion, kMetaVersion,         kMetaGitCommit, kMetaCreatedUtc,
-    kMetaSweepName, kMetaSweepYaml,     kMetaBaseConfigYaml,  kMetaScenarios, kMetaKeepRuns,
-    kMetaWallTime,  kMetaRanks,         kMetaResumedScenarios};
+    kMetaSchema,    kMetaSchemaVersion, kMetaVersion,          kMetaGitCommit,  kMetaCreatedUtc,
+    kMetaSweepName, kMetaSweepYaml,     kMetaBaseConfigYaml,   kMetaScenarios,  kMetaKeepRuns,
+    kMetaWallTime,  kMetaRanks,         kMetaResumedScenarios, kMetaInputSha256};
 
 // ---- /axes/{i}: axis i = 0..A−1 of the sweep file, in file order ----
 inline constexpr const char* kAxesGroup = "/axes";
@@ -339,9 +344,9 @@ inline constexpr AttributeSpec kMetaEnvelopeTolerance{kMetaGroup, "riser_toleran
 inline constexpr AttributeSpec kMetaEnvelopeStep{kMetaGroup, "riser_step", Element::kFloat64};
 /// Every /meta attribute of an envelope file.
 inline constexpr std::array kEnvelopeMetaAttributes{
-    kMetaSchema,       kMetaSchemaVersion,     kMetaVersion,     kMetaGitCommit,
-    kMetaCreatedUtc,   kMetaConfigYaml,        kMetaWallTime,    kMetaEnvelopeBaseConfigYaml,
-    kMetaEnvelopeName, kMetaEnvelopeTolerance, kMetaEnvelopeStep};
+    kMetaSchema,       kMetaSchemaVersion,     kMetaVersion,      kMetaGitCommit,
+    kMetaCreatedUtc,   kMetaConfigYaml,        kMetaWallTime,     kMetaEnvelopeBaseConfigYaml,
+    kMetaEnvelopeName, kMetaEnvelopeTolerance, kMetaEnvelopeStep, kMetaInputSha256};
 
 // ---- the grid ----
 inline constexpr DatasetSpec kEnvelopeTreadDepth{"/axes/tread_depth", "m", Shape::kEnvelopeTreads};
