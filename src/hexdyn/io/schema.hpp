@@ -107,8 +107,8 @@ inline constexpr const char* kAttrGitCommit = "git_commit";    ///< string
 inline constexpr const char* kAttrCreatedUtc = "created_utc";  ///< string, ISO 8601 "…Z"
 inline constexpr const char* kAttrConfigYaml = "config_yaml";  ///< string, fully resolved
 inline constexpr const char* kAttrWallTime = "wall_time_s";    ///< double [s]
-/// string: one line "SHA256  ABSOLUTE_PATH" per input file read (scene, inherited files,
-/// URDF; a sweep's and an envelope's own file first), `sha256sum -c` format
+/// string, one line "SHA256  ABSOLUTE_PATH" per input file read (scene, inherited files,
+/// URDF; a sweep's and an envelope's own file first), as `sha256sum` writes them
 /// (docs/user/output.md#provenance-of-the-inputs)
 inline constexpr const char* kAttrInputSha256 = "input_sha256";
 inline constexpr const char* kUnitsAttribute = "units";  ///< on every dataset
