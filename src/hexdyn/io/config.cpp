@@ -434,12 +434,14 @@ std::string with_chosen_posture(const std::string& resolved_yaml, double height_
     posture.remove(key);
   }
   posture["height"] = exact_number(height_m);
-  YAML::Node gait = child_map(root, "gait");
-  YAML::Node gait_requests = child_map(root["auto"], "gait");
-  if (!gait_requests["foot_lateral"].IsDefined() && gait["foot_lateral"].IsDefined())
-    gait_requests["foot_lateral"] = YAML::Clone(gait["foot_lateral"]);
-  if (gait_requests.size() == 0) root["auto"].remove("gait");
-  gait["foot_lateral"] = exact_number(foot_lateral_m);
+  // gait.foot_lateral is a choice only when the search could vary it (a foot_lateral range).
+  if (requests["foot_lateral"].IsDefined()) {
+    YAML::Node gait = child_map(root, "gait");
+    YAML::Node gait_requests = child_map(root["auto"], "gait");
+    if (!gait_requests["foot_lateral"].IsDefined() && gait["foot_lateral"].IsDefined())
+      gait_requests["foot_lateral"] = YAML::Clone(gait["foot_lateral"]);
+    gait["foot_lateral"] = exact_number(foot_lateral_m);
+  }
   YAML::Emitter out;
   out << requests_last(root);
   return std::string(out.c_str()) + "\n";

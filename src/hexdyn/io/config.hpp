@@ -68,9 +68,10 @@ std::string read_text_file(const std::string& path);
 /// `resolved_yaml` (a Scene::resolved_yaml of a scene with motion.posture.height: auto)
 /// with the automatic posture written in as the values used
 /// (docs/user/configuration.md#automatic-choices-in-the-resolved-configuration):
-/// motion.posture.height becomes `height_m` and gait.foot_lateral `foot_lateral_m`, both
-/// written with 17 significant digits (they read back to the same doubles); the search's
-/// keys (height: auto, height_range, target_margin, trunk_clearance, foot_lateral) move to
+/// motion.posture.height becomes `height_m` and, when motion.posture.foot_lateral let the
+/// search vary it, gait.foot_lateral becomes `foot_lateral_m`, both written with 17
+/// significant digits (they read back to the same doubles); the search's keys (height:
+/// auto, height_range, target_margin, trunk_clearance, foot_lateral) move to
 /// auto.motion.posture, and gait.foot_lateral's value before the search to
 /// auto.gait.foot_lateral unless that holds a request already. The result is a valid scene
 /// that plans the same motion without searching.
