@@ -61,7 +61,7 @@ Outcome simulate(int workers, std::size_t n) {
   const std::size_t side = static_cast<std::size_t>(std::ceil(std::sqrt(static_cast<double>(n))));
   n = side * side;
   hexdyn::SweepCoordinator coord(n, {side, side}, workers);
-  const hexdyn::SweepIdentity id = hexdyn::make_identity("s", "b", "bench", n, false);
+  const hexdyn::SweepIdentity id = hexdyn::make_identity({}, "b", "bench", n, false);
   hexdyn::ScenarioSummary row = hexdyn::failed_summary(0, hexdyn::ScenarioStatus::kOk, "");
   row.energy_J = 10.0;
   std::vector<char> journal;

@@ -43,7 +43,7 @@ void BM_SweepScenarioOverhead(benchmark::State& state) {
   std::vector<std::size_t> sizes;
   for (const auto& a : spec.axes) sizes.push_back(a.size());
   const hexdyn::SweepIdentity id =
-      hexdyn::make_identity(spec.sweep_yaml, spec.base_config_yaml, "bench", 1000, false);
+      hexdyn::make_identity(spec.inputs, spec.base_config_yaml, "bench", 1000, false);
   double config = 0, physics = 0, summary = 0, encode = 0, journal = 0, messages = 0, coord = 0;
   double ok_config = 0, ok_physics = 0;
   std::size_t scenarios = 0, ok = 0;

@@ -15,7 +15,7 @@ export PYTHONPATH="$HEXDYN_BUILD/python${PYTHONPATH:+:$PYTHONPATH}"
 HEXDYN_PACKAGES=(
   build-essential cmake pkg-config git
   libeigen3-dev coinor-libipopt-dev libhdf5-dev hdf5-tools libgsl-dev catch2
-  libopenmpi-dev openmpi-bin libyaml-cpp-dev libbenchmark-dev liburdfdom-dev
+  libopenmpi-dev openmpi-bin libyaml-cpp-dev libbenchmark-dev liburdfdom-dev libssl-dev
   python3 python3-h5py python3-numpy python3-matplotlib python3-yaml
   python3-dev pybind11-dev python3-pybind11 python3-scipy
   python3-xarray python3-h5netcdf python3-netcdf4 python3-pandas netcdf-bin udunits-bin

@@ -17,6 +17,7 @@ set(HEXDYN_SWEEP_TESTS
   "schema_declared_equals_written=schema_declared"  # io/schema.hpp as Python parses it = the files written
   "crash_contained=crash_contained"              # a scenario that aborts its process: crashed row, sweep completes, also on --resume
   "idle_ranks_do_not_spin=idle_ranks"            # ranks waiting for work use at most 10 % of a core each
+  "resume_refused_after_edited_input=edited_inputs"  # issue 22 B1: an edited URDF or inherited scene refuses --resume, naming it
 )
 foreach(entry IN LISTS HEXDYN_SWEEP_TESTS)
   string(REPLACE "=" ";" pair "${entry}")

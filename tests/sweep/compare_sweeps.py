@@ -12,7 +12,8 @@ except (sweep files):
     /runs/<id>/solver/seconds
 With --result the files are hexdyn-result/2 files (a run of `hexdyn run`, or a group
 given as FILE.h5:/runs/<id>): /meta created_utc, wall_time_s and /solver/seconds are
-ignored. Exit status 0 when equal, 1 with one line per difference otherwise.
+ignored, and so is /meta input_sha256 (a kept run records its sweep's input files, a
+`hexdyn run` its scene's). Exit status 0 when equal, 1 with one line per difference otherwise.
 """
 
 import argparse
@@ -35,6 +36,8 @@ def ignored_attrs(path, sweep):
     for pattern, attrs in IGNORED_ATTR_PATTERNS:
         if re.match(pattern, path):
             names |= attrs
+            if not sweep:
+                names.add("input_sha256")
     return names
 
 

@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """Lists the scenarios finished in a sweep checkpoint: the ids of the intact row records
 of every journal in CHECKPOINT_DIR (the layout of src/hexdyn/sweep/journal.hpp, read
-here independently of hexdyn: 64-byte header, then records of magic "HXR1", kind,
+here independently of hexdyn: a header of "HXDJRN02" and its size H (uint32 at byte 8;
+"HXDJRN01": 64 bytes), then records of magic "HXR1", kind,
 index, identity, payload size, payload and a CRC-32 of all but the magic, which is
 zlib's). One id per line, sorted; records that fail their checksum are left out.
 
@@ -16,8 +17,14 @@ import zlib
 MAGIC = b"HXR1"
 
 
+def header_size(data):
+    if data[:8] == b"HXDJRN02" and len(data) >= 12:
+        return struct.unpack_from("<I", data, 8)[0]
+    return 64
+
+
 def records(data):
-    at = 64
+    at = header_size(data)
     while at + 36 <= len(data):
         if data[at:at + 4] != MAGIC:
             at += 1

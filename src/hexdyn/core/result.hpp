@@ -87,12 +87,23 @@ struct DynamicsResult {
   bool present = false;
 };
 
+/// The automatic posture of a run (motion.posture.height: auto, planning/posture.hpp), which
+/// /meta config_yaml records as the values used
+/// (docs/user/configuration.md#automatic-choices-in-the-resolved-configuration).
+struct ChosenPosture {
+  bool automatic = false;       ///< the height was searched
+  double height_m = 0.0;        ///< the height chosen [m]
+  double foot_lateral_m = 0.0;  ///< gait.foot_lateral used [m]
+};
+
 /// What a run produces: the arrays and the provenance for /meta.
 struct RunResult {
   KinematicsResult kin;
   DynamicsResult dyn;
-  std::string config_yaml;  ///< fully resolved
-  std::string urdf;         ///< robot exactly as simulated
+  std::string config_yaml;   ///< fully resolved, automatic choices included
+  std::string input_sha256;  ///< "SHA256  PATH" per input file (Scene::input_sha256)
+  ChosenPosture posture;     ///< written into /meta config_yaml (io/config.hpp)
+  std::string urdf;          ///< robot exactly as simulated
   /// /model/joint_names: the description's joint names in flat joint order (a URDF
   /// robot's own names; empty: hexdyn's L{i}_coxa … names).
   std::vector<std::string> joint_names;

@@ -190,6 +190,9 @@ struct Scene {
   OutputParams output;
   std::string resolved_yaml;  ///< the fully resolved configuration, as YAML
   std::string source_path;    ///< the file it was read from
+  /// The input files read (scene, inherited files, URDF) with their SHA-256, one line
+  /// "SHA256  ABSOLUTE_PATH" each (io/inputs.hpp); /meta input_sha256 of the result.
+  std::string input_sha256;
 };
 
 }  // namespace hexdyn

@@ -32,6 +32,7 @@
 #include <vector>
 
 #include "hexdyn/core/scene.hpp"
+#include "hexdyn/io/inputs.hpp"
 
 namespace hexdyn {
 
@@ -45,6 +46,9 @@ struct EnvelopeSpec {
   std::string base_path;         ///< the base scene (relative paths resolved)
   std::string base_tree_yaml;    ///< the base scene tree after inherit: and set:
   std::string base_config_yaml;  ///< the base scene validated and fully resolved
+  /// The envelope file, the base scene, its inherited files and its URDF, hashed
+  /// (io/inputs.hpp): /meta input_sha256.
+  std::vector<InputFile> inputs;
   double riser_from_m = 0.0, riser_to_m = 0.3, riser_step_m = 0.01, tolerance_m = 0.001;
   std::vector<double> tread_depth_m;        ///< W values (the base scene's when not given)
   std::vector<double> duty_factor;          ///< B values

@@ -6,6 +6,7 @@
 #include "hexdyn/envelope/envelope.hpp"
 #include "hexdyn/io/atomic_file.hpp"
 #include "hexdyn/io/h5io.hpp"
+#include "hexdyn/io/inputs.hpp"
 #include "hexdyn/io/interrupt.hpp"
 #include "hexdyn/io/labels.hpp"
 #include "hexdyn/io/output.hpp"
@@ -37,6 +38,7 @@ void write_file(H5Writer& w, const EnvelopeSpec& spec, const EnvelopeResult& r) 
   w.set_string_attribute(meta, s::kMetaEnvelopeName.name, spec.name);
   w.set_double_attribute(meta, s::kMetaEnvelopeTolerance.name, spec.tolerance_m);
   w.set_double_attribute(meta, s::kMetaEnvelopeStep.name, spec.riser_step_m);
+  w.set_string_attribute(meta, s::kAttrInputSha256, input_sha256_text(spec.inputs));
 
   const std::size_t W = spec.tread_depth_m.size(), B = spec.duty_factor.size(),
                     S = spec.peak_speed_mps.size(), C = spec.criteria.size();

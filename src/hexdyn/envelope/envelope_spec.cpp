@@ -89,7 +89,8 @@ EnvelopeSpec load_envelope_spec(const std::string& path) {
     r.fail_value("base", base,
                  "the path of a scene file, relative to the envelope file (" + spec.base_path +
                      " " + *why + ")");
-  YAML::Node tree = load_scene_tree(spec.base_path);
+  std::vector<std::string> chain;
+  YAML::Node tree = load_scene_tree(spec.base_path, &chain);
   const YAML::Node set = root["set"];
   if (given(set)) {
     if (!set.IsMap()) r.fail_value("set", set, "a mapping of dotted key paths to values");
@@ -106,6 +107,9 @@ EnvelopeSpec load_envelope_spec(const std::string& path) {
   spec.base_tree_yaml = emit.c_str();
   const Scene base_scene = scene_from_yaml(tree, path + " (base " + spec.base_path + ")");
   spec.base_config_yaml = base_scene.resolved_yaml;
+  add_input(spec.inputs, "envelope file", path);
+  for (InputFile& f : scene_inputs(chain, tree))
+    add_input(spec.inputs, f.role == "scene" ? "base scene" : f.role, f.path);
   if (base_scene.terrain.type != TerrainType::kStairs)
     r.fail("base",
            "the base scene's terrain.type is not stairs, expected a staircase (its riser is "

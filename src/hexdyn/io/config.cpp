@@ -4,12 +4,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <map>
 #include <set>
 #include <sstream>
 
 #include "hexdyn/core/errors.hpp"
+#include "hexdyn/io/inputs.hpp"
 #include "hexdyn/io/plausibility.hpp"
 #include "hexdyn/io/robot_config.hpp"
 #include "hexdyn/io/scene_key_reader.hpp"
@@ -129,7 +131,9 @@ void read_terrain(Reader& r, TerrainParams& t) {
 void read_gait(Reader& r, GaitParams& g, const LoadedUrdfRobot& urdf) {
   g.duty_factor = r.number("gait.duty_factor", {0.5, 1.0, false, true});
   g.stroke_m = r.number("gait.stroke", positive(2.0));
-  // A URDF robot's footholds default to its nominal stance radius (io/robot_config.hpp).
+  // A URDF robot's footholds default to its nominal stance radius (io/robot_config.hpp),
+  // an automatic choice the resolved configuration records beside the value.
+  if (urdf.robot && !r.given("gait.foot_lateral")) r.record("auto.gait.foot_lateral", "auto");
   g.foot_lateral_m = urdf.robot
                          ? r.number_or("gait.foot_lateral", urdf.stance_radius_m, positive(2.0))
                          : r.number("gait.foot_lateral", positive(2.0));
@@ -262,6 +266,10 @@ void read_allocation(Reader& r, AllocationParams& a, const LoadedUrdfRobot& urdf
   const std::string solver =
       r.choice("allocation.solver", {"auto", "active-set", "ipopt"}, &def_solver);
   a.solver = solver == "ipopt" ? AllocationSolver::kIpopt : AllocationSolver::kActiveSet;
+  if (solver == "auto") {  // resolved as the back end used, the request beside it
+    r.record("allocation.solver", "active-set");
+    r.record("auto.allocation.solver", "auto");
+  }
   // A URDF robot: its effort limits per joint unless the scene gives one limit for all
   // (allocation.torque_limit: effort names the default).
   if (urdf.robot && r.absent_or_word("allocation.torque_limit", "effort")) {
@@ -286,6 +294,20 @@ void read_allocation(Reader& r, AllocationParams& a, const LoadedUrdfRobot& urdf
   a.slack_penalty = r.number_or("allocation.slack_penalty", 1e6, positive(1e12));
 }
 
+/// `auto:`: what a scene asked hexdyn to choose, as the resolved configuration of an
+/// earlier run records it beside the values chosen
+/// (docs/user/configuration.md#automatic-choices-in-the-resolved-configuration). A record
+/// only: carried into the resolved configuration unchanged, never read as a setting.
+void read_auto_requests(Reader& r) {
+  if (!r.has("auto")) return;
+  const YAML::Node& requests = r.node("auto");
+  if (!requests.IsMap())
+    r.fail_value("auto", requests,
+                 "a map of the keys hexdyn chose and what was asked (a resolved configuration's "
+                 "record)");
+  r.record("auto", YAML::Clone(requests));
+}
+
 void read_output(Reader& r, OutputParams& o) {
   o.sample_step_s = r.number("output.sample_step", positive(100.0));
   const std::string def_grid = "adaptive";
@@ -299,6 +321,15 @@ void read_output(Reader& r, OutputParams& o) {
     r.fail("output.event_step", "got " + fmt(o.event_step_s) +
                                     ", expected at most output.sample_step (" +
                                     fmt(o.sample_step_s) + ")");
+}
+
+/// `resolved` with its `auto:` record, if any, moved to the end (after the settings).
+YAML::Node requests_last(YAML::Node resolved) {
+  if (!resolved["auto"].IsDefined()) return resolved;
+  const YAML::Node requests = YAML::Clone(resolved["auto"]);
+  resolved.remove("auto");
+  resolved["auto"] = requests;
+  return resolved;
 }
 
 }  // namespace
@@ -355,6 +386,7 @@ Scene scene_from_yaml(const YAML::Node& root, const std::string& source_name, bo
   s.source_path = source_name;
   Reader r(root, source_name);
   s.name = r.string_or("name", "scene");
+  read_auto_requests(r);
   LoadedUrdfRobot urdf;
   read_robot(r, s.robot, urdf);
   read_terrain(r, s.terrain);
@@ -367,22 +399,70 @@ Scene scene_from_yaml(const YAML::Node& root, const std::string& source_name, bo
   check_physical_plausibility(s, source_name);  // timings that no physical motion has
   if (!emit_resolved) return s;
   YAML::Emitter out;
-  out << r.resolved();
+  out << requests_last(r.resolved());
   s.resolved_yaml = std::string(out.c_str()) + "\n";
   return s;
+}
+
+namespace {
+
+/// A number as YAML text that reads back to the same double.
+YAML::Node exact_number(double x) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.17g", x);
+  return YAML::Node(std::string(buf));
+}
+
+/// `node[key]`, made a map when absent or not a map.
+YAML::Node child_map(YAML::Node node, const std::string& key) {
+  if (!node[key].IsMap()) node[key] = YAML::Node(YAML::NodeType::Map);
+  return node[key];
+}
+
+}  // namespace
+
+std::string with_chosen_posture(const std::string& resolved_yaml, double height_m,
+                                double foot_lateral_m) {
+  YAML::Node root = YAML::Load(resolved_yaml);
+  YAML::Node posture = root["motion"]["posture"];
+  if (!posture.IsMap()) return resolved_yaml;
+  YAML::Node requests = child_map(child_map(child_map(root, "auto"), "motion"), "posture");
+  for (const char* key :
+       {"height", "height_range", "target_margin", "trunk_clearance", "foot_lateral"}) {
+    if (!posture[key].IsDefined()) continue;
+    requests[key] = YAML::Clone(posture[key]);
+    posture.remove(key);
+  }
+  posture["height"] = exact_number(height_m);
+  // gait.foot_lateral is a choice only when the search could vary it (a foot_lateral range).
+  if (requests["foot_lateral"].IsDefined()) {
+    YAML::Node gait = child_map(root, "gait");
+    YAML::Node gait_requests = child_map(root["auto"], "gait");
+    if (!gait_requests["foot_lateral"].IsDefined() && gait["foot_lateral"].IsDefined())
+      gait_requests["foot_lateral"] = YAML::Clone(gait["foot_lateral"]);
+    gait["foot_lateral"] = exact_number(foot_lateral_m);
+  }
+  YAML::Emitter out;
+  out << requests_last(root);
+  return std::string(out.c_str()) + "\n";
 }
 
 Scene load_scene_from_string(const std::string& yaml_text, const std::string& source_name,
                              const std::vector<Override>& overrides) {
   YAML::Node root = parse_yaml_text(yaml_text, source_name);
   for (const auto& ov : overrides) apply_override(root, ov, source_name);
-  return scene_from_yaml(root, source_name);
+  Scene s = scene_from_yaml(root, source_name);
+  s.input_sha256 = input_sha256_text(scene_inputs({}, root));  // the URDF, if any
+  return s;
 }
 
 Scene load_scene(const std::string& path, const std::vector<Override>& overrides) {
-  YAML::Node root = load_scene_tree(path);
+  std::vector<std::string> files;
+  YAML::Node root = load_scene_tree(path, &files);
   for (const auto& ov : overrides) apply_override(root, ov, path);
-  return scene_from_yaml(root, path);
+  Scene s = scene_from_yaml(root, path);
+  s.input_sha256 = input_sha256_text(scene_inputs(files, root));
+  return s;
 }
 
 }  // namespace hexdyn

@@ -36,8 +36,10 @@ Override parse_override(const std::string& text);
 /// key; scalars and lists replace). Throws ConfigError on an unreadable file, an
 /// `inherit:` that is not a regular file, or a cycle (files compared by canonical path,
 /// so `./cfg.yaml` and `../dir/cfg.yaml` are found; the message shows the chain).
-/// Every file goes through read_text_file and parse_yaml_text.
-YAML::Node load_scene_tree(const std::string& path);
+/// Every file goes through read_text_file and parse_yaml_text. When `files` is given, it
+/// receives the files read: `path`, then each inherited file in inheritance order, as
+/// named (relative paths joined to the inheriting file's folder).
+YAML::Node load_scene_tree(const std::string& path, std::vector<std::string>* files = nullptr);
 
 /// Reads (with inheritance), overrides and validates a scene file.
 Scene load_scene(const std::string& path, const std::vector<Override>& overrides = {});
@@ -62,6 +64,19 @@ YAML::Node parse_yaml_text(const std::string& text, const std::string& source_na
 /// read, is not a regular file (directories, devices, FIFOs and sockets are refused by
 /// their type before any open that could block) or is larger than kMaxConfigBytes (1 MiB).
 std::string read_text_file(const std::string& path);
+
+/// `resolved_yaml` (a Scene::resolved_yaml of a scene with motion.posture.height: auto)
+/// with the automatic posture written in as the values used
+/// (docs/user/configuration.md#automatic-choices-in-the-resolved-configuration):
+/// motion.posture.height becomes `height_m` and, when motion.posture.foot_lateral let the
+/// search vary it, gait.foot_lateral becomes `foot_lateral_m`, both written with 17
+/// significant digits (they read back to the same doubles); the search's keys (height:
+/// auto, height_range, target_margin, trunk_clearance, foot_lateral) move to
+/// auto.motion.posture, and gait.foot_lateral's value before the search to
+/// auto.gait.foot_lateral unless that holds a request already. The result is a valid scene
+/// that plans the same motion without searching.
+std::string with_chosen_posture(const std::string& resolved_yaml, double height_m,
+                                double foot_lateral_m);
 
 /// Applies one override to a tree (creating intermediate maps); throws ConfigError when
 /// the path runs through a non-map value.

@@ -3,6 +3,7 @@
 #include <utility>
 
 #include "hexdyn/core/errors.hpp"
+#include "hexdyn/io/config.hpp"
 #include "hexdyn/io/output.hpp"
 #include "hexdyn/version.hpp"
 
@@ -48,13 +49,18 @@ class Builder {
 
 void add_meta(ResultLayout& layout, const RunResult& r) {
   namespace s = schema;
-  layout.attributes = {{&s::kMetaSchema, std::string(s::kResultSchema)},
-                       {&s::kMetaSchemaVersion, s::kResultSchemaVersion},
-                       {&s::kMetaVersion, std::string(kVersion)},
-                       {&s::kMetaGitCommit, std::string(kGitCommit)},
-                       {&s::kMetaCreatedUtc, utc_timestamp_now()},
-                       {&s::kMetaConfigYaml, r.config_yaml},
-                       {&s::kMetaWallTime, r.wall_time_s}};
+  layout.attributes = {
+      {&s::kMetaSchema, std::string(s::kResultSchema)},
+      {&s::kMetaSchemaVersion, s::kResultSchemaVersion},
+      {&s::kMetaVersion, std::string(kVersion)},
+      {&s::kMetaGitCommit, std::string(kGitCommit)},
+      {&s::kMetaCreatedUtc, utc_timestamp_now()},
+      {&s::kMetaConfigYaml,
+       r.posture.automatic && !r.config_yaml.empty()
+           ? with_chosen_posture(r.config_yaml, r.posture.height_m, r.posture.foot_lateral_m)
+           : r.config_yaml},
+      {&s::kMetaWallTime, r.wall_time_s},
+      {&s::kMetaInputSha256, r.input_sha256}};
 }
 
 void add_model(Builder& b, const RunResult& r) {

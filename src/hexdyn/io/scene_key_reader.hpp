@@ -200,6 +200,16 @@ class Reader {
     return true;
   }
 
+  /// The node at `path` (undefined when absent), counted as asked for.
+  YAML::Node node(const std::string& path) {
+    asked_.insert(path);
+    return lookup(path);
+  }
+
+  /// Writes `value` at `path` of the resolved tree (a value the file did not give as such).
+  void record(const std::string& path, const YAML::Node& value) { set_resolved(path, value); }
+  void record(const std::string& path, const char* word) { set_resolved(path, YAML::Node(word)); }
+
   /// Every key of the file must have been asked for; reports the first unknown one.
   void check_unknown() const { walk(root_, ""); }
 

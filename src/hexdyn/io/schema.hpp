@@ -162,7 +162,11 @@ inline constexpr const char* kAttrGitCommit = "git_commit";    ///< string
 inline constexpr const char* kAttrCreatedUtc = "created_utc";  ///< string, ISO 8601 "…Z"
 inline constexpr const char* kAttrConfigYaml = "config_yaml";  ///< string, fully resolved
 inline constexpr const char* kAttrWallTime = "wall_time_s";    ///< double [s]
-inline constexpr const char* kUnitsAttribute = "units";        ///< on every dataset with units
+/// string, one line "SHA256  ABSOLUTE_PATH" per input file read (scene, inherited files,
+/// URDF; a sweep's and an envelope's own file first), as `sha256sum` writes them
+/// (docs/user/output.md#provenance-of-the-inputs)
+inline constexpr const char* kAttrInputSha256 = "input_sha256";
+inline constexpr const char* kUnitsAttribute = "units";  ///< on every dataset with units
 /// CF `long_name`, on every dataset.
 inline constexpr const char* kLongNameAttribute = "long_name";
 
@@ -173,10 +177,11 @@ inline constexpr AttributeSpec kMetaGitCommit{kMetaGroup, kAttrGitCommit, Elemen
 inline constexpr AttributeSpec kMetaCreatedUtc{kMetaGroup, kAttrCreatedUtc, Element::kString};
 inline constexpr AttributeSpec kMetaConfigYaml{kMetaGroup, kAttrConfigYaml, Element::kString};
 inline constexpr AttributeSpec kMetaWallTime{kMetaGroup, kAttrWallTime, Element::kFloat64};
+inline constexpr AttributeSpec kMetaInputSha256{kMetaGroup, kAttrInputSha256, Element::kString};
 /// Every /meta attribute of a result file.
 inline constexpr std::array kResultMetaAttributes{
-    kMetaSchema,     kMetaSchemaVersion, kMetaVersion, kMetaGitCommit,
-    kMetaCreatedUtc, kMetaConfigYaml,    kMetaWallTime};
+    kMetaSchema,     kMetaSchemaVersion, kMetaVersion,  kMetaGitCommit,
+    kMetaCreatedUtc, kMetaConfigYaml,    kMetaWallTime, kMetaInputSha256};
 
 // ---- /model ----
 inline constexpr DatasetSpec kModelUrdf{"/model/urdf", "", Shape::kText, Element::kString,
@@ -376,9 +381,9 @@ inline constexpr AttributeSpec kMetaResumedScenarios{kMetaGroup, "resumed_scenar
                                                      Element::kInt64};
 /// Every /meta attribute of a sweep file (wall_time_s: the whole sweep [s]).
 inline constexpr std::array kSweepMetaAttributes{
-    kMetaSchema,    kMetaSchemaVersion, kMetaVersion,         kMetaGitCommit, kMetaCreatedUtc,
-    kMetaSweepName, kMetaSweepYaml,     kMetaBaseConfigYaml,  kMetaScenarios, kMetaKeepRuns,
-    kMetaWallTime,  kMetaRanks,         kMetaResumedScenarios};
+    kMetaSchema,    kMetaSchemaVersion, kMetaVersion,          kMetaGitCommit,  kMetaCreatedUtc,
+    kMetaSweepName, kMetaSweepYaml,     kMetaBaseConfigYaml,   kMetaScenarios,  kMetaKeepRuns,
+    kMetaWallTime,  kMetaRanks,         kMetaResumedScenarios, kMetaInputSha256};
 
 // ---- /axes/{i}: axis i = 0..A−1 of the sweep file, in file order ----
 inline constexpr const char* kAxesGroup = "/axes";

@@ -24,9 +24,9 @@ inline constexpr AttributeSpec kMetaEnvelopeTolerance{kMetaGroup, "riser_toleran
 inline constexpr AttributeSpec kMetaEnvelopeStep{kMetaGroup, "riser_step", Element::kFloat64};
 /// Every /meta attribute of an envelope file.
 inline constexpr std::array kEnvelopeMetaAttributes{
-    kMetaSchema,       kMetaSchemaVersion,     kMetaVersion,     kMetaGitCommit,
-    kMetaCreatedUtc,   kMetaConfigYaml,        kMetaWallTime,    kMetaEnvelopeBaseConfigYaml,
-    kMetaEnvelopeName, kMetaEnvelopeTolerance, kMetaEnvelopeStep};
+    kMetaSchema,       kMetaSchemaVersion,     kMetaVersion,      kMetaGitCommit,
+    kMetaCreatedUtc,   kMetaConfigYaml,        kMetaWallTime,     kMetaEnvelopeBaseConfigYaml,
+    kMetaEnvelopeName, kMetaEnvelopeTolerance, kMetaEnvelopeStep, kMetaInputSha256};
 
 // ---- the grid ----
 inline constexpr DatasetSpec kEnvelopeTreadDepth{"/axes/tread_depth", "m", Shape::kEnvelopeTreads,

@@ -332,16 +332,19 @@ YAML::Node parse_yaml_text(const std::string& text, const std::string& source_na
   throw ConfigError(source_name + ": top level: got " + got + ", expected a map of sections");
 }
 
-YAML::Node load_scene_tree(const std::string& path) {
+YAML::Node load_scene_tree(const std::string& path, std::vector<std::string>* files) {
   std::vector<ChainLink> chain;
-  return load_with_inheritance(path, chain);
+  YAML::Node root = load_with_inheritance(path, chain);
+  if (files) {
+    files->clear();
+    for (const ChainLink& link : chain) files->push_back(link.path);
+  }
+  return root;
 }
 
 std::vector<std::string> scene_input_files(const std::string& path) {
-  std::vector<ChainLink> chain;
-  load_with_inheritance(path, chain);
   std::vector<std::string> files;
-  for (const ChainLink& link : chain) files.push_back(link.path);
+  load_scene_tree(path, &files);
   return files;
 }
 

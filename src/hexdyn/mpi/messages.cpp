@@ -67,10 +67,16 @@ class Unpacker {
 
 std::vector<char> pack_spec(const SweepSpec& spec, const SweepIdentity& identity) {
   std::vector<char> b;
-  for (std::uint64_t v :
-       {identity.id, identity.sweep_file, identity.base_scene, identity.build, identity.scenarios})
+  for (std::uint64_t v : {identity.id, identity.base_scene, identity.build, identity.scenarios})
     put_pod(b, v);
   put_i64(b, identity.keep_runs ? 1 : 0);
+  // The inputs: the identity's (absolute paths) and the spec's (/meta input_sha256 of a
+  // kept run), each role, path, absolute path, SHA-256.
+  for (const std::vector<InputFile>* list : {&identity.inputs, &spec.inputs}) {
+    put_i64(b, static_cast<std::int64_t>(list->size()));
+    for (const InputFile& f : *list)
+      for (const std::string* t : {&f.role, &f.path, &f.absolute, &f.sha256}) put_text(b, *t);
+  }
   put_text(b, spec.name);
   put_text(b, spec.base_path);
   put_text(b, spec.base_tree_yaml);
@@ -89,10 +95,19 @@ std::vector<char> pack_spec(const SweepSpec& spec, const SweepIdentity& identity
 SweepSpec unpack_spec(const std::vector<char>& bytes, SweepIdentity& identity) {
   Unpacker u(bytes);
   SweepSpec spec;
-  for (std::uint64_t* v : {&identity.id, &identity.sweep_file, &identity.base_scene,
-                           &identity.build, &identity.scenarios})
+  for (std::uint64_t* v :
+       {&identity.id, &identity.base_scene, &identity.build, &identity.scenarios})
     *v = static_cast<std::uint64_t>(u.i64());
   identity.keep_runs = u.i64() != 0;
+  for (std::vector<InputFile>* list : {&identity.inputs, &spec.inputs}) {
+    const std::int64_t n = u.i64();
+    if (n < 0) throw Error("sweep: malformed message between ranks");
+    for (std::int64_t i = 0; i < n; ++i) {
+      InputFile f;
+      for (std::string* t : {&f.role, &f.path, &f.absolute, &f.sha256}) *t = u.text();
+      list->push_back(std::move(f));
+    }
+  }
   spec.name = u.text();
   spec.base_path = u.text();
   spec.base_tree_yaml = u.text();

@@ -111,6 +111,10 @@ RunResult run_prepared_scene(const Scene& scene, const PreparedScene& prep, std:
   describe_base_at_root_link(prep.model,
                              result.kin);  // after the dynamics, which use the trunk frame
   result.config_yaml = scene.resolved_yaml;
+  result.input_sha256 = scene.input_sha256;
+  result.posture.automatic = prep.plan.posture.mode == PostureMode::kAuto;
+  result.posture.height_m = prep.plan.posture.height_m;
+  result.posture.foot_lateral_m = prep.plan.posture.foot_lateral_m;
   result.urdf =
       robot_urdf(prep.model, scene.robot.urdf ? scene.robot.urdf->name : "hexdyn_hexapod");
   result.joint_names.assign(prep.model.joint_source_names.begin(),

@@ -131,8 +131,8 @@ void write_all(int fd, const char* data, std::size_t n, const std::string& path)
 std::string build_identity() { return std::string("hexdyn ") + kVersion + " (" + kGitCommit + ")"; }
 
 SweepIdentity sweep_identity(const SweepSpec& spec, bool keep_runs) {
-  return make_identity(spec.sweep_yaml, spec.base_config_yaml, build_identity(),
-                       spec.scenario_count(), keep_runs);
+  return make_identity(spec.inputs, spec.base_config_yaml, build_identity(), spec.scenario_count(),
+                       keep_runs);
 }
 
 Checkpoint::Checkpoint(const std::string& output_path, const SweepSpec& spec, bool keep_runs,

@@ -11,7 +11,11 @@
 namespace hexdyn {
 namespace {
 
-constexpr char kJournalMagic[8] = {'H', 'X', 'D', 'J', 'R', 'N', '0', '1'};
+constexpr char kJournalMagic[8] = {'H', 'X', 'D', 'J', 'R', 'N', '0', '2'};
+constexpr char kJournalMagicV1[8] = {'H', 'X', 'D', 'J', 'R', 'N', '0', '1'};
+constexpr std::size_t kJournalHeaderV1Bytes = 64;
+/// Magic, H, I, id, base_scene, build, scenarios, keep_runs.
+constexpr std::size_t kHeaderFixedBytes = 8 + 4 + 4 + 5 * 8;
 constexpr std::uint32_t kRecordMagic = 0x31525848u;  // "HXR1" in little-endian memory order
 /// Largest payload accepted when reading (a kept run is a few MB).
 constexpr std::uint64_t kMaxPayload = std::uint64_t{1} << 34;
@@ -22,10 +26,73 @@ std::string padded(std::uint64_t index) {
   return buf;
 }
 
+void put_text(std::vector<char>& b, const std::string& s) {
+  put_pod(b, static_cast<std::uint32_t>(s.size()));
+  b.insert(b.end(), s.begin(), s.end());
+}
+
+/// Reads a text written by put_text from [at, end); false when it does not fit.
+bool get_text(const char* data, std::size_t end, std::size_t& at, std::string& out) {
+  if (end - at < 4) return false;
+  const auto n = get_pod<std::uint32_t>(data + at);
+  at += 4;
+  if (n > end - at) return false;
+  out.assign(data + at, n);
+  at += n;
+  return true;
+}
+
+std::string short_hash(const std::string& hex) { return hex.substr(0, 12) + "..."; }
+
+/// The header of a journal (format 2) at `data`, when it is intact: its size, else 0.
+std::size_t read_header(const char* data, std::size_t size, SweepIdentity& h) {
+  if (size < kHeaderFixedBytes + 4 || std::memcmp(data, kJournalMagic, 8) != 0) return 0;
+  const auto total = get_pod<std::uint32_t>(data + 8);
+  if (total < kHeaderFixedBytes + 4 || total > size || total > kMaxJournalHeaderBytes) return 0;
+  if (get_pod<std::uint32_t>(data + total - 4) != crc32(data, total - 4)) return 0;
+  const auto count = get_pod<std::uint32_t>(data + 12);
+  h.id = get_pod<std::uint64_t>(data + 16);
+  h.base_scene = get_pod<std::uint64_t>(data + 24);
+  h.build = get_pod<std::uint64_t>(data + 32);
+  h.scenarios = get_pod<std::uint64_t>(data + 40);
+  h.keep_runs = get_pod<std::uint64_t>(data + 48) != 0;
+  std::size_t at = kHeaderFixedBytes;
+  const std::size_t end = total - 4;
+  for (std::uint32_t i = 0; i < count; ++i) {
+    InputFile f;
+    if (!get_text(data, end, at, f.role) || !get_text(data, end, at, f.path) ||
+        !get_text(data, end, at, f.sha256))
+      return 0;
+    f.absolute = f.path;
+    h.inputs.push_back(std::move(f));
+  }
+  return at == end ? total : 0;
+}
+
 }  // namespace
 
 std::string SweepIdentity::difference(const SweepIdentity& o) const {
-  if (sweep_file != o.sweep_file) return "the sweep file's text differs";
+  if (o.format != format)
+    return "it was made by an older hexdyn (checkpoint format " + std::to_string(o.format) +
+           ", which records no input file's content)";
+  for (const InputFile& then : o.inputs) {
+    const auto now = std::find_if(inputs.begin(), inputs.end(),
+                                  [&](const InputFile& f) { return f.absolute == then.absolute; });
+    if (now == inputs.end())
+      return "the " + then.role + " " + then.absolute +
+             " was an input of the checkpoint's sweep and is not one now";
+    if (now->sha256 != then.sha256)
+      return "the " + now->role + " " + now->absolute +
+             " changed since the checkpoint was made (SHA-256 " + short_hash(then.sha256) +
+             " then, " + short_hash(now->sha256) + " now)";
+  }
+  for (const InputFile& now : inputs) {
+    const bool known = std::any_of(o.inputs.begin(), o.inputs.end(),
+                                   [&](const InputFile& f) { return f.absolute == now.absolute; });
+    if (!known)
+      return "the " + now.role + " " + now.absolute +
+             " is an input now and was not one of the checkpoint's sweep";
+  }
   if (base_scene != o.base_scene) return "the resolved base scene differs";
   if (keep_runs != o.keep_runs)
     return std::string("it was made ") + (o.keep_runs ? "with" : "without") + " --keep-runs";
@@ -35,28 +102,38 @@ std::string SweepIdentity::difference(const SweepIdentity& o) const {
   return {};
 }
 
-SweepIdentity make_identity(const std::string& sweep_yaml, const std::string& base_config_yaml,
-                            const std::string& build, std::uint64_t scenarios, bool keep_runs) {
+SweepIdentity make_identity(const std::vector<InputFile>& inputs,
+                            const std::string& base_config_yaml, const std::string& build,
+                            std::uint64_t scenarios, bool keep_runs) {
   SweepIdentity s;
-  s.sweep_file = fnv1a64(sweep_yaml);
+  for (const InputFile& f : inputs) s.inputs.push_back({f.role, f.absolute, f.absolute, f.sha256});
   s.base_scene = fnv1a64(base_config_yaml);
   s.build = fnv1a64(build);
   s.scenarios = scenarios;
   s.keep_runs = keep_runs;
   std::string all;
-  for (std::uint64_t v : {s.sweep_file, s.base_scene, s.build, s.scenarios,
-                          static_cast<std::uint64_t>(keep_runs ? 1 : 0)})
+  for (std::uint64_t v :
+       {s.base_scene, s.build, s.scenarios, static_cast<std::uint64_t>(keep_runs ? 1 : 0)})
     all.append(reinterpret_cast<const char*>(&v), sizeof v);
+  for (const InputFile& f : s.inputs) all += f.role + '\0' + f.absolute + '\0' + f.sha256 + '\0';
   s.id = fnv1a64(all);
   return s;
 }
 
 std::vector<char> journal_header(const SweepIdentity& s) {
   std::vector<char> b(kJournalMagic, kJournalMagic + 8);
-  for (std::uint64_t v : {s.id, s.sweep_file, s.base_scene, s.build, s.scenarios}) put_pod(b, v);
+  put_pod(b, std::uint32_t{0});  // H, set below
+  put_pod(b, static_cast<std::uint32_t>(s.inputs.size()));
+  for (std::uint64_t v : {s.id, s.base_scene, s.build, s.scenarios}) put_pod(b, v);
   put_pod(b, static_cast<std::uint64_t>(s.keep_runs ? 1 : 0));
+  for (const InputFile& f : s.inputs) {
+    put_text(b, f.role);
+    put_text(b, f.absolute);
+    put_text(b, f.sha256);
+  }
+  const auto total = static_cast<std::uint32_t>(b.size() + 4);
+  std::memcpy(b.data() + 8, &total, sizeof total);
   put_pod(b, crc32(b.data(), b.size()));
-  put_pod(b, std::uint32_t{0});
   return b;
 }
 
@@ -95,24 +172,28 @@ JournalScan scan_journal(const char* data, std::size_t size, const std::string& 
                          const SweepIdentity& expected) {
   JournalScan scan;
   std::size_t at = 0;
-  if (size >= kJournalHeaderBytes && std::memcmp(data, kJournalMagic, 8) == 0 &&
-      get_pod<std::uint32_t>(data + 56) == crc32(data, 56)) {
+  // A header of the older format: its identity is reported, its records are foreign.
+  const bool v1 = size >= kJournalHeaderV1Bytes && std::memcmp(data, kJournalMagicV1, 8) == 0 &&
+                  get_pod<std::uint32_t>(data + 56) == crc32(data, 56);
+  // Bytes before the first intact record of a journal whose header is damaged are the
+  // header's remains, reported with it, not as a damaged record.
+  bool header_remains = false;
+  if (v1) {
     scan.header_ok = true;
-    SweepIdentity& h = scan.header;
-    h.id = get_pod<std::uint64_t>(data + 8);
-    h.sweep_file = get_pod<std::uint64_t>(data + 16);
-    h.base_scene = get_pod<std::uint64_t>(data + 24);
-    h.build = get_pod<std::uint64_t>(data + 32);
-    h.scenarios = get_pod<std::uint64_t>(data + 40);
-    h.keep_runs = get_pod<std::uint64_t>(data + 48) != 0;
-    at = kJournalHeaderBytes;
+    scan.header.format = 1;
+    scan.header.id = get_pod<std::uint64_t>(data + 8);
+    at = kJournalHeaderV1Bytes;
+  } else if (const std::size_t h = read_header(data, size, scan.header)) {
+    scan.header_ok = true;
+    at = h;
   } else {
+    scan.header = SweepIdentity{};
     scan.damage.push_back(name + ": damaged header (" +
-                          (size < kJournalHeaderBytes
+                          (size < kHeaderFixedBytes + 4
                                ? std::string("file of ") + std::to_string(size) + " bytes"
                                : std::string("checksum mismatch")) +
                           "); its records are read by their own checksums");
-    at = std::min(size, kJournalHeaderBytes);  // the header has a fixed size
+    header_remains = true;
   }
 
   // One damaged stretch [bad_from, next good record) is reported once.
@@ -120,6 +201,10 @@ JournalScan scan_journal(const char* data, std::size_t size, const std::string& 
   std::string bad_what;
   const auto end_damage = [&](std::size_t upto) {
     if (bad_from == SIZE_MAX) return;
+    if (header_remains) {
+      bad_from = SIZE_MAX;
+      return;
+    }
     scan.damage.push_back(name + ": " + bad_what + " at byte " + std::to_string(bad_from) +
                           (upto > bad_from
                                ? " (" + std::to_string(upto - bad_from) + " bytes skipped)"
@@ -163,6 +248,7 @@ JournalScan scan_journal(const char* data, std::size_t size, const std::string& 
       continue;
     }
     end_damage(at);
+    header_remains = false;
     if (ident != expected.id) {
       scan.foreign_record = true;
     } else if (kind == static_cast<std::uint32_t>(RecordKind::kRow) ||

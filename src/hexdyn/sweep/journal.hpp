@@ -1,15 +1,17 @@
 #pragma once
 /// \file journal.hpp
-/// The checkpoint journal of a sweep (`hexdyn-sweep-journal/1`): an append-only file of
+/// The checkpoint journal of a sweep (`hexdyn-sweep-journal/2`): an append-only file of
 /// checksummed records, written by the sweep's coordinator while scenarios finish, read
 /// by `--resume`. The checkpoint directory (checkpoint.hpp) holds one journal per run of
 /// the sweep (a requeued job adds one), never one file per scenario.
 ///
 /// Layout (integers little-endian, the host order of every supported machine):
 ///
-///     header  (64 bytes)  "HXDJRN01", identity (SweepIdentity: id, sweep_file,
-///                         base_scene, build, scenarios, keep_runs + 7 zero bytes),
-///                         CRC-32 of the 56 bytes before it, 4 zero bytes
+///     header  (H bytes)   "HXDJRN02", uint32 H, uint32 number of inputs I, identity
+///                         (SweepIdentity: uint64 id, base_scene, build, scenarios,
+///                         keep_runs), then I inputs, each three texts (uint32 length,
+///                         bytes): role, absolute path, SHA-256 in hexadecimal; then the
+///                         CRC-32 of the H − 4 bytes before it
 ///     record  (repeated)  magic 0x31525848 ("HXR1"), uint32 kind, uint64 scenario index,
 ///                         uint64 identity id, uint64 payload size P, P payload bytes
 ///                         (record.hpp), CRC-32 of everything after the magic
@@ -17,27 +19,40 @@
 /// Every record carries the sweep's identity, so that a journal whose header was lost
 /// still cannot lend its records to another sweep. A record whose checksum fails, or that
 /// is cut short, is reported and skipped; reading resumes at the next record magic whose
-/// record checks.
+/// record checks. A journal of format 1 ("HXDJRN01", before the inputs were hashed) is
+/// recognised and refused as the checkpoint of an older hexdyn.
 #include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
 
+#include "hexdyn/io/inputs.hpp"
+
 namespace hexdyn {
 
-/// What a checkpoint belongs to: hashes (FNV-1a 64) of the sweep file's text, of the
-/// resolved base scene, and of the build (version and git commit), with --keep-runs and
-/// the number of scenarios. `id` combines them all.
+/// What a checkpoint belongs to (docs/user/sweeps.md#what-a-checkpoint-belongs-to): the
+/// SHA-256 of every input file's content (SweepSpec::inputs: the sweep file, the base
+/// scene, every inherited file, every URDF named by the base or by an axis value), and
+/// hashes (FNV-1a 64) of the resolved base scene and of the build (version and git
+/// commit), with --keep-runs and the number of scenarios. `id` combines them all.
 struct SweepIdentity {
   std::uint64_t id = 0;
-  std::uint64_t sweep_file = 0, base_scene = 0, build = 0, scenarios = 0;
+  std::uint64_t base_scene = 0, build = 0, scenarios = 0;
   bool keep_runs = false;
-  /// Empty when equal, else what differs, as a reason for the user.
+  /// Each input's role, absolute path and SHA-256 (InputFile::path is the absolute path).
+  std::vector<InputFile> inputs;
+  int format = 2;  ///< journal format the identity was read from (1: no inputs recorded)
+  /// Empty when equal, else what differs, as one line for the user: the first input whose
+  /// content changed ("the URDF /abs/robot.urdf changed since the checkpoint was made
+  /// (SHA-256 0a1b2c3d4e5f… then, 5f4e3d2c1b0a… now)"), or that is read only by one of
+  /// the two, then the base scene, --keep-runs, the build and the number of scenarios.
+  /// `other` is the checkpoint's identity, *this the sweep's now.
   std::string difference(const SweepIdentity& other) const;
 };
 
-SweepIdentity make_identity(const std::string& sweep_yaml, const std::string& base_config_yaml,
-                            const std::string& build, std::uint64_t scenarios, bool keep_runs);
+SweepIdentity make_identity(const std::vector<InputFile>& inputs,
+                            const std::string& base_config_yaml, const std::string& build,
+                            std::uint64_t scenarios, bool keep_runs);
 
 /// Record kinds.
 enum class RecordKind : std::uint32_t {
@@ -45,7 +60,8 @@ enum class RecordKind : std::uint32_t {
   kCrashAttempt = 2,  ///< the scenario's process died once; payload: the reason (text)
 };
 
-inline constexpr std::size_t kJournalHeaderBytes = 64;
+/// Largest journal header accepted when reading [bytes] (a few hundred per input).
+inline constexpr std::size_t kMaxJournalHeaderBytes = std::size_t{1} << 20;
 inline constexpr std::size_t kRecordHeaderBytes = 32;  ///< magic .. payload size
 inline constexpr std::size_t kRecordTrailerBytes = 4;  ///< CRC-32
 

@@ -9,7 +9,8 @@
 namespace hexdyn {
 
 struct ScenarioFactory::Impl {
-  SweepSpec spec;  ///< axes and id width
+  SweepSpec spec;            ///< axes and id width
+  std::string input_sha256;  ///< the sweep's inputs: a kept run's /meta input_sha256
   YAML::Node base;
   struct Axis {
     std::vector<std::string> keys;
@@ -41,6 +42,7 @@ struct ScenarioFactory::Impl {
 
 ScenarioFactory::ScenarioFactory(const SweepSpec& spec) : impl_(std::make_unique<Impl>()) {
   impl_->spec.axes = spec.axes;
+  impl_->input_sha256 = input_sha256_text(spec.inputs);
   impl_->base = parse_yaml_text(spec.base_tree_yaml, spec.base_path);
   for (const SweepAxis& axis : spec.axes) {
     Impl::Axis ax;
@@ -57,7 +59,9 @@ ScenarioFactory::ScenarioFactory(ScenarioFactory&&) noexcept = default;
 ScenarioFactory& ScenarioFactory::operator=(ScenarioFactory&&) noexcept = default;
 
 Scene ScenarioFactory::scene(std::size_t index, bool resolved_yaml) const {
-  return scene_from_yaml(impl_->tree(index), scenario_source_name(id(index)), resolved_yaml);
+  Scene s = scene_from_yaml(impl_->tree(index), scenario_source_name(id(index)), resolved_yaml);
+  if (resolved_yaml) s.input_sha256 = impl_->input_sha256;
+  return s;
 }
 
 std::string ScenarioFactory::yaml(std::size_t index) const {

@@ -167,7 +167,8 @@ SweepSpec load_sweep(const std::string& path) {
     r.fail_value("base", base,
                  "the path of a scene file, relative to the sweep file (" + spec.base_path +
                      " is not a file)");
-  YAML::Node tree = load_scene_tree(spec.base_path);
+  std::vector<std::string> chain;
+  YAML::Node tree = load_scene_tree(spec.base_path, &chain);
 
   const YAML::Node set = root["set"];
   std::set<std::string> fixed_keys;
@@ -244,6 +245,14 @@ SweepSpec load_sweep(const std::string& path) {
                          " scenarios, expected at most that many");
     spec.axes.push_back(std::move(axis));
   }
+  add_input(spec.inputs, "sweep file", path);
+  for (InputFile& f : scene_inputs(chain, tree))
+    add_input(spec.inputs, f.role == "scene" ? "base scene" : f.role, f.path);
+  // A robot.urdf axis names its URDFs as --set does (relative to the working directory).
+  for (const SweepAxis& axis : spec.axes)
+    if (axis.key == "robot.urdf")
+      for (const std::string& v : axis.values)
+        if (why_not_regular_file(v) == std::nullopt) add_input(spec.inputs, "URDF", v);
   // Each value once against its key, on the base scene: a value out of range is found
   // here without looking at any combination of values.
   for (SweepAxis& axis : spec.axes) {

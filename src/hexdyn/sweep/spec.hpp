@@ -29,6 +29,7 @@
 #include <vector>
 
 #include "hexdyn/io/config.hpp"
+#include "hexdyn/io/inputs.hpp"
 
 namespace hexdyn {
 
@@ -55,6 +56,10 @@ struct SweepSpec {
   std::vector<SweepAxis> axes;   ///< at least one
   std::string base_tree_yaml;    ///< base scene after `inherit:` and `set:`, unvalidated YAML
   std::string base_config_yaml;  ///< the same, validated and fully resolved (defaults filled)
+  /// Every input file, hashed (io/inputs.hpp): the sweep file, the base scene, its
+  /// inherited files, its URDF and each URDF a robot.urdf axis names. /meta input_sha256,
+  /// and part of the checkpoint's identity (journal.hpp).
+  std::vector<InputFile> inputs;
   /// Number of scenarios: the product of the axis sizes.
   std::size_t scenario_count() const;
 };

@@ -97,6 +97,7 @@ void write_meta(H5Writer& w, const SweepSpec& spec, bool keep_runs, const SweepR
   w.set_double_attribute(s::kMetaWallTime.object, s::kMetaWallTime.name, info.wall_time_s);
   set_attribute(w, s::kMetaRanks, std::int64_t{info.ranks});
   set_attribute(w, s::kMetaResumedScenarios, static_cast<std::int64_t>(info.resumed_scenarios));
+  set_attribute(w, s::kMetaInputSha256, input_sha256_text(spec.inputs));
 }
 
 /// /axes/{i}, /joint_names and the coordinates: one per axis at /{key}, /axis, /joint.

@@ -419,3 +419,38 @@ TEST_CASE("config: the resolved YAML spells out defaults of absent optional keys
 
 }  // namespace
 }  // namespace hexdyn
+
+namespace hexdyn {
+namespace {
+
+// docs/user/configuration.md#automatic-choices-in-the-resolved-configuration: the automatic
+// posture written into the resolved configuration as the values used, the requests kept
+// under auto:, and that configuration a valid scene with a relative posture at exactly those
+// values; an auto: that is not a map is refused.
+TEST_CASE("config: automatic choices in the resolved configuration", "[config]") {
+  const std::string base = std::string(HEXDYN_SOURCE_DIR) + "/configs/sweeps/stairs_base.yaml";
+  const Scene s = load_scene(base);
+  REQUIRE(s.motion.posture.mode == PostureMode::kAuto);
+  const YAML::Node first = YAML::Load(s.resolved_yaml);
+  CHECK(first["allocation"]["solver"].Scalar() == "active-set");
+  CHECK(first["auto"]["allocation"]["solver"].Scalar() == "auto");
+  const double h = 0.1 + 1.0 / 3.0 * 1e-3, w = 0.2 - 1.0 / 7.0 * 1e-3;  // 17 digits needed
+  const std::string resolved = with_chosen_posture(s.resolved_yaml, h, w);
+  const YAML::Node r = YAML::Load(resolved);
+  CHECK(r["auto"]["motion"]["posture"]["height"].Scalar() == "auto");
+  CHECK(r["auto"]["motion"]["posture"]["foot_lateral"].size() == 2);
+  CHECK(r["auto"]["gait"]["foot_lateral"].as<double>() == s.gait.foot_lateral_m);
+  CHECK_FALSE(r["motion"]["posture"]["height_range"].IsDefined());
+  const Scene again = load_scene_from_string(resolved, "resolved.yaml");
+  CHECK(again.motion.posture.mode == PostureMode::kRelative);
+  CHECK(again.motion.posture.height_m == h);  // bit for bit
+  CHECK(again.gait.foot_lateral_m == w);
+  CHECK(again.motion.posture.start_y_m == s.motion.posture.start_y_m);
+  // The record is carried unchanged into the next resolved configuration.
+  CHECK(YAML::Dump(YAML::Load(again.resolved_yaml)["auto"]) == YAML::Dump(r["auto"]));
+  CHECK_THROWS_WITH(load_scene_from_string(paper_text() + "auto: 3\n", "a.yaml"),
+                    Catch::Contains("a.yaml: auto: got 3"));
+}
+
+}  // namespace
+}  // namespace hexdyn

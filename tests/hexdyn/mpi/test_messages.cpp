@@ -29,7 +29,9 @@ TEST_CASE("mpi messages: the sweep round-trips what a worker needs", "[mpi]") {
   a.values = {"0.5", "0.66666666666666663"};
   a.labels = {"1/2", "2/3"};
   spec.axes.push_back(a);
-  const SweepIdentity id = make_identity("sweep: text", "base: text", "hexdyn x", 7, true);
+  spec.inputs = {{"sweep file", "s.yaml", "/w/s.yaml", std::string(64, 'c')},
+                 {"URDF", "r.urdf", "/w/r.urdf", std::string(64, 'd')}};
+  const SweepIdentity id = make_identity(spec.inputs, "base: text", "hexdyn x", 7, true);
   SweepIdentity got;
   const SweepSpec back = unpack_spec(pack_spec(spec, id), got);
   CHECK(got.keep_runs);
@@ -38,6 +40,10 @@ TEST_CASE("mpi messages: the sweep round-trips what a worker needs", "[mpi]") {
   CHECK(back.name == "s");
   CHECK(back.base_path == spec.base_path);
   CHECK(back.base_tree_yaml == spec.base_tree_yaml);
+  REQUIRE(back.inputs.size() == 2);
+  CHECK(back.inputs[1].path == "r.urdf");
+  CHECK(back.inputs[1].absolute == "/w/r.urdf");
+  CHECK(back.inputs[1].sha256 == spec.inputs[1].sha256);
   REQUIRE(back.axes.size() == 1);
   CHECK(back.axes[0].key == a.key);
   CHECK(back.axes[0].values == a.values);

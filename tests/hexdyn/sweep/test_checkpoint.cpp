@@ -84,7 +84,8 @@ TEST_CASE("sweep: a record round-trips a row and its run image", "[sweep]") {
 }
 
 TEST_CASE("sweep: a journal finds damaged, truncated and foreign records", "[sweep]") {
-  const SweepIdentity id = make_identity("sweep", "base", "build", 10, false);
+  const std::vector<InputFile> inputs{{"sweep file", "/s.yaml", "/s.yaml", std::string(64, 'a')}};
+  const SweepIdentity id = make_identity(inputs, "base", "build", 10, false);
   std::vector<char> j = journal_header(id);
   std::vector<std::size_t> starts;
   for (std::size_t i = 0; i < 4; ++i) {
@@ -96,6 +97,9 @@ TEST_CASE("sweep: a journal finds damaged, truncated and foreign records", "[swe
     const JournalScan s = scan_journal(j.data(), j.size(), "J", id);
     CHECK(s.header_ok);
     CHECK(s.header.id == id.id);
+    CHECK(id.difference(s.header).empty());  // the inputs read back from the header
+    REQUIRE(s.header.inputs.size() == 1);
+    CHECK(s.header.inputs[0].sha256 == inputs[0].sha256);
     CHECK(s.damage.empty());
     REQUIRE(s.entries.size() == 4);
     CHECK(s.entries[3].index == 3);
@@ -128,7 +132,11 @@ TEST_CASE("sweep: a journal finds damaged, truncated and foreign records", "[swe
     CHECK(s.entries.size() == 4);
   }
   SECTION("records of another sweep") {
-    const SweepIdentity other = make_identity("sweep2", "base", "build", 10, false);
+    std::vector<InputFile> changed = inputs;
+    changed[0].sha256 = std::string(64, 'b');
+    const SweepIdentity other = make_identity(changed, "base", "build", 10, false);
+    CHECK_THAT(other.difference(id),
+               Catch::Contains("the sweep file /s.yaml changed since the checkpoint was made"));
     const JournalScan s = scan_journal(j.data(), j.size(), "J", other);
     CHECK(s.foreign_record);
     CHECK(s.entries.empty());
@@ -211,9 +219,11 @@ TEST_CASE("sweep: a damaged record is named and its scenario recomputed", "[swee
   }
   const std::string journal = only_journal(out + ".checkpoint");
   std::vector<char> b = read_all(journal);
-  const std::size_t record = (b.size() - 64) / 5;  // records of equal size
-  b[64 + 2 * record + 100] ^= 0x10;                // inside scenario 2's record
-  b.resize(b.size() - 3);                          // and the last one cut short
+  std::uint32_t header = 0;  // the header's size (journal.hpp)
+  std::memcpy(&header, b.data() + 8, sizeof header);
+  const std::size_t record = (b.size() - header) / 5;  // records of equal size
+  b[header + 2 * record + 100] ^= 0x10;                // inside scenario 2's record
+  b.resize(b.size() - 3);                              // and the last one cut short
   write_all(journal, b);
   Checkpoint cp(out, spec, false, true);
   std::vector<std::size_t> got;
@@ -282,4 +292,84 @@ TEST_CASE("sweep: a record built by a worker is appended as rank 0 would build i
                     Catch::Contains("not a record"));
   CHECK_THROWS_WITH(check_built_record(g, 20, RecordKind::kRow, 1, id),
                     Catch::Contains("not a record"));
+}
+
+namespace {
+
+std::string read_text(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+/// `text` with its first `from` replaced by `to` (which must be there).
+std::string replaced(std::string text, const std::string& from, const std::string& to) {
+  const auto at = text.find(from);
+  REQUIRE(at != std::string::npos);
+  return text.replace(at, from.size(), to);
+}
+
+}  // namespace
+
+// Issue 22 B1: the checkpoint's identity covers the content of every input. A sweep over a
+// scene that inherits the Kraby scene and names its URDF, with a robot.urdf axis over two
+// copies of the URDF, is checkpointed; then each input in turn is edited: the resume is
+// refused in one line naming that file, and accepted again once the file is restored.
+TEST_CASE("sweep: a resume after any input's content changed is refused, naming the file",
+          "[sweep]") {
+  TempDir dir;
+  const std::string urdf_text = read_text(std::string(HEXDYN_SOURCE_DIR) + "/robots/kraby.urdf");
+  const std::string urdf = dir.write("kraby.urdf", urdf_text);
+  const std::string urdf_b = dir.write("kraby_b.urdf", urdf_text);
+  const std::string robot_text = replaced(read_text(kConfigs + "/robots/kraby_stairs.yaml"),
+                                          "../../robots/kraby.urdf", "kraby.urdf");
+  const std::string robot = dir.write("robot.yaml", robot_text);
+  const std::string scene_text = "inherit: robot.yaml\noutput:\n  grid: uniform\n";
+  const std::string scene = dir.write("scene.yaml", scene_text);
+  const std::string sweep_text = "base: scene.yaml\naxes:\n  - key: robot.urdf\n    values: [" +
+                                 urdf + ", " + urdf_b +
+                                 "]\n  - key: terrain.riser_height\n    values: [0.02, 0.04]\n";
+  const std::string sweep = dir.write("s.yaml", sweep_text);
+  const SweepSpec spec = load_sweep(sweep);
+  std::vector<std::string> roles;
+  for (const InputFile& f : spec.inputs) roles.push_back(f.role);
+  CHECK(roles ==
+        std::vector<std::string>{"sweep file", "base scene", "inherited scene", "URDF", "URDF"});
+  const std::string out = (dir.path / "out.h5").string();
+  {
+    Checkpoint cp(out, spec, false, false);
+    const auto p = payload_of(some_row(1));
+    cp.append_row(1, p.data(), p.size());
+    cp.flush(true);
+  }
+  // The URDF's mass edited (issue 22's `sed -i '25s/0.667/1.667/'`).
+  const std::string heavier =
+      replaced(urdf_text, "<mass value=\"0.667\" />", "<mass value=\"1.667\" />");
+  const struct {
+    std::string path, original, edited, role;
+  } edits[] = {
+      {urdf, urdf_text, heavier, "URDF"},
+      {urdf_b, urdf_text, heavier, "URDF"},
+      {robot, robot_text, replaced(robot_text, "stroke: 0.025", "stroke: 0.026"),
+       "inherited scene"},
+      {scene, scene_text, scene_text + "# a comment is content too\n", "base scene"},
+      {sweep, sweep_text, sweep_text + "name: renamed\n", "sweep file"},
+  };
+  for (const auto& e : edits) {
+    dir.write(fs::path(e.path).filename().string(), e.edited);
+    try {
+      Checkpoint cp(out, load_sweep(sweep), false, true);
+      FAIL("a resume was accepted after " << e.path << " changed");
+    } catch (const ConfigError& err) {
+      const std::string what = err.what();
+      CHECK(what.find('\n') == std::string::npos);
+      CHECK_THAT(what, Catch::Contains("the " + e.role + " " + e.path +
+                                       " changed since the "
+                                       "checkpoint was made"));
+    }
+    dir.write(fs::path(e.path).filename().string(), e.original);
+  }
+  // Every input as it was: the checkpoint is resumed.
+  Checkpoint cp(out, load_sweep(sweep), false, true);
+  REQUIRE(cp.finished().size() == 1);
+  CHECK(cp.finished()[0].index == 1);
 }
