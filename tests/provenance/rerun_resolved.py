@@ -44,7 +44,14 @@ def collect(f):
     def visit(name, obj):
         path = "/" + name
         for key, value in obj.attrs.items():
+            # Dimension-scale links are object references (file addresses), which move when
+            # /meta's paths differ in length; compare the dimension names they stand for.
+            if key in ("DIMENSION_LIST", "REFERENCE_LIST"):
+                continue
             attributes[(path, key)] = value
+        if isinstance(obj, h5py.Dataset):
+            attributes[(path, "dimensions")] = tuple(
+                tuple(s.name for s in d.values()) for d in obj.dims)
         if isinstance(obj, h5py.Dataset):
             datasets[path] = obj[()]
 

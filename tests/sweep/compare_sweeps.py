@@ -85,6 +85,24 @@ class Rules:
         return None if values_equal(read(a), read(b)) else "values differ"
 
 
+_PATHS = {}
+
+
+def object_path(f, ref):
+    """The path of the object `ref` points to in the file `f`. h5py's `.name` of a
+    dereferenced object searches the whole file each time; this maps addresses to paths
+    once per file."""
+    key = f.id.fileno, f.filename
+    if key not in _PATHS:
+        paths = {}
+
+        def visit(name, o):
+            paths.setdefault(h5py.h5o.get_info(o.id).addr, "/" + name)
+        f.visititems(visit)
+        _PATHS[key] = paths
+    return _PATHS[key][h5py.h5o.get_info(f[ref].id).addr]
+
+
 def attribute(obj, name):
     """An attribute's value; the dimension-scale attributes, which hold object references
     (addresses in their file), as the paths they point to, below a kept run's group."""
@@ -93,7 +111,7 @@ def attribute(obj, name):
         return value
 
     def where(ref):
-        return re.sub(r"^/runs/[^/]+", "", obj.file[ref].name)
+        return re.sub(r"^/runs/[^/]+", "", object_path(obj.file, ref))
     if name == "DIMENSION_LIST":
         return [[where(r) for r in refs] for refs in value]
     return sorted((where(r), int(i)) for r, i in value)

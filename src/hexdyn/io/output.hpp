@@ -71,8 +71,10 @@ inline constexpr std::size_t kLargeResultSamples = 200000;
 
 /// Size of a `hexdyn-result/2` file of `samples` samples [bytes], estimated from the
 /// schema: every per-sample dataset's row (schema.hpp shapes and element types, about
-/// 1.45 kB) plus 32 bytes per solver message and 64 kB for /meta and /model. Within
-/// about 10% of the files written (tests/hexdyn/io/test_output_target.cpp).
+/// 1.45 kB) plus 32 bytes per solver message and 64 kB for /meta and /model, uncompressed:
+/// the memory the writer holds while it builds the file (io/h5io.hpp), and an upper bound
+/// of the file, which compression makes about half as large
+/// (tests/hexdyn/cli/test_cli_outputs.cpp).
 double estimated_result_file_bytes(std::size_t samples);
 
 /// Creates the group `meta_path` and writes the attributes every hexdyn file's /meta opens

@@ -127,6 +127,14 @@ void add_gait_and_terrain(ResultLayout& layout, Builder& b, const RunResult& r) 
   b.vector(s::kTerrainY, r.terrain_y_m, r.terrain_y_m.size());
   b.vector(s::kTerrainZ, r.terrain_z_m, r.terrain_y_m.size());
   layout.attributes.push_back({&s::kTerrainType, r.terrain_type});
+  // The index coordinates of the dimensions `gait_cycle` and `terrain_point` (io/labels.hpp).
+  for (const auto& [coordinate, size] :
+       {std::pair{&s::kCycleCoordinate, r.cycle_start_s.size()},
+        std::pair{&s::kTerrainPointCoordinate, r.terrain_y_m.size()}}) {
+    std::vector<std::int32_t> index(size);
+    for (std::size_t i = 0; i < size; ++i) index[i] = static_cast<std::int32_t>(i);
+    b.add(*coordinate, {size}, std::move(index));
+  }
 }
 
 void add_dynamics(Builder& b, const DynamicsResult& d, int T, std::size_t cycles) {
