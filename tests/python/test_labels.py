@@ -83,7 +83,10 @@ def check_file(path, units_seen):
             check(spec is not None, f"{path}:{p} declared")
             if spec is None:
                 continue
-            check(hr._text(ds.attrs.get("long_name")) == spec.long_name, f"{path}:{p} long_name")
+            # An axis's datasets lead their long name with the axis key.
+            long_name = hr._text(ds.attrs.get("long_name"))
+            check(long_name == spec.long_name or
+                  any(long_name == f"{k}: {spec.long_name}" for k in keys), f"{path}:{p} long_name")
             if "units" in ds.attrs:
                 units_seen.add(hr._text(ds.attrs["units"]))
             if spec.path in hr.FLAGS:

@@ -89,7 +89,7 @@ def result_to_xarray(res, group=None):
 def _axis_coordinate(axis, units):
     values = np.asarray(axis.values, dtype=float) if axis.numeric else np.array(
         axis.values, dtype=object)
-    attrs = {"long_name": "values of the swept key"}
+    attrs = {"long_name": f"{axis.key}: values of the swept key"}
     if axis.numeric and units and units not in ("SI", "key"):
         attrs["units"] = units
     return (axis.key, values, attrs)

@@ -61,13 +61,15 @@ void Labeller::add(const s::DatasetSpec& spec, const std::string& path, const st
   std::vector<std::string> dims = split(s::dimension_names(spec.shape));
   for (std::string& d : dims)
     if (d == "{key}") d = key;
-  entries_.push_back({&spec, root_ + (path.empty() ? std::string(spec.path) : path), dims});
+  entries_.push_back({&spec, root_ + (path.empty() ? std::string(spec.path) : path), dims, key});
 }
 
 void Labeller::finish() {
   // Long names and flags.
   for (const Entry& e : entries_) {
-    w_.set_text_attribute(e.path, s::kLongNameAttribute, e.spec->long_name);
+    w_.set_text_attribute(
+        e.path, s::kLongNameAttribute,
+        e.key.empty() ? std::string(e.spec->long_name) : e.key + ": " + e.spec->long_name);
     for (const s::FlagSpec& f : s::kFlags) {
       if (std::string_view(f.path) != e.spec->path) continue;
       std::vector<std::int64_t> codes;

@@ -25,7 +25,8 @@ class Labeller {
       : w_(w), root_(std::move(root)), scales_(dimension_scales) {}
 
   /// Records the written dataset of `spec` at root + `path` (default: spec.path); `key`
-  /// names the dimension that stands for "{key}" (a sweep axis).
+  /// names the dimension that stands for "{key}" (a sweep axis) and leads the long name
+  /// ("terrain.riser_height: values of the swept key").
   void add(const schema::DatasetSpec& spec, const std::string& path = {},
            const std::string& key = {});
 
@@ -40,6 +41,7 @@ class Labeller {
     const schema::DatasetSpec* spec;
     std::string path;  ///< absolute in the file
     std::vector<std::string> dims;
+    std::string key;  ///< the sweep axis's key, or empty
   };
   H5Writer& w_;
   std::string root_;
