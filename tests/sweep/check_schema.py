@@ -75,6 +75,9 @@ class FileCheck:
         elif units != (spec.units or None):
             problem(f"{where}: units {units!r}, declared {spec.units!r}")
         long_name = hr._text(obj.attrs.get(S["kLongNameAttribute"]))
+        # An axis's datasets lead their long name with the axis key ("KEY: long name").
+        if ":" in long_name and long_name.split(": ", 1)[1] == spec.long_name:
+            long_name = long_name.split(": ", 1)[1]
         if long_name != spec.long_name:
             problem(f"{where}: long_name {long_name!r}, declared {spec.long_name!r}")
         if spec.path in hr.FLAGS:

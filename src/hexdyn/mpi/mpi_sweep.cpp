@@ -3,6 +3,7 @@
 #define OMPI_SKIP_MPICXX 1
 #define MPICH_SKIP_MPICXX 1
 #include <mpi.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
@@ -141,9 +142,21 @@ void worker_rank(const ScenarioFactory& factory, const SweepIdentity& identity) 
   wo.isolate = isolation_from_environment();
   wo.scratch_dir = scratch_directory();
   WorkerLink link;
+  // SIGTERM, SIGINT (mpirun and Slurm send them to every rank): a worker leaves only
+  // between messages, after a result it was sending has arrived, so that rank 0, which
+  // says what it kept, never loses a worker in the middle of a transfer inside MPI
+  // (docs/user/faults.md#signals). Rank 0 stops at its next look (within milliseconds).
+  const auto leave_if_signalled = [] {
+    if (const int sig = interrupted()) ::_exit(128 + sig);
+  };
   link.send_ready = [] { send({}, 0, kTagReady); };
-  link.send_results = [](std::vector<char>&& msg) { send(msg, 0, kTagResult); };
-  link.poll_work = []() -> std::optional<std::optional<std::vector<std::size_t>>> {
+  link.send_results = [leave_if_signalled](std::vector<char>&& msg) {
+    send(msg, 0, kTagResult);
+    leave_if_signalled();
+  };
+  link.poll_work =
+      [leave_if_signalled]() -> std::optional<std::optional<std::vector<std::size_t>>> {
+    leave_if_signalled();
     int flag = 0;
     MPI_Status st;
     MPI_Iprobe(0, kTagWork, MPI_COMM_WORLD, &flag, &st);
@@ -527,8 +540,9 @@ class Coordinator {
 int run_sweep(const SweepOptions& options) {
   die_with_launcher();
   MpiSession mpi;
-  if (mpi.rank() == 0)
-    install_interrupt_handlers(InterruptMode::kPoll, "hexdyn: sweep interrupted");
+  // Rank 0 flushes the checkpoint and says what it kept; a worker notes the signal and
+  // leaves between messages (worker_rank).
+  install_interrupt_handlers(InterruptMode::kPoll, "hexdyn: sweep interrupted");
   if (mpi.rank() != 0) {
     int status = 0;
     broadcast_status(status);
