@@ -40,3 +40,28 @@ children_of() {
     if [ "$ppid" = "$parent" ]; then basename "$(dirname "$stat")"; fi
   done
 }
+
+# kill_after_rows LAUNCHER CHECKPOINT N LOG: waits until CHECKPOINT's journals hold at least N
+# records (tests/sweep/journal_rows.py), then kill -9 the launcher and waits for its ranks to
+# go (they lose their launcher and exit; any left are killed). Fails if the sweep ends first
+# (printing LOG) or nothing is checkpointed within 120 s.
+kill_after_rows() {
+  local launcher=$1 cp=$2 want=$3 log=$4 n ranks alive p deadline=$((SECONDS + 120))
+  while :; do
+    n=$("$PY" "$SRC/tests/sweep/journal_rows.py" "$cp" 2>/dev/null | wc -l || true)
+    [ "$n" -ge "$want" ] && break
+    kill -0 "$launcher" 2>/dev/null || { cat "$log"; fail "the sweep ended before it could be killed"; }
+    [ "$SECONDS" -lt "$deadline" ] || fail "no checkpoint records after 120 s"
+    sleep 0.1
+  done
+  ranks=$(children_of "$launcher")
+  kill -9 "$launcher"
+  wait "$launcher" 2>/dev/null || true
+  for _ in $(seq 100); do
+    alive=""
+    for p in $ranks; do kill -0 "$p" 2>/dev/null && alive="$alive $p"; done
+    [ -z "$alive" ] && break
+    sleep 0.1
+  done
+  for p in $alive; do kill -9 "$p" 2>/dev/null || true; done
+}

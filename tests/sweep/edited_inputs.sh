@@ -26,24 +26,7 @@ YAML
 "$MPIEXEC" --oversubscribe -np 2 "$HEXDYN" sweep sweep.yaml -o k.h5 2> cut.log &
 launcher=$!
 cp=k.h5.checkpoint
-deadline=$((SECONDS + 120))
-while :; do
-  n=$("$PY" "$SRC/tests/sweep/journal_rows.py" "$cp" 2>/dev/null | wc -l || true)
-  [ "$n" -ge 2 ] && break
-  kill -0 "$launcher" 2>/dev/null || { cat cut.log; fail "the sweep ended before it could be killed"; }
-  [ "$SECONDS" -lt "$deadline" ] || fail "no checkpoint records after 120 s"
-  sleep 0.1
-done
-ranks=$(children_of "$launcher")
-kill -9 "$launcher"
-wait "$launcher" 2>/dev/null || true
-for _ in $(seq 100); do
-  alive=""
-  for p in $ranks; do kill -0 "$p" 2>/dev/null && alive="$alive $p"; done
-  [ -z "$alive" ] && break
-  sleep 0.1
-done
-for p in $alive; do kill -9 "$p" 2>/dev/null || true; done
+kill_after_rows "$launcher" "$cp" 2 cut.log
 "$PY" "$SRC/tests/sweep/journal_rows.py" "$cp" > before.txt
 before=$(wc -l < before.txt)
 [ "$before" -lt 12 ] || fail "every scenario was checkpointed before the kill"

@@ -12,25 +12,7 @@ mpi 2 sweep "$sweep" -o ref.h5 --keep-runs 2> ref.log || { cat ref.log; fail "re
 "$MPIEXEC" --oversubscribe -np 2 "$HEXDYN" sweep "$sweep" -o cut.h5 --keep-runs -v 2> cut.log &
 launcher=$!
 cp=cut.h5.checkpoint
-deadline=$((SECONDS + 120))
-while :; do
-  n=$("$PY" "$SRC/tests/sweep/journal_rows.py" "$cp" 2>/dev/null | wc -l || true)
-  [ "$n" -ge 6 ] && break
-  kill -0 "$launcher" 2>/dev/null || { cat cut.log; fail "the sweep ended before it could be killed"; }
-  [ "$SECONDS" -lt "$deadline" ] || fail "no checkpoint files after 120 s"
-  sleep 0.1
-done
-ranks=$(children_of "$launcher")
-kill -9 "$launcher"
-wait "$launcher" 2>/dev/null || true
-# The ranks lose their launcher and exit; wait for them (they are ours to stop if not).
-for _ in $(seq 100); do
-  alive=""
-  for p in $ranks; do kill -0 "$p" 2>/dev/null && alive="$alive $p"; done
-  [ -z "$alive" ] && break
-  sleep 0.1
-done
-for p in $alive; do kill -9 "$p" 2>/dev/null || true; done
+kill_after_rows "$launcher" "$cp" 6 cut.log
 [ ! -e cut.h5 ] || fail "the killed sweep wrote its output file"
 [ "$(find "$cp" -name '*.hxj' | wc -l)" -eq 1 ] || fail "expected one checkpoint journal, found: $(ls "$cp")"
 "$PY" "$SRC/tests/sweep/journal_rows.py" "$cp" > before.txt
