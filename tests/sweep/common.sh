@@ -46,7 +46,7 @@ children_of() {
 # go (they lose their launcher and exit; any left are killed). Fails if the sweep ends first
 # (printing LOG) or nothing is checkpointed within 120 s.
 kill_after_rows() {
-  local launcher=$1 cp=$2 want=$3 log=$4 n ranks alive p deadline=$((SECONDS + 120))
+  local launcher=$1 cp=$2 want=$3 log=$4 n deadline=$((SECONDS + 120))
   while :; do
     n=$("$PY" "$SRC/tests/sweep/journal_rows.py" "$cp" 2>/dev/null | wc -l || true)
     [ "$n" -ge "$want" ] && break
@@ -54,8 +54,15 @@ kill_after_rows() {
     [ "$SECONDS" -lt "$deadline" ] || fail "no checkpoint records after 120 s"
     sleep 0.1
   done
+  kill_launcher_and_ranks "$launcher"
+}
+
+# kill_launcher_and_ranks LAUNCHER: kill -9 the launcher, then waits up to 10 s for its ranks
+# to go (they lose their launcher and exit); any left are killed.
+kill_launcher_and_ranks() {
+  local launcher=$1 ranks alive p
   ranks=$(children_of "$launcher")
-  kill -9 "$launcher"
+  kill -9 "$launcher" 2>/dev/null || true
   wait "$launcher" 2>/dev/null || true
   for _ in $(seq 100); do
     alive=""

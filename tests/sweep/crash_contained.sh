@@ -50,16 +50,7 @@ while :; do
   [ "$SECONDS" -lt "$deadline" ] || fail "no crashed record after 60 s"
   sleep 0.05
 done
-ranks=$(children_of "$launcher")
-kill -9 "$launcher" 2>/dev/null || true
-wait "$launcher" 2>/dev/null || true
-for _ in $(seq 100); do
-  alive=""
-  for p in $ranks; do kill -0 "$p" 2>/dev/null && alive="$alive $p"; done
-  [ -z "$alive" ] && break
-  sleep 0.1
-done
-for p in $alive; do kill -9 "$p" 2>/dev/null || true; done
+kill_launcher_and_ranks "$launcher"
 if [ -e cut.h5 ]; then
   echo "note: the sweep completed before the kill; checking its file"
 else

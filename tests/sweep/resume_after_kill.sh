@@ -42,24 +42,7 @@ echo "resume after kill: ok ($computed recomputed, $before from the checkpoint)"
 "$MPIEXEC" --oversubscribe -np 2 "$HEXDYN" sweep "$sweep" -o dmg.h5 --keep-runs 2> dmg.log &
 launcher=$!
 cp=dmg.h5.checkpoint
-deadline=$((SECONDS + 120))
-while :; do
-  n=$("$PY" "$SRC/tests/sweep/journal_rows.py" "$cp" 2>/dev/null | wc -l || true)
-  [ "$n" -ge 8 ] && break
-  kill -0 "$launcher" 2>/dev/null || { cat dmg.log; fail "the sweep ended before it could be killed"; }
-  [ "$SECONDS" -lt "$deadline" ] || fail "no checkpoint records after 120 s"
-  sleep 0.1
-done
-ranks=$(children_of "$launcher")
-kill -9 "$launcher"
-wait "$launcher" 2>/dev/null || true
-for _ in $(seq 100); do
-  alive=""
-  for p in $ranks; do kill -0 "$p" 2>/dev/null && alive="$alive $p"; done
-  [ -z "$alive" ] && break
-  sleep 0.1
-done
-for p in $alive; do kill -9 "$p" 2>/dev/null || true; done
+kill_after_rows "$launcher" "$cp" 8 dmg.log
 journal=$(ls "$cp"/*.hxj)
 "$PY" - "$journal" "$SRC/tests/sweep" > damaged.txt <<'PY'
 # Flips a byte in the second record's payload and cuts the journal in the middle of its
