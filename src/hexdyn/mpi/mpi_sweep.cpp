@@ -290,12 +290,16 @@ class Coordinator {
   /// Ends the process at once after a signal (checkpoint flushed) or a lost checkpoint
   /// (nothing written): one line, then _exit, without waiting for a scenario in progress
   /// (its child dies with this process, PR_SET_PDEATHSIG); under mpirun the job ends
-  /// with this rank. docs/user/faults.md#signals
+  /// with this rank. The journal is written (into the page cache, which outlives this
+  /// process) and the line printed before the journal is synced to disk: mpirun sends
+  /// SIGKILL 1 s after its SIGTERM (Open MPI's odls_base_sigkill_timeout), and a sync on
+  /// a busy disk can take longer. docs/user/faults.md#signals
   [[noreturn]] void stop_now(const Error& e) {
     std::string kept;
-    if (dynamic_cast<const Interrupted*>(&e) != nullptr) {
+    const bool signalled = dynamic_cast<const Interrupted*>(&e) != nullptr;
+    if (signalled) {
       try {
-        checkpoint_->flush(true);
+        checkpoint_->flush(false);
         const std::size_t n = checkpoint_->finished().size() + done_;
         kept = ": " + std::to_string(n) + " finished scenario" + (n == 1 ? "" : "s") +
                " kept in the checkpoint " + checkpoint_->directory() +
@@ -309,6 +313,14 @@ class Coordinator {
       std::cerr << "hexdyn: error: " << one_line(e.what()) << "\n";
     }
     std::cerr.flush();
+    if (signalled) {
+      try {
+        checkpoint_->flush(true);
+      } catch (const Error& f) {
+        std::cerr << "hexdyn: sweep: the checkpoint could not be synced to disk: "
+                  << one_line(f.what()) << "\n";
+      }
+    }
     ::_exit(e.exit_status());
   }
 
