@@ -103,6 +103,7 @@ struct RunResult {
   std::string config_yaml;   ///< fully resolved, automatic choices included
   std::string input_sha256;  ///< "SHA256  PATH" per input file (Scene::input_sha256)
   ChosenPosture posture;     ///< written into /meta config_yaml (io/config.hpp)
+  bool compress = true;      ///< output.compression: deflate (io/h5io.hpp)
   std::string urdf;          ///< robot exactly as simulated
   /// /model/joint_names: the description's joint names in flat joint order (a URDF
   /// robot's own names; empty: hexdyn's L{i}_coxa … names).

@@ -177,6 +177,9 @@ struct OutputParams {
   OutputGrid grid = OutputGrid::kAdaptive;
   int impact_samples = 16;     ///< adaptive grid: intervals across each impact transient
   double event_step_s = 1e-2;  ///< adaptive grid: finest step next to touchdowns and lift-offs
+  /// output.compression: deflate (true: shuffle + deflate on numeric datasets of at least
+  /// 4 KiB, io/h5io.hpp) or none (every dataset contiguous and uncompressed).
+  bool compress = true;
 };
 
 struct Scene {

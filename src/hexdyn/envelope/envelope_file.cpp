@@ -112,7 +112,7 @@ void write_envelope_file(const std::string& path, const EnvelopeSpec& spec,
                          const EnvelopeResult& result) {
   silence_hdf5_errors();
   publish_atomically(path, [&](const std::string& tmp) {
-    H5Writer w(tmp);
+    H5Writer w(tmp, compressed_output(spec.base_config_yaml));
     write_file(w, spec, result);
     w.close();
   });

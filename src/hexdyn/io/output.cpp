@@ -3,6 +3,7 @@
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
+#include <yaml-cpp/yaml.h>
 
 #include <cerrno>
 #include <cstdio>
@@ -221,10 +222,17 @@ void write_result_layout(H5Writer& w, const RunResult& result, const std::string
   write_layout(w, layout, prefix, dimension_scales);
 }
 
+bool compressed_output(const std::string& resolved_yaml) {
+  const YAML::Node root = YAML::Load(resolved_yaml);
+  if (!root.IsMap() || !root["output"].IsMap()) return true;
+  const YAML::Node node = root["output"]["compression"];
+  return !node.IsScalar() || node.as<std::string>() != "none";
+}
+
 void write_result_file(const std::string& path, const RunResult& result) {
   check_output_path_writable(path);
   publish_atomically(path, [&](const std::string& tmp) {
-    H5Writer writer(tmp);
+    H5Writer writer(tmp, result.compress);
     write_result_layout(writer, result);
     writer.close();
   });

@@ -46,6 +46,10 @@ void check_output_path_writable(const std::string& path);
 /// 0-based (0..5). Every dataset is labelled (io/labels.hpp).
 void write_result_file(const std::string& path, const RunResult& result);
 
+/// Whether a resolved scene configuration (YAML, Scene::resolved_yaml) asks for compressed
+/// datasets: its output.compression is `deflate` or absent (not `none`).
+bool compressed_output(const std::string& resolved_yaml);
+
 /// Writes the datasets and /meta of `result` into an open file below the root `prefix`
 /// ("" for the file root, "/runs/<id>" inside a sweep file): result_layout(result)
 /// (result_layout.hpp), then write_layout. `dimension_scales` false leaves the

@@ -161,7 +161,7 @@ std::vector<char> encode_run_image(const RunResult& run, const std::string& scra
           .string();
   try {
     {
-      H5Writer w(tmp);
+      H5Writer w(tmp, run.compress);
       write_result_layout(w, run, kRunImageGroup, false);  // scales: once copied
       w.close();
     }

@@ -232,7 +232,7 @@ void write_sweep_file(const std::string& path, const SweepSpec& spec,
                     std::to_string(rows[i].index));
   check_output_path_writable(path);
   publish_atomically(path, [&](const std::string& tmp) {
-    H5Writer w(tmp);
+    H5Writer w(tmp, compressed_output(spec.base_config_yaml));
     write_meta(w, spec, runs_from != nullptr, info);
     Labeller labels(w, "");
     write_axes(w, labels, spec);
