@@ -16,6 +16,7 @@
 #include "hexdyn/io/robot_config.hpp"
 #include "hexdyn/io/scene_key_reader.hpp"
 #include "hexdyn/io/yaml_load.hpp"
+#include "hexdyn/model/link_scaling.hpp"
 
 namespace hexdyn {
 namespace {
@@ -72,12 +73,27 @@ void read_robot(Reader& r, RobotParams& p, LoadedUrdfRobot& loaded) {
   }
   p.trunk = read_body(r, "robot.trunk", true, Vec3::Zero());
   p.payload = read_body(r, "robot.payload", true, Vec3::Zero());
+  // How each link's mass, COM and inertia follow its length (model/link_scaling.hpp): with
+  // uniform_density they are stated for robot.<link>.reference_length (required) and
+  // stretched to robot.<link>.length; the COM's default is the reference's mid-length.
+  const std::string def_rule = "none";
+  const bool follow =
+      r.choice("robot.links_follow_length", {"none", "uniform_density"}, &def_rule) != "none";
   const char* names[kJointsPerLeg] = {"coxa", "femur", "tibia"};
   for (int j = 0; j < kJointsPerLeg; ++j) {
     const std::string base = std::string("robot.") + names[j];
     p.link_length_m[j] = r.number(base + ".length", positive(10.0));
     p.joint_offset_m[j] = r.number(base + ".offset", nonnegative(1.0));
-    p.link[j] = read_body(r, base, true, Vec3(0.5 * p.link_length_m[j], 0.0, 0.0));
+    const std::string ref_key = base + ".reference_length";
+    if (follow && !r.given(ref_key))
+      r.fail(ref_key, "missing, expected the length (0, 10] m that " + base +
+                          ".mass, .inertia and .com are stated for (robot.links_follow_length is "
+                          "uniform_density)");
+    const double ref_length =
+        r.has(ref_key) ? r.number(ref_key, positive(10.0)) : p.link_length_m[j];
+    p.link[j] =
+        read_body(r, base, true, Vec3(0.5 * (follow ? ref_length : p.link_length_m[j]), 0.0, 0.0));
+    if (follow) p.link[j] = stretch_link(p.link[j], p.link_length_m[j] / ref_length);
     const auto lim = r.numbers(base + ".limits", 2, 2, closed(-M_PI, M_PI));
     if (lim[0] >= lim[1])
       r.fail(base + ".limits", "got [" + fmt(lim[0]) + ", " + fmt(lim[1]) +
