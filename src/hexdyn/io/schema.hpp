@@ -57,6 +57,8 @@ enum class Shape {
   kScenarioAxes,      ///< (N,A), one row per scenario, one column per axis
   kScenarioJoints,    ///< (N,18), one row per scenario, one column per joint
   kAxisValues,        ///< (V), one entry per value of an axis
+  kCaseKeys,          ///< (K), the keys a cases axis sets
+  kCaseValues,        ///< (V,K), one row per case, one column per key it sets
   kEnvelopeTreads,    ///< (W), tread depths of an envelope
   kEnvelopeDuties,    ///< (B), duty factors of an envelope
   kEnvelopeSpeeds,    ///< (S), peak speeds of an envelope
@@ -72,7 +74,8 @@ enum class Shape {
 };
 
 /// The netCDF dimensions of a shape's axes, space-separated, outermost first ("" for a
-/// scalar); "{key}" is the dimension of a sweep axis, named by its key. A dimension D of
+/// scalar); "{key}" is the dimension of a sweep axis, named by its key (a cases axis: by its
+/// name, and "{key}_key" the keys its cases set, e.g. "case_key"). A dimension D of
 /// a file (or of a kept run's group) has its coordinate variable at "/D" of that root
 /// (io/labels.hpp): the names, component labels or values along D, or the index 0..n−1.
 // clang-format off
@@ -95,6 +98,8 @@ constexpr const char* dimension_names(Shape shape) {
     case Shape::kScenarioAxes: return "scenario axis";
     case Shape::kScenarioJoints: return "scenario joint";
     case Shape::kAxisValues: return "{key}";
+    case Shape::kCaseKeys: return "{key}_key";
+    case Shape::kCaseValues: return "{key} {key}_key";
     case Shape::kEnvelopeTreads: return "tread_depth";
     case Shape::kEnvelopeDuties: return "duty_factor";
     case Shape::kEnvelopeSpeeds: return "peak_speed";
@@ -399,6 +404,14 @@ inline constexpr DatasetSpec kAxisWords{"/axes/{i}/values", "", Shape::kAxisValu
 /// Values as written in the sweep file ("2/3").
 inline constexpr DatasetSpec kAxisLabels{"/axes/{i}/labels", "", Shape::kAxisValues,
                                          Element::kString, "values as written in the sweep file"};
+/// A cases axis (`cases:`, docs/user/sweeps.md#cases): its key is its name ("case"), its
+/// values and labels the case labels; the keys its cases set, in the order of the first
+/// case, and each case's value of each key as YAML text (p/q evaluated, a robot.urdf path
+/// absolute).
+inline constexpr DatasetSpec kAxisCaseKeys{"/axes/{i}/case_keys", "", Shape::kCaseKeys,
+                                           Element::kString, "keys each case sets"};
+inline constexpr DatasetSpec kAxisCaseValues{"/axes/{i}/case_values", "", Shape::kCaseValues,
+                                             Element::kString, "value of each key in each case"};
 inline constexpr DatasetSpec kSweepJointNames{"/joint_names", "", Shape::kJointNames,
                                               Element::kString, "joint names, leg-major"};
 
@@ -408,6 +421,9 @@ inline constexpr DatasetSpec kAxisCoordinateNumbers{"/{key}", "key", Shape::kAxi
                                                     Element::kFloat64, "values of the swept key"};
 inline constexpr DatasetSpec kAxisCoordinateWords{"/{key}", "", Shape::kAxisValues,
                                                   Element::kString, "values of the swept key"};
+/// A cases axis's keys: the coordinate of its dimension "{key}_key".
+inline constexpr DatasetSpec kCaseKeyCoordinate{"/{key}_key", "", Shape::kCaseKeys,
+                                                Element::kString, "keys each case sets"};
 inline constexpr DatasetSpec kScenarioCoordinate{"/scenario", "1", Shape::kScenarios,
                                                  Element::kInt32, "scenario index"};
 inline constexpr DatasetSpec kAxisCoordinate{"/axis", "", Shape::kAxes, Element::kString,

@@ -133,7 +133,114 @@ void finish_axis(const SpecReader& r, const std::string& path, SweepAxis& axis) 
   }
 }
 
+/// Names that a cases axis may not take: the sweep file's own groups and coordinates.
+bool reserved_axis_name(const std::string& name) {
+  for (const char* r :
+       {"meta", "axes", "scenarios", "runs", "joint_names", "scenario", "axis", "joint"})
+    if (name == r) return true;
+  return false;
+}
+
+/// `cases:` (a list of maps {label: NAME, key: value, ...}) into `axis`: labels as its values,
+/// each case's keys and values. The validation on the base scene comes later (load_sweep).
+void read_cases(const SpecReader& r, const YAML::Node& a, const std::string& at,
+                const std::string& sweep_path, SweepAxis& axis) {
+  const YAML::Node name = a["name"];
+  axis.key = "case";
+  if (name.IsDefined() && !name.IsNull()) {
+    static const std::regex word("[A-Za-z_][A-Za-z0-9_]*");
+    if (!name.IsScalar() || !std::regex_match(name.Scalar(), word) ||
+        reserved_axis_name(name.Scalar()))
+      r.fail_value(at + ".name", name,
+                   "a word of letters, digits and _ (the axis's dimension), not one of meta, "
+                   "axes, scenarios, runs, joint_names, scenario, axis, joint");
+    axis.key = name.Scalar();
+  }
+  const std::string path = at + ".cases";
+  const YAML::Node cases = a["cases"];
+  const std::string expected = "a non-empty list of maps {label: NAME, key: value, ...}";
+  if (!cases.IsSequence() || cases.size() == 0) r.fail_value(path, cases, expected);
+  std::map<std::string, std::size_t> seen;
+  for (std::size_t k = 0; k < cases.size(); ++k) {
+    const std::string here = path + "[" + std::to_string(k) + "]";
+    const YAML::Node c = cases[k];
+    if (!c.IsMap()) r.fail_value(here, c, "a map {label: NAME, key: value, ...}");
+    const YAML::Node label = c["label"];
+    if (!label.IsDefined() || label.IsNull())
+      r.fail(here + ".label", "missing, this key is required (the case's name in the file)");
+    if (!label.IsScalar() || label.Scalar().empty() ||
+        label.Scalar().find_first_of("\n\r") != std::string::npos)
+      r.fail_value(here + ".label", label, "a non-empty single-line name");
+    const auto [it, inserted] = seen.emplace(label.Scalar(), k);
+    if (!inserted)
+      r.fail_value(
+          here + ".label", label,
+          "a label no other case has (cases[" + std::to_string(it->second) + "] has it too)");
+    std::vector<std::string> keys, values;
+    for (const auto& kv : c) {
+      const std::string key = kv.first.Scalar();
+      if (key == "label") continue;
+      for (const auto& part : split_key_path(key))
+        if (part.empty()) r.fail(here + "." + key, "empty key in the dotted path");
+      const YAML::Node v = kv.second;
+      bool list_of_values = v.IsSequence();
+      for (std::size_t e = 0; list_of_values && e < v.size(); ++e) list_of_values = v[e].IsScalar();
+      if (!v.IsScalar() && !list_of_values)
+        r.fail_value(here + "." + key, v,
+                     "a single value or a list of values (write nested keys as dotted paths)");
+      std::string text = yaml_inline(v);
+      if (v.IsScalar()) {
+        if (const auto q = parse_fraction(v.Scalar())) text = format_number(*q, 17);
+      }
+      // A URDF named by a case is a path relative to the sweep file.
+      if (key == "robot.urdf" && v.IsScalar() && !v.Scalar().empty()) {
+        std::error_code ec;
+        const fs::path beside = path_beside(sweep_path, v.Scalar());
+        const fs::path abs = fs::absolute(beside, ec);
+        text = ec ? beside.string() : abs.lexically_normal().string();
+      }
+      keys.push_back(key);
+      values.push_back(text);
+    }
+    if (keys.empty()) r.fail(here, "got only a label, expected at least one key the case sets");
+    if (k == 0) {
+      axis.case_keys = keys;
+    } else if (std::set<std::string>(keys.begin(), keys.end()) !=
+               std::set<std::string>(axis.case_keys.begin(), axis.case_keys.end())) {
+      std::string got, want;
+      for (const auto& x : keys) got += (got.empty() ? "" : ", ") + x;
+      for (const auto& x : axis.case_keys) want += (want.empty() ? "" : ", ") + x;
+      r.fail(here, "got keys " + got + ", expected the keys of cases[0] (" + want +
+                       "): every case sets the same keys");
+    }
+    std::vector<std::string> ordered;  // in the order of the first case
+    for (const auto& ck : axis.case_keys)
+      ordered.push_back(
+          values[static_cast<std::size_t>(std::find(keys.begin(), keys.end(), ck) - keys.begin())]);
+    axis.case_values.push_back(std::move(ordered));
+    axis.values.push_back(label.Scalar());
+    axis.labels.push_back(label.Scalar());
+  }
+  axis.numeric = false;
+}
+
+/// "k1=v1, k2=v2" of case `v` of a cases axis.
+std::string case_text(const SweepAxis& axis, std::size_t v) {
+  std::string s;
+  for (std::size_t k = 0; k < axis.case_keys.size(); ++k)
+    s += (k ? ", " : "") + axis.case_keys[k] + "=" + axis.case_values[v][k];
+  return s;
+}
+
 }  // namespace
+
+std::vector<Override> SweepAxis::overrides(std::size_t v) const {
+  if (!is_cases()) return {{key, values[v]}};
+  std::vector<Override> out;
+  for (std::size_t k = 0; k < case_keys.size(); ++k)
+    out.push_back({case_keys[k], case_values[v][k]});
+  return out;
+}
 
 std::size_t SweepSpec::scenario_count() const {
   std::size_t n = 1;
@@ -203,9 +310,29 @@ SweepSpec load_sweep(const std::string& path) {
     const std::string at = "axes[" + std::to_string(i) + "]";
     const YAML::Node a = axes[i];
     if (!a.IsMap())
-      r.fail_value(at, a, "a mapping {key: K, values: [...]} or {key: K, range: {...}}");
-    r.check_keys(a, at, {"key", "values", "range"});
+      r.fail_value(at, a,
+                   "a mapping {key: K, values: [...]}, {key: K, range: {...}} or {cases: [...]}");
     SweepAxis axis;
+    if (a["cases"].IsDefined()) {
+      r.check_keys(a, at, {"cases", "name"});
+      read_cases(r, a, at, path, axis);
+      if (!axis_keys.insert(axis.key).second)
+        r.fail_value(at + ".name", YAML::Node(axis.key),
+                     "a name no other axis has (name each cases axis)");
+      for (const std::string& k : axis.case_keys) {
+        if (fixed_keys.count(k))
+          r.fail(at + ".cases", "got key " + k + ", expected a key not also fixed by set:");
+        if (!axis_keys.insert(k).second)
+          r.fail(at + ".cases", "got key " + k + ", expected each key on one axis only");
+      }
+      count *= axis.size();
+      if (count > kMaxScenarios)
+        r.fail("axes", "got more than " + std::to_string(kMaxScenarios) +
+                           " scenarios, expected at most that many");
+      spec.axes.push_back(std::move(axis));
+      continue;
+    }
+    r.check_keys(a, at, {"key", "values", "range"});
     const YAML::Node key = a["key"];
     if (!key.IsDefined() || key.IsNull()) r.fail(at + ".key", "missing, this key is required");
     if (!key.IsScalar() || key.Scalar().empty())
@@ -227,7 +354,7 @@ SweepSpec load_sweep(const std::string& path) {
                        (target.IsMap() ? "group of keys" : "list") + ")");
     if (fixed_keys.count(axis.key)) r.fail_value(at + ".key", key, "a key not also fixed by set:");
     if (!axis_keys.insert(axis.key).second)
-      r.fail_value(at + ".key", key, "each key on one axis only");
+      r.fail_value(at + ".key", key, "each key on one axis only (and not also in cases)");
 
     const bool has_values = a["values"].IsDefined(), has_range = a["range"].IsDefined();
     if (has_values == has_range)
@@ -253,11 +380,36 @@ SweepSpec load_sweep(const std::string& path) {
     if (axis.key == "robot.urdf")
       for (const std::string& v : axis.values)
         if (why_not_regular_file(v) == std::nullopt) add_input(spec.inputs, "URDF", v);
+  // A case's URDF is resolved from the sweep file (read_cases).
+  for (const SweepAxis& axis : spec.axes)
+    for (std::size_t k = 0; k < axis.case_keys.size(); ++k)
+      if (axis.case_keys[k] == "robot.urdf")
+        for (const auto& values : axis.case_values)
+          if (why_not_regular_file(values[k]) == std::nullopt)
+            add_input(spec.inputs, "URDF", values[k]);
   // Each value once against its key, on the base scene: a value out of range is found
   // here without looking at any combination of values.
   for (SweepAxis& axis : spec.axes) {
     axis.errors.assign(axis.size(), std::string());
-    for (std::size_t v = 0; v < axis.size(); ++v) {
+    // A case is its keys together: one that is not valid on the base scene stops the sweep.
+    for (std::size_t v = 0; axis.is_cases() && v < axis.size(); ++v) {
+      const std::string source = "case " + axis.labels[v];
+      YAML::Node one = YAML::Clone(tree);
+      try {
+        for (const Override& ov : axis.overrides(v)) apply_override(one, ov, source);
+        (void)scene_from_yaml(one, source, false);
+      } catch (const Error& e) {
+        std::string why = e.what();
+        if (why.rfind(source + ": ", 0) == 0) why = why.substr(source.size() + 2);
+        std::size_t at = 0;
+        for (std::size_t k = 0; k < spec.axes.size(); ++k)
+          if (&spec.axes[k] == &axis) at = k;
+        r.fail("axes[" + std::to_string(at) + "].cases[" + std::to_string(v) + "] (" +
+                   axis.labels[v] + ": " + case_text(axis, v) + ")",
+               why);
+      }
+    }
+    for (std::size_t v = 0; !axis.is_cases() && v < axis.size(); ++v) {
       const std::string source = axis.key + "=" + axis.labels[v];
       YAML::Node one = YAML::Clone(tree);
       try {
@@ -297,7 +449,7 @@ ScenarioInput scenario_input(const SweepSpec& spec, std::size_t index) {
   YAML::Node tree = parse_yaml_text(spec.base_tree_yaml, source);
   const auto p = grid_point(spec, index);
   for (std::size_t a = 0; a < spec.axes.size(); ++a)
-    apply_override(tree, {spec.axes[a].key, spec.axes[a].values[p[a]]}, source);
+    for (const Override& ov : spec.axes[a].overrides(p[a])) apply_override(tree, ov, source);
   in.yaml = emit(tree);
   return in;
 }
