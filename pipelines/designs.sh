@@ -5,9 +5,9 @@
 #   paper   the paper robot over femur x tibia length on three risers
 #           (configs/designs/paper_femur_tibia.yaml; masses and inertias follow the lengths):
 #           paper_femur_tibia.png, paper_femur_tibia_climb.png, paper_femur_tibia.csv
-#   robots  the URDF robots as cases of one sweep over risers (configs/designs/robots.yaml)
-#           and the climbable envelope per robot (configs/designs/robots_envelope.yaml):
-#           robots.png, robots_envelope.png, robots.csv
+#   robots  the URDF robots as cases of one sweep over risers (configs/designs/robots.yaml,
+#           kept runs for the effort limits) and the climbable envelope per robot
+#           (configs/designs/envelope_<robot>.yaml): robots.png, robots_envelope.png, robots.csv
 #
 #   bash pipelines/designs.sh                # both studies, about a minute on 2 cores
 #   bash pipelines/designs.sh --only paper   # one study (paper or robots)
@@ -61,15 +61,16 @@ suffix=""
 ((quick)) && suffix="_quick"
 cfg="$HEXDYN_ROOT/configs/designs"
 
-# sweep NAME: configs/designs/NAME.yaml into OUT/NAME.h5 (one rank for the reduced studies).
+# sweep NAME [ARGS...]: configs/designs/NAME.yaml into OUT/NAME.h5 (one rank for the reduced
+# studies).
 sweep() {
-  if ((quick)); then
-    "$hexdyn" sweep "$cfg/$1.yaml" -o "$out/$1.h5" 2> "$out/$1.log"
-  else
-    mpirun --oversubscribe -np "${HEXDYN_RANKS:-2}" "$hexdyn" sweep "$cfg/$1.yaml" -o "$out/$1.h5" \
-      2> "$out/$1.log"
-  fi
-  tail -n 1 "$out/$1.log" >&2
+  local name="$1"
+  shift
+  local launch=()
+  ((quick)) || launch=(mpirun --oversubscribe -np "${HEXDYN_RANKS:-2}")
+  "${launch[@]}" "$hexdyn" sweep "$cfg/$name.yaml" -o "$out/$name.h5" "$@" 2> "$out/$name.log" ||
+    { cat "$out/$name.log" >&2; exit 1; }
+  tail -n 1 "$out/$name.log" >&2
 }
 
 if [[ -z "$only" || "$only" == paper ]]; then
@@ -80,11 +81,22 @@ if [[ -z "$only" || "$only" == paper ]]; then
 fi
 if [[ -z "$only" || "$only" == robots ]]; then
   echo "designs: the URDF robots as cases" >&2
-  sweep "robots$suffix"
-  "$hexdyn" envelope "$cfg/robots_envelope$suffix.yaml" -o "$out/robots_envelope$suffix.h5" \
-    2> "$out/robots_envelope$suffix.log"
+  sweep "robots$suffix" --keep-runs
+  # The envelopes, one per robot, side by side (one core each).
+  envelopes=()
+  pids=()
+  for robot in phantomx_mark4 kraby; do
+    name="envelope_$robot$suffix"
+    "$hexdyn" envelope "$cfg/$name.yaml" -o "$out/$name.h5" 2> "$out/$name.log" &
+    pids+=($!)
+    envelopes+=("$out/$name.h5")
+  done
+  for i in "${!pids[@]}"; do
+    wait "${pids[$i]}" || { cat "${envelopes[$i]%.h5}.log" >&2; exit 1; }
+  done
+  for e in "${envelopes[@]}"; do tail -n 1 "${e%.h5}.log" >&2; done
   "$HEXDYN_PYTHON" "$HEXDYN_ROOT/analysis/plot_designs.py" "$out/robots$suffix.h5" "$out" --cases \
-    --envelope "$out/robots_envelope$suffix.h5" --name "robots$suffix" >/dev/null
+    --envelope "${envelopes[@]}" --name "robots$suffix" >/dev/null
 fi
 echo "designs: results in $out:" >&2
 ls -1 "$out" >&2

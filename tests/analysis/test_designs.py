@@ -3,7 +3,7 @@
 checked against readings of its files made here with h5py, csv, yaml and xml.etree:
 
   - the pipeline writes the figures and the table of the paper study (and, with --parts all,
-    of the URDF robots' study);
+    of the URDF robots' study, whose checks are in test_design_cases.py);
   - paper_femur_tibia_quick.csv holds, for every scenario, the axis values, the status word
     (the CF flag_meanings of /scenarios/status) and the cost of transport, energy, largest
     peak |tau| and relaxed-sample count of the sweep file's /scenarios table;
