@@ -148,7 +148,7 @@ def draw_grid(sweep, xkey="robot.tibia.length", ykey="robot.femur.length", pkey=
     xe, ye = edges(xs), edges(ys)
     base = base_design(sweep, xkey, ykey)
     fig, axs = plt.subplots(len(METRICS), len(panels), squeeze=False, constrained_layout=True,
-                            figsize=(1.5 + 3.6 * len(panels), 1.2 + 3.1 * len(METRICS)))
+                            figsize=(max(8.5, 1.5 + 3.6 * len(panels)), 1.2 + 3.1 * len(METRICS)))
     out = {"cells": {}, "values": {}, "failed": {}, "relaxed": [], "optimal": [], "base": base}
     for m, (name, title, unit) in enumerate(METRICS):
         allv = ds[name].values
