@@ -40,37 +40,42 @@ inline constexpr std::int64_t kEnvelopeSchemaVersion = 2;  ///< envelope files' 
 
 /// Shape of a dataset in terms of the run's sizes.
 enum class Shape {
-  kScalar,            ///< ()
-  kText,              ///< () variable-length UTF-8 string
-  kTextList,          ///< (m) variable-length UTF-8 strings, m may be 0
-  kJointNames,        ///< (18) strings
-  kLegNames,          ///< (6) strings
-  kJ,                 ///< (18)
-  kT,                 ///< (T)
-  kT3,                ///< (T,3)
-  kT4,                ///< (T,4)
-  kT6,                ///< (T,6)
-  kT18,               ///< (T,18)
-  kT6x3,              ///< (T,6,3)
-  kN,                 ///< (n), one entry per touchdown, n may be 0
-  kScenarios,         ///< (N), one entry per scenario, index order
-  kScenarioAxes,      ///< (N,A), one row per scenario, one column per axis
-  kScenarioJoints,    ///< (N,18), one row per scenario, one column per joint
-  kAxisValues,        ///< (V), one entry per value of an axis
-  kCaseKeys,          ///< (K), the keys a cases axis sets
-  kCaseValues,        ///< (V,K), one row per case, one column per key it sets
-  kEnvelopeTreads,    ///< (W), tread depths of an envelope
-  kEnvelopeDuties,    ///< (B), duty factors of an envelope
-  kEnvelopeSpeeds,    ///< (S), peak speeds of an envelope
-  kEnvelopeCriteria,  ///< (C), criteria of an envelope
-  kEnvelopeCells,     ///< (W,B,S), one entry per tread, duty factor and speed
-  kEnvelopeGrid,      ///< (W,B,S,C), one entry per cell and criterion
-  kEnvelopeProbes,    ///< (P), one entry per probe (a criterion evaluated at one riser)
-  kCycles,            ///< (Y), one entry per gait cycle
-  kTerrainPoints,     ///< (K), one entry per vertex of the terrain's height profile
-  kXyz,               ///< (3) strings "x", "y", "z"
-  kWxyz,              ///< (4) strings "w", "x", "y", "z"
-  kAxes,              ///< (A), one entry per sweep axis
+  kScalar,              ///< ()
+  kText,                ///< () variable-length UTF-8 string
+  kTextList,            ///< (m) variable-length UTF-8 strings, m may be 0
+  kJointNames,          ///< (18) strings
+  kLegNames,            ///< (6) strings
+  kJ,                   ///< (18)
+  kT,                   ///< (T)
+  kT3,                  ///< (T,3)
+  kT4,                  ///< (T,4)
+  kT6,                  ///< (T,6)
+  kT18,                 ///< (T,18)
+  kT6x3,                ///< (T,6,3)
+  kN,                   ///< (n), one entry per touchdown, n may be 0
+  kScenarios,           ///< (N), one entry per scenario, index order
+  kScenarioAxes,        ///< (N,A), one row per scenario, one column per axis
+  kScenarioJoints,      ///< (N,18), one row per scenario, one column per joint
+  kAxisValues,          ///< (V), one entry per value of an axis
+  kCaseKeys,            ///< (K), the keys a cases axis sets
+  kCaseValues,          ///< (V,K), one row per case, one column per key it sets
+  kEnvelopeTreads,      ///< (W), tread depths of an envelope
+  kEnvelopeDuties,      ///< (B), duty factors of an envelope
+  kEnvelopeSpeeds,      ///< (S), peak speeds of an envelope
+  kEnvelopeCriteria,    ///< (C), criteria of an envelope
+  kEnvelopeCells,       ///< (W,B,S), one entry per tread, duty factor and speed
+  kEnvelopeGrid,        ///< (W,B,S,C), one entry per cell and criterion
+  kEnvelopeProbes,      ///< (P), one entry per probe (a criterion evaluated at one riser)
+  kEnvelopeCases,       ///< (D), cases of an envelope with `cases:`
+  kEnvelopeCaseKeys,    ///< (K), keys its cases set
+  kEnvelopeCaseValues,  ///< (D,K), one row per case, one column per key
+  kEnvelopeCaseCells,   ///< (D,W,B,S), one entry per case, tread depth, duty factor and speed
+  kEnvelopeCaseGrid,    ///< (D,W,B,S,C), one entry per case, cell and criterion
+  kCycles,              ///< (Y), one entry per gait cycle
+  kTerrainPoints,       ///< (K), one entry per vertex of the terrain's height profile
+  kXyz,                 ///< (3) strings "x", "y", "z"
+  kWxyz,                ///< (4) strings "w", "x", "y", "z"
+  kAxes,                ///< (A), one entry per sweep axis
 };
 
 /// The netCDF dimensions of a shape's axes, space-separated, outermost first ("" for a
@@ -107,6 +112,11 @@ constexpr const char* dimension_names(Shape shape) {
     case Shape::kEnvelopeCells: return "tread_depth duty_factor peak_speed";
     case Shape::kEnvelopeGrid: return "tread_depth duty_factor peak_speed criterion";
     case Shape::kEnvelopeProbes: return "probe";
+    case Shape::kEnvelopeCases: return "case";
+    case Shape::kEnvelopeCaseKeys: return "case_key";
+    case Shape::kEnvelopeCaseValues: return "case case_key";
+    case Shape::kEnvelopeCaseCells: return "case tread_depth duty_factor peak_speed";
+    case Shape::kEnvelopeCaseGrid: return "case tread_depth duty_factor peak_speed criterion";
     case Shape::kCycles: return "gait_cycle";
     case Shape::kTerrainPoints: return "terrain_point";
     case Shape::kXyz: return "xyz";

@@ -13,6 +13,7 @@
 #include <system_error>
 
 #include "hexdyn/core/errors.hpp"
+#include "hexdyn/io/cases.hpp"
 #include "hexdyn/io/paths.hpp"
 #include "hexdyn/io/spec_reader.hpp"
 #include "hexdyn/io/yaml_load.hpp"
@@ -141,8 +142,8 @@ bool reserved_axis_name(const std::string& name) {
   return false;
 }
 
-/// `cases:` (a list of maps {label: NAME, key: value, ...}) into `axis`: labels as its values,
-/// each case's keys and values. The validation on the base scene comes later (load_sweep).
+/// A cases axis {cases: [...], name: NAME} into `axis`: its name as key, the labels as its
+/// values (io/cases.hpp reads the list). The validation on the base scene comes later.
 void read_cases(const SpecReader& r, const YAML::Node& a, const std::string& at,
                 const std::string& sweep_path, SweepAxis& axis) {
   const YAML::Node name = a["name"];
@@ -156,80 +157,20 @@ void read_cases(const SpecReader& r, const YAML::Node& a, const std::string& at,
                    "axes, scenarios, runs, joint_names, scenario, axis, joint");
     axis.key = name.Scalar();
   }
-  const std::string path = at + ".cases";
-  const YAML::Node cases = a["cases"];
-  const std::string expected = "a non-empty list of maps {label: NAME, key: value, ...}";
-  if (!cases.IsSequence() || cases.size() == 0) r.fail_value(path, cases, expected);
-  std::map<std::string, std::size_t> seen;
-  for (std::size_t k = 0; k < cases.size(); ++k) {
-    const std::string here = path + "[" + std::to_string(k) + "]";
-    const YAML::Node c = cases[k];
-    if (!c.IsMap()) r.fail_value(here, c, "a map {label: NAME, key: value, ...}");
-    const YAML::Node label = c["label"];
-    if (!label.IsDefined() || label.IsNull())
-      r.fail(here + ".label", "missing, this key is required (the case's name in the file)");
-    if (!label.IsScalar() || label.Scalar().empty() ||
-        label.Scalar().find_first_of("\n\r") != std::string::npos)
-      r.fail_value(here + ".label", label, "a non-empty single-line name");
-    const auto [it, inserted] = seen.emplace(label.Scalar(), k);
-    if (!inserted)
-      r.fail_value(
-          here + ".label", label,
-          "a label no other case has (cases[" + std::to_string(it->second) + "] has it too)");
-    std::vector<std::string> keys, values;
-    for (const auto& kv : c) {
-      const std::string key = kv.first.Scalar();
-      if (key == "label") continue;
-      for (const auto& part : split_key_path(key))
-        if (part.empty()) r.fail(here + "." + key, "empty key in the dotted path");
-      const YAML::Node v = kv.second;
-      bool list_of_values = v.IsSequence();
-      for (std::size_t e = 0; list_of_values && e < v.size(); ++e) list_of_values = v[e].IsScalar();
-      if (!v.IsScalar() && !list_of_values)
-        r.fail_value(here + "." + key, v,
-                     "a single value or a list of values (write nested keys as dotted paths)");
-      std::string text = yaml_inline(v);
-      if (v.IsScalar()) {
-        if (const auto q = parse_fraction(v.Scalar())) text = format_number(*q, 17);
-      }
-      // A URDF named by a case is a path relative to the sweep file.
-      if (key == "robot.urdf" && v.IsScalar() && !v.Scalar().empty()) {
-        std::error_code ec;
-        const fs::path beside = path_beside(sweep_path, v.Scalar());
-        const fs::path abs = fs::absolute(beside, ec);
-        text = ec ? beside.string() : abs.lexically_normal().string();
-      }
-      keys.push_back(key);
-      values.push_back(text);
-    }
-    if (keys.empty()) r.fail(here, "got only a label, expected at least one key the case sets");
-    if (k == 0) {
-      axis.case_keys = keys;
-    } else if (std::set<std::string>(keys.begin(), keys.end()) !=
-               std::set<std::string>(axis.case_keys.begin(), axis.case_keys.end())) {
-      std::string got, want;
-      for (const auto& x : keys) got += (got.empty() ? "" : ", ") + x;
-      for (const auto& x : axis.case_keys) want += (want.empty() ? "" : ", ") + x;
-      r.fail(here, "got keys " + got + ", expected the keys of cases[0] (" + want +
-                       "): every case sets the same keys");
-    }
-    std::vector<std::string> ordered;  // in the order of the first case
-    for (const auto& ck : axis.case_keys)
-      ordered.push_back(
-          values[static_cast<std::size_t>(std::find(keys.begin(), keys.end(), ck) - keys.begin())]);
-    axis.case_values.push_back(std::move(ordered));
-    axis.values.push_back(label.Scalar());
-    axis.labels.push_back(label.Scalar());
-  }
+  const CaseList cases = read_case_list(r, a["cases"], at + ".cases", sweep_path);
+  axis.values = axis.labels = cases.labels;
+  axis.case_keys = cases.keys;
+  axis.case_values = cases.values;
   axis.numeric = false;
 }
 
-/// "k1=v1, k2=v2" of case `v` of a cases axis.
-std::string case_text(const SweepAxis& axis, std::size_t v) {
-  std::string s;
-  for (std::size_t k = 0; k < axis.case_keys.size(); ++k)
-    s += (k ? ", " : "") + axis.case_keys[k] + "=" + axis.case_values[v][k];
-  return s;
+/// The cases of a cases axis, as io/cases.hpp holds them.
+CaseList case_list(const SweepAxis& axis) {
+  CaseList c;
+  c.labels = axis.labels;
+  c.keys = axis.case_keys;
+  c.values = axis.case_values;
+  return c;
 }
 
 }  // namespace
@@ -382,33 +323,15 @@ SweepSpec load_sweep(const std::string& path) {
         if (why_not_regular_file(v) == std::nullopt) add_input(spec.inputs, "URDF", v);
   // A case's URDF is resolved from the sweep file (read_cases).
   for (const SweepAxis& axis : spec.axes)
-    for (std::size_t k = 0; k < axis.case_keys.size(); ++k)
-      if (axis.case_keys[k] == "robot.urdf")
-        for (const auto& values : axis.case_values)
-          if (why_not_regular_file(values[k]) == std::nullopt)
-            add_input(spec.inputs, "URDF", values[k]);
+    if (axis.is_cases()) add_case_inputs(spec.inputs, case_list(axis));
   // Each value once against its key, on the base scene: a value out of range is found
   // here without looking at any combination of values.
   for (SweepAxis& axis : spec.axes) {
     axis.errors.assign(axis.size(), std::string());
     // A case is its keys together: one that is not valid on the base scene stops the sweep.
-    for (std::size_t v = 0; axis.is_cases() && v < axis.size(); ++v) {
-      const std::string source = "case " + axis.labels[v];
-      YAML::Node one = YAML::Clone(tree);
-      try {
-        for (const Override& ov : axis.overrides(v)) apply_override(one, ov, source);
-        (void)scene_from_yaml(one, source, false);
-      } catch (const Error& e) {
-        std::string why = e.what();
-        if (why.rfind(source + ": ", 0) == 0) why = why.substr(source.size() + 2);
-        std::size_t at = 0;
-        for (std::size_t k = 0; k < spec.axes.size(); ++k)
-          if (&spec.axes[k] == &axis) at = k;
-        r.fail("axes[" + std::to_string(at) + "].cases[" + std::to_string(v) + "] (" +
-                   axis.labels[v] + ": " + case_text(axis, v) + ")",
-               why);
-      }
-    }
+    if (axis.is_cases())
+      check_cases_on(r, case_list(axis), tree,
+                     "axes[" + std::to_string(&axis - spec.axes.data()) + "].cases");
     for (std::size_t v = 0; !axis.is_cases() && v < axis.size(); ++v) {
       const std::string source = axis.key + "=" + axis.labels[v];
       YAML::Node one = YAML::Clone(tree);
