@@ -7,7 +7,8 @@
 #           paper_femur_tibia.png, paper_femur_tibia_climb.png, paper_femur_tibia.csv
 #   robots  the URDF robots as cases of one sweep over risers (configs/designs/robots.yaml,
 #           kept runs for the effort limits) and the climbable envelope per robot
-#           (configs/designs/envelope_<robot>.yaml): robots.png, robots_envelope.png, robots.csv
+#           (configs/designs/robots_envelope.yaml, the same cases): robots.png,
+#           robots_envelope.png, robots.csv
 #
 #   bash pipelines/designs.sh                # both studies, about a minute on 2 cores
 #   bash pipelines/designs.sh --only paper   # one study (paper or robots)
@@ -82,21 +83,12 @@ fi
 if [[ -z "$only" || "$only" == robots ]]; then
   echo "designs: the URDF robots as cases" >&2
   sweep "robots$suffix" --keep-runs
-  # The envelopes, one per robot, side by side (one core each).
-  envelopes=()
-  pids=()
-  for robot in phantomx_mark4 kraby; do
-    name="envelope_$robot$suffix"
-    "$hexdyn" envelope "$cfg/$name.yaml" -o "$out/$name.h5" 2> "$out/$name.log" &
-    pids+=($!)
-    envelopes+=("$out/$name.h5")
-  done
-  for i in "${!pids[@]}"; do
-    wait "${pids[$i]}" || { cat "${envelopes[$i]%.h5}.log" >&2; exit 1; }
-  done
-  for e in "${envelopes[@]}"; do tail -n 1 "${e%.h5}.log" >&2; done
+  name="robots_envelope$suffix"
+  "$hexdyn" envelope "$cfg/$name.yaml" -o "$out/$name.h5" 2> "$out/$name.log" ||
+    { cat "$out/$name.log" >&2; exit 1; }
+  tail -n 1 "$out/$name.log" >&2
   "$HEXDYN_PYTHON" "$HEXDYN_ROOT/analysis/plot_designs.py" "$out/robots$suffix.h5" "$out" --cases \
-    --envelope "${envelopes[@]}" --name "robots$suffix" >/dev/null
+    --envelope "$out/$name.h5" --name "robots$suffix" >/dev/null
 fi
 echo "designs: results in $out:" >&2
 ls -1 "$out" >&2

@@ -7,8 +7,10 @@ against readings made here with h5py, csv and xml.etree:
     the peak over the robot's effort limit read from its original URDF file (every joint of
     each robot has the same effort limit, so the ratio is the largest peak over it);
   - plot_design_cases.draw_cases draws, per case, exactly the computed scenarios' values
-    against the riser; the envelope figure's numbers are each file's /envelope/riser_max,
-    matched to the case by the file's /meta name.
+    against the riser; the envelope figure's numbers are /envelope/riser_max of each case of
+    robots_envelope_quick.h5;
+  - the sweep and the envelope (the same cases and travel) agree: every riser up to a
+    robot's kinematic boundary is computed, every riser from its failing riser is `reach`.
 """
 
 import csv
@@ -96,13 +98,27 @@ def check(args, out, check):
                           sw["status"][s]) for s in range(len(sw["id"])) if sw["status"][s] != "ok")
     check(sorted(drawn["failed"]) == want_failed, "cases figure: marked scenarios = not computed")
 
-    files = [os.path.join(out, f"envelope_{lab}_quick.h5") for lab in sw["labels"]]
-    table, _ = plot_design_cases.envelope_table(files, sw["labels"])
-    for lab, p in zip(sw["labels"], files):
-        with h5py.File(p, "r") as f:
-            crits = [text(x) for x in f["criterion"][()]]
-            want = {cr: float(f["envelope"]["riser_max"][0, 0, 0, j]) for j, cr in enumerate(crits)}
-            name = text(f["meta"].attrs["name"])
-        got = table.get(name) if name == lab else None
+    env_path = os.path.join(out, "robots_envelope_quick.h5")
+    table, _ = plot_design_cases.envelope_table([env_path], sw["labels"])
+    with h5py.File(env_path, "r") as f:
+        cases = [text(x) for x in f["case"][()]]
+        crits = [text(x) for x in f["criterion"][()]]
+        riser_max = np.asarray(f["envelope"]["riser_max"][()], dtype=float)[:, 0, 0, 0, :]
+        riser_fail = np.asarray(f["envelope"]["riser_fail"][()], dtype=float)[:, 0, 0, 0, :]
+    check(cases == sw["labels"], "envelope: the sweep's cases, in order")
+    for c, lab in enumerate(cases):
+        want = {cr: float(riser_max[c, j]) for j, cr in enumerate(crits)}
+        got = table.get(lab)
         check(got is not None and all(same(got[k], v) for k, v in want.items()),
               f"envelope figure: {lab} tallest risers = /envelope/riser_max", f"{got} vs {want}")
+        # The two drivers agree on the same scenes: the sweep computes every riser up to the
+        # envelope's kinematic boundary and none from the riser where the envelope fails.
+        k = crits.index("kinematic")
+        for s in range(len(sw["id"])):
+            if sw["index"][s][0] != c:
+                continue
+            h = sw["risers"][sw["index"][s][1]]
+            if h <= riser_max[c, k]:
+                check(sw["status"][s] == "ok", f"sweep and envelope: {lab} climbs {h:g} m")
+            elif np.isfinite(riser_fail[c, k]) and h >= riser_fail[c, k]:
+                check(sw["status"][s] == "reach", f"sweep and envelope: {lab} fails {h:g} m")
