@@ -137,7 +137,8 @@ def draw_cases(sweep):
     note = "; ".join(f"{lab}: {st} from {min(r for l2, r, s2 in out['failed'] if l2 == lab):g} m"
                      for lab, st in failed)
     fig.suptitle(f"{sweep.meta.get('name', 'sweep')}: {sweep.size} scenarios, "
-                 f"{int(sweep.ok.sum())} computed" + (f"; x: not computed ({note})" if note else ""),
+                 f"{int(sweep.ok.sum())} computed"
+                 + (f"; x: not computed ({note})" if note else ""),
                  fontsize=9)
     return fig, out
 

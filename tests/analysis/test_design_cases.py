@@ -72,7 +72,8 @@ def check(args, out, check):
     for row in rows:
         s = sw["id"].index(row["id"])
         c, r = sw["index"][s]
-        ok = (row["case"] == sw["labels"][c] and float(row["terrain.riser_height"]) == sw["risers"][r]
+        ok = (row["case"] == sw["labels"][c]
+              and float(row["terrain.riser_height"]) == sw["risers"][r]
               and row["status"] == sw["status"][s]
               and all(same(float(row[m]), float(sw[m][s]))
                       for m in ("cost_of_transport", "energy", "peak_torque"))
@@ -88,7 +89,8 @@ def check(args, out, check):
     fig, drawn = plot_design_cases.draw_cases(open_sweep(path))
     plt.close(fig)
     for c, lab in enumerate(sw["labels"]):
-        mine = [s for s in range(len(sw["id"])) if sw["index"][s][0] == c and sw["status"][s] == "ok"]
+        mine = [s for s in range(len(sw["id"]))
+                if sw["index"][s][0] == c and sw["status"][s] == "ok"]
         for m in ("cost_of_transport", "energy"):
             x, y = drawn["lines"][(m, lab)]
             check(list(x) == [sw["risers"][sw["index"][s][1]] for s in mine]
