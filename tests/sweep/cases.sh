@@ -16,7 +16,7 @@ mpi 2 sweep "$sweep" -o cases.h5 --keep-runs 2> cases.log || { cat cases.log; fa
 # Scenario 000003: the Kraby case (index 1) at the 0.04 m riser (index 1).
 "$HEXDYN" run "$SRC/configs/robots/phantomx_mark4_stairs.yaml" -o run3.h5 \
   --set robot.urdf="$SRC/robots/kraby.urdf" --set robot.forward_axis=+y --set gait.stroke=0.025 \
-  --set terrain.riser_height=0.04 2> run3.log || { cat run3.log; fail "run"; }
+  --set terrain.riser_height=0.04 --set motion.cycles=null --set motion.travel.treads=2 2> run3.log || { cat run3.log; fail "run"; }
 compare --result run3.h5 cases.h5:/runs/000003
 "$PY" "$SRC/tests/sweep/check_schema.py" --sweep cases.h5
 
@@ -35,6 +35,8 @@ assert robot.cases["robot.urdf"] == [os.path.join(src, "robots", n)
                                      for n in ("phantomx_mark4.urdf", "kraby.urdf")]
 assert list(robot.cases["robot.forward_axis"]) == ["+x", "+y"]
 assert np.array_equal(robot.cases["gait.stroke"], [0.0625, 0.025])
+# Both robots climb the two treads of the sweep's motion.travel, whatever their stroke.
+assert np.allclose(sw.table["distance"], 2 * np.hypot(0.25, sw.table["axis_1"]), rtol=0, atol=1e-9)
 s3 = sw.scenario(3)
 assert s3["robot"] == "kraby" and s3["robot.forward_axis"] == "+y" and s3["terrain.riser_height"] == 0.04
 # Each kept run is the robot of its case (the URDF's total mass, not the base robot's).
