@@ -57,6 +57,12 @@ def read_envelope(path):
         d["posture_height"] = f[S["kEnvelopePostureHeight"].path][()]
         d["posture_foot_lateral"] = f[S["kEnvelopePostureFootLateral"].path][()]
         d["probes"] = int(f[S["kProbeRiser"].path].shape[0])
+        # With cases (a design each), a leading dimension `case`; without, one unnamed case.
+        d["cases"] = _strings(f[S["kCaseCoordinate"].path]) if S["kCaseCoordinate"].path in f else None
+    if d["cases"] is None:
+        for k in ("riser_max", "riser_fail", "limit", "message", "posture_height",
+                  "posture_foot_lateral"):
+            d[k] = d[k][np.newaxis]
     return d
 
 
@@ -69,8 +75,14 @@ def check_layout(path):
         C = f[S["kEnvelopeCriteria"].path].shape[0]
         P = f[S["kProbeRiser"].path].shape[0]
         sizes = {"W": W, "B": B, "S": V, "C": C, "P": P, "G": W * B * V * C}
+        specs = list(S["kEnvelopeDatasets"]) + list(S["kEnvelopeCoordinates"])
+        if S["kCaseCoordinate"].path in f:  # cases: their declarations replace those of a path
+            sizes["D"] = f[S["kCaseCoordinate"].path].shape[0]
+            sizes["K"] = f[S["kEnvelopeCaseKeys"].path].shape[0]
+            by_case = {c.path: c for c in S["kEnvelopeCaseDatasets"]}
+            specs = [by_case.pop(c.path, c) for c in specs] + list(by_case.values())
         declared = set()
-        for spec in list(S["kEnvelopeDatasets"]) + list(S["kEnvelopeCoordinates"]):
+        for spec in specs:
             declared.add(spec.path)
             if spec.path not in f:
                 raise SystemExit(f"plot_envelope: {path}: {spec.path} missing")
@@ -104,51 +116,63 @@ def duty_label(beta):
 
 def table(d):
     lines = []
+    for i, case in enumerate(d["cases"] or [None]):
+        lines += case_table(d, i, case)
+    return "\n".join(lines)
+
+
+def case_table(d, i, case):
+    lines = []
     for w, tread in enumerate(d["tread"]):
-        lines.append(f"tread {tread:.2f} m: largest climbable riser [mm] per duty factor (rows) "
+        lines.append(("" if case is None else f"{case}: ") +
+                     f"tread {tread:.2f} m: largest climbable riser [mm] per duty factor (rows) "
                      f"and peak speed (columns), criteria {'/'.join(d['criteria'])}")
         lines.append("  beta   " + "".join(f"{v:>22.2f}" for v in d["speed"]))
         for b, beta in enumerate(d["duty"]):
             cells = []
             for v in range(len(d["speed"])):
-                vals = ["-" if not np.isfinite(x) else f"{1e3 * x:.0f}" for x in d["riser_max"][w, b, v]]
+                vals = ["-" if not np.isfinite(x) else f"{1e3 * x:.0f}"
+                        for x in d["riser_max"][i, w, b, v]]
                 cells.append("/".join(vals))
             lines.append(f"  {duty_label(beta):>5}  " + "".join(f"{c:>22}" for c in cells))
         limits = {}
         for b in range(len(d["duty"])):
             for v in range(len(d["speed"])):
                 for c, name in enumerate(d["criteria"]):
-                    lim = d["limit"][w, b, v, c]
+                    lim = d["limit"][i, w, b, v, c]
                     if lim:
                         key = f"{name}: {lim}"
                         limits[key] = limits.get(key, 0) + 1
         for k, n in sorted(limits.items(), key=lambda kv: -kv[1]):
             lines.append(f"    {n:3d} x {k}")
-    return "\n".join(lines)
+    return lines
 
 
 def plot(d, outdir):
     W = len(d["tread"])
-    fig, axes = plt.subplots(1, W, figsize=(4.2 * W, 4.0), sharey=True, squeeze=False)
+    cases = d["cases"] or [None]
+    fig, grid = plt.subplots(len(cases), W, figsize=(4.2 * W, 4.0 * len(cases)), sharey=True,
+                             squeeze=False)
     colors = plt.cm.viridis(np.linspace(0.0, 0.85, len(d["duty"])))
-    for w, ax in enumerate(axes[0]):
+    for (i, case), (w, ax) in ((ic, wa) for ic in enumerate(cases) for wa in enumerate(grid[ic[0]])):
         for b, beta in enumerate(d["duty"]):
             for c, name in enumerate(d["criteria"]):
-                y = 1e3 * d["riser_max"][w, b, :, c]
+                y = 1e3 * d["riser_max"][i, w, b, :, c]
                 ax.plot(d["speed"], y, STYLES.get(name, "-"), marker=MARKERS.get(name, "o"), ms=4,
                         color=colors[b], label=f"β = {duty_label(beta)}, {name}")
                 none = ~np.isfinite(y)
                 if none.any():
                     ax.plot(d["speed"][none], np.full(none.sum(), 1e3 * d["riser_from"]), "x",
                             color=colors[b], ms=8)
-        ax.set_title(f"tread {d['tread'][w]:.2f} m")
+        ax.set_title(("" if case is None else f"{case}, ") + f"tread {d['tread'][w]:.2f} m")
         ax.set_xlabel("peak speed [m/s]")
         ax.grid(alpha=0.3)
-    axes[0][0].set_ylabel("largest climbable riser [mm]")
-    handles, labels = axes[0][0].get_legend_handles_labels()
+    for row in grid:
+        row[0].set_ylabel("largest climbable riser [mm]")
+    handles, labels = grid[0][0].get_legend_handles_labels()
     fig.legend(handles, labels, loc="lower center", ncol=len(d["duty"]), fontsize=7, frameon=False)
     fig.suptitle(f"climbable envelope '{d['meta'].get('name', '')}' (x: fails at the lowest riser)")
-    fig.tight_layout(rect=(0, 0.16, 1, 0.95))
+    fig.tight_layout(rect=(0, 0.16 / len(cases), 1, 1 - 0.05 / len(cases)))
     save_atomically(fig, outdir, "envelope.png")
     plt.close(fig)
 

@@ -18,6 +18,8 @@ set(HEXDYN_SWEEP_TESTS
   "crash_contained=crash_contained"              # a scenario that aborts its process: crashed row, sweep completes, also on --resume
   "idle_ranks_do_not_spin=idle_ranks"            # ranks waiting for work use at most 10 % of a core each
   "resume_refused_after_edited_input=edited_inputs"  # issue 22 B1: an edited URDF or inherited scene refuses --resume, naming it
+  "travel_same_distance=travel"                  # motion.travel: a duty-factor x speed sweep, every trunk moves two treads; travel with cycles is one line
+  "cases_axis_over_robots=cases"                 # a cases axis over two URDF robots: every scenario ok, kept run = hexdyn run --set, labels in the file and readers
 )
 foreach(entry IN LISTS HEXDYN_SWEEP_TESTS)
   string(REPLACE "=" ";" pair "${entry}")

@@ -10,7 +10,9 @@ the second run must equal the first's: running it again pins nothing new.
 The scenes: configs/sweeps/stairs_base.yaml (inherits configs/paper.yaml; automatic
 posture height and foot spread), configs/robots/kraby_stairs.yaml (a URDF robot,
 automatic posture) and the same with gait.foot_lateral left out (its default: the URDF's
-nominal stance radius), and configs/paper.yaml (allocation.solver: auto).
+nominal stance radius), configs/paper.yaml (allocation.solver: auto), and a design of
+configs/designs/paper_base.yaml with longer or shorter links (robot.links_follow_length:
+the stretched masses and the femur's default COM).
 
     rerun_resolved.py HEXDYN SOURCE_DIR WORK_DIR
 """
@@ -111,8 +113,16 @@ def main():
     kraby_default = os.path.join(work, "kraby_default_spread.yaml")
     with open(kraby_default, "w") as f:
         yaml.safe_dump(tree, f)
+    # A design whose links follow their length (robot.links_follow_length): stretched femur
+    # and tibia, the femur's COM left to its default (the reference's mid-length, stretched).
+    design = os.path.join(work, "design_stretched.yaml")
+    with open(design, "w") as f:
+        yaml.safe_dump({"inherit": os.path.join(src, "configs/designs/paper_base.yaml"),
+                        "robot": {"femur": {"length": 0.15, "com": None},
+                                  "tibia": {"length": 0.08}}}, f)
     scenes = {
         "stairs_base": os.path.join(src, "configs/sweeps/stairs_base.yaml"),
+        "design_stretched": design,
         "kraby": kraby,
         "kraby_default_spread": kraby_default,
         "paper": os.path.join(src, "configs/paper.yaml"),

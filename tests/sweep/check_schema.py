@@ -195,6 +195,13 @@ def check_sweep(f, source):
         key = hr._text(f[concrete(S["kAxisKey"].path, i)][()])
         coordinate = S["kAxisCoordinateNumbers"] if numeric else S["kAxisCoordinateWords"]
         c.dataset(coordinate, {"V": V}, coordinate.path.replace("{key}", key))
+        if concrete(S["kAxisCaseKeys"].path, i) in f:  # a cases axis
+            K = f[concrete(S["kAxisCaseKeys"].path, i)].shape[0]
+            c.dataset(S["kAxisCaseKeys"], {"K": K}, concrete(S["kAxisCaseKeys"].path, i))
+            c.dataset(S["kAxisCaseValues"], {"V": V, "K": K},
+                      concrete(S["kAxisCaseValues"].path, i))
+            c.dataset(S["kCaseKeyCoordinate"], {"K": K},
+                      S["kCaseKeyCoordinate"].path.replace("{key}", key))
     c.dataset(S["kSweepJointNames"], {})
     for spec in S["kSweepCoordinates"]:
         c.dataset(spec, {"N": N, "A": A})

@@ -381,15 +381,32 @@ def open_result(path, group="/"):
 SWEEP_STATUS = tuple(SCHEMA["kScenarioStatusNames"])
 
 
+def _case_column(texts):
+    """One key's values over the cases: a float array when every value is a number, else
+    the list of texts (YAML, as /axes/<i>/case_values stores them)."""
+    try:
+        return np.array([float(t) for t in texts])
+    except ValueError:
+        return list(texts)
+
+
 class SweepAxis:
     """One swept key: `key` (dotted path), `values` (float array, or list of str for an
-    axis of words), `labels` (as written in the sweep file, e.g. "2/3"), `numeric`."""
+    axis of words), `labels` (as written in the sweep file, e.g. "2/3"), `numeric`.
+    A cases axis (`cases:` in the sweep file) has `key` its name ("case"), `values` and
+    `labels` the case labels, and `cases` {scene key: value per case} (float array or list
+    of str), the keys in the order of the sweep file; `cases` is None for other axes."""
 
-    def __init__(self, key, values, labels):
+    def __init__(self, key, values, labels, cases=None):
         self.key = key
         self.values = values
         self.labels = labels
         self.numeric = isinstance(values, np.ndarray)
+        self.cases = cases
+
+    @property
+    def is_cases(self):
+        return self.cases is not None
 
     def __len__(self):
         return len(self.labels)
@@ -410,7 +427,8 @@ class Sweep:
     sw.meta             /meta attributes; sw.config the base scene (dict);
                         sw.spec the sweep file (dict)
     sw.grid(name)       a column reshaped to sw.shape (+ the column's own dims)
-    sw.scenario(i)      {axis key: value} of scenario i
+    sw.scenario(i)      {axis key: value} of scenario i (a cases axis: its label, then
+                        each key its case sets)
     sw.run(i)           Result of scenario i (index or id) from /runs/<id>
     """
 
@@ -459,8 +477,12 @@ class Sweep:
 
     def scenario(self, i):
         i = self._index(i)
-        return {a.key: (float(a.values[j]) if a.numeric else a.values[j])
-                for a, j in zip(self.axes, self.table["axis_index"][i])}
+        out = {}
+        for a, j in zip(self.axes, self.table["axis_index"][i]):
+            out[a.key] = float(a.values[j]) if a.numeric else a.values[j]
+            for key, column in (a.cases or {}).items():
+                out[key] = float(column[j]) if isinstance(column, np.ndarray) else column[j]
+        return out
 
     def run(self, i):
         """The full result of scenario `i` (index or id string)."""
@@ -523,7 +545,15 @@ def open_sweep(path):
             values = _read_dataset(g["values"])
             if not isinstance(values, list):
                 values = np.asarray(values, dtype=float)
-            axes.append(SweepAxis(_read_dataset(g["key"]), values, _read_dataset(g["labels"])))
+            cases = None
+            if "case_keys" in g:  # a cases axis: each key's value per case
+                keys = _read_dataset(g["case_keys"])
+                table = np.array(_read_dataset(g["case_values"]), dtype=object).reshape(
+                    len(values), len(keys))
+                cases = {k: _case_column([str(t) for t in table[:, n]])
+                         for n, k in enumerate(keys)}
+            axes.append(SweepAxis(_read_dataset(g["key"]), values, _read_dataset(g["labels"]),
+                                  cases))
         table, units = {}, {}
         for name, ds in f["scenarios"].items():
             value = _read_dataset(ds)

@@ -104,12 +104,16 @@ def _sweep_columns(sw):
 
 
 def sweep_to_xarray(sw):
-    """An xarray.Dataset of a hexdyn.results.Sweep, one dimension per axis."""
+    """An xarray.Dataset of a hexdyn.results.Sweep, one dimension per axis; a cases
+    axis's dimension is indexed by its labels and carries each key it sets as a coordinate
+    along it (ds["robot.urdf"])."""
     import xarray as xr
     keys = [a.key for a in sw.axes]
     coords = {}
     for i, a in enumerate(sw.axes):
         coords[a.key] = _axis_coordinate(a, sw.units.get(f"axis_{i}", ""))
+        for key, column in (a.cases or {}).items():  # a cases axis: what each case sets
+            coords[key] = (a.key, _values(column), {"long_name": f"{key}: value in each {a.key}"})
     coords["joint"] = ("joint", np.array(sw.joint_names, dtype=object),
                        {"long_name": "joint name, leg-major"})
     variables = {}
@@ -132,6 +136,8 @@ def sweep_to_dataframe(sw):
     for i, a in enumerate(sw.axes):
         values = np.asarray(a.values, dtype=float) if a.numeric else np.array(a.values, object)
         columns[a.key] = values[index[:, i]]
+        for key, column in (a.cases or {}).items():
+            columns[key] = np.asarray(_values(column))[index[:, i]]
     for name, value, _ in _sweep_columns(sw):
         if name == "id":
             continue

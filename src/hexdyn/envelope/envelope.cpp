@@ -126,8 +126,7 @@ EnvelopeResult compute_envelope(const EnvelopeSpec& spec, std::ostream* log) {
   const auto start = std::chrono::steady_clock::now();
   EnvelopeResult out;
   const int C = static_cast<int>(spec.criteria.size());
-  const int cells = static_cast<int>(spec.tread_depth_m.size() * spec.duty_factor.size() *
-                                     spec.peak_speed_mps.size());
+  const int cells = spec.cell_count();
   out.boundary.resize(static_cast<std::size_t>(cells) * C);
   out.posture_height_m.assign(cells, kNaN);
   out.posture_foot_lateral_m.assign(cells, kNaN);
@@ -203,8 +202,11 @@ EnvelopeResult compute_envelope(const EnvelopeSpec& spec, std::ostream* log) {
       }
       out.boundary[static_cast<std::size_t>(cell) * C + ci] = bd;
       if (log) {
-        const std::size_t V = spec.peak_speed_mps.size(), B = spec.duty_factor.size();
-        *log << "envelope: tread " << spec.tread_depth_m[cell / (V * B)] << " m, duty "
+        const std::size_t V = spec.peak_speed_mps.size(), B = spec.duty_factor.size(),
+                          W = spec.tread_depth_m.size();
+        *log << "envelope: ";
+        if (spec.cases.size() > 0) *log << spec.cases.labels[cell / (V * B * W)] << ", ";
+        *log << "tread " << spec.tread_depth_m[(cell / (V * B)) % W] << " m, duty "
              << spec.duty_factor[(cell / V) % B] << ", speed " << spec.peak_speed_mps[cell % V]
              << " m/s, " << criterion_name(c) << ": riser <= " << bd.riser_max_m * 1e3 << " mm";
         if (failed) *log << ", fails at " << bd.riser_fail_m * 1e3 << " mm: " << bd.message;

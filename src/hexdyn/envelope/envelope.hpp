@@ -32,6 +32,7 @@
 #include <vector>
 
 #include "hexdyn/core/scene.hpp"
+#include "hexdyn/io/cases.hpp"
 #include "hexdyn/io/inputs.hpp"
 
 namespace hexdyn {
@@ -55,6 +56,11 @@ struct EnvelopeSpec {
   std::vector<double> peak_speed_mps;       ///< V values
   std::vector<EnvelopeCriterion> criteria;  ///< C values, in file order
   double kinematic_margin_m = -1.0;         ///< required reach margin; < 0: robot.ik_min_margin
+  /// `cases:` (io/cases.hpp): D designs, each its keys set on the base scene; empty: one
+  /// design, the base scene's, and no `case` dimension in the file.
+  CaseList cases;
+  /// Number of cells: D × W × B × V (D = 1 without cases).
+  int cell_count() const;
 };
 
 /// Reads and checks an envelope file; the base scene is validated. Throws ConfigError.
@@ -62,7 +68,7 @@ EnvelopeSpec load_envelope_spec(const std::string& path);
 
 /// One evaluation of a criterion at one riser.
 struct EnvelopeProbe {
-  int cell = 0;  ///< index into the (W, B, V) grid, row-major
+  int cell = 0;  ///< index into the (W, B, V) grid, or (D, W, B, V) with cases, row-major
   EnvelopeCriterion criterion = EnvelopeCriterion::kKinematic;
   double riser_m = 0.0;
   bool passed = false;
@@ -79,17 +85,17 @@ struct EnvelopeBoundary {
 };
 
 struct EnvelopeResult {
-  /// (W, B, V, C) row-major: [((w·B + b)·V + v)·C + c].
+  /// (W, B, V, C) row-major: [((w·B + b)·V + v)·C + c]; with cases (D, W, B, V, C).
   std::vector<EnvelopeBoundary> boundary;
-  /// (W, B, V): the automatic posture at the kinematic riser_max (NaN when not auto or
-  /// not found), and its smallest kinematic margin [m].
+  /// (W, B, V), with cases (D, W, B, V): the automatic posture at the kinematic riser_max (NaN when
+  /// not auto or not found), and its smallest kinematic margin [m].
   std::vector<double> posture_height_m, posture_foot_lateral_m, posture_margin_m;
   std::vector<EnvelopeProbe> probes;
   double wall_time_s = 0.0;
 };
 
-/// A probe's scene: the base tree with the cell's tread, duty factor and speed, the riser
-/// and the criterion's lifted limit. Throws ConfigError.
+/// A probe's scene: the base tree with the cell's case keys, tread, duty factor and speed, the
+/// riser and the criterion's lifted limit. Throws ConfigError.
 Scene envelope_probe_scene(const EnvelopeSpec& spec, int cell, double riser_m, EnvelopeCriterion c);
 
 /// Evaluates one criterion at one riser (never throws for a scene that cannot be

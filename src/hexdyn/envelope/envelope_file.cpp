@@ -63,13 +63,33 @@ void write_file(H5Writer& w, const EnvelopeSpec& spec, const EnvelopeResult& r) 
     limit.push_back(b.limit);
     message.push_back(b.message);
   }
-  write_doubles(s::kEnvelopeRiserMax, {W, B, S, C}, rmax);
-  write_doubles(s::kEnvelopeRiserFail, {W, B, S, C}, rfail);
-  write_strings(s::kEnvelopeLimit, {W, B, S, C}, limit);
-  write_strings(s::kEnvelopeMessage, {W, B, S, C}, message);
-  write_doubles(s::kEnvelopePostureHeight, {W, B, S}, r.posture_height_m);
-  write_doubles(s::kEnvelopePostureFootLateral, {W, B, S}, r.posture_foot_lateral_m);
-  write_doubles(s::kEnvelopePostureMargin, {W, B, S}, r.posture_margin_m);
+  // With cases, the grid has the leading dimension `case` (the kEnvelopeCase* declarations).
+  const std::size_t D = spec.cases.size();
+  const bool cases = D > 0;
+  const std::vector<std::size_t> grid =
+      cases ? std::vector<std::size_t>{D, W, B, S, C} : std::vector<std::size_t>{W, B, S, C};
+  const std::vector<std::size_t> cells =
+      cases ? std::vector<std::size_t>{D, W, B, S} : std::vector<std::size_t>{W, B, S};
+  if (cases) {
+    const std::size_t K = spec.cases.keys.size();
+    std::vector<std::string> table;
+    for (const auto& row : spec.cases.values) table.insert(table.end(), row.begin(), row.end());
+    write_strings(s::kCaseCoordinate, {D}, spec.cases.labels);
+    write_strings(s::kEnvelopeCaseLabels, {D}, spec.cases.labels);
+    write_strings(s::kCaseKeyCoordinateEnvelope, {K}, spec.cases.keys);
+    write_strings(s::kEnvelopeCaseKeys, {K}, spec.cases.keys);
+    write_strings(s::kEnvelopeCaseValues, {D, K}, table);
+  }
+  write_doubles(cases ? s::kEnvelopeCaseRiserMax : s::kEnvelopeRiserMax, grid, rmax);
+  write_doubles(cases ? s::kEnvelopeCaseRiserFail : s::kEnvelopeRiserFail, grid, rfail);
+  write_strings(cases ? s::kEnvelopeCaseLimit : s::kEnvelopeLimit, grid, limit);
+  write_strings(cases ? s::kEnvelopeCaseMessage : s::kEnvelopeMessage, grid, message);
+  write_doubles(cases ? s::kEnvelopeCasePostureHeight : s::kEnvelopePostureHeight, cells,
+                r.posture_height_m);
+  write_doubles(cases ? s::kEnvelopeCasePostureFootLateral : s::kEnvelopePostureFootLateral, cells,
+                r.posture_foot_lateral_m);
+  write_doubles(cases ? s::kEnvelopeCasePostureMargin : s::kEnvelopePostureMargin, cells,
+                r.posture_margin_m);
 
   std::vector<std::int32_t> cell, crit;
   std::vector<double> riser;
@@ -101,7 +121,8 @@ void write_file(H5Writer& w, const EnvelopeSpec& spec, const EnvelopeResult& r) 
 
 constexpr const char* kUsage = R"(usage: hexdyn envelope ENVELOPE -o FILE [-v]
   Finds the largest stair riser the robot climbs, per tread depth, duty factor and peak
-  speed, under the kinematic, torque and friction criteria, and writes the
+  speed (and per case: a design of `cases:`), under the kinematic, torque and friction
+  criteria, and writes the
   hexdyn-envelope/2 file FILE (docs/user/envelope.md; configs/envelope/paper.yaml
   documents the keys). -v prints one line per cell and criterion.
 )";

@@ -75,7 +75,7 @@ EnvelopeSpec load_envelope_spec(const std::string& path) {
   const YAML::Node root = parse_yaml_text(spec.spec_yaml, path);
   const EnvelopeReader r(path);
   r.check_keys(root, "",
-               {"name", "base", "set", "riser", "tread_depth", "duty_factor", "peak_speed",
+               {"name", "base", "set", "cases", "riser", "tread_depth", "duty_factor", "peak_speed",
                 "criteria", "kinematic_margin"});
   spec.name =
       given(root["name"]) ? root["name"].Scalar() : std::filesystem::path(path).stem().string();
@@ -110,6 +110,19 @@ EnvelopeSpec load_envelope_spec(const std::string& path) {
   add_input(spec.inputs, "envelope file", path);
   for (InputFile& f : scene_inputs(chain, tree))
     add_input(spec.inputs, f.role == "scene" ? "base scene" : f.role, f.path);
+  // cases: the designs whose envelope is searched, each valid on the base scene.
+  if (given(root["cases"])) {
+    spec.cases = read_case_list(r, root["cases"], "cases", path);
+    for (const std::string& key : spec.cases.keys)
+      for (const char* own :
+           {"terrain.riser_height", "terrain.tread_depth", "gait.duty_factor", "motion.peak_speed"})
+        if (key == own)
+          r.fail("cases", "got key " + key +
+                              ", expected a key the envelope does not set itself (it searches "
+                              "the riser and takes tread_depth, duty_factor and peak_speed)");
+    check_cases_on(r, spec.cases, tree, "cases");
+    add_case_inputs(spec.inputs, spec.cases);
+  }
   if (base_scene.terrain.type != TerrainType::kStairs)
     r.fail("base",
            "the base scene's terrain.type is not stairs, expected a staircase (its riser is "
@@ -166,18 +179,24 @@ EnvelopeSpec load_envelope_spec(const std::string& path) {
   if (given(root["kinematic_margin"]))
     spec.kinematic_margin_m = r.number(root["kinematic_margin"], "kinematic_margin", 0.0, 0.1);
   // Every cell's scene at the lowest riser must be valid (speed against ramp, ...).
-  const int cells = static_cast<int>(spec.tread_depth_m.size() * spec.duty_factor.size() *
-                                     spec.peak_speed_mps.size());
+  const int cells = spec.cell_count();
   for (int cell = 0; cell < cells; ++cell)
     for (EnvelopeCriterion c : spec.criteria)
       (void)envelope_probe_scene(spec, cell, spec.riser_from_m, c);
   return spec;
 }
 
+int EnvelopeSpec::cell_count() const {
+  return static_cast<int>(std::max<std::size_t>(1, cases.size()) * tread_depth_m.size() *
+                          duty_factor.size() * peak_speed_mps.size());
+}
+
 Scene envelope_probe_scene(const EnvelopeSpec& spec, int cell, double riser_m,
                            EnvelopeCriterion c) {
-  const std::size_t V = spec.peak_speed_mps.size(), B = spec.duty_factor.size();
-  const std::size_t v = cell % V, b = (cell / V) % B, w = cell / (V * B);
+  const std::size_t V = spec.peak_speed_mps.size(), B = spec.duty_factor.size(),
+                    W = spec.tread_depth_m.size();
+  const std::size_t n = static_cast<std::size_t>(cell);
+  const std::size_t v = n % V, b = (n / V) % B, w = (n / (V * B)) % W, d = n / (V * B * W);
   YAML::Node tree = YAML::Load(spec.base_tree_yaml);
   auto text = [](double x) {
     std::ostringstream s;
@@ -185,16 +204,21 @@ Scene envelope_probe_scene(const EnvelopeSpec& spec, int cell, double riser_m,
     s << x;
     return s.str();
   };
-  std::vector<Override> ov = {{"terrain.riser_height", text(riser_m)},
-                              {"terrain.tread_depth", text(spec.tread_depth_m[w])},
-                              {"gait.duty_factor", text(spec.duty_factor[b])},
-                              {"motion.peak_speed", text(spec.peak_speed_mps[v])}};
+  std::vector<Override> ov;
+  if (spec.cases.size() > 0) ov = spec.cases.overrides(d);
+  const std::vector<Override> cell_keys = {{"terrain.riser_height", text(riser_m)},
+                                           {"terrain.tread_depth", text(spec.tread_depth_m[w])},
+                                           {"gait.duty_factor", text(spec.duty_factor[b])},
+                                           {"motion.peak_speed", text(spec.peak_speed_mps[v])}};
+  ov.insert(ov.end(), cell_keys.begin(), cell_keys.end());
   if (c == EnvelopeCriterion::kTorque) ov.push_back({"contact.friction_coefficient", "10"});
   if (c == EnvelopeCriterion::kFriction) ov.push_back({"allocation.torque_limit", "1e6"});
   if (c == EnvelopeCriterion::kKinematic && spec.kinematic_margin_m >= 0.0)
     ov.push_back({"robot.ik_min_margin", text(spec.kinematic_margin_m)});
   const std::string source =
-      spec.name + " envelope cell " + std::to_string(cell) + " riser " + text(riser_m);
+      spec.name + " envelope cell " + std::to_string(cell) +
+      (spec.cases.size() > 0 ? " (case " + spec.cases.labels[d] + ")" : std::string()) + " riser " +
+      text(riser_m);
   for (const auto& o : ov) apply_override(tree, o, source);
   return scene_from_yaml(tree, source);
 }

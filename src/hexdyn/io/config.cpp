@@ -16,6 +16,7 @@
 #include "hexdyn/io/robot_config.hpp"
 #include "hexdyn/io/scene_key_reader.hpp"
 #include "hexdyn/io/yaml_load.hpp"
+#include "hexdyn/model/link_scaling.hpp"
 
 namespace hexdyn {
 namespace {
@@ -72,12 +73,27 @@ void read_robot(Reader& r, RobotParams& p, LoadedUrdfRobot& loaded) {
   }
   p.trunk = read_body(r, "robot.trunk", true, Vec3::Zero());
   p.payload = read_body(r, "robot.payload", true, Vec3::Zero());
+  // How each link's mass, COM and inertia follow its length (model/link_scaling.hpp): with
+  // uniform_density they are stated for robot.<link>.reference_length (required) and
+  // stretched to robot.<link>.length; the COM's default is the reference's mid-length.
+  const std::string def_rule = "none";
+  const bool follow =
+      r.choice("robot.links_follow_length", {"none", "uniform_density"}, &def_rule) != "none";
   const char* names[kJointsPerLeg] = {"coxa", "femur", "tibia"};
   for (int j = 0; j < kJointsPerLeg; ++j) {
     const std::string base = std::string("robot.") + names[j];
     p.link_length_m[j] = r.number(base + ".length", positive(10.0));
     p.joint_offset_m[j] = r.number(base + ".offset", nonnegative(1.0));
-    p.link[j] = read_body(r, base, true, Vec3(0.5 * p.link_length_m[j], 0.0, 0.0));
+    const std::string ref_key = base + ".reference_length";
+    if (follow && !r.given(ref_key))
+      r.fail(ref_key, "missing, expected the length (0, 10] m that " + base +
+                          ".mass, .inertia and .com are stated for (robot.links_follow_length is "
+                          "uniform_density)");
+    const double ref_length =
+        r.has(ref_key) ? r.number(ref_key, positive(10.0)) : p.link_length_m[j];
+    p.link[j] =
+        read_body(r, base, true, Vec3(0.5 * (follow ? ref_length : p.link_length_m[j]), 0.0, 0.0));
+    if (follow) p.link[j] = stretch_link(p.link[j], p.link_length_m[j] / ref_length);
     const auto lim = r.numbers(base + ".limits", 2, 2, closed(-M_PI, M_PI));
     if (lim[0] >= lim[1])
       r.fail(base + ".limits", "got [" + fmt(lim[0]) + ", " + fmt(lim[1]) +
@@ -198,17 +214,71 @@ void read_posture(Reader& r, MotionParams& m) {
   }
 }
 
-void read_motion(Reader& r, const GaitParams& g, const TerrainParams& t, MotionParams& m) {
+/// motion.travel: {distance: D} or {treads: N}, the trunk's travel along the slope
+/// (docs/user/configuration.md#motion). The cycles are the fewest whose strides of the
+/// given stroke cover it, n = ⌈D / stride⌉; the stride then shrinks to D / n (gait.stroke
+/// scaled by the same factor, never lengthened), so that the trunk travels exactly D
+/// whatever the duty factor and speed. Returns n and adapts g.stroke_m; the resolved scene
+/// records the stroke used, and the stroke asked beside it (auto.gait.stroke).
+int read_travel(Reader& r, GaitParams& g, const TerrainParams& t, double stride_along_slope) {
+  const YAML::Node travel = r.node("motion.travel");
+  if (!travel.IsMap())
+    r.fail_value("motion.travel", travel, "a map {distance: D} (m) or {treads: N}");
+  for (const auto& kv : travel)
+    if (kv.first.Scalar() != "distance" && kv.first.Scalar() != "treads")
+      r.fail("motion.travel." + kv.first.Scalar(), "unknown key, allowed here: distance, treads");
+  const bool by_distance = travel["distance"].IsDefined() && !travel["distance"].IsNull();
+  const bool by_treads = travel["treads"].IsDefined() && !travel["treads"].IsNull();
+  if (by_distance == by_treads)
+    r.fail_value("motion.travel", travel,
+                 "exactly one of distance (m along the slope) and treads (a number of treads)");
+  const double cos_slope = std::cos(mean_slope_rad(t));
+  double distance = 0.0;
+  if (by_distance) {
+    distance = r.number("motion.travel.distance", positive(1e4));
+  } else {
+    const int treads = r.integer("motion.travel.treads", 1, 100000);
+    if (t.type != TerrainType::kStairs)
+      r.fail("motion.travel.treads",
+             "got " + std::to_string(treads) +
+                 " on terrain without treads, expected terrain.type stairs (or give "
+                 "motion.travel.distance)");
+    distance = treads * t.tread_depth_m / cos_slope;  // one tread: b_s across, h_s up
+  }
+  const double ratio = distance / stride_along_slope;
+  const double n = std::max(1.0, std::ceil(ratio - 1e-9));
+  if (n > 100000)
+    r.fail("motion.travel", "got " + fmt(distance) + " m, " + fmt(n) +
+                                " cycles of gait.stroke, expected at most 100000 cycles");
+  // Strides that cover D to 1e-9 keep the stroke as given (the paper's 3 treads: 3 cycles).
+  if (std::abs(n - ratio) > 1e-9 * n) {
+    const double stroke = (distance / n) * cos_slope * g.duty_factor;
+    r.record("auto.gait.stroke", YAML::Node(g.stroke_m));
+    char text[40];
+    std::snprintf(text, sizeof text, "%.17g", stroke);
+    r.record("gait.stroke", YAML::Node(std::string(text)));
+    g.stroke_m = stroke;
+  }
+  return static_cast<int>(n);
+}
+
+void read_motion(Reader& r, GaitParams& g, const TerrainParams& t, MotionParams& m) {
   read_posture(r, m);
   // Stride: trunk travel per gait cycle along the slope (s0/β horizontally).
   const double stride_along_slope = (g.stroke_m / g.duty_factor) / std::cos(mean_slope_rad(t));
   const bool by_durations = r.has("motion.cycle_durations");
-  const bool by_speed =
-      r.has("motion.peak_speed") || r.has("motion.cycles") || r.has("motion.ramp_duration");
+  const bool by_travel = r.given("motion.travel");
+  const bool by_speed = r.has("motion.peak_speed") || r.has("motion.cycles") ||
+                        r.has("motion.ramp_duration") || by_travel;
   if (by_durations && by_speed)
     r.fail("motion",
-           "got both cycle_durations and peak_speed/cycles/ramp_duration, expected one of the two "
-           "forms");
+           "got both cycle_durations and peak_speed/cycles/ramp_duration/travel, expected one of "
+           "the two forms");
+  if (by_travel && r.has("motion.cycles"))
+    r.fail("motion.travel", "got " + yaml_inline(r.node("motion.travel")) + " and motion.cycles " +
+                                yaml_inline(r.node("motion.cycles")) +
+                                ", expected one of them (travel sets the number of cycles; "
+                                "motion.cycles: null removes an inherited one)");
   if (by_durations) {
     m.cycle_durations_s = r.numbers("motion.cycle_durations", 3, 10000, positive(1e4));
     const auto& d = m.cycle_durations_s;
@@ -228,10 +298,12 @@ void read_motion(Reader& r, const GaitParams& g, const TerrainParams& t, MotionP
                                            ", expected a first cycle at most twice the cruise "
                                            "cycle (the speed ramp must end inside it)");
   } else {
-    m.cycles = r.integer("motion.cycles", 1, 100000);
+    m.cycles = by_travel ? read_travel(r, g, t, stride_along_slope)
+                         : r.integer("motion.cycles", 1, 100000);
     m.peak_speed_mps = r.number("motion.peak_speed", positive(10.0));
     m.ramp_duration_s = r.number("motion.ramp_duration", positive(1e4));
-    const double cruise_time = m.cycles * stride_along_slope / m.peak_speed_mps;
+    const double cruise_time =
+        m.cycles * (g.stroke_m / g.duty_factor) / std::cos(mean_slope_rad(t)) / m.peak_speed_mps;
     if (m.ramp_duration_s > cruise_time)
       r.fail("motion.ramp_duration",
              "got " + fmt(m.ramp_duration_s) + ", expected at most " + fmt(cruise_time) +

@@ -60,7 +60,7 @@ std::int64_t word_count(const char* words) {
 void Labeller::add(const s::DatasetSpec& spec, const std::string& path, const std::string& key) {
   std::vector<std::string> dims = split(s::dimension_names(spec.shape));
   for (std::string& d : dims)
-    if (d == "{key}") d = key;
+    if (const auto p = d.find("{key}"); p != std::string::npos) d.replace(p, 5, key);
   entries_.push_back({&spec, root_ + (path.empty() ? std::string(spec.path) : path), dims, key});
 }
 

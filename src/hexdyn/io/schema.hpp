@@ -40,39 +40,47 @@ inline constexpr std::int64_t kEnvelopeSchemaVersion = 2;  ///< envelope files' 
 
 /// Shape of a dataset in terms of the run's sizes.
 enum class Shape {
-  kScalar,            ///< ()
-  kText,              ///< () variable-length UTF-8 string
-  kTextList,          ///< (m) variable-length UTF-8 strings, m may be 0
-  kJointNames,        ///< (18) strings
-  kLegNames,          ///< (6) strings
-  kJ,                 ///< (18)
-  kT,                 ///< (T)
-  kT3,                ///< (T,3)
-  kT4,                ///< (T,4)
-  kT6,                ///< (T,6)
-  kT18,               ///< (T,18)
-  kT6x3,              ///< (T,6,3)
-  kN,                 ///< (n), one entry per touchdown, n may be 0
-  kScenarios,         ///< (N), one entry per scenario, index order
-  kScenarioAxes,      ///< (N,A), one row per scenario, one column per axis
-  kScenarioJoints,    ///< (N,18), one row per scenario, one column per joint
-  kAxisValues,        ///< (V), one entry per value of an axis
-  kEnvelopeTreads,    ///< (W), tread depths of an envelope
-  kEnvelopeDuties,    ///< (B), duty factors of an envelope
-  kEnvelopeSpeeds,    ///< (S), peak speeds of an envelope
-  kEnvelopeCriteria,  ///< (C), criteria of an envelope
-  kEnvelopeCells,     ///< (W,B,S), one entry per tread, duty factor and speed
-  kEnvelopeGrid,      ///< (W,B,S,C), one entry per cell and criterion
-  kEnvelopeProbes,    ///< (P), one entry per probe (a criterion evaluated at one riser)
-  kCycles,            ///< (Y), one entry per gait cycle
-  kTerrainPoints,     ///< (K), one entry per vertex of the terrain's height profile
-  kXyz,               ///< (3) strings "x", "y", "z"
-  kWxyz,              ///< (4) strings "w", "x", "y", "z"
-  kAxes,              ///< (A), one entry per sweep axis
+  kScalar,              ///< ()
+  kText,                ///< () variable-length UTF-8 string
+  kTextList,            ///< (m) variable-length UTF-8 strings, m may be 0
+  kJointNames,          ///< (18) strings
+  kLegNames,            ///< (6) strings
+  kJ,                   ///< (18)
+  kT,                   ///< (T)
+  kT3,                  ///< (T,3)
+  kT4,                  ///< (T,4)
+  kT6,                  ///< (T,6)
+  kT18,                 ///< (T,18)
+  kT6x3,                ///< (T,6,3)
+  kN,                   ///< (n), one entry per touchdown, n may be 0
+  kScenarios,           ///< (N), one entry per scenario, index order
+  kScenarioAxes,        ///< (N,A), one row per scenario, one column per axis
+  kScenarioJoints,      ///< (N,18), one row per scenario, one column per joint
+  kAxisValues,          ///< (V), one entry per value of an axis
+  kCaseKeys,            ///< (K), the keys a cases axis sets
+  kCaseValues,          ///< (V,K), one row per case, one column per key it sets
+  kEnvelopeTreads,      ///< (W), tread depths of an envelope
+  kEnvelopeDuties,      ///< (B), duty factors of an envelope
+  kEnvelopeSpeeds,      ///< (S), peak speeds of an envelope
+  kEnvelopeCriteria,    ///< (C), criteria of an envelope
+  kEnvelopeCells,       ///< (W,B,S), one entry per tread, duty factor and speed
+  kEnvelopeGrid,        ///< (W,B,S,C), one entry per cell and criterion
+  kEnvelopeProbes,      ///< (P), one entry per probe (a criterion evaluated at one riser)
+  kEnvelopeCases,       ///< (D), cases of an envelope with `cases:`
+  kEnvelopeCaseKeys,    ///< (K), keys its cases set
+  kEnvelopeCaseValues,  ///< (D,K), one row per case, one column per key
+  kEnvelopeCaseCells,   ///< (D,W,B,S), one entry per case, tread depth, duty factor and speed
+  kEnvelopeCaseGrid,    ///< (D,W,B,S,C), one entry per case, cell and criterion
+  kCycles,              ///< (Y), one entry per gait cycle
+  kTerrainPoints,       ///< (K), one entry per vertex of the terrain's height profile
+  kXyz,                 ///< (3) strings "x", "y", "z"
+  kWxyz,                ///< (4) strings "w", "x", "y", "z"
+  kAxes,                ///< (A), one entry per sweep axis
 };
 
 /// The netCDF dimensions of a shape's axes, space-separated, outermost first ("" for a
-/// scalar); "{key}" is the dimension of a sweep axis, named by its key. A dimension D of
+/// scalar); "{key}" is the dimension of a sweep axis, named by its key (a cases axis: by its
+/// name, and "{key}_key" the keys its cases set, e.g. "case_key"). A dimension D of
 /// a file (or of a kept run's group) has its coordinate variable at "/D" of that root
 /// (io/labels.hpp): the names, component labels or values along D, or the index 0..n−1.
 // clang-format off
@@ -95,6 +103,8 @@ constexpr const char* dimension_names(Shape shape) {
     case Shape::kScenarioAxes: return "scenario axis";
     case Shape::kScenarioJoints: return "scenario joint";
     case Shape::kAxisValues: return "{key}";
+    case Shape::kCaseKeys: return "{key}_key";
+    case Shape::kCaseValues: return "{key} {key}_key";
     case Shape::kEnvelopeTreads: return "tread_depth";
     case Shape::kEnvelopeDuties: return "duty_factor";
     case Shape::kEnvelopeSpeeds: return "peak_speed";
@@ -102,6 +112,11 @@ constexpr const char* dimension_names(Shape shape) {
     case Shape::kEnvelopeCells: return "tread_depth duty_factor peak_speed";
     case Shape::kEnvelopeGrid: return "tread_depth duty_factor peak_speed criterion";
     case Shape::kEnvelopeProbes: return "probe";
+    case Shape::kEnvelopeCases: return "case";
+    case Shape::kEnvelopeCaseKeys: return "case_key";
+    case Shape::kEnvelopeCaseValues: return "case case_key";
+    case Shape::kEnvelopeCaseCells: return "case tread_depth duty_factor peak_speed";
+    case Shape::kEnvelopeCaseGrid: return "case tread_depth duty_factor peak_speed criterion";
     case Shape::kCycles: return "gait_cycle";
     case Shape::kTerrainPoints: return "terrain_point";
     case Shape::kXyz: return "xyz";
@@ -399,6 +414,14 @@ inline constexpr DatasetSpec kAxisWords{"/axes/{i}/values", "", Shape::kAxisValu
 /// Values as written in the sweep file ("2/3").
 inline constexpr DatasetSpec kAxisLabels{"/axes/{i}/labels", "", Shape::kAxisValues,
                                          Element::kString, "values as written in the sweep file"};
+/// A cases axis (`cases:`, docs/user/sweeps.md#cases): its key is its name ("case"), its
+/// values and labels the case labels; the keys its cases set, in the order of the first
+/// case, and each case's value of each key as YAML text (p/q evaluated, a robot.urdf path
+/// absolute).
+inline constexpr DatasetSpec kAxisCaseKeys{"/axes/{i}/case_keys", "", Shape::kCaseKeys,
+                                           Element::kString, "keys each case sets"};
+inline constexpr DatasetSpec kAxisCaseValues{"/axes/{i}/case_values", "", Shape::kCaseValues,
+                                             Element::kString, "value of each key in each case"};
 inline constexpr DatasetSpec kSweepJointNames{"/joint_names", "", Shape::kJointNames,
                                               Element::kString, "joint names, leg-major"};
 
@@ -408,6 +431,9 @@ inline constexpr DatasetSpec kAxisCoordinateNumbers{"/{key}", "key", Shape::kAxi
                                                     Element::kFloat64, "values of the swept key"};
 inline constexpr DatasetSpec kAxisCoordinateWords{"/{key}", "", Shape::kAxisValues,
                                                   Element::kString, "values of the swept key"};
+/// A cases axis's keys: the coordinate of its dimension "{key}_key".
+inline constexpr DatasetSpec kCaseKeyCoordinate{"/{key}_key", "", Shape::kCaseKeys,
+                                                Element::kString, "keys each case sets"};
 inline constexpr DatasetSpec kScenarioCoordinate{"/scenario", "1", Shape::kScenarios,
                                                  Element::kInt32, "scenario index"};
 inline constexpr DatasetSpec kAxisCoordinate{"/axis", "", Shape::kAxes, Element::kString,

@@ -8,9 +8,11 @@ namespace hexdyn::schema {
 
 // ===================================================================== hexdyn-envelope/2
 // The climbable envelope (envelope/envelope.hpp): W tread depths × B duty factors × S peak
-// speeds, C criteria ("kinematic", "torque", "friction"), P probes. Risers are NaN where
-// not found: riser_max when even the lowest riser fails, riser_fail when none fails up to
-// the top of the searched range.
+// speeds, C criteria ("kinematic", "torque", "friction"), P probes. An envelope file with
+// `cases:` (D cases, each setting K keys: one robot design each) adds the dimension `case`
+// before the others: the kEnvelopeCase* declarations below replace those of the same path. Risers
+// are NaN where not found: riser_max when even the lowest riser fails, riser_fail when none fails
+// up to the top of the searched range.
 
 // ---- /meta: kMetaSchema … kMetaWallTime as a result file's (config_yaml: the envelope
 // file's text), then ----
@@ -70,10 +72,10 @@ inline constexpr DatasetSpec kEnvelopePostureMargin{
     "smallest kinematic margin of the automatic posture"};
 
 // ---- /probes: every evaluation, in the order made ----
-/// Cell index into (W,B,S), row-major.
-inline constexpr DatasetSpec kProbeCell{
-    "/probes/cell", "1", Shape::kEnvelopeProbes, Element::kInt32,
-    "cell index into (tread_depth, duty_factor, peak_speed), row-major"};
+/// Cell index into (W,B,S), or (D,W,B,S) with cases, row-major.
+inline constexpr DatasetSpec kProbeCell{"/probes/cell", "1", Shape::kEnvelopeProbes,
+                                        Element::kInt32,
+                                        "cell index into the grid of posture_height, row-major"};
 /// Criterion index into /axes/criteria.
 inline constexpr DatasetSpec kProbeCriterion{"/probes/criterion", "1", Shape::kEnvelopeProbes,
                                              Element::kInt32,
@@ -102,6 +104,50 @@ inline constexpr DatasetSpec kProbeCoordinate{"/probe", "1", Shape::kEnvelopePro
 inline constexpr std::array kEnvelopeCoordinates{kTreadDepthCoordinate, kDutyFactorCoordinate,
                                                  kPeakSpeedCoordinate, kCriterionCoordinate,
                                                  kProbeCoordinate};
+
+// ---- with `cases:`: the cases, and the grid with its leading dimension `case` ----
+inline constexpr DatasetSpec kEnvelopeCaseLabels{"/axes/case", "", Shape::kEnvelopeCases,
+                                                 Element::kString, "case label"};
+/// The keys every case sets, in the order of the first case.
+inline constexpr DatasetSpec kEnvelopeCaseKeys{"/axes/case_keys", "", Shape::kEnvelopeCaseKeys,
+                                               Element::kString, "keys each case sets"};
+/// Each case's value of each key as YAML text (p/q evaluated, a robot.urdf path absolute).
+inline constexpr DatasetSpec kEnvelopeCaseValues{"/axes/case_values", "",
+                                                 Shape::kEnvelopeCaseValues, Element::kString,
+                                                 "value of each key in each case"};
+inline constexpr DatasetSpec kCaseCoordinate{"/case", "", Shape::kEnvelopeCases, Element::kString,
+                                             "case label"};
+inline constexpr DatasetSpec kCaseKeyCoordinateEnvelope{"/case_key", "", Shape::kEnvelopeCaseKeys,
+                                                        Element::kString, "keys each case sets"};
+inline constexpr DatasetSpec kEnvelopeCaseRiserMax{"/envelope/riser_max", "m",
+                                                   Shape::kEnvelopeCaseGrid, Element::kFloat64,
+                                                   "largest riser found climbable"};
+inline constexpr DatasetSpec kEnvelopeCaseRiserFail{"/envelope/riser_fail", "m",
+                                                    Shape::kEnvelopeCaseGrid, Element::kFloat64,
+                                                    "smallest riser found to fail"};
+inline constexpr DatasetSpec kEnvelopeCaseLimit{"/envelope/limit", "", Shape::kEnvelopeCaseGrid,
+                                                Element::kString, "what fails at riser_fail"};
+inline constexpr DatasetSpec kEnvelopeCaseMessage{"/envelope/message", "", Shape::kEnvelopeCaseGrid,
+                                                  Element::kString, "message of the failing probe"};
+inline constexpr DatasetSpec kEnvelopeCasePostureHeight{
+    "/envelope/posture_height", "m", Shape::kEnvelopeCaseCells, Element::kFloat64,
+    "automatic trunk height at the kinematic riser_max"};
+inline constexpr DatasetSpec kEnvelopeCasePostureFootLateral{
+    "/envelope/posture_foot_lateral", "m", Shape::kEnvelopeCaseCells, Element::kFloat64,
+    "automatic foot lateral distance at the kinematic riser_max"};
+inline constexpr DatasetSpec kEnvelopeCasePostureMargin{
+    "/envelope/posture_margin", "m", Shape::kEnvelopeCaseCells, Element::kFloat64,
+    "smallest kinematic margin of the automatic posture"};
+/// What an envelope file with cases holds besides (or, by path, instead of) kEnvelopeDatasets
+/// and kEnvelopeCoordinates.
+// clang-format off
+inline constexpr std::array kEnvelopeCaseDatasets{
+    kEnvelopeCaseLabels, kEnvelopeCaseKeys, kEnvelopeCaseValues, kCaseCoordinate,
+    kCaseKeyCoordinateEnvelope, kEnvelopeCaseRiserMax, kEnvelopeCaseRiserFail, kEnvelopeCaseLimit,
+    kEnvelopeCaseMessage, kEnvelopeCasePostureHeight, kEnvelopeCasePostureFootLateral,
+    kEnvelopeCasePostureMargin};
+// clang-format on
+
 inline constexpr FlagSpec kProbePassedFlags{"/probes/passed", "failed passed"};
 /// Every CF flag declaration of the three file kinds.
 inline constexpr std::array kFlags{kContactPhaseFlags, kSolverStatusFlags, kSampleKindFlags,

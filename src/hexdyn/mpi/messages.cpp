@@ -88,6 +88,10 @@ std::vector<char> pack_spec(const SweepSpec& spec, const SweepIdentity& identity
       put_text(b, a.values[v]);
       put_text(b, a.labels[v]);
     }
+    put_i64(b, static_cast<std::int64_t>(a.case_keys.size()));
+    for (const std::string& k : a.case_keys) put_text(b, k);
+    for (const auto& values : a.case_values)
+      for (const std::string& v : values) put_text(b, v);
   }
   return b;
 }
@@ -120,6 +124,15 @@ SweepSpec unpack_spec(const std::vector<char>& bytes, SweepIdentity& identity) {
       a.values.push_back(u.text());
       a.labels.push_back(u.text());
     }
+    const std::int64_t keys = u.i64();
+    if (keys < 0) throw Error("sweep: malformed message between ranks");
+    for (std::int64_t k = 0; k < keys; ++k) a.case_keys.push_back(u.text());
+    if (keys > 0)
+      for (std::int64_t v = 0; v < n; ++v) {
+        std::vector<std::string> values;
+        for (std::int64_t k = 0; k < keys; ++k) values.push_back(u.text());
+        a.case_values.push_back(std::move(values));
+      }
     spec.axes.push_back(std::move(a));
   }
   return spec;

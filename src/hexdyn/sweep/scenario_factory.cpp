@@ -12,29 +12,32 @@ struct ScenarioFactory::Impl {
   SweepSpec spec;            ///< axes and id width
   std::string input_sha256;  ///< the sweep's inputs: a kept run's /meta input_sha256
   YAML::Node base;
-  struct Axis {
+  /// One key set by an axis value: its dotted path and its value, parsed once.
+  struct Setting {
     std::vector<std::string> keys;
-    std::vector<YAML::Node> values;  ///< parsed once
+    YAML::Node value;
   };
-  std::vector<Axis> axes;
+  /// Per axis, per value: the keys it sets (one, or a case's keys).
+  std::vector<std::vector<std::vector<Setting>>> axes;
 
   YAML::Node tree(std::size_t index) const {
     YAML::Node root = YAML::Clone(base);
     const auto p = grid_point(spec, index);
     for (std::size_t a = 0; a < axes.size(); ++a) {
-      const Axis& ax = axes[a];
-      // As apply_override: intermediate maps are created where absent (load_sweep has
-      // checked that every axis key is a single value of the base scene).
-      YAML::Node cur = root;
-      for (std::size_t k = 0; k + 1 < ax.keys.size(); ++k) {
-        YAML::Node next = cur[ax.keys[k]];
-        if (!next.IsDefined() || next.IsNull()) {
-          cur[ax.keys[k]] = YAML::Node(YAML::NodeType::Map);
-          next.reset(cur[ax.keys[k]]);
+      for (const Setting& set : axes[a][p[a]]) {
+        // As apply_override: intermediate maps are created where absent (load_sweep has
+        // checked every axis key and every case on the base scene).
+        YAML::Node cur = root;
+        for (std::size_t k = 0; k + 1 < set.keys.size(); ++k) {
+          YAML::Node next = cur[set.keys[k]];
+          if (!next.IsDefined() || next.IsNull()) {
+            cur[set.keys[k]] = YAML::Node(YAML::NodeType::Map);
+            next.reset(cur[set.keys[k]]);
+          }
+          cur.reset(next);
         }
-        cur.reset(next);
+        cur[set.keys.back()] = YAML::Clone(set.value);
       }
-      cur[ax.keys.back()] = YAML::Clone(ax.values[p[a]]);
     }
     return root;
   }
@@ -45,11 +48,15 @@ ScenarioFactory::ScenarioFactory(const SweepSpec& spec) : impl_(std::make_unique
   impl_->input_sha256 = input_sha256_text(spec.inputs);
   impl_->base = parse_yaml_text(spec.base_tree_yaml, spec.base_path);
   for (const SweepAxis& axis : spec.axes) {
-    Impl::Axis ax;
-    ax.keys = split_key_path(axis.key);
-    for (const std::string& v : axis.values)
-      ax.values.push_back(parse_yaml_checked(v, axis.key + "=" + v));
-    impl_->axes.push_back(std::move(ax));
+    std::vector<std::vector<Impl::Setting>> values;
+    for (std::size_t v = 0; v < axis.size(); ++v) {
+      std::vector<Impl::Setting> sets;
+      for (const Override& ov : axis.overrides(v))
+        sets.push_back({split_key_path(ov.key_path),
+                        parse_yaml_checked(ov.value, ov.key_path + "=" + ov.value)});
+      values.push_back(std::move(sets));
+    }
+    impl_->axes.push_back(std::move(values));
   }
   count_ = spec.scenario_count();
 }

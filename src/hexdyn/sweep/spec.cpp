@@ -13,6 +13,7 @@
 #include <system_error>
 
 #include "hexdyn/core/errors.hpp"
+#include "hexdyn/io/cases.hpp"
 #include "hexdyn/io/paths.hpp"
 #include "hexdyn/io/spec_reader.hpp"
 #include "hexdyn/io/yaml_load.hpp"
@@ -133,7 +134,54 @@ void finish_axis(const SpecReader& r, const std::string& path, SweepAxis& axis) 
   }
 }
 
+/// Names that a cases axis may not take: the sweep file's own groups and coordinates.
+bool reserved_axis_name(const std::string& name) {
+  for (const char* r :
+       {"meta", "axes", "scenarios", "runs", "joint_names", "scenario", "axis", "joint"})
+    if (name == r) return true;
+  return false;
+}
+
+/// A cases axis {cases: [...], name: NAME} into `axis`: its name as key, the labels as its
+/// values (io/cases.hpp reads the list). The validation on the base scene comes later.
+void read_cases(const SpecReader& r, const YAML::Node& a, const std::string& at,
+                const std::string& sweep_path, SweepAxis& axis) {
+  const YAML::Node name = a["name"];
+  axis.key = "case";
+  if (name.IsDefined() && !name.IsNull()) {
+    static const std::regex word("[A-Za-z_][A-Za-z0-9_]*");
+    if (!name.IsScalar() || !std::regex_match(name.Scalar(), word) ||
+        reserved_axis_name(name.Scalar()))
+      r.fail_value(at + ".name", name,
+                   "a word of letters, digits and _ (the axis's dimension), not one of meta, "
+                   "axes, scenarios, runs, joint_names, scenario, axis, joint");
+    axis.key = name.Scalar();
+  }
+  const CaseList cases = read_case_list(r, a["cases"], at + ".cases", sweep_path);
+  axis.values = axis.labels = cases.labels;
+  axis.case_keys = cases.keys;
+  axis.case_values = cases.values;
+  axis.numeric = false;
+}
+
+/// The cases of a cases axis, as io/cases.hpp holds them.
+CaseList case_list(const SweepAxis& axis) {
+  CaseList c;
+  c.labels = axis.labels;
+  c.keys = axis.case_keys;
+  c.values = axis.case_values;
+  return c;
+}
+
 }  // namespace
+
+std::vector<Override> SweepAxis::overrides(std::size_t v) const {
+  if (!is_cases()) return {{key, values[v]}};
+  std::vector<Override> out;
+  for (std::size_t k = 0; k < case_keys.size(); ++k)
+    out.push_back({case_keys[k], case_values[v][k]});
+  return out;
+}
 
 std::size_t SweepSpec::scenario_count() const {
   std::size_t n = 1;
@@ -203,9 +251,29 @@ SweepSpec load_sweep(const std::string& path) {
     const std::string at = "axes[" + std::to_string(i) + "]";
     const YAML::Node a = axes[i];
     if (!a.IsMap())
-      r.fail_value(at, a, "a mapping {key: K, values: [...]} or {key: K, range: {...}}");
-    r.check_keys(a, at, {"key", "values", "range"});
+      r.fail_value(at, a,
+                   "a mapping {key: K, values: [...]}, {key: K, range: {...}} or {cases: [...]}");
     SweepAxis axis;
+    if (a["cases"].IsDefined()) {
+      r.check_keys(a, at, {"cases", "name"});
+      read_cases(r, a, at, path, axis);
+      if (!axis_keys.insert(axis.key).second)
+        r.fail_value(at + ".name", YAML::Node(axis.key),
+                     "a name no other axis has (name each cases axis)");
+      for (const std::string& k : axis.case_keys) {
+        if (fixed_keys.count(k))
+          r.fail(at + ".cases", "got key " + k + ", expected a key not also fixed by set:");
+        if (!axis_keys.insert(k).second)
+          r.fail(at + ".cases", "got key " + k + ", expected each key on one axis only");
+      }
+      count *= axis.size();
+      if (count > kMaxScenarios)
+        r.fail("axes", "got more than " + std::to_string(kMaxScenarios) +
+                           " scenarios, expected at most that many");
+      spec.axes.push_back(std::move(axis));
+      continue;
+    }
+    r.check_keys(a, at, {"key", "values", "range"});
     const YAML::Node key = a["key"];
     if (!key.IsDefined() || key.IsNull()) r.fail(at + ".key", "missing, this key is required");
     if (!key.IsScalar() || key.Scalar().empty())
@@ -227,7 +295,7 @@ SweepSpec load_sweep(const std::string& path) {
                        (target.IsMap() ? "group of keys" : "list") + ")");
     if (fixed_keys.count(axis.key)) r.fail_value(at + ".key", key, "a key not also fixed by set:");
     if (!axis_keys.insert(axis.key).second)
-      r.fail_value(at + ".key", key, "each key on one axis only");
+      r.fail_value(at + ".key", key, "each key on one axis only (and not also in cases)");
 
     const bool has_values = a["values"].IsDefined(), has_range = a["range"].IsDefined();
     if (has_values == has_range)
@@ -253,11 +321,18 @@ SweepSpec load_sweep(const std::string& path) {
     if (axis.key == "robot.urdf")
       for (const std::string& v : axis.values)
         if (why_not_regular_file(v) == std::nullopt) add_input(spec.inputs, "URDF", v);
+  // A case's URDF is resolved from the sweep file (read_cases).
+  for (const SweepAxis& axis : spec.axes)
+    if (axis.is_cases()) add_case_inputs(spec.inputs, case_list(axis));
   // Each value once against its key, on the base scene: a value out of range is found
   // here without looking at any combination of values.
   for (SweepAxis& axis : spec.axes) {
     axis.errors.assign(axis.size(), std::string());
-    for (std::size_t v = 0; v < axis.size(); ++v) {
+    // A case is its keys together: one that is not valid on the base scene stops the sweep.
+    if (axis.is_cases())
+      check_cases_on(r, case_list(axis), tree,
+                     "axes[" + std::to_string(&axis - spec.axes.data()) + "].cases");
+    for (std::size_t v = 0; !axis.is_cases() && v < axis.size(); ++v) {
       const std::string source = axis.key + "=" + axis.labels[v];
       YAML::Node one = YAML::Clone(tree);
       try {
@@ -297,7 +372,7 @@ ScenarioInput scenario_input(const SweepSpec& spec, std::size_t index) {
   YAML::Node tree = parse_yaml_text(spec.base_tree_yaml, source);
   const auto p = grid_point(spec, index);
   for (std::size_t a = 0; a < spec.axes.size(); ++a)
-    apply_override(tree, {spec.axes[a].key, spec.axes[a].values[p[a]]}, source);
+    for (const Override& ov : spec.axes[a].overrides(p[a])) apply_override(tree, ov, source);
   in.yaml = emit(tree);
   return in;
 }

@@ -15,6 +15,16 @@
 ///         range: {from: 0.02, to: 0.10, count: 5}
 ///       - key: gait.duty_factor
 ///         values: [1/2, 2/3, 3/4, 5/6] # scalars; p/q is the number p divided by q
+///       - cases:                       # paired values: each case sets its keys together
+///           - {label: phantomx, robot.urdf: ../robots/phantomx_mark4.urdf, robot.forward_axis: +x}
+///           - {label: kraby, robot.urdf: ../robots/kraby.urdf, robot.forward_axis: +y}
+///         name: robot                  # optional: the axis's dimension (default "case")
+///
+/// A cases axis (SweepAxis::case_keys non-empty) is an axis of words, its labels: its key is
+/// its name, its values and labels the case labels. Every case sets the same keys (the
+/// keys of the first case); a robot.urdf value is a path relative to the sweep file. Each
+/// case is validated with all its keys on the base scene (with `set:`) before any work: a
+/// case that is not valid there is an error of the sweep file, not a row.
 ///
 /// Each axis value is validated once against the base scene (SweepAxis::errors); no work
 /// is done per scenario (the cost of load_sweep grows with the number of axis values, not
@@ -44,7 +54,16 @@ struct SweepAxis {
   /// ConfigError's message), "" when it is. Checked once per value, not per scenario;
   /// a scenario holding such a value fails its own validation (a row with status config).
   std::vector<std::string> errors;
+  /// A cases axis: the keys each case sets, in the order of the first case (empty for an
+  /// axis of one key).
+  std::vector<std::string> case_keys;
+  /// case_values[v][k]: the value of case_keys[k] in case v, as YAML text given to
+  /// apply_override (p/q evaluated; a robot.urdf path absolute, resolved from the sweep file).
+  std::vector<std::vector<std::string>> case_values;
+  bool is_cases() const { return !case_keys.empty(); }
   std::size_t size() const { return values.size(); }
+  /// The overrides of value `v`: {key, values[v]}, or for a cases axis each of its keys.
+  std::vector<Override> overrides(std::size_t v) const;
 };
 
 /// A validated sweep file.
@@ -57,7 +76,7 @@ struct SweepSpec {
   std::string base_tree_yaml;    ///< base scene after `inherit:` and `set:`, unvalidated YAML
   std::string base_config_yaml;  ///< the same, validated and fully resolved (defaults filled)
   /// Every input file, hashed (io/inputs.hpp): the sweep file, the base scene, its
-  /// inherited files, its URDF and each URDF a robot.urdf axis names. /meta input_sha256,
+  /// inherited files, its URDF and each URDF a robot.urdf axis or a case names. /meta input_sha256,
   /// and part of the checkpoint's identity (journal.hpp).
   std::vector<InputFile> inputs;
   /// Number of scenarios: the product of the axis sizes.

@@ -125,6 +125,21 @@ void write_axes(H5Writer& w, Labeller& labels, const SweepSpec& spec) {
     }
     w.write_strings(s::at(s::kAxisLabels.path, i), ax.labels, s::kAxisLabels.units);
     labels.add(s::kAxisLabels, s::at(s::kAxisLabels.path, i), ax.key);
+    if (ax.is_cases()) {
+      const std::size_t K = ax.case_keys.size();
+      std::vector<std::string> table;
+      for (const auto& values : ax.case_values)
+        table.insert(table.end(), values.begin(), values.end());
+      const std::string keys_path = s::at(s::kAxisCaseKeys.path, i);
+      const std::string values_path = s::at(s::kAxisCaseValues.path, i);
+      const std::string key_coordinate = s::at(s::kCaseKeyCoordinate.path, ax.key);
+      w.write_strings(keys_path, {K}, ax.case_keys, s::kAxisCaseKeys.units);
+      w.write_strings(values_path, {ax.size(), K}, table, s::kAxisCaseValues.units);
+      w.write_strings(key_coordinate, {K}, ax.case_keys, s::kCaseKeyCoordinate.units);
+      labels.add(s::kAxisCaseKeys, keys_path, ax.key);
+      labels.add(s::kAxisCaseValues, values_path, ax.key);
+      labels.add(s::kCaseKeyCoordinate, key_coordinate, ax.key);
+    }
   }
   std::vector<std::string> joints;
   for (int leg = 0; leg < kLegs; ++leg)

@@ -29,6 +29,12 @@ TEST_CASE("mpi messages: the sweep round-trips what a worker needs", "[mpi]") {
   a.values = {"0.5", "0.66666666666666663"};
   a.labels = {"1/2", "2/3"};
   spec.axes.push_back(a);
+  SweepAxis cases;  // a cases axis: labels, and each case's keys
+  cases.key = "robot";
+  cases.values = cases.labels = {"mark4", "kraby"};
+  cases.case_keys = {"robot.urdf", "robot.forward_axis"};
+  cases.case_values = {{"/w/m.urdf", "+x"}, {"/w/k.urdf", "+y"}};
+  spec.axes.push_back(cases);
   spec.inputs = {{"sweep file", "s.yaml", "/w/s.yaml", std::string(64, 'c')},
                  {"URDF", "r.urdf", "/w/r.urdf", std::string(64, 'd')}};
   const SweepIdentity id = make_identity(spec.inputs, "base: text", "hexdyn x", 7, true);
@@ -44,10 +50,15 @@ TEST_CASE("mpi messages: the sweep round-trips what a worker needs", "[mpi]") {
   CHECK(back.inputs[1].path == "r.urdf");
   CHECK(back.inputs[1].absolute == "/w/r.urdf");
   CHECK(back.inputs[1].sha256 == spec.inputs[1].sha256);
-  REQUIRE(back.axes.size() == 1);
+  REQUIRE(back.axes.size() == 2);
   CHECK(back.axes[0].key == a.key);
   CHECK(back.axes[0].values == a.values);
   CHECK(back.axes[0].labels == a.labels);
+  CHECK_FALSE(back.axes[0].is_cases());
+  CHECK(back.axes[1].key == "robot");
+  CHECK(back.axes[1].labels == cases.labels);
+  CHECK(back.axes[1].case_keys == cases.case_keys);
+  CHECK(back.axes[1].case_values == cases.case_values);
 }
 
 TEST_CASE("mpi messages: finished scenarios round-trip in order", "[mpi]") {
