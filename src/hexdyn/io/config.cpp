@@ -215,8 +215,8 @@ void read_posture(Reader& r, MotionParams& m) {
 }
 
 /// motion.travel: {distance: D} or {treads: N}, the trunk's travel along the slope
-/// (docs/user/configuration.md#motion). The cycles are the fewest whose strides of the
-/// given stroke cover it, n = ⌈D / stride⌉; the stride then shrinks to D / n (gait.stroke
+/// (docs/user/configuration.md#travel-instead-of-cycles). The cycles are the fewest whose strides
+/// of the given stroke cover it, n = ⌈D / stride⌉; the stride then shrinks to D / n (gait.stroke
 /// scaled by the same factor, never lengthened), so that the trunk travels exactly D
 /// whatever the duty factor and speed. Returns n and adapts g.stroke_m; the resolved scene
 /// records the stroke used, and the stroke asked beside it (auto.gait.stroke).

@@ -155,5 +155,43 @@ TEST_CASE("envelope: a bad envelope file is refused with the key named", "[envel
   CHECK_THROWS_AS(load_envelope_spec(u.path), ConfigError);
 }
 
+TEST_CASE("envelope: cases are designs, each probe's scene the base with its keys", "[envelope]") {
+  const std::string grid =
+      "riser: {from: 0.0, to: 0.1}\nduty_factor: [1/2, 2/3]\npeak_speed: [0.1]\n";
+  TempSpec t(grid +
+             "cases:\n  - {label: light, robot.payload.mass: 0.5}\n"
+             "  - {label: heavy, robot.payload.mass: 2.0}\n");
+  const EnvelopeSpec spec = load_envelope_spec(t.path);
+  REQUIRE(spec.cases.labels == std::vector<std::string>{"light", "heavy"});
+  CHECK(spec.cell_count() == 2 * 1 * 2 * 1);
+  // Cell (case, tread, duty, speed), row-major: cell 3 is heavy at β = 2/3.
+  const Scene probe = envelope_probe_scene(spec, 3, 0.04, EnvelopeCriterion::kKinematic);
+  const Scene expected =
+      stairs(0.04, spec.tread_depth_m[0], 2.0 / 3.0, 0.1, {{"robot.payload.mass", "2.0"}});
+  CHECK(probe.robot.payload.mass_kg == expected.robot.payload.mass_kg);
+  CHECK(probe.gait.duty_factor == expected.gait.duty_factor);
+
+  struct Bad {
+    std::string cases, names;
+  };
+  for (const Bad& b : std::vector<Bad>{
+           {"cases: [{label: a, gait.duty_factor: 0.5}]\n",
+            "cases: got key gait.duty_factor, expected a key the envelope does not set itself"},
+           {"cases: [{label: a, robot.payload.mass: 1}, {label: a, robot.payload.mass: 2}]\n",
+            "cases[1].label: got a, expected a label no other case has"},
+           {"cases: [{label: a, robot.payload.mass: -1}]\n",
+            "cases[0] (a: robot.payload.mass=-1): robot.payload.mass: got -1"}}) {
+    TempSpec bad(grid + b.cases);
+    try {
+      (void)load_envelope_spec(bad.path);
+      FAIL("accepted: " << b.cases);
+    } catch (const ConfigError& e) {
+      INFO(e.what());
+      CHECK(std::string(e.what()).find(b.names) != std::string::npos);
+      CHECK(std::string(e.what()).find('\n') == std::string::npos);
+    }
+  }
+}
+
 }  // namespace
 }  // namespace hexdyn

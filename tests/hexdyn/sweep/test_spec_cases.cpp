@@ -5,11 +5,13 @@
 
 #include <catch2/catch.hpp>
 #include <cstdio>
+#include <fstream>
 #include <string>
 #include <vector>
 
 #include "hexdyn/io/config.hpp"
 #include "hexdyn/model/urdf_robot.hpp"
+#include "hexdyn/sweep/checkpoint.hpp"
 #include "hexdyn/sweep/scenario_factory.hpp"
 #include "hexdyn/sweep/spec.hpp"
 #include "sweep_test_support.hpp"
@@ -90,7 +92,13 @@ TEST_CASE("sweep cases: a case's URDF is relative to the sweep file and an input
   bool listed = false;
   for (const InputFile& f : spec.inputs)
     listed = listed || (f.role == "URDF" && fs::equivalent(f.path, dir.path / "robots" / "k.urdf"));
-  CHECK(listed);  // so the checkpoint's identity covers its content
+  CHECK(listed);
+  // The checkpoint's identity covers its content: an edited URDF is another sweep.
+  const SweepIdentity before = sweep_identity(spec, false);
+  std::ofstream(dir.path / "robots" / "k.urdf", std::ios::app) << "<!-- edited -->\n";
+  const std::string why = sweep_identity(load_sweep(path), false).difference(before);
+  INFO(why);
+  CHECK(why.find("k.urdf changed") != std::string::npos);
   const ScenarioFactory factory(spec);
   const Scene kraby = factory.scene(1);
   REQUIRE(kraby.robot.urdf);
