@@ -91,7 +91,7 @@ install(TARGETS hexdyn_mpi EXPORT hexdynMpiTargets ARCHIVE DESTINATION ${CMAKE_I
 install(EXPORT hexdynTargets NAMESPACE hexdyn:: DESTINATION ${HEXDYN_INSTALL_CMAKEDIR})
 install(EXPORT hexdynMpiTargets NAMESPACE hexdyn:: DESTINATION ${HEXDYN_INSTALL_CMAKEDIR})
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/src/hexdyn/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/hexdyn
-        FILES_MATCHING PATTERN "*.hpp" PATTERN "h5_detail.hpp" EXCLUDE)
+        FILES_MATCHING PATTERN "*.hpp" PATTERN "*_detail.hpp" EXCLUDE)
 install(FILES ${CMAKE_BINARY_DIR}/generated/hexdyn/version.hpp
         DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/hexdyn)
 

@@ -1,8 +1,5 @@
 #include "hexdyn/mpi/mpi_sweep.hpp"
 
-#define OMPI_SKIP_MPICXX 1
-#define MPICH_SKIP_MPICXX 1
-#include <mpi.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -27,6 +24,7 @@
 #include "hexdyn/core/errors.hpp"
 #include "hexdyn/io/interrupt.hpp"
 #include "hexdyn/io/output.hpp"
+#include "hexdyn/mpi/comm_detail.hpp"
 #include "hexdyn/mpi/launch.hpp"
 #include "hexdyn/mpi/messages.hpp"
 #include "hexdyn/mpi/worker.hpp"
@@ -39,97 +37,11 @@ namespace {
 
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
+using namespace mpi_detail;
 
 /// Message tags. A worker sends kReady once, then kResult messages (finished scenarios,
 /// several at a time); rank 0 sends kWork (a batch of indices, or the stop).
 enum Tag : int { kTagReady = 1, kTagResult = 2, kTagWork = 3 };
-
-/// MPI_Init_thread / MPI_Finalize for the lifetime of the sweep.
-///
-/// The sequential MUMPS that Ipopt links exports dummy MPI_Init, MPI_Comm_rank,
-/// MPI_Finalize and MPI_Wtime (rank 0 of 1, no-op finalise), and it comes before
-/// libmpi in the executable's symbol lookup order. This file therefore calls the
-/// profiling entry points PMPI_Comm_rank and PMPI_Finalize, which only the MPI library
-/// defines, and never MPI_Init or MPI_Wtime; the constructor checks that the ranks it
-/// sees are 0..size−1 once each.
-class MpiSession {
- public:
-  MpiSession() {
-    MPI_Init_thread(nullptr, nullptr, MPI_THREAD_FUNNELED, &thread_level_);
-    PMPI_Comm_rank(MPI_COMM_WORLD, &rank_);
-    MPI_Comm_size(MPI_COMM_WORLD, &size_);
-    long long mine = rank_, sum = 0;
-    MPI_Allreduce(&mine, &sum, 1, MPI_LONG_LONG, MPI_SUM, MPI_COMM_WORLD);
-    if (sum != static_cast<long long>(size_) * (size_ - 1) / 2) {
-      std::cerr << "hexdyn: internal error: MPI ranks are not distinct (MPI symbols shadowed "
-                   "by another library?)\n";
-      MPI_Abort(MPI_COMM_WORLD, 4);
-    }
-  }
-  ~MpiSession() { PMPI_Finalize(); }
-  MpiSession(const MpiSession&) = delete;
-  MpiSession& operator=(const MpiSession&) = delete;
-  int rank() const { return rank_; }
-  int size() const { return size_; }
-  /// True if threads other than the main one may exist (they never call MPI).
-  bool threads_allowed() const { return thread_level_ >= MPI_THREAD_FUNNELED; }
-
- private:
-  int thread_level_ = MPI_THREAD_SINGLE, rank_ = 0, size_ = 1;
-};
-
-void send(const std::vector<char>& bytes, int dest, int tag) {
-  if (bytes.size() > static_cast<std::size_t>(std::numeric_limits<int>::max()))
-    throw Error("sweep: message of " + std::to_string(bytes.size()) + " bytes exceeds MPI's limit");
-  MPI_Send(bytes.data(), static_cast<int>(bytes.size()), MPI_BYTE, dest, tag, MPI_COMM_WORLD);
-}
-
-/// Receives the message announced by `st` (from MPI_Iprobe).
-std::vector<char> receive(const MPI_Status& st) {
-  int count = 0;
-  MPI_Get_count(&st, MPI_BYTE, &count);
-  std::vector<char> bytes(static_cast<std::size_t>(count));
-  MPI_Recv(bytes.data(), count, MPI_BYTE, st.MPI_SOURCE, st.MPI_TAG, MPI_COMM_WORLD,
-           MPI_STATUS_IGNORE);
-  return bytes;
-}
-
-/// Waits for a non-blocking request without spinning (Open MPI's blocking calls poll at
-/// full speed): MPI_Test with sleeps growing from 50 µs to 10 ms.
-void quiet_wait(MPI_Request& req) {
-  auto pause = std::chrono::microseconds(50);
-  for (int done = 0;;) {
-    MPI_Test(&req, &done, MPI_STATUS_IGNORE);
-    if (done) return;
-    std::this_thread::sleep_for(pause);
-    pause = std::min(pause * 2, std::chrono::microseconds(10000));
-  }
-}
-
-/// MPI_Bcast from rank 0 of a byte block, waiting quietly.
-void broadcast_bytes(std::vector<char>& bytes) {
-  long long size = static_cast<long long>(bytes.size());
-  MPI_Request req;
-  MPI_Ibcast(&size, 1, MPI_LONG_LONG, 0, MPI_COMM_WORLD, &req);
-  quiet_wait(req);
-  bytes.resize(static_cast<std::size_t>(size));
-  if (size > std::numeric_limits<int>::max()) throw Error("sweep: sweep description too large");
-  MPI_Ibcast(bytes.data(), static_cast<int>(size), MPI_BYTE, 0, MPI_COMM_WORLD, &req);
-  quiet_wait(req);
-}
-
-void broadcast_status(int& status) {
-  MPI_Request req;
-  MPI_Ibcast(&status, 1, MPI_INT, 0, MPI_COMM_WORLD, &req);
-  quiet_wait(req);
-}
-
-/// Waits for every rank without spinning.
-void quiet_barrier() {
-  MPI_Request req;
-  MPI_Ibarrier(MPI_COMM_WORLD, &req);
-  quiet_wait(req);
-}
 
 std::string scratch_directory() { return fs::temp_directory_path().string(); }
 

@@ -194,6 +194,8 @@ std::vector<std::size_t> expected_dims(schema::Shape shape, std::size_t T, std::
     case Shape::kScenarioAxes:
     case Shape::kScenarioJoints:
     case Shape::kAxisValues:
+    case Shape::kCaseKeys:
+    case Shape::kCaseValues:
       break;  // shapes of the sweep file, never of a result dataset
     case Shape::kEnvelopeTreads:
     case Shape::kEnvelopeDuties:
@@ -202,6 +204,11 @@ std::vector<std::size_t> expected_dims(schema::Shape shape, std::size_t T, std::
     case Shape::kEnvelopeCells:
     case Shape::kEnvelopeGrid:
     case Shape::kEnvelopeProbes:
+    case Shape::kEnvelopeCases:
+    case Shape::kEnvelopeCaseKeys:
+    case Shape::kEnvelopeCaseValues:
+    case Shape::kEnvelopeCaseCells:
+    case Shape::kEnvelopeCaseGrid:
       break;  // shapes of the envelope file
     case Shape::kCycles:
       return {3};  // make_result's cycles
