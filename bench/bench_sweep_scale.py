@@ -128,7 +128,14 @@ def idle_cpu(hexdyn, work, ranks=3):
                              "-o", out], env=ENV, stdout=subprocess.DEVNULL,
                             stderr=subprocess.DEVNULL, start_new_session=True)
     try:
-        time.sleep(1.0)
+        # The ranks and the scenario process rank 0's compute thread forks: MPI start-up
+        # takes a second or more on a loaded machine, so wait for them (at most 20 s).
+        deadline = time.perf_counter() + 20.0
+        pids = hexdyn_processes(sweep)
+        while len(pids) < ranks + 1 and time.perf_counter() < deadline:
+            time.sleep(0.2)
+            pids = hexdyn_processes(sweep)
+        time.sleep(0.5)
         pids = hexdyn_processes(sweep)
         t0 = time.perf_counter()
         c0 = {p: process_cpu_seconds(p) for p in pids}
