@@ -33,6 +33,7 @@ Exit status 1 when a check fails. Sets the root permissions Open MPI needs when 
 import argparse
 import itertools
 import os
+import resource
 import shutil
 import statistics
 import subprocess
@@ -48,6 +49,7 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 OLD_COMMIT = "bbaf71c"
 DEFAULT_OLD = "/work/wt/base/build/hexdyn"
 DEFAULT_REF = "/work/wt/perf-ref/build/hexdyn"
+LOAD = os.getloadavg()
 ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
 
 
@@ -63,17 +65,23 @@ def build_old(work):
     return src, os.path.join(build, "hexdyn")
 
 
+def cpu_of_children():
+    r = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return r.ru_utime + r.ru_stime
+
+
 def run_sweep(hexdyn, sweep, out):
+    """Wall time and CPU time (user + system of every process of the run) [s]."""
     for leftover in (out, out + ".checkpoint"):
         if os.path.exists(leftover):
             os.remove(leftover)
     cmd = ["mpirun", "--oversubscribe", "-np", "1", hexdyn, "sweep", sweep, "-o", out]
-    start = time.perf_counter()
+    cpu0, start = cpu_of_children(), time.perf_counter()
     proc = subprocess.run(cmd, env=ENV, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
-    wall = time.perf_counter() - start
+    wall, cpu = time.perf_counter() - start, cpu_of_children() - cpu0
     if proc.returncode != 0:
         sys.exit(f"sweep_speed: {' '.join(cmd)} failed:\n{proc.stderr}")
-    return wall
+    return wall, cpu
 
 
 def read_sweep(path):
@@ -154,8 +162,8 @@ def check_postures(binaries, sweep_path, new_file, every, work):
             else:
                 differ += 1
                 lines.append(f"  - scenario {i} ({', '.join(sets)}): posture differs from {name}")
-        lines.insert(0, f"- posture (P0 and feet at t = 0, bit for bit): {same} of {same + differ} "
-                        f"scenarios the same as {name}")
+        lines.append(f"- posture (P0 and feet at t = 0, bit for bit): {same} of {same + differ} "
+                     f"scenarios the same as {name}")
         ok &= differ == 0
     return lines, ok
 
@@ -175,29 +183,32 @@ def main():
         if args.build_old:
             old_src, args.old = build_old(work)
         try:
-            walls = {"old": [], "new": []}
+            walls, cpus = {"old": [], "new": []}, {"old": [], "new": []}
             for r in range(args.repeat):
                 for which in ("old", "new"):  # alternately, same machine, same run
                     exe = args.old if which == "old" else args.new
-                    walls[which].append(run_sweep(exe, args.sweep,
-                                                  os.path.join(work, f"{which}.h5")))
-                    print(f"sweep_speed: run {r + 1} {which}: {walls[which][-1]:.2f} s",
+                    wall, cpu = run_sweep(exe, args.sweep, os.path.join(work, f"{which}.h5"))
+                    walls[which].append(wall)
+                    cpus[which].append(cpu)
+                    print(f"sweep_speed: run {r + 1} {which}: {wall:.2f} s wall, {cpu:.2f} s CPU",
                           file=sys.stderr)
             old, new = read_sweep(os.path.join(work, "old.h5")), read_sweep(
                 os.path.join(work, "new.h5"))
             n = len(new["status"])
-            med_old, med_new = statistics.median(walls["old"]), statistics.median(walls["new"])
+            med = {k: (statistics.median(walls[k]), statistics.median(cpus[k])) for k in walls}
             print(f"Sweep `{os.path.relpath(args.sweep, ROOT)}`: {n} scenarios "
                   f"({int((new['status'] == 0).sum())} computed) on 1 rank, {args.repeat} runs "
-                  f"of each binary alternately; {os.cpu_count()} cores.\n")
-            print("| binary | wall times [s] | median [s] |")
-            print("|---|---|---:|")
-            print(f"| old ({OLD_COMMIT}) | {', '.join(f'{w:.2f}' for w in walls['old'])} "
-                  f"| {med_old:.2f} |")
-            print(f"| new | {', '.join(f'{w:.2f}' for w in walls['new'])} | {med_new:.2f} |\n")
+                  f"of each binary alternately; {os.cpu_count()} cores, load average before "
+                  f"the runs {LOAD[0]:.1f}.\n")
+            print("| binary | wall times [s] | median wall [s] | CPU times [s] | median CPU [s] |")
+            print("|---|---|---:|---|---:|")
+            for k, label in (("old", f"old ({OLD_COMMIT})"), ("new", "new")):
+                print(f"| {label} | {', '.join(f'{w:.2f}' for w in walls[k])} | {med[k][0]:.2f} "
+                      f"| {', '.join(f'{c:.2f}' for c in cpus[k])} | {med[k][1]:.2f} |")
             pairs = [o / w for o, w in zip(walls["old"], walls["new"])]
-            print(f"Ratio old / new of the medians: **{med_old / med_new:.2f}x** (pairs: "
-                  f"{', '.join(f'{p:.2f}' for p in pairs)})\n")
+            print(f"\nRatio old / new of the median wall times: **{med['old'][0] / med['new'][0]:.2f}x** "
+                  f"(pairs: {', '.join(f'{p:.2f}' for p in pairs)}); of the median CPU times: "
+                  f"{med['old'][1] / med['new'][1]:.2f}x\n")
             ok = True
             print(f"Results against the old binary ({OLD_COMMIT}):")
             lines, good = compare(new, old, OLD_COMMIT, exact=False)

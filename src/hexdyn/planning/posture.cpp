@@ -50,9 +50,31 @@ struct SampleMargin {
   bool lower = false;  ///< kJoint: the lower limit is the nearer
 };
 
+/// Lower bounds of the joint margins of a paper-geometry leg at target p_H [m]: the angle to the
+/// limit times a lower bound of the foot's lever arm, which for this geometry is a distance of
+/// the target itself: from the coxa axis, hypot(x, y); from the femur axis, the wrist distance
+/// of the IK; about the tibia axis, the tibia's length (the norms of leg_jacobian_H's columns,
+/// to rounding: the bounds take 1e-6 of them off, and 1e-12 m). False for another geometry.
+bool joint_margin_bounds(const RobotModel& m, int leg, const Vec3& p_H, const Vec3& clearance_rad,
+                         Vec3& bound_m) {
+  if (m.leg_geometry != LegGeometry::kPaperPlanar) return false;
+  const auto& L = m.link_length_m;
+  const double w = m.lateral_m[leg];
+  const double r2 = p_H.x() * p_H.x() + p_H.y() * p_H.y();
+  const double rho = std::sqrt(std::max(r2 - w * w, 0.0));
+  const double u = rho - L[0], v = p_H.z() + m.d1_m;
+  const Vec3 lever(std::sqrt(r2), std::sqrt(u * u + v * v), L[2]);
+  for (int j = 0; j < kJointsPerLeg; ++j)
+    bound_m[j] = clearance_rad[j] * std::max(lever[j] * (1.0 - 1e-6) - 1e-12, 0.0);
+  return true;
+}
+
 /// Margins of one leg at one instant from its IK, folded into `out` (file comment of
-/// posture.hpp).
-SampleMargin leg_margin(const RobotModel& m, int leg, const LegIkResult& ik, KinematicMargin& out) {
+/// posture.hpp). The joint margins need the leg's Jacobian; when their lower bounds
+/// (joint_margin_bounds) show that none can lower out.value_m or out.joint_m, it is not formed:
+/// what is folded into `out` and what the caller does with the result are the same.
+SampleMargin leg_margin(const RobotModel& m, int leg, const Vec3& p_H, const LegIkResult& ik,
+                        KinematicMargin& out) {
   SampleMargin s;
   const bool joint_refusal = !ik.ok && ik.reason.rfind("joint ", 0) == 0;
   if (!ik.ok) out.admitted = false;
@@ -68,11 +90,27 @@ SampleMargin leg_margin(const RobotModel& m, int leg, const LegIkResult& ik, Kin
     s.value_m = ik.margin_m;
     s.binding = Binding::kReachBoundary;
   }
+  Vec3 clearance;
+  for (int j = 0; j < kJointsPerLeg; ++j) {
+    const int k = joint_index(leg, j);
+    clearance[j] = joint_clearance_rad(ik.q[j], m.joint_lower_rad[k], m.joint_upper_rad[k]);
+  }
+  Vec3 bound;
+  if (ik.ok && joint_margin_bounds(m, leg, p_H, clearance, bound)) {
+    const double floor_m = std::max(out.value_m, out.joint_m);
+    bool needed = false;
+    for (int j = 0; j < kJointsPerLeg; ++j) {
+      if (!std::isfinite(clearance[j])) continue;
+      out.joint_rad = std::min(out.joint_rad, clearance[j]);
+      needed = needed || !(bound[j] >= floor_m);
+    }
+    if (!needed) return s;
+  }
   const Mat3 J = leg_jacobian_H(m, leg, ik.q);
   for (int j = 0; j < kJointsPerLeg; ++j) {
     const int k = joint_index(leg, j);
     const double lo = m.joint_lower_rad[k], hi = m.joint_upper_rad[k];
-    const double c = joint_clearance_rad(ik.q[j], lo, hi);
+    const double c = clearance[j];
     if (!std::isfinite(c)) continue;
     out.joint_rad = std::min(out.joint_rad, c);
     const double c_m = c * J.col(j).norm();
@@ -155,7 +193,7 @@ MarginEvaluation evaluate_margin(const RobotModel& model, const TrunkMotion& tru
       const int i = k / kLegs, leg = k % kLegs;
       const Vec3 p_H = target_in_hip(model, trunk.at(feet.t_s[i]), leg, feet.p_W[i][leg]);
       const SampleMargin s =
-          leg_margin(model, leg, leg_inverse_kinematics(model, leg, p_H), scratch);
+          leg_margin(model, leg, p_H, leg_inverse_kinematics(model, leg, p_H), scratch);
       if (s.value_m < below_m) {
         out.value_m = s.value_m;
         out.leg = leg;
@@ -174,7 +212,7 @@ MarginEvaluation evaluate_margin(const RobotModel& model, const TrunkMotion& tru
     for (int leg = 0; leg < kLegs; ++leg) {
       const Vec3 p_H = target_in_hip(model, state, leg, feet.p_W[i][leg]);
       const LegIkResult ik = leg_inverse_kinematics(model, leg, p_H);
-      const SampleMargin s = leg_margin(model, leg, ik, out);
+      const SampleMargin s = leg_margin(model, leg, p_H, ik, out);
       if (s.value_m < out.value_m) {
         out.value_m = s.value_m;
         out.leg = leg;
@@ -253,16 +291,30 @@ class PostureSearch {
 
   /// Best height for spread w: a scan, then golden section around the best scan point. Every
   /// candidate but the first of each phase is evaluated against the candidate it is compared
-  /// with, whose margin is exact (see the class comment).
+  /// with, whose margin is exact (see the class comment). The scan's best is the first of its
+  /// largest margins in the order of heights, as a scan from the lowest height finds it; its
+  /// heights are visited coarse to fine, then nearest to the best so far, so that the best is
+  /// found early and most of the others stop at a sample.
   Candidate best_height(double w, double h_lo, double h_hi) {
     constexpr int kScan = 25;
     constexpr int kUniform = 200;
-    std::vector<Candidate> scan;
-    int best = 0;
-    for (int i = 0; i < kScan; ++i) {
-      const double below = i == 0 ? -kInf : scan[best].margin.value_m;
-      scan.push_back(evaluate(h_lo + (h_hi - h_lo) * i / (kScan - 1), w, kUniform, below));
-      if (scan[i].margin.value_m > scan[best].margin.value_m) best = i;
+    std::vector<Candidate> scan(kScan);
+    std::vector<bool> done(kScan, false);
+    int best = -1;
+    auto visit = [&](int i) {
+      const double below = best < 0 ? -kInf : scan[best].margin.value_m;
+      scan[i] = evaluate(h_lo + (h_hi - h_lo) * i / (kScan - 1), w, kUniform, below);
+      done[i] = true;
+      const double m = scan[i].margin.value_m;
+      if (best < 0 || m > scan[best].margin.value_m || (m == scan[best].margin.value_m && i < best))
+        best = i;
+    };
+    for (int i : {0, kScan - 1, (kScan - 1) / 2, (kScan - 1) / 4, 3 * (kScan - 1) / 4}) visit(i);
+    for (int n = 5; n < kScan; ++n) {
+      int next = -1;
+      for (int i = 0; i < kScan; ++i)
+        if (!done[i] && (next < 0 || std::abs(i - best) < std::abs(next - best))) next = i;
+      visit(next);
     }
     if (!scan[best].planned) return scan[best];
     double a = scan[std::max(best - 1, 0)].height_m,
