@@ -159,6 +159,15 @@ Mat3 leg_jacobian_dot_H(const RobotModel& m, int leg, const Vec3& q, const Vec3&
   return Jd;
 }
 
+namespace {
+
+/// std::remainder(x, 2π), the angle in [−π, π]. The remainder is exact (IEEE 754), and an angle
+/// already within ±π is its own remainder (a tie, x = ±π, keeps the even quotient 0), so the
+/// library call is needed only outside: the same bits, without its cost on most samples.
+double wrap_angle(double x) { return std::abs(x) <= M_PI ? x : std::remainder(x, 2.0 * M_PI); }
+
+}  // namespace
+
 LegIkResult leg_inverse_kinematics(const RobotModel& m, int leg, const Vec3& p) {
   if (m.leg_geometry == LegGeometry::kChain) return chain_inverse_kinematics(m, leg, p);
   LegIkResult r;
@@ -180,7 +189,7 @@ LegIkResult leg_inverse_kinematics(const RobotModel& m, int leg, const Vec3& p) 
   const double beta3 = -std::acos(std::clamp(cos3, -1.0, 1.0));  // knee up
   const double beta2 =
       std::atan2(v, u) - std::atan2(L[2] * std::sin(beta3), L[1] + L[2] * std::cos(beta3));
-  r.q = Vec3(std::remainder(theta1, 2.0 * M_PI), std::remainder(beta2, 2.0 * M_PI), beta3);
+  r.q = Vec3(wrap_angle(theta1), wrap_angle(beta2), beta3);
   for (int j = 0; j < kJointsPerLeg; ++j) {
     const double lo = m.joint_lower_rad[joint_index(leg, j)],
                  hi = m.joint_upper_rad[joint_index(leg, j)];

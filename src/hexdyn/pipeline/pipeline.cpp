@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <optional>
 
 #include "hexdyn/dynamics/rnea.hpp"
 #include "hexdyn/kinematics/kinematics.hpp"
@@ -68,10 +69,17 @@ void add_terrain_profile(const TerrainParams& terrain, RunResult& result) {
 
 }  // namespace
 
-PreparedScene prepare_scene(const Scene& scene) {
+PreparedScene prepare_scene(const Scene& scene, StageTimes* times) {
+  std::optional<StageTimer> clock(std::in_place, times, Stage::kModel);
   RobotModel model = build_robot_model(scene.robot);
-  MotionPlan plan = plan_motion(scene, model);
+  clock.emplace(times, Stage::kPosture);
+  const PostureChoice posture = choose_posture(scene, model);
+  clock.emplace(times, Stage::kPlanning);  // plan_motion, with the posture timed on its own
+  MotionPlan plan = plan_motion_with(scene, model, posture.p0_W, posture.foot_lateral_m);
+  plan.posture = posture;
+  clock.emplace(times, Stage::kTouchdowns);
   std::vector<Touchdown> touchdowns = physical_touchdowns(scene, model, plan);
+  clock.emplace(times, Stage::kGrid);
   // The grid's events: every lift-off and every touchdown with its transient; the run lasts
   // until the motion and every transient have ended.
   std::vector<GridEvent> events;
@@ -97,16 +105,21 @@ RunResult run_scene(const Scene& scene, std::ostream* log) {
   return result;
 }
 
-RunResult run_prepared_scene(const Scene& scene, const PreparedScene& prep, std::ostream* log) {
+RunResult run_prepared_scene(const Scene& scene, const PreparedScene& prep, std::ostream* log,
+                             StageTimes* times) {
   const auto start = std::chrono::steady_clock::now();
   RunResult result;
+  std::optional<StageTimer> clock(std::in_place, times, Stage::kKinematics);
   result.kin = sample_kinematics(prep.model, prep.plan, prep.grid);
   result.kin.sample_kind = prep.sample_kind;
   if (result.kin.sample_kind.size() != prep.grid.size())
     result.kin.sample_kind.assign(prep.grid.size(), kSampleOrdinary);
+  clock.emplace(times, Stage::kContacts);
   ContactSchedule contacts = schedule_contacts(result.kin, prep.plan.terrain, prep.touchdowns);
-  result.dyn =
-      solve_dynamics(scene, prep.model, prep.plan, result.kin, contacts, prep.touchdowns, log);
+  clock.reset();  // solve_dynamics times its own stages
+  result.dyn = solve_dynamics(scene, prep.model, prep.plan, result.kin, contacts, prep.touchdowns,
+                              log, times);
+  clock.emplace(times, Stage::kAssembly);
   result.kin.contact_phase = std::move(contacts.phase);
   describe_base_at_root_link(prep.model,
                              result.kin);  // after the dynamics, which use the trunk frame

@@ -18,6 +18,7 @@
 #include "hexdyn/core/result.hpp"
 #include "hexdyn/core/scene.hpp"
 #include "hexdyn/model/robot_model.hpp"
+#include "hexdyn/pipeline/stage_times.hpp"
 #include "hexdyn/planning/plan.hpp"
 
 namespace hexdyn {
@@ -33,13 +34,14 @@ struct PreparedScene {
   std::vector<double> grid;              ///< [s], strictly increasing
   std::vector<std::int8_t> sample_kind;  ///< per grid point: planning/grid.hpp kSample*
 };
-PreparedScene prepare_scene(const Scene& scene);
+/// `times` (may be null) receives the time of each stage (stage_times.hpp).
+PreparedScene prepare_scene(const Scene& scene, StageTimes* times = nullptr);
 
 /// Samples and solves a scene prepared by prepare_scene(scene): what run_scene does after
 /// the preparation, so that a caller can look at the grid first (the CLI's size guard).
 /// wall_time_s counts from this call.
 RunResult run_prepared_scene(const Scene& scene, const PreparedScene& prep,
-                             std::ostream* log = nullptr);
+                             std::ostream* log = nullptr, StageTimes* times = nullptr);
 
 /// Plans, samples and solves a scene. `log` (may be null) receives one line per episode
 /// of relaxed or failed allocation samples.

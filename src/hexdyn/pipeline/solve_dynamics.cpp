@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <memory>
+#include <optional>
 #include <ostream>
 #include <string>
 
@@ -44,18 +45,22 @@ class SampleSolver {
         data_(model),
         backend_(make_allocation_backend(scene.allocation)) {}
 
-  /// Solves sample i of `kin` under contacts `c`.
-  SampleSolution solve(const KinematicsResult& kin, int i, const SampleContacts& c) {
+  /// Solves sample i of `kin` under contacts `c`; `times` (may be null) as solve_dynamics.
+  SampleSolution solve(const KinematicsResult& kin, int i, const SampleContacts& c,
+                       StageTimes* times) {
+    std::optional<StageTimer> clock(std::in_place, times, Stage::kRnea);
     const BaseState base = base_state_at(kin, i);
     const VecJ q = kin.joint_position.row(i).transpose();
     const VecJ qd = kin.joint_velocity.row(i).transpose();
     const VecJ qdd = kin.joint_acceleration.row(i).transpose();
     const ContactSplit& split = contact_split(model_, data_, base, q, qd, qdd);
+    clock.emplace(times, Stage::kAllocation);
     const AllocationLayout layout = build_allocation_problem(
         scene_.allocation, scene_.contact, split, c.phase, c.impact_force_N, c.W_R_contact, qp_);
     SampleSolution s;
     s.outcome = &backend_->solve(qp_);
     forces_from_solution(split, layout, s.outcome->x, s.foot_forces_W, s.joint_torque);
+    clock.emplace(times, Stage::kVerdict);
     // Measured from the solution, not taken from the back end: every row and cone against
     // the fixed threshold (allocation/qp.hpp kViolationThreshold).
     s.measured_violations =
@@ -171,7 +176,8 @@ DynamicsResult empty_result(int T) {
 
 DynamicsResult solve_dynamics(const Scene& scene, const RobotModel& model, const MotionPlan& plan,
                               const KinematicsResult& kin, const ContactSchedule& contacts,
-                              const std::vector<Touchdown>& touchdowns, std::ostream* log) {
+                              const std::vector<Touchdown>& touchdowns, std::ostream* log,
+                              StageTimes* times) {
   const int T = kin.samples();
   if (static_cast<int>(contacts.samples.size()) != T)
     throw SolverError("solve_dynamics: contact schedule of " +
@@ -189,7 +195,8 @@ DynamicsResult solve_dynamics(const Scene& scene, const RobotModel& model, const
   for (int i = 0; i < T; ++i) {
     const double t = kin.time_s[i];
     const SampleContacts& c = contacts.samples[i];
-    const SampleSolution solution = solver.solve(kin, i, c);
+    const SampleSolution solution = solver.solve(kin, i, c, times);
+    const StageTimer clock(times, Stage::kVerdict);
     const SampleVerdict verdict = sample_verdict(solution, c, scene.allocation.torque_limit_Nm);
     const VecJ& tau = solution.joint_torque;
     dyn.solver_status[i] = verdict.status;
@@ -213,6 +220,7 @@ DynamicsResult solve_dynamics(const Scene& scene, const RobotModel& model, const
   }
   episodes.close();
 
+  const StageTimer clock(times, Stage::kPower);
   PowerResult power = compute_power(kin, dyn.joint_torque, model.total_mass_kg,
                                     plan.trunk.total_travel_m(), plan.trunk.cycle_start_times());
   dyn.joint_power = std::move(power.joint_power);

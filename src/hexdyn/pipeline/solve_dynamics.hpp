@@ -12,6 +12,7 @@
 #include "hexdyn/core/result.hpp"
 #include "hexdyn/core/scene.hpp"
 #include "hexdyn/model/robot_model.hpp"
+#include "hexdyn/pipeline/stage_times.hpp"
 #include "hexdyn/planning/plan.hpp"
 
 namespace hexdyn {
@@ -20,10 +21,12 @@ namespace hexdyn {
 /// schedule_contacts over the same kin and touchdowns). Reads its inputs only; the
 /// schedule's phases are the run's /contacts/phase. `log` (may be null) receives one line
 /// per truncated touchdown transient and per episode of relaxed or failed samples.
+/// `times` (may be null) receives the time of the stages rnea, allocation, verdict and power.
 /// Throws SolverError when `contacts` does not match `kin` or an allocation back end
 /// cannot start.
 DynamicsResult solve_dynamics(const Scene& scene, const RobotModel& model, const MotionPlan& plan,
                               const KinematicsResult& kin, const ContactSchedule& contacts,
-                              const std::vector<Touchdown>& touchdowns, std::ostream* log);
+                              const std::vector<Touchdown>& touchdowns, std::ostream* log,
+                              StageTimes* times = nullptr);
 
 }  // namespace hexdyn

@@ -1,7 +1,9 @@
 #include "hexdyn/planning/posture.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <deque>
 #include <limits>
 #include <sstream>
 
@@ -12,6 +14,9 @@ namespace hexdyn {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
+
+/// Limiting samples an automatic posture search tries first, per spread (PostureSearch).
+constexpr std::size_t kHotSamples = 16;
 
 /// Angle of a joint to its nearer limit [rad], +inf for a continuous joint; negative when
 /// outside. A revolute joint may be turned by ±2π into its limits (as the IK does).
@@ -34,105 +39,301 @@ std::string reach_boundary(const RobotModel& m, int leg, const Vec3& p_H) {
                                                               : "reach: full fold";
 }
 
+/// Which constraint gives a sample's margin, kept as a code: the text is made only for the
+/// sample that limits the whole motion (constraint_text), not on the per-sample path.
+enum class Binding { kNone, kReachRefused, kReachBoundary, kJoint };
+
 struct SampleMargin {
   double value_m = kInf;
-  std::string constraint;
+  Binding binding = Binding::kNone;
+  int joint = 0;       ///< kJoint: flat joint index
+  bool lower = false;  ///< kJoint: the lower limit is the nearer
 };
 
-/// Margins of one leg at one instant, folded into `out` (file comment of posture.hpp).
-SampleMargin leg_margin(const RobotModel& m, int leg, const Vec3& p_H, KinematicMargin& out) {
+/// Lower bounds of the joint margins of a paper-geometry leg at target p_H [m]: the angle to the
+/// limit times a lower bound of the foot's lever arm, which for this geometry is a distance of
+/// the target itself: from the coxa axis, hypot(x, y); from the femur axis, the wrist distance
+/// of the IK; about the tibia axis, the tibia's length (the norms of leg_jacobian_H's columns,
+/// to rounding: the bounds take 1e-6 of them off, and 1e-12 m). False for another geometry.
+bool joint_margin_bounds(const RobotModel& m, int leg, const Vec3& p_H, const Vec3& clearance_rad,
+                         Vec3& bound_m) {
+  if (m.leg_geometry != LegGeometry::kPaperPlanar) return false;
+  const auto& L = m.link_length_m;
+  const double w = m.lateral_m[leg];
+  const double r2 = p_H.x() * p_H.x() + p_H.y() * p_H.y();
+  const double rho = std::sqrt(std::max(r2 - w * w, 0.0));
+  const double u = rho - L[0], v = p_H.z() + m.d1_m;
+  const Vec3 lever(std::sqrt(r2), std::sqrt(u * u + v * v), L[2]);
+  for (int j = 0; j < kJointsPerLeg; ++j)
+    bound_m[j] = clearance_rad[j] * std::max(lever[j] * (1.0 - 1e-6) - 1e-12, 0.0);
+  return true;
+}
+
+/// Margins of one leg at one instant from its IK, folded into `out` (file comment of
+/// posture.hpp). The joint margins need the leg's Jacobian; when their lower bounds
+/// (joint_margin_bounds) show that none can lower out.value_m or out.joint_m, it is not formed:
+/// what is folded into `out` and what the caller does with the result are the same.
+SampleMargin leg_margin(const RobotModel& m, int leg, const Vec3& p_H, const LegIkResult& ik,
+                        KinematicMargin& out) {
   SampleMargin s;
-  const LegIkResult ik = leg_inverse_kinematics(m, leg, p_H);
   const bool joint_refusal = !ik.ok && ik.reason.rfind("joint ", 0) == 0;
   if (!ik.ok) out.admitted = false;
   if (!ik.ok && !joint_refusal) {
     // Out of reach: no joint angles; the IK's margin (negative or below the minimum).
     s.value_m = ik.margin_m;
-    s.constraint = ik.reason.find("extension") != std::string::npos ? "reach: full extension"
-                   : ik.reason.find("fold") != std::string::npos    ? "reach: full fold"
-                                                                    : "reach: " + ik.reason;
+    s.binding = Binding::kReachRefused;
     out.reach_m = std::min(out.reach_m, ik.margin_m);
     return s;
   }
   if (ik.ok) {
     out.reach_m = std::min(out.reach_m, ik.margin_m);
     s.value_m = ik.margin_m;
-    s.constraint = reach_boundary(m, leg, p_H);
+    s.binding = Binding::kReachBoundary;
+  }
+  Vec3 clearance;
+  for (int j = 0; j < kJointsPerLeg; ++j) {
+    const int k = joint_index(leg, j);
+    clearance[j] = joint_clearance_rad(ik.q[j], m.joint_lower_rad[k], m.joint_upper_rad[k]);
+  }
+  Vec3 bound;
+  if (ik.ok && joint_margin_bounds(m, leg, p_H, clearance, bound)) {
+    const double floor_m = std::max(out.value_m, out.joint_m);
+    bool needed = false;
+    for (int j = 0; j < kJointsPerLeg; ++j) {
+      if (!std::isfinite(clearance[j])) continue;
+      out.joint_rad = std::min(out.joint_rad, clearance[j]);
+      needed = needed || !(bound[j] >= floor_m);
+    }
+    if (!needed) return s;
   }
   const Mat3 J = leg_jacobian_H(m, leg, ik.q);
   for (int j = 0; j < kJointsPerLeg; ++j) {
     const int k = joint_index(leg, j);
     const double lo = m.joint_lower_rad[k], hi = m.joint_upper_rad[k];
-    const double c = joint_clearance_rad(ik.q[j], lo, hi);
+    const double c = clearance[j];
     if (!std::isfinite(c)) continue;
     out.joint_rad = std::min(out.joint_rad, c);
     const double c_m = c * J.col(j).norm();
     out.joint_m = std::min(out.joint_m, c_m);
     if (c_m < s.value_m) {
       s.value_m = c_m;
-      const bool lower = std::abs(ik.q[j] - lo) <= std::abs(hi - ik.q[j]);
-      s.constraint = "joint " + m.joint_source_names[k] + (lower ? " lower" : " upper") + " limit";
+      s.binding = Binding::kJoint;
+      s.joint = k;
+      s.lower = std::abs(ik.q[j] - lo) <= std::abs(hi - ik.q[j]);
     }
   }
   return s;
 }
 
-/// Result of one candidate posture.
+/// The limiting sample's constraint in words ("reach: full extension", "joint L3_tibia upper
+/// limit", ...).
+std::string constraint_text(const RobotModel& m, int leg, const Vec3& p_H, const LegIkResult& ik,
+                            const SampleMargin& s) {
+  switch (s.binding) {
+    case Binding::kReachRefused:
+      return ik.reason.find("extension") != std::string::npos ? "reach: full extension"
+             : ik.reason.find("fold") != std::string::npos    ? "reach: full fold"
+                                                              : "reach: " + ik.reason;
+    case Binding::kReachBoundary:
+      return reach_boundary(m, leg, p_H);
+    case Binding::kJoint:
+      return "joint " + m.joint_source_names[s.joint] + (s.lower ? " lower" : " upper") + " limit";
+    case Binding::kNone:
+      break;
+  }
+  return std::string();
+}
+
+/// The foot targets of a motion at its margin samples (margin_sample_times). They depend on
+/// the foot spread and not on the trunk's height: the gait's timing follows the travel, its
+/// footholds' x and y the trunk's x and y, their z the terrain (gait.hpp), so the automatic
+/// posture plans the gait of a spread once and moves only the trunk for each height.
+struct FootTrack {
+  std::vector<double> t_s;
+  std::vector<std::array<Vec3, kLegs>> p_W;  ///< per instant and leg [m, G0]
+};
+
+FootTrack foot_track(const MotionPlan& plan, int uniform) {
+  FootTrack f;
+  f.t_s = margin_sample_times(plan, uniform);
+  f.p_W.resize(f.t_s.size());
+  for (std::size_t i = 0; i < f.t_s.size(); ++i)
+    for (int leg = 0; leg < kLegs; ++leg)
+      f.p_W[i][leg] = leg_foot_motion(plan.gait.legs[leg], f.t_s[i]).p_W;
+  return f;
+}
+
+/// A margin evaluation that may stop early: as soon as some sample's margin is below
+/// `below_m` the motion's margin is known to be below it too, and value_m is that sample's
+/// margin (an upper bound of the motion's), `complete` false. The samples in `hot` (indices
+/// i·kLegs + leg, the limiting samples of earlier evaluations) are tried first for that.
+/// A complete evaluation visits every sample in time order, as motion_kinematic_margin.
+struct MarginEvaluation {
+  KinematicMargin margin;
+  bool complete = true;
+  int limiting_sample = -1;  ///< i·kLegs + leg of value_m
+};
+
+Vec3 target_in_hip(const RobotModel& model, const BaseState& trunk, int leg, const Vec3& p_W) {
+  const Vec3 r_B = trunk.W_R_B.transpose() * (p_W - trunk.p_W);
+  return model.R_B_H[leg].transpose() * (r_B - model.p_hip_B[leg]);
+}
+
+MarginEvaluation evaluate_margin(const RobotModel& model, const TrunkMotion& trunk,
+                                 const FootTrack& feet, double below_m,
+                                 const std::vector<int>& hot) {
+  MarginEvaluation e;
+  KinematicMargin& out = e.margin;
+  out.value_m = out.reach_m = out.joint_m = out.joint_rad = kInf;
+  out.admitted = true;
+  out.samples = static_cast<int>(feet.t_s.size());
+  if (below_m > -kInf) {
+    KinematicMargin scratch = out;
+    for (int k : hot) {
+      const int i = k / kLegs, leg = k % kLegs;
+      const Vec3 p_H = target_in_hip(model, trunk.at(feet.t_s[i]), leg, feet.p_W[i][leg]);
+      const SampleMargin s =
+          leg_margin(model, leg, p_H, leg_inverse_kinematics(model, leg, p_H), scratch);
+      if (s.value_m < below_m) {
+        out.value_m = s.value_m;
+        out.leg = leg;
+        out.t_s = feet.t_s[i];
+        e.complete = false;
+        e.limiting_sample = k;
+        return e;
+      }
+    }
+  }
+  SampleMargin limit;
+  Vec3 limit_p_H = Vec3::Zero();
+  std::string limit_reason;
+  for (std::size_t i = 0; i < feet.t_s.size(); ++i) {
+    const BaseState state = trunk.at(feet.t_s[i]);
+    for (int leg = 0; leg < kLegs; ++leg) {
+      const Vec3 p_H = target_in_hip(model, state, leg, feet.p_W[i][leg]);
+      const LegIkResult ik = leg_inverse_kinematics(model, leg, p_H);
+      const SampleMargin s = leg_margin(model, leg, p_H, ik, out);
+      if (s.value_m < out.value_m) {
+        out.value_m = s.value_m;
+        out.leg = leg;
+        out.t_s = feet.t_s[i];
+        e.limiting_sample = static_cast<int>(i) * kLegs + leg;
+        limit = s;
+        limit_p_H = p_H;
+        if (s.binding == Binding::kReachRefused) limit_reason = ik.reason;
+        if (out.value_m < below_m) {
+          e.complete = false;
+          return e;
+        }
+      }
+    }
+  }
+  LegIkResult limit_ik;
+  limit_ik.reason = limit_reason;
+  out.constraint = constraint_text(model, out.leg, limit_p_H, limit_ik, limit);
+  return e;
+}
+
+/// Result of one candidate posture. `margin` is exact when `complete`; otherwise its value_m
+/// is below the bound the candidate was evaluated against (evaluate_margin).
 struct Candidate {
   double height_m = 0.0, foot_lateral_m = 0.0;
   KinematicMargin margin;
-  bool planned = false;
+  bool planned = false, complete = true;
   std::string planning_error;
 };
 
+/// The search of the automatic posture (posture.hpp). It takes the decisions of a plain scan
+/// and golden section over exact margins, with two savings that leave every decision and
+/// every reported margin as they are:
+///   - the gait and the foot targets of a spread are planned once (FootTrack);
+///   - a candidate compared with one whose exact margin is known is evaluated only until a
+///     sample falls below that margin (it loses the comparison whatever its other samples),
+///     trying first the samples that limited the earlier candidates.
+/// A candidate that wins a comparison is always evaluated completely, so the compared
+/// margins, the best candidate and its margin are those of complete evaluations.
 class PostureSearch {
  public:
-  PostureSearch(const Scene& scene, const RobotModel& model) : scene_(scene), model_(model) {}
+  PostureSearch(const Scene& scene, const RobotModel& model)
+      : scene_(scene), model_(model), terrain_(scene.terrain) {}
 
-  Candidate evaluate(double h, double w, int uniform) {
+  /// The margin of height h and spread w on margin_sample_times(plan, uniform), complete or,
+  /// when it is below `below_m`, possibly stopped there.
+  Candidate evaluate(double h, double w, int uniform, double below_m = -kInf) {
     ++evaluations_;
     Candidate c;
     c.height_m = h;
     c.foot_lateral_m = w;
     const PostureParams& p = scene_.motion.posture;
-    try {
-      const MotionPlan plan = plan_motion_with(
-          scene_, model_, relative_start_position(scene_.terrain, h, p.start_y_m), w);
-      c.margin = motion_kinematic_margin(model_, plan, uniform);
-      c.planned = true;
-    } catch (const PlanningError& e) {
+    const Vec3 p0_W = relative_start_position(scene_.terrain, h, p.start_y_m);
+    Spread& spread = spread_for(p0_W, w, uniform);
+    if (!spread.planned) {
       c.margin.value_m = -kInf;
-      c.planning_error = e.what();
+      c.planning_error = spread.planning_error;
+      return c;
     }
+    // The trunk exactly as plan_motion_with(scene, model, p0_W, w) plans it.
+    MotionParams motion = scene_.motion;
+    motion.initial_position_m = p0_W;
+    GaitParams gait = scene_.gait;
+    gait.foot_lateral_m = w;
+    const TrunkMotion trunk(motion, gait, terrain_);
+    const MarginEvaluation e = evaluate_margin(model_, trunk, spread.feet, below_m, spread.hot);
+    c.margin = e.margin;
+    c.planned = true;
+    c.complete = e.complete;
+    if (e.limiting_sample >= 0 &&
+        std::find(spread.hot.begin(), spread.hot.end(), e.limiting_sample) == spread.hot.end())
+      spread.hot.insert(spread.hot.begin(), e.limiting_sample);
+    if (spread.hot.size() > kHotSamples) spread.hot.pop_back();
     return c;
   }
 
-  /// Best height for spread w: a scan, then golden section around the best scan point.
+  /// Best height for spread w: a scan, then golden section around the best scan point. Every
+  /// candidate but the first of each phase is evaluated against the candidate it is compared
+  /// with, whose margin is exact (see the class comment). The scan's best is the first of its
+  /// largest margins in the order of heights, as a scan from the lowest height finds it; its
+  /// heights are visited coarse to fine, then nearest to the best so far, so that the best is
+  /// found early and most of the others stop at a sample.
   Candidate best_height(double w, double h_lo, double h_hi) {
     constexpr int kScan = 25;
     constexpr int kUniform = 200;
-    std::vector<Candidate> scan;
-    int best = 0;
-    for (int i = 0; i < kScan; ++i) {
-      scan.push_back(evaluate(h_lo + (h_hi - h_lo) * i / (kScan - 1), w, kUniform));
-      if (scan[i].margin.value_m > scan[best].margin.value_m) best = i;
+    std::vector<Candidate> scan(kScan);
+    std::vector<bool> done(kScan, false);
+    int best = -1;
+    auto visit = [&](int i) {
+      const double below = best < 0 ? -kInf : scan[best].margin.value_m;
+      scan[i] = evaluate(h_lo + (h_hi - h_lo) * i / (kScan - 1), w, kUniform, below);
+      done[i] = true;
+      const double m = scan[i].margin.value_m;
+      if (best < 0 || m > scan[best].margin.value_m || (m == scan[best].margin.value_m && i < best))
+        best = i;
+    };
+    for (int i : {0, kScan - 1, (kScan - 1) / 2, (kScan - 1) / 4, 3 * (kScan - 1) / 4}) visit(i);
+    for (int n = 5; n < kScan; ++n) {
+      int next = -1;
+      for (int i = 0; i < kScan; ++i)
+        if (!done[i] && (next < 0 || std::abs(i - best) < std::abs(next - best))) next = i;
+      visit(next);
     }
     if (!scan[best].planned) return scan[best];
     double a = scan[std::max(best - 1, 0)].height_m,
            b = scan[std::min(best + 1, kScan - 1)].height_m;
     const double g = 0.5 * (std::sqrt(5.0) - 1.0);
-    Candidate x1 = evaluate(b - g * (b - a), w, kUniform),
-              x2 = evaluate(a + g * (b - a), w, kUniform);
+    Candidate x1 = evaluate(b - g * (b - a), w, kUniform);
+    Candidate x2 = evaluate(a + g * (b - a), w, kUniform, x1.margin.value_m);
     Candidate top = scan[best];
+    // The candidate kept from one step to the next won its comparison: it is complete, and
+    // the new one is evaluated against it.
     while (b - a > 1e-4) {
       if (x1.margin.value_m >= x2.margin.value_m) {
         b = x2.height_m;
         x2 = x1;
-        x1 = evaluate(b - g * (b - a), w, kUniform);
+        x1 = evaluate(b - g * (b - a), w, kUniform, x2.margin.value_m);
       } else {
         a = x1.height_m;
         x1 = x2;
-        x2 = evaluate(a + g * (b - a), w, kUniform);
+        x2 = evaluate(a + g * (b - a), w, kUniform, x1.margin.value_m);
       }
       for (const Candidate* c : {&x1, &x2})
         if (c->margin.value_m > top.margin.value_m) top = *c;
@@ -143,8 +344,36 @@ class PostureSearch {
   int evaluations() const { return evaluations_; }
 
  private:
+  /// The foot targets of one spread on one sample grid, and the limiting samples seen so far.
+  struct Spread {
+    double foot_lateral_m = 0.0;
+    int uniform = 0;
+    bool planned = false;
+    std::string planning_error;
+    FootTrack feet;
+    std::vector<int> hot;
+  };
+
+  Spread& spread_for(const Vec3& p0_W, double w, int uniform) {
+    for (Spread& s : spreads_)
+      if (s.foot_lateral_m == w && s.uniform == uniform) return s;
+    Spread s;
+    s.foot_lateral_m = w;
+    s.uniform = uniform;
+    try {
+      s.feet = foot_track(plan_motion_with(scene_, model_, p0_W, w), uniform);
+      s.planned = true;
+    } catch (const PlanningError& e) {
+      s.planning_error = e.what();
+    }
+    spreads_.push_back(std::move(s));
+    return spreads_.back();
+  }
+
   const Scene& scene_;
   const RobotModel& model_;
+  Terrain terrain_;
+  std::deque<Spread> spreads_;  // deque: references stay valid as spreads are added
   int evaluations_ = 0;
 };
 
@@ -260,27 +489,7 @@ std::vector<double> margin_sample_times(const MotionPlan& plan, int uniform) {
 
 KinematicMargin motion_kinematic_margin(const RobotModel& model, const MotionPlan& plan,
                                         int uniform) {
-  KinematicMargin out;
-  out.value_m = out.reach_m = out.joint_m = out.joint_rad = kInf;
-  out.admitted = true;
-  const std::vector<double> times = margin_sample_times(plan, uniform);
-  out.samples = static_cast<int>(times.size());
-  for (double t : times) {
-    const BaseState trunk = plan.trunk.at(t);
-    for (int leg = 0; leg < kLegs; ++leg) {
-      const FootMotion f = leg_foot_motion(plan.gait.legs[leg], t);
-      const Vec3 r_B = trunk.W_R_B.transpose() * (f.p_W - trunk.p_W);
-      const Vec3 p_H = model.R_B_H[leg].transpose() * (r_B - model.p_hip_B[leg]);
-      const SampleMargin s = leg_margin(model, leg, p_H, out);
-      if (s.value_m < out.value_m) {
-        out.value_m = s.value_m;
-        out.leg = leg;
-        out.t_s = t;
-        out.constraint = s.constraint;
-      }
-    }
-  }
-  return out;
+  return evaluate_margin(model, plan.trunk, foot_track(plan, uniform), -kInf, {}).margin;
 }
 
 PostureChoice choose_posture(const Scene& scene, const RobotModel& model) {

@@ -1,5 +1,6 @@
 #include "hexdyn/sweep/scenario_process.hpp"
 
+#include <malloc.h>
 #include <poll.h>
 #include <signal.h>
 #include <sys/prctl.h>
@@ -74,6 +75,7 @@ bool read_exact(int fd, char* data, std::size_t n) {
   // the child died (docs/user/faults.md#orphans).
   if (in_fd > 3) ::close_range(3, static_cast<unsigned>(in_fd) - 1, 0);
   ::close_range(static_cast<unsigned>(in_fd) + 1, ~0u, 0);
+  keep_freed_memory();
   const std::optional<std::size_t> crash_at = crash_switch();
   std::vector<char> frame;
   for (;;) {
@@ -106,6 +108,11 @@ std::string describe_status(int status) {
 }
 
 }  // namespace
+
+void keep_freed_memory() {
+  ::mallopt(M_MMAP_THRESHOLD, 64 << 20);
+  ::mallopt(M_TRIM_THRESHOLD, 256 << 20);
+}
 
 ScenarioEvent compute_scenario(const ScenarioFactory& factory, std::size_t index, bool keep_runs,
                                const std::string& scratch_dir) {

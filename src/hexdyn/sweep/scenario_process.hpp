@@ -35,6 +35,13 @@ struct ScenarioEvent {
   double encode_s = 0.0;      ///< time to encode the record (run image included)
 };
 
+/// Makes this process keep the memory it frees for its next allocations (glibc mallopt: no
+/// heap trimming, no separate mapping below 64 MiB). A scenario allocates and frees the same
+/// few hundred kilobytes of samples again and again; returned to the kernel, they cost page
+/// faults at every scenario (docs/dev/benchmarks.md#where-a-scenario-spends-its-time). The
+/// scenario child calls it when it starts; it leaves the results unchanged.
+void keep_freed_memory();
+
 /// Computes one scenario and encodes its record (what the child does per index).
 ScenarioEvent compute_scenario(const ScenarioFactory& factory, std::size_t index, bool keep_runs,
                                const std::string& scratch_dir);

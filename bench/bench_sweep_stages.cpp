@@ -1,0 +1,99 @@
+// Where a stair-study scenario's time goes, stage by stage (issue 23, item 1): every 10th
+// scenario of the 1,000-scenario grid of bench/sweep_1000.yaml (riser x speed x duty factor on
+// configs/sweeps/stairs_base.yaml), each computed as a sweep's scenario process computes it
+// (scene from the base tree, prepare_scene, run_prepared_scene, summary row, record), with the
+// pipeline's own stage clocks (pipeline/stage_times.hpp). The counters give each stage in
+// microseconds per scenario and its share of the scenario, and `other_share`: the share of
+// everything except the touchdown transients, the inverse dynamics (rnea) and the allocation.
+//
+//   build/bench/bench_sweep_stages
+#include <benchmark/benchmark.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <string>
+
+#include "hexdyn/pipeline/pipeline.hpp"
+#include "hexdyn/sweep/record.hpp"
+#include "hexdyn/sweep/scenario.hpp"
+#include "hexdyn/sweep/scenario_factory.hpp"
+#include "hexdyn/sweep/scenario_process.hpp"
+#include "hexdyn/sweep/spec.hpp"
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
+
+std::string bench_file(const char* name) {
+  if (const char* dir = std::getenv("HEXDYN_SOURCE_DIR"))
+    return std::string(dir) + "/bench/" + name;
+  std::string here = __FILE__;
+  return here.substr(0, here.find_last_of('/')) + "/" + name;
+}
+
+void BM_StairScenarioStages(benchmark::State& state) {
+  const hexdyn::SweepSpec spec = hexdyn::load_sweep(bench_file("sweep_1000.yaml"));
+  const hexdyn::ScenarioFactory factory(spec);
+  hexdyn::keep_freed_memory();  // as the sweep's scenario process does
+  hexdyn::StageTimes times;
+  double config = 0, summary = 0, record = 0;
+  std::size_t scenarios = 0, ok = 0, evaluations = 0, samples = 0;
+  for (auto _ : state) {
+    for (std::size_t i = 0; i < spec.scenario_count(); i += 10) {
+      auto t = Clock::now();
+      hexdyn::ScenarioSummary row;
+      try {
+        const hexdyn::Scene scene = factory.scene(i, false);  // as without --keep-runs
+        config += since(t);
+        const hexdyn::PreparedScene prep = hexdyn::prepare_scene(scene, &times);
+        const hexdyn::RunResult run = hexdyn::run_prepared_scene(scene, prep, nullptr, &times);
+        evaluations += prep.plan.posture.evaluations;
+        samples += run.kin.samples();
+        t = Clock::now();
+        row = hexdyn::summarize_run(run, i);
+        summary += since(t);
+        ++ok;
+      } catch (const std::exception& e) {
+        t = Clock::now();  // the stage that threw has its time; the row is the summary's
+        row = hexdyn::failed_summary(i, hexdyn::classify_exception(e), e.what());
+        summary += since(t);
+      }
+      t = Clock::now();
+      benchmark::DoNotOptimize(hexdyn::encode_record({row, {}}));
+      record += since(t);
+      ++scenarios;
+    }
+  }
+  double total = config + summary + record;
+  for (double s : times.seconds) total += s;
+  const double n = static_cast<double>(scenarios);
+  auto put = [&](const std::string& name, double s) {
+    state.counters[name + "_us"] = 1e6 * s / n;
+    state.counters[name + "_share"] = s / total;
+  };
+  put("config", config);
+  for (int k = 0; k < static_cast<int>(hexdyn::Stage::kCount); ++k)
+    put(std::string(hexdyn::kStageNames[k]), times.seconds[k]);
+  put("summary", summary);
+  put("record", record);
+  using hexdyn::Stage;
+  const double physics =
+      times[Stage::kTouchdowns] + times[Stage::kRnea] + times[Stage::kAllocation];
+  state.counters["scenario_us"] = 1e6 * total / n;
+  state.counters["other_share"] = 1.0 - physics / total;
+  state.counters["ok_scenarios"] = static_cast<double>(ok);
+  // Per computed scenario: candidate postures the automatic posture search evaluated, and
+  // output samples.
+  state.counters["posture_evaluations"] =
+      static_cast<double>(evaluations) / static_cast<double>(ok);
+  state.counters["samples"] = static_cast<double>(samples) / static_cast<double>(ok);
+  state.counters["scenarios"] = n;
+}
+BENCHMARK(BM_StairScenarioStages)->Unit(benchmark::kMillisecond)->Iterations(1);
+
+}  // namespace
+
+BENCHMARK_MAIN();
