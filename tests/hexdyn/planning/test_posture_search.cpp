@@ -124,7 +124,7 @@ TEST_CASE("posture search: the same decisions as the plain scan and golden secti
     const RobotModel model = build_robot_model(scene.robot);
     REQUIRE(model.leg_geometry == LegGeometry::kPaperPlanar);
     const PostureChoice fast = best_posture(scene, model);
-    PlainSearch plain{scene, model};
+    PlainSearch plain{scene, model, 0, {}};
     const PlainSearch::Point ref = plain.run();
     CHECK(fast.height_m == ref.h);
     CHECK(fast.foot_lateral_m == ref.w);
