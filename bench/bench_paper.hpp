@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_common.hpp"
 #include "hexdyn/allocation/backends.hpp"
 #include "hexdyn/allocation/problem.hpp"
 #include "hexdyn/contact/touchdowns.hpp"
@@ -17,17 +18,8 @@
 
 namespace hexdyn::bench {
 
-/// configs/paper.yaml of the source tree: $HEXDYN_SOURCE_DIR if set, else found from this
-/// header's own path (bench/ sits next to configs/).
-inline std::string paper_scene_path() {
-  if (const char* dir = std::getenv("HEXDYN_SOURCE_DIR"))
-    return std::string(dir) + "/configs/paper.yaml";
-  std::string here = __FILE__;
-  const auto slash = here.find_last_of('/');
-  const std::string bench_dir =
-      slash == std::string::npos ? std::string(".") : here.substr(0, slash);
-  return bench_dir + "/../configs/paper.yaml";
-}
+/// configs/paper.yaml of the source tree (bench_common.hpp source_file).
+inline std::string paper_scene_path() { return source_file("configs/paper.yaml"); }
 
 /// The paper scene, its robot and plan, and its kinematics sampled on the run's own
 /// output grid (events and touchdown transients included) with the impact phases

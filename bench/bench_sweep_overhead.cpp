@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_common.hpp"
 #include "hexdyn/mpi/messages.hpp"
 #include "hexdyn/pipeline/pipeline.hpp"
 #include "hexdyn/sweep/coordinator.hpp"
@@ -25,16 +26,11 @@
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t) {
-  return std::chrono::duration<double>(Clock::now() - t).count();
-}
+using hexdyn::bench::Clock;
+using hexdyn::bench::since;
 
 std::string bench_file(const char* name) {
-  if (const char* dir = std::getenv("HEXDYN_SOURCE_DIR"))
-    return std::string(dir) + "/bench/" + name;
-  std::string here = __FILE__;
-  return here.substr(0, here.find_last_of('/')) + "/" + name;
+  return hexdyn::bench::source_file(std::string("bench/") + name);
 }
 
 void BM_SweepScenarioOverhead(benchmark::State& state) {

@@ -13,6 +13,7 @@
 #include <cstdlib>
 #include <string>
 
+#include "bench_common.hpp"
 #include "hexdyn/pipeline/pipeline.hpp"
 #include "hexdyn/sweep/record.hpp"
 #include "hexdyn/sweep/scenario.hpp"
@@ -22,16 +23,11 @@
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t) {
-  return std::chrono::duration<double>(Clock::now() - t).count();
-}
+using hexdyn::bench::Clock;
+using hexdyn::bench::since;
 
 std::string bench_file(const char* name) {
-  if (const char* dir = std::getenv("HEXDYN_SOURCE_DIR"))
-    return std::string(dir) + "/bench/" + name;
-  std::string here = __FILE__;
-  return here.substr(0, here.find_last_of('/')) + "/" + name;
+  return hexdyn::bench::source_file(std::string("bench/") + name);
 }
 
 void BM_StairScenarioStages(benchmark::State& state) {
