@@ -14,7 +14,6 @@ their URDF, configs/designs/robots.yaml); drawn by `analysis/plot_designs.py --c
                      cost_of_transport, energy, peak_torque [N m], torque_ratio.
 """
 
-import csv
 import os
 
 import matplotlib.pyplot as plt
@@ -23,7 +22,7 @@ import yaml
 
 from hexdyn import results as hr
 from limits import torque_limits
-from plot_kinematics import save_atomically
+from plot_kinematics import save_atomically, write_csv_atomically
 
 RISER = "terrain.riser_height"
 ENVELOPE_GRID = ("tread_depth", "duty_factor", "peak_speed", "criterion")
@@ -208,22 +207,12 @@ def draw_envelope(table, name, cell=None):
 
 
 def write_csv(rows, path):
-    tmp = f"{path}.tmp.{os.getpid()}"
-    try:
-        with open(tmp, "w", newline="") as f:
-            w = csv.writer(f)
-            w.writerow(["id", "case", RISER, "status", "cost_of_transport", "energy",
-                        "peak_torque", "torque_ratio"])
-            for r in rows:
-                w.writerow([r["id"], r["label"], repr(r["riser"]), r["status"]]
-                           + [repr(r[k]) for k in ("cost_of_transport", "energy", "peak_torque",
-                                                   "torque_ratio")])
-        os.replace(tmp, path)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.remove(tmp)
-        raise
-    return path
+    return write_csv_atomically(
+        path, ["id", "case", RISER, "status", "cost_of_transport", "energy", "peak_torque",
+               "torque_ratio"],
+        ([r["id"], r["label"], repr(r["riser"]), r["status"]]
+         + [repr(r[k]) for k in ("cost_of_transport", "energy", "peak_torque", "torque_ratio")]
+         for r in rows))
 
 
 def draw_all(sweep, outdir, name, envelopes, panel=RISER):

@@ -35,7 +35,6 @@ Each figure is saved under a temporary name in OUTDIR and renamed when complete.
 """
 
 import argparse
-import csv
 import os
 import sys
 
@@ -50,7 +49,7 @@ import numpy as np  # noqa: E402
 
 from hexdyn import results as hr  # noqa: E402
 from limits import OPTIMAL_OVER_COLOR, RELAXED_COLOR, exceeds  # noqa: E402
-from plot_kinematics import save_atomically  # noqa: E402
+from plot_kinematics import save_atomically, write_csv_atomically  # noqa: E402
 from plot_sweep import torque_ratio  # noqa: E402
 
 RISER = "terrain.riser_height"
@@ -263,25 +262,15 @@ def write_csv(sweep, path, keys):
     df = ds[["status", "cost_of_transport", "energy", "peak_torque", "relaxed_samples"]] \
         .to_dataframe().reset_index()
     ids = ds["id"].to_dataframe().reset_index()
-    tmp = f"{path}.tmp.{os.getpid()}"
-    try:
-        with open(tmp, "w", newline="") as f:
-            w = csv.writer(f)
-            w.writerow(["id"] + keys + ["status", "cost_of_transport", "energy", "peak_torque",
-                                        "relaxed_samples"])
-            for (_, row), (_, idrow) in zip(df.iterrows(), ids.iterrows()):
-                w.writerow([idrow["id"]] + [repr(float(row[k])) if not isinstance(row[k], str)
-                                            else row[k] for k in keys]
-                           + [status_word(row["status"])]
-                           + [repr(float(row[k])) for k in ("cost_of_transport", "energy",
-                                                            "peak_torque")]
-                           + [int(row["relaxed_samples"])])
-        os.replace(tmp, path)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.remove(tmp)
-        raise
-    return path
+    rows = ([idrow["id"]] + [repr(float(row[k])) if not isinstance(row[k], str) else row[k]
+                             for k in keys]
+            + [status_word(row["status"])]
+            + [repr(float(row[k])) for k in ("cost_of_transport", "energy", "peak_torque")]
+            + [int(row["relaxed_samples"])]
+            for (_, row), (_, idrow) in zip(df.iterrows(), ids.iterrows()))
+    return write_csv_atomically(
+        path, ["id"] + keys + ["status", "cost_of_transport", "energy", "peak_torque",
+                               "relaxed_samples"], rows)
 
 
 def main(argv=None):

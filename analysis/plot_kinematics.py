@@ -10,6 +10,7 @@ Each figure is saved under a temporary name in OUTDIR and renamed when complete.
 """
 
 import argparse
+import csv
 import os
 import sys
 
@@ -42,6 +43,23 @@ def save_atomically(fig, outdir, name, dpi=150):
     finally:
         plt.close(fig)
     return final
+
+
+def write_csv_atomically(path, header, rows):
+    """Writes `header` and `rows` (lists of cells) as CSV to `path` via a temporary file
+    and os.replace; returns `path`."""
+    tmp = f"{path}.tmp.{os.getpid()}"
+    try:
+        with open(tmp, "w", newline="") as f:
+            w = csv.writer(f)
+            w.writerow(header)
+            w.writerows(rows)
+        os.replace(tmp, path)
+    except BaseException:
+        if os.path.exists(tmp):
+            os.remove(tmp)
+        raise
+    return path
 
 
 def _get(terrain, key, default=None):
