@@ -18,7 +18,7 @@ rc=$?
 one_line a.log "^hexdyn: error: the checkpoint 'v.h5.checkpoint' is no longer this sweep's: its directory was removed"
 grep -q '^hexdyn: sweep: wrote' a.log && fail "sweep A wrote its output"
 wait "$b" || fail "sweep B failed: $(cat b.log)"
-grep -q '^hexdyn: sweep: wrote v.h5: 84 scenarios' b.log || fail "sweep B: $(cat b.log)"
+grep -q '^hexdyn: sweep: wrote v.h5: 252 scenarios' b.log || fail "sweep B: $(cat b.log)"
 [ ! -e v.h5.checkpoint ] || fail "checkpoint left behind"
 
 # Only the lock removed: A stops all the same, its journal left for a resume.

@@ -64,7 +64,7 @@ if grep -q '^hexdyn: sweep: wrote' s2.log; then
   grep -q "arrived after s.h5 was complete" s2.log || fail "no line about the late signal"
 else
   expect_status "sweep SIGINT in the final write" "$rc" 130 s2.log
-  one_line s2.log "^hexdyn: sweep interrupted by SIGINT: 84 finished scenarios kept.*$resume_line"
+  one_line s2.log "^hexdyn: sweep interrupted by SIGINT: 252 finished scenarios kept.*$resume_line"
   [ ! -e s.h5 ] || fail "sweep SIGINT: an output was published"
   no_temporaries .
   "$HEXDYN" sweep "$SLOW" -o s.h5 --keep-runs --resume > s3.log 2>&1 || fail "resume: $(cat s3.log)"

@@ -421,11 +421,16 @@ class Coordinator {
     for (std::size_t i = 0; i < n; ++i)
       if (!have[i]) throw Error("sweep: scenario " + scenario_id(spec_, i) + " has no result");
     const double wall = seconds(Clock::now() - start_);
+    checkpoint_->verify();  // a lost checkpoint stops the sweep before it writes (CheckpointLost)
     write_sweep_file(opt_.output_path, spec_, rows, opt_.keep_runs ? checkpoint_.get() : nullptr,
                      {mpi_.size(), wall, resumed_});
     const std::size_t journals = checkpoint_->journal_count();
     try {
       checkpoint_->remove();
+    } catch (const CheckpointLost&) {
+      std::cerr << "hexdyn: warning: the checkpoint " << checkpoint_->directory()
+                << " was removed or replaced after " << opt_.output_path
+                << " was complete; the output is whole, that checkpoint left untouched\n";
     } catch (const Error& e) {
       std::cerr << "hexdyn: warning: " << e.what() << "\n";
     }
