@@ -73,7 +73,8 @@ PreparedScene prepare_scene(const Scene& scene, StageTimes* times) {
   std::optional<StageTimer> clock(std::in_place, times, Stage::kModel);
   RobotModel model = build_robot_model(scene.robot);
   clock.emplace(times, Stage::kPosture);
-  const PostureChoice posture = choose_posture(scene, model);
+  // A run reports the posture, not its margin: the dense check only proves it admitted.
+  const PostureChoice posture = choose_posture(scene, model, PostureCheck::kAdmission);
   clock.emplace(times, Stage::kPlanning);  // plan_motion, with the posture timed on its own
   MotionPlan plan = plan_motion_with(scene, model, posture.p0_W, posture.foot_lateral_m);
   plan.posture = posture;

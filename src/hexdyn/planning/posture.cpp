@@ -8,234 +8,27 @@
 #include <sstream>
 
 #include "hexdyn/core/errors.hpp"
+#include "hexdyn/planning/margin_detail.hpp"
 #include "hexdyn/planning/plan.hpp"
 
 namespace hexdyn {
 namespace {
+
+using margin_detail::Evaluation;
+using margin_detail::FootTrack;
+using margin_detail::SampleReferences;
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 /// Limiting samples an automatic posture search tries first, per spread (PostureSearch).
 constexpr std::size_t kHotSamples = 16;
 
-/// Angle of a joint to its nearer limit [rad], +inf for a continuous joint; negative when
-/// outside. A revolute joint may be turned by ±2π into its limits (as the IK does).
-double joint_clearance_rad(double q, double lo, double hi) {
-  double best = -kInf;
-  for (double shift : {0.0, 2.0 * M_PI, -2.0 * M_PI})
-    best = std::max(best, std::min(q + shift - lo, hi - q - shift));
-  return best;
-}
-
-/// Which of the reach boundaries limits a paper-geometry leg at target p_H; the other
-/// geometries report the IK's margin without naming the boundary.
-std::string reach_boundary(const RobotModel& m, int leg, const Vec3& p_H) {
-  if (m.leg_geometry != LegGeometry::kPaperPlanar) return "reach: workspace boundary";
-  const auto& L = m.link_length_m;
-  const double w = m.lateral_m[leg];
-  const double rho = std::sqrt(std::max(p_H.x() * p_H.x() + p_H.y() * p_H.y() - w * w, 0.0));
-  const double dist = std::hypot(rho - L[0], p_H.z() + m.d1_m);
-  return (L[1] + L[2]) - dist <= dist - std::abs(L[1] - L[2]) ? "reach: full extension"
-                                                              : "reach: full fold";
-}
-
-/// Which constraint gives a sample's margin, kept as a code: the text is made only for the
-/// sample that limits the whole motion (constraint_text), not on the per-sample path.
-enum class Binding { kNone, kReachRefused, kReachBoundary, kJoint };
-
-struct SampleMargin {
-  double value_m = kInf;
-  Binding binding = Binding::kNone;
-  int joint = 0;       ///< kJoint: flat joint index
-  bool lower = false;  ///< kJoint: the lower limit is the nearer
-};
-
-/// Lower bounds of the joint margins of a paper-geometry leg at target p_H [m]: the angle to the
-/// limit times a lower bound of the foot's lever arm, which for this geometry is a distance of
-/// the target itself: from the coxa axis, hypot(x, y); from the femur axis, the wrist distance
-/// of the IK; about the tibia axis, the tibia's length (the norms of leg_jacobian_H's columns,
-/// to rounding: the bounds take 1e-6 of them off, and 1e-12 m). False for another geometry.
-bool joint_margin_bounds(const RobotModel& m, int leg, const Vec3& p_H, const Vec3& clearance_rad,
-                         Vec3& bound_m) {
-  if (m.leg_geometry != LegGeometry::kPaperPlanar) return false;
-  const auto& L = m.link_length_m;
-  const double w = m.lateral_m[leg];
-  const double r2 = p_H.x() * p_H.x() + p_H.y() * p_H.y();
-  const double rho = std::sqrt(std::max(r2 - w * w, 0.0));
-  const double u = rho - L[0], v = p_H.z() + m.d1_m;
-  const Vec3 lever(std::sqrt(r2), std::sqrt(u * u + v * v), L[2]);
-  for (int j = 0; j < kJointsPerLeg; ++j)
-    bound_m[j] = clearance_rad[j] * std::max(lever[j] * (1.0 - 1e-6) - 1e-12, 0.0);
-  return true;
-}
-
-/// Margins of one leg at one instant from its IK, folded into `out` (file comment of
-/// posture.hpp). The joint margins need the leg's Jacobian; when their lower bounds
-/// (joint_margin_bounds) show that none can lower out.value_m or out.joint_m, it is not formed:
-/// what is folded into `out` and what the caller does with the result are the same.
-SampleMargin leg_margin(const RobotModel& m, int leg, const Vec3& p_H, const LegIkResult& ik,
-                        KinematicMargin& out) {
-  SampleMargin s;
-  const bool joint_refusal = !ik.ok && ik.reason.rfind("joint ", 0) == 0;
-  if (!ik.ok) out.admitted = false;
-  if (!ik.ok && !joint_refusal) {
-    // Out of reach: no joint angles; the IK's margin (negative or below the minimum).
-    s.value_m = ik.margin_m;
-    s.binding = Binding::kReachRefused;
-    out.reach_m = std::min(out.reach_m, ik.margin_m);
-    return s;
-  }
-  if (ik.ok) {
-    out.reach_m = std::min(out.reach_m, ik.margin_m);
-    s.value_m = ik.margin_m;
-    s.binding = Binding::kReachBoundary;
-  }
-  Vec3 clearance;
-  for (int j = 0; j < kJointsPerLeg; ++j) {
-    const int k = joint_index(leg, j);
-    clearance[j] = joint_clearance_rad(ik.q[j], m.joint_lower_rad[k], m.joint_upper_rad[k]);
-  }
-  Vec3 bound;
-  if (ik.ok && joint_margin_bounds(m, leg, p_H, clearance, bound)) {
-    const double floor_m = std::max(out.value_m, out.joint_m);
-    bool needed = false;
-    for (int j = 0; j < kJointsPerLeg; ++j) {
-      if (!std::isfinite(clearance[j])) continue;
-      out.joint_rad = std::min(out.joint_rad, clearance[j]);
-      needed = needed || !(bound[j] >= floor_m);
-    }
-    if (!needed) return s;
-  }
-  const Mat3 J = leg_jacobian_H(m, leg, ik.q);
-  for (int j = 0; j < kJointsPerLeg; ++j) {
-    const int k = joint_index(leg, j);
-    const double lo = m.joint_lower_rad[k], hi = m.joint_upper_rad[k];
-    const double c = clearance[j];
-    if (!std::isfinite(c)) continue;
-    out.joint_rad = std::min(out.joint_rad, c);
-    const double c_m = c * J.col(j).norm();
-    out.joint_m = std::min(out.joint_m, c_m);
-    if (c_m < s.value_m) {
-      s.value_m = c_m;
-      s.binding = Binding::kJoint;
-      s.joint = k;
-      s.lower = std::abs(ik.q[j] - lo) <= std::abs(hi - ik.q[j]);
-    }
-  }
-  return s;
-}
-
-/// The limiting sample's constraint in words ("reach: full extension", "joint L3_tibia upper
-/// limit", ...).
-std::string constraint_text(const RobotModel& m, int leg, const Vec3& p_H, const LegIkResult& ik,
-                            const SampleMargin& s) {
-  switch (s.binding) {
-    case Binding::kReachRefused:
-      return ik.reason.find("extension") != std::string::npos ? "reach: full extension"
-             : ik.reason.find("fold") != std::string::npos    ? "reach: full fold"
-                                                              : "reach: " + ik.reason;
-    case Binding::kReachBoundary:
-      return reach_boundary(m, leg, p_H);
-    case Binding::kJoint:
-      return "joint " + m.joint_source_names[s.joint] + (s.lower ? " lower" : " upper") + " limit";
-    case Binding::kNone:
-      break;
-  }
-  return std::string();
-}
-
-/// The foot targets of a motion at its margin samples (margin_sample_times). They depend on
-/// the foot spread and not on the trunk's height: the gait's timing follows the travel, its
-/// footholds' x and y the trunk's x and y, their z the terrain (gait.hpp), so the automatic
-/// posture plans the gait of a spread once and moves only the trunk for each height.
-struct FootTrack {
-  std::vector<double> t_s;
-  std::vector<std::array<Vec3, kLegs>> p_W;  ///< per instant and leg [m, G0]
-};
-
-FootTrack foot_track(const MotionPlan& plan, int uniform) {
-  FootTrack f;
-  f.t_s = margin_sample_times(plan, uniform);
-  f.p_W.resize(f.t_s.size());
-  for (std::size_t i = 0; i < f.t_s.size(); ++i)
-    for (int leg = 0; leg < kLegs; ++leg)
-      f.p_W[i][leg] = leg_foot_motion(plan.gait.legs[leg], f.t_s[i]).p_W;
-  return f;
-}
-
-/// A margin evaluation that may stop early: as soon as some sample's margin is below
-/// `below_m` the motion's margin is known to be below it too, and value_m is that sample's
-/// margin (an upper bound of the motion's), `complete` false. The samples in `hot` (indices
-/// i·kLegs + leg, the limiting samples of earlier evaluations) are tried first for that.
-/// A complete evaluation visits every sample in time order, as motion_kinematic_margin.
-struct MarginEvaluation {
-  KinematicMargin margin;
-  bool complete = true;
-  int limiting_sample = -1;  ///< i·kLegs + leg of value_m
-};
-
-Vec3 target_in_hip(const RobotModel& model, const BaseState& trunk, int leg, const Vec3& p_W) {
-  const Vec3 r_B = trunk.W_R_B.transpose() * (p_W - trunk.p_W);
-  return model.R_B_H[leg].transpose() * (r_B - model.p_hip_B[leg]);
-}
-
-MarginEvaluation evaluate_margin(const RobotModel& model, const TrunkMotion& trunk,
-                                 const FootTrack& feet, double below_m,
-                                 const std::vector<int>& hot) {
-  MarginEvaluation e;
-  KinematicMargin& out = e.margin;
-  out.value_m = out.reach_m = out.joint_m = out.joint_rad = kInf;
-  out.admitted = true;
-  out.samples = static_cast<int>(feet.t_s.size());
-  if (below_m > -kInf) {
-    KinematicMargin scratch = out;
-    for (int k : hot) {
-      const int i = k / kLegs, leg = k % kLegs;
-      const Vec3 p_H = target_in_hip(model, trunk.at(feet.t_s[i]), leg, feet.p_W[i][leg]);
-      const SampleMargin s =
-          leg_margin(model, leg, p_H, leg_inverse_kinematics(model, leg, p_H), scratch);
-      if (s.value_m < below_m) {
-        out.value_m = s.value_m;
-        out.leg = leg;
-        out.t_s = feet.t_s[i];
-        e.complete = false;
-        e.limiting_sample = k;
-        return e;
-      }
-    }
-  }
-  SampleMargin limit;
-  Vec3 limit_p_H = Vec3::Zero();
-  std::string limit_reason;
-  for (std::size_t i = 0; i < feet.t_s.size(); ++i) {
-    const BaseState state = trunk.at(feet.t_s[i]);
-    for (int leg = 0; leg < kLegs; ++leg) {
-      const Vec3 p_H = target_in_hip(model, state, leg, feet.p_W[i][leg]);
-      const LegIkResult ik = leg_inverse_kinematics(model, leg, p_H);
-      const SampleMargin s = leg_margin(model, leg, p_H, ik, out);
-      if (s.value_m < out.value_m) {
-        out.value_m = s.value_m;
-        out.leg = leg;
-        out.t_s = feet.t_s[i];
-        e.limiting_sample = static_cast<int>(i) * kLegs + leg;
-        limit = s;
-        limit_p_H = p_H;
-        if (s.binding == Binding::kReachRefused) limit_reason = ik.reason;
-        if (out.value_m < below_m) {
-          e.complete = false;
-          return e;
-        }
-      }
-    }
-  }
-  LegIkResult limit_ik;
-  limit_ik.reason = limit_reason;
-  out.constraint = constraint_text(model, out.leg, limit_p_H, limit_ik, limit);
-  return e;
-}
+/// Instants a margin evaluation takes first (margin_detail::MarginRequest): every 8th of a
+/// candidate's (~40 ms apart), every 64th of the dense check's (5 ms apart).
+constexpr int kSearchStride = 16, kCheckStride = 64;
 
 /// Result of one candidate posture. `margin` is exact when `complete`; otherwise its value_m
-/// is below the bound the candidate was evaluated against (evaluate_margin).
+/// is below the bound the candidate was evaluated against (search_margin).
 struct Candidate {
   double height_m = 0.0, foot_lateral_m = 0.0;
   KinematicMargin margin;
@@ -257,9 +50,11 @@ class PostureSearch {
   PostureSearch(const Scene& scene, const RobotModel& model)
       : scene_(scene), model_(model), terrain_(scene.terrain) {}
 
-  /// The margin of height h and spread w on margin_sample_times(plan, uniform), complete or,
-  /// when it is below `below_m`, possibly stopped there.
-  Candidate evaluate(double h, double w, int uniform, double below_m = -kInf) {
+  /// The margin of height h and spread w on margin_sample_times(plan, uniform): a candidate's,
+  /// complete or, when it is below `below_m`, possibly stopped there; or the dense check of
+  /// the chosen posture (Evaluation).
+  Candidate evaluate(double h, double w, int uniform, double below_m = -kInf,
+                     Evaluation kind = Evaluation::kCandidate) {
     ++evaluations_;
     Candidate c;
     c.height_m = h;
@@ -278,9 +73,15 @@ class PostureSearch {
     GaitParams gait = scene_.gait;
     gait.foot_lateral_m = w;
     const TrunkMotion trunk(motion, gait, terrain_);
-    const MarginEvaluation e = evaluate_margin(model_, trunk, spread.feet, below_m, spread.hot);
-    c.margin = e.margin;
     c.planned = true;
+    margin_detail::MarginRequest request;
+    request.below_m = below_m;
+    request.hot = &spread.hot;
+    request.kind = kind;
+    request.stride = kind == Evaluation::kCandidate ? kSearchStride : kCheckStride;
+    const margin_detail::MarginEvaluation e =
+        margin_detail::bounded_margin(model_, trunk, spread.feet, h, request, spread.refs);
+    c.margin = e.margin;
     c.complete = e.complete;
     if (e.limiting_sample >= 0 &&
         std::find(spread.hot.begin(), spread.hot.end(), e.limiting_sample) == spread.hot.end())
@@ -352,6 +153,7 @@ class PostureSearch {
     std::string planning_error;
     FootTrack feet;
     std::vector<int> hot;
+    SampleReferences refs;  ///< the samples' bounds from the heights evaluated so far
   };
 
   Spread& spread_for(const Vec3& p0_W, double w, int uniform) {
@@ -361,7 +163,7 @@ class PostureSearch {
     s.foot_lateral_m = w;
     s.uniform = uniform;
     try {
-      s.feet = foot_track(plan_motion_with(scene_, model_, p0_W, w), uniform);
+      s.feet = margin_detail::foot_track(plan_motion_with(scene_, model_, p0_W, w), uniform);
       s.planned = true;
     } catch (const PlanningError& e) {
       s.planning_error = e.what();
@@ -489,11 +291,11 @@ std::vector<double> margin_sample_times(const MotionPlan& plan, int uniform) {
 
 KinematicMargin motion_kinematic_margin(const RobotModel& model, const MotionPlan& plan,
                                         int uniform) {
-  return evaluate_margin(model, plan.trunk, foot_track(plan, uniform), -kInf, {}).margin;
+  return margin_detail::full_margin(model, plan.trunk, margin_detail::foot_track(plan, uniform));
 }
 
-PostureChoice choose_posture(const Scene& scene, const RobotModel& model) {
-  PostureChoice c = best_posture(scene, model);
+PostureChoice choose_posture(const Scene& scene, const RobotModel& model, PostureCheck check) {
+  PostureChoice c = best_posture(scene, model, check);
   if (c.mode != PostureMode::kAuto || c.margin.admitted) return c;
   const double h_lo = searched_heights(scene, model).lo_m;
   std::ostringstream msg;
@@ -508,7 +310,7 @@ PostureChoice choose_posture(const Scene& scene, const RobotModel& model) {
   throw ReachError(msg.str());
 }
 
-PostureChoice best_posture(const Scene& scene, const RobotModel& model) {
+PostureChoice best_posture(const Scene& scene, const RobotModel& model, PostureCheck check) {
   const PostureParams& p = scene.motion.posture;
   PostureChoice c;
   c.mode = p.mode;
@@ -553,13 +355,18 @@ PostureChoice best_posture(const Scene& scene, const RobotModel& model) {
   // The chosen posture on a dense grid (a sample at least every 5 ms).
   const double duration_s =
       TrunkMotion(scene.motion, scene.gait, Terrain(scene.terrain)).duration_s();
-  const Candidate dense = search.evaluate(best.height_m, best.foot_lateral_m,
-                                          static_cast<int>(std::ceil(duration_s / 0.005)) + 1);
+  const int dense_uniform = static_cast<int>(std::ceil(duration_s / 0.005)) + 1;
+  Candidate dense =
+      search.evaluate(best.height_m, best.foot_lateral_m, dense_uniform, -kInf,
+                      check == PostureCheck::kMargin ? Evaluation::kCheck : Evaluation::kAdmission);
+  c.evaluations = search.evaluations();
+  if (!dense.margin.admitted && check == PostureCheck::kAdmission)  // the margin for the error
+    dense = search.evaluate(best.height_m, best.foot_lateral_m, dense_uniform, -kInf,
+                            Evaluation::kCheck);
   c.height_m = best.height_m;
   c.foot_lateral_m = best.foot_lateral_m;
   c.p0_W = relative_start_position(scene.terrain, best.height_m, p.start_y_m);
   c.margin = dense.margin;
-  c.evaluations = search.evaluations();
   return c;
 }
 

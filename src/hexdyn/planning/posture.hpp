@@ -111,14 +111,21 @@ std::vector<double> margin_sample_times(const MotionPlan& plan, int uniform);
 KinematicMargin motion_kinematic_margin(const RobotModel& model, const MotionPlan& plan,
                                         int uniform = 200);
 
+/// What the dense check of an automatic posture reports: the chosen posture's whole margin,
+/// or only whether the IK admits it (the margin's other fields NaN, ""), which needs far fewer
+/// samples (docs/theory/stages.md#posture). A run needs only the latter; when the posture is
+/// not admitted the margin is computed in full all the same, for the error.
+enum class PostureCheck { kMargin, kAdmission };
+
 /// The posture a scene is planned with.
 struct PostureChoice {
   Vec3 p0_W = Vec3::Zero();     ///< P0 at t = 0 [m, G0]
   double height_m = 0.0;        ///< above the reference line (computed for kAbsolute) [m]
   double foot_lateral_m = 0.0;  ///< gait.foot_lateral used [m]
   PostureMode mode = PostureMode::kAbsolute;
-  /// kAuto only: the margin of the chosen posture on the dense check grid, and the number
-  /// of candidate postures evaluated.
+  /// kAuto only: the margin of the chosen posture on the dense check grid (with
+  /// PostureCheck::kAdmission, only `admitted`, `samples` and, when not admitted, all), and
+  /// the number of candidate postures evaluated.
   KinematicMargin margin;
   int evaluations = 0;
 };
@@ -126,11 +133,13 @@ struct PostureChoice {
 /// Resolves the scene's posture (file comment). For kAbsolute and kRelative nothing is
 /// searched and nothing is thrown; for kAuto, throws ReachError when no posture in the
 /// searched range admits the motion, PlanningError from the gait planner.
-PostureChoice choose_posture(const Scene& scene, const RobotModel& model);
+PostureChoice choose_posture(const Scene& scene, const RobotModel& model,
+                             PostureCheck check = PostureCheck::kMargin);
 
 /// As choose_posture, but for kAuto the best posture found is returned also when it does
 /// not admit the motion (margin.admitted false) instead of throwing.
-PostureChoice best_posture(const Scene& scene, const RobotModel& model);
+PostureChoice best_posture(const Scene& scene, const RobotModel& model,
+                           PostureCheck check = PostureCheck::kMargin);
 
 /// The motion planned with an explicit start and foot spread (the scene's posture keys
 /// ignored). Throws PlanningError.

@@ -4,8 +4,9 @@
 // (plan_motion_with, motion_kinematic_margin), and the spread search when the margin is below
 // the target. The library's search plans a spread's gait once and stops losing candidates
 // early; it must take the same decisions: the same height and spread to the last bit, the same
-// number of candidates, the same margin on the dense check grid. And no height of the plain
-// scan may have a larger margin than the chosen posture.
+// number of candidates, the same margin on the dense check grid (every field, though the check
+// skips the samples its bounds show harmless), and the same verdict when only admission is
+// asked. And no height of the plain scan may have a larger margin than the chosen posture.
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -134,6 +135,26 @@ TEST_CASE("posture search: the same decisions as the plain scan and golden secti
         plain.margin(ref.h, ref.w, static_cast<int>(std::ceil(T / 0.005)) + 1);  // as posture.cpp
     CHECK(fast.evaluations == plain.evaluations);
     CHECK(fast.margin.value_m == dense);
+    // The dense check skips samples by their bounds; every field must be the complete one's.
+    const int dense_uniform = static_cast<int>(std::ceil(T / 0.005)) + 1;
+    const KinematicMargin full = motion_kinematic_margin(
+        model, plan_motion_with(scene, model, fast.p0_W, fast.foot_lateral_m), dense_uniform);
+    CHECK(fast.margin.value_m == full.value_m);
+    CHECK(fast.margin.reach_m == full.reach_m);
+    CHECK(fast.margin.joint_m == full.joint_m);
+    CHECK(fast.margin.joint_rad == full.joint_rad);
+    CHECK(fast.margin.admitted == full.admitted);
+    CHECK(fast.margin.leg == full.leg);
+    CHECK(fast.margin.t_s == full.t_s);
+    CHECK(fast.margin.constraint == full.constraint);
+    CHECK(fast.margin.samples == full.samples);
+    // A run's check asks only whether the IK admits the posture: the same posture and verdict.
+    const PostureChoice admission = best_posture(scene, model, PostureCheck::kAdmission);
+    CHECK(admission.height_m == fast.height_m);
+    CHECK(admission.foot_lateral_m == fast.foot_lateral_m);
+    CHECK(admission.evaluations == fast.evaluations);
+    CHECK(admission.margin.admitted == full.admitted);
+    CHECK(std::isnan(admission.margin.value_m) == full.admitted);
     // Not worse than any height of the plain scan, on the scan's own sample grid.
     const Vec3 p0 =
         relative_start_position(scene.terrain, fast.height_m, scene.motion.posture.start_y_m);
