@@ -85,35 +85,56 @@ GaitPlan plan_gait(const RobotModel& model, const GaitParams& gait, const TrunkM
   return plan;
 }
 
-FootMotion swing_foot_motion(const Swing& sw, double t) {
-  FootMotion f;
-  f.in_swing = true;
+Vec3 swing_foot_position(const Swing& sw, double t) {
+  Vec3 p;
   const double D = sw.t_touchdown_s - sw.t_liftoff_s;
   const double u = std::clamp((t - sw.t_liftoff_s) / D, 0.0, 1.0);
   const double ul = sw.lift_end_u, ud = sw.lower_start_u;
   const Vec3& p0 = sw.p_liftoff_W;
   const Vec3& p1 = sw.p_touchdown_W;
   // Horizontal transfer on [ul, ud].
-  const double Dt = (ud - ul) * D;
   const double sigma = std::clamp((u - ul) / (ud - ul), 0.0, 1.0);
   const Eigen::Vector2d dxy = p1.head<2>() - p0.head<2>();
-  f.p_W.head<2>() = p0.head<2>() + dxy * S(sigma);
-  f.v_W.head<2>() = dxy * (dS(sigma) / Dt);
-  f.a_W.head<2>() = dxy * (ddS(sigma) / (Dt * Dt));
+  p.head<2>() = p0.head<2>() + dxy * S(sigma);
   // Vertical: lift, hold, descend.
   const double za = sw.apex_z_m;
   if (u < ul) {
-    const double Dl = ul * D, w = u / ul, h = za - p0.z();
-    f.p_W.z() = p0.z() + h * S(w);
-    f.v_W.z() = h * dS(w) / Dl;
-    f.a_W.z() = h * ddS(w) / (Dl * Dl);
+    const double w = u / ul, h = za - p0.z();
+    p.z() = p0.z() + h * S(w);
   } else if (u <= ud) {
-    f.p_W.z() = za;
+    p.z() = za;
   } else {
     const double Dd = (1.0 - ud) * D, w = (u - ud) / (1.0 - ud);
     const double delta = p1.z() - za, vD = sw.touchdown_speed_mps * Dd;
     const double b = -vD - 3.0 * delta, a = 4.0 * delta + vD;
-    f.p_W.z() = za + w * w * w * (a + b * w);
+    p.z() = za + w * w * w * (a + b * w);
+  }
+  return p;
+}
+
+FootMotion swing_foot_motion(const Swing& sw, double t) {
+  FootMotion f;
+  f.in_swing = true;
+  f.p_W = swing_foot_position(sw, t);
+  const double D = sw.t_touchdown_s - sw.t_liftoff_s;
+  const double u = std::clamp((t - sw.t_liftoff_s) / D, 0.0, 1.0);
+  const double ul = sw.lift_end_u, ud = sw.lower_start_u;
+  const Vec3& p0 = sw.p_liftoff_W;
+  const Vec3& p1 = sw.p_touchdown_W;
+  const double Dt = (ud - ul) * D;
+  const double sigma = std::clamp((u - ul) / (ud - ul), 0.0, 1.0);
+  const Eigen::Vector2d dxy = p1.head<2>() - p0.head<2>();
+  f.v_W.head<2>() = dxy * (dS(sigma) / Dt);
+  f.a_W.head<2>() = dxy * (ddS(sigma) / (Dt * Dt));
+  const double za = sw.apex_z_m;
+  if (u < ul) {
+    const double Dl = ul * D, w = u / ul, h = za - p0.z();
+    f.v_W.z() = h * dS(w) / Dl;
+    f.a_W.z() = h * ddS(w) / (Dl * Dl);
+  } else if (u > ud) {
+    const double Dd = (1.0 - ud) * D, w = (u - ud) / (1.0 - ud);
+    const double delta = p1.z() - za, vD = sw.touchdown_speed_mps * Dd;
+    const double b = -vD - 3.0 * delta, a = 4.0 * delta + vD;
     f.v_W.z() = w * w * (3.0 * a + 4.0 * b * w) / Dd;
     f.a_W.z() = w * (6.0 * a + 12.0 * b * w) / (Dd * Dd);
   }

@@ -69,6 +69,9 @@ GaitPlan plan_gait(const RobotModel& model, const GaitParams& gait, const TrunkM
 /// Foot of one swing at time t ∈ [t_liftoff, t_touchdown].
 FootMotion swing_foot_motion(const Swing& swing, double t_s);
 
+/// swing_foot_motion(swing, t_s).p_W alone (the same arithmetic, the same bits).
+Vec3 swing_foot_position(const Swing& swing, double t_s);
+
 /// Foot of a leg at time t: on its path during a swing (t_lo ≤ t < t_td), fixed at its
 /// foothold otherwise.
 FootMotion leg_foot_motion(const LegPlan& leg, double t_s);

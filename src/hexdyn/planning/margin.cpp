@@ -258,9 +258,20 @@ FootTrack foot_track(const MotionPlan& plan, int uniform) {
   FootTrack f;
   f.t_s = margin_sample_times(plan, uniform);
   f.p_W.resize(f.t_s.size());
-  for (std::size_t i = 0; i < f.t_s.size(); ++i)
-    for (int leg = 0; leg < kLegs; ++leg)
-      f.p_W[i][leg] = leg_foot_motion(plan.gait.legs[leg], f.t_s[i]).p_W;
+  // leg_foot_motion(leg, t).p_W, walking each leg's swings along the increasing times.
+  for (int leg = 0; leg < kLegs; ++leg) {
+    const std::vector<Swing>& swings = plan.gait.legs[leg].swings;
+    std::size_t k = 0;
+    Vec3 foothold = plan.gait.legs[leg].p_initial_W;
+    for (std::size_t i = 0; i < f.t_s.size(); ++i) {
+      const double t = f.t_s[i];
+      for (; k < swings.size() && t >= swings[k].t_touchdown_s; ++k)
+        foothold = swings[k].p_touchdown_W;
+      f.p_W[i][leg] = k < swings.size() && t >= swings[k].t_liftoff_s
+                          ? swing_foot_position(swings[k], t)
+                          : foothold;
+    }
+  }
   return f;
 }
 
@@ -322,9 +333,7 @@ MarginEvaluation bounded_margin(const RobotModel& model, const TrunkMotion& trun
   const bool bounded = model.leg_geometry == LegGeometry::kPaperPlanar;
   if (static_cast<int>(refs.slot.size()) != count) {
     refs.slot.assign(count, -1);
-    refs.height_m.clear();
-    refs.bound.clear();
-    refs.stamp.assign(count, 0);
+    refs.entries.clear();
     refs.generation = 0;
     // The targets' path: the trunk keeps its attitude, so a target moves in its hip frame by
     // |Δp_W(foot) − Δp_W(trunk)| from one instant to the next, at every height.
@@ -342,32 +351,32 @@ MarginEvaluation bounded_margin(const RobotModel& model, const TrunkMotion& trun
   // Sample s exactly, as motion_kinematic_margin evaluates it; it becomes s's reference. True
   // when the motion is known to be below req.below_m.
   const int stamp = ++refs.generation;
-  auto done = [&](int s) { return refs.stamp[s] == stamp; };
+  auto done = [&](int s) {
+    return refs.slot[s] >= 0 && refs.entries[refs.slot[s]].evaluation == stamp;
+  };
   auto evaluate = [&](int s) {
     const int i = s / kLegs, leg = s % kLegs;
     const Vec3 p_H = target_in_hip(model, trunk.at(feet.t_s[i]), leg, feet.p_W[i][leg]);
     const LegIkResult ik = leg_inverse_kinematics(model, leg, p_H);
     limit.take(out, feet, s, leg_margin(model, leg, p_H, ik, out), p_H, ik);
-    refs.stamp[s] = stamp;
-    if (bounded) {
-      if (refs.slot[s] < 0) {
-        refs.slot[s] = static_cast<int>(refs.bound.size());
-        refs.height_m.push_back(height_m);
-        refs.bound.emplace_back();
-      }
-      refs.height_m[refs.slot[s]] = height_m;
-      refs.bound[refs.slot[s]] = sample_bound(model, leg, p_H, ik, refs.radius_m);
+    if (refs.slot[s] < 0) {
+      refs.slot[s] = static_cast<int>(refs.entries.size());
+      refs.entries.emplace_back();
     }
+    SampleReferences::Entry& entry = refs.entries[refs.slot[s]];
+    entry.height_m = height_m;
+    entry.evaluation = stamp;
+    if (bounded) entry.bound = sample_bound(model, leg, p_H, ik, refs.radius_m);
     return out.value_m < req.below_m || (req.kind == Evaluation::kAdmission && !out.admitted);
   };
   // Bounds of any sample within delta_m of sample s's target at this height (from s's reference
   // at its own height: moving the trunk by Δh moves a target by |Δh|), and whether they show
   // it harmless: unable to lower the margin (and, for a check, any minimum or the IK).
   auto harmless = [&](int s, double delta_m) {
-    if (refs.slot.empty() || refs.slot[s] < 0) return false;
-    const int k = refs.slot[s];
-    const SampleBound& b = refs.bound[k];
-    const double delta = delta_m + std::abs(height_m - refs.height_m[k]) + 1e-12;
+    if (refs.slot[s] < 0) return false;
+    const SampleReferences::Entry& entry = refs.entries[refs.slot[s]];
+    const SampleBound& b = entry.bound;
+    const double delta = delta_m + std::abs(height_m - entry.height_m) + 1e-12;
     switch (req.kind) {
       case Evaluation::kCandidate:
         return value_clears(b, delta, out.value_m + kSkipAllowance_m);

@@ -89,10 +89,13 @@ FootTrack foot_track(const MotionPlan& plan, int uniform);
 struct SampleReferences {
   double radius_m = 0.02;      ///< of new samples' bounds
   std::vector<double> path_m;  ///< per sample: its target's path from the first instant [m]
-  std::vector<int> slot;       ///< per sample: its entry below, -1: never evaluated
-  std::vector<double> height_m;
-  std::vector<SampleBound> bound;
-  std::vector<int> stamp;  ///< per sample: the evaluation that last evaluated it
+  std::vector<int> slot;       ///< per sample: its entry, -1: never evaluated
+  struct Entry {
+    double height_m = 0.0;  ///< where it was last evaluated
+    int evaluation = 0;     ///< by which evaluation (generation)
+    SampleBound bound;
+  };
+  std::vector<Entry> entries;
   int generation = 0;
 };
 

@@ -15,6 +15,8 @@
 #include "hexdyn/io/config.hpp"
 #include "hexdyn/model/robot_model.hpp"
 #include "hexdyn/planning/margin_detail.hpp"
+#include "hexdyn/planning/plan.hpp"
+#include "hexdyn/planning/posture.hpp"
 
 namespace hexdyn {
 namespace {
@@ -129,6 +131,22 @@ TEST_CASE("margin bounds: none beyond the radius, for refused targets or other g
   RobotModel chain = model;
   chain.leg_geometry = LegGeometry::kChain;
   CHECK(margin_detail::sample_bound(chain, 0, p, ik, 0.01).radius_m == 0.0);
+}
+
+TEST_CASE("foot track: leg_foot_motion's positions to the bit, on a dense grid", "[posture]") {
+  const Scene scene = load_scene(kConfigs + "/sweeps/stairs_base.yaml");
+  const RobotModel model = build_robot_model(scene.robot);
+  const MotionPlan plan = plan_motion(scene, model);
+  const margin_detail::FootTrack track = margin_detail::foot_track(plan, 3001);
+  REQUIRE(track.t_s.size() > 3001);
+  int swinging = 0;
+  for (std::size_t i = 0; i < track.t_s.size(); ++i)
+    for (int leg = 0; leg < kLegs; ++leg) {
+      const FootMotion f = leg_foot_motion(plan.gait.legs[leg], track.t_s[i]);
+      swinging += f.in_swing;
+      CHECK(track.p_W[i][leg] == f.p_W);
+    }
+  CHECK(swinging > 1000);
 }
 
 }  // namespace
