@@ -58,9 +58,10 @@
 /// with the largest margin wins; otherwise the scene's gait.foot_lateral is kept. Only h
 /// and gait.foot_lateral change; start, attitude, speed, gait timing and footholds' y
 /// are those of the scene. The search takes exactly the decisions of that scan and golden
-/// section over complete margins while planning each spread's gait once and stopping a
-/// candidate at the first sample below the margin it is compared with
-/// (docs/theory/stages.md#posture). The chosen posture is checked on a dense grid (5 ms); when no
+/// section over complete margins while planning each spread's gait once, stopping a
+/// candidate at the first sample below the margin it is compared with, and skipping samples
+/// whose proven lower bounds cannot lower a margin (planning/margin_detail.hpp,
+/// docs/theory/stages.md#posture). The chosen posture is checked on a dense grid (5 ms); when no
 /// posture is admitted, plan_motion throws ReachError naming the limiting leg, instant,
 /// constraint and margin at the best posture found.
 #include <string>
