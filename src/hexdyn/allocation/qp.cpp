@@ -135,6 +135,15 @@ void row_products(const Eigen::MatrixXd& M, const Eigen::VectorXd& x, double* ou
   for (Eigen::Index j = 1; j < M.cols(); ++j) y += M.col(j) * x[j];
 }
 
+/// A row or cone that misses its bound by `violation` (> 0 or NaN, row units): the largest
+/// violation `worst` follows it, and the row joins `violated` beyond tol · max(1, |bound|).
+void note_violation(double violation, double bound, int row, double tol, double& worst,
+                    std::vector<std::pair<double, int>>& violated) {
+  const double v = std::isfinite(violation) ? violation : std::numeric_limits<double>::infinity();
+  worst = std::max(worst, v);
+  if (!(v <= tol * std::max(1.0, std::abs(bound)))) violated.emplace_back(v, row);
+}
+
 /// Appends the name of row `row` (numbered as ViolationWorkspace::violated) to `text`.
 void append_row_name(const QpProblem& p, int row, std::string& text) {
   const int m_eq = p.equalities(), m_in = p.inequalities();
@@ -158,13 +167,10 @@ std::string describe_violations(const QpProblem& p, const Eigen::VectorXd& x, do
   const int m_eq = p.equalities(), m_in = p.inequalities();
   ws.violated.clear();
   double worst = 0.0;
+  // A row that holds changes nothing: that common case is decided inline.
   auto consider = [&](double violation, double bound, int row) {
-    if (!(violation <= 0.0)) {  // also catches NaN
-      const double v =
-          std::isfinite(violation) ? violation : std::numeric_limits<double>::infinity();
-      worst = std::max(worst, v);
-      if (!(v <= tol * std::max(1.0, std::abs(bound)))) ws.violated.emplace_back(v, row);
-    }
+    if (violation <= 0.0) return;
+    note_violation(violation, bound, row, tol, worst, ws.violated);
   };
   if (x.size() == p.variables()) {
     ws.row_value.resize(static_cast<std::size_t>(p.A.rows() + p.C.rows()));
