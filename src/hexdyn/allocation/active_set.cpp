@@ -138,7 +138,7 @@ class ActiveSetBackend final : public StrictThenPenalisedBackend {
     bool beyond = false;
     out_.max_violation = s.max_violation(feasibility_tol(), beyond);
     if (!beyond) return {};
-    return describe_violations(p, out_.x, feasibility_tol(), &out_.max_violation);
+    return describe_violations(p, out_.x, feasibility_tol(), &out_.max_violation, violations_);
   }
 
   /// Status optimal, with a note when H had to be regularised.
@@ -224,6 +224,7 @@ class ActiveSetBackend final : public StrictThenPenalisedBackend {
   bool have_start_ = false;
   std::array<ActiveRow, kN> strict_rows_{};  ///< scratch: the strict attempt's active set
   std::array<double, kM> lambda_all_{};      ///< scratch: multipliers of all rows
+  ViolationWorkspace violations_;            ///< scratch of describe_violations
 };
 
 }  // namespace

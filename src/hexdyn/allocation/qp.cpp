@@ -2,9 +2,9 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <charconv>
 #include <chrono>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <sstream>
 #include <utility>
@@ -117,50 +117,99 @@ bool has_upper(double u) { return u < kQpInfinity; }
 std::string cone_label(const QpProblem& p, std::size_t k) {
   return p.cones[k].name.empty() ? "cone[" + std::to_string(k) + "]" : p.cones[k].name;
 }
+
+/// out[i] = M.row(i).dot(x) for every row, bit for bit: Eigen's dot of a row of a
+/// column-major matrix (a strided row, not vectorised) starts from M(i, 0) x[0] and adds
+/// M(i, j) x[j] for j = 1, 2, … in turn, and so does this sweep, one contiguous column at a
+/// time (the same IEEE products and sums, only in another order across rows). An empty
+/// product (no columns) is 0, as the dot's. out must hold M.rows() values.
+/// (tests/hexdyn/allocation/test_violations.cpp compares the two bit for bit.)
+void row_products(const Eigen::MatrixXd& M, const Eigen::VectorXd& x, double* out) {
+  if (M.rows() == 0) return;
+  Eigen::Map<Eigen::VectorXd> y(out, M.rows());
+  if (M.cols() == 0) {
+    y.setZero();
+    return;
+  }
+  y = M.col(0) * x[0];
+  for (Eigen::Index j = 1; j < M.cols(); ++j) y += M.col(j) * x[j];
+}
+
+/// A row or cone that misses its bound by `violation` (> 0 or NaN, row units): the largest
+/// violation `worst` follows it, and the row joins `violated` beyond tol · max(1, |bound|).
+void note_violation(double violation, double bound, int row, double tol, double& worst,
+                    std::vector<std::pair<double, int>>& violated) {
+  const double v = std::isfinite(violation) ? violation : std::numeric_limits<double>::infinity();
+  worst = std::max(worst, v);
+  if (!(v <= tol * std::max(1.0, std::abs(bound)))) violated.emplace_back(v, row);
+}
+
+/// Appends the name of row `row` (numbered as ViolationWorkspace::violated) to `text`.
+void append_row_name(const QpProblem& p, int row, std::string& text) {
+  const int m_eq = p.equalities(), m_in = p.inequalities();
+  if (row < m_eq)
+    text += p.eq_name(row);
+  else if (row < m_eq + m_in)
+    text += p.ineq_name(row - m_eq);
+  else
+    text += cone_label(p, static_cast<std::size_t>(row - m_eq - m_in));
+}
 }  // namespace
 
 std::string describe_violations(const QpProblem& p, const Eigen::VectorXd& x, double tol,
                                 double* max_violation) {
-  std::vector<std::pair<double, std::string>> list;
+  ViolationWorkspace workspace;
+  return describe_violations(p, x, tol, max_violation, workspace);
+}
+
+std::string describe_violations(const QpProblem& p, const Eigen::VectorXd& x, double tol,
+                                double* max_violation, ViolationWorkspace& ws) {
+  const int m_eq = p.equalities(), m_in = p.inequalities();
+  ws.violated.clear();
   double worst = 0.0;
-  auto consider = [&](double violation, double bound, auto&& name) {
-    if (!(violation <= 0.0)) {  // also catches NaN
-      const double v =
-          std::isfinite(violation) ? violation : std::numeric_limits<double>::infinity();
-      worst = std::max(worst, v);
-      if (!(v <= tol * std::max(1.0, std::abs(bound)))) list.emplace_back(v, name());
-    }
+  // A row that holds changes nothing: that common case is decided inline.
+  auto consider = [&](double violation, double bound, int row) {
+    if (violation <= 0.0) return;
+    note_violation(violation, bound, row, tol, worst, ws.violated);
   };
   if (x.size() == p.variables()) {
-    for (int i = 0; i < p.equalities(); ++i) {
-      const double r = p.A.row(i).dot(x) - p.b[i];
-      consider(std::abs(r), p.b[i], [&] { return p.eq_name(i); });
+    ws.row_value.resize(static_cast<std::size_t>(p.A.rows() + p.C.rows()));
+    const double* Ax = ws.row_value.data();
+    const double* Cx = Ax + p.A.rows();
+    row_products(p.A, x, ws.row_value.data());
+    row_products(p.C, x, ws.row_value.data() + p.A.rows());
+    for (int i = 0; i < m_eq; ++i) {
+      const double r = Ax[i] - p.b[i];
+      consider(std::abs(r), p.b[i], i);
     }
-    for (int i = 0; i < p.inequalities(); ++i) {
-      const double c = p.C.row(i).dot(x);
+    for (int i = 0; i < m_in; ++i) {
+      const double c = Cx[i];
       const double below = has_lower(p.lower[i]) ? p.lower[i] - c : -1.0;
       const double above = has_upper(p.upper[i]) ? c - p.upper[i] : -1.0;
       if (below >= above && has_lower(p.lower[i]))
-        consider(below, p.lower[i], [&] { return p.ineq_name(i); });
+        consider(below, p.lower[i], m_eq + i);
       else if (has_upper(p.upper[i]))
-        consider(above, p.upper[i], [&] { return p.ineq_name(i); });
+        consider(above, p.upper[i], m_eq + i);
     }
     for (std::size_t k = 0; k < p.cones.size(); ++k) {
       const SecondOrderCone& c = p.cones[k];
       const double bound = c.mu * x[c.normal];
       consider(std::hypot(x[c.tangent1], x[c.tangent2]) - bound, bound,
-               [&] { return cone_label(p, k); });
+               m_eq + m_in + static_cast<int>(k));
     }
   }
   if (max_violation) *max_violation = worst;
-  std::stable_sort(list.begin(), list.end(),
+  if (ws.violated.empty()) return {};
+  std::stable_sort(ws.violated.begin(), ws.violated.end(),
                    [](const auto& a, const auto& b) { return a.first > b.first; });
   std::string text;
   char buf[32];
-  for (const auto& [v, name] : list) {
+  for (const auto& [v, row] : ws.violated) {
     if (!text.empty()) text += ", ";
-    std::snprintf(buf, sizeof buf, "%.3g", v);
-    text += name + " by " + buf;
+    append_row_name(p, row, text);
+    text += " by ";
+    // printf's %.3g, which std::to_chars with a precision is defined to equal.
+    text.append(buf, std::to_chars(buf, buf + sizeof buf, v, std::chars_format::general, 3).ptr);
   }
   return text;
 }

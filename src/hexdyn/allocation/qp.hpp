@@ -20,6 +20,7 @@
 #include <limits>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "hexdyn/core/result.hpp"
@@ -148,6 +149,21 @@ class AllocationBackend {
 /// given) receives the largest violation of any row or cone, whatever its size.
 std::string describe_violations(const QpProblem& problem, const Eigen::VectorXd& x, double tol,
                                 double* max_violation = nullptr);
+
+/// Workspace of describe_violations for a caller that measures every sample: its buffers
+/// keep their capacity from one call to the next, so that a call without a violation
+/// allocates nothing (a violation allocates its text).
+struct ViolationWorkspace {
+  std::vector<double> row_value;  ///< A x, then C x [row units]
+  /// (violation, row) of the rows beyond the threshold; row = i for equality i,
+  /// m_eq + i for inequality i, m_eq + m_in + k for cone k.
+  std::vector<std::pair<double, int>> violated;
+};
+
+/// describe_violations with the caller's workspace: the same text and *max_violation, bit
+/// for bit.
+std::string describe_violations(const QpProblem& problem, const Eigen::VectorXd& x, double tol,
+                                double* max_violation, ViolationWorkspace& workspace);
 
 /// A finite point for a failed solve: the minimum-norm least-squares solution of A x = b
 /// (zeros without equality rows or with non-finite data).

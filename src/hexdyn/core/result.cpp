@@ -4,16 +4,20 @@
 
 namespace hexdyn {
 
-void KinematicsResult::resize(int T) {
+void KinematicsResult::resize(int T, bool zero) {
   time_s.assign(T, 0.0);
+  const auto size = [&](auto& m, int columns) {
+    m.resize(T, columns);
+    if (zero) m.setZero();
+  };
   for (RowMatrix* m : {&base_position, &base_linear_velocity, &base_angular_velocity,
                        &base_linear_acceleration, &base_angular_acceleration, &com_position})
-    m->setZero(T, 3);
-  base_orientation_wxyz.setZero(T, 4);
+    size(*m, 3);
+  size(base_orientation_wxyz, 4);
   for (RowMatrix* m :
        {&joint_position, &joint_velocity, &joint_acceleration, &foot_position, &foot_velocity})
-    m->setZero(T, kJoints);
-  contact_phase.setZero(T, kLegs);
+    size(*m, kJoints);
+  size(contact_phase, kLegs);
   sample_kind.assign(T, 0);
 }
 

@@ -52,7 +52,9 @@ struct KinematicsResult {
   /// limit of a contact event (docs/theory/output-grid.md#event-samples).
   std::vector<std::int8_t> sample_kind;
   int samples() const { return static_cast<int>(time_s.size()); }
-  void resize(int samples);
+  /// Sizes every dataset to `samples` rows, with zero values; or, with zero = false, with
+  /// values unset (but sample_kind zero) for a caller that writes every row.
+  void resize(int samples, bool zero = true);
 };
 
 /// One touchdown transient (/impacts/*).

@@ -34,10 +34,15 @@ void robot_state_at(const RobotModel& model, const MotionPlan& plan, double t,
           << ik.margin_m << " m, required >= " << model.ik_min_margin_m << " m)";
       throw ReachError(msg.str());
     }
-    const Mat3 J = leg_jacobian_H(model, leg, ik.q);
+    // The paper's legs: one set of sines and cosines for J, J̇ and the tree's poses.
+    const bool paper = model.leg_geometry == LegGeometry::kPaperPlanar;
+    const LegTrig trig = paper ? leg_trig(ik.q) : LegTrig{};
+    const Mat3 J =
+        paper ? paper_leg_jacobian_H(model, leg, trig) : leg_jacobian_H(model, leg, ik.q);
     const Eigen::PartialPivLU<Mat3> lu(J);
     const Vec3 qd = lu.solve(B_R_H.transpose() * rd_B);
-    const Mat3 Jd = leg_jacobian_dot_H(model, leg, ik.q, qd);
+    const Mat3 Jd = paper ? paper_leg_jacobian_dot_H(model, leg, trig, qd)
+                          : leg_jacobian_dot_H(model, leg, ik.q, qd);
     const Vec3 qdd = lu.solve(B_R_H.transpose() * rdd_B - Jd * qd);
     if (!qd.allFinite() || !qdd.allFinite()) {
       // IK accepted the target (robot.ik_min_margin = 0 allows a leg exactly at full
@@ -53,6 +58,20 @@ void robot_state_at(const RobotModel& model, const MotionPlan& plan, double t,
       throw ReachError(msg.str());
     }
     out.q.segment<3>(joint_index(leg, 0)) = ik.q;
+    const int k0 = joint_index(leg, 0);
+    if (paper) {
+      out.cos_q[k0] = trig.c1;
+      out.sin_q[k0] = trig.s1;
+      out.cos_q[k0 + 1] = trig.c2;
+      out.sin_q[k0 + 1] = trig.s2;
+    } else {
+      for (int j = 0; j < 2; ++j) {
+        out.cos_q[k0 + j] = std::cos(ik.q[j]);
+        out.sin_q[k0 + j] = std::sin(ik.q[j]);
+      }
+    }
+    out.cos_q[k0 + 2] = std::cos(ik.q[2]);
+    out.sin_q[k0 + 2] = std::sin(ik.q[2]);
     out.qd.segment<3>(joint_index(leg, 0)) = qd;
     out.qdd.segment<3>(joint_index(leg, 0)) = qdd;
   }
@@ -74,7 +93,7 @@ KinematicsResult sample_kinematics(const RobotModel& model, const MotionPlan& pl
                                    const std::vector<double>& times) {
   KinematicsResult k;
   const int T = static_cast<int>(times.size());
-  k.resize(T);
+  k.resize(T, false);  // every row is written below
   RobotKinematicState s;
   BodyPoses poses;
   for (int i = 0; i < T; ++i) {
@@ -97,7 +116,7 @@ KinematicsResult sample_kinematics(const RobotModel& model, const MotionPlan& pl
       k.contact_phase(i, leg) = static_cast<std::int8_t>(
           s.feet[leg].in_swing ? ContactPhase::kSwing : ContactPhase::kSupport);
     }
-    forward_kinematics_tree(model, s.q, poses);
+    forward_kinematics_tree(model, s.cos_q, s.sin_q, poses);
     k.com_position.row(i) =
         (s.trunk.p_W + s.trunk.W_R_B * center_of_mass_B(model, poses)).transpose();
   }

@@ -18,6 +18,7 @@ namespace hexdyn {
 struct RobotKinematicState {
   BaseState trunk;                                               ///< world frame
   VecJ q = VecJ::Zero(), qd = VecJ::Zero(), qdd = VecJ::Zero();  ///< 18, flat joint order
+  VecJ cos_q = VecJ::Ones(), sin_q = VecJ::Zero();               ///< std::cos(q), std::sin(q)
   std::array<FootMotion, kLegs> feet;                            ///< world frame
 };
 

@@ -19,10 +19,6 @@ RigidInertia to_inertia(const BodyParams& p) {
 
 Mat3 rot_z(double a) { return Eigen::AngleAxisd(a, Vec3::UnitZ()).toRotationMatrix(); }
 
-Mat3 rot_axis(const Vec3& axis, double angle) {
-  return Eigen::AngleAxisd(angle, axis).toRotationMatrix();
-}
-
 }  // namespace
 
 RobotModel build_robot_model(const RobotParams& params) {
@@ -113,12 +109,30 @@ Vec3 leg_foot_position_H(const RobotModel& m, int leg, const Vec3& q) {
   return Vec3(c1 * rho - s1 * w, s1 * rho + c1 * w, z);
 }
 
+LegTrig leg_trig(const Vec3& q) {
+  LegTrig t;
+  t.c1 = std::cos(q[0]);
+  t.s1 = std::sin(q[0]);
+  t.s2 = std::sin(q[1]);
+  t.c2 = std::cos(q[1]);
+  t.s23 = std::sin(q[1] + q[2]);
+  t.c23 = std::cos(q[1] + q[2]);
+  return t;
+}
+
 Mat3 leg_jacobian_H(const RobotModel& m, int leg, const Vec3& q) {
   if (m.leg_geometry == LegGeometry::kChain) return chain_jacobian_H(m, leg, q);
+  return paper_leg_jacobian_H(m, leg, leg_trig(q));
+}
+
+Mat3 leg_jacobian_dot_H(const RobotModel& m, int leg, const Vec3& q, const Vec3& qd) {
+  if (m.leg_geometry == LegGeometry::kChain) return chain_jacobian_dot_H(m, leg, q, qd);
+  return paper_leg_jacobian_dot_H(m, leg, leg_trig(q), qd);
+}
+
+Mat3 paper_leg_jacobian_H(const RobotModel& m, int leg, const LegTrig& t) {
   const auto& L = m.link_length_m;
-  const double c1 = std::cos(q[0]), s1 = std::sin(q[0]);
-  const double s2 = std::sin(q[1]), c2 = std::cos(q[1]);
-  const double s23 = std::sin(q[1] + q[2]), c23 = std::cos(q[1] + q[2]);
+  const double c1 = t.c1, s1 = t.s1, s2 = t.s2, c2 = t.c2, s23 = t.s23, c23 = t.c23;
   const double rho = L[0] + L[1] * c2 + L[2] * c23;
   const double w = m.lateral_m[leg];
   const double drho2 = -L[1] * s2 - L[2] * s23, drho3 = -L[2] * s23;
@@ -130,12 +144,9 @@ Mat3 leg_jacobian_H(const RobotModel& m, int leg, const Vec3& q) {
   return J;
 }
 
-Mat3 leg_jacobian_dot_H(const RobotModel& m, int leg, const Vec3& q, const Vec3& qd) {
-  if (m.leg_geometry == LegGeometry::kChain) return chain_jacobian_dot_H(m, leg, q, qd);
+Mat3 paper_leg_jacobian_dot_H(const RobotModel& m, int leg, const LegTrig& t, const Vec3& qd) {
   const auto& L = m.link_length_m;
-  const double c1 = std::cos(q[0]), s1 = std::sin(q[0]);
-  const double s2 = std::sin(q[1]), c2 = std::cos(q[1]);
-  const double s23 = std::sin(q[1] + q[2]), c23 = std::cos(q[1] + q[2]);
+  const double c1 = t.c1, s1 = t.s1, s2 = t.s2, c2 = t.c2, s23 = t.s23, c23 = t.c23;
   const double w = m.lateral_m[leg];
   const double t1 = qd[0], t2 = qd[1], t23 = qd[1] + qd[2];
   const double rho = L[0] + L[1] * c2 + L[2] * c23;
@@ -204,13 +215,42 @@ LegIkResult leg_inverse_kinematics(const RobotModel& m, int leg, const Vec3& p) 
 }
 
 void forward_kinematics_tree(const RobotModel& m, const VecJ& q, BodyPoses& out) {
+  VecJ cos_q, sin_q;
+  for (int k = 0; k < kJoints; ++k) {
+    cos_q[k] = std::cos(q[k]);
+    sin_q[k] = std::sin(q[k]);
+  }
+  forward_kinematics_tree(m, cos_q, sin_q, out);
+}
+
+void forward_kinematics_tree(const RobotModel& m, const VecJ& cos_q, const VecJ& sin_q,
+                             BodyPoses& out) {
   out.R_B[0].setIdentity();
   out.p_B[0].setZero();
   for (int b = 1; b < kBodies; ++b) {
     const int p = m.parent[b];
     out.p_B[b] = out.p_B[p] + out.R_B[p] * m.p_parent_joint[b];
-    out.R_B[b] = out.R_B[p] * m.R_parent_joint[b] * rot_axis(m.axis[b], q[b - 1]);
+    out.R_B[b] =
+        out.R_B[p] * m.R_parent_joint[b] * rot_axis_cs(m.axis[b], cos_q[b - 1], sin_q[b - 1]);
   }
+}
+
+Mat3 rot_axis_cs(const Vec3& axis, double c, double s) {
+  // Eigen/src/Geometry/AngleAxis.h, AngleAxis::toRotationMatrix, term for term.
+  const Vec3 sin_axis = s * axis;
+  const Vec3 cos1_axis = (1.0 - c) * axis;
+  Mat3 R;
+  double tmp = cos1_axis.x() * axis.y();
+  R(0, 1) = tmp - sin_axis.z();
+  R(1, 0) = tmp + sin_axis.z();
+  tmp = cos1_axis.x() * axis.z();
+  R(0, 2) = tmp + sin_axis.y();
+  R(2, 0) = tmp - sin_axis.y();
+  tmp = cos1_axis.y() * axis.z();
+  R(1, 2) = tmp - sin_axis.x();
+  R(2, 1) = tmp + sin_axis.x();
+  R.diagonal() = cos1_axis.cwiseProduct(axis).array() + c;
+  return R;
 }
 
 Vec3 tree_foot_position_B(const RobotModel& m, const BodyPoses& poses, int leg) {

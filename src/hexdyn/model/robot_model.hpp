@@ -126,6 +126,21 @@ Mat3 leg_jacobian_H(const RobotModel& model, int leg, const Vec3& q);
 /// Time derivative of the foot Jacobian for joint rates qd (3×3), hip frame.
 Mat3 leg_jacobian_dot_H(const RobotModel& model, int leg, const Vec3& q, const Vec3& qd);
 
+/// Cosines and sines of a kPaperPlanar leg's angles q = (θ1, β2, β3) as its Jacobians use
+/// them: θ1, β2 and β2 + β3.
+struct LegTrig {
+  double c1 = 1.0, s1 = 0.0;    ///< θ1
+  double c2 = 1.0, s2 = 0.0;    ///< β2
+  double c23 = 1.0, s23 = 0.0;  ///< β2 + β3
+};
+LegTrig leg_trig(const Vec3& q);
+
+/// leg_jacobian_H and leg_jacobian_dot_H of a kPaperPlanar leg from its LegTrig, for a
+/// caller that needs both at one q: the same values, bit for bit, the trig computed once.
+Mat3 paper_leg_jacobian_H(const RobotModel& model, int leg, const LegTrig& trig);
+Mat3 paper_leg_jacobian_dot_H(const RobotModel& model, int leg, const LegTrig& trig,
+                              const Vec3& qd);
+
 /// IK, knee-up branch with the foot outside the coxa axis: the paper's closed form
 /// (kPaperPlanar), the yaw–pitch–pitch closed form or Levenberg–Marquardt (kChain; see
 /// leg_chain.cpp for the branch rules and the margin).
@@ -150,6 +165,14 @@ struct BodyPoses {
   std::array<Vec3, kBodies> p_B;  ///< body origin in the trunk frame [m]
 };
 void forward_kinematics_tree(const RobotModel& model, const VecJ& q, BodyPoses& out);
+/// The same from cos q and sin q (18 each, as std::cos and std::sin give them), for a
+/// caller that has them already: the same poses, bit for bit.
+void forward_kinematics_tree(const RobotModel& model, const VecJ& cos_q, const VecJ& sin_q,
+                             BodyPoses& out);
+
+/// Eigen::AngleAxisd(angle, axis).toRotationMatrix() from cos(angle) and sin(angle): the
+/// same operations, so the same bits. axis: unit.
+Mat3 rot_axis_cs(const Vec3& axis, double cos_angle, double sin_angle);
 
 /// Foot point of leg `leg` in the trunk frame computed through the generic tree
 /// (a second computation of the analytic FK).

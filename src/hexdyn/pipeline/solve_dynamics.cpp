@@ -5,6 +5,7 @@
 #include <optional>
 #include <ostream>
 #include <string>
+#include <utility>
 
 #include "hexdyn/allocation/backends.hpp"
 #include "hexdyn/allocation/problem.hpp"
@@ -55,7 +56,7 @@ class SampleSolver {
     const VecJ qdd = kin.joint_acceleration.row(i).transpose();
     const ContactSplit& split = contact_split(model_, data_, base, q, qd, qdd);
     clock.emplace(times, Stage::kAllocation);
-    const AllocationLayout layout = build_allocation_problem(
+    AllocationLayout layout = build_allocation_problem(
         scene_.allocation, scene_.contact, split, c.phase, c.impact_force_N, c.W_R_contact, qp_);
     SampleSolution s;
     s.outcome = &backend_->solve(qp_);
@@ -63,10 +64,10 @@ class SampleSolver {
     clock.emplace(times, Stage::kVerdict);
     // Measured from the solution, not taken from the back end: every row and cone against
     // the fixed threshold (allocation/qp.hpp kViolationThreshold).
-    s.measured_violations =
-        describe_violations(qp_, s.outcome->x, kViolationThreshold, &s.measured_max_violation);
+    s.measured_violations = describe_violations(qp_, s.outcome->x, kViolationThreshold,
+                                                &s.measured_max_violation, violations_);
     s.constant_excess_Nm = layout.constant_excess_Nm;
-    s.constant_violation = layout.constant_violation;
+    s.constant_violation = std::move(layout.constant_violation);
     return s;
   }
 
@@ -76,6 +77,7 @@ class SampleSolver {
   RobotData data_;
   std::unique_ptr<AllocationBackend> backend_;
   QpProblem qp_;
+  ViolationWorkspace violations_;
 };
 
 /// A sample's status and message: the back end's, made relaxed when the solution itself
@@ -197,13 +199,12 @@ DynamicsResult solve_dynamics(const Scene& scene, const RobotModel& model, const
     const SampleContacts& c = contacts.samples[i];
     const SampleSolution solution = solver.solve(kin, i, c, times);
     const StageTimer clock(times, Stage::kVerdict);
-    const SampleVerdict verdict = sample_verdict(solution, c, scene.allocation.torque_limit_Nm);
+    SampleVerdict verdict = sample_verdict(solution, c, scene.allocation.torque_limit_Nm);
     const VecJ& tau = solution.joint_torque;
     dyn.solver_status[i] = verdict.status;
     dyn.solver_iterations[i] = solution.outcome->iterations;
     dyn.solver_objective[i] = tau.squaredNorm();
     dyn.solver_seconds[i] = solution.outcome->seconds;
-    dyn.solver_messages[i] = verdict.message;
     dyn.joint_torque.row(i) = tau.transpose();
     for (int l = 0; l < kLegs; ++l) {
       const Vec3& F_W = solution.foot_forces_W[l];
@@ -217,6 +218,7 @@ DynamicsResult solve_dynamics(const Scene& scene, const RobotModel& model, const
       episodes.add(t, verdict.status, verdict.max_violation, verdict.message);
     else
       episodes.close();
+    dyn.solver_messages[i] = std::move(verdict.message);
   }
   episodes.close();
 

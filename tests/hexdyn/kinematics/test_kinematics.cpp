@@ -198,5 +198,38 @@ TEST_CASE("kinematics: base orientation is the stair slope pitch", "[kinematics]
   }
 }
 
+TEST_CASE("kinematics: the shared sines and cosines give the tree FK's poses bit for bit",
+          "[kinematics]") {
+  // robot_state_at hands the tree FK the sines and cosines its Jacobians used: they must be
+  // those the tree FK computes from q, so that /com/position is that of the tree FK from q.
+  // The paper robot (closed-form legs) and a URDF robot (chain legs).
+  const std::string urdf_scene =
+      std::string(HEXDYN_SOURCE_DIR) + "/configs/robots/phantomx_mark4_stairs.yaml";
+  for (const std::string& config : {kPaperConfig, urdf_scene}) {
+    INFO(config);
+    const Scene scene = load_scene(config, {});
+    const RobotModel model = build_robot_model(scene.robot);
+    const MotionPlan plan = plan_motion(scene, model);
+    const double T = plan.trunk.duration_s();
+    std::vector<double> times;
+    for (int i = 0; i <= 100; ++i) times.push_back(T * i / 100.0);
+    const KinematicsResult k = sample_kinematics(model, plan, times);
+    RobotKinematicState s;
+    BodyPoses from_q, from_trig;
+    for (int i = 0; i < k.samples(); ++i) {
+      robot_state_at(model, plan, times[i], s);
+      INFO("t " << times[i]);
+      forward_kinematics_tree(model, s.q, from_q);
+      forward_kinematics_tree(model, s.cos_q, s.sin_q, from_trig);
+      for (int b = 0; b < kBodies; ++b) {
+        CHECK((from_q.R_B[b].array() == from_trig.R_B[b].array()).all());
+        CHECK((from_q.p_B[b].array() == from_trig.p_B[b].array()).all());
+      }
+      const Vec3 com_W = s.trunk.p_W + s.trunk.W_R_B * center_of_mass_B(model, from_q);
+      CHECK((k.com_position.row(i).transpose().array() == com_W.array()).all());
+    }
+  }
+}
+
 }  // namespace
 }  // namespace hexdyn

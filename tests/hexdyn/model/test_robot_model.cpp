@@ -159,6 +159,21 @@ TEST_CASE("analytic leg FK equals the generic tree FK", "[robot_model]") {
   }
 }
 
+TEST_CASE("rotation from cos and sin equals Eigen's AngleAxis bit for bit", "[robot_model]") {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-1.0, 1.0), angle(-10.0, 10.0);
+  std::vector<Vec3> axes{Vec3::UnitX(), Vec3::UnitY(), Vec3::UnitZ(), -Vec3::UnitY()};
+  for (int i = 0; i < 200; ++i) axes.push_back(Vec3(u(rng), u(rng), u(rng)).normalized());
+  for (const Vec3& a : axes)
+    for (int k = 0; k < 20; ++k) {
+      const double t = k == 0 ? 0.0 : angle(rng);
+      const Mat3 expected = Eigen::AngleAxisd(t, a).toRotationMatrix();
+      const Mat3 R = rot_axis_cs(a, std::cos(t), std::sin(t));
+      INFO("axis " << a.transpose() << " angle " << t);
+      CHECK((R.array() == expected.array()).all());
+    }
+}
+
 TEST_CASE("hip frames follow the parameters", "[robot_model]") {
   for (const RobotParams& params : sample_robots()) {
     const RobotModel model = build_robot_model(params);
