@@ -90,6 +90,28 @@ void BM_StairScenarioStages(benchmark::State& state) {
 }
 BENCHMARK(BM_StairScenarioStages)->Unit(benchmark::kMillisecond)->Iterations(1);
 
+/// The `config` stage alone over all 1,000 scenarios of the grid: each scenario's scene from
+/// the base tree, as a scenario process makes it (counter config_us: µs per scene).
+void BM_ScenarioScenes(benchmark::State& state) {
+  const hexdyn::SweepSpec spec = hexdyn::load_sweep(bench_file("sweep_1000.yaml"));
+  const hexdyn::ScenarioFactory factory(spec);
+  double config = 0;
+  std::size_t scenes = 0;
+  for (auto _ : state) {
+    for (std::size_t i = 0; i < spec.scenario_count(); ++i) {
+      const auto t = Clock::now();
+      try {
+        benchmark::DoNotOptimize(factory.scene(i, false));
+      } catch (const std::exception&) {
+      }
+      config += since(t);
+      ++scenes;
+    }
+  }
+  state.counters["config_us"] = 1e6 * config / static_cast<double>(scenes);
+}
+BENCHMARK(BM_ScenarioScenes)->Unit(benchmark::kMillisecond)->Iterations(3);
+
 }  // namespace
 
 BENCHMARK_MAIN();
