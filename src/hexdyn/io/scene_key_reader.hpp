@@ -85,8 +85,8 @@ inline bool plain_decimal(std::string_view text, bool integer) {
 /// YAML::convert<T>::decode of a scalar node, without its string stream for plain decimal
 /// text (the same value).
 template <class T>
-bool decode_scalar(const YAML::Node& n, T& v) {
-  const std::string& text = n.Scalar();
+bool decode_scalar(const SceneTree::Node& n, T& v) {
+  const std::string& text = n.scalar;
   if (plain_decimal(text, std::is_integral_v<T>)) {
     T x{};
     const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), x);
@@ -95,7 +95,7 @@ bool decode_scalar(const YAML::Node& n, T& v) {
       return true;
     }
   }
-  return YAML::convert<T>::decode(n, v);
+  return YAML::convert<T>::decode(n.yaml, v);
 }
 
 /// Reads keys by dotted path, records every key it was asked for (so unknown keys can
@@ -120,9 +120,9 @@ class Reader {
   /// True when the key holds the scalar `word` (then recorded as resolved); the key
   /// counts as asked for either way.
   bool holds_word(const std::string& path, const std::string& word) {
-    asked_.insert(path);
+    asked_.push_back(path);
     const SceneTree::Node* n = lookup(path);
-    if (!n || !n->yaml.IsDefined() || !n->yaml.IsScalar() || n->yaml.Scalar() != word) return false;
+    if (!n || n->type != YAML::NodeType::Scalar || n->scalar != word) return false;
     set_resolved(path, word);
     return true;
   }
@@ -132,7 +132,7 @@ class Reader {
   bool given(const std::string& path) const { return present(lookup(path)); }
 
   bool has(const std::string& path) {
-    asked_.insert(path);
+    asked_.push_back(path);
     return present(lookup(path));
   }
 
@@ -147,9 +147,8 @@ class Reader {
       set_resolved(path, *def);
       return *def;
     }
-    const YAML::Node& n = node->yaml;
     long long v = 0;
-    if (!n.IsScalar() || !decode_scalar(n, v) || v < lo || v > hi)
+    if (node->type != YAML::NodeType::Scalar || !decode_scalar(*node, v) || v < lo || v > hi)
       fail_value(path, SceneTree::yaml(*node),
                  "an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
     set_resolved(path, v);
@@ -170,12 +169,15 @@ class Reader {
     if (!node) {
       out = *def;
     } else {
-      const YAML::Node& n = node->yaml;
-      if (!n.IsSequence() || n.size() < min_n || n.size() > max_n) bad();
-      out.reserve(n.size());
-      for (const auto& e : n) {
+      const auto& items = node->items;
+      if (node->type != YAML::NodeType::Sequence || items.size() < min_n || items.size() > max_n)
+        bad();
+      out.reserve(items.size());
+      for (const auto& e : items) {
         double v = 0.0;
-        if (!e.IsScalar() || !decode_scalar(e, v) || !std::isfinite(v) || !r.contains(v)) bad();
+        if (e->type != YAML::NodeType::Scalar || !decode_scalar(*e, v) || !std::isfinite(v) ||
+            !r.contains(v))
+          bad();
         out.push_back(v);
       }
     }
@@ -202,10 +204,9 @@ class Reader {
     if (!node) {
       v = *def;
     } else {
-      const YAML::Node& n = node->yaml;
-      bool ok = n.IsScalar();
+      bool ok = node->type == YAML::NodeType::Scalar;
       if (ok) {
-        v = n.Scalar();
+        v = node->scalar;
         ok = std::find(allowed.begin(), allowed.end(), v) != allowed.end();
       }
       if (!ok) {
@@ -222,8 +223,9 @@ class Reader {
     const SceneTree::Node* node = fetch(path, true);
     std::string v = def;
     if (node) {
-      if (!node->yaml.IsScalar()) fail_value(path, SceneTree::yaml(*node), "a string");
-      v = node->yaml.Scalar();
+      if (node->type != YAML::NodeType::Scalar)
+        fail_value(path, SceneTree::yaml(*node), "a string");
+      v = node->scalar;
     }
     set_resolved(path, v);
     return v;
@@ -252,14 +254,14 @@ class Reader {
   /// resolved tree); false when it holds anything else.
   bool absent_or_word(const std::string& path, const std::string& word) {
     const SceneTree::Node* n = fetch(path, true);
-    if (n && (!n->yaml.IsScalar() || n->yaml.Scalar() != word)) return false;
+    if (n && (n->type != YAML::NodeType::Scalar || n->scalar != word)) return false;
     set_resolved(path, word);
     return true;
   }
 
   /// The node at `path` (undefined when absent), counted as asked for.
   YAML::Node node(const std::string& path) {
-    asked_.insert(path);
+    asked_.push_back(path);
     const SceneTree::Node* n = lookup(path);
     return n ? SceneTree::yaml(*n) : YAML::Node(YAML::NodeType::Undefined);
   }
@@ -269,7 +271,11 @@ class Reader {
   void record(const std::string& path, const char* word) { set_resolved(path, word); }
 
   /// Every key of the file must have been asked for; reports the first unknown one.
-  void check_unknown() const { walk(tree_.root(), ""); }
+  void check_unknown() {
+    std::sort(asked_.begin(), asked_.end());
+    asked_.erase(std::unique(asked_.begin(), asked_.end()), asked_.end());
+    walk(tree_.root(), "");
+  }
 
   const YAML::Node& resolved() const { return resolved_; }
   const std::string& source() const { return source_; }
@@ -281,24 +287,23 @@ class Reader {
       set_resolved(path, *def);
       return *def;
     }
-    const YAML::Node& n = node->yaml;
     double v = 0.0;
-    if (!n.IsScalar() || !decode_scalar(n, v))
+    if (node->type != YAML::NodeType::Scalar || !decode_scalar(*node, v))
       fail_value(path, SceneTree::yaml(*node), r.describe());
-    if (!std::isfinite(v)) fail_value(path, n, "a finite number (" + r.describe() + ")");
-    if (!r.contains(v)) fail_value(path, n, r.describe());
+    if (!std::isfinite(v)) fail_value(path, node->yaml, "a finite number (" + r.describe() + ")");
+    if (!r.contains(v)) fail_value(path, node->yaml, r.describe());
     set_resolved(path, v);
     return v;
   }
 
   static bool present(const SceneTree::Node* n) {
-    return n && n->yaml.IsDefined() && !n->yaml.IsNull();
+    return n && n->type != YAML::NodeType::Undefined && n->type != YAML::NodeType::Null;
   }
 
   /// The node at `path`; null when absent (or null) and optional; error when absent and
   /// required.
   const SceneTree::Node* fetch(const std::string& path, bool optional) {
-    asked_.insert(path);
+    asked_.push_back(path);
     const SceneTree::Node* n = lookup(path);
     if (present(n)) return n;
     if (!optional) fail(path, "missing, this key is required");
@@ -313,7 +318,7 @@ class Reader {
     for (std::size_t begin = 0;;) {
       const std::size_t dot = std::min(path.find('.', begin), path.size());
       if (!present(cur)) return nullptr;
-      if (!cur->yaml.IsMap()) {
+      if (cur->type != YAML::NodeType::Map) {
         std::string so_far;  // the keys before this one, joined
         if (begin > 0)
           for (const auto& key : split_key_path(path.substr(0, begin - 1)))
@@ -348,14 +353,15 @@ class Reader {
   }
 
   void walk(const SceneTree::Node& node, const std::string& prefix) const {
-    if (!node.yaml.IsMap()) return;
+    if (node.type != YAML::NodeType::Map) return;
     for (const SceneTree::Entry& kv : node.entries) {
       const std::string& key = kv.text;
       const std::string path = prefix.empty() ? key : prefix + "." + key;
-      bool known = asked_.count(path) > 0;
+      const bool asked = std::binary_search(asked_.begin(), asked_.end(), path);
+      bool known = asked;
       if (!known) {  // a key asked for below this one: the first in order after "path."
         const std::string below = path + ".";
-        const auto it = asked_.lower_bound(below);
+        const auto it = std::lower_bound(asked_.begin(), asked_.end(), below);
         known = it != asked_.end() && it->rfind(below, 0) == 0;
       }
       if (!known) {
@@ -370,14 +376,14 @@ class Reader {
         for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
         fail(path, "unknown key, allowed here: " + list);
       }
-      if (asked_.count(path) == 0) walk(*kv.value, path);
+      if (!asked) walk(*kv.value, path);
     }
   }
 
   const SceneTree& tree_;
   std::string source_;
   bool keep_resolved_ = true;
-  std::set<std::string> asked_;
+  std::vector<std::string> asked_;  ///< sorted and unique once check_unknown starts
   YAML::Node resolved_;
 };
 

@@ -14,7 +14,7 @@ SceneTree::Entry new_entry(const std::string& key, NodePtr value) {
 /// that is neither a map nor absent nor null.
 NodePtr set_in(const Node& map, const std::vector<std::string>& keys, std::size_t i,
                const NodePtr& value) {
-  if (!map.yaml.IsMap()) return nullptr;
+  if (map.type != YAML::NodeType::Map) return nullptr;
   auto copy = std::make_shared<Node>(map);  // the entries' values stay shared
   copy->changed = true;
   SceneTree::Entry* entry = nullptr;
@@ -25,10 +25,13 @@ NodePtr set_in(const Node& map, const std::vector<std::string>& keys, std::size_
     }
   NodePtr below = value;
   if (i + 1 < keys.size()) {
-    if (entry && entry->value->yaml.IsDefined() && !entry->value->yaml.IsNull()) {
+    if (entry && entry->value->type != YAML::NodeType::Undefined &&
+        entry->value->type != YAML::NodeType::Null) {
       below = set_in(*entry->value, keys, i + 1, value);
     } else {  // an absent or null intermediate key becomes a new (empty) map
-      const Node empty{YAML::Node(YAML::NodeType::Map), {}, false};
+      Node empty;
+      empty.yaml = YAML::Node(YAML::NodeType::Map);
+      empty.type = YAML::NodeType::Map;
       below = set_in(empty, keys, i + 1, value);
     }
     if (!below) return nullptr;
@@ -52,11 +55,16 @@ SceneTree::SceneTree(const YAML::Node& root) : root_(convert(root)) {}
 NodePtr SceneTree::convert(const YAML::Node& node) {
   auto out = std::make_shared<Node>();
   out->yaml = node;
+  out->type = node.Type();
+  if (node.IsScalar()) out->scalar = node.Scalar();
   if (node.IsMap()) {
     out->entries.reserve(node.size());
     for (auto it = node.begin(); it != node.end(); ++it)
       out->entries.push_back(
           {it->first, it->first.Scalar(), it->first.IsScalar(), convert(it->second)});
+  } else if (node.IsSequence()) {
+    out->items.reserve(node.size());
+    for (const YAML::Node& item : node) out->items.push_back(convert(item));
   }
   return out;
 }

@@ -32,8 +32,11 @@ class SceneTree {
     NodePtr value;
   };
   struct Node {
-    YAML::Node yaml;             ///< the node; for a map changed by `set`, its type and style only
+    YAML::Node yaml;  ///< the node; for a map changed by `set`, its type and style only
+    YAML::NodeType::value type = YAML::NodeType::Undefined;  ///< yaml.Type()
+    std::string scalar;                                      ///< a scalar's text (yaml.Scalar())
     std::vector<Entry> entries;  ///< a map's entries in order (empty for anything else)
+    std::vector<NodePtr> items;  ///< a sequence's items in order (empty for anything else)
     bool changed = false;        ///< a map whose entries were set after it was read
   };
 

@@ -163,12 +163,13 @@ TEST_CASE("scene reader: numbers read as yaml-cpp reads them", "[config]") {
                            "12abc"}) {
     INFO("'" << text << "'");
     const YAML::Node node(std::string{text});
+    const SceneTree::NodePtr read = SceneTree::convert(node);
     double d = 0.0, d_yaml = 0.0;
-    const bool ok = scene_keys::decode_scalar(node, d);
+    const bool ok = scene_keys::decode_scalar(*read, d);
     REQUIRE(ok == YAML::convert<double>::decode(node, d_yaml));
     if (ok) CHECK(std::memcmp(&d, &d_yaml, sizeof d) == 0);  // bit for bit (NaN too)
     long long i = 0, i_yaml = 0;
-    const bool ok_i = scene_keys::decode_scalar(node, i);
+    const bool ok_i = scene_keys::decode_scalar(*read, i);
     REQUIRE(ok_i == YAML::convert<long long>::decode(node, i_yaml));
     if (ok_i) CHECK(i == i_yaml);
   }
