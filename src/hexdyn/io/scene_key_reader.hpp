@@ -120,8 +120,7 @@ class Reader {
   /// True when the key holds the scalar `word` (then recorded as resolved); the key
   /// counts as asked for either way.
   bool holds_word(const std::string& path, const std::string& word) {
-    asked_.push_back(path);
-    const SceneTree::Node* n = lookup(path);
+    const SceneTree::Node* n = ask(path);
     if (!n || n->type != YAML::NodeType::Scalar || n->scalar != word) return false;
     set_resolved(path, word);
     return true;
@@ -131,10 +130,7 @@ class Reader {
   /// mapping whose own keys are then read and checked one by one).
   bool given(const std::string& path) const { return present(lookup(path)); }
 
-  bool has(const std::string& path) {
-    asked_.push_back(path);
-    return present(lookup(path));
-  }
+  bool has(const std::string& path) { return present(ask(path)); }
 
   double number(const std::string& path, Range r) { return number_impl(path, r, nullptr); }
   double number_or(const std::string& path, double def, Range r) {
@@ -261,8 +257,7 @@ class Reader {
 
   /// The node at `path` (undefined when absent), counted as asked for.
   YAML::Node node(const std::string& path) {
-    asked_.push_back(path);
-    const SceneTree::Node* n = lookup(path);
+    const SceneTree::Node* n = ask(path);
     return n ? SceneTree::yaml(*n) : YAML::Node(YAML::NodeType::Undefined);
   }
 
@@ -272,8 +267,8 @@ class Reader {
 
   /// Every key of the file must have been asked for; reports the first unknown one.
   void check_unknown() {
-    std::sort(asked_.begin(), asked_.end());
-    asked_.erase(std::unique(asked_.begin(), asked_.end()), asked_.end());
+    std::sort(reached_.begin(), reached_.end(),
+              [](const Reached& a, const Reached& b) { return std::less<>()(a.node, b.node); });
     walk(tree_.root(), "");
   }
 
@@ -303,16 +298,26 @@ class Reader {
   /// The node at `path`; null when absent (or null) and optional; error when absent and
   /// required.
   const SceneTree::Node* fetch(const std::string& path, bool optional) {
-    asked_.push_back(path);
-    const SceneTree::Node* n = lookup(path);
+    const SceneTree::Node* n = ask(path);
     if (present(n)) return n;
     if (!optional) fail(path, "missing, this key is required");
     return nullptr;
   }
 
+  /// The node at `path`, counted as asked for.
+  const SceneTree::Node* ask(const std::string& path) {
+    asked_.push_back(path);
+    return lookup(path, &reached_);
+  }
+
   /// The node at `path`, null when absent; error when the path runs through a value that
-  /// is not a map.
-  const SceneTree::Node* lookup(const std::string& path) const {
+  /// is not a map. Appends each node it reaches to `reached`.
+  struct Reached {
+    const SceneTree::Node* node;
+    bool last;  ///< reached by the path's last key
+  };
+  const SceneTree::Node* lookup(const std::string& path,
+                                std::vector<Reached>* reached = nullptr) const {
     const SceneTree::Node* cur = &tree_.root();
     if (path.empty()) return cur;
     for (std::size_t begin = 0;;) {
@@ -327,6 +332,7 @@ class Reader {
                    "a mapping of keys");
       }
       cur = SceneTree::find(*cur, std::string_view(path).substr(begin, dot - begin));
+      if (cur && reached) reached->push_back({cur, dot == path.size()});
       if (!cur || dot == path.size()) return cur;
       begin = dot + 1;
     }
@@ -352,17 +358,32 @@ class Reader {
     cur[keys.back()] = value;
   }
 
-  void walk(const SceneTree::Node& node, const std::string& prefix) const {
+  /// A key is known when it was asked for or a key below it was. The lookups of the keys
+  /// asked for reached the entries they name (a key asked for, `last`, or one above it);
+  /// an entry none reached (a key repeated in a map, for one) is judged by the paths asked.
+  void walk(const SceneTree::Node& node, const std::string& prefix) {
     if (node.type != YAML::NodeType::Map) return;
     for (const SceneTree::Entry& kv : node.entries) {
+      const auto [from, to] = std::equal_range(
+          reached_.begin(), reached_.end(), Reached{kv.value.get(), false},
+          [](const Reached& a, const Reached& b) { return std::less<>()(a.node, b.node); });
+      bool asked = std::any_of(from, to, [](const Reached& r) { return r.last; });
+      if (asked) continue;  // known, and nothing below it is read
       const std::string& key = kv.text;
       const std::string path = prefix.empty() ? key : prefix + "." + key;
-      const bool asked = std::binary_search(asked_.begin(), asked_.end(), path);
-      bool known = asked;
-      if (!known) {  // a key asked for below this one: the first in order after "path."
-        const std::string below = path + ".";
-        const auto it = std::lower_bound(asked_.begin(), asked_.end(), below);
-        known = it != asked_.end() && it->rfind(below, 0) == 0;
+      bool known = from != to;
+      if (!known) {
+        if (!asked_sorted_) {
+          std::sort(asked_.begin(), asked_.end());
+          asked_sorted_ = true;
+        }
+        asked = std::binary_search(asked_.begin(), asked_.end(), path);
+        known = asked;
+        if (!known) {  // a key asked for below this one: the first in order after "path."
+          const std::string below = path + ".";
+          const auto it = std::lower_bound(asked_.begin(), asked_.end(), below);
+          known = it != asked_.end() && it->rfind(below, 0) == 0;
+        }
       }
       if (!known) {
         std::set<std::string> allowed;
@@ -383,7 +404,9 @@ class Reader {
   const SceneTree& tree_;
   std::string source_;
   bool keep_resolved_ = true;
-  std::vector<std::string> asked_;  ///< sorted and unique once check_unknown starts
+  std::vector<std::string> asked_;  ///< the paths asked for (sorted when an entry needs them)
+  bool asked_sorted_ = false;
+  std::vector<Reached> reached_;  ///< by node once check_unknown starts
   YAML::Node resolved_;
 };
 
