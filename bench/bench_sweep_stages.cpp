@@ -91,6 +91,31 @@ void BM_StairScenarioStages(benchmark::State& state) {
 }
 BENCHMARK(BM_StairScenarioStages)->Unit(benchmark::kMillisecond)->Iterations(1);
 
+/// The `config` stage alone over all scenarios of a sweep: each scenario's scene from the base
+/// tree, as a scenario process makes it (counter config_us: µs per scene). Sweeps: the 1,000
+/// scenarios of the grid, and the 60 of configs/sweeps/kraby_risers.yaml (a URDF robot).
+void BM_ScenarioScenes(benchmark::State& state) {
+  const char* sweeps[] = {"bench/sweep_1000.yaml", "configs/sweeps/kraby_risers.yaml"};
+  const hexdyn::SweepSpec spec =
+      hexdyn::load_sweep(hexdyn::bench::source_file(sweeps[state.range(0)]));
+  const hexdyn::ScenarioFactory factory(spec);
+  double config = 0;
+  std::size_t scenes = 0;
+  for (auto _ : state) {
+    for (std::size_t i = 0; i < spec.scenario_count(); ++i) {
+      const auto t = Clock::now();
+      try {
+        benchmark::DoNotOptimize(factory.scene(i, false));
+      } catch (const std::exception&) {
+      }
+      config += since(t);
+      ++scenes;
+    }
+  }
+  state.counters["config_us"] = 1e6 * config / static_cast<double>(scenes);
+}
+BENCHMARK(BM_ScenarioScenes)->Unit(benchmark::kMillisecond)->Iterations(3)->Arg(0)->Arg(1);
+
 }  // namespace
 
 BENCHMARK_MAIN();

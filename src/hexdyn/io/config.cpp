@@ -8,13 +8,13 @@
 #include <limits>
 #include <map>
 #include <set>
-#include <sstream>
 
 #include "hexdyn/core/errors.hpp"
 #include "hexdyn/io/inputs.hpp"
 #include "hexdyn/io/plausibility.hpp"
 #include "hexdyn/io/robot_config.hpp"
 #include "hexdyn/io/scene_key_reader.hpp"
+#include "hexdyn/io/scene_tree.hpp"
 #include "hexdyn/io/yaml_load.hpp"
 #include "hexdyn/model/link_scaling.hpp"
 
@@ -418,11 +418,13 @@ std::string yaml_inline(const YAML::Node& node) {
 
 std::vector<std::string> split_key_path(const std::string& path) {
   std::vector<std::string> keys;
-  std::stringstream ss(path);
-  std::string key;
-  while (std::getline(ss, key, '.')) keys.push_back(key);
-  if (!path.empty() && path.back() == '.') keys.emplace_back();  // "a." names an empty key
-  return keys;
+  if (path.empty()) return keys;
+  for (std::size_t begin = 0;;) {  // "a." names an empty key after a
+    const std::size_t dot = path.find('.', begin);
+    keys.push_back(path.substr(begin, dot == std::string::npos ? dot : dot - begin));
+    if (dot == std::string::npos) return keys;
+    begin = dot + 1;
+  }
 }
 
 Override parse_override(const std::string& text) {
@@ -456,9 +458,13 @@ void apply_override(YAML::Node& root, const Override& ov, const std::string& sou
 }
 
 Scene scene_from_yaml(const YAML::Node& root, const std::string& source_name, bool emit_resolved) {
+  return scene_from_tree(SceneTree(root), source_name, emit_resolved);
+}
+
+Scene scene_from_tree(const SceneTree& tree, const std::string& source_name, bool emit_resolved) {
   Scene s;
   s.source_path = source_name;
-  Reader r(root, source_name);
+  Reader r(tree, source_name, emit_resolved);
   s.name = r.string_or("name", "scene");
   read_auto_requests(r);
   LoadedUrdfRobot urdf;

@@ -38,14 +38,15 @@ void check_physical_plausibility(const Scene& scene, const std::string& source) 
   const GaitParams& g = scene.gait;
   const MotionParams& m = scene.motion;
   const double a = kMaxPlannedAcceleration;
-  const std::string why =
+  // Messages are built only when a check fails (a sweep checks every scenario).
+  const char* why =
       " when no foot or trunk accelerates beyond 100 g (981 m/s^2, far beyond any legged robot's "
       "actuators)";
   auto fail = [&](const std::string& key, const std::string& what) {
     throw ConfigError(source + ": " + key + ": " + what);
   };
   const bool by_durations = !m.cycle_durations_s.empty();
-  const std::string motion_key = by_durations ? "motion.cycle_durations" : "motion.peak_speed";
+  const char* motion_key = by_durations ? "motion.cycle_durations" : "motion.peak_speed";
   // Trunk travel per cycle along the slope and the shortest (cruise) cycle.
   const double stride_m = g.stroke_m / g.duty_factor;
   const double cycle_s = stride_m / std::cos(mean_slope_rad(scene.terrain)) / m.peak_speed_mps;
@@ -54,10 +55,10 @@ void check_physical_plausibility(const Scene& scene, const std::string& source) 
   const double t_lift_min = min_move_time(clearance);
   const double t_lower_min = t_lift_min;
   const double t_swing_min = t_lift_min + t_lower_min + min_move_time(stride_m);
-  const std::string motion_value =
-      by_durations ? "a cruise cycle of " + given(cycle_s) + " s"
-                   : given(m.peak_speed_mps) + " m/s (a cruise cycle of " + num(cycle_s) + " s)";
   if (swing_s < t_swing_min) {
+    const std::string motion_value =
+        by_durations ? "a cruise cycle of " + given(cycle_s) + " s"
+                     : given(m.peak_speed_mps) + " m/s (a cruise cycle of " + num(cycle_s) + " s)";
     const std::string need = "expected a swing time (1 - duty factor) x cycle of at least " +
                              num(t_swing_min) + " s (lift by the clearance " + num(clearance) +
                              " m, carry the foot " + num(stride_m) + " m, lower it)" + why;

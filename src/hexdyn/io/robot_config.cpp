@@ -2,7 +2,9 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <deque>
 #include <filesystem>
+#include <mutex>
 
 #include "hexdyn/core/errors.hpp"
 #include "hexdyn/io/paths.hpp"
@@ -25,17 +27,45 @@ void resolve_file_relative_keys(YAML::Node& root, const std::string& file) {
   robot["urdf"] = ec ? path_beside(file, name) : p.lexically_normal().string();
 }
 
+namespace {
+
+/// The robots loaded last in this process, by their keys and their file's text.
+struct LoadedEntry {
+  UrdfRobotKeys keys;
+  std::string text;
+  LoadedUrdfRobot robot;
+};
+constexpr std::size_t kLoadedEntries = 8;
+std::mutex loaded_mutex;
+std::deque<LoadedEntry> loaded_entries;  ///< oldest first
+
+bool same_keys(const UrdfRobotKeys& a, const UrdfRobotKeys& b) {
+  return a.path == b.path && a.trunk_link == b.trunk_link && a.forward_axis == b.forward_axis &&
+         a.foot_links == b.foot_links && a.foot_offset_m == b.foot_offset_m &&
+         a.nominal_pose_rad == b.nominal_pose_rad && a.ik_min_margin_m == b.ik_min_margin_m;
+}
+
+}  // namespace
+
 LoadedUrdfRobot load_urdf_robot(const UrdfRobotKeys& keys) {
   if (const auto why = why_not_regular_file(keys.path))
     throw ConfigError("robot.urdf: got " + keys.path + ", which " + *why +
                       ", expected a URDF file");
+  // The file is read every time, so that an edited file is read as it is now; a text and
+  // keys loaded before give the robot loaded then (a sweep's scenarios share their robot).
+  const std::string text = read_urdf_text(keys.path);
+  {
+    const std::lock_guard<std::mutex> lock(loaded_mutex);
+    for (const LoadedEntry& e : loaded_entries)
+      if (e.text == text && same_keys(e.keys, keys)) return e.robot;
+  }
   UrdfReadOptions opt;
   opt.trunk_link = keys.trunk_link;
   opt.forward_axis = keys.forward_axis;
   opt.foot_links = keys.foot_links;
   opt.foot_offset = keys.foot_offset_m;
   LoadedUrdfRobot out;
-  auto robot = std::make_shared<UrdfRobot>(read_urdf_robot(keys.path, opt));
+  auto robot = std::make_shared<UrdfRobot>(read_urdf_robot_from_string(text, keys.path, opt));
   const RobotModel model = build_robot_model(*robot, keys.ik_min_margin_m);
   for (int leg = 0; leg < kLegs; ++leg) {
     const NominalStance s = keys.nominal_pose_rad
@@ -48,6 +78,9 @@ LoadedUrdfRobot load_urdf_robot(const UrdfRobotKeys& keys) {
       out.effort_limit_Nm[joint_index(leg, j)] = robot->legs[leg].effort_Nm[j];
   }
   out.robot = std::move(robot);
+  const std::lock_guard<std::mutex> lock(loaded_mutex);
+  if (loaded_entries.size() == kLoadedEntries) loaded_entries.pop_front();
+  loaded_entries.push_back({keys, text, out});
   return out;
 }
 

@@ -533,13 +533,17 @@ UrdfRobot read_urdf_robot_from_string(const std::string& urdf_text, const std::s
   return reader.read(urdf_text);
 }
 
-UrdfRobot read_urdf_robot(const std::string& path, const UrdfReadOptions& options) {
+std::string read_urdf_text(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw ConfigError(path + ": cannot read the URDF file");
   std::ostringstream s;
   s << in.rdbuf();
   if (in.bad()) throw ConfigError(path + ": cannot read the URDF file");
-  return read_urdf_robot_from_string(s.str(), path, options);
+  return s.str();
+}
+
+UrdfRobot read_urdf_robot(const std::string& path, const UrdfReadOptions& options) {
+  return read_urdf_robot_from_string(read_urdf_text(path), path, options);
 }
 
 }  // namespace hexdyn

@@ -52,6 +52,10 @@ struct UrdfReadOptions {
 /// Reads and validates `path`; throws ConfigError (message names `path`).
 UrdfRobot read_urdf_robot(const std::string& path, const UrdfReadOptions& options = {});
 
+/// The text of the URDF file `path`, as read_urdf_robot reads it (ConfigError naming `path`
+/// when it cannot be read).
+std::string read_urdf_text(const std::string& path);
+
 /// Same, from URDF text; `source_name` is used in messages and as source_path.
 UrdfRobot read_urdf_robot_from_string(const std::string& urdf_text, const std::string& source_name,
                                       const UrdfReadOptions& options = {});

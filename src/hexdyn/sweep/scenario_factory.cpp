@@ -2,8 +2,11 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <optional>
+
 #include "hexdyn/core/errors.hpp"
 #include "hexdyn/io/config.hpp"
+#include "hexdyn/io/scene_tree.hpp"
 #include "hexdyn/io/yaml_load.hpp"
 
 namespace hexdyn {
@@ -12,13 +15,34 @@ struct ScenarioFactory::Impl {
   SweepSpec spec;            ///< axes and id width
   std::string input_sha256;  ///< the sweep's inputs: a kept run's /meta input_sha256
   YAML::Node base;
+  SceneTree base_tree;  ///< `base` as the scene reader walks it
   /// One key set by an axis value: its dotted path and its value, parsed once.
   struct Setting {
     std::vector<std::string> keys;
     YAML::Node value;
+    SceneTree::NodePtr node;  ///< `value` converted
   };
   /// Per axis, per value: the keys it sets (one, or a case's keys).
   std::vector<std::vector<std::vector<Setting>>> axes;
+
+  explicit Impl(const SweepSpec& s)
+      : input_sha256(input_sha256_text(s.inputs)),
+        base(parse_yaml_text(s.base_tree_yaml, s.base_path)),
+        base_tree(base) {
+    spec.axes = s.axes;
+  }
+
+  /// The scenario's tree for the scene reader: the base tree sharing all it can with
+  /// `base_tree`, the same as SceneTree(tree(index)); nullopt when a value must be set on
+  /// the YAML tree itself (a key path through a value that is not a map).
+  std::optional<SceneTree> scene_tree(std::size_t index) const {
+    SceneTree t = base_tree;
+    const auto p = grid_point(spec, index);
+    for (std::size_t a = 0; a < axes.size(); ++a)
+      for (const Setting& set : axes[a][p[a]])
+        if (!t.set(set.keys, set.node)) return std::nullopt;
+    return t;
+  }
 
   YAML::Node tree(std::size_t index) const {
     YAML::Node root = YAML::Clone(base);
@@ -43,17 +67,15 @@ struct ScenarioFactory::Impl {
   }
 };
 
-ScenarioFactory::ScenarioFactory(const SweepSpec& spec) : impl_(std::make_unique<Impl>()) {
-  impl_->spec.axes = spec.axes;
-  impl_->input_sha256 = input_sha256_text(spec.inputs);
-  impl_->base = parse_yaml_text(spec.base_tree_yaml, spec.base_path);
+ScenarioFactory::ScenarioFactory(const SweepSpec& spec) : impl_(std::make_unique<Impl>(spec)) {
   for (const SweepAxis& axis : spec.axes) {
     std::vector<std::vector<Impl::Setting>> values;
     for (std::size_t v = 0; v < axis.size(); ++v) {
       std::vector<Impl::Setting> sets;
-      for (const Override& ov : axis.overrides(v))
-        sets.push_back({split_key_path(ov.key_path),
-                        parse_yaml_checked(ov.value, ov.key_path + "=" + ov.value)});
+      for (const Override& ov : axis.overrides(v)) {
+        YAML::Node value = parse_yaml_checked(ov.value, ov.key_path + "=" + ov.value);
+        sets.push_back({split_key_path(ov.key_path), value, SceneTree::convert(value)});
+      }
       values.push_back(std::move(sets));
     }
     impl_->axes.push_back(std::move(values));
@@ -66,7 +88,10 @@ ScenarioFactory::ScenarioFactory(ScenarioFactory&&) noexcept = default;
 ScenarioFactory& ScenarioFactory::operator=(ScenarioFactory&&) noexcept = default;
 
 Scene ScenarioFactory::scene(std::size_t index, bool resolved_yaml) const {
-  Scene s = scene_from_yaml(impl_->tree(index), scenario_source_name(id(index)), resolved_yaml);
+  const std::string source = scenario_source_name(id(index));
+  const std::optional<SceneTree> tree = impl_->scene_tree(index);
+  Scene s = tree ? scene_from_tree(*tree, source, resolved_yaml)
+                 : scene_from_yaml(impl_->tree(index), source, resolved_yaml);
   if (resolved_yaml) s.input_sha256 = impl_->input_sha256;
   return s;
 }

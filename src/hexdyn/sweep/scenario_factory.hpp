@@ -2,9 +2,11 @@
 /// \file scenario_factory.hpp
 /// The scenes of a sweep's scenarios, made one at a time when a scenario starts: the
 /// base scene tree (after `inherit:` and `set:`) is parsed once and each axis value
-/// once; a scenario's scene is a copy of the tree with its values set, validated by
+/// once; a scenario's scene is the tree with its values set, validated as by
 /// scene_from_yaml (so cross-key constraints are checked per scenario, and a failure
-/// is that scenario's row). Nothing is done per scenario before the scenario runs.
+/// is that scenario's row). The scenario's tree shares every map it does not change with
+/// the base (io/scene_tree.hpp) instead of copying the base. Nothing is done per scenario
+/// before the scenario runs.
 #include <cstddef>
 #include <memory>
 #include <string>

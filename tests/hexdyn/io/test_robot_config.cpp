@@ -15,6 +15,7 @@
 #include "hexdyn/core/errors.hpp"
 #include "hexdyn/io/config.hpp"
 #include "hexdyn/model/robot_model.hpp"
+#include "hexdyn/model/urdf_reader.hpp"
 #include "hexdyn/model/urdf_robot.hpp"
 
 namespace hexdyn {
@@ -169,6 +170,35 @@ TEST_CASE("a URDF robot's scene refuses the YAML robot's keys and broken descrip
             .find("robot.forward_axis: got +z, expected one of") != std::string::npos);
   CHECK(config_error(kMark4Scene, {{"robot.foot_links", "[a, b]"}})
             .find("robot.foot_links: got [a, b], expected a list of 6 names") != std::string::npos);
+}
+
+TEST_CASE("a URDF robot is read from its file as the file is now, parsed once per text",
+          "[robot_config]") {
+  TempDir dir;
+  const std::string original = file_text(kMark4Urdf);
+  const std::string urdf = dir.write("robot.urdf", original);
+  const std::string scene = dir.write("s.yaml", mark4_scene_with("robot:\n  urdf: robot.urdf\n"));
+  const Scene a = load_scene(scene);
+  const Scene b = load_scene(scene);
+  REQUIRE(a.robot.urdf);
+  CHECK(b.robot.urdf == a.robot.urdf);  // the same text and keys: the robot loaded before
+  // One link 1 kg heavier: the next scene has the edited robot.
+  std::string edited = original;
+  const std::string mass = "<mass value=\"1.522054\" />";
+  const auto at = edited.find(mass);
+  REQUIRE(at != std::string::npos);
+  edited.replace(at, mass.size(), "<mass value=\"2.522054\" />");
+  dir.write("robot.urdf", edited);
+  const Scene c = load_scene(scene);
+  REQUIRE(c.robot.urdf);
+  CHECK(c.robot.urdf->total_mass_kg == Approx(a.robot.urdf->total_mass_kg + 1.0));
+  CHECK(c.robot.urdf->total_mass_kg == read_urdf_robot(urdf).total_mass_kg);
+  dir.write("robot.urdf", original);
+  CHECK(load_scene(scene).robot.urdf->total_mass_kg == a.robot.urdf->total_mass_kg);
+  // Other keys on the same file are another robot.
+  const Scene d = load_scene(scene, {{"robot.ik_min_margin", "0.001"}});
+  CHECK(d.robot.urdf != a.robot.urdf);
+  CHECK(d.robot.ik_min_margin_m == 0.001);
 }
 
 }  // namespace hexdyn
