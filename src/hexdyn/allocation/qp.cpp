@@ -226,13 +226,24 @@ Eigen::VectorXd qp_fallback_point(const QpProblem& p) {
 
 double qp_feasibility_tolerance(double tolerance) { return std::max(1e-6, 1e3 * tolerance); }
 
+namespace {
+/// Eigen's allFinite() without its temporaries (it compares (M − M) with itself): one pass.
+template <typename Matrix>
+bool all_finite(const Matrix& m) {
+  const double* x = m.data();
+  bool finite = true;
+  for (Eigen::Index i = 0; i < m.size(); ++i) finite &= std::isfinite(x[i]);
+  return finite;
+}
+}  // namespace
+
 std::string qp_first_non_finite(const QpProblem& p) {
-  if (!p.H.allFinite()) return "H";
-  if (!p.g.allFinite()) return "g";
+  if (!all_finite(p.H)) return "H";
+  if (!all_finite(p.g)) return "g";
   if (!std::isfinite(p.constant)) return "constant";
-  if (!p.A.allFinite()) return "A";
-  if (!p.b.allFinite()) return "b";
-  if (!p.C.allFinite()) return "C";
+  if (!all_finite(p.A)) return "A";
+  if (!all_finite(p.b)) return "b";
+  if (!all_finite(p.C)) return "C";
   for (int i = 0; i < p.inequalities(); ++i)
     if (std::isnan(p.lower[i]) || std::isnan(p.upper[i])) return "bounds of " + p.ineq_name(i);
   return {};
