@@ -41,22 +41,40 @@ struct SampleMargin {
   bool lower = false;  ///< kJoint: the lower limit is the nearer
 };
 
+/// A paper-geometry leg's target p_H in its leg plane [m]: r from the coxa axis, ρ = √(r² − w²)
+/// along the leg, (u, v) from the femur axis, and d = |(u, v)|, the IK's wrist distance.
+struct LegPlane {
+  double r2, r, rho, u, v, d;
+};
+
+LegPlane leg_plane(const RobotModel& m, int leg, const Vec3& p_H) {
+  LegPlane g;
+  const double w = m.lateral_m[leg];
+  g.r2 = p_H.x() * p_H.x() + p_H.y() * p_H.y();
+  g.r = std::sqrt(g.r2);
+  g.rho = std::sqrt(std::max(g.r2 - w * w, 0.0));
+  g.u = g.rho - m.link_length_m[0];
+  g.v = p_H.z() + m.d1_m;
+  g.d = std::sqrt(g.u * g.u + g.v * g.v);
+  return g;
+}
+
+/// A lever arm as a lower bound of the Jacobian column norm it equals to rounding: 1e-6 of it
+/// taken off, and 1e-12 m.
+double lever_lower_bound(double lever_m) { return std::max(lever_m * (1.0 - 1e-6) - 1e-12, 0.0); }
+
 /// Lower bounds of the joint margins of a paper-geometry leg at target p_H [m]: the angle to the
 /// limit times a lower bound of the foot's lever arm, which for this geometry is a distance of
-/// the target itself: from the coxa axis, hypot(x, y); from the femur axis, the wrist distance
-/// of the IK; about the tibia axis, the tibia's length (the norms of leg_jacobian_H's columns,
-/// to rounding: the bounds take 1e-6 of them off, and 1e-12 m). False for another geometry.
+/// the target itself: from the coxa axis, r; from the femur axis, the wrist distance d of the
+/// IK; about the tibia axis, the tibia's length (the norms of leg_jacobian_H's columns, to
+/// rounding: lever_lower_bound). False for another geometry.
 bool joint_margin_bounds(const RobotModel& m, int leg, const Vec3& p_H, const Vec3& clearance_rad,
                          Vec3& bound_m) {
   if (m.leg_geometry != LegGeometry::kPaperPlanar) return false;
-  const auto& L = m.link_length_m;
-  const double w = m.lateral_m[leg];
-  const double r2 = p_H.x() * p_H.x() + p_H.y() * p_H.y();
-  const double rho = std::sqrt(std::max(r2 - w * w, 0.0));
-  const double u = rho - L[0], v = p_H.z() + m.d1_m;
-  const Vec3 lever(std::sqrt(r2), std::sqrt(u * u + v * v), L[2]);
+  const LegPlane g = leg_plane(m, leg, p_H);
+  const Vec3 lever(g.r, g.d, m.link_length_m[2]);
   for (int j = 0; j < kJointsPerLeg; ++j)
-    bound_m[j] = clearance_rad[j] * std::max(lever[j] * (1.0 - 1e-6) - 1e-12, 0.0);
+    bound_m[j] = clearance_rad[j] * lever_lower_bound(lever[j]);
   return true;
 }
 
@@ -150,8 +168,8 @@ SampleBound bound_in_ball(const RobotModel& m, int leg, const Vec3& p, const Leg
   if (m.leg_geometry != LegGeometry::kPaperPlanar || !ik.ok || !(radius_m > 0.0)) return none;
   const auto& L = m.link_length_m;
   const double D = radius_m, w = std::abs(m.lateral_m[leg]);
-  const double r2 = p.x() * p.x() + p.y() * p.y();
-  const double r = std::sqrt(r2), r_lo = r - D;
+  const LegPlane g = leg_plane(m, leg, p);
+  const double r_lo = g.r - D;
   // ρ > 0 in the ball (and above the IK's 1e-12 m² guard); atan2(y, x) continuous: the ball
   // keeps off its cut, the negative x axis.
   if (!(r_lo > w) || !(p.x() > D || std::abs(p.y()) > D)) return none;
@@ -159,9 +177,7 @@ SampleBound bound_in_ball(const RobotModel& m, int leg, const Vec3& p, const Leg
   if (!(rho_lo > 1e-5)) return none;
   const double k = r_lo / rho_lo;  // |Δ(u, v)| ≤ k |Δp|
   const double e = k * D;
-  const double rho = std::sqrt(std::max(r2 - w * w, 0.0));
-  const double u = rho - L[0], v = p.z() + m.d1_m;
-  const double d = std::sqrt(u * u + v * v), d_lo = d - e, d_hi = d + e;
+  const double u = g.u, v = g.v, d_lo = g.d - e, d_hi = g.d + e;
   // Strictly inside the planar workspace (sin β3 > 0), and atan2(v, u) continuous.
   if (!(d_lo > std::abs(L[1] - L[2]) && d_hi < L[1] + L[2] && d_lo > 0.0)) return none;
   if (!(u > e || std::abs(v) > e)) return none;
@@ -191,7 +207,7 @@ SampleBound bound_in_ball(const RobotModel& m, int leg, const Vec3& p, const Leg
     const double lo = m.joint_lower_rad[idx], hi = m.joint_upper_rad[idx];
     b.clearance_rad[j] = joint_clearance_rad(ik.q[j], lo, hi);
     b.inside_rad[j] = std::min(ik.q[j] - lo, hi - ik.q[j]);
-    b.lever_m[j] = std::max(lever[j] * (1.0 - 1e-6) - 1e-12, 0.0);
+    b.lever_m[j] = lever_lower_bound(lever[j]);
   }
   b.reach_m = ik.margin_m;
   b.reach_slope = k;
@@ -207,8 +223,8 @@ SampleBound sample_bound(const RobotModel& m, int leg, const Vec3& p, const LegI
   if (m.leg_geometry != LegGeometry::kPaperPlanar || !ik.ok) return SampleBound{};
   // The wrist moves about r/ρ times as far as the target, and must stay off full extension
   // and full fold: a ball of at most half the reach margin that way, then a quarter of that.
-  const double r2 = p.x() * p.x() + p.y() * p.y(), w = m.lateral_m[leg];
-  const double k = std::sqrt(r2 / std::max(r2 - w * w, 1e-300));
+  const LegPlane g = leg_plane(m, leg, p);
+  const double k = g.r / std::max(g.rho, 1e-150);
   const double D = std::min(radius_m, 0.5 * ik.margin_m / k);
   const SampleBound b = bound_in_ball(m, leg, p, ik, D);
   return b.radius_m > 0.0 ? b : bound_in_ball(m, leg, p, ik, 0.25 * D);
@@ -366,7 +382,7 @@ MarginEvaluation bounded_margin(const RobotModel& model, const TrunkMotion& trun
     SampleReferences::Entry& entry = refs.entries[refs.slot[s]];
     entry.height_m = height_m;
     entry.evaluation = stamp;
-    if (bounded) entry.bound = sample_bound(model, leg, p_H, ik, refs.radius_m);
+    if (bounded) entry.bound = sample_bound(model, leg, p_H, ik, kBoundRadius_m);
     return out.value_m < req.below_m || (req.kind == Evaluation::kAdmission && !out.admitted);
   };
   // Bounds of any sample within delta_m of sample s's target at this height (from s's reference

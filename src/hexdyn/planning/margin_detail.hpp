@@ -43,6 +43,11 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 /// rad]: far above the evaluation's rounding (~1e-15), far below any decision.
 constexpr double kSkipAllowance_m = 1e-9;
 
+/// Largest radius of an evaluated sample's bound [m] (sample_bound may take less): two scan
+/// steps of a typical height search, and more than the targets move between most instants a
+/// bisection compares.
+constexpr double kBoundRadius_m = 0.02;
+
 /// What one evaluated sample tells about the targets within radius_m of its own (file comment).
 struct SampleBound {
   double radius_m = 0.0;  ///< 0: no bound
@@ -87,7 +92,6 @@ FootTrack foot_track(const MotionPlan& plan, int uniform);
 /// hip frame by exactly |Δh|, so a sample's bound holds at another height within its radius,
 /// less |Δh|; and the path of a leg's target between two instants is the same at every height.
 struct SampleReferences {
-  double radius_m = 0.02;      ///< of new samples' bounds
   std::vector<double> path_m;  ///< per sample: its target's path from the first instant [m]
   std::vector<int> slot;       ///< per sample: its entry, -1: never evaluated
   struct Entry {
