@@ -88,19 +88,20 @@ class Rules:
 _PATHS = {}
 
 
-def object_path(f, ref):
-    """The path of the object `ref` points to in the file `f`. h5py's `.name` of a
+def object_path(obj, ref):
+    """The path of the object `ref` points to in the file of `obj`. h5py's `.name` of a
     dereferenced object searches the whole file each time; this maps addresses to paths
     once per file."""
-    key = f.id.fileno, f.filename
-    if key not in _PATHS:
+    fid = obj.id
+    paths = _PATHS.get(fid.fileno)
+    if paths is None:
         paths = {}
 
         def visit(name, o):
             paths.setdefault(h5py.h5o.get_info(o.id).addr, "/" + name)
-        f.visititems(visit)
-        _PATHS[key] = paths
-    return _PATHS[key][h5py.h5o.get_info(f[ref].id).addr]
+        obj.file.visititems(visit)
+        _PATHS[fid.fileno] = paths
+    return paths[h5py.h5o.get_info(h5py.h5r.dereference(ref, fid)).addr]
 
 
 def attribute(obj, name):
@@ -111,7 +112,7 @@ def attribute(obj, name):
         return value
 
     def where(ref):
-        return re.sub(r"^/runs/[^/]+", "", object_path(obj.file, ref))
+        return re.sub(r"^/runs/[^/]+", "", object_path(obj, ref))
     if name == "DIMENSION_LIST":
         return [[where(r) for r in refs] for refs in value]
     return sorted((where(r), int(i)) for r, i in value)

@@ -40,13 +40,24 @@ using Clock = std::chrono::steady_clock;
 using namespace mpi_detail;
 
 /// Message tags. A worker sends kReady once, then kResult messages (finished scenarios,
-/// several at a time); rank 0 sends kWork (a batch of indices, or the stop).
-enum Tag : int { kTagReady = 1, kTagResult = 2, kTagWork = 3 };
+/// several at a time), and kInterrupted (the signal's number) if it was signalled; rank 0
+/// sends kWork (a batch of indices, or the stop).
+enum Tag : int { kTagReady = 1, kTagResult = 2, kTagWork = 3, kTagInterrupted = 4 };
+
+/// Longest time a signalled worker waits for rank 0 to end the job before it ends itself.
+constexpr auto kWorkerGrace = std::chrono::seconds(10);
 
 std::string scratch_directory() { return fs::temp_directory_path().string(); }
 
 // ---- worker ranks
 
+/// SIGTERM, SIGINT (mpirun and Slurm send them to every rank): a worker stops only
+/// between messages, after a result it was sending has arrived, so that rank 0 never
+/// loses a worker in the middle of a transfer inside MPI. It then stops its scenario
+/// process, tells rank 0, and waits for rank 0 to end the job: mpirun kills every rank
+/// left as soon as one rank exits, so a worker that left first would cut rank 0 off before
+/// it flushed its checkpoint and said what it kept. A signal to a worker alone thereby
+/// stops the sweep the same way (docs/user/faults.md#signals).
 void worker_rank(const ScenarioFactory& factory, const SweepIdentity& identity) {
   WorkerOptions wo;
   wo.keep_runs = identity.keep_runs;
@@ -54,28 +65,34 @@ void worker_rank(const ScenarioFactory& factory, const SweepIdentity& identity) 
   wo.isolate = isolation_from_environment();
   wo.scratch_dir = scratch_directory();
   WorkerLink link;
-  // SIGTERM, SIGINT (mpirun and Slurm send them to every rank): a worker leaves only
-  // between messages, after a result it was sending has arrived, so that rank 0, which
-  // says what it kept, never loses a worker in the middle of a transfer inside MPI
-  // (docs/user/faults.md#signals). Rank 0 stops at its next look (within milliseconds).
-  const auto leave_if_signalled = [] {
-    if (const int sig = interrupted()) ::_exit(128 + sig);
-  };
   link.send_ready = [] { send({}, 0, kTagReady); };
-  link.send_results = [leave_if_signalled](std::vector<char>&& msg) {
+  link.send_results = [](std::vector<char>&& msg) {
     send(msg, 0, kTagResult);
-    leave_if_signalled();
+    check_interrupt();
   };
-  link.poll_work =
-      [leave_if_signalled]() -> std::optional<std::optional<std::vector<std::size_t>>> {
-    leave_if_signalled();
+  link.poll_work = []() -> std::optional<std::optional<std::vector<std::size_t>>> {
+    check_interrupt();
     int flag = 0;
     MPI_Status st;
     MPI_Iprobe(0, kTagWork, MPI_COMM_WORLD, &flag, &st);
     if (!flag) return std::nullopt;
     return unpack_work(receive(st));
   };
-  run_worker(factory, wo, link);
+  try {
+    run_worker(factory, wo, link);
+  } catch (const Interrupted& e) {  // the scenario process is stopped (~ScenarioProcess)
+    const int sig = e.signal();
+    std::vector<char> msg(sizeof sig);
+    std::memcpy(msg.data(), &sig, sizeof sig);
+    send(msg, 0, kTagInterrupted);
+    const auto until = Clock::now() + kWorkerGrace;
+    while (Clock::now() < until) {
+      int flag = 0;  // drives MPI's progress, so that the notice leaves over any transport
+      MPI_Iprobe(0, kTagWork, MPI_COMM_WORLD, &flag, MPI_STATUS_IGNORE);
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    }
+    ::_exit(e.exit_status());
+  }
 }
 
 // ---- rank 0
@@ -339,10 +356,15 @@ class Coordinator {
       if (!flag) return any;
       any = true;
       const std::vector<char> msg = receive(st);
-      if (st.MPI_TAG == kTagReady)
+      if (st.MPI_TAG == kTagReady) {
         coord_->on_ready(st.MPI_SOURCE, out);
-      else
+      } else if (st.MPI_TAG == kTagInterrupted) {  // a worker was signalled (worker_rank)
+        int sig = 0;
+        if (msg.size() == sizeof sig) std::memcpy(&sig, msg.data(), sizeof sig);
+        throw Interrupted(sig);
+      } else {
         take_results(st.MPI_SOURCE, msg, out);
+      }
       dispatch(out);
     }
   }
@@ -469,8 +491,8 @@ class Coordinator {
 int run_sweep(const SweepOptions& options) {
   die_with_launcher();
   MpiSession mpi;
-  // Rank 0 flushes the checkpoint and says what it kept; a worker notes the signal and
-  // leaves between messages (worker_rank).
+  // Rank 0 flushes the checkpoint and says what it kept; a worker notes the signal, tells
+  // rank 0 between messages and waits for it to end the job (worker_rank).
   install_interrupt_handlers(InterruptMode::kPoll, "hexdyn: sweep interrupted");
   if (mpi.rank() != 0) {
     int status = 0;
