@@ -97,9 +97,9 @@ def object_path(obj, ref):
     if paths is None:
         paths = {}
 
-        def visit(name, o):
-            paths.setdefault(h5py.h5o.get_info(o.id).addr, "/" + name)
-        obj.file.visititems(visit)
+        def visit(name, info):
+            paths.setdefault(info.addr, "/" if name == b"." else "/" + name.decode())
+        h5py.h5o.visit(obj.file.id, visit, info=True)
         _PATHS[fid.fileno] = paths
     return paths[h5py.h5o.get_info(h5py.h5r.dereference(ref, fid)).addr]
 
