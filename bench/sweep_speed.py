@@ -1,17 +1,17 @@
 #!/usr/bin/python3
 """The 1,000-scenario grid on 1 rank, this build against bbaf71c, side by side in one run.
 
-    /usr/bin/python3 bench/sweep_speed.py [--old /work/wt/base/build/hexdyn | --build-old]
-        [--new build/hexdyn] [--ref PATH] [--sweep bench/sweep_1000.yaml] [--repeat 3]
-        [--postures {all,none,N}]
+    /usr/bin/python3 bench/sweep_speed.py [--old PATH] [--new build/hexdyn] [--ref PATH]
+        [--sweep bench/sweep_1000.yaml] [--repeat 3] [--postures {all,none,N}]
 
 Runs `hexdyn sweep` of the grid (bench/sweep_1000.yaml: riser x speed x duty factor on
 configs/sweeps/stairs_base.yaml) under `mpirun -np 1`, old and new binary alternately,
 `--repeat` times each, and prints the wall times and the ratio of their medians
 (old / new: > 1 means the new binary is faster), with the ratio of every old-new pair.
 
---old takes bbaf71c's binary from a path; --build-old checks bbaf71c out in a temporary
-folder (git worktree) and builds its hexdyn there.
+--old takes bbaf71c's binary from a path. Without it, bbaf71c is checked out in a side
+folder, build/side-bbaf71c (a git worktree), and its hexdyn built there once; later runs
+reuse that build (--build-old: build it in a temporary folder instead, removed after).
 
 Then it compares the sweep files, scenario by scenario:
   - against the old binary: status; energy, cost of transport, peak and RMS torques, each
@@ -19,9 +19,9 @@ Then it compares the sweep files, scenario by scenario:
     file-layout change (left-limit samples at every contact event, /sample_kind, trapezoid
     energy) a scenario has more samples, and its energy, peak and RMS torques may differ:
     the table counts those scenarios and gives the largest relative difference.
-  - against --ref, a binary of the same physics as the new one (default: the build of the
-    new binary's base commit e16a5ea at /work/wt/perf-ref/build/hexdyn, when present):
-    status, energy and cost of transport to 1e-9 relative, peak and RMS torques likewise.
+  - against --ref, when given, a binary of the same physics as the new one (for example a
+    build of the commit before a change that should not alter results): status, energy and
+    cost of transport to 1e-9 relative, peak and RMS torques likewise.
   - --postures: the automatic posture of every scenario (all, none, or every N-th), from
     `hexdyn run` of the scenario's scene by the new binary and by --ref and the old one:
     the trunk's start P0 and the feet at t = 0 must be equal to the last bit. The kinematic
@@ -47,22 +47,24 @@ import yaml
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 OLD_COMMIT = "bbaf71c"
-DEFAULT_OLD = "/work/wt/base/build/hexdyn"
-DEFAULT_REF = "/work/wt/perf-ref/build/hexdyn"
+SIDE_FOLDER = os.path.join(ROOT, "build", f"side-{OLD_COMMIT}")
 LOAD = os.getloadavg()
 ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
 
 
-def build_old(work):
-    src = os.path.join(work, "old_src")
-    subprocess.run(["git", "-C", ROOT, "worktree", "add", "--detach", src, OLD_COMMIT], check=True,
-                   stdout=subprocess.DEVNULL)
+def build_old(src):
+    """Checks OLD_COMMIT out at `src` (a git worktree, unless there already) and builds its
+    hexdyn in src/build. Returns the binary's path."""
+    if not os.path.exists(os.path.join(src, ".git")):
+        subprocess.run(["git", "-C", ROOT, "worktree", "add", "--detach", src, OLD_COMMIT],
+                       check=True, stdout=subprocess.DEVNULL)
     build = os.path.join(src, "build")
+    print(f"sweep_speed: building {OLD_COMMIT}'s hexdyn in {build}", file=sys.stderr)
     subprocess.run(["cmake", "-S", src, "-B", build, "-DCMAKE_BUILD_TYPE=Release"], check=True,
                    stdout=subprocess.DEVNULL)
     subprocess.run(["cmake", "--build", build, "-j2", "--target", "hexdyn"], check=True,
                    stdout=subprocess.DEVNULL)
-    return src, os.path.join(build, "hexdyn")
+    return os.path.join(build, "hexdyn")
 
 
 def cpu_of_children():
@@ -173,10 +175,11 @@ def check_postures(binaries, sweep_path, new_file, every, work):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--old", default=DEFAULT_OLD)
-    ap.add_argument("--build-old", action="store_true")
+    ap.add_argument("--old", help=f"{OLD_COMMIT}'s hexdyn (default: built in {SIDE_FOLDER})")
+    ap.add_argument("--build-old", action="store_true",
+                    help=f"build {OLD_COMMIT} in a temporary folder, removed after")
     ap.add_argument("--new", default=os.path.join(ROOT, "build", "hexdyn"))
-    ap.add_argument("--ref", default=DEFAULT_REF if os.path.exists(DEFAULT_REF) else None)
+    ap.add_argument("--ref", help="a binary of the same physics as --new (optional)")
     ap.add_argument("--sweep", default=os.path.join(ROOT, "bench", "sweep_1000.yaml"))
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--postures", default="all")
@@ -184,7 +187,12 @@ def main():
     with tempfile.TemporaryDirectory(prefix="hexdyn_speed_") as work:
         old_src = None
         if args.build_old:
-            old_src, args.old = build_old(work)
+            old_src = os.path.join(work, "old_src")
+            args.old = build_old(old_src)
+        elif args.old is None:
+            args.old = os.path.join(SIDE_FOLDER, "build", "hexdyn")
+            if not os.path.exists(args.old):
+                build_old(SIDE_FOLDER)
         try:
             walls, cpus = {"old": [], "new": []}, {"old": [], "new": []}
             for r in range(args.repeat):
