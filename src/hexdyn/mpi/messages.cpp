@@ -161,6 +161,17 @@ std::optional<std::vector<std::size_t>> unpack_work(const std::vector<char>& byt
   return indices;
 }
 
+std::vector<char> pack_interrupted(int signal) {
+  std::vector<char> b;
+  put_i64(b, signal);
+  return b;
+}
+
+int unpack_interrupted(const std::vector<char>& bytes) {
+  Unpacker u(bytes);
+  return static_cast<int>(u.i64());
+}
+
 void append_result(std::vector<char>& b, const Finished& f) {
   put_i64(b, static_cast<std::int64_t>(f.index));
   put_f64(b, f.cost_s);

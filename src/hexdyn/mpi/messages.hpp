@@ -31,6 +31,11 @@ std::vector<char> pack_stop();
 /// The indices of a work message; nothing for the stop message.
 std::optional<std::vector<std::size_t>> unpack_work(const std::vector<char>& bytes);
 
+/// A worker's notice that it received `signal` (SIGTERM, SIGINT) and stopped computing.
+std::vector<char> pack_interrupted(int signal);
+/// The signal of such a notice.
+int unpack_interrupted(const std::vector<char>& bytes);
+
 /// A finished scenario on its way to the coordinator.
 struct Finished {
   std::size_t index = 0;

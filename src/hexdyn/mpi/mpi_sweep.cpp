@@ -81,10 +81,7 @@ void worker_rank(const ScenarioFactory& factory, const SweepIdentity& identity) 
   try {
     run_worker(factory, wo, link);
   } catch (const Interrupted& e) {  // the scenario process is stopped (~ScenarioProcess)
-    const int sig = e.signal();
-    std::vector<char> msg(sizeof sig);
-    std::memcpy(msg.data(), &sig, sizeof sig);
-    send(msg, 0, kTagInterrupted);
+    send(pack_interrupted(e.signal()), 0, kTagInterrupted);
     const auto until = Clock::now() + kWorkerGrace;
     while (Clock::now() < until) {
       int flag = 0;  // drives MPI's progress, so that the notice leaves over any transport
@@ -359,9 +356,7 @@ class Coordinator {
       if (st.MPI_TAG == kTagReady) {
         coord_->on_ready(st.MPI_SOURCE, out);
       } else if (st.MPI_TAG == kTagInterrupted) {  // a worker was signalled (worker_rank)
-        int sig = 0;
-        if (msg.size() == sizeof sig) std::memcpy(&sig, msg.data(), sizeof sig);
-        throw Interrupted(sig);
+        throw Interrupted(unpack_interrupted(msg));
       } else {
         take_results(st.MPI_SOURCE, msg, out);
       }

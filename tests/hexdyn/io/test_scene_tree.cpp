@@ -43,6 +43,12 @@ YAML::Node set_on_copy(const YAML::Node& root, const std::string& path, const YA
   return copy;
 }
 
+/// A key path and the YAML text of the value set there.
+struct Case {
+  const char* path;
+  const char* value;
+};
+
 /// The message of the ConfigError `read` throws, or "" when it throws none.
 template <class F>
 std::string error_of(F read) {
@@ -62,10 +68,6 @@ TEST_CASE("scene tree: a key set on the shared tree reads as on a copy of the YA
       YAML::Load("a: {x: 1, y: [1, 2], n: ~}\nb:\n  c: {d: 2}\n  e: text\ns: 3\n? [k]\n: 4\n");
   const std::string base_text = emit(base);
   const SceneTree tree(base);
-  struct Case {
-    const char* path;
-    const char* value;
-  };
   for (const Case c :
        {Case{"a.x", "5"}, Case{"a.z", "6"}, Case{"a.n.m", "7"}, Case{"b.c.d", "[8, 9]"},
         Case{"b.f.g.h", "{p: 1}"}, Case{"b", "10"}, Case{"t", "{u: 11}"}, Case{"a.y", "~"}}) {
@@ -88,10 +90,6 @@ TEST_CASE("scene tree: a scene read from the shared tree is the scene of the YAM
           "[config]") {
   const YAML::Node base = load_scene_tree(kStairsBase);
   const SceneTree tree(base);
-  struct Case {
-    const char* path;
-    const char* value;
-  };
   // Accepted values, including keys below maps read whole (motion.travel, auto), and
   // refused ones, whose messages quote the value (a changed map rebuilt as YAML).
   for (const Case c :

@@ -1,7 +1,8 @@
 // Messages between the ranks of a sweep (src/hexdyn/mpi/messages.*): the sweep, work
-// batches, the stop and result batches round-trip every field, including empty and
-// binary blocks, and a truncated message is an error rather than garbage.
+// batches, the stop, result batches and a worker's interruption notice round-trip every field,
+// including empty and binary blocks, and a truncated message is an error rather than garbage.
 #include <catch2/catch.hpp>
+#include <csignal>
 #include <string>
 #include <vector>
 
@@ -97,4 +98,12 @@ TEST_CASE("mpi messages: a truncated message throws", "[mpi]") {
   result.resize(result.size() - 1);
   CHECK_THROWS_AS(unpack_results(result), Error);
   CHECK_THROWS_AS(unpack_work({}), Error);
+  std::vector<char> notice = pack_interrupted(SIGTERM);
+  notice.pop_back();
+  CHECK_THROWS_AS(unpack_interrupted(notice), Error);
+}
+
+TEST_CASE("mpi messages: a worker's interruption notice names its signal", "[mpi]") {
+  CHECK(unpack_interrupted(pack_interrupted(SIGTERM)) == SIGTERM);
+  CHECK(unpack_interrupted(pack_interrupted(SIGINT)) == SIGINT);
 }
