@@ -1,8 +1,74 @@
 #include "hexdyn/core/result.hpp"
 
 #include <ostream>
+#include <utility>
 
 namespace hexdyn {
+namespace {
+
+/// The rows `order` names, from the matrices m(part) of each part.
+template <typename Matrix, typename Part, typename Get>
+Matrix gather_rows(const std::vector<const Part*>& parts, const std::vector<SampleRef>& order,
+                   Get m) {
+  const Eigen::Index cols = parts.empty() ? 0 : m(*parts.front()).cols();
+  Matrix out(static_cast<Eigen::Index>(order.size()), cols);
+  for (std::size_t i = 0; i < order.size(); ++i)
+    out.row(static_cast<Eigen::Index>(i)) = m(*parts[order[i].part]).row(order[i].row);
+  return out;
+}
+
+template <typename T, typename Part, typename Get>
+std::vector<T> gather_entries(const std::vector<const Part*>& parts,
+                              const std::vector<SampleRef>& order, Get v) {
+  std::vector<T> out;
+  out.reserve(order.size());
+  for (const SampleRef& r : order) out.push_back(v(*parts[r.part])[r.row]);
+  return out;
+}
+
+}  // namespace
+
+KinematicsResult gather_samples(const std::vector<const KinematicsResult*>& parts,
+                                const std::vector<SampleRef>& order) {
+  using K = KinematicsResult;
+  KinematicsResult out;
+  out.time_s = gather_entries<double>(
+      parts, order, [](const K& k) -> auto& { return k.time_s; });
+  for (RowMatrix K::*m :
+       {&K::base_position, &K::base_orientation_wxyz, &K::base_linear_velocity,
+        &K::base_angular_velocity, &K::base_linear_acceleration, &K::base_angular_acceleration,
+        &K::joint_position, &K::joint_velocity, &K::joint_acceleration, &K::foot_position,
+        &K::foot_velocity, &K::com_position})
+    out.*m = gather_rows<RowMatrix>(
+        parts, order, [m](const K& k) -> auto& { return k.*m; });
+  out.contact_phase = gather_rows<RowMatrixI8>(
+      parts, order, [](const K& k) -> auto& { return k.contact_phase; });
+  out.sample_kind.reserve(order.size());
+  for (const SampleRef& r : order) {
+    const K& k = *parts[r.part];
+    out.sample_kind.push_back(k.sample_kind.empty() ? std::int8_t{0} : k.sample_kind[r.row]);
+  }
+  return out;
+}
+
+DynamicsResult gather_samples(const std::vector<const DynamicsResult*>& parts,
+                              const std::vector<SampleRef>& order) {
+  using D = DynamicsResult;
+  DynamicsResult out;
+  out.present = true;
+  for (RowMatrix D::*m : {&D::joint_torque, &D::contact_force, &D::penetration})
+    out.*m = gather_rows<RowMatrix>(
+        parts, order, [m](const D& d) -> auto& { return d.*m; });
+  out.solver_status = gather_entries<SolverStatus>(
+      parts, order, [](const D& d) -> auto& { return d.solver_status; });
+  for (std::vector<double> D::*v :
+       {&D::solver_iterations, &D::solver_objective, &D::solver_seconds, &D::solver_max_violation})
+    out.*v = gather_entries<double>(
+        parts, order, [v](const D& d) -> auto& { return d.*v; });
+  out.solver_messages = gather_entries<std::string>(
+      parts, order, [](const D& d) -> auto& { return d.solver_messages; });
+  return out;
+}
 
 void KinematicsResult::resize(int T, bool zero) {
   time_s.assign(T, 0.0);

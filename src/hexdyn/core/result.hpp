@@ -86,8 +86,27 @@ struct DynamicsResult {
   std::vector<double> solver_objective;      ///< T [N² m²]
   std::vector<double> solver_seconds;        ///< T
   std::vector<std::string> solver_messages;  ///< one per relaxed/failed sample
+  /// T, the largest measured violation of each sample [N or N m] (not written: it picks
+  /// the message of an episode's worst sample for the log).
+  std::vector<double> solver_max_violation;
   bool present = false;
 };
+
+/// A sample of one of several results: row `row` of part `part`.
+struct SampleRef {
+  int part = 0;
+  int row = 0;
+};
+
+/// Every per-sample field of the samples `order` names, in that order, from the results
+/// `parts` (the output grid's refinement computes its samples in batches and gathers them once,
+/// pipeline/pipeline.cpp). A part's sample_kind may be empty (every sample ordinary).
+KinematicsResult gather_samples(const std::vector<const KinematicsResult*>& parts,
+                                const std::vector<SampleRef>& order);
+/// The per-sample fields of DynamicsResult (torques, forces, penetrations, solver fields) of
+/// the samples `order` names; the others are left empty.
+DynamicsResult gather_samples(const std::vector<const DynamicsResult*>& parts,
+                              const std::vector<SampleRef>& order);
 
 /// The automatic posture of a run (motion.posture.height: auto, planning/posture.hpp), which
 /// /meta config_yaml records as the values used
@@ -98,6 +117,16 @@ struct ChosenPosture {
   double foot_lateral_m = 0.0;  ///< gait.foot_lateral used [m]
 };
 
+/// How accurate the output grid is (docs/theory/output-grid.md#error-control): /meta
+/// grid_tolerance, grid_energy_error, grid_peak_error.
+struct GridAccuracy {
+  double tolerance = 0.0;     ///< output.tolerance the grid was refined to (0: not refined)
+  double energy_error = 0.0;  ///< estimated relative error of the energies, the largest
+  double peak_error = 0.0;    ///< estimated relative error of the peaks, the largest
+  int refinement_passes = 0;  ///< passes that added samples
+  int added_samples = 0;      ///< samples the refinement added to the grid as built
+};
+
 /// What a run produces: the arrays and the provenance for /meta.
 struct RunResult {
   KinematicsResult kin;
@@ -105,6 +134,7 @@ struct RunResult {
   std::string config_yaml;   ///< fully resolved, automatic choices included
   std::string input_sha256;  ///< "SHA256  PATH" per input file (Scene::input_sha256)
   ChosenPosture posture;     ///< written into /meta config_yaml (io/config.hpp)
+  GridAccuracy grid;         ///< the output grid's accuracy (/meta grid_*)
   bool compress = true;      ///< output.compression: deflate (io/h5io.hpp)
   std::string urdf;          ///< robot exactly as simulated
   /// /model/joint_names: the description's joint names in flat joint order (a URDF

@@ -172,11 +172,19 @@ struct AllocationParams {
 
 enum class OutputGrid { kUniform, kAdaptive };
 
+/// output.tolerance's default: the tightest tolerance whose refinement keeps the 1,000-scenario
+/// stair grid within twice the time of the grid as built (docs/validation/grid-accuracy.md).
+inline constexpr double kDefaultOutputTolerance = 1e-2;
+
 struct OutputParams {
   double sample_step_s = 0.05;
   OutputGrid grid = OutputGrid::kAdaptive;
   int impact_samples = 16;     ///< adaptive grid: intervals across each impact transient
   double event_step_s = 1e-2;  ///< adaptive grid: finest step next to touchdowns and lift-offs
+  /// output.tolerance: the relative error the adaptive grid is refined to, for the energies
+  /// (total, per joint) and the peaks (joint torque, total power, contact force)
+  /// (docs/theory/output-grid.md#error-control); 0: no refinement.
+  double tolerance = kDefaultOutputTolerance;
   /// output.compression: deflate (true: shuffle + deflate on numeric datasets of at least
   /// 4 KiB, io/h5io.hpp) or none (every dataset contiguous and uncompressed).
   bool compress = true;

@@ -389,6 +389,7 @@ void read_output(Reader& r, OutputParams& o) {
   const int def_samples = 16;
   o.impact_samples = r.integer("output.impact_samples", 1, 100000, &def_samples);
   o.event_step_s = r.number_or("output.event_step", 1e-2, positive(100.0));
+  o.tolerance = r.number_or("output.tolerance", kDefaultOutputTolerance, closed(0.0, 0.1));
   const std::string def_compression = "deflate";
   o.compress = r.choice("output.compression", {"deflate", "none"}, &def_compression) == "deflate";
   if (o.event_step_s > o.sample_step_s)

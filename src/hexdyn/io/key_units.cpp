@@ -56,6 +56,7 @@ constexpr std::array kExact{
     Entry{"output.sample_step", "s"},
     Entry{"output.impact_samples", "1"},
     Entry{"output.event_step", "s"},
+    Entry{"output.tolerance", "1"},
 };
 
 /// Keys of a body or link (robot.trunk, robot.payload, robot.coxa, ...): by last part.

@@ -60,7 +60,10 @@ void add_meta(ResultLayout& layout, const RunResult& r) {
            ? with_chosen_posture(r.config_yaml, r.posture.height_m, r.posture.foot_lateral_m)
            : r.config_yaml},
       {&s::kMetaWallTime, r.wall_time_s},
-      {&s::kMetaInputSha256, r.input_sha256}};
+      {&s::kMetaInputSha256, r.input_sha256},
+      {&s::kMetaGridTolerance, r.grid.tolerance},
+      {&s::kMetaGridEnergyError, r.grid.energy_error},
+      {&s::kMetaGridPeakError, r.grid.peak_error}};
 }
 
 void add_model(Builder& b, const RunResult& r) {

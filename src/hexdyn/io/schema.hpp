@@ -185,6 +185,16 @@ inline constexpr const char* kUnitsAttribute = "units";  ///< on every dataset w
 /// CF `long_name`, on every dataset.
 inline constexpr const char* kLongNameAttribute = "long_name";
 
+/// double, output.tolerance the adaptive grid was refined to (0: not refined)
+/// (docs/theory/output-grid.md#error-control)
+inline constexpr const char* kAttrGridTolerance = "grid_tolerance";
+/// double, the estimated relative error of the energies on the stored samples, the largest of
+/// the total and the per-joint ones
+inline constexpr const char* kAttrGridEnergyError = "grid_energy_error";
+/// double, the estimated relative error of the peaks of the stored series (joint torques,
+/// total power, contact force), the largest
+inline constexpr const char* kAttrGridPeakError = "grid_peak_error";
+
 inline constexpr AttributeSpec kMetaSchema{kMetaGroup, kAttrSchema, Element::kString};
 inline constexpr AttributeSpec kMetaSchemaVersion{kMetaGroup, kAttrSchemaVersion, Element::kInt64};
 inline constexpr AttributeSpec kMetaVersion{kMetaGroup, kAttrVersion, Element::kString};
@@ -193,10 +203,17 @@ inline constexpr AttributeSpec kMetaCreatedUtc{kMetaGroup, kAttrCreatedUtc, Elem
 inline constexpr AttributeSpec kMetaConfigYaml{kMetaGroup, kAttrConfigYaml, Element::kString};
 inline constexpr AttributeSpec kMetaWallTime{kMetaGroup, kAttrWallTime, Element::kFloat64};
 inline constexpr AttributeSpec kMetaInputSha256{kMetaGroup, kAttrInputSha256, Element::kString};
+inline constexpr AttributeSpec kMetaGridTolerance{kMetaGroup, kAttrGridTolerance,
+                                                  Element::kFloat64};
+inline constexpr AttributeSpec kMetaGridEnergyError{kMetaGroup, kAttrGridEnergyError,
+                                                    Element::kFloat64};
+inline constexpr AttributeSpec kMetaGridPeakError{kMetaGroup, kAttrGridPeakError,
+                                                  Element::kFloat64};
 /// Every /meta attribute of a result file.
 inline constexpr std::array kResultMetaAttributes{
-    kMetaSchema,     kMetaSchemaVersion, kMetaVersion,  kMetaGitCommit,
-    kMetaCreatedUtc, kMetaConfigYaml,    kMetaWallTime, kMetaInputSha256};
+    kMetaSchema,        kMetaSchemaVersion,   kMetaVersion,      kMetaGitCommit,
+    kMetaCreatedUtc,    kMetaConfigYaml,      kMetaWallTime,     kMetaInputSha256,
+    kMetaGridTolerance, kMetaGridEnergyError, kMetaGridPeakError};
 
 // ---- /model ----
 inline constexpr DatasetSpec kModelUrdf{"/model/urdf", "", Shape::kText, Element::kString,
@@ -492,6 +509,22 @@ inline constexpr DatasetSpec kScenarioCostOfTransport{"/scenarios/cost_of_transp
 inline constexpr DatasetSpec kScenarioPeakImpactForce{"/scenarios/peak_impact_force", "N",
                                                       Shape::kScenarios, Element::kFloat64,
                                                       "largest touchdown peak force"};
+/// Max over samples of /power/total.
+inline constexpr DatasetSpec kScenarioPeakPower{"/scenarios/peak_power", "W", Shape::kScenarios,
+                                                Element::kFloat64,
+                                                "peak total absolute joint power"};
+/// Max over samples and legs of the norm of /contacts/force.
+inline constexpr DatasetSpec kScenarioPeakContactForce{"/scenarios/peak_contact_force", "N",
+                                                       Shape::kScenarios, Element::kFloat64,
+                                                       "peak contact force on a foot"};
+/// The run's /meta grid_energy_error (docs/theory/output-grid.md#error-control).
+inline constexpr DatasetSpec kScenarioGridEnergyError{"/scenarios/grid_energy_error", "1",
+                                                      Shape::kScenarios, Element::kFloat64,
+                                                      "estimated relative error of the energies"};
+/// The run's /meta grid_peak_error.
+inline constexpr DatasetSpec kScenarioGridPeakError{"/scenarios/grid_peak_error", "1",
+                                                    Shape::kScenarios, Element::kFloat64,
+                                                    "estimated relative error of the peaks"};
 /// Max over samples of |τ_k|.
 inline constexpr DatasetSpec kScenarioPeakTorque{"/scenarios/peak_torque", "N m",
                                                  Shape::kScenarioJoints, Element::kFloat64,
@@ -513,7 +546,8 @@ inline constexpr DatasetSpec kScenarioWallTime{"/scenarios/wall_time_s", "s", Sh
 inline constexpr std::array kScenarioDatasets{
     kScenarioId, kScenarioAxisIndex, kScenarioStatus, kScenarioMessage, kScenarioSamples,
     kScenarioDuration, kScenarioDistance, kScenarioEnergy, kScenarioCostOfTransport,
-    kScenarioPeakImpactForce, kScenarioPeakTorque, kScenarioRmsTorque, kScenarioRelaxedSamples,
+    kScenarioPeakImpactForce, kScenarioPeakPower, kScenarioPeakContactForce, kScenarioPeakTorque,
+    kScenarioRmsTorque, kScenarioGridEnergyError, kScenarioGridPeakError, kScenarioRelaxedSamples,
     kScenarioFailedSamples, kScenarioWallTime};
 // clang-format on
 

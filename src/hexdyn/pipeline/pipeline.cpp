@@ -8,6 +8,7 @@
 #include "hexdyn/kinematics/kinematics.hpp"
 #include "hexdyn/model/urdf.hpp"
 #include "hexdyn/model/urdf_robot.hpp"
+#include "hexdyn/pipeline/grid_refinement.hpp"
 #include "hexdyn/pipeline/solve_dynamics.hpp"
 #include "hexdyn/planning/grid.hpp"
 
@@ -111,17 +112,17 @@ RunResult run_prepared_scene(const Scene& scene, const PreparedScene& prep, std:
   const auto start = std::chrono::steady_clock::now();
   RunResult result;
   std::optional<StageTimer> clock(std::in_place, times, Stage::kKinematics);
-  result.kin = sample_kinematics(prep.model, prep.plan, prep.grid);
+  ContactSchedule contacts;
+  result.kin = sample_with_contacts(prep, prep.grid, contacts);
   result.kin.sample_kind = prep.sample_kind;
   if (result.kin.sample_kind.size() != prep.grid.size())
     result.kin.sample_kind.assign(prep.grid.size(), kSampleOrdinary);
-  clock.emplace(times, Stage::kContacts);
-  ContactSchedule contacts = schedule_contacts(result.kin, prep.plan.terrain, prep.touchdowns);
-  clock.reset();  // solve_dynamics times its own stages
-  result.dyn = solve_dynamics(scene, prep.model, prep.plan, result.kin, contacts, prep.touchdowns,
-                              log, times);
+  clock.reset();  // the solver and the refinement time their own stages
+  DynamicsSolver solver(scene, prep.model);
+  result.dyn = solver.solve(result.kin, contacts, times);
+  result.grid = refine_output_grid(scene, prep, solver, result.kin, result.dyn, log, times);
+  finish_dynamics(prep.model, prep.plan, result.kin, prep.touchdowns, result.dyn, log, times);
   clock.emplace(times, Stage::kAssembly);
-  result.kin.contact_phase = std::move(contacts.phase);
   describe_base_at_root_link(prep.model,
                              result.kin);  // after the dynamics, which use the trunk frame
   result.config_yaml = scene.resolved_yaml;

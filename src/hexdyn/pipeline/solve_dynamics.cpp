@@ -15,7 +15,6 @@
 #include "hexdyn/power/power.hpp"
 
 namespace hexdyn {
-namespace {
 
 /// The allocation of one sample: the back end's answer, the forces and torques of its
 /// solution, and what the solution itself violates.
@@ -79,6 +78,8 @@ class SampleSolver {
   QpProblem qp_;
   ViolationWorkspace violations_;
 };
+
+namespace {
 
 /// A sample's status and message: the back end's, made relaxed when the solution itself
 /// violates a row or cone beyond the fixed threshold (kViolationThreshold; the back end's
@@ -171,54 +172,77 @@ DynamicsResult empty_result(int T) {
   dyn.solver_objective.assign(T, 0.0);
   dyn.solver_seconds.assign(T, 0.0);
   dyn.solver_messages.assign(T, std::string());
+  dyn.solver_max_violation.assign(T, 0.0);
   return dyn;
 }
 
 }  // namespace
 
-DynamicsResult solve_dynamics(const Scene& scene, const RobotModel& model, const MotionPlan& plan,
-                              const KinematicsResult& kin, const ContactSchedule& contacts,
-                              const std::vector<Touchdown>& touchdowns, std::ostream* log,
-                              StageTimes* times) {
+DynamicsSolver::DynamicsSolver(const Scene& scene, const RobotModel& model)
+    : scene_(scene), model_(model), solver_(std::make_unique<SampleSolver>(scene, model)) {}
+
+DynamicsSolver::~DynamicsSolver() = default;
+
+DynamicsResult DynamicsSolver::solve(const KinematicsResult& kin, const ContactSchedule& contacts,
+                                     StageTimes* times, WarmStart warm) {
   const int T = kin.samples();
   if (static_cast<int>(contacts.samples.size()) != T)
     throw SolverError("solve_dynamics: contact schedule of " +
                       std::to_string(contacts.samples.size()) + " samples, expected " +
                       std::to_string(T));
   DynamicsResult dyn = empty_result(T);
-  for (const Touchdown& td : touchdowns)
-    if (td.transient.truncated && log)
-      *log << "hexdyn: touchdown of " << leg_name(td.leg) << " at t = " << td.t_s
-           << " s: transient " << td.transient.message << "\n";
-  dyn.impacts = impact_records(touchdowns);
-
-  SampleSolver solver(scene, model);
-  EpisodeLog episodes(log);
   for (int i = 0; i < T; ++i) {
-    const double t = kin.time_s[i];
     const SampleContacts& c = contacts.samples[i];
-    const SampleSolution solution = solver.solve(kin, i, c, times);
+    SampleSolver* solver = solver_.get();
+    if (warm == WarmStart::kSamePhases) {
+      int key = 0;
+      for (int l = 0; l < kLegs; ++l) key = 3 * key + static_cast<int>(c.phase[l]);
+      auto it = std::find_if(by_phases_.begin(), by_phases_.end(),
+                             [key](const auto& e) { return e.first == key; });
+      if (it == by_phases_.end()) {
+        by_phases_.emplace_back(key, std::make_unique<SampleSolver>(scene_, model_));
+        it = by_phases_.end() - 1;
+      }
+      solver = it->second.get();
+    }
+    const SampleSolution solution = solver->solve(kin, i, c, times);
     const StageTimer clock(times, Stage::kVerdict);
-    SampleVerdict verdict = sample_verdict(solution, c, scene.allocation.torque_limit_Nm);
+    SampleVerdict verdict = sample_verdict(solution, c, scene_.allocation.torque_limit_Nm);
     const VecJ& tau = solution.joint_torque;
     dyn.solver_status[i] = verdict.status;
     dyn.solver_iterations[i] = solution.outcome->iterations;
     dyn.solver_objective[i] = tau.squaredNorm();
     dyn.solver_seconds[i] = solution.outcome->seconds;
+    dyn.solver_max_violation[i] = verdict.max_violation;
     dyn.joint_torque.row(i) = tau.transpose();
     for (int l = 0; l < kLegs; ++l) {
       const Vec3& F_W = solution.foot_forces_W[l];
       dyn.contact_force.row(i).segment<3>(3 * l) = F_W.transpose();
       double delta = c.impact_penetration_m[l];
-      if (c.phase[l] == ContactPhase::kSupport && scene.contact.model == ContactModel::kCompliant)
-        delta = static_penetration(scene.contact, std::max(0.0, F_W.dot(c.W_R_contact[l].col(2))));
+      if (c.phase[l] == ContactPhase::kSupport && scene_.contact.model == ContactModel::kCompliant)
+        delta = static_penetration(scene_.contact, std::max(0.0, F_W.dot(c.W_R_contact[l].col(2))));
       dyn.penetration(i, l) = delta;
     }
-    if (verdict.status != SolverStatus::kOptimal)
-      episodes.add(t, verdict.status, verdict.max_violation, verdict.message);
+    dyn.solver_messages[i] = std::move(verdict.message);
+  }
+  return dyn;
+}
+
+void finish_dynamics(const RobotModel& model, const MotionPlan& plan, const KinematicsResult& kin,
+                     const std::vector<Touchdown>& touchdowns, DynamicsResult& dyn,
+                     std::ostream* log, StageTimes* times) {
+  for (const Touchdown& td : touchdowns)
+    if (td.transient.truncated && log)
+      *log << "hexdyn: touchdown of " << leg_name(td.leg) << " at t = " << td.t_s
+           << " s: transient " << td.transient.message << "\n";
+  dyn.impacts = impact_records(touchdowns);
+  EpisodeLog episodes(log);
+  for (int i = 0; i < kin.samples(); ++i) {
+    if (dyn.solver_status[i] != SolverStatus::kOptimal)
+      episodes.add(kin.time_s[i], dyn.solver_status[i], dyn.solver_max_violation[i],
+                   dyn.solver_messages[i]);
     else
       episodes.close();
-    dyn.solver_messages[i] = std::move(verdict.message);
   }
   episodes.close();
 
@@ -232,6 +256,15 @@ DynamicsResult solve_dynamics(const Scene& scene, const RobotModel& model, const
   dyn.energy_cycle_J = std::move(power.energy_cycle_J);
   dyn.distance_m = power.distance_m;
   dyn.cost_of_transport = power.cost_of_transport;
+}
+
+DynamicsResult solve_dynamics(const Scene& scene, const RobotModel& model, const MotionPlan& plan,
+                              const KinematicsResult& kin, const ContactSchedule& contacts,
+                              const std::vector<Touchdown>& touchdowns, std::ostream* log,
+                              StageTimes* times) {
+  DynamicsSolver solver(scene, model);
+  DynamicsResult dyn = solver.solve(kin, contacts, times);
+  finish_dynamics(model, plan, kin, touchdowns, dyn, log, times);
   return dyn;
 }
 

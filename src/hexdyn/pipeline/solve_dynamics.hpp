@@ -6,6 +6,7 @@
 /// solved by the scene's back end, and the foot forces, joint torques and penetrations;
 /// then joint power and energy (power/power.hpp), per run and per gait cycle.
 #include <iosfwd>
+#include <memory>
 #include <vector>
 
 #include "hexdyn/contact/touchdowns.hpp"
@@ -16,6 +17,48 @@
 #include "hexdyn/planning/plan.hpp"
 
 namespace hexdyn {
+
+class SampleSolver;
+
+/// The per-sample part of the dynamics stage with the workspace it keeps between calls: the
+/// dynamics buffers, the allocation problem and the back end, whose warm start carries from one
+/// solve to the next, also from one call to the next (the output grid's refinement solves its
+/// new samples with the same solver, pipeline/pipeline.hpp).
+class DynamicsSolver {
+ public:
+  /// Throws SolverError when the scene's allocation back end cannot start.
+  DynamicsSolver(const Scene& scene, const RobotModel& model);
+  ~DynamicsSolver();
+  DynamicsSolver(const DynamicsSolver&) = delete;
+  DynamicsSolver& operator=(const DynamicsSolver&) = delete;
+
+  /// Where a sample's warm start comes from: the solve before it (samples in time order, the
+  /// grid as built), or the last solve of a sample with the same contact phases (samples spread
+  /// over a run, the refinement's: the nearest such sample before it is alike, the one solved
+  /// just before may be in another phase of the gait).
+  enum class WarmStart { kPrevious, kSamePhases };
+
+  /// The per-sample fields of the result for every sample of `kin` under `contacts` (from
+  /// schedule_contacts over the same kin): torques, forces, penetrations, solver status,
+  /// iterations, objective, seconds, messages and the largest measured violations; the power
+  /// and energy fields are left empty (finish_dynamics). `times` as solve_dynamics.
+  DynamicsResult solve(const KinematicsResult& kin, const ContactSchedule& contacts,
+                       StageTimes* times = nullptr, WarmStart warm = WarmStart::kPrevious);
+
+ private:
+  const Scene& scene_;
+  const RobotModel& model_;
+  std::unique_ptr<SampleSolver> solver_;
+  /// Solvers by contact phases (WarmStart::kSamePhases), key: the six phases in base 3.
+  std::vector<std::pair<int, std::unique_ptr<SampleSolver>>> by_phases_;
+};
+
+/// What solve_dynamics does after the per-sample solves, on a result whose samples are final:
+/// the touchdowns' records and log lines, one log line per episode of relaxed or failed
+/// samples, and the power and energies over the samples (power/power.hpp). `log` may be null.
+void finish_dynamics(const RobotModel& model, const MotionPlan& plan, const KinematicsResult& kin,
+                     const std::vector<Touchdown>& touchdowns, DynamicsResult& dyn,
+                     std::ostream* log, StageTimes* times = nullptr);
 
 /// The dynamics of every sample of `kin` under the contact schedule `contacts` (from
 /// schedule_contacts over the same kin and touchdowns). Reads its inputs only; the

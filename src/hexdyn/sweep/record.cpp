@@ -110,7 +110,8 @@ void append_record(std::vector<char>& b, const ScenarioRecord& r) {
   put_pod(b, static_cast<std::int32_t>(s.relaxed_samples));
   put_pod(b, static_cast<std::int32_t>(s.failed_samples));
   for (double v : {s.duration_s, s.distance_m, s.energy_J, s.cost_of_transport,
-                   s.peak_impact_force_N, s.wall_time_s})
+                   s.peak_impact_force_N, s.peak_power_W, s.peak_contact_force_N,
+                   s.grid_energy_error, s.grid_peak_error, s.wall_time_s})
     put_pod(b, v);
   for (double v : s.peak_torque_Nm) put_pod(b, v);
   for (double v : s.rms_torque_Nm) put_pod(b, v);
@@ -141,7 +142,8 @@ ScenarioRecord decode_record(const char* data, std::size_t size, bool with_image
   s.relaxed_samples = u.get<std::int32_t>();
   s.failed_samples = u.get<std::int32_t>();
   for (double* v : {&s.duration_s, &s.distance_m, &s.energy_J, &s.cost_of_transport,
-                    &s.peak_impact_force_N, &s.wall_time_s})
+                    &s.peak_impact_force_N, &s.peak_power_W, &s.peak_contact_force_N,
+                    &s.grid_energy_error, &s.grid_peak_error, &s.wall_time_s})
     *v = u.get<double>();
   for (double& v : s.peak_torque_Nm) v = u.get<double>();
   for (double& v : s.rms_torque_Nm) v = u.get<double>();

@@ -65,6 +65,7 @@ ScenarioSummary failed_summary(std::size_t index, ScenarioStatus status,
   s.status = status;
   s.message = message;
   s.duration_s = s.distance_m = s.energy_J = s.cost_of_transport = s.peak_impact_force_N = kNaN;
+  s.peak_power_W = s.peak_contact_force_N = s.grid_energy_error = s.grid_peak_error = kNaN;
   s.peak_torque_Nm.fill(kNaN);
   s.rms_torque_Nm.fill(kNaN);
   return s;
@@ -89,6 +90,13 @@ ScenarioSummary summarize_run(const RunResult& run, std::size_t index) {
   s.cost_of_transport = d.cost_of_transport;
   for (const ImpactRecord& im : d.impacts)
     s.peak_impact_force_N = std::max(s.peak_impact_force_N, im.peak_force_N);
+  for (double p : d.total_power_W) s.peak_power_W = std::max(s.peak_power_W, p);
+  for (int i = 0; i < d.contact_force.rows(); ++i)
+    for (int l = 0; l < kLegs; ++l)
+      s.peak_contact_force_N =
+          std::max(s.peak_contact_force_N, d.contact_force.row(i).segment<3>(3 * l).norm());
+  s.grid_energy_error = run.grid.energy_error;
+  s.grid_peak_error = run.grid.peak_error;
   for (int k = 0; k < kJoints; ++k) {
     double peak = 0.0, integral = 0.0;
     for (int i = 0; i < T; ++i) peak = std::max(peak, std::abs(d.joint_torque(i, k)));

@@ -39,13 +39,17 @@ std::string status_codes_text();
 struct ScenarioSummary {
   std::size_t index = 0;
   ScenarioStatus status = ScenarioStatus::kOk;
-  std::string message;               ///< the error's one-line message; "" when ok
-  int samples = 0;                   ///< T output samples
-  double duration_s = 0.0;           ///< last minus first sample time [s]
-  double distance_m = 0.0;           ///< trunk travel used by the cost of transport [m]
-  double energy_J = 0.0;             ///< E = ∫ Σ|τ ω| dt [J]
-  double cost_of_transport = 0.0;    ///< E / (m g d) [1]
-  double peak_impact_force_N = 0.0;  ///< largest touchdown peak; 0 without touchdowns [N]
+  std::string message;                ///< the error's one-line message; "" when ok
+  int samples = 0;                    ///< T output samples
+  double duration_s = 0.0;            ///< last minus first sample time [s]
+  double distance_m = 0.0;            ///< trunk travel used by the cost of transport [m]
+  double energy_J = 0.0;              ///< E = ∫ Σ|τ ω| dt [J]
+  double cost_of_transport = 0.0;     ///< E / (m g d) [1]
+  double peak_impact_force_N = 0.0;   ///< largest touchdown peak; 0 without touchdowns [N]
+  double peak_power_W = 0.0;          ///< max over samples of Σ|τ ω| [W]
+  double peak_contact_force_N = 0.0;  ///< max over samples and legs of |F| [N]
+  double grid_energy_error = 0.0;     ///< the run's estimated relative energy error [1]
+  double grid_peak_error = 0.0;       ///< the run's estimated relative peak error [1]
   std::array<double, kJoints> peak_torque_Nm{};  ///< max over samples of |τ_k| [N m]
   std::array<double, kJoints> rms_torque_Nm{};   ///< time-weighted RMS of τ_k [N m]
   int relaxed_samples = 0;                       ///< samples with solver status 1

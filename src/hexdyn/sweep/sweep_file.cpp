@@ -223,8 +223,12 @@ void write_scenarios(H5Writer& w, Labeller& labels, const SweepSpec& spec,
   doubles(s::kScenarioEnergy, &ScenarioSummary::energy_J);
   doubles(s::kScenarioCostOfTransport, &ScenarioSummary::cost_of_transport);
   doubles(s::kScenarioPeakImpactForce, &ScenarioSummary::peak_impact_force_N);
+  doubles(s::kScenarioPeakPower, &ScenarioSummary::peak_power_W);
+  doubles(s::kScenarioPeakContactForce, &ScenarioSummary::peak_contact_force_N);
   per_joint(s::kScenarioPeakTorque, &ScenarioSummary::peak_torque_Nm);
   per_joint(s::kScenarioRmsTorque, &ScenarioSummary::rms_torque_Nm);
+  doubles(s::kScenarioGridEnergyError, &ScenarioSummary::grid_energy_error);
+  doubles(s::kScenarioGridPeakError, &ScenarioSummary::grid_peak_error);
   counts(s::kScenarioRelaxedSamples, &ScenarioSummary::relaxed_samples);
   counts(s::kScenarioFailedSamples, &ScenarioSummary::failed_samples);
   doubles(s::kScenarioWallTime, &ScenarioSummary::wall_time_s);

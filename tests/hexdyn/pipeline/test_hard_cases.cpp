@@ -228,9 +228,11 @@ TEST_CASE("hard: three support feet nearly collinear", "[hard][allocation]") {
 // ---------------------------------------------------------------------------------------
 
 TEST_CASE("hard: friction coefficient 0.01", "[hard][allocation]") {
-  const Scene scene = paper_with({{"contact.friction_coefficient", "0.01"}});
+  // Both on the grid as built (output.tolerance 0): refined, each would have a grid of its own.
+  const Scene scene =
+      paper_with({{"contact.friction_coefficient", "0.01"}, {"output.tolerance", "0"}});
   const RunResult r = run_scene(scene);
-  const RunResult ref = run_scene(paper_with({}));  // μ = 0.3, same grid
+  const RunResult ref = run_scene(paper_with({{"output.tolerance", "0"}}));  // μ = 0.3
   check_run_finite(r);
   REQUIRE(r.kin.time_s == ref.kin.time_s);
   const double mu = 0.01;
@@ -278,9 +280,10 @@ TEST_CASE("hard: friction coefficient 0.01", "[hard][allocation]") {
 
 TEST_CASE("hard: torque limit too low for the load", "[hard][allocation]") {
   const double limit = 1.0;  // N m; the paper's stance needs up to ~2 N m at the femurs
-  const Scene scene = paper_with({{"allocation.torque_limit", "1.0"}});
+  // Both on the grid as built (output.tolerance 0): refined, each would have a grid of its own.
+  const Scene scene = paper_with({{"allocation.torque_limit", "1.0"}, {"output.tolerance", "0"}});
   const RunResult r = run_scene(scene);
-  const RunResult ref = run_scene(paper_with({}));  // 6 N m, same grid
+  const RunResult ref = run_scene(paper_with({{"output.tolerance", "0"}}));  // 6 N m
   check_run_finite(r);
   REQUIRE(r.kin.time_s == ref.kin.time_s);
   const double mg = r.total_mass_kg * kGravity;

@@ -1,0 +1,191 @@
+#include "hexdyn/pipeline/grid_refinement.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <optional>
+#include <ostream>
+#include <utility>
+
+#include "hexdyn/kinematics/kinematics.hpp"
+#include "hexdyn/planning/grid.hpp"
+#include "hexdyn/power/grid_error.hpp"
+#include "hexdyn/power/power.hpp"
+
+namespace hexdyn {
+namespace {
+
+/// The refinement's limits (docs/theory/output-grid.md#error-control): the shortest interval
+/// it splits is 2 kMinRefinedStep_s (a new sample is never closer than kMinRefinedStep_s to
+/// another, far above the 1e-9 s at which grid points merge; a shorter interval is taken as a
+/// step the series makes), at most kMaxRefinementPasses passes, and at most kMaxRefinedSamples
+/// samples in all (the CLI's size guard's count).
+constexpr double kMinRefinedStep_s = 1e-7;
+constexpr int kMaxRefinementPasses = 40;
+constexpr std::size_t kMaxRefinedSamples = 200000;
+
+/// A run's samples while its grid is refined: the batches as computed (the first is the grid
+/// as built) and their samples in time order.
+struct Batches {
+  std::vector<KinematicsResult> kin;
+  std::vector<DynamicsResult> dyn;
+  std::vector<SampleRef> order;
+
+  const KinematicsResult& kin_of(const SampleRef& r) const { return kin[r.part]; }
+  const DynamicsResult& dyn_of(const SampleRef& r) const { return dyn[r.part]; }
+  double time(const SampleRef& r) const { return kin[r.part].time_s[r.row]; }
+
+  /// Adds a batch (its samples increasing in time) and merges its samples into the order.
+  void add(KinematicsResult k, DynamicsResult d) {
+    const int part = static_cast<int>(kin.size());
+    std::vector<SampleRef> more;
+    for (int r = 0; r < k.samples(); ++r) more.push_back({part, r});
+    kin.push_back(std::move(k));
+    dyn.push_back(std::move(d));
+    std::vector<SampleRef> merged;
+    merged.reserve(order.size() + more.size());
+    std::merge(order.begin(), order.end(), more.begin(), more.end(), std::back_inserter(merged),
+               [this](const SampleRef& a, const SampleRef& b) { return time(a) < time(b); });
+    order = std::move(merged);
+  }
+};
+
+/// The series the output grid controls, gathered in time order: the joint powers τ_k ω_k,
+/// whose absolute values and their sum are integrated (the energies), and |τ_k| per joint, the
+/// total power and the largest foot force (the peaks).
+struct ControlledSeries {
+  std::vector<double> t_s;
+  std::vector<char> jump;  ///< from a left-limit sample to its event
+  RowMatrix power;         ///< T×18, τ_k ω_k [W]
+  RowMatrix abs_torque;    ///< T×18 [N m]
+  std::vector<double> total_power_W, max_force_N;
+  std::vector<SeriesView> terms;
+  std::vector<IntegralTarget> integrals;
+  std::vector<SeriesView> peaks;
+
+  explicit ControlledSeries(const Batches& b) {
+    const std::size_t T = b.order.size();
+    const auto rows = static_cast<Eigen::Index>(T);
+    t_s.resize(T);
+    jump.assign(T, 0);
+    power.resize(rows, kJoints);
+    abs_torque.resize(rows, kJoints);
+    total_power_W.resize(T);
+    max_force_N.assign(T, 0.0);
+    for (std::size_t i = 0; i < T; ++i) {
+      const SampleRef& r = b.order[i];
+      const KinematicsResult& k = b.kin_of(r);
+      const DynamicsResult& d = b.dyn_of(r);
+      t_s[i] = k.time_s[r.row];
+      jump[i] = !k.sample_kind.empty() && k.sample_kind[r.row] == kSampleLeftLimit;
+      const double* tau = d.joint_torque.data() + static_cast<std::size_t>(r.row) * kJoints;
+      const double* omega = k.joint_velocity.data() + static_cast<std::size_t>(r.row) * kJoints;
+      double* p = power.data() + i * kJoints;
+      double* a = abs_torque.data() + i * kJoints;
+      double sum = 0.0;
+      for (int j = 0; j < kJoints; ++j) {
+        p[j] = tau[j] * omega[j];
+        a[j] = std::abs(tau[j]);
+        sum += std::abs(p[j]);
+      }
+      total_power_W[i] = sum;
+      const double* F = d.contact_force.data() + static_cast<std::size_t>(r.row) * 3 * kLegs;
+      double f2 = 0.0;
+      for (int l = 0; l < kLegs; ++l)
+        f2 = std::max(
+            f2, F[3 * l] * F[3 * l] + F[3 * l + 1] * F[3 * l + 1] + F[3 * l + 2] * F[3 * l + 2]);
+      max_force_N[i] = std::sqrt(f2);
+    }
+    // Each joint's energy is held to its own value, or to the mean joint's when smaller: a
+    // joint that does almost no work is not refined to the rounding of its tiny energy.
+    const double total = trapezoid(t_s, total_power_W.data());
+    IntegralTarget all{{}, total};
+    std::array<double, kJoints> energy{};
+    for (std::size_t i = 1; i < T; ++i) {
+      const double h = 0.5 * (t_s[i] - t_s[i - 1]);
+      const double* p0 = power.data() + (i - 1) * kJoints;
+      const double* p1 = p0 + kJoints;
+      for (int j = 0; j < kJoints; ++j) energy[j] += h * (std::abs(p0[j]) + std::abs(p1[j]));
+    }
+    for (int j = 0; j < kJoints; ++j) {
+      terms.push_back({power.data() + j, kJoints});
+      integrals.push_back({{j}, std::max(energy[j], total / kJoints)});
+      all.terms.push_back(j);
+    }
+    integrals.push_back(std::move(all));
+    for (int j = 0; j < kJoints; ++j) peaks.push_back({abs_torque.data() + j, kJoints});
+    peaks.push_back({total_power_W.data(), 1});
+    peaks.push_back({max_force_N.data(), 1});
+  }
+};
+
+}  // namespace
+
+KinematicsResult sample_with_contacts(const PreparedScene& prep, const std::vector<double>& t_s,
+                                      ContactSchedule& contacts) {
+  KinematicsResult kin = sample_kinematics(prep.model, prep.plan, t_s);
+  if (kin.sample_kind.size() != t_s.size()) kin.sample_kind.assign(t_s.size(), kSampleOrdinary);
+  contacts = schedule_contacts(kin, prep.plan.terrain, prep.touchdowns);
+  kin.contact_phase = contacts.phase;
+  return kin;
+}
+
+GridAccuracy refine_output_grid(const Scene& scene, const PreparedScene& prep,
+                                DynamicsSolver& solver, KinematicsResult& kin, DynamicsResult& dyn,
+                                std::ostream* log, StageTimes* times) {
+  const double tol = scene.output.tolerance;
+  const bool refine = tol > 0.0 && scene.output.grid == OutputGrid::kAdaptive;
+  // Without refinement, the estimates are those of the default tolerance's assessment.
+  const double assess_tol = refine ? tol : kDefaultOutputTolerance;
+  GridAccuracy acc;
+  acc.tolerance = refine ? tol : 0.0;
+  Batches b;
+  b.add(std::move(kin), std::move(dyn));
+  for (int pass = 0;; ++pass) {
+    std::optional<StageTimer> clock(std::in_place, times, Stage::kRefinement);
+    GridAssessment a;
+    {
+      const ControlledSeries series(b);
+      a = assess_grid(series.t_s, series.jump, series.terms, series.integrals, series.peaks,
+                      assess_tol, kMinRefinedStep_s);
+    }
+    acc.energy_error = a.integral_error;
+    acc.peak_error = a.peak_error;
+    if (!refine || a.refine_at_s.empty()) break;
+    const std::size_t T = b.order.size();
+    if (pass == kMaxRefinementPasses || T + a.refine_at_s.size() > kMaxRefinedSamples) {
+      if (log)
+        *log << "hexdyn: output grid: output.tolerance " << tol << " not reached after " << pass
+             << " refinement passes and " << T << " samples (estimated energy error "
+             << acc.energy_error << ", peak error " << acc.peak_error << ")\n";
+      break;
+    }
+    clock.emplace(times, Stage::kKinematics);
+    ContactSchedule contacts;
+    KinematicsResult more = sample_with_contacts(prep, a.refine_at_s, contacts);
+    clock.reset();
+    DynamicsResult solved =
+        solver.solve(more, contacts, times, DynamicsSolver::WarmStart::kSamePhases);
+    clock.emplace(times, Stage::kRefinement);
+    b.add(std::move(more), std::move(solved));
+    ++acc.refinement_passes;
+    acc.added_samples += static_cast<int>(a.refine_at_s.size());
+  }
+  const StageTimer clock(times, Stage::kRefinement);
+  if (b.kin.size() == 1) {  // nothing added: the samples as they came
+    kin = std::move(b.kin.front());
+    dyn = std::move(b.dyn.front());
+    return acc;
+  }
+  std::vector<const KinematicsResult*> kin_parts;
+  std::vector<const DynamicsResult*> dyn_parts;
+  for (std::size_t p = 0; p < b.kin.size(); ++p) {
+    kin_parts.push_back(&b.kin[p]);
+    dyn_parts.push_back(&b.dyn[p]);
+  }
+  kin = gather_samples(kin_parts, b.order);
+  dyn = gather_samples(dyn_parts, b.order);
+  return acc;
+}
+
+}  // namespace hexdyn
