@@ -37,7 +37,6 @@ import argparse
 import itertools
 import os
 import resource
-import shutil
 import statistics
 import subprocess
 import sys
