@@ -10,9 +10,11 @@
 
 #include <cerrno>
 #include <chrono>
+#include <cmath>
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
+#include <ctime>
 #include <exception>
 
 #include "hexdyn/core/bytes.hpp"
@@ -34,6 +36,25 @@ std::optional<std::size_t> crash_switch() {
   const unsigned long long k = std::strtoull(v, &end, 10);
   if (end == v || *end != '\0') return std::nullopt;
   return static_cast<std::size_t>(k);
+}
+
+/// Seconds the test-only switch HEXDYN_TEST_HOLD_SECONDS makes the process wait before each
+/// scenario (0 when unset): a sweep that lasts on purpose, whatever the machine's speed, for
+/// the tests that watch a sweep while it runs (tests/sweep/idle_ranks.sh).
+double hold_switch() {
+  const char* v = std::getenv("HEXDYN_TEST_HOLD_SECONDS");
+  if (v == nullptr || *v == '\0') return 0.0;
+  char* end = nullptr;
+  const double s = std::strtod(v, &end);
+  return end != v && *end == '\0' && s > 0.0 && s <= 3600.0 ? s : 0.0;
+}
+
+/// Sleeps `seconds`, resuming after a signal's interruption.
+void hold(double seconds) {
+  timespec left{static_cast<time_t>(seconds),
+                static_cast<long>((seconds - std::floor(seconds)) * 1e9)};
+  while (::nanosleep(&left, &left) != 0 && errno == EINTR) {
+  }
 }
 
 /// Writes all bytes to a socket without SIGPIPE; false when the peer is gone.
@@ -77,11 +98,13 @@ bool read_exact(int fd, char* data, std::size_t n) {
   ::close_range(static_cast<unsigned>(in_fd) + 1, ~0u, 0);
   keep_freed_memory();
   const std::optional<std::size_t> crash_at = crash_switch();
+  const double hold_s = hold_switch();
   std::vector<char> frame;
   for (;;) {
     std::uint64_t index = 0;
     if (!read_exact(in_fd, reinterpret_cast<char*>(&index), sizeof index)) ::_exit(0);
     if (crash_at && *crash_at == index) std::abort();  // test-only (HEXDYN_TEST_CRASH_SCENARIO)
+    if (hold_s > 0.0) hold(hold_s);                    // test-only (HEXDYN_TEST_HOLD_SECONDS)
     const ScenarioEvent ev =
         compute_scenario(factory, static_cast<std::size_t>(index), keep_runs, scratch);
     frame.clear();
