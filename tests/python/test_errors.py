@@ -5,6 +5,8 @@ refuses; no input crashes the interpreter or lets another exception through.
     test_errors.py HEXDYN_BINARY SOURCE_DIR"""
 
 import os
+import signal
+import socket
 import tempfile
 
 import hexdyn
@@ -66,4 +68,26 @@ with tempfile.TemporaryDirectory() as d:
     raises(hexdyn.ConfigError, hexdyn.run, f"{d}/bad.yaml")
     v = hexdyn.validate(os.path.join(SRC, "configs/sweeps/smoke.yaml"))
     assert v["kind"] == "sweep" and v["scenarios"] > 0, v
+    # The readers refuse anything but a regular file before opening it, with one line: a FIFO
+    # (opened for reading it would wait for a writer for ever: an alarm fails the test instead
+    # of hanging it), a directory, a device, a socket. A link to a result file opens.
+    r.write(f"{d}/r.h5")
+    os.symlink(f"{d}/r.h5", f"{d}/link.h5")
+    assert hexdyn.open_result(f"{d}/link.h5").meta["schema"] == "hexdyn-result/2"
+    os.mkfifo(f"{d}/fifo.h5")
+    server = socket.socket(socket.AF_UNIX)
+    server.bind(f"{d}/socket.h5")
+    from hexdyn.xr import open_envelope
+    signal.signal(signal.SIGALRM, lambda *_: (_ for _ in ()).throw(AssertionError("reader hung")))
+    for target, kind in ((f"{d}/fifo.h5", "a FIFO"), (d, "a directory"), ("/dev/null", "a device"),
+                         (f"{d}/socket.h5", "a socket")):
+        for reader in (hexdyn.open_result, hexdyn.open_sweep, open_envelope):
+            signal.alarm(10)
+            got = raises(hexdyn.IoError, reader, target)
+            signal.alarm(0)
+            assert got == f"{target}: is {kind}, not a regular file", (reader.__name__, got)
+            assert "\n" not in got
+    server.close()
+    got = raises(hexdyn.IoError, hexdyn.open_result, f"{d}/missing.h5")
+    assert got.startswith(f"{d}/missing.h5: cannot be read"), got
 print("python errors: ok")

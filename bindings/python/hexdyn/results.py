@@ -26,6 +26,7 @@ Requires h5py, numpy and PyYAML (Debian: /usr/bin/python3).
 
 import os
 import re
+import stat
 
 import h5py
 import numpy as np
@@ -368,10 +369,37 @@ def read_result_group(group, source="result"):
     return Result(source, data, units, shapes, _meta_attributes(group))
 
 
+def _io_error(message):
+    """hexdyn.IoError (an OSError) when the compiled part is there, else OSError."""
+    try:
+        from . import _hexdyn
+        return _hexdyn.IoError(message)
+    except ImportError:
+        return OSError(message)
+
+
+def check_regular_file(path):
+    """Raises hexdyn.IoError with one line unless `path` names a regular file (a link to one
+    counts): a FIFO, a device, a socket or a directory is refused before anything opens it
+    (opening a FIFO for reading waits for a writer, for ever)."""
+    try:
+        mode = os.stat(path).st_mode
+    except OSError as e:
+        raise _io_error(f"{path}: cannot be read: {e.strerror}") from None
+    if stat.S_ISREG(mode):
+        return
+    kind = ("a FIFO" if stat.S_ISFIFO(mode) else "a directory" if stat.S_ISDIR(mode) else
+            "a device" if stat.S_ISCHR(mode) or stat.S_ISBLK(mode) else
+            "a socket" if stat.S_ISSOCK(mode) else "a special file")
+    raise _io_error(f"{path}: is {kind}, not a regular file")
+
+
 def open_result(path, group="/"):
     """Opens a hexdyn-result/2 file, checks its schema and returns a Result with every
     dataset in memory (the file is closed on return). `group` selects a result stored
-    below the file root (e.g. "/runs/<id>" of a sweep file)."""
+    below the file root (e.g. "/runs/<id>" of a sweep file). Anything but a regular file
+    raises hexdyn.IoError before it is opened (check_regular_file)."""
+    check_regular_file(path)
     with h5py.File(path, "r") as f:
         return read_result_group(f[group], source=str(path) if group == "/" else
                                  f"{path}:{group}")
@@ -535,7 +563,9 @@ def _meta_attributes(group):
 
 def open_sweep(path):
     """Opens a hexdyn-sweep/2 file, checks its schema and version and returns a Sweep
-    with the axes and the scenario table in memory (the file is closed on return)."""
+    with the axes and the scenario table in memory (the file is closed on return).
+    Anything but a regular file raises hexdyn.IoError before it is opened."""
+    check_regular_file(path)
     with h5py.File(path, "r") as f:
         check_filetype_version(f, SWEEP_SCHEMA, READABLE_VERSIONS, str(path))
         meta = _meta_attributes(f)

@@ -151,8 +151,10 @@ def sweep_to_dataframe(sw):
 
 def open_envelope(path, engine="h5netcdf"):
     """The /envelope group of a hexdyn-envelope/2 file with the grid's coordinates
-    (tread_depth, duty_factor, peak_speed, criterion), as an xarray.Dataset."""
+    (tread_depth, duty_factor, peak_speed, criterion), as an xarray.Dataset. Anything but a
+    regular file raises hexdyn.IoError before it is opened."""
     import xarray as xr
+    hr.check_regular_file(path)
     with xr.open_dataset(path, engine=engine) as root, \
             xr.open_dataset(path, engine=engine, group="envelope") as env:
         return env.assign_coords({d: root[d] for d in env.dims if d in root}).load()
