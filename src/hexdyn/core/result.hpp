@@ -100,7 +100,7 @@ struct SampleRef {
 
 /// Every per-sample field of the samples `order` names, in that order, from the results
 /// `parts` (the output grid's refinement computes its samples in batches and gathers them once,
-/// pipeline/pipeline.cpp). A part's sample_kind may be empty (every sample ordinary).
+/// pipeline/grid_refinement.hpp). A part's sample_kind may be empty (every sample ordinary).
 KinematicsResult gather_samples(const std::vector<const KinematicsResult*>& parts,
                                 const std::vector<SampleRef>& order);
 /// The per-sample fields of DynamicsResult (torques, forces, penetrations, solver fields) of

@@ -1,7 +1,6 @@
 #include "hexdyn/pipeline/grid_refinement.hpp"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <optional>
 #include <ostream>
@@ -96,20 +95,15 @@ struct ControlledSeries {
             f2, F[3 * l] * F[3 * l] + F[3 * l + 1] * F[3 * l + 1] + F[3 * l + 2] * F[3 * l + 2]);
       max_force_N[i] = std::sqrt(f2);
     }
-    // Each joint's energy is held to its own value, or to the mean joint's when smaller: a
+    // Each joint's energy is held to the larger of its own value and the mean joint's: a
     // joint that does almost no work is not refined to the rounding of its tiny energy.
     const double total = trapezoid(t_s, total_power_W.data());
     IntegralTarget all{{}, total};
-    std::array<double, kJoints> energy{};
-    for (std::size_t i = 1; i < T; ++i) {
-      const double h = 0.5 * (t_s[i] - t_s[i - 1]);
-      const double* p0 = power.data() + (i - 1) * kJoints;
-      const double* p1 = p0 + kJoints;
-      for (int j = 0; j < kJoints; ++j) energy[j] += h * (std::abs(p0[j]) + std::abs(p1[j]));
-    }
+    const RowMatrix abs_power = power.cwiseAbs();
     for (int j = 0; j < kJoints; ++j) {
       terms.push_back({power.data() + j, kJoints});
-      integrals.push_back({{j}, std::max(energy[j], total / kJoints)});
+      const double energy = trapezoid(t_s, abs_power.data() + j, kJoints);
+      integrals.push_back({{j}, std::max(energy, total / kJoints)});
       all.terms.push_back(j);
     }
     integrals.push_back(std::move(all));
@@ -122,9 +116,11 @@ struct ControlledSeries {
 }  // namespace
 
 KinematicsResult sample_with_contacts(const PreparedScene& prep, const std::vector<double>& t_s,
-                                      ContactSchedule& contacts) {
+                                      ContactSchedule& contacts, StageTimes* times) {
+  std::optional<StageTimer> clock(std::in_place, times, Stage::kKinematics);
   KinematicsResult kin = sample_kinematics(prep.model, prep.plan, t_s);
   if (kin.sample_kind.size() != t_s.size()) kin.sample_kind.assign(t_s.size(), kSampleOrdinary);
+  clock.emplace(times, Stage::kContacts);
   contacts = schedule_contacts(kin, prep.plan.terrain, prep.touchdowns);
   kin.contact_phase = contacts.phase;
   return kin;
@@ -160,10 +156,9 @@ GridAccuracy refine_output_grid(const Scene& scene, const PreparedScene& prep,
              << acc.energy_error << ", peak error " << acc.peak_error << ")\n";
       break;
     }
-    clock.emplace(times, Stage::kKinematics);
+    clock.reset();  // the sampling and the solver time their own stages
     ContactSchedule contacts;
-    KinematicsResult more = sample_with_contacts(prep, a.refine_at_s, contacts);
-    clock.reset();
+    KinematicsResult more = sample_with_contacts(prep, a.refine_at_s, contacts, times);
     DynamicsResult solved =
         solver.solve(more, contacts, times, DynamicsSolver::WarmStart::kSamePhases);
     clock.emplace(times, Stage::kRefinement);

@@ -17,13 +17,13 @@ namespace hexdyn {
 
 /// The kinematics at the instants t_s (increasing) with their contact phases (the schedule's,
 /// touchdown transients included; `contacts` receives the schedule itself). Every sample is
-/// ordinary (/sample_kind 0).
+/// ordinary (/sample_kind 0). `times` (may be null): the kinematics and contacts stage clocks.
 KinematicsResult sample_with_contacts(const PreparedScene& prep, const std::vector<double>& t_s,
-                                      ContactSchedule& contacts);
+                                      ContactSchedule& contacts, StageTimes* times = nullptr);
 
 /// Refines the samples (kin, dyn) of a run on the grid as built, in place: while the estimated
-/// relative error of the energies (each joint's, held to its own energy or the mean joint's
-/// when smaller, and the total) or of the peaks (each joint's |τ|, the total power, the largest
+/// relative error of the energies (each joint's, held to the larger of its own energy and the
+/// mean joint's, and the total) or of the peaks (each joint's |τ|, the total power, the largest
 /// foot force) exceeds output.tolerance, the intervals that carry it are split, their new
 /// samples solved by `solver` and taken into the run in time order. Only on the adaptive grid
 /// with output.tolerance > 0; otherwise (the uniform grid, tolerance 0) the samples are left as

@@ -111,18 +111,15 @@ RunResult run_prepared_scene(const Scene& scene, const PreparedScene& prep, std:
                              StageTimes* times) {
   const auto start = std::chrono::steady_clock::now();
   RunResult result;
-  std::optional<StageTimer> clock(std::in_place, times, Stage::kKinematics);
   ContactSchedule contacts;
-  result.kin = sample_with_contacts(prep, prep.grid, contacts);
-  result.kin.sample_kind = prep.sample_kind;
-  if (result.kin.sample_kind.size() != prep.grid.size())
-    result.kin.sample_kind.assign(prep.grid.size(), kSampleOrdinary);
-  clock.reset();  // the solver and the refinement time their own stages
+  result.kin = sample_with_contacts(prep, prep.grid, contacts, times);
+  if (prep.sample_kind.size() == prep.grid.size()) result.kin.sample_kind = prep.sample_kind;
+  // The solver, the refinement and the assembly time their own stages.
   DynamicsSolver solver(scene, prep.model);
   result.dyn = solver.solve(result.kin, contacts, times);
   result.grid = refine_output_grid(scene, prep, solver, result.kin, result.dyn, log, times);
   finish_dynamics(prep.model, prep.plan, result.kin, prep.touchdowns, result.dyn, log, times);
-  clock.emplace(times, Stage::kAssembly);
+  const StageTimer clock(times, Stage::kAssembly);
   describe_base_at_root_link(prep.model,
                              result.kin);  // after the dynamics, which use the trunk frame
   result.config_yaml = scene.resolved_yaml;
