@@ -1,16 +1,27 @@
 """hexdyn's errors in Python: each bad input raises the class of the C++ family that the CLI
 reports with the same exit status, with the CLI's message (its line without "hexdyn: error: ");
 ConfigError is a ValueError and IoError an OSError; Result.write refuses what `hexdyn run -o`
-refuses; no input crashes the interpreter or lets another exception through.
+refuses; no input crashes the interpreter or lets another exception through. The readers
+refuse a file whose datasets are off the schema (copies of real files corrupted with h5py)
+with hexdyn.IoError in one line naming the file and the dataset; every function taking a
+path refuses one with a NUL character with ValueError before anything reads the path.
     test_errors.py HEXDYN_BINARY SOURCE_DIR"""
 
 import os
+import pathlib
+import shutil
 import signal
 import socket
+import subprocess
 import tempfile
+
+import h5py
+import numpy as np
 
 import hexdyn
 from common import args, cli_error
+from hexdyn import results as hr
+from hexdyn import xr as hx
 
 HEXDYN, SRC = args()
 PAPER = os.path.join(SRC, "configs/paper.yaml")
@@ -90,4 +101,125 @@ with tempfile.TemporaryDirectory() as d:
     server.close()
     got = raises(hexdyn.IoError, hexdyn.open_result, f"{d}/missing.h5")
     assert got.startswith(f"{d}/missing.h5: cannot be read"), got
+
+
+def cli(*argv):
+    subprocess.run([HEXDYN, *argv], check=True, stderr=subprocess.DEVNULL,
+                   env=dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1",
+                            OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1"))
+
+
+def corrupt(src, dst, path, new):
+    """A copy of the file `src` at `dst` with the dataset `path` replaced by new(its values)."""
+    shutil.copy(src, dst)
+    with h5py.File(dst, "r+") as f:
+        old = f[path][()]
+        del f[path]
+        if new is not None:
+            f[path] = new(old)
+
+
+def shape(path, dataset):
+    with h5py.File(path, "r") as f:
+        return f[dataset].shape
+
+
+ENVELOPE_AXES = ("tread_depth", "duty_factor", "peak_speed", "criteria")
+
+
+def strings(values):
+    return np.array([str(v) for v in np.ravel(values)], dtype=h5py.string_dtype())
+
+
+with tempfile.TemporaryDirectory() as d:
+    # Real files of the current writer, which open, and copies with one dataset off the schema,
+    # which do not: hexdyn.IoError, one line "FILE: dataset PATH is FOUND, expected ...", naming
+    # what was found and what the schema expects (the sizes from the untouched datasets); a
+    # /time cut short names /time as what fixed T.
+    result, sweep, envelope, cases = (f"{d}/{n}.h5" for n in ("r", "s", "e", "c"))
+    cli("run", PAPER, "-o", result)
+    cli("sweep", os.path.join(SRC, "configs/sweeps/smoke.yaml"), "-o", sweep, "--keep-runs")
+    cli("envelope", os.path.join(SRC, "tests/data/envelope_quick.yaml"), "-o", envelope)
+    cli("envelope", os.path.join(SRC, "tests/data/envelope_cases.yaml"), "-o", cases)
+    hexdyn.open_result(result), hexdyn.open_sweep(sweep).run(1)
+    hx.open_envelope(envelope), hx.open_envelope(cases)
+    T, = shape(result, "time")
+    N, = shape(sweep, "scenarios/id")
+    W, B, S, C = (shape(envelope, f"axes/{a}")[0] for a in ENVELOPE_AXES)
+    cells = tuple(shape(cases, f"axes/{a}")[0] for a in ("case",) + ENVELOPE_AXES)
+    # (file, dataset, new values, reader, the dataset named, what else the message says)
+    broken = [
+        (result, "time", strings, hexdyn.open_result, "/time", ["string", "float64"]),
+        (result, "time", lambda v: v[:10], hexdyn.open_result, "/time",
+         ["T = 10 from /time", f"({T}, ", "(10, "]),
+        (result, "time", None, hexdyn.open_result, "/time", ["no dataset"]),
+        (result, "joints/torque", lambda v: v[:, :17], hexdyn.open_result, "/joints/torque",
+         [f"({T}, 17)", f"({T}, 18)"]),
+        (result, "feet/position", lambda v: v[:, :, :2], hexdyn.open_result, "/feet/position",
+         [f"({T}, 6, 2)", f"({T}, 6, 3)"]),
+        (result, "contacts/phase", lambda v: v.astype(np.float64), hexdyn.open_result,
+         "/contacts/phase", [f"float64 ({T}, 6)", f"int8 ({T}, 6)"]),
+        (result, "impacts/leg", lambda v: v.astype(np.float64), hexdyn.open_result, "/impacts/leg",
+         ["is float64", "expected int32"]),
+        (result, "energy/total", lambda v: np.array([v]), hexdyn.open_result, "/energy/total",
+         ["(1,)", "()"]),
+        (sweep, "scenarios/energy", lambda v: v[:N - 3], hexdyn.open_sweep, "/scenarios/energy",
+         [f"({N - 3},)", f"({N},)"]),
+        (sweep, "scenarios/peak_torque", lambda v: v[:, :17], hexdyn.open_sweep,
+         "/scenarios/peak_torque", [f"({N}, 17)", f"({N}, 18)"]),
+        (sweep, "scenarios/status", lambda v: v.astype(np.float64), hexdyn.open_sweep,
+         "/scenarios/status", ["float64", "int8"]),
+        (sweep, "axes/0/labels", lambda v: v[:1], hexdyn.open_sweep, "/axes/0/labels", ["(1,)"]),
+        (sweep, "runs/000001/time", lambda v: v[:10], lambda p: hexdyn.open_sweep(p).run(1),
+         "/time", [":/runs/000001: ", "T = 10 from /time"]),
+        (envelope, "envelope/riser_max", lambda v: v.reshape(-1), hx.open_envelope,
+         "/envelope/riser_max", [f"({W * B * S * C},)", f"({W}, {B}, {S}, {C})"]),
+        (envelope, "envelope/limit", strings, hx.open_envelope,  # flattened, as in version 1
+         "/envelope/limit", [f"string ({W * B * S * C},)", f"string ({W}, {B}, {S}, {C})"]),
+        (envelope, "envelope/posture_height", lambda v: v[..., None], hx.open_envelope,
+         "/envelope/posture_height", [f"({W}, {B}, {S})"]),
+        (envelope, "probes/passed", lambda v: v.astype(np.int32), hx.open_envelope,
+         "/probes/passed", ["int32", "int8"]),
+        (cases, "envelope/riser_fail", lambda v: v[0], hx.open_envelope, "/envelope/riser_fail",
+         [str(cells[1:]), str(cells)]),
+    ]
+    for k, (src, dataset, new, reader, named, says) in enumerate(broken):
+        bad = f"{d}/bad{k}.h5"
+        corrupt(src, bad, dataset, new)
+        got = raises(hexdyn.IoError, reader, bad)
+        assert "\n" not in got and got.startswith(f"{bad}:"), (dataset, got)
+        assert any(f"{w} {named}{c}" in got for w, c in (("dataset", " "), ("dataset", ","),
+                                                          ("from", ")"))), (dataset, got)
+        assert all(w in got for w in says), (dataset, says, got)
+    # Not HDF5, or cut short: one line, hexdyn.IoError.
+    with open(f"{d}/text.h5", "w") as f:
+        f.write("not HDF5\n")
+    shutil.copy(result, f"{d}/short.h5")
+    os.truncate(f"{d}/short.h5", os.path.getsize(result) // 2)
+    for bad in (f"{d}/text.h5", f"{d}/short.h5"):
+        for reader in (hexdyn.open_result, hexdyn.open_sweep, hx.open_envelope):
+            got = raises(hexdyn.IoError, reader, bad)
+            assert got.startswith(f"{bad}: ") and "\n" not in got, got
+
+    # A NUL in a path: ValueError in one line from every function taking a path, before the
+    # C++ side or the OS (which stop at the NUL: "paper.yaml\0junk" ran paper.yaml).
+    r = hexdyn.run(pathlib.Path(PAPER))
+    assert hexdyn.validate(pathlib.Path(PAPER))["kind"] == "scene"
+
+    class Named:  # an os.PathLike
+        def __init__(self, p):
+            self.p = p
+
+        def __fspath__(self):
+            return self.p
+
+    calls = [hexdyn.run, hexdyn.validate, r.write, hexdyn.open_result, hexdyn.open_sweep,
+             hx.open_envelope, hr.check_regular_file, hr.open_h5, hr.read_schema_text,
+             lambda p: hr.load_schema((p,))]
+    for target in (f"{PAPER}\0junk", f"{result}\0", os.fsencode(result) + b"\0x",
+                   Named(f"{d}/w.h5\0junk"), f"{d}/w.h5\0junk"):
+        for call in calls:
+            got = raises(ValueError, call, target)
+            assert "NUL" in got and "\n" not in got, (call, got)
+    assert not os.path.exists(f"{d}/w.h5")
 print("python errors: ok")

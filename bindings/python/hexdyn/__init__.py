@@ -11,14 +11,17 @@
 
 Errors are hexdyn.Error and its family (ConfigError, a ValueError; IoError, an OSError;
 ReachError, PlanningError, SolverError; InternalError), each with the one-line message
-`hexdyn` prints after "hexdyn: error: ". run() releases the GIL while the scene computes:
-threads run scenes in parallel.
+`hexdyn` prints after "hexdyn: error: ". A path with a NUL character raises ValueError (the
+C++ side would stop at the NUL) in every function that takes a path; the readers raise
+hexdyn.IoError for a file whose datasets are off the schema. run() releases the GIL while
+the scene computes: threads run scenes in parallel.
 """
 
 import json
 from collections.abc import Mapping
 
 from ._version import __git_commit__, __version__
+from .results import checked_path as _path
 from .results import open_result, open_sweep
 
 _compiled = None
@@ -72,11 +75,6 @@ def _overrides(set):
             raise TypeError(f"set: key {key!r} is not a string")
         out.append(f"{key}={_value_text(value)}")
     return out
-
-
-def _path(scene):
-    import os
-    return os.fspath(scene)
 
 
 class Result(Mapping):

@@ -32,6 +32,18 @@ import h5py
 import numpy as np
 import yaml
 
+
+def checked_path(path):
+    """os.fspath(path) (a str or bytes path; TypeError for anything else), after refusing a
+    path with a NUL character with a ValueError in one line: the C++ side and the operating
+    system stop at the first NUL, so "paper.yaml\\0junk" would name paper.yaml. Every function of
+    the package that takes a path calls this first."""
+    text = os.fspath(path)
+    if ("\0" if isinstance(text, str) else b"\0") in text:
+        raise ValueError(f"path {text!r} contains a NUL character")
+    return text
+
+
 # ---------------------------------------------------------------------------- the schema
 # The layout is declared once, in the C++ header src/hexdyn/io/schema.hpp; this module
 # parses that header at import. The header is looked for, in this order, at
@@ -165,6 +177,7 @@ _SCHEMA_PART = re.compile(r'^#include "hexdyn/io/(schema_\w+\.hpp)".*$', re.M)
 def read_schema_text(path):
     """The text of the schema header at `path` with the parts it includes at its end
     (`#include "hexdyn/io/schema_*.hpp"`, read from the same folder) put in place."""
+    path = checked_path(path)
     with open(path, encoding="utf-8") as f:
         text = f.read()
 
@@ -177,7 +190,7 @@ def read_schema_text(path):
 def load_schema(candidates=SCHEMA_HEADER_CANDIDATES):
     """Parses the first schema header found among `candidates`; (path, declarations)."""
     for path in candidates:
-        if os.path.isfile(path):
+        if os.path.isfile(checked_path(path)):
             return os.path.abspath(path), parse_schema_header(read_schema_text(path))
     raise ImportError("hexdyn.results: cannot find the schema header src/hexdyn/io/schema.hpp "
                       f"(looked at {', '.join(candidates)}); set HEXDYN_SCHEMA_HPP")
@@ -215,6 +228,50 @@ FLAGS = {f.path: f.meanings for f in SCHEMA.values() if isinstance(f, FlagSpec)}
 
 # Versions this reader opens: the current one, and 1 (mapped on reading, V1_RENAMED).
 READABLE_VERSIONS = (1, RESULT_SCHEMA_VERSION)
+ENVELOPE_SCHEMA = SCHEMA["kEnvelopeSchema"]
+ENVELOPE_SCHEMA_VERSION = SCHEMA["kEnvelopeSchemaVersion"]
+# Envelope files of version 1 differ only in /envelope/limit and /envelope/message, stored
+# flattened (W·B·S·C strings).
+READABLE_ENVELOPE_VERSIONS = (1, ENVELOPE_SCHEMA_VERSION)
+
+
+def _layout(*declarations):
+    """{path: [DatasetSpec, ...]} in declaration order, for the checks at open: a path declared
+    twice with different element types (an axis of numbers or of words) accepts either."""
+    out = {}
+    for decls in declarations:
+        for d in decls:
+            alternatives = out.setdefault(d.path, [])
+            if all(a.element != d.element for a in alternatives):
+                alternatives.append(d)
+    return out
+
+
+# What each file kind holds, as checked at open (check_result_datasets, check_sweep_file,
+# check_envelope_file), and which of it every file has. The declarations that fix a size
+# come first: /time (T), /scenarios/id (N), the envelope's axes (W, B, S, C; D, K).
+RESULT_LAYOUT = _layout([SCHEMA["kTime"]], SCHEMA["kModelDatasets"], SCHEMA["kUrdfRobotDatasets"],
+                        SCHEMA["kKinematicDatasets"], SCHEMA["kDynamicsDatasets"],
+                        SCHEMA["kResultCoordinates"], SCHEMA["kResultIndexCoordinates"])
+RESULT_REQUIRED = {d.path for d in (*SCHEMA["kModelDatasets"], *SCHEMA["kKinematicDatasets"])}
+RESULT_V1_REQUIRED = {SCHEMA["kTime"].path}
+SWEEP_TABLE_LAYOUT = _layout([SCHEMA["kScenarioId"]], SCHEMA["kScenarioDatasets"])
+SWEEP_TABLE_REQUIRED = {SCHEMA[k].path for k in ("kScenarioId", "kScenarioAxisIndex",
+                                                 "kScenarioStatus")}
+SWEEP_AXIS_COLUMN_LAYOUT = _layout([SCHEMA["kScenarioAxisNumbers"], SCHEMA["kScenarioAxisWords"]])
+SWEEP_AXIS_LAYOUT = _layout([SCHEMA[k] for k in ("kAxisKey", "kAxisNumbers", "kAxisWords",
+                                                 "kAxisLabels", "kAxisCaseKeys",
+                                                 "kAxisCaseValues")])
+SWEEP_AXIS_REQUIRED = {SCHEMA[k].path for k in ("kAxisKey", "kAxisNumbers", "kAxisLabels")}
+SWEEP_ROOT_LAYOUT = _layout([SCHEMA["kSweepJointNames"]], SCHEMA["kSweepCoordinates"])
+ENVELOPE_LAYOUT = _layout(SCHEMA["kEnvelopeDatasets"], SCHEMA["kEnvelopeCoordinates"])
+# With cases: the case axes first, then the grid with its leading dimension D.
+_ENVELOPE_CASES = _layout(SCHEMA["kEnvelopeCaseDatasets"])
+ENVELOPE_CASES_LAYOUT = {**{p: s for p, s in _ENVELOPE_CASES.items() if p not in ENVELOPE_LAYOUT},
+                         **{p: _ENVELOPE_CASES.get(p, s) for p, s in ENVELOPE_LAYOUT.items()}}
+ENVELOPE_REQUIRED = {d.path for d in SCHEMA["kEnvelopeDatasets"]}
+ENVELOPE_V1_FLATTENED = (SCHEMA["kEnvelopeLimit"].path, SCHEMA["kEnvelopeMessage"].path)
+
 # hexdyn-result/1 paths renamed in version 2 (version 1 -> 2); /impacts/leg counted from 1.
 V1_RENAMED = {"/power/joint": "/power/per_joint", "/energy/joint": "/energy/per_joint"}
 
@@ -347,30 +404,38 @@ def _read_dataset(ds):
 
 def read_result_group(group, source="result"):
     """Reads a result laid out under an open h5py File or Group (e.g. a sweep's
-    /runs/<id>) after checking its schema. Returns a Result."""
+    /runs/<id>) after checking its schema and every dataset's element type and shape
+    (check_result_datasets). Returns a Result."""
     version = check_filetype_version(group, RESULT_SCHEMA, READABLE_VERSIONS, source)
-    data, units, shapes = {}, {}, {}
-    base = group.name.rstrip("/")
+    datasets = {}
 
     def visit(name, obj):
-        if not isinstance(obj, h5py.Dataset):
-            return
-        path = obj.name[len(base):] if base else obj.name
-        if version == 1:
-            path = V1_RENAMED.get(path, path)
-        data[path] = _read_dataset(obj)
+        if isinstance(obj, h5py.Dataset):
+            path = "/" + name
+            datasets[V1_RENAMED.get(path, path) if version == 1 else path] = obj
+
+    group.visititems(visit)
+    check_result_datasets(datasets, version, source)
+    data, units, shapes = {}, {}, {}
+    for path, obj in datasets.items():
+        data[path] = _read_checked(obj, source)
         if version == 1 and path == "/impacts/leg":
             data[path] = data[path] - 1  # 1-based in version 1
         shapes[path] = tuple(obj.shape)
         if "units" in obj.attrs:
             units[path] = _text(obj.attrs["units"])
-
-    group.visititems(visit)
     return Result(source, data, units, shapes, _meta_attributes(group))
 
 
+def _one_line(text):
+    """`text` on one line, as hexdyn's messages are (core/errors.hpp one_line)."""
+    return str(text).replace("\n", "\\n").replace("\r", "\\r")
+
+
 def _io_error(message):
-    """hexdyn.IoError (an OSError) when the compiled part is there, else OSError."""
+    """hexdyn.IoError (an OSError) when the compiled part is there, else OSError; the
+    message on one line."""
+    message = _one_line(message)
     try:
         from . import _hexdyn
         return _hexdyn.IoError(message)
@@ -381,28 +446,193 @@ def _io_error(message):
 def check_regular_file(path):
     """Raises hexdyn.IoError with one line unless `path` names a regular file (a link to one
     counts): a FIFO, a device, a socket or a directory is refused before anything opens it
-    (opening a FIFO for reading waits for a writer, for ever)."""
+    (opening a FIFO for reading waits for a writer, for ever). ValueError for a path with a
+    NUL character (checked_path)."""
+    path = checked_path(path)
     try:
         mode = os.stat(path).st_mode
     except OSError as e:
-        raise _io_error(f"{path}: cannot be read: {e.strerror}") from None
+        raise _io_error(f"{os.fsdecode(path)}: cannot be read: {e.strerror}") from None
     if stat.S_ISREG(mode):
         return
     kind = ("a FIFO" if stat.S_ISFIFO(mode) else "a directory" if stat.S_ISDIR(mode) else
             "a device" if stat.S_ISCHR(mode) or stat.S_ISBLK(mode) else
             "a socket" if stat.S_ISSOCK(mode) else "a special file")
-    raise _io_error(f"{path}: is {kind}, not a regular file")
+    raise _io_error(f"{os.fsdecode(path)}: is {kind}, not a regular file")
+
+
+def open_h5(path):
+    """h5py.File(path, "r") of a regular file (check_regular_file); a file HDF5 cannot open
+    (not HDF5, truncated, damaged) raises hexdyn.IoError with one line naming it."""
+    path = checked_path(path)
+    check_regular_file(path)
+    try:
+        return h5py.File(path, "r")
+    except OSError as e:
+        raise _io_error(f"{os.fsdecode(path)}: cannot be read as HDF5: "
+                        f"{str(e).strip().splitlines()[0] if str(e).strip() else type(e).__name__}"
+                        ) from None
+
+
+def _read_checked(ds, source):
+    """_read_dataset, with a failed read (a damaged file) as hexdyn.IoError naming the
+    dataset."""
+    try:
+        return _read_dataset(ds)
+    except (OSError, UnicodeDecodeError) as e:
+        raise _io_error(f"{source}: dataset {ds.name} cannot be read: "
+                        f"{str(e).strip().splitlines()[0] if str(e).strip() else type(e).__name__}"
+                        ) from None
+
+
+# ---------------------------------------------------------------------------- checks at open
+# Every dataset the schema declares is checked against its declaration when a file is
+# opened, from h5py's metadata alone (dtype, shape; no data is read): its element type and
+# its shape, each size symbol ("T", "N", "W", ...) fixed by the first dataset that has it
+# (/time for T, /scenarios/id for N, the axes of an envelope). A dataset declared for every
+# file must be there; others may be absent. A mismatch raises hexdyn.IoError with one line
+# naming the file, the dataset, what was found and what was expected.
+
+def _element_of(dtype):
+    """The schema's element name of an h5py dtype ("float64", "int8", "string", ...)."""
+    if h5py.check_string_dtype(dtype) is not None:
+        return "string"
+    kinds = {"f": "float", "i": "int", "u": "uint"}
+    if dtype.kind in kinds and dtype.fields is None:
+        return f"{kinds[dtype.kind]}{8 * dtype.itemsize}"
+    return str(dtype)
+
+
+def _shape_text(shape):
+    if shape is None:
+        return "with no dataspace"
+    return "(" + ", ".join(map(str, shape)) + ("," if len(shape) == 1 else "") + ")"
+
+
+def _check_dataset(source, path, ds, specs, sizes):
+    """`ds` (an h5py.Dataset at `path`) against its declarations `specs` (alternatives of
+    element type, one shape); `sizes` {symbol: (size, dataset it came from)} is completed with
+    the symbols this dataset fixes first."""
+    elements = [s.element for s in specs]
+    shape = specs[0].shape
+    found_element = _element_of(ds.dtype)
+    found = None if ds.shape is None else tuple(ds.shape)
+    expected = tuple(d if isinstance(d, int) else sizes.get(d, (None,))[0] for d in shape)
+    if (found_element not in elements or found is None or len(found) != len(shape)
+            or any(e is not None and e != n for e, n in zip(expected, found))):
+        want = tuple(d if e is None else e for d, e in zip(shape, expected))
+        whence = [f"{d} = {sizes[d][0]} from {sizes[d][1]}" for d in shape
+                  if isinstance(d, str) and d in sizes]
+        raise _io_error(f"{source}: dataset {path} is {found_element} {_shape_text(found)}, "
+                        f"expected {' or '.join(elements)} {_shape_text(want)}"
+                        + (f" ({', '.join(whence)})" if whence else ""))
+    for d, n in zip(shape, found):
+        if isinstance(d, str) and d not in sizes:
+            sizes[d] = (n, path)
+
+
+def _check_layout(source, datasets, layout, required, sizes, kind):
+    """Each dataset of `layout` ({path: [DatasetSpec]}) present in `datasets` ({path:
+    h5py.Dataset}) checked, in the layout's order; one of `required` missing raises."""
+    for path, specs in layout.items():
+        if path in datasets:
+            _check_dataset(source, path, datasets[path], specs, sizes)
+        elif path in required:
+            raise _io_error(f"{source}: no dataset {path}, which every {kind} file has")
+
+
+def _datasets_in(group, prefix):
+    """{prefix/name: h5py.Dataset} of the datasets directly in `group`."""
+    return {f"{prefix}/{name}": obj for name, obj in group.items()
+            if isinstance(obj, h5py.Dataset)}
+
+
+def check_result_datasets(datasets, version, source):
+    """Checks a result's datasets ({path: h5py.Dataset}, paths of version 2) against the
+    schema: element type, and shape with T = len(/time) and the declared column counts (n
+    touchdowns, m messages, ... as their first dataset has them). hexdyn.IoError in one line
+    on a mismatch or a missing dataset of every file (version 1: /time only)."""
+    _check_layout(source, datasets, RESULT_LAYOUT,
+                  RESULT_REQUIRED if version >= 2 else RESULT_V1_REQUIRED, {}, RESULT_SCHEMA)
+
+
+def check_sweep_file(f, source):
+    """Checks the table and the axes of an open sweep file against the schema: every
+    /scenarios column has N rows (N = len(/scenarios/id)) and its declared element type and
+    columns, /scenarios/axis_index (N, A) with A the groups of /axes, each axis's values and
+    labels one length V, and N the product of those lengths. hexdyn.IoError in one line on a
+    mismatch. Kept runs (/runs/<id>) are checked when opened (Sweep.run)."""
+    for group in ("scenarios", "axes"):
+        if not isinstance(f.get(group), h5py.Group):
+            raise _io_error(f"{source}: no group /{group}, which every {SWEEP_SCHEMA} file has")
+    axes = f["axes"]
+    sizes = {"A": (len(axes), "/axes")}
+    table = _datasets_in(f["scenarios"], SCENARIOS_GROUP)
+    _check_layout(source, table, SWEEP_TABLE_LAYOUT, SWEEP_TABLE_REQUIRED, sizes, SWEEP_SCHEMA)
+    n = sizes["N"][0]
+    lengths = []
+    for i in range(len(axes)):
+        if not isinstance(axes.get(str(i)), h5py.Group):
+            raise _io_error(f"{source}: no group /axes/{i} (/axes has {len(axes)} members)")
+        axis_sizes = dict(sizes)
+        layout = {p.replace("{i}", str(i)): s for p, s in SWEEP_AXIS_LAYOUT.items()}
+        _check_layout(source, _datasets_in(axes[str(i)], f"/axes/{i}"), layout,
+                      {p.replace("{i}", str(i)) for p in SWEEP_AXIS_REQUIRED}, axis_sizes,
+                      SWEEP_SCHEMA)
+        lengths.append(axis_sizes["V"][0])
+        column = {p.replace("{i}", str(i)): s for p, s in SWEEP_AXIS_COLUMN_LAYOUT.items()}
+        _check_layout(source, table, column, set(), sizes, SWEEP_SCHEMA)
+    declared = set(SWEEP_TABLE_LAYOUT) | {f"{SCENARIOS_GROUP}/axis_{i}" for i in range(len(axes))}
+    for path, ds in table.items():  # the columns of /scenarios the schema does not name
+        if path not in declared and (ds.shape is None or len(ds.shape) == 0 or ds.shape[0] != n):
+            raise _io_error(f"{source}: dataset {path} is {_element_of(ds.dtype)} "
+                            f"{_shape_text(None if ds.shape is None else tuple(ds.shape))}, "
+                            f"expected one row per scenario (N = {n} from /scenarios/id)")
+    root = {p: f[p] for p in SWEEP_ROOT_LAYOUT if isinstance(f.get(p), h5py.Dataset)}
+    _check_layout(source, root, SWEEP_ROOT_LAYOUT, set(), sizes, SWEEP_SCHEMA)
+    if int(np.prod(lengths)) != n:
+        raise _io_error(f"{source}: dataset /scenarios/id has {n} rows, expected "
+                        f"{int(np.prod(lengths))}, the product of the axis lengths {lengths}")
+
+
+def check_envelope_file(f, source):
+    """Checks an open envelope file's schema and version and every dataset against the
+    schema: the grids (W, B, S, C) after the axes /axes/tread_depth, duty_factor, peak_speed
+    and criteria, (D, W, B, S, C) with cases (D = len(/axes/case)), the posture grids (W, B,
+    S), the probes one length P; version 1's flattened /envelope/limit and message W·B·S·C.
+    hexdyn.IoError in one line on a mismatch; ValueError for another schema (as
+    check_filetype_version)."""
+    version = check_filetype_version(f, ENVELOPE_SCHEMA, READABLE_ENVELOPE_VERSIONS, source)
+    datasets = {}
+    f.visititems(lambda name, obj: datasets.__setitem__("/" + name, obj)
+                 if isinstance(obj, h5py.Dataset) else None)
+    cases = SCHEMA["kEnvelopeCaseLabels"].path in datasets
+    layout = ENVELOPE_CASES_LAYOUT if cases else ENVELOPE_LAYOUT
+    sizes = {}
+    if version == 1:
+        axes = {p: layout[p] for p in (SCHEMA[k].path for k in (
+            "kEnvelopeTreadDepth", "kEnvelopeDutyFactor", "kEnvelopePeakSpeed",
+            "kEnvelopeCriteria"))}
+        _check_layout(source, datasets, axes, set(axes), sizes, ENVELOPE_SCHEMA)
+        sizes["G"] = (int(np.prod([sizes[d][0] for d in "WBSC"])), "W·B·S·C")
+        layout = dict(layout)
+        for p in ENVELOPE_V1_FLATTENED:
+            d = layout[p][0]
+            layout[p] = [DatasetSpec(d.name, d.path, d.units, ("G",), d.element)]
+    _check_layout(source, datasets, layout, ENVELOPE_REQUIRED, sizes, ENVELOPE_SCHEMA)
 
 
 def open_result(path, group="/"):
-    """Opens a hexdyn-result/2 file, checks its schema and returns a Result with every
-    dataset in memory (the file is closed on return). `group` selects a result stored
-    below the file root (e.g. "/runs/<id>" of a sweep file). Anything but a regular file
-    raises hexdyn.IoError before it is opened (check_regular_file)."""
-    check_regular_file(path)
-    with h5py.File(path, "r") as f:
-        return read_result_group(f[group], source=str(path) if group == "/" else
-                                 f"{path}:{group}")
+    """Opens a hexdyn-result/2 file, checks its schema and every dataset's element type and
+    shape (check_result_datasets) and returns a Result with every dataset in memory (the file
+    is closed on return). `group` selects a result stored below the file root (e.g.
+    "/runs/<id>" of a sweep file). Anything but a regular file raises hexdyn.IoError before it
+    is opened (check_regular_file), as does a file HDF5 cannot read or a dataset off the
+    schema; a path with a NUL character raises ValueError."""
+    path = checked_path(path)
+    name = os.fsdecode(path)
+    with open_h5(path) as f:
+        return read_result_group(f[group], source=name if group == "/" else f"{name}:{group}")
 
 
 # Status names by code (/scenarios/status), as declared in schema.hpp.
@@ -562,39 +792,41 @@ def _meta_attributes(group):
 
 
 def open_sweep(path):
-    """Opens a hexdyn-sweep/2 file, checks its schema and version and returns a Sweep
-    with the axes and the scenario table in memory (the file is closed on return).
-    Anything but a regular file raises hexdyn.IoError before it is opened."""
-    check_regular_file(path)
-    with h5py.File(path, "r") as f:
-        check_filetype_version(f, SWEEP_SCHEMA, READABLE_VERSIONS, str(path))
+    """Opens a hexdyn-sweep/2 file, checks its schema and version and its table and axes
+    against the schema (check_sweep_file) and returns a Sweep with the axes and the scenario
+    table in memory (the file is closed on return). Anything but a regular file raises
+    hexdyn.IoError before it is opened, as does a file HDF5 cannot read or a dataset off the
+    schema; a path with a NUL character raises ValueError."""
+    path = checked_path(path)
+    source = os.fsdecode(path)
+    with open_h5(path) as f:
+        check_filetype_version(f, SWEEP_SCHEMA, READABLE_VERSIONS, source)
+        check_sweep_file(f, source)
         meta = _meta_attributes(f)
         axes = []
         for i in range(len(f["axes"])):
             g = f["axes"][str(i)]
-            values = _read_dataset(g["values"])
+            values = _read_checked(g["values"], source)
             if not isinstance(values, list):
                 values = np.asarray(values, dtype=float)
             cases = None
             if "case_keys" in g:  # a cases axis: each key's value per case
-                keys = _read_dataset(g["case_keys"])
-                table = np.array(_read_dataset(g["case_values"]), dtype=object).reshape(
+                keys = _read_checked(g["case_keys"], source)
+                table = np.array(_read_checked(g["case_values"], source), dtype=object).reshape(
                     len(values), len(keys))
                 cases = {k: _case_column([str(t) for t in table[:, n]])
                          for n, k in enumerate(keys)}
-            axes.append(SweepAxis(_read_dataset(g["key"]), values, _read_dataset(g["labels"]),
-                                  cases))
+            axes.append(SweepAxis(_read_checked(g["key"], source), values,
+                                  _read_checked(g["labels"], source), cases))
         table, units = {}, {}
         for name, ds in f["scenarios"].items():
-            value = _read_dataset(ds)
+            value = _read_checked(ds, source)
             table[name] = value if isinstance(value, list) else np.asarray(value)
             units[name] = _text(ds.attrs.get("units", ""))
-        joint_names = _read_dataset(f["joint_names"]) if "joint_names" in f else list(JOINT_NAMES)
+        joint_names = (_read_checked(f["joint_names"], source) if "joint_names" in f
+                       else list(JOINT_NAMES))
         run_ids = set(f["runs"].keys()) if "runs" in f else set()
-    n = len(table["id"])
-    if int(np.prod([len(a) for a in axes])) != n:
-        raise ValueError(f"{path}: {n} scenarios for axes of lengths {[len(a) for a in axes]}")
-    return Sweep(path, meta, axes, table, units, joint_names, run_ids)
+    return Sweep(source, meta, axes, table, units, joint_names, run_ids)
 
 
 def expected_shape(shape, samples=None, impacts=None, messages=None, **sizes):

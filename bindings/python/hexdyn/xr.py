@@ -19,6 +19,8 @@ xarray and pandas are imported when a function is called (Debian: python3-xarray
 python3-pandas).
 """
 
+import os
+
 import numpy as np
 
 from hexdyn import results as hr
@@ -152,9 +154,13 @@ def sweep_to_dataframe(sw):
 def open_envelope(path, engine="h5netcdf"):
     """The /envelope group of a hexdyn-envelope/2 file with the grid's coordinates
     (tread_depth, duty_factor, peak_speed, criterion), as an xarray.Dataset. Anything but a
-    regular file raises hexdyn.IoError before it is opened."""
+    regular file raises hexdyn.IoError before it is opened, as does a file HDF5 cannot read
+    or a dataset off the schema (hexdyn.results.check_envelope_file, with h5py before xarray
+    opens the file); a path with a NUL character raises ValueError."""
     import xarray as xr
-    hr.check_regular_file(path)
+    path = hr.checked_path(path)
+    with hr.open_h5(path) as f:
+        hr.check_envelope_file(f, os.fsdecode(path))
     with xr.open_dataset(path, engine=engine) as root, \
             xr.open_dataset(path, engine=engine, group="envelope") as env:
         return env.assign_coords({d: root[d] for d in env.dims if d in root}).load()
