@@ -144,10 +144,10 @@ py::dict validate_file(const std::string& path, const std::vector<std::string>& 
       const hexdyn::SweepSpec spec = hexdyn::load_sweep(path);
       kind = "sweep";
       name = spec.name;
-      scenarios = spec.scenario_count();
-      for (std::size_t i = 0; i < scenarios; ++i)
-        if (const auto row = hexdyn::check_scenario(hexdyn::scenario_input(spec, i)))
-          if (out_of_range++ == 0) first = row->message;
+      const hexdyn::SweepScenarioCheck check = hexdyn::check_sweep_scenarios(spec);
+      scenarios = check.scenarios;
+      out_of_range = check.out_of_range;
+      first = check.first;
       return 0;
     });
   }

@@ -184,18 +184,13 @@ int validate_sweep(const Args& args) {
             << ", " << n << " scenario" << (n == 1 ? "" : "s") << " over";
   for (const auto& axis : spec.axes) std::cout << " " << axis.key << " (" << axis.size() << ")";
   std::cout << "\n";
-  std::size_t out_of_range = 0;
-  std::string first;
-  for (std::size_t i = 0; i < n; ++i) {
-    if (const auto row = hexdyn::check_scenario(hexdyn::scenario_input(spec, i))) {
-      if (out_of_range++ == 0) first = row->message;
-    }
-  }
-  if (out_of_range > 0)
+  // Every scenario's scene, as the sweep builds it (sweep/scenario_factory.hpp).
+  const hexdyn::SweepScenarioCheck check = hexdyn::check_sweep_scenarios(spec);
+  if (check.out_of_range > 0)
     std::cout
-        << args.config << ": " << out_of_range << " of " << n
+        << args.config << ": " << check.out_of_range << " of " << n
         << " scenarios have a value out of range and would be rows with status config; first: "
-        << first << "\n";
+        << check.first << "\n";
   return 0;
 }
 

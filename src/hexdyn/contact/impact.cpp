@@ -12,8 +12,12 @@
 #include <sstream>
 
 #include "hexdyn/core/errors.hpp"
+#include "hexdyn/core/run_size.hpp"
 
 namespace hexdyn {
+
+// The output grid's size bound (core/run_size.hpp) counts on no transient lasting longer.
+static_assert(ImpactOptions{}.max_duration_s <= kMaxTransientDuration_s);
 
 double impact_step(double x, double x0, double h0, double x1, double h1) {
   if (x <= x0) return x1 <= x0 && x >= x0 ? h1 : h0;

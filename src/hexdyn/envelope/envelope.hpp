@@ -63,7 +63,21 @@ struct EnvelopeSpec {
   int cell_count() const;
 };
 
-/// Reads and checks an envelope file; the base scene is validated. Throws ConfigError.
+/// Most cells of one envelope (10,000; the paper's has 64): each cell is searched per
+/// criterion, one run per probe, and validated on the base scene when the file is read.
+/// Counted in 64-bit arithmetic before anything is allocated per cell; one list (or the
+/// cases) longer than this is refused before its values are compared.
+inline constexpr std::uint64_t kMaxEnvelopeCells = 10000;
+
+/// Most probes one envelope may plan (1,000,000; the paper's plans at most 6,912): cells ×
+/// criteria × (the riser scan's steps + 1 + the bisection's halvings from riser.step down
+/// to riser.tolerance). Every probe is a run (about 0.1 s for the paper robot) and is kept
+/// for the file's /probes.
+inline constexpr std::uint64_t kMaxEnvelopeProbes = 1000000;
+
+/// Reads and checks an envelope file; the base scene is validated. Throws ConfigError, one
+/// line naming the key, also for more than kMaxEnvelopeCells cells or kMaxEnvelopeProbes
+/// planned probes.
 EnvelopeSpec load_envelope_spec(const std::string& path);
 
 /// One evaluation of a criterion at one riser.
@@ -94,8 +108,15 @@ struct EnvelopeResult {
   double wall_time_s = 0.0;
 };
 
-/// A probe's scene: the base tree with the cell's case keys, tread, duty factor and speed, the
-/// riser and the criterion's lifted limit. Throws ConfigError.
+/// The keys a probe sets on the base tree: the cell's case keys, tread, duty factor and
+/// speed, the riser and the criterion's lifted limit.
+std::vector<Override> probe_overrides(const EnvelopeSpec& spec, int cell, double riser_m,
+                                      EnvelopeCriterion c);
+
+/// A probe's name in messages: "NAME envelope cell 3 (case LABEL) riser 0.05".
+std::string probe_source(const EnvelopeSpec& spec, int cell, double riser_m);
+
+/// A probe's scene: the base tree with probe_overrides. Throws ConfigError.
 Scene envelope_probe_scene(const EnvelopeSpec& spec, int cell, double riser_m, EnvelopeCriterion c);
 
 /// Evaluates one criterion at one riser (never throws for a scene that cannot be

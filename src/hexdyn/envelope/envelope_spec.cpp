@@ -4,7 +4,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -12,6 +14,7 @@
 #include "hexdyn/envelope/envelope.hpp"
 #include "hexdyn/io/config.hpp"
 #include "hexdyn/io/paths.hpp"
+#include "hexdyn/io/scene_tree.hpp"
 #include "hexdyn/io/spec_reader.hpp"
 #include "hexdyn/io/yaml_load.hpp"
 
@@ -38,6 +41,10 @@ class EnvelopeReader : public SpecReader {
                               double hi) const {
     if (!n.IsSequence() || n.size() == 0)
       fail_value(path, n, "a non-empty list of numbers in [" + fmt(lo) + ", " + fmt(hi) + "]");
+    if (n.size() > kMaxEnvelopeCells)  // before the values are compared with each other
+      fail(path, "got " + std::to_string(n.size()) + " values, expected at most " +
+                     std::to_string(kMaxEnvelopeCells) + " (an envelope has at most " +
+                     std::to_string(kMaxEnvelopeCells) + " cells)");
     std::vector<double> v;
     for (std::size_t i = 0; i < n.size(); ++i)
       v.push_back(number(n[i], path + "[" + std::to_string(i) + "]", lo, hi));
@@ -54,6 +61,67 @@ class EnvelopeReader : public SpecReader {
 };
 
 bool given(const YAML::Node& n) { return n.IsDefined() && !n.IsNull(); }
+
+/// x > 0 rounded up to 3 significant digits (for "at least x"), as printed.
+double rounded_up(double x) {
+  const double unit = std::pow(10.0, std::floor(std::log10(x)) - 2.0);
+  return std::stod(EnvelopeReader::fmt(std::ceil(x / unit * (1.0 - 1e-12)) * unit));
+}
+
+/// a × b, or nothing when it overflows 64 bits.
+std::optional<std::uint64_t> times(std::uint64_t a, std::uint64_t b) {
+  std::uint64_t p = 0;
+  if (__builtin_mul_overflow(a, b, &p)) return std::nullopt;
+  return p;
+}
+
+/// The cells (D × W × B × V) and the probes they plan, against kMaxEnvelopeCells and
+/// kMaxEnvelopeProbes, before anything is allocated per cell. Names the list that adds most.
+void check_envelope_size(const EnvelopeReader& r, const EnvelopeSpec& spec) {
+  const std::pair<const char*, std::uint64_t> lists[] = {
+      {"cases", std::max<std::uint64_t>(1, spec.cases.size())},
+      {"tread_depth", spec.tread_depth_m.size()},
+      {"duty_factor", spec.duty_factor.size()},
+      {"peak_speed", spec.peak_speed_mps.size()}};
+  std::optional<std::uint64_t> cells = 1;
+  std::string product;
+  const std::pair<const char*, std::uint64_t>* longest = &lists[0];
+  for (const auto& list : lists) {
+    if (cells) cells = times(*cells, list.second);
+    product += (product.empty() ? "" : " x ") + std::string(list.first) + " " +
+               std::to_string(list.second);
+    if (list.second > longest->second) longest = &list;
+  }
+  if (!cells || *cells > kMaxEnvelopeCells)
+    r.fail(longest->first, "got " + std::to_string(longest->second) + " values, " +
+                               (cells ? std::to_string(*cells) : std::string("more than 2^64")) +
+                               " cells (" + product + "), expected at most " +
+                               std::to_string(kMaxEnvelopeCells) + " cells");
+  // Per cell and criterion: the scan's probes, then the bisection's.
+  const double span = spec.riser_to_m - spec.riser_from_m;
+  const double lanes = static_cast<double>(*cells) * static_cast<double>(spec.criteria.size());
+  auto scan = [&](double step) { return std::ceil(span / step - 1e-9) + 1.0; };
+  auto halvings = [&](double step) { return std::ceil(std::log2(step / spec.tolerance_m)) + 1.0; };
+  auto planned = [&](double step) { return lanes * (scan(step) + halvings(step)); };
+  const double probes = planned(spec.riser_step_m);
+  if (probes <= static_cast<double>(kMaxEnvelopeProbes)) return;
+  const std::string what = " planned probes (" + std::to_string(*cells) + " cells x " +
+                           std::to_string(spec.criteria.size()) + " criteria x (" +
+                           EnvelopeReader::fmt(scan(spec.riser_step_m)) + " scan steps + " +
+                           EnvelopeReader::fmt(halvings(spec.riser_step_m)) +
+                           " halvings)), expected at most " + std::to_string(kMaxEnvelopeProbes);
+  // A coarser riser.step, when one up to the whole span brings it within the limit: the
+  // finest such step of 3 significant digits.
+  for (double n = std::floor(span / spec.riser_step_m); n >= 1.0; n = std::floor(n * 0.999)) {
+    const double step = rounded_up(span / n);
+    if (step > span || planned(step) > static_cast<double>(kMaxEnvelopeProbes)) continue;
+    r.fail("riser.step", "got " + EnvelopeReader::fmt(spec.riser_step_m) + " m, up to " +
+                             EnvelopeReader::fmt(probes) + what + ": a step of at least " +
+                             EnvelopeReader::fmt(step) + " m");
+  }
+  r.fail(longest->first, "got " + std::to_string(longest->second) + " values, up to " +
+                             EnvelopeReader::fmt(probes) + what);
+}
 
 }  // namespace
 
@@ -113,6 +181,10 @@ EnvelopeSpec load_envelope_spec(const std::string& path) {
   // cases: the designs whose envelope is searched, each valid on the base scene.
   if (given(root["cases"])) {
     spec.cases = read_case_list(r, root["cases"], "cases", path);
+    if (spec.cases.size() > kMaxEnvelopeCells)  // before each case is validated
+      r.fail("cases", "got " + std::to_string(spec.cases.size()) + " cases, expected at most " +
+                          std::to_string(kMaxEnvelopeCells) + " (an envelope has at most " +
+                          std::to_string(kMaxEnvelopeCells) + " cells)");
     for (const std::string& key : spec.cases.keys)
       for (const char* own :
            {"terrain.riser_height", "terrain.tread_depth", "gait.duty_factor", "motion.peak_speed"})
@@ -178,32 +250,70 @@ EnvelopeSpec load_envelope_spec(const std::string& path) {
   }
   if (given(root["kinematic_margin"]))
     spec.kinematic_margin_m = r.number(root["kinematic_margin"], "kinematic_margin", 0.0, 0.1);
-  // Every cell's scene at the lowest riser must be valid (speed against ramp, ...).
+  check_envelope_size(r, spec);
+  // Every cell's scene at the lowest riser must be valid (speed against ramp, ...): the
+  // probe's keys set on the base's SceneTree (no YAML per cell), as envelope_probe_scene
+  // sets them on the YAML tree, which it falls back to when a key runs through a non-map.
+  const SceneTree base_tree(tree);
   const int cells = spec.cell_count();
   for (int cell = 0; cell < cells; ++cell)
-    for (EnvelopeCriterion c : spec.criteria)
-      (void)envelope_probe_scene(spec, cell, spec.riser_from_m, c);
+    for (EnvelopeCriterion c : spec.criteria) {
+      SceneTree one = base_tree;
+      bool set = true;
+      for (const Override& o : probe_overrides(spec, cell, spec.riser_from_m, c))
+        set = set && one.set(split_key_path(o.key_path),
+                             SceneTree::convert(parse_yaml_checked(
+                                 o.value, "--set " + o.key_path + "=" + o.value)));
+      if (set)
+        (void)scene_from_tree(one, probe_source(spec, cell, spec.riser_from_m), false);
+      else
+        (void)envelope_probe_scene(spec, cell, spec.riser_from_m, c);
+    }
   return spec;
 }
 
 int EnvelopeSpec::cell_count() const {
-  return static_cast<int>(std::max<std::size_t>(1, cases.size()) * tread_depth_m.size() *
-                          duty_factor.size() * peak_speed_mps.size());
+  // At most kMaxEnvelopeCells once load_envelope_spec has checked it (check_envelope_size).
+  const std::uint64_t n = std::max<std::uint64_t>(1, cases.size()) * tread_depth_m.size() *
+                          duty_factor.size() * peak_speed_mps.size();
+  return static_cast<int>(std::min<std::uint64_t>(n, kMaxEnvelopeCells));
 }
 
-Scene envelope_probe_scene(const EnvelopeSpec& spec, int cell, double riser_m,
-                           EnvelopeCriterion c) {
+namespace {
+
+std::string exact_text(double x) {
+  std::ostringstream s;
+  s.precision(17);
+  s << x;
+  return s.str();
+}
+
+/// The cell's (D, W, B, V) indices, row-major.
+struct CellIndex {
+  std::size_t d, w, b, v;
+};
+
+CellIndex cell_index(const EnvelopeSpec& spec, int cell) {
   const std::size_t V = spec.peak_speed_mps.size(), B = spec.duty_factor.size(),
                     W = spec.tread_depth_m.size();
   const std::size_t n = static_cast<std::size_t>(cell);
-  const std::size_t v = n % V, b = (n / V) % B, w = (n / (V * B)) % W, d = n / (V * B * W);
-  YAML::Node tree = YAML::Load(spec.base_tree_yaml);
-  auto text = [](double x) {
-    std::ostringstream s;
-    s.precision(17);
-    s << x;
-    return s.str();
-  };
+  return {n / (V * B * W), (n / (V * B)) % W, (n / V) % B, n % V};
+}
+
+}  // namespace
+
+std::string probe_source(const EnvelopeSpec& spec, int cell, double riser_m) {
+  const CellIndex i = cell_index(spec, cell);
+  return spec.name + " envelope cell " + std::to_string(cell) +
+         (spec.cases.size() > 0 ? " (case " + spec.cases.labels[i.d] + ")" : std::string()) +
+         " riser " + exact_text(riser_m);
+}
+
+std::vector<Override> probe_overrides(const EnvelopeSpec& spec, int cell, double riser_m,
+                                      EnvelopeCriterion c) {
+  const CellIndex i = cell_index(spec, cell);
+  const std::size_t v = i.v, b = i.b, w = i.w, d = i.d;
+  const auto text = exact_text;
   std::vector<Override> ov;
   if (spec.cases.size() > 0) ov = spec.cases.overrides(d);
   const std::vector<Override> cell_keys = {{"terrain.riser_height", text(riser_m)},
@@ -215,11 +325,14 @@ Scene envelope_probe_scene(const EnvelopeSpec& spec, int cell, double riser_m,
   if (c == EnvelopeCriterion::kFriction) ov.push_back({"allocation.torque_limit", "1e6"});
   if (c == EnvelopeCriterion::kKinematic && spec.kinematic_margin_m >= 0.0)
     ov.push_back({"robot.ik_min_margin", text(spec.kinematic_margin_m)});
-  const std::string source =
-      spec.name + " envelope cell " + std::to_string(cell) +
-      (spec.cases.size() > 0 ? " (case " + spec.cases.labels[d] + ")" : std::string()) + " riser " +
-      text(riser_m);
-  for (const auto& o : ov) apply_override(tree, o, source);
+  return ov;
+}
+
+Scene envelope_probe_scene(const EnvelopeSpec& spec, int cell, double riser_m,
+                           EnvelopeCriterion c) {
+  YAML::Node tree = YAML::Load(spec.base_tree_yaml);
+  const std::string source = probe_source(spec, cell, riser_m);
+  for (const auto& o : probe_overrides(spec, cell, riser_m, c)) apply_override(tree, o, source);
   return scene_from_yaml(tree, source);
 }
 

@@ -11,6 +11,7 @@
 
 #include "hexdyn/core/errors.hpp"
 #include "hexdyn/io/paths.hpp"
+#include "hexdyn/io/scene_tree.hpp"
 #include "hexdyn/io/yaml_load.hpp"
 
 namespace hexdyn {
@@ -113,12 +114,26 @@ CaseList read_case_list(const SpecReader& r, const YAML::Node& cases, const std:
 
 void check_cases_on(const SpecReader& r, const CaseList& cases, const YAML::Node& tree,
                     const std::string& path) {
+  // Each case's keys set on the base's SceneTree, which shares every map they do not change
+  // (no copy of the base per case); the YAML tree when a key runs through a non-map value.
+  const SceneTree base(tree);
   for (std::size_t c = 0; c < cases.size(); ++c) {
     const std::string source = "case " + cases.labels[c];
-    YAML::Node one = YAML::Clone(tree);
     try {
-      for (const Override& ov : cases.overrides(c)) apply_override(one, ov, source);
-      (void)scene_from_yaml(one, source, false);
+      SceneTree one = base;
+      bool set = true;
+      for (const Override& ov : cases.overrides(c)) {
+        const YAML::Node value =
+            parse_yaml_checked(ov.value, "--set " + ov.key_path + "=" + ov.value);
+        set = set && one.set(split_key_path(ov.key_path), SceneTree::convert(value));
+      }
+      if (set) {
+        (void)scene_from_tree(one, source, false);
+      } else {
+        YAML::Node copy = YAML::Clone(tree);
+        for (const Override& ov : cases.overrides(c)) apply_override(copy, ov, source);
+        (void)scene_from_yaml(copy, source, false);
+      }
     } catch (const Error& e) {
       std::string why = e.what();
       if (why.rfind(source + ": ", 0) == 0) why = why.substr(source.size() + 2);

@@ -10,9 +10,12 @@
 #include <set>
 
 #include "hexdyn/core/errors.hpp"
+#include "hexdyn/core/run_size.hpp"
+#include "hexdyn/core/value_bounds.hpp"
 #include "hexdyn/io/inputs.hpp"
 #include "hexdyn/io/plausibility.hpp"
 #include "hexdyn/io/robot_config.hpp"
+#include "hexdyn/io/run_limits.hpp"
 #include "hexdyn/io/scene_key_reader.hpp"
 #include "hexdyn/io/scene_tree.hpp"
 #include "hexdyn/io/yaml_load.hpp"
@@ -26,15 +29,16 @@ using namespace scene_keys;
 BodyParams read_body(Reader& r, const std::string& path, bool has_com_default,
                      const Vec3& com_default) {
   BodyParams b;
-  b.mass_kg = r.number(path + ".mass", positive(1e4));
-  b.inertia_kgm2 = r.vec3(path + ".inertia", positive(1e3));
+  b.mass_kg = r.number(path + ".mass", positive(kMaxBodyMass_kg));
+  b.inertia_kgm2 = r.vec3(path + ".inertia", positive(kMaxPrincipalInertia_kgm2));
   const Vec3& I = b.inertia_kgm2;
   if (I.x() + I.y() < I.z() || I.y() + I.z() < I.x() || I.x() + I.z() < I.y()) {
     r.fail(path + ".inertia",
            "got [" + fmt(I.x()) + ", " + fmt(I.y()) + ", " + fmt(I.z()) +
                "], expected principal moments with each at most the sum of the other two");
   }
-  b.com_m = r.vec3(path + ".com", closed(-10.0, 10.0), has_com_default ? &com_default : nullptr);
+  b.com_m = r.vec3(path + ".com", closed(-kMaxRobotCoordinate_m, kMaxRobotCoordinate_m),
+                   has_com_default ? &com_default : nullptr);
   return b;
 }
 
@@ -52,7 +56,8 @@ double read_urdf_robot_keys(Reader& r, RobotParams& p, LoadedUrdfRobot& loaded) 
   k.forward_axis = r.choice("robot.forward_axis", {"+x", "-x", "+y", "-y"}, &def_axis);
   k.foot_links = r.strings_or_none("robot.foot_links", kLegs);
   if (r.has("robot.foot_offset"))
-    k.foot_offset_m = r.vec3("robot.foot_offset", closed(-10.0, 10.0));
+    k.foot_offset_m =
+        r.vec3("robot.foot_offset", closed(-kMaxRobotCoordinate_m, kMaxRobotCoordinate_m));
   if (r.has("robot.nominal_pose"))
     k.nominal_pose_rad = r.vec3("robot.nominal_pose", closed(-2.0 * M_PI, 2.0 * M_PI));
   k.ik_min_margin_m = p.ik_min_margin_m =
@@ -82,7 +87,7 @@ void read_robot(Reader& r, RobotParams& p, LoadedUrdfRobot& loaded) {
   const char* names[kJointsPerLeg] = {"coxa", "femur", "tibia"};
   for (int j = 0; j < kJointsPerLeg; ++j) {
     const std::string base = std::string("robot.") + names[j];
-    p.link_length_m[j] = r.number(base + ".length", positive(10.0));
+    p.link_length_m[j] = r.number(base + ".length", positive(kMaxRobotCoordinate_m));
     p.joint_offset_m[j] = r.number(base + ".offset", nonnegative(1.0));
     const std::string ref_key = base + ".reference_length";
     if (follow && !r.given(ref_key))
@@ -247,9 +252,10 @@ int read_travel(Reader& r, GaitParams& g, const TerrainParams& t, double stride_
   }
   const double ratio = distance / stride_along_slope;
   const double n = std::max(1.0, std::ceil(ratio - 1e-9));
-  if (n > 100000)
+  if (n > kMaxCycles)
     r.fail("motion.travel", "got " + fmt(distance) + " m, " + fmt(n) +
-                                " cycles of gait.stroke, expected at most 100000 cycles");
+                                " cycles of gait.stroke, expected at most " +
+                                std::to_string(kMaxCycles) + " cycles");
   // Strides that cover D to 1e-9 keep the stroke as given (the paper's 3 treads: 3 cycles).
   if (std::abs(n - ratio) > 1e-9 * n) {
     const double stroke = (distance / n) * cos_slope * g.duty_factor;
@@ -280,26 +286,26 @@ void read_motion(Reader& r, GaitParams& g, const TerrainParams& t, MotionParams&
                                 ", expected one of them (travel sets the number of cycles; "
                                 "motion.cycles: null removes an inherited one)");
   if (by_durations) {
-    m.cycle_durations_s = r.numbers("motion.cycle_durations", 3, 10000, positive(1e4));
+    m.cycle_durations_s = r.numbers("motion.cycle_durations", 3, kMaxCycles, positive(1e4));
     const auto& d = m.cycle_durations_s;
     const double first = d.front(), mid = d[1];
     bool ok = std::abs(d.back() - first) < 1e-9 && first > mid;
     for (std::size_t i = 1; i + 1 < d.size(); ++i) ok = ok && std::abs(d[i] - mid) < 1e-9;
     if (!ok)
       r.fail("motion.cycle_durations",
-             "got " + yaml_inline(YAML::Node(d)) +
+             "got " + yaml_for_message(YAML::Node(d)) +
                  ", expected [ramp-up, cruise..., ramp-down] with equal cruise cycles and equal "
                  "first and last cycles longer than the cruise ones");
     m.cycles = static_cast<int>(d.size());
     m.peak_speed_mps = stride_along_slope / mid;
     m.ramp_duration_s = 2.0 * (first - mid);
     if (m.ramp_duration_s > first)
-      r.fail("motion.cycle_durations", "got " + yaml_inline(YAML::Node(d)) +
+      r.fail("motion.cycle_durations", "got " + yaml_for_message(YAML::Node(d)) +
                                            ", expected a first cycle at most twice the cruise "
                                            "cycle (the speed ramp must end inside it)");
   } else {
     m.cycles = by_travel ? read_travel(r, g, t, stride_along_slope)
-                         : r.integer("motion.cycles", 1, 100000);
+                         : r.integer("motion.cycles", 1, kMaxCycles);
     m.peak_speed_mps = r.number("motion.peak_speed", positive(10.0));
     m.ramp_duration_s = r.number("motion.ramp_duration", positive(1e4));
     const double cruise_time =
@@ -349,7 +355,7 @@ void read_allocation(Reader& r, AllocationParams& a, const LoadedUrdfRobot& urdf
     a.torque_limit_Nm = 0.0;
     for (double e : urdf.effort_limit_Nm) a.torque_limit_Nm = std::max(a.torque_limit_Nm, e);
   } else {
-    a.torque_limit_Nm = r.number("allocation.torque_limit", positive(1e6));
+    a.torque_limit_Nm = r.number("allocation.torque_limit", positive(kMaxJointEffort_Nm));
   }
   a.min_normal_force_N = r.number_or("allocation.min_normal_force", 0.0, nonnegative(1e6));
   // The loosest tolerance at which both back ends still meet the fixed violation threshold
@@ -381,7 +387,7 @@ void read_auto_requests(Reader& r) {
 }
 
 void read_output(Reader& r, OutputParams& o) {
-  o.sample_step_s = r.number("output.sample_step", positive(100.0));
+  o.sample_step_s = r.number("output.sample_step", positive(kMaxSampleStep_s));
   const std::string def_grid = "adaptive";
   o.grid = r.choice("output.grid", {"uniform", "adaptive"}, &def_grid) == "uniform"
                ? OutputGrid::kUniform
@@ -415,6 +421,14 @@ std::string yaml_inline(const YAML::Node& node) {
   YAML::Emitter out;
   out << YAML::Flow << node;
   return out.c_str();
+}
+
+std::string yaml_for_message(const YAML::Node& node) {
+  std::string text = yaml_inline(node);
+  if (text.size() <= kMaxMessageValueChars) return text;
+  const std::size_t whole = text.size();
+  text.resize(kMaxMessageValueChars);
+  return text + "... (" + std::to_string(whole) + " characters)";
 }
 
 std::vector<std::string> split_key_path(const std::string& path) {
@@ -478,6 +492,11 @@ Scene scene_from_tree(const SceneTree& tree, const std::string& source_name, boo
   read_output(r, s.output);
   r.check_unknown();
   check_physical_plausibility(s, source_name);  // timings that no physical motion has
+  // Before anything is planned or allocated: the motion's duration and output samples.
+  check_run_size_limits(s, source_name,
+                        !s.motion.cycle_durations_s.empty() ? "motion.cycle_durations"
+                        : r.given("motion.travel")          ? "motion.travel"
+                                                            : "motion.cycles");
   if (!emit_resolved) return s;
   YAML::Emitter out;
   out << requests_last(r.resolved());

@@ -4,6 +4,7 @@
 /// missing, mistyped, non-finite, unknown or out-of-range value throws ConfigError
 /// with one line "FILE: key.path: got VALUE, expected WHAT". YAML syntax errors name
 /// file, line and column. The key reference is configs/paper.yaml.
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,13 @@ struct Override {
 
 /// A YAML value on one line, as messages show it ("null" when absent).
 std::string yaml_inline(const YAML::Node& node);
+
+/// yaml_inline cut to kMaxMessageValueChars characters for a message, with the length of
+/// the whole ("[1, 2, 3, ... (1234567 characters)]"): a value may be a 1 MiB list.
+std::string yaml_for_message(const YAML::Node& node);
+
+/// Longest value a message quotes [characters].
+inline constexpr std::size_t kMaxMessageValueChars = 200;
 
 /// "a.b.c" → {"a", "b", "c"}; empty keys are kept ("a..b", "a." name empty keys).
 std::vector<std::string> split_key_path(const std::string& path);

@@ -114,7 +114,7 @@ class Reader {
   }
   [[noreturn]] void fail_value(const std::string& path, const YAML::Node& node,
                                const std::string& expected) const {
-    fail(path, "got " + yaml_inline(node) + ", expected " + expected);
+    fail(path, "got " + yaml_for_message(node) + ", expected " + expected);
   }
 
   /// True when the key holds the scalar `word` (then recorded as resolved); the key

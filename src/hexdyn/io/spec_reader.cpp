@@ -17,7 +17,7 @@ void SpecReader::fail(const std::string& path, const std::string& what) const {
 void SpecReader::fail_value(const std::string& path, const YAML::Node& node,
                             const std::string& expected) const {
   if (!node.IsDefined()) fail(path, "missing, expected " + expected);
-  fail(path, "got " + yaml_inline(node) + ", expected " + expected);
+  fail(path, "got " + yaml_for_message(node) + ", expected " + expected);
 }
 
 void SpecReader::check_keys(const YAML::Node& node, const std::string& path,

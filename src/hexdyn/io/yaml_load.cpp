@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -46,7 +47,9 @@ struct Fd {
 };
 
 /// Checks the event stream of one YAML text (no tree is built, aliases are not
-/// expanded, so the check is linear in the text).
+/// expanded, so the check is linear in the text). It counts the nodes and scalar bytes the
+/// text stands for once every alias is expanded (an alias counts as its anchor's whole
+/// node), and stops at the first event past kMaxYamlNodes or kMaxYamlBytes.
 class StructureCheck : public YAML::EventHandler {
  public:
   explicit StructureCheck(std::string source) : source_(std::move(source)) {}
@@ -57,28 +60,43 @@ class StructureCheck : public YAML::EventHandler {
 
   void OnDocumentStart(const YAML::Mark&) override {}
   void OnDocumentEnd() override {}
-  void OnNull(const YAML::Mark& mark, YAML::anchor_t) override { node(mark, "null", Top::kNull); }
-  void OnAlias(const YAML::Mark& mark, YAML::anchor_t) override {
+  void OnNull(const YAML::Mark& mark, YAML::anchor_t anchor) override {
+    count(mark, {1, 0}, anchor);
+    node(mark, "null", Top::kNull);
+  }
+  void OnAlias(const YAML::Mark& mark, YAML::anchor_t anchor) override {
     if (key_expected()) fail_key(mark, "an alias (*name)");
+    if (anchor >= anchors_.size() || anchors_[anchor].nodes == 0)  // its node is still open
+      throw ConfigError(source_ + ":" + std::to_string(mark.line + 1) + ": " + here() +
+                        ": got an alias inside the node it names (a cycle), expected an alias "
+                        "of a complete node");
+    count(mark, anchors_[anchor], 0);
     node(mark, "", Top::kNull);
   }
-  void OnScalar(const YAML::Mark& mark, const std::string&, YAML::anchor_t,
+  void OnScalar(const YAML::Mark& mark, const std::string&, YAML::anchor_t anchor,
                 const std::string& value) override {
     if (top_ == Top::kNone) top_scalar_ = value;
+    count(mark, {1, value.size()}, anchor);
     node(mark, value, Top::kScalar);
   }
-  void OnSequenceStart(const YAML::Mark& mark, const std::string&, YAML::anchor_t,
+  void OnSequenceStart(const YAML::Mark& mark, const std::string&, YAML::anchor_t anchor,
                        YAML::EmitterStyle::value) override {
-    open(mark, false);
+    open(mark, false, anchor);
   }
-  void OnSequenceEnd() override { stack_.pop_back(); }
-  void OnMapStart(const YAML::Mark& mark, const std::string&, YAML::anchor_t,
+  void OnSequenceEnd() override { close(); }
+  void OnMapStart(const YAML::Mark& mark, const std::string&, YAML::anchor_t anchor,
                   YAML::EmitterStyle::value) override {
-    open(mark, true);
+    open(mark, true, anchor);
   }
-  void OnMapEnd() override { stack_.pop_back(); }
+  void OnMapEnd() override { close(); }
 
  private:
+  /// A node's size once every alias in it is expanded.
+  struct Expanded {
+    std::uint64_t nodes = 0;  ///< scalars, nulls, lists and maps (keys included)
+    std::uint64_t bytes = 0;  ///< the text of its scalars
+  };
+
   struct Frame {
     bool is_map = false;
     std::string path;                 ///< dotted path of this container ("" at the top)
@@ -86,6 +104,8 @@ class StructureCheck : public YAML::EventHandler {
     std::string key;                  ///< maps: the key whose value comes next
     std::map<std::string, int> seen;  ///< maps: key → 1-based line of its first use
     std::size_t index = 0;            ///< lists: index of the next item
+    Expanded at_open;                 ///< the document's expanded size when it opened
+    YAML::anchor_t anchor = 0;        ///< its anchor (&name), 0 when none
   };
 
   bool key_expected() const {
@@ -133,8 +153,52 @@ class StructureCheck : public YAML::EventHandler {
     child_path();
   }
 
-  void open(const YAML::Mark& mark, bool is_map) {
+  /// Where the next node goes, for messages: "a.b", "a.list[3]" or "top level".
+  std::string here() const {
+    if (stack_.empty()) return "top level";
+    const Frame& f = stack_.back();
+    std::string p;
+    if (!f.is_map)
+      p = f.path + "[" + std::to_string(f.index) + "]";
+    else if (f.want_key)
+      p = f.path;
+    else
+      p = f.path.empty() ? f.key : f.path + "." + f.key;
+    return p.empty() ? "top level" : p;
+  }
+
+  /// Adds a node of `size` (expanded) to the document's count; records an anchor's size.
+  void count(const YAML::Mark& mark, Expanded size, YAML::anchor_t anchor) {
+    total_.nodes += size.nodes;  // each term is at most the limit: no overflow
+    total_.bytes += size.bytes;
+    if (total_.nodes > kMaxYamlNodes || total_.bytes > kMaxYamlBytes) {
+      const bool by_nodes = total_.nodes > kMaxYamlNodes;
+      throw ConfigError(
+          source_ + ":" + std::to_string(mark.line + 1) + ": " + here() + ": got more than " +
+          (by_nodes ? std::to_string(kMaxYamlNodes) + " YAML nodes"
+                    : std::to_string(kMaxYamlBytes) + " bytes of values") +
+          " once aliases (*name) are expanded, expected at most that many (each alias repeats "
+          "its anchor's whole node)");
+    }
+    if (anchor != 0) {
+      if (anchors_.size() <= anchor) anchors_.resize(anchor + 1);
+      anchors_[anchor] = size;
+    }
+  }
+
+  void close() {
+    const Frame& f = stack_.back();
+    const Expanded size{total_.nodes - f.at_open.nodes, total_.bytes - f.at_open.bytes};
+    if (f.anchor != 0) {
+      if (anchors_.size() <= f.anchor) anchors_.resize(f.anchor + 1);
+      anchors_[f.anchor] = size;
+    }
+    stack_.pop_back();
+  }
+
+  void open(const YAML::Mark& mark, bool is_map, YAML::anchor_t anchor) {
     if (key_expected()) fail_key(mark, is_map ? "a map" : "a list");
+    count(mark, {1, 0}, 0);
     if (stack_.empty() && top_ == Top::kNone) top_ = is_map ? Top::kMap : Top::kSequence;
     std::string path = stack_.empty() ? std::string() : child_path();
     if (static_cast<int>(stack_.size()) >= kMaxYamlDepth) {
@@ -150,11 +214,16 @@ class StructureCheck : public YAML::EventHandler {
     Frame f;
     f.is_map = is_map;
     f.path = std::move(path);
+    f.at_open = total_;
+    f.at_open.nodes -= 1;  // the container itself is part of its size
+    f.anchor = anchor;
     stack_.push_back(std::move(f));
   }
 
   std::string source_;
   std::vector<Frame> stack_;
+  Expanded total_;                 ///< the document so far, aliases expanded
+  std::vector<Expanded> anchors_;  ///< by anchor id: its node's size (0 nodes: still open)
   Top top_ = Top::kNone;
   std::string top_scalar_;
 };
@@ -318,6 +387,11 @@ std::string read_text_file(const std::string& path) {
 }
 
 YAML::Node parse_yaml_checked(const std::string& text, const std::string& source_name) {
+  if (text.size() > kMaxConfigBytes)  // a value given outside a file (--set, Python)
+    throw ConfigError(source_name.substr(0, 80) + (source_name.size() > 80 ? "...: " : ": ") +
+                      "got a value of " + std::to_string(text.size()) +
+                      " bytes, expected at most " + std::to_string(kMaxConfigBytes) +
+                      " (1 MiB, the size of a whole configuration file)");
   return parse_checked(text, source_name, nullptr, nullptr);
 }
 

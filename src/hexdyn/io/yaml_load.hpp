@@ -11,10 +11,15 @@
 ///   the last, so a file with duplicates would mean different things to different readers;
 /// - maps and lists nested deeper than kMaxYamlDepth levels;
 /// - keys that are lists, maps or aliases (no hexdyn key is one);
-/// - a second document ("---") in one file.
+/// - a second document ("---") in one file;
+/// - more than kMaxYamlNodes nodes or kMaxYamlBytes bytes of values once aliases are
+///   expanded, and an alias inside the node it names (counted on the event stream, before
+///   any tree is built);
+/// - a `--set` value (parse_yaml_checked) longer than kMaxConfigBytes.
 /// The declarations of read_text_file, parse_yaml_text and load_scene_tree are in
 /// config.hpp; they are implemented here with the checks above.
 #include <cstddef>
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -30,6 +35,17 @@ inline constexpr std::size_t kMaxConfigBytes = std::size_t{1} << 20;
 
 /// Deepest nesting of maps and lists accepted (a scene needs 4: robot.femur.limits[0]).
 inline constexpr int kMaxYamlDepth = 64;
+
+/// Most YAML nodes (scalars, nulls, lists, maps; keys included) one text may stand for once
+/// its aliases are expanded: an alias (*name) repeats its anchor's whole node, so nine
+/// nested lists of ten aliases each (a 400-byte "billion laughs") would stand for 10^9 nodes
+/// and gigabytes once copied. A text without aliases stays far below it (a 1 MiB file holds
+/// at most about 530,000 nodes); the paper scene has about 200.
+inline constexpr std::uint64_t kMaxYamlNodes = 1000000;
+
+/// Most bytes of scalar text one YAML text may stand for once its aliases are expanded
+/// (16 MiB: 16 times the largest file; one 1 MiB value repeated by aliases is refused).
+inline constexpr std::uint64_t kMaxYamlBytes = std::uint64_t{16} << 20;
 
 /// Why `path` cannot be read as a configuration file without opening it, or nothing
 /// when it names a regular file (symbolic links followed): "does not exist", "is a

@@ -16,6 +16,7 @@
 #include <sstream>
 
 #include "hexdyn/core/errors.hpp"
+#include "hexdyn/core/value_bounds.hpp"
 
 namespace hexdyn {
 namespace {
@@ -131,6 +132,15 @@ Placement to_placement(const urdf::Pose& pose) {
             .normalized()
             .toRotationMatrix();
   return x;
+}
+
+/// The largest |coordinate| of a pose's position [m].
+double largest_coordinate(const urdf::Pose& p) {
+  return std::max({std::abs(p.position.x), std::abs(p.position.y), std::abs(p.position.z)});
+}
+
+std::string position_text(const urdf::Pose& p) {
+  return num(p.position.x) + " " + num(p.position.y) + " " + num(p.position.z);
 }
 
 bool finite_pose(const urdf::Pose& p) {
@@ -307,6 +317,13 @@ void Reader::check_links() {
     if (!finite_pose(in.origin)) fail(who + "<inertial><origin> is not finite");
     if (!(in.mass > 0.0))
       fail(who + "mass " + num(in.mass) + " kg, expected > 0 (a massless link has no <inertial>)");
+    if (in.mass > kMaxBodyMass_kg)
+      fail(who + "mass " + num(in.mass) + " kg, expected at most " + num(kMaxBodyMass_kg) +
+           " kg (the bound of a scene's robot.*.mass)");
+    if (largest_coordinate(in.origin) > kMaxRobotCoordinate_m)
+      fail(who + "<inertial><origin xyz=\"" + position_text(in.origin) +
+           "\">, expected coordinates within +-" + num(kMaxRobotCoordinate_m) +
+           " m (the bound of a scene's robot.*.com)");
     Mat3 I;
     I << in.ixx, in.ixy, in.ixz, in.ixy, in.iyy, in.iyz, in.ixz, in.iyz, in.izz;
     if (I.isZero(0.0)) continue;  // a point mass
@@ -314,8 +331,11 @@ void Reader::check_links() {
     const std::string moments =
         "principal moments (" + num(m[0]) + ", " + num(m[1]) + ", " + num(m[2]) + ") kg m2";
     if (!(m[0] > 0.0)) fail(who + "inertia not positive definite: " + moments);
+    if (m[2] > kMaxPrincipalInertia_kgm2)
+      fail(who + "inertia too large: " + moments + ", expected each at most " +
+           num(kMaxPrincipalInertia_kgm2) + " kg m2 (the bound of a scene's robot.*.inertia)");
     // Sorted ascending: the largest must not exceed the sum of the other two.
-    if (m[2] > (m[0] + m[1]) * (1.0 + 1e-9))
+    if (m[2] > (m[0] + m[1]) * (1.0 + kInertiaTriangleTolerance))
       fail(who +
            "inertia breaks the triangle inequality of principal moments (each at most the sum of "
            "the other two): " +
@@ -327,6 +347,10 @@ void Reader::check_joints() {
   for (const auto& [name, j] : model_->joints_) {
     const std::string who = "joint '" + name + "': ";
     if (!finite_pose(j->parent_to_joint_origin_transform)) fail(who + "<origin> is not finite");
+    if (largest_coordinate(j->parent_to_joint_origin_transform) > kMaxRobotCoordinate_m)
+      fail(who + "<origin xyz=\"" + position_text(j->parent_to_joint_origin_transform) +
+           "\">, expected coordinates within +-" + num(kMaxRobotCoordinate_m) +
+           " m (the bound of a scene's robot.*.length and robot.hips)");
     if (j->type != urdf::Joint::FIXED && j->type != urdf::Joint::REVOLUTE &&
         j->type != urdf::Joint::CONTINUOUS)
       fail(who + "type " + type_name(j->type) +
@@ -338,14 +362,21 @@ void Reader::check_joints() {
            ") is not a direction");
     if (j->limits) {
       const urdf::JointLimits& l = *j->limits;
-      if (!std::isfinite(l.effort) || l.effort < 0.0)
-        fail(who + "effort limit " + num(l.effort) + ", expected a finite number >= 0");
-      if (!std::isfinite(l.velocity) || l.velocity < 0.0)
-        fail(who + "velocity limit " + num(l.velocity) + ", expected a finite number >= 0");
+      if (!std::isfinite(l.effort) || l.effort < 0.0 || l.effort > kMaxJointEffort_Nm)
+        fail(who + "effort limit " + num(l.effort) + " N m, expected a number in [0, " +
+             num(kMaxJointEffort_Nm) +
+             "] (0: none; the bound of a scene's allocation.torque_limit)");
+      if (!std::isfinite(l.velocity) || l.velocity < 0.0 || l.velocity > kMaxJointVelocity_radps)
+        fail(who + "velocity limit " + num(l.velocity) + " rad/s, expected a number in [0, " +
+             num(kMaxJointVelocity_radps) + "] (0: none)");
       if (j->type == urdf::Joint::REVOLUTE) {
         if (!std::isfinite(l.lower) || !std::isfinite(l.upper)) fail(who + "limits are not finite");
         if (l.lower > l.upper)
           fail(who + "lower limit " + num(l.lower) + " above upper limit " + num(l.upper));
+        if (l.lower < -kMaxJointAngle_rad || l.upper > kMaxJointAngle_rad)
+          fail(who + "limits [" + num(l.lower) + ", " + num(l.upper) +
+               "] rad, expected limits within [-2 pi, 2 pi] (" + num(-kMaxJointAngle_rad) + ", " +
+               num(kMaxJointAngle_rad) + ")");
       }
     }
   }

@@ -32,8 +32,13 @@
 /// revolute, continuous; a zero axis; lower > upper; negative effort or velocity; mass ≤ 0
 /// in an <inertial>; an inertia that is not positive definite (an all-zero tensor is
 /// accepted as a point mass, e.g. Kraby's end caps) or whose principal moments break the
-/// triangle inequality; a leg count other than six; a chain that is not 3R; a foot that
-/// cannot be found; legs that cannot be mapped.
+/// triangle inequality (relative tolerance kInertiaTriangleTolerance); a leg count other
+/// than six; a chain that is not 3R; a foot that cannot be found; legs that cannot be
+/// mapped. Values are held to the scene's plausibility bounds (core/value_bounds.hpp): a
+/// mass above kMaxBodyMass_kg, a principal moment above kMaxPrincipalInertia_kgm2, a joint
+/// or inertial origin coordinate beyond ±kMaxRobotCoordinate_m, revolute limits outside
+/// ±kMaxJointAngle_rad, an effort above kMaxJointEffort_Nm or a velocity above
+/// kMaxJointVelocity_radps is refused, naming the link or joint and the value.
 #include <optional>
 #include <string>
 #include <vector>

@@ -2,15 +2,41 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <string>
+
+#include "hexdyn/core/errors.hpp"
+#include "hexdyn/core/run_size.hpp"
 
 namespace hexdyn {
+namespace {
+
+std::string fmt(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.4g", x);
+  return buf;
+}
+
+}  // namespace
 
 std::vector<double> build_output_grid(const OutputParams& out, double duration_s,
                                       const std::vector<GridEvent>& events,
                                       std::vector<std::int8_t>* sample_kind) {
+  // The size, bounded before anything is allocated (core/run_size.hpp): the scene reader
+  // bounded it from the keys; the planned events are checked here again.
+  double transients = 0.0;
+  for (const GridEvent& e : events) transients += e.duration_s > 0.0 ? 1.0 : 0.0;
+  const GridSizeBound bound =
+      output_grid_bound(out, duration_s, static_cast<double>(events.size()), 0.0, transients);
+  if (!(bound.total() <= static_cast<double>(kMaxRunSamples)))
+    throw ConfigError(std::string(bound.key()) + ": the output grid of the " + fmt(duration_s) +
+                      " s run would have up to " + fmt(bound.total()) +
+                      " samples, expected at most " + std::to_string(kMaxRunSamples));
   std::vector<double> t;
-  const int n = static_cast<int>(std::floor(duration_s / out.sample_step_s + 1e-9));
-  for (int i = 0; i <= n; ++i) t.push_back(i * out.sample_step_s);
+  t.reserve(static_cast<std::size_t>(bound.total()));
+  const auto n = static_cast<std::int64_t>(std::floor(duration_s / out.sample_step_s + 1e-9));
+  for (std::int64_t i = 0; i <= n; ++i) t.push_back(static_cast<double>(i) * out.sample_step_s);
   t.push_back(duration_s);
   if (out.grid == OutputGrid::kAdaptive) {
     for (const GridEvent& e : events) {

@@ -2,7 +2,9 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <exception>
 #include <optional>
+#include <vector>
 
 #include "hexdyn/core/errors.hpp"
 #include "hexdyn/io/config.hpp"
@@ -103,5 +105,21 @@ std::string ScenarioFactory::yaml(std::size_t index) const {
 }
 
 std::string ScenarioFactory::id(std::size_t index) const { return scenario_id(impl_->spec, index); }
+
+SweepScenarioCheck check_sweep_scenarios(const SweepSpec& spec) {
+  SweepScenarioCheck check;
+  check.scenarios = spec.scenario_count();
+  const ScenarioFactory factory(spec);
+  // Every scenario is read, also one holding a value that failed on the base scene alone:
+  // a cross-key rule (a ramp against the cruise time) may hold with another axis's value.
+  for (std::size_t i = 0; i < check.scenarios; ++i) {
+    try {
+      (void)factory.scene(i, false);
+    } catch (const std::exception& e) {  // as check_scenario: any failure is the row's
+      if (check.out_of_range++ == 0) check.first = e.what();
+    }
+  }
+  return check;
+}
 
 }  // namespace hexdyn

@@ -15,6 +15,7 @@
 #include "hexdyn/core/errors.hpp"
 #include "hexdyn/io/cases.hpp"
 #include "hexdyn/io/paths.hpp"
+#include "hexdyn/io/scene_tree.hpp"
 #include "hexdyn/io/spec_reader.hpp"
 #include "hexdyn/io/yaml_load.hpp"
 
@@ -325,7 +326,9 @@ SweepSpec load_sweep(const std::string& path) {
   for (const SweepAxis& axis : spec.axes)
     if (axis.is_cases()) add_case_inputs(spec.inputs, case_list(axis));
   // Each value once against its key, on the base scene: a value out of range is found
-  // here without looking at any combination of values.
+  // here without looking at any combination of values. The value is set on the base's
+  // SceneTree, which shares every map it does not change (no copy of the base per value).
+  const SceneTree base_tree(tree);
   for (SweepAxis& axis : spec.axes) {
     axis.errors.assign(axis.size(), std::string());
     // A case is its keys together: one that is not valid on the base scene stops the sweep.
@@ -334,10 +337,17 @@ SweepSpec load_sweep(const std::string& path) {
                      "axes[" + std::to_string(&axis - spec.axes.data()) + "].cases");
     for (std::size_t v = 0; !axis.is_cases() && v < axis.size(); ++v) {
       const std::string source = axis.key + "=" + axis.labels[v];
-      YAML::Node one = YAML::Clone(tree);
       try {
-        apply_override(one, {axis.key, axis.values[v]}, source);
-        (void)scene_from_yaml(one, source, false);
+        SceneTree one = base_tree;
+        const YAML::Node value =
+            parse_yaml_checked(axis.values[v], "--set " + axis.key + "=" + axis.values[v]);
+        if (one.set(split_key_path(axis.key), SceneTree::convert(value))) {
+          (void)scene_from_tree(one, source, false);
+        } else {  // through a value that is not a map: the YAML tree's own rules
+          YAML::Node copy = YAML::Clone(tree);
+          apply_override(copy, {axis.key, axis.values[v]}, source);
+          (void)scene_from_yaml(copy, source, false);
+        }
       } catch (const Error& e) {
         axis.errors[v] = e.what();
       }

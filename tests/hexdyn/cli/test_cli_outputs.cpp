@@ -142,9 +142,16 @@ TEST_CASE("cli outputs: a run of more than 200000 samples needs --allow-large",
           "[cli][outputs][size]") {
   Scratch s;
   write_file(s.work / "cfg.yaml", read_file(kPaperConfig));
+  // 474,010 samples: within hexdyn's hard limit (core/run_size.hpp), beyond the guard.
   check_refused(s, "impact samples",
-                {"run", "cfg.yaml", "-o", "out.h5", "--set", "output.impact_samples=100000"},
-                {" output samples", "1.6 GB", "--allow-large"});
+                {"run", "cfg.yaml", "-o", "out.h5", "--set", "output.impact_samples=30000"},
+                {" output samples", "0.69 GB", "--allow-large"});
+  // Beyond the hard limit of 1,000,000 samples, --allow-large does not help.
+  check_refused(
+      s, "hard limit",
+      {"run", "cfg.yaml", "-o", "out.h5", "--set", "output.impact_samples=100000", "--allow-large"},
+      {"output.impact_samples: got 100000", "expected at most 1000000 samples",
+       "--allow-large does not lift it"});
   check_refused(s, "--allow-large elsewhere", {"validate", "cfg.yaml", "--allow-large"},
                 {"--allow-large belongs to"});
   // Under the limit the flag changes nothing (the paper run, 594 samples).

@@ -5,11 +5,14 @@
 #include <unistd.h>
 
 #include <catch2/catch.hpp>
+#include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <tuple>
 
 #include "hexdyn/core/errors.hpp"
 #include "hexdyn/envelope/envelope.hpp"
@@ -153,6 +156,81 @@ TEST_CASE("envelope: a bad envelope file is refused with the key named", "[envel
   TempSpec u(
       "riser: {from: 0.0, to: 0.1}\nduty_factor: [1/2]\npeak_speed: [0.1]\ncriteria: [grip]\n");
   CHECK_THROWS_AS(load_envelope_spec(u.path), ConfigError);
+}
+
+/// "[a, a + d, …]" of n values.
+std::string values(double a, double d, int n) {
+  std::string s = "[";
+  for (int i = 0; i < n; ++i) s += (i ? ", " : "") + exact(a + d * i);
+  return s + "]";
+}
+
+/// The ConfigError message of loading `t`, "" when it loads.
+std::string load_error(const TempSpec& t) {
+  try {
+    (void)load_envelope_spec(t.path);
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// The cells (D × W × B × V) and the probes they plan are counted in 64-bit arithmetic and
+// refused beyond kMaxEnvelopeCells and kMaxEnvelopeProbes before anything is made per cell,
+// in one line naming the key; at the limits the file loads (every cell validated).
+TEST_CASE("envelope: cells and probes are bounded before any cell is made", "[envelope][sizes]") {
+  REQUIRE(kMaxEnvelopeCells == 10000);
+  REQUIRE(kMaxEnvelopeProbes == 1000000);
+  const std::string riser = "riser: {from: 0.0, to: 0.1, step: 0.01, tolerance: 0.001}\n";
+  // 100 × 100 cells of one criterion: 10,000 cells, 10,000 × (11 + 5) probes at most.
+  TempSpec inside(riser + "duty_factor: " + values(0.5, 0.002, 100) +
+                  "\npeak_speed: " + values(0.05, 0.001, 100) + "\ncriteria: [kinematic]\n");
+  const auto start = std::chrono::steady_clock::now();
+  const std::string ok = load_error(inside);
+  INFO(ok);
+  CHECK(ok.empty());
+  CHECK(std::chrono::steady_clock::now() - start < std::chrono::seconds(30));
+  TempSpec beyond(riser + "duty_factor: " + values(0.5, 0.002, 101) +
+                  "\npeak_speed: " + values(0.05, 0.001, 100) + "\ncriteria: [kinematic]\n");
+  std::string msg = load_error(beyond);
+  CHECK(msg.rfind(beyond.path + ": duty_factor: got 101 values, 10100 cells (cases 1 x "
+                                "tread_depth 1 x duty_factor 101 x peak_speed 100), expected at "
+                                "most 10000 cells",
+                  0) == 0);
+  // 2^32 cells (an int wrapped it to 0) and 1300^3 (an int wrapped it negative).
+  for (const auto& [w, b, v] : {std::tuple{4096, 1024, 1024}, std::tuple{1300, 1300, 1300}}) {
+    TempSpec big(riser + "tread_depth: " + values(0.2, 1e-5, w) + "\nduty_factor: " +
+                 values(0.5, 1e-4, b) + "\npeak_speed: " + values(0.05, 1e-5, v) + "\n");
+    msg = load_error(big);
+    INFO(msg);
+    const std::string cells = std::to_string(std::uint64_t(w) * b * v);
+    CHECK(msg.rfind(
+              big.path + ": tread_depth: got " + std::to_string(w) + " values, " + cells + " cells",
+              0) == 0);
+  }
+  // One list longer than the limit is refused before its values are compared pairwise.
+  TempSpec long_list(riser + "duty_factor: [1/2]\npeak_speed: " + values(0.05, 1e-6, 10001) + "\n");
+  CHECK(load_error(long_list) ==
+        long_list.path +
+            ": peak_speed: got 10001 values, expected at most 10000 (an envelope has "
+            "at most 10000 cells)");
+  // Probes: a fine riser scan over the paper's 64 cells and 3 criteria.
+  const std::string grid =
+      "tread_depth: [0.2, 0.25, 0.3, 0.35]\nduty_factor: [1/2, 2/3, 3/4, "
+      "5/6]\npeak_speed: [0.05, 0.1, 0.15, 0.2]\n";
+  TempSpec fine("riser: {from: 0.0, to: 0.3, step: 0.00001, tolerance: 0.000001}\n" + grid);
+  msg = load_error(fine);
+  INFO(msg);
+  CHECK(msg.rfind(fine.path + ": riser.step: got 1e-05 m, up to 5.76115e+06 planned probes (64 "
+                              "cells x 3 criteria x (30001 scan steps + 5 halvings)), expected at "
+                              "most 1000000",
+                  0) == 0);
+  const auto at = msg.find("a step of at least ");
+  REQUIRE(at != std::string::npos);
+  const double step = std::stod(msg.substr(at + 19));
+  TempSpec coarser("riser: {from: 0.0, to: 0.3, step: " + exact(step) + ", tolerance: 0.000001}\n" +
+                   grid);
+  CHECK(load_error(coarser).empty());
 }
 
 TEST_CASE("envelope: cases are designs, each probe's scene the base with its keys", "[envelope]") {

@@ -6,6 +6,7 @@
 
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <regex>
@@ -14,6 +15,7 @@
 #include <vector>
 
 #include "hexdyn/core/errors.hpp"
+#include "hexdyn/core/run_size.hpp"
 #include "hexdyn/io/config.hpp"
 #include "hexdyn/model/robot_model.hpp"
 #include "hexdyn/sample_models.hpp"
@@ -450,6 +452,130 @@ TEST_CASE("config: automatic choices in the resolved configuration", "[config]")
   CHECK(YAML::Dump(YAML::Load(again.resolved_yaml)["auto"]) == YAML::Dump(r["auto"]));
   CHECK_THROWS_WITH(load_scene_from_string(paper_text() + "auto: 3\n", "a.yaml"),
                     Catch::Contains("a.yaml: auto: got 3"));
+}
+
+/// A number written to 17 digits.
+std::string digits17(double x) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.17g", x);
+  return buf;
+}
+
+/// The number after `marker` in `msg` ("... at least 9.61e-06 s" → 9.61e-06).
+double number_after(const std::string& msg, const std::string& marker) {
+  const auto at = msg.find(marker);
+  REQUIRE(at != std::string::npos);
+  return std::stod(msg.substr(at + marker.size()));
+}
+
+// Every size that grows with the input is bounded before anything is planned
+// (core/run_size.hpp, io/run_limits.hpp): each refusal names its key and the limit, and a
+// value just inside is accepted. The boundaries are computed here from the scene: the paper
+// scene's motion lasts 3 + 2.6 + 3 = 8.6 s, its grid spans 1 s more (the longest touchdown
+// transient), and a uniform grid has floor(span / step) + 2 points at most.
+TEST_CASE("config: cycles, duration and output samples are bounded before planning",
+          "[config][sizes]") {
+  const std::string by_speed = without_lines(paper_text(), "  cycle_durations:");
+  const std::vector<Override> speed_form = {
+      {"motion.peak_speed", "0.1"}, {"motion.ramp_duration", "0.8"}, {"motion.cycles", "3"}};
+  auto with = [&](std::vector<Override> extra) {
+    std::vector<Override> all = speed_form;
+    all.insert(all.end(), extra.begin(), extra.end());
+    return all;
+  };
+  const std::vector<Override> sparse = {{"output.grid", "uniform"}, {"output.sample_step", "100"}};
+  // Cycles: at most kMaxCycles, whatever the grid.
+  REQUIRE(kMaxCycles == 10000);
+  auto sparse_with = [&](std::vector<Override> extra) {
+    extra.insert(extra.end(), sparse.begin(), sparse.end());
+    return with(extra);
+  };
+  CHECK(load_scene_from_string(by_speed, kName, sparse_with({{"motion.cycles", "10000"}}))
+            .motion.cycles == 10000);
+  std::string msg = config_error(by_speed, sparse_with({{"motion.cycles", "10001"}}));
+  check_names(msg, "motion.cycles: got 10001");
+  CHECK(msg.find("[1, 10000]") != std::string::npos);
+  // motion.cycle_durations: at most kMaxCycles entries.
+  auto durations = [&](int cruise) {
+    std::string list = "[3";
+    for (int i = 0; i < cruise; ++i) list += ", 2.6";
+    std::vector<Override> ov = sparse;
+    ov.push_back({"motion.cycle_durations", list + ", 3]"});
+    return ov;
+  };
+  CHECK(load_scene_from_string(paper_text(), kName, durations(9998)).motion.cycles == 10000);
+  msg = config_error(paper_text(), durations(9999));
+  check_names(msg, "motion.cycle_durations: got [3, 2.6, 2.6");
+  CHECK(msg.find("expected a list of 3 to 10000 numbers") != std::string::npos);
+  CHECK(msg.size() < 500);  // the 10,001 values are not all quoted
+  CHECK(msg.find("characters)") != std::string::npos);
+  // Travel: the cycles its distance needs, at most kMaxCycles.
+  const double stride = 0.125 / 0.5 / std::cos(std::atan2(0.05, 0.25));
+  auto travel = [&](double distance) {
+    std::vector<Override> ov = sparse;
+    ov.push_back({"motion.peak_speed", "0.1"});
+    ov.push_back({"motion.ramp_duration", "0.8"});
+    ov.push_back({"motion.travel.distance", digits17(distance)});
+    return ov;
+  };
+  CHECK(load_scene_from_string(by_speed, kName, travel(9999.5 * stride)).motion.cycles == 10000);
+  msg = config_error(by_speed, travel(10000.5 * stride));
+  check_names(msg, "motion.travel: got");
+  CHECK(msg.find("10001 cycles of gait.stroke, expected at most 10000 cycles") !=
+        std::string::npos);
+  // Duration: at most kMaxRunDuration_s = 1e5 s; 10,000 cycles at speed v last
+  // 10,000 stride / v + 0.8 s.
+  REQUIRE(kMaxRunDuration_s == 1e5);
+  const double v_limit = 10000.0 * stride / (1e5 - 0.8);
+  auto slow = [&](double v) {
+    return sparse_with({{"motion.cycles", "10000"}, {"motion.peak_speed", digits17(v)}});
+  };
+  CHECK_NOTHROW(load_scene_from_string(by_speed, kName, slow(v_limit * 1.0001)));
+  msg = config_error(by_speed, slow(v_limit * 0.9999));
+  check_names(msg, "motion.peak_speed: got");
+  CHECK(msg.find("expected a motion of at most 1e+05 s") != std::string::npos);
+  CHECK(number_after(msg, "a peak speed of at least ") >= v_limit);
+  msg = config_error(by_speed, with({{"motion.peak_speed", "1e-300"}}));
+  check_names(msg, "motion.peak_speed: got 1e-300 m/s, a motion of 7.6");
+  // The paper run's 8.6 s: 9.6 s of uniform grid below 1,000,000 points; a step of 4e-9 s
+  // (which overflowed an int) is refused in one line, as is any smaller one.
+  REQUIRE(kMaxRunSamples == 1000000);
+  auto uniform = [&](double step) {
+    return std::vector<Override>{{"output.grid", "uniform"},
+                                 {"output.sample_step", digits17(step)},
+                                 {"output.event_step", digits17(step)}};
+  };
+  CHECK_NOTHROW(load_scene_from_string(paper_text(), kName, uniform(9.6 / 999997.5)));
+  msg = config_error(paper_text(), uniform(9.6 / 999999.0));
+  check_names(msg, "output.sample_step: got");
+  CHECK(msg.find("expected at most 1000000 samples") != std::string::npos);
+  CHECK(msg.find("--allow-large does not lift it") != std::string::npos);
+  const double least = number_after(msg, "a sample step of at least ");
+  CHECK_NOTHROW(load_scene_from_string(paper_text(), kName, uniform(least)));
+  for (const char* step : {"4e-9", "1e-7", "1e-8", "1e-300"})
+    check_names(config_error(paper_text(), uniform(std::stod(step))), "output.sample_step: got");
+  // The adaptive grid's transients: output.impact_samples, with the most that fit.
+  msg = config_error(paper_text(), {{"output.impact_samples", "100000"}});
+  check_names(msg, "output.impact_samples: got 100000");
+  const double most = number_after(msg, ": at most ");
+  CHECK_NOTHROW(
+      load_scene_from_string(paper_text(), kName, {{"output.impact_samples", digits17(most)}}));
+  check_names(config_error(paper_text(), {{"output.impact_samples", digits17(most + 1)}}),
+              "output.impact_samples");
+  // Graded points of a tiny event step over many events: output.event_step.
+  msg = config_error(by_speed, with({{"motion.cycles", "100"}, {"output.event_step", "1e-300"}}));
+  check_names(msg, "output.event_step: got 1e-300");
+  CHECK_NOTHROW(
+      load_scene_from_string(by_speed, kName, with({{"motion.cycles", "100"}})).motion.cycles);
+  // Many cycles on the adaptive grid: no output key alone can help, the cycles are named.
+  msg = config_error(by_speed, with({{"motion.cycles", "10000"}}));
+  check_names(msg, "motion.cycles: got 10000 cycles");
+  const double cycles = number_after(msg, ": at most ");
+  CHECK_NOTHROW(
+      load_scene_from_string(by_speed, kName, with({{"motion.cycles", digits17(cycles)}})));
+  // One more cycle is refused (naming whichever key can bring it back within the limit).
+  check_names(config_error(by_speed, with({{"motion.cycles", digits17(cycles + 1)}})),
+              "expected at most 1000000 samples");
 }
 
 }  // namespace

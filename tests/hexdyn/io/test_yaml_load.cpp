@@ -10,6 +10,7 @@
 
 #include <catch2/catch.hpp>
 #include <chrono>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -232,6 +233,80 @@ TEST_CASE("yaml load: p/q values in --set and sweeps", "[config][yaml]") {
   const Scene s = load_scene(std::string(HEXDYN_SOURCE_DIR) + "/configs/paper.yaml",
                              {parse_override("gait.duty_factor=2/3")});
   CHECK(s.gait.duty_factor == 2.0 / 3.0);
+}
+
+/// "a: &x [1, ..., 1]" (n items) "\nb: [*x, ...]" (k aliases) "\nc: [2, ..., 2]" (m items):
+/// 1 + (1 + 1 + n) + (1 + 1 + k (1 + n)) + (1 + 1 + m) nodes once expanded, counted here.
+struct AliasDocument {
+  std::string text;
+  std::uint64_t nodes = 0;
+  AliasDocument(int n, int k, int m) {
+    auto list = [](int count, const std::string& item) {
+      std::string s = "[";
+      for (int i = 0; i < count; ++i) s += (i ? "," : "") + item;
+      return s + "]";
+    };
+    text = "a: &x " + list(n, "1") + "\nb: " + list(k, "*x") + "\nc: " + list(m, "2") + "\n";
+    nodes = 1 + (2 + n) + (2 + std::uint64_t(k) * (1 + n)) + (2 + m);
+  }
+};
+
+TEST_CASE("yaml load: aliases count as their anchor's node, capped before any tree is built",
+          "[config][yaml][sizes]") {
+  REQUIRE(kMaxYamlNodes == 1000000);
+  // Just inside and just beyond the node limit, counted independently here.
+  const AliasDocument inside(999, 998, 994), beyond(999, 998, 995);
+  REQUIRE(inside.nodes == kMaxYamlNodes);
+  REQUIRE(beyond.nodes == kMaxYamlNodes + 1);
+  CHECK(parse_yaml_text(inside.text, "f.yaml")["b"][997][998].as<int>() == 1);
+  std::string msg = parse_error(beyond.text);
+  INFO(msg);
+  CHECK(msg.rfind("f.yaml:3: c[994]: got more than 1000000 YAML nodes", 0) == 0);
+  CHECK(msg.find("once aliases (*name) are expanded") != std::string::npos);
+  CHECK(msg.find('\n') == std::string::npos);
+  // A billion laughs in 400 bytes: refused at once, in the `auto:` record as anywhere.
+  std::string bomb = "name: x\nauto:\n a0: &0 [x,x,x,x,x,x,x,x,x,x]\n";
+  for (int i = 1; i < 9; ++i) {
+    bomb += " a" + std::to_string(i) + ": &" + std::to_string(i) + " [";
+    for (int j = 0; j < 10; ++j) bomb += (j ? ",*" : "*") + std::to_string(i - 1);
+    bomb += "]\n";
+  }
+  REQUIRE(bomb.size() < 400);
+  const auto start = std::chrono::steady_clock::now();
+  msg = parse_error(bomb);
+  CHECK(std::chrono::steady_clock::now() - start < std::chrono::seconds(1));
+  CHECK(msg.find(": auto.a5[") != std::string::npos);
+  CHECK(msg.find("YAML nodes once aliases") != std::string::npos);
+  // Bytes of values: one 100 kB scalar repeated, just inside and beyond 16 MiB.
+  REQUIRE(kMaxYamlBytes == 16u << 20);
+  const std::string big(100000, 'v');
+  auto repeated = [&](int k) {
+    std::string s = "a: &x " + big + "\nb: [";
+    for (int i = 0; i < k; ++i) s += (i ? ",*x" : "*x");
+    return s + "]\n";
+  };
+  // (1 + k) × 100,000 bytes plus the keys a, b: 166 aliases fit in 16,777,216 bytes.
+  CHECK(parse_yaml_text(repeated(166), "f.yaml")["b"].size() == 166);
+  msg = parse_error(repeated(167));
+  CHECK(msg.find("b[166]: got more than 16777216 bytes of values") != std::string::npos);
+  // An alias inside the node it names would expand for ever.
+  CHECK(parse_error("a: &x [1, *x]\n") ==
+        "f.yaml:1: a[1]: got an alias inside the node it names (a cycle), expected an alias of a "
+        "complete node");
+}
+
+TEST_CASE("yaml load: a --set value is at most 1 MiB", "[config][yaml][sizes]") {
+  const std::string inside(kMaxConfigBytes, 'x');
+  CHECK(parse_yaml_checked(inside, "--set name=...").Scalar().size() == kMaxConfigBytes);
+  try {
+    parse_yaml_checked(inside + "x", "--set name=" + inside + "x");
+    FAIL("accepted");
+  } catch (const ConfigError& e) {
+    const std::string msg = e.what();
+    INFO(msg.substr(0, 300));
+    CHECK(msg.size() < 300);
+    CHECK(msg.find("got a value of 1048577 bytes, expected at most 1048576") != std::string::npos);
+  }
 }
 
 }  // namespace

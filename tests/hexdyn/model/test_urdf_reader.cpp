@@ -488,6 +488,101 @@ TEST_CASE("urdf reader: each broken description is refused with one line naming 
   CHECK(refusal(kData + "missing_file.urdf").find("cannot read") != std::string::npos);
 }
 
+/// valid_hexapod.urdf with `from` replaced by `to` on the first line holding `marker`.
+std::string edited_hexapod(const std::string& marker, const std::string& from,
+                           const std::string& to) {
+  std::string text = file_text(kData + "valid_hexapod.urdf");
+  const std::size_t line = text.find(marker);
+  REQUIRE(line != std::string::npos);
+  const std::size_t at = text.find(from, line);
+  REQUIRE(at != std::string::npos);
+  REQUIRE(at < text.find('\n', line));
+  return text.replace(at, from.size(), to);
+}
+
+/// The one-line message of reading `text`, or "" when it loads.
+std::string text_refusal(const std::string& text) {
+  try {
+    (void)read_urdf_robot_from_string(text, "hexapod.urdf");
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// A URDF's values are held to the scene's plausibility bounds (core/value_bounds.hpp): each
+// edit of the valid hexapod just beyond a bound is refused in one line naming the file, the
+// link or joint and the value; the same edit at the bound loads.
+TEST_CASE("urdf reader: masses, inertias, origins and limits within the scene's bounds",
+          "[urdf_reader][sizes]") {
+  struct Edit {
+    const char* marker;
+    const char* from;
+    const char* inside;
+    const char* beyond;
+    std::vector<std::string> expected;
+  };
+  const char* trunk = "<link name=\"trunk\">";
+  const char* coxa = "<joint name=\"leg0_coxa_joint\"";
+  const char* foot = "<joint name=\"leg0_foot_joint\"";
+  const std::vector<Edit> edits = {
+      {trunk,
+       "<mass value=\"1.0\"/>",
+       "<mass value=\"10000\"/>",
+       "<mass value=\"1e300\"/>",
+       {"link 'trunk'", "mass 1e+300 kg", "expected at most 10000 kg"}},
+      {trunk,
+       "ixx=\"0.01\" iyy=\"0.01\" izz=\"0.015\"",
+       "ixx=\"600\" iyy=\"600\" izz=\"1000\"",
+       "ixx=\"600\" iyy=\"600\" izz=\"1000.001\"",
+       {"link 'trunk'", "inertia too large", "1000", "at most 1000 kg m2"}},
+      // The triangle inequality within its relative tolerance of 1e-9.
+      {trunk,
+       "izz=\"0.015\"",
+       "izz=\"0.02000000001\"",
+       "izz=\"0.0200000001\"",
+       {"link 'trunk'", "triangle inequality"}},
+      {trunk,
+       "<mass value=\"1.0\"/>",
+       "<mass value=\"1.0\"/><origin xyz=\"0 0 -10\"/>",
+       "<mass value=\"1.0\"/><origin xyz=\"0 0 -10.01\"/>",
+       {"link 'trunk'", "<inertial><origin xyz=\"0 0 -10.01\">", "within +-10 m"}},
+      {foot,
+       "xyz=\"0.1 0 0\"",
+       "xyz=\"10 0 0\"",
+       "xyz=\"10.01 0 0\"",
+       {"joint 'leg0_foot_joint'", "<origin xyz=\"10.01 0 0\">", "within +-10 m"}},
+      {coxa,
+       "lower=\"-2\" upper=\"2\"",
+       "lower=\"-6.2831853\" upper=\"6.2831853\"",
+       "lower=\"-2\" upper=\"6.3\"",
+       {"joint 'leg0_coxa_joint'", "limits [-2, 6.3] rad", "[-2 pi, 2 pi]"}},
+      {coxa,
+       "effort=\"2\"",
+       "effort=\"1e6\"",
+       "effort=\"2e6\"",
+       {"joint 'leg0_coxa_joint'", "effort limit 2e+06 N m", "[0, 1e+06]"}},
+      {coxa,
+       "velocity=\"5\"",
+       "velocity=\"1e4\"",
+       "velocity=\"1.0001e4\"",
+       {"joint 'leg0_coxa_joint'", "velocity limit 10001 rad/s", "[0, 10000]"}},
+  };
+  for (const Edit& e : edits) {
+    INFO(e.beyond);
+    CHECK(text_refusal(edited_hexapod(e.marker, e.from, e.inside)).empty());
+    const std::string msg = text_refusal(edited_hexapod(e.marker, e.from, e.beyond));
+    INFO(msg);
+    CHECK(msg.rfind("hexapod.urdf: ", 0) == 0);
+    CHECK(msg.find('\n') == std::string::npos);
+    for (const std::string& part : e.expected) CHECK(msg.find(part) != std::string::npos);
+  }
+  // The mass that ran to NaN torques before: refused whatever the link.
+  const UrdfRobot heavy = read_urdf_robot_from_string(
+      edited_hexapod(trunk, "<mass value=\"1.0\"/>", "<mass value=\"10000\"/>"), "h.urdf");
+  CHECK(std::isfinite(build_robot_model(heavy).total_mass_kg));
+}
+
 TEST_CASE("urdf reader: the HumaRobotics PhantomX is refused for its inertias", "[urdf_reader]") {
   const std::string msg = refusal(kHuma);
   INFO(msg);

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "hexdyn/core/run_size.hpp"
 #include "hexdyn/io/config.hpp"
 #include "hexdyn/model/robot_model.hpp"
 #include "hexdyn/planning/grid.hpp"
@@ -149,6 +150,56 @@ TEST_CASE("output grid: a left-limit point 1e-10 s before every contact event", 
   std::vector<std::int8_t> uniform_kind;
   const std::vector<double> u = build_output_grid(uniform, T, events, &uniform_kind);
   CHECK(uniform_kind == std::vector<std::int8_t>(u.size(), kSampleOrdinary));
+}
+
+// The size bound (core/run_size.hpp) is an upper bound of the grid as built, on the planned
+// events of the paper scene with transients and on the scene's own bound before planning, for
+// both grids and several steps; a grid beyond kMaxRunSamples is refused before any point is
+// made, whatever its count in an int (4e-9 s over 8.6 s: 2.15e9 > 2^31).
+TEST_CASE("output grid: its size bound holds, and a grid beyond the limit is refused",
+          "[grid][sizes]") {
+  const Planned p = plan_scene();
+  const double T = p.plan.trunk.duration_s();
+  std::vector<GridEvent> events;
+  double liftoffs = 0.0, touchdowns = 0.0;
+  for (const LegPlan& leg : p.plan.gait.legs)
+    for (const Swing& sw : leg.swings) {
+      events.push_back({sw.t_liftoff_s, 0.0, 0.0});
+      events.push_back({sw.t_touchdown_s, 0.004, 0.0015});
+      liftoffs += 1.0;
+      touchdowns += 1.0;
+    }
+  for (OutputGrid kind : {OutputGrid::kUniform, OutputGrid::kAdaptive})
+    for (double step : {0.05, 0.013, 1e-3}) {
+      OutputParams out = p.scene.output;
+      out.grid = kind;
+      out.sample_step_s = step;
+      out.event_step_s = std::min(out.event_step_s, step);
+      const std::size_t built = build_output_grid(out, T, events).size();
+      const GridSizeBound b = output_grid_bound(out, T, liftoffs, touchdowns, touchdowns);
+      INFO("step " << step << " built " << built << " bound " << b.total());
+      CHECK(static_cast<double>(built) <= b.total());
+      Scene scene = p.scene;
+      scene.output = out;
+      CHECK(b.total() <= planned_grid_bound(scene).total());  // the bound before planning
+    }
+  REQUIRE(kMaxRunSamples == 1000000);
+  OutputParams out = p.scene.output;
+  out.grid = OutputGrid::kUniform;
+  out.sample_step_s = T / 999998.0;  // floor(T / step) + 2 = 10^6 points at most: built
+  CHECK(build_output_grid(out, T, {}).size() <= 1000000u);
+  for (double step : {T / 999999.0, 4e-9, 1e-12}) {
+    out.sample_step_s = step;
+    INFO("step " << step);
+    CHECK_THROWS_WITH(build_output_grid(out, T, {}),
+                      Catch::StartsWith("output.sample_step: the output grid of the 8.6 s run "
+                                        "would have up to") &&
+                          Catch::EndsWith("samples, expected at most 1000000"));
+  }
+  out.grid = OutputGrid::kAdaptive;
+  out.sample_step_s = 0.05;
+  out.impact_samples = 100000;
+  CHECK_THROWS_WITH(build_output_grid(out, T, events), Catch::StartsWith("output.impact_samples"));
 }
 
 }  // namespace

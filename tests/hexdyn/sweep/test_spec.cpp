@@ -7,6 +7,8 @@
 #include <vector>
 
 #include "hexdyn/io/config.hpp"
+#include "hexdyn/sweep/scenario.hpp"
+#include "hexdyn/sweep/scenario_factory.hpp"
 #include "hexdyn/sweep/spec.hpp"
 #include "sweep_test_support.hpp"
 
@@ -161,4 +163,41 @@ TEST_CASE("sweep: a bad sweep file is one ConfigError line naming file, key and 
     CHECK(msg.rfind(path, 0) == 0);  // starts with the sweep file's path
     CHECK(msg.find('\n') == std::string::npos);
   }
+}
+
+// `hexdyn validate` of a sweep (check_sweep_scenarios: the scenario factory's trees, no YAML
+// per scenario, values already refused on the base counted without being built again)
+// against a second computation: each scenario's YAML text built and validated on its own
+// (scenario_input, check_scenario). Out-of-range values (a speed above 10 m/s, a riser above
+// 1 m), combinations of valid values (a ramp longer than the cruise at a high speed), and a
+// value refused on the base scene alone that another axis's value makes valid.
+TEST_CASE("sweep: validating every scenario from the factory agrees with one by one",
+          "[sweep][sizes]") {
+  TempDir dir;
+  const SweepSpec spec =
+      load_sweep(sweep_file(dir,
+                            "axes:\n  - key: terrain.riser_height\n    values: [0.05, 2.0, 0.08]\n"
+                            "  - key: motion.peak_speed\n    values: [0.05, 0.5, 50, 2]\n"
+                            "  - key: motion.ramp_duration\n    values: [1.0, 10.0]\n"));
+  // A ramp of 10 s is longer than the base scene's cruise (3 strides at 0.1 m/s, 7.6 s): not
+  // valid on the base alone, valid at 0.05 m/s (15.3 s of cruise).
+  REQUIRE(!spec.axes[2].errors[1].empty());
+  REQUIRE(spec.scenario_count() == 24);
+  CHECK_FALSE(check_scenario(scenario_input(spec, 1)));  // riser 0.05, 0.05 m/s, ramp 10 s
+  std::size_t out_of_range = 0;
+  std::string first;
+  for (std::size_t i = 0; i < spec.scenario_count(); ++i)
+    if (const auto row = check_scenario(scenario_input(spec, i)))
+      if (out_of_range++ == 0) first = row->message;
+  const SweepScenarioCheck check = check_sweep_scenarios(spec);
+  CHECK(check.scenarios == 24);
+  CHECK(out_of_range > 6);  // values and combinations both fail somewhere
+  CHECK(out_of_range < 24);
+  CHECK(check.out_of_range == out_of_range);
+  CHECK(check.first == first);
+  // A sweep whose scenarios are all valid.
+  const SweepSpec smoke = load_sweep(kConfigs + "/sweeps/smoke.yaml");
+  const SweepScenarioCheck none = check_sweep_scenarios(smoke);
+  CHECK(none.out_of_range == 0);
+  CHECK(none.first.empty());
 }

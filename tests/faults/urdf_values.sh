@@ -1,0 +1,106 @@
+#!/bin/bash
+# URDF values (issue 29, item 4; docs/user/faults.md#sizes): a URDF's masses, inertias,
+# origins and joint limits are held to the scene's plausibility bounds
+# (src/hexdyn/core/value_bounds.hpp). The Kraby robot with one value edited beyond a bound
+# (a <mass value="1e300"> that ran to NaN torques, an inertia, a joint origin, a joint limit,
+# an effort) is refused by `run`, `validate`, a sweep's cases axis and an envelope's cases, in
+# one line naming the file, the link or joint and the value: exit status 2, no output, the
+# inputs unchanged. Every real robot of the repository still loads.
+# shellcheck source=common.sh
+source "$(dirname "$0")/common.sh"
+
+mkdir out
+KRABY="$SRC/robots/kraby.urdf"
+SCENE="$SRC/configs/robots/kraby_stairs.yaml"
+
+# edited NAME PYTHON-EXPRESSION: robots/kraby.urdf with its text passed through the
+# expression (a function of `t`), as NAME.urdf; the expression must change the text.
+edited() {
+  "$PY" - "$KRABY" "$2" > "$1.urdf" << 'EOF'
+import re, sys
+t = open(sys.argv[1]).read()
+u = eval(sys.argv[2])
+assert u != t, "the edit changed nothing"
+print(u, end="")
+EOF
+}
+edited heavy 're.sub(r"<mass value=\"[^\"]*\"", "<mass value=\"1e300\"", t, count=1)'
+edited wide 're.sub(r"izz=\"[^\"]*\"", "izz=\"2000\"", re.sub(r"ixx=\"[^\"]*\"", "ixx=\"1500\"", re.sub(r"iyy=\"[^\"]*\"", "iyy=\"1500\"", t, count=1), count=1), count=1)'
+edited far 're.sub(r"(<inertial>\s*<origin xyz=\")[^\"]*\"", lambda m: m.group(1) + "0 0 50\"", t, count=1)'
+edited far_joint 're.sub(r"(<joint [^>]*>(?:(?!</joint>).)*?<origin xyz=\")[^\"]*\"", lambda m: m.group(1) + "0 -12 0\"", t, count=1, flags=re.S)'
+edited turns 're.sub(r"upper=\"[^\"]*\"", "upper=\"20\"", t, count=1)'
+edited strong 're.sub(r"effort=\"[^\"]*\"", "effort=\"1e9\"", t, count=1)'
+
+{
+  echo "base: $SCENE"
+  echo "axes:"
+  echo "  - name: robot"
+  echo "    cases:"
+  echo "      - {label: kraby, robot.urdf: $KRABY}"
+  echo "      - {label: heavy, robot.urdf: heavy.urdf}"
+} > cases.yaml
+{
+  echo "base: $SCENE"
+  echo "riser: {from: 0.0, to: 0.05}"
+  echo "duty_factor: [1/2]"
+  echo "peak_speed: [0.05]"
+  echo "cases:"
+  echo "  - {label: heavy, robot.urdf: heavy.urdf}"
+} > envelope.yaml
+
+inputs_digest() { sha256sum ./*.urdf ./*.yaml "$KRABY" "$SCENE"; }
+before=$(inputs_digest)
+
+# refused NAME PATTERN ARGS...: hexdyn ARGS exits 2 within 60 s with one line matching
+# PATTERN; nothing in out/, no input changed.
+refused() {
+  local name=$1 pattern=$2 log="$1.log" rc
+  shift 2
+  timeout 60 "$HEXDYN" "$@" > "$log" 2>&1
+  rc=$?
+  [ "$rc" != 124 ] || fail "$name: no answer within 60 s"
+  expect_status "$name" "$rc" 2 "$log"
+  one_line "$log" "$pattern"
+  [ -z "$(ls -A out)" ] || fail "$name: files left in out/: $(ls -A out)"
+  no_temporaries out
+  [ "$(inputs_digest)" = "$before" ] || fail "$name: an input changed"
+}
+
+refused mass_run "heavy.urdf: link '[^']+': mass 1e\+300 kg, expected at most 10000 kg" \
+  run "$SCENE" -o out/r.h5 --set robot.urdf=heavy.urdf
+refused mass_validate "heavy.urdf: link '[^']+': mass 1e\+300 kg" \
+  validate "$SCENE" --set robot.urdf=heavy.urdf
+refused inertia "wide.urdf: link '[^']+': inertia too large: principal moments .* expected each at most 1000 kg m2" \
+  run "$SCENE" -o out/r.h5 --set robot.urdf=wide.urdf
+refused inertial_origin "far.urdf: link '[^']+': <inertial><origin xyz=\"0 0 50\">, expected coordinates within \+-10 m" \
+  run "$SCENE" -o out/r.h5 --set robot.urdf=far.urdf
+refused joint_origin "far_joint.urdf: joint '[^']+': <origin xyz=\"0 -12 0\">, expected coordinates within \+-10 m" \
+  run "$SCENE" -o out/r.h5 --set robot.urdf=far_joint.urdf
+refused limits "turns.urdf: joint '[^']+': limits \[.*, 20\] rad, expected limits within \[-2 pi, 2 pi\]" \
+  run "$SCENE" -o out/r.h5 --set robot.urdf=turns.urdf
+refused effort "strong.urdf: joint '[^']+': effort limit 1e\+09 N m, expected a number in \[0, 1e\+06\]" \
+  run "$SCENE" -o out/r.h5 --set robot.urdf=strong.urdf
+refused sweep_case "cases.yaml: axes\[0\].cases\[1\] \(heavy: .*\): .*heavy.urdf: link '[^']+': mass 1e\+300 kg" \
+  validate cases.yaml
+refused envelope_case "envelope.yaml: cases\[0\] \(heavy: .*\): .*heavy.urdf: link '[^']+': mass 1e\+300 kg" \
+  envelope envelope.yaml -o out/e.h5
+
+# The real robots still load: every scene and sweep of configs/ that names a URDF (envelope
+# files are loaded by `hexdyn envelope`, which computes), and each robot of robots/ and
+# tests/data/urdf/robots/ on the Kraby or PhantomX scene (the HumaRobotics PhantomX is
+# refused for its inertias, as before).
+while IFS= read -r scene; do
+  grep -qE "^(robot|axes):" "$scene" || continue
+  timeout 120 "$HEXDYN" validate "$scene" > valid.log 2>&1 || fail "validate $scene: $(cat valid.log)"
+done < <(grep -rl "urdf:" "$SRC/configs" --include=*.yaml)
+for urdf in "$SRC"/robots/*.urdf "$SRC"/tests/data/urdf/robots/*.urdf; do
+  [ -f "$urdf" ] || continue
+  case "$(basename "$urdf")" in
+    kraby.urdf) scene=$SCENE ;;
+    phantomx_humarobotics.urdf) continue ;;
+    *) scene="$SRC/configs/robots/phantomx_mark4_stairs.yaml" ;;
+  esac
+  timeout 60 "$HEXDYN" validate "$scene" --set "robot.urdf=$urdf" > valid.log 2>&1 ||
+    fail "validate $urdf: $(cat valid.log)"
+done
+echo "urdf_values: every value beyond its bound refused in one line, the real robots load"
