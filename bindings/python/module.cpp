@@ -10,9 +10,14 @@
 #include <pybind11/stl.h>
 #include <yaml-cpp/yaml.h>
 
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <exception>
 #include <memory>
 #include <mutex>
 #include <string>
+#include <thread>
 #include <utility>
 #include <variant>
 #include <vector>
@@ -25,11 +30,65 @@ namespace py = pybind11;
 
 namespace {
 
-/// One computed scene: the C++ result (for write) and the scene file it came from.
+/// One computed scene: the C++ result (for write) and the files it read, by the identity
+/// and absolute path they had when read (io/inputs.hpp), which its outputs must not be.
 struct RunHandle {
   hexdyn::RunResult result;
-  std::string scene_path;
+  std::vector<hexdyn::InputFile> inputs;
 };
+
+/// How often a computing hexdyn.run looks for Ctrl-C (Python's signal handlers run in the
+/// main thread, between bytecodes, so the computation runs in a thread of its own).
+constexpr auto kSignalPoll = std::chrono::milliseconds(20);
+
+/// Runs `compute` in a thread of its own while this thread (the caller's, GIL released) looks
+/// for Python's signals every kSignalPoll: on KeyboardInterrupt (or any exception a signal
+/// handler raises), the computation is cancelled (core/cancel.hpp: it stops at its next
+/// sample), joined, and the Python exception raised. Exceptions of `compute` are rethrown.
+template <class F>
+void run_interruptible(F&& compute) {
+  std::atomic<bool> cancel{false};
+  std::exception_ptr error;
+  std::mutex m;
+  std::condition_variable cv;
+  bool done = false;
+  std::thread worker([&] {
+    try {
+      const hexdyn::CancelScope scope(&cancel);
+      compute();
+    } catch (...) {
+      error = std::current_exception();
+    }
+    const std::lock_guard<std::mutex> lock(m);
+    done = true;
+    cv.notify_all();
+  });
+  {
+    py::gil_scoped_release no_gil;
+    std::unique_lock<std::mutex> lock(m);
+    while (!cv.wait_for(lock, kSignalPoll, [&] { return done; })) {
+      lock.unlock();
+      bool raised = false;
+      {
+        py::gil_scoped_acquire gil;
+        raised = PyErr_CheckSignals() != 0;
+        if (raised) {
+          cancel = true;
+          // Keep the Python exception across the join (the GIL is released meanwhile).
+          py::error_already_set pending;
+          {
+            py::gil_scoped_release again;
+            worker.join();
+          }
+          throw pending;
+        }
+      }
+      lock.lock();
+    }
+  }
+  worker.join();
+  if (error) std::rethrow_exception(error);
+}
 
 /// The Ipopt back end (allocation.solver: ipopt) runs Ipopt with Debian's sequential
 /// MUMPS, whose stand-in MPI library keeps global state and is not documented as
@@ -86,10 +145,10 @@ py::tuple run_file(const std::string& scene_path, const std::vector<std::string>
                    bool allow_large) {
   auto handle = std::make_shared<RunHandle>();
   hexdyn::ResultLayout layout;
-  {
-    py::gil_scoped_release no_gil;
+  const std::vector<hexdyn::Override> overrides = overrides_of(override_texts);
+  run_interruptible([&] {
     guard_yaml(scene_path, [&] {
-      const hexdyn::Scene scene = hexdyn::load_scene(scene_path, overrides_of(override_texts));
+      const hexdyn::Scene scene = hexdyn::load_scene(scene_path, overrides, &handle->inputs);
       const hexdyn::PreparedScene prep = hexdyn::prepare_scene(scene);
       hexdyn::check_run_size(prep.grid.size(), allow_large);
       std::unique_lock<std::mutex> lock(ipopt_mutex, std::defer_lock);
@@ -97,9 +156,8 @@ py::tuple run_file(const std::string& scene_path, const std::vector<std::string>
       handle->result = hexdyn::run_prepared_scene(scene, prep);
       return 0;
     });
-    handle->scene_path = scene_path;
     layout = hexdyn::result_layout(handle->result);
-  }
+  });
   py::dict datasets, attributes;
   for (hexdyn::LayoutDataset& d : layout.datasets) {
     const char* path = d.spec->path;
@@ -116,11 +174,17 @@ py::tuple run_file(const std::string& scene_path, const std::vector<std::string>
 }
 
 /// write(handle, path): the CLI's checks on the output path (a new path or a regular file
-/// that is none of the scene's input files, in a folder that takes a new file), then the
-/// file, atomically. Holds the GIL: serial HDF5 is not thread-safe.
+/// that is none of the files the run read, by the identities and absolute paths recorded
+/// when they were read: no input is read again, so it works after they are gone), then the
+/// file, atomically. Holds the GIL: serial HDF5 is not thread-safe. While it writes, the
+/// signals whose default action would end Python (SIGHUP, SIGQUIT, SIGTERM, SIGUSR1, SIGUSR2,
+/// SIGALRM; those Python or the user handle are left alone) remove the temporary file and
+/// end the process with one line and 128 + signal, as `hexdyn run` does.
 void write_file(const RunHandle& handle, const std::string& path) {
-  hexdyn::check_output_target(path, hexdyn::scene_input_files(handle.scene_path));
-  hexdyn::write_result_file(path, handle.result);
+  const hexdyn::FatalSignalScope signals(
+      "hexdyn: write interrupted by {signal}: nothing written to " + path +
+      " (an existing file there is kept, no temporary file left)");
+  hexdyn::write_result_file(path, handle.result, handle.inputs);
 }
 
 /// validate(path, overrides) → dict: what `hexdyn validate` checks and prints.

@@ -14,9 +14,12 @@
 ///   (io/config.hpp); parse_override("key.path=value") is one `--set`.
 /// - run_scene(scene, log) plans, samples and solves it (pipeline/pipeline.hpp); the
 ///   RunResult (core/result.hpp) holds every array of the result file, SI units.
-/// - write_result_file(path, result) writes it atomically (io/output.hpp);
-///   check_output_target(path, scene_input_files(scene_path)) is the CLI's check of an
-///   output path before computing.
+/// - write_result_file(path, result, inputs) writes it atomically (io/output.hpp), after
+///   check_output_target(path, inputs): `inputs` are the files load_scene(path, overrides,
+///   &inputs) read (io/inputs.hpp), which the output must not be; the CLI checks them so
+///   before computing.
+/// - CancelScope and check_cancelled (core/cancel.hpp) stop a computation from another
+///   thread between samples (what Python's Ctrl-C does).
 /// - result_layout(result) (io/result_layout.hpp) lists the file's datasets and /meta
 ///   attributes in memory, as the file would hold them.
 /// - Errors (core/errors.hpp): hexdyn::Error and its family ConfigError, IoError (exit
@@ -26,10 +29,13 @@
 /// several threads at once on different scenes (the library keeps no global state).
 /// write_result_file and the HDF5 reader are not thread-safe (serial HDF5): call them from
 /// one thread at a time.
+#include "hexdyn/core/cancel.hpp"
 #include "hexdyn/core/errors.hpp"
 #include "hexdyn/core/result.hpp"
 #include "hexdyn/core/scene.hpp"
 #include "hexdyn/io/config.hpp"
+#include "hexdyn/io/inputs.hpp"
+#include "hexdyn/io/interrupt.hpp"
 #include "hexdyn/io/output.hpp"
 #include "hexdyn/io/yaml_load.hpp"
 #include "hexdyn/pipeline/pipeline.hpp"

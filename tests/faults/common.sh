@@ -27,10 +27,26 @@ expect_status() {
 # matches the extended regex PATTERN.
 one_line() {
   local n
-  n=$(grep -cE '^hexdyn: (error|internal error|run interrupted|envelope interrupted|sweep interrupted)' "$1")
+  n=$(grep -cE '^hexdyn: (error|internal error|run interrupted|envelope interrupted|sweep interrupted|write interrupted)' "$1")
   [ "$n" = 1 ] || fail "$1: $n lines of hexdyn's error or interruption, expected 1: $(tr '\n' '|' < "$1")"
   grep -qE "$2" "$1" || fail "$1: no line matches '$2': $(tr '\n' '|' < "$1")"
   if grep -q 'HDF5-DIAG\|Segmentation\|slist' "$1"; then fail "$1: HDF5 or crash output"; fi
+}
+
+# refused WHAT PATTERN COMMAND...: COMMAND exits with status 2 and exactly one line of
+# hexdyn's error matching PATTERN; no temporary file is left in the working folder, no o.h5
+# is written, and every file listed in inputs.sha256 (if any) is byte for byte as before.
+refused() {
+  local what=$1 pattern=$2
+  shift 2
+  "$@" > out.log 2>&1
+  expect_status "$what" $? 2 out.log
+  one_line out.log "$pattern"
+  [ ! -e o.h5 ] || fail "$what: an output was written"
+  no_temporaries .
+  if [ -f inputs.sha256 ]; then
+    sha256sum --quiet -c inputs.sha256 || fail "$what: an input changed"
+  fi
 }
 
 # no_temporaries DIR: no .NAME.tmp.PID file is left in DIR.

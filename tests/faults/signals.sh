@@ -26,31 +26,95 @@ signal_run() {
 echo good > big.h5
 signal_run TERM 143 1.5          # while it computes
 signal_run INT 130 '.big.h5.tmp.*'  # while it writes
+# Every other signal whose default action ends a process (issue 29): the same clean end.
+signal_run HUP 129 '.big.h5.tmp.*'
+signal_run QUIT 131 1.5
+signal_run USR1 138 '.big.h5.tmp.*'
+signal_run USR2 140 1.5
+signal_run ALRM 142 '.big.h5.tmp.*'
+signal_run PIPE 141 1.5
 
-# envelope
-"$HEXDYN" envelope "$SRC/tests/faults/slow_envelope.yaml" -o e.h5 > env.log 2>&1 &
+# Python's Result.write: a signal whose default would end Python ends it cleanly too.
+export PYTHONPATH="${PYTHONPATH:-$(dirname "$HEXDYN")/python}"
+"$PY" -c '
+import hexdyn, sys
+r = hexdyn.run(sys.argv[1], {"output.impact_samples": 8000})
+print("computed", flush=True)
+r.write("py.h5")
+' "$PAPER" > py.log 2>&1 &
 pid=$!
-sleep 0.8  # slow_envelope.yaml computes for about 20 s
-kill -TERM "$pid"
+wait_for '.py.h5.tmp.*' 60 || fail "Python: the write never started: $(cat py.log)"
+kill -HUP "$pid"
 wait "$pid"
-expect_status envelope $? 143 env.log
-one_line env.log "^hexdyn: envelope interrupted by SIGTERM: nothing written to e.h5"
-[ ! -e e.h5 ] || fail "envelope: a file was written"
+expect_status "Python write SIGHUP" $? 129 py.log
+one_line py.log "^hexdyn: write interrupted by SIGHUP: nothing written to py.h5"
+[ ! -e py.h5 ] || fail "Python write SIGHUP: a file was published"
 no_temporaries .
+
+# Ctrl-C in hexdyn.run: KeyboardInterrupt long before the scene would end, for each back end.
+for solver in active-set ipopt; do
+  "$PY" -c '
+import hexdyn, signal, sys, time
+signal.signal(signal.SIGINT, signal.default_int_handler)  # a background job starts ignoring it
+t = time.monotonic()
+try:
+    hexdyn.run(sys.argv[1], {"output.impact_samples": 8000, "allocation.solver": sys.argv[2]})
+except KeyboardInterrupt:
+    print("KeyboardInterrupt", flush=True)
+    sys.exit(42)
+print("finished after", time.monotonic() - t, "s")
+' "$PAPER" "$solver" > ctrlc.log 2>&1 &
+  pid=$!
+  sleep 1.5  # the scene computes for about 5 s (active set) or 15 s (Ipopt)
+  start=$SECONDS
+  kill -INT "$pid"
+  wait "$pid"
+  rc=$?
+  expect_status "Ctrl-C in hexdyn.run ($solver)" "$rc" 42 ctrlc.log
+  [ $((SECONDS - start)) -le 3 ] || fail "Ctrl-C in hexdyn.run ($solver): $((SECONDS - start)) s"
+done
+
+# signal_envelope SIG STATUS: the envelope signalled while it computes.
+signal_envelope() {
+  "$HEXDYN" envelope "$SRC/tests/faults/slow_envelope.yaml" -o e.h5 > env.log 2>&1 &
+  local pid=$!
+  sleep 0.8  # slow_envelope.yaml computes for about 20 s
+  kill -"$1" "$pid"
+  wait "$pid"
+  expect_status "envelope $1" $? "$2" env.log
+  one_line env.log "^hexdyn: envelope interrupted by SIG$1: nothing written to e.h5"
+  [ ! -e e.h5 ] || fail "envelope $1: a file was written"
+  no_temporaries .
+}
+signal_envelope TERM 143
+signal_envelope USR2 140
 
 # A sweep on 1 rank: SIGTERM while it computes, SIGINT during its final write, then a
 # resume that completes.
 resume_line="continue with: hexdyn sweep $SLOW -o s.h5 --keep-runs --resume$"
-"$HEXDYN" sweep "$SLOW" -o s.h5 --keep-runs > s1.log 2>&1 &
-pid=$!
-# While it computes: its first journal exists (the first scenarios are done).
-wait_for 's.h5.checkpoint/journal-*' 60 || fail "the sweep wrote no journal: $(cat s1.log)"
-kill -TERM "$pid"
-wait "$pid"
-expect_status "sweep SIGTERM" $? 143 s1.log
-one_line s1.log "^hexdyn: sweep interrupted by SIGTERM: [0-9]+ finished scenarios kept in the checkpoint s.h5.checkpoint.*$resume_line"
-[ -d s.h5.checkpoint ] && [ ! -e s.h5 ] || fail "sweep SIGTERM: checkpoint not kept, or an output written"
-no_temporaries .
+# signal_sweep SIG STATUS ARGS...: the sweep signalled once its own first journal exists (its
+# first scenarios are done): its line, the checkpoint kept, no output.
+signal_sweep() {
+  local sig=$1 status=$2
+  shift 2
+  local before i
+  before=$(compgen -G 's.h5.checkpoint/journal-*' | wc -l)
+  "$HEXDYN" sweep "$SLOW" -o s.h5 --keep-runs "$@" > s1.log 2>&1 &
+  local pid=$!
+  for ((i = 0; i < 1200; i++)); do  # a journal of its own (a resume finds the earlier ones)
+    [ "$(compgen -G 's.h5.checkpoint/journal-*' | wc -l)" -gt "$before" ] && break
+    sleep 0.05
+  done
+  [ "$i" -lt 1200 ] || fail "the sweep wrote no journal: $(cat s1.log)"
+  kill -"$sig" "$pid"
+  wait "$pid"
+  expect_status "sweep SIG$sig" $? "$status" s1.log
+  one_line s1.log "^hexdyn: sweep interrupted by SIG$sig: [0-9]+ finished scenarios kept in the checkpoint s.h5.checkpoint.*$resume_line"
+  [ -d s.h5.checkpoint ] && [ ! -e s.h5 ] || fail "sweep SIG$sig: checkpoint not kept, or an output written"
+  no_temporaries .
+}
+signal_sweep TERM 143
+signal_sweep HUP 129 --resume  # a closed terminal
 
 "$HEXDYN" sweep "$SLOW" -o s.h5 --keep-runs --resume > s2.log 2>&1 &
 pid=$!

@@ -270,6 +270,8 @@ int main(int argc, char** argv) {
     }
   }
   try {
+    // Every input file is read once for the whole command (io/inputs.hpp).
+    const hexdyn::InputFreeze freeze;
     const Args args = parse_args(argc, argv);
     if (args.command == "validate") return validate(args);
     if (args.command == "run") {
@@ -281,30 +283,24 @@ int main(int argc, char** argv) {
           "hexdyn: run interrupted by {signal}: nothing written to " + args.output +
               " (an existing file there is kept, no temporary file left); run the command "
               "again to compute it");
-      const hexdyn::Scene scene = hexdyn::load_scene(args.config, args.overrides);
+      std::vector<hexdyn::InputFile> inputs;
+      const hexdyn::Scene scene = hexdyn::load_scene(args.config, args.overrides, &inputs);
       if (args.verbose) print_leg_mapping(scene, std::cerr);
       // Before any computing: the output is a new path or a regular file that is none of the
-      // inputs.
-      hexdyn::check_output_target(args.output, hexdyn::scene_input_files(args.config));
+      // inputs (the scene, its inherited files, its URDF).
+      hexdyn::check_output_target(args.output, inputs);
       // Before the allocation: the grid's size, against the large-run limit.
       const hexdyn::PreparedScene prep = hexdyn::prepare_scene(scene);
       hexdyn::check_run_size(prep.grid.size(), args.allow_large);
       const hexdyn::RunResult result = hexdyn::run_prepared_scene(scene, prep, &std::cerr);
-      hexdyn::write_result_file(args.output, result);
+      hexdyn::write_result_file(args.output, result, inputs);
       std::cerr << "hexdyn: wrote " << args.output << " (" << result.kin.samples() << " samples, "
                 << result.wall_time_s << " s)\n";
       return 0;
     }
     if (args.command == "sweep") {
       if (args.output.empty()) throw hexdyn::ConfigError("sweep: missing -o FILE");
-      {
-        // The sweep file, its base scene and the base's inherited files are inputs: never the
-        // output.
-        const hexdyn::SweepSpec spec = hexdyn::load_sweep(args.config);
-        std::vector<std::string> inputs = hexdyn::scene_input_files(spec.base_path);
-        inputs.insert(inputs.begin(), args.config);
-        hexdyn::check_output_target(args.output, inputs);
-      }
+        // The output is checked against every input of the sweep by run_sweep, before any work.
 #ifdef HEXDYN_CLI_MPI
       return hexdyn::run_sweep(
           {args.config, args.output, args.keep_runs, args.resume, args.verbose, args.progress_s});

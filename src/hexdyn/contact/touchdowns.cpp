@@ -3,6 +3,8 @@
 #include <Eigen/Cholesky>
 #include <algorithm>
 
+#include "hexdyn/core/cancel.hpp"
+
 namespace hexdyn {
 
 double foot_effective_mass(const RobotModel& model, RobotData& data, const BaseState& base,
@@ -22,6 +24,7 @@ std::vector<Touchdown> resolve_touchdowns(const RobotModel& model, RobotData& da
   RobotKinematicState s;
   for (int leg = 0; leg < kLegs; ++leg) {
     for (const Swing& sw : plan.gait.legs[leg].swings) {
+      check_cancelled();
       Touchdown td;
       td.leg = leg;
       td.t_s = sw.t_touchdown_s;

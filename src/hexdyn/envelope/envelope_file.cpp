@@ -132,6 +132,7 @@ constexpr const char* kUsage = R"(usage: hexdyn envelope ENVELOPE -o FILE [-v]
 void write_envelope_file(const std::string& path, const EnvelopeSpec& spec,
                          const EnvelopeResult& result) {
   silence_hdf5_errors();
+  check_output_target(path, spec.inputs);
   publish_atomically(path, [&](const std::string& tmp) {
     H5Writer w(tmp, compressed_output(spec.base_config_yaml));
     write_file(w, spec, result);
@@ -170,8 +171,9 @@ int envelope_command(int argc, char** argv) {
                                    output +
                                    " (an existing file there is kept, no temporary file left); "
                                    "run the command again to compute it");
+    const InputFreeze freeze;  // every input read once for the whole envelope (io/inputs.hpp)
     const EnvelopeSpec spec = load_envelope_spec(config);
-    check_output_path_writable(output);
+    check_output_target(output, spec.inputs);  // the envelope file is one of them
     const EnvelopeResult result = compute_envelope(spec, verbose ? &std::cerr : nullptr);
     write_envelope_file(output, spec, result);
     std::cerr << "hexdyn: wrote " << output << " (" << result.probes.size() << " probes, "

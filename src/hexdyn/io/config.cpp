@@ -48,7 +48,7 @@ double read_urdf_robot_keys(Reader& r, RobotParams& p, LoadedUrdfRobot& loaded) 
   UrdfRobotKeys k;
   k.path = r.string_or("robot.urdf", "");
   if (k.path.empty()) r.fail("robot.urdf", "got an empty path, expected the path of a URDF file");
-  if (const auto why = why_not_regular_file(k.path))
+  if (const auto why = input_kept(k.path) ? std::nullopt : why_not_regular_file(k.path))
     r.fail("robot.urdf", "got " + k.path + ", which " + *why +
                              ", expected a URDF file (relative to the scene file)");
   k.trunk_link = r.string_or("robot.trunk_link", "");
@@ -443,6 +443,9 @@ std::vector<std::string> split_key_path(const std::string& path) {
 }
 
 Override parse_override(const std::string& text) {
+  // Bound for the result file's /meta, like a file's text (io/inputs.hpp).
+  const std::size_t bad = first_non_utf8(text);
+  if (bad != std::string::npos) require_utf8(text, "--set " + text.substr(0, bad) + "...");
   const auto eq = text.find('=');
   if (eq == std::string::npos || eq == 0)
     throw ConfigError("--set " + text + ": expected key.path=value");
@@ -556,12 +559,17 @@ Scene load_scene_from_string(const std::string& yaml_text, const std::string& so
   return s;
 }
 
-Scene load_scene(const std::string& path, const std::vector<Override>& overrides) {
+Scene load_scene(const std::string& path, const std::vector<Override>& overrides,
+                 std::vector<InputFile>* inputs) {
+  // Each file read once: the digests are those of the bytes the scene was built from.
+  const InputFreeze freeze;
   std::vector<std::string> files;
   YAML::Node root = load_scene_tree(path, &files);
   for (const auto& ov : overrides) apply_override(root, ov, path);
+  std::vector<InputFile> read = scene_inputs(files, root);
   Scene s = scene_from_yaml(root, path);
-  s.input_sha256 = input_sha256_text(scene_inputs(files, root));
+  s.input_sha256 = input_sha256_text(read);
+  if (inputs) *inputs = without_texts(std::move(read));
   return s;
 }
 

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "hexdyn/core/scene.hpp"
+#include "hexdyn/io/inputs.hpp"
 
 namespace YAML {
 class Node;
@@ -49,8 +50,13 @@ Override parse_override(const std::string& text);
 /// named (relative paths joined to the inheriting file's folder).
 YAML::Node load_scene_tree(const std::string& path, std::vector<std::string>* files = nullptr);
 
-/// Reads (with inheritance), overrides and validates a scene file.
-Scene load_scene(const std::string& path, const std::vector<Override>& overrides = {});
+/// Reads (with inheritance), overrides and validates a scene file. Each input file is read
+/// once (io/inputs.hpp InputFreeze), so Scene::input_sha256 is the digest of what was used.
+/// When `inputs` is given, it receives the input files (scene, inherited files, URDF) with
+/// their identities, without their texts: what the run's outputs are checked against
+/// (io/output.hpp check_output_target).
+Scene load_scene(const std::string& path, const std::vector<Override>& overrides = {},
+                 std::vector<InputFile>* inputs = nullptr);
 
 /// Same, from YAML text (`source_name` is used in messages, e.g. a sweep scenario id).
 Scene load_scene_from_string(const std::string& yaml_text, const std::string& source_name,

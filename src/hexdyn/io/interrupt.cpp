@@ -7,6 +7,7 @@
 #include <atomic>
 #include <cerrno>
 #include <cstring>
+#include <iterator>
 #include <string>
 
 namespace hexdyn {
@@ -40,6 +41,35 @@ void write_text(const char* text, std::size_t n) {
 
 static_assert(std::atomic<int>::is_always_lock_free, "the handler needs lock-free atomics");
 
+/// The signals handled: every one whose default action ends the process and that a user, a
+/// batch system or a closed pipe sends (SIGKILL and SIGSTOP cannot be caught; SIGSEGV and
+/// its kind are faults of the program, not requests).
+constexpr int kHandled[] = {SIGHUP, SIGINT, SIGQUIT, SIGTERM, SIGUSR1, SIGUSR2, SIGALRM, SIGPIPE};
+
+/// The name of a handled signal (a static string: safe in the handler), or nullptr.
+const char* name_of(int sig) {
+  switch (sig) {
+    case SIGHUP:
+      return "SIGHUP";
+    case SIGINT:
+      return "SIGINT";
+    case SIGQUIT:
+      return "SIGQUIT";
+    case SIGTERM:
+      return "SIGTERM";
+    case SIGUSR1:
+      return "SIGUSR1";
+    case SIGUSR2:
+      return "SIGUSR2";
+    case SIGALRM:
+      return "SIGALRM";
+    case SIGPIPE:
+      return "SIGPIPE";
+    default:
+      return nullptr;
+  }
+}
+
 void remove_registered() {
   for (Slot& s : g_slots)
     if (s.used.load(std::memory_order_acquire) == 1) ::unlink(s.path);
@@ -53,7 +83,7 @@ void on_signal(int sig) {
   if (g_exit_in_handler.load() != 0 || second) {
     if (!second) {
       write_text(g_line, g_line_size.load());
-      const char* name = sig == SIGTERM ? "SIGTERM" : sig == SIGINT ? "SIGINT" : "a signal";
+      const char* name = name_of(sig) ? name_of(sig) : "a signal";
       write_text(name, std::strlen(name));
       write_text(g_tail, g_tail_size.load());
     }
@@ -67,12 +97,13 @@ void on_signal(int sig) {
 Interrupted::Interrupted(int sig) : Error("interrupted by " + signal_name(sig)), signal_(sig) {}
 
 std::string signal_name(int sig) {
-  if (sig == SIGTERM) return "SIGTERM";
-  if (sig == SIGINT) return "SIGINT";
+  if (const char* name = name_of(sig)) return name;
   return "signal " + std::to_string(sig);
 }
 
-void install_interrupt_handlers(InterruptMode mode, const std::string& line) {
+namespace {
+
+void set_line(InterruptMode mode, const std::string& line) {
   // The line is replaced while no handler uses it: size 0 first, then the bytes.
   g_line_size.store(0);
   g_tail_size.store(0);
@@ -87,19 +118,46 @@ void install_interrupt_handlers(InterruptMode mode, const std::string& line) {
   g_line_size.store(head.size());
   g_tail_size.store(at == std::string::npos ? 0 : tail.size());
   g_exit_in_handler.store(mode == InterruptMode::kExitInHandler ? 1 : 0);
+}
+
+struct sigaction handler_action() {
   struct sigaction sa {};
   sa.sa_handler = on_signal;
   sigemptyset(&sa.sa_mask);
-  sigaddset(&sa.sa_mask, SIGTERM);
-  sigaddset(&sa.sa_mask, SIGINT);
+  for (int sig : kHandled) sigaddset(&sa.sa_mask, sig);  // one handler at a time
   sa.sa_flags = SA_RESTART;  // the program polls; interrupted system calls go on
-  ::sigaction(SIGTERM, &sa, nullptr);
-  ::sigaction(SIGINT, &sa, nullptr);
+  return sa;
+}
+
+}  // namespace
+
+void install_interrupt_handlers(InterruptMode mode, const std::string& line) {
+  set_line(mode, line);
+  const struct sigaction sa = handler_action();
+  for (int sig : kHandled) ::sigaction(sig, &sa, nullptr);
 }
 
 void reset_interrupt_handlers_in_child() {
-  ::signal(SIGTERM, SIG_DFL);
-  ::signal(SIGINT, SIG_DFL);
+  for (int sig : kHandled) ::signal(sig, SIG_DFL);
+}
+
+FatalSignalScope::FatalSignalScope(const std::string& line) {
+  set_line(InterruptMode::kExitInHandler, line);
+  const struct sigaction sa = handler_action();
+  for (std::size_t i = 0; i < std::size(kHandled); ++i) {
+    const int sig = kHandled[i];
+    if (sig == SIGINT) continue;  // the host's (Python's KeyboardInterrupt)
+    struct sigaction old {};
+    if (::sigaction(sig, nullptr, &old) != 0 || old.sa_handler != SIG_DFL ||
+        (old.sa_flags & SA_SIGINFO) != 0)
+      continue;
+    if (::sigaction(sig, &sa, nullptr) == 0) installed_ |= 1u << i;
+  }
+}
+
+FatalSignalScope::~FatalSignalScope() {
+  for (std::size_t i = 0; i < std::size(kHandled); ++i)
+    if (installed_ & (1u << i)) ::signal(kHandled[i], SIG_DFL);
 }
 
 int interrupted() { return g_signal; }

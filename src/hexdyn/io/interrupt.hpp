@@ -1,7 +1,9 @@
 #pragma once
 /// \file interrupt.hpp
-/// SIGTERM and SIGINT (what Slurm sends at a time limit and on scancel, and Ctrl-C):
-/// every command ends cleanly on them (docs/user/faults.md#signals).
+/// SIGTERM and SIGINT (what Slurm sends at a time limit and on scancel, and Ctrl-C), and
+/// every other signal whose default action ends the process and that is sent as a request
+/// (SIGHUP, SIGQUIT, SIGUSR1, SIGUSR2, SIGALRM, SIGPIPE): every command ends cleanly on them,
+/// with one line and exit status 128 + signal (docs/user/faults.md#signals).
 ///
 /// Design, async-signal-safe throughout:
 /// - a registry of the temporary files being written (publish_atomically registers
@@ -24,7 +26,7 @@
 
 namespace hexdyn {
 
-/// A SIGTERM or SIGINT arrived: thrown by check_interrupt(); exit status 128 + signal.
+/// A handled signal arrived: thrown by check_interrupt(); exit status 128 + signal.
 class Interrupted : public Error {
  public:
   explicit Interrupted(int signal);
@@ -37,10 +39,10 @@ class Interrupted : public Error {
 
 enum class InterruptMode { kExitInHandler, kPoll };
 
-/// `{signal}` in a handler's line: replaced by SIGTERM or SIGINT.
+/// `{signal}` in a handler's line: replaced by the signal's name ("SIGTERM", "SIGHUP", ...).
 inline constexpr const char* kSignalPlaceholder = "{signal}";
 
-/// Installs the SIGTERM and SIGINT handlers (sigaction, SA_RESTART). `line` (up to 1000
+/// Installs the handler of every handled signal (sigaction, SA_RESTART). `line` (up to 1000
 /// bytes before and after kSignalPlaceholder; a newline added) is what kExitInHandler
 /// writes before it exits. May be called again to change the line or the mode.
 void install_interrupt_handlers(InterruptMode mode, const std::string& line);
@@ -48,14 +50,30 @@ void install_interrupt_handlers(InterruptMode mode, const std::string& line);
 /// Restores the default actions (a forked child that must die as a plain process).
 void reset_interrupt_handlers_in_child();
 
-/// The signal received (SIGTERM or SIGINT), or 0.
+/// The handled signal received, or 0.
 int interrupted();
 
 /// Throws Interrupted when a signal was received.
 void check_interrupt();
 
-/// "SIGTERM", "SIGINT" or "signal N".
+/// "SIGTERM", "SIGINT", "SIGHUP", ... for the handled signals, else "signal N".
 std::string signal_name(int signal);
+
+/// While it lives, the handled signals other than SIGINT whose action is the default (not
+/// ignored, not handled by the host program) remove the registered temporary files, write
+/// `line` ({signal} replaced) and end the process with 128 + signal: what a library call
+/// that publishes a file (Python's Result.write) promises in a host process whose signals
+/// are otherwise its own. The dispositions are restored when it ends.
+class FatalSignalScope {
+ public:
+  explicit FatalSignalScope(const std::string& line);
+  ~FatalSignalScope();
+  FatalSignalScope(const FatalSignalScope&) = delete;
+  FatalSignalScope& operator=(const FatalSignalScope&) = delete;
+
+ private:
+  unsigned installed_ = 0;  ///< bit i: the i-th handled signal was installed here
+};
 
 /// Registers a temporary file that the handler removes; at most 16 at once, paths under
 /// 4096 bytes (beyond that the path is not registered and only the ordinary cleanup

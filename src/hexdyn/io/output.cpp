@@ -85,19 +85,34 @@ std::string utc_timestamp_now() {
   return buf;
 }
 
-void check_output_target(const std::string& path, const std::vector<std::string>& inputs) {
+void check_not_input(const std::string& path, const std::vector<InputFile>& inputs) {
+  struct stat target {};
+  if (::stat(path.c_str(), &target) != 0) return;
+  const auto refuse = [&](const InputFile& input) {
+    throw_output_error(path, "it is the " + input.role + " '" + input.path +
+                                 "' read by this command (same device and inode), which the "
+                                 "output would destroy");
+  };
+  // The file read, by the identity it had then; and whatever is at its path now.
+  if (const InputFile* input = find_input(inputs, static_cast<std::uint64_t>(target.st_dev),
+                                          static_cast<std::uint64_t>(target.st_ino)))
+    refuse(*input);
+  for (const InputFile& input : inputs) {
+    struct stat now {};
+    if (::stat(input.absolute.c_str(), &now) == 0 && now.st_dev == target.st_dev &&
+        now.st_ino == target.st_ino)
+      refuse(input);
+  }
+}
+
+void check_output_target(const std::string& path, const std::vector<InputFile>& inputs) {
   if (path.empty()) throw IoError("cannot write output '': empty path");
+  if (path.find('\0') != std::string::npos)
+    throw IoError("cannot write output: the path contains a NUL character");
   struct stat target {};
   if (::lstat(path.c_str(), &target) == 0) {
     if (const auto why = why_not_replaceable(path)) throw_output_error(path, "it " + *why);
-    for (const std::string& input : inputs) {
-      struct stat in {};
-      if (::stat(input.c_str(), &in) != 0) continue;
-      if (in.st_dev == target.st_dev && in.st_ino == target.st_ino)
-        throw_output_error(
-            path, "it is the input file '" + input +
-                      "' of this run (same device and inode), which the output would destroy");
-    }
+    check_not_input(path, inputs);
   } else if (errno != ENOENT) {
     const int err = errno;
     const std::string dir = directory_of(path);
@@ -229,8 +244,9 @@ bool compressed_output(const std::string& resolved_yaml) {
   return !node.IsScalar() || node.as<std::string>() != "none";
 }
 
-void write_result_file(const std::string& path, const RunResult& result) {
-  check_output_path_writable(path);
+void write_result_file(const std::string& path, const RunResult& result,
+                       const std::vector<InputFile>& inputs) {
+  check_output_target(path, inputs);
   publish_atomically(path, [&](const std::string& tmp) {
     H5Writer writer(tmp, result.compress);
     write_result_layout(writer, result);

@@ -7,6 +7,7 @@
 
 #include "hexdyn/core/result.hpp"
 #include "hexdyn/io/h5io.hpp"
+#include "hexdyn/io/inputs.hpp"
 #include "hexdyn/io/result_layout.hpp"
 
 namespace hexdyn {
@@ -17,10 +18,10 @@ namespace hexdyn {
 /// - `out` is a new path, or an existing regular file: a directory, device, FIFO, socket
 ///   or symbolic link is never replaced (why_not_replaceable; symbolic links are refused,
 ///   not resolved, so no file outside the output's folder is ever replaced);
-/// - `out` is not the same file as any of `inputs` (every file the run reads: the scene
-///   and each file it inherits, or the sweep file, its base scene and the base's inherited
-///   files), compared by identity (st_dev, st_ino), so that another name or a hard link
-///   of an input is refused too; inputs that cannot be stat'ed are skipped;
+/// - `out` is not the same file as any of `inputs` (every file the command read, with the
+///   identity it had when read: io/inputs.hpp), compared by identity (st_dev, st_ino), so
+///   that another name or a hard link of an input is refused too; also not the file now at
+///   an input's absolute path (check_not_input);
 /// - the folder of `out` exists and a file can be created in it: the temporary file of
 ///   `out` (temporary_path_for) is created with O_EXCL and removed again, so a missing
 ///   folder, a read-only or virtual file system (/proc, /sys), a name too long or a
@@ -28,12 +29,19 @@ namespace hexdyn {
 /// Leaves the file system as it found it, except that temporary files of `out` left by
 /// earlier runs whose process is gone are removed and named on stderr, one line each
 /// (remove_stale_temporaries; docs/user/faults.md#leftovers).
-void check_output_target(const std::string& out, const std::vector<std::string>& inputs);
+void check_output_target(const std::string& out, const std::vector<InputFile>& inputs);
+
+/// Throws IoError "cannot write output 'PATH': it is the URDF 'X' read by this command …"
+/// when the file at `path` (links followed) is one of `inputs`: by the identity each had
+/// when read, or as the file now at its absolute path. Nothing when `path` does not exist.
+/// Every writer calls it before it writes into or renames over an existing file.
+void check_not_input(const std::string& path, const std::vector<InputFile>& inputs);
 
 /// check_output_target(path, {}): the checks that need no list of inputs.
 void check_output_path_writable(const std::string& path);
 
-/// Writes `result` to `path` atomically: the file is built as `.<basename>.tmp.<pid>`
+/// Writes `result` to `path` atomically, after check_output_target(path, inputs): the file
+/// is built as `.<basename>.tmp.<pid>`
 /// in the same directory and renamed over `path` only when complete. On failure the
 /// temporary file is removed, an existing file at `path` is left untouched, and the
 /// IoError is rethrown.
@@ -44,7 +52,8 @@ void check_output_path_writable(const std::string& path);
 /// have T rows (or T entries), energy_joint_J has 18 entries.
 /// Dynamics datasets are written only when result.dyn.present. `/impacts/leg` is int32,
 /// 0-based (0..5). Every dataset is labelled (io/labels.hpp).
-void write_result_file(const std::string& path, const RunResult& result);
+void write_result_file(const std::string& path, const RunResult& result,
+                       const std::vector<InputFile>& inputs = {});
 
 /// Whether a resolved scene configuration (YAML, Scene::resolved_yaml) asks for compressed
 /// datasets: its output.compression is `deflate` or absent (not `none`).

@@ -7,6 +7,7 @@
 #include <mutex>
 
 #include "hexdyn/core/errors.hpp"
+#include "hexdyn/io/inputs.hpp"
 #include "hexdyn/io/paths.hpp"
 #include "hexdyn/io/yaml_load.hpp"
 #include "hexdyn/model/stance.hpp"
@@ -48,12 +49,14 @@ bool same_keys(const UrdfRobotKeys& a, const UrdfRobotKeys& b) {
 }  // namespace
 
 LoadedUrdfRobot load_urdf_robot(const UrdfRobotKeys& keys) {
-  if (const auto why = why_not_regular_file(keys.path))
+  if (const auto why = input_kept(keys.path) ? std::nullopt : why_not_regular_file(keys.path))
     throw ConfigError("robot.urdf: got " + keys.path + ", which " + *why +
                       ", expected a URDF file");
-  // The file is read every time, so that an edited file is read as it is now; a text and
-  // keys loaded before give the robot loaded then (a sweep's scenarios share their robot).
-  const std::string text = read_urdf_text(keys.path);
+  // Read as an input (io/inputs.hpp): while a command runs, the bytes it read first; outside
+  // one, the file as it is now. A text and keys loaded before give the robot loaded then (a
+  // sweep's scenarios share their robot).
+  const InputFile file = read_input_text(keys.path, kMaxUrdfBytes, "a URDF file");
+  const std::string& text = *file.text;
   {
     const std::lock_guard<std::mutex> lock(loaded_mutex);
     for (const LoadedEntry& e : loaded_entries)

@@ -22,6 +22,7 @@
 
 #include "hexdyn/core/errors.hpp"
 #include "hexdyn/io/config.hpp"
+#include "hexdyn/io/inputs.hpp"
 #include "hexdyn/io/paths.hpp"
 #include "hexdyn/io/robot_config.hpp"
 
@@ -37,14 +38,6 @@ std::string kind_of(mode_t mode) {
   if (S_ISSOCK(mode)) return "is a socket";
   return "is not a regular file";
 }
-
-/// Closes a file descriptor on scope exit.
-struct Fd {
-  int fd = -1;
-  ~Fd() {
-    if (fd >= 0) ::close(fd);
-  }
-};
 
 /// Checks the event stream of one YAML text (no tree is built, aliases are not
 /// expanded, so the check is linear in the text). It counts the nodes and scalar bytes the
@@ -356,34 +349,8 @@ std::optional<std::string> why_not_regular_file(const std::string& path) {
 }
 
 std::string read_text_file(const std::string& path) {
-  // Special files are refused by their type before opening: a FIFO would block the
-  // open, a device such as /dev/zero would never end.
-  if (const auto why = why_not_regular_file(path))
-    throw ConfigError(path + ": " + *why + ", expected a configuration file (a regular YAML file)");
-  Fd f;
-  f.fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC | O_NOCTTY);
-  if (f.fd < 0)
-    throw ConfigError(path + ": cannot read the configuration file (" + std::strerror(errno) + ")");
-  struct stat st {};
-  if (::fstat(f.fd, &st) != 0 || !S_ISREG(st.st_mode))  // replaced since the stat above
-    throw ConfigError(path + ": " + kind_of(st.st_mode) +
-                      ", expected a configuration file (a regular YAML file)");
-  const std::string too_big = path + ": larger than " + std::to_string(kMaxConfigBytes) +
-                              " bytes (1 MiB), expected a configuration file of at most that size";
-  if (static_cast<unsigned long long>(st.st_size) > kMaxConfigBytes) throw ConfigError(too_big);
-  std::string text;
-  char buf[65536];
-  for (;;) {
-    const ssize_t n = ::read(f.fd, buf, sizeof buf);
-    if (n < 0 && errno == EINTR) continue;
-    if (n < 0)
-      throw ConfigError(path + ": cannot read the configuration file (" + std::strerror(errno) +
-                        ")");
-    if (n == 0) break;
-    text.append(buf, static_cast<std::size_t>(n));
-    if (text.size() > kMaxConfigBytes) throw ConfigError(too_big);  // grew while read
-  }
-  return text;
+  // io/inputs.hpp: type and size checked before reading, UTF-8, kept while a command runs.
+  return *read_input_text(path, kMaxConfigBytes, "a configuration file (a regular YAML file)").text;
 }
 
 YAML::Node parse_yaml_checked(const std::string& text, const std::string& source_name) {
@@ -414,12 +381,6 @@ YAML::Node load_scene_tree(const std::string& path, std::vector<std::string>* fi
     for (const ChainLink& link : chain) files->push_back(link.path);
   }
   return root;
-}
-
-std::vector<std::string> scene_input_files(const std::string& path) {
-  std::vector<std::string> files;
-  load_scene_tree(path, &files);
-  return files;
 }
 
 std::optional<double> parse_fraction(const std::string& text) {

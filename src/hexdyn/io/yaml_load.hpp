@@ -52,12 +52,6 @@ inline constexpr std::uint64_t kMaxYamlBytes = std::uint64_t{16} << 20;
 /// directory", "is a device", "is a FIFO (named pipe)", "is a socket", ...
 std::optional<std::string> why_not_regular_file(const std::string& path);
 
-/// The files a scene reads: `path` itself, then each file it inherits, in inheritance
-/// order, as named (relative paths joined to the inheriting file's folder). Loads the
-/// chain as load_scene_tree does (same checks, same ConfigError). The outputs of a run
-/// must not be any of these (io/output.hpp check_output_target).
-std::vector<std::string> scene_input_files(const std::string& path);
-
 /// Parses YAML text with the checks above, any document shape (a `--set` value may be a
 /// scalar or a list). `source_name` starts every message. Throws ConfigError.
 YAML::Node parse_yaml_checked(const std::string& text, const std::string& source_name);

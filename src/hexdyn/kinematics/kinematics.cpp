@@ -5,6 +5,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "hexdyn/core/cancel.hpp"
 #include "hexdyn/core/errors.hpp"
 
 namespace hexdyn {
@@ -97,6 +98,7 @@ KinematicsResult sample_kinematics(const RobotModel& model, const MotionPlan& pl
   RobotKinematicState s;
   BodyPoses poses;
   for (int i = 0; i < T; ++i) {
+    if (i % 64 == 0) check_cancelled();
     const double t = times[i];
     robot_state_at(model, plan, t, s);
     k.time_s[i] = t;

@@ -2,6 +2,7 @@
 
 #include <cstdint>
 #include <cstring>
+#include <memory>
 
 #include "hexdyn/core/bytes.hpp"
 #include "hexdyn/core/errors.hpp"
@@ -71,11 +72,15 @@ std::vector<char> pack_spec(const SweepSpec& spec, const SweepIdentity& identity
     put_pod(b, v);
   put_i64(b, identity.keep_runs ? 1 : 0);
   // The inputs: the identity's (absolute paths) and the spec's (/meta input_sha256 of a
-  // kept run), each role, path, absolute path, SHA-256.
+  // kept run), each role, path, absolute path, SHA-256, and the spec's with the bytes rank 0
+  // read, which every rank's scenarios use (io/inputs.hpp keep_input).
   for (const std::vector<InputFile>* list : {&identity.inputs, &spec.inputs}) {
     put_i64(b, static_cast<std::int64_t>(list->size()));
-    for (const InputFile& f : *list)
+    for (const InputFile& f : *list) {
       for (const std::string* t : {&f.role, &f.path, &f.absolute, &f.sha256}) put_text(b, *t);
+      put_i64(b, f.text ? 1 : 0);
+      if (f.text) put_text(b, *f.text);
+    }
   }
   put_text(b, spec.name);
   put_text(b, spec.base_path);
@@ -109,6 +114,7 @@ SweepSpec unpack_spec(const std::vector<char>& bytes, SweepIdentity& identity) {
     for (std::int64_t i = 0; i < n; ++i) {
       InputFile f;
       for (std::string* t : {&f.role, &f.path, &f.absolute, &f.sha256}) *t = u.text();
+      if (u.i64() != 0) f.text = std::make_shared<const std::string>(u.text());
       list->push_back(std::move(f));
     }
   }

@@ -112,7 +112,7 @@ class Coordinator {
   void prepare() {
     start_ = Clock::now();
     spec_ = load_sweep(opt_.sweep_path);
-    check_output_path_writable(opt_.output_path);
+    check_output_target(opt_.output_path, spec_.inputs);
     checkpoint_ =
         std::make_unique<Checkpoint>(opt_.output_path, spec_, opt_.keep_runs, opt_.resume);
     factory_ = std::make_unique<ScenarioFactory>(spec_);
@@ -498,6 +498,9 @@ int run_sweep(const SweepOptions& options) {
       broadcast_bytes(bytes);
       SweepIdentity identity;
       const SweepSpec spec = unpack_spec(bytes, identity);
+      // Rank 0's bytes of every input: all ranks compute with the same files, those of
+      // /meta input_sha256 (io/inputs.hpp).
+      for (const InputFile& f : spec.inputs) keep_input(f);
       const ScenarioFactory factory(spec);
       worker_rank(factory, identity);
     } catch (const std::exception& e) {
@@ -513,10 +516,10 @@ int run_sweep(const SweepOptions& options) {
   try {
     coordinator.prepare();
   } catch (const Error& e) {
-    std::cerr << "hexdyn: error: " << e.what() << "\n";
+    std::cerr << "hexdyn: error: " << one_line(e.what()) << "\n";
     status = e.exit_status();
   } catch (const std::exception& e) {
-    std::cerr << "hexdyn: internal error: " << e.what() << "\n";
+    std::cerr << "hexdyn: internal error: " << one_line(e.what()) << "\n";
     status = 4;
   }
   broadcast_status(status);

@@ -6,6 +6,7 @@
 #include <ostream>
 #include <utility>
 
+#include "hexdyn/core/cancel.hpp"
 #include "hexdyn/kinematics/kinematics.hpp"
 #include "hexdyn/planning/grid.hpp"
 #include "hexdyn/power/grid_error.hpp"
@@ -138,6 +139,7 @@ GridAccuracy refine_output_grid(const Scene& scene, const PreparedScene& prep,
   Batches b;
   b.add(std::move(kin), std::move(dyn));
   for (int pass = 0;; ++pass) {
+    check_cancelled();
     std::optional<StageTimer> clock(std::in_place, times, Stage::kRefinement);
     GridAssessment a;
     {

@@ -9,6 +9,7 @@
 
 #include "hexdyn/allocation/backends.hpp"
 #include "hexdyn/allocation/problem.hpp"
+#include "hexdyn/core/cancel.hpp"
 #include "hexdyn/core/errors.hpp"
 #include "hexdyn/dynamics/rnea.hpp"
 #include "hexdyn/kinematics/kinematics.hpp"
@@ -192,6 +193,7 @@ DynamicsResult DynamicsSolver::solve(const KinematicsResult& kin, const ContactS
                       std::to_string(T));
   DynamicsResult dyn = empty_result(T);
   for (int i = 0; i < T; ++i) {
+    check_cancelled();
     const SampleContacts& c = contacts.samples[i];
     SampleSolver* solver = solver_.get();
     if (warm == WarmStart::kSamePhases) {

@@ -7,6 +7,7 @@
 #include <limits>
 #include <sstream>
 
+#include "hexdyn/core/cancel.hpp"
 #include "hexdyn/core/errors.hpp"
 #include "hexdyn/planning/margin_detail.hpp"
 #include "hexdyn/planning/plan.hpp"
@@ -103,6 +104,7 @@ class PostureSearch {
     std::vector<bool> done(kScan, false);
     int best = -1;
     auto visit = [&](int i) {
+      check_cancelled();
       const double below = best < 0 ? -kInf : scan[best].margin.value_m;
       scan[i] = evaluate(h_lo + (h_hi - h_lo) * i / (kScan - 1), w, kUniform, below);
       done[i] = true;

@@ -156,7 +156,7 @@ Checkpoint::Checkpoint(const std::string& output_path, const SweepSpec& spec, bo
     throw IoError("cannot open checkpoint directory '" + dir_ + "': " + errno_text(err));
   }
   try {
-    take_lock();
+    take_lock(spec.inputs);
     scan_journals(spec, resume);
   } catch (...) {
     release_lock();
@@ -166,7 +166,7 @@ Checkpoint::Checkpoint(const std::string& output_path, const SweepSpec& spec, bo
   }
 }
 
-void Checkpoint::take_lock() {
+void Checkpoint::take_lock(const std::vector<InputFile>& inputs) {
   const std::string lock_path = dir_ + "/" + kLockName;
   // A new lock is created (O_EXCL); an existing one must be a regular file of one link.
   lock_fd_ = ::openat(dir_fd_, kLockName, O_RDWR | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
@@ -181,6 +181,13 @@ void Checkpoint::take_lock() {
   if (::fstat(lock_fd_, &st) != 0 || st.st_nlink != 1) {
     release_lock();
     refuse("checkpoint lock", lock_path, "a file with other (hard) links");
+  }
+  // A lock is written (the holder's name): never one of the sweep's inputs, moved here.
+  if (const InputFile* input = find_input(inputs, static_cast<std::uint64_t>(st.st_dev),
+                                          static_cast<std::uint64_t>(st.st_ino))) {
+    release_lock();
+    refuse("checkpoint lock", lock_path,
+           "the " + input->role + " '" + input->path + "' of the sweep");
   }
   int rc = 0;
   do rc = ::flock(lock_fd_, LOCK_EX | LOCK_NB);

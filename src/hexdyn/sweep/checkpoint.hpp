@@ -105,7 +105,7 @@ class Checkpoint {
   void start_buffer();
   void note_image(std::size_t index, std::uint64_t record_at, const char* payload,
                   std::size_t size);
-  void take_lock();
+  void take_lock(const std::vector<InputFile>& inputs);
   void scan_journals(const SweepSpec& spec, bool resume);
   void release_lock();
   /// Names in the directory (from its descriptor), sorted, without "." and "..".

@@ -106,7 +106,13 @@ SweepIdentity make_identity(const std::vector<InputFile>& inputs,
                             const std::string& base_config_yaml, const std::string& build,
                             std::uint64_t scenarios, bool keep_runs) {
   SweepIdentity s;
-  for (const InputFile& f : inputs) s.inputs.push_back({f.role, f.absolute, f.absolute, f.sha256});
+  for (const InputFile& f : inputs) {
+    InputFile id;  // role, absolute path and digest: what identifies the sweep
+    id.role = f.role;
+    id.path = id.absolute = f.absolute;
+    id.sha256 = f.sha256;
+    s.inputs.push_back(std::move(id));
+  }
   s.base_scene = fnv1a64(base_config_yaml);
   s.build = fnv1a64(build);
   s.scenarios = scenarios;

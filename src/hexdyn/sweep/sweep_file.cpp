@@ -249,7 +249,7 @@ void write_sweep_file(const std::string& path, const SweepSpec& spec,
     if (rows[i].index != i)
       throw IoError("cannot write '" + path + "': row " + std::to_string(i) + " holds scenario " +
                     std::to_string(rows[i].index));
-  check_output_path_writable(path);
+  check_output_target(path, spec.inputs);
   publish_atomically(path, [&](const std::string& tmp) {
     H5Writer w(tmp, compressed_output(spec.base_config_yaml));
     write_meta(w, spec, runs_from != nullptr, info);

@@ -13,6 +13,7 @@
 
 #include "hexdyn/core/errors.hpp"
 #include "hexdyn/io/atomic_file.hpp"
+#include "hexdyn/io/inputs.hpp"
 #include "hexdyn/io/output.hpp"
 
 namespace hexdyn {
@@ -54,7 +55,8 @@ TEST_CASE("output target: special files and inputs are refused, by type and iden
   REQUIRE(::mkfifo(d.file("fifo.h5").c_str(), 0644) == 0);
   fs::create_directory(d.file("sub"));
   const std::set<std::string> before = d.entries();
-  const std::vector<std::string> inputs = {d.file("cfg.yaml")};
+  std::vector<InputFile> inputs;
+  add_input(inputs, "scene", d.file("cfg.yaml"));
 
   CHECK_THROWS_WITH(check_output_target(d.file("cfg.yaml"), inputs),
                     Catch::Contains("same device and inode"));
@@ -76,6 +78,73 @@ TEST_CASE("output target: special files and inputs are refused, by type and iden
   CHECK_NOTHROW(check_output_target(d.file("other.yaml"), inputs));
   CHECK(d.entries() == before);  // the probe's temporary file is gone
   CHECK(text_of(d.file("cfg.yaml")) == "name: x\n");
+}
+
+TEST_CASE("output target: an input is known by the identity it had when read",
+          "[output][target][inputs]") {
+  Dir d;
+  std::ofstream(d.file("robot.urdf")) << "<robot name='r'/>\n";
+  std::vector<InputFile> inputs;
+  add_input(inputs, "URDF", d.file("robot.urdf"));
+  REQUIRE(inputs.size() == 1);
+  struct stat st {};
+  REQUIRE(::stat(d.file("robot.urdf").c_str(), &st) == 0);
+  CHECK(inputs[0].device == static_cast<std::uint64_t>(st.st_dev));
+  CHECK(inputs[0].inode == static_cast<std::uint64_t>(st.st_ino));
+  // Renamed after it was read: its new name is still the input.
+  fs::rename(d.file("robot.urdf"), d.file("moved.urdf"));
+  CHECK_THROWS_WITH(check_output_target(d.file("moved.urdf"), inputs),
+                    Catch::Contains("the URDF") && Catch::Contains("same device and inode"));
+  // A new file at the input's path is refused as well (what is at an input's path now).
+  std::ofstream(d.file("robot.urdf")) << "<robot name='s'/>\n";
+  CHECK_THROWS_WITH(check_output_target(d.file("robot.urdf"), inputs),
+                    Catch::Contains("same device and inode"));
+  // Gone altogether: the output may take its name.
+  fs::remove(d.file("robot.urdf"));
+  CHECK_NOTHROW(check_output_target(d.file("robot.urdf"), inputs));
+  CHECK_THROWS_WITH(check_output_target(std::string("a\0b", 3), inputs), Catch::Contains("NUL"));
+}
+
+TEST_CASE("inputs: a file is read once while a freeze lives, and its digest is of those bytes",
+          "[inputs]") {
+  Dir d;
+  const std::string path = d.file("scene.yaml");
+  std::ofstream(path) << "name: first\n";
+  std::string first_digest;
+  {
+    const InputFreeze freeze;
+    const InputFile a = read_input_text(path, 1 << 20, "a scene");
+    std::ofstream(path) << "name: second, longer\n";  // edited while the command runs
+    const InputFile b = read_input_text(path, 1 << 20, "a scene");
+    CHECK(*b.text == "name: first\n");
+    CHECK(b.sha256 == a.sha256);
+    first_digest = a.sha256;
+    std::vector<InputFile> listed;
+    add_input(listed, "scene", path);
+    CHECK(listed.at(0).sha256 == first_digest);
+    CHECK(input_kept(path));
+  }
+  // Outside a freeze, the file as it is now.
+  const InputFile now = read_input_text(path, 1 << 20, "a scene");
+  CHECK(*now.text == "name: second, longer\n");
+  CHECK(now.sha256 != first_digest);
+  CHECK_FALSE(input_kept(path));
+}
+
+TEST_CASE("inputs: text that is not UTF-8 is refused with its line and column", "[inputs]") {
+  CHECK(first_non_utf8("plain ascii") == std::string::npos);
+  CHECK(first_non_utf8("caf\xC3\xA9 \xE2\x82\xAC \xF0\x9F\x98\x80") == std::string::npos);
+  CHECK(first_non_utf8("ab\xFF") == 2);            // not a lead byte
+  CHECK(first_non_utf8("\xC0\xAF") == 0);          // overlong '/'
+  CHECK(first_non_utf8("\xED\xA0\x80") == 0);      // a surrogate
+  CHECK(first_non_utf8("\xF4\x90\x80\x80") == 0);  // beyond U+10FFFF
+  CHECK(first_non_utf8("x\xE2\x82") == 1);         // cut short
+  Dir d;
+  const std::string path = d.file("latin1.yaml");
+  std::ofstream(path) << "name: ok\nlabel: caf\xE9\n";
+  CHECK_THROWS_WITH(
+      read_input_text(path, 1 << 20, "a scene"),
+      Catch::Contains("not UTF-8") && Catch::Contains("byte 0xE9 at line 2, column 11"));
 }
 
 TEST_CASE("output target: publish_atomically never renames over what appeared meanwhile",

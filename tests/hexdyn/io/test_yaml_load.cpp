@@ -144,7 +144,7 @@ TEST_CASE("yaml load: only regular files up to 1 MiB are read", "[config][yaml]"
   const std::string over = d.write("over.yaml", std::string(kMaxConfigBytes + 1, '#'));
   CHECK(read_error(over) == over +
                                 ": larger than 1048576 bytes (1 MiB), expected a configuration "
-                                "file of at most that size");
+                                "file (a regular YAML file) of at most that size");
 
   // A FIFO nobody writes to: refused at once. Run in a child so that a blocking open or
   // read fails the test after 10 s instead of hanging it.

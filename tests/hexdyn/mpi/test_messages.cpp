@@ -3,6 +3,7 @@
 // including empty and binary blocks, and a truncated message is an error rather than garbage.
 #include <catch2/catch.hpp>
 #include <csignal>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -36,8 +37,17 @@ TEST_CASE("mpi messages: the sweep round-trips what a worker needs", "[mpi]") {
   cases.case_keys = {"robot.urdf", "robot.forward_axis"};
   cases.case_values = {{"/w/m.urdf", "+x"}, {"/w/k.urdf", "+y"}};
   spec.axes.push_back(cases);
-  spec.inputs = {{"sweep file", "s.yaml", "/w/s.yaml", std::string(64, 'c')},
-                 {"URDF", "r.urdf", "/w/r.urdf", std::string(64, 'd')}};
+  spec.inputs.resize(2);
+  spec.inputs[0].role = "sweep file";
+  spec.inputs[0].path = "s.yaml";
+  spec.inputs[0].absolute = "/w/s.yaml";
+  spec.inputs[0].sha256 = std::string(64, 'c');
+  spec.inputs[1].role = "URDF";
+  spec.inputs[1].path = "r.urdf";
+  spec.inputs[1].absolute = "/w/r.urdf";
+  spec.inputs[1].sha256 = std::string(64, 'd');
+  // The bytes rank 0 read travel with it (every rank computes with them).
+  spec.inputs[1].text = std::make_shared<const std::string>(std::string("<robot/>\0\xff", 10));
   const SweepIdentity id = make_identity(spec.inputs, "base: text", "hexdyn x", 7, true);
   SweepIdentity got;
   const SweepSpec back = unpack_spec(pack_spec(spec, id), got);
@@ -51,6 +61,9 @@ TEST_CASE("mpi messages: the sweep round-trips what a worker needs", "[mpi]") {
   CHECK(back.inputs[1].path == "r.urdf");
   CHECK(back.inputs[1].absolute == "/w/r.urdf");
   CHECK(back.inputs[1].sha256 == spec.inputs[1].sha256);
+  CHECK(back.inputs[0].text == nullptr);
+  REQUIRE(back.inputs[1].text != nullptr);
+  CHECK(*back.inputs[1].text == *spec.inputs[1].text);
   REQUIRE(back.axes.size() == 2);
   CHECK(back.axes[0].key == a.key);
   CHECK(back.axes[0].values == a.values);

@@ -84,7 +84,10 @@ TEST_CASE("sweep: a record round-trips a row and its run image", "[sweep]") {
 }
 
 TEST_CASE("sweep: a journal finds damaged, truncated and foreign records", "[sweep]") {
-  const std::vector<InputFile> inputs{{"sweep file", "/s.yaml", "/s.yaml", std::string(64, 'a')}};
+  std::vector<InputFile> inputs(1);
+  inputs[0].role = "sweep file";
+  inputs[0].path = inputs[0].absolute = "/s.yaml";
+  inputs[0].sha256 = std::string(64, 'a');
   const SweepIdentity id = make_identity(inputs, "base", "build", 10, false);
   std::vector<char> j = journal_header(id);
   std::vector<std::size_t> starts;
