@@ -66,12 +66,10 @@ print("finished after", time.monotonic() - t, "s")
 ' "$PAPER" "$solver" > ctrlc.log 2>&1 &
   pid=$!
   sleep 1.5  # the scene computes for about 5 s (active set) or 15 s (Ipopt)
-  start=$SECONDS
   kill -INT "$pid"
   wait "$pid"
-  rc=$?
-  expect_status "Ctrl-C in hexdyn.run ($solver)" "$rc" 42 ctrlc.log
-  [ $((SECONDS - start)) -le 3 ] || fail "Ctrl-C in hexdyn.run ($solver): $((SECONDS - start)) s"
+  # 42: KeyboardInterrupt before the scene ended (how soon: bench/interrupt_latency.py).
+  expect_status "Ctrl-C in hexdyn.run ($solver)" $? 42 ctrlc.log
 done
 
 # signal_envelope SIG STATUS: the envelope signalled while it computes.
