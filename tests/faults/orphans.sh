@@ -7,10 +7,13 @@
 # shellcheck source=common.sh
 source "$(dirname "$0")/common.sh"
 
-# kill_job WHAT: starts the 2-rank sweep in its own session, kills WHAT after 2 s.
+# kill_job WHAT: starts the 2-rank smoke sweep in its own session, each scenario waiting 1 s
+# on purpose (HEXDYN_TEST_HOLD_SECONDS, so the job is mid-sweep on an idle machine as on a busy
+# one), and kills WHAT once the first journal exists.
 kill_job() {
   local out="$WORK/$1.h5" mpirun_pid="" ranks="" p parent pgid left
-  setsid "$MPIEXEC" --oversubscribe -np 2 "$HEXDYN" sweep "$SLOW" -o "$out" --keep-runs > "$1.log" 2>&1 &
+  HEXDYN_TEST_HOLD_SECONDS=1.0 setsid "$MPIEXEC" --oversubscribe -np 2 "$HEXDYN" sweep "$SMOKE" \
+    -o "$out" --keep-runs > "$1.log" 2>&1 &
   wait_for "$out.checkpoint/journal-*" 30 || fail "$1: no journal: $(cat "$1.log")"
   # The ranks: hexdyn-sweep processes whose parent is not one (those are scenario children).
   for p in $(work_processes); do
@@ -31,7 +34,7 @@ kill_job() {
   sleep 0.5
   left=$(work_processes | tr '\n' ' ')
   [ -z "$left" ] || fail "$1: processes left 0.5 s after kill -9: $left ($(ps -o pid,ppid,pgid,args -p "${left// /,}" 2> /dev/null))"
-  mpi 2 sweep "$SLOW" -o "$out" --keep-runs --resume > "$1.resume.log" 2>&1 ||
+  mpi 2 sweep "$SMOKE" -o "$out" --keep-runs --resume > "$1.resume.log" 2>&1 ||
     fail "$1: the immediate resume failed: $(cat "$1.resume.log")"
 }
 kill_job whole_job

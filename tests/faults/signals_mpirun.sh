@@ -4,11 +4,14 @@
 # file of an uninterrupted 1-rank sweep. Then SIGTERM to the worker rank alone: it tells
 # rank 0, which says the same line (mpirun kills every rank left once one exits, so a
 # worker that ended first would cut rank 0 off before its line).
+# The smoke sweep, whose scenarios wait 1.5 s each on purpose while the signals are sent
+# (HEXDYN_TEST_HOLD_SECONDS), so the job is mid-sweep on an idle machine as on a busy one.
 # shellcheck source=common.sh
 source "$(dirname "$0")/common.sh"
 
-"$HEXDYN" sweep "$SLOW" -o s.h5 --keep-runs > s.log 2>&1 || fail "1-rank sweep: $(cat s.log)"
-"$MPIEXEC" --oversubscribe -np 2 "$HEXDYN" sweep "$SLOW" -o m.h5 --keep-runs > m1.log 2>&1 &
+"$HEXDYN" sweep "$SMOKE" -o s.h5 --keep-runs > s.log 2>&1 || fail "1-rank sweep: $(cat s.log)"
+HEXDYN_TEST_HOLD_SECONDS=1.5 "$MPIEXEC" --oversubscribe -np 2 "$HEXDYN" sweep "$SMOKE" -o m.h5 \
+  --keep-runs > m1.log 2>&1 &
 pid=$!  # mpirun itself
 wait_for 'm.h5.checkpoint/journal-*' 60 || fail "the 2-rank sweep wrote no journal: $(cat m1.log)"
 sleep 0.3
@@ -20,11 +23,12 @@ one_line m1.log "^hexdyn: sweep interrupted by SIGTERM: [0-9]+ finished scenario
 no_temporaries .
 sleep 0.5
 [ -z "$(work_processes)" ] || fail "processes left after mpirun's SIGTERM: $(work_processes)"
-mpi 2 sweep "$SLOW" -o m.h5 --keep-runs --resume > m2.log 2>&1 || fail "mpirun resume: $(cat m2.log)"
+mpi 2 sweep "$SMOKE" -o m.h5 --keep-runs --resume > m2.log 2>&1 || fail "mpirun resume: $(cat m2.log)"
 compare s.h5 m.h5 || fail "the resumed sweeps differ"
 no_temporaries .
 
-"$MPIEXEC" --oversubscribe -np 2 "$HEXDYN" sweep "$SLOW" -o w.h5 --keep-runs > w.log 2>&1 &
+HEXDYN_TEST_HOLD_SECONDS=1.5 "$MPIEXEC" --oversubscribe -np 2 "$HEXDYN" sweep "$SMOKE" -o w.h5 \
+  --keep-runs > w.log 2>&1 &
 pid=$!
 wait_for 'w.h5.checkpoint/journal-*' 60 || fail "the 2-rank sweep wrote no journal: $(cat w.log)"
 worker=""
