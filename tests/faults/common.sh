@@ -33,18 +33,30 @@ one_line() {
   if grep -q 'HDF5-DIAG\|Segmentation\|slist' "$1"; then fail "$1: HDF5 or crash output"; fi
 }
 
-# refused WHAT PATTERN COMMAND...: COMMAND exits with status 2 and exactly one line of
-# hexdyn's error matching PATTERN; no temporary file is left in the working folder, no o.h5
-# is written, and every file listed in inputs.sha256 (if any) is byte for byte as before.
+# refused WHAT PATTERN ARGS...: `hexdyn ARGS` (under `ulimit -v $LIMIT_KB` when the script sets
+# it, and `timeout 60` as a guard against a hang: a refusal comes before any work) exits with
+# status 2 and exactly one line of hexdyn's error matching PATTERN. Nothing is left behind: no
+# o.h5, no temporary file here, nothing in out/ (when the script has that folder), and every
+# input is byte for byte as before: inputs_digest against $before when the script defines it,
+# else the files listed in inputs.sha256, if any.
 refused() {
-  local what=$1 pattern=$2
+  local what=$1 pattern=$2 log rc
   shift 2
-  "$@" > out.log 2>&1
-  expect_status "$what" $? 2 out.log
-  one_line out.log "$pattern"
+  log="refused_${what//[^A-Za-z0-9_.-]/_}.log"
+  (ulimit -v "${LIMIT_KB:-unlimited}" && exec timeout 60 "$HEXDYN" "$@") > "$log" 2>&1
+  rc=$?
+  [ "$rc" != 124 ] || fail "$what: no answer within 60 s"
+  expect_status "$what" "$rc" 2 "$log"
+  one_line "$log" "$pattern"
   [ ! -e o.h5 ] || fail "$what: an output was written"
   no_temporaries .
-  if [ -f inputs.sha256 ]; then
+  if [ -d out ]; then
+    [ -z "$(ls -A out)" ] || fail "$what: files left in out/: $(ls -A out)"
+    no_temporaries out
+  fi
+  if declare -F inputs_digest > /dev/null; then
+    [ "$(inputs_digest)" = "$before" ] || fail "$what: an input changed"
+  elif [ -f inputs.sha256 ]; then
     sha256sum --quiet -c inputs.sha256 || fail "$what: an input changed"
   fi
 }

@@ -40,34 +40,34 @@ criteria: [kinematic]
 EOF
 ln robots/kraby.urdf kraby_link.h5
 sha256sum robots/* scenes/* sweep.yaml envelope.yaml > inputs.sha256
-listing() { find . robots scenes -maxdepth 1 ! -name out.log | sort; }
+listing() { find . robots scenes -maxdepth 1 ! -name 'refused_*.log' | sort; }
 before=$(listing)
 
 in_line="which the output would destroy"
 refused "run onto its URDF" "the URDF .*phantomx_mark4.urdf.*$in_line" \
-  "$HEXDYN" run scenes/scene.yaml -o robots/phantomx_mark4.urdf
+  run scenes/scene.yaml -o robots/phantomx_mark4.urdf
 refused "run onto its URDF by another name" "the URDF .*$in_line" \
-  "$HEXDYN" run scenes/scene.yaml -o scenes/../robots/./phantomx_mark4.urdf
+  run scenes/scene.yaml -o scenes/../robots/./phantomx_mark4.urdf
 refused "run onto a --set URDF" "the URDF 'robots/kraby.urdf'.*$in_line" \
-  "$HEXDYN" run scenes/scene.yaml --set robot.urdf=robots/kraby.urdf \
+  run scenes/scene.yaml --set robot.urdf=robots/kraby.urdf \
   --set robot.forward_axis=+y -o robots/kraby.urdf
 refused "run onto a hard link of a --set URDF" "the URDF .*$in_line" \
-  "$HEXDYN" run scenes/scene.yaml --set robot.urdf=robots/kraby.urdf \
+  run scenes/scene.yaml --set robot.urdf=robots/kraby.urdf \
   --set robot.forward_axis=+y -o kraby_link.h5
-refused "run onto its scene" "the scene .*$in_line" "$HEXDYN" run scenes/scene.yaml -o scenes/scene.yaml
+refused "run onto its scene" "the scene .*$in_line" run scenes/scene.yaml -o scenes/scene.yaml
 refused "run onto an inherited file" "the inherited scene .*common.yaml.*$in_line" \
-  "$HEXDYN" run scenes/scene.yaml -o scenes/common.yaml
-refused "sweep onto its file" "the sweep file .*$in_line" "$HEXDYN" sweep sweep.yaml -o sweep.yaml
+  run scenes/scene.yaml -o scenes/common.yaml
+refused "sweep onto its file" "the sweep file .*$in_line" sweep sweep.yaml -o sweep.yaml
 refused "sweep onto the base's URDF" "the URDF .*phantomx_mark4.urdf.*$in_line" \
-  "$HEXDYN" sweep sweep.yaml -o robots/phantomx_mark4.urdf
+  sweep sweep.yaml -o robots/phantomx_mark4.urdf
 refused "sweep onto a case's URDF" "the URDF .*kraby.urdf.*$in_line" \
-  "$HEXDYN" sweep sweep.yaml -o kraby_link.h5
+  sweep sweep.yaml -o kraby_link.h5
 refused "sweep onto the base's inherited file" "the inherited scene .*$in_line" \
-  "$HEXDYN" sweep sweep.yaml -o scenes/common.yaml
+  sweep sweep.yaml -o scenes/common.yaml
 refused "envelope onto its own file" "the envelope file .*$in_line" \
-  "$HEXDYN" envelope envelope.yaml -o envelope.yaml
+  envelope envelope.yaml -o envelope.yaml
 refused "envelope onto its URDF" "the URDF .*$in_line" \
-  "$HEXDYN" envelope envelope.yaml -o robots/phantomx_mark4.urdf
+  envelope envelope.yaml -o robots/phantomx_mark4.urdf
 [ "$(listing)" = "$before" ] || fail "files appeared or went: $(diff <(echo "$before") <(listing) | tr '\n' ' ')"
 no_temporaries . && no_temporaries robots && no_temporaries scenes
 

@@ -61,21 +61,6 @@ printf 'base: %s\naxes:\n  - key: terrain.riser_height\n    range: {from: 0.0, t
 inputs_digest() { sha256sum ./*.yaml "$SRC/configs/sweeps/stairs_base.yaml" "$PAPER"; }
 before=$(inputs_digest)
 
-# refused NAME PATTERN ARGS...: hexdyn ARGS under the address-space limit and `timeout 60`
-# exits with status 2 and one line matching PATTERN; nothing is left in out/, no input
-# changed.
-refused() {
-  local name=$1 pattern=$2 log="$1.log" rc
-  shift 2
-  (ulimit -v "$LIMIT_KB" && exec timeout 60 "$HEXDYN" "$@") > "$log" 2>&1
-  rc=$?
-  [ "$rc" != 124 ] || fail "$name: no answer within 60 s"
-  expect_status "$name" "$rc" 2 "$log"
-  one_line "$log" "$pattern"
-  [ -z "$(ls -A out)" ] || fail "$name: files left in out/: $(ls -A out)"
-  no_temporaries out
-  [ "$(inputs_digest)" = "$before" ] || fail "$name: an input changed"
-}
 
 uniform() { echo --set output.grid=uniform --set "output.sample_step=$1" --set "output.event_step=$1"; }
 # shellcheck disable=SC2046  # word splitting of uniform's options is intended

@@ -21,16 +21,16 @@ grep -aq $'\xe9' robot.urdf || fail "the URDF was not made non-UTF-8"
 sha256sum ./*.yaml robot.urdf > inputs.sha256
 
 refused "scene" "latin1.yaml: not UTF-8 text: byte 0xE9 at line [0-9]+, column 11" \
-  "$HEXDYN" run latin1.yaml -o o.h5
-refused "inherited file" "latin1.yaml: not UTF-8 text" "$HEXDYN" run child.yaml -o o.h5
-refused "validate" "latin1.yaml: not UTF-8 text" "$HEXDYN" validate latin1.yaml
+  run latin1.yaml -o o.h5
+refused "inherited file" "latin1.yaml: not UTF-8 text" run child.yaml -o o.h5
+refused "validate" "latin1.yaml: not UTF-8 text" validate latin1.yaml
 refused "--set" "^hexdyn: error: --set name=caf\.\.\.: not UTF-8 text: byte 0xE9 at line 1, column 9" \
-  "$HEXDYN" run paper.yaml --set name=$'caf\xe9' -o o.h5
-refused "sweep's base" "latin1.yaml: not UTF-8 text" "$HEXDYN" sweep sweep.yaml -o o.h5
+  run paper.yaml --set name=$'caf\xe9' -o o.h5
+refused "sweep's base" "latin1.yaml: not UTF-8 text" sweep sweep.yaml -o o.h5
 refused "sweep file" "sweep_name.yaml: not UTF-8 text: byte 0xFF at line 2, column 8" \
-  "$HEXDYN" sweep sweep_name.yaml -o o.h5
+  sweep sweep_name.yaml -o o.h5
 refused "URDF" "robot.urdf: not UTF-8 text: byte 0xE9" \
-  "$HEXDYN" run "$SRC/configs/robots/phantomx_mark4_stairs.yaml" --set robot.urdf="$PWD/robot.urdf" -o o.h5
+  run "$SRC/configs/robots/phantomx_mark4_stairs.yaml" --set robot.urdf="$PWD/robot.urdf" -o o.h5
 
 "$PY" - << 'EOF' || fail "Python"
 import os, hexdyn

@@ -51,20 +51,6 @@ edited strong 're.sub(r"effort=\"[^\"]*\"", "effort=\"1e9\"", t, count=1)'
 inputs_digest() { sha256sum ./*.urdf ./*.yaml "$KRABY" "$SCENE"; }
 before=$(inputs_digest)
 
-# refused NAME PATTERN ARGS...: hexdyn ARGS exits 2 within 60 s with one line matching
-# PATTERN; nothing in out/, no input changed.
-refused() {
-  local name=$1 pattern=$2 log="$1.log" rc
-  shift 2
-  timeout 60 "$HEXDYN" "$@" > "$log" 2>&1
-  rc=$?
-  [ "$rc" != 124 ] || fail "$name: no answer within 60 s"
-  expect_status "$name" "$rc" 2 "$log"
-  one_line "$log" "$pattern"
-  [ -z "$(ls -A out)" ] || fail "$name: files left in out/: $(ls -A out)"
-  no_temporaries out
-  [ "$(inputs_digest)" = "$before" ] || fail "$name: an input changed"
-}
 
 refused mass_run "heavy.urdf: link '[^']+': mass 1e\+300 kg, expected at most 10000 kg" \
   run "$SCENE" -o out/r.h5 --set robot.urdf=heavy.urdf

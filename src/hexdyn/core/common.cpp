@@ -1,6 +1,14 @@
 #include "hexdyn/core/common.hpp"
 
+#include <cstdio>
+
 namespace hexdyn {
+
+std::string format_number(double x, int significant_digits) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*g", significant_digits, x);
+  return buf;
+}
 
 std::string leg_name(int leg) { return "L" + std::to_string(leg + 1); }
 

@@ -38,6 +38,10 @@ std::string leg_name(int leg);
 /// "L{i}_coxa", "L{i}_femur", "L{i}_tibia".
 std::string joint_name(int leg, int joint);
 
+/// `x` with `significant_digits` significant digits, as printf's %g writes it: how messages
+/// quote a number ("9.61e-06", "0.05").
+std::string format_number(double x, int significant_digits);
+
 /// Rotation matrix of Bryant (Cardan x-y-z) angles: R = Rx(α) Ry(β) Rz(θ), body → world.
 Mat3 bryant_to_rotation(const Vec3& eta);
 

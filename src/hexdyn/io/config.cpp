@@ -48,7 +48,7 @@ double read_urdf_robot_keys(Reader& r, RobotParams& p, LoadedUrdfRobot& loaded) 
   UrdfRobotKeys k;
   k.path = r.string_or("robot.urdf", "");
   if (k.path.empty()) r.fail("robot.urdf", "got an empty path, expected the path of a URDF file");
-  if (const auto why = input_kept(k.path) ? std::nullopt : why_not_regular_file(k.path))
+  if (const auto why = why_not_input_file(k.path))
     r.fail("robot.urdf", "got " + k.path + ", which " + *why +
                              ", expected a URDF file (relative to the scene file)");
   k.trunk_link = r.string_or("robot.trunk_link", "");

@@ -149,6 +149,11 @@ bool input_kept(const std::string& path) {
   return s.freezes > 0 && s.files.count(absolute) > 0;
 }
 
+std::optional<std::string> why_not_input_file(const std::string& path) {
+  if (input_kept(path)) return std::nullopt;
+  return why_not_regular_file(path);
+}
+
 void keep_input(const InputFile& file) {
   if (!file.text) return;
   Store& s = store();
@@ -196,8 +201,7 @@ std::vector<InputFile> scene_inputs(const std::vector<std::string>& chain, const
   // A URDF that is no regular file is not read here: the scene's reader refuses it, naming
   // the key (io/config.cpp).
   const std::string urdf = tree_urdf_path(tree);
-  if (!urdf.empty() && (input_kept(urdf) || !why_not_regular_file(urdf)))
-    add_input(inputs, "URDF", urdf);
+  if (!urdf.empty() && !why_not_input_file(urdf)) add_input(inputs, "URDF", urdf);
   return inputs;
 }
 

@@ -18,6 +18,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -63,9 +64,13 @@ class InputFreeze {
   InputFreeze& operator=(const InputFreeze&) = delete;
 };
 
-/// Whether an InputFreeze lives and keeps the bytes of `path` (its absolute path): a reader
-/// that would check the file on disk first (why_not_regular_file) reads it without.
+/// Whether an InputFreeze lives and keeps the bytes of `path` (its absolute path).
 bool input_kept(const std::string& path);
+
+/// Why `path` cannot be read as an input, or nothing: nothing when its bytes are kept
+/// (input_kept: the file on disk no longer matters), else why_not_regular_file(path). What a
+/// reader checks before read_input_text to name the key that gave the path.
+std::optional<std::string> why_not_input_file(const std::string& path);
 
 /// Makes `file` (with its text) the kept bytes of its absolute path, as if read first,
 /// while an InputFreeze lives: a sweep's worker rank takes rank 0's inputs so. No effect

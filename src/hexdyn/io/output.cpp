@@ -149,8 +149,6 @@ void check_output_target(const std::string& path, const std::vector<InputFile>& 
       std::cerr << "hexdyn: " << line << "\n";
 }
 
-void check_output_path_writable(const std::string& path) { check_output_target(path, {}); }
-
 void check_run_size(std::size_t samples, bool allow_large) {
   if (samples <= kLargeResultSamples || allow_large) return;
   char size[64];

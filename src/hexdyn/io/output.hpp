@@ -37,9 +37,6 @@ void check_output_target(const std::string& out, const std::vector<InputFile>& i
 /// Every writer calls it before it writes into or renames over an existing file.
 void check_not_input(const std::string& path, const std::vector<InputFile>& inputs);
 
-/// check_output_target(path, {}): the checks that need no list of inputs.
-void check_output_path_writable(const std::string& path);
-
 /// Writes `result` to `path` atomically, after check_output_target(path, inputs): the file
 /// is built as `.<basename>.tmp.<pid>`
 /// in the same directory and renamed over `path` only when complete. On failure the

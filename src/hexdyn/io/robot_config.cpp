@@ -49,7 +49,7 @@ bool same_keys(const UrdfRobotKeys& a, const UrdfRobotKeys& b) {
 }  // namespace
 
 LoadedUrdfRobot load_urdf_robot(const UrdfRobotKeys& keys) {
-  if (const auto why = input_kept(keys.path) ? std::nullopt : why_not_regular_file(keys.path))
+  if (const auto why = why_not_input_file(keys.path))
     throw ConfigError("robot.urdf: got " + keys.path + ", which " + *why +
                       ", expected a URDF file");
   // Read as an input (io/inputs.hpp): while a command runs, the bytes it read first; outside

@@ -12,11 +12,7 @@ namespace hexdyn {
 namespace {
 
 /// A derived quantity, 3 significant digits.
-std::string num(double x) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3g", x);
-  return buf;
-}
+std::string num(double x) { return format_number(x, 3); }
 
 /// x rounded up to 3 significant digits (for "at least x").
 std::string num_up(double x) {
@@ -26,11 +22,7 @@ std::string num_up(double x) {
 }
 
 /// A value as given, to 10 significant digits.
-std::string given(double x) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.10g", x);
-  return buf;
-}
+std::string given(double x) { return format_number(x, 10); }
 
 /// The most cycles whose grid bound stays within the limit (0 when even one cycle does not).
 int most_cycles(Scene scene) {

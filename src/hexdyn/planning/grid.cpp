@@ -3,19 +3,30 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <cstdio>
 #include <string>
 
 #include "hexdyn/core/errors.hpp"
 #include "hexdyn/core/run_size.hpp"
 
 namespace hexdyn {
+
 namespace {
 
-std::string fmt(double x) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.4g", x);
-  return buf;
+/// The grid's size, bounded before anything is allocated (core/run_size.hpp): the scene
+/// reader bounded it from the keys; the planned events are checked here again. Throws
+/// ConfigError beyond kMaxRunSamples.
+GridSizeBound checked_grid_bound(const OutputParams& out, double duration_s,
+                                 const std::vector<GridEvent>& events) {
+  double transients = 0.0;
+  for (const GridEvent& e : events) transients += e.duration_s > 0.0 ? 1.0 : 0.0;
+  const GridSizeBound bound =
+      output_grid_bound(out, duration_s, static_cast<double>(events.size()), 0.0, transients);
+  if (!(bound.total() <= static_cast<double>(kMaxRunSamples)))
+    throw ConfigError(std::string(bound.key()) + ": the output grid of the " +
+                      format_number(duration_s, 4) + " s run would have up to " +
+                      format_number(bound.total(), 4) + " samples, expected at most " +
+                      std::to_string(kMaxRunSamples));
+  return bound;
 }
 
 }  // namespace
@@ -23,16 +34,7 @@ std::string fmt(double x) {
 std::vector<double> build_output_grid(const OutputParams& out, double duration_s,
                                       const std::vector<GridEvent>& events,
                                       std::vector<std::int8_t>* sample_kind) {
-  // The size, bounded before anything is allocated (core/run_size.hpp): the scene reader
-  // bounded it from the keys; the planned events are checked here again.
-  double transients = 0.0;
-  for (const GridEvent& e : events) transients += e.duration_s > 0.0 ? 1.0 : 0.0;
-  const GridSizeBound bound =
-      output_grid_bound(out, duration_s, static_cast<double>(events.size()), 0.0, transients);
-  if (!(bound.total() <= static_cast<double>(kMaxRunSamples)))
-    throw ConfigError(std::string(bound.key()) + ": the output grid of the " + fmt(duration_s) +
-                      " s run would have up to " + fmt(bound.total()) +
-                      " samples, expected at most " + std::to_string(kMaxRunSamples));
+  const GridSizeBound bound = checked_grid_bound(out, duration_s, events);
   std::vector<double> t;
   t.reserve(static_cast<std::size_t>(bound.total()));
   const auto n = static_cast<std::int64_t>(std::floor(duration_s / out.sample_step_s + 1e-9));

@@ -30,12 +30,6 @@ std::string emit(const YAML::Node& node) {
   return std::string(out.c_str()) + "\n";
 }
 
-std::string format_number(double x, int digits) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*g", digits, x);
-  return buf;
-}
-
 bool parse_finite_number(const YAML::Node& node, double& out) {
   return node.IsDefined() && node.IsScalar() && YAML::convert<double>::decode(node, out) &&
          std::isfinite(out);

@@ -453,23 +453,22 @@ TEST_CASE("output: a failed write leaves the old file untouched and no temporary
 TEST_CASE("output: unwritable destinations are refused before any work", "[output]") {
   TempDir dir;
   const std::string missing_dir = dir.file("no/such/dir/run.h5");
-  CHECK_THROWS_AS(check_output_path_writable(missing_dir), IoError);
-  CHECK_THROWS_WITH(check_output_path_writable(missing_dir),
+  CHECK_THROWS_AS(check_output_target(missing_dir, {}), IoError);
+  CHECK_THROWS_WITH(check_output_target(missing_dir, {}),
                     Catch::Contains(missing_dir) && Catch::Contains("does not exist"));
   CHECK_THROWS_AS(write_result_file(missing_dir, make_result(2, false, 0, 0)), IoError);
-  CHECK_THROWS_WITH(check_output_path_writable(dir.path.string()),
-                    Catch::Contains("is a directory"));
+  CHECK_THROWS_WITH(check_output_target(dir.path.string(), {}), Catch::Contains("is a directory"));
   const std::string not_a_dir = dir.file("plain");
   std::ofstream(not_a_dir) << "x";
-  CHECK_THROWS_WITH(check_output_path_writable(not_a_dir + "/run.h5"),
+  CHECK_THROWS_WITH(check_output_target(not_a_dir + "/run.h5", {}),
                     Catch::Contains("not a directory"));
-  CHECK_NOTHROW(check_output_path_writable(dir.file("fresh.h5")));
+  CHECK_NOTHROW(check_output_target(dir.file("fresh.h5"), {}));
   CHECK(directory_entries(dir.path) == std::vector<std::string>{"plain"});
   if (::geteuid() != 0) {  // root bypasses permission bits
     const fs::path locked = dir.path / "locked";
     fs::create_directory(locked);
     fs::permissions(locked, fs::perms::owner_read | fs::perms::owner_exec);
-    CHECK_THROWS_WITH(check_output_path_writable((locked / "run.h5").string()),
+    CHECK_THROWS_WITH(check_output_target((locked / "run.h5").string(), {}),
                       Catch::Contains("not writable"));
     fs::permissions(locked, fs::perms::owner_all);
   }
