@@ -51,11 +51,11 @@ def case_limits(sweep, ci):
             if c in out or sid not in sweep.run_ids:
                 continue
             g = f["runs"][sid]
-            config = yaml.safe_load(hr._text(g["meta"].attrs["config_yaml"]))
-            urdf = hr._text(g["model"]["urdf"][()])
+            config = yaml.safe_load(hr.decode_text(g["meta"].attrs["config_yaml"]))
+            urdf = hr.decode_text(g["model"]["urdf"][()])
             # /model/urdf names the joints as the description does: /model/joint_names
             # holds those names in hexdyn's joint order.
-            names = [hr._text(n) for n in g["model"]["joint_names"][()]]
+            names = [hr.decode_text(n) for n in g["model"]["joint_names"][()]]
             limits, _ = torque_limits(config, urdf, names)
             if limits is not None:
                 out[c] = limits
@@ -148,7 +148,7 @@ def read_envelope(path):
     from hexdyn.xr import open_envelope
 
     with h5py.File(path, "r") as f:
-        name = hr._text(f["meta"].attrs.get("name", os.path.basename(path)))
+        name = hr.decode_text(f["meta"].attrs.get("name", os.path.basename(path)))
     return {"name": name, "ds": open_envelope(path)}
 
 

@@ -33,7 +33,7 @@ MARKERS = {"kinematic": "o", "torque": "s", "friction": "^"}
 
 
 def _strings(ds):
-    return [hr._text(v) for v in ds.asstr()[()]] if ds.shape else hr._text(ds.asstr()[()])
+    return [hr.decode_text(v) for v in ds.asstr()[()]] if ds.shape else hr.decode_text(ds.asstr()[()])
 
 
 def read_envelope(path):
@@ -42,7 +42,7 @@ def read_envelope(path):
     with h5py.File(path, "r") as f:
         # Version 1 (no coordinates, flattened limit and message) plots too.
         hr.check_filetype_version(f, S["kEnvelopeSchema"], (1, S["kEnvelopeSchemaVersion"]), path)
-        d = {"meta": {k: hr._text(v) for k, v in f["meta"].attrs.items()}}
+        d = {"meta": {k: hr.decode_text(v) for k, v in f["meta"].attrs.items()}}
         d["tread"] = f[S["kEnvelopeTreadDepth"].path][()]
         d["duty"] = f[S["kEnvelopeDutyFactor"].path][()]
         d["speed"] = f[S["kEnvelopePeakSpeed"].path][()]
@@ -90,7 +90,7 @@ def check_layout(path):
             want = hr.expected_shape(spec.shape, **sizes)
             if ds.shape != want:
                 raise SystemExit(f"plot_envelope: {path}: {spec.path} shape {ds.shape}, expected {want}")
-            if hr._text(ds.attrs.get("units", "")) != spec.units:
+            if hr.decode_text(ds.attrs.get("units", "")) != spec.units:
                 raise SystemExit(f"plot_envelope: {path}: {spec.path} units {ds.attrs.get('units')!r}, "
                                  f"expected {spec.units!r}")
             kind = "string" if h5py.check_string_dtype(ds.dtype) else str(ds.dtype)

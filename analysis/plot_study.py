@@ -87,8 +87,8 @@ def read_study(path):
         for name, ds in f["runs"].items():
             v = hr._read_dataset(ds)
             rows[name] = v if isinstance(v, list) else np.asarray(v)
-        verdict = {k: hr._text(v) for k, v in f["verdict"].attrs.items()}
-        refs = {name: {k: hr._text(v) for k, v in g.attrs.items()}
+        verdict = {k: hr.decode_text(v) for k, v in f["verdict"].attrs.items()}
+        refs = {name: {k: hr.decode_text(v) for k, v in g.attrs.items()}
                 for name, g in f["references"].items()}
     return rows, verdict, refs
 

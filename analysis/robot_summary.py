@@ -27,7 +27,7 @@ def main(argv):
         return 2
     res = hr.open_result(argv[1])
     cfg = res.config
-    urdf = ET.fromstring(hr._text(res["/model/urdf"]))
+    urdf = ET.fromstring(hr.decode_text(res["/model/urdf"]))
     efforts = [float(lim.get("effort")) for j in urdf.iter("joint")
                if j.get("type") == "revolute" and (lim := j.find("limit")) is not None
                and lim.get("effort") is not None]

@@ -170,9 +170,9 @@ class Measured:
             hr.check_filetype_version(f, hr.RESULT_SCHEMA, hr.RESULT_SCHEMA_VERSION, path)
             meta = f["meta"].attrs
             self.wall_time_s = float(meta["wall_time_s"])
-            self.config = yaml.safe_load(hr._text(meta["config_yaml"])) or {}
-            self.version = hr._text(meta.get("version", ""))
-            self.git_commit = hr._text(meta.get("git_commit", ""))
+            self.config = yaml.safe_load(hr.decode_text(meta["config_yaml"])) or {}
+            self.version = hr.decode_text(meta.get("version", ""))
+            self.git_commit = hr.decode_text(meta.get("git_commit", ""))
             self.t = f["/time"][()]
             self.fz = f["/contacts/force"][()][:, :, 2]  # (T, 6): normal force on treads
             tau = f["/joints/torque"][()]

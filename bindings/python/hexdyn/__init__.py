@@ -22,7 +22,7 @@ from collections.abc import Mapping
 
 from ._version import __git_commit__, __version__
 from .results import checked_path as _path
-from .results import open_result, open_sweep
+from .results import decode_text, open_result, open_sweep
 
 _compiled = None
 
@@ -140,6 +140,6 @@ def __getattr__(name):
     raise AttributeError(f"module 'hexdyn' has no attribute {name!r}")
 
 
-__all__ = ["run", "validate", "Result", "open_result", "open_sweep", "Error", "ConfigError",
+__all__ = ["run", "validate", "Result", "open_result", "open_sweep", "decode_text", "Error", "ConfigError",
            "IoError", "ReachError", "PlanningError", "SolverError", "InternalError",
            "__version__", "__git_commit__"]

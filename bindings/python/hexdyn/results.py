@@ -280,12 +280,13 @@ LEG_NAMES = tuple(f"L{i}" for i in range(1, 7))
 JOINT_NAMES = tuple(f"L{i}_{j}" for i in range(1, 7) for j in ("coxa", "femur", "tibia"))
 
 
-def _text(value):
-    """str from an HDF5 string value (h5py gives str or bytes depending on storage)."""
+def decode_text(value):
+    """str from an HDF5 string value (h5py gives str or bytes depending on storage; a 0-d
+    array holds one). The one decoder of hexdyn's HDF5 text: the readers and analysis/ use it."""
     if isinstance(value, bytes):
         return value.decode("utf-8")
     if isinstance(value, np.ndarray) and value.shape == ():
-        return _text(value[()])
+        return decode_text(value[()])
     return value
 
 
@@ -304,7 +305,7 @@ def check_filetype_version(h5_root, expected_schema, expected_version, source="f
     attrs = h5_root["meta"].attrs
     if "schema" not in attrs:
         raise ValueError(f"{source}: not a {expected_schema} file (/meta has no 'schema')")
-    schema = _text(attrs["schema"])
+    schema = decode_text(attrs["schema"])
     base = expected_schema.rsplit("/", 1)[0]
     if schema in {f"{base}/{v}" for v in accepted}:
         schema = expected_schema
@@ -397,8 +398,8 @@ def _read_dataset(ds):
     if string_info is not None:
         values = ds.asstr()[()]
         if ds.shape == ():
-            return _text(values)
-        return [_text(v) for v in np.asarray(values).ravel()]
+            return decode_text(values)
+        return [decode_text(v) for v in np.asarray(values).ravel()]
     return ds[()]
 
 
@@ -423,7 +424,7 @@ def read_result_group(group, source="result"):
             data[path] = data[path] - 1  # 1-based in version 1
         shapes[path] = tuple(obj.shape)
         if "units" in obj.attrs:
-            units[path] = _text(obj.attrs["units"])
+            units[path] = decode_text(obj.attrs["units"])
     return Result(source, data, units, shapes, _meta_attributes(group))
 
 
@@ -784,7 +785,7 @@ def _meta_attributes(group):
     """The /meta attributes of a file (or of a kept run's group) as Python values."""
     meta = {}
     for key, value in group["meta"].attrs.items():
-        value = _text(value)
+        value = decode_text(value)
         if isinstance(value, np.generic):
             value = value.item()
         meta[key] = value
@@ -822,7 +823,7 @@ def open_sweep(path):
         for name, ds in f["scenarios"].items():
             value = _read_checked(ds, source)
             table[name] = value if isinstance(value, list) else np.asarray(value)
-            units[name] = _text(ds.attrs.get("units", ""))
+            units[name] = decode_text(ds.attrs.get("units", ""))
         joint_names = (_read_checked(f["joint_names"], source) if "joint_names" in f
                        else list(JOINT_NAMES))
         run_ids = set(f["runs"].keys()) if "runs" in f else set()
