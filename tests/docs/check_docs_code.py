@@ -36,7 +36,8 @@ the past) and checks, against the tree as it is when the check runs (nothing is 
                - one identifier with an inner underscore, `load_sweep`, `check_cancelled`;
                - a CamelCase type name, `SweepCoordinator`, `ActiveSetExit`;
                - a qualified name, `Terrain::mean_slope_rad`, `Sweep.to_xarray`;
-               - a name of the Python package, `hexdyn.open_result`, `hexdyn.xr.open_envelope`.
+               - a name of the Python package, `hexdyn.open_result`, `hexdyn.xr.open_envelope`
+                 (in code blocks too).
              Each part must occur as an identifier in the tree's code (C++, Python, shell
              and CMake files, comments included; Markdown, YAML and data files excluded);
              `hexdyn.NAME` must be a public name of the package (a top-level def, class,
@@ -100,6 +101,7 @@ TARGET = re.compile(r"(?<![\w.$/-])(hexdyn_[A-Za-z0-9_]+)(?![\w<>{$*])")
 LINK = re.compile(r"\]\(([^)\s]+)(?:\s+\"[^\"]*\")?\)")
 NOT_HEXDYN = re.compile(r"<!--\s*not hexdyn:\s*(.*?)\s*-->")
 BARE_ONLY = re.compile(r"^[A-Za-z_][\w\-]*\.(?:cpp|hpp|h|py|sh)$")
+PACKAGE_NAME = re.compile(r"(?<![\w./\-])(hexdyn(?:\.[A-Za-z_]\w*)+)(?![\w.]*\w)(?!\.)")
 PLACEHOLDER = re.compile(r"[*<>{}$…]|\.\.\.|~")
 IDENT = r"[A-Za-z_]\w*"
 NAME_SPAN = re.compile(r"^(%s(?:(?:\.|::)%s)*)(\(.*\))?$" % (IDENT, IDENT))
@@ -467,6 +469,8 @@ def check(root, targets_file=None, list_all=False, out=sys.stdout):
             check_paths(tree, doc, n, line, fenced, report)
             if fenced:
                 check_targets(tree, n, line, report)
+                for m in PACKAGE_NAME.finditer(line):
+                    check_function(tree, n, m.group(1), exempt, report)
                 continue
             check_links(tree, doc, n, line, report)
             for _, span in CODE_SPAN.findall(line):
