@@ -114,8 +114,8 @@ def check_file(path):
     for p in problems:
         print(f"commit-msg: {p}")
     if problems:
-        print("commit-msg: the message is kept in .git/COMMIT_EDITMSG; "
-              "`git commit -e -F .git/COMMIT_EDITMSG` edits it again")
+        print(f"commit-msg: the message is kept in {path}; "
+              f"`git commit -e -F {path}` edits it again")
         return 1
     return 0
 
