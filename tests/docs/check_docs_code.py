@@ -24,11 +24,13 @@ the past) and checks, against the tree as it is when the check runs (nothing is 
              executable or custom target of the build), or a CMake function defined in the
              tree (`hexdyn_layer`), or else an identifier of the C++ or Python code
              (a benchmark column, `hexdyn_us`). The targets come from --cmake-targets FILE,
-             the list CMake writes at configure time (ctest passes it); without it, from a
-             reading of the CMake files: add_library/add_executable/add_custom_target with a
-             literal name (and pybind11_add_module), calls of a CMake function that adds `PREFIX${ARG}` (hexdyn_layer
-             core -> hexdyn_core), and executables named `PREFIX${VAR}` in a foreach over a
-             list of `VAR=...` entries (HEXDYN_TEST_LAYERS -> hexdyn_tests_dynamics).
+             the list CMake writes at configure time (ctest passes it), and from a reading
+             of the CMake files (alone when the list is not given; it also covers targets
+             a configuration leaves out): add_library, add_executable, add_custom_target
+             and pybind11_add_module with a literal name, calls of a CMake function that
+             adds `PREFIX${ARG}` (hexdyn_layer core -> hexdyn_core), and executables named
+             `PREFIX${VAR}` in a foreach over a list of `VAR=...` entries
+             (HEXDYN_TEST_LAYERS -> hexdyn_tests_dynamics).
   functions  a code span (in running text, not a code block) that is an identifier the
              document presents as hexdyn's code:
                - a call, `run_scene(scene)`, `Result.write(path)`, `hexdyn.run(...)`:
@@ -128,8 +130,10 @@ class Tree:
         self.targets = static_targets
         if targets_file:
             with open(targets_file, encoding="utf-8") as fh:
-                self.targets = {line.strip() for line in fh if line.strip()}
-            self.targets_source = targets_file
+                # With the reading's: a target the configuration left out (no pybind11, no
+                # benchmarks) is still the build's.
+                self.targets = static_targets | {line.strip() for line in fh if line.strip()}
+            self.targets_source = f"{targets_file} and the CMake files"
         self.package = self._package_names()
 
     def _files(self):
