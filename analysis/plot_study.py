@@ -8,7 +8,7 @@ energy, peak |tau|, RMS torque), wall time on a log x axis against relative erro
 log y axis, points coloured by category, the Pareto front of each category (the runs no
 cheaper run of the category beats) drawn as a line, the default configuration starred
 and labelled (fronts are drawn for the series over a grid or tolerance; the fidelity,
-friction and solver rows are single choices, labelled instead), the issue's targets
+friction and solver rows are single choices, labelled instead), the study's targets
 dashed (peak 1 %, energy 0.1 %, 5 % of the converged reference's cost). Errors of
 exactly 0 (the adaptive grid samples the exact peak instant) are drawn on a dotted line
 at the bottom of the panel. Friction rows are

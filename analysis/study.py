@@ -36,7 +36,7 @@ Runs that differ from the scene by nothing (after dropping --set values equal to
 scene's) are computed once and may appear in several rows (e.g. the default is also
 in the grid and tolerance series).
 
-The verdict (the issue's adaptive-grid targets) is the default configuration (the
+The verdict (the study's targets for the adaptive grid) is the default configuration (the
 scene as it is) against the `converged` reference: err_peak <= targets.peak,
 err_energy <= targets.energy and wall_time(default) / wall_time(reference) <=
 targets.cost. With `repeats.paired: N` the two wall times of the verdict come from N

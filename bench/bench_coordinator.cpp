@@ -1,4 +1,4 @@
-// The sweep coordinator at cluster scale (issue 12, item 4): the real SweepCoordinator,
+// The sweep coordinator at cluster scale: the real SweepCoordinator,
 // with the real work and result messages, row decoding and journal records, driven by
 // simulated workers in virtual time. Each worker computes fake scenarios of 10 ms ± 30 %
 // and talks to the coordinator as mpi/worker.cpp does (each row sent as its complete

@@ -1,5 +1,5 @@
 // Inverse dynamics of hexdyn against DART 6.12 (Debian libdart-dev) on the same robot,
-// states and foot forces: the issue's requirement "≤ 2 µs per evaluation and ≥ 5× faster
+// states and foot forces: the target "≤ 2 µs per evaluation and ≥ 5× faster
 // than DART", both numbers measured in this one process. DART is used here only; the
 // library and the pipeline never depend on it.
 //  - The DART skeleton is built from hexdyn's RobotModel: the trunk (trunk + payload) on a

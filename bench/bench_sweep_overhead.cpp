@@ -1,4 +1,4 @@
-// Where a sweep scenario's time goes (issue 12, item 2): the physics (run_scene) against
+// Where a sweep scenario's time goes: the physics (run_scene) against
 // everything else a scenario costs in `hexdyn sweep` — building and validating its scene
 // from the base tree (ScenarioFactory), the summary row, encoding its record, the
 // journal append, the messages to and from the coordinator, the coordinator's

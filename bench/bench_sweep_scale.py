@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Issue 12's whole-program sweep figures: start time and parallel efficiency.
+"""Whole-program sweep figures: start time and parallel efficiency.
 
     /usr/bin/python3 bench/bench_sweep_scale.py [--hexdyn build/hexdyn] [--start] [--grid]
                                                 [--repeat 3]

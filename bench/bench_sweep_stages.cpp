@@ -1,4 +1,4 @@
-// Where a stair-study scenario's time goes, stage by stage (issue 23, item 1): every 11th
+// Where a stair-study scenario's time goes, stage by stage: every 11th
 // scenario of the 1,000-scenario grid of bench/sweep_1000.yaml (riser x speed x duty factor on
 // configs/sweeps/stairs_base.yaml; 11, not 10, so that the 91 scenarios cover every duty
 // factor, the fastest-varying axis), each computed as a sweep's scenario process computes it

@@ -12,7 +12,7 @@ less: no event samples, no coordinate variables). Prints the sizes and their rat
 the time to read every dataset of one kept run's group with h5py, the three files in
 turn (`--reps` rounds, each read a fresh open), as medians and their ratios, and the time
 zlib alone takes to inflate that group's compressed datasets (the floor of any deflate
-reader). Targets (issue 21): size at most 60 % of the uncompressed file of the same
+reader). Targets: size at most 60 % of the uncompressed file of the same
 content, read time at most 1.5 times the old file's.
 """
 import argparse

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""How soon Ctrl-C interrupts `hexdyn.run` (issue 29: within 0.5 s, for every back end;
+"""How soon Ctrl-C interrupts `hexdyn.run` (the limit: within 0.5 s, for every back end;
 docs/user/faults.md#signals).
 
 For each allocation back end, `--repeat` times: a Python process runs configs/paper.yaml with

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""How long `hexdyn validate` takes on sweeps of 10^4, 10^5 and 10^6 scenarios (issue 29:
+"""How long `hexdyn validate` takes on sweeps of 10^4, 10^5 and 10^6 scenarios (the limit:
 10^6 must answer within 60 s on a 2-core machine; docs/user/faults.md#sizes).
 
 Each sweep has two axes over configs/sweeps/stairs_base.yaml: terrain.riser_height (1000

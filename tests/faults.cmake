@@ -1,4 +1,4 @@
-# Fault injection (issue 22; docs/user/faults.md): links in a checkpoint, full disks,
+# Fault injection (docs/user/faults.md): links in a checkpoint, full disks,
 # signals, a checkpoint lost mid-sweep, orphaned ranks, leftover temporary files. Scripts
 # in tests/faults/, on the smoke sweep and tests/faults/slow.yaml. Included by
 # tests/CMakeLists.txt; each test works in build/tests/fault_tests/<name>/ and takes the

@@ -17,7 +17,7 @@ set(HEXDYN_SWEEP_TESTS
   "schema_declared_equals_written=schema_declared"  # io/schema.hpp as Python parses it = the files written
   "crash_contained=crash_contained"              # a scenario that aborts its process: crashed row, sweep completes, also on --resume
   "idle_ranks_do_not_spin=idle_ranks"            # ranks waiting for work use at most 10 % of a core each
-  "resume_refused_after_edited_input=edited_inputs"  # issue 22 B1: an edited URDF or inherited scene refuses --resume, naming it
+  "resume_refused_after_edited_input=edited_inputs"  # an edited URDF or inherited scene refuses --resume, naming it
   "travel_same_distance=travel"                  # motion.travel: a duty-factor x speed sweep, every trunk moves two treads; travel with cycles is one line
   "cases_axis_over_robots=cases"                 # a cases axis over two URDF robots: every scenario ok, kept run = hexdyn run --set, labels in the file and readers
   "grid_accuracy_against_converged=grid_accuracy"  # output.tolerance 1e-4 on the stair check grid: energies within 1e-4, peak torques within 1e-3 of a converged grid

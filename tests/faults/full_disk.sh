@@ -1,5 +1,5 @@
 #!/bin/bash
-# B3/B4 (issue 22): a full disk on every write path is one line naming the file with "No
+# Full disks: a full disk on every write path is one line naming the file with "No
 # space left on device", exit status 2 (never 139), no temporary file, an existing good
 # file kept; for a sweep the checkpoint is kept and a resume once space is freed gives
 # the file of a sweep that never met a full disk. A small tmpfs, so root only.

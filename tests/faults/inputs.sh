@@ -1,5 +1,5 @@
 #!/bin/bash
-# Issue 29, items 1-2: no output is ever written onto an input, and a command uses each input
+# Inputs kept: no output is ever written onto an input, and a command uses each input
 # as it was when first read. Every command (run, sweep, envelope, Python's Result.write) is
 # pointed at each kind of input it reads (the scene, an inherited file, the URDF named in the
 # scene or by --set, the base's and a case's URDF of a sweep, the sweep and envelope files

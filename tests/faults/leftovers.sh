@@ -1,5 +1,5 @@
 #!/bin/bash
-# Leftovers (issue 22): a temporary file `.NAME.tmp.PID` of a process that is gone, next to
+# Leftovers: a temporary file `.NAME.tmp.PID` of a process that is gone, next to
 # an output, is removed by the next run onto that output (run, sweep), which says so in one
 # line; one of a live process, a link by that name and a file of another output are kept.
 # shellcheck source=common.sh
@@ -23,7 +23,7 @@ grep -q "^hexdyn: removed './.p.h5.tmp.$gone', the temporary file of process $go
   fail "a file that must be kept was removed"
 [ "$(cat target)" = target ] || fail "the link's target changed"
 
-# A sweep's final file (B6: a --keep-runs sweep killed in its final write left one).
+# A sweep's final file (a --keep-runs sweep killed in its final write leaves one).
 echo stale > ".s.h5.tmp.$gone"
 "$HEXDYN" sweep "$SMOKE" -o s.h5 > sweep.log 2>&1 || fail "sweep: $(cat sweep.log)"
 grep -q "^hexdyn: removed './.s.h5.tmp.$gone'" sweep.log || fail "sweep: $(cat sweep.log)"

@@ -1,5 +1,5 @@
 #!/bin/bash
-# B2 (issue 22): nothing in a checkpoint follows a link. A lock that is a link (to an
+# Links in a checkpoint: nothing in a checkpoint follows a link. A lock that is a link (to an
 # input file, to a FIFO, to /dev/full), a FIFO, a hard link of an input, a journal that is
 # a link, a checkpoint folder that is a link: each refused in one line naming it, exit 2,
 # nothing written through it, no file left in a folder that is not the sweep's own.

@@ -1,5 +1,5 @@
 #!/bin/bash
-# B8 (issue 22): the checkpoint of a running sweep A is deleted, and a sweep B starts on
+# A lost checkpoint: the checkpoint of a running sweep A is deleted, and a sweep B starts on
 # the same output. A notices at its next append (or flush), stops in one line with exit
 # status 2, writes no output and never touches B's checkpoint; B completes. Also: A's lock
 # alone removed.

@@ -1,5 +1,5 @@
 #!/bin/bash
-# Orphans (issue 22): kill -9 of a sweep's whole job (mpirun and its ranks), and of
+# Orphans: kill -9 of a sweep's whole job (mpirun and its ranks), and of
 # mpirun's process group alone (Open MPI gives each rank a group of its own): within
 # 0.5 s no hexdyn process is left (ranks die with their launcher, scenario children with
 # their rank, PR_SET_PDEATHSIG), and an immediate --resume (on 2 ranks) is admitted and

@@ -1,5 +1,5 @@
 #!/bin/bash
-# Readers (issue 29, item 7): Python's open_result, open_sweep and open_envelope given a
+# Readers: Python's open_result, open_sweep and open_envelope given a
 # FIFO, a directory or /dev/zero, or a result, sweep or envelope file with a dataset off the
 # schema (rewritten with h5py), a file that is not HDF5 or one cut short: each gives one line
 # of hexdyn's error (hexdyn.IoError) within 10 s, never a hang or a traceback, and the file

@@ -1,5 +1,5 @@
 #!/bin/bash
-# B5-B7 (issue 22): SIGTERM and SIGINT (Slurm's time limit and scancel, Ctrl-C) to `hexdyn
+# Signals: SIGTERM and SIGINT (Slurm's time limit and scancel, Ctrl-C) to `hexdyn
 # run` with a big output, to `hexdyn envelope`, to a sweep while it computes and during its
 # final write (1 rank) (mpirun's sweep: signals_mpirun.sh): exit status 128 + signal, one line
 # saying what was kept and how to resume, no temporary file left, and a --resume that ends
@@ -26,7 +26,7 @@ signal_run() {
 echo good > big.h5
 signal_run TERM 143 1.5          # while it computes
 signal_run INT 130 '.big.h5.tmp.*'  # while it writes
-# Every other signal whose default action ends a process (issue 29): the same clean end.
+# Every other signal whose default action ends a process: the same clean end.
 signal_run HUP 129 '.big.h5.tmp.*'
 signal_run QUIT 131 1.5
 signal_run USR1 138 '.big.h5.tmp.*'

@@ -1,5 +1,5 @@
 #!/bin/bash
-# B5-B7 (issue 22) under mpirun: SIGTERM to mpirun while a 2-rank sweep computes. Rank 0
+# Signals under mpirun: SIGTERM to mpirun while a 2-rank sweep computes. Rank 0
 # keeps the checkpoint and says so in one line, no process is left, and a resume gives the
 # file of an uninterrupted 1-rank sweep. Then SIGTERM to the worker rank alone: it tells
 # rank 0, which says the same line (mpirun kills every rank left once one exits, so a

@@ -1,5 +1,5 @@
 #!/bin/bash
-# Sizes (issue 29, item 3; docs/user/faults.md#sizes): every size that grows with the input is
+# Sizes (docs/user/faults.md#sizes): every size that grows with the input is
 # bounded before anything is planned or allocated. Each bomb runs under `ulimit -v` (2 GB of
 # address space) and `timeout 60`: one line of hexdyn's naming the key and the limit, exit
 # status 2, no output and no temporary file, every input unchanged (sha256sum). The bombs: an

@@ -1,5 +1,5 @@
 #!/bin/bash
-# Issue 29, item 5: text bound for a file must be UTF-8 (HDF5 readers decode hexdyn's strings
+# Text as UTF-8: text bound for a file must be UTF-8 (HDF5 readers decode hexdyn's strings
 # as UTF-8). A scene, an inherited file, a URDF, a sweep file or a --set value holding bytes
 # that are not UTF-8 is refused where it is read: one line naming the file (or --set), the
 # line and column, exit status 2, no output file, the input untouched. Python's hexdyn.run

@@ -1,5 +1,5 @@
 #!/bin/bash
-# URDF values (issue 29, item 4; docs/user/faults.md#sizes): a URDF's masses, inertias,
+# URDF values (docs/user/faults.md#sizes): a URDF's masses, inertias,
 # origins and joint limits are held to the scene's plausibility bounds
 # (src/hexdyn/core/value_bounds.hpp). The Kraby robot with one value edited beyond a bound
 # (a <mass value="1e300"> that ran to NaN torques, an inertia, a joint origin, a joint limit,

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Fuzz test of hexdyn's input handling (issue 13): seeded random mutations of
+"""Fuzz test of hexdyn's input handling: seeded random mutations of
 configs/paper.yaml and of a sweep file, each run through `hexdyn validate`, `run` or
 `sweep`. Every mutation must
 

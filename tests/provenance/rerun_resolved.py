@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Provenance that reruns (issue 21, docs/user/configuration.md#automatic-choices-in-the-resolved-configuration):
+"""Provenance that reruns (docs/user/configuration.md#automatic-choices-in-the-resolved-configuration):
 a scene with automatic choices is run, its /meta config_yaml is extracted to a file in
 another folder, and that file is run again with `hexdyn run`. Every dataset of the two
 results must be equal bit for bit, except /solver/seconds (timing); every attribute must be

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Issue 22 B1: a resume must not mix two robots. A URDF sweep is killed part-way (kill -9 of
+# Edited inputs: a resume must not mix two robots. A URDF sweep is killed part-way (kill -9 of
 # mpirun), the URDF's mass is edited, and the --resume is refused: exit 2, one line naming the
 # URDF, no output file, the checkpoint untouched. The same for an edit of the inherited scene
 # file. With every input restored the resume completes, and the file's /meta input_sha256

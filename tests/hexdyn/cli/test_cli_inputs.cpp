@@ -1,4 +1,4 @@
-// Inputs the command line must refuse at once (issue 13): duplicate keys in scenes,
+// Inputs the command line must refuse at once: duplicate keys in scenes,
 // inherited files and sweep files; configuration paths that are not regular files or
 // are too large; inheritance cycles; a top level that is not a map; deep nesting. Each
 // gives exit status 2, exactly one line on stderr naming the cause, no output file and

@@ -1,4 +1,4 @@
-// Outputs the command line must refuse before computing (issue 13): devices, FIFOs,
+// Outputs the command line must refuse before computing: devices, FIFOs,
 // directories and symbolic links as -o; any input of the run (the config, an inherited
 // file, a hard link to the config, the sweep file, its base scene and the base's
 // inherited file), compared by identity; unwritable folders. Also the plausibility

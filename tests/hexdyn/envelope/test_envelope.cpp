@@ -81,7 +81,7 @@ TEST_CASE(
   REQUIRE(r.boundary.size() == 1);
   const EnvelopeBoundary& b = r.boundary[0];
   INFO("riser_max " << b.riser_max_m << " riser_fail " << b.riser_fail_m << ": " << b.message);
-  // The requirement: nothing kinematic forbids risers below 6 cm at 0.25 m treads.
+  // The paper robot's reach: nothing kinematic forbids risers below 6 cm at 0.25 m treads.
   REQUIRE(std::isfinite(b.riser_max_m));
   CHECK(b.riser_max_m >= 0.06);
   REQUIRE(std::isfinite(b.riser_fail_m));

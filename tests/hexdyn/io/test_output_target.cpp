@@ -1,4 +1,4 @@
-// check_output_target and the last-moment check of publish_atomically (issue 13): an
+// check_output_target and the last-moment check of publish_atomically: an
 // output is a new path or a regular file that is none of the inputs (by device and inode),
 // in a folder that takes a new file; nothing else is ever replaced, and the checks leave
 // the folder as they found it.

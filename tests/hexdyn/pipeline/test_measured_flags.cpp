@@ -1,4 +1,4 @@
-// Flags that mean what they say (issue 13): a sample with status optimal meets every
+// Flags that mean what they say: a sample with status optimal meets every
 // constraint of its allocation to the fixed threshold (allocation/qp.hpp
 // kViolationThreshold), whatever the solver tolerance and back end. Checked here by a
 // second computation on the stored result: the trunk rows from rnea with the stored foot

@@ -313,7 +313,7 @@ std::string replaced(std::string text, const std::string& from, const std::strin
 
 }  // namespace
 
-// Issue 22 B1: the checkpoint's identity covers the content of every input. A sweep over a
+// Edited inputs: the checkpoint's identity covers the content of every input. A sweep over a
 // scene that inherits the Kraby scene and names its URDF, with a robot.urdf axis over two
 // copies of the URDF, is checkpointed; then each input in turn is edited: the resume is
 // refused in one line naming that file, and accepted again once the file is restored.
@@ -344,7 +344,7 @@ TEST_CASE("sweep: a resume after any input's content changed is refused, naming 
     cp.append_row(1, p.data(), p.size());
     cp.flush(true);
   }
-  // The URDF's mass edited (issue 22's `sed -i '25s/0.667/1.667/'`).
+  // The URDF's mass edited (`sed -i '25s/0.667/1.667/'`).
   const std::string heavier =
       replaced(urdf_text, "<mass value=\"0.667\" />", "<mass value=\"1.667\" />");
   const struct {
