@@ -16,7 +16,6 @@ Statements, each computed from the datasets of the file:
 Prints one line per statement (or a Markdown table) and a closing
 "paper_statements: N passed, M failed" line; exit status 1 when any fails.
 """
-import os
 import sys
 
 

@@ -12,7 +12,6 @@ leg is in its impact phase) and inside them, with the fraction of the smallest e
 the solver status counts, energy and cost of transport.
 """
 
-import os
 import sys
 import xml.etree.ElementTree as ET
 

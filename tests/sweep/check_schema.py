@@ -11,7 +11,6 @@ other dataset, group or attribute). A result file must hold the dynamics dataset
 sweep file is checked with its /runs/<id> groups as result layouts. Exit 1 with one
 line per problem."""
 import argparse
-import os
 import re
 import sys
 
