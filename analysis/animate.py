@@ -30,22 +30,16 @@ import io
 import os
 import sys
 
+from figures import FAILED_COLOR, RELAXED_COLOR  # first: selects the Agg backend
+from animate_data import InputError, frames_of, load_motion
+from animate_html import html_page
+from matplotlib import animation
+from matplotlib.lines import Line2D
+import matplotlib.pyplot as plt
 import numpy as np
-
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import matplotlib  # noqa: E402
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-from matplotlib import animation  # noqa: E402
-from matplotlib.lines import Line2D  # noqa: E402
-
-from animate_data import InputError, frames_of, load_motion  # noqa: E402
-from animate_html import html_page  # noqa: E402
 
 PHASE_COLORS = ("#9e9e9e", "#ff7f0e", "#2ca02c")  # swing, impact, support
 PHASE_NAMES = ("swing", "impact", "support")
-RELAXED_COLOR, FAILED_COLOR = "#d62728", "black"
 FORCE_COLOR = "#1f77b4"
 FORMATS = (".gif", ".mp4", ".html")
 

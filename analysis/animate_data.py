@@ -20,13 +20,11 @@ height profile /terrain/y, /terrain/z (a polyline z(y), constant along x); a fil
 
 import math
 import os
-import sys
 
 import h5py
+from hexdyn import decode_text
 import numpy as np
-
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from urdf_fk import UrdfRobot  # noqa: E402
+from urdf_fk import UrdfRobot
 
 REQUIRED = ("/time", "/base/position", "/base/orientation", "/joints/position",
             "/feet/position", "/model/urdf", "/model/joint_names")
@@ -37,18 +35,11 @@ class InputError(Exception):
     """Bad input: the message is the one line the command prints."""
 
 
-def _text(value):
-    if isinstance(value, bytes):
-        return value.decode("utf-8")
-    if isinstance(value, np.ndarray) and value.shape == ():
-        return _text(value[()])
-    return str(value)
-
 
 def _schema(group):
     if "meta" not in group or "schema" not in group["meta"].attrs:
         return ""
-    return _text(group["meta"].attrs["schema"])
+    return decode_text(group["meta"].attrs["schema"])
 
 
 def _run_ids(f):
@@ -99,9 +90,9 @@ class Motion:
         self.data = data
         self.terrain = terrain  # (y (K,), z (K,), type) or None
         self.time = np.asarray(data["/time"], dtype=float)
-        names = [_text(n) for n in np.asarray(data["/model/joint_names"]).ravel()]
+        names = [decode_text(n) for n in np.asarray(data["/model/joint_names"]).ravel()]
         self.joint_names = tuple(names)
-        self.robot = UrdfRobot(_text(data["/model/urdf"]), joint_order=self.joint_names)
+        self.robot = UrdfRobot(decode_text(data["/model/urdf"]), joint_order=self.joint_names)
         if len(self.robot.foot_links) != 6:
             raise InputError(f"{source}: /model/urdf has {len(self.robot.foot_links)} foot "
                              "links L<i>_foot, expected 6")
@@ -148,7 +139,7 @@ def read_terrain(group):
     if y.shape != z.shape or y.ndim != 1 or y.size < 2:
         raise InputError(f"/terrain/y and /terrain/z: shapes {y.shape} and {z.shape}, expected "
                          "two equal (K,) with K >= 2")
-    kind = _text(g.attrs["type"]) if "type" in g.attrs else "terrain"
+    kind = decode_text(g.attrs["type"]) if "type" in g.attrs else "terrain"
     return y, z, kind
 
 

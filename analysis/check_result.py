@@ -24,7 +24,6 @@ any failure.
 """
 
 import argparse
-import os
 import re
 import sys
 
@@ -181,7 +180,7 @@ def link_com_accelerations(robot, res):
     qd = np.asarray(res["/joints/velocity"], float)
     qdd = np.asarray(res["/joints/acceleration"], float)
     # Joint columns by the file's own names (a URDF robot keeps its description's names).
-    names = [n.decode() if isinstance(n, bytes) else str(n) for n in res["/model/joint_names"]]
+    names = [str(hr.decode_text(n)) for n in res["/model/joint_names"]]
     index = {name: k for k, name in enumerate(names)}
     R0 = quaternion_to_matrix(np.asarray(res["/base/orientation"], float))
     state = {robot.root: (R0, np.asarray(res["/base/angular_velocity"], float),
@@ -237,7 +236,7 @@ def torque_limits(setting, res):
         lim = j.find("limit")
         if lim is not None and lim.get("effort") is not None:
             effort[j.get("name")] = float(lim.get("effort"))
-    names = [n.decode() if isinstance(n, bytes) else str(n) for n in res["/model/joint_names"]]
+    names = [str(hr.decode_text(n)) for n in res["/model/joint_names"]]
     return np.array([effort.get(n, np.inf) for n in names])
 
 

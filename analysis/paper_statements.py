@@ -16,13 +16,11 @@ Statements, each computed from the datasets of the file:
 Prints one line per statement (or a Markdown table) and a closing
 "paper_statements: N passed, M failed" line; exit status 1 when any fails.
 """
-import os
+import argparse
 import sys
 
-
-import numpy as np  # noqa: E402
-
-from hexdyn.results import open_result  # noqa: E402
+from hexdyn.results import open_result
+import numpy as np
 
 G = 9.81
 
@@ -121,13 +119,17 @@ def statements(res):
 
 
 def main(argv=None):
-    argv = sys.argv[1:] if argv is None else argv
-    if not argv:
-        print(__doc__.strip().splitlines()[2], file=sys.stderr)
+    ap = argparse.ArgumentParser(prog="paper_statements.py", description=__doc__.splitlines()[0])
+    ap.add_argument("result", help="a hexdyn-result/2 file with dynamics")
+    ap.add_argument("--markdown", action="store_true", help="print a Markdown table")
+    args = ap.parse_args(argv)
+    try:
+        res = open_result(args.result)
+    except (OSError, ValueError) as e:
+        print(f"paper_statements: {e}", file=sys.stderr)
         return 2
-    res = open_result(argv[0])
     rows = statements(res)
-    if "--markdown" in argv:
+    if args.markdown:
         print("| | paper's statement | holds | our figures |")
         print("|---|---|---|---|")
         for key, text, ok, detail in rows:

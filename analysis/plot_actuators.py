@@ -19,19 +19,12 @@ import argparse
 import os
 import sys
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import matplotlib  # noqa: E402
+from figures import (RMS_COLOR, draw_limit_and_exceedances, fit_suptitle,  # first: Agg
+                     save_atomically, time_rms, torque_limits, velocity_limits)
+from hexdyn.results import open_result
+import matplotlib.pyplot as plt
+import numpy as np
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-
-from hexdyn.results import open_result  # noqa: E402
-from limits import (draw_limit_and_exceedances, time_rms, torque_limits,  # noqa: E402
-                    velocity_limits)
-from plot_kinematics import save_atomically  # noqa: E402
-
-RMS_COLOR = "#2ca02c"
 JOINT_ROWS = ("coxa", "femur", "tibia")
 
 
@@ -89,8 +82,8 @@ def draw(res):
                 else "no velocity limit given")
     over = (f"samples above the limit: {counts['relaxed']} relaxed (red), {counts['failed']} "
             f"failed (black), {counts['optimal']} optimal (purple)")
-    fig.suptitle(f"Joint operating points τ(ω) over the run: {limit_text} (dotted), {vel_text}, "
-                 f"RMS torque (dashed green)\n{over}", fontsize=10)
+    fit_suptitle(fig, f"Joint operating points τ(ω) over the run: {limit_text} (dotted), "
+                 f"{vel_text}, RMS torque (dashed green)\n{over}", fontsize=10)
     return fig, artists, op
 
 

@@ -16,13 +16,12 @@ their URDF, configs/designs/robots.yaml); drawn by `analysis/plot_designs.py --c
 
 import os
 
+from figures import (fit_suptitle, fit_title, fraction_text, with_units,  # first: Agg
+                     save_atomically, sweep_axis_label, torque_limits, write_csv_atomically)
+from hexdyn import results as hr
 import matplotlib.pyplot as plt
 import numpy as np
 import yaml
-
-from hexdyn import results as hr
-from limits import torque_limits
-from plot_kinematics import save_atomically, write_csv_atomically
 
 RISER = "terrain.riser_height"
 ENVELOPE_GRID = ("tread_depth", "duty_factor", "peak_speed", "criterion")
@@ -100,45 +99,44 @@ def draw_cases(sweep):
     ci, ri, rows, limits = case_table(sweep)
     labels = sweep.axes[ci].labels
     all_limits = len(limits) == len(labels)
-    panels = [("cost_of_transport", "cost of transport E/(m g d) [1]"),
-              ("energy", "energy E [J]"),
-              ("torque_ratio", "peak |τ_k| / effort limit_k [1]") if all_limits
-              else ("peak_torque", "peak joint torque [N m]")]
+    panels = [("cost_of_transport", with_units("cost of transport E/(m g d)", "1")),
+              ("energy", with_units("energy E", "J")),
+              ("torque_ratio", with_units("peak |τ_k| / effort limit_k", "1")) if all_limits
+              else ("peak_torque", with_units("peak joint torque", "N m"))]
     fig, axs = plt.subplots(1, len(panels), figsize=(5.0 * len(panels), 4.3),
                             constrained_layout=True)
     colors = plt.rcParams["axes.prop_cycle"].by_key()["color"]
     out = {"lines": {}, "failed": []}
     for p, (name, title) in enumerate(panels):
         ax = axs[p]
-        for c, label in enumerate(labels):
+        for c, case in enumerate(labels):
             mine = [r for r in rows if r["case"] == c]
             x = np.array([r["riser"] for r in mine])
             y = np.array([r[name] for r in mine])
             ok = np.array([r["status"] == "ok" for r in mine])
-            ax.plot(x[ok], y[ok], "-o", ms=4, color=colors[c % len(colors)], label=label)
-            out["lines"][(name, label)] = (x[ok], y[ok])
+            ax.plot(x[ok], y[ok], "-o", ms=4, color=colors[c % len(colors)], label=case)
+            out["lines"][(name, case)] = (x[ok], y[ok])
             for r in mine:
                 if r["status"] != "ok":
                     ax.plot([r["riser"]], [0.04 + 0.06 * c], "x", ms=8, mew=2,
                             color=colors[c % len(colors)], transform=ax.get_xaxis_transform())
                     if p == 0:
-                        out["failed"].append((label, r["riser"], r["status"]))
+                        out["failed"].append((case, r["riser"], r["status"]))
         if name == "torque_ratio":
             ax.axhline(1.0, color="#d62728", lw=1.5, label="effort limit")
             ax.legend(fontsize=8)
         if name in ("torque_ratio", "peak_torque"):
-            ax.set_title("peaks include the touchdown transients (relaxed samples)", fontsize=8)
-        ax.set_xlabel(f"{RISER} [m]")
+            fit_title(ax, "peaks include the touchdown transients (relaxed samples)", fontsize=8)
+        ax.set_xlabel(sweep_axis_label(sweep, ri))
         ax.set_ylabel(title)
         ax.grid(alpha=0.3)
     axs[0].legend(fontsize=8)
     failed = sorted({(lab, st) for lab, _, st in out["failed"]})
     note = "; ".join(f"{lab}: {st} from {min(r for l2, r, s2 in out['failed'] if l2 == lab):g} m"
                      for lab, st in failed)
-    fig.suptitle(f"{sweep.meta.get('name', 'sweep')}: {sweep.size} scenarios, "
+    fit_suptitle(fig, f"{sweep.meta.get('name', 'sweep')}: {sweep.size} scenarios, "
                  f"{int(sweep.ok.sum())} computed"
-                 + (f"; x: not computed ({note})" if note else ""),
-                 fontsize=9)
+                 + (f"; x: not computed ({note})" if note else ""), fontsize=9)
     return fig, out
 
 
@@ -200,9 +198,9 @@ def draw_envelope(table, name, cell=None):
     top = max([v for t in table.values() for v in t.values() if np.isfinite(v)] or [0.01])
     ax.set_ylim(0, 1.3 * top)
     ax.legend(fontsize=8, title="criterion", ncols=len(crits), loc="upper center")
-    where = (f" (tread {cell[0]:g} m, duty factor {cell[1]:.3g}, {cell[2]:g} m/s)"
-             if cell and len(cell) == 3 else "")
-    ax.set_title(f"{name}: climbable envelope per robot{where}", fontsize=9)
+    where = (f" (tread {cell[0]:g} m, duty factor {fraction_text(cell[1])}, peak speed "
+             f"{cell[2]:g} m/s)" if cell and len(cell) == 3 else "")
+    fit_title(ax, f"{name}: climbable envelope per robot{where}", fontsize=9)
     return fig, bars
 
 

@@ -36,21 +36,14 @@ Each figure is saved under a temporary name in OUTDIR and renamed when complete.
 
 import argparse
 import os
-import sys
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-
-import matplotlib  # noqa: E402
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-from matplotlib.patches import Rectangle  # noqa: E402
-import numpy as np  # noqa: E402
-
-from hexdyn import results as hr  # noqa: E402
-from limits import OPTIMAL_OVER_COLOR, RELAXED_COLOR, exceeds  # noqa: E402
-from plot_kinematics import save_atomically, write_csv_atomically  # noqa: E402
-from plot_sweep import torque_ratio  # noqa: E402
+from figures import (OPTIMAL_OVER_COLOR, RELAXED_COLOR, exceeds, fit_suptitle,  # first: Agg
+                     fit_title, save_atomically, sweep_axis_units, torque_ratio, with_units,
+                     write_csv_atomically)
+from hexdyn import results as hr
+from matplotlib.patches import Rectangle
+import matplotlib.pyplot as plt
+import numpy as np
 
 RISER = "terrain.riser_height"
 # (variable, title, unit): the rows of the grid figure
@@ -123,6 +116,11 @@ def mark_base(ax, base, xs, ys, xe, ye):
     return ax.plot([x], [y], marker="*", ms=10, mfc="white", mec="black", mew=1.0)[0]
 
 
+def key_units(sweep):
+    """{axis key: its unit} (None for words and cases)."""
+    return dict(zip((a.key for a in sweep.axes), sweep_axis_units(sweep)))
+
+
 def grid_axes(sweep, xkey, ykey, pkey):
     keys = [a.key for a in sweep.axes]
     for k in (xkey, ykey, pkey):
@@ -146,6 +144,8 @@ def draw_grid(sweep, xkey="robot.tibia.length", ykey="robot.femur.length", pkey=
     xs, ys = ds[xkey].values.astype(float), ds[ykey].values.astype(float)
     xe, ye = edges(xs), edges(ys)
     base = base_design(sweep, xkey, ykey)
+    units = key_units(sweep)
+    punit = f" {units[pkey]}" if units[pkey] not in (None, "", "1") else ""
     fig, axs = plt.subplots(len(METRICS), len(panels), squeeze=False, constrained_layout=True,
                             figsize=(max(8.5, 1.5 + 3.6 * len(panels)), 1.2 + 3.1 * len(METRICS)))
     out = {"cells": {}, "values": {}, "failed": {}, "relaxed": [], "optimal": [], "base": base}
@@ -196,11 +196,12 @@ def draw_grid(sweep, xkey="robot.tibia.length", ykey="robot.femur.length", pkey=
             mark_base(ax, base, xs, ys, xe, ye)
             ax.set_xticks(xs, [f"{x:g}" for x in xs], fontsize=7)
             ax.set_yticks(ys, [f"{y:g}" for y in ys], fontsize=7)
-            ax.set_xlabel(f"{xkey} [m]", fontsize=8)
+            ax.set_xlabel(with_units(xkey, units[xkey]), fontsize=8)
             if p == 0:
-                ax.set_ylabel(f"{ykey} [m]", fontsize=8)
-            ax.set_title(f"{pkey} = {panels[p]:g} m" if m == 0 else "", fontsize=9)
-        fig.colorbar(mesh, ax=list(axs[m]), label=f"{title} [{unit}]", shrink=0.9)
+                ax.set_ylabel(with_units(ykey, units[ykey]), fontsize=8)
+            if m == 0:
+                fit_title(ax, f"{pkey} = {panels[p]:g}{punit}", fontsize=9)
+        fig.colorbar(mesh, ax=list(axs[m]), label=with_units(title, unit), shrink=0.9)
     notes = [f"{sweep.meta.get('name', 'sweep')}: {sweep.size} scenarios, "
              f"{int(sweep.ok.sum())} computed; hatched: not computed, with the status"]
     limits = ds.attrs.get("torque_limits")
@@ -210,11 +211,12 @@ def draw_grid(sweep, xkey="robot.tibia.length", ykey="robot.femur.length", pkey=
         notes.append(f"peak torque framed above the torque limit ({lim}): red with relaxed "
                      "samples, purple dashed without")
     if base is not None:
-        notes.append(f"star: the base scene's design ({xkey} {base[0]:g} m, {ykey} {base[1]:g} m)")
+        notes.append(f"star: the base scene's design ({xkey} {base[0]:g} {units[xkey] or ''}, "
+                     f"{ykey} {base[1]:g} {units[ykey] or ''})")
     if others:
         notes.append(", ".join(f"{k} = {sweep.axes[[a.key for a in sweep.axes].index(k)].labels[0]}"
                                for k in others))
-    fig.suptitle("\n".join(notes), fontsize=9)
+    fit_suptitle(fig, "\n".join(notes), fontsize=9)
     return fig, out
 
 
@@ -234,6 +236,7 @@ def climb_grid(sweep, xkey="robot.tibia.length", ykey="robot.femur.length", pkey
 def draw_climb(sweep, xkey="robot.tibia.length", ykey="robot.femur.length", pkey=RISER):
     tallest, xs, ys = climb_grid(sweep, xkey, ykey, pkey)
     xe, ye = edges(xs), edges(ys)
+    units = key_units(sweep)
     fig, ax = plt.subplots(figsize=(6.4, 5.0), constrained_layout=True)
     mesh = ax.pcolormesh(xe, ye, np.ma.masked_invalid(tallest), cmap="cividis")
     for (i, j), x in np.ndenumerate(tallest):
@@ -247,12 +250,12 @@ def draw_climb(sweep, xkey="robot.tibia.length", ykey="robot.femur.length", pkey
     mark_base(ax, base_design(sweep, xkey, ykey), xs, ys, xe, ye)
     ax.set_xticks(xs, [f"{x:g}" for x in xs], fontsize=8)
     ax.set_yticks(ys, [f"{y:g}" for y in ys], fontsize=8)
-    ax.set_xlabel(f"{xkey} [m]")
-    ax.set_ylabel(f"{ykey} [m]")
-    fig.colorbar(mesh, ax=ax, label=f"tallest {pkey} climbed [m]")
-    ax.set_title(f"{sweep.meta.get('name', 'sweep')}: tallest swept riser each design climbs "
-                 f"(of {', '.join(f'{v:g}' for v in sweep.to_xarray()[pkey].values)} m)",
-                 fontsize=9)
+    ax.set_xlabel(with_units(xkey, units[xkey]))
+    ax.set_ylabel(with_units(ykey, units[ykey]))
+    fig.colorbar(mesh, ax=ax, label=with_units(f"tallest {pkey} climbed", units[pkey]))
+    fit_title(ax, f"{sweep.meta.get('name', 'sweep')}: tallest swept {pkey} each design climbs "
+              f"(of {', '.join(f'{v:g}' for v in sweep.to_xarray()[pkey].values)}"
+              f"{' ' + units[pkey] if units[pkey] else ''})", fontsize=9)
     return fig, tallest
 
 

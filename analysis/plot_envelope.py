@@ -1,35 +1,33 @@
 #!/usr/bin/python3
 """Plot of a hexdyn-envelope/2 file (`hexdyn envelope`, docs/user/envelope.md):
-the largest climbable riser over peak speed, one panel per tread depth, one colour per
-duty factor, one line style per criterion (kinematic, torque, friction).
+the largest climbable riser over peak speed as small multiples, one row per criterion
+(kinematic, torque, friction; per case and criterion for a file with cases), one column per
+tread depth, and in each panel one line per duty factor, each with its own colour and marker
+and drawn a little to the side of the true speed (the duty factors in order, left to
+right), so that lines with equal values stay apart.
 
     /usr/bin/python3 analysis/plot_envelope.py ENVELOPE.h5 OUTDIR [--check] [--table]
 
 Writes OUTDIR/envelope.png (saved under a temporary name and renamed when complete).
 A criterion that fails already at the lowest riser probed is drawn as a cross at that
 riser. --check verifies the file against the layout declared in src/hexdyn/io/schema.hpp
-(every dataset present, with its units, shape and element type); --table prints the
-envelope as a text table (riser in mm, and what limits it) on stdout.
+(every dataset present, with its units, shape and element type; the package's checker,
+hexdyn.results.check_envelope_file); --table prints the envelope as a text table (riser in
+mm, and what limits it) on stdout.
 """
 
 import argparse
 import os
-import sys
 
-
-import h5py  # noqa: E402
-import matplotlib  # noqa: E402
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-
-from hexdyn import results as hr  # noqa: E402
-from plot_kinematics import save_atomically  # noqa: E402
+from figures import fit_suptitle, fraction_text, save_atomically  # first: Agg
+import h5py
+from hexdyn import results as hr
+import matplotlib.pyplot as plt
+import numpy as np
 
 S = hr.SCHEMA
-STYLES = {"kinematic": "-", "torque": "--", "friction": ":"}
-MARKERS = {"kinematic": "o", "torque": "s", "friction": "^"}
+DUTY_MARKERS = ("o", "s", "^", "D", "v", "P", "X", "*")
+DODGE = 0.02  # the lines' sideways offset, a fraction of the speed range per duty factor
 
 
 def _strings(ds):
@@ -67,51 +65,17 @@ def read_envelope(path):
 
 
 def check_layout(path):
-    """Every declared dataset of the envelope layout, with its units, shape, element."""
-    with h5py.File(path, "r") as f:
-        W = f[S["kEnvelopeTreadDepth"].path].shape[0]
-        B = f[S["kEnvelopeDutyFactor"].path].shape[0]
-        V = f[S["kEnvelopePeakSpeed"].path].shape[0]
-        C = f[S["kEnvelopeCriteria"].path].shape[0]
-        P = f[S["kProbeRiser"].path].shape[0]
-        sizes = {"W": W, "B": B, "S": V, "C": C, "P": P, "G": W * B * V * C}
-        specs = list(S["kEnvelopeDatasets"]) + list(S["kEnvelopeCoordinates"])
-        if S["kCaseCoordinate"].path in f:  # cases: their declarations replace those of a path
-            sizes["D"] = f[S["kCaseCoordinate"].path].shape[0]
-            sizes["K"] = f[S["kEnvelopeCaseKeys"].path].shape[0]
-            by_case = {c.path: c for c in S["kEnvelopeCaseDatasets"]}
-            specs = [by_case.pop(c.path, c) for c in specs] + list(by_case.values())
-        declared = set()
-        for spec in specs:
-            declared.add(spec.path)
-            if spec.path not in f:
-                raise SystemExit(f"plot_envelope: {path}: {spec.path} missing")
-            ds = f[spec.path]
-            want = hr.expected_shape(spec.shape, **sizes)
-            if ds.shape != want:
-                raise SystemExit(f"plot_envelope: {path}: {spec.path} shape {ds.shape}, expected {want}")
-            if hr.decode_text(ds.attrs.get("units", "")) != spec.units:
-                raise SystemExit(f"plot_envelope: {path}: {spec.path} units {ds.attrs.get('units')!r}, "
-                                 f"expected {spec.units!r}")
-            kind = "string" if h5py.check_string_dtype(ds.dtype) else str(ds.dtype)
-            if kind != spec.element:
-                raise SystemExit(f"plot_envelope: {path}: {spec.path} element {kind}, expected {spec.element}")
-        found = []
-        f.visititems(lambda n, o: found.append("/" + n) if isinstance(o, h5py.Dataset) else None)
-        extra = sorted(set(found) - declared)
-        if extra:
-            raise SystemExit(f"plot_envelope: {path}: undeclared datasets {extra}")
-        for a in S["kEnvelopeMetaAttributes"]:
-            if a.name not in f["meta"].attrs:
-                raise SystemExit(f"plot_envelope: {path}: /meta attribute {a.name} missing")
+    """Every declared dataset of the envelope layout, with its units, shape and element
+    (the package's checker); SystemExit with its one line on a mismatch."""
+    try:
+        with hr.open_h5(path) as f:
+            hr.check_envelope_file(f, path)
+    except (OSError, ValueError) as e:
+        raise SystemExit(f"plot_envelope: {e}")
 
 
 def duty_label(beta):
-    for q in range(2, 13):
-        p = round(beta * q)
-        if abs(p / q - beta) < 1e-9:
-            return f"{p}/{q}"
-    return f"{beta:g}"
+    return fraction_text(beta)
 
 
 def table(d):
@@ -149,32 +113,50 @@ def case_table(d, i, case):
 
 
 def plot(d, outdir):
+    """Small multiples (module comment): rows (case, criterion), columns tread depth, a line
+    per duty factor. Returns the path written."""
     W = len(d["tread"])
     cases = d["cases"] or [None]
-    fig, grid = plt.subplots(len(cases), W, figsize=(4.2 * W, 4.0 * len(cases)), sharey=True,
-                             squeeze=False)
-    colors = plt.cm.viridis(np.linspace(0.0, 0.85, len(d["duty"])))
-    for (i, case), (w, ax) in ((ic, wa) for ic in enumerate(cases) for wa in enumerate(grid[ic[0]])):
-        for b, beta in enumerate(d["duty"]):
-            for c, name in enumerate(d["criteria"]):
+    rows = [(i, case, c, name) for i, case in enumerate(cases)
+            for c, name in enumerate(d["criteria"])]
+    fig, grid = plt.subplots(len(rows), W, figsize=(1.0 + 3.3 * W, 1.6 + 2.3 * len(rows)),
+                             sharex=True, sharey=True, squeeze=False, constrained_layout=True)
+    B = len(d["duty"])
+    colors = plt.cm.viridis(np.linspace(0.0, 0.85, B))
+    speed = np.asarray(d["speed"], dtype=float)
+    span = float(np.ptp(speed)) if speed.size > 1 else max(0.5 * abs(float(speed[0])), 0.05)
+    for r, (i, case, c, name) in enumerate(rows):
+        for w in range(W):
+            ax = grid[r][w]
+            for b, beta in enumerate(d["duty"]):
+                x = speed + (b - (B - 1) / 2) * DODGE * span
                 y = 1e3 * d["riser_max"][i, w, b, :, c]
-                ax.plot(d["speed"], y, STYLES.get(name, "-"), marker=MARKERS.get(name, "o"), ms=4,
-                        color=colors[b], label=f"β = {duty_label(beta)}, {name}")
+                ax.plot(x, y, "-", marker=DUTY_MARKERS[b % len(DUTY_MARKERS)], ms=4.5, lw=1.1,
+                        color=colors[b], label=f"β = {duty_label(beta)}")
                 none = ~np.isfinite(y)
                 if none.any():
-                    ax.plot(d["speed"][none], np.full(none.sum(), 1e3 * d["riser_from"]), "x",
-                            color=colors[b], ms=8)
-        ax.set_title(("" if case is None else f"{case}, ") + f"tread {d['tread'][w]:.2f} m")
-        ax.set_xlabel("peak speed [m/s]")
-        ax.grid(alpha=0.3)
-    for row in grid:
-        row[0].set_ylabel("largest climbable riser [mm]")
+                    ax.plot(x[none], np.full(none.sum(), 1e3 * d["riser_from"]), "x",
+                            color=colors[b], ms=8, mew=1.8)
+            if r == 0:
+                ax.set_title(f"tread {d['tread'][w]:.2f} m", fontsize=10)
+            if r == len(rows) - 1:
+                ax.set_xlabel("peak speed [m/s]")
+            if w == 0:
+                ax.set_ylabel(("" if case is None else f"{case}\n") +
+                              f"{name}:\nlargest riser [mm]", fontsize=9)
+            ax.set_xticks(speed, [f"{v:g}" for v in speed])
+            ax.set_xlim(speed.min() - 0.1 * span, speed.max() + 0.1 * span)
+            ax.grid(alpha=0.3)
     handles, labels = grid[0][0].get_legend_handles_labels()
-    fig.legend(handles, labels, loc="lower center", ncol=len(d["duty"]), fontsize=7, frameon=False)
-    fig.suptitle(f"climbable envelope '{d['meta'].get('name', '')}' (x: fails at the lowest riser)")
-    fig.tight_layout(rect=(0, 0.16 / len(cases), 1, 1 - 0.05 / len(cases)))
-    save_atomically(fig, outdir, "envelope.png")
+    grid[0][-1].legend(handles, labels, fontsize=8, title="duty factor", title_fontsize=8,
+                       loc="best")
+    fit_suptitle(fig, f"climbable envelope '{d['meta'].get('name', '')}': the largest riser "
+                 "each criterion allows (a row each); the lines of the duty factors are drawn "
+                 "slightly apart along the speed axis; x: fails at the lowest riser probed "
+                 f"({1e3 * d['riser_from']:g} mm)", fontsize=10)
+    path = save_atomically(fig, outdir, "envelope.png")
     plt.close(fig)
+    return path
 
 
 def main():

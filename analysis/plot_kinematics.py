@@ -10,56 +10,14 @@ Each figure is saved under a temporary name in OUTDIR and renamed when complete.
 """
 
 import argparse
-import csv
 import os
 import sys
 
-
-import matplotlib  # noqa: E402
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-from matplotlib.patches import Patch  # noqa: E402
-import numpy as np  # noqa: E402
-
-from hexdyn import results as hr  # noqa: E402
-
-SUPPORT_COLOR = "tab:blue"
-IMPACT_COLOR = "tab:red"
-LEG_COLORS = ("tab:blue", "tab:orange", "tab:green", "tab:red", "tab:purple", "tab:brown")
-
-
-def save_atomically(fig, outdir, name, dpi=150):
-    """Saves `fig` as OUTDIR/name via a temporary file and os.replace."""
-    final = os.path.join(outdir, name)
-    tmp = os.path.join(outdir, f".{name}.tmp.{os.getpid()}")
-    try:
-        fig.savefig(tmp, format=os.path.splitext(name)[1].lstrip(".") or "png", dpi=dpi)
-        os.replace(tmp, final)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.remove(tmp)
-        raise
-    finally:
-        plt.close(fig)
-    return final
-
-
-def write_csv_atomically(path, header, rows):
-    """Writes `header` and `rows` (lists of cells) as CSV to `path` via a temporary file
-    and os.replace; returns `path`."""
-    tmp = f"{path}.tmp.{os.getpid()}"
-    try:
-        with open(tmp, "w", newline="") as f:
-            w = csv.writer(f)
-            w.writerow(header)
-            w.writerows(rows)
-        os.replace(tmp, path)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.remove(tmp)
-        raise
-    return path
+from figures import IMPACT_COLOR, LEG_COLORS, SUPPORT_COLOR, save_atomically  # first: Agg
+from hexdyn import results as hr
+from matplotlib.patches import Patch
+import matplotlib.pyplot as plt
+import numpy as np
 
 
 def _get(terrain, key, default=None):

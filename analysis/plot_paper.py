@@ -11,20 +11,15 @@ Writes, atomically:
   fig4b_torques_leg2.png     joint torques of leg 2 (Fig. 4b), the same
   fig5_total_power.png       total instantaneous power P_in = sum |tau omega| (Fig. 5)
 """
+import argparse
 import os
 import sys
 
-
-import matplotlib  # noqa: E402
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-
-from hexdyn.results import open_result  # noqa: E402
-from limits import (OPTIMAL_OVER_COLOR, RELAXED_COLOR, draw_limit_and_exceedances,  # noqa: E402
-                    torque_limits)
-from plot_kinematics import save_atomically  # noqa: E402
+from figures import (OPTIMAL_OVER_COLOR, RELAXED_COLOR, draw_limit_and_exceedances,  # first: Agg
+                     fit_title, fraction_text, save_atomically, torque_limits)
+from hexdyn.results import open_result
+import matplotlib.pyplot as plt
+import numpy as np
 
 G = 9.81
 LEG_STYLE = {0: "-", 1: "--"}  # left solid, right dashed
@@ -41,10 +36,30 @@ def shade_relaxed(ax, t, status):
         ax.axvspan(t[a], t[b - 1], color="0.85", lw=0, zorder=0)
 
 
+def scene_words(res):
+    """The scene as its resolved configuration says: "duty factor 1/2, stairs 0.05 m risers,
+    0.25 m treads" (terrain words for flat ground and slopes)."""
+    config = res.config if isinstance(res.config, dict) else {}
+    words = []
+    duty = config.get("gait", {}).get("duty_factor")
+    if duty is not None:
+        words.append(f"duty factor {fraction_text(duty)}")
+    terrain = config.get("terrain", {})
+    kind = terrain.get("type")
+    if kind == "stairs":
+        words.append(f"stairs of {float(terrain['riser_height']):g} m risers and "
+                     f"{float(terrain['tread_depth']):g} m treads")
+    elif kind == "slope":
+        words.append(f"slope of {np.degrees(float(terrain.get('angle', 0.0))):.3g}°")
+    elif kind:
+        words.append(f"{kind} ground")
+    return ", ".join(words)
+
+
 def fig3a(res, outdir):
     t = res["/time"]
     F = res["/contacts/force"]
-    fig, ax = plt.subplots(figsize=(9, 4.5))
+    fig, ax = plt.subplots(figsize=(9, 4.5), constrained_layout=True)
     for leg in range(6):
         ax.plot(t, F[:, leg, 2], LEG_STYLE[leg % 2], lw=1.0, label=f"leg {leg + 1}")
     total = F[:, :, 2].sum(axis=1)
@@ -54,7 +69,7 @@ def fig3a(res, outdir):
     shade_relaxed(ax, t, res["/solver/status"])
     ax.set_xlabel("time t [s]")
     ax.set_ylabel("normal foot force $F_{iz}$ [N]")
-    ax.set_title("Normal foot forces, duty factor 1/2, staircase climb (cf. paper Fig. 3a)")
+    fit_title(ax, f"Normal foot forces, {scene_words(res)} (cf. paper Fig. 3a)")
     ax.legend(ncol=4, fontsize=8, loc="upper right")
     ax.grid(alpha=0.3)
     return save_atomically(fig, outdir, "fig3a_normal_forces.png")
@@ -66,7 +81,9 @@ def fig3b(res, outdir):
     legs = res["/impacts/leg"].astype(int) + 1  # 0-based in the file (leg dimension)
     starts = res["/impacts/t_start"]
     durations = res["/impacts/duration"]
-    fig, axes = plt.subplots(1, 2, figsize=(10, 4))
+    step = (res.config.get("output", {}).get("sample_step") if isinstance(res.config, dict)
+            else None)
+    fig, axes = plt.subplots(1, 2, figsize=(10, 4), constrained_layout=True)
     for ax, leg in zip(axes, (3, 4)):
         k = np.flatnonzero(legs == leg)
         if k.size == 0:
@@ -76,17 +93,18 @@ def fig3b(res, outdir):
         window = (t >= t0 - 4 * d) & (t <= t0 + 6 * d)
         ax.plot((t[window] - t0) * 1e3, F[window, leg - 1, 2], "o-", ms=2.5, lw=1.0,
                 label=f"leg {leg}, touchdown at t = {t0:.3f} s")
-        coarse = np.arange(0.0, t[-1] + 1e-9, 0.05)
+        coarse = np.arange(0.0, t[-1] + 1e-9, float(step)) if step else np.array([])
         near = coarse[(coarse >= t0 - 4 * d) & (coarse <= t0 + 6 * d)]
         for c in near:
             ax.axvline((c - t0) * 1e3, color="r", ls=":", lw=0.8)
         ax.set_xlabel("time since touchdown [ms]")
         ax.set_ylabel(f"$F_{{{leg}z}}$ [N]")
-        ax.set_title(f"Impact of leg {leg}: peak {res['/impacts/peak_force'][k[0]]:.1f} N, "
-                     f"{d * 1e3:.2f} ms")
+        fit_title(ax, f"Impact of leg {leg}: peak {res['/impacts/peak_force'][k[0]]:.1f} N, "
+                  f"{d * 1e3:.2f} ms")
         ax.grid(alpha=0.3)
         ax.legend(fontsize=8)
-    fig.suptitle("Touchdown transients (red dotted: the paper's 0.05 s samples, if any fall here)",
+    fig.suptitle("Touchdown transients" + (f" (red dotted: the output.sample_step {float(step):g} s "
+                                           "samples, if any fall here)" if step else ""),
                  fontsize=10)
     return save_atomically(fig, outdir, "fig3b_impacts_legs_3_4.png")
 
@@ -95,8 +113,8 @@ def draw_torques(ax, res, leg):
     """The joint torques of leg `leg` (1-based) over time on `ax`, with each joint's torque
     limit (allocation.torque_limit, or its URDF effort) as dotted lines and the samples above
     it marked (red crosses: relaxed samples; black: failed; purple circles: optimal, not
-    expected), analysis/limits.py. Returns one dict of artists per joint
-    (limits.draw_limit_and_exceedances)."""
+    expected), analysis/figures.py. Returns one dict of artists per joint
+    (figures.draw_limit_and_exceedances)."""
     t = res["/time"]
     tau = res["/joints/torque"]
     names = list(res["/model/joint_names"])
@@ -129,13 +147,13 @@ def draw_torques(ax, res, leg):
 
 def fig4(res, outdir, leg, name, panel):
     t = res["/time"]
-    fig, ax = plt.subplots(figsize=(9, 4))
+    fig, ax = plt.subplots(figsize=(9, 4), constrained_layout=True)
     draw_torques(ax, res, leg)
     shade_relaxed(ax, t, res["/solver/status"])
     ax.set_xlabel("time t [s]")
     ax.set_ylabel("joint torque [N m]")
-    ax.set_title(f"Joint torques of leg {leg} (cf. paper Fig. 4{panel}); grey bands: relaxed "
-                 "or failed samples", fontsize=10)
+    fit_title(ax, f"Joint torques of leg {leg} (cf. paper Fig. 4{panel}); grey bands: relaxed "
+              "or failed samples", fontsize=10)
     ax.legend(fontsize=8)
     ax.grid(alpha=0.3)
     return save_atomically(fig, outdir, name)
@@ -144,31 +162,39 @@ def fig4(res, outdir, leg, name, panel):
 def fig5(res, outdir):
     t = res["/time"]
     P = res["/power/total"]
-    fig, ax = plt.subplots(figsize=(9, 4))
+    fig, ax = plt.subplots(figsize=(9, 4), constrained_layout=True)
     ax.plot(t, P, lw=1.0, color="C3")
     shade_relaxed(ax, t, res["/solver/status"])
     ax.set_xlabel("time t [s]")
     ax.set_ylabel(r"$P_{in} = \sum |\tau_{ij}\,\omega_{ij}|$ [W]")
-    ax.set_title(f"Total instantaneous power (cf. paper Fig. 5); energy "
-                 f"{float(res['/energy/total']):.2f} J")
+    fit_title(ax, f"Total instantaneous power (cf. paper Fig. 5); energy "
+              f"{float(res['/energy/total']):.2f} J")
     ax.grid(alpha=0.3)
     return save_atomically(fig, outdir, "fig5_total_power.png")
 
 
 def main(argv=None):
-    argv = sys.argv[1:] if argv is None else argv
-    if len(argv) != 2:
-        print(__doc__.strip().splitlines()[2], file=sys.stderr)
+    ap = argparse.ArgumentParser(
+        prog="plot_paper.py", description=__doc__.strip().split("\n\n")[0],
+        epilog=__doc__.strip().split("\n\n", 1)[1],
+        formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("result", help="a hexdyn-result/2 file with dynamics")
+    ap.add_argument("outdir", help="directory for the PNG files (created if missing)")
+    args = ap.parse_args(argv)
+    try:
+        res = open_result(args.result)
+    except (OSError, ValueError) as e:
+        print(f"plot_paper: {e}", file=sys.stderr)
         return 2
-    res = open_result(argv[0])
     if not res.has_dynamics:
-        print(f"plot_paper: {argv[0]} has no dynamics datasets", file=sys.stderr)
+        print(f"plot_paper: {args.result} has no dynamics datasets", file=sys.stderr)
         return 2
-    os.makedirs(argv[1], exist_ok=True)
-    written = [fig3a(res, argv[1]), fig3b(res, argv[1]),
-               fig4(res, argv[1], 1, "fig4a_torques_leg1.png", "a"),
-               fig4(res, argv[1], 2, "fig4b_torques_leg2.png", "b"),
-               fig5(res, argv[1])]
+    out = args.outdir
+    os.makedirs(out, exist_ok=True)
+    written = [fig3a(res, out), fig3b(res, out),
+               fig4(res, out, 1, "fig4a_torques_leg1.png", "a"),
+               fig4(res, out, 2, "fig4b_torques_leg2.png", "b"),
+               fig5(res, out)]
     for w in written:
         print(f"plot_paper: wrote {w}", file=sys.stderr)
     return 0

@@ -34,15 +34,11 @@ import os
 import sys
 
 
-import h5py  # noqa: E402
-import matplotlib  # noqa: E402
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-
-from hexdyn import results as hr  # noqa: E402
-from plot_kinematics import save_atomically  # noqa: E402
+from figures import fit_suptitle, fit_title, save_atomically  # first: Agg
+import h5py
+from hexdyn import results as hr
+import matplotlib.pyplot as plt
+import numpy as np
 
 STUDY_SCHEMA = "hexdyn-study/1"
 STUDY_SCHEMA_VERSION = 1
@@ -111,7 +107,14 @@ def style_of(category, extra):
     return STYLE[category]
 
 
-def plot(rows, verdict, refs, outdir):
+def study_scene(path):
+    """The scene file the study ran (/meta scene_file), or None."""
+    with h5py.File(path, "r") as f:
+        value = f["meta"].attrs.get("scene_file") if "meta" in f else None
+    return None if value is None else str(hr.decode_text(value))
+
+
+def plot(rows, verdict, refs, outdir, scene=None):
     labels, cats = rows["label"], rows["category"]
     wall = np.asarray(rows["wall_time_s"], dtype=float)
     is_default = np.asarray(rows["is_default"]).astype(bool)
@@ -168,9 +171,9 @@ def plot(rows, verdict, refs, outdir):
         ax.axvline(ref_wall, color="0.5", ls="-.", lw=0.8)
         ax.set_xscale("log")
         ax.set_yscale("log")
-        ax.set_title(f"{title}: relative error", fontsize=10)
+        fit_title(ax, f"{title}: relative error", fontsize=10)
         ax.set_xlabel("wall time [s] (min over repeats)")
-        ax.set_ylabel("relative error")
+        ax.set_ylabel("relative error [-]")
         ax.grid(True, which="major", alpha=0.3)
         ax.text(cost_line, 1.0, f"{float(verdict['target_cost']):.0%} of ref.",
                 transform=ax.get_xaxis_transform(), fontsize=7, color="crimson", ha="right",
@@ -190,7 +193,7 @@ def plot(rows, verdict, refs, outdir):
                    zorder=5)
     ax.set_xscale("log")
     ax.set_yscale("log")
-    ax.set_xlabel("output samples")
+    ax.set_xlabel("output samples [-]")
     ax.set_ylabel("wall time [s]")
     ax.set_title("cost against output samples", fontsize=10)
     ax.grid(True, which="major", alpha=0.3)
@@ -203,13 +206,15 @@ def plot(rows, verdict, refs, outdir):
     fig.legend(list(seen.values()), list(seen.keys()), loc="lower center",
                ncol=min(6, len(seen)), fontsize=8, frameon=False)
     word = {1: "pass", 0: "FAIL"}
-    fig.suptitle(
-        "hexdyn speed against error (paper scene). Default adaptive grid vs converged "
+    fit_suptitle(
+        fig,
+        f"hexdyn speed against error ({scene or 'the study scene'}). Default adaptive grid vs "
+        "converged "
         f"reference: peak {float(verdict['err_peak']):.1e} ({word[int(verdict['pass_peak'])]}), "
         f"energy {float(verdict['err_energy']):.1e} ({word[int(verdict['pass_energy'])]}), "
         f"cost {float(verdict['cost_ratio']):.1%} of the reference "
         f"({word[int(verdict['pass_cost'])]})", fontsize=11)
-    fig.tight_layout(rect=(0, 0.05, 1, 0.96))
+    fig.tight_layout(rect=(0, 0.04, 1, 0.95))
     return save_atomically(fig, outdir, "pareto.png")
 
 
@@ -339,7 +344,7 @@ def main(argv=None):
     if not os.path.isdir(args.outdir):
         raise SystemExit(f"plot_study: output directory {args.outdir} does not exist")
     failures = check(args.study, rows, verdict, refs) if args.check else []
-    path = plot(rows, verdict, refs, args.outdir)
+    path = plot(rows, verdict, refs, args.outdir, study_scene(args.study))
     print(table(rows, verdict, refs, args.markdown))
     print(f"plot_study: wrote {path}", file=sys.stderr)
     if args.check:

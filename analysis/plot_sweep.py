@@ -36,19 +36,13 @@ from fractions import Fraction
 import os
 import sys
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-
-
-import matplotlib  # noqa: E402
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-from matplotlib.patches import Rectangle  # noqa: E402
-import numpy as np  # noqa: E402
-
-from hexdyn import results as hr  # noqa: E402
-from limits import OPTIMAL_OVER_COLOR, RELAXED_COLOR, exceeds, torque_limits  # noqa: E402
-from plot_kinematics import save_atomically  # noqa: E402
+from figures import (OPTIMAL_OVER_COLOR, RELAXED_COLOR, exceeds, fit_suptitle,  # first: Agg
+                     fit_title, limit_text, nanmax_rows, save_atomically, with_units,
+                     sweep_axis_label, sweep_axis_units, torque_ratio)
+from hexdyn import results as hr
+from matplotlib.patches import Rectangle
+import matplotlib.pyplot as plt
+import numpy as np
 
 MAX_PANELS = 12
 
@@ -58,67 +52,8 @@ METRICS = (
     ("sweep_cost_of_transport.png", "cost of transport E/(m g d)", "1",
      lambda t: np.asarray(t["cost_of_transport"], dtype=float)),
     ("sweep_peak_torque.png", "peak joint torque max_k max_t |τ_k|", "N m",
-     lambda t: _nanmax_rows(np.asarray(t["peak_torque"], dtype=float))),
+     lambda t: nanmax_rows(np.asarray(t["peak_torque"], dtype=float))),
 )
-
-
-def _nanmax_rows(a):
-    out = np.full(a.shape[0], np.nan)
-    finite = np.isfinite(a).any(axis=1)
-    out[finite] = np.nanmax(a[finite], axis=1)
-    return out
-
-
-LIMIT_KEY = "allocation.torque_limit"
-
-
-def scenario_torque_limits(sweep):
-    """Torque limits per scenario and joint, (N, J) N m, or None with the reason."""
-    joints = list(sweep.joint_names)
-    n = sweep.size
-    keys = [a.key for a in sweep.axes]
-    if LIMIT_KEY in keys and sweep.axes[keys.index(LIMIT_KEY)].numeric:
-        axis = sweep.axes[keys.index(LIMIT_KEY)]
-        col = np.asarray(sweep.table["axis_index"])[:, keys.index(LIMIT_KEY)]
-        return np.repeat(np.asarray(axis.values, dtype=float)[col][:, None], len(joints), 1), \
-            f"{LIMIT_KEY} (swept)"
-    config = sweep.config
-    value = config.get("allocation", {}).get("torque_limit")
-    urdf = ""
-    if value == "effort":
-        if not sweep.has_runs:
-            return None, "URDF effort limits: not in a sweep file without kept runs"
-        import h5py
-
-        with h5py.File(sweep.path, "r") as f:
-            first = sorted(f["runs"].keys())[0]
-            raw = f["runs"][first]["model"]["urdf"][()]
-            urdf = raw.decode() if isinstance(raw, bytes) else str(raw)
-    limits, source = torque_limits(config, urdf, joints)
-    if limits is None:
-        return None, source
-    return np.repeat(limits[None, :], n, 0), source
-
-
-def torque_ratio(sweep):
-    """Per scenario, the largest peak |tau_k| / limit_k over the joints (NaN where the
-    scenario failed), and the limits (N, J) or None."""
-    limits, source = scenario_torque_limits(sweep)
-    if limits is None:
-        return None, None, source
-    peak = np.asarray(sweep.table["peak_torque"], dtype=float)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        ratio = _nanmax_rows(peak / limits)
-    return ratio, limits, source
-
-
-def limit_text(limits, source):
-    if limits is None:
-        return None
-    finite = limits[np.isfinite(limits)]
-    if finite.size and np.allclose(finite, finite[0]):
-        return f"torque limit {finite[0]:g} N m ({source})"
-    return f"torque limits per joint or scenario ({source})"
 
 
 def choose_axes(sweep, rows_key=None, cols_key=None):
@@ -142,6 +77,13 @@ def choose_axes(sweep, rows_key=None, cols_key=None):
     return rows, cols
 
 
+def setting(sweep, i, j, units):
+    """ "key = value unit" for value j of axis i (no unit for dimensionless keys or words)."""
+    unit = units[i]
+    return f"{sweep.axes[i].key} = {sweep.axes[i].labels[j]}" + (
+        f" {unit}" if unit and unit != "1" else "")
+
+
 def panels(sweep, rows, cols):
     """[(title, {axis: index})...] for the other varied axes, and whether the other
     axes had to be aggregated (too many combinations)."""
@@ -150,9 +92,9 @@ def panels(sweep, rows, cols):
     if len(combos) > MAX_PANELS:
         return [("minimum over " + ", ".join(sweep.axes[i].key for i in others), None)], others
     out = []
+    units = sweep_axis_units(sweep)
     for combo in combos:
-        title = ", ".join(f"{sweep.axes[i].key} = {sweep.axes[i].labels[j]}"
-                          for i, j in zip(others, combo))
+        title = ", ".join(setting(sweep, i, j, units) for i, j in zip(others, combo))
         out.append((title, dict(zip(others, combo))))
     return out, others
 
@@ -213,6 +155,7 @@ def draw_heatmap(sweep, metric, rows, cols):
     nrows = (n + ncols - 1) // ncols
     row_axis = sweep.axes[rows]
     col_axis = sweep.axes[cols] if cols is not None else None
+    units = sweep_axis_units(sweep)
     fig, axs = plt.subplots(nrows, ncols, figsize=(max(6.5, 1.2 + 3.6 * ncols), 1.2 + 3.0 * nrows),
                             squeeze=False, constrained_layout=True)
     finite = values[np.isfinite(values)]
@@ -248,22 +191,22 @@ def draw_heatmap(sweep, metric, rows, cols):
                 word = hr.SWEEP_STATUS[code] if 0 <= code < len(hr.SWEEP_STATUS) else "?"
                 ax.text(j, i, word, ha="center", va="center", fontsize=8, color="0.2")
         ax.set_yticks(range(len(row_axis)), row_axis.labels)
-        ax.set_ylabel(row_axis.key)
+        ax.set_ylabel(sweep_axis_label(sweep, rows, units))
         if col_axis is not None:
             ax.set_xticks(range(len(col_axis)), col_axis.labels)
-            ax.set_xlabel(col_axis.key)
+            ax.set_xlabel(sweep_axis_label(sweep, cols, units))
         else:
             ax.set_xticks([])
         if ptitle:
-            ax.set_title(ptitle, fontsize=9)
+            fit_title(ax, ptitle, fontsize=9)
     for k in range(n, nrows * ncols):
         axs[k // ncols][k % ncols].set_visible(False)
     if image is not None:
-        bar = fig.colorbar(image, ax=axs, label=f"{title} [{unit}]", shrink=0.9)
+        bar = fig.colorbar(image, ax=axs, label=with_units(title, unit), shrink=0.9)
         if limits is not None:
             for lim in np.unique(limits[np.isfinite(limits)]):
                 marks["limit"].append(bar.ax.axhline(lim, color=RELAXED_COLOR, lw=2.0))
-    notes = [f"{a.key} = {a.labels[0]}" for a in sweep.axes if len(a) == 1]
+    notes = [setting(sweep, i, 0, units) for i, a in enumerate(sweep.axes) if len(a) == 1]
     if limits is not None:
         limit_note = (f"red line: {limit_text(limits, source)}; red frame: above it, with "
                       "relaxed samples; purple dashed: above it, none relaxed")
@@ -277,9 +220,8 @@ def draw_heatmap(sweep, metric, rows, cols):
         sup += "\n" + "; ".join(notes)
     if limit_note:
         sup += "\n" + limit_note
-    fig.suptitle(sup, fontsize=9)
+    fit_suptitle(fig, sup, fontsize=9)
     return fig, marks
-
 
 
 def parse_sel(sweep, items):
@@ -328,6 +270,7 @@ def draw_lines(sweep, metric, x, hue, fixed):
     fig, axs = plt.subplots(nrows, ncols, figsize=(1.5 + 4.5 * ncols, 1.3 + 3.4 * nrows),
                             squeeze=False, constrained_layout=True, sharey=True)
     xa = sweep.axes[x]
+    units = sweep_axis_units(sweep)
     xs = np.asarray(xa.values, dtype=float) if xa.numeric else np.arange(len(xa))
     marks = {"limit": [], "relaxed": [], "optimal": []}
     hue_values = range(len(sweep.axes[hue])) if hue is not None else [None]
@@ -338,10 +281,9 @@ def draw_lines(sweep, metric, x, hue, fixed):
         for h in hue_values:
             index = [slice(None) if i == x else (h if i == hue else where.get(i, 0))
                      for i in range(len(sweep.axes))]
-            label = f"{sweep.axes[hue].key} = {sweep.axes[hue].labels[h]}" if hue is not None \
-                else None
+            name = setting(sweep, hue, h, units) if hue is not None else None
             ys = grid[tuple(index)]
-            ax.plot(xs, ys, "o-", ms=4, lw=1.2, label=label)
+            ax.plot(xs, ys, "o-", ms=4, lw=1.2, label=name)
             if ratio is not None:
                 r = ratio.reshape(sweep.shape)[tuple(index)]
                 nr = relaxed[tuple(index)]
@@ -355,22 +297,21 @@ def draw_lines(sweep, metric, x, hue, fixed):
             finite = np.unique(limits[np.isfinite(limits)])
             for lim in finite[:4]:
                 marks["limit"].append(ax.axhline(lim, color=RELAXED_COLOR, ls=":", lw=1.2))
-        ax.set_xlabel(xa.key)
+        ax.set_xlabel(sweep_axis_label(sweep, x, units))
         if not xa.numeric:
             ax.set_xticks(xs, xa.labels)
         if p % ncols == 0:
-            ax.set_ylabel(f"{title} [{unit}]")
+            ax.set_ylabel(with_units(title, unit))
         ax.grid(alpha=0.3)
-        ptitle = ", ".join(f"{sweep.axes[i].key} = {sweep.axes[i].labels[j]}"
-                           for i, j in zip(others, combo))
+        ptitle = ", ".join(setting(sweep, i, j, units) for i, j in zip(others, combo))
         if ptitle:
-            ax.set_title(ptitle, fontsize=9)
+            fit_title(ax, ptitle, fontsize=9)
         if hue is not None and p == 0:
             ax.legend(fontsize=8)
     for k in range(len(combos), nrows * ncols):
         axs[k // ncols][k % ncols].set_visible(False)
-    notes = [f"{sweep.axes[i].key} = {sweep.axes[i].labels[j]}" for i, j in fixed.items()]
-    notes += [f"{a.key} = {a.labels[0]}" for i, a in enumerate(sweep.axes)
+    notes = [setting(sweep, i, j, units) for i, j in fixed.items()]
+    notes += [setting(sweep, i, 0, units) for i, a in enumerate(sweep.axes)
               if len(a) == 1 and i not in fixed and i not in (x, hue)]
     if limits is not None:
         limit_note = (f"red dotted: {limit_text(limits, source)}; red cross: above it, with "
@@ -383,7 +324,7 @@ def draw_lines(sweep, metric, x, hue, fixed):
         sup += "\n" + "; ".join(notes)
     if limits is not None:
         sup += "\n" + limit_note
-    fig.suptitle(sup, fontsize=9)
+    fit_suptitle(fig, sup, fontsize=9)
     return fig, marks
 
 

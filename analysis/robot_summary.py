@@ -12,20 +12,23 @@ leg is in its impact phase) and inside them, with the fraction of the smallest e
 the solver status counts, energy and cost of transport.
 """
 
-import os
+import argparse
 import sys
 import xml.etree.ElementTree as ET
 
+from hexdyn import results as hr
+import numpy as np
 
-import numpy as np  # noqa: E402
 
-from hexdyn import results as hr  # noqa: E402
-
-def main(argv):
-    if len(argv) != 2:
-        print(__doc__.strip().splitlines()[2].strip(), file=sys.stderr)
+def main(argv=None):
+    ap = argparse.ArgumentParser(prog="robot_summary.py", description=__doc__.splitlines()[0])
+    ap.add_argument("result", help="a hexdyn-result/2 file with dynamics")
+    args = ap.parse_args(argv)
+    try:
+        res = hr.open_result(args.result)
+    except (OSError, ValueError) as e:
+        print(f"robot_summary: {e}", file=sys.stderr)
         return 2
-    res = hr.open_result(argv[1])
     cfg = res.config
     urdf = ET.fromstring(hr.decode_text(res["/model/urdf"]))
     efforts = [float(lim.get("effort")) for j in urdf.iter("joint")
@@ -50,7 +53,7 @@ def main(argv):
         return [float(tau[mask][:, k::3].max()) for k in range(3)]
 
     calm, hard = peaks(~transient), peaks(transient)
-    print(f"robot: {cfg.get('name', argv[1])}  ({argv[1]})")
+    print(f"robot: {cfg.get('name', args.result)}  ({args.result})")
     print(f"  mass {mass:.3f} kg; effort limits {min(efforts):g}–{max(efforts):g} N m" if efforts
           else f"  mass {mass:.3f} kg; no effort limits in the description")
     print(f"  stairs: riser {terrain['riser_height']:g} m, tread {terrain['tread_depth']:g} m")
@@ -71,4 +74,4 @@ def main(argv):
 
 
 if __name__ == "__main__":
-    sys.exit(main(sys.argv))
+    sys.exit(main())

@@ -31,9 +31,9 @@ import sys
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
+from hexdyn import decode_text
 import numpy as np
-
-from urdf_fk import axis_rotation, quaternion_to_matrix, rpy_to_matrix  # noqa: E402
+from urdf_fk import axis_rotation, quaternion_to_matrix, rpy_to_matrix
 
 GRAVITY_W = np.array([0.0, 0.0, -9.81])
 
@@ -151,15 +151,12 @@ class UrdfDynamics:
         return tau, f[self.root], n_[self.root]
 
 
-def _text(x):
-    return x.decode() if isinstance(x, bytes) else str(x)
-
 
 def feet_from_mapping(entries):
     """/model/leg_mapping entries -> [(link, point in the link frame)] for L1..L6."""
     feet = []
     for e in entries:
-        words = _text(e).split()
+        words = decode_text(e).split()
         k = words.index("foot")
         if words[k + 1] == "offset":
             feet.append((words[k + 5], np.array([float(v) for v in words[k + 2:k + 5]])))
@@ -173,9 +170,9 @@ def check(result_path, urdf_path, tolerance, trunk_tolerance):
     import h5py
 
     with h5py.File(result_path, "r") as h:
-        names = [_text(n) for n in h["/model/joint_names"][:]]
+        names = [decode_text(n) for n in h["/model/joint_names"][:]]
         if urdf_path is None:
-            urdf_text = _text(h["/model/urdf"][()])
+            urdf_text = decode_text(h["/model/urdf"][()])
             feet = [(f"L{i}_foot", np.zeros(3)) for i in range(1, 7)]
         else:
             urdf_text = Path(urdf_path).read_text()

@@ -1,11 +1,12 @@
 #!/usr/bin/env bash
-# The paper scenario end to end: install what is missing, build the hexdyn binary (only
-# it: the tests and benchmarks are built by pipelines/test.sh), run configs/paper.yaml and
+# The paper scenario end to end: install what is missing, build the hexdyn binary and the
+# Python module (only them: the tests and benchmarks are built by pipelines/test.sh; after
+# it, PYTHONPATH=build/python /usr/bin/python3 imports hexdyn), run configs/paper.yaml and
 # draw the figures and the animation (paper.mp4, through ffmpeg) into results/paper/.
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
 hexdyn_install
-hexdyn_build hexdyn
+hexdyn_build hexdyn hexdyn_python
 
 out="$HEXDYN_ROOT/results/paper"
 mkdir -p "$out"

@@ -11,7 +11,7 @@
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
 hexdyn_install
-hexdyn_build
+hexdyn_build hexdyn  # and hexdyn-sweep; the plots read files with no compiled part
 if [ "$(id -u)" -eq 0 ]; then
   # Open MPI refuses to run as root unless told twice.
   export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1

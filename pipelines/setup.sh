@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages hexdyn needs (only those missing) and builds it in
-# build/ (Release). Sourced by the other pipelines (`hexdyn_build hexdyn` builds only the
-# binary); run on its own, it builds everything.
+# build/ (Release). Sourced by the other pipelines, each building only what it runs
+# (`hexdyn_build hexdyn` builds the binaries hexdyn and hexdyn-sweep, `hexdyn_python` the
+# Python module); run on its own, and from pipelines/test.sh, it builds everything.
 set -euo pipefail
 HEXDYN_ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 export HEXDYN_ROOT
@@ -20,6 +21,8 @@ HEXDYN_PACKAGES=(
   python3-dev pybind11-dev python3-pybind11 python3-scipy
   python3-xarray python3-h5netcdf python3-netcdf4 python3-pandas netcdf-bin udunits-bin
   clang-format
+  # the Python lint of ctest format.python_lint (tests/format/check_python.sh)
+  pyflakes3
   # analysis/animate.py: GIF through Pillow, MP4 through ffmpeg (pipelines/paper.sh writes one)
   python3-pil ffmpeg
 )

@@ -19,7 +19,7 @@ for arg in "$@"; do
 done
 source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
 hexdyn_install
-hexdyn_build
+hexdyn_build hexdyn  # and hexdyn-sweep; the plots read files with no compiled part
 
 if ((quick)); then
   study="$HEXDYN_ROOT/configs/study/quick.yaml"

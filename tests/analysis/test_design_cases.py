@@ -20,11 +20,12 @@ import sys
 import xml.etree.ElementTree as ET
 
 import h5py
+from hexdyn import decode_text
 import numpy as np
 
 
 def text(v):
-    return v.decode() if isinstance(v, bytes) else str(v)
+    return str(decode_text(v))
 
 
 def same(a, b, rel=0.0):

@@ -31,6 +31,7 @@ import tempfile
 import xml.etree.ElementTree as ET
 
 import h5py
+from hexdyn import decode_text
 import numpy as np
 import yaml
 
@@ -44,7 +45,7 @@ def check(ok, what, detail=""):
 
 
 def text(v):
-    return v.decode() if isinstance(v, bytes) else str(v)
+    return str(decode_text(v))
 
 
 def read_sweep(path):

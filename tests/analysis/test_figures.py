@@ -23,6 +23,7 @@ import tempfile
 import xml.etree.ElementTree as ET
 
 import h5py
+from hexdyn import decode_text
 import numpy as np
 import yaml
 
@@ -41,8 +42,7 @@ def read(path, group="/"):
         g = f[group]
         out = {k: g[k][()] for k in ("time", "joints/torque", "joints/velocity", "solver/status")}
         out["config"] = yaml.safe_load(g["meta"].attrs["config_yaml"])
-        out["names"] = [n.decode() if isinstance(n, bytes) else n
-                        for n in g["model/joint_names"][()]]
+        out["names"] = [str(decode_text(n)) for n in g["model/joint_names"][()]]
     return out
 
 

@@ -7,6 +7,7 @@ import sys
 
 import h5py
 import numpy as np
+from hexdyn import decode_text
 
 
 def args():
@@ -44,15 +45,14 @@ def file_datasets(path):
                 out["/" + name] = (obj[()], obj.dtype, obj.attrs.get("units"))
             elif name != "meta":
                 for k, v in obj.attrs.items():
-                    attrs[f"/{name}/{k}"] = v.decode() if isinstance(v, bytes) else v
+                    attrs[f"/{name}/{k}"] = decode_text(v)
         f.visititems(visit)
-        attrs.update({k: (v.decode() if isinstance(v, bytes) else v)
-                      for k, v in f["/meta"].attrs.items()})
+        attrs.update({k: decode_text(v) for k, v in f["/meta"].attrs.items()})
     return out, attrs
 
 
 def text(v):
-    return v.decode() if isinstance(v, bytes) else str(v)
+    return str(decode_text(v))
 
 
 def same_dataset(path, file_value, file_dtype, mine):

@@ -76,7 +76,7 @@ def check_file(path, units_seen):
     with h5py.File(path, "r") as f:
         keys = set()
         if "axes" in f and isinstance(f["axes"].get("0"), h5py.Group):  # a sweep
-            keys = {hr._text(f["axes"][i]["key"][()]) for i in f["axes"]}
+            keys = {hr.decode_text(f["axes"][i]["key"][()]) for i in f["axes"]}
         for p in datasets:
             ds = f[p]
             spec = declared(p, keys)
@@ -84,13 +84,13 @@ def check_file(path, units_seen):
             if spec is None:
                 continue
             # An axis's datasets lead their long name with the axis key.
-            long_name = hr._text(ds.attrs.get("long_name"))
+            long_name = hr.decode_text(ds.attrs.get("long_name"))
             check(long_name == spec.long_name or
                   any(long_name == f"{k}: {spec.long_name}" for k in keys), f"{path}:{p} long_name")
             if "units" in ds.attrs:
-                units_seen.add(hr._text(ds.attrs["units"]))
+                units_seen.add(hr.decode_text(ds.attrs["units"]))
             if spec.path in hr.FLAGS:
-                check(hr._text(ds.attrs.get("flag_meanings", "")).split() == hr.FLAGS[spec.path],
+                check(hr.decode_text(ds.attrs.get("flag_meanings", "")).split() == hr.FLAGS[spec.path],
                       f"{path}:{p} flag_meanings")
             want = tuple(d if d != "{key}" else None for d in spec.dims)
             got = tuple(h5py.h5ds.get_scale_name(ds.dims[k][0].id).decode() if len(ds.dims[k])
@@ -101,7 +101,7 @@ def check_file(path, units_seen):
                   f"{path}:{p} dims {got}, declared {spec.dims}")
         for name, value in f["meta"].attrs.items():  # numeric attributes with units
             if name.endswith("_units"):
-                units_seen.add(hr._text(value))
+                units_seen.add(hr.decode_text(value))
     if shutil.which("ncdump"):
         check(subprocess.run(["ncdump", "-h", path], capture_output=True).returncode == 0,
               f"ncdump -h {path}")
@@ -174,7 +174,7 @@ def main():
 
         env = hx.open_envelope(envelope)
         with h5py.File(envelope, "r") as f:
-            criteria = [hr._text(c) for c in f["axes/criteria"][()]]
+            criteria = [hr.decode_text(c) for c in f["axes/criteria"][()]]
         check(env.riser_max.dims == ("tread_depth", "duty_factor", "peak_speed", "criterion")
               and list(env.criterion.values) == criteria, "envelope dims and criteria")
 

@@ -6,6 +6,8 @@ against tests/regression/reference.json, to stated tolerances.
     /usr/bin/python3 tests/regression/regression.py update --hexdyn build/hexdyn [--source .] --reason "TEXT"
     /usr/bin/python3 tests/regression/regression.py noise  --hexdyn build/hexdyn [--ulps=-1,1]
 
+(PYTHONPATH=build/python, as ctest sets it: the file's text is read by hexdyn.decode_text.)
+
 All run, on one rank and without mpirun,
     hexdyn run   SOURCE/configs/paper.yaml         -o WORKDIR/paper.h5
     hexdyn sweep SOURCE/configs/sweeps/smoke.yaml  -o WORKDIR/smoke.h5
@@ -70,6 +72,7 @@ import sys
 import tempfile
 
 import h5py
+from hexdyn import decode_text
 import numpy as np
 
 from regression_compare import (  # this folder: the comparison half
@@ -162,7 +165,7 @@ def tolerance(name, section):
 # ---------------------------------------------------------------- extraction
 
 def text(value):
-    return value.decode() if isinstance(value, bytes) else str(value)
+    return str(decode_text(value))
 
 
 def check_schema(f, expected, path):

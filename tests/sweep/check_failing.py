@@ -3,7 +3,6 @@
 analysis reader: riser 0.04 with duty 1/2 and 3/4 computed; riser 0.12 out of reach;
 duty 1.2 out of range, each with its message, metrics NaN where not computed."""
 import math
-import os
 import sys
 
 import numpy as np  # noqa: E402

@@ -2,7 +2,6 @@
 """Reads the smoke sweep file (argument) with hexdyn.open_sweep (bindings/python/hexdyn/results.py) and
 checks it against the sweep file and against its own kept runs: axes and grid order,
 table shapes and units, and per-scenario metrics recomputed from /runs/<id>."""
-import os
 import sys
 
 import numpy as np  # noqa: E402

@@ -11,7 +11,6 @@ other dataset, group or attribute). A result file must hold the dynamics dataset
 sweep file is checked with its /runs/<id> groups as result layouts. Exit 1 with one
 line per problem."""
 import argparse
-import os
 import re
 import sys
 
@@ -74,14 +73,14 @@ class FileCheck:
                 problem(f"{where}: units {units!r}, declared the unit of the axis key")
         elif units != (spec.units or None):
             problem(f"{where}: units {units!r}, declared {spec.units!r}")
-        long_name = hr._text(obj.attrs.get(S["kLongNameAttribute"]))
+        long_name = hr.decode_text(obj.attrs.get(S["kLongNameAttribute"]))
         # An axis's datasets lead their long name with the axis key ("KEY: long name").
         if ":" in long_name and long_name.split(": ", 1)[1] == spec.long_name:
             long_name = long_name.split(": ", 1)[1]
         if long_name != spec.long_name:
             problem(f"{where}: long_name {long_name!r}, declared {spec.long_name!r}")
         if spec.path in hr.FLAGS:
-            meanings = hr._text(obj.attrs.get("flag_meanings", ""))
+            meanings = hr.decode_text(obj.attrs.get("flag_meanings", ""))
             values = list(np.asarray(obj.attrs.get("flag_values", [])))
             if meanings.split() != hr.FLAGS[spec.path] or values != list(range(len(hr.FLAGS[spec.path]))):
                 problem(f"{where}: flags {values} {meanings!r}, declared {hr.FLAGS[spec.path]}")
@@ -192,7 +191,7 @@ def check_sweep(f, source):
         c.dataset(S["kAxisLabels"], {"V": V}, concrete(S["kAxisLabels"].path, i))
         c.dataset(column, {"N": N}, concrete(column.path, i))
         c.attribute(S["kScenarioAxisKey"], concrete(S["kScenarioAxisKey"].object, i))
-        key = hr._text(f[concrete(S["kAxisKey"].path, i)][()])
+        key = hr.decode_text(f[concrete(S["kAxisKey"].path, i)][()])
         coordinate = S["kAxisCoordinateNumbers"] if numeric else S["kAxisCoordinateWords"]
         c.dataset(coordinate, {"V": V}, coordinate.path.replace("{key}", key))
         if concrete(S["kAxisCaseKeys"].path, i) in f:  # a cases axis
