@@ -208,21 +208,12 @@ class ConeBackend final : public AllocationBackend {
     have_directions_ = false;
   }
 
- public:
-  void reset_warm_start() override {
-    have_directions_ = false;
-    qp_->reset_warm_start();
-  }
-
- private:
-  void solve_impl(const QpProblem& p) override {
-    if (p.cones.empty()) {
-      out_ = qp_->solve(p);
-      return;
-    }
-    const int n = p.variables(), m_in = p.inequalities();
-    const int n_cones = static_cast<int>(p.cones.size());
-    const int rows = p.equalities() + m_in + kCutsPerCone * n_cones;
+  /// Refuses a problem too large for the active-set back end once the cones' half-spaces
+  /// are added.
+  static void check_sizes(const QpProblem& p) {
+    const int n = p.variables();
+    const int rows =
+        p.equalities() + p.inequalities() + kCutsPerCone * static_cast<int>(p.cones.size());
     if (n > kActiveSetMaxVariables || rows > kActiveSetMaxRows) {
       std::ostringstream os;
       os << "cone back end: variables (at most " << kActiveSetMaxVariables << ") and rows + "
@@ -230,12 +221,13 @@ class ConeBackend final : public AllocationBackend {
          << rows;
       throw SolverError(os.str());
     }
-    out_.iterations = 0;
-    out_.message.clear();
-    if (const std::string bad = qp_first_non_finite(p); !bad.empty()) {
-      fail(p, "non-finite entries in " + bad);
-      return;
-    }
+  }
+
+  /// The sample's starting point: the structure taken (fresh per-cone state when it
+  /// changed), the directions of the previous sample kept as a warm start or reset to the
+  /// t1 axis, the square around the apex around them, and the posed problem loaded.
+  void start_sample(const QpProblem& p) {
+    const int n_cones = static_cast<int>(p.cones.size());
     const bool same = same_structure(p);
     if (!same) remember_structure(p);
     if (!same || !have_directions_ || !opt_.warm_start) {
@@ -256,14 +248,167 @@ class ConeBackend final : public AllocationBackend {
       next_memory_[k] = kFirstMemory;
     }
     load_working(p);
+  }
 
+  /// What the convergence test of the passes found.
+  struct PassReview {
+    bool converged = false;  ///< every cone passed (last pass)
+    double worst_gap = 0.0;  ///< the largest miss of the last pass, relative
+    int worst_cone = 0;      ///< whose (kept from an earlier pass when none missed)
+    /// ½ Σ κ |(I − d dᵀ) t|² of the last pass: not in the posed objective.
+    double curvature_term = 0.0;
+  };
+
+  /// Multiplier of cone k's half-spaces together (≥ 0 when they push) in a pass's answer.
+  static double cone_multiplier(const QpOutcome& r, int m_in, int k) {
+    double lam = 0.0;
+    for (int j = 0; j < kCutsPerCone; ++j) lam -= r.lambda_ineq[m_in + kCutsPerCone * k + j];
+    return lam;
+  }
+
+  /// Cone k's spurious stationarity force at tangential force t = (t1, t2) of norm `norm`:
+  /// the curvature term's κ |(I − d dᵀ) t| (across) and, away from the apex, each active
+  /// half-space's Σ u_j |d_j × t/‖t‖|. Drops the remembered half-spaces that hold t at a
+  /// vertex once t is on the cone.
+  double spurious_force(const QpProblem& p, const QpOutcome& r, int k, double t1, double t2,
+                        double norm, double gap, double across) {
+    const SecondOrderCone& c = p.cones[k];
+    const int m_in = p.inequalities();
+    // The curvature term's gradient κ (I − d dᵀ) t is a spurious force in the pass's
+    // stationarity: negligible only once t has turned onto d (to ~1e-10 rad), which is
+    // stricter than the gap (½‖t‖·angle²) where κ > 0.
+    double spurious = kappa_[k] * std::abs(across);
+    // Likewise each active half-space whose normal is not the cone's gradient at t
+    // (an answer at the vertex of two half-spaces a small angle θ apart violates the
+    // cone by only ½θ²‖t‖ but is off the optimum by O(θ)): Σ u_j |d_j × t/‖t‖|. At the
+    // apex any combination of half-spaces is a valid cone multiplier.
+    if (norm > kApex * std::max(1.0, std::abs(c.mu * r.x[c.normal]))) {
+      const bool on_cone = gap <= opt_.cone_tolerance * std::max(1.0, norm);
+      for (int j = 0; j < kCutsPerCone; ++j) {
+        const double u = -r.lambda_ineq[m_in + kCutsPerCone * k + j];
+        if (!(u > 0.0)) continue;
+        const double off = u * std::abs(cut_[k][j].x() * t2 - cut_[k][j].y() * t1) / norm;
+        spurious += off;
+        // t sits on the cone at a vertex of the current tangent and an older half-space,
+        // which holds it there (the passes would creep, linearly): the older one has
+        // done its work (bounding the iterates) and is dropped for this sample.
+        if (j >= kFirstMemory && on_cone && off > kStationarityTolerance * (1.0 + lambda_[k]))
+          on_[k][j] = false;
+      }
+    }
+    return spurious;
+  }
+
+  /// Cone k after pass number `passes` with answer r: its convergence test (into review),
+  /// the half-spaces dropped or remembered, and its direction, multiplier and ‖t‖ for the
+  /// next pass.
+  void review_cone(const QpProblem& p, const QpOutcome& r, int k, int passes, PassReview& review) {
+    const SecondOrderCone& c = p.cones[k];
+    const int m_in = p.inequalities();
+    const double t1 = r.x[c.tangent1], t2 = r.x[c.tangent2];
+    const double norm = std::hypot(t1, t2);
+    const Eigen::Vector2d& d = dir_[k];
+    double support = -kInf;
+    for (int j = 0; j < kCutsPerCone; ++j)
+      if (j == 0 || on_[k][j])
+        support = std::max(support, cut_[k][j].x() * t1 + cut_[k][j].y() * t2);
+    const double gap = norm - support;
+    const double across = d.x() * t2 - d.y() * t1;  // |(I − d dᵀ) t|, signed
+    review.curvature_term += 0.5 * kappa_[k] * across * across;
+    const double lam = cone_multiplier(r, m_in, k);
+    // Another half-space of this cone violated at a penalised answer would count the
+    // cone's penalty twice: it is dropped for the rest of the sample.
+    if (r.status == SolverStatus::kRelaxed) {
+      for (int j = 1; j < kCutsPerCone; ++j) {
+        if (on_[k][j] &&
+            cut_[k][j].x() * t1 + cut_[k][j].y() * t2 - c.mu * r.x[c.normal] > feasibility_tol()) {
+          on_[k][j] = false;
+          review.converged = false;
+        }
+      }
+    }
+    const double spurious = spurious_force(p, r, k, t1, t2, norm, gap, across);
+    if (gap > opt_.cone_tolerance * std::max(1.0, norm) ||
+        spurious > kStationarityTolerance * (1.0 + lambda_[k])) {
+      review.converged = false;
+      const double miss = std::max(gap / std::max(1.0, norm), spurious / (1.0 + lambda_[k]));
+      if (miss > review.worst_gap) review.worst_gap = miss, review.worst_cone = k;
+    }
+    // A cone giving way (its tangent half-space violated, penalised) is followed by the
+    // Newton passes alone: remembered tangents near its direction would be violated too.
+    const bool giving_way = d.x() * t1 + d.y() * t2 - c.mu * r.x[c.normal] > feasibility_tol();
+    if (passes >= kMemoryFromPass && norm > 0.0 && !giving_way &&
+        !(gap <= opt_.cone_tolerance * std::max(1.0, norm))) {
+      // Remember this pass's tangent (Kelley's cutting plane: the half-spaces only
+      // accumulate, so the passes cannot cycle between the same few), then turn.
+      int& m = next_memory_[k];
+      cut_[k][m] = d;
+      on_[k][m] = true;
+      m = m + 1 < kCutsPerCone ? m + 1 : kFirstMemory;
+    }
+    if (norm > 0.0) dir_[k] = Eigen::Vector2d(t1 / norm, t2 / norm);
+    lambda_[k] = std::max(lam, 0.0);
+    norm_[k] = norm;
+  }
+
+  /// The answer of the last pass r (after `passes` passes), on the posed problem: solution,
+  /// multipliers (one per cone), objective without the curvature term, status and message.
+  void answer(const QpProblem& p, const QpOutcome& r, const PassReview& review, int passes) {
+    const int m_in = p.inequalities();
+    const int n_cones = static_cast<int>(p.cones.size());
+    out_.x = r.x;
+    out_.lambda_eq = r.lambda_eq;
+    out_.lambda_ineq = r.lambda_ineq.head(m_in);
+    out_.lambda_cone.resize(n_cones);
+    for (int k = 0; k < n_cones; ++k) out_.lambda_cone[k] = cone_multiplier(r, m_in, k);
+    out_.objective = r.objective - review.curvature_term;
+    const std::string v = describe_violations(p, out_.x, feasibility_tol(), &out_.max_violation);
+    have_directions_ = true;
+    if (!review.converged) {
+      const SecondOrderCone& worst = p.cones[review.worst_cone];
+      char buf[160];
+      std::snprintf(buf, sizeof buf,
+                    "outer approximation of %s converged only to %.3g after %d passes",
+                    worst.name.empty() ? "a cone" : worst.name.c_str(), review.worst_gap, passes);
+      out_.status = SolverStatus::kRelaxed;
+      out_.message =
+          v.empty() ? std::string("approximate: ") + buf : "relaxed: " + v + " (" + buf + ")";
+      return;
+    }
+    if (v.empty()) {
+      out_.status = SolverStatus::kOptimal;
+      if (r.status == SolverStatus::kOptimal)
+        out_.message = r.message;  // e.g. a regularisation note
+    } else {
+      out_.status = SolverStatus::kRelaxed;
+      out_.message = "relaxed: " + v;
+    }
+  }
+
+ public:
+  void reset_warm_start() override {
+    have_directions_ = false;
+    qp_->reset_warm_start();
+  }
+
+ private:
+  void solve_impl(const QpProblem& p) override {
+    if (p.cones.empty()) {
+      out_ = qp_->solve(p);
+      return;
+    }
+    check_sizes(p);
+    out_.iterations = 0;
+    out_.message.clear();
+    if (const std::string bad = qp_first_non_finite(p); !bad.empty()) {
+      fail(p, "non-finite entries in " + bad);
+      return;
+    }
+    start_sample(p);
     const QpOutcome* r = nullptr;
-    bool converged = false;
-    double worst_gap = 0.0;
-    double curvature_term =
-        0.0;  // ½ Σ κ |(I − d dᵀ) t|² of the last pass: not in the posed objective
-    int worst_cone = 0, passes = 0;
-    while (!converged && passes < opt_.max_passes) {
+    PassReview review;
+    int passes = 0;
+    while (!review.converged && passes < opt_.max_passes) {
       set_cones(p);
       r = &qp_->solve(w_);
       ++passes;
@@ -272,112 +417,13 @@ class ConeBackend final : public AllocationBackend {
         fail(p, "pass " + std::to_string(passes) + " of the outer approximation: " + r->message);
         return;
       }
-      converged = true;
-      worst_gap = 0.0;
-      curvature_term = 0.0;
-      for (int k = 0; k < n_cones; ++k) {
-        const SecondOrderCone& c = p.cones[k];
-        const double t1 = r->x[c.tangent1], t2 = r->x[c.tangent2];
-        const double norm = std::hypot(t1, t2);
-        const Eigen::Vector2d& d = dir_[k];
-        double support = -kInf;
-        for (int j = 0; j < kCutsPerCone; ++j)
-          if (j == 0 || on_[k][j])
-            support = std::max(support, cut_[k][j].x() * t1 + cut_[k][j].y() * t2);
-        const double gap = norm - support;
-        const double across = d.x() * t2 - d.y() * t1;  // |(I − d dᵀ) t|, signed
-        curvature_term += 0.5 * kappa_[k] * across * across;
-        double lam = 0.0;
-        for (int j = 0; j < kCutsPerCone; ++j) lam -= r->lambda_ineq[m_in + kCutsPerCone * k + j];
-        // Another half-space of this cone violated at a penalised answer would count the
-        // cone's penalty twice: it is dropped for the rest of the sample.
-        if (r->status == SolverStatus::kRelaxed) {
-          for (int j = 1; j < kCutsPerCone; ++j) {
-            if (on_[k][j] && cut_[k][j].x() * t1 + cut_[k][j].y() * t2 - c.mu * r->x[c.normal] >
-                                 feasibility_tol()) {
-              on_[k][j] = false;
-              converged = false;
-            }
-          }
-        }
-        // The curvature term's gradient κ (I − d dᵀ) t is a spurious force in the pass's
-        // stationarity: negligible only once t has turned onto d (to ~1e-10 rad), which is
-        // stricter than the gap (½‖t‖·angle²) where κ > 0.
-        double spurious = kappa_[k] * std::abs(across);
-        // Likewise each active half-space whose normal is not the cone's gradient at t
-        // (an answer at the vertex of two half-spaces a small angle θ apart violates the
-        // cone by only ½θ²‖t‖ but is off the optimum by O(θ)): Σ u_j |d_j × t/‖t‖|. At the
-        // apex any combination of half-spaces is a valid cone multiplier.
-        if (norm > kApex * std::max(1.0, std::abs(c.mu * r->x[c.normal]))) {
-          const bool on_cone = gap <= opt_.cone_tolerance * std::max(1.0, norm);
-          for (int j = 0; j < kCutsPerCone; ++j) {
-            const double u = -r->lambda_ineq[m_in + kCutsPerCone * k + j];
-            if (!(u > 0.0)) continue;
-            const double off = u * std::abs(cut_[k][j].x() * t2 - cut_[k][j].y() * t1) / norm;
-            spurious += off;
-            // t sits on the cone at a vertex of the current tangent and an older half-space,
-            // which holds it there (the passes would creep, linearly): the older one has
-            // done its work (bounding the iterates) and is dropped for this sample.
-            if (j >= kFirstMemory && on_cone && off > kStationarityTolerance * (1.0 + lambda_[k]))
-              on_[k][j] = false;
-          }
-        }
-        if (gap > opt_.cone_tolerance * std::max(1.0, norm) ||
-            spurious > kStationarityTolerance * (1.0 + lambda_[k])) {
-          converged = false;
-          const double miss = std::max(gap / std::max(1.0, norm), spurious / (1.0 + lambda_[k]));
-          if (miss > worst_gap) worst_gap = miss, worst_cone = k;
-        }
-        // A cone giving way (its tangent half-space violated, penalised) is followed by the
-        // Newton passes alone: remembered tangents near its direction would be violated too.
-        const bool giving_way = d.x() * t1 + d.y() * t2 - c.mu * r->x[c.normal] > feasibility_tol();
-        if (passes >= kMemoryFromPass && norm > 0.0 && !giving_way &&
-            !(gap <= opt_.cone_tolerance * std::max(1.0, norm))) {
-          // Remember this pass's tangent (Kelley's cutting plane: the half-spaces only
-          // accumulate, so the passes cannot cycle between the same few), then turn.
-          int& m = next_memory_[k];
-          cut_[k][m] = d;
-          on_[k][m] = true;
-          m = m + 1 < kCutsPerCone ? m + 1 : kFirstMemory;
-        }
-        if (norm > 0.0) dir_[k] = Eigen::Vector2d(t1 / norm, t2 / norm);
-        lambda_[k] = std::max(lam, 0.0);
-        norm_[k] = norm;
-      }
+      review.converged = true;
+      review.worst_gap = 0.0;
+      review.curvature_term = 0.0;
+      for (int k = 0; k < static_cast<int>(p.cones.size()); ++k)
+        review_cone(p, *r, k, passes, review);
     }
-
-    // The answer of the last pass, on the posed problem.
-    out_.x = r->x;
-    out_.lambda_eq = r->lambda_eq;
-    out_.lambda_ineq = r->lambda_ineq.head(m_in);
-    out_.lambda_cone.resize(n_cones);
-    for (int k = 0; k < n_cones; ++k) {
-      double lam = 0.0;
-      for (int j = 0; j < kCutsPerCone; ++j) lam -= r->lambda_ineq[m_in + kCutsPerCone * k + j];
-      out_.lambda_cone[k] = lam;
-    }
-    out_.objective = r->objective - curvature_term;
-    const std::string v = describe_violations(p, out_.x, feasibility_tol(), &out_.max_violation);
-    have_directions_ = true;
-    if (!converged) {
-      char buf[160];
-      std::snprintf(buf, sizeof buf,
-                    "outer approximation of %s converged only to %.3g after %d passes",
-                    p.cones[worst_cone].name.empty() ? "a cone" : p.cones[worst_cone].name.c_str(),
-                    worst_gap, passes);
-      out_.status = SolverStatus::kRelaxed;
-      out_.message =
-          v.empty() ? std::string("approximate: ") + buf : "relaxed: " + v + " (" + buf + ")";
-      return;
-    }
-    if (v.empty()) {
-      out_.status = SolverStatus::kOptimal;
-      if (r->status == SolverStatus::kOptimal)
-        out_.message = r->message;  // e.g. a regularisation note
-    } else {
-      out_.status = SolverStatus::kRelaxed;
-      out_.message = "relaxed: " + v;
-    }
+    answer(p, *r, review, passes);
   }
 
   ConeOptions opt_;

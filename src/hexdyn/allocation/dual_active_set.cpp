@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <utility>
 
 namespace hexdyn {
@@ -183,85 +184,100 @@ ActiveSetExit DualActiveSetQp::run(int max_changes, int& changes) {
       if (++changes > max_changes) return ActiveSetExit::kIterationLimit;
       continue;
     }
-    double u_plus = 0.0;  // multiplier of p
-    for (;;) {
-      if (++changes > max_changes) return ActiveSetExit::kIterationLimit;
-      // d = Jᵀ n⁺ (n⁺ = side·a_p), z = J₂ d₂, r = R⁻¹ d₁.
-      bool dependent = false;
-      const double d2 = project_row(p, side, dependent);
-      if (!dependent) {
-        z_.head(n_).setZero();
-        for (int i = q_; i < n_; ++i) z_.head(n_) += d_[i] * J_.col(i).head(n_);
+    if (const std::optional<ActiveSetExit> exit = add_violated_row(p, side, max_changes, changes))
+      return *exit;
+  }
+}
+
+/// Steps towards making row p (from `side`) hold, each step as long as the first block
+/// allows, until p holds or turns elastic (nullopt: select the next row) or the iteration
+/// must stop (its exit). `changes` counts the active-set changes.
+std::optional<ActiveSetExit> DualActiveSetQp::add_violated_row(int p, int side, int max_changes,
+                                                               int& changes) {
+  double u_plus = 0.0;  // multiplier of p
+  for (;;) {
+    if (++changes > max_changes) return ActiveSetExit::kIterationLimit;
+    // d = Jᵀ n⁺ (n⁺ = side·a_p), z = J₂ d₂, r = R⁻¹ d₁.
+    bool dependent = false;
+    const double d2 = project_row(p, side, dependent);
+    if (!dependent) {
+      z_.head(n_).setZero();
+      for (int i = q_; i < n_; ++i) z_.head(n_) += d_[i] * J_.col(i).head(n_);
+    }
+    upper_solve(R_, q_, d_.data(), r_.data(), rinv_.data());
+    const Step step = step_length(p, side, dependent, d2, u_plus);
+    if (!(step.t < kInf) || step.block == Block::kNone) return ActiveSetExit::kInfeasible;
+    const double t = step.t;
+    const int which = step.which;
+    // Step.
+    if (!dependent) x_.head(n_) += t * z_.head(n_);
+    for (int i = 0; i < q_; ++i) u_[i] -= t * r_[i];
+    u_plus += t;
+    if (step.block == Block::kFull) {
+      if (!add_row(p, side, u_plus)) return ActiveSetExit::kNumerical;
+      return std::nullopt;  // p holds: select the next row
+    }
+    if (step.block == Block::kPlusCap) {
+      make_elastic(p, side);
+      return std::nullopt;
+    }
+    if (step.block == Block::kCross) {
+      release_elastic(which);
+      if (!add_row(which, side_[which], cap_[which])) return ActiveSetExit::kNumerical;
+      continue;
+    }
+    const int k = act_[which];
+    const int s = side_[k];
+    drop_position(which);
+    if (step.block == Block::kCap)
+      make_elastic(k, s);
+    else if (eqtype_[k])
+      make_elastic(k, -s);  // an l = u row at −ρ w (penalised mode)
+  }
+}
+
+/// Step lengths along (z, r) of adding row p with multiplier u_plus so far (d2 from
+/// project_row): the full step (p holds), a multiplier reaching a bound of its box, p's
+/// multiplier reaching its cap, an elastic row coming to hold. The shortest wins.
+DualActiveSetQp::Step DualActiveSetQp::step_length(int p, int side, bool dependent, double d2,
+                                                   double u_plus) {
+  Step s{kInf, Block::kNone, -1};
+  if (!dependent) {
+    s.t = std::max(0.0, -residual(p, side) / d2);
+    s.block = Block::kFull;
+  }
+  for (int i = 0; i < q_; ++i) {
+    const int k = act_[i];
+    if (r_[i] > 0.0) {
+      const double lb = lower_multiplier(k);
+      if (lb > -kInf) {
+        const double ti = std::max(0.0, (u_[i] - lb) / r_[i]);
+        if (ti < s.t) s.t = ti, s.block = Block::kDrop, s.which = i;
       }
-      upper_solve(R_, q_, d_.data(), r_.data(), rinv_.data());
-      // Step lengths: full step (p holds), a multiplier reaching a bound of its box,
-      // p's multiplier reaching its cap, an elastic row coming to hold.
-      enum class Block { kNone, kFull, kDrop, kCap, kPlusCap, kCross };
-      Block block = Block::kNone;
-      double t = kInf;
-      int which = -1;
-      if (!dependent) {
-        t = std::max(0.0, -residual(p, side) / d2);
-        block = Block::kFull;
+    } else if (r_[i] < 0.0) {
+      const double ub = upper_multiplier(k);
+      if (ub < kInf) {
+        const double ti = std::max(0.0, (ub - u_[i]) / -r_[i]);
+        if (ti < s.t) s.t = ti, s.block = Block::kCap, s.which = i;
       }
-      for (int i = 0; i < q_; ++i) {
-        const int k = act_[i];
-        if (r_[i] > 0.0) {
-          const double lb = lower_multiplier(k);
-          if (lb > -kInf) {
-            const double ti = std::max(0.0, (u_[i] - lb) / r_[i]);
-            if (ti < t) t = ti, block = Block::kDrop, which = i;
-          }
-        } else if (r_[i] < 0.0) {
-          const double ub = upper_multiplier(k);
-          if (ub < kInf) {
-            const double ti = std::max(0.0, (ub - u_[i]) / -r_[i]);
-            if (ti < t) t = ti, block = Block::kCap, which = i;
-          }
-        }
-      }
-      if (relaxed_ && cap_[p] < kInf) {
-        const double ti = std::max(0.0, cap_[p] - u_plus);
-        if (ti < t) t = ti, block = Block::kPlusCap;
-      }
-      if (relaxed_ && !dependent) {
-        for (int k = m_eq_; k < m_; ++k) {
-          if (state_[k] != RowState::kElastic) continue;
-          const double slope = side_[k] * a_.col(k).head(n_).dot(z_.head(n_));
-          if (!(slope > 0.0)) continue;
-          const double ti = std::max(0.0, -residual(k, side_[k]) / slope);
-          // A row that depends on the active rows keeps its value along z (the slope is
-          // rounding): it cannot come to hold.
-          if (ti < t && independent(k)) t = ti, block = Block::kCross, which = k;
-        }
-      }
-      if (!(t < kInf) || block == Block::kNone) return ActiveSetExit::kInfeasible;
-      // Step.
-      if (!dependent) x_.head(n_) += t * z_.head(n_);
-      for (int i = 0; i < q_; ++i) u_[i] -= t * r_[i];
-      u_plus += t;
-      if (block == Block::kFull) {
-        if (!add_row(p, side, u_plus)) return ActiveSetExit::kNumerical;
-        break;  // p holds: select the next row
-      }
-      if (block == Block::kPlusCap) {
-        make_elastic(p, side);
-        break;
-      }
-      if (block == Block::kCross) {
-        release_elastic(which);
-        if (!add_row(which, side_[which], cap_[which])) return ActiveSetExit::kNumerical;
-        continue;
-      }
-      const int k = act_[which];
-      const int s = side_[k];
-      drop_position(which);
-      if (block == Block::kCap)
-        make_elastic(k, s);
-      else if (eqtype_[k])
-        make_elastic(k, -s);  // an l = u row at −ρ w (penalised mode)
     }
   }
+  if (relaxed_ && cap_[p] < kInf) {
+    const double ti = std::max(0.0, cap_[p] - u_plus);
+    if (ti < s.t) s.t = ti, s.block = Block::kPlusCap;
+  }
+  if (relaxed_ && !dependent) {
+    for (int k = m_eq_; k < m_; ++k) {
+      if (state_[k] != RowState::kElastic) continue;
+      const double slope = side_[k] * a_.col(k).head(n_).dot(z_.head(n_));
+      if (!(slope > 0.0)) continue;
+      const double ti = std::max(0.0, -residual(k, side_[k]) / slope);
+      // A row that depends on the active rows keeps its value along z (the slope is
+      // rounding): it cannot come to hold.
+      if (ti < s.t && independent(k)) s.t = ti, s.block = Block::kCross, s.which = k;
+    }
+  }
+  return s;
 }
 
 /// Recomputes x and the multipliers from the working sets (with one refinement step)

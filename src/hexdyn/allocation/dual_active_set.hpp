@@ -42,6 +42,7 @@
 #include <Eigen/Core>
 #include <array>
 #include <cstdint>
+#include <optional>
 
 #include "hexdyn/allocation/qp.hpp"
 #include "hexdyn/allocation/small_dense.hpp"
@@ -135,6 +136,15 @@ class DualActiveSetQp {
   static constexpr int kM = kActiveSetMaxRows;
   using RowNormals = Eigen::Matrix<double, kN, kM>;  ///< column k: the normal of row k
   enum class RowState : std::int8_t { kInactive, kActive, kElastic };
+  /// What ends a step of adding a row: the row holds (full step), an active multiplier
+  /// reaches the bound of its box (drop) or its cap (elastic), the added row's multiplier
+  /// reaches its cap, an elastic row comes to hold (cross).
+  enum class Block : std::int8_t { kNone, kFull, kDrop, kCap, kPlusCap, kCross };
+  struct Step {
+    double t;     ///< step length
+    Block block;  ///< what ends it
+    int which;    ///< kDrop, kCap: position in the active set; kCross: the row
+  };
 
   bool factorize();
   void ensure_j0();
@@ -155,6 +165,8 @@ class DualActiveSetQp {
   bool independent(int k);
   bool add_row(int k, int side, double u);
   void drop_position(int pos);
+  std::optional<ActiveSetExit> add_violated_row(int p, int side, int max_changes, int& changes);
+  Step step_length(int p, int side, bool dependent, double d2, double u_plus);
   void eqp_gi(const SmallVector& grad, const double* rhs, SmallVector& x, double* u);
   void eqp_direct(const SmallVector& grad, const double* rhs, SmallVector& x, double* u);
   void eqp(const SmallVector& grad, const double* rhs, SmallVector& x, double* u);

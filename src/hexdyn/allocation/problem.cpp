@@ -65,16 +65,12 @@ const RowNames& row_names() {
   return names;
 }
 
-}  // namespace
-
-AllocationLayout build_allocation_problem(const AllocationParams& alloc,
-                                          const ContactParams& contact, const ContactSplit& split,
-                                          const std::array<ContactPhase, kLegs>& phase,
-                                          const std::array<double, kLegs>& impact_force_N,
-                                          const std::array<Mat3, kLegs>& W_R_c, QpProblem& qp) {
-  const int faces = friction_faces(alloc.friction);
-  const double mu = contact.friction_coefficient;
-  // Layout and sizes.
+/// The variable layout (which legs carry which force components) and the number of
+/// inequality rows: six trunk rows, then per leg with variables its torque rows, a support
+/// leg's normal force row and its friction faces.
+AllocationLayout variable_layout(const std::array<ContactPhase, kLegs>& phase,
+                                 const std::array<double, kLegs>& impact_force_N,
+                                 const std::array<Mat3, kLegs>& W_R_c, int faces, int& rows) {
   AllocationLayout layout;
   int n = 0, m_in = 6;  // six trunk rows (lower = upper, so that they can be relaxed)
   for (int l = 0; l < kLegs; ++l) {
@@ -91,94 +87,148 @@ AllocationLayout build_allocation_problem(const AllocationParams& alloc,
     m_in += support ? faces : (faces ? faces : kImpactConeFaces);
   }
   layout.variables = n;
-  qp.resize(n, 0, m_in);
-  qp.structure = structure_key(faces, phase);
+  rows = m_in;
+  return layout;
+}
+
+// At most 18 variables: the matrices live on the stack.
+using GMatrix = Eigen::Matrix<double, kJoints, Eigen::Dynamic, Eigen::ColMajor, kJoints, 3 * kLegs>;
+using BMatrix = Eigen::Matrix<double, 6, Eigen::Dynamic, Eigen::ColMajor, 6, 3 * kLegs>;
+
+/// The problem's linear terms in its variables x (contact-frame forces [N]): joint torques
+/// τ = tau_known − G x [N m] and trunk rows B x = trunk_rhs, where the known forces (the
+/// impact legs' normal forces, world axes) are already moved to tau_known and trunk_rhs.
+struct LinearTerms {
+  VecJ tau_known;
+  Vec6 trunk_rhs;
+  GMatrix G;  ///< kJoints × variables
+  BMatrix B;  ///< 6 × variables
+};
+
+LinearTerms linear_terms(const ContactSplit& split, const AllocationLayout& layout,
+                         const std::array<ContactPhase, kLegs>& phase,
+                         const std::array<double, kLegs>& impact_force_N,
+                         const std::array<Mat3, kLegs>& W_R_c) {
+  LinearTerms t;
   // Known forces: the normal force of impact legs.
-  VecJ tau_known = split.tau0;
-  Vec6 trunk_rhs = split.trunk_rhs;
+  t.tau_known = split.tau0;
+  t.trunk_rhs = split.trunk_rhs;
   for (int l = 0; l < kLegs; ++l) {
     if (phase[l] != ContactPhase::kImpact) continue;
     const Vec3 F_fixed = impact_force_N[l] * W_R_c[l].col(2);
-    tau_known -= split.JjT[l] * F_fixed;
-    trunk_rhs -= split.JbT[l] * F_fixed;
+    t.tau_known -= split.JjT[l] * F_fixed;
+    t.trunk_rhs -= split.JbT[l] * F_fixed;
   }
-  // Torques τ = tau_known − G x; trunk rows B x = trunk_rhs (at most 18 variables: on the stack).
-  using GMatrix =
-      Eigen::Matrix<double, kJoints, Eigen::Dynamic, Eigen::ColMajor, kJoints, 3 * kLegs>;
-  using BMatrix = Eigen::Matrix<double, 6, Eigen::Dynamic, Eigen::ColMajor, 6, 3 * kLegs>;
-  GMatrix G = GMatrix::Zero(kJoints, n);
-  BMatrix B = BMatrix::Zero(6, n);
+  const int n = layout.variables;
+  t.G = GMatrix::Zero(kJoints, n);
+  t.B = BMatrix::Zero(6, n);
   for (int l = 0; l < kLegs; ++l) {
     const AllocationLayout::Leg& leg = layout.legs[l];
     if (leg.offset < 0) continue;
     const int k = leg.count;
-    G.middleCols(leg.offset, k) = split.JjT[l] * W_R_c[l].leftCols(k);
-    B.middleCols(leg.offset, k) = split.JbT[l] * W_R_c[l].leftCols(k);
+    t.G.middleCols(leg.offset, k) = split.JjT[l] * W_R_c[l].leftCols(k);
+    t.B.middleCols(leg.offset, k) = split.JbT[l] * W_R_c[l].leftCols(k);
   }
+  return t;
+}
+
+/// Joint k's torque limit [N m]: a URDF robot's effort limit, or one limit for every joint.
+double joint_torque_limit(const AllocationParams& alloc, int k) {
+  return alloc.joint_torque_limit_Nm ? (*alloc.joint_torque_limit_Nm)[k] : alloc.torque_limit_Nm;
+}
+
+/// A swing leg's torques are constants no force changes: the largest excess over its limit
+/// [N m] is kept in the layout, with the row's name.
+void note_swing_leg_excess(const AllocationParams& alloc, const VecJ& tau_known, int l,
+                           AllocationLayout& layout) {
+  for (int j = 0; j < kJointsPerLeg; ++j) {
+    const double excess =
+        std::abs(tau_known[joint_index(l, j)]) - joint_torque_limit(alloc, joint_index(l, j));
+    if (excess > layout.constant_excess_Nm) {
+      layout.constant_excess_Nm = excess;
+      std::ostringstream os;
+      os.precision(3);
+      os << "torque " << joint_name(l, j) << " (swing leg) by " << excess;
+      layout.constant_violation = os.str();
+    }
+  }
+}
+
+/// Leg l's rows from `row` on: its torque limits, a support leg's minimum normal force,
+/// its friction faces (faces per leg, 0 for the exact cone; friction coefficient mu), and
+/// a support leg's second-order cone under the exact cone. Returns the next row.
+int add_leg_rows(const AllocationParams& alloc, const LinearTerms& t,
+                 const AllocationLayout& layout, const std::array<ContactPhase, kLegs>& phase,
+                 const std::array<double, kLegs>& impact_force_N, int faces, double mu, int l,
+                 int row, QpProblem& qp) {
+  const int o = layout.legs[l].offset;
+  for (int j = 0; j < kJointsPerLeg; ++j, ++row) {
+    const int kk = joint_index(l, j);
+    const double tmax = joint_torque_limit(alloc, kk);
+    qp.C.row(row) = t.G.row(kk);
+    qp.lower[row] = t.tau_known[kk] - tmax;
+    qp.upper[row] = t.tau_known[kk] + tmax;
+    qp.ineq_names[row] = row_names().torque[kk];
+  }
+  const bool support = phase[l] == ContactPhase::kSupport;
+  if (support) {
+    qp.C(row, o + 2) = 1.0;
+    qp.lower[row] = alloc.min_normal_force_N;
+    qp.upper[row] = std::numeric_limits<double>::infinity();
+    qp.ineq_penalty[row] = kContactRowPenaltyWeight;
+    qp.ineq_names[row++] = row_names().normal[l];
+  }
+  const int nf = faces ? faces : (support ? 0 : kImpactConeFaces);
+  for (int f = 0; f < nf; ++f, ++row) {
+    const FrictionFace face = inscribed_friction_face(f, nf, mu);
+    qp.C(row, o) = face.cos_a;
+    qp.C(row, o + 1) = face.sin_a;
+    qp.lower[row] = -std::numeric_limits<double>::infinity();
+    if (support) {
+      qp.C(row, o + 2) = -face.reach;
+      qp.upper[row] = 0.0;
+    } else {
+      qp.upper[row] = face.reach * impact_force_N[l];
+    }
+    qp.ineq_penalty[row] = kContactRowPenaltyWeight;
+    qp.ineq_names[row] = row_names().face[l][f];
+  }
+  if (!faces && support)
+    qp.cones.push_back(
+        {o, o + 1, o + 2, mu, "friction cone " + leg_name(l), kContactRowPenaltyWeight});
+  return row;
+}
+
+}  // namespace
+
+AllocationLayout build_allocation_problem(const AllocationParams& alloc,
+                                          const ContactParams& contact, const ContactSplit& split,
+                                          const std::array<ContactPhase, kLegs>& phase,
+                                          const std::array<double, kLegs>& impact_force_N,
+                                          const std::array<Mat3, kLegs>& W_R_c, QpProblem& qp) {
+  const int faces = friction_faces(alloc.friction);
+  const double mu = contact.friction_coefficient;
+  int m_in = 0;
+  AllocationLayout layout = variable_layout(phase, impact_force_N, W_R_c, faces, m_in);
+  qp.resize(layout.variables, 0, m_in);
+  qp.structure = structure_key(faces, phase);
+  const LinearTerms t = linear_terms(split, layout, phase, impact_force_N, W_R_c);
   // Objective Σ τ² = |tau_known − G x|² = ½ xᵀ (2 GᵀG) x − 2 (Gᵀ tau_known)ᵀ x + |tau_known|².
-  qp.H = 2.0 * G.transpose() * G;
-  qp.g = -2.0 * G.transpose() * tau_known;
-  qp.constant = tau_known.squaredNorm();
+  qp.H = 2.0 * t.G.transpose() * t.G;
+  qp.g = -2.0 * t.G.transpose() * t.tau_known;
+  qp.constant = t.tau_known.squaredNorm();
   int row = 0;
   for (int r = 0; r < 6; ++r, ++row) {
-    qp.C.row(row) = B.row(r);
-    qp.lower[row] = qp.upper[row] = trunk_rhs[r];
+    qp.C.row(row) = t.B.row(r);
+    qp.lower[row] = qp.upper[row] = t.trunk_rhs[r];
     qp.ineq_names[row] = kTrunkRowNames[r];
     qp.ineq_penalty[row] = kTrunkRowPenaltyWeight;
   }
-  // Per-joint limits (a URDF robot's effort limits) or one limit for every joint.
-  const auto tmax_of = [&alloc](int k) {
-    return alloc.joint_torque_limit_Nm ? (*alloc.joint_torque_limit_Nm)[k] : alloc.torque_limit_Nm;
-  };
   for (int l = 0; l < kLegs; ++l) {
-    if (layout.legs[l].offset < 0) {
-      for (int j = 0; j < kJointsPerLeg; ++j) {
-        const double excess = std::abs(tau_known[joint_index(l, j)]) - tmax_of(joint_index(l, j));
-        if (excess > layout.constant_excess_Nm) {
-          layout.constant_excess_Nm = excess;
-          std::ostringstream os;
-          os.precision(3);
-          os << "torque " << joint_name(l, j) << " (swing leg) by " << excess;
-          layout.constant_violation = os.str();
-        }
-      }
-      continue;
-    }
-    const int o = layout.legs[l].offset;
-    for (int j = 0; j < kJointsPerLeg; ++j, ++row) {
-      const int kk = joint_index(l, j);
-      const double tmax = tmax_of(kk);
-      qp.C.row(row) = G.row(kk);
-      qp.lower[row] = tau_known[kk] - tmax;
-      qp.upper[row] = tau_known[kk] + tmax;
-      qp.ineq_names[row] = row_names().torque[kk];
-    }
-    const bool support = phase[l] == ContactPhase::kSupport;
-    if (support) {
-      qp.C(row, o + 2) = 1.0;
-      qp.lower[row] = alloc.min_normal_force_N;
-      qp.upper[row] = std::numeric_limits<double>::infinity();
-      qp.ineq_penalty[row] = kContactRowPenaltyWeight;
-      qp.ineq_names[row++] = row_names().normal[l];
-    }
-    const int nf = faces ? faces : (support ? 0 : kImpactConeFaces);
-    for (int f = 0; f < nf; ++f, ++row) {
-      const FrictionFace face = inscribed_friction_face(f, nf, mu);
-      qp.C(row, o) = face.cos_a;
-      qp.C(row, o + 1) = face.sin_a;
-      qp.lower[row] = -std::numeric_limits<double>::infinity();
-      if (support) {
-        qp.C(row, o + 2) = -face.reach;
-        qp.upper[row] = 0.0;
-      } else {
-        qp.upper[row] = face.reach * impact_force_N[l];
-      }
-      qp.ineq_penalty[row] = kContactRowPenaltyWeight;
-      qp.ineq_names[row] = row_names().face[l][f];
-    }
-    if (!faces && support)
-      qp.cones.push_back(
-          {o, o + 1, o + 2, mu, "friction cone " + leg_name(l), kContactRowPenaltyWeight});
+    if (layout.legs[l].offset < 0)
+      note_swing_leg_excess(alloc, t.tau_known, l, layout);
+    else
+      row = add_leg_rows(alloc, t, layout, phase, impact_force_N, faces, mu, l, row, qp);
   }
   return layout;
 }

@@ -214,6 +214,33 @@ int validate(const Args& args) {
   return 0;
 }
 
+/// `hexdyn run CONFIG -o FILE`: the scene computed and its result file written; every check
+/// of the inputs, the output path and the run's size comes before any computing.
+int run(const Args& args) {
+  if (args.output.empty()) throw hexdyn::ConfigError("run: missing -o FILE");
+  // SIGTERM, SIGINT: the temporary file removed, the process ended at once; a run keeps
+  // nothing to resume (docs/user/faults.md#signals).
+  hexdyn::install_interrupt_handlers(
+      hexdyn::InterruptMode::kExitInHandler,
+      "hexdyn: run interrupted by {signal}: nothing written to " + args.output +
+          " (an existing file there is kept, no temporary file left); run the command "
+          "again to compute it");
+  std::vector<hexdyn::InputFile> inputs;
+  const hexdyn::Scene scene = hexdyn::load_scene(args.config, args.overrides, &inputs);
+  if (args.verbose) print_leg_mapping(scene, std::cerr);
+  // Before any computing: the output is a new path or a regular file that is none of the
+  // inputs (the scene, its inherited files, its URDF).
+  hexdyn::check_output_target(args.output, inputs);
+  // Before the allocation: the grid's size, against the large-run limit.
+  const hexdyn::PreparedScene prep = hexdyn::prepare_scene(scene);
+  hexdyn::check_run_size(prep.grid.size(), args.allow_large);
+  const hexdyn::RunResult result = hexdyn::run_prepared_scene(scene, prep, &std::cerr);
+  hexdyn::write_result_file(args.output, result, inputs);
+  std::cerr << "hexdyn: wrote " << args.output << " (" << result.kin.samples() << " samples, "
+            << result.wall_time_s << " s)\n";
+  return 0;
+}
+
 #ifndef HEXDYN_CLI_MPI
 /// `hexdyn sweep ...`: replaces this process by hexdyn-sweep with the same arguments, found
 /// next to this program (the build tree) or in ../libexec/hexdyn/ (an installation).
@@ -274,30 +301,7 @@ int main(int argc, char** argv) {
     const hexdyn::InputFreeze freeze;
     const Args args = parse_args(argc, argv);
     if (args.command == "validate") return validate(args);
-    if (args.command == "run") {
-      if (args.output.empty()) throw hexdyn::ConfigError("run: missing -o FILE");
-      // SIGTERM, SIGINT: the temporary file removed, the process ended at once; a run keeps
-      // nothing to resume (docs/user/faults.md#signals).
-      hexdyn::install_interrupt_handlers(
-          hexdyn::InterruptMode::kExitInHandler,
-          "hexdyn: run interrupted by {signal}: nothing written to " + args.output +
-              " (an existing file there is kept, no temporary file left); run the command "
-              "again to compute it");
-      std::vector<hexdyn::InputFile> inputs;
-      const hexdyn::Scene scene = hexdyn::load_scene(args.config, args.overrides, &inputs);
-      if (args.verbose) print_leg_mapping(scene, std::cerr);
-      // Before any computing: the output is a new path or a regular file that is none of the
-      // inputs (the scene, its inherited files, its URDF).
-      hexdyn::check_output_target(args.output, inputs);
-      // Before the allocation: the grid's size, against the large-run limit.
-      const hexdyn::PreparedScene prep = hexdyn::prepare_scene(scene);
-      hexdyn::check_run_size(prep.grid.size(), args.allow_large);
-      const hexdyn::RunResult result = hexdyn::run_prepared_scene(scene, prep, &std::cerr);
-      hexdyn::write_result_file(args.output, result, inputs);
-      std::cerr << "hexdyn: wrote " << args.output << " (" << result.kin.samples() << " samples, "
-                << result.wall_time_s << " s)\n";
-      return 0;
-    }
+    if (args.command == "run") return run(args);
     if (args.command == "sweep") {
       if (args.output.empty()) throw hexdyn::ConfigError("sweep: missing -o FILE");
         // The output is checked against every input of the sweep by run_sweep, before any work.

@@ -179,10 +179,11 @@ void check_options(const ImpactOptions& o) {
 
 using DriverPtr = std::unique_ptr<gsl_odeiv2_driver, decltype(&gsl_odeiv2_driver_free)>;
 
-}  // namespace
-
-ImpactTransient simulate_touchdown(const ContactParams& c, double effective_mass_kg,
-                                   double approach_speed_mps, const ImpactOptions& options) {
+/// Refuses what the transient cannot be computed from: non-physical contact parameters
+/// or options (ConfigError), a non-positive or non-finite mass or a non-finite approach
+/// speed (SolverError).
+void check_touchdown_inputs(const ContactParams& c, double effective_mass_kg,
+                            double approach_speed_mps, const ImpactOptions& options) {
   check_contact_params(c);
   check_options(options);
   if (!(std::isfinite(effective_mass_kg) && effective_mass_kg > 0.0)) {
@@ -195,6 +196,289 @@ ImpactTransient simulate_touchdown(const ContactParams& c, double effective_mass
     os << "touchdown: approach speed must be finite, got " << approach_speed_mps;
     throw SolverError(os.str());
   }
+}
+
+/// The natural scales of an impact of mass m [kg] at approach speed v [m/s]: the
+/// penetration D [m] of the undamped impact and the SI units of τ, f and j.
+struct ImpactScales {
+  double D = 1.0;              ///< [m] per unit u
+  double time_scale = 1.0;     ///< [s] per unit τ
+  double force_scale = 1.0;    ///< [N] per unit f
+  double impulse_scale = 1.0;  ///< [N s] per unit j
+};
+
+ImpactScales impact_scales(const ContactParams& c, double m, double v) {
+  const double e = c.exponent;
+  // D from K D^(e+1) = (e+1) m v²/2, in logarithms so that extreme inputs stay finite.
+  const double log_D =
+      (std::log((e + 1.0) * m / (2.0 * c.stiffness)) + 2.0 * std::log(v)) / (e + 1.0);
+  ImpactScales sc;
+  sc.D = std::exp(log_D);
+  sc.time_scale = sc.D / v;
+  sc.force_scale = m * v * v / sc.D;
+  sc.impulse_scale = m * v;
+  return sc;
+}
+
+/// The contact law in natural units for an impact of mass m [kg] at speed v [m/s].
+ScaledImpact scaled_impact(const ContactParams& c, const ImpactScales& sc, double m, double v) {
+  ScaledImpact s;
+  s.e = c.exponent;
+  s.spring = 0.5 * (c.exponent + 1.0);
+  s.damping = c.damping_max_Nspm * sc.D / (m * v);
+  s.p_hat = c.full_damping_depth_m / sc.D;
+  return s;
+}
+
+/// What every step of one touchdown's integration reads: the scaled law, the scales, the
+/// GSL system and its two drivers (the evolving one and the probe that re-takes partial
+/// steps to locate events), the undamped contact time, the duration guard and the output
+/// sampling, all in natural units.
+struct TouchdownRun {
+  const ScaledImpact& s;
+  const ImpactScales& scales;
+  const ImpactOptions& options;
+  const gsl_odeiv2_system* sys;
+  gsl_odeiv2_driver* drv;
+  gsl_odeiv2_driver* probe;
+  double tau_contact;  ///< undamped contact time [τ]
+  double tau_max;      ///< duration guard [τ]
+  double n_out;        ///< samples per contact time
+};
+
+/// The integration's state in natural units, carried from step to step.
+struct TouchdownState {
+  double tau = 0.0;               ///< τ since touchdown
+  double y[3] = {0.0, 1.0, 0.0};  ///< (u, w, j)
+  double h = 0.0;                 ///< the driver's next step size [τ]
+  double f_now = 0.0;             ///< clipped force at y
+  double rate_now = 0.0;          ///< its rate df/dτ at y
+  double peak_f = 0.0;            ///< largest force so far
+  double peak_tau = 0.0;          ///< when it occurred [τ]
+  double max_u = 0.0;             ///< largest penetration so far
+};
+
+/// Appends a sample at τ (state y, force f, natural units) in SI units, unless it would
+/// not come after the last sample.
+void push_sample(ImpactTransient& tr, const ImpactScales& sc, double tau, const double y[],
+                 double f) {
+  const double t = tau * sc.time_scale;
+  if (!tr.t_s.empty() && !(t > tr.t_s.back())) return;
+  tr.t_s.push_back(t);
+  tr.force_N.push_back(f * sc.force_scale);
+  tr.penetration_m.push_back(std::max(0.0, y[0]) * sc.D);
+}
+
+/// Locates a time in (tau_prev, tau_prev + h_step] where the event function g (continuous
+/// along the step, > 0 at its start, <= 0 at its end) reaches 0: regula falsi with the
+/// Illinois modification, bisecting whenever a secant point would not fall inside the
+/// bracket, each trial a single step of that length from the accepted state y_prev taken
+/// by the probe driver. Returns the step length at the bracket's end where g <= 0, the
+/// state there in y_out.
+template <class EventFunction>
+double locate_event(const TouchdownRun& run, double tau_prev, const double y_prev[], double h_step,
+                    const double y_new[], EventFunction&& g, double y_out[]) {
+  double lo = 0.0, hi = h_step;
+  double g_lo = g(y_prev), g_hi = g(y_new);
+  std::copy(y_new, y_new + 3, y_out);
+  double y_try[3], y_err[3];
+  int side = 0;  // which end moved last (−1 lo, +1 hi), for the Illinois halving
+  for (int it = 0; it < 200; ++it) {
+    if (hi - lo <= 1e-15 * std::max(tau_prev + hi, 1e-300)) break;
+    double x = (g_lo > 0.0 && g_hi <= 0.0 && g_lo - g_hi > 0.0)
+                   ? lo + (hi - lo) * g_lo / (g_lo - g_hi)
+                   : 0.5 * (lo + hi);
+    if (!(x > lo && x < hi)) x = 0.5 * (lo + hi);
+    if (!(x > lo && x < hi)) break;
+    std::copy(y_prev, y_prev + 3, y_try);
+    gsl_odeiv2_step_reset(run.probe->s);
+    if (gsl_odeiv2_step_apply(run.probe->s, tau_prev, x, y_try, y_err, nullptr, nullptr, run.sys) !=
+        GSL_SUCCESS)
+      break;
+    const double g_x = g(y_try);
+    if (g_x <= 0.0) {
+      hi = x;
+      g_hi = g_x;
+      std::copy(y_try, y_try + 3, y_out);
+      if (g_x == 0.0) break;
+      if (side == +1) g_lo *= 0.5;
+      side = +1;
+    } else {
+      lo = x;
+      g_lo = g_x;
+      if (side == -1) g_hi *= 0.5;
+      side = -1;
+    }
+  }
+  return hi;
+}
+
+/// True (with tr.truncated and tr.message set) when a guard stops the integration before
+/// the next step: max_steps steps taken, or the duration guard τ_max reached.
+bool guard_stops(const TouchdownRun& run, const TouchdownState& st, ImpactTransient& tr) {
+  if (tr.steps >= run.options.max_steps) {
+    tr.truncated = true;
+    tr.message =
+        "stopped by the step-count guard (max_steps = " + std::to_string(run.options.max_steps) +
+        ") before the force returned to zero";
+    return true;
+  }
+  if (!(st.tau < run.tau_max)) {
+    std::ostringstream os;
+    os << "stopped by the duration guard (max_duration_s = " << run.options.max_duration_s
+       << " s) before the force returned to zero";
+    tr.truncated = true;
+    tr.message = os.str();
+    return true;
+  }
+  return false;
+}
+
+/// The longest next step [τ] the output sampling allows from st.
+double step_cap(const TouchdownRun& run, const TouchdownState& st) {
+  double cap = std::max(run.tau_contact, st.tau) / run.n_out;
+  // While the damping ramps in (u < p̂) the force curves sharply: sample the ramp with at
+  // least 32 steps, so that linear interpolation of the samples stays accurate there.
+  if (st.y[0] < run.s.p_hat && st.y[1] > 0.0)
+    cap = std::min(cap, std::max(run.s.p_hat / (32.0 * st.y[1]), 1e-12));
+  // And a step changes the force by at most ~1/32 of its largest value so far, or of the
+  // natural scale ½ (the undamped peak is (e+1)/2 ≥ 1): the explicit stepper's steps are
+  // otherwise set by accuracy alone, and sparse samples would make the interpolated force
+  // coarse where the contact lasts much longer than the undamped one.
+  const double f_scale = std::max({st.f_now, st.peak_f, 0.5});
+  const double rate = std::abs(st.rate_now);
+  if (rate > 0.0) cap = std::min(cap, std::max(f_scale / (32.0 * rate), 1e-12));
+  return cap;
+}
+
+/// Events inside one accepted step from (tau_prev, y_prev) over h_step to y: maximum
+/// penetration and force maximum (in time order, none after the end), then the end.
+struct StepEvents {
+  struct Event {
+    double dtau;  ///< from the step's start [τ]
+    double y[3];  ///< state there
+  };
+  Event events[2];
+  int n_events = 0;
+  bool ends_here = false;
+  double y_end[3];        ///< state at the end, when ends_here
+  double dtau_end = 0.0;  ///< from the step's start to the end [τ]
+};
+
+StepEvents step_events(const TouchdownRun& run, double tau_prev, const double y_prev[],
+                       double h_step, const double y[], double rate_prev, double rate_new) {
+  const ScaledImpact& s = run.s;
+  StepEvents out;
+  out.dtau_end = h_step;
+  if (s.ended(y)) {
+    out.dtau_end = locate_event(
+        run, tau_prev, y_prev, h_step, y, [&](const double* z) { return s.end_function(z); },
+        out.y_end);
+    out.ends_here = true;
+  }
+  if (y_prev[1] > 0.0 && !(y[1] > 0.0)) {
+    StepEvents::Event ev;
+    ev.dtau = locate_event(
+        run, tau_prev, y_prev, h_step, y, [](const double* z) { return z[1]; }, ev.y);
+    if (!out.ends_here || ev.dtau <= out.dtau_end) out.events[out.n_events++] = ev;
+  }
+  if (rate_prev > 0.0 && !(rate_new > 0.0)) {
+    StepEvents::Event ev;
+    ev.dtau = locate_event(
+        run, tau_prev, y_prev, h_step, y, [&](const double* z) { return s.force_rate(z); }, ev.y);
+    if (!out.ends_here || ev.dtau <= out.dtau_end) out.events[out.n_events++] = ev;
+  }
+  if (out.n_events == 2 && out.events[1].dtau < out.events[0].dtau)
+    std::swap(out.events[0], out.events[1]);
+  return out;
+}
+
+/// Steps the transient from st until the force returns to zero (true, st at the end) or a
+/// guard or the ODE solver stops it (false, tr.truncated and tr.message set, st at the
+/// last accepted state), sampling it into tr and tracking its peak and largest
+/// penetration in st.
+bool integrate_transient(const TouchdownRun& run, TouchdownState& st, ImpactTransient& tr) {
+  while (true) {
+    if (guard_stops(run, st, tr)) return false;
+    const double tau_prev = st.tau;
+    const double y_prev[3] = {st.y[0], st.y[1], st.y[2]};
+    const double cap = step_cap(run, st);
+    const double tau_target = std::min(st.tau + cap, run.tau_max);
+    st.h = std::min(st.h, cap);
+    const int status = gsl_odeiv2_evolve_apply(run.drv->e, run.drv->c, run.drv->s, run.sys, &st.tau,
+                                               tau_target, &st.h, st.y);
+    ++tr.steps;
+    if (status != GSL_SUCCESS || !std::isfinite(st.y[0]) || !std::isfinite(st.y[1]) ||
+        !std::isfinite(st.y[2]) || !(st.tau > tau_prev)) {
+      st.tau = tau_prev;
+      std::copy(y_prev, y_prev + 3, st.y);
+      tr.truncated = true;
+      tr.message = std::string("the ODE solver stopped: ") + gsl_strerror(status);
+      return false;
+    }
+    const double h_step = st.tau - tau_prev;
+    double f_new = 0.0, rate_new = 0.0;
+    run.s.force_and_rate(st.y, f_new, rate_new);
+
+    const StepEvents ev = step_events(run, tau_prev, y_prev, h_step, st.y, st.rate_now, rate_new);
+    for (int i = 0; i < ev.n_events; ++i) {
+      const StepEvents::Event& e = ev.events[i];
+      st.max_u = std::max(st.max_u, e.y[0]);
+      const double f = run.s.force(e.y[0], e.y[1]);
+      if (f > st.peak_f) {
+        st.peak_f = f;
+        st.peak_tau = tau_prev + e.dtau;
+      }
+      push_sample(tr, run.scales, tau_prev + e.dtau, e.y, f);
+    }
+    if (ev.ends_here) {
+      st.tau = tau_prev + ev.dtau_end;
+      std::copy(ev.y_end, ev.y_end + 3, st.y);
+      return true;
+    }
+    st.max_u = std::max(st.max_u, st.y[0]);
+    if (f_new > st.peak_f) {
+      st.peak_f = f_new;
+      st.peak_tau = st.tau;
+    }
+    push_sample(tr, run.scales, st.tau, st.y, f_new);
+    st.f_now = f_new;
+    st.rate_now = rate_new;
+  }
+}
+
+/// Fills tr's summary in SI units from the final state st (approach speed v [m/s]); when
+/// the transient ended, its last sample is the end, with zero force.
+void finish_transient(ImpactTransient& tr, const ImpactScales& sc, const TouchdownState& st,
+                      bool ended, double v) {
+  if (ended) {
+    // Final sample: the force is zero at the end by definition.
+    const double t_end = st.tau * sc.time_scale;
+    if (!tr.t_s.empty() && !(t_end > tr.t_s.back())) {
+      tr.t_s.back() = t_end;
+    } else {
+      tr.t_s.push_back(t_end);
+      tr.force_N.push_back(0.0);
+      tr.penetration_m.push_back(0.0);
+    }
+    tr.force_N.back() = 0.0;
+    tr.penetration_m.back() = std::max(0.0, st.y[0]) * sc.D;
+    tr.message = !(st.y[0] > 0.0) ? "ended: the foot left the surface"
+                                  : "ended: the damper cancelled the spring on rebound (clip)";
+  }
+  tr.duration_s = tr.t_s.back();
+  tr.peak_force_N = st.peak_f * sc.force_scale;
+  tr.time_of_peak_s = st.peak_tau * sc.time_scale;
+  tr.impulse_Ns = st.y[2] * sc.impulse_scale;
+  tr.rebound_speed_mps = -st.y[1] * v;
+  tr.max_penetration_m = st.max_u * sc.D;
+}
+
+}  // namespace
+
+ImpactTransient simulate_touchdown(const ContactParams& c, double effective_mass_kg,
+                                   double approach_speed_mps, const ImpactOptions& options) {
+  check_touchdown_inputs(c, effective_mass_kg, approach_speed_mps, options);
   disable_gsl_abort();
 
   ImpactTransient tr;
@@ -204,23 +488,10 @@ ImpactTransient simulate_touchdown(const ContactParams& c, double effective_mass
   }
   tr.occurred = true;
 
-  const double m = effective_mass_kg, v = approach_speed_mps, e = c.exponent;
-  // D from K D^(e+1) = (e+1) m v²/2, in logarithms so that extreme inputs stay finite.
-  const double log_D =
-      (std::log((e + 1.0) * m / (2.0 * c.stiffness)) + 2.0 * std::log(v)) / (e + 1.0);
-  const double D = std::exp(log_D);
-  const double time_scale = D / v;           // [s] per unit τ
-  const double force_scale = m * v * v / D;  // [N] per unit f
-  const double impulse_scale = m * v;        // [N s] per unit j
-
-  ScaledImpact s;
-  s.e = e;
-  s.spring = 0.5 * (e + 1.0);
-  s.damping = c.damping_max_Nspm * D / (m * v);
-  s.p_hat = c.full_damping_depth_m / D;
-
-  const double tau_contact = undamped_contact_time(e);
-  const double tau_max = options.max_duration_s / time_scale;
+  const double m = effective_mass_kg, v = approach_speed_mps;
+  const ImpactScales sc = impact_scales(c, m, v);
+  ScaledImpact s = scaled_impact(c, sc, m, v);
+  const double tau_contact = undamped_contact_time(c.exponent);
   const double n_out = options.samples_per_contact_time;
 
   gsl_odeiv2_system sys{impact_rhs, impact_jacobian, 3, &s};
@@ -242,194 +513,20 @@ ImpactTransient simulate_touchdown(const ContactParams& c, double effective_mass
                                                 options.relative_tolerance),
                   gsl_odeiv2_driver_free);
   if (!drv || !probe) throw SolverError("touchdown: cannot allocate the GSL ODE driver");
+  const double tau_max = options.max_duration_s / sc.time_scale;
+  const TouchdownRun run{s, sc, options, &sys, drv.get(), probe.get(), tau_contact, tau_max, n_out};
 
   const std::size_t expected = static_cast<std::size_t>(4 * options.samples_per_contact_time + 16);
   tr.t_s.reserve(expected);
   tr.force_N.reserve(expected);
   tr.penetration_m.reserve(expected);
-  auto push_sample = [&](double tau, const double y[], double f) {
-    const double t = tau * time_scale;
-    if (!tr.t_s.empty() && !(t > tr.t_s.back())) return;
-    tr.t_s.push_back(t);
-    tr.force_N.push_back(f * force_scale);
-    tr.penetration_m.push_back(std::max(0.0, y[0]) * D);
-  };
+  TouchdownState st;
+  st.h = h_start;
+  s.force_and_rate(st.y, st.f_now, st.rate_now);
+  push_sample(tr, sc, st.tau, st.y, st.f_now);
 
-  double tau = 0.0;
-  double y[3] = {0.0, 1.0, 0.0};
-  double h = h_start;
-  // Force and its rate at the current state, carried from step to step.
-  double f_now = 0.0, rate_now = 0.0;
-  s.force_and_rate(y, f_now, rate_now);
-  push_sample(tau, y, f_now);
-
-  double peak_f = 0.0, peak_tau = 0.0, max_u = 0.0;
-  bool ended = false;
-
-  // Locates a time in (tau_prev, tau_prev + h_step] where the event function g (continuous
-  // along the step, > 0 at its start, <= 0 at its end) reaches 0: regula falsi with the
-  // Illinois modification, bisecting whenever a secant point would not fall inside the
-  // bracket, each trial a single step of that length from the accepted state y_prev.
-  // Returns the step length at the bracket's end where g <= 0, the state there in y_out.
-  auto locate = [&](double tau_prev, const double y_prev[], double h_step, const double y_new[],
-                    auto&& g, double y_out[]) {
-    double lo = 0.0, hi = h_step;
-    double g_lo = g(y_prev), g_hi = g(y_new);
-    std::copy(y_new, y_new + 3, y_out);
-    double y_try[3], y_err[3];
-    int side = 0;  // which end moved last (−1 lo, +1 hi), for the Illinois halving
-    for (int it = 0; it < 200; ++it) {
-      if (hi - lo <= 1e-15 * std::max(tau_prev + hi, 1e-300)) break;
-      double x = (g_lo > 0.0 && g_hi <= 0.0 && g_lo - g_hi > 0.0)
-                     ? lo + (hi - lo) * g_lo / (g_lo - g_hi)
-                     : 0.5 * (lo + hi);
-      if (!(x > lo && x < hi)) x = 0.5 * (lo + hi);
-      if (!(x > lo && x < hi)) break;
-      std::copy(y_prev, y_prev + 3, y_try);
-      gsl_odeiv2_step_reset(probe->s);
-      if (gsl_odeiv2_step_apply(probe->s, tau_prev, x, y_try, y_err, nullptr, nullptr, &sys) !=
-          GSL_SUCCESS)
-        break;
-      const double g_x = g(y_try);
-      if (g_x <= 0.0) {
-        hi = x;
-        g_hi = g_x;
-        std::copy(y_try, y_try + 3, y_out);
-        if (g_x == 0.0) break;
-        if (side == +1) g_lo *= 0.5;
-        side = +1;
-      } else {
-        lo = x;
-        g_lo = g_x;
-        if (side == -1) g_hi *= 0.5;
-        side = -1;
-      }
-    }
-    return hi;
-  };
-
-  while (true) {
-    if (tr.steps >= options.max_steps) {
-      tr.truncated = true;
-      tr.message =
-          "stopped by the step-count guard (max_steps = " + std::to_string(options.max_steps) +
-          ") before the force returned to zero";
-      break;
-    }
-    if (!(tau < tau_max)) {
-      std::ostringstream os;
-      os << "stopped by the duration guard (max_duration_s = " << options.max_duration_s
-         << " s) before the force returned to zero";
-      tr.truncated = true;
-      tr.message = os.str();
-      break;
-    }
-    const double tau_prev = tau;
-    const double y_prev[3] = {y[0], y[1], y[2]};
-    double cap = std::max(tau_contact, tau) / n_out;
-    // While the damping ramps in (u < p̂) the force curves sharply: sample the ramp with at
-    // least 32 steps, so that linear interpolation of the samples stays accurate there.
-    if (y[0] < s.p_hat && y[1] > 0.0) cap = std::min(cap, std::max(s.p_hat / (32.0 * y[1]), 1e-12));
-    // And a step changes the force by at most ~1/32 of its largest value so far, or of the
-    // natural scale ½ (the undamped peak is (e+1)/2 ≥ 1): the explicit stepper's steps are
-    // otherwise set by accuracy alone, and sparse samples would make the interpolated force
-    // coarse where the contact lasts much longer than the undamped one.
-    const double f_scale = std::max({f_now, peak_f, 0.5});
-    const double rate = std::abs(rate_now);
-    if (rate > 0.0) cap = std::min(cap, std::max(f_scale / (32.0 * rate), 1e-12));
-    const double tau_target = std::min(tau + cap, tau_max);
-    h = std::min(h, cap);
-    const int status =
-        gsl_odeiv2_evolve_apply(drv->e, drv->c, drv->s, &sys, &tau, tau_target, &h, y);
-    ++tr.steps;
-    if (status != GSL_SUCCESS || !std::isfinite(y[0]) || !std::isfinite(y[1]) ||
-        !std::isfinite(y[2]) || !(tau > tau_prev)) {
-      tau = tau_prev;
-      std::copy(y_prev, y_prev + 3, y);
-      tr.truncated = true;
-      tr.message = std::string("the ODE solver stopped: ") + gsl_strerror(status);
-      break;
-    }
-    const double h_step = tau - tau_prev;
-    double f_new = 0.0, rate_new = 0.0;
-    s.force_and_rate(y, f_new, rate_new);
-
-    // Events inside the step: maximum penetration and force maximum (in time order),
-    // then the end.
-    struct Event {
-      double dtau;
-      double y[3];
-    };
-    Event events[2];
-    int n_events = 0;
-    bool ends_here = false;
-    double y_end[3];
-    double dtau_end = h_step;
-    if (s.ended(y)) {
-      dtau_end = locate(
-          tau_prev, y_prev, h_step, y, [&](const double* z) { return s.end_function(z); }, y_end);
-      ends_here = true;
-    }
-    if (y_prev[1] > 0.0 && !(y[1] > 0.0)) {
-      Event ev;
-      ev.dtau = locate(
-          tau_prev, y_prev, h_step, y, [](const double* z) { return z[1]; }, ev.y);
-      if (!ends_here || ev.dtau <= dtau_end) events[n_events++] = ev;
-    }
-    if (rate_now > 0.0 && !(rate_new > 0.0)) {
-      Event ev;
-      ev.dtau = locate(
-          tau_prev, y_prev, h_step, y, [&](const double* z) { return s.force_rate(z); }, ev.y);
-      if (!ends_here || ev.dtau <= dtau_end) events[n_events++] = ev;
-    }
-    if (n_events == 2 && events[1].dtau < events[0].dtau) std::swap(events[0], events[1]);
-    for (int i = 0; i < n_events; ++i) {
-      const Event& ev = events[i];
-      max_u = std::max(max_u, ev.y[0]);
-      const double f = s.force(ev.y[0], ev.y[1]);
-      if (f > peak_f) {
-        peak_f = f;
-        peak_tau = tau_prev + ev.dtau;
-      }
-      push_sample(tau_prev + ev.dtau, ev.y, f);
-    }
-    if (ends_here) {
-      tau = tau_prev + dtau_end;
-      std::copy(y_end, y_end + 3, y);
-      ended = true;
-      break;
-    }
-    max_u = std::max(max_u, y[0]);
-    if (f_new > peak_f) {
-      peak_f = f_new;
-      peak_tau = tau;
-    }
-    push_sample(tau, y, f_new);
-    f_now = f_new;
-    rate_now = rate_new;
-  }
-
-  if (ended) {
-    // Final sample: the force is zero at the end by definition.
-    const double t_end = tau * time_scale;
-    if (!tr.t_s.empty() && !(t_end > tr.t_s.back())) {
-      tr.t_s.back() = t_end;
-    } else {
-      tr.t_s.push_back(t_end);
-      tr.force_N.push_back(0.0);
-      tr.penetration_m.push_back(0.0);
-    }
-    tr.force_N.back() = 0.0;
-    tr.penetration_m.back() = std::max(0.0, y[0]) * D;
-    tr.message = !(y[0] > 0.0) ? "ended: the foot left the surface"
-                               : "ended: the damper cancelled the spring on rebound (clip)";
-  }
-  tr.duration_s = tr.t_s.back();
-  tr.peak_force_N = peak_f * force_scale;
-  tr.time_of_peak_s = peak_tau * time_scale;
-  tr.impulse_Ns = y[2] * impulse_scale;
-  tr.rebound_speed_mps = -y[1] * v;
-  tr.max_penetration_m = max_u * D;
+  const bool ended = integrate_transient(run, st, tr);
+  finish_transient(tr, sc, st, ended, v);
   return tr;
 }
 

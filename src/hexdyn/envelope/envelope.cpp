@@ -122,6 +122,110 @@ EnvelopeProbe evaluate_probe(const EnvelopeSpec& spec, int cell, double riser_m,
   }
 }
 
+namespace {
+
+/// The probes of one cell: run and recorded in out.probes, except for a dynamic criterion
+/// at or above the riser where the kinematic criterion failed (the dynamic criteria fail
+/// there too: that failure is reused, not recorded again).
+struct CellProbes {
+  const EnvelopeSpec& spec;
+  int cell;
+  EnvelopeResult& out;
+  double kinematic_fail = kNaN;  ///< [m] the kinematic riser_fail, NaN before it is known
+  EnvelopeProbe kinematic_fail_probe;
+
+  EnvelopeProbe probe(double r, EnvelopeCriterion c) {
+    if (c != EnvelopeCriterion::kKinematic && std::isfinite(kinematic_fail) &&
+        r >= kinematic_fail - 1e-12) {
+      EnvelopeProbe p = kinematic_fail_probe;
+      p.criterion = c;
+      p.riser_m = r;
+      return p;
+    }
+    out.probes.push_back(evaluate_probe(spec, cell, r, c));
+    return out.probes.back();
+  }
+};
+
+/// One cell's boundary under one criterion: the riser scanned from `from` in steps up to the
+/// first failure, then bisected between the last success (pass, NaN if none) and that
+/// failure (fail, when failed) to the tolerance.
+struct BoundarySearch {
+  EnvelopeBoundary bd;
+  double pass = kNaN;
+  EnvelopeProbe fail;
+  bool failed = false;
+};
+
+BoundarySearch search_boundary(const EnvelopeSpec& spec, CellProbes& probes, EnvelopeCriterion c) {
+  BoundarySearch s;
+  s.bd.riser_max_m = s.bd.riser_fail_m = kNaN;
+  // Scan up to the first failure.
+  const int steps =
+      static_cast<int>(std::ceil((spec.riser_to_m - spec.riser_from_m) / spec.riser_step_m - 1e-9));
+  for (int k = 0; k <= steps; ++k) {
+    const double r = std::min(spec.riser_from_m + k * spec.riser_step_m, spec.riser_to_m);
+    const EnvelopeProbe p = probes.probe(r, c);
+    if (!p.passed) {
+      s.fail = p;
+      s.failed = true;
+      break;
+    }
+    s.pass = r;
+  }
+  // Bisection between the last success and the first failure.
+  if (s.failed && std::isfinite(s.pass)) {
+    while (s.fail.riser_m - s.pass > spec.tolerance_m) {
+      const double mid = 0.5 * (s.pass + s.fail.riser_m);
+      const EnvelopeProbe p = probes.probe(mid, c);
+      if (p.passed)
+        s.pass = mid;
+      else
+        s.fail = p;
+    }
+  }
+  s.bd.riser_max_m = s.pass;
+  if (s.failed) {
+    s.bd.riser_fail_m = s.fail.riser_m;
+    s.bd.limit = s.fail.limit;
+    s.bd.message = s.fail.message;
+  }
+  return s;
+}
+
+/// The automatic posture of the cell's scene at the kinematic riser_max pass_m [m], into
+/// out's posture fields; left NaN when the scene's posture is not automatic or fails.
+void record_posture(const EnvelopeSpec& spec, int cell, double pass_m, EnvelopeResult& out) {
+  try {
+    const Scene scene = envelope_probe_scene(spec, cell, pass_m, EnvelopeCriterion::kKinematic);
+    const RobotModel model = build_robot_model(scene.robot);
+    const PostureChoice posture = choose_posture(scene, model);
+    if (posture.mode == PostureMode::kAuto) {
+      out.posture_height_m[cell] = posture.height_m;
+      out.posture_foot_lateral_m[cell] = posture.foot_lateral_m;
+      out.posture_margin_m[cell] = posture.margin.value_m;
+    }
+  } catch (const Error&) {
+  }
+}
+
+/// One line per cell and criterion: the cell's case, tread [m], duty factor and speed
+/// [m/s], the boundary [mm] and why it fails.
+void log_boundary(std::ostream& log, const EnvelopeSpec& spec, int cell, EnvelopeCriterion c,
+                  const BoundarySearch& s) {
+  const std::size_t V = spec.peak_speed_mps.size(), B = spec.duty_factor.size(),
+                    W = spec.tread_depth_m.size();
+  log << "envelope: ";
+  if (spec.cases.size() > 0) log << spec.cases.labels[cell / (V * B * W)] << ", ";
+  log << "tread " << spec.tread_depth_m[(cell / (V * B)) % W] << " m, duty "
+      << spec.duty_factor[(cell / V) % B] << ", speed " << spec.peak_speed_mps[cell % V] << " m/s, "
+      << criterion_name(c) << ": riser <= " << s.bd.riser_max_m * 1e3 << " mm";
+  if (s.failed) log << ", fails at " << s.bd.riser_fail_m * 1e3 << " mm: " << s.bd.message;
+  log << "\n";
+}
+
+}  // namespace
+
 EnvelopeResult compute_envelope(const EnvelopeSpec& spec, std::ostream* log) {
   const auto start = std::chrono::steady_clock::now();
   EnvelopeResult out;
@@ -133,85 +237,17 @@ EnvelopeResult compute_envelope(const EnvelopeSpec& spec, std::ostream* log) {
   out.posture_margin_m.assign(cells, kNaN);
   for (int cell = 0; cell < cells; ++cell) {
     // The kinematic boundary first (when asked): the dynamic criteria fail above it.
-    double kinematic_fail = kNaN;
-    EnvelopeProbe kinematic_fail_probe;
+    CellProbes probes{spec, cell, out, kNaN, EnvelopeProbe{}};
     for (int ci = 0; ci < C; ++ci) {
       const EnvelopeCriterion c = spec.criteria[ci];
-      auto probe = [&](double r) {
-        if (c != EnvelopeCriterion::kKinematic && std::isfinite(kinematic_fail) &&
-            r >= kinematic_fail - 1e-12) {
-          EnvelopeProbe p = kinematic_fail_probe;
-          p.criterion = c;
-          p.riser_m = r;
-          return p;
-        }
-        out.probes.push_back(evaluate_probe(spec, cell, r, c));
-        return out.probes.back();
-      };
-      EnvelopeBoundary bd;
-      bd.riser_max_m = bd.riser_fail_m = kNaN;
-      // Scan up to the first failure.
-      double pass = kNaN;
-      EnvelopeProbe fail;
-      bool failed = false;
-      const int steps = static_cast<int>(
-          std::ceil((spec.riser_to_m - spec.riser_from_m) / spec.riser_step_m - 1e-9));
-      for (int k = 0; k <= steps; ++k) {
-        const double r = std::min(spec.riser_from_m + k * spec.riser_step_m, spec.riser_to_m);
-        const EnvelopeProbe p = probe(r);
-        if (!p.passed) {
-          fail = p;
-          failed = true;
-          break;
-        }
-        pass = r;
-      }
-      // Bisection between the last success and the first failure.
-      if (failed && std::isfinite(pass)) {
-        while (fail.riser_m - pass > spec.tolerance_m) {
-          const double mid = 0.5 * (pass + fail.riser_m);
-          const EnvelopeProbe p = probe(mid);
-          if (p.passed)
-            pass = mid;
-          else
-            fail = p;
-        }
-      }
-      bd.riser_max_m = pass;
-      if (failed) {
-        bd.riser_fail_m = fail.riser_m;
-        bd.limit = fail.limit;
-        bd.message = fail.message;
-      }
+      const BoundarySearch s = search_boundary(spec, probes, c);
       if (c == EnvelopeCriterion::kKinematic) {
-        kinematic_fail = bd.riser_fail_m;
-        kinematic_fail_probe = fail;
-        if (std::isfinite(pass)) {
-          try {
-            const Scene scene = envelope_probe_scene(spec, cell, pass, c);
-            const RobotModel model = build_robot_model(scene.robot);
-            const PostureChoice posture = choose_posture(scene, model);
-            if (posture.mode == PostureMode::kAuto) {
-              out.posture_height_m[cell] = posture.height_m;
-              out.posture_foot_lateral_m[cell] = posture.foot_lateral_m;
-              out.posture_margin_m[cell] = posture.margin.value_m;
-            }
-          } catch (const Error&) {
-          }
-        }
+        probes.kinematic_fail = s.bd.riser_fail_m;
+        probes.kinematic_fail_probe = s.fail;
+        if (std::isfinite(s.pass)) record_posture(spec, cell, s.pass, out);
       }
-      out.boundary[static_cast<std::size_t>(cell) * C + ci] = bd;
-      if (log) {
-        const std::size_t V = spec.peak_speed_mps.size(), B = spec.duty_factor.size(),
-                          W = spec.tread_depth_m.size();
-        *log << "envelope: ";
-        if (spec.cases.size() > 0) *log << spec.cases.labels[cell / (V * B * W)] << ", ";
-        *log << "tread " << spec.tread_depth_m[(cell / (V * B)) % W] << " m, duty "
-             << spec.duty_factor[(cell / V) % B] << ", speed " << spec.peak_speed_mps[cell % V]
-             << " m/s, " << criterion_name(c) << ": riser <= " << bd.riser_max_m * 1e3 << " mm";
-        if (failed) *log << ", fails at " << bd.riser_fail_m * 1e3 << " mm: " << bd.message;
-        *log << "\n";
-      }
+      out.boundary[static_cast<std::size_t>(cell) * C + ci] = s.bd;
+      if (log) log_boundary(*log, spec, cell, c, s);
     }
   }
   out.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -18,18 +18,27 @@ namespace {
 
 namespace s = schema;
 
-void write_file(H5Writer& w, const EnvelopeSpec& spec, const EnvelopeResult& r) {
-  Labeller labels(w, "");
-  const auto write_doubles = [&](const s::DatasetSpec& d, const std::vector<std::size_t>& dims,
-                                 const std::vector<double>& v) {
+/// Writes datasets as declared in io/schema.hpp (path, units) and labels each for netCDF-4
+/// readers (io/labels.hpp).
+struct LabelledWriter {
+  H5Writer& w;
+  Labeller& labels;
+
+  void doubles(const s::DatasetSpec& d, const std::vector<std::size_t>& dims,
+               const std::vector<double>& v) {
     w.write_doubles(d.path, dims, v, d.units);
     labels.add(d);
-  };
-  const auto write_strings = [&](const s::DatasetSpec& d, const std::vector<std::size_t>& dims,
-                                 const std::vector<std::string>& v) {
+  }
+  void strings(const s::DatasetSpec& d, const std::vector<std::size_t>& dims,
+               const std::vector<std::string>& v) {
     w.write_strings(d.path, dims, v, d.units);
     labels.add(d);
-  };
+  }
+};
+
+/// /meta: the schema header, the envelope and base configurations, the search's settings
+/// and the inputs' checksums.
+void write_envelope_meta(H5Writer& w, const EnvelopeSpec& spec, const EnvelopeResult& r) {
   const std::string meta = s::kMetaGroup;
   write_meta_header(w, meta, s::kEnvelopeSchema, s::kEnvelopeSchemaVersion);
   w.set_string_attribute(meta, s::kAttrConfigYaml, spec.spec_yaml);
@@ -39,22 +48,34 @@ void write_file(H5Writer& w, const EnvelopeSpec& spec, const EnvelopeResult& r) 
   w.set_double_attribute(meta, s::kMetaEnvelopeTolerance.name, spec.tolerance_m);
   w.set_double_attribute(meta, s::kMetaEnvelopeStep.name, spec.riser_step_m);
   w.set_string_attribute(meta, s::kAttrInputSha256, input_sha256_text(spec.inputs));
+}
 
+/// The grid's axes: tread depth [m], duty factor, peak speed [m/s] and criteria, as
+/// coordinates and as /axes datasets, and the riser range searched [m].
+void write_envelope_axes(LabelledWriter& out, const EnvelopeSpec& spec) {
   const std::size_t W = spec.tread_depth_m.size(), B = spec.duty_factor.size(),
                     S = spec.peak_speed_mps.size(), C = spec.criteria.size();
-  write_doubles(s::kTreadDepthCoordinate, {W}, spec.tread_depth_m);
-  write_doubles(s::kDutyFactorCoordinate, {B}, spec.duty_factor);
-  write_doubles(s::kPeakSpeedCoordinate, {S}, spec.peak_speed_mps);
-  write_doubles(s::kEnvelopeTreadDepth, {W}, spec.tread_depth_m);
-  write_doubles(s::kEnvelopeDutyFactor, {B}, spec.duty_factor);
-  write_doubles(s::kEnvelopePeakSpeed, {S}, spec.peak_speed_mps);
+  out.doubles(s::kTreadDepthCoordinate, {W}, spec.tread_depth_m);
+  out.doubles(s::kDutyFactorCoordinate, {B}, spec.duty_factor);
+  out.doubles(s::kPeakSpeedCoordinate, {S}, spec.peak_speed_mps);
+  out.doubles(s::kEnvelopeTreadDepth, {W}, spec.tread_depth_m);
+  out.doubles(s::kEnvelopeDutyFactor, {B}, spec.duty_factor);
+  out.doubles(s::kEnvelopePeakSpeed, {S}, spec.peak_speed_mps);
   std::vector<std::string> names;
   for (EnvelopeCriterion c : spec.criteria) names.push_back(criterion_name(c));
-  write_strings(s::kCriterionCoordinate, {C}, names);
-  write_strings(s::kEnvelopeCriteria, {C}, names);
-  write_doubles(s::kEnvelopeRiserFrom, {}, {spec.riser_from_m});
-  write_doubles(s::kEnvelopeRiserTo, {}, {spec.riser_to_m});
+  out.strings(s::kCriterionCoordinate, {C}, names);
+  out.strings(s::kEnvelopeCriteria, {C}, names);
+  out.doubles(s::kEnvelopeRiserFrom, {}, {spec.riser_from_m});
+  out.doubles(s::kEnvelopeRiserTo, {}, {spec.riser_to_m});
+}
 
+/// The boundary per cell and criterion and the posture per cell; with cases, the case
+/// axis and table first and every grid with the leading dimension `case` (the
+/// kEnvelopeCase* declarations).
+void write_envelope_boundary(LabelledWriter& out, const EnvelopeSpec& spec,
+                             const EnvelopeResult& r) {
+  const std::size_t W = spec.tread_depth_m.size(), B = spec.duty_factor.size(),
+                    S = spec.peak_speed_mps.size(), C = spec.criteria.size();
   std::vector<double> rmax, rfail;
   std::vector<std::string> limit, message;
   for (const EnvelopeBoundary& b : r.boundary) {
@@ -63,7 +84,6 @@ void write_file(H5Writer& w, const EnvelopeSpec& spec, const EnvelopeResult& r) 
     limit.push_back(b.limit);
     message.push_back(b.message);
   }
-  // With cases, the grid has the leading dimension `case` (the kEnvelopeCase* declarations).
   const std::size_t D = spec.cases.size();
   const bool cases = D > 0;
   const std::vector<std::size_t> grid =
@@ -74,23 +94,28 @@ void write_file(H5Writer& w, const EnvelopeSpec& spec, const EnvelopeResult& r) 
     const std::size_t K = spec.cases.keys.size();
     std::vector<std::string> table;
     for (const auto& row : spec.cases.values) table.insert(table.end(), row.begin(), row.end());
-    write_strings(s::kCaseCoordinate, {D}, spec.cases.labels);
-    write_strings(s::kEnvelopeCaseLabels, {D}, spec.cases.labels);
-    write_strings(s::kCaseKeyCoordinateEnvelope, {K}, spec.cases.keys);
-    write_strings(s::kEnvelopeCaseKeys, {K}, spec.cases.keys);
-    write_strings(s::kEnvelopeCaseValues, {D, K}, table);
+    out.strings(s::kCaseCoordinate, {D}, spec.cases.labels);
+    out.strings(s::kEnvelopeCaseLabels, {D}, spec.cases.labels);
+    out.strings(s::kCaseKeyCoordinateEnvelope, {K}, spec.cases.keys);
+    out.strings(s::kEnvelopeCaseKeys, {K}, spec.cases.keys);
+    out.strings(s::kEnvelopeCaseValues, {D, K}, table);
   }
-  write_doubles(cases ? s::kEnvelopeCaseRiserMax : s::kEnvelopeRiserMax, grid, rmax);
-  write_doubles(cases ? s::kEnvelopeCaseRiserFail : s::kEnvelopeRiserFail, grid, rfail);
-  write_strings(cases ? s::kEnvelopeCaseLimit : s::kEnvelopeLimit, grid, limit);
-  write_strings(cases ? s::kEnvelopeCaseMessage : s::kEnvelopeMessage, grid, message);
-  write_doubles(cases ? s::kEnvelopeCasePostureHeight : s::kEnvelopePostureHeight, cells,
-                r.posture_height_m);
-  write_doubles(cases ? s::kEnvelopeCasePostureFootLateral : s::kEnvelopePostureFootLateral, cells,
-                r.posture_foot_lateral_m);
-  write_doubles(cases ? s::kEnvelopeCasePostureMargin : s::kEnvelopePostureMargin, cells,
-                r.posture_margin_m);
+  out.doubles(cases ? s::kEnvelopeCaseRiserMax : s::kEnvelopeRiserMax, grid, rmax);
+  out.doubles(cases ? s::kEnvelopeCaseRiserFail : s::kEnvelopeRiserFail, grid, rfail);
+  out.strings(cases ? s::kEnvelopeCaseLimit : s::kEnvelopeLimit, grid, limit);
+  out.strings(cases ? s::kEnvelopeCaseMessage : s::kEnvelopeMessage, grid, message);
+  out.doubles(cases ? s::kEnvelopeCasePostureHeight : s::kEnvelopePostureHeight, cells,
+              r.posture_height_m);
+  out.doubles(cases ? s::kEnvelopeCasePostureFootLateral : s::kEnvelopePostureFootLateral, cells,
+              r.posture_foot_lateral_m);
+  out.doubles(cases ? s::kEnvelopeCasePostureMargin : s::kEnvelopePostureMargin, cells,
+              r.posture_margin_m);
+}
 
+/// Every probe run, in the order run: cell, criterion (index into the criteria), riser [m],
+/// whether it passed, and what failed.
+void write_envelope_probes(LabelledWriter& out, const EnvelopeSpec& spec, const EnvelopeResult& r) {
+  const std::size_t C = spec.criteria.size();
   std::vector<std::int32_t> cell, crit;
   std::vector<double> riser;
   std::vector<std::int8_t> passed;
@@ -107,15 +132,24 @@ void write_file(H5Writer& w, const EnvelopeSpec& spec, const EnvelopeResult& r) 
     pmessage.push_back(p.message);
   }
   const std::size_t P = r.probes.size();
-  w.write_int32(s::kProbeCell.path, {P}, cell, s::kProbeCell.units);
-  labels.add(s::kProbeCell);
-  w.write_int32(s::kProbeCriterion.path, {P}, crit, s::kProbeCriterion.units);
-  labels.add(s::kProbeCriterion);
-  write_doubles(s::kProbeRiser, {P}, riser);
-  w.write_int8(s::kProbePassed.path, {P}, passed, s::kProbePassed.units);
-  labels.add(s::kProbePassed);
-  write_strings(s::kProbeLimit, {P}, plimit);
-  write_strings(s::kProbeMessage, {P}, pmessage);
+  out.w.write_int32(s::kProbeCell.path, {P}, cell, s::kProbeCell.units);
+  out.labels.add(s::kProbeCell);
+  out.w.write_int32(s::kProbeCriterion.path, {P}, crit, s::kProbeCriterion.units);
+  out.labels.add(s::kProbeCriterion);
+  out.doubles(s::kProbeRiser, {P}, riser);
+  out.w.write_int8(s::kProbePassed.path, {P}, passed, s::kProbePassed.units);
+  out.labels.add(s::kProbePassed);
+  out.strings(s::kProbeLimit, {P}, plimit);
+  out.strings(s::kProbeMessage, {P}, pmessage);
+}
+
+void write_file(H5Writer& w, const EnvelopeSpec& spec, const EnvelopeResult& r) {
+  Labeller labels(w, "");
+  LabelledWriter out{w, labels};
+  write_envelope_meta(w, spec, r);
+  write_envelope_axes(out, spec);
+  write_envelope_boundary(out, spec, r);
+  write_envelope_probes(out, spec, r);
   labels.finish();
 }
 

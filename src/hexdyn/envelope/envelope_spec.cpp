@@ -123,6 +123,127 @@ void check_envelope_size(const EnvelopeReader& r, const EnvelopeSpec& spec) {
                              EnvelopeReader::fmt(probes) + what);
 }
 
+/// The base scene's tree: `base` (a scene file beside the envelope file, with what it
+/// inherits, listed in chain) with the envelope's `set:` overrides applied; its YAML kept
+/// in spec.base_tree_yaml.
+YAML::Node read_base_tree(const EnvelopeReader& r, const YAML::Node& root, const std::string& path,
+                          EnvelopeSpec& spec, std::vector<std::string>& chain) {
+  const YAML::Node base = root["base"];
+  if (!given(base))
+    r.fail("base", "missing, this key is required (the scene file whose riser is searched)");
+  if (!base.IsScalar() || base.Scalar().empty())
+    r.fail_value("base", base, "the path of a scene file");
+  spec.base_path = path_beside(path, base.Scalar());
+  if (const auto why = why_not_regular_file(spec.base_path))
+    r.fail_value("base", base,
+                 "the path of a scene file, relative to the envelope file (" + spec.base_path +
+                     " " + *why + ")");
+  YAML::Node tree = load_scene_tree(spec.base_path, &chain);
+  const YAML::Node set = root["set"];
+  if (given(set)) {
+    if (!set.IsMap()) r.fail_value("set", set, "a mapping of dotted key paths to values");
+    for (const auto& kv : set) {
+      if (kv.second.IsMap())
+        r.fail_value("set." + kv.first.Scalar(), kv.second,
+                     "a value or a list (write nested keys as dotted paths)");
+      apply_override(tree, {kv.first.Scalar(), yaml_inline(kv.second)},
+                     path + " (base " + spec.base_path + ")");
+    }
+  }
+  YAML::Emitter emit;
+  emit << tree;
+  spec.base_tree_yaml = emit.c_str();
+  return tree;
+}
+
+/// `cases:`: the designs whose envelope is searched, each valid on the base tree, none
+/// setting a key the envelope sets itself; their files join spec.inputs.
+void read_envelope_cases(const EnvelopeReader& r, const YAML::Node& node, const YAML::Node& tree,
+                         const std::string& path, EnvelopeSpec& spec) {
+  spec.cases = read_case_list(r, node, "cases", path);
+  if (spec.cases.size() > kMaxEnvelopeCells)  // before each case is validated
+    r.fail("cases", "got " + std::to_string(spec.cases.size()) + " cases, expected at most " +
+                        std::to_string(kMaxEnvelopeCells) + " (an envelope has at most " +
+                        std::to_string(kMaxEnvelopeCells) + " cells)");
+  for (const std::string& key : spec.cases.keys)
+    for (const char* own :
+         {"terrain.riser_height", "terrain.tread_depth", "gait.duty_factor", "motion.peak_speed"})
+      if (key == own)
+        r.fail("cases", "got key " + key +
+                            ", expected a key the envelope does not set itself (it searches "
+                            "the riser and takes tread_depth, duty_factor and peak_speed)");
+  check_cases_on(r, spec.cases, tree, "cases");
+  add_case_inputs(spec.inputs, spec.cases);
+}
+
+/// `riser:` {from, to, step, tolerance} [m]: the range searched, the scan's step (0.01 m or
+/// the span) and the bisection's tolerance (1 mm or the step).
+void read_riser(const EnvelopeReader& r, const YAML::Node& riser, EnvelopeSpec& spec) {
+  if (!given(riser))
+    r.fail("riser", "missing, this key is required ({from, to, step, tolerance} in m)");
+  r.check_keys(riser, "riser", {"from", "to", "step", "tolerance"});
+  for (const char* k : {"from", "to"})
+    if (!given(riser[k])) r.fail(std::string("riser.") + k, "missing, this key is required");
+  spec.riser_from_m = r.number(riser["from"], "riser.from", 0.0, 1.0);
+  spec.riser_to_m = r.number(riser["to"], "riser.to", 0.0, 1.0);
+  if (!(spec.riser_from_m < spec.riser_to_m))
+    r.fail("riser.to", "got " + EnvelopeReader::fmt(spec.riser_to_m) +
+                           ", expected more than riser.from (" +
+                           EnvelopeReader::fmt(spec.riser_from_m) + ")");
+  const double span = spec.riser_to_m - spec.riser_from_m;
+  spec.riser_step_m = given(riser["step"]) ? r.number(riser["step"], "riser.step", 1e-5, span)
+                                           : std::min(0.01, span);
+  spec.tolerance_m = given(riser["tolerance"])
+                         ? r.number(riser["tolerance"], "riser.tolerance", 1e-6, spec.riser_step_m)
+                         : std::min(1e-3, spec.riser_step_m);
+}
+
+/// `criteria:` each of kinematic, torque, friction at most once; all three when not given.
+void read_criteria(const EnvelopeReader& r, const YAML::Node& crit, EnvelopeSpec& spec) {
+  if (!given(crit)) {
+    spec.criteria = {EnvelopeCriterion::kKinematic, EnvelopeCriterion::kTorque,
+                     EnvelopeCriterion::kFriction};
+    return;
+  }
+  if (!crit.IsSequence() || crit.size() == 0)
+    r.fail_value("criteria", crit, "a non-empty list of kinematic, torque, friction");
+  for (const auto& c : crit) {
+    const std::string name = c.IsScalar() ? c.Scalar() : "";
+    if (name == "kinematic")
+      spec.criteria.push_back(EnvelopeCriterion::kKinematic);
+    else if (name == "torque")
+      spec.criteria.push_back(EnvelopeCriterion::kTorque);
+    else if (name == "friction")
+      spec.criteria.push_back(EnvelopeCriterion::kFriction);
+    else
+      r.fail_value("criteria", crit, "a list of kinematic, torque, friction");
+  }
+  if (std::set<EnvelopeCriterion>(spec.criteria.begin(), spec.criteria.end()).size() !=
+      spec.criteria.size())
+    r.fail_value("criteria", crit, "each criterion at most once");
+}
+
+/// Every cell's scene at the lowest riser must be valid (speed against ramp, ...): the
+/// probe's keys set on the base's SceneTree (no YAML per cell), as envelope_probe_scene
+/// sets them on the YAML tree, which it falls back to when a key runs through a non-map.
+void check_every_cell(const EnvelopeSpec& spec, const YAML::Node& tree) {
+  const SceneTree base_tree(tree);
+  const int cells = spec.cell_count();
+  for (int cell = 0; cell < cells; ++cell)
+    for (EnvelopeCriterion c : spec.criteria) {
+      SceneTree one = base_tree;
+      bool set = true;
+      for (const Override& o : probe_overrides(spec, cell, spec.riser_from_m, c))
+        set = set && one.set(split_key_path(o.key_path),
+                             SceneTree::convert(parse_yaml_checked(
+                                 o.value, "--set " + o.key_path + "=" + o.value)));
+      if (set)
+        (void)scene_from_tree(one, probe_source(spec, cell, spec.riser_from_m), false);
+      else
+        (void)envelope_probe_scene(spec, cell, spec.riser_from_m, c);
+    }
+}
+
 }  // namespace
 
 const char* criterion_name(EnvelopeCriterion c) {
@@ -147,78 +268,20 @@ EnvelopeSpec load_envelope_spec(const std::string& path) {
                 "criteria", "kinematic_margin"});
   spec.name =
       given(root["name"]) ? root["name"].Scalar() : std::filesystem::path(path).stem().string();
-  const YAML::Node base = root["base"];
-  if (!given(base))
-    r.fail("base", "missing, this key is required (the scene file whose riser is searched)");
-  if (!base.IsScalar() || base.Scalar().empty())
-    r.fail_value("base", base, "the path of a scene file");
-  spec.base_path = path_beside(path, base.Scalar());
-  if (const auto why = why_not_regular_file(spec.base_path))
-    r.fail_value("base", base,
-                 "the path of a scene file, relative to the envelope file (" + spec.base_path +
-                     " " + *why + ")");
   std::vector<std::string> chain;
-  YAML::Node tree = load_scene_tree(spec.base_path, &chain);
-  const YAML::Node set = root["set"];
-  if (given(set)) {
-    if (!set.IsMap()) r.fail_value("set", set, "a mapping of dotted key paths to values");
-    for (const auto& kv : set) {
-      if (kv.second.IsMap())
-        r.fail_value("set." + kv.first.Scalar(), kv.second,
-                     "a value or a list (write nested keys as dotted paths)");
-      apply_override(tree, {kv.first.Scalar(), yaml_inline(kv.second)},
-                     path + " (base " + spec.base_path + ")");
-    }
-  }
-  YAML::Emitter emit;
-  emit << tree;
-  spec.base_tree_yaml = emit.c_str();
+  const YAML::Node tree = read_base_tree(r, root, path, spec, chain);
   const Scene base_scene = scene_from_yaml(tree, path + " (base " + spec.base_path + ")");
   spec.base_config_yaml = base_scene.resolved_yaml;
   add_input(spec.inputs, "envelope file", path);
   for (InputFile& f : scene_inputs(chain, tree))
     add_input(spec.inputs, f.role == "scene" ? "base scene" : f.role, f.path);
-  // cases: the designs whose envelope is searched, each valid on the base scene.
-  if (given(root["cases"])) {
-    spec.cases = read_case_list(r, root["cases"], "cases", path);
-    if (spec.cases.size() > kMaxEnvelopeCells)  // before each case is validated
-      r.fail("cases", "got " + std::to_string(spec.cases.size()) + " cases, expected at most " +
-                          std::to_string(kMaxEnvelopeCells) + " (an envelope has at most " +
-                          std::to_string(kMaxEnvelopeCells) + " cells)");
-    for (const std::string& key : spec.cases.keys)
-      for (const char* own :
-           {"terrain.riser_height", "terrain.tread_depth", "gait.duty_factor", "motion.peak_speed"})
-        if (key == own)
-          r.fail("cases", "got key " + key +
-                              ", expected a key the envelope does not set itself (it searches "
-                              "the riser and takes tread_depth, duty_factor and peak_speed)");
-    check_cases_on(r, spec.cases, tree, "cases");
-    add_case_inputs(spec.inputs, spec.cases);
-  }
+  if (given(root["cases"])) read_envelope_cases(r, root["cases"], tree, path, spec);
   if (base_scene.terrain.type != TerrainType::kStairs)
     r.fail("base",
            "the base scene's terrain.type is not stairs, expected a staircase (its riser is "
            "searched)");
-
-  const YAML::Node riser = root["riser"];
-  if (!given(riser))
-    r.fail("riser", "missing, this key is required ({from, to, step, tolerance} in m)");
-  r.check_keys(riser, "riser", {"from", "to", "step", "tolerance"});
-  for (const char* k : {"from", "to"})
-    if (!given(riser[k])) r.fail(std::string("riser.") + k, "missing, this key is required");
-  spec.riser_from_m = r.number(riser["from"], "riser.from", 0.0, 1.0);
-  spec.riser_to_m = r.number(riser["to"], "riser.to", 0.0, 1.0);
-  if (!(spec.riser_from_m < spec.riser_to_m))
-    r.fail("riser.to", "got " + EnvelopeReader::fmt(spec.riser_to_m) +
-                           ", expected more than riser.from (" +
-                           EnvelopeReader::fmt(spec.riser_from_m) + ")");
-  const double span = spec.riser_to_m - spec.riser_from_m;
-  spec.riser_step_m = given(riser["step"]) ? r.number(riser["step"], "riser.step", 1e-5, span)
-                                           : std::min(0.01, span);
-  spec.tolerance_m = given(riser["tolerance"])
-                         ? r.number(riser["tolerance"], "riser.tolerance", 1e-6, spec.riser_step_m)
-                         : std::min(1e-3, spec.riser_step_m);
-
+  read_riser(r, root["riser"], spec);
+  // The grid: tread depths [m] (the base scene's when not given), duty factors, peak speeds [m/s].
   spec.tread_depth_m = given(root["tread_depth"])
                            ? r.numbers(root["tread_depth"], "tread_depth", 1e-3, 10.0)
                            : std::vector<double>{base_scene.terrain.tread_depth_m};
@@ -226,49 +289,11 @@ EnvelopeSpec load_envelope_spec(const std::string& path) {
     if (!given(root[k])) r.fail(k, "missing, this key is required (a list of values)");
   spec.duty_factor = r.numbers(root["duty_factor"], "duty_factor", 0.5, 0.999999);
   spec.peak_speed_mps = r.numbers(root["peak_speed"], "peak_speed", 1e-6, 10.0);
-  const YAML::Node crit = root["criteria"];
-  if (given(crit)) {
-    if (!crit.IsSequence() || crit.size() == 0)
-      r.fail_value("criteria", crit, "a non-empty list of kinematic, torque, friction");
-    for (const auto& c : crit) {
-      const std::string name = c.IsScalar() ? c.Scalar() : "";
-      if (name == "kinematic")
-        spec.criteria.push_back(EnvelopeCriterion::kKinematic);
-      else if (name == "torque")
-        spec.criteria.push_back(EnvelopeCriterion::kTorque);
-      else if (name == "friction")
-        spec.criteria.push_back(EnvelopeCriterion::kFriction);
-      else
-        r.fail_value("criteria", crit, "a list of kinematic, torque, friction");
-    }
-    if (std::set<EnvelopeCriterion>(spec.criteria.begin(), spec.criteria.end()).size() !=
-        spec.criteria.size())
-      r.fail_value("criteria", crit, "each criterion at most once");
-  } else {
-    spec.criteria = {EnvelopeCriterion::kKinematic, EnvelopeCriterion::kTorque,
-                     EnvelopeCriterion::kFriction};
-  }
+  read_criteria(r, root["criteria"], spec);
   if (given(root["kinematic_margin"]))
     spec.kinematic_margin_m = r.number(root["kinematic_margin"], "kinematic_margin", 0.0, 0.1);
   check_envelope_size(r, spec);
-  // Every cell's scene at the lowest riser must be valid (speed against ramp, ...): the
-  // probe's keys set on the base's SceneTree (no YAML per cell), as envelope_probe_scene
-  // sets them on the YAML tree, which it falls back to when a key runs through a non-map.
-  const SceneTree base_tree(tree);
-  const int cells = spec.cell_count();
-  for (int cell = 0; cell < cells; ++cell)
-    for (EnvelopeCriterion c : spec.criteria) {
-      SceneTree one = base_tree;
-      bool set = true;
-      for (const Override& o : probe_overrides(spec, cell, spec.riser_from_m, c))
-        set = set && one.set(split_key_path(o.key_path),
-                             SceneTree::convert(parse_yaml_checked(
-                                 o.value, "--set " + o.key_path + "=" + o.value)));
-      if (set)
-        (void)scene_from_tree(one, probe_source(spec, cell, spec.riser_from_m), false);
-      else
-        (void)envelope_probe_scene(spec, cell, spec.riser_from_m, c);
-    }
+  check_every_cell(spec, tree);
   return spec;
 }
 

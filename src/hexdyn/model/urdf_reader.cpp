@@ -102,6 +102,11 @@ class Reader {
   UrdfRobot read(const std::string& text);
 
  private:
+  void parse(const std::string& text);
+  void index_joints();
+  Mat3 trunk_axes() const;
+  std::vector<UrdfLeg> read_legs(const std::vector<std::pair<std::string, Placement>>& trunk,
+                                 const Placement& B_X_U, const std::string& trunk_link);
   void check_links();
   void check_joints();
   void check_tree();
@@ -113,6 +118,11 @@ class Reader {
       const std::vector<std::pair<std::string, Placement>>& group) const;
   UrdfLeg read_chain(const urdf::JointConstSharedPtr& first, const Placement& U_X_parent,
                      int chain_index);
+  void locate_foot(const std::vector<std::pair<std::string, Placement>>& group,
+                   const std::string& chain, UrdfLeg& leg);
+  std::pair<std::string, Placement> fixed_chain_end(
+      const std::vector<std::pair<std::string, Placement>>& group, const std::string& last,
+      const std::string& chain) const;
   void map_legs(std::vector<UrdfLeg>& chains, UrdfRobot& robot) const;
 
   std::string source_;
@@ -192,29 +202,33 @@ RigidInertia transformed(const RigidInertia& in, const Placement& X) {
   return r;
 }
 
-UrdfRobot Reader::read(const std::string& text) {
-  check_finite_numbers(text, source_);
-  {
-    static std::mutex console_mutex;  // console_bridge's output handler is global
-    std::lock_guard<std::mutex> lock(console_mutex);
-    CaptureErrors capture;
-    console_bridge::useOutputHandler(&capture);
-    try {
-      model_ = urdf::parseURDF(text);
-    } catch (const std::exception& e) {
-      capture.errors.push_back(one_line(e.what()));
-      model_.reset();
-    }
-    console_bridge::restorePreviousOutputHandler();
-    if (!model_) {
-      std::string why = capture.errors.empty() ? "urdfdom gave no reason" : capture.errors.front();
-      // urdfdom's missing-link message goes on with advice over several sentences.
-      if (const auto cut = why.find(".  "); cut != std::string::npos) why.erase(cut + 1);
-      if (capture.errors.size() > 1 && capture.errors.back() != why)
-        why += "; " + capture.errors.back();
-      fail("not a valid URDF (urdfdom: " + why + ")");
-    }
+/// Parses the description with urdfdom, its console messages captured: a description it
+/// refuses fails with urdfdom's first (and last) reason.
+void Reader::parse(const std::string& text) {
+  static std::mutex console_mutex;  // console_bridge's output handler is global
+  std::lock_guard<std::mutex> lock(console_mutex);
+  CaptureErrors capture;
+  console_bridge::useOutputHandler(&capture);
+  try {
+    model_ = urdf::parseURDF(text);
+  } catch (const std::exception& e) {
+    capture.errors.push_back(one_line(e.what()));
+    model_.reset();
   }
+  console_bridge::restorePreviousOutputHandler();
+  if (!model_) {
+    std::string why = capture.errors.empty() ? "urdfdom gave no reason" : capture.errors.front();
+    // urdfdom's missing-link message goes on with advice over several sentences.
+    if (const auto cut = why.find(".  "); cut != std::string::npos) why.erase(cut + 1);
+    if (capture.errors.size() > 1 && capture.errors.back() != why)
+      why += "; " + capture.errors.back();
+    fail("not a valid URDF (urdfdom: " + why + ")");
+  }
+}
+
+/// The joints by parent link and by child link; a link that is the child of two joints
+/// (a kinematic loop) fails.
+void Reader::index_joints() {
   for (const auto& [name, joint] : model_->joints_) {
     child_joints_[joint->parent_link_name].push_back(joint);
     if (parent_joint_.count(joint->child_link_name))
@@ -223,17 +237,11 @@ UrdfRobot Reader::read(const std::string& text) {
            "' (a kinematic loop; a URDF must be a tree)");
     parent_joint_[joint->child_link_name] = joint;
   }
-  check_tree();
-  check_links();
-  check_joints();
-  collect_trunk();
+}
 
-  UrdfRobot robot;
-  robot.name = model_->getName();
-  robot.source_path = source_;
-  robot.trunk_link = opt_.trunk_link.empty() ? model_->getRoot()->name : opt_.trunk_link;
-  robot.forward_axis = opt_.forward_axis;
-  // Trunk axes: forward → +y, up (+z) → +z, right = forward × up → +x.
+/// B_R_U, the trunk axes in the URDF trunk link's axes: forward (opt_.forward_axis) → +y,
+/// up (+z) → +z, right = forward × up → +x.
+Mat3 Reader::trunk_axes() const {
   Vec3 fwd;
   if (opt_.forward_axis == "+x")
     fwd = Vec3::UnitX();
@@ -246,26 +254,23 @@ UrdfRobot Reader::read(const std::string& text) {
   else
     fail("forward axis '" + opt_.forward_axis + "', expected one of +x, -x, +y, -y");
   const Vec3 up = Vec3::UnitZ();
-  robot.B_R_U.row(0) = fwd.cross(up).transpose();
-  robot.B_R_U.row(1) = fwd.transpose();
-  robot.B_R_U.row(2) = up.transpose();
-  const Placement B_X_U{Vec3::Zero(), robot.B_R_U};
+  Mat3 B_R_U;
+  B_R_U.row(0) = fwd.cross(up).transpose();
+  B_R_U.row(1) = fwd.transpose();
+  B_R_U.row(2) = up.transpose();
+  return B_R_U;
+}
 
-  std::vector<std::pair<std::string, Placement>> trunk(trunk_group_.begin(), trunk_group_.end());
-  robot.trunk = transformed(group_inertia(trunk), B_X_U);
-  for (const auto& [name, link] : model_->links_)
-    robot.total_mass_kg += link_inertia(*link).mass_kg;
-  robot.root_link = model_->getRoot()->name;
-  const Placement B_X_root =
-      B_X_U * trunk_group_.at(robot.root_link);  // the root is fixed to the trunk
-  robot.p_B_root = B_X_root.p;
-  robot.B_R_root = B_X_root.R;
-
+/// The six leg chains leaving the trunk (links `trunk`, named trunk_link in messages), in
+/// the order of the moving joints found, placed in the trunk frame by B_X_U; each named
+/// foot link (robot.foot_links) must end exactly one chain.
+std::vector<UrdfLeg> Reader::read_legs(const std::vector<std::pair<std::string, Placement>>& trunk,
+                                       const Placement& B_X_U, const std::string& trunk_link) {
   const auto legs = moving_children(trunk);
   if (legs.size() != kLegs) {
     std::string list;
     for (const auto& j : legs) list += (list.empty() ? "" : ", ") + j->name;
-    fail("trunk '" + robot.trunk_link + "': " + std::to_string(legs.size()) +
+    fail("trunk '" + trunk_link + "': " + std::to_string(legs.size()) +
          " moving joints leave the trunk (" + (list.empty() ? "none" : list) +
          "), expected six legs of three revolute joints");
   }
@@ -285,6 +290,37 @@ UrdfRobot Reader::read(const std::string& text) {
     if (n != 1)
       fail("robot.foot_links: link '" + f +
            "' is not fixed to the last link of exactly one leg chain");
+  return chains;
+}
+
+UrdfRobot Reader::read(const std::string& text) {
+  check_finite_numbers(text, source_);
+  parse(text);
+  index_joints();
+  check_tree();
+  check_links();
+  check_joints();
+  collect_trunk();
+
+  UrdfRobot robot;
+  robot.name = model_->getName();
+  robot.source_path = source_;
+  robot.trunk_link = opt_.trunk_link.empty() ? model_->getRoot()->name : opt_.trunk_link;
+  robot.forward_axis = opt_.forward_axis;
+  robot.B_R_U = trunk_axes();
+  const Placement B_X_U{Vec3::Zero(), robot.B_R_U};
+
+  std::vector<std::pair<std::string, Placement>> trunk(trunk_group_.begin(), trunk_group_.end());
+  robot.trunk = transformed(group_inertia(trunk), B_X_U);
+  for (const auto& [name, link] : model_->links_)
+    robot.total_mass_kg += link_inertia(*link).mass_kg;
+  robot.root_link = model_->getRoot()->name;
+  const Placement B_X_root =
+      B_X_U * trunk_group_.at(robot.root_link);  // the root is fixed to the trunk
+  robot.p_B_root = B_X_root.p;
+  robot.B_R_root = B_X_root.R;
+
+  std::vector<UrdfLeg> chains = read_legs(trunk, B_X_U, robot.trunk_link);
   map_legs(chains, robot);
   return robot;
 }
@@ -480,7 +516,16 @@ UrdfLeg Reader::read_chain(const urdf::JointConstSharedPtr& first, const Placeme
            "' follows the third joint '" + joint->name + "'");
     }
   }
-  // Foot point in the third link's frame.
+  locate_foot(group, chain, leg);
+  return leg;
+}
+
+/// The foot point p_foot_last [m] of a chain (named `chain` in messages) in its third link's
+/// frame, from the links fixed to that link (`group`, with their placements in its frame):
+/// a named foot link, else robot.foot_offset, else the end of the links fixed to it; a foot
+/// on the last joint's axis fails.
+void Reader::locate_foot(const std::vector<std::pair<std::string, Placement>>& group,
+                         const std::string& chain, UrdfLeg& leg) {
   const std::string last = leg.link_names[2];
   bool found = false;
   for (const auto& f : opt_.foot_links) {
@@ -500,24 +545,7 @@ UrdfLeg Reader::read_chain(const urdf::JointConstSharedPtr& first, const Placeme
     found = true;
   }
   if (!found) {
-    // The end of the chain of links fixed to the last link.
-    std::string end = last;
-    Placement X_end;
-    for (;;) {
-      std::vector<std::pair<std::string, Placement>> kids;
-      for (const auto& [name, Xl] : group) {
-        const auto pj = parent_joint_.find(name);
-        if (name != last && pj != parent_joint_.end() && pj->second->parent_link_name == end)
-          kids.emplace_back(name, Xl);
-      }
-      if (kids.empty()) break;
-      if (kids.size() > 1)
-        fail(chain + "links '" + kids[0].first + "' and '" + kids[1].first +
-             "' are both fixed to '" + end +
-             "': name the foot links (robot.foot_links) or give robot.foot_offset");
-      end = kids[0].first;
-      X_end = kids[0].second;
-    }
+    const auto [end, X_end] = fixed_chain_end(group, last, chain);
     leg.p_foot_last = X_end.p;
     leg.foot_source = end;
   }
@@ -527,7 +555,30 @@ UrdfLeg Reader::read_chain(const urdf::JointConstSharedPtr& first, const Placeme
          leg.joint_names[2] +
          "': the description has no foot frame; name the foot links (robot.foot_links) or give "
          "robot.foot_offset");
-  return leg;
+}
+
+/// The end of the chain of links fixed to link `last` (group: those links, placed in its
+/// frame), and its placement; a link carrying two fixed links fails.
+std::pair<std::string, Placement> Reader::fixed_chain_end(
+    const std::vector<std::pair<std::string, Placement>>& group, const std::string& last,
+    const std::string& chain) const {
+  std::string end = last;
+  Placement X_end;
+  for (;;) {
+    std::vector<std::pair<std::string, Placement>> kids;
+    for (const auto& [name, Xl] : group) {
+      const auto pj = parent_joint_.find(name);
+      if (name != last && pj != parent_joint_.end() && pj->second->parent_link_name == end)
+        kids.emplace_back(name, Xl);
+    }
+    if (kids.empty()) break;
+    if (kids.size() > 1)
+      fail(chain + "links '" + kids[0].first + "' and '" + kids[1].first + "' are both fixed to '" +
+           end + "': name the foot links (robot.foot_links) or give robot.foot_offset");
+    end = kids[0].first;
+    X_end = kids[0].second;
+  }
+  return {end, X_end};
 }
 
 void Reader::map_legs(std::vector<UrdfLeg>& chains, UrdfRobot& robot) const {

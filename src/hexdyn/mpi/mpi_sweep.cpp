@@ -125,17 +125,7 @@ class Coordinator {
   /// Distributes the scenarios and writes the sweep file. Returns 0.
   int run() {
     const std::size_t n = spec_.scenario_count();
-    std::vector<std::size_t> sizes;
-    for (const auto& a : spec_.axes) sizes.push_back(a.size());
-    coord_ = std::make_unique<SweepCoordinator>(n, sizes, mpi_.size());
-    for (const ScenarioSummary& r : checkpoint_->finished()) {
-      coord_->mark_finished(r.index);
-      if (r.status != ScenarioStatus::kOk) ++failed_;
-    }
-    for (std::size_t i : checkpoint_->crash_attempts()) coord_->mark_crashed_once(i);
-    resumed_ = checkpoint_->finished().size();
-    for (const std::string& w : checkpoint_->warnings())
-      std::cerr << "hexdyn: warning: " << w << "\n";
+    resume_from_checkpoint(n);
     announce();
     ProgressMeter meter(n, resumed_, opt_.progress_interval_s, start_);
     std::cerr << meter.line(Clock::now()) << "\n";
@@ -146,41 +136,8 @@ class Coordinator {
       local_.running = true;
       local = std::thread([this] { local_loop(); });
     }
-    std::vector<Assignment> out;
-    auto last_flush = Clock::now(), last_sync = Clock::now();
-    // Between looks at the worker ranks when nothing happened: from 0.1 ms, doubling to
-    // 4 ms (Open MPI has no blocking receive that sleeps); rank 0's own compute thread
-    // wakes the coordinator at once through the condition variable.
-    auto idle_wait = std::chrono::microseconds(100);
     try {
-      remote_active_ = mpi_.size() - 1;
-      for (;;) {
-        bool progressed = serve_local(out);
-        if (mpi_.size() > 1) progressed = serve_remote(out) || progressed;
-        dispatch(out);
-        const auto now = Clock::now();
-        if (checkpoint_->buffered() > (1u << 20) || seconds(now - last_flush) > 0.5) {
-          const bool sync = seconds(now - last_sync) > 5.0;
-          checkpoint_->flush(sync);
-          last_flush = now;
-          if (sync) last_sync = now;
-        }
-        if (auto line = meter.update(done_ + resumed_, failed_, now)) std::cerr << *line << "\n";
-        check_interrupt();  // SIGTERM, SIGINT: between results (interrupt.hpp)
-        std::unique_lock<std::mutex> lock(local_.mutex);
-        if (local_.error) std::rethrow_exception(local_.error);
-        if (!local_.running && local_.results.empty() && remote_active_ == 0) break;
-        if (progressed) {
-          idle_wait = std::chrono::microseconds(100);
-        } else {
-          const auto wait = mpi_.size() > 1 ? idle_wait : std::chrono::microseconds(200000);
-          idle_wait = std::min(idle_wait * 2, std::chrono::microseconds(4000));
-          local_.changed.wait_for(lock, wait, [this] {
-            return !local_.results.empty() || (local_.ready && !local_ready_seen_) ||
-                   !local_.running;
-          });
-        }
-      }
+      coordinate(meter);
     } catch (const Interrupted& e) {
       stop_now(e);
     } catch (const CheckpointLost& e) {
@@ -212,6 +169,63 @@ class Coordinator {
 
  private:
   static double seconds(Clock::duration d) { return std::chrono::duration<double>(d).count(); }
+
+  /// The scheduler of the n scenarios, with what the checkpoint holds marked: its finished
+  /// rows (failed ones counted) and the scenarios whose process crashed once; its warnings
+  /// printed.
+  void resume_from_checkpoint(std::size_t n) {
+    std::vector<std::size_t> sizes;
+    for (const auto& a : spec_.axes) sizes.push_back(a.size());
+    coord_ = std::make_unique<SweepCoordinator>(n, sizes, mpi_.size());
+    for (const ScenarioSummary& r : checkpoint_->finished()) {
+      coord_->mark_finished(r.index);
+      if (r.status != ScenarioStatus::kOk) ++failed_;
+    }
+    for (std::size_t i : checkpoint_->crash_attempts()) coord_->mark_crashed_once(i);
+    resumed_ = checkpoint_->finished().size();
+    for (const std::string& w : checkpoint_->warnings())
+      std::cerr << "hexdyn: warning: " << w << "\n";
+  }
+
+  /// Serves rank 0's compute thread and the worker ranks, hands out work, flushes the
+  /// checkpoint (past 1 MiB buffered or 0.5 s, synced to disk every 5 s) and prints
+  /// progress through meter, until no result is pending and no one computes. Throws
+  /// Interrupted on a signal (between results) and the compute thread's error.
+  void coordinate(ProgressMeter& meter) {
+    std::vector<Assignment> out;
+    auto last_flush = Clock::now(), last_sync = Clock::now();
+    // Between looks at the worker ranks when nothing happened: from 0.1 ms, doubling to
+    // 4 ms (Open MPI has no blocking receive that sleeps); rank 0's own compute thread
+    // wakes the coordinator at once through the condition variable.
+    auto idle_wait = std::chrono::microseconds(100);
+    remote_active_ = mpi_.size() - 1;
+    for (;;) {
+      bool progressed = serve_local(out);
+      if (mpi_.size() > 1) progressed = serve_remote(out) || progressed;
+      dispatch(out);
+      const auto now = Clock::now();
+      if (checkpoint_->buffered() > (1u << 20) || seconds(now - last_flush) > 0.5) {
+        const bool sync = seconds(now - last_sync) > 5.0;
+        checkpoint_->flush(sync);
+        last_flush = now;
+        if (sync) last_sync = now;
+      }
+      if (auto line = meter.update(done_ + resumed_, failed_, now)) std::cerr << *line << "\n";
+      check_interrupt();  // SIGTERM, SIGINT: between results (interrupt.hpp)
+      std::unique_lock<std::mutex> lock(local_.mutex);
+      if (local_.error) std::rethrow_exception(local_.error);
+      if (!local_.running && local_.results.empty() && remote_active_ == 0) break;
+      if (progressed) {
+        idle_wait = std::chrono::microseconds(100);
+      } else {
+        const auto wait = mpi_.size() > 1 ? idle_wait : std::chrono::microseconds(200000);
+        idle_wait = std::min(idle_wait * 2, std::chrono::microseconds(4000));
+        local_.changed.wait_for(lock, wait, [this] {
+          return !local_.results.empty() || (local_.ready && !local_ready_seen_) || !local_.running;
+        });
+      }
+    }
+  }
 
   /// Ends the process at once after a signal (checkpoint flushed) or a lost checkpoint
   /// (nothing written): one line, then _exit, without waiting for a scenario in progress

@@ -2,6 +2,8 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "hexdyn/planning/margin_detail.hpp"
 #include "hexdyn/planning/plan.hpp"
@@ -336,6 +338,156 @@ bool cannot_matter(const MarginBounds& b, const KinematicMargin& out) {
          b.joint_m >= out.joint_m + eps && b.joint_rad >= out.joint_rad + eps;
 }
 
+/// An admission's margin fields, not asked for: NaN.
+void clear_unasked(KinematicMargin& out) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  out.value_m = out.reach_m = out.joint_m = out.joint_rad = out.t_s = nan;
+}
+
+/// refs for a new sample count: no sample evaluated yet, and the targets' path.
+void reset_references(SampleReferences& refs, const TrunkMotion& trunk, const FootTrack& feet) {
+  const int n = static_cast<int>(feet.t_s.size()), count = n * kLegs;
+  refs.slot.assign(count, -1);
+  refs.entries.clear();
+  refs.generation = 0;
+  // The targets' path: the trunk keeps its attitude, so a target moves in its hip frame by
+  // |Δp_W(foot) − Δp_W(trunk)| from one instant to the next, at every height.
+  refs.path_m.assign(count, 0.0);
+  Vec3 trunk_prev = trunk.at(feet.t_s[0]).p_W;
+  for (int i = 1; i < n; ++i) {
+    const Vec3 trunk_now = trunk.at(feet.t_s[i]).p_W;
+    for (int leg = 0; leg < kLegs; ++leg)
+      refs.path_m[i * kLegs + leg] =
+          refs.path_m[(i - 1) * kLegs + leg] +
+          ((feet.p_W[i][leg] - feet.p_W[i - 1][leg]) - (trunk_now - trunk_prev)).norm();
+    trunk_prev = trunk_now;
+  }
+}
+
+/// One bounded evaluation at trunk height height_m [m]: what evaluating a sample exactly
+/// and bounding it from a reference read and update. Sample s is i·kLegs + leg.
+struct BoundedScan {
+  const RobotModel& model;
+  const TrunkMotion& trunk;
+  const FootTrack& feet;
+  double height_m;
+  const MarginRequest& req;
+  SampleReferences& refs;
+  KinematicMargin& out;  ///< the minima so far
+  Limit& limit;          ///< the sample that gives out.value_m
+  int stamp;             ///< this evaluation's generation in refs
+  bool bounded;          ///< bounds exist (the paper geometry)
+
+  /// Sample s has been evaluated by this evaluation.
+  bool done(int s) const {
+    return refs.slot[s] >= 0 && refs.entries[refs.slot[s]].evaluation == stamp;
+  }
+  bool evaluate(int s);
+  bool harmless(int s, double delta_m) const;
+  bool covers(int leg, int ref, int from, int to) const;
+};
+
+/// Sample s exactly, as motion_kinematic_margin evaluates it; it becomes s's reference. True
+/// when the motion is known to be below req.below_m (or, for an admission, refused).
+bool BoundedScan::evaluate(int s) {
+  const int i = s / kLegs, leg = s % kLegs;
+  const Vec3 p_H = target_in_hip(model, trunk.at(feet.t_s[i]), leg, feet.p_W[i][leg]);
+  const LegIkResult ik = leg_inverse_kinematics(model, leg, p_H);
+  limit.take(out, feet, s, leg_margin(model, leg, p_H, ik, out), p_H, ik);
+  if (refs.slot[s] < 0) {
+    refs.slot[s] = static_cast<int>(refs.entries.size());
+    refs.entries.emplace_back();
+  }
+  SampleReferences::Entry& entry = refs.entries[refs.slot[s]];
+  entry.height_m = height_m;
+  entry.evaluation = stamp;
+  if (bounded) entry.bound = sample_bound(model, leg, p_H, ik, kBoundRadius_m);
+  return out.value_m < req.below_m || (req.kind == Evaluation::kAdmission && !out.admitted);
+}
+
+/// Bounds of any sample within delta_m of sample s's target at this height (from s's reference
+/// at its own height: moving the trunk by Δh moves a target by |Δh|), and whether they show
+/// it harmless: unable to lower the margin (and, for a check, any minimum or the IK).
+bool BoundedScan::harmless(int s, double delta_m) const {
+  if (refs.slot[s] < 0) return false;
+  const SampleReferences::Entry& entry = refs.entries[refs.slot[s]];
+  const SampleBound& b = entry.bound;
+  const double delta = delta_m + std::abs(height_m - entry.height_m) + 1e-12;
+  switch (req.kind) {
+    case Evaluation::kCandidate:
+      return value_clears(b, delta, out.value_m + kSkipAllowance_m);
+    case Evaluation::kCheck:
+      return cannot_matter(bounds_at(b, delta), out);
+    case Evaluation::kAdmission:
+      return admits(b, delta);
+  }
+  return false;
+}
+
+/// Instants [from, to) of `leg` from instant `ref`: their targets lie within the path from
+/// ref's (the rounding of the sums allowed for), and ref's bounds show them harmless.
+bool BoundedScan::covers(int leg, int ref, int from, int to) const {
+  if (from >= to) return true;
+  const double path_m =
+      std::max(std::abs(refs.path_m[(to - 1) * kLegs + leg] - refs.path_m[ref * kLegs + leg]),
+               std::abs(refs.path_m[from * kLegs + leg] - refs.path_m[ref * kLegs + leg]));
+  return harmless(ref * kLegs + leg, path_m * (1.0 + 1e-12) + 1e-12);
+}
+
+/// Every stride-th instant of n, and the last.
+std::vector<int> coarse_instants(int n, int stride) {
+  std::vector<int> top;
+  for (int i = 0; i < n; i += stride) top.push_back(i);
+  if (top.back() != n - 1) top.push_back(n - 1);
+  return top;
+}
+
+/// Per leg, the instants between two of `top` bounded from the nearer (its farthest target's
+/// distance); where that cannot show them harmless the middle instant is taken (evaluated
+/// unless harmless) and both halves bounded again. True when the motion is known below.
+bool refine_between(BoundedScan& scan, const std::vector<int>& top, int leg) {
+  std::vector<std::pair<int, int>> pending;
+  for (std::size_t k = 0; k + 1 < top.size(); ++k) pending.emplace_back(top[k], top[k + 1]);
+  while (!pending.empty()) {
+    const auto [a, b] = pending.back();
+    pending.pop_back();
+    if (b - a < 2) continue;
+    const int mid = (a + b) / 2;
+    if (scan.covers(leg, a, a + 1, mid + 1) && scan.covers(leg, b, mid + 1, b)) continue;
+    const int s = mid * kLegs + leg;
+    if (!scan.done(s) && !scan.harmless(s, 0.0) && scan.evaluate(s)) return true;
+    pending.emplace_back(a, mid);
+    pending.emplace_back(mid, b);
+  }
+  return false;
+}
+
+/// Evaluates the samples that can matter, req.hot first; true as soon as the motion is
+/// known to be below req.below_m (the evaluation stops there).
+bool scan_samples(BoundedScan& scan) {
+  const int n = static_cast<int>(scan.feet.t_s.size()), count = n * kLegs;
+  if (scan.req.hot)
+    for (int s : *scan.req.hot)
+      if (!scan.done(s) && scan.evaluate(s)) return true;
+  if (!scan.bounded) {
+    for (int s = 0; s < count; ++s)
+      if (!scan.done(s) && scan.evaluate(s)) return true;
+    return false;
+  }
+  // Every req.stride-th instant and the last, each skipped when its own reference shows it
+  // harmless; then the instants between them (refine_between). Skipping with the minima
+  // found so far is safe: they only decrease.
+  const std::vector<int> top = coarse_instants(n, scan.req.stride);
+  for (int i : top)
+    for (int leg = 0; leg < kLegs; ++leg) {
+      const int s = i * kLegs + leg;
+      if (!scan.done(s) && !scan.harmless(s, 0.0) && scan.evaluate(s)) return true;
+    }
+  for (int leg = 0; leg < kLegs; ++leg)
+    if (refine_between(scan, top, leg)) return true;
+  return false;
+}
+
 }  // namespace
 
 MarginEvaluation bounded_margin(const RobotModel& model, const TrunkMotion& trunk,
@@ -345,122 +497,19 @@ MarginEvaluation bounded_margin(const RobotModel& model, const TrunkMotion& trun
   KinematicMargin& out = e.margin;
   out = fresh_margin(feet);
   Limit limit;
-  const int n = static_cast<int>(feet.t_s.size()), count = n * kLegs;
-  const bool bounded = model.leg_geometry == LegGeometry::kPaperPlanar;
-  if (static_cast<int>(refs.slot.size()) != count) {
-    refs.slot.assign(count, -1);
-    refs.entries.clear();
-    refs.generation = 0;
-    // The targets' path: the trunk keeps its attitude, so a target moves in its hip frame by
-    // |Δp_W(foot) − Δp_W(trunk)| from one instant to the next, at every height.
-    refs.path_m.assign(count, 0.0);
-    Vec3 trunk_prev = trunk.at(feet.t_s[0]).p_W;
-    for (int i = 1; i < n; ++i) {
-      const Vec3 trunk_now = trunk.at(feet.t_s[i]).p_W;
-      for (int leg = 0; leg < kLegs; ++leg)
-        refs.path_m[i * kLegs + leg] =
-            refs.path_m[(i - 1) * kLegs + leg] +
-            ((feet.p_W[i][leg] - feet.p_W[i - 1][leg]) - (trunk_now - trunk_prev)).norm();
-      trunk_prev = trunk_now;
-    }
-  }
-  // Sample s exactly, as motion_kinematic_margin evaluates it; it becomes s's reference. True
-  // when the motion is known to be below req.below_m.
+  const int count = static_cast<int>(feet.t_s.size()) * kLegs;
+  if (static_cast<int>(refs.slot.size()) != count) reset_references(refs, trunk, feet);
   const int stamp = ++refs.generation;
-  auto done = [&](int s) {
-    return refs.slot[s] >= 0 && refs.entries[refs.slot[s]].evaluation == stamp;
-  };
-  auto evaluate = [&](int s) {
-    const int i = s / kLegs, leg = s % kLegs;
-    const Vec3 p_H = target_in_hip(model, trunk.at(feet.t_s[i]), leg, feet.p_W[i][leg]);
-    const LegIkResult ik = leg_inverse_kinematics(model, leg, p_H);
-    limit.take(out, feet, s, leg_margin(model, leg, p_H, ik, out), p_H, ik);
-    if (refs.slot[s] < 0) {
-      refs.slot[s] = static_cast<int>(refs.entries.size());
-      refs.entries.emplace_back();
-    }
-    SampleReferences::Entry& entry = refs.entries[refs.slot[s]];
-    entry.height_m = height_m;
-    entry.evaluation = stamp;
-    if (bounded) entry.bound = sample_bound(model, leg, p_H, ik, kBoundRadius_m);
-    return out.value_m < req.below_m || (req.kind == Evaluation::kAdmission && !out.admitted);
-  };
-  // Bounds of any sample within delta_m of sample s's target at this height (from s's reference
-  // at its own height: moving the trunk by Δh moves a target by |Δh|), and whether they show
-  // it harmless: unable to lower the margin (and, for a check, any minimum or the IK).
-  auto harmless = [&](int s, double delta_m) {
-    if (refs.slot[s] < 0) return false;
-    const SampleReferences::Entry& entry = refs.entries[refs.slot[s]];
-    const SampleBound& b = entry.bound;
-    const double delta = delta_m + std::abs(height_m - entry.height_m) + 1e-12;
-    switch (req.kind) {
-      case Evaluation::kCandidate:
-        return value_clears(b, delta, out.value_m + kSkipAllowance_m);
-      case Evaluation::kCheck:
-        return cannot_matter(bounds_at(b, delta), out);
-      case Evaluation::kAdmission:
-        return admits(b, delta);
-    }
-    return false;
-  };
-  auto unasked = [&] {  // an admission's margin fields
-    const double nan = std::numeric_limits<double>::quiet_NaN();
-    out.value_m = out.reach_m = out.joint_m = out.joint_rad = out.t_s = nan;
-  };
-  auto stop = [&] {
-    e.complete = false;
-    e.limiting_sample = limit.sample;
-    if (req.kind == Evaluation::kAdmission) unasked();
-    return e;
-  };
-  if (req.hot)
-    for (int s : *req.hot)
-      if (!done(s) && evaluate(s)) return stop();
-  if (!bounded) {
-    for (int s = 0; s < count; ++s)
-      if (!done(s) && evaluate(s)) return stop();
-  } else {
-    // Every req.stride-th instant and the last, each skipped when its own reference shows it
-    // harmless; then, per leg, the instants between two of them are bounded from the nearer
-    // (its farthest target's distance), and where that cannot show them harmless the middle
-    // instant is taken (evaluated unless harmless) and both halves bounded again. Skipping
-    // with the minima found so far is safe: they only decrease.
-    std::vector<int> top;
-    for (int i = 0; i < n; i += req.stride) top.push_back(i);
-    if (top.back() != n - 1) top.push_back(n - 1);
-    for (int i : top)
-      for (int leg = 0; leg < kLegs; ++leg) {
-        const int s = i * kLegs + leg;
-        if (!done(s) && !harmless(s, 0.0) && evaluate(s)) return stop();
-      }
-    std::vector<std::pair<int, int>> pending;
-    for (int leg = 0; leg < kLegs; ++leg) {
-      for (std::size_t k = 0; k + 1 < top.size(); ++k) pending.emplace_back(top[k], top[k + 1]);
-      // Instants [from, to) from `ref`: their targets lie within the path from ref's (the
-      // rounding of the sums allowed for).
-      auto covers = [&](int ref, int from, int to) {
-        if (from >= to) return true;
-        const double path_m =
-            std::max(std::abs(refs.path_m[(to - 1) * kLegs + leg] - refs.path_m[ref * kLegs + leg]),
-                     std::abs(refs.path_m[from * kLegs + leg] - refs.path_m[ref * kLegs + leg]));
-        return harmless(ref * kLegs + leg, path_m * (1.0 + 1e-12) + 1e-12);
-      };
-      while (!pending.empty()) {
-        const auto [a, b] = pending.back();
-        pending.pop_back();
-        if (b - a < 2) continue;
-        const int mid = (a + b) / 2;
-        if (covers(a, a + 1, mid + 1) && covers(b, mid + 1, b)) continue;
-        const int s = mid * kLegs + leg;
-        if (!done(s) && !harmless(s, 0.0) && evaluate(s)) return stop();
-        pending.emplace_back(a, mid);
-        pending.emplace_back(mid, b);
-      }
-    }
-  }
+  const bool bounded = model.leg_geometry == LegGeometry::kPaperPlanar;
+  BoundedScan scan{model, trunk, feet, height_m, req, refs, out, limit, stamp, bounded};
+  const bool below = scan_samples(scan);
   e.limiting_sample = limit.sample;
-  if (req.kind == Evaluation::kCheck) name_constraint(model, limit, out);
-  if (req.kind == Evaluation::kAdmission) unasked();
+  if (below) {
+    e.complete = false;
+  } else if (req.kind == Evaluation::kCheck) {
+    name_constraint(model, limit, out);
+  }
+  if (req.kind == Evaluation::kAdmission) clear_unasked(out);
   return e;
 }
 

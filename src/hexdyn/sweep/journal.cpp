@@ -174,65 +174,82 @@ BuiltRecord check_built_record(const char* record, std::size_t size, RecordKind 
   return {record + kRecordHeaderBytes, static_cast<std::size_t>(payload)};
 }
 
-JournalScan scan_journal(const char* data, std::size_t size, const std::string& name,
-                         const SweepIdentity& expected) {
-  JournalScan scan;
-  std::size_t at = 0;
-  // A header of the older format: its identity is reported, its records are foreign.
+namespace {
+
+/// Reads the journal's header into scan (a damaged one reported in scan.damage); returns
+/// the offset of the first record, 0 when the header is damaged. A header of the older
+/// format: its identity is reported, its records are foreign.
+std::size_t scan_header(const char* data, std::size_t size, const std::string& name,
+                        JournalScan& scan) {
   const bool v1 = size >= kJournalHeaderV1Bytes && std::memcmp(data, kJournalMagicV1, 8) == 0 &&
                   get_pod<std::uint32_t>(data + 56) == crc32(data, 56);
-  // Bytes before the first intact record of a journal whose header is damaged are the
-  // header's remains, reported with it, not as a damaged record.
-  bool header_remains = false;
   if (v1) {
     scan.header_ok = true;
     scan.header.format = 1;
     scan.header.id = get_pod<std::uint64_t>(data + 8);
-    at = kJournalHeaderV1Bytes;
-  } else if (const std::size_t h = read_header(data, size, scan.header)) {
-    scan.header_ok = true;
-    at = h;
-  } else {
-    scan.header = SweepIdentity{};
-    scan.damage.push_back(name + ": damaged header (" +
-                          (size < kHeaderFixedBytes + 4
-                               ? std::string("file of ") + std::to_string(size) + " bytes"
-                               : std::string("checksum mismatch")) +
-                          "); its records are read by their own checksums");
-    header_remains = true;
+    return kJournalHeaderV1Bytes;
   }
+  if (const std::size_t h = read_header(data, size, scan.header)) {
+    scan.header_ok = true;
+    return h;
+  }
+  scan.header = SweepIdentity{};
+  scan.damage.push_back(name + ": damaged header (" +
+                        (size < kHeaderFixedBytes + 4
+                             ? std::string("file of ") + std::to_string(size) + " bytes"
+                             : std::string("checksum mismatch")) +
+                        "); its records are read by their own checksums");
+  return 0;
+}
 
-  // One damaged stretch [bad_from, next good record) is reported once.
+/// The damaged stretches of a journal named `name`: one stretch [bad_from, next good
+/// record) is reported once, into `damage`.
+struct DamageReport {
+  const std::string& name;
+  std::vector<std::string>& damage;
+  /// Bytes before the first intact record of a journal whose header is damaged are the
+  /// header's remains, reported with it, not as a damaged record.
+  bool header_remains = false;
   std::size_t bad_from = SIZE_MAX;
   std::string bad_what;
-  const auto end_damage = [&](std::size_t upto) {
+
+  /// A stretch starts at pos (unless one is open), `what` naming it.
+  void mark_bad(std::size_t pos, const std::string& what) {
+    if (bad_from == SIZE_MAX) {
+      bad_from = pos;
+      bad_what = what;
+    }
+  }
+  /// The open stretch, if any, ends at upto.
+  void end_damage(std::size_t upto) {
     if (bad_from == SIZE_MAX) return;
     if (header_remains) {
       bad_from = SIZE_MAX;
       return;
     }
-    scan.damage.push_back(name + ": " + bad_what + " at byte " + std::to_string(bad_from) +
-                          (upto > bad_from
-                               ? " (" + std::to_string(upto - bad_from) + " bytes skipped)"
-                               : std::string()) +
-                          "; its scenario is computed again");
+    damage.push_back(name + ": " + bad_what + " at byte " + std::to_string(bad_from) +
+                     (upto > bad_from ? " (" + std::to_string(upto - bad_from) + " bytes skipped)"
+                                      : std::string()) +
+                     "; its scenario is computed again");
     bad_from = SIZE_MAX;
-  };
-  const auto mark_bad = [&](std::size_t pos, const std::string& what) {
-    if (bad_from == SIZE_MAX) {
-      bad_from = pos;
-      bad_what = what;
-    }
-  };
+  }
+};
 
+}  // namespace
+
+JournalScan scan_journal(const char* data, std::size_t size, const std::string& name,
+                         const SweepIdentity& expected) {
+  JournalScan scan;
+  std::size_t at = scan_header(data, size, name, scan);
+  DamageReport report{name, scan.damage, !scan.header_ok, SIZE_MAX, std::string()};
   while (at < size) {
     if (size - at < 4 || get_pod<std::uint32_t>(data + at) != kRecordMagic) {
-      if (bad_from == SIZE_MAX) mark_bad(at, "unreadable record");
+      if (report.bad_from == SIZE_MAX) report.mark_bad(at, "unreadable record");
       ++at;
       continue;
     }
     if (size - at < kRecordHeaderBytes + kRecordTrailerBytes) {
-      mark_bad(at, "truncated record (" + std::to_string(size - at) + " bytes)");
+      report.mark_bad(at, "truncated record (" + std::to_string(size - at) + " bytes)");
       break;
     }
     const auto kind = get_pod<std::uint32_t>(data + at + 4);
@@ -242,19 +259,19 @@ JournalScan scan_journal(const char* data, std::size_t size, const std::string& 
     const std::string which = "record of scenario " + padded(index);
     if (psize > kMaxPayload || psize > size - at - kRecordHeaderBytes - kRecordTrailerBytes) {
       // A length past the end: a cut-off last record, or a damaged length field.
-      mark_bad(at, (psize > kMaxPayload ? "damaged " : "truncated ") + which);
+      report.mark_bad(at, (psize > kMaxPayload ? "damaged " : "truncated ") + which);
       ++at;
       continue;
     }
     const std::size_t body = kRecordHeaderBytes + static_cast<std::size_t>(psize);
     const auto crc = get_pod<std::uint32_t>(data + at + body);
     if (crc != crc32(data + at + 4, body - 4)) {
-      mark_bad(at, "damaged " + which + " (checksum mismatch)");
+      report.mark_bad(at, "damaged " + which + " (checksum mismatch)");
       ++at;
       continue;
     }
-    end_damage(at);
-    header_remains = false;
+    report.end_damage(at);
+    report.header_remains = false;
     if (ident != expected.id) {
       scan.foreign_record = true;
     } else if (kind == static_cast<std::uint32_t>(RecordKind::kRow) ||
@@ -264,7 +281,7 @@ JournalScan scan_journal(const char* data, std::size_t size, const std::string& 
     }
     at += body + kRecordTrailerBytes;
   }
-  end_damage(size);
+  report.end_damage(size);
   return scan;
 }
 

@@ -184,21 +184,22 @@ std::size_t SweepSpec::scenario_count() const {
   return n;
 }
 
-SweepSpec load_sweep(const std::string& path) {
-  SweepSpec spec;
-  spec.sweep_yaml = read_text_file(path);
-  const YAML::Node root = parse_yaml_text(spec.sweep_yaml, path);
-  const SpecReader r(path);
-  r.check_keys(root, "", {"name", "base", "set", "axes"});
+namespace {
 
+/// `name:`, the sweep file's stem when not given.
+std::string read_sweep_name(const SpecReader& r, const YAML::Node& root, const std::string& path) {
   const YAML::Node name = root["name"];
   if (name.IsDefined() && !name.IsNull()) {
     if (!name.IsScalar()) r.fail_value("name", name, "a string");
-    spec.name = name.Scalar();
-  } else {
-    spec.name = fs::path(path).stem().string();
+    return name.Scalar();
   }
+  return fs::path(path).stem().string();
+}
 
+/// `base:` the scene file the axes vary (relative to the sweep file), into spec.base_path;
+/// returns its tree, the files it inherits listed in chain.
+YAML::Node read_sweep_base(const SpecReader& r, const YAML::Node& root, const std::string& path,
+                           SweepSpec& spec, std::vector<std::string>& chain) {
   const YAML::Node base = root["base"];
   if (!base.IsDefined() || base.IsNull())
     r.fail("base", "missing, this key is required (the scene file the axes vary)");
@@ -210,37 +211,106 @@ SweepSpec load_sweep(const std::string& path) {
     r.fail_value("base", base,
                  "the path of a scene file, relative to the sweep file (" + spec.base_path +
                      " is not a file)");
-  std::vector<std::string> chain;
-  YAML::Node tree = load_scene_tree(spec.base_path, &chain);
+  return load_scene_tree(spec.base_path, &chain);
+}
 
-  const YAML::Node set = root["set"];
+/// `set:` the keys every scenario fixes, into spec.fixed; returns their key paths.
+std::set<std::string> read_fixed(const SpecReader& r, const YAML::Node& set, SweepSpec& spec) {
   std::set<std::string> fixed_keys;
-  if (set.IsDefined() && !set.IsNull()) {
-    if (!set.IsMap()) r.fail_value("set", set, "a mapping of dotted key paths to values");
-    for (const auto& kv : set) {
-      const std::string key = kv.first.Scalar();
-      for (const auto& k : split_key_path(key))
-        if (k.empty()) r.fail("set." + key, "empty key in the dotted path");
-      if (kv.second.IsMap())
-        r.fail_value("set." + key, kv.second,
-                     "a value or a list (write nested keys as dotted paths)");
-      spec.fixed.push_back({key, yaml_inline(kv.second)});
-      fixed_keys.insert(key);
-    }
+  if (!set.IsDefined() || set.IsNull()) return fixed_keys;
+  if (!set.IsMap()) r.fail_value("set", set, "a mapping of dotted key paths to values");
+  for (const auto& kv : set) {
+    const std::string key = kv.first.Scalar();
+    for (const auto& k : split_key_path(key))
+      if (k.empty()) r.fail("set." + key, "empty key in the dotted path");
+    if (kv.second.IsMap())
+      r.fail_value("set." + key, kv.second,
+                   "a value or a list (write nested keys as dotted paths)");
+    spec.fixed.push_back({key, yaml_inline(kv.second)});
+    fixed_keys.insert(key);
   }
-  const std::string base_source = path + " (base " + spec.base_path + ")";
-  for (const auto& ov : spec.fixed) apply_override(tree, ov, base_source);
-  spec.base_tree_yaml = emit(tree);
-  const Scene base_scene = scene_from_yaml(tree, base_source);
-  spec.base_config_yaml = base_scene.resolved_yaml;
-  const YAML::Node resolved = YAML::Load(spec.base_config_yaml);
+  return fixed_keys;
+}
 
-  const YAML::Node axes = root["axes"];
+/// What the axes are read against: the resolved base scene, its file (for messages), the
+/// keys fixed by set: and the keys of the axes read so far (each key on one axis only).
+struct AxisContext {
+  const SpecReader& r;
+  const std::string& path;       ///< the sweep file
+  const std::string& base_path;  ///< the base scene file
+  const YAML::Node& resolved;    ///< the base scene, resolved
+  const std::set<std::string>& fixed_keys;
+  std::set<std::string> axis_keys;
+};
+
+/// A cases axis {cases: [...], name}, at `at`: its name and keys on no other axis and not
+/// fixed by set:.
+SweepAxis read_cases_axis(AxisContext& ctx, const YAML::Node& a, const std::string& at) {
+  SweepAxis axis;
+  ctx.r.check_keys(a, at, {"cases", "name"});
+  read_cases(ctx.r, a, at, ctx.path, axis);
+  if (!ctx.axis_keys.insert(axis.key).second)
+    ctx.r.fail_value(at + ".name", YAML::Node(axis.key),
+                     "a name no other axis has (name each cases axis)");
+  for (const std::string& k : axis.case_keys) {
+    if (ctx.fixed_keys.count(k))
+      ctx.r.fail(at + ".cases", "got key " + k + ", expected a key not also fixed by set:");
+    if (!ctx.axis_keys.insert(k).second)
+      ctx.r.fail(at + ".cases", "got key " + k + ", expected each key on one axis only");
+  }
+  return axis;
+}
+
+/// A key axis {key, values} or {key, range}, at `at`: a key of the base scene holding a
+/// single value, on no other axis and not fixed by set:, and exactly one of values, range.
+SweepAxis read_key_axis(AxisContext& ctx, const YAML::Node& a, const std::string& at) {
+  const SpecReader& r = ctx.r;
+  SweepAxis axis;
+  r.check_keys(a, at, {"key", "values", "range"});
+  const YAML::Node key = a["key"];
+  if (!key.IsDefined() || key.IsNull()) r.fail(at + ".key", "missing, this key is required");
+  if (!key.IsScalar() || key.Scalar().empty()) r.fail_value(at + ".key", key, "a dotted key path");
+  axis.key = key.Scalar();
+  const auto keys = split_key_path(axis.key);
+  for (const auto& k : keys)
+    if (k.empty()) r.fail_value(at + ".key", key, "a dotted key path without empty parts");
+  const YAML::Node target = lookup(ctx.resolved, keys);
+  if (!target.IsDefined()) {
+    const std::string near = keys_near(ctx.resolved, keys);
+    r.fail_value(at + ".key", key,
+                 "a key of the base scene " + ctx.base_path +
+                     (near.empty() ? std::string() : " (near: " + near + ")"));
+  }
+  if (!target.IsScalar())
+    r.fail_value(at + ".key", key,
+                 std::string("a key holding a single value (it holds a ") +
+                     (target.IsMap() ? "group of keys" : "list") + ")");
+  if (ctx.fixed_keys.count(axis.key))
+    r.fail_value(at + ".key", key, "a key not also fixed by set:");
+  if (!ctx.axis_keys.insert(axis.key).second)
+    r.fail_value(at + ".key", key, "each key on one axis only (and not also in cases)");
+
+  const bool has_values = a["values"].IsDefined(), has_range = a["range"].IsDefined();
+  if (has_values == has_range)
+    r.fail(at, std::string("got ") +
+                   (has_values ? "both values and range" : "neither values nor range") +
+                   ", expected exactly one of them");
+  if (has_values)
+    read_values(r, a["values"], at + ".values", axis);
+  else
+    read_range(r, a["range"], at + ".range", axis);
+  finish_axis(r, at + (has_values ? ".values" : ".range"), axis);
+  return axis;
+}
+
+/// `axes:` a non-empty list of key and cases axes, into spec.axes, of at most
+/// kMaxScenarios scenarios together.
+void read_axes(AxisContext& ctx, const YAML::Node& axes, SweepSpec& spec) {
+  const SpecReader& r = ctx.r;
   if (!axes.IsDefined() || axes.IsNull())
     r.fail("axes", "missing, this key is required (a list of {key, values} or {key, range})");
   if (!axes.IsSequence() || axes.size() == 0)
     r.fail_value("axes", axes, "a non-empty list of {key, values} or {key, range}");
-  std::set<std::string> axis_keys;
   std::size_t count = 1;
   for (std::size_t i = 0; i < axes.size(); ++i) {
     const std::string at = "axes[" + std::to_string(i) + "]";
@@ -248,66 +318,20 @@ SweepSpec load_sweep(const std::string& path) {
     if (!a.IsMap())
       r.fail_value(at, a,
                    "a mapping {key: K, values: [...]}, {key: K, range: {...}} or {cases: [...]}");
-    SweepAxis axis;
-    if (a["cases"].IsDefined()) {
-      r.check_keys(a, at, {"cases", "name"});
-      read_cases(r, a, at, path, axis);
-      if (!axis_keys.insert(axis.key).second)
-        r.fail_value(at + ".name", YAML::Node(axis.key),
-                     "a name no other axis has (name each cases axis)");
-      for (const std::string& k : axis.case_keys) {
-        if (fixed_keys.count(k))
-          r.fail(at + ".cases", "got key " + k + ", expected a key not also fixed by set:");
-        if (!axis_keys.insert(k).second)
-          r.fail(at + ".cases", "got key " + k + ", expected each key on one axis only");
-      }
-      count *= axis.size();
-      if (count > kMaxScenarios)
-        r.fail("axes", "got more than " + std::to_string(kMaxScenarios) +
-                           " scenarios, expected at most that many");
-      spec.axes.push_back(std::move(axis));
-      continue;
-    }
-    r.check_keys(a, at, {"key", "values", "range"});
-    const YAML::Node key = a["key"];
-    if (!key.IsDefined() || key.IsNull()) r.fail(at + ".key", "missing, this key is required");
-    if (!key.IsScalar() || key.Scalar().empty())
-      r.fail_value(at + ".key", key, "a dotted key path");
-    axis.key = key.Scalar();
-    const auto keys = split_key_path(axis.key);
-    for (const auto& k : keys)
-      if (k.empty()) r.fail_value(at + ".key", key, "a dotted key path without empty parts");
-    const YAML::Node target = lookup(resolved, keys);
-    if (!target.IsDefined()) {
-      const std::string near = keys_near(resolved, keys);
-      r.fail_value(at + ".key", key,
-                   "a key of the base scene " + spec.base_path +
-                       (near.empty() ? std::string() : " (near: " + near + ")"));
-    }
-    if (!target.IsScalar())
-      r.fail_value(at + ".key", key,
-                   std::string("a key holding a single value (it holds a ") +
-                       (target.IsMap() ? "group of keys" : "list") + ")");
-    if (fixed_keys.count(axis.key)) r.fail_value(at + ".key", key, "a key not also fixed by set:");
-    if (!axis_keys.insert(axis.key).second)
-      r.fail_value(at + ".key", key, "each key on one axis only (and not also in cases)");
-
-    const bool has_values = a["values"].IsDefined(), has_range = a["range"].IsDefined();
-    if (has_values == has_range)
-      r.fail(at, std::string("got ") +
-                     (has_values ? "both values and range" : "neither values nor range") +
-                     ", expected exactly one of them");
-    if (has_values)
-      read_values(r, a["values"], at + ".values", axis);
-    else
-      read_range(r, a["range"], at + ".range", axis);
-    finish_axis(r, at + (has_values ? ".values" : ".range"), axis);
+    SweepAxis axis =
+        a["cases"].IsDefined() ? read_cases_axis(ctx, a, at) : read_key_axis(ctx, a, at);
     count *= axis.size();
     if (count > kMaxScenarios)
       r.fail("axes", "got more than " + std::to_string(kMaxScenarios) +
                          " scenarios, expected at most that many");
     spec.axes.push_back(std::move(axis));
   }
+}
+
+/// The sweep's input files: the sweep file, the base scene with what it inherits, the
+/// URDFs of a robot.urdf axis and of the cases.
+void add_sweep_inputs(SweepSpec& spec, const std::string& path,
+                      const std::vector<std::string>& chain, const YAML::Node& tree) {
   add_input(spec.inputs, "sweep file", path);
   for (InputFile& f : scene_inputs(chain, tree))
     add_input(spec.inputs, f.role == "scene" ? "base scene" : f.role, f.path);
@@ -319,9 +343,13 @@ SweepSpec load_sweep(const std::string& path) {
   // A case's URDF is resolved from the sweep file (read_cases).
   for (const SweepAxis& axis : spec.axes)
     if (axis.is_cases()) add_case_inputs(spec.inputs, case_list(axis));
-  // Each value once against its key, on the base scene: a value out of range is found
-  // here without looking at any combination of values. The value is set on the base's
-  // SceneTree, which shares every map it does not change (no copy of the base per value).
+}
+
+/// Each value once against its key, on the base scene: a value out of range is found
+/// here without looking at any combination of values (its message into axis.errors). The
+/// value is set on the base's SceneTree, which shares every map it does not change (no
+/// copy of the base per value).
+void check_axis_values(const SpecReader& r, SweepSpec& spec, const YAML::Node& tree) {
   const SceneTree base_tree(tree);
   for (SweepAxis& axis : spec.axes) {
     axis.errors.assign(axis.size(), std::string());
@@ -347,6 +375,30 @@ SweepSpec load_sweep(const std::string& path) {
       }
     }
   }
+}
+
+}  // namespace
+
+SweepSpec load_sweep(const std::string& path) {
+  SweepSpec spec;
+  spec.sweep_yaml = read_text_file(path);
+  const YAML::Node root = parse_yaml_text(spec.sweep_yaml, path);
+  const SpecReader r(path);
+  r.check_keys(root, "", {"name", "base", "set", "axes"});
+  spec.name = read_sweep_name(r, root, path);
+  std::vector<std::string> chain;
+  YAML::Node tree = read_sweep_base(r, root, path, spec, chain);
+  const std::set<std::string> fixed_keys = read_fixed(r, root["set"], spec);
+  const std::string base_source = path + " (base " + spec.base_path + ")";
+  for (const auto& ov : spec.fixed) apply_override(tree, ov, base_source);
+  spec.base_tree_yaml = emit(tree);
+  const Scene base_scene = scene_from_yaml(tree, base_source);
+  spec.base_config_yaml = base_scene.resolved_yaml;
+  const YAML::Node resolved = YAML::Load(spec.base_config_yaml);
+  AxisContext ctx{r, path, spec.base_path, resolved, fixed_keys, {}};
+  read_axes(ctx, root["axes"], spec);
+  add_sweep_inputs(spec, path, chain, tree);
+  check_axis_values(r, spec, tree);
   return spec;
 }
 

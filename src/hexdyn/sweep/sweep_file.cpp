@@ -152,41 +152,14 @@ void write_axes(H5Writer& w, Labeller& labels, const SweepSpec& spec) {
   labels.add(s::kAxisCoordinate);
 }
 
-/// /scenarios: one row per scenario; rows[i].index == i.
-void write_scenarios(H5Writer& w, Labeller& labels, const SweepSpec& spec,
-                     const std::vector<ScenarioSummary>& rows) {
-  const std::size_t n = rows.size();
+/// /scenarios' identity columns for n scenarios: each scenario's id, its index on every
+/// axis, and per axis its value (in the key's units, or as words).
+void write_scenario_grid(H5Writer& w, Labeller& labels, const SweepSpec& spec, std::size_t n) {
   const std::size_t A = spec.axes.size();
-  // One column of a summary field, in scenario order.
-  const auto doubles = [&](const s::DatasetSpec& d, double ScenarioSummary::*field) {
-    std::vector<double> v(n);
-    for (std::size_t i = 0; i < n; ++i) v[i] = rows[i].*field;
-    write_doubles(w, d, {n}, v);
-    labels.add(d);
-  };
-  const auto counts = [&](const s::DatasetSpec& d, int ScenarioSummary::*field) {
-    std::vector<std::int32_t> v(n);
-    for (std::size_t i = 0; i < n; ++i) v[i] = rows[i].*field;
-    write_int32(w, d, {n}, v);
-    labels.add(d);
-  };
-  using JointArray = std::array<double, kJoints>;
-  const auto per_joint = [&](const s::DatasetSpec& d, JointArray ScenarioSummary::*field) {
-    std::vector<double> v(n * kJoints);
-    for (std::size_t i = 0; i < n; ++i)
-      std::copy((rows[i].*field).begin(), (rows[i].*field).end(),
-                v.begin() + static_cast<std::ptrdiff_t>(i * kJoints));
-    write_doubles(w, d, {n, kJoints}, v);
-    labels.add(d);
-  };
-
-  std::vector<std::string> ids(n), messages(n);
+  std::vector<std::string> ids(n);
   std::vector<std::int32_t> axis_index(n * A);
-  std::vector<std::int8_t> status(n);
   for (std::size_t i = 0; i < n; ++i) {
     ids[i] = scenario_id(spec, i);
-    messages[i] = rows[i].message;
-    status[i] = static_cast<std::int8_t>(rows[i].status);
     const auto gp = grid_point(spec, i);
     for (std::size_t a = 0; a < A; ++a) axis_index[i * A + a] = static_cast<std::int32_t>(gp[a]);
   }
@@ -212,11 +185,53 @@ void write_scenarios(H5Writer& w, Labeller& labels, const SweepSpec& spec,
     }
     w.set_string_attribute(d, s::kScenarioAxisKey.name, ax.key);
   }
+}
+
+/// /scenarios' outcome columns: each scenario's status (with the codes' meanings) and
+/// message.
+void write_scenario_outcomes(H5Writer& w, Labeller& labels,
+                             const std::vector<ScenarioSummary>& rows) {
+  const std::size_t n = rows.size();
+  std::vector<std::string> messages(n);
+  std::vector<std::int8_t> status(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    messages[i] = rows[i].message;
+    status[i] = static_cast<std::int8_t>(rows[i].status);
+  }
   w.write_int8(s::kScenarioStatus.path, {n}, status, s::kScenarioStatus.units);
   labels.add(s::kScenarioStatus);
   set_attribute(w, s::kScenarioStatusCodes, status_codes_text());
   w.write_strings(s::kScenarioMessage.path, messages, s::kScenarioMessage.units);
   labels.add(s::kScenarioMessage);
+}
+
+/// /scenarios' metrics, one column per summary field in scenario order (per joint: n ×
+/// kJoints), with the units their declarations state.
+void write_scenario_metrics(H5Writer& w, Labeller& labels,
+                            const std::vector<ScenarioSummary>& rows) {
+  const std::size_t n = rows.size();
+  // One column of a summary field, in scenario order.
+  const auto doubles = [&](const s::DatasetSpec& d, double ScenarioSummary::*field) {
+    std::vector<double> v(n);
+    for (std::size_t i = 0; i < n; ++i) v[i] = rows[i].*field;
+    write_doubles(w, d, {n}, v);
+    labels.add(d);
+  };
+  const auto counts = [&](const s::DatasetSpec& d, int ScenarioSummary::*field) {
+    std::vector<std::int32_t> v(n);
+    for (std::size_t i = 0; i < n; ++i) v[i] = rows[i].*field;
+    write_int32(w, d, {n}, v);
+    labels.add(d);
+  };
+  using JointArray = std::array<double, kJoints>;
+  const auto per_joint = [&](const s::DatasetSpec& d, JointArray ScenarioSummary::*field) {
+    std::vector<double> v(n * kJoints);
+    for (std::size_t i = 0; i < n; ++i)
+      std::copy((rows[i].*field).begin(), (rows[i].*field).end(),
+                v.begin() + static_cast<std::ptrdiff_t>(i * kJoints));
+    write_doubles(w, d, {n, kJoints}, v);
+    labels.add(d);
+  };
   counts(s::kScenarioSamples, &ScenarioSummary::samples);
   doubles(s::kScenarioDuration, &ScenarioSummary::duration_s);
   doubles(s::kScenarioDistance, &ScenarioSummary::distance_m);
@@ -232,6 +247,14 @@ void write_scenarios(H5Writer& w, Labeller& labels, const SweepSpec& spec,
   counts(s::kScenarioRelaxedSamples, &ScenarioSummary::relaxed_samples);
   counts(s::kScenarioFailedSamples, &ScenarioSummary::failed_samples);
   doubles(s::kScenarioWallTime, &ScenarioSummary::wall_time_s);
+}
+
+/// /scenarios: one row per scenario; rows[i].index == i.
+void write_scenarios(H5Writer& w, Labeller& labels, const SweepSpec& spec,
+                     const std::vector<ScenarioSummary>& rows) {
+  write_scenario_grid(w, labels, spec, rows.size());
+  write_scenario_outcomes(w, labels, rows);
+  write_scenario_metrics(w, labels, rows);
   set_attribute(w, s::kScenariosMissingValues,
                 std::string("metrics are NaN for scenarios whose status is not 0 (ok)"));
 }
