@@ -96,8 +96,15 @@ def check_layout(path):
             kind = "string" if h5py.check_string_dtype(ds.dtype) else str(ds.dtype)
             if kind != spec.element:
                 raise SystemExit(f"plot_envelope: {path}: {spec.path} element {kind}, expected {spec.element}")
+        # Group coordinates (schema.hpp): a group's copy of a root coordinate, a dimension
+        # scale below the root, equal to it.
         found = []
         f.visititems(lambda n, o: found.append("/" + n) if isinstance(o, h5py.Dataset) else None)
+        for p in set(found) - declared:
+            ds, root = f[p], f.get("/" + p.rsplit("/", 1)[1])
+            if ("/" in p[1:] and h5py.h5ds.is_scale(ds.id) and isinstance(root, h5py.Dataset)
+                    and root.name in declared and np.array_equal(ds[()], root[()])):
+                declared.add(p)
         extra = sorted(set(found) - declared)
         if extra:
             raise SystemExit(f"plot_envelope: {path}: undeclared datasets {extra}")
