@@ -214,108 +214,128 @@ def check_file(path, units_seen):
     return groups, dims
 
 
+def check_exercised(files, groups, dims):
+    """What the files exercise: the named and valued coordinates, the kept run's groups."""
+    result, sweep, envelope = files
+    check({"time", "joint", "leg", "xyz", "wxyz", "impact", "message", "gait_cycle",
+           "terrain_point"} <= dims[result], f"result dimensions {sorted(dims[result])}")
+    check({"time", "joint", "leg", "scenario", "axis", "terrain.riser_height"} <= dims[sweep]
+          and any(g.startswith("/runs/") and g.endswith("/joints") for g in groups[sweep]),
+          f"sweep dimensions {sorted(dims[sweep])}")
+    check({"tread_depth", "duty_factor", "peak_speed", "criterion", "probe"} <= dims[envelope],
+          f"envelope dimensions {sorted(dims[envelope])}")
+
+
+def check_result_values(result):
+    """The result's coordinates and values against h5py; the reader's Result. Returns it."""
+    with h5py.File(result, "r") as f:
+        torque = f["joints/torque"][()]
+        times = f["time"][()]
+        legs0 = f["impacts/leg"][()]
+    for engine in ENGINES:
+        with xr.open_dataset(result, engine=engine) as root, \
+                xr.open_dataset(result, engine=engine, group="joints") as j:
+            check(list(root.joint.values) == list(hr.JOINT_NAMES), f"joint names ({engine})")
+            check(list(root.leg.values) == list(hr.LEG_NAMES), f"leg names ({engine})")
+            check(list(root.wxyz.values) == list("wxyz"), f"wxyz labels ({engine})")
+            t = j.torque.assign_coords(joint=root.joint)
+            check(np.array_equal(t.sel(joint="L2_femur").values, torque[:, 4]),
+                  f"torque.sel(joint='L2_femur') ({engine})")
+            # The group alone: its own coordinates select.
+            alone = {"joint", "time"} <= set(j.coords)
+            check(alone and np.array_equal(j.torque.sel(joint="L2_femur").values, torque[:, 4]),
+                  f"torque of the group alone .sel(joint='L2_femur') ({engine})")
+            check(alone and np.array_equal(j.torque.sel(time=times[5]).values, torque[5]),
+                  f"torque of the group alone .sel(time=...) ({engine})")
+            check(j.torque.attrs.get("units") == "N m", f"torque units ({engine})")
+            check(j.torque.dims == ("time", "joint"), f"torque dims ({engine})")
+    res = hexdyn.open_result(result)
+    ds = res.to_xarray("contacts")
+    check(ds.force.dims == ("time", "leg", "xyz") and list(ds.leg.values) == list(hr.LEG_NAMES),
+          "Result.to_xarray('contacts')")
+    check(set(legs0) <= set(range(6)) and res.to_xarray().impacts_leg.dims == ("impact",),
+          "/impacts/leg 0-based on the impact dimension")
+    return res
+
+
+def check_sweep_reader(sweep):
+    sw = hexdyn.open_sweep(sweep)
+    with xr.open_dataset(sweep, engine="netcdf4") as root:
+        for a in sw.axes:
+            check(np.allclose(root[a.key].values, a.values), f"axis {a.key} coordinate")
+        check(root["terrain.riser_height"].attrs.get("units") == "m", "axis units m")
+        check(root["gait.duty_factor"].attrs.get("units") == "1", "axis units 1")
+    x = sw.to_xarray()
+    mask = np.isclose(np.asarray(sw.table["axis_0"]), 0.04)
+    sel = x.cost_of_transport.sel({"terrain.riser_height": 0.04}).values.ravel()
+    check(np.allclose(np.sort(sel), np.sort(sw.table["cost_of_transport"][mask])),
+          "Sweep.to_xarray sel by riser height")
+    check(x.peak_torque.dims[-1] == "joint", "per-joint metric on the joint dimension")
+    df = sw.to_dataframe()
+    check(np.allclose(df["peak_torque[L2_femur]"], sw.table["peak_torque"][:, 4]),
+          "to_dataframe per-joint column")
+    check(np.allclose(df["terrain.riser_height"], sw.table["axis_0"]), "to_dataframe axis")
+
+
+def check_envelope_reader(envelope):
+    env = hx.open_envelope(envelope)
+    with h5py.File(envelope, "r") as f:
+        criteria = [hr.decode_text(c) for c in f["axes/criteria"][()]]
+    check(env.riser_max.dims == ("tread_depth", "duty_factor", "peak_speed", "criterion")
+          and list(env.criterion.values) == criteria, "envelope dims and criteria")
+
+
+def check_units(units):
+    if shutil.which("udunits2"):
+        for u in sorted(units):
+            r = subprocess.run(["udunits2", "-H", u, "-W", ""], capture_output=True,
+                               stdin=subprocess.DEVNULL)
+            check(r.returncode == 0 and not r.stderr, f"udunits2 parses {u!r}")
+    else:
+        print("skip: udunits2 (Debian udunits-bin) not installed")
+    check({"s", "m", "N m", "N^2 m^2", "1"} <= units, f"units seen {sorted(units)}")
+
+
+def check_version_1(result, res, v1):
+    """A version-1 file (the result with the version-1 names, 1-based legs and no group
+    coordinates) reads as its version-2 original `res`."""
+    shutil.copy(result, v1)
+    with h5py.File(v1, "r+") as f:
+        copies = []
+        f.visititems(lambda n, o: copies.append(n) if isinstance(o, h5py.Dataset)
+                     and is_group_coordinate(o) else None)
+        for n in copies:
+            del f[n]
+        f["meta"].attrs["schema"] = "hexdyn-result/1"
+        f["meta"].attrs["schema_version"] = np.int64(1)
+        f.move("power/per_joint", "power/joint")
+        f.move("energy/per_joint", "energy/joint")
+        f["impacts/leg"][...] = f["impacts/leg"][()] + 1
+    old = hexdyn.open_result(v1)
+    check(np.array_equal(old["/impacts/leg"], res["/impacts/leg"]), "version 1: impact legs")
+    check(np.array_equal(old["/power/per_joint"], res["/power/per_joint"]),
+          "version 1: /power/joint read as /power/per_joint")
+    check(old.to_xarray("energy").per_joint.dims == ("joint",), "version 1: to_xarray")
+
+
 def main():
     tmp = tempfile.mkdtemp()
     try:
-        result, sweep, envelope = (os.path.join(tmp, n) for n in ("r.h5", "s.h5", "e.h5"))
+        files = result, sweep, envelope = tuple(os.path.join(tmp, n)
+                                                for n in ("r.h5", "s.h5", "e.h5"))
         run("run", os.path.join(SRC, "configs", "paper.yaml"), "-o", result)
         run("sweep", os.path.join(SRC, "configs", "sweeps", "smoke.yaml"), "-o", sweep,
             "--keep-runs")
         run("envelope", os.path.join(SRC, "tests", "data", "envelope_quick.yaml"), "-o", envelope)
-        units = set()
-        groups, dims = {}, {}
-        for path in (result, sweep, envelope):
+        units, groups, dims = set(), {}, {}
+        for path in files:
             groups[path], dims[path] = check_file(path, units)
-        # What the files exercise: the named and valued coordinates, the kept run's groups.
-        check({"time", "joint", "leg", "xyz", "wxyz", "impact", "message", "gait_cycle",
-               "terrain_point"} <= dims[result], f"result dimensions {sorted(dims[result])}")
-        check({"time", "joint", "leg", "scenario", "axis", "terrain.riser_height"} <= dims[sweep]
-              and any(g.startswith("/runs/") and g.endswith("/joints") for g in groups[sweep]),
-              f"sweep dimensions {sorted(dims[sweep])}")
-        check({"tread_depth", "duty_factor", "peak_speed", "criterion", "probe"} <= dims[envelope],
-              f"envelope dimensions {sorted(dims[envelope])}")
-
-        # Coordinates and values against h5py.
-        with h5py.File(result, "r") as f:
-            torque = f["joints/torque"][()]
-            times = f["time"][()]
-            legs0 = f["impacts/leg"][()]
-        for engine in ENGINES:
-            with xr.open_dataset(result, engine=engine) as root, \
-                    xr.open_dataset(result, engine=engine, group="joints") as j:
-                check(list(root.joint.values) == list(hr.JOINT_NAMES), f"joint names ({engine})")
-                check(list(root.leg.values) == list(hr.LEG_NAMES), f"leg names ({engine})")
-                check(list(root.wxyz.values) == list("wxyz"), f"wxyz labels ({engine})")
-                t = j.torque.assign_coords(joint=root.joint)
-                check(np.array_equal(t.sel(joint="L2_femur").values, torque[:, 4]),
-                      f"torque.sel(joint='L2_femur') ({engine})")
-                # The group alone: its own coordinates select.
-                alone = {"joint", "time"} <= set(j.coords)
-                check(alone and np.array_equal(j.torque.sel(joint="L2_femur").values,
-                                               torque[:, 4]),
-                      f"torque of the group alone .sel(joint='L2_femur') ({engine})")
-                check(alone and np.array_equal(j.torque.sel(time=times[5]).values, torque[5]),
-                      f"torque of the group alone .sel(time=...) ({engine})")
-                check(j.torque.attrs.get("units") == "N m", f"torque units ({engine})")
-                check(j.torque.dims == ("time", "joint"), f"torque dims ({engine})")
-        res = hexdyn.open_result(result)
-        ds = res.to_xarray("contacts")
-        check(ds.force.dims == ("time", "leg", "xyz") and list(ds.leg.values) == list(hr.LEG_NAMES),
-              "Result.to_xarray('contacts')")
-        check(set(legs0) <= set(range(6)) and res.to_xarray().impacts_leg.dims == ("impact",),
-              "/impacts/leg 0-based on the impact dimension")
-
-        sw = hexdyn.open_sweep(sweep)
-        with xr.open_dataset(sweep, engine="netcdf4") as root:
-            for a in sw.axes:
-                check(np.allclose(root[a.key].values, a.values), f"axis {a.key} coordinate")
-            check(root["terrain.riser_height"].attrs.get("units") == "m", "axis units m")
-            check(root["gait.duty_factor"].attrs.get("units") == "1", "axis units 1")
-        x = sw.to_xarray()
-        mask = np.isclose(np.asarray(sw.table["axis_0"]), 0.04)
-        sel = x.cost_of_transport.sel({"terrain.riser_height": 0.04}).values.ravel()
-        check(np.allclose(np.sort(sel), np.sort(sw.table["cost_of_transport"][mask])),
-              "Sweep.to_xarray sel by riser height")
-        check(x.peak_torque.dims[-1] == "joint", "per-joint metric on the joint dimension")
-        df = sw.to_dataframe()
-        check(np.allclose(df["peak_torque[L2_femur]"], sw.table["peak_torque"][:, 4]),
-              "to_dataframe per-joint column")
-        check(np.allclose(df["terrain.riser_height"], sw.table["axis_0"]), "to_dataframe axis")
-
-        env = hx.open_envelope(envelope)
-        with h5py.File(envelope, "r") as f:
-            criteria = [hr.decode_text(c) for c in f["axes/criteria"][()]]
-        check(env.riser_max.dims == ("tread_depth", "duty_factor", "peak_speed", "criterion")
-              and list(env.criterion.values) == criteria, "envelope dims and criteria")
-
-        if shutil.which("udunits2"):
-            for u in sorted(units):
-                r = subprocess.run(["udunits2", "-H", u, "-W", ""], capture_output=True,
-                                   stdin=subprocess.DEVNULL)
-                check(r.returncode == 0 and not r.stderr, f"udunits2 parses {u!r}")
-        else:
-            print("skip: udunits2 (Debian udunits-bin) not installed")
-        check({"s", "m", "N m", "N^2 m^2", "1"} <= units, f"units seen {sorted(units)}")
-
-        # A version-1 file: the result with the version-1 names and 1-based legs.
-        v1 = os.path.join(tmp, "v1.h5")
-        shutil.copy(result, v1)
-        with h5py.File(v1, "r+") as f:
-            copies = []  # version 1 had no group coordinates
-            f.visititems(lambda n, o: copies.append(n) if isinstance(o, h5py.Dataset)
-                         and is_group_coordinate(o) else None)
-            for n in copies:
-                del f[n]
-            f["meta"].attrs["schema"] = "hexdyn-result/1"
-            f["meta"].attrs["schema_version"] = np.int64(1)
-            f.move("power/per_joint", "power/joint")
-            f.move("energy/per_joint", "energy/joint")
-            f["impacts/leg"][...] = f["impacts/leg"][()] + 1
-        old = hexdyn.open_result(v1)
-        check(np.array_equal(old["/impacts/leg"], res["/impacts/leg"]), "version 1: impact legs")
-        check(np.array_equal(old["/power/per_joint"], res["/power/per_joint"]),
-              "version 1: /power/joint read as /power/per_joint")
-        check(old.to_xarray("energy").per_joint.dims == ("joint",), "version 1: to_xarray")
+        check_exercised(files, groups, dims)
+        res = check_result_values(result)
+        check_sweep_reader(sweep)
+        check_envelope_reader(envelope)
+        check_units(units)
+        check_version_1(result, res, os.path.join(tmp, "v1.h5"))
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
     if failures:
