@@ -36,11 +36,14 @@ def cli_error(hexdyn, argv):
 
 
 def file_datasets(path):
-    """{"/path": value} of every dataset of an HDF5 file, as h5py reads it, and the attributes:
+    """{"/path": value} of every dataset of an HDF5 file, as h5py reads it, but the group
+    coordinates (copies of a root coordinate in a group, schema.hpp), and the attributes:
     /meta's by name, any other group's as "/group/name" (as hexdyn.Result.attrs)."""
     out, attrs = {}, {}
     with h5py.File(path, "r") as f:
         def visit(name, obj):
+            if isinstance(obj, h5py.Dataset) and "/" in name and h5py.h5ds.is_scale(obj.id):
+                return  # a group coordinate
             if isinstance(obj, h5py.Dataset):
                 out["/" + name] = (obj[()], obj.dtype, obj.attrs.get("units"))
             elif name != "meta":

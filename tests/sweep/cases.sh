@@ -55,6 +55,9 @@ for engine in ("h5netcdf", "netcdf4"):
     with xr.open_dataset(path, engine=engine, group="axes/0") as g:
         assert g["case_values"].dims == ("robot", "robot_key"), (engine, g["case_values"].dims)
         assert g["case_values"].values[1, 1] == "+y", engine
+        # The group alone carries its coordinates: the case labels and the keys they set.
+        assert list(g["robot"].values) == ["phantomx_mark4", "kraby"], engine
+        assert list(g["robot_key"].values) == list(robot.cases), engine
 print("cases: reader ok")
 PY
 

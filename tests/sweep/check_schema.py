@@ -7,9 +7,10 @@ hexdyn.results (bindings/python/hexdyn/results.py) parses it (the same declarati
 Every declared dataset is present with its `units` (none where declared ""; the unit of
 the key on a sweep axis), `long_name`, CF flags, dimension scales, shape and element type, every
 declared attribute with its element type, and the files hold nothing undeclared (no
-other dataset, group or attribute). A result file must hold the dynamics datasets; a
-sweep file is checked with its /runs/<id> groups as result layouts. Exit 1 with one
-line per problem."""
+other dataset, group or attribute) but the group coordinates: in a group, a copy of the
+root's coordinate of each dimension its datasets use, to which they are attached. A
+result file must hold the dynamics datasets; a sweep file is checked with its /runs/<id>
+groups as result layouts. Exit 1 with one line per problem."""
 import argparse
 import re
 import sys
@@ -86,9 +87,16 @@ class FileCheck:
                 problem(f"{where}: flags {values} {meanings!r}, declared {hr.FLAGS[spec.path]}")
             if np.asarray(obj.attrs.get("flag_values", [])).dtype != obj.dtype:
                 problem(f"{where}: flag_values not of the dataset's type")
-        # Dimension scales: a scale of its own name, or one attached per axis.
+        # Dimension scales: a scale of its own name, or one attached per axis, from the
+        # dataset's own group (the group coordinates of schema.hpp).
         if obj.ndim > 0 and "CLASS" not in obj.attrs and len(obj.dims[0]) == 0:
             problem(f"{where}: no dimension scale attached")
+        group = obj.parent.name
+        for k in range(obj.ndim if "CLASS" not in obj.attrs else 0):
+            for scale in obj.dims[k].values():
+                if scale.parent.name != group:
+                    problem(f"{where}: axis {k} attached to {scale.name}, not a coordinate of "
+                            f"{group}")
         for name in (S["kUnitsAttribute"], S["kLongNameAttribute"], "flag_values", "flag_meanings",
                      "DIMENSION_LIST", "CLASS", "NAME", "REFERENCE_LIST"):
             self.seen_attributes.add((self.full(path), name))
@@ -110,6 +118,32 @@ class FileCheck:
     def group(self, path):
         self.seen_groups.add(self.full(path))
 
+    def group_coordinate(self, obj):
+        """True when `obj`, a dataset the tables do not declare, is a group coordinate
+        G/D (schema.hpp): a dimension scale D in a group below the root, a copy of the
+        root's coordinate /D (element type, values, units, long_name); a problem when it is a
+        scale but not such a copy."""
+        if not h5py.h5ds.is_scale(obj.id) or obj.parent.name == (self.root or "/"):
+            return False
+        name = obj.name.rsplit("/", 1)[1]
+        root = self.f.get(f"{self.root}/{name}")
+        where = f"{self.source}:{obj.name}"
+        if not isinstance(root, h5py.Dataset) or root.name not in self.seen_datasets:
+            problem(f"{where}: a dimension scale with no declared coordinate {self.root}/{name}")
+            return True
+        same = (element_of(obj.dtype) == element_of(root.dtype) and obj.shape == root.shape
+                and np.array_equal(obj[()], root[()]))
+        for attr in (S["kUnitsAttribute"], S["kLongNameAttribute"]):
+            same = same and hr.decode_text(obj.attrs.get(attr)) == hr.decode_text(root.attrs.get(attr))
+        if not same:
+            problem(f"{where}: not a copy of the coordinate {root.name}")
+        if hr.decode_text(h5py.h5ds.get_scale_name(obj.id)) != name:
+            problem(f"{where}: dimension scale named {h5py.h5ds.get_scale_name(obj.id)!r}")
+        for attr in (S["kUnitsAttribute"], S["kLongNameAttribute"], "CLASS", "NAME",
+                     "REFERENCE_LIST"):
+            self.seen_attributes.add((obj.name, attr))
+        return True
+
     def undeclared(self, below=None, skip=()):
         """Everything below `below` (default: this check's root) not declared."""
         start = self.f[below or (self.root or "/")]
@@ -119,7 +153,7 @@ class FileCheck:
             if any(path == s or path.startswith(s + "/") for s in skip):
                 return
             if isinstance(obj, h5py.Dataset):
-                if path not in self.seen_datasets:
+                if path not in self.seen_datasets and not self.group_coordinate(obj):
                     problem(f"{self.source}:{path}: dataset not declared in the schema")
             elif path not in self.seen_groups and not any(
                     d.startswith(path + "/") for d in self.seen_datasets | self.seen_groups):

@@ -10,6 +10,7 @@
 #include <string_view>
 
 #include "hexdyn/core/errors.hpp"
+#include "hexdyn/io/h5_detail.hpp"
 
 namespace hexdyn {
 namespace {
@@ -38,7 +39,7 @@ const s::DatasetSpec* index_coordinate(const std::string& dim) {
 }
 
 /// Length of each axis of the dataset at `path`.
-std::vector<hsize_t> extent(const H5Writer& w, const std::string& path) {
+std::vector<std::uint64_t> extent(const H5Writer& w, const std::string& path) {
   const hid_t d = H5Dopen2(w.id(), path.c_str(), H5P_DEFAULT);
   if (d < 0) fail(w, "cannot open '" + path + "' to label it");
   const hid_t space = H5Dget_space(d);
@@ -47,7 +48,7 @@ std::vector<hsize_t> extent(const H5Writer& w, const std::string& path) {
   if (rank > 0) H5Sget_simple_extent_dims(space, dims.data(), nullptr);
   H5Sclose(space);
   H5Dclose(d);
-  return dims;
+  return {dims.begin(), dims.end()};
 }
 
 /// Number of words of a space-separated list.
@@ -55,17 +56,20 @@ std::int64_t word_count(const char* words) {
   return static_cast<std::int64_t>(split(words).size());
 }
 
+/// The group holding the object at `path` ("" for one directly below the file root).
+std::string parent_of(const std::string& path) { return path.substr(0, path.rfind('/')); }
+
 }  // namespace
 
 void Labeller::add(const s::DatasetSpec& spec, const std::string& path, const std::string& key) {
   std::vector<std::string> dims = split(s::dimension_names(spec.shape));
   for (std::string& d : dims)
     if (const auto p = d.find("{key}"); p != std::string::npos) d.replace(p, 5, key);
-  entries_.push_back({&spec, root_ + (path.empty() ? std::string(spec.path) : path), dims, key});
+  entries_.push_back(
+      {&spec, root_ + (path.empty() ? std::string(spec.path) : path), dims, key, {}});
 }
 
-void Labeller::finish() {
-  // Long names and flags.
+void Labeller::write_long_names_and_flags() {
   for (const Entry& e : entries_) {
     w_.set_text_attribute(
         e.path, s::kLongNameAttribute,
@@ -78,56 +82,85 @@ void Labeller::finish() {
       w_.set_text_attribute(e.path, "flag_meanings", f.meanings);
     }
   }
-  // Each dimension's length, from the first dataset that uses it.
-  std::map<std::string, hsize_t> length;
-  std::vector<std::vector<hsize_t>> extents;
-  for (const Entry& e : entries_) {
-    extents.push_back(extent(w_, e.path));
-    if (extents.back().size() != e.dims.size())
-      fail(w_, e.path + " has " + std::to_string(extents.back().size()) + " axes, its shape " +
+}
+
+std::map<std::string, std::uint64_t> Labeller::check_extents() {
+  std::map<std::string, std::uint64_t> length;  // from the first dataset that uses the dimension
+  for (Entry& e : entries_) {
+    e.extent = extent(w_, e.path);
+    if (e.extent.size() != e.dims.size())
+      fail(w_, e.path + " has " + std::to_string(e.extent.size()) + " axes, its shape " +
                    std::to_string(e.dims.size()));
-    for (std::size_t k = 0; k < e.dims.size(); ++k) length.emplace(e.dims[k], extents.back()[k]);
+    for (std::size_t k = 0; k < e.dims.size(); ++k) length.emplace(e.dims[k], e.extent[k]);
   }
-  // Coordinates: existing ones become scales; missing index ones are created.
+  for (const Entry& e : entries_)
+    for (std::size_t k = 0; k < e.dims.size(); ++k)
+      if (e.extent[k] != length[e.dims[k]])
+        fail(w_, e.path + " axis " + std::to_string(k) + " has " + std::to_string(e.extent[k]) +
+                     " entries, dimension '" + e.dims[k] + "' " +
+                     std::to_string(length[e.dims[k]]));
+  return length;
+}
+
+void Labeller::create_root_coordinate(const std::string& dim, std::uint64_t n) {
+  const std::string path = root_ + "/" + dim;
+  if (H5Lexists(w_.id(), path.c_str(), H5P_DEFAULT) > 0) return;  // written by the writer
+  const s::DatasetSpec* c = index_coordinate(dim);
+  if (c == nullptr) fail(w_, "dimension '" + dim + "' has no coordinate variable " + path);
+  std::vector<std::int32_t> index(n);
+  for (std::uint64_t i = 0; i < n; ++i) index[i] = static_cast<std::int32_t>(i);
+  w_.write_int32(path, {static_cast<std::size_t>(n)}, index, c->units);
+  w_.set_text_attribute(path, s::kLongNameAttribute, c->long_name);
+}
+
+void Labeller::create_group_coordinate(const std::string& group, const std::string& dim) {
+  const std::string path = group + "/" + dim;
+  if (H5Lexists(w_.id(), path.c_str(), H5P_DEFAULT) <= 0) {
+    if (H5Ocopy(w_.id(), (root_ + "/" + dim).c_str(), w_.id(), path.c_str(), H5P_DEFAULT,
+                H5P_DEFAULT) < 0)
+      fail(w_, "cannot copy the coordinate " + root_ + "/" + dim + " to " + path);
+    return;
+  }
+  for (const Entry& e : entries_)  // a declared dataset that is the coordinate itself
+    if (e.path == path && e.dims == std::vector<std::string>{dim}) return;
+  fail(w_, path + " is not the coordinate variable of dimension '" + dim + "'");
+}
+
+void Labeller::finish() {
+  write_long_names_and_flags();
+  const std::map<std::string, std::uint64_t> length = check_extents();
   if (!scales_) return;
-  std::map<std::string, hid_t> scales;
+  // Every dimension's coordinate at the root, then in each group whose datasets use it
+  // (copies of the root's, made before it becomes a scale).
+  std::map<std::string, std::string> coordinates;  // path -> dimension
   for (const auto& [dim, n] : length) {
-    const std::string path = root_ + "/" + dim;
-    if (H5Lexists(w_.id(), path.c_str(), H5P_DEFAULT) <= 0) {  // created (image) or here
-      const s::DatasetSpec* c = index_coordinate(dim);
-      if (c == nullptr) fail(w_, "dimension '" + dim + "' has no coordinate variable " + path);
-      std::vector<std::int32_t> index(n);
-      for (hsize_t i = 0; i < n; ++i) index[i] = static_cast<std::int32_t>(i);
-      w_.write_int32(path, {static_cast<std::size_t>(n)}, index, c->units);
-      w_.set_text_attribute(path, s::kLongNameAttribute, c->long_name);
-    }
-    const std::vector<hsize_t> own = extent(w_, path);
-    if (own.size() != 1 || own[0] != n)
-      fail(w_, path + " is not a coordinate of length " + std::to_string(n));
-    const hid_t id = H5Dopen2(w_.id(), path.c_str(), H5P_DEFAULT);
-    if (id < 0 || H5DSset_scale(id, dim.c_str()) < 0) {
-      if (id >= 0) H5Dclose(id);
-      for (auto& [name, sid] : scales) H5Dclose(sid);
+    create_root_coordinate(dim, n);
+    coordinates[root_ + "/" + dim] = dim;
+  }
+  for (const Entry& e : entries_)
+    for (const std::string& dim : e.dims)
+      if (const std::string group = parent_of(e.path); group != root_) {
+        if (coordinates.emplace(group + "/" + dim, dim).second) create_group_coordinate(group, dim);
+      }
+  std::map<std::string, h5detail::Handle> scales;
+  for (const auto& [path, dim] : coordinates) {
+    const std::vector<std::uint64_t> own = extent(w_, path);
+    if (own.size() != 1 || own[0] != length.at(dim))
+      fail(w_, path + " is not a coordinate of length " + std::to_string(length.at(dim)));
+    h5detail::Handle id(H5Dopen2(w_.id(), path.c_str(), H5P_DEFAULT), H5Dclose);
+    if (!id.valid() || H5DSset_scale(id.get(), dim.c_str()) < 0)
       fail(w_, "cannot make " + path + " a dimension scale");
-    }
-    scales[dim] = id;
+    scales.emplace(path, std::move(id));
   }
-  std::string error;
-  for (std::size_t i = 0; i < entries_.size() && error.empty(); ++i) {
-    const Entry& e = entries_[i];
-    if (e.dims.empty() || e.path == root_ + "/" + e.dims[0]) continue;  // a scale itself
-    const hid_t d = H5Dopen2(w_.id(), e.path.c_str(), H5P_DEFAULT);
-    for (std::size_t k = 0; k < e.dims.size() && error.empty(); ++k) {
-      if (extents[i][k] != length[e.dims[k]])
-        error = e.path + " axis " + std::to_string(k) + " has " + std::to_string(extents[i][k]) +
-                " entries, dimension '" + e.dims[k] + "' " + std::to_string(length[e.dims[k]]);
-      else if (d < 0 || H5DSattach_scale(d, scales[e.dims[k]], static_cast<unsigned>(k)) < 0)
-        error = "cannot attach dimension '" + e.dims[k] + "' to " + e.path;
-    }
-    if (d >= 0) H5Dclose(d);
+  for (const Entry& e : entries_) {
+    const std::string group = parent_of(e.path);
+    if (e.dims.empty() || coordinates.count(e.path) > 0) continue;  // a scale itself
+    const h5detail::Handle d(H5Dopen2(w_.id(), e.path.c_str(), H5P_DEFAULT), H5Dclose);
+    for (std::size_t k = 0; k < e.dims.size(); ++k)
+      if (!d.valid() || H5DSattach_scale(d.get(), scales.at(group + "/" + e.dims[k]).get(),
+                                         static_cast<unsigned>(k)) < 0)
+        fail(w_, "cannot attach dimension '" + e.dims[k] + "' to " + e.path);
   }
-  for (auto& [name, id] : scales) H5Dclose(id);
-  if (!error.empty()) fail(w_, error);
 }
 
 namespace {

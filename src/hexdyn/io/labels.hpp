@@ -4,11 +4,17 @@
 /// docs/user/output.md#dimensions-and-coordinates): a `long_name` on each, CF
 /// `flag_values` and `flag_meanings` on the datasets of codes (schema::kFlags), and an
 /// HDF5 dimension scale per axis. The dimensions of a dataset are those of its shape
-/// (schema::dimension_names); dimension D is the coordinate variable at ROOT/D, ROOT being
-/// the file root or the group of a kept run, so that netCDF-4, which looks dimensions up
-/// the group tree, finds it from every group below. A coordinate of indices (/impact,
-/// /message, /scenario, /probe, ...) is created 0..n−1 when missing; labelled ones (/leg,
-/// /joint, an axis's values, ...) are written by the file's writer and recorded here.
+/// (schema::dimension_names); dimension D has its coordinate variable at ROOT/D, ROOT being
+/// the file root or the group of a kept run, and a copy of it (values, storage, `units`,
+/// `long_name`) at G/D in every group G below ROOT whose datasets use D: the datasets of G
+/// are attached to G/D, so that a group opened alone (xarray.open_dataset(file, group=G))
+/// has its coordinates (schema.hpp, "group coordinates"). A dataset declared at G/D on the
+/// dimension D alone (an envelope's /axes/tread_depth) is that coordinate itself. A
+/// coordinate of indices (/impact, /message, /scenario, /probe, ...) is created 0..n−1 at
+/// ROOT when missing; labelled ones (/leg, /joint, an axis's values, ...) are written by the
+/// file's writer and recorded here.
+#include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -30,10 +36,10 @@ class Labeller {
   void add(const schema::DatasetSpec& spec, const std::string& path = {},
            const std::string& key = {});
 
-  /// Writes long names and flags, creates the missing index coordinates, makes every
-  /// coordinate a dimension scale and attaches it to each recorded dataset's axis. Throws
-  /// IoError naming the dataset when an axis's length differs from its coordinate's, or a
-  /// dimension has no coordinate variable.
+  /// Writes long names and flags, creates the missing index coordinates and the groups'
+  /// copies, makes every coordinate a dimension scale and attaches it to each recorded
+  /// dataset's axis. Throws IoError naming the dataset when an axis's length differs from its
+  /// coordinate's, a dimension has no coordinate variable, or G/D holds other data.
   void finish();
 
  private:
@@ -41,8 +47,15 @@ class Labeller {
     const schema::DatasetSpec* spec;
     std::string path;  ///< absolute in the file
     std::vector<std::string> dims;
-    std::string key;  ///< the sweep axis's key, or empty
+    std::string key;                      ///< the sweep axis's key, or empty
+    std::vector<std::uint64_t> extent{};  ///< length of each axis, as written
   };
+  void write_long_names_and_flags();
+  /// The length of each dimension; throws unless every dataset agrees with it.
+  std::map<std::string, std::uint64_t> check_extents();
+  void create_root_coordinate(const std::string& dim, std::uint64_t n);
+  void create_group_coordinate(const std::string& group, const std::string& dim);
+
   H5Writer& w_;
   std::string root_;
   bool scales_;

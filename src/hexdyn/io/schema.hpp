@@ -82,7 +82,8 @@ enum class Shape {
 /// scalar); "{key}" is the dimension of a sweep axis, named by its key (a cases axis: by its
 /// name, and "{key}_key" the keys its cases set, e.g. "case_key"). A dimension D of
 /// a file (or of a kept run's group) has its coordinate variable at "/D" of that root
-/// (io/labels.hpp): the names, component labels or values along D, or the index 0..n−1.
+/// (io/labels.hpp): the names, component labels or values along D, or the index 0..n−1;
+/// each group whose datasets use D holds a copy (the group coordinates below).
 // clang-format off
 constexpr const char* dimension_names(Shape shape) {
   switch (shape) {
@@ -342,6 +343,15 @@ inline constexpr DatasetSpec kSolverMessages{"/solver/messages", "", Shape::kTex
                                              "solver message of each relaxed or failed sample"};
 
 // ---- coordinate variables: one per dimension (dimension_names), at the root ----
+// Group coordinates, in every file kind: each group G below the root (of the file, or of a
+// kept run /runs/{id}) whose datasets use dimension D holds the coordinate variable G/D, a
+// copy of the root's /D (element type, shape, values, `units`, `long_name`), an HDF5
+// dimension scale named D to which G's datasets are attached; so a group opened alone
+// (xarray.open_dataset(file, group=G), netCDF-4) has named, valued coordinates. They are
+// derived, not listed in the tables of this header: a reader takes an undeclared dataset
+// G/D that is a dimension scale (attribute CLASS "DIMENSION_SCALE") for one and may skip it.
+// A dataset declared at G/D on the dimension D alone (an envelope's /axes/tread_depth) is
+// that coordinate itself.
 inline constexpr DatasetSpec kLegCoordinate{"/leg", "", Shape::kLegNames, Element::kString,
                                             "leg name"};
 inline constexpr DatasetSpec kJointCoordinate{"/joint", "", Shape::kJointNames, Element::kString,

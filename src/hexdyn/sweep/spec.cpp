@@ -129,10 +129,11 @@ void finish_axis(const SpecReader& r, const std::string& path, SweepAxis& axis) 
   }
 }
 
-/// Names that a cases axis may not take: the sweep file's own groups and coordinates.
+/// Names that a cases axis may not take: the sweep file's own groups and coordinates, and the
+/// datasets of /axes/<i>, which holds the coordinate of the axis's dimension (io/labels.hpp).
 bool reserved_axis_name(const std::string& name) {
-  for (const char* r :
-       {"meta", "axes", "scenarios", "runs", "joint_names", "scenario", "axis", "joint"})
+  for (const char* r : {"meta", "axes", "scenarios", "runs", "joint_names", "scenario", "axis",
+                        "joint", "key", "case_keys", "case_values"})
     if (name == r) return true;
   return false;
 }
@@ -149,7 +150,8 @@ void read_cases(const SpecReader& r, const YAML::Node& a, const std::string& at,
         reserved_axis_name(name.Scalar()))
       r.fail_value(at + ".name", name,
                    "a word of letters, digits and _ (the axis's dimension), not one of meta, "
-                   "axes, scenarios, runs, joint_names, scenario, axis, joint");
+                   "axes, scenarios, runs, joint_names, scenario, axis, joint, key, case_keys, "
+                   "case_values");
     axis.key = name.Scalar();
   }
   const CaseList cases = read_case_list(r, a["cases"], at + ".cases", sweep_path);
