@@ -8,22 +8,21 @@ duty factor, one line style per criterion (kinematic, torque, friction).
 Writes OUTDIR/envelope.png (saved under a temporary name and renamed when complete).
 A criterion that fails already at the lowest riser probed is drawn as a cross at that
 riser. --check verifies the file against the layout declared in src/hexdyn/io/schema.hpp
-(every dataset present, with its units, shape and element type); --table prints the
+(hexdyn.check_layout: every dataset declared, with its units, shape and element type); --table prints the
 envelope as a text table (riser in mm, and what limits it) on stdout.
 """
 
 import argparse
 import os
-import sys
 
 
-import h5py  # noqa: E402
 import matplotlib  # noqa: E402
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
+import hexdyn  # noqa: E402
 from hexdyn import results as hr  # noqa: E402
 from plot_kinematics import save_atomically  # noqa: E402
 
@@ -32,34 +31,24 @@ STYLES = {"kinematic": "-", "torque": "--", "friction": ":"}
 MARKERS = {"kinematic": "o", "torque": "s", "friction": "^"}
 
 
-def _strings(ds):
-    return [hr.decode_text(v) for v in ds.asstr()[()]] if ds.shape else hr.decode_text(ds.asstr()[()])
-
-
 def read_envelope(path):
-    """The envelope file as a dict: axes, criteria, riser_max/fail (W,B,S,C), limit and
-    message (W,B,S,C) strings, posture (W,B,S), meta."""
-    with h5py.File(path, "r") as f:
-        # Version 1 (no coordinates, flattened limit and message) plots too.
-        hr.check_filetype_version(f, S["kEnvelopeSchema"], (1, S["kEnvelopeSchemaVersion"]), path)
-        d = {"meta": {k: hr.decode_text(v) for k, v in f["meta"].attrs.items()}}
-        d["tread"] = f[S["kEnvelopeTreadDepth"].path][()]
-        d["duty"] = f[S["kEnvelopeDutyFactor"].path][()]
-        d["speed"] = f[S["kEnvelopePeakSpeed"].path][()]
-        d["criteria"] = _strings(f[S["kEnvelopeCriteria"].path])
-        d["riser_from"] = float(f[S["kEnvelopeRiserFrom"].path][()])
-        d["riser_to"] = float(f[S["kEnvelopeRiserTo"].path][()])
-        d["riser_max"] = f[S["kEnvelopeRiserMax"].path][()]
-        d["riser_fail"] = f[S["kEnvelopeRiserFail"].path][()]
-        shape = d["riser_max"].shape
-        d["limit"] = np.array(_strings(f[S["kEnvelopeLimit"].path]), dtype=object).reshape(shape)
-        d["message"] = np.array(_strings(f[S["kEnvelopeMessage"].path]), dtype=object).reshape(shape)
-        d["posture_height"] = f[S["kEnvelopePostureHeight"].path][()]
-        d["posture_foot_lateral"] = f[S["kEnvelopePostureFootLateral"].path][()]
-        d["probes"] = int(f[S["kProbeRiser"].path].shape[0])
-        # With cases (a design each), a leading dimension `case`; without, one unnamed case.
-        d["cases"] = _strings(f[S["kCaseCoordinate"].path]) if S["kCaseCoordinate"].path in f else None
-    if d["cases"] is None:
+    """The envelope file as a dict: axes, criteria, riser_max/fail (D,W,B,S,C; D = 1 without
+    cases), limit and message strings on the same grid, posture (D,W,B,S), meta."""
+    try:
+        env = hexdyn.open_envelope(path)  # version 1 (flattened limit and message) plots too
+    except (OSError, ValueError) as e:
+        raise SystemExit(f"plot_envelope: {e}")
+    d = {"meta": env.meta, "cases": env.cases, "criteria": env.criteria,
+         "probes": int(env.shapes[S["kProbeRiser"].path][0])}
+    for key, name in (("tread", "kEnvelopeTreadDepth"), ("duty", "kEnvelopeDutyFactor"),
+                      ("speed", "kEnvelopePeakSpeed"), ("riser_max", "kEnvelopeRiserMax"),
+                      ("riser_fail", "kEnvelopeRiserFail"), ("limit", "kEnvelopeLimit"),
+                      ("message", "kEnvelopeMessage"), ("posture_height", "kEnvelopePostureHeight"),
+                      ("posture_foot_lateral", "kEnvelopePostureFootLateral")):
+        d[key] = env[S[name].path]
+    d["riser_from"] = float(env[S["kEnvelopeRiserFrom"].path])
+    d["riser_to"] = float(env[S["kEnvelopeRiserTo"].path])
+    if d["cases"] is None:  # with cases (a design each) a leading dimension `case`; without, one
         for k in ("riser_max", "riser_fail", "limit", "message", "posture_height",
                   "posture_foot_lateral"):
             d[k] = d[k][np.newaxis]
@@ -67,43 +56,11 @@ def read_envelope(path):
 
 
 def check_layout(path):
-    """Every declared dataset of the envelope layout, with its units, shape, element."""
-    with h5py.File(path, "r") as f:
-        W = f[S["kEnvelopeTreadDepth"].path].shape[0]
-        B = f[S["kEnvelopeDutyFactor"].path].shape[0]
-        V = f[S["kEnvelopePeakSpeed"].path].shape[0]
-        C = f[S["kEnvelopeCriteria"].path].shape[0]
-        P = f[S["kProbeRiser"].path].shape[0]
-        sizes = {"W": W, "B": B, "S": V, "C": C, "P": P, "G": W * B * V * C}
-        specs = list(S["kEnvelopeDatasets"]) + list(S["kEnvelopeCoordinates"])
-        if S["kCaseCoordinate"].path in f:  # cases: their declarations replace those of a path
-            sizes["D"] = f[S["kCaseCoordinate"].path].shape[0]
-            sizes["K"] = f[S["kEnvelopeCaseKeys"].path].shape[0]
-            by_case = {c.path: c for c in S["kEnvelopeCaseDatasets"]}
-            specs = [by_case.pop(c.path, c) for c in specs] + list(by_case.values())
-        declared = set()
-        for spec in specs:
-            declared.add(spec.path)
-            if spec.path not in f:
-                raise SystemExit(f"plot_envelope: {path}: {spec.path} missing")
-            ds = f[spec.path]
-            want = hr.expected_shape(spec.shape, **sizes)
-            if ds.shape != want:
-                raise SystemExit(f"plot_envelope: {path}: {spec.path} shape {ds.shape}, expected {want}")
-            if hr.decode_text(ds.attrs.get("units", "")) != spec.units:
-                raise SystemExit(f"plot_envelope: {path}: {spec.path} units {ds.attrs.get('units')!r}, "
-                                 f"expected {spec.units!r}")
-            kind = "string" if h5py.check_string_dtype(ds.dtype) else str(ds.dtype)
-            if kind != spec.element:
-                raise SystemExit(f"plot_envelope: {path}: {spec.path} element {kind}, expected {spec.element}")
-        found = []
-        f.visititems(lambda n, o: found.append("/" + n) if isinstance(o, h5py.Dataset) else None)
-        extra = sorted(set(found) - declared)
-        if extra:
-            raise SystemExit(f"plot_envelope: {path}: undeclared datasets {extra}")
-        for a in S["kEnvelopeMetaAttributes"]:
-            if a.name not in f["meta"].attrs:
-                raise SystemExit(f"plot_envelope: {path}: /meta attribute {a.name} missing")
+    """The file against the layout declared in schema.hpp (hexdyn.check_layout)."""
+    try:
+        hexdyn.check_layout(path)
+    except (OSError, ValueError) as e:
+        raise SystemExit(f"plot_envelope: {e}")
 
 
 def duty_label(beta):

@@ -41,11 +41,9 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from hexdyn import results as hr  # noqa: E402
+import hexdyn  # noqa: E402
 from plot_kinematics import save_atomically  # noqa: E402
 
-STUDY_SCHEMA = "hexdyn-study/1"
-STUDY_SCHEMA_VERSION = 1
 
 METRICS = (  # column, title, target key in /verdict (or None)
     ("err_peak", "impact peak (sampled)", "target_peak"),
@@ -75,22 +73,10 @@ EXTRA_COLOURS = ("tab:pink", "tab:gray", "gold", "navy")
 def read_study(path):
     """(rows: dict of column -> numpy array or list of str, verdict attrs, references)."""
     try:
-        f = h5py.File(path, "r")
-    except OSError as e:
-        raise SystemExit(f"plot_study: cannot open {path}: {e}")
-    with f:
-        try:
-            hr.check_filetype_version(f, STUDY_SCHEMA, STUDY_SCHEMA_VERSION, str(path))
-        except ValueError as e:
-            raise SystemExit(f"plot_study: {e}")
-        rows = {}
-        for name, ds in f["runs"].items():
-            v = hr._read_dataset(ds)
-            rows[name] = v if isinstance(v, list) else np.asarray(v)
-        verdict = {k: hr.decode_text(v) for k, v in f["verdict"].attrs.items()}
-        refs = {name: {k: hr.decode_text(v) for k, v in g.attrs.items()}
-                for name, g in f["references"].items()}
-    return rows, verdict, refs
+        st = hexdyn.open_study(path)
+    except (OSError, ValueError) as e:
+        raise SystemExit(f"plot_study: {e}")
+    return st.rows, st.verdict, st.references
 
 
 def pareto_front(x, y):
