@@ -33,9 +33,8 @@ parallel.
 """
 
 import json
-from collections.abc import Mapping
-
 import os
+from collections.abc import Mapping
 
 from ._version import __git_commit__, __version__
 from .results import (Envelope, Result, Study, Sweep, UnknownGroupError, check_layout,
