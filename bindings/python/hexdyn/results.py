@@ -184,9 +184,17 @@ def _layout(*declarations):
 # What each file kind holds, as checked at open (check_result_datasets, check_sweep_file,
 # check_envelope_file), and which of it every file has. The declarations that fix a size
 # come first: /time (T), /scenarios/id (N), the envelope's axes (W, B, S, C; D, K).
+def _coordinate_lists(kind):
+    """Every declaration list of coordinate variables of a file kind ("Result": the lists
+    kResult*Coordinates), in declaration order."""
+    return [v for k, v in SCHEMA.items() if k.startswith(f"k{kind}") and
+            k.endswith("Coordinates") and isinstance(v, list) and
+            all(isinstance(d, DatasetSpec) for d in v)]
+
+
 RESULT_LAYOUT = _layout([SCHEMA["kTime"]], SCHEMA["kModelDatasets"], SCHEMA["kUrdfRobotDatasets"],
                         SCHEMA["kKinematicDatasets"], SCHEMA["kDynamicsDatasets"],
-                        SCHEMA["kResultCoordinates"], SCHEMA["kResultIndexCoordinates"])
+                        *_coordinate_lists("Result"))
 RESULT_REQUIRED = {d.path for d in (*SCHEMA["kModelDatasets"], *SCHEMA["kKinematicDatasets"])}
 RESULT_V1_REQUIRED = {SCHEMA["kTime"].path}
 SWEEP_TABLE_LAYOUT = _layout([SCHEMA["kScenarioId"]], SCHEMA["kScenarioDatasets"])
@@ -197,8 +205,8 @@ SWEEP_AXIS_LAYOUT = _layout([SCHEMA[k] for k in ("kAxisKey", "kAxisNumbers", "kA
                                                  "kAxisLabels", "kAxisCaseKeys",
                                                  "kAxisCaseValues")])
 SWEEP_AXIS_REQUIRED = {SCHEMA[k].path for k in ("kAxisKey", "kAxisNumbers", "kAxisLabels")}
-SWEEP_ROOT_LAYOUT = _layout([SCHEMA["kSweepJointNames"]], SCHEMA["kSweepCoordinates"])
-ENVELOPE_LAYOUT = _layout(SCHEMA["kEnvelopeDatasets"], SCHEMA["kEnvelopeCoordinates"])
+SWEEP_ROOT_LAYOUT = _layout([SCHEMA["kSweepJointNames"]], *_coordinate_lists("Sweep"))
+ENVELOPE_LAYOUT = _layout(SCHEMA["kEnvelopeDatasets"], *_coordinate_lists("Envelope"))
 # With cases: the case axes first, then the grid with its leading dimension D.
 _ENVELOPE_CASES = _layout(SCHEMA["kEnvelopeCaseDatasets"])
 ENVELOPE_CASES_LAYOUT = {**{p: s for p, s in _ENVELOPE_CASES.items() if p not in ENVELOPE_LAYOUT},
@@ -617,6 +625,9 @@ def check_sweep_file(f, source):
         column = {p.replace("{i}", str(i)): s for p, s in SWEEP_AXIS_COLUMN_LAYOUT.items()}
         _check_layout(source, table, column, set(), sizes, SWEEP_SCHEMA)
     declared = set(SWEEP_TABLE_LAYOUT) | {f"{SCENARIOS_GROUP}/axis_{i}" for i in range(len(axes))}
+    others = {p: DECLARED[p] for p in table if p not in declared and p in DECLARED}
+    _check_layout(source, table, others, set(), sizes, SWEEP_SCHEMA)  # e.g. coordinates
+    declared |= set(others)
     for path, ds in table.items():  # the columns of /scenarios the schema does not name
         if path not in declared and (ds.shape is None or len(ds.shape) == 0 or ds.shape[0] != n):
             raise _io_error(f"{source}: dataset {path} is {_element_of(ds.dtype)} "
