@@ -11,16 +11,15 @@ right), so that lines with equal values stay apart.
 Writes OUTDIR/envelope.png (saved under a temporary name and renamed when complete).
 A criterion that fails already at the lowest riser probed is drawn as a cross at that
 riser. --check verifies the file against the layout declared in src/hexdyn/io/schema.hpp
-(every dataset present, with its units, shape and element type; the package's checker,
-hexdyn.results.check_envelope_file); --table prints the envelope as a text table (riser in
-mm, and what limits it) on stdout.
+(hexdyn.check_layout: every dataset declared, with its units, shape and element type); --table prints the
+envelope as a text table (riser in mm, and what limits it) on stdout.
 """
 
 import argparse
 import os
 
 from figures import fit_suptitle, fraction_text, save_atomically  # first: Agg
-import h5py
+import hexdyn
 from hexdyn import results as hr
 import matplotlib.pyplot as plt
 import numpy as np
@@ -30,34 +29,24 @@ DUTY_MARKERS = ("o", "s", "^", "D", "v", "P", "X", "*")
 DODGE = 0.02  # the lines' sideways offset, a fraction of the speed range per duty factor
 
 
-def _strings(ds):
-    return [hr.decode_text(v) for v in ds.asstr()[()]] if ds.shape else hr.decode_text(ds.asstr()[()])
-
-
 def read_envelope(path):
-    """The envelope file as a dict: axes, criteria, riser_max/fail (W,B,S,C), limit and
-    message (W,B,S,C) strings, posture (W,B,S), meta."""
-    with h5py.File(path, "r") as f:
-        # Version 1 (no coordinates, flattened limit and message) plots too.
-        hr.check_filetype_version(f, S["kEnvelopeSchema"], (1, S["kEnvelopeSchemaVersion"]), path)
-        d = {"meta": {k: hr.decode_text(v) for k, v in f["meta"].attrs.items()}}
-        d["tread"] = f[S["kEnvelopeTreadDepth"].path][()]
-        d["duty"] = f[S["kEnvelopeDutyFactor"].path][()]
-        d["speed"] = f[S["kEnvelopePeakSpeed"].path][()]
-        d["criteria"] = _strings(f[S["kEnvelopeCriteria"].path])
-        d["riser_from"] = float(f[S["kEnvelopeRiserFrom"].path][()])
-        d["riser_to"] = float(f[S["kEnvelopeRiserTo"].path][()])
-        d["riser_max"] = f[S["kEnvelopeRiserMax"].path][()]
-        d["riser_fail"] = f[S["kEnvelopeRiserFail"].path][()]
-        shape = d["riser_max"].shape
-        d["limit"] = np.array(_strings(f[S["kEnvelopeLimit"].path]), dtype=object).reshape(shape)
-        d["message"] = np.array(_strings(f[S["kEnvelopeMessage"].path]), dtype=object).reshape(shape)
-        d["posture_height"] = f[S["kEnvelopePostureHeight"].path][()]
-        d["posture_foot_lateral"] = f[S["kEnvelopePostureFootLateral"].path][()]
-        d["probes"] = int(f[S["kProbeRiser"].path].shape[0])
-        # With cases (a design each), a leading dimension `case`; without, one unnamed case.
-        d["cases"] = _strings(f[S["kCaseCoordinate"].path]) if S["kCaseCoordinate"].path in f else None
-    if d["cases"] is None:
+    """The envelope file as a dict: axes, criteria, riser_max/fail (D,W,B,S,C; D = 1 without
+    cases), limit and message strings on the same grid, posture (D,W,B,S), meta."""
+    try:
+        env = hexdyn.open_envelope(path)  # version 1 (flattened limit and message) plots too
+    except (OSError, ValueError) as e:
+        raise SystemExit(f"plot_envelope: {e}")
+    d = {"meta": env.meta, "cases": env.cases, "criteria": env.criteria,
+         "probes": int(env.shapes[S["kProbeRiser"].path][0])}
+    for key, name in (("tread", "kEnvelopeTreadDepth"), ("duty", "kEnvelopeDutyFactor"),
+                      ("speed", "kEnvelopePeakSpeed"), ("riser_max", "kEnvelopeRiserMax"),
+                      ("riser_fail", "kEnvelopeRiserFail"), ("limit", "kEnvelopeLimit"),
+                      ("message", "kEnvelopeMessage"), ("posture_height", "kEnvelopePostureHeight"),
+                      ("posture_foot_lateral", "kEnvelopePostureFootLateral")):
+        d[key] = env[S[name].path]
+    d["riser_from"] = float(env[S["kEnvelopeRiserFrom"].path])
+    d["riser_to"] = float(env[S["kEnvelopeRiserTo"].path])
+    if d["cases"] is None:  # with cases (a design each) a leading dimension `case`; without, one
         for k in ("riser_max", "riser_fail", "limit", "message", "posture_height",
                   "posture_foot_lateral"):
             d[k] = d[k][np.newaxis]
@@ -65,11 +54,9 @@ def read_envelope(path):
 
 
 def check_layout(path):
-    """Every declared dataset of the envelope layout, with its units, shape and element
-    (the package's checker); SystemExit with its one line on a mismatch."""
+    """The file against the layout declared in schema.hpp (hexdyn.check_layout)."""
     try:
-        with hr.open_h5(path) as f:
-            hr.check_envelope_file(f, path)
+        hexdyn.check_layout(path)
     except (OSError, ValueError) as e:
         raise SystemExit(f"plot_envelope: {e}")
 

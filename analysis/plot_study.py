@@ -35,13 +35,10 @@ import sys
 
 
 from figures import fit_suptitle, fit_title, save_atomically  # first: Agg
-import h5py
-from hexdyn import results as hr
+import hexdyn
 import matplotlib.pyplot as plt
 import numpy as np
 
-STUDY_SCHEMA = "hexdyn-study/1"
-STUDY_SCHEMA_VERSION = 1
 
 METRICS = (  # column, title, target key in /verdict (or None)
     ("err_peak", "impact peak (sampled)", "target_peak"),
@@ -71,22 +68,10 @@ EXTRA_COLOURS = ("tab:pink", "tab:gray", "gold", "navy")
 def read_study(path):
     """(rows: dict of column -> numpy array or list of str, verdict attrs, references)."""
     try:
-        f = h5py.File(path, "r")
-    except OSError as e:
-        raise SystemExit(f"plot_study: cannot open {path}: {e}")
-    with f:
-        try:
-            hr.check_filetype_version(f, STUDY_SCHEMA, STUDY_SCHEMA_VERSION, str(path))
-        except ValueError as e:
-            raise SystemExit(f"plot_study: {e}")
-        rows = {}
-        for name, ds in f["runs"].items():
-            v = hr._read_dataset(ds)
-            rows[name] = v if isinstance(v, list) else np.asarray(v)
-        verdict = {k: hr.decode_text(v) for k, v in f["verdict"].attrs.items()}
-        refs = {name: {k: hr.decode_text(v) for k, v in g.attrs.items()}
-                for name, g in f["references"].items()}
-    return rows, verdict, refs
+        st = hexdyn.open_study(path)
+    except (OSError, ValueError) as e:
+        raise SystemExit(f"plot_study: {e}")
+    return st.rows, st.verdict, st.references
 
 
 def pareto_front(x, y):
@@ -109,9 +94,8 @@ def style_of(category, extra):
 
 def study_scene(path):
     """The scene file the study ran (/meta scene_file), or None."""
-    with h5py.File(path, "r") as f:
-        value = f["meta"].attrs.get("scene_file") if "meta" in f else None
-    return None if value is None else str(hr.decode_text(value))
+    value = hexdyn.open_study(path).meta.get("scene_file")
+    return None if value is None else str(value)
 
 
 def plot(rows, verdict, refs, outdir, scene=None):
@@ -278,14 +262,14 @@ def check(path, rows, verdict, refs):
     """Failures (list of str) of the study file's invariants."""
     bad = []
     n = len(rows.get("label", []))
-    with h5py.File(path, "r") as f:
-        for c in COLUMNS:
-            if c not in rows:
-                bad.append(f"/runs/{c} missing")
-            elif len(rows[c]) != n:
-                bad.append(f"/runs/{c} has {len(rows[c])} values for {n} rows")
-            elif "units" not in f["runs"][c].attrs:
-                bad.append(f"/runs/{c} has no units attribute")
+    units = hexdyn.open_study(path).units
+    for c in COLUMNS:
+        if c not in rows:
+            bad.append(f"/runs/{c} missing")
+        elif len(rows[c]) != n:
+            bad.append(f"/runs/{c} has {len(rows[c])} values for {n} rows")
+        elif c not in units:
+            bad.append(f"/runs/{c} has no units attribute")
     if bad or n == 0:
         return bad or ["no rows"]
     labels = list(rows["label"])

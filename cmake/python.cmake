@@ -1,6 +1,7 @@
-# The Python module `hexdyn` (bindings/python/): the package's Python files and its compiled
-# part hexdyn/_hexdyn*.so (pybind11), laid out as a package in the build tree,
-#   build/python/hexdyn/{__init__,results,xr,_version}.py, schema{,_envelope}.hpp, _hexdyn*.so
+# The Python module `hexdyn` (bindings/python/): the package's Python files, the schema module
+# generated from io/schema.hpp and its compiled part hexdyn/_hexdyn*.so (pybind11), laid out as
+# a package in the build tree,
+#   build/python/hexdyn/{__init__,results,xr,_version,_schema}.py, _hexdyn*.so
 # (PYTHONPATH=build/python imports it: the tests and the pipelines set it), and installed to
 #   P/lib/python3.X/dist-packages/hexdyn/
 # which for the default prefix /usr/local is on Debian's /usr/bin/python3 path with no
@@ -15,17 +16,46 @@ if(Python3_FOUND)
   find_package(pybind11 CONFIG QUIET)
 endif()
 set(HEXDYN_PYTHON_PACKAGE_DIR ${CMAKE_BINARY_DIR}/python/hexdyn)
-# The pure-Python files, the version and the schema header the reader parses: laid out at
-# configure time, so that reading files (and the analysis scripts) needs no compiled part.
+# The pure-Python files and the version: laid out at configure time, so that reading files (and
+# the analysis scripts) needs no compiled part, only the schema module below.
 set(hexdyn_python_files __init__.py results.py xr.py)
 foreach(f IN LISTS hexdyn_python_files)
   configure_file(${PROJECT_SOURCE_DIR}/bindings/python/hexdyn/${f} ${HEXDYN_PYTHON_PACKAGE_DIR}/${f} COPYONLY)
 endforeach()
 configure_file(${PROJECT_SOURCE_DIR}/bindings/python/hexdyn/_version.py.in
                ${HEXDYN_PYTHON_PACKAGE_DIR}/_version.py @ONLY)
-foreach(h schema.hpp schema_envelope.hpp)
-  configure_file(${PROJECT_SOURCE_DIR}/src/hexdyn/io/${h} ${HEXDYN_PYTHON_PACKAGE_DIR}/${h} COPYONLY)
-endforeach()
+
+# hexdyn/_schema.py, the HDF5 contracts as Python data, generated at build time from the
+# compiled declarations of the schema headers (one source): cmake/schema_names.cmake lists the
+# names the headers declare, bindings/python/schema/schema_py.cpp is compiled with them and
+# prints the module. Built with the program `hexdyn` (and the module), so that the readers of
+# a build tree work whenever the program does; needs no Python at build time.
+file(GLOB hexdyn_schema_headers CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/src/hexdyn/io/schema*.hpp)
+list(SORT hexdyn_schema_headers)
+list(REMOVE_ITEM hexdyn_schema_headers ${PROJECT_SOURCE_DIR}/src/hexdyn/io/schema.hpp)
+list(PREPEND hexdyn_schema_headers ${PROJECT_SOURCE_DIR}/src/hexdyn/io/schema.hpp)
+set(hexdyn_schema_names ${CMAKE_BINARY_DIR}/schema_py/schema_names.inc)
+add_custom_command(
+  OUTPUT ${hexdyn_schema_names}
+  COMMAND ${CMAKE_COMMAND} "-DHEADERS=${hexdyn_schema_headers}" -DOUT=${hexdyn_schema_names}
+          -P ${PROJECT_SOURCE_DIR}/cmake/schema_names.cmake
+  DEPENDS ${hexdyn_schema_headers} ${PROJECT_SOURCE_DIR}/cmake/schema_names.cmake
+  COMMENT "Listing the declarations of the schema headers" VERBATIM)
+add_executable(hexdyn_schema_py ${PROJECT_SOURCE_DIR}/bindings/python/schema/schema_py.cpp
+                                ${hexdyn_schema_names})
+target_include_directories(hexdyn_schema_py PRIVATE ${PROJECT_SOURCE_DIR}/src)
+target_compile_definitions(hexdyn_schema_py PRIVATE HEXDYN_SCHEMA_NAMES="${hexdyn_schema_names}")
+target_compile_options(hexdyn_schema_py PRIVATE ${HEXDYN_WARNINGS})
+set_target_properties(hexdyn_schema_py PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${CMAKE_BINARY_DIR}/schema_py)
+add_custom_command(
+  OUTPUT ${HEXDYN_PYTHON_PACKAGE_DIR}/_schema.py
+  COMMAND hexdyn_schema_py ${HEXDYN_PYTHON_PACKAGE_DIR}/_schema.py
+  DEPENDS hexdyn_schema_py
+  COMMENT "Generating the Python schema module hexdyn/_schema.py" VERBATIM)
+add_custom_target(hexdyn_python_schema ALL DEPENDS ${HEXDYN_PYTHON_PACKAGE_DIR}/_schema.py)
+if(TARGET hexdyn)
+  add_dependencies(hexdyn hexdyn_python_schema)
+endif()
 set(hexdyn_python_default OFF)
 if(Python3_FOUND AND pybind11_FOUND)
   set(hexdyn_python_default ON)
@@ -50,10 +80,11 @@ target_link_libraries(hexdyn_python PRIVATE hexdyn_pipeline hexdyn_io hexdyn_swe
 target_compile_options(hexdyn_python PRIVATE ${HEXDYN_WARNINGS})
 set_target_properties(hexdyn_python PROPERTIES OUTPUT_NAME _hexdyn
                       LIBRARY_OUTPUT_DIRECTORY ${HEXDYN_PYTHON_PACKAGE_DIR})
+add_dependencies(hexdyn_python hexdyn_python_schema)
 
 
 install(TARGETS hexdyn_python LIBRARY DESTINATION ${HEXDYN_PYTHON_INSTALL_DIR}/hexdyn)
 list(TRANSFORM hexdyn_python_files PREPEND ${HEXDYN_PYTHON_PACKAGE_DIR}/)
 install(FILES ${hexdyn_python_files} ${HEXDYN_PYTHON_PACKAGE_DIR}/_version.py
-              ${HEXDYN_PYTHON_PACKAGE_DIR}/schema.hpp ${HEXDYN_PYTHON_PACKAGE_DIR}/schema_envelope.hpp
+              ${HEXDYN_PYTHON_PACKAGE_DIR}/_schema.py
         DESTINATION ${HEXDYN_PYTHON_INSTALL_DIR}/hexdyn)

@@ -1,10 +1,12 @@
 """Writes the tables of docs/user/output.md from src/hexdyn/io/schema.hpp.
 
 The file layouts hexdyn writes (hexdyn-result/2, hexdyn-sweep/2, hexdyn-envelope/2) are
-declared once, in the C++ header src/hexdyn/io/schema.hpp. The declarations are read with
-the parser of the Python reader (`hexdyn.results.parse_schema_header`, bindings/python/), so the
-tables say what the writers write and what the reader checks. Each table's "meaning"
-column is the `///` comment of its declaration in the header.
+declared once, in the C++ header src/hexdyn/io/schema.hpp. The declarations are those of the
+Python reader (`hexdyn.results.SCHEMA`, from the module hexdyn._schema the build generates
+from the compiled header), so the tables say what the writers write and what the reader
+checks. The header's text gives only what the compiler drops: each table's "meaning" column
+is the `///` comment of its declaration, and the section banner of each declaration says
+which file kind's table it goes in.
 
 docs/user/output.md holds one region per file kind between marker comments:
 
@@ -31,8 +33,7 @@ import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
-from hexdyn.results import (AttributeSpec, DatasetSpec, FlagSpec, parse_schema_header,
-                            read_schema_text)
+from hexdyn.results import SCHEMA, AttributeSpec, DatasetSpec, FlagSpec
 
 DEFAULT_SCHEMA = os.path.join(ROOT, "src", "hexdyn", "io", "schema.hpp")
 DEFAULT_DOC = os.path.join(HERE, "user", "output.md")
@@ -42,8 +43,8 @@ END = "<!-- END GENERATED -->"
 
 # Section banners of the header: "// ====...==== hexdyn-result/2".
 SECTION = re.compile(r"^// =+ (hexdyn-[a-z]+/\d+)\s*$", re.M)
-# The name of each declaration and where it starts (the declarations themselves are read
-# by parse_schema_header; this only places names in sections and finds their comments).
+# The name of each declaration and where it starts (the declarations themselves come from
+# hexdyn.results.SCHEMA; this only places names in sections and finds their comments).
 DECLARATION = re.compile(r"^inline\s+constexpr\s+[^;]*?\b(k\w+)\s*(?:=|\{)", re.M)
 
 # Region name -> the header's constants of that file kind's schema name and version.
@@ -62,6 +63,22 @@ RESULT_PRESENCE = {
 
 class DocumentError(Exception):
     """The document or the header cannot be used; exit status 2."""
+
+
+# The parts the header includes at its end (`#include "hexdyn/io/schema_*.hpp"`).
+SCHEMA_PART = re.compile(r'^#include "hexdyn/io/(schema_\w+\.hpp)".*$', re.M)
+
+
+def read_schema_text(path):
+    """The text of the schema header at `path` with the parts it includes at its end
+    (read from the same folder) put in place."""
+    with open(path, encoding="utf-8") as f:
+        text = f.read()
+
+    def part(m):
+        with open(os.path.join(os.path.dirname(path), m.group(1)), encoding="utf-8") as f:
+            return f.read()
+    return SCHEMA_PART.sub(part, text)
 
 
 def declaration_comments(text):
@@ -136,12 +153,18 @@ def attribute_meaning(attr, schema, kind):
 
 
 class Schema:
-    """The header's declarations (parse_schema_header), their comments and sections."""
+    """The declarations (hexdyn.results.SCHEMA), their comments and sections in the header
+    text `text`."""
 
-    def __init__(self, text):
-        self.decls = parse_schema_header(text)
+    def __init__(self, text, decls=SCHEMA):
+        self.decls = decls
         self.comments = declaration_comments(text)
         self.sections = declaration_sections(text)
+        unknown = sorted(set(self.sections) ^ set(decls))
+        if unknown:
+            raise DocumentError(f"schema header: declarations {', '.join(unknown)} differ from "
+                                "the package's hexdyn._schema (rebuild: it is generated from "
+                                "the header)")
         self.kind = {r: self.decls[name] for r, (name, _) in REGIONS.items()}
         self.version = {self.decls[name]: self.decls[v] for name, v in REGIONS.values()}
         missing = [k for k in self.kind.values() if k not in self.sections.values()]

@@ -140,7 +140,9 @@ py::object to_python(hexdyn::LayoutDataset&& d) {
   return py::str(std::get<std::string>(d.values));
 }
 
-/// run(scene, overrides, allow_large) → (handle, {path: array}, {attribute: value}).
+/// run(scene, overrides, allow_large) → (handle, {path: array}, {attribute: value},
+/// {path: units}): the units of the datasets the writer gives a `units` attribute (their
+/// declaration's, when not "").
 py::tuple run_file(const std::string& scene_path, const std::vector<std::string>& override_texts,
                    bool allow_large) {
   auto handle = std::make_shared<RunHandle>();
@@ -158,9 +160,10 @@ py::tuple run_file(const std::string& scene_path, const std::vector<std::string>
     });
     layout = hexdyn::result_layout(handle->result);
   });
-  py::dict datasets, attributes;
+  py::dict datasets, attributes, units;
   for (hexdyn::LayoutDataset& d : layout.datasets) {
     const char* path = d.spec->path;
+    if (d.spec->units[0] != '\0') units[py::str(path)] = py::str(d.spec->units);
     datasets[py::str(path)] = to_python(std::move(d));
   }
   // /meta attributes by name; any other object's as "OBJECT/NAME" ("/terrain/type").
@@ -170,7 +173,7 @@ py::tuple run_file(const std::string& scene_path, const std::vector<std::string>
                                                                  : object + "/" + a.spec->name;
     std::visit([&](const auto& v) { attributes[py::str(key)] = py::cast(v); }, a.value);
   }
-  return py::make_tuple(handle, datasets, attributes);
+  return py::make_tuple(handle, datasets, attributes, units);
 }
 
 /// write(handle, path): the CLI's checks on the output path (a new path or a regular file
@@ -300,7 +303,8 @@ PYBIND11_MODULE(_hexdyn, m) {
   py::class_<RunHandle, std::shared_ptr<RunHandle>>(m, "RunHandle",
                                                     "A computed scene, kept for Result.write.");
   m.def("run", &run_file, py::arg("scene"), py::arg("overrides"), py::arg("allow_large"),
-        "Computes a scene: (handle, {HDF5 path: array}, {/meta attribute: value}).");
+        "Computes a scene: (handle, {HDF5 path: array}, {/meta attribute: value}, "
+        "{HDF5 path: units}).");
   m.def("write", &write_file, py::arg("handle"), py::arg("path"),
         "Writes a computed scene's hexdyn-result/2 file, with the CLI's checks on the path.");
   m.def("validate", &validate_file, py::arg("scene"), py::arg("overrides"),

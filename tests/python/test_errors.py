@@ -213,9 +213,10 @@ with tempfile.TemporaryDirectory() as d:
         def __fspath__(self):
             return self.p
 
-    calls = [hexdyn.run, hexdyn.validate, r.write, hexdyn.open_result, hexdyn.open_sweep,
-             hx.open_envelope, hr.check_regular_file, hr.open_h5, hr.read_schema_text,
-             lambda p: hr.load_schema((p,))]
+    read = hexdyn.open_result(result)
+    calls = [hexdyn.run, hexdyn.validate, r.write, read.write, hexdyn.open_result,
+             hexdyn.open_sweep, hexdyn.open_envelope, hexdyn.open_study, hexdyn.check_layout,
+             hx.open_envelope, hr.check_regular_file, hr.open_h5]
     for target in (f"{PAPER}\0junk", f"{result}\0", os.fsencode(result) + b"\0x",
                    Named(f"{d}/w.h5\0junk"), f"{d}/w.h5\0junk"):
         for call in calls:

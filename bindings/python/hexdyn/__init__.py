@@ -1,28 +1,45 @@
-"""hexdyn in Python: run scenes in process, read result and sweep files.
+"""hexdyn in Python: run scenes in process, read and write hexdyn's files.
 
     import hexdyn
     r = hexdyn.run("configs/paper.yaml", set={"gait.duty_factor": "3/4"})
     r["/energy/total"]            # numpy float64 (0-d array) [J]
     r["/joints/torque"]           # (T, 18) numpy array [N m], bit for bit the file's dataset
+    r.units["/joints/torque"]     # "N m"
+    r.meta["git_commit"]          # the /meta attributes (r.attrs: also "/terrain/type")
     r.config["gait"]              # the resolved configuration, as a dict
+    r.to_xarray("joints")         # labelled (xarray)
     r.write("out.h5")             # the file `hexdyn run` would write
+    res = hexdyn.open_result("out.h5")   # the same Result type, read from the file
+    res.write("copy.h5")          # a copy of the file's objects
     hexdyn.validate("configs/sweeps/smoke.yaml")
-    res = hexdyn.open_result("out.h5")   # reading files (hexdyn.results)
+    sw = hexdyn.open_sweep("smoke.h5")          # hexdyn-sweep/2: Sweep
+    env = hexdyn.open_envelope("envelope.h5")   # hexdyn-envelope/2: Envelope
+    st = hexdyn.open_study("study.h5")          # hexdyn-study/1 (analysis/study.py): Study
+    hexdyn.check_layout("any.h5")               # any of them against its schema
+
+One type, Result, holds a result whether computed (run) or read (open_result, Sweep.run):
+the same mapping from dataset path to values, .meta, .units, .config, .to_xarray() and
+.write(). The readers (open_*, check_layout, decode_text) need h5py, numpy and PyYAML and
+the schema module hexdyn._schema (generated at build time from src/hexdyn/io/schema.hpp),
+not the compiled part nor xarray: xarray is imported by to_xarray only.
 
 Errors are hexdyn.Error and its family (ConfigError, a ValueError; IoError, an OSError;
 ReachError, PlanningError, SolverError; InternalError), each with the one-line message
 `hexdyn` prints after "hexdyn: error: ". A path with a NUL character raises ValueError (the
 C++ side would stop at the NUL) in every function that takes a path; the readers raise
-hexdyn.IoError for a file whose datasets are off the schema. run() releases the GIL while
-the scene computes: threads run scenes in parallel.
+hexdyn.IoError for a file whose datasets are off the schema (an OSError when the compiled
+part is absent). run() releases the GIL while the scene computes: threads run scenes in
+parallel.
 """
 
 import json
+import os
 from collections.abc import Mapping
 
 from ._version import __git_commit__, __version__
+from .results import (Envelope, Result, Study, Sweep, UnknownGroupError, check_layout,
+                      decode_text, open_envelope, open_result, open_study, open_sweep)
 from .results import checked_path as _path
-from .results import decode_text, open_result, open_sweep
 
 _compiled = None
 
@@ -77,51 +94,17 @@ def _overrides(set):
     return out
 
 
-class Result(Mapping):
-    """One computed scene: a read-only mapping from HDF5 path ("/joints/torque") to its
-    dataset, as `hexdyn run` writes it: numpy arrays of the file's dtype and shape (0-d for a
-    scalar), numpy arrays of str for string lists, str for /model/urdf.
-    `attrs` holds the /meta attributes by name and the other groups' as "/terrain/type",
-    `config` the resolved configuration as a dict,
-    `write(path)` writes the file."""
-
-    def __init__(self, handle, datasets, attrs):
-        self._handle = handle
-        self._datasets = datasets
-        self.attrs = attrs
-        self._config = None
-
-    def __getitem__(self, path):
-        return self._datasets[path]
-
-    def __iter__(self):
-        return iter(self._datasets)
-
-    def __len__(self):
-        return len(self._datasets)
-
-    def __repr__(self):
-        return f"<hexdyn.Result '{self.attrs.get('schema')}', {len(self)} datasets>"
-
-    @property
-    def config(self):
-        """The resolved configuration (/meta config_yaml) as a dict."""
-        if self._config is None:
-            import yaml
-            self._config = yaml.safe_load(self.attrs["config_yaml"])
-        return self._config
-
-    def write(self, path):
-        """Writes the hexdyn-result/2 file `hexdyn run` would write, with its checks on the
-        path (a new path or a regular file that is none of the scene's input files)."""
-        _lib().write(self._handle, _path(path))
-
-
 def run(scene, set=None, *, allow_large=False):
     """Runs the scene file `scene` (a path) with the overrides `set` (a dict from dotted key to
-    value, as `--set key=value`) and returns its Result. allow_large: as `--allow-large`."""
-    handle, datasets, attrs = _lib().run(_path(scene), _overrides(set), bool(allow_large))
-    return Result(handle, datasets, attrs)
+    value, as `--set key=value`) and returns its Result (the one type open_result returns
+    too). allow_large: as `--allow-large`."""
+    scene = _path(scene)
+    handle, datasets, attrs, units = _lib().run(scene, _overrides(set), bool(allow_large))
+    meta = {k: v for k, v in attrs.items() if not k.startswith("/")}
+    others = {k: v for k, v in attrs.items() if k.startswith("/")}
+    shapes = {p: tuple(getattr(v, "shape", ())) for p, v in datasets.items()}
+    return Result(f"hexdyn.run({os.fsdecode(scene)!r})", datasets, units, shapes, meta, others,
+                  handle=handle)
 
 
 def validate(scene, set=None):
@@ -140,6 +123,7 @@ def __getattr__(name):
     raise AttributeError(f"module 'hexdyn' has no attribute {name!r}")
 
 
-__all__ = ["run", "validate", "Result", "open_result", "open_sweep", "decode_text", "Error", "ConfigError",
-           "IoError", "ReachError", "PlanningError", "SolverError", "InternalError",
-           "__version__", "__git_commit__"]
+__all__ = ["run", "validate", "Result", "Sweep", "Envelope", "Study", "open_result", "open_sweep",
+           "open_envelope", "open_study", "check_layout", "decode_text", "UnknownGroupError",
+           "Error", "ConfigError", "IoError", "ReachError", "PlanningError", "SolverError",
+           "InternalError", "__version__", "__git_commit__"]

@@ -1,17 +1,21 @@
-"""Reader for hexdyn result files (`hexdyn-result/2`) and sweep files (`hexdyn-sweep/2`);
-files of version 1 open too (their layout is mapped to version 2's on reading).
+"""Readers of hexdyn's files, with h5py only: results (`hexdyn-result/2`), sweeps
+(`hexdyn-sweep/2`), envelopes (`hexdyn-envelope/2`) and studies (`hexdyn-study/1`, of
+analysis/study.py); results and sweeps of version 1 open too (mapped to version 2 on
+reading). Every file is checked against its schema when opened; check_layout checks any.
 
-The layout is the contract of docs/user/output.md; the tables below mirror
-src/hexdyn/io/schema.hpp (path -> (shape, units, element type)). Shapes use the
-symbols "T" (samples), "n" (touchdowns) and "m" (solver messages).
+The layout is the contract of docs/user/output.md, declared in src/hexdyn/io/schema.hpp and
+reaching Python as the module hexdyn._schema, generated at build time from the compiled
+declarations (SCHEMA below). Shapes use size symbols: "T" (samples), "n" (touchdowns), "m"
+(solver messages), "N" (scenarios), ...
 
     from hexdyn import open_result
-    res = open_result("results/paper/paper.h5")
+    res = open_result("results/paper/paper.h5")   # a Result, the type hexdyn.run returns
     t = res["/time"]                 # numpy array, shape (T,)
     feet = res["/feet/position"]     # (T, 6, 3), world frame [m]
     res.units["/joints/torque"]      # "N m"
     res.config["terrain"]            # the resolved configuration (dict)
     res.urdf                         # robot as simulated (str)
+    res.write("copy.h5")             # the file's objects, copied
 
     from hexdyn import open_sweep
     sw = open_sweep("results/sweeps/smoke/smoke.h5")
@@ -21,12 +25,16 @@ symbols "T" (samples), "n" (touchdowns) and "m" (solver messages).
     sw.run(5)                        # a Result from /runs/000005 (sweeps run with --keep-runs)
     sw.to_xarray(), sw.to_dataframe(), res.to_xarray()   # labelled (hexdyn.xr; xarray, pandas)
 
-Requires h5py, numpy and PyYAML (Debian: /usr/bin/python3).
+    env = open_envelope("envelope.h5")     # an Envelope; env.to_xarray() the /envelope group
+    st = open_study("study.h5")            # a Study: st.rows, st.verdict, st.references
+
+Requires h5py, numpy and PyYAML (Debian: /usr/bin/python3); xarray only for to_xarray.
 """
 
 import os
-import re
+import secrets
 import stat
+from collections.abc import Mapping
 
 import h5py
 import numpy as np
@@ -45,30 +53,27 @@ def checked_path(path):
 
 
 # ---------------------------------------------------------------------------- the schema
-# The layout is declared once, in the C++ header src/hexdyn/io/schema.hpp; this module
-# parses that header at import. The header is looked for, in this order, at
-# $HEXDYN_SCHEMA_HPP, next to this module (schema.hpp: the copy the build tree and an
-# installation put there) and in the source tree (../../../src/hexdyn/io/schema.hpp from
-# bindings/python/hexdyn/).
-_HERE = os.path.dirname(os.path.abspath(__file__))
-SCHEMA_HEADER_CANDIDATES = tuple(p for p in (
-    os.environ.get("HEXDYN_SCHEMA_HPP"),
-    os.path.join(_HERE, "schema.hpp"),
-    os.path.join(_HERE, "..", "..", "..", "src", "hexdyn", "io", "schema.hpp"),
-) if p)
+# The layout is declared once, in the C++ headers src/hexdyn/io/schema.hpp (and the parts it
+# includes). The module hexdyn._schema holds those declarations as Python data: it is
+# generated at build time from the compiled declarations (bindings/python/schema/schema_py.cpp,
+# cmake/python.cmake) and lies next to this module in the build tree and in an installation.
+# SCHEMA below is {constant name: value} of every declaration, in the order of the headers.
+from . import _schema  # noqa: E402
+
+SCHEMA_HEADER = "src/hexdyn/io/schema.hpp"  # the header _schema was generated from
 
 
 class DatasetSpec:
     """A dataset of the contract: path (may hold "{i}", "{id}" or "{key}"), units ("" no
     `units` attribute; "key" the unit of a sweep axis's key), shape (a tuple of ints and
-    size symbols "T", "n", "m", "N", "A", "V"), element ("float64", "int8", "int32",
+    size symbols "T", "n", "m", "N", "A", "V", ...), element ("float64", "int8", "int32",
     "int64", "string"), long_name, dims (the netCDF dimension names of its axes);
     `name` is the C++ constant (kTime)."""
 
     def __init__(self, name, path, units, shape, element, long_name="", dims=()):
         self.name, self.path, self.units, self.shape, self.element = (
-            name, path, units, shape, element)
-        self.long_name, self.dims = long_name, dims
+            name, path, units, tuple(shape), element)
+        self.long_name, self.dims = long_name, tuple(dims)
 
     def __iter__(self):  # (shape, units, element), the tuples of the tables below
         return iter((self.shape, self.units, self.element))
@@ -81,7 +86,8 @@ class FlagSpec:
     """CF flags of a dataset of codes 0, 1, ...: `path` and the words of `meanings`."""
 
     def __init__(self, const, path, meanings):
-        self.const, self.path, self.meanings = const, path, meanings.split()
+        self.const, self.path = const, path
+        self.meanings = meanings.split() if isinstance(meanings, str) else list(meanings)
 
     def __repr__(self):
         return f"FlagSpec({self.path!r}, {self.meanings})"
@@ -97,106 +103,28 @@ class AttributeSpec:
         return f"AttributeSpec({self.object!r}, {self.name!r}, {self.element!r})"
 
 
-def _strip_comments(text):
-    return re.sub(r'("(?:[^"\\]|\\.)*")|//[^\n]*', lambda m: m.group(1) or "", text)
-
-
-def _split_args(text):
-    return [a.strip() for a in re.findall(r'\s*("(?:[^"\\]|\\.)*"|[^,]+)', text) if a.strip()]
-
-
-def parse_schema_header(text):
-    """The declarations of schema.hpp as a dict: constant name -> str, int, DatasetSpec,
-    AttributeSpec or list (the std::array lists). Raises ValueError on a declaration
-    this parser does not understand (keep the header on its regular pattern)."""
-    shapes = {}
-    enum = re.search(r"enum class Shape \{(.*?)\};", text, re.S)
-    if not enum:
-        raise ValueError("schema header: no `enum class Shape`")
-    for name, dims in re.findall(r"(k\w+),\s*///<\s*\(([^)]*)\)", enum.group(1)):
-        shapes[name] = tuple(int(d) if d.strip().isdigit() else d.strip()
-                             for d in dims.split(",") if d.strip())
-    code = _strip_comments(text)
-    dims = {name: tuple(names.split()) for name, names in
-            re.findall(r'case Shape::(k\w+): return "([^"]*)";', code)}
-    missing = set(shapes) - set(dims)
-    if missing:
-        raise ValueError(f"schema header: no dimension_names() case for {sorted(missing)}")
+def schema_declarations(module=_schema):
+    """{constant name: value} of the generated schema module, in the order of the headers:
+    str or int (CONSTANTS), DatasetSpec, AttributeSpec, FlagSpec, list of str (TEXT_LISTS) or
+    list of the declarations a std::array list holds (LISTS)."""
     decls = {}
-
-    def value(token):
-        if token.startswith('"'):
-            return token[1:-1]
-        if token in decls:
-            return decls[token]
-        raise ValueError(f"schema header: unknown name {token!r}")
-
-    def element(token):
-        m = re.fullmatch(r"Element::k(\w+)", token)
-        if not m:
-            raise ValueError(f"schema header: {token!r} is not an Element")
-        return m.group(1).lower()
-
-    pattern = re.compile(r"inline\s+constexpr\s+(const\s+char\s*\*|std::int64_t|DatasetSpec|"
-                         r"AttributeSpec|FlagSpec|std::array)\s+(k\w+)\s*(?:=\s*([^;]*?)|\{([^;]*?)\})\s*;",
-                         re.S)
-    found = pattern.findall(code)
-    if len(found) != len(re.findall(r"inline\s+constexpr", code)):
-        raise ValueError("schema header: a declaration off the pattern `inline constexpr TYPE kName"
-                         "{...};` or `= ...;` (TYPE const char*, std::int64_t, DatasetSpec, "
-                         "AttributeSpec, std::array)")
-    for kind, name, assigned, braced in found:
-        kind = re.sub(r"\s+", " ", kind)
-        if kind.startswith("const char"):
-            decls[name] = value(assigned.strip())
-        elif kind == "std::int64_t":
-            decls[name] = int(assigned.strip())
-        elif kind == "DatasetSpec":
-            args = _split_args(braced)
-            shape = re.fullmatch(r"Shape::(k\w+)", args[2] if len(args) > 2 else "Shape::kScalar")
-            decls[name] = DatasetSpec(name, value(args[0]), value(args[1]),
-                                      shapes[shape.group(1)],
-                                      element(args[3]) if len(args) > 3 else "float64",
-                                      value(args[4]) if len(args) > 4 else "",
-                                      dims[shape.group(1)])
-        elif kind == "FlagSpec":
-            args = _split_args(braced)
-            decls[name] = FlagSpec(name, value(args[0]), value(args[1]))
-        elif kind == "AttributeSpec":
-            args = _split_args(braced)
-            decls[name] = AttributeSpec(name, value(args[0]), value(args[1]),
-                                        element(args[2]) if len(args) > 2 else "string")
+    for name in module.ORDER:
+        if name in module.CONSTANTS:
+            decls[name] = module.CONSTANTS[name]
+        elif name in module.DATASETS:
+            decls[name] = DatasetSpec(name, *module.DATASETS[name])
+        elif name in module.ATTRIBUTES:
+            decls[name] = AttributeSpec(name, *module.ATTRIBUTES[name])
+        elif name in module.FLAGS:
+            decls[name] = FlagSpec(name, *module.FLAGS[name])
+        elif name in module.TEXT_LISTS:
+            decls[name] = list(module.TEXT_LISTS[name])
         else:
-            decls[name] = [value(a) for a in _split_args(braced)]
+            decls[name] = [decls[item] for item in module.LISTS[name][1]]
     return decls
 
 
-_SCHEMA_PART = re.compile(r'^#include "hexdyn/io/(schema_\w+\.hpp)".*$', re.M)
-
-
-def read_schema_text(path):
-    """The text of the schema header at `path` with the parts it includes at its end
-    (`#include "hexdyn/io/schema_*.hpp"`, read from the same folder) put in place."""
-    path = checked_path(path)
-    with open(path, encoding="utf-8") as f:
-        text = f.read()
-
-    def part(m):
-        with open(os.path.join(os.path.dirname(path), m.group(1)), encoding="utf-8") as f:
-            return f.read()
-    return _SCHEMA_PART.sub(part, text)
-
-
-def load_schema(candidates=SCHEMA_HEADER_CANDIDATES):
-    """Parses the first schema header found among `candidates`; (path, declarations)."""
-    for path in candidates:
-        if os.path.isfile(checked_path(path)):
-            return os.path.abspath(path), parse_schema_header(read_schema_text(path))
-    raise ImportError("hexdyn.results: cannot find the schema header src/hexdyn/io/schema.hpp "
-                      f"(looked at {', '.join(candidates)}); set HEXDYN_SCHEMA_HPP")
-
-
-SCHEMA_HEADER, SCHEMA = load_schema()
+SCHEMA = schema_declarations()
 
 RESULT_SCHEMA = SCHEMA["kResultSchema"]
 RESULT_SCHEMA_VERSION = SCHEMA["kResultSchemaVersion"]
@@ -225,6 +153,12 @@ for _spec in SCHEMA.values():
     if isinstance(_spec, DatasetSpec):
         SPECS.setdefault(_spec.path, _spec)
 FLAGS = {f.path: f.meanings for f in SCHEMA.values() if isinstance(f, FlagSpec)}
+# Every declaration of each path, in declaration order (an envelope with cases declares its
+# grids again with the leading dimension `case`; an axis of numbers or of words).
+DECLARED = {}
+for _spec in SCHEMA.values():
+    if isinstance(_spec, DatasetSpec):
+        DECLARED.setdefault(_spec.path, []).append(_spec)
 
 # Versions this reader opens: the current one, and 1 (mapped on reading, V1_RENAMED).
 READABLE_VERSIONS = (1, RESULT_SCHEMA_VERSION)
@@ -250,9 +184,17 @@ def _layout(*declarations):
 # What each file kind holds, as checked at open (check_result_datasets, check_sweep_file,
 # check_envelope_file), and which of it every file has. The declarations that fix a size
 # come first: /time (T), /scenarios/id (N), the envelope's axes (W, B, S, C; D, K).
+def _coordinate_lists(kind):
+    """Every declaration list of coordinate variables of a file kind ("Result": the lists
+    kResult*Coordinates), in declaration order."""
+    return [v for k, v in SCHEMA.items() if k.startswith(f"k{kind}") and
+            k.endswith("Coordinates") and isinstance(v, list) and
+            all(isinstance(d, DatasetSpec) for d in v)]
+
+
 RESULT_LAYOUT = _layout([SCHEMA["kTime"]], SCHEMA["kModelDatasets"], SCHEMA["kUrdfRobotDatasets"],
                         SCHEMA["kKinematicDatasets"], SCHEMA["kDynamicsDatasets"],
-                        SCHEMA["kResultCoordinates"], SCHEMA["kResultIndexCoordinates"])
+                        *_coordinate_lists("Result"))
 RESULT_REQUIRED = {d.path for d in (*SCHEMA["kModelDatasets"], *SCHEMA["kKinematicDatasets"])}
 RESULT_V1_REQUIRED = {SCHEMA["kTime"].path}
 SWEEP_TABLE_LAYOUT = _layout([SCHEMA["kScenarioId"]], SCHEMA["kScenarioDatasets"])
@@ -263,8 +205,8 @@ SWEEP_AXIS_LAYOUT = _layout([SCHEMA[k] for k in ("kAxisKey", "kAxisNumbers", "kA
                                                  "kAxisLabels", "kAxisCaseKeys",
                                                  "kAxisCaseValues")])
 SWEEP_AXIS_REQUIRED = {SCHEMA[k].path for k in ("kAxisKey", "kAxisNumbers", "kAxisLabels")}
-SWEEP_ROOT_LAYOUT = _layout([SCHEMA["kSweepJointNames"]], SCHEMA["kSweepCoordinates"])
-ENVELOPE_LAYOUT = _layout(SCHEMA["kEnvelopeDatasets"], SCHEMA["kEnvelopeCoordinates"])
+SWEEP_ROOT_LAYOUT = _layout([SCHEMA["kSweepJointNames"]], *_coordinate_lists("Sweep"))
+ENVELOPE_LAYOUT = _layout(SCHEMA["kEnvelopeDatasets"], *_coordinate_lists("Envelope"))
 # With cases: the case axes first, then the grid with its leading dimension D.
 _ENVELOPE_CASES = _layout(SCHEMA["kEnvelopeCaseDatasets"])
 ENVELOPE_CASES_LAYOUT = {**{p: s for p, s in _ENVELOPE_CASES.items() if p not in ENVELOPE_LAYOUT},
@@ -327,25 +269,49 @@ def check_filetype_version(h5_root, expected_schema, expected_version, source="f
     return version
 
 
-class Result:
-    """All datasets of one result, read into memory, keyed by contract path.
+class UnknownGroupError(KeyError, ValueError):
+    """to_xarray(group) of a group the file does not have; the message names the known ones."""
 
-    res[path]        numpy array (scalars as numpy scalars; strings as str / list of str)
-    res.units[path]  the `units` attribute
-    res.shapes[path] the stored shape
-    res.meta         /meta attributes (strings decoded)
-    res.config       yaml.safe_load of /meta config_yaml
-    res.urdf         /model/urdf text
-    """
+    def __str__(self):
+        return str(self.args[0]) if self.args else ""
 
-    def __init__(self, source, data, units, shapes, meta):
+
+class Result(Mapping):
+    """One hexdyn-result/2 result in memory, computed (hexdyn.run) or read (open_result,
+    Sweep.run): a read-only mapping from dataset path ("/joints/torque") to its values.
+
+    res[path]        numpy array of the file's dtype and shape; text as str, a list of texts
+                     as a list of str (read) or a numpy array of str (computed)
+    res.units[path]  the `units` attribute (datasets that have one)
+    res.shapes[path] the shape
+    res.meta         the /meta attributes by name (str, int, float)
+    res.attrs        res.meta and the other groups' attributes as "/terrain/type"
+    res.config       the resolved configuration (/meta config_yaml) as a dict
+    res.urdf         /model/urdf, the robot as simulated
+    res.source       where it came from: the file (FILE or FILE:/runs/<id>) or the scene run
+    res.to_xarray(group=None)   labelled (xarray); res.write(path) the file
+
+    write(path) writes the hexdyn-result/2 file: a computed result through the compiled
+    writer (the file `hexdyn run` writes), a read one as a copy of the objects of the file it
+    was read from (see write)."""
+
+    def __init__(self, source, data, units, shapes, meta, attributes=None, handle=None,
+                 origin=None):
         self.source = source
         self.data = data
         self.units = units
         self.shapes = shapes
         self.meta = meta
+        self.attributes = dict(attributes or {})
         self.urdf = data.get("/model/urdf", "")
+        self._handle = handle    # the compiled RunHandle of a computed result
+        self._origin = origin    # (file, group, identity) of a read result
         self._config = None
+
+    @property
+    def attrs(self):
+        """The /meta attributes by name and the other groups' as "/terrain/type"."""
+        return {**self.meta, **self.attributes}
 
     @property
     def config(self):
@@ -367,8 +333,19 @@ class Result:
     def __contains__(self, path):
         return path in self.data
 
+    def __iter__(self):
+        return iter(self.data)
+
+    def __len__(self):
+        return len(self.data)
+
     def paths(self):
         return sorted(self.data)
+
+    @property
+    def computed(self):
+        """True for a result of hexdyn.run, False for one read from a file."""
+        return self._handle is not None
 
     @property
     def samples(self):
@@ -379,18 +356,73 @@ class Result:
     def has_dynamics(self):
         return "/joints/torque" in self.data
 
+    def groups(self):
+        """The groups that hold datasets ("/" for the root), sorted: what to_xarray takes."""
+        return sorted({p.rpartition("/")[0] or "/" for p in self.data})
+
     def to_xarray(self, group=None):
         """The datasets as an xarray.Dataset with named dimensions and coordinates (time,
         leg, joint, xyz, ...): `group` ("joints", "/contacts") gives that group's datasets
         under their own names, as xarray.open_dataset(file, group=...) does; None all of
-        them in one Dataset, named by path ("joints/torque" -> "joints_torque"). Needs
-        xarray (hexdyn.xr)."""
+        them in one Dataset, named by path ("joints/torque" -> "joints_torque"). A group
+        the result does not have raises UnknownGroupError (a KeyError and a ValueError)
+        naming the known ones. Needs xarray (hexdyn.xr)."""
+        check_group(self, group)
         from hexdyn import xr
         return xr.result_to_xarray(self, group)
 
+    def write(self, path):
+        """Writes the hexdyn-result/2 file of this result to `path`, atomically (a temporary
+        file in the target's folder, renamed when complete; nothing is left at `path` on an
+        error) and never onto an input: `path` must be a new path or a regular file that is
+        none of the files the result came from.
+
+        A computed result (hexdyn.run) goes through the compiled writer: the file `hexdyn run
+        -o` writes, with its checks of the path against the scene's input files.
+
+        A read result (open_result, Sweep.run) is written as a copy of the objects of the file
+        (or kept run group) it was read from, made with h5py: every group, dataset (values,
+        type, shape, storage: chunks, compression) and attribute, the dimension scales
+        attached again in the copy, so that the file is the one hexdyn wrote, byte for byte in
+        each dataset and attribute (a kept run of a sweep becomes a file of its own; /meta
+        keeps its created_utc). The source must be unchanged since it was read (same size and
+        modification time), and `path` none of it, its hard links, nor the files its /meta
+        input_sha256 lists. Errors: hexdyn.IoError with one line; ValueError for a path with
+        a NUL character."""
+        if self._handle is not None:
+            from . import _hexdyn
+            _hexdyn.write(self._handle, checked_path(path))
+            return
+        write_copy(self._origin, checked_path(path), _listed_inputs(self.meta))
+
     def __repr__(self):
-        return (f"Result({self.source!r}, T={self.samples}, "
+        kind = "computed" if self.computed else "read"
+        return (f"Result({self.source!r}, {kind}, T={self.samples}, "
                 f"dynamics={self.has_dynamics}, datasets={len(self.data)})")
+
+
+def check_group(obj, group):
+    """Raises UnknownGroupError unless `group` (None: all) is one of obj.groups()."""
+    if group is None:
+        return
+    name = "/" + str(group).strip("/")
+    known = obj.groups()
+    if name not in known:
+        raise UnknownGroupError(f"{obj.source}: no group {name!r} holding datasets (groups: "
+                                f"{', '.join(known)})")
+
+
+def is_group_coordinate(path, obj, root):
+    """True for a group coordinate (docs/user/output.md#dimensions-and-coordinates): in a
+    group below `root` (a file, or a sweep's kept run /runs/<id>), the copy G/D of the root's
+    coordinate D that the group's datasets are attached to, so that the group opened alone
+    has its coordinates. `path` is relative to `root` ("/joints/time"). It is an HDF5
+    dimension scale, declared by no table of the schema, and `root` has a dataset of its
+    name. The readers leave it out: the root's D is read once."""
+    if path.count("/") < 2 or path in DECLARED or not isinstance(obj, h5py.Dataset):
+        return False
+    return (isinstance(root.get("/" + path.rsplit("/", 1)[1]), h5py.Dataset)
+            and bool(h5py.h5ds.is_scale(obj.id)))
 
 
 def _read_dataset(ds):
@@ -403,6 +435,25 @@ def _read_dataset(ds):
     return ds[()]
 
 
+def _file_identity(path):
+    """What tells a file apart from another, and from itself after a change."""
+    st = os.stat(path)
+    return (st.st_dev, st.st_ino, st.st_size, st.st_mtime_ns)
+
+
+def _group_attributes(group, skip):
+    """{"/GROUP/NAME": value} of the attributes of the groups below `group` but `skip`
+    (paths relative to `group`), values as Python values."""
+    out = {}
+
+    def visit(name, obj):
+        if isinstance(obj, h5py.Group) and "/" + name != skip:
+            for key, value in obj.attrs.items():
+                out[f"/{name}/{key}"] = _python_value(value)
+    group.visititems(visit)
+    return out
+
+
 def read_result_group(group, source="result"):
     """Reads a result laid out under an open h5py File or Group (e.g. a sweep's
     /runs/<id>) after checking its schema and every dataset's element type and shape
@@ -411,7 +462,7 @@ def read_result_group(group, source="result"):
     datasets = {}
 
     def visit(name, obj):
-        if isinstance(obj, h5py.Dataset):
+        if isinstance(obj, h5py.Dataset) and not is_group_coordinate("/" + name, obj, group):
             path = "/" + name
             datasets[V1_RENAMED.get(path, path) if version == 1 else path] = obj
 
@@ -425,7 +476,10 @@ def read_result_group(group, source="result"):
         shapes[path] = tuple(obj.shape)
         if "units" in obj.attrs:
             units[path] = decode_text(obj.attrs["units"])
-    return Result(source, data, units, shapes, _meta_attributes(group))
+    filename = group.file.filename
+    origin = (filename, group.name, _file_identity(filename))
+    return Result(source, data, units, shapes, _meta_attributes(group),
+                  _group_attributes(group, META_GROUP), origin=origin)
 
 
 def _one_line(text):
@@ -543,9 +597,11 @@ def _check_layout(source, datasets, layout, required, sizes, kind):
 
 
 def _datasets_in(group, prefix):
-    """{prefix/name: h5py.Dataset} of the datasets directly in `group`."""
+    """{prefix/name: h5py.Dataset} of the datasets directly in `group` (`prefix` its path in
+    the file), group coordinates left out."""
     return {f"{prefix}/{name}": obj for name, obj in group.items()
-            if isinstance(obj, h5py.Dataset)}
+            if isinstance(obj, h5py.Dataset)
+            and not is_group_coordinate(f"{prefix}/{name}", obj, group.file)}
 
 
 def check_result_datasets(datasets, version, source):
@@ -584,6 +640,9 @@ def check_sweep_file(f, source):
         column = {p.replace("{i}", str(i)): s for p, s in SWEEP_AXIS_COLUMN_LAYOUT.items()}
         _check_layout(source, table, column, set(), sizes, SWEEP_SCHEMA)
     declared = set(SWEEP_TABLE_LAYOUT) | {f"{SCENARIOS_GROUP}/axis_{i}" for i in range(len(axes))}
+    others = {p: DECLARED[p] for p in table if p not in declared and p in DECLARED}
+    _check_layout(source, table, others, set(), sizes, SWEEP_SCHEMA)  # e.g. coordinates
+    declared |= set(others)
     for path, ds in table.items():  # the columns of /scenarios the schema does not name
         if path not in declared and (ds.shape is None or len(ds.shape) == 0 or ds.shape[0] != n):
             raise _io_error(f"{source}: dataset {path} is {_element_of(ds.dtype)} "
@@ -602,11 +661,9 @@ def check_envelope_file(f, source):
     and criteria, (D, W, B, S, C) with cases (D = len(/axes/case)), the posture grids (W, B,
     S), the probes one length P; version 1's flattened /envelope/limit and message W·B·S·C.
     hexdyn.IoError in one line on a mismatch; ValueError for another schema (as
-    check_filetype_version)."""
+    check_filetype_version). Returns the file's version."""
     version = check_filetype_version(f, ENVELOPE_SCHEMA, READABLE_ENVELOPE_VERSIONS, source)
-    datasets = {}
-    f.visititems(lambda name, obj: datasets.__setitem__("/" + name, obj)
-                 if isinstance(obj, h5py.Dataset) else None)
+    datasets = _all_datasets(f)
     cases = SCHEMA["kEnvelopeCaseLabels"].path in datasets
     layout = ENVELOPE_CASES_LAYOUT if cases else ENVELOPE_LAYOUT
     sizes = {}
@@ -621,12 +678,13 @@ def check_envelope_file(f, source):
             d = layout[p][0]
             layout[p] = [DatasetSpec(d.name, d.path, d.units, ("G",), d.element)]
     _check_layout(source, datasets, layout, ENVELOPE_REQUIRED, sizes, ENVELOPE_SCHEMA)
+    return version
 
 
 def open_result(path, group="/"):
     """Opens a hexdyn-result/2 file, checks its schema and every dataset's element type and
-    shape (check_result_datasets) and returns a Result with every dataset in memory (the file
-    is closed on return). `group` selects a result stored below the file root (e.g.
+    shape (check_result_datasets) and returns a Result (the type hexdyn.run returns) with every
+    dataset in memory (the file is closed on return; Result.write copies its objects). `group` selects a result stored below the file root (e.g.
     "/runs/<id>" of a sweep file). Anything but a regular file raises hexdyn.IoError before it
     is opened (check_regular_file), as does a file HDF5 cannot read or a dataset off the
     schema; a path with a NUL character raises ValueError."""
@@ -781,15 +839,15 @@ class Sweep:
                 f"{[a.key for a in self.axes]}, ok={int(self.ok.sum())})")
 
 
+def _python_value(value):
+    """An attribute's value as Python has it: str for text, int or float for a number."""
+    value = decode_text(value)
+    return value.item() if isinstance(value, np.generic) else value
+
+
 def _meta_attributes(group):
     """The /meta attributes of a file (or of a kept run's group) as Python values."""
-    meta = {}
-    for key, value in group["meta"].attrs.items():
-        value = decode_text(value)
-        if isinstance(value, np.generic):
-            value = value.item()
-        meta[key] = value
-    return meta
+    return {key: _python_value(value) for key, value in group["meta"].attrs.items()}
 
 
 def open_sweep(path):
@@ -821,6 +879,8 @@ def open_sweep(path):
                                   _read_checked(g["labels"], source), cases))
         table, units = {}, {}
         for name, ds in f["scenarios"].items():
+            if is_group_coordinate(f"{SCENARIOS_GROUP}/{name}", ds, f):
+                continue
             value = _read_checked(ds, source)
             table[name] = value if isinstance(value, list) else np.asarray(value)
             units[name] = decode_text(ds.attrs.get("units", ""))
@@ -835,3 +895,402 @@ def expected_shape(shape, samples=None, impacts=None, messages=None, **sizes):
     symbols by keyword, e.g. N=8, A=3)."""
     sizes = {"T": samples, "n": impacts, "m": messages, **sizes}
     return tuple(sizes[d] if isinstance(d, str) else d for d in shape)
+
+
+# ---------------------------------------------------------------------------- envelopes
+class Envelope:
+    """A hexdyn-envelope/2 file read into memory (the file is closed), checked against the
+    schema (check_envelope_file).
+
+    env[path]        numpy array of every dataset ("/envelope/riser_max", "/axes/peak_speed");
+                     text as str, texts as a numpy array of str of the dataset's shape (a
+                     version 1 file's flattened /envelope/limit and message reshaped to the grid)
+    env.units[path]  the `units` attribute; env.shapes[path] the shape
+    env.meta         /meta attributes; env.config the envelope file (dict, /meta config_yaml);
+                     env.base_config the base scene (dict)
+    env.cases        the case labels (list of str), None for a file without `cases:`
+    env.criteria     the criteria (list of str)
+    env.to_xarray(group="envelope")   the group with the grid's coordinates (xarray)
+    """
+
+    def __init__(self, source, data, units, shapes, meta, version):
+        self.source = source
+        self.path = source
+        self.data = data
+        self.units = units
+        self.shapes = shapes
+        self.meta = meta
+        self.version = version
+
+    def __getitem__(self, path):
+        try:
+            return self.data[path]
+        except KeyError:
+            raise KeyError(f"{self.source}: no dataset {path}") from None
+
+    def __contains__(self, path):
+        return path in self.data
+
+    def __iter__(self):
+        return iter(self.data)
+
+    def __len__(self):
+        return len(self.data)
+
+    def paths(self):
+        return sorted(self.data)
+
+    @property
+    def config(self):
+        return yaml.safe_load(self.meta.get("config_yaml", "") or "") or {}
+
+    @property
+    def base_config(self):
+        return yaml.safe_load(self.meta.get("base_config_yaml", "") or "") or {}
+
+    @property
+    def cases(self):
+        path = SCHEMA["kEnvelopeCaseLabels"].path
+        return list(self.data[path]) if path in self.data else None
+
+    @property
+    def criteria(self):
+        return list(self.data[SCHEMA["kEnvelopeCriteria"].path])
+
+    def groups(self):
+        """The groups that hold datasets ("/" for the root), sorted: what to_xarray takes."""
+        return sorted({p.rpartition("/")[0] or "/" for p in self.data})
+
+    def to_xarray(self, group="envelope"):
+        """The datasets of `group` ("envelope", "probes", "axes"; None: all, named by path)
+        as an xarray.Dataset on the file's dimensions, with the coordinates of the grid
+        (tread_depth, duty_factor, peak_speed, criterion; case with cases):
+        env.to_xarray().riser_max.sel(criterion="torque"). A group the file does not have
+        raises UnknownGroupError naming the known ones. Needs xarray (hexdyn.xr)."""
+        check_group(self, group)
+        from hexdyn import xr
+        return xr.result_to_xarray(self, group)
+
+    def __repr__(self):
+        return f"Envelope({self.source!r}, cases={self.cases}, datasets={len(self.data)})"
+
+
+def _read_array(ds, source):
+    """A dataset's values with the shape of the dataset: numbers as h5py gives them, text as
+    str (scalar) or a numpy array of str."""
+    value = _read_checked(ds, source)
+    if isinstance(value, list):
+        return np.array(value, dtype=object).reshape(ds.shape)
+    return value
+
+
+def open_envelope(path):
+    """Opens a hexdyn-envelope/2 file (version 1 too), checks its schema and every dataset
+    against the schema (check_envelope_file) and returns an Envelope with every dataset in
+    memory (the file is closed on return). Needs h5py only. Anything but a regular file
+    raises hexdyn.IoError before it is opened, as does a file HDF5 cannot read or a dataset
+    off the schema; ValueError for a file of another schema or a path with a NUL character."""
+    path = checked_path(path)
+    source = os.fsdecode(path)
+    data, units, shapes = {}, {}, {}
+    with open_h5(path) as f:
+        version = check_envelope_file(f, source)
+        for p, ds in _all_datasets(f).items():
+            data[p] = _read_array(ds, source)
+            shapes[p] = tuple(ds.shape)
+            if "units" in ds.attrs:
+                units[p] = decode_text(ds.attrs["units"])
+        meta = _meta_attributes(f)
+    if version == 1:  # limit and message flattened: on the grid of riser_max
+        grid = shapes[SCHEMA["kEnvelopeRiserMax"].path]
+        for p in ENVELOPE_V1_FLATTENED:
+            data[p] = np.asarray(data[p], dtype=object).reshape(grid)
+            shapes[p] = grid
+    return Envelope(source, data, units, shapes, meta, version)
+
+
+# ---------------------------------------------------------------------------- studies
+# hexdyn-study/1 (analysis/study.py): the speed-against-error study. /meta (schema,
+# schema_version and the study's provenance), /runs/<column> one value per run (each with a
+# `units` attribute), /references/<name> (attributes and datasets of each reference run),
+# /verdict (attributes).
+STUDY_SCHEMA = "hexdyn-study/1"
+STUDY_SCHEMA_VERSION = 1
+STUDY_GROUPS = ("runs", "references", "verdict")
+
+
+class Study:
+    """A hexdyn-study/1 file read into memory (the file is closed).
+
+    st.rows[column]       numpy array (numbers) or list of str, one value per run
+    st.units[column]      its `units` attribute
+    st.verdict            /verdict attributes (str, int, float)
+    st.references[name]   /references/<name> attributes
+    st.reference_data[name][dataset]   /references/<name> datasets
+    st.meta               /meta attributes
+    """
+
+    def __init__(self, source, meta, rows, units, verdict, references, reference_data):
+        self.source = source
+        self.path = source
+        self.meta = meta
+        self.rows = rows
+        self.units = units
+        self.verdict = verdict
+        self.references = references
+        self.reference_data = reference_data
+
+    def __len__(self):
+        return len(next(iter(self.rows.values()), ()))
+
+    def __repr__(self):
+        return f"Study({self.source!r}, {len(self)} runs, references={sorted(self.references)})"
+
+
+def check_study_file(f, source):
+    """Checks an open study file's schema and version and its layout: the groups /runs,
+    /references and /verdict, every /runs column a one-dimensional dataset with one value per
+    run. hexdyn.IoError in one line on a mismatch; ValueError for another schema."""
+    check_filetype_version(f, STUDY_SCHEMA, STUDY_SCHEMA_VERSION, source)
+    for g in STUDY_GROUPS:
+        if not isinstance(f.get(g), h5py.Group):
+            raise _io_error(f"{source}: no group /{g}, which every {STUDY_SCHEMA} file has")
+    n = None
+    for name, ds in f["runs"].items():
+        if not isinstance(ds, h5py.Dataset) or ds.shape is None or len(ds.shape) != 1:
+            raise _io_error(f"{source}: /runs/{name} is not a dataset of one value per run")
+        if n is None:
+            n = (ds.shape[0], name)
+        elif ds.shape[0] != n[0]:
+            raise _io_error(f"{source}: dataset /runs/{name} has {ds.shape[0]} values, expected "
+                            f"{n[0]} (from /runs/{n[1]})")
+
+
+def open_study(path):
+    """Opens a hexdyn-study/1 file (analysis/study.py), checks it (check_study_file) and
+    returns a Study in memory. Needs h5py only. Errors as open_result."""
+    path = checked_path(path)
+    source = os.fsdecode(path)
+    with open_h5(path) as f:
+        check_study_file(f, source)
+        rows, units = {}, {}
+        for name, ds in f["runs"].items():
+            value = _read_checked(ds, source)
+            rows[name] = value if isinstance(value, list) else np.asarray(value)
+            if "units" in ds.attrs:  # as for results: only the columns that have one
+                units[name] = decode_text(ds.attrs["units"])
+        verdict = {k: _python_value(v) for k, v in f["verdict"].attrs.items()}
+        references, reference_data = {}, {}
+        for name, g in f["references"].items():
+            references[name] = {k: _python_value(v) for k, v in g.attrs.items()}
+            reference_data[name] = {k: _read_checked(d, source) for k, d in g.items()
+                                    if isinstance(d, h5py.Dataset)}
+        meta = _meta_attributes(f)
+    return Study(source, meta, rows, units, verdict, references, reference_data)
+
+
+# ---------------------------------------------------------------------------- one checker
+def _all_datasets(group):
+    """{"/path": h5py.Dataset} of every dataset below `group`, paths relative to it, group
+    coordinates (is_group_coordinate) left out."""
+    out = {}
+    group.visititems(lambda name, obj: out.__setitem__("/" + name, obj)
+                     if isinstance(obj, h5py.Dataset)
+                     and not is_group_coordinate("/" + name, obj, group) else None)
+    return out
+
+
+def _check_declared(source, group, layout, meta_attributes, skip=()):
+    """What the checks at open leave to check_layout: every dataset below `group` (but those
+    below the groups `skip`) declared in `layout` with its declared `units` attribute (none for
+    ""), and every attribute of `meta_attributes` on /meta. hexdyn.IoError in one line."""
+    for path, ds in _all_datasets(group).items():
+        if any(path.startswith(s + "/") for s in skip):
+            continue
+        # A dataset of the kind's layout, or one declared elsewhere in the schema (a
+        # declaration list the layout of the readers does not name yet).
+        if path not in layout and path not in DECLARED:
+            raise _io_error(f"{source}: dataset {path} is not declared in the schema")
+        declared = {s.units for s in layout.get(path, DECLARED.get(path))}
+        if "key" in declared:
+            continue  # a sweep axis: the unit of its key
+        units = decode_text(ds.attrs["units"]) if "units" in ds.attrs else ""
+        if units not in declared:
+            raise _io_error(f"{source}: dataset {path} has units {units!r}, expected "
+                            f"{' or '.join(repr(u) for u in sorted(declared))}")
+    missing = [a.name for a in meta_attributes if a.name not in group["meta"].attrs]
+    if missing:
+        raise _io_error(f"{source}: /meta has no attribute {', '.join(missing)}")
+
+
+def check_layout(file, source=None):
+    """Checks a hexdyn file against its schema, whichever kind it is: `file` a path or an
+    open h5py File. The kind comes from /meta schema: a result (the checks of open_result), a
+    sweep (those of open_sweep, and every kept run /runs/<id> as a result), an envelope (those
+    of open_envelope) or a study (check_study_file). A result or envelope file of the current
+    version must also hold no undeclared dataset, each with its declared units, and every
+    declared /meta attribute (as must a sweep file's /meta and its kept runs). Returns the
+    schema name ("hexdyn-sweep/2"). hexdyn.IoError in one line naming the file and the
+    dataset on a mismatch (and for a path that is no regular HDF5 file); ValueError for a
+    file of no hexdyn schema or of a version this reader does not know."""
+    if not isinstance(file, (h5py.File, h5py.Group)):
+        path = checked_path(file)
+        with open_h5(path) as f:
+            return check_layout(f, source or os.fsdecode(path))
+    f = file
+    source = source or f.file.filename
+    schema = decode_text(f["meta"].attrs.get("schema", "")) if "meta" in f else ""
+    base = schema.rsplit("/", 1)[0]
+    if base == RESULT_SCHEMA.rsplit("/", 1)[0]:
+        _check_result_layout(f, source)
+        return RESULT_SCHEMA
+    if base == SWEEP_SCHEMA.rsplit("/", 1)[0]:
+        version = check_filetype_version(f, SWEEP_SCHEMA, READABLE_VERSIONS, source)
+        check_sweep_file(f, source)
+        if version == SWEEP_SCHEMA_VERSION:
+            missing = [a.name for a in SCHEMA["kSweepMetaAttributes"] if a.name not in f["meta"].attrs]
+            if missing:
+                raise _io_error(f"{source}: /meta has no attribute {', '.join(missing)}")
+        for run_id, group in (f["runs"].items() if "runs" in f else ()):
+            _check_result_layout(group, f"{source}:/runs/{run_id}")
+        return SWEEP_SCHEMA
+    if base == ENVELOPE_SCHEMA.rsplit("/", 1)[0]:
+        if check_envelope_file(f, source) == ENVELOPE_SCHEMA_VERSION:
+            cases = SCHEMA["kEnvelopeCaseLabels"].path in f
+            _check_declared(source, f, ENVELOPE_CASES_LAYOUT if cases else ENVELOPE_LAYOUT,
+                            SCHEMA["kEnvelopeMetaAttributes"])
+        return ENVELOPE_SCHEMA
+    if base == STUDY_SCHEMA.rsplit("/", 1)[0]:
+        check_study_file(f, source)
+        return STUDY_SCHEMA
+    known = ", ".join((RESULT_SCHEMA, SWEEP_SCHEMA, ENVELOPE_SCHEMA, STUDY_SCHEMA))
+    raise ValueError(f"{source}: not a hexdyn file (/meta schema {schema!r}; known: {known})")
+
+
+def _check_result_layout(group, source):
+    version = check_filetype_version(group, RESULT_SCHEMA, READABLE_VERSIONS, source)
+    datasets = {}
+    for path, ds in _all_datasets(group).items():
+        datasets[V1_RENAMED.get(path, path) if version == 1 else path] = ds
+    check_result_datasets(datasets, version, source)
+    if version == RESULT_SCHEMA_VERSION:
+        _check_declared(source, group, RESULT_LAYOUT, SCHEMA["kResultMetaAttributes"])
+
+
+# ---------------------------------------------------------------------------- writing a copy
+def _listed_inputs(meta):
+    """The absolute paths /meta input_sha256 lists ("SHA256  PATH" per line)."""
+    paths = []
+    for line in str(meta.get("input_sha256", "") or "").splitlines():
+        parts = line.split(None, 1)
+        if len(parts) == 2:
+            paths.append(parts[1])
+    return paths
+
+
+def _output_error(path, reason):
+    return _io_error(f"cannot write output '{path}': {reason}")
+
+
+def _check_copy_target(name, source, inputs):
+    """The checks of `hexdyn run -o` on an output path, against the file a result was read
+    from (`source`, by identity and path) and the files its /meta lists: hexdyn.IoError."""
+    if not name:
+        raise _output_error(name, "empty path")
+    folder = os.path.dirname(os.path.abspath(name))
+    if not os.path.isdir(folder):
+        raise _output_error(name, f"folder '{folder}' does not exist")
+    try:
+        target = os.stat(name)
+    except FileNotFoundError:
+        return
+    except OSError as e:
+        raise _output_error(name, e.strerror) from None
+    if not stat.S_ISREG(target.st_mode):
+        raise _output_error(name, "it exists and is not a regular file")
+    for role, p in [("file the result was read from", source)] + [
+            ("input file", p) for p in inputs]:
+        try:
+            st = os.stat(p)
+        except OSError:
+            continue
+        if (st.st_dev, st.st_ino) == (target.st_dev, target.st_ino):
+            raise _output_error(name, f"it is the {role} '{p}' (same device and inode), which "
+                                "the output would destroy")
+
+
+def _copy_attributes(src, dst):
+    """The attributes of `src` on `dst` with their stored type and shape, but the dimension
+    scale references (attached again by _attach_scales)."""
+    for key in src.attrs:
+        if key in ("DIMENSION_LIST", "REFERENCE_LIST"):
+            continue
+        aid = src.attrs.get_id(key)
+        dst.attrs.create(key, src.attrs[key], shape=aid.shape, dtype=aid.dtype)
+
+
+def _attach_scales(src_root, dst_root):
+    """Each dataset below `dst_root` attached to the dimension scales its original below
+    `src_root` is attached to (DIMENSION_LIST), at the same relative paths."""
+    prefix = src_root.name.rstrip("/") + "/"
+
+    def visit(name, obj):
+        if not isinstance(obj, h5py.Dataset) or "DIMENSION_LIST" not in obj.attrs:
+            return
+        for k, refs in enumerate(obj.attrs["DIMENSION_LIST"]):
+            for ref in refs:
+                scale = src_root.file[ref].name
+                if not scale.startswith(prefix):
+                    raise ValueError(f"dimension scale {scale} of {obj.name} lies outside "
+                                     f"{src_root.name}")
+                dst_root[name].dims[k].attach_scale(dst_root[scale[len(prefix):]])
+    src_root.visititems(visit)
+
+
+def write_copy(origin, path, inputs=()):
+    """Writes the objects of the group `group` of the file `file` (origin: (file, group,
+    identity when read)) as the file `path`: every member copied with h5py (H5Ocopy: values,
+    type, shape, storage), every attribute with its stored type, the dimension scales
+    attached again; into a temporary file of the target's folder, synced and renamed onto
+    `path` when complete (removed on any error, so that nothing is left at `path`). Refuses,
+    with hexdyn.IoError in one line, a source changed since it was read and a target that is
+    the source or one of `inputs` (_check_copy_target)."""
+    file, group, identity = origin
+    name = os.fsdecode(path)
+    _check_copy_target(name, file, inputs)
+    try:
+        unchanged = _file_identity(file) == identity
+    except OSError as e:
+        raise _output_error(name, f"the file the result was read from, '{file}', cannot be "
+                            f"read: {e.strerror}") from None
+    if not unchanged:
+        raise _output_error(name, f"the file the result was read from, '{file}', changed since "
+                            "it was read; open it again")
+    folder = os.path.dirname(os.path.abspath(name))
+    try:  # created as the writer of hexdyn creates files: mode 0666 less the umask
+        tmp = os.path.join(folder, f".{os.path.basename(name)}.{os.getpid()}."
+                                   f"{secrets.token_hex(6)}.tmp")
+        os.close(os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o666))
+    except OSError as e:
+        raise _output_error(name, e.strerror) from None
+    try:
+        with h5py.File(file, "r") as src:
+            root = src[group]
+            with h5py.File(tmp, "w", libver=src.libver) as dst:
+                for key in root:
+                    root.copy(root[key], dst, name=key, without_attrs=True)
+                _copy_attributes(root, dst)
+                root.visititems(lambda n, obj: _copy_attributes(obj, dst[n]))
+                _attach_scales(root, dst)
+        with open(tmp, "rb") as f:
+            os.fsync(f.fileno())
+        os.replace(tmp, name)
+    except BaseException as e:
+        try:
+            os.remove(tmp)
+        except OSError:
+            pass
+        if isinstance(e, (OSError, ValueError, KeyError)):
+            raise _output_error(name, str(e).strip().splitlines()[0] if str(e).strip()
+                                else type(e).__name__) from None
+        raise

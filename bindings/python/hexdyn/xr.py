@@ -4,7 +4,7 @@ The dimensions are those of the files (docs/user/output.md#dimensions-and-coordi
 declared in src/hexdyn/io/schema.hpp (`dimension_names`): time, leg, joint, xyz, wxyz,
 impact, message, one per sweep axis named by its key, scenario, and those of the envelope.
 Files of version 1, which carry no dimension scales, are labelled the same way from the
-declarations.
+declarations. A computed result (hexdyn.run) and one read from its file give equal Datasets.
 
     import hexdyn
     res = hexdyn.open_result("paper.h5")
@@ -13,13 +13,11 @@ declarations.
     sw = hexdyn.open_sweep("smoke.h5")
     sw.to_xarray().cost_of_transport.sel({"terrain.riser_height": 0.04})
     sw.to_dataframe()["peak_torque[L2_femur]"]
-    hexdyn.xr.open_envelope("envelope.h5").riser_max.sel(criterion="torque")
+    hexdyn.open_envelope("envelope.h5").to_xarray().riser_max.sel(criterion="torque")
 
 xarray and pandas are imported when a function is called (Debian: python3-xarray,
 python3-pandas).
 """
-
-import os
 
 import numpy as np
 
@@ -47,43 +45,65 @@ def _values(value):
     return np.asarray(value)
 
 
-def _result_coordinates(res):
-    coords = {"time": ("time", np.asarray(res["/time"]), {"units": "s", "long_name": "time"})}
-    for dim, paths in (("leg", ("/leg", "/model/leg_names")),
-                       ("joint", ("/joint", "/model/joint_names"))):
-        for p in paths:
-            if p in res:
-                coords[dim] = (dim, _values(res[p]), {"long_name": f"{dim} name"})
-                break
-    for dim, labels in COMPONENTS.items():
-        coords[dim] = (dim, np.array(labels, dtype=object))
-    return coords
+# The coordinates of files without coordinate variables (version 1): a dimension's labels
+# taken from the dataset that holds them.
+FALLBACK_COORDINATES = {"leg": "/model/leg_names", "joint": "/model/joint_names",
+                        "tread_depth": "/axes/tread_depth", "duty_factor": "/axes/duty_factor",
+                        "peak_speed": "/axes/peak_speed", "criterion": "/axes/criteria",
+                        "case": "/axes/case"}
+
+
+def _spec(path, ndim):
+    """The declaration of `path` with `ndim` dimensions (an envelope with cases declares its
+    grids again with the dimension `case`), or None."""
+    return next((s for s in hr.DECLARED.get(path, ()) if len(s.dims) == ndim), None)
+
+
+def _coordinate(res, dim, group=None):
+    """(dim, values, attrs) of the dimension `dim` of a result or envelope: its coordinate
+    variable in `group` ("GROUP/dim") or at the root ("/dim"), else the dataset of
+    FALLBACK_COORDINATES or the component labels; None when it has none (an index dimension
+    of a file of version 1)."""
+    here = None if group in (None, "/") else f"{group}/{dim}"
+    for path in (here, "/" + dim, FALLBACK_COORDINATES.get(dim)):
+        if path is not None and path in res and np.ndim(_values(res[path])) == 1:
+            spec = _spec(path, 1)
+            attrs = _attrs(spec, res.units.get(path, ""))
+            return (dim, _values(res[path]), attrs)
+    if dim in COMPONENTS:
+        return (dim, np.array(COMPONENTS[dim], dtype=object))
+    return None
 
 
 def result_to_xarray(res, group=None):
-    """An xarray.Dataset of a hexdyn.results.Result (see Result.to_xarray)."""
+    """An xarray.Dataset of a hexdyn.Result or hexdyn.Envelope (see Result.to_xarray): the
+    datasets of `group` (None: all, named by path), each on the dimensions its declaration
+    names, with the coordinates of those dimensions."""
     import xarray as xr
+    hr.check_group(res, group)
     if group is not None:
         group = "/" + group.strip("/")
-    coords = _result_coordinates(res)
     variables = {}
     for path in res.paths():
         parent, _, name = path.rpartition("/")
         parent = parent or "/"
-        if name in coords and parent == "/":
-            continue  # a coordinate variable
         if group is not None and parent != group:
             continue
-        spec = hr.SPECS.get(path)
         value = _values(res[path])
-        dims = spec.dims if spec is not None and len(spec.dims) == value.ndim else tuple(
+        if value.ndim == 1 and _spec(path, 1) is not None and _spec(path, 1).dims == (name,):
+            continue  # a coordinate variable (of the root or of its group)
+        spec = _spec(path, value.ndim)
+        dims = spec.dims if spec is not None else tuple(
             f"{name}_dim_{k}" for k in range(value.ndim))
         key = name if group is not None else path.strip("/").replace("/", "_")
         variables[key] = (dims, value, _attrs(spec, res.units.get(path, "")))
-    used = {d for dims, _, _ in variables.values() for d in dims}
-    if group is None or group == "/":
-        used |= set(coords)
-    ds = xr.Dataset(variables, coords={k: v for k, v in coords.items() if k in used})
+    used = list(dict.fromkeys(d for dims, _, _ in variables.values() for d in dims))
+    coords = {}
+    for dim in used:
+        c = _coordinate(res, dim, group)
+        if c is not None:
+            coords[dim] = c
+    ds = xr.Dataset(variables, coords=coords)
     ds.attrs.update({k: v for k, v in res.meta.items() if isinstance(v, (str, int, float))})
     return ds
 
@@ -151,16 +171,8 @@ def sweep_to_dataframe(sw):
     return pd.DataFrame(columns)
 
 
-def open_envelope(path, engine="h5netcdf"):
+def open_envelope(path):
     """The /envelope group of a hexdyn-envelope/2 file with the grid's coordinates
-    (tread_depth, duty_factor, peak_speed, criterion), as an xarray.Dataset. Anything but a
-    regular file raises hexdyn.IoError before it is opened, as does a file HDF5 cannot read
-    or a dataset off the schema (hexdyn.results.check_envelope_file, with h5py before xarray
-    opens the file); a path with a NUL character raises ValueError."""
-    import xarray as xr
-    path = hr.checked_path(path)
-    with hr.open_h5(path) as f:
-        hr.check_envelope_file(f, os.fsdecode(path))
-    with xr.open_dataset(path, engine=engine) as root, \
-            xr.open_dataset(path, engine=engine, group="envelope") as env:
-        return env.assign_coords({d: root[d] for d in env.dims if d in root}).load()
+    (tread_depth, duty_factor, peak_speed, criterion; case), as an xarray.Dataset:
+    hexdyn.open_envelope(path).to_xarray(). Errors as hexdyn.open_envelope."""
+    return hr.open_envelope(path).to_xarray()
