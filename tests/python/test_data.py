@@ -227,6 +227,11 @@ with tempfile.TemporaryDirectory() as d:
     env = hexdyn.open_envelope(envelope)
     with h5py.File(envelope, "r") as f:
         for path in _paths(f):
+            name = "/" + path.rsplit("/", 1)[1]
+            if path.count("/") > 1 and h5py.h5ds.is_scale(f[path].id) and name in f \
+                    and path not in env:  # a group's copy of a root coordinate: read once
+                assert np.array_equal(f[path][()], f[name][()]), path
+                continue
             assert same_values(env[path], plain(f[path])), path
     with xr.open_dataset(envelope, engine="h5netcdf") as root, \
             xr.open_dataset(envelope, engine="h5netcdf", group="envelope") as group:

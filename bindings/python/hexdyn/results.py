@@ -421,7 +421,7 @@ def is_group_coordinate(path, obj, root):
     name. The readers leave it out: the root's D is read once."""
     if path.count("/") < 2 or path in DECLARED or not isinstance(obj, h5py.Dataset):
         return False
-    return (isinstance(root.get("/" + path.rsplit("/", 1)[1]), h5py.Dataset)
+    return (isinstance(root.get(path.rsplit("/", 1)[1]), h5py.Dataset)  # relative to root
             and bool(h5py.h5ds.is_scale(obj.id)))
 
 
