@@ -14,17 +14,17 @@
 #include <string>
 #include <vector>
 
+#include "hexdyn/config/config.hpp"
 #include "hexdyn/core/errors.hpp"
 #include "hexdyn/envelope/envelope.hpp"
-#include "hexdyn/io/config.hpp"
-#include "hexdyn/io/interrupt.hpp"
 #include "hexdyn/model/urdf_robot.hpp"
 #include "hexdyn/mpi/launch.hpp"
+#include "hexdyn/process/interrupt.hpp"
 #ifdef HEXDYN_CLI_MPI
 #include "hexdyn/mpi/mpi_sweep.hpp"
 #endif
+#include "hexdyn/config/yaml_load.hpp"
 #include "hexdyn/io/output.hpp"
-#include "hexdyn/io/yaml_load.hpp"
 #include "hexdyn/pipeline/pipeline.hpp"
 #include "hexdyn/sweep/sweep.hpp"
 #include "hexdyn/version.hpp"
@@ -270,7 +270,7 @@ int main(int argc, char** argv) {
     }
   }
   try {
-    // Every input file is read once for the whole command (io/inputs.hpp).
+    // Every input file is read once for the whole command (config/inputs.hpp).
     const hexdyn::InputFreeze freeze;
     const Args args = parse_args(argc, argv);
     if (args.command == "validate") return validate(args);

@@ -5,9 +5,9 @@
 #include <string>
 #include <vector>
 
+#include "hexdyn/config/inputs.hpp"
 #include "hexdyn/core/result.hpp"
 #include "hexdyn/io/h5io.hpp"
-#include "hexdyn/io/inputs.hpp"
 #include "hexdyn/io/result_layout.hpp"
 
 namespace hexdyn {
@@ -19,7 +19,7 @@ namespace hexdyn {
 ///   or symbolic link is never replaced (why_not_replaceable; symbolic links are refused,
 ///   not resolved, so no file outside the output's folder is ever replaced);
 /// - `out` is not the same file as any of `inputs` (every file the command read, with the
-///   identity it had when read: io/inputs.hpp), compared by identity (st_dev, st_ino), so
+///   identity it had when read: config/inputs.hpp), compared by identity (st_dev, st_ino), so
 ///   that another name or a hard link of an input is refused too; also not the file now at
 ///   an input's absolute path (check_not_input);
 /// - the folder of `out` exists and a file can be created in it: the temporary file of

@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "hexdyn/config/inputs.hpp"
 #include "hexdyn/core/scene.hpp"
-#include "hexdyn/io/inputs.hpp"
 
 namespace YAML {
 class Node;
@@ -51,7 +51,7 @@ Override parse_override(const std::string& text);
 YAML::Node load_scene_tree(const std::string& path, std::vector<std::string>* files = nullptr);
 
 /// Reads (with inheritance), overrides and validates a scene file. Each input file is read
-/// once (io/inputs.hpp InputFreeze), so Scene::input_sha256 is the digest of what was used.
+/// once (config/inputs.hpp InputFreeze), so Scene::input_sha256 is the digest of what was used.
 /// When `inputs` is given, it receives the input files (scene, inherited files, URDF) with
 /// their identities, without their texts: what the run's outputs are checked against
 /// (io/output.hpp check_output_target).

@@ -1,4 +1,4 @@
-// A scene's robot read from its URDF (io/robot_config.hpp): robot.urdf resolved relative
+// A scene's robot read from its URDF (config/robot_config.hpp): robot.urdf resolved relative
 // to the file that names it (also through inherit:), the YAML robot's keys refused next to
 // it, the URDF's effort limits as per-joint torque limits unless the scene gives one, the
 // default foothold radius from the nominal stance, and broken descriptions refused in one
@@ -12,8 +12,8 @@
 #include <sstream>
 #include <string>
 
+#include "hexdyn/config/config.hpp"
 #include "hexdyn/core/errors.hpp"
-#include "hexdyn/io/config.hpp"
 #include "hexdyn/model/robot_model.hpp"
 #include "hexdyn/model/urdf_reader.hpp"
 #include "hexdyn/model/urdf_robot.hpp"

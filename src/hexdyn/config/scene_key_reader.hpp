@@ -1,6 +1,6 @@
 #pragma once
 /// \file scene_key_reader.hpp
-/// Internal to io/config.cpp: the key-by-key reader of a scene tree. It reads keys by
+/// Internal to config/config.cpp: the key-by-key reader of a scene tree. It reads keys by
 /// dotted path with their allowed ranges, records every key asked for (so an unknown key
 /// is named with the allowed ones) and builds the resolved tree with the defaults filled
 /// in. Every failure throws ConfigError "SOURCE: key.path: got VALUE, expected WHAT".
@@ -20,11 +20,11 @@
 #include <type_traits>
 #include <vector>
 
+#include "hexdyn/config/config.hpp"
+#include "hexdyn/config/scene_tree.hpp"
+#include "hexdyn/config/yaml_load.hpp"
 #include "hexdyn/core/errors.hpp"
 #include "hexdyn/core/spatial.hpp"
-#include "hexdyn/io/config.hpp"
-#include "hexdyn/io/scene_tree.hpp"
-#include "hexdyn/io/yaml_load.hpp"
 
 namespace hexdyn::scene_keys {
 

@@ -1,4 +1,4 @@
-// robot.links_follow_length (io/config.cpp, model/link_scaling.hpp): the default keeps the
+// robot.links_follow_length (config/config.cpp, model/link_scaling.hpp): the default keeps the
 // stated masses whatever the lengths; uniform_density scales each link's mass by its length
 // over robot.<link>.reference_length and moves its COM with it, so that the model's total
 // mass is the hand sum over the scaled links (numbers read here from configs/paper.yaml with
@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "hexdyn/config/config.hpp"
 #include "hexdyn/core/errors.hpp"
-#include "hexdyn/io/config.hpp"
 #include "hexdyn/model/robot_model.hpp"
 
 namespace hexdyn {

@@ -1,7 +1,7 @@
-// SHA-256 of input files (io/sha256.hpp) against the FIPS 180-4 examples (NIST's "abc", the
+// SHA-256 of input files (process/sha256.hpp) against the FIPS 180-4 examples (NIST's "abc", the
 // empty message, the 448-bit message and one million 'a') and against coreutils'
 // `sha256sum` on a file larger than the read block; a scene's /meta input_sha256 lists its
-// file, every inherited file and its URDF with `sha256sum`'s digests (io/inputs.hpp).
+// file, every inherited file and its URDF with `sha256sum`'s digests (config/inputs.hpp).
 #include <unistd.h>
 
 #include <catch2/catch.hpp>
@@ -10,9 +10,9 @@
 #include <fstream>
 #include <string>
 
+#include "hexdyn/config/config.hpp"
 #include "hexdyn/core/errors.hpp"
-#include "hexdyn/io/config.hpp"
-#include "hexdyn/io/sha256.hpp"
+#include "hexdyn/process/sha256.hpp"
 
 namespace hexdyn {
 namespace {

@@ -1,4 +1,4 @@
-#include "hexdyn/io/run_limits.hpp"
+#include "hexdyn/config/run_limits.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -62,7 +62,7 @@ struct LoadedUrdfRobot {
 
 /// Reads and validates the description (ConfigError, one line naming the file and the
 /// link, joint or chain) and computes the nominal stance. The file is read as an input
-/// (io/inputs.hpp read_input_text: the bytes kept while a command runs, else read now);
+/// (config/inputs.hpp read_input_text: the bytes kept while a command runs, else read now);
 /// the last few robots loaded are kept by their keys and file text, and the same keys and
 /// text give the robot loaded before (shared: a sweep's scenarios parse their URDF once).
 LoadedUrdfRobot load_urdf_robot(const UrdfRobotKeys& keys);

@@ -1,4 +1,4 @@
-#include "hexdyn/io/paths.hpp"
+#include "hexdyn/process/paths.hpp"
 
 #include <filesystem>
 

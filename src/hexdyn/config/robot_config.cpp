@@ -1,4 +1,4 @@
-#include "hexdyn/io/robot_config.hpp"
+#include "hexdyn/config/robot_config.hpp"
 
 #include <yaml-cpp/yaml.h>
 
@@ -6,12 +6,12 @@
 #include <filesystem>
 #include <mutex>
 
+#include "hexdyn/config/inputs.hpp"
+#include "hexdyn/config/yaml_load.hpp"
 #include "hexdyn/core/errors.hpp"
-#include "hexdyn/io/inputs.hpp"
-#include "hexdyn/io/paths.hpp"
-#include "hexdyn/io/yaml_load.hpp"
 #include "hexdyn/model/stance.hpp"
 #include "hexdyn/model/urdf_reader.hpp"
+#include "hexdyn/process/paths.hpp"
 
 namespace hexdyn {
 
@@ -52,7 +52,7 @@ LoadedUrdfRobot load_urdf_robot(const UrdfRobotKeys& keys) {
   if (const auto why = why_not_input_file(keys.path))
     throw ConfigError("robot.urdf: got " + keys.path + ", which " + *why +
                       ", expected a URDF file");
-  // Read as an input (io/inputs.hpp): while a command runs, the bytes it read first; outside
+  // Read as an input (config/inputs.hpp): while a command runs, the bytes it read first; outside
   // one, the file as it is now. A text and keys loaded before give the robot loaded then (a
   // sweep's scenarios share their robot).
   const InputFile file = read_input_text(keys.path, kMaxUrdfBytes, "a URDF file");

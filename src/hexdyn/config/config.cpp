@@ -1,4 +1,4 @@
-#include "hexdyn/io/config.hpp"
+#include "hexdyn/config/config.hpp"
 
 #include <yaml-cpp/yaml.h>
 
@@ -9,16 +9,16 @@
 #include <map>
 #include <set>
 
+#include "hexdyn/config/inputs.hpp"
+#include "hexdyn/config/plausibility.hpp"
+#include "hexdyn/config/robot_config.hpp"
+#include "hexdyn/config/run_limits.hpp"
+#include "hexdyn/config/scene_key_reader.hpp"
+#include "hexdyn/config/scene_tree.hpp"
+#include "hexdyn/config/yaml_load.hpp"
 #include "hexdyn/core/errors.hpp"
 #include "hexdyn/core/run_size.hpp"
 #include "hexdyn/core/value_bounds.hpp"
-#include "hexdyn/io/inputs.hpp"
-#include "hexdyn/io/plausibility.hpp"
-#include "hexdyn/io/robot_config.hpp"
-#include "hexdyn/io/run_limits.hpp"
-#include "hexdyn/io/scene_key_reader.hpp"
-#include "hexdyn/io/scene_tree.hpp"
-#include "hexdyn/io/yaml_load.hpp"
 #include "hexdyn/model/link_scaling.hpp"
 
 namespace hexdyn {
@@ -42,7 +42,7 @@ BodyParams read_body(Reader& r, const std::string& path, bool has_com_default,
   return b;
 }
 
-/// robot: {urdf: ...}: the robot read from its URDF (io/robot_config.hpp). Returns the
+/// robot: {urdf: ...}: the robot read from its URDF (config/robot_config.hpp). Returns the
 /// nominal stance radius, gait.foot_lateral's default [m].
 double read_urdf_robot_keys(Reader& r, RobotParams& p, LoadedUrdfRobot& loaded) {
   UrdfRobotKeys k;
@@ -152,7 +152,7 @@ void read_terrain(Reader& r, TerrainParams& t) {
 void read_gait(Reader& r, GaitParams& g, const LoadedUrdfRobot& urdf) {
   g.duty_factor = r.number("gait.duty_factor", {0.5, 1.0, false, true});
   g.stroke_m = r.number("gait.stroke", positive(2.0));
-  // A URDF robot's footholds default to its nominal stance radius (io/robot_config.hpp),
+  // A URDF robot's footholds default to its nominal stance radius (config/robot_config.hpp),
   // an automatic choice the resolved configuration records beside the value.
   if (urdf.robot && !r.given("gait.foot_lateral")) r.record("auto.gait.foot_lateral", "auto");
   g.foot_lateral_m = urdf.robot
@@ -443,7 +443,7 @@ std::vector<std::string> split_key_path(const std::string& path) {
 }
 
 Override parse_override(const std::string& text) {
-  // Bound for the result file's /meta, like a file's text (io/inputs.hpp).
+  // Bound for the result file's /meta, like a file's text (config/inputs.hpp).
   const std::size_t bad = first_non_utf8(text);
   if (bad != std::string::npos) require_utf8(text, "--set " + text.substr(0, bad) + "...");
   const auto eq = text.find('=');

@@ -1,4 +1,4 @@
-// The scene tree a sweep's scenarios share (io/scene_tree.hpp) against the YAML tree it
+// The scene tree a sweep's scenarios share (config/scene_tree.hpp) against the YAML tree it
 // stands for: a key set on the shared tree reads as the key set on a copy of the YAML tree
 // (the sweep's former way), the base stays as it was, a scene read from either is the same
 // with the same one-line errors, and numbers read without yaml-cpp's string stream are the
@@ -10,10 +10,10 @@
 #include <string>
 #include <vector>
 
+#include "hexdyn/config/config.hpp"
+#include "hexdyn/config/scene_key_reader.hpp"
+#include "hexdyn/config/scene_tree.hpp"
 #include "hexdyn/core/errors.hpp"
-#include "hexdyn/io/config.hpp"
-#include "hexdyn/io/scene_key_reader.hpp"
-#include "hexdyn/io/scene_tree.hpp"
 
 namespace hexdyn {
 namespace {

@@ -1,4 +1,4 @@
-#include "hexdyn/io/atomic_file.hpp"
+#include "hexdyn/process/atomic_file.hpp"
 
 #include <fcntl.h>
 #include <signal.h>
@@ -12,8 +12,8 @@
 #include <system_error>
 
 #include "hexdyn/core/errors.hpp"
-#include "hexdyn/io/interrupt.hpp"
-#include "hexdyn/io/paths.hpp"
+#include "hexdyn/process/interrupt.hpp"
+#include "hexdyn/process/paths.hpp"
 
 namespace hexdyn {
 namespace {

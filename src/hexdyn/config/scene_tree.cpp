@@ -1,4 +1,4 @@
-#include "hexdyn/io/scene_tree.hpp"
+#include "hexdyn/config/scene_tree.hpp"
 
 namespace hexdyn {
 namespace {

@@ -1,4 +1,4 @@
-#include "hexdyn/io/cases.hpp"
+#include "hexdyn/config/cases.hpp"
 
 #include <yaml-cpp/yaml.h>
 
@@ -9,10 +9,10 @@
 #include <set>
 #include <system_error>
 
+#include "hexdyn/config/scene_tree.hpp"
+#include "hexdyn/config/yaml_load.hpp"
 #include "hexdyn/core/errors.hpp"
-#include "hexdyn/io/paths.hpp"
-#include "hexdyn/io/scene_tree.hpp"
-#include "hexdyn/io/yaml_load.hpp"
+#include "hexdyn/process/paths.hpp"
 
 namespace hexdyn {
 namespace {

@@ -33,7 +33,7 @@ struct InputFile {
   std::string role;          ///< "scene", "inherited scene", "URDF", "sweep file", "envelope file"
   std::string path;          ///< as named (relative paths joined to the naming file's folder)
   std::string absolute;      ///< absolute and lexically normal (no "." or ".." parts), when read
-  std::string sha256;        ///< of `text`: 64 lowercase hexadecimal digits (io/sha256.hpp)
+  std::string sha256;        ///< of `text`: 64 lowercase hexadecimal digits (process/sha256.hpp)
   std::uint64_t device = 0;  ///< st_dev of the file read (0 with inode 0: not known here)
   std::uint64_t inode = 0;   ///< st_ino of the file read
   std::shared_ptr<const std::string> text;  ///< the bytes read (null once dropped)

@@ -1,4 +1,4 @@
-#include "hexdyn/io/sha256.hpp"
+#include "hexdyn/process/sha256.hpp"
 
 #include <fcntl.h>
 #include <openssl/evp.h>

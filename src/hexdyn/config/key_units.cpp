@@ -1,4 +1,4 @@
-#include "hexdyn/io/key_units.hpp"
+#include "hexdyn/config/key_units.hpp"
 
 #include <array>
 #include <string_view>

@@ -1,7 +1,7 @@
 #pragma once
 /// \file scene_tree.hpp
-/// Internal to io/config.cpp and sweep/scenario_factory.cpp: a scene's YAML tree as the
-/// key reader (io/scene_key_reader.hpp) walks it, each map's entries held in file order
+/// Internal to config/config.cpp and sweep/scenario_factory.cpp: a scene's YAML tree as the
+/// key reader (config/scene_key_reader.hpp) walks it, each map's entries held in file order
 /// with their key text. A sweep converts its base tree once; a scenario's tree is the base
 /// with its axis values set, sharing every map it does not change with the base (setting
 /// a key copies only the maps on the key's path), so a scenario neither clones the base
@@ -64,7 +64,7 @@ class SceneTree {
   NodePtr root_;
 };
 
-/// scene_from_yaml (io/config.hpp) of a tree already converted (defined in io/config.cpp).
+/// scene_from_yaml (config/config.hpp) of a tree already converted (defined in config/config.cpp).
 Scene scene_from_tree(const SceneTree& tree, const std::string& source_name, bool emit_resolved);
 
 }  // namespace hexdyn

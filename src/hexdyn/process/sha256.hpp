@@ -2,7 +2,7 @@
 /// \file sha256.hpp
 /// SHA-256 (FIPS 180-4) of files and byte strings, by OpenSSL's libcrypto (its EVP
 /// digest interface; the implementation FIPS 140 validations cover). hexdyn records the
-/// digest of every input file a run, sweep or envelope reads (io/inputs.hpp,
+/// digest of every input file a run, sweep or envelope reads (config/inputs.hpp,
 /// docs/user/output.md#provenance-of-the-inputs).
 #include <cstddef>
 #include <string>

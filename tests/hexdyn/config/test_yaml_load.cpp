@@ -16,9 +16,9 @@
 #include <string>
 #include <thread>
 
+#include "hexdyn/config/config.hpp"
+#include "hexdyn/config/yaml_load.hpp"
 #include "hexdyn/core/errors.hpp"
-#include "hexdyn/io/config.hpp"
-#include "hexdyn/io/yaml_load.hpp"
 
 namespace hexdyn {
 namespace {

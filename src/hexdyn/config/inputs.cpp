@@ -1,4 +1,4 @@
-#include "hexdyn/io/inputs.hpp"
+#include "hexdyn/config/inputs.hpp"
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -13,9 +13,9 @@
 #include <map>
 #include <mutex>
 
+#include "hexdyn/config/yaml_load.hpp"
 #include "hexdyn/core/errors.hpp"
-#include "hexdyn/io/sha256.hpp"
-#include "hexdyn/io/yaml_load.hpp"
+#include "hexdyn/process/sha256.hpp"
 
 namespace hexdyn {
 namespace {
@@ -199,7 +199,7 @@ std::vector<InputFile> scene_inputs(const std::vector<std::string>& chain, const
   for (std::size_t i = 0; i < chain.size(); ++i)
     add_input(inputs, i == 0 ? "scene" : "inherited scene", chain[i]);
   // A URDF that is no regular file is not read here: the scene's reader refuses it, naming
-  // the key (io/config.cpp).
+  // the key (config/config.cpp).
   const std::string urdf = tree_urdf_path(tree);
   if (!urdf.empty() && !why_not_input_file(urdf)) add_input(inputs, "URDF", urdf);
   return inputs;

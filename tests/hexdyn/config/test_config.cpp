@@ -14,9 +14,9 @@
 #include <string>
 #include <vector>
 
+#include "hexdyn/config/config.hpp"
 #include "hexdyn/core/errors.hpp"
 #include "hexdyn/core/run_size.hpp"
-#include "hexdyn/io/config.hpp"
 #include "hexdyn/model/robot_model.hpp"
 #include "hexdyn/sample_models.hpp"
 
@@ -469,7 +469,7 @@ double number_after(const std::string& msg, const std::string& marker) {
 }
 
 // Every size that grows with the input is bounded before anything is planned
-// (core/run_size.hpp, io/run_limits.hpp): each refusal names its key and the limit, and a
+// (core/run_size.hpp, config/run_limits.hpp): each refusal names its key and the limit, and a
 // value just inside is accepted. The boundaries are computed here from the scene: the paper
 // scene's motion lasts 3 + 2.6 + 3 = 8.6 s, its grid spans 1 s more (the longest touchdown
 // transient), and a uniform grid has floor(span / step) + 2 points at most.

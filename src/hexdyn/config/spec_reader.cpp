@@ -1,12 +1,12 @@
-#include "hexdyn/io/spec_reader.hpp"
+#include "hexdyn/config/spec_reader.hpp"
 
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
 #include <set>
 
+#include "hexdyn/config/config.hpp"
 #include "hexdyn/core/errors.hpp"
-#include "hexdyn/io/config.hpp"
 
 namespace hexdyn {
 

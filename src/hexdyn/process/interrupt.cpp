@@ -1,4 +1,4 @@
-#include "hexdyn/io/interrupt.hpp"
+#include "hexdyn/process/interrupt.hpp"
 
 #include <signal.h>
 #include <unistd.h>

@@ -15,9 +15,9 @@
 #include <string>
 #include <vector>
 
-#include "hexdyn/io/config.hpp"
-#include "hexdyn/io/inputs.hpp"
-#include "hexdyn/io/spec_reader.hpp"
+#include "hexdyn/config/config.hpp"
+#include "hexdyn/config/inputs.hpp"
+#include "hexdyn/config/spec_reader.hpp"
 
 namespace YAML {
 class Node;

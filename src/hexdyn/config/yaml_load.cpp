@@ -1,4 +1,4 @@
-#include "hexdyn/io/yaml_load.hpp"
+#include "hexdyn/config/yaml_load.hpp"
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -20,11 +20,11 @@
 #include <sstream>
 #include <vector>
 
+#include "hexdyn/config/config.hpp"
+#include "hexdyn/config/inputs.hpp"
+#include "hexdyn/config/robot_config.hpp"
 #include "hexdyn/core/errors.hpp"
-#include "hexdyn/io/config.hpp"
-#include "hexdyn/io/inputs.hpp"
-#include "hexdyn/io/paths.hpp"
-#include "hexdyn/io/robot_config.hpp"
+#include "hexdyn/process/paths.hpp"
 
 namespace hexdyn {
 namespace {
@@ -349,7 +349,7 @@ std::optional<std::string> why_not_regular_file(const std::string& path) {
 }
 
 std::string read_text_file(const std::string& path) {
-  // io/inputs.hpp: type and size checked before reading, UTF-8, kept while a command runs.
+  // config/inputs.hpp: type and size checked before reading, UTF-8, kept while a command runs.
   return *read_input_text(path, kMaxConfigBytes, "a configuration file (a regular YAML file)").text;
 }
 

@@ -1,4 +1,4 @@
-#include "hexdyn/io/plausibility.hpp"
+#include "hexdyn/config/plausibility.hpp"
 
 #include <cmath>
 #include <sstream>

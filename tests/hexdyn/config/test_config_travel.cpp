@@ -1,4 +1,4 @@
-// motion.travel (io/config.cpp read_travel): the cycles follow from a distance or a number of
+// motion.travel (config/config.cpp read_travel): the cycles follow from a distance or a number of
 // treads, the stride shrinks so that the trunk travels exactly that distance at any duty
 // factor, the resolved scene loads back to the same motion, and conflicts are one line.
 #include <catch2/catch.hpp>
@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "hexdyn/config/config.hpp"
 #include "hexdyn/core/errors.hpp"
-#include "hexdyn/io/config.hpp"
 
 namespace hexdyn {
 namespace {
