@@ -18,8 +18,8 @@
 #include "hexdyn/core/errors.hpp"
 #include "hexdyn/envelope/envelope.hpp"
 #include "hexdyn/model/urdf_robot.hpp"
-#include "hexdyn/mpi/launch.hpp"
 #include "hexdyn/process/interrupt.hpp"
+#include "hexdyn/process/launch.hpp"
 #ifdef HEXDYN_CLI_MPI
 #include "hexdyn/mpi/mpi_sweep.hpp"
 #endif

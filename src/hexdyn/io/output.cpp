@@ -19,8 +19,8 @@
 #include "hexdyn/io/labels.hpp"
 #include "hexdyn/io/result_layout.hpp"
 #include "hexdyn/io/schema.hpp"
-#include "hexdyn/mpi/launch.hpp"
 #include "hexdyn/process/atomic_file.hpp"
+#include "hexdyn/process/launch.hpp"
 #include "hexdyn/process/paths.hpp"
 #include "hexdyn/version.hpp"
 
