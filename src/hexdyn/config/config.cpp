@@ -26,6 +26,24 @@ namespace {
 
 using namespace scene_keys;
 
+/// The value of every optional scene key that is absent: the field's initial value in
+/// core/scene.hpp, read from a default-constructed Scene, the one table of defaults.
+const Scene& defaults() {
+  static const Scene d;
+  return d;
+}
+
+/// The words of the defaults that are choices (robot.leg_inertia, contact.model, ...).
+std::string word(LegInertia v) { return v == LegInertia::kMassless ? "massless" : "full"; }
+std::string word(ContactModel v) { return v == ContactModel::kRigid ? "rigid" : "compliant"; }
+std::string word(FrictionModel v) {
+  return v == FrictionModel::kCone       ? "cone"
+         : v == FrictionModel::kPyramid8 ? "pyramid8"
+                                         : "pyramid4";
+}
+std::string word(OutputGrid v) { return v == OutputGrid::kUniform ? "uniform" : "adaptive"; }
+std::string compression_word(bool compress) { return compress ? "deflate" : "none"; }
+
 BodyParams read_body(Reader& r, const std::string& path, bool has_com_default,
                      const Vec3& com_default) {
   BodyParams b;
@@ -61,7 +79,7 @@ double read_urdf_robot_keys(Reader& r, RobotParams& p, LoadedUrdfRobot& loaded) 
   if (r.has("robot.nominal_pose"))
     k.nominal_pose_rad = r.vec3("robot.nominal_pose", closed(-2.0 * M_PI, 2.0 * M_PI));
   k.ik_min_margin_m = p.ik_min_margin_m =
-      r.number_or("robot.ik_min_margin", 1e-4, nonnegative(0.1));
+      r.number_or("robot.ik_min_margin", defaults().robot.ik_min_margin_m, nonnegative(0.1));
   loaded = load_urdf_robot(k);
   p.urdf = loaded.robot;
   if (!(loaded.stance_radius_m > 0.0))
@@ -122,8 +140,9 @@ void read_robot(Reader& r, RobotParams& p, LoadedUrdfRobot& loaded) {
     // left legs mirror them.
     p.hip_yaw_rad[leg] = left ? M_PI - yaw[row] : yaw[row];
   }
-  p.ik_min_margin_m = r.number_or("robot.ik_min_margin", 1e-4, nonnegative(0.1));
-  const std::string def_legs = "full";
+  p.ik_min_margin_m =
+      r.number_or("robot.ik_min_margin", defaults().robot.ik_min_margin_m, nonnegative(0.1));
+  const std::string def_legs = word(defaults().robot.leg_inertia);
   p.leg_inertia = r.choice("robot.leg_inertia", {"full", "massless"}, &def_legs) == "massless"
                       ? LegInertia::kMassless
                       : LegInertia::kFull;
@@ -133,19 +152,23 @@ void read_terrain(Reader& r, TerrainParams& t) {
   const std::string type = r.choice("terrain.type", {"stairs", "flat", "slope"});
   if (type == "flat") {
     t.type = TerrainType::kFlat;
-    t.ground_height_m = r.number_or("terrain.height", 0.0, closed(-100.0, 100.0));
+    t.ground_height_m =
+        r.number_or("terrain.height", defaults().terrain.ground_height_m, closed(-100.0, 100.0));
   } else if (type == "slope") {
     t.type = TerrainType::kSlope;
     t.slope_rad = r.number("terrain.angle", {-M_PI / 3, M_PI / 3, true, true});
-    t.slope_origin_y_m = r.number_or("terrain.origin_y", 0.0, closed(-100.0, 100.0));
-    t.ground_height_m = r.number_or("terrain.ground_height", 0.0, closed(-100.0, 100.0));
+    t.slope_origin_y_m =
+        r.number_or("terrain.origin_y", defaults().terrain.slope_origin_y_m, closed(-100.0, 100.0));
+    t.ground_height_m = r.number_or("terrain.ground_height", defaults().terrain.ground_height_m,
+                                    closed(-100.0, 100.0));
   } else {
     t.type = TerrainType::kStairs;
     t.riser_height_m = r.number("terrain.riser_height", nonnegative(1.0));
     t.tread_depth_m = r.number("terrain.tread_depth", positive(10.0));
     t.steps = r.integer("terrain.steps", 1, 100000);
     t.first_riser_y_m = r.number("terrain.first_riser_y", closed(-100.0, 100.0));
-    t.ground_height_m = r.number_or("terrain.ground_height", 0.0, closed(-100.0, 100.0));
+    t.ground_height_m = r.number_or("terrain.ground_height", defaults().terrain.ground_height_m,
+                                    closed(-100.0, 100.0));
   }
 }
 
@@ -158,11 +181,14 @@ void read_gait(Reader& r, GaitParams& g, const LoadedUrdfRobot& urdf) {
   g.foot_lateral_m = urdf.robot
                          ? r.number_or("gait.foot_lateral", urdf.stance_radius_m, positive(2.0))
                          : r.number("gait.foot_lateral", positive(2.0));
-  g.foothold_margin_m = r.number_or("gait.foothold_margin", 0.02, nonnegative(1.0));
+  g.foothold_margin_m =
+      r.number_or("gait.foothold_margin", defaults().gait.foothold_margin_m, nonnegative(1.0));
   g.swing_clearance_m = r.number("gait.swing_clearance", positive(1.0));
   g.touchdown_speed_mps = r.number("gait.touchdown_speed", nonnegative(10.0));
-  g.lift_fraction = r.number_or("gait.lift_fraction", 0.3, {0.0, 1.0, true, true});
-  g.lower_fraction = r.number_or("gait.lower_fraction", 0.2, {0.0, 1.0, true, true});
+  g.lift_fraction =
+      r.number_or("gait.lift_fraction", defaults().gait.lift_fraction, {0.0, 1.0, true, true});
+  g.lower_fraction =
+      r.number_or("gait.lower_fraction", defaults().gait.lower_fraction, {0.0, 1.0, true, true});
   if (g.lift_fraction + g.lower_fraction >= 0.95)
     r.fail("gait.lower_fraction",
            "got " + fmt(g.lower_fraction) + " with gait.lift_fraction " + fmt(g.lift_fraction) +
@@ -204,8 +230,11 @@ void read_posture(Reader& r, MotionParams& m) {
            "got " + yaml_inline(YAML::Node(h)) + ", expected [lower, upper] with lower < upper");
   p.height_min_m = h[0];
   p.height_max_m = h[1];
-  p.target_margin_m = r.number_or("motion.posture.target_margin", 0.01, nonnegative(1.0));
-  p.trunk_clearance_m = r.number_or("motion.posture.trunk_clearance", 0.05, closed(-1.0, 10.0));
+  p.target_margin_m = r.number_or("motion.posture.target_margin",
+                                  defaults().motion.posture.target_margin_m, nonnegative(1.0));
+  p.trunk_clearance_m =
+      r.number_or("motion.posture.trunk_clearance", defaults().motion.posture.trunk_clearance_m,
+                  closed(-1.0, 10.0));
   p.vary_foot_lateral = r.given("motion.posture.foot_lateral");
   if (p.vary_foot_lateral) {
     const auto w = r.numbers("motion.posture.foot_lateral", 2, 2, positive(2.0));
@@ -319,7 +348,7 @@ void read_motion(Reader& r, GaitParams& g, const TerrainParams& t, MotionParams&
 }
 
 void read_contact(Reader& r, ContactParams& c) {
-  const std::string def_model = "compliant";
+  const std::string def_model = word(defaults().contact.model);
   c.model = r.choice("contact.model", {"compliant", "rigid"}, &def_model) == "rigid"
                 ? ContactModel::kRigid
                 : ContactModel::kCompliant;
@@ -331,7 +360,7 @@ void read_contact(Reader& r, ContactParams& c) {
 }
 
 void read_allocation(Reader& r, AllocationParams& a, const LoadedUrdfRobot& urdf) {
-  const std::string def_friction = "pyramid4";
+  const std::string def_friction = word(defaults().allocation.friction);
   const std::string friction =
       r.choice("allocation.friction", {"pyramid4", "pyramid8", "cone"}, &def_friction);
   a.friction = friction == "cone"       ? FrictionModel::kCone
@@ -357,19 +386,21 @@ void read_allocation(Reader& r, AllocationParams& a, const LoadedUrdfRobot& urdf
   } else {
     a.torque_limit_Nm = r.number("allocation.torque_limit", positive(kMaxJointEffort_Nm));
   }
-  a.min_normal_force_N = r.number_or("allocation.min_normal_force", 0.0, nonnegative(1e6));
+  a.min_normal_force_N = r.number_or("allocation.min_normal_force",
+                                     defaults().allocation.min_normal_force_N, nonnegative(1e6));
   // The loosest tolerance at which both back ends still meet the fixed violation threshold
   // (allocation/qp.hpp kViolationThreshold) on the paper scene: from 1e-9 to 1e-5 the
   // active-set and Ipopt runs flag the same 270 of 560 samples; at 1e-4 Ipopt flags 19 more,
   // at 1e-2 the active set 16 more (docs/theory/allocation.md#measured-violation-flags).
   constexpr double kLoosestTolerance = 1e-5;
-  a.tolerance = r.number_or("allocation.tolerance", 1e-9, positive());
+  a.tolerance = r.number_or("allocation.tolerance", defaults().allocation.tolerance, positive());
   if (a.tolerance > kLoosestTolerance)
     r.fail("allocation.tolerance",
            "got " + fmt(a.tolerance) + ", expected a number in (0, " + fmt(kLoosestTolerance) +
                "]: looser solves miss the 1e-6 N / N m violation threshold, so samples would be "
                "flagged for the solver's inaccuracy rather than for physics");
-  a.slack_penalty = r.number_or("allocation.slack_penalty", 1e6, positive(1e12));
+  a.slack_penalty =
+      r.number_or("allocation.slack_penalty", defaults().allocation.slack_penalty, positive(1e12));
 }
 
 /// `auto:`: what a scene asked hexdyn to choose, as the resolved configuration of an
@@ -388,15 +419,16 @@ void read_auto_requests(Reader& r) {
 
 void read_output(Reader& r, OutputParams& o) {
   o.sample_step_s = r.number("output.sample_step", positive(kMaxSampleStep_s));
-  const std::string def_grid = "adaptive";
+  const std::string def_grid = word(defaults().output.grid);
   o.grid = r.choice("output.grid", {"uniform", "adaptive"}, &def_grid) == "uniform"
                ? OutputGrid::kUniform
                : OutputGrid::kAdaptive;
-  const int def_samples = 16;
+  const int def_samples = defaults().output.impact_samples;
   o.impact_samples = r.integer("output.impact_samples", 1, 100000, &def_samples);
-  o.event_step_s = r.number_or("output.event_step", 1e-2, positive(100.0));
-  o.tolerance = r.number_or("output.tolerance", kDefaultOutputTolerance, closed(0.0, 0.1));
-  const std::string def_compression = "deflate";
+  o.event_step_s =
+      r.number_or("output.event_step", defaults().output.event_step_s, positive(100.0));
+  o.tolerance = r.number_or("output.tolerance", defaults().output.tolerance, closed(0.0, 0.1));
+  const std::string def_compression = compression_word(defaults().output.compress);
   o.compress = r.choice("output.compression", {"deflate", "none"}, &def_compression) == "deflate";
   if (o.event_step_s > o.sample_step_s)
     r.fail("output.event_step", "got " + fmt(o.event_step_s) +
@@ -483,7 +515,7 @@ Scene scene_from_tree(const SceneTree& tree, const std::string& source_name, boo
   Scene s;
   s.source_path = source_name;
   Reader r(tree, source_name, emit_resolved);
-  s.name = r.string_or("name", "scene");
+  s.name = r.string_or("name", defaults().name);
   read_auto_requests(r);
   LoadedUrdfRobot urdf;
   read_robot(r, s.robot, urdf);

@@ -190,8 +190,11 @@ struct OutputParams {
   bool compress = true;
 };
 
+/// A default-constructed Scene holds the default of every optional scene key (config.cpp
+/// reads them from here: docs/user/configuration.md); fields of keys a scene must give hold
+/// the paper's values only as examples.
 struct Scene {
-  std::string name;
+  std::string name = "scene";  ///< name: (default "scene")
   RobotParams robot;
   TerrainParams terrain;
   GaitParams gait;
