@@ -283,10 +283,22 @@ class Reader {
       return *def;
     }
     double v = 0.0;
-    if (node->type != YAML::NodeType::Scalar || !decode_scalar(*node, v))
+    // A p/q fraction (parse_fraction) is its value, as in `--set` and sweep files: messages
+    // show the number those write in its place (fraction_to_number_text), so that a scene
+    // file, `--set` and a sweep refuse a value with the same line.
+    YAML::Node shown = node->yaml;
+    if (node->type == YAML::NodeType::Scalar && !decode_scalar(*node, v)) {
+      if (const auto q = parse_fraction(node->scalar)) {
+        v = *q;
+        shown = YAML::Node(fraction_to_number_text(node->scalar));
+      } else {
+        fail_value(path, SceneTree::yaml(*node), r.describe());
+      }
+    }
+    if (node->type != YAML::NodeType::Scalar)
       fail_value(path, SceneTree::yaml(*node), r.describe());
-    if (!std::isfinite(v)) fail_value(path, node->yaml, "a finite number (" + r.describe() + ")");
-    if (!r.contains(v)) fail_value(path, node->yaml, r.describe());
+    if (!std::isfinite(v)) fail_value(path, shown, "a finite number (" + r.describe() + ")");
+    if (!r.contains(v)) fail_value(path, shown, r.describe());
     set_resolved(path, v);
     return v;
   }

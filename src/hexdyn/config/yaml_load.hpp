@@ -57,7 +57,8 @@ std::optional<std::string> why_not_regular_file(const std::string& path);
 YAML::Node parse_yaml_checked(const std::string& text, const std::string& source_name);
 
 /// "p/q" with integers p and q ≠ 0 (spaces allowed around '/') → p divided by q;
-/// nothing for any other text. Sweep axis values and `--set` values use it.
+/// nothing for any other text. Sweep axis values, `--set` values and the number keys of a
+/// scene file (config/scene_key_reader.hpp) use it.
 std::optional<double> parse_fraction(const std::string& text);
 
 /// `text` with a p/q fraction replaced by its value, written with 17 significant digits
