@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -131,12 +132,36 @@ Vec3 foot_vec(const RowMatrix& m, int i, int l) { return m.row(i).segment<3>(3 *
 
 TEST_CASE("paper run: physics holds on every sample", "[paper][pipeline]") {
   const Scene scene = load_scene(HEXDYN_SOURCE_DIR "/configs/paper.yaml");
-  const RunResult run = run_scene(scene);
+  std::ostringstream log;
+  const RunResult run = run_scene(scene, &log);
   const KinematicsResult& kin = run.kin;
   const DynamicsResult& dyn = run.dyn;
   const int T = kin.samples();
   REQUIRE(T > 100);
   REQUIRE(dyn.present);
+
+  {  // The log: one line per relaxed episode, what relaxed means said once before them.
+    // Episodes counted from /solver/status: runs of consecutive relaxed samples.
+    int episodes = 0;
+    for (int i = 0; i < T; ++i)
+      if (dyn.solver_status[i] == SolverStatus::kRelaxed &&
+          (i == 0 || dyn.solver_status[i - 1] == SolverStatus::kOptimal))
+        ++episodes;
+    REQUIRE(episodes > 1);
+    std::istringstream lines(log.str());
+    std::string line;
+    int notes = 0, relaxed_lines = 0;
+    while (std::getline(lines, line)) {
+      if (line.find("docs/theory/allocation.md#relaxed-samples") != std::string::npos) {
+        CHECK(relaxed_lines == 0);  // before the first episode
+        CHECK(line.find("touchdown transient") != std::string::npos);
+        ++notes;
+      }
+      if (line.find(" sample(s) relaxed: ") != std::string::npos) ++relaxed_lines;
+    }
+    CHECK(notes == 1);
+    CHECK(relaxed_lines == episodes);
+  }
   REQUIRE(dyn.joint_torque.rows() == T);
   REQUIRE(dyn.contact_force.rows() == T);
   REQUIRE(dyn.penetration.rows() == T);
