@@ -24,6 +24,8 @@
 
 #include "hexdyn/hexdyn.hpp"
 #include "hexdyn/io/result_layout.hpp"
+#include "hexdyn/pipeline/pipeline.hpp"
+#include "hexdyn/process/interrupt.hpp"
 #include "hexdyn/sweep/sweep.hpp"
 
 namespace py = pybind11;

@@ -16,6 +16,7 @@
 #include <variant>
 
 #include "hexdyn/core/errors.hpp"
+#include "hexdyn/io/h5io.hpp"
 #include "hexdyn/io/labels.hpp"
 #include "hexdyn/io/result_layout.hpp"
 #include "hexdyn/io/schema.hpp"

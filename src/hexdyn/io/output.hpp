@@ -2,15 +2,17 @@
 /// \file output.hpp
 /// Writing a run as one `hexdyn-result/2` HDF5 file (schema.hpp; docs/user/output.md).
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <vector>
 
 #include "hexdyn/config/inputs.hpp"
 #include "hexdyn/core/result.hpp"
-#include "hexdyn/io/h5io.hpp"
-#include "hexdyn/io/result_layout.hpp"
 
 namespace hexdyn {
+
+class H5Writer;       // io/h5io.hpp
+struct ResultLayout;  // io/result_layout.hpp
 
 /// Checks, before any work, that an output file may later be published at `out`
 /// (publish_atomically), and throws IoError with one line naming `out` and the reason
