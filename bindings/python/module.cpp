@@ -24,6 +24,8 @@
 
 #include "hexdyn/hexdyn.hpp"
 #include "hexdyn/io/result_layout.hpp"
+#include "hexdyn/pipeline/pipeline.hpp"
+#include "hexdyn/process/interrupt.hpp"
 #include "hexdyn/sweep/sweep.hpp"
 
 namespace py = pybind11;
@@ -190,41 +192,23 @@ void write_file(const RunHandle& handle, const std::string& path) {
   hexdyn::write_result_file(path, handle.result, handle.inputs);
 }
 
-/// validate(path, overrides) → dict: what `hexdyn validate` checks and prints.
+/// validate(path, overrides) → dict: the report of `hexdyn validate` (sweep/validate.hpp).
 py::dict validate_file(const std::string& path, const std::vector<std::string>& override_texts) {
-  py::dict out;
-  std::string kind, name, first;
-  std::size_t scenarios = 0, out_of_range = 0;
+  hexdyn::ValidationReport report;
   {
     py::gil_scoped_release no_gil;
-    guard_yaml(path, [&] {
-      const YAML::Node root = hexdyn::parse_yaml_text(hexdyn::read_text_file(path), path);
-      if (!root["axes"].IsDefined()) {
-        const hexdyn::Scene scene = hexdyn::load_scene(path, overrides_of(override_texts));
-        kind = "scene";
-        name = scene.name;
-        return 0;
-      }
-      if (!override_texts.empty())
-        throw hexdyn::ConfigError("validate: --set applies to scene files; " + path +
-                                  " is a sweep file (it has axes:), fix keys with set: in it");
-      const hexdyn::SweepSpec spec = hexdyn::load_sweep(path);
-      kind = "sweep";
-      name = spec.name;
-      const hexdyn::SweepScenarioCheck check = hexdyn::check_sweep_scenarios(spec);
-      scenarios = check.scenarios;
-      out_of_range = check.out_of_range;
-      first = check.first;
-      return 0;
-    });
+    report =
+        guard_yaml(path, [&] { return hexdyn::validate_file(path, overrides_of(override_texts)); });
   }
-  out["kind"] = kind;
-  out["name"] = name;
-  if (kind == "sweep") {
-    out["scenarios"] = scenarios;
-    out["out_of_range"] = out_of_range;
-    out["first_out_of_range"] = first;
+  py::dict out;
+  out["kind"] = hexdyn::validated_kind_name(report.kind);
+  out["name"] = report.name;
+  if (report.kind == hexdyn::ValidatedKind::kSweep) {
+    out["scenarios"] = report.scenarios;
+    out["out_of_range"] = report.out_of_range;
+    out["first_out_of_range"] = report.first_out_of_range;
   }
+  out["messages"] = report.messages;
   return out;
 }
 

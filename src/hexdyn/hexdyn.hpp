@@ -11,12 +11,12 @@
 ///     hexdyn::write_result_file("out.h5", r);             // hexdyn-result/2, as `hexdyn run`
 ///
 /// - load_scene(path, overrides) reads, inherits, overrides and validates a scene file
-///   (io/config.hpp); parse_override("key.path=value") is one `--set`.
-/// - run_scene(scene, log) plans, samples and solves it (pipeline/pipeline.hpp); the
+///   (config/config.hpp); parse_override("key.path=value") is one `--set`.
+/// - run_scene(scene, log) plans, samples and solves it (pipeline/run.hpp); the
 ///   RunResult (core/result.hpp) holds every array of the result file, SI units.
 /// - write_result_file(path, result, inputs) writes it atomically (io/output.hpp), after
 ///   check_output_target(path, inputs): `inputs` are the files load_scene(path, overrides,
-///   &inputs) read (io/inputs.hpp), which the output must not be; the CLI checks them so
+///   &inputs) read (config/inputs.hpp), which the output must not be; the CLI checks them so
 ///   before computing.
 /// - CancelScope and check_cancelled (core/cancel.hpp) stop a computation from another
 ///   thread between samples (what Python's Ctrl-C does).
@@ -25,18 +25,21 @@
 /// - Errors (core/errors.hpp): hexdyn::Error and its family ConfigError, IoError (exit
 ///   status 2), ReachError, PlanningError, SolverError (3); each message is one line.
 ///
+/// Only these headers and what they need are included: the stages behind them (planning,
+/// kinematics, the allocation, prepare_scene in pipeline/pipeline.hpp, signal handling in
+/// process/, the YAML reader in config/) are included by name where they are used.
+///
 /// Thread safety: a Scene and a RunResult are plain values; run_scene may be called from
 /// several threads at once on different scenes (the library keeps no global state).
 /// write_result_file and the HDF5 reader are not thread-safe (serial HDF5): call them from
 /// one thread at a time.
+#include "hexdyn/config/config.hpp"
+#include "hexdyn/config/inputs.hpp"
 #include "hexdyn/core/cancel.hpp"
 #include "hexdyn/core/errors.hpp"
 #include "hexdyn/core/result.hpp"
 #include "hexdyn/core/scene.hpp"
-#include "hexdyn/io/config.hpp"
-#include "hexdyn/io/inputs.hpp"
-#include "hexdyn/io/interrupt.hpp"
 #include "hexdyn/io/output.hpp"
-#include "hexdyn/io/yaml_load.hpp"
-#include "hexdyn/pipeline/pipeline.hpp"
+#include "hexdyn/io/result_layout.hpp"
+#include "hexdyn/pipeline/run.hpp"
 #include "hexdyn/version.hpp"

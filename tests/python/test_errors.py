@@ -79,6 +79,10 @@ with tempfile.TemporaryDirectory() as d:
     raises(hexdyn.ConfigError, hexdyn.run, f"{d}/bad.yaml")
     v = hexdyn.validate(os.path.join(SRC, "configs/sweeps/smoke.yaml"))
     assert v["kind"] == "sweep" and v["scenarios"] > 0, v
+    # The report's messages are the lines `hexdyn validate` prints, for a sweep and a scene.
+    for path in (os.path.join(SRC, "configs/sweeps/smoke.yaml"), PAPER):
+        cli = subprocess.run([HEXDYN, "validate", path], capture_output=True, text=True, check=True)
+        assert hexdyn.validate(path)["messages"] == cli.stdout.splitlines(), (path, cli.stdout)
     # The readers refuse anything but a regular file before opening it, with one line: a FIFO
     # (opened for reading it would wait for a writer for ever: an alarm fails the test instead
     # of hanging it), a directory, a device, a socket. A link to a result file opens.

@@ -109,9 +109,10 @@ def run(scene, set=None, *, allow_large=False):
 
 def validate(scene, set=None):
     """Checks a scene file or a sweep file as `hexdyn validate` does; raises on the first error.
-    Returns {"kind": "scene", "name": ...}, or for a sweep file also "scenarios",
-    "out_of_range" (scenarios that would be rows with status config) and
-    "first_out_of_range" (the first one's message)."""
+    Returns {"kind": "scene", "name": ..., "messages": [...]} ("messages": the lines
+    `hexdyn validate` prints), or for a sweep file also "scenarios", "out_of_range"
+    (scenarios that would be rows with status config) and "first_out_of_range" (the first
+    one's message)."""
     return _lib().validate(_path(scene), _overrides(set))
 
 

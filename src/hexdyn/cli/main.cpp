@@ -14,19 +14,19 @@
 #include <string>
 #include <vector>
 
+#include "hexdyn/config/config.hpp"
 #include "hexdyn/core/errors.hpp"
 #include "hexdyn/envelope/envelope.hpp"
-#include "hexdyn/io/config.hpp"
-#include "hexdyn/io/interrupt.hpp"
 #include "hexdyn/model/urdf_robot.hpp"
-#include "hexdyn/mpi/launch.hpp"
+#include "hexdyn/process/interrupt.hpp"
+#include "hexdyn/process/launch.hpp"
 #ifdef HEXDYN_CLI_MPI
 #include "hexdyn/mpi/mpi_sweep.hpp"
 #endif
 #include "hexdyn/io/output.hpp"
-#include "hexdyn/io/yaml_load.hpp"
 #include "hexdyn/pipeline/pipeline.hpp"
 #include "hexdyn/sweep/sweep.hpp"
+#include "hexdyn/sweep/validate.hpp"
 #include "hexdyn/version.hpp"
 
 namespace {
@@ -173,27 +173,6 @@ const char* command_usage(const std::string& command) {
 
 bool is_help(const char* arg) { return !std::strcmp(arg, "--help") || !std::strcmp(arg, "-h"); }
 
-/// `hexdyn validate` of a sweep file: load_sweep's checks, then each scenario's scene.
-int validate_sweep(const Args& args) {
-  if (!args.overrides.empty())
-    throw hexdyn::ConfigError("validate: --set applies to scene files; " + args.config +
-                              " is a sweep file (it has axes:), fix keys with set: in it");
-  const hexdyn::SweepSpec spec = hexdyn::load_sweep(args.config);
-  const std::size_t n = spec.scenario_count();
-  std::cout << args.config << ": valid sweep '" << spec.name << "', base scene " << spec.base_path
-            << ", " << n << " scenario" << (n == 1 ? "" : "s") << " over";
-  for (const auto& axis : spec.axes) std::cout << " " << axis.key << " (" << axis.size() << ")";
-  std::cout << "\n";
-  // Every scenario's scene, as the sweep builds it (sweep/scenario_factory.hpp).
-  const hexdyn::SweepScenarioCheck check = hexdyn::check_sweep_scenarios(spec);
-  if (check.out_of_range > 0)
-    std::cout
-        << args.config << ": " << check.out_of_range << " of " << n
-        << " scenarios have a value out of range and would be rows with status config; first: "
-        << check.first << "\n";
-  return 0;
-}
-
 /// -v: a URDF robot's leg mapping (the description's chains → L1 … L6), one line per leg.
 void print_leg_mapping(const hexdyn::Scene& scene, std::ostream& os) {
   if (!scene.robot.urdf) return;
@@ -204,13 +183,11 @@ void print_leg_mapping(const hexdyn::Scene& scene, std::ostream& os) {
      << " m from the hips along their outward directions (gait.foot_lateral)\n";
 }
 
+/// `hexdyn validate`: the report of validate_file (sweep/validate.hpp), printed.
 int validate(const Args& args) {
-  // A sweep file is recognised by its top-level axes: key (no scene has one).
-  const YAML::Node root = hexdyn::parse_yaml_text(hexdyn::read_text_file(args.config), args.config);
-  if (root["axes"].IsDefined()) return validate_sweep(args);
-  const hexdyn::Scene scene = hexdyn::load_scene(args.config, args.overrides);
-  if (args.verbose) print_leg_mapping(scene, std::cout);
-  std::cout << args.config << ": valid scene '" << scene.name << "'\n";
+  const hexdyn::ValidationReport report = hexdyn::validate_file(args.config, args.overrides);
+  if (args.verbose && report.scene) print_leg_mapping(*report.scene, std::cout);
+  for (const std::string& line : report.messages) std::cout << line << "\n";
   return 0;
 }
 
@@ -297,7 +274,7 @@ int main(int argc, char** argv) {
     }
   }
   try {
-    // Every input file is read once for the whole command (io/inputs.hpp).
+    // Every input file is read once for the whole command (config/inputs.hpp).
     const hexdyn::InputFreeze freeze;
     const Args args = parse_args(argc, argv);
     if (args.command == "validate") return validate(args);

@@ -133,7 +133,7 @@ struct RunResult {
   DynamicsResult dyn;
   std::string config_yaml;   ///< fully resolved, automatic choices included
   std::string input_sha256;  ///< "SHA256  PATH" per input file (Scene::input_sha256)
-  ChosenPosture posture;     ///< written into /meta config_yaml (io/config.hpp)
+  ChosenPosture posture;     ///< written into /meta config_yaml (config/config.hpp)
   GridAccuracy grid;         ///< the output grid's accuracy (/meta grid_*)
   bool compress = true;      ///< output.compression: deflate (io/h5io.hpp)
   std::string urdf;          ///< robot exactly as simulated

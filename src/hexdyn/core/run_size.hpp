@@ -8,7 +8,7 @@
 ///   duration      the planned motion: at most kMaxRunDuration_s;
 ///   samples       an upper bound of the output grid's samples (planning/grid.hpp): at most
 ///                 kMaxRunSamples, whatever `--allow-large` says.
-/// The scene reader (io/config.cpp) refuses a scene beyond them with one line naming the key;
+/// The scene reader (config/config.cpp) refuses a scene beyond them with one line naming the key;
 /// the grid builder checks the bound again on the planned events before it allocates.
 #include <cstdint>
 #include <string>

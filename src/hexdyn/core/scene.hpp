@@ -50,7 +50,7 @@ struct RobotParams {
   /// planar workspace (full extension or full fold) [m]: below it IK refuses.
   double ik_min_margin_m = 1e-4;
   LegInertia leg_inertia = LegInertia::kFull;  ///< robot.leg_inertia
-  /// A robot read from its URDF (robot.urdf, io/robot_config.cpp), or null for the robot
+  /// A robot read from its URDF (robot.urdf, config/robot_config.cpp), or null for the robot
   /// described by the YAML keys above. When set, build_robot_model builds the model from
   /// it and every field above except ik_min_margin_m is unused.
   std::shared_ptr<const UrdfRobot> urdf;
@@ -89,7 +89,7 @@ struct GaitParams {
   double stroke_m = 0.125;   ///< s0: foot travel relative to the trunk per stance
   /// Horizontal distance of footholds from the hip along the hip's outward direction
   /// (RobotModel::hip_outward_B; the paper robot: straight out, ±x) [m]. A URDF robot's
-  /// default is its nominal stance radius (io/robot_config.hpp).
+  /// default is its nominal stance radius (config/robot_config.hpp).
   double foot_lateral_m = 0.17;
   double foothold_margin_m = 0.02;    ///< minimum distance of a foothold from nosing and riser
   double swing_clearance_m = 0.002;   ///< Δh over the highest terrain under the swing path
@@ -190,8 +190,11 @@ struct OutputParams {
   bool compress = true;
 };
 
+/// A default-constructed Scene holds the default of every optional scene key (config.cpp
+/// reads them from here: docs/user/configuration.md); fields of keys a scene must give hold
+/// the paper's values only as examples.
 struct Scene {
-  std::string name;
+  std::string name = "scene";  ///< name: (default "scene")
   RobotParams robot;
   TerrainParams terrain;
   GaitParams gait;
@@ -202,7 +205,7 @@ struct Scene {
   std::string resolved_yaml;  ///< the fully resolved configuration, as YAML
   std::string source_path;    ///< the file it was read from
   /// The input files read (scene, inherited files, URDF) with their SHA-256, one line
-  /// "SHA256  ABSOLUTE_PATH" each (io/inputs.hpp); /meta input_sha256 of the result.
+  /// "SHA256  ABSOLUTE_PATH" each (config/inputs.hpp); /meta input_sha256 of the result.
   std::string input_sha256;
 };
 

@@ -1,7 +1,7 @@
 #pragma once
 /// \file value_bounds.hpp
 /// The plausibility bounds of a robot's values, one table for both ways of describing a
-/// robot: the scene's robot.* keys (io/config.cpp) and a URDF's links and joints
+/// robot: the scene's robot.* keys (config/config.cpp) and a URDF's links and joints
 /// (model/urdf_reader.cpp). Each is far beyond any legged robot and far inside what the
 /// dynamics compute without overflow: a URDF <mass value="1e300"> used to run to NaN
 /// torques and energy.

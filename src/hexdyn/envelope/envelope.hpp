@@ -31,9 +31,9 @@
 #include <string>
 #include <vector>
 
+#include "hexdyn/config/cases.hpp"
+#include "hexdyn/config/inputs.hpp"
 #include "hexdyn/core/scene.hpp"
-#include "hexdyn/io/cases.hpp"
-#include "hexdyn/io/inputs.hpp"
 
 namespace hexdyn {
 
@@ -48,7 +48,7 @@ struct EnvelopeSpec {
   std::string base_tree_yaml;    ///< the base scene tree after inherit: and set:
   std::string base_config_yaml;  ///< the base scene validated and fully resolved
   /// The envelope file, the base scene, its inherited files and its URDF, hashed
-  /// (io/inputs.hpp): /meta input_sha256.
+  /// (config/inputs.hpp): /meta input_sha256.
   std::vector<InputFile> inputs;
   double riser_from_m = 0.0, riser_to_m = 0.3, riser_step_m = 0.01, tolerance_m = 0.001;
   std::vector<double> tread_depth_m;        ///< W values (the base scene's when not given)
@@ -56,7 +56,7 @@ struct EnvelopeSpec {
   std::vector<double> peak_speed_mps;       ///< V values
   std::vector<EnvelopeCriterion> criteria;  ///< C values, in file order
   double kinematic_margin_m = -1.0;         ///< required reach margin; < 0: robot.ik_min_margin
-  /// `cases:` (io/cases.hpp): D designs, each its keys set on the base scene; empty: one
+  /// `cases:` (config/cases.hpp): D designs, each its keys set on the base scene; empty: one
   /// design, the base scene's, and no `case` dimension in the file.
   CaseList cases;
   /// Number of cells: D × W × B × V (D = 1 without cases).

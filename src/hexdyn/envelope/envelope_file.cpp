@@ -2,15 +2,15 @@
 #include <cstring>
 #include <iostream>
 
+#include "hexdyn/config/inputs.hpp"
 #include "hexdyn/core/errors.hpp"
 #include "hexdyn/envelope/envelope.hpp"
-#include "hexdyn/io/atomic_file.hpp"
 #include "hexdyn/io/h5io.hpp"
-#include "hexdyn/io/inputs.hpp"
-#include "hexdyn/io/interrupt.hpp"
 #include "hexdyn/io/labels.hpp"
 #include "hexdyn/io/output.hpp"
 #include "hexdyn/io/schema.hpp"
+#include "hexdyn/process/atomic_file.hpp"
+#include "hexdyn/process/interrupt.hpp"
 #include "hexdyn/version.hpp"
 
 namespace hexdyn {
@@ -205,7 +205,7 @@ int envelope_command(int argc, char** argv) {
                                    output +
                                    " (an existing file there is kept, no temporary file left); "
                                    "run the command again to compute it");
-    const InputFreeze freeze;  // every input read once for the whole envelope (io/inputs.hpp)
+    const InputFreeze freeze;  // every input read once for the whole envelope (config/inputs.hpp)
     const EnvelopeSpec spec = load_envelope_spec(config);
     check_output_target(output, spec.inputs);  // the envelope file is one of them
     const EnvelopeResult result = compute_envelope(spec, verbose ? &std::cerr : nullptr);

@@ -10,13 +10,13 @@
 #include <set>
 #include <sstream>
 
+#include "hexdyn/config/config.hpp"
+#include "hexdyn/config/scene_tree.hpp"
+#include "hexdyn/config/spec_reader.hpp"
+#include "hexdyn/config/yaml_load.hpp"
 #include "hexdyn/core/errors.hpp"
 #include "hexdyn/envelope/envelope.hpp"
-#include "hexdyn/io/config.hpp"
-#include "hexdyn/io/paths.hpp"
-#include "hexdyn/io/scene_tree.hpp"
-#include "hexdyn/io/spec_reader.hpp"
-#include "hexdyn/io/yaml_load.hpp"
+#include "hexdyn/process/paths.hpp"
 
 namespace hexdyn {
 namespace {

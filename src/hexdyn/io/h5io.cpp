@@ -12,7 +12,7 @@
 
 #include "hexdyn/core/errors.hpp"
 #include "hexdyn/io/h5_detail.hpp"
-#include "hexdyn/io/interrupt.hpp"
+#include "hexdyn/process/interrupt.hpp"
 
 namespace hexdyn {
 

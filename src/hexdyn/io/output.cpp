@@ -16,12 +16,13 @@
 #include <variant>
 
 #include "hexdyn/core/errors.hpp"
-#include "hexdyn/io/atomic_file.hpp"
+#include "hexdyn/io/h5io.hpp"
 #include "hexdyn/io/labels.hpp"
-#include "hexdyn/io/paths.hpp"
 #include "hexdyn/io/result_layout.hpp"
 #include "hexdyn/io/schema.hpp"
-#include "hexdyn/mpi/launch.hpp"
+#include "hexdyn/process/atomic_file.hpp"
+#include "hexdyn/process/launch.hpp"
+#include "hexdyn/process/paths.hpp"
 #include "hexdyn/version.hpp"
 
 namespace hexdyn {

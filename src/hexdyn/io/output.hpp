@@ -2,15 +2,17 @@
 /// \file output.hpp
 /// Writing a run as one `hexdyn-result/2` HDF5 file (schema.hpp; docs/user/output.md).
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <vector>
 
+#include "hexdyn/config/inputs.hpp"
 #include "hexdyn/core/result.hpp"
-#include "hexdyn/io/h5io.hpp"
-#include "hexdyn/io/inputs.hpp"
-#include "hexdyn/io/result_layout.hpp"
 
 namespace hexdyn {
+
+class H5Writer;       // io/h5io.hpp
+struct ResultLayout;  // io/result_layout.hpp
 
 /// Checks, before any work, that an output file may later be published at `out`
 /// (publish_atomically), and throws IoError with one line naming `out` and the reason
@@ -19,7 +21,7 @@ namespace hexdyn {
 ///   or symbolic link is never replaced (why_not_replaceable; symbolic links are refused,
 ///   not resolved, so no file outside the output's folder is ever replaced);
 /// - `out` is not the same file as any of `inputs` (every file the command read, with the
-///   identity it had when read: io/inputs.hpp), compared by identity (st_dev, st_ino), so
+///   identity it had when read: config/inputs.hpp), compared by identity (st_dev, st_ino), so
 ///   that another name or a hard link of an input is refused too; also not the file now at
 ///   an input's absolute path (check_not_input);
 /// - the folder of `out` exists and a file can be created in it: the temporary file of

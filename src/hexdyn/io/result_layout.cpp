@@ -2,8 +2,8 @@
 
 #include <utility>
 
+#include "hexdyn/config/config.hpp"
 #include "hexdyn/core/errors.hpp"
-#include "hexdyn/io/config.hpp"
 #include "hexdyn/io/output.hpp"
 #include "hexdyn/version.hpp"
 

@@ -73,7 +73,7 @@ std::vector<char> pack_spec(const SweepSpec& spec, const SweepIdentity& identity
   put_i64(b, identity.keep_runs ? 1 : 0);
   // The inputs: the identity's (absolute paths) and the spec's (/meta input_sha256 of a
   // kept run), each role, path, absolute path, SHA-256, and the spec's with the bytes rank 0
-  // read, which every rank's scenarios use (io/inputs.hpp keep_input).
+  // read, which every rank's scenarios use (config/inputs.hpp keep_input).
   for (const std::vector<InputFile>* list : {&identity.inputs, &spec.inputs}) {
     put_i64(b, static_cast<std::int64_t>(list->size()));
     for (const InputFile& f : *list) {

@@ -22,12 +22,12 @@
 #include <vector>
 
 #include "hexdyn/core/errors.hpp"
-#include "hexdyn/io/interrupt.hpp"
 #include "hexdyn/io/output.hpp"
 #include "hexdyn/mpi/comm_detail.hpp"
-#include "hexdyn/mpi/launch.hpp"
 #include "hexdyn/mpi/messages.hpp"
 #include "hexdyn/mpi/worker.hpp"
+#include "hexdyn/process/interrupt.hpp"
+#include "hexdyn/process/launch.hpp"
 #include "hexdyn/sweep/coordinator.hpp"
 #include "hexdyn/sweep/scenario_factory.hpp"
 #include "hexdyn/sweep/sweep.hpp"
@@ -513,7 +513,7 @@ int run_sweep(const SweepOptions& options) {
       SweepIdentity identity;
       const SweepSpec spec = unpack_spec(bytes, identity);
       // Rank 0's bytes of every input: all ranks compute with the same files, those of
-      // /meta input_sha256 (io/inputs.hpp).
+      // /meta input_sha256 (config/inputs.hpp).
       for (const InputFile& f : spec.inputs) keep_input(f);
       const ScenarioFactory factory(spec);
       worker_rank(factory, identity);

@@ -19,7 +19,7 @@
 /// and waits for messages with MPI_Iprobe and sleeps, never in a spinning blocking call.
 #include <string>
 
-#include "hexdyn/mpi/launch.hpp"  // launched_as_secondary_rank
+#include "hexdyn/process/launch.hpp"  // launched_as_secondary_rank
 
 namespace hexdyn {
 

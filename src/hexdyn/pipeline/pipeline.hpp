@@ -1,7 +1,8 @@
 #pragma once
 /// \file pipeline.hpp
 /// One scene, end to end: the library call behind `hexdyn run` and every sweep
-/// scenario. The stages run in one direction, each reading what the ones before made:
+/// scenario (run_scene, pipeline/run.hpp). The stages run in one direction, each reading
+/// what the ones before made:
 ///
 ///   robot model (model/) → plan: terrain, trunk motion, gait (planning/plan.hpp)
 ///     → touchdowns and their transients (contact/touchdowns.hpp)
@@ -18,6 +19,7 @@
 #include "hexdyn/core/result.hpp"
 #include "hexdyn/core/scene.hpp"
 #include "hexdyn/model/robot_model.hpp"
+#include "hexdyn/pipeline/run.hpp"  // IWYU pragma: export (run_scene)
 #include "hexdyn/pipeline/stage_times.hpp"
 #include "hexdyn/planning/plan.hpp"
 
@@ -42,9 +44,5 @@ PreparedScene prepare_scene(const Scene& scene, StageTimes* times = nullptr);
 /// wall_time_s counts from this call.
 RunResult run_prepared_scene(const Scene& scene, const PreparedScene& prep,
                              std::ostream* log = nullptr, StageTimes* times = nullptr);
-
-/// Plans, samples and solves a scene. `log` (may be null) receives one line per episode
-/// of relaxed or failed allocation samples.
-RunResult run_scene(const Scene& scene, std::ostream* log = nullptr);
 
 }  // namespace hexdyn

@@ -122,8 +122,16 @@ SampleVerdict sample_verdict(const SampleSolution& s, const SampleContacts& c,
   return v;
 }
 
+/// What a relaxed sample is, said once per run before its first relaxed episode.
+constexpr const char* kRelaxedNote =
+    "hexdyn: relaxed samples: the allocation met the named constraints only with penalised "
+    "slack (/solver/status 1); in a touchdown transient (marked impact) this is by design, the "
+    "prescribed impact forces leave the trunk equations unsatisfiable "
+    "(docs/theory/allocation.md#relaxed-samples)";
+
 /// Runs of consecutive relaxed or failed samples: one log line per run with its time span,
-/// its count and the message of its worst sample (largest violation).
+/// its count and the message of its worst sample (largest violation); before the first
+/// relaxed run, kRelaxedNote.
 class EpisodeLog {
  public:
   explicit EpisodeLog(std::ostream* log) : log_(log) {}
@@ -145,6 +153,8 @@ class EpisodeLog {
       // Outcome messages start with their status word ("relaxed: ", "failed: "): print it once.
       const std::string word = status_ == SolverStatus::kRelaxed ? "relaxed: " : "failed: ";
       const bool prefixed = message_.compare(0, word.size(), word) == 0;
+      if (status_ == SolverStatus::kRelaxed && !noted_) *log_ << kRelaxedNote << "\n";
+      noted_ = noted_ || status_ == SolverStatus::kRelaxed;
       *log_ << "hexdyn: t = [" << start_s_ << ", " << end_s_ << "] s: " << count_ << " sample(s) "
             << word << (prefixed ? message_.substr(word.size()) : message_) << "\n";
     }
@@ -156,6 +166,7 @@ class EpisodeLog {
  private:
   std::ostream* log_;
   int count_ = 0;
+  bool noted_ = false;  ///< kRelaxedNote written
   SolverStatus status_ = SolverStatus::kOptimal;
   double start_s_ = 0.0, end_s_ = 0.0, worst_ = -1.0;
   std::string message_;

@@ -26,7 +26,7 @@
 #include <string>
 #include <vector>
 
-#include "hexdyn/io/inputs.hpp"
+#include "hexdyn/config/inputs.hpp"
 
 namespace hexdyn {
 

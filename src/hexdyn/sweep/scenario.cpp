@@ -7,8 +7,8 @@
 #include <cmath>
 #include <limits>
 
+#include "hexdyn/config/config.hpp"
 #include "hexdyn/core/errors.hpp"
-#include "hexdyn/io/config.hpp"
 #include "hexdyn/pipeline/pipeline.hpp"
 #include "hexdyn/sweep/scenario_factory.hpp"
 

@@ -6,10 +6,10 @@
 #include <optional>
 #include <vector>
 
+#include "hexdyn/config/config.hpp"
+#include "hexdyn/config/scene_tree.hpp"
+#include "hexdyn/config/yaml_load.hpp"
 #include "hexdyn/core/errors.hpp"
-#include "hexdyn/io/config.hpp"
-#include "hexdyn/io/scene_tree.hpp"
-#include "hexdyn/io/yaml_load.hpp"
 
 namespace hexdyn {
 

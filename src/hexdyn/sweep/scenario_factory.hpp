@@ -5,7 +5,7 @@
 /// once; a scenario's scene is the tree with its values set, validated as by
 /// scene_from_yaml (so cross-key constraints are checked per scenario, and a failure
 /// is that scenario's row). The scenario's tree shares every map it does not change with
-/// the base (io/scene_tree.hpp) instead of copying the base. Nothing is done per scenario
+/// the base (config/scene_tree.hpp) instead of copying the base. Nothing is done per scenario
 /// before the scenario runs.
 #include <cstddef>
 #include <memory>

@@ -19,7 +19,7 @@
 
 #include "hexdyn/core/bytes.hpp"
 #include "hexdyn/core/errors.hpp"
-#include "hexdyn/io/interrupt.hpp"
+#include "hexdyn/process/interrupt.hpp"
 
 namespace hexdyn {
 namespace {

@@ -12,12 +12,12 @@
 #include <set>
 #include <system_error>
 
+#include "hexdyn/config/cases.hpp"
+#include "hexdyn/config/scene_tree.hpp"
+#include "hexdyn/config/spec_reader.hpp"
+#include "hexdyn/config/yaml_load.hpp"
 #include "hexdyn/core/errors.hpp"
-#include "hexdyn/io/cases.hpp"
-#include "hexdyn/io/paths.hpp"
-#include "hexdyn/io/scene_tree.hpp"
-#include "hexdyn/io/spec_reader.hpp"
-#include "hexdyn/io/yaml_load.hpp"
+#include "hexdyn/process/paths.hpp"
 
 namespace hexdyn {
 namespace {
@@ -139,7 +139,7 @@ bool reserved_axis_name(const std::string& name) {
 }
 
 /// A cases axis {cases: [...], name: NAME} into `axis`: its name as key, the labels as its
-/// values (io/cases.hpp reads the list). The validation on the base scene comes later.
+/// values (config/cases.hpp reads the list). The validation on the base scene comes later.
 void read_cases(const SpecReader& r, const YAML::Node& a, const std::string& at,
                 const std::string& sweep_path, SweepAxis& axis) {
   const YAML::Node name = a["name"];
@@ -161,7 +161,7 @@ void read_cases(const SpecReader& r, const YAML::Node& a, const std::string& at,
   axis.numeric = false;
 }
 
-/// The cases of a cases axis, as io/cases.hpp holds them.
+/// The cases of a cases axis, as config/cases.hpp holds them.
 CaseList case_list(const SweepAxis& axis) {
   CaseList c;
   c.labels = axis.labels;

@@ -38,8 +38,8 @@
 #include <string>
 #include <vector>
 
-#include "hexdyn/io/config.hpp"
-#include "hexdyn/io/inputs.hpp"
+#include "hexdyn/config/config.hpp"
+#include "hexdyn/config/inputs.hpp"
 
 namespace hexdyn {
 
@@ -75,7 +75,7 @@ struct SweepSpec {
   std::vector<SweepAxis> axes;   ///< at least one
   std::string base_tree_yaml;    ///< base scene after `inherit:` and `set:`, unvalidated YAML
   std::string base_config_yaml;  ///< the same, validated and fully resolved (defaults filled)
-  /// Every input file, hashed (io/inputs.hpp): the sweep file, the base scene, its
+  /// Every input file, hashed (config/inputs.hpp): the sweep file, the base scene, its
   /// inherited files, its URDF and each URDF a robot.urdf axis or a case names. /meta input_sha256,
   /// and part of the checkpoint's identity (journal.hpp).
   std::vector<InputFile> inputs;

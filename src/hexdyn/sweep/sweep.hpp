@@ -23,3 +23,4 @@
 #include "hexdyn/sweep/scenario_process.hpp"
 #include "hexdyn/sweep/spec.hpp"
 #include "hexdyn/sweep/sweep_file.hpp"
+#include "hexdyn/sweep/validate.hpp"

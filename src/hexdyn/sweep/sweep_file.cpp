@@ -6,14 +6,14 @@
 #include <array>
 #include <cstdint>
 
+#include "hexdyn/config/key_units.hpp"
 #include "hexdyn/core/errors.hpp"
-#include "hexdyn/io/atomic_file.hpp"
 #include "hexdyn/io/h5io.hpp"
-#include "hexdyn/io/interrupt.hpp"
-#include "hexdyn/io/key_units.hpp"
 #include "hexdyn/io/labels.hpp"
 #include "hexdyn/io/output.hpp"
 #include "hexdyn/io/schema.hpp"
+#include "hexdyn/process/atomic_file.hpp"
+#include "hexdyn/process/interrupt.hpp"
 #include "hexdyn/version.hpp"
 
 namespace hexdyn {

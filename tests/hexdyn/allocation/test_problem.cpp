@@ -12,9 +12,9 @@
 #include "hexdyn/allocation/backends.hpp"
 #include "hexdyn/allocation/ipopt.hpp"
 #include "hexdyn/allocation/problem.hpp"
+#include "hexdyn/config/config.hpp"
 #include "hexdyn/contact/touchdowns.hpp"
 #include "hexdyn/dynamics/rnea.hpp"
-#include "hexdyn/io/config.hpp"
 #include "hexdyn/kinematics/kinematics.hpp"
 #include "hexdyn/model/robot_model.hpp"
 

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "hexdyn/cli/cli_harness.hpp"
-#include "hexdyn/io/config.hpp"
+#include "hexdyn/config/config.hpp"
 
 namespace hexdyn {
 namespace {

@@ -121,7 +121,7 @@ TEST_CASE("cli outputs: physically impossible timings are refused with the bound
     return std::vector<std::string>{"run", "cfg.yaml", "-o", "out.h5", "--set", set};
   };
   // The swing of the paper scene: (1 - β) 2.6 s; the bounds follow from 100 g, the 2 mm
-  // clearance and the stride s0/β (src/hexdyn/io/plausibility.hpp).
+  // clearance and the stride s0/β (src/hexdyn/config/plausibility.hpp).
   check_refused(
       s, "duty factor", run("gait.duty_factor=0.99999"),
       {"gait.duty_factor: got 0.99999", "swing of 2.6e-05 s", "100 g", "a duty factor of at most"});

@@ -10,9 +10,9 @@
 #include <string>
 #include <vector>
 
+#include "hexdyn/config/config.hpp"
 #include "hexdyn/contact/touchdowns.hpp"
 #include "hexdyn/dynamics/rnea.hpp"
-#include "hexdyn/io/config.hpp"
 #include "hexdyn/kinematics/kinematics.hpp"
 #include "hexdyn/model/robot_model.hpp"
 #include "hexdyn/sample_models.hpp"

@@ -14,9 +14,9 @@
 #include <string>
 #include <tuple>
 
+#include "hexdyn/config/config.hpp"
 #include "hexdyn/core/errors.hpp"
 #include "hexdyn/envelope/envelope.hpp"
-#include "hexdyn/io/config.hpp"
 #include "hexdyn/io/h5io.hpp"
 #include "hexdyn/io/schema.hpp"
 #include "hexdyn/pipeline/pipeline.hpp"

@@ -11,10 +11,10 @@
 #include <set>
 #include <string>
 
+#include "hexdyn/config/inputs.hpp"
 #include "hexdyn/core/errors.hpp"
-#include "hexdyn/io/atomic_file.hpp"
-#include "hexdyn/io/inputs.hpp"
 #include "hexdyn/io/output.hpp"
+#include "hexdyn/process/atomic_file.hpp"
 
 namespace hexdyn {
 namespace {

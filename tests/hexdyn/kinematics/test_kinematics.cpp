@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "hexdyn/io/config.hpp"
+#include "hexdyn/config/config.hpp"
 #include "hexdyn/kinematics/kinematics.hpp"
 #include "hexdyn/model/robot_model.hpp"
 

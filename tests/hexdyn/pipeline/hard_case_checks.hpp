@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "hexdyn/config/config.hpp"
 #include "hexdyn/core/result.hpp"
-#include "hexdyn/io/config.hpp"
 
 namespace hexdyn::hard {
 

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "hexdyn/io/config.hpp"
+#include "hexdyn/config/config.hpp"
 #include "hexdyn/pipeline/pipeline.hpp"
 #include "hexdyn/planning/grid.hpp"
 

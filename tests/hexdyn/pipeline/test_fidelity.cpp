@@ -10,9 +10,9 @@
 
 #include "hexdyn/allocation/backends.hpp"
 #include "hexdyn/allocation/problem.hpp"
+#include "hexdyn/config/config.hpp"
 #include "hexdyn/contact/touchdowns.hpp"
 #include "hexdyn/dynamics/rnea.hpp"
-#include "hexdyn/io/config.hpp"
 #include "hexdyn/model/robot_model.hpp"
 #include "hexdyn/pipeline/pipeline.hpp"
 

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "hexdyn/io/config.hpp"
+#include "hexdyn/config/config.hpp"
 #include "hexdyn/pipeline/pipeline.hpp"
 #include "hexdyn/planning/grid.hpp"
 #include "hexdyn/power/power.hpp"

@@ -15,10 +15,10 @@
 
 #include "hexdyn/allocation/backends.hpp"
 #include "hexdyn/allocation/problem.hpp"
+#include "hexdyn/config/config.hpp"
 #include "hexdyn/contact/impact.hpp"
 #include "hexdyn/contact/touchdowns.hpp"
 #include "hexdyn/core/errors.hpp"
-#include "hexdyn/io/config.hpp"
 #include "hexdyn/kinematics/kinematics.hpp"
 #include "hexdyn/model/robot_model.hpp"
 #include "hexdyn/pipeline/hard_case_checks.hpp"

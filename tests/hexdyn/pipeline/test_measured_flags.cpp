@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "hexdyn/allocation/qp.hpp"
+#include "hexdyn/config/config.hpp"
 #include "hexdyn/dynamics/rnea.hpp"
-#include "hexdyn/io/config.hpp"
 #include "hexdyn/kinematics/kinematics.hpp"
 #include "hexdyn/model/robot_model.hpp"
 #include "hexdyn/pipeline/pipeline.hpp"

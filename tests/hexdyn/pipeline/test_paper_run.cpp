@@ -16,6 +16,7 @@
 #include <array>
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -23,9 +24,9 @@
 #include "hexdyn/allocation/ipopt.hpp"
 #include "hexdyn/allocation/kkt_check.hpp"
 #include "hexdyn/allocation/problem.hpp"
+#include "hexdyn/config/config.hpp"
 #include "hexdyn/contact/touchdowns.hpp"
 #include "hexdyn/dynamics/rnea.hpp"
-#include "hexdyn/io/config.hpp"
 #include "hexdyn/kinematics/kinematics.hpp"
 #include "hexdyn/model/robot_model.hpp"
 #include "hexdyn/pipeline/pipeline.hpp"
@@ -133,7 +134,8 @@ Vec3 foot_vec(const RowMatrix& m, int i, int l) { return m.row(i).segment<3>(3 *
 /// transients and the motion's breakpoints (deterministic: the same as the run's).
 struct PaperRun {
   Scene scene = load_scene(HEXDYN_SOURCE_DIR "/configs/paper.yaml");
-  RunResult run = run_scene(scene);
+  std::ostringstream log;  ///< what the run printed
+  RunResult run = run_scene(scene, &log);
   RobotModel model = build_robot_model(scene.robot);
   MotionPlan plan = plan_motion(scene, model);
   std::vector<Touchdown> touchdowns = [this] {
@@ -193,6 +195,31 @@ void require_sizes(const RunResult& run) {
 }
 
 /// No NaN or Inf anywhere.
+/// The log: one line per relaxed episode, what relaxed means said once before them.
+/// Episodes counted from /solver/status: runs of consecutive relaxed samples.
+void check_relaxed_log(const PaperRun& r) {
+  const DynamicsResult& dyn = r.run.dyn;
+  int episodes = 0;
+  for (int i = 0; i < r.run.kin.samples(); ++i)
+    if (dyn.solver_status[i] == SolverStatus::kRelaxed &&
+        (i == 0 || dyn.solver_status[i - 1] == SolverStatus::kOptimal))
+      ++episodes;
+  REQUIRE(episodes > 1);
+  std::istringstream lines(r.log.str());
+  std::string line;
+  int notes = 0, relaxed_lines = 0;
+  while (std::getline(lines, line)) {
+    if (line.find("docs/theory/allocation.md#relaxed-samples") != std::string::npos) {
+      CHECK(relaxed_lines == 0);  // before the first episode
+      CHECK(line.find("touchdown transient") != std::string::npos);
+      ++notes;
+    }
+    if (line.find(" sample(s) relaxed: ") != std::string::npos) ++relaxed_lines;
+  }
+  CHECK(notes == 1);
+  CHECK(relaxed_lines == episodes);
+}
+
 void check_all_finite(const RunResult& run) {
   const KinematicsResult& kin = run.kin;
   const DynamicsResult& dyn = run.dyn;
@@ -536,6 +563,7 @@ TEST_CASE("paper run: physics holds on every sample", "[paper][pipeline]") {
   const PaperRun& r = paper_run();
   require_sizes(r.run);
   SECTION("every number is finite") { check_all_finite(r.run); }
+  SECTION("the log says once what a relaxed sample means") { check_relaxed_log(r); }
   SECTION("every sample is solved, exactly outside touchdown transients") {
     check_solver_status(r.run);
   }

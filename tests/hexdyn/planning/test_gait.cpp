@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "hexdyn/io/config.hpp"
+#include "hexdyn/config/config.hpp"
 #include "hexdyn/model/robot_model.hpp"
 #include "hexdyn/planning/gait.hpp"
 #include "hexdyn/planning/motion.hpp"

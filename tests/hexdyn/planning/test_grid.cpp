@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "hexdyn/config/config.hpp"
 #include "hexdyn/core/run_size.hpp"
-#include "hexdyn/io/config.hpp"
 #include "hexdyn/model/robot_model.hpp"
 #include "hexdyn/planning/grid.hpp"
 #include "hexdyn/planning/plan.hpp"

@@ -12,7 +12,7 @@
 #include <random>
 #include <string>
 
-#include "hexdyn/io/config.hpp"
+#include "hexdyn/config/config.hpp"
 #include "hexdyn/model/robot_model.hpp"
 #include "hexdyn/planning/margin_detail.hpp"
 #include "hexdyn/planning/plan.hpp"

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "hexdyn/io/config.hpp"
+#include "hexdyn/config/config.hpp"
 #include "hexdyn/io/schema.hpp"
 #include "hexdyn/pipeline/pipeline.hpp"
 #include "hexdyn/sweep/scenario.hpp"

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "hexdyn/io/config.hpp"
+#include "hexdyn/config/config.hpp"
 #include "hexdyn/sweep/scenario.hpp"
 #include "hexdyn/sweep/scenario_factory.hpp"
 #include "hexdyn/sweep/spec.hpp"

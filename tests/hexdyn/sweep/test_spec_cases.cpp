@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "hexdyn/io/config.hpp"
+#include "hexdyn/config/config.hpp"
 #include "hexdyn/model/urdf_robot.hpp"
 #include "hexdyn/sweep/checkpoint.hpp"
 #include "hexdyn/sweep/scenario_factory.hpp"

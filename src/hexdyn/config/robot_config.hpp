@@ -1,0 +1,70 @@
+#pragma once
+/// \file robot_config.hpp
+/// A scene's robot read from its URDF: `robot: {urdf: PATH, ...}` (config.cpp reads the
+/// keys, this module resolves the path and loads the description).
+///
+/// Keys (every one but urdf optional; the YAML robot's keys trunk, coxa, hips, ... are
+/// not allowed next to urdf):
+///   robot.urdf          the description; a relative path is relative to the file that
+///                       names the key (resolved while reading the file, before `inherit:`
+///                       merging, so an inherited robot.urdf keeps naming its file); given
+///                       by `--set` or in text without a file, relative to the working
+///                       directory. The resolved configuration holds the absolute path.
+///   robot.trunk_link    the trunk link (default: the root link)
+///   robot.forward_axis  "+x" (default, ROS REP-103), "-x", "+y", "-y" of the trunk link
+///   robot.foot_links    six link names, one fixed to the last link of each leg chain
+///   robot.foot_offset   [x, y, z] m, the foot point in each chain's last link frame
+///   robot.nominal_pose  [coxa, femur, tibia] rad, in the description's signs: the standing
+///                       pose whose horizontal foot distance is gait.foot_lateral's default
+///                       (default: model/stance.hpp "femur level, tibia plumb")
+///   robot.ik_min_margin as for the YAML robot
+/// and, outside robot:, gait.foot_lateral defaults to the nominal stance radius and
+/// allocation.torque_limit to `effort`: the URDF's per-joint effort limits.
+#include <array>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "hexdyn/core/common.hpp"
+
+namespace YAML {
+class Node;
+}
+
+namespace hexdyn {
+
+struct UrdfRobot;
+
+/// In a tree just read from `file`: a relative robot.urdf becomes an absolute path,
+/// resolved beside `file`. Called by the YAML loader on each file of an `inherit:` chain.
+void resolve_file_relative_keys(YAML::Node& root, const std::string& file);
+
+/// The robot.* keys of a URDF robot (header comment).
+struct UrdfRobotKeys {
+  std::string path;
+  std::string trunk_link;
+  std::string forward_axis = "+x";
+  std::vector<std::string> foot_links;
+  std::optional<Vec3> foot_offset_m;
+  std::optional<Vec3> nominal_pose_rad;
+  double ik_min_margin_m = 1e-4;
+};
+
+/// A loaded URDF robot with its nominal stance (model/stance.hpp), legs L1 … L6.
+struct LoadedUrdfRobot {
+  std::shared_ptr<const UrdfRobot> robot;
+  std::array<Vec3, kLegs> nominal_q_rad{};  ///< nominal pose of each leg [rad]
+  double stance_radius_m = 0.0;             ///< mean horizontal foot distance from the hip [m]
+  double stance_depth_m = 0.0;              ///< mean hip height above the foot [m]
+  std::array<double, kJoints> effort_limit_Nm{};  ///< +inf: none given
+};
+
+/// Reads and validates the description (ConfigError, one line naming the file and the
+/// link, joint or chain) and computes the nominal stance. The file is read as an input
+/// (config/inputs.hpp read_input_text: the bytes kept while a command runs, else read now);
+/// the last few robots loaded are kept by their keys and file text, and the same keys and
+/// text give the robot loaded before (shared: a sweep's scenarios parse their URDF once).
+LoadedUrdfRobot load_urdf_robot(const UrdfRobotKeys& keys);
+
+}  // namespace hexdyn

@@ -1,0 +1,36 @@
+#include "hexdyn/config/spec_reader.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <set>
+
+#include "hexdyn/config/config.hpp"
+#include "hexdyn/core/errors.hpp"
+
+namespace hexdyn {
+
+void SpecReader::fail(const std::string& path, const std::string& what) const {
+  throw ConfigError(file_ + ": " + path + ": " + what);
+}
+
+void SpecReader::fail_value(const std::string& path, const YAML::Node& node,
+                            const std::string& expected) const {
+  if (!node.IsDefined()) fail(path, "missing, expected " + expected);
+  fail(path, "got " + yaml_for_message(node) + ", expected " + expected);
+}
+
+void SpecReader::check_keys(const YAML::Node& node, const std::string& path,
+                            const std::vector<std::string>& allowed) const {
+  if (!node.IsMap()) fail_value(path.empty() ? "(top level)" : path, node, "a mapping of keys");
+  for (const auto& kv : node) {
+    const std::string key = kv.first.IsScalar() ? kv.first.Scalar() : yaml_inline(kv.first);
+    if (std::find(allowed.begin(), allowed.end(), key) != allowed.end()) continue;
+    const std::set<std::string> sorted(allowed.begin(), allowed.end());
+    std::string list;
+    for (const auto& a : sorted) list += (list.empty() ? "" : ", ") + a;
+    fail(path.empty() ? key : path + "." + key, "unknown key, allowed here: " + list);
+  }
+}
+
+}  // namespace hexdyn
