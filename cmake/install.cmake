@@ -6,7 +6,7 @@
 #   P/share/hexdyn/pipelines/                     shell pipelines and slurm_sweep.sbatch
 #   P/share/hexdyn/analysis/*.py                  Python checks and plots (they import the
 #                                                 package hexdyn, cmake/python.cmake)
-#   P/share/hexdyn/src/hexdyn/io/schema.hpp       the result schema, as in the repository
+#   P/share/hexdyn/src/hexdyn/io/schema.hpp       the file layouts, for reference
 # Included by the top-level CMakeLists.txt.
 include(GNUInstallDirs)
 set(HEXDYN_INSTALL_SHARE ${CMAKE_INSTALL_DATADIR}/hexdyn)

@@ -33,7 +33,7 @@ namespace py = pybind11;
 namespace {
 
 /// One computed scene: the C++ result (for write) and the files it read, by the identity
-/// and absolute path they had when read (io/inputs.hpp), which its outputs must not be.
+/// and absolute path they had when read (config/inputs.hpp), which its outputs must not be.
 struct RunHandle {
   hexdyn::RunResult result;
   std::vector<hexdyn::InputFile> inputs;

@@ -540,9 +540,9 @@ def self_test(root):
         run("a renamed function",
             [f"{notes}:3: docs_probe_function not found (function)"])
         # The file moved to another folder.
-        os.makedirs(os.path.join(copy, "src", "hexdyn", "process"))
-        shutil.move(probe, os.path.join(copy, "src", "hexdyn", "process", "docs_probe.hpp"))
-        with open(os.path.join(copy, "src", "hexdyn", "process", "docs_probe.hpp"), "w") as fh:
+        os.makedirs(os.path.join(copy, "src", "hexdyn", "probe_moved"), exist_ok=True)
+        shutil.move(probe, os.path.join(copy, "src", "hexdyn", "probe_moved", "docs_probe.hpp"))
+        with open(os.path.join(copy, "src", "hexdyn", "probe_moved", "docs_probe.hpp"), "w") as fh:
             fh.write("#pragma once\ninline int docs_probe_function(int x) { return x; }\n")
         run("a moved file",
             [f"{notes}:3: src/hexdyn/core/docs_probe.hpp not found (file)",
@@ -551,7 +551,7 @@ def self_test(root):
         with open(os.path.join(copy, notes)) as fh:
             text = fh.read()
         with open(os.path.join(copy, notes), "w") as fh:
-            fh.write(text.replace("core/docs_probe.hpp", "process/docs_probe.hpp")
+            fh.write(text.replace("core/docs_probe.hpp", "probe_moved/docs_probe.hpp")
                      .replace("hexdyn_core", "hexdyn_kernel"))
         with open(orphan, "w") as fh:
             fh.write("# Orphan\n")

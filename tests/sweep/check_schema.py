@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """Checks files against the layout declared in src/hexdyn/io/schema.hpp, as
-hexdyn.results (bindings/python/hexdyn/results.py) parses it (the same declaration the C++ writers use):
+hexdyn.results (bindings/python/hexdyn/results.py) has it from the generated module (the same declaration the C++ writers use):
 
   check_schema.py --result RESULT.h5 [--sweep SWEEP.h5 ...]
 

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# The layouts declared in src/hexdyn/io/schema.hpp, as hexdyn.results (bindings/python/hexdyn/results.py) parses
-# them, equal what the C++ writers write: a result file (`hexdyn run`) and a sweep file
+# The layouts declared in src/hexdyn/io/schema.hpp, as hexdyn.results (bindings/python/hexdyn/results.py) has
+# them from the generated module, equal what the C++ writers write: a result file (`hexdyn run`) and a sweep file
 # with an axis of numbers, an axis of words, failed rows and kept runs hold every
 # declared path with its units, shape and element type, and nothing undeclared.
 source "$(dirname "$0")/common.sh"

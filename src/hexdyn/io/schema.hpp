@@ -8,10 +8,10 @@
 /// writers (io/result_layout.cpp, sweep/sweep_file.cpp, envelope/envelope_file.cpp) take
 /// every path, units string and long name from here, and label every dataset with the
 /// dimensions of its shape (dimension_names(), io/labels.hpp), so that netCDF-4 readers
-/// (xarray, ncdump) open the files. The Python reader hexdyn.results
-/// (bindings/python/hexdyn/results.py) parses this header at import (the `inline
-/// constexpr` lines below, the shape comments of `Shape` and the cases of
-/// dimension_names()), so the layout is typed once. Keep declarations on the regular pattern
+/// (xarray, ncdump) open the files. The Python reader hexdyn.results takes the same
+/// declarations from the module `_schema` the build generates by compiling this header
+/// (bindings/python/schema/schema_py.cpp, cmake/python.cmake), so the layout is typed
+/// once. Keep declarations on the regular pattern
 ///     inline constexpr DatasetSpec kName{"path", "units", Shape::kX, Element::kY, "long name"};
 /// (a name of a `const char*` constant may stand for a string). A change of layout is a
 /// new schema version.
@@ -23,7 +23,7 @@
 /// otherwise. Units strings are UDUNITS-2 units: "1" marks dimensionless numbers
 /// (quaternions, counts, ratios); "" writes no `units` attribute: text and CF flag
 /// datasets (codes, see FlagSpec); "key" marks a sweep axis value, written in the SI unit
-/// of its scene key (io/key_units.hpp). Paths with "{i}" (axis number 0..A−1), "{id}"
+/// of its scene key (config/key_units.hpp). Paths with "{i}" (axis number 0..A−1), "{id}"
 /// (scenario id) or "{key}" (an axis key) are templates: at().
 #include <array>
 #include <cstdint>

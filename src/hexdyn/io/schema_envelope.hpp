@@ -1,7 +1,7 @@
 #pragma once
 /// \file schema_envelope.hpp
 /// The `hexdyn-envelope/2` contract, part of io/schema.hpp (which includes this header at
-/// its end; the readers parse both as one text, in that order). Same conventions as there.
+/// its end; the generated Python schema holds both, in that order). Same conventions as there.
 #include "hexdyn/io/schema.hpp"
 
 namespace hexdyn::schema {
