@@ -2,7 +2,8 @@
 # Installs the Debian 12 packages hexdyn needs (only those missing) and builds it in
 # build/ (Release). Sourced by the other pipelines, each building only what it runs
 # (`hexdyn_build hexdyn` builds the binaries hexdyn and hexdyn-sweep, `hexdyn_python` the
-# Python module); run on its own, and from pipelines/test.sh, it builds everything.
+# Python module); run on its own, and from pipelines/test.sh, it builds the default build
+# (everything but the benchmarks, which the target `benchmarks` builds).
 set -euo pipefail
 HEXDYN_ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 export HEXDYN_ROOT
@@ -42,7 +43,8 @@ hexdyn_install() {
 }
 
 # hexdyn_build [TARGET...]: configures build/ and builds the named targets (and what they
-# need), or everything -- libraries, hexdyn, tests and benchmarks -- when none is named.
+# need), or the default build -- libraries, hexdyn, the Python module and the tests -- when
+# none is named (the benchmarks: `hexdyn_build benchmarks`, docs/dev/benchmarks.md).
 hexdyn_build() {
   cmake -S "$HEXDYN_ROOT" -B "$HEXDYN_BUILD" -DCMAKE_BUILD_TYPE=Release >/dev/null
   local targets=()
