@@ -276,7 +276,40 @@ class UnknownGroupError(KeyError, ValueError):
         return str(self.args[0]) if self.args else ""
 
 
-class Result(Mapping):
+def yaml_attribute(meta, name, source):
+    """The /meta attribute `name` parsed as YAML (a dict; {} when absent or empty);
+    ValueError naming the file when it is not YAML."""
+    try:
+        return yaml.safe_load(meta.get(name, "") or "") or {}
+    except yaml.YAMLError as e:
+        raise ValueError(f"{source}: /meta {name} is not valid YAML: "
+                         f"{str(e).splitlines()[0]}") from None
+
+
+class _Datasets(Mapping):
+    """A file's datasets by path (`self.data`, `self.source`): the mapping of Result and
+    Envelope."""
+
+    def __getitem__(self, path):
+        try:
+            return self.data[path]
+        except KeyError:
+            raise KeyError(f"{self.source}: no dataset {path}") from None
+
+    def __contains__(self, path):
+        return path in self.data
+
+    def __iter__(self):
+        return iter(self.data)
+
+    def __len__(self):
+        return len(self.data)
+
+    def paths(self):
+        return sorted(self.data)
+
+
+class Result(_Datasets):
     """One hexdyn-result/2 result in memory, computed (hexdyn.run) or read (open_result,
     Sweep.run): a read-only mapping from dataset path ("/joints/torque") to its values.
 
@@ -317,30 +350,9 @@ class Result(Mapping):
     def config(self):
         """The resolved configuration (dict); ValueError if config_yaml is not YAML."""
         if self._config is None:
-            try:
-                self._config = yaml.safe_load(self.meta.get("config_yaml", "") or "") or {}
-            except yaml.YAMLError as e:
-                raise ValueError(f"{self.source}: /meta config_yaml is not valid YAML: "
-                                 f"{str(e).splitlines()[0]}") from None
+            self._config = yaml_attribute(self.meta, "config_yaml", self.source)
         return self._config
 
-    def __getitem__(self, path):
-        try:
-            return self.data[path]
-        except KeyError:
-            raise KeyError(f"{self.source}: no dataset {path}") from None
-
-    def __contains__(self, path):
-        return path in self.data
-
-    def __iter__(self):
-        return iter(self.data)
-
-    def __len__(self):
-        return len(self.data)
-
-    def paths(self):
-        return sorted(self.data)
 
     @property
     def computed(self):
@@ -777,11 +789,11 @@ class Sweep:
 
     @property
     def config(self):
-        return yaml.safe_load(self.meta.get("base_config_yaml", "") or "") or {}
+        return yaml_attribute(self.meta, "base_config_yaml", self.path)
 
     @property
     def spec(self):
-        return yaml.safe_load(self.meta.get("sweep_yaml", "") or "") or {}
+        return yaml_attribute(self.meta, "sweep_yaml", self.path)
 
     @property
     def has_runs(self):
@@ -898,7 +910,7 @@ def expected_shape(shape, samples=None, impacts=None, messages=None, **sizes):
 
 
 # ---------------------------------------------------------------------------- envelopes
-class Envelope:
+class Envelope(_Datasets):
     """A hexdyn-envelope/2 file read into memory (the file is closed), checked against the
     schema (check_envelope_file).
 
@@ -922,31 +934,14 @@ class Envelope:
         self.meta = meta
         self.version = version
 
-    def __getitem__(self, path):
-        try:
-            return self.data[path]
-        except KeyError:
-            raise KeyError(f"{self.source}: no dataset {path}") from None
-
-    def __contains__(self, path):
-        return path in self.data
-
-    def __iter__(self):
-        return iter(self.data)
-
-    def __len__(self):
-        return len(self.data)
-
-    def paths(self):
-        return sorted(self.data)
 
     @property
     def config(self):
-        return yaml.safe_load(self.meta.get("config_yaml", "") or "") or {}
+        return yaml_attribute(self.meta, "config_yaml", self.source)
 
     @property
     def base_config(self):
-        return yaml.safe_load(self.meta.get("base_config_yaml", "") or "") or {}
+        return yaml_attribute(self.meta, "base_config_yaml", self.source)
 
     @property
     def cases(self):
