@@ -934,7 +934,6 @@ class Envelope(_Datasets):
         self.meta = meta
         self.version = version
 
-
     @property
     def config(self):
         return yaml_attribute(self.meta, "config_yaml", self.source)
