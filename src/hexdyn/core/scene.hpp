@@ -3,7 +3,9 @@
 /// The typed, validated scene a run is made of. Produced by `load_scene` (config.hpp)
 /// from YAML; every field is SI. Field comments give units; which values come from
 /// the paper and which are assumptions is said in configs/paper.yaml.
+#include <array>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -12,6 +14,8 @@
 #include "hexdyn/core/common.hpp"
 
 namespace hexdyn {
+
+inline constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 struct UrdfRobot;  // model/urdf_robot.hpp: a hexapod read from a URDF file
 
@@ -155,11 +159,15 @@ struct ContactParams {
 /// exact cone, its sequential outer approximation, allocation/cone.hpp), the default for
 /// every friction model, or Ipopt (allocation/ipopt.cpp: the reference).
 enum class AllocationSolver { kActiveSet, kIpopt };
+/// allocation.objective: the paper's Σ τ² (eq. 9) of the drive torques, or the copper loss
+/// Σ R_j I_j² of the actuators (a weighted Σ τ², docs/theory/drive-train.md#objective).
+enum class AllocationObjective { kTorqueSquared, kCopperLoss };
 enum class FrictionModel { kPyramid4, kPyramid8, kCone };
 
 struct AllocationParams {
   AllocationSolver solver = AllocationSolver::kActiveSet;
   FrictionModel friction = FrictionModel::kPyramid4;
+  AllocationObjective objective = AllocationObjective::kTorqueSquared;
   double torque_limit_Nm = 6.0;  ///< |τ| bound of every joint, unless joint_torque_limit_Nm is set
   /// Per-joint |τ| bounds in flat joint order [N m]: a URDF robot's effort limits when the
   /// scene gives no allocation.torque_limit (+inf for a joint without one); unset: the
@@ -168,6 +176,32 @@ struct AllocationParams {
   double min_normal_force_N = 0.0;
   double tolerance = 1e-9;
   double slack_penalty = 1e6;
+};
+
+/// One joint's drive train, resolved (config/actuators.hpp; docs/theory/drive-train.md): a
+/// geared DC motor. Joint side unless said; an optional value absent is +inf (a bound or a
+/// window that never applies).
+struct ActuatorParams {
+  std::string model;                        ///< the shipped table's name it started from, or ""
+  double gear_ratio = 1.0;                  ///< G [–], motor turns per joint turn
+  double torque_constant_NmpA = 0.0;        ///< k_t, motor side [N m/A]
+  double resistance_ohm = 0.0;              ///< R, winding [Ω]
+  double armature_kgm2 = 0.0;               ///< J_a = G² J_m, joint side [kg m²]
+  double coulomb_friction_Nm = 0.0;         ///< τ_c [N m]
+  double viscous_friction_Nmsprad = 0.0;    ///< b [N m s/rad]
+  double gear_efficiency = 1.0;             ///< η ∈ (0, 1]
+  double voltage_V = kInfinity;             ///< V, supply [V]; inf: no voltage bound
+  double peak_torque_Nm = kInfinity;        ///< |τ_drive| bound [N m]; inf: none
+  double continuous_torque_Nm = kInfinity;  ///< the thermal rating, RMS [N m]; inf: none
+  double regeneration = 0.0;                ///< r ∈ [0, 1], share of negative power recovered
+  double thermal_window_s = kInfinity;      ///< RMS window [s]; inf: the whole run
+};
+
+/// The drive trains of the 18 joints (scene key `actuators`), flat joint order. Absent
+/// (present = false): the paper's idealised joints, τ_drive = τ, no electrical results.
+struct DriveTrainParams {
+  bool present = false;
+  std::array<ActuatorParams, kJoints> joints;
 };
 
 enum class OutputGrid { kUniform, kAdaptive };
@@ -201,6 +235,7 @@ struct Scene {
   MotionParams motion;
   ContactParams contact;
   AllocationParams allocation;
+  DriveTrainParams actuators;  ///< actuators: (absent: the paper's ideal joints)
   OutputParams output;
   std::string resolved_yaml;  ///< the fully resolved configuration, as YAML
   std::string source_path;    ///< the file it was read from
