@@ -3,7 +3,10 @@
 /// The shipped table of servos that a scene's `actuators` entries name with `model:`
 /// (docs/user/servos.md lists every value with its source). Values are SI, joint side
 /// unless said; NaN where the sources give no value (the entry's own keys or the defaults
-/// of config/actuators.hpp then apply).
+/// of config/actuators.hpp then apply). Every servo gives G, k_t, R, η, V and the peak
+/// torque; the armature, the friction and the continuous rating may be NaN. A servo is the
+/// geared DC motor τ = η G k_t (V − G k_t ω) / R at the joint
+/// (docs/user/servos.md#the-motor-model).
 #include <span>
 #include <string_view>
 
@@ -29,7 +32,7 @@ struct ServoSpec {
 /// Every servo of the table, in the order docs/user/servos.md lists them.
 std::span<const ServoSpec> servo_table();
 
-/// The servo named `name`, or null.
+/// The servo named exactly `name` (case and all), or null.
 const ServoSpec* find_servo(std::string_view name);
 
 }  // namespace hexdyn
