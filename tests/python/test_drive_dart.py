@@ -36,10 +36,11 @@ DegreeOfFreedom setArmature; the word is nowhere in its headers or libraries). T
 per-joint inertia its articulated-body forward dynamics takes is that of its implicit
 spring and damper: it adds h b + h² k to the joint's projected articulated inertia SᵀI^A S
 (GenericJoint::updateInvProjArtInertiaImplicitDynamic, h the skeleton's time step) -- where
-Featherstone's algorithm adds an armature -- and applies the forces −b q̇ and
-−k (q − q_rest + h q̇) (updateTotalForceDynamic). With k = (J_a − h b)/h² and q_rest = q + h q̇
-the added inertia is exactly J_a, the spring force is zero and the damping force is −b q̇:
-DART solves (M + diag J_a) q̈ = τ − b q̇ − c + Jᵀf, for any h.
+Pinocchio's articulated-body algorithm adds its armature (algorithm/aba.hxx) -- and applies
+the forces −b q̇ and −k (q − q_rest + h q̇) (updateTotalForceDynamic). With
+k = (J_a − h b)/h² and q_rest = q + h q̇ the added inertia is exactly J_a, the spring force
+is zero and the damping force is −b q̇: DART solves (M + diag J_a) q̈ = τ − b q̇ − c + Jᵀf,
+for any h.
 
 DART's Coulomb friction is a constraint of its World's step (JointCoulombFrictionConstraint):
 an impulse within ±τ_c h that would stop the joint. Its velocity response uses the rigid
