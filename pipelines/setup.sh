@@ -26,6 +26,9 @@ HEXDYN_PACKAGES=(
   pyflakes3
   # analysis/animate.py: GIF through Pillow, MP4 through ffmpeg (pipelines/paper.sh writes one)
   python3-pil ffmpeg
+  # DART 6.12's Python bindings: the drive train's armature and friction terms checked
+  # against DART's (ctest dynamics.drive_train_against_dart, tests/python/test_drive_dart.py)
+  python3-dartpy
 )
 
 hexdyn_install() {
