@@ -36,7 +36,7 @@ install(FILES ${PROJECT_SOURCE_DIR}/src/hexdyn/io/schema.hpp
 #                                                 by find_package(hexdyn COMPONENTS mpi))
 #   P/lib/pkgconfig/hexdyn.pc                     the same libraries for pkg-config
 set(HEXDYN_LAYERS core model urdf_reader planning kinematics dynamics contact allocation
-                  allocation_ipopt power pipeline process config io sweep envelope)
+                  allocation_ipopt power drive pipeline process config io sweep envelope)
 set(HEXDYN_INSTALL_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/hexdyn)
 
 # The layers name their include folders by absolute build paths: valid in the build tree
@@ -108,7 +108,7 @@ install(FILES ${CMAKE_BINARY_DIR}/package/hexdynConfig.cmake
 # pkg-config: the libraries of hexdyn::hexdyn in link order (static: every dependency is
 # public).
 set(HEXDYN_PC_LIBS "")
-foreach(layer envelope sweep io config process pipeline power allocation_ipopt allocation contact dynamics
+foreach(layer envelope sweep io config process pipeline drive power allocation_ipopt allocation contact dynamics
               kinematics planning urdf_reader model core)
   string(APPEND HEXDYN_PC_LIBS " -lhexdyn_${layer}")
 endforeach()

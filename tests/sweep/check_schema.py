@@ -189,6 +189,8 @@ def check_result(f, root, source):
     tables = ["kModelDatasets", "kKinematicDatasets", "kDynamicsDatasets"]
     if c.full(S["kModelLegMapping"].path) in f:  # a robot read from a URDF
         tables.append("kUrdfRobotDatasets")
+    if c.full(S["kDriveTorque"].path) in f:  # a scene with actuators
+        tables.append("kDriveTrainDatasets")
     for table in tables + ["kResultCoordinates"]:
         for spec in S[table]:
             c.dataset(spec, sizes)

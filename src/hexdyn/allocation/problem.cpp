@@ -47,13 +47,19 @@ constexpr int kImpactConeFaces = kInscribedConeFaces;
 
 /// Row names, built once: building them per sample would cost more than the solve.
 struct RowNames {
-  std::array<std::string, kJoints> torque;
+  /// By bound kind (DriveRows::bound): the allocation's limit, a drive's peak, its voltage.
+  std::array<std::array<std::string, kJoints>, 3> torque_by_bound;
+  std::array<std::string, kJoints>& torque = torque_by_bound[0];
   std::array<std::string, kLegs> normal;
   std::array<std::array<std::string, kImpactConeFaces>, kLegs> face;
   RowNames() {
     for (int l = 0; l < kLegs; ++l) {
-      for (int j = 0; j < kJointsPerLeg; ++j)
-        torque[joint_index(l, j)] = "torque " + joint_name(l, j);
+      for (int j = 0; j < kJointsPerLeg; ++j) {
+        const int k = joint_index(l, j);
+        torque[k] = "torque " + joint_name(l, j);
+        torque_by_bound[1][k] = torque[k] + " (peak)";
+        torque_by_bound[2][k] = torque[k] + " (voltage)";
+      }
       normal[l] = "normal " + leg_name(l);
       for (int f = 0; f < kImpactConeFaces; ++f)
         face[l][f] = "friction " + leg_name(l) + " face " + std::to_string(f + 1);
@@ -132,23 +138,27 @@ LinearTerms linear_terms(const ContactSplit& split, const AllocationLayout& layo
   return t;
 }
 
-/// Joint k's torque limit [N m]: a URDF robot's effort limit, or one limit for every joint.
-double joint_torque_limit(const AllocationParams& alloc, int k) {
+/// Joint k's torque limit [N m]: a drive's bound, a URDF robot's effort limit, or one limit for
+/// every joint.
+double joint_torque_limit(const AllocationParams& alloc, const DriveRows* drive, int k) {
+  if (drive) return drive->limit_Nm[k];
   return alloc.joint_torque_limit_Nm ? (*alloc.joint_torque_limit_Nm)[k] : alloc.torque_limit_Nm;
 }
 
 /// A swing leg's torques are constants no force changes: the largest excess over its limit
 /// [N m] is kept in the layout, with the row's name.
-void note_swing_leg_excess(const AllocationParams& alloc, const VecJ& tau_known, int l,
-                           AllocationLayout& layout) {
+void note_swing_leg_excess(const AllocationParams& alloc, const DriveRows* drive,
+                           const VecJ& tau_known, int l, AllocationLayout& layout) {
   for (int j = 0; j < kJointsPerLeg; ++j) {
-    const double excess =
-        std::abs(tau_known[joint_index(l, j)]) - joint_torque_limit(alloc, joint_index(l, j));
+    const int k = joint_index(l, j);
+    const double excess = std::abs(tau_known[k]) - joint_torque_limit(alloc, drive, k);
     if (excess > layout.constant_excess_Nm) {
       layout.constant_excess_Nm = excess;
       std::ostringstream os;
       os.precision(3);
-      os << "torque " << joint_name(l, j) << " (swing leg) by " << excess;
+      os << "torque " << joint_name(l, j) << " (swing leg";
+      if (drive && drive->bound[k] != 0) os << ", " << (drive->bound[k] == 1 ? "peak" : "voltage");
+      os << ") by " << excess;
       layout.constant_violation = os.str();
     }
   }
@@ -157,18 +167,18 @@ void note_swing_leg_excess(const AllocationParams& alloc, const VecJ& tau_known,
 /// Leg l's rows from `row` on: its torque limits, a support leg's minimum normal force,
 /// its friction faces (faces per leg, 0 for the exact cone; friction coefficient mu), and
 /// a support leg's second-order cone under the exact cone. Returns the next row.
-int add_leg_rows(const AllocationParams& alloc, const LinearTerms& t,
+int add_leg_rows(const AllocationParams& alloc, const DriveRows* drive, const LinearTerms& t,
                  const AllocationLayout& layout, const std::array<ContactPhase, kLegs>& phase,
                  const std::array<double, kLegs>& impact_force_N, int faces, double mu, int l,
                  int row, QpProblem& qp) {
   const int o = layout.legs[l].offset;
   for (int j = 0; j < kJointsPerLeg; ++j, ++row) {
     const int kk = joint_index(l, j);
-    const double tmax = joint_torque_limit(alloc, kk);
+    const double tmax = joint_torque_limit(alloc, drive, kk);
     qp.C.row(row) = t.G.row(kk);
     qp.lower[row] = t.tau_known[kk] - tmax;
     qp.upper[row] = t.tau_known[kk] + tmax;
-    qp.ineq_names[row] = row_names().torque[kk];
+    qp.ineq_names[row] = row_names().torque_by_bound[drive ? drive->bound[kk] : 0][kk];
   }
   const bool support = phase[l] == ContactPhase::kSupport;
   if (support) {
@@ -205,18 +215,29 @@ AllocationLayout build_allocation_problem(const AllocationParams& alloc,
                                           const ContactParams& contact, const ContactSplit& split,
                                           const std::array<ContactPhase, kLegs>& phase,
                                           const std::array<double, kLegs>& impact_force_N,
-                                          const std::array<Mat3, kLegs>& W_R_c, QpProblem& qp) {
+                                          const std::array<Mat3, kLegs>& W_R_c, QpProblem& qp,
+                                          const DriveRows* drive) {
   const int faces = friction_faces(alloc.friction);
   const double mu = contact.friction_coefficient;
   int m_in = 0;
   AllocationLayout layout = variable_layout(phase, impact_force_N, W_R_c, faces, m_in);
   qp.resize(layout.variables, 0, m_in);
   qp.structure = structure_key(faces, phase);
-  const LinearTerms t = linear_terms(split, layout, phase, impact_force_N, W_R_c);
-  // Objective Σ τ² = |tau_known − G x|² = ½ xᵀ (2 GᵀG) x − 2 (Gᵀ tau_known)ᵀ x + |tau_known|².
-  qp.H = 2.0 * t.G.transpose() * t.G;
-  qp.g = -2.0 * t.G.transpose() * t.tau_known;
-  qp.constant = t.tau_known.squaredNorm();
+  LinearTerms t = linear_terms(split, layout, phase, impact_force_N, W_R_c);
+  if (!drive) {
+    // Objective Σ τ² = |tau_known − G x|² = ½ xᵀ (2 GᵀG) x − 2 (Gᵀ tau_known)ᵀ x + |tau_known|².
+    qp.H = 2.0 * t.G.transpose() * t.G;
+    qp.g = -2.0 * t.G.transpose() * t.tau_known;
+    qp.constant = t.tau_known.squaredNorm();
+  } else {
+    // The drive torques τ + offset = (tau_known + offset) − G x: the rows and the objective
+    // Σ w (τ + offset)² read the known part shifted by the offset.
+    t.tau_known += drive->offset_Nm;
+    const GMatrix WG = drive->weight.asDiagonal() * t.G;
+    qp.H = 2.0 * t.G.transpose() * WG;
+    qp.g = -2.0 * WG.transpose() * t.tau_known;
+    qp.constant = t.tau_known.dot(drive->weight.cwiseProduct(t.tau_known));
+  }
   int row = 0;
   for (int r = 0; r < 6; ++r, ++row) {
     qp.C.row(row) = t.B.row(r);
@@ -226,9 +247,9 @@ AllocationLayout build_allocation_problem(const AllocationParams& alloc,
   }
   for (int l = 0; l < kLegs; ++l) {
     if (layout.legs[l].offset < 0)
-      note_swing_leg_excess(alloc, t.tau_known, l, layout);
+      note_swing_leg_excess(alloc, drive, t.tau_known, l, layout);
     else
-      row = add_leg_rows(alloc, t, layout, phase, impact_force_N, faces, mu, l, row, qp);
+      row = add_leg_rows(alloc, drive, t, layout, phase, impact_force_N, faces, mu, l, row, qp);
   }
   return layout;
 }

@@ -14,6 +14,7 @@
 /// force, and its friction faces (a pyramid, or for an impact leg under the exact cone the
 /// inscribed 16-gon; a support leg under the exact cone gets a second-order cone instead).
 #include <array>
+#include <cstdint>
 #include <string>
 
 #include "hexdyn/allocation/qp.hpp"
@@ -44,17 +45,32 @@ struct AllocationLayout {
   std::string constant_violation;
 };
 
+/// The drive train's part of one sample
+/// (docs/theory/drive-train.md#allocation-with-the-drive-train), for a robot with actuators: per
+/// joint the known offset τ_drive − τ = J_a q̈ + τ_c sgn(q̇) + b q̇ [N m], the bound on |τ_drive| [N
+/// m] with the kind of bound that gave it (1 peak, 2 voltage, 0 the allocation's own torque limit;
+/// drive/drive.hpp DriveBound) and the objective's weight of τ_drive² (1 for torque_squared, R / (G
+/// k_t η)² for copper_loss).
+struct DriveRows {
+  VecJ offset_Nm = VecJ::Zero();
+  VecJ limit_Nm = VecJ::Zero();
+  std::array<std::int8_t, kJoints> bound{};
+  VecJ weight = VecJ::Ones();
+};
+
 /// Builds the allocation problem of one sample into `qp` (resized) and returns its layout.
 /// Legs in `phase` kSwing carry no force, kImpact legs carry the known normal force
 /// `impact_force_N[l]` [N] along the third column of W_R_contact[l] (the contact frames,
 /// world axes). Sets qp.structure to a key of the row layout (the friction model and each
-/// leg's phase), so that back ends recognise problems built alike.
+/// leg's phase), so that back ends recognise problems built alike. With `drive` (not null),
+/// the torque rows bound the drive torques τ + offset by drive->limit_Nm and the objective is
+/// Σ weight_k (τ_k + offset_k)²; without it, |τ| by the allocation's limits and Σ τ².
 AllocationLayout build_allocation_problem(const AllocationParams& alloc,
                                           const ContactParams& contact, const ContactSplit& split,
                                           const std::array<ContactPhase, kLegs>& phase,
                                           const std::array<double, kLegs>& impact_force_N,
-                                          const std::array<Mat3, kLegs>& W_R_contact,
-                                          QpProblem& qp);
+                                          const std::array<Mat3, kLegs>& W_R_contact, QpProblem& qp,
+                                          const DriveRows* drive = nullptr);
 
 /// Foot forces F_W [N] (world axes, terrain on foot) and joint torques tau [N m] of a
 /// solution x (size layout.variables) of the problem `layout` was built with:

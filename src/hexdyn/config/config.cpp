@@ -9,6 +9,7 @@
 #include <map>
 #include <set>
 
+#include "hexdyn/config/actuators.hpp"
 #include "hexdyn/config/inputs.hpp"
 #include "hexdyn/config/plausibility.hpp"
 #include "hexdyn/config/robot_config.hpp"
@@ -386,6 +387,12 @@ void read_allocation(Reader& r, AllocationParams& a, const LoadedUrdfRobot& urdf
   } else {
     a.torque_limit_Nm = r.number("allocation.torque_limit", positive(kMaxJointEffort_Nm));
   }
+  if (r.given("allocation.objective")) {
+    const std::string objective =
+        r.choice("allocation.objective", {"torque_squared", "copper_loss"});
+    a.objective = objective == "copper_loss" ? AllocationObjective::kCopperLoss
+                                             : AllocationObjective::kTorqueSquared;
+  }
   a.min_normal_force_N = r.number_or("allocation.min_normal_force",
                                      defaults().allocation.min_normal_force_N, nonnegative(1e6));
   // The loosest tolerance at which both back ends still meet the fixed violation threshold
@@ -401,6 +408,28 @@ void read_allocation(Reader& r, AllocationParams& a, const LoadedUrdfRobot& urdf
                "flagged for the solver's inaccuracy rather than for physics");
   a.slack_penalty =
       r.number_or("allocation.slack_penalty", defaults().allocation.slack_penalty, positive(1e12));
+}
+
+/// actuators: (config/actuators.hpp) with the robot's joint names and URDF friction, and
+/// allocation.objective's dependence on it: copper_loss needs actuators; with them, the
+/// objective is recorded in the resolved configuration.
+void read_drive_train(Reader& r, Scene& s, const LoadedUrdfRobot& urdf) {
+  JointFacts joints;
+  if (urdf.robot) {
+    joints.names = urdf.joint_names;
+    joints.damping_Nmsprad = urdf.damping_Nmsprad;
+    joints.friction_Nm = urdf.friction_Nm;
+  } else {
+    for (int l = 0; l < kLegs; ++l)
+      for (int j = 0; j < kJointsPerLeg; ++j) joints.names[joint_index(l, j)] = joint_name(l, j);
+  }
+  s.actuators = read_actuators(r, joints);
+  if (s.actuators.present)
+    r.record("allocation.objective", YAML::Node(objective_word(s.allocation.objective)));
+  else if (s.allocation.objective == AllocationObjective::kCopperLoss)
+    r.fail("allocation.objective",
+           "got copper_loss, expected torque_squared: the copper loss needs an actuators section "
+           "(docs/user/configuration.md#actuators)");
 }
 
 /// `auto:`: what a scene asked hexdyn to choose, as the resolved configuration of an
@@ -524,6 +553,7 @@ Scene scene_from_tree(const SceneTree& tree, const std::string& source_name, boo
   read_motion(r, s.gait, s.terrain, s.motion);
   read_contact(r, s.contact);
   read_allocation(r, s.allocation, urdf);
+  read_drive_train(r, s, urdf);
   read_output(r, s.output);
   r.check_unknown();
   check_physical_plausibility(s, source_name);  // timings that no physical motion has

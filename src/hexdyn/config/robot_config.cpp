@@ -77,8 +77,14 @@ LoadedUrdfRobot load_urdf_robot(const UrdfRobotKeys& keys) {
     out.nominal_q_rad[leg] = s.q;
     out.stance_radius_m += s.radius_m / kLegs;
     out.stance_depth_m += s.depth_m / kLegs;
-    for (int j = 0; j < kJointsPerLeg; ++j)
-      out.effort_limit_Nm[joint_index(leg, j)] = robot->legs[leg].effort_Nm[j];
+    for (int j = 0; j < kJointsPerLeg; ++j) {
+      const int k = joint_index(leg, j);
+      const UrdfLeg& l = robot->legs[leg];
+      out.effort_limit_Nm[k] = l.effort_Nm[j];
+      out.damping_Nmsprad[k] = l.damping_Nmsprad[j];
+      out.friction_Nm[k] = l.friction_Nm[j];
+      out.joint_names[k] = l.joint_names[j];
+    }
   }
   out.robot = std::move(robot);
   const std::lock_guard<std::mutex> lock(loaded_mutex);

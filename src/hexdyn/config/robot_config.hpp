@@ -58,6 +58,10 @@ struct LoadedUrdfRobot {
   double stance_radius_m = 0.0;             ///< mean horizontal foot distance from the hip [m]
   double stance_depth_m = 0.0;              ///< mean hip height above the foot [m]
   std::array<double, kJoints> effort_limit_Nm{};  ///< +inf: none given
+  /// <dynamics damping friction> by joint, 0 when not given [N m s/rad], [N m].
+  std::array<double, kJoints> damping_Nmsprad{}, friction_Nm{};
+  /// The URDF's joint names in flat joint order (/model/joint_names).
+  std::array<std::string, kJoints> joint_names;
 };
 
 /// Reads and validates the description (ConfigError, one line naming the file and the

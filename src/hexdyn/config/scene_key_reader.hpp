@@ -1,11 +1,10 @@
 #pragma once
 /// \file scene_key_reader.hpp
-/// Internal to config/config.cpp: the key-by-key reader of a scene tree. It reads keys by
-/// dotted path with their allowed ranges, records every key asked for (so an unknown key
-/// is named with the allowed ones) and builds the resolved tree with the defaults filled
-/// in. Every failure throws ConfigError "SOURCE: key.path: got VALUE, expected WHAT".
-/// Messages are built only when a key fails, and the resolved tree only when asked for:
-/// a sweep reads a scene per scenario.
+/// Internal to config/ (config.cpp, actuators.cpp): the key-by-key reader of a scene tree. It reads
+/// keys by dotted path with their allowed ranges, records every key asked for (so an unknown key is
+/// named with the allowed ones) and builds the resolved tree with the defaults filled in. Every
+/// failure throws ConfigError "SOURCE: key.path: got VALUE, expected WHAT". Messages are built only
+/// when a key fails, and the resolved tree only when asked for: a sweep reads a scene per scenario.
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
@@ -131,6 +130,13 @@ class Reader {
   bool given(const std::string& path) const { return present(lookup(path)); }
 
   bool has(const std::string& path) { return present(ask(path)); }
+
+  /// The node at `path` (undefined when absent), not counted as asked for: the keys below
+  /// it are then read one by one, and an unknown one among them is reported.
+  YAML::Node peek(const std::string& path) const {
+    const SceneTree::Node* n = lookup(path);
+    return present(n) ? SceneTree::yaml(*n) : YAML::Node(YAML::NodeType::Undefined);
+  }
 
   double number(const std::string& path, Range r) { return number_impl(path, r, nullptr); }
   double number_or(const std::string& path, double def, Range r) {

@@ -68,6 +68,26 @@ struct ImpactRecord {
   double approach_speed_mps = 0.0;
 };
 
+/// The electrical side of a run with actuators (drive/drive.hpp compute_electrical;
+/// docs/theory/drive-train.md#current-and-electrical-power).
+struct ElectricalResult {
+  RowMatrix current_A;                ///< T×18, I [A]
+  RowMatrix power_W;                  ///< T×18, P⁺ (P = R I² + G k_t q̇ I; r P when P < 0) [W]
+  std::vector<double> total_power_W;  ///< T, Σ_k P⁺_k [W]
+  double energy_J = 0.0;              ///< trapezoid of total_power_W over the samples [J]
+  std::vector<double> energy_joint_J;  ///< 18, trapezoid of P⁺_k [J]
+  double copper_loss_J = 0.0;          ///< trapezoid of Σ R I² [J]
+  double friction_loss_J = 0.0;        ///< trapezoid of Σ (τ_c |q̇| + b q̇²) [J]
+  double regenerated_J = 0.0;          ///< trapezoid of Σ r max(0, −P) [J]
+  double cost_of_transport = 0.0;      ///< energy_J / (m g d)
+  std::vector<double> rms_torque_Nm;   ///< 18, RMS of τ_drive over the run [N m]
+  /// 18, the largest RMS of τ_drive over any window of thermal_window_s in the run (the
+  /// run's RMS when the window is longer than the run) [N m].
+  std::vector<double> window_rms_torque_Nm;
+  /// 18, each joint's continuous_torque (+inf: none), the rating the windowed RMS is against.
+  std::vector<double> continuous_torque_Nm;
+};
+
 /// Output of the dynamic stages (inverse dynamics, contact, allocation, power).
 struct DynamicsResult {
   RowMatrix joint_torque;   ///< T×18 [N m]
@@ -89,6 +109,13 @@ struct DynamicsResult {
   /// T, the largest measured violation of each sample [N or N m] (not written: it picks
   /// the message of an episode's worst sample for the log).
   std::vector<double> solver_max_violation;
+  /// With actuators (Scene::actuators), else empty: the drive torques τ_drive = τ + J_a q̈ +
+  /// τ_c sgn(q̇) + b q̇ (T×18) [N m] and their bound at each sample (T×18) [N m]
+  /// (docs/theory/drive-train.md).
+  RowMatrix drive_torque;
+  RowMatrix drive_torque_limit;
+  ElectricalResult electrical;  ///< with actuators, after finish_dynamics
+  bool has_drive() const { return drive_torque.rows() > 0; }
   bool present = false;
 };
 

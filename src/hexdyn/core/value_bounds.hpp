@@ -37,4 +37,9 @@ inline constexpr double kMaxJointEffort_Nm = 1e6;
 /// 6 rad/s).
 inline constexpr double kMaxJointVelocity_radps = 1e4;
 
+/// Largest joint friction [N m, or N m s/rad for viscous friction]: a URDF joint's
+/// <dynamics damping friction> and an actuator's coulomb_friction and viscous_friction
+/// (config/actuators.hpp); the effort bound, as no joint's friction exceeds its effort.
+inline constexpr double kMaxJointFriction = kMaxJointEffort_Nm;
+
 }  // namespace hexdyn

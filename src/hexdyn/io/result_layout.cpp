@@ -140,6 +140,26 @@ void add_gait_and_terrain(ResultLayout& layout, Builder& b, const RunResult& r) 
   }
 }
 
+/// The drive train's datasets (schema.hpp kDriveTrainDatasets), for a scene with actuators.
+void add_drive_train(Builder& b, const DynamicsResult& d, int T) {
+  namespace s = schema;
+  const std::size_t t = to_size(T);
+  const ElectricalResult& e = d.electrical;
+  b.matrix(s::kDriveTorque, d.drive_torque, T, kJoints, {t, kJoints});
+  b.matrix(s::kDriveTorqueLimit, d.drive_torque_limit, T, kJoints, {t, kJoints});
+  b.matrix(s::kMotorCurrent, e.current_A, T, kJoints, {t, kJoints});
+  b.vector(s::kDriveTorqueRms, e.rms_torque_Nm, kJoints);
+  b.vector(s::kDriveTorqueWindowRms, e.window_rms_torque_Nm, kJoints);
+  b.matrix(s::kElectricalPower, e.power_W, T, kJoints, {t, kJoints});
+  b.vector(s::kElectricalTotalPower, e.total_power_W, t);
+  b.scalar(s::kEnergyElectrical, e.energy_J);
+  b.vector(s::kEnergyElectricalJoint, e.energy_joint_J, kJoints);
+  b.scalar(s::kEnergyCopperLoss, e.copper_loss_J);
+  b.scalar(s::kEnergyFrictionLoss, e.friction_loss_J);
+  b.scalar(s::kEnergyRegenerated, e.regenerated_J);
+  b.scalar(s::kCostOfTransportElectrical, e.cost_of_transport);
+}
+
 void add_dynamics(Builder& b, const DynamicsResult& d, int T, std::size_t cycles) {
   namespace s = schema;
   const std::size_t t = to_size(T);
@@ -188,6 +208,7 @@ void add_dynamics(Builder& b, const DynamicsResult& d, int T, std::size_t cycles
   b.vector(s::kSolverObjective, d.solver_objective, t);
   b.vector(s::kSolverSeconds, d.solver_seconds, t);
   b.add(s::kSolverMessages, {d.solver_messages.size()}, d.solver_messages);
+  if (d.has_drive()) add_drive_train(b, d, T);
   // The index coordinates of the dimensions `impact` and `message` (io/labels.hpp).
   for (const auto& [coordinate, size] :
        {std::pair{&s::kImpactCoordinate, n},

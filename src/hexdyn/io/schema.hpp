@@ -333,6 +333,8 @@ inline constexpr DatasetSpec kSolverStatus{"/solver/status", "", Shape::kT, Elem
                                            "allocation solver status of the sample"};
 inline constexpr DatasetSpec kSolverIterations{"/solver/iterations", "1", Shape::kT,
                                                Element::kFloat64, "allocation solver iterations"};
+/// Σ τ² of the sample's joint torques (with actuators: of the drive torques, whatever
+/// allocation.objective minimised).
 inline constexpr DatasetSpec kSolverObjective{"/solver/objective", "N^2 m^2", Shape::kT,
                                               Element::kFloat64, "allocation objective sum tau^2"};
 inline constexpr DatasetSpec kSolverSeconds{"/solver/seconds", "s", Shape::kT, Element::kFloat64,
@@ -341,6 +343,51 @@ inline constexpr DatasetSpec kSolverSeconds{"/solver/seconds", "s", Shape::kT, E
 inline constexpr DatasetSpec kSolverMessages{"/solver/messages", "", Shape::kTextList,
                                              Element::kString,
                                              "solver message of each relaxed or failed sample"};
+
+// ---- the drive train: written only for a scene with actuators ----
+// (docs/theory/drive-train.md; the resolved actuators of every joint are in /meta
+// config_yaml under actuators.joints, keyed by /model/joint_names.)
+/// τ_drive = τ + J_a q̈ + τ_c sgn(q̇) + b q̇: the torque the joint's drive gives.
+inline constexpr DatasetSpec kDriveTorque{"/joints/drive_torque", "N m", Shape::kT18,
+                                          Element::kFloat64, "drive torque"};
+/// The bound on |τ_drive| at the sample: min(peak_torque, G k_t η (V − G k_t |q̇|) / R), or the
+/// allocation's torque limit for a joint with neither.
+inline constexpr DatasetSpec kDriveTorqueLimit{"/joints/drive_torque_limit", "N m", Shape::kT18,
+                                               Element::kFloat64, "bound on the drive torque"};
+/// I = τ_drive / (G k_t η) when driving (τ_drive q̇ ≥ 0), τ_drive η / (G k_t) when back-driven.
+inline constexpr DatasetSpec kMotorCurrent{"/joints/current", "A", Shape::kT18, Element::kFloat64,
+                                           "motor current"};
+/// RMS of τ_drive over the run (trapezoid rule of τ_drive² over /time).
+inline constexpr DatasetSpec kDriveTorqueRms{"/joints/drive_torque_rms", "N m", Shape::kJ,
+                                             Element::kFloat64, "RMS drive torque over the run"};
+/// The largest RMS of τ_drive over any window of the joint's thermal_window in the run (the
+/// run's RMS when the window is longer): against the continuous rating.
+inline constexpr DatasetSpec kDriveTorqueWindowRms{
+    "/joints/drive_torque_window_rms", "N m", Shape::kJ, Element::kFloat64,
+    "largest RMS drive torque over a thermal window"};
+/// P⁺: P = R I² + G k_t q̇ I where P ≥ 0, r P where P < 0 (r: regeneration).
+inline constexpr DatasetSpec kElectricalPower{"/power/electrical", "W", Shape::kT18,
+                                              Element::kFloat64, "electrical power drawn"};
+inline constexpr DatasetSpec kElectricalTotalPower{
+    "/power/electrical_total", "W", Shape::kT, Element::kFloat64, "total electrical power drawn"};
+/// Trapezoid rule over /time of /power/electrical_total, as /energy/total.
+inline constexpr DatasetSpec kEnergyElectrical{"/energy/electrical", "J", Shape::kScalar,
+                                               Element::kFloat64, "electrical energy drawn"};
+inline constexpr DatasetSpec kEnergyElectricalJoint{"/energy/electrical_per_joint", "J", Shape::kJ,
+                                                    Element::kFloat64,
+                                                    "electrical energy drawn per joint"};
+/// Trapezoid rule of Σ R I².
+inline constexpr DatasetSpec kEnergyCopperLoss{"/energy/copper_loss", "J", Shape::kScalar,
+                                               Element::kFloat64, "copper loss R I^2"};
+/// Trapezoid rule of Σ (τ_c |q̇| + b q̇²).
+inline constexpr DatasetSpec kEnergyFrictionLoss{"/energy/friction_loss", "J", Shape::kScalar,
+                                                 Element::kFloat64, "joint friction loss"};
+/// Trapezoid rule of Σ r max(0, −P): what regeneration returns to the supply.
+inline constexpr DatasetSpec kEnergyRegenerated{"/energy/regenerated", "J", Shape::kScalar,
+                                                Element::kFloat64, "energy regenerated"};
+inline constexpr DatasetSpec kCostOfTransportElectrical{
+    "/energy/cost_of_transport_electrical", "1", Shape::kScalar, Element::kFloat64,
+    "electrical cost of transport E_el/(m g d)"};
 
 // ---- coordinate variables: one per dimension (dimension_names), at the root ----
 // Group coordinates, in every file kind: each group G below the root (of the file, or of a
@@ -401,6 +448,11 @@ inline constexpr std::array kDynamicsDatasets{
     kImpactPeakForce, kImpactImpulse, kImpactEffectiveMass, kImpactApproachSpeed, kJointPower,
     kTotalPower, kEnergyTotal, kEnergyJoint, kEnergyCycle, kCostOfTransport, kEnergyDistance,
     kSolverStatus, kSolverIterations, kSolverObjective, kSolverSeconds, kSolverMessages};
+/// Datasets present when the scene had actuators (besides the dynamics).
+inline constexpr std::array kDriveTrainDatasets{
+    kDriveTorque, kDriveTorqueLimit, kMotorCurrent, kDriveTorqueRms, kDriveTorqueWindowRms,
+    kElectricalPower, kElectricalTotalPower, kEnergyElectrical, kEnergyElectricalJoint,
+    kEnergyCopperLoss, kEnergyFrictionLoss, kEnergyRegenerated, kCostOfTransportElectrical};
 // clang-format on
 
 // ======================================================================= hexdyn-sweep/2
@@ -543,6 +595,39 @@ inline constexpr DatasetSpec kScenarioPeakTorque{"/scenarios/peak_torque", "N m"
 inline constexpr DatasetSpec kScenarioRmsTorque{"/scenarios/rms_torque", "N m",
                                                 Shape::kScenarioJoints, Element::kFloat64,
                                                 "time-weighted RMS joint torque"};
+/// Max of |τ_k| over the samples outside touchdown transients (no leg in phase impact), and
+/// over those inside them: the gait's own peaks and the transients' (NaN: no such sample).
+inline constexpr DatasetSpec kScenarioPeakTorqueGait{"/scenarios/peak_torque_gait", "N m",
+                                                     Shape::kScenarioJoints, Element::kFloat64,
+                                                     "peak joint torque outside touchdowns"};
+inline constexpr DatasetSpec kScenarioPeakTorqueTransient{
+    "/scenarios/peak_torque_transient", "N m", Shape::kScenarioJoints, Element::kFloat64,
+    "peak joint torque in touchdown transients"};
+// The drive train's metrics (a scene with actuators; NaN without): the run's
+// /energy/electrical, /energy/cost_of_transport_electrical, max of /power/electrical_total,
+// the split peaks of /joints/drive_torque and /joints/drive_torque_window_rms, and the
+// thermal load: the largest ratio of the windowed RMS to the joint's continuous_torque.
+inline constexpr DatasetSpec kScenarioEnergyElectrical{"/scenarios/energy_electrical", "J",
+                                                       Shape::kScenarios, Element::kFloat64,
+                                                       "electrical energy drawn"};
+inline constexpr DatasetSpec kScenarioCostOfTransportElectrical{
+    "/scenarios/cost_of_transport_electrical", "1", Shape::kScenarios, Element::kFloat64,
+    "electrical cost of transport"};
+inline constexpr DatasetSpec kScenarioPeakElectricalPower{"/scenarios/peak_electrical_power", "W",
+                                                          Shape::kScenarios, Element::kFloat64,
+                                                          "peak total electrical power"};
+inline constexpr DatasetSpec kScenarioPeakDriveTorqueGait{
+    "/scenarios/peak_drive_torque_gait", "N m", Shape::kScenarioJoints, Element::kFloat64,
+    "peak drive torque outside touchdowns"};
+inline constexpr DatasetSpec kScenarioPeakDriveTorqueTransient{
+    "/scenarios/peak_drive_torque_transient", "N m", Shape::kScenarioJoints, Element::kFloat64,
+    "peak drive torque in touchdown transients"};
+inline constexpr DatasetSpec kScenarioDriveTorqueWindowRms{
+    "/scenarios/drive_torque_window_rms", "N m", Shape::kScenarioJoints, Element::kFloat64,
+    "largest RMS drive torque over a thermal window"};
+inline constexpr DatasetSpec kScenarioThermalLoad{
+    "/scenarios/thermal_load", "1", Shape::kScenarios, Element::kFloat64,
+    "largest windowed RMS drive torque over the continuous rating"};
 inline constexpr DatasetSpec kScenarioRelaxedSamples{
     "/scenarios/relaxed_samples", "1", Shape::kScenarios, Element::kInt32, "relaxed samples"};
 inline constexpr DatasetSpec kScenarioFailedSamples{
@@ -557,8 +642,11 @@ inline constexpr std::array kScenarioDatasets{
     kScenarioId, kScenarioAxisIndex, kScenarioStatus, kScenarioMessage, kScenarioSamples,
     kScenarioDuration, kScenarioDistance, kScenarioEnergy, kScenarioCostOfTransport,
     kScenarioPeakImpactForce, kScenarioPeakPower, kScenarioPeakContactForce, kScenarioPeakTorque,
-    kScenarioRmsTorque, kScenarioGridEnergyError, kScenarioGridPeakError, kScenarioRelaxedSamples,
-    kScenarioFailedSamples, kScenarioWallTime};
+    kScenarioRmsTorque, kScenarioPeakTorqueGait, kScenarioPeakTorqueTransient,
+    kScenarioEnergyElectrical, kScenarioCostOfTransportElectrical, kScenarioPeakElectricalPower,
+    kScenarioPeakDriveTorqueGait, kScenarioPeakDriveTorqueTransient, kScenarioDriveTorqueWindowRms,
+    kScenarioThermalLoad, kScenarioGridEnergyError, kScenarioGridPeakError,
+    kScenarioRelaxedSamples, kScenarioFailedSamples, kScenarioWallTime};
 // clang-format on
 
 // ---- /runs/{id}: with --keep-runs, each computed scenario in the hexdyn-result/2 layout

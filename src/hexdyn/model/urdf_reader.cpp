@@ -396,6 +396,14 @@ void Reader::check_joints() {
     if (!a.allFinite() || a.norm() < 1e-12)
       fail(who + "axis (" + num(a.x()) + ", " + num(a.y()) + ", " + num(a.z()) +
            ") is not a direction");
+    if (const auto& d = j->dynamics) {
+      if (!std::isfinite(d->damping) || d->damping < 0.0 || d->damping > kMaxJointFriction)
+        fail(who + "<dynamics damping=\"" + num(d->damping) + "\">, expected a number in [0, " +
+             num(kMaxJointFriction) + "] N m s/rad");
+      if (!std::isfinite(d->friction) || d->friction < 0.0 || d->friction > kMaxJointFriction)
+        fail(who + "<dynamics friction=\"" + num(d->friction) + "\">, expected a number in [0, " +
+             num(kMaxJointFriction) + "] N m");
+    }
     if (j->limits) {
       const urdf::JointLimits& l = *j->limits;
       if (!std::isfinite(l.effort) || l.effort < 0.0 || l.effort > kMaxJointEffort_Nm)
@@ -497,6 +505,10 @@ UrdfLeg Reader::read_chain(const urdf::JointConstSharedPtr& first, const Placeme
     leg.upper_rad[j] = continuous || !lim ? kInf : lim->upper;
     leg.effort_Nm[j] = lim && lim->effort > 0.0 ? lim->effort : kInf;
     leg.velocity_radps[j] = lim && lim->velocity > 0.0 ? lim->velocity : kInf;
+    if (const auto& dyn = joint->dynamics) {
+      leg.damping_Nmsprad[j] = dyn->damping;
+      leg.friction_Nm[j] = dyn->friction;
+    }
     group = fixed_group(joint->child_link_name);
     leg.inertia[j] = group_inertia(group);
     const auto next = moving_children(group);

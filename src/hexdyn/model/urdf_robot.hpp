@@ -29,6 +29,9 @@ struct UrdfLeg {
   std::array<double, kJointsPerLeg> lower_rad{}, upper_rad{};  ///< ±inf: continuous
   std::array<double, kJointsPerLeg> effort_Nm{};               ///< +inf: none given
   std::array<double, kJointsPerLeg> velocity_radps{};          ///< +inf: none given
+  /// <dynamics damping friction>, 0 when not given: the defaults of an actuator's viscous
+  /// (N m s/rad) and Coulomb (N m) friction (config/actuators.hpp).
+  std::array<double, kJointsPerLeg> damping_Nmsprad{}, friction_Nm{};
   Vec3 p_foot_last = Vec3::Zero();  ///< foot point in the third link frame [m]
   std::string foot_source;          ///< the link whose origin is the foot, or "robot.foot_offset"
 };

@@ -118,7 +118,8 @@ RunResult run_prepared_scene(const Scene& scene, const PreparedScene& prep, std:
   DynamicsSolver solver(scene, prep.model);
   result.dyn = solver.solve(result.kin, contacts, times);
   result.grid = refine_output_grid(scene, prep, solver, result.kin, result.dyn, log, times);
-  finish_dynamics(prep.model, prep.plan, result.kin, prep.touchdowns, result.dyn, log, times);
+  finish_dynamics(scene, prep.model, prep.plan, result.kin, prep.touchdowns, result.dyn, log,
+                  times);
   const StageTimer clock(times, Stage::kAssembly);
   describe_base_at_root_link(prep.model,
                              result.kin);  // after the dynamics, which use the trunk frame

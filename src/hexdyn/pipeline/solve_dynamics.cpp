@@ -11,6 +11,7 @@
 #include "hexdyn/allocation/problem.hpp"
 #include "hexdyn/core/cancel.hpp"
 #include "hexdyn/core/errors.hpp"
+#include "hexdyn/drive/drive.hpp"
 #include "hexdyn/dynamics/rnea.hpp"
 #include "hexdyn/kinematics/kinematics.hpp"
 #include "hexdyn/power/power.hpp"
@@ -25,6 +26,9 @@ struct SampleSolution {
   const QpOutcome* outcome = nullptr;
   std::array<Vec3, kLegs> foot_forces_W;  ///< [N], terrain on foot, world axes
   VecJ joint_torque = VecJ::Zero();       ///< [N m]
+  /// With actuators: the drive torques τ + offset and their bounds [N m] (DriveRows).
+  VecJ drive_torque = VecJ::Zero();
+  VecJ drive_limit = VecJ::Zero();
   /// Rows and cones the solution violates beyond kViolationThreshold, measured on it
   /// whatever the back end reported, largest first ("trunk force z by 120, torque L1_femur
   /// by 0.45"); empty when none.
@@ -44,7 +48,9 @@ class SampleSolver {
       : scene_(scene),
         model_(model),
         data_(model),
-        backend_(make_allocation_backend(scene.allocation)) {}
+        backend_(make_allocation_backend(scene.allocation)) {
+    if (scene.actuators.present) rows_.weight = objective_weights(scene);
+  }
 
   /// Solves sample i of `kin` under contacts `c`; `times` (may be null) as solve_dynamics.
   SampleSolution solve(const KinematicsResult& kin, int i, const SampleContacts& c,
@@ -56,11 +62,18 @@ class SampleSolver {
     const VecJ qdd = kin.joint_acceleration.row(i).transpose();
     const ContactSplit& split = contact_split(model_, data_, base, q, qd, qdd);
     clock.emplace(times, Stage::kAllocation);
-    AllocationLayout layout = build_allocation_problem(
-        scene_.allocation, scene_.contact, split, c.phase, c.impact_force_N, c.W_R_contact, qp_);
+    const bool drive = scene_.actuators.present;
+    if (drive) drive_rows(qd, qdd);
+    AllocationLayout layout =
+        build_allocation_problem(scene_.allocation, scene_.contact, split, c.phase,
+                                 c.impact_force_N, c.W_R_contact, qp_, drive ? &rows_ : nullptr);
     SampleSolution s;
     s.outcome = &backend_->solve(qp_);
     forces_from_solution(split, layout, s.outcome->x, s.foot_forces_W, s.joint_torque);
+    if (drive) {
+      s.drive_torque = s.joint_torque + rows_.offset_Nm;
+      s.drive_limit = rows_.limit_Nm;
+    }
     clock.emplace(times, Stage::kVerdict);
     // Measured from the solution, not taken from the back end: every row and cone against
     // the fixed threshold (allocation/qp.hpp kViolationThreshold).
@@ -72,12 +85,38 @@ class SampleSolver {
   }
 
  private:
+  /// The drive train's rows of a sample at joint rates qd and accelerations qdd: offsets,
+  /// bounds (a joint without a peak or voltage bound keeps the allocation's limit) and weights.
+  void drive_rows(const VecJ& qd, const VecJ& qdd) {
+    const DriveTrainParams& drive = scene_.actuators;
+    const AllocationParams& alloc = scene_.allocation;
+    rows_.offset_Nm = drive_torque_offset(drive, qd, qdd);
+    for (int k = 0; k < kJoints; ++k) {
+      const DriveLimit lim = drive_torque_limit(drive.joints[k], qd[k]);
+      rows_.bound[k] = static_cast<std::int8_t>(lim.bound);
+      rows_.limit_Nm[k] = lim.bound != DriveBound::kNone ? lim.limit_Nm
+                          : alloc.joint_torque_limit_Nm  ? (*alloc.joint_torque_limit_Nm)[k]
+                                                         : alloc.torque_limit_Nm;
+    }
+  }
+
+  /// The objective's weights of τ_drive²: 1 for torque_squared; for copper_loss each joint's
+  /// R / (G k_t η)² over the largest, the same minimiser as the loss itself, while the slack
+  /// penalties keep the scale they have against Σ τ² (docs/theory/drive-train.md#objective).
+  static VecJ objective_weights(const Scene& scene) {
+    VecJ w = VecJ::Ones();
+    if (scene.allocation.objective != AllocationObjective::kCopperLoss) return w;
+    for (int k = 0; k < kJoints; ++k) w[k] = copper_loss_weight(scene.actuators.joints[k]);
+    return w / w.maxCoeff();
+  }
+
   const Scene& scene_;
   const RobotModel& model_;
   RobotData data_;
   std::unique_ptr<AllocationBackend> backend_;
   QpProblem qp_;
   ViolationWorkspace violations_;
+  DriveRows rows_;
 };
 
 namespace {
@@ -172,8 +211,8 @@ class EpisodeLog {
   std::string message_;
 };
 
-/// A result of T samples, every per-sample field zero.
-DynamicsResult empty_result(int T) {
+/// A result of T samples, every per-sample field zero (the drive train's too, with `drive`).
+DynamicsResult empty_result(int T, bool drive) {
   DynamicsResult dyn;
   dyn.present = true;
   dyn.joint_torque.setZero(T, kJoints);
@@ -185,6 +224,10 @@ DynamicsResult empty_result(int T) {
   dyn.solver_seconds.assign(T, 0.0);
   dyn.solver_messages.assign(T, std::string());
   dyn.solver_max_violation.assign(T, 0.0);
+  if (drive) {
+    dyn.drive_torque.setZero(T, kJoints);
+    dyn.drive_torque_limit.setZero(T, kJoints);
+  }
   return dyn;
 }
 
@@ -202,7 +245,7 @@ DynamicsResult DynamicsSolver::solve(const KinematicsResult& kin, const ContactS
     throw SolverError("solve_dynamics: contact schedule of " +
                       std::to_string(contacts.samples.size()) + " samples, expected " +
                       std::to_string(T));
-  DynamicsResult dyn = empty_result(T);
+  DynamicsResult dyn = empty_result(T, scene_.actuators.present);
   for (int i = 0; i < T; ++i) {
     check_cancelled();
     const SampleContacts& c = contacts.samples[i];
@@ -224,7 +267,12 @@ DynamicsResult DynamicsSolver::solve(const KinematicsResult& kin, const ContactS
     const VecJ& tau = solution.joint_torque;
     dyn.solver_status[i] = verdict.status;
     dyn.solver_iterations[i] = solution.outcome->iterations;
-    dyn.solver_objective[i] = tau.squaredNorm();
+    dyn.solver_objective[i] =
+        dyn.has_drive() ? solution.drive_torque.squaredNorm() : tau.squaredNorm();
+    if (dyn.has_drive()) {
+      dyn.drive_torque.row(i) = solution.drive_torque.transpose();
+      dyn.drive_torque_limit.row(i) = solution.drive_limit.transpose();
+    }
     dyn.solver_seconds[i] = solution.outcome->seconds;
     dyn.solver_max_violation[i] = verdict.max_violation;
     dyn.joint_torque.row(i) = tau.transpose();
@@ -241,9 +289,9 @@ DynamicsResult DynamicsSolver::solve(const KinematicsResult& kin, const ContactS
   return dyn;
 }
 
-void finish_dynamics(const RobotModel& model, const MotionPlan& plan, const KinematicsResult& kin,
-                     const std::vector<Touchdown>& touchdowns, DynamicsResult& dyn,
-                     std::ostream* log, StageTimes* times) {
+void finish_dynamics(const Scene& scene, const RobotModel& model, const MotionPlan& plan,
+                     const KinematicsResult& kin, const std::vector<Touchdown>& touchdowns,
+                     DynamicsResult& dyn, std::ostream* log, StageTimes* times) {
   for (const Touchdown& td : touchdowns)
     if (td.transient.truncated && log)
       *log << "hexdyn: touchdown of " << leg_name(td.leg) << " at t = " << td.t_s
@@ -269,6 +317,9 @@ void finish_dynamics(const RobotModel& model, const MotionPlan& plan, const Kine
   dyn.energy_cycle_J = std::move(power.energy_cycle_J);
   dyn.distance_m = power.distance_m;
   dyn.cost_of_transport = power.cost_of_transport;
+  if (dyn.has_drive())
+    dyn.electrical = compute_electrical(scene.actuators, kin.time_s, kin.joint_velocity,
+                                        dyn.drive_torque, model.total_mass_kg, dyn.distance_m);
 }
 
 DynamicsResult solve_dynamics(const Scene& scene, const RobotModel& model, const MotionPlan& plan,
@@ -277,7 +328,7 @@ DynamicsResult solve_dynamics(const Scene& scene, const RobotModel& model, const
                               StageTimes* times) {
   DynamicsSolver solver(scene, model);
   DynamicsResult dyn = solver.solve(kin, contacts, times);
-  finish_dynamics(model, plan, kin, touchdowns, dyn, log, times);
+  finish_dynamics(scene, model, plan, kin, touchdowns, dyn, log, times);
   return dyn;
 }
 

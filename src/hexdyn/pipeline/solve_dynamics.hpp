@@ -55,10 +55,11 @@ class DynamicsSolver {
 
 /// What solve_dynamics does after the per-sample solves, on a result whose samples are final:
 /// the touchdowns' records and log lines, one log line per episode of relaxed or failed
-/// samples, and the power and energies over the samples (power/power.hpp). `log` may be null.
-void finish_dynamics(const RobotModel& model, const MotionPlan& plan, const KinematicsResult& kin,
-                     const std::vector<Touchdown>& touchdowns, DynamicsResult& dyn,
-                     std::ostream* log, StageTimes* times = nullptr);
+/// samples, the power and energies over the samples (power/power.hpp) and, with actuators,
+/// the electrical side (drive/drive.hpp). `log` may be null.
+void finish_dynamics(const Scene& scene, const RobotModel& model, const MotionPlan& plan,
+                     const KinematicsResult& kin, const std::vector<Touchdown>& touchdowns,
+                     DynamicsResult& dyn, std::ostream* log, StageTimes* times = nullptr);
 
 /// The dynamics of every sample of `kin` under the contact schedule `contacts` (from
 /// schedule_contacts over the same kin and touchdowns). Reads its inputs only; the

@@ -111,16 +111,19 @@ void append_record(std::vector<char>& b, const ScenarioRecord& r) {
   put_pod(b, static_cast<std::int32_t>(s.failed_samples));
   for (double v : {s.duration_s, s.distance_m, s.energy_J, s.cost_of_transport,
                    s.peak_impact_force_N, s.peak_power_W, s.peak_contact_force_N,
-                   s.grid_energy_error, s.grid_peak_error, s.wall_time_s})
+                   s.grid_energy_error, s.grid_peak_error, s.wall_time_s, s.energy_electrical_J,
+                   s.cost_of_transport_electrical, s.peak_electrical_power_W, s.thermal_load})
     put_pod(b, v);
-  for (double v : s.peak_torque_Nm) put_pod(b, v);
-  for (double v : s.rms_torque_Nm) put_pod(b, v);
+  for (const auto* a : {&s.peak_torque_Nm, &s.rms_torque_Nm, &s.peak_torque_gait_Nm,
+                        &s.peak_torque_transient_Nm, &s.peak_drive_torque_gait_Nm,
+                        &s.peak_drive_torque_transient_Nm, &s.drive_torque_window_rms_Nm})
+    for (double v : *a) put_pod(b, v);
   put_bytes(b, r.run_image.data(), r.run_image.size());
 }
 
 std::vector<char> encode_record(const ScenarioRecord& record) {
   std::vector<char> b;
-  b.reserve(400 + record.summary.message.size() + record.run_image.size());
+  b.reserve(1200 + record.summary.message.size() + record.run_image.size());
   append_record(b, record);
   return b;
 }
@@ -141,12 +144,16 @@ ScenarioRecord decode_record(const char* data, std::size_t size, bool with_image
   s.samples = u.get<std::int32_t>();
   s.relaxed_samples = u.get<std::int32_t>();
   s.failed_samples = u.get<std::int32_t>();
-  for (double* v : {&s.duration_s, &s.distance_m, &s.energy_J, &s.cost_of_transport,
-                    &s.peak_impact_force_N, &s.peak_power_W, &s.peak_contact_force_N,
-                    &s.grid_energy_error, &s.grid_peak_error, &s.wall_time_s})
+  for (double* v :
+       {&s.duration_s, &s.distance_m, &s.energy_J, &s.cost_of_transport, &s.peak_impact_force_N,
+        &s.peak_power_W, &s.peak_contact_force_N, &s.grid_energy_error, &s.grid_peak_error,
+        &s.wall_time_s, &s.energy_electrical_J, &s.cost_of_transport_electrical,
+        &s.peak_electrical_power_W, &s.thermal_load})
     *v = u.get<double>();
-  for (double& v : s.peak_torque_Nm) v = u.get<double>();
-  for (double& v : s.rms_torque_Nm) v = u.get<double>();
+  for (auto* a : {&s.peak_torque_Nm, &s.rms_torque_Nm, &s.peak_torque_gait_Nm,
+                  &s.peak_torque_transient_Nm, &s.peak_drive_torque_gait_Nm,
+                  &s.peak_drive_torque_transient_Nm, &s.drive_torque_window_rms_Nm})
+    for (double& v : *a) v = u.get<double>();
   const std::size_t k = u.length();
   if (image_offset) *image_offset = u.at();
   if (image_size) *image_size = k;

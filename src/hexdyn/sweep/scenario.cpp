@@ -58,6 +58,67 @@ ScenarioStatus classify_exception(const std::exception& e) {
   return ScenarioStatus::kInternal;
 }
 
+namespace {
+
+/// Every per-joint metric of a row.
+std::array<std::array<double, kJoints>*, 7> per_joint_metrics(ScenarioSummary& s) {
+  return {&s.peak_torque_Nm,
+          &s.rms_torque_Nm,
+          &s.peak_torque_gait_Nm,
+          &s.peak_torque_transient_Nm,
+          &s.peak_drive_torque_gait_Nm,
+          &s.peak_drive_torque_transient_Nm,
+          &s.drive_torque_window_rms_Nm};
+}
+
+/// The drive train's metrics of a row without actuators: NaN.
+void no_drive_metrics(ScenarioSummary& s) {
+  s.energy_electrical_J = s.cost_of_transport_electrical = s.peak_electrical_power_W = kNaN;
+  s.thermal_load = kNaN;
+  for (auto* a : {&s.peak_drive_torque_gait_Nm, &s.peak_drive_torque_transient_Nm,
+                  &s.drive_torque_window_rms_Nm})
+    a->fill(kNaN);
+}
+
+/// max |x_k| over the samples outside touchdown transients (`gait`) and inside them
+/// (`transient`); NaN where no sample is of the kind.
+void split_peaks(const RowMatrix& x, const RowMatrixI8& phase, std::array<double, kJoints>& gait,
+                 std::array<double, kJoints>& transient) {
+  gait.fill(kNaN);
+  transient.fill(kNaN);
+  for (int i = 0; i < x.rows(); ++i) {
+    bool impact = false;
+    for (int l = 0; l < kLegs; ++l)
+      impact = impact || phase(i, l) == static_cast<std::int8_t>(ContactPhase::kImpact);
+    auto& peak = impact ? transient : gait;
+    for (int k = 0; k < kJoints; ++k)
+      peak[k] = std::isnan(peak[k]) ? std::abs(x(i, k)) : std::max(peak[k], std::abs(x(i, k)));
+  }
+}
+
+/// The drive train's metrics of a computed run with actuators.
+void drive_metrics(const RunResult& run, ScenarioSummary& s) {
+  const DynamicsResult& d = run.dyn;
+  const ElectricalResult& e = d.electrical;
+  s.energy_electrical_J = e.energy_J;
+  s.cost_of_transport_electrical = e.cost_of_transport;
+  s.peak_electrical_power_W = 0.0;
+  for (double p : e.total_power_W)
+    s.peak_electrical_power_W = std::max(s.peak_electrical_power_W, p);
+  split_peaks(d.drive_torque, run.kin.contact_phase, s.peak_drive_torque_gait_Nm,
+              s.peak_drive_torque_transient_Nm);
+  std::copy(e.window_rms_torque_Nm.begin(), e.window_rms_torque_Nm.end(),
+            s.drive_torque_window_rms_Nm.begin());
+  s.thermal_load = kNaN;  // NaN when no joint has a continuous rating
+  for (int k = 0; k < kJoints; ++k)
+    if (std::isfinite(e.continuous_torque_Nm[k])) {
+      const double load = e.window_rms_torque_Nm[k] / e.continuous_torque_Nm[k];
+      s.thermal_load = std::isnan(s.thermal_load) ? load : std::max(s.thermal_load, load);
+    }
+}
+
+}  // namespace
+
 ScenarioSummary failed_summary(std::size_t index, ScenarioStatus status,
                                const std::string& message) {
   ScenarioSummary s;
@@ -66,8 +127,8 @@ ScenarioSummary failed_summary(std::size_t index, ScenarioStatus status,
   s.message = message;
   s.duration_s = s.distance_m = s.energy_J = s.cost_of_transport = s.peak_impact_force_N = kNaN;
   s.peak_power_W = s.peak_contact_force_N = s.grid_energy_error = s.grid_peak_error = kNaN;
-  s.peak_torque_Nm.fill(kNaN);
-  s.rms_torque_Nm.fill(kNaN);
+  for (auto* a : per_joint_metrics(s)) a->fill(kNaN);
+  no_drive_metrics(s);
   return s;
 }
 
@@ -109,6 +170,12 @@ ScenarioSummary summarize_run(const RunResult& run, std::size_t index) {
                              ? std::sqrt(integral / s.duration_s)
                              : (T > 0 ? std::abs(d.joint_torque(0, k)) : 0.0);
   }
+  split_peaks(d.joint_torque, run.kin.contact_phase, s.peak_torque_gait_Nm,
+              s.peak_torque_transient_Nm);
+  if (d.has_drive())
+    drive_metrics(run, s);
+  else
+    no_drive_metrics(s);
   for (SolverStatus st : d.solver_status) {
     if (st == SolverStatus::kRelaxed) ++s.relaxed_samples;
     if (st == SolverStatus::kFailed) ++s.failed_samples;

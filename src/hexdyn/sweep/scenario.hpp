@@ -52,8 +52,20 @@ struct ScenarioSummary {
   double grid_peak_error = 0.0;       ///< the run's estimated relative peak error [1]
   std::array<double, kJoints> peak_torque_Nm{};  ///< max over samples of |τ_k| [N m]
   std::array<double, kJoints> rms_torque_Nm{};   ///< time-weighted RMS of τ_k [N m]
-  int relaxed_samples = 0;                       ///< samples with solver status 1
-  int failed_samples = 0;                        ///< samples with solver status 2
+  /// max |τ_k| over the samples outside touchdown transients (no leg in its impact phase),
+  /// and inside them; NaN where there is no such sample [N m]
+  std::array<double, kJoints> peak_torque_gait_Nm{}, peak_torque_transient_Nm{};
+  // With actuators (NaN without): electrical energy [J] and cost of transport [1], the peak
+  // of the total electrical power [W], the drive torques' split peaks and largest windowed
+  // RMS [N m], and the thermal load: max over joints of that RMS / continuous_torque [1].
+  double energy_electrical_J = 0.0;
+  double cost_of_transport_electrical = 0.0;
+  double peak_electrical_power_W = 0.0;
+  std::array<double, kJoints> peak_drive_torque_gait_Nm{}, peak_drive_torque_transient_Nm{};
+  std::array<double, kJoints> drive_torque_window_rms_Nm{};
+  double thermal_load = 0.0;
+  int relaxed_samples = 0;   ///< samples with solver status 1
+  int failed_samples = 0;    ///< samples with solver status 2
   double wall_time_s = 0.0;  ///< time to compute the scenario [s] (timing field)
 };
 

@@ -242,6 +242,15 @@ void write_scenario_metrics(H5Writer& w, Labeller& labels,
   doubles(s::kScenarioPeakContactForce, &ScenarioSummary::peak_contact_force_N);
   per_joint(s::kScenarioPeakTorque, &ScenarioSummary::peak_torque_Nm);
   per_joint(s::kScenarioRmsTorque, &ScenarioSummary::rms_torque_Nm);
+  per_joint(s::kScenarioPeakTorqueGait, &ScenarioSummary::peak_torque_gait_Nm);
+  per_joint(s::kScenarioPeakTorqueTransient, &ScenarioSummary::peak_torque_transient_Nm);
+  doubles(s::kScenarioEnergyElectrical, &ScenarioSummary::energy_electrical_J);
+  doubles(s::kScenarioCostOfTransportElectrical, &ScenarioSummary::cost_of_transport_electrical);
+  doubles(s::kScenarioPeakElectricalPower, &ScenarioSummary::peak_electrical_power_W);
+  per_joint(s::kScenarioPeakDriveTorqueGait, &ScenarioSummary::peak_drive_torque_gait_Nm);
+  per_joint(s::kScenarioPeakDriveTorqueTransient, &ScenarioSummary::peak_drive_torque_transient_Nm);
+  per_joint(s::kScenarioDriveTorqueWindowRms, &ScenarioSummary::drive_torque_window_rms_Nm);
+  doubles(s::kScenarioThermalLoad, &ScenarioSummary::thermal_load);
   doubles(s::kScenarioGridEnergyError, &ScenarioSummary::grid_energy_error);
   doubles(s::kScenarioGridPeakError, &ScenarioSummary::grid_peak_error);
   counts(s::kScenarioRelaxedSamples, &ScenarioSummary::relaxed_samples);

@@ -1,0 +1,212 @@
+#include "hexdyn/config/actuators.hpp"
+
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <utility>
+
+#include "hexdyn/config/scene_key_reader.hpp"
+#include "hexdyn/config/servo_table.hpp"
+#include "hexdyn/core/value_bounds.hpp"
+
+namespace hexdyn::scene_keys {
+namespace {
+
+/// A numeric key of an actuator entry: its name, allowed range and field.
+struct Field {
+  const char* key;
+  Range range;
+  double ActuatorParams::*member;
+};
+
+constexpr double kMaxGearRatio = 1e5;
+constexpr double kMaxTorqueConstant_NmpA = 100.0;
+constexpr double kMaxResistance_ohm = 1e4;
+constexpr double kMaxVoltage_V = 1e4;
+constexpr double kMaxRotorInertia_kgm2 = 1.0;
+constexpr double kMaxArmature_kgm2 = 1e4;
+constexpr double kMaxThermalWindow_s = 1e6;
+
+constexpr double kNotGiven = std::numeric_limits<double>::quiet_NaN();
+
+const std::array<Field, 11>& fields() {
+  static const std::array<Field, 11> f = {{
+      {"gear_ratio", positive(kMaxGearRatio), &ActuatorParams::gear_ratio},
+      {"torque_constant", positive(kMaxTorqueConstant_NmpA), &ActuatorParams::torque_constant_NmpA},
+      {"resistance", positive(kMaxResistance_ohm), &ActuatorParams::resistance_ohm},
+      {"coulomb_friction", nonnegative(kMaxJointFriction), &ActuatorParams::coulomb_friction_Nm},
+      {"viscous_friction", nonnegative(kMaxJointFriction),
+       &ActuatorParams::viscous_friction_Nmsprad},
+      {"gear_efficiency", Range{0.0, 1.0, true, false}, &ActuatorParams::gear_efficiency},
+      {"voltage", positive(kMaxVoltage_V), &ActuatorParams::voltage_V},
+      {"peak_torque", positive(kMaxJointEffort_Nm), &ActuatorParams::peak_torque_Nm},
+      {"continuous_torque", positive(kMaxJointEffort_Nm), &ActuatorParams::continuous_torque_Nm},
+      {"regeneration", closed(0.0, 1.0), &ActuatorParams::regeneration},
+      {"thermal_window", positive(kMaxThermalWindow_s), &ActuatorParams::thermal_window_s},
+  }};
+  return f;
+}
+constexpr int kGearRatio = 0, kTorqueConstant = 1, kResistance = 2;  // the required fields
+
+/// The rotor's inertia as an entry gives it: motor side (rotor_inertia, J_m) or joint side
+/// (armature, J_a = G² J_m with the joint's final G).
+struct Inertia {
+  bool motor_side = false;
+  double value_kgm2 = 0.0;
+};
+
+/// One entry (default, a joint type or a joint) as read: its model's values, then its own.
+struct Entry {
+  std::string model;
+  std::array<std::optional<double>, 11> values;
+  std::optional<Inertia> inertia;
+};
+
+/// The table's values of `servo` in an entry (NaN: not given).
+void apply_servo(const ServoSpec& servo, Entry& e) {
+  const double v[11] = {servo.gear_ratio,
+                        servo.torque_constant_NmpA,
+                        servo.resistance_ohm,
+                        servo.coulomb_friction_Nm,
+                        servo.viscous_friction_Nmsprad,
+                        servo.gear_efficiency,
+                        servo.voltage_V,
+                        servo.peak_torque_Nm,
+                        servo.continuous_torque_Nm,
+                        kNotGiven,
+                        kNotGiven};
+  for (int i = 0; i < 11; ++i)
+    if (!std::isnan(v[i])) e.values[i] = v[i];
+  if (!std::isnan(servo.armature_kgm2)) e.inertia = Inertia{false, servo.armature_kgm2};
+}
+
+std::vector<std::string> servo_names() {
+  std::vector<std::string> names;
+  for (const ServoSpec& s : servo_table()) names.emplace_back(s.name);
+  return names;
+}
+
+/// The entry at `path` (absent: an empty entry).
+Entry read_entry(Reader& r, const std::string& path) {
+  Entry e;
+  // Absent: asked for all the same, so that an unknown key beside it lists it as allowed
+  // (a present entry is not asked for as a whole: its own keys are, one by one).
+  if (!r.given(path)) return (void)r.has(path), e;
+  const YAML::Node node = r.peek(path);
+  if (!node.IsMap())
+    r.fail_value(path, node,
+                 "a mapping of actuator keys (model, gear_ratio, torque_constant, resistance, …)");
+  if (r.has(path + ".model")) {
+    e.model = r.choice(path + ".model", servo_names());
+    apply_servo(*find_servo(e.model), e);
+  }
+  for (std::size_t i = 0; i < fields().size(); ++i)
+    if (r.has(path + "." + fields()[i].key))
+      e.values[i] = r.number(path + "." + fields()[i].key, fields()[i].range);
+  const bool rotor = r.has(path + ".rotor_inertia"), armature = r.has(path + ".armature");
+  if (rotor && armature)
+    r.fail(path,
+           "got both rotor_inertia and armature, expected one of them (armature = "
+           "gear_ratio² × rotor_inertia)");
+  if (rotor)
+    e.inertia =
+        Inertia{true, r.number(path + ".rotor_inertia", nonnegative(kMaxRotorInertia_kgm2))};
+  if (armature)
+    e.inertia = Inertia{false, r.number(path + ".armature", nonnegative(kMaxArmature_kgm2))};
+  return e;
+}
+
+/// The joint names the `joints` entry may use, for messages.
+std::string joint_list(const JointFacts& joints) {
+  std::string list;
+  for (const auto& n : joints.names) list += (list.empty() ? "" : ", ") + n;
+  return list;
+}
+
+/// actuators.joints: one entry per joint named, by flat joint index.
+std::array<Entry, kJoints> read_joint_entries(Reader& r, const JointFacts& joints) {
+  std::array<Entry, kJoints> out;
+  if (!r.given("actuators.joints")) return (void)r.has("actuators.joints"), out;
+  const YAML::Node node = r.peek("actuators.joints");
+  if (!node.IsMap())
+    r.fail_value("actuators.joints", node, "a mapping of joint names to actuator entries");
+  for (const auto& kv : node) {
+    const std::string name = kv.first.as<std::string>();
+    int k = 0;
+    while (k < kJoints && joints.names[k] != name) ++k;
+    if (k == kJoints)
+      r.fail("actuators.joints." + name,
+             "unknown joint, expected one of the robot's joints: " + joint_list(joints));
+    out[k] = read_entry(r, "actuators.joints." + name);
+  }
+  return out;
+}
+
+/// Writes joint k's resolved values as the whole of actuators.joints.NAME (the joint side
+/// armature in place of a rotor_inertia the file gave there).
+void record_joint(Reader& r, const std::string& name, const ActuatorParams& a) {
+  YAML::Node values(YAML::NodeType::Map);
+  if (!a.model.empty()) values["model"] = a.model;
+  for (const Field& f : fields())
+    if (std::isfinite(a.*f.member)) values[f.key] = a.*f.member;
+  values["armature"] = a.armature_kgm2;
+  values.SetStyle(YAML::EmitterStyle::Flow);
+  r.record("actuators.joints." + name, values);
+}
+
+}  // namespace
+
+DriveTrainParams read_actuators(Reader& r, const JointFacts& joints) {
+  DriveTrainParams out;
+  if (!r.given("actuators")) return out;
+  out.present = true;
+  const YAML::Node section = r.peek("actuators");
+  if (!section.IsMap())
+    r.fail_value("actuators", section,
+                 "a mapping with default, coxa, femur, tibia and joints entries");
+  static const char* kTypes[kJointsPerLeg] = {"coxa", "femur", "tibia"};
+  for (const auto& kv : section) {  // before the values: a misspelt entry is named as such
+    const std::string key = kv.first.as<std::string>();
+    if (key != "default" && key != "joints" && key != kTypes[0] && key != kTypes[1] &&
+        key != kTypes[2])
+      r.fail("actuators." + key, "unknown key, allowed here: coxa, default, femur, joints, tibia");
+  }
+  const Entry all = read_entry(r, "actuators.default");
+  std::array<Entry, kJointsPerLeg> by_type;
+  for (int j = 0; j < kJointsPerLeg; ++j)
+    by_type[j] = read_entry(r, std::string("actuators.") + kTypes[j]);
+  const std::array<Entry, kJoints> by_joint = read_joint_entries(r, joints);
+  for (int k = 0; k < kJoints; ++k) {
+    ActuatorParams& a = out.joints[k];
+    a.viscous_friction_Nmsprad = joints.damping_Nmsprad[k];
+    a.coulomb_friction_Nm = joints.friction_Nm[k];
+    std::array<bool, 11> given{};
+    Inertia inertia;
+    for (const Entry* e :
+         std::array<const Entry*, 3>{&all, &by_type[k % kJointsPerLeg], &by_joint[k]}) {
+      if (!e->model.empty()) a.model = e->model;
+      for (std::size_t i = 0; i < fields().size(); ++i)
+        if (e->values[i]) {
+          a.*fields()[i].member = *e->values[i];
+          given[i] = true;
+        }
+      if (e->inertia) inertia = *e->inertia;
+    }
+    for (int i : {kGearRatio, kTorqueConstant, kResistance})
+      if (!given[i])
+        r.fail("actuators.joints." + joints.names[k] + "." + fields()[i].key,
+               std::string("missing, expected it from actuators.default, actuators.") +
+                   kTypes[k % kJointsPerLeg] + ", actuators.joints." + joints.names[k] +
+                   " or their model");
+    a.armature_kgm2 =
+        inertia.motor_side ? a.gear_ratio * a.gear_ratio * inertia.value_kgm2 : inertia.value_kgm2;
+    record_joint(r, joints.names[k], a);
+  }
+  return out;
+}
+
+std::string objective_word(AllocationObjective objective) {
+  return objective == AllocationObjective::kCopperLoss ? "copper_loss" : "torque_squared";
+}
+
+}  // namespace hexdyn::scene_keys

@@ -1,0 +1,41 @@
+#pragma once
+/// \file actuators.hpp
+/// Internal to config/: the scene's `actuators` section (docs/user/configuration.md#actuators,
+/// docs/theory/drive-train.md) read into one resolved ActuatorParams per joint.
+///
+///     actuators:
+///       default: {model: dynamixel_mx64}                  # every joint
+///       femur: {gear_ratio: 200, torque_constant: 0.0081}  # by joint type: coxa, femur, tibia
+///       joints: {L2_femur: {model: dynamixel_xm430_w350}}  # by name (/model/joint_names)
+///
+/// An entry's `model:` (config/servo_table.hpp) gives its values first, its own keys then
+/// override them. A joint's values come, field by field, from the most specific entry that
+/// gives them: joints.NAME over its type over default over the URDF's <dynamics damping
+/// friction> (viscous and Coulomb friction) over the built-in defaults (ActuatorParams).
+/// gear_ratio, torque_constant and resistance must be given for every joint.
+#include <array>
+#include <string>
+
+#include "hexdyn/core/scene.hpp"
+
+namespace hexdyn::scene_keys {
+
+class Reader;
+
+/// What the robot says about its joints: names in flat joint order (/model/joint_names)
+/// and the URDF's <dynamics> values (0 for the robot of the YAML keys).
+struct JointFacts {
+  std::array<std::string, kJoints> names;
+  std::array<double, kJoints> damping_Nmsprad{}, friction_Nm{};
+};
+
+/// Reads `actuators` (absent: present = false and nothing recorded) and records every
+/// joint's resolved values under actuators.joints.NAME in the resolved tree. Throws
+/// ConfigError "SOURCE: actuators.KEY: got VALUE, expected WHAT" for a bad value and
+/// "SOURCE: actuators.joints.NAME.FIELD: missing, …" for a required value no entry gives.
+DriveTrainParams read_actuators(Reader& r, const JointFacts& joints);
+
+/// The words of allocation.objective.
+std::string objective_word(AllocationObjective objective);
+
+}  // namespace hexdyn::scene_keys

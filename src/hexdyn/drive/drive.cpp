@@ -1,0 +1,167 @@
+#include "hexdyn/drive/drive.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+#include "hexdyn/power/power.hpp"
+
+namespace hexdyn {
+namespace {
+
+double sgn(double x) { return x > 0.0 ? 1.0 : (x < 0.0 ? -1.0 : 0.0); }
+
+/// The samples (t, s) with s linear between them: s(x) and ∫_{t_0}^{x} s, from the
+/// cumulative integral at the samples.
+class PiecewiseLinear {
+ public:
+  PiecewiseLinear(const std::vector<double>& t, std::vector<double> s)
+      : t_(t), s_(std::move(s)), c_(t.size(), 0.0) {
+    for (std::size_t i = 1; i < t_.size(); ++i)
+      c_[i] = c_[i - 1] + 0.5 * (s_[i - 1] + s_[i]) * (t_[i] - t_[i - 1]);
+  }
+  double value(double x) const {
+    const std::size_t i = interval(x);
+    const double h = t_[i + 1] - t_[i];
+    return h > 0.0 ? s_[i] + (s_[i + 1] - s_[i]) * (x - t_[i]) / h : s_[i];
+  }
+  double integral(double x) const {
+    const std::size_t i = interval(x);
+    return c_[i] + 0.5 * (x - t_[i]) * (s_[i] + value(x));
+  }
+
+ private:
+  /// The interval [t_i, t_{i+1}] holding x (clamped to the first and last).
+  std::size_t interval(double x) const {
+    const auto it = std::upper_bound(t_.begin(), t_.end(), x);
+    const std::size_t i = it == t_.begin() ? 0 : static_cast<std::size_t>(it - t_.begin()) - 1;
+    return std::min(i, t_.size() - 2);
+  }
+  const std::vector<double>& t_;
+  std::vector<double> s_, c_;
+};
+
+}  // namespace
+
+VecJ drive_torque_offset(const DriveTrainParams& drive, const VecJ& qd, const VecJ& qdd) {
+  VecJ d;
+  for (int k = 0; k < kJoints; ++k) {
+    const ActuatorParams& a = drive.joints[k];
+    d[k] = a.armature_kgm2 * qdd[k] + a.coulomb_friction_Nm * sgn(qd[k]) +
+           a.viscous_friction_Nmsprad * qd[k];
+  }
+  return d;
+}
+
+const char* bound_name(DriveBound bound) {
+  switch (bound) {
+    case DriveBound::kPeak:
+      return "peak";
+    case DriveBound::kVoltage:
+      return "voltage";
+    case DriveBound::kNone:
+      break;
+  }
+  return "";
+}
+
+DriveLimit drive_torque_limit(const ActuatorParams& a, double qd) {
+  DriveLimit out;
+  if (std::isfinite(a.peak_torque_Nm)) out = {a.peak_torque_Nm, DriveBound::kPeak};
+  if (std::isfinite(a.voltage_V)) {
+    const double Gk = a.gear_ratio * a.torque_constant_NmpA;
+    const double v = std::max(
+        0.0, Gk * a.gear_efficiency * (a.voltage_V - Gk * std::abs(qd)) / a.resistance_ohm);
+    if (v < out.limit_Nm) out = {v, DriveBound::kVoltage};
+  }
+  return out;
+}
+
+double copper_loss_weight(const ActuatorParams& a) {
+  const double c = a.gear_ratio * a.torque_constant_NmpA * a.gear_efficiency;
+  return a.resistance_ohm / (c * c);
+}
+
+double motor_current(const ActuatorParams& a, double tau, double qd) {
+  const double Gk = a.gear_ratio * a.torque_constant_NmpA;
+  return tau * qd >= 0.0 ? tau / (Gk * a.gear_efficiency) : tau * a.gear_efficiency / Gk;
+}
+
+double largest_window_rms(const std::vector<double>& t, const double* y, int stride,
+                          double window_s) {
+  const std::size_t n = t.size();
+  if (n == 0) return 0.0;
+  if (n == 1) return std::abs(y[0]);
+  std::vector<double> s(n);
+  for (std::size_t i = 0; i < n; ++i) s[i] = y[i * stride] * y[i * stride];
+  const PiecewiseLinear f(t, std::move(s));
+  const double t0 = t.front(), t1 = t.back();
+  if (!(window_s < t1 - t0))
+    return t1 > t0 ? std::sqrt(f.integral(t1) / (t1 - t0)) : std::abs(y[0]);
+  // F(a) = ∫_a^{a+W} s is piecewise quadratic in a, with breakpoints where a or a + W is a
+  // sample time; F'(a) = s(a + W) − s(a) is linear between them, so F's largest value is at
+  // a breakpoint or where F' falls through zero.
+  std::vector<double> a;
+  a.reserve(2 * n);
+  for (double ti : t) {
+    if (ti <= t1 - window_s) a.push_back(ti);
+    if (ti - window_s >= t0) a.push_back(ti - window_s);
+  }
+  std::sort(a.begin(), a.end());
+  const auto F = [&](double x) { return f.integral(x + window_s) - f.integral(x); };
+  const auto dF = [&](double x) { return f.value(x + window_s) - f.value(x); };
+  double best = 0.0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    best = std::max(best, F(a[i]));
+    if (i + 1 == a.size() || a[i + 1] <= a[i]) continue;
+    const double d0 = dF(a[i]), d1 = dF(a[i + 1]);
+    if (d0 > 0.0 && d1 < 0.0) best = std::max(best, F(a[i] + (a[i + 1] - a[i]) * d0 / (d0 - d1)));
+  }
+  return std::sqrt(std::max(0.0, best) / window_s);
+}
+
+ElectricalResult compute_electrical(const DriveTrainParams& drive, const std::vector<double>& t,
+                                    const RowMatrix& qd, const RowMatrix& tau, double total_mass_kg,
+                                    double distance_m) {
+  const int T = static_cast<int>(t.size());
+  ElectricalResult e;
+  e.current_A.resize(T, kJoints);
+  e.power_W.resize(T, kJoints);
+  e.total_power_W.assign(T, 0.0);
+  std::vector<double> copper(T, 0.0), friction(T, 0.0), regenerated(T, 0.0);
+  for (int i = 0; i < T; ++i) {
+    for (int k = 0; k < kJoints; ++k) {
+      const ActuatorParams& a = drive.joints[k];
+      const double w = qd(i, k);
+      const double I = motor_current(a, tau(i, k), w);
+      const double loss = a.resistance_ohm * I * I;
+      const double P = loss + a.gear_ratio * a.torque_constant_NmpA * w * I;
+      const double drawn = P >= 0.0 ? P : a.regeneration * P;
+      e.current_A(i, k) = I;
+      e.power_W(i, k) = drawn;
+      e.total_power_W[i] += drawn;
+      copper[i] += loss;
+      friction[i] += a.coulomb_friction_Nm * std::abs(w) + a.viscous_friction_Nmsprad * w * w;
+      if (P < 0.0) regenerated[i] -= a.regeneration * P;
+    }
+  }
+  e.energy_J = trapezoid(t, e.total_power_W.data());
+  e.copper_loss_J = trapezoid(t, copper.data());
+  e.friction_loss_J = trapezoid(t, friction.data());
+  e.regenerated_J = trapezoid(t, regenerated.data());
+  e.cost_of_transport = e.energy_J / (total_mass_kg * kGravity * distance_m);
+  e.energy_joint_J.resize(kJoints);
+  e.rms_torque_Nm.resize(kJoints);
+  e.window_rms_torque_Nm.resize(kJoints);
+  e.continuous_torque_Nm.resize(kJoints);
+  for (int k = 0; k < kJoints; ++k) {
+    e.continuous_torque_Nm[k] = drive.joints[k].continuous_torque_Nm;
+    e.energy_joint_J[k] = trapezoid(t, e.power_W.data() + k, kJoints);
+    e.rms_torque_Nm[k] = largest_window_rms(t, tau.data() + k, kJoints, kInfinity);
+    e.window_rms_torque_Nm[k] =
+        largest_window_rms(t, tau.data() + k, kJoints, drive.joints[k].thermal_window_s);
+  }
+  return e;
+}
+
+}  // namespace hexdyn
