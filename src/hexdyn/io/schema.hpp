@@ -610,6 +610,17 @@ inline constexpr DatasetSpec kScenarioPeakTorqueTransient{
 inline constexpr DatasetSpec kScenarioEnergyElectrical{"/scenarios/energy_electrical", "J",
                                                        Shape::kScenarios, Element::kFloat64,
                                                        "electrical energy drawn"};
+/// The run's /energy/copper_loss, /energy/friction_loss and /energy/regenerated: with
+/// /scenarios/energy, the energy breakdown of each scenario.
+inline constexpr DatasetSpec kScenarioEnergyCopperLoss{"/scenarios/energy_copper_loss", "J",
+                                                       Shape::kScenarios, Element::kFloat64,
+                                                       "copper loss R I^2"};
+inline constexpr DatasetSpec kScenarioEnergyFrictionLoss{"/scenarios/energy_friction_loss", "J",
+                                                         Shape::kScenarios, Element::kFloat64,
+                                                         "joint friction loss"};
+inline constexpr DatasetSpec kScenarioEnergyRegenerated{"/scenarios/energy_regenerated", "J",
+                                                        Shape::kScenarios, Element::kFloat64,
+                                                        "energy regenerated"};
 inline constexpr DatasetSpec kScenarioCostOfTransportElectrical{
     "/scenarios/cost_of_transport_electrical", "1", Shape::kScenarios, Element::kFloat64,
     "electrical cost of transport"};
@@ -643,7 +654,8 @@ inline constexpr std::array kScenarioDatasets{
     kScenarioDuration, kScenarioDistance, kScenarioEnergy, kScenarioCostOfTransport,
     kScenarioPeakImpactForce, kScenarioPeakPower, kScenarioPeakContactForce, kScenarioPeakTorque,
     kScenarioRmsTorque, kScenarioPeakTorqueGait, kScenarioPeakTorqueTransient,
-    kScenarioEnergyElectrical, kScenarioCostOfTransportElectrical, kScenarioPeakElectricalPower,
+    kScenarioEnergyElectrical, kScenarioEnergyCopperLoss, kScenarioEnergyFrictionLoss,
+    kScenarioEnergyRegenerated, kScenarioCostOfTransportElectrical, kScenarioPeakElectricalPower,
     kScenarioPeakDriveTorqueGait, kScenarioPeakDriveTorqueTransient, kScenarioDriveTorqueWindowRms,
     kScenarioThermalLoad, kScenarioGridEnergyError, kScenarioGridPeakError,
     kScenarioRelaxedSamples, kScenarioFailedSamples, kScenarioWallTime};

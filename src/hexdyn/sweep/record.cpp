@@ -112,6 +112,7 @@ void append_record(std::vector<char>& b, const ScenarioRecord& r) {
   for (double v : {s.duration_s, s.distance_m, s.energy_J, s.cost_of_transport,
                    s.peak_impact_force_N, s.peak_power_W, s.peak_contact_force_N,
                    s.grid_energy_error, s.grid_peak_error, s.wall_time_s, s.energy_electrical_J,
+                   s.energy_copper_loss_J, s.energy_friction_loss_J, s.energy_regenerated_J,
                    s.cost_of_transport_electrical, s.peak_electrical_power_W, s.thermal_load})
     put_pod(b, v);
   for (const auto* a : {&s.peak_torque_Nm, &s.rms_torque_Nm, &s.peak_torque_gait_Nm,

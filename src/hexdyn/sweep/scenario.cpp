@@ -74,6 +74,7 @@ std::array<std::array<double, kJoints>*, 7> per_joint_metrics(ScenarioSummary& s
 /// The drive train's metrics of a row without actuators: NaN.
 void no_drive_metrics(ScenarioSummary& s) {
   s.energy_electrical_J = s.cost_of_transport_electrical = s.peak_electrical_power_W = kNaN;
+  s.energy_copper_loss_J = s.energy_friction_loss_J = s.energy_regenerated_J = kNaN;
   s.thermal_load = kNaN;
   for (auto* a : {&s.peak_drive_torque_gait_Nm, &s.peak_drive_torque_transient_Nm,
                   &s.drive_torque_window_rms_Nm})
@@ -101,6 +102,9 @@ void drive_metrics(const RunResult& run, ScenarioSummary& s) {
   const DynamicsResult& d = run.dyn;
   const ElectricalResult& e = d.electrical;
   s.energy_electrical_J = e.energy_J;
+  s.energy_copper_loss_J = e.copper_loss_J;
+  s.energy_friction_loss_J = e.friction_loss_J;
+  s.energy_regenerated_J = e.regenerated_J;
   s.cost_of_transport_electrical = e.cost_of_transport;
   s.peak_electrical_power_W = 0.0;
   for (double p : e.total_power_W)

@@ -59,6 +59,7 @@ struct ScenarioSummary {
   // of the total electrical power [W], the drive torques' split peaks and largest windowed
   // RMS [N m], and the thermal load: max over joints of that RMS / continuous_torque [1].
   double energy_electrical_J = 0.0;
+  double energy_copper_loss_J = 0.0, energy_friction_loss_J = 0.0, energy_regenerated_J = 0.0;
   double cost_of_transport_electrical = 0.0;
   double peak_electrical_power_W = 0.0;
   std::array<double, kJoints> peak_drive_torque_gait_Nm{}, peak_drive_torque_transient_Nm{};

@@ -245,6 +245,9 @@ void write_scenario_metrics(H5Writer& w, Labeller& labels,
   per_joint(s::kScenarioPeakTorqueGait, &ScenarioSummary::peak_torque_gait_Nm);
   per_joint(s::kScenarioPeakTorqueTransient, &ScenarioSummary::peak_torque_transient_Nm);
   doubles(s::kScenarioEnergyElectrical, &ScenarioSummary::energy_electrical_J);
+  doubles(s::kScenarioEnergyCopperLoss, &ScenarioSummary::energy_copper_loss_J);
+  doubles(s::kScenarioEnergyFrictionLoss, &ScenarioSummary::energy_friction_loss_J);
+  doubles(s::kScenarioEnergyRegenerated, &ScenarioSummary::energy_regenerated_J);
   doubles(s::kScenarioCostOfTransportElectrical, &ScenarioSummary::cost_of_transport_electrical);
   doubles(s::kScenarioPeakElectricalPower, &ScenarioSummary::peak_electrical_power_W);
   per_joint(s::kScenarioPeakDriveTorqueGait, &ScenarioSummary::peak_drive_torque_gait_Nm);
