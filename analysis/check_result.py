@@ -15,7 +15,12 @@ allocation/qp.hpp kViolationThreshold (1e-6 N or N m):
   - sum of the foot forces = sum over the URDF's links of m (a_com - g), with each link's
     COM acceleration from a forward recursion over the URDF from /base/* and /joints/*
     (the three force rows of the trunk equations; independent of hexdyn's RNEA);
-  - |tau_k| <= allocation.torque_limit for every joint;
+  - |tau_k| <= allocation.torque_limit for every joint; with actuators (a file with
+    /joints/drive_torque), instead |tau_drive_k| <= min(peak_torque, G k_t eta (V - G k_t
+    |omega_k|) / R) (clipped at 0; the allocation's limit for a joint with neither), from
+    each joint's values under actuators.joints in /meta config_yaml, and tau_drive_k =
+    tau_k + J_a omega_dot_k + tau_c sgn(omega_k) + b omega_k
+    (docs/theory/drive-train.md);
   - feet in support: F_n >= allocation.min_normal_force and |F_t| <= mu F_n (the exact
     cone, which contains every inscribed pyramid); feet in swing: F = 0;
 with the limits, mu and the terrain normal read from /meta config_yaml.
@@ -240,6 +245,31 @@ def torque_limits(setting, res):
     return np.array([effort.get(n, np.inf) for n in names])
 
 
+def drive_torques_and_bounds(config, res, tau, tmax):
+    """With actuators (/joints/drive_torque in the file): the drive torques (T, 18) computed
+    from the joint torques, velocities, accelerations and each joint's actuator in /meta, and
+    their bounds (T, 18); None without actuators."""
+    if "/joints/drive_torque" not in res:
+        return None
+    joints = ((config.get("actuators") or {}).get("joints")) or {}
+    names = [str(hr.decode_text(n)) for n in res["/model/joint_names"]]
+    w = np.asarray(res["/joints/velocity"], float)
+    wd = np.asarray(res["/joints/acceleration"], float)
+    tau_drive = np.array(tau, copy=True)
+    bound = np.empty_like(tau_drive)
+    for k, name in enumerate(names):
+        a = joints[name]
+        tau_drive[:, k] += (a["armature"] * wd[:, k] + a["coulomb_friction"] * np.sign(w[:, k])
+                            + a["viscous_friction"] * w[:, k])
+        gk = a["gear_ratio"] * a["torque_constant"]
+        peak = a.get("peak_torque", np.inf)
+        line = (gk * a["gear_efficiency"] * (a["voltage"] - gk * np.abs(w[:, k]))
+                / a["resistance"]) if "voltage" in a else np.full(len(w), np.inf)
+        b = np.minimum(peak, np.maximum(line, 0.0))
+        bound[:, k] = np.where(np.isfinite(b), b, tmax[k])
+    return tau_drive, bound
+
+
 def limit_text(tmax):
     return f"{tmax[0]:g}" if np.all(tmax == tmax[0]) else f"[{tmax.min():g} .. {tmax.max():g}]"
 
@@ -280,10 +310,21 @@ def check_allocation(c, res):
                "sum of foot forces = total mass x COM acceleration - weight (trunk force rows) [N]")
     except (ValueError, KeyError) as e:
         c.check(False, "trunk force rows evaluated", str(e))
-    # Torque limits.
-    excess = np.abs(tau) - tmax
-    report((excess > VIOLATION_THRESHOLD * np.maximum(1.0, tmax)).any(axis=1), excess.max(axis=1),
-           f"|torque| <= {limit_text(tmax)} N m")
+    # Torque limits: of the joint torques, or with actuators of the drive torques.
+    drive = drive_torques_and_bounds(config, res, tau, tmax)
+    if drive is None:
+        excess = np.abs(tau) - tmax
+        report((excess > VIOLATION_THRESHOLD * np.maximum(1.0, tmax)).any(axis=1),
+               excess.max(axis=1), f"|torque| <= {limit_text(tmax)} N m")
+    else:
+        tau_drive, bound = drive
+        stored = np.asarray(res["/joints/drive_torque"], float)
+        diff = np.abs(stored - tau_drive) - 1e-9 * np.maximum(1.0, np.abs(tau_drive))
+        c.check(not (diff > 0).any(), "/joints/drive_torque = torque + armature, friction terms",
+                f"largest difference {np.abs(stored - tau_drive).max():.3g} N m")
+        excess = np.abs(tau_drive) - bound
+        report((excess > VIOLATION_THRESHOLD * np.maximum(1.0, bound)).any(axis=1),
+               excess.max(axis=1), "|drive torque| <= min(peak, torque-speed line) [N m]")
     # Contact rows: swing feet carry nothing; support feet push and stay in the cone.
     normal = terrain_normal(config, F)
     fn = np.einsum("tlk,tlk->tl", F, normal)

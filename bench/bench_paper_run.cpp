@@ -1,7 +1,10 @@
 // The whole paper scene, end to end (run_scene: planning, kinematics, touchdown transients,
 // allocation of every sample, power), as `hexdyn run` computes it before writing: with the
-// default active-set allocation (target: under 50 ms) and, for scale, with Ipopt.
+// default active-set allocation (target: under 50 ms), with MX-64 actuators on every joint
+// (target: at most 1.2 times the time without, BM_ActuatorCostRatio) and, for scale, with Ipopt.
 #include <benchmark/benchmark.h>
+
+#include <chrono>
 
 #include "bench_paper.hpp"
 #include "hexdyn/pipeline/pipeline.hpp"
@@ -38,6 +41,44 @@ void BM_PaperLoadAndRun(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_PaperLoadAndRun)->Unit(benchmark::kMillisecond);
+
+/// The paper scene with MX-64 servos on every joint (actuators.default.model): drive torques,
+/// bounds, currents and electrical energies on top of the run.
+Scene paper_with_actuators() {
+  return load_scene(bench::paper_scene_path(),
+                    {parse_override("actuators.default.model=dynamixel_mx64")});
+}
+
+void BM_PaperRunActuators(benchmark::State& state) {
+  const Scene scene = paper_with_actuators();
+  for (auto _ : state) {
+    const RunResult r = run_scene(scene);
+    benchmark::DoNotOptimize(r.dyn.electrical.energy_J);
+  }
+}
+BENCHMARK(BM_PaperRunActuators)->Unit(benchmark::kMillisecond);
+
+/// The cost of the drive train: the paper scene without and with actuators run alternately,
+/// each timed on its own, so that both see the same machine; counter `ratio` is the time with
+/// actuators over the time without (issue target: at most 1.2).
+void BM_ActuatorCostRatio(benchmark::State& state) {
+  const Scene plain = load_scene(bench::paper_scene_path());
+  const Scene driven = paper_with_actuators();
+  using Clock = std::chrono::steady_clock;
+  double without_s = 0.0, with_s = 0.0;
+  for (auto _ : state) {
+    for (const bool drive : {false, true}) {
+      const auto t0 = Clock::now();
+      const RunResult r = run_scene(drive ? driven : plain);
+      benchmark::DoNotOptimize(r.dyn.energy_total_J);
+      (drive ? with_s : without_s) += std::chrono::duration<double>(Clock::now() - t0).count();
+    }
+  }
+  state.counters["ratio"] = with_s / without_s;
+  state.counters["without_ms"] = 1e3 * without_s / static_cast<double>(state.iterations());
+  state.counters["with_ms"] = 1e3 * with_s / static_cast<double>(state.iterations());
+}
+BENCHMARK(BM_ActuatorCostRatio)->Unit(benchmark::kMillisecond)->MinTime(2.0);
 
 void BM_PaperRunIpopt(benchmark::State& state) { run_paper(state, AllocationSolver::kIpopt); }
 BENCHMARK(BM_PaperRunIpopt)->Unit(benchmark::kMillisecond)->Iterations(1);

@@ -17,7 +17,8 @@ accelerations must be hexdyn's prescribed ones (/joints/acceleration and the tru
    configs/paper.yaml reproduces the accelerations (the coordinate conversion); on the
    drive-train result too (its /joints/torque is τ_link).
 2. Drive train, on a result of configs/paper.yaml with a section
-   `actuators: {default: SCENE_DRIVE}` (scene_with_actuators). What the file must hold:
+   `actuators: {default: SCENE_DRIVE, femur: SCENE_FEMUR, joints: {L2_tibia: …}}`
+   (scene_with_actuators), each joint's resolved values checked against the scene's. What the file must hold:
      /joints/drive_torque   (T, 18) [N m], τ_drive above, in /model/joint_names order;
      /meta config_yaml      YAML with actuators: joints: <joint name>: {armature [kg m²],
                             coulomb_friction [N m], viscous_friction [N m s/rad], ...}
@@ -26,10 +27,8 @@ accelerations must be hexdyn's prescribed ones (/joints/acceleration and the tru
    Coulomb term is then ±τ_c, and DART's friction slides), each leg in swing and in support
    among them. Each is checked with the three terms, then with each term left out of DART:
    the accelerations must then differ by more than 100 TOLERANCE (the check can fail).
-   While hexdyn refuses the `actuators` key, the drive-train check runs on a synthetic file
-   (the rigid result plus τ_drive computed here from made-up per-joint J_a, τ_c, b, and its
-   actuators section) and the test exits 77 (skipped) saying "hexdyn without actuators
-   support"; --synthetic checks the synthetic file in any case.
+   --synthetic checks instead a synthetic file (the rigid result plus τ_drive computed here
+   from made-up per-joint J_a, τ_c, b, and its actuators section): the check of the check.
 
 DART 6.12 has Coulomb friction and joint damping but no armature (no Joint or
 DegreeOfFreedom setArmature; the word is nowhere in its headers or libraries). The one
@@ -76,8 +75,20 @@ FRICTION_STEP = 1e-6      # s, the World step that gives DART's Coulomb friction
 IMPLICIT_STEP = 1e-3      # s, the skeleton step h of the implicit terms (any h < J_a/b)
 SCENE_DRIVE = {"gear_ratio": 200, "torque_constant": 0.0081, "resistance": 3.95,
                "armature": 0.012, "coulomb_friction": 0.05, "viscous_friction": 0.02}
+# Entries by joint type and by joint name on top of the default, so that every joint's
+# values are not alike and a mix-up of the joints' order shows.
+SCENE_FEMUR = {"armature": 0.02, "coulomb_friction": 0.08}
+SCENE_JOINT = ("L2_tibia", {"viscous_friction": 0.05, "armature": 0.005})
 DRIVE_KEYS = ("armature", "coulomb_friction", "viscous_friction")
-UNSUPPORTED = "actuators: unknown key"  # config/ refusal of a key it does not know
+
+
+def scene_value(name, key):
+    """The value of `key` the scene gives joint `name`: the most specific entry's."""
+    if name == SCENE_JOINT[0] and key in SCENE_JOINT[1]:
+        return SCENE_JOINT[1][key]
+    if name.endswith("_femur") and key in SCENE_FEMUR:
+        return SCENE_FEMUR[key]
+    return SCENE_DRIVE[key]
 
 
 def read_result(path):
@@ -341,25 +352,28 @@ def synthetic_drive_result(base, out):
 
 
 def scene_with_actuators(src, d):
-    """configs/paper.yaml with actuators: {default: SCENE_DRIVE}."""
+    """configs/paper.yaml with actuators: default SCENE_DRIVE, femur SCENE_FEMUR, and
+    SCENE_JOINT by name."""
     path = os.path.join(d, "drive.yaml")
     with open(path, "w") as f:
         yaml.safe_dump({"inherit": os.path.join(src, "configs", "paper.yaml"),
-                        "actuators": {"default": SCENE_DRIVE}}, f, sort_keys=False)
+                        "actuators": {"default": SCENE_DRIVE, "femur": SCENE_FEMUR,
+                                      "joints": {SCENE_JOINT[0]: SCENE_JOINT[1]}}},
+                       f, sort_keys=False)
     return path
 
 
 def real_drive_result(hexdyn, src, d):
-    """hexdyn's result of scene_with_actuators, or None if hexdyn refuses the key."""
+    """hexdyn's result of scene_with_actuators, its resolved values checked against the
+    scene's."""
     out = os.path.join(d, "drive.h5")
     rc, err = cli_run(hexdyn, scene_with_actuators(src, d), out)
-    if rc == 2 and UNSUPPORTED in err:
-        return None
     assert rc == 0, err
-    p = drive_parameters(read_result(out))
+    r = read_result(out)
+    p = drive_parameters(r)
     for key in DRIVE_KEYS:
-        assert (p[key] == SCENE_DRIVE[key]).all(), \
-            f"resolved {key} {p[key]}, the scene's {SCENE_DRIVE[key]}"
+        expected = np.array([scene_value(n, key) for n in r["joints"]])
+        assert (p[key] == expected).all(), f"resolved {key} {p[key]}, the scene's {expected}"
     return out
 
 
@@ -382,20 +396,15 @@ def main():
         robot = DartRobot(r)
         check_trunk_conversion(robot)
         check_rigid(r, robot)
-        drive = None if args.synthetic else real_drive_result(args.hexdyn, src, d)
-        if drive is not None:
-            r = read_result(drive)
-            robot = DartRobot(r)  # the robot as this run simulated it
-            check_rigid(r, robot)  # /joints/torque is still τ_link
-            check_drive(r, robot)
+        if args.synthetic:
+            check_drive(read_result(synthetic_drive_result(base, os.path.join(d, "synthetic.h5"))),
+                        robot)
             return 0
-        check_drive(read_result(synthetic_drive_result(base, os.path.join(d, "synthetic.h5"))),
-                    robot)
-    if args.synthetic:
-        return 0
-    print("skipped: hexdyn without actuators support: the drive train was checked on a "
-          "synthetic file only (τ_drive computed by this test)")
-    return 77
+        r = read_result(real_drive_result(args.hexdyn, src, d))
+        robot = DartRobot(r)  # the robot as this run simulated it
+        check_rigid(r, robot)  # /joints/torque is still τ_link
+        check_drive(r, robot)
+    return 0
 
 
 if __name__ == "__main__":
