@@ -47,6 +47,9 @@ const std::array<Field, 11>& fields() {
   return f;
 }
 constexpr int kGearRatio = 0, kTorqueConstant = 1, kResistance = 2;  // the required fields
+/// fields()[0, kServoFields) are the servo's own (ServoSpec); regeneration and thermal_window,
+/// of its driver and its use, are not.
+constexpr int kServoFields = 9;
 
 /// The rotor's inertia as an entry gives it: motor side (rotor_inertia, J_m) or joint side
 /// (armature, J_a = G² J_m with the joint's final G).
@@ -178,13 +181,23 @@ DriveTrainParams read_actuators(Reader& r, const JointFacts& joints) {
   const std::array<Entry, kJoints> by_joint = read_joint_entries(r, joints);
   for (int k = 0; k < kJoints; ++k) {
     ActuatorParams& a = out.joints[k];
-    a.viscous_friction_Nmsprad = joints.damping_Nmsprad[k];
-    a.coulomb_friction_Nm = joints.friction_Nm[k];
+    // The joint without any entry: the built-in defaults and the URDF's friction.
+    ActuatorParams base;
+    base.viscous_friction_Nmsprad = joints.damping_Nmsprad[k];
+    base.coulomb_friction_Nm = joints.friction_Nm[k];
+    a = base;
     std::array<bool, 11> given{};
     Inertia inertia;
     for (const Entry* e :
          std::array<const Entry*, 3>{&all, &by_type[k % kJointsPerLeg], &by_joint[k]}) {
-      if (!e->model.empty()) a.model = e->model;
+      if (!e->model.empty()) {  // another servo: none of a less specific entry's servo values
+        for (int i = 0; i < kServoFields; ++i) {
+          a.*fields()[i].member = base.*fields()[i].member;
+          given[i] = false;
+        }
+        inertia = Inertia{};
+        a.model = e->model;
+      }
       for (std::size_t i = 0; i < fields().size(); ++i)
         if (e->values[i]) {
           a.*fields()[i].member = *e->values[i];

@@ -11,7 +11,10 @@
 /// An entry's `model:` (config/servo_table.hpp) gives its values first, its own keys then
 /// override them. A joint's values come, field by field, from the most specific entry that
 /// gives them: joints.NAME over its type over default over the URDF's <dynamics damping
-/// friction> (viscous and Coulomb friction) over the built-in defaults (ActuatorParams).
+/// friction> (viscous and Coulomb friction) over the built-in defaults (ActuatorParams). An
+/// entry that names a model replaces the servo: the servo's values a less specific entry gave
+/// (all but regeneration and thermal_window) go back to the defaults before the model's and
+/// the entry's own apply, so that one servo's armature never reaches another's joint.
 /// gear_ratio, torque_constant and resistance must be given for every joint.
 #include <array>
 #include <string>

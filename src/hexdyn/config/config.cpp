@@ -387,12 +387,6 @@ void read_allocation(Reader& r, AllocationParams& a, const LoadedUrdfRobot& urdf
   } else {
     a.torque_limit_Nm = r.number("allocation.torque_limit", positive(kMaxJointEffort_Nm));
   }
-  if (r.given("allocation.objective")) {
-    const std::string objective =
-        r.choice("allocation.objective", {"torque_squared", "copper_loss"});
-    a.objective = objective == "copper_loss" ? AllocationObjective::kCopperLoss
-                                             : AllocationObjective::kTorqueSquared;
-  }
   a.min_normal_force_N = r.number_or("allocation.min_normal_force",
                                      defaults().allocation.min_normal_force_N, nonnegative(1e6));
   // The loosest tolerance at which both back ends still meet the fixed violation threshold
@@ -408,6 +402,14 @@ void read_allocation(Reader& r, AllocationParams& a, const LoadedUrdfRobot& urdf
                "flagged for the solver's inaccuracy rather than for physics");
   a.slack_penalty =
       r.number_or("allocation.slack_penalty", defaults().allocation.slack_penalty, positive(1e12));
+  // Last, where read_drive_train records it when only actuators give it: a resolved
+  // configuration read again resolves to the same text.
+  if (r.given("allocation.objective")) {
+    const std::string objective =
+        r.choice("allocation.objective", {"torque_squared", "copper_loss"});
+    a.objective = objective == "copper_loss" ? AllocationObjective::kCopperLoss
+                                             : AllocationObjective::kTorqueSquared;
+  }
 }
 
 /// actuators: (config/actuators.hpp) with the robot's joint names and URDF friction, and

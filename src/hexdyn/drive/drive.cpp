@@ -87,6 +87,12 @@ double motor_current(const ActuatorParams& a, double tau, double qd) {
   return tau * qd >= 0.0 ? tau / (Gk * a.gear_efficiency) : tau * a.gear_efficiency / Gk;
 }
 
+double electrical_power(const ActuatorParams& a, double tau, double qd) {
+  const double I = motor_current(a, tau, qd);
+  const double P = a.resistance_ohm * I * I + a.gear_ratio * a.torque_constant_NmpA * qd * I;
+  return P >= 0.0 ? P : a.regeneration * P;
+}
+
 double largest_window_rms(const std::vector<double>& t, const double* y, int stride,
                           double window_s) {
   const std::size_t n = t.size();

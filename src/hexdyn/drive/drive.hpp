@@ -41,6 +41,10 @@ double copper_loss_weight(const ActuatorParams& a);
 /// driving (τ q̇ ≥ 0), τ η / (G k_t) when back-driven.
 double motor_current(const ActuatorParams& a, double tau_Nm, double qd_radps);
 
+/// The electrical power drawn, P⁺ [W]: P = R I² + G k_t q̇ I with I = motor_current, or r P
+/// when P < 0.
+double electrical_power(const ActuatorParams& a, double tau_Nm, double qd_radps);
+
 /// The electrical side of a run (core/result.hpp ElectricalResult) from its drive torques and
 /// joint speeds. time_s: T increasing sample times [s]; joint_velocity, drive_torque: T×18;
 /// total_mass_kg > 0, distance_m > 0 (the cost of transport's m and d).

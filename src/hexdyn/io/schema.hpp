@@ -643,6 +643,12 @@ inline constexpr DatasetSpec kScenarioRelaxedSamples{
     "/scenarios/relaxed_samples", "1", Shape::kScenarios, Element::kInt32, "relaxed samples"};
 inline constexpr DatasetSpec kScenarioFailedSamples{
     "/scenarios/failed_samples", "1", Shape::kScenarios, Element::kInt32, "failed samples"};
+/// Relaxed samples outside touchdown transients (no leg in phase impact): where the gait
+/// itself asks for more than the robot can give (a transient's are by design,
+/// docs/theory/allocation.md#relaxed-samples).
+inline constexpr DatasetSpec kScenarioRelaxedGaitSamples{"/scenarios/relaxed_gait_samples", "1",
+                                                         Shape::kScenarios, Element::kInt32,
+                                                         "relaxed samples outside touchdowns"};
 /// Time to compute each scenario [s] (timing: differs between runs).
 inline constexpr DatasetSpec kScenarioWallTime{"/scenarios/wall_time_s", "s", Shape::kScenarios,
                                                Element::kFloat64, "time to compute the scenario"};
@@ -658,7 +664,8 @@ inline constexpr std::array kScenarioDatasets{
     kScenarioEnergyRegenerated, kScenarioCostOfTransportElectrical, kScenarioPeakElectricalPower,
     kScenarioPeakDriveTorqueGait, kScenarioPeakDriveTorqueTransient, kScenarioDriveTorqueWindowRms,
     kScenarioThermalLoad, kScenarioGridEnergyError, kScenarioGridPeakError,
-    kScenarioRelaxedSamples, kScenarioFailedSamples, kScenarioWallTime};
+    kScenarioRelaxedSamples, kScenarioFailedSamples, kScenarioRelaxedGaitSamples,
+    kScenarioWallTime};
 // clang-format on
 
 // ---- /runs/{id}: with --keep-runs, each computed scenario in the hexdyn-result/2 layout

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "hexdyn/core/cancel.hpp"
+#include "hexdyn/drive/drive.hpp"
 #include "hexdyn/kinematics/kinematics.hpp"
 #include "hexdyn/planning/grid.hpp"
 #include "hexdyn/power/grid_error.hpp"
@@ -52,18 +53,23 @@ struct Batches {
 
 /// The series the output grid controls, gathered in time order: the joint powers τ_k ω_k,
 /// whose absolute values and their sum are integrated (the energies), and |τ_k| per joint, the
-/// total power and the largest foot force (the peaks).
+/// total power and the largest foot force (the peaks); with actuators also the electrical
+/// powers P⁺_k drawn (integrated, each and their sum), |τ_drive,k| and the total electrical
+/// power (peaks) (docs/theory/output-grid.md#error-control).
 struct ControlledSeries {
   std::vector<double> t_s;
   std::vector<char> jump;  ///< from a left-limit sample to its event
   RowMatrix power;         ///< T×18, τ_k ω_k [W]
   RowMatrix abs_torque;    ///< T×18 [N m]
   std::vector<double> total_power_W, max_force_N;
+  RowMatrix electrical;        ///< with actuators: T×18, P⁺_k [W]
+  RowMatrix abs_drive_torque;  ///< with actuators: T×18, |τ_drive,k| [N m]
+  std::vector<double> total_electrical_W;
   std::vector<SeriesView> terms;
   std::vector<IntegralTarget> integrals;
   std::vector<SeriesView> peaks;
 
-  explicit ControlledSeries(const Batches& b) {
+  ControlledSeries(const Batches& b, const DriveTrainParams& drive) {
     const std::size_t T = b.order.size();
     const auto rows = static_cast<Eigen::Index>(T);
     t_s.resize(T);
@@ -111,6 +117,40 @@ struct ControlledSeries {
     for (int j = 0; j < kJoints; ++j) peaks.push_back({abs_torque.data() + j, kJoints});
     peaks.push_back({total_power_W.data(), 1});
     peaks.push_back({max_force_N.data(), 1});
+    if (drive.present) add_drive_train(b, drive);
+  }
+
+  /// The electrical energies and the drive's peaks, as the mechanical ones above.
+  void add_drive_train(const Batches& b, const DriveTrainParams& drive) {
+    const std::size_t T = b.order.size();
+    electrical.resize(static_cast<Eigen::Index>(T), kJoints);
+    abs_drive_torque.resize(static_cast<Eigen::Index>(T), kJoints);
+    total_electrical_W.assign(T, 0.0);
+    for (std::size_t i = 0; i < T; ++i) {
+      const SampleRef& r = b.order[i];
+      const auto row = static_cast<Eigen::Index>(r.row);
+      for (int j = 0; j < kJoints; ++j) {
+        const double tau = b.dyn_of(r).drive_torque(row, j);
+        const double omega = b.kin_of(r).joint_velocity(row, j);
+        const double p = electrical_power(drive.joints[j], tau, omega);
+        electrical(static_cast<Eigen::Index>(i), j) = p;
+        abs_drive_torque(static_cast<Eigen::Index>(i), j) = std::abs(tau);
+        total_electrical_W[i] += std::abs(p);
+      }
+    }
+    const double total = trapezoid(t_s, total_electrical_W.data());
+    IntegralTarget all{{}, total};
+    const RowMatrix abs_electrical = electrical.cwiseAbs();
+    for (int j = 0; j < kJoints; ++j) {
+      const int term = static_cast<int>(terms.size());
+      terms.push_back({electrical.data() + j, kJoints});
+      const double energy = trapezoid(t_s, abs_electrical.data() + j, kJoints);
+      integrals.push_back({{term}, std::max(energy, total / kJoints)});
+      all.terms.push_back(term);
+      peaks.push_back({abs_drive_torque.data() + j, kJoints});
+    }
+    integrals.push_back(std::move(all));
+    peaks.push_back({total_electrical_W.data(), 1});
   }
 };
 
@@ -143,7 +183,7 @@ GridAccuracy refine_output_grid(const Scene& scene, const PreparedScene& prep,
     std::optional<StageTimer> clock(std::in_place, times, Stage::kRefinement);
     GridAssessment a;
     {
-      const ControlledSeries series(b);
+      const ControlledSeries series(b, scene.actuators);
       a = assess_grid(series.t_s, series.jump, series.terms, series.integrals, series.peaks,
                       assess_tol, kMinRefinedStep_s);
     }

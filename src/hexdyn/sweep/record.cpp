@@ -101,6 +101,41 @@ std::uint64_t fnv1a64(std::string_view text, std::uint64_t h) {
   return h;
 }
 
+/// The summary's numbers in record order: one list for writing and reading (S is
+/// ScenarioSummary or const ScenarioSummary).
+template <class S>
+auto double_fields(S& s) {
+  return std::array{&s.duration_s,
+                    &s.distance_m,
+                    &s.energy_J,
+                    &s.cost_of_transport,
+                    &s.peak_impact_force_N,
+                    &s.peak_power_W,
+                    &s.peak_contact_force_N,
+                    &s.grid_energy_error,
+                    &s.grid_peak_error,
+                    &s.wall_time_s,
+                    &s.energy_electrical_J,
+                    &s.energy_copper_loss_J,
+                    &s.energy_friction_loss_J,
+                    &s.energy_regenerated_J,
+                    &s.cost_of_transport_electrical,
+                    &s.peak_electrical_power_W,
+                    &s.thermal_load};
+}
+
+/// The summary's per-joint arrays in record order.
+template <class S>
+auto joint_fields(S& s) {
+  return std::array{&s.peak_torque_Nm,
+                    &s.rms_torque_Nm,
+                    &s.peak_torque_gait_Nm,
+                    &s.peak_torque_transient_Nm,
+                    &s.peak_drive_torque_gait_Nm,
+                    &s.peak_drive_torque_transient_Nm,
+                    &s.drive_torque_window_rms_Nm};
+}
+
 void append_record(std::vector<char>& b, const ScenarioRecord& r) {
   const ScenarioSummary& s = r.summary;
   put_pod(b, static_cast<std::uint64_t>(s.index));
@@ -109,15 +144,9 @@ void append_record(std::vector<char>& b, const ScenarioRecord& r) {
   put_pod(b, static_cast<std::int32_t>(s.samples));
   put_pod(b, static_cast<std::int32_t>(s.relaxed_samples));
   put_pod(b, static_cast<std::int32_t>(s.failed_samples));
-  for (double v : {s.duration_s, s.distance_m, s.energy_J, s.cost_of_transport,
-                   s.peak_impact_force_N, s.peak_power_W, s.peak_contact_force_N,
-                   s.grid_energy_error, s.grid_peak_error, s.wall_time_s, s.energy_electrical_J,
-                   s.energy_copper_loss_J, s.energy_friction_loss_J, s.energy_regenerated_J,
-                   s.cost_of_transport_electrical, s.peak_electrical_power_W, s.thermal_load})
-    put_pod(b, v);
-  for (const auto* a : {&s.peak_torque_Nm, &s.rms_torque_Nm, &s.peak_torque_gait_Nm,
-                        &s.peak_torque_transient_Nm, &s.peak_drive_torque_gait_Nm,
-                        &s.peak_drive_torque_transient_Nm, &s.drive_torque_window_rms_Nm})
+  put_pod(b, static_cast<std::int32_t>(s.relaxed_gait_samples));
+  for (const double* v : double_fields(s)) put_pod(b, *v);
+  for (const auto* a : joint_fields(s))
     for (double v : *a) put_pod(b, v);
   put_bytes(b, r.run_image.data(), r.run_image.size());
 }
@@ -145,15 +174,9 @@ ScenarioRecord decode_record(const char* data, std::size_t size, bool with_image
   s.samples = u.get<std::int32_t>();
   s.relaxed_samples = u.get<std::int32_t>();
   s.failed_samples = u.get<std::int32_t>();
-  for (double* v :
-       {&s.duration_s, &s.distance_m, &s.energy_J, &s.cost_of_transport, &s.peak_impact_force_N,
-        &s.peak_power_W, &s.peak_contact_force_N, &s.grid_energy_error, &s.grid_peak_error,
-        &s.wall_time_s, &s.energy_electrical_J, &s.cost_of_transport_electrical,
-        &s.peak_electrical_power_W, &s.thermal_load})
-    *v = u.get<double>();
-  for (auto* a : {&s.peak_torque_Nm, &s.rms_torque_Nm, &s.peak_torque_gait_Nm,
-                  &s.peak_torque_transient_Nm, &s.peak_drive_torque_gait_Nm,
-                  &s.peak_drive_torque_transient_Nm, &s.drive_torque_window_rms_Nm})
+  s.relaxed_gait_samples = u.get<std::int32_t>();
+  for (double* v : double_fields(s)) *v = u.get<double>();
+  for (auto* a : joint_fields(s))
     for (double& v : *a) v = u.get<double>();
   const std::size_t k = u.length();
   if (image_offset) *image_offset = u.at();

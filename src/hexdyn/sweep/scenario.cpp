@@ -81,6 +81,13 @@ void no_drive_metrics(ScenarioSummary& s) {
     a->fill(kNaN);
 }
 
+/// True when some leg of sample i is in its touchdown transient (phase impact).
+bool in_transient(const RowMatrixI8& phase, int i) {
+  for (int l = 0; l < kLegs; ++l)
+    if (phase(i, l) == static_cast<std::int8_t>(ContactPhase::kImpact)) return true;
+  return false;
+}
+
 /// max |x_k| over the samples outside touchdown transients (`gait`) and inside them
 /// (`transient`); NaN where no sample is of the kind.
 void split_peaks(const RowMatrix& x, const RowMatrixI8& phase, std::array<double, kJoints>& gait,
@@ -88,10 +95,7 @@ void split_peaks(const RowMatrix& x, const RowMatrixI8& phase, std::array<double
   gait.fill(kNaN);
   transient.fill(kNaN);
   for (int i = 0; i < x.rows(); ++i) {
-    bool impact = false;
-    for (int l = 0; l < kLegs; ++l)
-      impact = impact || phase(i, l) == static_cast<std::int8_t>(ContactPhase::kImpact);
-    auto& peak = impact ? transient : gait;
+    auto& peak = in_transient(phase, i) ? transient : gait;
     for (int k = 0; k < kJoints; ++k)
       peak[k] = std::isnan(peak[k]) ? std::abs(x(i, k)) : std::max(peak[k], std::abs(x(i, k)));
   }
@@ -106,7 +110,7 @@ void drive_metrics(const RunResult& run, ScenarioSummary& s) {
   s.energy_friction_loss_J = e.friction_loss_J;
   s.energy_regenerated_J = e.regenerated_J;
   s.cost_of_transport_electrical = e.cost_of_transport;
-  s.peak_electrical_power_W = 0.0;
+  s.peak_electrical_power_W = e.total_power_W.empty() ? kNaN : -kInfinity;
   for (double p : e.total_power_W)
     s.peak_electrical_power_W = std::max(s.peak_electrical_power_W, p);
   split_peaks(d.drive_torque, run.kin.contact_phase, s.peak_drive_torque_gait_Nm,
@@ -180,8 +184,11 @@ ScenarioSummary summarize_run(const RunResult& run, std::size_t index) {
     drive_metrics(run, s);
   else
     no_drive_metrics(s);
-  for (SolverStatus st : d.solver_status) {
+  for (int i = 0; i < static_cast<int>(d.solver_status.size()); ++i) {
+    const SolverStatus st = d.solver_status[i];
     if (st == SolverStatus::kRelaxed) ++s.relaxed_samples;
+    if (st == SolverStatus::kRelaxed && !in_transient(run.kin.contact_phase, i))
+      ++s.relaxed_gait_samples;
     if (st == SolverStatus::kFailed) ++s.failed_samples;
   }
   return s;

@@ -65,8 +65,11 @@ struct ScenarioSummary {
   std::array<double, kJoints> peak_drive_torque_gait_Nm{}, peak_drive_torque_transient_Nm{};
   std::array<double, kJoints> drive_torque_window_rms_Nm{};
   double thermal_load = 0.0;
-  int relaxed_samples = 0;   ///< samples with solver status 1
-  int failed_samples = 0;    ///< samples with solver status 2
+  int relaxed_samples = 0;  ///< samples with solver status 1
+  int failed_samples = 0;   ///< samples with solver status 2
+  /// relaxed samples outside touchdown transients (no leg in phase impact): the gait itself
+  /// asks for more than the robot can give (a transient's relaxed samples are by design)
+  int relaxed_gait_samples = 0;
   double wall_time_s = 0.0;  ///< time to compute the scenario [s] (timing field)
 };
 

@@ -258,6 +258,7 @@ void write_scenario_metrics(H5Writer& w, Labeller& labels,
   doubles(s::kScenarioGridPeakError, &ScenarioSummary::grid_peak_error);
   counts(s::kScenarioRelaxedSamples, &ScenarioSummary::relaxed_samples);
   counts(s::kScenarioFailedSamples, &ScenarioSummary::failed_samples);
+  counts(s::kScenarioRelaxedGaitSamples, &ScenarioSummary::relaxed_gait_samples);
   doubles(s::kScenarioWallTime, &ScenarioSummary::wall_time_s);
 }
 
