@@ -14,6 +14,10 @@ Velocity limit: `<limit velocity>` of /model/urdf, only for a robot read from a 
 URDF carries a placeholder, src/hexdyn/model/urdf.hpp). The allocation keeps |tau| within
 the torque limit on every optimal sample; a sample above it is one where the allocation had
 to relax a constraint (/solver/status 1) or failed (2). docs/user/animation.md#figures
+
+The drive train (a scene with `actuators`, docs/theory/drive-train.md): each joint's drive
+from /meta config_yaml actuators.joints, and its torque-speed bound
+min(peak, G k_t eta (V - G k_t |omega|) / R) as a polyline that is the bound exactly.
 """
 
 import csv
@@ -193,14 +197,22 @@ def draw_limit_and_exceedances(ax, x, tau, limit, status, color=LIMIT_COLOR, lab
     optimal samples (not expected). x, tau, status: (T,); xy: the points' x if not x.
     Returns {"limit": [Line2D, Line2D], "relaxed": artist or None, "failed": ...,
     "optimal": ..., "counts": {"relaxed": n, "failed": n, "optimal": n}}."""
-    out = {"limit": [], "relaxed": None, "failed": None, "optimal": None,
-           "counts": {"relaxed": 0, "failed": 0, "optimal": 0}}
     if limit is None or not np.isfinite(limit):
+        return {"limit": [], **mark_exceedances(ax, x, tau, None, status)}
+    lines = [ax.axhline(s * limit, color=color, ls=":", lw=0.9,
+                        label=f"torque limit ±{limit:g} N m" if (label and s == 1) else None)
+             for s in (-1, 1)]
+    return {"limit": lines, **mark_exceedances(ax, x, tau, limit, status, label, xy)}
+
+
+def mark_exceedances(ax, x, tau, limit, status, label=False, xy=None):
+    """The samples with |tau| above `limit` (a number, or one bound per sample) as markers,
+    by /solver/status as draw_limit_and_exceedances draws them; no limit (None): none.
+    Returns {"relaxed": artist or None, "failed": ..., "optimal": ..., "counts": {...}}."""
+    out = {"relaxed": None, "failed": None, "optimal": None,
+           "counts": {"relaxed": 0, "failed": 0, "optimal": 0}}
+    if limit is None:
         return out
-    for s in (-1, 1):
-        out["limit"].append(ax.axhline(s * limit, color=color, ls=":", lw=0.9,
-                                       label=f"torque limit ±{limit:g} N m"
-                                       if (label and s == 1) else None))
     over = exceeds(tau, limit)
     status = np.zeros_like(tau, dtype=int) if status is None else np.asarray(status)
     px = x if xy is None else xy
@@ -227,6 +239,59 @@ def time_rms(t, values):
     integral = np.sum(0.5 * (sq[1:] + sq[:-1]) * np.diff(t).reshape((-1,) + (1,) * (sq.ndim - 1)),
                       axis=0)
     return np.sqrt(integral / (t[-1] - t[0]))
+
+
+# ---------------------------------------------------------------- the drive train
+# Keys of /meta config_yaml actuators.joints.NAME and the value when the file leaves one out
+# (docs/user/configuration.md#actuators): no voltage, peak or continuous rating is +inf.
+DRIVE_KEYS = (("gear_ratio", np.nan), ("torque_constant", np.nan), ("resistance", np.nan),
+              ("gear_efficiency", 1.0), ("voltage", np.inf), ("peak_torque", np.inf),
+              ("continuous_torque", np.inf))
+CONTINUOUS_COLOR = "tab:orange"
+
+
+def actuator_specs(config, joint_names):
+    """Each joint's drive from the resolved configuration (/meta config_yaml,
+    actuators.joints.NAME): {key: (J,) array} for the keys of DRIVE_KEYS, and "model": (J,)
+    servo names ("" where none); None for a result without actuators."""
+    joints = ((config or {}).get("actuators") or {}).get("joints")
+    if not joints:
+        return None
+    out = {key: np.array([float(joints[n].get(key, missing)) for n in joint_names])
+           for key, missing in DRIVE_KEYS}
+    out["model"] = np.array([str(joints[n].get("model", "")) for n in joint_names])
+    return out
+
+
+def drive_torque_bound(specs, k, omega):
+    """The drive's bound on |tau_drive| of joint k at the joint speeds `omega` [rad/s]:
+    min(peak, G k_t eta (V - G k_t |omega|) / R), clipped at 0
+    (docs/theory/drive-train.md#torque-bound); +inf where the joint has neither bound."""
+    gk = specs["gear_ratio"][k] * specs["torque_constant"][k]
+    v, peak = specs["voltage"][k], specs["peak_torque"][k]
+    w = np.abs(np.asarray(omega, dtype=float))
+    line = np.full(w.shape, np.inf) if np.isinf(v) else \
+        gk * specs["gear_efficiency"][k] * (v - gk * w) / specs["resistance"][k]
+    return np.maximum(0.0, np.minimum(peak, line))
+
+
+def no_load_speed(specs, k):
+    """V / (G k_t) [rad/s], where the bound falls to 0; +inf without a voltage."""
+    return specs["voltage"][k] / (specs["gear_ratio"][k] * specs["torque_constant"][k])
+
+
+def envelope_speeds(specs, k, omega_max):
+    """The speeds in [-omega_max, omega_max] where the bound bends (0, the knee where the
+    torque-speed line meets the peak rating, the no-load speed) and the ends: the polyline
+    through (w, drive_torque_bound(w)) at these speeds is the bound exactly."""
+    gk = specs["gear_ratio"][k] * specs["torque_constant"][k]
+    w0 = no_load_speed(specs, k)
+    bends = [0.0, omega_max, w0]
+    if np.isfinite(w0) and np.isfinite(specs["peak_torque"][k]):
+        bends.append(w0 - specs["peak_torque"][k] * specs["resistance"][k]
+                     / (gk * gk * specs["gear_efficiency"][k]))
+    w = sorted({b for b in bends if 0.0 <= b <= omega_max})
+    return np.array([-b for b in reversed(w) if b > 0] + w)
 
 
 # ---------------------------------------------------------------- limits of a sweep

@@ -5,6 +5,7 @@ read with the package's reader (hexdyn.open_sweep, Sweep.to_xarray).
     /usr/bin/python3 analysis/plot_designs.py SWEEP.h5 OUTDIR [--x KEY] [--y KEY]
                                               [--panel KEY] [--name NAME]
     /usr/bin/python3 analysis/plot_designs.py SWEEP.h5 OUTDIR --cases [--envelope ENV.h5]
+    /usr/bin/python3 analysis/plot_designs.py SWEEP.h5 OUTDIR --servos
 
 Grid (default; configs/designs/paper_femur_tibia.yaml): designs on two axes, --y (default
 robot.femur.length, rows) and --x (robot.tibia.length, columns), one panel per value of
@@ -30,6 +31,13 @@ transport, energy and peak |tau| / effort limit per robot against the riser, fai
 scenarios marked by an x at the bottom with their status; with --envelope (files of
 `hexdyn envelope`, one per robot or one with a cases axis) OUTDIR/NAME_envelope.png, the
 tallest riser per robot and criterion. OUTDIR/NAME.csv holds the plotted values.
+
+Servos (--servos; configs/designs/paper_servos.yaml): one design per servo, the values of
+a `cases` axis of scenes with actuators, over the duty factor and the riser, with kept runs:
+OUTDIR/NAME.png (electrical and mechanical cost of transport per servo over riser x duty
+factor), OUTDIR/NAME_climb.png (which combinations climb, and why not),
+OUTDIR/NAME_energy.png (the energy breakdown per scenario) and OUTDIR/NAME.csv; the rule
+that decides whether a combination climbs is in analysis/plot_design_servos.py.
 
 Each figure is saved under a temporary name in OUTDIR and renamed when complete.
 """
@@ -286,12 +294,19 @@ def main(argv=None):
     ap.add_argument("--name", help="file stem (default: the sweep's name)")
     ap.add_argument("--cases", action="store_true", help="designs on a cases axis")
     ap.add_argument("--envelope", nargs="*", default=[], help="envelope files (--cases)")
+    ap.add_argument("--servos", action="store_true",
+                    help="servos on a cases axis, over duty factor and riser (kept runs)")
     args = ap.parse_args(argv)
+    if args.cases and args.servos:
+        ap.error("--cases and --servos: expected one of them")
     sweep = hr.open_sweep(args.sweep)
     name = args.name or str(sweep.meta.get("name") or "designs")
     os.makedirs(args.outdir, exist_ok=True)
     written = []
-    if args.cases:
+    if args.servos:
+        import plot_design_servos
+        written += plot_design_servos.draw_all(sweep, args.outdir, name)
+    elif args.cases:
         import plot_design_cases
         written += plot_design_cases.draw_all(sweep, args.outdir, name, args.envelope,
                                               args.panel)

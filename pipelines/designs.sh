@@ -9,9 +9,13 @@
 #           kept runs for the effort limits) and the climbable envelope per robot
 #           (configs/designs/robots_envelope.yaml, the same cases): robots.png,
 #           robots_envelope.png, robots.csv
+#   servos  the paper robot with five Dynamixel servos over duty factor x riser at equal
+#           travel (configs/designs/paper_servos.yaml, kept runs): which servo climbs, and at
+#           what electrical cost of transport: paper_servos.png, paper_servos_climb.png,
+#           paper_servos_energy.png, paper_servos.csv, the answer on stderr
 #
-#   bash pipelines/designs.sh                # both studies, about a minute on 2 cores
-#   bash pipelines/designs.sh --only paper   # one study (paper or robots)
+#   bash pipelines/designs.sh                # the three studies, a few minutes on 2 cores
+#   bash pipelines/designs.sh --only paper   # one study (paper, robots or servos)
 #   bash pipelines/designs.sh --quick        # reduced studies (*_quick.yaml), one rank, seconds,
 #                                            # into results/designs/quick/
 # --hexdyn PATH runs that binary (its build tree's Python package) without installing or
@@ -26,12 +30,12 @@ while (($#)); do
     --quick) quick=1 ;;
     --only)
       only="${2:-}"; shift
-      [[ "$only" == paper || "$only" == robots ]] ||
-        { echo "designs.sh: error: --only: got '$only', expected paper or robots" >&2; exit 2; } ;;
+      [[ "$only" == paper || "$only" == robots || "$only" == servos ]] ||
+        { echo "designs.sh: error: --only: got '$only', expected paper, robots or servos" >&2; exit 2; } ;;
     --hexdyn) hexdyn="${2:-}"; shift ;;
     --out) out="${2:-}"; shift ;;
-    -h|--help) sed -n '2,19p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
-    *) echo "designs.sh: error: unknown argument '$1' (expected --quick, --only paper|robots, --hexdyn PATH, --out DIR)" >&2
+    -h|--help) sed -n '2,22p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    *) echo "designs.sh: error: unknown argument '$1' (expected --quick, --only paper|robots|servos, --hexdyn PATH, --out DIR)" >&2
        exit 2 ;;
   esac
   shift
@@ -89,6 +93,12 @@ if [[ -z "$only" || "$only" == robots ]]; then
   tail -n 1 "$out/$name.log" >&2
   "$HEXDYN_PYTHON" "$HEXDYN_ROOT/analysis/plot_designs.py" "$out/robots$suffix.h5" "$out" --cases \
     --envelope "$out/$name.h5" --name "robots$suffix" >/dev/null
+fi
+if [[ -z "$only" || "$only" == servos ]]; then
+  echo "designs: the paper robot with servos, duty factor x riser" >&2
+  sweep "paper_servos$suffix" --keep-runs
+  "$HEXDYN_PYTHON" "$HEXDYN_ROOT/analysis/plot_designs.py" "$out/paper_servos$suffix.h5" "$out" \
+    --servos --name "paper_servos$suffix" >/dev/null
 fi
 echo "designs: results in $out:" >&2
 ls -1 "$out" >&2

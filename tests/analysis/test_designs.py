@@ -3,7 +3,8 @@
 checked against readings of its files made here with h5py, csv, yaml and xml.etree:
 
   - the pipeline writes the figures and the table of the paper study (and, with --parts all,
-    of the URDF robots' study, whose checks are in test_design_cases.py);
+    of the URDF robots' study and of the servos' study, whose checks are in
+    test_design_cases.py and test_design_servos.py);
   - paper_femur_tibia_quick.csv holds, for every scenario, the axis values, the status word
     (the CF flag_meanings of /scenarios/status) and the cost of transport, energy, largest
     peak |tau| and relaxed-sample count of the sweep file's /scenarios table;
@@ -210,6 +211,9 @@ def main():
         if ARGS.parts == "all" and os.path.isfile(os.path.join(out, "robots_quick.h5")):
             import test_design_cases
             test_design_cases.check(ARGS, out, check)
+        if ARGS.parts == "all":
+            import test_design_servos
+            test_design_servos.check(ARGS, out, check)
         check_mass_rule(d)
     print(f"{len(failures)} failure(s)")
     return 1 if failures else 0

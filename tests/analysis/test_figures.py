@@ -11,6 +11,18 @@ against values computed here from the files with h5py, yaml and xml.etree.
   - plot_sweep: the peak-torque heatmap draws the limit on its colour bar and frames exactly
     the scenarios whose peak exceeds it, red where they have relaxed samples; --x --hue line
     plots draw the limit and mark the same scenarios; the command writes its files.
+  - plot_actuators.draw with actuators (the paper scene with MX-64 servos, the femurs given
+    a continuous rating): each joint's envelope, read off the drawn polyline at every
+    sample's speed, is /joints/drive_torque_limit, and at its vertices the bound computed
+    here from /meta actuators.joints; the no-load speed V/(G k_t); the continuous rating on
+    the femurs only; the windowed RMS (no thermal_window: over the run) is
+    sqrt(trapz(tau_drive², t) / duration); the relaxed samples marked are those above the
+    per-sample bound.
+  - plot_energy: on a two-scenario sweep with kept runs (regeneration 0 and 1), the bars
+    are /scenarios' energies; the copper and friction bars equal trapz(sum R I²) and
+    trapz(sum tau_c |omega| + b omega²) recomputed from each kept run's drive torques,
+    speeds and /meta; the electrical marks differ between the two scenarios by exactly what
+    the second regenerates; a sweep without actuators is refused in one line.
 
 usage: test_figures.py --hexdyn BUILD/hexdyn --source SOURCE_DIR   (PYTHONPATH=BUILD/python)
 """
@@ -187,11 +199,167 @@ def test_sweep(args, d):
           "plot_sweep.py --sel with an unknown key: one line, non-zero exit", r.stderr)
 
 
+def drive_specs(config, names):
+    """{key: (J,) array} of /meta actuators.joints (absent voltage and ratings: +inf)."""
+    joints = config["actuators"]["joints"]
+    keys = {"gear_ratio": None, "torque_constant": None, "resistance": None,
+            "gear_efficiency": 1.0, "voltage": np.inf, "peak_torque": np.inf,
+            "continuous_torque": np.inf, "coulomb_friction": 0.0, "viscous_friction": 0.0,
+            "regeneration": 0.0}
+    return {k: np.array([float(joints[n].get(k, v)) for n in names]) for k, v in keys.items()}
+
+
+def bound(sp, k, w):
+    gk = sp["gear_ratio"][k] * sp["torque_constant"][k]
+    line = gk * sp["gear_efficiency"][k] * (sp["voltage"][k] - gk * np.abs(w)) / sp["resistance"][k]
+    return np.clip(np.minimum(sp["peak_torque"][k], line), 0.0, None)
+
+
+def test_drive(args, d):
+    import matplotlib.pyplot as plt
+    from hexdyn.results import open_result
+
+    import plot_actuators
+
+    scene = os.path.join(d, "paper_mx64.yaml")
+    with open(scene, "w") as f:
+        f.write(f"inherit: {os.path.join(args.source, 'configs', 'paper.yaml')}\n"
+                "actuators:\n  default: {model: dynamixel_mx64}\n"
+                "  femur: {continuous_torque: 1.5}\n")
+    path = os.path.join(d, "paper_mx64.h5")
+    subprocess.run([args.hexdyn, "run", scene, "-o", path], check=True, capture_output=True)
+    with h5py.File(path, "r") as f:
+        t, w = f["time"][()], f["joints/velocity"][()]
+        tau_d, limit = f["joints/drive_torque"][()], f["joints/drive_torque_limit"][()]
+        status = f["solver/status"][()]
+        config = yaml.safe_load(f["meta"].attrs["config_yaml"])
+        names = [str(decode_text(n)) for n in f["model/joint_names"][()]]
+    sp = drive_specs(config, names)
+    fig, artists, _ = plot_actuators.draw(open_result(path))
+    ok_read, ok_vertex, ok_noload, ok_rated, ok_rms, ok_marks = (True,) * 6
+    rms = np.sqrt(np.trapz(tau_d ** 2, t, axis=0) / (t[-1] - t[0]))
+    over = np.abs(tau_d) > limit * (1 + REL) + ABS
+    for k, a in enumerate(artists):
+        upper, lower = a["envelope"]
+        x, y = np.asarray(upper.get_xdata()), np.asarray(upper.get_ydata())
+        ok_read &= bool(np.allclose(np.interp(w[:, k], x, y), limit[:, k], rtol=0, atol=1e-9))
+        ok_read &= bool(np.allclose(np.asarray(lower.get_ydata()), -y, rtol=0, atol=0))
+        ok_vertex &= bool(np.allclose(y, bound(sp, k, x), rtol=1e-12, atol=1e-12))
+        w0 = sp["voltage"][k] / (sp["gear_ratio"][k] * sp["torque_constant"][k])
+        ok_noload &= bool(a["no_load"] and np.allclose(sorted(a["no_load"][0].get_xdata()),
+                                                       [-w0, w0], rtol=1e-12))
+        want = [-1.5, 1.5] if names[k].endswith("femur") else []
+        ok_rated &= hline_levels(a["continuous"]) == want
+        ok_rms &= bool(np.allclose(hline_levels(a["window_rms"]), [-rms[k], rms[k]], rtol=1e-9))
+        ok_marks &= a["counts"]["relaxed"] == int((over[:, k] & (status == 1)).sum())
+    check(len(artists) == 18 and ok_read, "actuators (MX-64): the envelope at each sample's "
+          "speed is /joints/drive_torque_limit (1e-9 N m)")
+    check(ok_vertex, "actuators (MX-64): the envelope's vertices on min(peak, G k_t η (V − "
+          "G k_t|ω|)/R) of /meta")
+    check(ok_noload, "actuators (MX-64): the no-load speed ±V/(G k_t) marked")
+    check(ok_rated, "actuators (MX-64): the continuous rating ±1.5 N m on the femurs only")
+    check(ok_rms, "actuators (MX-64): windowed RMS = sqrt(trapz(τ_drive², t) / duration)")
+    check(ok_marks and over[status == 1].any(), "actuators (MX-64): the relaxed samples "
+          "above the per-sample bound marked (some exist)")
+    plt.close(fig)
+    out = os.path.join(d, "drivefigs")
+    r = subprocess.run(["/usr/bin/python3", os.path.join(args.source, "analysis",
+                                                         "plot_actuators.py"), path, out],
+                       capture_output=True, text=True)
+    check(r.returncode == 0 and os.listdir(out) == ["actuators.png"],
+          "plot_actuators.py with actuators writes actuators.png alone", r.stderr)
+
+
+def recomputed_losses(run):
+    """(copper, friction) [J] of a kept run from its drive torques, speeds and /meta."""
+    t, w = run["time"][()], run["joints/velocity"][()]
+    tau_d = run["joints/drive_torque"][()]
+    names = [str(decode_text(n)) for n in run["model/joint_names"][()]]
+    sp = drive_specs(yaml.safe_load(run["meta"].attrs["config_yaml"]), names)
+    gk, eta = sp["gear_ratio"] * sp["torque_constant"], sp["gear_efficiency"]
+    current = np.where(tau_d * w >= 0, tau_d / (gk * eta), tau_d * eta / gk)
+    copper = np.trapz((sp["resistance"] * current ** 2).sum(axis=1), t)
+    friction = np.trapz((sp["coulomb_friction"] * np.abs(w) + sp["viscous_friction"] * w ** 2)
+                        .sum(axis=1), t)
+    return copper, friction
+
+
+def bar_heights(container):
+    return np.array([p.get_height() for p in container.patches])
+
+
+def test_energy(args, d):
+    import matplotlib.pyplot as plt
+    from hexdyn import results as hr
+
+    import plot_energy
+
+    spec = os.path.join(d, "energy_check.yaml")
+    base = os.path.join(args.source, "configs", "sweeps", "stairs_base.yaml")
+    with open(spec, "w") as f:
+        f.write(f"name: energy_check\nbase: {base}\nset: {{output.grid: uniform, "
+                "motion.cycles: 1, actuators.default.model: dynamixel_mx64}\n"
+                "axes:\n  - name: drive\n    cases:\n"
+                "      - {label: burnt, actuators.default.regeneration: 0}\n"
+                "      - {label: returned, actuators.default.regeneration: 1}\n")
+    path = os.path.join(d, "energy_check.h5")
+    r = subprocess.run([args.hexdyn, "sweep", spec, "-o", path, "--keep-runs"],
+                       capture_output=True, text=True)
+    check(r.returncode == 0, "energy: the two-scenario sweep runs", r.stderr[-500:])
+    if r.returncode != 0:
+        return
+    with h5py.File(path, "r") as f:
+        sc = {k: f["scenarios"][k][()] for k in ("energy", "energy_copper_loss",
+                                                  "energy_friction_loss", "energy_regenerated",
+                                                  "energy_electrical")}
+        ids = [str(decode_text(i)) for i in f["scenarios/id"][()]]
+        losses = [recomputed_losses(f["runs"][i]) for i in ids]
+    fig, out = plot_energy.draw_energy(hr.open_sweep(path))
+    bars = {label: out["panels"][label] for label in ("burnt", "returned")}
+    got = {key: np.array([bar_heights(bars[lab][key])[0] for lab in bars])
+           for key in ("mechanical", "copper", "friction", "regenerated")}
+    got["electrical"] = np.array([bars[lab]["electrical"].get_segments()[0][0][1] for lab in bars])
+    bottoms = np.array([[p.get_y() for p in bars[lab][key].patches][0] for lab in bars
+                        for key in ("copper", "friction")])
+    # A stacked patch keeps its bottom and top: its height is exact to the last bits only.
+    check(np.array_equal(got["mechanical"], sc["energy"])
+          and np.allclose(got["copper"], sc["energy_copper_loss"], rtol=1e-12, atol=0)
+          and np.allclose(got["friction"], sc["energy_friction_loss"], rtol=1e-12, atol=0)
+          and np.array_equal(got["regenerated"], -sc["energy_regenerated"])
+          and np.array_equal(got["electrical"], sc["energy_electrical"]),
+          "energy: the bars and marks are /scenarios' energies (regenerated below 0)",
+          f"{got} vs {sc}")
+    check(np.allclose(bottoms, [sc["energy"][0], sc["energy"][0] + sc["energy_copper_loss"][0],
+                                sc["energy"][1], sc["energy"][1] + sc["energy_copper_loss"][1]],
+                      rtol=1e-15), "energy: mechanical, copper, friction stacked")
+    check(all(np.isclose(got["copper"][i], losses[i][0], rtol=1e-9)
+              and np.isclose(got["friction"][i], losses[i][1], rtol=1e-9) for i in range(2)),
+          "energy: copper and friction bars = trapz(Σ R I²), trapz(Σ τ_c|ω| + b ω²) of the "
+          "kept runs", f"{got['copper']} {got['friction']} vs {losses}")
+    check(got["regenerated"][0] == 0 and got["regenerated"][1] < 0
+          and np.isclose(got["electrical"][0] - got["electrical"][1], -got["regenerated"][1],
+                         rtol=1e-9),
+          "energy: E_el(r = 0) − E_el(r = 1) = the energy regenerated at r = 1",
+          f"{got['electrical']} {got['regenerated']}")
+    plt.close(fig)
+    script = os.path.join(args.source, "analysis", "plot_energy.py")
+    out_dir = os.path.join(d, "energyfigs")
+    r = subprocess.run(["/usr/bin/python3", script, path, out_dir], capture_output=True, text=True)
+    check(r.returncode == 0 and os.listdir(out_dir) == ["energy.png"],
+          "plot_energy.py writes energy.png", r.stderr)
+    r = subprocess.run(["/usr/bin/python3", script, os.path.join(d, "smoke.h5"), out_dir],
+                       capture_output=True, text=True)
+    check(r.returncode != 0 and len(r.stderr.strip().splitlines()) == 1
+          and "electrical" in r.stderr, "plot_energy.py on a sweep without actuators: one "
+          "line, non-zero exit", r.stderr)
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--hexdyn", required=True)
     ap.add_argument("--source", required=True)
     args = ap.parse_args()
+    args.source = os.path.abspath(args.source)  # the scenes written here inherit from it
     sys.path.insert(0, os.path.join(args.source, "analysis"))
     import matplotlib
 
@@ -200,6 +368,8 @@ def main():
         test_paper(args, d)
         test_kraby(args, d)
         test_sweep(args, d)
+        test_drive(args, d)
+        test_energy(args, d)  # after test_sweep: reads its smoke.h5
     if failures:
         print(f"{len(failures)} check(s) failed: {'; '.join(failures)}")
         return 1
