@@ -148,14 +148,10 @@ TEST_CASE("actuators: joints over type over default over the model, field by fie
   ActuatorParams l2_femur = femur;
   l2_femur.resistance_ohm = 7.0;
   l2_femur.regeneration = 0.25;
-  // The tibia entry's model gives all the XM430 gives, its voltage over the default's 11 V;
-  // the values it lacks (armature, friction) stay the default's MX-64 values.
+  // The tibia entry's model replaces the servo: all the XM430 gives, its voltage over the
+  // default's 11 V; the values it lacks (armature, friction) are the built-in defaults, not
+  // the default entry's MX-64 values. Regeneration is not the servo's: the default's stays.
   ActuatorParams tibia = from_table(xm);
-  tibia.armature_kgm2 = table(xm.armature_kgm2, base.armature_kgm2);
-  tibia.coulomb_friction_Nm = table(xm.coulomb_friction_Nm, base.coulomb_friction_Nm);
-  tibia.viscous_friction_Nmsprad =
-      table(xm.viscous_friction_Nmsprad, base.viscous_friction_Nmsprad);
-  tibia.continuous_torque_Nm = table(xm.continuous_torque_Nm, base.continuous_torque_Nm);
   tibia.regeneration = 0.5;
   tibia.thermal_window_s = 2.0;
   // L3_tibia's own model is more specific than both: the MX-64's 12 V, its own peak torque.
