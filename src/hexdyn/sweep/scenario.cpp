@@ -81,8 +81,10 @@ void no_drive_metrics(ScenarioSummary& s) {
     a->fill(kNaN);
 }
 
-/// True when some leg of sample i is in its touchdown transient (phase impact).
+/// True when some leg of sample i is in its touchdown transient (phase impact); false for a
+/// run without phases (a result built by hand).
 bool in_transient(const RowMatrixI8& phase, int i) {
+  if (i >= phase.rows()) return false;
   for (int l = 0; l < kLegs; ++l)
     if (phase(i, l) == static_cast<std::int8_t>(ContactPhase::kImpact)) return true;
   return false;
