@@ -140,15 +140,13 @@ ElectricalResult compute_electrical(const DriveTrainParams& drive, const std::ve
       const ActuatorParams& a = drive.joints[k];
       const double w = qd(i, k);
       const double I = motor_current(a, tau(i, k), w);
-      const double loss = a.resistance_ohm * I * I;
-      const double P = loss + a.gear_ratio * a.torque_constant_NmpA * w * I;
-      const double drawn = P >= 0.0 ? P : a.regeneration * P;
+      const double drawn = electrical_power(a, tau(i, k), w);
       e.current_A(i, k) = I;
       e.power_W(i, k) = drawn;
       e.total_power_W[i] += drawn;
-      copper[i] += loss;
+      copper[i] += a.resistance_ohm * I * I;
       friction[i] += a.coulomb_friction_Nm * std::abs(w) + a.viscous_friction_Nmsprad * w * w;
-      if (P < 0.0) regenerated[i] -= a.regeneration * P;
+      regenerated[i] += std::max(0.0, -drawn);  // r P of a negative P: what returns
     }
   }
   e.energy_J = trapezoid(t, e.total_power_W.data());

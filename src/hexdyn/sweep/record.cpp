@@ -124,18 +124,6 @@ auto double_fields(S& s) {
                     &s.thermal_load};
 }
 
-/// The summary's per-joint arrays in record order.
-template <class S>
-auto joint_fields(S& s) {
-  return std::array{&s.peak_torque_Nm,
-                    &s.rms_torque_Nm,
-                    &s.peak_torque_gait_Nm,
-                    &s.peak_torque_transient_Nm,
-                    &s.peak_drive_torque_gait_Nm,
-                    &s.peak_drive_torque_transient_Nm,
-                    &s.drive_torque_window_rms_Nm};
-}
-
 void append_record(std::vector<char>& b, const ScenarioRecord& r) {
   const ScenarioSummary& s = r.summary;
   put_pod(b, static_cast<std::uint64_t>(s.index));
@@ -146,7 +134,7 @@ void append_record(std::vector<char>& b, const ScenarioRecord& r) {
   put_pod(b, static_cast<std::int32_t>(s.failed_samples));
   put_pod(b, static_cast<std::int32_t>(s.relaxed_gait_samples));
   for (const double* v : double_fields(s)) put_pod(b, *v);
-  for (const auto* a : joint_fields(s))
+  for (const auto* a : per_joint_metrics(s))
     for (double v : *a) put_pod(b, v);
   put_bytes(b, r.run_image.data(), r.run_image.size());
 }
@@ -176,7 +164,7 @@ ScenarioRecord decode_record(const char* data, std::size_t size, bool with_image
   s.failed_samples = u.get<std::int32_t>();
   s.relaxed_gait_samples = u.get<std::int32_t>();
   for (double* v : double_fields(s)) *v = u.get<double>();
-  for (auto* a : joint_fields(s))
+  for (auto* a : per_joint_metrics(s))
     for (double& v : *a) v = u.get<double>();
   const std::size_t k = u.length();
   if (image_offset) *image_offset = u.at();

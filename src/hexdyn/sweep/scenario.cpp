@@ -60,17 +60,6 @@ ScenarioStatus classify_exception(const std::exception& e) {
 
 namespace {
 
-/// Every per-joint metric of a row.
-std::array<std::array<double, kJoints>*, 7> per_joint_metrics(ScenarioSummary& s) {
-  return {&s.peak_torque_Nm,
-          &s.rms_torque_Nm,
-          &s.peak_torque_gait_Nm,
-          &s.peak_torque_transient_Nm,
-          &s.peak_drive_torque_gait_Nm,
-          &s.peak_drive_torque_transient_Nm,
-          &s.drive_torque_window_rms_Nm};
-}
-
 /// The drive train's metrics of a row without actuators: NaN.
 void no_drive_metrics(ScenarioSummary& s) {
   s.energy_electrical_J = s.cost_of_transport_electrical = s.peak_electrical_power_W = kNaN;

@@ -73,6 +73,19 @@ struct ScenarioSummary {
   double wall_time_s = 0.0;  ///< time to compute the scenario [s] (timing field)
 };
 
+/// Every per-joint metric of a row, in record order (sweep/record.cpp writes and reads them in
+/// it; failed_summary fills them with NaN). S is ScenarioSummary or const ScenarioSummary.
+template <class S>
+auto per_joint_metrics(S& s) {
+  return std::array{&s.peak_torque_Nm,
+                    &s.rms_torque_Nm,
+                    &s.peak_torque_gait_Nm,
+                    &s.peak_torque_transient_Nm,
+                    &s.peak_drive_torque_gait_Nm,
+                    &s.peak_drive_torque_transient_Nm,
+                    &s.drive_torque_window_rms_Nm};
+}
+
 /// Summary metrics of a computed scenario. RMS is over time, with the trapezoidal
 /// rule on the output grid: sqrt(∫ τ² dt / (t_end − t_0)), so that a grid refined near
 /// touchdowns does not weigh them more (|τ_0| for a single sample).
