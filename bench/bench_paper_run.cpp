@@ -8,6 +8,7 @@
 
 #include "bench_paper.hpp"
 #include "hexdyn/pipeline/pipeline.hpp"
+#include "hexdyn/pipeline/stage_times.hpp"
 
 namespace {
 
@@ -79,6 +80,27 @@ void BM_ActuatorCostRatio(benchmark::State& state) {
   state.counters["with_ms"] = 1e3 * with_s / static_cast<double>(state.iterations());
 }
 BENCHMARK(BM_ActuatorCostRatio)->Unit(benchmark::kMillisecond)->MinTime(2.0);
+
+/// The cost of the required friction (docs/theory/grip.md#cost): the stage times of the paper
+/// scene's run, counter `ratio` the grip stage (utilised friction, slip flags, required
+/// friction) over the allocation stage, both timed in the same runs (issue target: at most
+/// 1.5). Arg 0: the scene's pyramid; 1: the exact cone. Counters `newton_share` and
+/// `probes_per_sample` say how the required friction was found.
+void BM_RequiredFrictionCost(benchmark::State& state) {
+  Scene scene = load_scene(bench::paper_scene_path());
+  if (state.range(0) == 1) scene.allocation.friction = FrictionModel::kCone;
+  const PreparedScene prep = prepare_scene(scene);
+  StageTimes times;
+  for (auto _ : state) {
+    const RunResult r = run_prepared_scene(scene, prep, nullptr, &times);
+    benchmark::DoNotOptimize(r.dyn.required_friction.data());
+  }
+  state.counters["ratio"] = times[Stage::kGrip] / times[Stage::kAllocation];
+  state.counters["allocation_ms"] =
+      1e3 * times[Stage::kAllocation] / static_cast<double>(state.iterations());
+  state.counters["grip_ms"] = 1e3 * times[Stage::kGrip] / static_cast<double>(state.iterations());
+}
+BENCHMARK(BM_RequiredFrictionCost)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->MinTime(2.0);
 
 void BM_PaperRunIpopt(benchmark::State& state) { run_paper(state, AllocationSolver::kIpopt); }
 BENCHMARK(BM_PaperRunIpopt)->Unit(benchmark::kMillisecond)->Iterations(1);

@@ -58,6 +58,7 @@ RESULT_PRESENCE = {
     "kKinematicDatasets": "always",
     "kUrdfRobotDatasets": "URDF robot",
     "kDynamicsDatasets": "dynamics",
+    "kRequiredFrictionDatasets": "dynamics, unless output.required_friction is false",
     "kDriveTrainDatasets": "actuators",
 }
 

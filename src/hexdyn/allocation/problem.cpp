@@ -168,7 +168,7 @@ void note_swing_leg_excess(const AllocationParams& alloc, const DriveRows* drive
 /// its friction faces (faces per leg, 0 for the exact cone; friction coefficient mu), and
 /// a support leg's second-order cone under the exact cone. Returns the next row.
 int add_leg_rows(const AllocationParams& alloc, const DriveRows* drive, const LinearTerms& t,
-                 const AllocationLayout& layout, const std::array<ContactPhase, kLegs>& phase,
+                 AllocationLayout& layout, const std::array<ContactPhase, kLegs>& phase,
                  const std::array<double, kLegs>& impact_force_N, int faces, double mu, int l,
                  int row, QpProblem& qp) {
   const int o = layout.legs[l].offset;
@@ -189,6 +189,10 @@ int add_leg_rows(const AllocationParams& alloc, const DriveRows* drive, const Li
     qp.ineq_names[row++] = row_names().normal[l];
   }
   const int nf = faces ? faces : (support ? 0 : kImpactConeFaces);
+  AllocationLayout::Leg& leg = layout.legs[l];
+  leg.friction_row = nf ? row : -1;
+  leg.friction_faces = nf;
+  leg.face_reach = nf ? std::cos(M_PI / nf) : 1.0;
   for (int f = 0; f < nf; ++f, ++row) {
     const FrictionFace face = inscribed_friction_face(f, nf, mu);
     qp.C(row, o) = face.cos_a;
@@ -203,9 +207,11 @@ int add_leg_rows(const AllocationParams& alloc, const DriveRows* drive, const Li
     qp.ineq_penalty[row] = kContactRowPenaltyWeight;
     qp.ineq_names[row] = row_names().face[l][f];
   }
-  if (!faces && support)
+  if (!faces && support) {
+    leg.cone = static_cast<int>(qp.cones.size());
     qp.cones.push_back(
         {o, o + 1, o + 2, mu, "friction cone " + leg_name(l), kContactRowPenaltyWeight});
+  }
   return row;
 }
 

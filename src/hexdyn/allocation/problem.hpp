@@ -35,6 +35,14 @@ struct AllocationLayout {
     int count = 0;
     Mat3 W_R_contact = Mat3::Identity();  ///< contact frame [t1 t2 n] in world axes
     double known_normal_force_N = 0.0;    ///< an impact leg's transient force along n [N]
+    /// The leg's friction rows: faces f = 0 … friction_faces − 1 at inequality rows
+    /// friction_row + f, each  cos a f_t1 + sin a f_t2 ≤ μ·face_reach·f_n (allocation/friction.hpp,
+    /// f_n the variable of a support leg or known_normal_force_N of an impact leg); −1 and 0
+    /// without faces. cone: index of the leg's second-order cone in QpProblem::cones, −1 none.
+    int friction_row = -1;
+    int friction_faces = 0;
+    double face_reach = 1.0;  ///< cos(π / friction_faces), the face's reach per unit μ f_n
+    int cone = -1;
   };
   std::array<Leg, kLegs> legs;
   int variables = 0;

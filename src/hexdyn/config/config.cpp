@@ -461,6 +461,9 @@ void read_output(Reader& r, OutputParams& o) {
   o.tolerance = r.number_or("output.tolerance", defaults().output.tolerance, closed(0.0, 0.1));
   const std::string def_compression = compression_word(defaults().output.compress);
   o.compress = r.choice("output.compression", {"deflate", "none"}, &def_compression) == "deflate";
+  const std::string def_required = defaults().output.required_friction ? "true" : "false";
+  o.required_friction =
+      r.choice("output.required_friction", {"true", "false"}, &def_required) == "true";
   if (o.event_step_s > o.sample_step_s)
     r.fail("output.event_step", "got " + fmt(o.event_step_s) +
                                     ", expected at most output.sample_step (" +

@@ -56,7 +56,8 @@ DynamicsResult gather_samples(const std::vector<const DynamicsResult*>& parts,
   using D = DynamicsResult;
   DynamicsResult out;
   out.present = true;
-  for (RowMatrix D::*m : {&D::joint_torque, &D::contact_force, &D::penetration})
+  for (RowMatrix D::*m :
+       {&D::joint_torque, &D::contact_force, &D::penetration, &D::utilized_friction})
     out.*m = gather_rows<RowMatrix>(
         parts, order, [m](const D& d) -> auto& { return d.*m; });
   out.solver_status = gather_entries<SolverStatus>(
@@ -65,6 +66,14 @@ DynamicsResult gather_samples(const std::vector<const DynamicsResult*>& parts,
        {&D::solver_iterations, &D::solver_objective, &D::solver_seconds, &D::solver_max_violation})
     out.*v = gather_entries<double>(
         parts, order, [v](const D& d) -> auto& { return d.*v; });
+  out.slip = gather_rows<RowMatrixI8>(
+      parts, order, [](const D& d) -> auto& { return d.slip; });
+  if (!parts.empty() && !parts.front()->required_friction.empty()) {
+    out.required_friction = gather_entries<double>(
+        parts, order, [](const D& d) -> auto& { return d.required_friction; });
+    out.required_friction_leg = gather_entries<std::int8_t>(
+        parts, order, [](const D& d) -> auto& { return d.required_friction_leg; });
+  }
   out.solver_messages = gather_entries<std::string>(
       parts, order, [](const D& d) -> auto& { return d.solver_messages; });
   if (!parts.empty() && parts.front()->has_drive())

@@ -93,6 +93,19 @@ struct DynamicsResult {
   RowMatrix joint_torque;   ///< T×18 [N m]
   RowMatrix contact_force;  ///< T×18 = (T,6,3), terrain on foot, world [N]
   RowMatrix penetration;    ///< T×6 [m]
+  /// T×6, |F_t| / F_n of the chosen force in the contact frame of each support or impact leg,
+  /// NaN on a swing leg (+inf where F_n ≤ 0 < |F_t|) (docs/theory/grip.md#utilised-friction).
+  RowMatrix utilized_friction;
+  /// T×6, 1 where a friction face or cone of the leg holds only with slack at the scene's μ:
+  /// the foot would slip (docs/theory/grip.md#slip-onset); 0 elsewhere.
+  RowMatrixI8 slip;
+  /// T, the least μ for which the sample's rows admit a force distribution, NaN where none
+  /// does (docs/theory/grip.md#required-friction); empty when output.required_friction is
+  /// false.
+  std::vector<double> required_friction;
+  /// T, the leg whose friction binds at the required friction (0..5), −1 where none does;
+  /// empty with required_friction.
+  std::vector<std::int8_t> required_friction_leg;
   std::vector<ImpactRecord> impacts;
   RowMatrix joint_power;                     ///< T×18 [W]
   std::vector<double> total_power_W;         ///< T, Σ|τ ω|

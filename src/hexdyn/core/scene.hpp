@@ -222,6 +222,9 @@ struct OutputParams {
   /// output.compression: deflate (true: shuffle + deflate on numeric datasets of at least
   /// 4 KiB, io/h5io.hpp) or none (every dataset contiguous and uncompressed).
   bool compress = true;
+  /// output.required_friction: compute the least μ each sample needs
+  /// (docs/theory/grip.md#required-friction) and write /contacts/required_friction.
+  bool required_friction = true;
 };
 
 /// A default-constructed Scene holds the default of every optional scene key (config.cpp

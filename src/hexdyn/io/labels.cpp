@@ -176,6 +176,7 @@ const s::DatasetSpec* result_spec(const std::string& path) {
   find(s::kUrdfRobotDatasets);
   find(s::kKinematicDatasets);
   find(s::kDynamicsDatasets);
+  find(s::kRequiredFrictionDatasets);
   find(s::kDriveTrainDatasets);
   find(s::kResultCoordinates);
   find(s::kResultIndexCoordinates);

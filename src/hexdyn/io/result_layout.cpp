@@ -166,6 +166,16 @@ void add_dynamics(Builder& b, const DynamicsResult& d, int T, std::size_t cycles
   b.matrix(s::kJointTorque, d.joint_torque, T, kJoints, {t, kJoints});
   b.matrix(s::kContactForce, d.contact_force, T, 3 * kLegs, {t, kLegs, 3});
   b.matrix(s::kContactPenetration, d.penetration, T, kLegs, {t, kLegs});
+  b.matrix(s::kContactUtilizedFriction, d.utilized_friction, T, kLegs, {t, kLegs});
+  b.matrix(s::kContactSlip, d.slip, T, kLegs, {t, kLegs});
+  if (!d.required_friction.empty()) {
+    b.vector(s::kRequiredFriction, d.required_friction, t);
+    if (d.required_friction_leg.size() != t)
+      throw IoError(std::string(s::kRequiredFrictionLeg.path) + " has " +
+                    std::to_string(d.required_friction_leg.size()) + " entries, expected " +
+                    std::to_string(t));
+    b.add(s::kRequiredFrictionLeg, {t}, d.required_friction_leg);
+  }
 
   const std::size_t n = d.impacts.size();
   std::vector<std::int32_t> leg(n);

@@ -293,6 +293,25 @@ inline constexpr DatasetSpec kContactForce{"/contacts/force", "N", Shape::kT6x3,
 inline constexpr DatasetSpec kContactPenetration{"/contacts/penetration", "m", Shape::kT6,
                                                  Element::kFloat64,
                                                  "foot penetration into the terrain"};
+/// |F_t| / F_n of the chosen force in each foot's contact frame (docs/theory/grip.md); NaN on
+/// a swing leg.
+inline constexpr DatasetSpec kContactUtilizedFriction{"/contacts/utilized_friction", "1",
+                                                      Shape::kT6, Element::kFloat64,
+                                                      "utilised friction coefficient"};
+/// 1 where the leg's friction face or cone held only with slack at the scene's μ (the foot
+/// would slip), 0 elsewhere (CF flags kContactSlipFlags).
+inline constexpr DatasetSpec kContactSlip{"/contacts/slip", "", Shape::kT6, Element::kInt8,
+                                          "slip onset flag"};
+/// The least friction coefficient for which the sample's rows admit a force distribution
+/// under the scene's friction model; NaN where none does (the reason in /solver/messages).
+/// Written unless output.required_friction is false.
+inline constexpr DatasetSpec kRequiredFriction{"/contacts/required_friction", "1", Shape::kT,
+                                               Element::kFloat64, "required friction coefficient"};
+/// The leg whose friction binds at the required friction, 0-based (an index into the `leg`
+/// dimension), −1 where none does. Written with /contacts/required_friction.
+inline constexpr DatasetSpec kRequiredFrictionLeg{"/contacts/required_friction_leg", "", Shape::kT,
+                                                  Element::kInt8,
+                                                  "leg binding the required friction"};
 /// Leg of each touchdown, 0-based (0..5): an index into the `leg` dimension (L1 is 0).
 inline constexpr DatasetSpec kImpactLeg{"/impacts/leg", "", Shape::kN, Element::kInt32,
                                         "leg of the touchdown, index into the leg dimension"};
@@ -422,6 +441,7 @@ inline constexpr DatasetSpec kTerrainPointCoordinate{
 inline constexpr FlagSpec kContactPhaseFlags{"/contacts/phase", "swing impact support"};
 inline constexpr FlagSpec kSolverStatusFlags{"/solver/status", "optimal relaxed failed"};
 inline constexpr FlagSpec kSampleKindFlags{"/sample_kind", "ordinary left_limit"};
+inline constexpr FlagSpec kContactSlipFlags{"/contacts/slip", "holds slips"};
 
 /// Every dataset present in every result file.
 inline constexpr std::array kModelDatasets{kModelUrdf, kModelJointNames, kModelLegNames,
@@ -444,10 +464,12 @@ inline constexpr std::array kUrdfRobotDatasets{kModelLegMapping};
 /// Datasets present when the dynamic stages ran.
 // clang-format off
 inline constexpr std::array kDynamicsDatasets{
-    kJointTorque, kContactForce, kContactPenetration, kImpactLeg, kImpactStart, kImpactDuration,
+    kJointTorque, kContactForce, kContactPenetration, kContactUtilizedFriction, kContactSlip, kImpactLeg, kImpactStart, kImpactDuration,
     kImpactPeakForce, kImpactImpulse, kImpactEffectiveMass, kImpactApproachSpeed, kJointPower,
     kTotalPower, kEnergyTotal, kEnergyJoint, kEnergyCycle, kCostOfTransport, kEnergyDistance,
     kSolverStatus, kSolverIterations, kSolverObjective, kSolverSeconds, kSolverMessages};
+/// Datasets present with the dynamics unless output.required_friction is false.
+inline constexpr std::array kRequiredFrictionDatasets{kRequiredFriction, kRequiredFrictionLeg};
 /// Datasets present when the scene had actuators (besides the dynamics).
 inline constexpr std::array kDriveTrainDatasets{
     kDriveTorque, kDriveTorqueLimit, kMotorCurrent, kDriveTorqueRms, kDriveTorqueWindowRms,

@@ -150,8 +150,8 @@ inline constexpr std::array kEnvelopeCaseDatasets{
 
 inline constexpr FlagSpec kProbePassedFlags{"/probes/passed", "failed passed"};
 /// Every CF flag declaration of the three file kinds.
-inline constexpr std::array kFlags{kContactPhaseFlags, kSolverStatusFlags, kSampleKindFlags,
-                                   kScenarioStatusFlags, kProbePassedFlags};
+inline constexpr std::array kFlags{kContactPhaseFlags, kSolverStatusFlags,   kSampleKindFlags,
+                                   kContactSlipFlags,  kScenarioStatusFlags, kProbePassedFlags};
 
 /// Every dataset of an envelope file.
 // clang-format off

@@ -99,6 +99,12 @@ PreparedScene prepare_scene(const Scene& scene, StageTimes* times) {
                        std::move(kind)};
 }
 
+SampleProblem sample_problem(const Scene& scene, const PreparedScene& prep, double t_s) {
+  ContactSchedule contacts;
+  const KinematicsResult kin = sample_with_contacts(prep, {t_s}, contacts, nullptr);
+  return solve_sample_problem(scene, prep.model, kin, 0, contacts.samples.front());
+}
+
 RunResult run_scene(const Scene& scene, std::ostream* log) {
   const auto start = std::chrono::steady_clock::now();
   RunResult result = run_prepared_scene(scene, prepare_scene(scene), log);

@@ -20,6 +20,7 @@
 #include "hexdyn/core/scene.hpp"
 #include "hexdyn/model/robot_model.hpp"
 #include "hexdyn/pipeline/run.hpp"  // IWYU pragma: export (run_scene)
+#include "hexdyn/pipeline/solve_dynamics.hpp"
 #include "hexdyn/pipeline/stage_times.hpp"
 #include "hexdyn/planning/plan.hpp"
 
@@ -44,5 +45,10 @@ PreparedScene prepare_scene(const Scene& scene, StageTimes* times = nullptr);
 /// wall_time_s counts from this call.
 RunResult run_prepared_scene(const Scene& scene, const PreparedScene& prep,
                              std::ostream* log = nullptr, StageTimes* times = nullptr);
+
+/// The allocation problem of the instant t_s of a prepared scene, as the run solves it
+/// (solve_dynamics.hpp SampleProblem, docs/theory/grip.md#one-samples-rows): for second
+/// computations of the allocation or the required friction, and for inspection.
+SampleProblem sample_problem(const Scene& scene, const PreparedScene& prep, double t_s);
 
 }  // namespace hexdyn

@@ -1,6 +1,8 @@
 #include "hexdyn/pipeline/solve_dynamics.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <ostream>
@@ -9,6 +11,7 @@
 
 #include "hexdyn/allocation/backends.hpp"
 #include "hexdyn/allocation/problem.hpp"
+#include "hexdyn/allocation/required_friction.hpp"
 #include "hexdyn/core/cancel.hpp"
 #include "hexdyn/core/errors.hpp"
 #include "hexdyn/drive/drive.hpp"
@@ -38,6 +41,14 @@ struct SampleSolution {
   /// (AllocationLayout).
   double constant_excess_Nm = 0.0;
   std::string constant_violation;
+  /// The grip of the sample (docs/theory/grip.md): |F_t| / F_n per leg (NaN on a swing leg),
+  /// the legs whose friction held only with slack, and the required friction (NaN when not
+  /// computed or none suffices) with its binding leg and, when NaN, why.
+  std::array<double, kLegs> utilized_friction{};
+  std::array<bool, kLegs> slip{};
+  double required_friction = 0.0;
+  int required_friction_leg = -1;
+  std::string required_friction_message;
 };
 
 /// The allocation of one sample with its workspace: the dynamics buffers, the problem and
@@ -50,6 +61,9 @@ class SampleSolver {
         data_(model),
         backend_(make_allocation_backend(scene.allocation)) {
     if (scene.actuators.present) rows_.weight = objective_weights(scene);
+    if (scene.output.required_friction)
+      required_ =
+          std::make_unique<RequiredFrictionSolver>(make_allocation_backend(scene.allocation));
   }
 
   /// Solves sample i of `kin` under contacts `c`; `times` (may be null) as solve_dynamics.
@@ -64,7 +78,8 @@ class SampleSolver {
     clock.emplace(times, Stage::kAllocation);
     const bool drive = scene_.actuators.present;
     if (drive) drive_rows(qd, qdd);
-    AllocationLayout layout =
+    AllocationLayout& layout = layout_;
+    layout =
         build_allocation_problem(scene_.allocation, scene_.contact, split, c.phase,
                                  c.impact_force_N, c.W_R_contact, qp_, drive ? &rows_ : nullptr);
     SampleSolution s;
@@ -80,9 +95,15 @@ class SampleSolver {
     s.measured_violations = describe_violations(qp_, s.outcome->x, kViolationThreshold,
                                                 &s.measured_max_violation, violations_);
     s.constant_excess_Nm = layout.constant_excess_Nm;
-    s.constant_violation = std::move(layout.constant_violation);
+    clock.emplace(times, Stage::kGrip);
+    grip(c, layout, s);
+    s.constant_violation = layout.constant_violation;
     return s;
   }
+
+  /// The problem and layout of the last solve.
+  const QpProblem& problem() const { return qp_; }
+  const AllocationLayout& layout() const { return layout_; }
 
  private:
   /// The drive train's rows of a sample at joint rates qd and accelerations qdd: offsets,
@@ -100,6 +121,28 @@ class SampleSolver {
     }
   }
 
+  /// The grip fields of s (SampleSolution), from its forces and the problem just solved.
+  void grip(const SampleContacts& c, const AllocationLayout& layout, SampleSolution& s) {
+    for (int l = 0; l < kLegs; ++l) {
+      const Vec3 F_c = c.W_R_contact[l].transpose() * s.foot_forces_W[l];
+      const double ft = std::hypot(F_c.x(), F_c.y());
+      s.utilized_friction[l] = c.phase[l] == ContactPhase::kSwing
+                                   ? std::numeric_limits<double>::quiet_NaN()
+                               : F_c.z() > 0.0 ? ft / F_c.z()
+                               : ft > 0.0      ? std::numeric_limits<double>::infinity()
+                                               : 0.0;
+    }
+    s.slip = slipping_legs(qp_, layout, s.outcome->x);
+    s.required_friction = std::numeric_limits<double>::quiet_NaN();
+    if (!required_) return;
+    const bool holds = s.outcome->status == SolverStatus::kOptimal &&
+                       s.measured_violations.empty() && s.constant_excess_Nm <= kViolationThreshold;
+    const RequiredFriction& r = required_->solve(qp_, layout, holds ? &s.outcome->x : nullptr);
+    s.required_friction = r.mu;
+    s.required_friction_leg = r.leg;
+    s.required_friction_message = r.message;
+  }
+
   /// The objective's weights of τ_drive²: 1 for torque_squared; for copper_loss each joint's
   /// R / (G k_t η)² over the largest, the same minimiser as the loss itself, while the slack
   /// penalties keep the scale they have against Σ τ² (docs/theory/drive-train.md#objective).
@@ -115,8 +158,10 @@ class SampleSolver {
   RobotData data_;
   std::unique_ptr<AllocationBackend> backend_;
   QpProblem qp_;
+  AllocationLayout layout_;
   ViolationWorkspace violations_;
   DriveRows rows_;
+  std::unique_ptr<RequiredFrictionSolver> required_;  ///< null: output.required_friction false
 };
 
 namespace {
@@ -211,13 +256,20 @@ class EpisodeLog {
   std::string message_;
 };
 
-/// A result of T samples, every per-sample field zero (the drive train's too, with `drive`).
-DynamicsResult empty_result(int T, bool drive) {
+/// A result of T samples, every per-sample field zero (the drive train's too, with `drive`;
+/// the required friction with `required`).
+DynamicsResult empty_result(int T, bool drive, bool required) {
   DynamicsResult dyn;
   dyn.present = true;
   dyn.joint_torque.setZero(T, kJoints);
   dyn.contact_force.setZero(T, 3 * kLegs);
   dyn.penetration.setZero(T, kLegs);
+  dyn.utilized_friction.setConstant(T, kLegs, std::numeric_limits<double>::quiet_NaN());
+  dyn.slip.setZero(T, kLegs);
+  if (required) {
+    dyn.required_friction.assign(T, std::numeric_limits<double>::quiet_NaN());
+    dyn.required_friction_leg.assign(T, -1);
+  }
   dyn.solver_status.assign(T, SolverStatus::kOptimal);
   dyn.solver_iterations.assign(T, 0.0);
   dyn.solver_objective.assign(T, 0.0);
@@ -245,7 +297,7 @@ DynamicsResult DynamicsSolver::solve(const KinematicsResult& kin, const ContactS
     throw SolverError("solve_dynamics: contact schedule of " +
                       std::to_string(contacts.samples.size()) + " samples, expected " +
                       std::to_string(T));
-  DynamicsResult dyn = empty_result(T, scene_.actuators.present);
+  DynamicsResult dyn = empty_result(T, scene_.actuators.present, scene_.output.required_friction);
   for (int i = 0; i < T; ++i) {
     check_cancelled();
     const SampleContacts& c = contacts.samples[i];
@@ -284,9 +336,35 @@ DynamicsResult DynamicsSolver::solve(const KinematicsResult& kin, const ContactS
         delta = static_penetration(scene_.contact, std::max(0.0, F_W.dot(c.W_R_contact[l].col(2))));
       dyn.penetration(i, l) = delta;
     }
+    for (int l = 0; l < kLegs; ++l) {
+      dyn.utilized_friction(i, l) = solution.utilized_friction[l];
+      dyn.slip(i, l) = solution.slip[l] ? 1 : 0;
+    }
+    if (!dyn.required_friction.empty()) {
+      dyn.required_friction[i] = solution.required_friction;
+      dyn.required_friction_leg[i] = static_cast<std::int8_t>(solution.required_friction_leg);
+      if (!solution.required_friction_message.empty())
+        verdict.message +=
+            (verdict.message.empty() ? "" : "; ") + solution.required_friction_message;
+    }
     dyn.solver_messages[i] = std::move(verdict.message);
   }
   return dyn;
+}
+
+SampleProblem solve_sample_problem(const Scene& scene, const RobotModel& model,
+                                   const KinematicsResult& kin, int i, const SampleContacts& c) {
+  SampleSolver solver(scene, model);
+  const SampleSolution s = solver.solve(kin, i, c, nullptr);
+  SampleProblem p;
+  p.qp = solver.problem();
+  p.layout = solver.layout();
+  p.phase = c.phase;
+  p.x = s.outcome->x;
+  p.status = sample_verdict(s, c, scene.allocation.torque_limit_Nm).status;
+  p.required_friction = s.required_friction;
+  p.required_friction_leg = s.required_friction_leg;
+  return p;
 }
 
 void finish_dynamics(const Scene& scene, const RobotModel& model, const MotionPlan& plan,

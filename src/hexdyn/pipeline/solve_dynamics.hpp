@@ -9,6 +9,7 @@
 #include <memory>
 #include <vector>
 
+#include "hexdyn/allocation/problem.hpp"
 #include "hexdyn/contact/touchdowns.hpp"
 #include "hexdyn/core/result.hpp"
 #include "hexdyn/core/scene.hpp"
@@ -19,6 +20,23 @@
 namespace hexdyn {
 
 class SampleSolver;
+
+/// One sample's allocation problem as the run solves it: its rows at the scene's μ
+/// (allocation/qp.hpp), the variable layout, the contact phases, and the answers of the
+/// allocation and of the required friction (docs/theory/grip.md#one-samples-rows).
+struct SampleProblem {
+  QpProblem qp;
+  AllocationLayout layout;
+  std::array<ContactPhase, kLegs> phase{};
+  Eigen::VectorXd x;  ///< the allocation's solution (contact-frame forces [N])
+  SolverStatus status = SolverStatus::kOptimal;
+  double required_friction = 0.0;  ///< NaN where none suffices (or not computed)
+  int required_friction_leg = -1;
+};
+
+/// Sample i of `kin` under contacts `c`, solved alone (cold back ends).
+SampleProblem solve_sample_problem(const Scene& scene, const RobotModel& model,
+                                   const KinematicsResult& kin, int i, const SampleContacts& c);
 
 /// The per-sample part of the dynamics stage with the workspace it keeps between calls: the
 /// dynamics buffers, the allocation problem and the back end, whose warm start carries from one

@@ -20,6 +20,7 @@ enum class Stage {
   kRnea,        ///< per sample: affine split of the equations of motion (RNEA)
   kAllocation,  ///< per sample: allocation problem, back end's solve, forces and torques
   kVerdict,     ///< per sample: measured violations, status, message, result rows
+  kGrip,        ///< per sample: utilised and required friction, slip flags
   kRefinement,  ///< the output grid's error estimates and the gathering of refined samples
   kPower,       ///< joint power, energy, cost of transport
   kAssembly,    ///< the result's remaining fields: URDF text, names, terrain profile
@@ -27,8 +28,8 @@ enum class Stage {
 };
 
 constexpr std::array<std::string_view, static_cast<int>(Stage::kCount)> kStageNames = {
-    "model", "posture",    "planning", "touchdowns", "grid",  "kinematics", "contacts",
-    "rnea",  "allocation", "verdict",  "refinement", "power", "assembly"};
+    "model", "posture",    "planning", "touchdowns", "grid",       "kinematics", "contacts",
+    "rnea",  "allocation", "verdict",  "grip",       "refinement", "power",      "assembly"};
 
 struct StageTimes {
   std::array<double, static_cast<int>(Stage::kCount)> seconds{};  ///< [s] per Stage

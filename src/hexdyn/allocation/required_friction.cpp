@@ -1,0 +1,696 @@
+#include "hexdyn/allocation/required_friction.hpp"
+
+#include <Eigen/LU>
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <sstream>
+#include <utility>
+
+namespace hexdyn {
+
+void set_friction_coefficient(const AllocationLayout& layout, double mu, QpProblem& qp) {
+  for (const AllocationLayout::Leg& leg : layout.legs) {
+    if (leg.offset < 0) continue;
+    for (int f = 0; f < leg.friction_faces; ++f) {
+      const int row = leg.friction_row + f;
+      if (leg.count == 3)
+        qp.C(row, leg.offset + 2) = -mu * leg.face_reach;
+      else
+        qp.upper[row] = mu * leg.face_reach * leg.known_normal_force_N;
+    }
+    if (leg.cone >= 0) qp.cones[static_cast<std::size_t>(leg.cone)].mu = mu;
+  }
+}
+
+double friction_use(const QpProblem& qp, const AllocationLayout& layout, const Eigen::VectorXd& x,
+                    int* leg_out) {
+  const double inf = std::numeric_limits<double>::infinity();
+  double worst = -1.0;
+  int worst_leg = -1;
+  for (int l = 0; l < kLegs; ++l) {
+    const AllocationLayout::Leg& leg = layout.legs[l];
+    if (leg.offset < 0 || (leg.friction_faces == 0 && leg.cone < 0)) continue;
+    const double t1 = x[leg.offset], t2 = x[leg.offset + 1];
+    const double fn = leg.count == 3 ? x[leg.offset + 2] : leg.known_normal_force_N;
+    // The largest tangential reach over the leg's faces (or the cone's |t|) per unit f_n.
+    double reach = 0.0;
+    if (leg.cone >= 0) {
+      reach = std::hypot(t1, t2);
+    } else {
+      for (int f = 0; f < leg.friction_faces; ++f) {
+        const int row = leg.friction_row + f;
+        reach = std::max(
+            reach, (qp.C(row, leg.offset) * t1 + qp.C(row, leg.offset + 1) * t2) / leg.face_reach);
+      }
+    }
+    const double use = reach <= 0.0 ? 0.0 : fn > 0.0 ? reach / fn : inf;
+    if (use > worst) {
+      worst = use;
+      worst_leg = l;
+    }
+  }
+  if (leg_out) *leg_out = worst_leg;
+  return std::max(worst, 0.0);
+}
+
+std::array<bool, kLegs> slipping_legs(const QpProblem& qp, const AllocationLayout& layout,
+                                      const Eigen::VectorXd& x) {
+  std::array<bool, kLegs> slips{};
+  for (int l = 0; l < kLegs; ++l) {
+    const AllocationLayout::Leg& leg = layout.legs[l];
+    if (leg.offset < 0) continue;
+    for (int f = 0; f < leg.friction_faces && !slips[l]; ++f) {
+      const int row = leg.friction_row + f;
+      const double excess = qp.C.row(row).dot(x) - qp.upper[row];
+      slips[l] = excess > kViolationThreshold * std::max(1.0, std::abs(qp.upper[row]));
+    }
+    if (leg.cone >= 0) {
+      const SecondOrderCone& c = qp.cones[static_cast<std::size_t>(leg.cone)];
+      const double excess = std::hypot(x[c.tangent1], x[c.tangent2]) - c.mu * x[c.normal];
+      slips[l] = slips[l] || excess > kViolationThreshold * std::max(1.0, c.mu * x[c.normal]);
+    }
+  }
+  return slips;
+}
+
+namespace {
+
+constexpr int kMaxUnknowns = 3 * kLegs + 1;  ///< n forces and μ
+using SquareMatrix =
+    Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxUnknowns, kMaxUnknowns>;
+using SmallVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxUnknowns, 1>;
+/// The number of trunk rows, the first inequality rows of every allocation problem
+/// (allocation/problem.hpp), equal bounds.
+constexpr int kTrunkRows = 6;
+
+/// Faces of the outer polygon that stands in for an exact cone, and the bit that marks the
+/// polygon problem's structural key.
+constexpr int kConeFaces = 8;
+constexpr std::uint64_t kConePolygonKey = std::uint64_t{1} << 62;
+
+/// An active row: `side` +1 at its upper bound, −1 at its lower bound, 0 both (a trunk row).
+struct ActiveRow {
+  int row = 0;
+  int side = 0;
+};
+
+/// Rows of a face with its μ dependence: the derivative of the row's value C x − bound with
+/// respect to μ at x.
+double row_mu_derivative(const AllocationLayout& layout, const Eigen::VectorXd& x, int row,
+                         int side) {
+  for (const AllocationLayout::Leg& leg : layout.legs) {
+    if (leg.offset < 0 || row < leg.friction_row || row >= leg.friction_row + leg.friction_faces)
+      continue;
+    if (leg.count == 3) return -leg.face_reach * x[leg.offset + 2];
+    return side > 0 ? -leg.face_reach * leg.known_normal_force_N : 0.0;
+  }
+  return 0.0;
+}
+
+}  // namespace
+
+/// How a Newton attempt on an active set ended.
+enum class NewtonEnd {
+  kCertified,    ///< the answer: every row holds, the multipliers have their signs
+  kRowViolated,  ///< converged, but an inactive row is violated (NewtonState::row)
+  kWrongSign,    ///< converged and feasible, but an active row's multiplier has the wrong sign
+  kFailed,       ///< singular, not converged, or not finite
+};
+
+struct RequiredFrictionSolver::Impl {
+  RequiredFrictionOptions opt;
+  std::unique_ptr<AllocationBackend> backend;
+  QpProblem work;
+  ViolationWorkspace violations;
+  RequiredFriction out;
+  // The last certified active set, for problems of the same structure and sizes.
+  bool has_warm = false;
+  std::uint64_t warm_structure = 0;
+  int warm_n = -1, warm_m = -1;
+  std::vector<ActiveRow> warm_set;
+  Eigen::VectorXd warm_z;
+  // Newton's workspace and the state of its last attempt.
+  std::vector<ActiveRow> candidate, trial;
+  std::vector<std::pair<double, int>> slack;
+  Eigen::VectorXd z, x;
+  SmallVector lambda;
+  SquareMatrix J;
+  Eigen::PartialPivLU<SquareMatrix> lu;
+  int newton_leg = -1;
+  bool negative_mu = false;
+  double last_mu = -1.0;  ///< the previous sample's μ*, −1 before the first  ///< a Newton attempt
+                          ///< of this sample ended at μ < 0
+  int bad_row = -1;  ///< kRowViolated: the violated row; kWrongSign: the index in the set
+  int bad_side = 0;  ///< kRowViolated: the violated side
+
+  Impl(std::unique_ptr<AllocationBackend> b, const RequiredFrictionOptions& o)
+      : opt(o), backend(std::move(b)) {
+    for (auto& leg : cone_angle)
+      for (int f = 0; f < kConeFaces; ++f) leg[f] = 2.0 * M_PI * f / kConeFaces;
+  }
+
+  /// work = qp; the row names (strings) copied only when the layout changed.
+  void load(const QpProblem& qp) {
+    const bool same = work.structure == qp.structure && work.variables() == qp.variables() &&
+                      work.inequalities() == qp.inequalities() &&
+                      work.equalities() == qp.equalities() && work.cones.size() == qp.cones.size();
+    if (!same) {
+      work = qp;
+      return;
+    }
+    work.H = qp.H;
+    work.g = qp.g;
+    work.constant = qp.constant;
+    work.A = qp.A;
+    work.b = qp.b;
+    work.C = qp.C;
+    work.lower = qp.lower;
+    work.upper = qp.upper;
+    work.ineq_penalty = qp.ineq_penalty;
+    for (std::size_t k = 0; k < qp.cones.size(); ++k) {
+      const SecondOrderCone& c = qp.cones[k];
+      SecondOrderCone& w = work.cones[k];
+      w.tangent1 = c.tangent1;
+      w.tangent2 = c.tangent2;
+      w.normal = c.normal;
+      w.mu = c.mu;
+      w.penalty = c.penalty;
+    }
+  }
+
+  /// Feasibility of the rows at mu: the back end's solve at mu, every row and cone held to
+  /// kViolationThreshold. The forces in *x_out.
+  bool feasible_at(const AllocationLayout& layout, double mu, Eigen::VectorXd& x_out,
+                   std::string* why = nullptr) {
+    set_friction_coefficient(layout, mu, work);
+    ++out.solves;
+    const QpOutcome& o = backend->solve(work);
+    x_out = o.x;
+    if (o.status != SolverStatus::kOptimal && !why) return false;
+    double worst = 0.0;
+    const std::string text =
+        describe_violations(work, o.x, kViolationThreshold, &worst, violations);
+    x_out = o.x;
+    if (why) *why = text;
+    return o.status == SolverStatus::kOptimal && text.empty();
+  }
+
+  NewtonEnd newton(const AllocationLayout& layout, const std::vector<ActiveRow>& set,
+                   const Eigen::VectorXd& z0);
+  NewtonEnd check(const AllocationLayout& layout, const std::vector<ActiveRow>& set);
+  /// The row of J for inequality row `row` at its side `side` (at z, work set to z's μ).
+  SmallVector gradient(const AllocationLayout& layout, int row, int side) const {
+    const int n = work.variables();
+    SmallVector a(n + 1);
+    a.head(n) = work.C.row(row).transpose();
+    a[n] = row_mu_derivative(layout, x, row, side);
+    return a;
+  }
+  int dual_ratio_leaving(const AllocationLayout& layout, const std::vector<ActiveRow>& set);
+  bool primal_ratio_entering(const AllocationLayout& layout, const std::vector<ActiveRow>& set,
+                             ActiveRow& enter);
+  bool solve_from(const AllocationLayout& layout, std::vector<ActiveRow> set,
+                  const Eigen::VectorXd& z0);
+  bool active_set_at(const AllocationLayout& layout, const Eigen::VectorXd& x_at, double mu);
+  bool upper_end(const AllocationLayout& layout, const Eigen::VectorXd* allocation, double& hi,
+                 Eigen::VectorXd& x_hi);
+  bool newton_in_bracket(const AllocationLayout& layout, const Eigen::VectorXd& x_hi, double lo,
+                         double hi);
+  void bisect(const AllocationLayout& layout, const Eigen::VectorXd* allocation, double guess);
+  void solve_polygonal(const AllocationLayout& layout, const Eigen::VectorXd* allocation);
+  void load_cone_polygon(const QpProblem& qp, const AllocationLayout& layout);
+  void solve_cone(const QpProblem& qp, const AllocationLayout& layout,
+                  const Eigen::VectorXd* allocation);
+
+  // The exact cone's outer polygons: per leg, the directions of its faces [rad], kept from one
+  // sample to the next; the polygon problem's layout.
+  std::array<std::array<double, kConeFaces>, kLegs> cone_angle;
+  AllocationLayout cone_layout;
+  Eigen::VectorXd answer_x;  ///< the forces of the last answer
+  void remember(const std::vector<ActiveRow>& set);
+};
+
+/// Newton on the square system of the active rows in z = (x, μ), from z0; then check.
+NewtonEnd RequiredFrictionSolver::Impl::newton(const AllocationLayout& layout,
+                                               const std::vector<ActiveRow>& set,
+                                               const Eigen::VectorXd& z0) {
+  const int n = work.variables();
+  if (static_cast<int>(set.size()) != n + 1 || !work.cones.empty()) return NewtonEnd::kFailed;
+  z = z0;
+  J.resize(n + 1, n + 1);
+  SmallVector g(n + 1);
+  for (int it = 0; it <= opt.newton_iterations + 1; ++it) {
+    x = z.head(n);
+    set_friction_coefficient(layout, z[n], work);
+    for (int i = 0; i <= n; ++i) {
+      const ActiveRow& a = set[static_cast<std::size_t>(i)];
+      J.row(i).head(n) = work.C.row(a.row);
+      J(i, n) = row_mu_derivative(layout, x, a.row, a.side);
+      const double bound = a.side > 0 ? work.upper[a.row] : work.lower[a.row];
+      g[i] = work.C.row(a.row).dot(x) - bound;
+    }
+    lu.compute(J);
+    if (!(std::abs(lu.determinant()) > 0.0)) return NewtonEnd::kFailed;
+    if (it > opt.newton_iterations) break;
+    const SmallVector step = lu.solve(-g);
+    if (!step.allFinite()) return NewtonEnd::kFailed;
+    z += step;
+    // The residual is bilinear in (x_n, μ), so Newton converges quadratically: after a step
+    // below 1e-8 of z the error is at the rounding of z, and the factorisation at this
+    // iterate serves the multipliers (signs and the binding leg only).
+    if (step.lpNorm<Eigen::Infinity>() <= 1e-8 * (1.0 + z.lpNorm<Eigen::Infinity>())) {
+      x = z.head(n);
+      set_friction_coefficient(layout, z[n], work);
+      return check(layout, set);
+    }
+  }
+  return NewtonEnd::kFailed;
+}
+
+/// At Newton's answer z: every row holds (to 1e-9 relative) and the multipliers of min μ,
+/// Jᵀλ = e_μ, have the signs of their rows' active sides
+/// (docs/theory/grip.md#why-the-newton-answer-is-the-minimum); else what failed first.
+NewtonEnd RequiredFrictionSolver::Impl::check(const AllocationLayout& layout,
+                                              const std::vector<ActiveRow>& set) {
+  const int n = work.variables();
+  const double mu = z[n];
+  if (!std::isfinite(mu)) return NewtonEnd::kFailed;
+  if (mu < -1e-12) {  // the answer lies at μ = 0 or on another active set
+    negative_mu = true;
+    return NewtonEnd::kFailed;
+  }
+  SmallVector e = SmallVector::Zero(n + 1);
+  e[n] = 1.0;
+  lambda = lu.transpose().solve(e);
+  if (!lambda.allFinite()) return NewtonEnd::kFailed;
+  double worst = 0.0;
+  bad_row = -1;
+  for (int j = 0; j < work.inequalities(); ++j) {
+    const double v = work.C.row(j).dot(x);
+    const double lo = work.lower[j], hi = work.upper[j];
+    const double below = (lo - v) / std::max(1.0, std::abs(lo));
+    const double above = (v - hi) / std::max(1.0, std::abs(hi));
+    if (below > 1e-9 && below > worst) {
+      worst = below;
+      bad_row = j;
+      bad_side = -1;
+    }
+    if (above > 1e-9 && above > worst) {
+      worst = above;
+      bad_row = j;
+      bad_side = +1;
+    }
+  }
+  if (bad_row >= 0) return NewtonEnd::kRowViolated;
+  const double tol = 1e-9 * lambda.lpNorm<Eigen::Infinity>();
+  double most_wrong = tol;
+  for (int i = 0; i <= n; ++i) {
+    const int side = set[static_cast<std::size_t>(i)].side;
+    const double wrong = side > 0 ? lambda[i] : side < 0 ? -lambda[i] : 0.0;
+    if (wrong > most_wrong) {
+      most_wrong = wrong;
+      bad_row = i;
+    }
+  }
+  if (bad_row >= 0) return NewtonEnd::kWrongSign;
+  // The binding leg: the friction row whose multiplier carries the most of ∂μ.
+  double binding = 0.0;
+  newton_leg = -1;
+  for (int i = 0; i <= n; ++i) {
+    const ActiveRow& a = set[static_cast<std::size_t>(i)];
+    const double share = std::abs(lambda[i] * row_mu_derivative(layout, x, a.row, a.side));
+    if (share <= binding) continue;
+    for (int l = 0; l < kLegs; ++l) {
+      const AllocationLayout::Leg& leg = layout.legs[l];
+      if (leg.offset >= 0 && a.row >= leg.friction_row &&
+          a.row < leg.friction_row + leg.friction_faces) {
+        binding = share;
+        newton_leg = l;
+      }
+    }
+  }
+  return NewtonEnd::kCertified;
+}
+
+/// The dual simplex's leaving row for the violated row (bad_row, bad_side) entering: with
+/// h_i = σ_i g_i ≤ 0 the rows in ≤ form (σ the side) and ν_i = −σ_i λ_i ≥ 0 their
+/// multipliers, the entering row's multiplier t moves them as ν − t β, β_i = σ_i σ_j α_i,
+/// Jᵀα = ∇g_j; the first inequality row to reach ν_i = 0 leaves. −1 when none can.
+int RequiredFrictionSolver::Impl::dual_ratio_leaving(const AllocationLayout& layout,
+                                                     const std::vector<ActiveRow>& set) {
+  const int n = work.variables();
+  const SmallVector alpha = lu.transpose().solve(gradient(layout, bad_row, bad_side));
+  int leave = -1;
+  double best = std::numeric_limits<double>::infinity();
+  for (int i = kTrunkRows; i <= n; ++i) {
+    const double sigma = set[static_cast<std::size_t>(i)].side;
+    const double beta = sigma * bad_side * alpha[i];
+    if (!(beta > 1e-12 * alpha.lpNorm<Eigen::Infinity>())) continue;
+    const double ratio = -sigma * lambda[i] / beta;
+    if (ratio < best) {
+      best = ratio;
+      leave = i;
+    }
+  }
+  return leave;
+}
+
+/// The primal simplex's entering row when active row bad_row (an index in the set) leaves:
+/// along d with J d = −σ e_r (the other active rows held), the inactive row whose bound is
+/// reached first. False when none is.
+bool RequiredFrictionSolver::Impl::primal_ratio_entering(const AllocationLayout& layout,
+                                                         const std::vector<ActiveRow>& set,
+                                                         ActiveRow& enter) {
+  const int n = work.variables();
+  SmallVector e = SmallVector::Zero(n + 1);
+  e[bad_row] = -set[static_cast<std::size_t>(bad_row)].side;
+  const SmallVector d = lu.solve(e);
+  double best = std::numeric_limits<double>::infinity();
+  for (int j = kTrunkRows; j < work.inequalities(); ++j) {
+    bool in_set = false;
+    for (const ActiveRow& a : set) in_set = in_set || a.row == j;
+    if (in_set) continue;
+    const double rate = gradient(layout, j, +1).dot(d);
+    const double v = work.C.row(j).dot(x);
+    if (rate > 0.0 && work.upper[j] < kQpInfinity) {
+      const double step = std::max(0.0, work.upper[j] - v) / rate;
+      if (step < best) {
+        best = step;
+        enter = {j, +1};
+      }
+    }
+    const double rate_down = -gradient(layout, j, -1).dot(d);
+    if (rate_down > 0.0 && work.lower[j] > -kQpInfinity) {
+      const double step = std::max(0.0, v - work.lower[j]) / rate_down;
+      if (step < best) {
+        best = step;
+        enter = {j, -1};
+      }
+    }
+  }
+  return std::isfinite(best);
+}
+
+/// Newton from z0 on `set`, exchanging one row at a time while it fails (at most
+/// kMaxExchanges times): a violated row enters by the dual simplex's ratio test, an active
+/// row whose multiplier has the wrong sign leaves by the primal one. True with the answer
+/// in z and the set remembered for the next sample.
+bool RequiredFrictionSolver::Impl::solve_from(const AllocationLayout& layout,
+                                              std::vector<ActiveRow> set,
+                                              const Eigen::VectorXd& z0) {
+  constexpr int kMaxExchanges = 24;
+  Eigen::VectorXd start = z0;
+  for (int exchange = 0;; ++exchange) {
+    const NewtonEnd end = newton(layout, set, start);
+    if (end == NewtonEnd::kCertified) {
+      remember(set);
+      return true;
+    }
+    if (end == NewtonEnd::kFailed || exchange == kMaxExchanges) return false;
+    if (end == NewtonEnd::kRowViolated) {
+      const int leave = dual_ratio_leaving(layout, set);
+      if (leave < 0) return false;
+      set[static_cast<std::size_t>(leave)] = {bad_row, bad_side};
+    } else {
+      ActiveRow enter;
+      if (bad_row < kTrunkRows || !primal_ratio_entering(layout, set, enter)) return false;
+      set[static_cast<std::size_t>(bad_row)] = enter;
+    }
+    start = z;
+  }
+}
+
+/// The n + 1 − 6 inequality rows nearest to active at (x_at, mu) besides the trunk rows, as
+/// the candidate active set (in `candidate`); false when the problem has too few variables
+/// or cones.
+bool RequiredFrictionSolver::Impl::active_set_at(const AllocationLayout& layout,
+                                                 const Eigen::VectorXd& x_at, double mu) {
+  const int n = work.variables(), m = work.inequalities();
+  const int extra = n + 1 - kTrunkRows;
+  if (extra <= 0 || !work.cones.empty() || m - kTrunkRows < extra) return false;
+  set_friction_coefficient(layout, mu, work);
+  slack.clear();
+  for (int j = kTrunkRows; j < m; ++j) {
+    const double v = work.C.row(j).dot(x_at);
+    const double inf = std::numeric_limits<double>::infinity();
+    const double hi = work.upper[j], lo = work.lower[j];
+    const double up = hi < kQpInfinity ? (hi - v) / std::max(1.0, std::abs(hi)) : inf;
+    const double down = lo > -kQpInfinity ? (v - lo) / std::max(1.0, std::abs(lo)) : inf;
+    slack.emplace_back(std::min(up, down), up <= down ? j : -1 - j);
+  }
+  std::partial_sort(slack.begin(), slack.begin() + extra, slack.end());
+  candidate.clear();
+  for (int j = 0; j < kTrunkRows; ++j) candidate.push_back({j, 0});
+  for (int i = 0; i < extra; ++i) {
+    const int code = slack[static_cast<std::size_t>(i)].second;
+    candidate.push_back(code >= 0 ? ActiveRow{code, +1} : ActiveRow{-1 - code, -1});
+  }
+  return true;
+}
+
+void RequiredFrictionSolver::Impl::remember(const std::vector<ActiveRow>& set) {
+  has_warm = true;
+  warm_structure = work.structure;
+  warm_n = work.variables();
+  warm_m = work.inequalities();
+  warm_set = set;
+  warm_z = z;
+}
+
+/// The upper end of the bracket: the allocation's own friction use when it holds every row,
+/// else the probe at mu_max (false, with the message, when even that fails).
+bool RequiredFrictionSolver::Impl::upper_end(const AllocationLayout& layout,
+                                             const Eigen::VectorXd* allocation, double& hi,
+                                             Eigen::VectorXd& x_hi) {
+  if (allocation) {
+    x_hi = *allocation;
+    hi = friction_use(work, layout, x_hi);
+    if (std::isfinite(hi)) return true;
+  }
+  std::string why;
+  if (!feasible_at(layout, opt.mu_max, x_hi, &why)) {
+    std::ostringstream s;
+    s << "required friction: no friction coefficient up to " << opt.mu_max << " admits the rows ("
+      << why << ")";
+    out.mu = std::numeric_limits<double>::quiet_NaN();
+    out.method = 3;
+    out.message = s.str();
+    return false;
+  }
+  hi = std::min(opt.mu_max, friction_use(work, layout, x_hi));
+  return true;
+}
+
+/// Newton from the rows nearest to active at the bracket's feasible end (x_hi, hi); true
+/// when it is certified inside [lo, hi].
+bool RequiredFrictionSolver::Impl::newton_in_bracket(const AllocationLayout& layout,
+                                                     const Eigen::VectorXd& x_hi, double lo,
+                                                     double hi) {
+  const int n = work.variables();
+  if (!active_set_at(layout, x_hi, hi)) return false;
+  Eigen::VectorXd z0(n + 1);
+  z0 << x_hi, hi;
+  if (!solve_from(layout, candidate, z0) || z[n] < lo - 1e-9 || z[n] > hi + 1e-9) return false;
+  out.mu = std::max(0.0, z[n]);
+  out.leg = newton_leg;
+  out.method = 1;
+  answer_x = z.head(n);
+  return true;
+}
+
+/// Bisection on feasibility (file comment), from the allocation's friction use down, the
+/// first probes around `guess` (the previous sample's μ*, when there is one), with a Newton
+/// attempt from the rows nearest to active each time the bracket has narrowed a hundredfold.
+void RequiredFrictionSolver::Impl::bisect(const AllocationLayout& layout,
+                                          const Eigen::VectorXd* allocation, double guess) {
+  Eigen::VectorXd x_hi, x_probe;
+  double hi = 0.0, lo = 0.0;
+  if (!upper_end(layout, allocation, hi, x_hi)) return;
+  const auto probe = [&](double mu) {
+    if (feasible_at(layout, mu, x_probe)) {
+      hi = std::min(mu, friction_use(work, layout, x_probe));
+      x_hi = x_probe;
+    } else {
+      lo = mu;
+    }
+  };
+  // Newton from the upper end, whose exchanges walk like a simplex method to the answer's
+  // rows; then from a probe just above the previous sample's μ*: most samples end here.
+  if (work.cones.empty() && newton_in_bracket(layout, x_hi, 0.0, hi)) return;
+  if (negative_mu) probe(0.0);
+  if (guess > 0.0 && guess < hi && lo == 0.0 && hi > opt.tolerance) {
+    probe(std::min(hi, guess * 1.01 + 1e-6));
+    if (lo == 0.0 && newton_in_bracket(layout, x_hi, 0.0, hi)) return;
+    if (lo == 0.0) probe(guess * 0.99);
+  }
+  double newton_width = 1e-2;
+  while (hi - lo > opt.tolerance) {
+    if (hi - lo <= newton_width && work.cones.empty()) {
+      if (newton_in_bracket(layout, x_hi, lo, hi)) return;
+      newton_width *= 1e-2;
+    }
+    probe(0.5 * (lo + hi));
+  }
+  out.mu = hi;
+  out.method = 2;
+  answer_x = x_hi;
+  friction_use(work, layout, x_hi, &out.leg);
+  if (!work.cones.empty() || !newton_in_bracket(layout, x_hi, lo, hi)) has_warm = false;
+}
+
+RequiredFrictionSolver::RequiredFrictionSolver(std::unique_ptr<AllocationBackend> backend,
+                                               const RequiredFrictionOptions& options)
+    : impl_(std::make_unique<Impl>(std::move(backend), options)) {}
+
+RequiredFrictionSolver::~RequiredFrictionSolver() = default;
+
+/// μ* of `work` (no cones) by Newton from the previous sample's active set, else bisection;
+/// the answer's forces in answer_x.
+void RequiredFrictionSolver::Impl::solve_polygonal(const AllocationLayout& layout,
+                                                   const Eigen::VectorXd* allocation) {
+  const int n = work.variables();
+  const bool alike =
+      has_warm && warm_structure == work.structure && warm_n == n && warm_m == work.inequalities();
+  // The previous sample's active set, else the rows nearest to active at its answer.
+  if (alike) {
+    const Eigen::VectorXd z_prev = warm_z;
+    if (solve_from(layout, warm_set, z_prev) || (active_set_at(layout, z_prev.head(n), z_prev[n]) &&
+                                                 solve_from(layout, candidate, z_prev))) {
+      out.mu = std::max(0.0, z[n]);
+      out.leg = newton_leg;
+      out.method = 0;
+      last_mu = out.mu;
+      answer_x = z.head(n);
+      return;
+    }
+  }
+  bisect(layout, allocation, alike ? warm_z[n] : last_mu);
+  if (std::isfinite(out.mu)) last_mu = out.mu;
+}
+
+/// The cone's polygon problem (file comment): `qp` with each support leg's cone replaced by
+/// kConeFaces supporting half-spaces d·t ≤ μ f_n at the directions cone_angle[l], appended
+/// leg by leg after the problem's rows; `cone_layout` says where they are.
+void RequiredFrictionSolver::Impl::load_cone_polygon(const QpProblem& qp,
+                                                     const AllocationLayout& layout) {
+  int cones = 0;
+  for (const AllocationLayout::Leg& leg : layout.legs) cones += leg.cone >= 0;
+  const int m = qp.inequalities(), n = qp.variables();
+  const bool same = work.structure == (qp.structure | kConePolygonKey) && work.variables() == n &&
+                    work.inequalities() == m + kConeFaces * cones;
+  if (!same) {
+    work.resize(n, qp.equalities(), m + kConeFaces * cones);
+    work.ineq_names.assign(static_cast<std::size_t>(m), std::string());
+    std::copy(qp.ineq_names.begin(), qp.ineq_names.end(), work.ineq_names.begin());
+    work.structure = qp.structure | kConePolygonKey;
+  }
+  work.H = qp.H;
+  work.g = qp.g;
+  work.constant = qp.constant;
+  work.A = qp.A;
+  work.b = qp.b;
+  work.C.topRows(m) = qp.C;
+  work.C.bottomRows(kConeFaces * cones).setZero();
+  work.lower.head(m) = qp.lower;
+  work.upper.head(m) = qp.upper;
+  work.ineq_penalty.head(m) = qp.ineq_penalty.size() ? qp.ineq_penalty : Eigen::VectorXd::Ones(m);
+  work.cones.clear();
+  cone_layout = layout;
+  int row = m;
+  for (int l = 0; l < kLegs; ++l) {
+    AllocationLayout::Leg& leg = cone_layout.legs[l];
+    if (leg.cone < 0) continue;
+    const SecondOrderCone& c = qp.cones[static_cast<std::size_t>(leg.cone)];
+    leg.cone = -1;
+    leg.friction_row = row;
+    leg.friction_faces = kConeFaces;
+    leg.face_reach = 1.0;  // supporting half-spaces: the polygon contains the cone
+    for (int f = 0; f < kConeFaces; ++f, ++row) {
+      const double a = cone_angle[l][f];
+      work.C(row, c.tangent1) = std::cos(a);
+      work.C(row, c.tangent2) = std::sin(a);
+      work.lower[row] = -std::numeric_limits<double>::infinity();
+      work.upper[row] = 0.0;
+      work.ineq_penalty[row] = c.penalty;
+      if (!same) work.ineq_names.push_back(c.name + " face " + std::to_string(f + 1));
+    }
+  }
+  set_friction_coefficient(cone_layout, qp.cones.empty() ? 0.0 : qp.cones.front().mu, work);
+}
+
+/// μ* under the exact cone by outer polygons (file comment): the polygon's μ* is a lower
+/// bound, the cone use of its forces an upper bound; while they differ by more than the
+/// tolerance, each cone leg's face nearest its force's direction turns to that direction.
+void RequiredFrictionSolver::Impl::solve_cone(const QpProblem& qp, const AllocationLayout& layout,
+                                              const Eigen::VectorXd* allocation) {
+  constexpr int kMaxRounds = 40;
+  const auto cone_use = [&](const Eigen::VectorXd& x, int* leg) {
+    return friction_use(qp, layout, x, leg);
+  };
+  double best_upper = std::numeric_limits<double>::infinity();
+  int best_leg = -1;
+  if (allocation) best_upper = cone_use(*allocation, &best_leg);
+  for (int round = 0; round < kMaxRounds; ++round) {
+    load_cone_polygon(qp, layout);
+    solve_polygonal(cone_layout, allocation);
+    if (!std::isfinite(out.mu)) return;  // no μ for the outer polygon: none for the cone
+    const double lower = out.mu;
+    int leg = -1;
+    const double upper = cone_use(answer_x, &leg);
+    if (upper < best_upper) {
+      best_upper = upper;
+      best_leg = leg;
+    }
+    if (best_upper - lower <= opt.tolerance) break;
+    for (int l = 0; l < kLegs; ++l) {
+      const AllocationLayout::Leg& g = layout.legs[l];
+      if (g.cone < 0) continue;
+      const double t1 = answer_x[g.offset], t2 = answer_x[g.offset + 1];
+      if (std::hypot(t1, t2) <= 0.0) continue;
+      const double a = std::atan2(t2, t1);
+      int nearest = 0;
+      double gap = 10.0;
+      for (int f = 0; f < kConeFaces; ++f) {
+        const double d = std::abs(std::remainder(cone_angle[l][f] - a, 2.0 * M_PI));
+        if (d < gap) {
+          gap = d;
+          nearest = f;
+        }
+      }
+      cone_angle[l][nearest] = a;
+    }
+  }
+  out.mu = best_upper;
+  out.leg = best_leg;
+}
+
+const RequiredFriction& RequiredFrictionSolver::solve(const QpProblem& qp,
+                                                      const AllocationLayout& layout,
+                                                      const Eigen::VectorXd* allocation) {
+  Impl& s = *impl_;
+  s.out = RequiredFriction{};
+  s.negative_mu = false;
+  const int n = qp.variables();
+  if (n == 0) {
+    s.out.mu = std::numeric_limits<double>::quiet_NaN();
+    s.out.message = "required friction: no foot on the ground";
+    return s.out;
+  }
+  if (layout.constant_excess_Nm > kViolationThreshold) {
+    s.out.mu = std::numeric_limits<double>::quiet_NaN();
+    s.out.message =
+        "required friction: no friction coefficient helps (" + layout.constant_violation + ")";
+    return s.out;
+  }
+  if (qp.cones.empty()) {
+    s.load(qp);
+    s.solve_polygonal(layout, allocation);
+  } else {
+    s.solve_cone(qp, layout, allocation);
+  }
+  return s.out;
+}
+
+}  // namespace hexdyn

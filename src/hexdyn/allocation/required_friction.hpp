@@ -1,0 +1,97 @@
+#pragma once
+/// \file allocation/required_friction.hpp
+/// The least friction coefficient a sample needs (docs/theory/grip.md#required-friction): the
+/// smallest μ for which the sample's allocation rows (trunk equations, torque or drive limits,
+/// minimum normal forces, and the friction faces or cones of the scene's friction model at μ)
+/// admit a force distribution,
+///
+///   μ* = min μ   subject to   the rows of build_allocation_problem with friction μ.
+///
+/// For each μ the rows are convex and a larger μ only widens them, so feasibility is monotone
+/// in μ and the problem is quasi-convex. Two methods, the second a fallback of the first:
+///  - Newton on an active set: at a vertex answer (the pyramids: n + 1 rows active for n
+///    forces and μ), the active rows are a square system in (x, μ), bilinear in x_n·μ, solved
+///    by Newton. The answer is certified: every row holds at it, and the multipliers of
+///    min μ (Jᵀλ = e_μ) have the signs of the rows' active sides, which makes it the global
+///    minimum (a local minimum of a quasi-convex problem with a convex feasible set for each μ
+///    is global; docs/theory/grip.md#why-the-newton-answer-is-the-minimum). The active set of
+///    the previous sample of the same row layout is tried first: consecutive samples usually
+///    share it, and then one sample costs two or three 19×19 factorisations.
+///  - Bisection on feasibility: each probe solves the allocation problem at μ with the scene's
+///    back end (its own instance and warm start); a feasible probe also tightens the upper
+///    end to the μ its own forces use. From the upper bound the allocation itself gives (the
+///    friction its forces use) down to a bracket of `tolerance`; the rows closest to active
+///    at the last feasible probe then seed the Newton step, whose active set the next sample
+///    reuses.
+/// μ* is NaN when no μ ≤ mu_max admits the rows (the message names what still fails there),
+/// or when a constant row (a swing leg's torque) exceeds its limit.
+#include <Eigen/Core>
+#include <array>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "hexdyn/allocation/problem.hpp"
+#include "hexdyn/allocation/qp.hpp"
+
+namespace hexdyn {
+
+struct RequiredFrictionOptions {
+  /// Bisection stops when the bracket is at most this wide (absolute, in μ).
+  double tolerance = 1e-7;
+  /// The largest μ considered: beyond it a sample counts as needing no μ at all.
+  double mu_max = 1e3;
+  /// Newton iterations per attempt.
+  int newton_iterations = 8;
+};
+
+/// The answer for one sample.
+struct RequiredFriction {
+  double mu = 0.0;  ///< μ*, NaN where none ≤ mu_max suffices
+  int leg = -1;     ///< the leg whose friction binds at μ* (0..5), −1 where none
+  /// How μ* was found: 0 Newton from the previous sample's active set, 1 bisection then
+  /// Newton, 2 bisection alone (within `tolerance` above μ*), 3 none (NaN).
+  int method = 3;
+  int solves = 0;       ///< back-end solves (bisection probes)
+  std::string message;  ///< why μ* is NaN, empty otherwise
+};
+
+/// Finds μ* of successive samples; keeps the last certified active set per row layout. One
+/// per thread.
+class RequiredFrictionSolver {
+ public:
+  /// `backend` solves the bisection's probes: the scene's (allocation/backends.hpp), a
+  /// second instance besides the allocation's, so that each keeps its own warm start.
+  explicit RequiredFrictionSolver(std::unique_ptr<AllocationBackend> backend,
+                                  const RequiredFrictionOptions& options = {});
+  ~RequiredFrictionSolver();
+  RequiredFrictionSolver(const RequiredFrictionSolver&) = delete;
+  RequiredFrictionSolver& operator=(const RequiredFrictionSolver&) = delete;
+
+  /// μ* of the problem `qp` built by build_allocation_problem with layout `layout` (at any μ;
+  /// not modified). `allocation`: the allocation's solution of `qp` (size n) when it holds
+  /// every row within kViolationThreshold, else null; its friction use bounds μ* from above.
+  const RequiredFriction& solve(const QpProblem& qp, const AllocationLayout& layout,
+                                const Eigen::VectorXd* allocation);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+/// qp's friction rows and cones set to friction coefficient mu (the layout's face rows and
+/// cones; every other row unchanged).
+void set_friction_coefficient(const AllocationLayout& layout, double mu, QpProblem& qp);
+
+/// The least μ at which x (size layout.variables) holds the friction rows and cones of
+/// `layout` in `qp` (the largest face or cone use over the legs), with the leg that uses it
+/// in *leg (−1 when no leg has friction rows). +inf when a leg's use is unbounded (f_n ≤ 0).
+double friction_use(const QpProblem& qp, const AllocationLayout& layout, const Eigen::VectorXd& x,
+                    int* leg = nullptr);
+
+/// Per leg: a friction face or cone of `layout` in `qp` that x violates by more than
+/// kViolationThreshold (relative to max(1, |bound|)): the foot would slip at the problem's μ.
+std::array<bool, kLegs> slipping_legs(const QpProblem& qp, const AllocationLayout& layout,
+                                      const Eigen::VectorXd& x);
+
+}  // namespace hexdyn
