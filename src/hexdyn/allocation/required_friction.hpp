@@ -60,8 +60,9 @@ struct RequiredFriction {
 /// per thread.
 class RequiredFrictionSolver {
  public:
-  /// `backend` solves the bisection's probes: the scene's (allocation/backends.hpp), a
-  /// second instance besides the allocation's, so that each keeps its own warm start.
+  /// `backend` solves the bisection's probes, problems without cones (the cones become outer
+  /// polygons): the active-set back end (allocation/active_set.hpp), an instance of its own
+  /// besides the allocation's, so that each keeps its own warm start.
   explicit RequiredFrictionSolver(std::unique_ptr<AllocationBackend> backend,
                                   const RequiredFrictionOptions& options = {});
   ~RequiredFrictionSolver();

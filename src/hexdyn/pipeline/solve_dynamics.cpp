@@ -9,6 +9,7 @@
 #include <string>
 #include <utility>
 
+#include "hexdyn/allocation/active_set.hpp"
 #include "hexdyn/allocation/backends.hpp"
 #include "hexdyn/allocation/problem.hpp"
 #include "hexdyn/allocation/required_friction.hpp"
@@ -61,9 +62,12 @@ class SampleSolver {
         data_(model),
         backend_(make_allocation_backend(scene.allocation)) {
     if (scene.actuators.present) rows_.weight = objective_weights(scene);
+    // The required friction's probes are polygon problems (its cones become outer polygons),
+    // so the active-set back end solves them whatever the scene's back end: Ipopt would
+    // cost milliseconds per probe for the same feasibility verdict.
     if (scene.output.required_friction)
-      required_ =
-          std::make_unique<RequiredFrictionSolver>(make_allocation_backend(scene.allocation));
+      required_ = std::make_unique<RequiredFrictionSolver>(
+          make_active_set_backend(active_set_options_from(scene.allocation)));
   }
 
   /// Solves sample i of `kin` under contacts `c`; `times` (may be null) as solve_dynamics.
