@@ -13,8 +13,9 @@ if(TARGET hexdyn_python)
   # The Python module from the build tree (tests/python/): runs bit for bit as the CLI, the
   # error family with the CLI's messages, threads (Ipopt scenes too), mutated scenes refused as
   # the CLI refuses them, one Result type for computed and read results and the readers of
-  # every file kind (test_data.py).
-  foreach(t run errors threads threads_ipopt mutations data)
+  # every file kind (test_data.py), a URDF robot's stance fallback as a UserWarning
+  # (test_stance.py).
+  foreach(t run errors threads threads_ipopt mutations data stance)
     add_test(NAME python.${t}
              COMMAND ${HEXDYN_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/python/test_${t}.py
                      $<TARGET_FILE:hexdyn> ${CMAKE_SOURCE_DIR})

@@ -142,6 +142,15 @@ py::object to_python(hexdyn::LayoutDataset&& d) {
   return py::str(std::get<std::string>(d.values));
 }
 
+/// The scene's warnings (Scene::warnings) as Python UserWarnings, attributed to the caller of
+/// hexdyn.run or hexdyn.validate.
+void warn(const std::vector<std::string>& warnings) {
+  if (warnings.empty()) return;
+  const py::object warn = py::module_::import("warnings").attr("warn");
+  const py::object category = py::module_::import("builtins").attr("UserWarning");
+  for (const std::string& w : warnings) warn("hexdyn: " + w, category, 2);
+}
+
 /// run(scene, overrides, allow_large) → (handle, {path: array}, {attribute: value},
 /// {path: units}): the units of the datasets the writer gives a `units` attribute (their
 /// declaration's, when not "").
@@ -150,9 +159,11 @@ py::tuple run_file(const std::string& scene_path, const std::vector<std::string>
   auto handle = std::make_shared<RunHandle>();
   hexdyn::ResultLayout layout;
   const std::vector<hexdyn::Override> overrides = overrides_of(override_texts);
+  std::vector<std::string> warnings;
   run_interruptible([&] {
     guard_yaml(scene_path, [&] {
       const hexdyn::Scene scene = hexdyn::load_scene(scene_path, overrides, &handle->inputs);
+      warnings = scene.warnings;
       const hexdyn::PreparedScene prep = hexdyn::prepare_scene(scene);
       hexdyn::check_run_size(prep.grid.size(), allow_large);
       std::unique_lock<std::mutex> lock(ipopt_mutex, std::defer_lock);
@@ -162,6 +173,7 @@ py::tuple run_file(const std::string& scene_path, const std::vector<std::string>
     });
     layout = hexdyn::result_layout(handle->result);
   });
+  warn(warnings);
   py::dict datasets, attributes, units;
   for (hexdyn::LayoutDataset& d : layout.datasets) {
     const char* path = d.spec->path;
@@ -209,6 +221,8 @@ py::dict validate_file(const std::string& path, const std::vector<std::string>& 
     out["first_out_of_range"] = report.first_out_of_range;
   }
   out["messages"] = report.messages;
+  out["warnings"] = report.scene ? report.scene->warnings : std::vector<std::string>{};
+  warn(report.scene ? report.scene->warnings : std::vector<std::string>{});
   return out;
 }
 

@@ -97,7 +97,8 @@ def _overrides(set):
 def run(scene, set=None, *, allow_large=False):
     """Runs the scene file `scene` (a path) with the overrides `set` (a dict from dotted key to
     value, as `--set key=value`) and returns its Result (the one type open_result returns
-    too). allow_large: as `--allow-large`."""
+    too). allow_large: as `--allow-large`. The scene's warnings (those `hexdyn run` prints,
+    such as a URDF robot's stance fallback) are issued as UserWarning."""
     scene = _path(scene)
     handle, datasets, attrs, units = _lib().run(scene, _overrides(set), bool(allow_large))
     meta = {k: v for k, v in attrs.items() if not k.startswith("/")}
@@ -109,10 +110,11 @@ def run(scene, set=None, *, allow_large=False):
 
 def validate(scene, set=None):
     """Checks a scene file or a sweep file as `hexdyn validate` does; raises on the first error.
-    Returns {"kind": "scene", "name": ..., "messages": [...]} ("messages": the lines
-    `hexdyn validate` prints), or for a sweep file also "scenarios", "out_of_range"
-    (scenarios that would be rows with status config) and "first_out_of_range" (the first
-    one's message)."""
+    Returns {"kind": "scene", "name": ..., "messages": [...], "warnings": [...]} ("messages":
+    the lines `hexdyn validate` prints; "warnings": the ones it prints on stderr, such as a
+    URDF robot's stance fallback, also issued as UserWarning), or for a sweep file also
+    "scenarios", "out_of_range" (scenarios that would be rows with status config) and
+    "first_out_of_range" (the first one's message)."""
     return _lib().validate(_path(scene), _overrides(set))
 
 

@@ -17,6 +17,7 @@
 #include "hexdyn/config/config.hpp"
 #include "hexdyn/core/errors.hpp"
 #include "hexdyn/envelope/envelope.hpp"
+#include "hexdyn/model/stance.hpp"
 #include "hexdyn/model/urdf_robot.hpp"
 #include "hexdyn/process/interrupt.hpp"
 #include "hexdyn/process/launch.hpp"
@@ -173,20 +174,28 @@ const char* command_usage(const std::string& command) {
 
 bool is_help(const char* arg) { return !std::strcmp(arg, "--help") || !std::strcmp(arg, "-h"); }
 
-/// -v: a URDF robot's leg mapping (the description's chains → L1 … L6), one line per leg.
+/// -v: a URDF robot's leg mapping (the description's chains → L1 … L6) and its stance
+/// (model/stance.hpp: each leg's pose and how it was obtained), one line per leg.
 void print_leg_mapping(const hexdyn::Scene& scene, std::ostream& os) {
   if (!scene.robot.urdf) return;
   const hexdyn::UrdfRobot& robot = *scene.robot.urdf;
   os << "hexdyn: robot '" << robot.name << "' from " << robot.source_path << ", trunk link "
      << robot.trunk_link << " (forward " << robot.forward_axis << "), legs:\n"
-     << hexdyn::leg_mapping_text(robot) << "hexdyn: footholds " << scene.gait.foot_lateral_m
+     << hexdyn::leg_mapping_text(robot) << "hexdyn: stance of each leg (robot.nominal_pose):\n"
+     << hexdyn::stance_text(scene.robot.stance) << "hexdyn: footholds " << scene.gait.foot_lateral_m
      << " m from the hips along their outward directions (gait.foot_lateral)\n";
+}
+
+/// The scene's warnings (Scene::warnings), one line each on stderr.
+void print_warnings(const hexdyn::Scene& scene) {
+  for (const std::string& w : scene.warnings) std::cerr << "hexdyn: warning: " << w << "\n";
 }
 
 /// `hexdyn validate`: the report of validate_file (sweep/validate.hpp), printed.
 int validate(const Args& args) {
   const hexdyn::ValidationReport report = hexdyn::validate_file(args.config, args.overrides);
   if (args.verbose && report.scene) print_leg_mapping(*report.scene, std::cout);
+  if (report.scene) print_warnings(*report.scene);
   for (const std::string& line : report.messages) std::cout << line << "\n";
   return 0;
 }
@@ -205,6 +214,7 @@ int run(const Args& args) {
   std::vector<hexdyn::InputFile> inputs;
   const hexdyn::Scene scene = hexdyn::load_scene(args.config, args.overrides, &inputs);
   if (args.verbose) print_leg_mapping(scene, std::cerr);
+  print_warnings(scene);
   // Before any computing: the output is a new path or a regular file that is none of the
   // inputs (the scene, its inherited files, its URDF).
   hexdyn::check_output_target(args.output, inputs);

@@ -16,11 +16,13 @@
 #include "hexdyn/config/run_limits.hpp"
 #include "hexdyn/config/scene_key_reader.hpp"
 #include "hexdyn/config/scene_tree.hpp"
+#include "hexdyn/config/stance_keys.hpp"
 #include "hexdyn/config/yaml_load.hpp"
 #include "hexdyn/core/errors.hpp"
 #include "hexdyn/core/run_size.hpp"
 #include "hexdyn/core/value_bounds.hpp"
 #include "hexdyn/model/link_scaling.hpp"
+#include "hexdyn/model/stance.hpp"
 
 namespace hexdyn {
 namespace {
@@ -77,12 +79,14 @@ double read_urdf_robot_keys(Reader& r, RobotParams& p, LoadedUrdfRobot& loaded) 
   if (r.has("robot.foot_offset"))
     k.foot_offset_m =
         r.vec3("robot.foot_offset", closed(-kMaxRobotCoordinate_m, kMaxRobotCoordinate_m));
-  if (r.has("robot.nominal_pose"))
-    k.nominal_pose_rad = r.vec3("robot.nominal_pose", closed(-2.0 * M_PI, 2.0 * M_PI));
+  k.nominal_pose_rad = read_nominal_pose(r);
   k.ik_min_margin_m = p.ik_min_margin_m =
       r.number_or("robot.ik_min_margin", defaults().robot.ik_min_margin_m, nonnegative(0.1));
   loaded = load_urdf_robot(k);
   p.urdf = loaded.robot;
+  check_nominal_pose(r, k.nominal_pose_rad, *loaded.robot);
+  p.stance = loaded.stance;
+  record_stance(r, loaded.stance);
   if (!(loaded.stance_radius_m > 0.0))
     r.fail("robot.nominal_pose",
            "puts the feet on the coxa axes (stance radius " + fmt(loaded.stance_radius_m) +
@@ -555,6 +559,8 @@ Scene scene_from_tree(const SceneTree& tree, const std::string& source_name, boo
   read_robot(r, s.robot, urdf);
   read_terrain(r, s.terrain);
   read_gait(r, s.gait, urdf);
+  if (urdf.robot && !r.given("gait.foot_lateral"))  // the stance sets the footholds
+    s.warnings = stance_fallback_warnings(urdf.stance);
   read_motion(r, s.gait, s.terrain, s.motion);
   read_contact(r, s.contact);
   read_allocation(r, s.allocation, urdf);

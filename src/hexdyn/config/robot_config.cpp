@@ -71,12 +71,9 @@ LoadedUrdfRobot load_urdf_robot(const UrdfRobotKeys& keys) {
   auto robot = std::make_shared<UrdfRobot>(read_urdf_robot_from_string(text, keys.path, opt));
   const RobotModel model = build_robot_model(*robot, keys.ik_min_margin_m);
   for (int leg = 0; leg < kLegs; ++leg) {
-    const NominalStance s = keys.nominal_pose_rad
-                                ? stance_at_pose(model, leg, *keys.nominal_pose_rad)
-                                : default_nominal_stance(model, leg);
-    out.nominal_q_rad[leg] = s.q;
-    out.stance_radius_m += s.radius_m / kLegs;
-    out.stance_depth_m += s.depth_m / kLegs;
+    const auto& pose = keys.nominal_pose_rad[leg];
+    out.stance[leg] = pose ? stance_at_pose(model, leg, *pose, "robot.nominal_pose")
+                           : default_nominal_stance(model, leg);
     for (int j = 0; j < kJointsPerLeg; ++j) {
       const int k = joint_index(leg, j);
       const UrdfLeg& l = robot->legs[leg];
@@ -86,6 +83,9 @@ LoadedUrdfRobot load_urdf_robot(const UrdfRobotKeys& keys) {
       out.joint_names[k] = l.joint_names[j];
     }
   }
+  const StanceMean mean = stance_mean(out.stance);
+  out.stance_radius_m = mean.radius_m;
+  out.stance_depth_m = mean.depth_m;
   out.robot = std::move(robot);
   const std::lock_guard<std::mutex> lock(loaded_mutex);
   if (loaded_entries.size() == kLoadedEntries) loaded_entries.pop_front();

@@ -16,9 +16,12 @@
 ///   robot.foot_offset   [x, y, z] m, the foot point in each chain's last link frame
 ///   robot.nominal_pose  [coxa, femur, tibia] rad, in the description's signs: the standing
 ///                       pose whose horizontal foot distance is gait.foot_lateral's default
-///                       (default: model/stance.hpp "femur level, tibia plumb")
+///                       (default: model/stance.hpp "femur level, tibia plumb"); one for
+///                       every leg, a list of six in leg order L1 … L6, or a map by leg
+///                       name (legs not named keep the default); inside the joint limits
 ///   robot.ik_min_margin as for the YAML robot
-/// and, outside robot:, gait.foot_lateral defaults to the nominal stance radius and
+/// and, outside robot:, gait.foot_lateral defaults to the stance radius (model/stance.hpp:
+/// the mean over the legs at their pose, a fallback leg left out) and
 /// allocation.torque_limit to `effort`: the URDF's per-joint effort limits.
 #include <array>
 #include <memory>
@@ -27,6 +30,7 @@
 #include <vector>
 
 #include "hexdyn/core/common.hpp"
+#include "hexdyn/core/scene.hpp"
 
 namespace YAML {
 class Node;
@@ -47,16 +51,16 @@ struct UrdfRobotKeys {
   std::string forward_axis = "+x";
   std::vector<std::string> foot_links;
   std::optional<Vec3> foot_offset_m;
-  std::optional<Vec3> nominal_pose_rad;
+  std::array<std::optional<Vec3>, kLegs> nominal_pose_rad;  ///< by leg; none: the default pose
   double ik_min_margin_m = 1e-4;
 };
 
 /// A loaded URDF robot with its nominal stance (model/stance.hpp), legs L1 … L6.
 struct LoadedUrdfRobot {
   std::shared_ptr<const UrdfRobot> robot;
-  std::array<Vec3, kLegs> nominal_q_rad{};  ///< nominal pose of each leg [rad]
-  double stance_radius_m = 0.0;             ///< mean horizontal foot distance from the hip [m]
-  double stance_depth_m = 0.0;              ///< mean hip height above the foot [m]
+  std::array<NominalStance, kLegs> stance;  ///< each leg's pose and how it was obtained
+  double stance_radius_m = 0.0;             ///< the stance radius, model/stance.hpp stance_mean [m]
+  double stance_depth_m = 0.0;              ///< the same legs' mean hip height above the foot [m]
   std::array<double, kJoints> effort_limit_Nm{};  ///< +inf: none given
   /// <dynamics damping friction> by joint, 0 when not given [N m s/rad], [N m].
   std::array<double, kJoints> damping_Nmsprad{}, friction_Nm{};

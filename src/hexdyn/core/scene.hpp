@@ -27,6 +27,18 @@ struct BodyParams {
   Vec3 com_m = Vec3::Zero();         ///< COM in the body frame [m]
 };
 
+/// One leg's standing pose of a URDF robot and how it was obtained (model/stance.hpp): the
+/// legs' radii give gait.foot_lateral's default.
+struct NominalStance {
+  Vec3 q = Vec3::Zero();  ///< joint angles [rad], the description's signs and zero poses
+  double radius_m = 0.0;  ///< horizontal distance of the foot from the coxa joint [m]
+  double depth_m = 0.0;   ///< height of the coxa joint above the foot, along the trunk normal [m]
+  bool from_pose = true;  ///< false: the default pose was out of reach, mid-range used
+  /// "nominal pose" (the default pose), "robot.nominal_pose" (given) or "fallback: mid-range
+  /// joint angles (WHY)", WHY saying why the default pose was out of reach.
+  std::string source;
+};
+
 /// Leg inertia model: the full coupled dynamics of the 18 links, or massless legs whose
 /// link masses are lumped into the trunk as point masses at their hips (coxa joints).
 enum class LegInertia { kFull, kMassless };
@@ -58,6 +70,8 @@ struct RobotParams {
   /// described by the YAML keys above. When set, build_robot_model builds the model from
   /// it and every field above except ik_min_margin_m is unused.
   std::shared_ptr<const UrdfRobot> urdf;
+  /// A URDF robot's standing pose of each leg, L1 … L6 (unused for the YAML robot).
+  std::array<NominalStance, kLegs> stance;
 };
 
 enum class TerrainType { kFlat, kSlope, kStairs };
@@ -245,6 +259,10 @@ struct Scene {
   /// The input files read (scene, inherited files, URDF) with their SHA-256, one line
   /// "SHA256  ABSOLUTE_PATH" each (config/inputs.hpp); /meta input_sha256 of the result.
   std::string input_sha256;
+  /// What reading the scene found worth a warning, one line each without the "hexdyn:
+  /// warning: " prefix (a URDF robot's stance fallback): `hexdyn run` and `hexdyn validate`
+  /// print them.
+  std::vector<std::string> warnings;
 };
 
 }  // namespace hexdyn

@@ -1,12 +1,14 @@
 #include "hexdyn/model/stance.hpp"
 
 #include <cmath>
+#include <sstream>
 
 namespace hexdyn {
 
-NominalStance stance_at_pose(const RobotModel& model, int leg, const Vec3& q) {
+NominalStance stance_at_pose(const RobotModel& model, int leg, const Vec3& q, std::string source) {
   NominalStance s;
   s.q = q;
+  s.source = std::move(source);
   const Vec3 up_H = model.R_B_H[leg].transpose() * Vec3::UnitZ();
   const Vec3 p_H = leg_foot_position_H(model, leg, q);
   s.depth_m = -p_H.dot(up_H);
@@ -20,6 +22,7 @@ NominalStance default_nominal_stance(const RobotModel& model, int leg) {
   const Vec3 w1 = d.w1_H.normalized();
   Vec3 up = d.up_H - d.up_H.dot(w1) * w1;
   Vec3 out = up.cross(w1);
+  std::string why = "the femur axis is along the trunk normal: no leg plane";
   if (up.norm() > 1e-9 && out.norm() > 1e-9) {
     up.normalize();
     out.normalize();
@@ -29,11 +32,71 @@ NominalStance default_nominal_stance(const RobotModel& model, int leg) {
     const Vec3 o1 = d.o1_H - d.o1_H.dot(w1) * w1;
     const Vec3 target = o1 + d.kappa_m * w1 + d.l2_m * out - d.l3_m * up;
     const LegIkResult ik = leg_inverse_kinematics(model, leg, target);
-    if (ik.ok) return stance_at_pose(model, leg, ik.q);
+    if (ik.ok) return stance_at_pose(model, leg, ik.q, "nominal pose");
+    why = ik.reason;
   }
-  NominalStance s = stance_at_pose(model, leg, d.q_start);
+  NominalStance s =
+      stance_at_pose(model, leg, d.q_start, "fallback: mid-range joint angles (" + why + ")");
   s.from_pose = false;
   return s;
+}
+
+StanceMean stance_mean(const std::array<NominalStance, kLegs>& stance) {
+  StanceMean m;
+  for (int leg = 0; leg < kLegs; ++leg)
+    if (stance[leg].from_pose) m.legs.push_back(leg);
+  if (m.legs.empty())
+    for (int leg = 0; leg < kLegs; ++leg) m.legs.push_back(leg);
+  for (int leg : m.legs) {
+    m.radius_m += stance[leg].radius_m;
+    m.depth_m += stance[leg].depth_m;
+  }
+  m.radius_m /= static_cast<double>(m.legs.size());
+  m.depth_m /= static_cast<double>(m.legs.size());
+  return m;
+}
+
+namespace {
+
+/// "the mean over L1, L2, L4" or "the mean over all six legs, none at its pose".
+std::string mean_words(const StanceMean& m, const std::array<NominalStance, kLegs>& stance) {
+  if (!stance[m.legs.front()].from_pose) return "the mean over all six legs, none at its pose";
+  std::string names;
+  for (int leg : m.legs) names += (names.empty() ? "" : ", ") + leg_name(leg);
+  return "the mean over " + names + (m.legs.size() < kLegs ? ", the legs at their pose" : "");
+}
+
+}  // namespace
+
+std::string stance_text(const std::array<NominalStance, kLegs>& stance) {
+  std::ostringstream s;
+  for (int leg = 0; leg < kLegs; ++leg) {
+    const NominalStance& l = stance[leg];
+    s << leg_name(leg) << ": " << l.source << ", q [" << l.q.x() << ", " << l.q.y() << ", "
+      << l.q.z() << "] rad, radius " << l.radius_m << " m, depth " << l.depth_m << " m\n";
+  }
+  const StanceMean m = stance_mean(stance);
+  s << "stance radius " << m.radius_m << " m: " << mean_words(m, stance)
+    << " (gait.foot_lateral's default)\n";
+  return s.str();
+}
+
+std::vector<std::string> stance_fallback_warnings(const std::array<NominalStance, kLegs>& stance) {
+  std::vector<std::string> out;
+  const StanceMean m = stance_mean(stance);
+  const bool all = !stance[m.legs.front()].from_pose;
+  for (int leg = 0; leg < kLegs; ++leg) {
+    const NominalStance& l = stance[leg];
+    if (l.from_pose) continue;
+    std::ostringstream s;
+    s << leg_name(leg) << ": the nominal pose is out of reach, stance " << l.source << ", radius "
+      << l.radius_m << " m, " << (all ? "averaged into" : "left out of")
+      << " gait.foot_lateral's default " << m.radius_m << " m (" << mean_words(m, stance)
+      << "); give the leg a pose, robot.nominal_pose: {" << leg_name(leg)
+      << ": [coxa, femur, tibia]}, or set gait.foot_lateral";
+    out.push_back(s.str());
+  }
+  return out;
 }
 
 }  // namespace hexdyn

@@ -2,31 +2,50 @@
 /// \file stance.hpp
 /// A leg's nominal standing pose and where it puts the foot, for footholds derived from
 /// the robot's own geometry (planning/gait.hpp: footholds at `gait.foot_lateral` from the
-/// hip along RobotModel::hip_outward_B; a URDF robot's default foot_lateral is the nominal
-/// stance radius below).
+/// hip along RobotModel::hip_outward_B; a URDF robot's default foot_lateral is the stance
+/// radius below). NominalStance (core/scene.hpp) holds one leg's pose, radius, depth and
+/// how the pose was obtained.
 ///
 /// Default nominal pose ("femur level, tibia plumb"): coxa at zero; the femur turned so
 /// that the tibia joint is level with the femur joint; the tibia turned so that the foot
 /// is straight below the tibia joint (the classic hexapod standing pose, mid-range for the
 /// usual joint limits). Computed by IK of that foot point in the leg's plane; when it is
-/// out of reach or outside the joint limits, the middle of the joint limits is used.
-#include <optional>
+/// out of reach or outside the joint limits, the leg falls back to the middle of its joint
+/// limits (a "fallback", with the IK's reason), which `hexdyn run|validate` report.
+///
+/// The stance radius (gait.foot_lateral's default) is the mean radius of the legs whose
+/// stance is a pose, the default one reached or robot.nominal_pose: a fallback leg's
+/// mid-range angles are no standing pose, and averaging them in would move every leg's
+/// foothold. When every leg falls back, it is the mean of all six.
+#include <string>
+#include <vector>
 
 #include "hexdyn/model/robot_model.hpp"
 
 namespace hexdyn {
 
-struct NominalStance {
-  Vec3 q = Vec3::Zero();  ///< joint angles [rad], the description's signs and zero poses
-  double radius_m = 0.0;  ///< horizontal distance of the foot from the coxa joint [m]
-  double depth_m = 0.0;   ///< height of the coxa joint above the foot, along the trunk normal [m]
-  bool from_pose = true;  ///< false: the default pose was out of reach, mid-range used
-};
+/// Stance of leg `leg` at joint angles q (FK in the hip frame), obtained as `source` says.
+NominalStance stance_at_pose(const RobotModel& model, int leg, const Vec3& q, std::string source);
 
-/// Stance of leg `leg` at joint angles q (FK in the hip frame).
-NominalStance stance_at_pose(const RobotModel& model, int leg, const Vec3& q);
-
-/// Stance of leg `leg` at the default nominal pose (file comment).
+/// Stance of leg `leg` at the default nominal pose, or its fallback (file comment).
 NominalStance default_nominal_stance(const RobotModel& model, int leg);
+
+/// The stance radius and depth: the means over the legs whose stance is a pose, or over all
+/// six when every leg fell back (file comment).
+struct StanceMean {
+  double radius_m = 0.0;  ///< gait.foot_lateral's default [m]
+  double depth_m = 0.0;   ///< mean hip height above the foot [m]
+  std::vector<int> legs;  ///< the legs averaged, in leg order
+};
+StanceMean stance_mean(const std::array<NominalStance, kLegs>& stance);
+
+/// One line per leg, "L1: nominal pose, q [0, 0.43, -1.2] rad, radius 0.178 m, depth
+/// 0.09 m", then "stance radius R m: the mean over L1, L2, ... (gait.foot_lateral's
+/// default)"; newline-terminated.
+std::string stance_text(const std::array<NominalStance, kLegs>& stance);
+
+/// One warning line per fallback leg: the leg, why its default pose was out of reach, the
+/// radius its mid-range angles give and what the default foot spread does with it.
+std::vector<std::string> stance_fallback_warnings(const std::array<NominalStance, kLegs>& stance);
 
 }  // namespace hexdyn

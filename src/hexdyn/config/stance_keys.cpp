@@ -1,0 +1,52 @@
+#include "hexdyn/config/stance_keys.hpp"
+
+#include <cmath>
+
+#include "hexdyn/config/leg_keys.hpp"
+#include "hexdyn/model/urdf_robot.hpp"
+
+namespace hexdyn {
+
+using scene_keys::fmt;
+
+std::array<std::optional<Vec3>, kLegs> read_nominal_pose(scene_keys::Reader& r) {
+  return read_leg_vectors(r, {"robot.nominal_pose", "[coxa, femur, tibia] rad",
+                              scene_keys::closed(-2 * M_PI, 2 * M_PI), false});
+}
+
+void check_nominal_pose(scene_keys::Reader& r, const std::array<std::optional<Vec3>, kLegs>& pose,
+                        const UrdfRobot& robot) {
+  for (int leg = 0; leg < kLegs; ++leg) {
+    if (!pose[leg]) continue;
+    const UrdfLeg& l = robot.legs[leg];
+    const Vec3& q = *pose[leg];
+    for (int j = 0; j < kJointsPerLeg; ++j) {
+      if (q[j] >= l.lower_rad[j] && q[j] <= l.upper_rad[j]) continue;
+      r.fail("robot.nominal_pose", "got [" + fmt(q.x()) + ", " + fmt(q.y()) + ", " + fmt(q.z()) +
+                                       "] for " + leg_name(leg) + ", whose joint " +
+                                       l.joint_names[j] + " allows [" + fmt(l.lower_rad[j]) + ", " +
+                                       fmt(l.upper_rad[j]) +
+                                       "] rad, expected each angle inside its joint's limits");
+    }
+  }
+}
+
+void record_stance(scene_keys::Reader& r, const std::array<NominalStance, kLegs>& stance) {
+  YAML::Node legs(YAML::NodeType::Map);
+  for (int leg = 0; leg < kLegs; ++leg) {
+    const NominalStance& s = stance[leg];
+    YAML::Node q(YAML::NodeType::Sequence);
+    for (int j = 0; j < kJointsPerLeg; ++j) q.push_back(s.q[j]);
+    q.SetStyle(YAML::EmitterStyle::Flow);
+    YAML::Node entry(YAML::NodeType::Map);
+    entry["source"] = s.source;
+    entry["pose"] = q;
+    entry["radius"] = s.radius_m;
+    entry["depth"] = s.depth_m;
+    entry.SetStyle(YAML::EmitterStyle::Flow);
+    legs[leg_name(leg)] = entry;
+  }
+  r.record("auto.robot.nominal_pose", legs);
+}
+
+}  // namespace hexdyn
