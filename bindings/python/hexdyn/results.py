@@ -193,7 +193,8 @@ def _coordinate_lists(kind):
 
 
 RESULT_LAYOUT = _layout([SCHEMA["kTime"]], SCHEMA["kModelDatasets"], SCHEMA["kUrdfRobotDatasets"],
-                        SCHEMA["kKinematicDatasets"], SCHEMA["kDynamicsDatasets"],
+                        SCHEMA["kKinematicDatasets"], SCHEMA["kSphereFootDatasets"],
+                        SCHEMA["kDynamicsDatasets"],
                         SCHEMA["kDriveTrainDatasets"], *_coordinate_lists("Result"))
 RESULT_REQUIRED = {d.path for d in (*SCHEMA["kModelDatasets"], *SCHEMA["kKinematicDatasets"])}
 RESULT_V1_REQUIRED = {SCHEMA["kTime"].path}

@@ -143,6 +143,8 @@ void read_robot(Reader& r, RobotParams& p, LoadedUrdfRobot& loaded) {
   }
   p.ik_min_margin_m =
       r.number_or("robot.ik_min_margin", defaults().robot.ik_min_margin_m, nonnegative(0.1));
+  p.foot_radius_m = r.number_or("robot.foot_radius", defaults().robot.foot_radius_m,
+                                closed(0.0, kMaxFootRadius_m));
   const std::string def_legs = word(defaults().robot.leg_inertia);
   p.leg_inertia = r.choice("robot.leg_inertia", {"full", "massless"}, &def_legs) == "massless"
                       ? LegInertia::kMassless

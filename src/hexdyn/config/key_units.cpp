@@ -17,6 +17,7 @@ constexpr std::array kExact{
     Entry{"robot.hips.yaw", "rad"},
     Entry{"robot.ik_min_margin", "m"},
     Entry{"robot.foot_offset", "m"},
+    Entry{"robot.foot_radius", "m"},
     Entry{"robot.nominal_pose", "rad"},
     Entry{"terrain.riser_height", "m"},
     Entry{"terrain.tread_depth", "m"},
