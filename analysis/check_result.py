@@ -8,7 +8,11 @@ Checks: schema and /meta attributes; every model and kinematic dataset present w
 its shape, element type and `units`; finite values; URDF total mass = /model/total_mass
 (and = --expect-mass within 1e-9); URDF forward kinematics from /base/position,
 /base/orientation and /joints/position reproduces /feet/position within 1e-9 m at
-every sample. With --dynamics, the dynamics datasets as well, and on every sample with
+every sample; for a robot with sphere feet (a file with /feet/center), it reproduces
+/feet/center instead, and /feet/center - /feet/position is r n on every support sample,
+r the radius of the sphere <collision> of L{i}_foot in /model/urdf and n the terrain
+normal, with |/feet/center - /feet/position| = r on every sample
+(docs/theory/model.md#sphere-feet). With --dynamics, the dynamics datasets as well, and on every sample with
 /solver/status 0 (optimal) the constraints the allocation must meet, evaluated from the
 file's data alone, against the fixed threshold VIOLATION_THRESHOLD * max(1, |bound|) of
 allocation/qp.hpp kViolationThreshold (1e-6 N or N m):
@@ -31,6 +35,7 @@ any failure.
 import argparse
 import re
 import sys
+import xml.etree.ElementTree as ET
 
 
 import numpy as np  # noqa: E402
@@ -138,7 +143,10 @@ def check_kinematics(c, res, expect_mass):
     if expect_mass is not None:
         c.check(abs(robot.total_mass - expect_mass) <= MASS_TOLERANCE_KG,
                 f"URDF total mass = {expect_mass} kg", f"got {robot.total_mass!r} kg")
-    needed = ("/base/position", "/base/orientation", "/joints/position", "/feet/position")
+    feet_path = "/feet/center" if "/feet/center" in res else "/feet/position"
+    if feet_path == "/feet/center":
+        check_sphere_feet(c, res)
+    needed = ("/base/position", "/base/orientation", "/joints/position", feet_path)
     if all(p in res for p in needed) and len(robot.foot_links) == 6 and T > 0:
         try:
             feet = robot.foot_positions(res["/base/position"], res["/base/orientation"],
@@ -146,12 +154,39 @@ def check_kinematics(c, res, expect_mass):
         except ValueError as e:
             c.check(False, "URDF FK runs", str(e))
             return
-        err = np.linalg.norm(feet - res["/feet/position"], axis=2)
+        err = np.linalg.norm(feet - res[feet_path], axis=2)
         t_worst, leg_worst = np.unravel_index(np.argmax(err), err.shape)
         c.check(err.max() <= FK_TOLERANCE_M,
-                f"URDF FK reproduces /feet/position within {FK_TOLERANCE_M:g} m ({T} samples)",
+                f"URDF FK reproduces {feet_path} within {FK_TOLERANCE_M:g} m ({T} samples)",
                 f"max error {err.max():.3g} m at sample {t_worst} "
                 f"(t = {res['/time'][t_worst]:.6g} s), leg L{leg_worst + 1}")
+
+
+def foot_radii(urdf_text):
+    """The radius of the sphere <collision> of each link L1_foot ... L6_foot (0: none)."""
+    links = {link.get("name"): link for link in ET.fromstring(urdf_text).iter("link")}
+    radii = []
+    for i in range(1, 7):
+        sphere = links[f"L{i}_foot"].find("collision/geometry/sphere")
+        radii.append(0.0 if sphere is None else float(sphere.get("radius")))
+    return np.array(radii)
+
+
+def check_sphere_feet(c, res):
+    """/feet/center - /feet/position: r n in support, of length r always."""
+    config = yaml.safe_load(res.meta.get("config_yaml", "")) or {}
+    r = foot_radii(res.urdf)
+    center, contact = np.asarray(res["/feet/center"]), np.asarray(res["/feet/position"])
+    c.check(bool((r > 0).any()), "/model/urdf gives a sphere foot", f"radii {r}")
+    length = np.linalg.norm(center - contact, axis=2)
+    err = np.abs(length - r).max(initial=0.0)
+    c.check(err <= FK_TOLERANCE_M, "|/feet/center - /feet/position| = foot radius",
+            f"max error {err:.3g} m")
+    support = np.asarray(res["/contacts/phase"]) != hr.PHASE_SWING
+    offset = r[None, :, None] * terrain_normal(config, center)
+    err = np.linalg.norm(center - contact - offset, axis=2)[support].max(initial=0.0)
+    c.check(err <= FK_TOLERANCE_M, "/feet/center = /feet/position + r n in support",
+            f"max error {err:.3g} m")
 
 
 def check_dynamics(c, res):

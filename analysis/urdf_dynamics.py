@@ -7,7 +7,9 @@ independent of hexdyn's model and RNEA: a second computation of a result's joint
 
 reads the result's states (/base/*: the URDF root link's frame; /joints/position, velocity,
 acceleration by /model/joint_names) and foot forces (/contacts/force at the feet that
-/model/leg_mapping names), computes with a recursive Newton-Euler pass over the URDF's own
+/model/leg_mapping names; for sphere feet, a file with /feet/center, at the contact point:
+the foot point as this script's own forward kinematics places it, moved by /feet/position -
+/feet/center, docs/theory/model.md#sphere-feet), computes with a recursive Newton-Euler pass over the URDF's own
 links and joints (fixed joints kept as rigid joints, nothing merged, every <inertial> with
 its rotated frame) the joint torques and the wrench the base would need, and checks
   - |tau_urdf - /joints/torque| <= tolerance [N m] on every sample, and
@@ -98,7 +100,8 @@ class UrdfDynamics:
     def inverse_dynamics(self, base, q, qd, qdd, external):
         """base: dict of (T,3)/(T,4) arrays position, orientation (w,x,y,z), linear/angular
         velocity and acceleration of the root link frame, world axes; q, qd, qdd: dicts joint
-        name -> (T,); external: list of (link, point in link frame (3,), F_W (T,3)).
+        name -> (T,); external: list of (link, point in link frame (3,), F_W (T,3), shift
+        (T,3)): F_W acts at the point, moved by shift in world axes.
         Returns ({joint: tau (T,)}, root force (T,3), root moment about the root origin (T,3))."""
         T = base["position"].shape[0]
         R = {self.root: quaternion_to_matrix(base["orientation"])}
@@ -124,8 +127,8 @@ class UrdfDynamics:
             al[link] = alp + np.cross(wp, zw) * qd[j.name][:, None] + zw * qdd[j.name][:, None]
         f = {n: np.zeros((T, 3)) for n in self.order}
         n_ = {n: np.zeros((T, 3)) for n in self.order}
-        for link, point, F in external:
-            x = p[link] + np.einsum("tij,j->ti", R[link], point)
+        for link, point, F, shift in external:
+            x = p[link] + np.einsum("tij,j->ti", R[link], point) + shift
             f[link] -= F
             n_[link] -= np.cross(x - p[link], F)
         tau = {}
@@ -183,11 +186,15 @@ def check(result_path, urdf_path, tolerance, trunk_tolerance):
         q, qd, qdd = (h["/joints/" + k][:] for k in ("position", "velocity", "acceleration"))
         tau_file = h["/joints/torque"][:]
         force = h["/contacts/force"][:]
+        # A sphere foot's force acts at its contact point, r n from the centre (the foot point).
+        shift = h["/feet/position"][:] - h["/feet/center"][:] if "/feet/center" in h \
+            else np.zeros(force.shape)
         status = h["/solver/status"][:]
     robot = UrdfDynamics(urdf_text)
     urdf_path = urdf_path or "its /model/urdf"
     by_name = lambda m: {n: m[:, k] for k, n in enumerate(names)}  # noqa: E731
-    external = [(link, point, force[:, leg, :]) for leg, (link, point) in enumerate(feet)]
+    external = [(link, point, force[:, leg, :], shift[:, leg, :])
+                for leg, (link, point) in enumerate(feet)]
     tau, f_root, n_root = robot.inverse_dynamics(base, by_name(q), by_name(qd), by_name(qdd), external)
     tau_urdf = np.stack([tau[n] for n in names], axis=1)
     err = np.abs(tau_urdf - tau_file)

@@ -57,6 +57,7 @@ RESULT_PRESENCE = {
     "kModelDatasets": "always",
     "kKinematicDatasets": "always",
     "kUrdfRobotDatasets": "URDF robot",
+    "kSphereFootDatasets": "sphere feet",
     "kDynamicsDatasets": "dynamics",
     "kRequiredFrictionDatasets": "dynamics, unless output.required_friction is false",
     "kDriveTrainDatasets": "actuators",

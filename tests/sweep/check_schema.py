@@ -191,6 +191,8 @@ def check_result(f, root, source):
         tables.append("kUrdfRobotDatasets")
     if c.full(S["kDriveTorque"].path) in f:  # a scene with actuators
         tables.append("kDriveTrainDatasets")
+    if c.full(S["kFeetCenter"].path) in f:  # a robot with a sphere foot
+        tables.append("kSphereFootDatasets")
     for table in tables + ["kResultCoordinates"]:
         for spec in S[table]:
             c.dataset(spec, sizes)

@@ -193,8 +193,9 @@ def _coordinate_lists(kind):
 
 
 RESULT_LAYOUT = _layout([SCHEMA["kTime"]], SCHEMA["kModelDatasets"], SCHEMA["kUrdfRobotDatasets"],
-                        SCHEMA["kKinematicDatasets"], SCHEMA["kDynamicsDatasets"],
-                        SCHEMA["kRequiredFrictionDatasets"], SCHEMA["kDriveTrainDatasets"], *_coordinate_lists("Result"))
+                        SCHEMA["kKinematicDatasets"], SCHEMA["kSphereFootDatasets"],
+                        SCHEMA["kDynamicsDatasets"], SCHEMA["kRequiredFrictionDatasets"],
+                        SCHEMA["kDriveTrainDatasets"], *_coordinate_lists("Result"))
 RESULT_REQUIRED = {d.path for d in (*SCHEMA["kModelDatasets"], *SCHEMA["kKinematicDatasets"])}
 RESULT_V1_REQUIRED = {SCHEMA["kTime"].path}
 SWEEP_TABLE_LAYOUT = _layout([SCHEMA["kScenarioId"]], SCHEMA["kScenarioDatasets"])

@@ -63,6 +63,53 @@ BodyParams read_body(Reader& r, const std::string& path, bool has_com_default,
   return b;
 }
 
+/// robot.foot_offset of legs L1 … L6 (config/robot_config.hpp): one [x, y, z] for every leg,
+/// six in leg order, or a map by leg name with every leg.
+std::array<Vec3, kLegs> read_foot_offsets(Reader& r) {
+  const std::string key = "robot.foot_offset";
+  const Range range = closed(-kMaxRobotCoordinate_m, kMaxRobotCoordinate_m);
+  const YAML::Node node = r.peek(key);
+  std::array<Vec3, kLegs> out;
+  if (node.IsMap()) {  // every leg by name
+    for (const auto& kv : node) {
+      const std::string name = kv.first.IsScalar() ? kv.first.Scalar() : "?";
+      if (name.size() != 2 || name[0] != 'L' || name[1] < '1' || name[1] > '6')
+        r.fail(key + "." + name, "unknown leg, allowed here: L1, L2, L3, L4, L5, L6");
+    }
+    for (int leg = 0; leg < kLegs; ++leg) out[leg] = r.vec3(key + "." + leg_name(leg), range);
+    return out;
+  }
+  const std::string expected =
+      "[x, y, z], six [x, y, z] in the order L1 … L6 of /model/leg_names, or a map {L1: [x, y, "
+      "z], …, L6: [x, y, z]}, each coordinate " +
+      range.describe() + " m";
+  if (!node.IsSequence() || node.size() == 0) r.fail_value(key, node, expected);
+  if (!node[0].IsSequence()) {  // one point for every leg
+    if (node.size() != 3) r.fail_value(key, node, expected);
+    out.fill(r.vec3(key, range));
+    return out;
+  }
+  r.node(key);  // asked for: read below
+  if (node.size() != kLegs) r.fail_value(key, node, expected);
+  YAML::Node resolved(YAML::NodeType::Sequence);
+  for (int leg = 0; leg < kLegs; ++leg) {
+    const YAML::Node p = node[leg];
+    double v[3] = {0.0, 0.0, 0.0};
+    bool ok = p.IsSequence() && p.size() == 3;
+    for (std::size_t i = 0; ok && i < 3; ++i)
+      ok = p[i].IsScalar() && YAML::convert<double>::decode(p[i], v[i]) && std::isfinite(v[i]) &&
+           range.contains(v[i]);
+    if (!ok) r.fail_value(key, node, expected + " (" + leg_name(leg) + " is not)");
+    out[leg] = Vec3(v[0], v[1], v[2]);
+    YAML::Node xyz(YAML::NodeType::Sequence);
+    for (double x : v) xyz.push_back(x);
+    xyz.SetStyle(YAML::EmitterStyle::Flow);
+    resolved.push_back(xyz);
+  }
+  r.record(key, resolved);
+  return out;
+}
+
 /// robot: {urdf: ...}: the robot read from its URDF (config/robot_config.hpp). Returns the
 /// nominal stance radius, gait.foot_lateral's default [m].
 double read_urdf_robot_keys(Reader& r, RobotParams& p, LoadedUrdfRobot& loaded) {
@@ -76,9 +123,9 @@ double read_urdf_robot_keys(Reader& r, RobotParams& p, LoadedUrdfRobot& loaded) 
   const std::string def_axis = "+x";
   k.forward_axis = r.choice("robot.forward_axis", {"+x", "-x", "+y", "-y"}, &def_axis);
   k.foot_links = r.strings_or_none("robot.foot_links", kLegs);
-  if (r.has("robot.foot_offset"))
-    k.foot_offset_m =
-        r.vec3("robot.foot_offset", closed(-kMaxRobotCoordinate_m, kMaxRobotCoordinate_m));
+  if (r.has("robot.foot_offset")) k.foot_offset_m = read_foot_offsets(r);
+  if (r.has("robot.foot_radius"))
+    k.foot_radius_m = r.number("robot.foot_radius", closed(0.0, kMaxFootRadius_m));
   k.nominal_pose_rad = read_nominal_pose(r);
   k.ik_min_margin_m = p.ik_min_margin_m =
       r.number_or("robot.ik_min_margin", defaults().robot.ik_min_margin_m, nonnegative(0.1));
@@ -147,6 +194,8 @@ void read_robot(Reader& r, RobotParams& p, LoadedUrdfRobot& loaded) {
   }
   p.ik_min_margin_m =
       r.number_or("robot.ik_min_margin", defaults().robot.ik_min_margin_m, nonnegative(0.1));
+  p.foot_radius_m = r.number_or("robot.foot_radius", defaults().robot.foot_radius_m,
+                                closed(0.0, kMaxFootRadius_m));
   const std::string def_legs = word(defaults().robot.leg_inertia);
   p.leg_inertia = r.choice("robot.leg_inertia", {"full", "massless"}, &def_legs) == "massless"
                       ? LegInertia::kMassless

@@ -43,7 +43,8 @@ std::deque<LoadedEntry> loaded_entries;  ///< oldest first
 bool same_keys(const UrdfRobotKeys& a, const UrdfRobotKeys& b) {
   return a.path == b.path && a.trunk_link == b.trunk_link && a.forward_axis == b.forward_axis &&
          a.foot_links == b.foot_links && a.foot_offset_m == b.foot_offset_m &&
-         a.nominal_pose_rad == b.nominal_pose_rad && a.ik_min_margin_m == b.ik_min_margin_m;
+         a.foot_radius_m == b.foot_radius_m && a.nominal_pose_rad == b.nominal_pose_rad &&
+         a.ik_min_margin_m == b.ik_min_margin_m;
 }
 
 }  // namespace
@@ -67,6 +68,7 @@ LoadedUrdfRobot load_urdf_robot(const UrdfRobotKeys& keys) {
   opt.forward_axis = keys.forward_axis;
   opt.foot_links = keys.foot_links;
   opt.foot_offset = keys.foot_offset_m;
+  opt.foot_radius = keys.foot_radius_m;
   LoadedUrdfRobot out;
   auto robot = std::make_shared<UrdfRobot>(read_urdf_robot_from_string(text, keys.path, opt));
   const RobotModel model = build_robot_model(*robot, keys.ik_min_margin_m);

@@ -13,7 +13,11 @@
 ///   robot.trunk_link    the trunk link (default: the root link)
 ///   robot.forward_axis  "+x" (default, ROS REP-103), "-x", "+y", "-y" of the trunk link
 ///   robot.foot_links    six link names, one fixed to the last link of each leg chain
-///   robot.foot_offset   [x, y, z] m, the foot point in each chain's last link frame
+///   robot.foot_offset   [x, y, z] m, the foot point in each chain's last link frame; or
+///                       one per leg: six [x, y, z] in the order L1 … L6, or a map
+///                       {L1: [x, y, z], …, L6: [x, y, z]} (every leg)
+///   robot.foot_radius   m, every foot a sphere of this radius centred at its foot point
+///                       (default: a sphere <collision> foot's own radius, else 0)
 ///   robot.nominal_pose  [coxa, femur, tibia] rad, in the description's signs: the standing
 ///                       pose whose horizontal foot distance is gait.foot_lateral's default
 ///                       (default: model/stance.hpp "femur level, tibia plumb"); one for
@@ -50,7 +54,8 @@ struct UrdfRobotKeys {
   std::string trunk_link;
   std::string forward_axis = "+x";
   std::vector<std::string> foot_links;
-  std::optional<Vec3> foot_offset_m;
+  std::optional<std::array<Vec3, kLegs>> foot_offset_m;  ///< legs L1 … L6
+  std::optional<double> foot_radius_m;
   std::array<std::optional<Vec3>, kLegs> nominal_pose_rad;  ///< by leg; none: the default pose
   double ik_min_margin_m = 1e-4;
 };

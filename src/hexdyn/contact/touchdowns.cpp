@@ -10,7 +10,9 @@ namespace hexdyn {
 double foot_effective_mass(const RobotModel& model, RobotData& data, const BaseState& base,
                            const VecJ& q, int leg, const Vec3& n_W) {
   crba(model, data, base, q);
-  foot_jacobians(model, data, base, q);
+  FootNormals normals;
+  normals.fill(n_W);  // a sphere foot's Jacobian is its contact point's on this surface
+  foot_jacobians(model, data, base, q, &normals);
   const int c = 6 + joint_index(leg, 0);
   const Mat3 M_ll = data.M.block<3, 3>(c, c);
   const Mat3 J = data.J_foot_W[leg].block<3, 3>(0, c);

@@ -29,7 +29,10 @@ struct Touchdown {
 
 /// Effective mass of leg `leg`'s foot along n_W [kg]: the leg's operational-space inertia
 /// Λ = (J M_ll⁻¹ Jᵀ)⁻¹ with M_ll the leg's 3×3 joint block of M(q) and J its
-/// world-frame foot Jacobian (joint columns), i.e. the trunk held by the other legs.
+/// world-frame foot Jacobian (joint columns) at the contact point on a surface of normal n_W
+/// (a sphere foot's, dynamics/rnea.hpp), i.e. the trunk held by the other legs. For a sphere
+/// the normal mass is that of its centre: the arm −r n of the contact point is along n
+/// (docs/theory/contact.md#touchdown-transient).
 /// Uses only the pose of `base`; q: 18 joint angles [rad].
 double foot_effective_mass(const RobotModel& model, RobotData& data, const BaseState& base,
                            const VecJ& q, int leg, const Vec3& n_W);

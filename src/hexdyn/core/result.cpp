@@ -38,7 +38,7 @@ KinematicsResult gather_samples(const std::vector<const KinematicsResult*>& part
        {&K::base_position, &K::base_orientation_wxyz, &K::base_linear_velocity,
         &K::base_angular_velocity, &K::base_linear_acceleration, &K::base_angular_acceleration,
         &K::joint_position, &K::joint_velocity, &K::joint_acceleration, &K::foot_position,
-        &K::foot_velocity, &K::com_position})
+        &K::foot_velocity, &K::foot_center, &K::com_position})
     out.*m = gather_rows<RowMatrix>(
         parts, order, [m](const K& k) -> auto& { return k.*m; });
   out.contact_phase = gather_rows<RowMatrixI8>(
@@ -93,8 +93,8 @@ void KinematicsResult::resize(int T, bool zero) {
                        &base_linear_acceleration, &base_angular_acceleration, &com_position})
     size(*m, 3);
   size(base_orientation_wxyz, 4);
-  for (RowMatrix* m :
-       {&joint_position, &joint_velocity, &joint_acceleration, &foot_position, &foot_velocity})
+  for (RowMatrix* m : {&joint_position, &joint_velocity, &joint_acceleration, &foot_position,
+                       &foot_velocity, &foot_center})
     size(*m, kJoints);
   size(contact_phase, kLegs);
   sample_kind.assign(T, 0);

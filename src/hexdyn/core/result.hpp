@@ -44,7 +44,10 @@ struct KinematicsResult {
   RowMatrix joint_acceleration;         ///< T×18 [rad/s²]
   RowMatrix foot_position;              ///< T×18 = (T,6,3), world [m]
   RowMatrix foot_velocity;              ///< T×18 = (T,6,3), world [m/s]
-  RowMatrix com_position;               ///< T×3, whole-robot COM in G0 [m]
+  /// T×18 = (T,6,3), world [m]: the foot points the IK placed, a sphere foot's centre
+  /// (foot_position + r n); foot_position itself for a point foot.
+  RowMatrix foot_center;
+  RowMatrix com_position;  ///< T×3, whole-robot COM in G0 [m]
   /// T×6, ContactPhase values: swing/support from the gait (sample_kinematics); in a
   /// RunResult, the contact schedule's phases with the touchdown transients (kImpact).
   RowMatrixI8 contact_phase;
@@ -183,6 +186,8 @@ struct RunResult {
   /// /model/leg_mapping (URDF robots only, else empty): one entry per leg
   /// (model/urdf_robot.hpp leg_mapping_entries).
   std::vector<std::string> leg_mapping;
+  /// Some foot is a sphere (RobotModel::foot_radius_m): /feet/center is written.
+  bool sphere_feet = false;
   double total_mass_kg = 0.0;
   double wall_time_s = 0.0;
   /// /gait/cycle_start: Y start times of the gait cycles [s], the first 0 (empty: not

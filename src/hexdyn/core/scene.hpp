@@ -66,6 +66,9 @@ struct RobotParams {
   /// planar workspace (full extension or full fold) [m]: below it IK refuses.
   double ik_min_margin_m = 1e-4;
   LegInertia leg_inertia = LegInertia::kFull;  ///< robot.leg_inertia
+  /// robot.foot_radius: a sphere foot of this radius centred at the tibia's end (l3, 0, 0);
+  /// 0 a point foot [m] (docs/theory/model.md#sphere-feet).
+  double foot_radius_m = 0.0;
   /// A robot read from its URDF (robot.urdf, config/robot_config.cpp), or null for the robot
   /// described by the YAML keys above. When set, build_robot_model builds the model from
   /// it and every field above except ik_min_margin_m is unused.

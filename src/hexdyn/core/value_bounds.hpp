@@ -26,6 +26,10 @@ inline constexpr double kInertiaTriangleTolerance = 1e-9;
 /// the longest link (robot.*.length).
 inline constexpr double kMaxRobotCoordinate_m = 10.0;
 
+/// Largest sphere foot radius [m] (robot.foot_radius; a URDF sphere <collision> taken as the
+/// foot, model/urdf_reader.hpp).
+inline constexpr double kMaxFootRadius_m = 1.0;
+
 /// Widest joint limits [rad]: a URDF revolute joint's <limit lower upper> in [−2π, 2π] (a
 /// scene's robot.*.limits: [−π, π]; robot.nominal_pose: [−2π, 2π]).
 inline constexpr double kMaxJointAngle_rad = 2.0 * std::numbers::pi;

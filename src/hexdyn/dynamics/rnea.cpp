@@ -9,7 +9,16 @@ const Vec3 kGravity_W(0.0, 0.0, -kGravity);
 
 int tibia_body(int leg) { return 1 + joint_index(leg, 2); }
 
-Vec3 foot_point_tibia(const RobotModel& model, int leg) { return model.p_foot_last[leg]; }
+/// Where the terrain acts on leg l's tibia, in the tibia frame: the foot point, or a sphere
+/// foot's contact point centre − r n (n: normals_W[l], +z when null; rnea.hpp), from the
+/// tibia's pose in data.X_world_body.
+Vec3 contact_point_tibia(const RobotModel& model, const RobotData& data, int l,
+                         const FootNormals* normals_W) {
+  const double r = model.foot_radius_m[l];
+  if (r == 0.0) return model.p_foot_last[l];
+  const Vec3 n_W = normals_W != nullptr ? (*normals_W)[l] : Vec3::UnitZ();
+  return model.p_foot_last[l] - r * (data.X_world_body[tibia_body(l)].R.transpose() * n_W);
+}
 
 Inertia to_spatial(const RigidInertia& r) { return Inertia{r.mass_kg, r.com_m, r.inertia_com}; }
 
@@ -41,10 +50,11 @@ void forward_motion_pass(const RobotModel& model, RobotData& data, const Motion&
   }
 }
 
-/// Foot points and Jacobians from the body poses already in data.X_world_body.
-void fill_foot_jacobians(const RobotModel& model, RobotData& data, const BaseState& state) {
+/// Contact points and Jacobians from the body poses already in data.X_world_body.
+void fill_foot_jacobians(const RobotModel& model, RobotData& data, const BaseState& state,
+                         const FootNormals* normals_W) {
   for (int l = 0; l < kLegs; ++l) {
-    const Vec3 r_foot = foot_point_tibia(model, l);
+    const Vec3 r_foot = contact_point_tibia(model, data, l, normals_W);
     const Vec3 p_foot_W = data.X_world_body[tibia_body(l)].apply_point(r_foot);
     data.p_foot_W[l] = p_foot_W;
     FootJacobian& J = data.J_foot_W[l];
@@ -98,7 +108,8 @@ void update_kinematics(const RobotModel& model, RobotData& data, const BaseState
 }
 
 const VecDof& rnea(const RobotModel& model, RobotData& data, const BaseState& state, const VecJ& q,
-                   const VecJ& qd, const VecJ& qdd, const std::array<Vec3, kLegs>* foot_forces_W) {
+                   const VecJ& qd, const VecJ& qdd, const std::array<Vec3, kLegs>* foot_forces_W,
+                   const FootNormals* normals_W) {
   update_kinematics(model, data, state, q);
   Motion v0_B, a0_B;
   base_motion(state, state.a_W, state.omegadot_W, kGravity_W, v0_B, a0_B);
@@ -109,10 +120,10 @@ const VecDof& rnea(const RobotModel& model, RobotData& data, const BaseState& st
     const Inertia& I = data.I_body[b];
     data.f_body[b] = I * data.a_body[b] + cross(data.v_body[b], I * data.v_body[b]);
   }
-  // Terrain forces act on the tibias at the foot points; they relieve the joints.
+  // Terrain forces act on the tibias at the contact points; they relieve the joints.
   if (foot_forces_W != nullptr) {
     for (int l = 0; l < kLegs; ++l) {
-      const Vec3 r_foot = foot_point_tibia(model, l);
+      const Vec3 r_foot = contact_point_tibia(model, data, l, normals_W);
       const int b = tibia_body(l);
       const Vec3 F_b = data.X_world_body[b].R.transpose() * (*foot_forces_W)[l];
       data.f_body[b] -= Force{r_foot.cross(F_b), F_b};
@@ -176,21 +187,22 @@ const MatDof& crba(const RobotModel& model, RobotData& data, const BaseState& st
   return M;
 }
 
-void foot_jacobians(const RobotModel& model, RobotData& data, const BaseState& state,
-                    const VecJ& q) {
+void foot_jacobians(const RobotModel& model, RobotData& data, const BaseState& state, const VecJ& q,
+                    const FootNormals* normals_W) {
   update_kinematics(model, data, state, q);
-  fill_foot_jacobians(model, data, state);
+  fill_foot_jacobians(model, data, state, normals_W);
 }
 
 const std::array<Vec3, kLegs>& foot_bias_accelerations(const RobotModel& model, RobotData& data,
                                                        const BaseState& state, const VecJ& q,
-                                                       const VecJ& qd) {
+                                                       const VecJ& qd,
+                                                       const FootNormals* normals_W) {
   update_kinematics(model, data, state, q);
   Motion v0_B, a0_B;
   base_motion(state, Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), v0_B, a0_B);
   forward_motion_pass(model, data, v0_B, a0_B, qd, nullptr);
   for (int l = 0; l < kLegs; ++l) {
-    const Vec3 r = foot_point_tibia(model, l);
+    const Vec3 r = contact_point_tibia(model, data, l, normals_W);
     const int b = tibia_body(l);
     const Motion& v = data.v_body[b];
     const Motion& a = data.a_body[b];
@@ -237,9 +249,10 @@ const Momentum& robot_momentum(const RobotModel& model, RobotData& data, const B
 }
 
 const ContactSplit& contact_split(const RobotModel& model, RobotData& data, const BaseState& state,
-                                  const VecJ& q, const VecJ& qd, const VecJ& qdd) {
+                                  const VecJ& q, const VecJ& qd, const VecJ& qdd,
+                                  const FootNormals* normals_W) {
   rnea(model, data, state, q, qd, qdd, nullptr);
-  fill_foot_jacobians(model, data, state);  // kinematics already updated by rnea
+  fill_foot_jacobians(model, data, state, normals_W);  // kinematics already updated by rnea
   ContactSplit& s = data.split;
   s.trunk_rhs = data.tau.head<6>();
   s.tau0 = data.tau.tail<kJoints>();

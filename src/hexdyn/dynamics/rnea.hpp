@@ -22,9 +22,13 @@
 ///
 ///   M(q) ν̇ + h(q, ν) = [ f_base ; n_base ; τ_joints ] + Σ_l J_lᵀ F_l
 ///
-/// where F_l is the force of the terrain on foot l [N], world axes, applied at the foot
-/// point, and J_l (3×24) maps ν to the foot point's velocity in world axes. A motion is
-/// consistent without a base actuator when the trunk rows (f_base, n_base) vanish.
+/// where F_l is the force of the terrain on foot l [N], world axes, applied at its contact
+/// point, and J_l (3×24) maps ν to the velocity of the tibia's material point at the contact
+/// point, in world axes. The contact point is the foot point, or for a sphere foot of radius
+/// r (RobotModel::foot_radius_m) the point centre − r n of the sphere, n the unit normal of
+/// the surface under it (FootNormals): F at it is F at the centre plus the moment
+/// (−r n) × F on the tibia (docs/theory/model.md#sphere-feet). A motion is consistent
+/// without a base actuator when the trunk rows (f_base, n_base) vanish.
 /// h includes gravity (0, 0, −9.81) m/s² along −z of G0.
 ///
 /// Body frames: body 0 is the trunk (frame L0 at P0); body b = 1 + k is moved by joint
@@ -41,6 +45,9 @@ namespace hexdyn {
 using VecDof = Eigen::Matrix<double, kDof, 1>;        ///< 24 generalised values
 using MatDof = Eigen::Matrix<double, kDof, kDof>;     ///< 24×24
 using FootJacobian = Eigen::Matrix<double, 3, kDof>;  ///< 3×24, world axes
+/// Unit normal of the surface under each foot [1], world axes: where a sphere foot touches
+/// (file comment). Every algorithm that takes one reads +z under every foot when it is null.
+using FootNormals = std::array<Vec3, kLegs>;
 
 /// Total momentum of the whole robot (trunk, payload and all 18 links).
 struct Momentum {
@@ -94,8 +101,8 @@ struct RobotData {
   // --- results ---
   VecDof tau = VecDof::Zero();  ///< rnea: generalised force M ν̇ + h − Σ J_lᵀ F_l
   MatDof M = MatDof::Zero();    ///< crba: joint-space inertia matrix
-  std::array<FootJacobian, kLegs> J_foot_W;  ///< foot_jacobians: v_foot_W = J ν
-  std::array<Vec3, kLegs> p_foot_W;          ///< foot points in G0 [m]
+  std::array<FootJacobian, kLegs> J_foot_W;  ///< foot_jacobians: v_contact_W = J ν
+  std::array<Vec3, kLegs> p_foot_W;          ///< contact points in G0 [m]
   std::array<Vec3, kLegs> a_foot_bias_W;     ///< foot_bias_accelerations: J̇ ν [m/s²]
   Momentum momentum;                         ///< robot_momentum
   ContactSplit split;                        ///< contact_split
@@ -109,30 +116,35 @@ void update_kinematics(const RobotModel& model, RobotData& data, const BaseState
 /// Recursive Newton–Euler: returns τ = M(q) ν̇ + h(q, ν) − Σ_l J_lᵀ F_l (24, see the
 /// file comment), gravity included. q, qd, qdd: joint angles [rad], rates [rad/s],
 /// accelerations [rad/s²] (18 each). foot_forces_W: optional forces of the terrain on
-/// the six feet [N], world axes, applied at the foot points (nullptr: none).
+/// the six feet [N], world axes, applied at the contact points (nullptr: none) for the
+/// surface normals normals_W (file comment).
 /// Also fills kinematics, v_body, a_body, f_body. Result in data.tau.
 const VecDof& rnea(const RobotModel& model, RobotData& data, const BaseState& state, const VecJ& q,
                    const VecJ& qd, const VecJ& qdd,
-                   const std::array<Vec3, kLegs>* foot_forces_W = nullptr);
+                   const std::array<Vec3, kLegs>* foot_forces_W = nullptr,
+                   const FootNormals* normals_W = nullptr);
 
 /// Composite-rigid-body algorithm: the symmetric positive definite mass matrix M(q)
 /// (24×24) in the coordinates of the file comment. Uses only the pose of `state`.
 /// Also fills kinematics and Ic_body. Result in data.M.
 const MatDof& crba(const RobotModel& model, RobotData& data, const BaseState& state, const VecJ& q);
 
-/// Foot points p_foot_W [m] and foot Jacobians J_foot_W (3×24 each, v_foot_W = J ν):
-/// base block [I₃, −[p_foot_W − p_W]×], joint columns axis_W × (p_foot_W − p_joint_W)
-/// for the three joints of the leg, zero elsewhere. Uses only the pose of `state`.
-void foot_jacobians(const RobotModel& model, RobotData& data, const BaseState& state,
-                    const VecJ& q);
+/// Contact points p_foot_W [m] (file comment) and their Jacobians J_foot_W (3×24 each, the
+/// velocity of the tibia's material point there, v = J ν): base block
+/// [I₃, −[p_foot_W − p_W]×], joint columns axis_W × (p_foot_W − p_joint_W) for the three
+/// joints of the leg, zero elsewhere. Uses only the pose of `state`.
+void foot_jacobians(const RobotModel& model, RobotData& data, const BaseState& state, const VecJ& q,
+                    const FootNormals* normals_W = nullptr);
 
-/// Foot accelerations at zero generalised acceleration, J̇ ν (3 per leg) [m/s²], world
-/// axes: the classical foot acceleration is J ν̇ + J̇ ν. Uses the pose and twist of
-/// `state` and joint rates qd [rad/s]; ignores a_W, ω̇_W and gravity.
+/// Accelerations at zero generalised acceleration, J̇ ν (3 per leg) [m/s²], world axes, of
+/// the tibia's material points at the contact points (foot_jacobians): their classical
+/// acceleration is J ν̇ + J̇ ν. Uses the pose and twist of `state` and joint rates qd
+/// [rad/s]; ignores a_W, ω̇_W and gravity.
 /// Result in data.a_foot_bias_W; also overwrites v_body and a_body.
 const std::array<Vec3, kLegs>& foot_bias_accelerations(const RobotModel& model, RobotData& data,
                                                        const BaseState& state, const VecJ& q,
-                                                       const VecJ& qd);
+                                                       const VecJ& qd,
+                                                       const FootNormals* normals_W = nullptr);
 
 /// Whole-robot momentum, summed body by body from world-frame body velocities
 /// (independent of rnea/crba). Uses the pose and twist of `state`, q and qd.
@@ -141,10 +153,11 @@ const Momentum& robot_momentum(const RobotModel& model, RobotData& data, const B
                                const VecJ& q, const VecJ& qd);
 
 /// The affine split (docs/theory/stages.md#inverse-dynamics) for the prescribed motion
-/// (state, q, qd, qdd).
+/// (state, q, qd, qdd), the forces acting at the contact points of normals_W.
 /// Runs rnea without foot forces (data.tau holds its result afterwards) and
 /// foot_jacobians. Result in data.split.
 const ContactSplit& contact_split(const RobotModel& model, RobotData& data, const BaseState& state,
-                                  const VecJ& q, const VecJ& qd, const VecJ& qdd);
+                                  const VecJ& q, const VecJ& qd, const VecJ& qdd,
+                                  const FootNormals* normals_W = nullptr);
 
 }  // namespace hexdyn

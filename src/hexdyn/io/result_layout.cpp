@@ -98,7 +98,7 @@ void add_coordinates(Builder& b, const ResultLayout& layout) {
   b.add(s::kWxyzCoordinate, {4}, std::vector<std::string>{"w", "x", "y", "z"});
 }
 
-void add_kinematics(Builder& b, const KinematicsResult& k) {
+void add_kinematics(Builder& b, const KinematicsResult& k, bool sphere_feet) {
   namespace s = schema;
   const int T = k.samples();
   const std::size_t t = to_size(T);
@@ -114,6 +114,7 @@ void add_kinematics(Builder& b, const KinematicsResult& k) {
   b.matrix(s::kJointAcceleration, k.joint_acceleration, T, kJoints, {t, kJoints});
   b.matrix(s::kFeetPosition, k.foot_position, T, 3 * kLegs, {t, kLegs, 3});
   b.matrix(s::kFeetVelocity, k.foot_velocity, T, 3 * kLegs, {t, kLegs, 3});
+  if (sphere_feet) b.matrix(s::kFeetCenter, k.foot_center, T, 3 * kLegs, {t, kLegs, 3});
   b.matrix(s::kComPosition, k.com_position, T, 3, {t, 3});
   b.matrix(s::kContactPhase, k.contact_phase, T, kLegs, {t, kLegs});
   if (!k.sample_kind.empty() && k.sample_kind.size() != t)
@@ -237,7 +238,7 @@ ResultLayout result_layout(const RunResult& result) {
   add_meta(layout, result);
   add_model(b, result);
   add_coordinates(b, layout);
-  add_kinematics(b, result.kin);
+  add_kinematics(b, result.kin, result.sphere_feet);
   add_gait_and_terrain(layout, b, result);
   if (result.dyn.present)
     add_dynamics(b, result.dyn, result.kin.samples(), result.cycle_start_s.size());

@@ -47,8 +47,8 @@ struct ResultLayout {
 /// (kResultCoordinates: /leg, /joint, /xyz, /wxyz), the kinematic datasets and,
 /// when result.dyn.present, the dynamic ones and the index coordinates /impact and
 /// /message (schema.hpp's kModelDatasets, kUrdfRobotDatasets when the robot came from a
-/// URDF, kResultCoordinates, kKinematicDatasets, kDynamicsDatasets,
-/// kResultIndexCoordinates). Copies the arrays.
+/// URDF, kResultCoordinates, kKinematicDatasets, kSphereFootDatasets when result.sphere_feet,
+/// kDynamicsDatasets, kResultIndexCoordinates). Copies the arrays.
 ///
 /// Preconditions (checked; a mismatch throws IoError "PATH is RxC, expected ..." naming the
 /// dataset): every kinematic array has result.kin.samples() = T rows and its dataset's

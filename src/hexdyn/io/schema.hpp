@@ -227,7 +227,8 @@ inline constexpr DatasetSpec kModelTotalMass{"/model/total_mass", "kg", Shape::k
                                              Element::kFloat64, "total mass of the robot"};
 /// A URDF robot's legs L1 … L6: "L1: JOINT1 JOINT2 JOINT3 foot FOOT", the description's
 /// joint names hip to foot and the foot's link (or "offset X Y Z LINK", m in that link's
-/// frame). Written only for a robot read from a URDF (kUrdfRobotDatasets).
+/// frame), then "radius R" (m) for a sphere foot. Written only for a robot read from a URDF
+/// (kUrdfRobotDatasets).
 inline constexpr DatasetSpec kModelLegMapping{"/model/leg_mapping", "", Shape::kLegNames,
                                               Element::kString, "URDF joints and foot of each leg"};
 
@@ -255,8 +256,16 @@ inline constexpr DatasetSpec kJointVelocity{"/joints/velocity", "rad/s", Shape::
                                             Element::kFloat64, "joint angular velocity"};
 inline constexpr DatasetSpec kJointAcceleration{"/joints/acceleration", "rad/s^2", Shape::kT18,
                                                 Element::kFloat64, "joint angular acceleration"};
+/// Where each foot touches, or would touch in swing: the planned foot path; a sphere foot's
+/// contact point, centre − r n (docs/theory/model.md#sphere-feet).
 inline constexpr DatasetSpec kFeetPosition{"/feet/position", "m", Shape::kT6x3, Element::kFloat64,
                                            "foot position"};
+/// A sphere foot's centre, the point the IK places: /feet/position + r n, n the unit normal of
+/// the surface under the foot (in a swing, lift-off and touchdown normals blended); a point
+/// foot's is its /feet/position. Written only for a robot with a sphere foot
+/// (kSphereFootDatasets).
+inline constexpr DatasetSpec kFeetCenter{"/feet/center", "m", Shape::kT6x3, Element::kFloat64,
+                                         "sphere foot centre position"};
 inline constexpr DatasetSpec kFeetVelocity{"/feet/velocity", "m/s", Shape::kT6x3, Element::kFloat64,
                                            "foot velocity"};
 inline constexpr DatasetSpec kComPosition{"/com/position", "m", Shape::kT3, Element::kFloat64,
@@ -461,6 +470,8 @@ inline constexpr std::array kResultIndexCoordinates{kImpactCoordinate, kMessageC
                                                     kCycleCoordinate, kTerrainPointCoordinate};
 /// Datasets present when the robot was read from a URDF.
 inline constexpr std::array kUrdfRobotDatasets{kModelLegMapping};
+/// Datasets present when some foot is a sphere (robot.foot_radius, or a URDF's sphere foot).
+inline constexpr std::array kSphereFootDatasets{kFeetCenter};
 /// Datasets present when the dynamic stages ran.
 // clang-format off
 inline constexpr std::array kDynamicsDatasets{

@@ -10,21 +10,46 @@
 
 namespace hexdyn {
 
-void robot_state_at(const RobotModel& model, const MotionPlan& plan, double t,
-                    RobotKinematicState& out) {
-  out.trunk = plan.trunk.at(t);
+namespace {
+
+/// The IK target of a leg at t (the planned foot, a sphere foot's centre offset by r n)
+/// relative to the trunk in trunk axes, and its first two derivatives as seen from the
+/// (possibly rotating) trunk frame.
+struct RelativeTarget {
+  Vec3 r_B, rd_B, rdd_B;
+};
+
+RelativeTarget relative_target(const RobotModel& model, const MotionPlan& plan, int leg, double t,
+                               RobotKinematicState& out) {
+  const FootMotion f = leg_foot_motion(plan.gait.legs[leg], t);
+  out.feet[leg] = f;
+  FootMotion c = f;
+  if (const double radius = model.foot_radius_m[leg]; radius > 0.0) {
+    const FootNormal n = leg_foot_normal(plan.gait.legs[leg], plan.terrain, t);
+    c.p_W += radius * n.n_W;
+    c.v_W += radius * n.nd_W;
+    c.a_W += radius * n.ndd_W;
+  }
+  out.foot_center_W[leg] = c.p_W;
   const Mat3& W_R_B = out.trunk.W_R_B;
   const Vec3 omega_B = W_R_B.transpose() * out.trunk.omega_W;
   const Vec3 omegadot_B = W_R_B.transpose() * out.trunk.omegadot_W;
+  RelativeTarget r;
+  r.r_B = W_R_B.transpose() * (c.p_W - out.trunk.p_W);
+  r.rd_B = W_R_B.transpose() * (c.v_W - out.trunk.v_W) - omega_B.cross(r.r_B);
+  r.rdd_B = W_R_B.transpose() * (c.a_W - out.trunk.a_W) - 2.0 * omega_B.cross(r.rd_B) -
+            omegadot_B.cross(r.r_B) - omega_B.cross(omega_B.cross(r.r_B));
+  return r;
+}
+
+}  // namespace
+
+void robot_state_at(const RobotModel& model, const MotionPlan& plan, double t,
+                    RobotKinematicState& out) {
+  out.trunk = plan.trunk.at(t);
   for (int leg = 0; leg < kLegs; ++leg) {
-    const FootMotion f = leg_foot_motion(plan.gait.legs[leg], t);
-    out.feet[leg] = f;
-    // Foot relative to the trunk in trunk axes, and its first two derivatives as seen
-    // from the (possibly rotating) trunk frame.
-    const Vec3 r_B = W_R_B.transpose() * (f.p_W - out.trunk.p_W);
-    const Vec3 rd_B = W_R_B.transpose() * (f.v_W - out.trunk.v_W) - omega_B.cross(r_B);
-    const Vec3 rdd_B = W_R_B.transpose() * (f.a_W - out.trunk.a_W) - 2.0 * omega_B.cross(rd_B) -
-                       omegadot_B.cross(r_B) - omega_B.cross(omega_B.cross(r_B));
+    const auto [r_B, rd_B, rdd_B] = relative_target(model, plan, leg, t, out);
+    const FootMotion& f = out.feet[leg];
     const Mat3& B_R_H = model.R_B_H[leg];
     const Vec3 p_H = B_R_H.transpose() * (r_B - model.p_hip_B[leg]);
     const LegIkResult ik = leg_inverse_kinematics(model, leg, p_H);
@@ -115,6 +140,7 @@ KinematicsResult sample_kinematics(const RobotModel& model, const MotionPlan& pl
     for (int leg = 0; leg < kLegs; ++leg) {
       k.foot_position.row(i).segment<3>(3 * leg) = s.feet[leg].p_W.transpose();
       k.foot_velocity.row(i).segment<3>(3 * leg) = s.feet[leg].v_W.transpose();
+      k.foot_center.row(i).segment<3>(3 * leg) = s.foot_center_W[leg].transpose();
       k.contact_phase(i, leg) = static_cast<std::int8_t>(
           s.feet[leg].in_swing ? ContactPhase::kSwing : ContactPhase::kSupport);
     }

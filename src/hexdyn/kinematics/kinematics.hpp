@@ -2,8 +2,10 @@
 /// \file kinematics.hpp
 /// The kinematics stage: the whole robot's kinematics at given times, from a plan
 /// (planning/plan.hpp). Joint rates come from the leg Jacobian, q̇ = J⁻¹ ṙ and
-/// q̈ = J⁻¹ (r̈ − J̇ q̇), with r the foot relative to the hip in the hip frame; nothing is
-/// differentiated numerically.
+/// q̈ = J⁻¹ (r̈ − J̇ q̇), with r the foot point relative to the hip in the hip frame; nothing
+/// is differentiated numerically. The planned foot path is where the foot touches: a sphere
+/// foot's IK target, its centre, is that path + r n with n the normal under the foot and its
+/// derivatives (planning/gait.hpp leg_foot_normal; docs/theory/model.md#sphere-feet).
 #include <array>
 #include <vector>
 
@@ -20,6 +22,8 @@ struct RobotKinematicState {
   VecJ q = VecJ::Zero(), qd = VecJ::Zero(), qdd = VecJ::Zero();  ///< 18, flat joint order
   VecJ cos_q = VecJ::Ones(), sin_q = VecJ::Zero();               ///< std::cos(q), std::sin(q)
   std::array<FootMotion, kLegs> feet;                            ///< world frame
+  /// The IK targets: the foot points (a sphere foot's centre), world frame [m].
+  std::array<Vec3, kLegs> foot_center_W;
 };
 
 /// Fills `out` at time t. Throws ReachError naming the leg, the time and the margin

@@ -1,5 +1,6 @@
 #include "hexdyn/model/robot_model.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -45,6 +46,7 @@ RobotModel build_robot_model(const RobotParams& params) {
       m.joint_source_names[k] = joint_name(leg, j);
     }
     m.p_foot_last[leg] = Vec3(params.link_length_m[2], 0.0, 0.0);
+    m.foot_radius_m[leg] = params.foot_radius_m;
   }
   m.leg_geometry = LegGeometry::kPaperPlanar;
   m.ik_min_margin_m = params.ik_min_margin_m;
@@ -256,6 +258,11 @@ Mat3 rot_axis_cs(const Vec3& axis, double c, double s) {
 Vec3 tree_foot_position_B(const RobotModel& m, const BodyPoses& poses, int leg) {
   const int b_tibia = 1 + joint_index(leg, 2);
   return poses.p_B[b_tibia] + poses.R_B[b_tibia] * m.p_foot_last[leg];
+}
+
+bool has_sphere_feet(const RobotModel& m) {
+  return std::any_of(m.foot_radius_m.begin(), m.foot_radius_m.end(),
+                     [](double r) { return r > 0.0; });
 }
 
 Vec3 center_of_mass_B(const RobotModel& m, const BodyPoses& poses) {

@@ -10,7 +10,11 @@
 ///
 /// Leg frame H_l ("hip frame"): the coxa joint frame at zero coxa angle, origin at the
 /// coxa joint (p_hip_B, R_B_H = R_parent_joint of the coxa body). The foot point is
-/// p_foot_last[l] in the frame of the leg's third link (the tibia body).
+/// p_foot_last[l] in the frame of the leg's third link (the tibia body): the point the IK
+/// places and the FK, Jacobians and J̇ below describe. A sphere foot (foot_radius_m[l] > 0)
+/// has its centre there; it touches a surface of unit normal n at the contact point
+/// centre − r n, where the terrain's forces act (dynamics/rnea.hpp,
+/// docs/theory/model.md#sphere-feet).
 ///
 /// Two leg geometries (LegGeometry):
 ///  - kPaperPlanar, the paper robot described in YAML (build_robot_model(RobotParams)):
@@ -96,6 +100,8 @@ struct RobotModel {
   // --- leg geometry (file comment) ---
   LegGeometry leg_geometry = LegGeometry::kPaperPlanar;
   std::array<Vec3, kLegs> p_foot_last;  ///< foot point in the leg's third link frame [m]
+  /// Sphere foot radius per leg [m]: p_foot_last is the sphere's centre; 0 a point foot.
+  std::array<double, kLegs> foot_radius_m{};
   std::array<LegIkData, kLegs> leg_ik;  ///< kChain only
   /// Joint names in the description, flat order (URDF: its own names; YAML: L{i}_coxa …).
   std::array<std::string, kJoints> joint_source_names;
@@ -177,6 +183,9 @@ Mat3 rot_axis_cs(const Vec3& axis, double cos_angle, double sin_angle);
 /// Foot point of leg `leg` in the trunk frame computed through the generic tree
 /// (a second computation of the analytic FK).
 Vec3 tree_foot_position_B(const RobotModel& model, const BodyPoses& poses, int leg);
+
+/// True when some leg has a sphere foot (foot_radius_m > 0).
+bool has_sphere_feet(const RobotModel& model);
 
 /// Whole-robot centre of mass in the trunk frame [m].
 Vec3 center_of_mass_B(const RobotModel& model, const BodyPoses& poses);

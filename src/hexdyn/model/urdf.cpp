@@ -164,7 +164,12 @@ std::string robot_urdf(const RobotModel& model, const std::string& robot_name) {
                   child, p, R, &model.axis[b], &limit);
       parent = child;
     }
-    write_link(u, prefix + "foot", nullptr);
+    if (model.foot_radius_m[leg] > 0.0)  // a sphere foot: its <collision>, centred on the link
+      os << "  <link name=\"" << prefix << "foot\">\n    <collision>\n      <geometry><sphere "
+         << "radius=\"" << u.number(model.foot_radius_m[leg])
+         << "\"/></geometry>\n    </collision>\n  </link>\n";
+    else
+      write_link(u, prefix + "foot", nullptr);
     write_joint(u, prefix + "foot_fixed", "fixed", parent, prefix + "foot", model.p_foot_last[leg],
                 Mat3::Identity(), nullptr, nullptr);
   }

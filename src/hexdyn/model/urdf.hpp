@@ -14,7 +14,9 @@
 ///   L{i}_femur_link     on revolute `L{i}_femur` (parent L{i}_coxa_link)
 ///   L{i}_tibia_link     on revolute `L{i}_tibia` (parent L{i}_femur_link)
 ///   L{i}_foot           massless, on fixed joint `L{i}_foot_fixed` at the foot point
-///                       (RobotModel::p_foot_last; the paper robot: (l3, 0, 0) of the tibia)
+///                       (RobotModel::p_foot_last; the paper robot: (l3, 0, 0) of the tibia);
+///                       a sphere foot's link holds a <collision> sphere of its radius
+///                       centred on the link (RobotModel::foot_radius_m)
 /// Each link frame is the simulation's body frame (RobotModel body b = 1 + k for joint
 /// k = joint_index(l, j)), so joint origins are RobotModel::p_parent_joint /
 /// R_parent_joint (rpy fixed-axis, R = Rz(yaw) Ry(pitch) Rx(roll)), axes are

@@ -60,9 +60,9 @@ void check_finite_numbers(const std::string& text, const std::string& source) {
   TiXmlDocument doc;
   doc.Parse(text.c_str());
   if (doc.Error()) return;  // urdfdom reports XML errors
-  static const std::set<std::string> kNumeric = {"xyz",   "rpy",    "value",   "ixx", "ixy",
-                                                 "ixz",   "iyy",    "iyz",     "izz", "lower",
-                                                 "upper", "effort", "velocity"};
+  static const std::set<std::string> kNumeric = {
+      "xyz", "rpy",   "value", "ixx",    "ixy",      "ixz",    "iyy",    "iyz",
+      "izz", "lower", "upper", "effort", "velocity", "radius", "length", "size"};
   std::vector<std::pair<const TiXmlElement*, std::string>> todo;
   if (doc.RootElement() != nullptr) todo.emplace_back(doc.RootElement(), "");
   while (!todo.empty()) {
@@ -120,6 +120,10 @@ class Reader {
                      int chain_index);
   void locate_foot(const std::vector<std::pair<std::string, Placement>>& group,
                    const std::string& chain, UrdfLeg& leg);
+  std::vector<CollisionShape> collision_shapes(
+      const std::vector<std::pair<std::string, Placement>>& group) const;
+  void finish_feet(UrdfRobot& robot) const;
+  void check_foot_inside(int leg, UrdfLeg& l) const;
   std::pair<std::string, Placement> fixed_chain_end(
       const std::vector<std::pair<std::string, Placement>>& group, const std::string& last,
       const std::string& chain) const;
@@ -322,6 +326,7 @@ UrdfRobot Reader::read(const std::string& text) {
 
   std::vector<UrdfLeg> chains = read_legs(trunk, B_X_U, robot.trunk_link);
   map_legs(chains, robot);
+  finish_feet(robot);
   return robot;
 }
 
@@ -534,11 +539,12 @@ UrdfLeg Reader::read_chain(const urdf::JointConstSharedPtr& first, const Placeme
 
 /// The foot point p_foot_last [m] of a chain (named `chain` in messages) in its third link's
 /// frame, from the links fixed to that link (`group`, with their placements in its frame):
-/// a named foot link, else robot.foot_offset, else the end of the links fixed to it; a foot
-/// on the last joint's axis fails.
+/// a named foot link, else (robot.foot_offset is set per leg by finish_feet, once the legs
+/// are mapped) a sphere <collision>, else the end of the links fixed to it.
 void Reader::locate_foot(const std::vector<std::pair<std::string, Placement>>& group,
                          const std::string& chain, UrdfLeg& leg) {
   const std::string last = leg.link_names[2];
+  leg.collisions = collision_shapes(group);
   bool found = false;
   for (const auto& f : opt_.foot_links) {
     for (const auto& [name, Xl] : group) {
@@ -551,22 +557,160 @@ void Reader::locate_foot(const std::vector<std::pair<std::string, Placement>>& g
   }
   if (!opt_.foot_links.empty() && !found)
     fail(chain + "none of robot.foot_links is fixed to its last link '" + last + "'");
-  if (!found && opt_.foot_offset) {
-    leg.p_foot_last = *opt_.foot_offset;
-    leg.foot_source = "robot.foot_offset";
-    found = true;
+  if (found || opt_.foot_offset) return;
+  // The default sphere foot: of several spheres, the one farthest from the third joint.
+  const CollisionShape* sphere = nullptr;
+  for (const CollisionShape& s : leg.collisions)
+    if (s.kind == CollisionShape::Kind::kSphere && s.size.x() > 0.0 &&
+        (sphere == nullptr || s.p.norm() > sphere->p.norm()))
+      sphere = &s;
+  if (sphere != nullptr) {
+    if (sphere->size.x() > kMaxFootRadius_m)
+      fail("link '" + sphere->link + "': sphere <collision> of radius " + num(sphere->size.x()) +
+           " m taken as the foot of chain '" + leg.joint_names[0] + "', expected at most " +
+           num(kMaxFootRadius_m) + " m; give robot.foot_offset or robot.foot_links");
+    leg.p_foot_last = sphere->p;
+    leg.foot_radius_m = sphere->size.x();
+    leg.foot_kind = FootSource::kSphereCollision;
+    leg.foot_source = sphere->link;
+    return;
   }
-  if (!found) {
-    const auto [end, X_end] = fixed_chain_end(group, last, chain);
-    leg.p_foot_last = X_end.p;
-    leg.foot_source = end;
+  const auto [end, X_end] = fixed_chain_end(group, last, chain);
+  leg.p_foot_last = X_end.p;
+  leg.foot_source = end;
+}
+
+/// The <collision> geometries of the links of `group`, placed in the frame of its first link.
+std::vector<CollisionShape> Reader::collision_shapes(
+    const std::vector<std::pair<std::string, Placement>>& group) const {
+  std::vector<CollisionShape> out;
+  for (const auto& [name, X] : group) {
+    for (const auto& col : model_->getLink(name)->collision_array) {
+      if (!col || !col->geometry) continue;
+      CollisionShape s;
+      s.link = name;
+      const Placement O = X * to_placement(col->origin);
+      s.p = O.p;
+      s.R = O.R;
+      const urdf::Geometry& g = *col->geometry;
+      switch (g.type) {
+        case urdf::Geometry::SPHERE:
+          s.kind = CollisionShape::Kind::kSphere;
+          s.size.x() = static_cast<const urdf::Sphere&>(g).radius;
+          break;
+        case urdf::Geometry::BOX: {
+          const urdf::Vector3& d = static_cast<const urdf::Box&>(g).dim;
+          s.kind = CollisionShape::Kind::kBox;
+          s.size = Vec3(d.x, d.y, d.z);
+          break;
+        }
+        case urdf::Geometry::CYLINDER: {
+          const auto& c = static_cast<const urdf::Cylinder&>(g);
+          s.kind = CollisionShape::Kind::kCylinder;
+          s.size = Vec3(c.radius, c.length, 0.0);
+          break;
+        }
+        default:
+          s.kind = CollisionShape::Kind::kMesh;
+      }
+      out.push_back(s);
+    }
   }
-  const Vec3& a = leg.axis[2];
-  if ((leg.p_foot_last - a.dot(leg.p_foot_last) * a).norm() < 1e-6)
-    fail(chain + "foot (" + leg.foot_source + ") lies on the axis of its last joint '" +
-         leg.joint_names[2] +
-         "': the description has no foot frame; name the foot links (robot.foot_links) or give "
-         "robot.foot_offset");
+  return out;
+}
+
+/// The feet once the legs are mapped: robot.foot_offset per leg (with its foot check),
+/// robot.foot_radius, and the refusal of a foot on its last joint's axis.
+void Reader::finish_feet(UrdfRobot& robot) const {
+  for (int leg = 0; leg < kLegs; ++leg) {
+    UrdfLeg& l = robot.legs[leg];
+    const std::string chain = "chain '" + l.joint_names[0] + "': ";
+    if (opt_.foot_offset && opt_.foot_links.empty()) {
+      l.p_foot_last = (*opt_.foot_offset)[leg];
+      l.foot_kind = FootSource::kFootOffset;
+      l.foot_source = "robot.foot_offset";
+      check_foot_inside(leg, l);
+    }
+    if (opt_.foot_radius) l.foot_radius_m = *opt_.foot_radius;
+    const Vec3& a = l.axis[2];
+    if ((l.p_foot_last - a.dot(l.p_foot_last) * a).norm() < 1e-6)
+      fail(chain + "foot (" + l.foot_source + ") lies on the axis of its last joint '" +
+           l.joint_names[2] +
+           "': the description has no foot frame; name the foot links (robot.foot_links) or "
+           "give robot.foot_offset");
+  }
+}
+
+namespace {
+
+/// How far the point x (last link frame) lies outside the primitive s [m]; 0 inside.
+double distance_outside(const CollisionShape& s, const Vec3& x) {
+  const Vec3 local = s.R.transpose() * (x - s.p);
+  switch (s.kind) {
+    case CollisionShape::Kind::kSphere:
+      return std::max(0.0, local.norm() - s.size.x());
+    case CollisionShape::Kind::kBox:
+      return (local.cwiseAbs() - 0.5 * s.size).cwiseMax(0.0).norm();
+    case CollisionShape::Kind::kCylinder:
+      return std::hypot(std::max(0.0, local.head<2>().norm() - s.size.x()),
+                        std::max(0.0, std::abs(local.z()) - 0.5 * s.size.y()));
+    case CollisionShape::Kind::kMesh:
+      break;
+  }
+  return kInf;
+}
+
+const char* kind_name(CollisionShape::Kind k) {
+  switch (k) {
+    case CollisionShape::Kind::kSphere:
+      return "sphere";
+    case CollisionShape::Kind::kBox:
+      return "box";
+    case CollisionShape::Kind::kCylinder:
+      return "cylinder";
+    case CollisionShape::Kind::kMesh:
+      break;
+  }
+  return "mesh";
+}
+
+}  // namespace
+
+/// The foot check of a robot.foot_offset point (urdf_reader.hpp): l.foot_check says what it
+/// found; a point outside every primitive of a last link without meshes fails, naming the leg.
+void Reader::check_foot_inside(int leg, UrdfLeg& l) const {
+  const std::string last = l.link_names[2];
+  double nearest = kInf;
+  std::string kinds, meshes;
+  for (const CollisionShape& s : l.collisions) {
+    if (s.kind == CollisionShape::Kind::kMesh) {
+      if (meshes.find("'" + s.link + "'") == std::string::npos)
+        meshes += (meshes.empty() ? "'" : ", '") + s.link + "'";
+      continue;
+    }
+    const double d = distance_outside(s, l.p_foot_last);
+    if (d <= kFootCheckTolerance_m) {
+      l.foot_check = std::string("inside the ") + kind_name(s.kind) + " <collision> of " + s.link;
+      return;
+    }
+    nearest = std::min(nearest, d);
+    kinds += (kinds.empty() ? "" : ", ") + std::string(kind_name(s.kind));
+  }
+  if (!meshes.empty()) {
+    l.foot_check = "not checked: mesh <collision> geometry of " + meshes + " (files not read)";
+    return;
+  }
+  if (kinds.empty()) {
+    l.foot_check = "not checked: no <collision> on its last link '" + last + "'";
+    return;
+  }
+  const Vec3& p = l.p_foot_last;
+  fail("leg " + leg_name(leg) + " (chain '" + l.joint_names[0] + "'): robot.foot_offset (" +
+       num(p.x()) + ", " + num(p.y()) + ", " + num(p.z()) +
+       ") m lies outside the <collision> geometry of its last link '" + last + "' (" + kinds +
+       "; " + num(nearest) +
+       " m from the nearest), expected a point inside it (robot.foot_offset may give each "
+       "leg its own point: a list of six or a map by leg name)");
 }
 
 /// The end of the chain of links fixed to link `last` (group: those links, placed in its

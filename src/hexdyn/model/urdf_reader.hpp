@@ -14,10 +14,19 @@
 ///    exactly three revolute or continuous joints (each link of the chain carrying one
 ///    moving joint, the last none).
 ///  - Foot: options.foot_links (six link names, any order, each fixed to the last link of
-///    a chain), else options.foot_offset (a point in the chain's last link frame [m]), else
-///    the origin of the chain's last link: the end of the chain of links fixed to the
-///    third joint's child (the child itself when none is fixed to it). A foot on the third
-///    joint's axis is refused (the joint would not move it).
+///    a chain), else options.foot_offset (a point in each leg's last link frame [m], given
+///    per leg L1 … L6 as mapped below), else a sphere <collision> of the last link or of a
+///    link fixed to it (the sphere foot: its centre and radius; of several, the one farthest
+///    from the third joint's origin), else the origin of the chain's last link: the end of
+///    the chain of links fixed to the third joint's child (the child itself when none is
+///    fixed to it). options.foot_radius, when given, is every foot's radius (a sphere
+///    centred at the foot point; 0 a point foot). A foot on the third joint's axis is
+///    refused (the joint would not move it).
+///  - Foot check: a robot.foot_offset point must lie inside (within kFootCheckTolerance_m)
+///    one of the primitive <collision> geometries (sphere, box, cylinder, with their
+///    origins) of the last link and the links fixed to it, else the leg is refused; mesh
+///    geometry, whose files are not read, leaves the check undecided (UrdfLeg::foot_check
+///    says so, and `-v` prints it), as does a last link without <collision>.
 ///  - Trunk axes: options.forward_axis of the trunk link ("+x" default, ROS REP-103;
 ///    "-x", "+y", "-y") becomes hexdyn's +y (forward), the link's +z stays up, x = y × z
 ///    (right). Legs map to L1 … L6 by their coxa joints in that frame: x < 0 left, x > 0
@@ -34,11 +43,13 @@
 /// accepted as a point mass, e.g. Kraby's end caps) or whose principal moments break the
 /// triangle inequality (relative tolerance kInertiaTriangleTolerance); a leg count other
 /// than six; a chain that is not 3R; a foot that cannot be found; legs that cannot be
-/// mapped. Values are held to the scene's plausibility bounds (core/value_bounds.hpp): a
-/// mass above kMaxBodyMass_kg, a principal moment above kMaxPrincipalInertia_kgm2, a joint
-/// or inertial origin coordinate beyond ±kMaxRobotCoordinate_m, revolute limits outside
-/// ±kMaxJointAngle_rad, an effort above kMaxJointEffort_Nm or a velocity above
-/// kMaxJointVelocity_radps is refused, naming the link or joint and the value.
+/// mapped; a foot offset outside its last link's collision geometry (above). Values are held to the
+/// scene's plausibility bounds (core/value_bounds.hpp): a mass above kMaxBodyMass_kg, a principal
+/// moment above kMaxPrincipalInertia_kgm2, a joint or inertial origin coordinate beyond
+/// ±kMaxRobotCoordinate_m, revolute limits outside ±kMaxJointAngle_rad, an effort above
+/// kMaxJointEffort_Nm or a velocity above kMaxJointVelocity_radps is refused, naming the link or
+/// joint and the value.
+#include <array>
 #include <optional>
 #include <string>
 #include <vector>
@@ -47,11 +58,17 @@
 
 namespace hexdyn {
 
+/// How far outside a collision geometry a robot.foot_offset point may lie [m]: the rounding
+/// of numbers written to a few digits.
+inline constexpr double kFootCheckTolerance_m = 1e-6;
+
 struct UrdfReadOptions {
   std::string trunk_link;               ///< empty: the root link
   std::string forward_axis = "+x";      ///< "+x", "-x", "+y", "-y" of the trunk link
   std::vector<std::string> foot_links;  ///< empty, or six link names (one per chain)
-  std::optional<Vec3> foot_offset;      ///< foot point in each chain's last link frame [m]
+  /// The foot point of legs L1 … L6 in their last link frames [m] (robot.foot_offset).
+  std::optional<std::array<Vec3, kLegs>> foot_offset;
+  std::optional<double> foot_radius;  ///< every foot's sphere radius [m] (robot.foot_radius)
 };
 
 /// Reads and validates `path`; throws ConfigError (message names `path`).

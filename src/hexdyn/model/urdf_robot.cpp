@@ -35,6 +35,7 @@ RobotModel build_robot_model(const UrdfRobot& robot, double ik_min_margin_m) {
       m.joint_source_names[k] = l.joint_names[j];
     }
     m.p_foot_last[leg] = l.p_foot_last;
+    m.foot_radius_m[leg] = l.foot_radius_m;
   }
   m.total_mass_kg = 0.0;
   for (const auto& in : m.inertia) m.total_mass_kg += in.mass_kg;
@@ -49,6 +50,31 @@ RobotModel build_robot_model(const UrdfRobot& robot, double ik_min_margin_m) {
   return m;
 }
 
+namespace {
+
+/// The foot of leg l as leg_mapping_text describes it.
+std::string foot_text(const UrdfLeg& l) {
+  std::ostringstream point, s;
+  const Vec3& p = l.p_foot_last;
+  point << "(" << p.x() << ", " << p.y() << ", " << p.z() << ") m in " << l.link_names[2];
+  switch (l.foot_kind) {
+    case FootSource::kLinkOrigin:
+      s << l.foot_source;
+      break;
+    case FootSource::kFootOffset:
+      s << "robot.foot_offset " << point.str();
+      break;
+    case FootSource::kSphereCollision:
+      s << "the sphere <collision> of " << l.foot_source << ", centre " << point.str();
+      break;
+  }
+  if (l.foot_radius_m > 0.0) s << ", sphere foot of radius " << l.foot_radius_m << " m";
+  if (!l.foot_check.empty()) s << "; foot check: " << l.foot_check;
+  return s.str();
+}
+
+}  // namespace
+
 std::string leg_mapping_text(const UrdfRobot& robot) {
   std::ostringstream s;
   for (int leg = 0; leg < kLegs; ++leg) {
@@ -56,7 +82,7 @@ std::string leg_mapping_text(const UrdfRobot& robot) {
     const Vec3& h = l.p_parent_joint[0];
     s << leg_name(leg) << " <- " << l.joint_names[0] << " / " << l.joint_names[1] << " / "
       << l.joint_names[2] << ", hip (" << h.x() << ", " << h.y() << ", " << h.z()
-      << ") m in the trunk frame, foot " << l.foot_source << "\n";
+      << ") m in the trunk frame, foot " << foot_text(l) << "\n";
   }
   return s.str();
 }
@@ -69,11 +95,12 @@ std::array<std::string, kLegs> leg_mapping_entries(const UrdfRobot& robot) {
     s.precision(17);
     s << leg_name(leg) << ": " << l.joint_names[0] << " " << l.joint_names[1] << " "
       << l.joint_names[2] << " foot ";
-    if (l.foot_source == "robot.foot_offset")
+    if (l.foot_kind != FootSource::kLinkOrigin)
       s << "offset " << l.p_foot_last.x() << " " << l.p_foot_last.y() << " " << l.p_foot_last.z()
         << " " << l.link_names[2];
     else
       s << l.foot_source;
+    if (l.foot_radius_m > 0.0) s << " radius " << l.foot_radius_m;
     out[leg] = s.str();
   }
   return out;

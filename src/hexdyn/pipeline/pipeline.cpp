@@ -143,6 +143,7 @@ RunResult run_prepared_scene(const Scene& scene, const PreparedScene& prep, std:
     const auto mapping = leg_mapping_entries(*scene.robot.urdf);
     result.leg_mapping.assign(mapping.begin(), mapping.end());
   }
+  result.sphere_feet = has_sphere_feet(prep.model);
   result.total_mass_kg = prep.model.total_mass_kg;
   result.cycle_start_s = prep.plan.trunk.cycle_start_times();
   add_terrain_profile(prep.plan.terrain.params(), result);

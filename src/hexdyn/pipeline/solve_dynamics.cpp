@@ -78,7 +78,9 @@ class SampleSolver {
     const VecJ q = kin.joint_position.row(i).transpose();
     const VecJ qd = kin.joint_velocity.row(i).transpose();
     const VecJ qdd = kin.joint_acceleration.row(i).transpose();
-    const ContactSplit& split = contact_split(model_, data_, base, q, qd, qdd);
+    FootNormals normals;  // the surface under each foot: a sphere foot's contact point
+    for (int l = 0; l < kLegs; ++l) normals[l] = c.W_R_contact[l].col(2);
+    const ContactSplit& split = contact_split(model_, data_, base, q, qd, qdd, &normals);
     clock.emplace(times, Stage::kAllocation);
     const bool drive = scene_.actuators.present;
     if (drive) drive_rows(qd, qdd);

@@ -153,4 +153,41 @@ FootMotion leg_foot_motion(const LegPlan& leg, double t) {
   return f;
 }
 
+FootNormal swing_foot_normal(const Swing& sw, const Vec3& n0, const Vec3& n1, double t) {
+  FootNormal f;
+  f.n_W = n0;
+  if (n0 == n1) return f;
+  const double D = sw.t_touchdown_s - sw.t_liftoff_s;
+  const double u = std::clamp((t - sw.t_liftoff_s) / D, 0.0, 1.0);
+  const double ul = sw.lift_end_u, ud = sw.lower_start_u;
+  const double Dt = (ud - ul) * D;
+  const double sigma = std::clamp((u - ul) / (ud - ul), 0.0, 1.0);
+  const Vec3 dn = n1 - n0;
+  const Vec3 m = n0 + S(sigma) * dn;
+  const Vec3 md = dn * (dS(sigma) / Dt), mdd = dn * (ddS(sigma) / (Dt * Dt));
+  // n = m/ρ, ρ = |m|: ṅ = (ṁ − ρ̇ n)/ρ with ρ̇ = n·ṁ; n̈ = (m̈ − ρ̈ n − 2 ρ̇ ṅ)/ρ with
+  // ρ̈ = ṅ·ṁ + n·m̈.
+  const double rho = m.norm();
+  f.n_W = m / rho;
+  const double rho_d = f.n_W.dot(md);
+  f.nd_W = (md - rho_d * f.n_W) / rho;
+  const double rho_dd = f.nd_W.dot(md) + f.n_W.dot(mdd);
+  f.ndd_W = (mdd - rho_dd * f.n_W - 2.0 * rho_d * f.nd_W) / rho;
+  return f;
+}
+
+FootNormal leg_foot_normal(const LegPlan& leg, const Terrain& terrain, double t) {
+  Vec3 p = leg.p_initial_W;
+  for (const Swing& sw : leg.swings) {
+    if (t < sw.t_liftoff_s) break;
+    if (t < sw.t_touchdown_s)
+      return swing_foot_normal(sw, terrain.normal(sw.p_liftoff_W.x(), sw.p_liftoff_W.y()),
+                               terrain.normal(sw.p_touchdown_W.x(), sw.p_touchdown_W.y()), t);
+    p = sw.p_touchdown_W;
+  }
+  FootNormal f;
+  f.n_W = terrain.normal(p.x(), p.y());
+  return f;
+}
+
 }  // namespace hexdyn

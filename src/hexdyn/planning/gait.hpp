@@ -76,4 +76,22 @@ Vec3 swing_foot_position(const Swing& swing, double t_s);
 /// foothold otherwise.
 FootMotion leg_foot_motion(const LegPlan& leg, double t_s);
 
+/// Unit normal n of the surface a foot stands on and its first two time derivatives
+/// [1, 1/s, 1/s²], world frame: a sphere foot's centre is the planned foot point + r n
+/// (docs/theory/model.md#sphere-feet).
+struct FootNormal {
+  Vec3 n_W = Vec3::UnitZ(), nd_W = Vec3::Zero(), ndd_W = Vec3::Zero();
+};
+
+/// The normal under a leg's foot at time t (the same swing or foothold as leg_foot_motion):
+/// the terrain's normal at the foothold in support; in a swing the lift-off and touchdown
+/// normals n0, n1 blended, n = m/|m| with m = (1 − S(σ)) n0 + S(σ) n1 and S(σ) the horizontal
+/// transfer's smootherstep, so n turns while the foot moves across and stays n0 during the
+/// lift, n1 during the descent and at touchdown.
+FootNormal leg_foot_normal(const LegPlan& leg, const Terrain& terrain, double t_s);
+
+/// The swing's part of leg_foot_normal: lift-off normal n0_W and touchdown normal n1_W (unit)
+/// blended at t ∈ [t_liftoff, t_touchdown].
+FootNormal swing_foot_normal(const Swing& swing, const Vec3& n0_W, const Vec3& n1_W, double t_s);
+
 }  // namespace hexdyn

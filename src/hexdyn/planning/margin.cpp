@@ -272,12 +272,14 @@ MarginBounds bounds_at(const SampleBound& b, double delta_m) {
   return out;
 }
 
-FootTrack foot_track(const MotionPlan& plan, int uniform) {
+FootTrack foot_track(const RobotModel& model, const MotionPlan& plan, int uniform) {
   FootTrack f;
   f.t_s = margin_sample_times(plan, uniform);
   f.p_W.resize(f.t_s.size());
-  // leg_foot_motion(leg, t).p_W, walking each leg's swings along the increasing times.
+  // leg_foot_motion(leg, t).p_W, walking each leg's swings along the increasing times; a
+  // sphere foot's centre, the IK's target, r n above it (kinematics/kinematics.hpp).
   for (int leg = 0; leg < kLegs; ++leg) {
+    const double radius = model.foot_radius_m[leg];
     const std::vector<Swing>& swings = plan.gait.legs[leg].swings;
     std::size_t k = 0;
     Vec3 foothold = plan.gait.legs[leg].p_initial_W;
@@ -288,6 +290,8 @@ FootTrack foot_track(const MotionPlan& plan, int uniform) {
       f.p_W[i][leg] = k < swings.size() && t >= swings[k].t_liftoff_s
                           ? swing_foot_position(swings[k], t)
                           : foothold;
+      if (radius > 0.0)
+        f.p_W[i][leg] += radius * leg_foot_normal(plan.gait.legs[leg], plan.terrain, t).n_W;
     }
   }
   return f;

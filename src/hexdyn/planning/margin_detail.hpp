@@ -82,10 +82,11 @@ bool admits(const SampleBound& b, double delta_m);
 /// posture plans the gait of a spread once and moves only the trunk for each height.
 struct FootTrack {
   std::vector<double> t_s;
-  std::vector<std::array<Vec3, kLegs>> p_W;  ///< per instant and leg [m, G0]
+  /// per instant and leg [m, G0]: the foot points the IK places (a sphere foot's centre)
+  std::vector<std::array<Vec3, kLegs>> p_W;
 };
 
-FootTrack foot_track(const MotionPlan& plan, int uniform);
+FootTrack foot_track(const RobotModel& model, const MotionPlan& plan, int uniform);
 
 /// The samples evaluated so far on one FootTrack, at whatever trunk height: per sample
 /// (i·kLegs + leg), its height and bound. Moving the trunk by Δh moves every foot target in its

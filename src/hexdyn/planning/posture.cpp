@@ -165,7 +165,8 @@ class PostureSearch {
     s.foot_lateral_m = w;
     s.uniform = uniform;
     try {
-      s.feet = margin_detail::foot_track(plan_motion_with(scene_, model_, p0_W, w), uniform);
+      s.feet =
+          margin_detail::foot_track(model_, plan_motion_with(scene_, model_, p0_W, w), uniform);
       s.planned = true;
     } catch (const PlanningError& e) {
       s.planning_error = e.what();
@@ -195,7 +196,7 @@ double leg_length_m(const RobotModel& model) {
           std::max(reach, model.p_parent_joint[femur].norm() + model.p_parent_joint[tibia].norm() +
                               model.p_foot_last[leg].norm());
     }
-    r = std::max(r, reach);
+    r = std::max(r, reach + model.foot_radius_m[leg]);  // a sphere foot reaches r further down
   }
   return r;
 }
@@ -293,7 +294,8 @@ std::vector<double> margin_sample_times(const MotionPlan& plan, int uniform) {
 
 KinematicMargin motion_kinematic_margin(const RobotModel& model, const MotionPlan& plan,
                                         int uniform) {
-  return margin_detail::full_margin(model, plan.trunk, margin_detail::foot_track(plan, uniform));
+  return margin_detail::full_margin(model, plan.trunk,
+                                    margin_detail::foot_track(model, plan, uniform));
 }
 
 PostureChoice choose_posture(const Scene& scene, const RobotModel& model, PostureCheck check) {

@@ -201,4 +201,101 @@ TEST_CASE("a URDF robot is read from its file as the file is now, parsed once pe
   CHECK(d.robot.ik_min_margin_m == 0.001);
 }
 
+// ---- feet (docs/user/robots.md#feet) ----
+namespace {
+
+const std::string kPexodScene = kSource + "/configs/robots/pexod_stairs.yaml";
+
+/// pexod's sphere feet as its URDF gives them: centre (0.0125, ±0.1275, 0) m in the tibia
+/// frame, + on the left legs (L1, L3, L5), − on the right; radius 0.025 m.
+Vec3 pexod_foot(int leg) { return Vec3(0.0125, is_left(leg) ? 0.1275 : -0.1275, 0.0); }
+
+}  // namespace
+
+TEST_CASE("a URDF's sphere <collision> at a chain's end is its default foot, centre and radius",
+          "[robot_config][feet]") {
+  const Scene scene = load_scene(kPexodScene);
+  REQUIRE(scene.robot.urdf);
+  const RobotModel model = build_robot_model(scene.robot);
+  for (int leg = 0; leg < kLegs; ++leg) {
+    const UrdfLeg& l = scene.robot.urdf->legs[leg];
+    INFO(leg_name(leg) << ": " << l.joint_names[0]);
+    CHECK(l.foot_kind == FootSource::kSphereCollision);
+    CHECK((model.p_foot_last[leg] - pexod_foot(leg)).norm() <= 1e-15);
+    CHECK(model.foot_radius_m[leg] == 0.025);
+  }
+  CHECK(leg_mapping_text(*scene.robot.urdf).find("the sphere <collision> of leg_2_3") !=
+        std::string::npos);
+  CHECK(leg_mapping_entries(*scene.robot.urdf)[0].find(" radius 0.025") != std::string::npos);
+  // robot.foot_radius replaces the sphere's radius; 0 makes the centre a point foot.
+  const Scene point = load_scene(kPexodScene, {{"robot.foot_radius", "0"}});
+  CHECK(build_robot_model(point.robot).foot_radius_m[3] == 0.0);
+}
+
+TEST_CASE("robot.foot_offset: one point, six in leg order, or a map by leg name",
+          "[robot_config][feet]") {
+  std::string list = "[", map = "{";
+  for (int leg = 0; leg < kLegs; ++leg) {
+    const Vec3 p = pexod_foot(leg);
+    std::ostringstream xyz;
+    xyz << "[" << p.x() << ", " << p.y() << ", " << p.z() << "]";
+    list += (leg ? ", " : "") + xyz.str();
+    map += (leg ? ", " : "") + leg_name(leg) + ": " + xyz.str();
+  }
+  list += "]";
+  map += "}";
+  for (const std::string& value : {list, map}) {
+    INFO(value);
+    const Scene scene = load_scene(kPexodScene, {{"robot.foot_offset", value}});
+    const RobotModel model = build_robot_model(scene.robot);
+    for (int leg = 0; leg < kLegs; ++leg) {
+      CHECK(model.p_foot_last[leg] == pexod_foot(leg));
+      CHECK(model.foot_radius_m[leg] == 0.0);  // a point, unless robot.foot_radius says
+      // Inside the tibia's <collision> box (it reaches the sphere's centre).
+      CHECK(scene.robot.urdf->legs[leg].foot_check ==
+            "inside the box <collision> of " + scene.robot.urdf->legs[leg].link_names[2]);
+    }
+    // The resolved configuration reruns to the same feet.
+    const Scene again = load_scene_from_string(scene.resolved_yaml, kPexodScene);
+    CHECK(build_robot_model(again.robot).p_foot_last == model.p_foot_last);
+    const Scene sphere =
+        load_scene(kPexodScene, {{"robot.foot_offset", value}, {"robot.foot_radius", "0.025"}});
+    CHECK(build_robot_model(sphere.robot).foot_radius_m[5] == 0.025);
+  }
+  // One point for every leg: the left feet's point lies outside the right tibias.
+  const std::string one = config_error(kPexodScene, {{"robot.foot_offset", "[0.0125, 0.1275, 0]"}});
+  CHECK(one.find('\n') == std::string::npos);
+  CHECK(one.find("leg L2 (chain 'body_leg_3'): robot.foot_offset (0.0125, 0.1275, 0) m lies "
+                 "outside the <collision> geometry of its last link 'leg_3_3' (box, sphere; ") !=
+        std::string::npos);
+  // Malformed values: one line with the key, the value and what is allowed.
+  struct Bad {
+    std::string value, expected;
+  };
+  const std::vector<Bad> bad = {
+      {"[[0, 0, 0], [0, 0, 0]]",
+       "robot.foot_offset: got [[0, 0, 0], [0, 0, 0]], expected [x, y, "
+       "z], six [x, y, z] in the order L1 … L6 of /model/leg_names, or "
+       "a map {L1: [x, y, z], …, L6: [x, y, z]}"},
+      {"{L1: [0, 0, 0]}", "robot.foot_offset.L2: missing, this key is required"},
+      {"{L7: [0, 0, 0]}",
+       "robot.foot_offset.L7: unknown leg, allowed here: L1, L2, L3, L4, L5, L6"},
+      {"[0, 0]", "robot.foot_offset: got [0, 0], expected [x, y, z], six [x, y, z]"},
+      {"[0, 0, 11]",
+       "robot.foot_offset: got [0, 0, 11], expected a list of 3 numbers, each a "
+       "number in [-10, 10]"},
+      {"[[0, 0, 0], [0, 0, 0], [0, 0, 0], [0, 0, 0], [0, 0, 0], [0, 0, x]]", "(L6 is not)"},
+      {"7", "robot.foot_offset: got 7, expected [x, y, z]"},
+  };
+  for (const Bad& b : bad) {
+    const std::string e = config_error(kPexodScene, {{"robot.foot_offset", b.value}});
+    INFO(e);
+    CHECK(e.find('\n') == std::string::npos);
+    CHECK(e.find(b.expected) != std::string::npos);
+  }
+  CHECK(config_error(kPexodScene, {{"robot.foot_radius", "-0.01"}})
+            .find("robot.foot_radius: got -0.01, expected a number in [0, 1]") !=
+        std::string::npos);
+}
+
 }  // namespace hexdyn

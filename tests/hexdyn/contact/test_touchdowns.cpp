@@ -158,6 +158,20 @@ TEST_CASE("touchdowns: foot effective mass equals the minimum-energy normal impu
     CHECK(std::isfinite(got));
     CHECK(got > 0.0);
     CHECK(std::abs(got - expected) <= 1e-9 * expected);
+    // A sphere foot centred at the same point: its contact point, r below the centre along
+    // n, has the centre's normal effective mass (the arm −r n is along n;
+    // docs/theory/contact.md#touchdown-transient), though its Jacobian is not the centre's.
+    RobotModel sphere = rm;
+    sphere.foot_radius_m.fill(0.03);
+    RobotData sd(sphere);
+    const double got_sphere = foot_effective_mass(sphere, sd, base, q, leg, n);
+    CHECK(std::abs(got_sphere - expected) <= 1e-9 * expected);
+    FootNormals normals;
+    normals.fill(n);
+    foot_jacobians(sphere, sd, base, q, &normals);
+    const FootJacobian J_contact = sd.J_foot_W[leg];
+    foot_jacobians(rm, rd, base, q);
+    CHECK((J_contact - rd.J_foot_W[leg]).norm() > 1e-3);
   }
 }
 

@@ -427,4 +427,186 @@ TEST_CASE("contact split reproduces rnea with foot forces", "[dynamics]") {
   }
 }
 
+// ---- sphere feet (docs/theory/model.md#sphere-feet) ----
+namespace {
+
+/// The sample models with a sphere foot of a random radius on every leg.
+std::vector<RobotModel> sphere_foot_models(std::mt19937& rng) {
+  std::vector<RobotModel> out = sample_models();
+  for (RobotModel& m : out)
+    for (double& r : m.foot_radius_m) r = uniform(rng, 0.005, 0.04);
+  return out;
+}
+
+/// A random upward unit normal per foot (up to 60° from +z).
+FootNormals random_normals(std::mt19937& rng) {
+  FootNormals n;
+  for (Vec3& v : n) {
+    do v = random_vec3(rng, -1.0, 1.0) + Vec3(0.0, 0.0, 1.0);
+    while (v.norm() < 0.5 || v.normalized().z() < 0.5);
+    v.normalize();
+  }
+  return n;
+}
+
+/// The tibia's angular-velocity Jacobian of leg l (3×24): ω_tibia = J_ω ν, from the tree's
+/// world poses alone: the trunk's ω and each leg joint's axis in world axes.
+Eigen::Matrix<double, 3, kDof> tibia_angular_jacobian(const RobotModel& model, const Sample& s,
+                                                      int l) {
+  const WorldPoses w = world_poses(model, s.state, s.q);
+  Eigen::Matrix<double, 3, kDof> J = Eigen::Matrix<double, 3, kDof>::Zero();
+  J.block<3, 3>(0, 3).setIdentity();
+  for (int j = 0; j < kJointsPerLeg; ++j) {
+    const int k = joint_index(l, j);
+    const int b = 1 + k;
+    // The joint frame's axes are the child body's at any angle (rotation about the axis).
+    J.col(6 + k) = w.R[b] * model.axis[b];
+  }
+  return J;
+}
+
+/// State s moved by t along the generalised velocity ν: p + v t, R = exp(ω t) R, q + q̇ t.
+Sample moved(const Sample& s, const VecDof& nu, double t) {
+  Sample m = s;
+  m.state.p_W += nu.head<3>() * t;
+  m.state.W_R_B = so3_exp(nu.segment<3>(3) * t) * s.state.W_R_B;
+  m.q = s.q + nu.tail<kJoints>() * t;
+  return m;
+}
+
+}  // namespace
+
+TEST_CASE("sphere feet: the contact point's Jacobian against finite differences of the FK",
+          "[dynamics][sphere]") {
+  std::mt19937 rng(41);
+  const double h = 1e-6;
+  for (const RobotModel& model : sphere_foot_models(rng)) {
+    RobotData data(model);
+    const Sample s = random_sample(rng);
+    const FootNormals n = random_normals(rng);
+    foot_jacobians(model, data, s.state, s.q, &n);
+    const WorldPoses w0 = world_poses(model, s.state, s.q);
+    for (int l = 0; l < kLegs; ++l) {
+      const double r = model.foot_radius_m[l];
+      const int tibia = 1 + joint_index(l, 2);
+      // The contact point is on the sphere, r below its centre along the normal.
+      const Vec3 center = foot_position_W(model, s.state, s.q, l);
+      CHECK((data.p_foot_W[l] - (center - r * n[l])).norm() < 1e-14);
+      // The tibia's material point at the contact, frozen in the tibia, moved by the FK.
+      const Vec3 material = w0.R[tibia].transpose() * (data.p_foot_W[l] - w0.p[tibia]);
+      FootJacobian J_material, J_rolling;
+      for (int i = 0; i < kDof; ++i) {
+        const VecDof e = VecDof::Unit(i);
+        auto point_at = [&](double t) {
+          const Sample m = moved(s, e, t);
+          const WorldPoses w = world_poses(model, m.state, m.q);
+          return (w.p[tibia] + w.R[tibia] * material).eval();
+        };
+        // The rolling contact: the point of the sphere against the surface, r below the
+        // centre, wherever the centre goes.
+        auto contact_at = [&](double t) {
+          const Sample m = moved(s, e, t);
+          return (foot_position_W(model, m.state, m.q, l) - r * n[l]).eval();
+        };
+        J_material.col(i) = (point_at(h) - point_at(-h)) / (2.0 * h);
+        J_rolling.col(i) = (contact_at(h) - contact_at(-h)) / (2.0 * h);
+      }
+      CHECK((data.J_foot_W[l] - J_material).cwiseAbs().maxCoeff() < 1e-7);
+      // The contact point rolls with the centre: its rate differs from the material
+      // point's by the tibia's rotation about the centre, ω × (−r n).
+      const auto J_w = tibia_angular_jacobian(model, s, l);
+      const FootJacobian expected_rolling = data.J_foot_W[l] - r * skew(n[l]) * J_w;
+      CHECK((J_rolling - expected_rolling).cwiseAbs().maxCoeff() < 1e-7);
+      // Rolling without slip: a motion that holds the material point still (J ν = 0)
+      // moves the contact point by r ω × n, the arc the sphere rolls through.
+      VecDof nu = VecDof::Zero();
+      nu.segment<3>(3) = random_vec3(rng, -1.0, 1.0);
+      nu.segment<3>(6 + 3 * l) = random_vec3(rng, -2.0, 2.0);
+      nu.head<3>() = -(data.J_foot_W[l].rightCols<kDof - 3>() * nu.tail<kDof - 3>());
+      REQUIRE((data.J_foot_W[l] * nu).norm() < 1e-12);
+      const Vec3 omega = J_w * nu;
+      auto rolled_at = [&](double t) {
+        const Sample m = moved(s, nu, t);
+        return (foot_position_W(model, m.state, m.q, l) - r * n[l]).eval();
+      };
+      const Vec3 v_contact = (rolled_at(h) - rolled_at(-h)) / (2.0 * h);
+      CHECK((v_contact - r * omega.cross(n[l])).norm() < 1e-7);
+    }
+  }
+}
+
+TEST_CASE("sphere feet: a force at the contact point is the force at the centre plus its moment",
+          "[dynamics][sphere]") {
+  std::mt19937 rng(43);
+  for (const RobotModel& model : sphere_foot_models(rng)) {
+    RobotModel point_feet = model;  // the same robot, its forces at the sphere centres
+    point_feet.foot_radius_m.fill(0.0);
+    RobotData data(model), data_center(point_feet);
+    for (int k = 0; k < kStatesPerRobot; ++k) {
+      const Sample s = random_sample(rng);
+      const auto F = random_forces(rng);
+      const FootNormals n = random_normals(rng);
+      const VecDof tau = rnea(model, data, s.state, s.q, s.qd, s.qdd, &F, &n);
+      // τ = τ₀ − Σ J_cᵀ F − Σ J_ωᵀ ((p − c) × F): the centre's Jacobian and the tibia's
+      // rotation, the contact point p = c − r n.
+      VecDof expected = rnea(point_feet, data_center, s.state, s.q, s.qd, s.qdd);
+      foot_jacobians(point_feet, data_center, s.state, s.q);
+      for (int l = 0; l < kLegs; ++l) {
+        const Vec3 arm = -model.foot_radius_m[l] * n[l];
+        expected -= data_center.J_foot_W[l].transpose() * F[l] +
+                    tibia_angular_jacobian(model, s, l).transpose() * arm.cross(F[l]);
+      }
+      CHECK((tau - expected).norm() <= 1e-10 * std::max(1.0, tau.norm()));
+      // The contact split carries the same arms.
+      const ContactSplit& split = contact_split(model, data, s.state, s.q, s.qd, s.qdd, &n);
+      VecJ joints = split.tau0;
+      Vec6 trunk = split.trunk_rhs;
+      for (int l = 0; l < kLegs; ++l) {
+        joints -= split.JjT[l] * F[l];
+        trunk -= split.JbT[l] * F[l];
+      }
+      CHECK((joints - tau.tail<kJoints>()).norm() <= 1e-10 * std::max(1.0, tau.norm()));
+      CHECK((trunk - tau.head<6>()).norm() <= 1e-10 * std::max(1.0, tau.norm()));
+      // Without a normal, the surfaces are level: +z under every foot.
+      FootNormals up;
+      up.fill(Vec3::UnitZ());
+      const VecDof tau_default = rnea(model, data, s.state, s.q, s.qd, s.qdd, &F);
+      const VecDof tau_up = rnea(model, data, s.state, s.q, s.qd, s.qdd, &F, &up);
+      CHECK(tau_default == tau_up);
+    }
+  }
+}
+
+TEST_CASE("sphere feet: contact point accelerations match finite differences",
+          "[dynamics][sphere]") {
+  std::mt19937 rng(47);
+  const double h = 1e-3;
+  for (const RobotModel& model : sphere_foot_models(rng)) {
+    RobotData data(model);
+    const Trajectory traj{random_sample(rng)};
+    const Sample& s = traj.s0;
+    const FootNormals n = random_normals(rng);
+    foot_jacobians(model, data, s.state, s.q, &n);
+    const auto J = data.J_foot_W;
+    const auto bias = foot_bias_accelerations(model, data, s.state, s.q, s.qd, &n);
+    const WorldPoses w0 = world_poses(model, s.state, s.q);
+    for (int l = 0; l < kLegs; ++l) {
+      // The material point at the contact, followed along the trajectory.
+      const int tibia = 1 + joint_index(l, 2);
+      RobotModel frozen = model;  // a point foot at the material point
+      frozen.foot_radius_m[l] = 0.0;
+      frozen.p_foot_last[l] = w0.R[tibia].transpose() * (data.p_foot_W[l] - w0.p[tibia]);
+      RobotData d(frozen);
+      auto velocity_at = [&](double t) {
+        const Sample st = traj.at(t);
+        foot_jacobians(frozen, d, st.state, st.q);
+        return (d.J_foot_W[l] * velocity_vector(st)).eval();
+      };
+      const Vec3 a_fd = central_difference(velocity_at, h);
+      const Vec3 a = J[l] * acceleration_vector(s) + bias[l];
+      CHECK(relative_error(a, a_fd) < 1e-6);
+    }
+  }
+}
+
 }  // namespace hexdyn

@@ -140,6 +140,44 @@ TEST_CASE("kinematics: sampled joints put the feet where the gait plan wants the
   }
 }
 
+TEST_CASE("kinematics: a sphere foot's centre stands r above the planned contact point",
+          "[kinematics][sphere]") {
+  // docs/theory/model.md#sphere-feet: the plan is the contact point, the IK places the centre.
+  const double r = 0.012;
+  const Planned p = plan_scene({{"robot.foot_radius", "0.012"}});
+  REQUIRE(p.model.foot_radius_m[0] == r);
+  const double T = p.plan.trunk.duration_s();
+  std::vector<double> times;
+  for (int i = 0; i <= 300; ++i) times.push_back(T * i / 300.0);
+  const KinematicsResult k = sample_kinematics(p.model, p.plan, times);
+  BodyPoses poses;
+  for (int i = 0; i < k.samples(); ++i) {
+    forward_kinematics_tree(p.model, k.joint_position.row(i).transpose(), poses);
+    const BaseState trunk = p.plan.trunk.at(times[i]);
+    for (int leg = 0; leg < kLegs; ++leg) {
+      const Vec3 center_W = trunk.p_W + trunk.W_R_B * tree_foot_position_B(p.model, poses, leg);
+      const Vec3 planned = leg_foot_motion(p.plan.gait.legs[leg], times[i]).p_W;
+      const Vec3 contact = k.foot_position.row(i).segment<3>(3 * leg).transpose();
+      const Vec3 center = k.foot_center.row(i).segment<3>(3 * leg).transpose();
+      INFO("t " << times[i] << " leg " << leg);
+      CHECK(contact == planned);
+      CHECK((center - contact - r * Vec3::UnitZ()).norm() <= 1e-15);  // treads: n = +z
+      CHECK((center_W - center).cwiseAbs().maxCoeff() <= 1e-12);
+    }
+  }
+  // The joint rates move the centre as planned: J q̇ = ṗ (n constant on the stairs).
+  RobotKinematicState s;
+  for (double t : smooth_times(p, 200, 0.01)) {
+    robot_state_at(p.model, p.plan, t, s);
+    for (int leg = 0; leg < kLegs; ++leg) {
+      const Vec3 q = s.q.segment<3>(joint_index(leg, 0)), qd = s.qd.segment<3>(joint_index(leg, 0));
+      const Vec3 v_W =
+          s.trunk.v_W + s.trunk.W_R_B * p.model.R_B_H[leg] * leg_jacobian_H(p.model, leg, q) * qd;
+      CHECK((v_W - s.feet[leg].v_W).norm() <= 1e-12);
+    }
+  }
+}
+
 TEST_CASE("kinematics: /com/position equals the mass-weighted mean of the bodies", "[kinematics]") {
   // Off-centre trunk, payload and link COMs so that every term counts.
   const Planned p = plan_scene({{"robot.payload.com", "[0.01, -0.02, 0.03]"},

@@ -476,7 +476,8 @@ TEST_CASE("urdf reader: each broken description is refused with one line naming 
   // The valid hexapod these are cut from loads; without a foot frame, options give one.
   CHECK(refusal(kData + "valid_hexapod.urdf").empty());
   UrdfReadOptions offset;
-  offset.foot_offset = Vec3(0.1, 0.0, 0.0);
+  offset.foot_offset.emplace();
+  offset.foot_offset->fill(Vec3(0.1, 0.0, 0.0));
   CHECK(refusal(kData + "no_foot_frame.urdf", offset).empty());
   const UrdfRobot with_offset = read_urdf_robot(kData + "no_foot_frame.urdf", offset);
   const UrdfRobot with_links = read_urdf_robot(kData + "valid_hexapod.urdf");
@@ -589,6 +590,111 @@ TEST_CASE("urdf reader: the HumaRobotics PhantomX is refused for its inertias", 
   CHECK(msg.rfind(kHuma + ": link '", 0) == 0);
   CHECK(msg.find("triangle inequality") != std::string::npos);
   CHECK(msg.find('\n') == std::string::npos);
+}
+
+// ---- feet (docs/user/robots.md#feet) ----
+
+/// The hexapod's leg mapped from chain `chain` (its first joint's name).
+int leg_of_chain(const UrdfRobot& robot, const std::string& chain) {
+  for (int leg = 0; leg < kLegs; ++leg)
+    if (robot.legs[leg].joint_names[0] == chain) return leg;
+  FAIL("no leg from chain " << chain);
+  return -1;
+}
+
+/// Reads `text` with robot.foot_offset: `p` on leg `leg`, a point of no collision elsewhere.
+std::string offset_refusal(const std::string& text, int leg, const Vec3& p, UrdfRobot* out) {
+  UrdfReadOptions o;
+  o.foot_offset.emplace();
+  o.foot_offset->fill(Vec3(0.1, 0.0, 0.0));
+  (*o.foot_offset)[leg] = p;
+  try {
+    *out = read_urdf_robot_from_string(text, "hexapod.urdf", o);
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST_CASE("urdf reader: a sphere <collision> at a chain's end is the default foot",
+          "[urdf_reader][feet]") {
+  // Kraby's legs end in 5 mm end caps: the foot is the cap's sphere, centred where the
+  // chain's end link (the cap) has its origin.
+  const UrdfRobot kraby = read_urdf_robot(kKraby, kraby_options());
+  UrdfReadOptions caps = kraby_options();
+  for (int i = 0; i < kLegs; ++i) caps.foot_links.push_back("endcap_" + std::to_string(i));
+  const UrdfRobot at_caps = read_urdf_robot(kKraby, caps);
+  for (int leg = 0; leg < kLegs; ++leg) {
+    const UrdfLeg& l = kraby.legs[leg];
+    INFO(leg_name(leg) << " " << l.foot_source);
+    CHECK(l.foot_kind == FootSource::kSphereCollision);
+    CHECK(l.foot_source.rfind("endcap_", 0) == 0);
+    CHECK(l.foot_radius_m == 0.005);
+    CHECK((l.p_foot_last - at_caps.legs[leg].p_foot_last).norm() <= 1e-15);
+    CHECK(at_caps.legs[leg].foot_radius_m == 0.0);
+    CHECK(leg_mapping_entries(kraby)[leg].find(" radius 0.005") != std::string::npos);
+  }
+  UrdfReadOptions points = kraby_options();
+  points.foot_radius = 0.0;
+  CHECK(read_urdf_robot(kKraby, points).legs[2].foot_radius_m == 0.0);
+  // A sphere foot survives /model/urdf: read back without foot keys, the same centres, radii.
+  const RobotModel model = build_robot_model(kraby);
+  const UrdfRobot back =
+      read_urdf_robot_from_string(robot_urdf(model, "kraby"), "model.urdf", kraby_options());
+  const RobotModel model_back = build_robot_model(back);
+  for (int leg = 0; leg < kLegs; ++leg) {
+    CHECK((model_back.p_foot_last[leg] - model.p_foot_last[leg]).norm() <= 1e-15);
+    CHECK(model_back.foot_radius_m[leg] == model.foot_radius_m[leg]);
+  }
+}
+
+TEST_CASE("urdf reader: robot.foot_offset per leg, checked against the collision geometry",
+          "[urdf_reader][feet]") {
+  // Leg order: each leg's own point lands on that leg, L1 … L6, whatever the chains' order.
+  UrdfReadOptions o;
+  o.foot_offset.emplace();
+  for (int leg = 0; leg < kLegs; ++leg) (*o.foot_offset)[leg] = Vec3(0.1, 0.001 * leg, 0.0);
+  const UrdfRobot r = read_urdf_robot(kData + "valid_hexapod.urdf", o);
+  for (int leg = 0; leg < kLegs; ++leg) {
+    CHECK(r.legs[leg].p_foot_last == (*o.foot_offset)[leg]);
+    CHECK(r.legs[leg].foot_kind == FootSource::kFootOffset);
+    CHECK(r.legs[leg].foot_check.find("not checked: no <collision>") == 0);
+  }
+  // leg0's tibia: a cylinder along its x (0 ≤ x ≤ 0.1, radius 0.01) and a box at its end,
+  // yawed by 0.5 rad (half sides 0.01, 0.02, 0.015).
+  const std::string tibia =
+      "<link name=\"leg0_tibia\"><collision><origin xyz=\"0.05 0 0\" rpy=\"0 1.5707963267948966 "
+      "0\"/><geometry><cylinder radius=\"0.01\" length=\"0.1\"/></geometry></collision>"
+      "<collision><origin xyz=\"0.1 0 0\" rpy=\"0 0 0.5\"/><geometry><box size=\"0.02 0.04 "
+      "0.03\"/></geometry></collision></link>";
+  const std::string text =
+      edited_hexapod("<link name=\"leg0_tibia\"/>", "<link name=\"leg0_tibia\"/>", tibia);
+  const int leg = leg_of_chain(read_urdf_robot_from_string(text, "h.urdf"), "leg0_coxa_joint");
+  const Mat3 yaw = Eigen::AngleAxisd(0.5, Vec3::UnitZ()).toRotationMatrix();
+  const Vec3 box = Vec3(0.1, 0.0, 0.0);
+  UrdfRobot got;
+  CHECK(offset_refusal(text, leg, Vec3(0.03, 0.009, 0.0), &got).empty());
+  CHECK(got.legs[leg].foot_check == "inside the cylinder <collision> of leg0_tibia");
+  CHECK(offset_refusal(text, leg, box + yaw * Vec3(0.009, 0.018, 0.0), &got).empty());
+  CHECK(got.legs[leg].foot_check == "inside the box <collision> of leg0_tibia");
+  // Just outside the cylinder's side, and beyond the yawed box's end: refused, naming the leg.
+  const std::string side = offset_refusal(text, leg, Vec3(0.03, 0.0102, 0.0), &got);
+  CHECK(side.find("hexapod.urdf: leg " + leg_name(leg) +
+                  " (chain 'leg0_coxa_joint'): robot.foot_offset (0.03, 0.0102, 0) m lies "
+                  "outside the <collision> geometry of its last link 'leg0_tibia' (cylinder, "
+                  "box; 0.0002 m from the nearest)") == 0);
+  const std::string end = offset_refusal(text, leg, box + yaw * Vec3(0.012, 0.0, 0.0), &got);
+  CHECK(end.find("(cylinder, box; 0.002 m from the nearest)") != std::string::npos);
+  CHECK(end.find('\n') == std::string::npos);
+  // A mesh, whose file is not read, leaves the check undecided: accepted, and said.
+  const std::string meshed = edited_hexapod(
+      "<link name=\"leg0_tibia\"/>", "<link name=\"leg0_tibia\"/>",
+      tibia.substr(0, tibia.size() - 7) +
+          "<collision><geometry><mesh filename=\"tibia.stl\"/></geometry></collision></link>");
+  CHECK(offset_refusal(meshed, leg, Vec3(0.03, 0.0102, 0.0), &got).empty());
+  CHECK(got.legs[leg].foot_check ==
+        "not checked: mesh <collision> geometry of 'leg0_tibia' (files not read)");
+  CHECK(leg_mapping_text(got).find("foot check: not checked: mesh") != std::string::npos);
 }
 
 }  // namespace

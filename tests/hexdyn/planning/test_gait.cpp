@@ -320,6 +320,51 @@ TEST_CASE("gait: touchdown speed, rest at lift-off, C2 swing paths", "[gait]") {
   }
 }
 
+TEST_CASE("gait: a sphere foot's normal blends from lift-off to touchdown, C2", "[gait][sphere]") {
+  // The normal under a sphere foot (docs/theory/model.md#sphere-feet): every terrain hexdyn
+  // has keeps one normal over a run, so the blend is checked on made-up normals.
+  const Planned p = plan_duty(0.5);
+  const Swing& sw = p.plan.gait.legs[2].swings.at(1);
+  const Vec3 n0 = Vec3::UnitZ(), n1 = Vec3(0.3, -0.4, 1.0).normalized();
+  const double t0 = sw.t_liftoff_s, D = sw.t_touchdown_s - t0;
+  const double t_lift = t0 + sw.lift_end_u * D, t_lower = t0 + sw.lower_start_u * D;
+  // n0 during the lift, n1 during the descent, at rest there.
+  for (double t : {t0, 0.5 * (t0 + t_lift), t_lift}) {
+    const FootNormal n = swing_foot_normal(sw, n0, n1, t);
+    CHECK((n.n_W - n0).norm() <= 1e-15);
+    CHECK(n.nd_W.norm() <= 1e-12);
+  }
+  for (double t : {t_lower, 0.5 * (t_lower + t0 + D), t0 + D}) {
+    const FootNormal n = swing_foot_normal(sw, n0, n1, t);
+    CHECK((n.n_W - n1).norm() <= 1e-15);
+    CHECK(n.nd_W.norm() <= 1e-12);
+    CHECK(n.ndd_W.norm() <= 1e-9);
+  }
+  // Unit, and its derivatives against central differences over the transfer.
+  const double h = 1e-5;
+  double nd_peak = 0.0, ndd_peak = 0.0, nd_err = 0.0, ndd_err = 0.0;
+  for (int i = 1; i < 200; ++i) {
+    const double t = t_lift + (t_lower - t_lift) * i / 200.0;
+    const FootNormal n = swing_foot_normal(sw, n0, n1, t);
+    const FootNormal a = swing_foot_normal(sw, n0, n1, t - h),
+                     b = swing_foot_normal(sw, n0, n1, t + h);
+    CHECK(std::abs(n.n_W.norm() - 1.0) <= 1e-15);
+    nd_peak = std::max(nd_peak, n.nd_W.norm());
+    ndd_peak = std::max(ndd_peak, n.ndd_W.norm());
+    nd_err = std::max(nd_err, (n.nd_W - (b.n_W - a.n_W) / (2 * h)).norm());
+    ndd_err = std::max(ndd_err, (n.ndd_W - (b.nd_W - a.nd_W) / (2 * h)).norm());
+  }
+  CHECK(nd_peak > 0.0);
+  CHECK(nd_err <= 1e-6 * nd_peak);
+  CHECK(ndd_err <= 1e-6 * ndd_peak);
+  // A leg's normal is the terrain's: +z on the paper's stairs, in support and in swing.
+  for (double t = 0.0; t < p.plan.trunk.duration_s(); t += 0.37) {
+    const FootNormal n = leg_foot_normal(p.plan.gait.legs[2], p.plan.terrain, t);
+    CHECK(n.n_W == Vec3::UnitZ());
+    CHECK(n.nd_W == Vec3::Zero());
+  }
+}
+
 TEST_CASE("gait: footholds keep the margin from every nosing and riser", "[gait]") {
   for (double beta : kDutyFactors) {
     const Planned p = plan_duty(beta);

@@ -137,7 +137,7 @@ TEST_CASE("foot track: leg_foot_motion's positions to the bit, on a dense grid",
   const Scene scene = load_scene(kConfigs + "/sweeps/stairs_base.yaml");
   const RobotModel model = build_robot_model(scene.robot);
   const MotionPlan plan = plan_motion(scene, model);
-  const margin_detail::FootTrack track = margin_detail::foot_track(plan, 3001);
+  const margin_detail::FootTrack track = margin_detail::foot_track(model, plan, 3001);
   REQUIRE(track.t_s.size() > 3001);
   int swinging = 0;
   for (std::size_t i = 0; i < track.t_s.size(); ++i)
