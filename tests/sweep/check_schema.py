@@ -189,6 +189,8 @@ def check_result(f, root, source):
     tables = ["kModelDatasets", "kKinematicDatasets", "kDynamicsDatasets"]
     if c.full(S["kModelLegMapping"].path) in f:  # a robot read from a URDF
         tables.append("kUrdfRobotDatasets")
+    if c.full(S["kRequiredFriction"].path) in f:  # unless output.required_friction is false
+        tables.append("kRequiredFrictionDatasets")
     if c.full(S["kDriveTorque"].path) in f:  # a scene with actuators
         tables.append("kDriveTrainDatasets")
     if c.full(S["kFeetCenter"].path) in f:  # a robot with a sphere foot

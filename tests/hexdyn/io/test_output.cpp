@@ -129,6 +129,12 @@ RunResult make_result(int T, bool dynamics, int impacts, int messages, unsigned 
   d.joint_torque = random_matrix(rng, T, kJoints);
   d.contact_force = random_matrix(rng, T, 3 * kLegs);
   d.penetration = random_matrix(rng, T, kLegs);
+  d.utilized_friction = random_matrix(rng, T, kLegs);
+  d.slip = RowMatrixI8::Zero(T, kLegs);
+  for (int t = 0; t < T; t += 2) d.slip(t, t % kLegs) = 1;
+  d.required_friction = random_vector(rng, T);
+  for (int t = 0; t < T; ++t)
+    d.required_friction_leg.push_back(static_cast<std::int8_t>(t % 7 - 1));
   for (int i = 0; i < impacts; ++i) {
     ImpactRecord im;
     im.leg = i % kLegs;
@@ -360,6 +366,14 @@ TEST_CASE("output: every dataset of the contract round-trips (dynamics present)"
   check_values(in, s::kJointTorque.path, d.joint_torque);
   check_values(in, s::kContactForce.path, d.contact_force);
   check_values(in, s::kContactPenetration.path, d.penetration);
+  check_values(in, s::kContactUtilizedFriction.path, d.utilized_friction);
+  check_values(in, s::kRequiredFriction.path, d.required_friction);
+  CHECK(in.string_attribute(s::kContactSlip.path, "flag_meanings") == "holds slips");
+  std::vector<std::int64_t> slip, binding;
+  for (Eigen::Index i = 0; i < d.slip.size(); ++i) slip.push_back(d.slip.data()[i]);
+  for (const std::int8_t leg : d.required_friction_leg) binding.push_back(leg);
+  CHECK(in.read_ints(s::kContactSlip.path) == slip);
+  CHECK(in.read_ints(s::kRequiredFrictionLeg.path) == binding);
   std::vector<std::int64_t> legs;  // 0-based, as the records
   for (const ImpactRecord& im : d.impacts) legs.push_back(im.leg);
   CHECK(in.read_ints(s::kImpactLeg.path) == legs);
