@@ -24,28 +24,32 @@ void set_friction_coefficient(const AllocationLayout& layout, double mu, QpProbl
   }
 }
 
+double leg_friction_use(const QpProblem& qp, const AllocationLayout& layout,
+                        const Eigen::VectorXd& x, int l) {
+  const AllocationLayout::Leg& leg = layout.legs[l];
+  if (leg.offset < 0 || (leg.friction_faces == 0 && leg.cone < 0)) return -1.0;
+  const double t1 = x[leg.offset], t2 = x[leg.offset + 1];
+  const double fn = leg.count == 3 ? x[leg.offset + 2] : leg.known_normal_force_N;
+  // The largest tangential reach over the leg's faces (or the cone's |t|) per unit f_n.
+  double reach = 0.0;
+  if (leg.cone >= 0) {
+    reach = std::hypot(t1, t2);
+  } else {
+    for (int f = 0; f < leg.friction_faces; ++f) {
+      const int row = leg.friction_row + f;
+      reach = std::max(
+          reach, (qp.C(row, leg.offset) * t1 + qp.C(row, leg.offset + 1) * t2) / leg.face_reach);
+    }
+  }
+  return reach <= 0.0 ? 0.0 : fn > 0.0 ? reach / fn : std::numeric_limits<double>::infinity();
+}
+
 double friction_use(const QpProblem& qp, const AllocationLayout& layout, const Eigen::VectorXd& x,
                     int* leg_out) {
-  const double inf = std::numeric_limits<double>::infinity();
   double worst = -1.0;
   int worst_leg = -1;
   for (int l = 0; l < kLegs; ++l) {
-    const AllocationLayout::Leg& leg = layout.legs[l];
-    if (leg.offset < 0 || (leg.friction_faces == 0 && leg.cone < 0)) continue;
-    const double t1 = x[leg.offset], t2 = x[leg.offset + 1];
-    const double fn = leg.count == 3 ? x[leg.offset + 2] : leg.known_normal_force_N;
-    // The largest tangential reach over the leg's faces (or the cone's |t|) per unit f_n.
-    double reach = 0.0;
-    if (leg.cone >= 0) {
-      reach = std::hypot(t1, t2);
-    } else {
-      for (int f = 0; f < leg.friction_faces; ++f) {
-        const int row = leg.friction_row + f;
-        reach = std::max(
-            reach, (qp.C(row, leg.offset) * t1 + qp.C(row, leg.offset + 1) * t2) / leg.face_reach);
-      }
-    }
-    const double use = reach <= 0.0 ? 0.0 : fn > 0.0 ? reach / fn : inf;
+    const double use = leg_friction_use(qp, layout, x, l);
     if (use > worst) {
       worst = use;
       worst_leg = l;

@@ -90,6 +90,10 @@ void set_friction_coefficient(const AllocationLayout& layout, double mu, QpProbl
 double friction_use(const QpProblem& qp, const AllocationLayout& layout, const Eigen::VectorXd& x,
                     int* leg = nullptr);
 
+/// The same for leg l alone; −1 when the leg has no friction rows.
+double leg_friction_use(const QpProblem& qp, const AllocationLayout& layout,
+                        const Eigen::VectorXd& x, int l);
+
 /// Per leg: a friction face or cone of `layout` in `qp` that x violates by more than
 /// kViolationThreshold (relative to max(1, |bound|)): the foot would slip at the problem's μ.
 std::array<bool, kLegs> slipping_legs(const QpProblem& qp, const AllocationLayout& layout,

@@ -99,8 +99,9 @@ struct DynamicsResult {
   /// T×6, |F_t| / F_n of the chosen force in the contact frame of each support or impact leg,
   /// NaN on a swing leg (+inf where F_n ≤ 0 < |F_t|) (docs/theory/grip.md#utilised-friction).
   RowMatrix utilized_friction;
-  /// T×6, 1 where a friction face or cone of the leg holds only with slack at the scene's μ:
-  /// the foot would slip (docs/theory/grip.md#slip-onset); 0 elsewhere.
+  /// T×6, 1 where the leg cannot hold at the scene's μ: its friction held only with slack, or
+  /// the sample needs more than μ and the leg is at its friction limit or binds the required
+  /// friction (docs/theory/grip.md#slip-onset); 0 elsewhere.
   RowMatrixI8 slip;
   /// T, the least μ for which the sample's rows admit a force distribution, NaN where none
   /// does (docs/theory/grip.md#required-friction); empty when output.required_friction is

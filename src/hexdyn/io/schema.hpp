@@ -307,8 +307,9 @@ inline constexpr DatasetSpec kContactPenetration{"/contacts/penetration", "m", S
 inline constexpr DatasetSpec kContactUtilizedFriction{"/contacts/utilized_friction", "1",
                                                       Shape::kT6, Element::kFloat64,
                                                       "utilised friction coefficient"};
-/// 1 where the leg's friction face or cone held only with slack at the scene's μ (the foot
-/// would slip), 0 elsewhere (CF flags kContactSlipFlags).
+/// 1 where the leg cannot hold at the scene's μ: its friction held only with slack, or the
+/// sample needs more friction than μ and the leg is at its friction limit or binds the
+/// required friction (docs/theory/grip.md#slip-onset); 0 elsewhere (CF flags kContactSlipFlags).
 inline constexpr DatasetSpec kContactSlip{"/contacts/slip", "", Shape::kT6, Element::kInt8,
                                           "slip onset flag"};
 /// The least friction coefficient for which the sample's rows admit a force distribution

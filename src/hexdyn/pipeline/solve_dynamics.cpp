@@ -147,6 +147,15 @@ class SampleSolver {
     s.required_friction = r.mu;
     s.required_friction_leg = r.leg;
     s.required_friction_message = r.message;
+    // A sample that needs more friction than the scene's μ cannot hold without slipping. The
+    // allocation then gives way on the trunk rows before the friction rows (their slack weighs
+    // less, allocation/problem.cpp), so the legs that slip are those at their friction limit
+    // and the leg that binds the required friction (docs/theory/grip.md#slip-onset).
+    const double mu = scene_.contact.friction_coefficient;
+    if (!(r.mu > mu + 1e-9 * std::max(1.0, mu))) return;
+    for (int l = 0; l < kLegs; ++l)
+      if (leg_friction_use(qp_, layout, s.outcome->x, l) >= mu * (1.0 - 1e-6)) s.slip[l] = true;
+    if (r.leg >= 0) s.slip[r.leg] = true;
   }
 
   /// The objective's weights of τ_drive²: 1 for torque_squared; for copper_loss each joint's
