@@ -186,6 +186,10 @@ NAN_BY_CONTRACT = {
         "peak_torque_gait", "peak_torque_transient", "required_friction_support",
         "required_friction_support_time", "required_friction_transient",
         "required_friction_transient_time", "peak_utilized_friction")}
+# Result datasets NaN by contract (docs/theory/grip.md): the utilised friction of a swing leg
+# (and +inf where a foot pulls), the required friction where no mu suffices; also in a kept
+# run's group.
+NAN_BY_CONTRACT_RESULT = ("contacts/utilized_friction", "contacts/required_friction")
 
 
 def nan_free(path):
@@ -198,7 +202,7 @@ def nan_free(path):
 
     def visit(name, obj):
         if bad or not isinstance(obj, h5py.Dataset) or obj.dtype.kind != "f" or \
-                name in NAN_BY_CONTRACT:
+                name in NAN_BY_CONTRACT or name.endswith(NAN_BY_CONTRACT_RESULT):
             return
         data = obj[()]
         if name.startswith("scenarios/") and ok_rows is not None and np.ndim(data) >= 1 \

@@ -191,6 +191,8 @@ def check_result(f, root, source):
         tables.append("kUrdfRobotDatasets")
     if c.full(S["kDriveTorque"].path) in f:  # a scene with actuators
         tables.append("kDriveTrainDatasets")
+    if c.full(S["kRequiredFriction"].path) in f:  # output.required_friction (the default)
+        tables.append("kRequiredFrictionDatasets")
     for table in tables + ["kResultCoordinates"]:
         for spec in S[table]:
             c.dataset(spec, sizes)
