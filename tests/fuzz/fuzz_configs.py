@@ -175,13 +175,21 @@ def mutate_text(text, rng):
 
 # /scenarios metrics that are NaN by contract in a computed row too (docs/user/output.md):
 # the drive train's without actuators, a split peak without a sample of its kind (no
-# touchdown transient), the thermal load without a continuous rating.
+# touchdown transient), the thermal load without a continuous rating, the grip metrics
+# without a finite required friction of their kind (or with output.required_friction false)
+# and the utilised friction of a foot that pulls (+inf).
 NAN_BY_CONTRACT = {
     "scenarios/" + name for name in (
         "energy_electrical", "energy_copper_loss", "energy_friction_loss", "energy_regenerated",
         "cost_of_transport_electrical", "peak_electrical_power", "peak_drive_torque_gait",
         "peak_drive_torque_transient", "drive_torque_window_rms", "thermal_load",
-        "peak_torque_gait", "peak_torque_transient")}
+        "peak_torque_gait", "peak_torque_transient", "required_friction_support",
+        "required_friction_support_time", "required_friction_transient",
+        "required_friction_transient_time", "peak_utilized_friction")}
+# Result datasets NaN by contract (docs/theory/grip.md): the utilised friction of a swing leg
+# (and +inf where a foot pulls), the required friction where no mu suffices; also in a kept
+# run's group.
+NAN_BY_CONTRACT_RESULT = ("contacts/utilized_friction", "contacts/required_friction")
 
 
 def nan_free(path):
@@ -194,7 +202,7 @@ def nan_free(path):
 
     def visit(name, obj):
         if bad or not isinstance(obj, h5py.Dataset) or obj.dtype.kind != "f" or \
-                name in NAN_BY_CONTRACT:
+                name in NAN_BY_CONTRACT or name.endswith(NAN_BY_CONTRACT_RESULT):
             return
         data = obj[()]
         if name.startswith("scenarios/") and ok_rows is not None and np.ndim(data) >= 1 \

@@ -224,6 +224,106 @@ void log_boundary(std::ostream& log, const EnvelopeSpec& spec, int cell, Envelop
   log << "\n";
 }
 
+/// The least μ of one run (envelope.hpp, friction search): the largest required friction
+/// over its support samples, with its leg and time; NaN with the first support sample that
+/// admits no μ named in `why`.
+struct RunFriction {
+  double mu = kNaN, time_s = kNaN;
+  int leg = -1;
+  std::string why;
+};
+
+RunFriction run_friction(const RunResult& run) {
+  const DynamicsResult& d = run.dyn;
+  RunFriction f;
+  for (int i = 0; i < static_cast<int>(d.required_friction.size()); ++i) {
+    bool impact = false;
+    for (int leg = 0; leg < kLegs; ++leg)
+      impact = impact ||
+               run.kin.contact_phase(i, leg) == static_cast<std::int8_t>(ContactPhase::kImpact);
+    if (impact) continue;
+    const double mu = d.required_friction[i];
+    if (std::isnan(mu)) {
+      f.why = "no friction coefficient admits the support sample at t = " +
+              std::to_string(run.kin.time_s[i]) + " s: " + d.solver_messages[i];
+      return {kNaN, kNaN, -1, f.why};
+    }
+    if (!(mu <= f.mu)) f = {mu, run.kin.time_s[i], d.required_friction_leg[i], ""};
+  }
+  return f;
+}
+
+/// One riser of a friction search: the run's least μ into out's grids at `at`, and its probe
+/// (passed: μ* at most the scene's μ).
+EnvelopeProbe friction_search_probe(const EnvelopeSpec& spec, int cell, double riser_m,
+                                    std::size_t at, EnvelopeResult& out) {
+  EnvelopeProbe p;
+  p.cell = cell;
+  p.criterion = EnvelopeCriterion::kFriction;
+  p.riser_m = riser_m;
+  try {
+    const Scene scene = envelope_probe_scene(spec, cell, riser_m, p.criterion);
+    const RunFriction f = run_friction(run_scene(scene, nullptr));
+    out.required_friction[at] = f.mu;
+    out.required_friction_time_s[at] = f.time_s;
+    out.required_friction_leg[at] = f.leg;
+    const double mu = scene.contact.friction_coefficient;
+    p.passed = f.mu <= mu;
+    std::ostringstream m;
+    if (std::isnan(f.mu)) {
+      p.limit = "balance";
+      p.message = f.why;
+    } else if (!p.passed) {
+      m << f.mu;
+      p.limit = "friction (mu* " + m.str() + ")";
+      m.str("");
+      m << "the support samples need mu = " << f.mu << " (leg "
+        << (f.leg >= 0 ? leg_name(f.leg) : std::string("none")) << ", t = " << f.time_s
+        << " s), more than the scene's " << mu;
+      p.message = m.str();
+    }
+  } catch (const Error& e) {
+    p.passed = false;
+    p.limit = exception_limit(e);
+    p.message = e.what();
+  }
+  return p;
+}
+
+/// A friction search (envelope.hpp): every cell at every scan riser, and the friction
+/// criterion's boundary on the scan.
+void friction_search(const EnvelopeSpec& spec, std::ostream* log, EnvelopeResult& out) {
+  const std::vector<double> risers = spec.scan_risers();
+  const std::size_t R = risers.size(), cells = static_cast<std::size_t>(spec.cell_count());
+  out.required_friction.assign(cells * R, kNaN);
+  out.required_friction_time_s.assign(cells * R, kNaN);
+  out.required_friction_leg.assign(cells * R, -1);
+  for (std::size_t cell = 0; cell < cells; ++cell) {
+    BoundarySearch s;
+    s.bd.riser_max_m = s.bd.riser_fail_m = kNaN;
+    for (std::size_t k = 0; k < R; ++k) {
+      const int c = static_cast<int>(cell);
+      out.probes.push_back(friction_search_probe(spec, c, risers[k], cell * R + k, out));
+      const EnvelopeProbe& p = out.probes.back();
+      if (p.passed && !s.failed) s.pass = p.riser_m;
+      if (!p.passed && !s.failed) {
+        s.failed = true;
+        s.fail = p;
+        s.bd = {s.pass, p.riser_m, p.limit, p.message};
+      }
+    }
+    s.bd.riser_max_m = s.pass;
+    out.boundary[cell] = s.bd;
+    if (log) {
+      log_boundary(*log, spec, static_cast<int>(cell), EnvelopeCriterion::kFriction, s);
+      *log << "  least mu per riser:";
+      for (std::size_t k = 0; k < R; ++k)
+        *log << " " << risers[k] * 1e3 << " mm " << out.required_friction[cell * R + k] << ";";
+      *log << "\n";
+    }
+  }
+}
+
 }  // namespace
 
 EnvelopeResult compute_envelope(const EnvelopeSpec& spec, std::ostream* log) {
@@ -235,6 +335,12 @@ EnvelopeResult compute_envelope(const EnvelopeSpec& spec, std::ostream* log) {
   out.posture_height_m.assign(cells, kNaN);
   out.posture_foot_lateral_m.assign(cells, kNaN);
   out.posture_margin_m.assign(cells, kNaN);
+  if (spec.search == EnvelopeSearch::kFriction) {
+    friction_search(spec, log, out);
+    out.wall_time_s =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return out;
+  }
   for (int cell = 0; cell < cells; ++cell) {
     // The kinematic boundary first (when asked): the dynamic criteria fail above it.
     CellProbes probes{spec, cell, out, kNaN, EnvelopeProbe{}};

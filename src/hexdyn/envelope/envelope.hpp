@@ -27,6 +27,17 @@
 /// climbable set (a riser below it that fails would be found by a finer step, not
 /// skipped by the bisection); the dynamic criteria are not probed above the kinematic
 /// boundary, where they fail for kinematic reasons.
+///
+/// Friction search (`search: friction`, docs/user/envelope.md#the-least-friction-per-riser):
+/// instead of the tallest riser at the scene's μ, the least μ per riser. The required
+/// friction of a sample (docs/theory/grip.md#required-friction) does not depend on the
+/// scene's contact.friction_coefficient, so one run per cell and riser gives the answer
+/// exactly: μ*(riser) = the largest /contacts/required_friction over the run's support
+/// samples, with the torque limit lifted as for the friction criterion (NaN when a support
+/// sample admits no μ: the support legs cannot produce the trunk motion). The risers are the
+/// scan's, from `from` in steps of `step` to `to`; the file also holds the friction
+/// criterion's boundary at the scene's μ on that scan (riser_max: the last riser of the
+/// passing run from `from`, μ* ≤ μ), without bisection.
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -39,6 +50,9 @@ namespace hexdyn {
 
 enum class EnvelopeCriterion : std::int8_t { kKinematic = 0, kTorque = 1, kFriction = 2 };
 const char* criterion_name(EnvelopeCriterion c);
+
+/// What an envelope searches: the tallest riser per criterion, or the least μ per riser.
+enum class EnvelopeSearch : std::int8_t { kRiser = 0, kFriction = 1 };
 
 /// An envelope file (configs/envelope/paper.yaml documents every key).
 struct EnvelopeSpec {
@@ -59,8 +73,11 @@ struct EnvelopeSpec {
   /// `cases:` (config/cases.hpp): D designs, each its keys set on the base scene; empty: one
   /// design, the base scene's, and no `case` dimension in the file.
   CaseList cases;
+  EnvelopeSearch search = EnvelopeSearch::kRiser;  ///< `search`: riser (default) or friction
   /// Number of cells: D × W × B × V (D = 1 without cases).
   int cell_count() const;
+  /// The scan's risers: from, from + step, …, to (the last step may be shorter) [m].
+  std::vector<double> scan_risers() const;
 };
 
 /// Most cells of one envelope (10,000; the paper's has 64): each cell is searched per
@@ -105,6 +122,11 @@ struct EnvelopeResult {
   /// not auto or not found), and its smallest kinematic margin [m].
   std::vector<double> posture_height_m, posture_foot_lateral_m, posture_margin_m;
   std::vector<EnvelopeProbe> probes;
+  /// With search: friction, (W, B, V, R) or (D, W, B, V, R) over the R = scan_risers(): the
+  /// least μ (NaN where none suffices or the run failed), its binding leg (−1 none) and the
+  /// time of its sample [s] (NaN none). Empty with search: riser.
+  std::vector<double> required_friction, required_friction_time_s;
+  std::vector<int> required_friction_leg;
   double wall_time_s = 0.0;
 };
 

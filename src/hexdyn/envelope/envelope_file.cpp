@@ -143,6 +143,30 @@ void write_envelope_probes(LabelledWriter& out, const EnvelopeSpec& spec, const 
   out.strings(s::kProbeMessage, {P}, pmessage);
 }
 
+/// With search: friction, the risers and the least μ per cell and riser, its leg and time.
+void write_envelope_friction(LabelledWriter& out, const EnvelopeSpec& spec,
+                             const EnvelopeResult& r) {
+  const std::vector<double> risers = spec.scan_risers();
+  const std::size_t W = spec.tread_depth_m.size(), B = spec.duty_factor.size(),
+                    S = spec.peak_speed_mps.size(), R = risers.size(), D = spec.cases.size();
+  const bool cases = D > 0;
+  const std::vector<std::size_t> grid =
+      cases ? std::vector<std::size_t>{D, W, B, S, R} : std::vector<std::size_t>{W, B, S, R};
+  out.doubles(s::kRiserCoordinate, {R}, risers);
+  out.doubles(s::kEnvelopeRisers, {R}, risers);
+  out.doubles(cases ? s::kEnvelopeCaseRequiredFriction : s::kEnvelopeRequiredFriction, grid,
+              r.required_friction);
+  const s::DatasetSpec& leg =
+      cases ? s::kEnvelopeCaseRequiredFrictionLeg : s::kEnvelopeRequiredFrictionLeg;
+  out.w.write_int32(
+      leg.path, grid,
+      std::vector<std::int32_t>(r.required_friction_leg.begin(), r.required_friction_leg.end()),
+      leg.units);
+  out.labels.add(leg);
+  out.doubles(cases ? s::kEnvelopeCaseRequiredFrictionTime : s::kEnvelopeRequiredFrictionTime, grid,
+              r.required_friction_time_s);
+}
+
 void write_file(H5Writer& w, const EnvelopeSpec& spec, const EnvelopeResult& r) {
   Labeller labels(w, "");
   LabelledWriter out{w, labels};
@@ -150,6 +174,7 @@ void write_file(H5Writer& w, const EnvelopeSpec& spec, const EnvelopeResult& r) 
   write_envelope_axes(out, spec);
   write_envelope_boundary(out, spec, r);
   write_envelope_probes(out, spec, r);
+  if (spec.search == EnvelopeSearch::kFriction) write_envelope_friction(out, spec, r);
   labels.finish();
 }
 
@@ -158,7 +183,8 @@ constexpr const char* kUsage = R"(usage: hexdyn envelope ENVELOPE -o FILE [-v]
   speed (and per case: a design of `cases:`), under the kinematic, torque and friction
   criteria, and writes the
   hexdyn-envelope/2 file FILE (docs/user/envelope.md; configs/envelope/paper.yaml
-  documents the keys). -v prints one line per cell and criterion.
+  documents the keys). With `search: friction` it finds instead the least friction
+  coefficient per riser of the scan. -v prints one line per cell and criterion.
 )";
 
 }  // namespace

@@ -223,6 +223,22 @@ void read_criteria(const EnvelopeReader& r, const YAML::Node& crit, EnvelopeSpec
     r.fail_value("criteria", crit, "each criterion at most once");
 }
 
+/// `search:` riser (default) or friction; a friction search has the one criterion friction
+/// (`criteria`, when given, must say so).
+void read_search(const EnvelopeReader& r, const YAML::Node& root, EnvelopeSpec& spec) {
+  if (!given(root["search"])) return;
+  const YAML::Node search = root["search"];
+  const std::string word = search.IsScalar() ? search.Scalar() : std::string();
+  if (word == "riser") return;
+  if (word != "friction") r.fail_value("search", search, "riser or friction");
+  spec.search = EnvelopeSearch::kFriction;
+  if (given(root["criteria"]) &&
+      (spec.criteria.size() != 1 || spec.criteria.front() != EnvelopeCriterion::kFriction))
+    r.fail_value("criteria", root["criteria"],
+                 "[friction] or no criteria with search: friction (it searches the least mu)");
+  spec.criteria = {EnvelopeCriterion::kFriction};
+}
+
 /// Every cell's scene at the lowest riser must be valid (speed against ramp, ...): the
 /// probe's keys set on the base's SceneTree (no YAML per cell), as envelope_probe_scene
 /// sets them on the YAML tree, which it falls back to when a key runs through a non-map.
@@ -265,7 +281,7 @@ EnvelopeSpec load_envelope_spec(const std::string& path) {
   const EnvelopeReader r(path);
   r.check_keys(root, "",
                {"name", "base", "set", "cases", "riser", "tread_depth", "duty_factor", "peak_speed",
-                "criteria", "kinematic_margin"});
+                "criteria", "kinematic_margin", "search"});
   spec.name =
       given(root["name"]) ? root["name"].Scalar() : std::filesystem::path(path).stem().string();
   std::vector<std::string> chain;
@@ -290,6 +306,7 @@ EnvelopeSpec load_envelope_spec(const std::string& path) {
   spec.duty_factor = r.numbers(root["duty_factor"], "duty_factor", 0.5, 0.999999);
   spec.peak_speed_mps = r.numbers(root["peak_speed"], "peak_speed", 1e-6, 10.0);
   read_criteria(r, root["criteria"], spec);
+  read_search(r, root, spec);
   if (given(root["kinematic_margin"]))
     spec.kinematic_margin_m = r.number(root["kinematic_margin"], "kinematic_margin", 0.0, 0.1);
   check_envelope_size(r, spec);
@@ -302,6 +319,14 @@ int EnvelopeSpec::cell_count() const {
   const std::uint64_t n = std::max<std::uint64_t>(1, cases.size()) * tread_depth_m.size() *
                           duty_factor.size() * peak_speed_mps.size();
   return static_cast<int>(std::min<std::uint64_t>(n, kMaxEnvelopeCells));
+}
+
+std::vector<double> EnvelopeSpec::scan_risers() const {
+  const int steps = static_cast<int>(std::ceil((riser_to_m - riser_from_m) / riser_step_m - 1e-9));
+  std::vector<double> r;
+  for (int k = 0; k <= steps; ++k)
+    r.push_back(std::min(riser_from_m + k * riser_step_m, riser_to_m));
+  return r;
 }
 
 namespace {
@@ -348,6 +373,7 @@ std::vector<Override> probe_overrides(const EnvelopeSpec& spec, int cell, double
   ov.insert(ov.end(), cell_keys.begin(), cell_keys.end());
   if (c == EnvelopeCriterion::kTorque) ov.push_back({"contact.friction_coefficient", "10"});
   if (c == EnvelopeCriterion::kFriction) ov.push_back({"allocation.torque_limit", "1e6"});
+  if (spec.search == EnvelopeSearch::kFriction) ov.push_back({"output.required_friction", "true"});
   if (c == EnvelopeCriterion::kKinematic && spec.kinematic_margin_m >= 0.0)
     ov.push_back({"robot.ik_min_margin", text(spec.kinematic_margin_m)});
   return ov;

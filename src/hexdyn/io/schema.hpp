@@ -71,6 +71,9 @@ enum class Shape {
   kEnvelopeCaseValues,  ///< (D,K), one row per case, one column per key
   kEnvelopeCaseCells,   ///< (D,W,B,S), one entry per case, tread depth, duty factor and speed
   kEnvelopeCaseGrid,    ///< (D,W,B,S,C), one entry per case, cell and criterion
+  kEnvelopeRisers,      ///< (R), risers of a friction search (`search: friction`)
+  kEnvelopeMuGrid,      ///< (W,B,S,R), one entry per cell and riser of a friction search
+  kEnvelopeCaseMuGrid,  ///< (D,W,B,S,R), one entry per case, cell and riser
   kCycles,              ///< (Y), one entry per gait cycle
   kTerrainPoints,       ///< (K), one entry per vertex of the terrain's height profile
   kXyz,                 ///< (3) strings "x", "y", "z"
@@ -118,6 +121,9 @@ constexpr const char* dimension_names(Shape shape) {
     case Shape::kEnvelopeCaseValues: return "case case_key";
     case Shape::kEnvelopeCaseCells: return "case tread_depth duty_factor peak_speed";
     case Shape::kEnvelopeCaseGrid: return "case tread_depth duty_factor peak_speed criterion";
+    case Shape::kEnvelopeRisers: return "riser";
+    case Shape::kEnvelopeMuGrid: return "tread_depth duty_factor peak_speed riser";
+    case Shape::kEnvelopeCaseMuGrid: return "case tread_depth duty_factor peak_speed riser";
     case Shape::kCycles: return "gait_cycle";
     case Shape::kTerrainPoints: return "terrain_point";
     case Shape::kXyz: return "xyz";
@@ -673,6 +679,39 @@ inline constexpr DatasetSpec kScenarioDriveTorqueWindowRms{
 inline constexpr DatasetSpec kScenarioThermalLoad{
     "/scenarios/thermal_load", "1", Shape::kScenarios, Element::kFloat64,
     "largest windowed RMS drive torque over the continuous rating"};
+// Grip (docs/theory/grip.md): the largest /contacts/required_friction over the support samples
+// (no leg in phase impact) and over the touchdown-transient samples (some leg in phase
+// impact), NaN samples skipped (NaN when none is finite, and with output.required_friction
+// false), each with its binding leg (0-based index into the run's legs, −1 where none) and
+// its time; the samples whose required friction is NaN (no μ suffices; −1 with
+// output.required_friction false); the largest /contacts/utilized_friction over the support
+// samples (NaN without any); the samples with a /contacts/slip flag.
+inline constexpr DatasetSpec kScenarioRequiredFrictionSupport{
+    "/scenarios/required_friction_support", "1", Shape::kScenarios, Element::kFloat64,
+    "largest required friction over support samples"};
+inline constexpr DatasetSpec kScenarioRequiredFrictionSupportLeg{
+    "/scenarios/required_friction_support_leg", "", Shape::kScenarios, Element::kInt32,
+    "leg binding the largest support required friction"};
+inline constexpr DatasetSpec kScenarioRequiredFrictionSupportTime{
+    "/scenarios/required_friction_support_time", "s", Shape::kScenarios, Element::kFloat64,
+    "time of the largest support required friction"};
+inline constexpr DatasetSpec kScenarioRequiredFrictionTransient{
+    "/scenarios/required_friction_transient", "1", Shape::kScenarios, Element::kFloat64,
+    "largest required friction over touchdown-transient samples"};
+inline constexpr DatasetSpec kScenarioRequiredFrictionTransientLeg{
+    "/scenarios/required_friction_transient_leg", "", Shape::kScenarios, Element::kInt32,
+    "leg binding the largest transient required friction"};
+inline constexpr DatasetSpec kScenarioRequiredFrictionTransientTime{
+    "/scenarios/required_friction_transient_time", "s", Shape::kScenarios, Element::kFloat64,
+    "time of the largest transient required friction"};
+inline constexpr DatasetSpec kScenarioNoFrictionSamples{
+    "/scenarios/no_friction_samples", "1", Shape::kScenarios, Element::kInt32,
+    "samples for which no friction coefficient suffices"};
+inline constexpr DatasetSpec kScenarioPeakUtilizedFriction{
+    "/scenarios/peak_utilized_friction", "1", Shape::kScenarios, Element::kFloat64,
+    "largest utilised friction over support samples"};
+inline constexpr DatasetSpec kScenarioSlipSamples{"/scenarios/slip_samples", "1", Shape::kScenarios,
+                                                  Element::kInt32, "samples with a slip flag"};
 inline constexpr DatasetSpec kScenarioRelaxedSamples{
     "/scenarios/relaxed_samples", "1", Shape::kScenarios, Element::kInt32, "relaxed samples"};
 inline constexpr DatasetSpec kScenarioFailedSamples{
@@ -697,8 +736,11 @@ inline constexpr std::array kScenarioDatasets{
     kScenarioEnergyElectrical, kScenarioEnergyCopperLoss, kScenarioEnergyFrictionLoss,
     kScenarioEnergyRegenerated, kScenarioCostOfTransportElectrical, kScenarioPeakElectricalPower,
     kScenarioPeakDriveTorqueGait, kScenarioPeakDriveTorqueTransient, kScenarioDriveTorqueWindowRms,
-    kScenarioThermalLoad, kScenarioGridEnergyError, kScenarioGridPeakError,
-    kScenarioRelaxedSamples, kScenarioFailedSamples, kScenarioRelaxedGaitSamples,
+    kScenarioThermalLoad, kScenarioRequiredFrictionSupport, kScenarioRequiredFrictionSupportLeg,
+    kScenarioRequiredFrictionSupportTime, kScenarioRequiredFrictionTransient,
+    kScenarioRequiredFrictionTransientLeg, kScenarioRequiredFrictionTransientTime,
+    kScenarioNoFrictionSamples, kScenarioPeakUtilizedFriction, kScenarioSlipSamples,
+    kScenarioGridEnergyError, kScenarioGridPeakError, kScenarioRelaxedSamples, kScenarioFailedSamples, kScenarioRelaxedGaitSamples,
     kScenarioWallTime};
 // clang-format on
 

@@ -148,6 +148,45 @@ inline constexpr std::array kEnvelopeCaseDatasets{
     kEnvelopeCasePostureMargin};
 // clang-format on
 
+// ---- with `search: friction` (envelope/envelope.hpp): the least μ per cell and riser, R risers
+// of the scan; the grids above hold the friction criterion's boundary on the same scan ----
+/// The scan's risers [m]: riser.from, from + step, …, riser.to.
+inline constexpr DatasetSpec kEnvelopeRisers{"/axes/riser", "m", Shape::kEnvelopeRisers,
+                                             Element::kFloat64, "riser height"};
+inline constexpr DatasetSpec kRiserCoordinate{"/riser", "m", Shape::kEnvelopeRisers,
+                                              Element::kFloat64, "riser height"};
+/// The least friction coefficient the run needs: the largest /contacts/required_friction over
+/// its support samples, with the torque limit lifted (NaN where a support sample admits no μ
+/// or the run fails; the probe's message says why). Independent of the scene's μ.
+inline constexpr DatasetSpec kEnvelopeRequiredFriction{
+    "/envelope/required_friction", "1", Shape::kEnvelopeMuGrid, Element::kFloat64,
+    "least friction coefficient of the support samples"};
+/// Its binding leg, 0-based; −1 where none.
+inline constexpr DatasetSpec kEnvelopeRequiredFrictionLeg{
+    "/envelope/required_friction_leg", "", Shape::kEnvelopeMuGrid, Element::kInt32,
+    "leg binding the least friction coefficient"};
+/// The time of the sample that needs it [s]; NaN where none.
+inline constexpr DatasetSpec kEnvelopeRequiredFrictionTime{
+    "/envelope/required_friction_time", "s", Shape::kEnvelopeMuGrid, Element::kFloat64,
+    "time of the sample needing the least friction coefficient"};
+inline constexpr DatasetSpec kEnvelopeCaseRequiredFriction{
+    "/envelope/required_friction", "1", Shape::kEnvelopeCaseMuGrid, Element::kFloat64,
+    "least friction coefficient of the support samples"};
+inline constexpr DatasetSpec kEnvelopeCaseRequiredFrictionLeg{
+    "/envelope/required_friction_leg", "", Shape::kEnvelopeCaseMuGrid, Element::kInt32,
+    "leg binding the least friction coefficient"};
+inline constexpr DatasetSpec kEnvelopeCaseRequiredFrictionTime{
+    "/envelope/required_friction_time", "s", Shape::kEnvelopeCaseMuGrid, Element::kFloat64,
+    "time of the sample needing the least friction coefficient"};
+/// What a friction search's file holds besides kEnvelopeDatasets (with cases, the
+/// kEnvelopeCase* grids replace those of the same path).
+inline constexpr std::array kEnvelopeFrictionDatasets{
+    kEnvelopeRisers, kRiserCoordinate, kEnvelopeRequiredFriction, kEnvelopeRequiredFrictionLeg,
+    kEnvelopeRequiredFrictionTime};
+inline constexpr std::array kEnvelopeCaseFrictionDatasets{kEnvelopeCaseRequiredFriction,
+                                                          kEnvelopeCaseRequiredFrictionLeg,
+                                                          kEnvelopeCaseRequiredFrictionTime};
+
 inline constexpr FlagSpec kProbePassedFlags{"/probes/passed", "failed passed"};
 /// Every CF flag declaration of the three file kinds.
 inline constexpr std::array kFlags{kContactPhaseFlags, kSolverStatusFlags,   kSampleKindFlags,

@@ -121,7 +121,19 @@ auto double_fields(S& s) {
                     &s.energy_regenerated_J,
                     &s.cost_of_transport_electrical,
                     &s.peak_electrical_power_W,
-                    &s.thermal_load};
+                    &s.thermal_load,
+                    &s.required_friction_support,
+                    &s.required_friction_support_time_s,
+                    &s.required_friction_transient,
+                    &s.required_friction_transient_time_s,
+                    &s.peak_utilized_friction};
+}
+
+/// The summary's integer fields after the sample counts, in record order.
+template <class S>
+auto int_fields(S& s) {
+  return std::array{&s.required_friction_support_leg, &s.required_friction_transient_leg,
+                    &s.no_friction_samples, &s.slip_samples};
 }
 
 void append_record(std::vector<char>& b, const ScenarioRecord& r) {
@@ -133,6 +145,7 @@ void append_record(std::vector<char>& b, const ScenarioRecord& r) {
   put_pod(b, static_cast<std::int32_t>(s.relaxed_samples));
   put_pod(b, static_cast<std::int32_t>(s.failed_samples));
   put_pod(b, static_cast<std::int32_t>(s.relaxed_gait_samples));
+  for (const int* v : int_fields(s)) put_pod(b, static_cast<std::int32_t>(*v));
   for (const double* v : double_fields(s)) put_pod(b, *v);
   for (const auto* a : per_joint_metrics(s))
     for (double v : *a) put_pod(b, v);
@@ -163,6 +176,7 @@ ScenarioRecord decode_record(const char* data, std::size_t size, bool with_image
   s.relaxed_samples = u.get<std::int32_t>();
   s.failed_samples = u.get<std::int32_t>();
   s.relaxed_gait_samples = u.get<std::int32_t>();
+  for (int* v : int_fields(s)) *v = u.get<std::int32_t>();
   for (double* v : double_fields(s)) *v = u.get<double>();
   for (auto* a : per_joint_metrics(s))
     for (double& v : *a) v = u.get<double>();

@@ -116,6 +116,57 @@ void drive_metrics(const RunResult& run, ScenarioSummary& s) {
     }
 }
 
+/// The grip metrics of a row that has none: NaN, legs −1, counts 0 (no_friction_samples −1:
+/// not computed).
+void no_grip_metrics(ScenarioSummary& s) {
+  s.required_friction_support = s.required_friction_support_time_s = kNaN;
+  s.required_friction_transient = s.required_friction_transient_time_s = kNaN;
+  s.required_friction_support_leg = s.required_friction_transient_leg = -1;
+  s.no_friction_samples = -1;
+  s.peak_utilized_friction = kNaN;
+  s.slip_samples = 0;
+}
+
+/// The largest finite required friction over the samples where some leg is in its touchdown
+/// transient (`transient`) or none is, with its binding leg and time; the NaN samples counted.
+void required_friction_peaks(const RunResult& run, ScenarioSummary& s) {
+  const DynamicsResult& d = run.dyn;
+  s.no_friction_samples = 0;
+  for (int i = 0; i < static_cast<int>(d.required_friction.size()); ++i) {
+    const double mu = d.required_friction[i];
+    if (std::isnan(mu)) {
+      ++s.no_friction_samples;
+      continue;
+    }
+    const bool transient = in_transient(run.kin.contact_phase, i);
+    double& peak = transient ? s.required_friction_transient : s.required_friction_support;
+    if (!std::isnan(peak) && mu <= peak) continue;
+    peak = mu;
+    const int leg =
+        i < static_cast<int>(d.required_friction_leg.size()) ? d.required_friction_leg[i] : -1;
+    (transient ? s.required_friction_transient_leg : s.required_friction_support_leg) = leg;
+    (transient ? s.required_friction_transient_time_s : s.required_friction_support_time_s) =
+        run.kin.time_s[i];
+  }
+}
+
+/// The grip metrics of a computed run (docs/theory/grip.md): required friction peaks when
+/// the run has them, the largest utilised friction over support samples, the slip samples.
+void grip_metrics(const RunResult& run, ScenarioSummary& s) {
+  const DynamicsResult& d = run.dyn;
+  no_grip_metrics(s);
+  if (!d.required_friction.empty()) required_friction_peaks(run, s);
+  for (int i = 0; i < d.utilized_friction.rows(); ++i) {
+    if (in_transient(run.kin.contact_phase, i)) continue;
+    for (int l = 0; l < d.utilized_friction.cols(); ++l) {
+      const double u = d.utilized_friction(i, l);
+      if (!std::isnan(u) && !(u <= s.peak_utilized_friction)) s.peak_utilized_friction = u;
+    }
+  }
+  for (int i = 0; i < d.slip.rows(); ++i)
+    if ((d.slip.row(i).array() != 0).any()) ++s.slip_samples;
+}
+
 }  // namespace
 
 ScenarioSummary failed_summary(std::size_t index, ScenarioStatus status,
@@ -128,6 +179,7 @@ ScenarioSummary failed_summary(std::size_t index, ScenarioStatus status,
   s.peak_power_W = s.peak_contact_force_N = s.grid_energy_error = s.grid_peak_error = kNaN;
   for (auto* a : per_joint_metrics(s)) a->fill(kNaN);
   no_drive_metrics(s);
+  no_grip_metrics(s);
   return s;
 }
 
@@ -175,6 +227,7 @@ ScenarioSummary summarize_run(const RunResult& run, std::size_t index) {
     drive_metrics(run, s);
   else
     no_drive_metrics(s);
+  grip_metrics(run, s);
   for (int i = 0; i < static_cast<int>(d.solver_status.size()); ++i) {
     const SolverStatus st = d.solver_status[i];
     if (st == SolverStatus::kRelaxed) ++s.relaxed_samples;

@@ -65,6 +65,17 @@ struct ScenarioSummary {
   std::array<double, kJoints> peak_drive_torque_gait_Nm{}, peak_drive_torque_transient_Nm{};
   std::array<double, kJoints> drive_torque_window_rms_Nm{};
   double thermal_load = 0.0;
+  // Grip (docs/theory/grip.md; schema.hpp's kScenarioRequiredFriction* for the contract): the
+  // largest required friction over support samples and over touchdown-transient samples
+  // [1], each with its binding leg (0..5, −1 none) and time [s] (NaN, −1 where none is
+  // finite or output.required_friction is false); the samples where no μ suffices (−1 when
+  // not computed); the largest utilised friction over support samples [1]; slip samples.
+  double required_friction_support = 0.0, required_friction_support_time_s = 0.0;
+  double required_friction_transient = 0.0, required_friction_transient_time_s = 0.0;
+  int required_friction_support_leg = -1, required_friction_transient_leg = -1;
+  int no_friction_samples = 0;
+  double peak_utilized_friction = 0.0;
+  int slip_samples = 0;
   int relaxed_samples = 0;  ///< samples with solver status 1
   int failed_samples = 0;   ///< samples with solver status 2
   /// relaxed samples outside touchdown transients (no leg in phase impact): the gait itself

@@ -254,6 +254,18 @@ void write_scenario_metrics(H5Writer& w, Labeller& labels,
   per_joint(s::kScenarioPeakDriveTorqueTransient, &ScenarioSummary::peak_drive_torque_transient_Nm);
   per_joint(s::kScenarioDriveTorqueWindowRms, &ScenarioSummary::drive_torque_window_rms_Nm);
   doubles(s::kScenarioThermalLoad, &ScenarioSummary::thermal_load);
+  doubles(s::kScenarioRequiredFrictionSupport, &ScenarioSummary::required_friction_support);
+  counts(s::kScenarioRequiredFrictionSupportLeg, &ScenarioSummary::required_friction_support_leg);
+  doubles(s::kScenarioRequiredFrictionSupportTime,
+          &ScenarioSummary::required_friction_support_time_s);
+  doubles(s::kScenarioRequiredFrictionTransient, &ScenarioSummary::required_friction_transient);
+  counts(s::kScenarioRequiredFrictionTransientLeg,
+         &ScenarioSummary::required_friction_transient_leg);
+  doubles(s::kScenarioRequiredFrictionTransientTime,
+          &ScenarioSummary::required_friction_transient_time_s);
+  counts(s::kScenarioNoFrictionSamples, &ScenarioSummary::no_friction_samples);
+  doubles(s::kScenarioPeakUtilizedFriction, &ScenarioSummary::peak_utilized_friction);
+  counts(s::kScenarioSlipSamples, &ScenarioSummary::slip_samples);
   doubles(s::kScenarioGridEnergyError, &ScenarioSummary::grid_energy_error);
   doubles(s::kScenarioGridPeakError, &ScenarioSummary::grid_peak_error);
   counts(s::kScenarioRelaxedSamples, &ScenarioSummary::relaxed_samples);

@@ -124,6 +124,67 @@ TEST_CASE(
   CHECK(first.find(b.limit) != std::string::npos);
 }
 
+/// Support samples (no leg in a touchdown transient) with a slip flag on some leg.
+int support_slips(const RunResult& run) {
+  int n = 0;
+  for (int i = 0; i < run.kin.samples(); ++i) {
+    bool impact = false, slip = false;
+    for (int leg = 0; leg < kLegs; ++leg) {
+      impact = impact || run.kin.contact_phase(i, leg) == 1;
+      slip = slip || run.dyn.slip(i, leg) != 0;
+    }
+    n += !impact && slip;
+  }
+  return n;
+}
+
+TEST_CASE("envelope: friction search: the least mu per riser holds the climb, 1e-3 less does not",
+          "[envelope]") {
+  // The second computation: the scene itself run at the scene's mu just above and just below
+  // the searched mu* (the required friction does not depend on the scene's mu, so one run
+  // per riser gives it; docs/user/envelope.md#the-least-friction-per-riser).
+  TempSpec t(
+      "search: friction\nriser: {from: 0.0, to: 0.06, step: 0.06}\n"
+      "tread_depth: [0.25]\nduty_factor: [1/2]\npeak_speed: [0.1]\n");
+  const EnvelopeSpec spec = load_envelope_spec(t.path);
+  REQUIRE(spec.search == EnvelopeSearch::kFriction);
+  REQUIRE(spec.scan_risers() == std::vector<double>{0.0, 0.06});
+  const EnvelopeResult r = compute_envelope(spec, nullptr);
+  REQUIRE(r.required_friction.size() == 2);
+  REQUIRE(r.probes.size() == 2);
+  const double mu = r.required_friction[1];
+  INFO("mu* " << mu << " at t = " << r.required_friction_time_s[1] << " s, leg "
+              << r.required_friction_leg[1]);
+  REQUIRE(std::isfinite(mu));
+  CHECK(mu > 0.0);
+  CHECK(r.required_friction_leg[1] >= 0);
+  for (const double dmu : {1e-3, -1e-3}) {
+    Scene scene = envelope_probe_scene(spec, 0, 0.06, EnvelopeCriterion::kFriction);
+    scene.contact.friction_coefficient = mu + dmu;
+    const RunResult run = run_scene(scene);
+    std::string first;
+    const int relaxed = support_relaxed(run, &first), slips = support_slips(run);
+    INFO("mu " << mu + dmu << ": " << relaxed << " relaxed, " << slips
+               << " slipping support samples; " << first);
+    if (dmu > 0) {
+      CHECK(relaxed == 0);
+      CHECK(slips == 0);
+    } else {
+      // Below mu* some support sample cannot hold. The allocation's L1 weights let the trunk
+      // rows (100) give way before the friction rows (1000), so the sample is relaxed in its
+      // trunk rows and need not carry a slip flag (docs/theory/grip.md#slip-onset).
+      CHECK(relaxed + slips > 0);
+    }
+  }
+  // The file: the risers and the least mu per cell and riser.
+  const std::string file = (t.dir / "friction.h5").string();
+  write_envelope_file(file, spec, r);
+  const H5Reader h(file);
+  CHECK(h.dims(schema::kEnvelopeRequiredFriction.path) == std::vector<std::size_t>{1, 1, 1, 2});
+  CHECK(h.read_doubles(schema::kEnvelopeRequiredFriction.path).values[1] == mu);
+  CHECK(h.read_doubles(schema::kEnvelopeRisers.path).values == spec.scan_risers());
+}
+
 TEST_CASE("envelope: the file holds the declared layout and the boundaries", "[envelope]") {
   TempSpec t(
       "riser: {from: 0.0, to: 0.04, step: 0.02, tolerance: 0.01}\n"
