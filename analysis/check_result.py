@@ -86,9 +86,27 @@ def check_datasets(c, res, table, samples, impacts=None, messages=None):
                 f"got {dtype_name(res[path])}")
         c.check(res.units.get(path) == (units or None), f"{path} units {units or 'none'}",
                 f"got {res.units.get(path)!r}")
-        if element == "float64":
+        if path in NON_FINITE_BY_CONTRACT:
+            check_grip_values(c, res, path)
+        elif element == "float64":
             c.check(bool(np.all(np.isfinite(res[path]))), f"{path} finite",
                     "NaN or infinity present")
+
+
+# Datasets whose contract has NaN or infinity in places (docs/theory/grip.md): the utilised
+# friction is NaN exactly on swing legs (+inf where a foot pulls), the required friction NaN
+# where no friction coefficient suffices.
+NON_FINITE_BY_CONTRACT = {"/contacts/utilized_friction", "/contacts/required_friction"}
+
+
+def check_grip_values(c, res, path):
+    values = np.asarray(res[path], dtype=float)
+    c.check(bool(np.all(np.isnan(values) | (values >= 0))), f"{path} non-negative or NaN",
+            "negative values present")
+    if path == "/contacts/utilized_friction" and "/contacts/phase" in res:
+        swing = np.asarray(res["/contacts/phase"]) == 0
+        c.check(bool(np.array_equal(np.isnan(values), swing)), f"{path} NaN exactly on swing legs",
+                f"{int(np.sum(np.isnan(values) != swing))} entries differ")
 
 
 def check_meta(c, res):

@@ -215,6 +215,9 @@ std::vector<std::size_t> expected_dims(schema::Shape shape, std::size_t T, std::
     case Shape::kEnvelopeCaseValues:
     case Shape::kEnvelopeCaseCells:
     case Shape::kEnvelopeCaseGrid:
+    case Shape::kEnvelopeRisers:
+    case Shape::kEnvelopeMuGrid:
+    case Shape::kEnvelopeCaseMuGrid:
       break;  // shapes of the envelope file
     case Shape::kCycles:
       return {3};  // make_result's cycles
