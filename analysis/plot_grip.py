@@ -13,7 +13,8 @@ touchdown transient reaches hundreds). In each panel:
   grey,  the sample's required friction (/contacts/required_friction), the same in every
          panel; dots where this leg binds it (/contacts/required_friction_leg);
   dashed red, the scene's mu (contact.friction_coefficient of /meta config_yaml);
-  shaded, the leg's touchdown transients (/contacts/phase 1);
+  shaded, the leg's touchdown transients (/contacts/phase 1), at least 0.6 % of the run
+         wide (a transient lasts milliseconds);
   red crosses, the leg's slip samples (/contacts/slip 1), at the sample's required friction.
 
 A file without these datasets is refused: one line on stderr, exit status 2. The figure is
@@ -32,7 +33,8 @@ import numpy as np
 DATASETS = ("/time", "/contacts/phase", "/contacts/utilized_friction",
             "/contacts/required_friction", "/contacts/required_friction_leg",
             "/contacts/slip")
-TRANSIENT_COLOR, SLIP_COLOR, MU_COLOR, REQUIRED_COLOR = "0.88", "tab:red", "tab:red", "0.45"
+MIN_SPAN = 0.006  # shaded width of a transient at least, as a fraction of the run's duration
+TRANSIENT_COLOR, SLIP_COLOR, MU_COLOR, REQUIRED_COLOR = "0.8", "tab:red", "tab:red", "0.45"
 
 
 def runs_of(mask):
@@ -56,11 +58,13 @@ def grip_data(res):
 
 
 def shade_transients(ax, t, transient):
-    """One grey span per run of touchdown-transient samples, from its first to last time."""
+    """One grey span per run of touchdown-transient samples, from its first to last time,
+    widened to MIN_SPAN of the run's duration: a transient lasts milliseconds."""
     spans = []
+    width = MIN_SPAN * (t[-1] - t[0]) if len(t) > 1 else 0.0
     for a, b in runs_of(transient):
-        spans.append(ax.axvspan(t[a], t[b] if b > a else t[a] + 1e-3 * (t[-1] - t[0]),
-                                color=TRANSIENT_COLOR, lw=0, zorder=0))
+        spans.append(ax.axvspan(t[a], max(t[b], t[a] + width), color=TRANSIENT_COLOR, lw=0,
+                                zorder=0))
     return spans
 
 
