@@ -10,8 +10,14 @@ their URDF, configs/designs/robots.yaml); drawn by `analysis/plot_designs.py --c
   NAME_envelope.png  from `hexdyn envelope` files: the tallest riser per case and criterion
                      (grouped bars; a file per case, matched to the case by its /meta name,
                      or one file with the cases as a dimension).
+  NAME_envelope.csv  one line per case and criterion: case, criterion, riser_max [m] and
+                     required_friction, the least friction coefficient of the support
+                     samples of the run at riser_max (/envelope/riser_max_required_friction;
+                     NaN for the kinematic criterion, where none suffices, or in a file
+                     written before it).
   NAME.csv           the plotted values, one line per scenario: id, case, riser, status,
-                     cost_of_transport, energy, peak_torque [N m], torque_ratio.
+                     cost_of_transport, energy, peak_torque [N m], torque_ratio,
+                     required_friction (/scenarios/required_friction_support).
 """
 
 import os
@@ -74,6 +80,10 @@ def case_table(sweep):
                          "a cases study has the cases and the riser")
     limits = case_limits(sweep, ci)
     index = np.asarray(sweep.table["axis_index"])
+    try:
+        mu = np.asarray(sweep.table["required_friction_support"], dtype=float)
+    except KeyError:  # a sweep written before the required friction
+        mu = np.full(sweep.size, np.nan)
     peak = np.asarray(sweep.table["peak_torque"], dtype=float)
     rows = []
     for s in range(sweep.size):
@@ -89,7 +99,7 @@ def case_table(sweep):
             "cost_of_transport": float(sweep.table["cost_of_transport"][s]),
             "energy": float(sweep.table["energy"][s]),
             "peak_torque": float(np.nanmax(peak[s])) if finite.any() else np.nan,
-            "torque_ratio": ratio})
+            "torque_ratio": ratio, "required_friction": float(mu[s])})
     return ci, ri, rows, limits
 
 
@@ -150,15 +160,18 @@ def read_envelope(path):
     return {"name": name, "ds": open_envelope(path)}
 
 
-def envelope_table(paths, labels):
+def envelope_table(paths, labels, variable="riser_max"):
     """{case label: {criterion: tallest riser [m] (NaN: fails at the lowest)}} over the
-    files, at their first tread depth, duty factor and speed (recorded under the key
-    "_cell" as (tread depth, duty factor, speed) of the first file)."""
+    files, at their first tread depth, duty factor and speed, and that cell as (tread depth,
+    duty factor, speed) of the first file. `variable` another (case,) cell, criterion grid of
+    the /envelope group ("riser_max_required_friction": NaN for a file without it)."""
     out = {}
     cell = None
     for path in paths:
         env = read_envelope(path)
         ds = env["ds"]
+        if variable not in ds:
+            ds = ds.assign({variable: ds["riser_max"] * np.nan})
         case_dims = [d for d in ds["riser_max"].dims if d not in ENVELOPE_GRID]
         first = {d: 0 for d in ENVELOPE_GRID[:3] if d in ds.dims}
         ds = ds.isel(first)
@@ -168,12 +181,12 @@ def envelope_table(paths, labels):
         if case_dims:  # one file, the cases as a dimension
             d = case_dims[0]
             for k, label in enumerate(ds[d].values):
-                out[str(label)] = {c: float(ds["riser_max"].isel({d: k}).values[j])
+                out[str(label)] = {c: float(ds[variable].isel({d: k}).values[j])
                                    for j, c in enumerate(crits)}
         else:
             label = env["name"] if env["name"] in labels else os.path.splitext(
                 os.path.basename(path))[0]
-            out[label] = {c: float(ds["riser_max"].values[j]) for j, c in enumerate(crits)}
+            out[label] = {c: float(ds[variable].values[j]) for j, c in enumerate(crits)}
     return out, cell
 
 
@@ -207,10 +220,19 @@ def draw_envelope(table, name, cell=None):
 def write_csv(rows, path):
     return write_csv_atomically(
         path, ["id", "case", RISER, "status", "cost_of_transport", "energy", "peak_torque",
-               "torque_ratio"],
+               "torque_ratio", "required_friction"],
         ([r["id"], r["label"], repr(r["riser"]), r["status"]]
-         + [repr(r[k]) for k in ("cost_of_transport", "energy", "peak_torque", "torque_ratio")]
+         + [repr(r[k]) for k in ("cost_of_transport", "energy", "peak_torque", "torque_ratio",
+                                 "required_friction")]
          for r in rows))
+
+
+def write_envelope_csv(risers, mus, path):
+    """One line per case and criterion: the tallest riser and the required friction there."""
+    return write_csv_atomically(
+        path, ["case", "criterion", "riser_max", "required_friction"],
+        ([label, c, repr(risers[label][c]), repr(mus[label][c])]
+         for label in risers for c in risers[label]))
 
 
 def draw_all(sweep, outdir, name, envelopes, panel=RISER):
@@ -224,6 +246,9 @@ def draw_all(sweep, outdir, name, envelopes, panel=RISER):
         table, cell = envelope_table(envelopes, labels)
         fig, _ = draw_envelope(table, name, cell)
         written.append(save_atomically(fig, outdir, f"{name}_envelope.png"))
+        mus, _ = envelope_table(envelopes, labels, "riser_max_required_friction")
+        written.append(write_envelope_csv(table, mus, os.path.join(outdir,
+                                                                   f"{name}_envelope.csv")))
     _, _, rows, _ = case_table(sweep)
     written.append(write_csv(rows, os.path.join(outdir, f"{name}.csv")))
     return written

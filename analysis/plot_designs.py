@@ -22,7 +22,10 @@ robot.femur.length, rows) and --x (robot.tibia.length, columns), one panel per v
                          where it climbs none;
   OUTDIR/NAME.csv        the plotted values, one line per scenario: id, the three axis
                          values, status, cost_of_transport, energy [J], peak_torque [N m],
-                         relaxed_samples.
+                         relaxed_samples, and required_friction: the least friction
+                         coefficient the scenario's support samples need
+                         (/scenarios/required_friction_support, docs/theory/grip.md; NaN
+                         where none suffices, the scenario failed, or the sweep predates it).
 NAME defaults to the sweep's name. Every other axis of the sweep must hold one value.
 
 Cases (--cases; configs/designs/robots.yaml): one design per value of the `cases` axis
@@ -30,7 +33,10 @@ Cases (--cases; configs/designs/robots.yaml): one design per value of the `cases
 transport, energy and peak |tau| / effort limit per robot against the riser, failed
 scenarios marked by an x at the bottom with their status; with --envelope (files of
 `hexdyn envelope`, one per robot or one with a cases axis) OUTDIR/NAME_envelope.png, the
-tallest riser per robot and criterion. OUTDIR/NAME.csv holds the plotted values.
+tallest riser per robot and criterion, and OUTDIR/NAME_envelope.csv, per robot and criterion
+the tallest riser and the required friction of the run there
+(/envelope/riser_max_required_friction). OUTDIR/NAME.csv holds the plotted values and each
+scenario's required friction.
 
 Servos (--servos; configs/designs/paper_servos.yaml): one design per servo, the values of
 a `cases` axis of scenes with actuators, over the duty factor and the riser, with kept runs:
@@ -60,6 +66,10 @@ METRICS = (
     ("energy", "energy E", "J"),
     ("peak_torque", "peak joint torque max_k max_t |τ_k|", "N m"),
 )
+
+
+# The least friction coefficient a scenario's support samples need (docs/theory/grip.md).
+MU = "required_friction_support"
 
 
 def status_word(code):
@@ -270,18 +280,20 @@ def draw_climb(sweep, xkey="robot.tibia.length", ykey="robot.femur.length", pkey
 def write_csv(sweep, path, keys):
     """The plotted values, one line per scenario (module comment), via a temporary file."""
     ds = design_table(sweep)
-    df = ds[["status", "cost_of_transport", "energy", "peak_torque", "relaxed_samples"]] \
+    if MU not in ds:  # a sweep written before the required friction
+        ds[MU] = ds["energy"] * np.nan
+    df = ds[["status", "cost_of_transport", "energy", "peak_torque", "relaxed_samples", MU]] \
         .to_dataframe().reset_index()
     ids = ds["id"].to_dataframe().reset_index()
     rows = ([idrow["id"]] + [repr(float(row[k])) if not isinstance(row[k], str) else row[k]
                              for k in keys]
             + [status_word(row["status"])]
             + [repr(float(row[k])) for k in ("cost_of_transport", "energy", "peak_torque")]
-            + [int(row["relaxed_samples"])]
+            + [int(row["relaxed_samples"]), repr(float(row[MU]))]
             for (_, row), (_, idrow) in zip(df.iterrows(), ids.iterrows()))
     return write_csv_atomically(
         path, ["id"] + keys + ["status", "cost_of_transport", "energy", "peak_torque",
-                               "relaxed_samples"], rows)
+                               "relaxed_samples", "required_friction"], rows)
 
 
 def main(argv=None):

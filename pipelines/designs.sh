@@ -8,7 +8,7 @@
 #   robots  the URDF robots as cases of one sweep over risers (configs/designs/robots.yaml,
 #           kept runs for the effort limits) and the climbable envelope per robot
 #           (configs/designs/robots_envelope.yaml, the same cases): robots.png,
-#           robots_envelope.png, robots.csv
+#           robots_envelope.png, robots_envelope.csv, robots.csv
 #   servos  the paper robot with five Dynamixel servos over duty factor x riser at equal
 #           travel (configs/designs/paper_servos.yaml, kept runs): which servo climbs, and at
 #           what electrical cost of transport: paper_servos.png, paper_servos_climb.png,

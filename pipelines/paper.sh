@@ -14,6 +14,8 @@ mkdir -p "$out"
 "$HEXDYN_PYTHON" "$HEXDYN_ROOT/analysis/plot_kinematics.py" "$out/paper.h5" "$out"
 "$HEXDYN_PYTHON" "$HEXDYN_ROOT/analysis/plot_paper.py" "$out/paper.h5" "$out"
 "$HEXDYN_PYTHON" "$HEXDYN_ROOT/analysis/plot_actuators.py" "$out/paper.h5" "$out"
+# Grip per leg: utilised and required friction, the scene's mu, slip (docs/theory/grip.md).
+"$HEXDYN_PYTHON" "$HEXDYN_ROOT/analysis/plot_grip.py" "$out/paper.h5" "$out"
 # The motion, side view, 10 frames per second at 640 x 448 pixels (docs/user/animation.md).
 "$HEXDYN_PYTHON" "$HEXDYN_ROOT/analysis/animate.py" "$out/paper.h5" -o "$out/paper.mp4" --fps 10
 # The paper's statements against this run (docs/validation/paper.md).

@@ -8,7 +8,8 @@ against readings made here with h5py, csv and xml.etree:
     each robot has the same effort limit, so the ratio is the largest peak over it);
   - plot_design_cases.draw_cases draws, per case, exactly the computed scenarios' values
     against the riser; the envelope figure's numbers are /envelope/riser_max of each case of
-    robots_envelope_quick.h5;
+    robots_envelope_quick.h5, and robots_quick_envelope.csv holds, per case and criterion,
+    /envelope/riser_max and /envelope/riser_max_required_friction;
   - the sweep and the envelope (the same cases and travel) agree: every riser up to a
     robot's kinematic boundary is computed, every riser from its failing riser is `reach`.
 """
@@ -108,6 +109,18 @@ def check(args, out, check):
         crits = [text(x) for x in f["criterion"][()]]
         riser_max = np.asarray(f["envelope"]["riser_max"][()], dtype=float)[:, 0, 0, 0, :]
         riser_fail = np.asarray(f["envelope"]["riser_fail"][()], dtype=float)[:, 0, 0, 0, :]
+        mu = np.asarray(f["envelope"]["riser_max_required_friction"][()],
+                        dtype=float)[:, 0, 0, 0, :]
+    with open(os.path.join(out, "robots_quick_envelope.csv")) as f:
+        env_rows = {(r["case"], r["criterion"]): r for r in csv.DictReader(f)}
+    check(len(env_rows) == len(cases) * len(crits), "envelope csv: one line per case and criterion")
+    for c, lab in enumerate(cases):
+        for j, cr in enumerate(crits):
+            r = env_rows.get((lab, cr))
+            check(r is not None and same(float(r["riser_max"]), float(riser_max[c, j]))
+                  and same(float(r["required_friction"]), float(mu[c, j])),
+                  f"envelope csv: {lab} {cr} = /envelope/riser_max and its required friction",
+                  str(r))
     check(cases == sw["labels"], "envelope: the sweep's cases, in order")
     for c, lab in enumerate(cases):
         want = {cr: float(riser_max[c, j]) for j, cr in enumerate(crits)}

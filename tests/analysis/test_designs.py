@@ -7,7 +7,8 @@ checked against readings of its files made here with h5py, csv, yaml and xml.etr
     test_design_cases.py and test_design_servos.py);
   - paper_femur_tibia_quick.csv holds, for every scenario, the axis values, the status word
     (the CF flag_meanings of /scenarios/status) and the cost of transport, energy, largest
-    peak |tau| and relaxed-sample count of the sweep file's /scenarios table;
+    peak |tau|, relaxed-sample count and support required friction of the sweep file's
+    /scenarios table;
   - plot_designs.draw_grid draws those numbers: each panel's colour mesh holds the table's
     values at its (femur, tibia) cells, and the cells it hatches and labels are exactly the
     scenarios not computed, with their status; the tallest riser per design is the largest
@@ -61,7 +62,8 @@ def read_sweep(path):
         status = [meanings[flags.index(int(c))] for c in sc["status"][()]]
         out = {"keys": keys, "values": values, "index": np.asarray(sc["axis_index"][()]),
                "status": status, "id": [text(x) for x in sc["id"][()]]}
-        for name in ("cost_of_transport", "energy", "relaxed_samples"):
+        for name in ("cost_of_transport", "energy", "relaxed_samples",
+                     "required_friction_support"):
             out[name] = np.asarray(sc[name][()], dtype=float)
         peak = np.asarray(sc["peak_torque"][()], dtype=float)
         out["peak_torque"] = np.array([np.nanmax(row) if np.isfinite(row).any() else np.nan
@@ -83,6 +85,8 @@ def check_csv(csv_path, sw):
                       for a, k in enumerate(sw["keys"]))
         metrics_ok = all(same(float(row[m]), float(sw[m][s]))
                          for m in ("cost_of_transport", "energy", "peak_torque", "relaxed_samples"))
+        metrics_ok = metrics_ok and same(float(row["required_friction"]),
+                                         float(sw["required_friction_support"][s]))
         check(axes_ok and metrics_ok and row["status"] == sw["status"][s],
               f"csv: scenario {row['id']} as in /scenarios", str(row))
 
@@ -199,7 +203,8 @@ def main():
         names = ["paper_femur_tibia_quick.png", "paper_femur_tibia_quick_climb.png",
                  "paper_femur_tibia_quick.csv", "paper_femur_tibia_quick.h5"]
         if ARGS.parts == "all":
-            names += ["robots_quick.png", "robots_quick_envelope.png", "robots_quick.csv"]
+            names += ["robots_quick.png", "robots_quick_envelope.png", "robots_quick.csv",
+                      "robots_quick_envelope.csv"]
         for name in names:
             p = os.path.join(out, name)
             check(os.path.isfile(p) and os.path.getsize(p) > 0, f"pipeline: wrote {name}")

@@ -207,7 +207,8 @@ SWEEP_AXIS_LAYOUT = _layout([SCHEMA[k] for k in ("kAxisKey", "kAxisNumbers", "kA
                                                  "kAxisCaseValues")])
 SWEEP_AXIS_REQUIRED = {SCHEMA[k].path for k in ("kAxisKey", "kAxisNumbers", "kAxisLabels")}
 SWEEP_ROOT_LAYOUT = _layout([SCHEMA["kSweepJointNames"]], *_coordinate_lists("Sweep"))
-ENVELOPE_LAYOUT = _layout(SCHEMA["kEnvelopeDatasets"], *_coordinate_lists("Envelope"))
+ENVELOPE_LAYOUT = _layout(SCHEMA["kEnvelopeDatasets"], SCHEMA["kEnvelopeGripDatasets"],
+                          *_coordinate_lists("Envelope"))
 # With cases: the case axes first, then the grid with its leading dimension D.
 _ENVELOPE_CASES = _layout(SCHEMA["kEnvelopeCaseDatasets"])
 ENVELOPE_CASES_LAYOUT = {**{p: s for p, s in _ENVELOPE_CASES.items() if p not in ENVELOPE_LAYOUT},

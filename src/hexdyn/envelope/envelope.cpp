@@ -49,6 +49,36 @@ EnvelopeProbe kinematic_probe(const Scene& scene, EnvelopeProbe p) {
   return p;
 }
 
+/// The least μ of one run (envelope.hpp: a friction search's μ*, every dynamic probe's
+/// required_friction): the largest required friction over its support samples, with its leg
+/// and time; NaN with the first support sample that admits no μ named in `why` (and NaN
+/// without /contacts/required_friction, output.required_friction false).
+struct RunFriction {
+  double mu = kNaN, time_s = kNaN;
+  int leg = -1;
+  std::string why;
+};
+
+RunFriction run_friction(const RunResult& run) {
+  const DynamicsResult& d = run.dyn;
+  RunFriction f;
+  for (int i = 0; i < static_cast<int>(d.required_friction.size()); ++i) {
+    bool impact = false;
+    for (int leg = 0; leg < kLegs; ++leg)
+      impact = impact ||
+               run.kin.contact_phase(i, leg) == static_cast<std::int8_t>(ContactPhase::kImpact);
+    if (impact) continue;
+    const double mu = d.required_friction[i];
+    if (std::isnan(mu)) {
+      f.why = "no friction coefficient admits the support sample at t = " +
+              std::to_string(run.kin.time_s[i]) + " s: " + d.solver_messages[i];
+      return {kNaN, kNaN, -1, f.why};
+    }
+    if (!(mu <= f.mu)) f = {mu, run.kin.time_s[i], d.required_friction_leg[i], ""};
+  }
+  return f;
+}
+
 EnvelopeProbe dynamic_probe(const Scene& scene, EnvelopeProbe p) {
   const RunResult run = run_scene(scene, nullptr);
   const DynamicsResult& d = run.dyn;
@@ -63,6 +93,7 @@ EnvelopeProbe dynamic_probe(const Scene& scene, EnvelopeProbe p) {
     if (support_relaxed++ == 0) first = i;
   }
   p.passed = support_relaxed == 0;
+  p.required_friction = run_friction(run).mu;
   if (!p.passed) {
     const std::string& msg = d.solver_messages[first];
     p.limit = first_constraint(msg);
@@ -172,16 +203,19 @@ BoundarySearch search_boundary(const EnvelopeSpec& spec, CellProbes& probes, Env
       break;
     }
     s.pass = r;
+    s.bd.required_friction = p.required_friction;
   }
   // Bisection between the last success and the first failure.
   if (s.failed && std::isfinite(s.pass)) {
     while (s.fail.riser_m - s.pass > spec.tolerance_m) {
       const double mid = 0.5 * (s.pass + s.fail.riser_m);
       const EnvelopeProbe p = probes.probe(mid, c);
-      if (p.passed)
+      if (p.passed) {
         s.pass = mid;
-      else
+        s.bd.required_friction = p.required_friction;
+      } else {
         s.fail = p;
+      }
     }
   }
   s.bd.riser_max_m = s.pass;
@@ -224,35 +258,6 @@ void log_boundary(std::ostream& log, const EnvelopeSpec& spec, int cell, Envelop
   log << "\n";
 }
 
-/// The least μ of one run (envelope.hpp, friction search): the largest required friction
-/// over its support samples, with its leg and time; NaN with the first support sample that
-/// admits no μ named in `why`.
-struct RunFriction {
-  double mu = kNaN, time_s = kNaN;
-  int leg = -1;
-  std::string why;
-};
-
-RunFriction run_friction(const RunResult& run) {
-  const DynamicsResult& d = run.dyn;
-  RunFriction f;
-  for (int i = 0; i < static_cast<int>(d.required_friction.size()); ++i) {
-    bool impact = false;
-    for (int leg = 0; leg < kLegs; ++leg)
-      impact = impact ||
-               run.kin.contact_phase(i, leg) == static_cast<std::int8_t>(ContactPhase::kImpact);
-    if (impact) continue;
-    const double mu = d.required_friction[i];
-    if (std::isnan(mu)) {
-      f.why = "no friction coefficient admits the support sample at t = " +
-              std::to_string(run.kin.time_s[i]) + " s: " + d.solver_messages[i];
-      return {kNaN, kNaN, -1, f.why};
-    }
-    if (!(mu <= f.mu)) f = {mu, run.kin.time_s[i], d.required_friction_leg[i], ""};
-  }
-  return f;
-}
-
 /// One riser of a friction search: the run's least μ into out's grids at `at`, and its probe
 /// (passed: μ* at most the scene's μ).
 EnvelopeProbe friction_search_probe(const EnvelopeSpec& spec, int cell, double riser_m,
@@ -264,6 +269,7 @@ EnvelopeProbe friction_search_probe(const EnvelopeSpec& spec, int cell, double r
   try {
     const Scene scene = envelope_probe_scene(spec, cell, riser_m, p.criterion);
     const RunFriction f = run_friction(run_scene(scene, nullptr));
+    p.required_friction = f.mu;
     out.required_friction[at] = f.mu;
     out.required_friction_time_s[at] = f.time_s;
     out.required_friction_leg[at] = f.leg;
@@ -305,11 +311,14 @@ void friction_search(const EnvelopeSpec& spec, std::ostream* log, EnvelopeResult
       const int c = static_cast<int>(cell);
       out.probes.push_back(friction_search_probe(spec, c, risers[k], cell * R + k, out));
       const EnvelopeProbe& p = out.probes.back();
-      if (p.passed && !s.failed) s.pass = p.riser_m;
+      if (p.passed && !s.failed) {
+        s.pass = p.riser_m;
+        s.bd.required_friction = p.required_friction;
+      }
       if (!p.passed && !s.failed) {
         s.failed = true;
         s.fail = p;
-        s.bd = {s.pass, p.riser_m, p.limit, p.message};
+        s.bd = {s.pass, p.riser_m, p.limit, p.message, s.bd.required_friction};
       }
     }
     s.bd.riser_max_m = s.pass;

@@ -39,6 +39,7 @@
 /// criterion's boundary at the scene's μ on that scan (riser_max: the last riser of the
 /// passing run from `from`, μ* ≤ μ), without bisection.
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -105,6 +106,10 @@ struct EnvelopeProbe {
   bool passed = false;
   std::string limit;    ///< short name of what failed ("" when passed)
   std::string message;  ///< one line: why it failed ("" when passed)
+  /// A dynamic probe's run: the largest /contacts/required_friction over its support samples
+  /// (docs/theory/grip.md#required-friction); NaN for a kinematic probe, a run that throws, a
+  /// support sample that admits no μ, or a scene with output.required_friction false.
+  double required_friction = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// The boundary of one cell and criterion.
@@ -113,6 +118,9 @@ struct EnvelopeBoundary {
   double riser_fail_m = 0.0;  ///< smallest failing riser found; NaN if none up to `to`
   std::string limit;          ///< what fails at riser_fail ("" if none)
   std::string message;
+  /// The required μ of the run at riser_max (its last passing probe's required_friction);
+  /// NaN as there, or when riser_max is NaN.
+  double required_friction = std::numeric_limits<double>::quiet_NaN();
 };
 
 struct EnvelopeResult {

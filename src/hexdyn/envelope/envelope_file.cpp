@@ -76,10 +76,11 @@ void write_envelope_boundary(LabelledWriter& out, const EnvelopeSpec& spec,
                              const EnvelopeResult& r) {
   const std::size_t W = spec.tread_depth_m.size(), B = spec.duty_factor.size(),
                     S = spec.peak_speed_mps.size(), C = spec.criteria.size();
-  std::vector<double> rmax, rfail;
+  std::vector<double> rmax, rfail, mu;
   std::vector<std::string> limit, message;
   for (const EnvelopeBoundary& b : r.boundary) {
     rmax.push_back(b.riser_max_m);
+    mu.push_back(b.required_friction);
     rfail.push_back(b.riser_fail_m);
     limit.push_back(b.limit);
     message.push_back(b.message);
@@ -102,6 +103,9 @@ void write_envelope_boundary(LabelledWriter& out, const EnvelopeSpec& spec,
   }
   out.doubles(cases ? s::kEnvelopeCaseRiserMax : s::kEnvelopeRiserMax, grid, rmax);
   out.doubles(cases ? s::kEnvelopeCaseRiserFail : s::kEnvelopeRiserFail, grid, rfail);
+  out.doubles(
+      cases ? s::kEnvelopeCaseRiserMaxRequiredFriction : s::kEnvelopeRiserMaxRequiredFriction, grid,
+      mu);
   out.strings(cases ? s::kEnvelopeCaseLimit : s::kEnvelopeLimit, grid, limit);
   out.strings(cases ? s::kEnvelopeCaseMessage : s::kEnvelopeMessage, grid, message);
   out.doubles(cases ? s::kEnvelopeCasePostureHeight : s::kEnvelopePostureHeight, cells,

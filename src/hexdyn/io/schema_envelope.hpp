@@ -52,6 +52,13 @@ inline constexpr DatasetSpec kEnvelopeRiserMax{"/envelope/riser_max", "m", Shape
 /// Smallest riser found to fail (riser_fail − riser_max ≤ the tolerance) [m].
 inline constexpr DatasetSpec kEnvelopeRiserFail{"/envelope/riser_fail", "m", Shape::kEnvelopeGrid,
                                                 Element::kFloat64, "smallest riser found to fail"};
+/// The required friction of the run at riser_max: the largest /contacts/required_friction over
+/// its support samples (docs/theory/grip.md), the criterion's own limits in force (μ lifted to
+/// 10 for torque: μ* does not depend on the scene's μ); NaN for the kinematic criterion, where
+/// riser_max is NaN, or where a support sample admits no μ.
+inline constexpr DatasetSpec kEnvelopeRiserMaxRequiredFriction{
+    "/envelope/riser_max_required_friction", "1", Shape::kEnvelopeGrid, Element::kFloat64,
+    "required friction coefficient at riser_max"};
 /// What fails at riser_fail: "leg L4 reach: full extension", "torque L1_femur", "friction
 /// cone L2", "trunk force z", "reach", "planning", ...; "" where nothing fails.
 inline constexpr DatasetSpec kEnvelopeLimit{"/envelope/limit", "", Shape::kEnvelopeGrid,
@@ -125,6 +132,9 @@ inline constexpr DatasetSpec kEnvelopeCaseRiserMax{"/envelope/riser_max", "m",
 inline constexpr DatasetSpec kEnvelopeCaseRiserFail{"/envelope/riser_fail", "m",
                                                     Shape::kEnvelopeCaseGrid, Element::kFloat64,
                                                     "smallest riser found to fail"};
+inline constexpr DatasetSpec kEnvelopeCaseRiserMaxRequiredFriction{
+    "/envelope/riser_max_required_friction", "1", Shape::kEnvelopeCaseGrid, Element::kFloat64,
+    "required friction coefficient at riser_max"};
 inline constexpr DatasetSpec kEnvelopeCaseLimit{"/envelope/limit", "", Shape::kEnvelopeCaseGrid,
                                                 Element::kString, "what fails at riser_fail"};
 inline constexpr DatasetSpec kEnvelopeCaseMessage{"/envelope/message", "", Shape::kEnvelopeCaseGrid,
@@ -145,7 +155,7 @@ inline constexpr std::array kEnvelopeCaseDatasets{
     kEnvelopeCaseLabels, kEnvelopeCaseKeys, kEnvelopeCaseValues, kCaseCoordinate,
     kCaseKeyCoordinateEnvelope, kEnvelopeCaseRiserMax, kEnvelopeCaseRiserFail, kEnvelopeCaseLimit,
     kEnvelopeCaseMessage, kEnvelopeCasePostureHeight, kEnvelopeCasePostureFootLateral,
-    kEnvelopeCasePostureMargin};
+    kEnvelopeCasePostureMargin, kEnvelopeCaseRiserMaxRequiredFriction};
 // clang-format on
 
 // ---- with `search: friction` (envelope/envelope.hpp): the least μ per cell and riser, R risers
@@ -186,6 +196,10 @@ inline constexpr std::array kEnvelopeFrictionDatasets{
 inline constexpr std::array kEnvelopeCaseFrictionDatasets{kEnvelopeCaseRequiredFriction,
                                                           kEnvelopeCaseRequiredFrictionLeg,
                                                           kEnvelopeCaseRequiredFrictionTime};
+
+/// Written by every envelope since the required friction per cell (not in kEnvelopeDatasets:
+/// earlier version-2 files lack it).
+inline constexpr std::array kEnvelopeGripDatasets{kEnvelopeRiserMaxRequiredFriction};
 
 inline constexpr FlagSpec kProbePassedFlags{"/probes/passed", "failed passed"};
 /// Every CF flag declaration of the three file kinds.
