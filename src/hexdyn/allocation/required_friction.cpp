@@ -231,6 +231,9 @@ struct RequiredFrictionSolver::Impl {
   // The exact cone's outer polygons: per leg, the directions of its faces [rad], kept from one
   // sample to the next; the polygon problem's layout.
   std::array<std::array<double, kConeFaces>, kLegs> cone_angle;
+  std::array<double, kLegs> cone_center{};   ///< the direction the faces gather around [rad]
+  std::array<double, kLegs> cone_spacing{};  ///< their spacing δ [rad]
+  void cluster_faces(int l, double a, double delta);
   AllocationLayout cone_layout;
   Eigen::VectorXd answer_x;  ///< the forces of the last answer
   void remember(const std::vector<ActiveRow>& set);
@@ -624,25 +627,36 @@ void RequiredFrictionSolver::Impl::load_cone_polygon(const QpProblem& qp,
   set_friction_coefficient(cone_layout, qp.cones.empty() ? 0.0 : qp.cones.front().mu, work);
 }
 
+/// Leg l's polygon faces clustered around the direction `a` of its tangential force: a, a ± δ,
+/// a ± 2δ, and a + π/2, a + π, a − π/2 so that every direction is covered.
+void RequiredFrictionSolver::Impl::cluster_faces(int l, double a, double delta) {
+  static_assert(kConeFaces == 8);
+  const double offsets[kConeFaces] = {0.0,          delta,      -delta, 2.0 * delta,
+                                      -2.0 * delta, 0.5 * M_PI, M_PI,   -0.5 * M_PI};
+  for (int f = 0; f < kConeFaces; ++f) cone_angle[l][f] = a + offsets[f];
+  cone_center[l] = a;
+  cone_spacing[l] = delta;
+}
+
 /// μ* under the exact cone by outer polygons (file comment): the polygon's μ* is a lower
-/// bound, the cone use of its forces an upper bound; while they differ by more than the
-/// tolerance, each cone leg's face nearest its force's direction turns to that direction.
+/// bound, the cone use of its forces an upper bound. While they differ by more than the
+/// tolerance, each cone leg's faces gather around its force's direction, their spacing δ
+/// shrinking fourfold a round (the polygon's excess over the cone near the direction is
+/// about μ δ²/2), or widening to the step when the direction moved farther than the faces.
 void RequiredFrictionSolver::Impl::solve_cone(const QpProblem& qp, const AllocationLayout& layout,
                                               const Eigen::VectorXd* allocation) {
   constexpr int kMaxRounds = 40;
-  const auto cone_use = [&](const Eigen::VectorXd& x, int* leg) {
-    return friction_use(qp, layout, x, leg);
-  };
   double best_upper = std::numeric_limits<double>::infinity();
   int best_leg = -1;
-  if (allocation) best_upper = cone_use(*allocation, &best_leg);
+  if (allocation) best_upper = friction_use(qp, layout, *allocation, &best_leg);
+  for (int l = 0; l < kLegs; ++l) cluster_faces(l, cone_center[l], M_PI / 8.0);
   for (int round = 0; round < kMaxRounds; ++round) {
     load_cone_polygon(qp, layout);
     solve_polygonal(cone_layout, allocation);
     if (!std::isfinite(out.mu)) return;  // no μ for the outer polygon: none for the cone
-    const double lower = out.mu;
+    const double lower = out.mu - (out.method == 2 ? opt.tolerance : 0.0);
     int leg = -1;
-    const double upper = cone_use(answer_x, &leg);
+    const double upper = friction_use(qp, layout, answer_x, &leg);
     if (upper < best_upper) {
       best_upper = upper;
       best_leg = leg;
@@ -652,18 +666,11 @@ void RequiredFrictionSolver::Impl::solve_cone(const QpProblem& qp, const Allocat
       const AllocationLayout::Leg& g = layout.legs[l];
       if (g.cone < 0) continue;
       const double t1 = answer_x[g.offset], t2 = answer_x[g.offset + 1];
-      if (std::hypot(t1, t2) <= 0.0) continue;
-      const double a = std::atan2(t2, t1);
-      int nearest = 0;
-      double gap = 10.0;
-      for (int f = 0; f < kConeFaces; ++f) {
-        const double d = std::abs(std::remainder(cone_angle[l][f] - a, 2.0 * M_PI));
-        if (d < gap) {
-          gap = d;
-          nearest = f;
-        }
-      }
-      cone_angle[l][nearest] = a;
+      const double a = std::hypot(t1, t2) > 0.0 ? std::atan2(t2, t1) : cone_center[l];
+      const double moved = std::abs(std::remainder(a - cone_center[l], 2.0 * M_PI));
+      const double delta = moved > cone_spacing[l] ? std::min(M_PI / 8.0, 2.0 * moved)
+                                                   : std::max(1e-9, 0.25 * cone_spacing[l]);
+      cluster_faces(l, a, delta);
     }
   }
   out.mu = best_upper;
