@@ -20,6 +20,9 @@ HEXDYN_PACKAGES=(
   libopenmpi-dev openmpi-bin libyaml-cpp-dev libbenchmark-dev liburdfdom-dev libssl-dev
   python3 python3-h5py python3-numpy python3-matplotlib python3-yaml
   python3-dev pybind11-dev python3-pybind11 python3-scipy
+  # the required friction's second computation: HiGHS (scipy) and cvxopt's SOCP
+  # (ctest python.required_friction, tests/python/test_required_friction.py)
+  python3-cvxopt
   python3-xarray python3-h5netcdf python3-netcdf4 python3-pandas netcdf-bin udunits-bin
   clang-format
   # the Python lint of ctest format.python_lint (tests/format/check_python.sh)

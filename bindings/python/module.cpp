@@ -226,6 +226,104 @@ py::dict validate_file(const std::string& path, const std::vector<std::string>& 
   return out;
 }
 
+/// A numpy float64 array of shape (rows, cols) holding a copy of `m`.
+py::array matrix_to_numpy(const Eigen::MatrixXd& m) {
+  std::vector<double> values(static_cast<std::size_t>(m.size()));
+  for (Eigen::Index i = 0; i < m.rows(); ++i)
+    for (Eigen::Index j = 0; j < m.cols(); ++j)
+      values[static_cast<std::size_t>(i * m.cols() + j)] = m(i, j);
+  return to_numpy(std::move(values),
+                  {static_cast<std::size_t>(m.rows()), static_cast<std::size_t>(m.cols())});
+}
+
+py::array vector_to_numpy(const Eigen::VectorXd& v) {
+  return to_numpy(std::vector<double>(v.data(), v.data() + v.size()),
+                  {static_cast<std::size_t>(v.size())});
+}
+
+const char* friction_model_word(hexdyn::FrictionModel m) {
+  switch (m) {
+    case hexdyn::FrictionModel::kPyramid4:
+      return "pyramid4";
+    case hexdyn::FrictionModel::kPyramid8:
+      return "pyramid8";
+    case hexdyn::FrictionModel::kCone:
+      return "cone";
+  }
+  return "pyramid4";
+}
+
+/// The per-leg variable layout (allocation/problem.hpp AllocationLayout::Leg) as dicts.
+py::list legs_to_python(const hexdyn::AllocationLayout& layout) {
+  py::list legs;
+  for (const hexdyn::AllocationLayout::Leg& leg : layout.legs) {
+    py::dict d;
+    d["offset"] = leg.offset;
+    d["count"] = leg.count;
+    d["friction_row"] = leg.friction_row;
+    d["friction_faces"] = leg.friction_faces;
+    d["face_reach"] = leg.face_reach;
+    d["cone"] = leg.cone;
+    d["known_normal_force_N"] = leg.known_normal_force_N;
+    d["W_R_contact"] = matrix_to_numpy(leg.W_R_contact);
+    legs.append(d);
+  }
+  return legs;
+}
+
+/// sample_problem(scene, overrides, t) → dict: the allocation problem of the instant t
+/// (pipeline/pipeline.hpp sample_problem), its layout and the run's answers.
+py::dict sample_problem_file(const std::string& scene_path,
+                             const std::vector<std::string>& override_texts, double t_s) {
+  hexdyn::Scene scene;
+  hexdyn::SampleProblem p;
+  const std::vector<hexdyn::Override> overrides = overrides_of(override_texts);
+  run_interruptible([&] {
+    guard_yaml(scene_path, [&] {
+      scene = hexdyn::load_scene(scene_path, overrides);
+      const hexdyn::PreparedScene prep = hexdyn::prepare_scene(scene);
+      std::unique_lock<std::mutex> lock(ipopt_mutex, std::defer_lock);
+      if (scene.allocation.solver == hexdyn::AllocationSolver::kIpopt) lock.lock();
+      p = hexdyn::sample_problem(scene, prep, t_s);
+      return 0;
+    });
+  });
+  const hexdyn::QpProblem& qp = p.qp;
+  py::dict out;
+  out["time"] = t_s;
+  out["H"] = matrix_to_numpy(qp.H);
+  out["g"] = vector_to_numpy(qp.g);
+  out["C"] = matrix_to_numpy(qp.C);
+  out["lower"] = vector_to_numpy(qp.lower);
+  out["upper"] = vector_to_numpy(qp.upper);
+  out["ineq_names"] = qp.ineq_names;
+  py::list cones;
+  for (const hexdyn::SecondOrderCone& c : qp.cones) {
+    py::dict d;
+    d["tangent1"] = c.tangent1;
+    d["tangent2"] = c.tangent2;
+    d["normal"] = c.normal;
+    d["mu"] = c.mu;
+    d["name"] = c.name;
+    cones.append(d);
+  }
+  out["cones"] = cones;
+  out["legs"] = legs_to_python(p.layout);
+  out["variables"] = p.layout.variables;
+  out["constant_excess_Nm"] = p.layout.constant_excess_Nm;
+  out["constant_violation"] = p.layout.constant_violation;
+  std::vector<std::int8_t> phase;
+  for (hexdyn::ContactPhase ph : p.phase) phase.push_back(static_cast<std::int8_t>(ph));
+  out["phase"] = to_numpy(std::move(phase), {static_cast<std::size_t>(hexdyn::kLegs)});
+  out["x"] = vector_to_numpy(p.x);
+  out["status"] = static_cast<int>(p.status);
+  out["required_friction"] = p.required_friction;
+  out["required_friction_leg"] = p.required_friction_leg;
+  out["friction_coefficient"] = scene.contact.friction_coefficient;
+  out["friction"] = friction_model_word(scene.allocation.friction);
+  return out;
+}
+
 /// A new exception class hexdyn.NAME with the given bases.
 py::object new_exception(py::module_& m, const char* name, py::tuple bases, const char* doc) {
   const std::string qualified = std::string("hexdyn.") + name;
@@ -307,4 +405,7 @@ PYBIND11_MODULE(_hexdyn, m) {
         "Writes a computed scene's hexdyn-result/2 file, with the CLI's checks on the path.");
   m.def("validate", &validate_file, py::arg("scene"), py::arg("overrides"),
         "Checks a scene or sweep file as `hexdyn validate` does.");
+  m.def("sample_problem", &sample_problem_file, py::arg("scene"), py::arg("overrides"),
+        py::arg("t"),
+        "The allocation problem of one instant of a scene, its layout and the run's answers.");
 }

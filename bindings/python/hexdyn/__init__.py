@@ -12,6 +12,7 @@
     res = hexdyn.open_result("out.h5")   # the same Result type, read from the file
     res.write("copy.h5")          # a copy of the file's objects
     hexdyn.validate("configs/sweeps/smoke.yaml")
+    p = hexdyn.sample_problem("configs/paper.yaml", 2.0)   # one instant's allocation rows
     sw = hexdyn.open_sweep("smoke.h5")          # hexdyn-sweep/2: Sweep
     env = hexdyn.open_envelope("envelope.h5")   # hexdyn-envelope/2: Envelope
     st = hexdyn.open_study("study.h5")          # hexdyn-study/1 (analysis/study.py): Study
@@ -118,6 +119,28 @@ def validate(scene, set=None):
     return _lib().validate(_path(scene), _overrides(set))
 
 
+def sample_problem(scene, t, set=None):
+    """The allocation problem of the instant `t` [s] of the scene file `scene` with the
+    overrides `set` (as for run), as the run builds and solves it (C++ sample_problem,
+    pipeline/pipeline.hpp; docs/theory/grip.md#one-samples-rows). A dict:
+
+    - "C" (m, n), "lower", "upper" (m): the inequality rows lower <= C x <= upper at the
+      scene's friction coefficient; "ineq_names" (m), the first six the trunk rows
+      (lower == upper); "H" (n, n), "g" (n): the objective 1/2 x'Hx + g'x;
+    - "cones": per second-order cone a dict tangent1, tangent2, normal (indices into x), mu,
+      name: ||(x[tangent1], x[tangent2])|| <= mu x[normal];
+    - "legs": six dicts (allocation/problem.hpp AllocationLayout::Leg): offset, count (3
+      support, 2 touchdown transient, 0 swing), friction_row, friction_faces, face_reach,
+      cone, known_normal_force_N, W_R_contact (3, 3); "variables" (n);
+      "constant_excess_Nm" and "constant_violation" (a swing leg's torque over its limit);
+    - "phase" (6) int8 as /contacts/phase; "x" (n) the allocation's forces [N]; "status" as
+      /solver/status (0 optimal, 1 relaxed, 2 failed); "required_friction" (NaN where none
+      suffices) and "required_friction_leg" (-1 none);
+    - "friction_coefficient" (the scene's mu), "friction" ("pyramid4", "pyramid8", "cone"),
+      "time"."""
+    return _lib().sample_problem(_path(scene), _overrides(set), float(t))
+
+
 def __getattr__(name):
     # The exception family lives in the compiled part; hexdyn.ConfigError etc. load it.
     if name in ("Error", "ConfigError", "IoError", "ReachError", "PlanningError", "SolverError",
@@ -126,7 +149,7 @@ def __getattr__(name):
     raise AttributeError(f"module 'hexdyn' has no attribute {name!r}")
 
 
-__all__ = ["run", "validate", "Result", "Sweep", "Envelope", "Study", "open_result", "open_sweep",
+__all__ = ["run", "validate", "sample_problem", "Result", "Sweep", "Envelope", "Study", "open_result", "open_sweep",
            "open_envelope", "open_study", "check_layout", "decode_text", "UnknownGroupError",
            "Error", "ConfigError", "IoError", "ReachError", "PlanningError", "SolverError",
            "InternalError", "__version__", "__git_commit__"]

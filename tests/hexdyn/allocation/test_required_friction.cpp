@@ -1,0 +1,294 @@
+// The required friction (allocation/required_friction.hpp, docs/theory/grip.md#required-friction)
+// against computations that do not use its Newton code:
+//  - random allocation problems (build_allocation_problem from random ContactSplit data:
+//    feet around a hexagon, tilted contact frames, random leg Jacobians, a trunk wrench of
+//    a 5 kg body accelerating), whose μ* is found by bisection on feasibility, each probe
+//    the problem built at that μ and solved by the active-set back end
+//    (allocation/backends.hpp); under the exact cone, μ* is bracketed by those of the outer
+//    and inscribed 20-gons (the cone back end's own allocation is no oracle: on these
+//    problems it relaxes samples that an inscribed polygon shows feasible);
+//  - one leg that must carry a known force (h along a direction θ of its tangent plane, N
+//    along its normal), fixed by the trunk rows, whose μ* is known in closed form;
+//  - samples that no μ helps, NaN with the message that says why.
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <iomanip>
+#include <limits>
+#include <random>
+#include <string>
+
+#include "hexdyn/allocation/backends.hpp"
+#include "hexdyn/allocation/problem.hpp"
+#include "hexdyn/allocation/required_friction.hpp"
+#include "hexdyn/core/spatial.hpp"
+
+namespace hexdyn {
+namespace {
+
+/// One sample's problem data.
+struct Sample {
+  ContactSplit split;
+  std::array<ContactPhase, kLegs> phase{};
+  std::array<double, kLegs> impact{};
+  std::array<Mat3, kLegs> frames;
+};
+
+/// Feet around a hexagon 0.2 m below the trunk, contact normals tilted up to 0.3 rad from
+/// +z, leg Jacobians of 0.1 m scale (leg l's joint block only), a 5 kg trunk accelerating
+/// at up to ~2 m/s² sideways: friction of the order 0.1–1. `variant` 0: all six legs in
+/// support; 1: a tripod (legs 1, 2, 5 swing); 2: the tripod with leg 0 in its touchdown
+/// transient (known normal force) and leg 1 back in support.
+Sample random_sample(std::mt19937& rng, int variant) {
+  std::normal_distribution<double> g(0.0, 1.0);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  Sample s;
+  const double mass = 5.0;
+  const Vec3 force = mass * Vec3(2.0 * g(rng), 2.0 * g(rng), 9.81 + g(rng));
+  s.split.trunk_rhs << force, 0.3 * g(rng), 0.3 * g(rng), 0.1 * g(rng);
+  s.split.tau0 = VecJ::NullaryExpr([&] { return 0.3 * g(rng); });
+  for (int l = 0; l < kLegs; ++l) {
+    const Vec3 p(is_left(l) ? -0.25 : 0.25, 0.2 * (1 - l / 2), -0.2);
+    const Vec3 p_foot = p + 0.03 * Vec3(u(rng), u(rng), u(rng));
+    s.split.JbT[l].topRows<3>() = Mat3::Identity();
+    s.split.JbT[l].bottomRows<3>() = skew(p_foot);
+    s.split.JjT[l].setZero();
+    s.split.JjT[l].middleRows<kJointsPerLeg>(joint_index(l, 0)) =
+        Mat3::NullaryExpr([&] { return 0.1 * g(rng); });
+    const Vec3 axis(u(rng), u(rng), 0.0);
+    const Mat3 tilt = Eigen::AngleAxisd(0.3 * u(rng), axis.normalized()).toRotationMatrix();
+    s.frames[l] = tilt * Eigen::AngleAxisd(M_PI * u(rng), Vec3::UnitZ()).toRotationMatrix();
+    s.impact[l] = 10.0 + 5.0 * std::abs(g(rng));
+  }
+  s.phase.fill(ContactPhase::kSupport);
+  if (variant >= 1)
+    for (int l : {1, 2, 5}) s.phase[l] = ContactPhase::kSwing;
+  if (variant == 2) {
+    s.phase[0] = ContactPhase::kImpact;
+    s.phase[1] = ContactPhase::kSupport;
+  }
+  return s;
+}
+
+AllocationParams params(FrictionModel friction) {
+  AllocationParams alloc;
+  alloc.friction = friction;
+  alloc.torque_limit_Nm = 6.0;
+  return alloc;
+}
+
+AllocationLayout build_at(const AllocationParams& alloc, const Sample& s, double mu,
+                          QpProblem& qp) {
+  ContactParams contact;
+  contact.friction_coefficient = mu;
+  return build_allocation_problem(alloc, contact, s.split, s.phase, s.impact, s.frames, qp);
+}
+
+/// `qp` (built under the exact cone at friction mu) with each second-order cone replaced by
+/// a polygon of `faces` faces: cos a t1 + sin a t2 ≤ mu r f_n, a = 2π k / faces, r = 1 for
+/// the outer polygon (its faces touch the cone: μ* of it ≤ the cone's), r = cos(π / faces)
+/// for the inscribed one (μ* of it ≥ the cone's).
+QpProblem cone_as_polygon(const QpProblem& qp, double mu, int faces, bool outer) {
+  const int n = qp.variables(), m = qp.inequalities();
+  const int cones = static_cast<int>(qp.cones.size());
+  QpProblem p;
+  p.resize(n, 0, m + faces * cones);
+  p.H = qp.H;
+  p.g = qp.g;
+  p.C.topRows(m) = qp.C;
+  p.lower.head(m) = qp.lower;
+  p.upper.head(m) = qp.upper;
+  if (qp.ineq_penalty.size()) p.ineq_penalty.head(m) = qp.ineq_penalty;
+  const double reach = outer ? 1.0 : std::cos(M_PI / faces);
+  int row = m;
+  for (const SecondOrderCone& c : qp.cones)
+    for (int k = 0; k < faces; ++k, ++row) {
+      const double a = 2.0 * M_PI * k / faces;
+      p.C(row, c.tangent1) = std::cos(a);
+      p.C(row, c.tangent2) = std::sin(a);
+      p.C(row, c.normal) = -mu * reach;
+      p.upper[row] = 0.0;
+    }
+  return p;
+}
+
+/// The sample's problem built at friction mu admits a force distribution: the active-set
+/// back end's solution holds every row within 1e-9 (row units), far tighter than the
+/// pipeline's kViolationThreshold, so that the probe's answer moves μ* by about 1e-9 / F_n.
+/// Under the exact cone, `polygon` faces (> 0) replace each cone (cone_as_polygon, `outer`).
+bool feasible_at(const AllocationParams& alloc, const Sample& s, double mu,
+                 AllocationBackend& backend, int polygon, bool outer) {
+  QpProblem qp;
+  build_at(alloc, s, mu, qp);
+  if (polygon) qp = cone_as_polygon(qp, mu, polygon, outer);
+  const QpOutcome& out = backend.solve(qp);
+  if (out.status == SolverStatus::kFailed) return false;
+  double worst = 0.0;
+  describe_violations(qp, out.x, 1e-9, &worst);
+  return worst <= 1e-9;
+}
+
+/// μ* by bisection on feasibility over [0, 1000], to a bracket of 1e-9, each probe solved by
+/// the active-set back end (with the exact cone: of the polygon `polygon`, `outer`); NaN when
+/// 1000 does not suffice.
+double bisection_mu(const AllocationParams& alloc, const Sample& s, int polygon = 0,
+                    bool outer = false) {
+  AllocationParams qp_params = alloc;
+  qp_params.friction = FrictionModel::kPyramid4;  // the active-set QP back end
+  auto backend = make_allocation_backend(qp_params);
+  double lo = 0.0, hi = 1e3;
+  if (!feasible_at(alloc, s, hi, *backend, polygon, outer))
+    return std::numeric_limits<double>::quiet_NaN();
+  while (hi - lo > 1e-9) {
+    const double mid = 0.5 * (lo + hi);
+    (feasible_at(alloc, s, mid, *backend, polygon, outer) ? hi : lo) = mid;
+  }
+  return hi;
+}
+
+/// Faces of the polygons that bracket the exact cone's μ* (1 − cos(π/20) = 1.2 % apart): as
+/// many as the active-set back end's 160 rows allow for six cones. A coarse bracket: the
+/// fine check of the cone is tests/python/test_required_friction.py's SOCP (cvxopt).
+constexpr int kPolygon = 20;
+/// hexdyn's μ* against the second computation, absolute: the issue's requirement (issue 32,
+/// docs/theory/grip.md#required-friction). hexdyn's bisection alone (method 2) accepts a
+/// probe whose rows hold within kViolationThreshold and lands up to ~3e-7 off.
+constexpr double kAgreement = 1e-6;
+
+const char* model_name(FrictionModel m) {
+  return m == FrictionModel::kCone       ? "cone"
+         : m == FrictionModel::kPyramid8 ? "pyramid8"
+                                         : "pyramid4";
+}
+
+}  // namespace
+
+TEST_CASE("required friction: random problems against bisection on feasibility",
+          "[required_friction]") {
+  for (FrictionModel model :
+       {FrictionModel::kPyramid4, FrictionModel::kPyramid8, FrictionModel::kCone}) {
+    const AllocationParams alloc = params(model);
+    // One solver for the whole sequence, as a run keeps one: its active sets carry over.
+    RequiredFrictionSolver solver(make_allocation_backend(alloc));
+    std::mt19937 rng(20240611);
+    int finite = 0, nan = 0;
+    for (int k = 0; k < 12; ++k) {
+      const Sample s = random_sample(rng, k % 3);
+      // The cone's μ* lies between those of its outer and inscribed kPolygon-gons; a
+      // pyramid's is the bisection's.
+      const bool cone = model == FrictionModel::kCone;
+      const double low = bisection_mu(alloc, s, cone ? kPolygon : 0, true);
+      const double high = cone ? bisection_mu(alloc, s, kPolygon, false) : low;
+      QpProblem qp;
+      const AllocationLayout layout = build_at(alloc, s, 0.3, qp);
+      const RequiredFriction& r = solver.solve(qp, layout, nullptr);
+      INFO(std::setprecision(12) << model_name(model) << " sample " << k << ": hexdyn " << r.mu
+                                 << " (method " << r.method << ", " << r.message << "), bisection ["
+                                 << low << ", " << high << "]");
+      if (std::isnan(low) || std::isnan(high)) {
+        ++nan;
+        CHECK(std::isnan(r.mu));
+        CHECK(!r.message.empty());
+        continue;
+      }
+      ++finite;
+      CHECK(r.mu >= low - kAgreement);
+      CHECK(r.mu <= high + kAgreement);
+      CHECK(r.leg >= 0);
+    }
+    INFO(model_name(model) << ": " << finite << " finite, " << nan << " NaN");
+    CHECK(finite >= 8);
+  }
+}
+
+TEST_CASE("required friction: one leg with a known force in closed form", "[required_friction]") {
+  // Leg 0 alone on the ground (support, or its touchdown transient with N known); the trunk
+  // rows fix its force: h along the tangent direction θ, N along the normal (the trunk rows
+  // of a foot at p: force, and moment p × force). The faces of the inscribed N_f-gon are
+  // cos a_f t1 + sin a_f t2 ≤ μ cos(π/N_f) f_n with a_f = 2π f / N_f (allocation/friction.hpp),
+  // so μ* = h max_f cos(a_f − θ) / (N cos(π/N_f)) for a pyramid and h / N for the cone.
+  const double h = 7.0, N = 40.0;
+  const Vec3 p(0.25, 0.2, -0.2);
+  for (double theta : {0.0, M_PI / 8, 0.3, 2.0}) {
+    const Vec3 F(h * std::cos(theta), h * std::sin(theta), N);  // contact frame = world
+    Sample s;
+    s.phase.fill(ContactPhase::kSwing);
+    for (int l = 0; l < kLegs; ++l) {
+      s.frames[l] = Mat3::Identity();
+      s.split.JjT[l].setZero();
+      s.split.JbT[l].topRows<3>() = Mat3::Identity();
+      s.split.JbT[l].bottomRows<3>() = skew(p);
+    }
+    s.split.trunk_rhs << F, p.cross(F);
+    for (ContactPhase phase : {ContactPhase::kSupport, ContactPhase::kImpact}) {
+      s.phase[0] = phase;
+      s.impact[0] = N;
+      for (FrictionModel model :
+           {FrictionModel::kPyramid4, FrictionModel::kPyramid8, FrictionModel::kCone}) {
+        // An impact leg keeps a polygon under the exact cone: the inscribed 16-gon.
+        const int faces = model == FrictionModel::kPyramid4   ? 4
+                          : model == FrictionModel::kPyramid8 ? 8
+                          : phase == ContactPhase::kImpact    ? 16
+                                                              : 0;
+        double expected = h / N;
+        if (faces) {
+          double reach = -1.0;
+          for (int f = 0; f < faces; ++f)
+            reach = std::max(reach, std::cos(2.0 * M_PI * f / faces - theta));
+          expected = h * reach / (N * std::cos(M_PI / faces));
+        }
+        const AllocationParams alloc = params(model);
+        RequiredFrictionSolver solver(make_allocation_backend(alloc));
+        QpProblem qp;
+        const AllocationLayout layout = build_at(alloc, s, 0.3, qp);
+        const RequiredFriction& r = solver.solve(qp, layout, nullptr);
+        INFO(std::setprecision(12)
+             << model_name(model) << (phase == ContactPhase::kImpact ? " impact" : " support")
+             << " θ = " << theta << ": " << r.mu << " vs " << expected << " (" << r.message << ")");
+        CHECK(std::abs(r.mu - expected) <= kAgreement);
+        CHECK(r.leg == 0);
+      }
+    }
+  }
+}
+
+TEST_CASE("required friction: NaN and the reason where no friction helps", "[required_friction]") {
+  for (FrictionModel model :
+       {FrictionModel::kPyramid4, FrictionModel::kPyramid8, FrictionModel::kCone}) {
+    std::mt19937 rng(7);
+    Sample s = random_sample(rng, 1);
+    AllocationParams alloc = params(model);
+    INFO(model_name(model));
+    {
+      // The support legs' torque limits cannot carry the trunk's weight, whatever the
+      // friction: 0.05 N m against forces of tens of newtons on 0.1 m moment arms.
+      alloc.torque_limit_Nm = 0.05;
+      s.split.tau0.setZero();
+      RequiredFrictionSolver solver(make_allocation_backend(alloc));
+      QpProblem qp;
+      const AllocationLayout layout = build_at(alloc, s, 0.3, qp);
+      const RequiredFriction& r = solver.solve(qp, layout, nullptr);
+      INFO(r.message);
+      CHECK(std::isnan(r.mu));
+      CHECK(r.leg == -1);
+      CHECK(r.message.rfind("required friction: no friction coefficient up to 1000 admits the "
+                            "rows (",
+                            0) == 0);
+      CHECK(r.message.find("torque") != std::string::npos);
+      CHECK(std::isnan(bisection_mu(alloc, s, model == FrictionModel::kCone ? kPolygon : 0, true)));
+    }
+    {
+      // A swing leg's torque is a constant beyond its limit.
+      alloc.torque_limit_Nm = 6.0;
+      s.split.tau0[joint_index(1, 1)] = 6.5;
+      RequiredFrictionSolver solver(make_allocation_backend(alloc));
+      QpProblem qp;
+      const AllocationLayout layout = build_at(alloc, s, 0.3, qp);
+      const RequiredFriction& r = solver.solve(qp, layout, nullptr);
+      CHECK(std::isnan(r.mu));
+      CHECK(r.message == "required friction: no friction coefficient helps (torque " +
+                             joint_name(1, 1) + " (swing leg) by 0.5)");
+    }
+  }
+}
+
+}  // namespace hexdyn
