@@ -41,7 +41,10 @@ double leg_friction_use(const QpProblem& qp, const AllocationLayout& layout,
           reach, (qp.C(row, leg.offset) * t1 + qp.C(row, leg.offset + 1) * t2) / leg.face_reach);
     }
   }
-  return reach <= 0.0 ? 0.0 : fn > 0.0 ? reach / fn : std::numeric_limits<double>::infinity();
+  // A leg whose forces are below the allocation's violation threshold carries nothing: its
+  // ratio of two rounding-sized numbers says nothing of friction.
+  if (reach <= 0.0 || std::max(reach, std::abs(fn)) <= kViolationThreshold) return 0.0;
+  return fn > 0.0 ? reach / fn : std::numeric_limits<double>::infinity();
 }
 
 double friction_use(const QpProblem& qp, const AllocationLayout& layout, const Eigen::VectorXd& x,
@@ -91,7 +94,11 @@ constexpr int kTrunkRows = 6;
 
 /// Faces of the outer polygon that stands in for an exact cone, and the bit that marks the
 /// polygon problem's structural key.
-constexpr int kConeFaces = 8;
+constexpr int kConeFaces = 16;
+/// A probe is feasible when its solution holds every row to this, relative to max(1, |bound|):
+/// the back end's own tolerance (1e-9) with a margin, far tighter than the allocation's
+/// verdict (kViolationThreshold), so that a probe's friction use is μ* to about 1e-8.
+constexpr double kProbeThreshold = 1e-8;
 constexpr std::uint64_t kConePolygonKey = std::uint64_t{1} << 62;
 
 /// An active row: `side` +1 at its upper bound, −1 at its lower bound, 0 both (a trunk row).
@@ -194,8 +201,7 @@ struct RequiredFrictionSolver::Impl {
     x_out = o.x;
     if (o.status != SolverStatus::kOptimal && !why) return false;
     double worst = 0.0;
-    const std::string text =
-        describe_violations(work, o.x, kViolationThreshold, &worst, violations);
+    const std::string text = describe_violations(work, o.x, kProbeThreshold, &worst, violations);
     x_out = o.x;
     if (why) *why = text;
     return o.status == SolverStatus::kOptimal && text.empty();
@@ -627,13 +633,15 @@ void RequiredFrictionSolver::Impl::load_cone_polygon(const QpProblem& qp,
   set_friction_coefficient(cone_layout, qp.cones.empty() ? 0.0 : qp.cones.front().mu, work);
 }
 
-/// Leg l's polygon faces clustered around the direction `a` of its tangential force: a, a ± δ,
-/// a ± 2δ, and a + π/2, a + π, a − π/2 so that every direction is covered.
+/// Leg l's polygon faces: eight clustered around the direction `a` of its tangential force (a,
+/// a ± δ, a ± 2δ, a ± 3δ, a + 4δ) and eight every 45° from a + 22.5°, so that every direction
+/// is covered to within 1/cos(22.5°) of the cone.
 void RequiredFrictionSolver::Impl::cluster_faces(int l, double a, double delta) {
-  static_assert(kConeFaces == 8);
-  const double offsets[kConeFaces] = {0.0,          delta,      -delta, 2.0 * delta,
-                                      -2.0 * delta, 0.5 * M_PI, M_PI,   -0.5 * M_PI};
-  for (int f = 0; f < kConeFaces; ++f) cone_angle[l][f] = a + offsets[f];
+  static_assert(kConeFaces == 16);
+  const double fine[8] = {0.0,          delta,       -delta,       2.0 * delta,
+                          -2.0 * delta, 3.0 * delta, -3.0 * delta, 4.0 * delta};
+  for (int f = 0; f < 8; ++f) cone_angle[l][f] = a + fine[f];
+  for (int f = 0; f < 8; ++f) cone_angle[l][8 + f] = a + M_PI / 8.0 + f * M_PI / 4.0;
   cone_center[l] = a;
   cone_spacing[l] = delta;
 }
@@ -668,8 +676,9 @@ void RequiredFrictionSolver::Impl::solve_cone(const QpProblem& qp, const Allocat
       const double t1 = answer_x[g.offset], t2 = answer_x[g.offset + 1];
       const double a = std::hypot(t1, t2) > 0.0 ? std::atan2(t2, t1) : cone_center[l];
       const double moved = std::abs(std::remainder(a - cone_center[l], 2.0 * M_PI));
-      const double delta = moved > cone_spacing[l] ? std::min(M_PI / 8.0, 2.0 * moved)
-                                                   : std::max(1e-9, 0.25 * cone_spacing[l]);
+      // A direction within the clustered faces (±4δ) narrows them; one beyond widens them.
+      const double delta = moved > 4.0 * cone_spacing[l] ? std::min(M_PI / 8.0, moved)
+                                                         : std::max(1e-9, 0.25 * cone_spacing[l]);
       cluster_faces(l, a, delta);
     }
   }
