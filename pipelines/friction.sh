@@ -29,28 +29,8 @@ while (($#)); do
   esac
   shift
 done
-if [[ -n "$hexdyn" ]]; then
-  [[ -x "$hexdyn" ]] || { echo "friction.sh: error: --hexdyn: got '$hexdyn', expected an executable" >&2; exit 2; }
-  HEXDYN_BUILD="$(cd "$(dirname "$hexdyn")" && pwd)"
-  export HEXDYN_BUILD
-  source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
-  hexdyn="$(cd "$(dirname "$hexdyn")" && pwd)/$(basename "$hexdyn")"
-else
-  source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
-  hexdyn_install
-  hexdyn_build hexdyn hexdyn_python
-  hexdyn="$HEXDYN_BUILD/hexdyn"
-fi
-if [[ -z "$out" ]]; then
-  out="$HEXDYN_ROOT/results/friction"
-  ((quick)) && out="$out/quick"
-fi
-mkdir -p "$out"
-out="$(cd "$out" && pwd)"
-if [ "$(id -u)" -eq 0 ]; then
-  # Open MPI refuses to run as root unless told twice.
-  export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
-fi
+source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
+hexdyn_pipeline_start friction "$hexdyn" "$out" "$quick"
 name=stairs
 launch=(mpirun --oversubscribe -np "${HEXDYN_RANKS:-2}")
 if ((quick)); then

@@ -58,6 +58,40 @@ hexdyn_build() {
   cmake --build "$HEXDYN_BUILD" -j"$(nproc)" "${targets[@]}"
 }
 
+# The start the study pipelines share (designs.sh, friction.sh): NAME for messages and the
+# results folder, their --hexdyn PATH (an executable of a build directory, used as it is; empty:
+# install what is missing and build hexdyn and the Python module in HEXDYN_BUILD), their --out
+# DIR (empty: results/NAME, or results/NAME/quick when QUICK is 1). Sets `hexdyn` (the
+# executable) and `out` (an absolute directory, created); as root, lets Open MPI run.
+hexdyn_pipeline_start() {
+  local name="$1" given="$2" out_given="$3" quick="$4"
+  if [[ -n "$given" ]]; then
+    [[ -x "$given" ]] || {
+      echo "$name.sh: error: --hexdyn: got '$given', expected an executable" >&2
+      exit 2
+    }
+    HEXDYN_BUILD="$(cd "$(dirname "$given")" && pwd)"
+    export HEXDYN_BUILD
+    export PYTHONPATH="$HEXDYN_BUILD/python:$PYTHONPATH"
+    hexdyn="$HEXDYN_BUILD/$(basename "$given")"
+  else
+    hexdyn_install
+    hexdyn_build hexdyn hexdyn_python
+    hexdyn="$HEXDYN_BUILD/hexdyn"
+  fi
+  out="$out_given"
+  if [[ -z "$out" ]]; then
+    out="$HEXDYN_ROOT/results/$name"
+    if ((quick)); then out="$out/quick"; fi
+  fi
+  mkdir -p "$out"
+  out="$(cd "$out" && pwd)"
+  if [ "$(id -u)" -eq 0 ]; then
+    # Open MPI refuses to run as root unless told twice.
+    export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+  fi
+}
+
 if [[ "${BASH_SOURCE[0]}" == "$0" ]]; then
   hexdyn_install
   hexdyn_build

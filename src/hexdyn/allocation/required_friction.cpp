@@ -141,11 +141,12 @@ struct RequiredFrictionSolver::Impl {
   std::uint64_t warm_structure = 0;
   int warm_n = -1, warm_m = -1;
   std::vector<ActiveRow> warm_set;
-  Eigen::VectorXd warm_z;
+  SmallVector warm_z;
   // Newton's workspace and the state of its last attempt.
   std::vector<ActiveRow> candidate, trial;
   std::vector<std::pair<double, int>> slack;
-  Eigen::VectorXd z, x;
+  SmallVector z;  ///< (x, μ) of the Newton iterate
+  Eigen::VectorXd x;
   SmallVector lambda;
   SquareMatrix J;
   Eigen::PartialPivLU<SquareMatrix> lu;
@@ -196,7 +197,6 @@ struct RequiredFrictionSolver::Impl {
   bool feasible_at(const AllocationLayout& layout, double mu, Eigen::VectorXd& x_out,
                    std::string* why = nullptr) {
     set_friction_coefficient(layout, mu, work);
-    ++out.solves;
     const QpOutcome& o = backend->solve(work);
     x_out = o.x;
     if (o.status != SolverStatus::kOptimal && !why) return false;
@@ -208,7 +208,7 @@ struct RequiredFrictionSolver::Impl {
   }
 
   NewtonEnd newton(const AllocationLayout& layout, const std::vector<ActiveRow>& set,
-                   const Eigen::VectorXd& z0);
+                   const SmallVector& z0);
   NewtonEnd check(const AllocationLayout& layout, const std::vector<ActiveRow>& set);
   /// The row of J for inequality row `row` at its side `side` (at z, work set to z's μ).
   SmallVector gradient(const AllocationLayout& layout, int row, int side) const {
@@ -222,8 +222,9 @@ struct RequiredFrictionSolver::Impl {
   bool primal_ratio_entering(const AllocationLayout& layout, const std::vector<ActiveRow>& set,
                              ActiveRow& enter);
   bool solve_from(const AllocationLayout& layout, std::vector<ActiveRow> set,
-                  const Eigen::VectorXd& z0);
-  bool active_set_at(const AllocationLayout& layout, const Eigen::VectorXd& x_at, double mu);
+                  const SmallVector& z0);
+  bool active_set_at(const AllocationLayout& layout, const Eigen::Ref<const Eigen::VectorXd>& x_at,
+                     double mu);
   bool upper_end(const AllocationLayout& layout, const Eigen::VectorXd* allocation, double& hi,
                  Eigen::VectorXd& x_hi);
   bool newton_in_bracket(const AllocationLayout& layout, const Eigen::VectorXd& x_hi, double lo,
@@ -248,7 +249,7 @@ struct RequiredFrictionSolver::Impl {
 /// Newton on the square system of the active rows in z = (x, μ), from z0; then check.
 NewtonEnd RequiredFrictionSolver::Impl::newton(const AllocationLayout& layout,
                                                const std::vector<ActiveRow>& set,
-                                               const Eigen::VectorXd& z0) {
+                                               const SmallVector& z0) {
   const int n = work.variables();
   if (static_cast<int>(set.size()) != n + 1 || !work.cones.empty()) return NewtonEnd::kFailed;
   z = z0;
@@ -411,10 +412,9 @@ bool RequiredFrictionSolver::Impl::primal_ratio_entering(const AllocationLayout&
 /// row whose multiplier has the wrong sign leaves by the primal one. True with the answer
 /// in z and the set remembered for the next sample.
 bool RequiredFrictionSolver::Impl::solve_from(const AllocationLayout& layout,
-                                              std::vector<ActiveRow> set,
-                                              const Eigen::VectorXd& z0) {
+                                              std::vector<ActiveRow> set, const SmallVector& z0) {
   constexpr int kMaxExchanges = 24;
-  Eigen::VectorXd start = z0;
+  SmallVector start = z0;  // z0 may be warm_z, which a success overwrites
   for (int exchange = 0;; ++exchange) {
     const NewtonEnd end = newton(layout, set, start);
     if (end == NewtonEnd::kCertified) {
@@ -439,7 +439,8 @@ bool RequiredFrictionSolver::Impl::solve_from(const AllocationLayout& layout,
 /// the candidate active set (in `candidate`); false when the problem has too few variables
 /// or cones.
 bool RequiredFrictionSolver::Impl::active_set_at(const AllocationLayout& layout,
-                                                 const Eigen::VectorXd& x_at, double mu) {
+                                                 const Eigen::Ref<const Eigen::VectorXd>& x_at,
+                                                 double mu) {
   const int n = work.variables(), m = work.inequalities();
   const int extra = n + 1 - kTrunkRows;
   if (extra <= 0 || !work.cones.empty() || m - kTrunkRows < extra) return false;
@@ -503,7 +504,7 @@ bool RequiredFrictionSolver::Impl::newton_in_bracket(const AllocationLayout& lay
                                                      double hi) {
   const int n = work.variables();
   if (!active_set_at(layout, x_hi, hi)) return false;
-  Eigen::VectorXd z0(n + 1);
+  SmallVector z0(n + 1);
   z0 << x_hi, hi;
   if (!solve_from(layout, candidate, z0) || z[n] < lo - 1e-9 || z[n] > hi + 1e-9) return false;
   out.mu = std::max(0.0, z[n]);
@@ -566,11 +567,12 @@ void RequiredFrictionSolver::Impl::solve_polygonal(const AllocationLayout& layou
   const int n = work.variables();
   const bool alike =
       has_warm && warm_structure == work.structure && warm_n == n && warm_m == work.inequalities();
-  // The previous sample's active set, else the rows nearest to active at its answer.
+  // The previous sample's active set, else the rows nearest to active at its answer (which
+  // the cone's polygon rounds need, their faces having turned since). A failed attempt leaves
+  // warm_z as it was.
   if (alike) {
-    const Eigen::VectorXd z_prev = warm_z;
-    if (solve_from(layout, warm_set, z_prev) || (active_set_at(layout, z_prev.head(n), z_prev[n]) &&
-                                                 solve_from(layout, candidate, z_prev))) {
+    if (solve_from(layout, warm_set, warm_z) || (active_set_at(layout, warm_z.head(n), warm_z[n]) &&
+                                                 solve_from(layout, candidate, warm_z))) {
       out.mu = std::max(0.0, z[n]);
       out.leg = newton_leg;
       out.method = 0;

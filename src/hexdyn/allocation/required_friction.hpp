@@ -16,13 +16,18 @@
 ///    minimum (a local minimum of a quasi-convex problem with a convex feasible set for each μ
 ///    is global; docs/theory/grip.md#why-the-newton-answer-is-the-minimum). The active set of
 ///    the previous sample of the same row layout is tried first: consecutive samples usually
-///    share it, and then one sample costs two or three 19×19 factorisations.
-///  - Bisection on feasibility: each probe solves the allocation problem at μ with the scene's
-///    back end (its own instance and warm start); a feasible probe also tightens the upper
-///    end to the μ its own forces use. From the upper bound the allocation itself gives (the
-///    friction its forces use) down to a bracket of `tolerance`; the rows closest to active
-///    at the last feasible probe then seed the Newton step, whose active set the next sample
-///    reuses.
+///    share it, and then one sample costs two or three 19×19 factorisations. When the answer
+///    fails its check, rows are exchanged one at a time by the ratio tests of the simplex
+///    method (docs/theory/grip.md#where-the-active-set-comes-from).
+///  - Bisection on feasibility: each probe solves the allocation problem at μ with the
+///    active-set back end given to the solver (its own instance and warm start), and holds
+///    every row to 1e-8; a feasible probe also tightens the upper end to the μ its own forces
+///    use. From the upper bound the allocation itself gives (the friction its forces use) down
+///    to a bracket of `tolerance`, with a Newton attempt from the rows nearest to active each
+///    time the bracket has narrowed a hundredfold.
+///  - The exact cone: its cones become outer polygons of 16 faces that gather around each
+///    leg's force direction until the polygon's μ* (a lower bound) and the cone use of its
+///    forces (an upper bound) meet within `tolerance` (docs/theory/grip.md#the-exact-cone).
 /// μ* is NaN when no μ ≤ mu_max admits the rows (the message names what still fails there),
 /// or when a constant row (a swing leg's torque) exceeds its limit.
 #include <Eigen/Core>
@@ -52,7 +57,6 @@ struct RequiredFriction {
   /// How μ* was found: 0 Newton from the previous sample's active set, 1 bisection then
   /// Newton, 2 bisection alone (within `tolerance` above μ*), 3 none (NaN).
   int method = 3;
-  int solves = 0;       ///< back-end solves (bisection probes)
   std::string message;  ///< why μ* is NaN, empty otherwise
 };
 

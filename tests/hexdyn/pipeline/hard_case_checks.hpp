@@ -112,15 +112,25 @@ inline double sum_force(const RunResult& r, int i, int axis) {
   return s;
 }
 
-/// The number after "NAME by " in a relaxed message; NaN when NAME is not named.
-inline double violation_of(const std::string& msg, const std::string& name) {
+/// The allocation's part of a sample's message: what precedes the required friction's note
+/// ("; required friction: ...", pipeline/solve_dynamics.cpp).
+inline std::string allocation_part(const std::string& msg) {
+  return msg.substr(0, msg.find("; required friction"));
+}
+
+/// The number after "NAME by " in the allocation's part of a relaxed message; NaN when NAME is
+/// not named.
+inline double violation_of(const std::string& message, const std::string& name) {
+  const std::string msg = allocation_part(message);
   const auto at = msg.find(name + " by ");
   if (at == std::string::npos) return std::nan("");
   return std::strtod(msg.c_str() + at + name.size() + 4, nullptr);
 }
 
-/// The rows named by a relaxed message ("relaxed: A by x, B by y (impact ...)").
-inline std::vector<std::string> named_rows(const std::string& msg) {
+/// The rows named by a relaxed message ("relaxed: A by x, B by y (impact ...)"), in its
+/// allocation's part.
+inline std::vector<std::string> named_rows(const std::string& message) {
+  const std::string msg = allocation_part(message);
   std::vector<std::string> rows;
   std::string body = msg.substr(msg.find(':') + 1);
   body = body.substr(0, body.rfind(" (impact "));
