@@ -21,6 +21,7 @@
 #include "hexdyn/io/result_layout.hpp"
 #include "hexdyn/io/schema.hpp"
 #include "hexdyn/process/atomic_file.hpp"
+#include "hexdyn/process/interrupt.hpp"
 #include "hexdyn/process/launch.hpp"
 #include "hexdyn/process/paths.hpp"
 #include "hexdyn/version.hpp"
@@ -129,10 +130,14 @@ void check_output_target(const std::string& path, const std::vector<InputFile>& 
   }
   if (!S_ISDIR(d.st_mode)) throw_output_error(path, "'" + dir + "' is not a directory");
   // The temporary file is where the output is built: creating it is the test.
+  // A signal between the creation and the removal removes it too (interrupt.hpp): the probe
+  // is registered before it exists.
   const std::string tmp = temporary_path_for(path);
+  register_temporary(tmp);
   const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
   if (fd < 0) {
     const int err = errno;
+    unregister_temporary(tmp);
     if (err == EEXIST && !why_not_replaceable(tmp))
       return;  // a stale one of this pid: overwritten later
     if (err == EACCES || err == EPERM)
@@ -143,6 +148,7 @@ void check_output_target(const std::string& path, const std::vector<InputFile>& 
   }
   ::close(fd);
   ::unlink(tmp.c_str());
+  unregister_temporary(tmp);
   // Temporary files of earlier runs killed before they could remove them (under MPI, rank
   // 0 alone looks).
   if (!launched_as_secondary_rank())
