@@ -411,6 +411,27 @@ void read_contact(Reader& r, ContactParams& c) {
   c.damping_max_Nspm = r.number("contact.damping_max", nonnegative(1e12));
   c.full_damping_depth_m = r.number("contact.full_damping_depth", positive(1.0));
   c.friction_coefficient = r.number("contact.friction_coefficient", positive(10.0));
+  c.static_friction =
+      r.number_or("contact.static_friction", c.friction_coefficient, positive(10.0));
+  c.dynamic_friction =
+      r.number_or("contact.dynamic_friction", c.static_friction, closed(0.0, c.static_friction));
+  c.stiction_velocity_mps = r.number_or("contact.stiction_velocity",
+                                        defaults().contact.stiction_velocity_mps, positive(10.0));
+  c.friction_velocity_mps = r.number_or(
+      "contact.friction_velocity",
+      std::max(defaults().contact.friction_velocity_mps, 10.0 * c.stiction_velocity_mps),
+      positive(100.0));
+  if (!(c.friction_velocity_mps > c.stiction_velocity_mps))
+    r.fail("contact.friction_velocity", "got " + fmt(c.friction_velocity_mps) +
+                                            ", expected more than contact.stiction_velocity (" +
+                                            fmt(c.stiction_velocity_mps) + " m/s)");
+}
+
+void read_replay(Reader& r, ReplayParams& p) {
+  const ReplayParams d;
+  p.kp_Nmprad = r.number_or("replay.kp", d.kp_Nmprad, nonnegative(1e9));
+  p.kd_Nmsprad = r.number_or("replay.kd", d.kd_Nmsprad, nonnegative(1e9));
+  p.step_s = r.number_or("replay.step", d.step_s, positive(0.1));
 }
 
 void read_allocation(Reader& r, AllocationParams& a, const LoadedUrdfRobot& urdf) {
@@ -612,6 +633,7 @@ Scene scene_from_tree(const SceneTree& tree, const std::string& source_name, boo
     s.warnings = stance_fallback_warnings(urdf.stance);
   read_motion(r, s.gait, s.terrain, s.motion);
   read_contact(r, s.contact);
+  read_replay(r, s.replay);
   read_allocation(r, s.allocation, urdf);
   read_drive_train(r, s, urdf);
   read_output(r, s.output);

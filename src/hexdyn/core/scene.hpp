@@ -170,6 +170,20 @@ struct ContactParams {
   double damping_max_Nspm = 10.0;                 ///< C_max [N·s/m]
   double full_damping_depth_m = 1e-5;             ///< p [m]
   double friction_coefficient = 0.3;              ///< μ
+  /// The tangential law of forward simulation (contact/simulation_contact.hpp, after
+  /// MSC.ADAMS' contact friction): μ_s (contact.static_friction, default μ), μ_d
+  /// (contact.dynamic_friction, default μ_s), and the transition speeds v_s < v_d.
+  double static_friction = 0.3;         ///< μ_s
+  double dynamic_friction = 0.3;        ///< μ_d
+  double stiction_velocity_mps = 1e-3;  ///< v_s [m/s]
+  double friction_velocity_mps = 1e-2;  ///< v_d [m/s]
+};
+
+/// `replay:` the forward replay of a result (replay/replay.hpp, docs/theory/replay.md).
+struct ReplayParams {
+  double kp_Nmprad = 10.0;  ///< replay.kp: joint PD stiffness on the planned angles [N m/rad]
+  double kd_Nmsprad = 0.1;  ///< replay.kd: joint PD damping on the planned rates [N m s/rad]
+  double step_s = 2.5e-4;   ///< replay.step: the integrator's largest step [s]
 };
 
 /// Allocation back end: the dense dual active-set QP (allocation/active_set.hpp; with the
@@ -254,6 +268,7 @@ struct Scene {
   GaitParams gait;
   MotionParams motion;
   ContactParams contact;
+  ReplayParams replay;
   AllocationParams allocation;
   DriveTrainParams actuators;  ///< actuators: (absent: the paper's ideal joints)
   OutputParams output;

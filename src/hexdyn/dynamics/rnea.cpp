@@ -5,8 +5,6 @@
 namespace hexdyn {
 namespace {
 
-const Vec3 kGravity_W(0.0, 0.0, -kGravity);
-
 int tibia_body(int leg) { return 1 + joint_index(leg, 2); }
 
 /// Where the terrain acts on leg l's tibia, in the tibia frame: the foot point, or a sphere
@@ -112,7 +110,7 @@ const VecDof& rnea(const RobotModel& model, RobotData& data, const BaseState& st
                    const FootNormals* normals_W) {
   update_kinematics(model, data, state, q);
   Motion v0_B, a0_B;
-  base_motion(state, state.a_W, state.omegadot_W, kGravity_W, v0_B, a0_B);
+  base_motion(state, state.a_W, state.omegadot_W, model.gravity_W, v0_B, a0_B);
   forward_motion_pass(model, data, v0_B, a0_B, qd, &qdd);
 
   // Net force on each body: f = I a + v ×* I v (Newton–Euler in body coordinates).

@@ -29,10 +29,11 @@
 /// the surface under it (FootNormals): F at it is F at the centre plus the moment
 /// (−r n) × F on the tibia (docs/theory/model.md#sphere-feet). A motion is consistent
 /// without a base actuator when the trunk rows (f_base, n_base) vanish.
-/// h includes gravity (0, 0, −9.81) m/s² along −z of G0.
+/// h includes gravity, RobotModel::gravity_W ((0, 0, −9.81) m/s² unless a caller changes it).
 ///
 /// Body frames: body 0 is the trunk (frame L0 at P0); body b = 1 + k is moved by joint
 /// k, its frame is the joint frame rotated by q_k about the joint axis (robot_model.hpp).
+#include <Eigen/Cholesky>
 #include <array>
 
 #include "hexdyn/core/base_state.hpp"
@@ -106,6 +107,10 @@ struct RobotData {
   std::array<Vec3, kLegs> a_foot_bias_W;     ///< foot_bias_accelerations: J̇ ν [m/s²]
   Momentum momentum;                         ///< robot_momentum
   ContactSplit split;                        ///< contact_split
+  // --- forward dynamics (forward_dynamics.hpp) ---
+  VecDof bias = VecDof::Zero();    ///< h(q, ν) − Σ J_lᵀ F_l
+  Eigen::LLT<MatDof> M_llt;        ///< Cholesky factor of M
+  VecDof nu_dot = VecDof::Zero();  ///< ν̇, the result
 };
 
 /// Fills data.X_parent_body and data.X_world_body for the trunk pose of `state`

@@ -75,6 +75,9 @@ enum class Shape {
   kEnvelopeMuGrid,      ///< (W,B,S,R), one entry per cell and riser of a friction search
   kEnvelopeCaseMuGrid,  ///< (D,W,B,S,R), one entry per case, cell and riser
   kCycles,              ///< (Y), one entry per gait cycle
+  kCycles3,             ///< (Y,3), one vector per gait cycle (a replay's drift)
+  kLegValues,           ///< (6), one number per leg
+  kVector3,             ///< (3), one vector
   kTerrainPoints,       ///< (K), one entry per vertex of the terrain's height profile
   kXyz,                 ///< (3) strings "x", "y", "z"
   kWxyz,                ///< (4) strings "w", "x", "y", "z"
@@ -125,6 +128,9 @@ constexpr const char* dimension_names(Shape shape) {
     case Shape::kEnvelopeMuGrid: return "tread_depth duty_factor peak_speed riser";
     case Shape::kEnvelopeCaseMuGrid: return "case tread_depth duty_factor peak_speed riser";
     case Shape::kCycles: return "gait_cycle";
+    case Shape::kCycles3: return "gait_cycle xyz";
+    case Shape::kLegValues: return "leg";
+    case Shape::kVector3: return "xyz";
     case Shape::kTerrainPoints: return "terrain_point";
     case Shape::kXyz: return "xyz";
     case Shape::kWxyz: return "wxyz";
@@ -753,3 +759,5 @@ inline constexpr const char* kRunGroup = "/runs/{id}";
 
 // The envelope contract, in its own header (parsed as part of this one).
 #include "hexdyn/io/schema_envelope.hpp"  // IWYU pragma: export
+// The replay contract, in its own header (parsed as part of this one).
+#include "hexdyn/io/schema_replay.hpp"  // IWYU pragma: export

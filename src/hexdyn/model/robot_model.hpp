@@ -113,6 +113,9 @@ struct RobotModel {
   /// root link of /model/urdf describe (a YAML robot: B itself).
   Vec3 p_B_root = Vec3::Zero();      ///< [m]
   Mat3 B_R_root = Mat3::Identity();  ///< root link axes → trunk axes
+  /// Gravity in G0 [m/s²] (Pinocchio's Model::gravity): every dynamics algorithm reads it;
+  /// a test of the free robot sets it to zero.
+  Vec3 gravity_W = Vec3(0.0, 0.0, -kGravity);
 };
 
 /// Builds the model from validated parameters (no checks beyond those of load_scene).

@@ -175,6 +175,7 @@ std::vector<std::size_t> expected_dims(schema::Shape shape, std::size_t T, std::
     case Shape::kJ:
       return {18};
     case Shape::kLegNames:
+    case Shape::kLegValues:
       return {6};
     case Shape::kT:
       return {T};
@@ -191,10 +192,12 @@ std::vector<std::size_t> expected_dims(schema::Shape shape, std::size_t T, std::
     case Shape::kN:
       return {n};
     case Shape::kXyz:
+    case Shape::kVector3:
       return {3};
     case Shape::kWxyz:
       return {4};
     case Shape::kAxes:
+    case Shape::kCycles3:
       break;  // not in this synthetic result
     case Shape::kScenarios:
     case Shape::kScenarioAxes:

@@ -1,0 +1,52 @@
+#include "hexdyn/dynamics/forward_dynamics.hpp"
+
+#include "hexdyn/core/errors.hpp"
+
+namespace hexdyn {
+namespace {
+
+VecDof generalised_velocity(const BaseState& state, const VecJ& qd) {
+  VecDof nu;
+  nu << state.v_W, state.omega_W, qd;
+  return nu;
+}
+
+}  // namespace
+
+const VecDof& forward_dynamics(const RobotModel& model, RobotData& data, const BaseState& state,
+                               const VecJ& q, const VecJ& qd, const VecDof& tau_gen,
+                               const std::array<Vec3, kLegs>* foot_forces_W,
+                               const FootNormals* normals_W) {
+  // h − Σ J_lᵀ F_l: the inverse dynamics at zero generalised acceleration.
+  BaseState at_rest = state;
+  at_rest.a_W.setZero();
+  at_rest.omegadot_W.setZero();
+  data.bias = rnea(model, data, at_rest, q, qd, VecJ::Zero(), foot_forces_W, normals_W);
+  crba(model, data, state, q);
+  data.M_llt.compute(data.M);
+  if (data.M_llt.info() != Eigen::Success)
+    throw SolverError("forward dynamics: the mass matrix is not positive definite");
+  data.nu_dot = data.M_llt.solve(tau_gen - data.bias);
+  if (!data.nu_dot.allFinite())
+    throw SolverError("forward dynamics: the acceleration is not finite");
+  return data.nu_dot;
+}
+
+const VecDof& forward_dynamics_joints(const RobotModel& model, RobotData& data,
+                                      const BaseState& state, const VecJ& q, const VecJ& qd,
+                                      const VecJ& tau_joints_Nm,
+                                      const std::array<Vec3, kLegs>* foot_forces_W,
+                                      const FootNormals* normals_W) {
+  VecDof tau_gen = VecDof::Zero();
+  tau_gen.tail<kJoints>() = tau_joints_Nm;
+  return forward_dynamics(model, data, state, q, qd, tau_gen, foot_forces_W, normals_W);
+}
+
+double kinetic_energy(const RobotModel& model, RobotData& data, const BaseState& state,
+                      const VecJ& q, const VecJ& qd) {
+  const VecDof nu = generalised_velocity(state, qd);
+  crba(model, data, state, q);
+  return 0.5 * nu.dot(data.M * nu);
+}
+
+}  // namespace hexdyn
