@@ -8,7 +8,8 @@ Writes OUTDIR/NAME_shares.png (NAME: replay): one column of panels per surface f
 against the duty factor, a line per peak speed: the energy lost to slip (top row) and to normal
 contact damping, touchdowns and support (middle row), each as a share of the replay's joint
 energy, and the trunk's drift at the end (bottom row), on log scales. A filled marker is a
-replay that reached the top of the stairs; an open one did not (a cross: it ended early).
+replay that reached the top of the stairs; an open one did not (a cross: it ended early); a
+grey square marks a plan with relaxed support samples, whose torques do not make it exact.
 """
 
 import argparse
@@ -51,6 +52,8 @@ def draw(rows, outdir, name):
                 ax.plot(x, y, "-", color=c, lw=1.2,
                         label=f"{v:.2f} m/s" if (i, j) == (0, 0) else None)
                 for xx, yy, r in zip(x, y, sel):
+                    if r["plan_relaxed_support_samples"] > 0:
+                        ax.plot(xx, yy, "s", mfc="none", mec="0.5", ms=12, mew=1.0)
                     if r["reached_top"]:
                         ax.plot(xx, yy, "o", color=c, ms=6)
                     elif r["completed"]:
@@ -70,8 +73,10 @@ def draw(rows, outdir, name):
     handles, labels = axes[0][0].get_legend_handles_labels()
     handles += [plt.Line2D([], [], ls="", marker="o", color="0.3"),
                 plt.Line2D([], [], ls="", marker="o", mfc="white", mec="0.3"),
-                plt.Line2D([], [], ls="", marker="x", color="0.3", mew=2)]
-    labels += ["reached the top", "did not", "ended early"]
+                plt.Line2D([], [], ls="", marker="x", color="0.3", mew=2),
+                plt.Line2D([], [], ls="", marker="s", mfc="none", mec="0.5", ms=10)]
+    labels += ["reached the top", "did not", "ended early",
+               "plan with relaxed support samples"]
     fig.legend(handles, labels, loc="lower center", ncol=len(labels), fontsize=8, frameon=False)
     fit_suptitle(fig, "Forward replay of the paper stairs' plans: energy lost to slip and to "
                  "contact damping, and drift, against gait and speed, per surface friction μ")

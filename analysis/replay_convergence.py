@@ -5,7 +5,7 @@ step x tolerance (replay.step, replay.tolerance; docs/theory/replay.md), each re
 compared with the finest one's (the smallest step at the smallest tolerance).
 
     /usr/bin/python3 analysis/replay_convergence.py OUTDIR [--hexdyn build/hexdyn]
-        [--scene configs/paper.yaml] [--set key=value ...] [--steps 4e-3 ... 1.25e-4]
+        [--scene configs/paper.yaml] [--set key=value ...] [--steps 4e-3 ... 6.25e-5]
         [--tolerances 0.2 0.05 0.01] [--repeat N] [--table]
 
 Writes into OUTDIR: result.h5 (the plan), replays/step<h>_tol<t>.h5, and
@@ -34,7 +34,7 @@ import numpy as np
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 SOURCE = os.path.dirname(HERE)
-STEPS = (4e-3, 2e-3, 1e-3, 5e-4, 2.5e-4, 1.25e-4)
+STEPS = (4e-3, 2e-3, 1e-3, 5e-4, 2.5e-4, 1.25e-4, 6.25e-5)
 TOLERANCES = (0.2, 0.05, 0.01)
 ENERGIES = (("slip_energy_J", "slip"), ("touchdown_energy_J", "touchdown"),
             ("energy_J", "joint energy"))
