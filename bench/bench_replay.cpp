@@ -7,6 +7,7 @@
 // the paper scene (run_scene, what `hexdyn run` computes), timed on its own: counter `over_run` is
 // the replay's time over the run's, both measured in the same iterations; `run_ms` the run's time.
 // The reported time is the replay's alone (manual time).
+//   cmake --build build --target bench_replay && build/bench/bench_replay --benchmark_repetitions=3
 #include <benchmark/benchmark.h>
 #include <unistd.h>
 
