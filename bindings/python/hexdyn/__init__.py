@@ -15,6 +15,7 @@
     p = hexdyn.sample_problem("configs/paper.yaml", 2.0)   # one instant's allocation rows
     sw = hexdyn.open_sweep("smoke.h5")          # hexdyn-sweep/2: Sweep
     env = hexdyn.open_envelope("envelope.h5")   # hexdyn-envelope/2: Envelope
+    rep = hexdyn.open_replay("replay.h5")       # hexdyn-replay/1 (hexdyn replay): Replay
     st = hexdyn.open_study("study.h5")          # hexdyn-study/1 (analysis/study.py): Study
     hexdyn.check_layout("any.h5")               # any of them against its schema
 
@@ -38,8 +39,9 @@ import os
 from collections.abc import Mapping
 
 from ._version import __git_commit__, __version__
-from .results import (Envelope, Result, Study, Sweep, UnknownGroupError, check_layout,
-                      decode_text, open_envelope, open_result, open_study, open_sweep)
+from .results import (Envelope, Replay, Result, Study, Sweep, UnknownGroupError, check_layout,
+                      decode_text, open_envelope, open_replay, open_result, open_study,
+                      open_sweep)
 from .results import checked_path as _path
 
 _compiled = None
@@ -149,7 +151,7 @@ def __getattr__(name):
     raise AttributeError(f"module 'hexdyn' has no attribute {name!r}")
 
 
-__all__ = ["run", "validate", "sample_problem", "Result", "Sweep", "Envelope", "Study", "open_result", "open_sweep",
-           "open_envelope", "open_study", "check_layout", "decode_text", "UnknownGroupError",
+__all__ = ["run", "validate", "sample_problem", "Result", "Sweep", "Envelope", "Replay", "Study",
+           "open_result", "open_sweep", "open_envelope", "open_replay", "open_study", "check_layout", "decode_text", "UnknownGroupError",
            "Error", "ConfigError", "IoError", "ReachError", "PlanningError", "SolverError",
            "InternalError", "__version__", "__git_commit__"]
