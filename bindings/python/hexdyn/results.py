@@ -1,7 +1,8 @@
 """Readers of hexdyn's files, with h5py only: results (`hexdyn-result/2`), sweeps
 (`hexdyn-sweep/2`), envelopes (`hexdyn-envelope/2`), replays (`hexdyn-replay/1`) and studies
-(`hexdyn-study/1`, of analysis/study.py); results and sweeps of version 1 open too (mapped to version 2 on
-reading). Every file is checked against its schema when opened; check_layout checks any.
+(`hexdyn-study/1`, of analysis/study.py); results and sweeps of version 1 open too (mapped
+to version 2 on reading). Every file is checked against its schema when opened;
+check_layout checks any.
 
 The layout is the contract of docs/user/output.md, declared in src/hexdyn/io/schema.hpp and
 reaching Python as the module hexdyn._schema, generated at build time from the compiled
