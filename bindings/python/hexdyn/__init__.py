@@ -13,6 +13,12 @@
     res.write("copy.h5")          # a copy of the file's objects
     hexdyn.validate("configs/sweeps/smoke.yaml")
     p = hexdyn.sample_problem("configs/paper.yaml", 2.0)   # one instant's allocation rows
+    a = hexdyn.forward_dynamics("configs/paper.yaml", r["/base/position"],
+                                r["/base/orientation"], r["/joints/position"],
+                                r["/base/linear_velocity"], r["/base/angular_velocity"],
+                                r["/joints/velocity"], r["/joints/torque"],
+                                foot_forces=r["/contacts/force"])
+    a["joint_acceleration"]       # (T, 18) [rad/s²]: what those torques and forces do
     sw = hexdyn.open_sweep("smoke.h5")          # hexdyn-sweep/2: Sweep
     env = hexdyn.open_envelope("envelope.h5")   # hexdyn-envelope/2: Envelope
     rep = hexdyn.open_replay("replay.h5")       # hexdyn-replay/1 (hexdyn replay): Replay
@@ -37,6 +43,8 @@ parallel.
 import json
 import os
 from collections.abc import Mapping
+
+import numpy as np
 
 from ._version import __git_commit__, __version__
 from .results import (Envelope, Replay, Result, Study, Sweep, UnknownGroupError, check_layout,
@@ -143,6 +151,38 @@ def sample_problem(scene, t, set=None):
     return _lib().sample_problem(_path(scene), _overrides(set), float(t))
 
 
+def forward_dynamics(scene, base_position, base_orientation, joint_position,
+                     base_linear_velocity, base_angular_velocity, joint_velocity, joint_torque,
+                     foot_forces=None, foot_normals=None, set=None):
+    """The accelerations of the robot of the scene file `scene` (with the overrides `set`, as
+    for run; the robot `hexdyn run` builds, the one its /model/urdf describes, gravity -9.81
+    m/s² along z) at the given states, under the joint torques and the foot forces (C++
+    forward_dynamics_joints, dynamics/forward_dynamics.hpp;
+    docs/theory/replay.md#forward-dynamics). No other force acts on the trunk.
+
+    The arguments are in a result file's coordinates, each one state or T states along a first
+    axis (all alike): base_position (3) [m], base_orientation (4) unit quaternion (w, x, y, z),
+    base_linear_velocity (3) [m/s] and base_angular_velocity (3) [rad/s] of the URDF root
+    link's frame, world axes (as /base/*); joint_position (18) [rad], joint_velocity (18)
+    [rad/s] and joint_torque (18) [N m] in /model/joint_names order; foot_forces (6, 3) [N]
+    the terrain's force on each foot at its contact point, world axes (as /contacts/force;
+    None: no force); foot_normals (6, 3) the unit surface normal under each foot, where a
+    sphere foot touches (None: +z).
+
+    Returns a dict of numpy arrays: "base_linear_acceleration" (3) [m/s²], the classical
+    acceleration of the root link's origin, "base_angular_acceleration" (3) [rad/s²], both
+    world axes (as /base/linear_acceleration and /base/angular_acceleration), and
+    "joint_acceleration" (18) [rad/s²]; each (T, ...) for T states. Raises ValueError for an
+    argument of the wrong shape and hexdyn.SolverError for a robot whose mass matrix is
+    singular (robot.leg_inertia: massless)."""
+    def array(a):
+        return None if a is None else np.asarray(a, dtype=float)
+    return _lib().forward_dynamics(
+        _path(scene), _overrides(set), array(base_position), array(base_orientation),
+        array(joint_position), array(base_linear_velocity), array(base_angular_velocity),
+        array(joint_velocity), array(joint_torque), array(foot_forces), array(foot_normals))
+
+
 def __getattr__(name):
     # The exception family lives in the compiled part; hexdyn.ConfigError etc. load it.
     if name in ("Error", "ConfigError", "IoError", "ReachError", "PlanningError", "SolverError",
@@ -151,7 +191,8 @@ def __getattr__(name):
     raise AttributeError(f"module 'hexdyn' has no attribute {name!r}")
 
 
-__all__ = ["run", "validate", "sample_problem", "Result", "Sweep", "Envelope", "Replay", "Study",
-           "open_result", "open_sweep", "open_envelope", "open_replay", "open_study", "check_layout", "decode_text", "UnknownGroupError",
+__all__ = ["run", "validate", "sample_problem", "forward_dynamics", "Result", "Sweep", "Envelope",
+           "Replay", "Study", "open_result", "open_sweep", "open_envelope", "open_replay",
+           "open_study", "check_layout", "decode_text", "UnknownGroupError",
            "Error", "ConfigError", "IoError", "ReachError", "PlanningError", "SolverError",
            "InternalError", "__version__", "__git_commit__"]

@@ -3,8 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string>
+#include <vector>
 
 #include "hexdyn/contact/impact.hpp"
+#include "hexdyn/core/errors.hpp"
 
 namespace hexdyn {
 
@@ -64,38 +67,94 @@ FootContactForce foot_contact_force(const ContactParams& c, double delta, const 
   return f;
 }
 
-TerrainContactPoint terrain_contact(const std::vector<double>& y, const std::vector<double>& z,
-                                    const Vec3& p, double radius) {
-  TerrainContactPoint out;
-  double best = std::numeric_limits<double>::infinity();
-  Vec3 best_n = Vec3::UnitZ();
-  // Nearest segment of the profile in the (y, z) plane.
+namespace {
+
+/// The feature of the profile nearest to a point in the (y, z) plane: a face (a segment's
+/// interior, or the outer ray of an end segment) or a vertex.
+struct NearestFeature {
+  double distance2 = std::numeric_limits<double>::infinity();  ///< squared distance [m²]
+  double cy = 0.0, cz = 0.0;  ///< the nearest point of the profile [m]
+  std::size_t segment = 0;    ///< the segment it was found on (from vertex segment..segment+1)
+  bool vertex = false;        ///< the nearest point is a vertex (not a face's interior)
+};
+
+/// Outward unit normal (y, z) of segment k: left of the direction of increasing y, so up on a
+/// tread, −y on a rising riser, +y on a falling one.
+Vec3 segment_normal(const std::vector<double>& y, const std::vector<double>& z, std::size_t k) {
+  const double dy = y[k + 1] - y[k], dz = z[k + 1] - z[k];
+  const double len = std::hypot(dy, dz);
+  return Vec3(0.0, -dz / len, dy / len);
+}
+
+/// The nearest feature of the polyline (its first and last segments continued as rays beyond
+/// the ends, unless vertical) to (py, pz). On a tie a face wins over a vertex.
+NearestFeature nearest_feature(const std::vector<double>& y, const std::vector<double>& z,
+                               double py, double pz) {
+  NearestFeature best;
+  const std::size_t last = y.size() - 2;
   for (std::size_t k = 0; k + 1 < y.size(); ++k) {
-    const double ay = y[k], az = z[k], by = y[k + 1], bz = z[k + 1];
-    const double dy = by - ay, dz = bz - az, len2 = dy * dy + dz * dz;
+    const double dy = y[k + 1] - y[k], dz = z[k + 1] - z[k], len2 = dy * dy + dz * dz;
     if (len2 == 0.0) continue;
-    double u = ((p.y() - ay) * dy + (p.z() - az) * dz) / len2;
-    u = std::clamp(u, 0.0, 1.0);
-    const double cy = ay + u * dy, cz = az + u * dz;
-    const double d2 = (p.y() - cy) * (p.y() - cy) + (p.z() - cz) * (p.z() - cz);
-    if (d2 < best) {
-      best = d2;
-      const double len = std::sqrt(len2);
-      best_n = Vec3(0.0, -dz / len, dy / len);  // left of the direction of increasing y: up
-    }
+    const double u = ((py - y[k]) * dy + (pz - z[k]) * dz) / len2;
+    const double lo = k == 0 && dy > 0.0 ? -std::numeric_limits<double>::infinity() : 0.0;
+    const double hi = k == last && dy > 0.0 ? std::numeric_limits<double>::infinity() : 1.0;
+    const double uc = std::clamp(u, lo, hi);
+    const double cy = y[k] + uc * dy, cz = z[k] + uc * dz;
+    const double d2 = (py - cy) * (py - cy) + (pz - cz) * (pz - cz);
+    const bool vertex = uc == 0.0 || uc == 1.0;
+    if (d2 < best.distance2 || (d2 == best.distance2 && best.vertex && !vertex))
+      best = {d2, cy, cz, k, vertex};
   }
-  // Signed distance: negative below the profile (inside the solid).
-  double dist = std::sqrt(best);
-  // Height of the profile at p.y (the upper tread at a riser's y).
+  return best;
+}
+
+/// Height of the profile at py [m]: linear between vertices, the later segment at a shared y
+/// (the upper tread at a rising riser's y), the end segments continued beyond the ends.
+double profile_height(const std::vector<double>& y, const std::vector<double>& z, double py) {
+  const std::size_t last = y.size() - 2;
+  auto on = [&](std::size_t k) {
+    const double dy = y[k + 1] - y[k];
+    return dy > 0.0 ? z[k] + (z[k + 1] - z[k]) * (py - y[k]) / dy : z[k + 1];
+  };
+  if (py < y.front()) return on(0);
+  if (py > y.back()) return on(last);
   double h = z.front();
   for (std::size_t k = 0; k + 1 < y.size(); ++k)
-    if (p.y() >= y[k] && p.y() <= y[k + 1] && y[k + 1] > y[k])
-      h = z[k] + (z[k + 1] - z[k]) * (p.y() - y[k]) / (y[k + 1] - y[k]);
-  if (p.y() > y.back()) h = z.back();
-  if (p.z() < h) dist = -dist;
+    if (py >= y[k] && py <= y[k + 1] && y[k + 1] > y[k]) h = on(k);
+  return h;
+}
+
+/// The outward unit normal at the nearest feature f of a point at signed distance `dist` (> 0
+/// outside): a face's normal; at a vertex the direction from the vertex to an outside point
+/// (from an inside point to the vertex), or on the vertex itself the mean of the normals of
+/// the faces that meet there.
+Vec3 feature_normal(const std::vector<double>& y, const std::vector<double>& z,
+                    const NearestFeature& f, const Vec3& p, double dist) {
+  if (!f.vertex) return segment_normal(y, z, f.segment);
+  const Vec3 away(0.0, p.y() - f.cy, p.z() - f.cz);
+  if (away.norm() > 0.0) return (dist < 0.0 ? -away : away).normalized();
+  const std::size_t v = (f.cy == y[f.segment] && f.cz == z[f.segment]) ? f.segment : f.segment + 1;
+  Vec3 sum = Vec3::Zero();
+  for (std::size_t k = v > 0 ? v - 1 : 0; k <= v && k + 1 < y.size(); ++k)
+    if (y[k + 1] != y[k] || z[k + 1] != z[k]) sum += segment_normal(y, z, k);
+  return sum.norm() > 0.0 ? Vec3(sum.normalized()) : Vec3(Vec3::UnitZ());
+}
+
+}  // namespace
+
+TerrainContactPoint terrain_contact(const std::vector<double>& y, const std::vector<double>& z,
+                                    const Vec3& p, double radius) {
+  if (y.size() < 2 || z.size() != y.size())
+    throw ConfigError("terrain contact: the profile has " + std::to_string(y.size()) + " y and " +
+                      std::to_string(z.size()) + " z values, expected K >= 2 of each");
+  const NearestFeature f = nearest_feature(y, z, p.y(), p.z());
+  // Signed distance: negative below the profile (inside the solid).
+  double dist = std::sqrt(f.distance2);
+  if (p.z() < profile_height(y, z, p.y())) dist = -dist;
+  TerrainContactPoint out;
   out.penetration_m = radius - dist;
-  out.normal_W = best_n;
-  out.point_W = radius > 0.0 ? Vec3(p - radius * best_n) : p;
+  out.normal_W = feature_normal(y, z, f, p, dist);
+  out.point_W = radius > 0.0 ? Vec3(p - radius * out.normal_W) : p;
   return out;
 }
 

@@ -57,10 +57,16 @@ struct TerrainContactPoint {
 };
 
 /// The contact of a point foot at p_W (radius 0) or of a sphere foot of centre p_W and radius
-/// `radius_m` with the profile (y_m, z_m, K ≥ 2 vertices, y non-decreasing, the solid below).
-/// The nearest face is the segment nearest to p (to the centre), its outward normal n; δ =
-/// r − signed distance of p to the profile (negative below it); the contact point is
-/// p − r n, or for a point foot p itself.
+/// `radius_m` with the profile (y_m, z_m, K ≥ 2 vertices, y non-decreasing, the solid below;
+/// the first and last segments continue as rays beyond the ends unless vertical, as the
+/// ground before the first riser and the endless top tread do). In the (y, z) plane: the
+/// nearest feature of the profile to p (to the centre) is a face (a segment's interior) or a
+/// vertex (a nosing, seen from outside; a riser's foot, from inside); the signed distance d
+/// of p is negative below the profile (the upper tread counts at a rising riser's y); δ = r −
+/// d; n is the face's outward normal, or at a vertex the unit vector from the vertex to p
+/// (from p to the vertex when p is inside; on the vertex itself the mean of its two faces'
+/// normals); the contact point is p − r n, or for a point foot p itself.
+/// Throws ConfigError when K < 2 or the sizes of y_m and z_m differ.
 TerrainContactPoint terrain_contact(const std::vector<double>& y_m, const std::vector<double>& z_m,
                                     const Vec3& p_W, double radius_m);
 
