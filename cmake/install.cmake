@@ -36,7 +36,8 @@ install(FILES ${PROJECT_SOURCE_DIR}/src/hexdyn/io/schema.hpp
 #                                                 by find_package(hexdyn COMPONENTS mpi))
 #   P/lib/pkgconfig/hexdyn.pc                     the same libraries for pkg-config
 set(HEXDYN_LAYERS core model urdf_reader planning kinematics dynamics contact allocation
-                  allocation_ipopt power drive pipeline process config io sweep envelope)
+                  allocation_ipopt power drive pipeline process config io sweep envelope replay
+                  replay_io)
 set(HEXDYN_INSTALL_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/hexdyn)
 
 # The layers name their include folders by absolute build paths: valid in the build tree
@@ -76,10 +77,10 @@ foreach(target hexdyn_io hexdyn_sweep)
 endforeach()
 
 # hexdyn::hexdyn: the stable entry points of <hexdyn/hexdyn.hpp> (scenes, runs, result
-# files) and the sweep and envelope libraries; not MPI.
+# files) and the sweep, envelope and replay libraries; not MPI.
 add_library(hexdyn_package INTERFACE)
 target_link_libraries(hexdyn_package INTERFACE hexdyn_pipeline hexdyn_io hexdyn_sweep
-                                               hexdyn_envelope)
+                                               hexdyn_envelope hexdyn_replay_io)
 set_target_properties(hexdyn_package PROPERTIES EXPORT_NAME hexdyn)
 add_library(hexdyn::hexdyn ALIAS hexdyn_package)
 
@@ -108,7 +109,8 @@ install(FILES ${CMAKE_BINARY_DIR}/package/hexdynConfig.cmake
 # pkg-config: the libraries of hexdyn::hexdyn in link order (static: every dependency is
 # public).
 set(HEXDYN_PC_LIBS "")
-foreach(layer envelope sweep io config process pipeline drive power allocation_ipopt allocation contact dynamics
+foreach(layer replay_io replay envelope sweep io config process pipeline drive power allocation_ipopt allocation
+              contact dynamics
               kinematics planning urdf_reader model core)
   string(APPEND HEXDYN_PC_LIBS " -lhexdyn_${layer}")
 endforeach()

@@ -22,6 +22,9 @@
 ///   thread between samples (what Python's Ctrl-C does).
 /// - result_layout(result) (io/result_layout.hpp) lists the file's datasets and /meta
 ///   attributes in memory, as the file would hold them.
+/// - read_replay_source(result_path, overrides), replay_plan(...) and write_replay_file
+///   (replay/replay_file.hpp, replay/replay.hpp) replay a result's torques forward, as
+///   `hexdyn replay` (docs/theory/replay.md).
 /// - Errors (core/errors.hpp): hexdyn::Error and its family ConfigError, IoError (exit
 ///   status 2), ReachError, PlanningError, SolverError (3); each message is one line.
 ///
@@ -42,4 +45,5 @@
 #include "hexdyn/io/output.hpp"
 #include "hexdyn/io/result_layout.hpp"
 #include "hexdyn/pipeline/run.hpp"
+#include "hexdyn/replay/replay_file.hpp"
 #include "hexdyn/version.hpp"

@@ -26,6 +26,7 @@
 #endif
 #include "hexdyn/io/output.hpp"
 #include "hexdyn/pipeline/pipeline.hpp"
+#include "hexdyn/replay/replay_file.hpp"
 #include "hexdyn/sweep/sweep.hpp"
 #include "hexdyn/sweep/validate.hpp"
 #include "hexdyn/version.hpp"
@@ -81,6 +82,8 @@ usage:
   hexdyn sweep SWEEP -o FILE [--keep-runs] [--resume] [-v] [--progress SECONDS]
                                                          run a parameter sweep, write hexdyn-sweep/2
   hexdyn envelope ENVELOPE -o FILE [-v]                  find the climbable riser, write hexdyn-envelope/2
+  hexdyn replay RESULT -o FILE [--set key.path=value ...]
+                                                         replay a result's torques, write hexdyn-replay/1
   hexdyn COMMAND --help                                  help on one command
   hexdyn --help | --version
 
@@ -269,6 +272,9 @@ int main(int argc, char** argv) {
   // `hexdyn envelope` parses its own arguments (envelope/envelope.hpp).
   if (argc >= 2 && !std::strcmp(argv[1], "envelope"))
     return hexdyn::envelope_command(argc - 1, argv + 1);
+  // `hexdyn replay` too (replay/replay_file.hpp).
+  if (argc >= 2 && !std::strcmp(argv[1], "replay"))
+    return hexdyn::replay_command(argc - 1, argv + 1);
   // `hexdyn COMMAND ... --help` prints that command's usage, whatever else is given.
   if (argc >= 2 && command_usage(argv[1])) {
     for (int i = 2; i < argc; ++i) {

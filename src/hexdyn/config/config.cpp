@@ -432,6 +432,7 @@ void read_replay(Reader& r, ReplayParams& p) {
   p.kp_Nmprad = r.number_or("replay.kp", d.kp_Nmprad, nonnegative(1e9));
   p.kd_Nmsprad = r.number_or("replay.kd", d.kd_Nmsprad, nonnegative(1e9));
   p.step_s = r.number_or("replay.step", d.step_s, positive(0.1));
+  p.tolerance = r.number_or("replay.tolerance", d.tolerance, positive(10.0));
 }
 
 void read_allocation(Reader& r, AllocationParams& a, const LoadedUrdfRobot& urdf) {

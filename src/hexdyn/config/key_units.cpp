@@ -63,6 +63,7 @@ constexpr std::array kExact{
     Entry{"replay.kp", "N m/rad"},
     Entry{"replay.kd", "N m s/rad"},
     Entry{"replay.step", "s"},
+    Entry{"replay.tolerance", "1"},
     Entry{"allocation.torque_limit", "N m"},
     Entry{"allocation.min_normal_force", "N"},
     Entry{"allocation.tolerance", "1"},

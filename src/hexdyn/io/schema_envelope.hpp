@@ -202,9 +202,6 @@ inline constexpr std::array kEnvelopeCaseFrictionDatasets{kEnvelopeCaseRequiredF
 inline constexpr std::array kEnvelopeGripDatasets{kEnvelopeRiserMaxRequiredFriction};
 
 inline constexpr FlagSpec kProbePassedFlags{"/probes/passed", "failed passed"};
-/// Every CF flag declaration of the three file kinds.
-inline constexpr std::array kFlags{kContactPhaseFlags, kSolverStatusFlags,   kSampleKindFlags,
-                                   kContactSlipFlags,  kScenarioStatusFlags, kProbePassedFlags};
 
 /// Every dataset of an envelope file.
 // clang-format off

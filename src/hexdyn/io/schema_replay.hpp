@@ -115,6 +115,14 @@ inline constexpr DatasetSpec kReplayEnergy{"/replay/energy", "J", Shape::kScalar
 inline constexpr DatasetSpec kReplayEnergyPlan{"/replay/energy_inverse_dynamics", "J",
                                                Shape::kScalar, Element::kFloat64,
                                                "inverse-dynamics energy over the same span"};
+/// The balance of energy: the joints' signed work ∫ τ·q̇ dt less the gains in kinetic,
+/// potential and contact-spring energy and the energy the contacts dissipated; zero but for
+/// the integrator's error [J] (docs/theory/replay.md#balance-of-energy).
+inline constexpr DatasetSpec kReplayActuatorWork{"/replay/actuator_work", "J", Shape::kScalar,
+                                                 Element::kFloat64, "signed work of the joints"};
+inline constexpr DatasetSpec kReplayEnergyResidual{"/replay/energy_residual", "J", Shape::kScalar,
+                                                   Element::kFloat64,
+                                                   "residual of the balance of energy"};
 /// Final trunk position, replayed minus planned [m].
 inline constexpr DatasetSpec kReplayFinalError{"/replay/final_position_error", "m", Shape::kVector3,
                                                Element::kFloat64, "final trunk position error"};
@@ -130,8 +138,13 @@ inline constexpr DatasetSpec kReplayMessage{"/replay/message", "", Shape::kText,
 /// Integrator: the largest step [s], the steps taken, the wall time of the integration [s].
 inline constexpr DatasetSpec kReplayStep{"/replay/step", "s", Shape::kScalar, Element::kFloat64,
                                          "largest integrator step"};
-inline constexpr DatasetSpec kReplaySteps{"/replay/steps", "1", Shape::kScalar, Element::kInt64,
+inline constexpr DatasetSpec kReplaySteps{"/replay/steps", "1", Shape::kScalar, Element::kInt32,
                                           "integrator steps taken"};
+/// Steps accepted at the smallest step (replay.step / 64) with the normal force still off the
+/// contact law by more than replay.tolerance × the weight.
+inline constexpr DatasetSpec kReplayForcedSteps{"/replay/forced_steps", "1", Shape::kScalar,
+                                                Element::kInt32,
+                                                "steps accepted beyond the tolerance"};
 inline constexpr DatasetSpec kReplaySeconds{"/replay/seconds", "s", Shape::kScalar,
                                             Element::kFloat64, "wall time of the integration"};
 
@@ -182,5 +195,10 @@ inline constexpr std::array kReplayReportDatasets{kReplayCycleEnd,
                                                   kReplayStep,
                                                   kReplaySteps,
                                                   kReplaySeconds};
+
+/// Every CF flag declaration of the four file kinds.
+inline constexpr std::array kFlags{kContactPhaseFlags,    kSolverStatusFlags,   kSampleKindFlags,
+                                   kContactSlipFlags,     kScenarioStatusFlags, kProbePassedFlags,
+                                   kReplayReachedTopFlags};
 
 }  // namespace hexdyn::schema

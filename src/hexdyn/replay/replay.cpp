@@ -1,0 +1,445 @@
+#include "hexdyn/replay/replay.hpp"
+
+#include <Eigen/LU>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "hexdyn/contact/simulation_contact.hpp"
+#include "hexdyn/core/errors.hpp"
+#include "hexdyn/dynamics/forward_dynamics.hpp"
+#include "hexdyn/planning/terrain.hpp"
+
+namespace hexdyn {
+namespace {
+
+/// The integrator's state: trunk pose and twist (accelerations unused), joint angles, rates.
+struct SimState {
+  BaseState base;
+  VecJ q = VecJ::Zero();
+  VecJ qd = VecJ::Zero();
+
+  VecDof nu() const {
+    VecDof v;
+    v << base.v_W, base.omega_W, qd;
+    return v;
+  }
+  bool finite() const {
+    return base.p_W.allFinite() && base.W_R_B.allFinite() && base.v_W.allFinite() &&
+           base.omega_W.allFinite() && q.allFinite() && qd.allFinite();
+  }
+};
+
+/// The planned joint angles, rates and feedforward torque at one instant.
+struct PlanPoint {
+  VecJ q, qd, tau;
+};
+
+/// Linear interpolation of the plan between its samples k and k + 1 at t.
+PlanPoint plan_at(const ReplayPlan& p, std::size_t k, double t) {
+  const std::size_t k1 = std::min(k + 1, p.t_s.size() - 1);
+  const double span = p.t_s[k1] - p.t_s[k];
+  const double u = span > 0.0 ? std::clamp((t - p.t_s[k]) / span, 0.0, 1.0) : 0.0;
+  return PlanPoint{(1.0 - u) * p.q_rad[k] + u * p.q_rad[k1],
+                   (1.0 - u) * p.qd_radps[k] + u * p.qd_radps[k1],
+                   (1.0 - u) * p.tau_Nm[k] + u * p.tau_Nm[k1]};
+}
+
+/// The contact of every foot at a state: geometry, normals, forces and their linearisation.
+struct Contacts {
+  std::array<TerrainContactPoint, kLegs> geometry;
+  FootNormals normals;
+  std::array<FootContactForce, kLegs> law;
+  std::array<Vec3, kLegs> force_W;
+  std::array<FootJacobian, kLegs> J;  ///< of the contact points (rnea.hpp foot_jacobians)
+};
+
+/// Fills `c` for state `s`.
+void evaluate_contacts(const RobotModel& model, RobotData& data, const ContactParams& params,
+                       const ReplayPlan& plan, const SimState& s, Contacts& c) {
+  update_kinematics(model, data, s.base, s.q);
+  for (int l = 0; l < kLegs; ++l) {
+    const Vec3 centre_W =
+        data.X_world_body[1 + joint_index(l, 2)].apply_point(model.p_foot_last[l]);
+    c.geometry[l] =
+        terrain_contact(plan.terrain_y_m, plan.terrain_z_m, centre_W, model.foot_radius_m[l]);
+    c.normals[l] = c.geometry[l].normal_W;
+  }
+  foot_jacobians(model, data, s.base, s.q, &c.normals);
+  c.J = data.J_foot_W;
+  const VecDof nu = s.nu();
+  for (int l = 0; l < kLegs; ++l) {
+    const Vec3 v_point = data.J_foot_W[l] * nu;
+    c.law[l] = foot_contact_force(params, c.geometry[l].penetration_m, c.normals[l], v_point);
+    c.force_W[l] = c.law[l].force_W;
+  }
+}
+
+/// Energy stored in a contact's spring at penetration δ: ∫ K δ^e dδ = K δ^(e+1)/(e+1) [J].
+double spring_energy(const ContactParams& c, double delta_m) {
+  return delta_m > 0.0 ? c.stiffness * std::pow(delta_m, c.exponent + 1.0) / (c.exponent + 1.0)
+                       : 0.0;
+}
+
+/// Everything the replay carries from step to step besides the state.
+struct Integrator {
+  const RobotModel& model;
+  const ContactParams& contact;
+  const ReplayParams& gains;
+  const ReplayPlan& plan;
+  RobotData data;
+  Contacts contacts;
+  // cumulative since the start
+  double actuator_energy_J = 0.0;
+  double actuator_work_J = 0.0;  ///< ∫ τ·q̇ dt, signed
+  /// Work the normal forces took from the robot; minus the energy stored in the contact
+  /// springs (spring_energy), the energy the normal damping dissipated.
+  std::array<double, kLegs> normal_work_J{}, spring_at_start_J{}, slip_J{}, slip_distance_m{};
+  std::array<Vec3, kLegs> slip_displacement_m{};
+  long steps = 0, rejected = 0, forced = 0;
+  double max_step_s = 0.0;
+  double h_next = 0.0;  ///< the next step to try [s]
+};
+
+/// The error control halves a step at most this many times below replay.step: a step of
+/// replay.step / 64 is accepted as it is (counted in ReplayResult::forced_steps).
+constexpr double kMinStepFraction = 1.0 / 64.0;
+
+/// Advances the trunk pose and joint angles by h at the new velocities (symplectic Euler).
+void advance_positions(SimState& s, double h) {
+  s.q += h * s.qd;
+  s.base.p_W += h * s.base.v_W;
+  const double angle = h * s.base.omega_W.norm();
+  if (angle > 0.0) {
+    const Mat3 dR = Eigen::AngleAxisd(angle, s.base.omega_W.normalized()).toRotationMatrix();
+    s.base.W_R_B = dR * s.base.W_R_B;
+  }
+  // Keep the rotation orthonormal against rounding (a polar step: R (RᵀR)^(-1/2) ≈ ...).
+  const Mat3& R = s.base.W_R_B;
+  s.base.W_R_B = 1.5 * R - 0.5 * R * R.transpose() * R;
+}
+
+std::string stop_reason(const SimState& s, const Terrain& terrain, double t);
+
+/// What one step proposes: the next state, the torques and the contact forces that acted
+/// in it (linearised about the start, at the new velocities).
+struct Step {
+  SimState next;
+  VecJ tau = VecJ::Zero();
+  std::array<Vec3, kLegs> force_W{};
+};
+
+/// The contact force of foot l as an affine function of its velocity at the step's end,
+/// F(v) = a + B v (file comment of replay.hpp): the normal force linearised about the start
+/// (its stiffness over the step's displacement h v, its damping), the friction as the damper
+/// −(μ(s)/s) F_n P v of the start's slip speed s (its secant: always dissipative, so a step
+/// never reverses a slip the law would only slow down).
+struct AffineForce {
+  Vec3 a = Vec3::Zero();
+  Mat3 B = Mat3::Zero();
+};
+
+AffineForce affine_contact(const ContactParams& params, const TerrainContactPoint& g,
+                           const FootContactForce& law, const Vec3& v_old, double h) {
+  AffineForce out;
+  const Vec3& n = g.normal_W;
+  const Mat3 N = n * n.transpose();
+  const Mat3 P = Mat3::Identity() - N;
+  const double s = law.slip_velocity_W.norm();
+  const double c =
+      law.normal_N * (s > 1e-12 * params.stiction_velocity_mps
+                          ? sliding_friction_coefficient(params, s) / s
+                          : 1.5 * params.static_friction / params.stiction_velocity_mps);
+  out.B = N * (law.dF_dv + h * law.dF_dp) - c * P;
+  out.a = law.normal_N * n - N * law.dF_dv * v_old;
+  return out;
+}
+
+/// One linearly implicit Euler step of length h from s (contacts evaluated at s in
+/// it.contacts), towards the plan point p (file comment of replay.hpp):
+///   (M + h (h k_p + k_d) S Sᵀ − h Σ J_lᵀ B_l J_l) Δν = h (f₀ + Σ J_lᵀ (a_l + B_l J_l ν₀)),
+/// f₀ the gravity, velocity terms, feedforward and PD at the start.
+void implicit_step(Integrator& it, const SimState& s, const PlanPoint& p, double h, Step& out) {
+  RobotData& data = it.data;
+  const Contacts& c = it.contacts;
+  BaseState rest = s.base;
+  rest.a_W.setZero();
+  rest.omegadot_W.setZero();
+  VecDof f = -rnea(it.model, data, rest, s.q, s.qd, VecJ::Zero(), nullptr, nullptr);
+  MatDof A = crba(it.model, data, s.base, s.q);
+  const double kp = it.gains.kp_Nmprad, kd = it.gains.kd_Nmsprad;
+  f.tail<kJoints>() += p.tau + kp * (p.q - s.q - h * s.qd) + kd * (p.qd - s.qd);
+  A.diagonal().tail<kJoints>().array() += h * (h * kp + kd);
+  const VecDof nu = s.nu();
+  std::array<AffineForce, kLegs> force;
+  for (int l = 0; l < kLegs; ++l) {
+    if (!(c.geometry[l].penetration_m > 0.0)) continue;
+    const Vec3 v = c.J[l] * nu;
+    force[l] = affine_contact(it.contact, c.geometry[l], c.law[l], v, h);
+    f += c.J[l].transpose() * (force[l].a + force[l].B * v);
+    A -= h * c.J[l].transpose() * force[l].B * c.J[l];
+  }
+  const VecDof nu_new = nu + A.partialPivLu().solve(h * f);
+  out.next = s;
+  out.next.base.v_W = nu_new.head<3>();
+  out.next.base.omega_W = nu_new.segment<3>(3);
+  out.next.qd = nu_new.tail<kJoints>();
+  out.tau = p.tau + kp * (p.q - s.q - h * out.next.qd) + kd * (p.qd - out.next.qd);
+  for (int l = 0; l < kLegs; ++l)
+    out.force_W[l] = c.geometry[l].penetration_m > 0.0
+                         ? Vec3(force[l].a + force[l].B * (c.J[l] * nu_new))
+                         : Vec3::Zero();
+  advance_positions(out.next, h);
+}
+
+/// The largest difference between the normal force of the contact law at the step's end and
+/// the one the step applied, over the feet [N]. The friction is left out: its secant is
+/// dissipative at any step, and within the stiction speed its law is a regularisation whose
+/// shape the motion does not resolve (docs/theory/replay.md#integrator).
+double force_mismatch(const Contacts& at_end, const Step& step) {
+  double worst = 0.0;
+  for (int l = 0; l < kLegs; ++l)
+    worst =
+        std::max(worst, std::abs(at_end.law[l].normal_N - at_end.normals[l].dot(step.force_W[l])));
+  return worst;
+}
+
+/// Adds an accepted step's spending and dissipation, with the forces that acted in it: the
+/// discrete balance of energy holds to the step's order.
+void account_step(Integrator& it, const Contacts& at_start, const Step& step, double h) {
+  it.actuator_energy_J += h * step.tau.cwiseProduct(step.next.qd).cwiseAbs().sum();
+  it.actuator_work_J += h * step.tau.dot(step.next.qd);
+  const VecDof nu_new = step.next.nu();
+  for (int l = 0; l < kLegs; ++l) {
+    if (step.force_W[l].isZero(0.0)) continue;
+    const Vec3& n = at_start.normals[l];
+    const Vec3 v_new = at_start.J[l] * nu_new;
+    const Vec3& F = step.force_W[l];
+    const Vec3 vt = v_new - n.dot(v_new) * n;
+    it.normal_work_J[l] -= h * n.dot(F) * n.dot(v_new);
+    it.slip_J[l] -= h * (F - n.dot(F) * n).dot(vt);
+    it.slip_displacement_m[l] += h * vt;
+    it.slip_distance_m[l] += h * vt.norm();
+  }
+  ++it.steps;
+  it.max_step_s = std::max(it.max_step_s, h);
+}
+
+/// Integrates from the plan's instant k to k + 1 (s holds the state at k, it.contacts its
+/// contacts), halving a step whose applied contact forces differ from the law at its end by
+/// more than replay.tolerance × the robot's weight, and growing it back towards replay.step.
+/// Returns false (with `why`) when the state stops being finite or the trunk falls.
+bool integrate_interval(Integrator& it, SimState& s, std::size_t k, const Terrain& terrain,
+                        std::string& why) {
+  const double t0 = it.plan.t_s[k], t1 = it.plan.t_s[k + 1];
+  const double limit_N = it.gains.tolerance * it.model.total_mass_kg * kGravity;
+  Step step;
+  Contacts at_end;
+  double t = t0;
+  while (t1 - t > 1e-12 * std::max(1.0, std::abs(t1))) {
+    double h = std::min(it.h_next, t1 - t);
+    for (;;) {
+      const PlanPoint p = plan_at(it.plan, k, t + h);
+      implicit_step(it, s, p, h, step);
+      if (!step.next.finite()) break;
+      evaluate_contacts(it.model, it.data, it.contact, it.plan, step.next, at_end);
+      if (force_mismatch(at_end, step) <= limit_N) break;
+      if (h <= kMinStepFraction * it.gains.step_s) {
+        ++it.forced;
+        break;
+      }
+      h *= 0.5;
+      ++it.rejected;
+    }
+    account_step(it, it.contacts, step, h);
+    s = step.next;
+    it.contacts = at_end;
+    t += h;
+    it.h_next = std::min(it.gains.step_s, 2.0 * h);
+    why = stop_reason(s, terrain, t);
+    if (!why.empty()) return false;
+  }
+  return true;
+}
+
+/// Appends the sample of state s at the plan's instant k: torques, forces and the forward
+/// dynamics evaluated at s, the cumulative energies and slips.
+void record_sample(Integrator& it, const SimState& s, std::size_t k, ReplayResult& out) {
+  RobotData& data = it.data;
+  evaluate_contacts(it.model, data, it.contact, it.plan, s, it.contacts);
+  const Contacts& c = it.contacts;
+  const ReplayPlan& plan = it.plan;
+  const VecJ tau = plan.tau_Nm[k] + it.gains.kp_Nmprad * (plan.q_rad[k] - s.q) +
+                   it.gains.kd_Nmsprad * (plan.qd_radps[k] - s.qd);
+  const VecDof& nu_dot =
+      forward_dynamics_joints(it.model, data, s.base, s.q, s.qd, tau, &c.force_W, &c.normals);
+  BaseState b = s.base;
+  b.a_W = nu_dot.head<3>();
+  b.omegadot_W = nu_dot.segment<3>(3);
+  const VecDof nu = s.nu();
+  out.kinetic_J.push_back(0.5 * nu.dot(data.M * nu));
+  const Momentum& m = robot_momentum(it.model, data, s.base, s.q, s.qd);
+  out.potential_J.push_back(-m.mass_kg * it.model.gravity_W.dot(m.com_W));
+  out.t_s.push_back(plan.t_s[k]);
+  out.base.push_back(b);
+  out.q.push_back(s.q);
+  out.qd.push_back(s.qd);
+  out.qdd.push_back(nu_dot.tail<kJoints>());
+  out.tau.push_back(tau);
+  out.tau_ff.push_back(plan.tau_Nm[k]);
+  out.tracking_error.push_back(s.q - plan.q_rad[k]);
+  std::array<Vec3, kLegs> foot, slip_v;
+  std::array<double, kLegs> fn, pen;
+  for (int l = 0; l < kLegs; ++l) {
+    foot[l] = c.geometry[l].point_W;
+    slip_v[l] = c.law[l].slip_velocity_W;
+    fn[l] = c.law[l].normal_N;
+    pen[l] = std::max(0.0, c.geometry[l].penetration_m);
+  }
+  out.force_W.push_back(c.force_W);
+  out.foot_W.push_back(foot);
+  out.slip_velocity_W.push_back(slip_v);
+  out.normal_N.push_back(fn);
+  out.penetration_m.push_back(pen);
+  out.slip_displacement_W.push_back(it.slip_displacement_m);
+  out.slip_distance_m.push_back(it.slip_distance_m);
+  std::array<double, kLegs> damping{};
+  for (int l = 0; l < kLegs; ++l)
+    damping[l] = it.normal_work_J[l] -
+                 (spring_energy(it.contact, c.geometry[l].penetration_m) - it.spring_at_start_J[l]);
+  if (out.t_s.size() == 1) {  // the first sample: the springs' energy at the start
+    for (int l = 0; l < kLegs; ++l)
+      it.spring_at_start_J[l] = spring_energy(it.contact, c.geometry[l].penetration_m);
+    damping.fill(0.0);
+  }
+  out.damping_energy_J.push_back(damping);
+  out.slip_energy_J.push_back(it.slip_J);
+  out.actuator_energy_J.push_back(it.actuator_energy_J);
+}
+
+/// Why the replay must stop at state s (non-finite, or a fall), or "".
+std::string stop_reason(const SimState& s, const Terrain& terrain, double t) {
+  if (!s.finite())
+    return "the state is no longer finite at t = " + std::to_string(t) +
+           " s (the integration diverged; a smaller replay.step may help)";
+  const double ground = terrain.height(s.base.p_W.x(), s.base.p_W.y());
+  if (s.base.p_W.z() < ground)
+    return "the trunk fell to the terrain at t = " + std::to_string(t) + " s";
+  return "";
+}
+
+BaseState planned_base(const ReplayPlan& plan, std::size_t k) { return plan.base[k]; }
+
+/// The report: drift at the cycle ends, tracking error, totals, arrival.
+void finish_report(const ReplayPlan& plan, const TerrainParams& terrain, bool completed,
+                   ReplayResult& r) {
+  const std::size_t n = r.t_s.size();
+  std::vector<double> ends(
+      plan.cycle_start_s.begin() + std::min<std::size_t>(1, plan.cycle_start_s.size()),
+      plan.cycle_start_s.end());
+  ends.push_back(plan.t_s.back());
+  for (double t_end : ends) {
+    if (t_end > r.t_s.back() + 1e-12) break;
+    const auto at = std::lower_bound(r.t_s.begin(), r.t_s.end(), t_end - 1e-12);
+    const std::size_t i = static_cast<std::size_t>(
+        std::min<std::ptrdiff_t>(at - r.t_s.begin(), static_cast<std::ptrdiff_t>(n) - 1));
+    const BaseState& pb = planned_base(plan, i);
+    r.cycle_end_s.push_back(r.t_s[i]);
+    r.position_drift_m.push_back(r.base[i].p_W - pb.p_W);
+    const Eigen::AngleAxisd d(pb.W_R_B.transpose() * r.base[i].W_R_B);
+    r.orientation_drift_rad.push_back(d.angle() * d.axis());
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    Eigen::Index j = 0;
+    const double e = r.tracking_error[i].cwiseAbs().maxCoeff(&j);
+    if (e > r.max_tracking_error_rad) {
+      r.max_tracking_error_rad = e;
+      r.max_tracking_error_joint = static_cast<int>(j);
+      r.max_tracking_error_time_s = r.t_s[i];
+    }
+    if (i > 0) {
+      const double dt = r.t_s[i] - r.t_s[i - 1];
+      const auto power = [&](std::size_t s) {
+        return plan.tau_Nm[s].cwiseProduct(plan.qd_radps[s]).cwiseAbs().sum();
+      };
+      r.energy_plan_J += 0.5 * dt * (power(i) + power(i - 1));
+    }
+  }
+  r.slip_distance_total_m = r.slip_distance_m.back();
+  r.slip_energy_total_J = r.slip_energy_J.back();
+  r.damping_total_J = r.damping_energy_J.back();
+  r.energy_J = r.actuator_energy_J.back();
+  const BaseState& end_plan = planned_base(plan, n - 1);
+  const BaseState& end = r.base.back();
+  r.final_position_error_m = end.p_W - end_plan.p_W;
+  const ArrivalTolerance tol = arrival_tolerance(terrain);
+  const double tilt =
+      std::acos(std::clamp((end.W_R_B.col(2)).dot(end_plan.W_R_B.col(2)), -1.0, 1.0));
+  r.reached_top = completed && r.final_position_error_m.head<2>().norm() <= tol.horizontal_m &&
+                  std::abs(r.final_position_error_m.z()) <= tol.vertical_m && tilt <= tol.tilt_rad;
+}
+
+void check_plan(const ReplayPlan& p) {
+  const std::size_t T = p.t_s.size();
+  if (T < 2) throw ConfigError("replay: the plan has " + std::to_string(T) + " samples, needs 2");
+  if (p.base.size() != T || p.q_rad.size() != T || p.qd_radps.size() != T || p.tau_Nm.size() != T)
+    throw ConfigError("replay: the plan's series differ in length from its time");
+  if (p.terrain_y_m.size() < 2 || p.terrain_y_m.size() != p.terrain_z_m.size())
+    throw ConfigError("replay: the terrain profile needs at least 2 vertices of y and z");
+  for (std::size_t k = 1; k < T; ++k)
+    if (!(p.t_s[k] > p.t_s[k - 1]))
+      throw ConfigError("replay: the plan's time is not strictly increasing at sample " +
+                        std::to_string(k));
+}
+
+}  // namespace
+
+ArrivalTolerance arrival_tolerance(const TerrainParams& terrain) {
+  ArrivalTolerance tol;
+  if (terrain.type == TerrainType::kStairs) {
+    tol.horizontal_m = 0.5 * terrain.tread_depth_m;
+    tol.vertical_m = std::max(0.5 * terrain.riser_height_m, 0.01);
+  } else {
+    tol.horizontal_m = tol.vertical_m = 0.05;
+  }
+  return tol;
+}
+
+ReplayResult replay_plan(const RobotModel& model, const ContactParams& contact,
+                         const ReplayParams& replay, const TerrainParams& terrain_params,
+                         const ReplayPlan& plan) {
+  check_plan(plan);
+  const auto start = std::chrono::steady_clock::now();
+  Integrator it{model, contact, replay, plan, RobotData(model)};
+  const Terrain terrain(terrain_params);
+  SimState s;
+  s.base = plan.base.front();
+  s.q = plan.q_rad.front();
+  s.qd = plan.qd_radps.front();
+  ReplayResult r;
+  record_sample(it, s, 0, r);
+  bool completed = true;
+  it.h_next = replay.step_s;
+  for (std::size_t k = 0; k + 1 < plan.t_s.size() && completed; ++k) {
+    completed = integrate_interval(it, s, k, terrain, r.message);
+    if (completed) record_sample(it, s, k + 1, r);
+  }
+  finish_report(plan, terrain_params, completed, r);
+  // The balance of energy over the replay: what the joints did, less what the robot gained
+  // (kinetic, potential, the contact springs) and what the contacts dissipated.
+  double stored =
+      r.kinetic_J.back() - r.kinetic_J.front() + r.potential_J.back() - r.potential_J.front();
+  for (int l = 0; l < kLegs; ++l)
+    stored += spring_energy(contact, it.contacts.geometry[l].penetration_m) -
+              it.spring_at_start_J[l] + r.damping_energy_J.back()[l] + r.slip_energy_J.back()[l];
+  r.actuator_work_J = it.actuator_work_J;
+  r.energy_residual_J = it.actuator_work_J - stored;
+  r.steps = it.steps;
+  r.rejected_steps = it.rejected;
+  r.forced_steps = it.forced;
+  r.max_step_s = it.max_step_s;
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return r;
+}
+
+}  // namespace hexdyn
