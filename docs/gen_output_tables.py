@@ -240,8 +240,8 @@ def dataset_table(schema, kind, presence=None, datasets=None):
 def list_tables(schema, kind):
     """One dataset table per declaration list of datasets in the section of `kind`, in the
     header's order, each under the list's comment: a file kind (hexdyn-replay/1) that holds
-    datasets of a result file's names besides its own. Every dataset declared in the section
-    must be in a list (the reader's layout is made of the lists)."""
+    datasets of a result file's names besides its own. The section's datasets that no list
+    holds follow in a last table (the reader checks them when present)."""
     lines, listed = [], set()
     for name, items in schema.lists_in_section(kind):
         if not items or not all(isinstance(d, DatasetSpec) for d in items):
@@ -249,10 +249,10 @@ def list_tables(schema, kind):
         lines += [cell(schema.comments.get(name, "") or f"`{name}`").rstrip(".") + ":", ""]
         lines += dataset_table(schema, kind, datasets=[(d.name, d) for d in items]) + [""]
         listed.update(d.name for d in items)
-    unlisted = [n for n, _ in schema.in_section(kind, DatasetSpec) if n not in listed]
+    unlisted = [(n, d) for n, d in schema.in_section(kind, DatasetSpec) if n not in listed]
     if unlisted:
-        raise DocumentError(f"schema header: {kind} declares {', '.join(unlisted)} in no "
-                            "list of datasets")
+        lines += ["Declared in no list (written when the writer has them):", ""]
+        lines += dataset_table(schema, kind, datasets=unlisted) + [""]
     return lines[:-1]
 
 

@@ -220,13 +220,16 @@ ENVELOPE_V1_FLATTENED = (SCHEMA["kEnvelopeLimit"].path, SCHEMA["kEnvelopeMessage
 
 # hexdyn-replay/1 (schema_replay.hpp): the replayed motion in the result file's names and the
 # replay's own, the robot and terrain copied from the result, the report; every replay file
-# has all three. The coordinates are those of a result (leg, joint, xyz, wxyz, and the index
-# ones of the dimensions it uses: gait_cycle, terrain_point).
+# has all three lists. A dataset of the replay's own (a kReplay* declaration) in none of them
+# is checked when present. The coordinates are those of a result (leg, joint, xyz, wxyz, and
+# the index ones of the dimensions it uses: gait_cycle, terrain_point).
 REPLAY_SCHEMA = SCHEMA["kReplaySchema"]
 REPLAY_SCHEMA_VERSION = SCHEMA["kReplaySchemaVersion"]
 _REPLAY_LISTS = (SCHEMA["kReplaySeriesDatasets"], SCHEMA["kReplayModelDatasets"],
                  SCHEMA["kReplayReportDatasets"])
-REPLAY_LAYOUT = _layout(*_REPLAY_LISTS, *_coordinate_lists("Replay"),
+_REPLAY_OWN = [d for name, d in SCHEMA.items()
+               if name.startswith("kReplay") and isinstance(d, DatasetSpec)]
+REPLAY_LAYOUT = _layout(*_REPLAY_LISTS, _REPLAY_OWN, *_coordinate_lists("Replay"),
                         *_coordinate_lists("Result"))
 REPLAY_REQUIRED = {d.path for decls in _REPLAY_LISTS for d in decls}
 
