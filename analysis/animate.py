@@ -165,7 +165,8 @@ class Panel:
         else:
             bottom = min(self.lo[2], float(z.min())) - 1.0
             self.ax.fill_between(y, z, bottom, color="0.85", lw=0, zorder=0)
-            self.ax.plot(y, z, color="0.35", lw=1.0, label=f"terrain ({kind})", zorder=1)
+            self.ax.plot(y, z, color="0.35", lw=1.0, zorder=1,
+                         label=f"terrain ({kind})" if kind else "terrain")
 
     def update(self, i):
         f = self.f
@@ -234,7 +235,7 @@ class Scene:
         self.fig = plt.figure(figsize=(13.0 if both else 8.0, 5.6), dpi=dpi)
         grid = self.fig.add_gridspec(2, 2 if both else 1, height_ratios=(5.2, 1.0), hspace=0.28,
                                      wspace=0.12, left=0.06 if both else 0.08, right=0.97,
-                                     top=0.93, bottom=0.08)
+                                     top=0.93 if replay is None else 0.89, bottom=0.08)
         limits = _limits(motion, frames, *([replay[1]] if replay else []))
         if replay is None:
             self.panels = [Panel(self.fig, grid[0], motion, frames, view, limits, self.scale)]

@@ -162,7 +162,8 @@ class Motion:
 
 
 def read_terrain(group):
-    """(y (K,), z (K,), type) of /terrain in a result group, or None when absent."""
+    """(y (K,), z (K,), type) of /terrain in a result group ("" without the attribute
+    `type`: a replay file's), or None when absent."""
     if "terrain" not in group:
         return None
     g = group["terrain"]
@@ -172,7 +173,7 @@ def read_terrain(group):
     if y.shape != z.shape or y.ndim != 1 or y.size < 2:
         raise InputError(f"/terrain/y and /terrain/z: shapes {y.shape} and {z.shape}, expected "
                          "two equal (K,) with K >= 2")
-    kind = decode_text(g.attrs["type"]) if "type" in g.attrs else "terrain"
+    kind = decode_text(g.attrs["type"]) if "type" in g.attrs else ""
     return y, z, kind
 
 
