@@ -3,19 +3,28 @@
     from animate_data import load_motion, frames_of
     motion = load_motion("results/paper/paper.h5")           # or run="000003" on a sweep file
     frames = frames_of(motion, fps=25)
+    replay = load_motion("replay.h5")                        # a hexdyn-replay/1 file
+    replay_frames = frames_of(replay, times=frames.times)    # at the plan's frame times
     frames.times        # (F,) s, F = ceil(duration * fps), frame i at t0 + i / fps
     frames.feet         # (F,6,3) m, /feet/position interpolated linearly in /time
     frames.legs         # six (F,P,3) arrays: hip ... foot link origins by forward kinematics
-    frames.phase        # (F,6) /contacts/phase of the last sample at or before each frame
+    frames.phase        # (F,6) the phase codes (Motion.phases) of the last sample at or before
+                        # each frame
     frames.force        # (F,6,3) N, /contacts/force interpolated linearly (None without dynamics)
     frames.relaxed      # (F,) relaxed samples (/solver/status 1) since the previous frame
     motion.fk_error()   # max |FK(/base, /joints/position) - /feet/position| over the samples [m]
+    replay_mismatch(motion, replay)   # None, or why the replay is not of this plan
 
 The robot is the result's own /model/urdf (hexdyn's generated URDF for a robot given by
 parameters, the description itself for a URDF robot), joints in /model/joint_names order,
 feet L1_foot ... L6_foot; the forward kinematics is analysis/urdf_fk.py. The terrain is the
 height profile /terrain/y, /terrain/z (a polyline z(y), constant along x); a file without
 /terrain (hexdyn-result/1) has none.
+
+A replay (hexdyn-replay/1, `hexdyn replay`) carries the result's robot and terrain and its
+motion in the result's dataset names, so it is drawn the same way; it has no planned phases:
+its feet are in support where the compliant law's normal force /contacts/normal_force is
+positive, in swing elsewhere (Motion.phases).
 """
 
 import math
@@ -28,7 +37,10 @@ from urdf_fk import UrdfRobot
 
 REQUIRED = ("/time", "/base/position", "/base/orientation", "/joints/position",
             "/feet/position", "/model/urdf", "/model/joint_names")
-OPTIONAL = ("/contacts/phase", "/contacts/force", "/solver/status")
+OPTIONAL = ("/contacts/phase", "/contacts/force", "/solver/status", "/contacts/normal_force",
+            "/replay/message")
+REPLAY_SCHEMA = "hexdyn-replay/"
+PHASE_SWING, PHASE_SUPPORT = 0, 2  # /contacts/phase codes (schema.hpp kContactPhaseFlags)
 
 
 class InputError(Exception):
@@ -64,11 +76,12 @@ def select_group(f, path, run=None):
         if not match:
             raise InputError(f"{path}: no kept run {run!r} (available: {' '.join(ids)})")
         return f["runs"][match[0]], f"{path}:/runs/{match[0]}"
-    if not schema.startswith("hexdyn-result/"):
-        raise InputError(f"{path} is not a hexdyn result or sweep file "
+    if not schema.startswith(("hexdyn-result/", REPLAY_SCHEMA)):
+        raise InputError(f"{path} is not a hexdyn result, replay or sweep file "
                          f"(/meta schema {schema or 'missing'})")
     if run is not None:
-        raise InputError(f"{path} is a result file, not a sweep file: --run does not apply")
+        kind = "replay" if schema.startswith(REPLAY_SCHEMA) else "result"
+        raise InputError(f"{path} is a {kind} file, not a sweep file: --run does not apply")
     return f, str(path)
 
 
@@ -83,12 +96,15 @@ def sign_continuous(quat):
 
 
 class Motion:
-    """One run's datasets as numpy arrays (the file is closed), the robot and the terrain."""
+    """One run's (or replay's) datasets as numpy arrays (the file is closed), its /meta
+    attributes, the robot and the terrain."""
 
-    def __init__(self, source, data, terrain):
+    def __init__(self, source, data, terrain, meta=None):
         self.source = source
         self.data = data
         self.terrain = terrain  # (y (K,), z (K,), type) or None
+        self.meta = dict(meta or {})
+        self.is_replay = str(self.meta.get("schema", "")).startswith(REPLAY_SCHEMA)
         self.time = np.asarray(data["/time"], dtype=float)
         names = [decode_text(n) for n in np.asarray(data["/model/joint_names"]).ravel()]
         self.joint_names = tuple(names)
@@ -113,6 +129,23 @@ class Motion:
     def has(self, path):
         return path in self.data
 
+    def phases(self):
+        """(T,6) contact phase codes as /contacts/phase has them (0 swing, 1 impact, 2
+        support): a result's /contacts/phase; a replay's 2 where /contacts/normal_force > 0,
+        else 0 (a replay has no touchdown transients of its own, only contact or none);
+        None when the file has neither."""
+        if self.has("/contacts/phase"):
+            return np.asarray(self.data["/contacts/phase"])
+        if self.is_replay and self.has("/contacts/normal_force"):
+            loaded = np.asarray(self.data["/contacts/normal_force"]) > 0
+            return np.where(loaded, PHASE_SUPPORT, PHASE_SWING).astype(np.int8)
+        return None
+
+    @property
+    def end_message(self):
+        """Why a replay ended early (/replay/message), "" otherwise."""
+        return decode_text(self.data["/replay/message"]) if self.has("/replay/message") else ""
+
     def skeleton(self, base_position, base_quat, q):
         """Six (F,P,3) arrays of link origins, hip to foot, by forward kinematics."""
         needed = sorted({link for chain in self.chains for link in chain})
@@ -129,7 +162,8 @@ class Motion:
 
 
 def read_terrain(group):
-    """(y (K,), z (K,), type) of /terrain in a result group, or None when absent."""
+    """(y (K,), z (K,), type) of /terrain in a result group ("" without the attribute
+    `type`: a replay file's), or None when absent."""
     if "terrain" not in group:
         return None
     g = group["terrain"]
@@ -139,7 +173,7 @@ def read_terrain(group):
     if y.shape != z.shape or y.ndim != 1 or y.size < 2:
         raise InputError(f"/terrain/y and /terrain/z: shapes {y.shape} and {z.shape}, expected "
                          "two equal (K,) with K >= 2")
-    kind = decode_text(g.attrs["type"]) if "type" in g.attrs else "terrain"
+    kind = decode_text(g.attrs["type"]) if "type" in g.attrs else ""
     return y, z, kind
 
 
@@ -160,10 +194,22 @@ def load_motion(path, run=None):
             elif p in REQUIRED:
                 raise InputError(f"{source}: no dataset {p}")
         terrain = read_terrain(group)
+        meta = {k: decode_text(v) for k, v in group["meta"].attrs.items()}
     t = np.asarray(data["/time"], dtype=float)
     if t.ndim != 1 or t.size < 1 or (t.size > 1 and not np.all(np.diff(t) > 0)):
         raise InputError(f"{source}: /time is not a strictly increasing series")
-    return Motion(source, data, terrain)
+    return Motion(source, data, terrain, meta)
+
+
+def replay_mismatch(plan, replay):
+    """None when `replay` (a Motion of a replay file) replays `plan` (of a result): its /meta
+    source_created_utc is the plan's created_utc (which survives a copy or a move of the
+    plan's file); else one line saying what it replays."""
+    made = replay.meta.get("source_created_utc", "")
+    if made and made == plan.meta.get("created_utc"):
+        return None
+    return (f"{replay.source} replays {replay.meta.get('source_result', '?')} (created "
+            f"{made or '?'}), not {plan.source} (created {plan.meta.get('created_utc', '?')})")
 
 
 def frame_times(t0, duration, fps):
@@ -205,16 +251,19 @@ class Frames:
         return len(self.times)
 
 
-def frames_of(motion, fps=25.0):
+def frames_of(motion, fps=25.0, times=None):
+    """The frames of `motion` at `fps`, or at the frame times `times` (another motion's: a
+    replay drawn at its plan's frames; past the end of `motion` its last sample holds)."""
     t = motion.time
-    tf = frame_times(float(t[0]), motion.duration, fps)
+    tf = frame_times(float(t[0]), motion.duration, fps) if times is None else np.asarray(times)
     d = motion.data
     base = interpolate(t, d["/base/position"], tf)
     quat = interpolate(t, sign_continuous(d["/base/orientation"]), tf)
     quat /= np.linalg.norm(quat, axis=1, keepdims=True)
     q = interpolate(t, d["/joints/position"], tf)
     hold = np.clip(np.searchsorted(t, tf, side="right") - 1, 0, t.size - 1)
-    phase = np.asarray(d["/contacts/phase"])[hold] if motion.has("/contacts/phase") else None
+    phase = motion.phases()
+    phase = phase[hold] if phase is not None else None
     force = interpolate(t, d["/contacts/force"], tf) if motion.has("/contacts/force") else None
     relaxed = failed = None
     if motion.has("/solver/status"):

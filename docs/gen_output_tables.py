@@ -1,12 +1,15 @@
 """Writes the tables of docs/user/output.md from src/hexdyn/io/schema.hpp.
 
-The file layouts hexdyn writes (hexdyn-result/2, hexdyn-sweep/2, hexdyn-envelope/2) are
-declared once, in the C++ header src/hexdyn/io/schema.hpp. The declarations are those of the
+The file layouts hexdyn writes (hexdyn-result/2, hexdyn-sweep/2, hexdyn-envelope/2,
+hexdyn-replay/1) are declared once, in the C++ header src/hexdyn/io/schema.hpp and the parts
+it includes. The declarations are those of the
 Python reader (`hexdyn.results.SCHEMA`, from the module hexdyn._schema the build generates
 from the compiled header), so the tables say what the writers write and what the reader
 checks. The header's text gives only what the compiler drops: each table's "meaning" column
 is the `///` comment of its declaration, and the section banner of each declaration says
-which file kind's table it goes in.
+which file kind's table it goes in. A replay file's datasets keep a result file's names for
+the replayed motion: its tables follow its declaration lists (one table per list, under the
+list's comment), and a dataset declared in the result's section is "as in" a result.
 
 docs/user/output.md holds one region per file kind between marker comments:
 
@@ -14,7 +17,7 @@ docs/user/output.md holds one region per file kind between marker comments:
     ...
     <!-- END GENERATED -->
 
-(regions `result`, `sweep`, `envelope`). This script rewrites the regions and leaves the
+(regions `result`, `sweep`, `envelope`, `replay`). This script rewrites the regions and leaves the
 text around them alone.
 
     PYTHONPATH=build/python /usr/bin/python3 docs/gen_output_tables.py          # rewrite
@@ -50,7 +53,10 @@ DECLARATION = re.compile(r"^inline\s+constexpr\s+[^;]*?\b(k\w+)\s*(?:=|\{)", re.
 # Region name -> the header's constants of that file kind's schema name and version.
 REGIONS = {"result": ("kResultSchema", "kResultSchemaVersion"),
            "sweep": ("kSweepSchema", "kSweepSchemaVersion"),
-           "envelope": ("kEnvelopeSchema", "kEnvelopeSchemaVersion")}
+           "envelope": ("kEnvelopeSchema", "kEnvelopeSchemaVersion"),
+           "replay": ("kReplaySchema", "kReplaySchemaVersion")}
+# Regions whose datasets are tabled by the declaration lists of their section (list_tables).
+BY_LISTS = ("replay",)
 
 # Which datasets of a result file are written when (the lists of schema.hpp).
 RESULT_PRESENCE = {
@@ -208,8 +214,11 @@ def other_attributes_table(schema, kind):
     return rows
 
 
-def dataset_table(schema, kind, presence=None):
-    datasets = schema.in_section(kind, DatasetSpec)
+def dataset_table(schema, kind, presence=None, datasets=None):
+    """The table of `datasets` ((name, DatasetSpec) pairs; default: those declared in the
+    section of `kind`); a dataset declared in another section is "as in" that file kind."""
+    if datasets is None:
+        datasets = schema.in_section(kind, DatasetSpec)
     head = "| path | shape | dimensions | type | units | long_name |"
     rule = "|---|---|---|---|---|---|"
     if presence is not None:
@@ -222,8 +231,29 @@ def dataset_table(schema, kind, presence=None):
                f"{cell(units)} | {cell(d.long_name)} |")
         if presence is not None:
             row += f" {presence.get(name, '')} |"
-        rows.append(row + f" {cell(schema.comments.get(name, ''))} |")
+        home = schema.sections.get(name)
+        meaning = schema.comments.get(name, "") if home == kind else f"as in `{home}`"
+        rows.append(row + f" {cell(meaning)} |")
     return rows
+
+
+def list_tables(schema, kind):
+    """One dataset table per declaration list of datasets in the section of `kind`, in the
+    header's order, each under the list's comment: a file kind (hexdyn-replay/1) that holds
+    datasets of a result file's names besides its own. The section's datasets that no list
+    holds follow in a last table (the reader checks them when present)."""
+    lines, listed = [], set()
+    for name, items in schema.lists_in_section(kind):
+        if not items or not all(isinstance(d, DatasetSpec) for d in items):
+            continue
+        lines += [cell(schema.comments.get(name, "") or f"`{name}`").rstrip(".") + ":", ""]
+        lines += dataset_table(schema, kind, datasets=[(d.name, d) for d in items]) + [""]
+        listed.update(d.name for d in items)
+    unlisted = [(n, d) for n, d in schema.in_section(kind, DatasetSpec) if n not in listed]
+    if unlisted:
+        lines += ["Declared in no list (written when the writer has them):", ""]
+        lines += dataset_table(schema, kind, datasets=unlisted) + [""]
+    return lines[:-1]
 
 
 def result_presence(schema, kind):
@@ -238,8 +268,11 @@ def result_presence(schema, kind):
 def region_lines(schema, region):
     kind = schema.kind[region]
     lines = meta_table(schema, kind) + [""]
-    presence = result_presence(schema, kind) if region == "result" else None
-    lines += dataset_table(schema, kind, presence)
+    if region in BY_LISTS:
+        lines += list_tables(schema, kind)
+    else:
+        presence = result_presence(schema, kind) if region == "result" else None
+        lines += dataset_table(schema, kind, presence)
     flags = schema.in_section(kind, FlagSpec)
     if flags:
         lines += ["", "CF flags (`flag_values` 0, 1, ... and `flag_meanings`):", "",

@@ -13,6 +13,15 @@ computations:
           --run, or with an unknown id, one line listing the ids, exit 2.
   mp4     an MP4 through ffmpeg has ceil(duration * fps) frames (ffprobe); skipped (exit
           77) without ffmpeg.
+  replay  a one-cycle paper run and its replay (`hexdyn replay`): --replay draws two panels
+          at the plan's ceil(duration * fps) frames, the plan's feet /feet/position and the
+          replay's its own, each interpolated with numpy.interp at the plan's frame times
+          (past the replay's end its last sample), the replay's feet green exactly where
+          /contacts/normal_force > 0 at the last sample at or before the frame; --ghost
+          draws the replay with the plan's feet (interpolated likewise) as ghosts,
+          --ghost-trunk the plan's trunk too; a replay of another plan gives one warning
+          line; --ghost without --replay, a --replay file that is no replay and a replay
+          given as the plan: one line, exit 2, no output.
 
 usage: test_animate.py CASE --hexdyn BUILD/hexdyn --source SOURCE_DIR
 """
@@ -48,6 +57,20 @@ def expected_frames(t, fps):
 def animate(src, *args):
     cmd = ["/usr/bin/python3", os.path.join(src, "analysis", "animate.py"), *args]
     return subprocess.run(cmd, capture_output=True, text=True)
+
+
+def animate_here(*args):
+    """(exit status, stderr) of animate.py's main run in this process (analysis/ on the
+    path)."""
+    import contextlib
+    import io
+
+    from animate import main
+
+    err = io.StringIO()
+    with contextlib.redirect_stderr(err):
+        rc = main(list(args))
+    return rc, err.getvalue()
 
 
 def read_time(path, group="/"):
@@ -211,6 +234,119 @@ def case_sweep(args, d):
               f"sweep file, {what}: one line listing the ids, exit 2", r.stderr.strip())
 
 
+# The paper scene shortened to one gait cycle of 3.4 s (a ramp up and down, no cruise), so
+# that the run and its replay take about a second.
+SHORT = ("motion.cycle_durations=null", "motion.cycles=1", "motion.peak_speed=0.098",
+         "motion.ramp_duration=0.8")
+
+
+def interp_feet(t, feet, times):
+    """numpy.interp of each foot's coordinates (T,6,3) at `times` (held at the ends)."""
+    return np.stack([[[np.interp(tf, t, feet[:, leg, c]) for c in range(3)]
+                      for leg in range(6)] for tf in times])
+
+
+def drawn_side(lines):
+    """(6, 2) y, z of the first point of each line of a side view."""
+    return np.array([[float(np.asarray(a, dtype=float)[0]) for a in line.get_data()]
+                     for line in lines])
+
+
+def case_replay(args, d):
+    sys.path.insert(0, os.path.join(args.source, "analysis"))
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    from matplotlib.colors import to_rgba
+    from animate import PHASE_COLORS, Scene
+    from animate_data import frames_of, load_motion
+
+    plan, replay = os.path.join(d, "plan.h5"), os.path.join(d, "replay.h5")
+    cmd = [args.hexdyn, "run", os.path.join(args.source, "configs", "paper.yaml"), "-o", plan]
+    subprocess.run(cmd + [a for s in SHORT for a in ("--set", s)], check=True,
+                   capture_output=True)
+    subprocess.run([args.hexdyn, "replay", plan, "-o", replay], check=True, capture_output=True)
+    with h5py.File(plan, "r") as f:
+        t, feet = f["time"][()], f["feet/position"][()]
+    with h5py.File(replay, "r") as f:
+        tr, feet_r, fn = f["time"][()], f["feet/position"][()], f["contacts/normal_force"][()]
+
+    # Through the command line: two panels, ghosts; the plan's frames.
+    fps = 2.0
+    for extra, ext in (((), "gif"), (("--ghost-trunk",), "html")):
+        out = os.path.join(d, f"replay.{ext}")
+        r = animate(args.source, plan, "--replay", replay, *extra, "-o", out, "--fps", str(fps),
+                    "--dpi", "30")
+        check(r.returncode == 0 and "warning" not in r.stderr,
+              f"--replay {' '.join(extra)} -o .{ext}: exit 0, no warning", r.stderr.strip())
+        if ext == "gif":
+            from PIL import Image
+
+            with Image.open(out) as im:
+                got = im.n_frames
+        else:
+            got = len(html_frames(open(out, encoding="utf-8").read()))
+        n = expected_frames(t, fps)
+        check(got == n, f"--replay .{ext}: the plan's frame count {n}", f"got {got}")
+
+    # What is drawn, against numpy.interp of each file at the plan's frame times.
+    motion, rep = load_motion(plan), load_motion(replay)
+    frames = frames_of(motion, fps)
+    times = t[0] + np.arange(expected_frames(t, fps)) / fps
+    want_plan, want_rep = interp_feet(t, feet, times), interp_feet(tr, feet_r, times)
+    hold = np.clip(np.searchsorted(tr, times, side="right") - 1, 0, tr.size - 1)
+    green = fn[hold] > 0
+    for ghost in (None, "trunk"):
+        scene = Scene(motion, frames, "side", 30, (rep, frames_of(rep, times=frames.times)),
+                      ghost)
+        worst = {"plan": 0.0, "replay": 0.0, "ghost": 0.0}
+        colours_ok = True
+        for i in range(len(frames)):
+            scene.update(i)
+            rp = scene.panels[-1]
+            worst["replay"] = max(worst["replay"],
+                                  float(np.max(np.abs(drawn_side(rp.feet) - want_rep[i, :, 1:]))))
+            colours_ok &= all(to_rgba(line.get_color()) == to_rgba(PHASE_COLORS[2 if g else 0])
+                              for line, g in zip(rp.feet, green[i]))
+            plan_lines = scene.panels[0].feet if ghost is None else rp.ghost_feet
+            key = "plan" if ghost is None else "ghost"
+            worst[key] = max(worst[key],
+                             float(np.max(np.abs(drawn_side(plan_lines) - want_plan[i, :, 1:]))))
+        what = "two panels" if ghost is None else "--ghost-trunk"
+        check(len(scene.panels) == (2 if ghost is None else 1), f"{what}: panel count")
+        for key in ("plan", "replay") if ghost is None else ("replay", "ghost"):
+            drawn = {"plan": "the plan's feet", "replay": "the replay's feet",
+                     "ghost": "the ghosts"}[key]
+            stored = "the replay's" if key == "replay" else "the plan's"
+            check(worst[key] <= 1e-12, f"{what}: {drawn} drawn = {stored} /feet/position "
+                  "interpolated at the plan's frame times", f"worst {worst[key]:.3g} m")
+        check(colours_ok, f"{what}: replay feet green where /contacts/normal_force > 0")
+        if ghost is not None:
+            check(rp.ghost_trunk is not None, "--ghost-trunk: the plan's trunk drawn")
+        plt.close(scene.fig)
+
+    # A replay of another plan: one warning line; bad combinations: one line, exit 2 (the
+    # command's main in this process: no interpreter to start for each).
+    other = os.path.join(d, "other.h5")
+    shutil.copy(replay, other)
+    with h5py.File(other, "a") as f:
+        f["meta"].attrs["source_created_utc"] = "1999-01-01T00:00:00Z"
+    rc, err = animate_here(plan, "--replay", other, "-o", os.path.join(d, "o.gif"), "--fps",
+                           "1", "--dpi", "20")
+    warn = [line for line in err.splitlines() if "warning" in line]
+    check(rc == 0 and len(warn) == 1 and "1999" in warn[0],
+          "a replay of another plan: one warning line", err.strip())
+    for bad_args, what in (((plan, "--ghost"), "--ghost without --replay"),
+                           ((plan, "--replay", plan), "--replay of a result file"),
+                           ((replay, "--replay", replay), "a replay as the plan")):
+        target = os.path.join(d, "bad.gif")
+        rc, err = animate_here(*bad_args, "-o", target)
+        lines = err.strip().splitlines()
+        check(rc == 2 and len(lines) == 1 and not os.path.exists(target),
+              f"bad input ({what}): one line, exit 2, no output", err.strip())
+
+
 def case_mp4(args, d):
     if not shutil.which("ffmpeg") or not shutil.which("ffprobe"):
         print("skipped: ffmpeg/ffprobe not installed (Debian package ffmpeg)")
@@ -233,12 +369,13 @@ def case_mp4(args, d):
 
 def main():
     ap = argparse.ArgumentParser()
-    ap.add_argument("case", choices=("result", "sweep", "mp4"))
+    ap.add_argument("case", choices=("result", "sweep", "mp4", "replay"))
     ap.add_argument("--hexdyn", required=True)
     ap.add_argument("--source", required=True)
     args = ap.parse_args()
     with tempfile.TemporaryDirectory() as d:
-        rc = {"result": case_result, "sweep": case_sweep, "mp4": case_mp4}[args.case](args, d)
+        rc = {"result": case_result, "sweep": case_sweep, "mp4": case_mp4,
+              "replay": case_replay}[args.case](args, d)
     if rc == SKIP:
         return SKIP
     if failures:

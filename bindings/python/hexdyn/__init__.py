@@ -21,6 +21,7 @@
     a["joint_acceleration"]       # (T, 18) [rad/s²]: what those torques and forces do
     sw = hexdyn.open_sweep("smoke.h5")          # hexdyn-sweep/2: Sweep
     env = hexdyn.open_envelope("envelope.h5")   # hexdyn-envelope/2: Envelope
+    rep = hexdyn.open_replay("replay.h5")       # hexdyn-replay/1 (hexdyn replay): Replay
     st = hexdyn.open_study("study.h5")          # hexdyn-study/1 (analysis/study.py): Study
     hexdyn.check_layout("any.h5")               # any of them against its schema
 
@@ -46,8 +47,9 @@ from collections.abc import Mapping
 import numpy as np
 
 from ._version import __git_commit__, __version__
-from .results import (Envelope, Result, Study, Sweep, UnknownGroupError, check_layout,
-                      decode_text, open_envelope, open_result, open_study, open_sweep)
+from .results import (Envelope, Replay, Result, Study, Sweep, UnknownGroupError, check_layout,
+                      decode_text, open_envelope, open_replay, open_result, open_study,
+                      open_sweep)
 from .results import checked_path as _path
 
 _compiled = None
@@ -189,7 +191,8 @@ def __getattr__(name):
     raise AttributeError(f"module 'hexdyn' has no attribute {name!r}")
 
 
-__all__ = ["run", "validate", "sample_problem", "forward_dynamics", "Result", "Sweep", "Envelope", "Study", "open_result", "open_sweep",
-           "open_envelope", "open_study", "check_layout", "decode_text", "UnknownGroupError",
+__all__ = ["run", "validate", "sample_problem", "forward_dynamics", "Result", "Sweep", "Envelope",
+           "Replay", "Study", "open_result", "open_sweep", "open_envelope", "open_replay",
+           "open_study", "check_layout", "decode_text", "UnknownGroupError",
            "Error", "ConfigError", "IoError", "ReachError", "PlanningError", "SolverError",
            "InternalError", "__version__", "__git_commit__"]

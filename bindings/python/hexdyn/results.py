@@ -1,7 +1,8 @@
 """Readers of hexdyn's files, with h5py only: results (`hexdyn-result/2`), sweeps
-(`hexdyn-sweep/2`), envelopes (`hexdyn-envelope/2`) and studies (`hexdyn-study/1`, of
-analysis/study.py); results and sweeps of version 1 open too (mapped to version 2 on
-reading). Every file is checked against its schema when opened; check_layout checks any.
+(`hexdyn-sweep/2`), envelopes (`hexdyn-envelope/2`), replays (`hexdyn-replay/1`) and studies
+(`hexdyn-study/1`, of analysis/study.py); results and sweeps of version 1 open too (mapped
+to version 2 on reading). Every file is checked against its schema when opened;
+check_layout checks any.
 
 The layout is the contract of docs/user/output.md, declared in src/hexdyn/io/schema.hpp and
 reaching Python as the module hexdyn._schema, generated at build time from the compiled
@@ -26,6 +27,7 @@ declarations (SCHEMA below). Shapes use size symbols: "T" (samples), "n" (touchd
     sw.to_xarray(), sw.to_dataframe(), res.to_xarray()   # labelled (hexdyn.xr; xarray, pandas)
 
     env = open_envelope("envelope.h5")     # an Envelope; env.to_xarray() the /envelope group
+    rep = open_replay("replay.h5")         # a Replay: rep["/joints/tracking_error"], rep.to_xarray()
     st = open_study("study.h5")            # a Study: st.rows, st.verdict, st.references
 
 Requires h5py, numpy and PyYAML (Debian: /usr/bin/python3); xarray only for to_xarray.
@@ -216,6 +218,21 @@ ENVELOPE_CASES_LAYOUT = {**{p: s for p, s in _ENVELOPE_CASES.items() if p not in
 ENVELOPE_REQUIRED = {d.path for d in SCHEMA["kEnvelopeDatasets"]}
 ENVELOPE_V1_FLATTENED = (SCHEMA["kEnvelopeLimit"].path, SCHEMA["kEnvelopeMessage"].path)
 
+# hexdyn-replay/1 (schema_replay.hpp): the replayed motion in the result file's names and the
+# replay's own, the robot and terrain copied from the result, the report; every replay file
+# has all three lists. A dataset of the replay's own (a kReplay* declaration) in none of them
+# is checked when present. The coordinates are those of a result (leg, joint, xyz, wxyz, and
+# the index ones of the dimensions it uses: gait_cycle, terrain_point).
+REPLAY_SCHEMA = SCHEMA["kReplaySchema"]
+REPLAY_SCHEMA_VERSION = SCHEMA["kReplaySchemaVersion"]
+_REPLAY_LISTS = (SCHEMA["kReplaySeriesDatasets"], SCHEMA["kReplayModelDatasets"],
+                 SCHEMA["kReplayReportDatasets"])
+_REPLAY_OWN = [d for name, d in SCHEMA.items()
+               if name.startswith("kReplay") and isinstance(d, DatasetSpec)]
+REPLAY_LAYOUT = _layout(*_REPLAY_LISTS, _REPLAY_OWN, *_coordinate_lists("Replay"),
+                        *_coordinate_lists("Result"))
+REPLAY_REQUIRED = {d.path for decls in _REPLAY_LISTS for d in decls}
+
 # hexdyn-result/1 paths renamed in version 2 (version 1 -> 2); /impacts/leg counted from 1.
 V1_RENAMED = {"/power/joint": "/power/per_joint", "/energy/joint": "/energy/per_joint"}
 
@@ -289,8 +306,8 @@ def yaml_attribute(meta, name, source):
 
 
 class _Datasets(Mapping):
-    """A file's datasets by path (`self.data`, `self.source`): the mapping of Result and
-    Envelope."""
+    """A file's datasets by path (`self.data`, `self.source`): the mapping of Result,
+    Envelope and Replay."""
 
     def __getitem__(self, path):
         try:
@@ -309,6 +326,10 @@ class _Datasets(Mapping):
 
     def paths(self):
         return sorted(self.data)
+
+    def groups(self):
+        """The groups that hold datasets ("/" for the root), sorted: what to_xarray takes."""
+        return sorted({p.rpartition("/")[0] or "/" for p in self.data})
 
 
 class Result(_Datasets):
@@ -369,10 +390,6 @@ class Result(_Datasets):
     @property
     def has_dynamics(self):
         return "/joints/torque" in self.data
-
-    def groups(self):
-        """The groups that hold datasets ("/" for the root), sorted: what to_xarray takes."""
-        return sorted({p.rpartition("/")[0] or "/" for p in self.data})
 
     def to_xarray(self, group=None):
         """The datasets as an xarray.Dataset with named dimensions and coordinates (time,
@@ -953,10 +970,6 @@ class Envelope(_Datasets):
     def criteria(self):
         return list(self.data[SCHEMA["kEnvelopeCriteria"].path])
 
-    def groups(self):
-        """The groups that hold datasets ("/" for the root), sorted: what to_xarray takes."""
-        return sorted({p.rpartition("/")[0] or "/" for p in self.data})
-
     def to_xarray(self, group="envelope"):
         """The datasets of `group` ("envelope", "probes", "axes"; None: all, named by path)
         as an xarray.Dataset on the file's dimensions, with the coordinates of the grid
@@ -1003,6 +1016,107 @@ def open_envelope(path):
             data[p] = np.asarray(data[p], dtype=object).reshape(grid)
             shapes[p] = grid
     return Envelope(source, data, units, shapes, meta, version)
+
+
+# ---------------------------------------------------------------------------- replays
+class Replay(_Datasets):
+    """A hexdyn-replay/1 file read into memory (the file is closed), checked against the
+    schema (check_replay_file): a result's torques replayed through the forward dynamics
+    with compliant contact and slip (`hexdyn replay`, docs/theory/replay.md).
+
+    rep[path]        numpy array of every dataset, the replayed motion in the result file's
+                     names ("/joints/position", "/contacts/force") and the replay's own
+                     ("/joints/tracking_error", "/energy/slip", "/replay/reached_top"); text
+                     as str, a list of texts as a list of str
+    rep.units[path]  the `units` attribute; rep.shapes[path] the shape
+    rep.meta         /meta attributes; rep.config the scene as replayed (dict, /meta
+                     config_yaml, its replay: and contact: keys included)
+    rep.attrs        rep.meta and the other groups' attributes ("/terrain/type")
+    rep.urdf         /model/urdf, the robot as replayed (the result's)
+    rep.source_result  the replayed result file (/meta source_result)
+    rep.reached_top  True when the robot reached the plan's end (/replay/reached_top)
+    rep.to_xarray(group=None)   labelled (xarray), as Result.to_xarray
+    """
+
+    def __init__(self, source, data, units, shapes, meta, attributes=None):
+        self.source = source
+        self.path = source
+        self.data = data
+        self.units = units
+        self.shapes = shapes
+        self.meta = meta
+        self.attributes = dict(attributes or {})
+        self.urdf = data.get("/model/urdf", "")
+
+    @property
+    def attrs(self):
+        """The /meta attributes by name and the other groups' as "/terrain/type"."""
+        return {**self.meta, **self.attributes}
+
+    @property
+    def config(self):
+        """The scene as replayed (dict); ValueError if config_yaml is not YAML."""
+        return yaml_attribute(self.meta, "config_yaml", self.source)
+
+    @property
+    def samples(self):
+        """T, the number of stored samples (up to the end of the replay)."""
+        return int(self.shapes["/time"][0])
+
+    @property
+    def source_result(self):
+        return self.meta.get(SCHEMA["kMetaReplaySource"].name, "")
+
+    @property
+    def reached_top(self):
+        return bool(int(self.data[SCHEMA["kReplayReachedTop"].path]))
+
+    def to_xarray(self, group=None):
+        """The datasets as an xarray.Dataset with named dimensions and coordinates (time,
+        leg, joint, xyz, gait_cycle, ...), as Result.to_xarray: `group` ("joints", "replay")
+        gives that group's datasets under their own names, None all of them named by path
+        ("energy/slip" -> "energy_slip"). A group the file does not have raises
+        UnknownGroupError naming the known ones. Needs xarray (hexdyn.xr)."""
+        check_group(self, group)
+        from hexdyn import xr
+        return xr.result_to_xarray(self, group)
+
+    def __repr__(self):
+        return (f"Replay({self.source!r}, T={self.samples}, reached_top={self.reached_top}, "
+                f"datasets={len(self.data)})")
+
+
+def check_replay_file(f, source):
+    """Checks an open replay file's schema and version and every dataset against the
+    schema (schema_replay.hpp): the replayed series with T = len(/time), the robot and the
+    terrain as in a result, the report with Y = len(/replay/cycle_end); every one of them
+    present. hexdyn.IoError in one line on a mismatch or a missing dataset; ValueError for
+    a file of another schema (check_filetype_version). Returns the file's version."""
+    version = check_filetype_version(f, REPLAY_SCHEMA, REPLAY_SCHEMA_VERSION, source)
+    _check_layout(source, _all_datasets(f), REPLAY_LAYOUT, REPLAY_REQUIRED, {}, REPLAY_SCHEMA)
+    return version
+
+
+def open_replay(path):
+    """Opens a hexdyn-replay/1 file (`hexdyn replay`), checks its schema and every dataset
+    against the schema (check_replay_file) and returns a Replay with every dataset in memory
+    (the file is closed on return). Needs h5py only. Anything but a regular file raises
+    hexdyn.IoError before it is opened, as does a file HDF5 cannot read or a dataset off the
+    schema; ValueError for a file of another schema (a result: open_result) or a path with a
+    NUL character."""
+    path = checked_path(path)
+    source = os.fsdecode(path)
+    data, units, shapes = {}, {}, {}
+    with open_h5(path) as f:
+        check_replay_file(f, source)
+        for p, ds in _all_datasets(f).items():
+            data[p] = _read_checked(ds, source)
+            shapes[p] = tuple(ds.shape)
+            if "units" in ds.attrs:
+                units[p] = decode_text(ds.attrs["units"])
+        meta = _meta_attributes(f)
+        attributes = _group_attributes(f, META_GROUP)
+    return Replay(source, data, units, shapes, meta, attributes)
 
 
 # ---------------------------------------------------------------------------- studies
@@ -1123,9 +1237,10 @@ def check_layout(file, source=None):
     """Checks a hexdyn file against its schema, whichever kind it is: `file` a path or an
     open h5py File. The kind comes from /meta schema: a result (the checks of open_result), a
     sweep (those of open_sweep, and every kept run /runs/<id> as a result), an envelope (those
-    of open_envelope) or a study (check_study_file). A result or envelope file of the current
-    version must also hold no undeclared dataset, each with its declared units, and every
-    declared /meta attribute (as must a sweep file's /meta and its kept runs). Returns the
+    of open_envelope), a replay (those of open_replay) or a study (check_study_file). A
+    result, envelope or replay file of the current version must also hold no undeclared
+    dataset, each with its declared units, and every declared /meta attribute (as must a
+    sweep file's /meta and its kept runs). Returns the
     schema name ("hexdyn-sweep/2"). hexdyn.IoError in one line naming the file and the
     dataset on a mismatch (and for a path that is no regular HDF5 file); ValueError for a
     file of no hexdyn schema or of a version this reader does not know."""
@@ -1156,10 +1271,14 @@ def check_layout(file, source=None):
             _check_declared(source, f, ENVELOPE_CASES_LAYOUT if cases else ENVELOPE_LAYOUT,
                             SCHEMA["kEnvelopeMetaAttributes"])
         return ENVELOPE_SCHEMA
+    if base == REPLAY_SCHEMA.rsplit("/", 1)[0]:
+        check_replay_file(f, source)
+        _check_declared(source, f, REPLAY_LAYOUT, SCHEMA["kReplayMetaAttributes"])
+        return REPLAY_SCHEMA
     if base == STUDY_SCHEMA.rsplit("/", 1)[0]:
         check_study_file(f, source)
         return STUDY_SCHEMA
-    known = ", ".join((RESULT_SCHEMA, SWEEP_SCHEMA, ENVELOPE_SCHEMA, STUDY_SCHEMA))
+    known = ", ".join((RESULT_SCHEMA, SWEEP_SCHEMA, ENVELOPE_SCHEMA, REPLAY_SCHEMA, STUDY_SCHEMA))
     raise ValueError(f"{source}: not a hexdyn file (/meta schema {schema!r}; known: {known})")
 
 

@@ -14,6 +14,7 @@ declarations. A computed result (hexdyn.run) and one read from its file give equ
     sw.to_xarray().cost_of_transport.sel({"terrain.riser_height": 0.04})
     sw.to_dataframe()["peak_torque[L2_femur]"]
     hexdyn.open_envelope("envelope.h5").to_xarray().riser_max.sel(criterion="torque")
+    hexdyn.open_replay("replay.h5").to_xarray("joints").tracking_error.sel(joint="L2_femur")
 
 xarray and pandas are imported when a function is called (Debian: python3-xarray,
 python3-pandas).
@@ -76,7 +77,7 @@ def _coordinate(res, dim, group=None):
 
 
 def result_to_xarray(res, group=None):
-    """An xarray.Dataset of a hexdyn.Result or hexdyn.Envelope (see Result.to_xarray): the
+    """An xarray.Dataset of a hexdyn.Result, Envelope or Replay (see Result.to_xarray): the
     datasets of `group` (None: all, named by path), each on the dimensions its declaration
     names, with the coordinates of those dimensions."""
     import xarray as xr
@@ -176,3 +177,10 @@ def open_envelope(path):
     (tread_depth, duty_factor, peak_speed, criterion; case), as an xarray.Dataset:
     hexdyn.open_envelope(path).to_xarray(). Errors as hexdyn.open_envelope."""
     return hr.open_envelope(path).to_xarray()
+
+
+def open_replay(path, group=None):
+    """A hexdyn-replay/1 file as an xarray.Dataset, labelled as a result (time, leg, joint,
+    xyz, gait_cycle): hexdyn.open_replay(path).to_xarray(group). Errors as
+    hexdyn.open_replay."""
+    return hr.open_replay(path).to_xarray(group)

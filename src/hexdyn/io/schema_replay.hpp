@@ -189,11 +189,14 @@ inline constexpr std::array kReplayReportDatasets{kReplayCycleEnd,
                                                   kReplayTouchdownEnergy,
                                                   kReplayEnergy,
                                                   kReplayEnergyPlan,
+                                                  kReplayActuatorWork,
+                                                  kReplayEnergyResidual,
                                                   kReplayFinalError,
                                                   kReplayReachedTop,
                                                   kReplayMessage,
                                                   kReplayStep,
                                                   kReplaySteps,
+                                                  kReplayForcedSteps,
                                                   kReplaySeconds};
 
 /// Every CF flag declaration of the four file kinds.

@@ -8,6 +8,7 @@
 #include "hexdyn/contact/simulation_contact.hpp"
 #include "hexdyn/core/errors.hpp"
 #include "hexdyn/dynamics/forward_dynamics.hpp"
+#include "hexdyn/model/root_link.hpp"
 #include "hexdyn/planning/terrain.hpp"
 
 namespace hexdyn {
@@ -394,6 +395,32 @@ void check_plan(const ReplayPlan& p) {
 
 }  // namespace
 
+ReplayPlan plan_from_result(const RobotModel& model, const RunResult& r) {
+  const KinematicsResult& k = r.kin;
+  if (!r.dyn.present) throw ConfigError("replay: the run has no dynamics to replay");
+  ReplayPlan p;
+  p.t_s = k.time_s;
+  for (int i = 0; i < k.samples(); ++i) {
+    BaseState root;
+    const Eigen::Vector4d q = k.base_orientation_wxyz.row(i).transpose();
+    root.W_R_B = Eigen::Quaterniond(q[0], q[1], q[2], q[3]).normalized().toRotationMatrix();
+    root.p_W = k.base_position.row(i).transpose();
+    root.v_W = k.base_linear_velocity.row(i).transpose();
+    root.omega_W = k.base_angular_velocity.row(i).transpose();
+    p.base.push_back(trunk_state_from_root_link(model, root));
+    p.q_rad.push_back(k.joint_position.row(i).transpose());
+    p.qd_radps.push_back(k.joint_velocity.row(i).transpose());
+    p.tau_Nm.push_back(r.dyn.joint_torque.row(i).transpose());
+    if (!p.tau_Nm.back().allFinite())
+      throw ConfigError("replay: the torque of sample " + std::to_string(i) +
+                        " is not finite (a failed sample cannot be replayed)");
+  }
+  p.cycle_start_s = r.cycle_start_s;
+  p.terrain_y_m = r.terrain_y_m;
+  p.terrain_z_m = r.terrain_z_m;
+  return p;
+}
+
 ArrivalTolerance arrival_tolerance(const TerrainParams& terrain) {
   ArrivalTolerance tol;
   if (terrain.type == TerrainType::kStairs) {
@@ -410,7 +437,7 @@ ReplayResult replay_plan(const RobotModel& model, const ContactParams& contact,
                          const ReplayPlan& plan) {
   check_plan(plan);
   const auto start = std::chrono::steady_clock::now();
-  Integrator it{model, contact, replay, plan, RobotData(model)};
+  Integrator it{model, contact, replay, plan, RobotData(model), Contacts{}};
   const Terrain terrain(terrain_params);
   SimState s;
   s.base = plan.base.front();

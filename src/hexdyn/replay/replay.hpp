@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "hexdyn/core/base_state.hpp"
+#include "hexdyn/core/result.hpp"
 #include "hexdyn/core/scene.hpp"
 #include "hexdyn/model/robot_model.hpp"
 
@@ -36,6 +37,12 @@ struct ReplayPlan {
   /// The terrain's height profile (/terrain/y, /terrain/z; planning/terrain.hpp).
   std::vector<double> terrain_y_m, terrain_z_m;
 };
+
+/// The plan of a run in memory (what `hexdyn replay` reads from its file): its instants,
+/// trunk states (moved from the root link frame of /base/* to the trunk frame), joint angles,
+/// rates and torques, cycle starts and terrain profile. Throws ConfigError for a run without
+/// its dynamics or with a non-finite torque.
+ReplayPlan plan_from_result(const RobotModel& model, const RunResult& result);
 
 /// How far the replayed robot may end from the plan's end and still count as having reached
 /// it (docs/theory/replay.md#reaching-the-top): horizontally, vertically, and its trunk's
