@@ -19,17 +19,24 @@ turned from hexdyn's trunk frame (forward_axis +x) -- checked:
      /joints/torque and /contacts/force gives back the stored accelerations (the plan's,
      which the inverse dynamics answered) to TOLERANCE, relative to max(1, |a|) (as
      tests/python/test_drive_dart.py);
-  5. a wrong shape raises ValueError, massless legs (robot.leg_inertia) hexdyn.SolverError.
+  5. a wrong shape raises ValueError, massless legs (robot.leg_inertia) hexdyn.SolverError;
+  6. the replay of the paper scene (`hexdyn replay`, docs/theory/replay.md#the-replay): at
+     every fifth stored sample, DART's forward dynamics of the stored state under the stored
+     /joints/torque and /contacts/force gives the stored accelerations to TOLERANCE relative
+     to max(1, |a|): each sample is the forward dynamics of its own state, not an
+     integrator's stage.
 
     /usr/bin/python3 tests/python/test_forward_dynamics_dart.py HEXDYN SOURCE_DIR
 """
 import os
+import subprocess
 import sys
+import tempfile
 
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from common import args, text  # noqa: E402
+from common import args, cli_run, text  # noqa: E402
 from test_drive_dart import DartRobot, dart, difference  # noqa: E402
 
 import hexdyn  # noqa: E402
@@ -134,8 +141,42 @@ def check_refusals(scene, rng):
         pass
 
 
+def check_replay(hexdyn_binary, scene):
+    """Check 6."""
+    import h5py
+    with tempfile.TemporaryDirectory() as tmp:
+        result, replay = os.path.join(tmp, "r.h5"), os.path.join(tmp, "p.h5")
+        status, err = cli_run(hexdyn_binary, scene, result)
+        assert status == 0, err
+        p = subprocess.run([hexdyn_binary, "replay", result, "-o", replay],
+                           capture_output=True, text=True)
+        assert p.returncode == 0, p.stderr
+        with h5py.File(replay, "r") as f:
+            r = {k: f[k][()] for k in (
+                "/base/position", "/base/orientation", "/base/linear_velocity",
+                "/base/angular_velocity", "/base/linear_acceleration",
+                "/base/angular_acceleration", "/joints/position", "/joints/velocity",
+                "/joints/acceleration", "/joints/torque", "/contacts/force")}
+        with h5py.File(result, "r") as f:  # the robot as the result describes it
+            robot = robot_of({k: f[k][()] for k in (
+                "/model/urdf", "/model/joint_names", "/model/leg_names", "/model/total_mass")},
+                scene)
+    dart_robot = DartRobot(robot)
+    stored = np.concatenate([r["/base/linear_acceleration"], r["/base/angular_acceleration"],
+                             r["/joints/acceleration"]], axis=1)
+    samples = range(0, len(stored), 5)
+    worst = max(difference(dart_robot.rigid(r, t, r["/joints/torque"][t]), stored[t])
+                for t in samples)
+    loaded = int((np.abs(r["/contacts/force"]).sum(axis=2) > 0).any(axis=1).sum())
+    print(f"replay of {os.path.basename(scene)}: {len(samples)} stored samples ({loaded} of "
+          f"{len(stored)} with a loaded foot), largest relative difference to DART "
+          f"{worst:.2g} (tolerance {TOLERANCE:g})")
+    assert loaded > len(stored) // 2, "the replay's feet carry no load"
+    assert worst <= TOLERANCE, f"the replay's accelerations differ from DART's by {worst:.3g}"
+
+
 def main():
-    _, src = args()
+    binary, src = args()
     if dart is None:
         print("skipped: python3-dartpy is not installed (pipelines/setup.sh installs it)")
         return 77
@@ -143,6 +184,7 @@ def main():
     for scene in SCENES:
         check_scene(os.path.join(src, scene), rng)
     check_refusals(os.path.join(src, SCENES[0]), rng)
+    check_replay(binary, os.path.join(src, SCENES[0]))
     return 0
 
 
