@@ -15,21 +15,8 @@
 # --hexdyn PATH runs that binary (its build tree's Python package) without installing or
 # building; --out DIR writes there instead (the ctest test pipeline.friction_quick does both).
 set -euo pipefail
-quick=0
-hexdyn=""
-out=""
-while (($#)); do
-  case "$1" in
-    --quick) quick=1 ;;
-    --hexdyn) hexdyn="${2:-}"; shift ;;
-    --out) out="${2:-}"; shift ;;
-    -h|--help) sed -n '2,17p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
-    *) echo "friction.sh: error: unknown argument '$1' (expected --quick, --hexdyn PATH, --out DIR)" >&2
-       exit 2 ;;
-  esac
-  shift
-done
 source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
+hexdyn_study_args friction 17 "$@"
 hexdyn_pipeline_start friction "$hexdyn" "$out" "$quick"
 name=stairs
 launch=(mpirun --oversubscribe -np "${HEXDYN_RANKS:-2}")

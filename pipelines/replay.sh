@@ -22,21 +22,8 @@
 # The replays use the integrator settings the scene file sets (replay.step 2.5e-4 s,
 # replay.tolerance 0.01: docs/validation/replay.md#speed-against-error).
 set -euo pipefail
-quick=0
-hexdyn=""
-out=""
-while (($#)); do
-  case "$1" in
-    --quick) quick=1 ;;
-    --hexdyn) hexdyn="${2:-}"; shift ;;
-    --out) out="${2:-}"; shift ;;
-    -h|--help) sed -n '2,23p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
-    *) echo "replay.sh: error: unknown argument '$1' (expected --quick, --hexdyn PATH, --out DIR)" >&2
-       exit 2 ;;
-  esac
-  shift
-done
 source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
+hexdyn_study_args replay 23 "$@"
 hexdyn_pipeline_start replay "$hexdyn" "$out" "$quick"
 
 # The axes: the grip study's duty factors (tripod, tetrapod, wave gaits; configs/friction/

@@ -92,6 +92,29 @@ hexdyn_pipeline_start() {
   fi
 }
 
+# The options of a study pipeline (friction.sh, replay.sh): NAME for messages, HELP the last
+# line of the script's comment header (printed by -h), then the script's arguments. Sets
+# `quick` (--quick: 1), `hexdyn` (--hexdyn PATH) and `out` (--out DIR) for
+# hexdyn_pipeline_start; an unknown argument stops the script with one line, status 2.
+hexdyn_study_args() {
+  local name="$1" help="$2"
+  shift 2
+  quick=0
+  hexdyn=""
+  out=""
+  while (($#)); do
+    case "$1" in
+      --quick) quick=1 ;;
+      --hexdyn) hexdyn="${2:-}"; shift ;;
+      --out) out="${2:-}"; shift ;;
+      -h|--help) sed -n "2,${help}p" "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+      *) echo "$name.sh: error: unknown argument '$1' (expected --quick, --hexdyn PATH, --out DIR)" >&2
+         exit 2 ;;
+    esac
+    shift
+  done
+}
+
 if [[ "${BASH_SOURCE[0]}" == "$0" ]]; then
   hexdyn_install
   hexdyn_build
