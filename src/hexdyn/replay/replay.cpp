@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <utility>
 
 #include "hexdyn/contact/simulation_contact.hpp"
 #include "hexdyn/core/errors.hpp"
@@ -97,7 +98,7 @@ struct Integrator {
   /// springs (spring_energy), the energy the normal damping dissipated.
   std::array<double, kLegs> normal_work_J{}, spring_at_start_J{}, slip_J{}, slip_distance_m{};
   std::array<Vec3, kLegs> slip_displacement_m{};
-  long steps = 0, rejected = 0, forced = 0;
+  long steps = 0, forced = 0;
   double max_step_s = 0.0;
   double h_next = 0.0;  ///< the next step to try [s]
 };
@@ -250,11 +251,10 @@ bool integrate_interval(Integrator& it, SimState& s, std::size_t k, const Terrai
         break;
       }
       h *= 0.5;
-      ++it.rejected;
     }
     account_step(it, it.contacts, step, h);
     s = step.next;
-    it.contacts = at_end;
+    std::swap(it.contacts, at_end);  // at_end is overwritten by the next step
     t += h;
     it.h_next = std::min(it.gains.step_s, 2.0 * h);
     why = stop_reason(s, terrain, t);
@@ -265,9 +265,9 @@ bool integrate_interval(Integrator& it, SimState& s, std::size_t k, const Terrai
 
 /// Appends the sample of state s at the plan's instant k: torques, forces and the forward
 /// dynamics evaluated at s, the cumulative energies and slips.
+/// it.contacts holds the contacts of s (integrate_interval leaves them so).
 void record_sample(Integrator& it, const SimState& s, std::size_t k, ReplayResult& out) {
   RobotData& data = it.data;
-  evaluate_contacts(it.model, data, it.contact, it.plan, s, it.contacts);
   const Contacts& c = it.contacts;
   const ReplayPlan& plan = it.plan;
   const VecJ tau = plan.tau_Nm[k] + it.gains.kp_Nmprad * (plan.q_rad[k] - s.q) +
@@ -329,8 +329,6 @@ std::string stop_reason(const SimState& s, const Terrain& terrain, double t) {
   return "";
 }
 
-BaseState planned_base(const ReplayPlan& plan, std::size_t k) { return plan.base[k]; }
-
 /// The report: drift at the cycle ends, tracking error, totals, arrival.
 void finish_report(const ReplayPlan& plan, const TerrainParams& terrain, bool completed,
                    ReplayResult& r) {
@@ -344,7 +342,7 @@ void finish_report(const ReplayPlan& plan, const TerrainParams& terrain, bool co
     const auto at = std::lower_bound(r.t_s.begin(), r.t_s.end(), t_end - 1e-12);
     const std::size_t i = static_cast<std::size_t>(
         std::min<std::ptrdiff_t>(at - r.t_s.begin(), static_cast<std::ptrdiff_t>(n) - 1));
-    const BaseState& pb = planned_base(plan, i);
+    const BaseState& pb = plan.base[i];
     r.cycle_end_s.push_back(r.t_s[i]);
     r.position_drift_m.push_back(r.base[i].p_W - pb.p_W);
     const Eigen::AngleAxisd d(pb.W_R_B.transpose() * r.base[i].W_R_B);
@@ -370,7 +368,7 @@ void finish_report(const ReplayPlan& plan, const TerrainParams& terrain, bool co
   r.slip_energy_total_J = r.slip_energy_J.back();
   r.damping_total_J = r.damping_energy_J.back();
   r.energy_J = r.actuator_energy_J.back();
-  const BaseState& end_plan = planned_base(plan, n - 1);
+  const BaseState& end_plan = plan.base[n - 1];
   const BaseState& end = r.base.back();
   r.final_position_error_m = end.p_W - end_plan.p_W;
   const ArrivalTolerance tol = arrival_tolerance(terrain);
@@ -395,19 +393,27 @@ void check_plan(const ReplayPlan& p) {
 
 }  // namespace
 
+BaseState trunk_state_from_row(const RobotModel& model, const Vec3& position_m,
+                               const Eigen::Vector4d& wxyz, const Vec3& velocity_mps,
+                               const Vec3& omega_radps) {
+  BaseState root;
+  root.W_R_B =
+      Eigen::Quaterniond(wxyz[0], wxyz[1], wxyz[2], wxyz[3]).normalized().toRotationMatrix();
+  root.p_W = position_m;
+  root.v_W = velocity_mps;
+  root.omega_W = omega_radps;
+  return trunk_state_from_root_link(model, root);
+}
+
 ReplayPlan plan_from_result(const RobotModel& model, const RunResult& r) {
   const KinematicsResult& k = r.kin;
   if (!r.dyn.present) throw ConfigError("replay: the run has no dynamics to replay");
   ReplayPlan p;
   p.t_s = k.time_s;
   for (int i = 0; i < k.samples(); ++i) {
-    BaseState root;
-    const Eigen::Vector4d q = k.base_orientation_wxyz.row(i).transpose();
-    root.W_R_B = Eigen::Quaterniond(q[0], q[1], q[2], q[3]).normalized().toRotationMatrix();
-    root.p_W = k.base_position.row(i).transpose();
-    root.v_W = k.base_linear_velocity.row(i).transpose();
-    root.omega_W = k.base_angular_velocity.row(i).transpose();
-    p.base.push_back(trunk_state_from_root_link(model, root));
+    p.base.push_back(trunk_state_from_row(
+        model, k.base_position.row(i).transpose(), k.base_orientation_wxyz.row(i).transpose(),
+        k.base_linear_velocity.row(i).transpose(), k.base_angular_velocity.row(i).transpose()));
     p.q_rad.push_back(k.joint_position.row(i).transpose());
     p.qd_radps.push_back(k.joint_velocity.row(i).transpose());
     p.tau_Nm.push_back(r.dyn.joint_torque.row(i).transpose());
@@ -444,6 +450,7 @@ ReplayResult replay_plan(const RobotModel& model, const ContactParams& contact,
   s.q = plan.q_rad.front();
   s.qd = plan.qd_radps.front();
   ReplayResult r;
+  evaluate_contacts(model, it.data, contact, plan, s, it.contacts);
   record_sample(it, s, 0, r);
   bool completed = true;
   it.h_next = replay.step_s;
@@ -462,7 +469,6 @@ ReplayResult replay_plan(const RobotModel& model, const ContactParams& contact,
   r.actuator_work_J = it.actuator_work_J;
   r.energy_residual_J = it.actuator_work_J - stored;
   r.steps = it.steps;
-  r.rejected_steps = it.rejected;
   r.forced_steps = it.forced;
   r.max_step_s = it.max_step_s;
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

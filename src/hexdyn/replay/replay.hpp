@@ -38,6 +38,13 @@ struct ReplayPlan {
   std::vector<double> terrain_y_m, terrain_z_m;
 };
 
+/// The trunk's state (frame B, what dynamics/rnea.hpp takes) from one row of a result's
+/// /base/position, /base/orientation (w, x, y, z), /base/linear_velocity and
+/// /base/angular_velocity, which describe the URDF root link (model/root_link.hpp).
+BaseState trunk_state_from_row(const RobotModel& model, const Vec3& position_m,
+                               const Eigen::Vector4d& wxyz, const Vec3& velocity_mps,
+                               const Vec3& omega_radps);
+
 /// The plan of a run in memory (what `hexdyn replay` reads from its file): its instants,
 /// trunk states (moved from the root link frame of /base/* to the trunk frame), joint angles,
 /// rates and torques, cycle starts and terrain profile. Throws ConfigError for a run without
@@ -83,7 +90,6 @@ struct ReplayResult {
   std::string message;  ///< why it ended early, or ""
   double max_step_s = 0.0;
   long steps = 0;
-  long rejected_steps = 0;  ///< steps halved by the error control
   /// Steps accepted at the smallest step with the contact force still beyond the tolerance
   /// (a sphere foot rolling over a nosing: the face's normal turns within the step).
   long forced_steps = 0;

@@ -60,18 +60,6 @@ VecJ rowJ(const std::vector<double>& v, std::size_t i) {
   return Eigen::Map<const VecJ>(v.data() + kJoints * i);
 }
 
-/// The trunk's state (frame B) from a result row of /base/*, which describe the root link.
-BaseState base_from_root(const RobotModel& m, const Vec3& p, const Eigen::Vector4d& wxyz,
-                         const Vec3& v, const Vec3& w) {
-  BaseState root;
-  root.W_R_B =
-      Eigen::Quaterniond(wxyz[0], wxyz[1], wxyz[2], wxyz[3]).normalized().toRotationMatrix();
-  root.p_W = p;
-  root.v_W = v;
-  root.omega_W = w;
-  return trunk_state_from_root_link(m, root);
-}
-
 /// The result file as an input of the replay: its identity and checksum.
 InputFile result_input(const std::string& path) {
   struct stat st {};
@@ -101,7 +89,7 @@ void read_plan(const H5Reader& in, const std::string& file, const RobotModel& mo
   const auto tau = read_matrix(in, file, s::kJointTorque.path, T, kJoints);
   for (std::size_t i = 0; i < T; ++i) {
     const Eigen::Vector4d wxyz(quat[4 * i], quat[4 * i + 1], quat[4 * i + 2], quat[4 * i + 3]);
-    p.base.push_back(base_from_root(model, row3(pos, i), wxyz, row3(vel, i), row3(omega, i)));
+    p.base.push_back(trunk_state_from_row(model, row3(pos, i), wxyz, row3(vel, i), row3(omega, i)));
     p.q_rad.push_back(rowJ(q, i));
     p.qd_radps.push_back(rowJ(qd, i));
     p.tau_Nm.push_back(rowJ(tau, i));
