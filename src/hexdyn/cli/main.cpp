@@ -16,6 +16,7 @@
 
 #include "hexdyn/config/config.hpp"
 #include "hexdyn/core/errors.hpp"
+#include "hexdyn/core/progress.hpp"
 #include "hexdyn/envelope/envelope.hpp"
 #include "hexdyn/model/stance.hpp"
 #include "hexdyn/model/urdf_robot.hpp"
@@ -35,8 +36,10 @@ namespace {
 
 constexpr const char* kRunUsage =
     R"(usage: hexdyn run CONFIG -o FILE [--set key.path=value ...] [--allow-large] [-v]
+                  [--progress SECONDS]
   Runs a scene and writes its hexdyn-result/2 file to FILE. -v prints a URDF robot's
-  leg mapping (which chain of the description is L1 ... L6).
+  leg mapping (which chain of the description is L1 ... L6). While the stages compute, a
+  progress line comes at most every --progress seconds (default 5).
 
 FILE must be a new path or an existing regular file that is none of the run's inputs
 (CONFIG and the files it inherits); devices, FIFOs, directories and symbolic links are
@@ -101,19 +104,6 @@ struct Args {
   double progress_s = 5.0;
 };
 
-double parse_seconds(const std::string& text) {
-  std::size_t used = 0;
-  double v = -1.0;
-  try {
-    v = std::stod(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used != text.size() || !(v >= 0.0 && v <= 86400.0))
-    throw hexdyn::ConfigError("--progress: got " + text + ", expected seconds in [0, 86400]");
-  return v;
-}
-
 Args parse_args(int argc, char** argv) {
   Args a;
   if (argc < 2) throw hexdyn::ConfigError("missing command; run 'hexdyn --help'");
@@ -139,7 +129,7 @@ Args parse_args(int argc, char** argv) {
     else if (arg == "-v" || arg == "--verbose")
       a.verbose = true;
     else if (arg == "--progress") {
-      a.progress_s = parse_seconds(value("--progress"));
+      a.progress_s = hexdyn::parse_progress_interval(value("--progress"));
       a.progress_given = true;
     } else if (!arg.empty() && arg[0] == '-')
       throw hexdyn::ConfigError("unknown option " + arg + "; run 'hexdyn --help'");
@@ -155,7 +145,7 @@ Args parse_args(int argc, char** argv) {
                                                          : "CONFIG") +
                               " file");
   // -v also belongs to run and validate: it prints a URDF robot's leg mapping.
-  const bool sweep_flags = a.keep_runs || a.resume || a.progress_given;
+  const bool sweep_flags = a.keep_runs || a.resume || (a.progress_given && a.command != "run");
   if (a.command == "sweep" && !a.overrides.empty())
     throw hexdyn::ConfigError(
         "sweep: --set is not available; fix keys with set: in the sweep file");
@@ -163,7 +153,8 @@ Args parse_args(int argc, char** argv) {
     throw hexdyn::ConfigError(a.command + ": --allow-large belongs to 'hexdyn run'");
   if (a.command != "sweep" && sweep_flags)
     throw hexdyn::ConfigError(a.command +
-                              ": --keep-runs, --resume and --progress belong to 'hexdyn sweep'");
+                              ": --keep-runs and --resume belong to 'hexdyn sweep', "
+                              "--progress to 'hexdyn sweep' and 'hexdyn run'");
   return a;
 }
 
@@ -224,6 +215,8 @@ int run(const Args& args) {
   // Before the allocation: the grid's size, against the large-run limit.
   const hexdyn::PreparedScene prep = hexdyn::prepare_scene(scene);
   hexdyn::check_run_size(prep.grid.size(), args.allow_large);
+  // A line every 5 s while the stages compute (an Ipopt run at a fine tolerance takes minutes).
+  const hexdyn::ProgressScope progress(std::cerr, "run", args.progress_s);
   const hexdyn::RunResult result = hexdyn::run_prepared_scene(scene, prep, &std::cerr);
   hexdyn::write_result_file(args.output, result, inputs);
   std::cerr << "hexdyn: wrote " << args.output << " (" << result.kin.samples() << " samples, "

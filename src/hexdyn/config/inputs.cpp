@@ -211,6 +211,26 @@ std::string input_sha256_text(const std::vector<InputFile>& inputs) {
   return text;
 }
 
+std::vector<InputFile> recorded_inputs(const std::string& input_sha256, const std::string& where) {
+  std::vector<InputFile> out;
+  std::size_t start = 0;
+  while (start < input_sha256.size()) {
+    std::size_t end = input_sha256.find('\n', start);
+    if (end == std::string::npos) end = input_sha256.size();
+    const std::string line = input_sha256.substr(start, end - start);
+    start = end + 1;
+    const std::size_t gap = line.find("  ");
+    if (gap != 64 || line.size() <= gap + 2) continue;
+    InputFile f;
+    f.role = "input recorded in " + where;
+    f.sha256 = line.substr(0, gap);
+    f.path = f.absolute = line.substr(gap + 2);
+    f.recorded = true;
+    out.push_back(std::move(f));
+  }
+  return out;
+}
+
 std::size_t first_non_utf8(const std::string& text) {
   const auto* s = reinterpret_cast<const unsigned char*>(text.data());
   const std::size_t n = text.size();

@@ -37,6 +37,9 @@ struct InputFile {
   std::uint64_t device = 0;  ///< st_dev of the file read (0 with inode 0: not known here)
   std::uint64_t inode = 0;   ///< st_ino of the file read
   std::shared_ptr<const std::string> text;  ///< the bytes read (null once dropped)
+  /// Listed by a file this command read (its /meta input_sha256: recorded_inputs), not read
+  /// by this command: an output may not replace it either (io/output.hpp check_not_input).
+  bool recorded = false;
 };
 
 /// Largest URDF read [bytes] (16 MiB; the URDFs of robots/ are 5–60 kB; meshes are not read).
@@ -101,6 +104,12 @@ std::vector<InputFile> scene_inputs(const std::vector<std::string>& chain, const
 /// The text of /meta input_sha256: one line "SHA256  ABSOLUTE_PATH" per input, in order,
 /// each ending in a newline: `sha256sum`'s format, so `sha256sum -c` checks the files.
 std::string input_sha256_text(const std::vector<InputFile>& inputs);
+
+/// The inputs listed in the text of a /meta input_sha256 (input_sha256_text's format), as
+/// InputFile entries with `recorded` set, `role` "input recorded in WHERE", `path` and
+/// `absolute` the listed path, `sha256` the listed digest and no identity (device and inode
+/// 0). Lines that are not "DIGEST  PATH" are skipped.
+std::vector<InputFile> recorded_inputs(const std::string& input_sha256, const std::string& where);
 
 /// Where `text` is not UTF-8 (RFC 3629: no overlong forms, no surrogates, at most
 /// U+10FFFF): the byte offset of the first bad sequence, or npos when it is all UTF-8.

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "hexdyn/core/errors.hpp"
+#include "hexdyn/core/progress.hpp"
 #include "hexdyn/model/robot_model.hpp"
 #include "hexdyn/pipeline/pipeline.hpp"
 #include "hexdyn/planning/plan.hpp"
@@ -351,6 +352,7 @@ EnvelopeResult compute_envelope(const EnvelopeSpec& spec, std::ostream* log) {
     return out;
   }
   for (int cell = 0; cell < cells; ++cell) {
+    report_progress("envelope", cell, cells, "cells");
     // The kinematic boundary first (when asked): the dynamic criteria fail above it.
     CellProbes probes{spec, cell, out, kNaN, EnvelopeProbe{}};
     for (int ci = 0; ci < C; ++ci) {

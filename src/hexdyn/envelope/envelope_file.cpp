@@ -4,6 +4,7 @@
 
 #include "hexdyn/config/inputs.hpp"
 #include "hexdyn/core/errors.hpp"
+#include "hexdyn/core/progress.hpp"
 #include "hexdyn/envelope/envelope.hpp"
 #include "hexdyn/io/h5io.hpp"
 #include "hexdyn/io/labels.hpp"
@@ -238,6 +239,7 @@ int envelope_command(int argc, char** argv) {
     const InputFreeze freeze;  // every input read once for the whole envelope (config/inputs.hpp)
     const EnvelopeSpec spec = load_envelope_spec(config);
     check_output_target(output, spec.inputs);  // the envelope file is one of them
+    const ProgressScope progress(std::cerr, "envelope", 5.0, "envelope");  // a line every 5 s
     const EnvelopeResult result = compute_envelope(spec, verbose ? &std::cerr : nullptr);
     write_envelope_file(output, spec, result);
     std::cerr << "hexdyn: wrote " << output << " (" << result.probes.size() << " probes, "

@@ -87,23 +87,44 @@ std::string utc_timestamp_now() {
   return buf;
 }
 
+namespace {
+
+/// `path` absolute, its folders' links resolved, lexically normal: what two names of one
+/// file, existing or not, have in common.
+std::string resolved_path(const std::string& path) {
+  std::error_code ec;
+  fs::path p = fs::weakly_canonical(fs::absolute(path, ec), ec);
+  if (ec) p = fs::absolute(path, ec);
+  return p.lexically_normal().string();
+}
+
+[[noreturn]] void refuse_input(const std::string& path, const InputFile& input, const char* how) {
+  throw_output_error(path, "it is the " + input.role + " '" + input.path + "'" +
+                               (input.recorded ? "" : " read by this command") + " (" + how +
+                               "), which the output would destroy");
+}
+
+}  // namespace
+
 void check_not_input(const std::string& path, const std::vector<InputFile>& inputs) {
   struct stat target {};
-  if (::stat(path.c_str(), &target) != 0) return;
-  const auto refuse = [&](const InputFile& input) {
-    throw_output_error(path, "it is the " + input.role + " '" + input.path +
-                                 "' read by this command (same device and inode), which the "
-                                 "output would destroy");
-  };
+  if (::stat(path.c_str(), &target) != 0) {
+    // No file there: an input's path all the same (a recorded input deleted since).
+    const std::string name = resolved_path(path);
+    for (const InputFile& input : inputs)
+      if (!input.absolute.empty() && resolved_path(input.absolute) == name)
+        refuse_input(path, input, "the same path");
+    return;
+  }
   // The file read, by the identity it had then; and whatever is at its path now.
   if (const InputFile* input = find_input(inputs, static_cast<std::uint64_t>(target.st_dev),
                                           static_cast<std::uint64_t>(target.st_ino)))
-    refuse(*input);
+    refuse_input(path, *input, "same device and inode");
   for (const InputFile& input : inputs) {
     struct stat now {};
     if (::stat(input.absolute.c_str(), &now) == 0 && now.st_dev == target.st_dev &&
         now.st_ino == target.st_ino)
-      refuse(input);
+      refuse_input(path, input, "same device and inode");
   }
 }
 
@@ -120,6 +141,8 @@ void check_output_target(const std::string& path, const std::vector<InputFile>& 
     const std::string dir = directory_of(path);
     if (err == ENOTDIR) throw_output_error(path, "'" + dir + "' is not a directory");
     throw_output_error(path, std::strerror(err));
+  } else {
+    check_not_input(path, inputs);  // a recorded input's path, though nothing is there now
   }
   const std::string dir = directory_of(path);
   struct stat d {};

@@ -15,6 +15,7 @@
 #include "hexdyn/allocation/required_friction.hpp"
 #include "hexdyn/core/cancel.hpp"
 #include "hexdyn/core/errors.hpp"
+#include "hexdyn/core/progress.hpp"
 #include "hexdyn/drive/drive.hpp"
 #include "hexdyn/dynamics/rnea.hpp"
 #include "hexdyn/kinematics/kinematics.hpp"
@@ -315,6 +316,7 @@ DynamicsResult DynamicsSolver::solve(const KinematicsResult& kin, const ContactS
   DynamicsResult dyn = empty_result(T, scene_.actuators.present, scene_.output.required_friction);
   for (int i = 0; i < T; ++i) {
     check_cancelled();
+    report_progress("dynamics", i, T, "samples");
     const SampleContacts& c = contacts.samples[i];
     SampleSolver* solver = solver_.get();
     if (warm == WarmStart::kSamePhases) {

@@ -4,10 +4,12 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <string>
 #include <utility>
 
 #include "hexdyn/contact/simulation_contact.hpp"
 #include "hexdyn/core/errors.hpp"
+#include "hexdyn/core/progress.hpp"
 #include "hexdyn/dynamics/forward_dynamics.hpp"
 #include "hexdyn/model/root_link.hpp"
 #include "hexdyn/planning/terrain.hpp"
@@ -101,6 +103,9 @@ struct Integrator {
   long steps = 0, forced = 0;
   double max_step_s = 0.0;
   double h_next = 0.0;  ///< the next step to try [s]
+  /// Per plan instant: the planned centre of mass's height and the terrain's under it [m]
+  /// (the fall test, fall_reason).
+  std::vector<double> plan_com_z_m, plan_ground_z_m;
 };
 
 /// The error control halves a step at most this many times below replay.step: a step of
@@ -121,7 +126,7 @@ void advance_positions(SimState& s, double h) {
   s.base.W_R_B = 1.5 * R - 0.5 * R * R.transpose() * R;
 }
 
-std::string stop_reason(const SimState& s, const Terrain& terrain, double t);
+std::string stop_reason(const SimState& s, double t);
 
 /// What one step proposes: the next state, the torques and the contact forces that acted
 /// in it (linearised about the start, at the new velocities).
@@ -230,9 +235,8 @@ void account_step(Integrator& it, const Contacts& at_start, const Step& step, do
 /// Integrates from the plan's instant k to k + 1 (s holds the state at k, it.contacts its
 /// contacts), halving a step whose applied contact forces differ from the law at its end by
 /// more than replay.tolerance × the robot's weight, and growing it back towards replay.step.
-/// Returns false (with `why`) when the state stops being finite or the trunk falls.
-bool integrate_interval(Integrator& it, SimState& s, std::size_t k, const Terrain& terrain,
-                        std::string& why) {
+/// Returns false (with `why`) when the state stops being finite.
+bool integrate_interval(Integrator& it, SimState& s, std::size_t k, std::string& why) {
   const double t0 = it.plan.t_s[k], t1 = it.plan.t_s[k + 1];
   const double limit_N = it.gains.tolerance * it.model.total_mass_kg * kGravity;
   Step step;
@@ -257,8 +261,10 @@ bool integrate_interval(Integrator& it, SimState& s, std::size_t k, const Terrai
     std::swap(it.contacts, at_end);  // at_end is overwritten by the next step
     t += h;
     it.h_next = std::min(it.gains.step_s, 2.0 * h);
-    why = stop_reason(s, terrain, t);
+    why = stop_reason(s, t);
     if (!why.empty()) return false;
+    report_progress("replay", t - it.plan.t_s.front(), it.plan.t_s.back() - it.plan.t_s.front(),
+                    "s of motion");
   }
   return true;
 }
@@ -266,7 +272,8 @@ bool integrate_interval(Integrator& it, SimState& s, std::size_t k, const Terrai
 /// Appends the sample of state s at the plan's instant k: torques, forces and the forward
 /// dynamics evaluated at s, the cumulative energies and slips.
 /// it.contacts holds the contacts of s (integrate_interval leaves them so).
-void record_sample(Integrator& it, const SimState& s, std::size_t k, ReplayResult& out) {
+/// Returns the robot's centre of mass at s.
+Vec3 record_sample(Integrator& it, const SimState& s, std::size_t k, ReplayResult& out) {
   RobotData& data = it.data;
   const Contacts& c = it.contacts;
   const ReplayPlan& plan = it.plan;
@@ -316,16 +323,37 @@ void record_sample(Integrator& it, const SimState& s, std::size_t k, ReplayResul
   out.damping_energy_J.push_back(damping);
   out.slip_energy_J.push_back(it.slip_J);
   out.actuator_energy_J.push_back(it.actuator_energy_J);
+  return m.com_W;
 }
 
-/// Why the replay must stop at state s (non-finite, or a fall), or "".
-std::string stop_reason(const SimState& s, const Terrain& terrain, double t) {
+/// Why the replay must stop at state s (no longer finite), or "".
+std::string stop_reason(const SimState& s, double t) {
   if (!s.finite())
     return "the state is no longer finite at t = " + std::to_string(t) +
            " s (the integration diverged; a smaller replay.step may help)";
-  const double ground = terrain.height(s.base.p_W.x(), s.base.p_W.y());
-  if (s.base.p_W.z() < ground)
-    return "the trunk fell to the terrain at t = " + std::to_string(t) + " s";
+  return "";
+}
+
+/// Why the replayed robot has fallen at the plan's instant k (docs/theory/replay.md#falls),
+/// or "": its centre of mass is below half the planned one's height above the terrain under
+/// the planned one (com_W: the replay's), or its trunk is tilted more than kFallTilt_rad from
+/// the planned trunk. The robot's own geometry decides, not where its URDF puts the trunk
+/// frame's origin.
+std::string fall_reason(const Integrator& it, const SimState& s, const Vec3& com_W, std::size_t k) {
+  const double ground = it.plan_ground_z_m[k];
+  const double planned = it.plan_com_z_m[k] - ground;
+  const double height = com_W.z() - ground;
+  const double t = it.plan.t_s[k];
+  if (height < kFallHeightFraction * planned)
+    return "the robot fell at t = " + format_number(t, 6) + " s: its centre of mass is " +
+           format_number(height, 3) + " m above the terrain, below half the planned " +
+           format_number(planned, 3) + " m";
+  const double tilt =
+      std::acos(std::clamp(s.base.W_R_B.col(2).dot(it.plan.base[k].W_R_B.col(2)), -1.0, 1.0));
+  if (tilt > kFallTilt_rad)
+    return "the robot fell at t = " + format_number(t, 6) + " s: its trunk is tilted " +
+           format_number(tilt * 180.0 / M_PI, 3) + " degrees from the planned trunk (at most " +
+           format_number(kFallTilt_rad * 180.0 / M_PI, 3) + ")";
   return "";
 }
 
@@ -391,6 +419,48 @@ void check_plan(const ReplayPlan& p) {
                         std::to_string(k));
 }
 
+/// Bounds the replay's work before it starts (docs/user/replay.md#bounded-work-and-progress): at
+/// most kMaxReplaySteps steps of replay.step over the plan's span, so that at most 64 times as many
+/// halved steps can follow.
+void check_replay_work(const ReplayPlan& p, const ReplayParams& replay) {
+  const double span_s = p.t_s.back() - p.t_s.front();
+  const double steps = span_s / replay.step_s;
+  if (!(steps <= kMaxReplaySteps))
+    throw ConfigError(
+        "replay.step: got " + format_number(replay.step_s, 6) + " s, which takes " +
+        format_number(steps, 3) + " steps over the plan's " + format_number(span_s, 6) +
+        " s, expected at most " + format_number(kMaxReplaySteps, 6) +
+        " steps: replay.step >= " + format_number(span_s / kMaxReplaySteps, 3) + " s");
+}
+
+/// The mass matrix at the plan's first state must be positive definite: a robot with
+/// massless legs (robot.leg_inertia: massless) has none to integrate.
+void check_mass_matrix(const RobotModel& model, RobotData& data, const ReplayPlan& p) {
+  crba(model, data, p.base.front(), p.q_rad.front());
+  data.M_llt.compute(data.M);
+  if (data.M_llt.info() == Eigen::Success) return;
+  for (int b = 1; b < kBodies; ++b)
+    if (!(model.inertia[b].mass_kg > 0.0))
+      throw ConfigError("robot.leg_inertia: the body of joint " +
+                        joint_name((b - 1) / 3, (b - 1) % 3) +
+                        " has no mass, so the forward dynamics have no mass matrix to integrate; "
+                        "a replay needs legs with mass (robot.leg_inertia: full, or links with "
+                        "<inertial> in the URDF)");
+  throw ConfigError(
+      "robot: the mass matrix at the plan's first state is not positive definite "
+      "(a body's inertia: robot.*.inertia or the URDF's <inertial>)");
+}
+
+/// The planned centre of mass and the terrain under it at every plan instant.
+void plan_com_heights(Integrator& it, const Terrain& terrain) {
+  const ReplayPlan& p = it.plan;
+  for (std::size_t k = 0; k < p.t_s.size(); ++k) {
+    const Vec3 com = robot_momentum(it.model, it.data, p.base[k], p.q_rad[k], p.qd_radps[k]).com_W;
+    it.plan_com_z_m.push_back(com.z());
+    it.plan_ground_z_m.push_back(terrain.height(com.x(), com.y()));
+  }
+}
+
 }  // namespace
 
 BaseState trunk_state_from_row(const RobotModel& model, const Vec3& position_m,
@@ -442,9 +512,11 @@ ReplayResult replay_plan(const RobotModel& model, const ContactParams& contact,
                          const ReplayParams& replay, const TerrainParams& terrain_params,
                          const ReplayPlan& plan) {
   check_plan(plan);
+  check_replay_work(plan, replay);
   const auto start = std::chrono::steady_clock::now();
   Integrator it{model, contact, replay, plan, RobotData(model), Contacts{}};
-  const Terrain terrain(terrain_params);
+  check_mass_matrix(model, it.data, plan);
+  plan_com_heights(it, Terrain(terrain_params));
   SimState s;
   s.base = plan.base.front();
   s.q = plan.q_rad.front();
@@ -455,8 +527,11 @@ ReplayResult replay_plan(const RobotModel& model, const ContactParams& contact,
   bool completed = true;
   it.h_next = replay.step_s;
   for (std::size_t k = 0; k + 1 < plan.t_s.size() && completed; ++k) {
-    completed = integrate_interval(it, s, k, terrain, r.message);
-    if (completed) record_sample(it, s, k + 1, r);
+    completed = integrate_interval(it, s, k, r.message);
+    if (!completed) break;
+    const Vec3 com_W = record_sample(it, s, k + 1, r);
+    r.message = fall_reason(it, s, com_W, k + 1);
+    completed = r.message.empty();
   }
   finish_report(plan, terrain_params, completed, r);
   // The balance of energy over the replay: what the joints did, less what the robot gained

@@ -25,6 +25,15 @@
 
 namespace hexdyn {
 
+/// The largest number of steps of replay.step a replay may take over its plan's span (a
+/// step of replay.step / 64 at the most halved, so at most 64 times as many in all).
+inline constexpr double kMaxReplaySteps = 1e6;
+/// The fall test (docs/theory/replay.md#falls): the robot has fallen when its centre of mass
+/// is below this fraction of the planned centre of mass's height above the terrain under
+/// it, or its trunk is tilted more than kFallTilt_rad from the planned trunk.
+inline constexpr double kFallHeightFraction = 0.5;
+inline constexpr double kFallTilt_rad = M_PI / 3.0;
+
 /// What the replay follows, at the plan's T instants (a result file's /time, /base/*,
 /// /joints/*): T ≥ 2, t_s strictly increasing.
 struct ReplayPlan {
@@ -98,9 +107,12 @@ struct ReplayResult {
 
 /// Replays `plan` on `model` (its gravity_W) with `contact`'s law and `replay`'s gains and
 /// step (docs/theory/replay.md). Starts from the plan's first state. Ends at the plan's last
-/// instant, or early with `message` when the state stops being finite or the trunk's origin
-/// goes below the terrain (a fall); the samples up to then are kept.
-/// Throws ConfigError for a plan of fewer than 2 samples or mismatched sizes.
+/// instant, or early with `message` when the state stops being finite or the robot falls
+/// (kFallHeightFraction, kFallTilt_rad: tested at the plan's instants); the samples up to
+/// then are kept. Reports progress (core/progress.hpp). Throws ConfigError for a plan of
+/// fewer than 2 samples or mismatched sizes, a replay.step that takes more than
+/// kMaxReplaySteps steps, or a robot without a positive definite mass matrix (massless legs:
+/// naming robot.leg_inertia).
 ReplayResult replay_plan(const RobotModel& model, const ContactParams& contact,
                          const ReplayParams& replay, const TerrainParams& terrain,
                          const ReplayPlan& plan);

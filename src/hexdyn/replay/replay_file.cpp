@@ -8,6 +8,7 @@
 #include <iostream>
 
 #include "hexdyn/core/errors.hpp"
+#include "hexdyn/core/progress.hpp"
 #include "hexdyn/io/h5io.hpp"
 #include "hexdyn/io/output.hpp"
 #include "hexdyn/io/result_layout.hpp"
@@ -24,7 +25,7 @@ namespace {
 namespace s = schema;
 
 constexpr const char* kUsage =
-    R"(usage: hexdyn replay RESULT -o FILE [--set key.path=value ...]
+    R"(usage: hexdyn replay RESULT -o FILE [--set key.path=value ...] [--progress SECONDS]
   Replays a result's joint torques through the forward dynamics of the robot on its terrain,
   with compliant contact and friction, and writes a hexdyn-replay/1 file to FILE
   (docs/user/replay.md).
@@ -33,76 +34,12 @@ Each joint is driven by its stored torque plus a PD on the planned angle and rat
 replay.kp [N m/rad] and replay.kd [N m s/rad]; 0 and 0 is open loop). The integrator's
 largest step is replay.step [s]. The contact's friction law reads contact.static_friction,
 contact.dynamic_friction, contact.stiction_velocity and contact.friction_velocity. --set
-changes any key of the result's scene for the replay: --set contact.static_friction=0.2.
-The report (trunk drift per gait cycle, tracking error, slip and touchdown energy, whether
+changes a key of replay.* or contact.* for the replay (--set contact.static_friction=0.2);
+any other key would not change the stored plan and is refused. The robot and the scene are
+the result's own (/meta config_yaml, /model/urdf): files edited since the run are not read.
+A progress line comes at most every --progress seconds (default 5). The report (trunk drift per gait cycle, tracking error, slip and touchdown energy, whether
 the robot reached the plan's end) is in /replay of FILE and printed on stderr.
 )";
-
-/// A dataset of the result as a T×cols matrix (row-major values); throws naming it.
-std::vector<double> read_matrix(const H5Reader& in, const std::string& file, const char* path,
-                                std::size_t rows, std::size_t cols) {
-  if (!in.is_dataset(path))
-    throw IoError("replay: '" + file + "' has no " + path +
-                  " (a hexdyn-result file with the dynamics is needed)");
-  H5DoubleArray a = in.read_doubles(path);
-  std::size_t n = 1;
-  for (std::size_t d : a.dims) n *= d;
-  if (a.dims.empty() || a.dims[0] != rows || n != rows * cols)
-    throw IoError("replay: '" + file + "': " + path + " has the wrong shape");
-  return std::move(a.values);
-}
-
-Vec3 row3(const std::vector<double>& v, std::size_t i) {
-  return Vec3(v[3 * i], v[3 * i + 1], v[3 * i + 2]);
-}
-
-VecJ rowJ(const std::vector<double>& v, std::size_t i) {
-  return Eigen::Map<const VecJ>(v.data() + kJoints * i);
-}
-
-/// The result file as an input of the replay: its identity and checksum.
-InputFile result_input(const std::string& path) {
-  struct stat st {};
-  if (::stat(path.c_str(), &st) != 0 || !S_ISREG(st.st_mode))
-    throw IoError("replay: '" + path + "' is not a regular file");
-  InputFile f;
-  f.role = "result file";
-  f.path = path;
-  f.absolute = std::filesystem::absolute(path).lexically_normal().string();
-  f.sha256 = sha256_file(path);
-  f.device = static_cast<std::uint64_t>(st.st_dev);
-  f.inode = static_cast<std::uint64_t>(st.st_ino);
-  return f;
-}
-
-void read_plan(const H5Reader& in, const std::string& file, const RobotModel& model,
-               ReplayPlan& p) {
-  if (!in.is_dataset(s::kTime.path)) throw IoError("replay: '" + file + "' has no /time");
-  p.t_s = in.read_doubles(s::kTime.path).values;
-  const std::size_t T = p.t_s.size();
-  const auto pos = read_matrix(in, file, s::kBasePosition.path, T, 3);
-  const auto quat = read_matrix(in, file, s::kBaseOrientation.path, T, 4);
-  const auto vel = read_matrix(in, file, s::kBaseLinearVelocity.path, T, 3);
-  const auto omega = read_matrix(in, file, s::kBaseAngularVelocity.path, T, 3);
-  const auto q = read_matrix(in, file, s::kJointPosition.path, T, kJoints);
-  const auto qd = read_matrix(in, file, s::kJointVelocity.path, T, kJoints);
-  const auto tau = read_matrix(in, file, s::kJointTorque.path, T, kJoints);
-  for (std::size_t i = 0; i < T; ++i) {
-    const Eigen::Vector4d wxyz(quat[4 * i], quat[4 * i + 1], quat[4 * i + 2], quat[4 * i + 3]);
-    p.base.push_back(trunk_state_from_row(model, row3(pos, i), wxyz, row3(vel, i), row3(omega, i)));
-    p.q_rad.push_back(rowJ(q, i));
-    p.qd_radps.push_back(rowJ(qd, i));
-    p.tau_Nm.push_back(rowJ(tau, i));
-  }
-  for (std::size_t i = 0; i < T * kJoints; ++i)
-    if (!std::isfinite(tau[i]))
-      throw IoError("replay: '" + file + "': /joints/torque is not finite at sample " +
-                    std::to_string(i / kJoints) + " (a failed sample cannot be replayed)");
-  if (in.is_dataset(s::kGaitCycleStart.path))
-    p.cycle_start_s = in.read_doubles(s::kGaitCycleStart.path).values;
-  p.terrain_y_m = in.read_doubles(s::kTerrainY.path).values;
-  p.terrain_z_m = in.read_doubles(s::kTerrainZ.path).values;
-}
 
 /// Collects the datasets of the replay file in the order written.
 struct Layout {
@@ -240,31 +177,6 @@ void write_meta(H5Writer& w, const ReplaySource& src, const ReplayResult& r) {
 
 }  // namespace
 
-ReplaySource read_replay_source(const std::string& result_path,
-                                const std::vector<Override>& overrides) {
-  ReplaySource src;
-  src.path = result_path;
-  src.inputs.push_back(result_input(result_path));
-  const H5Reader in(result_path);
-  const std::string meta = s::kMetaGroup;
-  if (!in.has_attribute(meta, s::kAttrSchema) ||
-      in.string_attribute(meta, s::kAttrSchema) != s::kResultSchema)
-    throw IoError("replay: '" + result_path + "' is not a " + s::kResultSchema + " file");
-  src.created_utc = in.string_attribute(meta, s::kAttrCreatedUtc);
-  src.scene = load_scene_from_string(in.string_attribute(meta, s::kAttrConfigYaml),
-                                     result_path + " /meta config_yaml", overrides);
-  const RobotModel model = build_robot_model(src.scene.robot);
-  read_plan(in, result_path, model, src.plan);
-  src.urdf = in.read_string(s::kModelUrdf.path);
-  src.joint_names = in.read_strings(s::kModelJointNames.path);
-  src.leg_names = in.read_strings(s::kModelLegNames.path);
-  return src;
-}
-
-}  // namespace hexdyn
-
-namespace hexdyn {
-
 void write_replay_file(const std::string& path, const ReplaySource& source, const RobotModel& model,
                        const ReplayResult& result) {
   check_output_target(path, source.inputs);
@@ -311,6 +223,7 @@ void print_report(const ReplayResult& r, std::ostream& os) {
 int replay_command(int argc, char** argv) {
   std::string result_path, output;
   std::vector<Override> overrides;
+  double progress_s = 5.0;
   for (int i = 1; i < argc; ++i)
     if (!std::strcmp(argv[i], "--help") || !std::strcmp(argv[i], "-h")) {
       std::cout << kUsage;
@@ -319,10 +232,12 @@ int replay_command(int argc, char** argv) {
   try {
     for (int i = 1; i < argc; ++i) {
       const std::string arg = argv[i];
-      if (arg == "-o" || arg == "--output" || arg == "--set") {
+      if (arg == "-o" || arg == "--output" || arg == "--set" || arg == "--progress") {
         if (i + 1 >= argc) throw ConfigError(arg + ": missing value");
         if (arg == "--set")
           overrides.push_back(parse_override(argv[++i]));
+        else if (arg == "--progress")
+          progress_s = parse_progress_interval(argv[++i]);
         else
           output = argv[++i];
       } else if (arg.rfind("--set=", 0) == 0) {
@@ -345,7 +260,9 @@ int replay_command(int argc, char** argv) {
     const InputFreeze freeze;
     const ReplaySource src = read_replay_source(result_path, overrides);
     check_output_target(output, src.inputs);
+    for (const std::string& w : src.warnings) std::cerr << "hexdyn: warning: replay: " << w << "\n";
     const RobotModel model = build_robot_model(src.scene.robot);
+    const ProgressScope progress(std::cerr, "replay", progress_s);
     const ReplayResult r =
         replay_plan(model, src.scene.contact, src.scene.replay, src.scene.terrain, src.plan);
     write_replay_file(output, src, model, r);

@@ -1,0 +1,238 @@
+// A result file read as the plan of a replay (replay_file.hpp read_replay_source): the robot
+// and scene the run used, from the file itself, and every series checked before any work.
+#include <sys/stat.h>
+#include <yaml-cpp/yaml.h>
+
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <sstream>
+
+#include "hexdyn/core/errors.hpp"
+#include "hexdyn/io/h5io.hpp"
+#include "hexdyn/io/schema.hpp"
+#include "hexdyn/model/robot_model.hpp"
+#include "hexdyn/process/sha256.hpp"
+#include "hexdyn/replay/replay_file.hpp"
+
+namespace hexdyn {
+namespace {
+
+namespace s = schema;
+
+/// A dataset of the result as a rows×cols matrix (row-major values) of finite numbers;
+/// throws IoError naming the file, the dataset, the sample and the value.
+std::vector<double> read_matrix(const H5Reader& in, const std::string& file, const char* path,
+                                std::size_t rows, std::size_t cols) {
+  if (!in.is_dataset(path))
+    throw IoError("replay: '" + file + "' has no " + path +
+                  " (a hexdyn-result file with the dynamics is needed)");
+  H5DoubleArray a = in.read_doubles(path);
+  std::size_t n = 1;
+  for (std::size_t d : a.dims) n *= d;
+  if (a.dims.empty() || a.dims[0] != rows || n != rows * cols)
+    throw IoError("replay: '" + file + "': " + path + " has " + std::to_string(n) +
+                  " values, expected " + std::to_string(rows) + " samples of " +
+                  std::to_string(cols));
+  for (std::size_t i = 0; i < n; ++i)
+    if (!std::isfinite(a.values[i]))
+      throw IoError("replay: '" + file + "': " + path + " at sample " + std::to_string(i / cols) +
+                    " holds " + format_number(a.values[i], 6) + ", expected a finite number" +
+                    (std::string(path) == s::kJointTorque.path
+                         ? " (a failed sample cannot be replayed)"
+                         : ""));
+  return std::move(a.values);
+}
+
+Vec3 row3(const std::vector<double>& v, std::size_t i) {
+  return Vec3(v[3 * i], v[3 * i + 1], v[3 * i + 2]);
+}
+
+VecJ rowJ(const std::vector<double>& v, std::size_t i) {
+  return Eigen::Map<const VecJ>(v.data() + kJoints * i);
+}
+
+/// The result file as an input of the replay: its identity and checksum.
+InputFile result_input(const std::string& path) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0) {
+    if (errno == ENOENT || errno == ENOTDIR)
+      throw IoError("replay: '" + path + "' does not exist, expected a hexdyn-result file");
+    throw IoError("replay: '" + path + "' cannot be read: " + std::strerror(errno));
+  }
+  if (!S_ISREG(st.st_mode))
+    throw IoError("replay: '" + path + "' is " +
+                  (S_ISDIR(st.st_mode) ? "a directory"
+                                       : "not a regular file (a device, FIFO "
+                                         "or socket)") +
+                  ", expected a hexdyn-result file");
+  InputFile f;
+  f.role = "result file";
+  f.path = path;
+  f.absolute = std::filesystem::absolute(path).lexically_normal().string();
+  f.sha256 = sha256_file(path);
+  f.device = static_cast<std::uint64_t>(st.st_dev);
+  f.inode = static_cast<std::uint64_t>(st.st_ino);
+  return f;
+}
+
+/// The unit quaternions of /base/orientation: a norm off 1 by more than kReplayQuaternionTolerance
+/// is refused, naming the sample.
+void check_quaternions(const std::vector<double>& wxyz, const std::string& file) {
+  for (std::size_t i = 0; 4 * i < wxyz.size(); ++i) {
+    const double norm = Eigen::Map<const Eigen::Vector4d>(wxyz.data() + 4 * i).norm();
+    if (!(std::abs(norm - 1.0) <= kReplayQuaternionTolerance))
+      throw IoError("replay: '" + file + "': " + s::kBaseOrientation.path + " at sample " +
+                    std::to_string(i) + " has norm " + format_number(norm, 6) +
+                    ", expected a unit quaternion (w, x, y, z) within " +
+                    format_number(kReplayQuaternionTolerance, 6));
+  }
+}
+
+void read_plan(const H5Reader& in, const std::string& file, const RobotModel& model,
+               ReplayPlan& p) {
+  if (!in.is_dataset(s::kTime.path)) throw IoError("replay: '" + file + "' has no /time");
+  const std::size_t T = in.dims(s::kTime.path).empty() ? 0 : in.dims(s::kTime.path)[0];
+  p.t_s = read_matrix(in, file, s::kTime.path, T, 1);
+  const auto pos = read_matrix(in, file, s::kBasePosition.path, T, 3);
+  const auto quat = read_matrix(in, file, s::kBaseOrientation.path, T, 4);
+  check_quaternions(quat, file);
+  const auto vel = read_matrix(in, file, s::kBaseLinearVelocity.path, T, 3);
+  const auto omega = read_matrix(in, file, s::kBaseAngularVelocity.path, T, 3);
+  const auto q = read_matrix(in, file, s::kJointPosition.path, T, kJoints);
+  const auto qd = read_matrix(in, file, s::kJointVelocity.path, T, kJoints);
+  const auto tau = read_matrix(in, file, s::kJointTorque.path, T, kJoints);
+  for (std::size_t i = 0; i < T; ++i) {
+    const Eigen::Vector4d wxyz(quat[4 * i], quat[4 * i + 1], quat[4 * i + 2], quat[4 * i + 3]);
+    p.base.push_back(trunk_state_from_row(model, row3(pos, i), wxyz, row3(vel, i), row3(omega, i)));
+    p.q_rad.push_back(rowJ(q, i));
+    p.qd_radps.push_back(rowJ(qd, i));
+    p.tau_Nm.push_back(rowJ(tau, i));
+  }
+  for (std::size_t k = 1; k < T; ++k)
+    if (!(p.t_s[k] > p.t_s[k - 1]))
+      throw IoError("replay: '" + file + "': /time at sample " + std::to_string(k) + " holds " +
+                    format_number(p.t_s[k], 6) + ", expected more than the sample before (" +
+                    format_number(p.t_s[k - 1], 6) + " s)");
+  if (in.is_dataset(s::kGaitCycleStart.path)) {
+    const auto dims = in.dims(s::kGaitCycleStart.path);
+    p.cycle_start_s = read_matrix(in, file, s::kGaitCycleStart.path, dims.empty() ? 0 : dims[0], 1);
+  }
+  const std::size_t V = in.dims(s::kTerrainY.path).empty() ? 0 : in.dims(s::kTerrainY.path)[0];
+  p.terrain_y_m = read_matrix(in, file, s::kTerrainY.path, V, 1);
+  p.terrain_z_m = read_matrix(in, file, s::kTerrainZ.path, V, 1);
+}
+
+/// The stored motion against the model: the feet placed by forward kinematics of the stored
+/// joints and trunk, against the stored feet (a sphere foot's centre), within
+/// kReplayFootTolerance_m. A mismatch means the scene or model is not the run's.
+void check_feet(const H5Reader& in, const std::string& file, const RobotModel& model,
+                const ReplayPlan& p) {
+  const bool centre = in.is_dataset(s::kFeetCenter.path);
+  const char* path = centre ? s::kFeetCenter.path : s::kFeetPosition.path;
+  const auto feet = read_matrix(in, file, path, p.t_s.size(), 3 * kLegs);
+  BodyPoses poses;
+  for (std::size_t i = 0; i < p.t_s.size(); ++i) {
+    forward_kinematics_tree(model, p.q_rad[i], poses);
+    const BaseState& b = p.base[i];
+    for (int leg = 0; leg < kLegs; ++leg) {
+      const Vec3 fk_W = b.p_W + b.W_R_B * tree_foot_position_B(model, poses, leg);
+      const Vec3 stored = row3(feet, kLegs * i + static_cast<std::size_t>(leg));
+      const double error = (fk_W - stored).norm();
+      if (!(error <= kReplayFootTolerance_m))
+        throw IoError("replay: '" + file + "': " + path + " of leg " + leg_name(leg) +
+                      " at sample " + std::to_string(i) + " (t = " + format_number(p.t_s[i], 6) +
+                      " s) is " + format_number(error, 6) +
+                      " m from where the stored joints and trunk put it, expected " + "at most " +
+                      format_number(kReplayFootTolerance_m, 6) +
+                      " m: the scene (/meta config_yaml, --set) or the robot is not the run's");
+    }
+  }
+}
+
+/// The keys --set may change in a replay: those of its integrator and its contact law.
+void check_replay_override(const Override& ov) {
+  for (const char* prefix : {"replay.", "contact."})
+    if (ov.key_path.rfind(prefix, 0) == 0) return;
+  throw ConfigError("--set " + ov.key_path +
+                    ": a replay follows the stored plan, which this key does not change; "
+                    "expected a key of replay.* or contact.* (the integrator, the contact and "
+                    "friction laws)");
+}
+
+/// The scene the run used, from /meta config_yaml; a URDF robot built from the result's own
+/// /model/urdf (its bodies as simulated: trunk "trunk", feet "<leg>_foot"), kept as the
+/// input read at the name "RESULT#/model/urdf" (config/inputs.hpp keep_input), so that the
+/// file the run read, edited or gone since, plays no part.
+std::string scene_with_stored_robot(const H5Reader& in, const ReplaySource& src) {
+  YAML::Node root = YAML::Load(in.string_attribute(s::kMetaGroup, s::kAttrConfigYaml));
+  YAML::Node robot = root["robot"];
+  if (!robot.IsMap() || !robot["urdf"].IsDefined()) return YAML::Dump(root) + "\n";
+  InputFile urdf;
+  urdf.role = "URDF";
+  urdf.path = urdf.absolute = src.inputs.front().absolute + "#" + s::kModelUrdf.path;
+  urdf.text = std::make_shared<const std::string>(src.urdf);
+  urdf.sha256 = sha256_hex(src.urdf.data(), src.urdf.size());
+  keep_input(urdf);
+  robot["urdf"] = urdf.path;
+  robot["trunk_link"] = "trunk";
+  YAML::Node feet(YAML::NodeType::Sequence);
+  for (int leg = 0; leg < kLegs; ++leg) feet.push_back(leg_name(leg) + "_foot");  // model/urdf.cpp
+  robot["foot_links"] = feet;
+  robot.remove("foot_offset");
+  return YAML::Dump(root) + "\n";
+}
+
+/// One warning per input the run read that is no longer on disk as it was (its digest in
+/// /meta input_sha256): the replay does not read them.
+std::vector<std::string> changed_inputs(const std::vector<InputFile>& recorded) {
+  std::vector<std::string> out;
+  for (const InputFile& f : recorded) {
+    struct stat st {};
+    std::string now;
+    if (::stat(f.absolute.c_str(), &st) != 0)
+      now = "is gone";
+    else if (!S_ISREG(st.st_mode) || sha256_file(f.absolute) != f.sha256)
+      now = "has changed";
+    if (!now.empty())
+      out.push_back("the run's input '" + f.absolute + "' " + now +
+                    " since the run (/meta input_sha256); the replay uses the result's own "
+                    "description (/meta config_yaml, /model/urdf)");
+  }
+  return out;
+}
+
+}  // namespace
+
+ReplaySource read_replay_source(const std::string& result_path,
+                                const std::vector<Override>& overrides) {
+  for (const Override& ov : overrides) check_replay_override(ov);
+  const InputFreeze freeze;  // keeps the stored URDF as an input while the scene is read
+  ReplaySource src;
+  src.path = result_path;
+  src.inputs.push_back(result_input(result_path));
+  const H5Reader in(result_path);
+  const std::string meta = s::kMetaGroup;
+  if (!in.has_attribute(meta, s::kAttrSchema) ||
+      in.string_attribute(meta, s::kAttrSchema) != s::kResultSchema)
+    throw IoError("replay: '" + result_path + "' is not a " + s::kResultSchema + " file");
+  src.created_utc = in.string_attribute(meta, s::kAttrCreatedUtc);
+  if (in.has_attribute(meta, s::kAttrInputSha256)) {
+    const auto recorded = recorded_inputs(in.string_attribute(meta, s::kAttrInputSha256),
+                                          "the result's /meta input_sha256");
+    src.warnings = changed_inputs(recorded);
+    src.inputs.insert(src.inputs.end(), recorded.begin(), recorded.end());
+  }
+  src.urdf = in.read_string(s::kModelUrdf.path);
+  src.joint_names = in.read_strings(s::kModelJointNames.path);
+  src.leg_names = in.read_strings(s::kModelLegNames.path);
+  src.scene = load_scene_from_string(scene_with_stored_robot(in, src),
+                                     result_path + " /meta config_yaml", overrides);
+  const RobotModel model = build_robot_model(src.scene.robot);
+  read_plan(in, result_path, model, src.plan);
+  check_feet(in, result_path, model, src.plan);
+  return src;
+}
+
+}  // namespace hexdyn
