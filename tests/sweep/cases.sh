@@ -15,7 +15,7 @@ mpi 2 sweep "$sweep" -o cases.h5 --keep-runs 2> cases.log || { cat cases.log; fa
 
 # Scenario 000003: the Kraby case (index 1) at the 0.04 m riser (index 1).
 "$HEXDYN" run "$SRC/configs/robots/phantomx_mark4_stairs.yaml" -o run3.h5 \
-  --set robot.urdf="$SRC/robots/kraby.urdf" --set robot.forward_axis=+y --set gait.stroke=0.025 \
+  --set robot.urdf="$SRC/robots/kraby.urdf" --set robot.forward_axis=+y --set gait.stroke=0.025 --set gait.foothold_margin=0.015 \
   --set terrain.riser_height=0.04 --set motion.cycles=null --set motion.travel.treads=2 2> run3.log || { cat run3.log; fail "run"; }
 compare --result run3.h5 cases.h5:/runs/000003
 "$PY" "$SRC/tests/sweep/check_schema.py" --sweep cases.h5

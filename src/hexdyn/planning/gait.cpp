@@ -1,6 +1,9 @@
 #include "hexdyn/planning/gait.hpp"
 
 #include <cmath>
+#include <optional>
+#include <sstream>
+#include <string>
 
 #include "hexdyn/core/errors.hpp"
 
@@ -14,6 +17,36 @@ double S(double u) { return u * u * u * (10.0 + u * (-15.0 + 6.0 * u)); }
 double dS(double u) { return 30.0 * u * u * (1.0 - u) * (1.0 - u); }
 double ddS(double u) { return 60.0 * u * (1.0 - u) * (1.0 - 2.0 * u); }
 
+/// Where on the stairs a leg wanted to stand: "step k of N" (the tread above the k-th riser),
+/// "step N of N (the top)" or "the ground before step 1".
+std::string step_words(const Terrain& terrain, double y) {
+  const int k = terrain.tread_index(y), n = terrain.params().steps;
+  if (k == 0) return "the ground before step 1";
+  return "step " + std::to_string(k) + " of " + std::to_string(n) + (k == n ? " (the top)" : "");
+}
+
+/// The one-line error of a foothold that cannot keep the margin
+/// (docs/theory/stages.md#gait-planning).
+std::string no_foothold_message(const Terrain& terrain, const GaitParams& gait, double radius_m,
+                                int leg, double t_s, double y_nominal) {
+  std::ostringstream s;
+  s << "leg " << leg_name(leg) << ", stance from t = " << t_s << " s on "
+    << step_words(terrain, y_nominal) << " (wanted y = " << y_nominal
+    << " m): no foothold keeps gait.foothold_margin " << gait.foothold_margin_m << " m from the "
+    << "nosing and the riser";
+  if (radius_m > 0.0)
+    s << " with its sphere foot of radius " << radius_m << " m: the tread depth "
+      << terrain.params().tread_depth_m
+      << " m is less than 2 (margin + radius) = " << 2.0 * (gait.foothold_margin_m + radius_m)
+      << " m";
+  else
+    s << ": the tread depth " << terrain.params().tread_depth_m
+      << " m is less than twice the margin";
+  return s.str();
+}
+
+/// A stance's foothold (gait.hpp). A sphere foot of radius r keeps the margin with its
+/// horizontal extent [y − r, y + r]: its contact point keeps margin + r from nosing and riser.
 Vec3 foothold(const RobotModel& model, const GaitParams& gait, const TrunkMotion& trunk,
               const Terrain& terrain, int leg, double tau_nominal) {
   const Vec3 hip_W = trunk.position_at_phase(tau_nominal) + trunk.W_R_B() * model.p_hip_B[leg];
@@ -23,9 +56,14 @@ Vec3 foothold(const RobotModel& model, const GaitParams& gait, const TrunkMotion
   out_W.normalize();
   const double x = hip_W.x() + out_W.x() * gait.foot_lateral_m;
   const double y_nominal = hip_W.y() + out_W.y() * gait.foot_lateral_m;
-  const double y =
-      terrain.nearest_valid_foothold_y(y_nominal + 0.5 * gait.stroke_m, gait.foothold_margin_m);
-  return Vec3(x, y, terrain.height(x, y));
+  const double y_wanted = y_nominal + 0.5 * gait.stroke_m;
+  const double radius = model.foot_radius_m[leg];
+  const std::optional<double> y =
+      terrain.valid_foothold_y(y_wanted, gait.foothold_margin_m + radius);
+  if (!y)
+    throw PlanningError(no_foothold_message(terrain, gait, radius, leg,
+                                            trunk.time_at_phase(tau_nominal), y_wanted));
+  return Vec3(x, *y, terrain.height(x, *y));
 }
 
 }  // namespace
@@ -63,8 +101,10 @@ GaitPlan plan_gait(const RobotModel& model, const GaitParams& gait, const TrunkM
       sw.t_touchdown_s = trunk.time_at_phase(b_cut);
       sw.p_liftoff_W = p_current;
       sw.p_touchdown_W = foothold(model, gait, trunk, terrain, leg, b_cut);
+      // Over the sphere's shadow: the sphere, not only its contact point, clears by Δh.
       sw.apex_z_m =
-          terrain.max_height_along(sw.p_liftoff_W, sw.p_touchdown_W) + gait.swing_clearance_m;
+          terrain.max_height_along(sw.p_liftoff_W, sw.p_touchdown_W, model.foot_radius_m[leg]) +
+          gait.swing_clearance_m;
       sw.apex_z_m = std::max({sw.apex_z_m, sw.p_liftoff_W.z() + gait.swing_clearance_m,
                               sw.p_touchdown_W.z() + gait.swing_clearance_m});
       sw.touchdown_speed_mps = gait.touchdown_speed_mps;

@@ -15,10 +15,13 @@
 /// horizontal position at τ* moved `foot_lateral` along the hip's outward direction
 /// (RobotModel::hip_outward_B, made horizontal in the world; the paper robot's legs stand
 /// straight out, ±x) and s0/2 forward, moved along y to the nearest point at least
-/// `foothold_margin` from every nosing and riser.
+/// `foothold_margin` from every nosing and riser. A sphere foot of radius r keeps the margin
+/// with the sphere (its horizontal extent [y − r, y + r]): its contact point keeps margin + r
+/// (docs/theory/stages.md#gait-planning).
 ///
 /// Swing path, u = (t − t_lo)/(t_td − t_lo): a vertical lift (smootherstep) to the apex
-/// z_a = H_m + Δh, H_m the highest terrain under the horizontal segment; a horizontal
+/// z_a = H_m + Δh, H_m the highest terrain under the horizontal segment (a sphere foot's:
+/// under the sphere's shadow, the segment widened by r, so the sphere clears by Δh); a horizontal
 /// transfer at z_a (smootherstep); a vertical descent reaching the foothold with the
 /// downward touchdown speed. Position is C² inside the swing, velocity and acceleration
 /// are zero at lift-off; the descent is shortened when needed so that it is monotone.
@@ -62,7 +65,8 @@ struct GaitPlan {
 std::array<double, kLegs> wave_gait_phases(double duty_factor);
 
 /// Plans every swing of every leg over the whole run. Throws PlanningError when no
-/// foothold satisfies the margin.
+/// foothold satisfies the margin, in one line naming the leg, the stance's start time, the
+/// step and the margin.
 GaitPlan plan_gait(const RobotModel& model, const GaitParams& gait, const TrunkMotion& trunk,
                    const Terrain& terrain);
 

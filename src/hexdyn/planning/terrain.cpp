@@ -34,11 +34,11 @@ Vec3 Terrain::normal(double /*x*/, double /*y*/) const {
   return Vec3::UnitZ();
 }
 
-double Terrain::max_height_along(const Vec3& a, const Vec3& b) const {
+double Terrain::max_height_along(const Vec3& a, const Vec3& b, double radius_m) const {
   if (params_.type != TerrainType::kStairs)
     return std::max(height(a.x(), a.y()), height(b.x(), b.y()));
   // Stairs: height depends on y only and is monotone non-decreasing in y.
-  return height(0.0, std::max(a.y(), b.y()));
+  return height(0.0, std::max(a.y(), b.y()) + radius_m);
 }
 
 double Terrain::mean_slope_rad() const { return hexdyn::mean_slope_rad(params_); }
@@ -56,12 +56,15 @@ double Terrain::edge_distance(double y) const {
 }
 
 double Terrain::nearest_valid_foothold_y(double y, double margin) const {
+  if (const std::optional<double> valid = valid_foothold_y(y, margin)) return *valid;
+  throw PlanningError("no foothold near y = " + std::to_string(y) + " m: tread depth " +
+                      std::to_string(params_.tread_depth_m) +
+                      " m is less than twice the foothold margin " + std::to_string(margin) + " m");
+}
+
+std::optional<double> Terrain::valid_foothold_y(double y, double margin) const {
   if (edge_distance(y) >= margin) return y;
-  if (2.0 * margin > params_.tread_depth_m)
-    throw PlanningError("no foothold near y = " + std::to_string(y) + " m: tread depth " +
-                        std::to_string(params_.tread_depth_m) +
-                        " m is less than twice the foothold margin " + std::to_string(margin) +
-                        " m");
+  if (2.0 * margin > params_.tread_depth_m) return std::nullopt;
   // Candidates: the valid ends of the tread containing y and of its neighbours.
   const double b = params_.tread_depth_m, y0 = params_.first_riser_y_m;
   double best = y, best_d = std::numeric_limits<double>::infinity();

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "hexdyn/config/config.hpp"
+#include "hexdyn/core/errors.hpp"
 #include "hexdyn/model/robot_model.hpp"
 #include "hexdyn/planning/gait.hpp"
 #include "hexdyn/planning/motion.hpp"
@@ -378,6 +379,44 @@ TEST_CASE("gait: footholds keep the margin from every nosing and riser", "[gait]
         CHECK(p.plan.terrain.edge_distance(sw.p_touchdown_W.y()) >= margin - 1e-12);
     }
   }
+}
+
+TEST_CASE("gait: a sphere foot keeps the margin with the sphere, or names leg, step and margin",
+          "[gait][sphere]") {
+  const double r = 0.03;
+  const Planned p = plan_scene({{"robot.foot_radius", exact(r)}});
+  const Terrain& terrain = p.plan.terrain;
+  const double margin = p.scene.gait.foothold_margin_m;
+  int at_margin = 0;
+  for (int leg = 0; leg < kLegs; ++leg) {
+    const LegPlan& lp = p.plan.gait.legs[leg];
+    std::vector<double> footholds = {lp.p_initial_W.y()};
+    for (const Swing& sw : lp.swings) {
+      footholds.push_back(sw.p_touchdown_W.y());
+      // The apex clears the highest terrain under the sphere's shadow, scanned, by Δh.
+      const double lo = std::min(sw.p_liftoff_W.y(), sw.p_touchdown_W.y()) - r;
+      const double hi = std::max(sw.p_liftoff_W.y(), sw.p_touchdown_W.y()) + r;
+      double highest = -std::numeric_limits<double>::infinity();
+      for (int i = 0; i <= 5000; ++i)
+        highest = std::max(highest, terrain.height(0.0, lo + (hi - lo) * i / 5000.0));
+      CHECK(std::abs(sw.apex_z_m - (highest + p.scene.gait.swing_clearance_m)) <= 1e-12);
+    }
+    for (double y : footholds) {
+      INFO("leg " << leg << " foothold y " << y);
+      // The sphere's horizontal extent [y - r, y + r] keeps the margin from the tread's edges.
+      CHECK(terrain.edge_distance(y) >= margin + r - 1e-12);
+      if (terrain.edge_distance(y) <= margin + r + 1e-12) ++at_margin;
+    }
+  }
+  CHECK(at_margin >= 3);  // the rule moved footholds: the point foot's margin would not do
+  // No tread deep enough: one line naming the leg, the step and the margin.
+  CHECK_THROWS_AS(plan_scene({{"robot.foot_radius", "0.03"}, {"gait.foothold_margin", "0.11"}}),
+                  PlanningError);
+  CHECK_THROWS_WITH(
+      plan_scene({{"robot.foot_radius", "0.03"}, {"gait.foothold_margin", "0.11"}}),
+      Catch::Matches("leg L[1-6], stance from t = .* s on step [0-9]+ of 12 .*gait.foothold_margin "
+                     "0.11 m .*radius 0.03 m.*2 \\(margin \\+ radius\\) = 0.28 m"));
+  CHECK_NOTHROW(plan_scene({{"robot.foot_radius", "0.03"}, {"gait.foothold_margin", "0.095"}}));
 }
 
 TEST_CASE("trunk: parallel to the slope, at rest at both ends, C2 speed", "[gait]") {

@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <random>
 #include <vector>
 
@@ -101,6 +102,17 @@ TEST_CASE("stairs: max height along a segment crossing several risers", "[terrai
     CHECK(terrain.max_height_along(a, b) == scanned(a, b));
   }
   CHECK(terrain.max_height_along(Vec3(0, 0.1, 0), Vec3(0, 1.1, 0)) == 0.125 + 3 * 0.0625);
+  // A sphere's shadow: the segment widened by r at both ends, scanned.
+  for (double r : {0.01, 0.03, 0.2})
+    for (const auto& [a, b] : segments) {
+      INFO("r " << r << " a " << a.transpose() << " b " << b.transpose());
+      const Vec3 back = a.y() <= b.y() ? a : b, front = a.y() <= b.y() ? b : a;
+      CHECK(terrain.max_height_along(a, b, r) ==
+            scanned(back - Vec3(0.0, r, 0.0), front + Vec3(0.0, r, 0.0)));
+    }
+  // 0.03 short of the next riser: only a sphere of radius 0.03 or more reaches it.
+  CHECK(terrain.max_height_along(Vec3(0, 0.6, 0), Vec3(0, 0.72, 0), 0.0299) == 0.125 + 0.0625);
+  CHECK(terrain.max_height_along(Vec3(0, 0.6, 0), Vec3(0, 0.72, 0), 0.03) == 0.125 + 2 * 0.0625);
 }
 
 TEST_CASE("stairs: edge distance to the nearest nosing or riser", "[terrain]") {
@@ -157,6 +169,10 @@ TEST_CASE("stairs: no foothold when the tread is shallower than twice the margin
   CHECK_THROWS_AS(terrain.nearest_valid_foothold_y(0.51, 0.02), PlanningError);
   CHECK_THROWS_AS(terrain.nearest_valid_foothold_y(0.545, 0.02), PlanningError);
   CHECK_THROWS_WITH(terrain.nearest_valid_foothold_y(0.51, 0.02), Catch::Contains("y = 0.51"));
+  CHECK_FALSE(terrain.valid_foothold_y(0.51, 0.02).has_value());
+  const std::optional<double> mid = terrain.valid_foothold_y(0.51, 0.015);  // 2 · margin = depth
+  REQUIRE(mid.has_value());
+  CHECK(std::abs(*mid - 0.515) <= 1e-12);
   // Far from the stairs the ground is deep enough.
   CHECK(terrain.nearest_valid_foothold_y(-1.0, 0.02) == -1.0);
 }
