@@ -1,7 +1,7 @@
 # The Python module `hexdyn` (bindings/python/): the package's Python files, the schema module
 # generated from io/schema.hpp and its compiled part hexdyn/_hexdyn*.so (pybind11), laid out as
 # a package in the build tree,
-#   build/python/hexdyn/{__init__,results,xr,_version,_schema}.py, _hexdyn*.so
+#   build/python/hexdyn/{__init__,atomic_file,results,xr,_version,_schema}.py, _hexdyn*.so
 # (PYTHONPATH=build/python imports it: the tests and the pipelines set it), and installed to
 #   P/lib/python3.X/dist-packages/hexdyn/
 # which for the default prefix /usr/local is on Debian's /usr/bin/python3 path with no
@@ -18,7 +18,7 @@ endif()
 set(HEXDYN_PYTHON_PACKAGE_DIR ${CMAKE_BINARY_DIR}/python/hexdyn)
 # The pure-Python files and the version: laid out at configure time, so that reading files (and
 # the analysis scripts) needs no compiled part, only the schema module below.
-set(hexdyn_python_files __init__.py results.py xr.py)
+set(hexdyn_python_files __init__.py atomic_file.py results.py xr.py)
 foreach(f IN LISTS hexdyn_python_files)
   configure_file(${PROJECT_SOURCE_DIR}/bindings/python/hexdyn/${f} ${HEXDYN_PYTHON_PACKAGE_DIR}/${f} COPYONLY)
 endforeach()
@@ -75,7 +75,8 @@ set(HEXDYN_PYTHON_INSTALL_DIR lib/python${Python3_VERSION_MAJOR}.${Python3_VERSI
 
 # NO_EXTRAS: no link-time optimisation of the glue (the libraries it links are not built
 # for LTO; GCC would only warn about serial LTRANS jobs).
-pybind11_add_module(hexdyn_python MODULE NO_EXTRAS ${PROJECT_SOURCE_DIR}/bindings/python/module.cpp)
+pybind11_add_module(hexdyn_python MODULE NO_EXTRAS ${PROJECT_SOURCE_DIR}/bindings/python/module.cpp
+                    ${PROJECT_SOURCE_DIR}/bindings/python/forward_dynamics_args.cpp)
 target_link_libraries(hexdyn_python PRIVATE hexdyn_pipeline hexdyn_io hexdyn_sweep yaml-cpp)
 target_compile_options(hexdyn_python PRIVATE ${HEXDYN_WARNINGS})
 set_target_properties(hexdyn_python PROPERTIES OUTPUT_NAME _hexdyn

@@ -8,6 +8,8 @@
 # in its output.
 set(HEXDYN_FAULT_TESTS links full_disk signals signals_mpirun lost_checkpoint orphans leftovers
                        inputs text readers sizes urdf_values replay)
+# Python's writer of a read result (Result.write): signals, long names, a full disk.
+list(APPEND HEXDYN_FAULT_TESTS python_writer)
 foreach(test_name IN LISTS HEXDYN_FAULT_TESTS)
   add_test(NAME faults.${test_name}
            COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/faults/${test_name}.sh $<TARGET_FILE:hexdyn>

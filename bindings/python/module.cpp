@@ -13,7 +13,9 @@
 
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <condition_variable>
+#include <cstdio>
 #include <exception>
 #include <memory>
 #include <mutex>
@@ -24,6 +26,7 @@
 #include <variant>
 #include <vector>
 
+#include "forward_dynamics_args.hpp"
 #include "hexdyn/dynamics/forward_dynamics.hpp"
 #include "hexdyn/hexdyn.hpp"
 #include "hexdyn/io/result_layout.hpp"
@@ -35,6 +38,9 @@
 namespace py = pybind11;
 
 namespace {
+
+using hexdyn_python::DoubleArray;
+using hexdyn_python::Samples;
 
 /// One computed scene: the C++ result (for write) and the files it read, by the identity
 /// and absolute path they had when read (config/inputs.hpp), which its outputs must not be.
@@ -275,6 +281,17 @@ py::list legs_to_python(const hexdyn::AllocationLayout& layout) {
   return legs;
 }
 
+/// ValueError unless t_s lies in [grid.front(), grid.back()], the span the run samples (the
+/// motion, and a final touchdown's transient when it outlasts it), naming both.
+void check_in_span(double t_s, const std::vector<double>& grid) {
+  if (!grid.empty() && t_s >= grid.front() && t_s <= grid.back()) return;
+  char text[160];
+  std::snprintf(text, sizeof text,
+                "sample_problem: t = %g s is outside the motion's span [%.9g, %.9g] s", t_s,
+                grid.empty() ? 0.0 : grid.front(), grid.empty() ? 0.0 : grid.back());
+  throw py::value_error(text);
+}
+
 /// sample_problem(scene, overrides, t) → dict: the allocation problem of the instant t
 /// (pipeline/pipeline.hpp sample_problem), its layout and the run's answers.
 py::dict sample_problem_file(const std::string& scene_path,
@@ -286,6 +303,7 @@ py::dict sample_problem_file(const std::string& scene_path,
     guard_yaml(scene_path, [&] {
       scene = hexdyn::load_scene(scene_path, overrides);
       const hexdyn::PreparedScene prep = hexdyn::prepare_scene(scene);
+      check_in_span(t_s, prep.grid);
       std::unique_lock<std::mutex> lock(ipopt_mutex, std::defer_lock);
       if (scene.allocation.solver == hexdyn::AllocationSolver::kIpopt) lock.lock();
       p = hexdyn::sample_problem(scene, prep, t_s);
@@ -326,44 +344,6 @@ py::dict sample_problem_file(const std::string& scene_path,
   out["friction_coefficient"] = scene.contact.friction_coefficient;
   out["friction"] = friction_model_word(scene.allocation.friction);
   return out;
-}
-
-/// A float64 array as numpy gives it, C order (converted when it is not).
-using DoubleArray = py::array_t<double, py::array::c_style | py::array::forcecast>;
-
-/// The samples of one argument of forward_dynamics: `count` of them, each `width` doubles from
-/// `data`; `batched` when the array had a leading sample axis.
-struct Samples {
-  const double* data = nullptr;
-  py::ssize_t count = 1;
-  bool batched = false;
-  py::ssize_t width = 0;
-  const double* at(py::ssize_t i) const { return data + (batched ? i * width : 0); }
-};
-
-/// `a` as one sample of shape `shape` or as T of them, (T, *shape); ValueError naming `name`
-/// otherwise.
-Samples samples_of(const DoubleArray& a, const std::vector<py::ssize_t>& shape, const char* name) {
-  Samples s;
-  s.data = a.data();
-  s.width = 1;
-  for (py::ssize_t n : shape) s.width *= n;
-  const auto nd = static_cast<std::size_t>(a.ndim());
-  s.batched = nd == shape.size() + 1;
-  bool ok = nd == shape.size() || s.batched;
-  for (std::size_t i = 0; ok && i < shape.size(); ++i)
-    ok = a.shape(static_cast<py::ssize_t>(nd - shape.size() + i)) == shape[i];
-  if (!ok) {
-    std::string want;
-    for (py::ssize_t n : shape) want += (want.empty() ? "" : ", ") + std::to_string(n);
-    std::string got;
-    for (std::size_t i = 0; i < nd; ++i)
-      got += (i ? ", " : "") + std::to_string(a.shape(static_cast<py::ssize_t>(i)));
-    throw py::value_error(std::string("forward_dynamics: ") + name + " has shape (" + got +
-                          "), expected (" + want + ") or (T, " + want + ")");
-  }
-  if (s.batched) s.count = a.shape(0);
-  return s;
 }
 
 /// The inputs of forward_dynamics, one Samples each (file order of /base/*, /joints/*,
@@ -420,6 +400,7 @@ py::dict forward_dynamics_file(
     const std::optional<DoubleArray>& foot_normals) {
   const py::ssize_t J = hexdyn::kJoints, L = hexdyn::kLegs;
   FdInputs in;
+  using hexdyn_python::samples_of;
   in.p = samples_of(base_position, {3}, "base_position");
   in.quat = samples_of(base_orientation, {4}, "base_orientation");
   in.q = samples_of(joint_position, {J}, "joint_position");
@@ -438,6 +419,10 @@ py::dict forward_dynamics_file(
       throw py::value_error(
           "forward_dynamics: the arguments hold different numbers of samples (base_position: " +
           std::to_string(in.batched ? in.count : 0) + " along its first axis)");
+  for (const Samples* s :
+       {&in.p, &in.quat, &in.q, &in.v, &in.w, &in.qd, &in.tau, &in.forces, &in.normals})
+    hexdyn_python::check_finite(*s);
+  hexdyn_python::check_unit_quaternions(in.quat);
   const std::vector<hexdyn::Override> overrides = overrides_of(override_texts);
   const auto n = static_cast<std::size_t>(in.count);
   std::vector<double> a(3 * n), dw(3 * n), qdd(static_cast<std::size_t>(J) * n);
@@ -446,6 +431,7 @@ py::dict forward_dynamics_file(
     const hexdyn::Scene scene =
         guard_yaml(scene_path, [&] { return hexdyn::load_scene(scene_path, overrides); });
     const hexdyn::RobotModel model = hexdyn::build_robot_model(scene.robot);
+    hexdyn_python::check_sphere_foot_normals(model, in.normals);
     hexdyn::RobotData data(model);
     for (std::size_t i = 0; i < n; ++i)
       forward_dynamics_sample(model, data, in, static_cast<py::ssize_t>(i), &a[3 * i], &dw[3 * i],

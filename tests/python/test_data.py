@@ -219,7 +219,7 @@ with tempfile.TemporaryDirectory() as d:
         f["meta"].attrs["version"] = "changed"
     assert "changed since it was read" in raises(OSError, changed.write, f"{d}/new.h5")
     assert not os.path.exists(f"{d}/new.h5")
-    assert not [n for n in os.listdir(d) if n.endswith(".tmp")], os.listdir(d)
+    assert not [n for n in os.listdir(d) if ".tmp." in n], os.listdir(d)
 
     # ---- open_envelope: h5py only; its to_xarray as xarray reads the file
     envelope = f"{d}/envelope.h5"

@@ -41,6 +41,7 @@ parallel.
 """
 
 import json
+import math
 import os
 from collections.abc import Mapping
 
@@ -64,32 +65,35 @@ def _lib():
     return _compiled
 
 
-def _value_text(value):
+_SET_ALLOWED = ("a number, a bool, None, a string (YAML text, as after --set KEY=), or a list or "
+                "a map of these (a numpy array as its list)")
+
+
+def _value_text(value, inner=False):
     """An override value as `--set` text: strings as given (YAML-parsed, "p/q" a fraction, as
-    on the command line), numbers exactly (repr), None as null, lists and maps as JSON (a
-    subset of YAML)."""
+    on the command line; quoted inside a list or a map), numbers exactly (repr; NaN and
+    infinities as YAML's .nan, .inf, -.inf, which the scene's reader refuses naming the key),
+    None as null, lists, tuples, numpy arrays and maps as YAML flow collections. TypeError
+    for anything else."""
+    if hasattr(value, "tolist") and hasattr(value, "ndim"):  # numpy arrays and scalars
+        value = value.tolist()
     if isinstance(value, str):
-        return value
+        return json.dumps(value) if inner else value
     if value is None:
         return "null"
     if isinstance(value, bool):
         return "true" if value else "false"
-    if isinstance(value, (int, float)):
-        return repr(value)
-    if isinstance(value, (list, tuple, Mapping)):
-        return json.dumps(value, allow_nan=False, default=_json_default)
-    if hasattr(value, "item"):  # numpy scalars
-        return _value_text(value.item())
-    raise TypeError(f"set: value {value!r} of type {type(value).__name__} is not a number, string, "
-                    "list, map or None")
-
-
-def _json_default(value):
-    if hasattr(value, "item"):
-        return value.item()
-    if hasattr(value, "tolist"):
-        return value.tolist()
-    raise TypeError(f"set: value {value!r} cannot be written as YAML")
+    if isinstance(value, int):
+        return str(int(value))
+    if isinstance(value, float):
+        return repr(float(value)) if math.isfinite(value) else (
+            ".nan" if math.isnan(value) else ".inf" if value > 0 else "-.inf")
+    if isinstance(value, (list, tuple)):
+        return "[" + ", ".join(_value_text(v, True) for v in value) + "]"
+    if isinstance(value, Mapping):
+        return "{" + ", ".join(f"{json.dumps(str(k))}: {_value_text(v, True)}"
+                               for k, v in value.items()) + "}"
+    raise TypeError(f"value {value!r} of type {type(value).__name__}, expected {_SET_ALLOWED}")
 
 
 def _overrides(set):
@@ -101,15 +105,24 @@ def _overrides(set):
     for key, value in set.items():
         if not isinstance(key, str):
             raise TypeError(f"set: key {key!r} is not a string")
-        out.append(f"{key}={_value_text(value)}")
+        try:
+            out.append(f"{key}={_value_text(value)}")
+        except TypeError as e:
+            raise TypeError(f"set: {key}: {e}") from None
+        except RecursionError:
+            raise TypeError(f"set: {key}: a value that holds itself, expected {_SET_ALLOWED}"
+                            ) from None
     return out
 
 
 def run(scene, set=None, *, allow_large=False):
     """Runs the scene file `scene` (a path) with the overrides `set` (a dict from dotted key to
-    value, as `--set key=value`) and returns its Result (the one type open_result returns
-    too). allow_large: as `--allow-large`. The scene's warnings (those `hexdyn run` prints,
-    such as a URDF robot's stance fallback) are issued as UserWarning."""
+    value, as `--set key=value`: a number, a bool, None, a string read as YAML text, or a list
+    or a map of these, a numpy array as its list; the scene's reader checks the value as the
+    key allows, and anything else is a TypeError naming the key) and returns its Result (the
+    one type open_result returns too). allow_large: as `--allow-large`. The scene's warnings
+    (those `hexdyn run` prints, such as a URDF robot's stance fallback) are issued as
+    UserWarning."""
     scene = _path(scene)
     handle, datasets, attrs, units = _lib().run(scene, _overrides(set), bool(allow_large))
     meta = {k: v for k, v in attrs.items() if not k.startswith("/")}
@@ -147,8 +160,16 @@ def sample_problem(scene, t, set=None):
       /solver/status (0 optimal, 1 relaxed, 2 failed); "required_friction" (NaN where none
       suffices) and "required_friction_leg" (-1 none);
     - "friction_coefficient" (the scene's mu), "friction" ("pyramid4", "pyramid8", "cone"),
-      "time"."""
-    return _lib().sample_problem(_path(scene), _overrides(set), float(t))
+      "time".
+
+    `t` must lie in the span the run samples, [t0, t1] (0 to the motion's end, or the end of a
+    final touchdown's transient): another t, NaN or an infinity raises ValueError in one line
+    giving that span."""
+    try:
+        t = float(t)
+    except (TypeError, ValueError):
+        raise TypeError(f"sample_problem: t = {t!r}, expected a number [s]") from None
+    return _lib().sample_problem(_path(scene), _overrides(set), t)
 
 
 def forward_dynamics(scene, base_position, base_orientation, joint_position,
@@ -172,15 +193,32 @@ def forward_dynamics(scene, base_position, base_orientation, joint_position,
     Returns a dict of numpy arrays: "base_linear_acceleration" (3) [m/s²], the classical
     acceleration of the root link's origin, "base_angular_acceleration" (3) [rad/s²], both
     world axes (as /base/linear_acceleration and /base/angular_acceleration), and
-    "joint_acceleration" (18) [rad/s²]; each (T, ...) for T states. Raises ValueError for an
-    argument of the wrong shape and hexdyn.SolverError for a robot whose mass matrix is
-    singular (robot.leg_inertia: massless)."""
-    def array(a):
-        return None if a is None else np.asarray(a, dtype=float)
+    "joint_acceleration" (18) [rad/s²]; each (T, ...) for T states.
+
+    Raises ValueError in one line naming the argument as numpy indexes it (the sample first
+    for T states: "joint_torque[4, 7]") for an argument of the wrong shape, a NaN or an
+    infinity in any argument, a base_orientation whose norm is off 1 by more than 1e-6, and a
+    foot normal under a sphere foot of norm below 1e-6 (normals are normalised; those under
+    point feet are not used); hexdyn.SolverError for a robot whose mass matrix is singular
+    (robot.leg_inertia: massless)."""
+    def array(a, name):
+        try:
+            return None if a is None else np.asarray(a, dtype=float)
+        except (TypeError, ValueError) as e:
+            raise ValueError(f"forward_dynamics: {name}: {_first_line(e)}, expected numbers"
+                             ) from None
     return _lib().forward_dynamics(
-        _path(scene), _overrides(set), array(base_position), array(base_orientation),
-        array(joint_position), array(base_linear_velocity), array(base_angular_velocity),
-        array(joint_velocity), array(joint_torque), array(foot_forces), array(foot_normals))
+        _path(scene), _overrides(set), array(base_position, "base_position"),
+        array(base_orientation, "base_orientation"), array(joint_position, "joint_position"),
+        array(base_linear_velocity, "base_linear_velocity"),
+        array(base_angular_velocity, "base_angular_velocity"),
+        array(joint_velocity, "joint_velocity"), array(joint_torque, "joint_torque"),
+        array(foot_forces, "foot_forces"), array(foot_normals, "foot_normals"))
+
+
+def _first_line(error):
+    text = str(error).strip()
+    return text.splitlines()[0] if text else type(error).__name__
 
 
 def __getattr__(name):

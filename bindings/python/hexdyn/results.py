@@ -61,6 +61,7 @@ def checked_path(path):
 # cmake/python.cmake) and lies next to this module in the build tree and in an installation.
 # SCHEMA below is {constant name: value} of every declaration, in the order of the headers.
 from . import _schema  # noqa: E402
+from .atomic_file import output_error, publish_atomically, why_not_replaceable  # noqa: E402
 
 SCHEMA_HEADER = "src/hexdyn/io/schema.hpp"  # the header _schema was generated from
 
@@ -418,8 +419,14 @@ class Result(_Datasets):
         each dataset and attribute (a kept run of a sweep becomes a file of its own; /meta
         keeps its created_utc). The source must be unchanged since it was read (same size and
         modification time), and `path` none of it, its hard links, nor the files its /meta
-        input_sha256 lists. Errors: hexdyn.IoError with one line; ValueError for a path with
-        a NUL character."""
+        input_sha256 lists, nor a link or a special file. The copy is built in memory and
+        written with write(2) (hexdyn.atomic_file: a full disk is one line with the OS's
+        reason, the temporary name fits any valid name); a signal that would end Python
+        (SIGTERM, SIGHUP, ...) removes the temporary file and ends the process with one line
+        and 128 + signal, Ctrl-C raises KeyboardInterrupt with that line; nothing is written
+        in either case (docs/user/faults.md#pythons-writer).
+
+        Errors: hexdyn.IoError with one line; ValueError for a path with a NUL character."""
         if self._handle is not None:
             from . import _hexdyn
             _hexdyn.write(self._handle, checked_path(path))
@@ -1303,26 +1310,25 @@ def _listed_inputs(meta):
     return paths
 
 
-def _output_error(path, reason):
-    return _io_error(f"cannot write output '{path}': {reason}")
-
-
 def _check_copy_target(name, source, inputs):
     """The checks of `hexdyn run -o` on an output path, against the file a result was read
-    from (`source`, by identity and path) and the files its /meta lists: hexdyn.IoError."""
+    from (`source`, by identity and path) and the files its /meta lists: hexdyn.IoError. An
+    existing `name` must be a regular file (a link, a folder or a special file is refused, not
+    followed: atomic_file.why_not_replaceable)."""
     if not name:
-        raise _output_error(name, "empty path")
+        raise output_error(name, "empty path")
     folder = os.path.dirname(os.path.abspath(name))
     if not os.path.isdir(folder):
-        raise _output_error(name, f"folder '{folder}' does not exist")
+        raise output_error(name, f"folder '{folder}' does not exist")
+    why = why_not_replaceable(name)
+    if why:
+        raise output_error(name, f"it {why}")
     try:
         target = os.stat(name)
     except FileNotFoundError:
         return
     except OSError as e:
-        raise _output_error(name, e.strerror) from None
-    if not stat.S_ISREG(target.st_mode):
-        raise _output_error(name, "it exists and is not a regular file")
+        raise output_error(name, e.strerror) from None
     for role, p in [("file the result was read from", source)] + [
             ("input file", p) for p in inputs]:
         try:
@@ -1330,8 +1336,8 @@ def _check_copy_target(name, source, inputs):
         except OSError:
             continue
         if (st.st_dev, st.st_ino) == (target.st_dev, target.st_ino):
-            raise _output_error(name, f"it is the {role} '{p}' (same device and inode), which "
-                                "the output would destroy")
+            raise output_error(name, f"it is the {role} '{p}' (same device and inode), which "
+                               "the output would destroy")
 
 
 def _copy_attributes(src, dst):
@@ -1362,50 +1368,44 @@ def _attach_scales(src_root, dst_root):
     src_root.visititems(visit)
 
 
+def _copy_image(file, group, check):
+    """The bytes of an HDF5 file holding the objects of the group `group` of the file `file`,
+    built in memory (h5py's core driver, no backing store): every member copied with h5py
+    (H5Ocopy: values, type, shape, storage), every attribute with its stored type, the
+    dimension scales attached again. check() is called before each member of the group is
+    copied and after the last (atomic_file: it stops the copy once a signal came)."""
+    with h5py.File(file, "r") as src:
+        root = src[group]
+        with h5py.File(f"hexdyn-copy-{secrets.token_hex(8)}.h5", "w", driver="core",
+                       backing_store=False, libver=src.libver) as dst:
+            for key in root:
+                check()
+                root.copy(root[key], dst, name=key, without_attrs=True)
+            _copy_attributes(root, dst)
+            root.visititems(lambda n, obj: _copy_attributes(obj, dst[n]))
+            _attach_scales(root, dst)
+            check()
+            dst.flush()
+            return dst.id.get_file_image()
+
+
 def write_copy(origin, path, inputs=()):
     """Writes the objects of the group `group` of the file `file` (origin: (file, group,
-    identity when read)) as the file `path`: every member copied with h5py (H5Ocopy: values,
-    type, shape, storage), every attribute with its stored type, the dimension scales
-    attached again; into a temporary file of the target's folder, synced and renamed onto
-    `path` when complete (removed on any error, so that nothing is left at `path`). Refuses,
-    with hexdyn.IoError in one line, a source changed since it was read and a target that is
-    the source or one of `inputs` (_check_copy_target)."""
+    identity when read)) as the file `path`: the file's image built in memory (_copy_image)
+    and published with atomic_file.publish_atomically (a temporary file beside `path`, written
+    with write(2), synced and renamed over `path` when complete; removed on any error or
+    signal, an existing file at `path` kept). Refuses, with hexdyn.IoError in one line, a
+    source changed since it was read and a target that is the source or one of `inputs`
+    (_check_copy_target)."""
     file, group, identity = origin
     name = os.fsdecode(path)
     _check_copy_target(name, file, inputs)
     try:
         unchanged = _file_identity(file) == identity
     except OSError as e:
-        raise _output_error(name, f"the file the result was read from, '{file}', cannot be "
-                            f"read: {e.strerror}") from None
+        raise output_error(name, f"the file the result was read from, '{file}', cannot be "
+                           f"read: {e.strerror}") from None
     if not unchanged:
-        raise _output_error(name, f"the file the result was read from, '{file}', changed since "
-                            "it was read; open it again")
-    folder = os.path.dirname(os.path.abspath(name))
-    try:  # created as the writer of hexdyn creates files: mode 0666 less the umask
-        tmp = os.path.join(folder, f".{os.path.basename(name)}.{os.getpid()}."
-                                   f"{secrets.token_hex(6)}.tmp")
-        os.close(os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o666))
-    except OSError as e:
-        raise _output_error(name, e.strerror) from None
-    try:
-        with h5py.File(file, "r") as src:
-            root = src[group]
-            with h5py.File(tmp, "w", libver=src.libver) as dst:
-                for key in root:
-                    root.copy(root[key], dst, name=key, without_attrs=True)
-                _copy_attributes(root, dst)
-                root.visititems(lambda n, obj: _copy_attributes(obj, dst[n]))
-                _attach_scales(root, dst)
-        with open(tmp, "rb") as f:
-            os.fsync(f.fileno())
-        os.replace(tmp, name)
-    except BaseException as e:
-        try:
-            os.remove(tmp)
-        except OSError:
-            pass
-        if isinstance(e, (OSError, ValueError, KeyError)):
-            raise _output_error(name, str(e).strip().splitlines()[0] if str(e).strip()
-                                else type(e).__name__) from None
-        raise
+        raise output_error(name, f"the file the result was read from, '{file}', changed since "
+                           "it was read; open it again")
+    publish_atomically(path, lambda check: _copy_image(file, group, check))
