@@ -30,7 +30,8 @@ sw = hr.open_sweep(path)
 assert sw.status_names == ["ok"] * 4, (sw.status_names, sw.table["message"])
 robot = sw.axes[0]
 assert robot.key == "robot" and list(robot.labels) == ["phantomx_mark4", "kraby"], robot
-assert list(robot.cases) == ["robot.urdf", "robot.forward_axis", "gait.stroke"], robot.cases
+assert list(robot.cases) == ["robot.urdf", "robot.forward_axis", "gait.stroke",
+                             "gait.foothold_margin"], robot.cases
 assert robot.cases["robot.urdf"] == [os.path.join(src, "robots", n)
                                      for n in ("phantomx_mark4.urdf", "kraby.urdf")]
 assert list(robot.cases["robot.forward_axis"]) == ["+x", "+y"]
@@ -73,7 +74,7 @@ vstatus=$?
 set -e
 [ "$status" = 2 ] && [ "$vstatus" = 2 ] || { cat bad.log validate_bad.log; fail "bad case: exit $status, validate $vstatus"; }
 [ "$(wc -l < bad.log)" = 1 ] || { cat bad.log; fail "bad case: not one line"; }
-grep -q "bad.yaml: axes\[0\].cases\[1\] (kraby: robot.urdf=$SRC/robots/kraby.urdf, robot.forward_axis=+x, gait.stroke=0.025): .*set robot.forward_axis" bad.log ||
+grep -q "bad.yaml: axes\[0\].cases\[1\] (kraby: robot.urdf=$SRC/robots/kraby.urdf, robot.forward_axis=+x, gait.stroke=0.025, gait.foothold_margin=0.015): .*set robot.forward_axis" bad.log ||
   { cat bad.log; fail "bad case: message"; }
 [ ! -e bad.h5 ] && [ ! -e bad.h5.checkpoint ] || fail "bad case: output written"
 echo "cases: ok"
