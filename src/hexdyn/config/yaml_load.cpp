@@ -1,19 +1,14 @@
 #include "hexdyn/config/yaml_load.hpp"
 
-#include <fcntl.h>
-#include <sys/stat.h>
-#include <unistd.h>
 #include <yaml-cpp/depthguard.h>
 #include <yaml-cpp/eventhandler.h>
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
-#include <cstring>
 #include <filesystem>
 #include <map>
 #include <regex>
@@ -30,14 +25,6 @@ namespace hexdyn {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string kind_of(mode_t mode) {
-  if (S_ISDIR(mode)) return "is a directory";
-  if (S_ISCHR(mode) || S_ISBLK(mode)) return "is a device";
-  if (S_ISFIFO(mode)) return "is a FIFO (named pipe)";
-  if (S_ISSOCK(mode)) return "is a socket";
-  return "is not a regular file";
-}
 
 /// Checks the event stream of one YAML text (no tree is built, aliases are not
 /// expanded, so the check is linear in the text). It counts the nodes and scalar bytes the
@@ -337,16 +324,6 @@ YAML::Node load_with_inheritance(const std::string& path, std::vector<ChainLink>
 }
 
 }  // namespace
-
-std::optional<std::string> why_not_regular_file(const std::string& path) {
-  struct stat st {};
-  if (::stat(path.c_str(), &st) != 0) {
-    if (errno == ENOENT || errno == ENOTDIR) return std::string("does not exist");
-    return std::string("cannot be read (") + std::strerror(errno) + ")";
-  }
-  if (!S_ISREG(st.st_mode)) return kind_of(st.st_mode);
-  return std::nullopt;
-}
 
 std::string read_text_file(const std::string& path) {
   // config/inputs.hpp: type and size checked before reading, UTF-8, kept while a command runs.

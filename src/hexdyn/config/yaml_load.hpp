@@ -24,6 +24,8 @@
 #include <string>
 #include <vector>
 
+#include "hexdyn/process/paths.hpp"  // why_not_regular_file, for the readers of files
+
 namespace YAML {
 class Node;
 }
@@ -46,11 +48,6 @@ inline constexpr std::uint64_t kMaxYamlNodes = 1000000;
 /// Most bytes of scalar text one YAML text may stand for once its aliases are expanded
 /// (16 MiB: 16 times the largest file; one 1 MiB value repeated by aliases is refused).
 inline constexpr std::uint64_t kMaxYamlBytes = std::uint64_t{16} << 20;
-
-/// Why `path` cannot be read as a configuration file without opening it, or nothing
-/// when it names a regular file (symbolic links followed): "does not exist", "is a
-/// directory", "is a device", "is a FIFO (named pipe)", "is a socket", ...
-std::optional<std::string> why_not_regular_file(const std::string& path);
 
 /// Parses YAML text with the checks above, any document shape (a `--set` value may be a
 /// scalar or a list). `source_name` starts every message. Throws ConfigError.

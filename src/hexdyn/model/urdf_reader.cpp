@@ -6,6 +6,7 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <limits>
 #include <map>
@@ -736,6 +737,9 @@ UrdfRobot read_urdf_robot_from_string(const std::string& urdf_text, const std::s
 
 std::string read_urdf_text(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
+  std::error_code ec;
+  if (!in && !std::filesystem::exists(path, ec) && !ec)  // a link to nothing too
+    throw ConfigError(path + ": does not exist, expected a URDF file");
   if (!in) throw ConfigError(path + ": cannot read the URDF file");
   std::ostringstream s;
   s << in.rdbuf();

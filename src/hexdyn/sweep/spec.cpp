@@ -208,11 +208,10 @@ YAML::Node read_sweep_base(const SpecReader& r, const YAML::Node& root, const st
   if (!base.IsScalar() || base.Scalar().empty())
     r.fail_value("base", base, "the path of a scene file");
   spec.base_path = path_beside(path, base.Scalar());
-  std::error_code ec;
-  if (!fs::is_regular_file(spec.base_path, ec))
+  if (const auto why = why_not_regular_file(spec.base_path))
     r.fail_value("base", base,
-                 "the path of a scene file, relative to the sweep file (" + spec.base_path +
-                     " is not a file)");
+                 "the path of a scene file, relative to the sweep file (" + spec.base_path + " " +
+                     *why + ")");
   return load_scene_tree(spec.base_path, &chain);
 }
 
