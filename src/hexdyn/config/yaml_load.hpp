@@ -53,6 +53,18 @@ inline constexpr std::uint64_t kMaxYamlBytes = std::uint64_t{16} << 20;
 /// scalar or a list). `source_name` starts every message. Throws ConfigError.
 YAML::Node parse_yaml_checked(const std::string& text, const std::string& source_name);
 
+/// Whether `node` is a scalar that YAML (and Python's yaml) reads as a string although its
+/// text is a number to hexdyn (a YAML int or float, or p/q): quoted ("1e-2", '0.05') or
+/// tagged !!str (!!str 200). Where a number is expected it is refused, never read as one
+/// (quoted_number_message). The parse above tags every quoted number !!str, so that it stays
+/// a string when a tree is written out and read again (a sweep's base scene, a scenario):
+/// yaml-cpp writes a quoted scalar without its quotes.
+bool is_quoted_number(const YAML::Node& node);
+
+/// "got the string \"1e-2\", expected EXPECTED (write it unquoted)": the refusal of a quoted
+/// number (is_quoted_number) where a number is expected.
+std::string quoted_number_message(const YAML::Node& node, const std::string& expected);
+
 /// "p/q" with integers p and q ≠ 0 (spaces allowed around '/') → p divided by q;
 /// nothing for any other text. Sweep axis values, `--set` values and the number keys of a
 /// scene file (config/scene_key_reader.hpp) use it.
