@@ -7,7 +7,7 @@
 # root (a tmpfs to fill) exits 77 without it, which ctest reports as skipped, with the reason
 # in its output.
 set(HEXDYN_FAULT_TESTS links full_disk signals signals_mpirun lost_checkpoint orphans leftovers
-                       inputs text readers sizes urdf_values)
+                       inputs text readers sizes urdf_values messages)
 foreach(test_name IN LISTS HEXDYN_FAULT_TESTS)
   add_test(NAME faults.${test_name}
            COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/faults/${test_name}.sh $<TARGET_FILE:hexdyn>
