@@ -7,7 +7,7 @@
 # root (a tmpfs to fill) exits 77 without it, which ctest reports as skipped, with the reason
 # in its output.
 set(HEXDYN_FAULT_TESTS links full_disk signals signals_mpirun lost_checkpoint orphans leftovers
-                       inputs text readers sizes urdf_values replay)
+                       inputs text readers sizes urdf_values replay messages)
 # Python's writer of a read result (Result.write): signals, long names, a full disk.
 list(APPEND HEXDYN_FAULT_TESTS python_writer)
 foreach(test_name IN LISTS HEXDYN_FAULT_TESTS)

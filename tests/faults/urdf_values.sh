@@ -5,7 +5,8 @@
 # (a <mass value="1e300"> that ran to NaN torques, an inertia, a joint origin, a joint limit,
 # an effort) is refused by `run`, `validate`, a sweep's cases axis and an envelope's cases, in
 # one line naming the file, the link or joint and the value: exit status 2, no output, the
-# inputs unchanged. Every real robot of the repository still loads.
+# inputs unchanged. So is a sphere, box or cylinder of size 0 or below in a <collision> or
+# <visual> (the Kraby's and the pexod's). Every real robot of the repository still loads.
 # shellcheck source=common.sh
 source "$(dirname "$0")/common.sh"
 
@@ -13,10 +14,10 @@ mkdir out
 KRABY="$SRC/robots/kraby.urdf"
 SCENE="$SRC/configs/robots/kraby_stairs.yaml"
 
-# edited NAME PYTHON-EXPRESSION: robots/kraby.urdf with its text passed through the
-# expression (a function of `t`), as NAME.urdf; the expression must change the text.
+# edited NAME PYTHON-EXPRESSION [URDF]: robots/kraby.urdf (or URDF) with its text passed
+# through the expression (a function of `t`), as NAME.urdf; the expression must change the text.
 edited() {
-  "$PY" - "$KRABY" "$2" > "$1.urdf" << 'EOF'
+  "$PY" - "${3:-$KRABY}" "$2" > "$1.urdf" << 'EOF'
 import re, sys
 t = open(sys.argv[1]).read()
 u = eval(sys.argv[2])
@@ -30,6 +31,10 @@ edited far 're.sub(r"(<inertial>\s*<origin xyz=\")[^\"]*\"", lambda m: m.group(1
 edited far_joint 're.sub(r"(<joint [^>]*>(?:(?!</joint>).)*?<origin xyz=\")[^\"]*\"", lambda m: m.group(1) + "0 -12 0\"", t, count=1, flags=re.S)'
 edited turns 're.sub(r"upper=\"[^\"]*\"", "upper=\"20\"", t, count=1)'
 edited strong 're.sub(r"effort=\"[^\"]*\"", "effort=\"1e9\"", t, count=1)'
+edited point 're.sub(r"<sphere radius=\"[^\"]*\"", "<sphere radius=\"0\"", t, count=1)'
+edited flat 're.sub(r"<box size=\"[^\"]*\"", "<box size=\"0.024 -0.0451 0.0347\"", t, count=1)'
+edited short 're.sub(r"<cylinder length=\"[^\"]*\"", "<cylinder length=\"-0.06\"", t, count=1)' \
+  "$SRC/robots/pexod.urdf"
 
 {
   echo "base: $SCENE"
@@ -66,6 +71,12 @@ refused limits "turns.urdf: joint '[^']+': limits \[.*, 20\] rad, expected limit
   run "$SCENE" -o out/r.h5 --set robot.urdf=turns.urdf
 refused effort "strong.urdf: joint '[^']+': effort limit 1e\+09 N m, expected a number in \[0, 1e\+06\]" \
   run "$SCENE" -o out/r.h5 --set robot.urdf=strong.urdf
+refused sphere "point.urdf: link '[^']+': <collision><sphere radius=\"0\">, expected a radius > 0 m$" \
+  run "$SCENE" -o out/r.h5 --set robot.urdf=point.urdf
+refused box "flat.urdf: link '[^']+': <collision><box size=\"0.024 -0.0451 0.0347\">, expected three sizes > 0 m$" \
+  validate "$SCENE" --set robot.urdf=flat.urdf
+refused cylinder "short.urdf: link 'leg_2_1': <visual><cylinder radius=\"0.02\" length=\"-0.06\">, expected a radius and a length > 0 m$" \
+  run "$SRC/configs/robots/pexod_stairs.yaml" -o out/r.h5 --set "robot.urdf=$PWD/short.urdf"
 refused sweep_case "cases.yaml: axes\[0\].cases\[1\] \(heavy: .*\): .*heavy.urdf: link '[^']+': mass 1e\+300 kg" \
   validate cases.yaml
 refused envelope_case "envelope.yaml: cases\[0\] \(heavy: .*\): .*heavy.urdf: link '[^']+': mass 1e\+300 kg" \

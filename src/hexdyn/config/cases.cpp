@@ -29,7 +29,7 @@ std::string joined(const std::vector<std::string>& words) {
 /// the study file.
 std::string case_value(const YAML::Node& v, const std::string& key, const std::string& file) {
   std::string text = yaml_inline(v);
-  if (!v.IsScalar()) return text;
+  if (!v.IsScalar() || is_quoted_number(v)) return text;  // a quoted number stays a string
   if (const auto q = parse_fraction(v.Scalar())) {
     char buf[40];
     std::snprintf(buf, sizeof buf, "%.17g", *q);

@@ -83,6 +83,7 @@ std::array<Vec3, kLegs> read_foot_offsets(Reader& r) {
       "[x, y, z], six [x, y, z] in the order L1 … L6 of /model/leg_names, or a map {L1: [x, y, "
       "z], …, L6: [x, y, z]}, each coordinate " +
       range.describe() + " m";
+  r.refuse_quoted_numbers(key, node, range.describe() + " m");
   if (!node.IsSequence() || node.size() == 0) r.fail_value(key, node, expected);
   if (!node[0].IsSequence()) {  // one point for every leg
     if (node.size() != 3) r.fail_value(key, node, expected);
@@ -555,22 +556,6 @@ YAML::Node requests_last(YAML::Node resolved) {
 }
 
 }  // namespace
-
-std::string yaml_inline(const YAML::Node& node) {
-  if (!node.IsDefined() || node.IsNull()) return "null";
-  if (node.IsScalar()) return node.Scalar();
-  YAML::Emitter out;
-  out << YAML::Flow << node;
-  return out.c_str();
-}
-
-std::string yaml_for_message(const YAML::Node& node) {
-  std::string text = yaml_inline(node);
-  if (text.size() <= kMaxMessageValueChars) return text;
-  const std::size_t whole = text.size();
-  text.resize(kMaxMessageValueChars);
-  return text + "... (" + std::to_string(whole) + " characters)";
-}
 
 std::vector<std::string> split_key_path(const std::string& path) {
   std::vector<std::string> keys;

@@ -23,7 +23,10 @@ struct Override {
   std::string value;
 };
 
-/// A YAML value on one line, as messages show it ("null" when absent).
+/// A YAML value on one line, as messages show it ("null" when absent): lists and maps in
+/// flow style, aliases written out, a quoted number (is_quoted_number) in quotes, so that the
+/// text parsed again (a sweep's or envelope's `set:`, a case's value) is again a string.
+/// Defined in yaml_load.cpp.
 std::string yaml_inline(const YAML::Node& node);
 
 /// yaml_inline cut to kMaxMessageValueChars characters for a message, with the length of

@@ -53,6 +53,38 @@ std::string kind_of(mode_t mode) {
   return "is not a regular file";
 }
 
+/// The signature an HDF5 file's superblock starts with.
+constexpr char kHdf5Signature[8] = {'\x89', 'H', 'D', 'F', '\r', '\n', '\x1a', '\n'};
+
+std::string binary_file(std::ptrdiff_t nul_offset) {
+  return "is a binary file (a NUL byte at offset " + std::to_string(nul_offset) + "), not text";
+}
+
+/// Why the open file `fd` of `size` bytes is no text, or nothing: an HDF5 file (its signature
+/// at offset 0, 512, 1024, 2048, …: where HDF5 looks for the superblock), or a binary file (a
+/// NUL byte in its first 4 kB). Looked at before the size, so that a large result file is
+/// named as what it is.
+std::optional<std::string> why_not_text(int fd, std::uint64_t size) {
+  char head[4096];
+  ssize_t n = 0;
+  do n = ::pread(fd, head, sizeof head, 0);
+  while (n < 0 && errno == EINTR);
+  if (n < 0) return std::nullopt;  // the read that follows names the reason
+  for (std::uint64_t at = 0; at + sizeof kHdf5Signature <= size; at = at == 0 ? 512 : 2 * at) {
+    char sig[sizeof kHdf5Signature];
+    const bool in_head = at + sizeof sig <= static_cast<std::uint64_t>(n);
+    if (in_head)
+      std::memcpy(sig, head + at, sizeof sig);
+    else if (::pread(fd, sig, sizeof sig, static_cast<off_t>(at)) != sizeof sig)
+      break;
+    if (std::memcmp(sig, kHdf5Signature, sizeof sig) == 0)
+      return std::string("is an HDF5 file (a result, sweep or envelope file?), not text");
+  }
+  if (const void* nul = std::memchr(head, '\0', static_cast<std::size_t>(n)))
+    return binary_file(static_cast<const char*>(nul) - head);
+  return std::nullopt;
+}
+
 InputFile read_from_disk(const std::string& path, const std::string& absolute,
                          std::size_t max_bytes, const std::string& expected) {
   require_utf8(absolute, path + ": the file's path");
@@ -68,6 +100,8 @@ InputFile read_from_disk(const std::string& path, const std::string& absolute,
   struct stat st {};
   if (::fstat(f.fd, &st) != 0 || !S_ISREG(st.st_mode))  // replaced since the stat above
     throw ConfigError(path + ": " + kind_of(st.st_mode) + ", expected " + expected);
+  if (const auto why = why_not_text(f.fd, static_cast<std::uint64_t>(st.st_size)))
+    throw ConfigError(path + ": " + *why + ", expected " + expected);
   char limit[32];
   std::snprintf(limit, sizeof limit, "%.3g MiB", static_cast<double>(max_bytes) / (1 << 20));
   const std::string too_big = path + ": larger than " + std::to_string(max_bytes) + " bytes (" +
@@ -86,6 +120,9 @@ InputFile read_from_disk(const std::string& path, const std::string& absolute,
     text->append(buf, static_cast<std::size_t>(n));
     if (text->size() > max_bytes) throw ConfigError(too_big);  // grew while read
   }
+  if (const void* nul = std::memchr(text->data(), '\0', text->size()))
+    throw ConfigError(path + ": " + binary_file(static_cast<const char*>(nul) - text->data()) +
+                      ", expected " + expected);
   require_utf8(*text, path);
   InputFile file;
   file.path = path;

@@ -49,9 +49,10 @@ inline constexpr std::size_t kMaxUrdfBytes = std::size_t{16} << 20;
 /// `max_bytes`, whose path and text are UTF-8. `expected` names what the reader wants ("a
 /// configuration file (a regular YAML file)") in the ConfigError of one line that refuses
 /// a missing, special (FIFO, device, folder: refused by type before any open that could
-/// block), unreadable, too large or non-UTF-8 file. While an InputFreeze lives, returns the
-/// bytes kept from the first read of the same absolute path, if any, and keeps these.
-/// `role` is left empty; `path` is `path`.
+/// block), unreadable, HDF5 or binary (a NUL byte; both named so before the size is looked
+/// at: a result file given as a scene), too large or non-UTF-8 file. While an InputFreeze
+/// lives, returns the bytes kept from the first read of the same absolute path, if any, and
+/// keeps these. `role` is left empty; `path` is `path`.
 InputFile read_input_text(const std::string& path, std::size_t max_bytes,
                           const std::string& expected);
 

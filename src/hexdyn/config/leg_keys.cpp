@@ -91,6 +91,7 @@ std::array<std::optional<Vec3>, kLegs> read_leg_vectors(Reader& r, const LegVect
   }
   const YAML::Node node = r.peek(key.path);
   if (node.IsMap()) return read_map(r, key, node);  // its entries asked for one by one
+  r.refuse_quoted_numbers(key.path, node, key.range.describe());
   if (node.IsSequence() && node.size() == kLegs) return read_list(r, key);
   bool scalars = node.IsSequence() && node.size() == 3;
   for (std::size_t i = 0; scalars && i < 3; ++i) scalars = node[i].IsScalar();

@@ -115,6 +115,17 @@ class Reader {
                                const std::string& expected) const {
     fail(path, "got " + yaml_for_message(node) + ", expected " + expected);
   }
+  /// Refuses the first quoted number (is_quoted_number) in `node` or in the lists in it, named
+  /// by its path ("key[2][0]"), where a number `expected` is wanted.
+  void refuse_quoted_numbers(const std::string& path, const YAML::Node& node,
+                             const std::string& expected) const {
+    if (node.IsSequence()) {
+      for (std::size_t i = 0; i < node.size(); ++i)
+        refuse_quoted_numbers(path + "[" + std::to_string(i) + "]", node[i], expected);
+    } else if (is_quoted_number(node)) {
+      fail(path, quoted_number_message(node, expected));
+    }
+  }
 
   /// True when the key holds the scalar `word` (then recorded as resolved); the key
   /// counts as asked for either way.
@@ -150,9 +161,11 @@ class Reader {
       return *def;
     }
     long long v = 0;
+    const std::string expected =
+        "an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
+    if (node->quoted_number) fail(path, quoted_number_message(node->yaml, expected));
     if (node->type != YAML::NodeType::Scalar || !decode_scalar(*node, v) || v < lo || v > hi)
-      fail_value(path, SceneTree::yaml(*node),
-                 "an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+      fail_value(path, SceneTree::yaml(*node), expected);
     set_resolved(path, v);
     return static_cast<int>(v);
   }
@@ -176,6 +189,9 @@ class Reader {
         bad();
       out.reserve(items.size());
       for (const auto& e : items) {
+        if (e->quoted_number)
+          fail(path + "[" + std::to_string(out.size()) + "]",
+               quoted_number_message(e->yaml, r.describe()));
         double v = 0.0;
         if (e->type != YAML::NodeType::Scalar || !decode_scalar(*e, v) || !std::isfinite(v) ||
             !r.contains(v))
@@ -288,6 +304,7 @@ class Reader {
       set_resolved(path, *def);
       return *def;
     }
+    if (node->quoted_number) fail(path, quoted_number_message(node->yaml, r.describe()));
     double v = 0.0;
     // A p/q fraction (parse_fraction) is its value, as in `--set` and sweep files: messages
     // show the number those write in its place (fraction_to_number_text), so that a scene

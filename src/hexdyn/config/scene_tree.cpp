@@ -1,5 +1,7 @@
 #include "hexdyn/config/scene_tree.hpp"
 
+#include "hexdyn/config/yaml_load.hpp"
+
 namespace hexdyn {
 namespace {
 
@@ -56,7 +58,10 @@ NodePtr SceneTree::convert(const YAML::Node& node) {
   auto out = std::make_shared<Node>();
   out->yaml = node;
   out->type = node.Type();
-  if (node.IsScalar()) out->scalar = node.Scalar();
+  if (node.IsScalar()) {
+    out->scalar = node.Scalar();
+    out->quoted_number = is_quoted_number(node);
+  }
   if (node.IsMap()) {
     out->entries.reserve(node.size());
     for (auto it = node.begin(); it != node.end(); ++it)

@@ -38,6 +38,7 @@ class SceneTree {
     std::vector<Entry> entries;  ///< a map's entries in order (empty for anything else)
     std::vector<NodePtr> items;  ///< a sequence's items in order (empty for anything else)
     bool changed = false;        ///< a map whose entries were set after it was read
+    bool quoted_number = false;  ///< a string whose text is a number (is_quoted_number)
   };
 
   /// The tree of `root` (any node; the reader reports a top level that is not a map).

@@ -6,6 +6,7 @@
 #include <set>
 
 #include "hexdyn/config/config.hpp"
+#include "hexdyn/config/yaml_load.hpp"
 #include "hexdyn/core/errors.hpp"
 
 namespace hexdyn {
@@ -18,6 +19,11 @@ void SpecReader::fail_value(const std::string& path, const YAML::Node& node,
                             const std::string& expected) const {
   if (!node.IsDefined()) fail(path, "missing, expected " + expected);
   fail(path, "got " + yaml_for_message(node) + ", expected " + expected);
+}
+
+void SpecReader::refuse_quoted_number(const std::string& path, const YAML::Node& node,
+                                      const std::string& expected) const {
+  if (is_quoted_number(node)) fail(path, quoted_number_message(node, expected));
 }
 
 void SpecReader::check_keys(const YAML::Node& node, const std::string& path,

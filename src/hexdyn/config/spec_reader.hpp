@@ -22,6 +22,11 @@ class SpecReader {
   /// node is undefined.
   [[noreturn]] void fail_value(const std::string& path, const YAML::Node& node,
                                const std::string& expected) const;
+  /// Throws "FILE: path: got the string \"1e-2\", expected WHAT (write it unquoted)" when
+  /// `node` is a quoted number (yaml_load.hpp's is_quoted_number): every number of a study
+  /// file is read through a check of this.
+  void refuse_quoted_number(const std::string& path, const YAML::Node& node,
+                            const std::string& expected) const;
   /// `node` at `path` ("" for the top level) must be a map whose every key is one of
   /// `allowed`; an unknown key is named with the sorted list of allowed ones.
   void check_keys(const YAML::Node& node, const std::string& path,

@@ -1,19 +1,14 @@
 #include "hexdyn/config/yaml_load.hpp"
 
-#include <fcntl.h>
-#include <sys/stat.h>
-#include <unistd.h>
 #include <yaml-cpp/depthguard.h>
 #include <yaml-cpp/eventhandler.h>
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
-#include <cstring>
 #include <filesystem>
 #include <map>
 #include <regex>
@@ -31,12 +26,14 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string kind_of(mode_t mode) {
-  if (S_ISDIR(mode)) return "is a directory";
-  if (S_ISCHR(mode) || S_ISBLK(mode)) return "is a device";
-  if (S_ISFIFO(mode)) return "is a FIFO (named pipe)";
-  if (S_ISSOCK(mode)) return "is a socket";
-  return "is not a regular file";
+/// The tag of a scalar given as !!str.
+const char* const kStringTag = "tag:yaml.org,2002:str";
+
+/// Whether hexdyn reads `text` as a number where one is expected: a YAML int or float
+/// (yaml-cpp's conversion), or p/q.
+bool reads_as_number(const std::string& text) {
+  double v = 0.0;
+  return YAML::convert<double>::decode(YAML::Node(text), v) || parse_fraction(text).has_value();
 }
 
 /// Checks the event stream of one YAML text (no tree is built, aliases are not
@@ -50,6 +47,8 @@ class StructureCheck : public YAML::EventHandler {
   enum class Top { kNone, kNull, kScalar, kSequence, kMap };
   Top top() const { return top_; }
   const std::string& top_scalar() const { return top_scalar_; }
+  /// Whether a quoted scalar's text is a number (is_quoted_number).
+  bool quoted_numbers() const { return quoted_numbers_; }
 
   void OnDocumentStart(const YAML::Mark&) override {}
   void OnDocumentEnd() override {}
@@ -66,9 +65,10 @@ class StructureCheck : public YAML::EventHandler {
     count(mark, anchors_[anchor], 0);
     node(mark, "", Top::kNull);
   }
-  void OnScalar(const YAML::Mark& mark, const std::string&, YAML::anchor_t anchor,
+  void OnScalar(const YAML::Mark& mark, const std::string& tag, YAML::anchor_t anchor,
                 const std::string& value) override {
     if (top_ == Top::kNone) top_scalar_ = value;
+    if (tag == "!" && !quoted_numbers_) quoted_numbers_ = reads_as_number(value);
     count(mark, {1, value.size()}, anchor);
     node(mark, value, Top::kScalar);
   }
@@ -219,11 +219,14 @@ class StructureCheck : public YAML::EventHandler {
   std::vector<Expanded> anchors_;  ///< by anchor id: its node's size (0 nodes: still open)
   Top top_ = Top::kNone;
   std::string top_scalar_;
+  bool quoted_numbers_ = false;
 };
 
-/// Runs the structure check over `text`; returns the top-level kind.
-StructureCheck::Top check_structure(const std::string& text, const std::string& source_name,
-                                    std::string* top_scalar) {
+/// Runs the structure check over `text`; returns the top-level kind and whether a quoted
+/// scalar's text is a number.
+std::pair<StructureCheck::Top, bool> check_structure(const std::string& text,
+                                                     const std::string& source_name,
+                                                     std::string* top_scalar) {
   std::istringstream in(text);
   YAML::Parser parser(in);
   StructureCheck check(source_name);
@@ -255,15 +258,29 @@ StructureCheck::Top check_structure(const std::string& text, const std::string& 
     throw ConfigError(source_name + ":" + std::to_string(second.line) +
                       ": a second YAML document (after '---'), expected one document per file");
   if (top_scalar) *top_scalar = check.top_scalar();
-  return check.top();
+  return {check.top(), check.quoted_numbers()};
+}
+
+/// Tags every quoted scalar whose text is a number !!str (is_quoted_number): yaml-cpp writes
+/// a quoted scalar (tag "!") without its quotes, and an explicit tag with it.
+void tag_quoted_numbers(const YAML::Node& node) {
+  if (node.IsScalar()) {
+    if (node.Tag() == "!" && reads_as_number(node.Scalar())) YAML::Node(node).SetTag(kStringTag);
+  } else if (node.IsSequence()) {
+    for (const YAML::Node& item : node) tag_quoted_numbers(item);
+  } else if (node.IsMap()) {
+    for (const auto& kv : node) tag_quoted_numbers(kv.second);
+  }
 }
 
 YAML::Node parse_checked(const std::string& text, const std::string& source_name,
                          StructureCheck::Top* top, std::string* top_scalar) {
   try {
-    const StructureCheck::Top t = check_structure(text, source_name, top_scalar);
+    const auto [t, quoted_numbers] = check_structure(text, source_name, top_scalar);
     if (top) *top = t;
-    return YAML::Load(text);
+    YAML::Node root = YAML::Load(text);
+    if (quoted_numbers) tag_quoted_numbers(root);
+    return root;
   } catch (const YAML::DeepRecursion& e) {
     throw ConfigError(source_name + ":" + std::to_string(e.mark.line + 1) + ":" +
                       std::to_string(e.mark.column + 1) +
@@ -338,14 +355,59 @@ YAML::Node load_with_inheritance(const std::string& path, std::vector<ChainLink>
 
 }  // namespace
 
-std::optional<std::string> why_not_regular_file(const std::string& path) {
-  struct stat st {};
-  if (::stat(path.c_str(), &st) != 0) {
-    if (errno == ENOENT || errno == ENOTDIR) return std::string("does not exist");
-    return std::string("cannot be read (") + std::strerror(errno) + ")";
+bool is_quoted_number(const YAML::Node& node) {
+  if (!node.IsDefined() || !node.IsScalar()) return false;  // also a missing key's node
+  const std::string& tag = node.Tag();
+  return (tag == "!" || tag == kStringTag) && reads_as_number(node.Scalar());
+}
+
+std::string quoted_number_message(const YAML::Node& node, const std::string& expected) {
+  return "got the string " + yaml_for_message(node) + ", expected " + expected +
+         " (write it unquoted)";
+}
+
+namespace {
+
+/// `node` into `out` on one line: every list and map in flow style (as given in block style,
+/// yaml-cpp would write lines), aliases written out, quoted numbers in quotes.
+void put_inline(YAML::Emitter& out, const YAML::Node& node) {
+  if (node.IsScalar()) {
+    if (is_quoted_number(node)) out << YAML::DoubleQuoted;
+    out << node.Scalar();
+  } else if (node.IsSequence()) {
+    out << YAML::Flow << YAML::BeginSeq;
+    for (const YAML::Node& item : node) put_inline(out, item);
+    out << YAML::EndSeq;
+  } else if (node.IsMap()) {
+    out << YAML::Flow << YAML::BeginMap;
+    for (const auto& kv : node) {
+      out << YAML::Key;
+      put_inline(out, kv.first);
+      out << YAML::Value;
+      put_inline(out, kv.second);
+    }
+    out << YAML::EndMap;
+  } else {
+    out << YAML::Null;
   }
-  if (!S_ISREG(st.st_mode)) return kind_of(st.st_mode);
-  return std::nullopt;
+}
+
+}  // namespace
+
+std::string yaml_inline(const YAML::Node& node) {
+  if (!node.IsDefined() || node.IsNull()) return "null";
+  if (node.IsScalar() && !is_quoted_number(node)) return node.Scalar();
+  YAML::Emitter out;
+  put_inline(out, node);
+  return out.c_str();
+}
+
+std::string yaml_for_message(const YAML::Node& node) {
+  std::string text = yaml_inline(node);
+  if (text.size() <= kMaxMessageValueChars) return text;
+  const std::size_t whole = text.size();
+  text.resize(kMaxMessageValueChars);
+  return text + "... (" + std::to_string(whole) + " characters)";
 }
 
 std::string read_text_file(const std::string& path) {

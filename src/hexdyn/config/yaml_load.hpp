@@ -24,6 +24,8 @@
 #include <string>
 #include <vector>
 
+#include "hexdyn/process/paths.hpp"  // why_not_regular_file, for the readers of files
+
 namespace YAML {
 class Node;
 }
@@ -47,14 +49,21 @@ inline constexpr std::uint64_t kMaxYamlNodes = 1000000;
 /// (16 MiB: 16 times the largest file; one 1 MiB value repeated by aliases is refused).
 inline constexpr std::uint64_t kMaxYamlBytes = std::uint64_t{16} << 20;
 
-/// Why `path` cannot be read as a configuration file without opening it, or nothing
-/// when it names a regular file (symbolic links followed): "does not exist", "is a
-/// directory", "is a device", "is a FIFO (named pipe)", "is a socket", ...
-std::optional<std::string> why_not_regular_file(const std::string& path);
-
 /// Parses YAML text with the checks above, any document shape (a `--set` value may be a
 /// scalar or a list). `source_name` starts every message. Throws ConfigError.
 YAML::Node parse_yaml_checked(const std::string& text, const std::string& source_name);
+
+/// Whether `node` is a scalar that YAML (and Python's yaml) reads as a string although its
+/// text is a number to hexdyn (a YAML int or float, or p/q): quoted ("1e-2", '0.05') or
+/// tagged !!str (!!str 200). Where a number is expected it is refused, never read as one
+/// (quoted_number_message). The parse above tags every quoted number !!str, so that it stays
+/// a string when a tree is written out and read again (a sweep's base scene, a scenario):
+/// yaml-cpp writes a quoted scalar without its quotes.
+bool is_quoted_number(const YAML::Node& node);
+
+/// "got the string \"1e-2\", expected EXPECTED (write it unquoted)": the refusal of a quoted
+/// number (is_quoted_number) where a number is expected.
+std::string quoted_number_message(const YAML::Node& node, const std::string& expected);
 
 /// "p/q" with integers p and q ≠ 0 (spaces allowed around '/') → p divided by q;
 /// nothing for any other text. Sweep axis values, `--set` values and the number keys of a

@@ -29,6 +29,7 @@ class EnvelopeReader : public SpecReader {
   double number(const YAML::Node& n, const std::string& path, double lo, double hi) const {
     const std::string expected = "a number in [" + fmt(lo) + ", " + fmt(hi) + "]";
     if (!n.IsScalar()) fail_value(path, n, expected);
+    refuse_quoted_number(path, n, expected);
     double v = 0.0;
     if (const auto f = parse_fraction(n.Scalar()))
       v = *f;

@@ -1,13 +1,12 @@
 #include "hexdyn/model/urdf_reader.hpp"
 
 #include <console_bridge/console.h>
-#include <tinyxml.h>
 #include <urdf_parser/urdf_parser.h>
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <limits>
 #include <map>
@@ -17,6 +16,7 @@
 
 #include "hexdyn/core/errors.hpp"
 #include "hexdyn/core/value_bounds.hpp"
+#include "hexdyn/model/urdf_checks.hpp"
 
 namespace hexdyn {
 namespace {
@@ -52,43 +52,6 @@ class CaptureErrors : public console_bridge::OutputHandler {
   }
   std::vector<std::string> errors;
 };
-
-/// NaN and inf in numeric attributes, before urdfdom reads them (it turns some into 0
-/// without a word, and refuses others without naming the link or joint): the first
-/// non-finite number names its <link> or <joint>, element and attribute.
-void check_finite_numbers(const std::string& text, const std::string& source) {
-  TiXmlDocument doc;
-  doc.Parse(text.c_str());
-  if (doc.Error()) return;  // urdfdom reports XML errors
-  static const std::set<std::string> kNumeric = {
-      "xyz", "rpy",   "value", "ixx",    "ixy",      "ixz",    "iyy",    "iyz",
-      "izz", "lower", "upper", "effort", "velocity", "radius", "length", "size"};
-  std::vector<std::pair<const TiXmlElement*, std::string>> todo;
-  if (doc.RootElement() != nullptr) todo.emplace_back(doc.RootElement(), "");
-  while (!todo.empty()) {
-    const auto [el, owner_in] = todo.back();
-    todo.pop_back();
-    std::string owner = owner_in;
-    const std::string tag = el->Value();
-    if ((tag == "link" || tag == "joint") && el->Attribute("name") != nullptr)
-      owner = tag + " '" + el->Attribute("name") + "'";
-    for (const TiXmlAttribute* a = el->FirstAttribute(); a != nullptr; a = a->Next()) {
-      if (!kNumeric.count(a->Name())) continue;
-      std::istringstream tokens(a->Value());
-      std::string tok;
-      while (tokens >> tok) {
-        char* end = nullptr;
-        const double x = std::strtod(tok.c_str(), &end);
-        if (end != tok.c_str() && *end == '\0' && !std::isfinite(x))
-          throw ConfigError(source + ": " + (owner.empty() ? std::string("robot") : owner) + ": <" +
-                            tag + " " + a->Name() + "=\"" + a->Value() +
-                            "\"> is not finite, expected finite numbers");
-      }
-    }
-    for (const TiXmlElement* c = el->FirstChildElement(); c != nullptr; c = c->NextSiblingElement())
-      todo.emplace_back(c, owner);
-  }
-}
 
 class Reader {
  public:
@@ -303,6 +266,7 @@ UrdfRobot Reader::read(const std::string& text) {
   index_joints();
   check_tree();
   check_links();
+  check_link_geometry(*model_, source_);
   check_joints();
   collect_trunk();
 
@@ -773,6 +737,9 @@ UrdfRobot read_urdf_robot_from_string(const std::string& urdf_text, const std::s
 
 std::string read_urdf_text(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
+  std::error_code ec;
+  if (!in && !std::filesystem::exists(path, ec) && !ec)  // a link to nothing too
+    throw ConfigError(path + ": does not exist, expected a URDF file");
   if (!in) throw ConfigError(path + ": cannot read the URDF file");
   std::ostringstream s;
   s << in.rdbuf();

@@ -41,7 +41,8 @@
 /// revolute, continuous; a zero axis; lower > upper; negative effort or velocity; mass ≤ 0
 /// in an <inertial>; an inertia that is not positive definite (an all-zero tensor is
 /// accepted as a point mass, e.g. Kraby's end caps) or whose principal moments break the
-/// triangle inequality (relative tolerance kInertiaTriangleTolerance); a leg count other
+/// triangle inequality (relative tolerance kInertiaTriangleTolerance); a sphere, box or
+/// cylinder in a <collision> or <visual> with a size ≤ 0 (urdf_checks.hpp); a leg count other
 /// than six; a chain that is not 3R; a foot that cannot be found; legs that cannot be
 /// mapped; a foot offset outside its last link's collision geometry (above). Values are held to the
 /// scene's plausibility bounds (core/value_bounds.hpp): a mass above kMaxBodyMass_kg, a principal

@@ -9,16 +9,35 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <string_view>
 #include <system_error>
 
 #include "hexdyn/core/errors.hpp"
 #include "hexdyn/process/interrupt.hpp"
 #include "hexdyn/process/paths.hpp"
+#include "hexdyn/process/sha256.hpp"
 
 namespace hexdyn {
 namespace {
 
 namespace fs = std::filesystem;
+
+/// Longest file name of Linux's file systems [bytes] (NAME_MAX).
+constexpr std::size_t kNameMax = 255;
+/// Most digits of a process id (a 32-bit pid; Linux's pid_max is at most 2^22).
+constexpr std::size_t kPidDigits = 10;
+
+/// What a temporary name holds between '.' and ".tmp.PID": the output's file name, or, when
+/// the temporary name could then be longer than kNameMax, the name's first bytes (whole UTF-8
+/// characters), '~' and 16 hexadecimal digits of the whole name's SHA-256.
+std::string temporary_stem(const std::string& name) {
+  const std::size_t fixed =
+      std::string_view(".").size() + std::string_view(".tmp.").size() + kPidDigits;
+  if (name.size() + fixed <= kNameMax) return name;
+  std::size_t keep = kNameMax - fixed - 17;  // '~' and 16 digits
+  while (keep > 0 && (static_cast<unsigned char>(name[keep]) & 0xC0) == 0x80) --keep;
+  return name.substr(0, keep) + "~" + sha256_hex(name.data(), name.size()).substr(0, 16);
+}
 
 [[noreturn]] void throw_output_error(const std::string& path, const std::string& reason) {
   throw IoError("cannot write output '" + path + "': " + reason);
@@ -46,7 +65,7 @@ std::optional<std::string> why_not_replaceable(const std::string& path) {
 
 std::string temporary_path_for(const std::string& path) {
   return (fs::path(directory_of(path)) /
-          ("." + fs::path(path).filename().string() + ".tmp." + std::to_string(::getpid())))
+          ("." + temporary_stem(fs::path(path).filename()) + ".tmp." + std::to_string(::getpid())))
       .string();
 }
 
@@ -89,7 +108,7 @@ void publish_atomically(const std::string& path,
 std::vector<std::string> remove_stale_temporaries(const std::string& path) {
   std::vector<std::string> removed;
   const std::string dir = directory_of(path);
-  const std::string prefix = "." + fs::path(path).filename().string() + ".tmp.";
+  const std::string prefix = "." + temporary_stem(fs::path(path).filename()) + ".tmp.";
   std::error_code ec;
   for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
     const std::string name = it->path().filename().string();

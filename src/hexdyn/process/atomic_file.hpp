@@ -5,7 +5,11 @@
 /// temporary name `.<basename>.tmp.<pid>` in the directory of its final path, forced to
 /// disk (fsync) and renamed over the final path only when complete. A reader therefore
 /// sees either the old file or the complete new one, never a partial one; temporary
-/// names start with '.', so a directory listing can tell them from finished files.
+/// names start with '.', so a directory listing can tell them from finished files. A
+/// <basename> of more than 239 bytes, with which the temporary name could pass the file
+/// systems' 255 bytes (NAME_MAX), is cut in the temporary name to its first 222 bytes, '~'
+/// and 16 hexadecimal digits of its SHA-256: any name that may be written has a temporary
+/// name that may be written too, one per output and process.
 #include <cstddef>
 #include <functional>
 #include <optional>
@@ -47,7 +51,8 @@ std::vector<std::string> remove_stale_temporaries(const std::string& path);
 /// Publishes `size` bytes at `data` as the file `path` (publish_atomically). Throws IoError.
 void write_bytes_atomically(const std::string& path, const char* data, std::size_t size);
 
-/// The temporary name of `path` while it is written: `.<basename>.tmp.<pid>` beside it.
+/// The temporary name of `path` while it is written: `.<basename>.tmp.<pid>` beside it
+/// (<basename> cut as above when it is longer than 239 bytes).
 std::string temporary_path_for(const std::string& path);
 
 /// Forces a written file's data to disk (fsync) so that a following rename publishes a

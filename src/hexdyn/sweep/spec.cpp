@@ -72,7 +72,9 @@ void read_values(const SpecReader& r, const YAML::Node& values, const std::strin
     if (!v.IsScalar()) r.fail_value(path + "[" + std::to_string(k) + "]", v, "a single value");
     const std::string text = v.Scalar();
     axis.labels.push_back(text);
-    if (const auto q = parse_fraction(text)) {
+    if (is_quoted_number(v)) {  // a string: the scene reader refuses it for a number key
+      axis.values.push_back(yaml_inline(v));
+    } else if (const auto q = parse_fraction(text)) {
       axis.values.push_back(format_number(*q, 17));
     } else {
       axis.values.push_back(text);
@@ -85,6 +87,9 @@ void read_range(const SpecReader& r, const YAML::Node& range, const std::string&
   if (!range.IsMap()) r.fail_value(path, range, "a mapping {from: A, to: B, count: N}");
   r.check_keys(range, path, {"from", "to", "count"});
   double lo = 0.0, hi = 0.0;
+  r.refuse_quoted_number(path + ".from", range["from"], "a finite number");
+  r.refuse_quoted_number(path + ".to", range["to"], "a finite number");
+  r.refuse_quoted_number(path + ".count", range["count"], "an integer in [2, 100000]");
   if (!parse_finite_number(range["from"], lo))
     r.fail_value(path + ".from", range["from"], "a finite number");
   if (!parse_finite_number(range["to"], hi))
@@ -208,11 +213,10 @@ YAML::Node read_sweep_base(const SpecReader& r, const YAML::Node& root, const st
   if (!base.IsScalar() || base.Scalar().empty())
     r.fail_value("base", base, "the path of a scene file");
   spec.base_path = path_beside(path, base.Scalar());
-  std::error_code ec;
-  if (!fs::is_regular_file(spec.base_path, ec))
+  if (const auto why = why_not_regular_file(spec.base_path))
     r.fail_value("base", base,
-                 "the path of a scene file, relative to the sweep file (" + spec.base_path +
-                     " is not a file)");
+                 "the path of a scene file, relative to the sweep file (" + spec.base_path + " " +
+                     *why + ")");
   return load_scene_tree(spec.base_path, &chain);
 }
 

@@ -486,7 +486,8 @@ TEST_CASE("urdf reader: each broken description is refused with one line naming 
   // Kraby with the default forward axis cannot be mapped: the message says which key to set.
   const std::string kraby = refusal(kKraby);
   CHECK(kraby.find("robot.forward_axis") != std::string::npos);
-  CHECK(refusal(kData + "missing_file.urdf").find("cannot read") != std::string::npos);
+  CHECK(refusal(kData + "missing_file.urdf").find("missing_file.urdf: does not exist") !=
+        std::string::npos);
 }
 
 /// valid_hexapod.urdf with `from` replaced by `to` on the first line holding `marker`.
