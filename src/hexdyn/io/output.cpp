@@ -109,10 +109,11 @@ std::string resolved_path(const std::string& path) {
 void check_not_input(const std::string& path, const std::vector<InputFile>& inputs) {
   struct stat target {};
   if (::stat(path.c_str(), &target) != 0) {
-    // No file there: an input's path all the same (a recorded input deleted since).
+    // No file there: a recorded input's path all the same (deleted since, it may come back:
+    // the result names it). A file this command read and that is gone may be replaced.
     const std::string name = resolved_path(path);
     for (const InputFile& input : inputs)
-      if (!input.absolute.empty() && resolved_path(input.absolute) == name)
+      if (input.recorded && resolved_path(input.absolute) == name)
         refuse_input(path, input, "the same path");
     return;
   }

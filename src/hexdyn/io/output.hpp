@@ -23,7 +23,8 @@ struct ResultLayout;  // io/result_layout.hpp
 /// - `out` is not the same file as any of `inputs` (every file the command read, with the
 ///   identity it had when read: config/inputs.hpp), compared by identity (st_dev, st_ino), so
 ///   that another name or a hard link of an input is refused too; also not the file now at
-///   an input's absolute path, nor that path when nothing is there (check_not_input). A
+///   an input's absolute path, nor a recorded input's path when nothing is there
+///   (check_not_input). A
 ///   command that reads a hexdyn file (the replay reads a result) lists that file and the
 ///   inputs its /meta input_sha256 records (config/inputs.hpp recorded_inputs), so that no
 ///   command writes onto the files a result was computed from;
@@ -39,7 +40,7 @@ void check_output_target(const std::string& out, const std::vector<InputFile>& i
 /// Throws IoError "cannot write output 'PATH': it is the URDF 'X' read by this command …"
 /// when the file at `path` (links followed) is one of `inputs`: by the identity each had
 /// when read, or as the file now at its absolute path; when nothing is at `path`, when
-/// `path` names an input's absolute path (folder links resolved).
+/// `path` names a recorded input's absolute path (folder links resolved; InputFile::recorded).
 /// Every writer calls it before it writes into or renames over an existing file.
 void check_not_input(const std::string& path, const std::vector<InputFile>& inputs);
 

@@ -103,6 +103,20 @@ TEST_CASE("output target: an input is known by the identity it had when read",
   fs::remove(d.file("robot.urdf"));
   CHECK_NOTHROW(check_output_target(d.file("robot.urdf"), inputs));
   CHECK_THROWS_WITH(check_output_target(std::string("a\0b", 3), inputs), Catch::Contains("NUL"));
+  // An input a result records (/meta input_sha256) keeps its path even when gone, under any
+  // name of its folder.
+  const std::string digest(64, 'a');
+  const auto recorded =
+      recorded_inputs(digest + "  " + d.file("robot.urdf") + "\n", "the result's /meta");
+  REQUIRE(recorded.size() == 1);
+  CHECK(recorded[0].recorded);
+  CHECK(recorded[0].sha256 == digest);
+  CHECK_THROWS_WITH(check_output_target(d.file("robot.urdf"), recorded),
+                    Catch::Contains("(the same path)"));
+  fs::create_directory_symlink(d.file(""), d.file("alias"));
+  CHECK_THROWS_WITH(check_output_target(d.file("alias/robot.urdf"), recorded),
+                    Catch::Contains("the same path"));
+  CHECK_NOTHROW(check_output_target(d.file("other.urdf"), recorded));
 }
 
 TEST_CASE("inputs: a file is read once while a freeze lives, and its digest is of those bytes",
