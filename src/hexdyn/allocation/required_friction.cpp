@@ -155,15 +155,25 @@ NewtonEnd RequiredFrictionSolver::Impl::check(const AllocationLayout& layout,
   if (bad_row >= 0) return NewtonEnd::kRowViolated;
   const double tol = 1e-9 * lambda.lpNorm<Eigen::Infinity>();
   double most_wrong = tol;
+  bool degenerate = false;
   for (int i = 0; i <= n; ++i) {
     const int side = set[static_cast<std::size_t>(i)].side;
     const double wrong = side > 0 ? lambda[i] : side < 0 ? -lambda[i] : 0.0;
+    degenerate = degenerate || (side != 0 && std::abs(lambda[i]) <= tol);
     if (wrong > most_wrong) {
       most_wrong = wrong;
       bad_row = i;
     }
   }
   if (bad_row >= 0) return NewtonEnd::kWrongSign;
+  // A zero multiplier: a degenerate vertex, where the bilinear rows may still let μ fall
+  // along a direction that keeps that row's side (docs/theory/grip.md#degenerate-vertices).
+  // A probe just below settles it as a bisection's bracket would.
+  if (degenerate && mu > opt.tolerance) {
+    const bool lower = feasible_at(layout, mu - opt.tolerance, x_scratch);
+    set_friction_coefficient(layout, mu, work);
+    if (lower) return NewtonEnd::kFailed;
+  }
   // The binding leg: the friction row whose multiplier carries the most of ∂μ.
   double binding = 0.0;
   newton_leg = -1;
@@ -270,9 +280,14 @@ bool RequiredFrictionSolver::Impl::solve_from(const AllocationLayout& layout,
   }
 }
 
-/// The n + 1 − 6 inequality rows nearest to active at (x_at, mu) besides the trunk rows, as
-/// the candidate active set (in `candidate`); false when the problem has too few variables
-/// or cones.
+/// The candidate active set at (x_at, mu), in `candidate`: the trunk rows, then the inequality
+/// rows in order of their distance to active (slack over the norm of the row of C: a distance
+/// in force space, comparable across torque, normal-force and friction rows), each taken only
+/// when its row of J is linearly independent of those taken, until there are n + 1; false
+/// when the problem has too few variables or cones. Without independent rows enough, and for
+/// the exact cone's polygons (whose clustered faces are nearly dependent by design, and whose
+/// rounds follow the answer's force directions from one round to the next), the n + 1 − 6
+/// nearest by slack relative to max(1, |bound|).
 bool RequiredFrictionSolver::Impl::active_set_at(const AllocationLayout& layout,
                                                  const Eigen::Ref<const Eigen::VectorXd>& x_at,
                                                  double mu) {
@@ -280,16 +295,31 @@ bool RequiredFrictionSolver::Impl::active_set_at(const AllocationLayout& layout,
   const int extra = n + 1 - kTrunkRows;
   if (extra <= 0 || !work.cones.empty() || m - kTrunkRows < extra) return false;
   set_friction_coefficient(layout, mu, work);
+  const bool polygon = (work.structure & kConePolygonKey) != 0;
   slack.clear();
   for (int j = kTrunkRows; j < m; ++j) {
     const double v = work.C.row(j).dot(x_at);
     const double inf = std::numeric_limits<double>::infinity();
     const double hi = work.upper[j], lo = work.lower[j];
-    const double up = hi < kQpInfinity ? (hi - v) / std::max(1.0, std::abs(hi)) : inf;
-    const double down = lo > -kQpInfinity ? (v - lo) / std::max(1.0, std::abs(lo)) : inf;
+    const double norm = work.C.row(j).norm();
+    if (!(norm > 0.0) && !polygon) continue;  // a constant row: no force moves it
+    const double su = polygon ? 1.0 / std::max(1.0, std::abs(hi)) : 1.0 / norm;
+    const double sd = polygon ? 1.0 / std::max(1.0, std::abs(lo)) : 1.0 / norm;
+    const double up = hi < kQpInfinity ? (hi - v) * su : inf;
+    const double down = lo > -kQpInfinity ? (v - lo) * sd : inf;
     slack.emplace_back(std::min(up, down), up <= down ? j : -1 - j);
   }
-  std::partial_sort(slack.begin(), slack.begin() + extra, slack.end());
+  if (static_cast<int>(slack.size()) < extra) return false;
+  std::sort(slack.begin(), slack.end());
+  x = x_at;  // gradient() reads the forces from x
+  candidate.clear();
+  for (int j = 0; j < kTrunkRows; ++j) add_if_independent(layout, {j, 0});
+  if (static_cast<int>(candidate.size()) == kTrunkRows && !polygon)
+    for (std::size_t i = 0; i < slack.size() && static_cast<int>(candidate.size()) <= n; ++i) {
+      const int code = slack[i].second;
+      add_if_independent(layout, code >= 0 ? MuRow{code, +1} : MuRow{-1 - code, -1});
+    }
+  if (static_cast<int>(candidate.size()) == n + 1) return true;
   candidate.clear();
   for (int j = 0; j < kTrunkRows; ++j) candidate.push_back({j, 0});
   for (int i = 0; i < extra; ++i) {
@@ -297,6 +327,23 @@ bool RequiredFrictionSolver::Impl::active_set_at(const AllocationLayout& layout,
     candidate.push_back(code >= 0 ? MuRow{code, +1} : MuRow{-1 - code, -1});
   }
   return true;
+}
+
+/// Appends row a to `candidate` when its row of J at x is linearly independent of those of
+/// the rows there (Gram-Schmidt, twice for rounding, against their orthonormal rows in
+/// `basis`): a set with two dependent rows (opposite faces of a leg without normal force, for
+/// example) makes J singular.
+void RequiredFrictionSolver::Impl::add_if_independent(const AllocationLayout& layout, MuRow a) {
+  const int k = static_cast<int>(candidate.size());
+  MuVector v = gradient(layout, a.row, a.side == 0 ? +1 : a.side);
+  const double scale = v.lpNorm<Eigen::Infinity>();
+  for (int pass = 0; pass < 2; ++pass)
+    for (int i = 0; i < k; ++i) v -= basis.col(i).dot(v) * basis.col(i);
+  const double left = v.norm();
+  if (!(left > 1e-9 * scale)) return;
+  if (k == 0) basis.resize(v.size(), v.size());
+  basis.col(k) = v / left;
+  candidate.push_back(a);
 }
 
 void RequiredFrictionSolver::Impl::remember(const std::vector<MuRow>& set) {
@@ -374,11 +421,15 @@ void RequiredFrictionSolver::Impl::bisect(const AllocationLayout& layout,
     if (lo == 0.0 && newton_in_bracket(layout, x_hi, 0.0, hi)) return;
     if (lo == 0.0) probe(guess * 0.99);
   }
-  double newton_width = 1e-2;
+  // A Newton attempt each time the bracket has narrowed fourfold (a probe costs about one
+  // allocation, a Newton attempt from a nearer upper end a fraction of it); under the exact
+  // cone, whose polygon rounds follow the answer's force directions, each hundredfold.
+  const bool polygon = (work.structure & kConePolygonKey) != 0;
+  double newton_width = polygon ? 1e-2 : 0.25 * (hi - lo);
   while (hi - lo > opt.tolerance) {
     if (hi - lo <= newton_width && work.cones.empty()) {
       if (newton_in_bracket(layout, x_hi, lo, hi)) return;
-      newton_width *= 1e-2;
+      newton_width = polygon ? 1e-2 * newton_width : 0.25 * (hi - lo);
     }
     probe(0.5 * (lo + hi));
   }
@@ -404,20 +455,25 @@ void RequiredFrictionSolver::Impl::solve_polygonal(const AllocationLayout& layou
       has_warm && warm_structure == work.structure && warm_n == n && warm_m == work.inequalities();
   // The previous sample's active set, else the rows nearest to active at its answer (which
   // the cone's polygon rounds need, their faces having turned since). A failed attempt leaves
-  // warm_z as it was.
-  if (alike) {
+  // warm_z as it was. After a sample without μ* (a touchdown transient whose trunk rows fail
+  // at any μ) the set is older than the previous sample, and a relaxed sample goes to the
+  // probe at mu_max first, which settles the next NaN at once.
+  const bool after_nan = last_nan && allocation == nullptr;
+  if (alike && !after_nan) {
     if (solve_from(layout, warm_set, warm_z) || (active_set_at(layout, warm_z.head(n), warm_z[n]) &&
                                                  solve_from(layout, candidate, warm_z))) {
       out.mu = std::max(0.0, z[n]);
       out.leg = newton_leg;
       out.method = 0;
       last_mu = out.mu;
+      last_nan = false;
       answer_x = z.head(n);
       return;
     }
   }
   bisect(layout, allocation, alike ? warm_z[n] : last_mu);
-  if (std::isfinite(out.mu)) last_mu = out.mu;
+  last_nan = !std::isfinite(out.mu);
+  if (!last_nan) last_mu = out.mu;
 }
 
 const RequiredFriction& RequiredFrictionSolver::solve(const QpProblem& qp,

@@ -85,11 +85,11 @@ struct RequiredFrictionSolver::Impl {
   MuMatrix J;
   Eigen::PartialPivLU<MuMatrix> lu;
   int newton_leg = -1;
-  bool negative_mu = false;
-  double last_mu = -1.0;  ///< the previous sample's μ*, −1 before the first  ///< a Newton attempt
-                          ///< of this sample ended at μ < 0
-  int bad_row = -1;  ///< kRowViolated: the violated row; kWrongSign: the index in the set
-  int bad_side = 0;  ///< kRowViolated: the violated side
+  bool negative_mu = false;  ///< a Newton attempt of this sample ended at μ < 0
+  double last_mu = -1.0;     ///< the previous sample's μ*, −1 before the first
+  bool last_nan = false;     ///< the previous polygon problem had no μ* ≤ mu_max
+  int bad_row = -1;          ///< kRowViolated: the violated row; kWrongSign: the index in the set
+  int bad_side = 0;          ///< kRowViolated: the violated side
 
   Impl(std::unique_ptr<AllocationBackend> b, const RequiredFrictionOptions& o)
       : opt(o), backend(std::move(b)) {
@@ -156,6 +156,9 @@ struct RequiredFrictionSolver::Impl {
   bool primal_ratio_entering(const AllocationLayout& layout, const std::vector<MuRow>& set,
                              MuRow& enter);
   bool solve_from(const AllocationLayout& layout, std::vector<MuRow> set, const MuVector& z0);
+  Eigen::VectorXd x_scratch;  ///< the forces of check()'s probe of a degenerate vertex
+  MuMatrix basis;  ///< active_set_at: orthonormal rows of J of the candidate rows, as columns
+  void add_if_independent(const AllocationLayout& layout, MuRow a);
   bool active_set_at(const AllocationLayout& layout, const Eigen::Ref<const Eigen::VectorXd>& x_at,
                      double mu);
   bool upper_end(const AllocationLayout& layout, const Eigen::VectorXd* allocation, double& hi,
