@@ -33,7 +33,7 @@ def read_envelope(path):
     """The envelope file as a dict: axes, criteria, riser_max/fail (D,W,B,S,C; D = 1 without
     cases), limit and message strings on the same grid, posture (D,W,B,S), meta."""
     try:
-        env = hexdyn.open_envelope(path)  # version 1 (flattened limit and message) plots too
+        env = hexdyn.open_envelope(path)
     except (OSError, ValueError) as e:
         raise SystemExit(f"plot_envelope: {e}")
     d = {"meta": env.meta, "cases": env.cases, "criteria": env.criteria,

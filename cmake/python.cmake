@@ -1,7 +1,8 @@
 # The Python module `hexdyn` (bindings/python/): the package's Python files, the schema module
 # generated from io/schema.hpp and its compiled part hexdyn/_hexdyn*.so (pybind11), laid out as
 # a package in the build tree,
-#   build/python/hexdyn/{__init__,atomic_file,results,xr,_version,_schema}.py, _hexdyn*.so
+#   build/python/hexdyn/{__init__,atomic_file,data,h5copy,h5files,results,schema,xr,_version,
+#   _schema}.py, _hexdyn*.so
 # (PYTHONPATH=build/python imports it: the tests and the pipelines set it), and installed to
 #   P/lib/python3.X/dist-packages/hexdyn/
 # which for the default prefix /usr/local is on Debian's /usr/bin/python3 path with no
@@ -18,7 +19,8 @@ endif()
 set(HEXDYN_PYTHON_PACKAGE_DIR ${CMAKE_BINARY_DIR}/python/hexdyn)
 # The pure-Python files and the version: laid out at configure time, so that reading files (and
 # the analysis scripts) needs no compiled part, only the schema module below.
-set(hexdyn_python_files __init__.py atomic_file.py results.py xr.py)
+set(hexdyn_python_files __init__.py atomic_file.py data.py h5copy.py h5files.py results.py schema.py
+                        xr.py)
 foreach(f IN LISTS hexdyn_python_files)
   configure_file(${PROJECT_SOURCE_DIR}/bindings/python/hexdyn/${f} ${HEXDYN_PYTHON_PACKAGE_DIR}/${f} COPYONLY)
 endforeach()

@@ -1,13 +1,14 @@
 #!/usr/bin/python3
 """Runs the Python sessions the README and docs/user/output.md show, from a sweep to a
-plot, on a real sweep file (ctest docs.python_sessions).
+plot and reading a result, on real files (ctest docs.python_sessions).
 
     run_python_sessions.py HEXDYN SOURCE_DIR WORK_DIR
 
 Writes WORK_DIR/results/sweeps/smoke/smoke.h5 with `HEXDYN sweep configs/sweeps/smoke.yaml
---keep-runs` (the file pipelines/sweep_smoke.sh writes), then runs, in WORK_DIR, the first
-python code block after each document's marker line, with matplotlib's Agg back end.
-Fails when a block is missing, raises, or (the README's) writes no cot.png.
+--keep-runs` (the file pipelines/sweep_smoke.sh writes) and WORK_DIR/results/paper/paper.h5
+with `HEXDYN run configs/paper.yaml`, then runs, in WORK_DIR, the first python code block
+after each document's marker line, with matplotlib's Agg back end. Fails when a block is
+missing, raises, or (the README's) writes no cot.png.
 """
 import os
 import re
@@ -17,7 +18,9 @@ import sys
 # (document, marker line, figure the session must write)
 FRONT_DOOR = os.path.join(".", "README.md")
 SESSIONS = [(FRONT_DOOR, "From a sweep to a plot", "cot.png"),
-            ("docs/user/output.md", "From a sweep to a plot in Python", None)]
+            ("docs/user/output.md", "From a sweep to a plot in Python", None),
+            ("docs/user/output.md", "Reading it in Python", None),
+            ("docs/user/output.md", "**Selecting at an event time.**", None)]
 
 
 def block_after(text, marker):
@@ -39,6 +42,11 @@ def main():
                MPLBACKEND="Agg")
     subprocess.run([hexdyn, "sweep", os.path.join(src, "configs/sweeps/smoke.yaml"), "-o", target,
                     "--keep-runs"], check=True, env=env, stderr=subprocess.DEVNULL)
+    paper = os.path.join(work, "results", "paper")
+    os.makedirs(paper, exist_ok=True)
+    subprocess.run([hexdyn, "run", os.path.join(src, "configs/paper.yaml"), "-o",
+                    os.path.join(paper, "paper.h5")], check=True, env=env,
+                   stderr=subprocess.DEVNULL)
     failures = 0
     for doc, marker, figure in SESSIONS:
         with open(os.path.join(src, doc), encoding="utf-8") as f:
@@ -58,7 +66,7 @@ def main():
             print(f"FAILED: {doc}: the session drew no {figure}")
             failures += 1
         else:
-            print(f"{doc}: the session from a sweep to a plot runs")
+            print(f"{doc}: the session after '{marker}' runs")
     return 1 if failures else 0
 
 

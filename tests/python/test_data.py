@@ -84,8 +84,8 @@ def same_values(a, b):
 
 def check_xarray_against_file(ds, path, group):
     """Each variable of `ds` (to_xarray(group) of the result of the file `path`) is the file's
-    dataset: values, dimensions as the file's scales name them, units; each coordinate the
-    file's coordinate variable."""
+    dataset: values, dimensions as the file's scales name them, units (none for the
+    dimensionless "1"); each coordinate the file's coordinate variable."""
     with h5py.File(path, "r") as f:
         by_name = {}
         for p in _paths(f):
@@ -99,8 +99,10 @@ def check_xarray_against_file(ds, path, group):
             assert same_values(var.values, plain(h5)), f"{path}:{h5.name}: values differ"
             assert var.dims == dim_names(f, h5), (h5.name, var.dims, dim_names(f, h5))
             units = h5.attrs.get("units")
-            assert var.attrs.get("units") == (units.decode() if isinstance(units, bytes)
-                                              else units), (h5.name, var.attrs)
+            units = units.decode() if isinstance(units, bytes) else units
+            # The file's units, but none for the dimensionless "1" (no "[1]" in labels).
+            assert var.attrs.get("units") == (None if units == "1" else units), (h5.name,
+                                                                                var.attrs)
         for dim in ds.dims:
             if "/" + dim in f:
                 assert same_values(ds[dim].values, plain(f["/" + dim])), dim
@@ -240,7 +242,8 @@ with tempfile.TemporaryDirectory() as d:
     assert sorted(got.data_vars) == sorted(want.data_vars)
     for name in want.data_vars:
         assert got[name].dims == want[name].dims, name
-        assert got[name].attrs.get("units") == want[name].attrs.get("units"), name
+        units = want[name].attrs.get("units")  # none for the dimensionless "1"
+        assert got[name].attrs.get("units") == (None if units == "1" else units), name
         a, b = got[name].values, want[name].values
         assert (np.array_equal(a, b, equal_nan=True) if a.dtype != object
                 else list(a.ravel()) == list(b.ravel())), name

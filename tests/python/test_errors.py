@@ -178,7 +178,7 @@ with tempfile.TemporaryDirectory() as d:
          "/time", [":/runs/000001: ", "T = 10 from /time"]),
         (envelope, "envelope/riser_max", lambda v: v.reshape(-1), hx.open_envelope,
          "/envelope/riser_max", [f"({W * B * S * C},)", f"({W}, {B}, {S}, {C})"]),
-        (envelope, "envelope/limit", strings, hx.open_envelope,  # flattened, as in version 1
+        (envelope, "envelope/limit", strings, hx.open_envelope,  # flattened
          "/envelope/limit", [f"string ({W * B * S * C},)", f"string ({W}, {B}, {S}, {C})"]),
         (envelope, "envelope/posture_height", lambda v: v[..., None], hx.open_envelope,
          "/envelope/posture_height", [f"({W}, {B}, {S})"]),

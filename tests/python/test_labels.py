@@ -13,8 +13,9 @@ define it (/model/joint_names, /model/leg_names, /time, the axes; 0..n-1 for an 
 a group's coordinates are copies of the root's and its datasets are attached to them
 (schema.hpp, group coordinates); every `units` parses with UDUNITS-2
 (`udunits2`), every dataset has its declared `long_name`, the declared CF flags are
-there; Result/Sweep.to_xarray and Sweep.to_dataframe agree with the scenario table; a
-file of version 1 (made here from the result with h5py) reads as its version-2 original.
+there; Result/Sweep.to_xarray and Sweep.to_dataframe agree with the scenario table and
+label each variable by its long_name and units, no "[1]" and a sweep axis by its key's name
+("riser height [m]"); a file of version 1 (never released) is refused with a ValueError.
 Exit 0 when all hold; ncdump or udunits2 missing are skipped with a message.
 """
 import os
@@ -296,26 +297,54 @@ def check_units(units):
     check({"s", "m", "N m", "N^2 m^2", "1"} <= units, f"units seen {sorted(units)}")
 
 
-def check_version_1(result, res, v1):
-    """A version-1 file (the result with the version-1 names, 1-based legs and no group
-    coordinates) reads as its version-2 original `res`."""
-    shutil.copy(result, v1)
-    with h5py.File(v1, "r+") as f:
-        copies = []
-        f.visititems(lambda n, o: copies.append(n) if isinstance(o, h5py.Dataset)
-                     and is_group_coordinate(o) else None)
-        for n in copies:
-            del f[n]
+def check_xarray_labels(path, ds, sweep_keys=()):
+    """The labels of a reader's Dataset (to_xarray): each variable's long_name is its
+    declaration's and its units the file's `units` attribute read with h5py, but none for
+    the dimensionless "1", so that no plot label ends in "[1]"; a sweep axis is named by its
+    key's last word, in the key's unit (the file's /axes/<i>/values units)."""
+    from xarray.plot.utils import label_from_attrs
+    with h5py.File(path, "r") as f:
+        units = {}  # "/joints/torque": its units attribute, as h5py reads it
+        f.visititems(lambda n, o: units.__setitem__("/" + n, hr.decode_text(o.attrs["units"]))
+                     if isinstance(o, h5py.Dataset) and "units" in o.attrs
+                     and not n.startswith("runs/") else None)
+        axis_units = {hr.decode_text(f["axes"][i]["key"][()]):
+                      hr.decode_text(f["axes"][i]["values"].attrs.get("units", ""))
+                      for i in f["axes"]} if sweep_keys else {}
+    seen = 0
+    for name, var in ds.variables.items():
+        label = label_from_attrs(var).replace("\n", " ")
+        check("[1]" not in label, f"{path}: label of {name} {label!r} without [1]")
+        if name in sweep_keys:
+            short = name.rsplit(".", 1)[1].replace("_", " ")
+            want = short + (f" [{axis_units[name]}]" if axis_units[name] not in ("", "1") else "")
+            check(label == want, f"{path}: axis {name} labelled {label!r}, expected {want!r}")
+            continue
+        found = [u for p, u in units.items() if p in ("/" + name, f"/scenarios/{name}")
+                 or p.strip("/").replace("/", "_") == name]
+        if len(found) == 1:
+            seen += 1
+            check(var.attrs.get("units") == (None if found[0] == "1" else found[0]),
+                  f"{path}: {name} units {var.attrs.get('units')!r}, file {found[0]!r}")
+    check(seen > 10, f"{path}: {seen} variables' units compared with the file")
+
+
+def check_other_versions(result, old):
+    """A result file of a version this reader does not read (1, never released) is refused
+    with a ValueError naming the version it reads; check_layout too."""
+    shutil.copy(result, old)
+    with h5py.File(old, "r+") as f:
         f["meta"].attrs["schema"] = "hexdyn-result/1"
         f["meta"].attrs["schema_version"] = np.int64(1)
-        f.move("power/per_joint", "power/joint")
-        f.move("energy/per_joint", "energy/joint")
-        f["impacts/leg"][...] = f["impacts/leg"][()] + 1
-    old = hexdyn.open_result(v1)
-    check(np.array_equal(old["/impacts/leg"], res["/impacts/leg"]), "version 1: impact legs")
-    check(np.array_equal(old["/power/per_joint"], res["/power/per_joint"]),
-          "version 1: /power/joint read as /power/per_joint")
-    check(old.to_xarray("energy").per_joint.dims == ("joint",), "version 1: to_xarray")
+    for reader in (hexdyn.open_result, hexdyn.check_layout, hexdyn.open_file):
+        try:
+            reader(old)
+            got = "<no exception>"
+        except ValueError as e:
+            got = str(e)
+        check("'hexdyn-result/1'" in got and "\n" not in got and (
+            reader is not hexdyn.open_result or f"'{hr.RESULT_SCHEMA}'" in got),
+            f"{reader.__name__} of a version-1 file: {got!r}")
 
 
 def main():
@@ -335,7 +364,10 @@ def main():
         check_sweep_reader(sweep)
         check_envelope_reader(envelope)
         check_units(units)
-        check_version_1(result, res, os.path.join(tmp, "v1.h5"))
+        check_xarray_labels(result, res.to_xarray())
+        sw = hexdyn.open_sweep(sweep)
+        check_xarray_labels(sweep, sw.to_xarray(), [a.key for a in sw.axes])
+        check_other_versions(result, os.path.join(tmp, "v1.h5"))
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
     if failures:

@@ -41,7 +41,7 @@ CHUNK = 8 << 20  # bytes per write(2); a signal is looked at after each
 
 def _io_error(message):
     """hexdyn.IoError (an OSError) when the compiled part is there, else OSError."""
-    from .results import _io_error as make
+    from .h5files import io_error as make
     return make(message)
 
 
@@ -254,7 +254,7 @@ def publish_atomically(path, produce):
 
 def _report_signal(watch, name, published):
     """The line of a signal recorded during the write, and the end it asks for."""
-    from .results import _one_line
+    from .h5files import one_line as _one_line
     sig, name = watch.received, _one_line(name)
     signame = signal.Signals(sig).name
     if published:

@@ -3,8 +3,12 @@
 The dimensions are those of the files (docs/user/output.md#dimensions-and-coordinates), as
 declared in src/hexdyn/io/schema.hpp (`dimension_names`): time, leg, joint, xyz, wxyz,
 impact, message, one per sweep axis named by its key, scenario, and those of the envelope.
-Files of version 1, which carry no dimension scales, are labelled the same way from the
-declarations. A computed result (hexdyn.run) and one read from its file give equal Datasets.
+A computed result (hexdyn.run) and one read from its file give equal Datasets.
+
+Labels: each variable carries the schema's `long_name` and `units` (xarray's plots label
+an axis "long_name [units]"), but a dimensionless quantity (units "1") has no `units`, so
+that it reads "cost of transport E/(m g d)", not "... [1]"; a sweep axis is named by its
+key's last word ("terrain.riser_height": "riser height", units "m").
 
     import hexdyn
     res = hexdyn.open_result("paper.h5")
@@ -28,8 +32,10 @@ COMPONENTS = {"xyz": ["x", "y", "z"], "wxyz": ["w", "x", "y", "z"]}
 
 
 def _attrs(spec, units):
+    """The attributes of a variable: the schema's long_name, its units (none for "" and
+    the dimensionless "1") and CF flags."""
     attrs = {}
-    if units:
+    if units and units != "1":
         attrs["units"] = units
     if spec is not None and spec.long_name:
         attrs["long_name"] = spec.long_name
@@ -46,14 +52,6 @@ def _values(value):
     return np.asarray(value)
 
 
-# The coordinates of files without coordinate variables (version 1): a dimension's labels
-# taken from the dataset that holds them.
-FALLBACK_COORDINATES = {"leg": "/model/leg_names", "joint": "/model/joint_names",
-                        "tread_depth": "/axes/tread_depth", "duty_factor": "/axes/duty_factor",
-                        "peak_speed": "/axes/peak_speed", "criterion": "/axes/criteria",
-                        "case": "/axes/case"}
-
-
 def _spec(path, ndim):
     """The declaration of `path` with `ndim` dimensions (an envelope with cases declares its
     grids again with the dimension `case`), or None."""
@@ -62,11 +60,10 @@ def _spec(path, ndim):
 
 def _coordinate(res, dim, group=None):
     """(dim, values, attrs) of the dimension `dim` of a result or envelope: its coordinate
-    variable in `group` ("GROUP/dim") or at the root ("/dim"), else the dataset of
-    FALLBACK_COORDINATES or the component labels; None when it has none (an index dimension
-    of a file of version 1)."""
+    variable in `group` ("GROUP/dim") or at the root ("/dim"), else the component labels;
+    None when it has none."""
     here = None if group in (None, "/") else f"{group}/{dim}"
-    for path in (here, "/" + dim, FALLBACK_COORDINATES.get(dim)):
+    for path in (here, "/" + dim):
         if path is not None and path in res and np.ndim(_values(res[path])) == 1:
             spec = _spec(path, 1)
             attrs = _attrs(spec, res.units.get(path, ""))
@@ -109,11 +106,17 @@ def result_to_xarray(res, group=None):
     return ds
 
 
+def axis_name(key):
+    """The name of the quantity a sweep axis sweeps: its key's last word, in words
+    ("terrain.riser_height": "riser height")."""
+    return key.rsplit(".", 1)[-1].replace("_", " ")
+
+
 def _axis_coordinate(axis, units):
     values = np.asarray(axis.values, dtype=float) if axis.numeric else np.array(
         axis.values, dtype=object)
-    attrs = {"long_name": f"{axis.key}: values of the swept key"}
-    if axis.numeric and units and units not in ("SI", "key"):
+    attrs = {"long_name": axis_name(axis.key)}
+    if axis.numeric and units and units not in ("1", "key"):
         attrs["units"] = units
     return (axis.key, values, attrs)
 
@@ -136,7 +139,8 @@ def sweep_to_xarray(sw):
     for i, a in enumerate(sw.axes):
         coords[a.key] = _axis_coordinate(a, sw.units.get(f"axis_{i}", ""))
         for key, column in (a.cases or {}).items():  # a cases axis: what each case sets
-            coords[key] = (a.key, _values(column), {"long_name": f"{key}: value in each {a.key}"})
+            coords[key] = (a.key, _values(column),
+                           {"long_name": f"{axis_name(key)} in each {a.key}"})
     coords["joint"] = ("joint", np.array(sw.joint_names, dtype=object),
                        {"long_name": "joint name, leg-major"})
     variables = {}
@@ -173,14 +177,14 @@ def sweep_to_dataframe(sw):
 
 
 def open_envelope(path):
-    """The /envelope group of a hexdyn-envelope/2 file with the grid's coordinates
+    """The /envelope group of a hexdyn-envelope file with the grid's coordinates
     (tread_depth, duty_factor, peak_speed, criterion; case), as an xarray.Dataset:
     hexdyn.open_envelope(path).to_xarray(). Errors as hexdyn.open_envelope."""
     return hr.open_envelope(path).to_xarray()
 
 
 def open_replay(path, group=None):
-    """A hexdyn-replay/1 file as an xarray.Dataset, labelled as a result (time, leg, joint,
+    """A hexdyn-replay file as an xarray.Dataset, labelled as a result (time, leg, joint,
     xyz, gait_cycle): hexdyn.open_replay(path).to_xarray(group). Errors as
     hexdyn.open_replay."""
     return hr.open_replay(path).to_xarray(group)
