@@ -98,19 +98,9 @@ def fraction_text(x, max_denominator=12):
 
 def sweep_axis_units(sweep):
     """Units of each axis of a sweep (the `units` attribute of /axes/{i}/values: the unit of
-    the swept key, docs/user/output.md; None for words, cases and keys without one)."""
-    own = [getattr(a, "units", None) for a in sweep.axes]
-    if all(u is not None for u in own):
-        return own
-    import h5py
-
-    out = []
-    with h5py.File(sweep.path, "r") as f:
-        for i in range(len(sweep.axes)):
-            ds = f["axes"][str(i)]["values"]
-            units = ds.attrs.get("units") if h5py.check_string_dtype(ds.dtype) is None else None
-            out.append(None if units is None else str(hexdyn.decode_text(units)))
-    return out
+    the swept key, docs/user/output.md; None for words, cases and keys without one), as the
+    reader gives them (SweepAxis.units)."""
+    return [a.units for a in sweep.axes]
 
 
 def sweep_axis_label(sweep, i, units=None):

@@ -1,6 +1,6 @@
 #!/usr/bin/python3
-"""Heatmaps and line plots of a hexdyn-sweep file (schema 2, or 1): energy, cost of
-transport and peak joint torque over the swept keys.
+"""Heatmaps and line plots of a hexdyn-sweep file: energy, cost of transport and peak joint
+torque over the swept keys, or any column of its scenario table (--metric).
 
     /usr/bin/python3 analysis/plot_sweep.py SWEEP.h5 OUTDIR [--rows KEY] [--cols KEY]
     /usr/bin/python3 analysis/plot_sweep.py SWEEP.h5 OUTDIR --x KEY [--hue KEY]
@@ -25,9 +25,16 @@ Line plots (--x KEY): OUTDIR/sweep_<metric>_vs_<KEY>.png, the metric against axi
 line per value of axis --hue (e.g. cost of transport against terrain.riser_height, one line
 per gait.duty_factor). Every other axis with more than one value is fixed by
 --sel KEY=VALUE (VALUE as in the sweep file, e.g. gait.duty_factor=3/4) or else gives one
-panel per value combination (up to 12; more is an error naming the axes to fix). --metric
-chooses among energy, cost_of_transport, peak_torque (default all three). Each figure is
-saved under a temporary name in OUTDIR and renamed when complete.
+panel per value combination (up to 12; more is an error naming the axes to fix).
+
+--metric NAME (repeatable; heatmaps and line plots) draws those metrics instead of the three
+above: any numeric column of the file's /scenarios table (energy_electrical,
+cost_of_transport_electrical, peak_torque_gait, required_friction_support, ... as the file
+has them), titled by its long_name and unit; a per-joint column (peak_torque) is its
+largest value over the joints, and COLUMN[JOINT] (peak_torque[L2_femur]) one joint's, as in
+Sweep.to_dataframe. The files are OUTDIR/sweep_<NAME>.png and sweep_<NAME>_vs_<KEY>.png
+(COLUMN[JOINT]: COLUMN_JOINT). Each figure is saved under a temporary name in OUTDIR and
+renamed when complete.
 """
 
 import argparse
@@ -45,8 +52,11 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 MAX_PANELS = 12
+# Columns of /scenarios that are no metric: the scenario's id, its error message and its
+# place on the grid.
+NOT_METRICS = ("id", "message", "axis_index")
 
-# (file name, title, unit, per-scenario value from the table)
+# (file name, title, unit, per-scenario value from the table): the default figures.
 METRICS = (
     ("sweep_energy.png", "energy E", "J", lambda t: np.asarray(t["energy"], dtype=float)),
     ("sweep_cost_of_transport.png", "cost of transport E/(m g d)", "1",
@@ -54,6 +64,47 @@ METRICS = (
     ("sweep_peak_torque.png", "peak joint torque max_k max_t |τ_k|", "N m",
      lambda t: nanmax_rows(np.asarray(t["peak_torque"], dtype=float))),
 )
+
+
+def metric_columns(sweep):
+    """The columns --metric takes for this sweep, {name: per joint (bool)}: every numeric
+    column of /scenarios but the id, the message and the grid's indices."""
+    out = {}
+    for name, column in sweep.table.items():
+        values = np.asarray(column)
+        if name in NOT_METRICS or name.startswith("axis_") or values.dtype.kind not in "fiub":
+            continue
+        out[name] = values.ndim == 2
+    return out
+
+
+def column_metric(sweep, name):
+    """The metric tuple (file name, title, unit, value) of the /scenarios column `name` or
+    COLUMN[JOINT]; one of METRICS when it is one of the default three. SystemExit naming the
+    metrics the file has for any other name."""
+    columns = metric_columns(sweep)
+    column, _, joint = name.partition("[")
+    joint = joint[:-1] if joint.endswith("]") else None if not joint else ""
+    if column not in columns or (joint is not None and (
+            not columns[column] or joint not in sweep.joint_names)):
+        per_joint = [c for c, j in columns.items() if j]
+        raise SystemExit(f"plot_sweep: --metric {name!r} is not a metric of {sweep.path}; its "
+                         f"metrics: {', '.join(columns)}; one joint's as COLUMN[JOINT] of "
+                         f"{', '.join(per_joint)} (joints {', '.join(sweep.joint_names)})")
+    for m in METRICS:
+        if m[0] == f"sweep_{name}.png":
+            return m
+    spec = hr.SPECS.get(f"{hr.SCENARIOS_GROUP}/{column}")
+    title = spec.long_name if spec is not None and spec.long_name else column
+    unit = sweep.units.get(column, "")
+    if joint:
+        j = list(sweep.joint_names).index(joint)
+        return (f"sweep_{column}_{joint}.png", f"{title}, {joint}", unit,
+                lambda t: np.asarray(t[column], dtype=float)[:, j])
+    if np.ndim(sweep.table[column]) == 2:
+        return (f"sweep_{column}.png", f"{title}, largest over the joints", unit,
+                lambda t: nanmax_rows(np.asarray(t[column], dtype=float)))
+    return (f"sweep_{column}.png", title, unit, lambda t: np.asarray(t[column], dtype=float))
 
 
 def choose_axes(sweep, rows_key=None, cols_key=None):
@@ -341,16 +392,18 @@ def main(argv=None):
     ap.add_argument("--hue", help="line plots: axis key with one line per value")
     ap.add_argument("--sel", action="append", metavar="KEY=VALUE",
                     help="line plots: fix an axis to one value (repeatable)")
-    ap.add_argument("--metric", action="append", choices=[m[0][6:-4] for m in METRICS],
-                    help="line plots: the metric(s) to draw (default all)")
+    ap.add_argument("--metric", action="append", metavar="NAME",
+                    help="a /scenarios column to draw, COLUMN[JOINT] for one joint "
+                         "(repeatable; default energy, cost_of_transport, peak_torque)")
     args = ap.parse_args(argv)
     sweep = hr.open_sweep(args.sweep)
+    chosen = [column_metric(sweep, name) for name in args.metric] if args.metric else METRICS
     os.makedirs(args.outdir, exist_ok=True)
     if args.x is None:
-        if args.hue or args.sel or args.metric:
-            raise SystemExit("plot_sweep: --hue, --sel and --metric go with --x KEY")
+        if args.hue or args.sel:
+            raise SystemExit("plot_sweep: --hue and --sel go with --x KEY")
         rows, cols = choose_axes(sweep, args.rows, args.cols)
-        written = [draw(sweep, m, rows, cols, args.outdir) for m in METRICS]
+        written = [draw(sweep, m, rows, cols, args.outdir) for m in chosen]
     else:
         keys = [a.key for a in sweep.axes]
         for k in (args.x, args.hue):
@@ -363,7 +416,6 @@ def main(argv=None):
         fixed = parse_sel(sweep, args.sel)
         if x in fixed or (hue is not None and hue in fixed):
             raise SystemExit("plot_sweep: --sel fixes an axis given as --x or --hue")
-        chosen = [m for m in METRICS if not args.metric or m[0][6:-4] in args.metric]
         written = []
         for m in chosen:
             fig, _ = draw_lines(sweep, m, x, hue, fixed)

@@ -10,7 +10,9 @@ against values computed here from the files with h5py, yaml and xml.etree.
     effort limits of the original robots/kraby.urdf; none for the paper robot.
   - plot_sweep: the peak-torque heatmap draws the limit on its colour bar and frames exactly
     the scenarios whose peak exceeds it, red where they have relaxed samples; --x --hue line
-    plots draw the limit and mark the same scenarios; the command writes its files.
+    plots draw the limit and mark the same scenarios; the command writes its files. --metric
+    takes any /scenarios column: on an actuated sweep the electrical cost of transport drawn
+    is E_el/(m g d) recomputed from each kept run.
   - plot_actuators.draw with actuators (the paper scene with MX-64 servos, the femurs given
     a continuous rating): each joint's envelope, read off the drawn polyline at every
     sample's speed, is /joints/drive_torque_limit, and at its vertices the bound computed
@@ -352,6 +354,46 @@ def test_energy(args, d):
     check(r.returncode != 0 and len(r.stderr.strip().splitlines()) == 1
           and "electrical" in r.stderr, "plot_energy.py on a sweep without actuators: one "
           "line, non-zero exit", r.stderr)
+    test_sweep_metric(args, d, path, ids)
+
+
+def test_sweep_metric(args, d, path, ids):
+    """plot_sweep --metric on the actuated sweep: the electrical cost of transport drawn is
+    E_el/(m g d) recomputed from each kept run; one joint's column is the data frame's."""
+    import matplotlib.pyplot as plt
+    from hexdyn import results as hr
+
+    import plot_sweep
+
+    sweep = hr.open_sweep(path)
+    with h5py.File(path, "r") as f:
+        want = np.array([f["runs"][i]["energy/electrical"][()] / (
+            f["runs"][i]["model/total_mass"][()] * 9.81 * f["runs"][i]["energy/distance"][()])
+            for i in ids])
+    fig, _ = plot_sweep.draw_heatmap(
+        sweep, plot_sweep.column_metric(sweep, "cost_of_transport_electrical"), 0, None)
+    drawn = np.ma.filled(fig.axes[0].images[0].get_array(), np.nan).ravel()
+    check(np.all(np.isfinite(want)) and np.allclose(drawn, want, rtol=1e-12, atol=0),
+          "plot_sweep --metric cost_of_transport_electrical: E_el/(m g d) of the kept runs",
+          f"{drawn} vs {want}")
+    plt.close(fig)
+    one = plot_sweep.column_metric(sweep, "peak_torque[L2_femur]")
+    check(np.array_equal(one[3](sweep.table), sweep.to_dataframe()["peak_torque[L2_femur]"]),
+          "plot_sweep --metric peak_torque[L2_femur]: the data frame's column")
+    script = os.path.join(args.source, "analysis", "plot_sweep.py")
+    out = os.path.join(d, "metricfigs")
+    r = subprocess.run(["/usr/bin/python3", script, path, out, "--metric",
+                        "cost_of_transport_electrical", "--metric", "peak_torque[L2_femur]"],
+                       capture_output=True, text=True)
+    check(r.returncode == 0 and sorted(os.listdir(out)) == [
+        "sweep_cost_of_transport_electrical.png", "sweep_peak_torque_L2_femur.png"],
+        "plot_sweep.py --metric writes one heatmap per metric", r.stderr)
+    r = subprocess.run(["/usr/bin/python3", script, path, out, "--metric", "nosuch"],
+                       capture_output=True, text=True)
+    check(r.returncode != 0 and len(r.stderr.strip().splitlines()) == 1
+          and "cost_of_transport_electrical" in r.stderr,
+          "plot_sweep.py --metric of no column: one line naming the columns, non-zero exit",
+          r.stderr)
 
 
 def main():

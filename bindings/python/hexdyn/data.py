@@ -247,16 +247,19 @@ class Replay(_Datasets):
 class SweepAxis:
     """One swept key: `key` (dotted path), `values` (float array, or list of str for an
     axis of words), `labels` (as written in the sweep file, e.g. "2/3"), `numeric`.
+    `units` is the unit of the key the values are in ("m"; None for an axis of words or a
+    key without one).
     A cases axis (`cases:` in the sweep file) has `key` its name ("case"), `values` and
     `labels` the case labels, and `cases` {scene key: value per case} (float array or list
     of str), the keys in the order of the sweep file; `cases` is None for other axes."""
 
-    def __init__(self, key, values, labels, cases=None):
+    def __init__(self, key, values, labels, cases=None, units=None):
         self.key = key
         self.values = values
         self.labels = labels
         self.numeric = isinstance(values, np.ndarray)
         self.cases = cases
+        self.units = units
 
     @property
     def is_cases(self):

@@ -175,8 +175,11 @@ def _case_column(texts):
 
 def _read_axis(g, source):
     values = read_checked(g["values"], source)
+    units = None
     if not isinstance(values, list):
         values = np.asarray(values, dtype=float)
+        attrs = g["values"].attrs
+        units = decode_text(attrs["units"]) if "units" in attrs else None
     cases = None
     if "case_keys" in g:  # a cases axis: each key's value per case
         keys = read_checked(g["case_keys"], source)
@@ -184,7 +187,7 @@ def _read_axis(g, source):
             len(values), len(keys))
         cases = {k: _case_column([str(t) for t in table[:, n]]) for n, k in enumerate(keys)}
     return SweepAxis(read_checked(g["key"], source), values, read_checked(g["labels"], source),
-                     cases)
+                     cases, units)
 
 
 def _read_sweep(f, source):
