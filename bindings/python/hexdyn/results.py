@@ -1,9 +1,10 @@
 """Readers of hexdyn's files, with h5py only, driven by one table of file kinds
-(FILE_KINDS): results (`hexdyn-result/2`), sweeps (`hexdyn-sweep/2`), envelopes
-(`hexdyn-envelope/2`), replays (`hexdyn-replay/1`) and studies (`hexdyn-study/1`, of
-analysis/study.py). Each row gives the kind's schema and the versions read, its checks at
-open, its reader and the type it returns; open_file opens any of them, checked against its
-schema, and check_layout checks any (also what the checks at open leave out).
+(FILE_KINDS): results (`hexdyn-result`), sweeps (`hexdyn-sweep`), envelopes
+(`hexdyn-envelope`), replays (`hexdyn-replay`) and studies (`hexdyn-study`, of
+analysis/study.py). Each row gives the kind's schema and the versions read (the schema's
+current one; docs/user/output.md#versions-read), its checks at open, its reader and the type
+it returns; open_file opens any of them, checked against its schema, and check_layout checks
+any (also what the checks at open leave out).
 
 The layout is the contract of docs/user/output.md, declared in src/hexdyn/io/schema.hpp and
 reaching Python as the module hexdyn._schema, generated at build time from the compiled
