@@ -8,7 +8,8 @@ source, compared object by object with h5py; it refuses its source, a directory 
 changed since it was read, leaving nothing behind. to_xarray of a group the file lacks raises
 an error naming the known groups. open_envelope matches xarray's own reading of the file, and
 open_study a study file written by analysis/study.py's writer, read back with h5py; every
-reader, check_layout and decode_text work with xarray and the compiled part unimportable.
+reader, check_layout and decode_text work with xarray and the compiled part unimportable;
+open_file opens each kind by its /meta schema and refuses another schema in one line.
     test_data.py HEXDYN_BINARY SOURCE_DIR      (PYTHONPATH: the build tree's python/)"""
 
 import hashlib
@@ -285,6 +286,26 @@ with tempfile.TemporaryDirectory() as d:
         assert st.meta["schema"] == "hexdyn-study/1"
     assert hexdyn.check_layout(study) == "hexdyn-study/1"
     print(f"study: {len(st)} runs, references {sorted(st.references)}")
+
+    # ---- open_file: the kind /meta names, one type per kind; another schema refused
+    files = {f"{d}/run.h5": hexdyn.Result, f"{d}/sweep.h5": hexdyn.Sweep,
+             envelope: hexdyn.Envelope, study: hexdyn.Study}
+    for path, kind in files.items():
+        with h5py.File(path, "r") as f:
+            schema = f["meta"].attrs["schema"]
+            schema = schema.decode() if isinstance(schema, bytes) else schema
+        got = hexdyn.open_file(path)
+        assert type(got) is kind and hexdyn.check_layout(path) == schema, (path, got)
+        assert schema.rsplit("/", 1)[0] in hexdyn.results.FILE_KINDS, schema
+    odd = f"{d}/odd.h5"
+    with h5py.File(odd, "w") as f:
+        f.create_group("meta").attrs["schema"] = "hexdyn-odd/1"
+    for reader in (hexdyn.open_file, hexdyn.check_layout):
+        got = raises(ValueError, reader, odd)
+        assert "'hexdyn-odd/1'" in got and all(k in got for k in hexdyn.results.FILE_KINDS), got
+    got = raises(ValueError, hexdyn.open_sweep, f"{d}/run.h5")
+    assert "'hexdyn-sweep/" in got and "'hexdyn-result/" in got and "\n" not in got, got
+    print(f"open_file: {len(files)} kinds by their /meta schema; another schema refused")
 
     # ---- every reader without xarray and without the compiled part
     script = f"""
