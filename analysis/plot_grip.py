@@ -25,6 +25,8 @@ import argparse
 import os
 import sys
 
+import hexdyn_path  # first: the package hexdyn, from build/python when not installed
+hexdyn_path.ensure()
 from figures import LEG_COLORS, fit_suptitle, save_atomically  # first: Agg
 from hexdyn import results as hr
 import matplotlib.pyplot as plt

@@ -15,6 +15,8 @@ import argparse
 import os
 import sys
 
+import hexdyn_path  # first: the package hexdyn, from build/python when not installed
+hexdyn_path.ensure()
 from figures import (OPTIMAL_OVER_COLOR, RELAXED_COLOR, draw_limit_and_exceedances,  # first: Agg
                      fit_title, fraction_text, save_atomically, torque_limits)
 from hexdyn.results import open_result
