@@ -39,6 +39,8 @@ import io
 import os
 import sys
 
+import hexdyn_path  # first: the package hexdyn, from build/python when not installed
+hexdyn_path.ensure()
 from figures import FAILED_COLOR, RELAXED_COLOR  # first: selects the Agg backend
 from animate_data import InputError, frames_of, load_motion, replay_mismatch
 from animate_html import html_page

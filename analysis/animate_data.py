@@ -31,6 +31,8 @@ import math
 import os
 
 import h5py
+import hexdyn_path  # first: the package hexdyn, from build/python when not installed
+hexdyn_path.ensure()
 from hexdyn import decode_text
 import numpy as np
 from urdf_fk import UrdfRobot

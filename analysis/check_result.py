@@ -41,6 +41,8 @@ import xml.etree.ElementTree as ET
 import numpy as np  # noqa: E402
 import yaml  # noqa: E402
 
+import hexdyn_path  # first: the package hexdyn, from build/python when not installed
+hexdyn_path.ensure()
 from hexdyn import results as hr  # noqa: E402
 from urdf_fk import UrdfRobot  # noqa: E402
 

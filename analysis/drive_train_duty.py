@@ -29,6 +29,8 @@ import sys
 
 import numpy as np
 
+import hexdyn_path  # first: the package hexdyn, from build/python when not installed
+hexdyn_path.ensure()
 import hexdyn
 
 

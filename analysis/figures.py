@@ -32,6 +32,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
+import hexdyn_path  # first: the package hexdyn, from build/python when not installed
+hexdyn_path.ensure()
 import hexdyn  # noqa: E402
 
 # ---------------------------------------------------------------- colours
@@ -129,6 +131,32 @@ def fit_title(ax, text, fontsize=10):
     """The title of one panel, wrapped to the panel's width."""
     width = ax.get_position().width * ax.figure.get_figwidth()
     return ax.set_title(wrap(text, width, fontsize), fontsize=fontsize)
+
+
+# ---------------------------------------------------------------- intervals in time
+# A shaded interval is at least this fraction of the run's duration wide: a touchdown
+# transient or a relaxed sample lasts milliseconds of a run of seconds.
+MIN_SPAN = 0.006
+
+
+def runs_of(mask):
+    """(first, last) sample indices of each run of True in a boolean vector."""
+    padded = np.concatenate(([False], np.asarray(mask, dtype=bool), [False]))
+    edges = np.flatnonzero(np.diff(padded.astype(np.int8)))
+    return [(int(a), int(b) - 1) for a, b in zip(edges[::2], edges[1::2])]
+
+
+def shade_runs(ax, t, mask, color, label):
+    """One span per run of True samples of `mask`, from its first to its last time, widened
+    to MIN_SPAN of the run's duration so that it shows; `label` names the spans in a legend
+    (once). Returns the spans."""
+    t = np.asarray(t, dtype=float)
+    width = MIN_SPAN * (t[-1] - t[0]) if len(t) > 1 else 0.0
+    spans = []
+    for a, b in runs_of(mask):
+        spans.append(ax.axvspan(t[a], max(t[b], t[a] + width), color=color, lw=0, zorder=0,
+                                label=label if not spans else None))
+    return spans
 
 
 # ---------------------------------------------------------------- limits

@@ -19,6 +19,8 @@ Prints one line per statement (or a Markdown table) and a closing
 import argparse
 import sys
 
+import hexdyn_path  # first: the package hexdyn, from build/python when not installed
+hexdyn_path.ensure()
 from hexdyn.results import open_result
 import numpy as np
 

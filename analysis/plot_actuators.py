@@ -36,6 +36,8 @@ import argparse
 import os
 import sys
 
+import hexdyn_path  # first: the package hexdyn, from build/python when not installed
+hexdyn_path.ensure()
 from figures import (CONTINUOUS_COLOR, LIMIT_COLOR, RMS_COLOR,  # first: Agg
                      actuator_specs, draw_limit_and_exceedances, drive_torque_bound,
                      envelope_speeds, fit_suptitle, mark_exceedances, no_load_speed,

@@ -22,6 +22,8 @@ their URDF, configs/designs/robots.yaml); drawn by `analysis/plot_designs.py --c
 
 import os
 
+import hexdyn_path  # first: the package hexdyn, from build/python when not installed
+hexdyn_path.ensure()
 from figures import (fit_suptitle, fit_title, fraction_text, with_units,  # first: Agg
                      save_atomically, sweep_axis_label, torque_limits, write_csv_atomically)
 from hexdyn import results as hr

@@ -51,6 +51,8 @@ Each figure is saved under a temporary name in OUTDIR and renamed when complete.
 import argparse
 import os
 
+import hexdyn_path  # first: the package hexdyn, from build/python when not installed
+hexdyn_path.ensure()
 from figures import (OPTIMAL_OVER_COLOR, RELAXED_COLOR, exceeds, fit_suptitle,  # first: Agg
                      fit_title, save_atomically, sweep_axis_units, torque_ratio, with_units,
                      write_csv_atomically)

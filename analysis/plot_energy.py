@@ -28,6 +28,8 @@ import argparse
 import os
 import sys
 
+import hexdyn_path  # first: the package hexdyn, from build/python when not installed
+hexdyn_path.ensure()
 from figures import (fit_suptitle, fit_title, save_atomically, sweep_axis_units,  # first: Agg
                      with_units)
 from hexdyn import results as hr

@@ -18,6 +18,8 @@ envelope as a text table (riser in mm, and what limits it) on stdout.
 import argparse
 import os
 
+import hexdyn_path  # first: the package hexdyn, from build/python when not installed
+hexdyn_path.ensure()
 from figures import fit_suptitle, fraction_text, save_atomically  # first: Agg
 import hexdyn
 from hexdyn import results as hr

@@ -27,6 +27,8 @@ Writes
 import argparse
 import os
 
+import hexdyn_path  # first: the package hexdyn, from build/python when not installed
+hexdyn_path.ensure()
 from figures import fit_suptitle, fraction_text, save_atomically, write_csv_atomically
 from hexdyn import results as hr
 import matplotlib.pyplot as plt

@@ -4,18 +4,21 @@ the friction the sample needs, the scene's mu, the touchdown transients and the 
 
 usage: /usr/bin/python3 analysis/plot_grip.py RESULT.h5 OUTDIR [--name FILE]
 
-Writes OUTDIR/grip.png (or --name): six panels, legs L1 ... L6, time on x, friction
-coefficient on y (linear below 0.1, logarithmic above, as the required friction of a
-touchdown transient reaches hundreds). In each panel:
+Writes OUTDIR/grip.png (or --name), every axis linear:
 
-  solid, the leg's utilised friction |F_t| / F_n (/contacts/utilized_friction; NaN in
-         swing, not drawn; +inf where the foot pulls, not drawn);
-  grey,  the sample's required friction (/contacts/required_friction), the same in every
-         panel; dots where this leg binds it (/contacts/required_friction_leg);
-  dashed red, the scene's mu (contact.friction_coefficient of /meta config_yaml);
-  shaded, the leg's touchdown transients (/contacts/phase 1), at least 0.6 % of the run
-         wide (a transient lasts milliseconds);
-  red crosses, the leg's slip samples (/contacts/slip 1), at the sample's required friction.
+  top, wide: the sample's required friction mu* (/contacts/required_friction) over time,
+         each sample coloured by the leg that binds it (/contacts/required_friction_leg);
+         the axis ends a fifth above the largest mu* outside touchdown transients, and the
+         samples above it (the transients' mu* reaches hundreds) are triangles on its top
+         edge; the scene's mu (contact.friction_coefficient of /meta config_yaml) dashed
+         red when it is on the axis, else named in the title;
+  below, one panel per leg L1 ... L6: the leg's utilised friction |F_t| / F_n
+         (/contacts/utilized_friction; NaN in swing and not drawn), the scene's mu dashed,
+         and the leg's slip samples (/contacts/slip 1) as red crosses on the mu line.
+
+Touchdown transients (/contacts/phase 1, where the trunk rows may be relaxed) are shaded in
+every panel, each widened to at least 0.6 % of the run (a transient lasts milliseconds) and
+named in the legend, which sits below the panels.
 
 A file without these datasets is refused: one line on stderr, exit status 2. The figure is
 saved under a temporary name and renamed when complete.
@@ -25,7 +28,10 @@ import argparse
 import os
 import sys
 
-from figures import LEG_COLORS, fit_suptitle, save_atomically  # first: Agg
+import hexdyn_path  # first: the package hexdyn, from build/python when not installed
+hexdyn_path.ensure()
+from figures import (LEG_COLORS, MIN_SPAN, fit_suptitle, fit_title, save_atomically,  # first: Agg
+                     shade_runs)
 from hexdyn import results as hr
 import matplotlib.pyplot as plt
 import numpy as np
@@ -33,15 +39,8 @@ import numpy as np
 DATASETS = ("/time", "/contacts/phase", "/contacts/utilized_friction",
             "/contacts/required_friction", "/contacts/required_friction_leg",
             "/contacts/slip")
-MIN_SPAN = 0.006  # shaded width of a transient at least, as a fraction of the run's duration
 TRANSIENT_COLOR, SLIP_COLOR, MU_COLOR, REQUIRED_COLOR = "0.8", "tab:red", "tab:red", "0.45"
-
-
-def runs_of(mask):
-    """(first, last) sample indices of each run of True in a boolean vector."""
-    padded = np.concatenate(([False], np.asarray(mask, dtype=bool), [False]))
-    edges = np.flatnonzero(np.diff(padded.astype(np.int8)))
-    return [(int(a), int(b) - 1) for a, b in zip(edges[::2], edges[1::2])]
+TRANSIENT_LABEL = f"touchdown transient (shaded at least {100 * MIN_SPAN:g} % of the run wide)"
 
 
 def grip_data(res):
@@ -58,52 +57,91 @@ def grip_data(res):
 
 
 def shade_transients(ax, t, transient):
-    """One grey span per run of touchdown-transient samples, from its first to last time,
-    widened to MIN_SPAN of the run's duration: a transient lasts milliseconds."""
-    spans = []
-    width = MIN_SPAN * (t[-1] - t[0]) if len(t) > 1 else 0.0
-    for a, b in runs_of(transient):
-        spans.append(ax.axvspan(t[a], max(t[b], t[a] + width), color=TRANSIENT_COLOR, lw=0,
-                                zorder=0))
-    return spans
+    """The touchdown transients of `transient` (T,) as shaded spans (figures.shade_runs)."""
+    return shade_runs(ax, t, transient, TRANSIENT_COLOR, TRANSIENT_LABEL)
+
+
+def required_top(d):
+    """The top of the required-friction axis: a fifth above the largest finite mu* outside
+    the touchdown transients (1.0 when there is none)."""
+    outside = ~(d["phase"] == hr.PHASE_IMPACT).any(axis=1)
+    values = d["required"][outside & np.isfinite(d["required"])]
+    return 1.2 * float(values.max()) if values.size and values.max() > 0 else 1.0
+
+
+def draw_required(ax, d):
+    """The top panel: mu* per sample, coloured by its binding leg; returns its artists."""
+    t, req = d["t"], np.where(np.isfinite(d["required"]), d["required"], np.nan)
+    top = required_top(d)
+    spans = shade_transients(ax, t, (d["phase"] == hr.PHASE_IMPACT).any(axis=1))
+    line, = ax.plot(t, req, color=REQUIRED_COLOR, lw=0.8, label="required mu* (sample)")
+    binds = []
+    for k in range(len(hr.LEG_NAMES)):
+        on = (d["leg"] == k) & (req <= top)
+        dots, = ax.plot(t[on], req[on], ".", ms=3, color=LEG_COLORS[k],
+                        label=f"{hr.LEG_NAMES[k]} binds")
+        binds.append(dots)
+    above = req > top
+    over, = ax.plot(t[above], np.full(int(above.sum()), top), "^", ms=4, color=REQUIRED_COLOR,
+                    clip_on=False, label=f"mu* above {top:.3g}")
+    mu = None
+    title = "Required friction mu* of each sample"
+    if np.isfinite(d["mu"]) and d["mu"] <= top:
+        mu = ax.axhline(d["mu"], color=MU_COLOR, ls="--", lw=1, label=f"scene mu = {d['mu']:g}")
+    elif np.isfinite(d["mu"]):
+        title += f" (the scene's mu = {d['mu']:g}, above the axis)"
+    ax.set_ylim(0, top)
+    fit_title(ax, title, fontsize=9)
+    ax.set_ylabel("mu*")
+    ax.grid(alpha=0.3)
+    return {"spans": spans, "required": line, "binds": binds, "above": over, "mu": mu,
+            "top": top}
 
 
 def draw_leg(ax, d, k):
-    """Panel of leg k (0-based); returns its artists by role."""
+    """Panel of leg k (0-based): its utilised friction; returns its artists by role."""
     t = d["t"]
     spans = shade_transients(ax, t, d["phase"][:, k] == hr.PHASE_IMPACT)
     u = np.where(np.isfinite(d["utilized"][:, k]), d["utilized"][:, k], np.nan)
-    used, = ax.plot(t, u, color=LEG_COLORS[k], lw=1, label="utilised")
-    req = np.where(np.isfinite(d["required"]), d["required"], np.nan)
-    needed, = ax.plot(t, req, color=REQUIRED_COLOR, lw=0.8, label="required (sample)")
-    binds = d["leg"] == k
-    bind, = ax.plot(t[binds], req[binds], ".", ms=2.5, color=REQUIRED_COLOR,
-                    label=f"{hr.LEG_NAMES[k]} binds")
+    used, = ax.plot(t, u, color=LEG_COLORS[k], lw=1, label="utilised |F_t|/F_n")
     mu = ax.axhline(d["mu"], color=MU_COLOR, ls="--", lw=1, label=f"scene mu = {d['mu']:g}")
     slips = d["slip"][:, k] == 1
-    slip, = ax.plot(t[slips], req[slips], "x", ms=5, color=SLIP_COLOR,
-                    label=f"slip ({int(slips.sum())})")
-    ax.set_yscale("symlog", linthresh=0.1)
-    ax.set_title(f"{hr.LEG_NAMES[k]}: {int(slips.sum())} slip sample(s)", fontsize=9)
+    slip, = ax.plot(t[slips], np.full(int(slips.sum()), d["mu"]), "x", ms=5, color=SLIP_COLOR,
+                    label="slip sample")
+    if np.isfinite(d["mu"]):
+        ax.set_ylim(0, 1.5 * d["mu"])
+    ax.set_title(f"{hr.LEG_NAMES[k]}: utilised friction, {int(slips.sum())} slip sample(s)",
+                 fontsize=9)
     ax.grid(alpha=0.3)
-    return {"spans": spans, "utilized": used, "required": needed, "binds": bind, "mu": mu,
-            "slip": slip}
+    return {"spans": spans, "utilized": used, "mu": mu, "slip": slip}
 
 
 def draw(res):
-    """The figure, its artists per leg and the data drawn."""
+    """The figure, its artists ({"required": top panel's, "legs": one dict per leg}) and the
+    data drawn."""
     d = grip_data(res)
-    fig, axes = plt.subplots(3, 2, figsize=(11, 8), sharex=True, sharey=True)
-    artists = [draw_leg(axes.flat[k], d, k) for k in range(6)]
-    for ax in axes[-1]:
-        ax.set_xlabel("time [s]")
-    for ax in axes[:, 0]:
-        ax.set_ylabel("friction coefficient")
-    axes[0, 1].legend(fontsize=7, loc="upper right")
-    fit_suptitle(fig, "Grip per leg: utilised friction |F_t|/F_n, the sample's required "
-                 "friction (dots: this leg binds), the scene's mu (dashed), touchdown "
-                 "transients (shaded), slip samples (crosses)")
-    fig.tight_layout()
+    fig = plt.figure(figsize=(11, 10))
+    grid = fig.add_gridspec(4, 2, height_ratios=(1.3, 1, 1, 1))
+    top = fig.add_subplot(grid[0, :])
+    legs = [fig.add_subplot(grid[1 + k // 2, k % 2], sharex=top) for k in range(6)]
+    artists = {"required": draw_required(top, d),
+               "legs": [draw_leg(legs[k], d, k) for k in range(6)]}
+    for k, ax in enumerate(legs):
+        if k >= 4:
+            ax.set_xlabel("time [s]")
+        else:
+            ax.tick_params(labelbottom=False)
+        if k % 2 == 0:
+            ax.set_ylabel("|F_t| / F_n")
+    handles, labels = [], []
+    for ax in [top, legs[0]]:
+        for h, label in zip(*ax.get_legend_handles_labels()):
+            if label not in labels:
+                handles.append(h)
+                labels.append(label)
+    fit_suptitle(fig, "Grip: the friction each sample needs (top) and each leg uses (below)")
+    fig.subplots_adjust(left=0.07, right=0.98, top=0.92, bottom=0.12, hspace=0.5, wspace=0.15)
+    fig.legend(handles, labels, loc="lower center", ncol=6, fontsize=8, frameon=False)
     return fig, artists, d
 
 

@@ -13,6 +13,8 @@ import argparse
 import os
 import sys
 
+import hexdyn_path  # first: the package hexdyn, from build/python when not installed
+hexdyn_path.ensure()
 from figures import IMPACT_COLOR, LEG_COLORS, SUPPORT_COLOR, save_atomically  # first: Agg
 from hexdyn import results as hr
 from matplotlib.patches import Patch

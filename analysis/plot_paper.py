@@ -15,8 +15,11 @@ import argparse
 import os
 import sys
 
-from figures import (OPTIMAL_OVER_COLOR, RELAXED_COLOR, draw_limit_and_exceedances,  # first: Agg
-                     fit_title, fraction_text, save_atomically, torque_limits)
+import hexdyn_path  # first: the package hexdyn, from build/python when not installed
+hexdyn_path.ensure()
+from figures import (MIN_SPAN, OPTIMAL_OVER_COLOR, RELAXED_COLOR,  # first: Agg
+                     draw_limit_and_exceedances, fit_title, fraction_text, save_atomically,
+                     shade_runs, torque_limits)
 from hexdyn.results import open_result
 import matplotlib.pyplot as plt
 import numpy as np
@@ -24,16 +27,15 @@ import numpy as np
 G = 9.81
 LEG_STYLE = {0: "-", 1: "--"}  # left solid, right dashed
 JOINTS = ("coxa (joint 1)", "femur (joint 2)", "tibia (joint 3)")
+RELAXED_SPAN_COLOR = "#f2c4c4"  # a light tint of RELAXED_COLOR
 
 
 def shade_relaxed(ax, t, status):
-    """Grey bands where the allocation had to relax a constraint (status 1) or failed."""
-    bad = status != 0
-    if not bad.any():
-        return
-    edges = np.flatnonzero(np.diff(np.concatenate(([0], bad.astype(int), [0]))))
-    for a, b in zip(edges[::2], edges[1::2]):
-        ax.axvspan(t[a], t[b - 1], color="0.85", lw=0, zorder=0)
+    """Shaded spans where the allocation had to relax a constraint (status 1) or failed, each
+    at least figures.MIN_SPAN of the run wide, named once in the legend."""
+    return shade_runs(ax, t, np.asarray(status) != 0, RELAXED_SPAN_COLOR,
+                      f"relaxed or failed samples (shaded at least {100 * MIN_SPAN:g} % of the "
+                      "run wide)")
 
 
 def scene_words(res):
@@ -152,7 +154,7 @@ def fig4(res, outdir, leg, name, panel):
     shade_relaxed(ax, t, res["/solver/status"])
     ax.set_xlabel("time t [s]")
     ax.set_ylabel("joint torque [N m]")
-    fit_title(ax, f"Joint torques of leg {leg} (cf. paper Fig. 4{panel}); grey bands: relaxed "
+    fit_title(ax, f"Joint torques of leg {leg} (cf. paper Fig. 4{panel}); shaded: relaxed "
               "or failed samples", fontsize=10)
     ax.legend(fontsize=8)
     ax.grid(alpha=0.3)

@@ -15,6 +15,8 @@ grey square marks a plan with relaxed support samples, whose torques do not make
 import argparse
 import csv
 
+import hexdyn_path  # first: the package hexdyn, from build/python when not installed
+hexdyn_path.ensure()
 from figures import fit_suptitle, fraction_text, save_atomically
 import matplotlib.pyplot as plt
 import numpy as np

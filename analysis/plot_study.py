@@ -34,6 +34,8 @@ import os
 import sys
 
 
+import hexdyn_path  # first: the package hexdyn, from build/python when not installed
+hexdyn_path.ensure()
 from figures import fit_suptitle, fit_title, save_atomically  # first: Agg
 import hexdyn
 import matplotlib.pyplot as plt

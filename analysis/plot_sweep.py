@@ -43,6 +43,8 @@ from fractions import Fraction
 import os
 import sys
 
+import hexdyn_path  # first: the package hexdyn, from build/python when not installed
+hexdyn_path.ensure()
 from figures import (OPTIMAL_OVER_COLOR, RELAXED_COLOR, exceeds, fit_suptitle,  # first: Agg
                      fit_title, limit_text, nanmax_rows, save_atomically, with_units,
                      sweep_axis_label, sweep_axis_units, torque_ratio)

@@ -27,6 +27,8 @@ import os
 import statistics
 import subprocess
 
+import hexdyn_path  # first: the package hexdyn, from build/python when not installed
+hexdyn_path.ensure()
 from figures import fit_suptitle, save_atomically, write_csv_atomically
 import h5py
 import matplotlib.pyplot as plt

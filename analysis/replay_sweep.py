@@ -24,6 +24,8 @@ import glob
 import math
 import os
 
+import hexdyn_path  # first: the package hexdyn, from build/python when not installed
+hexdyn_path.ensure()
 from figures import fraction_text, write_csv_atomically
 import h5py
 import numpy as np

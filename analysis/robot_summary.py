@@ -16,6 +16,8 @@ import argparse
 import sys
 import xml.etree.ElementTree as ET
 
+import hexdyn_path  # first: the package hexdyn, from build/python when not installed
+hexdyn_path.ensure()
 from hexdyn import results as hr
 import numpy as np
 

@@ -90,6 +90,8 @@ import h5py  # noqa: E402
 import numpy as np  # noqa: E402
 import yaml  # noqa: E402
 
+import hexdyn_path  # first: the package hexdyn, from build/python when not installed
+hexdyn_path.ensure()
 from hexdyn import results as hr  # noqa: E402
 from study_spec import (  # noqa: E402  (this folder: the study file)
     CONVERGED, StudyError, parse_number, canonical, load_study, log, set_text)

@@ -33,6 +33,8 @@ import sys
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
+import hexdyn_path  # first: the package hexdyn, from build/python when not installed
+hexdyn_path.ensure()
 from hexdyn import decode_text
 import numpy as np
 from urdf_fk import axis_rotation, quaternion_to_matrix, rpy_to_matrix

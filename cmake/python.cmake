@@ -91,3 +91,18 @@ list(TRANSFORM hexdyn_python_files PREPEND ${HEXDYN_PYTHON_PACKAGE_DIR}/)
 install(FILES ${hexdyn_python_files} ${HEXDYN_PYTHON_PACKAGE_DIR}/_version.py
               ${HEXDYN_PYTHON_PACKAGE_DIR}/_schema.py
         DESTINATION ${HEXDYN_PYTHON_INSTALL_DIR}/hexdyn)
+
+# An Lmod module file for the installed tree (docs/user/sweeps.md#an-installed-hexdyn):
+# P/share/hexdyn/modulefiles/hexdyn.lua, written at install time with the prefix the
+# install was given (`cmake --install build --prefix P`), so that it puts P/bin on PATH and
+# the installed package hexdyn on PYTHONPATH: the installed analysis/ scripts import it.
+# tests/slurm/install_prefix.sh runs the installed tree with only what this file sets.
+install(CODE "
+  set(lua \"\${CMAKE_INSTALL_PREFIX}/${CMAKE_INSTALL_DATADIR}/hexdyn/modulefiles/hexdyn.lua\")
+  file(WRITE \"\${lua}\" \"-- hexdyn ${PROJECT_VERSION}, installed in \${CMAKE_INSTALL_PREFIX}
+local prefix = \\\"\${CMAKE_INSTALL_PREFIX}\\\"
+prepend_path(\\\"PATH\\\", pathJoin(prefix, \\\"bin\\\"))
+prepend_path(\\\"PYTHONPATH\\\", pathJoin(prefix, \\\"${HEXDYN_PYTHON_INSTALL_DIR}\\\"))
+setenv(\\\"HEXDYN_SHARE\\\", pathJoin(prefix, \\\"${CMAKE_INSTALL_DATADIR}/hexdyn\\\"))
+\")
+  message(STATUS \"Installing: \${lua}\")")

@@ -36,6 +36,9 @@ import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
+sys.path.insert(0, os.path.join(ROOT, "analysis"))
+import hexdyn_path  # noqa: E402  the package hexdyn, from build/python when not installed
+hexdyn_path.ensure()
 from hexdyn.results import SCHEMA, AttributeSpec, DatasetSpec, FlagSpec
 
 DEFAULT_SCHEMA = os.path.join(ROOT, "src", "hexdyn", "io", "schema.hpp")

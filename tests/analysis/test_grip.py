@@ -4,10 +4,12 @@ mu lowered below what its support samples need (so that some samples slip), chec
 returned artists against h5py and yaml readings of the file:
 
   - each leg's utilised-friction line is /contacts/utilized_friction, non-finite values blank;
-  - the required-friction line is /contacts/required_friction, the dots the samples whose
-    /contacts/required_friction_leg is the leg;
-  - the mu line sits at contact.friction_coefficient of /meta config_yaml;
-  - one shaded span per run of /contacts/phase == 1 of the leg, found here by a loop;
+  - the required-friction line is /contacts/required_friction, on an axis that ends 1.2 times
+    its largest value outside transients; the dots of leg k are the samples on the axis whose
+    /contacts/required_friction_leg is k, one triangle per sample above it;
+  - the mu lines sit at contact.friction_coefficient of /meta config_yaml;
+  - one shaded span per run of /contacts/phase == 1 of the leg (of any leg on top), found
+    here by a loop;
   - one slip cross per sample with /contacts/slip == 1, and some slip exists;
   - the script writes the PNG, and refuses a result written with output.required_friction
     false: exit status 2, one line on stderr, no figure.
@@ -80,12 +82,25 @@ def main():
             mu = yaml.safe_load(f["meta"].attrs["config_yaml"])["contact"]["friction_coefficient"]
         check(mu == MU, "the scene's mu is the one set")
         check(int((slip == 1).sum()) > 0, "some samples slip at the lowered mu")
-        for k, a in enumerate(artists):
+        top_panel = artists["required"]
+        transient_any = (phase == 1).any(axis=1)
+        outside = req[~transient_any & np.isfinite(req)]
+        top = 1.2 * float(outside.max())
+        check(abs(top_panel["top"] - top) <= 1e-12 * top, "the required axis ends 1.2 x the "
+              "largest mu* outside transients", f"{top_panel['top']} vs {top}")
+        check(same_curve(top_panel["required"], req), "required line")
+        check(len(top_panel["spans"]) == transient_runs(transient_any.astype(int)),
+              "transient spans of the required panel")
+        finite = np.where(np.isfinite(req), req, np.inf)
+        check(len(top_panel["above"].get_xdata()) == int((np.isfinite(req) & (req > top)).sum()),
+              "one triangle per sample above the axis")
+        check(top_panel["mu"] is not None
+              and float(np.asarray(top_panel["mu"].get_ydata())[0]) == mu, "mu line on top")
+        for k, a in enumerate(artists["legs"]):
             name = f"L{k + 1}"
             check(same_curve(a["utilized"], u[:, k]), f"{name} utilised line")
-            check(same_curve(a["required"], req), f"{name} required line")
-            check(np.array_equal(np.asarray(a["binds"].get_ydata()), req[leg == k]),
-                  f"{name} binding dots")
+            check(np.array_equal(np.asarray(top_panel["binds"][k].get_ydata()),
+                                 req[(leg == k) & (finite <= top)]), f"{name} binding dots")
             check(float(np.asarray(a["mu"].get_ydata())[0]) == mu, f"{name} mu line")
             check(len(a["spans"]) == transient_runs(phase[:, k]), f"{name} transient spans",
                   f"{len(a['spans'])} vs {transient_runs(phase[:, k])}")

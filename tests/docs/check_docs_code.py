@@ -4,8 +4,8 @@
     /usr/bin/python3 tests/docs/check_docs_code.py [--root DIR] [--cmake-targets FILE] [--list]
     /usr/bin/python3 tests/docs/check_docs_code.py --self-test
 
-Reads docs/**/*.md and README.md (not the changelog nor bench/RESULTS.md: they record
-the past) and checks, against the tree as it is when the check runs (nothing is listed here):
+Reads docs/**/*.md, README.md and the other pages docs/README.md lists (bench/RESULTS.md;
+not the changelog, which records the past) and checks, against the tree as it is when the check runs (nothing is listed here):
 
   files      a path from the repository root, `src/hexdyn/io/schema.hpp`, `tests/sweep/`,
              `configs/paper.yaml` (first folder one of src tests bench analysis pipelines
@@ -269,6 +269,29 @@ def top_level_names(text):
 # ----------------------------------------------------------------------------- the documents
 
 
+# The one page of the index that is not checked: a record of past changes, which names files
+# and functions as they were then.
+HISTORY = "CHANGELOG.md"
+
+
+def indexed_pages_outside_docs(root):
+    """The Markdown pages outside docs/ that docs/README.md links to, bench/RESULTS.md, apart
+    from the README (always read) and the changelog (HISTORY)."""
+    index = os.path.join(root, "docs", README)
+    if not os.path.isfile(index):
+        return []
+    with open(index, encoding="utf-8") as f:
+        text = f.read()
+    out = []
+    for target in re.findall(r"\]\(([^)#\s]+\.md)(?:#[^)]*)?\)", text):
+        page = os.path.relpath(os.path.normpath(os.path.join(root, "docs", target)), root)
+        page = page.replace(os.sep, "/")
+        if (not page.startswith(("docs/", "../")) and page not in (README, HISTORY)
+                and os.path.isfile(os.path.join(root, page)) and page not in out):
+            out.append(page)
+    return out
+
+
 def documents(root):
     out = []
     if os.path.isfile(os.path.join(root, README)):
@@ -278,7 +301,7 @@ def documents(root):
         for name in sorted(filenames):
             if name.endswith(MD):
                 out.append(os.path.relpath(os.path.join(dirpath, name), root).replace(os.sep, "/"))
-    return out
+    return out + indexed_pages_outside_docs(root)
 
 
 def lines_of(text):

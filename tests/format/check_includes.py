@@ -13,7 +13,8 @@ add_executable(T .../FOLDER/x.cpp) makes x.cpp a file of T (of any of them, when
 several compile it, each choosing its includes by #ifdef). A file of target T may include
 the headers of T and of every hexdyn_* target that T links, directly or transitively
 (public or private links alike: the layering is the link graph). A header belongs to the
-target of its folder, or to the split target whose FILES name its stem. A folder that no
+target of its folder, or to the split target whose FILES name its stem (a_detail.hpp, the
+internals of a.cpp, goes with a.cpp). A folder that no
 declaration names is an error, so a new folder cannot escape the check.
 """
 import argparse
@@ -89,6 +90,7 @@ class Layers:
         if len(parts) == 1:
             return None
         folder, stem = parts[0], pathlib.PurePath(parts[-1]).stem
+        stem = stem.removesuffix("_detail")  # a.cpp's internals, a_detail.hpp, go with a.cpp
         if rel in self.file_targets:
             return self.file_targets[rel]
         if (folder, stem) in self.split:

@@ -38,13 +38,29 @@ for f in __init__.py atomic_file.py data.py h5copy.py h5files.py results.py sche
   [ -f "$SITE/hexdyn/$f" ] || fail "not installed: $SITE/hexdyn/$f"
 done
 
-# What a module sets (docs/user/sweeps.md#an-installed-hexdyn).
-export PATH="$P/bin:$PATH" PYTHONPATH="$SITE" HEXDYN_SHARE="$S"
+# What the installed module file sets (docs/user/sweeps.md#an-installed-hexdyn), read from
+# its prepend_path and setenv lines as Lmod would apply them; no PYTHONPATH of our own.
+LUA="$S/modulefiles/hexdyn.lua"
+[ -f "$LUA" ] || fail "not installed: $LUA"
+unset PYTHONPATH HEXDYN_SHARE
+while IFS='|' read -r verb name rel; do
+  value="$P/$rel"
+  case "$verb" in
+    prepend_path) export "$name=$value${!name:+:${!name}}" ;;
+    setenv) export "$name=$value" ;;
+  esac
+done < <(sed -nE 's/^(prepend_path|setenv)\("([A-Z_]+)", pathJoin\(prefix, "([^"]*)"\)\)$/\1|\2|\3/p' "$LUA")
+[ "${PYTHONPATH:-}" = "$SITE" ] || fail "the module file puts ${PYTHONPATH:-nothing} on PYTHONPATH, not $SITE"
+[ "${HEXDYN_SHARE:-}" = "$S" ] || fail "the module file sets HEXDYN_SHARE=${HEXDYN_SHARE:-}, not $S"
+grep -q "^local prefix = \"$P\"$" "$LUA" || fail "the module file names another prefix than $P"
 cd "$WORK/run"
 version="$(hexdyn --version)" || fail "hexdyn --version"
 echo "installed: $version" >&2
 hexdyn run "$S/configs/paper.yaml" -o paper.h5 2> run.log || { cat run.log >&2; fail "installed hexdyn run paper.yaml"; }
 "$PY" "$S/analysis/check_result.py" paper.h5 --dynamics --expect-mass 6.7
+mkdir -p grip
+"$PY" "$S/analysis/plot_grip.py" paper.h5 grip > grip.log 2>&1 ||
+  { cat grip.log >&2; fail "installed analysis/plot_grip.py under the module file's environment"; }
 "$PY" -c "import hexdyn; r = hexdyn.open_result('paper.h5'); print('hexdyn from', hexdyn.results.__file__)" \
   | grep -q "from $SITE/hexdyn/results.py" || fail "hexdyn not imported from the prefix"
 

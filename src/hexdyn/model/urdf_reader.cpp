@@ -17,25 +17,28 @@
 #include "hexdyn/core/errors.hpp"
 #include "hexdyn/core/value_bounds.hpp"
 #include "hexdyn/model/urdf_checks.hpp"
+#include "hexdyn/model/urdf_feet_detail.hpp"
 
-namespace hexdyn {
-namespace {
-
-constexpr double kInf = std::numeric_limits<double>::infinity();
-
-/// Rigid placement of a frame in another: p [m], R (frame axes → other axes).
-struct Placement {
-  Vec3 p = Vec3::Zero();
-  Mat3 R = Mat3::Identity();
-  Placement operator*(const Placement& b) const { return {p + R * b.p, R * b.R}; }
-  Placement inverse() const { return {-(R.transpose() * p), R.transpose()}; }
-};
+namespace hexdyn::urdf_detail {
 
 std::string num(double x) {
   std::ostringstream s;
   s << x;
   return s.str();
 }
+
+Placement to_placement(const urdf::Pose& pose) {
+  Placement x;
+  x.p = Vec3(pose.position.x, pose.position.y, pose.position.z);
+  x.R = Eigen::Quaterniond(pose.rotation.w, pose.rotation.x, pose.rotation.y, pose.rotation.z)
+            .normalized()
+            .toRotationMatrix();
+  return x;
+}
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
 
 std::string one_line(std::string s) {
   std::replace(s.begin(), s.end(), '\n', ' ');
@@ -52,64 +55,6 @@ class CaptureErrors : public console_bridge::OutputHandler {
   }
   std::vector<std::string> errors;
 };
-
-class Reader {
- public:
-  Reader(std::string source, const UrdfReadOptions& options)
-      : source_(std::move(source)), opt_(options) {}
-
-  [[noreturn]] void fail(const std::string& what) const {
-    throw ConfigError(source_ + ": " + what);
-  }
-
-  UrdfRobot read(const std::string& text);
-
- private:
-  void parse(const std::string& text);
-  void index_joints();
-  Mat3 trunk_axes() const;
-  std::vector<UrdfLeg> read_legs(const std::vector<std::pair<std::string, Placement>>& trunk,
-                                 const Placement& B_X_U, const std::string& trunk_link);
-  void check_links();
-  void check_joints();
-  void check_tree();
-  void collect_trunk();
-  /// Links fixed below `link` (itself included), with their placements in its frame.
-  std::vector<std::pair<std::string, Placement>> fixed_group(const std::string& link) const;
-  RigidInertia group_inertia(const std::vector<std::pair<std::string, Placement>>& group) const;
-  std::vector<urdf::JointConstSharedPtr> moving_children(
-      const std::vector<std::pair<std::string, Placement>>& group) const;
-  UrdfLeg read_chain(const urdf::JointConstSharedPtr& first, const Placement& U_X_parent,
-                     int chain_index);
-  void locate_foot(const std::vector<std::pair<std::string, Placement>>& group,
-                   const std::string& chain, UrdfLeg& leg);
-  std::vector<CollisionShape> collision_shapes(
-      const std::vector<std::pair<std::string, Placement>>& group) const;
-  void finish_feet(UrdfRobot& robot) const;
-  void check_foot_inside(int leg, UrdfLeg& l) const;
-  std::pair<std::string, Placement> fixed_chain_end(
-      const std::vector<std::pair<std::string, Placement>>& group, const std::string& last,
-      const std::string& chain) const;
-  void map_legs(std::vector<UrdfLeg>& chains, UrdfRobot& robot) const;
-
-  std::string source_;
-  UrdfReadOptions opt_;
-  urdf::ModelInterfaceSharedPtr model_;
-  std::map<std::string, std::vector<urdf::JointConstSharedPtr>> child_joints_;  ///< by parent link
-  std::map<std::string, urdf::JointConstSharedPtr> parent_joint_;               ///< by child link
-  std::map<std::string, Placement>
-      trunk_group_;  ///< links of the trunk body, in the trunk link frame
-  std::map<std::string, int> foot_link_used_;
-};
-
-Placement to_placement(const urdf::Pose& pose) {
-  Placement x;
-  x.p = Vec3(pose.position.x, pose.position.y, pose.position.z);
-  x.R = Eigen::Quaterniond(pose.rotation.w, pose.rotation.x, pose.rotation.y, pose.rotation.z)
-            .normalized()
-            .toRotationMatrix();
-  return x;
-}
 
 /// The largest |coordinate| of a pose's position [m].
 double largest_coordinate(const urdf::Pose& p) {
@@ -168,6 +113,8 @@ RigidInertia transformed(const RigidInertia& in, const Placement& X) {
   r.inertia_com = X.R * in.inertia_com * X.R.transpose();
   return r;
 }
+
+}  // namespace
 
 /// Parses the description with urdfdom, its console messages captured: a description it
 /// refuses fails with urdfdom's first (and last) reason.
@@ -501,233 +448,11 @@ UrdfLeg Reader::read_chain(const urdf::JointConstSharedPtr& first, const Placeme
   return leg;
 }
 
-/// The foot point p_foot_last [m] of a chain (named `chain` in messages) in its third link's
-/// frame, from the links fixed to that link (`group`, with their placements in its frame):
-/// a named foot link, else (robot.foot_offset is set per leg by finish_feet, once the legs
-/// are mapped) a sphere <collision>, else the end of the links fixed to it.
-void Reader::locate_foot(const std::vector<std::pair<std::string, Placement>>& group,
-                         const std::string& chain, UrdfLeg& leg) {
-  const std::string last = leg.link_names[2];
-  leg.collisions = collision_shapes(group);
-  bool found = false;
-  for (const auto& f : opt_.foot_links) {
-    for (const auto& [name, Xl] : group) {
-      if (name != f) continue;
-      leg.p_foot_last = Xl.p;
-      leg.foot_source = f;
-      ++foot_link_used_[f];
-      found = true;
-    }
-  }
-  if (!opt_.foot_links.empty() && !found)
-    fail(chain + "none of robot.foot_links is fixed to its last link '" + last + "'");
-  if (found || opt_.foot_offset) return;
-  // The default sphere foot: of several spheres, the one farthest from the third joint.
-  const CollisionShape* sphere = nullptr;
-  for (const CollisionShape& s : leg.collisions)
-    if (s.kind == CollisionShape::Kind::kSphere && s.size.x() > 0.0 &&
-        (sphere == nullptr || s.p.norm() > sphere->p.norm()))
-      sphere = &s;
-  if (sphere != nullptr) {
-    if (sphere->size.x() > kMaxFootRadius_m)
-      fail("link '" + sphere->link + "': sphere <collision> of radius " + num(sphere->size.x()) +
-           " m taken as the foot of chain '" + leg.joint_names[0] + "', expected at most " +
-           num(kMaxFootRadius_m) + " m; give robot.foot_offset or robot.foot_links");
-    leg.p_foot_last = sphere->p;
-    leg.foot_radius_m = sphere->size.x();
-    leg.foot_kind = FootSource::kSphereCollision;
-    leg.foot_source = sphere->link;
-    return;
-  }
-  const auto [end, X_end] = fixed_chain_end(group, last, chain);
-  leg.p_foot_last = X_end.p;
-  leg.foot_source = end;
-}
+}  // namespace hexdyn::urdf_detail
 
-/// The <collision> geometries of the links of `group`, placed in the frame of its first link.
-std::vector<CollisionShape> Reader::collision_shapes(
-    const std::vector<std::pair<std::string, Placement>>& group) const {
-  std::vector<CollisionShape> out;
-  for (const auto& [name, X] : group) {
-    for (const auto& col : model_->getLink(name)->collision_array) {
-      if (!col || !col->geometry) continue;
-      CollisionShape s;
-      s.link = name;
-      const Placement O = X * to_placement(col->origin);
-      s.p = O.p;
-      s.R = O.R;
-      const urdf::Geometry& g = *col->geometry;
-      switch (g.type) {
-        case urdf::Geometry::SPHERE:
-          s.kind = CollisionShape::Kind::kSphere;
-          s.size.x() = static_cast<const urdf::Sphere&>(g).radius;
-          break;
-        case urdf::Geometry::BOX: {
-          const urdf::Vector3& d = static_cast<const urdf::Box&>(g).dim;
-          s.kind = CollisionShape::Kind::kBox;
-          s.size = Vec3(d.x, d.y, d.z);
-          break;
-        }
-        case urdf::Geometry::CYLINDER: {
-          const auto& c = static_cast<const urdf::Cylinder&>(g);
-          s.kind = CollisionShape::Kind::kCylinder;
-          s.size = Vec3(c.radius, c.length, 0.0);
-          break;
-        }
-        default:
-          s.kind = CollisionShape::Kind::kMesh;
-      }
-      out.push_back(s);
-    }
-  }
-  return out;
-}
+namespace hexdyn {
 
-/// The feet once the legs are mapped: robot.foot_offset per leg (with its foot check),
-/// robot.foot_radius, and the refusal of a foot on its last joint's axis.
-void Reader::finish_feet(UrdfRobot& robot) const {
-  for (int leg = 0; leg < kLegs; ++leg) {
-    UrdfLeg& l = robot.legs[leg];
-    const std::string chain = "chain '" + l.joint_names[0] + "': ";
-    if (opt_.foot_offset && opt_.foot_links.empty()) {
-      l.p_foot_last = (*opt_.foot_offset)[leg];
-      l.foot_kind = FootSource::kFootOffset;
-      l.foot_source = "robot.foot_offset";
-      check_foot_inside(leg, l);
-    }
-    if (opt_.foot_radius) l.foot_radius_m = *opt_.foot_radius;
-    const Vec3& a = l.axis[2];
-    if ((l.p_foot_last - a.dot(l.p_foot_last) * a).norm() < 1e-6)
-      fail(chain + "foot (" + l.foot_source + ") lies on the axis of its last joint '" +
-           l.joint_names[2] +
-           "': the description has no foot frame; name the foot links (robot.foot_links) or "
-           "give robot.foot_offset");
-  }
-}
-
-namespace {
-
-/// How far the point x (last link frame) lies outside the primitive s [m]; 0 inside.
-double distance_outside(const CollisionShape& s, const Vec3& x) {
-  const Vec3 local = s.R.transpose() * (x - s.p);
-  switch (s.kind) {
-    case CollisionShape::Kind::kSphere:
-      return std::max(0.0, local.norm() - s.size.x());
-    case CollisionShape::Kind::kBox:
-      return (local.cwiseAbs() - 0.5 * s.size).cwiseMax(0.0).norm();
-    case CollisionShape::Kind::kCylinder:
-      return std::hypot(std::max(0.0, local.head<2>().norm() - s.size.x()),
-                        std::max(0.0, std::abs(local.z()) - 0.5 * s.size.y()));
-    case CollisionShape::Kind::kMesh:
-      break;
-  }
-  return kInf;
-}
-
-const char* kind_name(CollisionShape::Kind k) {
-  switch (k) {
-    case CollisionShape::Kind::kSphere:
-      return "sphere";
-    case CollisionShape::Kind::kBox:
-      return "box";
-    case CollisionShape::Kind::kCylinder:
-      return "cylinder";
-    case CollisionShape::Kind::kMesh:
-      break;
-  }
-  return "mesh";
-}
-
-}  // namespace
-
-/// The foot check of a robot.foot_offset point (urdf_reader.hpp): l.foot_check says what it
-/// found; a point outside every primitive of a last link without meshes fails, naming the leg.
-void Reader::check_foot_inside(int leg, UrdfLeg& l) const {
-  const std::string last = l.link_names[2];
-  double nearest = kInf;
-  std::string kinds, meshes;
-  for (const CollisionShape& s : l.collisions) {
-    if (s.kind == CollisionShape::Kind::kMesh) {
-      if (meshes.find("'" + s.link + "'") == std::string::npos)
-        meshes += (meshes.empty() ? "'" : ", '") + s.link + "'";
-      continue;
-    }
-    const double d = distance_outside(s, l.p_foot_last);
-    if (d <= kFootCheckTolerance_m) {
-      l.foot_check = std::string("inside the ") + kind_name(s.kind) + " <collision> of " + s.link;
-      return;
-    }
-    nearest = std::min(nearest, d);
-    kinds += (kinds.empty() ? "" : ", ") + std::string(kind_name(s.kind));
-  }
-  if (!meshes.empty()) {
-    l.foot_check = "not checked: mesh <collision> geometry of " + meshes + " (files not read)";
-    return;
-  }
-  if (kinds.empty()) {
-    l.foot_check = "not checked: no <collision> on its last link '" + last + "'";
-    return;
-  }
-  const Vec3& p = l.p_foot_last;
-  fail("leg " + leg_name(leg) + " (chain '" + l.joint_names[0] + "'): robot.foot_offset (" +
-       num(p.x()) + ", " + num(p.y()) + ", " + num(p.z()) +
-       ") m lies outside the <collision> geometry of its last link '" + last + "' (" + kinds +
-       "; " + num(nearest) +
-       " m from the nearest), expected a point inside it (robot.foot_offset may give each "
-       "leg its own point: a list of six or a map by leg name)");
-}
-
-/// The end of the chain of links fixed to link `last` (group: those links, placed in its
-/// frame), and its placement; a link carrying two fixed links fails.
-std::pair<std::string, Placement> Reader::fixed_chain_end(
-    const std::vector<std::pair<std::string, Placement>>& group, const std::string& last,
-    const std::string& chain) const {
-  std::string end = last;
-  Placement X_end;
-  for (;;) {
-    std::vector<std::pair<std::string, Placement>> kids;
-    for (const auto& [name, Xl] : group) {
-      const auto pj = parent_joint_.find(name);
-      if (name != last && pj != parent_joint_.end() && pj->second->parent_link_name == end)
-        kids.emplace_back(name, Xl);
-    }
-    if (kids.empty()) break;
-    if (kids.size() > 1)
-      fail(chain + "links '" + kids[0].first + "' and '" + kids[1].first + "' are both fixed to '" +
-           end + "': name the foot links (robot.foot_links) or give robot.foot_offset");
-    end = kids[0].first;
-    X_end = kids[0].second;
-  }
-  return {end, X_end};
-}
-
-void Reader::map_legs(std::vector<UrdfLeg>& chains, UrdfRobot& robot) const {
-  std::vector<int> left, right;
-  for (int i = 0; i < static_cast<int>(chains.size()); ++i) {
-    const Vec3& h = chains[i].p_parent_joint[0];
-    if (std::abs(h.x()) < 1e-9)
-      fail("chain '" + chains[i].joint_names[0] + "': hip on the trunk's forward axis (" +
-           num(h.x()) +
-           " m to the side): cannot tell left from right; set robot.forward_axis (now " +
-           opt_.forward_axis + ")");
-    (h.x() < 0.0 ? left : right).push_back(i);
-  }
-  if (left.size() != 3 || right.size() != 3)
-    fail("legs: " + std::to_string(left.size()) + " hips on the left and " +
-         std::to_string(right.size()) + " on the right of the trunk (forward axis " +
-         opt_.forward_axis + "), expected 3 and 3; set robot.forward_axis");
-  auto by_y = [&](int a, int b) {
-    return chains[a].p_parent_joint[0].y() > chains[b].p_parent_joint[0].y();
-  };
-  std::sort(left.begin(), left.end(), by_y);
-  std::sort(right.begin(), right.end(), by_y);
-  for (int row = 0; row < 3; ++row) {
-    robot.legs[2 * row] = chains[left[row]];
-    robot.legs[2 * row + 1] = chains[right[row]];
-  }
-}
-
-}  // namespace
+using urdf_detail::Reader;
 
 UrdfRobot read_urdf_robot_from_string(const std::string& urdf_text, const std::string& source_name,
                                       const UrdfReadOptions& options) {
