@@ -65,6 +65,8 @@ PLAN = {
     "--keep-runs": "run",
     "/usr/bin/python3 analysis/animate.py results/sweeps/smoke/kept.h5 --run 000003 -o run3.gif":
         "run",
+    "/usr/bin/python3 analysis/plot_sweep.py results/sweeps/smoke/smoke.h5 results/sweeps/smoke "
+    "--metric peak_torque_gait --metric \"peak_torque[L2_femur]\"": "run",
     "/usr/bin/python3 analysis/animate.py results/paper/paper.h5 --replay results/paper/replay.h5 "
     "-o both.html": SLOW,
     "/usr/bin/python3 analysis/animate.py results/paper/paper.h5 --replay results/paper/replay.h5 "
