@@ -32,7 +32,7 @@ PIPELINE = "a pipeline that installs packages and builds: "
 SLOW = "slow"
 PLAN = {
     # README.md
-    "bash pipelines/paper.sh": PIPELINE + "its run and figures are the README's commands below "
+    "bash pipelines/paper.sh": PIPELINE + "its run and figures are commands of the README, below "
                                "(results/paper/paper.h5) and pipeline tests",
     "bash pipelines/test.sh": PIPELINE + "the whole test suite, this test among it",
     "mkdir -p results/paper results/sweeps/smoke results/envelope": "run",
@@ -106,7 +106,7 @@ PLAN = {
     "bash pipelines/robots.sh": PIPELINE + "the robots' runs are the commands above; "
                                 "pipeline tests of the URDF robots cover the rest",
     # docs/user/sweeps.md
-    "bash pipelines/sweep_smoke.sh": PIPELINE + "its sweep and heatmaps are the README's commands",
+    "bash pipelines/sweep_smoke.sh": PIPELINE + "its sweep and heatmaps are commands of the README",
     "sbatch pipelines/slurm_sweep.sbatch": "needs a Slurm cluster; slurm.sweep_cancel_resubmit "
                                            "submits the job script to a private one",
     "sbatch --ntasks=64 pipelines/slurm_sweep.sbatch SWEEP.yaml results/sweeps/x/x.h5":
