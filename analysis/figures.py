@@ -351,13 +351,15 @@ def scenario_torque_limits(sweep):
     return np.repeat(limits[None, :], n, 0), source
 
 
-def torque_ratio(sweep):
-    """Per scenario, the largest peak |tau_k| / limit_k over the joints (NaN where the
-    scenario failed), the limits (N, J) or None, and the limits' source."""
+def torque_ratio(sweep, column="peak_torque"):
+    """Per scenario, the largest peak |tau_k| / limit_k over the joints of the per-joint
+    /scenarios column `column` (peak_torque, peak_torque_gait or peak_torque_transient; NaN
+    where the scenario failed or has no such sample), the limits (N, J) or None, and the
+    limits' source."""
     limits, source = scenario_torque_limits(sweep)
     if limits is None:
         return None, None, source
-    peak = np.asarray(sweep.table["peak_torque"], dtype=float)
+    peak = np.asarray(sweep.table[column], dtype=float)
     with np.errstate(invalid="ignore", divide="ignore"):
         ratio = nanmax_rows(peak / limits)
     return ratio, limits, source

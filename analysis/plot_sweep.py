@@ -6,20 +6,23 @@ torque over the swept keys, or any column of its scenario table (--metric).
     /usr/bin/python3 analysis/plot_sweep.py SWEEP.h5 OUTDIR --x KEY [--hue KEY]
                                             [--sel KEY=VALUE ...] [--metric NAME ...]
 
-Heatmaps (default): OUTDIR/sweep_energy.png, sweep_cost_of_transport.png and
-sweep_peak_torque.png (the largest peak |tau| over the 18 joints). Rows and columns
+Heatmaps (default): OUTDIR/sweep_energy.png, sweep_cost_of_transport.png,
+sweep_peak_torque_gait.png (the largest peak |tau| over the joints outside touchdown
+transients, /scenarios/peak_torque_gait) and sweep_peak_torque_transient.png (the touchdown
+transients' peaks, where the prescribed impact of a landing foot acts). Rows and columns
 default to the first two axes with more than one value; every other axis with more than
 one value gives one panel per value combination (up to 12 panels; beyond that each cell
 shows the minimum over those axes, and the title says so). Cells of scenarios that could
 not be computed are hatched grey and labelled with their status (reach, config, ...).
 
-Torque limits: the peak-torque figures draw the torque limit (allocation.torque_limit of
+Torque limits: the peak-torque figures (these two, and --metric peak_torque, the peak over
+every sample) draw the torque limit (allocation.torque_limit of
 the base scene, or of each scenario when it is a swept axis; `effort`: each joint's URDF
 effort limit, read from a kept run's /model/urdf) and mark the scenarios whose peak exceeds
 it: a red frame (heatmap) or a red cross (line plot) when the scenario has relaxed samples
-(/scenarios/relaxed_samples > 0: the allocation keeps every optimal sample within the
-limit, so the excess comes from samples where it had to relax a constraint), a purple one
-when it has none.
+(/scenarios/relaxed_samples > 0, relaxed_gait_samples for the gait's peaks: the allocation
+keeps every optimal sample within the limit, so the excess comes from samples where it had
+to relax a constraint), a purple one when it has none.
 
 Line plots (--x KEY): OUTDIR/sweep_<metric>_vs_<KEY>.png, the metric against axis KEY, one
 line per value of axis --hue (e.g. cost of transport against terrain.riser_height, one line
@@ -27,7 +30,7 @@ per gait.duty_factor). Every other axis with more than one value is fixed by
 --sel KEY=VALUE (VALUE as in the sweep file, e.g. gait.duty_factor=3/4) or else gives one
 panel per value combination (up to 12; more is an error naming the axes to fix).
 
---metric NAME (repeatable; heatmaps and line plots) draws those metrics instead of the three
+--metric NAME (repeatable; heatmaps and line plots) draws those metrics instead of the four
 above: any numeric column of the file's /scenarios table (energy_electrical,
 cost_of_transport_electrical, peak_torque_gait, required_friction_support, ... as the file
 has them), titled by its long_name and unit; a per-joint column (peak_torque) is its
@@ -58,14 +61,37 @@ MAX_PANELS = 12
 # place on the grid.
 NOT_METRICS = ("id", "message", "axis_index")
 
-# (file name, title, unit, per-scenario value from the table): the default figures.
+# (file name, title, unit, per-scenario value from the table): the default figures. The
+# peak torque is the gait's, outside touchdown transients; the transients' peaks (the
+# prescribed impact of a landing foot, docs/theory/contact.md) are a figure of their own.
 METRICS = (
     ("sweep_energy.png", "energy E", "J", lambda t: np.asarray(t["energy"], dtype=float)),
     ("sweep_cost_of_transport.png", "cost of transport E/(m g d)", "1",
      lambda t: np.asarray(t["cost_of_transport"], dtype=float)),
-    ("sweep_peak_torque.png", "peak joint torque max_k max_t |τ_k|", "N m",
-     lambda t: nanmax_rows(np.asarray(t["peak_torque"], dtype=float))),
+    ("sweep_peak_torque_gait.png", "peak joint torque outside touchdowns",
+     "N m", lambda t: nanmax_rows(np.asarray(t["peak_torque_gait"], dtype=float))),
+    ("sweep_peak_torque_transient.png", "peak joint torque in touchdown transients", "N m",
+     lambda t: nanmax_rows(np.asarray(t["peak_torque_transient"], dtype=float))),
 )
+
+# The figures of a per-joint peak-torque column, drawn against the torque limit: file name
+# -> (column, the /scenarios column counting the relaxed samples that may explain an excess).
+TORQUE_FIGURES = {
+    "sweep_peak_torque.png": ("peak_torque", "relaxed_samples"),
+    "sweep_peak_torque_gait.png": ("peak_torque_gait", "relaxed_gait_samples"),
+    "sweep_peak_torque_transient.png": ("peak_torque_transient", "relaxed_samples"),
+}
+
+
+def torque_marks(sweep, name):
+    """(ratio, limits, source, relaxed counts) of a peak-torque figure against the torque
+    limit, or (None, None, None, None) for another figure."""
+    if name not in TORQUE_FIGURES:
+        return None, None, None, None
+    column, relaxed_column = TORQUE_FIGURES[name]
+    ratio, limits, source = torque_ratio(sweep, column)
+    relaxed = np.asarray(sweep.table[relaxed_column], dtype=float)
+    return ratio, limits, source, relaxed
 
 
 def metric_columns(sweep):
@@ -197,10 +223,8 @@ def draw_heatmap(sweep, metric, rows, cols):
     on the colour bar], "relaxed": [cell frames], "optimal": [cell frames]}."""
     name, title, unit, getter = metric
     marks = {"limit": [], "relaxed": [], "optimal": []}
-    ratio = limits = relaxed = limit_note = None
-    if name == "sweep_peak_torque.png":
-        ratio, limits, source = torque_ratio(sweep)
-        relaxed = np.asarray(sweep.table["relaxed_samples"], dtype=float)
+    limit_note = None
+    ratio, limits, source, relaxed = torque_marks(sweep, name)
     values = getter(sweep.table)
     plist, others = panels(sweep, rows, cols)
     n = len(plist)
@@ -263,7 +287,7 @@ def draw_heatmap(sweep, metric, rows, cols):
     if limits is not None:
         limit_note = (f"red line: {limit_text(limits, source)}; red frame: above it, with "
                       "relaxed samples; purple dashed: above it, none relaxed")
-    elif ratio is None and name == "sweep_peak_torque.png":
+    elif ratio is None and name in TORQUE_FIGURES:
         limit_note = f"no torque limit drawn ({source})"
     failed = int((~sweep.ok).sum())
     if failed:
@@ -308,10 +332,9 @@ def draw_lines(sweep, metric, x, hue, fixed):
     name, title, unit, getter = metric
     values = getter(sweep.table)
     grid = values.reshape(sweep.shape)
-    ratio = limits = None
-    if name == "sweep_peak_torque.png":
-        ratio, limits, source = torque_ratio(sweep)
-        relaxed = np.asarray(sweep.table["relaxed_samples"]).reshape(sweep.shape)
+    ratio, limits, source, relaxed = torque_marks(sweep, name)
+    if relaxed is not None:
+        relaxed = relaxed.reshape(sweep.shape)
     others = [i for i, a in enumerate(sweep.axes)
               if len(a) > 1 and i not in (x, hue) and i not in fixed]
     combos = list(itertools.product(*[range(len(sweep.axes[i])) for i in others]))
@@ -396,10 +419,18 @@ def main(argv=None):
                     help="line plots: fix an axis to one value (repeatable)")
     ap.add_argument("--metric", action="append", metavar="NAME",
                     help="a /scenarios column to draw, COLUMN[JOINT] for one joint "
-                         "(repeatable; default energy, cost_of_transport, peak_torque)")
+                         "(repeatable; default energy, cost_of_transport, peak_torque_gait, "
+                         "peak_torque_transient)")
     args = ap.parse_args(argv)
     sweep = hr.open_sweep(args.sweep)
-    chosen = [column_metric(sweep, name) for name in args.metric] if args.metric else METRICS
+    if args.metric:
+        chosen = [column_metric(sweep, name) for name in args.metric]
+    else:  # the defaults the file has values of (no transients: no transient figure)
+        chosen = [m for m in METRICS if np.isfinite(m[3](sweep.table)).any()]
+        for m in METRICS:
+            if m not in chosen:
+                print(f"plot_sweep: no {m[0]}: no scenario has a value of {m[1]}",
+                      file=sys.stderr)
     os.makedirs(args.outdir, exist_ok=True)
     if args.x is None:
         if args.hue or args.sel:

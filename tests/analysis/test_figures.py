@@ -165,7 +165,7 @@ def test_sweep(args, d):
     over = peak > limit * (1 + REL) + ABS
     check(over.any(), "smoke sweep: some peaks exceed the limit (what the marks are for)")
     sweep = hr.open_sweep(path)
-    metric = [m for m in plot_sweep.METRICS if m[0] == "sweep_peak_torque.png"][0]
+    metric = plot_sweep.column_metric(sweep, "peak_torque")
     rows, cols = plot_sweep.choose_axes(sweep)
     fig, marks = plot_sweep.draw_heatmap(sweep, metric, rows, cols)
     check([float(np.asarray(a.get_ydata())[0]) for a in marks["limit"]] == [limit],
@@ -185,12 +185,30 @@ def test_sweep(args, d):
     check(n_marked == int(over.sum()), "line plot: the scenarios above the limit marked",
           f"{n_marked} vs {int(over.sum())}")
     plt.close(fig)
+    # The default peak figure is the gait's: its values are the largest peak_torque_gait
+    # over the joints, its frames the scenarios above the limit by that column, told apart
+    # by their relaxed samples outside touchdowns.
+    with h5py.File(path, "r") as f:
+        gait = f["scenarios/peak_torque_gait"][()]
+        relaxed_gait = f["scenarios/relaxed_gait_samples"][()]
+    gait_peak = np.array([np.nan if np.isnan(row).all() else np.nanmax(row) for row in gait])
+    metric = [m for m in plot_sweep.METRICS if m[0] == "sweep_peak_torque_gait.png"][0]
+    values = metric[3](sweep.table)
+    check(np.array_equal(np.isnan(values), np.isnan(gait_peak))
+          and np.array_equal(values[~np.isnan(values)], gait_peak[~np.isnan(gait_peak)]),
+          "default figure: the gait's peak torque per scenario")
+    fig, marks = plot_sweep.draw_heatmap(sweep, metric, rows, cols)
+    over_gait = gait_peak > limit * (1 + REL) + ABS
+    check(len(marks["relaxed"]) == int((over_gait & (relaxed_gait > 0)).sum())
+          and len(marks["optimal"]) == int((over_gait & (relaxed_gait == 0)).sum()),
+          "gait heatmap: the cells above the limit are framed, by relaxed gait samples")
+    plt.close(fig)
     out = os.path.join(d, "sweepfigs")
     r = subprocess.run(["/usr/bin/python3", os.path.join(args.source, "analysis", "plot_sweep.py"),
                         path, out, "--x", "terrain.riser_height", "--hue", "gait.duty_factor"],
                        capture_output=True, text=True)
-    want = [f"sweep_{m}_vs_terrain.riser_height.png" for m in ("energy", "cost_of_transport",
-                                                               "peak_torque")]
+    want = [f"sweep_{m}_vs_terrain.riser_height.png"
+            for m in ("energy", "cost_of_transport", "peak_torque_gait", "peak_torque_transient")]
     check(r.returncode == 0 and sorted(os.listdir(out)) == sorted(want),
           "plot_sweep.py --x --hue writes one line plot per metric", r.stderr + str(
               os.listdir(out) if os.path.isdir(out) else ""))

@@ -9,7 +9,8 @@ progress='^hexdyn: sweep: [1-8]/8 done, [0-9.e+]+ scenarios/s, ([0-9]+ (s|min)[^
 grep -qE '^hexdyn: sweep: [1-7]/8 done, .* left, ' smoke.log || { cat smoke.log; fail "no time left in the progress lines"; }
 "$PY" "$SRC/tests/sweep/check_reader.py" smoke.h5
 "$PY" "$SRC/analysis/plot_sweep.py" smoke.h5 plots
-for f in sweep_energy.png sweep_cost_of_transport.png sweep_peak_torque.png; do
+for f in sweep_energy.png sweep_cost_of_transport.png sweep_peak_torque_gait.png \
+         sweep_peak_torque_transient.png; do
   [ -s "plots/$f" ] || fail "plots/$f missing"
 done
 [ -z "$(find plots -name '.*')" ] || fail "temporary files left in plots/"
