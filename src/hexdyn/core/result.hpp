@@ -169,6 +169,7 @@ struct GridAccuracy {
   double peak_error = 0.0;    ///< estimated relative error of the peaks, the largest
   int refinement_passes = 0;  ///< passes that added samples
   int added_samples = 0;      ///< samples the refinement added to the grid as built
+  bool cubic_energy = false;  ///< energies by the piecewise-cubic rule (else the trapezoid)
 };
 
 /// What a run produces: the arrays and the provenance for /meta.

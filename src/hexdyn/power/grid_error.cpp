@@ -165,12 +165,13 @@ namespace {
 /// Marks in `split` (parts per interval) the intervals an integral over its budget refines: the
 /// intervals of largest |error|, largest first, until they carry a share of Σ|error| that grows
 /// with how far the net error is over the budget (half of it at twice the budget, 90 % far over
-/// it), each into two or three parts as far as the net is over: the trapezoid's error falls as
-/// the step squared, so m parts take the net error to about net / m² (more parts overshoot:
-/// the errors of the parts do not all fall alike). Jump intervals and intervals shorter than
+/// it), each into two or three parts as far as the net is over: the rule's error falls as the
+/// step to the power order_h (2 for the trapezoid, 4 for the piecewise cubic), so m parts take
+/// the net error to about net / m^order_h (more parts overshoot: the errors of the parts do not
+/// all fall alike). Jump intervals and intervals shorter than
 /// 2 min_step_s are never marked. error: |error| per interval; order: a workspace.
 void mark_integral_splits(const std::vector<double>& t, const std::vector<char>& jump,
-                          const std::vector<double>& error, double net, double budget,
+                          const std::vector<double>& error, double net, double budget, int order_h,
                           double min_step_s, std::vector<std::size_t>& order,
                           std::vector<char>& split) {
   const std::size_t n = error.size();
@@ -182,7 +183,8 @@ void mark_integral_splits(const std::vector<double>& t, const std::vector<char>&
   const auto larger = [&](std::size_t i, std::size_t j) {
     return error[i] > error[j] || (error[i] == error[j] && i < j);
   };
-  const int m = std::clamp(static_cast<int>(std::ceil(std::sqrt(net / budget))), 2, 3);
+  const int m =
+      std::clamp(static_cast<int>(std::ceil(std::pow(net / budget, 1.0 / order_h))), 2, 3);
   double chosen = 0.0;
   for (std::size_t pos = 0, sorted = 0; pos < n && chosen < share; ++pos) {
     if (pos == sorted) {
@@ -253,11 +255,22 @@ GridAssessment assess_grid(const std::vector<double>& t, const std::vector<char>
   const std::size_t n = T - 1;
   // Every term's interval errors and sign changes, once: the targets share them (the buffers
   // keep their capacity from one assessment to the next).
-  thread_local std::vector<std::vector<double>> term_error, term_root;
+  thread_local std::vector<std::vector<double>> term_error, term_root, term_integral;
   term_error.resize(terms.size());
   term_root.resize(terms.size());
-  for (std::size_t i = 0; i < terms.size(); ++i)
-    abs_trapezoid_errors(t, jump, terms[i], term_error[i], term_root[i]);
+  term_integral.resize(terms.size());
+  std::vector<Quadrature> rule(terms.size(), Quadrature::kTrapezoid);
+  for (const IntegralTarget& target : integrals)
+    for (int i : target.terms) rule[static_cast<std::size_t>(i)] = target.rule;
+  for (std::size_t i = 0; i < terms.size(); ++i) {
+    if (rule[i] == Quadrature::kTrapezoid) {
+      abs_trapezoid_errors(t, jump, terms[i], term_error[i], term_root[i]);
+      continue;
+    }
+    // The cubic rule integrates through a sign change: no roots to split at.
+    cubic_abs_integrals(t, jump, terms[i], term_integral[i], &term_error[i]);
+    term_root[i].assign(n, std::numeric_limits<double>::quiet_NaN());
+  }
   std::vector<double> candidates, error(n);
   std::vector<std::size_t> order;
   std::vector<char> split(n, 0);
@@ -267,16 +280,16 @@ GridAssessment assess_grid(const std::vector<double>& t, const std::vector<char>
       const double* e = term_error[i].data();
       for (std::size_t k = 0; k < n; ++k) error[k] += e[k];
     }
-    // The net difference between the interpolants' integral and the trapezoid: the intervals'
-    // errors are signed and cancel where the series bends both ways. Held to half the
-    // tolerance (kIntegralSafety).
+    // The net of the intervals' estimated errors: they are signed and cancel where the series
+    // bends both ways. Held to half the tolerance (kIntegralSafety).
     const double net = std::abs(std::accumulate(error.begin(), error.end(), 0.0));
     const double budget = kIntegralSafety * tolerance * target.reference;
     if (target.reference > 0.0)
       a.integral_error = std::max(a.integral_error, net / target.reference);
     if (!(net > budget)) continue;
     for (double& e : error) e = std::abs(e);
-    mark_integral_splits(t, jump, error, net, budget, min_step_s, order, split);
+    const int order_h = target.rule == Quadrature::kTrapezoid ? 2 : 4;
+    mark_integral_splits(t, jump, error, net, budget, order_h, min_step_s, order, split);
   }
   place_splits(t, split, term_error, term_root, min_step_s, candidates);
   for (const SeriesView& y : peaks) {
