@@ -1,7 +1,8 @@
-"""Readers of hexdyn's files, with h5py only: results (`hexdyn-result/2`), sweeps
-(`hexdyn-sweep/2`), envelopes (`hexdyn-envelope/2`), replays (`hexdyn-replay/1`) and studies
-(`hexdyn-study/1`, of analysis/study.py); results and sweeps of version 1 open too (mapped
-to version 2 on reading). Every file is checked against its schema when opened;
+"""Readers of hexdyn's files, with h5py only: results (`hexdyn-result/3`), sweeps
+(`hexdyn-sweep/3`), envelopes (`hexdyn-envelope/2`), replays (`hexdyn-replay/1`) and studies
+(`hexdyn-study/1`, of analysis/study.py); results and sweeps of version 2 open too (the
+same paths; their energies by the trapezoid), and of version 1 (mapped to version 2 on
+reading). Every file is checked against its schema when opened;
 check_layout checks any.
 
 The layout is the contract of docs/user/output.md, declared in src/hexdyn/io/schema.hpp and
@@ -259,7 +260,7 @@ def check_filetype_version(h5_root, expected_schema, expected_version, source="f
     (`expected_version` an int or a tuple of the versions accepted); the version found.
 
     `h5_root` is an open h5py File or Group; `source` names it in messages. A schema
-    "hexdyn-result/1" is accepted for an expected "hexdyn-result/2" when 1 is among the
+    "hexdyn-result/1" is accepted for an expected "hexdyn-result/3" when 1 is among the
     accepted versions.
     """
     accepted = expected_version if isinstance(expected_version, tuple) else (expected_version,)
@@ -335,7 +336,7 @@ class _Datasets(Mapping):
 
 
 class Result(_Datasets):
-    """One hexdyn-result/2 result in memory, computed (hexdyn.run) or read (open_result,
+    """One hexdyn-result/3 result in memory, computed (hexdyn.run) or read (open_result,
     Sweep.run): a read-only mapping from dataset path ("/joints/torque") to its values.
 
     res[path]        numpy array of the file's dtype and shape; text as str, a list of texts
@@ -349,7 +350,7 @@ class Result(_Datasets):
     res.source       where it came from: the file (FILE or FILE:/runs/<id>) or the scene run
     res.to_xarray(group=None)   labelled (xarray); res.write(path) the file
 
-    write(path) writes the hexdyn-result/2 file: a computed result through the compiled
+    write(path) writes the hexdyn-result/3 file: a computed result through the compiled
     writer (the file `hexdyn run` writes), a read one as a copy of the objects of the file it
     was read from (see write)."""
 
@@ -405,7 +406,7 @@ class Result(_Datasets):
         return xr.result_to_xarray(self, group)
 
     def write(self, path):
-        """Writes the hexdyn-result/2 file of this result to `path`, atomically (a temporary
+        """Writes the hexdyn-result/3 file of this result to `path`, atomically (a temporary
         file in the target's folder, renamed when complete; nothing is left at `path` on an
         error) and never onto an input: `path` must be a new path or a regular file that is
         none of the files the result came from.
@@ -785,7 +786,7 @@ def energy_by_rule(time, power, sample_kind, rule=ENERGY_RULE_CUBIC):
 
 
 def open_result(path, group="/"):
-    """Opens a hexdyn-result/2 file, checks its schema and every dataset's element type and
+    """Opens a hexdyn-result/3 file, checks its schema and every dataset's element type and
     shape (check_result_datasets) and returns a Result (the type hexdyn.run returns) with every
     dataset in memory (the file is closed on return; Result.write copies its objects). `group` selects a result stored below the file root (e.g.
     "/runs/<id>" of a sweep file). Anything but a regular file raises hexdyn.IoError before it
@@ -836,7 +837,7 @@ class SweepAxis:
 
 
 class Sweep:
-    """A hexdyn-sweep/2 file read into memory (the file is closed).
+    """A hexdyn-sweep/3 file read into memory (the file is closed).
 
     sw.axes             list of SweepAxis; scenario index is row-major over them
     sw.shape            tuple of the axis lengths
@@ -954,7 +955,7 @@ def _meta_attributes(group):
 
 
 def open_sweep(path):
-    """Opens a hexdyn-sweep/2 file, checks its schema and version and its table and axes
+    """Opens a hexdyn-sweep/3 file, checks its schema and version and its table and axes
     against the schema (check_sweep_file) and returns a Sweep with the axes and the scenario
     table in memory (the file is closed on return). Anything but a regular file raises
     hexdyn.IoError before it is opened, as does a file HDF5 cannot read or a dataset off the
@@ -1313,7 +1314,7 @@ def check_layout(file, source=None):
     result, envelope or replay file of the current version must also hold no undeclared
     dataset, each with its declared units, and every declared /meta attribute (as must a
     sweep file's /meta and its kept runs). Returns the
-    schema name ("hexdyn-sweep/2"). hexdyn.IoError in one line naming the file and the
+    schema name ("hexdyn-sweep/3"). hexdyn.IoError in one line naming the file and the
     dataset on a mismatch (and for a path that is no regular HDF5 file); ValueError for a
     file of no hexdyn schema or of a version this reader does not know."""
     if not isinstance(file, (h5py.File, h5py.Group)):

@@ -1,7 +1,7 @@
 #pragma once
 /// \file result.hpp
 /// Per-run result arrays, one row per output sample, in the units and frames of the
-/// `hexdyn-result/2` contract (io/schema.hpp). Matrices are row-major so that a
+/// `hexdyn-result/3` contract (io/schema.hpp). Matrices are row-major so that a
 /// (T, n) dataset is written straight from `.data()`; (T, 6, 3) datasets are stored
 /// as T × 18 with leg-major columns (3 l + axis).
 #include <cstdint>
