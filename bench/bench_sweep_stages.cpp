@@ -7,7 +7,10 @@
 // microseconds per scenario and its share of the scenario, and `other_share`: the share of
 // everything except the touchdown transients, the inverse dynamics (rnea) and the allocation.
 //
-//   build/bench/bench_sweep_stages
+// `/11` is every 11th scenario; `/1` every scenario of the grid (the stage sums over the whole
+// grid, for instance the required friction's (grip) against the allocation's).
+//
+//   build/bench/bench_sweep_stages --benchmark_filter='StairScenarioStages/11'
 #include <benchmark/benchmark.h>
 
 #include <chrono>
@@ -39,7 +42,8 @@ void BM_StairScenarioStages(benchmark::State& state) {
   double config = 0, summary = 0, record = 0;
   std::size_t scenarios = 0, ok = 0, evaluations = 0, samples = 0;
   for (auto _ : state) {
-    for (std::size_t i = 0; i < spec.scenario_count(); i += 11) {
+    const auto stride = static_cast<std::size_t>(state.range(0));
+    for (std::size_t i = 0; i < spec.scenario_count(); i += stride) {
       auto t = Clock::now();
       hexdyn::ScenarioSummary row;
       try {
@@ -89,7 +93,7 @@ void BM_StairScenarioStages(benchmark::State& state) {
   state.counters["samples"] = static_cast<double>(samples) / static_cast<double>(ok);
   state.counters["scenarios"] = n;
 }
-BENCHMARK(BM_StairScenarioStages)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(BM_StairScenarioStages)->Unit(benchmark::kMillisecond)->Iterations(1)->Arg(11)->Arg(1);
 
 /// The `config` stage alone over all scenarios of a sweep: each scenario's scene from the base
 /// tree, as a scenario process makes it (counter config_us: µs per scene). Sweeps: the 1,000

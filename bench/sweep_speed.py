@@ -3,14 +3,23 @@
 
     /usr/bin/python3 bench/sweep_speed.py [--commit bbaf71c] [--old PATH] [--new build/hexdyn]
         [--ref PATH] [--sweep bench/sweep_1000.yaml] [--repeat 3] [--postures {all,none,N}]
+        [--friction {on,off,both}]
 
 --commit names the older commit (bbaf71c by default; 2dbb8e9 for the output grid's error
 control, docs/validation/grid-accuracy.md).
 
 Runs `hexdyn sweep` of the grid (bench/sweep_1000.yaml: riser x speed x duty factor on
-configs/sweeps/stairs_base.yaml) under `mpirun -np 1`, old and new binary alternately,
+configs/sweeps/stairs_base.yaml) under `mpirun -np 1`, old and new binary alternately (the old
+binary on its own commit's copy of the sweep file and scenes, when its tree has one),
 `--repeat` times each, and prints the wall times and the ratio of their medians
 (old / new: > 1 means the new binary is faster), with the ratio of every old-new pair.
+
+--friction: the new binary's runs with the required friction (on, the default: the sweep as
+it is), without it (off: the sweep with `output.required_friction: false` in its `set:`), or
+both, alternately with the old binary in the same run (both: a third row, "new without the
+required friction", its ratio against the old binary, and the required friction's share of the
+new binary's median wall time). The option reaches the new binary only: 2dbb8e9 and bbaf71c
+predate the required friction.
 
 --old takes the older commit's binary from a path. Without it, the commit is checked out in a
 side folder, build/side-COMMIT (a git worktree), and its hexdyn built there once; later runs
@@ -92,6 +101,32 @@ def run_sweep(hexdyn, sweep, out):
     if proc.returncode != 0:
         sys.exit(f"sweep_speed: {' '.join(cmd)} failed:\n{proc.stderr}")
     return wall, cpu
+
+
+def old_sweep(sweep, old_binary):
+    """The old binary's copy of the sweep file: the same path in the old commit's tree (the
+    folder above its build folder) when the sweep lies in this tree and the old tree has it,
+    so that each binary reads its own commit's scenes (a newer scene may set keys an older
+    binary refuses); else the sweep itself."""
+    old_root = os.path.dirname(os.path.dirname(os.path.abspath(old_binary)))
+    rel = os.path.relpath(os.path.abspath(sweep), ROOT)
+    mine = os.path.join(old_root, rel)
+    return mine if not rel.startswith("..") and os.path.exists(mine) else sweep
+
+
+def sweep_without_friction(sweep, work):
+    """A copy of the sweep file `sweep` in `work` whose scenarios run without the required
+    friction (output.required_friction: false in its `set:`); returns its path."""
+    with open(sweep) as f:
+        spec = yaml.safe_load(f)
+    spec["base"] = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(sweep)),
+                                                 spec["base"]))
+    spec["name"] = f"{spec.get('name', 'sweep')}_without_friction"
+    spec.setdefault("set", {})["output.required_friction"] = False
+    path = os.path.join(work, "sweep_without_friction.yaml")
+    with open(path, "w") as f:
+        yaml.safe_dump(spec, f, sort_keys=False)
+    return path
 
 
 def read_sweep(path):
@@ -192,6 +227,8 @@ def main():
     ap.add_argument("--sweep", default=os.path.join(ROOT, "bench", "sweep_1000.yaml"))
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--postures", default="all")
+    ap.add_argument("--friction", choices=("on", "off", "both"), default="on",
+                    help="the new binary with the required friction, without, or both")
     args = ap.parse_args()
     set_old_commit(args.commit)
     with tempfile.TemporaryDirectory(prefix="hexdyn_speed_") as work:
@@ -204,11 +241,16 @@ def main():
             if not os.path.exists(args.old):
                 build_old(SIDE_FOLDER)
         try:
-            walls, cpus = {"old": [], "new": []}, {"old": [], "new": []}
+            bare = sweep_without_friction(args.sweep, work) if args.friction != "on" else None
+            runs = {"on": ("old", "new"), "off": ("old", "new"), "both": ("old", "new", "bare")}
+            sweeps = {"old": old_sweep(args.sweep, args.old),
+                      "new": bare if args.friction == "off" else args.sweep, "bare": bare}
+            walls = {k: [] for k in runs[args.friction]}
+            cpus = {k: [] for k in runs[args.friction]}
             for r in range(args.repeat):
-                for which in ("old", "new"):  # alternately, same machine, same run
+                for which in runs[args.friction]:  # alternately, same machine, same run
                     exe = args.old if which == "old" else args.new
-                    wall, cpu = run_sweep(exe, args.sweep, os.path.join(work, f"{which}.h5"))
+                    wall, cpu = run_sweep(exe, sweeps[which], os.path.join(work, f"{which}.h5"))
                     walls[which].append(wall)
                     cpus[which].append(cpu)
                     print(f"sweep_speed: run {r + 1} {which}: {wall:.2f} s wall, {cpu:.2f} s CPU",
@@ -223,13 +265,25 @@ def main():
                   f"the runs {LOAD[0]:.1f}.\n")
             print("| binary | wall times [s] | median wall [s] | CPU times [s] | median CPU [s] |")
             print("|---|---|---:|---|---:|")
-            for k, label in (("old", f"old ({OLD_COMMIT})"), ("new", "new")):
+            labels = {"old": f"old ({OLD_COMMIT})",
+                      "new": "new" + (" without the required friction"
+                                      if args.friction == "off" else ""),
+                      "bare": "new without the required friction"}
+            for k, label in ((k, labels[k]) for k in walls):
                 print(f"| {label} | {', '.join(f'{w:.2f}' for w in walls[k])} | {med[k][0]:.2f} "
                       f"| {', '.join(f'{c:.2f}' for c in cpus[k])} | {med[k][1]:.2f} |")
             pairs = [o / w for o, w in zip(walls["old"], walls["new"])]
             print(f"\nRatio old / new of the median wall times: **{med['old'][0] / med['new'][0]:.2f}x** "
                   f"(pairs: {', '.join(f'{p:.2f}' for p in pairs)}); of the median CPU times: "
                   f"{med['old'][1] / med['new'][1]:.2f}x\n")
+            if "bare" in walls:
+                pairs = [o / w for o, w in zip(walls["old"], walls["bare"])]
+                print(f"Without the required friction, old / new of the median wall times: "
+                      f"**{med['old'][0] / med['bare'][0]:.2f}x** (pairs: "
+                      f"{', '.join(f'{p:.2f}' for p in pairs)}); the required friction's share "
+                      f"of the new binary's median wall time: "
+                      f"{1.0 - med['bare'][0] / med['new'][0]:.0%}; new / new without it: "
+                      f"{med['new'][0] / med['bare'][0]:.2f}x\n")
             ok = True
             print(f"Results against the old binary ({OLD_COMMIT}):")
             lines, good = compare(new, old, OLD_COMMIT, exact=False)

@@ -15,9 +15,11 @@ if(TARGET hexdyn_python)
   # the CLI refuses them, one Result type for computed and read results and the readers of
   # every file kind (test_data.py), a URDF robot's stance fallback as a UserWarning
   # (test_stance.py), the required friction against HiGHS and cvxopt from the rows of
-  # hexdyn.sample_problem (test_required_friction.py), the functions' own arguments refused in
-  # one line naming them (test_arguments.py).
-  foreach(t run errors threads threads_ipopt mutations data stance required_friction arguments)
+  # hexdyn.sample_problem (test_required_friction.py) and a run's per-sample values on fast
+  # stairs gaits against HiGHS (test_required_friction_stairs.py), the functions' own
+  # arguments refused in one line naming them (test_arguments.py).
+  foreach(t run errors threads threads_ipopt mutations data stance required_friction
+          required_friction_stairs arguments)
     add_test(NAME python.${t}
              COMMAND ${HEXDYN_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/python/test_${t}.py
                      $<TARGET_FILE:hexdyn> ${CMAKE_SOURCE_DIR})

@@ -159,4 +159,10 @@ with h5py.File(sys.argv[1], "r") as f, h5py.File("r.h5", "r") as g:
     assert numpy.array_equal(f["/joints/torque"][()], g["/joints/torque"][()])
 EOF
 done
+# A sweep's output needs room for its checkpoint folder, OUT.checkpoint: a longer name is
+# one line saying how long it may be, and nothing is created.
+long_sweep="long/$(printf 'b%.0s' {1..245}).h5"
+refused "a sweep output name without room for .checkpoint" "expected an output file name of at most 244 bytes" \
+  sweep "$SRC/configs/sweeps/smoke.yaml" -o "$long_sweep"
+[ -z "$(find long -name 'bbb*')" ] || fail "the long sweep left files: $(ls long)"
 echo "messages: quoted numbers, HDF5 and binary files, missing files refused in one line; long output names written"

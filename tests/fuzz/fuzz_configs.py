@@ -187,8 +187,8 @@ NAN_BY_CONTRACT = {
         "required_friction_support_time", "required_friction_transient",
         "required_friction_transient_time", "peak_utilized_friction")}
 # Result datasets NaN by contract (docs/theory/grip.md): the utilised friction of a swing leg
-# (and +inf where a foot pulls), the required friction where no mu suffices; also in a kept
-# run's group.
+# (and where a relaxed sample's force does not press the foot), the required friction where no
+# mu suffices; also in a kept run's group. Never infinite.
 NAN_BY_CONTRACT_RESULT = ("contacts/utilized_friction", "contacts/required_friction")
 
 
@@ -201,10 +201,13 @@ def nan_free(path):
     bad = []
 
     def visit(name, obj):
-        if bad or not isinstance(obj, h5py.Dataset) or obj.dtype.kind != "f" or \
-                name in NAN_BY_CONTRACT or name.endswith(NAN_BY_CONTRACT_RESULT):
+        if bad or not isinstance(obj, h5py.Dataset) or obj.dtype.kind != "f":
             return
         data = obj[()]
+        if name in NAN_BY_CONTRACT or name.endswith(NAN_BY_CONTRACT_RESULT):
+            if np.any(np.isinf(data)):
+                bad.append(name)
+            return
         if name.startswith("scenarios/") and ok_rows is not None and np.ndim(data) >= 1 \
                 and len(data) == len(ok_rows):
             data = data[ok_rows]

@@ -1,12 +1,13 @@
 #include "hexdyn/allocation/required_friction.hpp"
 
-#include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
 #include <sstream>
 #include <utility>
+
+#include "hexdyn/allocation/required_friction_solver.hpp"
 
 namespace hexdyn {
 
@@ -81,185 +82,19 @@ std::array<bool, kLegs> slipping_legs(const QpProblem& qp, const AllocationLayou
   }
   return slips;
 }
-
-namespace {
-
-constexpr int kMaxUnknowns = 3 * kLegs + 1;  ///< n forces and μ
-using SquareMatrix =
-    Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxUnknowns, kMaxUnknowns>;
-using SmallVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxUnknowns, 1>;
-/// The number of trunk rows, the first inequality rows of every allocation problem
-/// (allocation/problem.hpp), equal bounds.
-constexpr int kTrunkRows = 6;
-
-/// Faces of the outer polygon that stands in for an exact cone, and the bit that marks the
-/// polygon problem's structural key.
-constexpr int kConeFaces = 16;
-/// A probe is feasible when its solution holds every row to this, relative to max(1, |bound|):
-/// the back end's own tolerance (1e-9) with a margin, far tighter than the allocation's
-/// verdict (kViolationThreshold), so that a probe's friction use is μ* to about 1e-8.
-constexpr double kProbeThreshold = 1e-8;
-constexpr std::uint64_t kConePolygonKey = std::uint64_t{1} << 62;
-
-/// An active row: `side` +1 at its upper bound, −1 at its lower bound, 0 both (a trunk row).
-struct ActiveRow {
-  int row = 0;
-  int side = 0;
-};
-
-/// Rows of a face with its μ dependence: the derivative of the row's value C x − bound with
-/// respect to μ at x.
-double row_mu_derivative(const AllocationLayout& layout, const Eigen::VectorXd& x, int row,
-                         int side) {
-  for (const AllocationLayout::Leg& leg : layout.legs) {
-    if (leg.offset < 0 || row < leg.friction_row || row >= leg.friction_row + leg.friction_faces)
-      continue;
-    if (leg.count == 3) return -leg.face_reach * x[leg.offset + 2];
-    return side > 0 ? -leg.face_reach * leg.known_normal_force_N : 0.0;
-  }
-  return 0.0;
-}
-
-}  // namespace
-
-/// How a Newton attempt on an active set ended.
-enum class NewtonEnd {
-  kCertified,    ///< the answer: every row holds, the multipliers have their signs
-  kRowViolated,  ///< converged, but an inactive row is violated (NewtonState::row)
-  kWrongSign,    ///< converged and feasible, but an active row's multiplier has the wrong sign
-  kFailed,       ///< singular, not converged, or not finite
-};
-
-struct RequiredFrictionSolver::Impl {
-  RequiredFrictionOptions opt;
-  std::unique_ptr<AllocationBackend> backend;
-  QpProblem work;
-  ViolationWorkspace violations;
-  RequiredFriction out;
-  // The last certified active set, for problems of the same structure and sizes.
-  bool has_warm = false;
-  std::uint64_t warm_structure = 0;
-  int warm_n = -1, warm_m = -1;
-  std::vector<ActiveRow> warm_set;
-  SmallVector warm_z;
-  // Newton's workspace and the state of its last attempt.
-  std::vector<ActiveRow> candidate, trial;
-  std::vector<std::pair<double, int>> slack;
-  SmallVector z;  ///< (x, μ) of the Newton iterate
-  Eigen::VectorXd x;
-  SmallVector lambda;
-  SquareMatrix J;
-  Eigen::PartialPivLU<SquareMatrix> lu;
-  int newton_leg = -1;
-  bool negative_mu = false;
-  double last_mu = -1.0;  ///< the previous sample's μ*, −1 before the first  ///< a Newton attempt
-                          ///< of this sample ended at μ < 0
-  int bad_row = -1;  ///< kRowViolated: the violated row; kWrongSign: the index in the set
-  int bad_side = 0;  ///< kRowViolated: the violated side
-
-  Impl(std::unique_ptr<AllocationBackend> b, const RequiredFrictionOptions& o)
-      : opt(o), backend(std::move(b)) {
-    for (auto& leg : cone_angle)
-      for (int f = 0; f < kConeFaces; ++f) leg[f] = 2.0 * M_PI * f / kConeFaces;
-  }
-
-  /// work = qp; the row names (strings) copied only when the layout changed.
-  void load(const QpProblem& qp) {
-    const bool same = work.structure == qp.structure && work.variables() == qp.variables() &&
-                      work.inequalities() == qp.inequalities() &&
-                      work.equalities() == qp.equalities() && work.cones.size() == qp.cones.size();
-    if (!same) {
-      work = qp;
-      return;
-    }
-    work.H = qp.H;
-    work.g = qp.g;
-    work.constant = qp.constant;
-    work.A = qp.A;
-    work.b = qp.b;
-    work.C = qp.C;
-    work.lower = qp.lower;
-    work.upper = qp.upper;
-    work.ineq_penalty = qp.ineq_penalty;
-    for (std::size_t k = 0; k < qp.cones.size(); ++k) {
-      const SecondOrderCone& c = qp.cones[k];
-      SecondOrderCone& w = work.cones[k];
-      w.tangent1 = c.tangent1;
-      w.tangent2 = c.tangent2;
-      w.normal = c.normal;
-      w.mu = c.mu;
-      w.penalty = c.penalty;
-    }
-  }
-
-  /// Feasibility of the rows at mu: the back end's solve at mu, every row and cone held to
-  /// kViolationThreshold. The forces in *x_out.
-  bool feasible_at(const AllocationLayout& layout, double mu, Eigen::VectorXd& x_out,
-                   std::string* why = nullptr) {
-    set_friction_coefficient(layout, mu, work);
-    const QpOutcome& o = backend->solve(work);
-    x_out = o.x;
-    if (o.status != SolverStatus::kOptimal && !why) return false;
-    double worst = 0.0;
-    const std::string text = describe_violations(work, o.x, kProbeThreshold, &worst, violations);
-    x_out = o.x;
-    if (why) *why = text;
-    return o.status == SolverStatus::kOptimal && text.empty();
-  }
-
-  NewtonEnd newton(const AllocationLayout& layout, const std::vector<ActiveRow>& set,
-                   const SmallVector& z0);
-  NewtonEnd check(const AllocationLayout& layout, const std::vector<ActiveRow>& set);
-  /// The row of J for inequality row `row` at its side `side` (at z, work set to z's μ).
-  SmallVector gradient(const AllocationLayout& layout, int row, int side) const {
-    const int n = work.variables();
-    SmallVector a(n + 1);
-    a.head(n) = work.C.row(row).transpose();
-    a[n] = row_mu_derivative(layout, x, row, side);
-    return a;
-  }
-  int dual_ratio_leaving(const AllocationLayout& layout, const std::vector<ActiveRow>& set);
-  bool primal_ratio_entering(const AllocationLayout& layout, const std::vector<ActiveRow>& set,
-                             ActiveRow& enter);
-  bool solve_from(const AllocationLayout& layout, std::vector<ActiveRow> set,
-                  const SmallVector& z0);
-  bool active_set_at(const AllocationLayout& layout, const Eigen::Ref<const Eigen::VectorXd>& x_at,
-                     double mu);
-  bool upper_end(const AllocationLayout& layout, const Eigen::VectorXd* allocation, double& hi,
-                 Eigen::VectorXd& x_hi);
-  bool newton_in_bracket(const AllocationLayout& layout, const Eigen::VectorXd& x_hi, double lo,
-                         double hi);
-  void bisect(const AllocationLayout& layout, const Eigen::VectorXd* allocation, double guess);
-  void solve_polygonal(const AllocationLayout& layout, const Eigen::VectorXd* allocation);
-  void load_cone_polygon(const QpProblem& qp, const AllocationLayout& layout);
-  void solve_cone(const QpProblem& qp, const AllocationLayout& layout,
-                  const Eigen::VectorXd* allocation);
-
-  // The exact cone's outer polygons: per leg, the directions of its faces [rad], kept from one
-  // sample to the next; the polygon problem's layout.
-  std::array<std::array<double, kConeFaces>, kLegs> cone_angle;
-  std::array<double, kLegs> cone_center{};   ///< the direction the faces gather around [rad]
-  std::array<double, kLegs> cone_spacing{};  ///< their spacing δ [rad]
-  void cluster_faces(int l, double a, double delta);
-  AllocationLayout cone_layout;
-  Eigen::VectorXd answer_x;  ///< the forces of the last answer
-  void remember(const std::vector<ActiveRow>& set);
-};
-
 /// Newton on the square system of the active rows in z = (x, μ), from z0; then check.
 NewtonEnd RequiredFrictionSolver::Impl::newton(const AllocationLayout& layout,
-                                               const std::vector<ActiveRow>& set,
-                                               const SmallVector& z0) {
+                                               const std::vector<MuRow>& set, const MuVector& z0) {
   const int n = work.variables();
   if (static_cast<int>(set.size()) != n + 1 || !work.cones.empty()) return NewtonEnd::kFailed;
   z = z0;
   J.resize(n + 1, n + 1);
-  SmallVector g(n + 1);
+  MuVector g(n + 1);
   for (int it = 0; it <= opt.newton_iterations + 1; ++it) {
     x = z.head(n);
     set_friction_coefficient(layout, z[n], work);
     for (int i = 0; i <= n; ++i) {
-      const ActiveRow& a = set[static_cast<std::size_t>(i)];
+      const MuRow& a = set[static_cast<std::size_t>(i)];
       J.row(i).head(n) = work.C.row(a.row);
       J(i, n) = row_mu_derivative(layout, x, a.row, a.side);
       const double bound = a.side > 0 ? work.upper[a.row] : work.lower[a.row];
@@ -268,7 +103,7 @@ NewtonEnd RequiredFrictionSolver::Impl::newton(const AllocationLayout& layout,
     lu.compute(J);
     if (!(std::abs(lu.determinant()) > 0.0)) return NewtonEnd::kFailed;
     if (it > opt.newton_iterations) break;
-    const SmallVector step = lu.solve(-g);
+    const MuVector step = lu.solve(-g);
     if (!step.allFinite()) return NewtonEnd::kFailed;
     z += step;
     // The residual is bilinear in (x_n, μ), so Newton converges quadratically: after a step
@@ -287,7 +122,7 @@ NewtonEnd RequiredFrictionSolver::Impl::newton(const AllocationLayout& layout,
 /// Jᵀλ = e_μ, have the signs of their rows' active sides
 /// (docs/theory/grip.md#why-the-newton-answer-is-the-minimum); else what failed first.
 NewtonEnd RequiredFrictionSolver::Impl::check(const AllocationLayout& layout,
-                                              const std::vector<ActiveRow>& set) {
+                                              const std::vector<MuRow>& set) {
   const int n = work.variables();
   const double mu = z[n];
   if (!std::isfinite(mu)) return NewtonEnd::kFailed;
@@ -295,7 +130,7 @@ NewtonEnd RequiredFrictionSolver::Impl::check(const AllocationLayout& layout,
     negative_mu = true;
     return NewtonEnd::kFailed;
   }
-  SmallVector e = SmallVector::Zero(n + 1);
+  MuVector e = MuVector::Zero(n + 1);
   e[n] = 1.0;
   lambda = lu.transpose().solve(e);
   if (!lambda.allFinite()) return NewtonEnd::kFailed;
@@ -320,20 +155,30 @@ NewtonEnd RequiredFrictionSolver::Impl::check(const AllocationLayout& layout,
   if (bad_row >= 0) return NewtonEnd::kRowViolated;
   const double tol = 1e-9 * lambda.lpNorm<Eigen::Infinity>();
   double most_wrong = tol;
+  bool degenerate = false;
   for (int i = 0; i <= n; ++i) {
     const int side = set[static_cast<std::size_t>(i)].side;
     const double wrong = side > 0 ? lambda[i] : side < 0 ? -lambda[i] : 0.0;
+    degenerate = degenerate || (side != 0 && std::abs(lambda[i]) <= tol);
     if (wrong > most_wrong) {
       most_wrong = wrong;
       bad_row = i;
     }
   }
   if (bad_row >= 0) return NewtonEnd::kWrongSign;
+  // A zero multiplier: a degenerate vertex, where the bilinear rows may still let μ fall
+  // along a direction that keeps that row's side (docs/theory/grip.md#degenerate-vertices).
+  // A probe just below settles it as a bisection's bracket would.
+  if (degenerate && mu > opt.tolerance) {
+    const bool lower = feasible_at(layout, mu - opt.tolerance, x_scratch);
+    set_friction_coefficient(layout, mu, work);
+    if (lower) return NewtonEnd::kFailed;
+  }
   // The binding leg: the friction row whose multiplier carries the most of ∂μ.
   double binding = 0.0;
   newton_leg = -1;
   for (int i = 0; i <= n; ++i) {
-    const ActiveRow& a = set[static_cast<std::size_t>(i)];
+    const MuRow& a = set[static_cast<std::size_t>(i)];
     const double share = std::abs(lambda[i] * row_mu_derivative(layout, x, a.row, a.side));
     if (share <= binding) continue;
     for (int l = 0; l < kLegs; ++l) {
@@ -353,9 +198,9 @@ NewtonEnd RequiredFrictionSolver::Impl::check(const AllocationLayout& layout,
 /// multipliers, the entering row's multiplier t moves them as ν − t β, β_i = σ_i σ_j α_i,
 /// Jᵀα = ∇g_j; the first inequality row to reach ν_i = 0 leaves. −1 when none can.
 int RequiredFrictionSolver::Impl::dual_ratio_leaving(const AllocationLayout& layout,
-                                                     const std::vector<ActiveRow>& set) {
+                                                     const std::vector<MuRow>& set) {
   const int n = work.variables();
-  const SmallVector alpha = lu.transpose().solve(gradient(layout, bad_row, bad_side));
+  const MuVector alpha = lu.transpose().solve(gradient(layout, bad_row, bad_side));
   int leave = -1;
   double best = std::numeric_limits<double>::infinity();
   for (int i = kTrunkRows; i <= n; ++i) {
@@ -375,16 +220,16 @@ int RequiredFrictionSolver::Impl::dual_ratio_leaving(const AllocationLayout& lay
 /// along d with J d = −σ e_r (the other active rows held), the inactive row whose bound is
 /// reached first. False when none is.
 bool RequiredFrictionSolver::Impl::primal_ratio_entering(const AllocationLayout& layout,
-                                                         const std::vector<ActiveRow>& set,
-                                                         ActiveRow& enter) {
+                                                         const std::vector<MuRow>& set,
+                                                         MuRow& enter) {
   const int n = work.variables();
-  SmallVector e = SmallVector::Zero(n + 1);
+  MuVector e = MuVector::Zero(n + 1);
   e[bad_row] = -set[static_cast<std::size_t>(bad_row)].side;
-  const SmallVector d = lu.solve(e);
+  const MuVector d = lu.solve(e);
   double best = std::numeric_limits<double>::infinity();
   for (int j = kTrunkRows; j < work.inequalities(); ++j) {
     bool in_set = false;
-    for (const ActiveRow& a : set) in_set = in_set || a.row == j;
+    for (const MuRow& a : set) in_set = in_set || a.row == j;
     if (in_set) continue;
     const double rate = gradient(layout, j, +1).dot(d);
     const double v = work.C.row(j).dot(x);
@@ -412,9 +257,9 @@ bool RequiredFrictionSolver::Impl::primal_ratio_entering(const AllocationLayout&
 /// row whose multiplier has the wrong sign leaves by the primal one. True with the answer
 /// in z and the set remembered for the next sample.
 bool RequiredFrictionSolver::Impl::solve_from(const AllocationLayout& layout,
-                                              std::vector<ActiveRow> set, const SmallVector& z0) {
+                                              std::vector<MuRow> set, const MuVector& z0) {
   constexpr int kMaxExchanges = 24;
-  SmallVector start = z0;  // z0 may be warm_z, which a success overwrites
+  MuVector start = z0;  // z0 may be warm_z, which a success overwrites
   for (int exchange = 0;; ++exchange) {
     const NewtonEnd end = newton(layout, set, start);
     if (end == NewtonEnd::kCertified) {
@@ -427,7 +272,7 @@ bool RequiredFrictionSolver::Impl::solve_from(const AllocationLayout& layout,
       if (leave < 0) return false;
       set[static_cast<std::size_t>(leave)] = {bad_row, bad_side};
     } else {
-      ActiveRow enter;
+      MuRow enter;
       if (bad_row < kTrunkRows || !primal_ratio_entering(layout, set, enter)) return false;
       set[static_cast<std::size_t>(bad_row)] = enter;
     }
@@ -435,9 +280,14 @@ bool RequiredFrictionSolver::Impl::solve_from(const AllocationLayout& layout,
   }
 }
 
-/// The n + 1 − 6 inequality rows nearest to active at (x_at, mu) besides the trunk rows, as
-/// the candidate active set (in `candidate`); false when the problem has too few variables
-/// or cones.
+/// The candidate active set at (x_at, mu), in `candidate`: the trunk rows, then the inequality
+/// rows in order of their distance to active (slack over the norm of the row of C: a distance
+/// in force space, comparable across torque, normal-force and friction rows), each taken only
+/// when its row of J is linearly independent of those taken, until there are n + 1; false
+/// when the problem has too few variables or cones. Without independent rows enough, and for
+/// the exact cone's polygons (whose clustered faces are nearly dependent by design, and whose
+/// rounds follow the answer's force directions from one round to the next), the n + 1 − 6
+/// nearest by slack relative to max(1, |bound|).
 bool RequiredFrictionSolver::Impl::active_set_at(const AllocationLayout& layout,
                                                  const Eigen::Ref<const Eigen::VectorXd>& x_at,
                                                  double mu) {
@@ -445,26 +295,58 @@ bool RequiredFrictionSolver::Impl::active_set_at(const AllocationLayout& layout,
   const int extra = n + 1 - kTrunkRows;
   if (extra <= 0 || !work.cones.empty() || m - kTrunkRows < extra) return false;
   set_friction_coefficient(layout, mu, work);
+  const bool polygon = (work.structure & kConePolygonKey) != 0;
   slack.clear();
   for (int j = kTrunkRows; j < m; ++j) {
     const double v = work.C.row(j).dot(x_at);
     const double inf = std::numeric_limits<double>::infinity();
     const double hi = work.upper[j], lo = work.lower[j];
-    const double up = hi < kQpInfinity ? (hi - v) / std::max(1.0, std::abs(hi)) : inf;
-    const double down = lo > -kQpInfinity ? (v - lo) / std::max(1.0, std::abs(lo)) : inf;
+    const double norm = work.C.row(j).norm();
+    if (!(norm > 0.0) && !polygon) continue;  // a constant row: no force moves it
+    const double su = polygon ? 1.0 / std::max(1.0, std::abs(hi)) : 1.0 / norm;
+    const double sd = polygon ? 1.0 / std::max(1.0, std::abs(lo)) : 1.0 / norm;
+    const double up = hi < kQpInfinity ? (hi - v) * su : inf;
+    const double down = lo > -kQpInfinity ? (v - lo) * sd : inf;
     slack.emplace_back(std::min(up, down), up <= down ? j : -1 - j);
   }
-  std::partial_sort(slack.begin(), slack.begin() + extra, slack.end());
+  if (static_cast<int>(slack.size()) < extra) return false;
+  std::sort(slack.begin(), slack.end());
+  x = x_at;  // gradient() reads the forces from x
+  candidate.clear();
+  for (int j = 0; j < kTrunkRows; ++j) add_if_independent(layout, {j, 0});
+  if (static_cast<int>(candidate.size()) == kTrunkRows && !polygon)
+    for (std::size_t i = 0; i < slack.size() && static_cast<int>(candidate.size()) <= n; ++i) {
+      const int code = slack[i].second;
+      add_if_independent(layout, code >= 0 ? MuRow{code, +1} : MuRow{-1 - code, -1});
+    }
+  if (static_cast<int>(candidate.size()) == n + 1) return true;
   candidate.clear();
   for (int j = 0; j < kTrunkRows; ++j) candidate.push_back({j, 0});
   for (int i = 0; i < extra; ++i) {
     const int code = slack[static_cast<std::size_t>(i)].second;
-    candidate.push_back(code >= 0 ? ActiveRow{code, +1} : ActiveRow{-1 - code, -1});
+    candidate.push_back(code >= 0 ? MuRow{code, +1} : MuRow{-1 - code, -1});
   }
   return true;
 }
 
-void RequiredFrictionSolver::Impl::remember(const std::vector<ActiveRow>& set) {
+/// Appends row a to `candidate` when its row of J at x is linearly independent of those of
+/// the rows there (Gram-Schmidt, twice for rounding, against their orthonormal rows in
+/// `basis`): a set with two dependent rows (opposite faces of a leg without normal force, for
+/// example) makes J singular.
+void RequiredFrictionSolver::Impl::add_if_independent(const AllocationLayout& layout, MuRow a) {
+  const int k = static_cast<int>(candidate.size());
+  MuVector v = gradient(layout, a.row, a.side == 0 ? +1 : a.side);
+  const double scale = v.lpNorm<Eigen::Infinity>();
+  for (int pass = 0; pass < 2; ++pass)
+    for (int i = 0; i < k; ++i) v -= basis.col(i).dot(v) * basis.col(i);
+  const double left = v.norm();
+  if (!(left > 1e-9 * scale)) return;
+  if (k == 0) basis.resize(v.size(), v.size());
+  basis.col(k) = v / left;
+  candidate.push_back(a);
+}
+
+void RequiredFrictionSolver::Impl::remember(const std::vector<MuRow>& set) {
   has_warm = true;
   warm_structure = work.structure;
   warm_n = work.variables();
@@ -504,7 +386,7 @@ bool RequiredFrictionSolver::Impl::newton_in_bracket(const AllocationLayout& lay
                                                      double hi) {
   const int n = work.variables();
   if (!active_set_at(layout, x_hi, hi)) return false;
-  SmallVector z0(n + 1);
+  MuVector z0(n + 1);
   z0 << x_hi, hi;
   if (!solve_from(layout, candidate, z0) || z[n] < lo - 1e-9 || z[n] > hi + 1e-9) return false;
   out.mu = std::max(0.0, z[n]);
@@ -539,11 +421,15 @@ void RequiredFrictionSolver::Impl::bisect(const AllocationLayout& layout,
     if (lo == 0.0 && newton_in_bracket(layout, x_hi, 0.0, hi)) return;
     if (lo == 0.0) probe(guess * 0.99);
   }
-  double newton_width = 1e-2;
+  // A Newton attempt each time the bracket has narrowed fourfold (a probe costs about one
+  // allocation, a Newton attempt from a nearer upper end a fraction of it); under the exact
+  // cone, whose polygon rounds follow the answer's force directions, each hundredfold.
+  const bool polygon = (work.structure & kConePolygonKey) != 0;
+  double newton_width = polygon ? 1e-2 : 0.25 * (hi - lo);
   while (hi - lo > opt.tolerance) {
     if (hi - lo <= newton_width && work.cones.empty()) {
       if (newton_in_bracket(layout, x_hi, lo, hi)) return;
-      newton_width *= 1e-2;
+      newton_width = polygon ? 1e-2 * newton_width : 0.25 * (hi - lo);
     }
     probe(0.5 * (lo + hi));
   }
@@ -569,123 +455,25 @@ void RequiredFrictionSolver::Impl::solve_polygonal(const AllocationLayout& layou
       has_warm && warm_structure == work.structure && warm_n == n && warm_m == work.inequalities();
   // The previous sample's active set, else the rows nearest to active at its answer (which
   // the cone's polygon rounds need, their faces having turned since). A failed attempt leaves
-  // warm_z as it was.
-  if (alike) {
+  // warm_z as it was. After a sample without μ* (a touchdown transient whose trunk rows fail
+  // at any μ) the set is older than the previous sample, and a relaxed sample goes to the
+  // probe at mu_max first, which settles the next NaN at once.
+  const bool after_nan = last_nan && allocation == nullptr;
+  if (alike && !after_nan) {
     if (solve_from(layout, warm_set, warm_z) || (active_set_at(layout, warm_z.head(n), warm_z[n]) &&
                                                  solve_from(layout, candidate, warm_z))) {
       out.mu = std::max(0.0, z[n]);
       out.leg = newton_leg;
       out.method = 0;
       last_mu = out.mu;
+      last_nan = false;
       answer_x = z.head(n);
       return;
     }
   }
   bisect(layout, allocation, alike ? warm_z[n] : last_mu);
-  if (std::isfinite(out.mu)) last_mu = out.mu;
-}
-
-/// The cone's polygon problem (file comment): `qp` with each support leg's cone replaced by
-/// kConeFaces supporting half-spaces d·t ≤ μ f_n at the directions cone_angle[l], appended
-/// leg by leg after the problem's rows; `cone_layout` says where they are.
-void RequiredFrictionSolver::Impl::load_cone_polygon(const QpProblem& qp,
-                                                     const AllocationLayout& layout) {
-  int cones = 0;
-  for (const AllocationLayout::Leg& leg : layout.legs) cones += leg.cone >= 0;
-  const int m = qp.inequalities(), n = qp.variables();
-  const bool same = work.structure == (qp.structure | kConePolygonKey) && work.variables() == n &&
-                    work.inequalities() == m + kConeFaces * cones;
-  if (!same) {
-    work.resize(n, qp.equalities(), m + kConeFaces * cones);
-    work.ineq_names.assign(static_cast<std::size_t>(m), std::string());
-    std::copy(qp.ineq_names.begin(), qp.ineq_names.end(), work.ineq_names.begin());
-    work.structure = qp.structure | kConePolygonKey;
-  }
-  work.H = qp.H;
-  work.g = qp.g;
-  work.constant = qp.constant;
-  work.A = qp.A;
-  work.b = qp.b;
-  work.C.topRows(m) = qp.C;
-  work.C.bottomRows(kConeFaces * cones).setZero();
-  work.lower.head(m) = qp.lower;
-  work.upper.head(m) = qp.upper;
-  work.ineq_penalty.head(m) = qp.ineq_penalty.size() ? qp.ineq_penalty : Eigen::VectorXd::Ones(m);
-  work.cones.clear();
-  cone_layout = layout;
-  int row = m;
-  for (int l = 0; l < kLegs; ++l) {
-    AllocationLayout::Leg& leg = cone_layout.legs[l];
-    if (leg.cone < 0) continue;
-    const SecondOrderCone& c = qp.cones[static_cast<std::size_t>(leg.cone)];
-    leg.cone = -1;
-    leg.friction_row = row;
-    leg.friction_faces = kConeFaces;
-    leg.face_reach = 1.0;  // supporting half-spaces: the polygon contains the cone
-    for (int f = 0; f < kConeFaces; ++f, ++row) {
-      const double a = cone_angle[l][f];
-      work.C(row, c.tangent1) = std::cos(a);
-      work.C(row, c.tangent2) = std::sin(a);
-      work.lower[row] = -std::numeric_limits<double>::infinity();
-      work.upper[row] = 0.0;
-      work.ineq_penalty[row] = c.penalty;
-      if (!same) work.ineq_names.push_back(c.name + " face " + std::to_string(f + 1));
-    }
-  }
-  set_friction_coefficient(cone_layout, qp.cones.empty() ? 0.0 : qp.cones.front().mu, work);
-}
-
-/// Leg l's polygon faces: eight clustered around the direction `a` of its tangential force (a,
-/// a ± δ, a ± 2δ, a ± 3δ, a + 4δ) and eight every 45° from a + 22.5°, so that every direction
-/// is covered to within 1/cos(22.5°) of the cone.
-void RequiredFrictionSolver::Impl::cluster_faces(int l, double a, double delta) {
-  static_assert(kConeFaces == 16);
-  const double fine[8] = {0.0,          delta,       -delta,       2.0 * delta,
-                          -2.0 * delta, 3.0 * delta, -3.0 * delta, 4.0 * delta};
-  for (int f = 0; f < 8; ++f) cone_angle[l][f] = a + fine[f];
-  for (int f = 0; f < 8; ++f) cone_angle[l][8 + f] = a + M_PI / 8.0 + f * M_PI / 4.0;
-  cone_center[l] = a;
-  cone_spacing[l] = delta;
-}
-
-/// μ* under the exact cone by outer polygons (file comment): the polygon's μ* is a lower
-/// bound, the cone use of its forces an upper bound. While they differ by more than the
-/// tolerance, each cone leg's faces gather around its force's direction, their spacing δ
-/// shrinking fourfold a round (the polygon's excess over the cone near the direction is
-/// about μ δ²/2), or widening to the step when the direction moved farther than the faces.
-void RequiredFrictionSolver::Impl::solve_cone(const QpProblem& qp, const AllocationLayout& layout,
-                                              const Eigen::VectorXd* allocation) {
-  constexpr int kMaxRounds = 40;
-  double best_upper = std::numeric_limits<double>::infinity();
-  int best_leg = -1;
-  if (allocation) best_upper = friction_use(qp, layout, *allocation, &best_leg);
-  for (int l = 0; l < kLegs; ++l) cluster_faces(l, cone_center[l], M_PI / 8.0);
-  for (int round = 0; round < kMaxRounds; ++round) {
-    load_cone_polygon(qp, layout);
-    solve_polygonal(cone_layout, allocation);
-    if (!std::isfinite(out.mu)) return;  // no μ for the outer polygon: none for the cone
-    const double lower = out.mu - (out.method == 2 ? opt.tolerance : 0.0);
-    int leg = -1;
-    const double upper = friction_use(qp, layout, answer_x, &leg);
-    if (upper < best_upper) {
-      best_upper = upper;
-      best_leg = leg;
-    }
-    if (best_upper - lower <= opt.tolerance) break;
-    for (int l = 0; l < kLegs; ++l) {
-      const AllocationLayout::Leg& g = layout.legs[l];
-      if (g.cone < 0) continue;
-      const double t1 = answer_x[g.offset], t2 = answer_x[g.offset + 1];
-      const double a = std::hypot(t1, t2) > 0.0 ? std::atan2(t2, t1) : cone_center[l];
-      const double moved = std::abs(std::remainder(a - cone_center[l], 2.0 * M_PI));
-      // A direction within the clustered faces (±4δ) narrows them; one beyond widens them.
-      const double delta = moved > 4.0 * cone_spacing[l] ? std::min(M_PI / 8.0, moved)
-                                                         : std::max(1e-9, 0.25 * cone_spacing[l]);
-      cluster_faces(l, a, delta);
-    }
-  }
-  out.mu = best_upper;
-  out.leg = best_leg;
+  last_nan = !std::isfinite(out.mu);
+  if (!last_nan) last_mu = out.mu;
 }
 
 const RequiredFriction& RequiredFrictionSolver::solve(const QpProblem& qp,

@@ -23,8 +23,9 @@
 ///    active-set back end given to the solver (its own instance and warm start), and holds
 ///    every row to 1e-8; a feasible probe also tightens the upper end to the μ its own forces
 ///    use. From the upper bound the allocation itself gives (the friction its forces use) down
-///    to a bracket of `tolerance`, with a Newton attempt from the rows nearest to active each
-///    time the bracket has narrowed a hundredfold.
+///    to a bracket of `tolerance`, with a Newton attempt from the rows nearest to active (and
+///    linearly independent) each time the bracket has narrowed fourfold. A Newton answer at a
+///    degenerate vertex (a zero multiplier) counts only when a probe at μ − `tolerance` fails.
 ///  - The exact cone: its cones become outer polygons of 16 faces that gather around each
 ///    leg's force direction until the polygon's μ* (a lower bound) and the cone use of its
 ///    forces (an upper bound) meet within `tolerance` (docs/theory/grip.md#the-exact-cone).

@@ -97,7 +97,8 @@ struct DynamicsResult {
   RowMatrix contact_force;  ///< T×18 = (T,6,3), terrain on foot, world [N]
   RowMatrix penetration;    ///< T×6 [m]
   /// T×6, |F_t| / F_n of the chosen force in the contact frame of each support or impact leg,
-  /// NaN on a swing leg (+inf where F_n ≤ 0 < |F_t|) (docs/theory/grip.md#utilised-friction).
+  /// NaN on a swing leg and where a real force does not press the foot (F_n ≤ 0), 0 for a
+  /// round-off force; never infinite (docs/theory/grip.md#utilised-friction).
   RowMatrix utilized_friction;
   /// T×6, 1 where the leg cannot hold at the scene's μ: its friction held only with slack, or
   /// the sample needs more than μ and the leg is at its friction limit or binds the required

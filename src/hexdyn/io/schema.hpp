@@ -331,7 +331,7 @@ inline constexpr DatasetSpec kContactPenetration{"/contacts/penetration", "m", S
                                                  Element::kFloat64,
                                                  "foot penetration into the terrain"};
 /// |F_t| / F_n of the chosen force in each foot's contact frame (docs/theory/grip.md); NaN on
-/// a swing leg.
+/// a swing leg and where a relaxed sample's force does not press the foot; never infinite.
 inline constexpr DatasetSpec kContactUtilizedFriction{"/contacts/utilized_friction", "1",
                                                       Shape::kT6, Element::kFloat64,
                                                       "utilised friction coefficient"};

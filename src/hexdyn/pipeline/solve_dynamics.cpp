@@ -55,6 +55,10 @@ struct SampleSolution {
 
 /// The allocation of one sample with its workspace: the dynamics buffers, the problem and
 /// the back end, whose warm start carries from one solve to the next.
+/// A contact force of at most this fraction of the robot's weight is round-off: it uses no
+/// friction and never counts as pulling.
+constexpr double kRoundOffForce = 1e-9;
+
 class SampleSolver {
  public:
   SampleSolver(const Scene& scene, const RobotModel& model)
@@ -130,14 +134,18 @@ class SampleSolver {
 
   /// The grip fields of s (SampleSolution), from its forces and the problem just solved.
   void grip(const SampleContacts& c, const AllocationLayout& layout, SampleSolution& s) {
+    // A force below kRoundOffForce of the weight is round-off (a foot carrying 1e-30 N): no
+    // force, no friction used. A foot whose force does not press it (a relaxed sample) uses
+    // no defined friction: NaN, never +inf (docs/theory/grip.md#utilised-friction).
+    const double round_off_N = kRoundOffForce * model_.total_mass_kg * kGravity;
     for (int l = 0; l < kLegs; ++l) {
       const Vec3 F_c = c.W_R_contact[l].transpose() * s.foot_forces_W[l];
       const double ft = std::hypot(F_c.x(), F_c.y());
       s.utilized_friction[l] = c.phase[l] == ContactPhase::kSwing
                                    ? std::numeric_limits<double>::quiet_NaN()
-                               : F_c.z() > 0.0 ? ft / F_c.z()
-                               : ft > 0.0      ? std::numeric_limits<double>::infinity()
-                                               : 0.0;
+                               : F_c.norm() <= round_off_N ? 0.0
+                               : F_c.z() > 0.0             ? ft / F_c.z()
+                                               : std::numeric_limits<double>::quiet_NaN();
     }
     s.slip = slipping_legs(qp_, layout, s.outcome->x);
     s.required_friction = std::numeric_limits<double>::quiet_NaN();

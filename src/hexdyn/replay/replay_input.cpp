@@ -13,6 +13,7 @@
 #include "hexdyn/io/h5io.hpp"
 #include "hexdyn/io/schema.hpp"
 #include "hexdyn/model/robot_model.hpp"
+#include "hexdyn/process/paths.hpp"
 #include "hexdyn/process/sha256.hpp"
 #include "hexdyn/replay/replay_file.hpp"
 
@@ -55,18 +56,11 @@ VecJ rowJ(const std::vector<double>& v, std::size_t i) {
 
 /// The result file as an input of the replay: its identity and checksum.
 InputFile result_input(const std::string& path) {
+  if (const auto why = why_not_regular_file(path))
+    throw IoError("replay: '" + path + "' " + *why + ", expected a hexdyn-result file");
   struct stat st {};
-  if (::stat(path.c_str(), &st) != 0) {
-    if (errno == ENOENT || errno == ENOTDIR)
-      throw IoError("replay: '" + path + "' does not exist, expected a hexdyn-result file");
+  if (::stat(path.c_str(), &st) != 0)
     throw IoError("replay: '" + path + "' cannot be read: " + std::strerror(errno));
-  }
-  if (!S_ISREG(st.st_mode))
-    throw IoError("replay: '" + path + "' is " +
-                  (S_ISDIR(st.st_mode) ? "a directory"
-                                       : "not a regular file (a device, FIFO "
-                                         "or socket)") +
-                  ", expected a hexdyn-result file");
   InputFile f;
   f.role = "result file";
   f.path = path;

@@ -142,6 +142,11 @@ Checkpoint::Checkpoint(const std::string& output_path, const SweepSpec& spec, bo
   // output find each other through the lock whichever of them made the directory.
   if (::mkdir(dir_.c_str(), 0755) != 0) {
     const int err = errno;
+    if (err == ENAMETOOLONG)
+      throw IoError("output '" + output_path + "': its checkpoint folder '" + dir_ +
+                    "' is longer than the file system takes (" + errno_text(err) +
+                    "), expected an output file name of at most 244 bytes (255 less "
+                    "'.checkpoint')");
     if (err != EEXIST)
       throw IoError("cannot create checkpoint directory '" + dir_ + "': " + errno_text(err));
   }

@@ -52,7 +52,6 @@ TEST_CASE(
     CHECK(inf_norm(out.lambda_ineq - ref.lambda_ineq) < 1e-5 * (1.0 + inf_norm(ref.lambda_ineq)));
     CHECK(inf_norm(out.lambda_eq - ref.lambda_eq) < 1e-5 * (1.0 + inf_norm(ref.lambda_eq)));
     CHECK(out.iterations > 0);
-    CHECK(out.seconds >= 0.0);
     binding += (out.lambda_ineq.array().abs() > 1e-6).count() > lu;
   }
   CHECK(binding > 30);  // inequality rows were active, not only the l = u rows

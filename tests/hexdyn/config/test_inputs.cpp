@@ -12,6 +12,7 @@
 #include "hexdyn/config/inputs.hpp"
 #include "hexdyn/config/yaml_load.hpp"
 #include "hexdyn/core/errors.hpp"
+#include "hexdyn/temp_dir.hpp"
 
 namespace hexdyn {
 namespace {
@@ -20,30 +21,16 @@ namespace fs = std::filesystem;
 
 const std::string kSignature("\x89HDF\r\n\x1a\n", 8);
 
-/// A fresh directory under the system's temporary directory, removed at scope exit.
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    path = fs::temp_directory_path() / ("hexdyn_test_inputs_" + std::to_string(::getpid()));
-    fs::remove_all(path);
-    fs::create_directories(path);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-  /// `size` bytes of YAML text ("a: 1\n" repeated) with `insert` at `at`.
-  std::string write(const std::string& name, std::size_t size, std::size_t at,
-                    const std::string& insert) const {
-    std::string text;
-    while (text.size() < size) text += "a: 1\n";
-    text.resize(size);
-    text.replace(at, insert.size(), insert);
-    const fs::path p = path / name;
-    std::ofstream(p, std::ios::binary) << text;
-    return p.string();
-  }
-};
+/// `size` bytes of YAML text ("a: 1\n" repeated) with `insert` at `at`, as the file `name`
+/// of `dir`.
+std::string write_yaml(const testing::TempDir& dir, const std::string& name, std::size_t size,
+                       std::size_t at, const std::string& insert) {
+  std::string text;
+  while (text.size() < size) text += "a: 1\n";
+  text.resize(size);
+  text.replace(at, insert.size(), insert);
+  return dir.write(name, text);
+}
 
 std::string refusal(const std::string& path) {
   try {
@@ -57,7 +44,7 @@ std::string refusal(const std::string& path) {
 }  // namespace
 
 TEST_CASE("inputs: an HDF5 or binary file is named as such, before its size", "[inputs][config]") {
-  TempDir dir;
+  const testing::TempDir dir("inputs");
   const std::string hdf5 =
       ": is an HDF5 file (a result, sweep or envelope file?), not text, "
       "expected a configuration file (a regular YAML file)";
@@ -69,24 +56,24 @@ TEST_CASE("inputs: an HDF5 or binary file is named as such, before its size", "[
                                  {big, 0},
                                  {big, 8192},
                                  {big, 1 << 20}}) {
-    const std::string path = dir.write("h.yaml", size, at, kSignature);
+    const std::string path = write_yaml(dir, "h.yaml", size, at, kSignature);
     INFO(size << " bytes, signature at " << at);
     CHECK(refusal(path) == path + hdf5);
   }
   // Not where HDF5 looks: text that is not UTF-8 (the signature's first byte).
-  const std::string elsewhere = dir.write("e.yaml", 2000, 100, kSignature);
+  const std::string elsewhere = write_yaml(dir, "e.yaml", 2000, 100, kSignature);
   CHECK(refusal(elsewhere).find(": not UTF-8 text: byte 0x89 at line 21, column 1") !=
         std::string::npos);
   // A NUL byte: in the first 4 kB of a file larger than the limit, and past them.
-  const std::string large = dir.write("b.yaml", big, 10, std::string(1, '\0'));
+  const std::string large = write_yaml(dir, "b.yaml", big, 10, std::string(1, '\0'));
   CHECK(refusal(large) == large +
                               ": is a binary file (a NUL byte at offset 10), not text, "
                               "expected a configuration file (a regular YAML file)");
-  const std::string late = dir.write("l.yaml", 6000, 5000, std::string(1, '\0'));
+  const std::string late = write_yaml(dir, "l.yaml", 6000, 5000, std::string(1, '\0'));
   CHECK(refusal(late).find(": is a binary file (a NUL byte at offset 5000), not text") !=
         std::string::npos);
   // Without either, the size is refused as before; a missing file does not exist.
-  const std::string text = dir.write("t.yaml", big, 0, "a: 2\n");
+  const std::string text = write_yaml(dir, "t.yaml", big, 0, "a: 2\n");
   CHECK(refusal(text).find(": larger than 1048576 bytes") != std::string::npos);
   const std::string missing = (dir.path / "missing.yaml").string();
   CHECK(refusal(missing) == missing +

@@ -12,25 +12,13 @@
 
 #include "hexdyn/config/inputs.hpp"
 #include "hexdyn/process/atomic_file.hpp"
+#include "hexdyn/temp_dir.hpp"
 
 namespace hexdyn {
 namespace {
 
 namespace fs = std::filesystem;
-
-/// A fresh directory under the system's temporary directory, removed at scope exit.
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    path = fs::temp_directory_path() / ("hexdyn_test_atomic_" + std::to_string(::getpid()));
-    fs::remove_all(path);
-    fs::create_directories(path);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-};
+using testing::TempDir;
 
 std::string name_of(const std::string& path) { return fs::path(path).filename().string(); }
 
@@ -65,7 +53,7 @@ TEST_CASE("atomic file: the temporary name of every name up to 255 bytes has at 
 
 TEST_CASE("atomic file: an output of 255 bytes is published, its stale temporary removed",
           "[atomic_file]") {
-  TempDir dir;
+  TempDir dir("atomic");
   const std::string out = (dir.path / (std::string(252, 'b') + ".h5")).string();
   write_bytes_atomically(out, "xyz", 3);
   std::ifstream in(out);

@@ -13,30 +13,13 @@
 #include "hexdyn/config/config.hpp"
 #include "hexdyn/core/errors.hpp"
 #include "hexdyn/process/sha256.hpp"
+#include "hexdyn/temp_dir.hpp"
 
 namespace hexdyn {
 namespace {
 
 namespace fs = std::filesystem;
-
-/// A fresh directory under the system's temporary directory, removed at scope exit.
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    path = fs::temp_directory_path() / ("hexdyn_test_sha256_" + std::to_string(::getpid()));
-    fs::remove_all(path);
-    fs::create_directories(path);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-  std::string write(const std::string& name, const std::string& text) const {
-    const fs::path p = path / name;
-    std::ofstream(p, std::ios::binary) << text;
-    return p.string();
-  }
-};
+using testing::TempDir;
 
 /// `sha256sum FILE`'s digest: coreutils, an implementation independent of OpenSSL.
 std::string coreutils_sha256(const std::string& path) {
@@ -58,7 +41,7 @@ TEST_CASE("sha256: the FIPS 180-4 examples", "[io]") {
   REQUIRE(m448.size() * 8 == 448);
   CHECK(sha256_hex(m448.data(), m448.size()) ==
         "248d6a61d20638b8e5c026930c3e6039a33ce45964ff2167f6ecedd419db06c1");
-  TempDir dir;
+  TempDir dir("sha256");
   CHECK(sha256_file(dir.write("abc", abc)) ==
         "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad");
   CHECK(sha256_file(dir.write("empty", "")) ==
@@ -69,7 +52,7 @@ TEST_CASE("sha256: the FIPS 180-4 examples", "[io]") {
 }
 
 TEST_CASE("sha256: a file's digest is sha256sum's; an unreadable file is named", "[io]") {
-  TempDir dir;
+  TempDir dir("sha256");
   std::string text;
   for (int i = 0; i < 20000; ++i) text += std::to_string(i * 7919 % 10007) + (i % 13 ? " " : "\n");
   const std::string path = dir.write("numbers.txt", text);
@@ -84,7 +67,7 @@ TEST_CASE("sha256: a file's digest is sha256sum's; an unreadable file is named",
 }
 
 TEST_CASE("sha256: a scene's input files with their digests", "[io]") {
-  TempDir dir;
+  TempDir dir("sha256");
   const std::string source = HEXDYN_SOURCE_DIR;
   const std::string urdf = source + "/robots/kraby.urdf";
   const std::string base = dir.write(

@@ -1,0 +1,185 @@
+#pragma once
+/// \file allocation/required_friction_solver.hpp
+/// The internals of RequiredFrictionSolver (allocation/required_friction.hpp), shared by its
+/// two sources: required_friction.cpp (Newton on an active set, the choice of its rows,
+/// bisection) and required_friction_cone.cpp (the exact cone's outer polygons). Not a public
+/// interface. Sizes: at most kLegs support legs of 3 forces, so the Newton system is at most
+/// kMaxUnknowns = 19 square.
+#include <Eigen/Core>
+#include <Eigen/LU>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "hexdyn/allocation/required_friction.hpp"
+
+namespace hexdyn {
+
+inline constexpr int kMaxUnknowns = 3 * kLegs + 1;  ///< n forces and μ
+using MuMatrix =
+    Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxUnknowns, kMaxUnknowns>;
+using MuVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxUnknowns, 1>;
+/// The number of trunk rows, the first inequality rows of every allocation problem
+/// (allocation/problem.hpp), equal bounds.
+inline constexpr int kTrunkRows = 6;
+
+/// Faces of the outer polygon that stands in for an exact cone, and the bit that marks the
+/// polygon problem's structural key.
+inline constexpr int kConeFaces = 16;
+/// A probe is feasible when its solution holds every row to this, relative to max(1, |bound|):
+/// the back end's own tolerance (1e-9) with a margin, far tighter than the allocation's
+/// verdict (kViolationThreshold), so that a probe's friction use is μ* to about 1e-8.
+inline constexpr double kProbeThreshold = 1e-8;
+inline constexpr std::uint64_t kConePolygonKey = std::uint64_t{1} << 62;
+
+/// An active row: `side` +1 at its upper bound, −1 at its lower bound, 0 both (a trunk row).
+struct MuRow {
+  int row = 0;
+  int side = 0;
+};
+
+/// Rows of a face with its μ dependence: the derivative of the row's value C x − bound with
+/// respect to μ at x.
+inline double row_mu_derivative(const AllocationLayout& layout, const Eigen::VectorXd& x, int row,
+                                int side) {
+  for (const AllocationLayout::Leg& leg : layout.legs) {
+    if (leg.offset < 0 || row < leg.friction_row || row >= leg.friction_row + leg.friction_faces)
+      continue;
+    if (leg.count == 3) return -leg.face_reach * x[leg.offset + 2];
+    return side > 0 ? -leg.face_reach * leg.known_normal_force_N : 0.0;
+  }
+  return 0.0;
+}
+
+/// How a Newton attempt on an active set ended.
+enum class NewtonEnd {
+  kCertified,    ///< the answer: every row holds, the multipliers have their signs
+  kRowViolated,  ///< converged, but an inactive row is violated (NewtonState::row)
+  kWrongSign,    ///< converged and feasible, but an active row's multiplier has the wrong sign
+  kFailed,       ///< singular, not converged, or not finite
+};
+
+struct RequiredFrictionSolver::Impl {
+  RequiredFrictionOptions opt;
+  std::unique_ptr<AllocationBackend> backend;
+  QpProblem work;
+  ViolationWorkspace violations;
+  RequiredFriction out;
+  // The last certified active set, for problems of the same structure and sizes.
+  bool has_warm = false;
+  std::uint64_t warm_structure = 0;
+  int warm_n = -1, warm_m = -1;
+  std::vector<MuRow> warm_set;
+  MuVector warm_z;
+  // Newton's workspace and the state of its last attempt.
+  std::vector<MuRow> candidate, trial;
+  std::vector<std::pair<double, int>> slack;
+  MuVector z;  ///< (x, μ) of the Newton iterate
+  Eigen::VectorXd x;
+  MuVector lambda;
+  MuMatrix J;
+  Eigen::PartialPivLU<MuMatrix> lu;
+  int newton_leg = -1;
+  bool negative_mu = false;  ///< a Newton attempt of this sample ended at μ < 0
+  double last_mu = -1.0;     ///< the previous sample's μ*, −1 before the first
+  bool last_nan = false;     ///< the previous polygon problem had no μ* ≤ mu_max
+  int bad_row = -1;          ///< kRowViolated: the violated row; kWrongSign: the index in the set
+  int bad_side = 0;          ///< kRowViolated: the violated side
+
+  Impl(std::unique_ptr<AllocationBackend> b, const RequiredFrictionOptions& o)
+      : opt(o), backend(std::move(b)) {
+    for (auto& leg : cone_angle)
+      for (int f = 0; f < kConeFaces; ++f) leg[f] = 2.0 * M_PI * f / kConeFaces;
+  }
+
+  /// work = qp; the row names (strings) copied only when the layout changed.
+  void load(const QpProblem& qp) {
+    const bool same = work.structure == qp.structure && work.variables() == qp.variables() &&
+                      work.inequalities() == qp.inequalities() &&
+                      work.equalities() == qp.equalities() && work.cones.size() == qp.cones.size();
+    if (!same) {
+      work = qp;
+      return;
+    }
+    work.H = qp.H;
+    work.g = qp.g;
+    work.constant = qp.constant;
+    work.A = qp.A;
+    work.b = qp.b;
+    work.C = qp.C;
+    work.lower = qp.lower;
+    work.upper = qp.upper;
+    work.ineq_penalty = qp.ineq_penalty;
+    for (std::size_t k = 0; k < qp.cones.size(); ++k) {
+      const SecondOrderCone& c = qp.cones[k];
+      SecondOrderCone& w = work.cones[k];
+      w.tangent1 = c.tangent1;
+      w.tangent2 = c.tangent2;
+      w.normal = c.normal;
+      w.mu = c.mu;
+      w.penalty = c.penalty;
+    }
+  }
+
+  /// Feasibility of the rows at mu: the back end's solve at mu, every row and cone held to
+  /// kViolationThreshold. The forces in *x_out.
+  bool feasible_at(const AllocationLayout& layout, double mu, Eigen::VectorXd& x_out,
+                   std::string* why = nullptr) {
+    set_friction_coefficient(layout, mu, work);
+    const QpOutcome& o = backend->solve(work);
+    x_out = o.x;
+    if (o.status != SolverStatus::kOptimal && !why) return false;
+    double worst = 0.0;
+    const std::string text = describe_violations(work, o.x, kProbeThreshold, &worst, violations);
+    x_out = o.x;
+    if (why) *why = text;
+    return o.status == SolverStatus::kOptimal && text.empty();
+  }
+
+  NewtonEnd newton(const AllocationLayout& layout, const std::vector<MuRow>& set,
+                   const MuVector& z0);
+  NewtonEnd check(const AllocationLayout& layout, const std::vector<MuRow>& set);
+  /// The row of J for inequality row `row` at its side `side` (at z, work set to z's μ).
+  MuVector gradient(const AllocationLayout& layout, int row, int side) const {
+    const int n = work.variables();
+    MuVector a(n + 1);
+    a.head(n) = work.C.row(row).transpose();
+    a[n] = row_mu_derivative(layout, x, row, side);
+    return a;
+  }
+  int dual_ratio_leaving(const AllocationLayout& layout, const std::vector<MuRow>& set);
+  bool primal_ratio_entering(const AllocationLayout& layout, const std::vector<MuRow>& set,
+                             MuRow& enter);
+  bool solve_from(const AllocationLayout& layout, std::vector<MuRow> set, const MuVector& z0);
+  Eigen::VectorXd x_scratch;  ///< the forces of check()'s probe of a degenerate vertex
+  MuMatrix basis;  ///< active_set_at: orthonormal rows of J of the candidate rows, as columns
+  void add_if_independent(const AllocationLayout& layout, MuRow a);
+  bool active_set_at(const AllocationLayout& layout, const Eigen::Ref<const Eigen::VectorXd>& x_at,
+                     double mu);
+  bool upper_end(const AllocationLayout& layout, const Eigen::VectorXd* allocation, double& hi,
+                 Eigen::VectorXd& x_hi);
+  bool newton_in_bracket(const AllocationLayout& layout, const Eigen::VectorXd& x_hi, double lo,
+                         double hi);
+  void bisect(const AllocationLayout& layout, const Eigen::VectorXd* allocation, double guess);
+  void solve_polygonal(const AllocationLayout& layout, const Eigen::VectorXd* allocation);
+  void load_cone_polygon(const QpProblem& qp, const AllocationLayout& layout);
+  void solve_cone(const QpProblem& qp, const AllocationLayout& layout,
+                  const Eigen::VectorXd* allocation);
+
+  // The exact cone's outer polygons: per leg, the directions of its faces [rad], kept from one
+  // sample to the next; the polygon problem's layout.
+  std::array<std::array<double, kConeFaces>, kLegs> cone_angle;
+  std::array<double, kLegs> cone_center{};   ///< the direction the faces gather around [rad]
+  std::array<double, kLegs> cone_spacing{};  ///< their spacing δ [rad]
+  void cluster_faces(int l, double a, double delta);
+  AllocationLayout cone_layout;
+  Eigen::VectorXd answer_x;  ///< the forces of the last answer
+  void remember(const std::vector<MuRow>& set);
+};
+
+}  // namespace hexdyn
