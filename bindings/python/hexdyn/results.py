@@ -746,30 +746,32 @@ def _abs_polynomial_integrals(c):
     return out
 
 
-def energy_by_rule(time, power, sample_kind, rule=ENERGY_RULE_CUBIC):
+def energy_by_rule(time, power, sample_kind, rule=ENERGY_RULE_CUBIC, per_interval=False):
     """The energies (per column of `power`, J) recomputed from /time (T), /power/per_joint
     (T×J, signed) and /sample_kind (T) by the rule /meta energy_rule names (schema.hpp
     kEnergyRuleCubic, docs/theory/output-grid.md#energy-from-the-samples): per piece between a
     left-limit sample (kind 1) and its event, each interval integrates |p| of the polynomial
     interpolating the 4 samples nearest it in the piece (3 on a piece of 2 intervals, 2 on one
     of 1), a left limit's interval the trapezoid; or the trapezoid of |power|. /energy/total is
-    their sum. A computation of its own (Vandermonde systems, numpy.roots), not the writer's."""
+    their sum. A computation of its own (Vandermonde systems, numpy.roots), not the writer's.
+    With per_interval, the integral over each interval instead ((T − 1)×J): they add up to the
+    energies, so that a share of the energy (over some of the intervals) is by the same rule."""
     t = np.asarray(time, dtype=float)
     P = np.asarray(power, dtype=float).reshape(len(t), -1)
     h = np.diff(t)
     A = np.abs(P)
     trapezoid = 0.5 * h[:, None] * (A[1:] + A[:-1])
     if rule == ENERGY_RULE_TRAPEZOID:
-        return trapezoid.sum(axis=0)
+        return trapezoid if per_interval else trapezoid.sum(axis=0)
     if rule != ENERGY_RULE_CUBIC:
         raise ValueError(f"unknown energy rule {rule!r}")
     kind = np.zeros(len(t), dtype=int) if sample_kind is None else np.asarray(sample_kind)
     ends = [int(k) for k in np.nonzero(kind[:-1] == 1)[0]] + [len(t) - 1]
-    total = np.zeros(P.shape[1])
+    interval = np.zeros_like(trapezoid)
     s = 0
     for e in ends:
         if e < len(t) - 1:
-            total += trapezoid[e]  # the left limit's interval
+            interval[e] = trapezoid[e]  # the left limit's interval
         n = e - s
         if n >= 1:
             k = np.arange(s, e)
@@ -779,10 +781,9 @@ def energy_by_rule(time, power, sample_kind, rule=ENERGY_RULE_CUBIC):
             u = (t[idx] - t[k][:, None]) / h[k][:, None]
             V = u[:, :, None] ** np.arange(width)
             coef = np.linalg.solve(V, P[idx])  # (n, width, J)
-            total += np.sum(h[k][:, None] * _abs_polynomial_integrals(np.moveaxis(coef, 1, 2)),
-                            axis=0)
+            interval[k] = h[k][:, None] * _abs_polynomial_integrals(np.moveaxis(coef, 1, 2))
         s = e + 1
-    return total
+    return interval if per_interval else interval.sum(axis=0)
 
 
 def open_result(path, group="/"):
