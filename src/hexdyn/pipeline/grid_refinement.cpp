@@ -181,6 +181,7 @@ GridAccuracy refine_output_grid(const Scene& scene, const PreparedScene& prep,
   acc.cubic_energy = energy_rule(scene.output.grid) == Quadrature::kCubic;
   Batches b;
   b.add(std::move(kin), std::move(dyn));
+  CubicEstimates reuse;  // each pass's cubic estimates, for the intervals the next keeps
   for (int pass = 0;; ++pass) {
     check_cancelled();
     std::optional<StageTimer> clock(std::in_place, times, Stage::kRefinement);
@@ -188,7 +189,7 @@ GridAccuracy refine_output_grid(const Scene& scene, const PreparedScene& prep,
     {
       const ControlledSeries series(b, scene.actuators, energy_rule(scene.output.grid));
       a = assess_grid(series.t_s, series.jump, series.terms, series.integrals, series.peaks,
-                      assess_tol, kMinRefinedStep_s);
+                      assess_tol, kMinRefinedStep_s, &reuse);
     }
     acc.energy_error = a.integral_error;
     acc.peak_error = a.peak_error;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <limits>
 #include <numeric>
 
@@ -246,13 +247,74 @@ std::vector<double> admissible(std::vector<double> candidates, const std::vector
   return out;
 }
 
+/// Which intervals of the grid t keep the estimates of the grid old (keep[k] != 0, and
+/// old_k[k] their index there): those whose samples k − 3 … k + 4 (as far as t has them) are
+/// samples of old, consecutive there. None when old is not a subset of t.
+void kept_intervals(const std::vector<double>& t, const std::vector<double>& old,
+                    std::vector<char>& keep, std::vector<std::ptrdiff_t>& old_k) {
+  const std::size_t T = t.size();
+  keep.assign(T - 1, 0);
+  old_k.assign(T, -1);  // first per sample: its index in old, or −1
+  std::size_t i = 0;
+  for (std::size_t j = 0; j < T && i < old.size(); ++j)
+    if (t[j] == old[i]) old_k[j] = static_cast<std::ptrdiff_t>(i++);
+  if (i != old.size()) return;
+  for (std::size_t k = 0; k + 1 < T; ++k) {
+    if (old_k[k] < 0) continue;
+    const std::ptrdiff_t shift = static_cast<std::ptrdiff_t>(k) - old_k[k];
+    const std::size_t lo = k >= 3 ? k - 3 : 0, hi = std::min(k + 4, T - 1);
+    bool same = true;
+    for (std::size_t j = lo; j <= hi && same; ++j)
+      same = old_k[j] >= 0 && static_cast<std::ptrdiff_t>(j) - old_k[j] == shift;
+    keep[k] = same;
+  }
+  for (std::size_t k = 0; k + 1 < T; ++k) old_k[k] = keep[k] ? old_k[k] : -1;
+}
+
+/// The cubic rule's interval integrals and errors of every term that uses it, from `reuse`
+/// where its grid's estimates hold (kept_intervals), computed elsewhere; then stored in it.
+void cubic_term_estimates(const std::vector<double>& t, const std::vector<char>& jump,
+                          const std::vector<SeriesView>& terms, const std::vector<Quadrature>& rule,
+                          std::vector<std::vector<double>>& integral,
+                          std::vector<std::vector<double>>& error, CubicEstimates* reuse) {
+  const std::size_t n = t.size() - 1;
+  thread_local std::vector<char> keep;
+  thread_local std::vector<std::ptrdiff_t> old_k;
+  const bool usable = reuse && reuse->integral.size() == terms.size() && !reuse->t_s.empty();
+  if (usable) kept_intervals(t, reuse->t_s, keep, old_k);
+  for (std::size_t i = 0; i < terms.size(); ++i) {
+    if (rule[i] != Quadrature::kCubic) continue;
+    if (!usable || reuse->integral[i].size() + 1 != reuse->t_s.size()) {
+      cubic_abs_integrals(t, jump, terms[i], integral[i], &error[i]);
+      continue;
+    }
+    integral[i].assign(n, 0.0);
+    error[i].assign(n, 0.0);
+    for (std::size_t k = 0; k < n; ++k)
+      if (keep[k]) {
+        integral[i][k] = reuse->integral[i][static_cast<std::size_t>(old_k[k])];
+        error[i][k] = reuse->error[i][static_cast<std::size_t>(old_k[k])];
+      }
+    cubic_abs_integrals_except(t, jump, terms[i], keep, integral[i], error[i]);
+  }
+  if (!reuse) return;
+  reuse->t_s = t;
+  reuse->integral.assign(terms.size(), {});
+  reuse->error.assign(terms.size(), {});
+  for (std::size_t i = 0; i < terms.size(); ++i)
+    if (rule[i] == Quadrature::kCubic) {
+      reuse->integral[i] = integral[i];
+      reuse->error[i] = error[i];
+    }
+}
+
 }  // namespace
 
 GridAssessment assess_grid(const std::vector<double>& t, const std::vector<char>& jump,
                            const std::vector<SeriesView>& terms,
                            const std::vector<IntegralTarget>& integrals,
                            const std::vector<SeriesView>& peaks, double tolerance,
-                           double min_step_s) {
+                           double min_step_s, CubicEstimates* reuse) {
   GridAssessment a;
   const std::size_t T = t.size();
   if (T < 2) return a;
@@ -272,9 +334,9 @@ GridAssessment assess_grid(const std::vector<double>& t, const std::vector<char>
       continue;
     }
     // The cubic rule integrates through a sign change: no roots to split at.
-    cubic_abs_integrals(t, jump, terms[i], term_integral[i], &term_error[i]);
     term_root[i].assign(n, std::numeric_limits<double>::quiet_NaN());
   }
+  cubic_term_estimates(t, jump, terms, rule, term_integral, term_error, reuse);
   std::vector<double> candidates, error(n);
   std::vector<std::size_t> order;
   std::vector<char> split(n, 0);

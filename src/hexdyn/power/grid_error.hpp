@@ -85,6 +85,16 @@ struct GridAssessment {
   std::vector<double> refine_at_s;
 };
 
+/// The piecewise-cubic estimates of one assessment, kept for the next on a grid that adds
+/// samples to this one: an interval whose samples k − 3 … k + 4 were all there, consecutive,
+/// has the same stencil and so the same integral and error, which are taken instead of
+/// computed again (bit for bit the same).
+struct CubicEstimates {
+  std::vector<double> t_s;                    ///< the grid they belong to
+  std::vector<std::vector<double>> integral;  ///< per term (empty for a trapezoid term)
+  std::vector<std::vector<double>> error;     ///< per term
+};
+
 /// Assesses the grid t_s for the integrals of the absolute values of the signed series
 /// `terms` and for the peaks (every peak series is ≥ 0 where it matters: its maximum is
 /// controlled). An integral's error is estimated by the net |Σ_k error[k]| of its rule's
@@ -99,11 +109,13 @@ struct GridAssessment {
 /// the midpoint (the cubic rule integrates through a sign change). An
 /// interval shorter than 2 min_step_s or a jump interval is never split. A peak over its tolerance
 /// is refined by estimate_peak, and the sampled maximum's neighbours in its piece are brought
-/// within the tolerance of it by bisection. tolerance > 0; min_step_s > 0.
+/// within the tolerance of it by bisection. tolerance > 0; min_step_s > 0. With `reuse` (may
+/// be null), the cubic estimates of the last assessment of the same terms on a subset of t_s
+/// serve where they still hold, and this assessment's are stored there for the next.
 GridAssessment assess_grid(const std::vector<double>& t_s, const std::vector<char>& jump,
                            const std::vector<SeriesView>& terms,
                            const std::vector<IntegralTarget>& integrals,
                            const std::vector<SeriesView>& peaks, double tolerance,
-                           double min_step_s);
+                           double min_step_s, CubicEstimates* reuse = nullptr);
 
 }  // namespace hexdyn

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace hexdyn {
 namespace {
@@ -147,7 +148,8 @@ void abs_integrate(const Local& L, double a, double b, double& ip, double& iq) {
   double points[5] = {a, b, 0.0, 0.0, 0.0};
   int count = 2;
   add_roots(L.p, a, b, points, count);
-  std::sort(points, points + count);
+  for (int i = 1; i < count; ++i)  // at most 5: insertion (std::sort's bounds warn here)
+    for (int j = i; j > 0 && points[j] < points[j - 1]; --j) std::swap(points[j], points[j - 1]);
   ip = iq = 0.0;
   for (int i = 0; i + 1 < count; ++i) {
     const double lo = points[i], hi = points[i + 1];
@@ -187,6 +189,19 @@ void cubic_abs_integrals(const std::vector<double>& t, const std::vector<char>& 
     const std::size_t last = std::min(e, T - 2);  // the jump interval [e, e + 1] too
     for (std::size_t k = s; k <= last; ++k)
       out[k] = interval_integral(t, y, s, e, k, 0.0, 1.0, error ? &(*error)[k] : nullptr);
+    s = e + 1;
+  }
+}
+
+void cubic_abs_integrals_except(const std::vector<double>& t, const std::vector<char>& jump,
+                                SeriesView y, const std::vector<char>& keep,
+                                std::vector<double>& out, std::vector<double>& error) {
+  const std::size_t T = t.size();
+  for (std::size_t s = 0; s + 1 < T;) {
+    const std::size_t e = piece_end(jump, s, T);
+    const std::size_t last = std::min(e, T - 2);  // the jump interval [e, e + 1] too
+    for (std::size_t k = s; k <= last; ++k)
+      if (!keep[k]) out[k] = interval_integral(t, y, s, e, k, 0.0, 1.0, &error[k]);
     s = e + 1;
   }
 }
