@@ -13,8 +13,9 @@ Writes
                              (human stair ascent 0.3-0.5, towr 0.5, Crocoddyl 0.7, the scene's
                              mu);
   OUTDIR/NAME_transient_energy.png   the share of the energy spent in touchdown transients:
-                             the integral of /power/total over the samples where some leg is in
-                             phase 1, over the total (trapezoid weights per sample), same axes;
+                             the energy (the joints' |power| integrated by the file's energy
+                             rule, each interval halved between its ends) over the samples where
+                             some leg is in phase 1, over the total, same axes;
   OUTDIR/NAME.csv            one line per scenario: the axis values, status, the required
                              friction (support, transient) with leg and time, the largest
                              support required friction per leg (from the kept run), the
@@ -41,21 +42,22 @@ REFERENCE_LINES = (("towr", 0.5, "tab:green"), ("Crocoddyl quadruped", 0.7, "tab
 
 
 def transient_energy_share(run):
-    """(transient energy, total energy) of a kept run: sum of w_i P_i over the samples where
-    some leg is in its touchdown transient (phase 1), and over all samples, with the
-    trapezoid weights w_i = (t_{i+1} - t_{i-1}) / 2 (half intervals at the ends), so that the
-    total is the trapezoid integral of /power/total."""
+    """(transient energy, total energy) of a kept run by the rule its /meta energy_rule names
+    (hexdyn.results.energy_by_rule; a version-2 file's is the trapezoid): the integral of the
+    joints' |power| over each interval [t_k, t_k+1], a half of it counted to each end, summed
+    over the samples where some leg is in its touchdown transient (phase 1), and over all
+    samples, so that the total is the run's /energy/total."""
     t = np.asarray(run["/time"], dtype=float)
-    p = np.asarray(run["/power/total"], dtype=float)
-    phase = np.asarray(run["/contacts/phase"])
     if len(t) < 2:
         return 0.0, 0.0
-    dt = np.diff(t)
-    w = np.zeros_like(t)
-    w[:-1] += dt / 2
-    w[1:] += dt / 2
-    transient = (phase == hr.PHASE_IMPACT).any(axis=1)
-    return float(np.sum(w[transient] * p[transient])), float(np.sum(w * p))
+    rule = run.meta.get("energy_rule", hr.ENERGY_RULE_TRAPEZOID)
+    kind = run["/sample_kind"] if "/sample_kind" in run else None
+    interval = hr.energy_by_rule(t, run["/power/per_joint"], kind, rule,
+                                 per_interval=True).sum(axis=1)
+    phase = np.asarray(run["/contacts/phase"])
+    transient = (phase == hr.PHASE_IMPACT).any(axis=1).astype(float)
+    e_tr = 0.5 * np.sum(interval * (transient[:-1] + transient[1:]))
+    return float(e_tr), float(np.sum(interval))
 
 
 def per_leg_support_peaks(run):

@@ -3,7 +3,7 @@
 
     /usr/bin/python3 bench/sweep_speed.py [--commit bbaf71c] [--old PATH] [--new build/hexdyn]
         [--ref PATH] [--sweep bench/sweep_1000.yaml] [--repeat 3] [--postures {all,none,N}]
-        [--friction {on,off,both}]
+        [--friction {on,off,both}] [--tolerance T]
 
 --commit names the older commit (bbaf71c by default; 2dbb8e9 for the output grid's error
 control, docs/validation/grid-accuracy.md).
@@ -20,6 +20,11 @@ both, alternately with the old binary in the same run (both: a third row, "new w
 required friction", its ratio against the old binary, and the required friction's share of the
 new binary's median wall time). The option reaches the new binary only: 2dbb8e9 and bbaf71c
 predate the required friction.
+
+--tolerance T: the new binary's runs with `output.tolerance: T` in the sweep's `set:` (the
+old binary runs the sweep as it is: 2dbb8e9 and bbaf71c have the grid as built only), so that
+`--commit 2dbb8e9 --tolerance 1e-4 --friction both` gives the cost of 1e-4 against 2dbb8e9,
+with and without the required friction, in one run.
 
 --old takes the older commit's binary from a path. Without it, the commit is checked out in a
 side folder, build/side-COMMIT (a git worktree), and its hexdyn built there once; later runs
@@ -103,27 +108,42 @@ def run_sweep(hexdyn, sweep, out):
     return wall, cpu
 
 
-def old_sweep(sweep, old_binary):
+def old_sweep(sweep, old_binary, work):
     """The old binary's copy of the sweep file: the same path in the old commit's tree (the
     folder above its build folder) when the sweep lies in this tree and the old tree has it,
     so that each binary reads its own commit's scenes (a newer scene may set keys an older
-    binary refuses); else the sweep itself."""
+    binary refuses); else a copy of the sweep in `work` on the old tree's copy of its base
+    when the old tree has one; else the sweep itself."""
     old_root = os.path.dirname(os.path.dirname(os.path.abspath(old_binary)))
     rel = os.path.relpath(os.path.abspath(sweep), ROOT)
     mine = os.path.join(old_root, rel)
-    return mine if not rel.startswith("..") and os.path.exists(mine) else sweep
+    if not rel.startswith("..") and os.path.exists(mine):
+        return mine
+    with open(sweep) as f:
+        spec = yaml.safe_load(f)
+    base = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(sweep)), spec["base"]))
+    rel_base = os.path.relpath(base, ROOT)
+    old_base = os.path.join(old_root, rel_base)
+    if rel_base.startswith("..") or not os.path.exists(old_base):
+        return sweep
+    spec["base"] = old_base
+    path = os.path.join(work, "old.yaml")
+    with open(path, "w") as f:
+        yaml.safe_dump(spec, f, sort_keys=False)
+    return path
 
 
-def sweep_without_friction(sweep, work):
-    """A copy of the sweep file `sweep` in `work` whose scenarios run without the required
-    friction (output.required_friction: false in its `set:`); returns its path."""
+def new_sweep(sweep, work, name, settings):
+    """A copy of the sweep file `sweep` in `work` (NAME.yaml) with `settings` added to its
+    `set:` (for example output.required_friction: false, the runs without the required
+    friction); returns its path."""
     with open(sweep) as f:
         spec = yaml.safe_load(f)
     spec["base"] = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(sweep)),
                                                  spec["base"]))
-    spec["name"] = f"{spec.get('name', 'sweep')}_without_friction"
-    spec.setdefault("set", {})["output.required_friction"] = False
-    path = os.path.join(work, "sweep_without_friction.yaml")
+    spec["name"] = f"{spec.get('name', 'sweep')}_{name}"
+    spec.setdefault("set", {}).update(settings)
+    path = os.path.join(work, f"{name}.yaml")
     with open(path, "w") as f:
         yaml.safe_dump(spec, f, sort_keys=False)
     return path
@@ -229,6 +249,8 @@ def main():
     ap.add_argument("--postures", default="all")
     ap.add_argument("--friction", choices=("on", "off", "both"), default="on",
                     help="the new binary with the required friction, without, or both")
+    ap.add_argument("--tolerance", type=float,
+                    help="the new binary's output.tolerance (default: the sweep's)")
     args = ap.parse_args()
     set_old_commit(args.commit)
     with tempfile.TemporaryDirectory(prefix="hexdyn_speed_") as work:
@@ -241,10 +263,14 @@ def main():
             if not os.path.exists(args.old):
                 build_old(SIDE_FOLDER)
         try:
-            bare = sweep_without_friction(args.sweep, work) if args.friction != "on" else None
+            grid = {} if args.tolerance is None else {"output.tolerance": args.tolerance}
+            bare = new_sweep(args.sweep, work, "without_friction",
+                             {**grid, "output.required_friction": False})
             runs = {"on": ("old", "new"), "off": ("old", "new"), "both": ("old", "new", "bare")}
-            sweeps = {"old": old_sweep(args.sweep, args.old),
-                      "new": bare if args.friction == "off" else args.sweep, "bare": bare}
+            sweeps = {"old": old_sweep(args.sweep, args.old, work),
+                      "new": bare if args.friction == "off" else
+                      new_sweep(args.sweep, work, "new", grid) if grid else args.sweep,
+                      "bare": bare}
             walls = {k: [] for k in runs[args.friction]}
             cpus = {k: [] for k in runs[args.friction]}
             for r in range(args.repeat):
@@ -259,7 +285,9 @@ def main():
                 os.path.join(work, "new.h5"))
             n = len(new["status"])
             med = {k: (statistics.median(walls[k]), statistics.median(cpus[k])) for k in walls}
-            print(f"Sweep `{os.path.relpath(args.sweep, ROOT)}`: {n} scenarios "
+            grid_text = ("" if args.tolerance is None else
+                         f", the new binary at output.tolerance {args.tolerance:g}")
+            print(f"Sweep `{os.path.relpath(args.sweep, ROOT)}`{grid_text}: {n} scenarios "
                   f"({int((new['status'] == 0).sum())} computed) on 1 rank, {args.repeat} runs "
                   f"of each binary alternately; {os.cpu_count()} cores, load average before "
                   f"the runs {LOAD[0]:.1f}.\n")

@@ -19,7 +19,7 @@ endif()
 set(HEXDYN_PYTHON_PACKAGE_DIR ${CMAKE_BINARY_DIR}/python/hexdyn)
 # The pure-Python files and the version: laid out at configure time, so that reading files (and
 # the analysis scripts) needs no compiled part, only the schema module below.
-set(hexdyn_python_files __init__.py atomic_file.py data.py h5copy.py h5files.py results.py schema.py
+set(hexdyn_python_files __init__.py atomic_file.py data.py energy.py h5copy.py h5files.py results.py schema.py
                         xr.py)
 foreach(f IN LISTS hexdyn_python_files)
   configure_file(${PROJECT_SOURCE_DIR}/bindings/python/hexdyn/${f} ${HEXDYN_PYTHON_PACKAGE_DIR}/${f} COPYONLY)

@@ -33,7 +33,7 @@ done
 [ -x "$S/pipelines/slurm_sweep.sbatch" ] || fail "installed slurm_sweep.sbatch is not executable"
 
 SITE="$P/$("$PY" -c 'import sys; print("lib/python%d.%d/dist-packages" % sys.version_info[:2])')"
-for f in __init__.py atomic_file.py data.py h5copy.py h5files.py results.py schema.py xr.py \
+for f in __init__.py atomic_file.py data.py energy.py h5copy.py h5files.py results.py schema.py xr.py \
          _version.py _schema.py; do
   [ -f "$SITE/hexdyn/$f" ] || fail "not installed: $SITE/hexdyn/$f"
 done

@@ -41,6 +41,7 @@ import os
 import h5py
 import numpy as np
 
+from .energy import ENERGY_RULE_CUBIC, ENERGY_RULE_TRAPEZOID, energy_by_rule
 from .data import (Envelope, Replay, Result, Study, Sweep, SweepAxis, UnknownGroupError,
                    check_group)
 from .h5files import (check_datasets, check_declared, check_filetype_version,
@@ -217,7 +218,7 @@ class FileKind:
     """One kind of hexdyn file, a row of FILE_KINDS.
 
     name             "hexdyn-result", the /meta schema without its version
-    schema           the schema of the current version, "hexdyn-result/2" (what is written)
+    schema           the schema of the current version, "hexdyn-result/3" (what is written)
     versions         the versions this reader opens (a tuple)
     type             the type the reader returns (Result, Sweep, ...)
     check(root, source, schema)   the checks at open (datasets against their declarations)
@@ -251,12 +252,14 @@ class FileKind:
 
 
 # The versions read are those each file kind was released in (CHANGELOG.md, "File formats"):
-# reading an older version too is one more number in its row.
+# reading an older version too is one more number in its row. Results and sweeps of version 2
+# (0.1.0) have the same paths; their energies are the trapezoid's, and /meta has no
+# energy_rule.
 FILE_KINDS = {k.name: k for k in (
-    FileKind(RESULT_SCHEMA, (RESULT_SCHEMA_VERSION,), Result,
+    FileKind(RESULT_SCHEMA, (2, RESULT_SCHEMA_VERSION), Result,
              _by_layout(RESULT_LAYOUT, RESULT_REQUIRED), _by_mapping(Result),
              layout=lambda root: RESULT_LAYOUT, meta_attributes=SCHEMA["kResultMetaAttributes"]),
-    FileKind(SWEEP_SCHEMA, (SWEEP_SCHEMA_VERSION,), Sweep, _check_sweep, _read_sweep,
+    FileKind(SWEEP_SCHEMA, (2, SWEEP_SCHEMA_VERSION), Sweep, _check_sweep, _read_sweep,
              meta_attributes=SCHEMA["kSweepMetaAttributes"], members=("runs", "hexdyn-result")),
     FileKind(ENVELOPE_SCHEMA, (ENVELOPE_SCHEMA_VERSION,), Envelope,
              _by_layout(_envelope_layout, ENVELOPE_REQUIRED), _by_mapping(Envelope, True),
@@ -349,7 +352,7 @@ def check_layout(file, source=None):
     kind, then (hexdyn.h5files.check_declared) no undeclared dataset, each with its declared
     units (results, envelopes, replays), every declared /meta attribute (results, sweeps,
     envelopes, replays), and each of a sweep's kept runs /runs/<id> as a result. Returns the
-    schema name ("hexdyn-sweep/2"). hexdyn.IoError in one line naming the file and the
+    schema name ("hexdyn-sweep/3"). hexdyn.IoError in one line naming the file and the
     dataset on a mismatch (and for a path that is no regular HDF5 file); ValueError for a
     file of no hexdyn schema or of a version this reader does not read."""
     if not isinstance(file, (h5py.File, h5py.Group)):
@@ -376,4 +379,5 @@ __all__ = [
     "SWEEP_META_ATTRIBUTES", "MODEL_DATASETS", "KINEMATIC_DATASETS", "DYNAMICS_DATASETS",
     "SCENARIOS_GROUP", "SCENARIO_DATASETS", "SWEEP_STATUS", "PHASE_SWING", "PHASE_IMPACT",
     "PHASE_SUPPORT", "LEG_NAMES", "JOINT_NAMES", "expected_shape",
+    "ENERGY_RULE_CUBIC", "ENERGY_RULE_TRAPEZOID", "energy_by_rule",
 ]

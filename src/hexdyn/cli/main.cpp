@@ -37,7 +37,7 @@ namespace {
 constexpr const char* kRunUsage =
     R"(usage: hexdyn run CONFIG -o FILE [--set key.path=value ...] [--allow-large] [-v]
                   [--progress SECONDS]
-  Runs a scene and writes its hexdyn-result/2 file to FILE. -v prints a URDF robot's
+  Runs a scene and writes its hexdyn-result/3 file to FILE. -v prints a URDF robot's
   leg mapping (which chain of the description is L1 ... L6). While the stages compute, a
   progress line comes at most every --progress seconds (default 5).
 
@@ -65,7 +65,7 @@ them as rows with status config). --set applies to scene files only.
 
 constexpr const char* kSweepUsage =
     R"(usage: hexdyn sweep SWEEP -o FILE [--keep-runs] [--resume] [-v] [--progress SECONDS]
-  Runs a parameter sweep and writes its hexdyn-sweep/2 file to FILE.
+  Runs a parameter sweep and writes its hexdyn-sweep/3 file to FILE.
 
 SWEEP is a sweep file (see configs/sweeps/stairs.yaml): a base scene and axes over its
 keys; every combination is a scenario. Run it under `mpirun -np N` or plainly (one
@@ -80,10 +80,10 @@ constexpr const char* kUsage = R"(hexdyn — inverse dynamics of a legged robot 
 
 usage:
   hexdyn run CONFIG -o FILE [--set key.path=value ...] [--allow-large]
-                                                         run a scene, write hexdyn-result/2
+                                                         run a scene, write hexdyn-result/3
   hexdyn validate FILE [--set key.path=value ...]        check a scene or sweep file and exit
   hexdyn sweep SWEEP -o FILE [--keep-runs] [--resume] [-v] [--progress SECONDS]
-                                                         run a parameter sweep, write hexdyn-sweep/2
+                                                         run a parameter sweep, write hexdyn-sweep/3
   hexdyn envelope ENVELOPE -o FILE [-v]                  find the climbable riser, write hexdyn-envelope/2
   hexdyn replay RESULT -o FILE [--set key.path=value ...]
                                                          replay a result's torques, write hexdyn-replay/1

@@ -1,7 +1,7 @@
 #pragma once
 /// \file result.hpp
 /// Per-run result arrays, one row per output sample, in the units and frames of the
-/// `hexdyn-result/2` contract (io/schema.hpp). Matrices are row-major so that a
+/// `hexdyn-result/3` contract (io/schema.hpp). Matrices are row-major so that a
 /// (T, n) dataset is written straight from `.data()`; (T, 6, 3) datasets are stored
 /// as T × 18 with leg-major columns (3 l + axis).
 #include <cstdint>
@@ -170,6 +170,7 @@ struct GridAccuracy {
   double peak_error = 0.0;    ///< estimated relative error of the peaks, the largest
   int refinement_passes = 0;  ///< passes that added samples
   int added_samples = 0;      ///< samples the refinement added to the grid as built
+  bool cubic_energy = false;  ///< energies by the piecewise-cubic rule (else the trapezoid)
 };
 
 /// What a run produces: the arrays and the provenance for /meta.

@@ -1,6 +1,6 @@
 #pragma once
 /// \file output.hpp
-/// Writing a run as one `hexdyn-result/2` HDF5 file (schema.hpp; docs/user/output.md).
+/// Writing a run as one `hexdyn-result/3` HDF5 file (schema.hpp; docs/user/output.md).
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -86,7 +86,7 @@ void check_run_size(std::size_t samples, bool allow_large);
 /// samples and a 1.7 GB file) is far likelier than a wish.
 inline constexpr std::size_t kLargeResultSamples = 200000;
 
-/// Size of a `hexdyn-result/2` file of `samples` samples [bytes], estimated from the
+/// Size of a `hexdyn-result/3` file of `samples` samples [bytes], estimated from the
 /// schema: every per-sample dataset's row (schema.hpp shapes and element types, about
 /// 1.45 kB) plus 32 bytes per solver message and 64 kB for /meta and /model, uncompressed:
 /// the memory the writer holds while it builds the file (io/h5io.hpp), and an upper bound

@@ -63,7 +63,9 @@ void add_meta(ResultLayout& layout, const RunResult& r) {
       {&s::kMetaInputSha256, r.input_sha256},
       {&s::kMetaGridTolerance, r.grid.tolerance},
       {&s::kMetaGridEnergyError, r.grid.energy_error},
-      {&s::kMetaGridPeakError, r.grid.peak_error}};
+      {&s::kMetaGridPeakError, r.grid.peak_error},
+      {&s::kMetaEnergyRule,
+       std::string(r.grid.cubic_energy ? s::kEnergyRuleCubic : s::kEnergyRuleTrapezoid)}};
 }
 
 void add_model(Builder& b, const RunResult& r) {

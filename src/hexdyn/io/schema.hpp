@@ -1,7 +1,7 @@
 #pragma once
 /// \file schema.hpp
 /// The HDF5 contracts of hexdyn in one place (described in docs/user/output.md, whose
-/// tables are generated from this header): `hexdyn-result/2` (one run), `hexdyn-sweep/2`
+/// tables are generated from this header): `hexdyn-result/3` (one run), `hexdyn-sweep/3`
 /// (a parameter sweep) and `hexdyn-envelope/2` (the climbable envelope,
 /// envelope/envelope.hpp), each with its schema name and version, every /meta attribute,
 /// and for every dataset its path, `units`, shape, element type and `long_name`. The
@@ -31,10 +31,10 @@
 
 namespace hexdyn::schema {
 
-inline constexpr const char* kResultSchema = "hexdyn-result/2";  ///< /meta attr `schema`
-inline constexpr std::int64_t kResultSchemaVersion = 2;          ///< /meta attr `schema_version`
-inline constexpr const char* kSweepSchema = "hexdyn-sweep/2";    ///< sweep files' `schema`
-inline constexpr std::int64_t kSweepSchemaVersion = 2;           ///< sweep files' `schema_version`
+inline constexpr const char* kResultSchema = "hexdyn-result/3";  ///< /meta attr `schema`
+inline constexpr std::int64_t kResultSchemaVersion = 3;          ///< /meta attr `schema_version`
+inline constexpr const char* kSweepSchema = "hexdyn-sweep/3";    ///< sweep files' `schema`
+inline constexpr std::int64_t kSweepSchemaVersion = 3;           ///< sweep files' `schema_version`
 inline constexpr const char* kEnvelopeSchema = "hexdyn-envelope/2";  ///< envelope files' `schema`
 inline constexpr std::int64_t kEnvelopeSchemaVersion = 2;  ///< envelope files' `schema_version`
 
@@ -178,7 +178,7 @@ inline std::string at(const char* path, const std::string& value) {
   return s;
 }
 
-// ======================================================================= hexdyn-result/2
+// ======================================================================= hexdyn-result/3
 
 // ---- /meta: a group with attributes only ----
 inline constexpr const char* kMetaGroup = "/meta";
@@ -208,6 +208,21 @@ inline constexpr const char* kAttrGridEnergyError = "grid_energy_error";
 /// total power, contact force), the largest
 inline constexpr const char* kAttrGridPeakError = "grid_peak_error";
 
+/// string, the quadrature rule over /time by which /energy/total, /energy/per_joint and
+/// /energy/cycle are integrated from /power/per_joint
+/// (docs/theory/output-grid.md#energy-from-the-samples): kEnergyRuleCubic on the adaptive grid,
+/// kEnergyRuleTrapezoid on the uniform grid. Files of layout version 2 have none: their rule is the
+/// trapezoid over /power/total.
+inline constexpr const char* kAttrEnergyRule = "energy_rule";
+/// Per joint, ∫|p| of the interpolant p of /power/per_joint through the 4 samples nearest each
+/// interval within its piece (the runs of samples between a /sample_kind 1 sample and the
+/// next), split at p's roots; a piece of 2 intervals takes the quadratic, of 1 the line; an
+/// interval from a left-limit sample to its event the trapezoid. /energy/total = the sum over
+/// the joints; /energy/cycle the same over each cycle's span.
+inline constexpr const char* kEnergyRuleCubic = "piecewise-cubic";
+/// The trapezoid of /power/total (and of |/power/per_joint| per joint) over /time.
+inline constexpr const char* kEnergyRuleTrapezoid = "trapezoid";
+
 inline constexpr AttributeSpec kMetaSchema{kMetaGroup, kAttrSchema, Element::kString};
 inline constexpr AttributeSpec kMetaSchemaVersion{kMetaGroup, kAttrSchemaVersion, Element::kInt64};
 inline constexpr AttributeSpec kMetaVersion{kMetaGroup, kAttrVersion, Element::kString};
@@ -222,11 +237,12 @@ inline constexpr AttributeSpec kMetaGridEnergyError{kMetaGroup, kAttrGridEnergyE
                                                     Element::kFloat64};
 inline constexpr AttributeSpec kMetaGridPeakError{kMetaGroup, kAttrGridPeakError,
                                                   Element::kFloat64};
+inline constexpr AttributeSpec kMetaEnergyRule{kMetaGroup, kAttrEnergyRule, Element::kString};
 /// Every /meta attribute of a result file.
 inline constexpr std::array kResultMetaAttributes{
-    kMetaSchema,        kMetaSchemaVersion,   kMetaVersion,      kMetaGitCommit,
-    kMetaCreatedUtc,    kMetaConfigYaml,      kMetaWallTime,     kMetaInputSha256,
-    kMetaGridTolerance, kMetaGridEnergyError, kMetaGridPeakError};
+    kMetaSchema,        kMetaSchemaVersion,   kMetaVersion,       kMetaGitCommit,
+    kMetaCreatedUtc,    kMetaConfigYaml,      kMetaWallTime,      kMetaInputSha256,
+    kMetaGridTolerance, kMetaGridEnergyError, kMetaGridPeakError, kMetaEnergyRule};
 
 // ---- /model ----
 inline constexpr DatasetSpec kModelUrdf{"/model/urdf", "", Shape::kText, Element::kString,
@@ -355,14 +371,16 @@ inline constexpr DatasetSpec kJointPower{"/power/per_joint", "W", Shape::kT18, E
                                          "signed joint power tau*omega"};
 inline constexpr DatasetSpec kTotalPower{"/power/total", "W", Shape::kT, Element::kFloat64,
                                          "total absolute joint power sum |tau*omega|"};
-/// Trapezoid rule over /time of /power/total (docs/theory/output-grid.md#energy-from-the-samples).
+/// The rule /meta energy_rule names over /time
+/// (docs/theory/output-grid.md#energy-from-the-samples).
 inline constexpr DatasetSpec kEnergyTotal{"/energy/total", "J", Shape::kScalar, Element::kFloat64,
                                           "energy: integral of total absolute joint power"};
-/// Trapezoid rule over /time of |τ_k ω_k| (/power/per_joint).
+/// ∫|τ_k ω_k| (/power/per_joint) over /time by the rule /meta energy_rule names.
 inline constexpr DatasetSpec kEnergyJoint{"/energy/per_joint", "J", Shape::kJ, Element::kFloat64,
                                           "energy per joint: integral of |tau*omega|"};
 /// Energy of each gait cycle (from /gait/cycle_start to the next, the last to the end):
-/// the trapezoid with /power/total interpolated linearly at the bounds; sums to /energy/total.
+/// by the rule /meta energy_rule names, a bound between samples cutting its interval's
+/// interpolant (the trapezoid's: /power/total interpolated linearly); sums to /energy/total.
 inline constexpr DatasetSpec kEnergyCycle{"/energy/cycle", "J", Shape::kCycles, Element::kFloat64,
                                           "energy per gait cycle"};
 inline constexpr DatasetSpec kCostOfTransport{"/energy/cost_of_transport", "1", Shape::kScalar,
@@ -501,7 +519,7 @@ inline constexpr std::array kDriveTrainDatasets{
     kEnergyCopperLoss, kEnergyFrictionLoss, kEnergyRegenerated, kCostOfTransportElectrical};
 // clang-format on
 
-// ======================================================================= hexdyn-sweep/2
+// ======================================================================= hexdyn-sweep/3
 // One row per scenario (N = product of the axis sizes, scenario i at the row-major grid
 // point, last axis fastest); metrics are NaN where /scenarios/status != 0.
 
@@ -750,7 +768,7 @@ inline constexpr std::array kScenarioDatasets{
     kScenarioWallTime};
 // clang-format on
 
-// ---- /runs/{id}: with --keep-runs, each computed scenario in the hexdyn-result/2 layout
+// ---- /runs/{id}: with --keep-runs, each computed scenario in the hexdyn-result/3 layout
 // (its own /meta, /model, kinematic and dynamic datasets below the group) ----
 inline constexpr const char* kRunsGroup = "/runs";
 inline constexpr const char* kRunGroup = "/runs/{id}";

@@ -55,7 +55,8 @@ struct Batches {
 /// whose absolute values and their sum are integrated (the energies), and |τ_k| per joint, the
 /// total power and the largest foot force (the peaks); with actuators also the electrical
 /// powers P⁺_k drawn (integrated, each and their sum), |τ_drive,k| and the total electrical
-/// power (peaks) (docs/theory/output-grid.md#error-control).
+/// power (peaks) (docs/theory/output-grid.md#error-control). The mechanical energies are held
+/// by the rule they are computed by (energy_rule), the electrical ones by the trapezoid's.
 struct ControlledSeries {
   std::vector<double> t_s;
   std::vector<char> jump;  ///< from a left-limit sample to its event
@@ -69,7 +70,7 @@ struct ControlledSeries {
   std::vector<IntegralTarget> integrals;
   std::vector<SeriesView> peaks;
 
-  ControlledSeries(const Batches& b, const DriveTrainParams& drive) {
+  ControlledSeries(const Batches& b, const DriveTrainParams& drive, Quadrature rule) {
     const std::size_t T = b.order.size();
     const auto rows = static_cast<Eigen::Index>(T);
     t_s.resize(T);
@@ -110,9 +111,10 @@ struct ControlledSeries {
     for (int j = 0; j < kJoints; ++j) {
       terms.push_back({power.data() + j, kJoints});
       const double energy = trapezoid(t_s, abs_power.data() + j, kJoints);
-      integrals.push_back({{j}, std::max(energy, total / kJoints)});
+      integrals.push_back({{j}, std::max(energy, total / kJoints), rule});
       all.terms.push_back(j);
     }
+    all.rule = rule;
     integrals.push_back(std::move(all));
     for (int j = 0; j < kJoints; ++j) peaks.push_back({abs_torque.data() + j, kJoints});
     peaks.push_back({total_power_W.data(), 1});
@@ -176,16 +178,18 @@ GridAccuracy refine_output_grid(const Scene& scene, const PreparedScene& prep,
   const double assess_tol = refine ? tol : kDefaultOutputTolerance;
   GridAccuracy acc;
   acc.tolerance = refine ? tol : 0.0;
+  acc.cubic_energy = energy_rule(scene.output.grid) == Quadrature::kCubic;
   Batches b;
   b.add(std::move(kin), std::move(dyn));
+  CubicEstimates reuse;  // each pass's cubic estimates, for the intervals the next keeps
   for (int pass = 0;; ++pass) {
     check_cancelled();
     std::optional<StageTimer> clock(std::in_place, times, Stage::kRefinement);
     GridAssessment a;
     {
-      const ControlledSeries series(b, scene.actuators);
+      const ControlledSeries series(b, scene.actuators, energy_rule(scene.output.grid));
       a = assess_grid(series.t_s, series.jump, series.terms, series.integrals, series.peaks,
-                      assess_tol, kMinRefinedStep_s);
+                      assess_tol, kMinRefinedStep_s, &reuse);
     }
     acc.energy_error = a.integral_error;
     acc.peak_error = a.peak_error;

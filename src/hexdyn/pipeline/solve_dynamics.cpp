@@ -411,8 +411,9 @@ void finish_dynamics(const Scene& scene, const RobotModel& model, const MotionPl
   episodes.close();
 
   const StageTimer clock(times, Stage::kPower);
-  PowerResult power = compute_power(kin, dyn.joint_torque, model.total_mass_kg,
-                                    plan.trunk.total_travel_m(), plan.trunk.cycle_start_times());
+  PowerResult power =
+      compute_power(kin, dyn.joint_torque, model.total_mass_kg, plan.trunk.total_travel_m(),
+                    plan.trunk.cycle_start_times(), energy_rule(scene.output.grid));
   dyn.joint_power = std::move(power.joint_power);
   dyn.total_power_W = std::move(power.total_power_W);
   dyn.energy_joint_J = std::move(power.energy_joint_J);

@@ -12,14 +12,9 @@
 #include <cstddef>
 #include <vector>
 
-namespace hexdyn {
+#include "hexdyn/power/quadrature.hpp"
 
-/// Samples y[k * stride] of a series, k = 0 … T − 1, one per grid point.
-struct SeriesView {
-  const double* y = nullptr;
-  int stride = 1;
-  double operator[](std::size_t k) const { return y[k * static_cast<std::size_t>(stride)]; }
-};
+namespace hexdyn {
 
 /// Estimated error of the trapezoid rule on every interval of the grid t_s (T increasing
 /// instants [s]) for the series y: error[k] (T − 1 entries, written into `error`) is
@@ -69,12 +64,13 @@ PeakEstimate estimate_peak(const std::vector<double>& t_s, const std::vector<cha
 void abs_trapezoid_errors(const std::vector<double>& t_s, const std::vector<char>& jump,
                           SeriesView y, std::vector<double>& error, std::vector<double>& root);
 
-/// An integral the grid controls: of Σ_{i ∈ terms} |y_i| over the grid, for terms given by
-/// their index among the assessment's signed series, with the magnitude its error is measured
-/// against.
+/// An integral the grid controls: of Σ_{i ∈ terms} |y_i| over the grid by `rule`, for terms
+/// given by their index among the assessment's signed series, with the magnitude its error is
+/// measured against. Targets that share a term share its rule.
 struct IntegralTarget {
   std::vector<int> terms;
   double reference = 0.0;  ///< > 0, in the units of ∫ y dt
+  Quadrature rule = Quadrature::kTrapezoid;
 };
 
 /// What a grid achieves, and where to refine it.
@@ -89,22 +85,37 @@ struct GridAssessment {
   std::vector<double> refine_at_s;
 };
 
+/// The piecewise-cubic estimates of one assessment, kept for the next on a grid that adds
+/// samples to this one: an interval whose samples k − 3 … k + 4 were all there, consecutive,
+/// has the same stencil and so the same integral and error, which are taken instead of
+/// computed again (bit for bit the same).
+struct CubicEstimates {
+  std::vector<double> t_s;                    ///< the grid they belong to
+  std::vector<std::vector<double>> integral;  ///< per term (empty for a trapezoid term)
+  std::vector<std::vector<double>> error;     ///< per term
+};
+
 /// Assesses the grid t_s for the integrals of the absolute values of the signed series
 /// `terms` and for the peaks (every peak series is ≥ 0 where it matters: its maximum is
-/// controlled). An integral's error is estimated by the net difference |Σ_k error[k]| between
-/// the interpolants' integral and the trapezoid (abs_trapezoid_errors, summed over its terms:
-/// the errors of the intervals are signed and cancel where a series bends both ways), and held
-/// to half of tolerance × reference: over that, the intervals of largest |error[k]| are split,
-/// largest first, until they carry a share of Σ|error| that grows with how far the net error
-/// is over (30 % to 90 %): where a term changes sign, at its root when that lies in the
-/// interval's inner 80 %, else at the midpoint. An
+/// controlled). An integral's error is estimated by the net |Σ_k error[k]| of its rule's
+/// interval errors, summed over its terms (the trapezoid's: abs_trapezoid_errors, the
+/// difference to the interpolants' integral; the piecewise cubic's: cubic_abs_integrals, the
+/// next term of the interpolant): the errors of the intervals are signed and cancel where a
+/// series bends both ways. It is held to half of tolerance × reference: over that, the
+/// intervals of largest |error[k]| are split, largest first, until they carry a share of
+/// Σ|error| that grows with how far the net error is over (30 % to 90 %), into as many parts
+/// (two or three) as the rule's order says bring the net within the budget: for the trapezoid,
+/// where a term changes sign, at its root when that lies in the interval's inner 80 %, else at
+/// the midpoint (the cubic rule integrates through a sign change). An
 /// interval shorter than 2 min_step_s or a jump interval is never split. A peak over its tolerance
 /// is refined by estimate_peak, and the sampled maximum's neighbours in its piece are brought
-/// within the tolerance of it by bisection. tolerance > 0; min_step_s > 0.
+/// within the tolerance of it by bisection. tolerance > 0; min_step_s > 0. With `reuse` (may
+/// be null), the cubic estimates of the last assessment of the same terms on a subset of t_s
+/// serve where they still hold, and this assessment's are stored there for the next.
 GridAssessment assess_grid(const std::vector<double>& t_s, const std::vector<char>& jump,
                            const std::vector<SeriesView>& terms,
                            const std::vector<IntegralTarget>& integrals,
                            const std::vector<SeriesView>& peaks, double tolerance,
-                           double min_step_s);
+                           double min_step_s, CubicEstimates* reuse = nullptr);
 
 }  // namespace hexdyn

@@ -39,26 +39,50 @@ double trapezoid_between(const std::vector<double>& t, const double* y, double a
   return sum + 0.5 * (b - t_prev) * (y_prev + yb);
 }
 
+Quadrature energy_rule(OutputGrid grid) {
+  return grid == OutputGrid::kAdaptive ? Quadrature::kCubic : Quadrature::kTrapezoid;
+}
+
+std::vector<char> jump_intervals(const KinematicsResult& kin) {
+  constexpr std::int8_t kLeftLimit = 1;  // planning/grid.hpp kSampleLeftLimit
+  std::vector<char> jump(kin.time_s.size(), 0);
+  for (std::size_t k = 0; k < kin.sample_kind.size() && k < jump.size(); ++k)
+    jump[k] = kin.sample_kind[k] == kLeftLimit;
+  return jump;
+}
+
 PowerResult compute_power(const KinematicsResult& kin, const RowMatrix& joint_torque,
                           double total_mass_kg, double distance_m,
-                          const std::vector<double>& cycle_start_s) {
+                          const std::vector<double>& cycle_start_s, Quadrature rule) {
   const int T = kin.samples();
   PowerResult p;
   p.joint_power = joint_torque.cwiseProduct(kin.joint_velocity);
   p.total_power_W.assign(T, 0.0);
   const RowMatrix abs_power = p.joint_power.cwiseAbs();
   for (int i = 0; i < T; ++i) p.total_power_W[i] = abs_power.row(i).sum();
+  const bool cubic = rule == Quadrature::kCubic;
+  const std::vector<char> jump = cubic ? jump_intervals(kin) : std::vector<char>{};
   p.energy_joint_J.assign(kJoints, 0.0);
   for (int j = 0; j < kJoints; ++j)
-    p.energy_joint_J[j] = trapezoid(kin.time_s, abs_power.data() + j, kJoints);
-  p.energy_total_J = trapezoid(kin.time_s, p.total_power_W.data());
+    p.energy_joint_J[j] =
+        cubic ? cubic_abs_integral(kin.time_s, jump, {p.joint_power.data() + j, kJoints})
+              : trapezoid(kin.time_s, abs_power.data() + j, kJoints);
+  if (cubic) {
+    for (double e : p.energy_joint_J) p.energy_total_J += e;
+  } else {
+    p.energy_total_J = trapezoid(kin.time_s, p.total_power_W.data());
+  }
   // Cycle k runs from its start to the next one's; the last to the run's end (a final
   // transient may outlast the motion).
   const double t_end = T > 0 ? kin.time_s.back() : 0.0;
   for (std::size_t k = 0; k < cycle_start_s.size(); ++k) {
+    const double a = cycle_start_s[k];
     const double b = k + 1 < cycle_start_s.size() ? std::min(cycle_start_s[k + 1], t_end) : t_end;
-    p.energy_cycle_J.push_back(
-        trapezoid_between(kin.time_s, p.total_power_W.data(), cycle_start_s[k], b));
+    double e = 0.0;
+    if (!cubic) e = trapezoid_between(kin.time_s, p.total_power_W.data(), a, b);
+    for (int j = 0; cubic && j < kJoints; ++j)
+      e += cubic_abs_integral_between(kin.time_s, jump, {p.joint_power.data() + j, kJoints}, a, b);
+    p.energy_cycle_J.push_back(e);
   }
   p.distance_m = distance_m;
   p.cost_of_transport = p.energy_total_J / (total_mass_kg * kGravity * distance_m);

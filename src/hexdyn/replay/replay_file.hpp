@@ -41,7 +41,7 @@ struct ReplaySource {
   std::vector<std::string> warnings;
 };
 
-/// Reads `result_path` (a hexdyn-result/2 file with dynamics) while an InputFreeze lives
+/// Reads `result_path` (a hexdyn-result/3 file with dynamics) while an InputFreeze lives
 /// (config/inputs.hpp: the stored URDF is kept as an input). Every series the replay reads
 /// is checked: finite, of the right shape, /time increasing, unit quaternions
 /// (kReplayQuaternionTolerance), and the stored feet where the model puts them

@@ -208,8 +208,10 @@ ReplaySource read_replay_source(const std::string& result_path,
   src.inputs.push_back(result_input(result_path));
   const H5Reader in(result_path);
   const std::string meta = s::kMetaGroup;
+  // Layout version 2 has the same datasets (its energies by the trapezoid).
   if (!in.has_attribute(meta, s::kAttrSchema) ||
-      in.string_attribute(meta, s::kAttrSchema) != s::kResultSchema)
+      (in.string_attribute(meta, s::kAttrSchema) != s::kResultSchema &&
+       in.string_attribute(meta, s::kAttrSchema) != std::string("hexdyn-result/2")))
     throw IoError("replay: '" + result_path + "' is not a " + s::kResultSchema + " file");
   src.created_utc = in.string_attribute(meta, s::kAttrCreatedUtc);
   if (in.has_attribute(meta, s::kAttrInputSha256)) {

@@ -1,7 +1,8 @@
 // What a result holds integrates to what it reports (docs/theory/output-grid.md#event-samples):
 // on the paper scene, a speed-defined wave-gait scene and a URDF robot, every contact event
-// has a left-limit sample 1e-10 s before it in the pre-event phase; the trapezoid rule over
-// the samples, computed here, gives /energy/total and /energy/per_joint; the cycles' energies add
+// has a left-limit sample 1e-10 s before it in the pre-event phase; the piecewise-cubic rule over
+// the pieces the left limits bound gives /energy/per_joint and their sum /energy/total (within the
+// trapezoid's error of the trapezoid, computed here); the cycles' energies add
 // up to the total; the cycle starts match the motion's definition, worked out here from the
 // scene's parameters; the energy agrees with a fine uniform grid that has no event samples;
 // the stored terrain polyline carries every support foot.
@@ -14,6 +15,7 @@
 #include "hexdyn/config/config.hpp"
 #include "hexdyn/pipeline/pipeline.hpp"
 #include "hexdyn/planning/grid.hpp"
+#include "hexdyn/power/quadrature.hpp"
 
 namespace hexdyn {
 namespace {
@@ -36,7 +38,10 @@ double trapezoid_of(const std::vector<double>& t, const std::vector<double>& y) 
   return e;
 }
 
-/// The integration identities of a run, recomputed from its samples.
+/// The integration identities of a run, recomputed from its samples: each joint's energy is
+/// the piecewise-cubic rule over the pieces between the left-limit samples (the rule itself is
+/// tested against closed forms in tests/hexdyn/power/test_quadrature.cpp), within the
+/// trapezoid's error of the trapezoid, and the total their sum.
 void check_identities(const RunResult& r) {
   const KinematicsResult& k = r.kin;
   const DynamicsResult& d = r.dyn;
@@ -47,15 +52,22 @@ void check_identities(const RunResult& r) {
       P[i] += std::abs(d.joint_torque(i, j) * k.joint_velocity(i, j));
   const double E = trapezoid_of(k.time_s, P);
   REQUIRE(E > 0.0);
-  CHECK(std::abs(d.energy_total_J - E) <= 1e-9 * E);
-  CHECK(std::abs(trapezoid_of(k.time_s, d.total_power_W) - d.energy_total_J) <= 1e-9 * E);
+  // The two rules over the same samples differ by the trapezoid's error, which the default
+  // tolerance's grid holds to 1e-2 no longer (measured 3.3e-3 on the wave gait below).
+  CHECK(std::abs(d.energy_total_J - E) <= 1e-2 * E);
+  CHECK(std::abs(trapezoid_of(k.time_s, d.total_power_W) - E) <= 1e-9 * E);
+  std::vector<char> jump(T, 0);
+  for (int i = 0; i < T; ++i) jump[i] = k.sample_kind[i] == kSampleLeftLimit;
+  double sum_joint = 0.0;
   for (int j = 0; j < kJoints; ++j) {
     std::vector<double> Pj(T);
-    for (int i = 0; i < T; ++i) Pj[i] = std::abs(d.joint_torque(i, j) * k.joint_velocity(i, j));
-    const double Ej = trapezoid_of(k.time_s, Pj);
+    for (int i = 0; i < T; ++i) Pj[i] = d.joint_torque(i, j) * k.joint_velocity(i, j);
+    const double Ej = cubic_abs_integral(k.time_s, jump, {Pj.data(), 1});
     INFO("joint " << j);
     CHECK(std::abs(d.energy_joint_J[j] - Ej) <= 1e-9 * std::max(Ej, 1e-6 * E));
+    sum_joint += Ej;
   }
+  CHECK(std::abs(d.energy_total_J - sum_joint) <= 1e-12 * E);
   REQUIRE(d.energy_cycle_J.size() == r.cycle_start_s.size());
   REQUIRE(!r.cycle_start_s.empty());
   double sum = 0.0;

@@ -128,10 +128,11 @@ TEST_CASE("solve_dynamics: energy is the integral of the power series, and the c
     }
     CHECK(std::abs(d.total_power_W[i] - P[i]) <= 1e-14 * std::max(1.0, P[i]));
   }
-  // Energy: the trapezoid over the stored samples, against a second quadrature, the
-  // trapezoid sum of Σ|τ ω| on a grid far finer everywhere (1 ms, 10 µs at events; measured
-  // 3.5e-5 apart), which it must match far better than the trapezoid over its ordinary
-  // samples alone (without the left limits of the contact events: 8.6e-4) does.
+  // Energy: the piecewise-cubic rule over the stored samples, against a second quadrature, the
+  // trapezoid sum of Σ|τ ω| on a grid far finer everywhere (1 ms, 10 µs at events), which it
+  // must match far better than the trapezoid over its ordinary samples alone (without the left
+  // limits of the contact events: 8.6e-4) does; and within its own rule's difference to the
+  // trapezoid over the same samples (the rules differ by less than the trapezoid's error).
   const RunResult fine = run_scene(cheap_scene({{"output.grid", "adaptive"},
                                                 {"output.sample_step", "1e-3"},
                                                 {"output.event_step", "1e-5"},
@@ -140,10 +141,10 @@ TEST_CASE("solve_dynamics: energy is the integral of the power series, and the c
   const double E = d.energy_total_J;
   REQUIRE(E > 0.0);
   CAPTURE(E, E_fine, trapezoid_energy(r, true));
-  CHECK(std::abs(E - trapezoid_energy(r)) <= 1e-12 * E);
+  CHECK(std::abs(E - trapezoid_energy(r)) <= 1e-3 * E);
   CHECK(std::abs(E - E_fine) <= 1e-3 * E_fine);
   CHECK(std::abs(trapezoid_energy(r, true) - E_fine) > 5.0 * std::abs(E - E_fine));
-  CHECK(std::abs(fine.dyn.energy_total_J - E_fine) <= 1e-12 * E_fine);
+  CHECK(std::abs(fine.dyn.energy_total_J - E_fine) <= 1e-4 * E_fine);
   REQUIRE(d.energy_joint_J.size() == static_cast<std::size_t>(kJoints));
   double sum_joint = 0.0;
   for (int j = 0; j < kJoints; ++j) {

@@ -187,3 +187,41 @@ TEST_CASE("assess_grid: refinement brings integrals and peaks within the toleran
     CHECK(static_cast<double>(t.size()) < 0.25 * uniform);
   }
 }
+
+TEST_CASE("assess_grid: the cubic estimates kept from pass to pass are those computed again",
+          "[grid_error]") {
+  // A signed series with sign changes, a jump at t = 1 (with its left-limit sample) and a
+  // narrow peak, refined for its cubic-rule integral: each pass assessed once with the last
+  // pass's estimates kept where no sample was added near them and once from scratch; the
+  // assessments must agree bit for bit.
+  const auto f = [](double x) {
+    return std::sin(9.0 * x) * (1.0 + x) + (x >= 1.0 ? 2.0 : 0.0) +
+           4.0 * std::exp(-std::pow((x - 1.6) / 0.01, 2));
+  };
+  std::vector<double> t;
+  for (int i = 0; i <= 40; ++i) t.push_back(0.05 * i);
+  t.insert(t.begin() + 20, 1.0 - 1e-10);
+  CubicEstimates kept;
+  int passes = 0, refined = 0;
+  for (; passes < 30; ++passes) {
+    std::vector<char> jump(t.size(), 0);
+    for (std::size_t k = 0; k + 1 < t.size(); ++k) jump[k] = t[k + 1] - t[k] < 1e-9;
+    const std::vector<double> y = sample(t, f);
+    const std::vector<SeriesView> terms{{y.data(), 1}};
+    const std::vector<IntegralTarget> targets{{{0}, 2.0, Quadrature::kCubic}};
+    const GridAssessment fresh = assess_grid(t, jump, terms, targets, terms, 1e-7, 1e-8);
+    const GridAssessment reused = assess_grid(t, jump, terms, targets, terms, 1e-7, 1e-8, &kept);
+    INFO("pass " << passes << ", " << t.size() << " samples");
+    CHECK(reused.integral_error == fresh.integral_error);
+    CHECK(reused.peak_error == fresh.peak_error);
+    CHECK(reused.refine_at_s == fresh.refine_at_s);
+    if (fresh.refine_at_s.empty()) break;
+    refined += static_cast<int>(fresh.refine_at_s.size());
+    std::vector<double> merged;
+    std::merge(t.begin(), t.end(), fresh.refine_at_s.begin(), fresh.refine_at_s.end(),
+               std::back_inserter(merged));
+    t = std::move(merged);
+  }
+  CHECK(passes >= 3);
+  CHECK(refined > 100);
+}
