@@ -161,8 +161,4 @@ EnvelopeResult compute_envelope(const EnvelopeSpec& spec, std::ostream* log);
 void write_envelope_file(const std::string& path, const EnvelopeSpec& spec,
                          const EnvelopeResult& result);
 
-/// `hexdyn envelope ENVELOPE.yaml -o FILE.h5 [-v]`: argv[0] is "envelope". Returns the
-/// exit status (0, 2 bad input, 3 cannot compute) after printing errors on one line.
-int envelope_command(int argc, char** argv);
-
 }  // namespace hexdyn

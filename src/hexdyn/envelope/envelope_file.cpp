@@ -1,17 +1,12 @@
-// The hexdyn-envelope/2 file (io/schema.hpp) and the `hexdyn envelope` command.
-#include <cstring>
-#include <iostream>
+// The hexdyn-envelope/2 file (io/schema.hpp).
 
-#include "hexdyn/config/inputs.hpp"
 #include "hexdyn/core/errors.hpp"
-#include "hexdyn/core/progress.hpp"
 #include "hexdyn/envelope/envelope.hpp"
 #include "hexdyn/io/h5io.hpp"
 #include "hexdyn/io/labels.hpp"
 #include "hexdyn/io/output.hpp"
 #include "hexdyn/io/schema.hpp"
 #include "hexdyn/process/atomic_file.hpp"
-#include "hexdyn/process/interrupt.hpp"
 #include "hexdyn/version.hpp"
 
 namespace hexdyn {
@@ -183,15 +178,6 @@ void write_file(H5Writer& w, const EnvelopeSpec& spec, const EnvelopeResult& r) 
   labels.finish();
 }
 
-constexpr const char* kUsage = R"(usage: hexdyn envelope ENVELOPE -o FILE [-v]
-  Finds the largest stair riser the robot climbs, per tread depth, duty factor and peak
-  speed (and per case: a design of `cases:`), under the kinematic, torque and friction
-  criteria, and writes the
-  hexdyn-envelope/2 file FILE (docs/user/envelope.md; configs/envelope/paper.yaml
-  documents the keys). With `search: friction` it finds instead the least friction
-  coefficient per riser of the scan. -v prints one line per cell and criterion.
-)";
-
 }  // namespace
 
 void write_envelope_file(const std::string& path, const EnvelopeSpec& spec,
@@ -203,55 +189,6 @@ void write_envelope_file(const std::string& path, const EnvelopeSpec& spec,
     write_file(w, spec, result);
     w.close();
   });
-}
-
-int envelope_command(int argc, char** argv) {
-  std::string config, output;
-  bool verbose = false;
-  for (int i = 1; i < argc; ++i)
-    if (!std::strcmp(argv[i], "--help") || !std::strcmp(argv[i], "-h")) {
-      std::cout << kUsage;
-      return 0;
-    }
-  try {
-    for (int i = 1; i < argc; ++i) {
-      const std::string arg = argv[i];
-      if (arg == "-o" || arg == "--output") {
-        if (i + 1 >= argc) throw ConfigError("-o: missing value");
-        output = argv[++i];
-      } else if (arg == "-v" || arg == "--verbose") {
-        verbose = true;
-      } else if (!arg.empty() && arg[0] == '-') {
-        throw ConfigError("unknown option " + arg + "; run 'hexdyn envelope --help'");
-      } else if (config.empty()) {
-        config = arg;
-      } else {
-        throw ConfigError("unexpected argument " + arg + "; run 'hexdyn envelope --help'");
-      }
-    }
-    if (config.empty()) throw ConfigError("envelope: missing ENVELOPE file");
-    if (output.empty()) throw ConfigError("envelope: missing -o FILE");
-    install_interrupt_handlers(InterruptMode::kExitInHandler,
-                               "hexdyn: envelope interrupted by {signal}: nothing written to " +
-                                   output +
-                                   " (an existing file there is kept, no temporary file left); "
-                                   "run the command again to compute it");
-    const InputFreeze freeze;  // every input read once for the whole envelope (config/inputs.hpp)
-    const EnvelopeSpec spec = load_envelope_spec(config);
-    check_output_target(output, spec.inputs);  // the envelope file is one of them
-    const ProgressScope progress(std::cerr, "envelope", 5.0, "envelope");  // a line every 5 s
-    const EnvelopeResult result = compute_envelope(spec, verbose ? &std::cerr : nullptr);
-    write_envelope_file(output, spec, result);
-    std::cerr << "hexdyn: wrote " << output << " (" << result.probes.size() << " probes, "
-              << result.wall_time_s << " s)\n";
-    return 0;
-  } catch (const Error& e) {
-    std::cerr << "hexdyn: error: " << one_line(e.what()) << "\n";
-    return e.exit_status();
-  } catch (const std::exception& e) {
-    std::cerr << "hexdyn: internal error: " << one_line(e.what()) << "\n";
-    return 4;
-  }
 }
 
 }  // namespace hexdyn

@@ -347,12 +347,13 @@ inline constexpr DatasetSpec kRequiredFriction{"/contacts/required_friction", "1
                                                Element::kFloat64, "required friction coefficient"};
 /// The leg whose friction binds at the required friction, 0-based (an index into the `leg`
 /// dimension), −1 where none does. Written with /contacts/required_friction.
-inline constexpr DatasetSpec kRequiredFrictionLeg{"/contacts/required_friction_leg", "", Shape::kT,
-                                                  Element::kInt8,
-                                                  "leg binding the required friction"};
+inline constexpr DatasetSpec kRequiredFrictionLeg{
+    "/contacts/required_friction_leg", "", Shape::kT, Element::kInt8,
+    "leg binding the required friction, 0-based (0 is L1), -1 none"};
 /// Leg of each touchdown, 0-based (0..5): an index into the `leg` dimension (L1 is 0).
-inline constexpr DatasetSpec kImpactLeg{"/impacts/leg", "", Shape::kN, Element::kInt32,
-                                        "leg of the touchdown, index into the leg dimension"};
+inline constexpr DatasetSpec kImpactLeg{
+    "/impacts/leg", "", Shape::kN, Element::kInt32,
+    "leg of the touchdown, 0-based index into the leg dimension (0 is L1)"};
 inline constexpr DatasetSpec kImpactStart{"/impacts/t_start", "s", Shape::kN, Element::kFloat64,
                                           "touchdown start time"};
 inline constexpr DatasetSpec kImpactDuration{"/impacts/duration", "s", Shape::kN, Element::kFloat64,
@@ -715,7 +716,7 @@ inline constexpr DatasetSpec kScenarioRequiredFrictionSupport{
     "largest required friction over support samples"};
 inline constexpr DatasetSpec kScenarioRequiredFrictionSupportLeg{
     "/scenarios/required_friction_support_leg", "", Shape::kScenarios, Element::kInt32,
-    "leg binding the largest support required friction"};
+    "leg binding the largest support required friction, 0-based (0 is L1), -1 none"};
 inline constexpr DatasetSpec kScenarioRequiredFrictionSupportTime{
     "/scenarios/required_friction_support_time", "s", Shape::kScenarios, Element::kFloat64,
     "time of the largest support required friction"};
@@ -724,7 +725,7 @@ inline constexpr DatasetSpec kScenarioRequiredFrictionTransient{
     "largest required friction over touchdown-transient samples"};
 inline constexpr DatasetSpec kScenarioRequiredFrictionTransientLeg{
     "/scenarios/required_friction_transient_leg", "", Shape::kScenarios, Element::kInt32,
-    "leg binding the largest transient required friction"};
+    "leg binding the largest transient required friction, 0-based (0 is L1), -1 none"};
 inline constexpr DatasetSpec kScenarioRequiredFrictionTransientTime{
     "/scenarios/required_friction_transient_time", "s", Shape::kScenarios, Element::kFloat64,
     "time of the largest transient required friction"};

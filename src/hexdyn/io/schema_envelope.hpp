@@ -174,7 +174,7 @@ inline constexpr DatasetSpec kEnvelopeRequiredFriction{
 /// Its binding leg, 0-based; −1 where none.
 inline constexpr DatasetSpec kEnvelopeRequiredFrictionLeg{
     "/envelope/required_friction_leg", "", Shape::kEnvelopeMuGrid, Element::kInt32,
-    "leg binding the least friction coefficient"};
+    "leg binding the least friction coefficient, 0-based (0 is L1), -1 none"};
 /// The time of the sample that needs it [s]; NaN where none.
 inline constexpr DatasetSpec kEnvelopeRequiredFrictionTime{
     "/envelope/required_friction_time", "s", Shape::kEnvelopeMuGrid, Element::kFloat64,
@@ -184,7 +184,7 @@ inline constexpr DatasetSpec kEnvelopeCaseRequiredFriction{
     "least friction coefficient of the support samples"};
 inline constexpr DatasetSpec kEnvelopeCaseRequiredFrictionLeg{
     "/envelope/required_friction_leg", "", Shape::kEnvelopeCaseMuGrid, Element::kInt32,
-    "leg binding the least friction coefficient"};
+    "leg binding the least friction coefficient, 0-based (0 is L1), -1 none"};
 inline constexpr DatasetSpec kEnvelopeCaseRequiredFrictionTime{
     "/envelope/required_friction_time", "s", Shape::kEnvelopeCaseMuGrid, Element::kFloat64,
     "time of the sample needing the least friction coefficient"};

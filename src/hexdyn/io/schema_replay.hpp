@@ -94,9 +94,9 @@ inline constexpr DatasetSpec kReplayMaxTrackingError{"/replay/max_tracking_error
                                                      Shape::kScalar, Element::kFloat64,
                                                      "largest joint tracking error"};
 /// Flat index of the joint where it occurs.
-inline constexpr DatasetSpec kReplayMaxTrackingErrorJoint{"/replay/max_tracking_error_joint", "1",
-                                                          Shape::kScalar, Element::kInt32,
-                                                          "joint of the largest tracking error"};
+inline constexpr DatasetSpec kReplayMaxTrackingErrorJoint{
+    "/replay/max_tracking_error_joint", "1", Shape::kScalar, Element::kInt32,
+    "joint of the largest tracking error, 0-based flat index (0 is L1 coxa, 8 L3 tibia)"};
 /// Instant where it occurs [s].
 inline constexpr DatasetSpec kReplayMaxTrackingErrorTime{"/replay/max_tracking_error_time", "s",
                                                          Shape::kScalar, Element::kFloat64,

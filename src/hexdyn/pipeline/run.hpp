@@ -9,9 +9,10 @@
 
 namespace hexdyn {
 
-/// Plans, samples and solves a scene. `log` (may be null) receives one line per episode
-/// of relaxed or failed allocation samples, and once, before the first relaxed one, what
-/// relaxed means. Throws a hexdyn::Error subclass when the scene cannot be computed.
+/// Plans, samples and solves a scene. `log` (may be null) receives the episodes of relaxed
+/// or failed allocation samples (pipeline/episode_log.hpp: one line per kind, a repeated
+/// kind summarised), and once, before the first relaxed one, what relaxed means. Throws a
+/// hexdyn::Error subclass when the scene cannot be computed.
 RunResult run_scene(const Scene& scene, std::ostream* log = nullptr);
 
 }  // namespace hexdyn

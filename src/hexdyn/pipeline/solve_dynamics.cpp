@@ -19,6 +19,7 @@
 #include "hexdyn/drive/drive.hpp"
 #include "hexdyn/dynamics/rnea.hpp"
 #include "hexdyn/kinematics/kinematics.hpp"
+#include "hexdyn/pipeline/episode_log.hpp"
 #include "hexdyn/power/power.hpp"
 
 namespace hexdyn {
@@ -230,56 +231,6 @@ SampleVerdict sample_verdict(const SampleSolution& s, const SampleContacts& c,
   return v;
 }
 
-/// What a relaxed sample is, said once per run before its first relaxed episode.
-constexpr const char* kRelaxedNote =
-    "hexdyn: relaxed samples: the allocation met the named constraints only with penalised "
-    "slack (/solver/status 1); in a touchdown transient (marked impact) this is by design, the "
-    "prescribed impact forces leave the trunk equations unsatisfiable "
-    "(docs/theory/allocation.md#relaxed-samples)";
-
-/// Runs of consecutive relaxed or failed samples: one log line per run with its time span,
-/// its count and the message of its worst sample (largest violation); before the first
-/// relaxed run, kRelaxedNote.
-class EpisodeLog {
- public:
-  explicit EpisodeLog(std::ostream* log) : log_(log) {}
-
-  void add(double t_s, SolverStatus status, double max_violation, const std::string& message) {
-    if (count_ == 0) start_s_ = t_s;
-    end_s_ = t_s;
-    ++count_;
-    status_ = std::max(status_, status);
-    if (max_violation > worst_) {
-      worst_ = max_violation;
-      message_ = message;
-    }
-  }
-
-  /// Ends the current run (at an optimal sample or the last one) and writes its line.
-  void close() {
-    if (count_ > 0 && log_) {
-      // Outcome messages start with their status word ("relaxed: ", "failed: "): print it once.
-      const std::string word = status_ == SolverStatus::kRelaxed ? "relaxed: " : "failed: ";
-      const bool prefixed = message_.compare(0, word.size(), word) == 0;
-      if (status_ == SolverStatus::kRelaxed && !noted_) *log_ << kRelaxedNote << "\n";
-      noted_ = noted_ || status_ == SolverStatus::kRelaxed;
-      *log_ << "hexdyn: t = [" << start_s_ << ", " << end_s_ << "] s: " << count_ << " sample(s) "
-            << word << (prefixed ? message_.substr(word.size()) : message_) << "\n";
-    }
-    count_ = 0;
-    status_ = SolverStatus::kOptimal;
-    worst_ = -1.0;
-  }
-
- private:
-  std::ostream* log_;
-  int count_ = 0;
-  bool noted_ = false;  ///< kRelaxedNote written
-  SolverStatus status_ = SolverStatus::kOptimal;
-  double start_s_ = 0.0, end_s_ = 0.0, worst_ = -1.0;
-  std::string message_;
-};
-
 /// A result of T samples, every per-sample field zero (the drive train's too, with `drive`;
 /// the required friction with `required`).
 DynamicsResult empty_result(int T, bool drive, bool required) {
@@ -402,13 +353,18 @@ void finish_dynamics(const Scene& scene, const RobotModel& model, const MotionPl
   dyn.impacts = impact_records(touchdowns);
   EpisodeLog episodes(log);
   for (int i = 0; i < kin.samples(); ++i) {
-    if (dyn.solver_status[i] != SolverStatus::kOptimal)
-      episodes.add(kin.time_s[i], dyn.solver_status[i], dyn.solver_max_violation[i],
-                   dyn.solver_messages[i]);
-    else
+    if (dyn.solver_status[i] == SolverStatus::kOptimal) {
       episodes.close();
+      continue;
+    }
+    bool touchdown = false;  // some leg in its touchdown transient
+    for (int l = 0; l < kLegs && i < kin.contact_phase.rows(); ++l)
+      touchdown =
+          touchdown || kin.contact_phase(i, l) == static_cast<std::int8_t>(ContactPhase::kImpact);
+    episodes.add(kin.time_s[i], dyn.solver_status[i], touchdown, dyn.solver_max_violation[i],
+                 dyn.solver_messages[i]);
   }
-  episodes.close();
+  episodes.flush();
 
   const StageTimer clock(times, Stage::kPower);
   PowerResult power =

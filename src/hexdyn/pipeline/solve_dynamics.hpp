@@ -72,9 +72,9 @@ class DynamicsSolver {
 };
 
 /// What solve_dynamics does after the per-sample solves, on a result whose samples are final:
-/// the touchdowns' records and log lines, one log line per episode of relaxed or failed
-/// samples, the power and energies over the samples (power/power.hpp) and, with actuators,
-/// the electrical side (drive/drive.hpp). `log` may be null.
+/// the touchdowns' records and log lines, the episodes of relaxed or failed samples
+/// (pipeline/episode_log.hpp), the power and energies over the samples (power/power.hpp) and, with
+/// actuators, the electrical side (drive/drive.hpp). `log` may be null.
 void finish_dynamics(const Scene& scene, const RobotModel& model, const MotionPlan& plan,
                      const KinematicsResult& kin, const std::vector<Touchdown>& touchdowns,
                      DynamicsResult& dyn, std::ostream* log, StageTimes* times = nullptr);

@@ -1,7 +1,7 @@
 #pragma once
 /// \file launch.hpp
 /// How the process was started, read from the environment only: no MPI call, no MPI
-/// library needed (the command line, cli/main.cpp, uses it for every command, and loads
+/// library needed (the command line, cli/dispatch.cpp, uses it for every command, and loads
 /// MPI only for `hexdyn sweep`).
 #include <signal.h>
 #include <sys/prctl.h>

@@ -1,14 +1,11 @@
-// The hexdyn-replay/1 file (io/schema_replay.hpp) and the `hexdyn replay` command.
+// The hexdyn-replay/1 file (io/schema_replay.hpp).
 #include "hexdyn/replay/replay_file.hpp"
 
 #include <sys/stat.h>
 
-#include <cstring>
 #include <filesystem>
-#include <iostream>
 
 #include "hexdyn/core/errors.hpp"
-#include "hexdyn/core/progress.hpp"
 #include "hexdyn/io/h5io.hpp"
 #include "hexdyn/io/output.hpp"
 #include "hexdyn/io/result_layout.hpp"
@@ -16,30 +13,12 @@
 #include "hexdyn/model/robot_model.hpp"
 #include "hexdyn/model/root_link.hpp"
 #include "hexdyn/process/atomic_file.hpp"
-#include "hexdyn/process/interrupt.hpp"
 #include "hexdyn/process/sha256.hpp"
 
 namespace hexdyn {
 namespace {
 
 namespace s = schema;
-
-constexpr const char* kUsage =
-    R"(usage: hexdyn replay RESULT -o FILE [--set key.path=value ...] [--progress SECONDS]
-  Replays a result's joint torques through the forward dynamics of the robot on its terrain,
-  with compliant contact and friction, and writes a hexdyn-replay/1 file to FILE
-  (docs/user/replay.md).
-
-Each joint is driven by its stored torque plus a PD on the planned angle and rate (gains
-replay.kp [N m/rad] and replay.kd [N m s/rad]; 0 and 0 is open loop). The integrator's
-largest step is replay.step [s]. The contact's friction law reads contact.static_friction,
-contact.dynamic_friction, contact.stiction_velocity and contact.friction_velocity. --set
-changes a key of replay.* or contact.* for the replay (--set contact.static_friction=0.2);
-any other key would not change the stored plan and is refused. The robot and the scene are
-the result's own (/meta config_yaml, /model/urdf): files edited since the run are not read.
-A progress line comes at most every --progress seconds (default 5). The report (trunk drift per gait cycle, tracking error, slip and touchdown energy, whether
-the robot reached the plan's end) is in /replay of FILE and printed on stderr.
-)";
 
 /// Collects the datasets of the replay file in the order written.
 struct Layout {
@@ -190,93 +169,6 @@ void write_replay_file(const std::string& path, const ReplaySource& source, cons
     write_layout(writer, b.layout);
     writer.close();
   });
-}
-
-namespace {
-
-/// The report on stderr, one line per item.
-void print_report(const ReplayResult& r, std::ostream& os) {
-  os << "hexdyn: replay: " << (r.reached_top ? "reached" : "did not reach")
-     << " the plan's end; final trunk position error " << r.final_position_error_m.norm() << " m\n";
-  if (!r.message.empty()) os << "hexdyn: replay: ended early: " << r.message << "\n";
-  for (std::size_t y = 0; y < r.cycle_end_s.size(); ++y)
-    os << "hexdyn: replay: cycle end t = " << r.cycle_end_s[y] << " s: drift "
-       << r.position_drift_m[y].transpose() << " m, " << r.orientation_drift_rad[y].transpose()
-       << " rad\n";
-  double slip = 0.0, slip_e = 0.0, damp = 0.0;
-  for (int l = 0; l < kLegs; ++l) {
-    slip += r.slip_distance_total_m[l];
-    slip_e += r.slip_energy_total_J[l];
-    damp += r.damping_total_J[l];
-  }
-  os << "hexdyn: replay: largest tracking error " << r.max_tracking_error_rad << " rad (joint "
-     << r.max_tracking_error_joint << ", t = " << r.max_tracking_error_time_s << " s)\n"
-     << "hexdyn: replay: slip " << slip << " m and " << slip_e << " J, contact damping " << damp
-     << " J, joint energy " << r.energy_J << " J (inverse dynamics " << r.energy_plan_J << " J)\n"
-     << "hexdyn: replay: balance of energy: joint work " << r.actuator_work_J << " J, residual "
-     << r.energy_residual_J << " J; " << r.steps << " steps (" << r.forced_steps
-     << " beyond the tolerance at the smallest step)\n";
-}
-
-}  // namespace
-
-int replay_command(int argc, char** argv) {
-  std::string result_path, output;
-  std::vector<Override> overrides;
-  double progress_s = 5.0;
-  for (int i = 1; i < argc; ++i)
-    if (!std::strcmp(argv[i], "--help") || !std::strcmp(argv[i], "-h")) {
-      std::cout << kUsage;
-      return 0;
-    }
-  try {
-    for (int i = 1; i < argc; ++i) {
-      const std::string arg = argv[i];
-      if (arg == "-o" || arg == "--output" || arg == "--set" || arg == "--progress") {
-        if (i + 1 >= argc) throw ConfigError(arg + ": missing value");
-        if (arg == "--set")
-          overrides.push_back(parse_override(argv[++i]));
-        else if (arg == "--progress")
-          progress_s = parse_progress_interval(argv[++i]);
-        else
-          output = argv[++i];
-      } else if (arg.rfind("--set=", 0) == 0) {
-        overrides.push_back(parse_override(arg.substr(6)));
-      } else if (!arg.empty() && arg[0] == '-') {
-        throw ConfigError("unknown option " + arg + "; run 'hexdyn replay --help'");
-      } else if (result_path.empty()) {
-        result_path = arg;
-      } else {
-        throw ConfigError("unexpected argument " + arg + "; run 'hexdyn replay --help'");
-      }
-    }
-    if (result_path.empty()) throw ConfigError("replay: missing RESULT file");
-    if (output.empty()) throw ConfigError("replay: missing -o FILE");
-    install_interrupt_handlers(InterruptMode::kExitInHandler,
-                               "hexdyn: replay interrupted by {signal}: nothing written to " +
-                                   output +
-                                   " (an existing file there is kept, no temporary file left); "
-                                   "run the command again to compute it");
-    const InputFreeze freeze;
-    const ReplaySource src = read_replay_source(result_path, overrides);
-    check_output_target(output, src.inputs);
-    for (const std::string& w : src.warnings) std::cerr << "hexdyn: warning: replay: " << w << "\n";
-    const RobotModel model = build_robot_model(src.scene.robot);
-    const ProgressScope progress(std::cerr, "replay", progress_s);
-    const ReplayResult r =
-        replay_plan(model, src.scene.contact, src.scene.replay, src.scene.terrain, src.plan);
-    write_replay_file(output, src, model, r);
-    print_report(r, std::cerr);
-    std::cerr << "hexdyn: wrote " << output << " (" << r.t_s.size() << " samples, " << r.steps
-              << " steps, " << r.seconds << " s)\n";
-    return 0;
-  } catch (const Error& e) {
-    std::cerr << "hexdyn: error: " << one_line(e.what()) << "\n";
-    return e.exit_status();
-  } catch (const std::exception& e) {
-    std::cerr << "hexdyn: internal error: " << one_line(e.what()) << "\n";
-    return 4;
-  }
 }
 
 }  // namespace hexdyn

@@ -1,8 +1,8 @@
 #pragma once
 /// \file replay_file.hpp
-/// `hexdyn replay RESULT.h5 -o REPLAY.h5`: a result file read as a plan to replay
-/// (replay.hpp), and the replay written as a `hexdyn-replay/1` file (io/schema_replay.hpp,
-/// docs/user/replay.md).
+/// A result file read as a plan to replay (replay.hpp), and the replay written as a
+/// `hexdyn-replay/1` file (io/schema_replay.hpp, docs/user/replay.md); the command
+/// `hexdyn replay` is cli/replay_command.cpp.
 #include <string>
 #include <vector>
 
@@ -55,8 +55,5 @@ ReplaySource read_replay_source(const std::string& result_path,
 /// check_output_target(path, source.inputs): the result file is never overwritten.
 void write_replay_file(const std::string& path, const ReplaySource& source, const RobotModel& model,
                        const ReplayResult& result);
-
-/// The `hexdyn replay` command (argv[0] = "replay"); returns the exit status.
-int replay_command(int argc, char** argv);
 
 }  // namespace hexdyn

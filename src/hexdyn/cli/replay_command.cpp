@@ -1,0 +1,67 @@
+// `hexdyn replay RESULT -o FILE` (cli/command.hpp; replay/replay_file.hpp).
+#include <iostream>
+
+#include "hexdyn/cli/subcommands.hpp"
+#include "hexdyn/core/progress.hpp"
+#include "hexdyn/io/output.hpp"
+#include "hexdyn/model/robot_model.hpp"
+#include "hexdyn/replay/replay_file.hpp"
+
+namespace hexdyn::cli {
+namespace {
+
+/// "L3 tibia" for flat joint index 8 (docs/user/output.md#conventions), with the
+/// description's own name when it differs from "L3_tibia" (a URDF robot's joint).
+std::string joint_label(int k, const std::vector<std::string>& names) {
+  static const char* kKind[kJointsPerLeg] = {"coxa", "femur", "tibia"};
+  if (k < 0 || k >= kJoints) return "no joint";
+  const int leg = k / kJointsPerLeg, j = k % kJointsPerLeg;
+  std::string label = leg_name(leg) + " " + kKind[j];
+  const auto at = static_cast<std::size_t>(k);
+  if (at < names.size() && names[at] != joint_name(leg, j)) label += ", joint " + names[at];
+  return label;
+}
+
+/// The report on stderr, one line per item.
+void print_report(const ReplayResult& r, const ReplaySource& src, std::ostream& os) {
+  os << "hexdyn: replay: " << (r.reached_top ? "reached" : "did not reach")
+     << " the plan's end; final trunk position error " << r.final_position_error_m.norm() << " m\n";
+  if (!r.message.empty()) os << "hexdyn: replay: ended early: " << r.message << "\n";
+  for (std::size_t y = 0; y < r.cycle_end_s.size(); ++y)
+    os << "hexdyn: replay: cycle end t = " << r.cycle_end_s[y] << " s: drift "
+       << r.position_drift_m[y].transpose() << " m, " << r.orientation_drift_rad[y].transpose()
+       << " rad\n";
+  double slip = 0.0, slip_e = 0.0, damp = 0.0;
+  for (int l = 0; l < kLegs; ++l) {
+    slip += r.slip_distance_total_m[l];
+    slip_e += r.slip_energy_total_J[l];
+    damp += r.damping_total_J[l];
+  }
+  os << "hexdyn: replay: largest tracking error " << r.max_tracking_error_rad << " rad ("
+     << joint_label(r.max_tracking_error_joint, src.joint_names)
+     << ", t = " << r.max_tracking_error_time_s << " s)\n"
+     << "hexdyn: replay: slip " << slip << " m and " << slip_e << " J, contact damping " << damp
+     << " J, joint energy " << r.energy_J << " J (inverse dynamics " << r.energy_plan_J << " J)\n"
+     << "hexdyn: replay: balance of energy: joint work " << r.actuator_work_J << " J, residual "
+     << r.energy_residual_J << " J; " << r.steps << " steps (" << r.forced_steps
+     << " beyond the tolerance at the smallest step)\n";
+}
+
+}  // namespace
+
+int replay_command(const Args& args) {
+  const ReplaySource src = read_replay_source(args.input, args.overrides);
+  check_output_target(args.output, src.inputs);
+  for (const std::string& w : src.warnings) std::cerr << "hexdyn: warning: replay: " << w << "\n";
+  const RobotModel model = build_robot_model(src.scene.robot);
+  const ProgressScope progress(std::cerr, "replay", args.progress_s);
+  const ReplayResult r =
+      replay_plan(model, src.scene.contact, src.scene.replay, src.scene.terrain, src.plan);
+  write_replay_file(args.output, src, model, r);
+  print_report(r, src, std::cerr);
+  std::cerr << "hexdyn: wrote " << args.output << " (" << r.t_s.size() << " samples, " << r.steps
+            << " steps, " << r.seconds << " s)\n";
+  return 0;
+}
+
+}  // namespace hexdyn::cli
