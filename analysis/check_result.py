@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Checks a hexdyn-result/2 file against the contract (src/hexdyn/io/schema.hpp,
+"""Checks a hexdyn-result file against the contract (src/hexdyn/io/schema.hpp,
 docs/user/output.md).
 
     /usr/bin/python3 analysis/check_result.py FILE.h5 [--expect-mass 6.7] [--dynamics]
@@ -412,7 +412,7 @@ def check_allocation(c, res):
 
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("file", help="hexdyn-result/2 HDF5 file")
+    parser.add_argument("file", help="hexdyn-result HDF5 file")
     parser.add_argument("--expect-mass", type=float, default=None, metavar="KG",
                         help="also require the URDF total mass to equal KG (within 1e-9)")
     parser.add_argument("--dynamics", action="store_true",
@@ -425,10 +425,10 @@ def main(argv=None):
     try:
         res = hr.open_result(args.file)
     except (OSError, ValueError) as e:
-        c.check(False, "open as hexdyn-result/2", str(e))
+        c.check(False, "open as a hexdyn-result file", str(e))
         print(f"check_result: {c.passed} passed, {c.failed} failed")
         return 1
-    c.check(True, "open as hexdyn-result/2")
+    c.check(True, "open as a hexdyn-result file")
     check_meta(c, res)
     check_kinematics(c, res, args.expect_mass)
     if args.dynamics:

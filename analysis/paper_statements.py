@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Checks the paper's qualitative statements (§5) on a hexdyn-result/2 file.
+"""Checks the paper's qualitative statements (§5) on a hexdyn-result file.
 
 usage: /usr/bin/python3 analysis/paper_statements.py RESULT.h5 [--markdown]
 
@@ -122,7 +122,7 @@ def statements(res):
 
 def main(argv=None):
     ap = argparse.ArgumentParser(prog="paper_statements.py", description=__doc__.splitlines()[0])
-    ap.add_argument("result", help="a hexdyn-result/2 file with dynamics")
+    ap.add_argument("result", help="a hexdyn-result file with dynamics")
     ap.add_argument("--markdown", action="store_true", help="print a Markdown table")
     args = ap.parse_args(argv)
     try:

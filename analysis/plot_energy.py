@@ -153,7 +153,7 @@ def open_sweep_file(path):
         return hr.open_sweep(path)
     except ValueError as e:
         raise SystemExit(f"plot_energy: {path}: {e}; the energy breakdown reads a sweep file "
-                         "(hexdyn-sweep/2) of scenes with actuators")
+                         "(hexdyn-sweep) of scenes with actuators")
     except OSError as e:
         raise SystemExit(f"plot_energy: {path}: {e}")
 

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Kinematic figures of a hexdyn-result/2 file.
+"""Kinematic figures of a hexdyn-result file.
 
     /usr/bin/python3 analysis/plot_kinematics.py RESULT.h5 OUTDIR
 
@@ -143,7 +143,7 @@ def plot_feet_heights(res, outdir):
 
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("result", help="hexdyn-result/2 HDF5 file")
+    parser.add_argument("result", help="hexdyn-result HDF5 file")
     parser.add_argument("outdir", help="directory for the PNG files (created if missing)")
     args = parser.parse_args(argv)
     try:

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""The paper's figures from a hexdyn-result/2 file.
+"""The paper's figures from a hexdyn-result file.
 
 usage: /usr/bin/python3 analysis/plot_paper.py RESULT.h5 OUTDIR
 
@@ -180,7 +180,7 @@ def main(argv=None):
         prog="plot_paper.py", description=__doc__.strip().split("\n\n")[0],
         epilog=__doc__.strip().split("\n\n", 1)[1],
         formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("result", help="a hexdyn-result/2 file with dynamics")
+    ap.add_argument("result", help="a hexdyn-result file with dynamics")
     ap.add_argument("outdir", help="directory for the PNG files (created if missing)")
     args = ap.parse_args(argv)
     try:

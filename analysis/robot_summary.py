@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""What a robot's run needs and climbs, from its hexdyn-result/2 file alone.
+"""What a robot's run needs and climbs, from its hexdyn-result file alone.
 
     /usr/bin/python3 analysis/robot_summary.py RESULT.h5
 
@@ -24,7 +24,7 @@ import numpy as np
 
 def main(argv=None):
     ap = argparse.ArgumentParser(prog="robot_summary.py", description=__doc__.splitlines()[0])
-    ap.add_argument("result", help="a hexdyn-result/2 file with dynamics")
+    ap.add_argument("result", help="a hexdyn-result file with dynamics")
     args = ap.parse_args(argv)
     try:
         res = hr.open_result(args.result)
