@@ -20,39 +20,13 @@
 #include <vector>
 
 #include "hexdyn/config/config.hpp"
+#include "hexdyn/config/scene_key_table.hpp"
 #include "hexdyn/config/scene_tree.hpp"
 #include "hexdyn/config/yaml_load.hpp"
 #include "hexdyn/core/errors.hpp"
 #include "hexdyn/core/spatial.hpp"
 
 namespace hexdyn::scene_keys {
-
-constexpr double kInf = std::numeric_limits<double>::infinity();
-
-inline std::string fmt(double x) {
-  if (x == kInf) return "inf";
-  if (x == -kInf) return "-inf";
-  std::ostringstream s;
-  s << x;
-  return s.str();
-}
-
-/// Allowed interval of a number, with a readable description.
-struct Range {
-  double lo = -kInf, hi = kInf;
-  bool lo_open = false, hi_open = false;
-  bool contains(double x) const {
-    return (lo_open ? x > lo : x >= lo) && (hi_open ? x < hi : x <= hi);
-  }
-  std::string describe() const {
-    if (lo == -kInf && hi == kInf) return "a finite number";
-    return std::string("a number in ") + (lo_open ? "(" : "[") + fmt(lo) + ", " + fmt(hi) +
-           (hi_open ? ")" : "]");
-  }
-};
-inline Range closed(double lo, double hi) { return {lo, hi, false, false}; }
-inline Range positive(double hi = kInf) { return {0.0, hi, true, false}; }
-inline Range nonnegative(double hi = kInf) { return {0.0, hi, false, false}; }
 
 /// True when `text` is plain decimal notation: [-]digits[.digits][(e|E)[+|-]digits], or
 /// for `integer`, [-]digits without a leading zero. yaml-cpp's stream conversion reads
