@@ -96,7 +96,7 @@ int read_travel(Reader& r, GaitParams& g, const TerrainParams& t, double stride_
     r.fail_value("motion.travel", travel, "a map {distance: D} (m) or {treads: N}");
   for (const auto& kv : travel)
     if (kv.first.Scalar() != "distance" && kv.first.Scalar() != "treads")
-      r.fail("motion.travel." + kv.first.Scalar(), "unknown key, allowed here: distance, treads");
+      r.fail_unknown("motion.travel." + kv.first.Scalar(), {"distance", "treads"});
   const bool by_distance = travel["distance"].IsDefined() && !travel["distance"].IsNull();
   const bool by_treads = travel["treads"].IsDefined() && !travel["treads"].IsNull();
   if (by_distance == by_treads)
