@@ -10,6 +10,7 @@
 #include "hexdyn/config/scene_key_reader.hpp"
 #include "hexdyn/config/scene_readers.hpp"
 #include "hexdyn/config/scene_tree.hpp"
+#include "hexdyn/config/table_keys.hpp"
 #include "hexdyn/config/yaml_load.hpp"
 #include "hexdyn/core/errors.hpp"
 #include "hexdyn/model/stance.hpp"
@@ -105,7 +106,7 @@ Scene scene_from_tree(const SceneTree& tree, const std::string& source_name, boo
                                                             : "motion.cycles");
   if (!emit_resolved) return s;
   YAML::Emitter out;
-  out << requests_last(r.resolved());
+  out << requests_last(in_table_order(r.resolved()));
   s.resolved_yaml = std::string(out.c_str()) + "\n";
   return s;
 }

@@ -129,13 +129,6 @@ void add_replay(std::deque<SceneKey>& t) {
 void add_allocation(std::deque<SceneKey>& t) {
   const std::string_view s = "allocation";
   const KeyRead table = KeyRead::kTable;
-  t.push_back({.path = "allocation.solver",
-               .section = s,
-               .kind = KeyKind::kChoice,
-               .choices = "auto active-set ipopt",
-               .meaning = "`auto` is `active-set`: hexdyn's dense dual active-set QP, and for the "
-                          "exact cone the same QP under sequential outer approximation; `ipopt`: "
-                          "Ipopt, the reference, for every friction model"});
   t.push_back({.path = "allocation.friction",
                .section = s,
                .kind = KeyKind::kChoice,
@@ -144,6 +137,13 @@ void add_allocation(std::deque<SceneKey>& t) {
                           "cone \\|F_t\\| ≤ μ F_n",
                .read = table,
                .field = f::choice<&Scene::allocation, &AllocationParams::friction>()});
+  t.push_back({.path = "allocation.solver",
+               .section = s,
+               .kind = KeyKind::kChoice,
+               .choices = "auto active-set ipopt",
+               .meaning = "`auto` is `active-set`: hexdyn's dense dual active-set QP, and for the "
+                          "exact cone the same QP under sequential outer approximation; `ipopt`: "
+                          "Ipopt, the reference, for every friction model"});
   t.push_back({.path = "allocation.torque_limit",
                .section = s,
                .range = positive(kMaxJointEffort_Nm),

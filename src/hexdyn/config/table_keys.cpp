@@ -1,5 +1,7 @@
 #include "hexdyn/config/table_keys.hpp"
 
+#include <algorithm>
+#include <limits>
 #include <stdexcept>
 
 namespace hexdyn::scene_keys {
@@ -87,6 +89,34 @@ void read_table_keys(Reader& r, Scene& s, std::string_view section) {
                                "choices only");
     }
   }
+}
+
+YAML::Node in_table_order(const YAML::Node& resolved) {
+  const auto& table = scene_key_table();
+  YAML::Node out(YAML::NodeType::Map);
+  for (const auto& group : resolved) {
+    const std::string name = group.first.Scalar();
+    const bool read_by_table = std::any_of(table.begin(), table.end(), [&](const SceneKey& k) {
+      return k.read == KeyRead::kTable && k.path.starts_with(name + ".");
+    });
+    if (!read_by_table || !group.second.IsMap()) {
+      out[name] = group.second;
+      continue;
+    }
+    std::vector<std::pair<std::size_t, std::string>> keys;  // (row, key), in the order read
+    for (const auto& kv : group.second) {
+      const SceneKey* row = find_scene_key(name + "." + kv.first.Scalar());
+      std::size_t index = 0;  // the row's place in the table (a deque: counted, not subtracted)
+      while (index < table.size() && &table[index] != row) ++index;
+      keys.emplace_back(row ? index : std::numeric_limits<std::size_t>::max(), kv.first.Scalar());
+    }
+    std::stable_sort(keys.begin(), keys.end(),
+                     [](const auto& a, const auto& b) { return a.first < b.first; });
+    YAML::Node ordered(YAML::NodeType::Map);
+    for (const auto& [row, key] : keys) ordered[key] = group.second[key];
+    out[name] = ordered;
+  }
+  return out;
 }
 
 }  // namespace hexdyn::scene_keys

@@ -36,4 +36,9 @@ std::string choice_key(Reader& r, const std::string& path);
 /// into `s` through the rows' fields.
 void read_table_keys(Reader& r, Scene& s, std::string_view section);
 
+/// `resolved` (a Reader's resolved tree) with the keys of each group the table reads
+/// (KeyRead::kTable) in the order of the table's rows, those without a row after them in the
+/// order read: the resolved configuration lists keys as the docs do, whichever code read them.
+YAML::Node in_table_order(const YAML::Node& resolved);
+
 }  // namespace hexdyn::scene_keys
