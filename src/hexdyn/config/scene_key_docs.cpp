@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <utility>
 
 #include "hexdyn/config/scene_key_table.hpp"
 
@@ -97,6 +98,17 @@ std::string key_cell(const SceneKey& k) {
   return "`" + key_path(k, words[0]) + "` (same for " + others + ")";
 }
 
+/// `meaning` with its links written from the repository's root (as code cites docs:
+/// `[x](docs/theory/model.md#sphere-feet)`) made relative to docs/user/, the page's folder.
+std::string page_links(std::string_view meaning) {
+  std::string text(meaning);
+  for (const auto& [from, to] : {std::pair<std::string, std::string>{"](docs/user/", "]("},
+                                 std::pair<std::string, std::string>{"](docs/", "](../"}})
+    for (std::size_t at; (at = text.find(from)) != std::string::npos;)
+      text.replace(at, from.size(), to);
+  return text;
+}
+
 }  // namespace
 
 std::string doc_number(double x) {
@@ -132,7 +144,7 @@ std::string scene_key_markdown(std::string_view section) {
   for (const SceneKey& k : scene_key_table()) {
     if (k.section != section) continue;
     out += "| " + key_cell(k) + " | " + allowed(k) + " | " + default_cell(k) + " | " +
-           std::string(k.meaning) + " |\n";
+           page_links(k.meaning) + " |\n";
   }
   return out;
 }

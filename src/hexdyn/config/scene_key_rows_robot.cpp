@@ -15,14 +15,19 @@ namespace {
 
 const Range kCoordinate = closed(-kMaxRobotCoordinate_m, kMaxRobotCoordinate_m);
 
+/// Mass, inertia and COM of the trunk, the payload and the three links of every leg.
 void add_bodies(std::deque<SceneKey>& t) {
-  t.push_back({.path = "robot.trunk.mass",
+  const std::string_view bodies = "trunk payload coxa femur tibia";
+  t.push_back({.path = "robot.*.mass",
+               .instances = bodies,
                .section = "robot",
                .range = positive(kMaxBodyMass_kg),
                .unit = "kg",
                .required = true,
-               .meaning = "trunk structure"});
-  t.push_back({.path = "robot.trunk.inertia",
+               .meaning = "mass of the trunk structure, of the payload (a body rigidly fixed to "
+                          "the trunk) and of each link"});
+  t.push_back({.path = "robot.*.inertia",
+               .instances = bodies,
                .section = "robot",
                .kind = KeyKind::kNumbers,
                .range = positive(kMaxPrincipalInertia_kgm2),
@@ -31,8 +36,11 @@ void add_bodies(std::deque<SceneKey>& t) {
                .unit = "kg m^2",
                .required = true,
                .allowed_text = "3 numbers in (0, 1e3] kg m², each at most the sum of the other two",
-               .meaning = "principal moments Ixx, Iyy, Izz about the COM, trunk axes"});
-  t.push_back({.path = "robot.trunk.com",
+               .meaning = "principal moments Ixx, Iyy, Izz about the body's COM: trunk axes for "
+                          "the trunk and the payload; a link's own frame (x along the link from "
+                          "its joint, z the trunk normal at zero angles)"});
+  t.push_back({.path = "robot.*.com",
+               .instances = "trunk payload",
                .section = "robot",
                .kind = KeyKind::kNumbers,
                .range = kCoordinate,
@@ -41,32 +49,17 @@ void add_bodies(std::deque<SceneKey>& t) {
                .unit = "m",
                .default_text = "`[0, 0, 0]`",
                .meaning = "COM in the trunk frame"});
-  t.push_back({.path = "robot.payload.mass",
-               .section = "robot",
-               .range = positive(kMaxBodyMass_kg),
-               .unit = "kg",
-               .required = true,
-               .allowed_text = "as `robot.trunk.mass`",
-               .meaning = "a body rigidly fixed to the trunk"});
-  t.push_back({.path = "robot.payload.inertia",
-               .section = "robot",
-               .kind = KeyKind::kNumbers,
-               .range = positive(kMaxPrincipalInertia_kgm2),
-               .min_count = 3,
-               .max_count = 3,
-               .unit = "kg m^2",
-               .required = true,
-               .allowed_text = "as `robot.trunk.inertia`",
-               .meaning = "its principal moments about its COM"});
-  t.push_back({.path = "robot.payload.com",
+  t.push_back({.path = "robot.*.com",
+               .instances = "coxa femur tibia",
                .section = "robot",
                .kind = KeyKind::kNumbers,
                .range = kCoordinate,
                .min_count = 3,
                .max_count = 3,
                .unit = "m",
-               .default_text = "`[0, 0, 0]`",
-               .meaning = "its COM in the trunk frame"});
+               .default_text = "`[length/2, 0, 0]` (`uniform_density`: "
+                               "`[reference_length/2, 0, 0]`)",
+               .meaning = "COM in the link frame"});
 }
 
 void add_links(std::deque<SceneKey>& t) {
@@ -86,36 +79,6 @@ void add_links(std::deque<SceneKey>& t) {
                .required = true,
                .meaning = "joint offsets d1, d2, d3 (read as DH link offsets along the joint "
                           "axes; see the comments of `configs/paper.yaml`)"});
-  t.push_back({.path = "robot.*.mass",
-               .instances = links,
-               .section = "robot",
-               .range = positive(kMaxBodyMass_kg),
-               .unit = "kg",
-               .required = true,
-               .meaning = "each link's mass, in its link frame (x along the link from its "
-                          "joint, z the trunk normal at zero angles)"});
-  t.push_back({.path = "robot.*.inertia",
-               .instances = links,
-               .section = "robot",
-               .kind = KeyKind::kNumbers,
-               .range = positive(kMaxPrincipalInertia_kgm2),
-               .min_count = 3,
-               .max_count = 3,
-               .unit = "kg m^2",
-               .required = true,
-               .allowed_text = "as `robot.trunk.inertia`",
-               .meaning = "each link's principal moments about its COM, link axes"});
-  t.push_back({.path = "robot.*.com",
-               .instances = links,
-               .section = "robot",
-               .kind = KeyKind::kNumbers,
-               .range = kCoordinate,
-               .min_count = 3,
-               .max_count = 3,
-               .unit = "m",
-               .default_text = "`[length/2, 0, 0]` (`uniform_density`: "
-                               "`[reference_length/2, 0, 0]`)",
-               .meaning = "COM in the link frame"});
   t.push_back({.path = "robot.*.limits",
                .instances = links,
                .section = "robot",
@@ -187,7 +150,7 @@ void add_robot_options(std::deque<SceneKey>& t) {
                .meaning = "a sphere foot of this radius centred at each tibia's end (l3, 0, 0): "
                           "it touches r below its centre along the surface normal, where the "
                           "terrain's forces act; 0 is the paper's point foot "
-                          "([docs/theory/model.md](../theory/model.md#sphere-feet))",
+                          "([docs/theory/model.md](docs/theory/model.md#sphere-feet))",
                .field = f::number<&Scene::robot, &RobotParams::foot_radius_m>()});
   t.push_back(
       {.path = "robot.links_follow_length",
@@ -200,7 +163,7 @@ void add_robot_options(std::deque<SceneKey>& t) {
            "`reference_length`; a link of length L is that link stretched along its axis "
            "by r = L / reference_length at the same density: mass × r, COM x × r, inertia "
            "about its axis × r, the other two moments r³ Σ_xx + r Σ_zz and r³ Σ_xx + r "
-           "Σ_yy ([docs/theory/model.md](../theory/model.md#links-that-follow-their-length))"});
+           "Σ_yy ([docs/theory/model.md](docs/theory/model.md#links-that-follow-their-length))"});
   t.push_back({.path = "robot.*.reference_length",
                .instances = "coxa femur tibia",
                .section = "robot",
@@ -261,7 +224,7 @@ void add_urdf_robot(std::deque<SceneKey>& t) {
                .unit = "m",
                .default_text = "the sphere `<collision>` foot's radius, else `0`",
                .meaning = "every foot a sphere of this radius centred at its foot point "
-                          "([docs/theory/model.md](../theory/model.md#sphere-feet)); 0 a point "
+                          "([docs/theory/model.md](docs/theory/model.md#sphere-feet)); 0 a point "
                           "foot"});
   t.push_back({.path = "robot.nominal_pose",
                .section = s,

@@ -68,7 +68,7 @@ void add_contact(std::deque<SceneKey>& t) {
                .unit = "1",
                .default_text = "`contact.friction_coefficient`",
                .meaning = "μ_s of the forward replay's friction law "
-                          "([replay](../theory/replay.md#tangential-force))"});
+                          "([replay](docs/theory/replay.md#tangential-force))"});
   t.push_back({.path = "contact.dynamic_friction",
                .section = s,
                .range = positive(10.0),
@@ -182,7 +182,7 @@ void add_allocation(std::deque<SceneKey>& t) {
                .choices = "torque_squared copper_loss",
                .meaning = "Σ τ² (the paper's eq. 9; with actuators, of the drive torques), or "
                           "the actuators' copper loss Σ R I² (needs `actuators`; "
-                          "[drive-train.md](../theory/drive-train.md#objective))",
+                          "[drive-train.md](docs/theory/drive-train.md#objective))",
                .field = f::choice<&Scene::allocation, &AllocationParams::objective>()});
 }
 
@@ -229,29 +229,31 @@ void add_output(std::deque<SceneKey>& t) {
                .meaning = "adaptive: relative error the grid is refined to, for the energies "
                           "(total and per joint) and the peaks (joint torque, total power, "
                           "contact force); `0`: the grid as built, not refined "
-                          "([error control](../theory/output-grid.md#error-control))",
+                          "([error control](docs/theory/output-grid.md#error-control))",
                .read = table,
                .field = f::number<&Scene::output, &OutputParams::tolerance>()});
   t.push_back({.path = "output.compression",
                .section = s,
                .kind = KeyKind::kChoice,
                .choices = "deflate none",
-               .meaning = "`deflate`: numeric datasets of at least 4 KiB chunked and compressed "
-                          "with shuffle + deflate; `none`: every dataset contiguous and "
-                          "uncompressed, about 1.7 times the size and faster to read "
-                          "([output.md](output.md#compression)). A sweep's or envelope's own "
-                          "datasets follow its base scene",
+               .meaning =
+                   "`deflate`: numeric datasets of at least 4 KiB chunked and compressed "
+                   "with shuffle + deflate; `none`: every dataset contiguous and "
+                   "uncompressed, about 1.7 times the size and faster to read "
+                   "([output.md](docs/user/output.md#compression)). A sweep's or envelope's own "
+                   "datasets follow its base scene",
                .read = table,
                .field = f::flag<&Scene::output, &OutputParams::compress>()});
   t.push_back({.path = "output.required_friction",
                .section = s,
                .kind = KeyKind::kChoice,
                .choices = "true false",
-               .meaning = "compute each sample's required friction, the least μ for which its "
-                          "rows admit a force distribution, and write "
-                          "`/contacts/required_friction` and `/contacts/required_friction_leg` "
-                          "([theory/grip.md](../theory/grip.md#required-friction)); `false` saves "
-                          "its cost (the utilised friction and the slip flags are always written)",
+               .meaning =
+                   "compute each sample's required friction, the least μ for which its "
+                   "rows admit a force distribution, and write "
+                   "`/contacts/required_friction` and `/contacts/required_friction_leg` "
+                   "([theory/grip.md](docs/theory/grip.md#required-friction)); `false` saves "
+                   "its cost (the utilised friction and the slip flags are always written)",
                .read = table,
                .field = f::flag<&Scene::output, &OutputParams::required_friction>()});
 }

@@ -99,7 +99,8 @@ struct SceneKey {
   /// them with the condition under which the key applies ("stairs").
   std::string_view allowed_text{};
   std::string_view when{};
-  std::string_view meaning{};  ///< the docs' meaning column (Markdown)
+  /// The docs' meaning column (Markdown; links from the repository's root, docs/theory/...).
+  std::string_view meaning{};
   KeyRead read = KeyRead::kCode;
   KeyField field{};
 };

@@ -17,7 +17,9 @@ TEST_CASE("config: every row of the key table can be read and documented", "[con
   for (const SceneKey& k : scene_key_table()) {
     INFO(k.path);
     CHECK(!k.path.empty());
-    CHECK(seen.insert({std::string(k.path), std::string(k.section)}).second);  // once a table
+    CHECK(
+        seen.insert({std::string(k.path) + " " + std::string(k.instances), std::string(k.section)})
+            .second);  // once a table
     CHECK((k.path.find('*') == std::string_view::npos) == k.instances.empty());
     if (k.kind == KeyKind::kChoice) CHECK(!key_words(k.choices).empty());
     if (k.kind == KeyKind::kNumbers) CHECK((k.min_count >= 1 && k.min_count <= k.max_count));
