@@ -172,7 +172,7 @@ DriveTrainParams read_actuators(Reader& r, const JointFacts& joints) {
     const std::string key = kv.first.as<std::string>();
     if (key != "default" && key != "joints" && key != kTypes[0] && key != kTypes[1] &&
         key != kTypes[2])
-      r.fail("actuators." + key, "unknown key, allowed here: coxa, default, femur, joints, tibia");
+      r.fail_unknown("actuators." + key, {"coxa", "default", "femur", "joints", "tibia"});
   }
   const Entry all = read_entry(r, "actuators.default");
   std::array<Entry, kJointsPerLeg> by_type;

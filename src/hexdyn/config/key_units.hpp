@@ -1,7 +1,7 @@
 #pragma once
 /// \file key_units.hpp
 /// The unit of every numeric scene key (docs/user/configuration.md#keys-by-group), as a
-/// UDUNITS-2 string: the one table of what unit a key's value is in. A sweep file writes
+/// UDUNITS-2 string, from the key's row of scene_key_table.hpp. A sweep file writes
 /// it as the `units` of an axis over that key (io/schema.hpp kAxisNumbers).
 #include <string>
 

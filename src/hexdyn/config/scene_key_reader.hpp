@@ -1,9 +1,11 @@
 #pragma once
 /// \file scene_key_reader.hpp
-/// Internal to config/ (config.cpp, actuators.cpp): the key-by-key reader of a scene tree. It reads
-/// keys by dotted path with their allowed ranges, records every key asked for (so an unknown key is
-/// named with the allowed ones) and builds the resolved tree with the defaults filled in. Every
-/// failure throws ConfigError "SOURCE: key.path: got VALUE, expected WHAT". Messages are built only
+/// Internal to config/: the key-by-key reader of a scene tree. It reads keys by dotted path with
+/// their allowed ranges (the rows of scene_key_table.hpp, through table_keys.hpp), records every
+/// key asked for (so an unknown key is named with the allowed ones) and builds the resolved tree
+/// with the defaults filled in. It is a SpecReader (spec_reader.hpp), whose one error format
+/// sweep and envelope files share: every failure throws ConfigError "SOURCE: key.path: got
+/// VALUE, expected WHAT". Messages are built only
 /// when a key fails, and the resolved tree only when asked for: a sweep reads a scene per scenario.
 #include <yaml-cpp/yaml.h>
 
@@ -20,39 +22,14 @@
 #include <vector>
 
 #include "hexdyn/config/config.hpp"
+#include "hexdyn/config/scene_key_table.hpp"
 #include "hexdyn/config/scene_tree.hpp"
+#include "hexdyn/config/spec_reader.hpp"
 #include "hexdyn/config/yaml_load.hpp"
 #include "hexdyn/core/errors.hpp"
 #include "hexdyn/core/spatial.hpp"
 
 namespace hexdyn::scene_keys {
-
-constexpr double kInf = std::numeric_limits<double>::infinity();
-
-inline std::string fmt(double x) {
-  if (x == kInf) return "inf";
-  if (x == -kInf) return "-inf";
-  std::ostringstream s;
-  s << x;
-  return s.str();
-}
-
-/// Allowed interval of a number, with a readable description.
-struct Range {
-  double lo = -kInf, hi = kInf;
-  bool lo_open = false, hi_open = false;
-  bool contains(double x) const {
-    return (lo_open ? x > lo : x >= lo) && (hi_open ? x < hi : x <= hi);
-  }
-  std::string describe() const {
-    if (lo == -kInf && hi == kInf) return "a finite number";
-    return std::string("a number in ") + (lo_open ? "(" : "[") + fmt(lo) + ", " + fmt(hi) +
-           (hi_open ? ")" : "]");
-  }
-};
-inline Range closed(double lo, double hi) { return {lo, hi, false, false}; }
-inline Range positive(double hi = kInf) { return {0.0, hi, true, false}; }
-inline Range nonnegative(double hi = kInf) { return {0.0, hi, false, false}; }
 
 /// True when `text` is plain decimal notation: [-]digits[.digits][(e|E)[+|-]digits], or
 /// for `integer`, [-]digits without a leading zero. yaml-cpp's stream conversion reads
@@ -99,32 +76,13 @@ bool decode_scalar(const SceneTree::Node& n, T& v) {
 
 /// Reads keys by dotted path, records every key it was asked for (so unknown keys can
 /// be reported with the allowed ones), and builds the resolved tree with defaults.
-class Reader {
+class Reader : public SpecReader {
  public:
   /// Reads `tree` (which must outlive the reader); with `keep_resolved` false, resolved()
   /// stays an empty map.
   Reader(const SceneTree& tree, std::string source, bool keep_resolved = true)
-      : tree_(tree), source_(std::move(source)), keep_resolved_(keep_resolved) {
+      : SpecReader(std::move(source)), tree_(tree), keep_resolved_(keep_resolved) {
     resolved_ = YAML::Node(YAML::NodeType::Map);
-  }
-
-  [[noreturn]] void fail(const std::string& path, const std::string& what) const {
-    throw ConfigError(source_ + ": " + path + ": " + what);
-  }
-  [[noreturn]] void fail_value(const std::string& path, const YAML::Node& node,
-                               const std::string& expected) const {
-    fail(path, "got " + yaml_for_message(node) + ", expected " + expected);
-  }
-  /// Refuses the first quoted number (is_quoted_number) in `node` or in the lists in it, named
-  /// by its path ("key[2][0]"), where a number `expected` is wanted.
-  void refuse_quoted_numbers(const std::string& path, const YAML::Node& node,
-                             const std::string& expected) const {
-    if (node.IsSequence()) {
-      for (std::size_t i = 0; i < node.size(); ++i)
-        refuse_quoted_numbers(path + "[" + std::to_string(i) + "]", node[i], expected);
-    } else if (is_quoted_number(node)) {
-      fail(path, quoted_number_message(node, expected));
-    }
   }
 
   /// True when the key holds the scalar `word` (then recorded as resolved); the key
@@ -295,7 +253,6 @@ class Reader {
   }
 
   const YAML::Node& resolved() const { return resolved_; }
-  const std::string& source() const { return source_; }
 
  private:
   double number_impl(const std::string& path, Range r, const double* def) {
@@ -363,8 +320,7 @@ class Reader {
         if (begin > 0)
           for (const auto& key : split_key_path(path.substr(0, begin - 1)))
             so_far += (so_far.empty() ? "" : ".") + key;
-        fail_value(so_far.empty() ? "(top level)" : so_far, SceneTree::yaml(*cur),
-                   "a mapping of keys");
+        fail_not_map(so_far, SceneTree::yaml(*cur));
       }
       cur = SceneTree::find(*cur, std::string_view(path).substr(begin, dot - begin));
       if (cur && reached) reached->push_back({cur, dot == path.size()});
@@ -421,23 +377,20 @@ class Reader {
         }
       }
       if (!known) {
-        std::set<std::string> allowed;
+        std::vector<std::string> allowed;
         for (const auto& a : asked_) {
           if (prefix.empty() || a.rfind(prefix + ".", 0) == 0) {
             const std::string rest = prefix.empty() ? a : a.substr(prefix.size() + 1);
-            allowed.insert(rest.substr(0, rest.find('.')));
+            allowed.push_back(rest.substr(0, rest.find('.')));
           }
         }
-        std::string list;
-        for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
-        fail(path, "unknown key, allowed here: " + list);
+        fail_unknown(path, allowed);
       }
       if (!asked) walk(*kv.value, path);
     }
   }
 
   const SceneTree& tree_;
-  std::string source_;
   bool keep_resolved_ = true;
   std::vector<std::string> asked_;  ///< the paths asked for (sorted when an entry needs them)
   bool asked_sorted_ = false;

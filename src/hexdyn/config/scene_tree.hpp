@@ -1,6 +1,6 @@
 #pragma once
 /// \file scene_tree.hpp
-/// Internal to config/config.cpp and sweep/scenario_factory.cpp: a scene's YAML tree as the
+/// Internal to config/ and sweep/scenario_factory.cpp: a scene's YAML tree as the
 /// key reader (config/scene_key_reader.hpp) walks it, each map's entries held in file order
 /// with their key text. A sweep converts its base tree once; a scenario's tree is the base
 /// with its axis values set, sharing every map it does not change with the base (setting

@@ -261,7 +261,7 @@ struct OutputParams {
   bool required_friction = true;
 };
 
-/// A default-constructed Scene holds the default of every optional scene key (config.cpp
+/// A default-constructed Scene holds the default of every optional scene key (the key table
 /// reads them from here: docs/user/configuration.md); fields of keys a scene must give hold
 /// the paper's values only as examples.
 struct Scene {
