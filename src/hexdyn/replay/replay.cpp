@@ -105,7 +105,7 @@ struct Integrator {
   double h_next = 0.0;  ///< the next step to try [s]
   /// Per plan instant: the planned centre of mass's height and the terrain's under it [m]
   /// (the fall test, fall_reason).
-  std::vector<double> plan_com_z_m, plan_ground_z_m;
+  std::vector<double> plan_com_z_m{}, plan_ground_z_m{};
 };
 
 /// The error control halves a step at most this many times below replay.step: a step of
