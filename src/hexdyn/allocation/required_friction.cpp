@@ -100,8 +100,7 @@ NewtonEnd RequiredFrictionSolver::Impl::newton(const AllocationLayout& layout,
       const double bound = a.side > 0 ? work.upper[a.row] : work.lower[a.row];
       g[i] = work.C.row(a.row).dot(x) - bound;
     }
-    lu.compute(J);
-    if (!(std::abs(lu.determinant()) > 0.0)) return NewtonEnd::kFailed;
+    if (!lu.compute(J)) return NewtonEnd::kFailed;
     if (it > opt.newton_iterations) break;
     const MuVector step = lu.solve(-g);
     if (!step.allFinite()) return NewtonEnd::kFailed;
@@ -132,7 +131,7 @@ NewtonEnd RequiredFrictionSolver::Impl::check(const AllocationLayout& layout,
   }
   MuVector e = MuVector::Zero(n + 1);
   e[n] = 1.0;
-  lambda = lu.transpose().solve(e);
+  lambda = lu.solve_transpose(e);
   if (!lambda.allFinite()) return NewtonEnd::kFailed;
   double worst = 0.0;
   bad_row = -1;
@@ -168,9 +167,11 @@ NewtonEnd RequiredFrictionSolver::Impl::check(const AllocationLayout& layout,
   if (bad_row >= 0) return NewtonEnd::kWrongSign;
   // A zero multiplier: a degenerate vertex, where the bilinear rows may still let μ fall
   // along a direction that keeps that row's side (docs/theory/grip.md#degenerate-vertices).
-  // A probe just below settles it as a bisection's bracket would.
+  // The rows of the set settle it when they admit no forces at μ − tolerance (a Farkas
+  // certificate); else a probe there, as a bisection's bracket would.
   if (degenerate && mu > opt.tolerance) {
-    const bool lower = feasible_at(layout, mu - opt.tolerance, x_scratch);
+    const bool lower = !infeasible_below(layout, set, mu - opt.tolerance) &&
+                       feasible_at(layout, mu - opt.tolerance, x_scratch);
     set_friction_coefficient(layout, mu, work);
     if (lower) return NewtonEnd::kFailed;
   }
@@ -193,6 +194,42 @@ NewtonEnd RequiredFrictionSolver::Impl::check(const AllocationLayout& layout,
   return NewtonEnd::kCertified;
 }
 
+/// Whether the rows of `set` alone admit no forces at μ' = mu_low < z's μ (x at z): then no
+/// μ ≤ mu_low admits the problem (docs/theory/grip.md#degenerate-vertices). A Farkas
+/// certificate: ν with J(x, μ')ᵀ ν = e_μ makes Σ ν_i g_i(·, μ') constant in the forces, equal to
+/// its value at x, which the rows' linearity in μ at fixed forces makes about μ' − μ < 0;
+/// with σ_i ν_i ≤ 0 on every inequality row of the set, a point that held the rows would
+/// make it ≥ 0. Leaves work at mu_low.
+bool RequiredFrictionSolver::Impl::infeasible_below(const AllocationLayout& layout,
+                                                    const std::vector<MuRow>& set, double mu_low) {
+  const int n = work.variables();
+  set_friction_coefficient(layout, mu_low, work);
+  MuVector g(n + 1);
+  for (int i = 0; i <= n; ++i) {
+    const MuRow& a = set[static_cast<std::size_t>(i)];
+    J.row(i).head(n) = work.C.row(a.row);
+    J(i, n) = row_mu_derivative(layout, x, a.row, a.side);
+    g[i] = work.C.row(a.row).dot(x) - (a.side > 0 ? work.upper[a.row] : work.lower[a.row]);
+  }
+  if (!farkas.compute(J)) return false;
+  MuVector e = MuVector::Zero(n + 1);
+  e[n] = 1.0;
+  const MuVector nu = farkas.solve_transpose(e);
+  if (!nu.allFinite()) return false;
+  // Σ ν_i c_i vanishes only to the rounding of the solve, about 1e-16 ‖ν‖ ‖J‖ (1e-13 with a
+  // margin), which a point at the distance of the forces' own size would turn into that much
+  // of G: a certificate only where that stays below a quarter of μ − μ'. A multiplier within
+  // the same 1e-13 ‖ν‖ of zero is zero to rounding (a row the others determine, such as a
+  // second face of a leg without load): its sign is noise, its term within that bound.
+  const double zero = 1e-13 * nu.lpNorm<Eigen::Infinity>();
+  for (int i = 0; i <= n; ++i)
+    if (set[static_cast<std::size_t>(i)].side * nu[i] > zero) return false;
+  const double gap = z[n] - mu_low;
+  const double rounding =
+      zero * J.cwiseAbs().rowwise().sum().maxCoeff() * (1.0 + x.lpNorm<Eigen::Infinity>());
+  return rounding < 0.25 * gap && nu.dot(g) < -0.5 * gap;
+}
+
 /// The dual simplex's leaving row for the violated row (bad_row, bad_side) entering: with
 /// h_i = σ_i g_i ≤ 0 the rows in ≤ form (σ the side) and ν_i = −σ_i λ_i ≥ 0 their
 /// multipliers, the entering row's multiplier t moves them as ν − t β, β_i = σ_i σ_j α_i,
@@ -200,7 +237,7 @@ NewtonEnd RequiredFrictionSolver::Impl::check(const AllocationLayout& layout,
 int RequiredFrictionSolver::Impl::dual_ratio_leaving(const AllocationLayout& layout,
                                                      const std::vector<MuRow>& set) {
   const int n = work.variables();
-  const MuVector alpha = lu.transpose().solve(gradient(layout, bad_row, bad_side));
+  const MuVector alpha = lu.solve_transpose(gradient(layout, bad_row, bad_side));
   int leave = -1;
   double best = std::numeric_limits<double>::infinity();
   for (int i = kTrunkRows; i <= n; ++i) {

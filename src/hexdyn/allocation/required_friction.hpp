@@ -25,7 +25,8 @@
 ///    use. From the upper bound the allocation itself gives (the friction its forces use) down
 ///    to a bracket of `tolerance`, with a Newton attempt from the rows nearest to active (and
 ///    linearly independent) each time the bracket has narrowed fourfold. A Newton answer at a
-///    degenerate vertex (a zero multiplier) counts only when a probe at μ − `tolerance` fails.
+///    degenerate vertex (a zero multiplier) counts only when μ − `tolerance` is infeasible: a
+///    Farkas certificate from its own rows, else a probe there.
 ///  - The exact cone: its cones become outer polygons of 16 faces that gather around each
 ///    leg's force direction until the polygon's μ* (a lower bound) and the cone use of its
 ///    forces (an upper bound) meet within `tolerance` (docs/theory/grip.md#the-exact-cone).

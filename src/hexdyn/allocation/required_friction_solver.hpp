@@ -6,7 +6,6 @@
 /// interface. Sizes: at most kLegs support legs of 3 forces, so the Newton system is at most
 /// kMaxUnknowns = 19 square.
 #include <Eigen/Core>
-#include <Eigen/LU>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -36,6 +35,65 @@ inline constexpr int kConeFaces = 16;
 /// verdict (kViolationThreshold), so that a probe's friction use is μ* to about 1e-8.
 inline constexpr double kProbeThreshold = 1e-8;
 inline constexpr std::uint64_t kConePolygonKey = std::uint64_t{1} << 62;
+
+/// LU factorisation with partial pivoting of a Newton matrix J (at most kMaxUnknowns square,
+/// in a buffer of fixed capacity), unblocked: at this size Eigen's PartialPivLU takes its
+/// blocked path (above 16 columns), and the Newton attempts of a sample factor J ten times or
+/// so (bench/RESULTS.md, "Required friction on the stairs range").
+class MuLu {
+ public:
+  /// P J = L U; false when a pivot is zero or not finite (J singular to the working precision).
+  bool compute(const MuMatrix& J) {
+    n_ = static_cast<int>(J.rows());
+    a_.topLeftCorner(n_, n_) = J;
+    for (int k = 0; k < n_; ++k) {
+      int p = k;
+      double best = std::abs(a_(k, k));
+      for (int i = k + 1; i < n_; ++i)
+        if (std::abs(a_(i, k)) > best) best = std::abs(a_(p = i, k));
+      if (!(best > 0.0) || !std::isfinite(best)) return false;
+      perm_[static_cast<std::size_t>(k)] = p;
+      if (p != k) a_.row(k).head(n_).swap(a_.row(p).head(n_));
+      const double inv = 1.0 / a_(k, k);
+      for (int i = k + 1; i < n_; ++i) {
+        const double l = a_(i, k) * inv;
+        a_(i, k) = l;
+        if (l != 0.0)
+          for (int j = k + 1; j < n_; ++j) a_(i, j) -= l * a_(k, j);
+      }
+    }
+    return true;
+  }
+  /// The solution of J v = b.
+  MuVector solve(const MuVector& b) const {
+    MuVector v = b;
+    for (int k = 0; k < n_; ++k) std::swap(v[k], v[perm_[static_cast<std::size_t>(k)]]);
+    for (int i = 1; i < n_; ++i)
+      for (int j = 0; j < i; ++j) v[i] -= a_(i, j) * v[j];
+    for (int i = n_ - 1; i >= 0; --i) {
+      for (int j = i + 1; j < n_; ++j) v[i] -= a_(i, j) * v[j];
+      v[i] /= a_(i, i);
+    }
+    return v;
+  }
+  /// The solution of Jᵀ v = b.
+  MuVector solve_transpose(const MuVector& b) const {
+    MuVector v = b;
+    for (int i = 0; i < n_; ++i) {
+      for (int j = 0; j < i; ++j) v[i] -= a_(j, i) * v[j];
+      v[i] /= a_(i, i);
+    }
+    for (int i = n_ - 1; i >= 0; --i)
+      for (int j = i + 1; j < n_; ++j) v[i] -= a_(j, i) * v[j];
+    for (int k = n_ - 1; k >= 0; --k) std::swap(v[k], v[perm_[static_cast<std::size_t>(k)]]);
+    return v;
+  }
+
+ private:
+  Eigen::Matrix<double, kMaxUnknowns, kMaxUnknowns, Eigen::RowMajor> a_;
+  std::array<int, kMaxUnknowns> perm_{};
+  int n_ = 0;
+};
 
 /// An active row: `side` +1 at its upper bound, −1 at its lower bound, 0 both (a trunk row).
 struct MuRow {
@@ -83,7 +141,8 @@ struct RequiredFrictionSolver::Impl {
   Eigen::VectorXd x;
   MuVector lambda;
   MuMatrix J;
-  Eigen::PartialPivLU<MuMatrix> lu;
+  MuLu lu;      ///< of J at the last Newton iterate
+  MuLu farkas;  ///< of J at μ − tolerance (infeasible_below)
   int newton_leg = -1;
   bool negative_mu = false;  ///< a Newton attempt of this sample ended at μ < 0
   double last_mu = -1.0;     ///< the previous sample's μ*, −1 before the first
@@ -152,6 +211,8 @@ struct RequiredFrictionSolver::Impl {
     a[n] = row_mu_derivative(layout, x, row, side);
     return a;
   }
+  bool infeasible_below(const AllocationLayout& layout, const std::vector<MuRow>& set,
+                        double mu_low);
   int dual_ratio_leaving(const AllocationLayout& layout, const std::vector<MuRow>& set);
   bool primal_ratio_entering(const AllocationLayout& layout, const std::vector<MuRow>& set,
                              MuRow& enter);
