@@ -55,9 +55,11 @@ no_temporaries .
 
 # Ctrl-C in hexdyn.run: KeyboardInterrupt long before the scene would end, for each back end.
 for solver in active-set ipopt; do
+  rm -f ctrlc.ready
   "$PY" -c '
 import hexdyn, signal, sys, time
 signal.signal(signal.SIGINT, signal.default_int_handler)  # a background job starts ignoring it
+open("ctrlc.ready", "w").close()  # the handler is in place: Ctrl-C now interrupts
 t = time.monotonic()
 try:
     hexdyn.run(sys.argv[1], {"output.impact_samples": 8000, "allocation.solver": sys.argv[2]})
@@ -67,7 +69,10 @@ except KeyboardInterrupt:
 print("finished after", time.monotonic() - t, "s")
 ' "$PAPER" "$solver" > ctrlc.log 2>&1 &
   pid=$!
-  sleep 1.5  # the scene computes for about 5 s (active set) or 15 s (Ipopt)
+  # Not a fixed delay: on a busy machine the import alone may take longer, and a Ctrl-C
+  # before the handler is in place is ignored (a background job starts ignoring SIGINT).
+  wait_for ctrlc.ready 120 || fail "Ctrl-C in hexdyn.run ($solver): the script never started: $(cat ctrlc.log)"
+  sleep 0.5  # the scene computes for about 5 s (active set) or 15 s (Ipopt)
   kill -INT "$pid"
   wait "$pid"
   # 42: KeyboardInterrupt before the scene ended (how soon: bench/interrupt_latency.py).
