@@ -74,14 +74,14 @@ def statements(res):
     for leg, ttd in touchdowns:
         k = np.flatnonzero((legs == leg) & (np.abs(starts - ttd) < 1e-6))
         if k.size != 1:
-            fails.append(f"leg {leg} at {ttd:.3f} s: {k.size} impacts")
+            fails.append(f"L{leg} at {ttd:.3f} s: {k.size} impacts")
             continue
         i = np.searchsorted(t, ttd + durations[k[0]] + 1e-9)
         feet = int((phase[min(i, len(t) - 1)] != 0).sum())
         share = weight / max(feet, 1)
         worst_ratio = min(worst_ratio, peaks[k[0]] / share)
         if peaks[k[0]] <= share:
-            fails.append(f"leg {leg} at {ttd:.3f} s: peak {peaks[k[0]]:.1f} <= share {share:.1f} N")
+            fails.append(f"L{leg} at {ttd:.3f} s: peak {peaks[k[0]]:.1f} <= share {share:.1f} N")
     ok2 = not fails and len(touchdowns) > 0
     out.append(("S2", "an impulsive spike at each touchdown", ok2,
                 f"{len(touchdowns)} touchdowns, {len(starts)} impacts, peaks {peaks.min():.1f}-{peaks.max():.1f} N, "

@@ -63,7 +63,7 @@ def fig3a(res, outdir):
     F = res["/contacts/force"]
     fig, ax = plt.subplots(figsize=(9, 4.5), constrained_layout=True)
     for leg in range(6):
-        ax.plot(t, F[:, leg, 2], LEG_STYLE[leg % 2], lw=1.0, label=f"leg {leg + 1}")
+        ax.plot(t, F[:, leg, 2], LEG_STYLE[leg % 2], lw=1.0, label=f"L{leg + 1}")
     total = F[:, :, 2].sum(axis=1)
     ax.plot(t, total, color="k", lw=0.8, alpha=0.6, label="sum")
     weight = float(res["/model/total_mass"]) * G
@@ -89,19 +89,19 @@ def fig3b(res, outdir):
     for ax, leg in zip(axes, (3, 4)):
         k = np.flatnonzero(legs == leg)
         if k.size == 0:
-            ax.text(0.5, 0.5, f"no impact of leg {leg}", transform=ax.transAxes, ha="center")
+            ax.text(0.5, 0.5, f"no impact of L{leg}", transform=ax.transAxes, ha="center")
             continue
         t0, d = starts[k[0]], durations[k[0]]
         window = (t >= t0 - 4 * d) & (t <= t0 + 6 * d)
         ax.plot((t[window] - t0) * 1e3, F[window, leg - 1, 2], "o-", ms=2.5, lw=1.0,
-                label=f"leg {leg}, touchdown at t = {t0:.3f} s")
+                label=f"L{leg}, touchdown at t = {t0:.3f} s")
         coarse = np.arange(0.0, t[-1] + 1e-9, float(step)) if step else np.array([])
         near = coarse[(coarse >= t0 - 4 * d) & (coarse <= t0 + 6 * d)]
         for c in near:
             ax.axvline((c - t0) * 1e3, color="r", ls=":", lw=0.8)
         ax.set_xlabel("time since touchdown [ms]")
         ax.set_ylabel(f"$F_{{{leg}z}}$ [N]")
-        fit_title(ax, f"Impact of leg {leg}: peak {res['/impacts/peak_force'][k[0]]:.1f} N, "
+        fit_title(ax, f"Impact of L{leg}: peak {res['/impacts/peak_force'][k[0]]:.1f} N, "
                   f"{d * 1e3:.2f} ms")
         ax.grid(alpha=0.3)
         ax.legend(fontsize=8)
@@ -154,7 +154,7 @@ def fig4(res, outdir, leg, name, panel):
     shade_relaxed(ax, t, res["/solver/status"])
     ax.set_xlabel("time t [s]")
     ax.set_ylabel("joint torque [N m]")
-    fit_title(ax, f"Joint torques of leg {leg} (cf. paper Fig. 4{panel}); shaded: relaxed "
+    fit_title(ax, f"Joint torques of L{leg} (cf. paper Fig. 4{panel}); shaded: relaxed "
               "or failed samples", fontsize=10)
     ax.legend(fontsize=8)
     ax.grid(alpha=0.3)
