@@ -176,10 +176,17 @@ def check_file(path, units_seen):
             check(spec is not None, f"{path}:{p} declared")
             if spec is None:
                 continue
-            # An axis's datasets lead their long name with the axis key.
+            # An axis's values are named by the quantity their key sweeps, its last word
+            # spaced ("terrain.riser_height": "riser height", found here from the keys); its
+            # other datasets lead their long name with it.
             long_name = hr.decode_text(ds.attrs.get("long_name"))
-            check(long_name == spec.long_name or
-                  any(long_name == f"{k}: {spec.long_name}" for k in keys), f"{path}:{p} long_name")
+            swept = {k.split(".")[-1].replace("_", " ") for k in keys}
+            if spec.long_name == "swept quantity":
+                check(long_name in swept, f"{path}:{p} long_name {long_name!r} in {swept}")
+            else:
+                check(long_name == spec.long_name or
+                      any(long_name == f"{q}: {spec.long_name}" for q in swept),
+                      f"{path}:{p} long_name {long_name!r}")
             if "units" in ds.attrs:
                 units_seen.add(hr.decode_text(ds.attrs["units"]))
             if spec.path in hr.FLAGS:

@@ -3,6 +3,7 @@
 #include <hdf5.h>
 #include <hdf5_hl.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <map>
@@ -69,11 +70,22 @@ void Labeller::add(const s::DatasetSpec& spec, const std::string& path, const st
       {&spec, root_ + (path.empty() ? std::string(spec.path) : path), dims, key, {}});
 }
 
+std::string swept_quantity(const std::string& key) {
+  std::string name = key.substr(key.rfind('.') + 1);  // the whole key when it has no dot
+  std::replace(name.begin(), name.end(), '_', ' ');
+  return name;
+}
+
 void Labeller::write_long_names_and_flags() {
   for (const Entry& e : entries_) {
-    w_.set_text_attribute(
-        e.path, s::kLongNameAttribute,
-        e.key.empty() ? std::string(e.spec->long_name) : e.key + ": " + e.spec->long_name);
+    // An axis's values are named by the quantity they sweep; its other datasets (labels,
+    // case keys) lead their own long name with it.
+    const std::string_view own = e.spec->long_name;
+    const std::string name = e.key.empty() ? std::string(own)
+                             : own == s::kSweptQuantityName
+                                 ? swept_quantity(e.key)
+                                 : swept_quantity(e.key) + ": " + std::string(own);
+    w_.set_text_attribute(e.path, s::kLongNameAttribute, name);
     for (const s::FlagSpec& f : s::kFlags) {
       if (std::string_view(f.path) != e.spec->path) continue;
       std::vector<std::int64_t> codes;

@@ -23,6 +23,11 @@
 
 namespace hexdyn {
 
+/// The long name of a sweep axis's datasets: the quantity its key sweeps, the key's last
+/// word with spaces ("terrain.riser_height" → "riser height"; a cases axis's name as it is),
+/// so that labelled readers write "riser height [m]".
+std::string swept_quantity(const std::string& key);
+
 class Labeller {
  public:
   /// Labels datasets below `root` ("" the file root, "/runs/000012" a kept run);
@@ -31,8 +36,8 @@ class Labeller {
       : w_(w), root_(std::move(root)), scales_(dimension_scales) {}
 
   /// Records the written dataset of `spec` at root + `path` (default: spec.path); `key`
-  /// names the dimension that stands for "{key}" (a sweep axis) and leads the long name
-  /// ("terrain.riser_height: values of the swept key").
+  /// names the dimension that stands for "{key}" (a sweep axis), and the dataset's long name
+  /// is then the quantity it sweeps (swept_quantity: "riser height").
   void add(const schema::DatasetSpec& spec, const std::string& path = {},
            const std::string& key = {});
 

@@ -545,16 +545,21 @@ inline constexpr std::array kSweepMetaAttributes{
     kMetaWallTime,  kMetaRanks,         kMetaResumedScenarios, kMetaInputSha256};
 
 // ---- /axes/{i}: axis i = 0..A−1 of the sweep file, in file order ----
+/// The declared long name of an axis's values: written as the quantity its key sweeps
+/// (io/labels.hpp swept_quantity).
+inline constexpr const char* kSweptQuantityName = "swept quantity";
 inline constexpr const char* kAxesGroup = "/axes";
 /// Dotted scene key of the axis, e.g. "gait.duty_factor".
 inline constexpr DatasetSpec kAxisKey{"/axes/{i}/key", "", Shape::kText, Element::kString,
                                       "dotted scene key of the axis"};
-/// Values of an axis of numbers (p/q evaluated), in the SI unit of the key.
+/// Values of an axis of numbers (p/q evaluated), in the SI unit of the key. Its long_name
+/// is written as the quantity the key sweeps, the key's last word (io/labels.hpp
+/// swept_quantity: "riser height" for terrain.riser_height).
 inline constexpr DatasetSpec kAxisNumbers{"/axes/{i}/values", "key", Shape::kAxisValues,
-                                          Element::kFloat64, "values of the swept key"};
-/// Values of an axis of words (an axis whose values are not all numbers).
+                                          Element::kFloat64, kSweptQuantityName};
+/// Values of an axis of words (an axis whose values are not all numbers); long_name as above.
 inline constexpr DatasetSpec kAxisWords{"/axes/{i}/values", "", Shape::kAxisValues,
-                                        Element::kString, "values of the swept key"};
+                                        Element::kString, kSweptQuantityName};
 /// Values as written in the sweep file ("2/3").
 inline constexpr DatasetSpec kAxisLabels{"/axes/{i}/labels", "", Shape::kAxisValues,
                                          Element::kString, "values as written in the sweep file"};
@@ -571,10 +576,11 @@ inline constexpr DatasetSpec kSweepJointNames{"/joint_names", "", Shape::kJointN
 
 // ---- coordinate variables (dimension_names): one dimension per axis, named by its key
 // ("terrain.riser_height"), its values as coordinate; scenario, axis and joint ----
+/// Long name: the quantity the key sweeps, as for /axes/{i}/values.
 inline constexpr DatasetSpec kAxisCoordinateNumbers{"/{key}", "key", Shape::kAxisValues,
-                                                    Element::kFloat64, "values of the swept key"};
+                                                    Element::kFloat64, kSweptQuantityName};
 inline constexpr DatasetSpec kAxisCoordinateWords{"/{key}", "", Shape::kAxisValues,
-                                                  Element::kString, "values of the swept key"};
+                                                  Element::kString, kSweptQuantityName};
 /// A cases axis's keys: the coordinate of its dimension "{key}_key".
 inline constexpr DatasetSpec kCaseKeyCoordinate{"/{key}_key", "", Shape::kCaseKeys,
                                                 Element::kString, "keys each case sets"};
