@@ -54,6 +54,15 @@ class FileCheck:
     def full(self, path):
         return self.root + path
 
+    def axis_keys(self):
+        """The keys of the file's sweep axes (/axes/{i}/key); none below a kept run or in a
+        file without axes."""
+        axes = self.f.get("/axes")
+        if not isinstance(axes, h5py.Group):
+            return []
+        return [hr.decode_text(g["key"][()]) for g in axes.values()
+                if isinstance(g, h5py.Group) and "key" in g]
+
     def dataset(self, spec, sizes, path=None):
         path = path or spec.path
         where = f"{self.source}:{self.full(path)}"
@@ -75,8 +84,13 @@ class FileCheck:
         elif units != (spec.units or None):
             problem(f"{where}: units {units!r}, declared {spec.units!r}")
         long_name = hr.decode_text(obj.attrs.get(S["kLongNameAttribute"]))
-        # An axis's datasets lead their long name with the axis key ("KEY: long name").
-        if ":" in long_name and long_name.split(": ", 1)[1] == spec.long_name:
+        # An axis's values are named by the quantity its key sweeps, the key's last word
+        # spaced (terrain.riser_height: "riser height"); its other datasets lead their long
+        # name with that quantity ("riser height: values as written in the sweep file").
+        swept = {k.rsplit(".", 1)[-1].replace("_", " ") for k in self.axis_keys()}
+        if spec.long_name == S["kSweptQuantityName"] and long_name in swept:
+            long_name = spec.long_name
+        elif ": " in long_name and long_name.split(": ", 1)[0] in swept:
             long_name = long_name.split(": ", 1)[1]
         if long_name != spec.long_name:
             problem(f"{where}: long_name {long_name!r}, declared {spec.long_name!r}")
