@@ -6,7 +6,7 @@
 #   P/share/hexdyn/pipelines/                     shell pipelines and slurm_sweep.sbatch
 #   P/share/hexdyn/analysis/*.py                  Python checks and plots (they import the
 #                                                 package hexdyn, cmake/python.cmake)
-#   P/share/hexdyn/src/hexdyn/io/schema.hpp       the file layouts, for reference
+#   P/share/hexdyn/src/hexdyn/io/schema*.hpp      the file layouts, for reference
 # Included by the top-level CMakeLists.txt.
 include(GNUInstallDirs)
 set(HEXDYN_INSTALL_SHARE ${CMAKE_INSTALL_DATADIR}/hexdyn)
@@ -20,9 +20,8 @@ install(DIRECTORY ${PROJECT_SOURCE_DIR}/pipelines/ DESTINATION ${HEXDYN_INSTALL_
                          WORLD_READ WORLD_EXECUTE)
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/analysis/ DESTINATION ${HEXDYN_INSTALL_SHARE}/analysis
         FILES_MATCHING PATTERN "*.py" PATTERN "__pycache__" EXCLUDE)
-install(FILES ${PROJECT_SOURCE_DIR}/src/hexdyn/io/schema.hpp
-              ${PROJECT_SOURCE_DIR}/src/hexdyn/io/schema_envelope.hpp
-        DESTINATION ${HEXDYN_INSTALL_SHARE}/src/hexdyn/io)
+file(GLOB hexdyn_installed_schema_headers ${PROJECT_SOURCE_DIR}/src/hexdyn/io/schema*.hpp)
+install(FILES ${hexdyn_installed_schema_headers} DESTINATION ${HEXDYN_INSTALL_SHARE}/src/hexdyn/io)
 
 # ---------------------------------------------------------------- the C++ package
 # `find_package(hexdyn CONFIG REQUIRED)` + `target_link_libraries(app PRIVATE hexdyn::hexdyn)`

@@ -32,10 +32,17 @@ configure_file(${PROJECT_SOURCE_DIR}/bindings/python/hexdyn/_version.py.in
 # names the headers declare, bindings/python/schema/schema_py.cpp is compiled with them and
 # prints the module. Built with the program `hexdyn` (and the module), so that the readers of
 # a build tree work whenever the program does; needs no Python at build time.
-file(GLOB hexdyn_schema_headers CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/src/hexdyn/io/schema*.hpp)
-list(SORT hexdyn_schema_headers)
-list(REMOVE_ITEM hexdyn_schema_headers ${PROJECT_SOURCE_DIR}/src/hexdyn/io/schema.hpp)
-list(PREPEND hexdyn_schema_headers ${PROJECT_SOURCE_DIR}/src/hexdyn/io/schema.hpp)
+# The headers in the order schema.hpp includes them at its end (the order of the declarations,
+# and so of docs/user/output.md).
+set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS
+                                       ${PROJECT_SOURCE_DIR}/src/hexdyn/io/schema.hpp)
+file(STRINGS ${PROJECT_SOURCE_DIR}/src/hexdyn/io/schema.hpp hexdyn_schema_includes
+     REGEX "^#include \"hexdyn/io/schema_[a-z_]+\\.hpp\"")
+set(hexdyn_schema_headers ${PROJECT_SOURCE_DIR}/src/hexdyn/io/schema.hpp)
+foreach(line ${hexdyn_schema_includes})
+  string(REGEX REPLACE "^#include \"(hexdyn/io/schema_[a-z_]+\\.hpp)\".*" "\\1" header "${line}")
+  list(APPEND hexdyn_schema_headers ${PROJECT_SOURCE_DIR}/src/${header})
+endforeach()
 set(hexdyn_schema_names ${CMAKE_BINARY_DIR}/schema_py/schema_names.inc)
 add_custom_command(
   OUTPUT ${hexdyn_schema_names}
