@@ -16,266 +16,231 @@ namespace f = key_fields;
 namespace {
 
 void add_terrain(std::deque<SceneKey>& t) {
-  const std::string_view s = "terrain";
-  t.push_back({.path = "terrain.type",
-               .section = s,
-               .kind = KeyKind::kChoice,
-               .choices = "stairs flat slope",
-               .required = true,
-               .meaning = "which keys below apply"});
-  t.push_back({.path = "terrain.riser_height",
-               .section = s,
-               .range = nonnegative(1.0),
-               .unit = "m",
-               .required = true,
-               .when = "stairs",
-               .meaning = "riser h_s; 0 is flat ground"});
-  t.push_back({.path = "terrain.tread_depth",
-               .section = s,
-               .range = positive(10.0),
-               .unit = "m",
-               .required = true,
-               .when = "stairs",
-               .meaning = "tread b_s"});
-  t.push_back({.path = "terrain.steps",
-               .section = s,
-               .kind = KeyKind::kInteger,
-               .range = closed(1, 100000),
-               .unit = "1",
-               .required = true,
-               .when = "stairs",
-               .meaning = "number of risers; the top tread is endless"});
-  t.push_back({.path = "terrain.first_riser_y",
-               .section = s,
-               .range = closed(-100.0, 100.0),
-               .unit = "m",
-               .required = true,
-               .when = "stairs",
-               .meaning = "y of the first riser"});
-  t.push_back({.path = "terrain.ground_height",
-               .section = s,
-               .range = closed(-100.0, 100.0),
-               .unit = "m",
-               .when = "stairs, slope",
-               .meaning = "height before the first riser / the foot of the slope",
-               .field = f::number<&Scene::terrain, &TerrainParams::ground_height_m>()});
-  t.push_back({.path = "terrain.height",
-               .section = s,
-               .range = closed(-100.0, 100.0),
-               .unit = "m",
-               .when = "flat",
-               .meaning = "ground height",
-               .field = f::number<&Scene::terrain, &TerrainParams::ground_height_m>()});
-  t.push_back({.path = "terrain.angle",
-               .section = s,
-               .range = open_interval(-M_PI / 3, M_PI / 3),
-               .unit = "rad",
-               .required = true,
-               .when = "slope",
-               .meaning = "inclination, rising along +y"});
-  t.push_back({.path = "terrain.origin_y",
-               .section = s,
-               .range = closed(-100.0, 100.0),
-               .unit = "m",
-               .when = "slope",
-               .meaning = "y where the slope leaves the ground",
-               .field = f::number<&Scene::terrain, &TerrainParams::slope_origin_y_m>()});
+  const SectionRows add{t, "terrain"};
+  add({.path = "terrain.type",
+       .kind = KeyKind::kChoice,
+       .choices = "stairs flat slope",
+       .required = true,
+       .meaning = "which keys below apply"});
+  add({.path = "terrain.riser_height",
+       .range = nonnegative(1.0),
+       .unit = "m",
+       .required = true,
+       .when = "stairs",
+       .meaning = "riser h_s; 0 is flat ground"});
+  add({.path = "terrain.tread_depth",
+       .range = positive(10.0),
+       .unit = "m",
+       .required = true,
+       .when = "stairs",
+       .meaning = "tread b_s"});
+  add({.path = "terrain.steps",
+       .kind = KeyKind::kInteger,
+       .range = closed(1, 100000),
+       .unit = "1",
+       .required = true,
+       .when = "stairs",
+       .meaning = "number of risers; the top tread is endless"});
+  add({.path = "terrain.first_riser_y",
+       .range = closed(-100.0, 100.0),
+       .unit = "m",
+       .required = true,
+       .when = "stairs",
+       .meaning = "y of the first riser"});
+  add({.path = "terrain.ground_height",
+       .range = closed(-100.0, 100.0),
+       .unit = "m",
+       .when = "stairs, slope",
+       .meaning = "height before the first riser / the foot of the slope",
+       .field = f::number<&Scene::terrain, &TerrainParams::ground_height_m>()});
+  add({.path = "terrain.height",
+       .range = closed(-100.0, 100.0),
+       .unit = "m",
+       .when = "flat",
+       .meaning = "ground height",
+       .field = f::number<&Scene::terrain, &TerrainParams::ground_height_m>()});
+  add({.path = "terrain.angle",
+       .range = open_interval(-M_PI / 3, M_PI / 3),
+       .unit = "rad",
+       .required = true,
+       .when = "slope",
+       .meaning = "inclination, rising along +y"});
+  add({.path = "terrain.origin_y",
+       .range = closed(-100.0, 100.0),
+       .unit = "m",
+       .when = "slope",
+       .meaning = "y where the slope leaves the ground",
+       .field = f::number<&Scene::terrain, &TerrainParams::slope_origin_y_m>()});
 }
 
 void add_gait(std::deque<SceneKey>& t) {
-  const std::string_view s = "gait";
-  t.push_back({.path = "gait.duty_factor",
-               .section = s,
-               .range = {0.5, 1.0, false, true},
-               .unit = "1",
-               .required = true,
-               .meaning = "β, each leg's support fraction: ½ tripod, 2/3 tetrapod, 3/4 and 5/6 "
-                          "wave gaits (any value in the range runs)",
-               .read = KeyRead::kTable,
-               .field = f::number<&Scene::gait, &GaitParams::duty_factor>()});
-  t.push_back({.path = "gait.stroke",
-               .section = s,
-               .range = positive(2.0),
-               .unit = "m",
-               .required = true,
-               .meaning = "s0, a foot's travel relative to the trunk per stance; the trunk "
-                          "advances s0/β per cycle (`motion.travel` may shorten it, "
-                          "[motion](#travel-instead-of-cycles))",
-               .read = KeyRead::kTable,
-               .field = f::number<&Scene::gait, &GaitParams::stroke_m>()});
-  t.push_back({.path = "gait.foot_lateral",
-               .section = s,
-               .range = positive(2.0),
-               .unit = "m",
-               .required = true,
-               .default_text = "required (URDF robot: the nominal stance radius)",
-               .meaning = "horizontal distance of the footholds from the hips along each leg's "
-                          "outward direction"});
-  t.push_back({.path = "gait.foothold_margin",
-               .section = s,
-               .range = nonnegative(1.0),
-               .unit = "m",
-               .meaning = "smallest distance of a foothold from every nosing and riser (a "
-                          "sphere foot's: of the sphere, horizontally)",
-               .read = KeyRead::kTable,
-               .field = f::number<&Scene::gait, &GaitParams::foothold_margin_m>()});
-  t.push_back({.path = "gait.swing_clearance",
-               .section = s,
-               .range = positive(1.0),
-               .unit = "m",
-               .required = true,
-               .meaning = "Δh over the highest terrain under the swing path",
-               .read = KeyRead::kTable,
-               .field = f::number<&Scene::gait, &GaitParams::swing_clearance_m>()});
-  t.push_back({.path = "gait.touchdown_speed",
-               .section = s,
-               .range = nonnegative(10.0),
-               .unit = "m/s",
-               .required = true,
-               .meaning = "downward foot speed at touchdown (it drives the impact transient)",
-               .read = KeyRead::kTable,
-               .field = f::number<&Scene::gait, &GaitParams::touchdown_speed_mps>()});
-  t.push_back({.path = "gait.lift_fraction",
-               .section = s,
-               .range = open_interval(0.0, 1.0),
-               .unit = "1",
-               .meaning = "share of the swing spent lifting",
-               .read = KeyRead::kTable,
-               .field = f::number<&Scene::gait, &GaitParams::lift_fraction>()});
-  t.push_back({.path = "gait.lower_fraction",
-               .section = s,
-               .range = open_interval(0.0, 1.0),
-               .unit = "1",
-               .meaning = "share of the swing spent lowering (shortened if needed); "
-                          "`lift_fraction + lower_fraction` < 0.95",
-               .read = KeyRead::kTable,
-               .field = f::number<&Scene::gait, &GaitParams::lower_fraction>()});
+  const SectionRows add{t, "gait"};
+  add({.path = "gait.duty_factor",
+       .range = {0.5, 1.0, false, true},
+       .unit = "1",
+       .required = true,
+       .meaning = "β, each leg's support fraction: ½ tripod, 2/3 tetrapod, 3/4 and 5/6 "
+                  "wave gaits (any value in the range runs)",
+       .read = KeyRead::kTable,
+       .field = f::number<&Scene::gait, &GaitParams::duty_factor>()});
+  add({.path = "gait.stroke",
+       .range = positive(2.0),
+       .unit = "m",
+       .required = true,
+       .meaning = "s0, a foot's travel relative to the trunk per stance; the trunk "
+                  "advances s0/β per cycle (`motion.travel` may shorten it, "
+                  "[motion](#travel-instead-of-cycles))",
+       .read = KeyRead::kTable,
+       .field = f::number<&Scene::gait, &GaitParams::stroke_m>()});
+  add({.path = "gait.foot_lateral",
+       .range = positive(2.0),
+       .unit = "m",
+       .required = true,
+       .default_text = "required (URDF robot: the nominal stance radius)",
+       .meaning = "horizontal distance of the footholds from the hips along each leg's "
+                  "outward direction"});
+  add({.path = "gait.foothold_margin",
+       .range = nonnegative(1.0),
+       .unit = "m",
+       .meaning = "smallest distance of a foothold from every nosing and riser (a "
+                  "sphere foot's: of the sphere, horizontally)",
+       .read = KeyRead::kTable,
+       .field = f::number<&Scene::gait, &GaitParams::foothold_margin_m>()});
+  add({.path = "gait.swing_clearance",
+       .range = positive(1.0),
+       .unit = "m",
+       .required = true,
+       .meaning = "Δh over the highest terrain under the swing path",
+       .read = KeyRead::kTable,
+       .field = f::number<&Scene::gait, &GaitParams::swing_clearance_m>()});
+  add({.path = "gait.touchdown_speed",
+       .range = nonnegative(10.0),
+       .unit = "m/s",
+       .required = true,
+       .meaning = "downward foot speed at touchdown (it drives the impact transient)",
+       .read = KeyRead::kTable,
+       .field = f::number<&Scene::gait, &GaitParams::touchdown_speed_mps>()});
+  add({.path = "gait.lift_fraction",
+       .range = open_interval(0.0, 1.0),
+       .unit = "1",
+       .meaning = "share of the swing spent lifting",
+       .read = KeyRead::kTable,
+       .field = f::number<&Scene::gait, &GaitParams::lift_fraction>()});
+  add({.path = "gait.lower_fraction",
+       .range = open_interval(0.0, 1.0),
+       .unit = "1",
+       .meaning = "share of the swing spent lowering (shortened if needed); "
+                  "`lift_fraction + lower_fraction` < 0.95",
+       .read = KeyRead::kTable,
+       .field = f::number<&Scene::gait, &GaitParams::lower_fraction>()});
 }
 
 void add_motion_start(std::deque<SceneKey>& t) {
-  const std::string_view s = "motion-start";
-  t.push_back({.path = "motion.initial_position",
-               .section = s,
-               .kind = KeyKind::kNumbers,
-               .range = closed(-100.0, 100.0),
-               .min_count = 3,
-               .max_count = 3,
-               .unit = "m",
-               .default_text = "—",
-               .meaning = "P0, the trunk frame's origin, at t = 0 in the world frame"});
-  t.push_back({.path = "motion.posture.start_y",
-               .section = s,
-               .range = closed(-100.0, 100.0),
-               .unit = "m",
-               .required = true,
-               .default_text = "required with `posture`",
-               .meaning = "y of P0 at t = 0 from the terrain's origin (first riser; foot of a "
-                          "slope; y = 0 on flat ground), negative before it"});
-  t.push_back({.path = "motion.posture.height",
-               .section = s,
-               .range = closed(-100.0, 100.0),
-               .unit = "m",
-               .required = true,
-               .default_text = "required with `posture`",
-               .allowed_text = "[−100, 100] m, or `auto`",
-               .meaning = "height of P0 above the terrain's reference line, or chosen "
-                          "automatically"});
-  t.push_back({.path = "motion.posture.height_range",
-               .section = s,
-               .kind = KeyKind::kNumbers,
-               .range = closed(-10.0, 10.0),
-               .min_count = 2,
-               .max_count = 2,
-               .unit = "m",
-               .default_text = "derived from the legs' reach",
-               .allowed_text = "`[lower, upper]` in [−10, 10] m, lower < upper",
-               .meaning = "`auto` only: the heights searched"});
-  t.push_back(
-      {.path = "motion.posture.target_margin",
-       .section = s,
+  const SectionRows add{t, "motion-start"};
+  add({.path = "motion.initial_position",
+       .kind = KeyKind::kNumbers,
+       .range = closed(-100.0, 100.0),
+       .min_count = 3,
+       .max_count = 3,
+       .unit = "m",
+       .default_text = "—",
+       .meaning = "P0, the trunk frame's origin, at t = 0 in the world frame"});
+  add({.path = "motion.posture.start_y",
+       .range = closed(-100.0, 100.0),
+       .unit = "m",
+       .required = true,
+       .default_text = "required with `posture`",
+       .meaning = "y of P0 at t = 0 from the terrain's origin (first riser; foot of a "
+                  "slope; y = 0 on flat ground), negative before it"});
+  add({.path = "motion.posture.height",
+       .range = closed(-100.0, 100.0),
+       .unit = "m",
+       .required = true,
+       .default_text = "required with `posture`",
+       .allowed_text = "[−100, 100] m, or `auto`",
+       .meaning = "height of P0 above the terrain's reference line, or chosen "
+                  "automatically"});
+  add({.path = "motion.posture.height_range",
+       .kind = KeyKind::kNumbers,
+       .range = closed(-10.0, 10.0),
+       .min_count = 2,
+       .max_count = 2,
+       .unit = "m",
+       .default_text = "derived from the legs' reach",
+       .allowed_text = "`[lower, upper]` in [−10, 10] m, lower < upper",
+       .meaning = "`auto` only: the heights searched"});
+  add({.path = "motion.posture.target_margin",
        .range = nonnegative(1.0),
        .unit = "m",
        .meaning = "`auto` only: below this kinematic margin `gait.foot_lateral` is "
                   "searched too",
        .field =
            f::number<&Scene::motion, &MotionParams::posture, &PostureParams::target_margin_m>()});
-  t.push_back(
-      {.path = "motion.posture.trunk_clearance",
-       .section = s,
+  add({.path = "motion.posture.trunk_clearance",
        .range = closed(-1.0, 10.0),
        .unit = "m",
        .meaning = "`auto` only: the least vertical gap between the trunk and the highest "
                   "terrain under it",
        .field =
            f::number<&Scene::motion, &MotionParams::posture, &PostureParams::trunk_clearance_m>()});
-  t.push_back({.path = "motion.posture.foot_lateral",
-               .section = s,
-               .kind = KeyKind::kNumbers,
-               .range = positive(2.0),
-               .min_count = 2,
-               .max_count = 2,
-               .unit = "m",
-               .default_text = "not searched",
-               .allowed_text = "`[lower, upper]` in (0, 2] m, lower ≤ upper",
-               .meaning = "`auto` only: the range `gait.foot_lateral` may be chosen from"});
+  add({.path = "motion.posture.foot_lateral",
+       .kind = KeyKind::kNumbers,
+       .range = positive(2.0),
+       .min_count = 2,
+       .max_count = 2,
+       .unit = "m",
+       .default_text = "not searched",
+       .allowed_text = "`[lower, upper]` in (0, 2] m, lower ≤ upper",
+       .meaning = "`auto` only: the range `gait.foot_lateral` may be chosen from"});
 }
 
 void add_motion_timing(std::deque<SceneKey>& t) {
-  const std::string_view s = "motion-timing";
-  t.push_back({.path = "motion.cycle_durations",
-               .section = s,
-               .kind = KeyKind::kNumbers,
-               .range = positive(1e4),
-               .min_count = 3,
-               .max_count = kMaxCycles,
-               .unit = "s",
-               .default_text = "—",
-               .meaning = "`[ramp-up, cruise, ..., cruise, ramp-down]`: equal cruise cycles, "
-                          "equal first and last cycles longer than a cruise cycle and at most "
-                          "twice as long"});
-  t.push_back({.path = "motion.peak_speed",
-               .section = s,
-               .range = positive(10.0),
-               .unit = "m/s",
-               .required = true,
-               .default_text = "required without `cycle_durations`",
-               .meaning = "cruise speed of the trunk along the slope"});
-  t.push_back({.path = "motion.cycles",
-               .section = s,
-               .kind = KeyKind::kInteger,
-               .range = closed(1, kMaxCycles),
-               .unit = "1",
-               .required = true,
-               .default_text = "required without `cycle_durations` and `travel`",
-               .meaning = "gait cycles; the trunk advances one stride s0/β per cycle"});
-  t.push_back({.path = "motion.travel",
-               .section = s,
-               .kind = KeyKind::kText,
-               .default_text = "—",
-               .allowed_text = "`{distance: D}` with D in (0, 1e4] m, or `{treads: N}` with N in "
-                               "[1, 100000] (stairs only)",
-               .meaning = "the trunk's travel along the slope instead of `cycles`: D, or N treads "
-                          "(N b_s across and N h_s up, N √(b_s² + h_s²) along the slope); the "
-                          "cycles follow from it ([below](#travel-instead-of-cycles))"});
-  t.push_back({.path = "motion.travel.distance",
-               .section = "",
-               .range = positive(1e4),
-               .unit = "m",
-               .required = true});
+  const SectionRows add{t, "motion-timing"};
+  add({.path = "motion.cycle_durations",
+       .kind = KeyKind::kNumbers,
+       .range = positive(1e4),
+       .min_count = 3,
+       .max_count = kMaxCycles,
+       .unit = "s",
+       .default_text = "—",
+       .meaning = "`[ramp-up, cruise, ..., cruise, ramp-down]`: equal cruise cycles, "
+                  "equal first and last cycles longer than a cruise cycle and at most "
+                  "twice as long"});
+  add({.path = "motion.peak_speed",
+       .range = positive(10.0),
+       .unit = "m/s",
+       .required = true,
+       .default_text = "required without `cycle_durations`",
+       .meaning = "cruise speed of the trunk along the slope"});
+  add({.path = "motion.cycles",
+       .kind = KeyKind::kInteger,
+       .range = closed(1, kMaxCycles),
+       .unit = "1",
+       .required = true,
+       .default_text = "required without `cycle_durations` and `travel`",
+       .meaning = "gait cycles; the trunk advances one stride s0/β per cycle"});
+  add({.path = "motion.travel",
+       .kind = KeyKind::kText,
+       .default_text = "—",
+       .allowed_text = "`{distance: D}` with D in (0, 1e4] m, or `{treads: N}` with N in "
+                       "[1, 100000] (stairs only)",
+       .meaning = "the trunk's travel along the slope instead of `cycles`: D, or N treads "
+                  "(N b_s across and N h_s up, N √(b_s² + h_s²) along the slope); the "
+                  "cycles follow from it ([below](#travel-instead-of-cycles))"});
+  t.push_back(
+      {.path = "motion.travel.distance", .range = positive(1e4), .unit = "m", .required = true});
   t.push_back({.path = "motion.travel.treads",
-               .section = "",
                .kind = KeyKind::kInteger,
                .range = closed(1, 100000),
                .unit = "1",
                .required = true});
-  t.push_back({.path = "motion.ramp_duration",
-               .section = s,
-               .range = positive(1e4),
-               .unit = "s",
-               .required = true,
-               .default_text = "required without `cycle_durations`",
-               .meaning = "C² speed ramps from rest at the start and to rest at the end; at most "
-                          "the cruise time cycles·stride/peak_speed"});
+  add({.path = "motion.ramp_duration",
+       .range = positive(1e4),
+       .unit = "s",
+       .required = true,
+       .default_text = "required without `cycle_durations`",
+       .meaning = "C² speed ramps from rest at the start and to rest at the end; at most "
+                  "the cruise time cycles·stride/peak_speed"});
 }
 
 }  // namespace

@@ -12,250 +12,220 @@ namespace f = key_fields;
 namespace {
 
 void add_contact(std::deque<SceneKey>& t) {
-  const std::string_view s = "contact";
+  const SectionRows add{t, "contact"};
   const KeyRead table = KeyRead::kTable;
-  t.push_back({.path = "contact.model",
-               .section = s,
-               .kind = KeyKind::kChoice,
-               .choices = "compliant rigid",
-               .meaning = "`compliant`: each touchdown is an impact transient under the IMPACT "
-                          "law; `rigid`: the foot supports from touchdown on, no transient",
-               .read = table,
-               .field = f::choice<&Scene::contact, &ContactParams::model>()});
-  t.push_back({.path = "contact.stiffness",
-               .section = s,
-               .range = positive(1e15),
-               .required = true,
-               .allowed_text = "(0, 1e15] N/m^e",
-               .meaning = "K",
-               .read = table,
-               .field = f::number<&Scene::contact, &ContactParams::stiffness>()});
-  t.push_back({.path = "contact.exponent",
-               .section = s,
-               .range = closed(1.0, 5.0),
-               .unit = "1",
-               .required = true,
-               .meaning = "e",
-               .read = table,
-               .field = f::number<&Scene::contact, &ContactParams::exponent>()});
-  t.push_back({.path = "contact.damping_max",
-               .section = s,
-               .range = nonnegative(1e12),
-               .unit = "N s/m",
-               .required = true,
-               .meaning = "C_max",
-               .read = table,
-               .field = f::number<&Scene::contact, &ContactParams::damping_max_Nspm>()});
-  t.push_back({.path = "contact.full_damping_depth",
-               .section = s,
-               .range = positive(1.0),
-               .unit = "m",
-               .required = true,
-               .meaning = "p, the penetration at which damping is full",
-               .read = table,
-               .field = f::number<&Scene::contact, &ContactParams::full_damping_depth_m>()});
-  t.push_back({.path = "contact.friction_coefficient",
-               .section = s,
-               .range = positive(10.0),
-               .unit = "1",
-               .required = true,
-               .meaning = "μ",
-               .read = table,
-               .field = f::number<&Scene::contact, &ContactParams::friction_coefficient>()});
-  t.push_back({.path = "contact.static_friction",
-               .section = s,
-               .range = positive(10.0),
-               .unit = "1",
-               .default_text = "`contact.friction_coefficient`",
-               .meaning = "μ_s of the forward replay's friction law "
-                          "([replay](docs/theory/replay.md#tangential-force))"});
-  t.push_back({.path = "contact.dynamic_friction",
-               .section = s,
-               .range = positive(10.0),
-               .unit = "1",
-               .default_text = "μ_s",
-               .allowed_text = "[0, μ_s]",
-               .meaning = "μ_d, beyond `contact.friction_velocity`"});
-  t.push_back({.path = "contact.stiction_velocity",
-               .section = s,
-               .range = positive(10.0),
-               .unit = "m/s",
-               .meaning = "v_s, where μ reaches μ_s",
-               .read = table,
-               .field = f::number<&Scene::contact, &ContactParams::stiction_velocity_mps>()});
-  t.push_back({.path = "contact.friction_velocity",
-               .section = s,
-               .range = positive(100.0),
-               .unit = "m/s",
-               .default_text = "max(1e-2, 10 v_s)",
-               .allowed_text = "(v_s, 100] m/s",
-               .meaning = "v_d, from where μ is μ_d"});
+  add({.path = "contact.model",
+       .kind = KeyKind::kChoice,
+       .choices = "compliant rigid",
+       .meaning = "`compliant`: each touchdown is an impact transient under the IMPACT "
+                  "law; `rigid`: the foot supports from touchdown on, no transient",
+       .read = table,
+       .field = f::choice<&Scene::contact, &ContactParams::model>()});
+  add({.path = "contact.stiffness",
+       .range = positive(1e15),
+       .required = true,
+       .allowed_text = "(0, 1e15] N/m^e",
+       .meaning = "K",
+       .read = table,
+       .field = f::number<&Scene::contact, &ContactParams::stiffness>()});
+  add({.path = "contact.exponent",
+       .range = closed(1.0, 5.0),
+       .unit = "1",
+       .required = true,
+       .meaning = "e",
+       .read = table,
+       .field = f::number<&Scene::contact, &ContactParams::exponent>()});
+  add({.path = "contact.damping_max",
+       .range = nonnegative(1e12),
+       .unit = "N s/m",
+       .required = true,
+       .meaning = "C_max",
+       .read = table,
+       .field = f::number<&Scene::contact, &ContactParams::damping_max_Nspm>()});
+  add({.path = "contact.full_damping_depth",
+       .range = positive(1.0),
+       .unit = "m",
+       .required = true,
+       .meaning = "p, the penetration at which damping is full",
+       .read = table,
+       .field = f::number<&Scene::contact, &ContactParams::full_damping_depth_m>()});
+  add({.path = "contact.friction_coefficient",
+       .range = positive(10.0),
+       .unit = "1",
+       .required = true,
+       .meaning = "μ",
+       .read = table,
+       .field = f::number<&Scene::contact, &ContactParams::friction_coefficient>()});
+  add({.path = "contact.static_friction",
+       .range = positive(10.0),
+       .unit = "1",
+       .default_text = "`contact.friction_coefficient`",
+       .meaning = "μ_s of the forward replay's friction law "
+                  "([replay](docs/theory/replay.md#tangential-force))"});
+  add({.path = "contact.dynamic_friction",
+       .range = positive(10.0),
+       .unit = "1",
+       .default_text = "μ_s",
+       .allowed_text = "[0, μ_s]",
+       .meaning = "μ_d, beyond `contact.friction_velocity`"});
+  add({.path = "contact.stiction_velocity",
+       .range = positive(10.0),
+       .unit = "m/s",
+       .meaning = "v_s, where μ reaches μ_s",
+       .read = table,
+       .field = f::number<&Scene::contact, &ContactParams::stiction_velocity_mps>()});
+  add({.path = "contact.friction_velocity",
+       .range = positive(100.0),
+       .unit = "m/s",
+       .default_text = "max(1e-2, 10 v_s)",
+       .allowed_text = "(v_s, 100] m/s",
+       .meaning = "v_d, from where μ is μ_d"});
 }
 
 void add_replay(std::deque<SceneKey>& t) {
-  const std::string_view s = "replay";
+  const SectionRows add{t, "replay"};
   const KeyRead table = KeyRead::kTable;
-  t.push_back({.path = "replay.kp",
-               .section = s,
-               .range = nonnegative(1e9),
-               .unit = "N m/rad",
-               .meaning = "joint PD stiffness on the planned angles (0 with `kd` 0: open loop)",
-               .read = table,
-               .field = f::number<&Scene::replay, &ReplayParams::kp_Nmprad>()});
-  t.push_back({.path = "replay.kd",
-               .section = s,
-               .range = nonnegative(1e9),
-               .unit = "N m s/rad",
-               .meaning = "joint PD damping on the planned rates",
-               .read = table,
-               .field = f::number<&Scene::replay, &ReplayParams::kd_Nmsprad>()});
-  t.push_back({.path = "replay.step",
-               .section = s,
-               .range = positive(0.1),
-               .unit = "s",
-               .meaning = "the integrator's largest step",
-               .read = table,
-               .field = f::number<&Scene::replay, &ReplayParams::step_s>()});
-  t.push_back({.path = "replay.tolerance",
-               .section = s,
-               .range = positive(10.0),
-               .unit = "1",
-               .meaning = "a step is halved while the normal contact force it applied differs "
-                          "from the law at its end by more than this × the robot's weight",
-               .read = table,
-               .field = f::number<&Scene::replay, &ReplayParams::tolerance>()});
+  add({.path = "replay.kp",
+       .range = nonnegative(1e9),
+       .unit = "N m/rad",
+       .meaning = "joint PD stiffness on the planned angles (0 with `kd` 0: open loop)",
+       .read = table,
+       .field = f::number<&Scene::replay, &ReplayParams::kp_Nmprad>()});
+  add({.path = "replay.kd",
+       .range = nonnegative(1e9),
+       .unit = "N m s/rad",
+       .meaning = "joint PD damping on the planned rates",
+       .read = table,
+       .field = f::number<&Scene::replay, &ReplayParams::kd_Nmsprad>()});
+  add({.path = "replay.step",
+       .range = positive(0.1),
+       .unit = "s",
+       .meaning = "the integrator's largest step",
+       .read = table,
+       .field = f::number<&Scene::replay, &ReplayParams::step_s>()});
+  add({.path = "replay.tolerance",
+       .range = positive(10.0),
+       .unit = "1",
+       .meaning = "a step is halved while the normal contact force it applied differs "
+                  "from the law at its end by more than this × the robot's weight",
+       .read = table,
+       .field = f::number<&Scene::replay, &ReplayParams::tolerance>()});
 }
 
 void add_allocation(std::deque<SceneKey>& t) {
-  const std::string_view s = "allocation";
+  const SectionRows add{t, "allocation"};
   const KeyRead table = KeyRead::kTable;
-  t.push_back({.path = "allocation.friction",
-               .section = s,
-               .kind = KeyKind::kChoice,
-               .choices = "pyramid4 pyramid8 cone",
-               .meaning = "4- or 8-sided pyramid inscribed in the friction cone, or the exact "
-                          "cone \\|F_t\\| ≤ μ F_n",
-               .read = table,
-               .field = f::choice<&Scene::allocation, &AllocationParams::friction>()});
-  t.push_back({.path = "allocation.solver",
-               .section = s,
-               .kind = KeyKind::kChoice,
-               .choices = "auto active-set ipopt",
-               .meaning = "`auto` is `active-set`: hexdyn's dense dual active-set QP, and for the "
-                          "exact cone the same QP under sequential outer approximation; `ipopt`: "
-                          "Ipopt, the reference, for every friction model"});
-  t.push_back({.path = "allocation.torque_limit",
-               .section = s,
-               .range = positive(kMaxJointEffort_Nm),
-               .unit = "N m",
-               .required = true,
-               .default_text = "required (URDF robot: `effort`)",
-               .allowed_text = "(0, 1e6] N m; URDF robot also `effort`",
-               .meaning = "\\|τ\\| bound of every joint; `effort`: each joint's URDF effort "
-                          "limit"});
-  t.push_back({.path = "allocation.min_normal_force",
-               .section = s,
-               .range = nonnegative(1e6),
-               .unit = "N",
-               .meaning = "least normal force of a support foot",
-               .read = table,
-               .field = f::number<&Scene::allocation, &AllocationParams::min_normal_force_N>()});
-  t.push_back({.path = "allocation.tolerance",
-               .section = s,
-               .range = positive(),
-               .unit = "1",
-               .allowed_text = "(0, 1e-5]",
-               .meaning = "solver tolerance; looser solves would miss the fixed 1e-6 violation "
-                          "threshold below",
-               .read = table,
-               .field = f::number<&Scene::allocation, &AllocationParams::tolerance>()});
-  t.push_back({.path = "allocation.slack_penalty",
-               .section = s,
-               .range = positive(1e12),
-               .unit = "1",
-               .meaning = "ρ of the exact L1 penalty used when the problem is infeasible",
-               .read = table,
-               .field = f::number<&Scene::allocation, &AllocationParams::slack_penalty>()});
-  t.push_back({.path = "allocation.objective",
-               .section = s,
-               .kind = KeyKind::kChoice,
-               .choices = "torque_squared copper_loss",
-               .meaning = "Σ τ² (the paper's eq. 9; with actuators, of the drive torques), or "
-                          "the actuators' copper loss Σ R I² (needs `actuators`; "
-                          "[drive-train.md](docs/theory/drive-train.md#objective))",
-               .field = f::choice<&Scene::allocation, &AllocationParams::objective>()});
+  add({.path = "allocation.friction",
+       .kind = KeyKind::kChoice,
+       .choices = "pyramid4 pyramid8 cone",
+       .meaning = "4- or 8-sided pyramid inscribed in the friction cone, or the exact "
+                  "cone \\|F_t\\| ≤ μ F_n",
+       .read = table,
+       .field = f::choice<&Scene::allocation, &AllocationParams::friction>()});
+  add({.path = "allocation.solver",
+       .kind = KeyKind::kChoice,
+       .choices = "auto active-set ipopt",
+       .meaning = "`auto` is `active-set`: hexdyn's dense dual active-set QP, and for the "
+                  "exact cone the same QP under sequential outer approximation; `ipopt`: "
+                  "Ipopt, the reference, for every friction model"});
+  add({.path = "allocation.torque_limit",
+       .range = positive(kMaxJointEffort_Nm),
+       .unit = "N m",
+       .required = true,
+       .default_text = "required (URDF robot: `effort`)",
+       .allowed_text = "(0, 1e6] N m; URDF robot also `effort`",
+       .meaning = "\\|τ\\| bound of every joint; `effort`: each joint's URDF effort "
+                  "limit"});
+  add({.path = "allocation.min_normal_force",
+       .range = nonnegative(1e6),
+       .unit = "N",
+       .meaning = "least normal force of a support foot",
+       .read = table,
+       .field = f::number<&Scene::allocation, &AllocationParams::min_normal_force_N>()});
+  add({.path = "allocation.tolerance",
+       .range = positive(),
+       .unit = "1",
+       .allowed_text = "(0, 1e-5]",
+       .meaning = "solver tolerance; looser solves would miss the fixed 1e-6 violation "
+                  "threshold below",
+       .read = table,
+       .field = f::number<&Scene::allocation, &AllocationParams::tolerance>()});
+  add({.path = "allocation.slack_penalty",
+       .range = positive(1e12),
+       .unit = "1",
+       .meaning = "ρ of the exact L1 penalty used when the problem is infeasible",
+       .read = table,
+       .field = f::number<&Scene::allocation, &AllocationParams::slack_penalty>()});
+  add({.path = "allocation.objective",
+       .kind = KeyKind::kChoice,
+       .choices = "torque_squared copper_loss",
+       .meaning = "Σ τ² (the paper's eq. 9; with actuators, of the drive torques), or "
+                  "the actuators' copper loss Σ R I² (needs `actuators`; "
+                  "[drive-train.md](docs/theory/drive-train.md#objective))",
+       .field = f::choice<&Scene::allocation, &AllocationParams::objective>()});
 }
 
 void add_output(std::deque<SceneKey>& t) {
-  const std::string_view s = "output";
+  const SectionRows add{t, "output"};
   const KeyRead table = KeyRead::kTable;
-  t.push_back({.path = "output.sample_step",
-               .section = s,
-               .range = positive(kMaxSampleStep_s),
-               .unit = "s",
-               .required = true,
-               .meaning = "step of the uniform grid (the paper: 0.05 s)",
-               .read = table,
-               .field = f::number<&Scene::output, &OutputParams::sample_step_s>()});
-  t.push_back({.path = "output.grid",
-               .section = s,
-               .kind = KeyKind::kChoice,
-               .choices = "uniform adaptive",
-               .meaning = "`adaptive`: the uniform grid refined at every touchdown and lift-off",
-               .read = table,
-               .field = f::choice<&Scene::output, &OutputParams::grid>()});
-  t.push_back({.path = "output.impact_samples",
-               .section = s,
-               .kind = KeyKind::kInteger,
-               .range = closed(1, 100000),
-               .unit = "1",
-               .meaning = "adaptive: intervals across each touchdown transient (its exact peak "
-                          "instant is added)",
-               .read = table,
-               .field = f::integer<&Scene::output, &OutputParams::impact_samples>()});
-  t.push_back({.path = "output.event_step",
-               .section = s,
-               .range = positive(100.0),
-               .unit = "s",
-               .allowed_text = "(0, 100] s, at most `sample_step`",
-               .meaning = "adaptive: finest step next to touchdowns and lift-offs, graded "
-                          "geometrically (×2) up to `sample_step`",
-               .read = table,
-               .field = f::number<&Scene::output, &OutputParams::event_step_s>()});
-  t.push_back({.path = "output.tolerance",
-               .section = s,
-               .range = closed(0.0, 0.1),
-               .unit = "1",
-               .meaning = "adaptive: relative error the grid is refined to, for the energies "
-                          "(total and per joint) and the peaks (joint torque, total power, "
-                          "contact force); `0`: the grid as built, not refined "
-                          "([error control](docs/theory/output-grid.md#error-control))",
-               .read = table,
-               .field = f::number<&Scene::output, &OutputParams::tolerance>()});
-  t.push_back({.path = "output.compression",
-               .section = s,
-               .kind = KeyKind::kChoice,
-               .choices = "deflate none",
-               .meaning =
-                   "`deflate`: numeric datasets of at least 4 KiB chunked and compressed "
-                   "with shuffle + deflate; `none`: every dataset contiguous and "
-                   "uncompressed, about 1.7 times the size and faster to read "
-                   "([output.md](docs/user/output.md#compression)). A sweep's or envelope's own "
-                   "datasets follow its base scene",
-               .read = table,
-               .field = f::flag<&Scene::output, &OutputParams::compress>()});
-  t.push_back({.path = "output.required_friction",
-               .section = s,
-               .kind = KeyKind::kChoice,
-               .choices = "true false",
-               .meaning =
-                   "compute each sample's required friction, the least μ for which its "
-                   "rows admit a force distribution, and write "
-                   "`/contacts/required_friction` and `/contacts/required_friction_leg` "
-                   "([theory/grip.md](docs/theory/grip.md#required-friction)); `false` saves "
-                   "its cost (the utilised friction and the slip flags are always written)",
-               .read = table,
-               .field = f::flag<&Scene::output, &OutputParams::required_friction>()});
+  add({.path = "output.sample_step",
+       .range = positive(kMaxSampleStep_s),
+       .unit = "s",
+       .required = true,
+       .meaning = "step of the uniform grid (the paper: 0.05 s)",
+       .read = table,
+       .field = f::number<&Scene::output, &OutputParams::sample_step_s>()});
+  add({.path = "output.grid",
+       .kind = KeyKind::kChoice,
+       .choices = "uniform adaptive",
+       .meaning = "`adaptive`: the uniform grid refined at every touchdown and lift-off",
+       .read = table,
+       .field = f::choice<&Scene::output, &OutputParams::grid>()});
+  add({.path = "output.impact_samples",
+       .kind = KeyKind::kInteger,
+       .range = closed(1, 100000),
+       .unit = "1",
+       .meaning = "adaptive: intervals across each touchdown transient (its exact peak "
+                  "instant is added)",
+       .read = table,
+       .field = f::integer<&Scene::output, &OutputParams::impact_samples>()});
+  add({.path = "output.event_step",
+       .range = positive(100.0),
+       .unit = "s",
+       .allowed_text = "(0, 100] s, at most `sample_step`",
+       .meaning = "adaptive: finest step next to touchdowns and lift-offs, graded "
+                  "geometrically (×2) up to `sample_step`",
+       .read = table,
+       .field = f::number<&Scene::output, &OutputParams::event_step_s>()});
+  add({.path = "output.tolerance",
+       .range = closed(0.0, 0.1),
+       .unit = "1",
+       .meaning = "adaptive: relative error the grid is refined to, for the energies "
+                  "(total and per joint) and the peaks (joint torque, total power, "
+                  "contact force); `0`: the grid as built, not refined "
+                  "([error control](docs/theory/output-grid.md#error-control))",
+       .read = table,
+       .field = f::number<&Scene::output, &OutputParams::tolerance>()});
+  add({.path = "output.compression",
+       .kind = KeyKind::kChoice,
+       .choices = "deflate none",
+       .meaning = "`deflate`: numeric datasets of at least 4 KiB chunked and compressed "
+                  "with shuffle + deflate; `none`: every dataset contiguous and "
+                  "uncompressed, about 1.7 times the size and faster to read "
+                  "([output.md](docs/user/output.md#compression)). A sweep's or envelope's own "
+                  "datasets follow its base scene",
+       .read = table,
+       .field = f::flag<&Scene::output, &OutputParams::compress>()});
+  add({.path = "output.required_friction",
+       .kind = KeyKind::kChoice,
+       .choices = "true false",
+       .meaning = "compute each sample's required friction, the least μ for which its "
+                  "rows admit a force distribution, and write "
+                  "`/contacts/required_friction` and `/contacts/required_friction_leg` "
+                  "([theory/grip.md](docs/theory/grip.md#required-friction)); `false` saves "
+                  "its cost (the utilised friction and the slip flags are always written)",
+       .read = table,
+       .field = f::flag<&Scene::output, &OutputParams::required_friction>()});
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include <exception>
 #include <optional>
 #include <string>
+#include <type_traits>
 
 #include "hexdyn/core/common.hpp"
 #include "hexdyn/core/result.hpp"
@@ -88,13 +89,17 @@ struct ScenarioSummary {
 /// it; failed_summary fills them with NaN). S is ScenarioSummary or const ScenarioSummary.
 template <class S>
 auto per_joint_metrics(S& s) {
-  return std::array{&s.peak_torque_Nm,
-                    &s.rms_torque_Nm,
-                    &s.peak_torque_gait_Nm,
-                    &s.peak_torque_transient_Nm,
-                    &s.peak_drive_torque_gait_Nm,
-                    &s.peak_drive_torque_transient_Nm,
-                    &s.drive_torque_window_rms_Nm};
+  using Summary = std::remove_const_t<S>;
+  static constexpr std::array kMembers{&Summary::peak_torque_Nm,
+                                       &Summary::rms_torque_Nm,
+                                       &Summary::peak_torque_gait_Nm,
+                                       &Summary::peak_torque_transient_Nm,
+                                       &Summary::peak_drive_torque_gait_Nm,
+                                       &Summary::peak_drive_torque_transient_Nm,
+                                       &Summary::drive_torque_window_rms_Nm};
+  std::array<decltype(&s.peak_torque_Nm), kMembers.size()> metrics{};
+  for (std::size_t i = 0; i < kMembers.size(); ++i) metrics[i] = &(s.*kMembers[i]);
+  return metrics;
 }
 
 /// Summary metrics of a computed scenario. RMS is over time, with the trapezoidal
