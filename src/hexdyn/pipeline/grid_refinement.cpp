@@ -171,7 +171,7 @@ KinematicsResult sample_with_contacts(const PreparedScene& prep, const std::vect
 
 GridAccuracy refine_output_grid(const Scene& scene, const PreparedScene& prep,
                                 DynamicsSolver& solver, KinematicsResult& kin, DynamicsResult& dyn,
-                                std::ostream* log, StageTimes* times) {
+                                std::ostream* log, StageTimes* times, CubicEstimates* estimates) {
   const double tol = scene.output.tolerance;
   const bool refine = tol > 0.0 && scene.output.grid == OutputGrid::kAdaptive;
   // Without refinement, the estimates are those of the default tolerance's assessment.
@@ -181,7 +181,8 @@ GridAccuracy refine_output_grid(const Scene& scene, const PreparedScene& prep,
   acc.cubic_energy = energy_rule(scene.output.grid) == Quadrature::kCubic;
   Batches b;
   b.add(std::move(kin), std::move(dyn));
-  CubicEstimates reuse;  // each pass's cubic estimates, for the intervals the next keeps
+  CubicEstimates own;  // each pass's cubic estimates, for the intervals the next keeps
+  CubicEstimates& reuse = estimates ? *estimates : own;
   for (int pass = 0;; ++pass) {
     check_cancelled();
     std::optional<StageTimer> clock(std::in_place, times, Stage::kRefinement);

@@ -29,9 +29,12 @@ KinematicsResult sample_with_contacts(const PreparedScene& prep, const std::vect
 /// with output.tolerance > 0; otherwise (the uniform grid, tolerance 0) the samples are left as
 /// they are and only assessed. Stops, with one line on `log` (may be null), when a pass limit
 /// or the sample limit comes first. dyn holds the per-sample fields only (DynamicsSolver::solve);
-/// returns what the grid achieved. `times` (may be null): the stage clocks.
+/// returns what the grid achieved. `times` (may be null): the stage clocks. `estimates` (may be
+/// null): receives the last assessment's piecewise-cubic interval integrals, those of the
+/// returned samples, for finish_dynamics.
 GridAccuracy refine_output_grid(const Scene& scene, const PreparedScene& prep,
                                 DynamicsSolver& solver, KinematicsResult& kin, DynamicsResult& dyn,
-                                std::ostream* log, StageTimes* times = nullptr);
+                                std::ostream* log, StageTimes* times = nullptr,
+                                CubicEstimates* estimates = nullptr);
 
 }  // namespace hexdyn

@@ -123,9 +123,11 @@ RunResult run_prepared_scene(const Scene& scene, const PreparedScene& prep, std:
   // The solver, the refinement and the assembly time their own stages.
   DynamicsSolver solver(scene, prep.model);
   result.dyn = solver.solve(result.kin, contacts, times);
-  result.grid = refine_output_grid(scene, prep, solver, result.kin, result.dyn, log, times);
-  finish_dynamics(scene, prep.model, prep.plan, result.kin, prep.touchdowns, result.dyn, log,
-                  times);
+  CubicEstimates estimates;
+  result.grid =
+      refine_output_grid(scene, prep, solver, result.kin, result.dyn, log, times, &estimates);
+  finish_dynamics(scene, prep.model, prep.plan, result.kin, prep.touchdowns, result.dyn, log, times,
+                  &estimates);
   const StageTimer clock(times, Stage::kAssembly);
   describe_base_at_root_link(prep.model,
                              result.kin);  // after the dynamics, which use the trunk frame

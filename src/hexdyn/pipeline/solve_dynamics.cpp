@@ -345,7 +345,8 @@ SampleProblem solve_sample_problem(const Scene& scene, const RobotModel& model,
 
 void finish_dynamics(const Scene& scene, const RobotModel& model, const MotionPlan& plan,
                      const KinematicsResult& kin, const std::vector<Touchdown>& touchdowns,
-                     DynamicsResult& dyn, std::ostream* log, StageTimes* times) {
+                     DynamicsResult& dyn, std::ostream* log, StageTimes* times,
+                     const CubicEstimates* estimates) {
   for (const Touchdown& td : touchdowns)
     if (td.transient.truncated && log)
       *log << "hexdyn: touchdown of " << leg_name(td.leg) << " at t = " << td.t_s
@@ -369,7 +370,7 @@ void finish_dynamics(const Scene& scene, const RobotModel& model, const MotionPl
   const StageTimer clock(times, Stage::kPower);
   PowerResult power =
       compute_power(kin, dyn.joint_torque, model.total_mass_kg, plan.trunk.total_travel_m(),
-                    plan.trunk.cycle_start_times(), energy_rule(scene.output.grid));
+                    plan.trunk.cycle_start_times(), energy_rule(scene.output.grid), estimates);
   dyn.joint_power = std::move(power.joint_power);
   dyn.total_power_W = std::move(power.total_power_W);
   dyn.energy_joint_J = std::move(power.energy_joint_J);

@@ -16,6 +16,7 @@
 #include "hexdyn/model/robot_model.hpp"
 #include "hexdyn/pipeline/stage_times.hpp"
 #include "hexdyn/planning/plan.hpp"
+#include "hexdyn/power/quadrature.hpp"
 
 namespace hexdyn {
 
@@ -74,10 +75,12 @@ class DynamicsSolver {
 /// What solve_dynamics does after the per-sample solves, on a result whose samples are final:
 /// the touchdowns' records and log lines, the episodes of relaxed or failed samples
 /// (pipeline/episode_log.hpp), the power and energies over the samples (power/power.hpp) and, with
-/// actuators, the electrical side (drive/drive.hpp). `log` may be null.
+/// actuators, the electrical side (drive/drive.hpp). `log` may be null. `estimates` (may be
+/// null): refine_output_grid's last, whose interval energies compute_power takes.
 void finish_dynamics(const Scene& scene, const RobotModel& model, const MotionPlan& plan,
                      const KinematicsResult& kin, const std::vector<Touchdown>& touchdowns,
-                     DynamicsResult& dyn, std::ostream* log, StageTimes* times = nullptr);
+                     DynamicsResult& dyn, std::ostream* log, StageTimes* times = nullptr,
+                     const CubicEstimates* estimates = nullptr);
 
 /// The dynamics of every sample of `kin` under the contact schedule `contacts` (from
 /// schedule_contacts over the same kin and touchdowns). Reads its inputs only; the

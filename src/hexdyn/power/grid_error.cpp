@@ -282,21 +282,29 @@ void cubic_term_estimates(const std::vector<double>& t, const std::vector<char>&
   thread_local std::vector<std::ptrdiff_t> old_k;
   const bool usable = reuse && reuse->integral.size() == terms.size() && !reuse->t_s.empty();
   if (usable) kept_intervals(t, reuse->t_s, keep, old_k);
+  // The terms whose estimates are all new, and those that keep some: each batch builds an
+  // interval's stencil once for all its terms.
+  thread_local std::vector<CubicTarget> fresh, rest;
+  fresh.clear();
+  rest.clear();
   for (std::size_t i = 0; i < terms.size(); ++i) {
     if (rule[i] != Quadrature::kCubic) continue;
-    if (!usable || reuse->integral[i].size() + 1 != reuse->t_s.size()) {
-      cubic_abs_integrals(t, jump, terms[i], integral[i], &error[i]);
-      continue;
-    }
     integral[i].assign(n, 0.0);
     error[i].assign(n, 0.0);
+    const CubicTarget target{terms[i], integral[i].data(), error[i].data()};
+    if (!usable || reuse->integral[i].size() + 1 != reuse->t_s.size()) {
+      fresh.push_back(target);
+      continue;
+    }
     for (std::size_t k = 0; k < n; ++k)
       if (keep[k]) {
         integral[i][k] = reuse->integral[i][static_cast<std::size_t>(old_k[k])];
         error[i][k] = reuse->error[i][static_cast<std::size_t>(old_k[k])];
       }
-    cubic_abs_integrals_except(t, jump, terms[i], keep, integral[i], error[i]);
+    rest.push_back(target);
   }
+  cubic_abs_integrals_batch(t, jump, fresh);
+  cubic_abs_integrals_batch(t, jump, rest, &keep);
   if (!reuse) return;
   reuse->t_s = t;
   reuse->integral.assign(terms.size(), {});

@@ -85,16 +85,6 @@ struct GridAssessment {
   std::vector<double> refine_at_s;
 };
 
-/// The piecewise-cubic estimates of one assessment, kept for the next on a grid that adds
-/// samples to this one: an interval whose samples k − 3 … k + 4 were all there, consecutive,
-/// has the same stencil and so the same integral and error, which are taken instead of
-/// computed again (bit for bit the same).
-struct CubicEstimates {
-  std::vector<double> t_s;                    ///< the grid they belong to
-  std::vector<std::vector<double>> integral;  ///< per term (empty for a trapezoid term)
-  std::vector<std::vector<double>> error;     ///< per term
-};
-
 /// Assesses the grid t_s for the integrals of the absolute values of the signed series
 /// `terms` and for the peaks (every peak series is ≥ 0 where it matters: its maximum is
 /// controlled). An integral's error is estimated by the net |Σ_k error[k]| of its rule's

@@ -51,9 +51,31 @@ std::vector<char> jump_intervals(const KinematicsResult& kin) {
   return jump;
 }
 
+namespace {
+
+/// Each joint's interval integrals of |τ_k ω_k| by the piecewise-cubic rule: `known`'s when
+/// they belong to this grid, else computed (all joints at once).
+const std::vector<std::vector<double>>& joint_interval_energies(
+    const KinematicsResult& kin, const RowMatrix& joint_power, const std::vector<char>& jump,
+    const CubicEstimates* known, std::vector<std::vector<double>>& own) {
+  const std::size_t n = kin.time_s.empty() ? 0 : kin.time_s.size() - 1;
+  bool usable = known && known->t_s == kin.time_s && known->integral.size() >= kJoints;
+  for (int j = 0; usable && j < kJoints; ++j) usable = known->integral[j].size() == n;
+  if (usable) return known->integral;
+  own.assign(kJoints, std::vector<double>(n, 0.0));
+  std::vector<CubicTarget> targets;
+  for (int j = 0; j < kJoints; ++j)
+    targets.push_back({{joint_power.data() + j, kJoints}, own[j].data()});
+  cubic_abs_integrals_batch(kin.time_s, jump, targets);
+  return own;
+}
+
+}  // namespace
+
 PowerResult compute_power(const KinematicsResult& kin, const RowMatrix& joint_torque,
                           double total_mass_kg, double distance_m,
-                          const std::vector<double>& cycle_start_s, Quadrature rule) {
+                          const std::vector<double>& cycle_start_s, Quadrature rule,
+                          const CubicEstimates* known) {
   const int T = kin.samples();
   PowerResult p;
   p.joint_power = joint_torque.cwiseProduct(kin.joint_velocity);
@@ -62,11 +84,17 @@ PowerResult compute_power(const KinematicsResult& kin, const RowMatrix& joint_to
   for (int i = 0; i < T; ++i) p.total_power_W[i] = abs_power.row(i).sum();
   const bool cubic = rule == Quadrature::kCubic;
   const std::vector<char> jump = cubic ? jump_intervals(kin) : std::vector<char>{};
+  std::vector<std::vector<double>> own;
+  const std::vector<std::vector<double>>* parts =
+      cubic ? &joint_interval_energies(kin, p.joint_power, jump, known, own) : nullptr;
   p.energy_joint_J.assign(kJoints, 0.0);
-  for (int j = 0; j < kJoints; ++j)
-    p.energy_joint_J[j] =
-        cubic ? cubic_abs_integral(kin.time_s, jump, {p.joint_power.data() + j, kJoints})
-              : trapezoid(kin.time_s, abs_power.data() + j, kJoints);
+  for (int j = 0; j < kJoints; ++j) {
+    if (!cubic) {
+      p.energy_joint_J[j] = trapezoid(kin.time_s, abs_power.data() + j, kJoints);
+      continue;
+    }
+    for (double e : (*parts)[j]) p.energy_joint_J[j] += e;
+  }
   if (cubic) {
     for (double e : p.energy_joint_J) p.energy_total_J += e;
   } else {
@@ -81,7 +109,8 @@ PowerResult compute_power(const KinematicsResult& kin, const RowMatrix& joint_to
     double e = 0.0;
     if (!cubic) e = trapezoid_between(kin.time_s, p.total_power_W.data(), a, b);
     for (int j = 0; cubic && j < kJoints; ++j)
-      e += cubic_abs_integral_between(kin.time_s, jump, {p.joint_power.data() + j, kJoints}, a, b);
+      e += cubic_abs_integral_between(kin.time_s, jump, {p.joint_power.data() + j, kJoints}, a, b,
+                                      (*parts)[j].data());
     p.energy_cycle_J.push_back(e);
   }
   p.distance_m = distance_m;

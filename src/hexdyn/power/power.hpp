@@ -34,11 +34,15 @@ struct PowerResult {
 /// - Quadrature::kTrapezoid (the uniform grid): E_k = trapezoid of |τ_k ω_k|, E = trapezoid
 ///   of P_in (= Σ E_k up to rounding), E per gait cycle by trapezoid_between.
 /// joint_torque: T×18 [N m] on the samples of kin; total_mass_kg > 0; distance_m > 0;
-/// cycle_start_s: increasing [s], first 0 (may be empty: no cycles).
+/// cycle_start_s: increasing [s], first 0 (may be empty: no cycles). known (may be null): the
+/// output grid's last assessment (power/grid_error.hpp), whose terms 0 … 17 are τ_k ω_k on
+/// these samples; its interval integrals are taken when its grid is kin.time_s (the same
+/// numbers, to the bit, as computing them again).
 PowerResult compute_power(const KinematicsResult& kin, const RowMatrix& joint_torque,
                           double total_mass_kg, double distance_m,
                           const std::vector<double>& cycle_start_s,
-                          Quadrature rule = Quadrature::kCubic);
+                          Quadrature rule = Quadrature::kCubic,
+                          const CubicEstimates* known = nullptr);
 
 /// The rule the energies of a run on `grid` are integrated by: the piecewise cubic on the
 /// adaptive grid, whose left-limit samples split the series at their jumps; the trapezoid on the

@@ -30,6 +30,17 @@ struct SeriesView {
   double operator[](std::size_t k) const { return y[k * static_cast<std::size_t>(stride)]; }
 };
 
+/// The piecewise-cubic estimates of one assessment, kept for the next on a grid that adds
+/// samples to this one: an interval whose samples k − 3 … k + 4 were all there, consecutive,
+/// has the same stencil and so the same integral and error, which are taken instead of
+/// computed again (bit for bit the same). The last assessment's are those of the run's own
+/// grid, which the energies (power/power.hpp) take instead of computing them again.
+struct CubicEstimates {
+  std::vector<double> t_s;                    ///< the grid they belong to
+  std::vector<std::vector<double>> integral;  ///< per term (empty for a trapezoid term)
+  std::vector<std::vector<double>> error;     ///< per term
+};
+
 /// ∫|y| dt over every interval of the grid t_s (T increasing instants [s]) by the piecewise-cubic
 /// rule: `integral` gets T − 1 entries. With `error` (may be null; T − 1 entries), the rule's
 /// estimated error per interval, signed, from the next term of the interpolant: for a stencil
@@ -40,6 +51,21 @@ struct SeriesView {
 /// jump: T entries (the last unused).
 void cubic_abs_integrals(const std::vector<double>& t_s, const std::vector<char>& jump,
                          SeriesView y, std::vector<double>& integral, std::vector<double>* error);
+
+/// One series of a batch and where its interval integrals (and, when error is not null, its
+/// errors) go: T − 1 entries each.
+struct CubicTarget {
+  SeriesView y;
+  double* integral = nullptr;
+  double* error = nullptr;
+};
+
+/// cubic_abs_integrals of several series on one grid at once (each interval's stencil is
+/// built once for all), on the intervals k with !(*keep)[k] when keep is given (the others
+/// are left as they are). The same numbers, to the bit, as one series at a time.
+void cubic_abs_integrals_batch(const std::vector<double>& t_s, const std::vector<char>& jump,
+                               const std::vector<CubicTarget>& targets,
+                               const std::vector<char>* keep = nullptr);
 
 /// cubic_abs_integrals on the intervals k with !keep[k] only: `integral` and `error` (T − 1
 /// entries each, filled by the caller) keep their entries where keep[k] != 0 (the same values
@@ -54,8 +80,9 @@ double cubic_abs_integral(const std::vector<double>& t_s, const std::vector<char
 
 /// ∫|y| dt over [a, b] ⊆ [t_0, t_{T−1}] (a ≤ b) by the rule: whole intervals as above, and the
 /// interval a bound falls in integrates its own p_k up to the bound, so that the integrals over
-/// adjacent spans add up to the whole (to rounding).
+/// adjacent spans add up to the whole (to rounding). `whole` (may be null; T − 1 entries): the
+/// series' cubic_abs_integrals, taken for the intervals wholly inside [a, b].
 double cubic_abs_integral_between(const std::vector<double>& t_s, const std::vector<char>& jump,
-                                  SeriesView y, double a, double b);
+                                  SeriesView y, double a, double b, const double* whole = nullptr);
 
 }  // namespace hexdyn

@@ -191,3 +191,58 @@ TEST_CASE("cubic rule: spans add up to the whole, bounds cut the interval's cubi
 }
 
 }  // namespace hexdyn
+
+namespace hexdyn {
+
+TEST_CASE("cubic rule: a batch gives each series' numbers to the bit", "[power]") {
+  std::mt19937 rng(5);
+  std::vector<double> t, y0;
+  // Roots close together (0.5 and 0.5 + 1e-7) and sign changes between samples.
+  irregular(
+      0.0, 2.0, 40, rng, [](double x) { return (x - 0.5) * (x - 0.5 - 1e-7) * (x - 1.3); }, t, y0);
+  const std::size_t T = t.size();
+  std::vector<char> jump(T, 0);
+  jump[17] = 1;
+  // Three series interleaved (stride 3): the cubic, a sine and a constant.
+  std::vector<double> y(3 * T);
+  for (std::size_t k = 0; k < T; ++k) {
+    y[3 * k] = y0[k];
+    y[3 * k + 1] = std::sin(7.0 * t[k]);
+    y[3 * k + 2] = -0.25;
+  }
+  std::vector<std::vector<double>> integral(3, std::vector<double>(T - 1)),
+      error(3, std::vector<double>(T - 1));
+  std::vector<CubicTarget> targets;
+  for (int i = 0; i < 3; ++i)
+    targets.push_back({{y.data() + i, 3}, integral[i].data(), error[i].data()});
+  cubic_abs_integrals_batch(t, jump, targets);
+  for (int i = 0; i < 3; ++i) {
+    std::vector<double> one, one_error;
+    cubic_abs_integrals(t, jump, {y.data() + i, 3}, one, &one_error);
+    CHECK(one == integral[i]);
+    CHECK(one_error == error[i]);
+  }
+  // With `keep`, the kept intervals are left alone.
+  std::vector<char> keep(T - 1, 0);
+  for (std::size_t k = 0; k < T - 1; k += 3) keep[k] = 1;
+  std::vector<double> part(T - 1, -7.0), part_error(T - 1, -7.0);
+  cubic_abs_integrals_batch(t, jump, {{{y.data(), 3}, part.data(), part_error.data()}}, &keep);
+  for (std::size_t k = 0; k < T - 1; ++k) {
+    CHECK(part[k] == (keep[k] ? -7.0 : integral[0][k]));
+    CHECK(part_error[k] == (keep[k] ? -7.0 : error[0][k]));
+  }
+  // The whole intervals of a span taken from the integrals: the same as computed.
+  for (double a : {0.0, 0.33, 1.0})
+    CHECK(cubic_abs_integral_between(t, jump, {y.data() + 1, 3}, a, 1.9, integral[1].data()) ==
+          cubic_abs_integral_between(t, jump, {y.data() + 1, 3}, a, 1.9));
+  // The cubic piece through its nearly double root: the closed form.
+  const double before_jump = cubic_abs_integral_between(t, jump, {y.data(), 3}, 0.0, t[17]);
+  double exact = 0.0;
+  {
+    const double r1 = 0.5, r2 = 0.5 + 1e-7, r3 = 1.3;
+    exact = abs_cubic_integral(r1, r2, r3, 0.0, t[17]);
+  }
+  CHECK(before_jump == Approx(exact).epsilon(1e-12));
+}
+
+}  // namespace hexdyn
