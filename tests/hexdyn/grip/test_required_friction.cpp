@@ -1,4 +1,4 @@
-// The required friction (allocation/required_friction.hpp, docs/theory/grip.md#required-friction)
+// The required friction (grip/required_friction.hpp, docs/theory/grip.md#required-friction)
 // against computations that do not use its Newton code:
 //  - random allocation problems (build_allocation_problem from random ContactSplit data:
 //    feet around a hexagon, tilted contact frames, random leg Jacobians, a trunk wrench of
@@ -19,8 +19,8 @@
 
 #include "hexdyn/allocation/backends.hpp"
 #include "hexdyn/allocation/problem.hpp"
-#include "hexdyn/allocation/required_friction.hpp"
 #include "hexdyn/core/spatial.hpp"
+#include "hexdyn/grip/required_friction.hpp"
 
 namespace hexdyn {
 namespace {

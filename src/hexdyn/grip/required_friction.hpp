@@ -1,5 +1,5 @@
 #pragma once
-/// \file allocation/required_friction.hpp
+/// \file grip/required_friction.hpp
 /// The least friction coefficient a sample needs (docs/theory/grip.md#required-friction): the
 /// smallest μ for which the sample's allocation rows (trunk equations, torque or drive limits,
 /// minimum normal forces, and the friction faces or cones of the scene's friction model at μ)

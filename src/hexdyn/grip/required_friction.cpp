@@ -1,4 +1,4 @@
-#include "hexdyn/allocation/required_friction.hpp"
+#include "hexdyn/grip/required_friction.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 #include <sstream>
 #include <utility>
 
-#include "hexdyn/allocation/required_friction_solver.hpp"
+#include "hexdyn/grip/required_friction_solver.hpp"
 
 namespace hexdyn {
 

@@ -1,6 +1,6 @@
 #pragma once
-/// \file allocation/required_friction_solver.hpp
-/// The internals of RequiredFrictionSolver (allocation/required_friction.hpp), shared by its
+/// \file grip/required_friction_solver.hpp
+/// The internals of RequiredFrictionSolver (grip/required_friction.hpp), shared by its
 /// two sources: required_friction.cpp (Newton on an active set, the choice of its rows,
 /// bisection) and required_friction_cone.cpp (the exact cone's outer polygons). Not a public
 /// interface. Sizes: at most kLegs support legs of 3 forces, so the Newton system is at most
@@ -15,7 +15,7 @@
 #include <utility>
 #include <vector>
 
-#include "hexdyn/allocation/required_friction.hpp"
+#include "hexdyn/grip/required_friction.hpp"
 
 namespace hexdyn {
 

@@ -1,11 +1,11 @@
-// The exact cone's required friction by outer polygons (allocation/required_friction.hpp,
+// The exact cone's required friction by outer polygons (grip/required_friction.hpp,
 // docs/theory/grip.md#the-exact-cone): RequiredFrictionSolver::Impl's polygon rounds.
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
 
-#include "hexdyn/allocation/required_friction_solver.hpp"
+#include "hexdyn/grip/required_friction_solver.hpp"
 
 namespace hexdyn {
 
