@@ -67,7 +67,7 @@ struct RequiredFriction {
 class RequiredFrictionSolver {
  public:
   /// `backend` solves the bisection's probes, problems without cones (the cones become outer
-  /// polygons): the active-set back end (allocation/active_set.hpp), an instance of its own
+  /// polygons): the active-set back end (allocation/active_set_backend.hpp), an instance of its own
   /// besides the allocation's, so that each keeps its own warm start.
   explicit RequiredFrictionSolver(std::unique_ptr<AllocationBackend> backend,
                                   const RequiredFrictionOptions& options = {});

@@ -9,7 +9,7 @@
 #include <string>
 #include <utility>
 
-#include "hexdyn/allocation/active_set.hpp"
+#include "hexdyn/allocation/active_set_backend.hpp"
 #include "hexdyn/allocation/backends.hpp"
 #include "hexdyn/allocation/problem.hpp"
 #include "hexdyn/core/cancel.hpp"

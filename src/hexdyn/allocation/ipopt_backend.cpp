@@ -1,4 +1,4 @@
-/// \file allocation/ipopt.cpp
+/// \file allocation/ipopt_backend.cpp
 /// The Ipopt back end of the allocation (allocation/qp.hpp); the TNLP adapter that poses
 /// the problem to Ipopt is in allocation/ipopt_nlp.cpp.
 ///
@@ -32,7 +32,7 @@
 /// never vanishes (∂/∂n = μ), so a solution at the apex (an unloaded foot) has multipliers;
 /// the squared form μ²n² − t² ≥ 0 has none there.
 /// Ipopt's Lagrangian is f + λᵀ g, so hexdyn's multipliers are −λ_ipopt.
-#include "hexdyn/allocation/ipopt.hpp"
+#include "hexdyn/allocation/ipopt_backend.hpp"
 
 #include <Eigen/Dense>
 #include <IpIpoptApplication.hpp>

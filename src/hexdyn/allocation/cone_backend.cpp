@@ -1,6 +1,6 @@
-/// \file allocation/cone.cpp
+/// \file allocation/cone_backend.cpp
 /// The exact friction cone by sequential outer approximation on the dual active-set QP
-/// (allocation/cone.hpp).
+/// (allocation/cone_backend.hpp).
 ///
 /// Working problem. The problem's rows, then eight half-spaces per cone k, read as rows
 ///     d_jᵀ t_k − μ_k n_k ≤ 0,
@@ -54,7 +54,7 @@
 /// and any other half-space of it found violated in a penalised pass is dropped for the
 /// rest of the sample. The status and message are computed on the posed problem
 /// (describe_violations), so rows and cones carry the problem's names.
-#include "hexdyn/allocation/cone.hpp"
+#include "hexdyn/allocation/cone_backend.hpp"
 
 #include <algorithm>
 #include <array>
