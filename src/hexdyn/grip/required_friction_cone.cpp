@@ -88,7 +88,8 @@ void RequiredFrictionSolver::Impl::solve_cone(const QpProblem& qp, const Allocat
     load_cone_polygon(qp, layout);
     solve_polygonal(cone_layout, allocation);
     if (!std::isfinite(out.mu)) return;  // no μ for the outer polygon: none for the cone
-    const double lower = out.mu - (out.method == 2 ? opt.tolerance : 0.0);
+    const double lower =
+        out.mu - (out.method == RequiredFrictionMethod::kBisection ? opt.tolerance : 0.0);
     int leg = -1;
     const double upper = friction_use(qp, layout, answer_x, &leg);
     if (upper < best_upper) {

@@ -23,9 +23,6 @@ inline constexpr int kMaxUnknowns = 3 * kLegs + 1;  ///< n forces and μ
 using MuMatrix =
     Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxUnknowns, kMaxUnknowns>;
 using MuVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxUnknowns, 1>;
-/// The number of trunk rows, the first inequality rows of every allocation problem
-/// (allocation/problem.hpp), equal bounds.
-inline constexpr int kTrunkRows = 6;
 
 /// Faces of the outer polygon that stands in for an exact cone, and the bit that marks the
 /// polygon problem's structural key.

@@ -182,8 +182,8 @@ TEST_CASE("required friction: random problems against bisection on feasibility",
       const AllocationLayout layout = build_at(alloc, s, 0.3, qp);
       const RequiredFriction& r = solver.solve(qp, layout, nullptr);
       INFO(std::setprecision(12) << model_name(model) << " sample " << k << ": hexdyn " << r.mu
-                                 << " (method " << r.method << ", " << r.message << "), bisection ["
-                                 << low << ", " << high << "]");
+                                 << " (method " << static_cast<int>(r.method) << ", " << r.message
+                                 << "), bisection [" << low << ", " << high << "]");
       if (std::isnan(low) || std::isnan(high)) {
         ++nan;
         CHECK(std::isnan(r.mu));
