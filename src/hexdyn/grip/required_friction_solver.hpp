@@ -153,34 +153,8 @@ struct RequiredFrictionSolver::Impl {
       for (int f = 0; f < kConeFaces; ++f) leg[f] = 2.0 * M_PI * f / kConeFaces;
   }
 
-  /// work = qp; the row names (strings) copied only when the layout changed.
-  void load(const QpProblem& qp) {
-    const bool same = work.structure == qp.structure && work.variables() == qp.variables() &&
-                      work.inequalities() == qp.inequalities() &&
-                      work.equalities() == qp.equalities() && work.cones.size() == qp.cones.size();
-    if (!same) {
-      work = qp;
-      return;
-    }
-    work.H = qp.H;
-    work.g = qp.g;
-    work.constant = qp.constant;
-    work.A = qp.A;
-    work.b = qp.b;
-    work.C = qp.C;
-    work.lower = qp.lower;
-    work.upper = qp.upper;
-    work.ineq_penalty = qp.ineq_penalty;
-    for (std::size_t k = 0; k < qp.cones.size(); ++k) {
-      const SecondOrderCone& c = qp.cones[k];
-      SecondOrderCone& w = work.cones[k];
-      w.tangent1 = c.tangent1;
-      w.tangent2 = c.tangent2;
-      w.normal = c.normal;
-      w.mu = c.mu;
-      w.penalty = c.penalty;
-    }
-  }
+  /// work = qp (a problem without cones); the row names copied only when the layout changed.
+  void load(const QpProblem& qp) { copy_problem_values(qp, work, 0, qp.structure); }
 
   /// Feasibility of the rows at mu: the back end's solve at mu, every row and cone held to
   /// kViolationThreshold. The forces in *x_out.
