@@ -9,7 +9,7 @@
 #include <stdexcept>
 
 #include "bench_paper.hpp"
-#include "hexdyn/allocation/ipopt.hpp"
+#include "hexdyn/allocation/ipopt_backend.hpp"
 
 namespace {
 

@@ -20,8 +20,8 @@
 #include <vector>
 
 #include "bench_paper.hpp"
-#include "hexdyn/allocation/active_set.hpp"
-#include "hexdyn/allocation/ipopt.hpp"
+#include "hexdyn/allocation/active_set_backend.hpp"
+#include "hexdyn/allocation/ipopt_backend.hpp"
 
 // Heap allocations of this program, counted to show that a warm solve makes none.
 namespace {

@@ -1,7 +1,8 @@
-// Cost of the exact friction cone: the outer-approximation cone back end (allocation/cone.hpp)
-// against the active-set back end on the 4-sided pyramid and Ipopt on the cone, all three on
-// the samples of the paper run (its own grid, touchdown transients included), each run in
-// order as the pipeline solves it (warm starts, relaxed runs), in one binary.
+// Cost of the exact friction cone: the outer-approximation cone back end
+// (allocation/cone_backend.hpp) against the active-set back end on the 4-sided pyramid and Ipopt on
+// the cone, all three on the samples of the paper run (its own grid, touchdown transients
+// included), each run in order as the pipeline solves it (warm starts, relaxed runs), in one
+// binary.
 //
 // BM_ConePaperRun reports, per sample: the cone back end's median (median_us_per_sample),
 // the active-set pyramid4 median (pyramid4_us_per_sample) and Ipopt's cone median
@@ -21,9 +22,9 @@
 #include <vector>
 
 #include "bench_paper.hpp"
-#include "hexdyn/allocation/active_set.hpp"
-#include "hexdyn/allocation/cone.hpp"
-#include "hexdyn/allocation/ipopt.hpp"
+#include "hexdyn/allocation/active_set_backend.hpp"
+#include "hexdyn/allocation/cone_backend.hpp"
+#include "hexdyn/allocation/ipopt_backend.hpp"
 
 namespace {
 std::atomic<long> g_allocations{0};

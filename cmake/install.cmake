@@ -35,7 +35,7 @@ install(FILES ${hexdyn_installed_schema_headers} DESTINATION ${HEXDYN_INSTALL_SH
 #                                                 by find_package(hexdyn COMPONENTS mpi))
 #   P/lib/pkgconfig/hexdyn.pc                     the same libraries for pkg-config
 set(HEXDYN_LAYERS core model urdf_reader planning kinematics dynamics contact allocation
-                  allocation_ipopt power drive pipeline process config io sweep envelope replay
+                  allocation_ipopt grip power drive pipeline process config io sweep envelope replay
                   replay_io)
 set(HEXDYN_INSTALL_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/hexdyn)
 
@@ -108,7 +108,8 @@ install(FILES ${CMAKE_BINARY_DIR}/package/hexdynConfig.cmake
 # pkg-config: the libraries of hexdyn::hexdyn in link order (static: every dependency is
 # public).
 set(HEXDYN_PC_LIBS "")
-foreach(layer replay_io replay envelope sweep io config process pipeline drive power allocation_ipopt allocation
+foreach(layer replay_io replay envelope sweep io config process pipeline drive power grip allocation_ipopt
+              allocation
               contact dynamics
               kinematics planning urdf_reader model core)
   string(APPEND HEXDYN_PC_LIBS " -lhexdyn_${layer}")

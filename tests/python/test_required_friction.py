@@ -40,7 +40,7 @@ import hexdyn  # noqa: E402
 
 HEXDYN, SRC = args()
 PAPER = os.path.join(SRC, "configs", "paper.yaml")
-MU_MAX = 1e3          # hexdyn's largest mu (allocation/required_friction.hpp)
+MU_MAX = 1e3          # hexdyn's largest mu (grip/required_friction.hpp)
 BRACKET = 1e-8        # bisection's final bracket
 AGREEMENT = 1e-6      # |hexdyn - reference|, absolute
 FAST = {"gait.duty_factor": "3/4", "motion.cycle_durations": [1.4, 1.0, 1.4]}

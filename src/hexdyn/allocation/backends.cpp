@@ -1,8 +1,8 @@
 #include "hexdyn/allocation/backends.hpp"
 
-#include "hexdyn/allocation/active_set.hpp"
-#include "hexdyn/allocation/cone.hpp"
-#include "hexdyn/allocation/ipopt.hpp"
+#include "hexdyn/allocation/active_set_backend.hpp"
+#include "hexdyn/allocation/cone_backend.hpp"
+#include "hexdyn/allocation/ipopt_backend.hpp"
 #include "hexdyn/core/errors.hpp"
 
 namespace hexdyn {
@@ -12,7 +12,7 @@ std::unique_ptr<AllocationBackend> make_allocation_backend(const AllocationParam
     case AllocationSolver::kIpopt:
       return make_ipopt_backend(ipopt_options_from(params));
     case AllocationSolver::kActiveSet:
-      // The exact cone by outer approximation on the active-set QP (allocation/cone.hpp).
+      // The exact cone by outer approximation on the active-set QP (allocation/cone_backend.hpp).
       if (params.friction == FrictionModel::kCone)
         return make_cone_backend(cone_options_from(params));
       return make_active_set_backend(active_set_options_from(params));

@@ -1,7 +1,7 @@
 #pragma once
 /// \file ipopt_nlp.hpp
 /// The allocation QP (allocation/qp.hpp) in Ipopt's TNLP form, strict or with penalised
-/// slacks: the adapter behind the Ipopt back end (allocation/ipopt.cpp explains the form
+/// slacks: the adapter behind the Ipopt back end (allocation/ipopt_backend.cpp explains the form
 /// and the sign of the multipliers). Internal to the hexdyn_allocation_ipopt target.
 #include <Eigen/Dense>
 #include <IpTNLP.hpp>

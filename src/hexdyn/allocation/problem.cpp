@@ -31,8 +31,9 @@ std::uint64_t structure_key(int faces, const std::array<ContactPhase, kLegs>& ph
   return key;
 }
 
-constexpr const char* kTrunkRowNames[6] = {"trunk force x",  "trunk force y",  "trunk force z",
-                                           "trunk moment x", "trunk moment y", "trunk moment z"};
+constexpr const char* kTrunkRowNames[AllocationLayout::kTrunkRows] = {
+    "trunk force x",  "trunk force y",  "trunk force z",
+    "trunk moment x", "trunk moment y", "trunk moment z"};
 /// Slack weights (allocation/qp.hpp ineq_penalty) set which rows give way when the
 /// constraints cannot all hold: torque limits first (weight 1: the actuators are too
 /// weak), then the trunk rows (the prescribed motion cannot be produced, as during a
@@ -78,7 +79,7 @@ AllocationLayout variable_layout(const std::array<ContactPhase, kLegs>& phase,
                                  const std::array<double, kLegs>& impact_force_N,
                                  const std::array<Mat3, kLegs>& W_R_c, int faces, int& rows) {
   AllocationLayout layout;
-  int n = 0, m_in = 6;  // six trunk rows (lower = upper, so that they can be relaxed)
+  int n = 0, m_in = AllocationLayout::kTrunkRows;
   for (int l = 0; l < kLegs; ++l) {
     AllocationLayout::Leg& leg = layout.legs[l];
     leg.W_R_contact = W_R_c[l];
@@ -99,7 +100,8 @@ AllocationLayout variable_layout(const std::array<ContactPhase, kLegs>& phase,
 
 // At most 18 variables: the matrices live on the stack.
 using GMatrix = Eigen::Matrix<double, kJoints, Eigen::Dynamic, Eigen::ColMajor, kJoints, 3 * kLegs>;
-using BMatrix = Eigen::Matrix<double, 6, Eigen::Dynamic, Eigen::ColMajor, 6, 3 * kLegs>;
+using BMatrix = Eigen::Matrix<double, AllocationLayout::kTrunkRows, Eigen::Dynamic, Eigen::ColMajor,
+                              AllocationLayout::kTrunkRows, 3 * kLegs>;
 
 /// The problem's linear terms in its variables x (contact-frame forces [N]): joint torques
 /// τ = tau_known − G x [N m] and trunk rows B x = trunk_rhs, where the known forces (the
@@ -127,7 +129,7 @@ LinearTerms linear_terms(const ContactSplit& split, const AllocationLayout& layo
   }
   const int n = layout.variables;
   t.G = GMatrix::Zero(kJoints, n);
-  t.B = BMatrix::Zero(6, n);
+  t.B = BMatrix::Zero(AllocationLayout::kTrunkRows, n);
   for (int l = 0; l < kLegs; ++l) {
     const AllocationLayout::Leg& leg = layout.legs[l];
     if (leg.offset < 0) continue;
@@ -245,7 +247,7 @@ AllocationLayout build_allocation_problem(const AllocationParams& alloc,
     qp.constant = t.tau_known.dot(drive->weight.cwiseProduct(t.tau_known));
   }
   int row = 0;
-  for (int r = 0; r < 6; ++r, ++row) {
+  for (int r = 0; r < AllocationLayout::kTrunkRows; ++r, ++row) {
     qp.C.row(row) = t.B.row(r);
     qp.lower[row] = qp.upper[row] = t.trunk_rhs[r];
     qp.ineq_names[row] = kTrunkRowNames[r];

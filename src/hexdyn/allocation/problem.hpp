@@ -28,6 +28,9 @@ namespace hexdyn {
 /// known: the one description of the variable layout, returned by the builder and read by
 /// forces_from_solution.
 struct AllocationLayout {
+  /// The six trunk equations (force, then moment, world axes), the first inequality rows of
+  /// every allocation problem, each with lower = upper so that it can be relaxed.
+  static constexpr int kTrunkRows = 6;
   struct Leg {
     int offset = -1;  ///< index of the leg's first variable, −1 without variables
     /// Variables of the leg: 3 for a support leg (f_t1, f_t2, f_n), 2 for a leg in its

@@ -54,6 +54,38 @@ double QpProblem::objective(const Eigen::VectorXd& x) const {
   return 0.5 * x.dot(H.selfadjointView<Eigen::Lower>() * x) + g.dot(x) + constant;
 }
 
+bool copy_problem_values(const QpProblem& from, QpProblem& to, int extra_rows,
+                         std::uint64_t structure) {
+  const int n = from.variables(), m_eq = from.equalities(), m_in = from.inequalities();
+  const int rows = m_in + extra_rows;
+  const bool same = to.structure == structure && to.variables() == n && to.equalities() == m_eq &&
+                    to.inequalities() == rows;
+  if (!same) {
+    to.resize(n, m_eq, rows);
+    std::copy(from.eq_names.begin(), from.eq_names.end(), to.eq_names.begin());
+    std::copy(from.ineq_names.begin(), from.ineq_names.end(), to.ineq_names.begin());
+    to.structure = structure;
+  }
+  to.H = from.H;
+  to.g = from.g;
+  to.constant = from.constant;
+  to.A = from.A;
+  to.b = from.b;
+  to.C.topRows(m_in) = from.C;
+  to.C.bottomRows(extra_rows).setZero();
+  to.lower.head(m_in) = from.lower;
+  to.lower.tail(extra_rows).setConstant(-std::numeric_limits<double>::infinity());
+  to.upper.head(m_in) = from.upper;
+  to.upper.tail(extra_rows).setConstant(std::numeric_limits<double>::infinity());
+  if (from.ineq_penalty.size())
+    to.ineq_penalty.head(m_in) = from.ineq_penalty;
+  else
+    to.ineq_penalty.head(m_in).setOnes();
+  to.ineq_penalty.tail(extra_rows).setOnes();
+  to.cones.clear();
+  return !same;
+}
+
 void validate_qp_sizes(const QpProblem& p) {
   const int n = p.variables(), m_eq = p.equalities(), m_in = p.inequalities();
   auto fail = [](const std::string& what, long expected, long got) {

@@ -98,6 +98,15 @@ struct QpProblem {
 /// Throws SolverError naming the first inconsistent size or index (expected vs got).
 void validate_qp_sizes(const QpProblem& p);
 
+/// Copies `from` into the working problem `to`: its objective, equality rows and inequality
+/// rows, then `extra_rows` more inequality rows (C zero, unbounded, weight 1) for the caller to
+/// fill, no cones, and the structural key `structure`. The sizes, the row names (the extra rows
+/// unnamed) and the key are set only when `to` differs from them in a size or the key (at a
+/// contact event), so that copying problems of one structure allocates nothing. Returns
+/// whether they were set.
+bool copy_problem_values(const QpProblem& from, QpProblem& to, int extra_rows,
+                         std::uint64_t structure);
+
 /// The solver's answer, a value recorded per sample.
 struct QpOutcome {
   /// kOptimal; kRelaxed (penalised slack was needed: some rows or cones do not hold; or an

@@ -1,6 +1,6 @@
 #pragma once
 /// \file allocation/small_dense.hpp
-/// The dense linear algebra under the dual active-set QP (allocation/dual_active_set.hpp):
+/// The dense linear algebra under the dual active-set QP (allocation/goldfarb_idnani.hpp):
 /// Cholesky factor, triangular solves and Givens rotations on matrices of fixed capacity
 /// kSmallDenseMax × kSmallDenseMax whose leading n × n (or q × q) block is in use.
 ///

@@ -28,7 +28,7 @@ void read_allocation(Reader& r, Scene& s, const LoadedUrdfRobot& urdf) {
   read_table_keys(r, s, "allocation");
   AllocationParams& a = s.allocation;
   // auto = active-set: the dual active-set QP for the pyramids, and for the exact cone the
-  // same QP under sequential outer approximation (allocation/cone.hpp); ipopt: the NLP
+  // same QP under sequential outer approximation (allocation/cone_backend.hpp); ipopt: the NLP
   // reference for every friction model.
   const std::string solver = choice_key(r, "allocation.solver");
   a.solver = solver == "ipopt" ? AllocationSolver::kIpopt : AllocationSolver::kActiveSet;

@@ -189,9 +189,9 @@ struct ReplayParams {
   double tolerance = 0.05;
 };
 
-/// Allocation back end: the dense dual active-set QP (allocation/active_set.hpp; with the
-/// exact cone, its sequential outer approximation, allocation/cone.hpp), the default for
-/// every friction model, or Ipopt (allocation/ipopt.cpp: the reference).
+/// Allocation back end: the dense dual active-set QP (allocation/active_set_backend.hpp; with the
+/// exact cone, its sequential outer approximation, allocation/cone_backend.hpp), the default for
+/// every friction model, or Ipopt (allocation/ipopt_backend.cpp: the reference).
 enum class AllocationSolver { kActiveSet, kIpopt };
 /// allocation.objective: the paper's Σ τ² (eq. 9) of the drive torques, or the copper loss
 /// Σ R_j I_j² of the actuators (a weighted Σ τ², docs/theory/drive-train.md#objective).

@@ -9,15 +9,15 @@
 #include <string>
 #include <utility>
 
-#include "hexdyn/allocation/active_set.hpp"
+#include "hexdyn/allocation/active_set_backend.hpp"
 #include "hexdyn/allocation/backends.hpp"
 #include "hexdyn/allocation/problem.hpp"
-#include "hexdyn/allocation/required_friction.hpp"
 #include "hexdyn/core/cancel.hpp"
 #include "hexdyn/core/errors.hpp"
 #include "hexdyn/core/progress.hpp"
 #include "hexdyn/drive/drive.hpp"
 #include "hexdyn/dynamics/rnea.hpp"
+#include "hexdyn/grip/required_friction.hpp"
 #include "hexdyn/kinematics/kinematics.hpp"
 #include "hexdyn/pipeline/episode_log.hpp"
 #include "hexdyn/power/power.hpp"

@@ -1,7 +1,7 @@
 #pragma once
 /// \file active_set_checks.hpp
 /// Second computations shared by the active-set tests (test_active_set.cpp,
-/// test_active_set_sequences.cpp, test_dual_active_set.cpp): random convex QPs, the
+/// test_active_set_sequences.cpp, test_goldfarb_idnani.cpp): random convex QPs, the
 /// L1-penalised objective, an extended-precision solve on an answer's active rows. The KKT
 /// certificate is the one checker of kkt_check.hpp (included here).
 #include <Eigen/Dense>
@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "hexdyn/allocation/active_set.hpp"
-#include "hexdyn/allocation/ipopt.hpp"
+#include "hexdyn/allocation/active_set_backend.hpp"
+#include "hexdyn/allocation/ipopt_backend.hpp"
 #include "hexdyn/allocation/kkt_check.hpp"
 #include "hexdyn/allocation/qp.hpp"
 #include "hexdyn/allocation/qp_test_problems.hpp"

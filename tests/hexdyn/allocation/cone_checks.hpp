@@ -1,6 +1,6 @@
 #pragma once
 /// \file cone_checks.hpp
-/// Independent checks of answers to cone problems (allocation/cone.hpp), shared by
+/// Independent checks of answers to cone problems (allocation/cone_backend.hpp), shared by
 /// test_cone.cpp (agreement over whole runs) and test_cone_hard.cpp (hard cases): the KKT
 /// conditions by the one checker of kkt_check.hpp; the closed-form projection onto one cone; the
 /// penalised objective; and the penalised problem re-solved in extended precision on the structure
@@ -13,8 +13,8 @@
 #include <string>
 #include <vector>
 
-#include "hexdyn/allocation/cone.hpp"
-#include "hexdyn/allocation/ipopt.hpp"
+#include "hexdyn/allocation/cone_backend.hpp"
+#include "hexdyn/allocation/ipopt_backend.hpp"
 #include "hexdyn/allocation/kkt_check.hpp"
 #include "hexdyn/allocation/qp.hpp"
 #include "hexdyn/allocation/qp_test_problems.hpp"

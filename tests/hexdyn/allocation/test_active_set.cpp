@@ -1,4 +1,4 @@
-// Tests of the dual active-set back end (src/hexdyn/allocation/active_set.hpp) on single
+// Tests of the dual active-set back end (src/hexdyn/allocation/active_set_backend.hpp) on single
 // problems. Each answer is checked against a second computation: the closed-form KKT solve
 // of equality-only QPs, Ipopt with a tight tolerance on random QPs, the KKT conditions of
 // the problem (and of the L1-penalised problem for relaxed answers: an optimality
@@ -15,9 +15,9 @@
 #include <string>
 #include <vector>
 
-#include "hexdyn/allocation/active_set.hpp"
+#include "hexdyn/allocation/active_set_backend.hpp"
 #include "hexdyn/allocation/active_set_checks.hpp"
-#include "hexdyn/allocation/ipopt.hpp"
+#include "hexdyn/allocation/ipopt_backend.hpp"
 #include "hexdyn/allocation/qp.hpp"
 #include "hexdyn/core/errors.hpp"
 

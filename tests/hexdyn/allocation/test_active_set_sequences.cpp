@@ -1,4 +1,4 @@
-// Tests of the dual active-set back end (src/hexdyn/allocation/active_set.hpp) on sequences
+// Tests of the dual active-set back end (src/hexdyn/allocation/active_set_backend.hpp) on sequences
 // of problems, as a run solves them: random degenerate sequences certified by the KKT
 // conditions and agreeing with a cold back end, warm starts against cold answers, and on
 // every sample of the paper run and of the smoke sweep the Ipopt back end: same status,
@@ -13,9 +13,9 @@
 #include <string>
 #include <vector>
 
-#include "hexdyn/allocation/active_set.hpp"
+#include "hexdyn/allocation/active_set_backend.hpp"
 #include "hexdyn/allocation/active_set_checks.hpp"
-#include "hexdyn/allocation/ipopt.hpp"
+#include "hexdyn/allocation/ipopt_backend.hpp"
 #include "hexdyn/allocation/problem.hpp"
 #include "hexdyn/allocation/qp.hpp"
 #include "hexdyn/config/config.hpp"

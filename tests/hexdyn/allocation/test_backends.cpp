@@ -13,9 +13,9 @@
 #include <memory>
 #include <random>
 
-#include "hexdyn/allocation/active_set.hpp"
-#include "hexdyn/allocation/cone.hpp"
-#include "hexdyn/allocation/ipopt.hpp"
+#include "hexdyn/allocation/active_set_backend.hpp"
+#include "hexdyn/allocation/cone_backend.hpp"
+#include "hexdyn/allocation/ipopt_backend.hpp"
 #include "hexdyn/allocation/kkt_check.hpp"
 #include "hexdyn/allocation/qp.hpp"
 #include "hexdyn/allocation/qp_test_problems.hpp"

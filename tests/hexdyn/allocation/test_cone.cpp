@@ -1,4 +1,4 @@
-// Agreement of the exact-cone back end (src/hexdyn/allocation/cone.hpp) with Ipopt at
+// Agreement of the exact-cone back end (src/hexdyn/allocation/cone_backend.hpp) with Ipopt at
 // tolerance 1e-12 on every sample of the paper run and of the smoke sweep with
 // `allocation.friction: cone`, and with the closed-form projection onto one cone. Every
 // answer is also checked by computations that need neither back end (cone_checks.hpp): the
@@ -29,9 +29,9 @@
 #include <vector>
 
 #include "hexdyn/allocation/backends.hpp"
-#include "hexdyn/allocation/cone.hpp"
+#include "hexdyn/allocation/cone_backend.hpp"
 #include "hexdyn/allocation/cone_checks.hpp"
-#include "hexdyn/allocation/ipopt.hpp"
+#include "hexdyn/allocation/ipopt_backend.hpp"
 #include "hexdyn/allocation/problem.hpp"
 #include "hexdyn/allocation/qp.hpp"
 #include "hexdyn/config/config.hpp"

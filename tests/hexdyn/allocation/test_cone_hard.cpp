@@ -1,4 +1,4 @@
-// Hard cases of the exact-cone back end (src/hexdyn/allocation/cone.hpp), each checked
+// Hard cases of the exact-cone back end (src/hexdyn/allocation/cone_backend.hpp), each checked
 // against Ipopt at tolerance 1e-12 and the KKT conditions of the cone problem or of its
 // penalised form (cone_checks.hpp), or against the closed-form projection onto a cone:
 // μ = 0.001 and μ = 5, a foot at and near the apex of its cone, every foot
@@ -12,11 +12,11 @@
 #include <string>
 #include <vector>
 
-#include "hexdyn/allocation/active_set.hpp"
+#include "hexdyn/allocation/active_set_backend.hpp"
 #include "hexdyn/allocation/backends.hpp"
-#include "hexdyn/allocation/cone.hpp"
+#include "hexdyn/allocation/cone_backend.hpp"
 #include "hexdyn/allocation/cone_checks.hpp"
-#include "hexdyn/allocation/ipopt.hpp"
+#include "hexdyn/allocation/ipopt_backend.hpp"
 #include "hexdyn/allocation/qp.hpp"
 #include "hexdyn/core/errors.hpp"
 #include "hexdyn/core/scene.hpp"

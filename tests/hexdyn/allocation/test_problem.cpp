@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "hexdyn/allocation/backends.hpp"
-#include "hexdyn/allocation/ipopt.hpp"
+#include "hexdyn/allocation/ipopt_backend.hpp"
 #include "hexdyn/allocation/problem.hpp"
 #include "hexdyn/config/config.hpp"
 #include "hexdyn/contact/touchdowns.hpp"

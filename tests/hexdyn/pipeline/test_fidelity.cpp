@@ -110,7 +110,8 @@ TEST_CASE("fidelity: unknown fidelity choices are configuration errors naming th
                     Catch::Contains("contact.model") && Catch::Contains("rigid"));
   CHECK_THROWS_WITH(load_scene(kPaper, {{"allocation.solver", "cone"}}),
                     Catch::Contains("allocation.solver") && Catch::Contains("ipopt"));
-  // The exact cone on the active-set back end is the outer approximation (allocation/cone.hpp).
+  // The exact cone on the active-set back end is the outer approximation
+  // (allocation/cone_backend.hpp).
   CHECK(load_scene(kPaper, {{"allocation.solver", "active-set"}, {"allocation.friction", "cone"}})
             .allocation.solver == AllocationSolver::kActiveSet);
 }

@@ -1,11 +1,12 @@
-// The exact cone's required friction by outer polygons (allocation/required_friction.hpp,
+// The exact cone's required friction by outer polygons (grip/required_friction.hpp,
 // docs/theory/grip.md#the-exact-cone): RequiredFrictionSolver::Impl's polygon rounds.
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
 
-#include "hexdyn/allocation/required_friction_solver.hpp"
+#include "hexdyn/allocation/friction.hpp"
+#include "hexdyn/grip/required_friction_solver.hpp"
 
 namespace hexdyn {
 
@@ -16,28 +17,10 @@ void RequiredFrictionSolver::Impl::load_cone_polygon(const QpProblem& qp,
                                                      const AllocationLayout& layout) {
   int cones = 0;
   for (const AllocationLayout::Leg& leg : layout.legs) cones += leg.cone >= 0;
-  const int m = qp.inequalities(), n = qp.variables();
-  const bool same = work.structure == (qp.structure | kConePolygonKey) && work.variables() == n &&
-                    work.inequalities() == m + kConeFaces * cones;
-  if (!same) {
-    work.resize(n, qp.equalities(), m + kConeFaces * cones);
-    work.ineq_names.assign(static_cast<std::size_t>(m), std::string());
-    std::copy(qp.ineq_names.begin(), qp.ineq_names.end(), work.ineq_names.begin());
-    work.structure = qp.structure | kConePolygonKey;
-  }
-  work.H = qp.H;
-  work.g = qp.g;
-  work.constant = qp.constant;
-  work.A = qp.A;
-  work.b = qp.b;
-  work.C.topRows(m) = qp.C;
-  work.C.bottomRows(kConeFaces * cones).setZero();
-  work.lower.head(m) = qp.lower;
-  work.upper.head(m) = qp.upper;
-  work.ineq_penalty.head(m) = qp.ineq_penalty.size() ? qp.ineq_penalty : Eigen::VectorXd::Ones(m);
-  work.cones.clear();
+  const bool named =
+      copy_problem_values(qp, work, kConeFaces * cones, qp.structure | kConePolygonKey);
   cone_layout = layout;
-  int row = m;
+  int row = qp.inequalities();
   for (int l = 0; l < kLegs; ++l) {
     AllocationLayout::Leg& leg = cone_layout.legs[l];
     if (leg.cone < 0) continue;
@@ -46,15 +29,10 @@ void RequiredFrictionSolver::Impl::load_cone_polygon(const QpProblem& qp,
     leg.friction_row = row;
     leg.friction_faces = kConeFaces;
     leg.face_reach = 1.0;  // supporting half-spaces: the polygon contains the cone
-    for (int f = 0; f < kConeFaces; ++f, ++row) {
-      const double a = cone_angle[l][f];
-      work.C(row, c.tangent1) = std::cos(a);
-      work.C(row, c.tangent2) = std::sin(a);
-      work.lower[row] = -std::numeric_limits<double>::infinity();
-      work.upper[row] = 0.0;
-      work.ineq_penalty[row] = c.penalty;
-      if (!same) work.ineq_names.push_back(c.name + " face " + std::to_string(f + 1));
-    }
+    const auto face = [&](int f) {
+      return FrictionFace{std::cos(cone_angle[l][f]), std::sin(cone_angle[l][f]), c.mu};
+    };
+    row = write_cone_faces(c, row, kConeFaces, face, named ? &c.name : nullptr, work);
   }
   set_friction_coefficient(cone_layout, qp.cones.empty() ? 0.0 : qp.cones.front().mu, work);
 }
@@ -88,7 +66,8 @@ void RequiredFrictionSolver::Impl::solve_cone(const QpProblem& qp, const Allocat
     load_cone_polygon(qp, layout);
     solve_polygonal(cone_layout, allocation);
     if (!std::isfinite(out.mu)) return;  // no μ for the outer polygon: none for the cone
-    const double lower = out.mu - (out.method == 2 ? opt.tolerance : 0.0);
+    const double lower =
+        out.mu - (out.method == RequiredFrictionMethod::kBisection ? opt.tolerance : 0.0);
     int leg = -1;
     const double upper = friction_use(qp, layout, answer_x, &leg);
     if (upper < best_upper) {

@@ -1,6 +1,6 @@
 #pragma once
-/// \file allocation/required_friction_solver.hpp
-/// The internals of RequiredFrictionSolver (allocation/required_friction.hpp), shared by its
+/// \file grip/required_friction_solver.hpp
+/// The internals of RequiredFrictionSolver (grip/required_friction.hpp), shared by its
 /// two sources: required_friction.cpp (Newton on an active set, the choice of its rows,
 /// bisection) and required_friction_cone.cpp (the exact cone's outer polygons). Not a public
 /// interface. Sizes: at most kLegs support legs of 3 forces, so the Newton system is at most
@@ -15,7 +15,7 @@
 #include <utility>
 #include <vector>
 
-#include "hexdyn/allocation/required_friction.hpp"
+#include "hexdyn/grip/required_friction.hpp"
 
 namespace hexdyn {
 
@@ -23,9 +23,6 @@ inline constexpr int kMaxUnknowns = 3 * kLegs + 1;  ///< n forces and μ
 using MuMatrix =
     Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxUnknowns, kMaxUnknowns>;
 using MuVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxUnknowns, 1>;
-/// The number of trunk rows, the first inequality rows of every allocation problem
-/// (allocation/problem.hpp), equal bounds.
-inline constexpr int kTrunkRows = 6;
 
 /// Faces of the outer polygon that stands in for an exact cone, and the bit that marks the
 /// polygon problem's structural key.
@@ -156,34 +153,8 @@ struct RequiredFrictionSolver::Impl {
       for (int f = 0; f < kConeFaces; ++f) leg[f] = 2.0 * M_PI * f / kConeFaces;
   }
 
-  /// work = qp; the row names (strings) copied only when the layout changed.
-  void load(const QpProblem& qp) {
-    const bool same = work.structure == qp.structure && work.variables() == qp.variables() &&
-                      work.inequalities() == qp.inequalities() &&
-                      work.equalities() == qp.equalities() && work.cones.size() == qp.cones.size();
-    if (!same) {
-      work = qp;
-      return;
-    }
-    work.H = qp.H;
-    work.g = qp.g;
-    work.constant = qp.constant;
-    work.A = qp.A;
-    work.b = qp.b;
-    work.C = qp.C;
-    work.lower = qp.lower;
-    work.upper = qp.upper;
-    work.ineq_penalty = qp.ineq_penalty;
-    for (std::size_t k = 0; k < qp.cones.size(); ++k) {
-      const SecondOrderCone& c = qp.cones[k];
-      SecondOrderCone& w = work.cones[k];
-      w.tangent1 = c.tangent1;
-      w.tangent2 = c.tangent2;
-      w.normal = c.normal;
-      w.mu = c.mu;
-      w.penalty = c.penalty;
-    }
-  }
+  /// work = qp (a problem without cones); the row names copied only when the layout changed.
+  void load(const QpProblem& qp) { copy_problem_values(qp, work, 0, qp.structure); }
 
   /// Feasibility of the rows at mu: the back end's solve at mu, every row and cone held to
   /// kViolationThreshold. The forces in *x_out.

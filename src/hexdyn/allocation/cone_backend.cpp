@@ -1,6 +1,6 @@
-/// \file allocation/cone.cpp
+/// \file allocation/cone_backend.cpp
 /// The exact friction cone by sequential outer approximation on the dual active-set QP
-/// (allocation/cone.hpp).
+/// (allocation/cone_backend.hpp).
 ///
 /// Working problem. The problem's rows, then eight half-spaces per cone k, read as rows
 ///     d_jᵀ t_k − μ_k n_k ≤ 0,
@@ -54,7 +54,7 @@
 /// and any other half-space of it found violated in a penalised pass is dropped for the
 /// rest of the sample. The status and message are computed on the posed problem
 /// (describe_violations), so rows and cones carry the problem's names.
-#include "hexdyn/allocation/cone.hpp"
+#include "hexdyn/allocation/cone_backend.hpp"
 
 #include <algorithm>
 #include <array>
@@ -65,6 +65,7 @@
 #include <string>
 #include <vector>
 
+#include "hexdyn/allocation/friction.hpp"
 #include "hexdyn/core/errors.hpp"
 
 namespace hexdyn {
@@ -138,39 +139,13 @@ class ConeBackend final : public AllocationBackend {
     next_memory_.assign(static_cast<std::size_t>(n_cones), kFirstMemory);
   }
 
-  /// Copies the posed problem into the working one (sizes set once per structure).
+  /// Copies the posed problem into the working one (sizes set once per structure; its row
+  /// names are not read, messages being built on the posed problem; structural key 0, so that
+  /// the pass solver's warm start goes by the sizes), the cones' rows appended.
   void load_working(const QpProblem& p) {
-    const int n = p.variables(), m_eq = p.equalities(), m_in = p.inequalities();
-    const int n_cones = static_cast<int>(p.cones.size());
-    const int rows = m_in + kCutsPerCone * n_cones;
-    if (w_.variables() != n || w_.equalities() != m_eq || w_.inequalities() != rows) {
-      w_.resize(n, m_eq, rows);
-      w_.eq_names.clear();  // unnamed: messages are built on the posed problem
-      w_.ineq_names.clear();
-    }
-    w_.g = p.g;
-    w_.constant = p.constant;
-    w_.A = p.A;
-    w_.b = p.b;
-    w_.C.topRows(m_in) = p.C;
-    w_.lower.head(m_in) = p.lower;
-    w_.upper.head(m_in) = p.upper;
-    if (p.ineq_penalty.size())
-      w_.ineq_penalty.head(m_in) = p.ineq_penalty;
-    else
-      w_.ineq_penalty.head(m_in).setOnes();
-    w_.C.bottomRows(rows - m_in).setZero();
-    for (int k = 0; k < n_cones; ++k) {
-      const SecondOrderCone& c = p.cones[k];
-      for (int j = 0; j < kCutsPerCone; ++j) {
-        const int r = m_in + kCutsPerCone * k + j;
-        w_.C(r, c.normal) = -c.mu;
-        w_.lower[r] = -kInf;
-        w_.ineq_penalty[r] = c.penalty;
-      }
-    }
+    copy_problem_values(p, w_, kCutsPerCone * static_cast<int>(p.cones.size()), 0);
     max_diag_ = 0.0;
-    for (int i = 0; i < n; ++i) max_diag_ = std::max(max_diag_, std::abs(p.H(i, i)));
+    for (int i = 0; i < p.variables(); ++i) max_diag_ = std::max(max_diag_, std::abs(p.H(i, i)));
   }
 
   /// Half-spaces and curvature of every cone for the next pass, from dir_, lambda_, norm_.
@@ -181,12 +156,11 @@ class ConeBackend final : public AllocationBackend {
       const SecondOrderCone& c = p.cones[k];
       const Eigen::Vector2d& d = dir_[k];
       cut_[k][0] = d;
-      for (int j = 0; j < kCutsPerCone; ++j) {
-        const int r = m_in + kCutsPerCone * static_cast<int>(k) + j;
-        w_.C(r, c.tangent1) = cut_[k][j].x();
-        w_.C(r, c.tangent2) = cut_[k][j].y();
-        w_.upper[r] = j == 0 || on_[k][j] ? 0.0 : kInf;
-      }
+      const int first = m_in + kCutsPerCone * static_cast<int>(k);
+      const auto cut = [&](int j) { return FrictionFace{cut_[k][j].x(), cut_[k][j].y(), c.mu}; };
+      write_cone_faces(c, first, kCutsPerCone, cut, nullptr, w_);
+      for (int j = 1; j < kCutsPerCone; ++j)
+        if (!on_[k][j]) w_.upper[first + j] = kInf;
       double kappa = 0.0;
       if (lambda_[k] > 0.0 && norm_[k] > 0.0)
         kappa = std::min(lambda_[k] / norm_[k], kCurvatureCap * std::max(max_diag_, 1e-12));

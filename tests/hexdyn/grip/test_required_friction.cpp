@@ -1,4 +1,4 @@
-// The required friction (allocation/required_friction.hpp, docs/theory/grip.md#required-friction)
+// The required friction (grip/required_friction.hpp, docs/theory/grip.md#required-friction)
 // against computations that do not use its Newton code:
 //  - random allocation problems (build_allocation_problem from random ContactSplit data:
 //    feet around a hexagon, tilted contact frames, random leg Jacobians, a trunk wrench of
@@ -19,8 +19,8 @@
 
 #include "hexdyn/allocation/backends.hpp"
 #include "hexdyn/allocation/problem.hpp"
-#include "hexdyn/allocation/required_friction.hpp"
 #include "hexdyn/core/spatial.hpp"
+#include "hexdyn/grip/required_friction.hpp"
 
 namespace hexdyn {
 namespace {
@@ -182,8 +182,8 @@ TEST_CASE("required friction: random problems against bisection on feasibility",
       const AllocationLayout layout = build_at(alloc, s, 0.3, qp);
       const RequiredFriction& r = solver.solve(qp, layout, nullptr);
       INFO(std::setprecision(12) << model_name(model) << " sample " << k << ": hexdyn " << r.mu
-                                 << " (method " << r.method << ", " << r.message << "), bisection ["
-                                 << low << ", " << high << "]");
+                                 << " (method " << static_cast<int>(r.method) << ", " << r.message
+                                 << "), bisection [" << low << ", " << high << "]");
       if (std::isnan(low) || std::isnan(high)) {
         ++nan;
         CHECK(std::isnan(r.mu));

@@ -1,4 +1,4 @@
-/// \file allocation/ipopt.cpp
+/// \file allocation/ipopt_backend.cpp
 /// The Ipopt back end of the allocation (allocation/qp.hpp); the TNLP adapter that poses
 /// the problem to Ipopt is in allocation/ipopt_nlp.cpp.
 ///
@@ -32,7 +32,7 @@
 /// never vanishes (∂/∂n = μ), so a solution at the apex (an unloaded foot) has multipliers;
 /// the squared form μ²n² − t² ≥ 0 has none there.
 /// Ipopt's Lagrangian is f + λᵀ g, so hexdyn's multipliers are −λ_ipopt.
-#include "hexdyn/allocation/ipopt.hpp"
+#include "hexdyn/allocation/ipopt_backend.hpp"
 
 #include <Eigen/Dense>
 #include <IpIpoptApplication.hpp>
@@ -419,40 +419,14 @@ class IpoptBackend final : public StrictThenPenalisedBackend {
   /// p with every cone replaced by the kPolygonFaces rows of its inscribed polygon
   /// (allocation/friction.hpp), (t1, t2)·(cos a, sin a) − μ cos(π/N) n ≤ 0.
   static void build_polygon_problem(const QpProblem& p, QpProblem& poly) {
-    const int n = p.variables(), m_in = p.inequalities();
-    const int rows = m_in + kPolygonFaces * static_cast<int>(p.cones.size());
-    poly.H = p.H;
-    poly.g = p.g;
-    poly.constant = p.constant;
-    poly.A = p.A;
-    poly.b = p.b;
-    poly.eq_names = p.eq_names;
-    poly.C.setZero(rows, n);
-    poly.lower.resize(rows);
-    poly.upper.resize(rows);
-    poly.C.topRows(m_in) = p.C;
-    poly.lower.head(m_in) = p.lower;
-    poly.upper.head(m_in) = p.upper;
-    poly.ineq_names.resize(static_cast<std::size_t>(rows));
-    for (int i = 0; i < m_in; ++i) poly.ineq_names[i] = p.ineq_name(i);
-    poly.ineq_penalty.resize(rows);
-    for (int i = 0; i < m_in; ++i)
-      poly.ineq_penalty[i] = p.ineq_penalty.size() ? p.ineq_penalty[i] : 1.0;
-    poly.cones.clear();
-    int r = m_in;
+    const bool named =
+        copy_problem_values(p, poly, kPolygonFaces * static_cast<int>(p.cones.size()), p.structure);
+    int r = p.inequalities();
     for (std::size_t k = 0; k < p.cones.size(); ++k) {
       const SecondOrderCone& c = p.cones[k];
-      for (int f = 0; f < kPolygonFaces; ++f, ++r) {
-        const FrictionFace face = inscribed_friction_face(f, kPolygonFaces, c.mu);
-        poly.C(r, c.tangent1) = face.cos_a;
-        poly.C(r, c.tangent2) = face.sin_a;
-        poly.C(r, c.normal) = -face.reach;
-        poly.lower[r] = -std::numeric_limits<double>::infinity();
-        poly.upper[r] = 0.0;
-        poly.ineq_penalty[r] = c.penalty;
-        poly.ineq_names[r] = (c.name.empty() ? "cone[" + std::to_string(k) + "]" : c.name) +
-                             " face " + std::to_string(f + 1);
-      }
+      const std::string name = c.name.empty() ? "cone[" + std::to_string(k) + "]" : c.name;
+      const auto face = [&](int f) { return inscribed_friction_face(f, kPolygonFaces, c.mu); };
+      r = write_cone_faces(c, r, kPolygonFaces, face, named ? &name : nullptr, poly);
     }
   }
 

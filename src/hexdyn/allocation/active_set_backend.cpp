@@ -1,6 +1,6 @@
-/// \file allocation/active_set.cpp
-/// The active-set back end of the allocation (allocation/active_set.hpp): the dual
-/// active-set solver (allocation/dual_active_set.hpp) under the strict-then-penalised
+/// \file allocation/active_set_backend.cpp
+/// The active-set back end of the allocation (allocation/active_set_backend.hpp): the dual
+/// active-set solver (allocation/goldfarb_idnani.hpp) under the strict-then-penalised
 /// policy (allocation/strict_then_penalised.hpp), with warm starts across samples.
 ///
 /// Warm start. After each solve the final working sets (active rows with their sides, and
@@ -14,7 +14,7 @@
 ///
 /// A final point is polished (recomputed from its active set with one step of iterative
 /// refinement) before the outcome is filled, so that active rows hold to rounding.
-#include "hexdyn/allocation/active_set.hpp"
+#include "hexdyn/allocation/active_set_backend.hpp"
 
 #include <array>
 #include <cstdio>
@@ -22,7 +22,7 @@
 #include <sstream>
 #include <string>
 
-#include "hexdyn/allocation/dual_active_set.hpp"
+#include "hexdyn/allocation/goldfarb_idnani.hpp"
 #include "hexdyn/allocation/strict_then_penalised.hpp"
 #include "hexdyn/core/errors.hpp"
 

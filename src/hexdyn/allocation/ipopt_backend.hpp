@@ -1,5 +1,5 @@
 #pragma once
-/// \file allocation/ipopt.hpp
+/// \file allocation/ipopt_backend.hpp
 /// The Ipopt back end of the allocation (the reference solver, and the one for the exact
 /// friction cone). The only part of hexdyn that links Ipopt (target hexdyn_allocation_ipopt).
 #include <memory>
@@ -43,7 +43,7 @@ IpoptOptions ipopt_options_from(const AllocationParams& params);
 /// Each solve tries the problem as posed (warm-started from the previous solution when the
 /// sizes match), then the penalised problem if that fails; after a relaxed solve it goes to
 /// the penalised problem directly while the sizes stay the same (its solution is the
-/// strict optimum when no slack is needed). Details in ipopt.cpp.
+/// strict optimum when no slack is needed). Details in ipopt_backend.cpp.
 /// Throws ConfigError for non-positive options and SolverError if Ipopt cannot start.
 std::unique_ptr<AllocationBackend> make_ipopt_backend(const IpoptOptions& options = {});
 

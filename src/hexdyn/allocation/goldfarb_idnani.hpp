@@ -1,9 +1,9 @@
 #pragma once
-/// \file allocation/dual_active_set.hpp
+/// \file allocation/goldfarb_idnani.hpp
 /// DualActiveSetQp: a dual active-set solver for small dense strictly convex QPs, in the
 /// Goldfarb–Idnani style, extended with bounded multipliers for the exact L1 penalty
 /// (docs/theory/allocation.md#the-dual-active-set-solver). It is the numerical core of the
-/// active-set back end (allocation/active_set.hpp), which adds the attempt policy, warm
+/// active-set back end (allocation/active_set_backend.hpp), which adds the attempt policy, warm
 /// starts across samples and the outcome; it knows nothing of either.
 ///
 ///   minimise    ½ xᵀ H x + gᵀ x

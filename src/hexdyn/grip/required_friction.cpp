@@ -1,4 +1,4 @@
-#include "hexdyn/allocation/required_friction.hpp"
+#include "hexdyn/grip/required_friction.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 #include <sstream>
 #include <utility>
 
-#include "hexdyn/allocation/required_friction_solver.hpp"
+#include "hexdyn/grip/required_friction_solver.hpp"
 
 namespace hexdyn {
 
@@ -240,7 +240,7 @@ int RequiredFrictionSolver::Impl::dual_ratio_leaving(const AllocationLayout& lay
   const MuVector alpha = lu.solve_transpose(gradient(layout, bad_row, bad_side));
   int leave = -1;
   double best = std::numeric_limits<double>::infinity();
-  for (int i = kTrunkRows; i <= n; ++i) {
+  for (int i = AllocationLayout::kTrunkRows; i <= n; ++i) {
     const double sigma = set[static_cast<std::size_t>(i)].side;
     const double beta = sigma * bad_side * alpha[i];
     if (!(beta > 1e-12 * alpha.lpNorm<Eigen::Infinity>())) continue;
@@ -264,7 +264,7 @@ bool RequiredFrictionSolver::Impl::primal_ratio_entering(const AllocationLayout&
   e[bad_row] = -set[static_cast<std::size_t>(bad_row)].side;
   const MuVector d = lu.solve(e);
   double best = std::numeric_limits<double>::infinity();
-  for (int j = kTrunkRows; j < work.inequalities(); ++j) {
+  for (int j = AllocationLayout::kTrunkRows; j < work.inequalities(); ++j) {
     bool in_set = false;
     for (const MuRow& a : set) in_set = in_set || a.row == j;
     if (in_set) continue;
@@ -310,7 +310,8 @@ bool RequiredFrictionSolver::Impl::solve_from(const AllocationLayout& layout,
       set[static_cast<std::size_t>(leave)] = {bad_row, bad_side};
     } else {
       MuRow enter;
-      if (bad_row < kTrunkRows || !primal_ratio_entering(layout, set, enter)) return false;
+      if (bad_row < AllocationLayout::kTrunkRows || !primal_ratio_entering(layout, set, enter))
+        return false;
       set[static_cast<std::size_t>(bad_row)] = enter;
     }
     start = z;
@@ -329,12 +330,12 @@ bool RequiredFrictionSolver::Impl::active_set_at(const AllocationLayout& layout,
                                                  const Eigen::Ref<const Eigen::VectorXd>& x_at,
                                                  double mu) {
   const int n = work.variables(), m = work.inequalities();
-  const int extra = n + 1 - kTrunkRows;
-  if (extra <= 0 || !work.cones.empty() || m - kTrunkRows < extra) return false;
+  const int extra = n + 1 - AllocationLayout::kTrunkRows;
+  if (extra <= 0 || !work.cones.empty() || m - AllocationLayout::kTrunkRows < extra) return false;
   set_friction_coefficient(layout, mu, work);
   const bool polygon = (work.structure & kConePolygonKey) != 0;
   slack.clear();
-  for (int j = kTrunkRows; j < m; ++j) {
+  for (int j = AllocationLayout::kTrunkRows; j < m; ++j) {
     const double v = work.C.row(j).dot(x_at);
     const double inf = std::numeric_limits<double>::infinity();
     const double hi = work.upper[j], lo = work.lower[j];
@@ -350,15 +351,15 @@ bool RequiredFrictionSolver::Impl::active_set_at(const AllocationLayout& layout,
   std::sort(slack.begin(), slack.end());
   x = x_at;  // gradient() reads the forces from x
   candidate.clear();
-  for (int j = 0; j < kTrunkRows; ++j) add_if_independent(layout, {j, 0});
-  if (static_cast<int>(candidate.size()) == kTrunkRows && !polygon)
+  for (int j = 0; j < AllocationLayout::kTrunkRows; ++j) add_if_independent(layout, {j, 0});
+  if (static_cast<int>(candidate.size()) == AllocationLayout::kTrunkRows && !polygon)
     for (std::size_t i = 0; i < slack.size() && static_cast<int>(candidate.size()) <= n; ++i) {
       const int code = slack[i].second;
       add_if_independent(layout, code >= 0 ? MuRow{code, +1} : MuRow{-1 - code, -1});
     }
   if (static_cast<int>(candidate.size()) == n + 1) return true;
   candidate.clear();
-  for (int j = 0; j < kTrunkRows; ++j) candidate.push_back({j, 0});
+  for (int j = 0; j < AllocationLayout::kTrunkRows; ++j) candidate.push_back({j, 0});
   for (int i = 0; i < extra; ++i) {
     const int code = slack[static_cast<std::size_t>(i)].second;
     candidate.push_back(code >= 0 ? MuRow{code, +1} : MuRow{-1 - code, -1});
@@ -408,7 +409,7 @@ bool RequiredFrictionSolver::Impl::upper_end(const AllocationLayout& layout,
     s << "required friction: no friction coefficient up to " << opt.mu_max << " admits the rows ("
       << why << ")";
     out.mu = std::numeric_limits<double>::quiet_NaN();
-    out.method = 3;
+    out.method = RequiredFrictionMethod::kNone;
     out.message = s.str();
     return false;
   }
@@ -428,7 +429,7 @@ bool RequiredFrictionSolver::Impl::newton_in_bracket(const AllocationLayout& lay
   if (!solve_from(layout, candidate, z0) || z[n] < lo - 1e-9 || z[n] > hi + 1e-9) return false;
   out.mu = std::max(0.0, z[n]);
   out.leg = newton_leg;
-  out.method = 1;
+  out.method = RequiredFrictionMethod::kBisectionThenNewton;
   answer_x = z.head(n);
   return true;
 }
@@ -471,7 +472,7 @@ void RequiredFrictionSolver::Impl::bisect(const AllocationLayout& layout,
     probe(0.5 * (lo + hi));
   }
   out.mu = hi;
-  out.method = 2;
+  out.method = RequiredFrictionMethod::kBisection;
   answer_x = x_hi;
   friction_use(work, layout, x_hi, &out.leg);
   if (!work.cones.empty() || !newton_in_bracket(layout, x_hi, lo, hi)) has_warm = false;
@@ -501,7 +502,7 @@ void RequiredFrictionSolver::Impl::solve_polygonal(const AllocationLayout& layou
                                                  solve_from(layout, candidate, warm_z))) {
       out.mu = std::max(0.0, z[n]);
       out.leg = newton_leg;
-      out.method = 0;
+      out.method = RequiredFrictionMethod::kNewton;
       last_mu = out.mu;
       last_nan = false;
       answer_x = z.head(n);

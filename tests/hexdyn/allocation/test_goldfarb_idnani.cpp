@@ -1,4 +1,4 @@
-// Tests of the dual active-set solver on its own (src/hexdyn/allocation/dual_active_set.hpp),
+// Tests of the dual active-set solver on its own (src/hexdyn/allocation/goldfarb_idnani.hpp),
 // through its own interface and exit status, without the back end's policy or warm-start
 // bookkeeping. Answers are checked against second computations: the closed-form KKT
 // system on the rows the solver reports active, the KKT conditions (kkt_check.hpp), and
@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "hexdyn/allocation/active_set_checks.hpp"
-#include "hexdyn/allocation/dual_active_set.hpp"
+#include "hexdyn/allocation/goldfarb_idnani.hpp"
 #include "hexdyn/allocation/kkt_check.hpp"
 #include "hexdyn/allocation/small_dense.hpp"
 

@@ -1,5 +1,5 @@
 #pragma once
-/// \file allocation/required_friction.hpp
+/// \file grip/required_friction.hpp
 /// The least friction coefficient a sample needs (docs/theory/grip.md#required-friction): the
 /// smallest μ for which the sample's allocation rows (trunk equations, torque or drive limits,
 /// minimum normal forces, and the friction faces or cones of the scene's friction model at μ)
@@ -43,6 +43,23 @@
 
 namespace hexdyn {
 
+/// How μ* of a sample was found.
+enum class RequiredFrictionMethod : int {
+  kNewton = 0,               ///< Newton from the previous sample's active set
+  kBisectionThenNewton = 1,  ///< bisection, then Newton inside its bracket
+  kBisection = 2,            ///< bisection alone: within `tolerance` above μ*
+  kNone = 3,                 ///< no μ* (NaN)
+};
+
+/// The answer for one sample.
+struct RequiredFriction {
+  double mu = 0.0;  ///< μ*, NaN where none ≤ mu_max suffices
+  int leg = -1;     ///< the leg whose friction binds at μ* (0..5), −1 where none
+  RequiredFrictionMethod method = RequiredFrictionMethod::kNone;
+  std::string message;  ///< why μ* is NaN, empty otherwise
+};
+
+/// How hard the search for μ* tries.
 struct RequiredFrictionOptions {
   /// Bisection stops when the bracket is at most this wide (absolute, in μ).
   double tolerance = 1e-7;
@@ -52,22 +69,12 @@ struct RequiredFrictionOptions {
   int newton_iterations = 8;
 };
 
-/// The answer for one sample.
-struct RequiredFriction {
-  double mu = 0.0;  ///< μ*, NaN where none ≤ mu_max suffices
-  int leg = -1;     ///< the leg whose friction binds at μ* (0..5), −1 where none
-  /// How μ* was found: 0 Newton from the previous sample's active set, 1 bisection then
-  /// Newton, 2 bisection alone (within `tolerance` above μ*), 3 none (NaN).
-  int method = 3;
-  std::string message;  ///< why μ* is NaN, empty otherwise
-};
-
 /// Finds μ* of successive samples; keeps the last certified active set per row layout. One
 /// per thread.
 class RequiredFrictionSolver {
  public:
   /// `backend` solves the bisection's probes, problems without cones (the cones become outer
-  /// polygons): the active-set back end (allocation/active_set.hpp), an instance of its own
+  /// polygons): the active-set back end (allocation/active_set_backend.hpp), an instance of its own
   /// besides the allocation's, so that each keeps its own warm start.
   explicit RequiredFrictionSolver(std::unique_ptr<AllocationBackend> backend,
                                   const RequiredFrictionOptions& options = {});

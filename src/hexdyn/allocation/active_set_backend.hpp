@@ -1,5 +1,5 @@
 #pragma once
-/// \file allocation/active_set.hpp
+/// \file allocation/active_set_backend.hpp
 /// An exact dense QP back end of the allocation (docs/theory/allocation.md#back-ends,
 /// `allocation.solver: active-set`): a dual active-set method in the Goldfarb–Idnani style
 /// for the small problems of allocation/qp.hpp without cones,
@@ -7,7 +7,7 @@
 ///   minimise    ½ xᵀ H x + gᵀ x + constant
 ///   subject to  A x = b,   lower ≤ C x ≤ upper,
 ///
-/// with the same problem semantics as the Ipopt back end (allocation/ipopt.cpp): the
+/// with the same problem semantics as the Ipopt back end (allocation/ipopt_backend.cpp): the
 /// problem as posed first; when it is infeasible, the exact L1-penalised problem
 ///
 ///   minimise    ½ xᵀ H x + gᵀ x + ρ Σ_i w_i · dist(C_i x, [lower_i, upper_i])
@@ -38,7 +38,7 @@
 /// status 0 allocates no heap memory (status 1 builds its message).
 #include <memory>
 
-#include "hexdyn/allocation/dual_active_set.hpp"  // kActiveSetMaxVariables, kActiveSetMaxRows
+#include "hexdyn/allocation/goldfarb_idnani.hpp"  // kActiveSetMaxVariables, kActiveSetMaxRows
 #include "hexdyn/allocation/qp.hpp"
 #include "hexdyn/core/scene.hpp"
 
@@ -62,9 +62,9 @@ struct ActiveSetOptions {
 /// Maps the scene's allocation settings (tolerance, slack_penalty) to the options.
 ActiveSetOptions active_set_options_from(const AllocationParams& params);
 
-/// The dual active-set back end (the solver: allocation/dual_active_set.hpp; the attempt
-/// policy: allocation/strict_then_penalised.hpp; warm starts: allocation/active_set.cpp). Throws
-/// ConfigError for non-positive tolerance or slack_penalty or max_iterations < 1.
+/// The dual active-set back end (the solver: allocation/goldfarb_idnani.hpp; the attempt
+/// policy: allocation/strict_then_penalised.hpp; warm starts: allocation/active_set_backend.cpp).
+/// Throws ConfigError for non-positive tolerance or slack_penalty or max_iterations < 1.
 std::unique_ptr<AllocationBackend> make_active_set_backend(const ActiveSetOptions& options = {});
 
 }  // namespace hexdyn

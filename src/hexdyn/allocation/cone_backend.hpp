@@ -1,5 +1,5 @@
 #pragma once
-/// \file allocation/cone.hpp
+/// \file allocation/cone_backend.hpp
 /// The exact friction cone on the dual active-set QP
 /// (docs/theory/allocation.md#exact-friction-cone, `allocation.solver: active-set` or `auto` with
 /// `allocation.friction: cone`): the problem of allocation/qp.hpp with second-order cones
@@ -7,14 +7,14 @@
 ///   minimise    ½ xᵀ H x + gᵀ x + constant
 ///   subject to  A x = b,   lower ≤ C x ≤ upper,   √(x_t1² + x_t2²) ≤ μ x_n  (per cone),
 ///
-/// solved by sequential outer approximation on the active-set back end (active_set.hpp),
+/// solved by sequential outer approximation on the active-set back end (active_set_backend.hpp),
 /// through its public interface: each cone is replaced by half-spaces that contain it (its
 /// supporting half-space at the current tangential direction d, a square around the apex,
 /// the tangents of earlier passes) and, where the cone was active in the previous pass, by
 /// the curvature term ½ λ/‖t‖ · |(I − d dᵀ) t|² of the cone's Lagrangian Hessian. Each
 /// pass is one QP solve, warm-started; passes repeat, the tangent turning to the new
 /// direction, until every cone holds to 1e-12 relative and the forces that the cone would
-/// not exert vanish to 1e-10 relative (details and the termination argument in cone.cpp).
+/// not exert vanish to 1e-10 relative (details and the termination argument in cone_backend.cpp).
 ///
 /// Why this method and not an interior point: the dual active-set method adds violated
 /// constraints one at a time, so a supporting half-space at the current direction is its
@@ -42,7 +42,7 @@
 /// iterations = active-set changes summed over the passes.
 #include <memory>
 
-#include "hexdyn/allocation/active_set.hpp"
+#include "hexdyn/allocation/active_set_backend.hpp"
 #include "hexdyn/allocation/qp.hpp"
 #include "hexdyn/core/scene.hpp"
 
