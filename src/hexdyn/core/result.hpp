@@ -201,6 +201,9 @@ struct RunResult {
   /// not written).
   std::vector<double> terrain_y_m, terrain_z_m;
   std::string terrain_type;
+  /// Computed for a sweep's summary row alone (OutputParams::summary_only): some required
+  /// friction values are upper bounds; write_result_file refuses it.
+  bool summary_only = false;
 };
 
 }  // namespace hexdyn

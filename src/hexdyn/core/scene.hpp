@@ -259,6 +259,11 @@ struct OutputParams {
   /// output.required_friction: compute the least μ each sample needs
   /// (docs/theory/grip.md#required-friction) and write /contacts/required_friction.
   bool required_friction = true;
+  /// Not a scene key: set by a sweep that keeps no runs (sweep/scenario.hpp). The run is
+  /// computed for its summary row alone, and a sample's required friction is settled by an
+  /// upper bound where it cannot reach the run's largest (docs/theory/grip.md#in-a-sweep);
+  /// such a run is never written to a file.
+  bool summary_only = false;
 };
 
 /// A default-constructed Scene holds the default of every optional scene key (the key table

@@ -450,10 +450,22 @@ void RequiredFrictionSolver::Impl::bisect(const AllocationLayout& layout,
       lo = mu;
     }
   };
+  // A caller that needs μ* only from `enough` up: one probe just below it settles most
+  // samples (μ* ≤ hi < enough); an infeasible one starts the bracket there.
+  if (enough > 0.0 && work.cones.empty()) {
+    if (hi >= enough) probe(enough * (1.0 - 1e-9));
+    if (hi < enough) {
+      out.mu = hi;
+      out.method = RequiredFrictionMethod::kBelow;
+      answer_x = x_hi;
+      friction_use(work, layout, x_hi, &out.leg);
+      return;
+    }
+  }
   // Newton from the upper end, whose exchanges walk like a simplex method to the answer's
   // rows; then from a probe just above the previous sample's μ*: most samples end here.
-  if (work.cones.empty() && newton_in_bracket(layout, x_hi, 0.0, hi)) return;
-  if (negative_mu) probe(0.0);
+  if (work.cones.empty() && newton_in_bracket(layout, x_hi, lo, hi)) return;
+  if (negative_mu && lo == 0.0) probe(0.0);
   if (guess > 0.0 && guess < hi && lo == 0.0 && hi > opt.tolerance) {
     probe(std::min(hi, guess * 1.01 + 1e-6));
     if (lo == 0.0 && newton_in_bracket(layout, x_hi, 0.0, hi)) return;
@@ -511,14 +523,16 @@ void RequiredFrictionSolver::Impl::solve_polygonal(const AllocationLayout& layou
   }
   bisect(layout, allocation, alike ? warm_z[n] : last_mu);
   last_nan = !std::isfinite(out.mu);
-  if (!last_nan) last_mu = out.mu;
+  if (!last_nan && out.method != RequiredFrictionMethod::kBelow) last_mu = out.mu;
 }
 
 const RequiredFriction& RequiredFrictionSolver::solve(const QpProblem& qp,
                                                       const AllocationLayout& layout,
-                                                      const Eigen::VectorXd* allocation) {
+                                                      const Eigen::VectorXd* allocation,
+                                                      double enough) {
   Impl& s = *impl_;
   s.out = RequiredFriction{};
+  s.enough = enough;
   s.negative_mu = false;
   const int n = qp.variables();
   if (n == 0) {

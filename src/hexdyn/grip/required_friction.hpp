@@ -34,6 +34,7 @@
 /// or when a constant row (a swing leg's torque) exceeds its limit.
 #include <Eigen/Core>
 #include <array>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -49,6 +50,9 @@ enum class RequiredFrictionMethod : int {
   kBisectionThenNewton = 1,  ///< bisection, then Newton inside its bracket
   kBisection = 2,            ///< bisection alone: within `tolerance` above μ*
   kNone = 3,                 ///< no μ* (NaN)
+  /// Settled below the caller's `enough` (RequiredFrictionSolver::solve): `mu` is an upper
+  /// bound, μ* ≤ mu < enough, from one feasible probe; for a run computed for its summary only.
+  kBelow = 4,
 };
 
 /// The answer for one sample.
@@ -85,8 +89,14 @@ class RequiredFrictionSolver {
   /// μ* of the problem `qp` built by build_allocation_problem with layout `layout` (at any μ;
   /// not modified). `allocation`: the allocation's solution of `qp` (size n) when it holds
   /// every row within kViolationThreshold, else null; its friction use bounds μ* from above.
+  /// `enough`: a caller that needs μ* only where it reaches `enough` (the largest μ* of a run
+  /// so far, for the run's maximum) lets a sample end, once the previous sample's active set
+  /// has failed, with one feasible probe just below `enough`: method kBelow and an upper bound
+  /// as `mu`. The default asks for μ* itself. Cone problems (allocation.friction: cone) ignore
+  /// it.
   const RequiredFriction& solve(const QpProblem& qp, const AllocationLayout& layout,
-                                const Eigen::VectorXd* allocation);
+                                const Eigen::VectorXd* allocation,
+                                double enough = -std::numeric_limits<double>::infinity());
 
  private:
   struct Impl;

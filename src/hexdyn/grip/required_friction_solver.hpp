@@ -143,9 +143,11 @@ struct RequiredFrictionSolver::Impl {
   int newton_leg = -1;
   bool negative_mu = false;  ///< a Newton attempt of this sample ended at μ < 0
   double last_mu = -1.0;     ///< the previous sample's μ*, −1 before the first
-  bool last_nan = false;     ///< the previous polygon problem had no μ* ≤ mu_max
-  int bad_row = -1;          ///< kRowViolated: the violated row; kWrongSign: the index in the set
-  int bad_side = 0;          ///< kRowViolated: the violated side
+  /// The caller's `enough` for this sample (RequiredFrictionSolver::solve).
+  double enough = -std::numeric_limits<double>::infinity();
+  bool last_nan = false;  ///< the previous polygon problem had no μ* ≤ mu_max
+  int bad_row = -1;       ///< kRowViolated: the violated row; kWrongSign: the index in the set
+  int bad_side = 0;       ///< kRowViolated: the violated side
 
   Impl(std::unique_ptr<AllocationBackend> b, const RequiredFrictionOptions& o)
       : opt(o), backend(std::move(b)) {

@@ -257,6 +257,10 @@ void write_layout(H5Writer& w, const ResultLayout& layout, const std::string& pr
 
 void write_result_layout(H5Writer& w, const RunResult& result, const std::string& prefix,
                          bool dimension_scales) {
+  if (result.summary_only)
+    throw IoError(
+        "result: computed for a sweep's summary row alone (output.summary_only: some "
+        "required friction values are bounds), not written");
   ResultLayout layout;
   try {
     layout = result_layout(result);

@@ -54,6 +54,7 @@ void check_not_input(const std::string& path, const std::vector<InputFile>& inpu
 /// kinematic array has result.kin.samples() = T rows and the column count of its
 /// dataset (T×3, T×4, T×6 or T×18); when result.dyn.present, the dynamics arrays
 /// have T rows (or T entries), energy_joint_J has 18 entries.
+/// A result computed for a sweep's summary alone (RunResult::summary_only) throws IoError.
 /// Dynamics datasets are written only when result.dyn.present. `/impacts/leg` is int32,
 /// 0-based (0..5). Every dataset is labelled (io/labels.hpp).
 void write_result_file(const std::string& path, const RunResult& result,

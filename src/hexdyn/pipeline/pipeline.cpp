@@ -133,6 +133,7 @@ RunResult run_prepared_scene(const Scene& scene, const PreparedScene& prep, std:
                              result.kin);  // after the dynamics, which use the trunk frame
   result.config_yaml = scene.resolved_yaml;
   result.compress = scene.output.compress;
+  result.summary_only = scene.output.summary_only;
   result.input_sha256 = scene.input_sha256;
   result.posture.automatic = prep.plan.posture.mode == PostureMode::kAuto;
   result.posture.height_m = prep.plan.posture.height_m;

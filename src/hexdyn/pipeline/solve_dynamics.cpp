@@ -50,6 +50,7 @@ struct SampleSolution {
   std::array<double, kLegs> utilized_friction{};
   std::array<bool, kLegs> slip{};
   double required_friction = 0.0;
+  bool required_friction_bound = false;  ///< required_friction is an upper bound (kBelow)
   int required_friction_leg = -1;
   std::string required_friction_message;
 };
@@ -77,8 +78,10 @@ class SampleSolver {
   }
 
   /// Solves sample i of `kin` under contacts `c`; `times` (may be null) as solve_dynamics.
+  /// `enough`: RequiredFrictionSolver::solve's (the default asks for μ* itself).
   SampleSolution solve(const KinematicsResult& kin, int i, const SampleContacts& c,
-                       StageTimes* times) {
+                       StageTimes* times,
+                       double enough = -std::numeric_limits<double>::infinity()) {
     std::optional<StageTimer> clock(std::in_place, times, Stage::kRnea);
     const BaseState base = base_state_at(kin, i);
     const VecJ q = kin.joint_position.row(i).transpose();
@@ -108,7 +111,7 @@ class SampleSolver {
                                                 &s.measured_max_violation, violations_);
     s.constant_excess_Nm = layout.constant_excess_Nm;
     clock.emplace(times, Stage::kGrip);
-    grip(c, layout, s);
+    grip(c, layout, s, enough);
     s.constant_violation = layout.constant_violation;
     return s;
   }
@@ -134,7 +137,8 @@ class SampleSolver {
   }
 
   /// The grip fields of s (SampleSolution), from its forces and the problem just solved.
-  void grip(const SampleContacts& c, const AllocationLayout& layout, SampleSolution& s) {
+  void grip(const SampleContacts& c, const AllocationLayout& layout, SampleSolution& s,
+            double enough) {
     // A force below kRoundOffForce of the weight is round-off (a foot carrying 1e-30 N): no
     // force, no friction used. A foot whose force does not press it (a relaxed sample) uses
     // no defined friction: NaN, never +inf (docs/theory/grip.md#utilised-friction).
@@ -153,8 +157,10 @@ class SampleSolver {
     if (!required_) return;
     const bool holds = s.outcome->status == SolverStatus::kOptimal &&
                        s.measured_violations.empty() && s.constant_excess_Nm <= kViolationThreshold;
-    const RequiredFriction& r = required_->solve(qp_, layout, holds ? &s.outcome->x : nullptr);
+    const RequiredFriction& r =
+        required_->solve(qp_, layout, holds ? &s.outcome->x : nullptr, enough);
     s.required_friction = r.mu;
+    s.required_friction_bound = r.method == RequiredFrictionMethod::kBelow;
     s.required_friction_leg = r.leg;
     s.required_friction_message = r.message;
     // A sample that needs more friction than the scene's μ cannot hold without slipping. The
@@ -289,7 +295,11 @@ DynamicsResult DynamicsSolver::solve(const KinematicsResult& kin, const ContactS
       }
       solver = it->second.get();
     }
-    const SampleSolution solution = solver->solve(kin, i, c, times);
+    const bool transient =
+        std::find(c.phase.begin(), c.phase.end(), ContactPhase::kImpact) != c.phase.end();
+    const SampleSolution solution = solver->solve(kin, i, c, times, enough(transient));
+    if (std::isfinite(solution.required_friction) && !solution.required_friction_bound)
+      largest_mu_[transient] = std::max(largest_mu_[transient], solution.required_friction);
     const StageTimer clock(times, Stage::kVerdict);
     SampleVerdict verdict = sample_verdict(solution, c, scene_.allocation.torque_limit_Nm);
     const VecJ& tau = solution.joint_torque;
@@ -326,6 +336,14 @@ DynamicsResult DynamicsSolver::solve(const KinematicsResult& kin, const ContactS
     dyn.solver_messages[i] = std::move(verdict.message);
   }
   return dyn;
+}
+
+double DynamicsSolver::enough(bool transient) const {
+  if (!scene_.output.summary_only) return -std::numeric_limits<double>::infinity();
+  // Below the largest μ* so far of the sample's kind (the summary's maxima: sweep/scenario.cpp),
+  // and clear of the scene's μ, so that a bound never decides a slip flag.
+  const double mu = scene_.contact.friction_coefficient;
+  return std::min(largest_mu_[transient], mu - kSummaryFrictionMargin * std::max(1.0, mu));
 }
 
 SampleProblem solve_sample_problem(const Scene& scene, const RobotModel& model,

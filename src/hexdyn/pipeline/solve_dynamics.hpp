@@ -5,7 +5,9 @@
 /// equations of motion (dynamics/rnea.hpp), the allocation problem (allocation/problem.hpp)
 /// solved by the scene's back end, and the foot forces, joint torques and penetrations;
 /// then joint power and energy (power/power.hpp), per run and per gait cycle.
+#include <array>
 #include <iosfwd>
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -70,7 +72,19 @@ class DynamicsSolver {
   std::unique_ptr<SampleSolver> solver_;
   /// Solvers by contact phases (WarmStart::kSamePhases), key: the six phases in base 3.
   std::vector<std::pair<int, std::unique_ptr<SampleSolver>>> by_phases_;
+  /// The largest required friction found so far (not a bound), of samples outside touchdown
+  /// transients [0] and inside them [1]; −inf before the first.
+  std::array<double, 2> largest_mu_{-std::numeric_limits<double>::infinity(),
+                                    -std::numeric_limits<double>::infinity()};
+  /// With output.summary_only, the required friction a sample of this kind needs exactly only
+  /// from here up (RequiredFrictionSolver::solve's `enough`); else −inf.
+  double enough(bool transient) const;
 };
+
+/// How far below the scene's friction coefficient (relative to max(1, μ)) a required friction
+/// may be settled by a bound in a summary-only run: clear of the bisection's tolerance (1e-7),
+/// so that a sample the full computation would flag as slipping is always computed.
+inline constexpr double kSummaryFrictionMargin = 1e-6;
 
 /// What solve_dynamics does after the per-sample solves, on a result whose samples are final:
 /// the touchdowns' records and log lines, the episodes of relaxed or failed samples

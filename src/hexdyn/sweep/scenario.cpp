@@ -253,7 +253,8 @@ ScenarioOutcome run_scenario(const ScenarioInput& input, bool keep_run) {
   const std::string source = scenario_source_name(input.id);
   ScenarioOutcome out;
   try {
-    const Scene scene = scene_from_yaml(parse_yaml_text(input.yaml, source), source);
+    Scene scene = scene_from_yaml(parse_yaml_text(input.yaml, source), source);
+    scene.output.summary_only = !keep_run;  // only its row is kept
     RunResult run = run_scene(scene, nullptr);
     out.summary = summarize_run(run, input.index);
     if (keep_run) out.run = std::move(run);
@@ -273,7 +274,8 @@ ScenarioOutcome run_scenario(const ScenarioFactory& factory, std::size_t index, 
   auto t1 = t0, t2 = t0;
   ScenarioOutcome out;
   try {
-    const Scene scene = factory.scene(index, keep_run);
+    Scene scene = factory.scene(index, keep_run);
+    scene.output.summary_only = !keep_run;  // only its row is kept
     t1 = Clock::now();
     RunResult run = run_scene(scene, nullptr);
     t2 = Clock::now();
