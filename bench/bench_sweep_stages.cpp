@@ -47,7 +47,8 @@ void BM_StairScenarioStages(benchmark::State& state) {
       auto t = Clock::now();
       hexdyn::ScenarioSummary row;
       try {
-        const hexdyn::Scene scene = factory.scene(i, false);  // as without --keep-runs
+        hexdyn::Scene scene = factory.scene(i, false);  // as without --keep-runs
+        scene.output.summary_only = true;               // (sweep/scenario.cpp run_scenario)
         config += since(t);
         const hexdyn::PreparedScene prep = hexdyn::prepare_scene(scene, &times);
         const hexdyn::RunResult run = hexdyn::run_prepared_scene(scene, prep, nullptr, &times);
