@@ -3,6 +3,7 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <stdexcept>
 #include <utility>
 
 #include "hexdyn/config/scene_key_reader.hpp"
@@ -11,13 +12,6 @@
 
 namespace hexdyn::scene_keys {
 namespace {
-
-/// A numeric key of an actuator entry: its name, allowed range and field.
-struct Field {
-  const char* key;
-  Range range;
-  double ActuatorParams::*member;
-};
 
 constexpr double kMaxGearRatio = 1e5;
 constexpr double kMaxTorqueConstant_NmpA = 100.0;
@@ -29,23 +23,75 @@ constexpr double kMaxThermalWindow_s = 1e6;
 
 constexpr double kNotGiven = std::numeric_limits<double>::quiet_NaN();
 
+}  // namespace
+
+const std::vector<ActuatorKey>& actuator_keys() {
+  using P = ActuatorParams;
+  static const std::vector<ActuatorKey> keys = {
+      {"model",
+       {},
+       "",
+       "none",
+       "the servo whose values the entry starts from; an unknown name gets the list of the "
+       "known ones"},
+      {"gear_ratio", positive(kMaxGearRatio), "1", "required", "G, motor turns per joint turn",
+       &P::gear_ratio},
+      {"torque_constant", positive(kMaxTorqueConstant_NmpA), "N m/A", "required", "k_t, motor side",
+       &P::torque_constant_NmpA},
+      {"resistance", positive(kMaxResistance_ohm), "Ω", "required", "R, winding and driver",
+       &P::resistance_ohm},
+      {"rotor_inertia", nonnegative(kMaxRotorInertia_kgm2), "kg m^2", "`0`",
+       "J_m, motor side; the joint's armature is G² J_m"},
+      {"armature", nonnegative(kMaxArmature_kgm2), "kg m^2", "`0`",
+       "J_a, joint side; an entry gives `rotor_inertia` or `armature`, not both"},
+      {"coulomb_friction", nonnegative(kMaxJointFriction), "N m", "URDF `friction`, else `0`",
+       "τ_c, joint side", &P::coulomb_friction_Nm},
+      {"viscous_friction", nonnegative(kMaxJointFriction), "N m s/rad", "URDF `damping`, else `0`",
+       "b, joint side", &P::viscous_friction_Nmsprad},
+      {"gear_efficiency", Range{0.0, 1.0, true, false}, "1", "`1`", "η", &P::gear_efficiency},
+      {"voltage", positive(kMaxVoltage_V), "V", "none", "supply; none: no voltage bound",
+       &P::voltage_V},
+      {"peak_torque", positive(kMaxJointEffort_Nm), "N m", "none",
+       "bound on \\|τ_drive\\|; none: no peak bound", &P::peak_torque_Nm},
+      {"continuous_torque", positive(kMaxJointEffort_Nm), "N m", "none",
+       "thermal rating, against the windowed RMS drive torque", &P::continuous_torque_Nm},
+      {"regeneration", closed(0.0, 1.0), "1", "`0`",
+       "share of negative electrical power returned to the supply", &P::regeneration},
+      {"thermal_window", positive(kMaxThermalWindow_s), "s", "the whole run",
+       "window of the RMS against `continuous_torque`", &P::thermal_window_s},
+  };
+  return keys;
+}
+
+namespace {
+
+/// A numeric key of an actuator entry that fills a field: its row of actuator_keys().
+struct Field {
+  const char* key;
+  Range range;
+  double ActuatorParams::*member;
+};
+
+/// The rows of actuator_keys() with a field, in its order (the order of Entry::values).
 const std::array<Field, 11>& fields() {
-  static const std::array<Field, 11> f = {{
-      {"gear_ratio", positive(kMaxGearRatio), &ActuatorParams::gear_ratio},
-      {"torque_constant", positive(kMaxTorqueConstant_NmpA), &ActuatorParams::torque_constant_NmpA},
-      {"resistance", positive(kMaxResistance_ohm), &ActuatorParams::resistance_ohm},
-      {"coulomb_friction", nonnegative(kMaxJointFriction), &ActuatorParams::coulomb_friction_Nm},
-      {"viscous_friction", nonnegative(kMaxJointFriction),
-       &ActuatorParams::viscous_friction_Nmsprad},
-      {"gear_efficiency", Range{0.0, 1.0, true, false}, &ActuatorParams::gear_efficiency},
-      {"voltage", positive(kMaxVoltage_V), &ActuatorParams::voltage_V},
-      {"peak_torque", positive(kMaxJointEffort_Nm), &ActuatorParams::peak_torque_Nm},
-      {"continuous_torque", positive(kMaxJointEffort_Nm), &ActuatorParams::continuous_torque_Nm},
-      {"regeneration", closed(0.0, 1.0), &ActuatorParams::regeneration},
-      {"thermal_window", positive(kMaxThermalWindow_s), &ActuatorParams::thermal_window_s},
-  }};
+  static const std::array<Field, 11> f = [] {
+    std::array<Field, 11> out{};
+    std::size_t i = 0;
+    for (const ActuatorKey& k : actuator_keys())
+      if (k.member) out.at(i++) = {k.key.data(), k.range, k.member};
+    if (i != out.size()) throw std::logic_error("actuator_keys: expected 11 fields");
+    return out;
+  }();
   return f;
 }
+
+/// The range of the key `key` of actuator_keys().
+Range key_range(std::string_view key) {
+  for (const ActuatorKey& k : actuator_keys())
+    if (k.key == key) return k.range;
+  throw std::logic_error("actuator_keys: no key " + std::string(key));
+}
+
 constexpr int kGearRatio = 0, kTorqueConstant = 1, kResistance = 2;  // the required fields
 /// fields()[0, kServoFields) are the servo's own (ServoSpec); regeneration and thermal_window,
 /// of its driver and its use, are not.
@@ -112,10 +158,8 @@ Entry read_entry(Reader& r, const std::string& path) {
            "got both rotor_inertia and armature, expected one of them (armature = "
            "gear_ratio² × rotor_inertia)");
   if (rotor)
-    e.inertia =
-        Inertia{true, r.number(path + ".rotor_inertia", nonnegative(kMaxRotorInertia_kgm2))};
-  if (armature)
-    e.inertia = Inertia{false, r.number(path + ".armature", nonnegative(kMaxArmature_kgm2))};
+    e.inertia = Inertia{true, r.number(path + ".rotor_inertia", key_range("rotor_inertia"))};
+  if (armature) e.inertia = Inertia{false, r.number(path + ".armature", key_range("armature"))};
   return e;
 }
 

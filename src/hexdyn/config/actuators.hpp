@@ -18,10 +18,28 @@
 /// gear_ratio, torque_constant and resistance must be given for every joint.
 #include <array>
 #include <string>
+#include <string_view>
+#include <vector>
 
+#include "hexdyn/config/scene_key_table.hpp"
 #include "hexdyn/core/scene.hpp"
 
 namespace hexdyn::scene_keys {
+
+/// One key of an actuator entry, declared once: the reader checks it against this row, and
+/// the table of docs/user/configuration.md#actuators is generated from the rows
+/// (config/scene_key_docs.hpp).
+struct ActuatorKey {
+  std::string_view key;
+  Range range{};          ///< a number's; `model` names a servo instead
+  std::string_view unit;  ///< UDUNITS-2 ("" none, "1" dimensionless)
+  std::string_view default_text;
+  std::string_view meaning;
+  double ActuatorParams::*member = nullptr;  ///< the field (null: read by code: model, inertia)
+};
+
+/// Every key of an actuator entry, in the docs' order.
+const std::vector<ActuatorKey>& actuator_keys();
 
 class Reader;
 

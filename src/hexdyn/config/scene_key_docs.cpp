@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <utility>
 
+#include "hexdyn/config/actuators.hpp"
 #include "hexdyn/config/scene_key_table.hpp"
 
 namespace hexdyn {
@@ -149,11 +150,24 @@ std::string scene_key_markdown(std::string_view section) {
   return out;
 }
 
+std::string actuator_key_markdown() {
+  std::string out = "| key | allowed | default | meaning |\n|---|---|---|---|\n";
+  for (const scene_keys::ActuatorKey& k : scene_keys::actuator_keys()) {
+    const std::string allowed =
+        k.key == "model" ? "a name of the servo table" : range_text(k.range) + unit_text(k.unit);
+    out += "| `" + std::string(k.key) + "` | " + allowed + " | " + std::string(k.default_text) +
+           " | " + page_links(k.meaning) + " |\n";
+  }
+  return out;
+}
+
 std::string scene_key_regions() {
   std::string out;
-  for (const auto& s : scene_key_sections())
-    out += "<!-- BEGIN GENERATED: " + s + " -->\n" + scene_key_markdown(s) +
-           "<!-- END GENERATED -->\n";
+  const auto region = [&](const std::string& name, const std::string& table) {
+    out += "<!-- BEGIN GENERATED: " + name + " -->\n" + table + "<!-- END GENERATED -->\n";
+  };
+  for (const auto& s : scene_key_sections()) region(s, scene_key_markdown(s));
+  region("actuators", actuator_key_markdown());
   return out;
 }
 

@@ -15,7 +15,11 @@ std::vector<std::string> scene_key_sections();
 /// The Markdown table of the rows of `section`, header included, one line per row.
 std::string scene_key_markdown(std::string_view section);
 
-/// Every section's table between the marker lines of its generated region:
+/// The table of the keys of an actuator entry (config/actuators.hpp actuator_keys).
+std::string actuator_key_markdown();
+
+/// Every section's table, then the actuator entry's ("actuators"), between the marker lines
+/// of its generated region:
 /// "<!-- BEGIN GENERATED: SECTION -->", the table, "<!-- END GENERATED -->".
 std::string scene_key_regions();
 
