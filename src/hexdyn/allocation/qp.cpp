@@ -15,6 +15,18 @@ namespace hexdyn {
 
 AllocationBackend::~AllocationBackend() = default;
 
+const QpOutcome& AllocationBackend::solve_as_posed(const QpProblem& problem) {
+  as_posed_ = true;
+  try {
+    solve(problem);
+  } catch (...) {
+    as_posed_ = false;
+    throw;
+  }
+  as_posed_ = false;
+  return out_;
+}
+
 const QpOutcome& AllocationBackend::solve(const QpProblem& problem) {
   const auto t0 = std::chrono::steady_clock::now();
   validate_qp_sizes(problem);

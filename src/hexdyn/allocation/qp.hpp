@@ -142,10 +142,16 @@ class AllocationBackend {
   /// Checks the sizes (validate_qp_sizes), solves (solve_impl) and records the time taken
   /// in the outcome's `seconds`.
   const QpOutcome& solve(const QpProblem& problem);
+  /// solve for a feasibility verdict alone: a problem infeasible as posed may end at once
+  /// with status kFailed, without the relaxed answer `solve` would give (the strict-then-
+  /// penalised back ends skip the penalised attempt); a feasible one ends as with `solve`.
+  /// Back ends without such a shortcut solve as `solve` does.
+  const QpOutcome& solve_as_posed(const QpProblem& problem);
   /// Forget everything carried from earlier solves: the next solve starts cold.
   virtual void reset_warm_start() = 0;
 
  protected:
+  bool as_posed_ = false;  ///< solve_as_posed is running
   /// Fills out_ (all but `seconds`) for a problem of consistent sizes.
   virtual void solve_impl(const QpProblem& problem) = 0;
 

@@ -58,6 +58,14 @@ void StrictThenPenalisedBackend::solve_impl(const QpProblem& p) {
   last_relaxed_ = false;
 
   // Notes are text only on the failure path: a solve that succeeds builds no string.
+  if (as_posed_) {  // a feasibility verdict: the problem as posed, nothing relaxed
+    const Attempt strict = solve_strict(p, plan.warm);
+    if (!strict.solved) {
+      out_.status = SolverStatus::kFailed;
+      out_.message = strict.note;
+    }
+    return;
+  }
   Attempt strict;
   if (plan.strict) {
     strict = solve_strict(p, plan.warm);

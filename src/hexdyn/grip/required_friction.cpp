@@ -404,10 +404,10 @@ bool RequiredFrictionSolver::Impl::upper_end(const AllocationLayout& layout,
     if (std::isfinite(hi)) return true;
   }
   std::string why;
-  if (!feasible_at(layout, opt.mu_max, x_hi, &why)) {
+  if (!feasible_at(layout, opt.mu_max, x_hi, opt.reasons ? &why : nullptr)) {
     std::ostringstream s;
-    s << "required friction: no friction coefficient up to " << opt.mu_max << " admits the rows ("
-      << why << ")";
+    s << "required friction: no friction coefficient up to " << opt.mu_max << " admits the rows";
+    if (opt.reasons) s << " (" << why << ")";
     out.mu = std::numeric_limits<double>::quiet_NaN();
     out.method = RequiredFrictionMethod::kNone;
     out.message = s.str();
@@ -453,7 +453,10 @@ void RequiredFrictionSolver::Impl::bisect(const AllocationLayout& layout,
   // A caller that needs μ* only from `enough` up: one probe just below it settles most
   // samples (μ* ≤ hi < enough); an infeasible one starts the bracket there.
   if (enough > 0.0 && work.cones.empty()) {
-    if (hi >= enough) probe(enough * (1.0 - 1e-9));
+    if (enough_infeasible)
+      lo = enough * (1.0 - 1e-9);
+    else if (hi >= enough)
+      probe(enough * (1.0 - 1e-9));
     if (hi < enough) {
       out.mu = hi;
       out.method = RequiredFrictionMethod::kBelow;
@@ -498,6 +501,34 @@ RequiredFrictionSolver::~RequiredFrictionSolver() = default;
 
 /// μ* of `work` (no cones) by Newton from the previous sample's active set, else bisection;
 /// the answer's forces in answer_x.
+/// For a sample whose allocation holds: the friction its forces use when below `enough`, else
+/// the probe just below `enough` (bisect's first, made before any Newton attempt): true, with
+/// the answer kBelow, when either settles it; else it marks enough_infeasible for bisect.
+bool RequiredFrictionSolver::Impl::probe_below_enough(const AllocationLayout& layout,
+                                                      const Eigen::VectorXd& allocation) {
+  if (!work.cones.empty()) return false;
+  int leg = -1;
+  const double use = friction_use(work, layout, allocation, &leg);
+  if (use < enough) {
+    out.mu = use;
+    out.leg = leg;
+    out.method = RequiredFrictionMethod::kBelow;
+    answer_x = allocation;
+    last_nan = false;
+    return true;
+  }
+  Eigen::VectorXd& x_probe = x_scratch;
+  if (!feasible_at(layout, enough * (1.0 - 1e-9), x_probe)) {
+    enough_infeasible = true;
+    return false;
+  }
+  out.mu = std::min(enough * (1.0 - 1e-9), friction_use(work, layout, x_probe, &out.leg));
+  out.method = RequiredFrictionMethod::kBelow;
+  answer_x = x_probe;
+  last_nan = false;
+  return true;
+}
+
 void RequiredFrictionSolver::Impl::solve_polygonal(const AllocationLayout& layout,
                                                    const Eigen::VectorXd* allocation) {
   const int n = work.variables();
@@ -509,6 +540,11 @@ void RequiredFrictionSolver::Impl::solve_polygonal(const AllocationLayout& layou
   // at any μ) the set is older than the previous sample, and a relaxed sample goes to the
   // probe at mu_max first, which settles the next NaN at once.
   const bool after_nan = last_nan && allocation == nullptr;
+  // A caller that needs μ* only from `enough` up: a sample whose allocation holds is tried
+  // first with the probe just below `enough` (most such samples end there, their μ* ≤ its
+  // friction use); the active set of a sample so settled is not carried.
+  enough_infeasible = false;
+  if (allocation && enough > 0.0 && probe_below_enough(layout, *allocation)) return;
   if (alike && !after_nan) {
     if (solve_from(layout, warm_set, warm_z) || (active_set_at(layout, warm_z.head(n), warm_z[n]) &&
                                                  solve_from(layout, candidate, warm_z))) {
@@ -524,6 +560,12 @@ void RequiredFrictionSolver::Impl::solve_polygonal(const AllocationLayout& layou
   bisect(layout, allocation, alike ? warm_z[n] : last_mu);
   last_nan = !std::isfinite(out.mu);
   if (!last_nan && out.method != RequiredFrictionMethod::kBelow) last_mu = out.mu;
+}
+
+bool RequiredFrictionSolver::needs_more_than(const AllocationLayout& layout, double mu) {
+  Impl& s = *impl_;
+  if (!s.work.cones.empty()) return false;
+  return !s.feasible_at(layout, mu, s.x_scratch);
 }
 
 const RequiredFriction& RequiredFrictionSolver::solve(const QpProblem& qp,

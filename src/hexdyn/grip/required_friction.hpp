@@ -71,6 +71,10 @@ struct RequiredFrictionOptions {
   double mu_max = 1e3;
   /// Newton iterations per attempt.
   int newton_iterations = 8;
+  /// A sample without μ* has a message naming the rows that still fail at mu_max (from the
+  /// back end's relaxed answer there); false: the message says only that none suffices, and
+  /// the probe needs no relaxed answer (a run computed for a sweep's row alone).
+  bool reasons = true;
 };
 
 /// Finds μ* of successive samples; keeps the last certified active set per row layout. One
@@ -97,6 +101,10 @@ class RequiredFrictionSolver {
   const RequiredFriction& solve(const QpProblem& qp, const AllocationLayout& layout,
                                 const Eigen::VectorXd* allocation,
                                 double enough = -std::numeric_limits<double>::infinity());
+
+  /// After solve: whether the last problem needs more friction than `mu` (its rows at `mu`
+  /// admit no forces, by one probe). For a kBelow answer, whose μ* is bounded only from above.
+  bool needs_more_than(const AllocationLayout& layout, double mu);
 
  private:
   struct Impl;

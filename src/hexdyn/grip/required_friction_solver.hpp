@@ -143,8 +143,11 @@ struct RequiredFrictionSolver::Impl {
   int newton_leg = -1;
   bool negative_mu = false;  ///< a Newton attempt of this sample ended at μ < 0
   double last_mu = -1.0;     ///< the previous sample's μ*, −1 before the first
-  /// The caller's `enough` for this sample (RequiredFrictionSolver::solve).
+  /// The caller's `enough` for this sample (RequiredFrictionSolver::solve), and whether the
+  /// probe just below it has been found infeasible for this sample.
   double enough = -std::numeric_limits<double>::infinity();
+  bool enough_infeasible = false;
+  bool probe_below_enough(const AllocationLayout& layout, const Eigen::VectorXd& allocation);
   bool last_nan = false;  ///< the previous polygon problem had no μ* ≤ mu_max
   int bad_row = -1;       ///< kRowViolated: the violated row; kWrongSign: the index in the set
   int bad_side = 0;       ///< kRowViolated: the violated side
@@ -163,7 +166,9 @@ struct RequiredFrictionSolver::Impl {
   bool feasible_at(const AllocationLayout& layout, double mu, Eigen::VectorXd& x_out,
                    std::string* why = nullptr) {
     set_friction_coefficient(layout, mu, work);
-    const QpOutcome& o = backend->solve(work);
+    // A verdict alone needs the problem as posed; the reason for an infeasible one needs the
+    // back end's relaxed answer, whose violated rows the message names.
+    const QpOutcome& o = why ? backend->solve(work) : backend->solve_as_posed(work);
     x_out = o.x;
     if (o.status != SolverStatus::kOptimal && !why) return false;
     double worst = 0.0;

@@ -72,9 +72,12 @@ class SampleSolver {
     // The required friction's probes are polygon problems (its cones become outer polygons),
     // so the active-set back end solves them whatever the scene's back end: Ipopt would
     // cost milliseconds per probe for the same feasibility verdict.
-    if (scene.output.required_friction)
+    if (scene.output.required_friction) {
+      RequiredFrictionOptions options;
+      options.reasons = !scene.output.summary_only;  // a sweep's row names no sample's rows
       required_ = std::make_unique<RequiredFrictionSolver>(
-          make_active_set_backend(active_set_options_from(scene.allocation)));
+          make_active_set_backend(active_set_options_from(scene.allocation)), options);
+    }
   }
 
   /// Solves sample i of `kin` under contacts `c`; `times` (may be null) as solve_dynamics.
@@ -168,7 +171,12 @@ class SampleSolver {
     // less, allocation/problem.cpp), so the legs that slip are those at their friction limit
     // and the leg that binds the required friction (docs/theory/grip.md#slip-onset).
     const double mu = scene_.contact.friction_coefficient;
-    if (!(r.mu > mu + 1e-9 * std::max(1.0, mu))) return;
+    const double beyond = mu + 1e-9 * std::max(1.0, mu);
+    // A bound (a summary-only run) above the scene's μ decides nothing: one probe there does.
+    const bool slips = r.method == RequiredFrictionMethod::kBelow
+                           ? r.mu > beyond && required_->needs_more_than(layout, beyond)
+                           : r.mu > beyond;
+    if (!slips) return;
     for (int l = 0; l < kLegs; ++l)
       if (leg_friction_use(qp_, layout, s.outcome->x, l) >= mu * (1.0 - 1e-6)) s.slip[l] = true;
     if (r.leg >= 0) s.slip[r.leg] = true;
@@ -339,11 +347,9 @@ DynamicsResult DynamicsSolver::solve(const KinematicsResult& kin, const ContactS
 }
 
 double DynamicsSolver::enough(bool transient) const {
-  if (!scene_.output.summary_only) return -std::numeric_limits<double>::infinity();
-  // Below the largest μ* so far of the sample's kind (the summary's maxima: sweep/scenario.cpp),
-  // and clear of the scene's μ, so that a bound never decides a slip flag.
-  const double mu = scene_.contact.friction_coefficient;
-  return std::min(largest_mu_[transient], mu - kSummaryFrictionMargin * std::max(1.0, mu));
+  // The largest μ* so far of the sample's kind (the summary's maxima: sweep/scenario.cpp).
+  return scene_.output.summary_only ? largest_mu_[transient]
+                                    : -std::numeric_limits<double>::infinity();
 }
 
 SampleProblem solve_sample_problem(const Scene& scene, const RobotModel& model,

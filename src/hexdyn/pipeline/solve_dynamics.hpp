@@ -81,11 +81,6 @@ class DynamicsSolver {
   double enough(bool transient) const;
 };
 
-/// How far below the scene's friction coefficient (relative to max(1, μ)) a required friction
-/// may be settled by a bound in a summary-only run: clear of the bisection's tolerance (1e-7),
-/// so that a sample the full computation would flag as slipping is always computed.
-inline constexpr double kSummaryFrictionMargin = 1e-6;
-
 /// What solve_dynamics does after the per-sample solves, on a result whose samples are final:
 /// the touchdowns' records and log lines, the episodes of relaxed or failed samples
 /// (pipeline/episode_log.hpp), the power and energies over the samples (power/power.hpp) and, with

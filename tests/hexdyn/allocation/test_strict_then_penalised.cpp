@@ -132,6 +132,31 @@ TEST_CASE("attempt policy: strict, penalised, and straight to penalised after a 
   CHECK(b.calls == std::vector<std::string>{"strict"});
 }
 
+TEST_CASE("attempt policy: a verdict alone is the strict attempt, even after a relaxed sample",
+          "[allocation][policy]") {
+  ScriptedBackend b;
+  const QpProblem p = problem(3, 4);
+  // A relaxed sample first: a plain solve of the same sizes would go to the penalised form.
+  b.strict_solves = false;
+  REQUIRE(b.solve(p).status == SolverStatus::kRelaxed);
+  // As posed, infeasible: the strict attempt only, status failed, the warm start kept.
+  b.calls.clear();
+  const QpOutcome& out = b.solve_as_posed(p);
+  CHECK(out.status == SolverStatus::kFailed);
+  CHECK(out.message == "infeasible");
+  CHECK(b.calls == std::vector<std::string>{"strict warm"});
+  CHECK(b.stored);
+  // As posed, feasible: the strict attempt's answer.
+  b.calls.clear();
+  b.strict_solves = true;
+  CHECK(b.solve_as_posed(p).status == SolverStatus::kOptimal);
+  CHECK(b.calls == std::vector<std::string>{"strict warm"});
+  // A plain solve after it follows the usual policy (no relaxed sample since).
+  b.calls.clear();
+  CHECK(b.solve(p).status == SolverStatus::kOptimal);
+  CHECK(b.calls == std::vector<std::string>{"strict warm"});
+}
+
 TEST_CASE("attempt policy: a sample that fails both attempts", "[allocation][policy]") {
   ScriptedBackend b;
   const QpProblem p = problem(3, 4);
