@@ -546,8 +546,12 @@ void RequiredFrictionSolver::Impl::solve_polygonal(const AllocationLayout& layou
   enough_infeasible = false;
   if (allocation && enough > 0.0 && probe_below_enough(layout, *allocation)) return;
   if (alike && !after_nan) {
-    if (solve_from(layout, warm_set, warm_z) || (active_set_at(layout, warm_z.head(n), warm_z[n]) &&
-                                                 solve_from(layout, candidate, warm_z))) {
+    // An answer above mu_max is no answer (μ* is NaN there): the bisection's probe at mu_max
+    // says so, with its message.
+    if ((solve_from(layout, warm_set, warm_z) ||
+         (active_set_at(layout, warm_z.head(n), warm_z[n]) &&
+          solve_from(layout, candidate, warm_z))) &&
+        z[n] <= opt.mu_max) {
       out.mu = std::max(0.0, z[n]);
       out.leg = newton_leg;
       out.method = RequiredFrictionMethod::kNewton;

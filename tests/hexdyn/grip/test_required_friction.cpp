@@ -251,6 +251,41 @@ TEST_CASE("required friction: one leg with a known force in closed form", "[requ
   }
 }
 
+TEST_CASE("required friction: above mu_max is NaN, also from the previous sample's active set",
+          "[required_friction]") {
+  // Pairs of samples of one layout (six legs in support), the second's trunk pushed sideways
+  // harder so that it needs more friction, both μ* by bisection on feasibility. A solver whose
+  // mu_max lies between them answers the first and gives NaN for the second, although the
+  // first's active set leads Newton to the second's μ*.
+  const AllocationParams alloc = params(FrictionModel::kPyramid4);
+  std::mt19937 rng(23);
+  int newton_reached = 0;
+  for (int trial = 0; trial < 6; ++trial) {
+    const Sample a = random_sample(rng, 0);
+    Sample b = a;
+    b.split.trunk_rhs.head<2>() *= 1.3;
+    const double mu_a = bisection_mu(alloc, a), mu_b = bisection_mu(alloc, b);
+    if (!(mu_b > mu_a * 1.05)) continue;
+    RequiredFrictionOptions options;
+    options.mu_max = 0.5 * (mu_a + mu_b);
+    RequiredFrictionSolver bounded(make_allocation_backend(alloc), options);
+    RequiredFrictionSolver free(make_allocation_backend(alloc));
+    QpProblem qa, qb;
+    const AllocationLayout la = build_at(alloc, a, 0.3, qa), lb = build_at(alloc, b, 0.3, qb);
+    INFO("trial " << trial << ": μ* " << mu_a << ", " << mu_b << ", mu_max " << options.mu_max);
+    CHECK(std::abs(bounded.solve(qa, la, nullptr).mu - mu_a) <= kAgreement);
+    CHECK(std::abs(free.solve(qa, la, nullptr).mu - mu_a) <= kAgreement);
+    const RequiredFriction& unbounded = free.solve(qb, lb, nullptr);
+    CHECK(std::abs(unbounded.mu - mu_b) <= kAgreement);
+    newton_reached += unbounded.method == RequiredFrictionMethod::kNewton;
+    const RequiredFriction& r = bounded.solve(qb, lb, nullptr);
+    INFO(r.message);
+    CHECK(std::isnan(r.mu));
+    CHECK(r.message.rfind("required friction: no friction coefficient up to", 0) == 0);
+  }
+  CHECK(newton_reached > 0);  // the path this guards was taken
+}
+
 TEST_CASE("required friction: NaN and the reason where no friction helps", "[required_friction]") {
   for (FrictionModel model :
        {FrictionModel::kPyramid4, FrictionModel::kPyramid8, FrictionModel::kCone}) {
