@@ -499,8 +499,6 @@ RequiredFrictionSolver::RequiredFrictionSolver(std::unique_ptr<AllocationBackend
 
 RequiredFrictionSolver::~RequiredFrictionSolver() = default;
 
-/// μ* of `work` (no cones) by Newton from the previous sample's active set, else bisection;
-/// the answer's forces in answer_x.
 /// For a sample whose allocation holds: the friction its forces use when below `enough`, else
 /// the probe just below `enough` (bisect's first, made before any Newton attempt): true, with
 /// the answer kBelow, when either settles it; else it marks enough_infeasible for bisect.
@@ -529,6 +527,8 @@ bool RequiredFrictionSolver::Impl::probe_below_enough(const AllocationLayout& la
   return true;
 }
 
+/// μ* of `work` (no cones) by Newton from the previous sample's active set, else bisection;
+/// the answer's forces in answer_x.
 void RequiredFrictionSolver::Impl::solve_polygonal(const AllocationLayout& layout,
                                                    const Eigen::VectorXd* allocation) {
   const int n = work.variables();

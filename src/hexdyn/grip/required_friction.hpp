@@ -51,7 +51,8 @@ enum class RequiredFrictionMethod : int {
   kBisection = 2,            ///< bisection alone: within `tolerance` above μ*
   kNone = 3,                 ///< no μ* (NaN)
   /// Settled below the caller's `enough` (RequiredFrictionSolver::solve): `mu` is an upper
-  /// bound, μ* ≤ mu < enough, from one feasible probe; for a run computed for its summary only.
+  /// bound, μ* ≤ mu < enough (the allocation's own friction use, or a feasible probe's); for a
+  /// run computed for its summary only.
   kBelow = 4,
 };
 
@@ -94,10 +95,12 @@ class RequiredFrictionSolver {
   /// not modified). `allocation`: the allocation's solution of `qp` (size n) when it holds
   /// every row within kViolationThreshold, else null; its friction use bounds μ* from above.
   /// `enough`: a caller that needs μ* only where it reaches `enough` (the largest μ* of a run
-  /// so far, for the run's maximum) lets a sample end, once the previous sample's active set
-  /// has failed, with one feasible probe just below `enough`: method kBelow and an upper bound
-  /// as `mu`. The default asks for μ* itself. Cone problems (allocation.friction: cone) ignore
-  /// it.
+  /// so far, for the run's maximum) lets a sample end with method kBelow and an upper bound
+  /// below `enough` as `mu`: a sample whose allocation holds, by its friction use or else one
+  /// feasible probe just below `enough` (before any Newton attempt); any other, once the
+  /// previous sample's active set has failed and the probe at mu_max has passed, by that probe
+  /// (docs/theory/grip.md#in-a-sweep). The default asks for μ* itself. Cone problems
+  /// (allocation.friction: cone) ignore it.
   const RequiredFriction& solve(const QpProblem& qp, const AllocationLayout& layout,
                                 const Eigen::VectorXd* allocation,
                                 double enough = -std::numeric_limits<double>::infinity());
