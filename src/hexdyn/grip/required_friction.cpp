@@ -379,20 +379,18 @@ void RequiredFrictionSolver::Impl::bisect(const AllocationLayout& layout,
       lo = mu;
     }
   };
-  // A caller that needs μ* only from `enough` up: one probe just below it settles most
-  // samples (μ* ≤ hi < enough); an infeasible one starts the bracket there.
+  // A caller that needs μ* only from `enough` up: an upper end below it, or one feasible
+  // probe just below it, settles the sample (μ* ≤ its bound < enough); an infeasible probe
+  // starts the bracket there.
   if (enough > 0.0 && work.cones.empty()) {
-    if (enough_infeasible)
-      lo = enough * (1.0 - 1e-9);
-    else if (hi >= enough)
-      probe(enough * (1.0 - 1e-9));
     if (hi < enough) {
-      out.mu = hi;
-      out.method = RequiredFrictionMethod::kBelow;
-      answer_x = x_hi;
-      friction_use(work, layout, x_hi, &out.leg);
+      int leg = -1;
+      friction_use(work, layout, x_hi, &leg);
+      settle_below(hi, x_hi, leg);
       return;
     }
+    if (!enough_infeasible && probe_below_enough(layout)) return;
+    lo = below_enough();
   }
   // Newton from the upper end, whose exchanges walk like a simplex method to the answer's
   // rows; then from a probe just above the previous sample's μ*: most samples end here.
@@ -428,31 +426,17 @@ RequiredFrictionSolver::RequiredFrictionSolver(std::unique_ptr<AllocationBackend
 
 RequiredFrictionSolver::~RequiredFrictionSolver() = default;
 
-/// For a sample whose allocation holds: the friction its forces use when below `enough`, else
-/// the probe just below `enough` (bisect's first, made before any Newton attempt): true, with
-/// the answer kBelow, when either settles it; else it marks enough_infeasible for bisect.
-bool RequiredFrictionSolver::Impl::probe_below_enough(const AllocationLayout& layout,
-                                                      const Eigen::VectorXd& allocation) {
-  if (!work.cones.empty()) return false;
-  int leg = -1;
-  const double use = friction_use(work, layout, allocation, &leg);
-  if (use < enough) {
-    out.mu = use;
-    out.leg = leg;
-    out.method = RequiredFrictionMethod::kBelow;
-    answer_x = allocation;
-    last_nan = false;
-    return true;
-  }
+/// The probe just below `enough`: true, with the sample settled by the probe's friction use,
+/// when it is feasible; else false, and enough_infeasible marks it for the bisection.
+bool RequiredFrictionSolver::Impl::probe_below_enough(const AllocationLayout& layout) {
   Eigen::VectorXd& x_probe = x_scratch;
-  if (!feasible_at(layout, enough * (1.0 - 1e-9), x_probe)) {
+  if (!feasible_at(layout, below_enough(), x_probe)) {
     enough_infeasible = true;
     return false;
   }
-  out.mu = std::min(enough * (1.0 - 1e-9), friction_use(work, layout, x_probe, &out.leg));
-  out.method = RequiredFrictionMethod::kBelow;
-  answer_x = x_probe;
-  last_nan = false;
+  int leg = -1;
+  const double use = friction_use(work, layout, x_probe, &leg);
+  settle_below(std::min(below_enough(), use), x_probe, leg);
   return true;
 }
 
@@ -469,11 +453,14 @@ void RequiredFrictionSolver::Impl::solve_polygonal(const AllocationLayout& layou
   // at any μ) the set is older than the previous sample, and a relaxed sample goes to the
   // probe at mu_max first, which settles the next NaN at once.
   const bool after_nan = last_nan && allocation == nullptr;
-  // A caller that needs μ* only from `enough` up: a sample whose allocation holds is tried
-  // first with the probe just below `enough` (most such samples end there, their μ* ≤ its
-  // friction use); the active set of a sample so settled is not carried.
+  // A caller that needs μ* only from `enough` up: a sample whose allocation holds (and whose
+  // friction use did not settle it: solve) is tried first with the probe just below
+  // `enough`; the active set of a sample so settled is not carried.
   enough_infeasible = false;
-  if (allocation && enough > 0.0 && probe_below_enough(layout, *allocation)) return;
+  if (allocation && enough > 0.0 && work.cones.empty() && probe_below_enough(layout)) {
+    last_nan = false;
+    return;
+  }
   if (alike && !after_nan) {
     // An answer above mu_max is no answer (μ* is NaN there): the bisection's probe at mu_max
     // says so, with its message.
@@ -522,6 +509,16 @@ const RequiredFriction& RequiredFrictionSolver::solve(const QpProblem& qp,
     return s.out;
   }
   if (qp.cones.empty()) {
+    // A held sample whose allocation uses less friction than `enough` is settled before its
+    // problem is copied: the faces' directions, all friction_use reads, do not depend on μ.
+    int leg = -1;
+    const double use = allocation && enough > 0.0 ? friction_use(qp, layout, *allocation, &leg)
+                                                  : std::numeric_limits<double>::infinity();
+    if (use < enough) {
+      s.settle_below(use, *allocation, leg);
+      s.last_nan = false;
+      return s.out;
+    }
     s.load(qp);
     s.solve_polygonal(layout, allocation);
   } else {

@@ -147,7 +147,17 @@ struct RequiredFrictionSolver::Impl {
   /// probe just below it has been found infeasible for this sample.
   double enough = -std::numeric_limits<double>::infinity();
   bool enough_infeasible = false;
-  bool probe_below_enough(const AllocationLayout& layout, const Eigen::VectorXd& allocation);
+  /// The probe's μ just below `enough`.
+  double below_enough() const { return enough * (1.0 - 1e-9); }
+  /// Ends the sample with method kBelow: μ* ≤ mu < enough, mu the friction the forces x use
+  /// (leg: the leg that uses it).
+  void settle_below(double mu, const Eigen::VectorXd& x, int leg) {
+    out.mu = mu;
+    out.leg = leg;
+    out.method = RequiredFrictionMethod::kBelow;
+    answer_x = x;
+  }
+  bool probe_below_enough(const AllocationLayout& layout);
   bool last_nan = false;  ///< the previous polygon problem had no μ* ≤ mu_max
   int bad_row = -1;       ///< kRowViolated: the violated row; kWrongSign: the index in the set
   int bad_side = 0;       ///< kRowViolated: the violated side

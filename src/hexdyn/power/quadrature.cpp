@@ -277,12 +277,6 @@ void cubic_abs_integrals(const std::vector<double>& t, const std::vector<char>& 
   cubic_abs_integrals_batch(t, jump, {{y, out.data(), error ? error->data() : nullptr}}, nullptr);
 }
 
-void cubic_abs_integrals_except(const std::vector<double>& t, const std::vector<char>& jump,
-                                SeriesView y, const std::vector<char>& keep,
-                                std::vector<double>& out, std::vector<double>& error) {
-  cubic_abs_integrals_batch(t, jump, {{y, out.data(), error.data()}}, &keep);
-}
-
 double cubic_abs_integral(const std::vector<double>& t, const std::vector<char>& jump,
                           SeriesView y) {
   thread_local std::vector<double> parts;

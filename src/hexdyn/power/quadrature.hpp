@@ -67,13 +67,6 @@ void cubic_abs_integrals_batch(const std::vector<double>& t_s, const std::vector
                                const std::vector<CubicTarget>& targets,
                                const std::vector<char>* keep = nullptr);
 
-/// cubic_abs_integrals on the intervals k with !keep[k] only: `integral` and `error` (T − 1
-/// entries each, filled by the caller) keep their entries where keep[k] != 0 (the same values
-/// as computed again: the caller's from an earlier grid whose stencils they share).
-void cubic_abs_integrals_except(const std::vector<double>& t_s, const std::vector<char>& jump,
-                                SeriesView y, const std::vector<char>& keep,
-                                std::vector<double>& integral, std::vector<double>& error);
-
 /// The sum of cubic_abs_integrals: ∫|y| dt over [t_0, t_{T−1}] by the rule.
 double cubic_abs_integral(const std::vector<double>& t_s, const std::vector<char>& jump,
                           SeriesView y);
