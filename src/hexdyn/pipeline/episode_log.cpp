@@ -61,6 +61,7 @@ void write_summary(std::ostream& os, const std::vector<const EpisodeLog::Episode
 
 void EpisodeLog::add(double t_s, SolverStatus status, bool touchdown, double max_violation,
                      const std::string& message) {
+  if (!log_) return;  // nothing is written: a sweep's run keeps no episodes
   if (open_ && episodes_.back().touchdown != touchdown) close();
   if (!open_) {
     Episode e;

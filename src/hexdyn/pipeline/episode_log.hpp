@@ -21,6 +21,7 @@ class EpisodeLog {
   explicit EpisodeLog(std::ostream* log) : log_(log) {}
 
   /// One relaxed or failed sample at `t_s`; `touchdown`: some leg is in its impact phase.
+  /// Without a log (null), nothing is kept.
   void add(double t_s, SolverStatus status, bool touchdown, double max_violation,
            const std::string& message);
   /// Ends the current episode (at an optimal sample).
