@@ -82,6 +82,8 @@ class ActiveSetBackend final : public StrictThenPenalisedBackend {
     return {};
   }
 
+  bool load_checks_finite() const override { return true; }
+
   bool can_warm_start(const ProblemShape& shape) const override {
     return opt_.warm_start && have_start_ && start_.shape == shape;
   }

@@ -45,11 +45,15 @@ bool DualActiveSetQp::load(const QpProblem& p, double rho, double tolerance) {
   tolerance_ = tolerance;
   // Σ 0·v is 0 exactly when every v is finite.
   double nonfinite = 0.0 * p.constant;
+  // The factors of H are kept when H is the one last factorised (the required friction's
+  // probes of one sample change only rows): same_h stays true while every entry is equal.
+  bool same_h = factorized_ && n_ == factorized_n_;
   for (int j = 0; j < n_; ++j) {
     for (int i = 0; i < j; ++i) nonfinite += 0.0 * p.H(i, j);  // upper triangle: checked only
     for (int i = j; i < n_; ++i) {
-      H_(i, j) = H_(j, i) = p.H(i, j);
-      nonfinite += 0.0 * H_(i, j);
+      same_h = same_h && h_in_(i, j) == p.H(i, j);
+      h_in_(i, j) = p.H(i, j);
+      nonfinite += 0.0 * p.H(i, j);
     }
     g_[j] = p.g[j];
     nonfinite += 0.0 * g_[j];
@@ -75,8 +79,16 @@ bool DualActiveSetQp::load(const QpProblem& p, double rho, double tolerance) {
     hi0_[k] = hi;
     if (lo > hi && any_crossed_ < 0) any_crossed_ = k;
   }
-  if (nonfinite != 0.0) return false;
+  if (nonfinite != 0.0) {
+    factorized_ = false;
+    return false;
+  }
+  if (same_h) return true;
+  for (int j = 0; j < n_; ++j)
+    for (int i = j; i < n_; ++i) H_(i, j) = H_(j, i) = h_in_(i, j);
   convex_ = factorize();
+  factorized_ = true;
+  factorized_n_ = n_;
   return true;
 }
 

@@ -85,8 +85,9 @@ class DualActiveSetQp {
 
   /// Copies the problem (sizes checked by the caller, n ≥ 1; ρ the penalty, `tolerance`
   /// the relative violation beyond which a row is added) and factorises H, regularised by
-  /// δ I (δ = 1e-9·max H_ii) when a pivot falls below δ. False, without factorising, when
-  /// an entry is not finite (or a bound is NaN).
+  /// δ I (δ = 1e-9·max H_ii) when a pivot falls below δ; an H equal entry for entry to the
+  /// last one factorised keeps its factors. False, without factorising, when an entry is not
+  /// finite (or a bound is NaN).
   bool load(const QpProblem& p, double rho, double tolerance);
   /// False when H is indefinite even after regularisation (after load).
   bool convex() const { return convex_; }
@@ -179,7 +180,10 @@ class DualActiveSetQp {
   int any_crossed_ = -1;
   double delta_ = 0.0;  ///< regularisation added to H's diagonal
   bool convex_ = true;
-  SmallMatrix H_, L_, J0_;  ///< H (regularised if needed), its Cholesky factor, L⁻ᵀ
+  SmallMatrix H_, L_, J0_;   ///< H (regularised if needed), its Cholesky factor, L⁻ᵀ
+  SmallMatrix h_in_;         ///< lower triangle of H as last loaded (unregularised)
+  bool factorized_ = false;  ///< H_, L_, delta_ and convex_ describe h_in_
+  int factorized_n_ = 0;
   SmallVector g_;
   RowNormals a_;
   std::array<double, kM> lo0_{}, hi0_{};  ///< bounds as posed (±inf for none)

@@ -40,9 +40,11 @@ void StrictThenPenalisedBackend::solve_impl(const QpProblem& p) {
   check_supported(p);
   out_.iterations = 0;
   out_.message.clear();
-  if (const std::string bad = qp_first_non_finite(p); !bad.empty()) {
-    fail(p, "non-finite entries in " + bad);
-    return;
+  if (p.variables() == 0 || !load_checks_finite()) {
+    if (const std::string bad = qp_first_non_finite(p); !bad.empty()) {
+      fail(p, "non-finite entries in " + bad);
+      return;
+    }
   }
   if (p.variables() == 0) {
     qp_solve_without_variables(p, feasibility_tol(), out_);

@@ -74,6 +74,9 @@ class StrictThenPenalisedBackend : public AllocationBackend {
   /// Prepares a problem with variables and finite data; returns why it cannot be solved
   /// ("the objective Hessian H is indefinite"), empty when it can. Default: nothing to do.
   virtual std::string load(const QpProblem& p);
+  /// Whether load() itself finds non-finite data, with the message "non-finite entries in "
+  /// + qp_first_non_finite: then the problem is not checked twice. Default: false.
+  virtual bool load_checks_finite() const { return false; }
   /// Whether the stored warm start belongs to a problem of this shape (and warm starts are
   /// enabled). A query: changes nothing.
   virtual bool can_warm_start(const ProblemShape& shape) const = 0;
