@@ -23,7 +23,8 @@ def blob_hash(path):
 def main():
     root = sys.argv[1] if len(sys.argv) > 1 else os.path.join(
         os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))), "robots")
-    with open(os.path.join(root, "README.md"), encoding="utf-8") as f:
+    readme_path = os.path.join(root, "README.md")
+    with open(readme_path, encoding="utf-8") as f:
         readme = f.read()
     rows = re.findall(r"^\| `([^`]+)` \|.*\(git blob ([0-9a-f]{40})\).*$", readme, re.M)
     licences = re.findall(r"`(licenses/[^`]+)`", readme)
