@@ -30,9 +30,11 @@ inline constexpr double kMaxRobotCoordinate_m = 10.0;
 /// foot, model/urdf_reader.hpp).
 inline constexpr double kMaxFootRadius_m = 1.0;
 
-/// Widest joint limits [rad]: a URDF revolute joint's <limit lower upper> in [−2π, 2π] (a
-/// scene's robot.*.limits: [−π, π]; robot.nominal_pose: [−2π, 2π]).
-inline constexpr double kMaxJointAngle_rad = 2.0 * std::numbers::pi;
+/// Widest joint limits [rad]: a URDF revolute joint's <limit lower upper> in [−4π, 4π], two
+/// turns either way, since published descriptions write wide placeholders (Solo-12: ±10 rad;
+/// ANYmal C: ±3π) while a limit in degrees read as radians (90) stays out (a scene's
+/// robot.*.limits: [−π, π]; robot.nominal_pose: [−2π, 2π]).
+inline constexpr double kMaxJointAngle_rad = 4.0 * std::numbers::pi;
 
 /// Largest joint effort limit [N m] (allocation.torque_limit; a URDF joint's <limit effort>).
 inline constexpr double kMaxJointEffort_Nm = 1e6;

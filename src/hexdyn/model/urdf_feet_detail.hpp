@@ -49,6 +49,10 @@ class Reader {
   std::vector<UrdfLeg> read_legs(const std::vector<std::pair<std::string, Placement>>& trunk,
                                  const Placement& B_X_U, const std::string& trunk_link);
   void check_links();
+  void check_bodies() const;
+  void check_body(const std::string& link,
+                  const std::vector<std::pair<std::string, Placement>>& group,
+                  const RigidInertia& body) const;
   void check_joints();
   void check_tree();
   void collect_trunk();

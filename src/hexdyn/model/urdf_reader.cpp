@@ -216,6 +216,7 @@ UrdfRobot Reader::read(const std::string& text) {
   check_link_geometry(*model_, source_);
   check_joints();
   collect_trunk();
+  check_bodies();
 
   UrdfRobot robot;
   robot.name = model_->getName();
@@ -267,8 +268,14 @@ void Reader::check_links() {
     for (double x : v)
       if (!std::isfinite(x)) fail(who + "<inertial> holds " + num(x) + ", expected finite numbers");
     if (!finite_pose(in.origin)) fail(who + "<inertial><origin> is not finite");
-    if (!(in.mass > 0.0))
-      fail(who + "mass " + num(in.mass) + " kg, expected > 0 (a massless link has no <inertial>)");
+    Mat3 I;
+    I << in.ixx, in.ixy, in.ixz, in.ixy, in.iyy, in.iyz, in.ixz, in.iyz, in.izz;
+    // A massless <inertial> (a sensor or tool frame) is a link without one; rotational inertia
+    // without mass is no body.
+    if (in.mass < 0.0 || (in.mass == 0.0 && !I.isZero(0.0)))
+      fail(who + "mass " + num(in.mass) + " kg" +
+           (in.mass == 0.0 ? " with a nonzero inertia" : "") +
+           ", expected > 0 (or 0 with a zero inertia: a massless link)");
     if (in.mass > kMaxBodyMass_kg)
       fail(who + "mass " + num(in.mass) + " kg, expected at most " + num(kMaxBodyMass_kg) +
            " kg (the bound of a scene's robot.*.mass)");
@@ -276,23 +283,57 @@ void Reader::check_links() {
       fail(who + "<inertial><origin xyz=\"" + position_text(in.origin) +
            "\">, expected coordinates within +-" + num(kMaxRobotCoordinate_m) +
            " m (the bound of a scene's robot.*.com)");
-    Mat3 I;
-    I << in.ixx, in.ixy, in.ixz, in.ixy, in.iyy, in.iyz, in.ixz, in.iyz, in.izz;
-    if (I.isZero(0.0)) continue;  // a point mass
+    if (I.isZero(0.0)) continue;  // a point mass, or massless
     const Vec3 m = Eigen::SelfAdjointEigenSolver<Mat3>(I, Eigen::EigenvaluesOnly).eigenvalues();
     const std::string moments =
         "principal moments (" + num(m[0]) + ", " + num(m[1]) + ", " + num(m[2]) + ") kg m2";
-    if (!(m[0] > 0.0)) fail(who + "inertia not positive definite: " + moments);
+    // A moment below zero beyond the rounding of the others (a zero moment comes out ±1e-19).
+    if (m[0] < -kInertiaTriangleTolerance * m[2])
+      fail(who + "inertia not positive definite (a negative moment): " + moments);
     if (m[2] > kMaxPrincipalInertia_kgm2)
       fail(who + "inertia too large: " + moments + ", expected each at most " +
            num(kMaxPrincipalInertia_kgm2) + " kg m2 (the bound of a scene's robot.*.inertia)");
-    // Sorted ascending: the largest must not exceed the sum of the other two.
-    if (m[2] > (m[0] + m[1]) * (1.0 + kInertiaTriangleTolerance))
-      fail(who +
-           "inertia breaks the triangle inequality of principal moments (each at most the sum of "
-           "the other two): " +
-           moments);
   }
+}
+
+/// Every body the dynamics uses: the trunk with the links fixed to it, and each link a moving
+/// joint moves with the links fixed to it.
+void Reader::check_bodies() const {
+  const std::string trunk = opt_.trunk_link.empty() ? model_->getRoot()->name : opt_.trunk_link;
+  const std::vector<std::pair<std::string, Placement>> trunk_links(trunk_group_.begin(),
+                                                                   trunk_group_.end());
+  check_body(trunk, trunk_links, group_inertia(trunk_links));
+  for (const auto& [name, j] : model_->joints_) {
+    if (!is_moving(*j)) continue;
+    const auto group = fixed_group(j->child_link_name);
+    check_body(j->child_link_name, group, group_inertia(group));
+  }
+}
+
+/// A body the dynamics uses, `link` with the links fixed to it (`group`, merged into
+/// `body`): its inertia about the COM zero (point masses on one point, or none) or positive
+/// definite with the triangle inequality of principal moments. A link's own <inertial> may
+/// be degenerate (a camera frame's, a thin hatch's) when the body it joins is not.
+void Reader::check_body(const std::string& link,
+                        const std::vector<std::pair<std::string, Placement>>& group,
+                        const RigidInertia& body) const {
+  const Mat3& I = body.inertia_com;
+  if (I.isZero(1e-15 * std::max(1.0, I.cwiseAbs().maxCoeff()))) return;
+  const std::string who = "link '" + link + "'";
+  std::string merged;
+  for (const auto& [name, X] : group)
+    if (name != link) merged += (merged.empty() ? "'" : ", '") + name + "'";
+  if (!merged.empty()) merged = ", of the body with the links fixed to it: " + merged;
+  const Vec3 m = Eigen::SelfAdjointEigenSolver<Mat3>(I, Eigen::EigenvaluesOnly).eigenvalues();
+  const std::string moments =
+      "principal moments (" + num(m[0]) + ", " + num(m[1]) + ", " + num(m[2]) + ") kg m2";
+  if (!(m[0] > 0.0)) fail(who + ": inertia not positive definite: " + moments + merged);
+  // Sorted ascending: the largest must not exceed the sum of the other two.
+  if (m[2] > (m[0] + m[1]) * (1.0 + kInertiaTriangleTolerance))
+    fail(who +
+         ": inertia breaks the triangle inequality of principal moments (each at most the sum of "
+         "the other two): " +
+         moments + merged);
 }
 
 void Reader::check_joints() {
@@ -335,7 +376,7 @@ void Reader::check_joints() {
           fail(who + "lower limit " + num(l.lower) + " above upper limit " + num(l.upper));
         if (l.lower < -kMaxJointAngle_rad || l.upper > kMaxJointAngle_rad)
           fail(who + "limits [" + num(l.lower) + ", " + num(l.upper) +
-               "] rad, expected limits within [-2 pi, 2 pi] (" + num(-kMaxJointAngle_rad) + ", " +
+               "] rad, expected limits within [-4 pi, 4 pi] (" + num(-kMaxJointAngle_rad) + ", " +
                num(kMaxJointAngle_rad) + ")");
       }
     }
