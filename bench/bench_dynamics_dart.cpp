@@ -79,7 +79,8 @@ struct DartRobot {
   std::array<dd::BodyNode*, kBodies> body{};  ///< hexdyn body b → DART body node
   std::array<int, kJoints> dof{};             ///< hexdyn joint k → DART dof index
   dd::FreeJoint* trunk_joint = nullptr;
-  Vec3 foot_tibia = Vec3::Zero();  ///< foot point in the tibia frame [m]
+  Vec3 foot_tibia = Vec3::Zero();           ///< foot point in the tibia frame [m]
+  std::array<dd::BodyNode*, kLegs> foot{};  ///< each leg's foot body (RobotModel::foot_body)
 };
 
 DartRobot make_dart_robot(const RobotModel& model) {
@@ -112,6 +113,7 @@ DartRobot make_dart_robot(const RobotModel& model) {
     r.dof[b - 1] = static_cast<int>(j->getIndexInSkeleton(0));
   }
   r.foot_tibia = Vec3(model.link_length_m[2], 0.0, 0.0);
+  for (int l = 0; l < model.legs(); ++l) r.foot[l] = r.body[model.foot_body(l)];
   return r;
 }
 
@@ -151,8 +153,7 @@ void dart_inverse_dynamics(DartRobot& r, const DartState& s, const std::array<Ve
   sk.setVelocities(s.dq);
   sk.setAccelerations(s.ddq);
   for (int l = 0; l < kLegs; ++l)
-    r.body[1 + joint_index(l, 2)]->setExtForce(F_W[l], r.foot_tibia, /*isForceLocal=*/false,
-                                               /*isOffsetLocal=*/true);
+    r.foot[l]->setExtForce(F_W[l], r.foot_tibia, /*isForceLocal=*/false, /*isOffsetLocal=*/true);
   sk.computeInverseDynamics(/*withExternalForces=*/true, /*withDampingForces=*/false,
                             /*withSpringForces=*/false);
   for (int i = 0; i < kDof; ++i) out[i] = sk.getForce(static_cast<std::size_t>(i));

@@ -5,17 +5,15 @@
 namespace hexdyn {
 namespace {
 
-int tibia_body(int leg) { return 1 + joint_index(leg, 2); }
-
-/// Where the terrain acts on leg l's tibia, in the tibia frame: the foot point, or a sphere
+/// Where the terrain acts on leg l's foot body, in its frame: the foot point, or a sphere
 /// foot's contact point centre − r n (n: normals_W[l], +z when null; rnea.hpp), from the
-/// tibia's pose in data.X_world_body.
-Vec3 contact_point_tibia(const RobotModel& model, const RobotData& data, int l,
-                         const FootNormals* normals_W) {
+/// foot body's pose in data.X_world_body.
+Vec3 contact_point_foot(const RobotModel& model, const RobotData& data, int l,
+                        const FootNormals* normals_W) {
   const double r = model.foot_radius_m[l];
   if (r == 0.0) return model.p_foot_last[l];
   const Vec3 n_W = normals_W != nullptr ? (*normals_W)[l] : Vec3::UnitZ();
-  return model.p_foot_last[l] - r * (data.X_world_body[tibia_body(l)].R.transpose() * n_W);
+  return model.p_foot_last[l] - r * (data.X_world_body[model.foot_body(l)].R.transpose() * n_W);
 }
 
 Inertia to_spatial(const RigidInertia& r) { return Inertia{r.mass_kg, r.com_m, r.inertia_com}; }
@@ -51,18 +49,18 @@ void forward_motion_pass(const RobotModel& model, RobotData& data, const Motion&
 /// Contact points and Jacobians from the body poses already in data.X_world_body.
 void fill_foot_jacobians(const RobotModel& model, RobotData& data, const BaseState& state,
                          const FootNormals* normals_W) {
-  for (int l = 0; l < kLegs; ++l) {
-    const Vec3 r_foot = contact_point_tibia(model, data, l, normals_W);
-    const Vec3 p_foot_W = data.X_world_body[tibia_body(l)].apply_point(r_foot);
+  for (int l = 0; l < model.legs(); ++l) {
+    const Vec3 r_foot = contact_point_foot(model, data, l, normals_W);
+    const Vec3 p_foot_W = data.X_world_body[model.foot_body(l)].apply_point(r_foot);
     data.p_foot_W[l] = p_foot_W;
     FootJacobian& J = data.J_foot_W[l];
     J.setZero();
     J.block<3, 3>(0, 0).setIdentity();
     J.block<3, 3>(0, 3) = -skew(p_foot_W - state.p_W);
-    for (int j = 0; j < kJointsPerLeg; ++j) {
-      const int k = joint_index(l, j);
-      const Transform& X = data.X_world_body[1 + k];
-      J.col(6 + k) = (X.R * model.axis[1 + k]).cross(p_foot_W - X.p);
+    for (int j = 0; j < model.leg(l).n_joints; ++j) {
+      const int k = model.joint(l, j), b = model.body(l, j);
+      const Transform& X = data.X_world_body[b];
+      J.col(6 + k) = (X.R * model.axis[b]).cross(p_foot_W - X.p);
     }
   }
 }
@@ -79,7 +77,7 @@ RobotData::RobotData(const RobotModel& model) {
     R_cos[b] = model.R_parent_joint[b] * (Mat3::Identity() - A);
     R_sin[b] = model.R_parent_joint[b] * skew(a);
   }
-  for (int l = 0; l < kLegs; ++l) {
+  for (int l = 0; l < model.legs(); ++l) {
     J_foot_W[l].setZero();
     p_foot_W[l].setZero();
     a_foot_bias_W[l].setZero();
@@ -118,11 +116,11 @@ const VecDof& rnea(const RobotModel& model, RobotData& data, const BaseState& st
     const Inertia& I = data.I_body[b];
     data.f_body[b] = I * data.a_body[b] + cross(data.v_body[b], I * data.v_body[b]);
   }
-  // Terrain forces act on the tibias at the contact points; they relieve the joints.
+  // Terrain forces act on the foot bodies at the contact points; they relieve the joints.
   if (foot_forces_W != nullptr) {
-    for (int l = 0; l < kLegs; ++l) {
-      const Vec3 r_foot = contact_point_tibia(model, data, l, normals_W);
-      const int b = tibia_body(l);
+    for (int l = 0; l < model.legs(); ++l) {
+      const Vec3 r_foot = contact_point_foot(model, data, l, normals_W);
+      const int b = model.foot_body(l);
       const Vec3 F_b = data.X_world_body[b].R.transpose() * (*foot_forces_W)[l];
       data.f_body[b] -= Force{r_foot.cross(F_b), F_b};
     }
@@ -168,9 +166,12 @@ const MatDof& crba(const RobotModel& model, RobotData& data, const BaseState& st
     M.block<1, 3>(k, 3) = M.block<3, 1>(3, k).transpose();
   }
   // Zero the joint-joint entries of legs that do not share a chain.
-  for (int la = 0; la < kLegs; ++la)
-    for (int lb = 0; lb < kLegs; ++lb)
-      if (la != lb) M.block<3, 3>(6 + 3 * la, 6 + 3 * lb).setZero();
+  for (int la = 0; la < model.legs(); ++la)
+    for (int lb = 0; lb < model.legs(); ++lb)
+      if (la != lb)
+        M.block(6 + model.joint(la, 0), 6 + model.joint(lb, 0), model.leg(la).n_joints,
+                model.leg(lb).n_joints)
+            .setZero();
 
   // Trunk block from the whole-robot composite inertia, in world axes about P0:
   //   [[m 1, −m [c]], [m [c], I_c − m [c]²]]   for ν = (v_W, ω_W), c = COM − P0.
@@ -199,9 +200,9 @@ const std::array<Vec3, kLegs>& foot_bias_accelerations(const RobotModel& model, 
   Motion v0_B, a0_B;
   base_motion(state, Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), v0_B, a0_B);
   forward_motion_pass(model, data, v0_B, a0_B, qd, nullptr);
-  for (int l = 0; l < kLegs; ++l) {
-    const Vec3 r = contact_point_tibia(model, data, l, normals_W);
-    const int b = tibia_body(l);
+  for (int l = 0; l < model.legs(); ++l) {
+    const Vec3 r = contact_point_foot(model, data, l, normals_W);
+    const int b = model.foot_body(l);
     const Motion& v = data.v_body[b];
     const Motion& a = data.a_body[b];
     // Classical acceleration of the body-fixed point r: a_O + ω̇ × r + ω × (v_O + ω × r),
@@ -254,7 +255,7 @@ const ContactSplit& contact_split(const RobotModel& model, RobotData& data, cons
   ContactSplit& s = data.split;
   s.trunk_rhs = data.tau.head<6>();
   s.tau0 = data.tau.tail<kJoints>();
-  for (int l = 0; l < kLegs; ++l) {
+  for (int l = 0; l < model.legs(); ++l) {
     s.JbT[l] = data.J_foot_W[l].leftCols<6>().transpose();
     s.JjT[l] = data.J_foot_W[l].rightCols<kJoints>().transpose();
   }

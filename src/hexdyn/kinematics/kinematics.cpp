@@ -47,7 +47,7 @@ RelativeTarget relative_target(const RobotModel& model, const MotionPlan& plan, 
 void robot_state_at(const RobotModel& model, const MotionPlan& plan, double t,
                     RobotKinematicState& out) {
   out.trunk = plan.trunk.at(t);
-  for (int leg = 0; leg < kLegs; ++leg) {
+  for (int leg = 0; leg < model.legs(); ++leg) {
     const auto [r_B, rd_B, rdd_B] = relative_target(model, plan, leg, t, out);
     const FootMotion& f = out.feet[leg];
     const Mat3& B_R_H = model.R_B_H[leg];
@@ -83,23 +83,23 @@ void robot_state_at(const RobotModel& model, const MotionPlan& plan, double t,
           << " m, required >= " << model.ik_min_margin_m << " m; raise robot.ik_min_margin)";
       throw ReachError(msg.str());
     }
-    out.q.segment<3>(joint_index(leg, 0)) = ik.q;
-    const int k0 = joint_index(leg, 0);
+    const int k0 = model.joint(leg, 0), k1 = model.joint(leg, 1), k2 = model.joint(leg, 2);
+    out.q.segment<3>(k0) = ik.q;
     if (paper) {
       out.cos_q[k0] = trig.c1;
       out.sin_q[k0] = trig.s1;
-      out.cos_q[k0 + 1] = trig.c2;
-      out.sin_q[k0 + 1] = trig.s2;
+      out.cos_q[k1] = trig.c2;
+      out.sin_q[k1] = trig.s2;
     } else {
       for (int j = 0; j < 2; ++j) {
-        out.cos_q[k0 + j] = std::cos(ik.q[j]);
-        out.sin_q[k0 + j] = std::sin(ik.q[j]);
+        out.cos_q[model.joint(leg, j)] = std::cos(ik.q[j]);
+        out.sin_q[model.joint(leg, j)] = std::sin(ik.q[j]);
       }
     }
-    out.cos_q[k0 + 2] = std::cos(ik.q[2]);
-    out.sin_q[k0 + 2] = std::sin(ik.q[2]);
-    out.qd.segment<3>(joint_index(leg, 0)) = qd;
-    out.qdd.segment<3>(joint_index(leg, 0)) = qdd;
+    out.cos_q[k2] = std::cos(ik.q[2]);
+    out.sin_q[k2] = std::sin(ik.q[2]);
+    out.qd.segment<3>(k0) = qd;
+    out.qdd.segment<3>(k0) = qdd;
   }
 }
 
@@ -137,7 +137,7 @@ KinematicsResult sample_kinematics(const RobotModel& model, const MotionPlan& pl
     k.joint_position.row(i) = s.q.transpose();
     k.joint_velocity.row(i) = s.qd.transpose();
     k.joint_acceleration.row(i) = s.qdd.transpose();
-    for (int leg = 0; leg < kLegs; ++leg) {
+    for (int leg = 0; leg < model.legs(); ++leg) {
       k.foot_position.row(i).segment<3>(3 * leg) = s.feet[leg].p_W.transpose();
       k.foot_velocity.row(i).segment<3>(3 * leg) = s.feet[leg].v_W.transpose();
       k.foot_center.row(i).segment<3>(3 * leg) = s.foot_center_W[leg].transpose();

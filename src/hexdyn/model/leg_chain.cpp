@@ -12,8 +12,6 @@ Mat3 rot_axis(const Vec3& axis, double angle) {
   return Eigen::AngleAxisd(angle, axis).toRotationMatrix();
 }
 
-int body_of(int leg, int j) { return 1 + joint_index(leg, j); }
-
 /// Unit vector ⊥ a (a unit), the one closest to `hint` when hint is not along a.
 Vec3 perpendicular(const Vec3& a, const Vec3& hint) {
   Vec3 v = hint - hint.dot(a) * a;
@@ -32,8 +30,8 @@ double into_limits(double q, double lo, double hi) {
 
 /// Joint-limit check of a solution; sets r.reason and r.margin_m when a joint is outside.
 bool within_limits(const RobotModel& m, int leg, LegIkResult& r) {
-  for (int j = 0; j < kJointsPerLeg; ++j) {
-    const int k = joint_index(leg, j);
+  for (int j = 0; j < m.leg(leg).n_joints; ++j) {
+    const int k = m.joint(leg, j);
     const double lo = m.joint_lower_rad[k], hi = m.joint_upper_rad[k];
     r.q[j] = into_limits(r.q[j], lo, hi);
     if (r.q[j] < lo || r.q[j] > hi) {
@@ -132,7 +130,7 @@ LegIkResult ik_numeric(const RobotModel& m, int leg, const Vec3& p) {
     }
     if (!(e.norm() <= 1e-12)) continue;
     LegIkResult r;
-    for (int j = 0; j < kJointsPerLeg; ++j) q[j] = std::remainder(q[j], 2.0 * M_PI);
+    for (int j = 0; j < m.leg(leg).n_joints; ++j) q[j] = std::remainder(q[j], 2.0 * M_PI);
     r.q = q;
     if (!within_limits(m, leg, r)) {
       best = r;
@@ -157,7 +155,7 @@ LegIkResult ik_numeric(const RobotModel& m, int leg, const Vec3& p) {
 
 LegChainPose chain_pose(const RobotModel& m, int leg, const Vec3& q) {
   LegChainPose c;
-  const int b0 = body_of(leg, 0), b1 = body_of(leg, 1), b2 = body_of(leg, 2);
+  const int b0 = m.body(leg, 0), b1 = m.body(leg, 1), b2 = m.body(leg, 2);
   c.o_H[0].setZero();
   c.w_H[0] = m.axis[b0];
   c.R_H[0] = rot_axis(m.axis[b0], q[0]);
@@ -212,8 +210,8 @@ LegIkResult chain_inverse_kinematics(const RobotModel& m, int leg, const Vec3& p
 
 void prepare_leg_chains(RobotModel& m) {
   constexpr double kParallel = 1e-9;
-  for (int leg = 0; leg < kLegs; ++leg) {
-    const int b0 = body_of(leg, 0), b1 = body_of(leg, 1), b2 = body_of(leg, 2);
+  for (int leg = 0; leg < m.legs(); ++leg) {
+    const int b0 = m.body(leg, 0), b1 = m.body(leg, 1), b2 = m.body(leg, 2);
     m.p_hip_B[leg] = m.p_parent_joint[b0];
     m.R_B_H[leg] = m.R_parent_joint[b0];
     LegIkData d;
@@ -223,8 +221,8 @@ void prepare_leg_chains(RobotModel& m) {
     d.a1_J1 = m.axis[b1].normalized();
     d.w1_H = d.H_R_J1 * d.a1_J1;
     d.up_H = m.R_B_H[leg].transpose() * Vec3::UnitZ();
-    for (int j = 0; j < kJointsPerLeg; ++j) {
-      const int k = joint_index(leg, j);
+    for (int j = 0; j < m.leg(leg).n_joints; ++j) {
+      const int k = m.joint(leg, j);
       const double lo = m.joint_lower_rad[k], hi = m.joint_upper_rad[k];
       d.q_start[j] = (std::isfinite(lo) && std::isfinite(hi)) ? 0.5 * (lo + hi) : 0.0;
     }

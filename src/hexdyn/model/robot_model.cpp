@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
+#include <string>
 
 #include "hexdyn/model/leg_chain.hpp"
 #include "hexdyn/model/urdf_robot.hpp"
@@ -22,6 +24,50 @@ Mat3 rot_z(double a) { return Eigen::AngleAxisd(a, Vec3::UnitZ()).toRotationMatr
 
 }  // namespace
 
+void fill_leg_table(RobotModel& m) {
+  // Children of a body, in body order: a leg is a chain of single children from the trunk.
+  auto only_child = [&m](int b) {
+    int child = -1, n = 0;
+    for (int c = b + 1; c < kBodies; ++c)
+      if (m.parent[c] == b) {
+        child = c;
+        ++n;
+      }
+    return n == 1 ? child : -1;
+  };
+  std::array<int, 2> per_side{};
+  int n = 0;
+  std::string layout;
+  for (int b = 1; b < kBodies; ++b) {
+    if (m.parent[b] != 0) continue;
+    LegInfo leg;
+    leg.name = leg_name(n);
+    leg.first_body = b;
+    leg.first_joint = b - 1;
+    leg.n_joints = 1;
+    leg.foot_body = b;
+    for (int c = only_child(b); c > 0; c = only_child(c)) {
+      leg.foot_body = c;
+      ++leg.n_joints;
+    }
+    leg.side = m.p_parent_joint[b].x() < 0.0 ? LegSide::kLeft : LegSide::kRight;
+    leg.row = per_side[static_cast<int>(leg.side)]++;
+    if (layout.empty() && n < kLegs &&
+        (leg.n_joints != kJointsPerLeg || leg.first_joint != joint_index(n, 0) ||
+         leg.foot_body != 1 + joint_index(n, kJointsPerLeg - 1)))
+      layout = leg.name + " has " + std::to_string(leg.n_joints) + " joints from body " +
+               std::to_string(b);
+    if (n < kLegs) m.leg_table[n] = leg;
+    ++n;
+  }
+  m.n_legs = std::min(n, kLegs);
+  if (n != kLegs || !layout.empty())
+    throw std::logic_error("robot model: " + std::to_string(n) + " legs" +
+                           (layout.empty() ? "" : " (" + layout + ")") + ", this build holds " +
+                           std::to_string(kLegs) + " legs of " + std::to_string(kJointsPerLeg) +
+                           " joints in flat order (core/common.hpp)");
+}
+
 RobotModel build_robot_model(const RobotParams& params) {
   if (params.urdf) return build_robot_model(*params.urdf, params.ik_min_margin_m);
   RobotModel m;
@@ -35,23 +81,11 @@ RobotModel build_robot_model(const RobotParams& params) {
   m.p_parent_joint[0].setZero();
   m.axis[0].setZero();
   m.inertia[0] = combine_inertias(m.trunk_only, m.payload);
-  constexpr double kNone = std::numeric_limits<double>::infinity();
-  for (int leg = 0; leg < kLegs; ++leg) {
-    for (int j = 0; j < kJointsPerLeg; ++j) {
-      const int k = joint_index(leg, j);
-      m.joint_lower_rad[k] = params.joint_min_rad[j];
-      m.joint_upper_rad[k] = params.joint_max_rad[j];
-      m.effort_limit_Nm[k] = kNone;  // the scene's allocation.torque_limit applies
-      m.velocity_limit_radps[k] = kNone;
-      m.joint_source_names[k] = joint_name(leg, j);
-    }
-    m.p_foot_last[leg] = Vec3(params.link_length_m[2], 0.0, 0.0);
-    m.foot_radius_m[leg] = params.foot_radius_m;
-  }
   m.leg_geometry = LegGeometry::kPaperPlanar;
   m.ik_min_margin_m = params.ik_min_margin_m;
   const Vec3 minus_y(0.0, -1.0, 0.0);
-  for (int leg = 0; leg < kLegs; ++leg) {
+  // The tree: each leg's coxa, femur and tibia in turn, body b moved by joint b − 1.
+  for (int leg = 0, b_coxa = 1; leg < kLegs; ++leg, b_coxa += kJointsPerLeg) {
     const double side = is_left(leg) ? -1.0 : 1.0;
     m.p_hip_B[leg] = params.hip_position_m[leg];
     m.R_B_H[leg] = rot_z(params.hip_yaw_rad[leg]);
@@ -62,7 +96,6 @@ RobotModel build_robot_model(const RobotParams& params) {
     m.d2_signed_m[leg] = side * params.joint_offset_m[1];
     m.d3_signed_m[leg] = side * params.joint_offset_m[2];
     m.lateral_m[leg] = m.d2_signed_m[leg] + m.d3_signed_m[leg];
-    const int b_coxa = 1 + joint_index(leg, 0);
     const int b_femur = b_coxa + 1;
     const int b_tibia = b_coxa + 2;
     m.parent[b_coxa] = 0;
@@ -90,6 +123,20 @@ RobotModel build_robot_model(const RobotParams& params) {
         m.inertia[b_coxa + j] = RigidInertia{};
       }
     }
+  }
+  fill_leg_table(m);
+  constexpr double kNone = std::numeric_limits<double>::infinity();
+  for (int leg = 0; leg < m.legs(); ++leg) {
+    for (int j = 0; j < m.leg(leg).n_joints; ++j) {
+      const int k = m.joint(leg, j);
+      m.joint_lower_rad[k] = params.joint_min_rad[j];
+      m.joint_upper_rad[k] = params.joint_max_rad[j];
+      m.effort_limit_Nm[k] = kNone;  // the scene's allocation.torque_limit applies
+      m.velocity_limit_radps[k] = kNone;
+      m.joint_source_names[k] = joint_name(leg, j);
+    }
+    m.p_foot_last[leg] = Vec3(params.link_length_m[2], 0.0, 0.0);
+    m.foot_radius_m[leg] = params.foot_radius_m;
   }
   m.total_mass_kg = 0.0;
   for (const auto& in : m.inertia) m.total_mass_kg += in.mass_kg;
@@ -203,9 +250,8 @@ LegIkResult leg_inverse_kinematics(const RobotModel& m, int leg, const Vec3& p) 
   const double beta2 =
       std::atan2(v, u) - std::atan2(L[2] * std::sin(beta3), L[1] + L[2] * std::cos(beta3));
   r.q = Vec3(wrap_angle(theta1), wrap_angle(beta2), beta3);
-  for (int j = 0; j < kJointsPerLeg; ++j) {
-    const double lo = m.joint_lower_rad[joint_index(leg, j)],
-                 hi = m.joint_upper_rad[joint_index(leg, j)];
+  for (int j = 0; j < m.leg(leg).n_joints; ++j) {
+    const double lo = m.joint_lower_rad[m.joint(leg, j)], hi = m.joint_upper_rad[m.joint(leg, j)];
     if (r.q[j] < lo || r.q[j] > hi) {
       r.reason = "joint " + joint_name(leg, j) + " outside its limits";
       r.margin_m = std::min(r.q[j] - lo, hi - r.q[j]);
@@ -256,8 +302,8 @@ Mat3 rot_axis_cs(const Vec3& axis, double c, double s) {
 }
 
 Vec3 tree_foot_position_B(const RobotModel& m, const BodyPoses& poses, int leg) {
-  const int b_tibia = 1 + joint_index(leg, 2);
-  return poses.p_B[b_tibia] + poses.R_B[b_tibia] * m.p_foot_last[leg];
+  const int b_foot = m.foot_body(leg);
+  return poses.p_B[b_foot] + poses.R_B[b_foot] * m.p_foot_last[leg];
 }
 
 bool has_sphere_feet(const RobotModel& m) {

@@ -72,7 +72,35 @@ struct LegIkData {
   Vec3 q_start = Vec3::Zero();         ///< numeric IK: starting joint angles [rad]
 };
 
+/// Side of the trunk a leg's hip is on: x < 0 in the trunk frame is left
+/// (docs/theory/conventions.md).
+enum class LegSide { kLeft, kRight };
+
+/// One leg of a model (RobotModel::leg): its joints and bodies in the flat order and its place
+/// on the trunk. Joint first_joint + j moves body first_body + j (j = 0 … n_joints − 1, hip to
+/// foot); the foot point p_foot_last is fixed in foot_body, the last of them.
+struct LegInfo {
+  std::string name;     ///< "L1", "L2", …
+  int first_joint = 0;  ///< flat index of the hip joint
+  int n_joints = 0;     ///< joints from the trunk to the foot body
+  int first_body = 0;   ///< body moved by the hip joint (its parent is the trunk)
+  int foot_body = 0;    ///< body that carries the foot point
+  LegSide side = LegSide::kLeft;
+  int row = 0;  ///< rank front to rear among the legs of its side (0: front)
+};
+
 struct RobotModel {
+  // --- leg table (fill_leg_table): legs(), leg(l), joint(l, j), body(l, j), foot_body(l) ---
+  int n_legs = 0;
+  std::array<LegInfo, kLegs> leg_table;
+  int legs() const { return n_legs; }
+  const LegInfo& leg(int l) const { return leg_table[l]; }
+  /// Flat index of joint j (0 at the hip) of leg l.
+  int joint(int l, int j) const { return leg_table[l].first_joint + j; }
+  /// Body moved by joint j of leg l.
+  int body(int l, int j) const { return leg_table[l].first_body + j; }
+  /// Body that carries leg l's foot point.
+  int foot_body(int l) const { return leg_table[l].foot_body; }
   // --- tree (bodies 0..18) ---
   std::array<int, kBodies> parent{};          ///< parent[0] = -1
   std::array<Mat3, kBodies> R_parent_joint;   ///< joint frame orientation in parent frame
@@ -120,6 +148,13 @@ struct RobotModel {
 
 /// Builds the model from validated parameters (no checks beyond those of load_scene).
 RobotModel build_robot_model(const RobotParams& params);
+
+/// Fills the leg table from the tree: every child of the trunk, in body order, starts a leg
+/// whose chain of single children ends at its foot body; names L1, L2, …; side from the sign
+/// of the hip's x in the trunk frame (p_parent_joint of its first body), row by order within
+/// its side (the builders number legs front to rear). Throws std::logic_error, one line, when
+/// the table is not the layout this build stores (kLegs legs of kJointsPerLeg joints, flat).
+void fill_leg_table(RobotModel& model);
 
 /// Fills p_hip_B, R_B_H and leg_ik of every leg from the tree (parent, placements, axes),
 /// p_foot_last and the joint limits. Called by the builders of kChain models; call it

@@ -140,13 +140,13 @@ std::string robot_urdf(const RobotModel& model, const std::string& robot_name) {
   write_link(u, "payload", &model.payload);
   write_joint(u, "payload_mount", "fixed", "trunk", "payload", Vec3::Zero(), Mat3::Identity(),
               nullptr, nullptr);
-  for (int leg = 0; leg < kLegs; ++leg) {
-    const std::string prefix = leg_name(leg) + "_";
+  for (int leg = 0; leg < model.legs(); ++leg) {
+    const std::string prefix = model.leg(leg).name + "_";
     std::string parent = "trunk";
-    for (int j = 0; j < kJointsPerLeg; ++j) {
-      const int b = 1 + joint_index(leg, j);
+    for (int j = 0; j < model.leg(leg).n_joints; ++j) {
+      const int b = model.body(leg, j);
       const std::string child = prefix + kLinkSuffix[j];
-      const int k = joint_index(leg, j);
+      const int k = model.joint(leg, j);
       const JointLimit limit{
           model.joint_lower_rad[k], model.joint_upper_rad[k],
           std::isfinite(model.effort_limit_Nm[k]) ? model.effort_limit_Nm[k] : kUrdfEffortLimitNm,

@@ -17,8 +17,8 @@
 ///                       (RobotModel::p_foot_last; the paper robot: (l3, 0, 0) of the tibia);
 ///                       a sphere foot's link holds a <collision> sphere of its radius
 ///                       centred on the link (RobotModel::foot_radius_m)
-/// Each link frame is the simulation's body frame (RobotModel body b = 1 + k for joint
-/// k = joint_index(l, j)), so joint origins are RobotModel::p_parent_joint /
+/// Each link frame is the simulation's body frame (RobotModel::body(l, j), moved by joint
+/// RobotModel::joint(l, j)), so joint origins are RobotModel::p_parent_joint /
 /// R_parent_joint (rpy fixed-axis, R = Rz(yaw) Ry(pitch) Rx(roll)), axes are
 /// RobotModel::axis, zero angles and signs are the simulation's; joints with infinite
 /// limits are `continuous`. Inertials: mass [kg], COM origin [m] and the full inertia

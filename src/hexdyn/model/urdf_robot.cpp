@@ -17,17 +17,23 @@ RobotModel build_robot_model(const UrdfRobot& robot, double ik_min_margin_m) {
   m.link_length_m = {0.0, 0.0, 0.0};  // kPaperPlanar parameters: unused by a kChain model
   m.d1_m = 0.0;
   m.ik_min_margin_m = ik_min_margin_m;
-  for (int leg = 0; leg < kLegs; ++leg) {
-    const UrdfLeg& l = robot.legs[leg];
-    m.lateral_m[leg] = m.d2_signed_m[leg] = m.d3_signed_m[leg] = 0.0;
-    for (int j = 0; j < kJointsPerLeg; ++j) {
-      const int k = joint_index(leg, j);
-      const int b = 1 + k;
+  // The tree: each leg's chain in turn, body b moved by joint b − 1 (robot_model.hpp).
+  int b = 1;
+  for (const UrdfLeg& l : robot.legs) {
+    for (int j = 0; j < kJointsPerLeg; ++j, ++b) {
       m.parent[b] = j == 0 ? 0 : b - 1;
       m.p_parent_joint[b] = l.p_parent_joint[j];
       m.R_parent_joint[b] = l.R_parent_joint[j];
       m.axis[b] = l.axis[j];
       m.inertia[b] = l.inertia[j];
+    }
+  }
+  fill_leg_table(m);
+  for (int leg = 0; leg < m.legs(); ++leg) {
+    const UrdfLeg& l = robot.legs[leg];
+    m.lateral_m[leg] = m.d2_signed_m[leg] = m.d3_signed_m[leg] = 0.0;
+    for (int j = 0; j < m.leg(leg).n_joints; ++j) {
+      const int k = m.joint(leg, j);
       m.joint_lower_rad[k] = l.lower_rad[j];
       m.joint_upper_rad[k] = l.upper_rad[j];
       m.effort_limit_Nm[k] = l.effort_Nm[j];
@@ -42,7 +48,7 @@ RobotModel build_robot_model(const UrdfRobot& robot, double ik_min_margin_m) {
   m.p_B_root = robot.p_B_root;
   m.B_R_root = robot.B_R_root;
   prepare_leg_chains(m);
-  for (int leg = 0; leg < kLegs; ++leg) {
+  for (int leg = 0; leg < m.legs(); ++leg) {
     Vec3 out = m.R_B_H[leg] * m.leg_ik[leg].outward_H;
     out.z() = 0.0;
     m.hip_outward_B[leg] = out.normalized();

@@ -191,7 +191,7 @@ double leg_length_m(const RobotModel& model) {
   for (int leg = 0; leg < kLegs; ++leg) {
     double reach = leg_foot_position_H(model, leg, Vec3::Zero()).norm();
     if (model.leg_geometry == LegGeometry::kChain) {
-      const int femur = 1 + joint_index(leg, 1), tibia = 1 + joint_index(leg, 2);
+      const int femur = model.body(leg, 1), tibia = model.body(leg, 2);
       reach =
           std::max(reach, model.p_parent_joint[femur].norm() + model.p_parent_joint[tibia].norm() +
                               model.p_foot_last[leg].norm());

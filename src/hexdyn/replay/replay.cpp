@@ -63,8 +63,7 @@ void evaluate_contacts(const RobotModel& model, RobotData& data, const ContactPa
                        const ReplayPlan& plan, const SimState& s, Contacts& c) {
   update_kinematics(model, data, s.base, s.q);
   for (int l = 0; l < kLegs; ++l) {
-    const Vec3 centre_W =
-        data.X_world_body[1 + joint_index(l, 2)].apply_point(model.p_foot_last[l]);
+    const Vec3 centre_W = data.X_world_body[model.foot_body(l)].apply_point(model.p_foot_last[l]);
     c.geometry[l] =
         terrain_contact(plan.terrain_y_m, plan.terrain_z_m, centre_W, model.foot_radius_m[l]);
     c.normals[l] = c.geometry[l].normal_W;

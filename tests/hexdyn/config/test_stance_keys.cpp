@@ -90,10 +90,10 @@ struct FallbackRobot {
 /// angles q, by the tree's forward kinematics in the trunk frame (its z is the trunk normal).
 std::pair<double, double> fk_radius_depth(const RobotModel& m, int leg, const Vec3& q) {
   VecJ q_all = VecJ::Zero();
-  for (int j = 0; j < kJointsPerLeg; ++j) q_all[joint_index(leg, j)] = q[j];
+  for (int j = 0; j < m.leg(leg).n_joints; ++j) q_all[m.joint(leg, j)] = q[j];
   BodyPoses poses;
   forward_kinematics_tree(m, q_all, poses);
-  const Vec3 hip = m.p_parent_joint[1 + joint_index(leg, 0)];
+  const Vec3 hip = m.p_parent_joint[m.body(leg, 0)];
   const Vec3 foot = tree_foot_position_B(m, poses, leg);
   return {(foot - hip).head<2>().norm(), hip.z() - foot.z()};
 }

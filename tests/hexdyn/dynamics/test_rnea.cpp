@@ -346,9 +346,9 @@ Eigen::Matrix<double, 3, kDof> tibia_angular_jacobian(const RobotModel& model, c
   const WorldPoses w = world_poses(model, s.state, s.q);
   Eigen::Matrix<double, 3, kDof> J = Eigen::Matrix<double, 3, kDof>::Zero();
   J.block<3, 3>(0, 3).setIdentity();
-  for (int j = 0; j < kJointsPerLeg; ++j) {
-    const int k = joint_index(l, j);
-    const int b = 1 + k;
+  for (int j = 0; j < model.leg(l).n_joints; ++j) {
+    const int k = model.joint(l, j);
+    const int b = model.body(l, j);
     // The joint frame's axes are the child body's at any angle (rotation about the axis).
     J.col(6 + k) = w.R[b] * model.axis[b];
   }
@@ -378,7 +378,7 @@ TEST_CASE("sphere feet: the contact point's Jacobian against finite differences 
     const WorldPoses w0 = world_poses(model, s.state, s.q);
     for (int l = 0; l < kLegs; ++l) {
       const double r = model.foot_radius_m[l];
-      const int tibia = 1 + joint_index(l, 2);
+      const int tibia = model.foot_body(l);
       // The contact point is on the sphere, r below its centre along the normal.
       const Vec3 center = foot_position_W(model, s.state, s.q, l);
       CHECK((data.p_foot_W[l] - (center - r * n[l])).norm() < 1e-14);
@@ -482,7 +482,7 @@ TEST_CASE("sphere feet: contact point accelerations match finite differences",
     const WorldPoses w0 = world_poses(model, s.state, s.q);
     for (int l = 0; l < kLegs; ++l) {
       // The material point at the contact, followed along the trajectory.
-      const int tibia = 1 + joint_index(l, 2);
+      const int tibia = model.foot_body(l);
       RobotModel frozen = model;  // a point foot at the material point
       frozen.foot_radius_m[l] = 0.0;
       frozen.p_foot_last[l] = w0.R[tibia].transpose() * (data.p_foot_W[l] - w0.p[tibia]);

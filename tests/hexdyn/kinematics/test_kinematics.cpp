@@ -199,7 +199,7 @@ TEST_CASE("kinematics: /com/position equals the mass-weighted mean of the bodies
     Vec3 first_moment = rp.trunk.mass_kg * rp.trunk.com_m + rp.payload.mass_kg * rp.payload.com_m;
     for (int leg = 0; leg < kLegs; ++leg)
       for (int j = 0; j < kJointsPerLeg; ++j) {
-        const int b = 1 + joint_index(leg, j);
+        const int b = p.model.body(leg, j);
         first_moment += rp.link[j].mass_kg * (poses.p_B[b] + poses.R_B[b] * rp.link[j].com_m);
       }
     const BaseState trunk = p.plan.trunk.at(times[i]);

@@ -94,7 +94,7 @@ TEST_CASE("hip directions: the legs' zero-pose directions; the paper's exactly +
     BodyPoses poses;
     forward_kinematics_tree(m, VecJ::Zero(), poses);
     for (int leg = 0; leg < kLegs; ++leg) {
-      Vec3 d = tree_foot_position_B(m, poses, leg) - m.p_parent_joint[1 + joint_index(leg, 0)];
+      Vec3 d = tree_foot_position_B(m, poses, leg) - m.p_parent_joint[m.body(leg, 0)];
       d.z() = 0.0;
       CHECK((m.hip_outward_B[leg] - d.normalized()).norm() <= 1e-12);
       CHECK(m.hip_outward_B[leg].z() == 0.0);
@@ -114,20 +114,19 @@ TEST_CASE("default nominal stance: femur level, tibia plumb, inside the joint li
       const NominalStance s = default_nominal_stance(m, leg);
       REQUIRE(s.from_pose);
       VecJ q = VecJ::Zero();
-      for (int j = 0; j < kJointsPerLeg; ++j) {
-        const int k = joint_index(leg, j);
+      for (int j = 0; j < m.leg(leg).n_joints; ++j) {
+        const int k = m.joint(leg, j);
         q[k] = s.q[j];
         CHECK(s.q[j] >= m.joint_lower_rad[k]);
         CHECK(s.q[j] <= m.joint_upper_rad[k]);
       }
       BodyPoses poses;
       forward_kinematics_tree(m, q, poses);
-      const int b = 1 + joint_index(leg, 0);
-      const Vec3 femur = poses.p_B[b + 1], tibia = poses.p_B[b + 2];
+      const Vec3 femur = poses.p_B[m.body(leg, 1)], tibia = poses.p_B[m.body(leg, 2)];
       const Vec3 foot = tree_foot_position_B(m, poses, leg);
       CHECK(std::abs(tibia.z() - femur.z()) <= 1e-9);  // femur level
       CHECK((foot - tibia).head<2>().norm() <= 1e-9);  // tibia plumb
-      const Vec3 hip = m.p_parent_joint[b];
+      const Vec3 hip = m.p_parent_joint[m.body(leg, 0)];
       CHECK(s.radius_m == Approx((foot - hip).head<2>().norm()).epsilon(1e-12));
       CHECK(s.depth_m == Approx(hip.z() - foot.z()).epsilon(1e-12));
     }

@@ -135,7 +135,7 @@ TEST_CASE("posture: on random stairs inside the envelope every foot target is re
         // Distance from full extension and fold: the foot relative to the femur joint,
         // projected on the plane normal to the femur axis (the lateral offsets d2, d3 lie
         // along that axis), from the tree's body poses.
-        const int femur = 1 + joint_index(leg, 1);
+        const int femur = model.body(leg, 1);
         const Vec3 a = poses.R_B[femur] * model.axis[femur];
         Vec3 r = tree_foot_position_B(model, poses, leg) - poses.p_B[femur];
         r -= r.dot(a) * a;
@@ -231,7 +231,7 @@ TEST_CASE("posture: the automatic posture places the hips wherever the trunk fra
   for (double d : {-0.15, 0.1}) {
     INFO("coxa joints moved by " << d << " m along the trunk normal");
     RobotModel moved = model;
-    for (int leg = 0; leg < kLegs; ++leg) moved.p_parent_joint[1 + joint_index(leg, 0)].z() += d;
+    for (int leg = 0; leg < kLegs; ++leg) moved.p_parent_joint[model.body(leg, 0)].z() += d;
     prepare_leg_chains(moved);
     Scene shifted = scene;
     shifted.motion.posture.start_y_m += d * std::sin(pitch);

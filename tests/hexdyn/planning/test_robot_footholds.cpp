@@ -24,7 +24,7 @@ TEST_CASE("footholds lie along each hip's direction at foot_lateral", "[gait][ro
     forward_kinematics_tree(m, VecJ::Zero(), poses);
     const double n = plan.trunk.cycles(), beta = s.gait.duty_factor;
     for (int leg = 0; leg < kLegs; ++leg) {
-      const Vec3 hip_B = m.p_parent_joint[1 + joint_index(leg, 0)];
+      const Vec3 hip_B = m.p_parent_joint[m.body(leg, 0)];
       Vec3 d_B = tree_foot_position_B(m, poses, leg) - hip_B;
       d_B.z() = 0.0;
       if (name == "paper") d_B = Vec3(is_left(leg) ? -1.0 : 1.0, 0.0, 0.0);  // legs straight out

@@ -1,0 +1,151 @@
+// The leg table of RobotModel (legs(), leg(l), joint(l, j), body(l, j), foot_body(l)) against
+// a second reading of each robot: the paper robot from its parameters (hips, joint names of
+// the flat order), and each shipped hexapod URDF (robots/, as configs/robots/*_stairs.yaml
+// read them) from urdfdom's own tree: the moving joints from the trunk to each foot, in
+// order, and each hip's side and rank from its position composed from the raw joint origins.
+#include <urdf_parser/urdf_parser.h>
+
+#include <catch2/catch.hpp>
+#include <fstream>
+#include <sstream>
+#include <vector>
+
+#include "hexdyn/model/urdf_reader.hpp"
+#include "hexdyn/sample_models.hpp"
+
+namespace hexdyn {
+namespace {
+
+/// Following model.parent from leg l's foot body reaches the trunk in exactly n_joints steps,
+/// through body(l, n_joints − 1), …, body(l, 0); joint(l, j) moves body(l, j).
+void check_chain(const RobotModel& m, int l) {
+  const LegInfo& leg = m.leg(l);
+  REQUIRE(leg.n_joints == kJointsPerLeg);
+  int b = m.foot_body(l);
+  for (int j = leg.n_joints - 1; j >= 0; --j) {
+    CHECK(b == m.body(l, j));
+    CHECK(m.joint(l, j) == b - 1);  // body b moves with joint b − 1 (robot_model.hpp)
+    b = m.parent[b];
+  }
+  CHECK(b == 0);
+  CHECK(leg.name == "L" + std::to_string(l + 1));
+}
+
+/// Side (x < 0 left) and front-to-rear rank (y descending within the side) of hips at p.
+void check_sides_and_rows(const RobotModel& m, const std::vector<Vec3>& hips) {
+  REQUIRE(static_cast<int>(hips.size()) == m.legs());
+  for (int l = 0; l < m.legs(); ++l) {
+    INFO("leg " << l);
+    const bool left = hips[l].x() < 0.0;
+    CHECK(m.leg(l).side == (left ? LegSide::kLeft : LegSide::kRight));
+    int ahead = 0;
+    for (int o = 0; o < m.legs(); ++o)
+      if (o != l && (hips[o].x() < 0.0) == left && hips[o].y() > hips[l].y()) ++ahead;
+    CHECK(m.leg(l).row == ahead);
+    // docs/theory/conventions.md: L1 front left, L2 front right, L3 middle left, …
+    CHECK(left == (l % 2 == 0));
+    CHECK(m.leg(l).row == l / 2);
+  }
+}
+
+std::string file_text(const std::string& path) {
+  std::ifstream in(path);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+Mat3 rotation(const urdf::Rotation& r) {
+  return Eigen::Quaterniond(r.w, r.x, r.y, r.z).toRotationMatrix();
+}
+
+/// The moving joints from the root link to `link`, root first, and the position of the
+/// first one's origin in the root link frame at zero angles, composed from the raw origins.
+struct RawChain {
+  std::vector<std::string> joints;
+  Vec3 p_hip_root = Vec3::Zero();
+};
+
+RawChain raw_chain(const urdf::ModelInterface& u, const std::string& link) {
+  std::vector<urdf::JointConstSharedPtr> up;
+  for (auto l = u.getLink(link); l->parent_joint; l = u.getLink(l->parent_joint->parent_link_name))
+    up.push_back(l->parent_joint);
+  RawChain c;
+  Mat3 R = Mat3::Identity();
+  Vec3 p = Vec3::Zero();
+  for (auto it = up.rbegin(); it != up.rend(); ++it) {
+    const urdf::Pose& o = (*it)->parent_to_joint_origin_transform;
+    p += R * Vec3(o.position.x, o.position.y, o.position.z);
+    R = R * rotation(o.rotation);  // zero joint angles: no joint rotation
+    if ((*it)->type == urdf::Joint::FIXED) continue;
+    if (c.joints.empty()) c.p_hip_root = p;
+    c.joints.push_back((*it)->name);
+  }
+  return c;
+}
+
+}  // namespace
+
+TEST_CASE("the paper robot's leg table", "[leg_table]") {
+  const RobotParams p = test::paper_robot_params();
+  const RobotModel m = build_robot_model(p);
+  REQUIRE(m.legs() == kLegs);
+  std::vector<Vec3> hips;
+  for (int l = 0; l < m.legs(); ++l) {
+    check_chain(m, l);
+    for (int j = 0; j < m.leg(l).n_joints; ++j)
+      CHECK(m.joint_source_names[m.joint(l, j)] == joint_name(l, j));
+    hips.push_back(p.hip_position_m[l]);
+  }
+  check_sides_and_rows(m, hips);
+}
+
+TEST_CASE("a tree that is not six legs of three joints is refused in one line", "[leg_table]") {
+  RobotModel m = build_robot_model(test::paper_robot_params());
+  m.parent[3] = 0;  // L1's tibia on the trunk: L1 of two joints, and a seventh leg
+  CHECK_THROWS_WITH(fill_leg_table(m), Catch::Contains("robot model: 7 legs (L1 has 2 joints") &&
+                                           !Catch::Contains("\n"));
+  m = build_robot_model(test::paper_robot_params());
+  m.parent[4] = 3;  // L2's coxa on L1's tibia: five legs, L1 of six joints
+  CHECK_THROWS_WITH(fill_leg_table(m), Catch::Contains("robot model: 5 legs (L1 has 6 joints"));
+}
+
+TEST_CASE("each shipped hexapod's leg table is its URDF's chains", "[leg_table]") {
+  // forward_axis as configs/robots/<robot>_stairs.yaml sets it
+  const std::pair<const char*, const char*> kRobots[] = {
+      {"kraby", "+y"}, {"pexod", "+x"}, {"phantomx_mark4", "+x"}};
+  for (const auto& [name, forward] : kRobots) {
+    INFO(name);
+    const std::string path = std::string(HEXDYN_SOURCE_DIR) + "/robots/" + name + ".urdf";
+    UrdfReadOptions o;
+    o.forward_axis = forward;
+    const UrdfRobot robot = read_urdf_robot(path, o);
+    const RobotModel m = build_robot_model(robot);
+    const urdf::ModelInterfaceSharedPtr u = urdf::parseURDF(file_text(path));
+    REQUIRE(u);
+    REQUIRE(m.legs() == kLegs);
+    int moving = 0;
+    for (const auto& [jname, j] : u->joints_) moving += j->type != urdf::Joint::FIXED;
+    int total = 0;
+    std::vector<Vec3> hips;
+    for (int l = 0; l < m.legs(); ++l) {
+      INFO("leg " << l);
+      check_chain(m, l);
+      const LegInfo& leg = m.leg(l);
+      // The URDF link of the leg's last joint; its moving joints up to the root, in order.
+      const std::string last = m.joint_source_names[m.joint(l, leg.n_joints - 1)];
+      REQUIRE(u->getJoint(last));
+      const RawChain c = raw_chain(*u, u->getJoint(last)->child_link_name);
+      REQUIRE(static_cast<int>(c.joints.size()) == leg.n_joints);
+      for (int j = 0; j < leg.n_joints; ++j)
+        CHECK(m.joint_source_names[m.joint(l, j)] == c.joints[j]);
+      total += leg.n_joints;
+      hips.push_back(robot.p_B_root + robot.B_R_root * c.p_hip_root);
+      CHECK((hips.back() - m.p_hip_B[l]).norm() <= 1e-12);
+    }
+    CHECK(total == moving);  // every moving joint of the URDF belongs to one leg
+    check_sides_and_rows(m, hips);
+  }
+}
+
+}  // namespace hexdyn
