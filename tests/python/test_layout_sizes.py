@@ -4,11 +4,13 @@ per-joint datasets, /model/leg_names and /model/joint_names are cut to the first
 (and their twelve joints), written with h5py in a temporary folder, and reads its names
 (hexdyn.leg_names, joint_names); it refuses, in one line naming the dataset, a copy whose
 /contacts/force keeps six legs while /model/leg_names has four, and one whose /joints/torque
-keeps 18 joints while /model/joint_names has 12. The values of the cut files are not a
-robot's (the check is of the layout alone).
+keeps 18 joints while /model/joint_names has 12. The same for a sweep (tests/sweep/schema.yaml)
+cut to 12 joints, J from its /joint_names, and one whose /scenarios/peak_torque keeps 18. The
+values of the cut files are not a robot's (the check is of the layout alone).
     test_layout_sizes.py HEXDYN_BINARY SOURCE_DIR      (PYTHONPATH: the build tree's python/)"""
 
 import os
+import subprocess
 import tempfile
 
 import h5py
@@ -23,21 +25,23 @@ PAPER = os.path.join(SRC, "configs", "paper.yaml")
 # The paper scene shortened to one gait cycle on a coarse uniform grid: a small result.
 SHORT = ("motion.cycle_durations=null", "motion.cycles=1", "motion.peak_speed=0.098",
          "motion.ramp_duration=0.8", "output.grid=uniform", "output.sample_step=0.05")
+SWEEP = os.path.join(SRC, "tests", "sweep", "schema.yaml")  # 4 scenarios, 2 of them failed
 # Attributes of the dimension-scale machinery: the copy makes its own (make_scale, attach).
 SCALE_ATTRIBUTES = {"CLASS", "NAME", "REFERENCE_LIST", "DIMENSION_LIST"}
 
 
 def dims_of(path, ds):
-    """The dimension names of a dataset: its declaration's, or its own name for a scale."""
+    """The dimension names of a dataset: its declaration's, or its own name for a scale (a
+    sweep axis's datasets, declared by templates, have neither leg nor joint: ())."""
     if path in hr.DECLARED:
         return hr.DECLARED[path][0].dims
     if h5py.h5ds.is_scale(ds.id):
         return (path.rsplit("/", 1)[1],)
-    raise AssertionError(f"{path}: neither declared nor a dimension scale")
+    return ()
 
 
 def cut_copy(src_path, dst_path, legs, keep=()):
-    """A copy of the result at `src_path` with every axis along `leg` cut to the indices
+    """A copy of the file at `src_path` with every axis along `leg` cut to the indices
     `legs` and every axis along `joint` to those legs' joints (leg-major, three per leg), but
     the datasets of `keep`, copied whole; dimension scales and their attachments rebuilt."""
     joints = [3 * leg + j for leg in legs for j in range(3)]
@@ -107,12 +111,25 @@ def main():
                                          **hr.shape_sizes(res))
                 assert res.shapes[path] == want, (path, res.shapes[path], want)
 
+        # A sweep of a robot of 12 joints: J from /joint_names.
+        sweep = os.path.join(d, "sweep.h5")
+        status = subprocess.run([HEXDYN, "sweep", SWEEP, "-o", sweep], capture_output=True,
+                                text=True)
+        assert status.returncode == 0, status.stderr
+        cut = os.path.join(d, "sweep_12.h5")
+        cut_copy(sweep, cut, [0, 1, 2, 3])
+        assert hexdyn.check_layout(cut) == hr.SWEEP_SCHEMA
+        sw = hexdyn.open_sweep(cut)
+        assert len(hexdyn.joint_names(sw)) == 12 and sw.table["peak_torque"].shape == (4, 12)
+
         # A per-leg and a per-joint dataset that disagree with the names: one line each,
         # naming the dataset and where L or J came from.
-        for keep, size in (("/contacts/force", "L = 4 from /model/leg_names"),
-                           ("/joints/torque", "J = 12 from /model/joint_names")):
+        for source, keep, size in (
+                (result, "/contacts/force", "L = 4 from /model/leg_names"),
+                (result, "/joints/torque", "J = 12 from /model/joint_names"),
+                (sweep, "/scenarios/peak_torque", "J = 12 from /joint_names")):
             bad = os.path.join(d, "bad.h5")
-            cut_copy(result, bad, [0, 1, 2, 3], keep=(keep,))
+            cut_copy(source, bad, [0, 1, 2, 3], keep=(keep,))
             message = refusal(bad)
             assert "\n" not in message, message
             assert f"dataset {keep} is float64" in message and size in message, message
