@@ -382,6 +382,8 @@ def _stored_names(file, path, what):
         with open_h5(checked_path(file)) as f:
             return _stored_names(f, path, what)
     if isinstance(file, Sweep):
+        if getattr(file, what, None) is None:
+            raise io_error(f"{file.path}: a sweep stores no {what}")
         return tuple(getattr(file, what))
     if path not in file:
         raise io_error(f"{file.path}: no dataset {path}, the {what}")
