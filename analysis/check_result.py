@@ -79,9 +79,11 @@ def check_datasets(c, res, table, samples, impacts=None, messages=None):
     for path, (shape, units, element) in table.items():
         if not c.check(path in res, f"{path} present"):
             continue
+        # L and J: the numbers of the file's leg and joint names.
+        names = {k: len(res[p]) for k, p in hr.SIZE_NAMES.items() if p in res}
         want = hr.expected_shape(shape, samples, impacts, messages,
                                  Y=res.shapes.get("/gait/cycle_start", (None,))[0],
-                                 K=res.shapes.get("/terrain/y", (None,))[0])
+                                 K=res.shapes.get("/terrain/y", (None,))[0], **names)
         got = res.shapes[path]
         c.check(got == want, f"{path} shape {want}", f"got {got}")
         c.check(dtype_name(res[path]) == element, f"{path} element {element}",

@@ -268,9 +268,38 @@ def result_presence(schema, kind):
     return presence
 
 
+# What the robot's sizes in the shapes are, by the file kind's dataset of names.
+SIZE_SENTENCES = {
+    "L": "L is the number of legs of the robot, the length of `{names}`",
+    "J": "J the number of its joints, the length of `{names}`",
+}
+
+
+def size_sentence(schema, kind, datasets):
+    """The sentence saying what the size symbols L and J of `datasets` ((name, DatasetSpec)
+    pairs) are in a `kind` file: the lengths of the names it stores (a sweep: /joint_names);
+    [] when no shape uses them."""
+    used = {d for _, spec in datasets for d in spec.shape if d in SIZE_SENTENCES}
+    if not used:
+        return []
+    sweep = kind == schema.kind["sweep"]
+    names = {"L": schema.decls["kModelLegNames"].path,
+             "J": schema.decls["kSweepJointNames" if sweep else "kModelJointNames"].path}
+    parts = [SIZE_SENTENCES[s].format(names=names[s]) for s in ("L", "J") if s in used]
+    if len(parts) == 1:
+        parts[0] = parts[0].replace("J the number of its", "J is the number of the robot's")
+    hexapod = {"L": "6", "J": "18"}
+    example = " and ".join(hexapod[s] for s in ("L", "J") if s in used)
+    return [("; ".join(parts) + f" ({example} for a hexapod of three-joint legs)."), ""]
+
+
 def region_lines(schema, region):
     kind = schema.kind[region]
     lines = meta_table(schema, kind) + [""]
+    datasets = schema.in_section(kind, DatasetSpec) + [
+        (d.name, d) for _, items in schema.lists_in_section(kind) for d in items
+        if isinstance(d, DatasetSpec)]
+    lines += size_sentence(schema, kind, datasets)
     if region in BY_LISTS:
         lines += list_tables(schema, kind)
     else:

@@ -97,7 +97,7 @@ def check_reader(result, replay):
     check(hexdyn.check_layout(replay) == "hexdyn-replay/1", "check_layout: hexdyn-replay/1")
     with h5py.File(replay, "r") as f, h5py.File(result, "r") as r:
         T, Y = f["time"].shape[0], f["replay/cycle_end"].shape[0]
-        sizes = {"T": T, "Y": Y, "K": f["terrain/y"].shape[0]}
+        sizes = {"T": T, "Y": Y, "K": f["terrain/y"].shape[0], **hr.shape_sizes(f)}
         for spec in declared_specs():
             ds = f.get(spec.path)
             check(isinstance(ds, h5py.Dataset), f"{spec.path} present")

@@ -20,7 +20,7 @@ assert sw.config["motion"]["cycles"] == 1 and sw.config["output"]["grid"] == "un
 n = sw.size
 for name, (shape, units, _) in hr.SCENARIO_DATASETS.items():
     col = sw.table[name]
-    dims = {"N": n, "A": len(sw.axes)}
+    dims = {"N": n, "A": len(sw.axes), "J": len(hr.joint_names(sw))}
     want = tuple(dims.get(d, d) for d in shape)
     got = (len(col),) if isinstance(col, list) else np.shape(col)
     assert got == want, (name, got, want)

@@ -184,7 +184,7 @@ class FileCheck:
 
 def check_result(f, root, source):
     c = FileCheck(f, root, source)
-    sizes = {"T": None, "n": None, "m": None, "Y": None, "K": None}
+    sizes = {"T": None, "n": None, "m": None, "Y": None, "K": None, "L": None, "J": None}
     for spec in S["kResultMetaAttributes"]:
         c.attribute(spec)
     c.group(S["kMetaGroup"])
@@ -198,6 +198,9 @@ def check_result(f, root, source):
         sizes["Y"] = f[c.full(S["kGaitCycleStart"].path)].shape[0]
     if c.full(S["kTerrainY"].path) in f:
         sizes["K"] = f[c.full(S["kTerrainY"].path)].shape[0]
+    for symbol, path in hr.SIZE_NAMES.items():  # L and J: the robot's names
+        if c.full(path) in f:
+            sizes[symbol] = f[c.full(path)].shape[0]
     c.attribute(S["kTerrainType"])
     c.group(S["kTerrainGroup"])
     tables = ["kModelDatasets", "kKinematicDatasets", "kDynamicsDatasets"]
@@ -255,12 +258,14 @@ def check_sweep(f, source):
                       concrete(S["kAxisCaseValues"].path, i))
             c.dataset(S["kCaseKeyCoordinate"], {"K": K},
                       S["kCaseKeyCoordinate"].path.replace("{key}", key))
-    c.dataset(S["kSweepJointNames"], {})
+    joint_names = f.get(S["kSweepJointNames"].path)
+    J = joint_names.shape[0] if joint_names is not None and joint_names.shape else None
+    c.dataset(S["kSweepJointNames"], {"J": J})
     for spec in S["kSweepCoordinates"]:
-        c.dataset(spec, {"N": N, "A": A})
+        c.dataset(spec, {"N": N, "A": A, "J": J})
     c.group(S["kScenariosGroup"])
     for spec in S["kScenarioDatasets"]:
-        c.dataset(spec, {"N": N, "A": A})
+        c.dataset(spec, {"N": N, "A": A, "J": J})
     for name, value in S.items():
         if isinstance(value, hr.AttributeSpec) and value.object.startswith(S["kScenariosGroup"]) \
                 and "{i}" not in value.object:

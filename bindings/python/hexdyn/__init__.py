@@ -25,6 +25,7 @@
     st = hexdyn.open_study("study.h5")          # hexdyn-study/1 (analysis/study.py): Study
     hexdyn.open_file("any.h5")                  # whichever of them the file is
     hexdyn.check_layout("any.h5")               # any of them against its schema
+    hexdyn.leg_names(r), hexdyn.joint_names(r)  # the file's names: L legs, J joints
 
 One type, Result, holds a result whether computed (run) or read (open_result, Sweep.run):
 the same mapping from dataset path to values, .meta, .units, .config, .to_xarray() and
@@ -50,8 +51,8 @@ import numpy as np
 
 from ._version import __git_commit__, __version__
 from .results import (Envelope, Replay, Result, Study, Sweep, UnknownGroupError, check_layout,
-                      decode_text, open_envelope, open_file, open_replay, open_result,
-                      open_study, open_sweep)
+                      decode_text, joint_names, leg_names, open_envelope, open_file,
+                      open_replay, open_result, open_study, open_sweep)
 from .results import checked_path as _path
 
 _compiled = None
@@ -232,6 +233,7 @@ def __getattr__(name):
 
 __all__ = ["run", "validate", "sample_problem", "forward_dynamics", "Result", "Sweep", "Envelope",
            "Replay", "Study", "open_file", "open_result", "open_sweep", "open_envelope",
-           "open_replay", "open_study", "check_layout", "decode_text", "UnknownGroupError",
+           "open_replay", "open_study", "check_layout", "leg_names", "joint_names",
+           "decode_text", "UnknownGroupError",
            "Error", "ConfigError", "IoError", "ReachError", "PlanningError", "SolverError",
            "InternalError", "__version__", "__git_commit__"]

@@ -272,6 +272,19 @@ def _check_dataset(source, path, ds, specs, sizes):
             sizes[d] = (n, path)
 
 
+def sizes_from_names(root, names_of_size):
+    """{symbol: (size, path)} of the sizes an open file or group `root` fixes by its names
+    (`names_of_size` {symbol: path}, hexdyn.schema.SIZE_NAMES): L = the number of
+    /model/leg_names, ...; a path absent or not a list of names fixes nothing (its own
+    check reports it)."""
+    sizes = {}
+    for symbol, path in names_of_size.items():
+        ds = root.get(path.lstrip("/"))
+        if isinstance(ds, h5py.Dataset) and ds.shape is not None and len(ds.shape) == 1:
+            sizes[symbol] = (ds.shape[0], path)
+    return sizes
+
+
 def check_datasets(source, datasets, layout, required, sizes, kind):
     """Each dataset of `layout` ({path: [DatasetSpec]}) present in `datasets` ({path:
     h5py.Dataset}) checked, in the layout's order; one of `required` missing raises.

@@ -48,14 +48,16 @@ from .h5files import (check_datasets, check_declared, check_filetype_version,
                       check_regular_file, checked_path, datasets_below, decode_text,
                       element_of, file_identity, file_schema, group_attributes, io_error,
                       is_group_coordinate, meta_attributes, open_h5, python_value,
-                      read_checked, read_datasets, shape_text, yaml_attribute)
+                      read_checked, read_datasets, shape_text, sizes_from_names,
+                      yaml_attribute)
 from .schema import (DECLARED, DYNAMICS_DATASETS, ENVELOPE_CASES_LAYOUT, ENVELOPE_LAYOUT,
                      ENVELOPE_REQUIRED, ENVELOPE_SCHEMA, ENVELOPE_SCHEMA_VERSION, FLAGS,
                      JOINT_NAMES, KINEMATIC_DATASETS, LEG_NAMES, META_ATTRIBUTES, META_GROUP,
                      MODEL_DATASETS, PHASE_IMPACT, PHASE_SUPPORT, PHASE_SWING, REPLAY_LAYOUT,
                      REPLAY_REQUIRED, REPLAY_SCHEMA, REPLAY_SCHEMA_VERSION, RESULT_LAYOUT,
                      RESULT_REQUIRED, RESULT_SCHEMA, RESULT_SCHEMA_VERSION, SCENARIO_DATASETS,
-                     SCENARIOS_GROUP, SCHEMA, SCHEMA_HEADER, SPECS, STUDY_GROUPS, STUDY_SCHEMA,
+                     SCENARIOS_GROUP, SCHEMA, SCHEMA_HEADER, SIZE_NAMES, SPECS, STUDY_GROUPS,
+                     STUDY_SCHEMA, SWEEP_SIZE_NAMES,
                      STUDY_SCHEMA_VERSION, SWEEP_AXIS_COLUMN_LAYOUT, SWEEP_AXIS_LAYOUT,
                      SWEEP_AXIS_REQUIRED, SWEEP_META_ATTRIBUTES, SWEEP_ROOT_LAYOUT, SWEEP_SCHEMA,
                      SWEEP_SCHEMA_VERSION, SWEEP_STATUS, SWEEP_TABLE_LAYOUT,
@@ -76,23 +78,26 @@ def _envelope_layout(root):
 def _by_layout(layout, required):
     """The checks at open of a kind whose datasets are all declared (a result, an envelope, a
     replay): each dataset of `layout` (a dict, or a function of the open root giving one)
-    against its declaration, every one of `required` present."""
+    against its declaration, every one of `required` present; L and J the numbers of the
+    root's leg and joint names (SIZE_NAMES)."""
     def check(root, source, kind):
         declared = layout(root) if callable(layout) else layout
-        check_datasets(source, datasets_below(root), declared, required, {}, kind)
+        check_datasets(source, datasets_below(root), declared, required,
+                       sizes_from_names(root, SIZE_NAMES), kind)
     return check
 
 
 def _check_sweep(f, source, kind):
     """The table and the axes of a sweep file: every /scenarios column has N rows (N =
-    len(/scenarios/id)) and its declared element type and columns, /scenarios/axis_index
-    (N, A) with A the groups of /axes, each axis's values and labels one length V, and N the
-    product of those lengths. Kept runs (/runs/<id>) are checked when opened (Sweep.run)."""
+    len(/scenarios/id)) and its declared element type and columns (J: the number of
+    /joint_names), /scenarios/axis_index (N, A) with A the groups of /axes, each axis's
+    values and labels one length V, and N the product of those lengths. Kept runs
+    (/runs/<id>) are checked when opened (Sweep.run)."""
     for group in ("scenarios", "axes"):
         if not isinstance(f.get(group), h5py.Group):
             raise io_error(f"{source}: no group /{group}, which every {kind} file has")
     axes = f["axes"]
-    sizes = {"A": (len(axes), "/axes")}
+    sizes = {"A": (len(axes), "/axes"), **sizes_from_names(f, SWEEP_SIZE_NAMES)}
     table = datasets_below(f, SCENARIOS_GROUP)
     check_datasets(source, table, SWEEP_TABLE_LAYOUT, SWEEP_TABLE_REQUIRED, sizes, kind)
     n = sizes["N"][0]
@@ -365,10 +370,52 @@ def check_layout(file, source=None):
     return kind.schema
 
 
+def _stored_names(file, path, what):
+    """The names at `path` of `file`: an open h5py File or Group, a path, or an object
+    hexdyn read (a Result or Replay by its datasets, a Sweep by its attribute `what`)."""
+    if isinstance(file, (h5py.File, h5py.Group)):
+        ds = file.get(path.lstrip("/"))
+        if not isinstance(ds, h5py.Dataset):
+            raise io_error(f"{file.file.filename}: no dataset {path}, the {what}")
+        return tuple(read_checked(ds, file.file.filename))
+    if isinstance(file, (str, bytes, os.PathLike)):
+        with open_h5(checked_path(file)) as f:
+            return _stored_names(f, path, what)
+    if isinstance(file, Sweep):
+        if getattr(file, what, None) is None:
+            raise io_error(f"{file.path}: a sweep stores no {what}")
+        return tuple(getattr(file, what))
+    if path not in file:
+        raise io_error(f"{file.path}: no dataset {path}, the {what}")
+    return tuple(str(name) for name in file[path])
+
+
+def leg_names(file):
+    """The leg names of a result or replay (an open h5py File or Group, a path, a Result or
+    Replay), /model/leg_names: the labels of the dimension `leg`, L of them."""
+    return _stored_names(file, SIZE_NAMES["L"], "leg_names")
+
+
+def joint_names(file):
+    """The joint names of a result or replay (/model/joint_names) or of a sweep
+    (/joint_names; a Sweep): the labels of the dimension `joint`, J of them."""
+    is_sweep = isinstance(file, Sweep) or (isinstance(file, (h5py.File, h5py.Group)) and
+                                           "model" not in file and "joint_names" in file)
+    return _stored_names(file, (SWEEP_SIZE_NAMES if is_sweep else SIZE_NAMES)["J"],
+                         "joint_names")
+
+
+def shape_sizes(file):
+    """{"L": legs, "J": joints} of a result or replay, the sizes of its shapes' leg and joint
+    dimensions: expected_shape(spec.shape, T, **shape_sizes(res))."""
+    return {"L": len(leg_names(file)), "J": len(joint_names(file))}
+
+
 # The names the analysis scripts, the tests and the docs use as hexdyn.results.NAME.
 __all__ = [
     "FILE_KINDS", "FileKind", "file_kind", "open_file", "open_result", "open_sweep",
-    "open_envelope", "open_replay", "open_study", "check_layout",
+    "open_envelope", "open_replay", "open_study", "check_layout", "leg_names", "joint_names",
+    "shape_sizes",
     "Result", "Sweep", "SweepAxis", "Envelope", "Replay", "Study", "UnknownGroupError",
     "check_group", "checked_path", "check_regular_file", "open_h5", "decode_text",
     "check_filetype_version", "is_group_coordinate", "yaml_attribute", "io_error",
@@ -378,6 +425,7 @@ __all__ = [
     "STUDY_SCHEMA", "STUDY_SCHEMA_VERSION", "META_GROUP", "META_ATTRIBUTES",
     "SWEEP_META_ATTRIBUTES", "MODEL_DATASETS", "KINEMATIC_DATASETS", "DYNAMICS_DATASETS",
     "SCENARIOS_GROUP", "SCENARIO_DATASETS", "SWEEP_STATUS", "PHASE_SWING", "PHASE_IMPACT",
-    "PHASE_SUPPORT", "LEG_NAMES", "JOINT_NAMES", "expected_shape",
+    "PHASE_SUPPORT", "SIZE_NAMES", "SWEEP_SIZE_NAMES", "LEG_NAMES", "JOINT_NAMES",
+    "expected_shape",
     "ENERGY_RULE_CUBIC", "ENERGY_RULE_TRAPEZOID", "energy_by_rule",
 ]

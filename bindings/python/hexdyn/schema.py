@@ -8,8 +8,9 @@ cmake/python.cmake) and lies next to this module in the build tree and in an ins
 SCHEMA is {constant name: value} of every declaration, in the order of the headers; the
 readers (hexdyn.results) check files against the layouts below, which are built from it.
 
-Shapes use size symbols: "T" (samples), "n" (touchdowns), "m" (solver messages), "N"
-(scenarios), "A" (axes), "V" (values of an axis), ...
+Shapes use size symbols: "T" (samples), "L" (legs) and "J" (joints) of the robot, "n"
+(touchdowns), "m" (solver messages), "N" (scenarios), "A" (axes), "V" (values of an axis), ...
+L and J are the file's own: the lengths of its names (SIZE_NAMES, SWEEP_SIZE_NAMES).
 """
 
 from . import _schema
@@ -123,15 +124,27 @@ for _spec in SCHEMA.values():
 FLAGS = {f.path: f.meanings for f in SCHEMA.values() if isinstance(f, FlagSpec)}
 
 PHASE_SWING, PHASE_IMPACT, PHASE_SUPPORT = 0, 1, 2
+
+# The sizes L (legs) and J (joints) of the shapes are the robot's: the per-leg and per-joint
+# datasets of a file have one row per name it stores, at these paths (a result's and a
+# replay's; a sweep's J: its /joint_names). hexdyn.results.leg_names and joint_names read
+# the names of an open file, shape_sizes its L and J.
+SIZE_NAMES = {"L": SCHEMA["kModelLegNames"].path, "J": SCHEMA["kModelJointNames"].path}
+SWEEP_SIZE_NAMES = {"J": SCHEMA["kSweepJointNames"].path}
+
+# Deprecated: the names of a hexapod of three-joint legs (the paper robot's, and the YAML
+# robots'), whatever robot a file holds. Use hexdyn.results.leg_names(file) and
+# joint_names(file), the names the file stores.
 LEG_NAMES = tuple(f"L{i}" for i in range(1, 7))
 JOINT_NAMES = tuple(f"L{i}_{j}" for i in range(1, 7) for j in ("coxa", "femur", "tibia"))
 
 
 def expected_shape(shape, samples=None, impacts=None, messages=None, **sizes):
     """Concrete shape of a contract shape tuple ("T" -> samples, "n", "m"; other
-    symbols by keyword, e.g. N=8, A=3)."""
+    symbols by keyword, e.g. N=8, A=3, and L, J of the file: **shape_sizes(file)); None for
+    a symbol not given."""
     sizes = {"T": samples, "n": impacts, "m": messages, **sizes}
-    return tuple(sizes[d] if isinstance(d, str) else d for d in shape)
+    return tuple(sizes.get(d) if isinstance(d, str) else d for d in shape)
 
 
 # ---------------------------------------------------------------------------- layouts

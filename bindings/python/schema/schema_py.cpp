@@ -31,13 +31,15 @@ namespace {
 namespace schema = hexdyn::schema;
 
 /// Size symbol of each netCDF dimension name (schema.hpp's file comment and the comments of
-/// `Shape`): T output samples, n touchdowns, m solver messages, Y gait cycles, K vertices of
+/// `Shape`): T output samples, L legs and J joints of the robot (a reader takes them from
+/// the file's /model/leg_names and /model/joint_names, a sweep's J from its /joint_names),
+/// n touchdowns, m solver messages, Y gait cycles, K vertices of
 /// the terrain profile or keys of a cases axis, N scenarios, A axes, V values of an axis; an
 /// envelope's W tread depths, B duty factors, S peak speeds, C criteria, P probes, D cases,
 /// R risers of a friction search.
 /// A number is a fixed size.
 constexpr std::array<std::pair<const char*, const char*>, 21> kSizeOfDimension{{
-    {"time", "T"},          {"joint", "18"},      {"leg", "6"},         {"xyz", "3"},
+    {"time", "T"},          {"joint", "J"},       {"leg", "L"},         {"xyz", "3"},
     {"wxyz", "4"},          {"impact", "n"},      {"message", "m"},     {"gait_cycle", "Y"},
     {"terrain_point", "K"}, {"scenario", "N"},    {"axis", "A"},        {"{key}", "V"},
     {"{key}_key", "K"},     {"tread_depth", "W"}, {"duty_factor", "B"}, {"peak_speed", "S"},

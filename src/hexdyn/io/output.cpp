@@ -15,6 +15,7 @@
 #include <system_error>
 #include <variant>
 
+#include "hexdyn/core/common.hpp"
 #include "hexdyn/core/errors.hpp"
 #include "hexdyn/io/h5io.hpp"
 #include "hexdyn/io/labels.hpp"
@@ -183,14 +184,15 @@ void check_output_target(const std::string& path, const std::vector<InputFile>& 
 void check_run_size(std::size_t samples, bool allow_large) {
   if (samples <= kLargeResultSamples || allow_large) return;
   char size[64];
-  std::snprintf(size, sizeof size, "%.2g GB", estimated_result_file_bytes(samples) / 1e9);
+  std::snprintf(size, sizeof size, "%.2g GB",
+                estimated_result_file_bytes(samples, kLegs, kJoints) / 1e9);
   throw ConfigError("run: " + std::to_string(samples) + " output samples, a result file of about " +
                     size + "; more than " + std::to_string(kLargeResultSamples) +
                     " samples (about 0.29 GB) are refused as a likely typing error in output.* "
                     "(sample_step, impact_samples, event_step); pass --allow-large to run it");
 }
 
-double estimated_result_file_bytes(std::size_t samples) {
+double estimated_result_file_bytes(std::size_t samples, std::size_t legs, std::size_t joints) {
   namespace s = schema;
   double row = 0.0;  // bytes per sample
   for (const DatasetSpec* d : {&s::kTime,
@@ -224,12 +226,14 @@ double estimated_result_file_bytes(std::size_t samples) {
       case s::Shape::kT4:
         columns = 4;
         break;
-      case s::Shape::kT6:
-        columns = 6;
+      case s::Shape::kTLeg:
+        columns = static_cast<double>(legs);
         break;
-      case s::Shape::kT18:
-      case s::Shape::kT6x3:
-        columns = 18;
+      case s::Shape::kTJoint:
+        columns = static_cast<double>(joints);
+        break;
+      case s::Shape::kTLegXyz:
+        columns = 3.0 * static_cast<double>(legs);
         break;
       default:
         break;

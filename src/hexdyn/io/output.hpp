@@ -87,13 +87,14 @@ void check_run_size(std::size_t samples, bool allow_large);
 /// samples and a 1.7 GB file) is far likelier than a wish.
 inline constexpr std::size_t kLargeResultSamples = 200000;
 
-/// Size of a `hexdyn-result/3` file of `samples` samples [bytes], estimated from the
-/// schema: every per-sample dataset's row (schema.hpp shapes and element types, about
-/// 1.45 kB) plus 32 bytes per solver message and 64 kB for /meta and /model, uncompressed:
+/// Size of a `hexdyn-result/3` file of `samples` samples of a robot of `legs` legs and
+/// `joints` joints (the shapes' L and J) [bytes], estimated from the schema: every
+/// per-sample dataset's row (schema.hpp shapes and element types, about 1.45 kB for 6 legs
+/// and 18 joints) plus 32 bytes per solver message and 64 kB for /meta and /model, uncompressed:
 /// the memory the writer holds while it builds the file (io/h5io.hpp), and an upper bound
 /// of the file, which compression makes about half as large
 /// (tests/hexdyn/cli/test_cli_outputs.cpp).
-double estimated_result_file_bytes(std::size_t samples);
+double estimated_result_file_bytes(std::size_t samples, std::size_t legs, std::size_t joints);
 
 /// Creates the group `meta_path` and writes the attributes every hexdyn file's /meta opens
 /// with (schema.hpp): `schema` = `schema_name`, `schema_version`, `version`, `git_commit`

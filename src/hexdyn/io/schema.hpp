@@ -18,9 +18,11 @@
 /// (a name of a `const char*` constant may stand for a string). A change of layout is a
 /// new schema version.
 ///
-/// Shapes: T output samples, 6 legs, 18 joints, n touchdowns, m solver messages, Y gait
-/// cycles, K vertices of the terrain profile; in a
-/// sweep file N scenarios, A axes, V values of one axis. (T,6,3) datasets are leg-major
+/// Shapes: T output samples, L legs and J joints of the robot (the lengths of
+/// /model/leg_names and /model/joint_names; 6 and 18 for a hexapod of three-joint legs),
+/// n touchdowns, m solver messages, Y gait cycles, K vertices of the terrain profile; in a
+/// sweep file N scenarios, A axes, V values of one axis, J the length of its /joint_names.
+/// (T,L,3) datasets are leg-major
 /// (index [t][leg][axis]); all vectors are in the world frame G0 unless the name says
 /// otherwise. Units strings are UDUNITS-2 units: "1" marks dimensionless numbers
 /// (quaternions, counts, ratios); "" writes no `units` attribute: text and CF flag
@@ -45,19 +47,19 @@ enum class Shape {
   kScalar,              ///< ()
   kText,                ///< () variable-length UTF-8 string
   kTextList,            ///< (m) variable-length UTF-8 strings, m may be 0
-  kJointNames,          ///< (18) strings
-  kLegNames,            ///< (6) strings
-  kJ,                   ///< (18)
+  kJointNames,          ///< (J) strings, one per joint of the robot
+  kLegNames,            ///< (L) strings, one per leg of the robot
+  kJ,                   ///< (J), one number per joint
   kT,                   ///< (T)
   kT3,                  ///< (T,3)
   kT4,                  ///< (T,4)
-  kT6,                  ///< (T,6)
-  kT18,                 ///< (T,18)
-  kT6x3,                ///< (T,6,3)
+  kTLeg,                ///< (T,L), one number per sample and leg
+  kTJoint,              ///< (T,J), one number per sample and joint
+  kTLegXyz,             ///< (T,L,3), one vector per sample and leg
   kN,                   ///< (n), one entry per touchdown, n may be 0
   kScenarios,           ///< (N), one entry per scenario, index order
   kScenarioAxes,        ///< (N,A), one row per scenario, one column per axis
-  kScenarioJoints,      ///< (N,18), one row per scenario, one column per joint
+  kScenarioJoints,      ///< (N,J), one row per scenario, one column per joint
   kAxisValues,          ///< (V), one entry per value of an axis
   kCaseKeys,            ///< (K), the keys a cases axis sets
   kCaseValues,          ///< (V,K), one row per case, one column per key it sets
@@ -78,7 +80,7 @@ enum class Shape {
   kEnvelopeCaseMuGrid,  ///< (D,W,B,S,R), one entry per case, cell and riser
   kCycles,              ///< (Y), one entry per gait cycle
   kCycles3,             ///< (Y,3), one vector per gait cycle (a replay's drift)
-  kLegValues,           ///< (6), one number per leg
+  kLegValues,           ///< (L), one number per leg
   kVector3,             ///< (3), one vector
   kTerrainPoints,       ///< (K), one entry per vertex of the terrain's height profile
   kXyz,                 ///< (3) strings "x", "y", "z"
@@ -104,9 +106,9 @@ constexpr const char* dimension_names(Shape shape) {
     case Shape::kT: return "time";
     case Shape::kT3: return "time xyz";
     case Shape::kT4: return "time wxyz";
-    case Shape::kT6: return "time leg";
-    case Shape::kT18: return "time joint";
-    case Shape::kT6x3: return "time leg xyz";
+    case Shape::kTLeg: return "time leg";
+    case Shape::kTJoint: return "time joint";
+    case Shape::kTLegXyz: return "time leg xyz";
     case Shape::kN: return "impact";
     case Shape::kScenarios: return "scenario";
     case Shape::kScenarioAxes: return "scenario axis";
@@ -280,28 +282,28 @@ inline constexpr DatasetSpec kBaseLinearAcceleration{"/base/linear_acceleration"
 inline constexpr DatasetSpec kBaseAngularAcceleration{"/base/angular_acceleration", "rad/s^2",
                                                       Shape::kT3, Element::kFloat64,
                                                       "trunk angular acceleration"};
-inline constexpr DatasetSpec kJointPosition{"/joints/position", "rad", Shape::kT18,
+inline constexpr DatasetSpec kJointPosition{"/joints/position", "rad", Shape::kTJoint,
                                             Element::kFloat64, "joint angle"};
-inline constexpr DatasetSpec kJointVelocity{"/joints/velocity", "rad/s", Shape::kT18,
+inline constexpr DatasetSpec kJointVelocity{"/joints/velocity", "rad/s", Shape::kTJoint,
                                             Element::kFloat64, "joint angular velocity"};
-inline constexpr DatasetSpec kJointAcceleration{"/joints/acceleration", "rad/s^2", Shape::kT18,
+inline constexpr DatasetSpec kJointAcceleration{"/joints/acceleration", "rad/s^2", Shape::kTJoint,
                                                 Element::kFloat64, "joint angular acceleration"};
 /// Where each foot touches, or would touch in swing: the planned foot path; a sphere foot's
 /// contact point, centre − r n (docs/theory/model.md#sphere-feet).
-inline constexpr DatasetSpec kFeetPosition{"/feet/position", "m", Shape::kT6x3, Element::kFloat64,
-                                           "foot position"};
+inline constexpr DatasetSpec kFeetPosition{"/feet/position", "m", Shape::kTLegXyz,
+                                           Element::kFloat64, "foot position"};
 /// A sphere foot's centre, the point the IK places: /feet/position + r n, n the unit normal of
 /// the surface under the foot (in a swing, lift-off and touchdown normals blended); a point
 /// foot's is its /feet/position. Written only for a robot with a sphere foot
 /// (kSphereFootDatasets).
-inline constexpr DatasetSpec kFeetCenter{"/feet/center", "m", Shape::kT6x3, Element::kFloat64,
+inline constexpr DatasetSpec kFeetCenter{"/feet/center", "m", Shape::kTLegXyz, Element::kFloat64,
                                          "sphere foot centre position"};
-inline constexpr DatasetSpec kFeetVelocity{"/feet/velocity", "m/s", Shape::kT6x3, Element::kFloat64,
-                                           "foot velocity"};
+inline constexpr DatasetSpec kFeetVelocity{"/feet/velocity", "m/s", Shape::kTLegXyz,
+                                           Element::kFloat64, "foot velocity"};
 inline constexpr DatasetSpec kComPosition{"/com/position", "m", Shape::kT3, Element::kFloat64,
                                           "centre of mass position"};
 /// 0 swing, 1 impact, 2 support (ContactPhase; CF flags kContactPhaseFlags).
-inline constexpr DatasetSpec kContactPhase{"/contacts/phase", "", Shape::kT6, Element::kInt8,
+inline constexpr DatasetSpec kContactPhase{"/contacts/phase", "", Shape::kTLeg, Element::kInt8,
                                            "contact phase of each leg"};
 /// 0 an ordinary sample, 1 the left limit of a contact event: a sample 1e-10 s before a
 /// touchdown, the end of a touchdown transient or a lift-off, holding every value just before
@@ -324,23 +326,23 @@ inline constexpr const char* kTerrainGroup = "/terrain";
 inline constexpr AttributeSpec kTerrainType{kTerrainGroup, "type", Element::kString};
 
 // ---- dynamics: written only when the dynamic stages ran ----
-inline constexpr DatasetSpec kJointTorque{"/joints/torque", "N m", Shape::kT18, Element::kFloat64,
-                                          "joint torque"};
+inline constexpr DatasetSpec kJointTorque{"/joints/torque", "N m", Shape::kTJoint,
+                                          Element::kFloat64, "joint torque"};
 /// Force of the terrain on the foot, world frame.
-inline constexpr DatasetSpec kContactForce{"/contacts/force", "N", Shape::kT6x3, Element::kFloat64,
-                                           "force of the terrain on the foot"};
-inline constexpr DatasetSpec kContactPenetration{"/contacts/penetration", "m", Shape::kT6,
+inline constexpr DatasetSpec kContactForce{"/contacts/force", "N", Shape::kTLegXyz,
+                                           Element::kFloat64, "force of the terrain on the foot"};
+inline constexpr DatasetSpec kContactPenetration{"/contacts/penetration", "m", Shape::kTLeg,
                                                  Element::kFloat64,
                                                  "foot penetration into the terrain"};
 /// |F_t| / F_n of the chosen force in each foot's contact frame (docs/theory/grip.md); NaN on
 /// a swing leg and where a relaxed sample's force does not press the foot; never infinite.
 inline constexpr DatasetSpec kContactUtilizedFriction{"/contacts/utilized_friction", "1",
-                                                      Shape::kT6, Element::kFloat64,
+                                                      Shape::kTLeg, Element::kFloat64,
                                                       "utilised friction coefficient"};
 /// 1 where the leg cannot hold at the scene's μ: its friction held only with slack, or the
 /// sample needs more friction than μ and the leg is at its friction limit or binds the
 /// required friction (docs/theory/grip.md#slip-onset); 0 elsewhere (CF flags kContactSlipFlags).
-inline constexpr DatasetSpec kContactSlip{"/contacts/slip", "", Shape::kT6, Element::kInt8,
+inline constexpr DatasetSpec kContactSlip{"/contacts/slip", "", Shape::kTLeg, Element::kInt8,
                                           "slip onset flag"};
 /// The least friction coefficient for which the sample's rows admit a force distribution
 /// under the scene's friction model; NaN where none does (the reason in /solver/messages).
@@ -370,7 +372,7 @@ inline constexpr DatasetSpec kImpactEffectiveMass{"/impacts/effective_mass", "kg
 inline constexpr DatasetSpec kImpactApproachSpeed{"/impacts/approach_speed", "m/s", Shape::kN,
                                                   Element::kFloat64,
                                                   "foot approach speed at touchdown"};
-inline constexpr DatasetSpec kJointPower{"/power/per_joint", "W", Shape::kT18, Element::kFloat64,
+inline constexpr DatasetSpec kJointPower{"/power/per_joint", "W", Shape::kTJoint, Element::kFloat64,
                                          "signed joint power tau*omega"};
 inline constexpr DatasetSpec kTotalPower{"/power/total", "W", Shape::kT, Element::kFloat64,
                                          "total absolute joint power sum |tau*omega|"};
@@ -410,15 +412,15 @@ inline constexpr DatasetSpec kSolverMessages{"/solver/messages", "", Shape::kTex
 // (docs/theory/drive-train.md; the resolved actuators of every joint are in /meta
 // config_yaml under actuators.joints, keyed by /model/joint_names.)
 /// τ_drive = τ + J_a q̈ + τ_c sgn(q̇) + b q̇: the torque the joint's drive gives.
-inline constexpr DatasetSpec kDriveTorque{"/joints/drive_torque", "N m", Shape::kT18,
+inline constexpr DatasetSpec kDriveTorque{"/joints/drive_torque", "N m", Shape::kTJoint,
                                           Element::kFloat64, "drive torque"};
 /// The bound on |τ_drive| at the sample: min(peak_torque, G k_t η (V − G k_t |q̇|) / R), or the
 /// allocation's torque limit for a joint with neither.
-inline constexpr DatasetSpec kDriveTorqueLimit{"/joints/drive_torque_limit", "N m", Shape::kT18,
+inline constexpr DatasetSpec kDriveTorqueLimit{"/joints/drive_torque_limit", "N m", Shape::kTJoint,
                                                Element::kFloat64, "bound on the drive torque"};
 /// I = τ_drive / (G k_t η) when driving (τ_drive q̇ ≥ 0), τ_drive η / (G k_t) when back-driven.
-inline constexpr DatasetSpec kMotorCurrent{"/joints/current", "A", Shape::kT18, Element::kFloat64,
-                                           "motor current"};
+inline constexpr DatasetSpec kMotorCurrent{"/joints/current", "A", Shape::kTJoint,
+                                           Element::kFloat64, "motor current"};
 /// RMS of τ_drive over the run (trapezoid rule of τ_drive² over /time).
 inline constexpr DatasetSpec kDriveTorqueRms{"/joints/drive_torque_rms", "N m", Shape::kJ,
                                              Element::kFloat64, "RMS drive torque over the run"};
@@ -428,7 +430,7 @@ inline constexpr DatasetSpec kDriveTorqueWindowRms{
     "/joints/drive_torque_window_rms", "N m", Shape::kJ, Element::kFloat64,
     "largest RMS drive torque over a thermal window"};
 /// P⁺: P = R I² + G k_t q̇ I where P ≥ 0, r P where P < 0 (r: regeneration).
-inline constexpr DatasetSpec kElectricalPower{"/power/electrical", "W", Shape::kT18,
+inline constexpr DatasetSpec kElectricalPower{"/power/electrical", "W", Shape::kTJoint,
                                               Element::kFloat64, "electrical power drawn"};
 inline constexpr DatasetSpec kElectricalTotalPower{
     "/power/electrical_total", "W", Shape::kT, Element::kFloat64, "total electrical power drawn"};

@@ -35,27 +35,28 @@ inline constexpr std::array kReplayMetaAttributes{
 
 // ---- the replayed motion (besides the result file's names) ----
 /// q_replay − q_plan at the same instant [rad].
-inline constexpr DatasetSpec kReplayTrackingError{"/joints/tracking_error", "rad", Shape::kT18,
+inline constexpr DatasetSpec kReplayTrackingError{"/joints/tracking_error", "rad", Shape::kTJoint,
                                                   Element::kFloat64,
                                                   "replayed minus planned joint angle"};
 /// The plan's stored torque at the sample's instant (the feedforward part of /joints/torque).
-inline constexpr DatasetSpec kReplayFeedforward{"/joints/feedforward_torque", "N m", Shape::kT18,
+inline constexpr DatasetSpec kReplayFeedforward{"/joints/feedforward_torque", "N m", Shape::kTJoint,
                                                 Element::kFloat64,
                                                 "feedforward joint torque (the plan's)"};
 /// Normal force of the compliant law [N] (0 out of contact).
-inline constexpr DatasetSpec kReplayNormalForce{"/contacts/normal_force", "N", Shape::kT6,
+inline constexpr DatasetSpec kReplayNormalForce{"/contacts/normal_force", "N", Shape::kTLeg,
                                                 Element::kFloat64, "normal contact force"};
 /// Tangential velocity of the contact point while in contact [m/s] (0 out of contact).
-inline constexpr DatasetSpec kReplaySlipVelocity{"/contacts/slip_velocity", "m/s", Shape::kT6x3,
+inline constexpr DatasetSpec kReplaySlipVelocity{"/contacts/slip_velocity", "m/s", Shape::kTLegXyz,
                                                  Element::kFloat64,
                                                  "tangential velocity of the contact point"};
 /// ∫ slip velocity dt since the start [m]: each foot's slip displacement.
 inline constexpr DatasetSpec kReplaySlipDisplacement{
-    "/contacts/slip_displacement", "m", Shape::kT6x3, Element::kFloat64,
+    "/contacts/slip_displacement", "m", Shape::kTLegXyz, Element::kFloat64,
     "slip displacement of the contact point since the start"};
 /// ∫ |slip velocity| dt since the start [m].
-inline constexpr DatasetSpec kReplaySlipDistance{
-    "/contacts/slip_distance", "m", Shape::kT6, Element::kFloat64, "slip distance since the start"};
+inline constexpr DatasetSpec kReplaySlipDistance{"/contacts/slip_distance", "m", Shape::kTLeg,
+                                                 Element::kFloat64,
+                                                 "slip distance since the start"};
 
 // ---- /energy: cumulative series ----
 /// ∫ Σ_k |τ_k q̇_k| dt of the applied torques (the result's /energy/total, as a series) [J].
@@ -63,11 +64,11 @@ inline constexpr DatasetSpec kReplayEnergyActuator{"/energy/actuator", "J", Shap
                                                    Element::kFloat64,
                                                    "integral of total absolute joint power"};
 /// Energy dissipated by each foot's normal damping (touchdowns and support) [J].
-inline constexpr DatasetSpec kReplayEnergyDamping{"/energy/contact_damping", "J", Shape::kT6,
+inline constexpr DatasetSpec kReplayEnergyDamping{"/energy/contact_damping", "J", Shape::kTLeg,
                                                   Element::kFloat64,
                                                   "energy dissipated by normal contact damping"};
 /// Energy dissipated by each foot's tangential (friction) force [J].
-inline constexpr DatasetSpec kReplayEnergySlip{"/energy/slip", "J", Shape::kT6, Element::kFloat64,
+inline constexpr DatasetSpec kReplayEnergySlip{"/energy/slip", "J", Shape::kTLeg, Element::kFloat64,
                                                "energy dissipated by friction"};
 /// Kinetic energy of the robot [J].
 inline constexpr DatasetSpec kReplayEnergyKinetic{"/energy/kinetic", "J", Shape::kT,

@@ -183,11 +183,11 @@ std::vector<std::size_t> expected_dims(schema::Shape shape, std::size_t T, std::
       return {T, 3};
     case Shape::kT4:
       return {T, 4};
-    case Shape::kT6:
+    case Shape::kTLeg:
       return {T, 6};
-    case Shape::kT18:
+    case Shape::kTJoint:
       return {T, 18};
-    case Shape::kT6x3:
+    case Shape::kTLegXyz:
       return {T, 6, 3};
     case Shape::kN:
       return {n};
