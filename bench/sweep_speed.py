@@ -62,6 +62,8 @@ import numpy as np
 import yaml
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(ROOT, "tests", "regression"))
+import side_build  # noqa: E402
 OLD_COMMIT = "bbaf71c"  # --commit
 SIDE_FOLDER = os.path.join(ROOT, "build", f"side-{OLD_COMMIT}")
 
@@ -76,17 +78,8 @@ ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIR
 
 def build_old(src):
     """Checks OLD_COMMIT out at `src` (a git worktree, unless there already) and builds its
-    hexdyn in src/build. Returns the binary's path."""
-    if not os.path.exists(os.path.join(src, ".git")):
-        subprocess.run(["git", "-C", ROOT, "worktree", "add", "--detach", src, OLD_COMMIT],
-                       check=True, stdout=subprocess.DEVNULL)
-    build = os.path.join(src, "build")
-    print(f"sweep_speed: building {OLD_COMMIT}'s hexdyn in {build}", file=sys.stderr)
-    subprocess.run(["cmake", "-S", src, "-B", build, "-DCMAKE_BUILD_TYPE=Release"], check=True,
-                   stdout=subprocess.DEVNULL)
-    subprocess.run(["cmake", "--build", build, "-j2", "--target", "hexdyn"], check=True,
-                   stdout=subprocess.DEVNULL)
-    return os.path.join(build, "hexdyn")
+    hexdyn in src/build (tests/regression/side_build.py). Returns the binary's path."""
+    return os.path.join(side_build.build(OLD_COMMIT, src, ("hexdyn",), "sweep_speed"), "hexdyn")
 
 
 def cpu_of_children():
