@@ -107,12 +107,17 @@ std::vector<double> wave_gait_phases(std::span<const GaitLeg> legs, double beta)
   return phase;
 }
 
+std::vector<double> liftoff_phases(const GaitParams& gait, std::span<const GaitLeg> legs) {
+  if (!gait.liftoff_phases.empty()) return gait.liftoff_phases;
+  return wave_gait_phases(legs, gait.duty_factor);
+}
+
 GaitPlan plan_gait(const RobotModel& model, const GaitParams& gait, const TrunkMotion& trunk,
                    const Terrain& terrain) {
   GaitPlan plan;
   const double beta = gait.duty_factor;
   plan.duty_factor = beta;
-  const std::vector<double> phases = wave_gait_phases(hexapod_gait_legs(), beta);
+  const std::vector<double> phases = liftoff_phases(gait, hexapod_gait_legs());
   if (phases.size() != plan.liftoff_phase.size())
     throw std::logic_error("gait: " + std::to_string(phases.size()) + " lift-off phases for " +
                            std::to_string(plan.liftoff_phase.size()) + " legs");

@@ -1,7 +1,7 @@
 #pragma once
 /// \file gait.hpp
-/// Gait planning: periodic wave gaits for any duty factor β ∈ [1/2, 1), footholds on the
-/// terrain, and C² swing-foot paths.
+/// Gait planning: periodic wave gaits for any duty factor β ∈ [1/2, 1), or lift-off phases
+/// given by the scene (gait.phases), footholds on the terrain, and C² swing-foot paths.
 ///
 /// Phases (fraction of a cycle at which a leg lifts off): on each side the wave runs
 /// from rear to front, each leg lifting when the one behind it touches down, and the
@@ -83,6 +83,10 @@ std::array<GaitLeg, kLegs> hexapod_gait_legs();
 /// The ranks on each side must be 0 … n_s − 1, each once (std::invalid_argument otherwise).
 /// For hexapod_gait_legs() these are the six expressions above, operation for operation.
 std::vector<double> wave_gait_phases(std::span<const GaitLeg> legs, double duty_factor);
+
+/// The lift-off phases a plan uses: gait.phases when the scene gives them, else the wave
+/// gait's for `legs` and gait.duty_factor.
+std::vector<double> liftoff_phases(const GaitParams& gait, std::span<const GaitLeg> legs);
 
 /// Plans every swing of every leg over the whole run. Throws PlanningError when no
 /// foothold satisfies the margin, in one line naming the leg, the stance's start time, the

@@ -1,16 +1,22 @@
 // Lift-off phases (gait.hpp): the wave gait for legs given by side and rank, checked for six
 // legs bit for bit against the six expressions the hexapod's gait was written with, and for
-// two, four and eight legs against the swings counted on a dense sampling of the cycle.
+// two, four and eight legs against the swings counted on a dense sampling of the cycle; and
+// gait.phases, whose swings are where the phases put them.
 #include <algorithm>
 #include <bit>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <random>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
+#include "hexdyn/config/config.hpp"
+#include "hexdyn/model/robot_model.hpp"
 #include "hexdyn/planning/gait.hpp"
+#include "hexdyn/planning/plan.hpp"
 
 namespace hexdyn {
 namespace {
@@ -173,6 +179,86 @@ TEST_CASE("gait phases: ranks must number each side's legs once", "[gait][phases
   const std::vector<GaitLeg> negative{{LegSide::kRight, -1}};
   CHECK_THROWS_AS(wave_gait_phases(negative, 0.75), std::invalid_argument);
   CHECK(wave_gait_phases(std::vector<GaitLeg>{}, 0.75).empty());
+}
+
+const std::string kPaperConfig = std::string(HEXDYN_SOURCE_DIR) + "/configs/paper.yaml";
+
+std::string exact(double x) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.17g", x);
+  return buf;
+}
+
+/// `{L1: φ1, …, L6: φ6}` with every digit.
+std::string phases_text(const std::vector<double>& phi) {
+  std::string s = "{";
+  for (int leg = 0; leg < kLegs; ++leg)
+    s += (leg ? ", " : "") + leg_name(leg) + ": " + exact(phi[leg]);
+  return s + "}";
+}
+
+MotionPlan plan_paper(const std::vector<Override>& overrides, Scene* scene_out = nullptr) {
+  const Scene scene = load_scene(kPaperConfig, overrides);
+  if (scene_out) *scene_out = scene;
+  return plan_motion(scene, build_robot_model(scene.robot));
+}
+
+TEST_CASE("gait phases: gait.phases puts every swing where its phase says", "[gait][phases]") {
+  // Five cycles at β = 3/4; the phases on a grid of 1/8, not the wave gait's.
+  const std::vector<double> phi{0.0, 0.5, 0.25, 0.75, 0.125, 0.625};
+  const double beta = 0.75;
+  Scene scene;
+  const MotionPlan p = plan_paper({{"gait.duty_factor", "3/4"},
+                                   {"motion.cycle_durations", "[3.0, 2.6, 2.6, 2.6, 3.0]"},
+                                   {"gait.phases", phases_text(phi)}},
+                                  &scene);
+  REQUIRE(scene.gait.liftoff_phases == phi);
+  const MotionPlan wave = plan_paper(
+      {{"gait.duty_factor", "3/4"}, {"motion.cycle_durations", "[3.0, 2.6, 2.6, 2.6, 3.0]"}});
+  int differ = 0;
+  // Phases of the three inner cycles at odd sixteenths: never on a lift-off or a touchdown.
+  for (int k = 16; k < 64; k += 2) {
+    const double tau = (k + 1) / 16.0;
+    const double t = p.trunk.time_at_phase(tau);
+    for (int leg = 0; leg < kLegs; ++leg) {
+      INFO("tau " << tau << " leg " << leg_name(leg));
+      const bool expected = swinging(phi[leg], beta, tau);
+      CHECK(leg_foot_motion(p.gait.legs[leg], t).in_swing == expected);
+      differ += leg_foot_motion(wave.gait.legs[leg], t).in_swing != expected;
+    }
+  }
+  CHECK(differ > 0);  // the wave gait's schedule is another
+  // Each leg's swings last 1 − β of a cycle and begin at its phase.
+  for (int leg = 0; leg < kLegs; ++leg)
+    for (const Swing& sw : p.gait.legs[leg].swings) {
+      if (sw.t_liftoff_s <= 0.0 || sw.t_touchdown_s >= p.trunk.duration_s()) continue;
+      const double start = p.trunk.phase(sw.t_liftoff_s);
+      const double end = p.trunk.phase(sw.t_touchdown_s);
+      INFO("leg " << leg_name(leg) << " swing from phase " << start);
+      CHECK(std::abs(frac(start - phi[leg] + 0.5) - 0.5) < 1e-9);
+      CHECK(end - start == Approx(1.0 - beta).margin(1e-9));
+    }
+}
+
+TEST_CASE("gait phases: gait.phases equal to the wave gait's plan the same swings",
+          "[gait][phases]") {
+  for (double beta : {0.5, 2.0 / 3.0, 0.75, 5.0 / 6.0}) {
+    INFO("beta " << beta);
+    const std::vector<Override> base{{"gait.duty_factor", exact(beta)}};
+    std::vector<Override> given = base;
+    given.push_back({"gait.phases", phases_text(wave_gait_phases(hexapod_gait_legs(), beta))});
+    const MotionPlan a = plan_paper(base), b = plan_paper(given);
+    CHECK(a.gait.liftoff_phase == b.gait.liftoff_phase);
+    for (int leg = 0; leg < kLegs; ++leg) {
+      REQUIRE(a.gait.legs[leg].swings.size() == b.gait.legs[leg].swings.size());
+      for (std::size_t i = 0; i < a.gait.legs[leg].swings.size(); ++i) {
+        const Swing &x = a.gait.legs[leg].swings[i], &y = b.gait.legs[leg].swings[i];
+        CHECK(x.t_liftoff_s == y.t_liftoff_s);
+        CHECK(x.t_touchdown_s == y.t_touchdown_s);
+        CHECK(x.p_touchdown_W == y.p_touchdown_W);
+      }
+    }
+  }
 }
 
 }  // namespace
