@@ -27,6 +27,14 @@ printf 'inherit: paper.yaml\noutput:\n  impact_samples: !!str 200\n' > str.yaml
 printf 'inherit: paper.yaml\ngait:\n  duty_factor: "3/4"\n' > fraction.yaml
 printf 'inherit: paper.yaml\nmotion:\n  cycle_durations: [3.0, "2.6", 3.0]\n' > list.yaml
 printf 'inherit: paper.yaml\nname: "2024"\nterrain:\n  type: "stairs"\n' > strings.yaml
+# gait.phases (docs/user/configuration.md#gait): not a map, an unknown leg, a leg missing, a leg
+# named twice, a phase outside [0, 1).
+phases='L2: 0.5, L3: 0.5, L4: 0, L5: 0, L6: 0.5'
+printf 'inherit: paper.yaml\ngait:\n  phases: [0, 0.5, 0.5, 0, 0, 0.5]\n' > phases_list.yaml
+printf 'inherit: paper.yaml\ngait:\n  phases: {L1: 0, %s, L7: 0}\n' "$phases" > phases_name.yaml
+printf 'inherit: paper.yaml\ngait:\n  phases: {%s}\n' "$phases" > phases_missing.yaml
+printf 'inherit: paper.yaml\ngait:\n  phases:\n    L1: 0\n    L1: 0.5\n' > phases_twice.yaml
+printf 'inherit: paper.yaml\ngait:\n  phases: {L1: 1, %s}\n' "$phases" > phases_range.yaml
 axis='axes:\n  - key: gait.duty_factor\n    values: [1/2, 2/3]\n'
 printf "base: paper.yaml\nset: {output.tolerance: \"1e-2\"}\n$axis" > sweep_set.yaml
 printf "base: paper.yaml\naxes:\n  - key: terrain.riser_height\n    range: {from: 0.0, to: '0.07', count: 3}\n" \
@@ -76,6 +84,19 @@ refused sweep_case 'sweep_case\.yaml: axes\[0\]\.cases\[0\] \(a: .*\): output\.t
   sweep sweep_case.yaml -o out/o.h5
 refused envelope_list 'envelope\.yaml: peak_speed\[0\]: got the string "0\.05", expected a number in .* \(write it unquoted\)$' \
   envelope envelope.yaml -o out/o.h5
+
+refused phases_list 'phases_list\.yaml: gait\.phases: got \[0, 0\.5, 0\.5, 0, 0, 0\.5\], expected a map \{L1: φ, …, L6: φ\} naming every leg once \(L1, L2, L3, L4, L5, L6\), each φ a lift-off phase in \[0, 1\)$' \
+  validate phases_list.yaml
+refused phases_name 'phases_name\.yaml: gait\.phases: got the key L7, expected leg names \(L1, L2, L3, L4, L5, L6\)$' \
+  run phases_name.yaml -o out/o.h5
+refused phases_missing 'phases_missing\.yaml: gait\.phases: got \{L2: 0\.5, .*\}, expected a map naming every leg once \(L1, .*\), L1 missing$' \
+  validate phases_missing.yaml
+refused phases_twice 'phases_twice\.yaml: gait\.phases\.L1: duplicate key, first at line 4, again at line 5' \
+  validate phases_twice.yaml
+refused phases_range 'phases_range\.yaml: gait\.phases\.L1: got 1, expected a number in \[0, 1\)$' \
+  run phases_range.yaml -o out/o.h5
+refused phases_set 'gait\.phases\.L4: got -0\.25, expected a number in \[0, 1\)$' \
+  run paper.yaml --set "gait.phases={L1: 0, L2: 0.5, L3: 0.5, L4: -0.25, L5: 0, L6: 0.5}" -o out/o.h5
 
 # Still taken: numbers by --set (p/q too) and by Python's set=, quoted strings. The value used
 # is read back from the result's resolved scene.

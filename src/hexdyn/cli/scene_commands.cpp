@@ -1,5 +1,6 @@
 // `hexdyn run` and `hexdyn validate`: one scene computed or checked (cli/command.hpp).
 #include <iostream>
+#include <vector>
 
 #include "hexdyn/cli/subcommands.hpp"
 #include "hexdyn/cli/verdict.hpp"
@@ -9,6 +10,7 @@
 #include "hexdyn/model/stance.hpp"
 #include "hexdyn/model/urdf_robot.hpp"
 #include "hexdyn/pipeline/pipeline.hpp"
+#include "hexdyn/planning/gait.hpp"
 #include "hexdyn/sweep/validate.hpp"
 
 namespace hexdyn::cli {
@@ -26,6 +28,17 @@ void print_leg_mapping(const Scene& scene, std::ostream& os) {
      << " m from the hips along their outward directions (gait.foot_lateral)\n";
 }
 
+/// -v: each leg's lift-off phase, from gait.phases or the wave gait (planning/gait.hpp).
+void print_gait_phases(const Scene& scene, std::ostream& os) {
+  const std::vector<double> phases = liftoff_phases(scene.gait, hexapod_gait_legs());
+  os << "hexdyn: lift-off phases (fraction of a cycle; "
+     << (scene.gait.liftoff_phases.empty() ? "the wave gait's" : "gait.phases") << ", swings of "
+     << 1.0 - scene.gait.duty_factor << " of a cycle):";
+  for (std::size_t leg = 0; leg < phases.size(); ++leg)
+    os << (leg ? ", " : " ") << leg_name(static_cast<int>(leg)) << " " << phases[leg];
+  os << "\n";
+}
+
 /// The scene's warnings (Scene::warnings), one line each on stderr.
 void print_warnings(const Scene& scene) {
   for (const std::string& w : scene.warnings) std::cerr << "hexdyn: warning: " << w << "\n";
@@ -35,7 +48,10 @@ void print_warnings(const Scene& scene) {
 
 int validate_command(const Args& args) {
   const ValidationReport report = validate_file(args.input, args.overrides);
-  if (args.verbose && report.scene) print_leg_mapping(*report.scene, std::cout);
+  if (args.verbose && report.scene) {
+    print_leg_mapping(*report.scene, std::cout);
+    print_gait_phases(*report.scene, std::cout);
+  }
   if (report.scene) print_warnings(*report.scene);
   for (const std::string& line : report.messages) std::cout << line << "\n";
   return 0;
@@ -45,7 +61,10 @@ int validate_command(const Args& args) {
 int run_command(const Args& args) {
   std::vector<InputFile> inputs;
   const Scene scene = load_scene(args.input, args.overrides, &inputs);
-  if (args.verbose) print_leg_mapping(scene, std::cerr);
+  if (args.verbose) {
+    print_leg_mapping(scene, std::cerr);
+    print_gait_phases(scene, std::cerr);
+  }
   print_warnings(scene);
   // Before any computing: the output is a new path or a regular file that is none of the
   // inputs (the scene, its inherited files, its URDF).

@@ -117,6 +117,9 @@ struct GaitParams {
   double touchdown_speed_mps = 0.05;  ///< downward foot speed at touchdown
   double lift_fraction = 0.3;         ///< share of swing time spent lifting
   double lower_fraction = 0.2;        ///< nominal share of swing time spent lowering
+  /// gait.phases: each leg's lift-off phase in [0, 1), in leg order L1 … L6; empty: the wave
+  /// gait's (planning/gait.hpp).
+  std::vector<double> liftoff_phases;
 };
 
 /// How the trunk's start P0(0) is given (docs/theory/stages.md#posture; planning/posture.hpp).

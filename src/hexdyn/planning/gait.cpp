@@ -1,8 +1,10 @@
 #include "hexdyn/planning/gait.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 
 #include "hexdyn/core/errors.hpp"
@@ -68,10 +70,46 @@ Vec3 foothold(const RobotModel& model, const GaitParams& gait, const TrunkMotion
 
 }  // namespace
 
-std::array<double, kLegs> wave_gait_phases(double beta) {
+std::array<GaitLeg, kLegs> hexapod_gait_legs() {
+  std::array<GaitLeg, kLegs> legs;
+  for (int leg = 0; leg < kLegs; ++leg)
+    legs[leg] = {is_left(leg) ? LegSide::kLeft : LegSide::kRight, leg / 2};
+  return legs;
+}
+
+std::vector<double> wave_gait_phases(std::span<const GaitLeg> legs, double beta) {
+  const auto on_side = [&](LegSide side) {
+    return static_cast<int>(
+        std::count_if(legs.begin(), legs.end(), [&](const GaitLeg& g) { return g.side == side; }));
+  };
+  const int n_left = on_side(LegSide::kLeft), n_right = on_side(LegSide::kRight);
+  std::vector<int> seen(legs.size(), 0);  // legs of each rank: the left's, then the right's
+  for (const GaitLeg& g : legs) {
+    const bool left = g.side == LegSide::kLeft;
+    const int n_side = left ? n_left : n_right;
+    if (g.rank < 0 || g.rank >= n_side || ++seen[(left ? 0 : n_left) + g.rank] > 1)
+      throw std::invalid_argument("wave gait: rank " + std::to_string(g.rank) + " on a side of " +
+                                  std::to_string(n_side) +
+                                  " legs; the ranks of a side are 0 … n − 1, each once");
+  }
   const double s = 1.0 - beta;
-  // legs 0-based: 0 FL, 1 FR, 2 ML, 3 MR, 4 RL, 5 RR
-  return {frac(0.5 + 2.0 * s), frac(2.0 * s), frac(0.5 + s), frac(s), 0.5, 0.0};
+  // Six legs: frac(o + k * s) with k = 2, 1, 0 gives the bits of frac(0.5 + 2.0 * s),
+  // frac(2.0 * s), frac(0.5 + s), frac(s), 0.5 and 0.0: 0.0 + x = x, 1.0 * s = s and
+  // 0.0 * s = +0 exactly for a finite s ≥ 0 (tests/hexdyn/planning/test_gait_phases.cpp).
+  std::vector<double> phase;
+  phase.reserve(legs.size());
+  for (const GaitLeg& g : legs) {
+    const bool left = g.side == LegSide::kLeft;
+    const double offset = left ? 0.5 : 0.0;
+    const int behind = (left ? n_left : n_right) - 1 - g.rank;  // legs behind it on its side
+    phase.push_back(frac(offset + static_cast<double>(behind) * s));
+  }
+  return phase;
+}
+
+std::vector<double> liftoff_phases(const GaitParams& gait, std::span<const GaitLeg> legs) {
+  if (!gait.liftoff_phases.empty()) return gait.liftoff_phases;
+  return wave_gait_phases(legs, gait.duty_factor);
 }
 
 GaitPlan plan_gait(const RobotModel& model, const GaitParams& gait, const TrunkMotion& trunk,
@@ -79,7 +117,11 @@ GaitPlan plan_gait(const RobotModel& model, const GaitParams& gait, const TrunkM
   GaitPlan plan;
   const double beta = gait.duty_factor;
   plan.duty_factor = beta;
-  plan.liftoff_phase = wave_gait_phases(beta);
+  const std::vector<double> phases = liftoff_phases(gait, hexapod_gait_legs());
+  if (phases.size() != plan.liftoff_phase.size())
+    throw std::logic_error("gait: " + std::to_string(phases.size()) + " lift-off phases for " +
+                           std::to_string(plan.liftoff_phase.size()) + " legs");
+  std::copy(phases.begin(), phases.end(), plan.liftoff_phase.begin());
   const double n = trunk.cycles();
   constexpr double kMinSwingPhase = 1e-9;
   for (int leg = 0; leg < kLegs; ++leg) {

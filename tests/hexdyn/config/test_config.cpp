@@ -210,6 +210,49 @@ TEST_CASE("config: out-of-range values are refused", "[config]") {
   CHECK_NOTHROW(load_scene_from_string(paper_text(), kName, {{"gait.duty_factor", "0.5"}}));
 }
 
+TEST_CASE("config: gait.phases names every leg once, each phase in [0, 1)", "[config]") {
+  const std::string five = "L2: 0.5, L3: 0.5, L4: 0, L5: 0, L6: 0.5";
+  const std::string six = "{L1: 0, " + five + "}";
+  const Scene s = load_scene_from_string(paper_text(), kName, {{"gait.phases", six}});
+  CHECK(s.gait.liftoff_phases == std::vector<double>{0.0, 0.5, 0.5, 0.0, 0.0, 0.5});
+  CHECK(load_scene_from_string(paper_text(), kName, {}).gait.liftoff_phases.empty());
+  // The resolved configuration records them, and reads back to the same phases.
+  CHECK(load_scene_from_string(s.resolved_yaml, kName).gait.liftoff_phases ==
+        s.gait.liftoff_phases);
+  // p/q as for every number; the largest phase below 1.
+  const Scene q = load_scene_from_string(
+      paper_text(), kName,
+      {{"gait.phases", "{L1: 1/3, L2: 0.99999999999999989, L3: 0.5, L4: 0, L5: 0, L6: 0.5}"}});
+  CHECK(q.gait.liftoff_phases[0] == 1.0 / 3.0);
+  CHECK(q.gait.liftoff_phases[1] == std::nextafter(1.0, 0.0));
+  const auto refused = [&](const std::string& value, const std::string& key,
+                           const std::string& part) {
+    const std::string msg = config_error(paper_text(), {{"gait.phases", value}});
+    check_names(msg, key);
+    CHECK(msg.find(part) != std::string::npos);
+  };
+  refused("0.5", "gait.phases: got 0.5", "expected a map {L1: φ, …, L6: φ} naming every leg once");
+  refused("[0, 0.5, 0.5, 0, 0, 0.5]", "gait.phases: got [0, 0.5", "naming every leg once");
+  refused("{L1: 0, " + five + ", L7: 0}", "gait.phases: got the key L7",
+          "expected leg names (L1, L2, L3, L4, L5, L6)");
+  refused("{l1: 0, " + five + "}", "gait.phases: got the key l1", "expected leg names");
+  refused("{" + five + "}", "gait.phases: got {L2: 0.5", ", L1 missing");
+  refused("{}", "gait.phases: got {}", "every leg once (L1, L2, L3, L4, L5, L6), L1 missing");
+  refused("{L1: 1, " + five + "}", "gait.phases.L1: got 1", "expected a number in [0, 1)");
+  refused("{L1: -0.1, " + five + "}", "gait.phases.L1: got -0.1", "expected a number in [0, 1)");
+  refused("{L1: .nan, " + five + "}", "gait.phases.L1", "finite");
+  refused("{L1: [0], " + five + "}", "gait.phases.L1: got [0]", "expected a number in [0, 1)");
+  // A leg named twice in a file: a duplicate key, with both lines.
+  int line_no = 0;
+  const std::string twice = replace_line(
+      paper_text(), "  lower_fraction:", "  lower_fraction: 0.2\n  phases:\n    L1: 0\n    L1: 0.5",
+      &line_no);
+  const std::string msg = config_error(twice);
+  check_names(msg, "gait.phases.L1: duplicate key");
+  CHECK(msg.find("line " + std::to_string(line_no + 2)) != std::string::npos);
+  CHECK(msg.find("line " + std::to_string(line_no + 3)) != std::string::npos);
+}
+
 TEST_CASE("config: lists of the wrong length are refused", "[config]") {
   check_override_refused("robot.trunk.inertia", "[1e-2, 1e-2]");
   check_override_refused("robot.trunk.inertia", "[1e-2, 1e-2, 1e-2, 1e-2]");
