@@ -65,11 +65,8 @@ struct GaitPlan {
   std::array<LegPlan, kLegs> legs;
 };
 
-/// The side of the trunk a leg's hip is on.
-enum class LegSide { kLeft, kRight };
-
-/// A leg's place in the wave gait: its side, and its rank on that side counted from the
-/// front (0 the front leg).
+/// A leg's place in the wave gait: its side (model/robot_model.hpp LegSide), and its rank on
+/// that side counted from the front (0 the front leg).
 struct GaitLeg {
   LegSide side = LegSide::kLeft;
   int rank = 0;
