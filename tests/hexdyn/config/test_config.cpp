@@ -210,7 +210,7 @@ TEST_CASE("config: out-of-range values are refused", "[config]") {
   CHECK_NOTHROW(load_scene_from_string(paper_text(), kName, {{"gait.duty_factor", "0.5"}}));
 }
 
-TEST_CASE("config: gait.phases names every leg once, each phase in [0, 1)", "[config]") {
+TEST_CASE("config: gait.phases names every leg once, each phase from 0 up to 1", "[config]") {
   const std::string five = "L2: 0.5, L3: 0.5, L4: 0, L5: 0, L6: 0.5";
   const std::string six = "{L1: 0, " + five + "}";
   const Scene s = load_scene_from_string(paper_text(), kName, {{"gait.phases", six}});

@@ -86,7 +86,7 @@ TEST_CASE("/model/urdf of a URDF robot reads back as the original description", 
   }
 }
 
-TEST_CASE("hip directions: the legs' zero-pose directions; the paper's exactly +-x",
+TEST_CASE("hip directions: the legs' zero-pose directions, the paper's exactly +-x",
           "[robot_output]") {
   for (const Case& c : kCases) {
     INFO(c.file);

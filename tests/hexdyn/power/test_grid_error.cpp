@@ -41,7 +41,7 @@ TEST_CASE("trapezoid_errors: exact for a cubic on an irregular grid", "[grid_err
   }
 }
 
-TEST_CASE("trapezoid_errors: pieces are separate; a jump interval has no error", "[grid_error]") {
+TEST_CASE("trapezoid_errors: pieces are separate, a jump interval has no error", "[grid_error]") {
   // A quadratic on a piece of two intervals, a jump, then a cubic on four: each estimate is
   // exact for its own piece, and a single-interval piece gets the monotone bound.
   const auto f = [](double x) { return x < 1.0 ? 1.0 + x * x : 10.0 - x * x * x; };

@@ -51,7 +51,7 @@ TEST_CASE("sha256: the FIPS 180-4 examples", "[io]") {
         "cdc76e5c9914fb9281a1c7e284d73e67f1809a48a497200e046d39ccc7112cd0");
 }
 
-TEST_CASE("sha256: a file's digest is sha256sum's; an unreadable file is named", "[io]") {
+TEST_CASE("sha256: a file's digest is sha256sum's, an unreadable file is named", "[io]") {
   TempDir dir("sha256");
   std::string text;
   for (int i = 0; i < 20000; ++i) text += std::to_string(i * 7919 % 10007) + (i % 13 ? " " : "\n");
