@@ -7,6 +7,7 @@
 #include "hexdyn/config/config.hpp"
 #include "hexdyn/core/progress.hpp"
 #include "hexdyn/io/output.hpp"
+#include "hexdyn/model/robot_model.hpp"
 #include "hexdyn/model/stance.hpp"
 #include "hexdyn/model/urdf_robot.hpp"
 #include "hexdyn/pipeline/pipeline.hpp"
@@ -30,7 +31,8 @@ void print_leg_mapping(const Scene& scene, std::ostream& os) {
 
 /// -v: each leg's lift-off phase, from gait.phases or the wave gait (planning/gait.hpp).
 void print_gait_phases(const Scene& scene, std::ostream& os) {
-  const std::vector<double> phases = liftoff_phases(scene.gait, hexapod_gait_legs());
+  const std::vector<double> phases =
+      liftoff_phases(scene.gait, gait_legs(build_robot_model(scene.robot)));
   os << "hexdyn: lift-off phases (fraction of a cycle; "
      << (scene.gait.liftoff_phases.empty() ? "the wave gait's" : "gait.phases") << ", swings of "
      << 1.0 - scene.gait.duty_factor << " of a cycle):";

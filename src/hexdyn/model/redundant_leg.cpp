@@ -206,11 +206,10 @@ constexpr int kMaxKkt = kMaxChainJoints + 3;
 using KktMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxKkt, kMaxKkt>;
 using KktVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxKkt, 1>;
 
-/// K = [H Jᵀ; J 0], H = W + Σ λ_i ∇²f_i.
-KktMatrix kkt_matrix(const SerialChain& chain, const ChainVector& q, const ChainVector& weight,
+/// K = [H Jᵀ; J 0], H = W + Σ λ_i ∇²f_i (hess: the ∇²f_i at the same q).
+KktMatrix kkt_matrix(const std::array<ChainMatrix, 3>& hess, const ChainVector& weight,
                      const Vec3& lambda, const ChainJacobian& J) {
-  const int m = chain.count;
-  const std::array<ChainMatrix, 3> hess = chain_hessians(chain, q);
+  const int m = static_cast<int>(weight.size());
   KktMatrix K = KktMatrix::Zero(m + 3, m + 3);
   K.topLeftCorner(m, m) = weight.asDiagonal();
   for (int i = 0; i < 3; ++i)
@@ -231,12 +230,12 @@ void reach(const SerialChain& chain, const RedundantResolution& res, const Vec3&
     const ChainJacobian J = chain_jacobian(chain, q);
     const Mat3 A = J * w_inv.asDiagonal() * J.transpose();
     const double damping = 1e-6 * std::max(1e-12, A.trace());
-    const Mat3 A_damped = A + damping * Mat3::Identity();
-    const Vec3 y = A_damped.ldlt().solve(e);
+    const Eigen::LDLT<Mat3> A_damped(A + damping * Mat3::Identity());
+    const Vec3 y = A_damped.solve(e);
     ChainVector step = w_inv.asDiagonal() * J.transpose() * y;
     // The nominal pose's pull, projected onto J's null space (W-weighted).
     const ChainVector pull = res.q_nominal - q;
-    const Vec3 z = A_damped.ldlt().solve(J * pull);
+    const Vec3 z = A_damped.solve(J * pull);
     step += 0.1 * (pull - w_inv.asDiagonal() * J.transpose() * z);
     const double longest = step.cwiseAbs().maxCoeff();
     if (longest > 0.5) step *= 0.5 / longest;  // a step of at most 0.5 rad (or m) per joint
@@ -275,13 +274,15 @@ RedundantLegMotion redundant_leg_motion(const SerialChain& chain,
   const Mat3 A = J * w_inv.asDiagonal() * J.transpose();
   Vec3 lambda = -A.ldlt().solve(J * (q - resolution.q_nominal));
   KktMatrix K;
+  std::array<ChainMatrix, 3> hess;  // at q, also for the accelerations below
   for (int it = 0; it < 30; ++it, ++out.iterations) {
     J = chain_jacobian(chain, q);
+    hess = chain_hessians(chain, q);
     KktVector r(m + 3);
     r.head(m) = w.cwiseProduct(q - resolution.q_nominal) + J.transpose() * lambda;
     r.tail(3) = chain_foot_position(chain, q) - p_H;
     const double scale = 1.0 + w.cwiseProduct(q - resolution.q_nominal).norm();
-    K = kkt_matrix(chain, q, w, lambda, J);
+    K = kkt_matrix(hess, w, lambda, J);
     if (r.head(m).norm() <= 1e-13 * scale && r.tail(3).norm() <= 1e-13) {
       out.converged = true;
       break;
@@ -302,7 +303,6 @@ RedundantLegMotion redundant_leg_motion(const SerialChain& chain,
   out.qd = rate.head(m);
   out.lambda_dot = rate.tail(3);
   // Accelerations: K [q̈; λ̈] = [−(2 Σ λ̇_i ∇²f_i q̇ + Σ λ_i ∇³f_i[q̇, q̇, ·]); p̈ − ∇²f[q̇, q̇]].
-  const std::array<ChainMatrix, 3> hess = chain_hessians(chain, q);
   for (int a = 0; a < m; ++a) {
     double top = 0.0;
     for (int i = 0; i < 3; ++i)

@@ -70,10 +70,10 @@ Vec3 foothold(const RobotModel& model, const GaitParams& gait, const TrunkMotion
 
 }  // namespace
 
-std::array<GaitLeg, kLegs> hexapod_gait_legs() {
-  std::array<GaitLeg, kLegs> legs;
-  for (int leg = 0; leg < kLegs; ++leg)
-    legs[leg] = {is_left(leg) ? LegSide::kLeft : LegSide::kRight, leg / 2};
+std::vector<GaitLeg> gait_legs(const RobotModel& model) {
+  std::vector<GaitLeg> legs;
+  for (int leg = 0; leg < model.legs(); ++leg)
+    legs.push_back({model.leg(leg).side, model.leg(leg).row});
   return legs;
 }
 
@@ -117,7 +117,7 @@ GaitPlan plan_gait(const RobotModel& model, const GaitParams& gait, const TrunkM
   GaitPlan plan;
   const double beta = gait.duty_factor;
   plan.duty_factor = beta;
-  const std::vector<double> phases = liftoff_phases(gait, hexapod_gait_legs());
+  const std::vector<double> phases = liftoff_phases(gait, gait_legs(model));
   if (phases.size() != plan.liftoff_phase.size())
     throw std::logic_error("gait: " + std::to_string(phases.size()) + " lift-off phases for " +
                            std::to_string(plan.liftoff_phase.size()) + " legs");

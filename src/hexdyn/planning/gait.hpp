@@ -72,13 +72,14 @@ struct GaitLeg {
   int rank = 0;
 };
 
-/// The six legs in leg order: L1 front left, L2 front right, L3 middle left, … L6 rear right
-/// (docs/theory/conventions.md).
-std::array<GaitLeg, kLegs> hexapod_gait_legs();
+/// The model's legs in leg order, each with the side and front-to-rear row of its leg table
+/// (RobotModel::leg; for a hexapod L1 front left, L2 front right, … L6 rear right,
+/// docs/theory/conventions.md).
+std::vector<GaitLeg> gait_legs(const RobotModel& model);
 
 /// Lift-off phases φ ∈ [0, 1) of the wave gait above, one per leg of `legs`, in its order.
 /// The ranks on each side must be 0 … n_s − 1, each once (std::invalid_argument otherwise).
-/// For hexapod_gait_legs() these are the six expressions above, operation for operation.
+/// For a hexapod's gait_legs() these are the six expressions above, operation for operation.
 std::vector<double> wave_gait_phases(std::span<const GaitLeg> legs, double duty_factor);
 
 /// The lift-off phases a plan uses: gait.phases when the scene gives them, else the wave

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "hexdyn/config/config.hpp"
+#include "hexdyn/gait_cases.hpp"
 #include "hexdyn/pipeline/pipeline.hpp"
 #include "hexdyn/planning/gait.hpp"
 
@@ -17,19 +18,6 @@ namespace hexdyn {
 namespace {
 
 const std::string kPaper = HEXDYN_SOURCE_DIR "/configs/paper.yaml";
-
-std::string exact(double x) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.17g", x);
-  return buf;
-}
-
-std::string phases_text(const std::vector<double>& phi) {
-  std::string s = "{";
-  for (int leg = 0; leg < kLegs; ++leg)
-    s += (leg ? ", " : "") + leg_name(leg) + ": " + exact(phi[leg]);
-  return s + "}";
-}
 
 /// The paper scene at β = 2/3 (phases with every bit of 1/3 in them) on a coarse uniform grid.
 std::vector<Override> small_scene() {
@@ -41,9 +29,9 @@ std::vector<Override> small_scene() {
 
 TEST_CASE("gait phases: the wave gait's phases as gait.phases give the same run, bit for bit",
           "[gait][phases]") {
-  const std::vector<double> wave = wave_gait_phases(hexapod_gait_legs(), 2.0 / 3.0);
+  const std::vector<double> wave = wave_gait_phases(test::hexapod_legs(), 2.0 / 3.0);
   std::vector<Override> given = small_scene();
-  given.push_back({"gait.phases", phases_text(wave)});
+  given.push_back({"gait.phases", test::phases_text(wave)});
   const Scene with_key = load_scene(kPaper, given);
   REQUIRE(with_key.gait.liftoff_phases == wave);
   const RunResult a = run_scene(load_scene(kPaper, small_scene()));
@@ -71,7 +59,7 @@ TEST_CASE("gait phases: other phases give the contact schedule they predict", "[
   const double beta = 0.75;
   std::vector<Override> o = small_scene();
   o[0].value = "3/4";
-  o.push_back({"gait.phases", phases_text(phi)});
+  o.push_back({"gait.phases", test::phases_text(phi)});
   const Scene scene = load_scene(kPaper, o);
   const PreparedScene prep = prepare_scene(scene);
   const RunResult r = run_prepared_scene(scene, prep, nullptr);

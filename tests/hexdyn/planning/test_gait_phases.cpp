@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "hexdyn/config/config.hpp"
+#include "hexdyn/gait_cases.hpp"
 #include "hexdyn/model/robot_model.hpp"
 #include "hexdyn/planning/gait.hpp"
 #include "hexdyn/planning/plan.hpp"
@@ -96,9 +97,24 @@ SwingCounts swing_counts(const std::vector<GaitLeg>& legs, const std::vector<dou
   return c;
 }
 
+TEST_CASE("gait phases: a hexapod model's gait legs are the conventions' six", "[gait][phases]") {
+  const std::vector<GaitLeg> expected = test::hexapod_legs();
+  for (const std::string scene : {"/configs/paper.yaml", "/configs/robots/kraby_stairs.yaml",
+                                  "/configs/robots/pexod_stairs.yaml"}) {
+    INFO(scene);
+    const std::vector<GaitLeg> legs =
+        gait_legs(build_robot_model(load_scene(std::string(HEXDYN_SOURCE_DIR) + scene).robot));
+    REQUIRE(legs.size() == expected.size());
+    for (std::size_t leg = 0; leg < legs.size(); ++leg) {
+      CHECK(legs[leg].side == expected[leg].side);
+      CHECK(legs[leg].rank == expected[leg].rank);
+    }
+  }
+}
+
 TEST_CASE("gait phases: six legs give the six expressions' bits for every duty factor",
           "[gait][phases]") {
-  const auto legs = hexapod_gait_legs();
+  const std::vector<GaitLeg> legs = test::hexapod_legs();
   std::vector<double> betas;
   for (int i = 0; i < 10000; ++i) betas.push_back(0.5 + 0.5 * i / 10000.0);  // [1/2, 1)
   std::mt19937_64 rng(43);
@@ -183,20 +199,6 @@ TEST_CASE("gait phases: ranks must number each side's legs once", "[gait][phases
 
 const std::string kPaperConfig = std::string(HEXDYN_SOURCE_DIR) + "/configs/paper.yaml";
 
-std::string exact(double x) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.17g", x);
-  return buf;
-}
-
-/// `{L1: φ1, …, L6: φ6}` with every digit.
-std::string phases_text(const std::vector<double>& phi) {
-  std::string s = "{";
-  for (int leg = 0; leg < kLegs; ++leg)
-    s += (leg ? ", " : "") + leg_name(leg) + ": " + exact(phi[leg]);
-  return s + "}";
-}
-
 MotionPlan plan_paper(const std::vector<Override>& overrides, Scene* scene_out = nullptr) {
   const Scene scene = load_scene(kPaperConfig, overrides);
   if (scene_out) *scene_out = scene;
@@ -210,7 +212,7 @@ TEST_CASE("gait phases: gait.phases puts every swing where its phase says", "[ga
   Scene scene;
   const MotionPlan p = plan_paper({{"gait.duty_factor", "3/4"},
                                    {"motion.cycle_durations", "[3.0, 2.6, 2.6, 2.6, 3.0]"},
-                                   {"gait.phases", phases_text(phi)}},
+                                   {"gait.phases", test::phases_text(phi)}},
                                   &scene);
   REQUIRE(scene.gait.liftoff_phases == phi);
   const MotionPlan wave = plan_paper(
@@ -244,9 +246,10 @@ TEST_CASE("gait phases: gait.phases equal to the wave gait's plan the same swing
           "[gait][phases]") {
   for (double beta : {0.5, 2.0 / 3.0, 0.75, 5.0 / 6.0}) {
     INFO("beta " << beta);
-    const std::vector<Override> base{{"gait.duty_factor", exact(beta)}};
+    const std::vector<Override> base{{"gait.duty_factor", format_number(beta, 17)}};
     std::vector<Override> given = base;
-    given.push_back({"gait.phases", phases_text(wave_gait_phases(hexapod_gait_legs(), beta))});
+    given.push_back(
+        {"gait.phases", test::phases_text(wave_gait_phases(test::hexapod_legs(), beta))});
     const MotionPlan a = plan_paper(base), b = plan_paper(given);
     CHECK(a.gait.liftoff_phase == b.gait.liftoff_phase);
     for (int leg = 0; leg < kLegs; ++leg) {
