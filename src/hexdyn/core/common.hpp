@@ -11,6 +11,8 @@
 #include <array>
 #include <string>
 
+#include "hexdyn/core/sizes.hpp"
+
 namespace hexdyn {
 
 inline constexpr int kLegs = 6;
@@ -19,6 +21,7 @@ inline constexpr int kJoints = kLegs * kJointsPerLeg;  ///< 18 actuated joints
 inline constexpr int kDof = 6 + kJoints;               ///< 24: trunk pose then joints
 inline constexpr int kBodies = 1 + kJoints;            ///< trunk, then 3 links per leg
 inline constexpr double kGravity = 9.81;               ///< m/s², along −z of G0
+static_assert(kLegs <= kMaxLegs && kJoints <= kMaxJoints && kBodies <= kMaxBodies);
 
 using Vec3 = Eigen::Vector3d;
 using Mat3 = Eigen::Matrix3d;
