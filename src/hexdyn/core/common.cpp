@@ -12,9 +12,10 @@ std::string format_number(double x, int significant_digits) {
 
 std::string leg_name(int leg) { return "L" + std::to_string(leg + 1); }
 
-std::string joint_name(int leg, int joint) {
-  static const char* kSuffix[kJointsPerLeg] = {"coxa", "femur", "tibia"};
-  return leg_name(leg) + "_" + kSuffix[joint];
+std::string joint_name(int leg, int joint, int leg_joints) {
+  static const char* kSuffix[3] = {"coxa", "femur", "tibia"};
+  if (leg_joints == 3) return leg_name(leg) + "_" + kSuffix[joint];
+  return leg_name(leg) + "_j" + std::to_string(joint + 1);
 }
 
 Mat3 bryant_to_rotation(const Vec3& eta) {

@@ -38,8 +38,10 @@ constexpr bool is_left(int leg) { return leg % 2 == 0; }
 
 /// "L1".."L6".
 std::string leg_name(int leg);
-/// "L{i}_coxa", "L{i}_femur", "L{i}_tibia".
-std::string joint_name(int leg, int joint);
+/// Positional joint names, the files' labels (docs/theory/conventions.md): for a leg of three
+/// joints "L{i}_coxa", "L{i}_femur", "L{i}_tibia"; for a leg of `leg_joints` ≠ 3 joints
+/// "L{i}_j1" … "L{i}_j{m}".
+std::string joint_name(int leg, int joint, int leg_joints = kJointsPerLeg);
 
 /// `x` with `significant_digits` significant digits, as printf's %g writes it: how messages
 /// quote a number ("9.61e-06", "0.05").

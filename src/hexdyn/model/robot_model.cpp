@@ -61,6 +61,9 @@ void fill_leg_table(RobotModel& m) {
     ++n;
   }
   m.n_legs = std::min(n, kLegs);
+  m.n_joints = 0;
+  for (int l = 0; l < m.n_legs; ++l) m.n_joints += m.leg_table[l].n_joints;
+  m.n_bodies = 1 + m.n_joints;
   if (n != kLegs || !layout.empty())
     throw std::logic_error("robot model: " + std::to_string(n) + " legs" +
                            (layout.empty() ? "" : " (" + layout + ")") + ", this build holds " +

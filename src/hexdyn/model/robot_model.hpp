@@ -92,8 +92,14 @@ struct LegInfo {
 struct RobotModel {
   // --- leg table (fill_leg_table): legs(), leg(l), joint(l, j), body(l, j), foot_body(l) ---
   int n_legs = 0;
+  int n_joints = 0;  ///< actuated joints, all legs (flat order: leg by leg, hip to foot)
+  int n_bodies = 0;  ///< trunk and the bodies the joints move (n_joints + 1)
   std::array<LegInfo, kLegs> leg_table;
   int legs() const { return n_legs; }
+  int joints() const { return n_joints; }
+  int bodies() const { return n_bodies; }
+  /// Generalised coordinates: the trunk's six, then the joints.
+  int dofs() const { return 6 + n_joints; }
   const LegInfo& leg(int l) const { return leg_table[l]; }
   /// Flat index of joint j (0 at the hip) of leg l.
   int joint(int l, int j) const { return leg_table[l].first_joint + j; }

@@ -98,6 +98,24 @@ TEST_CASE("the paper robot's leg table", "[leg_table]") {
     hips.push_back(p.hip_position_m[l]);
   }
   check_sides_and_rows(m, hips);
+  // Counts from the table, against the tree walked directly: bodies whose parent chain
+  // reaches the trunk.
+  int moved = 0;
+  for (int b = 1; b < kBodies; ++b) {
+    int a = b;
+    while (a > 0) a = m.parent[a];
+    moved += a == 0 ? 1 : 0;
+  }
+  CHECK(m.joints() == moved);
+  CHECK(m.bodies() == moved + 1);
+  CHECK(m.dofs() == moved + 6);
+}
+
+TEST_CASE("joint labels are positional: three joints by name, others numbered", "[leg_table]") {
+  CHECK(joint_name(0, 0) == "L1_coxa");
+  CHECK(joint_name(5, 2, 3) == "L6_tibia");
+  CHECK(joint_name(3, 0, 4) == "L4_j1");
+  CHECK(joint_name(7, 5, 6) == "L8_j6");
 }
 
 TEST_CASE("a tree that is not six legs of three joints is refused in one line", "[leg_table]") {
