@@ -98,7 +98,7 @@ def read_result(path):
             "/base/position", "/base/orientation", "/base/linear_velocity",
             "/base/angular_velocity", "/base/linear_acceleration", "/base/angular_acceleration",
             "/joints/position", "/joints/velocity", "/joints/acceleration", "/joints/torque",
-            "/contacts/force", "/contacts/phase", "/solver/status")}
+            "/contacts/force", "/contacts/phase", "/solver/status", "/feet/position")}
         if "/joints/drive_torque" in f:
             r["/joints/drive_torque"] = f["/joints/drive_torque"][()]
         r["urdf"] = text(f["/model/urdf"][()])
