@@ -4,9 +4,9 @@ per-joint datasets, /model/leg_names and /model/joint_names are cut to the first
 (and their twelve joints), written with h5py in a temporary folder (tests/python/robot_cut.py),
 and reads its names (hexdyn.leg_names, joint_names; the paper result's counts are those of the
 robot its /model/urdf describes); it refuses, in one line naming the dataset, a copy whose
-/contacts/force keeps six legs while /model/leg_names has four, and one whose /joints/torque
-keeps 18 joints while /model/joint_names has 12. The same for a sweep (tests/sweep/schema.yaml)
-cut to 12 joints, J from its /joint_names, and one whose /scenarios/peak_torque keeps 18. The
+/contacts/force keeps every leg while /model/leg_names has four, and one whose /joints/torque
+keeps every joint while /model/joint_names has 12. The same for a sweep (tests/sweep/schema.yaml)
+cut to 12 joints, J from its /joint_names, and one whose /scenarios/peak_torque keeps all. The
 values of the cut files are not a robot's (the check is of the layout alone).
     test_layout_sizes.py HEXDYN_BINARY SOURCE_DIR      (PYTHONPATH: the build tree's python/)"""
 
