@@ -14,7 +14,7 @@ Draws, in each of ceil(duration * fps) frames (frame i at t0 + i / fps):
     without /terrain);
   - the contact forces /contacts/force (terrain on foot, world frame) as arrows from the feet;
   - the time, and the relaxed (/solver/status 1) and failed (2) samples since the previous
-    frame in red; a strip below shows the phases of the six legs over the whole run, the
+    frame in red; a strip below shows the phases of every leg over the whole run, the
     relaxed samples as red ticks, failed ones as black ticks, and the frame's time.
 
 --replay REPLAY.h5 (a hexdyn-replay/1 file of `hexdyn replay RESULT.h5`) draws the replay

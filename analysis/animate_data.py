@@ -17,9 +17,9 @@
 
 The robot is the result's own /model/urdf (hexdyn's generated URDF for a robot given by
 parameters, the description itself for a URDF robot), joints in /model/joint_names order,
-its L legs those of /model/leg_names, each with its foot link <leg>_foot; the forward kinematics is analysis/urdf_fk.py. The terrain is the
-height profile /terrain/y, /terrain/z (a polyline z(y), constant along x); a file without
-/terrain (hexdyn-result/1) has none.
+its L legs those of /model/leg_names, each with its foot link <leg>_foot; the forward
+kinematics is analysis/urdf_fk.py. The terrain is the height profile /terrain/y, /terrain/z
+(a polyline z(y), constant along x); a file without /terrain (hexdyn-result/1) has none.
 
 A replay (hexdyn-replay/1, `hexdyn replay`) carries the result's robot and terrain and its
 motion in the result's dataset names, so it is drawn the same way; it has no planned phases:
@@ -154,7 +154,7 @@ class Motion:
         return decode_text(self.data["/replay/message"]) if self.has("/replay/message") else ""
 
     def skeleton(self, base_position, base_quat, q):
-        """Six (F,P,3) arrays of link origins, hip to foot, by forward kinematics."""
+        """One (F,P,3) array per leg of link origins, hip to foot, by forward kinematics."""
         needed = sorted({link for chain in self.chains for link in chain})
         poses = self.robot.link_poses(base_position, base_quat, q, needed)
         return [np.stack([poses[link][1] for link in chain], axis=1) for chain in self.chains]

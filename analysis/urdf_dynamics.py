@@ -158,7 +158,7 @@ class UrdfDynamics:
 
 
 def feet_from_mapping(entries):
-    """/model/leg_mapping entries -> [(link, point in the link frame)] for L1..L6."""
+    """/model/leg_mapping entries -> [(link, point in the link frame)] for each leg, in leg order."""
     feet = []
     for e in entries:
         words = decode_text(e).split()
