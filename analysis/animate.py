@@ -14,7 +14,7 @@ Draws, in each of ceil(duration * fps) frames (frame i at t0 + i / fps):
     without /terrain);
   - the contact forces /contacts/force (terrain on foot, world frame) as arrows from the feet;
   - the time, and the relaxed (/solver/status 1) and failed (2) samples since the previous
-    frame in red; a strip below shows the phases of the six legs over the whole run, the
+    frame in red; a strip below shows the phases of every leg over the whole run, the
     relaxed samples as red ticks, failed ones as black ticks, and the frame's time.
 
 --replay REPLAY.h5 (a hexdyn-replay/1 file of `hexdyn replay RESULT.h5`) draws the replay
@@ -41,7 +41,7 @@ import sys
 
 import hexdyn_path  # first: the package hexdyn, from build/python when not installed
 hexdyn_path.ensure()
-from figures import FAILED_COLOR, RELAXED_COLOR  # first: selects the Agg backend
+from figures import FAILED_COLOR, RELAXED_COLOR, leg_side  # first: selects the Agg backend
 from animate_data import InputError, frames_of, load_motion, replay_mismatch
 from animate_html import html_page
 from matplotlib import animation
@@ -119,15 +119,17 @@ class Panel:
         self._terrain()
         origin = np.zeros((1, 3))
         self.trunk = self.ax.plot(*self._xy(origin), color="0.15", lw=1.6)[0]
-        self.legs = [self.ax.plot(*self._xy(origin), color="0.15" if k % 2 == 0 else "0.55",
-                                  lw=1.4, ls="-" if k % 2 == 0 else "--")[0] for k in range(6)]
+        n = len(frames.legs)
+        left = [leg_side(k) == "left" for k in range(n)]
+        self.legs = [self.ax.plot(*self._xy(origin), color="0.15" if left[k] else "0.55",
+                                  lw=1.4, ls="-" if left[k] else "--")[0] for k in range(n)]
         self.feet = [self.ax.plot(*self._xy(origin), "o", ms=6, mec="k", mew=0.6)[0]
-                     for k in range(6)]
+                     for k in range(n)]
         self.order = _hip_order(frames)
         self.arrows = []
         self.quiver = None
         if frames.force is not None and view != "3d":
-            y0 = np.zeros(6)
+            y0 = np.zeros(n)
             self.quiver = self.ax.quiver(y0, y0, y0, y0, angles="xy", scale_units="xy", scale=1,
                                          color=FORCE_COLOR, width=0.004, zorder=5)
         self.ghost_frames = self.ghost_feet = self.ghost_trunk = None
@@ -144,7 +146,7 @@ class Panel:
         self.ghost_frames = frames
         self.ghost_order = _hip_order(frames)
         self.ghost_feet = [self.ax.plot(*self._xy(origin), "o", ms=8, mfc="none", mew=1.4,
-                                        alpha=GHOST_ALPHA, zorder=6)[0] for _ in range(6)]
+                                        alpha=GHOST_ALPHA, zorder=6)[0] for _ in frames.legs]
         if trunk:
             self.ghost_trunk = self.ax.plot(*self._xy(origin), color="0.15", lw=1.6, ls=":",
                                             alpha=GHOST_ALPHA)[0]
@@ -173,7 +175,7 @@ class Panel:
     def update(self, i):
         f = self.f
         self._set(self.trunk, _hip_ring(f, i, self.order))
-        for k in range(6):
+        for k in range(len(self.legs)):
             self._set(self.legs[k], f.legs[k][i])
             self._set(self.feet[k], f.feet[i, k][None])
             code = int(f.phase[i, k]) if f.phase is not None else 0
@@ -184,7 +186,7 @@ class Panel:
             artists += self._forces(i)
         if self.ghost_feet is not None:
             g = self.ghost_frames
-            for k in range(6):
+            for k in range(len(self.ghost_feet)):
                 self._set(self.ghost_feet[k], g.feet[i, k][None])
                 code = int(g.phase[i, k]) if g.phase is not None else 0
                 self.ghost_feet[k].set_markeredgecolor(PHASE_COLORS[code])
@@ -295,18 +297,20 @@ class Scene:
         ax, f = self.strip, self.f
         motions = [self.m] + ([self.replay[0]] if self.replay else [])
         ax.set_xlim(f.times[0], max([m.time[-1] for m in motions] + [f.times[-1]]))
-        ax.set_ylim(-0.5, 6.8)
-        ax.set_yticks(range(6), [f"L{6 - r}" for r in range(6)])
+        names = self.m.leg_names
+        n = len(names)
+        ax.set_ylim(-0.5, n + 0.8)
+        ax.set_yticks(range(n), names[::-1])
         ax.set_xlabel("time [s]", fontsize=8)
         ax.tick_params(labelsize=7)
         height = 0.8 / len(motions)
-        for n, m in enumerate(motions):
+        for k, m in enumerate(motions):
             phase, t = m.phases(), m.time
             if phase is None:
                 continue
             widths = np.diff(np.append(t, t[-1]))
-            for leg in range(6):
-                bottom = 5 - leg + 0.4 - (n + 1) * height
+            for leg in range(len(names)):
+                bottom = len(names) - 1 - leg + 0.4 - (k + 1) * height
                 for code in (1, 2):
                     sel = phase[:, leg] == code
                     if sel.any():
@@ -321,7 +325,7 @@ class Scene:
             for code, color in ((1, RELAXED_COLOR), (2, FAILED_COLOR)):
                 sel = status == code
                 if sel.any():
-                    ax.vlines(t[sel], 5.9, 6.7, color=color, lw=0.8)
+                    ax.vlines(t[sel], n - 0.1, n + 0.7, color=color, lw=0.8)
             ax.text(1.0, 1.02, "red ticks: relaxed samples; black: failed", fontsize=7,
                     transform=ax.transAxes, ha="right", va="bottom")
         self.cursor = ax.axvline(f.times[0], color="k", lw=1.0)

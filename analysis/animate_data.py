@@ -6,20 +6,20 @@
     replay = load_motion("replay.h5")                        # a hexdyn-replay/1 file
     replay_frames = frames_of(replay, times=frames.times)    # at the plan's frame times
     frames.times        # (F,) s, F = ceil(duration * fps), frame i at t0 + i / fps
-    frames.feet         # (F,6,3) m, /feet/position interpolated linearly in /time
-    frames.legs         # six (F,P,3) arrays: hip ... foot link origins by forward kinematics
-    frames.phase        # (F,6) the phase codes (Motion.phases) of the last sample at or before
+    frames.feet         # (F,L,3) m, /feet/position interpolated linearly in /time
+    frames.legs         # L (F,P,3) arrays: hip ... foot link origins by forward kinematics
+    frames.phase        # (F,L) the phase codes (Motion.phases) of the last sample at or before
                         # each frame
-    frames.force        # (F,6,3) N, /contacts/force interpolated linearly (None without dynamics)
+    frames.force        # (F,L,3) N, /contacts/force interpolated linearly (None without dynamics)
     frames.relaxed      # (F,) relaxed samples (/solver/status 1) since the previous frame
     motion.fk_error()   # max |FK(/base, /joints/position) - /feet/position| over the samples [m]
     replay_mismatch(motion, replay)   # None, or why the replay is not of this plan
 
 The robot is the result's own /model/urdf (hexdyn's generated URDF for a robot given by
 parameters, the description itself for a URDF robot), joints in /model/joint_names order,
-feet L1_foot ... L6_foot; the forward kinematics is analysis/urdf_fk.py. The terrain is the
-height profile /terrain/y, /terrain/z (a polyline z(y), constant along x); a file without
-/terrain (hexdyn-result/1) has none.
+its L legs those of /model/leg_names, each with its foot link <leg>_foot; the forward
+kinematics is analysis/urdf_fk.py. The terrain is the height profile /terrain/y, /terrain/z
+(a polyline z(y), constant along x); a file without /terrain (hexdyn-result/1) has none.
 
 A replay (hexdyn-replay/1, `hexdyn replay`) carries the result's robot and terrain and its
 motion in the result's dataset names, so it is drawn the same way; it has no planned phases:
@@ -38,7 +38,7 @@ import numpy as np
 from urdf_fk import UrdfRobot
 
 REQUIRED = ("/time", "/base/position", "/base/orientation", "/joints/position",
-            "/feet/position", "/model/urdf", "/model/joint_names")
+            "/feet/position", "/model/urdf", "/model/joint_names", "/model/leg_names")
 OPTIONAL = ("/contacts/phase", "/contacts/force", "/solver/status", "/contacts/normal_force",
             "/replay/message")
 REPLAY_SCHEMA = "hexdyn-replay/"
@@ -111,9 +111,14 @@ class Motion:
         names = [decode_text(n) for n in np.asarray(data["/model/joint_names"]).ravel()]
         self.joint_names = tuple(names)
         self.robot = UrdfRobot(decode_text(data["/model/urdf"]), joint_order=self.joint_names)
-        if len(self.robot.foot_links) != 6:
-            raise InputError(f"{source}: /model/urdf has {len(self.robot.foot_links)} foot "
-                             "links L<i>_foot, expected 6")
+        # The legs: /model/leg_names, each with its foot link <leg>_foot in /model/urdf.
+        self.leg_names = tuple(decode_text(n) for n in
+                               np.asarray(data["/model/leg_names"]).ravel())
+        feet = tuple(f"{leg}_foot" for leg in self.leg_names)
+        if self.robot.foot_links != feet:
+            raise InputError(f"{source}: /model/urdf has the foot links "
+                             f"{', '.join(self.robot.foot_links)}, expected {', '.join(feet)} "
+                             "(one per leg of /model/leg_names)")
         self.chains = [self._chain(foot) for foot in self.robot.foot_links]
         self.duration = float(self.time[-1] - self.time[0])
 
@@ -132,7 +137,7 @@ class Motion:
         return path in self.data
 
     def phases(self):
-        """(T,6) contact phase codes as /contacts/phase has them (0 swing, 1 impact, 2
+        """(T,L) contact phase codes as /contacts/phase has them (0 swing, 1 impact, 2
         support): a result's /contacts/phase; a replay's 2 where /contacts/normal_force > 0,
         else 0 (a replay has no touchdown transients of its own, only contact or none);
         None when the file has neither."""
@@ -149,7 +154,7 @@ class Motion:
         return decode_text(self.data["/replay/message"]) if self.has("/replay/message") else ""
 
     def skeleton(self, base_position, base_quat, q):
-        """Six (F,P,3) arrays of link origins, hip to foot, by forward kinematics."""
+        """One (F,P,3) array per leg of link origins, hip to foot, by forward kinematics."""
         needed = sorted({link for chain in self.chains for link in chain})
         poses = self.robot.link_poses(base_position, base_quat, q, needed)
         return [np.stack([poses[link][1] for link in chain], axis=1) for chain in self.chains]

@@ -139,14 +139,17 @@ def check_kinematics(c, res, expect_mass):
     check_datasets(c, res, hr.MODEL_DATASETS, T)
     check_datasets(c, res, hr.KINEMATIC_DATASETS, T)
     # A URDF robot's joints keep the description's names, in hexdyn's order: the order
-    # /model/leg_mapping lists them (L1: coxa femur tibia, L2: ...).
-    joint_order = hr.JOINT_NAMES
+    # /model/leg_mapping lists them ("L1: J1 J2 J3 foot ...", L2: ...). hexdyn's own URDF
+    # (every other robot): leg by leg, the moving joints from the root to the leg's foot
+    # link, hip to foot (urdf_fk.UrdfRobot.chain_joints).
+    joint_order = None
     if "/model/leg_mapping" in res:
-        joint_order = tuple(w for e in res["/model/leg_mapping"] for w in str(e).split()[1:4])
-    if "/model/joint_names" in res:
-        c.check(tuple(res["/model/joint_names"]) == joint_order, "/model/joint_names order")
+        joint_order = tuple(w for e in res["/model/leg_mapping"]
+                            for w in str(e).split()[1:str(e).split().index("foot")])
     if "/model/leg_names" in res:
-        c.check(tuple(res["/model/leg_names"]) == hr.LEG_NAMES, "/model/leg_names order")
+        n = len(res["/model/leg_names"])
+        c.check(tuple(res["/model/leg_names"]) == tuple(f"L{i}" for i in range(1, n + 1)),
+                f"/model/leg_names L1 ... L{n}")
     if "/time" in res and T > 1:
         c.check(bool(np.all(np.diff(res["/time"]) > 0)), "/time strictly increasing")
     if "/base/orientation" in res:
@@ -162,8 +165,12 @@ def check_kinematics(c, res, expect_mass):
         c.check(False, "/model/urdf parses", str(e))
         return
     c.check(True, "/model/urdf parses")
-    c.check(robot.foot_links == tuple(f"L{i}_foot" for i in range(1, 7)),
-            "URDF has links L1_foot..L6_foot", f"got {robot.foot_links}")
+    if "/model/joint_names" in res:
+        c.check(tuple(res["/model/joint_names"]) == robot.joint_order, "/model/joint_names order",
+                f"{tuple(res['/model/joint_names'])} against {robot.joint_order}")
+    legs = tuple(res["/model/leg_names"]) if "/model/leg_names" in res else ()
+    c.check(robot.foot_links == tuple(f"{leg}_foot" for leg in legs),
+            "URDF has a link <leg>_foot per leg of /model/leg_names", f"got {robot.foot_links}")
     if "/model/total_mass" in res:
         stored = float(res["/model/total_mass"])
         c.check(abs(robot.total_mass - stored) <= MASS_TOLERANCE_KG,
@@ -176,7 +183,7 @@ def check_kinematics(c, res, expect_mass):
     if feet_path == "/feet/center":
         check_sphere_feet(c, res)
     needed = ("/base/position", "/base/orientation", "/joints/position", feet_path)
-    if all(p in res for p in needed) and len(robot.foot_links) == 6 and T > 0:
+    if all(p in res for p in needed) and len(robot.foot_links) == len(legs) and T > 0:
         try:
             feet = robot.foot_positions(res["/base/position"], res["/base/orientation"],
                                         res["/joints/position"])
@@ -188,15 +195,15 @@ def check_kinematics(c, res, expect_mass):
         c.check(err.max() <= FK_TOLERANCE_M,
                 f"URDF FK reproduces {feet_path} within {FK_TOLERANCE_M:g} m ({T} samples)",
                 f"max error {err.max():.3g} m at sample {t_worst} "
-                f"(t = {res['/time'][t_worst]:.6g} s), leg L{leg_worst + 1}")
+                f"(t = {res['/time'][t_worst]:.6g} s), leg {legs[leg_worst]}")
 
 
-def foot_radii(urdf_text):
-    """The radius of the sphere <collision> of each link L1_foot ... L6_foot (0: none)."""
+def foot_radii(urdf_text, legs):
+    """The radius of the sphere <collision> of each link <leg>_foot of `legs` (0: none)."""
     links = {link.get("name"): link for link in ET.fromstring(urdf_text).iter("link")}
     radii = []
-    for i in range(1, 7):
-        sphere = links[f"L{i}_foot"].find("collision/geometry/sphere")
+    for leg in legs:
+        sphere = links[f"{leg}_foot"].find("collision/geometry/sphere")
         radii.append(0.0 if sphere is None else float(sphere.get("radius")))
     return np.array(radii)
 
@@ -204,7 +211,7 @@ def foot_radii(urdf_text):
 def check_sphere_feet(c, res):
     """/feet/center - /feet/position: r n in support, of length r always."""
     config = yaml.safe_load(res.meta.get("config_yaml", "")) or {}
-    r = foot_radii(res.urdf)
+    r = foot_radii(res.urdf, hr.leg_names(res))
     center, contact = np.asarray(res["/feet/center"]), np.asarray(res["/feet/position"])
     c.check(bool((r > 0).any()), "/model/urdf gives a sphere foot", f"radii {r}")
     length = np.linalg.norm(center - contact, axis=2)
@@ -288,7 +295,7 @@ def link_com_accelerations(robot, res):
 
 
 def terrain_normal(config, feet):
-    """Unit normals (T,6,3) of the terrain under the feet (treads and flat ground: +z)."""
+    """Unit normals (T,L,3) of the terrain under the feet (treads and flat ground: +z)."""
     n = np.zeros(feet.shape)
     n[..., 2] = 1.0
     terrain = config.get("terrain", {}) or {}
@@ -299,11 +306,11 @@ def terrain_normal(config, feet):
 
 
 def torque_limits(setting, res):
-    """Per-joint torque limits (18) in the file's joint order: the scene's one number, or with
+    """Per-joint torque limits (J) in the file's joint order: the scene's one number, or with
     `effort` (a URDF robot) each joint's <limit effort> of /model/urdf, found by the names in
     /model/joint_names."""
     if not isinstance(setting, str):
-        return np.full(18, float(setting))
+        return np.full(len(hr.joint_names(res)), float(setting))
     import xml.etree.ElementTree as ET
     effort = {}
     for j in ET.fromstring(res.urdf).iter("joint"):
@@ -315,9 +322,9 @@ def torque_limits(setting, res):
 
 
 def drive_torques_and_bounds(config, res, tau, tmax):
-    """With actuators (/joints/drive_torque in the file): the drive torques (T, 18) computed
+    """With actuators (/joints/drive_torque in the file): the drive torques (T, J) computed
     from the joint torques, velocities, accelerations and each joint's actuator in /meta, and
-    their bounds (T, 18); None without actuators."""
+    their bounds (T, J); None without actuators."""
     if "/joints/drive_torque" not in res:
         return None
     joints = ((config.get("actuators") or {}).get("joints")) or {}

@@ -38,7 +38,10 @@ import hexdyn  # noqa: E402
 
 # ---------------------------------------------------------------- colours
 SUPPORT_COLOR, IMPACT_COLOR = "tab:blue", "tab:red"
-LEG_COLORS = ("tab:blue", "tab:orange", "tab:green", "tab:red", "tab:purple", "tab:brown")
+# One colour per leg, in leg order (as many as a robot has legs at most: core/sizes.hpp
+# kMaxLegs); leg_color(k) for leg k.
+LEG_COLORS = ("tab:blue", "tab:orange", "tab:green", "tab:red", "tab:purple", "tab:brown",
+              "tab:pink", "tab:olive")
 RELAXED_COLOR, FAILED_COLOR, OPTIMAL_OVER_COLOR = "#d62728", "black", "#9467bd"
 LIMIT_COLOR = "0.2"
 RMS_COLOR = "#2ca02c"
@@ -78,6 +81,57 @@ def write_csv_atomically(path, header, rows):
             os.remove(tmp)
         raise
     return path
+
+
+# ---------------------------------------------------------------- legs and their joints
+# The legs and joints of a run are the file's: /model/leg_names (L legs) and
+# /model/joint_names (J joints, leg-major), never a count written here. A leg's joints are
+# the joints whose names start with the leg's name and "_" (L1_coxa, L1_j1:
+# docs/theory/conventions.md#legs-and-joints); its side follows the leg order of the same
+# page: L1 left front, then right, alternating (the odd legs L1, L3, ... are on the left).
+def leg_color(k):
+    """The colour of leg k (0-based)."""
+    return LEG_COLORS[k % len(LEG_COLORS)]
+
+
+def leg_side(k):
+    """"left" or "right" for leg k (0-based) by the documented leg order."""
+    return "left" if k % 2 == 0 else "right"
+
+
+def joint_role(legs_joints, leg, j):
+    """The positional name of joint j (0-based, hip to foot) of leg `leg` (0-based) of the legs'
+    joints `legs_joints` (run_legs): coxa, femur, tibia for a leg of three joints, j1 ... jm
+    else (hexdyn.results.joint_roles), whatever the description calls them."""
+    return hexdyn.results.joint_roles(len(legs_joints[leg]))[j]
+
+
+def run_legs(res):
+    """(leg names, joints of each leg) of a result or replay (hexdyn.results.leg_names and
+    leg_joints)."""
+    return tuple(hexdyn.results.leg_names(res)), hexdyn.results.leg_joints(res)
+
+
+def leg_panels(n_legs):
+    """The panels of a figure with one panel per leg: (rows, cells), rows = ceil(n_legs / 2)
+    and cells[k] = (row, column) of leg k, the left legs in the left column (0) and the
+    right legs in the right one (1), each side front (row 0) to rear. For six legs: L1 L2 /
+    L3 L4 / L5 L6."""
+    cells, count = [], {"left": 0, "right": 0}
+    for k in range(n_legs):
+        side = leg_side(k)
+        cells.append((count[side], 0 if side == "left" else 1))
+        count[side] += 1
+    return -(-n_legs // 2), cells
+
+
+def bottom_panels(cells):
+    """The legs whose panel is the lowest of its column (they carry the x labels)."""
+    last = {}
+    for k, (row, col) in enumerate(cells):
+        if row >= last.get(col, (-1, None))[0]:
+            last[col] = (row, k)
+    return {k for _, k in last.values()}
 
 
 # ---------------------------------------------------------------- labels and titles

@@ -21,8 +21,11 @@ import sys
 
 import hexdyn_path  # first: the package hexdyn, from build/python when not installed
 hexdyn_path.ensure()
-from hexdyn.results import open_result
+from hexdyn.results import leg_joints, open_result
 import numpy as np
+
+# The joints of a paper leg, hip to foot, as statement S3 ranks them.
+PAPER_JOINTS = ("coxa", "femur", "tibia")
 
 G = 9.81
 
@@ -63,7 +66,7 @@ def statements(res):
 
     # S2: one spike per touchdown, above the quasi-static share.
     touchdowns = []
-    for leg in range(6):
+    for leg in range(phase.shape[1]):  # every leg (/model/leg_names)
         swing = phase[:, leg] == 0
         for i in np.flatnonzero(swing[:-1] & ~swing[1:]):
             touchdowns.append((leg + 1, t[i + 1]))
@@ -88,10 +91,12 @@ def statements(res):
                 f"smallest peak / quasi-static share = {worst_ratio:.2f}" + ("; " + "; ".join(fails) if fails else "")))
 
     # S3: joint ranking over support samples solved without relaxation.
-    tau = res["/joints/torque"].reshape(len(t), 6, 3)
+    # tau[j]: (T, L) the torques of joint j of every leg (/model/joint_names, leg by leg)
+    tau = [res["/joints/torque"][:, [joints[j] for joints in leg_joints(res)]]
+           for j in range(len(PAPER_JOINTS))]
     support = (phase == 2) & (status == 0)[:, None]
-    peak = np.array([np.abs(tau[:, :, j][support]).max() for j in range(3)])
-    rms = np.array([np.sqrt(np.mean(tau[:, :, j][support] ** 2)) for j in range(3)])
+    peak = np.array([np.abs(tau[j][support]).max() for j in range(len(PAPER_JOINTS))])
+    rms = np.array([np.sqrt(np.mean(tau[j][support] ** 2)) for j in range(len(PAPER_JOINTS))])
     ok3 = bool(np.argmax(peak) == 1 and np.argmin(peak) == 0 and np.argmax(rms) == 1 and np.argmin(rms) == 0)
     out.append(("S3", "joint 2 carries the largest torque, joint 1 the smallest", ok3,
                 "support samples: peak abs(τ) coxa/femur/tibia = " + "/".join(f"{x:.2f}" for x in peak) +
@@ -100,7 +105,8 @@ def statements(res):
     # S4: the highest power peak at a stance change.
     P = res["/power/total"]
     changes = np.unique(np.round(np.concatenate(
-        [t[np.flatnonzero(np.diff((phase[:, leg] == 0).astype(int)) != 0) + 1] for leg in range(6)]), 9))
+        [t[np.flatnonzero(np.diff((phase[:, leg] == 0).astype(int)) != 0) + 1]
+         for leg in range(phase.shape[1])]), 9))
     i = int(np.argmax(P))
     dist = float(np.min(np.abs(changes - t[i]))) if changes.size else np.inf
     # Information: how many of the intervals between stance changes peak next to one.

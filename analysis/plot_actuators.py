@@ -3,7 +3,7 @@
 its speed, and for a scene with actuators its drive torque on its servo's torque-speed
 envelope with the continuous rating and the windowed RMS.
 
-Without actuators: for each of the 18 joints, the torque tau against the angular velocity
+Without actuators: for each joint (/model/joint_names), the torque tau against the angular velocity
 omega over the run (/joints/torque against /joints/velocity), with the torque limit, the
 URDF velocity limit where the robot has one and the RMS torque (time-weighted, trapezoid
 rule over /time) marked. With actuators (docs/theory/drive-train.md): the drive torque
@@ -11,8 +11,10 @@ against the speed, (omega, tau_drive) (/joints/drive_torque against /joints/velo
 
 usage: /usr/bin/python3 analysis/plot_actuators.py RESULT.h5 OUTDIR [--name FILE]
 
-Writes OUTDIR/actuators.png (or --name): a 3 x 6 grid, rows coxa, femur, tibia (the joints
-of each leg hip to foot), columns legs L1 ... L6. Samples are grey dots; samples above the
+Writes OUTDIR/actuators.png (or --name): a grid of joints per leg x legs, one column per
+leg (/model/leg_names, L1 first) and one row per joint of a leg, hip to foot (coxa, femur,
+tibia for the legs of three joints); a leg with fewer joints than the longest leaves its
+lower panels empty. Samples are grey dots; samples above the
 torque bound are red crosses where the allocation relaxed a constraint (/solver/status 1),
 black crosses where it failed (2) and purple circles on optimal samples (not expected).
 
@@ -40,13 +42,15 @@ import hexdyn_path  # first: the package hexdyn, from build/python when not inst
 hexdyn_path.ensure()
 from figures import (CONTINUOUS_COLOR, LIMIT_COLOR, RMS_COLOR,  # first: Agg
                      actuator_specs, draw_limit_and_exceedances, drive_torque_bound,
-                     envelope_speeds, fit_suptitle, mark_exceedances, no_load_speed,
-                     save_atomically, time_rms, torque_limits, velocity_limits)
+                     envelope_speeds, fit_suptitle, joint_role, mark_exceedances,
+                     no_load_speed, run_legs, save_atomically, time_rms, torque_limits,
+                     velocity_limits)
 from hexdyn.results import open_result
 import matplotlib.pyplot as plt
 import numpy as np
 
-JOINT_ROWS = ("coxa", "femur", "tibia")
+# The size of one joint's panel [in] (16 x 8 in for six legs of three joints).
+PANEL_SIZE = (8 / 3, 8 / 3)
 # The envelope is drawn out to the no-load speed when that is within this many times the
 # fastest sample of the row, else to the samples' range (a made-up supply far above need).
 NO_LOAD_REACH = 4.0
@@ -54,7 +58,8 @@ NO_LOAD_REACH = 4.0
 
 def operating_points(res):
     """The quantities the figure draws, as arrays: t (T,), tau (T,J), omega (T,J), status
-    (T,), names (J,), torque limit (J,) or None, velocity limit (J,) or None, rms (J,); with
+    (T,), names (J,), torque limit (J,) or None, velocity limit (J,) or None, rms (J,), the
+    legs' names and joints ("legs", "leg_joints": figures.run_legs); with
     actuators also specs (figures.actuator_specs), tau_drive (T,J), drive_limit (T,J) and
     window_rms (J,); specs None without."""
     names = list(res["/model/joint_names"])
@@ -66,6 +71,7 @@ def operating_points(res):
           "status": np.asarray(res["/solver/status"]), "names": names, "tau_limit": tau_lim,
           "tau_limit_source": source, "velocity_limit": vel_lim, "rms": time_rms(t, tau),
           "specs": actuator_specs(res.config, names)}
+    op["legs"], op["leg_joints"] = run_legs(res)
     if op["specs"] is not None:
         op["tau_drive"] = np.asarray(res["/joints/drive_torque"], dtype=float)
         op["drive_limit"] = np.asarray(res["/joints/drive_torque_limit"], dtype=float)
@@ -73,18 +79,45 @@ def operating_points(res):
     return op
 
 
-def joint_grid():
-    fig, axs = plt.subplots(3, 6, figsize=(16, 8), sharex="row", sharey="row",
-                            constrained_layout=True)
+def panels(op):
+    """(leg, row) of each joint's panel, in joint order: column = the leg, row = the joint's
+    place in its leg, hip to foot."""
+    where = {}
+    for leg, joints in enumerate(op["leg_joints"]):
+        for j, k in enumerate(joints):
+            where[k] = (leg, j)
+    return [where[k] for k in range(len(op["names"]))]
+
+
+def row_names(op):
+    """The name of each row of panels: the joint's place in its leg ("coxa", "j4"), from the
+    first leg that has a joint in that row (figures.joint_role)."""
+    names = {}
+    for leg, joints in enumerate(op["leg_joints"]):
+        for j in range(len(joints)):
+            names.setdefault(j, joint_role(op["leg_joints"], leg, j))
+    return [names[j] for j in range(len(names))]
+
+
+def joint_grid(op):
+    """The figure and its panels axs[row][leg]; the panels below a leg's last joint hidden."""
+    legs = op["leg_joints"]
+    rows = max(len(joints) for joints in legs)
+    fig, axs = plt.subplots(rows, len(legs), figsize=(PANEL_SIZE[0] * len(legs),
+                                                      PANEL_SIZE[1] * rows),
+                            sharex="row", sharey="row", constrained_layout=True, squeeze=False)
+    for leg, joints in enumerate(legs):
+        for j in range(len(joints), rows):
+            axs[j][leg].set_visible(False)
     return fig, axs
 
 
-def label_panel(ax, leg, j, ylabel):
+def label_panel(ax, op, leg, j, ylabel):
     ax.tick_params(labelsize=7)
     ax.grid(alpha=0.3)
     if leg == 0:
-        ax.set_ylabel(f"{JOINT_ROWS[j]}: {ylabel} [N m]", fontsize=8)
-    if j == 2:
+        ax.set_ylabel(f"{row_names(op)[j]}: {ylabel} [N m]", fontsize=8)
+    if j == len(op["leg_joints"][leg]) - 1:
         ax.set_xlabel("ω [rad/s]", fontsize=8)
 
 
@@ -111,10 +144,11 @@ def draw(res):
     op = operating_points(res)
     if op["specs"] is not None:
         return draw_drive(op)
-    fig, axs = joint_grid()
+    fig, axs = joint_grid(op)
     artists = []
+    where = panels(op)
     for k, name in enumerate(op["names"]):
-        leg, j = divmod(k, 3)
+        leg, j = where[k]
         ax = axs[j][leg]
         tau, omega = op["tau"][:, k], op["omega"][:, k]
         ax.scatter(omega, tau, s=3, color="0.55", lw=0, zorder=2)
@@ -125,7 +159,7 @@ def draw(res):
         drawn["rms"] = [ax.axhline(s * rms, color=RMS_COLOR, ls="--", lw=1.0) for s in (-1, 1)]
         peak = float(np.max(np.abs(tau)))
         ax.set_title(f"{name}\nRMS {rms:.2f}, peak {peak:.2f} N m", fontsize=8)
-        label_panel(ax, leg, j, "τ")
+        label_panel(ax, op, leg, j, "τ")
         artists.append(drawn)
     if op["tau_limit"] is None:
         limit_text = "no torque limit in the configuration"
@@ -144,7 +178,7 @@ def envelope_reach(op, row):
     """The speed the envelopes of a row of panels are drawn to: past the row's no-load
     speeds when they lie within NO_LOAD_REACH times its fastest sample, else past that
     sample's speed."""
-    ks = [k for k in range(len(op["names"])) if k % 3 == row]
+    ks = [joints[row] for joints in op["leg_joints"] if len(joints) > row]
     fastest = max(1e-3, float(np.max(np.abs(op["omega"][:, ks]))))
     w0 = max(no_load_speed(op["specs"], k) for k in ks)
     return 1.08 * (max(w0, fastest) if w0 <= NO_LOAD_REACH * fastest else fastest)
@@ -190,14 +224,13 @@ def draw_drive_joint(ax, op, k, reach):
 
 
 def draw_drive(op):
-    fig, axs = joint_grid()
-    reach = [envelope_reach(op, j) for j in range(3)]
+    fig, axs = joint_grid(op)
+    reach = [envelope_reach(op, j) for j in range(len(axs))]
     artists = []
-    for k in range(len(op["names"])):
-        leg, j = divmod(k, 3)
+    for k, (leg, j) in enumerate(panels(op)):
         artists.append(draw_drive_joint(axs[j][leg], op, k, reach[j]))
-        label_panel(axs[j][leg], leg, j, "τ_drive")
-    for j in range(3):
+        label_panel(axs[j][leg], op, leg, j, "τ_drive")
+    for j in range(len(axs)):
         axs[j][0].set_xlim(-reach[j], reach[j])
     rated = np.isfinite(op["specs"]["continuous_torque"]).sum()
     rating = ("no joint has a continuous rating" if rated == 0 else

@@ -66,33 +66,45 @@ def per_leg_support_peaks(run):
     mu = np.asarray(run["/contacts/required_friction"], dtype=float)
     leg = np.asarray(run["/contacts/required_friction_leg"])
     support = ~(np.asarray(run["/contacts/phase"]) == hr.PHASE_IMPACT).any(axis=1)
-    out = np.full(6, np.nan)
-    for k in range(6):
+    out = np.full(len(hr.leg_names(run)), np.nan)
+    for k in range(len(out)):
         sel = support & (leg == k) & np.isfinite(mu)
         if sel.any():
             out[k] = mu[sel].max()
     return out
 
 
-def leg_text(k):
-    return hr.LEG_NAMES[int(k)] if 0 <= int(k) < 6 else "-"
+def leg_text(row, k):
+    """The name of leg k (0-based) of a row's robot; "-" for none (-1)."""
+    return row["legs"][int(k)] if 0 <= int(k) < len(row["legs"]) else "-"
+
+
+def sweep_legs(sw):
+    """The leg names of the sweep's robot (one robot per sweep), as its first kept run of a
+    computed scenario stores them; () when it keeps none."""
+    for i in range(sw.size):
+        if sw.ok[i]:
+            return hr.leg_names(sw.run(i))
+    return ()
 
 
 def study_rows(sw):
-    """One dict per scenario: axis values, table metrics and the kept runs' derived values."""
+    """One dict per scenario: axis values, table metrics, the robot's leg names ("legs") and
+    the kept runs' derived values."""
     t = sw.table
+    legs = sweep_legs(sw)
     rows = []
     for i in range(sw.size):
         s = sw.scenario(i)
         row = {"id": t["id"][i], "duty_factor": s[DUTY], "peak_speed": s[SPEED],
-               "riser": s[RISER], "status": sw.status_names[i]}
+               "riser": s[RISER], "status": sw.status_names[i], "legs": legs}
         for name in ("required_friction_support", "required_friction_support_leg",
                      "required_friction_support_time", "required_friction_transient",
                      "required_friction_transient_leg", "required_friction_transient_time",
                      "no_friction_samples", "peak_utilized_friction", "slip_samples",
                      "relaxed_gait_samples", "energy"):
             row[name] = t[name][i]
-        row["leg_peaks"] = np.full(6, np.nan)
+        row["leg_peaks"] = np.full(len(legs), np.nan)
         row["transient_share"] = np.nan
         if sw.ok[i]:
             run = sw.run(i)
@@ -135,7 +147,7 @@ def plot_grid(rows, outdir, name, title, panels, ylabel, references=None):
                 if leg_metric:
                     for r, xv, yv in zip(sel, x, y):
                         if np.isfinite(yv):
-                            ax.annotate(leg_text(r[leg_metric]), (xv, yv), fontsize=6,
+                            ax.annotate(leg_text(r, r[leg_metric]), (xv, yv), fontsize=6,
                                         xytext=(2, 2), textcoords="offset points")
             ax.set_title(f"riser {riser * 100:.0f} cm: {column}", fontsize=9)
             ax.set_ylabel(ylabel)
@@ -153,15 +165,16 @@ def plot_grid(rows, outdir, name, title, panels, ylabel, references=None):
 def write_csv(rows, path):
     header = ["id", "duty_factor", "peak_speed", "riser", "status", "mu_support", "leg_support",
               "t_support", "mu_transient", "leg_transient", "t_transient",
-              *[f"mu_support_{leg}" for leg in hr.LEG_NAMES], "no_friction_samples",
+              *[f"mu_support_{leg}" for leg in (rows[0]["legs"] if rows else ())],
+              "no_friction_samples",
               "peak_utilized_friction", "slip_samples", "relaxed_gait_samples", "energy",
               "transient_energy_share"]
     out = []
     for r in rows:
         out.append([r["id"], r["duty_factor"], r["peak_speed"], r["riser"], r["status"],
-                    r["required_friction_support"], leg_text(r["required_friction_support_leg"]),
+                    r["required_friction_support"], leg_text(r, r["required_friction_support_leg"]),
                     r["required_friction_support_time"], r["required_friction_transient"],
-                    leg_text(r["required_friction_transient_leg"]),
+                    leg_text(r, r["required_friction_transient_leg"]),
                     r["required_friction_transient_time"], *r["leg_peaks"],
                     r["no_friction_samples"], r["peak_utilized_friction"], r["slip_samples"],
                     r["relaxed_gait_samples"], r["energy"], r["transient_share"]])
@@ -175,9 +188,9 @@ def print_table(rows):
     for r in sorted(rows, key=lambda r: (r["riser"], r["duty_factor"], r["peak_speed"])):
         print(f"| {r['riser']:.2f} | {fraction_text(r['duty_factor'])} | {r['peak_speed']:.2f} "
               f"| {r['required_friction_support']:.3f} "
-              f"({leg_text(r['required_friction_support_leg'])}) "
+              f"({leg_text(r, r['required_friction_support_leg'])}) "
               f"| {r['required_friction_transient']:.3f} "
-              f"({leg_text(r['required_friction_transient_leg'])}) "
+              f"({leg_text(r, r['required_friction_transient_leg'])}) "
               f"| {r['no_friction_samples']} | {100 * r['transient_share']:.1f} % |")
 
 

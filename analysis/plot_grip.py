@@ -12,9 +12,11 @@ Writes OUTDIR/grip.png (or --name), every axis linear:
          samples above it (the transients' mu* reaches hundreds) are triangles on its top
          edge; the scene's mu (contact.friction_coefficient of /meta config_yaml) dashed
          red when it is on the axis, else named in the title;
-  below, one panel per leg L1 ... L6: the leg's utilised friction |F_t| / F_n
-         (/contacts/utilized_friction; NaN in swing and not drawn), the scene's mu dashed,
-         and the leg's slip samples (/contacts/slip 1) as red crosses on the mu line.
+  below, one panel per leg (/model/leg_names), the left legs in the left column and the
+         right legs in the right one, front to rear (figures.leg_panels): the leg's
+         utilised friction |F_t| / F_n (/contacts/utilized_friction; NaN in swing and not
+         drawn), the scene's mu dashed, and the leg's slip samples (/contacts/slip 1) as red
+         crosses on the mu line.
 
 Touchdown transients (/contacts/phase 1, where the trunk rows may be relaxed) are shaded in
 every panel, each widened to at least 0.6 % of the run (a transient lasts milliseconds) and
@@ -30,8 +32,8 @@ import sys
 
 import hexdyn_path  # first: the package hexdyn, from build/python when not installed
 hexdyn_path.ensure()
-from figures import (LEG_COLORS, MIN_SPAN, fit_suptitle, fit_title, save_atomically,  # first: Agg
-                     shade_runs)
+from figures import (MIN_SPAN, bottom_panels, fit_suptitle, fit_title, leg_color,  # first: Agg
+                     leg_panels, save_atomically, shade_runs)
 from hexdyn import results as hr
 import matplotlib.pyplot as plt
 import numpy as np
@@ -44,8 +46,9 @@ TRANSIENT_LABEL = f"touchdown transient (shaded at least {100 * MIN_SPAN:g} % of
 
 
 def grip_data(res):
-    """The arrays the figure draws: t (T,), phase, utilised, slip (T,6), required (T,),
-    binding leg (T,), and the scene's mu (NaN when the configuration has none)."""
+    """The arrays the figure draws: t (T,), phase, utilised, slip (T,L), required (T,),
+    binding leg (T,), the scene's mu (NaN when the configuration has none) and the leg
+    names (L)."""
     mu = res.config.get("contact", {}).get("friction_coefficient", np.nan)
     return {"t": np.asarray(res["/time"], dtype=float),
             "phase": np.asarray(res["/contacts/phase"]),
@@ -53,7 +56,7 @@ def grip_data(res):
             "required": np.asarray(res["/contacts/required_friction"], dtype=float),
             "leg": np.asarray(res["/contacts/required_friction_leg"]),
             "slip": np.asarray(res["/contacts/slip"]),
-            "mu": float(mu)}
+            "mu": float(mu), "leg_names": hr.leg_names(res)}
 
 
 def shade_transients(ax, t, transient):
@@ -76,10 +79,9 @@ def draw_required(ax, d):
     spans = shade_transients(ax, t, (d["phase"] == hr.PHASE_IMPACT).any(axis=1))
     line, = ax.plot(t, req, color=REQUIRED_COLOR, lw=0.8, label="required mu* (sample)")
     binds = []
-    for k in range(len(hr.LEG_NAMES)):
+    for k, name in enumerate(d["leg_names"]):
         on = (d["leg"] == k) & (req <= top)
-        dots, = ax.plot(t[on], req[on], ".", ms=3, color=LEG_COLORS[k],
-                        label=f"{hr.LEG_NAMES[k]} binds")
+        dots, = ax.plot(t[on], req[on], ".", ms=3, color=leg_color(k), label=f"{name} binds")
         binds.append(dots)
     above = req > top
     over, = ax.plot(t[above], np.full(int(above.sum()), top), "^", ms=4, color=REQUIRED_COLOR,
@@ -103,14 +105,14 @@ def draw_leg(ax, d, k):
     t = d["t"]
     spans = shade_transients(ax, t, d["phase"][:, k] == hr.PHASE_IMPACT)
     u = np.where(np.isfinite(d["utilized"][:, k]), d["utilized"][:, k], np.nan)
-    used, = ax.plot(t, u, color=LEG_COLORS[k], lw=1, label="utilised |F_t|/F_n")
+    used, = ax.plot(t, u, color=leg_color(k), lw=1, label="utilised |F_t|/F_n")
     mu = ax.axhline(d["mu"], color=MU_COLOR, ls="--", lw=1, label=f"scene mu = {d['mu']:g}")
     slips = d["slip"][:, k] == 1
     slip, = ax.plot(t[slips], np.full(int(slips.sum()), d["mu"]), "x", ms=5, color=SLIP_COLOR,
                     label="slip sample")
     if np.isfinite(d["mu"]):
         ax.set_ylim(0, 1.5 * d["mu"])
-    ax.set_title(f"{hr.LEG_NAMES[k]}: utilised friction, {int(slips.sum())} slip sample(s)",
+    ax.set_title(f"{d['leg_names'][k]}: utilised friction, {int(slips.sum())} slip sample(s)",
                  fontsize=9)
     ax.grid(alpha=0.3)
     return {"spans": spans, "utilized": used, "mu": mu, "slip": slip}
@@ -120,18 +122,21 @@ def draw(res):
     """The figure, its artists ({"required": top panel's, "legs": one dict per leg}) and the
     data drawn."""
     d = grip_data(res)
-    fig = plt.figure(figsize=(11, 10))
-    grid = fig.add_gridspec(4, 2, height_ratios=(1.3, 1, 1, 1))
+    rows, cells = leg_panels(len(d["leg_names"]))
+    ratios = (1.3,) + (1,) * rows
+    fig = plt.figure(figsize=(11, 10 * sum(ratios) / 4.3))  # 11 x 10 in with three rows
+    grid = fig.add_gridspec(1 + rows, 2, height_ratios=ratios)
     top = fig.add_subplot(grid[0, :])
-    legs = [fig.add_subplot(grid[1 + k // 2, k % 2], sharex=top) for k in range(6)]
+    legs = [fig.add_subplot(grid[1 + row, col], sharex=top) for row, col in cells]
     artists = {"required": draw_required(top, d),
-               "legs": [draw_leg(legs[k], d, k) for k in range(6)]}
+               "legs": [draw_leg(ax, d, k) for k, ax in enumerate(legs)]}
+    bottom = bottom_panels(cells)
     for k, ax in enumerate(legs):
-        if k >= 4:
+        if k in bottom:
             ax.set_xlabel("time [s]")
         else:
             ax.tick_params(labelbottom=False)
-        if k % 2 == 0:
+        if cells[k][1] == 0:
             ax.set_ylabel("|F_t| / F_n")
     handles, labels = [], []
     for ax in [top, legs[0]]:

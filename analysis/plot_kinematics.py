@@ -3,8 +3,8 @@
 
     /usr/bin/python3 analysis/plot_kinematics.py RESULT.h5 OUTDIR
 
-Writes OUTDIR/gait_diagram.png (support and impact phases of legs L1..L6 against time,
-from /contacts/phase) and OUTDIR/feet_heights.png (foot height z against forward
+Writes OUTDIR/gait_diagram.png (support and impact phases of every leg, /model/leg_names,
+against time, from /contacts/phase) and OUTDIR/feet_heights.png (foot height z against forward
 position y for every leg over the terrain profile of the resolved configuration).
 Each figure is saved under a temporary name in OUTDIR and renamed when complete.
 """
@@ -15,7 +15,8 @@ import sys
 
 import hexdyn_path  # first: the package hexdyn, from build/python when not installed
 hexdyn_path.ensure()
-from figures import IMPACT_COLOR, LEG_COLORS, SUPPORT_COLOR, save_atomically  # first: Agg
+from figures import (IMPACT_COLOR, SUPPORT_COLOR, leg_color, leg_side,  # first: Agg
+                     save_atomically)
 from hexdyn import results as hr
 from matplotlib.patches import Patch
 import matplotlib.pyplot as plt
@@ -87,15 +88,17 @@ def plot_gait_diagram(res, outdir):
     phase = np.asarray(res["/contacts/phase"])
     dt_last = np.median(np.diff(t)) if len(t) > 1 else 0.05
     t_end = np.append(t[1:], t[-1] + dt_last) if len(t) else t
+    names = hr.leg_names(res)
+    n = len(names)
     fig, ax = plt.subplots(figsize=(10, 4))
-    for leg in range(6):
-        row = 5 - leg  # L1 on top
+    for leg in range(n):
+        row = n - 1 - leg  # L1 on top
         for value, color in ((hr.PHASE_SUPPORT, SUPPORT_COLOR), (hr.PHASE_IMPACT, IMPACT_COLOR)):
             bars = [(t[a], t_end[b - 1] - t[a]) for a, b in _runs(phase[:, leg] == value)]
             ax.broken_barh(bars, (row - 0.4, 0.8), facecolors=color, edgecolor="none")
-    ax.set_yticks(range(6))
-    ax.set_yticklabels([f"L{6 - r}" for r in range(6)])
-    ax.set_ylim(-0.6, 5.6)
+    ax.set_yticks(range(n))
+    ax.set_yticklabels(names[::-1])
+    ax.set_ylim(-0.6, n - 0.4)
     if len(t):
         ax.set_xlim(t[0], t_end[-1])
     ax.set_xlabel("time t [s]")
@@ -110,7 +113,7 @@ def plot_gait_diagram(res, outdir):
 
 
 def plot_feet_heights(res, outdir):
-    feet = np.asarray(res["/feet/position"], dtype=float)  # (T, 6, 3)
+    feet = np.asarray(res["/feet/position"], dtype=float)  # (T, L, 3)
     fig, ax = plt.subplots(figsize=(10, 5))
     y_min, y_max = float(feet[:, :, 1].min()), float(feet[:, :, 1].max())
     pad = 0.05 * max(y_max - y_min, 0.1)
@@ -126,11 +129,11 @@ def plot_feet_heights(res, outdir):
     else:
         print("plot_kinematics: no terrain in the configuration; profile not drawn",
               file=sys.stderr)
-    for leg in range(6):
-        style = "-" if leg % 2 == 0 else "--"  # left legs 1, 3, 5 solid; right dashed
-        ax.plot(feet[:, leg, 1], feet[:, leg, 2], style, color=LEG_COLORS[leg],
-                linewidth=1.2, label=f"L{leg + 1} ({'left' if leg % 2 == 0 else 'right'})",
-                zorder=2)
+    for leg, name in enumerate(hr.leg_names(res)):
+        side = leg_side(leg)
+        style = "-" if side == "left" else "--"  # left legs solid; right dashed
+        ax.plot(feet[:, leg, 1], feet[:, leg, 2], style, color=leg_color(leg),
+                linewidth=1.2, label=f"{name} ({side})", zorder=2)
     ax.set_xlim(y_min - pad, y_max + pad)
     ax.set_xlabel("foot position y (forward) [m]")
     ax.set_ylabel("foot height z [m]")

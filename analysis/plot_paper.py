@@ -4,7 +4,7 @@
 usage: /usr/bin/python3 analysis/plot_paper.py RESULT.h5 OUTDIR
 
 Writes, atomically:
-  fig3a_normal_forces.png    normal foot forces F_iz of all six legs (paper Fig. 3a)
+  fig3a_normal_forces.png    normal foot forces F_iz of every leg (paper Fig. 3a)
   fig3b_impacts_legs_3_4.png close view of the first touchdowns of legs 3 and 4 (Fig. 3b)
   fig4a_torques_leg1.png     joint torques of leg 1 (Fig. 4a), with the torque limit and
                              the samples above it marked (relaxed: red crosses)
@@ -18,15 +18,14 @@ import sys
 import hexdyn_path  # first: the package hexdyn, from build/python when not installed
 hexdyn_path.ensure()
 from figures import (MIN_SPAN, OPTIMAL_OVER_COLOR, RELAXED_COLOR,  # first: Agg
-                     draw_limit_and_exceedances, fit_title, fraction_text, save_atomically,
-                     shade_runs, torque_limits)
+                     draw_limit_and_exceedances, fit_title, fraction_text, joint_role,
+                     leg_side, run_legs, save_atomically, shade_runs, torque_limits)
 from hexdyn.results import open_result
 import matplotlib.pyplot as plt
 import numpy as np
 
 G = 9.81
-LEG_STYLE = {0: "-", 1: "--"}  # left solid, right dashed
-JOINTS = ("coxa (joint 1)", "femur (joint 2)", "tibia (joint 3)")
+LEG_STYLE = {"left": "-", "right": "--"}  # left solid, right dashed
 RELAXED_SPAN_COLOR = "#f2c4c4"  # a light tint of RELAXED_COLOR
 
 
@@ -62,8 +61,8 @@ def fig3a(res, outdir):
     t = res["/time"]
     F = res["/contacts/force"]
     fig, ax = plt.subplots(figsize=(9, 4.5), constrained_layout=True)
-    for leg in range(6):
-        ax.plot(t, F[:, leg, 2], LEG_STYLE[leg % 2], lw=1.0, label=f"L{leg + 1}")
+    for leg, name in enumerate(run_legs(res)[0]):
+        ax.plot(t, F[:, leg, 2], LEG_STYLE[leg_side(leg)], lw=1.0, label=name)
     total = F[:, :, 2].sum(axis=1)
     ax.plot(t, total, color="k", lw=0.8, alpha=0.6, label="sum")
     weight = float(res["/model/total_mass"]) * G
@@ -112,7 +111,8 @@ def fig3b(res, outdir):
 
 
 def draw_torques(ax, res, leg):
-    """The joint torques of leg `leg` (1-based) over time on `ax`, with each joint's torque
+    """The joint torques of leg `leg` (1-based) over time on `ax`, one line per joint of the
+    leg (/model/joint_names: "coxa (joint 1)", ...), with each joint's torque
     limit (allocation.torque_limit, or its URDF effort) as dotted lines and the samples above
     it marked (red crosses: relaxed samples; black: failed; purple circles: optimal, not
     expected), analysis/figures.py. Returns one dict of artists per joint
@@ -122,10 +122,11 @@ def draw_torques(ax, res, leg):
     names = list(res["/model/joint_names"])
     limits, _ = torque_limits(res.config, res.urdf, names)
     uniform = limits is not None and np.allclose(limits, limits[0])
+    joints = run_legs(res)[1]
     drawn = []
-    for j in range(3):
-        k = 3 * (leg - 1) + j
-        line = ax.plot(t, tau[:, k], lw=1.0, label=JOINTS[j])[0]
+    for j, k in enumerate(joints[leg - 1]):
+        role = joint_role(joints, leg - 1, j)
+        line = ax.plot(t, tau[:, k], lw=1.0, label=f"{role} (joint {j + 1})")[0]
         limit = None if limits is None else float(limits[k])
         drawn.append(draw_limit_and_exceedances(
             ax, t, tau[:, k], limit, res["/solver/status"],

@@ -38,8 +38,14 @@ def main(argv=None):
                and lim.get("effort") is not None]
     mass = float(res["/model/total_mass"])
     t = res["/time"]
-    tau = np.abs(res["/joints/torque"])                    # (T, 18)
-    phase = res["/contacts/phase"]                         # (T, 6): 0 swing, 1 impact, 2 support
+    tau = np.abs(res["/joints/torque"])                    # (T, J)
+    phase = res["/contacts/phase"]                         # (T, L): 0 swing, 1 impact, 2 support
+    # The joints of each row, hip to foot (row j: the j-th joint of every leg that has one),
+    # named by position (coxa/femur/tibia for legs of three joints: hr.joint_roles).
+    legs = hr.leg_joints(res)
+    rows = [[joints[j] for joints in legs if len(joints) > j]
+            for j in range(max(len(joints) for joints in legs))]
+    roles = "/".join(hr.joint_roles(len(rows)))
     status = res["/solver/status"]
     transient = (phase == 1).any(axis=1)
     terrain = cfg["terrain"]
@@ -51,8 +57,8 @@ def main(argv=None):
 
     def peaks(mask):
         if not mask.any():
-            return [float("nan")] * 3
-        return [float(tau[mask][:, k::3].max()) for k in range(3)]
+            return [float("nan")] * len(rows)
+        return [float(tau[mask][:, row].max()) for row in rows]
 
     calm, hard = peaks(~transient), peaks(transient)
     print(f"robot: {cfg.get('name', args.result)}  ({args.result})")
@@ -63,9 +69,9 @@ def main(argv=None):
           f"{p0[2] - line:+.4f} m above the tread-centre line")
     print(f"  travel {travel:.3f} m in {t[-1] - t[0]:.2f} s; gait duty factor {cfg['gait']['duty_factor']:g}, "
           f"stroke {cfg['gait']['stroke']:g} m")
-    print("  peak |tau| coxa/femur/tibia outside touchdown transients: "
+    print(f"  peak |tau| {roles} outside touchdown transients: "
           + " / ".join(f"{v:.3f}" for v in calm) + f" N m ({max(calm) / limit:.0%} of the limit)")
-    print("  peak |tau| coxa/femur/tibia inside touchdown transients:  "
+    print(f"  peak |tau| {roles} inside touchdown transients:  "
           + " / ".join(f"{v:.3f}" for v in hard) + f" N m ({max(hard) / limit:.0%} of the limit)")
     relaxed_calm = int(((status == 1) & ~transient).sum())
     print(f"  samples {len(t)}: optimal {int((status == 0).sum())}, relaxed {int((status == 1).sum())} "

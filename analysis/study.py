@@ -29,7 +29,8 @@ Metrics of a run (each against the reference named in its row, same touchdowns):
                 window (0 with fewer than two), relative, worst touchdown.
   err_energy    /energy/total (= integral of sum |tau omega| dt), relative.
   err_tau_peak  max over joints and samples of |tau|, relative.
-  err_tau_rms   sqrt(trapezoid of sum_k tau_k^2 / 18 over time / duration), relative.
+  err_tau_rms   sqrt(trapezoid of sum_k tau_k^2 / J over time / duration), relative (J
+                joints).
   wall_time_s   the smallest /meta wall_time_s (compute time, file writing excluded)
                 over the run's repeats.
 Runs that differ from the scene by nothing (after dropping --set values equal to the
@@ -176,7 +177,7 @@ class Measured:
             self.version = hr.decode_text(meta.get("version", ""))
             self.git_commit = hr.decode_text(meta.get("git_commit", ""))
             self.t = f["/time"][()]
-            self.fz = f["/contacts/force"][()][:, :, 2]  # (T, 6): normal force on treads
+            self.fz = f["/contacts/force"][()][:, :, 2]  # (T, L): normal force on treads
             tau = f["/joints/torque"][()]
             self.energy = float(f["/energy/total"][()])
             self.impact_leg = f["/impacts/leg"][()].astype(int) + 1  # 1-based here

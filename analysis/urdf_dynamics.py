@@ -158,7 +158,7 @@ class UrdfDynamics:
 
 
 def feet_from_mapping(entries):
-    """/model/leg_mapping entries -> [(link, point in the link frame)] for L1..L6."""
+    """/model/leg_mapping entries -> [(link, point in the link frame)] for each leg, in leg order."""
     feet = []
     for e in entries:
         words = decode_text(e).split()
@@ -171,14 +171,16 @@ def feet_from_mapping(entries):
 
 
 def check(result_path, urdf_path, tolerance, trunk_tolerance):
-    """urdf_path None: the result's /model/urdf with its feet L1_foot ... L6_foot."""
+    """urdf_path None: the result's /model/urdf with its feet <leg>_foot, one per leg of
+    /model/leg_names."""
     import h5py
 
     with h5py.File(result_path, "r") as h:
         names = [decode_text(n) for n in h["/model/joint_names"][:]]
         if urdf_path is None:
             urdf_text = decode_text(h["/model/urdf"][()])
-            feet = [(f"L{i}_foot", np.zeros(3)) for i in range(1, 7)]
+            feet = [(f"{decode_text(leg)}_foot", np.zeros(3))
+                    for leg in h["/model/leg_names"][:]]
         else:
             urdf_text = Path(urdf_path).read_text()
             feet = feet_from_mapping(h["/model/leg_mapping"][:])

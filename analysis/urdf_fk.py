@@ -6,10 +6,12 @@ revolute rotations about <axis> from the root link reproduces /feet/position.
 
     from urdf_fk import load_urdf
     mass, feet_fk = load_urdf(urdf_text)
-    feet = feet_fk(base_position, base_quat_wxyz, q)   # (T,3), (T,4), (T,18) -> (T,6,3)
+    feet = feet_fk(base_position, base_quat_wxyz, q)   # (T,3), (T,4), (T,J) -> (T,L,3)
 
-Joint angle order: L1_coxa, L1_femur, L1_tibia, L2_coxa, ..., L6_tibia for hexdyn's own
-URDF; any other URDF (a real robot's) takes its joint names in hexdyn's order, e.g.
+L legs and J joints, the robot's. Joint angle order for hexdyn's own URDF (links L1_foot,
+L2_foot, ...): leg by leg, each leg's moving joints on its chain from the root to its foot,
+hip to foot (L1_coxa, L1_femur, L1_tibia, L2_coxa, ..., the order of /model/joint_names);
+any other URDF (a real robot's) takes its joint names in hexdyn's order, e.g.
 /model/joint_names of a result, and its foot links: UrdfRobot(text, joint_order=...,
 foot_links=...). Fixed joints are composed like any other; continuous joints rotate like
 revolute ones; a link without <inertial> is massless.
@@ -19,10 +21,6 @@ import re
 import xml.etree.ElementTree as ET
 
 import numpy as np
-
-JOINT_ORDER = tuple(f"L{i}_{j}" for i in range(1, 7) for j in ("coxa", "femur", "tibia"))
-FOOT_LINKS = tuple(f"L{i}_foot" for i in range(1, 7))
-
 
 def _vec(text, default=(0.0, 0.0, 0.0)):
     if text is None:
@@ -75,8 +73,7 @@ class UrdfJoint:
 class UrdfRobot:
     """Links (name -> mass [kg], COM [m]) and joints of a URDF, with FK."""
 
-    def __init__(self, text, joint_order=JOINT_ORDER, foot_links=None):
-        self.joint_order = tuple(joint_order)
+    def __init__(self, text, joint_order=None, foot_links=None):
         root = ET.fromstring(text)
         if root.tag != "robot":
             raise ValueError("URDF: root element is not <robot>")
@@ -119,10 +116,25 @@ class UrdfRobot:
             if missing:
                 raise ValueError(f"URDF: no foot links {missing}")
         self.foot_links = tuple(feet)
+        self.joint_order = tuple(self.chain_joints() if joint_order is None else joint_order)
+
+    def chain_joints(self):
+        """The moving joints on each foot link's chain from the root, leg by leg, hip to foot:
+        hexdyn's joint order for its own URDF."""
+        order = []
+        for foot in self.foot_links:
+            chain, link = [], foot
+            while link in self.joint_of_child:
+                joint = self.joint_of_child[link]
+                if joint.type != "fixed":
+                    chain.append(joint.name)
+                link = joint.parent
+            order += reversed(chain)
+        return order
 
     def link_poses(self, base_position, base_quat_wxyz, q, links=None):
-        """World poses of `links` (default: all). Inputs (T,3), (T,4), (T,18) or one
-        sample (3,), (4,), (18,). Returns {link: (R (T,3,3), p (T,3))}."""
+        """World poses of `links` (default: all). Inputs (T,3), (T,4), (T,J) or one
+        sample (3,), (4,), (J,). Returns {link: (R (T,3,3), p (T,3))}."""
         p0 = np.atleast_2d(np.asarray(base_position, dtype=float))
         R0 = quaternion_to_matrix(np.atleast_2d(base_quat_wxyz))
         q = np.atleast_2d(np.asarray(q, dtype=float))
@@ -150,8 +162,8 @@ class UrdfRobot:
         return {link: pose(link) for link in (links or self.link_mass)}
 
     def foot_positions(self, base_position, base_quat_wxyz, q):
-        """World positions of the foot links (L1_foot..L6_foot by default): (T,6,3), or
-        (6,3) for one sample."""
+        """World positions of the foot links (L1_foot, L2_foot, ... by default): (T,L,3),
+        or (L,3) for one sample."""
         single = np.ndim(q) == 1
         poses = self.link_poses(base_position, base_quat_wxyz, q, self.foot_links)
         out = np.stack([poses[name][1] for name in self.foot_links], axis=1)
@@ -174,6 +186,6 @@ def parse_urdf(text):
 
 def load_urdf(text):
     """(total mass [kg], feet FK function) of a URDF string; the function maps
-    (base_position, base_quat_wxyz, q18) to the foot positions (see foot_positions)."""
+    (base_position, base_quat_wxyz, q) to the foot positions (see foot_positions)."""
     robot = UrdfRobot(text)
     return robot.total_mass, robot.foot_positions

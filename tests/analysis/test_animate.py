@@ -156,7 +156,7 @@ def case_result(args, d):
         check(len(frames) == times.size and np.array_equal(frames.times, times),
               f"{view}: frame times t0 + i / fps")
         want = np.stack([[[np.interp(tf, t, feet[:, leg, c]) for c in range(3)]
-                          for leg in range(6)] for tf in times])
+                          for leg in range(feet.shape[1])] for tf in times])
         scene = Scene(motion, frames, view, 30)
         worst = 0.0
         for i in range(len(frames)):
@@ -241,13 +241,13 @@ SHORT = ("motion.cycle_durations=null", "motion.cycles=1", "motion.peak_speed=0.
 
 
 def interp_feet(t, feet, times):
-    """numpy.interp of each foot's coordinates (T,6,3) at `times` (held at the ends)."""
+    """numpy.interp of each foot's coordinates (T,L,3) at `times` (held at the ends)."""
     return np.stack([[[np.interp(tf, t, feet[:, leg, c]) for c in range(3)]
-                      for leg in range(6)] for tf in times])
+                      for leg in range(feet.shape[1])] for tf in times])
 
 
 def drawn_side(lines):
-    """(6, 2) y, z of the first point of each line of a side view."""
+    """(lines, 2) y, z of the first point of each line of a side view."""
     return np.array([[float(np.asarray(a, dtype=float)[0]) for a in line.get_data()]
                      for line in lines])
 

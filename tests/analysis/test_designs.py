@@ -168,15 +168,16 @@ def check_mass_rule(d):
     with h5py.File(path, "r") as f:
         total = float(f["model/total_mass"][()])
         urdf = ET.fromstring(text(f["model/urdf"][()]))
+        legs = [text(n) for n in f["model/leg_names"][()]]  # the robot's legs, L1 ...
     ratio = {"coxa": 1.0, **{k: v / paper[k]["length"] for k, v in lengths.items()}}
-    want = paper["trunk"]["mass"] + paper["payload"]["mass"] + 6 * sum(
+    want = paper["trunk"]["mass"] + paper["payload"]["mass"] + len(legs) * sum(
         paper[k]["mass"] * ratio[k] for k in ("coxa", "femur", "tibia"))
     check(abs(total - want) <= 1e-12 * want, "mass rule: /model/total_mass is the hand sum",
           f"{total} != {want}")
     links = {l.get("name"): l for l in urdf.findall("link")}
-    for leg in range(1, 7):
+    for leg in legs:
         for link in ("femur", "tibia"):
-            el = links[f"L{leg}_{link}_link"].find("inertial")
+            el = links[f"{leg}_{link}_link"].find("inertial")
             m = float(el.find("mass").get("value"))
             c = np.array([float(x) for x in el.find("origin").get("xyz").split()])
             it = el.find("inertia")
@@ -187,7 +188,7 @@ def check_mass_rule(d):
                                        paper[link]["inertia"], ratio[link])
             ok = (abs(m - wm) <= 1e-12 * wm and np.allclose(c, wc, rtol=1e-12, atol=1e-15)
                   and np.allclose(got, wI, rtol=1e-9, atol=1e-15))
-            check(ok, f"mass rule: L{leg}_{link} inertial = the stretched point cloud",
+            check(ok, f"mass rule: {leg}_{link} inertial = the stretched point cloud",
                   f"{m} {c} {got.diagonal()} vs {wm} {wc} {wI.diagonal()}")
 
 

@@ -86,11 +86,15 @@ def test_paper(args, d):
     check((over & (status[:, None] == 1)).any(), "paper: relaxed samples above the limit exist "
           "(what the marks are for)")
     res = open_result(path)
+    names = raw["names"]
     for leg in (1, 2):
         fig, ax = plt.subplots()
         drawn = plot_paper.draw_torques(ax, res, leg)
+        # The leg's joints, by the labels of the paper robot (L1_coxa, ...), in file order.
+        leg_joints = [k for k, n in enumerate(names) if n.startswith(f"L{leg}_")]
+        check(len(drawn) == len(leg_joints), f"paper leg {leg}: one torque line per joint")
         for j, dj in enumerate(drawn):
-            k = 3 * (leg - 1) + j
+            k = leg_joints[j]
             check(hline_levels(dj["limit"]) == [-limit, limit],
                   f"paper leg {leg} joint {j}: limit lines at ±{limit:g}",
                   str(hline_levels(dj["limit"])))
@@ -110,7 +114,8 @@ def test_paper(args, d):
                  for k, a in enumerate(artists))
     ok_marks = all(a["counts"]["relaxed"] == int((over[:, k] & (status == 1)).sum())
                    for k, a in enumerate(artists))
-    check(len(artists) == 18 and ok_lim, "actuators (paper): ±torque limit on all 18 joints")
+    check(len(artists) == len(names) and ok_lim,
+          f"actuators (paper): ±torque limit on all {len(names)} joints")
     check(ok_rms, "actuators (paper): ±RMS torque = sqrt(trapz(tau², t) / duration)")
     check(ok_marks, "actuators (paper): relaxed samples above the limit marked")
     check(all(not a["velocity"] for a in artists), "actuators (paper): no velocity limit drawn "
@@ -272,7 +277,7 @@ def test_drive(args, d):
         ok_rated &= hline_levels(a["continuous"]) == want
         ok_rms &= bool(np.allclose(hline_levels(a["window_rms"]), [-rms[k], rms[k]], rtol=1e-9))
         ok_marks &= a["counts"]["relaxed"] == int((over[:, k] & (status == 1)).sum())
-    check(len(artists) == 18 and ok_read, "actuators (MX-64): the envelope at each sample's "
+    check(len(artists) == len(names) and ok_read, "actuators (MX-64): the envelope at each sample's "
           "speed is /joints/drive_torque_limit (1e-9 N m)")
     check(ok_vertex, "actuators (MX-64): the envelope's vertices on min(peak, G k_t η (V − "
           "G k_t|ω|)/R) of /meta")

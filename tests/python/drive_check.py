@@ -57,7 +57,7 @@ def read_file(path):
 
 
 def parameters(r):
-    """{key: (18,) array in /model/joint_names order} of /meta actuators.joints; the
+    """{key: (J,) array in /model/joint_names order} of /meta actuators.joints; the
     optional keys +inf where absent."""
     joints = r["config"]["actuators"]["joints"]
     assert sorted(joints) == sorted(r["joints"]), (sorted(joints), r["joints"])

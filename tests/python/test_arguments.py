@@ -50,7 +50,8 @@ paper = hexdyn.run(PAPER)
 T = 6
 states = {k: np.array(paper[k][:T]) for k in STATE}
 states["foot_forces"] = np.array(paper["/contacts/force"][:T])
-states["foot_normals"] = np.tile([0.0, 0.0, 1.0], (T, 6, 1))
+L = len(hexdyn.leg_names(paper))  # the robot's legs
+states["foot_normals"] = np.tile([0.0, 0.0, 1.0], (T, L, 1))
 
 
 def fd(scene, s, t=slice(None)):
@@ -101,9 +102,10 @@ print("forward_dynamics: NaN and infinities refused in each argument, named by i
 spheres = hexdyn.run(SPHERES)
 sphere_states = {k: np.array(spheres[k][:T]) for k in STATE}
 sphere_states["foot_forces"] = np.array(spheres["/contacts/force"][:T])
-sphere_states["foot_normals"] = np.tile([0.0, 0.0, 1.0], (T, 6, 1))
+L_SPHERES = len(hexdyn.leg_names(spheres))
+sphere_states["foot_normals"] = np.tile([0.0, 0.0, 1.0], (T, L_SPHERES, 1))
 fd(SPHERES, sphere_states)
-for leg in range(6):
+for leg in range(L_SPHERES):
     for normal in ([0, 0, 0], [0, 1e-7, 0]):
         bad = {k: v.copy() for k, v in sphere_states.items()}
         bad["foot_normals"][4, leg] = normal

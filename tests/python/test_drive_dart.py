@@ -19,7 +19,7 @@ accelerations must be hexdyn's prescribed ones (/joints/acceleration and the tru
 2. Drive train, on a result of configs/paper.yaml with a section
    `actuators: {default: SCENE_DRIVE, femur: SCENE_FEMUR, joints: {L2_tibia: …}}`
    (scene_with_actuators), each joint's resolved values checked against the scene's. What the file must hold:
-     /joints/drive_torque   (T, 18) [N m], τ_drive above, in /model/joint_names order;
+     /joints/drive_torque   (T, J) [N m], τ_drive above, in /model/joint_names order;
      /meta config_yaml      YAML with actuators: joints: <joint name>: {armature [kg m²],
                             coulomb_friction [N m], viscous_friction [N m s/rad], ...}
                             for every name of /model/joint_names.
@@ -111,7 +111,7 @@ def read_result(path):
 
 
 def drive_parameters(r):
-    """{key: (18,) array in /model/joint_names order} of /meta config_yaml's actuators."""
+    """{key: (J,) array in /model/joint_names order} of /meta config_yaml's actuators."""
     joints = ((r["config"] or {}).get("actuators") or {}).get("joints") or {}
     missing = [n for n in r["joints"] if n not in joints]
     assert not missing, f"config_yaml actuators.joints lacks {missing}"

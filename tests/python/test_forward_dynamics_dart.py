@@ -40,10 +40,13 @@ from common import args, cli_run, text  # noqa: E402
 from test_drive_dart import DartRobot, dart, difference  # noqa: E402
 
 import hexdyn  # noqa: E402
+from hexdyn import results as hr  # noqa: E402
 
 SCENES = (os.path.join("configs", "paper.yaml"),
           os.path.join("configs", "robots", "phantomx_mark4_stairs.yaml"))
 STATES = 20
+# The trunk's coordinates of an acceleration, before the joints' (forward_dynamics' order).
+TRUNK_DOFS = ("ax", "ay", "az", "alpha_x", "alpha_y", "alpha_z")
 TOLERANCE = 1e-10  # max |a_DART - a_hexdyn| over max |a_hexdyn|, per state
 
 
@@ -70,22 +73,24 @@ def check_result(scene, r):
     assert worst <= TOLERANCE, f"the result's accelerations differ by {worst:.3g}"
 
 
-def random_states(rng, n):
-    """n random states in a result file's names and shapes (orientation w >= 0)."""
+def random_states(rng, n, sizes):
+    """n random states in a result file's names and shapes (orientation w >= 0) of a robot of
+    sizes["L"] legs and sizes["J"] joints (hexdyn.results.shape_sizes of its result)."""
+    L, J = sizes["L"], sizes["J"]
     quat = rng.normal(size=(n, 4))
     quat /= np.linalg.norm(quat, axis=1)[:, None]
     quat *= np.sign(quat[:, :1])
     return {"/base/position": rng.uniform(-1, 1, (n, 3)), "/base/orientation": quat,
             "/base/linear_velocity": rng.uniform(-1, 1, (n, 3)),
             "/base/angular_velocity": rng.uniform(-2, 2, (n, 3)),
-            "/joints/position": rng.uniform(-1, 1, (n, 18)),
-            "/joints/velocity": rng.uniform(-2, 2, (n, 18)),
-            "/joints/torque": rng.uniform(-2, 2, (n, 18)),
-            "/contacts/force": rng.uniform(-20, 20, (n, 6, 3))}
+            "/joints/position": rng.uniform(-1, 1, (n, J)),
+            "/joints/velocity": rng.uniform(-2, 2, (n, J)),
+            "/joints/torque": rng.uniform(-2, 2, (n, J)),
+            "/contacts/force": rng.uniform(-20, 20, (n, L, 3))}
 
 
 def hexdyn_accelerations(scene, s, t=slice(None), forces=True):
-    """hexdyn.forward_dynamics at the states s[t]: (..., 24), trunk then joints."""
+    """hexdyn.forward_dynamics at the states s[t]: (..., 6 + J), trunk then joints."""
     a = hexdyn.forward_dynamics(
         scene, s["/base/position"][t], s["/base/orientation"][t], s["/joints/position"][t],
         s["/base/linear_velocity"][t], s["/base/angular_velocity"][t], s["/joints/velocity"][t],
@@ -102,18 +107,20 @@ def check_scene(scene, rng):
     r = hexdyn.run(scene)
     check_result(scene, r)
     robot = robot_of(r, scene)
-    states = random_states(rng, STATES)
+    sizes = hr.shape_sizes(r)
+    dofs = len(TRUNK_DOFS) + sizes["J"]  # the trunk's, then one per joint
+    states = random_states(rng, STATES, sizes)
     dart_robot = DartRobot(robot)
     a = hexdyn_accelerations(scene, states)
     no_forces = hexdyn_accelerations(scene, states, forces=False)
-    assert a.shape == (STATES, 24), a.shape
+    assert a.shape == (STATES, dofs), a.shape
     worst, least = 0.0, np.inf
     for t in range(STATES):
         a_dart = dart_robot.rigid(states, t, states["/joints/torque"][t])
         worst = max(worst, relative(a_dart, a[t]))
         least = min(least, relative(a_dart, no_forces[t]))
     one = hexdyn_accelerations(scene, states, t=STATES // 2)
-    assert one.shape == (24,) and (one == a[STATES // 2]).all(), "one state differs from the batch"
+    assert one.shape == (dofs,) and (one == a[STATES // 2]).all(), "one state differs from the batch"
     print(f"{robot['file']}: {STATES} random states, largest relative difference to DART "
           f"{worst:.2g} (tolerance {TOLERANCE:g}); without the foot forces, the smallest "
           f"{least:.2g}; largest acceleration {np.abs(a).max():.3g}")
@@ -123,14 +130,16 @@ def check_scene(scene, rng):
 
 def check_refusals(scene, rng):
     """Check 5."""
-    s = random_states(rng, 1)
+    sizes = hr.shape_sizes(hexdyn.run(scene))
+    J = sizes["J"]
+    s = random_states(rng, 1, sizes)
     one = {k: v[0] for k, v in s.items()}
-    bad = dict(one, **{"/joints/position": np.zeros(17)})
+    bad = dict(one, **{"/joints/position": np.zeros(J - 1)})
     try:
         hexdyn_accelerations(scene, bad)
-        raise AssertionError("17 joint angles accepted")
+        raise AssertionError(f"{J - 1} joint angles accepted")
     except ValueError as e:
-        assert "joint_position has shape (17), expected (18) or (T, 18)" in str(e), e
+        assert f"joint_position has shape ({J - 1}), expected ({J}) or (T, {J})" in str(e), e
     try:
         hexdyn.forward_dynamics(scene, *(one[k] for k in (
             "/base/position", "/base/orientation", "/joints/position", "/base/linear_velocity",

@@ -240,11 +240,14 @@ def check_result_values(result):
         torque = f["joints/torque"][()]
         times = f["time"][()]
         legs0 = f["impacts/leg"][()]
+        # The labels of the dimensions leg and joint: the names the file stores.
+        leg_names = [str(hexdyn.decode_text(n)) for n in f["model/leg_names"][()]]
+        joint_names = [str(hexdyn.decode_text(n)) for n in f["model/joint_names"][()]]
     for engine in ENGINES:
         with xr.open_dataset(result, engine=engine) as root, \
                 xr.open_dataset(result, engine=engine, group="joints") as j:
-            check(list(root.joint.values) == list(hr.JOINT_NAMES), f"joint names ({engine})")
-            check(list(root.leg.values) == list(hr.LEG_NAMES), f"leg names ({engine})")
+            check(list(root.joint.values) == joint_names, f"joint names ({engine})")
+            check(list(root.leg.values) == leg_names, f"leg names ({engine})")
             check(list(root.wxyz.values) == list("wxyz"), f"wxyz labels ({engine})")
             t = j.torque.assign_coords(joint=root.joint)
             check(np.array_equal(t.sel(joint="L2_femur").values, torque[:, 4]),
@@ -259,9 +262,9 @@ def check_result_values(result):
             check(j.torque.dims == ("time", "joint"), f"torque dims ({engine})")
     res = hexdyn.open_result(result)
     ds = res.to_xarray("contacts")
-    check(ds.force.dims == ("time", "leg", "xyz") and list(ds.leg.values) == list(hr.LEG_NAMES),
+    check(ds.force.dims == ("time", "leg", "xyz") and list(ds.leg.values) == leg_names,
           "Result.to_xarray('contacts')")
-    check(set(legs0) <= set(range(6)) and res.to_xarray().impacts_leg.dims == ("impact",),
+    check(set(legs0) <= set(range(len(leg_names))) and res.to_xarray().impacts_leg.dims == ("impact",),
           "/impacts/leg 0-based on the impact dimension")
     return res
 

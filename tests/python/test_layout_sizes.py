@@ -1,24 +1,26 @@
 """The sizes L (legs) and J (joints) of a file's shapes come from the names it stores, not from
 a robot of six legs: check_layout accepts a result of the paper scene whose per-leg and
 per-joint datasets, /model/leg_names and /model/joint_names are cut to the first four legs
-(and their twelve joints), written with h5py in a temporary folder, and reads its names
-(hexdyn.leg_names, joint_names); it refuses, in one line naming the dataset, a copy whose
-/contacts/force keeps six legs while /model/leg_names has four, and one whose /joints/torque
-keeps 18 joints while /model/joint_names has 12. The same for a sweep (tests/sweep/schema.yaml)
-cut to 12 joints, J from its /joint_names, and one whose /scenarios/peak_torque keeps 18. The
+(and their twelve joints), written with h5py in a temporary folder (tests/python/robot_cut.py),
+and reads its names (hexdyn.leg_names, joint_names; the paper result's counts are those of the
+robot its /model/urdf describes); it refuses, in one line naming the dataset, a copy whose
+/contacts/force keeps every leg while /model/leg_names has four, and one whose /joints/torque
+keeps every joint while /model/joint_names has 12. The same for a sweep (tests/sweep/schema.yaml)
+cut to 12 joints, J from its /joint_names, and one whose /scenarios/peak_torque keeps all. The
 values of the cut files are not a robot's (the check is of the layout alone).
     test_layout_sizes.py HEXDYN_BINARY SOURCE_DIR      (PYTHONPATH: the build tree's python/)"""
 
 import os
 import subprocess
 import tempfile
+import xml.etree.ElementTree as ET
 
 import h5py
-import numpy as np
 
 import hexdyn
 from hexdyn import results as hr
 from common import args, cli_run
+from robot_cut import cut_copy
 
 HEXDYN, SRC = args()
 PAPER = os.path.join(SRC, "configs", "paper.yaml")
@@ -26,51 +28,16 @@ PAPER = os.path.join(SRC, "configs", "paper.yaml")
 SHORT = ("motion.cycle_durations=null", "motion.cycles=1", "motion.peak_speed=0.098",
          "motion.ramp_duration=0.8", "output.grid=uniform", "output.sample_step=0.05")
 SWEEP = os.path.join(SRC, "tests", "sweep", "schema.yaml")  # 4 scenarios, 2 of them failed
-# Attributes of the dimension-scale machinery: the copy makes its own (make_scale, attach).
-SCALE_ATTRIBUTES = {"CLASS", "NAME", "REFERENCE_LIST", "DIMENSION_LIST"}
 
 
-def dims_of(path, ds):
-    """The dimension names of a dataset: its declaration's, or its own name for a scale (a
-    sweep axis's datasets, declared by templates, have neither leg nor joint: ())."""
-    if path in hr.DECLARED:
-        return hr.DECLARED[path][0].dims
-    if h5py.h5ds.is_scale(ds.id):
-        return (path.rsplit("/", 1)[1],)
-    return ()
-
-
-def cut_copy(src_path, dst_path, legs, keep=()):
-    """A copy of the file at `src_path` with every axis along `leg` cut to the indices
-    `legs` and every axis along `joint` to those legs' joints (leg-major, three per leg), but
-    the datasets of `keep`, copied whole; dimension scales and their attachments rebuilt."""
-    joints = [3 * leg + j for leg in legs for j in range(3)]
-    cut = {"leg": legs, "joint": joints}
-    with h5py.File(src_path, "r") as src, h5py.File(dst_path, "w") as dst:
-        datasets = {}
-
-        def visit(name, obj):
-            path = "/" + name
-            target = dst.require_group(path) if isinstance(obj, h5py.Group) else None
-            if isinstance(obj, h5py.Dataset):
-                value = obj[()]
-                if path not in keep:
-                    for axis, dim in enumerate(dims_of(path, obj)):
-                        if dim in cut:
-                            value = np.take(value, cut[dim], axis=axis)
-                target = dst.create_dataset(path, data=value, dtype=obj.dtype)
-                datasets[path] = obj
-            for key, v in obj.attrs.items():
-                if key not in SCALE_ATTRIBUTES:
-                    target.attrs[key] = v
-        src.visititems(visit)
-        for path, obj in datasets.items():
-            if h5py.h5ds.is_scale(obj.id):
-                dst[path].make_scale(path.rsplit("/", 1)[1])
-        for path, obj in datasets.items():
-            for axis, dim in enumerate(obj.dims):
-                for scale in dim.values():
-                    dst[path].dims[axis].attach_scale(dst[scale.name])
+def urdf_sizes(path):
+    """{"L": foot links, "J": moving joints} of the robot /model/urdf describes (xml.etree)."""
+    with h5py.File(path, "r") as f:
+        root = ET.fromstring(hexdyn.decode_text(f["model/urdf"][()]))
+    feet = [link for link in root.iter("link") if link.get("name").endswith("_foot")]
+    moving = [j for j in root.iter("joint") if j.get("type") in ("revolute", "continuous",
+                                                                  "prismatic")]
+    return {"L": len(feet), "J": len(moving)}
 
 
 def refusal(path):
@@ -88,7 +55,7 @@ def main():
         status, err = cli_run(HEXDYN, PAPER, result, SHORT)
         assert status == 0, err
         assert hexdyn.check_layout(result) == hr.RESULT_SCHEMA
-        assert hr.shape_sizes(result) == {"L": 6, "J": 18}, hr.shape_sizes(result)
+        assert hr.shape_sizes(result) == urdf_sizes(result), hr.shape_sizes(result)
 
         # Four legs, twelve joints: the shapes follow the names.
         four = os.path.join(d, "four_legs.h5")

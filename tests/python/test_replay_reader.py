@@ -241,7 +241,7 @@ def turned(quat, omega, dt):
 
 
 def feet_velocity(robot, p, quat, q, v, omega, qd, eps=1e-6):
-    """The feet's velocities (T, 6, 3) by central differences of the forward kinematics of
+    """The feet's velocities (T, L, 3) by central differences of the forward kinematics of
     /model/urdf (analysis/urdf_fk.py, not hexdyn's): the configuration (p, quat, q) moved
     along the velocity (v, omega, qd) for +-eps seconds (an error of order eps^2)."""
     ahead = robot.foot_positions(p + eps * v, turned(quat, omega, eps), q + eps * qd)

@@ -4,8 +4,8 @@ pexod (robots/pexod.urdf) stands on spheres of radius 0.025 m, which hexdyn take
 tibias' sphere <collision>s (configs/robots/pexod_stairs.yaml). A sphere foot touches at its
 contact point, r below its centre along the surface normal n; the terrain's force acts there
 (docs/theory/model.md#sphere-feet). What the file must hold:
-  /feet/position   (T, 6, 3) [m], the contact points;
-  /feet/center     (T, 6, 3) [m], the spheres' centres;
+  /feet/position   (T, L, 3) [m], the contact points;
+  /feet/center     (T, L, 3) [m], the spheres' centres;
   /model/urdf      the robot with each L{i}_foot link at a centre, holding a sphere
                    <collision> of the foot's radius.
 
@@ -44,7 +44,7 @@ class ForcesAt(DartRobot):
 
     def __init__(self, r, points):
         super().__init__(r)
-        self.points = points  # (T, 6, 3) world points of the foot forces
+        self.points = points  # (T, L, 3) world points of the foot forces
 
     def set_state(self, skel, r, t, joint_forces):
         super().set_state(skel, r, t, joint_forces)

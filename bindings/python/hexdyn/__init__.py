@@ -3,7 +3,7 @@
     import hexdyn
     r = hexdyn.run("configs/paper.yaml", set={"gait.duty_factor": "3/4"})
     r["/energy/total"]            # numpy float64 (0-d array) [J]
-    r["/joints/torque"]           # (T, 18) numpy array [N m], bit for bit the file's dataset
+    r["/joints/torque"]           # (T, J) numpy array [N m], bit for bit the file's dataset
     r.units["/joints/torque"]     # "N m"
     r.meta["git_commit"]          # the /meta attributes (r.attrs: also "/terrain/type")
     r.config["gait"]              # the resolved configuration, as a dict
@@ -18,7 +18,7 @@
                                 r["/base/linear_velocity"], r["/base/angular_velocity"],
                                 r["/joints/velocity"], r["/joints/torque"],
                                 foot_forces=r["/contacts/force"])
-    a["joint_acceleration"]       # (T, 18) [rad/s²]: what those torques and forces do
+    a["joint_acceleration"]       # (T, J) [rad/s²]: what those torques and forces do
     sw = hexdyn.open_sweep("smoke.h5")          # hexdyn-sweep/3: Sweep
     env = hexdyn.open_envelope("envelope.h5")   # hexdyn-envelope/2: Envelope
     rep = hexdyn.open_replay("replay.h5")       # hexdyn-replay/1 (hexdyn replay): Replay
@@ -26,6 +26,7 @@
     hexdyn.open_file("any.h5")                  # whichever of them the file is
     hexdyn.check_layout("any.h5")               # any of them against its schema
     hexdyn.leg_names(r), hexdyn.joint_names(r)  # the file's names: L legs, J joints
+    hexdyn.leg_joints(r)          # each leg's joints: [[0, 1, 2], [3, 4, 5], ...]
 
 One type, Result, holds a result whether computed (run) or read (open_result, Sweep.run):
 the same mapping from dataset path to values, .meta, .units, .config, .to_xarray() and
@@ -51,7 +52,7 @@ import numpy as np
 
 from ._version import __git_commit__, __version__
 from .results import (Envelope, Replay, Result, Study, Sweep, UnknownGroupError, check_layout,
-                      decode_text, joint_names, leg_names, open_envelope, open_file,
+                      decode_text, joint_names, leg_joints, leg_names, open_envelope, open_file,
                       open_replay, open_result, open_study, open_sweep)
 from .results import checked_path as _path
 
@@ -154,11 +155,11 @@ def sample_problem(scene, t, set=None):
       (lower == upper); "H" (n, n), "g" (n): the objective 1/2 x'Hx + g'x;
     - "cones": per second-order cone a dict tangent1, tangent2, normal (indices into x), mu,
       name: ||(x[tangent1], x[tangent2])|| <= mu x[normal];
-    - "legs": six dicts (allocation/problem.hpp AllocationLayout::Leg): offset, count (3
+    - "legs": one dict per leg (allocation/problem.hpp AllocationLayout::Leg): offset, count (3
       support, 2 touchdown transient, 0 swing), friction_row, friction_faces, face_reach,
       cone, known_normal_force_N, W_R_contact (3, 3); "variables" (n);
       "constant_excess_Nm" and "constant_violation" (a swing leg's torque over its limit);
-    - "phase" (6) int8 as /contacts/phase; "x" (n) the allocation's forces [N]; "status" as
+    - "phase" (L) int8 as /contacts/phase; "x" (n) the allocation's forces [N]; "status" as
       /solver/status (0 optimal, 1 relaxed, 2 failed); "required_friction" (NaN where none
       suffices) and "required_friction_leg" (-1 none);
     - "friction_coefficient" (the scene's mu), "friction" ("pyramid4", "pyramid8", "cone"),
@@ -186,16 +187,17 @@ def forward_dynamics(scene, base_position, base_orientation, joint_position,
     The arguments are in a result file's coordinates, each one state or T states along a first
     axis (all alike): base_position (3) [m], base_orientation (4) unit quaternion (w, x, y, z),
     base_linear_velocity (3) [m/s] and base_angular_velocity (3) [rad/s] of the URDF root
-    link's frame, world axes (as /base/*); joint_position (18) [rad], joint_velocity (18)
-    [rad/s] and joint_torque (18) [N m] in /model/joint_names order; foot_forces (6, 3) [N]
+    link's frame, world axes (as /base/*); joint_position (J) [rad], joint_velocity (J)
+    [rad/s] and joint_torque (J) [N m] in /model/joint_names order; foot_forces (L, 3) [N]
     the terrain's force on each foot at its contact point, world axes (as /contacts/force;
-    None: no force); foot_normals (6, 3) the unit surface normal under each foot, where a
-    sphere foot touches (None: +z).
+    None: no force); foot_normals (L, 3) the unit surface normal under each foot, where a
+    sphere foot touches (None: +z). L and J are the robot's legs and joints, the lengths of
+    its result's /model/leg_names and /model/joint_names.
 
     Returns a dict of numpy arrays: "base_linear_acceleration" (3) [m/s²], the classical
     acceleration of the root link's origin, "base_angular_acceleration" (3) [rad/s²], both
     world axes (as /base/linear_acceleration and /base/angular_acceleration), and
-    "joint_acceleration" (18) [rad/s²]; each (T, ...) for T states.
+    "joint_acceleration" (J) [rad/s²]; each (T, ...) for T states.
 
     Raises ValueError in one line naming the argument as numpy indexes it (the sample first
     for T states: "joint_torque[4, 7]") for an argument of the wrong shape, a NaN or an
@@ -234,6 +236,6 @@ def __getattr__(name):
 __all__ = ["run", "validate", "sample_problem", "forward_dynamics", "Result", "Sweep", "Envelope",
            "Replay", "Study", "open_file", "open_result", "open_sweep", "open_envelope",
            "open_replay", "open_study", "check_layout", "leg_names", "joint_names",
-           "decode_text", "UnknownGroupError",
+           "leg_joints", "decode_text", "UnknownGroupError",
            "Error", "ConfigError", "IoError", "ReachError", "PlanningError", "SolverError",
            "InternalError", "__version__", "__git_commit__"]

@@ -281,6 +281,8 @@ class Sweep:
     sw.units[name]      `units` attribute of /scenarios/<name> ("" none)
     sw.ok               boolean mask of the scenarios computed (status 0)
     sw.status_names     status of each scenario as a word ("ok", "reach", ...)
+    sw.joint_names      the labels of the dimension joint (/joint_names; None in a file
+                        that stores none), J of them
     sw.meta             /meta attributes; sw.config the base scene (dict);
                         sw.spec the sweep file (dict)
     sw.grid(name)       a column reshaped to sw.shape (+ the column's own dims)

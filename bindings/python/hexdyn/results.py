@@ -14,7 +14,7 @@ declarations (hexdyn.schema: SCHEMA and the layouts). Shapes use size symbols: "
     from hexdyn import open_result
     res = open_result("results/paper/paper.h5")   # a Result, the type hexdyn.run returns
     t = res["/time"]                 # numpy array, shape (T,)
-    feet = res["/feet/position"]     # (T, 6, 3), world frame [m]
+    feet = res["/feet/position"]     # (T, L, 3), world frame [m], L = len(leg_names(res))
     res.units["/joints/torque"]      # "N m"
     res.config["terrain"]            # the resolved configuration (dict)
     res.urdf                         # robot as simulated (str)
@@ -52,7 +52,7 @@ from .h5files import (check_datasets, check_declared, check_filetype_version,
                       yaml_attribute)
 from .schema import (DECLARED, DYNAMICS_DATASETS, ENVELOPE_CASES_LAYOUT, ENVELOPE_LAYOUT,
                      ENVELOPE_REQUIRED, ENVELOPE_SCHEMA, ENVELOPE_SCHEMA_VERSION, FLAGS,
-                     JOINT_NAMES, KINEMATIC_DATASETS, LEG_NAMES, META_ATTRIBUTES, META_GROUP,
+                     KINEMATIC_DATASETS, META_ATTRIBUTES, META_GROUP,
                      MODEL_DATASETS, PHASE_IMPACT, PHASE_SUPPORT, PHASE_SWING, REPLAY_LAYOUT,
                      REPLAY_REQUIRED, REPLAY_SCHEMA, REPLAY_SCHEMA_VERSION, RESULT_LAYOUT,
                      RESULT_REQUIRED, RESULT_SCHEMA, RESULT_SCHEMA_VERSION, SCENARIO_DATASETS,
@@ -201,8 +201,7 @@ def _read_sweep(f, source):
     axes = [_read_axis(f["axes"][str(i)], source) for i in range(len(f["axes"]))]
     table, units = _columns(f, SCENARIOS_GROUP, source)
     units = {name: units.get(name, "") for name in table}
-    joint_names = (read_checked(f["joint_names"], source) if "joint_names" in f
-                   else list(JOINT_NAMES))
+    joint_names = read_checked(f["joint_names"], source) if "joint_names" in f else None
     run_ids = set(f["runs"].keys()) if "runs" in f else set()
     return Sweep(source, meta_attributes(f), axes, table, units, joint_names, run_ids)
 
@@ -411,11 +410,74 @@ def shape_sizes(file):
     return {"L": len(leg_names(file)), "J": len(joint_names(file))}
 
 
+def joints_by_leg(legs, joints):
+    """The indices into `joints` of each leg of `legs` (names), in leg order: joint k belongs
+    to the leg whose name, followed by "_", begins its name (the labels of
+    docs/theory/conventions.md#legs-and-joints: L1_coxa, L2_j4). ValueError in one line for a
+    joint of no leg."""
+    out = [[] for _ in legs]
+    prefixes = [f"{name}_" for name in legs]
+    for k, joint in enumerate(joints):
+        owners = [i for i, prefix in enumerate(prefixes) if str(joint).startswith(prefix)]
+        if not owners:
+            raise ValueError(f"joint {joint!r} (index {k}) belongs to none of the legs "
+                             f"{', '.join(map(str, legs))}")
+        out[max(owners, key=lambda i: len(prefixes[i]))].append(k)
+    return out
+
+
+# The positional names of the joints of a leg of three joints, hip to foot
+# (docs/theory/conventions.md#legs-and-joints); a leg of m joints otherwise: j1 ... jm.
+THREE_JOINT_ROLES = ("coxa", "femur", "tibia")
+
+
+def joint_roles(leg_joint_count):
+    """The positional names of a leg's joints, hip to foot, whatever the description calls
+    them: coxa, femur, tibia for a leg of three joints, else j1 ... jm (the suffixes of the
+    labels L1_coxa, L2_j4 of docs/theory/conventions.md#legs-and-joints)."""
+    if leg_joint_count == len(THREE_JOINT_ROLES):
+        return THREE_JOINT_ROLES
+    return tuple(f"j{j}" for j in range(1, leg_joint_count + 1))
+
+
+def _has_dataset(file, path):
+    """Whether `file` (as for leg_names) holds a dataset at `path`."""
+    if isinstance(file, (h5py.File, h5py.Group)):
+        return isinstance(file.get(path.lstrip("/")), h5py.Dataset)
+    if isinstance(file, (str, bytes, os.PathLike)):
+        with open_h5(checked_path(file)) as f:
+            return _has_dataset(f, path)
+    return not isinstance(file, Sweep) and path in file
+
+
+def leg_joints(file):
+    """The joints of each leg of a result or replay (as leg_names takes it): one list of
+    indices into the dimension `joint` per leg, in leg order ([[0, 1, 2], [3, 4, 5], ...] for
+    legs of three joints). A robot read from a URDF keeps its description's joint names: its
+    /model/leg_mapping lists each leg's ("L1: J1 J2 J3 foot ..."); any other robot's are
+    labelled by leg (joints_by_leg of /model/leg_names and /model/joint_names)."""
+    legs, joints = leg_names(file), joint_names(file)
+    mapping = SCHEMA["kModelLegMapping"].path
+    if not _has_dataset(file, mapping):
+        return joints_by_leg(legs, joints)
+    index = {name: k for k, name in enumerate(joints)}
+    out = []
+    for entry in _stored_names(file, mapping, "leg_mapping"):
+        words = str(entry).split()
+        names = words[1:words.index("foot")] if "foot" in words else words[1:]
+        missing = [n for n in names if n not in index]
+        if missing:
+            raise ValueError(f"{mapping} {entry!r}: joint {missing[0]} is not in "
+                             f"{SIZE_NAMES['J']}")
+        out.append([index[n] for n in names])
+    return out
+
+
 # The names the analysis scripts, the tests and the docs use as hexdyn.results.NAME.
 __all__ = [
     "FILE_KINDS", "FileKind", "file_kind", "open_file", "open_result", "open_sweep",
     "open_envelope", "open_replay", "open_study", "check_layout", "leg_names", "joint_names",
-    "shape_sizes",
+    "shape_sizes", "leg_joints", "joints_by_leg", "joint_roles", "THREE_JOINT_ROLES",
     "Result", "Sweep", "SweepAxis", "Envelope", "Replay", "Study", "UnknownGroupError",
     "check_group", "checked_path", "check_regular_file", "open_h5", "decode_text",
     "check_filetype_version", "is_group_coordinate", "yaml_attribute", "io_error",
@@ -425,7 +487,7 @@ __all__ = [
     "STUDY_SCHEMA", "STUDY_SCHEMA_VERSION", "META_GROUP", "META_ATTRIBUTES",
     "SWEEP_META_ATTRIBUTES", "MODEL_DATASETS", "KINEMATIC_DATASETS", "DYNAMICS_DATASETS",
     "SCENARIOS_GROUP", "SCENARIO_DATASETS", "SWEEP_STATUS", "PHASE_SWING", "PHASE_IMPACT",
-    "PHASE_SUPPORT", "SIZE_NAMES", "SWEEP_SIZE_NAMES", "LEG_NAMES", "JOINT_NAMES",
+    "PHASE_SUPPORT", "SIZE_NAMES", "SWEEP_SIZE_NAMES",
     "expected_shape",
     "ENERGY_RULE_CUBIC", "ENERGY_RULE_TRAPEZOID", "energy_by_rule",
 ]

@@ -132,12 +132,6 @@ PHASE_SWING, PHASE_IMPACT, PHASE_SUPPORT = 0, 1, 2
 SIZE_NAMES = {"L": SCHEMA["kModelLegNames"].path, "J": SCHEMA["kModelJointNames"].path}
 SWEEP_SIZE_NAMES = {"J": SCHEMA["kSweepJointNames"].path}
 
-# Deprecated: the names of a hexapod of three-joint legs (the paper robot's, and the YAML
-# robots'), whatever robot a file holds. Use hexdyn.results.leg_names(file) and
-# joint_names(file), the names the file stores.
-LEG_NAMES = tuple(f"L{i}" for i in range(1, 7))
-JOINT_NAMES = tuple(f"L{i}_{j}" for i in range(1, 7) for j in ("coxa", "femur", "tibia"))
-
 
 def expected_shape(shape, samples=None, impacts=None, messages=None, **sizes):
     """Concrete shape of a contract shape tuple ("T" -> samples, "n", "m"; other

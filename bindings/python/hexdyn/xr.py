@@ -141,8 +141,9 @@ def sweep_to_xarray(sw):
         for key, column in (a.cases or {}).items():  # a cases axis: what each case sets
             coords[key] = (a.key, _values(column),
                            {"long_name": f"{axis_name(key)} in each {a.key}"})
-    coords["joint"] = ("joint", np.array(sw.joint_names, dtype=object),
-                       {"long_name": "joint name, leg-major"})
+    if sw.joint_names is not None:  # /joint_names: the labels of the dimension joint
+        coords["joint"] = ("joint", np.array(sw.joint_names, dtype=object),
+                           {"long_name": "joint name, leg-major"})
     variables = {}
     for name, value, spec in _sweep_columns(sw):
         grid = value.reshape(sw.shape + value.shape[1:])
@@ -169,7 +170,7 @@ def sweep_to_dataframe(sw):
         if name == "id":
             continue
         if value.ndim == 2:
-            for j, joint in enumerate(sw.joint_names):
+            for j, joint in enumerate(sw.joint_names or range(value.shape[1])):
                 columns[f"{name}[{joint}]"] = value[:, j]
         else:
             columns[name] = value
