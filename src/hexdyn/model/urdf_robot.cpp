@@ -29,9 +29,9 @@ void check_fits(const UrdfRobot& robot, std::size_t capacity) {
   const std::string who = robot.source_path + ": robot '" + robot.name + "': ";
   const std::size_t bodies = 1 + static_cast<std::size_t>(robot.n_joints());
   if (bodies > capacity)
-    throw ConfigError(who + shape_text(robot) + " make " + std::to_string(bodies) +
-                      " bodies, expected at most " + std::to_string(capacity) +
-                      " (the bodies a robot model of this build holds)");
+    throw ConfigError(robot.source_path + ": robot '" + robot.name + "' (" + shape_text(robot) +
+                      "): " + std::to_string(bodies) + " bodies, expected at most " +
+                      std::to_string(capacity) + " (the bodies a robot model of this build holds)");
   for (int leg = 0; leg < robot.n_legs(); ++leg)
     for (const UrdfJoint& j : robot.legs[leg].joints)
       if (j.type == UrdfJointType::kPrismatic)
@@ -69,6 +69,8 @@ RobotModel build_robot_model(const UrdfRobot& robot, double ik_min_margin_m) {
       m.inertia[b] = joint.inertia;
     }
   }
+  // Storage beyond the robot's bodies: no parent, so that no leg starts there.
+  for (std::size_t unused = b; unused < m.parent.size(); ++unused) m.parent[unused] = -1;
   try {
     fill_leg_table(m);
   } catch (const std::logic_error& e) {  // a leg layout this build does not simulate

@@ -254,6 +254,39 @@ TEST_CASE("urdf legs: prismatic joints are read with their type; the model refus
   }
 }
 
+TEST_CASE("urdf legs: a robot the model cannot hold is refused in one line when built",
+          "[urdf_legs]") {
+  // The model holds as many bodies as its storage; a leg layout it does not simulate (this
+  // build: six legs of three joints) is refused naming the file and the robot's shape. A
+  // robot that is built has the description's legs and joints.
+  std::vector<LegSpec> eight;
+  for (int r = 0; r < 4; ++r)
+    for (double y : {0.1, -0.1}) eight.push_back({0.3 - 0.2 * r, y});
+  for (const std::vector<LegSpec>& legs : {quadruped(), eight}) {
+    const UrdfRobot robot = read_urdf_robot_from_string(legged_urdf(legs), "robot.urdf");
+    try {
+      const RobotModel m = build_robot_model(robot);
+      REQUIRE(m.legs() == robot.n_legs());
+      CHECK(m.joints() == robot.n_joints());
+      for (int leg = 0; leg < m.legs(); ++leg)
+        for (int j = 0; j < m.leg(leg).n_joints; ++j)
+          CHECK(m.joint_source_names[m.joint(leg, j)] == robot.legs[leg].joints[j].name);
+    } catch (const ConfigError& e) {
+      const std::string msg = e.what();
+      INFO(msg);
+      CHECK(msg.rfind("robot.urdf: robot 'synthetic' (", 0) == 0);
+      CHECK(msg.find('\n') == std::string::npos);
+      const std::size_t bodies = static_cast<std::size_t>(1 + robot.n_joints());
+      if (bodies > RobotModel{}.parent.size())
+        CHECK(msg.find("): " + std::to_string(bodies) + " bodies, expected at most") !=
+              std::string::npos);
+      else
+        CHECK(msg.find(std::to_string(robot.n_legs()) + " legs, this build holds") !=
+              std::string::npos);
+    }
+  }
+}
+
 // ---- the shipped quadrupeds against a second reading ----
 
 /// A minimal XML element: name, attributes, children (no text, comments skipped).
