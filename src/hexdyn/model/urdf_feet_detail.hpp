@@ -25,7 +25,7 @@ struct Placement {
 };
 
 /// A hip at most this far from the trunk's forward axis (|x| in the trunk frame) is on it [m]:
-/// neither left nor right, refused (docs/theory/conventions.md#other-robots).
+/// neither left nor right, refused (docs/theory/conventions.md#legs-and-joints).
 inline constexpr double kCentreHip_m = 1e-9;
 
 /// x as a default-formatted stream writes it (6 significant digits: "0.05", "1e-09").

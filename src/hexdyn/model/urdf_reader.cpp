@@ -214,7 +214,7 @@ std::vector<UrdfLeg> Reader::read_legs(const std::vector<std::pair<std::string, 
   return chains;
 }
 
-/// The legs' order (docs/theory/conventions.md#other-robots): the side of each hip (its x in
+/// The legs' order (docs/theory/conventions.md#legs-and-joints): the side of each hip (its x in
 /// the trunk frame: x < 0 left; |x| <= 1e-9 m refused; the two sides' counts may differ by one
 /// at most), then the rank front to rear within a side (y descending), numbered rank by rank,
 /// left before right. Returns the indices of

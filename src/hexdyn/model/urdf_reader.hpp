@@ -30,7 +30,7 @@
 ///  - Trunk axes: options.forward_axis of the trunk link ("+x" default, ROS REP-103;
 ///    "-x", "+y", "-y") becomes hexdyn's +y (forward), the link's +z stays up, x = y × z
 ///    (right). Legs map to L1 … Ln by their first joints in that frame
-///    (docs/theory/conventions.md#other-robots): x < 0 left, x > 0 right (|x| <= 1e-9 m,
+///    (docs/theory/conventions.md#legs-and-joints): x < 0 left, x > 0 right (|x| <= 1e-9 m,
 ///    a hip on the centre line, is refused; as many legs on each side, or one more on one
 ///    side for an odd count); ranked front to rear by decreasing y within a side; numbered
 ///    rank by rank, left before right.

@@ -87,7 +87,7 @@ struct UrdfLeg {
 };
 
 /// A robot read from a URDF: the trunk and 2 to 8 legs (kMinLegs … kMaxLegs) in hexdyn's leg
-/// order (docs/theory/conventions.md#other-robots), named L1 … Ln (leg_name).
+/// order (docs/theory/conventions.md#legs-and-joints), named L1 … Ln (leg_name).
 struct UrdfRobot {
   std::string name;               ///< <robot name>
   std::string source_path;        ///< the file read
@@ -95,7 +95,8 @@ struct UrdfRobot {
   std::string forward_axis;       ///< "+x", "-x", "+y" or "-y" of the trunk link
   Mat3 B_R_U = Mat3::Identity();  ///< URDF trunk link axes → trunk frame B
   RigidInertia trunk;             ///< trunk body (links fixed to the trunk link), frame B
-  /// The links fixed to the trunk link (not itself), merged into the trunk body (`-v`).
+  /// The links fixed to the trunk link (not itself), merged into the trunk body, in name order
+  /// (`-v`).
   std::vector<std::string> trunk_merged_links;
   std::vector<UrdfLeg> legs;         ///< L1 … Ln
   double total_mass_kg = 0.0;        ///< sum over every <inertial> of the file [kg]

@@ -1,5 +1,5 @@
 // URDF robots of any leg count and chain length (urdf_reader.hpp, urdf_robot.hpp): the leg
-// order of docs/theory/conventions.md#other-robots, one-line refusals naming the leg and the
+// order of docs/theory/conventions.md#legs-and-joints, one-line refusals naming the leg and the
 // link, and the two shipped quadrupeds (robots/solo12.urdf, robots/anymal_c.urdf) checked
 // against a second reading of the same files: a small XML walk written here (no urdfdom, no
 // merging code of the reader), which sums the link masses of each fixed group, composes the
@@ -235,7 +235,7 @@ TEST_CASE("urdf legs: each broken leg layout is refused in one line naming the l
                  "set robot.forward_axis"});
 }
 
-TEST_CASE("urdf legs: prismatic joints are read with their type; the model refuses them",
+TEST_CASE("urdf legs: prismatic joints are read with their type, and the model refuses them",
           "[urdf_legs]") {
   std::string text = legged_urdf(quadruped());
   const std::string knee = "<joint name=\"leg1_j3\" type=\"revolute\">";
