@@ -9,6 +9,9 @@
 # - An HDF5 file (a result, also one with a 512-byte user block) or a binary file given as a
 #   scene, sweep, envelope, inherited file or URDF: named as such, before its size.
 # - A missing scene, URDF, inherited file or sweep base: "does not exist".
+# - A URDF whose legs are not 2 to 8 chains of 3 to 6 moving joints (a leg too short or too
+#   long, a chain that branches, two legs sharing a link, a foot not found, 9 legs, 1 leg, a
+#   hip on the centre line): the leg and the link named.
 # And an output name of up to 255 bytes is written: its temporary name is cut to fit
 # (`.START~DIGEST.tmp.PID`), and a stale one of that form is removed by the next run.
 # shellcheck source=common.sh
@@ -151,6 +154,56 @@ refused missing_inherited "inherits_missing\.yaml: inherit: got missing\.yaml, w
 refused missing_base "sweep_missing\.yaml: base: got missing\.yaml, .*missing\.yaml does not exist\)$" \
   sweep sweep_missing.yaml -o out/o.h5
 
+# URDF leg layouts (docs/user/robots.md#legs): 2 to 8 legs of 3 to 6 moving joints each, in
+# a chain; each broken layout is refused naming the leg and the link.
+"$PY" - << 'EOF' || fail "writing the URDF leg layouts"
+def robot(legs, extra=""):
+    """legs: (x, y, joints) of each hip in the trunk link frame (x forward, y left)."""
+    inertial = ('<inertial><mass value="0.1"/><inertia ixx="1e-4" iyy="1e-4" izz="1e-4" '
+                'ixy="0" ixz="0" iyz="0"/></inertial>')
+    out = ['<robot name="layout">', f'<link name="trunk">{inertial}</link>']
+    for i, (x, y, n) in enumerate(legs):
+        parent = "trunk"
+        for j in range(1, n + 1):
+            link, xyz = f"leg{i}_l{j}", f"{x} {y} 0" if j == 1 else f"0 {0.05 if y > 0 else -0.05} 0"
+            out.append(f'<link name="{link}">{inertial}</link>')
+            out.append(joint(f"leg{i}_j{j}", parent, link, xyz, "0 0 1" if j == 1 else "1 0 0"))
+            parent = link
+        out.append(f'<link name="leg{i}_foot"/><joint name="leg{i}_foot_fixed" type="fixed">'
+                   f'<parent link="{parent}"/><child link="leg{i}_foot"/>'
+                   f'<origin xyz="0 {0.1 if y > 0 else -0.1} -0.05"/></joint>')
+    return "\n".join(out) + extra + "\n</robot>\n"
+def joint(name, parent, child, xyz, axis):
+    return (f'<joint name="{name}" type="revolute"><parent link="{parent}"/><child link="{child}"/>'
+            f'<origin xyz="{xyz}"/><axis xyz="{axis}"/>'
+            '<limit lower="-2" upper="2" effort="2" velocity="5"/></joint>')
+def extra(name, parent, child):
+    return f'<link name="{child}"/>' + joint(name, parent, child, "0 0.05 0", "1 0 0")
+four = [(0.2, 0.1, 3), (0.2, -0.1, 3), (-0.2, 0.1, 3), (-0.2, -0.1, 3)]
+files = {
+    "two_joints": robot([four[0], (0.2, -0.1, 2)] + four[2:]),
+    "seven_joints": robot([(0.2, 0.1, 7)] + four[1:]),
+    "branch": robot(four, extra("spur", "leg2_l1", "spur_link")),
+    "shared": robot(four, extra("twin2", "leg3_l1", "twin_l2") + extra("twin3", "twin_l2", "twin_l3")),
+    "no_foot": robot(four, '<link name="sensor"/><joint name="sensor_fixed" type="fixed">'
+                     '<parent link="leg0_l3"/><child link="sensor"/><origin xyz="0 0 0.01"/></joint>'),
+    "nine_legs": robot([(0.4 - 0.1 * i, -0.1 if i % 2 else 0.1, 3) for i in range(9)]),
+    "one_leg": robot(four[:1]),
+    "centre_hip": robot(four[:2] + [(-0.2, 0.0, 3)]),
+}
+for name, text in files.items():
+    open(f"{name}.urdf", "w").write(text)
+EOF
+layout() { refused "$1" "$1\.urdf: $2" validate "$KRABY_SCENE" --set "robot.urdf=$PWD/$1.urdf" --set robot.forward_axis=+x; }
+layout two_joints "leg L2 \(chain 'leg1_j1'\): 2 moving joints from the trunk to its last link 'leg1_l2', expected 3 to 6$"
+layout seven_joints "leg L1 \(chain 'leg0_j1'\): joint 'leg0_j7' leaves link 'leg0_l6' after 6 moving joints, expected 3 to 6 moving joints from the trunk to the foot$"
+layout branch "leg L3 \(chain 'leg2_j1'\): the chain branches at link 'leg2_l1' \(moving joints 'leg2_j2', 'spur' leave it\)"
+layout shared "leg L4 \(chain 'leg3_j1'\): two legs share link 'leg3_l1' \(moving joints 'leg3_j2', 'twin2' leave it\)"
+layout no_foot "leg L1 \(chain 'leg0_j1'\): links 'leg0_foot' and 'sensor' are both fixed to 'leg0_l3'"
+layout nine_legs "trunk 'trunk': 9 moving joints leave the trunk \('leg0_j1', .*\), expected at most 8 legs$"
+layout one_leg "trunk 'trunk': 1 moving joints leave the trunk \('leg0_j1', the first joint of each leg\), expected at least 2 legs$"
+layout centre_hip "chain 'leg2_j1' \(link 'leg2_l1'\): hip on the trunk's forward axis"
+
 # Output names up to NAME_MAX (255 bytes): 250 letters and .h5, and 254 bytes with two-byte
 # characters (the cut temporary name then ends on a whole character).
 mkdir long
@@ -186,4 +239,4 @@ long_sweep="long/$(printf 'b%.0s' {1..245}).h5"
 refused "a sweep output name without room for .checkpoint" "expected an output file name of at most 244 bytes" \
   sweep "$SRC/configs/sweeps/smoke.yaml" -o "$long_sweep"
 [ -z "$(find long -name 'bbb*')" ] || fail "the long sweep left files: $(ls long)"
-echo "messages: quoted numbers, HDF5 and binary files, missing files refused in one line; long output names written"
+echo "messages: quoted numbers, HDF5 and binary files, missing files, URDF leg layouts refused in one line; long output names written"

@@ -95,7 +95,8 @@ for urdf in "$SRC"/robots/*.urdf "$SRC"/tests/data/urdf/robots/*.urdf; do
   case "$(basename "$urdf")" in
     kraby.urdf) scene=$SCENE ;;
     phantomx_humarobotics.urdf) continue ;;
-    # The quadrupeds are read up to their leg count (tests/hexdyn/model/test_urdf_reader.cpp).
+    # The quadrupeds are read whole; their model is refused until it holds four legs
+    # (tests/hexdyn/model/test_urdf_legs.cpp).
     solo12.urdf | anymal_c.urdf) continue ;;
     *) scene="$SRC/configs/robots/phantomx_mark4_stairs.yaml" ;;
   esac

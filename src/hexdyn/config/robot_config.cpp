@@ -72,17 +72,17 @@ LoadedUrdfRobot load_urdf_robot(const UrdfRobotKeys& keys) {
   LoadedUrdfRobot out;
   auto robot = std::make_shared<UrdfRobot>(read_urdf_robot_from_string(text, keys.path, opt));
   const RobotModel model = build_robot_model(*robot, keys.ik_min_margin_m);
-  for (int leg = 0; leg < kLegs; ++leg) {
+  for (int leg = 0; leg < model.legs(); ++leg) {
     const auto& pose = keys.nominal_pose_rad[leg];
     out.stance[leg] = pose ? stance_at_pose(model, leg, *pose, "robot.nominal_pose")
                            : default_nominal_stance(model, leg);
-    for (int j = 0; j < kJointsPerLeg; ++j) {
-      const int k = joint_index(leg, j);
-      const UrdfLeg& l = robot->legs[leg];
-      out.effort_limit_Nm[k] = l.effort_Nm[j];
-      out.damping_Nmsprad[k] = l.damping_Nmsprad[j];
-      out.friction_Nm[k] = l.friction_Nm[j];
-      out.joint_names[k] = l.joint_names[j];
+    for (int j = 0; j < model.leg(leg).n_joints; ++j) {
+      const int k = model.joint(leg, j);
+      const UrdfJoint& joint = robot->legs[leg].joints[j];
+      out.effort_limit_Nm[k] = joint.effort_Nm;
+      out.damping_Nmsprad[k] = joint.damping_Nmsprad;
+      out.friction_Nm[k] = joint.friction_Nm;
+      out.joint_names[k] = joint.name;
     }
   }
   const StanceMean mean = stance_mean(out.stance);

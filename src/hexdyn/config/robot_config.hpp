@@ -54,7 +54,8 @@ struct UrdfRobotKeys {
   std::string trunk_link;
   std::string forward_axis = "+x";
   std::vector<std::string> foot_links;
-  std::optional<std::array<Vec3, kLegs>> foot_offset_m;  ///< legs L1 … L6
+  /// One point for every leg, or one per leg L1 … Ln (UrdfReadOptions::foot_offset).
+  std::optional<std::vector<Vec3>> foot_offset_m;
   std::optional<double> foot_radius_m;
   std::array<std::optional<Vec3>, kLegs> nominal_pose_rad;  ///< by leg; none: the default pose
   double ik_min_margin_m = 1e-4;

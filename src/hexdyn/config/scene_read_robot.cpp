@@ -24,11 +24,11 @@ BodyParams read_body(Reader& r, const std::string& path, const Vec3& com_default
 
 /// robot.foot_offset of legs L1 … L6 (config/robot_config.hpp): one [x, y, z] for every leg,
 /// six in leg order, or a map by leg name with every leg.
-std::array<Vec3, kLegs> read_foot_offsets(Reader& r) {
+std::vector<Vec3> read_foot_offsets(Reader& r) {
   const std::string key = "robot.foot_offset";
   const Range range = scene_key(key).range;
   const YAML::Node node = r.peek(key);
-  std::array<Vec3, kLegs> out;
+  std::vector<Vec3> out(kLegs);
   if (node.IsMap()) {  // every leg by name
     for (const auto& kv : node) {
       const std::string name = kv.first.IsScalar() ? kv.first.Scalar() : "?";
@@ -46,8 +46,7 @@ std::array<Vec3, kLegs> read_foot_offsets(Reader& r) {
   if (!node.IsSequence() || node.size() == 0) r.fail_value(key, node, expected);
   if (!node[0].IsSequence()) {  // one point for every leg
     if (node.size() != 3) r.fail_value(key, node, expected);
-    out.fill(r.vec3(key, range));
-    return out;
+    return {r.vec3(key, range)};
   }
   r.node(key);  // asked for: read below
   if (node.size() != kLegs) r.fail_value(key, node, expected);

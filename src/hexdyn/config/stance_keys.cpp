@@ -21,11 +21,11 @@ void check_nominal_pose(scene_keys::Reader& r, const std::array<std::optional<Ve
     const UrdfLeg& l = robot.legs[leg];
     const Vec3& q = *pose[leg];
     for (int j = 0; j < kJointsPerLeg; ++j) {
-      if (q[j] >= l.lower_rad[j] && q[j] <= l.upper_rad[j]) continue;
+      if (q[j] >= l.joints[j].lower_rad && q[j] <= l.joints[j].upper_rad) continue;
       r.fail("robot.nominal_pose", "got [" + fmt(q.x()) + ", " + fmt(q.y()) + ", " + fmt(q.z()) +
                                        "] for " + leg_name(leg) + ", whose joint " +
-                                       l.joint_names[j] + " allows [" + fmt(l.lower_rad[j]) + ", " +
-                                       fmt(l.upper_rad[j]) +
+                                       l.joints[j].name + " allows [" + fmt(l.joints[j].lower_rad) +
+                                       ", " + fmt(l.joints[j].upper_rad) +
                                        "] rad, expected each angle inside its joint's limits");
     }
   }

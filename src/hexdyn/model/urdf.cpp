@@ -86,9 +86,15 @@ struct JointLimit {
   double lower_rad, upper_rad, effort_Nm, velocity_radps;
 };
 
-void write_joint(UrdfStream& u, const std::string& name, const std::string& type,
+/// <dynamics damping friction> of a joint.
+struct JointDynamics {
+  double damping, friction;
+};
+
+void write_joint(UrdfStream& u, const std::string& name, const char* type,
                  const std::string& parent, const std::string& child, const Vec3& p, const Mat3& R,
-                 const Vec3* axis, const JointLimit* limit) {
+                 const Vec3* axis, const JointLimit* limit,
+                 const JointDynamics* dynamics = nullptr) {
   auto& os = u.os();
   os << "  <joint name=\"" << name << "\" type=\"" << type << "\">\n"
      << "    <parent link=\"" << parent << "\"/>\n"
@@ -96,13 +102,16 @@ void write_joint(UrdfStream& u, const std::string& name, const std::string& type
      << "    <origin xyz=\"" << u.triple(p) << "\" rpy=\"" << u.triple(rotation_to_rpy(R))
      << "\"/>\n";
   if (axis != nullptr) os << "    <axis xyz=\"" << u.triple(*axis) << "\"/>\n";
-  if (limit != nullptr && type == "continuous")
+  if (limit != nullptr && std::string(type) == "continuous")
     os << "    <limit effort=\"" << u.number(limit->effort_Nm) << "\" velocity=\""
        << u.number(limit->velocity_radps) << "\"/>\n";
   else if (limit != nullptr)
     os << "    <limit lower=\"" << u.number(limit->lower_rad) << "\" upper=\""
        << u.number(limit->upper_rad) << "\" effort=\"" << u.number(limit->effort_Nm)
        << "\" velocity=\"" << u.number(limit->velocity_radps) << "\"/>\n";
+  if (dynamics != nullptr)
+    os << "    <dynamics damping=\"" << u.number(dynamics->damping) << "\" friction=\""
+       << u.number(dynamics->friction) << "\"/>\n";
   os << "  </joint>\n";
 }
 
@@ -121,7 +130,6 @@ Vec3 rotation_to_rpy(const Mat3& R) {
 }
 
 std::string robot_urdf(const RobotModel& model, const std::string& robot_name) {
-  static const char* kLinkSuffix[kJointsPerLeg] = {"coxa_link", "femur_link", "tibia_link"};
   UrdfStream u;
   auto& os = u.os();
   os << "<?xml version=\"1.0\"?>\n"
@@ -145,7 +153,8 @@ std::string robot_urdf(const RobotModel& model, const std::string& robot_name) {
     std::string parent = "trunk";
     for (int j = 0; j < model.leg(leg).n_joints; ++j) {
       const int b = model.body(leg, j);
-      const std::string child = prefix + kLinkSuffix[j];
+      // L{i}_coxa_link … for a leg of three joints, L{i}_j1_link … otherwise.
+      const std::string child = joint_name(leg, j, model.leg(leg).n_joints) + "_link";
       const int k = model.joint(leg, j);
       const JointLimit limit{
           model.joint_lower_rad[k], model.joint_upper_rad[k],
@@ -172,6 +181,59 @@ std::string robot_urdf(const RobotModel& model, const std::string& robot_name) {
       write_link(u, prefix + "foot", nullptr);
     write_joint(u, prefix + "foot_fixed", "fixed", parent, prefix + "foot", model.p_foot_last[leg],
                 Mat3::Identity(), nullptr, nullptr);
+  }
+  os << "</robot>\n";
+  return os.str();
+}
+
+std::string description_urdf(const UrdfRobot& robot) {
+  UrdfStream u;
+  auto& os = u.os();
+  os << "<?xml version=\"1.0\"?>\n"
+     << "<!-- Robot description as hexdyn read it: links fixed to a moving body merged into it;\n"
+     << "     the root link is the trunk link. SI units. -->\n"
+     << "<robot name=\"" << xml_escape(robot.name) << "\">\n";
+  // Everything in the trunk link's frame U: B_R_U is a signed permutation (exact both ways).
+  const Mat3 U_R_B = robot.B_R_U.transpose();
+  RigidInertia trunk = robot.trunk;
+  trunk.com_m = U_R_B * trunk.com_m;
+  trunk.inertia_com = U_R_B * trunk.inertia_com * robot.B_R_U;
+  write_link(u, xml_escape(robot.trunk_link), &trunk);
+  for (int leg = 0; leg < robot.n_legs(); ++leg) {
+    const UrdfLeg& l = robot.legs[leg];
+    std::string parent = xml_escape(robot.trunk_link);
+    for (std::size_t j = 0; j < l.joints.size(); ++j) {
+      const UrdfJoint& joint = l.joints[j];
+      const std::string child = xml_escape(joint.link);
+      // The description's "none" (+inf) is written as 0, which reads back as none.
+      const JointLimit limit{joint.lower_rad, joint.upper_rad,
+                             std::isfinite(joint.effort_Nm) ? joint.effort_Nm : 0.0,
+                             std::isfinite(joint.velocity_radps) ? joint.velocity_radps : 0.0};
+      const char* type = joint.type == UrdfJointType::kPrismatic    ? "prismatic"
+                         : joint.type == UrdfJointType::kContinuous ? "continuous"
+                                                                    : "revolute";
+      write_link(u, child, &joint.inertia);
+      Vec3 p = joint.p_parent_joint;
+      Mat3 R = joint.R_parent_joint;
+      if (j == 0) {
+        p = U_R_B * p;
+        R = U_R_B * R;
+      }
+      const JointDynamics dynamics{joint.damping_Nmsprad, joint.friction_Nm};
+      const bool has_dynamics = dynamics.damping != 0.0 || dynamics.friction != 0.0;
+      write_joint(u, xml_escape(joint.name), type, parent, child, p, R, &joint.axis, &limit,
+                  has_dynamics ? &dynamics : nullptr);
+      parent = child;
+    }
+    const std::string foot = leg_name(leg) + "_foot";
+    if (l.foot_radius_m > 0.0)
+      os << "  <link name=\"" << foot << "\">\n    <collision>\n      <geometry><sphere "
+         << "radius=\"" << u.number(l.foot_radius_m)
+         << "\"/></geometry>\n    </collision>\n  </link>\n";
+    else
+      write_link(u, foot, nullptr);
+    write_joint(u, foot + "_fixed", "fixed", parent, foot, l.p_foot_last, Mat3::Identity(), nullptr,
+                nullptr);
   }
   os << "</robot>\n";
   return os.str();

@@ -27,6 +27,7 @@
 #include <string>
 
 #include "hexdyn/model/robot_model.hpp"
+#include "hexdyn/model/urdf_robot.hpp"
 
 namespace hexdyn {
 
@@ -38,6 +39,16 @@ inline constexpr double kUrdfVelocityLimitRadps = 10.0;
 
 /// URDF document of `model` with `<robot name="robot_name">`.
 std::string robot_urdf(const RobotModel& model, const std::string& robot_name);
+
+/// URDF document of a description as read (urdf_robot.hpp), any number of legs and joints:
+/// root link = the trunk link (frame U, its inertial the merged trunk body), each leg's
+/// joints with their own names, types (revolute, continuous, prismatic), limits (+inf effort
+/// or velocity written as 0: none), <dynamics> when nonzero, and child links with the merged
+/// bodies, then a massless `L{i}_foot` on fixed joint `L{i}_foot_fixed` at the foot point (a
+/// sphere foot: a <collision> sphere of its radius). Read back with the description's
+/// forward axis (feet found by the default rules), it gives the same description
+/// (placements through rpy to about 1e-15; links fixed to a body are merged, not listed).
+std::string description_urdf(const UrdfRobot& robot);
 
 /// Fixed-axis roll, pitch, yaw of a rotation matrix, R = Rz(yaw) Ry(pitch) Rx(roll) [rad];
 /// pitch in [−π/2, π/2], roll = 0 at the gimbal lock.

@@ -15,13 +15,13 @@ namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 }  // namespace
 
-/// The foot point p_foot_last [m] of a chain (named `chain` in messages) in its third link's
+/// The foot point p_foot_last [m] of a chain (named `chain` in messages) in its last link's
 /// frame, from the links fixed to that link (`group`, with their placements in its frame):
 /// a named foot link, else (robot.foot_offset is set per leg by finish_feet, once the legs
 /// are mapped) a sphere <collision>, else the end of the links fixed to it.
 void Reader::locate_foot(const std::vector<std::pair<std::string, Placement>>& group,
                          const std::string& chain, UrdfLeg& leg) {
-  const std::string last = leg.link_names[2];
+  const std::string last = leg.last().link;
   leg.collisions = collision_shapes(group);
   bool found = false;
   for (const auto& f : opt_.foot_links) {
@@ -36,7 +36,7 @@ void Reader::locate_foot(const std::vector<std::pair<std::string, Placement>>& g
   if (!opt_.foot_links.empty() && !found)
     fail(chain + "none of robot.foot_links is fixed to its last link '" + last + "'");
   if (found || opt_.foot_offset) return;
-  // The default sphere foot: of several spheres, the one farthest from the third joint.
+  // The default sphere foot: of several spheres, the one farthest from the last joint.
   const CollisionShape* sphere = nullptr;
   for (const CollisionShape& s : leg.collisions)
     if (s.kind == CollisionShape::Kind::kSphere && s.size.x() > 0.0 &&
@@ -45,7 +45,7 @@ void Reader::locate_foot(const std::vector<std::pair<std::string, Placement>>& g
   if (sphere != nullptr) {
     if (sphere->size.x() > kMaxFootRadius_m)
       fail("link '" + sphere->link + "': sphere <collision> of radius " + num(sphere->size.x()) +
-           " m taken as the foot of chain '" + leg.joint_names[0] + "', expected at most " +
+           " m taken as the foot of chain '" + leg.joints.front().name + "', expected at most " +
            num(kMaxFootRadius_m) + " m; give robot.foot_offset or robot.foot_links");
     leg.p_foot_last = sphere->p;
     leg.foot_radius_m = sphere->size.x();
@@ -100,21 +100,28 @@ std::vector<CollisionShape> Reader::collision_shapes(
 /// The feet once the legs are mapped: robot.foot_offset per leg (with its foot check),
 /// robot.foot_radius, and the refusal of a foot on its last joint's axis.
 void Reader::finish_feet(UrdfRobot& robot) const {
-  for (int leg = 0; leg < kLegs; ++leg) {
+  const int n = robot.n_legs();
+  if (opt_.foot_offset && opt_.foot_links.empty() && opt_.foot_offset->size() != 1 &&
+      static_cast<int>(opt_.foot_offset->size()) != n)
+    fail("robot.foot_offset: " + std::to_string(opt_.foot_offset->size()) +
+         " points, expected one for every leg or one per leg (" + std::to_string(n) + " legs)");
+  for (int leg = 0; leg < n; ++leg) {
     UrdfLeg& l = robot.legs[leg];
-    const std::string chain = "chain '" + l.joint_names[0] + "': ";
+    const std::string chain = "leg " + leg_name(leg) + " (chain '" + l.joints.front().name + "'): ";
     if (opt_.foot_offset && opt_.foot_links.empty()) {
-      l.p_foot_last = (*opt_.foot_offset)[leg];
+      l.p_foot_last = (*opt_.foot_offset)[opt_.foot_offset->size() == 1 ? 0 : leg];
       l.foot_kind = FootSource::kFootOffset;
       l.foot_source = "robot.foot_offset";
       check_foot_inside(leg, l);
     }
     if (opt_.foot_radius) l.foot_radius_m = *opt_.foot_radius;
-    const Vec3& a = l.axis[2];
-    if ((l.p_foot_last - a.dot(l.p_foot_last) * a).norm() < 1e-6)
-      fail(chain + "foot (" + l.foot_source + ") lies on the axis of its last joint '" +
-           l.joint_names[2] +
-           "': the description has no foot frame; name the foot links (robot.foot_links) or "
+    const UrdfJoint& last = l.last();
+    const Vec3& a = last.axis;
+    if (last.type != UrdfJointType::kPrismatic &&
+        (l.p_foot_last - a.dot(l.p_foot_last) * a).norm() < 1e-6)
+      fail(chain + "foot (" + l.foot_source + ") lies on the axis of its last joint '" + last.name +
+           "' (link '" + last.link +
+           "'): the description has no foot frame; name the foot links (robot.foot_links) or "
            "give robot.foot_offset");
   }
 }
@@ -157,7 +164,7 @@ const char* kind_name(CollisionShape::Kind k) {
 /// The foot check of a robot.foot_offset point (urdf_reader.hpp): l.foot_check says what it
 /// found; a point outside every primitive of a last link without meshes fails, naming the leg.
 void Reader::check_foot_inside(int leg, UrdfLeg& l) const {
-  const std::string last = l.link_names[2];
+  const std::string last = l.last().link;
   double nearest = kInf;
   std::string kinds, meshes;
   for (const CollisionShape& s : l.collisions) {
@@ -183,12 +190,12 @@ void Reader::check_foot_inside(int leg, UrdfLeg& l) const {
     return;
   }
   const Vec3& p = l.p_foot_last;
-  fail("leg " + leg_name(leg) + " (chain '" + l.joint_names[0] + "'): robot.foot_offset (" +
+  fail("leg " + leg_name(leg) + " (chain '" + l.joints.front().name + "'): robot.foot_offset (" +
        num(p.x()) + ", " + num(p.y()) + ", " + num(p.z()) +
        ") m lies outside the <collision> geometry of its last link '" + last + "' (" + kinds +
        "; " + num(nearest) +
        " m from the nearest), expected a point inside it (robot.foot_offset may give each "
-       "leg its own point: a list of six or a map by leg name)");
+       "leg its own point: a list of one per leg or a map by leg name)");
 }
 
 /// The end of the chain of links fixed to link `last` (group: those links, placed in its
@@ -213,32 +220,6 @@ std::pair<std::string, Placement> Reader::fixed_chain_end(
     X_end = kids[0].second;
   }
   return {end, X_end};
-}
-
-void Reader::map_legs(std::vector<UrdfLeg>& chains, UrdfRobot& robot) const {
-  std::vector<int> left, right;
-  for (int i = 0; i < static_cast<int>(chains.size()); ++i) {
-    const Vec3& h = chains[i].p_parent_joint[0];
-    if (std::abs(h.x()) < 1e-9)
-      fail("chain '" + chains[i].joint_names[0] + "': hip on the trunk's forward axis (" +
-           num(h.x()) +
-           " m to the side): cannot tell left from right; set robot.forward_axis (now " +
-           opt_.forward_axis + ")");
-    (h.x() < 0.0 ? left : right).push_back(i);
-  }
-  if (left.size() != 3 || right.size() != 3)
-    fail("legs: " + std::to_string(left.size()) + " hips on the left and " +
-         std::to_string(right.size()) + " on the right of the trunk (forward axis " +
-         opt_.forward_axis + "), expected 3 and 3; set robot.forward_axis");
-  auto by_y = [&](int a, int b) {
-    return chains[a].p_parent_joint[0].y() > chains[b].p_parent_joint[0].y();
-  };
-  std::sort(left.begin(), left.end(), by_y);
-  std::sort(right.begin(), right.end(), by_y);
-  for (int row = 0; row < 3; ++row) {
-    robot.legs[2 * row] = chains[left[row]];
-    robot.legs[2 * row + 1] = chains[right[row]];
-  }
 }
 
 }  // namespace hexdyn::urdf_detail

@@ -24,6 +24,10 @@ struct Placement {
   Placement inverse() const { return {-(R.transpose() * p), R.transpose()}; }
 };
 
+/// A hip at most this far from the trunk's forward axis (|x| in the trunk frame) is on it [m]:
+/// neither left nor right, refused (docs/theory/conventions.md#legs-and-joints).
+inline constexpr double kCentreHip_m = 1e-9;
+
 /// x as a default-formatted stream writes it (6 significant digits: "0.05", "1e-09").
 std::string num(double x);
 
@@ -54,6 +58,7 @@ class Reader {
                   const std::vector<std::pair<std::string, Placement>>& group,
                   const RigidInertia& body) const;
   void check_joints();
+  void check_travel(const std::string& who, const urdf::JointLimits& l) const;
   void check_tree();
   void collect_trunk();
   /// Links fixed below `link` (itself included), with their placements in its frame.
@@ -61,8 +66,15 @@ class Reader {
   RigidInertia group_inertia(const std::vector<std::pair<std::string, Placement>>& group) const;
   std::vector<urdf::JointConstSharedPtr> moving_children(
       const std::vector<std::pair<std::string, Placement>>& group) const;
-  UrdfLeg read_chain(const urdf::JointConstSharedPtr& first, const Placement& U_X_parent,
-                     int chain_index);
+  std::vector<int> leg_order(const std::vector<urdf::JointConstSharedPtr>& legs,
+                             const std::vector<Vec3>& hips) const;
+  UrdfLeg read_chain(const urdf::JointConstSharedPtr& first, const Placement& B_X_parent,
+                     int leg_index);
+  UrdfJoint read_joint(const urdf::Joint& joint, const Placement& X_joint,
+                       const std::vector<std::pair<std::string, Placement>>& group) const;
+  int chain_depth(const urdf::JointConstSharedPtr& joint) const;
+  [[noreturn]] void fail_branch(const std::string& who, const std::string& link, int so_far,
+                                const std::vector<urdf::JointConstSharedPtr>& next) const;
   void locate_foot(const std::vector<std::pair<std::string, Placement>>& group,
                    const std::string& chain, UrdfLeg& leg);
   std::vector<CollisionShape> collision_shapes(
@@ -72,7 +84,6 @@ class Reader {
   std::pair<std::string, Placement> fixed_chain_end(
       const std::vector<std::pair<std::string, Placement>>& group, const std::string& last,
       const std::string& chain) const;
-  void map_legs(std::vector<UrdfLeg>& chains, UrdfRobot& robot) const;
 
   std::string source_;
   UrdfReadOptions opt_;

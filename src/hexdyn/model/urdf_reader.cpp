@@ -175,36 +175,78 @@ Mat3 Reader::trunk_axes() const {
   return B_R_U;
 }
 
-/// The six leg chains leaving the trunk (links `trunk`, named trunk_link in messages), in
-/// the order of the moving joints found, placed in the trunk frame by B_X_U; each named
+/// The leg chains leaving the trunk (links `trunk`, named trunk_link in messages), in leg order
+/// (leg_order), placed in the trunk frame by B_X_U: 2 to 8 (kMinLegs … kMaxLegs); each named
 /// foot link (robot.foot_links) must end exactly one chain.
 std::vector<UrdfLeg> Reader::read_legs(const std::vector<std::pair<std::string, Placement>>& trunk,
                                        const Placement& B_X_U, const std::string& trunk_link) {
   const auto legs = moving_children(trunk);
-  if (legs.size() != kLegs) {
+  const int n = static_cast<int>(legs.size());
+  if (n < kMinLegs || n > kMaxLegs) {
     std::string list;
-    for (const auto& j : legs) list += (list.empty() ? "" : ", ") + j->name;
-    fail("trunk '" + trunk_link + "': " + std::to_string(legs.size()) +
-         " moving joints leave the trunk (" + (list.empty() ? "none" : list) +
-         "), expected six legs of three revolute joints");
+    for (const auto& j : legs) list += (list.empty() ? "'" : ", '") + j->name + "'";
+    fail("trunk '" + trunk_link + "': " + std::to_string(n) + " moving joints leave the trunk (" +
+         (list.empty() ? "none" : list + ", the first joint of each leg") + "), expected " +
+         (n < kMinLegs ? "at least " + std::to_string(kMinLegs)
+                       : "at most " + std::to_string(kMaxLegs)) +
+         " legs");
   }
-  if (!opt_.foot_links.empty() && opt_.foot_links.size() != kLegs)
-    fail("robot.foot_links: " + std::to_string(opt_.foot_links.size()) + " names, expected 6");
+  if (!opt_.foot_links.empty() && static_cast<int>(opt_.foot_links.size()) != n)
+    fail("robot.foot_links: " + std::to_string(opt_.foot_links.size()) + " names, expected " +
+         std::to_string(n) + " (one per leg)");
   for (const auto& f : opt_.foot_links) {
     if (!model_->getLink(f)) fail("robot.foot_links: no link '" + f + "' in the description");
     foot_link_used_[f] = 0;
   }
-  std::vector<UrdfLeg> chains;
-  for (std::size_t i = 0; i < legs.size(); ++i) {
-    UrdfLeg leg = read_chain(legs[i], B_X_U * trunk_group_.at(legs[i]->parent_link_name),
-                             static_cast<int>(i));
-    chains.push_back(leg);
+  std::vector<Placement> B_X_parent;
+  std::vector<Vec3> hips;
+  for (const auto& j : legs) {
+    B_X_parent.push_back(B_X_U * trunk_group_.at(j->parent_link_name));
+    hips.push_back((B_X_parent.back() * to_placement(j->parent_to_joint_origin_transform)).p);
   }
-  for (const auto& [f, n] : foot_link_used_)
-    if (n != 1)
+  std::vector<UrdfLeg> chains;
+  for (const int i : leg_order(legs, hips))
+    chains.push_back(read_chain(legs[i], B_X_parent[i], static_cast<int>(chains.size())));
+  for (const auto& [f, count] : foot_link_used_)
+    if (count != 1)
       fail("robot.foot_links: link '" + f +
            "' is not fixed to the last link of exactly one leg chain");
   return chains;
+}
+
+/// The legs' order (docs/theory/conventions.md#legs-and-joints): the side of each hip (its x in
+/// the trunk frame: x < 0 left; |x| <= 1e-9 m refused; the two sides' counts may differ by one
+/// at most), then the rank front to rear within a side (y descending), numbered rank by rank,
+/// left before right. Returns the indices of
+/// `legs` in that order.
+std::vector<int> Reader::leg_order(const std::vector<urdf::JointConstSharedPtr>& legs,
+                                   const std::vector<Vec3>& hips) const {
+  std::vector<int> left, right;
+  for (int i = 0; i < static_cast<int>(hips.size()); ++i) {
+    const Vec3& h = hips[i];
+    if (std::abs(h.x()) <= kCentreHip_m)
+      fail("chain '" + legs[i]->name + "' (link '" + legs[i]->child_link_name +
+           "'): hip on the trunk's forward axis (" + num(h.x()) +
+           " m to the side), expected a hip left or right of it: cannot tell left from right; "
+           "set robot.forward_axis (now " +
+           opt_.forward_axis + ")");
+    (h.x() < 0.0 ? left : right).push_back(i);
+  }
+  const int l = static_cast<int>(left.size()), r = static_cast<int>(right.size());
+  if (std::abs(l - r) > 1)  // a mirror-symmetric robot: a wrong forward axis shows here
+    fail("legs: " + std::to_string(l) + " hips on the left and " + std::to_string(r) +
+         " on the right of the trunk (forward axis " + opt_.forward_axis +
+         "), expected as many on each side (one more on one side for an odd count); set "
+         "robot.forward_axis");
+  auto by_y = [&](int a, int b) { return hips[a].y() > hips[b].y(); };
+  std::stable_sort(left.begin(), left.end(), by_y);
+  std::stable_sort(right.begin(), right.end(), by_y);
+  std::vector<int> order;
+  for (std::size_t rank = 0; rank < std::max(left.size(), right.size()); ++rank) {
+    if (rank < left.size()) order.push_back(left[rank]);
+    if (rank < right.size()) order.push_back(right[rank]);
+  }
+  return order;
 }
 
 UrdfRobot Reader::read(const std::string& text) {
@@ -236,8 +278,9 @@ UrdfRobot Reader::read(const std::string& text) {
   robot.p_B_root = B_X_root.p;
   robot.B_R_root = B_X_root.R;
 
-  std::vector<UrdfLeg> chains = read_legs(trunk, B_X_U, robot.trunk_link);
-  map_legs(chains, robot);
+  for (const auto& [name, X] : trunk)
+    if (name != robot.trunk_link) robot.trunk_merged_links.push_back(name);
+  robot.legs = read_legs(trunk, B_X_U, robot.trunk_link);
   finish_feet(robot);
   return robot;
 }
@@ -336,6 +379,16 @@ void Reader::check_body(const std::string& link,
          moments + merged);
 }
 
+/// A prismatic joint's limits: finite, ordered, within the robot's coordinate bound [m].
+void Reader::check_travel(const std::string& who, const urdf::JointLimits& l) const {
+  if (!std::isfinite(l.lower) || !std::isfinite(l.upper)) fail(who + "limits are not finite");
+  if (l.lower > l.upper)
+    fail(who + "lower limit " + num(l.lower) + " above upper limit " + num(l.upper));
+  if (l.lower < -kMaxRobotCoordinate_m || l.upper > kMaxRobotCoordinate_m)
+    fail(who + "limits [" + num(l.lower) + ", " + num(l.upper) + "] m, expected limits within +-" +
+         num(kMaxRobotCoordinate_m) + " m (the bound of a scene's robot.*.length)");
+}
+
 void Reader::check_joints() {
   for (const auto& [name, j] : model_->joints_) {
     const std::string who = "joint '" + name + "': ";
@@ -345,9 +398,9 @@ void Reader::check_joints() {
            "\">, expected coordinates within +-" + num(kMaxRobotCoordinate_m) +
            " m (the bound of a scene's robot.*.length and robot.hips)");
     if (j->type != urdf::Joint::FIXED && j->type != urdf::Joint::REVOLUTE &&
-        j->type != urdf::Joint::CONTINUOUS)
+        j->type != urdf::Joint::CONTINUOUS && j->type != urdf::Joint::PRISMATIC)
       fail(who + "type " + type_name(j->type) +
-           " not supported (hexdyn reads fixed, revolute and continuous joints)");
+           " not supported (hexdyn reads fixed, revolute, continuous and prismatic joints)");
     if (!is_moving(*j)) continue;
     const Vec3 a(j->axis.x, j->axis.y, j->axis.z);
     if (!a.allFinite() || a.norm() < 1e-12)
@@ -379,6 +432,7 @@ void Reader::check_joints() {
                "] rad, expected limits within [-4 pi, 4 pi] (" + num(-kMaxJointAngle_rad) + ", " +
                num(kMaxJointAngle_rad) + ")");
       }
+      if (j->type == urdf::Joint::PRISMATIC) check_travel(who, l);
     }
   }
 }
@@ -442,49 +496,96 @@ std::vector<urdf::JointConstSharedPtr> Reader::moving_children(
   return out;
 }
 
+namespace {
+
+UrdfJointType joint_type(const urdf::Joint& j) {
+  if (j.type == urdf::Joint::CONTINUOUS) return UrdfJointType::kContinuous;
+  if (j.type == urdf::Joint::PRISMATIC) return UrdfJointType::kPrismatic;
+  return UrdfJointType::kRevolute;
+}
+
+}  // namespace
+
+/// One joint of a chain, its frame in the leg's parent body (X_joint), and the body it moves.
+UrdfJoint Reader::read_joint(const urdf::Joint& joint, const Placement& X_joint,
+                             const std::vector<std::pair<std::string, Placement>>& group) const {
+  UrdfJoint out;
+  out.name = joint.name;
+  out.link = joint.child_link_name;
+  out.type = joint_type(joint);
+  out.p_parent_joint = X_joint.p;
+  out.R_parent_joint = X_joint.R;
+  out.axis = Vec3(joint.axis.x, joint.axis.y, joint.axis.z).normalized();
+  const bool continuous = out.type == UrdfJointType::kContinuous;
+  const auto& lim = joint.limits;
+  out.lower_rad = continuous || !lim ? -kInf : lim->lower;
+  out.upper_rad = continuous || !lim ? kInf : lim->upper;
+  out.effort_Nm = lim && lim->effort > 0.0 ? lim->effort : kInf;
+  out.velocity_radps = lim && lim->velocity > 0.0 ? lim->velocity : kInf;
+  if (const auto& dyn = joint.dynamics) {
+    out.damping_Nmsprad = dyn->damping;
+    out.friction_Nm = dyn->friction;
+  }
+  out.inertia = group_inertia(group);
+  for (std::size_t i = 1; i < group.size(); ++i) out.merged_links.push_back(group[i].first);
+  return out;
+}
+
+/// The most moving joints in a row below `joint` (itself included).
+int Reader::chain_depth(const urdf::JointConstSharedPtr& joint) const {
+  int most = 0;
+  for (const auto& next : moving_children(fixed_group(joint->child_link_name)))
+    most = std::max(most, chain_depth(next));
+  return 1 + most;
+}
+
+/// Refuses a chain that branches at link `link` (leg `who`, `so_far` joints above it): two of
+/// the branches long enough to be legs are two legs sharing the link; otherwise the chain
+/// branches.
+void Reader::fail_branch(const std::string& who, const std::string& link, int so_far,
+                         const std::vector<urdf::JointConstSharedPtr>& next) const {
+  std::string list;
+  int legs = 0;
+  for (const auto& n : next) {
+    list += (list.empty() ? "'" : ", '") + n->name + "'";
+    if (so_far + chain_depth(n) >= kMinLegJoints) ++legs;
+  }
+  if (legs >= 2)
+    fail(who + "two legs share link '" + link + "' (moving joints " + list +
+         " leave it), expected each leg its own chain of links from the trunk");
+  fail(who + "the chain branches at link '" + link + "' (moving joints " + list +
+       " leave it), expected one moving joint after another from the trunk to the foot");
+}
+
+/// Leg `leg_index` (in leg order) from its first joint `first`, whose parent link is placed in
+/// the trunk frame by B_X_parent: 3 to 6 moving joints in a chain, then its foot.
 UrdfLeg Reader::read_chain(const urdf::JointConstSharedPtr& first, const Placement& B_X_parent,
-                           int) {
+                           int leg_index) {
   UrdfLeg leg;
-  const std::string chain = "chain '" + first->name + "': ";
+  const std::string chain = "leg " + leg_name(leg_index) + " (chain '" + first->name + "'): ";
   urdf::JointConstSharedPtr joint = first;
   Placement X_parent = B_X_parent;  // the joint's parent link in its body's frame
   std::vector<std::pair<std::string, Placement>> group;
-  for (int j = 0; j < kJointsPerLeg; ++j) {
-    const Placement X = X_parent * to_placement(joint->parent_to_joint_origin_transform);
-    leg.joint_names[j] = joint->name;
-    leg.link_names[j] = joint->child_link_name;
-    leg.p_parent_joint[j] = X.p;
-    leg.R_parent_joint[j] = X.R;
-    leg.axis[j] = Vec3(joint->axis.x, joint->axis.y, joint->axis.z).normalized();
-    const bool continuous = joint->type == urdf::Joint::CONTINUOUS;
-    const auto& lim = joint->limits;
-    leg.lower_rad[j] = continuous || !lim ? -kInf : lim->lower;
-    leg.upper_rad[j] = continuous || !lim ? kInf : lim->upper;
-    leg.effort_Nm[j] = lim && lim->effort > 0.0 ? lim->effort : kInf;
-    leg.velocity_radps[j] = lim && lim->velocity > 0.0 ? lim->velocity : kInf;
-    if (const auto& dyn = joint->dynamics) {
-      leg.damping_Nmsprad[j] = dyn->damping;
-      leg.friction_Nm[j] = dyn->friction;
-    }
+  for (;;) {
+    if (leg.n_joints() == kMaxLegJoints)
+      fail(chain + "joint '" + joint->name + "' leaves link '" + joint->parent_link_name +
+           "' after " + std::to_string(kMaxLegJoints) + " moving joints, expected " +
+           std::to_string(kMinLegJoints) + " to " + std::to_string(kMaxLegJoints) +
+           " moving joints from the trunk to the foot");
     group = fixed_group(joint->child_link_name);
-    leg.inertia[j] = group_inertia(group);
+    leg.joints.push_back(read_joint(
+        *joint, X_parent * to_placement(joint->parent_to_joint_origin_transform), group));
     const auto next = moving_children(group);
-    if (j < kJointsPerLeg - 1) {
-      if (next.size() != 1) {
-        std::string list;
-        for (const auto& n : next) list += (list.empty() ? "" : ", ") + n->name;
-        fail(chain + "not a chain of three revolute joints: link '" + joint->child_link_name +
-             "' carries " + std::to_string(next.size()) + " moving joints after joint '" +
-             joint->name + "'" + (list.empty() ? "" : " (" + list + ")"));
-      }
-      joint = next.front();
-      for (const auto& [name, Xl] : group)
-        if (name == joint->parent_link_name) X_parent = Xl;
-    } else if (!next.empty()) {
-      fail(chain + "not a chain of three revolute joints: joint '" + next.front()->name +
-           "' follows the third joint '" + joint->name + "'");
-    }
+    if (next.empty()) break;
+    if (next.size() > 1) fail_branch(chain, joint->child_link_name, leg.n_joints(), next);
+    joint = next.front();
+    for (const auto& [name, Xl] : group)
+      if (name == joint->parent_link_name) X_parent = Xl;
   }
+  if (leg.n_joints() < kMinLegJoints)
+    fail(chain + std::to_string(leg.n_joints()) + " moving joint" +
+         (leg.n_joints() == 1 ? "" : "s") + " from the trunk to its last link '" + leg.last().link +
+         "', expected " + std::to_string(kMinLegJoints) + " to " + std::to_string(kMaxLegJoints));
   locate_foot(group, chain, leg);
   return leg;
 }

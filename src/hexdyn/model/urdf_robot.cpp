@@ -1,11 +1,51 @@
 #include "hexdyn/model/urdf_robot.hpp"
 
 #include <sstream>
+#include <stdexcept>
+
+#include "hexdyn/core/errors.hpp"
 
 namespace hexdyn {
 
+int UrdfRobot::n_joints() const {
+  int n = 0;
+  for (const UrdfLeg& l : legs) n += l.n_joints();
+  return n;
+}
+
+namespace {
+
+/// "4 legs of 3, 3, 3, 3 joints"
+std::string shape_text(const UrdfRobot& robot) {
+  std::string s = std::to_string(robot.n_legs()) + " legs of ";
+  for (int leg = 0; leg < robot.n_legs(); ++leg)
+    s += (leg ? ", " : "") + std::to_string(robot.legs[leg].n_joints());
+  return s + " joints";
+}
+
+/// Refuses, in one line, a description the model cannot hold: more bodies than its storage,
+/// or a joint kind the dynamics does not simulate.
+void check_fits(const UrdfRobot& robot, std::size_t capacity) {
+  const std::string who = robot.source_path + ": robot '" + robot.name + "': ";
+  const std::size_t bodies = 1 + static_cast<std::size_t>(robot.n_joints());
+  if (bodies > capacity)
+    throw ConfigError(robot.source_path + ": robot '" + robot.name + "' (" + shape_text(robot) +
+                      "): " + std::to_string(bodies) + " bodies, expected at most " +
+                      std::to_string(capacity) + " (the bodies a robot model of this build holds)");
+  for (int leg = 0; leg < robot.n_legs(); ++leg)
+    for (const UrdfJoint& j : robot.legs[leg].joints)
+      if (j.type == UrdfJointType::kPrismatic)
+        throw ConfigError(who + "leg " + leg_name(leg) + ", joint '" + j.name + "' (link '" +
+                          j.link +
+                          "'): prismatic, expected revolute or continuous joints (prismatic "
+                          "joints are read, not yet simulated)");
+}
+
+}  // namespace
+
 RobotModel build_robot_model(const UrdfRobot& robot, double ik_min_margin_m) {
   RobotModel m;
+  check_fits(robot, m.parent.size());
   m.leg_geometry = LegGeometry::kChain;
   m.parent[0] = -1;
   m.R_parent_joint[0].setIdentity();
@@ -20,31 +60,40 @@ RobotModel build_robot_model(const UrdfRobot& robot, double ik_min_margin_m) {
   // The tree: each leg's chain in turn, body b moved by joint b − 1 (robot_model.hpp).
   int b = 1;
   for (const UrdfLeg& l : robot.legs) {
-    for (int j = 0; j < kJointsPerLeg; ++j, ++b) {
+    for (int j = 0; j < l.n_joints(); ++j, ++b) {
+      const UrdfJoint& joint = l.joints[j];
       m.parent[b] = j == 0 ? 0 : b - 1;
-      m.p_parent_joint[b] = l.p_parent_joint[j];
-      m.R_parent_joint[b] = l.R_parent_joint[j];
-      m.axis[b] = l.axis[j];
-      m.inertia[b] = l.inertia[j];
+      m.p_parent_joint[b] = joint.p_parent_joint;
+      m.R_parent_joint[b] = joint.R_parent_joint;
+      m.axis[b] = joint.axis;
+      m.inertia[b] = joint.inertia;
     }
   }
-  fill_leg_table(m);
+  // Storage beyond the robot's bodies: no parent, so that no leg starts there.
+  for (std::size_t unused = b; unused < m.parent.size(); ++unused) m.parent[unused] = -1;
+  try {
+    fill_leg_table(m);
+  } catch (const std::logic_error& e) {  // a leg layout this build does not simulate
+    throw ConfigError(robot.source_path + ": robot '" + robot.name + "' (" + shape_text(robot) +
+                      "): " + e.what());
+  }
   for (int leg = 0; leg < m.legs(); ++leg) {
     const UrdfLeg& l = robot.legs[leg];
     m.lateral_m[leg] = m.d2_signed_m[leg] = m.d3_signed_m[leg] = 0.0;
     for (int j = 0; j < m.leg(leg).n_joints; ++j) {
       const int k = m.joint(leg, j);
-      m.joint_lower_rad[k] = l.lower_rad[j];
-      m.joint_upper_rad[k] = l.upper_rad[j];
-      m.effort_limit_Nm[k] = l.effort_Nm[j];
-      m.velocity_limit_radps[k] = l.velocity_radps[j];
-      m.joint_source_names[k] = l.joint_names[j];
+      const UrdfJoint& joint = l.joints[j];
+      m.joint_lower_rad[k] = joint.lower_rad;
+      m.joint_upper_rad[k] = joint.upper_rad;
+      m.effort_limit_Nm[k] = joint.effort_Nm;
+      m.velocity_limit_radps[k] = joint.velocity_radps;
+      m.joint_source_names[k] = joint.name;
     }
     m.p_foot_last[leg] = l.p_foot_last;
     m.foot_radius_m[leg] = l.foot_radius_m;
   }
   m.total_mass_kg = 0.0;
-  for (const auto& in : m.inertia) m.total_mass_kg += in.mass_kg;
+  for (int body = 0; body < m.bodies(); ++body) m.total_mass_kg += m.inertia[body].mass_kg;
   m.p_B_root = robot.p_B_root;
   m.B_R_root = robot.B_R_root;
   prepare_leg_chains(m);
@@ -62,7 +111,7 @@ namespace {
 std::string foot_text(const UrdfLeg& l) {
   std::ostringstream point, s;
   const Vec3& p = l.p_foot_last;
-  point << "(" << p.x() << ", " << p.y() << ", " << p.z() << ") m in " << l.link_names[2];
+  point << "(" << p.x() << ", " << p.y() << ", " << p.z() << ") m in " << l.last().link;
   switch (l.foot_kind) {
     case FootSource::kLinkOrigin:
       s << l.foot_source;
@@ -79,35 +128,47 @@ std::string foot_text(const UrdfLeg& l) {
   return s.str();
 }
 
+/// "  merged into LINK: A, B\n", or nothing when no link is fixed to `link`.
+std::string merged_text(const std::string& link, const std::vector<std::string>& merged) {
+  if (merged.empty()) return "";
+  std::string s = "  merged into " + link + ":";
+  for (std::size_t i = 0; i < merged.size(); ++i) s += (i ? ", " : " ") + merged[i];
+  return s + "\n";
+}
+
 }  // namespace
 
 std::string leg_mapping_text(const UrdfRobot& robot) {
   std::ostringstream s;
-  for (int leg = 0; leg < kLegs; ++leg) {
+  s << merged_text(robot.trunk_link, robot.trunk_merged_links);
+  for (int leg = 0; leg < robot.n_legs(); ++leg) {
     const UrdfLeg& l = robot.legs[leg];
-    const Vec3& h = l.p_parent_joint[0];
-    s << leg_name(leg) << " <- " << l.joint_names[0] << " / " << l.joint_names[1] << " / "
-      << l.joint_names[2] << ", hip (" << h.x() << ", " << h.y() << ", " << h.z()
-      << ") m in the trunk frame, foot " << foot_text(l) << "\n";
+    const Vec3& h = l.joints.front().p_parent_joint;
+    s << leg_name(leg) << " <- ";
+    for (int j = 0; j < l.n_joints(); ++j) s << (j ? " / " : "") << l.joints[j].name;
+    s << ", hip (" << h.x() << ", " << h.y() << ", " << h.z() << ") m in the trunk frame, foot "
+      << foot_text(l) << "\n";
+    for (const UrdfJoint& j : l.joints) s << merged_text(j.link, j.merged_links);
   }
   return s.str();
 }
 
-std::array<std::string, kLegs> leg_mapping_entries(const UrdfRobot& robot) {
-  std::array<std::string, kLegs> out;
-  for (int leg = 0; leg < kLegs; ++leg) {
+std::vector<std::string> leg_mapping_entries(const UrdfRobot& robot) {
+  std::vector<std::string> out;
+  for (int leg = 0; leg < robot.n_legs(); ++leg) {
     const UrdfLeg& l = robot.legs[leg];
     std::ostringstream s;
     s.precision(17);
-    s << leg_name(leg) << ": " << l.joint_names[0] << " " << l.joint_names[1] << " "
-      << l.joint_names[2] << " foot ";
+    s << leg_name(leg) << ":";
+    for (const UrdfJoint& j : l.joints) s << " " << j.name;
+    s << " foot ";
     if (l.foot_kind != FootSource::kLinkOrigin)
       s << "offset " << l.p_foot_last.x() << " " << l.p_foot_last.y() << " " << l.p_foot_last.z()
-        << " " << l.link_names[2];
+        << " " << l.last().link;
     else
       s << l.foot_source;
     if (l.foot_radius_m > 0.0) s << " radius " << l.foot_radius_m;
-    out[leg] = s.str();
+    out.push_back(s.str());
   }
   return out;
 }

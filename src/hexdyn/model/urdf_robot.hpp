@@ -1,15 +1,15 @@
 #pragma once
 /// \file urdf_robot.hpp
-/// A hexapod read from a URDF (urdf_reader.hpp), in hexdyn's conventions, and the
+/// A legged robot read from a URDF (urdf_reader.hpp), in hexdyn's conventions, and the
 /// RobotModel built from it. Nothing here depends on the URDF parser.
 ///
 /// Trunk frame B (docs/theory/conventions.md#frames: x right, y forward, z up) has its origin at
 /// the URDF trunk link's origin; its axes are the trunk link's rotated by B_R_U, which maps the
 /// description's forward axis (UrdfReadOptions::forward_axis, default +x as in ROS
 /// REP-103) to +y and its +z to +z. Every link joined to the trunk link by fixed joints is
-/// part of the trunk body. Each leg is a chain of three revolute (or continuous) joints
-/// from the trunk; link k of the chain is the child link of its joint k together with the
-/// links fixed to it. Link frames are the URDF child link frames; joint angles, axes,
+/// part of the trunk body. Each leg is a chain of 3 to 6 revolute, continuous or prismatic
+/// joints from the trunk; link k of the chain is the child link of its joint k together with
+/// the links fixed to it. Link frames are the URDF child link frames; joint angles, axes,
 /// signs and zero poses are the URDF's.
 #include <string>
 #include <vector>
@@ -38,22 +38,41 @@ enum class FootSource {
   kSphereCollision,  ///< the centre and radius of a sphere <collision> of the last link
 };
 
-/// One leg as read from the description, in hexdyn's leg order.
-struct UrdfLeg {
-  std::array<std::string, kJointsPerLeg> joint_names;  ///< URDF joint names, hip → foot
-  std::array<std::string, kJointsPerLeg> link_names;   ///< their child links
-  /// Joint frame in the parent link frame (joint 0: in the trunk frame B) [m].
-  std::array<Vec3, kJointsPerLeg> p_parent_joint;
-  std::array<Mat3, kJointsPerLeg> R_parent_joint;
-  std::array<Vec3, kJointsPerLeg> axis;                        ///< unit, joint frame
-  std::array<RigidInertia, kJointsPerLeg> inertia;             ///< merged link bodies, link frames
-  std::array<double, kJointsPerLeg> lower_rad{}, upper_rad{};  ///< ±inf: continuous
-  std::array<double, kJointsPerLeg> effort_Nm{};               ///< +inf: none given
-  std::array<double, kJointsPerLeg> velocity_radps{};          ///< +inf: none given
+/// The kind of a leg joint as the description gives it.
+enum class UrdfJointType {
+  kRevolute,    ///< limits [rad]
+  kContinuous,  ///< a revolute joint without limits (±inf)
+  kPrismatic,   ///< a sliding joint along its axis; limits [m], effort [N], velocity [m/s]
+};
+
+/// One moving joint of a leg and the body it moves: its child link with the links fixed to it.
+struct UrdfJoint {
+  std::string name;  ///< URDF joint name
+  std::string link;  ///< its child link
+  UrdfJointType type = UrdfJointType::kRevolute;
+  /// Joint frame in the parent link frame (the leg's first joint: in the trunk frame B) [m].
+  Vec3 p_parent_joint = Vec3::Zero();
+  Mat3 R_parent_joint = Mat3::Identity();
+  Vec3 axis = Vec3::UnitZ();  ///< unit, joint frame
+  RigidInertia inertia;       ///< the merged body, child link frame
+  /// The links fixed to `link` (not itself) whose <inertial> are merged into its body, as
+  /// found walking down the fixed joints (`-v`).
+  std::vector<std::string> merged_links;
+  double lower_rad = 0.0, upper_rad = 0.0;  ///< ±inf: continuous (a prismatic joint: [m])
+  double effort_Nm = 0.0;                   ///< +inf: none given (a prismatic joint: [N])
+  double velocity_radps = 0.0;              ///< +inf: none given (a prismatic joint: [m/s])
   /// <dynamics damping friction>, 0 when not given: the defaults of an actuator's viscous
   /// (N m s/rad) and Coulomb (N m) friction (config/actuators.hpp).
-  std::array<double, kJointsPerLeg> damping_Nmsprad{}, friction_Nm{};
-  Vec3 p_foot_last = Vec3::Zero();  ///< foot point in the third link frame [m]
+  double damping_Nmsprad = 0.0, friction_Nm = 0.0;
+};
+
+/// One leg as read from the description, in hexdyn's leg order: a chain of 3 to 6 moving
+/// joints (kMinLegJoints … kMaxLegJoints, core/sizes.hpp) from the trunk to the foot.
+struct UrdfLeg {
+  std::vector<UrdfJoint> joints;  ///< hip → foot
+  int n_joints() const { return static_cast<int>(joints.size()); }
+  const UrdfJoint& last() const { return joints.back(); }
+  Vec3 p_foot_last = Vec3::Zero();  ///< foot point in the last link frame [m]
   /// Sphere foot radius [m] (RobotModel::foot_radius_m): p_foot_last is its centre; 0 a point.
   double foot_radius_m = 0.0;
   FootSource foot_kind = FootSource::kLinkOrigin;
@@ -67,36 +86,48 @@ struct UrdfLeg {
   std::string foot_check;
 };
 
+/// A robot read from a URDF: the trunk and 2 to 8 legs (kMinLegs … kMaxLegs) in hexdyn's leg
+/// order (docs/theory/conventions.md#legs-and-joints), named L1 … Ln (leg_name).
 struct UrdfRobot {
-  std::string name;                  ///< <robot name>
-  std::string source_path;           ///< the file read
-  std::string trunk_link;            ///< the URDF link whose frame is the trunk frame
-  std::string forward_axis;          ///< "+x", "-x", "+y" or "-y" of the trunk link
-  Mat3 B_R_U = Mat3::Identity();     ///< URDF trunk link axes → trunk frame B
-  RigidInertia trunk;                ///< trunk body (links fixed to the trunk link), frame B
-  std::array<UrdfLeg, kLegs> legs;   ///< L1 … L6 (common.hpp)
+  std::string name;               ///< <robot name>
+  std::string source_path;        ///< the file read
+  std::string trunk_link;         ///< the URDF link whose frame is the trunk frame
+  std::string forward_axis;       ///< "+x", "-x", "+y" or "-y" of the trunk link
+  Mat3 B_R_U = Mat3::Identity();  ///< URDF trunk link axes → trunk frame B
+  RigidInertia trunk;             ///< trunk body (links fixed to the trunk link), frame B
+  /// The links fixed to the trunk link (not itself), merged into the trunk body, in name order
+  /// (`-v`).
+  std::vector<std::string> trunk_merged_links;
+  std::vector<UrdfLeg> legs;         ///< L1 … Ln
   double total_mass_kg = 0.0;        ///< sum over every <inertial> of the file [kg]
   std::string root_link;             ///< the URDF's root link (the trunk link or fixed to it)
   Vec3 p_B_root = Vec3::Zero();      ///< root link origin in the trunk frame B [m]
   Mat3 B_R_root = Mat3::Identity();  ///< root link axes → B
+  int n_legs() const { return static_cast<int>(legs.size()); }
+  int n_joints() const;  ///< all legs' joints
 };
 
-/// The RobotModel of a URDF robot: LegGeometry::kChain, tree and inertias from `robot`,
-/// no payload. ik_min_margin_m: RobotParams::ik_min_margin_m.
+/// The RobotModel of a URDF robot: LegGeometry::kChain, tree and inertias from `robot` (bodies
+/// and joints leg by leg, hip to foot), no payload. ik_min_margin_m:
+/// RobotParams::ik_min_margin_m. Throws ConfigError, one line naming the robot, for a robot
+/// the model cannot hold (more bodies than its storage, a leg shape this build does not
+/// simulate, a prismatic joint).
 RobotModel build_robot_model(const UrdfRobot& robot, double ik_min_margin_m = 1e-4);
 
 /// "L1 <- right_front_coxa / right_front_femur / right_front_tibia, hip (x, y, z) m in the
 /// trunk frame, foot pxmark4/…" one line per leg: the mapping of the description's chains
 /// to hexdyn's legs; a foot that is not a link's origin is given as a point of the last link
 /// ("foot robot.foot_offset (x, y, z) m in LINK", "foot sphere r = R m of LINK's <collision>,
-/// centre (x, y, z) m in LINK"), a sphere foot with its radius, and the foot check's finding.
+/// centre (x, y, z) m in LINK"), a sphere foot with its radius, and the foot check's finding;
+/// then, for the trunk and each body that has them, the fixed links merged into it
+/// ("  merged into LINK: A, B").
 std::string leg_mapping_text(const UrdfRobot& robot);
 
-/// The same mapping, one entry per leg L1 … L6 for /model/leg_mapping (io/schema.hpp):
+/// The same mapping, one entry per leg L1 … Ln for /model/leg_mapping (io/schema.hpp):
 /// "L1: JOINT1 JOINT2 JOINT3 foot FOOT" with the URDF's joint names, hip to foot, and the
 /// foot's source: a link name (the foot point is that link's origin) or
-/// "offset X Y Z LINK" (robot.foot_offset or a sphere's centre in the third link's frame) [m];
+/// "offset X Y Z LINK" (robot.foot_offset or a sphere's centre in the last link's frame) [m];
 /// then " radius R" [m] for a sphere foot.
-std::array<std::string, kLegs> leg_mapping_entries(const UrdfRobot& robot);
+std::vector<std::string> leg_mapping_entries(const UrdfRobot& robot);
 
 }  // namespace hexdyn

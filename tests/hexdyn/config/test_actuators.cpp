@@ -367,7 +367,7 @@ TEST_CASE("actuators: a URDF's <dynamics> give the friction below every entry",
   REQUIRE(a.robot.urdf);
   int damped = -1;
   for (int k = 0; k < kJoints; ++k)
-    if (a.robot.urdf->legs[k / kJointsPerLeg].joint_names[k % kJointsPerLeg] == "right_front_femur")
+    if (a.robot.urdf->legs[k / kJointsPerLeg].joints[k % kJointsPerLeg].name == "right_front_femur")
       damped = k;
   REQUIRE(damped >= 0);
   REQUIRE(damped % kJointsPerLeg == 1);

@@ -219,7 +219,7 @@ TEST_CASE("a URDF's sphere <collision> at a chain's end is its default foot, cen
   const RobotModel model = build_robot_model(scene.robot);
   for (int leg = 0; leg < kLegs; ++leg) {
     const UrdfLeg& l = scene.robot.urdf->legs[leg];
-    INFO(leg_name(leg) << ": " << l.joint_names[0]);
+    INFO(leg_name(leg) << ": " << l.joints[0].name);
     CHECK(l.foot_kind == FootSource::kSphereCollision);
     CHECK((model.p_foot_last[leg] - pexod_foot(leg)).norm() <= 1e-15);
     CHECK(model.foot_radius_m[leg] == 0.025);
@@ -253,7 +253,7 @@ TEST_CASE("robot.foot_offset: one point, six in leg order, or a map by leg name"
       CHECK(model.foot_radius_m[leg] == 0.0);  // a point, unless robot.foot_radius says
       // Inside the tibia's <collision> box (it reaches the sphere's centre).
       CHECK(scene.robot.urdf->legs[leg].foot_check ==
-            "inside the box <collision> of " + scene.robot.urdf->legs[leg].link_names[2]);
+            "inside the box <collision> of " + scene.robot.urdf->legs[leg].joints[2].link);
     }
     // The resolved configuration reruns to the same feet.
     const Scene again = load_scene_from_string(scene.resolved_yaml, kPexodScene);

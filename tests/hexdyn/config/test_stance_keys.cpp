@@ -141,7 +141,7 @@ TEST_CASE(
     }
     const UrdfLeg& l = file.legs[leg];
     for (int j = 0; j < kJointsPerLeg; ++j)
-      CHECK(st.q[j] == Approx(0.5 * (l.lower_rad[j] + l.upper_rad[j])).margin(1e-15));
+      CHECK(st.q[j] == Approx(0.5 * (l.joints[j].lower_rad + l.joints[j].upper_rad)).margin(1e-15));
   }
   CHECK(s.robot.stance[2].q[2] == Approx(0.4).margin(1e-15));  // [0.2, 0.6] as written
   CHECK(s.robot.stance[5].q[1] == Approx(0.3).margin(1e-15));  // [0.1, 0.5]

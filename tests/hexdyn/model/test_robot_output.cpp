@@ -58,14 +58,16 @@ TEST_CASE("/model/urdf of a URDF robot reads back as the original description", 
     for (int leg = 0; leg < kLegs; ++leg) {
       const UrdfLeg &a = back.legs[leg], &b = original.legs[leg];
       for (int j = 0; j < kJointsPerLeg; ++j) {
-        CHECK(a.joint_names[j] == b.joint_names[j]);  // the description's own joint names
-        CHECK((a.p_parent_joint[j] - b.p_parent_joint[j]).cwiseAbs().maxCoeff() <= 1e-12);
-        CHECK((a.R_parent_joint[j] - b.R_parent_joint[j]).cwiseAbs().maxCoeff() <= 1e-12);
-        CHECK((a.axis[j] - b.axis[j]).cwiseAbs().maxCoeff() <= 1e-12);
-        CHECK(a.lower_rad[j] == b.lower_rad[j]);
-        CHECK(a.upper_rad[j] == b.upper_rad[j]);
-        CHECK(a.effort_Nm[j] == b.effort_Nm[j]);
-        check_inertia(a.inertia[j], b.inertia[j]);
+        CHECK(a.joints[j].name == b.joints[j].name);  // the description's own joint names
+        CHECK((a.joints[j].p_parent_joint - b.joints[j].p_parent_joint).cwiseAbs().maxCoeff() <=
+              1e-12);
+        CHECK((a.joints[j].R_parent_joint - b.joints[j].R_parent_joint).cwiseAbs().maxCoeff() <=
+              1e-12);
+        CHECK((a.joints[j].axis - b.joints[j].axis).cwiseAbs().maxCoeff() <= 1e-12);
+        CHECK(a.joints[j].lower_rad == b.joints[j].lower_rad);
+        CHECK(a.joints[j].upper_rad == b.joints[j].upper_rad);
+        CHECK(a.joints[j].effort_Nm == b.joints[j].effort_Nm);
+        check_inertia(a.joints[j].inertia, b.joints[j].inertia);
       }
       CHECK((a.p_foot_last - b.p_foot_last).cwiseAbs().maxCoeff() <= 1e-12);
     }

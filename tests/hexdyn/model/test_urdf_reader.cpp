@@ -177,9 +177,10 @@ TEST_CASE("urdf reader: legs map to L1..L6 by hip position, URDF names kept", "[
   const Loaded kraby = real_robots()[1];
   const RawUrdf raw(kKraby);
   for (int leg = 0; leg < kLegs; ++leg) {
-    const Vec3 hip = raw.pose(kraby.robot.legs[leg].link_names[0], {}).second;
+    const Vec3 hip = raw.pose(kraby.robot.legs[leg].joints[0].link, {}).second;
     CHECK((hip.x() < 0.0) == is_left(leg));
-    if (leg >= 2) CHECK(hip.y() < raw.pose(kraby.robot.legs[leg - 2].link_names[0], {}).second.y());
+    if (leg >= 2)
+      CHECK(hip.y() < raw.pose(kraby.robot.legs[leg - 2].joints[0].link, {}).second.y());
     CHECK(kraby.model.effort_limit_Nm[joint_index(leg, 0)] == 1.18);
   }
 }
@@ -452,15 +453,17 @@ TEST_CASE("urdf reader: each broken description is refused with one line naming 
       {"nan_mass.urdf", {"link 'leg'", "value=\"nan\"", "not finite"}},
       {"inf_origin.urdf", {"joint 'hip'", "xyz=\"0 inf 0\"", "not finite"}},
       {"unknown_joint_type.urdf", {"not a valid URDF", "[hip]", "no known type [hinge]"}},
-      {"prismatic_joint.urdf", {"joint 'hip'", "type prismatic not supported"}},
+      // Prismatic joints are read now (test_urdf_legs.cpp); this file's one leg is refused.
+      {"prismatic_joint.urdf",
+       {"trunk 'trunk'", "1 moving joints leave the trunk", "expected at least 2 legs"}},
       {"missing_parent.urdf",
        {"not a valid URDF", "parent link [thigh] of joint [knee] not found"}},
       {"duplicate_link.urdf", {"link 'leg' is not unique"}},
       {"duplicate_joint.urdf", {"joint 'hip' is not unique"}},
       {"loop_two_parents.urdf", {"link 'b'", "child of two joints", "kinematic loop"}},
       {"cycle_detached.urdf", {"link 'a'", "not connected to the root link 'trunk'", "cycle"}},
-      {"five_legs.urdf", {"5 moving joints leave the trunk", "expected six legs"}},
-      {"leg_not_3r.urdf", {"chain 'leg3_coxa_joint'", "not a chain of three revolute joints"}},
+      {"leg_not_3r.urdf",
+       {"leg L4 (chain 'leg3_coxa_joint')", "2 moving joints", "expected 3 to 6"}},
       {"no_foot_frame.urdf",
        {"chain 'leg0_coxa_joint'", "on the axis of its last joint", "robot.foot_links"}},
   };
@@ -475,9 +478,13 @@ TEST_CASE("urdf reader: each broken description is refused with one line naming 
   }
   // The valid hexapod these are cut from loads; without a foot frame, options give one.
   CHECK(refusal(kData + "valid_hexapod.urdf").empty());
+  // Five legs are read (2 to 8 are), in the documented order: three on the left.
+  const UrdfRobot five = read_urdf_robot(kData + "five_legs.urdf");
+  REQUIRE(five.n_legs() == 5);
+  for (int leg = 0; leg < 5; ++leg)  // written front left, front right, …, rear left
+    CHECK(five.legs[leg].joints[0].name == "leg" + std::to_string(leg) + "_coxa_joint");
   UrdfReadOptions offset;
-  offset.foot_offset.emplace();
-  offset.foot_offset->fill(Vec3(0.1, 0.0, 0.0));
+  offset.foot_offset = std::vector<Vec3>{Vec3(0.1, 0.0, 0.0)};
   CHECK(refusal(kData + "no_foot_frame.urdf", offset).empty());
   const UrdfRobot with_offset = read_urdf_robot(kData + "no_foot_frame.urdf", offset);
   const UrdfRobot with_links = read_urdf_robot(kData + "valid_hexapod.urdf");
@@ -627,14 +634,16 @@ TEST_CASE("urdf reader: plausibility is judged on the bodies the dynamics uses",
         std::string::npos);
 }
 
-TEST_CASE("urdf reader: Solo-12 and ANYmal C pass the value checks and stop at their leg count",
+TEST_CASE("urdf reader: Solo-12 and ANYmal C pass the value checks and read as four legs",
           "[urdf_reader]") {
   // Their wide joint limits (±10 rad, ±3π), massless camera frames and degenerate camera and
-  // hatch inertias fixed to the trunk are accepted; four legs are not, yet.
+  // hatch inertias fixed to the trunk are accepted; their legs are checked in
+  // test_urdf_legs.cpp.
   for (const char* file : {"solo12.urdf", "anymal_c.urdf"}) {
-    const std::string msg = refusal(std::string(HEXDYN_SOURCE_DIR) + "/robots/" + file);
-    INFO(msg);
-    CHECK(msg.find("4 moving joints leave the trunk") != std::string::npos);
+    const std::string path = std::string(HEXDYN_SOURCE_DIR) + "/robots/" + file;
+    INFO(refusal(path));
+    REQUIRE(refusal(path).empty());
+    CHECK(read_urdf_robot(path).n_legs() == 4);
   }
 }
 
@@ -651,7 +660,7 @@ TEST_CASE("urdf reader: the HumaRobotics PhantomX is refused for its inertias", 
 /// The hexapod's leg mapped from chain `chain` (its first joint's name).
 int leg_of_chain(const UrdfRobot& robot, const std::string& chain) {
   for (int leg = 0; leg < kLegs; ++leg)
-    if (robot.legs[leg].joint_names[0] == chain) return leg;
+    if (robot.legs[leg].joints[0].name == chain) return leg;
   FAIL("no leg from chain " << chain);
   return -1;
 }
@@ -659,8 +668,7 @@ int leg_of_chain(const UrdfRobot& robot, const std::string& chain) {
 /// Reads `text` with robot.foot_offset: `p` on leg `leg`, a point of no collision elsewhere.
 std::string offset_refusal(const std::string& text, int leg, const Vec3& p, UrdfRobot* out) {
   UrdfReadOptions o;
-  o.foot_offset.emplace();
-  o.foot_offset->fill(Vec3(0.1, 0.0, 0.0));
+  o.foot_offset = std::vector<Vec3>(kLegs, Vec3(0.1, 0.0, 0.0));
   (*o.foot_offset)[leg] = p;
   try {
     *out = read_urdf_robot_from_string(text, "hexapod.urdf", o);
@@ -706,7 +714,7 @@ TEST_CASE("urdf reader: robot.foot_offset per leg, checked against the collision
           "[urdf_reader][feet]") {
   // Leg order: each leg's own point lands on that leg, L1 … L6, whatever the chains' order.
   UrdfReadOptions o;
-  o.foot_offset.emplace();
+  o.foot_offset.emplace(kLegs);
   for (int leg = 0; leg < kLegs; ++leg) (*o.foot_offset)[leg] = Vec3(0.1, 0.001 * leg, 0.0);
   const UrdfRobot r = read_urdf_robot(kData + "valid_hexapod.urdf", o);
   for (int leg = 0; leg < kLegs; ++leg) {
