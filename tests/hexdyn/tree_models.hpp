@@ -42,9 +42,11 @@ inline RigidInertia draw_inertia(std::mt19937& rng, double mass_lo, double mass_
 }
 
 /// A robot of leg_joints.size() legs, leg l of leg_joints[l] joints, its tree flat leg by leg
-/// (body b moved by joint b − 1). Hips alternate left (x < 0) and right, front to rear;
-/// every joint placement, orientation and axis and every inertia is drawn. Point feet.
-inline RobotModel tree_model(std::mt19937& rng, const std::vector<int>& leg_joints) {
+/// (body b moved by joint b − 1); the joints of flat index in `prismatic` slide, the others
+/// turn. Hips alternate left (x < 0) and right, front to rear; every joint placement,
+/// orientation and axis and every inertia is drawn. Point feet.
+inline RobotModel tree_model(std::mt19937& rng, const std::vector<int>& leg_joints,
+                             const std::vector<int>& prismatic = {}) {
   RobotModel m;
   m.leg_geometry = LegGeometry::kChain;
   m.parent[0] = -1;
@@ -67,6 +69,7 @@ inline RobotModel tree_model(std::mt19937& rng, const std::vector<int>& leg_join
       m.inertia[b] = draw_inertia(rng, 0.05, 0.6, 0.05);
     }
   }
+  for (int k : prismatic) m.joint_type[k] = JointType::kPrismatic;
   fill_leg_table(m);
   for (int l = 0; l < m.legs(); ++l) {
     m.p_foot_last[l] = draw_vec3(rng, -0.1, 0.1);
@@ -77,28 +80,40 @@ inline RobotModel tree_model(std::mt19937& rng, const std::vector<int>& leg_join
   return m;
 }
 
-/// The shapes the tests run: a quadruped 4 × 3, a hexapod of 4-joint legs and a biped 2 × 6.
+/// The shapes the tests run: a quadruped 4 × 3, a hexapod of 4-joint legs and a biped 2 × 6,
+/// then a quadruped whose knees slide and a biped with a sliding joint in each leg.
 struct TreeShape {
   const char* name;
   std::vector<int> leg_joints;
+  std::vector<int> prismatic;  ///< flat indices of the sliding joints
 };
 inline std::vector<TreeShape> tree_shapes() {
-  return {
-      {"quadruped 4x3", {3, 3, 3, 3}}, {"hexapod 6x4", {4, 4, 4, 4, 4, 4}}, {"biped 2x6", {6, 6}}};
+  return {{"quadruped 4x3", {3, 3, 3, 3}, {}},
+          {"hexapod 6x4", {4, 4, 4, 4, 4, 4}, {}},
+          {"biped 2x6", {6, 6}, {}},
+          {"quadruped 4x3, prismatic knees", {3, 3, 3, 3}, {1, 4, 7, 10}},
+          {"biped 2x6, a prismatic joint a leg", {6, 6}, {2, 11}}};
 }
 
-/// Body poses in the world for the trunk pose of `state` and joint angles q, composed joint by
-/// joint with Eigen::AngleAxisd (independent of the model's and the dynamics' own).
-struct WorldPoses {
+/// Body poses in the world for the trunk pose of `state` and joint positions q, composed joint
+/// by joint with Eigen::AngleAxisd, or a slide along the axis for a prismatic joint
+/// (independent of the model's and the dynamics' own).
+struct TreePoses {
   std::vector<Mat3> R;
   std::vector<Vec3> p;
 };
-inline WorldPoses world_poses(const RobotModel& m, const BaseState& state, const JointVector& q) {
-  WorldPoses w;
+inline TreePoses tree_poses(const RobotModel& m, const BaseState& state, const JointVector& q) {
+  TreePoses w;
   w.R.assign(m.bodies(), state.W_R_B);
   w.p.assign(m.bodies(), state.p_W);
   for (int b = 1; b < m.bodies(); ++b) {
     const int a = m.parent[b];
+    if (m.prismatic(b - 1)) {
+      w.p[b] =
+          w.p[a] + w.R[a] * (m.p_parent_joint[b] + m.R_parent_joint[b] * (q[b - 1] * m.axis[b]));
+      w.R[b] = w.R[a] * m.R_parent_joint[b];
+      continue;
+    }
     w.p[b] = w.p[a] + w.R[a] * m.p_parent_joint[b];
     w.R[b] =
         w.R[a] * m.R_parent_joint[b] * Eigen::AngleAxisd(q[b - 1], m.axis[b]).toRotationMatrix();
@@ -107,7 +122,7 @@ inline WorldPoses world_poses(const RobotModel& m, const BaseState& state, const
 }
 
 /// Foot point of leg l in the world [m].
-inline Vec3 world_foot(const RobotModel& m, const WorldPoses& w, int l) {
+inline Vec3 tree_foot(const RobotModel& m, const TreePoses& w, int l) {
   const int b = m.foot_body(l);
   return w.p[b] + w.R[b] * m.p_foot_last[l];
 }
@@ -129,7 +144,7 @@ inline TreeState draw_tree_state(std::mt19937& rng, const RobotModel& m) {
   s.qd.resize(m.joints());
   s.qdd.resize(m.joints());
   for (int k = 0; k < m.joints(); ++k) {
-    s.q[k] = draw(rng, -2.0, 2.0);
+    s.q[k] = m.prismatic(k) ? draw(rng, -0.1, 0.1) : draw(rng, -2.0, 2.0);
     s.qd[k] = draw(rng, -3.0, 3.0);
     s.qdd[k] = draw(rng, -10.0, 10.0);
   }

@@ -18,6 +18,18 @@ Vec3 contact_point_foot(const RobotModel& model, const RobotData& data, int l,
 
 Inertia to_spatial(const RigidInertia& r) { return Inertia{r.mass_kg, r.com_m, r.inertia_com}; }
 
+/// Motion subspace of the joint that moves body b, body coordinates: [a; 0] (revolute) or
+/// [0; a] (prismatic).
+Motion joint_subspace(const RobotModel& model, int b) {
+  return model.prismatic(b - 1) ? Motion{Vec3::Zero(), model.axis[b]}
+                                : Motion{model.axis[b], Vec3::Zero()};
+}
+
+/// S_bᵀ f: the generalised force of joint b for a force f across it (body coordinates).
+double joint_force(const RobotModel& model, int b, const Force& f) {
+  return model.prismatic(b - 1) ? model.axis[b].dot(f.linear) : model.axis[b].dot(f.angular);
+}
+
 /// Spatial velocity and acceleration of the trunk in trunk coordinates from the base
 /// state. The spatial linear acceleration is that of the body-fixed point at P0 seen
 /// from a fixed point of space: a_P0 − ω × v_P0. `gravity_W` is subtracted from the
@@ -38,7 +50,7 @@ void forward_motion_pass(const RobotModel& model, RobotData& data, const Motion&
   for (int b = 1; b < model.bodies(); ++b) {
     const int p = model.parent[b];
     const Transform& X = data.X_parent_body[b];
-    const Motion S{model.axis[b], Vec3::Zero()};  // joint axis, body coordinates
+    const Motion S = joint_subspace(model, b);  // motion subspace, body coordinates
     const Motion v_joint = qd[b - 1] * S;
     data.v_body[b] = X.apply_inverse(data.v_body[p]) + v_joint;
     data.a_body[b] = X.apply_inverse(data.a_body[p]) + cross(data.v_body[b], v_joint);
@@ -60,7 +72,8 @@ void fill_foot_jacobians(const RobotModel& model, RobotData& data, const BaseSta
     for (int j = 0; j < model.leg(l).n_joints; ++j) {
       const int k = model.joint(l, j), b = model.body(l, j);
       const Transform& X = data.X_world_body[b];
-      J.col(6 + k) = (X.R * model.axis[b]).cross(p_foot_W - X.p);
+      J.col(6 + k) = model.prismatic(k) ? Vec3(X.R * model.axis[b])
+                                        : Vec3((X.R * model.axis[b]).cross(p_foot_W - X.p));
     }
   }
 }
@@ -82,6 +95,11 @@ RobotData::RobotData(const RobotModel& model)
     R_fixed[b] = model.R_parent_joint[b] * A;
     R_cos[b] = model.R_parent_joint[b] * (Mat3::Identity() - A);
     R_sin[b] = model.R_parent_joint[b] * skew(a);
+    slide[b] = model.R_parent_joint[b] * a;
+    if (model.prismatic(b - 1)) {
+      R_fixed[b] = model.R_parent_joint[b];
+      R_cos[b] = R_sin[b] = Mat3::Zero();
+    }
   }
   for (int l = 0; l < model.legs(); ++l) {
     J_foot_W[l].setZero(3, model.dofs());
@@ -101,10 +119,15 @@ void update_kinematics(const RobotModel& model, RobotData& data, const BaseState
   data.X_parent_body[0] = Transform::Identity();
   data.X_world_body[0] = Transform{state.W_R_B, state.p_W};
   for (int b = 1; b < model.bodies(); ++b) {
-    const double c = std::cos(q[b - 1]), s = std::sin(q[b - 1]);
     Transform& X = data.X_parent_body[b];
-    X.R = data.R_fixed[b] + c * data.R_cos[b] + s * data.R_sin[b];
-    X.p = model.p_parent_joint[b];
+    if (model.prismatic(b - 1)) {
+      X.R = data.R_fixed[b];
+      X.p = model.p_parent_joint[b] + q[b - 1] * data.slide[b];
+    } else {
+      const double c = std::cos(q[b - 1]), s = std::sin(q[b - 1]);
+      X.R = data.R_fixed[b] + c * data.R_cos[b] + s * data.R_sin[b];
+      X.p = model.p_parent_joint[b];
+    }
     data.X_world_body[b] = data.X_world_body[model.parent[b]] * X;
   }
 }
@@ -133,7 +156,7 @@ const DofVector& rnea(const RobotModel& model, RobotData& data, const BaseState&
   }
   // Backward pass: joint torques, and the subtree forces accumulate onto the trunk.
   for (int b = model.bodies() - 1; b >= 1; --b) {
-    data.tau[6 + b - 1] = model.axis[b].dot(data.f_body[b].angular);
+    data.tau[6 + b - 1] = joint_force(model, b, data.f_body[b]);
     data.f_body[model.parent[b]] += data.X_parent_body[b].apply(data.f_body[b]);
   }
   // Trunk wrench about P0, from trunk axes to world axes.
@@ -155,13 +178,13 @@ const DofMatrix& crba(const RobotModel& model, RobotData& data, const BaseState&
   // carried towards the root, projected on each ancestor's axis.
   for (int b = 1; b < model.bodies(); ++b) {
     const int k = 6 + b - 1;
-    Force F = data.Ic_body[b] * Motion{model.axis[b], Vec3::Zero()};
-    M(k, k) = model.axis[b].dot(F.angular);
+    Force F = data.Ic_body[b] * joint_subspace(model, b);
+    M(k, k) = joint_force(model, b, F);
     int j = b;
     while (model.parent[j] != 0) {
       F = data.X_parent_body[j].apply(F);
       j = model.parent[j];
-      M(6 + j - 1, k) = M(k, 6 + j - 1) = model.axis[j].dot(F.angular);
+      M(6 + j - 1, k) = M(k, 6 + j - 1) = joint_force(model, j, F);
     }
     F = data.X_parent_body[j].apply(F);  // into trunk coordinates, moment about P0
     // Coupling with the trunk: the generalised base momentum is (linear, angular about
@@ -234,8 +257,12 @@ const Momentum& robot_momentum(const RobotModel& model, RobotData& data, const B
     const Transform& X = data.X_world_body[b];
     if (b > 0) {
       const int p = model.parent[b];
-      omega[b] = omega[p] + (X.R * model.axis[b]) * qd[b - 1];
+      // A prismatic joint adds axis_W q̇ to the velocity of the child's origin instead.
+      const Vec3 axis_W = X.R * model.axis[b];
+      const bool slides = model.prismatic(b - 1);
+      omega[b] = slides ? omega[p] : Vec3(omega[p] + axis_W * qd[b - 1]);
       v_origin_W[b] = v_origin_W[p] + omega[p].cross(X.p - data.X_world_body[p].p);
+      if (slides) v_origin_W[b] += axis_W * qd[b - 1];
     }
     const RigidInertia& in = model.inertia[b];
     const Vec3 c_W = X.apply_point(in.com_m);

@@ -32,7 +32,10 @@
 /// h includes gravity, RobotModel::gravity_W ((0, 0, −9.81) m/s² unless a caller changes it).
 ///
 /// Body frames: body 0 is the trunk (frame L0 at P0); body b = 1 + k is moved by joint
-/// k, its frame is the joint frame rotated by q_k about the joint axis (robot_model.hpp).
+/// k, its frame is the joint frame rotated by q_k about the joint axis a (a revolute joint:
+/// motion subspace S = [a; 0], q_k [rad], τ_k [N m]) or moved by q_k along it (a prismatic
+/// joint, RobotModel::joint_type: S = [0; a], q_k [m], τ_k the force along a [N])
+/// (robot_model.hpp).
 ///
 /// Sizes: every per-body and per-leg array has the capacity of core/sizes.hpp, of which the
 /// model's counts are used; the generalised vectors and matrices are sized once, from the
@@ -115,6 +118,9 @@ struct RobotData {
   /// parent_R_b(q) = R_pj (a aᵀ + cos q (1 − a aᵀ) + sin q K) = R_fixed + cos q R_cos + sin q
   /// R_sin.
   BodyArray<Mat3> R_fixed, R_cos, R_sin;
+  /// A prismatic joint's axis in its parent's frame, R_pj a: parent_p_b(q) = p_pj + q R_pj a
+  /// (its parent_R_b = R_fixed = R_pj, R_cos = R_sin = 0).
+  BodyArray<Vec3> slide;
 
   // --- recursive passes, body coordinates ---
   BodyArray<Motion> v_body;    ///< spatial velocity of body b, body-b coordinates

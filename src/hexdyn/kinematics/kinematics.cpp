@@ -127,10 +127,12 @@ void robot_state_at(const RobotModel& model, const MotionPlan& plan, double t,
   out.trunk = plan.trunk.at(t);
   for (int leg = 0; leg < model.legs(); ++leg) {
     const RelativeTarget target = relative_target(model, plan, leg, t, out);
-    if (model.leg(leg).n_joints != 3)
-      throw std::logic_error("kinematics: leg " + model.leg(leg).name + " has " +
-                             std::to_string(model.leg(leg).n_joints) +
-                             " joints; this stage solves legs of three joints");
+    const LegInfo& info = model.leg(leg);
+    if (info.n_joints != 3 || model.prismatic(info.first_joint) ||
+        model.prismatic(info.first_joint + 1) || model.prismatic(info.first_joint + 2))
+      throw std::logic_error("kinematics: leg " + info.name + " has " +
+                             std::to_string(info.n_joints) +
+                             " joints; this stage solves legs of three revolute joints");
     three_joint_leg_state(model, leg, t, target, out);
   }
 }

@@ -318,6 +318,23 @@ void forward_kinematics_tree(const RobotModel& m, const JointVector& q, BodyPose
     sin_q[k] = std::sin(q[k]);
   }
   forward_kinematics_tree(m, cos_q, sin_q, out);
+  if (std::none_of(m.joint_type.begin(), m.joint_type.begin() + m.joints(),
+                   [](JointType t) { return t == JointType::kPrismatic; }))
+    return;
+  // A prismatic joint slides its body along the axis without turning it: every body placed
+  // again, in body order (its parent first); a revolute joint as above.
+  for (int b = 1; b < m.bodies(); ++b) {
+    const int p = m.parent[b];
+    if (m.prismatic(b - 1)) {
+      out.p_B[b] = out.p_B[p] +
+                   out.R_B[p] * (m.p_parent_joint[b] + m.R_parent_joint[b] * m.axis[b] * q[b - 1]);
+      out.R_B[b] = out.R_B[p] * m.R_parent_joint[b];
+    } else {
+      out.p_B[b] = out.p_B[p] + out.R_B[p] * m.p_parent_joint[b];
+      out.R_B[b] =
+          out.R_B[p] * m.R_parent_joint[b] * rot_axis_cs(m.axis[b], cos_q[b - 1], sin_q[b - 1]);
+    }
+  }
 }
 
 void forward_kinematics_tree(const RobotModel& m, const JointVector& cos_q,

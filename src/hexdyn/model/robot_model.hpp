@@ -75,6 +75,10 @@ struct LegIkData {
   Vec3 q_start = Vec3::Zero();         ///< numeric IK: starting joint angles [rad]
 };
 
+/// How a joint moves the body after it: about its axis (revolute, q in rad) or along it
+/// (prismatic, q in m).
+enum class JointType { kRevolute, kPrismatic };
+
 /// Side of the trunk a leg's hip is on: x < 0 in the trunk frame is left
 /// (docs/theory/conventions.md).
 enum class LegSide { kLeft, kRight };
@@ -115,7 +119,7 @@ struct RobotModel {
   BodyArray<int> parent = unused_parents();
   BodyArray<Mat3> R_parent_joint;   ///< joint frame orientation in parent frame
   BodyArray<Vec3> p_parent_joint;   ///< joint frame origin in parent frame [m]
-  BodyArray<Vec3> axis;             ///< revolute axis in the joint frame (unit)
+  BodyArray<Vec3> axis;             ///< joint axis in the joint frame (unit)
   BodyArray<RigidInertia> inertia;  ///< body 0: trunk and payload combined
   // --- separate parts kept for the URDF ---
   RigidInertia trunk_only;  ///< trunk structure alone, trunk frame
@@ -123,6 +127,11 @@ struct RobotModel {
   // --- analytic leg parameters ---
   std::array<double, 3> link_length_m{};  ///< l1, l2, l3
   double d1_m = 0.0;                      ///< femur axis below the coxa link [m]
+  /// How each joint moves, flat index (revolute unless a builder says otherwise). The
+  /// dynamics (rnea.hpp) and forward_kinematics_tree(model, q, …) take both kinds; the leg
+  /// kinematics (FK, IK, Jacobians below) and the kinematics stage revolute joints.
+  JointArray<JointType> joint_type{};
+  bool prismatic(int k) const { return joint_type[k] == JointType::kPrismatic; }
   // Per-leg (LegArray) and per-joint (JointArray) storage: the first legs() / joints()
   // entries are used.
   LegArray<double> lateral_m{};  ///< signed lateral foot offset side·(d2+d3) [m]
@@ -228,14 +237,15 @@ bool planar_reach_ok(double dist_m, double l2_m, double l3_m, double min_margin_
 /// p_H: foot target in the hip frame. Never throws; callers turn !ok into ReachError.
 LegIkResult leg_inverse_kinematics(const RobotModel& model, int leg, const Vec3& p_H);
 
-/// Poses of every body in the trunk frame for joint angles q (model.joints()).
+/// Poses of every body in the trunk frame for joint positions q (model.joints(): angles of
+/// revolute joints [rad], slides of prismatic joints [m]).
 struct BodyPoses {
   BodyArray<Mat3> R_B;  ///< body → trunk rotation (the first model.bodies() entries)
   BodyArray<Vec3> p_B;  ///< body origin in the trunk frame [m]
 };
 void forward_kinematics_tree(const RobotModel& model, const JointVector& q, BodyPoses& out);
 /// The same from cos q and sin q (model.joints() each, as std::cos and std::sin give them),
-/// for a caller that has them already: the same poses, bit for bit.
+/// for a caller that has them already: the same poses, bit for bit. Revolute joints only.
 void forward_kinematics_tree(const RobotModel& model, const JointVector& cos_q,
                              const JointVector& sin_q, BodyPoses& out);
 

@@ -1,5 +1,6 @@
 // The dynamics of robots that are not six legs of three joints (a quadruped 4 × 3, a hexapod
-// of 4-joint legs, a biped 2 × 6; tree_models.hpp), each result against a second computation:
+// of 4-joint legs, a biped 2 × 6, and a quadruped and a biped with prismatic joints;
+// tree_models.hpp), each result against a second computation:
 // RNEA against CRBA and RNEA at rest, forward dynamics against RNEA, the foot Jacobians
 // against central differences of the foot points of an independent forward kinematics, J̇ν
 // against central differences of Jν along the motion, and ½ νᵀMν against the kinetic energy
@@ -51,7 +52,7 @@ TEST_CASE("robots of other shapes get a leg table of their own", "[tree_dynamics
   std::mt19937 rng(431);
   for (const TreeShape& shape : tree_shapes()) {
     INFO(shape.name);
-    const RobotModel m = tree_model(rng, shape.leg_joints);
+    const RobotModel m = tree_model(rng, shape.leg_joints, shape.prismatic);
     REQUIRE(m.legs() == static_cast<int>(shape.leg_joints.size()));
     int joints = 0;
     for (int l = 0; l < m.legs(); ++l) {
@@ -69,11 +70,32 @@ TEST_CASE("robots of other shapes get a leg table of their own", "[tree_dynamics
   }
 }
 
+TEST_CASE("the model's tree FK places every body as the independent one, any shape",
+          "[tree_dynamics]") {
+  std::mt19937 rng(438);
+  for (const TreeShape& shape : tree_shapes()) {
+    INFO(shape.name);
+    const RobotModel m = tree_model(rng, shape.leg_joints, shape.prismatic);
+    for (int i = 0; i < kStates; ++i) {
+      const TreeState s = draw_tree_state(rng, m);
+      BaseState at_origin;  // the trunk frame B is the world frame
+      const TreePoses w = tree_poses(m, at_origin, s.q);
+      BodyPoses poses;
+      forward_kinematics_tree(m, s.q, poses);
+      for (int b = 0; b < m.bodies(); ++b) {
+        INFO("body " << b);
+        CHECK((poses.p_B[b] - w.p[b]).norm() <= 1e-13);
+        CHECK((poses.R_B[b] - w.R[b]).norm() <= 1e-13);
+      }
+    }
+  }
+}
+
 TEST_CASE("RNEA = CRBA times the acceleration plus RNEA at rest, any shape", "[tree_dynamics]") {
   std::mt19937 rng(432);
   for (const TreeShape& shape : tree_shapes()) {
     INFO(shape.name);
-    const RobotModel m = tree_model(rng, shape.leg_joints);
+    const RobotModel m = tree_model(rng, shape.leg_joints, shape.prismatic);
     RobotData data(m);
     for (int i = 0; i < kStates; ++i) {
       const TreeState s = draw_tree_state(rng, m);
@@ -96,7 +118,7 @@ TEST_CASE("forward dynamics inverts RNEA, any shape", "[tree_dynamics]") {
   std::mt19937 rng(433);
   for (const TreeShape& shape : tree_shapes()) {
     INFO(shape.name);
-    const RobotModel m = tree_model(rng, shape.leg_joints);
+    const RobotModel m = tree_model(rng, shape.leg_joints, shape.prismatic);
     RobotData data(m);
     for (int i = 0; i < kStates; ++i) {
       const TreeState s = draw_tree_state(rng, m);
@@ -129,21 +151,21 @@ TEST_CASE("foot Jacobians are the derivatives of the foot points, any shape", "[
   const double h = 1e-6;
   for (const TreeShape& shape : tree_shapes()) {
     INFO(shape.name);
-    const RobotModel m = tree_model(rng, shape.leg_joints);
+    const RobotModel m = tree_model(rng, shape.leg_joints, shape.prismatic);
     RobotData data(m);
     for (int i = 0; i < kStates; ++i) {
       const TreeState s = draw_tree_state(rng, m);
       foot_jacobians(m, data, s.state, s.q);
-      const WorldPoses w0 = world_poses(m, s.state, s.q);
+      const TreePoses w0 = tree_poses(m, s.state, s.q);
       for (int l = 0; l < m.legs(); ++l) {
         INFO("leg " << l);
-        CHECK((data.p_foot_W[l] - world_foot(m, w0, l)).norm() <= 1e-13);
+        CHECK((data.p_foot_W[l] - tree_foot(m, w0, l)).norm() <= 1e-13);
         REQUIRE(data.J_foot_W[l].cols() == m.dofs());
         for (int c = 0; c < m.dofs(); ++c) {
           const DofVector e = DofVector::Unit(m.dofs(), c);
           const auto foot = [&](double t) {
-            return world_foot(m, world_poses(m, moved_base(s.state, e, t), moved_joints(s.q, e, t)),
-                              l);
+            return tree_foot(m, tree_poses(m, moved_base(s.state, e, t), moved_joints(s.q, e, t)),
+                             l);
           };
           const Vec3 fd = (foot(h) - foot(-h)) / (2.0 * h);
           CHECK((data.J_foot_W[l].col(c) - fd).norm() <= 1e-7);
@@ -161,7 +183,7 @@ TEST_CASE("J-dot nu is the derivative of J nu along the motion, any shape", "[tr
   const double h = 1e-5;
   for (const TreeShape& shape : tree_shapes()) {
     INFO(shape.name);
-    const RobotModel m = tree_model(rng, shape.leg_joints);
+    const RobotModel m = tree_model(rng, shape.leg_joints, shape.prismatic);
     RobotData data(m), moved(m);
     for (int i = 0; i < kStates; ++i) {
       const TreeState s = draw_tree_state(rng, m);
@@ -189,16 +211,16 @@ TEST_CASE("the kinetic energy from M equals the sum over the bodies, any shape",
   const double h = 1e-6;
   for (const TreeShape& shape : tree_shapes()) {
     INFO(shape.name);
-    const RobotModel m = tree_model(rng, shape.leg_joints);
+    const RobotModel m = tree_model(rng, shape.leg_joints, shape.prismatic);
     RobotData data(m);
     for (int i = 0; i < kStates; ++i) {
       const TreeState s = draw_tree_state(rng, m);
       const DofVector nu = tree_velocity(s);
       const double T_M = kinetic_energy(m, data, s.state, s.q, s.qd);
       robot_momentum(m, data, s.state, s.q, s.qd);
-      const WorldPoses w = world_poses(m, s.state, s.q);
-      const WorldPoses wp = world_poses(m, moved_base(s.state, nu, h), moved_joints(s.q, nu, h));
-      const WorldPoses wm = world_poses(m, moved_base(s.state, nu, -h), moved_joints(s.q, nu, -h));
+      const TreePoses w = tree_poses(m, s.state, s.q);
+      const TreePoses wp = tree_poses(m, moved_base(s.state, nu, h), moved_joints(s.q, nu, h));
+      const TreePoses wm = tree_poses(m, moved_base(s.state, nu, -h), moved_joints(s.q, nu, -h));
       double T_bodies = 0.0;
       for (int b = 0; b < m.bodies(); ++b) {
         INFO("body " << b);
@@ -221,7 +243,7 @@ TEST_CASE("the contact split of another shape is RNEA's, sized by the model", "[
   std::mt19937 rng(437);
   for (const TreeShape& shape : tree_shapes()) {
     INFO(shape.name);
-    const RobotModel m = tree_model(rng, shape.leg_joints);
+    const RobotModel m = tree_model(rng, shape.leg_joints, shape.prismatic);
     RobotData data(m);
     const TreeState s = draw_tree_state(rng, m);
     LegArray<Vec3> F;
