@@ -83,7 +83,7 @@ DynamicsResult gather_samples(const std::vector<const DynamicsResult*>& parts,
   return out;
 }
 
-void KinematicsResult::resize(int T, bool zero) {
+void KinematicsResult::resize(int T, int legs, int joints, bool zero) {
   time_s.assign(T, 0.0);
   const auto size = [&](auto& m, int columns) {
     m.resize(T, columns);
@@ -93,10 +93,9 @@ void KinematicsResult::resize(int T, bool zero) {
                        &base_linear_acceleration, &base_angular_acceleration, &com_position})
     size(*m, 3);
   size(base_orientation_wxyz, 4);
-  for (RowMatrix* m : {&joint_position, &joint_velocity, &joint_acceleration, &foot_position,
-                       &foot_velocity, &foot_center})
-    size(*m, kJoints);
-  size(contact_phase, kLegs);
+  for (RowMatrix* m : {&joint_position, &joint_velocity, &joint_acceleration}) size(*m, joints);
+  for (RowMatrix* m : {&foot_position, &foot_velocity, &foot_center}) size(*m, 3 * legs);
+  size(contact_phase, legs);
   sample_kind.assign(T, 0);
 }
 

@@ -39,25 +39,29 @@ struct KinematicsResult {
   RowMatrix base_angular_velocity;      ///< T×3, world [rad/s]
   RowMatrix base_linear_acceleration;   ///< T×3, world [m/s²]
   RowMatrix base_angular_acceleration;  ///< T×3, world [rad/s²]
-  RowMatrix joint_position;             ///< T×18 [rad]
-  RowMatrix joint_velocity;             ///< T×18 [rad/s]
-  RowMatrix joint_acceleration;         ///< T×18 [rad/s²]
-  RowMatrix foot_position;              ///< T×18 = (T,6,3), world [m]
-  RowMatrix foot_velocity;              ///< T×18 = (T,6,3), world [m/s]
-  /// T×18 = (T,6,3), world [m]: the foot points the IK placed, a sphere foot's centre
+  RowMatrix joint_position;             ///< T×joints [rad]
+  RowMatrix joint_velocity;             ///< T×joints [rad/s]
+  RowMatrix joint_acceleration;         ///< T×joints [rad/s²]
+  RowMatrix foot_position;              ///< T×3 legs = (T,legs,3), world [m]
+  RowMatrix foot_velocity;              ///< T×3 legs = (T,legs,3), world [m/s]
+  /// T×3 legs = (T,legs,3), world [m]: the foot points the IK placed, a sphere foot's centre
   /// (foot_position + r n); foot_position itself for a point foot.
   RowMatrix foot_center;
   RowMatrix com_position;  ///< T×3, whole-robot COM in G0 [m]
-  /// T×6, ContactPhase values: swing/support from the gait (sample_kinematics); in a
+  /// T×legs, ContactPhase values: swing/support from the gait (sample_kinematics); in a
   /// RunResult, the contact schedule's phases with the touchdown transients (kImpact).
   RowMatrixI8 contact_phase;
   /// T (or empty: every sample ordinary), /sample_kind: 0 an ordinary sample, 1 the left
   /// limit of a contact event (docs/theory/output-grid.md#event-samples).
   std::vector<std::int8_t> sample_kind;
   int samples() const { return static_cast<int>(time_s.size()); }
-  /// Sizes every dataset to `samples` rows, with zero values; or, with zero = false, with
-  /// values unset (but sample_kind zero) for a caller that writes every row.
-  void resize(int samples, bool zero = true);
+  /// Sizes every dataset to `samples` rows for a robot of `legs` legs and `joints` joints
+  /// (joint datasets: joints columns; foot datasets: 3 legs; contact_phase: legs), with zero
+  /// values; or, with zero = false, with values unset (but sample_kind zero) for a caller that
+  /// writes every row.
+  void resize(int samples, int legs, int joints, bool zero = true);
+  /// The same for six legs of three joints.
+  void resize(int samples, bool zero = true) { resize(samples, kLegs, kJoints, zero); }
 };
 
 /// One touchdown transient (/impacts/*).

@@ -5,23 +5,24 @@
 namespace hexdyn {
 namespace {
 
-VecDof generalised_velocity(const BaseState& state, const VecJ& qd) {
-  VecDof nu;
+DofVector generalised_velocity(const BaseState& state, const JointVector& qd) {
+  DofVector nu(6 + qd.size());
   nu << state.v_W, state.omega_W, qd;
   return nu;
 }
 
 }  // namespace
 
-const VecDof& forward_dynamics(const RobotModel& model, RobotData& data, const BaseState& state,
-                               const VecJ& q, const VecJ& qd, const VecDof& tau_gen,
-                               const std::array<Vec3, kLegs>* foot_forces_W,
-                               const FootNormals* normals_W) {
+const DofVector& forward_dynamics(const RobotModel& model, RobotData& data, const BaseState& state,
+                                  const JointVector& q, const JointVector& qd,
+                                  const DofVector& tau_gen, LegVectors foot_forces_W,
+                                  LegVectors normals_W) {
   // h − Σ J_lᵀ F_l: the inverse dynamics at zero generalised acceleration.
   BaseState at_rest = state;
   at_rest.a_W.setZero();
   at_rest.omegadot_W.setZero();
-  data.bias = rnea(model, data, at_rest, q, qd, VecJ::Zero(), foot_forces_W, normals_W);
+  data.bias = rnea(model, data, at_rest, q, qd, JointVector::Zero(model.joints()), foot_forces_W,
+                   normals_W);
   crba(model, data, state, q);
   data.M_llt.compute(data.M);
   if (data.M_llt.info() != Eigen::Success)
@@ -32,19 +33,18 @@ const VecDof& forward_dynamics(const RobotModel& model, RobotData& data, const B
   return data.nu_dot;
 }
 
-const VecDof& forward_dynamics_joints(const RobotModel& model, RobotData& data,
-                                      const BaseState& state, const VecJ& q, const VecJ& qd,
-                                      const VecJ& tau_joints_Nm,
-                                      const std::array<Vec3, kLegs>* foot_forces_W,
-                                      const FootNormals* normals_W) {
-  VecDof tau_gen = VecDof::Zero();
-  tau_gen.tail<kJoints>() = tau_joints_Nm;
+const DofVector& forward_dynamics_joints(const RobotModel& model, RobotData& data,
+                                         const BaseState& state, const JointVector& q,
+                                         const JointVector& qd, const JointVector& tau_joints_Nm,
+                                         LegVectors foot_forces_W, LegVectors normals_W) {
+  DofVector tau_gen = DofVector::Zero(model.dofs());
+  tau_gen.tail(model.joints()) = tau_joints_Nm;
   return forward_dynamics(model, data, state, q, qd, tau_gen, foot_forces_W, normals_W);
 }
 
 double kinetic_energy(const RobotModel& model, RobotData& data, const BaseState& state,
-                      const VecJ& q, const VecJ& qd) {
-  const VecDof nu = generalised_velocity(state, qd);
+                      const JointVector& q, const JointVector& qd) {
+  const DofVector nu = generalised_velocity(state, qd);
   crba(model, data, state, q);
   return 0.5 * nu.dot(data.M * nu);
 }

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <stdexcept>
+#include <string>
 
 #include "hexdyn/core/cancel.hpp"
 #include "hexdyn/core/errors.hpp"
@@ -44,62 +46,94 @@ RelativeTarget relative_target(const RobotModel& model, const MotionPlan& plan, 
 
 }  // namespace
 
+RobotKinematicState::RobotKinematicState(const RobotModel& model)
+    : q(JointVector::Zero(model.joints())),
+      qd(JointVector::Zero(model.joints())),
+      qdd(JointVector::Zero(model.joints())),
+      cos_q(JointVector::Ones(model.joints())),
+      sin_q(JointVector::Zero(model.joints())) {}
+
+namespace {
+
+/// Throws ReachError: leg `leg`'s foot target f at t is not reachable (`why`).
+[[noreturn]] void throw_unreachable(const RobotModel& model, int leg, double t, const FootMotion& f,
+                                    const LegIkResult& ik) {
+  std::ostringstream msg;
+  msg << "leg " << model.leg(leg).name << " at t = " << t << " s: foot target (" << f.p_W.x()
+      << ", " << f.p_W.y() << ", " << f.p_W.z() << ") m not reachable: " << ik.reason << " (margin "
+      << ik.margin_m << " m, required >= " << model.ik_min_margin_m << " m)";
+  throw ReachError(msg.str());
+}
+
+/// Throws ReachError: the leg Jacobian is singular at the IK's solution.
+[[noreturn]] void throw_singular(const RobotModel& model, int leg, double t, const FootMotion& f,
+                                 const LegIkResult& ik) {
+  // IK accepted the target (robot.ik_min_margin = 0 allows a leg exactly at full
+  // extension or fold) but the leg Jacobian is singular there: the joint rates that
+  // would move the foot as planned do not exist. Without this check they would be
+  // inf/NaN and poison every later dataset.
+  std::ostringstream msg;
+  msg << "leg " << model.leg(leg).name << " at t = " << t << " s: foot target (" << f.p_W.x()
+      << ", " << f.p_W.y() << ", " << f.p_W.z()
+      << ") m at a singular leg configuration (full extension or fold): "
+      << "joint rates undefined (margin " << ik.margin_m
+      << " m, required >= " << model.ik_min_margin_m << " m; raise robot.ik_min_margin)";
+  throw ReachError(msg.str());
+}
+
+/// Joint angles, rates and accelerations of a three-joint leg for its target relative to the
+/// trunk (Vec3 and Mat3 algebra, PartialPivLU of the 3 × 3 leg Jacobian).
+void three_joint_leg_state(const RobotModel& model, int leg, double t, const RelativeTarget& target,
+                           RobotKinematicState& out) {
+  const FootMotion& f = out.feet[leg];
+  const Mat3& B_R_H = model.R_B_H[leg];
+  const Vec3 p_H = B_R_H.transpose() * (target.r_B - model.p_hip_B[leg]);
+  const LegIkResult ik = leg_inverse_kinematics(model, leg, p_H);
+  if (!ik.ok) throw_unreachable(model, leg, t, f, ik);
+  // The paper's legs: one set of sines and cosines for J, J̇ and the tree's poses.
+  const bool paper = model.leg_geometry == LegGeometry::kPaperPlanar;
+  const LegTrig trig = paper ? leg_trig(ik.q) : LegTrig{};
+  const Mat3 J = paper ? paper_leg_jacobian_H(model, leg, trig) : leg_jacobian_H(model, leg, ik.q);
+  const Eigen::PartialPivLU<Mat3> lu(J);
+  const Vec3 qd = lu.solve(B_R_H.transpose() * target.rd_B);
+  const Mat3 Jd = paper ? paper_leg_jacobian_dot_H(model, leg, trig, qd)
+                        : leg_jacobian_dot_H(model, leg, ik.q, qd);
+  const Vec3 qdd = lu.solve(B_R_H.transpose() * target.rdd_B - Jd * qd);
+  if (!qd.allFinite() || !qdd.allFinite()) throw_singular(model, leg, t, f, ik);
+  const int k0 = model.joint(leg, 0), k1 = model.joint(leg, 1), k2 = model.joint(leg, 2);
+  out.q.segment<3>(k0) = ik.q;
+  if (paper) {
+    out.cos_q[k0] = trig.c1;
+    out.sin_q[k0] = trig.s1;
+    out.cos_q[k1] = trig.c2;
+    out.sin_q[k1] = trig.s2;
+  } else {
+    for (int j = 0; j < 2; ++j) {
+      out.cos_q[model.joint(leg, j)] = std::cos(ik.q[j]);
+      out.sin_q[model.joint(leg, j)] = std::sin(ik.q[j]);
+    }
+  }
+  out.cos_q[k2] = std::cos(ik.q[2]);
+  out.sin_q[k2] = std::sin(ik.q[2]);
+  out.qd.segment<3>(k0) = qd;
+  out.qdd.segment<3>(k0) = qdd;
+}
+
+}  // namespace
+
 void robot_state_at(const RobotModel& model, const MotionPlan& plan, double t,
                     RobotKinematicState& out) {
+  if (out.q.size() != model.joints()) out = RobotKinematicState(model);
   out.trunk = plan.trunk.at(t);
   for (int leg = 0; leg < model.legs(); ++leg) {
-    const auto [r_B, rd_B, rdd_B] = relative_target(model, plan, leg, t, out);
-    const FootMotion& f = out.feet[leg];
-    const Mat3& B_R_H = model.R_B_H[leg];
-    const Vec3 p_H = B_R_H.transpose() * (r_B - model.p_hip_B[leg]);
-    const LegIkResult ik = leg_inverse_kinematics(model, leg, p_H);
-    if (!ik.ok) {
-      std::ostringstream msg;
-      msg << "leg " << leg_name(leg) << " at t = " << t << " s: foot target (" << f.p_W.x() << ", "
-          << f.p_W.y() << ", " << f.p_W.z() << ") m not reachable: " << ik.reason << " (margin "
-          << ik.margin_m << " m, required >= " << model.ik_min_margin_m << " m)";
-      throw ReachError(msg.str());
-    }
-    // The paper's legs: one set of sines and cosines for J, J̇ and the tree's poses.
-    const bool paper = model.leg_geometry == LegGeometry::kPaperPlanar;
-    const LegTrig trig = paper ? leg_trig(ik.q) : LegTrig{};
-    const Mat3 J =
-        paper ? paper_leg_jacobian_H(model, leg, trig) : leg_jacobian_H(model, leg, ik.q);
-    const Eigen::PartialPivLU<Mat3> lu(J);
-    const Vec3 qd = lu.solve(B_R_H.transpose() * rd_B);
-    const Mat3 Jd = paper ? paper_leg_jacobian_dot_H(model, leg, trig, qd)
-                          : leg_jacobian_dot_H(model, leg, ik.q, qd);
-    const Vec3 qdd = lu.solve(B_R_H.transpose() * rdd_B - Jd * qd);
-    if (!qd.allFinite() || !qdd.allFinite()) {
-      // IK accepted the target (robot.ik_min_margin = 0 allows a leg exactly at full
-      // extension or fold) but the leg Jacobian is singular there: the joint rates that
-      // would move the foot as planned do not exist. Without this check they would be
-      // inf/NaN and poison every later dataset.
-      std::ostringstream msg;
-      msg << "leg " << leg_name(leg) << " at t = " << t << " s: foot target (" << f.p_W.x() << ", "
-          << f.p_W.y() << ", " << f.p_W.z()
-          << ") m at a singular leg configuration (full extension or fold): "
-          << "joint rates undefined (margin " << ik.margin_m
-          << " m, required >= " << model.ik_min_margin_m << " m; raise robot.ik_min_margin)";
-      throw ReachError(msg.str());
-    }
-    const int k0 = model.joint(leg, 0), k1 = model.joint(leg, 1), k2 = model.joint(leg, 2);
-    out.q.segment<3>(k0) = ik.q;
-    if (paper) {
-      out.cos_q[k0] = trig.c1;
-      out.sin_q[k0] = trig.s1;
-      out.cos_q[k1] = trig.c2;
-      out.sin_q[k1] = trig.s2;
-    } else {
-      for (int j = 0; j < 2; ++j) {
-        out.cos_q[model.joint(leg, j)] = std::cos(ik.q[j]);
-        out.sin_q[model.joint(leg, j)] = std::sin(ik.q[j]);
-      }
-    }
-    out.cos_q[k2] = std::cos(ik.q[2]);
-    out.sin_q[k2] = std::sin(ik.q[2]);
-    out.qd.segment<3>(k0) = qd;
-    out.qdd.segment<3>(k0) = qdd;
+    const RelativeTarget target = relative_target(model, plan, leg, t, out);
+    const LegInfo& info = model.leg(leg);
+    if (info.n_joints != 3 || model.prismatic(info.first_joint) ||
+        model.prismatic(info.first_joint + 1) || model.prismatic(info.first_joint + 2))
+      throw std::logic_error("kinematics: leg " + info.name + " has " +
+                             std::to_string(info.n_joints) +
+                             " joints; this stage solves legs of three revolute joints");
+    three_joint_leg_state(model, leg, t, target, out);
   }
 }
 
@@ -119,8 +153,8 @@ KinematicsResult sample_kinematics(const RobotModel& model, const MotionPlan& pl
                                    const std::vector<double>& times) {
   KinematicsResult k;
   const int T = static_cast<int>(times.size());
-  k.resize(T, false);  // every row is written below
-  RobotKinematicState s;
+  k.resize(T, model.legs(), model.joints(), false);  // every row is written below
+  RobotKinematicState s(model);
   BodyPoses poses;
   for (int i = 0; i < T; ++i) {
     if (i % 64 == 0) check_cancelled();

@@ -16,14 +16,18 @@
 
 namespace hexdyn {
 
-/// The whole robot's kinematic state at one instant.
+/// The whole robot's kinematic state at one instant. The joint vectors have model.joints()
+/// entries and the per-leg arrays model.legs() used entries: the constructor from a model sizes
+/// them (robot_state_at sizes a default-constructed state on its first call).
 struct RobotKinematicState {
-  BaseState trunk;                                               ///< world frame
-  VecJ q = VecJ::Zero(), qd = VecJ::Zero(), qdd = VecJ::Zero();  ///< 18, flat joint order
-  VecJ cos_q = VecJ::Ones(), sin_q = VecJ::Zero();               ///< std::cos(q), std::sin(q)
-  std::array<FootMotion, kLegs> feet;                            ///< world frame
+  RobotKinematicState() = default;
+  explicit RobotKinematicState(const RobotModel& model);
+  BaseState trunk;            ///< world frame
+  JointVector q, qd, qdd;     ///< flat joint order
+  JointVector cos_q, sin_q;   ///< std::cos(q), std::sin(q)
+  LegArray<FootMotion> feet;  ///< world frame
   /// The IK targets: the foot points (a sphere foot's centre), world frame [m].
-  std::array<Vec3, kLegs> foot_center_W;
+  LegArray<Vec3> foot_center_W;
 };
 
 /// Fills `out` at time t. Throws ReachError naming the leg, the time and the margin

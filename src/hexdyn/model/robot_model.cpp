@@ -24,51 +24,97 @@ Mat3 rot_z(double a) { return Eigen::AngleAxisd(a, Vec3::UnitZ()).toRotationMatr
 
 }  // namespace
 
-void fill_leg_table(RobotModel& m) {
-  // Children of a body, in body order: a leg is a chain of single children from the trunk.
-  auto only_child = [&m](int b) {
-    int child = -1, n = 0;
-    for (int c = b + 1; c < kBodies; ++c)
-      if (m.parent[c] == b) {
-        child = c;
-        ++n;
+namespace {
+
+/// Bodies of the tree: 1 + the last body with a parent (unused entries hold -1); every body
+/// before it has a parent that comes before it.
+int count_bodies(const RobotModel& m) {
+  int n = 1;
+  for (int b = 1; b < kMaxBodies; ++b)
+    if (m.parent[b] >= 0) n = b + 1;
+  for (int b = 1; b < n; ++b)
+    if (m.parent[b] < 0 || m.parent[b] >= b)
+      throw std::logic_error("robot model: body " + std::to_string(b) + " has parent " +
+                             std::to_string(m.parent[b]) +
+                             "; each body's parent is a body before it");
+  return n;
+}
+
+/// One line of a refused leg table: the leg (by its place) and the body.
+[[noreturn]] void refuse_leg(int n, int b, const std::string& what) {
+  throw std::logic_error("robot model: leg " + leg_name(n) + " (hip body " + std::to_string(b) +
+                         "): " + what);
+}
+
+/// The leg whose hip moves body b (a child of the trunk), the n-th in body order: its chain
+/// of single children, flat, kMinLegJoints … kMaxLegJoints joints, hip off the centre line.
+LegInfo scan_leg(const RobotModel& m, int n_bodies, int n, int b) {
+  LegInfo leg;
+  leg.name = leg_name(n);
+  leg.first_body = b;
+  leg.first_joint = b - 1;
+  leg.n_joints = 1;
+  leg.foot_body = b;
+  for (;;) {
+    int child = -1, children = 0;
+    for (int c = leg.foot_body + 1; c < n_bodies; ++c)
+      if (m.parent[c] == leg.foot_body) {
+        if (children++ == 0) child = c;
       }
-    return n == 1 ? child : -1;
-  };
-  std::array<int, 2> per_side{};
-  int n = 0;
-  std::string layout;
-  for (int b = 1; b < kBodies; ++b) {
-    if (m.parent[b] != 0) continue;
-    LegInfo leg;
-    leg.name = leg_name(n);
-    leg.first_body = b;
-    leg.first_joint = b - 1;
-    leg.n_joints = 1;
-    leg.foot_body = b;
-    for (int c = only_child(b); c > 0; c = only_child(c)) {
-      leg.foot_body = c;
-      ++leg.n_joints;
-    }
-    leg.side = m.p_parent_joint[b].x() < 0.0 ? LegSide::kLeft : LegSide::kRight;
-    leg.row = per_side[static_cast<int>(leg.side)]++;
-    if (layout.empty() && n < kLegs &&
-        (leg.n_joints != kJointsPerLeg || leg.first_joint != joint_index(n, 0) ||
-         leg.foot_body != 1 + joint_index(n, kJointsPerLeg - 1)))
-      layout = leg.name + " has " + std::to_string(leg.n_joints) + " joints from body " +
-               std::to_string(b);
-    if (n < kLegs) m.leg_table[n] = leg;
-    ++n;
+    if (children == 0) break;
+    if (children > 1)
+      refuse_leg(n, b,
+                 "the chain branches at body " + std::to_string(leg.foot_body) + " (" +
+                     std::to_string(children) + " children); a leg is a single chain");
+    if (child != leg.foot_body + 1)
+      refuse_leg(n, b,
+                 "body " + std::to_string(child) + " follows body " +
+                     std::to_string(leg.foot_body) +
+                     "; a leg's bodies are consecutive (flat joint order, leg by leg)");
+    leg.foot_body = child;
+    ++leg.n_joints;
   }
-  m.n_legs = std::min(n, kLegs);
+  if (leg.n_joints < kMinLegJoints || leg.n_joints > kMaxLegJoints)
+    refuse_leg(n, b,
+               std::to_string(leg.n_joints) + " joints (bodies " + std::to_string(b) + " to " +
+                   std::to_string(leg.foot_body) + "); a leg has " + std::to_string(kMinLegJoints) +
+                   " to " + std::to_string(kMaxLegJoints));
+  const double x = m.p_parent_joint[b].x();
+  if (std::abs(x) <= 1e-9)
+    refuse_leg(n, b,
+               "hip on the trunk's centre line (x = " + std::to_string(x) +
+                   " m); a hip is left (x < 0) or right (x > 0) of it");
+  leg.side = x < 0.0 ? LegSide::kLeft : LegSide::kRight;
+  return leg;
+}
+
+}  // namespace
+
+void fill_leg_table(RobotModel& m) {
+  const int n_bodies = count_bodies(m);
+  std::array<int, 2> per_side{};
+  int n = 0, next_body = 1;
+  for (int b = 1; b < n_bodies; ++b) {
+    if (m.parent[b] != 0) continue;
+    if (n == kMaxLegs) refuse_leg(n, b, "more than " + std::to_string(kMaxLegs) + " legs");
+    if (b != next_body)
+      refuse_leg(n, b,
+                 "starts after body " + std::to_string(next_body - 1) +
+                     "; each leg's hip is the body after the previous leg's foot");
+    LegInfo leg = scan_leg(m, n_bodies, n, b);
+    leg.row = per_side[static_cast<int>(leg.side)]++;
+    next_body = leg.foot_body + 1;
+    m.leg_table[n++] = leg;
+  }
+  if (n < kMinLegs || next_body != n_bodies)
+    throw std::logic_error("robot model: " + std::to_string(n) + " legs over bodies 1 to " +
+                           std::to_string(n_bodies - 1) + "; a robot has " +
+                           std::to_string(kMinLegs) + " to " + std::to_string(kMaxLegs) +
+                           " legs, every body in one of them");
+  m.n_legs = n;
   m.n_joints = 0;
   for (int l = 0; l < m.n_legs; ++l) m.n_joints += m.leg_table[l].n_joints;
   m.n_bodies = 1 + m.n_joints;
-  if (n != kLegs || !layout.empty())
-    throw std::logic_error("robot model: " + std::to_string(n) + " legs" +
-                           (layout.empty() ? "" : " (" + layout + ")") + ", this build holds " +
-                           std::to_string(kLegs) + " legs of " + std::to_string(kJointsPerLeg) +
-                           " joints in flat order (core/common.hpp)");
 }
 
 RobotModel build_robot_model(const RobotParams& params) {
@@ -142,7 +188,7 @@ RobotModel build_robot_model(const RobotParams& params) {
     m.foot_radius_m[leg] = params.foot_radius_m;
   }
   m.total_mass_kg = 0.0;
-  for (const auto& in : m.inertia) m.total_mass_kg += in.mass_kg;
+  for (int b = 0; b < m.bodies(); ++b) m.total_mass_kg += m.inertia[b].mass_kg;
   // Fills leg_ik (used only if the model is switched to kChain, as tests do); p_hip_B and
   // R_B_H are rewritten with the same values (the coxa joint placements set above).
   prepare_leg_chains(m);
@@ -265,20 +311,37 @@ LegIkResult leg_inverse_kinematics(const RobotModel& m, int leg, const Vec3& p) 
   return r;
 }
 
-void forward_kinematics_tree(const RobotModel& m, const VecJ& q, BodyPoses& out) {
-  VecJ cos_q, sin_q;
-  for (int k = 0; k < kJoints; ++k) {
+void forward_kinematics_tree(const RobotModel& m, const JointVector& q, BodyPoses& out) {
+  JointVector cos_q(m.joints()), sin_q(m.joints());
+  for (int k = 0; k < m.joints(); ++k) {
     cos_q[k] = std::cos(q[k]);
     sin_q[k] = std::sin(q[k]);
   }
   forward_kinematics_tree(m, cos_q, sin_q, out);
+  if (std::none_of(m.joint_type.begin(), m.joint_type.begin() + m.joints(),
+                   [](JointType t) { return t == JointType::kPrismatic; }))
+    return;
+  // A prismatic joint slides its body along the axis without turning it: every body placed
+  // again, in body order (its parent first); a revolute joint as above.
+  for (int b = 1; b < m.bodies(); ++b) {
+    const int p = m.parent[b];
+    if (m.prismatic(b - 1)) {
+      out.p_B[b] = out.p_B[p] +
+                   out.R_B[p] * (m.p_parent_joint[b] + m.R_parent_joint[b] * m.axis[b] * q[b - 1]);
+      out.R_B[b] = out.R_B[p] * m.R_parent_joint[b];
+    } else {
+      out.p_B[b] = out.p_B[p] + out.R_B[p] * m.p_parent_joint[b];
+      out.R_B[b] =
+          out.R_B[p] * m.R_parent_joint[b] * rot_axis_cs(m.axis[b], cos_q[b - 1], sin_q[b - 1]);
+    }
+  }
 }
 
-void forward_kinematics_tree(const RobotModel& m, const VecJ& cos_q, const VecJ& sin_q,
-                             BodyPoses& out) {
+void forward_kinematics_tree(const RobotModel& m, const JointVector& cos_q,
+                             const JointVector& sin_q, BodyPoses& out) {
   out.R_B[0].setIdentity();
   out.p_B[0].setZero();
-  for (int b = 1; b < kBodies; ++b) {
+  for (int b = 1; b < m.bodies(); ++b) {
     const int p = m.parent[b];
     out.p_B[b] = out.p_B[p] + out.R_B[p] * m.p_parent_joint[b];
     out.R_B[b] =
@@ -310,13 +373,13 @@ Vec3 tree_foot_position_B(const RobotModel& m, const BodyPoses& poses, int leg) 
 }
 
 bool has_sphere_feet(const RobotModel& m) {
-  return std::any_of(m.foot_radius_m.begin(), m.foot_radius_m.end(),
+  return std::any_of(m.foot_radius_m.begin(), m.foot_radius_m.begin() + m.legs(),
                      [](double r) { return r > 0.0; });
 }
 
 Vec3 center_of_mass_B(const RobotModel& m, const BodyPoses& poses) {
   Vec3 c = Vec3::Zero();
-  for (int b = 0; b < kBodies; ++b)
+  for (int b = 0; b < m.bodies(); ++b)
     c += m.inertia[b].mass_kg * (poses.p_B[b] + poses.R_B[b] * m.inertia[b].com_m);
   return c / m.total_mass_kg;
 }

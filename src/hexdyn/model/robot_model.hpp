@@ -6,11 +6,14 @@
 ///
 /// Tree: body 0 is the trunk (trunk + payload, floating); body b = 1 + k is moved by
 /// joint k (flat index, docs/theory/conventions.md#flat-joint-index), its parent is the
-/// trunk for a coxa and the previous link otherwise.
+/// trunk for a leg's first (hip) joint and the previous link otherwise. The counts (legs,
+/// joints, bodies) are the model's (fill_leg_table); storage has the capacities of
+/// core/sizes.hpp.
 ///
 /// Leg frame H_l ("hip frame"): the coxa joint frame at zero coxa angle, origin at the
 /// coxa joint (p_hip_B, R_B_H = R_parent_joint of the coxa body). The foot point is
-/// p_foot_last[l] in the frame of the leg's third link (the tibia body): the point the IK
+/// p_foot_last[l] in the frame of the leg's foot body (its last link; the tibia of a
+/// three-joint leg): the point the IK
 /// places and the FK, Jacobians and J̇ below describe. A sphere foot (foot_radius_m[l] > 0)
 /// has its centre there; it touches a surface of unit normal n at the contact point
 /// centre − r n, where the terrain's forces act (dynamics/rnea.hpp,
@@ -72,6 +75,10 @@ struct LegIkData {
   Vec3 q_start = Vec3::Zero();         ///< numeric IK: starting joint angles [rad]
 };
 
+/// How a joint moves the body after it: about its axis (revolute, q in rad) or along it
+/// (prismatic, q in m).
+enum class JointType { kRevolute, kPrismatic };
+
 /// Side of the trunk a leg's hip is on: x < 0 in the trunk frame is left
 /// (docs/theory/conventions.md).
 enum class LegSide { kLeft, kRight };
@@ -92,9 +99,9 @@ struct LegInfo {
 struct RobotModel {
   // --- leg table (fill_leg_table): legs(), leg(l), joint(l, j), body(l, j), foot_body(l) ---
   int n_legs = 0;
-  int n_joints = 0;  ///< actuated joints, all legs (flat order: leg by leg, hip to foot)
-  int n_bodies = 0;  ///< trunk and the bodies the joints move (n_joints + 1)
-  std::array<LegInfo, kLegs> leg_table;
+  int n_joints = 0;             ///< actuated joints, all legs (flat order: leg by leg, hip to foot)
+  int n_bodies = 0;             ///< trunk and the bodies the joints move (n_joints + 1)
+  LegArray<LegInfo> leg_table;  ///< the first n_legs entries
   int legs() const { return n_legs; }
   int joints() const { return n_joints; }
   int bodies() const { return n_bodies; }
@@ -107,42 +114,50 @@ struct RobotModel {
   int body(int l, int j) const { return leg_table[l].first_body + j; }
   /// Body that carries leg l's foot point.
   int foot_body(int l) const { return leg_table[l].foot_body; }
-  // --- tree (bodies 0..18) ---
-  std::array<int, kBodies> parent{};          ///< parent[0] = -1
-  std::array<Mat3, kBodies> R_parent_joint;   ///< joint frame orientation in parent frame
-  std::array<Vec3, kBodies> p_parent_joint;   ///< joint frame origin in parent frame [m]
-  std::array<Vec3, kBodies> axis;             ///< revolute axis in the joint frame (unit)
-  std::array<RigidInertia, kBodies> inertia;  ///< body 0: trunk and payload combined
+  // --- tree (bodies 0 … n_bodies − 1; the entries after them are unused) ---
+  /// parent[0] = -1; every unused entry holds -1 too (fill_leg_table counts the bodies by it).
+  BodyArray<int> parent = unused_parents();
+  BodyArray<Mat3> R_parent_joint;   ///< joint frame orientation in parent frame
+  BodyArray<Vec3> p_parent_joint;   ///< joint frame origin in parent frame [m]
+  BodyArray<Vec3> axis;             ///< joint axis in the joint frame (unit)
+  BodyArray<RigidInertia> inertia;  ///< body 0: trunk and payload combined
   // --- separate parts kept for the URDF ---
   RigidInertia trunk_only;  ///< trunk structure alone, trunk frame
   RigidInertia payload;     ///< payload alone, trunk frame
   // --- analytic leg parameters ---
   std::array<double, 3> link_length_m{};  ///< l1, l2, l3
   double d1_m = 0.0;                      ///< femur axis below the coxa link [m]
-  std::array<double, kLegs> lateral_m{};  ///< signed lateral foot offset side·(d2+d3) [m]
-  std::array<double, kLegs> d2_signed_m{}, d3_signed_m{};
-  std::array<Vec3, kLegs> p_hip_B;  ///< coxa joint in the trunk frame [m]
-  std::array<Mat3, kLegs> R_B_H;    ///< hip frame → trunk frame
+  /// How each joint moves, flat index (revolute unless a builder says otherwise). The
+  /// dynamics (rnea.hpp) and forward_kinematics_tree(model, q, …) take both kinds; the leg
+  /// kinematics (FK, IK, Jacobians below) and the kinematics stage revolute joints.
+  JointArray<JointType> joint_type{};
+  bool prismatic(int k) const { return joint_type[k] == JointType::kPrismatic; }
+  // Per-leg (LegArray) and per-joint (JointArray) storage: the first legs() / joints()
+  // entries are used.
+  LegArray<double> lateral_m{};  ///< signed lateral foot offset side·(d2+d3) [m]
+  LegArray<double> d2_signed_m{}, d3_signed_m{};
+  LegArray<Vec3> p_hip_B;  ///< coxa joint in the trunk frame [m]
+  LegArray<Mat3> R_B_H;    ///< hip frame → trunk frame
   /// Joint limits per joint, flat index [rad] (±inf: a continuous joint).
-  std::array<double, kJoints> joint_lower_rad{}, joint_upper_rad{};
+  JointArray<double> joint_lower_rad{}, joint_upper_rad{};
   /// Effort limit per joint from the description [N m]; +inf when it gives none.
-  std::array<double, kJoints> effort_limit_Nm{};
+  JointArray<double> effort_limit_Nm{};
   /// Velocity limit per joint from the description [rad/s]; +inf when it gives none.
-  std::array<double, kJoints> velocity_limit_radps{};
+  JointArray<double> velocity_limit_radps{};
   double ik_min_margin_m = 1e-4;
   double total_mass_kg = 0.0;
   // --- leg geometry (file comment) ---
   LegGeometry leg_geometry = LegGeometry::kPaperPlanar;
-  std::array<Vec3, kLegs> p_foot_last;  ///< foot point in the leg's third link frame [m]
+  LegArray<Vec3> p_foot_last;  ///< foot point in the leg's foot body frame [m]
   /// Sphere foot radius per leg [m]: p_foot_last is the sphere's centre; 0 a point foot.
-  std::array<double, kLegs> foot_radius_m{};
-  std::array<LegIkData, kLegs> leg_ik;  ///< kChain only
+  LegArray<double> foot_radius_m{};
+  LegArray<LegIkData> leg_ik;  ///< kChain only
   /// Joint names in the description, flat order (URDF: its own names; YAML: L{i}_coxa …).
-  std::array<std::string, kJoints> joint_source_names;
+  JointArray<std::string> joint_source_names;
   /// Each hip's outward direction at zero coxa angle, horizontal in the trunk frame (unit,
   /// z = 0): footholds lie along it (planning/gait.hpp). The paper robot: ±x exactly (its
   /// legs stand straight out); a URDF robot: R_B_H · leg_ik.outward_H.
-  std::array<Vec3, kLegs> hip_outward_B;
+  LegArray<Vec3> hip_outward_B;
   /// The description's root link frame in the trunk frame B: the frame /base/* and the
   /// root link of /model/urdf describe (a YAML robot: B itself).
   Vec3 p_B_root = Vec3::Zero();      ///< [m]
@@ -150,16 +165,29 @@ struct RobotModel {
   /// Gravity in G0 [m/s²] (Pinocchio's Model::gravity): every dynamics algorithm reads it;
   /// a test of the free robot sets it to zero.
   Vec3 gravity_W = Vec3(0.0, 0.0, -kGravity);
+
+  /// Every entry -1: no body (parent's initial value).
+  static BodyArray<int> unused_parents() {
+    BodyArray<int> p;
+    p.fill(-1);
+    return p;
+  }
 };
 
 /// Builds the model from validated parameters (no checks beyond those of load_scene).
 RobotModel build_robot_model(const RobotParams& params);
 
-/// Fills the leg table from the tree: every child of the trunk, in body order, starts a leg
-/// whose chain of single children ends at its foot body; names L1, L2, …; side from the sign
-/// of the hip's x in the trunk frame (p_parent_joint of its first body), row by order within
-/// its side (the builders number legs front to rear). Throws std::logic_error, one line, when
-/// the table is not the layout this build stores (kLegs legs of kJointsPerLeg joints, flat).
+/// Fills the leg table and the counts from the tree. The bodies are 1 … n − 1 up to the last
+/// with a parent (parent ≥ 0; unused entries hold -1), each after its parent. Every child of
+/// the trunk, in body order, starts a leg whose chain of single children ends at its foot body;
+/// the legs are flat, leg by leg (the bodies of a leg consecutive, the next leg's hip the body
+/// after the previous foot; body b moved by joint b − 1); names L1, L2, … in the builder's
+/// order; side from the sign of the hip's x in the trunk frame (p_parent_joint of its first
+/// body), row by order within its side (the builders number legs front to rear). Throws
+/// std::logic_error, one line naming the leg and the body, for kMinLegs … kMaxLegs legs not
+/// found, a leg of fewer than kMinLegJoints or more than kMaxLegJoints joints, a chain that
+/// branches, bodies out of the flat order, or a hip on the trunk's centre line
+/// (|x| ≤ 1e-9 m).
 void fill_leg_table(RobotModel& model);
 
 /// Fills p_hip_B, R_B_H and leg_ik of every leg from the tree (parent, placements, axes),
@@ -209,16 +237,17 @@ bool planar_reach_ok(double dist_m, double l2_m, double l3_m, double min_margin_
 /// p_H: foot target in the hip frame. Never throws; callers turn !ok into ReachError.
 LegIkResult leg_inverse_kinematics(const RobotModel& model, int leg, const Vec3& p_H);
 
-/// Poses of every body in the trunk frame for joint angles q (18).
+/// Poses of every body in the trunk frame for joint positions q (model.joints(): angles of
+/// revolute joints [rad], slides of prismatic joints [m]).
 struct BodyPoses {
-  std::array<Mat3, kBodies> R_B;  ///< body → trunk rotation
-  std::array<Vec3, kBodies> p_B;  ///< body origin in the trunk frame [m]
+  BodyArray<Mat3> R_B;  ///< body → trunk rotation (the first model.bodies() entries)
+  BodyArray<Vec3> p_B;  ///< body origin in the trunk frame [m]
 };
-void forward_kinematics_tree(const RobotModel& model, const VecJ& q, BodyPoses& out);
-/// The same from cos q and sin q (18 each, as std::cos and std::sin give them), for a
-/// caller that has them already: the same poses, bit for bit.
-void forward_kinematics_tree(const RobotModel& model, const VecJ& cos_q, const VecJ& sin_q,
-                             BodyPoses& out);
+void forward_kinematics_tree(const RobotModel& model, const JointVector& q, BodyPoses& out);
+/// The same from cos q and sin q (model.joints() each, as std::cos and std::sin give them),
+/// for a caller that has them already: the same poses, bit for bit. Revolute joints only.
+void forward_kinematics_tree(const RobotModel& model, const JointVector& cos_q,
+                             const JointVector& sin_q, BodyPoses& out);
 
 /// Eigen::AngleAxisd(angle, axis).toRotationMatrix() from cos(angle) and sin(angle): the
 /// same operations, so the same bits. axis: unit.

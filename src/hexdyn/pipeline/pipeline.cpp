@@ -141,7 +141,7 @@ RunResult run_prepared_scene(const Scene& scene, const PreparedScene& prep, std:
   result.urdf =
       robot_urdf(prep.model, scene.robot.urdf ? scene.robot.urdf->name : "hexdyn_hexapod");
   result.joint_names.assign(prep.model.joint_source_names.begin(),
-                            prep.model.joint_source_names.end());
+                            prep.model.joint_source_names.begin() + prep.model.joints());
   if (scene.robot.urdf) {
     const auto mapping = leg_mapping_entries(*scene.robot.urdf);
     result.leg_mapping.assign(mapping.begin(), mapping.end());

@@ -69,10 +69,10 @@ void evaluate_contacts(const RobotModel& model, RobotData& data, const ContactPa
     c.normals[l] = c.geometry[l].normal_W;
   }
   foot_jacobians(model, data, s.base, s.q, &c.normals);
-  c.J = data.J_foot_W;
+  for (int l = 0; l < kLegs; ++l) c.J[l] = data.J_foot_W[l];
   const VecDof nu = s.nu();
   for (int l = 0; l < kLegs; ++l) {
-    const Vec3 v_point = data.J_foot_W[l] * nu;
+    const Vec3 v_point = c.J[l] * nu;
     c.law[l] = foot_contact_force(params, c.geometry[l].penetration_m, c.normals[l], v_point);
     c.force_W[l] = c.law[l].force_W;
   }

@@ -30,7 +30,7 @@ Sample random_sample(unsigned seed) {
   s.split.trunk_rhs = Vec6::NullaryExpr([&] { return g(rng); });
   s.split.tau0 = VecJ::NullaryExpr([&] { return 0.3 * g(rng); });
   for (int l = 0; l < kLegs; ++l) {
-    s.split.JjT[l].setZero();
+    s.split.JjT[l].setZero(kJoints, 3);
     s.split.JjT[l].middleRows<kJointsPerLeg>(joint_index(l, 0)) =
         Mat3::NullaryExpr([&] { return 0.1 * g(rng); });
     s.split.JbT[l] = Eigen::Matrix<double, 6, 3>::NullaryExpr([&] { return g(rng); });

@@ -159,7 +159,7 @@ TEST_CASE("allocation problem: the structural key tells row layouts apart as the
         split.trunk_rhs = Vec6::NullaryExpr([&] { return g(rng); });
         split.tau0 = VecJ::NullaryExpr([&] { return g(rng); });
         for (auto& m : split.JjT)
-          m = decltype(split.JjT)::value_type::NullaryExpr([&] { return g(rng); });
+          m = decltype(split.JjT)::value_type::NullaryExpr(kJoints, 3, [&] { return g(rng); });
         for (auto& m : split.JbT)
           m = decltype(split.JbT)::value_type::NullaryExpr([&] { return g(rng); });
         std::array<double, kLegs> f_impact{};

@@ -12,7 +12,9 @@ namespace hexdyn {
 TEST_CASE("allocation: torque rows use each joint's own limit", "[allocation][limits]") {
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
-  ContactSplit split;
+  ContactSplit split;  // sized for six legs of three joints
+  split.tau0.setZero(kJoints);
+  for (auto& m : split.JjT) m.setZero(kJoints, 3);
   for (int k = 0; k < kJoints; ++k) split.tau0[k] = u(rng);
   for (int l = 0; l < kLegs; ++l) {
     for (int c = 0; c < 3; ++c) {

@@ -11,26 +11,18 @@
 #include "hexdyn/core/spatial.hpp"
 #include "hexdyn/dynamics/rnea.hpp"
 #include "hexdyn/sample_models.hpp"
+#include "hexdyn/tree_models.hpp"
 
 namespace hexdyn::test {
 
 constexpr int kRandomRobots = 24;
 constexpr int kStatesPerRobot = 3;
 
-inline double uniform(std::mt19937& rng, double lo, double hi) {
-  return std::uniform_real_distribution<double>(lo, hi)(rng);
-}
+inline double uniform(std::mt19937& rng, double lo, double hi) { return draw(rng, lo, hi); }
 
-inline Vec3 random_vec3(std::mt19937& rng, double lo, double hi) {
-  return Vec3(uniform(rng, lo, hi), uniform(rng, lo, hi), uniform(rng, lo, hi));
-}
+inline Vec3 random_vec3(std::mt19937& rng, double lo, double hi) { return draw_vec3(rng, lo, hi); }
 
-inline Mat3 random_rotation(std::mt19937& rng) {
-  std::normal_distribution<double> n(0.0, 1.0);
-  Quat qr(n(rng), n(rng), n(rng), n(rng));
-  qr.normalize();
-  return qr.toRotationMatrix();
-}
+inline Mat3 random_rotation(std::mt19937& rng) { return draw_rotation(rng); }
 
 /// exp of the skew matrix of φ (Rodrigues), with series near φ = 0.
 inline Mat3 so3_exp(const Vec3& phi) {

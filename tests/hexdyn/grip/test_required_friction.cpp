@@ -51,7 +51,7 @@ Sample random_sample(std::mt19937& rng, int variant) {
     const Vec3 p_foot = p + 0.03 * Vec3(u(rng), u(rng), u(rng));
     s.split.JbT[l].topRows<3>() = Mat3::Identity();
     s.split.JbT[l].bottomRows<3>() = skew(p_foot);
-    s.split.JjT[l].setZero();
+    s.split.JjT[l].setZero(kJoints, 3);
     s.split.JjT[l].middleRows<kJointsPerLeg>(joint_index(l, 0)) =
         Mat3::NullaryExpr([&] { return 0.1 * g(rng); });
     const Vec3 axis(u(rng), u(rng), 0.0);
@@ -211,10 +211,11 @@ TEST_CASE("required friction: one leg with a known force in closed form", "[requ
   for (double theta : {0.0, M_PI / 8, 0.3, 2.0}) {
     const Vec3 F(h * std::cos(theta), h * std::sin(theta), N);  // contact frame = world
     Sample s;
+    s.split.tau0.setZero(kJoints);
     s.phase.fill(ContactPhase::kSwing);
     for (int l = 0; l < kLegs; ++l) {
       s.frames[l] = Mat3::Identity();
-      s.split.JjT[l].setZero();
+      s.split.JjT[l].setZero(kJoints, 3);
       s.split.JbT[l].topRows<3>() = Mat3::Identity();
       s.split.JbT[l].bottomRows<3>() = skew(p);
     }
@@ -297,7 +298,7 @@ TEST_CASE("required friction: NaN and the reason where no friction helps", "[req
       // The support legs' torque limits cannot carry the trunk's weight, whatever the
       // friction: 0.05 N m against forces of tens of newtons on 0.1 m moment arms.
       alloc.torque_limit_Nm = 0.05;
-      s.split.tau0.setZero();
+      s.split.tau0.setZero(kJoints);
       RequiredFrictionSolver solver(make_allocation_backend(alloc));
       QpProblem qp;
       const AllocationLayout layout = build_at(alloc, s, 0.3, qp);

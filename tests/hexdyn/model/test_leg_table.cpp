@@ -7,11 +7,16 @@
 
 #include <catch2/catch.hpp>
 #include <fstream>
+#include <numeric>
+#include <random>
 #include <sstream>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "hexdyn/model/urdf_reader.hpp"
 #include "hexdyn/sample_models.hpp"
+#include "hexdyn/tree_models.hpp"
 
 namespace hexdyn {
 namespace {
@@ -101,7 +106,7 @@ TEST_CASE("the paper robot's leg table", "[leg_table]") {
   // Counts from the table, against the tree walked directly: bodies whose parent chain
   // reaches the trunk.
   int moved = 0;
-  for (int b = 1; b < kBodies; ++b) {
+  for (int b = 1; b < kMaxBodies; ++b) {
     int a = b;
     while (a > 0) a = m.parent[a];
     moved += a == 0 ? 1 : 0;
@@ -118,14 +123,67 @@ TEST_CASE("joint labels are positional: three joints by name, others numbered", 
   CHECK(joint_name(7, 5, 6) == "L8_j6");
 }
 
-TEST_CASE("a tree that is not six legs of three joints is refused in one line", "[leg_table]") {
+TEST_CASE("a tree of 2 to 8 legs of 3 to 6 joints, flat, is accepted", "[leg_table]") {
   RobotModel m = build_robot_model(test::paper_robot_params());
-  m.parent[3] = 0;  // L1's tibia on the trunk: L1 of two joints, and a seventh leg
-  CHECK_THROWS_WITH(fill_leg_table(m), Catch::Contains("robot model: 7 legs (L1 has 2 joints") &&
-                                           !Catch::Contains("\n"));
-  m = build_robot_model(test::paper_robot_params());
   m.parent[4] = 3;  // L2's coxa on L1's tibia: five legs, L1 of six joints
-  CHECK_THROWS_WITH(fill_leg_table(m), Catch::Contains("robot model: 5 legs (L1 has 6 joints"));
+  fill_leg_table(m);
+  CHECK(m.legs() == 5);
+  CHECK(m.leg(0).n_joints == 6);
+  CHECK(m.leg(0).foot_body == 6);
+  CHECK(m.leg(1).first_body == 7);
+  CHECK(m.leg(1).first_joint == 6);
+  CHECK(m.joints() == 18);
+  CHECK(m.bodies() == 19);
+  std::mt19937 rng(7);
+  for (const std::vector<int>& legs :
+       {std::vector<int>{3, 3}, std::vector<int>(8, 6), std::vector<int>{5, 4, 3, 6}}) {
+    const RobotModel t = test::tree_model(rng, legs);
+    CHECK(t.legs() == static_cast<int>(legs.size()));
+    CHECK(t.bodies() == 1 + std::accumulate(legs.begin(), legs.end(), 0));
+  }
+}
+
+TEST_CASE("a tree the model cannot hold is refused in one line naming leg and body",
+          "[leg_table]") {
+  // The message of the std::logic_error f throws ("" when it throws none).
+  const auto refusal = [](const auto& f) -> std::string {
+    try {
+      f();
+    } catch (const std::logic_error& e) {
+      return e.what();
+    }
+    return "";
+  };
+  const auto one_line = [](const std::string& message, const std::string& text) {
+    INFO(message);
+    CHECK(message.find(text) != std::string::npos);
+    CHECK(message.find('\n') == std::string::npos);
+  };
+  RobotModel m = build_robot_model(test::paper_robot_params());
+  m.parent[3] = 0;  // L1's tibia on the trunk: L1 of two joints
+  one_line(refusal([&] { fill_leg_table(m); }),
+           "robot model: leg L1 (hip body 1): 2 joints "
+           "(bodies 1 to 2); a leg has 3 to 6");
+  m = build_robot_model(test::paper_robot_params());
+  m.parent[4] = 2;  // L2's coxa on L1's femur: L1 branches
+  one_line(refusal([&] { fill_leg_table(m); }),
+           "leg L1 (hip body 1): the chain branches at body 2 (2 children)");
+  m = build_robot_model(test::paper_robot_params());
+  m.p_parent_joint[4].x() = 0.0;  // L2's hip on the centre line
+  one_line(refusal([&] { fill_leg_table(m); }),
+           "leg L2 (hip body 4): hip on the trunk's centre line");
+  m = build_robot_model(test::paper_robot_params());
+  m.parent[2] = 5;  // a body whose parent comes after it
+  one_line(refusal([&] { fill_leg_table(m); }), "robot model: body 2 has parent 5");
+  std::mt19937 rng(8);
+  one_line(refusal([&] {
+             test::tree_model(rng, std::vector<int>{3, 7});
+           }),
+           "leg L2 (hip body 4): 7 joints");
+  one_line(refusal([&] { test::tree_model(rng, std::vector<int>{4}); }),
+           "robot model: 1 legs over bodies 1 to 4; a robot has 2 to 8 legs");
+  one_line(refusal([&] { test::tree_model(rng, std::vector<int>(9, 3)); }),
+           "leg L9 (hip body 25): more than 8 legs");
 }
 
 TEST_CASE("each shipped hexapod's leg table is its URDF's chains", "[leg_table]") {

@@ -17,14 +17,17 @@
 //    or touches down: 24 of the 579 samples checked), QpProblem::resize and the back end's
 //    outcome vectors take new memory for the new sizes, so build_allocation_problem and
 //    the solve are checked on the samples of unchanged sizes.
-// The test requires most of the run to be checked by each rule.
+// The test requires most of the run to be checked by each rule. A second test runs the inverse
+// and forward dynamics of a quadruped built by hand.
 #include <array>
 #include <atomic>
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <cstddef>
 #include <cstdlib>
 #include <memory>
 #include <new>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -32,9 +35,11 @@
 #include "hexdyn/allocation/problem.hpp"
 #include "hexdyn/config/config.hpp"
 #include "hexdyn/contact/touchdowns.hpp"
+#include "hexdyn/dynamics/forward_dynamics.hpp"
 #include "hexdyn/dynamics/rnea.hpp"
 #include "hexdyn/kinematics/kinematics.hpp"
 #include "hexdyn/pipeline/pipeline.hpp"
+#include "hexdyn/tree_models.hpp"
 
 namespace {
 std::atomic<long> g_allocations{0};
@@ -173,6 +178,33 @@ TEST_CASE("the per-sample path of the paper run allocates nothing after warm-up"
     CHECK(checked[s] > (T - kWarmUp) / 3);
     CHECK(total[s] == 0);
   }
+}
+
+TEST_CASE("the inverse dynamics of a quadruped allocates nothing", "[pipeline][allocation]") {
+  // RNEA (with and without foot forces), the contact split and the forward dynamics of a robot
+  // of four legs of three joints (tests/hexdyn/tree_models.hpp), its RobotData built once.
+  std::mt19937 rng(4343);
+  const RobotModel model = test::tree_model(rng, {3, 3, 3, 3});
+  std::vector<test::TreeState> states;
+  for (int i = 0; i < 16; ++i) states.push_back(test::draw_tree_state(rng, model));
+  LegArray<Vec3> forces;
+  FootNormals normals;
+  for (int l = 0; l < model.legs(); ++l) {
+    forces[l] = Vec3(0.5, -0.3, 20.0);
+    normals[l] = Vec3(0.1, 0.0, 1.0).normalized();
+  }
+  RobotData data(model);
+  const DofVector tau_gen = DofVector::Constant(model.dofs(), 0.5);
+  const long before = g_allocations.load();
+  double sum = 0.0;
+  for (const test::TreeState& s : states) {
+    sum += rnea(model, data, s.state, s.q, s.qd, s.qdd)[0];
+    sum += rnea(model, data, s.state, s.q, s.qd, s.qdd, &forces, &normals)[0];
+    sum += contact_split(model, data, s.state, s.q, s.qd, s.qdd, &normals).tau0[0];
+    sum += forward_dynamics(model, data, s.state, s.q, s.qd, tau_gen, &forces)[0];
+  }
+  CHECK(g_allocations.load() - before == 0);
+  CHECK(std::isfinite(sum));
 }
 
 TEST_CASE("the allocation counter of test_no_allocation sees a heap allocation",
