@@ -266,7 +266,8 @@ const char* friction_model_word(hexdyn::FrictionModel m) {
 /// The per-leg variable layout (allocation/problem.hpp AllocationLayout::Leg) as dicts.
 py::list legs_to_python(const hexdyn::AllocationLayout& layout) {
   py::list legs;
-  for (const hexdyn::AllocationLayout::Leg& leg : layout.legs) {
+  for (int l = 0; l < layout.n_legs; ++l) {
+    const hexdyn::AllocationLayout::Leg& leg = layout.legs[l];
     py::dict d;
     d["offset"] = leg.offset;
     d["count"] = leg.count;
@@ -335,8 +336,8 @@ py::dict sample_problem_file(const std::string& scene_path,
   out["constant_excess_Nm"] = p.layout.constant_excess_Nm;
   out["constant_violation"] = p.layout.constant_violation;
   std::vector<std::int8_t> phase;
-  for (hexdyn::ContactPhase ph : p.phase) phase.push_back(static_cast<std::int8_t>(ph));
-  out["phase"] = to_numpy(std::move(phase), {static_cast<std::size_t>(hexdyn::kLegs)});
+  for (int l = 0; l < p.layout.n_legs; ++l) phase.push_back(static_cast<std::int8_t>(p.phase[l]));
+  out["phase"] = to_numpy(std::move(phase), {static_cast<std::size_t>(p.layout.n_legs)});
   out["x"] = vector_to_numpy(p.x);
   out["status"] = static_cast<int>(p.status);
   out["required_friction"] = p.required_friction;

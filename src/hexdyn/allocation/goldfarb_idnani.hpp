@@ -44,15 +44,26 @@
 #include <cstdint>
 #include <optional>
 
+#include "hexdyn/allocation/friction.hpp"
 #include "hexdyn/allocation/qp.hpp"
 #include "hexdyn/allocation/small_dense.hpp"
 
 namespace hexdyn {
 
-/// Largest number of variables of the active-set solver.
+/// Largest number of variables of the active-set solver: three force components per leg.
 inline constexpr int kActiveSetMaxVariables = kSmallDenseMax;
-/// Largest number of rows (equality plus inequality) it accepts.
-inline constexpr int kActiveSetMaxRows = 160;
+/// Most friction rows one leg brings: a 16-gon, either the inscribed one of a leg in its
+/// impact transient under the exact cone (allocation/friction.hpp kInscribedConeFaces) or
+/// the outer one that stands in for a cone in the required friction's probes
+/// (grip/required_friction_solver.hpp kConeFaces); the pyramids have 4 or 8 faces and the
+/// cone back end 8 cuts per cone (each checked against this where it is defined).
+inline constexpr int kActiveSetMaxLegFaces = kInscribedConeFaces;
+/// Largest number of rows (equality plus inequality) it accepts: the allocation's six trunk
+/// rows, then per leg one two-sided torque row per joint, a support leg's minimum normal
+/// force and its friction faces (allocation/problem.hpp), at the capacities (core/sizes.hpp:
+/// kMaxLegs legs of kMaxLegJoints joints): 6 + 8 × (6 + 1 + 16) = 190.
+inline constexpr int kActiveSetMaxRows = 6 + kMaxLegs * (kMaxLegJoints + 1 + kActiveSetMaxLegFaces);
+static_assert(kActiveSetMaxRows == 190, "the row budget of docs/theory/allocation.md");
 
 /// How a run of the dual iteration ended.
 enum class ActiveSetExit {

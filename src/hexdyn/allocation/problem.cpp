@@ -4,8 +4,10 @@
 #include <cstdint>
 #include <limits>
 #include <sstream>
+#include <utility>
 
 #include "hexdyn/allocation/friction.hpp"
+#include "hexdyn/allocation/goldfarb_idnani.hpp"
 
 namespace hexdyn {
 namespace {
@@ -24,9 +26,9 @@ int friction_faces(FrictionModel m) {
 
 /// The row layout as a key (QpProblem::structure): the friction faces per leg in the low
 /// byte, then two bits per leg for its phase. Equal keys give equal row kinds and names.
-std::uint64_t structure_key(int faces, const std::array<ContactPhase, kLegs>& phase) {
+std::uint64_t structure_key(int faces, int legs, std::span<const ContactPhase> phase) {
   std::uint64_t key = static_cast<std::uint64_t>(faces);
-  for (int l = 0; l < kLegs; ++l)
+  for (int l = 0; l < legs; ++l)
     key |= static_cast<std::uint64_t>(static_cast<std::uint8_t>(phase[l])) << (8 + 2 * l);
   return key;
 }
@@ -45,26 +47,67 @@ constexpr double kContactRowPenaltyWeight = 1e3;
 /// Impact legs keep a fixed normal force, so their friction limit is a polygon even in
 /// the exact-cone model (friction.hpp).
 constexpr int kImpactConeFaces = kInscribedConeFaces;
+static_assert(AllocationLayout::kTrunkRows == 6 && kImpactConeFaces <= kActiveSetMaxLegFaces &&
+                  8 <= kActiveSetMaxLegFaces,
+              "the active-set row budget (allocation/goldfarb_idnani.hpp) holds every problem");
 
-/// Row names, built once: building them per sample would cost more than the solve.
+/// Σ v_k² and Σ w_k v_k² of n entries, summed in the order Eigen sums a vector of the fixed
+/// size n, whatever n (the order the hexapods' fixed 18-vectors were summed in): a dynamic
+/// size sums in another order, and the objective's constant would change in its last bits.
+template <int N>
+double fixed_order_squared_norm(const double* v) {
+  return Eigen::Map<const Eigen::Matrix<double, N, 1>>(v).squaredNorm();
+}
+template <int N>
+double fixed_order_weighted_squares(const double* v, const double* w) {
+  const Eigen::Map<const Eigen::Matrix<double, N, 1>> a(v), b(w);
+  return a.dot(b.cwiseProduct(a));
+}
+template <int... N>
+constexpr auto squared_norm_table(std::integer_sequence<int, N...>) {
+  return std::array{&fixed_order_squared_norm<N + 1>...};
+}
+template <int... N>
+constexpr auto weighted_squares_table(std::integer_sequence<int, N...>) {
+  return std::array{&fixed_order_weighted_squares<N + 1>...};
+}
+double squared_norm(const JointVector& v) {
+  static constexpr auto kTable = squared_norm_table(std::make_integer_sequence<int, kMaxJoints>{});
+  return v.size() ? kTable[static_cast<std::size_t>(v.size() - 1)](v.data()) : 0.0;
+}
+double weighted_squares(const JointVector& v, const JointVector& w) {
+  static constexpr auto kTable =
+      weighted_squares_table(std::make_integer_sequence<int, kMaxJoints>{});
+  return v.size() ? kTable[static_cast<std::size_t>(v.size() - 1)](v.data(), w.data()) : 0.0;
+}
+
+/// Row names, built once for every leg and joint position the capacities allow: building
+/// them per sample would cost more than the solve.
 struct RowNames {
-  /// By bound kind (DriveRows::bound): the allocation's limit, a drive's peak, its voltage.
-  std::array<std::array<std::string, kJoints>, 3> torque_by_bound;
-  std::array<std::string, kJoints>& torque = torque_by_bound[0];
-  std::array<std::string, kLegs> normal;
-  std::array<std::array<std::string, kImpactConeFaces>, kLegs> face;
+  /// Joint j of leg l's torque row, by bound kind (DriveRows::bound: the allocation's limit, a
+  /// drive's peak, its voltage) and label (joint_name: [0] a leg of three joints, [1] other).
+  using LegJointNames = LegArray<std::array<std::string, kMaxLegJoints>>;
+  std::array<std::array<LegJointNames, 2>, 3> torque_by_bound;
+  LegArray<std::string> normal;
+  LegArray<std::array<std::string, kImpactConeFaces>> face;
   RowNames() {
-    for (int l = 0; l < kLegs; ++l) {
-      for (int j = 0; j < kJointsPerLeg; ++j) {
-        const int k = joint_index(l, j);
-        torque[k] = "torque " + joint_name(l, j);
-        torque_by_bound[1][k] = torque[k] + " (peak)";
-        torque_by_bound[2][k] = torque[k] + " (voltage)";
+    for (int l = 0; l < kMaxLegs; ++l) {
+      for (int j = 0; j < kMaxLegJoints; ++j) {
+        for (int label = 0; label < 2; ++label) {
+          if (label == 0 && j >= 3) continue;  // a leg of three joints has no fourth
+          const std::string torque = "torque " + joint_name(l, j, label == 0 ? 3 : kMaxLegJoints);
+          torque_by_bound[0][label][l][j] = torque;
+          torque_by_bound[1][label][l][j] = torque + " (peak)";
+          torque_by_bound[2][label][l][j] = torque + " (voltage)";
+        }
       }
       normal[l] = "normal " + leg_name(l);
       for (int f = 0; f < kImpactConeFaces; ++f)
         face[l][f] = "friction " + leg_name(l) + " face " + std::to_string(f + 1);
     }
+  }
+  const std::string& torque(int bound, int l, int j, int leg_joints) const {
+    return torque_by_bound[bound][leg_joints == 3 ? 0 : 1][l][j];
   }
 };
 const RowNames& row_names() {
@@ -75,12 +118,13 @@ const RowNames& row_names() {
 /// The variable layout (which legs carry which force components) and the number of
 /// inequality rows: six trunk rows, then per leg with variables its torque rows, a support
 /// leg's normal force row and its friction faces.
-AllocationLayout variable_layout(const std::array<ContactPhase, kLegs>& phase,
-                                 const std::array<double, kLegs>& impact_force_N,
-                                 const std::array<Mat3, kLegs>& W_R_c, int faces, int& rows) {
+AllocationLayout variable_layout(const AllocationLegs& legs, std::span<const ContactPhase> phase,
+                                 std::span<const double> impact_force_N,
+                                 std::span<const Mat3> W_R_c, int faces, int& rows) {
   AllocationLayout layout;
+  layout.n_legs = legs.legs;
   int n = 0, m_in = AllocationLayout::kTrunkRows;
-  for (int l = 0; l < kLegs; ++l) {
+  for (int l = 0; l < legs.legs; ++l) {
     AllocationLayout::Leg& leg = layout.legs[l];
     leg.W_R_contact = W_R_c[l];
     if (phase[l] == ContactPhase::kSwing) continue;
@@ -89,8 +133,8 @@ AllocationLayout variable_layout(const std::array<ContactPhase, kLegs>& phase,
     leg.count = support ? 3 : 2;
     if (!support) leg.known_normal_force_N = impact_force_N[l];
     n += support ? 3 : 2;
-    m_in += kJointsPerLeg;   // torque rows
-    if (support) m_in += 1;  // normal force row
+    m_in += legs.n_joints[l];  // torque rows
+    if (support) m_in += 1;    // normal force row
     m_in += support ? faces : (faces ? faces : kImpactConeFaces);
   }
   layout.variables = n;
@@ -98,39 +142,41 @@ AllocationLayout variable_layout(const std::array<ContactPhase, kLegs>& phase,
   return layout;
 }
 
-// At most 18 variables: the matrices live on the stack.
-using GMatrix = Eigen::Matrix<double, kJoints, Eigen::Dynamic, Eigen::ColMajor, kJoints, 3 * kLegs>;
+// At most kMaxLegForces variables: the matrices live on the stack, of which the leading
+// joints × variables block is used.
+using GMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor, kMaxJoints,
+                              kMaxLegForces>;
 using BMatrix = Eigen::Matrix<double, AllocationLayout::kTrunkRows, Eigen::Dynamic, Eigen::ColMajor,
-                              AllocationLayout::kTrunkRows, 3 * kLegs>;
+                              AllocationLayout::kTrunkRows, kMaxLegForces>;
 
 /// The problem's linear terms in its variables x (contact-frame forces [N]): joint torques
 /// τ = tau_known − G x [N m] and trunk rows B x = trunk_rhs, where the known forces (the
 /// impact legs' normal forces, world axes) are already moved to tau_known and trunk_rhs.
 struct LinearTerms {
-  VecJ tau_known;
+  JointVector tau_known;
   Vec6 trunk_rhs;
-  GMatrix G;  ///< kJoints × variables
+  GMatrix G;  ///< joints × variables
   BMatrix B;  ///< 6 × variables
 };
 
-LinearTerms linear_terms(const ContactSplit& split, const AllocationLayout& layout,
-                         const std::array<ContactPhase, kLegs>& phase,
-                         const std::array<double, kLegs>& impact_force_N,
-                         const std::array<Mat3, kLegs>& W_R_c) {
+template <class Split>
+LinearTerms linear_terms(const AllocationLegs& legs, const Split& split,
+                         const AllocationLayout& layout, std::span<const ContactPhase> phase,
+                         std::span<const double> impact_force_N, std::span<const Mat3> W_R_c) {
   LinearTerms t;
   // Known forces: the normal force of impact legs.
   t.tau_known = split.tau0;
   t.trunk_rhs = split.trunk_rhs;
-  for (int l = 0; l < kLegs; ++l) {
+  for (int l = 0; l < legs.legs; ++l) {
     if (phase[l] != ContactPhase::kImpact) continue;
     const Vec3 F_fixed = impact_force_N[l] * W_R_c[l].col(2);
     t.tau_known -= split.JjT[l] * F_fixed;
     t.trunk_rhs -= split.JbT[l] * F_fixed;
   }
   const int n = layout.variables;
-  t.G = GMatrix::Zero(kJoints, n);
+  t.G = GMatrix::Zero(legs.joints, n);
   t.B = BMatrix::Zero(AllocationLayout::kTrunkRows, n);
-  for (int l = 0; l < kLegs; ++l) {
+  for (int l = 0; l < legs.legs; ++l) {
     const AllocationLayout::Leg& leg = layout.legs[l];
     if (leg.offset < 0) continue;
     const int k = leg.count;
@@ -149,16 +195,17 @@ double joint_torque_limit(const AllocationParams& alloc, const DriveRows* drive,
 
 /// A swing leg's torques are constants no force changes: the largest excess over its limit
 /// [N m] is kept in the layout, with the row's name.
-void note_swing_leg_excess(const AllocationParams& alloc, const DriveRows* drive,
-                           const VecJ& tau_known, int l, AllocationLayout& layout) {
-  for (int j = 0; j < kJointsPerLeg; ++j) {
-    const int k = joint_index(l, j);
+void note_swing_leg_excess(const AllocationLegs& legs, const AllocationParams& alloc,
+                           const DriveRows* drive, const JointVector& tau_known, int l,
+                           AllocationLayout& layout) {
+  for (int j = 0; j < legs.n_joints[l]; ++j) {
+    const int k = legs.first_joint[l] + j;
     const double excess = std::abs(tau_known[k]) - joint_torque_limit(alloc, drive, k);
     if (excess > layout.constant_excess_Nm) {
       layout.constant_excess_Nm = excess;
       std::ostringstream os;
       os.precision(3);
-      os << "torque " << joint_name(l, j) << " (swing leg";
+      os << "torque " << joint_name(l, j, legs.n_joints[l]) << " (swing leg";
       if (drive && drive->bound[k] != 0) os << ", " << (drive->bound[k] == 1 ? "peak" : "voltage");
       os << ") by " << excess;
       layout.constant_violation = os.str();
@@ -169,18 +216,19 @@ void note_swing_leg_excess(const AllocationParams& alloc, const DriveRows* drive
 /// Leg l's rows from `row` on: its torque limits, a support leg's minimum normal force,
 /// its friction faces (faces per leg, 0 for the exact cone; friction coefficient mu), and
 /// a support leg's second-order cone under the exact cone. Returns the next row.
-int add_leg_rows(const AllocationParams& alloc, const DriveRows* drive, const LinearTerms& t,
-                 AllocationLayout& layout, const std::array<ContactPhase, kLegs>& phase,
-                 const std::array<double, kLegs>& impact_force_N, int faces, double mu, int l,
-                 int row, QpProblem& qp) {
+int add_leg_rows(const AllocationLegs& legs, const AllocationParams& alloc, const DriveRows* drive,
+                 const LinearTerms& t, AllocationLayout& layout,
+                 std::span<const ContactPhase> phase, std::span<const double> impact_force_N,
+                 int faces, double mu, int l, int row, QpProblem& qp) {
   const int o = layout.legs[l].offset;
-  for (int j = 0; j < kJointsPerLeg; ++j, ++row) {
-    const int kk = joint_index(l, j);
+  const int m = legs.n_joints[l];
+  for (int j = 0; j < m; ++j, ++row) {
+    const int kk = legs.first_joint[l] + j;
     const double tmax = joint_torque_limit(alloc, drive, kk);
     qp.C.row(row) = t.G.row(kk);
     qp.lower[row] = t.tau_known[kk] - tmax;
     qp.upper[row] = t.tau_known[kk] + tmax;
-    qp.ineq_names[row] = row_names().torque_by_bound[drive ? drive->bound[kk] : 0][kk];
+    qp.ineq_names[row] = row_names().torque(drive ? drive->bound[kk] : 0, l, j, m);
   }
   const bool support = phase[l] == ContactPhase::kSupport;
   if (support) {
@@ -217,34 +265,34 @@ int add_leg_rows(const AllocationParams& alloc, const DriveRows* drive, const Li
   return row;
 }
 
-}  // namespace
-
-AllocationLayout build_allocation_problem(const AllocationParams& alloc,
-                                          const ContactParams& contact, const ContactSplit& split,
-                                          const std::array<ContactPhase, kLegs>& phase,
-                                          const std::array<double, kLegs>& impact_force_N,
-                                          const std::array<Mat3, kLegs>& W_R_c, QpProblem& qp,
-                                          const DriveRows* drive) {
+template <class Split>
+AllocationLayout build_problem(const AllocationLegs& legs, const AllocationParams& alloc,
+                               const ContactParams& contact, const Split& split,
+                               std::span<const ContactPhase> phase,
+                               std::span<const double> impact_force_N, std::span<const Mat3> W_R_c,
+                               QpProblem& qp, const DriveRows* drive) {
   const int faces = friction_faces(alloc.friction);
   const double mu = contact.friction_coefficient;
   int m_in = 0;
-  AllocationLayout layout = variable_layout(phase, impact_force_N, W_R_c, faces, m_in);
+  AllocationLayout layout = variable_layout(legs, phase, impact_force_N, W_R_c, faces, m_in);
   qp.resize(layout.variables, 0, m_in);
-  qp.structure = structure_key(faces, phase);
-  LinearTerms t = linear_terms(split, layout, phase, impact_force_N, W_R_c);
+  qp.structure = structure_key(faces, legs.legs, phase);
+  LinearTerms t = linear_terms(legs, split, layout, phase, impact_force_N, W_R_c);
   if (!drive) {
     // Objective Σ τ² = |tau_known − G x|² = ½ xᵀ (2 GᵀG) x − 2 (Gᵀ tau_known)ᵀ x + |tau_known|².
     qp.H = 2.0 * t.G.transpose() * t.G;
     qp.g = -2.0 * t.G.transpose() * t.tau_known;
-    qp.constant = t.tau_known.squaredNorm();
+    qp.constant = squared_norm(t.tau_known);
   } else {
     // The drive torques τ + offset = (tau_known + offset) − G x: the rows and the objective
     // Σ w (τ + offset)² read the known part shifted by the offset.
-    t.tau_known += drive->offset_Nm;
-    const GMatrix WG = drive->weight.asDiagonal() * t.G;
+    const int J = legs.joints;
+    t.tau_known += drive->offset_Nm.head(J);
+    const GMatrix WG = drive->weight.head(J).asDiagonal() * t.G;
     qp.H = 2.0 * t.G.transpose() * WG;
     qp.g = -2.0 * WG.transpose() * t.tau_known;
-    qp.constant = t.tau_known.dot(drive->weight.cwiseProduct(t.tau_known));
+    const JointVector w = drive->weight.head(J);
+    qp.constant = weighted_squares(t.tau_known, w);
   }
   int row = 0;
   for (int r = 0; r < AllocationLayout::kTrunkRows; ++r, ++row) {
@@ -253,29 +301,68 @@ AllocationLayout build_allocation_problem(const AllocationParams& alloc,
     qp.ineq_names[row] = kTrunkRowNames[r];
     qp.ineq_penalty[row] = kTrunkRowPenaltyWeight;
   }
-  for (int l = 0; l < kLegs; ++l) {
+  for (int l = 0; l < legs.legs; ++l) {
     if (layout.legs[l].offset < 0)
-      note_swing_leg_excess(alloc, drive, t.tau_known, l, layout);
+      note_swing_leg_excess(legs, alloc, drive, t.tau_known, l, layout);
     else
-      row = add_leg_rows(alloc, drive, t, layout, phase, impact_force_N, faces, mu, l, row, qp);
+      row =
+          add_leg_rows(legs, alloc, drive, t, layout, phase, impact_force_N, faces, mu, l, row, qp);
   }
   return layout;
 }
 
-void forces_from_solution(const ContactSplit& split, const AllocationLayout& layout,
-                          const Eigen::VectorXd& x, std::array<Vec3, kLegs>& F_W, VecJ& tau) {
-  tau = split.tau0;
-  for (int l = 0; l < kLegs; ++l) {
-    const AllocationLayout::Leg& leg = layout.legs[l];
-    F_W[l].setZero();
-    if (leg.count == 3) {
-      F_W[l] = leg.W_R_contact * x.segment<3>(leg.offset);
-    } else if (leg.count == 2) {
-      F_W[l] = leg.W_R_contact.leftCols<2>() * x.segment<2>(leg.offset) +
-               leg.known_normal_force_N * leg.W_R_contact.col(2);
-    }
-    tau -= split.JjT[l] * F_W[l];
+}  // namespace
+
+AllocationLegs allocation_legs(const RobotModel& model) {
+  AllocationLegs legs;
+  legs.legs = model.legs();
+  legs.joints = model.joints();
+  for (int l = 0; l < model.legs(); ++l) {
+    legs.first_joint[l] = model.joint(l, 0);
+    legs.n_joints[l] = model.leg(l).n_joints;
   }
+  return legs;
+}
+
+AllocationLegs uniform_allocation_legs(int legs, int leg_joints) {
+  AllocationLegs out;
+  out.legs = legs;
+  out.joints = legs * leg_joints;
+  for (int l = 0; l < legs; ++l) {
+    out.first_joint[l] = l * leg_joints;
+    out.n_joints[l] = leg_joints;
+  }
+  return out;
+}
+
+AllocationLayout build_allocation_problem(const AllocationLegs& legs, const AllocationParams& alloc,
+                                          const ContactParams& contact, const ContactSplit& split,
+                                          std::span<const ContactPhase> phase,
+                                          std::span<const double> impact_force_N,
+                                          std::span<const Mat3> W_R_contact, QpProblem& qp,
+                                          const DriveRows* drive) {
+  return build_problem(legs, alloc, contact, split, phase, impact_force_N, W_R_contact, qp, drive);
+}
+
+AllocationLayout build_allocation_problem(const AllocationLegs& legs, const AllocationParams& alloc,
+                                          const ContactParams& contact,
+                                          const AllocationSplit& split,
+                                          std::span<const ContactPhase> phase,
+                                          std::span<const double> impact_force_N,
+                                          std::span<const Mat3> W_R_contact, QpProblem& qp,
+                                          const DriveRows* drive) {
+  return build_problem(legs, alloc, contact, split, phase, impact_force_N, W_R_contact, qp, drive);
+}
+
+AllocationLayout build_allocation_problem(const AllocationParams& alloc,
+                                          const ContactParams& contact, const ContactSplit& split,
+                                          std::span<const ContactPhase> phase,
+                                          std::span<const double> impact_force_N,
+                                          std::span<const Mat3> W_R_contact, QpProblem& qp,
+                                          const DriveRows* drive) {
+  const int joints = static_cast<int>(split.tau0.size());
+  const AllocationLegs legs = uniform_allocation_legs(joints / 3, 3);
+  return build_problem(legs, alloc, contact, split, phase, impact_force_N, W_R_contact, qp, drive);
 }
 
 }  // namespace hexdyn

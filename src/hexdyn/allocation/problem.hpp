@@ -10,17 +10,21 @@
 /// a swing leg (F = 0).
 ///
 /// Rows, in order: the six trunk equations (lower = upper, so that they can be relaxed);
-/// then per leg with variables its three torque rows, a support leg's minimum normal
+/// then per leg with variables one torque row per joint, a support leg's minimum normal
 /// force, and its friction faces (a pyramid, or for an impact leg under the exact cone the
 /// inscribed 16-gon; a support leg under the exact cone gets a second-order cone instead).
+#include <Eigen/Core>
 #include <array>
 #include <cstdint>
+#include <span>
 #include <string>
 
 #include "hexdyn/allocation/qp.hpp"
 #include "hexdyn/core/result.hpp"
 #include "hexdyn/core/scene.hpp"
+#include "hexdyn/core/sizes.hpp"
 #include "hexdyn/dynamics/rnea.hpp"
+#include "hexdyn/model/robot_model.hpp"
 
 namespace hexdyn {
 
@@ -47,7 +51,8 @@ struct AllocationLayout {
     double face_reach = 1.0;  ///< cos(π / friction_faces), the face's reach per unit μ f_n
     int cone = -1;
   };
-  std::array<Leg, kLegs> legs;
+  LegArray<Leg> legs;  ///< the first n_legs are the robot's
+  int n_legs = 0;
   int variables = 0;
   /// Largest excess [N m] of a swing-leg torque over its limit (a constant row that no
   /// force can change), 0 when none.
@@ -62,31 +67,91 @@ struct AllocationLayout {
 /// m] with the kind of bound that gave it (1 peak, 2 voltage, 0 the allocation's own torque limit;
 /// drive/drive.hpp DriveBound) and the objective's weight of τ_drive² (1 for torque_squared, R / (G
 /// k_t η)² for copper_loss).
+/// The first joints entries are read (every vector starts at the capacity, zero offsets and
+/// limits, unit weights, so that a caller may fill them by index).
 struct DriveRows {
-  VecJ offset_Nm = VecJ::Zero();
-  VecJ limit_Nm = VecJ::Zero();
-  std::array<std::int8_t, kJoints> bound{};
-  VecJ weight = VecJ::Ones();
+  JointVector offset_Nm = JointVector::Zero(kMaxJoints);
+  JointVector limit_Nm = JointVector::Zero(kMaxJoints);
+  JointArray<std::int8_t> bound{};
+  JointVector weight = JointVector::Ones(kMaxJoints);
 };
 
-/// Builds the allocation problem of one sample into `qp` (resized) and returns its layout.
-/// Legs in `phase` kSwing carry no force, kImpact legs carry the known normal force
-/// `impact_force_N[l]` [N] along the third column of W_R_contact[l] (the contact frames,
-/// world axes). Sets qp.structure to a key of the row layout (the friction model and each
-/// leg's phase), so that back ends recognise problems built alike. With `drive` (not null),
-/// the torque rows bound the drive torques τ + offset by drive->limit_Nm and the objective is
+/// The legs' joints as the allocation reads them, the model's leg table (RobotModel::leg):
+/// leg l's joints are the flat indices first_joint[l] … first_joint[l] + n_joints[l] − 1,
+/// hip to foot; joints is their total.
+struct AllocationLegs {
+  int legs = 0;
+  int joints = 0;
+  LegArray<int> first_joint{};
+  LegArray<int> n_joints{};
+};
+/// The leg table of `model`.
+AllocationLegs allocation_legs(const RobotModel& model);
+/// `legs` legs of `leg_joints` joints each, in the flat order.
+AllocationLegs uniform_allocation_legs(int legs, int leg_joints);
+
+/// The dynamics' terms of one sample the allocation reads, with the members of ContactSplit
+/// (dynamics/rnea.hpp) in capacity types: a robot of any size up to the capacities
+/// (core/sizes.hpp), for inputs built by hand. build_allocation_problem and
+/// forces_from_solution read this or a ContactSplit alike.
+struct AllocationSplit {
+  using JointRows = Eigen::Matrix<double, Eigen::Dynamic, 3, 0, kMaxJoints, 3>;
+  Vec6 trunk_rhs = Vec6::Zero();  ///< trunk rows of M ν̇ + h (no foot forces) [N, N m]
+  JointVector tau0;               ///< joint rows of M ν̇ + h (no foot forces) [N m] (joints)
+  LegArray<JointRows> JjT;        ///< transposed joint block of J_l [m] (joints × 3)
+  LegArray<Eigen::Matrix<double, 6, 3>> JbT;  ///< transposed base block of J_l
+};
+
+/// Builds the allocation problem of one sample of a robot with legs `legs` into `qp`
+/// (resized) and returns its layout. Legs in `phase` kSwing carry no force, kImpact legs carry
+/// the known normal force `impact_force_N[l]` [N] along the third column of W_R_contact[l]
+/// (the contact frames, world axes); the per-leg spans hold at least legs.legs entries. Sets
+/// qp.structure to a key of the row layout (the friction model and each leg's phase), so
+/// that back ends recognise problems built alike. With `drive` (not null), the torque rows
+/// bound the drive torques τ + offset by drive->limit_Nm and the objective is
 /// Σ weight_k (τ_k + offset_k)²; without it, |τ| by the allocation's limits and Σ τ².
+AllocationLayout build_allocation_problem(const AllocationLegs& legs, const AllocationParams& alloc,
+                                          const ContactParams& contact, const ContactSplit& split,
+                                          std::span<const ContactPhase> phase,
+                                          std::span<const double> impact_force_N,
+                                          std::span<const Mat3> W_R_contact, QpProblem& qp,
+                                          const DriveRows* drive = nullptr);
+/// The same from hand-built terms (AllocationSplit).
+AllocationLayout build_allocation_problem(const AllocationLegs& legs, const AllocationParams& alloc,
+                                          const ContactParams& contact,
+                                          const AllocationSplit& split,
+                                          std::span<const ContactPhase> phase,
+                                          std::span<const double> impact_force_N,
+                                          std::span<const Mat3> W_R_contact, QpProblem& qp,
+                                          const DriveRows* drive = nullptr);
+/// The same for a robot whose legs all have three joints (joints: split.tau0's size), for
+/// callers that do not pass the leg table yet.
 AllocationLayout build_allocation_problem(const AllocationParams& alloc,
                                           const ContactParams& contact, const ContactSplit& split,
-                                          const std::array<ContactPhase, kLegs>& phase,
-                                          const std::array<double, kLegs>& impact_force_N,
-                                          const std::array<Mat3, kLegs>& W_R_contact, QpProblem& qp,
+                                          std::span<const ContactPhase> phase,
+                                          std::span<const double> impact_force_N,
+                                          std::span<const Mat3> W_R_contact, QpProblem& qp,
                                           const DriveRows* drive = nullptr);
 
-/// Foot forces F_W [N] (world axes, terrain on foot) and joint torques tau [N m] of a
-/// solution x (size layout.variables) of the problem `layout` was built with:
-/// τ = τ₀ − Σ J_jᵀ F.
-void forces_from_solution(const ContactSplit& split, const AllocationLayout& layout,
-                          const Eigen::VectorXd& x, std::array<Vec3, kLegs>& F_W, VecJ& tau);
+/// Foot forces F_W [N] (world axes, terrain on foot; layout.n_legs entries written) and joint
+/// torques tau [N m] (assigned split.tau0, joints) of a solution x (size layout.variables) of
+/// the problem `layout` was built with: τ = τ₀ − Σ J_jᵀ F. Split: a ContactSplit or an
+/// AllocationSplit; Tau: a joint vector.
+template <class Split, class Tau>
+void forces_from_solution(const Split& split, const AllocationLayout& layout,
+                          const Eigen::VectorXd& x, std::span<Vec3> F_W, Tau& tau) {
+  tau = split.tau0;
+  for (int l = 0; l < layout.n_legs; ++l) {
+    const AllocationLayout::Leg& leg = layout.legs[l];
+    F_W[l].setZero();
+    if (leg.count == 3) {
+      F_W[l] = leg.W_R_contact * x.segment<3>(leg.offset);
+    } else if (leg.count == 2) {
+      F_W[l] = leg.W_R_contact.leftCols<2>() * x.segment<2>(leg.offset) +
+               leg.known_normal_force_N * leg.W_R_contact.col(2);
+    }
+    tau -= split.JjT[l] * F_W[l];
+  }
+}
 
 }  // namespace hexdyn

@@ -13,11 +13,14 @@
 #include <Eigen/Core>
 #include <cmath>
 
+#include "hexdyn/core/sizes.hpp"
+
 namespace hexdyn {
 
 /// Capacity of the small dense matrices: the allocation's largest number of variables
-/// (six support legs of three force components).
-inline constexpr int kSmallDenseMax = 18;
+/// (kMaxLegs support legs of three force components). A problem of n variables uses the
+/// leading n × n block only, so its arithmetic does not depend on the capacity.
+inline constexpr int kSmallDenseMax = kMaxLegForces;
 
 using SmallMatrix = Eigen::Matrix<double, kSmallDenseMax, kSmallDenseMax>;
 using SmallVector = Eigen::Matrix<double, kSmallDenseMax, 1>;

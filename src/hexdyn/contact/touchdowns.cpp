@@ -8,15 +8,26 @@
 namespace hexdyn {
 
 double foot_effective_mass(const RobotModel& model, RobotData& data, const BaseState& base,
-                           const VecJ& q, int leg, const Vec3& n_W) {
+                           const JointVector& q, int leg, const Vec3& n_W) {
   crba(model, data, base, q);
   FootNormals normals;
   normals.fill(n_W);  // a sphere foot's Jacobian is its contact point's on this surface
   foot_jacobians(model, data, base, q, &normals);
-  const int c = 6 + joint_index(leg, 0);
-  const Mat3 M_ll = data.M.block<3, 3>(c, c);
-  const Mat3 J = data.J_foot_W[leg].block<3, 3>(0, c);
-  const Mat3 Lambda_inv = J * M_ll.llt().solve(J.transpose());
+  const int c = 6 + model.joint(leg, 0);  // the leg's first column among the coordinates
+  const int m = model.leg(leg).n_joints;
+  Mat3 Lambda_inv;
+  if (m == 3) {
+    // A leg of three joints: the fixed-size blocks (the shipped robots' arithmetic).
+    const Mat3 M_ll = data.M.block<3, 3>(c, c);
+    const Mat3 J = data.J_foot_W[leg].block<3, 3>(0, c);
+    Lambda_inv = J * M_ll.llt().solve(J.transpose());
+  } else {
+    using LegMatrix =
+        Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxLegJoints, kMaxLegJoints>;
+    const LegMatrix M_ll = data.M.block(c, c, m, m);
+    const LegJacobian J = data.J_foot_W[leg].block(0, c, 3, m);
+    Lambda_inv = J * M_ll.llt().solve(J.transpose());
+  }
   return 1.0 / (n_W.transpose() * Lambda_inv * n_W);
 }
 
@@ -24,7 +35,7 @@ std::vector<Touchdown> resolve_touchdowns(const RobotModel& model, RobotData& da
                                           const MotionPlan& plan, const ContactParams& contact) {
   std::vector<Touchdown> out;
   RobotKinematicState s;
-  for (int leg = 0; leg < kLegs; ++leg) {
+  for (int leg = 0; leg < model.legs(); ++leg) {
     for (const Swing& sw : plan.gait.legs[leg].swings) {
       check_cancelled();
       Touchdown td;
@@ -80,8 +91,9 @@ Mat3 contact_frame(const Vec3& n_W) {
 void sample_contacts(const KinematicsResult& kin, int i, const Terrain& terrain,
                      const std::vector<Touchdown>& touchdowns, SampleContacts& out) {
   const double t = kin.time_s[i];
+  const int legs = static_cast<int>(kin.contact_phase.cols());
   out.impacting_legs = 0;
-  for (int l = 0; l < kLegs; ++l) {
+  for (int l = 0; l < legs; ++l) {
     out.phase[l] = kin.contact_phase(i, l) == static_cast<std::int8_t>(ContactPhase::kSwing)
                        ? ContactPhase::kSwing
                        : ContactPhase::kSupport;
@@ -105,10 +117,11 @@ ContactSchedule schedule_contacts(const KinematicsResult& kin, const Terrain& te
   const int T = kin.samples();
   ContactSchedule s;
   s.samples.resize(T);
-  s.phase.setZero(T, kLegs);
+  const int legs = static_cast<int>(kin.contact_phase.cols());
+  s.phase.setZero(T, legs);
   for (int i = 0; i < T; ++i) {
     sample_contacts(kin, i, terrain, touchdowns, s.samples[i]);
-    for (int l = 0; l < kLegs; ++l) s.phase(i, l) = static_cast<std::int8_t>(s.samples[i].phase[l]);
+    for (int l = 0; l < legs; ++l) s.phase(i, l) = static_cast<std::int8_t>(s.samples[i].phase[l]);
   }
   return s;
 }

@@ -11,6 +11,7 @@
 #include "hexdyn/contact/impact.hpp"
 #include "hexdyn/core/result.hpp"
 #include "hexdyn/core/scene.hpp"
+#include "hexdyn/core/sizes.hpp"
 #include "hexdyn/dynamics/rnea.hpp"
 #include "hexdyn/kinematics/kinematics.hpp"
 #include "hexdyn/planning/plan.hpp"
@@ -33,9 +34,10 @@ struct Touchdown {
 /// (a sphere foot's, dynamics/rnea.hpp), i.e. the trunk held by the other legs. For a sphere
 /// the normal mass is that of its centre: the arm −r n of the contact point is along n
 /// (docs/theory/contact.md#touchdown-transient).
-/// Uses only the pose of `base`; q: 18 joint angles [rad].
+/// Uses only the pose of `base`; q: the joint angles [rad] (joints). M_ll and J are the
+/// leg's m × m and 3 × m blocks for a leg of m joints.
 double foot_effective_mass(const RobotModel& model, RobotData& data, const BaseState& base,
-                           const VecJ& q, int leg, const Vec3& n_W);
+                           const JointVector& q, int leg, const Vec3& n_W);
 
 /// Every touchdown of the plan with its transient integrated (impact.hpp; none for rigid
 /// contact), sorted by time then leg.
@@ -50,23 +52,24 @@ Mat3 contact_frame(const Vec3& n_W);
 
 /// Contact state of every leg at one sample: its phase (swing and support from the
 /// kinematics; impact while a touchdown transient lasts), the transient's normal force
-/// and penetration, and the contact frame of the terrain under the foot.
+/// and penetration, and the contact frame of the terrain under the foot; the first legs
+/// entries are the robot's.
 struct SampleContacts {
-  std::array<ContactPhase, kLegs> phase{};
-  std::array<double, kLegs> impact_force_N{};
-  std::array<double, kLegs> impact_penetration_m{};
-  std::array<Mat3, kLegs> W_R_contact;
+  LegArray<ContactPhase> phase{};
+  LegArray<double> impact_force_N{};
+  LegArray<double> impact_penetration_m{};
+  LegArray<Mat3> W_R_contact;
   int impacting_legs = 0;
 };
 /// Fills `out` for sample i of `kin` (whose contact_phase holds swing/support, as
-/// sample_kinematics leaves it).
+/// sample_kinematics leaves it; one column per leg).
 void sample_contacts(const KinematicsResult& kin, int i, const Terrain& terrain,
                      const std::vector<Touchdown>& touchdowns, SampleContacts& out);
 
 /// The contact state of every sample of a kinematics result.
 struct ContactSchedule {
   std::vector<SampleContacts> samples;  ///< T
-  RowMatrixI8 phase;                    ///< T×6, ContactPhase values (/contacts/phase)
+  RowMatrixI8 phase;                    ///< T×legs, ContactPhase values (/contacts/phase)
 };
 /// sample_contacts for every sample of `kin`.
 ContactSchedule schedule_contacts(const KinematicsResult& kin, const Terrain& terrain,

@@ -10,7 +10,8 @@
 namespace hexdyn {
 
 void set_friction_coefficient(const AllocationLayout& layout, double mu, QpProblem& qp) {
-  for (const AllocationLayout::Leg& leg : layout.legs) {
+  for (int l = 0; l < layout.n_legs; ++l) {
+    const AllocationLayout::Leg& leg = layout.legs[l];
     if (leg.offset < 0) continue;
     for (int f = 0; f < leg.friction_faces; ++f) {
       const int row = leg.friction_row + f;
@@ -50,7 +51,7 @@ double friction_use(const QpProblem& qp, const AllocationLayout& layout, const E
                     int* leg_out) {
   double worst = -1.0;
   int worst_leg = -1;
-  for (int l = 0; l < kLegs; ++l) {
+  for (int l = 0; l < layout.n_legs; ++l) {
     const double use = leg_friction_use(qp, layout, x, l);
     if (use > worst) {
       worst = use;
@@ -61,10 +62,10 @@ double friction_use(const QpProblem& qp, const AllocationLayout& layout, const E
   return std::max(worst, 0.0);
 }
 
-std::array<bool, kLegs> slipping_legs(const QpProblem& qp, const AllocationLayout& layout,
-                                      const Eigen::VectorXd& x) {
-  std::array<bool, kLegs> slips{};
-  for (int l = 0; l < kLegs; ++l) {
+LegArray<bool> slipping_legs(const QpProblem& qp, const AllocationLayout& layout,
+                             const Eigen::VectorXd& x) {
+  LegArray<bool> slips{};
+  for (int l = 0; l < layout.n_legs; ++l) {
     const AllocationLayout::Leg& leg = layout.legs[l];
     if (leg.offset < 0) continue;
     for (int f = 0; f < leg.friction_faces && !slips[l]; ++f) {

@@ -111,7 +111,7 @@ NewtonEnd RequiredFrictionSolver::Impl::check(const AllocationLayout& layout,
     const MuRow& a = set[static_cast<std::size_t>(i)];
     const double share = std::abs(lambda[i] * row_mu_derivative(layout, x, a.row, a.side));
     if (share <= binding) continue;
-    for (int l = 0; l < kLegs; ++l) {
+    for (int l = 0; l < layout.n_legs; ++l) {
       const AllocationLayout::Leg& leg = layout.legs[l];
       if (leg.offset >= 0 && a.row >= leg.friction_row &&
           a.row < leg.friction_row + leg.friction_faces) {

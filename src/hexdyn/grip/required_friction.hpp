@@ -130,7 +130,7 @@ double leg_friction_use(const QpProblem& qp, const AllocationLayout& layout,
 
 /// Per leg: a friction face or cone of `layout` in `qp` that x violates by more than
 /// kViolationThreshold (relative to max(1, |bound|)): the foot would slip at the problem's μ.
-std::array<bool, kLegs> slipping_legs(const QpProblem& qp, const AllocationLayout& layout,
-                                      const Eigen::VectorXd& x);
+LegArray<bool> slipping_legs(const QpProblem& qp, const AllocationLayout& layout,
+                             const Eigen::VectorXd& x);
 
 }  // namespace hexdyn

@@ -16,12 +16,12 @@ namespace hexdyn {
 void RequiredFrictionSolver::Impl::load_cone_polygon(const QpProblem& qp,
                                                      const AllocationLayout& layout) {
   int cones = 0;
-  for (const AllocationLayout::Leg& leg : layout.legs) cones += leg.cone >= 0;
+  for (int l = 0; l < layout.n_legs; ++l) cones += layout.legs[l].cone >= 0;
   const bool named =
       copy_problem_values(qp, work, kConeFaces * cones, qp.structure | kConePolygonKey);
   cone_layout = layout;
   int row = qp.inequalities();
-  for (int l = 0; l < kLegs; ++l) {
+  for (int l = 0; l < layout.n_legs; ++l) {
     AllocationLayout::Leg& leg = cone_layout.legs[l];
     if (leg.cone < 0) continue;
     const SecondOrderCone& c = qp.cones[static_cast<std::size_t>(leg.cone)];
@@ -61,7 +61,7 @@ void RequiredFrictionSolver::Impl::solve_cone(const QpProblem& qp, const Allocat
   double best_upper = std::numeric_limits<double>::infinity();
   int best_leg = -1;
   if (allocation) best_upper = friction_use(qp, layout, *allocation, &best_leg);
-  for (int l = 0; l < kLegs; ++l) cluster_faces(l, cone_center[l], M_PI / 8.0);
+  for (int l = 0; l < layout.n_legs; ++l) cluster_faces(l, cone_center[l], M_PI / 8.0);
   for (int round = 0; round < kMaxRounds; ++round) {
     load_cone_polygon(qp, layout);
     solve_polygonal(cone_layout, allocation);
@@ -75,7 +75,7 @@ void RequiredFrictionSolver::Impl::solve_cone(const QpProblem& qp, const Allocat
       best_leg = leg;
     }
     if (best_upper - lower <= opt.tolerance) break;
-    for (int l = 0; l < kLegs; ++l) {
+    for (int l = 0; l < layout.n_legs; ++l) {
       const AllocationLayout::Leg& g = layout.legs[l];
       if (g.cone < 0) continue;
       const double t1 = answer_x[g.offset], t2 = answer_x[g.offset + 1];

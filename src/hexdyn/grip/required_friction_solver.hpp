@@ -3,8 +3,8 @@
 /// The internals of RequiredFrictionSolver (grip/required_friction.hpp), shared by its
 /// two sources: required_friction.cpp (Newton on an active set, the choice of its rows,
 /// bisection) and required_friction_cone.cpp (the exact cone's outer polygons). Not a public
-/// interface. Sizes: at most kLegs support legs of 3 forces, so the Newton system is at most
-/// kMaxUnknowns = 19 square.
+/// interface. Sizes: at most kMaxLegs support legs of 3 forces, so the Newton system is at
+/// most kMaxUnknowns = 25 square (19 for a hexapod), of which the leading block is used.
 #include <Eigen/Core>
 #include <array>
 #include <cmath>
@@ -15,11 +15,13 @@
 #include <utility>
 #include <vector>
 
+#include "hexdyn/allocation/goldfarb_idnani.hpp"
+#include "hexdyn/core/sizes.hpp"
 #include "hexdyn/grip/required_friction.hpp"
 
 namespace hexdyn {
 
-inline constexpr int kMaxUnknowns = 3 * kLegs + 1;  ///< n forces and μ
+inline constexpr int kMaxUnknowns = kMaxLegForces + 1;  ///< n forces and μ
 using MuMatrix =
     Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxUnknowns, kMaxUnknowns>;
 using MuVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxUnknowns, 1>;
@@ -27,6 +29,7 @@ using MuVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxUnknowns, 1>;
 /// Faces of the outer polygon that stands in for an exact cone, and the bit that marks the
 /// polygon problem's structural key.
 inline constexpr int kConeFaces = 16;
+static_assert(kConeFaces <= kActiveSetMaxLegFaces, "the active-set row budget holds the polygon");
 /// A probe is feasible when its solution holds every row to this, relative to max(1, |bound|):
 /// the back end's own tolerance (1e-9) with a margin, far tighter than the allocation's
 /// verdict (kViolationThreshold), so that a probe's friction use is μ* to about 1e-8.
@@ -102,7 +105,8 @@ struct MuRow {
 /// respect to μ at x.
 inline double row_mu_derivative(const AllocationLayout& layout, const Eigen::VectorXd& x, int row,
                                 int side) {
-  for (const AllocationLayout::Leg& leg : layout.legs) {
+  for (int l = 0; l < layout.n_legs; ++l) {
+    const AllocationLayout::Leg& leg = layout.legs[l];
     if (leg.offset < 0 || row < leg.friction_row || row >= leg.friction_row + leg.friction_faces)
       continue;
     if (leg.count == 3) return -leg.face_reach * x[leg.offset + 2];
@@ -164,8 +168,8 @@ struct RequiredFrictionSolver::Impl {
 
   Impl(std::unique_ptr<AllocationBackend> b, const RequiredFrictionOptions& o)
       : opt(o), backend(std::move(b)) {
-    for (auto& leg : cone_angle)
-      for (int f = 0; f < kConeFaces; ++f) leg[f] = 2.0 * M_PI * f / kConeFaces;
+    for (int l = 0; l < kMaxLegs; ++l)  // every leg a robot may have
+      for (int f = 0; f < kConeFaces; ++f) cone_angle[l][f] = 2.0 * M_PI * f / kConeFaces;
   }
 
   /// work = qp (a problem without cones); the row names copied only when the layout changed.
@@ -222,9 +226,9 @@ struct RequiredFrictionSolver::Impl {
 
   // The exact cone's outer polygons: per leg, the directions of its faces [rad], kept from one
   // sample to the next; the polygon problem's layout.
-  std::array<std::array<double, kConeFaces>, kLegs> cone_angle;
-  std::array<double, kLegs> cone_center{};   ///< the direction the faces gather around [rad]
-  std::array<double, kLegs> cone_spacing{};  ///< their spacing δ [rad]
+  LegArray<std::array<double, kConeFaces>> cone_angle;
+  LegArray<double> cone_center{};   ///< the direction the faces gather around [rad]
+  LegArray<double> cone_spacing{};  ///< their spacing δ [rad]
   void cluster_faces(int l, double a, double delta);
   AllocationLayout cone_layout;
   Eigen::VectorXd answer_x;  ///< the forces of the last answer

@@ -48,7 +48,7 @@ struct SampleSolution {
   /// the legs whose friction held only with slack, and the required friction (NaN when not
   /// computed or none suffices) with its binding leg and, when NaN, why.
   std::array<double, kLegs> utilized_friction{};
-  std::array<bool, kLegs> slip{};
+  LegArray<bool> slip{};
   double required_friction = 0.0;
   bool required_friction_bound = false;  ///< required_friction is an upper bound (kBelow)
   int required_friction_leg = -1;

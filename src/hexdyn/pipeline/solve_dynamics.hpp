@@ -30,7 +30,7 @@ class SampleSolver;
 struct SampleProblem {
   QpProblem qp;
   AllocationLayout layout;
-  std::array<ContactPhase, kLegs> phase{};
+  LegArray<ContactPhase> phase{};
   Eigen::VectorXd x;  ///< the allocation's solution (contact-frame forces [N])
   SolverStatus status = SolverStatus::kOptimal;
   double required_friction = 0.0;  ///< NaN where none suffices (or not computed)

@@ -70,12 +70,15 @@ double lever_lower_bound(double lever_m) { return std::max(lever_m * (1.0 - 1e-6
 /// the target itself: from the coxa axis, r; from the femur axis, the wrist distance d of the
 /// IK; about the tibia axis, the tibia's length (the norms of leg_jacobian_H's columns, to
 /// rounding: lever_lower_bound). False for another geometry.
-bool joint_margin_bounds(const RobotModel& m, int leg, const Vec3& p_H, const Vec3& clearance_rad,
-                         Vec3& bound_m) {
+/// One value per joint of a leg (the first RobotModel::leg(l).n_joints are used).
+using LegJointValues = std::array<double, kMaxLegJoints>;
+
+bool joint_margin_bounds(const RobotModel& m, int leg, const Vec3& p_H,
+                         const LegJointValues& clearance_rad, LegJointValues& bound_m) {
   if (m.leg_geometry != LegGeometry::kPaperPlanar) return false;
   const LegPlane g = leg_plane(m, leg, p_H);
   const Vec3 lever(g.r, g.d, m.link_length_m[2]);
-  for (int j = 0; j < kJointsPerLeg; ++j)
+  for (int j = 0; j < m.leg(leg).n_joints; ++j)
     bound_m[j] = clearance_rad[j] * lever_lower_bound(lever[j]);
   return true;
 }
@@ -101,25 +104,26 @@ SampleMargin leg_margin(const RobotModel& m, int leg, const Vec3& p_H, const Leg
     s.value_m = ik.margin_m;
     s.binding = Binding::kReachBoundary;
   }
-  Vec3 clearance;
-  for (int j = 0; j < kJointsPerLeg; ++j) {
-    const int k = joint_index(leg, j);
+  const int n_joints = m.leg(leg).n_joints;
+  LegJointValues clearance{};
+  for (int j = 0; j < n_joints; ++j) {
+    const int k = m.joint(leg, j);
     clearance[j] = joint_clearance_rad(ik.q[j], m.joint_lower_rad[k], m.joint_upper_rad[k]);
   }
-  Vec3 bound;
+  LegJointValues bound{};
   if (ik.ok && joint_margin_bounds(m, leg, p_H, clearance, bound)) {
     const double floor_m = std::max(out.value_m, out.joint_m);
     bool needed = false;
-    for (int j = 0; j < kJointsPerLeg; ++j) {
+    for (int j = 0; j < n_joints; ++j) {
       if (!std::isfinite(clearance[j])) continue;
       out.joint_rad = std::min(out.joint_rad, clearance[j]);
       needed = needed || !(bound[j] >= floor_m);
     }
     if (!needed) return s;
   }
-  const Mat3 J = leg_jacobian_H(m, leg, ik.q);
-  for (int j = 0; j < kJointsPerLeg; ++j) {
-    const int k = joint_index(leg, j);
+  const auto J = leg_jacobian_H(m, leg, ik.q);
+  for (int j = 0; j < n_joints; ++j) {
+    const int k = m.joint(leg, j);
     const double lo = m.joint_lower_rad[k], hi = m.joint_upper_rad[k];
     const double c = clearance[j];
     if (!std::isfinite(c)) continue;
@@ -203,9 +207,10 @@ SampleBound bound_in_ball(const RobotModel& m, int leg, const Vec3& p, const Leg
   // θ1 and β2 stay away from ±π, where the IK wraps them.
   for (int j = 0; j < 2; ++j)
     if (!(std::abs(ik.q[j]) + b.slope[j] * D < M_PI)) return none;
-  const double lever[kJointsPerLeg] = {r_lo, d_lo, L[2]};
-  for (int j = 0; j < kJointsPerLeg; ++j) {
-    const int idx = joint_index(leg, j);
+  const double lever[] = {r_lo, d_lo, L[2]};  // the paper geometry's three joints
+  b.n_joints = m.leg(leg).n_joints;
+  for (int j = 0; j < b.n_joints; ++j) {
+    const int idx = m.joint(leg, j);
     const double lo = m.joint_lower_rad[idx], hi = m.joint_upper_rad[idx];
     b.clearance_rad[j] = joint_clearance_rad(ik.q[j], lo, hi);
     b.inside_rad[j] = std::min(ik.q[j] - lo, hi - ik.q[j]);
@@ -235,7 +240,7 @@ SampleBound sample_bound(const RobotModel& m, int leg, const Vec3& p, const LegI
 bool value_clears(const SampleBound& b, double delta_m, double floor_m) {
   if (!(b.radius_m > 0.0) || !(delta_m <= b.radius_m)) return false;
   if (!(b.reach_m - b.reach_slope * delta_m >= floor_m)) return false;
-  for (int j = 0; j < kJointsPerLeg; ++j) {
+  for (int j = 0; j < b.n_joints; ++j) {
     if (!std::isfinite(b.clearance_rad[j])) continue;
     const double c = b.clearance_rad[j] - b.slope[j] * delta_m;
     if (!(c >= 0.0 && c * b.lever_m[j] >= floor_m)) return false;
@@ -246,7 +251,7 @@ bool value_clears(const SampleBound& b, double delta_m, double floor_m) {
 bool admits(const SampleBound& b, double delta_m) {
   if (!(b.radius_m > 0.0) || !(delta_m <= b.radius_m)) return false;
   if (!(b.reach_m - b.reach_slope * delta_m >= b.min_margin_m + kSkipAllowance_m)) return false;
-  for (int j = 0; j < kJointsPerLeg; ++j)
+  for (int j = 0; j < b.n_joints; ++j)
     if (std::isfinite(b.clearance_rad[j]) &&
         !(b.inside_rad[j] - b.slope[j] * delta_m >= kSkipAllowance_m))
       return false;
@@ -259,7 +264,7 @@ MarginBounds bounds_at(const SampleBound& b, double delta_m) {
   out.reach_m = b.reach_m - b.reach_slope * delta_m;
   out.admitted = out.reach_m >= b.min_margin_m + kSkipAllowance_m;
   double joint_m = kInf, joint_rad = kInf;
-  for (int j = 0; j < kJointsPerLeg; ++j) {
+  for (int j = 0; j < b.n_joints; ++j) {
     if (!std::isfinite(b.clearance_rad[j])) continue;  // a continuous joint has no limit
     const double c = b.clearance_rad[j] - b.slope[j] * delta_m;
     joint_rad = std::min(joint_rad, c);
@@ -275,10 +280,11 @@ MarginBounds bounds_at(const SampleBound& b, double delta_m) {
 FootTrack foot_track(const RobotModel& model, const MotionPlan& plan, int uniform) {
   FootTrack f;
   f.t_s = margin_sample_times(plan, uniform);
+  f.legs = model.legs();
   f.p_W.resize(f.t_s.size());
   // leg_foot_motion(leg, t).p_W, walking each leg's swings along the increasing times; a
   // sphere foot's centre, the IK's target, r n above it (kinematics/kinematics.hpp).
-  for (int leg = 0; leg < kLegs; ++leg) {
+  for (int leg = 0; leg < model.legs(); ++leg) {
     const double radius = model.foot_radius_m[leg];
     const std::vector<Swing>& swings = plan.gait.legs[leg].swings;
     std::size_t k = 0;
@@ -300,7 +306,7 @@ FootTrack foot_track(const RobotModel& model, const MotionPlan& plan, int unifor
 namespace {
 
 /// The limiting sample of a margin evaluation, kept as the complete evaluation in time order
-/// keeps it: the smallest value, the first sample (i·kLegs + leg) of that value on ties.
+/// keeps it: the smallest value, the first sample (i·legs + leg) of that value on ties.
 struct Limit {
   int sample = -1;
   SampleMargin margin;
@@ -311,8 +317,8 @@ struct Limit {
             const Vec3& p, const LegIkResult& ik) {
     if (!(m.value_m < out.value_m || (m.value_m == out.value_m && s < sample))) return false;
     out.value_m = m.value_m;
-    out.leg = s % kLegs;
-    out.t_s = feet.t_s[s / kLegs];
+    out.leg = s % feet.legs;
+    out.t_s = feet.t_s[s / feet.legs];
     sample = s;
     margin = m;
     p_H = p;
@@ -350,7 +356,8 @@ void clear_unasked(KinematicMargin& out) {
 
 /// refs for a new sample count: no sample evaluated yet, and the targets' path.
 void reset_references(SampleReferences& refs, const TrunkMotion& trunk, const FootTrack& feet) {
-  const int n = static_cast<int>(feet.t_s.size()), count = n * kLegs;
+  const int L = feet.legs;
+  const int n = static_cast<int>(feet.t_s.size()), count = n * L;
   refs.slot.assign(count, -1);
   refs.entries.clear();
   refs.generation = 0;
@@ -360,16 +367,16 @@ void reset_references(SampleReferences& refs, const TrunkMotion& trunk, const Fo
   Vec3 trunk_prev = trunk.at(feet.t_s[0]).p_W;
   for (int i = 1; i < n; ++i) {
     const Vec3 trunk_now = trunk.at(feet.t_s[i]).p_W;
-    for (int leg = 0; leg < kLegs; ++leg)
-      refs.path_m[i * kLegs + leg] =
-          refs.path_m[(i - 1) * kLegs + leg] +
+    for (int leg = 0; leg < L; ++leg)
+      refs.path_m[i * L + leg] =
+          refs.path_m[(i - 1) * L + leg] +
           ((feet.p_W[i][leg] - feet.p_W[i - 1][leg]) - (trunk_now - trunk_prev)).norm();
     trunk_prev = trunk_now;
   }
 }
 
 /// One bounded evaluation at trunk height height_m [m]: what evaluating a sample exactly
-/// and bounding it from a reference read and update. Sample s is i·kLegs + leg.
+/// and bounding it from a reference read and update. Sample s is i·legs + leg.
 struct BoundedScan {
   const RobotModel& model;
   const TrunkMotion& trunk;
@@ -394,7 +401,7 @@ struct BoundedScan {
 /// Sample s exactly, as motion_kinematic_margin evaluates it; it becomes s's reference. True
 /// when the motion is known to be below req.below_m (or, for an admission, refused).
 bool BoundedScan::evaluate(int s) {
-  const int i = s / kLegs, leg = s % kLegs;
+  const int i = s / feet.legs, leg = s % feet.legs;
   const Vec3 p_H = target_in_hip(model, trunk.at(feet.t_s[i]), leg, feet.p_W[i][leg]);
   const LegIkResult ik = leg_inverse_kinematics(model, leg, p_H);
   limit.take(out, feet, s, leg_margin(model, leg, p_H, ik, out), p_H, ik);
@@ -432,10 +439,11 @@ bool BoundedScan::harmless(int s, double delta_m) const {
 /// ref's (the rounding of the sums allowed for), and ref's bounds show them harmless.
 bool BoundedScan::covers(int leg, int ref, int from, int to) const {
   if (from >= to) return true;
+  const int L = feet.legs;
   const double path_m =
-      std::max(std::abs(refs.path_m[(to - 1) * kLegs + leg] - refs.path_m[ref * kLegs + leg]),
-               std::abs(refs.path_m[from * kLegs + leg] - refs.path_m[ref * kLegs + leg]));
-  return harmless(ref * kLegs + leg, path_m * (1.0 + 1e-12) + 1e-12);
+      std::max(std::abs(refs.path_m[(to - 1) * L + leg] - refs.path_m[ref * L + leg]),
+               std::abs(refs.path_m[from * L + leg] - refs.path_m[ref * L + leg]));
+  return harmless(ref * L + leg, path_m * (1.0 + 1e-12) + 1e-12);
 }
 
 /// Every stride-th instant of n, and the last.
@@ -458,7 +466,7 @@ bool refine_between(BoundedScan& scan, const std::vector<int>& top, int leg) {
     if (b - a < 2) continue;
     const int mid = (a + b) / 2;
     if (scan.covers(leg, a, a + 1, mid + 1) && scan.covers(leg, b, mid + 1, b)) continue;
-    const int s = mid * kLegs + leg;
+    const int s = mid * scan.feet.legs + leg;
     if (!scan.done(s) && !scan.harmless(s, 0.0) && scan.evaluate(s)) return true;
     pending.emplace_back(a, mid);
     pending.emplace_back(mid, b);
@@ -469,7 +477,8 @@ bool refine_between(BoundedScan& scan, const std::vector<int>& top, int leg) {
 /// Evaluates the samples that can matter, req.hot first; true as soon as the motion is
 /// known to be below req.below_m (the evaluation stops there).
 bool scan_samples(BoundedScan& scan) {
-  const int n = static_cast<int>(scan.feet.t_s.size()), count = n * kLegs;
+  const int L = scan.feet.legs;
+  const int n = static_cast<int>(scan.feet.t_s.size()), count = n * L;
   if (scan.req.hot)
     for (int s : *scan.req.hot)
       if (!scan.done(s) && scan.evaluate(s)) return true;
@@ -483,11 +492,11 @@ bool scan_samples(BoundedScan& scan) {
   // found so far is safe: they only decrease.
   const std::vector<int> top = coarse_instants(n, scan.req.stride);
   for (int i : top)
-    for (int leg = 0; leg < kLegs; ++leg) {
-      const int s = i * kLegs + leg;
+    for (int leg = 0; leg < L; ++leg) {
+      const int s = i * L + leg;
       if (!scan.done(s) && !scan.harmless(s, 0.0) && scan.evaluate(s)) return true;
     }
-  for (int leg = 0; leg < kLegs; ++leg)
+  for (int leg = 0; leg < L; ++leg)
     if (refine_between(scan, top, leg)) return true;
   return false;
 }
@@ -501,7 +510,7 @@ MarginEvaluation bounded_margin(const RobotModel& model, const TrunkMotion& trun
   KinematicMargin& out = e.margin;
   out = fresh_margin(feet);
   Limit limit;
-  const int count = static_cast<int>(feet.t_s.size()) * kLegs;
+  const int count = static_cast<int>(feet.t_s.size()) * feet.legs;
   if (static_cast<int>(refs.slot.size()) != count) reset_references(refs, trunk, feet);
   const int stamp = ++refs.generation;
   const bool bounded = model.leg_geometry == LegGeometry::kPaperPlanar;
@@ -523,11 +532,11 @@ KinematicMargin full_margin(const RobotModel& model, const TrunkMotion& trunk,
   Limit limit;
   for (std::size_t i = 0; i < feet.t_s.size(); ++i) {
     const BaseState state = trunk.at(feet.t_s[i]);
-    for (int leg = 0; leg < kLegs; ++leg) {
+    for (int leg = 0; leg < feet.legs; ++leg) {
       const Vec3 p_H = target_in_hip(model, state, leg, feet.p_W[i][leg]);
       const LegIkResult ik = leg_inverse_kinematics(model, leg, p_H);
-      limit.take(out, feet, static_cast<int>(i) * kLegs + leg, leg_margin(model, leg, p_H, ik, out),
-                 p_H, ik);
+      limit.take(out, feet, static_cast<int>(i) * feet.legs + leg,
+                 leg_margin(model, leg, p_H, ik, out), p_H, ik);
     }
   }
   name_constraint(model, limit, out);

@@ -52,10 +52,11 @@ constexpr double kBoundRadius_m = 0.02;
 struct SampleBound {
   double radius_m = 0.0;  ///< 0: no bound
   double reach_m = 0.0, reach_slope = 0.0;
-  std::array<double, kJointsPerLeg> clearance_rad{};  ///< joint_clearance_rad; +inf: continuous
-  std::array<double, kJointsPerLeg> inside_rad{};     ///< distance inside [lo, hi] (no ±2π)
-  std::array<double, kJointsPerLeg> slope{};          ///< rad per m
-  std::array<double, kJointsPerLeg> lever_m{};        ///< smallest lever arm in the ball
+  int n_joints = 0;  ///< the leg's joints: the first n_joints entries below are used
+  std::array<double, kMaxLegJoints> clearance_rad{};  ///< joint_clearance_rad; +inf: continuous
+  std::array<double, kMaxLegJoints> inside_rad{};     ///< distance inside [lo, hi] (no ±2π)
+  std::array<double, kMaxLegJoints> slope{};          ///< rad per m
+  std::array<double, kMaxLegJoints> lever_m{};        ///< smallest lever arm in the ball
   double min_margin_m = 0.0;                          ///< robot.ik_min_margin
 };
 
@@ -82,14 +83,15 @@ bool admits(const SampleBound& b, double delta_m);
 /// posture plans the gait of a spread once and moves only the trunk for each height.
 struct FootTrack {
   std::vector<double> t_s;
+  int legs = 0;  ///< the robot's legs: sample s of a track is instant s / legs, leg s % legs
   /// per instant and leg [m, G0]: the foot points the IK places (a sphere foot's centre)
-  std::vector<std::array<Vec3, kLegs>> p_W;
+  std::vector<LegArray<Vec3>> p_W;
 };
 
 FootTrack foot_track(const RobotModel& model, const MotionPlan& plan, int uniform);
 
 /// The samples evaluated so far on one FootTrack, at whatever trunk height: per sample
-/// (i·kLegs + leg), its height and bound. Moving the trunk by Δh moves every foot target in its
+/// (i·legs + leg), its height and bound. Moving the trunk by Δh moves every foot target in its
 /// hip frame by exactly |Δh|, so a sample's bound holds at another height within its radius,
 /// less |Δh|; and the path of a leg's target between two instants is the same at every height.
 struct SampleReferences {
@@ -110,7 +112,7 @@ struct SampleReferences {
 struct MarginEvaluation {
   KinematicMargin margin;
   bool complete = true;
-  int limiting_sample = -1;  ///< i·kLegs + leg of value_m
+  int limiting_sample = -1;  ///< i·legs + leg of value_m
 };
 
 /// What a margin evaluation must find exactly.

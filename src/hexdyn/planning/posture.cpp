@@ -185,16 +185,16 @@ class PostureSearch {
 /// The legs' reach, the span of the default height search [m]. The paper robot: the
 /// longest foot distance from its hip at zero joint angles, where every leg stands straight
 /// out. A chain leg (URDF) need not be extended at zero (Kraby's femur rests at 45°): the
-/// sum of its segments, hip → femur joint → tibia joint → foot, bounds its reach instead.
+/// sum of its segments, hip → second joint → … → last joint → foot, bounds its reach instead.
 double leg_length_m(const RobotModel& model) {
   double r = 0.0;
-  for (int leg = 0; leg < kLegs; ++leg) {
+  for (int leg = 0; leg < model.legs(); ++leg) {
     double reach = leg_foot_position_H(model, leg, Vec3::Zero()).norm();
     if (model.leg_geometry == LegGeometry::kChain) {
-      const int femur = model.body(leg, 1), tibia = model.body(leg, 2);
-      reach =
-          std::max(reach, model.p_parent_joint[femur].norm() + model.p_parent_joint[tibia].norm() +
-                              model.p_foot_last[leg].norm());
+      double segments = 0.0;  // summed hip to foot: for three joints (femur + tibia) + foot
+      for (int j = 1; j < model.leg(leg).n_joints; ++j)
+        segments += model.p_parent_joint[model.body(leg, j)].norm();
+      reach = std::max(reach, segments + model.p_foot_last[leg].norm());
     }
     r = std::max(r, reach + model.foot_radius_m[leg]);  // a sphere foot reaches r further down
   }
@@ -208,7 +208,7 @@ double leg_length_m(const RobotModel& model) {
 /// trunk plane); 0.208 m for Kraby, whose trunk frame is at the bottom of its legs.
 double hip_plane_offset_m(const Scene& scene, const RobotModel& model) {
   double z = kInf;
-  for (int leg = 0; leg < kLegs; ++leg) z = std::min(z, model.p_hip_B[leg].z());
+  for (int leg = 0; leg < model.legs(); ++leg) z = std::min(z, model.p_hip_B[leg].z());
   const double pitch = TrunkMotion(scene.motion, scene.gait, Terrain(scene.terrain)).pitch_rad();
   return z / std::cos(pitch);
 }

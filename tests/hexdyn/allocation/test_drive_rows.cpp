@@ -17,22 +17,33 @@ namespace {
 /// gives them), random contact frames, leg L2 in swing with a torque beyond the limit, L3
 /// in its touchdown transient, the others in support.
 struct Sample {
-  ContactSplit split;
-  std::array<ContactPhase, kLegs> phase;
-  std::array<double, kLegs> impact{};
-  std::array<Mat3, kLegs> frames;
+  AllocationSplit split;
+  LegArray<ContactPhase> phase;
+  LegArray<double> impact{};
+  LegArray<Mat3> frames;
 };
+
+/// The sample's robot: a hexapod's six legs of three joints.
+const AllocationLegs kLegTable = uniform_allocation_legs(6, 3);
+const int kJointCount = kLegTable.joints;
+/// Flat index of joint j of leg l.
+int joint_of(int l, int j) { return kLegTable.first_joint[l] + j; }
+/// Leg and joint of flat index k.
+std::string name_of(int k) {
+  int l = 0;
+  while (l + 1 < kLegTable.legs && kLegTable.first_joint[l + 1] <= k) ++l;
+  return joint_name(l, k - kLegTable.first_joint[l], kLegTable.n_joints[l]);
+}
 
 Sample random_sample(unsigned seed) {
   std::mt19937 rng(seed);
   std::normal_distribution<double> g(0.0, 1.0);
   Sample s;
   s.split.trunk_rhs = Vec6::NullaryExpr([&] { return g(rng); });
-  s.split.tau0 = VecJ::NullaryExpr([&] { return 0.3 * g(rng); });
-  for (int l = 0; l < kLegs; ++l) {
-    s.split.JjT[l].setZero(kJoints, 3);
-    s.split.JjT[l].middleRows<kJointsPerLeg>(joint_index(l, 0)) =
-        Mat3::NullaryExpr([&] { return 0.1 * g(rng); });
+  s.split.tau0 = JointVector::NullaryExpr(kJointCount, [&] { return 0.3 * g(rng); });
+  for (int l = 0; l < kLegTable.legs; ++l) {
+    s.split.JjT[l].setZero(kJointCount, 3);
+    s.split.JjT[l].middleRows<3>(joint_of(l, 0)) = Mat3::NullaryExpr([&] { return 0.1 * g(rng); });
     s.split.JbT[l] = Eigen::Matrix<double, 6, 3>::NullaryExpr([&] { return g(rng); });
     s.frames[l] = Quat(g(rng), g(rng), g(rng), g(rng)).normalized().toRotationMatrix();
     s.impact[l] = 10.0 + std::abs(g(rng));
@@ -40,7 +51,7 @@ Sample random_sample(unsigned seed) {
   s.phase.fill(ContactPhase::kSupport);
   s.phase[1] = ContactPhase::kSwing;
   s.phase[2] = ContactPhase::kImpact;
-  s.split.tau0[joint_index(1, 1)] = 1.5;  // beyond the 0.8 N m limit below
+  s.split.tau0[joint_of(1, 1)] = 1.5;  // beyond the 0.8 N m limit below
   return s;
 }
 
@@ -53,15 +64,15 @@ AllocationParams params(FrictionModel friction) {
 
 AllocationLayout build(const AllocationParams& alloc, const Sample& s, QpProblem& qp,
                        const DriveRows* rows = nullptr) {
-  return build_allocation_problem(alloc, ContactParams{}, s.split, s.phase, s.impact, s.frames, qp,
-                                  rows);
+  return build_allocation_problem(kLegTable, alloc, ContactParams{}, s.split, s.phase, s.impact,
+                                  s.frames, qp, rows);
 }
 
 /// The flat joint index of a torque row named "torque NAME", "torque NAME (peak)" or
 /// "torque NAME (voltage)"; −1 for any other row.
 int torque_row_joint(const std::string& name) {
-  for (int k = 0; k < kJoints; ++k) {
-    const std::string base = "torque " + joint_name(k / kJointsPerLeg, k % kJointsPerLeg);
+  for (int k = 0; k < kJointCount; ++k) {
+    const std::string base = "torque " + name_of(k);
     if (name == base || name == base + " (peak)" || name == base + " (voltage)") return k;
   }
   return -1;
@@ -116,9 +127,9 @@ TEST_CASE("allocation with drive rows: offsets shift the torque rows' bounds",
   const AllocationParams alloc = params(FrictionModel::kPyramid4);
   const Sample s = random_sample(42);
   DriveRows rows;
-  rows.offset_Nm = VecJ::NullaryExpr([&] { return u(rng); });
-  rows.limit_Nm = VecJ::NullaryExpr([&] { return 1.0 + u(rng); });
-  rows.limit_Nm[joint_index(1, 1)] = 0.6;  // below |τ₀| − |d| ≥ 1: the swing leg's excess
+  rows.offset_Nm = JointVector::NullaryExpr(kJointCount, [&] { return u(rng); });
+  rows.limit_Nm = JointVector::NullaryExpr(kJointCount, [&] { return 1.0 + u(rng); });
+  rows.limit_Nm[joint_of(1, 1)] = 0.6;  // below |τ₀| − |d| ≥ 1: the swing leg's excess
   QpProblem plain, driven;
   build(alloc, s, plain);
   const AllocationLayout ld = build(alloc, s, driven, &rows);
@@ -144,8 +155,8 @@ TEST_CASE("allocation with drive rows: offsets shift the torque rows' bounds",
   CHECK(torque_rows == kTorqueRows);
   // The swing leg L2: no row, its drive torques τ₀ + d against the drive's limits.
   double excess = 0.0;
-  for (int j = 0; j < kJointsPerLeg; ++j) {
-    const int k = joint_index(1, j);
+  for (int j = 0; j < kLegTable.n_joints[1]; ++j) {
+    const int k = joint_of(1, j);
     excess = std::max(excess, std::abs(s.split.tau0[k] + rows.offset_Nm[k]) - rows.limit_Nm[k]);
   }
   REQUIRE(excess > 0.0);
@@ -160,9 +171,9 @@ TEST_CASE("allocation with drive rows: the objective is Σ w (τ + d)² of the s
     const AllocationParams alloc = params(friction);
     const Sample s = random_sample(43);
     DriveRows rows;
-    rows.offset_Nm = VecJ::NullaryExpr([&] { return u(rng); });
+    rows.offset_Nm = JointVector::NullaryExpr(kJointCount, [&] { return u(rng); });
     rows.limit_Nm.setConstant(2.0);
-    rows.weight = VecJ::NullaryExpr([&] { return w(rng); });
+    rows.weight = JointVector::NullaryExpr(kJointCount, [&] { return w(rng); });
     QpProblem qp;
     const AllocationLayout layout = build(alloc, s, qp, &rows);
     REQUIRE(layout.variables == 3 * 4 + 2);  // four support legs, one impact leg
@@ -170,11 +181,11 @@ TEST_CASE("allocation with drive rows: the objective is Σ w (τ + d)² of the s
     for (int trial = 0; trial < 20; ++trial) {
       const Eigen::VectorXd x =
           20.0 * Eigen::VectorXd::NullaryExpr(layout.variables, [&] { return u(rng); });
-      std::array<Vec3, kLegs> F_W;
-      VecJ tau;
+      LegArray<Vec3> F_W;
+      JointVector tau;
       forces_from_solution(s.split, layout, x, F_W, tau);
       double expected = 0.0, scale = 0.0;
-      for (int k = 0; k < kJoints; ++k) {
+      for (int k = 0; k < kJointCount; ++k) {
         expected += rows.weight[k] * std::pow(tau[k] + rows.offset_Nm[k], 2);
         scale += rows.weight[k] * std::pow(std::abs(tau[k]) + std::abs(rows.offset_Nm[k]), 2);
       }
@@ -194,8 +205,8 @@ TEST_CASE("allocation with drive rows: torque rows name the drive's bound", "[al
   for (std::int8_t swing_kind : {std::int8_t{0}, std::int8_t{1}, std::int8_t{2}}) {
     DriveRows rows;
     rows.limit_Nm.setConstant(alloc.torque_limit_Nm);
-    for (int k = 0; k < kJoints; ++k) rows.bound[k] = static_cast<std::int8_t>(k % 3);
-    rows.bound[joint_index(1, 1)] = swing_kind;
+    for (int k = 0; k < kJointCount; ++k) rows.bound[k] = static_cast<std::int8_t>(k % 3);
+    rows.bound[joint_of(1, 1)] = swing_kind;
     QpProblem qp;
     const AllocationLayout layout = build(alloc, s, qp, &rows);
     int named = 0;
@@ -203,8 +214,7 @@ TEST_CASE("allocation with drive rows: torque rows name the drive's bound", "[al
       const int k = torque_row_joint(qp.ineq_names[i]);
       if (k < 0) continue;
       ++named;
-      CHECK(qp.ineq_names[i] ==
-            "torque " + joint_name(k / kJointsPerLeg, k % kJointsPerLeg) + suffix[k % 3]);
+      CHECK(qp.ineq_names[i] == "torque " + name_of(k) + suffix[k % 3]);
     }
     CHECK(named == kTorqueRows);
     const std::string expect[3] = {"torque L2_femur (swing leg) by ",

@@ -71,11 +71,11 @@ int paper_problem_at(const Scene& scene, double t, QpProblem& qp) {
   RobotKinematicState s;
   robot_state_at(model, plan, t, s);
   const ContactSplit& split = contact_split(model, data, s.trunk, s.q, s.qd, s.qdd);
-  std::array<ContactPhase, kLegs> phase{};
-  std::array<double, kLegs> f_impact{};
-  std::array<Mat3, kLegs> W_R_c;
+  LegArray<ContactPhase> phase{};
+  LegArray<double> f_impact{};
+  LegArray<Mat3> W_R_c;
   int impacts = 0;
-  for (int l = 0; l < kLegs; ++l) {
+  for (int l = 0; l < model.legs(); ++l) {
     phase[l] = s.feet[l].in_swing ? ContactPhase::kSwing : ContactPhase::kSupport;
     W_R_c[l] = contact_frame(plan.terrain.normal(s.feet[l].p_W.x(), s.feet[l].p_W.y()));
   }
@@ -85,7 +85,8 @@ int paper_problem_at(const Scene& scene, double t, QpProblem& qp) {
     f_impact[td.leg] = transient_force_at(td.transient, t - td.t_s);
     ++impacts;
   }
-  build_allocation_problem(scene.allocation, scene.contact, split, phase, f_impact, W_R_c, qp);
+  build_allocation_problem(allocation_legs(model), scene.allocation, scene.contact, split, phase,
+                           f_impact, W_R_c, qp);
   return impacts;
 }
 
@@ -136,6 +137,7 @@ TEST_CASE("allocation problem: the structural key tells row layouts apart as the
   // the key exactly when they share every row name (and so every row kind); across models
   // an equal key still implies equal names.
   const Scene scene = load_scene(kPaper);
+  const AllocationLegs legs = allocation_legs(build_robot_model(scene.robot));
   std::mt19937 rng(5);
   std::normal_distribution<double> g(0.0, 1.0);
   struct Built {
@@ -149,27 +151,29 @@ TEST_CASE("allocation problem: the structural key tells row layouts apart as the
   for (int fm = 0; fm < 3; ++fm) {
     AllocationParams alloc = scene.allocation;
     alloc.friction = models[fm];
-    for (int code = 0; code < 729; ++code) {
-      std::array<ContactPhase, kLegs> phase{};
-      for (int l = 0, c = code; l < kLegs; ++l, c /= 3) phase[l] = static_cast<ContactPhase>(c % 3);
+    for (int code = 0; code < 729; ++code) {  // 3⁶: every phase of each of six legs
+      LegArray<ContactPhase> phase{};
+      for (int l = 0, c = code; l < legs.legs; ++l, c /= 3)
+        phase[l] = static_cast<ContactPhase>(c % 3);
       std::uint64_t keys[2];
       std::vector<std::string> names[2];
       for (int rep = 0; rep < 2; ++rep) {
-        ContactSplit split;
+        AllocationSplit split;
         split.trunk_rhs = Vec6::NullaryExpr([&] { return g(rng); });
-        split.tau0 = VecJ::NullaryExpr([&] { return g(rng); });
-        for (auto& m : split.JjT)
-          m = decltype(split.JjT)::value_type::NullaryExpr(kJoints, 3, [&] { return g(rng); });
-        for (auto& m : split.JbT)
-          m = decltype(split.JbT)::value_type::NullaryExpr([&] { return g(rng); });
-        std::array<double, kLegs> f_impact{};
-        std::array<Mat3, kLegs> frames;
-        for (int l = 0; l < kLegs; ++l) {
+        split.tau0 = JointVector::NullaryExpr(legs.joints, [&] { return g(rng); });
+        for (int l = 0; l < legs.legs; ++l)
+          split.JjT[l] =
+              AllocationSplit::JointRows::NullaryExpr(legs.joints, 3, [&] { return g(rng); });
+        for (int l = 0; l < legs.legs; ++l)
+          split.JbT[l] = Eigen::Matrix<double, 6, 3>::NullaryExpr([&] { return g(rng); });
+        LegArray<double> f_impact{};
+        LegArray<Mat3> frames;
+        for (int l = 0; l < legs.legs; ++l) {
           f_impact[l] = 10.0 + std::abs(g(rng));
           frames[l] = Quat(g(rng), g(rng), g(rng), g(rng)).normalized().toRotationMatrix();
         }
         QpProblem qp;
-        build_allocation_problem(alloc, scene.contact, split, phase, f_impact, frames, qp);
+        build_allocation_problem(legs, alloc, scene.contact, split, phase, f_impact, frames, qp);
         keys[rep] = qp.structure;
         names[rep] = qp.ineq_names;
         for (const SecondOrderCone& c : qp.cones) names[rep].push_back(c.name);

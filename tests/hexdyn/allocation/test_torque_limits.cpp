@@ -12,38 +12,41 @@ namespace hexdyn {
 TEST_CASE("allocation: torque rows use each joint's own limit", "[allocation][limits]") {
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
-  ContactSplit split;  // sized for six legs of three joints
-  split.tau0.setZero(kJoints);
-  for (auto& m : split.JjT) m.setZero(kJoints, 3);
-  for (int k = 0; k < kJoints; ++k) split.tau0[k] = u(rng);
-  for (int l = 0; l < kLegs; ++l) {
+  const AllocationLegs legs = uniform_allocation_legs(6, 3);  // a hexapod
+  const int joints = legs.joints;
+  AllocationSplit split;
+  split.tau0.resize(joints);
+  for (int k = 0; k < joints; ++k) split.tau0[k] = u(rng);
+  for (int l = 0; l < legs.legs; ++l) {
+    split.JjT[l].resize(joints, 3);
     for (int c = 0; c < 3; ++c) {
-      for (int r = 0; r < kJoints; ++r) split.JjT[l](r, c) = u(rng);
+      for (int r = 0; r < joints; ++r) split.JjT[l](r, c) = u(rng);
       for (int r = 0; r < 6; ++r) split.JbT[l](r, c) = u(rng);
     }
   }
-  std::array<ContactPhase, kLegs> phase;
+  LegArray<ContactPhase> phase;
   phase.fill(ContactPhase::kSupport);
   phase[1] = ContactPhase::kSwing;  // leg L2 swings: its torques are constants
-  std::array<double, kLegs> impact{};
-  std::array<Mat3, kLegs> R;
+  LegArray<double> impact{};
+  LegArray<Mat3> R;
   R.fill(Mat3::Identity());
   AllocationParams alloc;
   ContactParams contact;
-  std::array<double, kJoints> limits;
-  for (int k = 0; k < kJoints; ++k) limits[k] = 0.5 + 0.1 * k;
+  decltype(alloc.joint_torque_limit_Nm)::value_type limits{};
+  for (int k = 0; k < joints; ++k) limits[k] = 0.5 + 0.1 * k;
   for (const bool per_joint : {true, false}) {
     alloc.joint_torque_limit_Nm.reset();
     if (per_joint) alloc.joint_torque_limit_Nm = limits;
     QpProblem qp;
     const AllocationLayout layout =
-        build_allocation_problem(alloc, contact, split, phase, impact, R, qp);
+        build_allocation_problem(legs, alloc, contact, split, phase, impact, R, qp);
     const double worst = layout.constant_excess_Nm;
     const std::string& violation = layout.constant_violation;
     int rows = 0;
     for (int i = 0; i < qp.inequalities(); ++i) {
-      for (int k = 0; k < kJoints; ++k) {
-        if (qp.ineq_names[i] != "torque " + joint_name(k / 3, k % 3)) continue;
+      for (int k = 0; k < joints; ++k) {
+        const int l = k / 3, j = k - legs.first_joint[l];
+        if (qp.ineq_names[i] != "torque " + joint_name(l, j, legs.n_joints[l])) continue;
         const double lim = per_joint ? limits[k] : alloc.torque_limit_Nm;
         // Row value C x = G x; τ = τ₀ − G x within ±lim  ⇔  τ₀ − lim ≤ G x ≤ τ₀ + lim.
         CHECK(qp.lower[i] == Approx(split.tau0[k] - lim).margin(1e-15));
@@ -54,7 +57,7 @@ TEST_CASE("allocation: torque rows use each joint's own limit", "[allocation][li
     CHECK(rows == 15);  // five support legs
     double expect = 0.0;
     for (int j = 0; j < 3; ++j) {
-      const int k = joint_index(1, j);
+      const int k = legs.first_joint[1] + j;
       expect = std::max(expect,
                         std::abs(split.tau0[k]) - (per_joint ? limits[k] : alloc.torque_limit_Nm));
     }

@@ -25,10 +25,10 @@ const std::string kPaper = HEXDYN_SOURCE_DIR "/configs/paper.yaml";
 /// Kinetic energy of the robot [J] from the body velocities of robot_momentum (computed
 /// body by body, independently of the mass matrix).
 double kinetic_energy(const RobotModel& model, RobotData& data, const BaseState& base,
-                      const VecJ& q, const VecJ& qd) {
+                      const JointVector& q, const JointVector& qd) {
   robot_momentum(model, data, base, q, qd);
   double ke = 0.0;
-  for (int b = 0; b < kBodies; ++b) {
+  for (int b = 0; b < model.bodies(); ++b) {
     const RigidInertia& in = model.inertia[b];
     const Mat3& R = data.X_world_body[b].R;
     const Vec3& w = data.omega_body_W[b];
@@ -43,13 +43,13 @@ double kinetic_energy(const RobotModel& model, RobotData& data, const BaseState&
 /// impulse a unit normal velocity change costs). The leg's inertia comes from the
 /// kinetic energy by polarisation, the foot Jacobian from the analytic leg kinematics.
 double effective_mass_by_energy(const RobotModel& model, RobotData& data, const BaseState& base,
-                                const VecJ& q, int leg, const Vec3& n_W) {
+                                const JointVector& q, int leg, const Vec3& n_W) {
   BaseState still = base;
   still.v_W.setZero();
   still.omega_W.setZero();
   auto ke = [&](const Vec3& rates) {
-    VecJ qd = VecJ::Zero();
-    qd.segment<3>(joint_index(leg, 0)) = rates;
+    JointVector qd = JointVector::Zero(model.joints());
+    qd.segment<3>(model.joint(leg, 0)) = rates;  // the leg's three joints
     return kinetic_energy(model, data, still, q, qd);
   };
   Mat3 M;
@@ -58,7 +58,7 @@ double effective_mass_by_energy(const RobotModel& model, RobotData& data, const 
     for (int b = a + 1; b < 3; ++b)
       M(a, b) = M(b, a) = ke(Vec3::Unit(a) + Vec3::Unit(b)) - 0.5 * M(a, a) - 0.5 * M(b, b);
   const Mat3 J_W =
-      base.W_R_B * model.R_B_H[leg] * leg_jacobian_H(model, leg, q.segment<3>(joint_index(leg, 0)));
+      base.W_R_B * model.R_B_H[leg] * leg_jacobian_H(model, leg, q.segment<3>(model.joint(leg, 0)));
   // Rates with nᵀ J q̇ = 1: q̇ = x0 + N z, x0 = a/|a|², N an orthonormal basis of a⊥.
   const Vec3 a = J_W.transpose() * n_W.normalized();
   const Vec3 x0 = a / a.squaredNorm();
@@ -148,9 +148,9 @@ TEST_CASE("touchdowns: foot effective mass equals the minimum-energy normal impu
     base.p_W = Vec3(g(rng), g(rng), g(rng));
     base.v_W = Vec3(g(rng), g(rng), g(rng));
     base.omega_W = Vec3(g(rng), g(rng), g(rng));
-    VecJ q;
-    for (int l = 0; l < kLegs; ++l) q.segment<3>(joint_index(l, 0)) = test::random_leg_angles(rng);
-    const int leg = trial % kLegs;
+    JointVector q(rm.joints());
+    for (int l = 0; l < rm.legs(); ++l) q.segment<3>(rm.joint(l, 0)) = test::random_leg_angles(rng);
+    const int leg = trial % rm.legs();
     const Vec3 n = Vec3(g(rng), g(rng), g(rng)).normalized();
     const double got = foot_effective_mass(rm, rd, base, q, leg, n);
     const double expected = effective_mass_by_energy(rm, rd, base, q, leg, n);

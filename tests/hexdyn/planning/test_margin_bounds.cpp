@@ -38,8 +38,8 @@ TrueMargins true_margins(const RobotModel& m, int leg, const Vec3& p) {
   if (!ik.ok) return t;
   t.reach_m = ik.margin_m;
   const Mat3 J = leg_jacobian_H(m, leg, ik.q);
-  for (int j = 0; j < kJointsPerLeg; ++j) {
-    const int k = joint_index(leg, j);
+  for (int j = 0; j < m.leg(leg).n_joints; ++j) {
+    const int k = m.joint(leg, j);
     double c = -kInf;  // the angle to the nearer limit, the joint turned by 0 or ±2π
     for (double shift : {0.0, 2.0 * M_PI, -2.0 * M_PI})
       c = std::max(c, std::min(ik.q[j] + shift - m.joint_lower_rad[k],
@@ -59,11 +59,11 @@ TEST_CASE("margin bounds: below the margins of every target within their distanc
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   int pairs = 0, bounded = 0, admitted = 0, tight = 0, small = 0;
   for (int trial = 0; trial < 40000; ++trial) {
-    const int leg = trial % kLegs;
+    const int leg = trial % model.legs();
     // A target the IK accepts: random joint angles inside the limits.
     Vec3 q;
-    for (int j = 0; j < kJointsPerLeg; ++j) {
-      const int k = joint_index(leg, j);
+    for (int j = 0; j < model.leg(leg).n_joints; ++j) {
+      const int k = model.joint(leg, j);
       const double lo = std::max(model.joint_lower_rad[k], -M_PI),
                    hi = std::min(model.joint_upper_rad[k], M_PI);
       q[j] = lo + (hi - lo) * unit(rng);
@@ -141,7 +141,7 @@ TEST_CASE("foot track: leg_foot_motion's positions to the bit, on a dense grid",
   REQUIRE(track.t_s.size() > 3001);
   int swinging = 0;
   for (std::size_t i = 0; i < track.t_s.size(); ++i)
-    for (int leg = 0; leg < kLegs; ++leg) {
+    for (int leg = 0; leg < model.legs(); ++leg) {
       const FootMotion f = leg_foot_motion(plan.gait.legs[leg], track.t_s[i]);
       swinging += f.in_swing;
       CHECK(track.p_W[i][leg] == f.p_W);

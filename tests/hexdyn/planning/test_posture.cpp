@@ -48,7 +48,7 @@ TEST_CASE("posture: the paper's relative posture gives its absolute start to the
   for (int i = 0; i <= 997; ++i) {
     const double t = T * i / 997.0;
     CHECK(a.trunk.at(t).p_W == r.trunk.at(t).p_W);
-    for (int leg = 0; leg < kLegs; ++leg)
+    for (int leg = 0; leg < model.legs(); ++leg)
       CHECK(leg_foot_motion(a.gait.legs[leg], t).p_W == leg_foot_motion(r.gait.legs[leg], t).p_W);
   }
 }
@@ -114,22 +114,22 @@ TEST_CASE("posture: on random stairs inside the envelope every foot target is re
     for (int i = 0; i <= 4000; ++i) {
       const double t = T * i / 4000.0;
       const BaseState trunk = plan.trunk.at(t);
-      VecJ q = VecJ::Zero();
-      std::array<Vec3, kLegs> target_B;
-      for (int leg = 0; leg < kLegs; ++leg) {
+      JointVector q = JointVector::Zero(model.joints());
+      LegArray<Vec3> target_B;
+      for (int leg = 0; leg < model.legs(); ++leg) {
         const Vec3 p_W = leg_foot_motion(plan.gait.legs[leg], t).p_W;
         target_B[leg] = trunk.W_R_B.transpose() * (p_W - trunk.p_W);
         const Vec3 p_H = model.R_B_H[leg].transpose() * (target_B[leg] - model.p_hip_B[leg]);
         const LegIkResult ik = leg_inverse_kinematics(model, leg, p_H);
         REQUIRE(ik.ok);
-        q.segment<3>(joint_index(leg, 0)) = ik.q;
-        for (int j = 0; j < kJointsPerLeg; ++j) {
+        q.segment<3>(model.joint(leg, 0)) = ik.q;  // the paper robot's legs of three joints
+        for (int j = 0; j < model.leg(leg).n_joints; ++j) {
           CHECK(ik.q[j] >= scene.robot.joint_min_rad[j]);
           CHECK(ik.q[j] <= scene.robot.joint_max_rad[j]);
         }
       }
       forward_kinematics_tree(model, q, poses);
-      for (int leg = 0; leg < kLegs; ++leg) {
+      for (int leg = 0; leg < model.legs(); ++leg) {
         worst_fk =
             std::max(worst_fk, (tree_foot_position_B(model, poses, leg) - target_B[leg]).norm());
         // Distance from full extension and fold: the foot relative to the femur joint,
@@ -159,7 +159,7 @@ TEST_CASE("posture: on random stairs inside the envelope every foot target is re
     CHECK(clearance >= scene.motion.posture.trunk_clearance_m - 1e-9);
     // Every swing path clears the terrain: never below it, and swing_clearance above the
     // highest terrain under its path while it moves horizontally.
-    for (int leg = 0; leg < kLegs; ++leg)
+    for (int leg = 0; leg < model.legs(); ++leg)
       for (const Swing& sw : plan.gait.legs[leg].swings) {
         double highest = -1.0;
         for (int k = 0; k <= 400; ++k) {
@@ -231,7 +231,7 @@ TEST_CASE("posture: the automatic posture places the hips wherever the trunk fra
   for (double d : {-0.15, 0.1}) {
     INFO("coxa joints moved by " << d << " m along the trunk normal");
     RobotModel moved = model;
-    for (int leg = 0; leg < kLegs; ++leg) moved.p_parent_joint[model.body(leg, 0)].z() += d;
+    for (int leg = 0; leg < model.legs(); ++leg) moved.p_parent_joint[model.body(leg, 0)].z() += d;
     prepare_leg_chains(moved);
     Scene shifted = scene;
     shifted.motion.posture.start_y_m += d * std::sin(pitch);
@@ -246,7 +246,7 @@ TEST_CASE("posture: the automatic posture places the hips wherever the trunk fra
   const MotionPlan plan = plan_motion(scene, model);
   const Terrain terrain(scene.terrain);
   double y_rear = 1e9, y_front = -1e9, z_hip = 1e9;
-  for (int leg = 0; leg < kLegs; ++leg) {
+  for (int leg = 0; leg < model.legs(); ++leg) {
     y_rear = std::min(y_rear, model.p_hip_B[leg].y());
     y_front = std::max(y_front, model.p_hip_B[leg].y());
     z_hip = std::min(z_hip, model.p_hip_B[leg].z());

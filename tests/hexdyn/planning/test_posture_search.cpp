@@ -85,7 +85,7 @@ struct PlainSearch {
   Point run() {
     const PostureParams& p = scene.motion.posture;
     double reach = 0.0;
-    for (int leg = 0; leg < kLegs; ++leg)
+    for (int leg = 0; leg < model.legs(); ++leg)
       reach = std::max(reach, leg_foot_position_H(model, leg, Vec3::Zero()).norm());
     const double lo = std::max(0.0, scene.terrain.riser_height_m / 2 + p.trunk_clearance_m);
     Point best = best_height(scene.gait.foot_lateral_m, lo, reach, true);

@@ -21,13 +21,14 @@ TEST_CASE("footholds lie along each hip's direction at foot_lateral", "[gait][ro
     const MotionPlan plan = plan_motion(s, m);
     // Each hip's direction from the legs' zero pose (generic tree FK), horizontal in the world.
     BodyPoses poses;
-    forward_kinematics_tree(m, VecJ::Zero(), poses);
+    forward_kinematics_tree(m, JointVector::Zero(m.joints()), poses);
     const double n = plan.trunk.cycles(), beta = s.gait.duty_factor;
-    for (int leg = 0; leg < kLegs; ++leg) {
+    for (int leg = 0; leg < m.legs(); ++leg) {
       const Vec3 hip_B = m.p_parent_joint[m.body(leg, 0)];
       Vec3 d_B = tree_foot_position_B(m, poses, leg) - hip_B;
       d_B.z() = 0.0;
-      if (name == "paper") d_B = Vec3(is_left(leg) ? -1.0 : 1.0, 0.0, 0.0);  // legs straight out
+      if (name == "paper")
+        d_B = Vec3(m.leg(leg).side == LegSide::kLeft ? -1.0 : 1.0, 0.0, 0.0);  // legs straight out
       Vec3 d_W = plan.trunk.W_R_B() * d_B.normalized();
       d_W.z() = 0.0;
       d_W.normalize();
