@@ -175,7 +175,7 @@ py::tuple run_file(const std::string& scene_path, const std::vector<std::string>
       const hexdyn::Scene scene = hexdyn::load_scene(scene_path, overrides, &handle->inputs);
       warnings = scene.warnings;
       const hexdyn::PreparedScene prep = hexdyn::prepare_scene(scene);
-      hexdyn::check_run_size(prep.grid.size(), allow_large);
+      hexdyn::check_run_size(prep.grid.size(), prep.model.legs(), prep.model.joints(), allow_large);
       std::unique_lock<std::mutex> lock(ipopt_mutex, std::defer_lock);
       if (scene.allocation.solver == hexdyn::AllocationSolver::kIpopt) lock.lock();
       handle->result = hexdyn::run_prepared_scene(scene, prep);
