@@ -335,8 +335,8 @@ py::dict sample_problem_file(const std::string& scene_path,
   out["constant_excess_Nm"] = p.layout.constant_excess_Nm;
   out["constant_violation"] = p.layout.constant_violation;
   std::vector<std::int8_t> phase;
-  for (hexdyn::ContactPhase ph : p.phase) phase.push_back(static_cast<std::int8_t>(ph));
-  out["phase"] = to_numpy(std::move(phase), {static_cast<std::size_t>(hexdyn::kLegs)});
+  for (int l = 0; l < p.legs; ++l) phase.push_back(static_cast<std::int8_t>(p.phase[l]));
+  out["phase"] = to_numpy(std::move(phase), {static_cast<std::size_t>(p.legs)});
   out["x"] = vector_to_numpy(p.x);
   out["status"] = static_cast<int>(p.status);
   out["required_friction"] = p.required_friction;

@@ -31,7 +31,7 @@ int names_in_use(const Names& names) {
 JointFacts urdf_joint_facts(const LoadedUrdfRobot& urdf) {
   JointFacts joints;
   const auto& legs = urdf.robot->legs;
-  for (int l = 0; l < static_cast<int>(std::size(legs)) && !legs[l].joint_names[0].empty(); ++l) {
+  for (int l = 0; l < robot_leg_count(urdf); ++l) {
     const int m = names_in_use(legs[l].joint_names);
     for (int j = 0; j < m; ++j, ++joints.count) {
       const int k = joints.count;
@@ -58,6 +58,14 @@ JointFacts yaml_joint_facts() {
 }
 
 }  // namespace
+
+int robot_leg_count(const LoadedUrdfRobot& urdf) {
+  if (!urdf.robot) return kYamlLegs;
+  const auto& legs = urdf.robot->legs;  // the legs read, then empty entries of a capacity
+  int n = 0;
+  while (n < static_cast<int>(std::size(legs)) && !legs[n].joint_names[0].empty()) ++n;
+  return n;
+}
 
 void read_contact(Reader& r, Scene& s) {
   read_table_keys(r, s, "contact");

@@ -202,8 +202,12 @@ class SampleSolver {
     const int joints = scene.actuators.joints.size();
     JointVector w = JointVector::Ones(joints);
     if (scene.allocation.objective != AllocationObjective::kCopperLoss) return w;
-    for (int k = 0; k < joints; ++k) w[k] = copper_loss_weight(scene.actuators.joints[k]);
-    return w / w.maxCoeff();
+    double largest = 0.0;
+    for (int k = 0; k < joints; ++k) {
+      w[k] = copper_loss_weight(scene.actuators.joints[k]);
+      largest = std::max(largest, w[k]);
+    }
+    return w / largest;
   }
 
   const Scene& scene_;
