@@ -25,6 +25,14 @@ template <class T>
 struct JointValues {
   int count = 0;  ///< joints of the robot the values were resolved for
   JointArray<T> values{};
+  JointValues() = default;
+  /// The N values of `a` (a robot of N joints).
+  template <std::size_t N>
+  JointValues(const std::array<T, N>& a)  // NOLINT(google-explicit-constructor): a value
+      : count(static_cast<int>(N)) {
+    static_assert(N <= kMaxJoints);
+    for (std::size_t k = 0; k < N; ++k) values[k] = a[k];
+  }
   int size() const { return count; }
   T& operator[](int k) { return values[static_cast<std::size_t>(k)]; }
   const T& operator[](int k) const { return values[static_cast<std::size_t>(k)]; }
