@@ -95,7 +95,7 @@ void check_unit_quaternions(const Samples& s) {
 void check_sphere_foot_normals(const hexdyn::RobotModel& model, const Samples& s) {
   if (s.data == nullptr) return;
   for (py::ssize_t i = 0; i < s.count; ++i)
-    for (int l = 0; l < hexdyn::kLegs; ++l) {
+    for (int l = 0; l < model.legs(); ++l) {
       const double* n = s.at(i) + 3 * l;
       const double norm = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
       if (model.foot_radius_m[static_cast<std::size_t>(l)] > 0.0 && !(norm >= kLeastNormalNorm))

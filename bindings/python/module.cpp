@@ -175,7 +175,7 @@ py::tuple run_file(const std::string& scene_path, const std::vector<std::string>
       const hexdyn::Scene scene = hexdyn::load_scene(scene_path, overrides, &handle->inputs);
       warnings = scene.warnings;
       const hexdyn::PreparedScene prep = hexdyn::prepare_scene(scene);
-      hexdyn::check_run_size(prep.grid.size(), allow_large);
+      hexdyn::check_run_size(prep.grid.size(), prep.model.legs(), prep.model.joints(), allow_large);
       std::unique_lock<std::mutex> lock(ipopt_mutex, std::defer_lock);
       if (scene.allocation.solver == hexdyn::AllocationSolver::kIpopt) lock.lock();
       handle->result = hexdyn::run_prepared_scene(scene, prep);
@@ -336,8 +336,8 @@ py::dict sample_problem_file(const std::string& scene_path,
   out["constant_excess_Nm"] = p.layout.constant_excess_Nm;
   out["constant_violation"] = p.layout.constant_violation;
   std::vector<std::int8_t> phase;
-  for (int l = 0; l < p.layout.n_legs; ++l) phase.push_back(static_cast<std::int8_t>(p.phase[l]));
-  out["phase"] = to_numpy(std::move(phase), {static_cast<std::size_t>(p.layout.n_legs)});
+  for (int l = 0; l < p.legs; ++l) phase.push_back(static_cast<std::int8_t>(p.phase[l]));
+  out["phase"] = to_numpy(std::move(phase), {static_cast<std::size_t>(p.legs)});
   out["x"] = vector_to_numpy(p.x);
   out["status"] = static_cast<int>(p.status);
   out["required_friction"] = p.required_friction;

@@ -10,20 +10,25 @@
 namespace hexdyn::cli {
 namespace {
 
-/// "L3 tibia" for flat joint index 8 (docs/user/output.md#conventions), with the
-/// description's own name when it differs from "L3_tibia" (a URDF robot's joint).
-std::string joint_label(int k, const std::vector<std::string>& names) {
-  static const char* kKind[kJointsPerLeg] = {"coxa", "femur", "tibia"};
-  if (k < 0 || k >= kJoints) return "no joint";
-  const int leg = k / kJointsPerLeg, j = k % kJointsPerLeg;
-  std::string label = leg_name(leg) + " " + kKind[j];
-  const auto at = static_cast<std::size_t>(k);
-  if (at < names.size() && names[at] != joint_name(leg, j)) label += ", joint " + names[at];
-  return label;
+/// "L3 tibia" for flat joint index 8 of the hexapod ("L3 j4" for a fourth joint:
+/// docs/user/output.md#conventions), with the description's own name when it differs from
+/// the positional one (a URDF robot's joint).
+std::string joint_label(const RobotModel& model, int k, const std::vector<std::string>& names) {
+  for (int leg = 0; leg < model.legs(); ++leg) {
+    const int j = k - model.joint(leg, 0), m = model.leg(leg).n_joints;
+    if (j < 0 || j >= m) continue;
+    const std::string positional = joint_name(leg, j, m);  // "L3_tibia"
+    std::string label = model.leg(leg).name + " " + positional.substr(positional.find('_') + 1);
+    const auto at = static_cast<std::size_t>(k);
+    if (at < names.size() && names[at] != positional) label += ", joint " + names[at];
+    return label;
+  }
+  return "no joint";
 }
 
 /// The report on stderr, one line per item.
-void print_report(const ReplayResult& r, const ReplaySource& src, std::ostream& os) {
+void print_report(const RobotModel& model, const ReplayResult& r, const ReplaySource& src,
+                  std::ostream& os) {
   os << "hexdyn: replay: " << (r.reached_top ? "reached" : "did not reach")
      << " the plan's end; final trunk position error " << r.final_position_error_m.norm() << " m\n";
   if (!r.message.empty()) os << "hexdyn: replay: ended early: " << r.message << "\n";
@@ -32,13 +37,13 @@ void print_report(const ReplayResult& r, const ReplaySource& src, std::ostream& 
        << r.position_drift_m[y].transpose() << " m, " << r.orientation_drift_rad[y].transpose()
        << " rad\n";
   double slip = 0.0, slip_e = 0.0, damp = 0.0;
-  for (int l = 0; l < kLegs; ++l) {
+  for (int l = 0; l < model.legs(); ++l) {
     slip += r.slip_distance_total_m[l];
     slip_e += r.slip_energy_total_J[l];
     damp += r.damping_total_J[l];
   }
   os << "hexdyn: replay: largest tracking error " << r.max_tracking_error_rad << " rad ("
-     << joint_label(r.max_tracking_error_joint, src.joint_names)
+     << joint_label(model, r.max_tracking_error_joint, src.joint_names)
      << ", t = " << r.max_tracking_error_time_s << " s)\n"
      << "hexdyn: replay: slip " << slip << " m and " << slip_e << " J, contact damping " << damp
      << " J, joint energy " << r.energy_J << " J (inverse dynamics " << r.energy_plan_J << " J)\n"
@@ -58,7 +63,7 @@ int replay_command(const Args& args) {
   const ReplayResult r =
       replay_plan(model, src.scene.contact, src.scene.replay, src.scene.terrain, src.plan);
   write_replay_file(args.output, src, model, r);
-  print_report(r, src, std::cerr);
+  print_report(model, r, src, std::cerr);
   std::cerr << "hexdyn: wrote " << args.output << " (" << r.t_s.size() << " samples, " << r.steps
             << " steps, " << r.seconds << " s)\n";
   return 0;

@@ -73,7 +73,7 @@ int run_command(const Args& args) {
   check_output_target(args.output, inputs);
   // Before the allocation: the grid's size, against the large-run limit.
   const PreparedScene prep = prepare_scene(scene);
-  check_run_size(prep.grid.size(), args.allow_large);
+  check_run_size(prep.grid.size(), prep.model.legs(), prep.model.joints(), args.allow_large);
   // A line every 5 s while the stages compute (an Ipopt run at a fine tolerance takes minutes).
   const ProgressScope progress(std::cerr, "run", args.progress_s);
   const RunResult result = run_prepared_scene(scene, prep, &std::cerr);

@@ -171,8 +171,8 @@ std::string joint_list(const JointFacts& joints) {
 }
 
 /// actuators.joints: one entry per joint named, by flat joint index.
-std::array<Entry, kJoints> read_joint_entries(Reader& r, const JointFacts& joints) {
-  std::array<Entry, kJoints> out;
+JointArray<Entry> read_joint_entries(Reader& r, const JointFacts& joints) {
+  JointArray<Entry> out;
   if (!r.given("actuators.joints")) return (void)r.has("actuators.joints"), out;
   const YAML::Node node = r.peek("actuators.joints");
   if (!node.IsMap())
@@ -180,8 +180,8 @@ std::array<Entry, kJoints> read_joint_entries(Reader& r, const JointFacts& joint
   for (const auto& kv : node) {
     const std::string name = kv.first.as<std::string>();
     int k = 0;
-    while (k < kJoints && joints.names[k] != name) ++k;
-    if (k == kJoints)
+    while (k < joints.count && joints.names[k] != name) ++k;
+    if (k == joints.count)
       r.fail("actuators.joints." + name,
              "unknown joint, expected one of the robot's joints: " + joint_list(joints));
     out[k] = read_entry(r, "actuators.joints." + name);
@@ -211,7 +211,9 @@ DriveTrainParams read_actuators(Reader& r, const JointFacts& joints) {
   if (!section.IsMap())
     r.fail_value("actuators", section,
                  "a mapping with default, coxa, femur, tibia and joints entries");
-  static const char* kTypes[kJointsPerLeg] = {"coxa", "femur", "tibia"};
+  // By place in a leg of three joints (docs/user/configuration.md#actuators).
+  constexpr int kTypedLegJoints = 3;
+  static const char* kTypes[kTypedLegJoints] = {"coxa", "femur", "tibia"};
   for (const auto& kv : section) {  // before the values: a misspelt entry is named as such
     const std::string key = kv.first.as<std::string>();
     if (key != "default" && key != "joints" && key != kTypes[0] && key != kTypes[1] &&
@@ -219,11 +221,15 @@ DriveTrainParams read_actuators(Reader& r, const JointFacts& joints) {
       r.fail_unknown("actuators." + key, {"coxa", "default", "femur", "joints", "tibia"});
   }
   const Entry all = read_entry(r, "actuators.default");
-  std::array<Entry, kJointsPerLeg> by_type;
-  for (int j = 0; j < kJointsPerLeg; ++j)
+  std::array<Entry, kTypedLegJoints> by_type;
+  for (int j = 0; j < kTypedLegJoints; ++j)
     by_type[j] = read_entry(r, std::string("actuators.") + kTypes[j]);
-  const std::array<Entry, kJoints> by_joint = read_joint_entries(r, joints);
-  for (int k = 0; k < kJoints; ++k) {
+  const Entry untyped;  // a joint of a leg of other than three joints: no type entry
+  const JointArray<Entry> by_joint = read_joint_entries(r, joints);
+  out.joints.count = joints.count;
+  for (int k = 0; k < joints.count; ++k) {
+    const bool typed = joints.leg_joints[k] == kTypedLegJoints;
+    const Entry& type_entry = typed ? by_type[joints.place[k]] : untyped;
     ActuatorParams& a = out.joints[k];
     // The joint without any entry: the built-in defaults and the URDF's friction.
     ActuatorParams base;
@@ -232,8 +238,7 @@ DriveTrainParams read_actuators(Reader& r, const JointFacts& joints) {
     a = base;
     std::array<bool, 11> given{};
     Inertia inertia;
-    for (const Entry* e :
-         std::array<const Entry*, 3>{&all, &by_type[k % kJointsPerLeg], &by_joint[k]}) {
+    for (const Entry* e : std::array<const Entry*, 3>{&all, &type_entry, &by_joint[k]}) {
       if (!e->model.empty()) {  // another servo: none of a less specific entry's servo values
         for (int i = 0; i < kServoFields; ++i) {
           a.*fields()[i].member = base.*fields()[i].member;
@@ -252,9 +257,9 @@ DriveTrainParams read_actuators(Reader& r, const JointFacts& joints) {
     for (int i : {kGearRatio, kTorqueConstant, kResistance})
       if (!given[i])
         r.fail("actuators.joints." + joints.names[k] + "." + fields()[i].key,
-               std::string("missing, expected it from actuators.default, actuators.") +
-                   kTypes[k % kJointsPerLeg] + ", actuators.joints." + joints.names[k] +
-                   " or their model");
+               std::string("missing, expected it from actuators.default, ") +
+                   (typed ? std::string("actuators.") + kTypes[joints.place[k]] + ", " : "") +
+                   "actuators.joints." + joints.names[k] + " or their model");
     a.armature_kgm2 =
         inertia.motor_side ? a.gear_ratio * a.gear_ratio * inertia.value_kgm2 : inertia.value_kgm2;
     record_joint(r, joints.names[k], a);

@@ -43,11 +43,15 @@ const std::vector<ActuatorKey>& actuator_keys();
 
 class Reader;
 
-/// What the robot says about its joints: names in flat joint order (/model/joint_names)
-/// and the URDF's <dynamics> values (0 for the robot of the YAML keys).
+/// What the robot says about its joints, in flat joint order, the first `count` entries:
+/// names (/model/joint_names), each joint's place in its leg (0 at the hip) and its leg's
+/// joint count (the entries actuators.coxa, femur, tibia apply by place to legs of three
+/// joints), and the URDF's <dynamics> values (0 for the robot of the YAML keys).
 struct JointFacts {
-  std::array<std::string, kJoints> names;
-  std::array<double, kJoints> damping_Nmsprad{}, friction_Nm{};
+  int count = 0;
+  JointArray<std::string> names;
+  JointArray<int> place{}, leg_joints{};
+  JointArray<double> damping_Nmsprad{}, friction_Nm{};
 };
 
 /// Reads `actuators` (absent: present = false and nothing recorded) and records every

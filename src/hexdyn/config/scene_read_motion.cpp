@@ -34,34 +34,34 @@ void read_terrain(Reader& r, TerrainParams& t) {
 
 namespace {
 
-/// gait.phases: {L1: φ, …, L6: φ}, every leg named once, each φ in [0, 1), each read as
-/// gait.phases.L<i> by its row; empty when absent (the wave gait's phases). A leg named twice
-/// is a duplicate key, refused with the file's lines (config/yaml_load.hpp).
-std::vector<double> read_phases(Reader& r) {
+/// gait.phases: {L1: φ, …, Ln: φ}, every leg of the robot named once, each φ in [0, 1), each read
+/// as gait.phases.L<i> by its row; empty when absent (the wave gait's phases). A leg named twice is
+/// a duplicate key, refused with the file's lines (config/yaml_load.hpp).
+std::vector<double> read_phases(Reader& r, int legs) {
   const std::string key = "gait.phases";
   if (!r.given(key)) {
     (void)r.has(key);  // counted as asked for
     return {};
   }
   std::string names;
-  for (int leg = 0; leg < kLegs; ++leg) names += (leg ? ", " : "") + leg_name(leg);
+  for (int leg = 0; leg < legs; ++leg) names += (leg ? ", " : "") + leg_name(leg);
   const YAML::Node node = r.peek(key);
   if (!node.IsMap()) {
     (void)r.node(key);
     r.fail_value(key, node,
-                 "a map {L1: φ, …, L6: φ} naming every leg once (" + names +
+                 "a map {L1: φ, …, " + leg_name(legs - 1) + ": φ} naming every leg once (" + names +
                      "), each φ a lift-off phase in [0, 1)");
   }
   for (const auto& entry : node) {
     const std::string name = entry.first.IsScalar() ? entry.first.Scalar() : "";
     bool known = false;
-    for (int leg = 0; leg < kLegs; ++leg) known = known || name == leg_name(leg);
+    for (int leg = 0; leg < legs; ++leg) known = known || name == leg_name(leg);
     if (!known)
       r.fail(key, "got the key " + yaml_for_message(entry.first) + ", expected leg names (" +
                       names + ")");
   }
   std::vector<double> phases;
-  for (int leg = 0; leg < kLegs; ++leg) {
+  for (int leg = 0; leg < legs; ++leg) {
     if (!node[leg_name(leg)].IsDefined())
       r.fail(key, "got " + yaml_for_message(node) + ", expected a map naming every leg once (" +
                       names + "), " + leg_name(leg) + " missing");
@@ -75,7 +75,7 @@ std::vector<double> read_phases(Reader& r) {
 void read_gait(Reader& r, Scene& s, const LoadedUrdfRobot& urdf) {
   read_table_keys(r, s, "gait");
   GaitParams& g = s.gait;
-  g.liftoff_phases = read_phases(r);
+  g.liftoff_phases = read_phases(r, robot_leg_count(urdf));
   // A URDF robot's footholds default to its nominal stance radius (config/robot_config.hpp),
   // an automatic choice the resolved configuration records beside the value.
   if (urdf.robot && !r.given("gait.foot_lateral")) r.record("auto.gait.foot_lateral", "auto");

@@ -2,13 +2,58 @@
 // Paths, ranges and defaults come from the table (scene_key_table.hpp); rules across keys
 // from key_rules.hpp.
 #include <algorithm>
+#include <iterator>
 
 #include "hexdyn/config/actuators.hpp"
 #include "hexdyn/config/key_rules.hpp"
 #include "hexdyn/config/scene_readers.hpp"
 #include "hexdyn/config/table_keys.hpp"
+#include "hexdyn/model/urdf_robot.hpp"
 
 namespace hexdyn::scene_keys {
+
+namespace {
+
+/// The robot of the YAML keys (config/scene_read_robot.cpp): six legs of three joints.
+constexpr int kYamlLegs = 6;
+constexpr int kYamlLegJoints = 3;
+
+/// The joints of a robot read from a URDF: each leg's, in flat joint order.
+JointFacts urdf_joint_facts(const LoadedUrdfRobot& urdf) {
+  JointFacts joints;
+  const auto& legs = urdf.robot->legs;
+  for (int l = 0; l < robot_leg_count(urdf); ++l) {
+    const int m = legs[l].n_joints();
+    for (int j = 0; j < m; ++j, ++joints.count) {
+      const int k = joints.count;
+      joints.names[k] = urdf.joint_names[k];
+      joints.place[k] = j;
+      joints.leg_joints[k] = m;
+      joints.damping_Nmsprad[k] = urdf.damping_Nmsprad[k];
+      joints.friction_Nm[k] = urdf.friction_Nm[k];
+    }
+  }
+  return joints;
+}
+
+/// The joints of the robot of the YAML keys: positional names (core/common.hpp joint_name).
+JointFacts yaml_joint_facts() {
+  JointFacts joints;
+  for (int l = 0; l < kYamlLegs; ++l)
+    for (int j = 0; j < kYamlLegJoints; ++j, ++joints.count) {
+      joints.names[joints.count] = joint_name(l, j, kYamlLegJoints);
+      joints.place[joints.count] = j;
+      joints.leg_joints[joints.count] = kYamlLegJoints;
+    }
+  return joints;
+}
+
+}  // namespace
+
+int robot_leg_count(const LoadedUrdfRobot& urdf) {
+  if (!urdf.robot) return kYamlLegs;
+  return static_cast<int>(urdf.robot->legs.size());
+}
 
 void read_contact(Reader& r, Scene& s) {
   read_table_keys(r, s, "contact");
@@ -39,9 +84,13 @@ void read_allocation(Reader& r, Scene& s, const LoadedUrdfRobot& urdf) {
   // A URDF robot: its effort limits per joint unless the scene gives one limit for all
   // (allocation.torque_limit: effort names the default).
   if (urdf.robot && r.absent_or_word("allocation.torque_limit", "effort")) {
-    a.joint_torque_limit_Nm = urdf.effort_limit_Nm;
+    JointValues<double> limits;
+    limits.count = urdf_joint_facts(urdf).count;
+    for (int k = 0; k < limits.count; ++k) limits[k] = urdf.effort_limit_Nm[k];
+    a.joint_torque_limit_Nm = limits;
     a.torque_limit_Nm = 0.0;
-    for (double e : urdf.effort_limit_Nm) a.torque_limit_Nm = std::max(a.torque_limit_Nm, e);
+    for (int k = 0; k < limits.count; ++k)
+      a.torque_limit_Nm = std::max(a.torque_limit_Nm, limits[k]);
   } else {
     a.torque_limit_Nm = number_key(r, "allocation.torque_limit");
   }
@@ -58,15 +107,7 @@ void read_allocation(Reader& r, Scene& s, const LoadedUrdfRobot& urdf) {
 /// allocation.objective's dependence on it: copper_loss needs actuators; with them, the
 /// objective is recorded in the resolved configuration.
 void read_drive_train(Reader& r, Scene& s, const LoadedUrdfRobot& urdf) {
-  JointFacts joints;
-  if (urdf.robot) {
-    joints.names = urdf.joint_names;
-    joints.damping_Nmsprad = urdf.damping_Nmsprad;
-    joints.friction_Nm = urdf.friction_Nm;
-  } else {
-    for (int l = 0; l < kLegs; ++l)
-      for (int j = 0; j < kJointsPerLeg; ++j) joints.names[joint_index(l, j)] = joint_name(l, j);
-  }
+  const JointFacts joints = urdf.robot ? urdf_joint_facts(urdf) : yaml_joint_facts();
   s.actuators = read_actuators(r, joints);
   if (s.actuators.present)
     r.record("allocation.objective", YAML::Node(objective_word(s.allocation.objective)));

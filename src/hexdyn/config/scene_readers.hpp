@@ -18,7 +18,10 @@ void read_contact(Reader& r, Scene& s);                                   ///< s
 void read_replay(Reader& r, Scene& s);                                    ///< scene_read_run.cpp
 void read_allocation(Reader& r, Scene& s, const LoadedUrdfRobot& urdf);   ///< scene_read_run.cpp
 void read_drive_train(Reader& r, Scene& s, const LoadedUrdfRobot& urdf);  ///< scene_read_run.cpp
-void read_auto_requests(Reader& r);                                       ///< scene_read_run.cpp
-void read_output(Reader& r, Scene& s);                                    ///< scene_read_run.cpp
+/// The robot's legs: a URDF robot's (its legs read), else the six of the YAML keys
+/// (scene_read_run.cpp).
+int robot_leg_count(const LoadedUrdfRobot& urdf);
+void read_auto_requests(Reader& r);     ///< scene_read_run.cpp
+void read_output(Reader& r, Scene& s);  ///< scene_read_run.cpp
 
 }  // namespace hexdyn::scene_keys

@@ -19,6 +19,25 @@ inline constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 struct UrdfRobot;  // model/urdf_robot.hpp: a hexapod read from a URDF file
 
+/// Values per joint in flat joint order, resolved for a robot of `count` joints (its
+/// RobotModel::joints()): the first `count` entries of a fixed capacity are used.
+template <class T>
+struct JointValues {
+  int count = 0;  ///< joints of the robot the values were resolved for
+  JointArray<T> values{};
+  JointValues() = default;
+  /// The N values of `a` (a robot of N joints).
+  template <std::size_t N>
+  JointValues(const std::array<T, N>& a)  // NOLINT(google-explicit-constructor): a value
+      : count(static_cast<int>(N)) {
+    static_assert(N <= kMaxJoints);
+    for (std::size_t k = 0; k < N; ++k) values[k] = a[k];
+  }
+  int size() const { return count; }
+  T& operator[](int k) { return values[static_cast<std::size_t>(k)]; }
+  const T& operator[](int k) const { return values[static_cast<std::size_t>(k)]; }
+};
+
 /// Mass and principal moments of one rigid body about its centre of mass,
 /// in the body's own frame.
 struct BodyParams {
@@ -209,7 +228,7 @@ struct AllocationParams {
   /// Per-joint |τ| bounds in flat joint order [N m]: a URDF robot's effort limits when the
   /// scene gives no allocation.torque_limit (+inf for a joint without one); unset: the
   /// scalar torque_limit_Nm for every joint.
-  std::optional<std::array<double, kJoints>> joint_torque_limit_Nm;
+  std::optional<JointValues<double>> joint_torque_limit_Nm;
   double min_normal_force_N = 0.0;
   double tolerance = 1e-9;
   double slack_penalty = 1e6;
@@ -234,11 +253,11 @@ struct ActuatorParams {
   double thermal_window_s = kInfinity;      ///< RMS window [s]; inf: the whole run
 };
 
-/// The drive trains of the 18 joints (scene key `actuators`), flat joint order. Absent
+/// The drive trains of the robot's joints (scene key `actuators`), flat joint order. Absent
 /// (present = false): the paper's idealised joints, τ_drive = τ, no electrical results.
 struct DriveTrainParams {
   bool present = false;
-  std::array<ActuatorParams, kJoints> joints;
+  JointValues<ActuatorParams> joints;
 };
 
 enum class OutputGrid { kUniform, kAdaptive };

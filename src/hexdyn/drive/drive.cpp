@@ -43,9 +43,10 @@ class PiecewiseLinear {
 
 }  // namespace
 
-VecJ drive_torque_offset(const DriveTrainParams& drive, const VecJ& qd, const VecJ& qdd) {
-  VecJ d;
-  for (int k = 0; k < kJoints; ++k) {
+JointVector drive_torque_offset(const DriveTrainParams& drive, const JointVector& qd,
+                                const JointVector& qdd) {
+  JointVector d(drive.joints.size());
+  for (int k = 0; k < drive.joints.size(); ++k) {
     const ActuatorParams& a = drive.joints[k];
     d[k] = a.armature_kgm2 * qdd[k] + a.coulomb_friction_Nm * sgn(qd[k]) +
            a.viscous_friction_Nmsprad * qd[k];
@@ -130,13 +131,14 @@ ElectricalResult compute_electrical(const DriveTrainParams& drive, const std::ve
                                     const RowMatrix& qd, const RowMatrix& tau, double total_mass_kg,
                                     double distance_m) {
   const int T = static_cast<int>(t.size());
+  const int J = drive.joints.size();
   ElectricalResult e;
-  e.current_A.resize(T, kJoints);
-  e.power_W.resize(T, kJoints);
+  e.current_A.resize(T, J);
+  e.power_W.resize(T, J);
   e.total_power_W.assign(T, 0.0);
   std::vector<double> copper(T, 0.0), friction(T, 0.0), regenerated(T, 0.0);
   for (int i = 0; i < T; ++i) {
-    for (int k = 0; k < kJoints; ++k) {
+    for (int k = 0; k < J; ++k) {
       const ActuatorParams& a = drive.joints[k];
       const double w = qd(i, k);
       const double I = motor_current(a, tau(i, k), w);
@@ -154,16 +156,16 @@ ElectricalResult compute_electrical(const DriveTrainParams& drive, const std::ve
   e.friction_loss_J = trapezoid(t, friction.data());
   e.regenerated_J = trapezoid(t, regenerated.data());
   e.cost_of_transport = e.energy_J / (total_mass_kg * kGravity * distance_m);
-  e.energy_joint_J.resize(kJoints);
-  e.rms_torque_Nm.resize(kJoints);
-  e.window_rms_torque_Nm.resize(kJoints);
-  e.continuous_torque_Nm.resize(kJoints);
-  for (int k = 0; k < kJoints; ++k) {
+  e.energy_joint_J.resize(J);
+  e.rms_torque_Nm.resize(J);
+  e.window_rms_torque_Nm.resize(J);
+  e.continuous_torque_Nm.resize(J);
+  for (int k = 0; k < J; ++k) {
     e.continuous_torque_Nm[k] = drive.joints[k].continuous_torque_Nm;
-    e.energy_joint_J[k] = trapezoid(t, e.power_W.data() + k, kJoints);
-    e.rms_torque_Nm[k] = largest_window_rms(t, tau.data() + k, kJoints, kInfinity);
+    e.energy_joint_J[k] = trapezoid(t, e.power_W.data() + k, J);
+    e.rms_torque_Nm[k] = largest_window_rms(t, tau.data() + k, J, kInfinity);
     e.window_rms_torque_Nm[k] =
-        largest_window_rms(t, tau.data() + k, kJoints, drive.joints[k].thermal_window_s);
+        largest_window_rms(t, tau.data() + k, J, drive.joints[k].thermal_window_s);
   }
   return e;
 }

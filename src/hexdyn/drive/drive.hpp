@@ -14,9 +14,10 @@
 
 namespace hexdyn {
 
-/// τ_drive − τ_link = J_a q̈ + τ_c sgn(q̇) + b q̇ of every joint [N m], sgn(0) = 0.
-VecJ drive_torque_offset(const DriveTrainParams& drive, const VecJ& qd_radps,
-                         const VecJ& qdd_radps2);
+/// τ_drive − τ_link = J_a q̈ + τ_c sgn(q̇) + b q̇ of every joint [N m], sgn(0) = 0; qd_radps,
+/// qdd_radps2 and the result: drive.joints.size() joints.
+JointVector drive_torque_offset(const DriveTrainParams& drive, const JointVector& qd_radps,
+                                const JointVector& qdd_radps2);
 
 /// Which bound limits |τ_drive| (/solver messages name it): none, the peak rating, or the
 /// voltage (the back-EMF at the joint's speed).
@@ -46,7 +47,8 @@ double motor_current(const ActuatorParams& a, double tau_Nm, double qd_radps);
 double electrical_power(const ActuatorParams& a, double tau_Nm, double qd_radps);
 
 /// The electrical side of a run (core/result.hpp ElectricalResult) from its drive torques and
-/// joint speeds. time_s: T increasing sample times [s]; joint_velocity, drive_torque: T×18;
+/// joint speeds. time_s: T increasing sample times [s]; joint_velocity, drive_torque:
+/// T×drive.joints.size();
 /// total_mass_kg > 0, distance_m > 0 (the cost of transport's m and d).
 ElectricalResult compute_electrical(const DriveTrainParams& drive,
                                     const std::vector<double>& time_s,

@@ -41,7 +41,7 @@ EnvelopeProbe kinematic_probe(const Scene& scene, EnvelopeProbe p) {
                 model, plan_motion_with(scene, model, posture.p0_W, posture.foot_lateral_m), 2000);
   p.passed = m.admitted;
   if (!p.passed) {
-    p.limit = "leg " + leg_name(m.leg) + " " + m.constraint;
+    p.limit = "leg " + model.leg(m.leg).name + " " + m.constraint;
     std::ostringstream s;
     s << "no posture admits the motion; the best (trunk height " << posture.height_m
       << " m, gait.foot_lateral " << posture.foot_lateral_m << " m) leaves " << m.describe();
@@ -65,7 +65,7 @@ RunFriction run_friction(const RunResult& run) {
   RunFriction f;
   for (int i = 0; i < static_cast<int>(d.required_friction.size()); ++i) {
     bool impact = false;
-    for (int leg = 0; leg < kLegs; ++leg)
+    for (int leg = 0; leg < run.kin.contact_phase.cols(); ++leg)
       impact = impact ||
                run.kin.contact_phase(i, leg) == static_cast<std::int8_t>(ContactPhase::kImpact);
     if (impact) continue;
@@ -87,7 +87,7 @@ EnvelopeProbe dynamic_probe(const Scene& scene, EnvelopeProbe p) {
   for (int i = 0; i < static_cast<int>(d.solver_status.size()); ++i) {
     if (d.solver_status[i] == SolverStatus::kOptimal) continue;
     bool impact = false;
-    for (int leg = 0; leg < kLegs; ++leg)
+    for (int leg = 0; leg < run.kin.contact_phase.cols(); ++leg)
       impact = impact ||
                run.kin.contact_phase(i, leg) == static_cast<std::int8_t>(ContactPhase::kImpact);
     if (impact) continue;

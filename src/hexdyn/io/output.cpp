@@ -181,11 +181,13 @@ void check_output_target(const std::string& path, const std::vector<InputFile>& 
       std::cerr << "hexdyn: " << line << "\n";
 }
 
-void check_run_size(std::size_t samples, bool allow_large) {
+void check_run_size(std::size_t samples, int legs, int joints, bool allow_large) {
   if (samples <= kLargeResultSamples || allow_large) return;
   char size[64];
   std::snprintf(size, sizeof size, "%.2g GB",
-                estimated_result_file_bytes(samples, kLegs, kJoints) / 1e9);
+                estimated_result_file_bytes(samples, static_cast<std::size_t>(legs),
+                                            static_cast<std::size_t>(joints)) /
+                    1e9);
   throw ConfigError("run: " + std::to_string(samples) + " output samples, a result file of about " +
                     size + "; more than " + std::to_string(kLargeResultSamples) +
                     " samples (about 0.29 GB) are refused as a likely typing error in output.* "

@@ -77,9 +77,9 @@ void write_layout(H5Writer& writer, const ResultLayout& layout, const std::strin
                   bool dimension_scales = true);
 
 /// Refuses a run of more than kLargeResultSamples output samples unless `allow_large`:
-/// throws ConfigError naming the count and the estimated file size (`hexdyn run
-/// --allow-large`, hexdyn.run(..., allow_large=True)).
-void check_run_size(std::size_t samples, bool allow_large);
+/// throws ConfigError naming the count and the estimated file size of a robot of `legs` legs
+/// and `joints` joints (`hexdyn run --allow-large`, hexdyn.run(..., allow_large=True)).
+void check_run_size(std::size_t samples, int legs, int joints, bool allow_large);
 
 /// Result files of more samples than this are refused before computing unless the run
 /// is asked for explicitly (`hexdyn run --allow-large`): about 290 MB, 200 times the

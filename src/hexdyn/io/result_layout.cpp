@@ -68,17 +68,30 @@ void add_meta(ResultLayout& layout, const RunResult& r) {
        std::string(r.grid.cubic_energy ? s::kEnergyRuleCubic : s::kEnergyRuleTrapezoid)}};
 }
 
-void add_model(Builder& b, const RunResult& r) {
+/// The robot's counts in a result: its legs (/feet/position has three columns a leg) and
+/// joints (its joint names, or /joints/position's columns when it has none).
+struct RobotCounts {
+  int legs = 0, joints = 0;
+};
+RobotCounts robot_counts(const RunResult& r) {
+  const auto joints = r.joint_names.empty() ? static_cast<std::size_t>(r.kin.joint_position.cols())
+                                            : r.joint_names.size();
+  return {static_cast<int>(r.kin.foot_position.cols() / 3), static_cast<int>(joints)};
+}
+
+void add_model(Builder& b, const RunResult& r, RobotCounts n) {
   namespace s = schema;
   std::vector<std::string> joints = r.joint_names, legs;
-  for (int leg = 0; leg < kLegs; ++leg) {
+  // Without the description's names: legs of equal joint counts, positional names.
+  const int leg_joints = n.legs > 0 ? n.joints / n.legs : 0;
+  for (int leg = 0; leg < n.legs; ++leg) {
     legs.push_back(leg_name(leg));
     if (r.joint_names.empty())
-      for (int j = 0; j < kJointsPerLeg; ++j) joints.push_back(joint_name(leg, j));
+      for (int j = 0; j < leg_joints; ++j) joints.push_back(joint_name(leg, j, leg_joints));
   }
-  if (joints.size() != static_cast<std::size_t>(kJoints))
+  if (joints.size() != to_size(n.joints))
     throw IoError(std::string(s::kModelJointNames.path) + " has " + std::to_string(joints.size()) +
-                  " names, expected 18");
+                  " names, expected " + std::to_string(n.joints));
   if (!r.leg_mapping.empty()) b.add(s::kModelLegMapping, {r.leg_mapping.size()}, r.leg_mapping);
   b.add(s::kModelUrdf, {}, r.urdf);
   b.add(s::kModelJointNames, {joints.size()}, joints);
@@ -100,10 +113,12 @@ void add_coordinates(Builder& b, const ResultLayout& layout) {
   b.add(s::kWxyzCoordinate, {4}, std::vector<std::string>{"w", "x", "y", "z"});
 }
 
-void add_kinematics(Builder& b, const KinematicsResult& k, bool sphere_feet) {
+void add_kinematics(Builder& b, const KinematicsResult& k, bool sphere_feet, RobotCounts n) {
   namespace s = schema;
   const int T = k.samples();
   const std::size_t t = to_size(T);
+  const int J = n.joints, L = n.legs;
+  const std::size_t j = to_size(J), l = to_size(L);
   b.vector(s::kTime, k.time_s, t);
   b.matrix(s::kBasePosition, k.base_position, T, 3, {t, 3});
   b.matrix(s::kBaseOrientation, k.base_orientation_wxyz, T, 4, {t, 4});
@@ -111,14 +126,14 @@ void add_kinematics(Builder& b, const KinematicsResult& k, bool sphere_feet) {
   b.matrix(s::kBaseAngularVelocity, k.base_angular_velocity, T, 3, {t, 3});
   b.matrix(s::kBaseLinearAcceleration, k.base_linear_acceleration, T, 3, {t, 3});
   b.matrix(s::kBaseAngularAcceleration, k.base_angular_acceleration, T, 3, {t, 3});
-  b.matrix(s::kJointPosition, k.joint_position, T, kJoints, {t, kJoints});
-  b.matrix(s::kJointVelocity, k.joint_velocity, T, kJoints, {t, kJoints});
-  b.matrix(s::kJointAcceleration, k.joint_acceleration, T, kJoints, {t, kJoints});
-  b.matrix(s::kFeetPosition, k.foot_position, T, 3 * kLegs, {t, kLegs, 3});
-  b.matrix(s::kFeetVelocity, k.foot_velocity, T, 3 * kLegs, {t, kLegs, 3});
-  if (sphere_feet) b.matrix(s::kFeetCenter, k.foot_center, T, 3 * kLegs, {t, kLegs, 3});
+  b.matrix(s::kJointPosition, k.joint_position, T, J, {t, j});
+  b.matrix(s::kJointVelocity, k.joint_velocity, T, J, {t, j});
+  b.matrix(s::kJointAcceleration, k.joint_acceleration, T, J, {t, j});
+  b.matrix(s::kFeetPosition, k.foot_position, T, 3 * L, {t, l, 3});
+  b.matrix(s::kFeetVelocity, k.foot_velocity, T, 3 * L, {t, l, 3});
+  if (sphere_feet) b.matrix(s::kFeetCenter, k.foot_center, T, 3 * L, {t, l, 3});
   b.matrix(s::kComPosition, k.com_position, T, 3, {t, 3});
-  b.matrix(s::kContactPhase, k.contact_phase, T, kLegs, {t, kLegs});
+  b.matrix(s::kContactPhase, k.contact_phase, T, L, {t, l});
   if (!k.sample_kind.empty() && k.sample_kind.size() != t)
     throw IoError(std::string(s::kSampleKind.path) + " has " +
                   std::to_string(k.sample_kind.size()) + " entries, expected " + std::to_string(t));
@@ -144,33 +159,34 @@ void add_gait_and_terrain(ResultLayout& layout, Builder& b, const RunResult& r) 
 }
 
 /// The drive train's datasets (schema.hpp kDriveTrainDatasets), for a scene with actuators.
-void add_drive_train(Builder& b, const DynamicsResult& d, int T) {
+void add_drive_train(Builder& b, const DynamicsResult& d, int T, int J) {
   namespace s = schema;
-  const std::size_t t = to_size(T);
+  const std::size_t t = to_size(T), j = to_size(J);
   const ElectricalResult& e = d.electrical;
-  b.matrix(s::kDriveTorque, d.drive_torque, T, kJoints, {t, kJoints});
-  b.matrix(s::kDriveTorqueLimit, d.drive_torque_limit, T, kJoints, {t, kJoints});
-  b.matrix(s::kMotorCurrent, e.current_A, T, kJoints, {t, kJoints});
-  b.vector(s::kDriveTorqueRms, e.rms_torque_Nm, kJoints);
-  b.vector(s::kDriveTorqueWindowRms, e.window_rms_torque_Nm, kJoints);
-  b.matrix(s::kElectricalPower, e.power_W, T, kJoints, {t, kJoints});
+  b.matrix(s::kDriveTorque, d.drive_torque, T, J, {t, j});
+  b.matrix(s::kDriveTorqueLimit, d.drive_torque_limit, T, J, {t, j});
+  b.matrix(s::kMotorCurrent, e.current_A, T, J, {t, j});
+  b.vector(s::kDriveTorqueRms, e.rms_torque_Nm, j);
+  b.vector(s::kDriveTorqueWindowRms, e.window_rms_torque_Nm, j);
+  b.matrix(s::kElectricalPower, e.power_W, T, J, {t, j});
   b.vector(s::kElectricalTotalPower, e.total_power_W, t);
   b.scalar(s::kEnergyElectrical, e.energy_J);
-  b.vector(s::kEnergyElectricalJoint, e.energy_joint_J, kJoints);
+  b.vector(s::kEnergyElectricalJoint, e.energy_joint_J, j);
   b.scalar(s::kEnergyCopperLoss, e.copper_loss_J);
   b.scalar(s::kEnergyFrictionLoss, e.friction_loss_J);
   b.scalar(s::kEnergyRegenerated, e.regenerated_J);
   b.scalar(s::kCostOfTransportElectrical, e.cost_of_transport);
 }
 
-void add_dynamics(Builder& b, const DynamicsResult& d, int T, std::size_t cycles) {
+void add_dynamics(Builder& b, const DynamicsResult& d, int T, std::size_t cycles, RobotCounts c) {
   namespace s = schema;
-  const std::size_t t = to_size(T);
-  b.matrix(s::kJointTorque, d.joint_torque, T, kJoints, {t, kJoints});
-  b.matrix(s::kContactForce, d.contact_force, T, 3 * kLegs, {t, kLegs, 3});
-  b.matrix(s::kContactPenetration, d.penetration, T, kLegs, {t, kLegs});
-  b.matrix(s::kContactUtilizedFriction, d.utilized_friction, T, kLegs, {t, kLegs});
-  b.matrix(s::kContactSlip, d.slip, T, kLegs, {t, kLegs});
+  const int J = c.joints, L = c.legs;
+  const std::size_t t = to_size(T), j = to_size(J), l = to_size(L);
+  b.matrix(s::kJointTorque, d.joint_torque, T, J, {t, j});
+  b.matrix(s::kContactForce, d.contact_force, T, 3 * L, {t, l, 3});
+  b.matrix(s::kContactPenetration, d.penetration, T, L, {t, l});
+  b.matrix(s::kContactUtilizedFriction, d.utilized_friction, T, L, {t, l});
+  b.matrix(s::kContactSlip, d.slip, T, L, {t, l});
   if (!d.required_friction.empty()) {
     b.vector(s::kRequiredFriction, d.required_friction, t);
     if (d.required_friction_leg.size() != t)
@@ -185,9 +201,9 @@ void add_dynamics(Builder& b, const DynamicsResult& d, int T, std::size_t cycles
   std::vector<double> start(n), duration(n), peak(n), impulse(n), mass(n), speed(n);
   for (std::size_t i = 0; i < n; ++i) {
     const ImpactRecord& im = d.impacts[i];
-    if (im.leg < 0 || im.leg >= kLegs)
+    if (im.leg < 0 || im.leg >= L)
       throw IoError("impact " + std::to_string(i) + " has leg index " + std::to_string(im.leg) +
-                    ", expected 0..5");
+                    ", expected 0.." + std::to_string(L - 1));
     leg[i] = im.leg;
     start[i] = im.t_start_s;
     duration[i] = im.duration_s;
@@ -204,10 +220,10 @@ void add_dynamics(Builder& b, const DynamicsResult& d, int T, std::size_t cycles
   b.vector(s::kImpactEffectiveMass, mass, n);
   b.vector(s::kImpactApproachSpeed, speed, n);
 
-  b.matrix(s::kJointPower, d.joint_power, T, kJoints, {t, kJoints});
+  b.matrix(s::kJointPower, d.joint_power, T, J, {t, j});
   b.vector(s::kTotalPower, d.total_power_W, t);
   b.scalar(s::kEnergyTotal, d.energy_total_J);
-  b.vector(s::kEnergyJoint, d.energy_joint_J, kJoints);
+  b.vector(s::kEnergyJoint, d.energy_joint_J, j);
   b.vector(s::kEnergyCycle, d.energy_cycle_J, cycles);
   b.scalar(s::kCostOfTransport, d.cost_of_transport);
   b.scalar(s::kEnergyDistance, d.distance_m);
@@ -221,7 +237,7 @@ void add_dynamics(Builder& b, const DynamicsResult& d, int T, std::size_t cycles
   b.vector(s::kSolverObjective, d.solver_objective, t);
   b.vector(s::kSolverSeconds, d.solver_seconds, t);
   b.add(s::kSolverMessages, {d.solver_messages.size()}, d.solver_messages);
-  if (d.has_drive()) add_drive_train(b, d, T);
+  if (d.has_drive()) add_drive_train(b, d, T, J);
   // The index coordinates of the dimensions `impact` and `message` (io/labels.hpp).
   for (const auto& [coordinate, size] :
        {std::pair{&s::kImpactCoordinate, n},
@@ -237,13 +253,14 @@ void add_dynamics(Builder& b, const DynamicsResult& d, int T, std::size_t cycles
 ResultLayout result_layout(const RunResult& result) {
   ResultLayout layout;
   Builder b(layout);
+  const RobotCounts counts = robot_counts(result);
   add_meta(layout, result);
-  add_model(b, result);
+  add_model(b, result, counts);
   add_coordinates(b, layout);
-  add_kinematics(b, result.kin, result.sphere_feet);
+  add_kinematics(b, result.kin, result.sphere_feet, counts);
   add_gait_and_terrain(layout, b, result);
   if (result.dyn.present)
-    add_dynamics(b, result.dyn, result.kin.samples(), result.cycle_start_s.size());
+    add_dynamics(b, result.dyn, result.kin.samples(), result.cycle_start_s.size(), counts);
   return layout;
 }
 

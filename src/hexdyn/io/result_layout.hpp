@@ -50,13 +50,16 @@ struct ResultLayout {
 /// URDF, kResultCoordinates, kKinematicDatasets, kSphereFootDatasets when result.sphere_feet,
 /// kDynamicsDatasets, kResultIndexCoordinates). Copies the arrays.
 ///
+/// The robot's L legs are /feet/position's columns / 3 and its J joints result.joint_names'
+/// count (none: /joints/position's columns, legs of J / L joints named L1_coxa … or
+/// L1_j1 …, core/common.hpp joint_name); /model/leg_names are L1 … L{L}.
+///
 /// Preconditions (checked; a mismatch throws IoError "PATH is RxC, expected ..." naming the
 /// dataset): every kinematic array has result.kin.samples() = T rows and its dataset's
-/// column count (T×3, T×4, T×6 or T×18), kin.sample_kind T entries or none (all
+/// column count (T×3, T×4, T×L, T×J or T×3L), kin.sample_kind T entries or none (all
 /// ordinary), terrain_z_m as many as terrain_y_m; when result.dyn.present, the dynamics
-/// arrays have T rows (or T entries), energy_joint_J 18 entries, energy_cycle_J one per
-/// cycle_start_s, every impact a leg index 0..5 (written as is, 0-based); 18 joint names (or
-/// none: then L1_coxa … L6_tibia).
+/// arrays have T rows (or T entries), energy_joint_J J entries, energy_cycle_J one per
+/// cycle_start_s, every impact a leg index 0..L−1 (written as is, 0-based).
 ResultLayout result_layout(const RunResult& result);
 
 }  // namespace hexdyn

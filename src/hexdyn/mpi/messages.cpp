@@ -186,6 +186,12 @@ void append_result(std::vector<char>& b, const Finished& f) {
   put_bytes(b, f.payload.data(), f.payload.size());
 }
 
+void check_row_joints(const ScenarioSummary& row, int joints, const std::string& id, int rank) {
+  if (joints == 0 || row.joints == 0 || row.joints == joints) return;
+  throw Error("sweep: scenario " + id + ": the result from rank " + std::to_string(rank) + " has " +
+              std::to_string(row.joints) + " joints, the sweep's robot " + std::to_string(joints));
+}
+
 std::vector<Finished> unpack_results(const std::vector<char>& bytes) {
   Unpacker u(bytes);
   std::vector<Finished> out;

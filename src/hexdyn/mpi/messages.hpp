@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "hexdyn/sweep/journal.hpp"
+#include "hexdyn/sweep/scenario.hpp"
 #include "hexdyn/sweep/spec.hpp"
 
 namespace hexdyn {
@@ -50,5 +51,11 @@ struct Finished {
 void append_result(std::vector<char>& message, const Finished& f);
 /// The finished scenarios of a result message, in order.
 std::vector<Finished> unpack_results(const std::vector<char>& bytes);
+
+/// Refuses, in one line (hexdyn::Error), the row of scenario `id` from rank `rank` whose
+/// per-joint metrics have another size (ScenarioSummary::joints, which its record carries)
+/// than the sweep's robot's `joints` (0: not known, nothing refused; a row of no computed run
+/// has none).
+void check_row_joints(const ScenarioSummary& row, int joints, const std::string& id, int rank);
 
 }  // namespace hexdyn

@@ -116,6 +116,7 @@ class Coordinator {
     checkpoint_ =
         std::make_unique<Checkpoint>(opt_.output_path, spec_, opt_.keep_runs, opt_.resume);
     factory_ = std::make_unique<ScenarioFactory>(spec_);
+    robot_ = sweep_robot_shape(*factory_);  // one robot shape per sweep, else a ConfigError
   }
 
   const SweepSpec& spec() const { return spec_; }
@@ -419,6 +420,7 @@ class Coordinator {
           checkpoint_->append_row_record(f.index, f.payload.data(), f.payload.size());
       ScenarioRecord r = decode_record(b.payload, b.size, false);
       if (r.summary.index != f.index) throw Error("sweep: a result names the wrong scenario");
+      check_row_joints(r.summary, robot_.joints(), scenario_id(spec_, f.index), worker);
       coord_->on_result(worker, f.index, f.cost_s, out);
       count(worker, f, r.summary);
     }
@@ -453,8 +455,8 @@ class Coordinator {
       if (!have[i]) throw Error("sweep: scenario " + scenario_id(spec_, i) + " has no result");
     const double wall = seconds(Clock::now() - start_);
     checkpoint_->verify();  // a lost checkpoint stops the sweep before it writes (CheckpointLost)
-    write_sweep_file(opt_.output_path, spec_, rows, opt_.keep_runs ? checkpoint_.get() : nullptr,
-                     {mpi_.size(), wall, resumed_});
+    write_sweep_file(opt_.output_path, spec_, rows, robot_,
+                     opt_.keep_runs ? checkpoint_.get() : nullptr, {mpi_.size(), wall, resumed_});
     const std::size_t journals = checkpoint_->journal_count();
     try {
       checkpoint_->remove();
@@ -486,6 +488,7 @@ class Coordinator {
   SweepSpec spec_;
   std::unique_ptr<Checkpoint> checkpoint_;
   std::unique_ptr<ScenarioFactory> factory_;
+  RobotShape robot_;  ///< the scenarios' robot shape (sweep_robot_shape)
   std::unique_ptr<SweepCoordinator> coord_;
   LocalLink local_;
   bool local_ready_seen_ = false;

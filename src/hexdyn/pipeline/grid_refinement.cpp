@@ -60,23 +60,26 @@ struct Batches {
 struct ControlledSeries {
   std::vector<double> t_s;
   std::vector<char> jump;  ///< from a left-limit sample to its event
-  RowMatrix power;         ///< T×18, τ_k ω_k [W]
-  RowMatrix abs_torque;    ///< T×18 [N m]
+  RowMatrix power;         ///< T×joints, τ_k ω_k [W]
+  RowMatrix abs_torque;    ///< T×joints [N m]
   std::vector<double> total_power_W, max_force_N;
-  RowMatrix electrical;        ///< with actuators: T×18, P⁺_k [W]
-  RowMatrix abs_drive_torque;  ///< with actuators: T×18, |τ_drive,k| [N m]
+  RowMatrix electrical;        ///< with actuators: T×joints, P⁺_k [W]
+  RowMatrix abs_drive_torque;  ///< with actuators: T×joints, |τ_drive,k| [N m]
   std::vector<double> total_electrical_W;
   std::vector<SeriesView> terms;
   std::vector<IntegralTarget> integrals;
   std::vector<SeriesView> peaks;
 
-  ControlledSeries(const Batches& b, const DriveTrainParams& drive, Quadrature rule) {
+  /// `joints`, `legs`: the robot's counts (RobotModel::joints(), legs()).
+  ControlledSeries(const Batches& b, const DriveTrainParams& drive, Quadrature rule, int joints,
+                   int legs) {
+    const int J = joints;
     const std::size_t T = b.order.size();
     const auto rows = static_cast<Eigen::Index>(T);
     t_s.resize(T);
     jump.assign(T, 0);
-    power.resize(rows, kJoints);
-    abs_torque.resize(rows, kJoints);
+    power.resize(rows, J);
+    abs_torque.resize(rows, J);
     total_power_W.resize(T);
     max_force_N.assign(T, 0.0);
     for (std::size_t i = 0; i < T; ++i) {
@@ -85,20 +88,20 @@ struct ControlledSeries {
       const DynamicsResult& d = b.dyn_of(r);
       t_s[i] = k.time_s[r.row];
       jump[i] = !k.sample_kind.empty() && k.sample_kind[r.row] == kSampleLeftLimit;
-      const double* tau = d.joint_torque.data() + static_cast<std::size_t>(r.row) * kJoints;
-      const double* omega = k.joint_velocity.data() + static_cast<std::size_t>(r.row) * kJoints;
-      double* p = power.data() + i * kJoints;
-      double* a = abs_torque.data() + i * kJoints;
+      const double* tau = d.joint_torque.data() + static_cast<std::size_t>(r.row) * J;
+      const double* omega = k.joint_velocity.data() + static_cast<std::size_t>(r.row) * J;
+      double* p = power.data() + i * J;
+      double* a = abs_torque.data() + i * J;
       double sum = 0.0;
-      for (int j = 0; j < kJoints; ++j) {
+      for (int j = 0; j < J; ++j) {
         p[j] = tau[j] * omega[j];
         a[j] = std::abs(tau[j]);
         sum += std::abs(p[j]);
       }
       total_power_W[i] = sum;
-      const double* F = d.contact_force.data() + static_cast<std::size_t>(r.row) * 3 * kLegs;
+      const double* F = d.contact_force.data() + static_cast<std::size_t>(r.row) * 3 * legs;
       double f2 = 0.0;
-      for (int l = 0; l < kLegs; ++l)
+      for (int l = 0; l < legs; ++l)
         f2 = std::max(
             f2, F[3 * l] * F[3 * l] + F[3 * l + 1] * F[3 * l + 1] + F[3 * l + 2] * F[3 * l + 2]);
       max_force_N[i] = std::sqrt(f2);
@@ -108,30 +111,30 @@ struct ControlledSeries {
     const double total = trapezoid(t_s, total_power_W.data());
     IntegralTarget all{{}, total};
     const RowMatrix abs_power = power.cwiseAbs();
-    for (int j = 0; j < kJoints; ++j) {
-      terms.push_back({power.data() + j, kJoints});
-      const double energy = trapezoid(t_s, abs_power.data() + j, kJoints);
-      integrals.push_back({{j}, std::max(energy, total / kJoints), rule});
+    for (int j = 0; j < J; ++j) {
+      terms.push_back({power.data() + j, J});
+      const double energy = trapezoid(t_s, abs_power.data() + j, J);
+      integrals.push_back({{j}, std::max(energy, total / J), rule});
       all.terms.push_back(j);
     }
     all.rule = rule;
     integrals.push_back(std::move(all));
-    for (int j = 0; j < kJoints; ++j) peaks.push_back({abs_torque.data() + j, kJoints});
+    for (int j = 0; j < J; ++j) peaks.push_back({abs_torque.data() + j, J});
     peaks.push_back({total_power_W.data(), 1});
     peaks.push_back({max_force_N.data(), 1});
-    if (drive.present) add_drive_train(b, drive);
+    if (drive.present) add_drive_train(b, drive, J);
   }
 
   /// The electrical energies and the drive's peaks, as the mechanical ones above.
-  void add_drive_train(const Batches& b, const DriveTrainParams& drive) {
+  void add_drive_train(const Batches& b, const DriveTrainParams& drive, int J) {
     const std::size_t T = b.order.size();
-    electrical.resize(static_cast<Eigen::Index>(T), kJoints);
-    abs_drive_torque.resize(static_cast<Eigen::Index>(T), kJoints);
+    electrical.resize(static_cast<Eigen::Index>(T), J);
+    abs_drive_torque.resize(static_cast<Eigen::Index>(T), J);
     total_electrical_W.assign(T, 0.0);
     for (std::size_t i = 0; i < T; ++i) {
       const SampleRef& r = b.order[i];
       const auto row = static_cast<Eigen::Index>(r.row);
-      for (int j = 0; j < kJoints; ++j) {
+      for (int j = 0; j < J; ++j) {
         const double tau = b.dyn_of(r).drive_torque(row, j);
         const double omega = b.kin_of(r).joint_velocity(row, j);
         const double p = electrical_power(drive.joints[j], tau, omega);
@@ -143,13 +146,13 @@ struct ControlledSeries {
     const double total = trapezoid(t_s, total_electrical_W.data());
     IntegralTarget all{{}, total};
     const RowMatrix abs_electrical = electrical.cwiseAbs();
-    for (int j = 0; j < kJoints; ++j) {
+    for (int j = 0; j < J; ++j) {
       const int term = static_cast<int>(terms.size());
-      terms.push_back({electrical.data() + j, kJoints});
-      const double energy = trapezoid(t_s, abs_electrical.data() + j, kJoints);
-      integrals.push_back({{term}, std::max(energy, total / kJoints)});
+      terms.push_back({electrical.data() + j, J});
+      const double energy = trapezoid(t_s, abs_electrical.data() + j, J);
+      integrals.push_back({{term}, std::max(energy, total / J)});
       all.terms.push_back(term);
-      peaks.push_back({abs_drive_torque.data() + j, kJoints});
+      peaks.push_back({abs_drive_torque.data() + j, J});
     }
     integrals.push_back(std::move(all));
     peaks.push_back({total_electrical_W.data(), 1});
@@ -188,7 +191,8 @@ GridAccuracy refine_output_grid(const Scene& scene, const PreparedScene& prep,
     std::optional<StageTimer> clock(std::in_place, times, Stage::kRefinement);
     GridAssessment a;
     {
-      const ControlledSeries series(b, scene.actuators, energy_rule(scene.output.grid));
+      const ControlledSeries series(b, scene.actuators, energy_rule(scene.output.grid),
+                                    prep.model.joints(), prep.model.legs());
       a = assess_grid(series.t_s, series.jump, series.terms, series.integrals, series.peaks,
                       assess_tol, kMinRefinedStep_s, &reuse);
     }

@@ -54,10 +54,10 @@ void describe_base_at_root_link(const RobotModel& model, KinematicsResult& kin) 
 constexpr double kTerrainProfileMargin_m = 0.25;
 
 /// /terrain: the height profile over the y-range of every foot and the trunk, with a margin.
-void add_terrain_profile(const TerrainParams& terrain, RunResult& result) {
+void add_terrain_profile(const TerrainParams& terrain, const RobotModel& model, RunResult& result) {
   const KinematicsResult& k = result.kin;
   double y_min = k.base_position.col(1).minCoeff(), y_max = k.base_position.col(1).maxCoeff();
-  for (int l = 0; l < kLegs; ++l) {
+  for (int l = 0; l < model.legs(); ++l) {
     y_min = std::min(y_min, k.foot_position.col(3 * l + 1).minCoeff());
     y_max = std::max(y_max, k.foot_position.col(3 * l + 1).maxCoeff());
   }
@@ -144,12 +144,12 @@ RunResult run_prepared_scene(const Scene& scene, const PreparedScene& prep, std:
                             prep.model.joint_source_names.begin() + prep.model.joints());
   if (scene.robot.urdf) {
     const auto mapping = leg_mapping_entries(*scene.robot.urdf);
-    result.leg_mapping.assign(mapping.begin(), mapping.end());
+    result.leg_mapping.assign(mapping.begin(), mapping.begin() + prep.model.legs());
   }
   result.sphere_feet = has_sphere_feet(prep.model);
   result.total_mass_kg = prep.model.total_mass_kg;
   result.cycle_start_s = prep.plan.trunk.cycle_start_times();
-  add_terrain_profile(prep.plan.terrain.params(), result);
+  add_terrain_profile(prep.plan.terrain.params(), prep.model, result);
   result.wall_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;

@@ -30,11 +30,11 @@ struct SampleSolution {
   /// The back end's outcome (status, iterations, seconds, message); valid until the
   /// solver's next solve.
   const QpOutcome* outcome = nullptr;
-  std::array<Vec3, kLegs> foot_forces_W;  ///< [N], terrain on foot, world axes
-  VecJ joint_torque = VecJ::Zero();       ///< [N m]
+  LegArray<Vec3> foot_forces_W;  ///< [N], terrain on foot, world axes, per leg
+  JointVector joint_torque;      ///< [N m], per joint
   /// With actuators: the drive torques τ + offset and their bounds [N m] (DriveRows).
-  VecJ drive_torque = VecJ::Zero();
-  VecJ drive_limit = VecJ::Zero();
+  JointVector drive_torque;
+  JointVector drive_limit;
   /// Rows and cones the solution violates beyond kViolationThreshold, measured on it
   /// whatever the back end reported, largest first ("trunk force z by 120, torque L1_femur
   /// by 0.45"); empty when none.
@@ -47,7 +47,7 @@ struct SampleSolution {
   /// The grip of the sample (docs/theory/grip.md): |F_t| / F_n per leg (NaN on a swing leg),
   /// the legs whose friction held only with slack, and the required friction (NaN when not
   /// computed or none suffices) with its binding leg and, when NaN, why.
-  std::array<double, kLegs> utilized_friction{};
+  LegArray<double> utilized_friction{};
   LegArray<bool> slip{};
   double required_friction = 0.0;
   bool required_friction_bound = false;  ///< required_friction is an upper bound (kBelow)
@@ -87,11 +87,11 @@ class SampleSolver {
                        double enough = -std::numeric_limits<double>::infinity()) {
     std::optional<StageTimer> clock(std::in_place, times, Stage::kRnea);
     const BaseState base = base_state_at(kin, i);
-    const VecJ q = kin.joint_position.row(i).transpose();
-    const VecJ qd = kin.joint_velocity.row(i).transpose();
-    const VecJ qdd = kin.joint_acceleration.row(i).transpose();
+    const JointVector q = kin.joint_position.row(i).transpose();
+    const JointVector qd = kin.joint_velocity.row(i).transpose();
+    const JointVector qdd = kin.joint_acceleration.row(i).transpose();
     FootNormals normals;  // the surface under each foot: a sphere foot's contact point
-    for (int l = 0; l < kLegs; ++l) normals[l] = c.W_R_contact[l].col(2);
+    for (int l = 0; l < model_.legs(); ++l) normals[l] = c.W_R_contact[l].col(2);
     const ContactSplit& split = contact_split(model_, data_, base, q, qd, qdd, &normals);
     clock.emplace(times, Stage::kAllocation);
     const bool drive = scene_.actuators.present;
@@ -126,11 +126,11 @@ class SampleSolver {
  private:
   /// The drive train's rows of a sample at joint rates qd and accelerations qdd: offsets,
   /// bounds (a joint without a peak or voltage bound keeps the allocation's limit) and weights.
-  void drive_rows(const VecJ& qd, const VecJ& qdd) {
+  void drive_rows(const JointVector& qd, const JointVector& qdd) {
     const DriveTrainParams& drive = scene_.actuators;
     const AllocationParams& alloc = scene_.allocation;
     rows_.offset_Nm = drive_torque_offset(drive, qd, qdd);
-    for (int k = 0; k < kJoints; ++k) {
+    for (int k = 0; k < model_.joints(); ++k) {
       const DriveLimit lim = drive_torque_limit(drive.joints[k], qd[k]);
       rows_.bound[k] = static_cast<std::int8_t>(lim.bound);
       rows_.limit_Nm[k] = lim.bound != DriveBound::kNone ? lim.limit_Nm
@@ -146,7 +146,7 @@ class SampleSolver {
     // force, no friction used. A foot whose force does not press it (a relaxed sample) uses
     // no defined friction: NaN, never +inf (docs/theory/grip.md#utilised-friction).
     const double round_off_N = kRoundOffForce * model_.total_mass_kg * kGravity;
-    for (int l = 0; l < kLegs; ++l) {
+    for (int l = 0; l < model_.legs(); ++l) {
       const Vec3 F_c = c.W_R_contact[l].transpose() * s.foot_forces_W[l];
       const double ft = std::hypot(F_c.x(), F_c.y());
       s.utilized_friction[l] = c.phase[l] == ContactPhase::kSwing
@@ -155,7 +155,8 @@ class SampleSolver {
                                : F_c.z() > 0.0             ? ft / F_c.z()
                                                : std::numeric_limits<double>::quiet_NaN();
     }
-    s.slip = slipping_legs(qp_, layout, s.outcome->x);
+    const auto slipping = slipping_legs(qp_, layout, s.outcome->x);
+    for (int l = 0; l < model_.legs(); ++l) s.slip[l] = slipping[l];
     s.required_friction = std::numeric_limits<double>::quiet_NaN();
     if (!required_) return;
     const bool holds = s.outcome->status == SolverStatus::kOptimal &&
@@ -177,7 +178,7 @@ class SampleSolver {
                            ? r.mu > beyond && required_->needs_more_than(layout, beyond)
                            : r.mu > beyond;
     if (!slips) return;
-    for (int l = 0; l < kLegs; ++l)
+    for (int l = 0; l < model_.legs(); ++l)
       if (leg_friction_use(qp_, layout, s.outcome->x, l) >= mu * (1.0 - 1e-6)) s.slip[l] = true;
     if (r.leg >= 0) s.slip[r.leg] = true;
   }
@@ -185,11 +186,16 @@ class SampleSolver {
   /// The objective's weights of τ_drive²: 1 for torque_squared; for copper_loss each joint's
   /// R / (G k_t η)² over the largest, the same minimiser as the loss itself, while the slack
   /// penalties keep the scale they have against Σ τ² (docs/theory/drive-train.md#objective).
-  static VecJ objective_weights(const Scene& scene) {
-    VecJ w = VecJ::Ones();
+  static JointVector objective_weights(const Scene& scene) {
+    const int joints = scene.actuators.joints.size();
+    JointVector w = JointVector::Ones(joints);
     if (scene.allocation.objective != AllocationObjective::kCopperLoss) return w;
-    for (int k = 0; k < kJoints; ++k) w[k] = copper_loss_weight(scene.actuators.joints[k]);
-    return w / w.maxCoeff();
+    double largest = 0.0;
+    for (int k = 0; k < joints; ++k) {
+      w[k] = copper_loss_weight(scene.actuators.joints[k]);
+      largest = std::max(largest, w[k]);
+    }
+    return w / largest;
   }
 
   const Scene& scene_;
@@ -216,8 +222,8 @@ struct SampleVerdict {
   double max_violation = 0.0;  ///< largest measured violation [N or N m]
 };
 
-SampleVerdict sample_verdict(const SampleSolution& s, const SampleContacts& c,
-                             double torque_limit_Nm) {
+SampleVerdict sample_verdict(const RobotModel& model, const SampleSolution& s,
+                             const SampleContacts& c, double torque_limit_Nm) {
   const QpOutcome& outcome = *s.outcome;
   SampleVerdict v{outcome.status, outcome.message,
                   std::max(outcome.max_violation, s.measured_max_violation)};
@@ -239,22 +245,23 @@ SampleVerdict sample_verdict(const SampleSolution& s, const SampleContacts& c,
     return v;
   }
   std::string legs;
-  for (int l = 0; l < kLegs; ++l)
-    if (c.phase[l] == ContactPhase::kImpact) legs += " " + leg_name(l);
+  for (int l = 0; l < model.legs(); ++l)
+    if (c.phase[l] == ContactPhase::kImpact) legs += " " + model.leg(l).name;
   if (!legs.empty()) v.message += " (impact" + legs + ")";
   return v;
 }
 
-/// A result of T samples, every per-sample field zero (the drive train's too, with `drive`;
-/// the required friction with `required`).
-DynamicsResult empty_result(int T, bool drive, bool required) {
+/// A result of T samples of `model`'s legs and joints, every per-sample field zero (the drive
+/// train's too, with `drive`; the required friction with `required`).
+DynamicsResult empty_result(const RobotModel& model, int T, bool drive, bool required) {
+  const int J = model.joints(), L = model.legs();
   DynamicsResult dyn;
   dyn.present = true;
-  dyn.joint_torque.setZero(T, kJoints);
-  dyn.contact_force.setZero(T, 3 * kLegs);
-  dyn.penetration.setZero(T, kLegs);
-  dyn.utilized_friction.setConstant(T, kLegs, std::numeric_limits<double>::quiet_NaN());
-  dyn.slip.setZero(T, kLegs);
+  dyn.joint_torque.setZero(T, J);
+  dyn.contact_force.setZero(T, 3 * L);
+  dyn.penetration.setZero(T, L);
+  dyn.utilized_friction.setConstant(T, L, std::numeric_limits<double>::quiet_NaN());
+  dyn.slip.setZero(T, L);
   if (required) {
     dyn.required_friction.assign(T, std::numeric_limits<double>::quiet_NaN());
     dyn.required_friction_leg.assign(T, -1);
@@ -266,8 +273,8 @@ DynamicsResult empty_result(int T, bool drive, bool required) {
   dyn.solver_messages.assign(T, std::string());
   dyn.solver_max_violation.assign(T, 0.0);
   if (drive) {
-    dyn.drive_torque.setZero(T, kJoints);
-    dyn.drive_torque_limit.setZero(T, kJoints);
+    dyn.drive_torque.setZero(T, J);
+    dyn.drive_torque_limit.setZero(T, J);
   }
   return dyn;
 }
@@ -286,15 +293,17 @@ DynamicsResult DynamicsSolver::solve(const KinematicsResult& kin, const ContactS
     throw SolverError("solve_dynamics: contact schedule of " +
                       std::to_string(contacts.samples.size()) + " samples, expected " +
                       std::to_string(T));
-  DynamicsResult dyn = empty_result(T, scene_.actuators.present, scene_.output.required_friction);
+  DynamicsResult dyn =
+      empty_result(model_, T, scene_.actuators.present, scene_.output.required_friction);
+  const int L = model_.legs();
   for (int i = 0; i < T; ++i) {
     check_cancelled();
     report_progress("dynamics", i, T, "samples");
     const SampleContacts& c = contacts.samples[i];
     SampleSolver* solver = solver_.get();
     if (warm == WarmStart::kSamePhases) {
-      int key = 0;
-      for (int l = 0; l < kLegs; ++l) key = 3 * key + static_cast<int>(c.phase[l]);
+      int key = 0;  // base 3: 3^kMaxLegs fits an int
+      for (int l = 0; l < L; ++l) key = 3 * key + static_cast<int>(c.phase[l]);
       auto it = std::find_if(by_phases_.begin(), by_phases_.end(),
                              [key](const auto& e) { return e.first == key; });
       if (it == by_phases_.end()) {
@@ -303,14 +312,14 @@ DynamicsResult DynamicsSolver::solve(const KinematicsResult& kin, const ContactS
       }
       solver = it->second.get();
     }
-    const bool transient =
-        std::find(c.phase.begin(), c.phase.end(), ContactPhase::kImpact) != c.phase.end();
+    bool transient = false;
+    for (int l = 0; l < L; ++l) transient = transient || c.phase[l] == ContactPhase::kImpact;
     const SampleSolution solution = solver->solve(kin, i, c, times, enough(transient));
     if (std::isfinite(solution.required_friction) && !solution.required_friction_bound)
       largest_mu_[transient] = std::max(largest_mu_[transient], solution.required_friction);
     const StageTimer clock(times, Stage::kVerdict);
-    SampleVerdict verdict = sample_verdict(solution, c, scene_.allocation.torque_limit_Nm);
-    const VecJ& tau = solution.joint_torque;
+    SampleVerdict verdict = sample_verdict(model_, solution, c, scene_.allocation.torque_limit_Nm);
+    const auto& tau = solution.joint_torque;
     dyn.solver_status[i] = verdict.status;
     dyn.solver_iterations[i] = solution.outcome->iterations;
     dyn.solver_objective[i] =
@@ -322,7 +331,7 @@ DynamicsResult DynamicsSolver::solve(const KinematicsResult& kin, const ContactS
     dyn.solver_seconds[i] = solution.outcome->seconds;
     dyn.solver_max_violation[i] = verdict.max_violation;
     dyn.joint_torque.row(i) = tau.transpose();
-    for (int l = 0; l < kLegs; ++l) {
+    for (int l = 0; l < L; ++l) {
       const Vec3& F_W = solution.foot_forces_W[l];
       dyn.contact_force.row(i).segment<3>(3 * l) = F_W.transpose();
       double delta = c.impact_penetration_m[l];
@@ -330,7 +339,7 @@ DynamicsResult DynamicsSolver::solve(const KinematicsResult& kin, const ContactS
         delta = static_penetration(scene_.contact, std::max(0.0, F_W.dot(c.W_R_contact[l].col(2))));
       dyn.penetration(i, l) = delta;
     }
-    for (int l = 0; l < kLegs; ++l) {
+    for (int l = 0; l < L; ++l) {
       dyn.utilized_friction(i, l) = solution.utilized_friction[l];
       dyn.slip(i, l) = solution.slip[l] ? 1 : 0;
     }
@@ -359,9 +368,10 @@ SampleProblem solve_sample_problem(const Scene& scene, const RobotModel& model,
   SampleProblem p;
   p.qp = solver.problem();
   p.layout = solver.layout();
-  p.phase = c.phase;
+  p.legs = model.legs();
+  for (int l = 0; l < p.legs; ++l) p.phase[l] = c.phase[l];
   p.x = s.outcome->x;
-  p.status = sample_verdict(s, c, scene.allocation.torque_limit_Nm).status;
+  p.status = sample_verdict(model, s, c, scene.allocation.torque_limit_Nm).status;
   p.required_friction = s.required_friction;
   p.required_friction_leg = s.required_friction_leg;
   return p;
@@ -373,7 +383,7 @@ void finish_dynamics(const Scene& scene, const RobotModel& model, const MotionPl
                      const CubicEstimates* estimates) {
   for (const Touchdown& td : touchdowns)
     if (td.transient.truncated && log)
-      *log << "hexdyn: touchdown of " << leg_name(td.leg) << " at t = " << td.t_s
+      *log << "hexdyn: touchdown of " << model.leg(td.leg).name << " at t = " << td.t_s
            << " s: transient " << td.transient.message << "\n";
   dyn.impacts = impact_records(touchdowns);
   EpisodeLog episodes(log);
@@ -383,7 +393,7 @@ void finish_dynamics(const Scene& scene, const RobotModel& model, const MotionPl
       continue;
     }
     bool touchdown = false;  // some leg in its touchdown transient
-    for (int l = 0; l < kLegs && i < kin.contact_phase.rows(); ++l)
+    for (int l = 0; l < model.legs() && i < kin.contact_phase.rows(); ++l)
       touchdown =
           touchdown || kin.contact_phase(i, l) == static_cast<std::int8_t>(ContactPhase::kImpact);
     episodes.add(kin.time_s[i], dyn.solver_status[i], touchdown, dyn.solver_max_violation[i],

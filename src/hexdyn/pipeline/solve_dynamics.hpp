@@ -30,8 +30,9 @@ class SampleSolver;
 struct SampleProblem {
   QpProblem qp;
   AllocationLayout layout;
-  LegArray<ContactPhase> phase{};
-  Eigen::VectorXd x;  ///< the allocation's solution (contact-frame forces [N])
+  int legs = 0;                    ///< the robot's legs: the first entries of phase
+  LegArray<ContactPhase> phase{};  ///< each leg's contact phase
+  Eigen::VectorXd x;               ///< the allocation's solution (contact-frame forces [N])
   SolverStatus status = SolverStatus::kOptimal;
   double required_friction = 0.0;  ///< NaN where none suffices (or not computed)
   int required_friction_leg = -1;
@@ -70,7 +71,7 @@ class DynamicsSolver {
   const Scene& scene_;
   const RobotModel& model_;
   std::unique_ptr<SampleSolver> solver_;
-  /// Solvers by contact phases (WarmStart::kSamePhases), key: the six phases in base 3.
+  /// Solvers by contact phases (WarmStart::kSamePhases), key: the legs' phases in base 3.
   std::vector<std::pair<int, std::unique_ptr<SampleSolver>>> by_phases_;
   /// The largest required friction found so far (not a bound), of samples outside touchdown
   /// transients [0] and inside them [1]; −inf before the first.

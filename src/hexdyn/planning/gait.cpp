@@ -117,14 +117,14 @@ GaitPlan plan_gait(const RobotModel& model, const GaitParams& gait, const TrunkM
   GaitPlan plan;
   const double beta = gait.duty_factor;
   plan.duty_factor = beta;
-  const std::vector<double> phases = liftoff_phases(gait, gait_legs(model));
-  if (phases.size() != plan.liftoff_phase.size())
-    throw std::logic_error("gait: " + std::to_string(phases.size()) + " lift-off phases for " +
-                           std::to_string(plan.liftoff_phase.size()) + " legs");
-  std::copy(phases.begin(), phases.end(), plan.liftoff_phase.begin());
+  plan.liftoff_phase = liftoff_phases(gait, gait_legs(model));
+  if (std::ssize(plan.liftoff_phase) != model.legs())
+    throw std::logic_error("gait: " + std::to_string(plan.liftoff_phase.size()) +
+                           " lift-off phases for " + std::to_string(model.legs()) + " legs");
+  plan.legs.resize(model.legs());
   const double n = trunk.cycles();
   constexpr double kMinSwingPhase = 1e-9;
-  for (int leg = 0; leg < kLegs; ++leg) {
+  for (int leg = 0; leg < model.legs(); ++leg) {
     LegPlan& lp = plan.legs[leg];
     bool first = true;
     Vec3 p_current = Vec3::Zero();

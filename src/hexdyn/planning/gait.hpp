@@ -61,8 +61,8 @@ struct LegPlan {
 
 struct GaitPlan {
   double duty_factor = 0.5;
-  std::array<double, kLegs> liftoff_phase{};
-  std::array<LegPlan, kLegs> legs;
+  std::vector<double> liftoff_phase;  ///< per leg of the model, in [0, 1)
+  std::vector<LegPlan> legs;          ///< per leg of the model (built once per plan)
 };
 
 /// A leg's place in the wave gait: its side (model/robot_model.hpp LegSide), and its rank on

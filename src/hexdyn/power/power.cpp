@@ -59,13 +59,14 @@ const std::vector<std::vector<double>>& joint_interval_energies(
     const KinematicsResult& kin, const RowMatrix& joint_power, const std::vector<char>& jump,
     const CubicEstimates* known, std::vector<std::vector<double>>& own) {
   const std::size_t n = kin.time_s.empty() ? 0 : kin.time_s.size() - 1;
-  bool usable = known && known->t_s == kin.time_s && known->integral.size() >= kJoints;
-  for (int j = 0; usable && j < kJoints; ++j) usable = known->integral[j].size() == n;
+  const int J = static_cast<int>(joint_power.cols());
+  bool usable =
+      known && known->t_s == kin.time_s && known->integral.size() >= static_cast<std::size_t>(J);
+  for (int j = 0; usable && j < J; ++j) usable = known->integral[j].size() == n;
   if (usable) return known->integral;
-  own.assign(kJoints, std::vector<double>(n, 0.0));
+  own.assign(J, std::vector<double>(n, 0.0));
   std::vector<CubicTarget> targets;
-  for (int j = 0; j < kJoints; ++j)
-    targets.push_back({{joint_power.data() + j, kJoints}, own[j].data()});
+  for (int j = 0; j < J; ++j) targets.push_back({{joint_power.data() + j, J}, own[j].data()});
   cubic_abs_integrals_batch(kin.time_s, jump, targets);
   return own;
 }
@@ -77,6 +78,7 @@ PowerResult compute_power(const KinematicsResult& kin, const RowMatrix& joint_to
                           const std::vector<double>& cycle_start_s, Quadrature rule,
                           const CubicEstimates* known) {
   const int T = kin.samples();
+  const int J = static_cast<int>(joint_torque.cols());
   PowerResult p;
   p.joint_power = joint_torque.cwiseProduct(kin.joint_velocity);
   p.total_power_W.assign(T, 0.0);
@@ -87,10 +89,10 @@ PowerResult compute_power(const KinematicsResult& kin, const RowMatrix& joint_to
   std::vector<std::vector<double>> own;
   const std::vector<std::vector<double>>* parts =
       cubic ? &joint_interval_energies(kin, p.joint_power, jump, known, own) : nullptr;
-  p.energy_joint_J.assign(kJoints, 0.0);
-  for (int j = 0; j < kJoints; ++j) {
+  p.energy_joint_J.assign(J, 0.0);
+  for (int j = 0; j < J; ++j) {
     if (!cubic) {
-      p.energy_joint_J[j] = trapezoid(kin.time_s, abs_power.data() + j, kJoints);
+      p.energy_joint_J[j] = trapezoid(kin.time_s, abs_power.data() + j, J);
       continue;
     }
     for (double e : (*parts)[j]) p.energy_joint_J[j] += e;
@@ -108,8 +110,8 @@ PowerResult compute_power(const KinematicsResult& kin, const RowMatrix& joint_to
     const double b = k + 1 < cycle_start_s.size() ? std::min(cycle_start_s[k + 1], t_end) : t_end;
     double e = 0.0;
     if (!cubic) e = trapezoid_between(kin.time_s, p.total_power_W.data(), a, b);
-    for (int j = 0; cubic && j < kJoints; ++j)
-      e += cubic_abs_integral_between(kin.time_s, jump, {p.joint_power.data() + j, kJoints}, a, b,
+    for (int j = 0; cubic && j < J; ++j)
+      e += cubic_abs_integral_between(kin.time_s, jump, {p.joint_power.data() + j, J}, a, b,
                                       (*parts)[j].data());
     p.energy_cycle_J.push_back(e);
   }

@@ -15,9 +15,9 @@ namespace hexdyn {
 
 /// Power and energy of a run (the DynamicsResult fields of the same names).
 struct PowerResult {
-  RowMatrix joint_power;               ///< T×18, P_k = τ_k ω_k [W]
+  RowMatrix joint_power;               ///< T×joints, P_k = τ_k ω_k [W]
   std::vector<double> total_power_W;   ///< T, Σ_k |τ_k ω_k| [W]
-  std::vector<double> energy_joint_J;  ///< 18, ∫|τ_k ω_k| over the samples by the rule [J]
+  std::vector<double> energy_joint_J;  ///< joints, ∫|τ_k ω_k| over the samples by the rule [J]
   double energy_total_J = 0.0;         ///< ∫ total_power_W over the samples by the rule [J]
   std::vector<double> energy_cycle_J;  ///< Y, per gait cycle; sums to energy_total_J [J]
   double distance_m = 0.0;             ///< travel for the cost of transport [m]
@@ -33,10 +33,10 @@ struct PowerResult {
 ///   the end);
 /// - Quadrature::kTrapezoid (the uniform grid): E_k = trapezoid of |τ_k ω_k|, E = trapezoid
 ///   of P_in (= Σ E_k up to rounding), E per gait cycle by trapezoid_between.
-/// joint_torque: T×18 [N m] on the samples of kin; total_mass_kg > 0; distance_m > 0;
+/// joint_torque: T×joints [N m] on the samples of kin; total_mass_kg > 0; distance_m > 0;
 /// cycle_start_s: increasing [s], first 0 (may be empty: no cycles). known (may be null): the
-/// output grid's last assessment (power/grid_error.hpp), whose terms 0 … 17 are τ_k ω_k on
-/// these samples; its interval integrals are taken when its grid is kin.time_s (the same
+/// output grid's last assessment (power/grid_error.hpp), whose first terms (one a joint) are τ_k
+/// ω_k on these samples; its interval integrals are taken when its grid is kin.time_s (the same
 /// numbers, to the bit, as computing them again).
 PowerResult compute_power(const KinematicsResult& kin, const RowMatrix& joint_torque,
                           double total_mass_kg, double distance_m,

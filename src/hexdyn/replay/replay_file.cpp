@@ -39,15 +39,20 @@ std::vector<double> flatten(const std::vector<Row>& rows, std::size_t width, Get
   return out;
 }
 
-std::vector<double> legs3(const std::vector<std::array<Vec3, kLegs>>& rows) {
-  return flatten(rows, 3 * kLegs, [](const auto& r, std::size_t j) { return r[j / 3][j % 3]; });
+/// The first `legs` legs' vectors of each row (per-leg storage of a capacity).
+template <class Row>
+std::vector<double> legs3(const std::vector<Row>& rows, std::size_t legs) {
+  return flatten(rows, 3 * legs, [](const auto& r, std::size_t j) { return r[j / 3][j % 3]; });
 }
-std::vector<double> legs1(const std::vector<std::array<double, kLegs>>& rows) {
-  return flatten(rows, kLegs, [](const auto& r, std::size_t j) { return r[j]; });
+template <class Row>
+std::vector<double> legs1(const std::vector<Row>& rows, std::size_t legs) {
+  return flatten(rows, legs, [](const auto& r, std::size_t j) { return r[j]; });
 }
-std::vector<double> joints(const std::vector<VecJ>& rows) {
-  return flatten(rows, kJoints,
-                 [](const VecJ& r, std::size_t j) { return r[static_cast<Eigen::Index>(j)]; });
+/// The first `joints` entries of each row.
+template <class Row>
+std::vector<double> joints(const std::vector<Row>& rows, std::size_t joints) {
+  return flatten(rows, joints,
+                 [](const Row& r, std::size_t j) { return r[static_cast<Eigen::Index>(j)]; });
 }
 std::vector<double> vec3s(const std::vector<Vec3>& rows) {
   return flatten(rows, 3,
@@ -80,33 +85,34 @@ void add_base(Layout& b, const RobotModel& m, const std::vector<BaseState>& base
 }
 
 void add_series(Layout& b, const RobotModel& m, const ReplayResult& r) {
-  const std::size_t T = r.t_s.size(), J = kJoints, L = kLegs;
+  const std::size_t T = r.t_s.size(), J = static_cast<std::size_t>(m.joints()),
+                    L = static_cast<std::size_t>(m.legs());
   b.add(s::kTime, {T}, r.t_s);
   add_base(b, m, r.base);
-  b.add(s::kJointPosition, {T, J}, joints(r.q));
-  b.add(s::kJointVelocity, {T, J}, joints(r.qd));
-  b.add(s::kJointAcceleration, {T, J}, joints(r.qdd));
-  b.add(s::kJointTorque, {T, J}, joints(r.tau));
-  b.add(s::kContactForce, {T, L, 3}, legs3(r.force_W));
-  b.add(s::kFeetPosition, {T, L, 3}, legs3(r.foot_W));
-  b.add(s::kReplayTrackingError, {T, J}, joints(r.tracking_error));
-  b.add(s::kReplayFeedforward, {T, J}, joints(r.tau_ff));
-  b.add(s::kReplayNormalForce, {T, L}, legs1(r.normal_N));
-  b.add(s::kContactPenetration, {T, L}, legs1(r.penetration_m));
-  b.add(s::kReplaySlipVelocity, {T, L, 3}, legs3(r.slip_velocity_W));
-  b.add(s::kReplaySlipDisplacement, {T, L, 3}, legs3(r.slip_displacement_W));
-  b.add(s::kReplaySlipDistance, {T, L}, legs1(r.slip_distance_m));
+  b.add(s::kJointPosition, {T, J}, joints(r.q, J));
+  b.add(s::kJointVelocity, {T, J}, joints(r.qd, J));
+  b.add(s::kJointAcceleration, {T, J}, joints(r.qdd, J));
+  b.add(s::kJointTorque, {T, J}, joints(r.tau, J));
+  b.add(s::kContactForce, {T, L, 3}, legs3(r.force_W, L));
+  b.add(s::kFeetPosition, {T, L, 3}, legs3(r.foot_W, L));
+  b.add(s::kReplayTrackingError, {T, J}, joints(r.tracking_error, J));
+  b.add(s::kReplayFeedforward, {T, J}, joints(r.tau_ff, J));
+  b.add(s::kReplayNormalForce, {T, L}, legs1(r.normal_N, L));
+  b.add(s::kContactPenetration, {T, L}, legs1(r.penetration_m, L));
+  b.add(s::kReplaySlipVelocity, {T, L, 3}, legs3(r.slip_velocity_W, L));
+  b.add(s::kReplaySlipDisplacement, {T, L, 3}, legs3(r.slip_displacement_W, L));
+  b.add(s::kReplaySlipDistance, {T, L}, legs1(r.slip_distance_m, L));
   b.add(s::kReplayEnergyActuator, {T}, r.actuator_energy_J);
-  b.add(s::kReplayEnergyDamping, {T, L}, legs1(r.damping_energy_J));
-  b.add(s::kReplayEnergySlip, {T, L}, legs1(r.slip_energy_J));
+  b.add(s::kReplayEnergyDamping, {T, L}, legs1(r.damping_energy_J, L));
+  b.add(s::kReplayEnergySlip, {T, L}, legs1(r.slip_energy_J, L));
   b.add(s::kReplayEnergyKinetic, {T}, r.kinetic_J);
   b.add(s::kReplayEnergyPotential, {T}, r.potential_J);
 }
 
-void add_report(Layout& b, const ReplayResult& r) {
-  const std::size_t Y = r.cycle_end_s.size();
-  auto legs = [](const std::array<double, kLegs>& a) {
-    return std::vector<double>(a.begin(), a.end());
+void add_report(Layout& b, const RobotModel& m, const ReplayResult& r) {
+  const std::size_t Y = r.cycle_end_s.size(), L = static_cast<std::size_t>(m.legs());
+  auto legs = [L](const auto& a) {
+    return std::vector<double>(a.begin(), a.begin() + static_cast<std::ptrdiff_t>(L));
   };
   b.add(s::kReplayCycleEnd, {Y}, r.cycle_end_s);
   b.add(s::kReplayPositionDrift, {Y, 3}, vec3s(r.position_drift_m));
@@ -114,9 +120,9 @@ void add_report(Layout& b, const ReplayResult& r) {
   b.scalar(s::kReplayMaxTrackingError, r.max_tracking_error_rad);
   b.add(s::kReplayMaxTrackingErrorJoint, {}, std::vector<std::int32_t>{r.max_tracking_error_joint});
   b.scalar(s::kReplayMaxTrackingErrorTime, r.max_tracking_error_time_s);
-  b.add(s::kReplaySlipDistanceTotal, {kLegs}, legs(r.slip_distance_total_m));
-  b.add(s::kReplaySlipEnergyTotal, {kLegs}, legs(r.slip_energy_total_J));
-  b.add(s::kReplayTouchdownEnergy, {kLegs}, legs(r.damping_total_J));
+  b.add(s::kReplaySlipDistanceTotal, {L}, legs(r.slip_distance_total_m));
+  b.add(s::kReplaySlipEnergyTotal, {L}, legs(r.slip_energy_total_J));
+  b.add(s::kReplayTouchdownEnergy, {L}, legs(r.damping_total_J));
   b.scalar(s::kReplayEnergy, r.energy_J);
   b.scalar(s::kReplayEnergyPlan, r.energy_plan_J);
   b.scalar(s::kReplayActuatorWork, r.actuator_work_J);
@@ -162,7 +168,7 @@ void write_replay_file(const std::string& path, const ReplaySource& source, cons
   Layout b;
   add_model(b, source);
   add_series(b, model, result);
-  add_report(b, result);
+  add_report(b, model, result);
   publish_atomically(path, [&](const std::string& tmp) {
     H5Writer writer(tmp, compressed_output(source.scene.resolved_yaml));
     write_meta(writer, source, result);

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <limits>
 #include <system_error>
 
 #include "hexdyn/core/bytes.hpp"
@@ -147,8 +148,12 @@ void append_record(std::vector<char>& b, const ScenarioRecord& r) {
   put_pod(b, static_cast<std::int32_t>(s.relaxed_gait_samples));
   for (const int* v : int_fields(s)) put_pod(b, static_cast<std::int32_t>(*v));
   for (const double* v : double_fields(s)) put_pod(b, *v);
+  if (s.joints < 0 || s.joints > kMaxJoints)
+    throw IoError("scenario record: " + std::to_string(s.joints) + " joints, expected 0 to " +
+                  std::to_string(kMaxJoints));
+  put_pod(b, static_cast<std::int32_t>(s.joints));
   for (const auto* a : per_joint_metrics(s))
-    for (double v : *a) put_pod(b, v);
+    for (int k = 0; k < s.joints; ++k) put_pod(b, (*a)[static_cast<std::size_t>(k)]);
   put_bytes(b, r.run_image.data(), r.run_image.size());
 }
 
@@ -178,8 +183,14 @@ ScenarioRecord decode_record(const char* data, std::size_t size, bool with_image
   s.relaxed_gait_samples = u.get<std::int32_t>();
   for (int* v : int_fields(s)) *v = u.get<std::int32_t>();
   for (double* v : double_fields(s)) *v = u.get<double>();
-  for (auto* a : per_joint_metrics(s))
-    for (double& v : *a) v = u.get<double>();
+  s.joints = u.get<std::int32_t>();
+  if (s.joints < 0 || s.joints > kMaxJoints)
+    throw IoError("scenario record: " + std::to_string(s.joints) + " joints, expected 0 to " +
+                  std::to_string(kMaxJoints));
+  for (auto* a : per_joint_metrics(s)) {
+    a->fill(std::numeric_limits<double>::quiet_NaN());  // the capacity beyond the robot's
+    for (int k = 0; k < s.joints; ++k) (*a)[static_cast<std::size_t>(k)] = u.get<double>();
+  }
   const std::size_t k = u.length();
   if (image_offset) *image_offset = u.at();
   if (image_size) *image_size = k;

@@ -9,6 +9,7 @@
 
 #include "hexdyn/config/config.hpp"
 #include "hexdyn/core/errors.hpp"
+#include "hexdyn/model/robot_model.hpp"
 #include "hexdyn/pipeline/pipeline.hpp"
 #include "hexdyn/sweep/scenario_factory.hpp"
 
@@ -58,6 +59,35 @@ ScenarioStatus classify_exception(const std::exception& e) {
   return ScenarioStatus::kInternal;
 }
 
+int RobotShape::joints() const {
+  int n = 0;
+  for (int l = 0; l < legs; ++l) n += leg_joints[l];
+  return n;
+}
+
+bool RobotShape::operator==(const RobotShape& other) const {
+  if (legs != other.legs) return false;
+  for (int l = 0; l < legs; ++l)
+    if (leg_joints[l] != other.leg_joints[l]) return false;
+  return true;
+}
+
+std::string RobotShape::text() const {
+  bool equal = true;
+  for (int l = 1; l < legs; ++l) equal = equal && leg_joints[l] == leg_joints[0];
+  std::string counts;
+  for (int l = 0; l < (equal ? std::min(legs, 1) : legs); ++l)
+    counts += (l ? ", " : "") + std::to_string(leg_joints[l]);
+  return std::to_string(legs) + " legs of " + counts + " joints";
+}
+
+RobotShape robot_shape(const RobotModel& model) {
+  RobotShape shape;
+  shape.legs = model.legs();
+  for (int l = 0; l < model.legs(); ++l) shape.leg_joints[l] = model.leg(l).n_joints;
+  return shape;
+}
+
 namespace {
 
 /// The drive train's metrics of a row without actuators: NaN.
@@ -74,20 +104,20 @@ void no_drive_metrics(ScenarioSummary& s) {
 /// run without phases (a result built by hand).
 bool in_transient(const RowMatrixI8& phase, int i) {
   if (i >= phase.rows()) return false;
-  for (int l = 0; l < kLegs; ++l)
+  for (int l = 0; l < phase.cols(); ++l)
     if (phase(i, l) == static_cast<std::int8_t>(ContactPhase::kImpact)) return true;
   return false;
 }
 
 /// max |x_k| over the samples outside touchdown transients (`gait`) and inside them
 /// (`transient`); NaN where no sample is of the kind.
-void split_peaks(const RowMatrix& x, const RowMatrixI8& phase, std::array<double, kJoints>& gait,
-                 std::array<double, kJoints>& transient) {
+void split_peaks(const RowMatrix& x, const RowMatrixI8& phase, JointArray<double>& gait,
+                 JointArray<double>& transient) {
   gait.fill(kNaN);
   transient.fill(kNaN);
   for (int i = 0; i < x.rows(); ++i) {
     auto& peak = in_transient(phase, i) ? transient : gait;
-    for (int k = 0; k < kJoints; ++k)
+    for (int k = 0; k < x.cols(); ++k)
       peak[k] = std::isnan(peak[k]) ? std::abs(x(i, k)) : std::max(peak[k], std::abs(x(i, k)));
   }
 }
@@ -109,7 +139,7 @@ void drive_metrics(const RunResult& run, ScenarioSummary& s) {
   std::copy(e.window_rms_torque_Nm.begin(), e.window_rms_torque_Nm.end(),
             s.drive_torque_window_rms_Nm.begin());
   s.thermal_load = kNaN;  // NaN when no joint has a continuous rating
-  for (int k = 0; k < kJoints; ++k)
+  for (int k = 0; k < static_cast<int>(e.continuous_torque_Nm.size()); ++k)
     if (std::isfinite(e.continuous_torque_Nm[k])) {
       const double load = e.window_rms_torque_Nm[k] / e.continuous_torque_Nm[k];
       s.thermal_load = std::isnan(s.thermal_load) ? load : std::max(s.thermal_load, load);
@@ -191,7 +221,8 @@ ScenarioSummary summarize_run(const RunResult& run, std::size_t index) {
   s.samples = T;
   s.duration_s = T > 0 ? t.back() - t.front() : 0.0;
   const DynamicsResult& d = run.dyn;
-  if (!d.present || d.joint_torque.rows() != T || d.joint_torque.cols() != kJoints) {
+  const int J = static_cast<int>(d.joint_torque.cols());  // the robot's joints
+  if (!d.present || d.joint_torque.rows() != T || J > kMaxJoints) {
     ScenarioSummary f = failed_summary(index, ScenarioStatus::kOk, "");
     f.samples = T;
     f.duration_s = s.duration_s;
@@ -204,12 +235,13 @@ ScenarioSummary summarize_run(const RunResult& run, std::size_t index) {
     s.peak_impact_force_N = std::max(s.peak_impact_force_N, im.peak_force_N);
   for (double p : d.total_power_W) s.peak_power_W = std::max(s.peak_power_W, p);
   for (int i = 0; i < d.contact_force.rows(); ++i)
-    for (int l = 0; l < kLegs; ++l)
+    for (int l = 0; l < d.contact_force.cols() / 3; ++l)
       s.peak_contact_force_N =
           std::max(s.peak_contact_force_N, d.contact_force.row(i).segment<3>(3 * l).norm());
   s.grid_energy_error = run.grid.energy_error;
   s.grid_peak_error = run.grid.peak_error;
-  for (int k = 0; k < kJoints; ++k) {
+  s.joints = J;
+  for (int k = 0; k < J; ++k) {
     double peak = 0.0, integral = 0.0;
     for (int i = 0; i < T; ++i) peak = std::max(peak, std::abs(d.joint_torque(i, k)));
     for (int i = 0; i + 1 < T; ++i) {

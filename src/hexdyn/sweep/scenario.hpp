@@ -17,6 +17,21 @@
 
 namespace hexdyn {
 
+struct RobotModel;
+
+/// The shape of a robot: its legs and each leg's joint count (RobotModel::legs(),
+/// leg(l).n_joints). The scenarios of a sweep have robots of one shape: its per-joint
+/// tables have a column per joint (docs/user/sweeps.md).
+struct RobotShape {
+  int legs = 0;                ///< 0: not known (no scenario's robot was built)
+  LegArray<int> leg_joints{};  ///< the first `legs` entries
+  int joints() const;
+  bool operator==(const RobotShape& other) const;
+  /// "6 legs of 3 joints", "4 legs of 3, 3, 4, 3 joints".
+  std::string text() const;
+};
+RobotShape robot_shape(const RobotModel& model);
+
 /// Outcome of a scenario, stored in /scenarios/status (int8).
 enum class ScenarioStatus : std::int8_t {
   kOk = 0,        ///< computed (relaxed samples are counted, not failures)
@@ -51,11 +66,14 @@ struct ScenarioSummary {
   double peak_contact_force_N = 0.0;  ///< max over samples and legs of |F| [N]
   double grid_energy_error = 0.0;     ///< the run's estimated relative energy error [1]
   double grid_peak_error = 0.0;       ///< the run's estimated relative peak error [1]
-  std::array<double, kJoints> peak_torque_Nm{};  ///< max over samples of |τ_k| [N m]
-  std::array<double, kJoints> rms_torque_Nm{};   ///< time-weighted RMS of τ_k [N m]
+  /// The robot's joints: the entries in use of the per-joint arrays below (0: a row of no
+  /// computed run, whose arrays are NaN through their whole capacity).
+  int joints = 0;
+  JointArray<double> peak_torque_Nm{};  ///< max over samples of |τ_k| [N m]
+  JointArray<double> rms_torque_Nm{};   ///< time-weighted RMS of τ_k [N m]
   /// max |τ_k| over the samples outside touchdown transients (no leg in its impact phase),
   /// and inside them; NaN where there is no such sample [N m]
-  std::array<double, kJoints> peak_torque_gait_Nm{}, peak_torque_transient_Nm{};
+  JointArray<double> peak_torque_gait_Nm{}, peak_torque_transient_Nm{};
   // With actuators (NaN without): electrical energy [J] and cost of transport [1], the peak
   // of the total electrical power [W], the drive torques' split peaks and largest windowed
   // RMS [N m], and the thermal load: max over joints of that RMS / continuous_torque [1].
@@ -63,8 +81,8 @@ struct ScenarioSummary {
   double energy_copper_loss_J = 0.0, energy_friction_loss_J = 0.0, energy_regenerated_J = 0.0;
   double cost_of_transport_electrical = 0.0;
   double peak_electrical_power_W = 0.0;
-  std::array<double, kJoints> peak_drive_torque_gait_Nm{}, peak_drive_torque_transient_Nm{};
-  std::array<double, kJoints> drive_torque_window_rms_Nm{};
+  JointArray<double> peak_drive_torque_gait_Nm{}, peak_drive_torque_transient_Nm{};
+  JointArray<double> drive_torque_window_rms_Nm{};
   double thermal_load = 0.0;
   // Grip (docs/theory/grip.md; schema.hpp's kScenarioRequiredFriction* for the contract): the
   // largest required friction over support samples and over touchdown-transient samples

@@ -10,6 +10,7 @@
 #include "hexdyn/config/scene_tree.hpp"
 #include "hexdyn/config/yaml_load.hpp"
 #include "hexdyn/core/errors.hpp"
+#include "hexdyn/model/robot_model.hpp"
 
 namespace hexdyn {
 
@@ -106,19 +107,65 @@ std::string ScenarioFactory::yaml(std::size_t index) const {
 
 std::string ScenarioFactory::id(std::size_t index) const { return scenario_id(impl_->spec, index); }
 
+void SweepShapeCheck::add(const Scene& scene, const std::string& id) {
+  const void* robot = scene.robot.urdf.get();
+  if (!built_ || robot != last_robot_) {
+    try {
+      last_ = robot_shape(build_robot_model(scene.robot));
+    } catch (const std::exception&) {  // the scenario's own run reports it
+      return;
+    }
+    built_ = true;
+    last_robot_ = robot;
+  }
+  add(last_, id);
+}
+
+void SweepShapeCheck::add(const RobotShape& robot, const std::string& id) {
+  if (shape_.legs == 0) {
+    shape_ = robot;
+    first_id_ = id;
+  } else if (!(robot == shape_)) {
+    throw ConfigError(scenario_source_name(id) + ": robot: a robot of " + robot.text() +
+                      ", the sweep's robot (" + scenario_source_name(first_id_) + ") has " +
+                      shape_.text() +
+                      "; the scenarios of a sweep have robots of one shape (legs and joints "
+                      "per leg)");
+  }
+}
+
+RobotShape sweep_robot_shape(const ScenarioFactory& factory) {
+  SweepShapeCheck shapes;
+  for (std::size_t i = 0; i < factory.scenario_count(); ++i) {
+    std::optional<Scene> scene;
+    try {
+      scene.emplace(factory.scene(i, false));
+    } catch (const std::exception&) {  // a row with status config
+      continue;
+    }
+    shapes.add(*scene, factory.id(i));
+  }
+  return shapes.shape();
+}
+
 SweepScenarioCheck check_sweep_scenarios(const SweepSpec& spec) {
   SweepScenarioCheck check;
   check.scenarios = spec.scenario_count();
   const ScenarioFactory factory(spec);
+  SweepShapeCheck shapes;
   // Every scenario is read, also one holding a value that failed on the base scene alone:
   // a cross-key rule (a ramp against the cruise time) may hold with another axis's value.
   for (std::size_t i = 0; i < check.scenarios; ++i) {
+    std::optional<Scene> scene;
     try {
-      (void)factory.scene(i, false);
+      scene.emplace(factory.scene(i, false));
     } catch (const std::exception& e) {  // as check_scenario: any failure is the row's
       if (check.out_of_range++ == 0) check.first = e.what();
+      continue;
     }
+    shapes.add(*scene, factory.id(i));
   }
+  check.robot = shapes.shape();
   return check;
 }
 

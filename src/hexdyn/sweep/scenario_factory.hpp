@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "hexdyn/core/scene.hpp"
+#include "hexdyn/sweep/scenario.hpp"
 #include "hexdyn/sweep/spec.hpp"
 
 namespace hexdyn {
@@ -44,19 +45,48 @@ class ScenarioFactory {
   std::size_t count_ = 0;
 };
 
+/// The robots of a sweep's scenarios, checked to be of one shape (RobotShape): add each valid
+/// scenario's scene in turn. A robot is built once for each URDF robot the scenes share (their
+/// parsed description) and once for the robot of the YAML keys, whose keys do not change its
+/// legs or joints.
+class SweepShapeCheck {
+ public:
+  /// Throws ConfigError "scenario ID: a robot of 4 legs of 3 joints, the sweep's robot (of
+  /// scenario ID0) has 6 legs of 3 joints; a sweep's robots have one shape ..." for a robot of
+  /// another shape than the first scenario's. A robot that cannot be built is left to its
+  /// scenario's row.
+  void add(const Scene& scene, const std::string& id);
+  /// The same for a robot of shape `robot` (built by the caller).
+  void add(const RobotShape& robot, const std::string& id);
+  /// The first scenario's robot shape (legs 0 when none was built).
+  const RobotShape& shape() const { return shape_; }
+
+ private:
+  RobotShape shape_, last_;
+  std::string first_id_;
+  const void* last_robot_ = nullptr;  ///< the robot last built (its description; null: YAML)
+  bool built_ = false;
+};
+
 /// What `hexdyn validate` (and Python's hexdyn.validate) reports of a sweep's scenarios.
 struct SweepScenarioCheck {
   std::size_t scenarios = 0;     ///< the sweep's scenario count
   std::size_t out_of_range = 0;  ///< scenarios whose scene is not valid (rows with status config)
   std::string first;             ///< the first such scenario's message ("" when none)
+  RobotShape robot;              ///< the scenarios' robot shape (SweepShapeCheck)
 };
+
+/// The robot shape of every valid scenario of `factory`'s sweep (SweepShapeCheck; throws its
+/// ConfigError for a sweep of robots of other shapes).
+RobotShape sweep_robot_shape(const ScenarioFactory& factory);
 
 /// Validates every scenario's scene as the sweep will when the scenario starts
 /// (ScenarioFactory::scene, without the resolved configuration): each axis value and
 /// case is parsed once (the factory), and a scenario is the base tree with its values set,
 /// sharing every map it does not change, so no YAML is parsed or written per scenario.
 /// About 20–30 µs per scenario for the paper robot: a sweep of
-/// kMaxScenarios answers in under 30 s on 2 cores (docs/user/faults.md#sizes).
+/// kMaxScenarios answers in under 30 s on 2 cores (docs/user/faults.md#sizes). Also checks
+/// the scenarios' robots are of one shape (SweepShapeCheck, whose ConfigError it throws).
 SweepScenarioCheck check_sweep_scenarios(const SweepSpec& spec);
 
 }  // namespace hexdyn

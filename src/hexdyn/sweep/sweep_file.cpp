@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <limits>
 
 #include "hexdyn/config/key_units.hpp"
 #include "hexdyn/core/errors.hpp"
@@ -101,7 +102,7 @@ void write_meta(H5Writer& w, const SweepSpec& spec, bool keep_runs, const SweepR
 }
 
 /// /axes/{i}, /joint_names and the coordinates: one per axis at /{key}, /axis, /joint.
-void write_axes(H5Writer& w, Labeller& labels, const SweepSpec& spec) {
+void write_axes(H5Writer& w, Labeller& labels, const SweepSpec& spec, const RobotShape& robot) {
   w.create_group(s::kAxesGroup);
   std::vector<std::string> keys;
   for (std::size_t a = 0; a < spec.axes.size(); ++a) {
@@ -142,8 +143,9 @@ void write_axes(H5Writer& w, Labeller& labels, const SweepSpec& spec) {
     }
   }
   std::vector<std::string> joints;
-  for (int leg = 0; leg < kLegs; ++leg)
-    for (int j = 0; j < kJointsPerLeg; ++j) joints.push_back(joint_name(leg, j));
+  for (int leg = 0; leg < robot.legs; ++leg)
+    for (int j = 0; j < robot.leg_joints[leg]; ++j)
+      joints.push_back(joint_name(leg, j, robot.leg_joints[leg]));
   w.write_strings(s::kSweepJointNames.path, joints, s::kSweepJointNames.units);
   labels.add(s::kSweepJointNames);
   w.write_strings(s::kSweepJointCoordinate.path, joints, s::kSweepJointCoordinate.units);
@@ -206,10 +208,11 @@ void write_scenario_outcomes(H5Writer& w, Labeller& labels,
 }
 
 /// /scenarios' metrics, one column per summary field in scenario order (per joint: n ×
-/// kJoints), with the units their declarations state.
-void write_scenario_metrics(H5Writer& w, Labeller& labels,
-                            const std::vector<ScenarioSummary>& rows) {
+/// joints), with the units their declarations state.
+void write_scenario_metrics(H5Writer& w, Labeller& labels, const std::vector<ScenarioSummary>& rows,
+                            int joints) {
   const std::size_t n = rows.size();
+  const auto J = static_cast<std::size_t>(joints);
   // One column of a summary field, in scenario order.
   const auto doubles = [&](const s::DatasetSpec& d, double ScenarioSummary::*field) {
     std::vector<double> v(n);
@@ -223,13 +226,14 @@ void write_scenario_metrics(H5Writer& w, Labeller& labels,
     write_int32(w, d, {n}, v);
     labels.add(d);
   };
-  using JointArray = std::array<double, kJoints>;
-  const auto per_joint = [&](const s::DatasetSpec& d, JointArray ScenarioSummary::*field) {
-    std::vector<double> v(n * kJoints);
+  const auto per_joint = [&](const s::DatasetSpec& d, JointArray<double> ScenarioSummary::*field) {
+    // A row of no computed run (joints 0) has no values: NaN.
+    std::vector<double> v(n * J, std::numeric_limits<double>::quiet_NaN());
     for (std::size_t i = 0; i < n; ++i)
-      std::copy((rows[i].*field).begin(), (rows[i].*field).end(),
-                v.begin() + static_cast<std::ptrdiff_t>(i * kJoints));
-    write_doubles(w, d, {n, kJoints}, v);
+      if (rows[i].joints == joints)
+        std::copy((rows[i].*field).begin(), (rows[i].*field).begin() + joints,
+                  v.begin() + static_cast<std::ptrdiff_t>(i * J));
+    write_doubles(w, d, {n, J}, v);
     labels.add(d);
   };
   counts(s::kScenarioSamples, &ScenarioSummary::samples);
@@ -276,10 +280,10 @@ void write_scenario_metrics(H5Writer& w, Labeller& labels,
 
 /// /scenarios: one row per scenario; rows[i].index == i.
 void write_scenarios(H5Writer& w, Labeller& labels, const SweepSpec& spec,
-                     const std::vector<ScenarioSummary>& rows) {
+                     const std::vector<ScenarioSummary>& rows, int joints) {
   write_scenario_grid(w, labels, spec, rows.size());
   write_scenario_outcomes(w, labels, rows);
-  write_scenario_metrics(w, labels, rows);
+  write_scenario_metrics(w, labels, rows, joints);
   set_attribute(w, s::kScenariosMissingValues,
                 std::string("metrics are NaN for scenarios whose status is not 0 (ok)"));
 }
@@ -287,8 +291,8 @@ void write_scenarios(H5Writer& w, Labeller& labels, const SweepSpec& spec,
 }  // namespace
 
 void write_sweep_file(const std::string& path, const SweepSpec& spec,
-                      const std::vector<ScenarioSummary>& rows, const Checkpoint* runs_from,
-                      const SweepRunInfo& info) {
+                      const std::vector<ScenarioSummary>& rows, const RobotShape& robot,
+                      const Checkpoint* runs_from, const SweepRunInfo& info) {
   const std::size_t n = spec.scenario_count();
   if (rows.size() != n)
     throw IoError("cannot write '" + path + "': " + std::to_string(rows.size()) + " rows for " +
@@ -297,13 +301,17 @@ void write_sweep_file(const std::string& path, const SweepSpec& spec,
     if (rows[i].index != i)
       throw IoError("cannot write '" + path + "': row " + std::to_string(i) + " holds scenario " +
                     std::to_string(rows[i].index));
+    else if (rows[i].joints != 0 && rows[i].joints != robot.joints())
+      throw IoError("cannot write '" + path + "': scenario " + scenario_id(spec, i) + " has " +
+                    std::to_string(rows[i].joints) + " joints, the sweep's robot " +
+                    std::to_string(robot.joints()));
   check_output_target(path, spec.inputs);
   publish_atomically(path, [&](const std::string& tmp) {
     H5Writer w(tmp, compressed_output(spec.base_config_yaml));
     write_meta(w, spec, runs_from != nullptr, info);
     Labeller labels(w, "");
-    write_axes(w, labels, spec);
-    write_scenarios(w, labels, spec, rows);
+    write_axes(w, labels, spec, robot);
+    write_scenarios(w, labels, spec, rows, robot.joints());
     labels.finish();
     if (runs_from != nullptr) {
       w.create_group(schema::kRunsGroup);

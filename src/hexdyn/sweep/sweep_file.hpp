@@ -25,9 +25,12 @@ struct SweepRunInfo {
 /// scenario, index order) and, when `runs_from` is given, each computed scenario's
 /// run image copied from the checkpoint's journals (Checkpoint::run_image, flushed) to
 /// /runs/<id>. `rows` holds every
-/// scenario, rows[i].index == i. Throws IoError.
+/// scenario, rows[i].index == i. `robot`: the scenarios' robot shape (sweep_robot_shape),
+/// whose joints are /joint_names (positional, core/common.hpp joint_name) and the columns of
+/// the per-joint tables; a row of a computed scenario has as many (ScenarioSummary::joints).
+/// Throws IoError.
 void write_sweep_file(const std::string& path, const SweepSpec& spec,
-                      const std::vector<ScenarioSummary>& rows, const Checkpoint* runs_from,
-                      const SweepRunInfo& info);
+                      const std::vector<ScenarioSummary>& rows, const RobotShape& robot,
+                      const Checkpoint* runs_from, const SweepRunInfo& info);
 
 }  // namespace hexdyn

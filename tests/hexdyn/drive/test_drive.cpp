@@ -36,9 +36,13 @@ bool close(double a, double b, double tol) {
 }  // namespace
 
 TEST_CASE("drive: the torque offset is J_a q̈ + τ_c sgn(q̇) + b q̇ with sgn(0) = 0", "[drive]") {
+  // A hexapod's 18 joints and a robot of 8: the offset has one entry per joint.
+  const int J = GENERATE(18, 8);
+  CAPTURE(J);
   DriveTrainParams drive;
   drive.present = true;
-  VecJ qd = VecJ::Zero(), qdd = VecJ::Zero();
+  drive.joints.count = J;
+  JointVector qd = JointVector::Zero(J), qdd = JointVector::Zero(J);
   // Joint 0: 0.012 · (−3) + 0.1 · 1 + 0.5 · 2 = 1.064.
   drive.joints[0].armature_kgm2 = 0.012;
   drive.joints[0].coulomb_friction_Nm = 0.1;
@@ -65,14 +69,15 @@ TEST_CASE("drive: the torque offset is J_a q̈ + τ_c sgn(q̇) + b q̇ with sgn(
   // Joint 5: the ideal joint of the defaults gives no offset whatever the motion.
   qd[5] = 3.0;
   qdd[5] = -8.0;
-  const VecJ d = drive_torque_offset(drive, qd, qdd);
+  const JointVector d = drive_torque_offset(drive, qd, qdd);
+  REQUIRE(d.size() == J);
   CHECK(d[0] == Approx(1.064).epsilon(1e-14));
   CHECK(d[1] == Approx(0.6).epsilon(1e-14));
   CHECK(d[2] == 1.0);
   CHECK(d[3] == 0.0);
   CHECK(d[4] == 0.7);
   CHECK(d[5] == 0.0);
-  for (int k = 6; k < kJoints; ++k) CHECK(d[k] == 0.0);
+  for (int k = 6; k < J; ++k) CHECK(d[k] == 0.0);
 }
 
 TEST_CASE("drive: the bound of a peak rating alone is the rating at every speed", "[drive]") {
@@ -352,17 +357,17 @@ struct SyntheticRun {
   RowMatrix qd, tau;
 };
 
-SyntheticRun synthetic_run(int T, unsigned seed) {
+SyntheticRun synthetic_run(int T, unsigned seed, int joints) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> step(0.005, 0.08), u(-1.0, 1.0);
   SyntheticRun r;
-  r.qd.resize(T, kJoints);
-  r.tau.resize(T, kJoints);
+  r.qd.resize(T, joints);
+  r.tau.resize(T, joints);
   double t = 0.3;
   for (int i = 0; i < T; ++i) {
     r.t.push_back(t);
     t += step(rng);
-    for (int k = 0; k < kJoints; ++k) {
+    for (int k = 0; k < joints; ++k) {
       r.qd(i, k) = (i + k) % 11 == 0 ? 0.0 : 6.0 * u(rng);
       r.tau(i, k) = (i + 2 * k) % 13 == 0 ? 0.0 : 4.0 * u(rng);
     }
@@ -371,10 +376,11 @@ SyntheticRun synthetic_run(int T, unsigned seed) {
 }
 
 /// Every joint a different drive: G, k_t, R, η, friction, regeneration and window vary.
-DriveTrainParams varied_drive(double efficiency, double regeneration) {
+DriveTrainParams varied_drive(double efficiency, double regeneration, int joints) {
   DriveTrainParams drive;
   drive.present = true;
-  for (int k = 0; k < kJoints; ++k) {
+  drive.joints.count = joints;
+  for (int k = 0; k < joints; ++k) {
     ActuatorParams& a = drive.joints[k];
     a.gear_ratio = 150.0 + 10.0 * k;
     a.torque_constant_NmpA = 0.006 + 0.0002 * k;
@@ -402,8 +408,11 @@ double trapezoid_of(const std::vector<double>& t, F f) {
 }  // namespace
 
 TEST_CASE("drive: the electrical series and energies of a run, computed again", "[drive]") {
-  const SyntheticRun run = synthetic_run(60, 7);
-  const DriveTrainParams drive = varied_drive(-1.0, -1.0);
+  // A hexapod's 18 joints and a quadruped's 12: the joints are the drive's count.
+  const int J = GENERATE(18, 12);
+  CAPTURE(J);
+  const SyntheticRun run = synthetic_run(60, 7, J);
+  const DriveTrainParams drive = varied_drive(-1.0, -1.0, J);
   const double mass_kg = 6.7, distance_m = 0.9;
   const ElectricalResult e = compute_electrical(drive, run.t, run.qd, run.tau, mass_kg, distance_m);
   const int T = static_cast<int>(run.t.size());
@@ -412,10 +421,10 @@ TEST_CASE("drive: the electrical series and energies of a run, computed again", 
   REQUIRE(e.total_power_W.size() == run.t.size());
   // Per sample and joint, from the formulas of
   // docs/theory/drive-train.md#current-and-electrical-power.
-  RowMatrix P(T, kJoints), drawn(T, kJoints), copper(T, kJoints), friction(T, kJoints);
+  RowMatrix P(T, J), drawn(T, J), copper(T, J), friction(T, J);
   for (int i = 0; i < T; ++i) {
     double total = 0.0;
-    for (int k = 0; k < kJoints; ++k) {
+    for (int k = 0; k < J; ++k) {
       const ActuatorParams& a = drive.joints[k];
       const double w = run.qd(i, k), tau = run.tau(i, k),
                    Gk = a.gear_ratio * a.torque_constant_NmpA;
@@ -438,14 +447,14 @@ TEST_CASE("drive: the electrical series and energies of a run, computed again", 
   CHECK(close(e.friction_loss_J, trapezoid_of(run.t, row_sum(friction)), 1e-12));
   const double regenerated = trapezoid_of(run.t, [&](int i) {
     double r = 0.0;
-    for (int k = 0; k < kJoints; ++k) r += drive.joints[k].regeneration * std::max(0.0, -P(i, k));
+    for (int k = 0; k < J; ++k) r += drive.joints[k].regeneration * std::max(0.0, -P(i, k));
     return r;
   });
   CHECK(regenerated > 0.0);
   CHECK(close(e.regenerated_J, regenerated, 1e-12));
-  REQUIRE(e.energy_joint_J.size() == static_cast<std::size_t>(kJoints));
+  REQUIRE(e.energy_joint_J.size() == static_cast<std::size_t>(J));
   double per_joint_sum = 0.0;
-  for (int k = 0; k < kJoints; ++k) {
+  for (int k = 0; k < J; ++k) {
     CHECK(
         close(e.energy_joint_J[k], trapezoid_of(run.t, [&](int i) { return drawn(i, k); }), 1e-12));
     per_joint_sum += e.energy_joint_J[k];
@@ -457,10 +466,10 @@ TEST_CASE("drive: the electrical series and energies of a run, computed again", 
   // its RMS over the run, sqrt(∫ τ² / duration); joint 4's 0.4 s window is within the brute
   // force's bounds for its column.
   const double duration = run.t.back() - run.t.front();
-  REQUIRE(e.rms_torque_Nm.size() == static_cast<std::size_t>(kJoints));
-  REQUIRE(e.window_rms_torque_Nm.size() == static_cast<std::size_t>(kJoints));
-  REQUIRE(e.continuous_torque_Nm.size() == static_cast<std::size_t>(kJoints));
-  for (int k = 0; k < kJoints; ++k) {
+  REQUIRE(e.rms_torque_Nm.size() == static_cast<std::size_t>(J));
+  REQUIRE(e.window_rms_torque_Nm.size() == static_cast<std::size_t>(J));
+  REQUIRE(e.continuous_torque_Nm.size() == static_cast<std::size_t>(J));
+  for (int k = 0; k < J; ++k) {
     const double ms = trapezoid_of(run.t, [&](int i) { return run.tau(i, k) * run.tau(i, k); });
     CHECK(e.rms_torque_Nm[k] == Approx(std::sqrt(ms / duration)).epsilon(1e-13));
     CHECK(e.continuous_torque_Nm[k] == drive.joints[k].continuous_torque_Nm);
@@ -485,8 +494,9 @@ TEST_CASE("drive: with η = 1 and r = 1 the electrical energy is copper loss plu
           "[drive]") {
   // P = R I² + τ q̇ when η = 1, and every negative P returns with r = 1: the energy drawn is
   // the copper loss plus the signed mechanical work ∫ Σ τ q̇, and what returns is ∫ Σ max(0, −P).
-  const SyntheticRun run = synthetic_run(80, 11);
-  const DriveTrainParams drive = varied_drive(1.0, 1.0);
+  const int J = 18;
+  const SyntheticRun run = synthetic_run(80, 11, J);
+  const DriveTrainParams drive = varied_drive(1.0, 1.0, J);
   const ElectricalResult e = compute_electrical(drive, run.t, run.qd, run.tau, 3.2, 1.25);
   const double mechanical =
       trapezoid_of(run.t, [&](int i) { return run.tau.row(i).dot(run.qd.row(i)); });
@@ -495,7 +505,7 @@ TEST_CASE("drive: with η = 1 and r = 1 the electrical energy is copper loss plu
   CHECK(close(e.energy_J, e.copper_loss_J + mechanical, 1e-12));
   const double returned = trapezoid_of(run.t, [&](int i) {
     double r = 0.0;
-    for (int k = 0; k < kJoints; ++k) {
+    for (int k = 0; k < J; ++k) {
       const ActuatorParams& a = drive.joints[k];
       const double I = run.tau(i, k) / (a.gear_ratio * a.torque_constant_NmpA);
       r += std::max(0.0, -(a.resistance_ohm * I * I + run.tau(i, k) * run.qd(i, k)));

@@ -80,42 +80,43 @@ RunResult make_result(int T, bool dynamics, int impacts, int messages, unsigned 
   r.urdf = robot_urdf(model, "hexapod");
   r.total_mass_kg = model.total_mass_kg;
   r.wall_time_s = 1.25;
+  const int J = model.joints(), L = model.legs();
   KinematicsResult& k = r.kin;
   k.time_s.resize(T);
   k.base_position.resize(T, 3);
   k.base_orientation_wxyz.resize(T, 4);
-  k.joint_position.resize(T, kJoints);
-  k.foot_position.resize(T, 3 * kLegs);
+  k.joint_position.resize(T, J);
+  k.foot_position.resize(T, 3 * L);
   k.com_position.resize(T, 3);
-  k.contact_phase.resize(T, kLegs);
+  k.contact_phase.resize(T, L);
   for (int t = 0; t < T; ++t) {
     k.time_s[t] = 0.05 * t;
     const Vec3 p(0.01 * u(rng), 0.412 + 0.1 * t, 0.235 + 0.01 * u(rng));
     const Quat q = Quat(Eigen::AngleAxisd(0.2 + 0.05 * u(rng), Vec3::UnitX())) *
                    Quat(Eigen::AngleAxisd(0.1 * u(rng), Vec3::UnitY()));
     const Mat3 W_R_B = q.toRotationMatrix();
-    VecJ joints;
-    for (int leg = 0; leg < kLegs; ++leg)
-      joints.segment<3>(joint_index(leg, 0)) = test::random_leg_angles(rng);
+    JointVector joints(J);
+    for (int leg = 0; leg < L; ++leg)
+      joints.segment<3>(model.joint(leg, 0)) = test::random_leg_angles(rng);
     BodyPoses poses;
     forward_kinematics_tree(model, joints, poses);
     k.base_position.row(t) = p.transpose();
     k.base_orientation_wxyz.row(t) << q.w(), q.x(), q.y(), q.z();
     k.joint_position.row(t) = joints.transpose();
-    for (int leg = 0; leg < kLegs; ++leg)
+    for (int leg = 0; leg < L; ++leg)
       k.foot_position.block<1, 3>(t, 3 * leg) =
           (p + W_R_B * tree_foot_position_B(model, poses, leg)).transpose();
     k.com_position.row(t) = (p + W_R_B * center_of_mass_B(model, poses)).transpose();
-    for (int leg = 0; leg < kLegs; ++leg)
+    for (int leg = 0; leg < L; ++leg)
       k.contact_phase(t, leg) = static_cast<std::int8_t>((t + leg) % 3);
   }
   k.base_linear_velocity = random_matrix(rng, T, 3);
   k.base_angular_velocity = random_matrix(rng, T, 3);
   k.base_linear_acceleration = random_matrix(rng, T, 3);
   k.base_angular_acceleration = random_matrix(rng, T, 3);
-  k.joint_velocity = random_matrix(rng, T, kJoints);
-  k.joint_acceleration = random_matrix(rng, T, kJoints);
-  k.foot_velocity = random_matrix(rng, T, 3 * kLegs);
+  k.joint_velocity = random_matrix(rng, T, J);
+  k.joint_acceleration = random_matrix(rng, T, J);
+  k.foot_velocity = random_matrix(rng, T, 3 * L);
   k.sample_kind.assign(T, 0);
   for (int t = 1; t < T; t += 3) k.sample_kind[t] = 1;
   r.cycle_start_s = {0.0, 0.05 * T / 3.0, 0.1 * T / 3.0};  // kCycles
@@ -126,18 +127,18 @@ RunResult make_result(int T, bool dynamics, int impacts, int messages, unsigned 
   DynamicsResult& d = r.dyn;
   d.present = dynamics;
   if (!dynamics) return r;
-  d.joint_torque = random_matrix(rng, T, kJoints);
-  d.contact_force = random_matrix(rng, T, 3 * kLegs);
-  d.penetration = random_matrix(rng, T, kLegs);
-  d.utilized_friction = random_matrix(rng, T, kLegs);
-  d.slip = RowMatrixI8::Zero(T, kLegs);
-  for (int t = 0; t < T; t += 2) d.slip(t, t % kLegs) = 1;
+  d.joint_torque = random_matrix(rng, T, J);
+  d.contact_force = random_matrix(rng, T, 3 * L);
+  d.penetration = random_matrix(rng, T, L);
+  d.utilized_friction = random_matrix(rng, T, L);
+  d.slip = RowMatrixI8::Zero(T, L);
+  for (int t = 0; t < T; t += 2) d.slip(t, t % L) = 1;
   d.required_friction = random_vector(rng, T);
   for (int t = 0; t < T; ++t)
     d.required_friction_leg.push_back(static_cast<std::int8_t>(t % 7 - 1));
   for (int i = 0; i < impacts; ++i) {
     ImpactRecord im;
-    im.leg = i % kLegs;
+    im.leg = i % L;
     im.t_start_s = 0.1 * i + 0.01;
     im.duration_s = 0.003 + 1e-4 * i;
     im.peak_force_N = 20.0 + i;
@@ -146,10 +147,10 @@ RunResult make_result(int T, bool dynamics, int impacts, int messages, unsigned 
     im.approach_speed_mps = 0.05;
     d.impacts.push_back(im);
   }
-  d.joint_power = random_matrix(rng, T, kJoints);
+  d.joint_power = random_matrix(rng, T, J);
   d.total_power_W = random_vector(rng, T);
   d.energy_total_J = 12.5;
-  d.energy_joint_J = random_vector(rng, kJoints);
+  d.energy_joint_J = random_vector(rng, J);
   d.energy_cycle_J = random_vector(rng, 3);
   d.distance_m = 0.75;
   d.cost_of_transport = 0.253;

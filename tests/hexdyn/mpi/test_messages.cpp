@@ -2,6 +2,7 @@
 // batches, the stop, result batches and a worker's interruption notice round-trip every field,
 // including empty and binary blocks, and a truncated message is an error rather than garbage.
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <csignal>
 #include <memory>
 #include <string>
@@ -9,6 +10,7 @@
 
 #include "hexdyn/core/errors.hpp"
 #include "hexdyn/mpi/messages.hpp"
+#include "hexdyn/sweep/record.hpp"
 
 using namespace hexdyn;
 
@@ -119,4 +121,33 @@ TEST_CASE("mpi messages: a truncated message throws", "[mpi]") {
 TEST_CASE("mpi messages: a worker's interruption notice names its signal", "[mpi]") {
   CHECK(unpack_interrupted(pack_interrupted(SIGTERM)) == SIGTERM);
   CHECK(unpack_interrupted(pack_interrupted(SIGINT)) == SIGINT);
+}
+
+TEST_CASE("mpi messages: a row carries its joint count, and one of another robot is refused",
+          "[mpi]") {
+  // A quadruped's row of 12 joints travels in a result message (its record, record.hpp).
+  ScenarioSummary row = failed_summary(4, ScenarioStatus::kOk, "");
+  row.joints = 12;
+  for (int k = 0; k < row.joints; ++k) row.peak_torque_Nm[static_cast<std::size_t>(k)] = 0.5 * k;
+  Finished f;
+  f.index = 4;
+  f.payload = encode_record({row, {}});
+  std::vector<char> message;
+  append_result(message, f);
+  const std::vector<Finished> back = unpack_results(message);
+  REQUIRE(back.size() == 1);
+  const ScenarioSummary got = decode_record(back[0].payload.data(), back[0].payload.size()).summary;
+  CHECK(got.joints == 12);
+  for (int k = 0; k < 12; ++k) CHECK(got.peak_torque_Nm[static_cast<std::size_t>(k)] == 0.5 * k);
+  CHECK(std::isnan(got.peak_torque_Nm[12]));  // beyond the robot's joints: nothing sent
+  // The coordinator of a sweep of that robot takes it; one of an 18-joint robot refuses it.
+  CHECK_NOTHROW(check_row_joints(got, 12, "000004", 2));
+  CHECK_THROWS_WITH(check_row_joints(got, 18, "000004", 2),
+                    "sweep: scenario 000004: the result from rank 2 has 12 joints, the sweep's "
+                    "robot 18");
+  // A row of no computed run has no per-joint values: nothing to refuse.
+  CHECK_NOTHROW(check_row_joints(failed_summary(5, ScenarioStatus::kReach, "x"), 18, "000005", 1));
+  // A record claiming more joints than any robot has is refused.
+  row.joints = kMaxJoints + 1;
+  CHECK_THROWS_AS(encode_record({row, {}}), IoError);
 }

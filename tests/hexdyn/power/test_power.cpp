@@ -91,6 +91,9 @@ TEST_CASE("compute_power: cubic energies of cubic powers per piece, and the know
   // Joint j's power τ ω is a cubic (t − r1)(t − r2)(t − r3 − j/40) on [0, 1 − 1e-10] and a
   // quadratic 0.5 − t² + j/50 after the jump at 1 (a left-limit sample 1e-10 s before it): the
   // rule integrates |τ ω| exactly on each piece, from the antiderivative split at the roots.
+  // For a hexapod's 18 joints and a quadruped's 12: the joints are the torques' columns.
+  const int J = GENERATE(18, 12);
+  CAPTURE(J);
   std::vector<double> t;
   for (int k = 0; k <= 23; ++k) t.push_back(std::pow(k / 23.0, 1.2) * (1.0 - 1e-10));
   for (int k = 0; k <= 30; ++k) t.push_back(1.0 + k / 30.0);
@@ -99,19 +102,19 @@ TEST_CASE("compute_power: cubic energies of cubic powers per piece, and the know
   kin.time_s = t;
   kin.sample_kind.assign(t.size(), 0);
   kin.sample_kind[23] = 1;
-  kin.joint_velocity.resize(T, kJoints);
-  RowMatrix torque(T, kJoints);
+  kin.joint_velocity.resize(T, J);
+  RowMatrix torque(T, J);
   const auto power = [](int j, double x) {
     return x < 1.0 ? (x - 0.1) * (x - 0.45) * (x - 0.8 - j / 40.0) : 0.5 - x * x + j / 50.0;
   };
   for (Eigen::Index i = 0; i < T; ++i)
-    for (int j = 0; j < kJoints; ++j) {
+    for (int j = 0; j < J; ++j) {
       torque(i, j) = 2.0 + j;  // ω = P / τ
       kin.joint_velocity(i, j) = power(j, t[i]) / (2.0 + j);
     }
   const PowerResult p = compute_power(kin, torque, 10.0, 1.0, {0.0, 0.55, 1.5});
   double total = 0.0;
-  for (int j = 0; j < kJoints; ++j) {
+  for (int j = 0; j < J; ++j) {
     // ∫|P| piece by piece, by fine midpoint sums of the closed forms (independent of the rule).
     double exact = 0.0;
     const int n = 400000;
@@ -132,13 +135,13 @@ TEST_CASE("compute_power: cubic energies of cubic powers per piece, and the know
   // the energies are the same bits; given another grid's, they are computed as before.
   CubicEstimates known;
   known.t_s = t;
-  known.integral.resize(kJoints);
+  known.integral.resize(J);
   std::vector<double> ignored;
   const RowMatrix joint_power = torque.cwiseProduct(kin.joint_velocity);
   std::vector<char> jump(t.size(), 0);
   jump[23] = 1;
-  for (int j = 0; j < kJoints; ++j)
-    cubic_abs_integrals(t, jump, {joint_power.data() + j, kJoints}, known.integral[j], &ignored);
+  for (int j = 0; j < J; ++j)
+    cubic_abs_integrals(t, jump, {joint_power.data() + j, J}, known.integral[j], &ignored);
   const PowerResult q =
       compute_power(kin, torque, 10.0, 1.0, {0.0, 0.55, 1.5}, Quadrature::kCubic, &known);
   CHECK(q.energy_joint_J == p.energy_joint_J);

@@ -78,9 +78,9 @@ inline YAML::Node at(const YAML::Node& root, const std::string& dotted) {
 }
 
 /// A run with torques τ_k(t) = a_k + b_k t on a grid that is uniform except for a dense
-/// cluster of samples (as the adaptive grid has at touchdowns).
+/// cluster of samples (as the adaptive grid has at touchdowns), for `joints` joints.
 inline hexdyn::RunResult linear_torque_run(double t0, double t1, std::vector<double>& a,
-                                           std::vector<double>& b) {
+                                           std::vector<double>& b, int joints = 18) {
   std::vector<double> t;
   const int coarse = 2000;
   for (int i = 0; i <= coarse; ++i) t.push_back(t0 + (t1 - t0) * i / coarse);
@@ -90,10 +90,10 @@ inline hexdyn::RunResult linear_torque_run(double t0, double t1, std::vector<dou
   hexdyn::RunResult r;
   r.kin.time_s = t;
   r.dyn.present = true;
-  r.dyn.joint_torque.resize(T, hexdyn::kJoints);
-  a.resize(hexdyn::kJoints);
-  b.resize(hexdyn::kJoints);
-  for (int k = 0; k < hexdyn::kJoints; ++k) {
+  r.dyn.joint_torque.resize(T, joints);
+  a.resize(static_cast<std::size_t>(joints));
+  b.resize(static_cast<std::size_t>(joints));
+  for (int k = 0; k < joints; ++k) {
     a[k] = 0.3 * (k - 8.5);
     b[k] = 0.1 * ((k * 7) % 5 - 2);
     for (int i = 0; i < T; ++i) r.dyn.joint_torque(i, k) = a[k] + b[k] * t[i];

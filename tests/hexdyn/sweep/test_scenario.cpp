@@ -57,8 +57,12 @@ TEST_CASE("sweep: exceptions map to statuses", "[sweep]") {
 TEST_CASE("sweep: summary metrics against closed forms", "[sweep]") {
   const double t0 = 0.5, t1 = 3.0;
   std::vector<double> a, b;
-  const RunResult run = linear_torque_run(t0, t1, a, b);
+  // A hexapod's 18 joints and a quadruped's 12: the summary has one entry per joint.
+  const int J = GENERATE(18, 12);
+  CAPTURE(J);
+  const RunResult run = linear_torque_run(t0, t1, a, b, J);
   const ScenarioSummary s = summarize_run(run, 7);
+  CHECK(s.joints == J);
   CHECK(s.index == 7);
   CHECK(s.status == ScenarioStatus::kOk);
   CHECK(s.message.empty());
@@ -70,7 +74,7 @@ TEST_CASE("sweep: summary metrics against closed forms", "[sweep]") {
   CHECK(s.peak_impact_force_N == 64.5);
   CHECK(s.relaxed_samples == 2);
   CHECK(s.failed_samples == 1);
-  for (int k = 0; k < kJoints; ++k) {
+  for (int k = 0; k < J; ++k) {
     // |a + b t| is largest at an end of the interval.
     const double peak = std::max(std::abs(a[k] + b[k] * t0), std::abs(a[k] + b[k] * t1));
     // ∫ (a + b t)² dt = [(a + b t)³ / (3 b)] or a² (t1 − t0) when b = 0.
@@ -88,16 +92,17 @@ TEST_CASE("sweep: summary of a constant torque and of a single sample", "[sweep]
   RunResult r;
   r.kin.time_s = {0.0, 0.1, 0.35, 1.0};
   r.dyn.present = true;
-  r.dyn.joint_torque = RowMatrix::Constant(4, kJoints, -1.5);
+  const int J = 18;
+  r.dyn.joint_torque = RowMatrix::Constant(4, J, -1.5);
   r.dyn.solver_status.assign(4, SolverStatus::kOptimal);
   const ScenarioSummary s = summarize_run(r, 0);
   CHECK(s.peak_impact_force_N == 0.0);
-  for (int k = 0; k < kJoints; ++k) {
+  for (int k = 0; k < J; ++k) {
     CHECK(s.peak_torque_Nm[k] == 1.5);
     CHECK(s.rms_torque_Nm[k] == Approx(1.5).epsilon(1e-14));
   }
   r.kin.time_s = {0.2};
-  r.dyn.joint_torque = RowMatrix::Constant(1, kJoints, 2.0);
+  r.dyn.joint_torque = RowMatrix::Constant(1, J, 2.0);
   r.dyn.solver_status.assign(1, SolverStatus::kOptimal);
   const ScenarioSummary one = summarize_run(r, 0);
   CHECK(one.duration_s == 0.0);

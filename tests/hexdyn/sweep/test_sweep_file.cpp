@@ -32,7 +32,7 @@ TEST_CASE("sweep: the sweep file holds axes, rows in index order and kept runs",
     rows[i] = decode_record(ev.payload.data(), ev.payload.size()).summary;
   }
   cp.flush(false);
-  write_sweep_file(out, spec, rows, &cp, {2, 3.5, 1});
+  write_sweep_file(out, spec, rows, sweep_robot_shape(factory), &cp, {2, 3.5, 1});
   const H5Reader r(out);
   CHECK(r.string_attribute("/meta", "schema") == schema::kSweepSchema);
   CHECK(r.int_attribute("/meta", "schema_version") == 3);
