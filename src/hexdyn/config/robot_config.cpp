@@ -72,8 +72,13 @@ LoadedUrdfRobot load_urdf_robot(const UrdfRobotKeys& keys) {
   LoadedUrdfRobot out;
   auto robot = std::make_shared<UrdfRobot>(read_urdf_robot_from_string(text, keys.path, opt));
   const RobotModel model = build_robot_model(*robot, keys.ik_min_margin_m);
+  out.stance.resize(model.legs());
   for (int leg = 0; leg < model.legs(); ++leg) {
-    const auto& pose = keys.nominal_pose_rad[leg];
+    // robot.nominal_pose names at most six legs (config/leg_keys.hpp): a seventh and eighth
+    // leg stand at their default pose.
+    const std::optional<Vec3> pose = leg < static_cast<int>(keys.nominal_pose_rad.size())
+                                         ? keys.nominal_pose_rad[leg]
+                                         : std::nullopt;
     out.stance[leg] = pose ? stance_at_pose(model, leg, *pose, "robot.nominal_pose")
                            : default_nominal_stance(model, leg);
     for (int j = 0; j < model.leg(leg).n_joints; ++j) {

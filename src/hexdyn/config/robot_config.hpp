@@ -64,9 +64,9 @@ struct UrdfRobotKeys {
 /// A loaded URDF robot with its nominal stance (model/stance.hpp), legs L1 … L6.
 struct LoadedUrdfRobot {
   std::shared_ptr<const UrdfRobot> robot;
-  std::array<NominalStance, kLegs> stance;  ///< each leg's pose and how it was obtained
-  double stance_radius_m = 0.0;             ///< the stance radius, model/stance.hpp stance_mean [m]
-  double stance_depth_m = 0.0;              ///< the same legs' mean hip height above the foot [m]
+  std::vector<NominalStance> stance;  ///< each leg's pose and how it was obtained
+  double stance_radius_m = 0.0;       ///< the stance radius, model/stance.hpp stance_mean [m]
+  double stance_depth_m = 0.0;        ///< the same legs' mean hip height above the foot [m]
   std::array<double, kJoints> effort_limit_Nm{};  ///< +inf: none given
   /// <dynamics damping friction> by joint, 0 when not given [N m s/rad], [N m].
   std::array<double, kJoints> damping_Nmsprad{}, friction_Nm{};

@@ -16,7 +16,7 @@ std::array<std::optional<Vec3>, kLegs> read_nominal_pose(scene_keys::Reader& r) 
 
 void check_nominal_pose(scene_keys::Reader& r, const std::array<std::optional<Vec3>, kLegs>& pose,
                         const UrdfRobot& robot) {
-  for (int leg = 0; leg < kLegs; ++leg) {
+  for (int leg = 0; leg < static_cast<int>(robot.legs.size()) && leg < kLegs; ++leg) {
     if (!pose[leg]) continue;
     const UrdfLeg& l = robot.legs[leg];
     const Vec3& q = *pose[leg];
@@ -31,9 +31,9 @@ void check_nominal_pose(scene_keys::Reader& r, const std::array<std::optional<Ve
   }
 }
 
-void record_stance(scene_keys::Reader& r, const std::array<NominalStance, kLegs>& stance) {
+void record_stance(scene_keys::Reader& r, std::span<const NominalStance> stance) {
   YAML::Node legs(YAML::NodeType::Map);
-  for (int leg = 0; leg < kLegs; ++leg) {
+  for (int leg = 0; leg < static_cast<int>(stance.size()); ++leg) {
     const NominalStance& s = stance[leg];
     YAML::Node q(YAML::NodeType::Sequence);
     for (int j = 0; j < kJointsPerLeg; ++j) q.push_back(s.q[j]);

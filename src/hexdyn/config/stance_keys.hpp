@@ -4,6 +4,7 @@
 /// checked, and the stance it gave recorded in the resolved configuration.
 #include <array>
 #include <optional>
+#include <span>
 
 #include "hexdyn/config/scene_key_reader.hpp"
 #include "hexdyn/core/scene.hpp"
@@ -24,6 +25,6 @@ void check_nominal_pose(scene_keys::Reader& r, const std::array<std::optional<Ve
 /// auto.robot.nominal_pose of the resolved configuration: for each leg, the pose its stance
 /// stood at, how it was obtained, its radius and depth (model/stance.hpp), written anew by
 /// every read (docs/user/configuration.md#automatic-choices-in-the-resolved-configuration).
-void record_stance(scene_keys::Reader& r, const std::array<NominalStance, kLegs>& stance);
+void record_stance(scene_keys::Reader& r, std::span<const NominalStance> stance);
 
 }  // namespace hexdyn

@@ -93,7 +93,7 @@ struct RobotParams {
   /// it and every field above except ik_min_margin_m is unused.
   std::shared_ptr<const UrdfRobot> urdf;
   /// A URDF robot's standing pose of each leg, L1 … L6 (unused for the YAML robot).
-  std::array<NominalStance, kLegs> stance;
+  std::vector<NominalStance> stance;
 };
 
 enum class TerrainType { kFlat, kSlope, kStairs };

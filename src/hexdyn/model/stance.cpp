@@ -41,12 +41,13 @@ NominalStance default_nominal_stance(const RobotModel& model, int leg) {
   return s;
 }
 
-StanceMean stance_mean(const std::array<NominalStance, kLegs>& stance) {
+StanceMean stance_mean(std::span<const NominalStance> stance) {
   StanceMean m;
-  for (int leg = 0; leg < kLegs; ++leg)
+  const int n = static_cast<int>(stance.size());
+  for (int leg = 0; leg < n; ++leg)
     if (stance[leg].from_pose) m.legs.push_back(leg);
   if (m.legs.empty())
-    for (int leg = 0; leg < kLegs; ++leg) m.legs.push_back(leg);
+    for (int leg = 0; leg < n; ++leg) m.legs.push_back(leg);
   for (int leg : m.legs) {
     m.radius_m += stance[leg].radius_m;
     m.depth_m += stance[leg].depth_m;
@@ -58,19 +59,22 @@ StanceMean stance_mean(const std::array<NominalStance, kLegs>& stance) {
 
 namespace {
 
-/// "the mean over L1, L2, L4" or "the mean over all six legs, none at its pose".
-std::string mean_words(const StanceMean& m, const std::array<NominalStance, kLegs>& stance) {
-  if (!stance[m.legs.front()].from_pose) return "the mean over all six legs, none at its pose";
+/// "the mean over L1, L2, L4" or "the mean over all " + std::to_string(stance.size()) + " legs,
+/// none at its pose".
+std::string mean_words(const StanceMean& m, std::span<const NominalStance> stance) {
+  if (!stance[m.legs.front()].from_pose)
+    return "the mean over all " + std::to_string(stance.size()) + " legs, none at its pose";
   std::string names;
   for (int leg : m.legs) names += (names.empty() ? "" : ", ") + leg_name(leg);
-  return "the mean over " + names + (m.legs.size() < kLegs ? ", the legs at their pose" : "");
+  return "the mean over " + names +
+         (m.legs.size() < stance.size() ? ", the legs at their pose" : "");
 }
 
 }  // namespace
 
-std::string stance_text(const std::array<NominalStance, kLegs>& stance) {
+std::string stance_text(std::span<const NominalStance> stance) {
   std::ostringstream s;
-  for (int leg = 0; leg < kLegs; ++leg) {
+  for (int leg = 0; leg < static_cast<int>(stance.size()); ++leg) {
     const NominalStance& l = stance[leg];
     s << leg_name(leg) << ": " << l.source << ", q [" << l.q.x() << ", " << l.q.y() << ", "
       << l.q.z() << "] rad, radius " << l.radius_m << " m, depth " << l.depth_m << " m\n";
@@ -81,11 +85,11 @@ std::string stance_text(const std::array<NominalStance, kLegs>& stance) {
   return s.str();
 }
 
-std::vector<std::string> stance_fallback_warnings(const std::array<NominalStance, kLegs>& stance) {
+std::vector<std::string> stance_fallback_warnings(std::span<const NominalStance> stance) {
   std::vector<std::string> out;
   const StanceMean m = stance_mean(stance);
   const bool all = !stance[m.legs.front()].from_pose;
-  for (int leg = 0; leg < kLegs; ++leg) {
+  for (int leg = 0; leg < static_cast<int>(stance.size()); ++leg) {
     const NominalStance& l = stance[leg];
     if (l.from_pose) continue;
     std::ostringstream s;

@@ -16,7 +16,8 @@
 /// The stance radius (gait.foot_lateral's default) is the mean radius of the legs whose
 /// stance is a pose, the default one reached or robot.nominal_pose: a fallback leg's
 /// mid-range angles are no standing pose, and averaging them in would move every leg's
-/// foothold. When every leg falls back, it is the mean of all six.
+/// foothold. When every leg falls back, it is the mean of all legs.
+#include <span>
 #include <string>
 #include <vector>
 
@@ -37,15 +38,15 @@ struct StanceMean {
   double depth_m = 0.0;   ///< mean hip height above the foot [m]
   std::vector<int> legs;  ///< the legs averaged, in leg order
 };
-StanceMean stance_mean(const std::array<NominalStance, kLegs>& stance);
+StanceMean stance_mean(std::span<const NominalStance> stance);
 
 /// One line per leg, "L1: nominal pose, q [0, 0.43, -1.2] rad, radius 0.178 m, depth
 /// 0.09 m", then "stance radius R m: the mean over L1, L2, ... (gait.foot_lateral's
 /// default)"; newline-terminated.
-std::string stance_text(const std::array<NominalStance, kLegs>& stance);
+std::string stance_text(std::span<const NominalStance> stance);
 
 /// One warning line per fallback leg: the leg, why its default pose was out of reach, the
 /// radius its mid-range angles give and what the default foot spread does with it.
-std::vector<std::string> stance_fallback_warnings(const std::array<NominalStance, kLegs>& stance);
+std::vector<std::string> stance_fallback_warnings(std::span<const NominalStance> stance);
 
 }  // namespace hexdyn
