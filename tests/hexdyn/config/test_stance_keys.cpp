@@ -196,7 +196,7 @@ TEST_CASE("when every leg falls back, the default spread is the mean of all six"
   REQUIRE(s.warnings.size() == kLegs);
   for (const std::string& w : s.warnings) {
     CHECK(w.find("averaged into gait.foot_lateral's default") != std::string::npos);
-    CHECK(w.find("the mean over all six legs, none at its pose") != std::string::npos);
+    CHECK(w.find("the mean over all 6 legs, none at its pose") != std::string::npos);
   }
 }
 
