@@ -7,11 +7,12 @@ that a change of code moved no result beyond a tolerance.
         [--allow-new-datasets] [--ignore-layout-version]
 
 COMMIT's hexdyn is built in build/side-COMMIT, a git worktree of the commit
-(tests/regression/side_build.py; reused when it is there), unless --old names a binary.
-Both binaries run each scene (default: configs/paper.yaml and every
-configs/robots/*_stairs.yaml of this tree), then `hexdyn replay` of their own result, one
-binary after the other in one folder under the same file names (a replay records the path
-of its source), the files then moved to old/ and new/ of the work folder (--keep).
+(tests/regression/side_build.py; reused when it is there), unless --old names a binary. Both
+binaries run each scene (default: configs/paper.yaml and every configs/robots/*_stairs.yaml
+of this tree that COMMIT has too; the others are named as new), then `hexdyn replay` of
+their own result, one binary after the other in one folder under the same file names (a
+replay records the path of its source), the files then moved to old/ and new/ of the work
+folder (--keep).
 Each pair of files, old first, goes to tests/regression/compare_results.py with --rtol and
 the two switches (each prints what it ignored). A run's exit status must be the same for
 both binaries.
@@ -41,6 +42,13 @@ def default_scenes():
     """configs/paper.yaml and the shipped hexapods' stairs scenes."""
     return [os.path.join(ROOT, "configs", "paper.yaml")] + sorted(
         glob.glob(os.path.join(ROOT, "configs", "robots", "*_stairs.yaml")))
+
+
+def in_commit(commit, path):
+    """True when `path` (a file of this tree) exists at `commit`."""
+    rel = os.path.relpath(path, ROOT)
+    return subprocess.run(["git", "-C", ROOT, "cat-file", "-e", f"{commit}:{rel}"],
+                          capture_output=True).returncode == 0
 
 
 def run(hexdyn, args, cwd):
@@ -119,6 +127,11 @@ def main():
                                 ("--ignore-layout-version", args.ignore_layout_version)) if on]
     binaries = {"old": os.path.abspath(old), "new": os.path.abspath(args.new)}
     scenes = [os.path.abspath(s) for s in (args.scene or default_scenes())]
+    if not args.scene:  # a scene added since COMMIT has nothing to compare with
+        new_since = [s for s in scenes if not in_commit(args.commit, s)]
+        for s in new_since:
+            print(f"  not compared: {os.path.relpath(s, ROOT)} is new since {args.commit}")
+        scenes = [s for s in scenes if s not in new_since]
     failed = 0
     with tempfile.TemporaryDirectory(prefix="hexdyn_base_") as tmp:
         work = os.path.abspath(args.keep) if args.keep else tmp

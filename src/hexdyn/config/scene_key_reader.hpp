@@ -209,12 +209,20 @@ class Reader : public SpecReader {
 
   /// A list of `n` non-empty strings, or nothing when absent.
   std::vector<std::string> strings_or_none(const std::string& path, std::size_t n) {
+    return strings_or_none(path, n, n);
+  }
+  /// A list of min_n to max_n non-empty names, or none.
+  std::vector<std::string> strings_or_none(const std::string& path, std::size_t min_n,
+                                           std::size_t max_n) {
     const SceneTree::Node* found = fetch(path, true);
     std::vector<std::string> out;
     if (!found) return out;
     const YAML::Node node = SceneTree::yaml(*found);
-    const std::string expected = "a list of " + std::to_string(n) + " names";
-    if (!node.IsSequence() || node.size() != n) fail_value(path, node, expected);
+    const std::string expected = "a list of " + std::to_string(min_n) +
+                                 (max_n == min_n ? std::string() : " to " + std::to_string(max_n)) +
+                                 " names";
+    if (!node.IsSequence() || node.size() < min_n || node.size() > max_n)
+      fail_value(path, node, expected);
     YAML::Node seq(YAML::NodeType::Sequence);
     for (const auto& e : node) {
       if (!e.IsScalar() || e.Scalar().empty()) fail_value(path, node, expected);

@@ -183,7 +183,7 @@ void add_urdf_robot(std::deque<SceneKey>& t) {
   add({.path = "robot.foot_links",
        .kind = KeyKind::kText,
        .default_text = "—",
-       .allowed_text = "6 link names",
+       .allowed_text = "one link name per leg (2 to 8)",
        .meaning = "one link fixed to the last link of each leg chain, any order"});
   add({.path = "robot.foot_offset",
        .kind = KeyKind::kNumbers,

@@ -77,7 +77,8 @@ double read_urdf_robot_keys(Reader& r, RobotParams& p, LoadedUrdfRobot& loaded) 
   check_urdf_path(r, k.path);
   k.trunk_link = r.string_or("robot.trunk_link", "");
   k.forward_axis = choice_key(r, "robot.forward_axis");
-  k.foot_links = r.strings_or_none("robot.foot_links", kLegs);
+  // One name per leg; the URDF reader checks the count against the legs it finds.
+  k.foot_links = r.strings_or_none("robot.foot_links", kMinLegs, kMaxLegs);
   if (r.has("robot.foot_offset")) k.foot_offset_m = read_foot_offsets(r);
   if (r.has("robot.foot_radius")) k.foot_radius_m = number_key(r, "robot.foot_radius");
   k.nominal_pose_rad = read_nominal_pose(r);

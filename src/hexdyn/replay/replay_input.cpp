@@ -125,14 +125,15 @@ void check_feet(const H5Reader& in, const std::string& file, const RobotModel& m
                 const ReplayPlan& p) {
   const bool centre = in.is_dataset(s::kFeetCenter.path);
   const char* path = centre ? s::kFeetCenter.path : s::kFeetPosition.path;
-  const auto feet = read_matrix(in, file, path, p.t_s.size(), 3 * kLegs);
+  const int legs = model.legs();
+  const auto feet = read_matrix(in, file, path, p.t_s.size(), 3 * static_cast<std::size_t>(legs));
   BodyPoses poses;
   for (std::size_t i = 0; i < p.t_s.size(); ++i) {
     forward_kinematics_tree(model, p.q_rad[i], poses);
     const BaseState& b = p.base[i];
-    for (int leg = 0; leg < kLegs; ++leg) {
+    for (int leg = 0; leg < legs; ++leg) {
       const Vec3 fk_W = b.p_W + b.W_R_B * tree_foot_position_B(model, poses, leg);
-      const Vec3 stored = row3(feet, kLegs * i + static_cast<std::size_t>(leg));
+      const Vec3 stored = row3(feet, static_cast<std::size_t>(legs) * i + leg);
       const double error = (fk_W - stored).norm();
       if (!(error <= kReplayFootTolerance_m))
         throw IoError("replay: '" + file + "': " + path + " of leg " + leg_name(leg) +
@@ -172,7 +173,10 @@ std::string scene_with_stored_robot(const H5Reader& in, const ReplaySource& src)
   robot["urdf"] = urdf.path;
   robot["trunk_link"] = "trunk";
   YAML::Node feet(YAML::NodeType::Sequence);
-  for (int leg = 0; leg < kLegs; ++leg) feet.push_back(leg_name(leg) + "_foot");  // model/urdf.cpp
+  // One foot per leg of the run's robot (/model/leg_names), named as model/urdf.cpp writes them.
+  const auto leg_dims = in.dims(s::kModelLegNames.path);
+  const int legs = leg_dims.empty() ? 0 : static_cast<int>(leg_dims[0]);
+  for (int leg = 0; leg < legs; ++leg) feet.push_back(leg_name(leg) + "_foot");
   robot["foot_links"] = feet;
   robot.remove("foot_offset");
   return YAML::Dump(root) + "\n";
@@ -226,6 +230,12 @@ ReplaySource read_replay_source(const std::string& result_path,
   src.scene = load_scene_from_string(scene_with_stored_robot(in, src),
                                      result_path + " /meta config_yaml", overrides);
   const RobotModel model = build_robot_model(src.scene.robot);
+  // The forward integrator (replay/replay.cpp) still holds six legs of three joints.
+  if (model.legs() != kLegs || model.joints() != kJoints)
+    throw ConfigError("replay: '" + result_path + "': the run's robot has " +
+                      std::to_string(model.legs()) + " legs and " + std::to_string(model.joints()) +
+                      " joints; the forward replay holds " + std::to_string(kLegs) + " legs of " +
+                      std::to_string(kJointsPerLeg) + " joints in this version");
   read_plan(in, result_path, model, src.plan);
   check_feet(in, result_path, model, src.plan);
   return src;
