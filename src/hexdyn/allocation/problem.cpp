@@ -344,16 +344,6 @@ AllocationLayout build_allocation_problem(const AllocationLegs& legs, const Allo
   return build_problem(legs, alloc, contact, split, phase, impact_force_N, W_R_contact, qp, drive);
 }
 
-AllocationLayout build_allocation_problem(const AllocationLegs& legs, const AllocationParams& alloc,
-                                          const ContactParams& contact,
-                                          const AllocationSplit& split,
-                                          std::span<const ContactPhase> phase,
-                                          std::span<const double> impact_force_N,
-                                          std::span<const Mat3> W_R_contact, QpProblem& qp,
-                                          const DriveRows* drive) {
-  return build_problem(legs, alloc, contact, split, phase, impact_force_N, W_R_contact, qp, drive);
-}
-
 AllocationLayout build_allocation_problem(const AllocationParams& alloc,
                                           const ContactParams& contact, const ContactSplit& split,
                                           std::span<const ContactPhase> phase,

@@ -90,17 +90,9 @@ AllocationLegs allocation_legs(const RobotModel& model);
 /// `legs` legs of `leg_joints` joints each, in the flat order.
 AllocationLegs uniform_allocation_legs(int legs, int leg_joints);
 
-/// The dynamics' terms of one sample the allocation reads, with the members of ContactSplit
-/// (dynamics/rnea.hpp) in capacity types: a robot of any size up to the capacities
-/// (core/sizes.hpp), for inputs built by hand. build_allocation_problem and
-/// forces_from_solution read this or a ContactSplit alike.
-struct AllocationSplit {
-  using JointRows = Eigen::Matrix<double, Eigen::Dynamic, 3, 0, kMaxJoints, 3>;
-  Vec6 trunk_rhs = Vec6::Zero();  ///< trunk rows of M ν̇ + h (no foot forces) [N, N m]
-  JointVector tau0;               ///< joint rows of M ν̇ + h (no foot forces) [N m] (joints)
-  LegArray<JointRows> JjT;        ///< transposed joint block of J_l [m] (joints × 3)
-  LegArray<Eigen::Matrix<double, 6, 3>> JbT;  ///< transposed base block of J_l
-};
+/// The dynamics' terms of one sample the allocation reads (dynamics/rnea.hpp ContactSplit, in
+/// capacity types: a robot of any size up to core/sizes.hpp's), also for inputs built by hand.
+using AllocationSplit = ContactSplit;
 
 /// Builds the allocation problem of one sample of a robot with legs `legs` into `qp`
 /// (resized) and returns its layout. Legs in `phase` kSwing carry no force, kImpact legs carry
@@ -112,14 +104,6 @@ struct AllocationSplit {
 /// Σ weight_k (τ_k + offset_k)²; without it, |τ| by the allocation's limits and Σ τ².
 AllocationLayout build_allocation_problem(const AllocationLegs& legs, const AllocationParams& alloc,
                                           const ContactParams& contact, const ContactSplit& split,
-                                          std::span<const ContactPhase> phase,
-                                          std::span<const double> impact_force_N,
-                                          std::span<const Mat3> W_R_contact, QpProblem& qp,
-                                          const DriveRows* drive = nullptr);
-/// The same from hand-built terms (AllocationSplit).
-AllocationLayout build_allocation_problem(const AllocationLegs& legs, const AllocationParams& alloc,
-                                          const ContactParams& contact,
-                                          const AllocationSplit& split,
                                           std::span<const ContactPhase> phase,
                                           std::span<const double> impact_force_N,
                                           std::span<const Mat3> W_R_contact, QpProblem& qp,

@@ -66,6 +66,7 @@ class SampleSolver {
   SampleSolver(const Scene& scene, const RobotModel& model)
       : scene_(scene),
         model_(model),
+        legs_(allocation_legs(model)),
         data_(model),
         backend_(make_allocation_backend(scene.allocation)) {
     if (scene.actuators.present) rows_.weight = objective_weights(scene);
@@ -98,7 +99,7 @@ class SampleSolver {
     if (drive) drive_rows(qd, qdd);
     AllocationLayout& layout = layout_;
     layout =
-        build_allocation_problem(scene_.allocation, scene_.contact, split, c.phase,
+        build_allocation_problem(legs_, scene_.allocation, scene_.contact, split, c.phase,
                                  c.impact_force_N, c.W_R_contact, qp_, drive ? &rows_ : nullptr);
     SampleSolution s;
     s.outcome = &backend_->solve(qp_);
@@ -200,6 +201,7 @@ class SampleSolver {
 
   const Scene& scene_;
   const RobotModel& model_;
+  AllocationLegs legs_;  ///< the model's leg table as the allocation reads it
   RobotData data_;
   std::unique_ptr<AllocationBackend> backend_;
   QpProblem qp_;
