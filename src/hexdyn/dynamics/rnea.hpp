@@ -99,7 +99,7 @@ struct ContactSplit {
   Vec6 trunk_rhs = Vec6::Zero();  ///< trunk rows of M ν̇ + h (no foot forces) [N, N m]
   JointVector tau0;               ///< joint rows of M ν̇ + h (no foot forces) [N m]
   using JointRows = JointForceMap;
-  LegArray<JointForceMap> JjT;    ///< transposed joint block of J_l [m]
+  LegArray<JointForceMap> JjT;                ///< transposed joint block of J_l [m]
   LegArray<Eigen::Matrix<double, 6, 3>> JbT;  ///< transposed base block of J_l
 };
 
