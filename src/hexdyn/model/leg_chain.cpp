@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string>
+#include <utility>
 
 namespace hexdyn {
 namespace {
@@ -43,35 +45,13 @@ bool within_limits(const RobotModel& m, int leg, LegIkResult& r) {
   return true;
 }
 
-/// Closed form for a yaw–pitch–pitch leg (LegIkData comments). The coxa angle puts the
-/// foot on the femur plane: w1(q0)·p = κ, i.e. A cos q0 + B sin q0 = C, with the branch
-/// whose outward direction points to the foot (the foot outside the coxa axis); the femur
-/// and tibia angles solve the planar two-link problem in the femur plane, knee-up branch:
-/// the knee on the trunk-normal side of the femur-joint-to-foot chord.
-LegIkResult ik_yaw_pitch_pitch(const RobotModel& m, int leg, const Vec3& p) {
+/// The femur and tibia angles of a yaw–pitch–pitch leg for the coxa angle q0: the planar
+/// two-link problem in the femur plane, knee-up branch: the knee on the trunk-normal side of
+/// the femur-joint-to-foot chord.
+LegIkResult ypp_femur_tibia(const RobotModel& m, int leg, const Vec3& p, double q0) {
   const LegIkData& d = m.leg_ik[leg];
   LegIkResult r;
-  const Vec3& a = d.a0_H;
-  const Vec3& w = d.w1_H;
-  const double wa = w.dot(a), ap = a.dot(p);
-  const double A = w.dot(p) - wa * ap;
-  const double B = -w.dot(a.cross(p));
-  const double C = d.kappa_m - wa * ap;
-  const double rad = std::hypot(A, B);
-  if (rad <= std::abs(C) + 1e-12) {
-    r.reason = "foot inside the lateral offset of the coxa axis";
-    r.margin_m = rad - std::abs(C);
-    return r;
-  }
-  const double phi = std::atan2(B, A), psi = std::acos(std::clamp(C / rad, -1.0, 1.0));
-  double q0 = phi + psi;
-  {
-    const double qb = phi - psi;
-    const double reach_a = (rot_axis(a, q0) * d.outward_H).dot(p);
-    const double reach_b = (rot_axis(a, qb) * d.outward_H).dot(p);
-    if (reach_b > reach_a) q0 = qb;
-  }
-  const Mat3 R0 = rot_axis(a, q0);
+  const Mat3 R0 = rot_axis(d.a0_H, q0);
   const Vec3 t = d.H_R_J1.transpose() * (R0.transpose() * p - d.o1_H);  // femur joint → foot, J1
   const double tx = t.dot(d.e1_J1), ty = t.dot(d.e2_J1);
   const double dist = std::hypot(tx, ty);
@@ -91,6 +71,47 @@ LegIkResult ik_yaw_pitch_pitch(const RobotModel& m, int leg, const Vec3& p) {
   if (!within_limits(m, leg, r)) return r;
   r.ok = true;
   return r;
+}
+
+/// Closed form for a yaw–pitch–pitch leg (LegIkData comments). The coxa angle puts the
+/// foot on the femur plane: w1(q0)·p = κ, i.e. A cos q0 + B sin q0 = C, two roots. Taken
+/// first: for a yawing coxa, the root whose outward direction points further to the foot
+/// (the foot outside the coxa axis); for a rolling hip (rolling_hip), whose outward
+/// direction hardly tells the roots apart, the root nearer the middle of the hip's limits.
+/// When a rolling hip's solution leaves a joint limit, the other root's is taken if it lies
+/// within them. Femur and tibia: ypp_femur_tibia.
+LegIkResult ik_yaw_pitch_pitch(const RobotModel& m, int leg, const Vec3& p) {
+  const LegIkData& d = m.leg_ik[leg];
+  LegIkResult r;
+  const Vec3& a = d.a0_H;
+  const Vec3& w = d.w1_H;
+  const double wa = w.dot(a), ap = a.dot(p);
+  const double A = w.dot(p) - wa * ap;
+  const double B = -w.dot(a.cross(p));
+  const double C = d.kappa_m - wa * ap;
+  const double rad = std::hypot(A, B);
+  if (rad <= std::abs(C) + 1e-12) {
+    r.reason = "foot inside the lateral offset of the coxa axis";
+    r.margin_m = rad - std::abs(C);
+    return r;
+  }
+  const double phi = std::atan2(B, A), psi = std::acos(std::clamp(C / rad, -1.0, 1.0));
+  double q0 = phi + psi, q0_other = phi - psi;
+  if (rolling_hip(d)) {
+    // The root nearer the middle of the hip's range: the leg hangs rather than folds over.
+    const auto gap = [&](double q) {
+      return std::abs(std::remainder(q - d.q_start[0], 2.0 * M_PI));
+    };
+    if (gap(q0_other) < gap(q0)) std::swap(q0, q0_other);
+  } else {
+    const double reach_a = (rot_axis(a, q0) * d.outward_H).dot(p);
+    const double reach_b = (rot_axis(a, q0_other) * d.outward_H).dot(p);
+    if (reach_b > reach_a) std::swap(q0, q0_other);
+  }
+  r = ypp_femur_tibia(m, leg, p, q0);
+  if (r.ok || !rolling_hip(d) || r.reason.find("outside its limits") == std::string::npos) return r;
+  LegIkResult other = ypp_femur_tibia(m, leg, p, q0_other);
+  return other.ok ? other : r;
 }
 
 /// Levenberg–Marquardt on the FK with the analytic Jacobian, from a fixed list of starts

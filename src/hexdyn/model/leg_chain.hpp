@@ -6,6 +6,8 @@
 /// joint frame at zero coxa angle); q = (q_coxa, q_femur, q_tibia) [rad] in the
 /// description's own signs and zero poses. The public entry points are the leg_* functions
 /// of robot_model.hpp, which dispatch here for LegGeometry::kChain.
+#include <cmath>
+
 #include "hexdyn/model/robot_model.hpp"
 
 namespace hexdyn {
@@ -28,6 +30,12 @@ Mat3 chain_jacobian_H(const RobotModel& model, int leg, const Vec3& q);
 /// d/dt of chain_jacobian_H along joint rates qd, analytic: column k is
 /// ẇ_k × (p − o_k) + w_k × (ṗ − ȯ_k) with ẇ_k = Ω_k × w_k, Ω_k = Σ_{i<k} w_i q̇_i.
 Mat3 chain_jacobian_dot_H(const RobotModel& model, int leg, const Vec3& q, const Vec3& qd);
+
+/// A hip that rolls (abducts) rather than yaws: its first axis nearer the trunk plane than the
+/// trunk normal (a quadruped's HAA; a hexapod's coxa yaws).
+inline bool rolling_hip(const LegIkData& d) {
+  return std::abs(d.a0_H.normalized().dot(d.up_H)) < M_SQRT1_2;
+}
 
 /// IK of a kChain leg for a foot target p_H in H (LegIkMethod of model.leg_ik[leg]).
 LegIkResult chain_inverse_kinematics(const RobotModel& model, int leg, const Vec3& p_H);

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <sstream>
 
+#include "hexdyn/model/leg_chain.hpp"
+
 namespace hexdyn {
 
 NominalStance stance_at_pose(const RobotModel& model, int leg, const Vec3& q, std::string source) {
@@ -16,8 +18,27 @@ NominalStance stance_at_pose(const RobotModel& model, int leg, const Vec3& q, st
   return s;
 }
 
+namespace {
+
+/// The hanging pose of a leg with a rolling hip: the foot straight below its zero-pose point,
+/// at the depth hypot(l2, l3) where femur and tibia would stand square to each other.
+NominalStance hanging_stance(const RobotModel& model, int leg) {
+  const LegIkData& d = model.leg_ik[leg];
+  const Vec3 foot0 = leg_foot_position_H(model, leg, Vec3::Zero());
+  const Vec3 target = foot0 - (foot0.dot(d.up_H) + std::hypot(d.l2_m, d.l3_m)) * d.up_H;
+  const LegIkResult ik = leg_inverse_kinematics(model, leg, target);
+  if (ik.ok) return stance_at_pose(model, leg, ik.q, "nominal pose");
+  NominalStance s =
+      stance_at_pose(model, leg, d.q_start, "fallback: mid-range joint angles (" + ik.reason + ")");
+  s.from_pose = false;
+  return s;
+}
+
+}  // namespace
+
 NominalStance default_nominal_stance(const RobotModel& model, int leg) {
   const LegIkData& d = model.leg_ik[leg];
+  if (rolling_hip(d)) return hanging_stance(model, leg);
   // The leg's plane at zero coxa angle: normal w1 (the femur axis); in it, up and outward.
   const Vec3 w1 = d.w1_H.normalized();
   Vec3 up = d.up_H - d.up_H.dot(w1) * w1;

@@ -13,6 +13,12 @@
 /// out of reach or outside the joint limits, the leg falls back to the middle of its joint
 /// limits (a "fallback", with the IK's reason), which `hexdyn run|validate` report.
 ///
+/// A leg whose hip rolls (its first axis nearer the trunk plane than the trunk normal: a
+/// quadruped's abduction joint) has no such plane across the trunk; its default pose
+/// ("hanging") puts the foot straight below the foot's zero-pose point, at the depth
+/// hypot(femur, tibia) at which the two links would stand square, the knee on the IK's
+/// branch; the same fallback applies.
+///
 /// The stance radius (gait.foot_lateral's default) is the mean radius of the legs whose
 /// stance is a pose, the default one reached or robot.nominal_pose: a fallback leg's
 /// mid-range angles are no standing pose, and averaging them in would move every leg's

@@ -15,6 +15,8 @@
 #include <vector>
 
 #include "hexdyn/core/errors.hpp"
+#include "hexdyn/model/leg_chain.hpp"
+#include "hexdyn/model/stance.hpp"
 #include "hexdyn/model/urdf.hpp"
 #include "hexdyn/model/urdf_reader.hpp"
 #include "hexdyn/model/urdf_robot.hpp"
@@ -568,6 +570,48 @@ TEST_CASE("urdf legs: Solo-12's and ANYmal C's legs take the yaw-pitch-pitch clo
     const RobotModel m = build_robot_model(robot);
     REQUIRE(m.legs() == 6);
     for (int leg = 0; leg < 6; ++leg) CHECK(m.leg_ik[leg].method == LegIkMethod::kYawPitchPitch);
+  }
+}
+
+TEST_CASE("urdf legs: Solo-12's and ANYmal C's legs hang below their rolling hips", "[urdf_legs]") {
+  // A rolling hip (abduction) has two roots that put the foot on the femur plane: the leg
+  // hanging below the hip, or folded over it. Around the default stance, every IK solution
+  // must be the hanging one, checked on the chain's own geometry: the FK gives the target
+  // back, the hip link stays upright (its image of the trunk normal has a positive component
+  // along it; folded over, the link is turned by more than a quarter turn), the knee joint
+  // lies below the femur joint along the trunk normal and the foot below the knee; and every
+  // joint is inside its limits.
+  for (const char* file : {"solo12.urdf", "anymal_c.urdf"}) {
+    INFO(file);
+    const RobotModel m =
+        build_robot_model(read_urdf_robot(std::string(HEXDYN_SOURCE_DIR) + "/robots/" + file));
+    REQUIRE(m.legs() == 4);
+    for (int leg = 0; leg < m.legs(); ++leg) {
+      INFO("leg " << leg);
+      REQUIRE(rolling_hip(m.leg_ik[leg]));
+      const NominalStance s = default_nominal_stance(m, leg);
+      REQUIRE(s.from_pose);
+      const Vec3 p0 = leg_foot_position_H(m, leg, s.q);
+      const Vec3 up = m.leg_ik[leg].up_H;
+      const double depth = s.depth_m;
+      for (double dx : {-0.15, 0.0, 0.15})
+        for (double dy : {-0.15, 0.0, 0.15})
+          for (double dz : {-0.1, 0.0, 0.1}) {
+            const Vec3 p = p0 + depth * (m.R_B_H[leg].transpose() * Vec3(dx, dy, dz));
+            const LegIkResult r = leg_inverse_kinematics(m, leg, p);
+            REQUIRE(r.ok);
+            CHECK((leg_foot_position_H(m, leg, r.q) - p).norm() <= 1e-12);
+            const LegChainPose c = chain_pose(m, leg, r.q);
+            CHECK((c.R_H[0] * up).dot(up) > 0.0);
+            CHECK(c.o_H[2].dot(up) < c.o_H[1].dot(up));
+            CHECK(c.p_foot_H.dot(up) < c.o_H[2].dot(up));
+            for (int j = 0; j < 3; ++j) {
+              const int k = m.joint(leg, j);
+              CHECK(r.q[j] >= m.joint_lower_rad[k]);
+              CHECK(r.q[j] <= m.joint_upper_rad[k]);
+            }
+          }
+    }
   }
 }
 
