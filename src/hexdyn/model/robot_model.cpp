@@ -7,23 +7,10 @@
 #include <string>
 
 #include "hexdyn/model/leg_chain.hpp"
+#include "hexdyn/model/paper_robot.hpp"
 #include "hexdyn/model/urdf_robot.hpp"
 
 namespace hexdyn {
-namespace {
-
-RigidInertia to_inertia(const BodyParams& p) {
-  RigidInertia r;
-  r.mass_kg = p.mass_kg;
-  r.com_m = p.com_m;
-  r.inertia_com = p.inertia_kgm2.asDiagonal();
-  return r;
-}
-
-Mat3 rot_z(double a) { return Eigen::AngleAxisd(a, Vec3::UnitZ()).toRotationMatrix(); }
-
-}  // namespace
-
 namespace {
 
 /// Bodies of the tree: 1 + the last body with a parent (unused entries hold -1); every body
@@ -119,79 +106,10 @@ void fill_leg_table(RobotModel& m) {
 
 RobotModel build_robot_model(const RobotParams& params) {
   if (params.urdf) return build_robot_model(*params.urdf, params.ik_min_margin_m);
-  RobotModel m;
-  const double l1 = params.link_length_m[0], l2 = params.link_length_m[1];
-  m.link_length_m = params.link_length_m;
-  m.d1_m = params.joint_offset_m[0];
-  m.trunk_only = to_inertia(params.trunk);
-  m.payload = to_inertia(params.payload);
-  m.parent[0] = -1;
-  m.R_parent_joint[0].setIdentity();
-  m.p_parent_joint[0].setZero();
-  m.axis[0].setZero();
-  m.inertia[0] = combine_inertias(m.trunk_only, m.payload);
-  m.leg_geometry = LegGeometry::kPaperPlanar;
-  m.ik_min_margin_m = params.ik_min_margin_m;
-  const Vec3 minus_y(0.0, -1.0, 0.0);
-  // The tree: each leg's coxa, femur and tibia in turn, body b moved by joint b − 1.
-  for (int leg = 0, b_coxa = 1; leg < kLegs; ++leg, b_coxa += kJointsPerLeg) {
-    const double side = is_left(leg) ? -1.0 : 1.0;
-    m.p_hip_B[leg] = params.hip_position_m[leg];
-    m.R_B_H[leg] = rot_z(params.hip_yaw_rad[leg]);
-    // The outward direction from the right-side yaw ψ (hip_yaw = π − ψ on the left, mirrored
-    // in x), so that legs straight out get exactly (±1, 0, 0).
-    const double psi = is_left(leg) ? M_PI - params.hip_yaw_rad[leg] : params.hip_yaw_rad[leg];
-    m.hip_outward_B[leg] = Vec3(side * std::cos(psi), std::sin(psi), 0.0);
-    m.d2_signed_m[leg] = side * params.joint_offset_m[1];
-    m.d3_signed_m[leg] = side * params.joint_offset_m[2];
-    m.lateral_m[leg] = m.d2_signed_m[leg] + m.d3_signed_m[leg];
-    const int b_femur = b_coxa + 1;
-    const int b_tibia = b_coxa + 2;
-    m.parent[b_coxa] = 0;
-    m.R_parent_joint[b_coxa] = m.R_B_H[leg];
-    m.p_parent_joint[b_coxa] = m.p_hip_B[leg];
-    m.axis[b_coxa] = Vec3::UnitZ();
-    m.parent[b_femur] = b_coxa;
-    m.R_parent_joint[b_femur].setIdentity();
-    m.p_parent_joint[b_femur] = Vec3(l1, m.d2_signed_m[leg], -m.d1_m);
-    m.axis[b_femur] = minus_y;
-    m.parent[b_tibia] = b_femur;
-    m.R_parent_joint[b_tibia].setIdentity();
-    m.p_parent_joint[b_tibia] = Vec3(l2, m.d3_signed_m[leg], 0.0);
-    m.axis[b_tibia] = minus_y;
-    for (int j = 0; j < kJointsPerLeg; ++j) {
-      m.inertia[b_coxa + j] = to_inertia(params.link[j]);
-      if (params.leg_inertia == LegInertia::kMassless && params.link[j].mass_kg > 0.0) {
-        // Massless legs: the link's mass becomes a point mass at the hip, part of the trunk
-        // (and of the trunk link of the URDF, so that the total mass is unchanged).
-        RigidInertia point;
-        point.mass_kg = params.link[j].mass_kg;
-        point.com_m = m.p_hip_B[leg];
-        m.inertia[0] = combine_inertias(m.inertia[0], point);
-        m.trunk_only = combine_inertias(m.trunk_only, point);
-        m.inertia[b_coxa + j] = RigidInertia{};
-      }
-    }
-  }
-  fill_leg_table(m);
-  constexpr double kNone = std::numeric_limits<double>::infinity();
-  for (int leg = 0; leg < m.legs(); ++leg) {
-    for (int j = 0; j < m.leg(leg).n_joints; ++j) {
-      const int k = m.joint(leg, j);
-      m.joint_lower_rad[k] = params.joint_min_rad[j];
-      m.joint_upper_rad[k] = params.joint_max_rad[j];
-      m.effort_limit_Nm[k] = kNone;  // the scene's allocation.torque_limit applies
-      m.velocity_limit_radps[k] = kNone;
-      m.joint_source_names[k] = joint_name(leg, j);
-    }
-    m.p_foot_last[leg] = Vec3(params.link_length_m[2], 0.0, 0.0);
-    m.foot_radius_m[leg] = params.foot_radius_m;
-  }
-  m.total_mass_kg = 0.0;
-  for (int b = 0; b < m.bodies(); ++b) m.total_mass_kg += m.inertia[b].mass_kg;
-  // Fills leg_ik (used only if the model is switched to kChain, as tests do); p_hip_B and
-  // R_B_H are rewritten with the same values (the coxa joint placements set above).
-  prepare_leg_chains(m);
+  // The one builder on the YAML robot's description, then its closed forms as a shortcut
+  // (model/paper_robot.hpp).
+  RobotModel m = build_robot_model(paper_description(params), params.ik_min_margin_m);
+  use_paper_closed_forms(m, params);
   return m;
 }
 

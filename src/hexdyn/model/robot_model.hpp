@@ -19,8 +19,11 @@
 /// centre − r n, where the terrain's forces act (dynamics/rnea.hpp,
 /// docs/theory/model.md#sphere-feet).
 ///
+/// One builder (build_robot_model(const UrdfRobot&), urdf_robot.hpp) makes every model from
+/// a description: a URDF's, or the YAML robot's (model/paper_robot.hpp paper_description).
 /// Two leg geometries (LegGeometry):
-///  - kPaperPlanar, the paper robot described in YAML (build_robot_model(RobotParams)):
+///  - kPaperPlanar, the paper robot described in YAML, switched to its closed forms after
+///    the build (use_paper_closed_forms; the tree and inertias are the description's):
 ///    z of H_l along the trunk normal, x the leg's outward direction at zero coxa angle;
 ///    link frames at zero angles parallel to H_l with x along the link; positive
 ///    femur/tibia angles raise the link (rotation about −y); foot at (l3, 0, 0) of the
@@ -174,7 +177,8 @@ struct RobotModel {
   }
 };
 
-/// Builds the model from validated parameters (no checks beyond those of load_scene).
+/// Builds the model from validated parameters (no checks beyond those of load_scene): the
+/// URDF robot's description, or the YAML robot's (paper_description) with its closed forms.
 RobotModel build_robot_model(const RobotParams& params);
 
 /// Fills the leg table and the counts from the tree. The bodies are 1 … n − 1 up to the last
