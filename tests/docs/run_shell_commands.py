@@ -55,6 +55,28 @@ PLAN = {
     "build/hexdyn --help": "run",
     "build/hexdyn run configs/paper.yaml -o mx64.h5 --set actuators.default.model=dynamixel_mx64":
         "run",
+    # docs/user/adding-a-robot.md
+    "build/hexdyn validate configs/robots/solo12_flat.yaml -v": "run",
+    "build/hexdyn run configs/robots/solo12_flat.yaml -o solo12_flat.h5 -v": "run",
+    "build/hexdyn run configs/robots/solo12_flat.yaml -o solo12_lseq.h5 --set "
+    "'gait.phases={L1: 0, L4: 0.25, L2: 0.5, L3: 0.75}'": "run",
+    "mkdir -p solo12_figures": "run",
+    "/usr/bin/python3 analysis/plot_kinematics.py solo12_flat.h5 solo12_figures": "run",
+    "/usr/bin/python3 analysis/animate.py solo12_flat.h5 -o solo12_flat.gif --view 3d --fps 5 "
+    "--dpi 60": "run",
+    "/usr/bin/python3 analysis/urdf_dynamics.py solo12_flat.h5 robots/solo12.urdf": "run",
+    "mkdir -p my_robot": "run",
+    "cp robots/solo12.urdf my_robot/my_robot.urdf": "run",
+    "cp configs/robots/solo12_flat.yaml my_robot/flat.yaml": "run",
+    "sed -i 's|../../robots/solo12.urdf|my_robot.urdf|' my_robot/flat.yaml": "run",
+    "build/hexdyn validate my_robot/flat.yaml -v": "run",
+    "build/hexdyn run my_robot/flat.yaml -o my_robot/flat.h5": "run",
+    "PYTHONPATH=build/python /usr/bin/python3 tests/python/test_robots_dart.py build/hexdyn . "
+    "my_robot/flat.yaml": "the test scripts are not in the work folder; ctest "
+                          "dynamics.robots_against_dart runs the script on every shipped scene",
+    "PYTHONPATH=build/python /usr/bin/python3 tests/python/test_allocation_slsqp.py build/hexdyn . "
+    "my_robot/flat.yaml": "the test scripts are not in the work folder; ctest "
+                          "allocation.against_slsqp runs the script on every shipped scene",
     # docs/user/animation.md
     "/usr/bin/python3 analysis/animate.py results/paper/paper.h5 -o paper.html": SLOW,
     "/usr/bin/python3 analysis/animate.py results/paper/paper.h5 -o paper.mp4 --fps 10": "run",
