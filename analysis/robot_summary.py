@@ -50,8 +50,20 @@ def main(argv=None):
     transient = (phase == 1).any(axis=1)
     terrain = cfg["terrain"]
     p0 = res["/base/position"][0]
-    line = terrain.get("ground_height", 0.0) + terrain["riser_height"] * (
-        (p0[1] - terrain.get("first_riser_y", 0.0)) / terrain["tread_depth"] + 0.5)
+    stairs = terrain.get("type") == "stairs"
+    # The terrain's reference line under the trunk: the tread-centre line of stairs, the
+    # ground of flat terrain (a slope's surface for a slope).
+    if stairs:
+        line = terrain.get("ground_height", 0.0) + terrain["riser_height"] * (
+            (p0[1] - terrain.get("first_riser_y", 0.0)) / terrain["tread_depth"] + 0.5)
+        where = "the tread-centre line"
+    elif terrain.get("type") == "slope":
+        line = terrain.get("height", terrain.get("ground_height", 0.0)) + np.tan(
+            terrain["angle"]) * (p0[1] - terrain.get("origin_y", 0.0))  # angle [rad]
+        where = "the slope"
+    else:
+        line = terrain.get("height", 0.0)
+        where = "the ground"
     travel = float(np.linalg.norm(res["/base/position"][-1] - p0))
     limit = min(efforts) if efforts else float("nan")
 
@@ -64,9 +76,12 @@ def main(argv=None):
     print(f"robot: {cfg.get('name', args.result)}  ({args.result})")
     print(f"  mass {mass:.3f} kg; effort limits {min(efforts):g}–{max(efforts):g} N m" if efforts
           else f"  mass {mass:.3f} kg; no effort limits in the description")
-    print(f"  stairs: riser {terrain['riser_height']:g} m, tread {terrain['tread_depth']:g} m")
+    if stairs:
+        print(f"  stairs: riser {terrain['riser_height']:g} m, tread {terrain['tread_depth']:g} m")
+    else:
+        print(f"  terrain: {terrain.get('type', 'flat')}")
     print(f"  trunk origin at t = 0: ({p0[0]:.4f}, {p0[1]:.4f}, {p0[2]:.4f}) m, "
-          f"{p0[2] - line:+.4f} m above the tread-centre line")
+          f"{p0[2] - line:+.4f} m above {where}")
     print(f"  travel {travel:.3f} m in {t[-1] - t[0]:.2f} s; gait duty factor {cfg['gait']['duty_factor']:g}, "
           f"stroke {cfg['gait']['stroke']:g} m")
     print(f"  peak |tau| {roles} outside touchdown transients: "

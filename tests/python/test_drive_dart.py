@@ -95,7 +95,7 @@ def read_result(path):
     """A result file's robot and series, as h5py reads them (docs/user/output.md)."""
     with h5py.File(path, "r") as f:
         r = {k: f[k][()] for k in (
-            "/base/position", "/base/orientation", "/base/linear_velocity",
+            "/time", "/base/position", "/base/orientation", "/base/linear_velocity",
             "/base/angular_velocity", "/base/linear_acceleration", "/base/angular_acceleration",
             "/joints/position", "/joints/velocity", "/joints/acceleration", "/joints/torque",
             "/contacts/force", "/contacts/phase", "/solver/status", "/feet/position")}

@@ -11,7 +11,9 @@ foot forces /contacts/force at the feet. DART's inverse dynamics must give
   - a zero trunk wrench, to TOLERANCE relative to the robot's weight (and weight times its
     size for the moment), on every optimal sample (status 0).
 
-Relaxed samples are counted and printed per scene. Each force acts at its contact point /feet/position. The check can fail: each scene is also
+Relaxed samples are counted and printed per scene. Each force acts at its contact point /feet/position. The joint path must be continuous: no
+step between samples moves a joint further than its stored rates allow (joint_jumps; a leg
+whose IK changes branch between samples jumps). The check can fail: each scene is also
 checked with its largest foot force left out, which must move the joint
 torques by more than 1e6 TOLERANCE.
 
@@ -62,6 +64,33 @@ def dart_inverse_dynamics(robot, r, t, forces):
     return tau[robot.free:robot.free + 6], tau[robot.dof]
 
 
+def joint_jumps(t, q, qd, qdd):
+    """Steps i where some joint moves further than its rates allow: |q[i+1] - q[i]| above
+    2 (h max|q̇| + h² max|q̈|) + 1e-9 over the step's ends, h the step (Taylor's bound on
+    the step with the larger end values, doubled). A leg whose IK changes branch between
+    two samples jumps by a large fraction of a turn."""
+    h = np.diff(t)[:, None]
+    rate = np.maximum(np.abs(qd[1:]), np.abs(qd[:-1]))
+    accel = np.maximum(np.abs(qdd[1:]), np.abs(qdd[:-1]))
+    bound = 2.0 * (h * rate + h * h * accel) + 1e-9
+    return np.nonzero((np.abs(np.diff(q, axis=0)) > bound).any(axis=1))[0]
+
+
+def check_continuity(scene, r):
+    """The joint path is continuous: no step jumps beyond its rates (joint_jumps); and the
+    check can fail: the same path with one joint turned by a quarter turn at one sample."""
+    t = r["/time"]
+    q, qd, qdd = (r[f"/joints/{k}"] for k in ("position", "velocity", "acceleration"))
+    jumps = joint_jumps(t, q, qd, qdd)
+    if len(jumps):
+        i = int(jumps[0])
+        joint = r["joints"][int(np.argmax(np.abs(q[i + 1] - q[i])))]
+        raise AssertionError(f"{scene}: joint {joint} jumps between t = {t[i]} and {t[i + 1]} s")
+    bent = q.copy()
+    bent[len(t) // 2, 0] += np.pi / 2
+    assert len(joint_jumps(t, bent, qd, qdd)) > 0, f"{scene}: a quarter-turn jump goes unseen"
+
+
 def check_scene(hexdyn, scene, d):
     out = os.path.join(d, os.path.basename(scene).replace(".yaml", ".h5"))
     rc, err = cli_run(hexdyn, scene, out)
@@ -85,6 +114,7 @@ def check_scene(hexdyn, scene, d):
           f"weight (tolerance {TOLERANCE:g})")
     assert worst_joint <= TOLERANCE, f"{scene}: joint torques differ by {worst_joint:.3g}"
     assert worst_trunk <= TOLERANCE * 10, f"{scene}: trunk wrench {worst_trunk:.3g} of weight"
+    check_continuity(scene, r)
     # The check of the check: a foot force left out moves the torques.
     # The largest foot force of the run, so that leaving it out cannot go unseen.
     magnitude = np.nan_to_num(np.linalg.norm(r["/contacts/force"], axis=2))
