@@ -44,6 +44,27 @@ void take(StateArgs& s, const OptionalArray& array, std::vector<py::ssize_t> sha
     throw py::value_error(std::string(s.function) + ": " + name + " is None, expected an array");
 }
 
+/// Reads the arguments forward_dynamics and inverse_dynamics share: the root link's pose and
+/// twist, the joint angles and rates of the model's J joints.
+void take_state(StateArgs& s, py::ssize_t J, const OptionalArray& base_position,
+                const OptionalArray& base_orientation, const OptionalArray& joint_position,
+                const OptionalArray& base_linear_velocity,
+                const OptionalArray& base_angular_velocity, const OptionalArray& joint_velocity) {
+  take(s, base_position, {3}, "base_position", s.p);
+  take(s, base_orientation, {4}, "base_orientation", s.quat);
+  take(s, joint_position, {J}, "joint_position", s.q);
+  take(s, base_linear_velocity, {3}, "base_linear_velocity", s.v);
+  take(s, base_angular_velocity, {3}, "base_angular_velocity", s.w);
+  take(s, joint_velocity, {J}, "joint_velocity", s.qd);
+}
+
+/// Reads the foot forces and normals of the model's L legs, both optional.
+void take_feet(StateArgs& s, py::ssize_t L, const OptionalArray& foot_forces,
+               const OptionalArray& foot_normals) {
+  take(s, foot_forces, {L, 3}, "foot_forces", s.forces, true);
+  take(s, foot_normals, {L, 3}, "foot_normals", s.normals, true);
+}
+
 /// Checks the arguments together: one sample each or the same T, finite, unit quaternions,
 /// foot normals under sphere feet (ValueError in one line naming the argument).
 void check_args(StateArgs& s, const hexdyn::RobotModel& model) {
@@ -148,15 +169,10 @@ py::dict forward_dynamics_file(const std::string& scene, const std::vector<std::
   const py::ssize_t J = model.joints(), L = model.legs();
   StateArgs s;
   s.function = "forward_dynamics";
-  take(s, base_position, {3}, "base_position", s.p);
-  take(s, base_orientation, {4}, "base_orientation", s.quat);
-  take(s, joint_position, {J}, "joint_position", s.q);
-  take(s, base_linear_velocity, {3}, "base_linear_velocity", s.v);
-  take(s, base_angular_velocity, {3}, "base_angular_velocity", s.w);
-  take(s, joint_velocity, {J}, "joint_velocity", s.qd);
+  take_state(s, J, base_position, base_orientation, joint_position, base_linear_velocity,
+             base_angular_velocity, joint_velocity);
   take(s, joint_torque, {J}, "joint_torque", s.tau);
-  take(s, foot_forces, {L, 3}, "foot_forces", s.forces, true);
-  take(s, foot_normals, {L, 3}, "foot_normals", s.normals, true);
+  take_feet(s, L, foot_forces, foot_normals);
   check_args(s, model);
   const auto n = static_cast<std::size_t>(s.count), nj = static_cast<std::size_t>(J);
   std::vector<double> a(3 * n), dw(3 * n), qdd(nj * n);
@@ -199,17 +215,12 @@ py::dict inverse_dynamics_file(
   const py::ssize_t J = model.joints(), L = model.legs();
   StateArgs s;
   s.function = "inverse_dynamics";
-  take(s, base_position, {3}, "base_position", s.p);
-  take(s, base_orientation, {4}, "base_orientation", s.quat);
-  take(s, joint_position, {J}, "joint_position", s.q);
-  take(s, base_linear_velocity, {3}, "base_linear_velocity", s.v);
-  take(s, base_angular_velocity, {3}, "base_angular_velocity", s.w);
-  take(s, joint_velocity, {J}, "joint_velocity", s.qd);
+  take_state(s, J, base_position, base_orientation, joint_position, base_linear_velocity,
+             base_angular_velocity, joint_velocity);
   take(s, base_linear_acceleration, {3}, "base_linear_acceleration", s.a);
   take(s, base_angular_acceleration, {3}, "base_angular_acceleration", s.dw);
   take(s, joint_acceleration, {J}, "joint_acceleration", s.qdd);
-  take(s, foot_forces, {L, 3}, "foot_forces", s.forces, true);
-  take(s, foot_normals, {L, 3}, "foot_normals", s.normals, true);
+  take_feet(s, L, foot_forces, foot_normals);
   check_args(s, model);
   const auto n = static_cast<std::size_t>(s.count), nj = static_cast<std::size_t>(J);
   std::vector<double> force(3 * n), moment(3 * n), torque(nj * n);
