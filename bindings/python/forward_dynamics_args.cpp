@@ -46,8 +46,10 @@ std::string tuple_text(const double* v, int n) {
 
 }  // namespace
 
-Samples samples_of(const DoubleArray& a, const std::vector<py::ssize_t>& shape, const char* name) {
+Samples samples_of(const DoubleArray& a, const std::vector<py::ssize_t>& shape, const char* name,
+                   const char* function) {
   Samples s;
+  s.function = function;
   s.data = a.data();
   s.shape = shape;
   s.name = name;
@@ -64,7 +66,7 @@ Samples samples_of(const DoubleArray& a, const std::vector<py::ssize_t>& shape, 
     std::string got;
     for (std::size_t i = 0; i < nd; ++i)
       got += (i ? ", " : "") + std::to_string(a.shape(static_cast<py::ssize_t>(i)));
-    throw py::value_error(std::string("forward_dynamics: ") + name + " has shape (" + got +
+    throw py::value_error(std::string(function) + ": " + name + " has shape (" + got +
                           "), expected (" + want + ") or (T, " + want + ")");
   }
   if (s.batched) s.count = a.shape(0);
@@ -76,8 +78,8 @@ void check_finite(const Samples& s) {
   for (py::ssize_t i = 0; i < s.count; ++i)
     for (py::ssize_t k = 0; k < s.width; ++k)
       if (!std::isfinite(s.at(i)[k]))
-        throw py::value_error("forward_dynamics: " + index_text(s, i, unflatten(s, k)) + " is " +
-                              number_text(s.at(i)[k]) + ", expected a finite number");
+        throw py::value_error(std::string(s.function) + ": " + index_text(s, i, unflatten(s, k)) +
+                              " is " + number_text(s.at(i)[k]) + ", expected a finite number");
 }
 
 void check_unit_quaternions(const Samples& s) {
@@ -85,8 +87,8 @@ void check_unit_quaternions(const Samples& s) {
     const double* q = s.at(i);
     const double norm = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
     if (!(std::abs(norm - 1.0) <= kUnitQuaternionTolerance))
-      throw py::value_error("forward_dynamics: " + index_text(s, i, {}) + " = " + tuple_text(q, 4) +
-                            " has norm " + number_text(norm, 9) +
+      throw py::value_error(std::string(s.function) + ": " + index_text(s, i, {}) + " = " +
+                            tuple_text(q, 4) + " has norm " + number_text(norm, 9) +
                             ", expected a unit quaternion (w, x, y, z): a norm within " +
                             number_text(kUnitQuaternionTolerance) + " of 1");
   }
@@ -99,7 +101,7 @@ void check_sphere_foot_normals(const hexdyn::RobotModel& model, const Samples& s
       const double* n = s.at(i) + 3 * l;
       const double norm = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
       if (model.foot_radius_m[static_cast<std::size_t>(l)] > 0.0 && !(norm >= kLeastNormalNorm))
-        throw py::value_error("forward_dynamics: " + index_text(s, i, {l}) + " = " +
+        throw py::value_error(std::string(s.function) + ": " + index_text(s, i, {l}) + " = " +
                               tuple_text(n, 3) + ", the normal under leg L" +
                               std::to_string(l + 1) + "'s sphere foot, has norm " +
                               number_text(norm) + ", expected a direction: a norm of at least " +

@@ -1,6 +1,6 @@
 // hexdyn._hexdyn: the compiled part of the Python module `hexdyn` (bindings/python/hexdyn/).
 // Thin: it converts at the edge and adds no logic. Every call goes through the C++ entry
-// points of <hexdyn/hexdyn.hpp> (and forward_dynamics through dynamics/forward_dynamics.hpp);
+// points of <hexdyn/hexdyn.hpp> (the dynamics functions through dynamics.cpp);
 // the arrays are those of result_layout (io/result_layout.hpp), the list the HDF5 writer
 // writes, handed to numpy without a copy. The GIL is released
 // while a scene is read and computed. Errors cross as the exception family of
@@ -26,11 +26,10 @@
 #include <variant>
 #include <vector>
 
-#include "forward_dynamics_args.hpp"
-#include "hexdyn/dynamics/forward_dynamics.hpp"
+#include "dynamics.hpp"
+#include "edge.hpp"
 #include "hexdyn/hexdyn.hpp"
 #include "hexdyn/io/result_layout.hpp"
-#include "hexdyn/model/root_link.hpp"
 #include "hexdyn/pipeline/pipeline.hpp"
 #include "hexdyn/process/interrupt.hpp"
 #include "hexdyn/sweep/sweep.hpp"
@@ -39,8 +38,9 @@ namespace py = pybind11;
 
 namespace {
 
-using hexdyn_python::DoubleArray;
-using hexdyn_python::Samples;
+using hexdyn_python::guard_yaml;
+using hexdyn_python::overrides_of;
+using hexdyn_python::to_numpy;
 
 /// One computed scene: the C++ result (for write) and the files it read, by the identity
 /// and absolute path they had when read (config/inputs.hpp), which its outputs must not be.
@@ -107,32 +107,6 @@ void run_interruptible(F&& compute) {
 /// thread-safe: scenes with that back end run one at a time in this process. The default
 /// back end (active set) keeps no state outside its call and runs in parallel.
 std::mutex ipopt_mutex;
-
-std::vector<hexdyn::Override> overrides_of(const std::vector<std::string>& texts) {
-  std::vector<hexdyn::Override> out;
-  for (const std::string& t : texts) out.push_back(hexdyn::parse_override(t));
-  return out;
-}
-
-/// Runs `f`, turning a YAML lookup that a reader did not guard into the ConfigError the CLI
-/// reports for it (cli/main.cpp): bad input, named by the scene path.
-template <class F>
-auto guard_yaml(const std::string& scene_path, F&& f) {
-  try {
-    return f();
-  } catch (const YAML::Exception& e) {
-    throw hexdyn::ConfigError(scene_path + ": unexpected YAML structure: " + e.what());
-  }
-}
-
-/// A numpy array owning `values` (moved, no copy), of shape `dims`.
-template <class T>
-py::array to_numpy(std::vector<T>&& values, const std::vector<std::size_t>& dims) {
-  auto* owned = new std::vector<T>(std::move(values));
-  py::capsule free_when_done(owned, [](void* p) { delete static_cast<std::vector<T>*>(p); });
-  std::vector<py::ssize_t> shape(dims.begin(), dims.end());
-  return py::array_t<T>(shape, owned->data(), free_when_done);
-}
 
 /// A dataset as Python sees it: numbers as numpy arrays of the file's dtype (float64,
 /// int8, int32; a 0-d array for a scalar), a list of strings as a numpy array of str
@@ -347,107 +321,6 @@ py::dict sample_problem_file(const std::string& scene_path,
   return out;
 }
 
-/// The inputs of forward_dynamics, one Samples each (file order of /base/*, /joints/*,
-/// /contacts/force).
-struct FdInputs {
-  Samples p, quat, q, v, w, qd, tau, forces, normals;
-  bool has_forces = false, has_normals = false;
-  py::ssize_t count = 1;
-  bool batched = false;
-};
-
-/// One sample i: the root link's state (/base/*) moved to the trunk, the forward dynamics
-/// under the joint torques and foot forces, and the root link's accelerations.
-void forward_dynamics_sample(const hexdyn::RobotModel& model, hexdyn::RobotData& data,
-                             const FdInputs& in, py::ssize_t i, double* a_base, double* dw_base,
-                             double* qdd) {
-  using hexdyn::Vec3;
-  const double* quat = in.quat.at(i);
-  hexdyn::BaseState root;
-  root.W_R_B =
-      Eigen::Quaterniond(quat[0], quat[1], quat[2], quat[3]).normalized().toRotationMatrix();
-  root.p_W = Vec3(in.p.at(i));
-  root.v_W = Vec3(in.v.at(i));
-  root.omega_W = Vec3(in.w.at(i));
-  hexdyn::BaseState trunk = hexdyn::trunk_state_from_root_link(model, root);
-  std::array<Vec3, hexdyn::kLegs> forces;
-  hexdyn::FootNormals normals;
-  for (int l = 0; l < hexdyn::kLegs; ++l) {
-    if (in.has_forces) forces[l] = Vec3(in.forces.at(i) + 3 * l);
-    normals[l] = in.has_normals ? Vec3(in.normals.at(i) + 3 * l).normalized() : Vec3::UnitZ();
-  }
-  const hexdyn::VecDof& nu_dot = hexdyn::forward_dynamics_joints(
-      model, data, trunk, hexdyn::VecJ(in.q.at(i)), hexdyn::VecJ(in.qd.at(i)),
-      hexdyn::VecJ(in.tau.at(i)), in.has_forces ? &forces : nullptr, &normals);
-  trunk.a_W = nu_dot.head<3>();
-  trunk.omegadot_W = nu_dot.segment<3>(3);
-  const hexdyn::BaseState out = hexdyn::root_link_state(model, trunk);
-  Eigen::Map<Vec3> a_out(a_base), dw_out(dw_base);
-  Eigen::Map<hexdyn::VecJ> qdd_out(qdd);
-  a_out = out.a_W;
-  dw_out = out.omegadot_W;
-  qdd_out = nu_dot.tail<hexdyn::kJoints>();
-}
-
-/// forward_dynamics(scene, overrides, ...) → {"base_linear_acceleration",
-/// "base_angular_acceleration", "joint_acceleration"}: the scene's robot (as `hexdyn run`
-/// builds it) at the states given, one or T of them (hexdyn.forward_dynamics).
-py::dict forward_dynamics_file(
-    const std::string& scene_path, const std::vector<std::string>& override_texts,
-    const DoubleArray& base_position, const DoubleArray& base_orientation,
-    const DoubleArray& joint_position, const DoubleArray& base_linear_velocity,
-    const DoubleArray& base_angular_velocity, const DoubleArray& joint_velocity,
-    const DoubleArray& joint_torque, const std::optional<DoubleArray>& foot_forces,
-    const std::optional<DoubleArray>& foot_normals) {
-  const py::ssize_t J = hexdyn::kJoints, L = hexdyn::kLegs;
-  FdInputs in;
-  using hexdyn_python::samples_of;
-  in.p = samples_of(base_position, {3}, "base_position");
-  in.quat = samples_of(base_orientation, {4}, "base_orientation");
-  in.q = samples_of(joint_position, {J}, "joint_position");
-  in.v = samples_of(base_linear_velocity, {3}, "base_linear_velocity");
-  in.w = samples_of(base_angular_velocity, {3}, "base_angular_velocity");
-  in.qd = samples_of(joint_velocity, {J}, "joint_velocity");
-  in.tau = samples_of(joint_torque, {J}, "joint_torque");
-  in.has_forces = foot_forces.has_value();
-  in.has_normals = foot_normals.has_value();
-  if (in.has_forces) in.forces = samples_of(*foot_forces, {L, 3}, "foot_forces");
-  if (in.has_normals) in.normals = samples_of(*foot_normals, {L, 3}, "foot_normals");
-  in.batched = in.p.batched;
-  in.count = in.p.count;
-  for (const Samples* s : {&in.quat, &in.q, &in.v, &in.w, &in.qd, &in.tau, &in.forces, &in.normals})
-    if (s->data != nullptr && (s->batched != in.batched || s->count != in.count))
-      throw py::value_error(
-          "forward_dynamics: the arguments hold different numbers of samples (base_position: " +
-          std::to_string(in.batched ? in.count : 0) + " along its first axis)");
-  for (const Samples* s :
-       {&in.p, &in.quat, &in.q, &in.v, &in.w, &in.qd, &in.tau, &in.forces, &in.normals})
-    hexdyn_python::check_finite(*s);
-  hexdyn_python::check_unit_quaternions(in.quat);
-  const std::vector<hexdyn::Override> overrides = overrides_of(override_texts);
-  const auto n = static_cast<std::size_t>(in.count);
-  std::vector<double> a(3 * n), dw(3 * n), qdd(static_cast<std::size_t>(J) * n);
-  {
-    py::gil_scoped_release no_gil;
-    const hexdyn::Scene scene =
-        guard_yaml(scene_path, [&] { return hexdyn::load_scene(scene_path, overrides); });
-    const hexdyn::RobotModel model = hexdyn::build_robot_model(scene.robot);
-    hexdyn_python::check_sphere_foot_normals(model, in.normals);
-    hexdyn::RobotData data(model);
-    for (std::size_t i = 0; i < n; ++i)
-      forward_dynamics_sample(model, data, in, static_cast<py::ssize_t>(i), &a[3 * i], &dw[3 * i],
-                              &qdd[static_cast<std::size_t>(J) * i]);
-  }
-  auto dims = [&](std::size_t width) {
-    return in.batched ? std::vector<std::size_t>{n, width} : std::vector<std::size_t>{width};
-  };
-  py::dict out;
-  out["base_linear_acceleration"] = to_numpy(std::move(a), dims(3));
-  out["base_angular_acceleration"] = to_numpy(std::move(dw), dims(3));
-  out["joint_acceleration"] = to_numpy(std::move(qdd), dims(static_cast<std::size_t>(J)));
-  return out;
-}
-
 /// A new exception class hexdyn.NAME with the given bases.
 py::object new_exception(py::module_& m, const char* name, py::tuple bases, const char* doc) {
   const std::string qualified = std::string("hexdyn.") + name;
@@ -465,7 +338,7 @@ py::object new_exception(py::module_& m, const char* name, py::tuple bases, cons
 PYBIND11_MODULE(_hexdyn, m) {
   m.doc() =
       "hexdyn's compiled part; use the package `hexdyn` (run, validate, sample_problem, "
-      "forward_dynamics, Result).";
+      "forward_dynamics, inverse_dynamics, mass_matrix, Result).";
   m.attr("version") = hexdyn::kVersion;
   m.attr("git_commit") = hexdyn::kGitCommit;
 
@@ -534,11 +407,5 @@ PYBIND11_MODULE(_hexdyn, m) {
   m.def("sample_problem", &sample_problem_file, py::arg("scene"), py::arg("overrides"),
         py::arg("t"),
         "The allocation problem of one instant of a scene, its layout and the run's answers.");
-  m.def("forward_dynamics", &forward_dynamics_file, py::arg("scene"), py::arg("overrides"),
-        py::arg("base_position"), py::arg("base_orientation"), py::arg("joint_position"),
-        py::arg("base_linear_velocity"), py::arg("base_angular_velocity"),
-        py::arg("joint_velocity"), py::arg("joint_torque"), py::arg("foot_forces") = py::none(),
-        py::arg("foot_normals") = py::none(),
-        "The accelerations of the scene's robot at given states under joint torques and foot "
-        "forces (C++ forward_dynamics_joints), in the result file's coordinates.");
+  hexdyn_python::add_dynamics_functions(m);
 }

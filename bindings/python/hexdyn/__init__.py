@@ -19,6 +19,8 @@
                                 r["/joints/velocity"], r["/joints/torque"],
                                 foot_forces=r["/contacts/force"])
     a["joint_acceleration"]       # (T, J) [rad/s²]: what those torques and forces do
+    hexdyn.inverse_dynamics(...)  # the torques (and trunk wrench) of given accelerations
+    hexdyn.mass_matrix("configs/paper.yaml", r["/base/orientation"], r["/joints/position"])
     sw = hexdyn.open_sweep("smoke.h5")          # hexdyn-sweep/3: Sweep
     env = hexdyn.open_envelope("envelope.h5")   # hexdyn-envelope/2: Envelope
     rep = hexdyn.open_replay("replay.h5")       # hexdyn-replay/1 (hexdyn replay): Replay
@@ -175,49 +177,128 @@ def sample_problem(scene, t, set=None):
     return _lib().sample_problem(_path(scene), _overrides(set), t)
 
 
+def _arrays(function, **arrays):
+    """The arguments as float64 numpy arrays (None stays None); ValueError in one line naming
+    the argument for one that is not numbers."""
+    out = []
+    for name, a in arrays.items():
+        try:
+            out.append(None if a is None else np.asarray(a, dtype=float))
+        except (TypeError, ValueError) as e:
+            raise ValueError(f"{function}: {name}: {_first_line(e)}, expected numbers") from None
+    return out
+
+
+_ROBOT_TEXT = """The robot is that of the scene file `scene` with the overrides `set` (as for run): the
+    robot `hexdyn run` builds, the one its /model/urdf describes, gravity -9.81 m/s² along z; a
+    URDF robot whose legs this build's other stages do not take yet (legs of other than three
+    revolute joints, more than six legs; docs/user/api.md) is built
+    for the dynamics alone from the scene's robot.* keys, its other keys not read."""
+
+_STATE_TEXT = """The arguments are in a result file's coordinates, each one state or T states along a first
+    axis (all alike): base_position (3) [m], base_orientation (4) unit quaternion (w, x, y, z),
+    base_linear_velocity (3) [m/s] and base_angular_velocity (3) [rad/s] of the URDF root
+    link's frame (its origin's velocity), world axes (as /base/*); joint_position (J) [rad],
+    joint_velocity (J) [rad/s] in /model/joint_names order (a prismatic joint's in m, m/s);
+    foot_forces (L, 3) [N] the terrain's force on each foot at its contact point, world axes
+    (as /contacts/force; None: no force); foot_normals (L, 3) the unit surface normal under
+    each foot, where a sphere foot touches (None: +z). L and J are the robot's legs and joints,
+    the lengths of the returned "leg_names" and "joint_names" (those of its result's
+    /model/leg_names and /model/joint_names)."""
+
+_ERRORS_TEXT = """Raises ValueError in one line naming the function and the argument as numpy indexes it
+    (the sample first for T states: "joint_torque[4, 7]") for an argument of the wrong shape, a
+    NaN or an infinity in any argument, a base_orientation whose norm is off 1 by more than
+    1e-6, and a foot normal under a sphere foot of norm below 1e-6 (normals are normalised;
+    those under point feet are not used)"""
+
+
 def forward_dynamics(scene, base_position, base_orientation, joint_position,
                      base_linear_velocity, base_angular_velocity, joint_velocity, joint_torque,
                      foot_forces=None, foot_normals=None, set=None):
-    """The accelerations of the robot of the scene file `scene` (with the overrides `set`, as
-    for run; the robot `hexdyn run` builds, the one its /model/urdf describes, gravity -9.81
-    m/s² along z) at the given states, under the joint torques and the foot forces (C++
-    forward_dynamics_joints, dynamics/forward_dynamics.hpp;
-    docs/theory/replay.md#forward-dynamics). No other force acts on the trunk.
+    return _lib().forward_dynamics(_path(scene), _overrides(set), *_arrays(
+        "forward_dynamics", base_position=base_position, base_orientation=base_orientation,
+        joint_position=joint_position, base_linear_velocity=base_linear_velocity,
+        base_angular_velocity=base_angular_velocity, joint_velocity=joint_velocity,
+        joint_torque=joint_torque, foot_forces=foot_forces, foot_normals=foot_normals))
 
-    The arguments are in a result file's coordinates, each one state or T states along a first
-    axis (all alike): base_position (3) [m], base_orientation (4) unit quaternion (w, x, y, z),
-    base_linear_velocity (3) [m/s] and base_angular_velocity (3) [rad/s] of the URDF root
-    link's frame, world axes (as /base/*); joint_position (J) [rad], joint_velocity (J)
-    [rad/s] and joint_torque (J) [N m] in /model/joint_names order; foot_forces (L, 3) [N]
-    the terrain's force on each foot at its contact point, world axes (as /contacts/force;
-    None: no force); foot_normals (L, 3) the unit surface normal under each foot, where a
-    sphere foot touches (None: +z). L and J are the robot's legs and joints, the lengths of
-    its result's /model/leg_names and /model/joint_names.
 
-    Returns a dict of numpy arrays: "base_linear_acceleration" (3) [m/s²], the classical
-    acceleration of the root link's origin, "base_angular_acceleration" (3) [rad/s²], both
-    world axes (as /base/linear_acceleration and /base/angular_acceleration), and
-    "joint_acceleration" (J) [rad/s²]; each (T, ...) for T states.
+forward_dynamics.__doc__ = f"""The accelerations of a scene's robot at the given states, under
+    the joint torques and the foot forces (C++ forward_dynamics_joints,
+    dynamics/forward_dynamics.hpp; docs/theory/replay.md#forward-dynamics). No other force
+    acts on the trunk.
 
-    Raises ValueError in one line naming the argument as numpy indexes it (the sample first
-    for T states: "joint_torque[4, 7]") for an argument of the wrong shape, a NaN or an
-    infinity in any argument, a base_orientation whose norm is off 1 by more than 1e-6, and a
-    foot normal under a sphere foot of norm below 1e-6 (normals are normalised; those under
-    point feet are not used); hexdyn.SolverError for a robot whose mass matrix is singular
+    {_ROBOT_TEXT}
+
+    {_STATE_TEXT} joint_torque (J) [N m] (a prismatic joint's force [N]).
+
+    Returns a dict: "base_linear_acceleration" (3) [m/s²], the classical acceleration of the
+    root link's origin, "base_angular_acceleration" (3) [rad/s²], both world axes (as
+    /base/linear_acceleration and /base/angular_acceleration), and "joint_acceleration" (J)
+    [rad/s²] (m/s² for a prismatic joint), numpy arrays, each (T, ...) for T states; and the
+    robot's "joint_names" (J) and "leg_names" (L).
+
+    {_ERRORS_TEXT}; hexdyn.SolverError for a robot whose mass matrix is singular
     (robot.leg_inertia: massless)."""
-    def array(a, name):
-        try:
-            return None if a is None else np.asarray(a, dtype=float)
-        except (TypeError, ValueError) as e:
-            raise ValueError(f"forward_dynamics: {name}: {_first_line(e)}, expected numbers"
-                             ) from None
-    return _lib().forward_dynamics(
-        _path(scene), _overrides(set), array(base_position, "base_position"),
-        array(base_orientation, "base_orientation"), array(joint_position, "joint_position"),
-        array(base_linear_velocity, "base_linear_velocity"),
-        array(base_angular_velocity, "base_angular_velocity"),
-        array(joint_velocity, "joint_velocity"), array(joint_torque, "joint_torque"),
-        array(foot_forces, "foot_forces"), array(foot_normals, "foot_normals"))
+
+
+def inverse_dynamics(scene, base_position, base_orientation, joint_position,
+                     base_linear_velocity, base_angular_velocity, joint_velocity,
+                     base_linear_acceleration, base_angular_acceleration, joint_acceleration,
+                     foot_forces=None, foot_normals=None, set=None):
+    return _lib().inverse_dynamics(_path(scene), _overrides(set), *_arrays(
+        "inverse_dynamics", base_position=base_position, base_orientation=base_orientation,
+        joint_position=joint_position, base_linear_velocity=base_linear_velocity,
+        base_angular_velocity=base_angular_velocity, joint_velocity=joint_velocity,
+        base_linear_acceleration=base_linear_acceleration,
+        base_angular_acceleration=base_angular_acceleration,
+        joint_acceleration=joint_acceleration, foot_forces=foot_forces,
+        foot_normals=foot_normals))
+
+
+inverse_dynamics.__doc__ = f"""The generalised forces that give a scene's robot the given
+    accelerations at the given states, under the foot forces (recursive Newton-Euler, C++ rnea,
+    dynamics/rnea.hpp; docs/theory/stages.md#inverse-dynamics): M(q) ν̇ + h(q, ν) − Σ J_lᵀ F_l,
+    the trunk's rows about the root link's origin.
+
+    {_ROBOT_TEXT}
+
+    {_STATE_TEXT} base_linear_acceleration (3) [m/s²], the classical acceleration of the root
+    link's origin, and base_angular_acceleration (3) [rad/s²], world axes (as
+    /base/linear_acceleration and /base/angular_acceleration); joint_acceleration (J) [rad/s²].
+
+    Returns a dict: "base_force" (3) [N] and "base_moment" (3) [N m], the force and the moment
+    about the root link's origin that an actuator on the trunk would apply, world axes (zero for
+    a motion the feet carry alone), and "joint_torque" (J) [N m] (a prismatic joint's force
+    [N]), numpy arrays, each (T, ...) for T states; and the robot's "joint_names" (J) and
+    "leg_names" (L). The power of the trunk's rows is base_force · v + base_moment · ω with
+    v the root link origin's velocity.
+
+    {_ERRORS_TEXT}."""
+
+
+def mass_matrix(scene, base_orientation, joint_position, set=None):
+    return _lib().mass_matrix(_path(scene), _overrides(set), *_arrays(
+        "mass_matrix", base_orientation=base_orientation, joint_position=joint_position))
+
+
+mass_matrix.__doc__ = f"""The mass matrix M of a scene's robot at the given poses
+    (composite-rigid-body algorithm, C++ crba, dynamics/rnea.hpp), the kinetic energy ½ νᵀ M ν
+    of the generalised velocity ν = [v; ω; q̇]: v [m/s] the velocity of the URDF root link's
+    origin and ω [rad/s] the trunk's angular velocity, world axes (as /base/linear_velocity and
+    /base/angular_velocity), q̇ (J) the joint rates in /model/joint_names order. Rows and
+    columns 0-2 [kg], the trunk's linear coordinates; 3-5 its angular ones [kg m²]; then the
+    joints. M does not depend on the trunk's position.
+
+    {_ROBOT_TEXT}
+
+    base_orientation (4), a unit quaternion (w, x, y, z) of the root link's frame, and
+    joint_position (J) [rad] (a prismatic joint's [m]): one pose or T along a first axis.
+
+    Returns a dict: "mass_matrix" (6 + J, 6 + J), or (T, 6 + J, 6 + J) for T poses, symmetric
+    positive definite; and the robot's "joint_names" (J) and "leg_names" (L).
+
+    {_ERRORS_TEXT}."""
 
 
 def _first_line(error):
@@ -233,7 +314,8 @@ def __getattr__(name):
     raise AttributeError(f"module 'hexdyn' has no attribute {name!r}")
 
 
-__all__ = ["run", "validate", "sample_problem", "forward_dynamics", "Result", "Sweep", "Envelope",
+__all__ = ["run", "validate", "sample_problem", "forward_dynamics", "inverse_dynamics",
+           "mass_matrix", "Result", "Sweep", "Envelope",
            "Replay", "Study", "open_file", "open_result", "open_sweep", "open_envelope",
            "open_replay", "open_study", "check_layout", "leg_names", "joint_names",
            "leg_joints", "decode_text", "UnknownGroupError",

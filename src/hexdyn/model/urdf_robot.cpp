@@ -23,15 +23,18 @@ std::string shape_text(const UrdfRobot& robot) {
   return s + " joints";
 }
 
-/// Refuses, in one line, a description the model cannot hold: more bodies than its storage,
-/// or a joint kind the dynamics does not simulate.
+/// Refuses, in one line, a description the model cannot hold: more bodies than its storage.
 void check_fits(const UrdfRobot& robot, std::size_t capacity) {
-  const std::string who = robot.source_path + ": robot '" + robot.name + "': ";
   const std::size_t bodies = 1 + static_cast<std::size_t>(robot.n_joints());
   if (bodies > capacity)
     throw ConfigError(robot.source_path + ": robot '" + robot.name + "' (" + shape_text(robot) +
                       "): " + std::to_string(bodies) + " bodies, expected at most " +
                       std::to_string(capacity) + " (the bodies a robot model of this build holds)");
+}
+
+/// Refuses, in one line, a joint kind the leg kinematics do not take (a prismatic joint).
+void check_revolute(const UrdfRobot& robot) {
+  const std::string who = robot.source_path + ": robot '" + robot.name + "': ";
   for (int leg = 0; leg < robot.n_legs(); ++leg)
     for (const UrdfJoint& j : robot.legs[leg].joints)
       if (j.type == UrdfJointType::kPrismatic)
@@ -43,7 +46,7 @@ void check_fits(const UrdfRobot& robot, std::size_t capacity) {
 
 }  // namespace
 
-RobotModel build_robot_model(const UrdfRobot& robot, double ik_min_margin_m) {
+RobotModel build_dynamics_model(const UrdfRobot& robot) {
   RobotModel m;
   check_fits(robot, m.parent.size());
   m.leg_geometry = LegGeometry::kChain;
@@ -56,7 +59,6 @@ RobotModel build_robot_model(const UrdfRobot& robot, double ik_min_margin_m) {
   m.payload = RigidInertia{};
   m.link_length_m = {0.0, 0.0, 0.0};  // kPaperPlanar parameters: unused by a kChain model
   m.d1_m = 0.0;
-  m.ik_min_margin_m = ik_min_margin_m;
   // The tree: each leg's chain in turn, body b moved by joint b − 1 (robot_model.hpp).
   int b = 1;
   for (const UrdfLeg& l : robot.legs) {
@@ -88,6 +90,8 @@ RobotModel build_robot_model(const UrdfRobot& robot, double ik_min_margin_m) {
       m.effort_limit_Nm[k] = joint.effort_Nm;
       m.velocity_limit_radps[k] = joint.velocity_radps;
       m.joint_source_names[k] = joint.name;
+      m.joint_type[k] =
+          joint.type == UrdfJointType::kPrismatic ? JointType::kPrismatic : JointType::kRevolute;
     }
     m.p_foot_last[leg] = l.p_foot_last;
     m.foot_radius_m[leg] = l.foot_radius_m;
@@ -96,6 +100,13 @@ RobotModel build_robot_model(const UrdfRobot& robot, double ik_min_margin_m) {
   for (int body = 0; body < m.bodies(); ++body) m.total_mass_kg += m.inertia[body].mass_kg;
   m.p_B_root = robot.p_B_root;
   m.B_R_root = robot.B_R_root;
+  return m;
+}
+
+RobotModel build_robot_model(const UrdfRobot& robot, double ik_min_margin_m) {
+  check_revolute(robot);
+  RobotModel m = build_dynamics_model(robot);
+  m.ik_min_margin_m = ik_min_margin_m;
   prepare_leg_chains(m);
   for (int leg = 0; leg < m.legs(); ++leg) {
     Vec3 out = m.R_B_H[leg] * m.leg_ik[leg].outward_H;

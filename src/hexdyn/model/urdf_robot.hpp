@@ -114,6 +114,14 @@ struct UrdfRobot {
 /// simulate, a prismatic joint).
 RobotModel build_robot_model(const UrdfRobot& robot, double ik_min_margin_m = 1e-4);
 
+/// The part of build_robot_model the rigid-body dynamics (dynamics/rnea.hpp) reads: the tree,
+/// inertias, joint kinds (revolute or prismatic), limits and names, the leg table, the feet
+/// and the root link frame, without the legs' kinematics (leg_ik, p_hip_B, R_B_H and
+/// hip_outward_B stay unset). Takes any joint kind the reader reads, prismatic too. Throws
+/// ConfigError, one line naming the robot, for more bodies than the storage or a leg layout
+/// this build does not hold.
+RobotModel build_dynamics_model(const UrdfRobot& robot);
+
 /// "L1 <- right_front_coxa / right_front_femur / right_front_tibia, hip (x, y, z) m in the
 /// trunk frame, foot pxmark4/…" one line per leg: the mapping of the description's chains
 /// to hexdyn's legs; a foot that is not a link's origin is given as a point of the last link

@@ -237,8 +237,10 @@ TEST_CASE("urdf legs: each broken leg layout is refused in one line naming the l
                  "set robot.forward_axis"});
 }
 
-TEST_CASE("urdf legs: prismatic joints are read with their type, and the model refuses them",
-          "[urdf_legs]") {
+TEST_CASE(
+    "urdf legs: prismatic joints are read with their type, the model refuses them, the "
+    "dynamics' model takes them",
+    "[urdf_legs]") {
   std::string text = legged_urdf(quadruped());
   const std::string knee = "<joint name=\"leg1_j3\" type=\"revolute\">";
   text.replace(text.find(knee), knee.size(), "<joint name=\"leg1_j3\" type=\"prismatic\">");
@@ -254,6 +256,19 @@ TEST_CASE("urdf legs: prismatic joints are read with their type, and the model r
           "expected revolute or continuous joints (prismatic joints are read, not yet "
           "simulated)");
   }
+  // The dynamics' part of the model takes it, typed, the other joints revolute; the tree is
+  // build_robot_model's of the same robot with the joint revolute.
+  const RobotModel dyn = build_dynamics_model(robot);
+  const RobotModel revolute =
+      build_robot_model(read_urdf_robot_from_string(legged_urdf(quadruped()), "robot.urdf"));
+  REQUIRE(dyn.joints() == revolute.joints());
+  for (int k = 0; k < dyn.joints(); ++k) {
+    CHECK(dyn.prismatic(k) == (dyn.joint_source_names[k] == "leg1_j3"));
+    CHECK(dyn.joint_source_names[k] == revolute.joint_source_names[k]);
+    CHECK(dyn.axis[1 + k] == revolute.axis[1 + k]);
+    CHECK(dyn.p_parent_joint[1 + k] == revolute.p_parent_joint[1 + k]);
+  }
+  CHECK(dyn.total_mass_kg == revolute.total_mass_kg);
 }
 
 TEST_CASE("urdf legs: a robot the model cannot hold is refused in one line when built",
