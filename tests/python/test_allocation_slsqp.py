@@ -227,9 +227,13 @@ class Problem:
         for _ in range(RESTARTS):
             res = minimize(objective, y, jac=True, method="SLSQP", constraints=cons,
                            options={"ftol": FTOL, "maxiter": 2000})
-            if not res.success:
-                worst = max(float(np.abs(np.minimum(0, c["fun"](res.x)) if c["type"] == "ineq"
-                                         else c["fun"](res.x)).max()) for c in cons)
+            worst = max(float(np.abs(np.minimum(0, c["fun"](res.x)) if c["type"] == "ineq"
+                                     else c["fun"](res.x)).max()) for c in cons)
+            # Status 8, "positive directional derivative for linesearch": the line search found
+            # no descent at the precision of the scaled objective, which happens at the optimum
+            # of a well-scaled problem too. Feasible to 1e-9, the answer is kept: its comparison
+            # with the file (below) says whether it is the optimum.
+            if not res.success and not (res.status == 8 and worst <= 1e-9):
                 raise AssertionError(f"SLSQP: {res.message} (run {_ + 1}, {res.nit} "
                                      f"iterations, largest violation {worst:.3g})")
             y = res.x
