@@ -79,16 +79,14 @@ namespace {
 }
 
 /// Joint positions, rates and accelerations of a leg for its target relative to the trunk,
-/// by the model's leg solver (leg_motion_H: three-joint IK and J⁻¹, or the redundant
+/// by the model's leg solver (leg_motion: three-joint IK and J⁻¹, or the redundant
 /// resolution of a leg on its chain); `motion` is the caller's scratch.
 void leg_state(const RobotModel& model, int leg, double t, const RelativeTarget& target,
                LegMotion& motion, RobotKinematicState& out) {
   const FootMotion& f = out.feet[leg];
   const Mat3& B_R_H = model.R_B_H[leg];
   const Vec3 p_H = B_R_H.transpose() * (target.r_B - model.p_hip_B[leg]);
-  const Vec3 pd_H = B_R_H.transpose() * target.rd_B;
-  const Vec3 pdd_H = B_R_H.transpose() * target.rdd_B;
-  leg_motion_H(model, leg, p_H, pd_H, pdd_H, motion);
+  leg_motion(model, leg, p_H, B_R_H, target.rd_B, target.rdd_B, motion);
   if (!motion.ik.ok) throw_unreachable(model, leg, t, f, motion.ik);
   if (!motion.qd.allFinite() || !motion.qdd.allFinite())
     throw_singular(model, leg, t, f, motion.ik);

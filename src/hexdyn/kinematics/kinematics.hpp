@@ -1,7 +1,7 @@
 #pragma once
 /// \file kinematics.hpp
 /// The kinematics stage: the whole robot's kinematics at given times, from a plan
-/// (planning/plan.hpp), every leg through the model's leg_motion_H (robot_model.hpp). A leg of
+/// (planning/plan.hpp), every leg through the model's leg_motion (robot_model.hpp). A leg of
 /// three revolute joints: joint rates from the leg Jacobian, q̇ = J⁻¹ ṙ and
 /// q̈ = J⁻¹ (r̈ − J̇ q̇), with r the foot point relative to the hip in the hip frame. A leg of
 /// more joints or with a prismatic joint: the redundant resolution toward its nominal pose,

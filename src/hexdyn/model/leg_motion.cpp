@@ -93,8 +93,8 @@ RedundantLegMotion chain_leg_solve(const RobotModel& m, int leg, const Vec3& p_H
 
 /// leg_motion_H of a leg of three revolute joints: the kinematics stage's own path, the paper
 /// geometry's sines and cosines computed once for J, J̇ and the tree's poses.
-void three_joint_motion(const RobotModel& m, int leg, const Vec3& p_H, const Vec3& pd_H,
-                        const Vec3& pdd_H, LegMotion& out) {
+void three_joint_motion(const RobotModel& m, int leg, const Vec3& p_H, const Mat3& F_R_H,
+                        const Vec3& v_F, const Vec3& a_F, LegMotion& out) {
   out.ik = leg_inverse_kinematics(m, leg, p_H);
   if (!out.ik.ok) return;
   const Vec3 q = out.ik.q;
@@ -102,11 +102,15 @@ void three_joint_motion(const RobotModel& m, int leg, const Vec3& p_H, const Vec
   const LegTrig trig = paper ? leg_trig(q) : LegTrig{};
   const Mat3 J = paper ? paper_leg_jacobian_H(m, leg, trig) : leg_jacobian_H(m, leg, q);
   const Eigen::PartialPivLU<Mat3> lu(J);
-  const Vec3 qd = lu.solve(pd_H);
+  // ṗ and p̈ in H formed inside the solves' right-hand sides, one expression each, and solved
+  // into 3-vectors (a solve into a vector of dynamic size takes another path through Eigen's
+  // triangular solves): the kinematics stage's operations as they were, the same bits.
+  const Vec3 qd = lu.solve(F_R_H.transpose() * v_F);
   const Mat3 Jd =
       paper ? paper_leg_jacobian_dot_H(m, leg, trig, qd) : leg_jacobian_dot_H(m, leg, q, qd);
+  const Vec3 qdd = lu.solve(F_R_H.transpose() * a_F - Jd * qd);  // a fixed-size solve
   out.qd = qd;
-  out.qdd = lu.solve(pdd_H - Jd * qd);
+  out.qdd = qdd;
   out.cos_q.resize(3);
   out.sin_q.resize(3);
   if (paper) {
@@ -170,10 +174,16 @@ LegIkResult chain_leg_inverse_kinematics(const RobotModel& m, int leg, const Vec
 
 void leg_motion_H(const RobotModel& m, int leg, const Vec3& p_H, const Vec3& pd_H,
                   const Vec3& pdd_H, LegMotion& out) {
+  leg_motion(m, leg, p_H, Mat3::Identity(), pd_H, pdd_H, out);
+}
+
+void leg_motion(const RobotModel& m, int leg, const Vec3& p_H, const Mat3& F_R_H, const Vec3& v_F,
+                const Vec3& a_F, LegMotion& out) {
   if (!m.leg_on_chain[leg]) {
-    three_joint_motion(m, leg, p_H, pd_H, pdd_H, out);
+    three_joint_motion(m, leg, p_H, F_R_H, v_F, a_F, out);
     return;
   }
+  const Vec3 pd_H = F_R_H.transpose() * v_F, pdd_H = F_R_H.transpose() * a_F;
   const RedundantLegMotion r = chain_leg_solve(m, leg, p_H, pd_H, pdd_H, out.ik);
   if (!out.ik.ok) return;
   out.qd = r.qd;

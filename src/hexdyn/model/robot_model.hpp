@@ -279,6 +279,11 @@ struct LegMotion {
 /// are not set; when the Jacobian is singular they are not finite (the caller refuses both).
 void leg_motion_H(const RobotModel& model, int leg, const Vec3& p_H, const Vec3& pd_H,
                   const Vec3& pdd_H, LegMotion& out);
+/// The same with the foot's velocity v_F and acceleration a_F given in the axes of a frame F
+/// whose rotation from H is F_R_H (ṗ_H = F_R_Hᵀ v_F): the kinematics stage's call, with F the
+/// trunk frame and F_R_H = R_B_H[leg].
+void leg_motion(const RobotModel& model, int leg, const Vec3& p_H, const Mat3& F_R_H,
+                const Vec3& v_F, const Vec3& a_F, LegMotion& out);
 
 /// Upper bound of the distance of leg `leg`'s foot from its hip [m]. The paper geometry: the
 /// foot's distance at zero angles (every leg straight out). A chain: the larger of that and the
