@@ -57,7 +57,7 @@ Scene walker_scene(const testing::TempDir& dir) {
   return load_scene(dir.write("walker.yaml", kScene));
 }
 
-TEST_CASE("a quadruped of 4-joint legs runs end to end; its joints give the planned feet",
+TEST_CASE("a quadruped of 4-joint legs runs end to end and its joints give the planned feet",
           "[any_leg][pipeline]") {
   const testing::TempDir dir("any_leg_run");
   const Scene scene = walker_scene(dir);
