@@ -1,11 +1,8 @@
 #include "hexdyn/kinematics/kinematics.hpp"
 
-#include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
 #include <sstream>
-#include <stdexcept>
-#include <string>
 
 #include "hexdyn/core/cancel.hpp"
 #include "hexdyn/core/errors.hpp"
@@ -81,42 +78,24 @@ namespace {
   throw ReachError(msg.str());
 }
 
-/// Joint angles, rates and accelerations of a three-joint leg for its target relative to the
-/// trunk (Vec3 and Mat3 algebra, PartialPivLU of the 3 × 3 leg Jacobian).
-void three_joint_leg_state(const RobotModel& model, int leg, double t, const RelativeTarget& target,
-                           RobotKinematicState& out) {
+/// Joint positions, rates and accelerations of a leg for its target relative to the trunk,
+/// by the model's leg solver (leg_motion: three-joint IK and J⁻¹, or the redundant
+/// resolution of a leg on its chain); `motion` is the caller's scratch.
+void leg_state(const RobotModel& model, int leg, double t, const RelativeTarget& target,
+               LegMotion& motion, RobotKinematicState& out) {
   const FootMotion& f = out.feet[leg];
   const Mat3& B_R_H = model.R_B_H[leg];
   const Vec3 p_H = B_R_H.transpose() * (target.r_B - model.p_hip_B[leg]);
-  const LegIkResult ik = leg_inverse_kinematics(model, leg, p_H);
-  if (!ik.ok) throw_unreachable(model, leg, t, f, ik);
-  // The paper's legs: one set of sines and cosines for J, J̇ and the tree's poses.
-  const bool paper = model.leg_geometry == LegGeometry::kPaperPlanar;
-  const LegTrig trig = paper ? leg_trig(ik.q) : LegTrig{};
-  const Mat3 J = paper ? paper_leg_jacobian_H(model, leg, trig) : leg_jacobian_H(model, leg, ik.q);
-  const Eigen::PartialPivLU<Mat3> lu(J);
-  const Vec3 qd = lu.solve(B_R_H.transpose() * target.rd_B);
-  const Mat3 Jd = paper ? paper_leg_jacobian_dot_H(model, leg, trig, qd)
-                        : leg_jacobian_dot_H(model, leg, ik.q, qd);
-  const Vec3 qdd = lu.solve(B_R_H.transpose() * target.rdd_B - Jd * qd);
-  if (!qd.allFinite() || !qdd.allFinite()) throw_singular(model, leg, t, f, ik);
-  const int k0 = model.joint(leg, 0), k1 = model.joint(leg, 1), k2 = model.joint(leg, 2);
-  out.q.segment<3>(k0) = ik.q;
-  if (paper) {
-    out.cos_q[k0] = trig.c1;
-    out.sin_q[k0] = trig.s1;
-    out.cos_q[k1] = trig.c2;
-    out.sin_q[k1] = trig.s2;
-  } else {
-    for (int j = 0; j < 2; ++j) {
-      out.cos_q[model.joint(leg, j)] = std::cos(ik.q[j]);
-      out.sin_q[model.joint(leg, j)] = std::sin(ik.q[j]);
-    }
-  }
-  out.cos_q[k2] = std::cos(ik.q[2]);
-  out.sin_q[k2] = std::sin(ik.q[2]);
-  out.qd.segment<3>(k0) = qd;
-  out.qdd.segment<3>(k0) = qdd;
+  leg_motion(model, leg, p_H, B_R_H, target.rd_B, target.rdd_B, motion);
+  if (!motion.ik.ok) throw_unreachable(model, leg, t, f, motion.ik);
+  if (!motion.qd.allFinite() || !motion.qdd.allFinite())
+    throw_singular(model, leg, t, f, motion.ik);
+  const int k0 = model.joint(leg, 0), n = model.leg(leg).n_joints;
+  out.q.segment(k0, n) = motion.ik.q;
+  out.cos_q.segment(k0, n) = motion.cos_q;
+  out.sin_q.segment(k0, n) = motion.sin_q;
+  out.qd.segment(k0, n) = motion.qd;
+  out.qdd.segment(k0, n) = motion.qdd;
 }
 
 }  // namespace
@@ -125,15 +104,10 @@ void robot_state_at(const RobotModel& model, const MotionPlan& plan, double t,
                     RobotKinematicState& out) {
   if (out.q.size() != model.joints()) out = RobotKinematicState(model);
   out.trunk = plan.trunk.at(t);
+  LegMotion motion;
   for (int leg = 0; leg < model.legs(); ++leg) {
     const RelativeTarget target = relative_target(model, plan, leg, t, out);
-    const LegInfo& info = model.leg(leg);
-    if (info.n_joints != 3 || model.prismatic(info.first_joint) ||
-        model.prismatic(info.first_joint + 1) || model.prismatic(info.first_joint + 2))
-      throw std::logic_error("kinematics: leg " + info.name + " has " +
-                             std::to_string(info.n_joints) +
-                             " joints; this stage solves legs of three revolute joints");
-    three_joint_leg_state(model, leg, t, target, out);
+    leg_state(model, leg, t, target, motion, out);
   }
 }
 
@@ -156,6 +130,7 @@ KinematicsResult sample_kinematics(const RobotModel& model, const MotionPlan& pl
   k.resize(T, model.legs(), model.joints(), false);  // every row is written below
   RobotKinematicState s(model);
   BodyPoses poses;
+  const bool prismatic = has_prismatic_joints(model);
   for (int i = 0; i < T; ++i) {
     if (i % 64 == 0) check_cancelled();
     const double t = times[i];
@@ -178,7 +153,10 @@ KinematicsResult sample_kinematics(const RobotModel& model, const MotionPlan& pl
       k.contact_phase(i, leg) = static_cast<std::int8_t>(
           s.feet[leg].in_swing ? ContactPhase::kSwing : ContactPhase::kSupport);
     }
-    forward_kinematics_tree(model, s.cos_q, s.sin_q, poses);
+    if (prismatic)
+      forward_kinematics_tree(model, s.q, poses);  // a slide moves its body along the axis
+    else
+      forward_kinematics_tree(model, s.cos_q, s.sin_q, poses);
     k.com_position.row(i) =
         (s.trunk.p_W + s.trunk.W_R_B * center_of_mass_B(model, poses)).transpose();
   }

@@ -1,9 +1,12 @@
 #pragma once
 /// \file kinematics.hpp
 /// The kinematics stage: the whole robot's kinematics at given times, from a plan
-/// (planning/plan.hpp). Joint rates come from the leg Jacobian, q̇ = J⁻¹ ṙ and
-/// q̈ = J⁻¹ (r̈ − J̇ q̇), with r the foot point relative to the hip in the hip frame; nothing
-/// is differentiated numerically. The planned foot path is where the foot touches: a sphere
+/// (planning/plan.hpp), every leg through the model's leg_motion (robot_model.hpp). A leg of
+/// three revolute joints: joint rates from the leg Jacobian, q̇ = J⁻¹ ṙ and
+/// q̈ = J⁻¹ (r̈ − J̇ q̇), with r the foot point relative to the hip in the hip frame. A leg of
+/// more joints or with a prismatic joint: the redundant resolution toward its nominal pose,
+/// its q̇ and q̈ the derivatives of that resolution (docs/theory/model.md#redundant-legs).
+/// Nothing is differentiated numerically. The planned foot path is where the foot touches: a sphere
 /// foot's IK target, its centre, is that path + r n with n the normal under the foot and its
 /// derivatives (planning/gait.hpp leg_foot_normal; docs/theory/model.md#sphere-feet).
 #include <array>

@@ -242,7 +242,7 @@ void prepare_leg_chains(RobotModel& m) {
     d.a1_J1 = m.axis[b1].normalized();
     d.w1_H = d.H_R_J1 * d.a1_J1;
     d.up_H = m.R_B_H[leg].transpose() * Vec3::UnitZ();
-    for (int j = 0; j < m.leg(leg).n_joints; ++j) {
+    for (int j = 0; j < 3; ++j) {  // the three-joint solvers' data; longer legs: leg_motion.cpp
       const int k = m.joint(leg, j);
       const double lo = m.joint_lower_rad[k], hi = m.joint_upper_rad[k];
       d.q_start[j] = (std::isfinite(lo) && std::isfinite(hi)) ? 0.5 * (lo + hi) : 0.0;
@@ -274,6 +274,7 @@ void prepare_leg_chains(RobotModel& m) {
                                                                     : LegIkMethod::kNumeric;
     m.leg_ik[leg] = d;
   }
+  prepare_serial_chains(m);
 }
 
 }  // namespace hexdyn

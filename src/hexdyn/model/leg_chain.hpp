@@ -40,4 +40,8 @@ inline bool rolling_hip(const LegIkData& d) {
 /// IK of a kChain leg for a foot target p_H in H (LegIkMethod of model.leg_ik[leg]).
 LegIkResult chain_inverse_kinematics(const RobotModel& model, int leg, const Vec3& p_H);
 
+/// IK of a leg on its chain (RobotModel::leg_on_chain): the redundant resolution's q for a
+/// foot at rest at p_H (model/leg_motion.cpp).
+LegIkResult chain_leg_inverse_kinematics(const RobotModel& model, int leg, const Vec3& p_H);
+
 }  // namespace hexdyn

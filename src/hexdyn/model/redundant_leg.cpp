@@ -219,28 +219,58 @@ KktMatrix kkt_matrix(const std::array<ChainMatrix, 3>& hess, const ChainVector& 
   return K;
 }
 
-/// Damped least-squares steps from q towards f(q) = p, each pulled to the nominal pose in J's
-/// null space; stops when the foot is within 1e-9 m or after 100 steps.
+/// One damped least-squares step from q towards f(q) = p with damping `damping` (relative to
+/// the trace of J W⁻¹ Jᵀ), pulled to the nominal pose in J's null space (W-weighted), at most
+/// 0.5 rad (or m) per joint.
+ChainVector reach_step(const SerialChain& chain, const RedundantResolution& res,
+                       const ChainVector& w_inv, const ChainVector& q, const Vec3& e,
+                       double damping) {
+  const ChainJacobian J = chain_jacobian(chain, q);
+  const Mat3 A = J * w_inv.asDiagonal() * J.transpose();
+  const Eigen::LDLT<Mat3> A_damped(A + damping * std::max(1e-12, A.trace()) * Mat3::Identity());
+  ChainVector step = w_inv.asDiagonal() * J.transpose() * A_damped.solve(e);
+  // The projection undamped where A is invertible: a damped one leaves part of the pull
+  // along J's range, which stalls the foot short of p by about damping / σ² of the pull.
+  const ChainVector pull = res.q_nominal - q;
+  const Eigen::LDLT<Mat3> A_exact(A);
+  Vec3 z = A_exact.solve(J * pull);
+  if (A_exact.info() != Eigen::Success || !(A_exact.vectorD().minCoeff() > 0.0) || !z.allFinite())
+    z = A_damped.solve(J * pull);
+  step += 0.1 * (pull - w_inv.asDiagonal() * J.transpose() * z);
+  const double longest = step.cwiseAbs().maxCoeff();
+  if (longest > 0.5) step *= 0.5 / longest;
+  return step;
+}
+
+/// Levenberg–Marquardt steps from q towards f(q) = p (reach_step), each pulled to the nominal
+/// pose in J's null space: a step that brings the foot nearer is taken and the damping
+/// lowered, else the damping raised; stops when the foot is within 1e-9 m, after 100 steps or
+/// when the damping can rise no further.
 void reach(const SerialChain& chain, const RedundantResolution& res, const Vec3& p, ChainVector& q,
            int& iterations) {
   const ChainVector w_inv = res.weight.cwiseInverse();
-  for (int it = 0; it < 100; ++it, ++iterations) {
-    const Vec3 e = p - chain_foot_position(chain, q);
-    if (e.norm() <= 1e-9) return;
-    const ChainJacobian J = chain_jacobian(chain, q);
-    const Mat3 A = J * w_inv.asDiagonal() * J.transpose();
-    const double damping = 1e-6 * std::max(1e-12, A.trace());
-    const Eigen::LDLT<Mat3> A_damped(A + damping * Mat3::Identity());
-    const Vec3 y = A_damped.solve(e);
-    ChainVector step = w_inv.asDiagonal() * J.transpose() * y;
-    // The nominal pose's pull, projected onto J's null space (W-weighted).
-    const ChainVector pull = res.q_nominal - q;
-    const Vec3 z = A_damped.solve(J * pull);
-    step += 0.1 * (pull - w_inv.asDiagonal() * J.transpose() * z);
-    const double longest = step.cwiseAbs().maxCoeff();
-    if (longest > 0.5) step *= 0.5 / longest;  // a step of at most 0.5 rad (or m) per joint
-    q += step;
+  double damping = 1e-6;
+  Vec3 e = p - chain_foot_position(chain, q);
+  for (int it = 0; it < 100 && e.norm() > 1e-9; ++it, ++iterations) {
+    const ChainVector q_new = q + reach_step(chain, res, w_inv, q, e, damping);
+    const Vec3 e_new = p - chain_foot_position(chain, q_new);
+    if (e_new.norm() < e.norm()) {
+      q = q_new;
+      e = e_new;
+      damping = std::max(0.3 * damping, 1e-9);
+    } else {
+      damping *= 10.0;
+      if (damping > 1e6) return;
+    }
   }
+}
+
+/// |[W (q − q_nom) + Jᵀ λ; f(q) − p]|, the optimality conditions' residual.
+double kkt_residual(const SerialChain& chain, const RedundantResolution& res, const Vec3& p,
+                    const ChainVector& q, const Vec3& lambda) {
+  const ChainVector g =
+      res.weight.cwiseProduct(q - res.q_nominal) + chain_jacobian(chain, q).transpose() * lambda;
+  return std::sqrt(g.squaredNorm() + (chain_foot_position(chain, q) - p).squaredNorm());
 }
 
 /// Whether H is positive definite on J's null space (m > 3), or J is square.
@@ -275,7 +305,7 @@ RedundantLegMotion redundant_leg_motion(const SerialChain& chain,
   Vec3 lambda = -A.ldlt().solve(J * (q - resolution.q_nominal));
   KktMatrix K;
   std::array<ChainMatrix, 3> hess;  // at q, also for the accelerations below
-  for (int it = 0; it < 30; ++it, ++out.iterations) {
+  for (int it = 0; it < 60; ++it, ++out.iterations) {
     J = chain_jacobian(chain, q);
     hess = chain_hessians(chain, q);
     KktVector r(m + 3);
@@ -284,12 +314,27 @@ RedundantLegMotion redundant_leg_motion(const SerialChain& chain,
     const double scale = 1.0 + w.cwiseProduct(q - resolution.q_nominal).norm();
     K = kkt_matrix(hess, w, lambda, J);
     if (r.head(m).norm() <= 1e-13 * scale && r.tail(3).norm() <= 1e-13) {
+      // One more full step takes q to the rounding floor (rates and accelerations below use
+      // K at the q before it, which differs by rounding).
+      const KktVector last = -Eigen::PartialPivLU<KktMatrix>(K).solve(r);
+      q += last.head(m);
+      lambda += last.tail(3);
       out.converged = true;
       break;
     }
     const KktVector step = -Eigen::PartialPivLU<KktMatrix>(K).solve(r);
-    q += step.head(m);
-    lambda += step.tail(3);
+    // Backtracking on the residual: far from the optimum (an ill-conditioned J, a reduced
+    // Hessian not yet positive) a full step can throw q far away. Near it (residual below
+    // 1e-8) full steps, which converge quadratically down to rounding.
+    const double longest = step.head(m).cwiseAbs().maxCoeff();
+    double alpha = longest > 0.5 ? 0.5 / longest : 1.0;
+    const double r_now = r.norm();
+    for (int half = 0; half < 20 && r_now > 1e-8; ++half, alpha *= 0.5)
+      if (kkt_residual(chain, resolution, p_H, q + alpha * step.head(m),
+                       lambda + alpha * step.tail(3)) < r_now)
+        break;
+    q += alpha * step.head(m);
+    lambda += alpha * step.tail(3);
   }
   out.q = q;
   out.lambda = lambda;

@@ -196,6 +196,7 @@ double wrap_angle(double x) { return std::abs(x) <= M_PI ? x : std::remainder(x,
 }  // namespace
 
 LegIkResult leg_inverse_kinematics(const RobotModel& m, int leg, const Vec3& p) {
+  if (m.leg_on_chain[leg]) return chain_leg_inverse_kinematics(m, leg, p);
   if (m.leg_geometry == LegGeometry::kChain) return chain_inverse_kinematics(m, leg, p);
   LegIkResult r;
   const auto& L = m.link_length_m;

@@ -34,8 +34,13 @@
 ///    analytic; IK in closed form for the yaw–pitch–pitch family (the second and third
 ///    axes parallel, the first not parallel to them), Levenberg–Marquardt on the FK
 ///    otherwise (leg_chain.cpp).
+/// A leg of more than three joints, or with a prismatic joint, is solved on its SerialChain
+/// (leg_chain_table, built with the model): the redundant resolution of
+/// model/redundant_leg.hpp toward the leg's nominal pose (docs/theory/model.md#redundant-legs).
+/// Every stage reaches a leg's kinematics through the leg_* functions below, whatever the leg.
 #include "hexdyn/core/common.hpp"
 #include "hexdyn/core/scene.hpp"
+#include "hexdyn/model/redundant_leg.hpp"
 
 namespace hexdyn {
 
@@ -155,6 +160,16 @@ struct RobotModel {
   /// Sphere foot radius per leg [m]: p_foot_last is the sphere's centre; 0 a point foot.
   LegArray<double> foot_radius_m{};
   LegArray<LegIkData> leg_ik;  ///< kChain only
+  /// Every leg as a serial chain in its hip frame H (prepare_serial_chains): joint 0 at H's
+  /// origin, then the tree's placements, axes and joint kinds, the foot point p_foot_last.
+  LegArray<SerialChain> leg_chain_table;
+  /// Whether leg l is solved on leg_chain_table[l] by the redundant resolution (more than three
+  /// joints, or a prismatic joint) rather than by the three-joint solvers.
+  LegArray<bool> leg_on_chain{};
+  /// The nominal pose and weights of the resolution per leg (prepare_serial_chains): q_nominal
+  /// the middle of each joint's limits (0 for an unlimited joint), W = 1 / range² (range 2π
+  /// for an unlimited revolute joint, 0.1 m for an unlimited prismatic one).
+  LegArray<RedundantResolution> leg_resolution;
   /// Joint names in the description, flat order (URDF: its own names; YAML: L{i}_coxa …).
   JointArray<std::string> joint_source_names;
   /// Each hip's outward direction at zero coxa angle, horizontal in the trunk frame (unit,
@@ -225,9 +240,10 @@ Mat3 paper_leg_jacobian_dot_H(const RobotModel& model, int leg, const LegTrig& t
 
 /// IK, knee-up branch with the foot outside the coxa axis: the paper's closed form
 /// (kPaperPlanar), the yaw–pitch–pitch closed form or Levenberg–Marquardt (kChain; see
-/// leg_chain.cpp for the branch rules and the margin).
+/// leg_chain.cpp for the branch rules and the margin). A leg on its chain (leg_on_chain): the
+/// redundant resolution's q, margin the smallest singular value of its 3 × m Jacobian [m/rad].
 struct LegIkResult {
-  Vec3 q = Vec3::Zero();
+  LegVector q = LegVector::Zero(3);  ///< the leg's joint positions (n_joints entries)
   double margin_m = 0.0;  ///< distance to the nearest workspace boundary (≥ ik_min_margin)
   bool ok = false;
   std::string reason;  ///< why not ok: "beyond full extension", "joint limit", ...
@@ -240,6 +256,47 @@ bool planar_reach_ok(double dist_m, double l2_m, double l3_m, double min_margin_
 
 /// p_H: foot target in the hip frame. Never throws; callers turn !ok into ReachError.
 LegIkResult leg_inverse_kinematics(const RobotModel& model, int leg, const Vec3& p_H);
+
+/// Builds leg_chain_table, leg_on_chain and leg_resolution of every leg from the tree (called
+/// by prepare_leg_chains); for a leg on its chain, leg_ik's outward direction from the chain's
+/// foot at zero joint positions.
+void prepare_serial_chains(RobotModel& model);
+
+/// Foot position of leg `leg` in its hip frame for its joint positions q (n_joints entries) [m].
+Vec3 leg_foot_position(const RobotModel& model, int leg, const LegVector& q);
+
+/// ∂p_H/∂q of leg `leg` (3 × n_joints), hip frame; for a three-revolute leg leg_jacobian_H.
+LegJacobian leg_jacobian(const RobotModel& model, int leg, const LegVector& q);
+
+/// A leg's joint positions, rates and accelerations for its foot target (leg_motion_H).
+/// cos_q, sin_q: std::cos and std::sin of a revolute joint's angle; 1 and 0 for a prismatic
+/// joint (its body does not turn). Fixed capacity: filling one never allocates.
+struct LegMotion {
+  LegIkResult ik;  ///< q, and whether the target is reached (ok, margin, reason)
+  LegVector qd, qdd, cos_q, sin_q;
+};
+
+/// The motion of leg `leg` whose foot (the IK target) is at p_H, moving at pd_H and
+/// accelerating at pdd_H, all in its hip frame. Three revolute joints: the IK
+/// (leg_inverse_kinematics), q̇ = J⁻¹ṗ and q̈ = J⁻¹(p̈ − J̇q̇). A leg on its chain: the redundant
+/// resolution (model/redundant_leg.hpp) from the leg's nominal pose. When !out.ik.ok the rates
+/// are not set; when the Jacobian is singular they are not finite (the caller refuses both).
+void leg_motion_H(const RobotModel& model, int leg, const Vec3& p_H, const Vec3& pd_H,
+                  const Vec3& pdd_H, LegMotion& out);
+/// The same with the foot's velocity v_F and acceleration a_F given in the axes of a frame F
+/// whose rotation from H is F_R_H (ṗ_H = F_R_Hᵀ v_F): the kinematics stage's call, with F the
+/// trunk frame and F_R_H = R_B_H[leg].
+void leg_motion(const RobotModel& model, int leg, const Vec3& p_H, const Mat3& F_R_H,
+                const Vec3& v_F, const Vec3& a_F, LegMotion& out);
+
+/// Upper bound of the distance of leg `leg`'s foot from its hip [m]. The paper geometry: the
+/// foot's distance at zero angles (every leg straight out). A chain: the larger of that and the
+/// sum of the link lengths along the chain's placements, hip → second joint → … → last joint →
+/// foot point, plus each prismatic joint's largest travel (max |limit|, 0 when unlimited).
+double leg_reach_m(const RobotModel& model, int leg);
+
+/// True when some joint of the model slides (JointType::kPrismatic).
+bool has_prismatic_joints(const RobotModel& model);
 
 /// Poses of every body in the trunk frame for joint positions q (model.joints(): angles of
 /// revolute joints [rad], slides of prismatic joints [m]).

@@ -2,19 +2,28 @@
 
 #include <cmath>
 #include <sstream>
+#include <string>
 
 #include "hexdyn/model/leg_chain.hpp"
 
 namespace hexdyn {
 
+namespace {
+
+/// Radius and depth of a stance whose foot is at p_H (hip frame).
+void set_radius_and_depth(const RobotModel& model, int leg, const Vec3& p_H, NominalStance& s) {
+  const Vec3 up_H = model.R_B_H[leg].transpose() * Vec3::UnitZ();
+  s.depth_m = -p_H.dot(up_H);
+  s.radius_m = (p_H + s.depth_m * up_H).norm();
+}
+
+}  // namespace
+
 NominalStance stance_at_pose(const RobotModel& model, int leg, const Vec3& q, std::string source) {
   NominalStance s;
   s.q = q;
   s.source = std::move(source);
-  const Vec3 up_H = model.R_B_H[leg].transpose() * Vec3::UnitZ();
-  const Vec3 p_H = leg_foot_position_H(model, leg, q);
-  s.depth_m = -p_H.dot(up_H);
-  s.radius_m = (p_H + s.depth_m * up_H).norm();
+  set_radius_and_depth(model, leg, leg_foot_position_H(model, leg, q), s);
   return s;
 }
 
@@ -37,6 +46,16 @@ NominalStance hanging_stance(const RobotModel& model, int leg) {
 }  // namespace
 
 NominalStance default_nominal_stance(const RobotModel& model, int leg) {
+  if (model.leg_on_chain[leg]) {
+    // A leg solved on its chain stands at the redundant resolution's nominal pose.
+    const LegVector& q = model.leg_resolution[leg].q_nominal;
+    NominalStance s;
+    s.q = q.head<3>();
+    s.source = "nominal pose (middle of the joint limits; " + std::to_string(q.size()) +
+               " joints, the first three shown)";
+    set_radius_and_depth(model, leg, leg_foot_position(model, leg, q), s);
+    return s;
+  }
   const LegIkData& d = model.leg_ik[leg];
   if (rolling_hip(d)) return hanging_stance(model, leg);
   // The leg's plane at zero coxa angle: normal w1 (the femur axis); in it, up and outward.

@@ -121,7 +121,7 @@ SampleMargin leg_margin(const RobotModel& m, int leg, const Vec3& p_H, const Leg
     }
     if (!needed) return s;
   }
-  const auto J = leg_jacobian_H(m, leg, ik.q);
+  const LegJacobian J = leg_jacobian(m, leg, ik.q);
   for (int j = 0; j < n_joints; ++j) {
     const int k = m.joint(leg, j);
     const double lo = m.joint_lower_rad[k], hi = m.joint_upper_rad[k];

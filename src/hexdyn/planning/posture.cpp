@@ -182,22 +182,15 @@ class PostureSearch {
   int evaluations_ = 0;
 };
 
-/// The legs' reach, the span of the default height search [m]. The paper robot: the
-/// longest foot distance from its hip at zero joint angles, where every leg stands straight
-/// out. A chain leg (URDF) need not be extended at zero (Kraby's femur rests at 45°): the
-/// sum of its segments, hip → second joint → … → last joint → foot, bounds its reach instead.
+/// The legs' reach, the span of the default height search [m]: the largest of the model's
+/// leg_reach_m (the paper robot: the foot distance at zero joint angles, where every leg stands
+/// straight out; a chain, any number of joints: the link lengths summed along the chain, hip →
+/// second joint → … → last joint → foot, since a leg need not be extended at zero, as Kraby's
+/// femur rests at 45°), a sphere foot's radius added.
 double leg_length_m(const RobotModel& model) {
   double r = 0.0;
-  for (int leg = 0; leg < model.legs(); ++leg) {
-    double reach = leg_foot_position_H(model, leg, Vec3::Zero()).norm();
-    if (model.leg_geometry == LegGeometry::kChain) {
-      double segments = 0.0;  // summed hip to foot: for three joints (femur + tibia) + foot
-      for (int j = 1; j < model.leg(leg).n_joints; ++j)
-        segments += model.p_parent_joint[model.body(leg, j)].norm();
-      reach = std::max(reach, segments + model.p_foot_last[leg].norm());
-    }
-    r = std::max(r, reach + model.foot_radius_m[leg]);  // a sphere foot reaches r further down
-  }
+  for (int leg = 0; leg < model.legs(); ++leg)
+    r = std::max(r, leg_reach_m(model, leg) + model.foot_radius_m[leg]);
   return r;
 }
 

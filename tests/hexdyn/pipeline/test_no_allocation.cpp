@@ -29,6 +29,7 @@
 #include <new>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "hexdyn/allocation/active_set_backend.hpp"
@@ -205,6 +206,36 @@ TEST_CASE("the inverse dynamics of a quadruped allocates nothing", "[pipeline][a
   }
   CHECK(g_allocations.load() - before == 0);
   CHECK(std::isfinite(sum));
+}
+
+TEST_CASE("the motion of legs solved on their chain allocates nothing", "[pipeline][allocation]") {
+  // leg_motion_H of a hexapod of 4-joint legs and of a biped of 6-joint legs (the redundant
+  // resolution, model/redundant_leg.hpp), at feet of the chain's own poses near the nominal one.
+  for (const std::vector<int>& shape : {std::vector<int>(6, 4), std::vector<int>(2, 6)}) {
+    std::mt19937 rng(4545);
+    RobotModel model = test::tree_model(rng, shape);
+    for (int k = 0; k < model.joints(); ++k) {
+      model.joint_lower_rad[k] = -3.0;
+      model.joint_upper_rad[k] = 3.0;
+    }
+    prepare_leg_chains(model);
+    std::vector<std::pair<int, Vec3>> targets;
+    for (int l = 0; l < model.legs(); ++l)
+      for (int s = 0; s < 3; ++s) {
+        LegVector q = model.leg_resolution[l].q_nominal;
+        for (int j = 0; j < q.size(); ++j) q[j] += 0.05 * (s + 1) * (j % 2 ? 1.0 : -1.0);
+        targets.emplace_back(l, leg_foot_position(model, l, q));
+      }
+    LegMotion motion;
+    int reached = 0;
+    const long before = g_allocations.load();
+    for (const auto& [leg, p] : targets) {
+      leg_motion_H(model, leg, p, Vec3(0.01, -0.02, 0.03), Vec3(0.1, 0.0, -0.1), motion);
+      reached += motion.ik.ok ? 1 : 0;
+    }
+    CHECK(g_allocations.load() - before == 0);
+    CHECK(reached == static_cast<int>(targets.size()));
+  }
 }
 
 TEST_CASE("the allocation counter of test_no_allocation sees a heap allocation",
