@@ -346,7 +346,7 @@ TEST_CASE("output: every dataset of the contract round-trips (dynamics present)"
   namespace s = schema;
   const std::string meta = s::kMetaGroup;
   REQUIRE(in.is_group(meta));
-  CHECK(in.string_attribute(meta, s::kAttrSchema) == "hexdyn-result/3");
+  CHECK(in.string_attribute(meta, s::kAttrSchema) == "hexdyn-result/4");
   CHECK(in.int_attribute(meta, s::kAttrSchemaVersion) == 3);
   CHECK(in.string_attribute(meta, s::kAttrVersion) == kVersion);
   CHECK(in.string_attribute(meta, s::kAttrGitCommit) == kGitCommit);

@@ -35,7 +35,7 @@ TEST_CASE("sweep: the sweep file holds axes, rows in index order and kept runs",
   write_sweep_file(out, spec, rows, sweep_robot_shape(factory), &cp, {2, 3.5, 1});
   const H5Reader r(out);
   CHECK(r.string_attribute("/meta", "schema") == schema::kSweepSchema);
-  CHECK(r.int_attribute("/meta", "schema_version") == 3);
+  CHECK(r.int_attribute("/meta", "schema_version") == 4);
   CHECK(r.string_attribute("/meta", "sweep_yaml") == spec.sweep_yaml);
   CHECK(r.string_attribute("/meta", "base_config_yaml") == spec.base_config_yaml);
   CHECK(r.int_attribute("/meta", "ranks") == 2);
