@@ -251,12 +251,6 @@ ReplaySource read_replay_source(const std::string& result_path,
                                      result_path + " /meta config_yaml", overrides);
   const RobotModel model = build_robot_model(src.scene.robot);
   src.leg_joint_counts = leg_joint_counts(in, result_path, model);
-  // The forward integrator (replay/replay.cpp) still holds six legs of three joints.
-  if (model.legs() != kLegs || model.joints() != kJoints)
-    throw ConfigError("replay: '" + result_path + "': the run's robot has " +
-                      std::to_string(model.legs()) + " legs and " + std::to_string(model.joints()) +
-                      " joints; the forward replay holds " + std::to_string(kLegs) + " legs of " +
-                      std::to_string(kJointsPerLeg) + " joints in this version");
   read_plan(in, result_path, model, src.plan);
   check_feet(in, result_path, model, src.plan);
   return src;
