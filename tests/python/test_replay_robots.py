@@ -12,7 +12,9 @@ from a copy of its scene and of its URDF, then replayed with `hexdyn replay`. Ch
   3. the robot is the result's own: after the copied URDF's masses are multiplied by 4, the
      replay prints one warning line naming that URDF and writes every dataset as before, bit
      for bit; DART given the result's /model/urdf so edited misses the stored accelerations
-     by more than 100 TOLERANCE (the check of 2 can fail).
+     by more than 100 TOLERANCE (the check of 2 can fail);
+  4. a result whose /model/leg_joint_counts is edited (4, 2, 3, 3) is refused in one line
+     naming the dataset, and writes nothing.
 
     /usr/bin/python3 tests/python/test_replay_robots.py HEXDYN SOURCE_DIR
 """
@@ -100,6 +102,20 @@ def check_sizes(robot, r):
     assert [text(n) for n in r["/model/joint_names"]] == robot["joints"]
 
 
+def check_edited_counts(binary, result, tmp):
+    """Check 4."""
+    import h5py
+    edited, out = os.path.join(tmp, "counts.h5"), os.path.join(tmp, "counts_replay.h5")
+    shutil.copyfile(result, edited)
+    with h5py.File(edited, "r+") as f:
+        f["/model/leg_joint_counts"][:2] = (4, 2)
+    p = subprocess.run([binary, "replay", edited, "-o", out], capture_output=True, text=True)
+    lines = p.stderr.strip().splitlines()
+    assert p.returncode != 0 and len(lines) == 1 and "/model/leg_joint_counts" in lines[0], \
+        p.stderr
+    assert not os.path.exists(out), "a replay was written"
+
+
 def main():
     binary, src = args()
     if dart is None:
@@ -114,6 +130,7 @@ def main():
         r, err = replay(binary, result, os.path.join(tmp, "p0.h5"))
         assert "warning" not in err, err
         check_sizes(robot, r)
+        check_edited_counts(binary, result, tmp)
         worst = worst_difference(robot, r)
         loaded = int((np.abs(r["/contacts/force"]).sum(axis=2) > 0).any(axis=1).sum())
         T = len(r["/time"])
