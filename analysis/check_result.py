@@ -134,9 +134,30 @@ def check_meta(c, res):
         c.check(False, "/meta config_yaml parses", str(e).splitlines()[0])
 
 
+def check_leg_joint_counts(c, res):
+    """/model/leg_joint_counts: each leg's joints, which /model/joint_names lists leg by leg
+    (hexdyn.leg_joints groups them), summing to the joint count."""
+    path = "/model/leg_joint_counts"
+    if path not in res or "/model/joint_names" not in res or "/model/leg_names" not in res:
+        return
+    counts = [int(n) for n in res[path]]
+    J = len(res["/model/joint_names"])
+    c.check(sum(counts) == J, f"{path} sums to the {J} joints", f"got {counts}")
+    try:
+        grouped = [len(leg) for leg in hr.leg_joints(res)]
+    except ValueError as e:
+        c.check(False, "the joints group by leg", str(e))
+        return
+    c.check(grouped == counts, f"{path} {counts}: the joints of each leg",
+            f"/model/joint_names groups as {grouped}")
+
+
 def check_kinematics(c, res, expect_mass):
     T = res.samples
-    check_datasets(c, res, hr.MODEL_DATASETS, T)
+    # /model/leg_joint_counts is new in layout version 4.
+    model = {p: v for p, v in hr.MODEL_DATASETS.items()
+             if p != hr.LEG_JOINT_COUNTS or int(res.meta.get("schema_version", 0)) >= 4}
+    check_datasets(c, res, model, T)
     check_datasets(c, res, hr.KINEMATIC_DATASETS, T)
     # A URDF robot's joints keep the description's names, in hexdyn's order: the order
     # /model/leg_mapping lists them ("L1: J1 J2 J3 foot ...", L2: ...). hexdyn's own URDF
@@ -150,6 +171,7 @@ def check_kinematics(c, res, expect_mass):
         n = len(res["/model/leg_names"])
         c.check(tuple(res["/model/leg_names"]) == tuple(f"L{i}" for i in range(1, n + 1)),
                 f"/model/leg_names L1 ... L{n}")
+    check_leg_joint_counts(c, res)
     if "/time" in res and T > 1:
         c.check(bool(np.all(np.diff(res["/time"]) > 0)), "/time strictly increasing")
     if "/base/orientation" in res:

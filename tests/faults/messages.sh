@@ -63,10 +63,6 @@ EOF
 printf 'inherit: r.h5\n' > inherits_result.yaml
 printf 'inherit: missing.yaml\n' > inherits_missing.yaml
 printf "base: missing.yaml\n$axis" > sweep_missing.yaml
-# A quadruped's result: its forward replay is refused in one line (the integrator holds six
-# legs of three joints in this version).
-"$HEXDYN" run "$SRC/configs/robots/solo12_flat.yaml" -o solo12.h5 > solo12.log 2>&1 ||
-  fail "Solo-12's flat scene: $(tail -1 solo12.log)"
 
 inputs_digest() { sha256sum ./*.yaml ./*.h5 "$PAPER" "$KRABY_SCENE"; }
 before=$(inputs_digest)
@@ -237,8 +233,6 @@ with h5py.File(sys.argv[1], "r") as f, h5py.File("r.h5", "r") as g:
     assert numpy.array_equal(f["/joints/torque"][()], g["/joints/torque"][()])
 EOF
 done
-refused quadruped_replay "replay: 'solo12\\.h5': the run's robot has 4 legs and 12 joints; the forward replay holds 6 legs of 3 joints in this version$" \
-  replay solo12.h5 -o out/o.h5
 # A sweep's output needs room for its checkpoint folder, OUT.checkpoint: a longer name is
 # one line saying how long it may be, and nothing is created.
 long_sweep="long/$(printf 'b%.0s' {1..245}).h5"

@@ -52,7 +52,7 @@ from .h5files import (check_datasets, check_declared, check_filetype_version,
                       yaml_attribute)
 from .schema import (DECLARED, DYNAMICS_DATASETS, ENVELOPE_CASES_LAYOUT, ENVELOPE_LAYOUT,
                      ENVELOPE_REQUIRED, ENVELOPE_SCHEMA, ENVELOPE_SCHEMA_VERSION, FLAGS,
-                     KINEMATIC_DATASETS, META_ATTRIBUTES, META_GROUP,
+                     KINEMATIC_DATASETS, LEG_JOINT_COUNTS, META_ATTRIBUTES, META_GROUP,
                      MODEL_DATASETS, PHASE_IMPACT, PHASE_SUPPORT, PHASE_SWING, REPLAY_LAYOUT,
                      REPLAY_REQUIRED, REPLAY_SCHEMA, REPLAY_SCHEMA_VERSION, RESULT_LAYOUT,
                      RESULT_REQUIRED, RESULT_SCHEMA, RESULT_SCHEMA_VERSION, SCENARIO_DATASETS,
@@ -222,7 +222,7 @@ class FileKind:
     """One kind of hexdyn file, a row of FILE_KINDS.
 
     name             "hexdyn-result", the /meta schema without its version
-    schema           the schema of the current version, "hexdyn-result/3" (what is written)
+    schema           the schema of the current version, "hexdyn-result/4" (what is written)
     versions         the versions this reader opens (a tuple)
     type             the type the reader returns (Result, Sweep, ...)
     check(root, source, schema)   the checks at open (datasets against their declarations)
@@ -258,17 +258,18 @@ class FileKind:
 # The versions read are those each file kind was released in (CHANGELOG.md, "File formats"):
 # reading an older version too is one more number in its row. Results and sweeps of version 2
 # (0.1.0) have the same paths; their energies are the trapezoid's, and /meta has no
-# energy_rule.
+# energy_rule. Results of version 3, sweeps of version 3 (their kept runs) and replays of
+# version 1 have the same paths but /model/leg_joint_counts (schema.py LEG_JOINT_COUNTS).
 FILE_KINDS = {k.name: k for k in (
-    FileKind(RESULT_SCHEMA, (2, RESULT_SCHEMA_VERSION), Result,
+    FileKind(RESULT_SCHEMA, (2, 3, RESULT_SCHEMA_VERSION), Result,
              _by_layout(RESULT_LAYOUT, RESULT_REQUIRED), _by_mapping(Result),
              layout=lambda root: RESULT_LAYOUT, meta_attributes=SCHEMA["kResultMetaAttributes"]),
-    FileKind(SWEEP_SCHEMA, (2, SWEEP_SCHEMA_VERSION), Sweep, _check_sweep, _read_sweep,
+    FileKind(SWEEP_SCHEMA, (2, 3, SWEEP_SCHEMA_VERSION), Sweep, _check_sweep, _read_sweep,
              meta_attributes=SCHEMA["kSweepMetaAttributes"], members=("runs", "hexdyn-result")),
     FileKind(ENVELOPE_SCHEMA, (ENVELOPE_SCHEMA_VERSION,), Envelope,
              _by_layout(_envelope_layout, ENVELOPE_REQUIRED), _by_mapping(Envelope, True),
              layout=_envelope_layout, meta_attributes=SCHEMA["kEnvelopeMetaAttributes"]),
-    FileKind(REPLAY_SCHEMA, (REPLAY_SCHEMA_VERSION,), Replay,
+    FileKind(REPLAY_SCHEMA, (1, REPLAY_SCHEMA_VERSION), Replay,
              _by_layout(REPLAY_LAYOUT, REPLAY_REQUIRED), _by_mapping(Replay),
              layout=lambda root: REPLAY_LAYOUT, meta_attributes=SCHEMA["kReplayMetaAttributes"]),
     FileKind(STUDY_SCHEMA, (STUDY_SCHEMA_VERSION,), Study, _check_study, _read_study),
@@ -356,7 +357,7 @@ def check_layout(file, source=None):
     kind, then (hexdyn.h5files.check_declared) no undeclared dataset, each with its declared
     units (results, envelopes, replays), every declared /meta attribute (results, sweeps,
     envelopes, replays), and each of a sweep's kept runs /runs/<id> as a result. Returns the
-    schema name ("hexdyn-sweep/3"). hexdyn.IoError in one line naming the file and the
+    schema name ("hexdyn-sweep/4"). hexdyn.IoError in one line naming the file and the
     dataset on a mismatch (and for a path that is no regular HDF5 file); ValueError for a
     file of no hexdyn schema or of a version this reader does not read."""
     if not isinstance(file, (h5py.File, h5py.Group)):
@@ -485,7 +486,8 @@ __all__ = [
     "FLAGS", "RESULT_SCHEMA", "RESULT_SCHEMA_VERSION", "SWEEP_SCHEMA", "SWEEP_SCHEMA_VERSION",
     "ENVELOPE_SCHEMA", "ENVELOPE_SCHEMA_VERSION", "REPLAY_SCHEMA", "REPLAY_SCHEMA_VERSION",
     "STUDY_SCHEMA", "STUDY_SCHEMA_VERSION", "META_GROUP", "META_ATTRIBUTES",
-    "SWEEP_META_ATTRIBUTES", "MODEL_DATASETS", "KINEMATIC_DATASETS", "DYNAMICS_DATASETS",
+    "SWEEP_META_ATTRIBUTES", "LEG_JOINT_COUNTS", "MODEL_DATASETS", "KINEMATIC_DATASETS",
+    "DYNAMICS_DATASETS",
     "SCENARIOS_GROUP", "SCENARIO_DATASETS", "SWEEP_STATUS", "PHASE_SWING", "PHASE_IMPACT",
     "PHASE_SUPPORT", "SIZE_NAMES", "SWEEP_SIZE_NAMES",
     "expected_shape",

@@ -169,7 +169,11 @@ RESULT_LAYOUT = layout([SCHEMA["kTime"]], SCHEMA["kModelDatasets"], SCHEMA["kUrd
                        SCHEMA["kKinematicDatasets"], SCHEMA["kSphereFootDatasets"],
                        SCHEMA["kDynamicsDatasets"], SCHEMA["kRequiredFrictionDatasets"],
                        SCHEMA["kDriveTrainDatasets"], *coordinate_lists("Result"))
-RESULT_REQUIRED = {d.path for d in (*SCHEMA["kModelDatasets"], *SCHEMA["kKinematicDatasets"])}
+# /model/leg_joint_counts is new in layout version 4 (results) and 2 (replays): files of the
+# versions before, which the readers open too, have none.
+LEG_JOINT_COUNTS = SCHEMA["kModelLegJointCounts"].path
+RESULT_REQUIRED = {d.path for d in (*SCHEMA["kModelDatasets"], *SCHEMA["kKinematicDatasets"])
+                   if d.path != LEG_JOINT_COUNTS}
 
 SWEEP_TABLE_LAYOUT = layout([SCHEMA["kScenarioId"]], SCHEMA["kScenarioDatasets"])
 SWEEP_TABLE_REQUIRED = {SCHEMA[k].path for k in ("kScenarioId", "kScenarioAxisIndex",
@@ -200,4 +204,4 @@ _REPLAY_OWN = [d for name, d in SCHEMA.items()
                if name.startswith("kReplay") and isinstance(d, DatasetSpec)]
 REPLAY_LAYOUT = layout(*_REPLAY_LISTS, _REPLAY_OWN, *coordinate_lists("Replay"),
                        *coordinate_lists("Result"))
-REPLAY_REQUIRED = {d.path for decls in _REPLAY_LISTS for d in decls}
+REPLAY_REQUIRED = {d.path for decls in _REPLAY_LISTS for d in decls if d.path != LEG_JOINT_COUNTS}

@@ -1,7 +1,7 @@
 #pragma once
 /// \file result.hpp
 /// Per-run result arrays, one row per output sample, in the units and frames of the
-/// `hexdyn-result/3` contract (io/schema.hpp). Matrices are row-major so that a
+/// `hexdyn-result/4` contract (io/schema.hpp). Matrices are row-major so that a
 /// (T, n) dataset is written straight from `.data()`; (T, 6, 3) datasets are stored
 /// as T × 18 with leg-major columns (3 l + axis).
 #include <cstdint>
@@ -190,6 +190,9 @@ struct RunResult {
   /// /model/joint_names: the description's joint names in flat joint order (a URDF
   /// robot's own names; empty: hexdyn's L{i}_coxa … names).
   std::vector<std::string> joint_names;
+  /// /model/leg_joint_counts: each leg's joints, hip to foot, in leg order (empty: legs of
+  /// equal counts).
+  std::vector<int> leg_joint_counts;
   /// /model/leg_mapping (URDF robots only, else empty): one entry per leg
   /// (model/urdf_robot.hpp leg_mapping_entries).
   std::vector<std::string> leg_mapping;

@@ -1,5 +1,7 @@
 #include "hexdyn/io/result_layout.hpp"
 
+#include <cstdint>
+#include <numeric>
 #include <utility>
 
 #include "hexdyn/config/config.hpp"
@@ -82,20 +84,30 @@ RobotCounts robot_counts(const RunResult& r) {
 void add_model(Builder& b, const RunResult& r, RobotCounts n) {
   namespace s = schema;
   std::vector<std::string> joints = r.joint_names, legs;
-  // Without the description's names: legs of equal joint counts, positional names.
-  const int leg_joints = n.legs > 0 ? n.joints / n.legs : 0;
+  // Without the description's counts: legs of equal joint counts; without its names,
+  // positional names.
+  std::vector<std::int32_t> counts(r.leg_joint_counts.begin(), r.leg_joint_counts.end());
+  if (counts.empty()) counts.assign(to_size(n.legs), n.legs > 0 ? n.joints / n.legs : 0);
+  if (counts.size() != to_size(n.legs))
+    throw IoError(std::string(s::kModelLegJointCounts.path) + " has " +
+                  std::to_string(counts.size()) + " legs, expected " + std::to_string(n.legs));
   for (int leg = 0; leg < n.legs; ++leg) {
     legs.push_back(leg_name(leg));
+    const int m = counts[to_size(leg)];
     if (r.joint_names.empty())
-      for (int j = 0; j < leg_joints; ++j) joints.push_back(joint_name(leg, j, leg_joints));
+      for (int j = 0; j < m; ++j) joints.push_back(joint_name(leg, j, m));
   }
-  if (joints.size() != to_size(n.joints))
+  if (joints.size() != to_size(n.joints) ||
+      std::accumulate(counts.begin(), counts.end(), 0) != n.joints)
     throw IoError(std::string(s::kModelJointNames.path) + " has " + std::to_string(joints.size()) +
-                  " names, expected " + std::to_string(n.joints));
+                  " names and " + s::kModelLegJointCounts.path + " sums to " +
+                  std::to_string(std::accumulate(counts.begin(), counts.end(), 0)) + ", expected " +
+                  std::to_string(n.joints));
   if (!r.leg_mapping.empty()) b.add(s::kModelLegMapping, {r.leg_mapping.size()}, r.leg_mapping);
   b.add(s::kModelUrdf, {}, r.urdf);
   b.add(s::kModelJointNames, {joints.size()}, joints);
   b.add(s::kModelLegNames, {legs.size()}, legs);
+  b.add(s::kModelLegJointCounts, {counts.size()}, counts);
   b.scalar(s::kModelTotalMass, r.total_mass_kg);
 }
 

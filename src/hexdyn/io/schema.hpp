@@ -1,10 +1,10 @@
 #pragma once
 /// \file schema.hpp
 /// The HDF5 contracts of hexdyn in one place (described in docs/user/output.md, whose
-/// tables are generated from this header): `hexdyn-result/3` (one run) here, and, in the
-/// headers this one includes at its end, `hexdyn-sweep/3` (a parameter sweep,
+/// tables are generated from this header): `hexdyn-result/4` (one run) here, and, in the
+/// headers this one includes at its end, `hexdyn-sweep/4` (a parameter sweep,
 /// schema_sweep.hpp), `hexdyn-envelope/2` (the climbable envelope, envelope/envelope.hpp,
-/// schema_envelope.hpp) and `hexdyn-replay/1` (schema_replay.hpp), each with its schema
+/// schema_envelope.hpp) and `hexdyn-replay/2` (schema_replay.hpp), each with its schema
 /// name and version, every /meta attribute, and for every dataset its path, `units`, shape,
 /// element type and `long_name`. The
 /// writers (io/result_layout.cpp, sweep/sweep_file.cpp, envelope/envelope_file.cpp) take
@@ -35,10 +35,10 @@
 
 namespace hexdyn::schema {
 
-inline constexpr const char* kResultSchema = "hexdyn-result/3";  ///< /meta attr `schema`
-inline constexpr std::int64_t kResultSchemaVersion = 3;          ///< /meta attr `schema_version`
-inline constexpr const char* kSweepSchema = "hexdyn-sweep/3";    ///< sweep files' `schema`
-inline constexpr std::int64_t kSweepSchemaVersion = 3;           ///< sweep files' `schema_version`
+inline constexpr const char* kResultSchema = "hexdyn-result/4";  ///< /meta attr `schema`
+inline constexpr std::int64_t kResultSchemaVersion = 4;          ///< /meta attr `schema_version`
+inline constexpr const char* kSweepSchema = "hexdyn-sweep/4";    ///< sweep files' `schema`
+inline constexpr std::int64_t kSweepSchemaVersion = 4;           ///< sweep files' `schema_version`
 inline constexpr const char* kEnvelopeSchema = "hexdyn-envelope/2";  ///< envelope files' `schema`
 inline constexpr std::int64_t kEnvelopeSchemaVersion = 2;  ///< envelope files' `schema_version`
 
@@ -182,7 +182,7 @@ inline std::string at(const char* path, const std::string& value) {
   return s;
 }
 
-// ======================================================================= hexdyn-result/3
+// ======================================================================= hexdyn-result/4
 
 // ---- /meta: a group with attributes only ----
 inline constexpr const char* kMetaGroup = "/meta";
@@ -255,6 +255,10 @@ inline constexpr DatasetSpec kModelJointNames{"/model/joint_names", "", Shape::k
                                               Element::kString, "joint names, leg-major"};
 inline constexpr DatasetSpec kModelLegNames{"/model/leg_names", "", Shape::kLegNames,
                                             Element::kString, "leg names"};
+/// Joints of each leg, hip to foot (/model/joint_names: each leg's in turn, in leg order).
+/// From layout version 4 (versions 2 and 3: three joints a leg).
+inline constexpr DatasetSpec kModelLegJointCounts{"/model/leg_joint_counts", "1", Shape::kLegValues,
+                                                  Element::kInt32, "number of joints of each leg"};
 inline constexpr DatasetSpec kModelTotalMass{"/model/total_mass", "kg", Shape::kScalar,
                                              Element::kFloat64, "total mass of the robot"};
 /// A URDF robot's legs L1 … L6: "L1: JOINT1 JOINT2 JOINT3 foot FOOT", the description's
@@ -490,7 +494,7 @@ inline constexpr FlagSpec kContactSlipFlags{"/contacts/slip", "holds slips"};
 
 /// Every dataset present in every result file.
 inline constexpr std::array kModelDatasets{kModelUrdf, kModelJointNames, kModelLegNames,
-                                           kModelTotalMass};
+                                           kModelLegJointCounts, kModelTotalMass};
 // clang-format off
 inline constexpr std::array kKinematicDatasets{
     kTime, kBasePosition, kBaseOrientation, kBaseLinearVelocity, kBaseAngularVelocity,

@@ -1,12 +1,12 @@
 #pragma once
 /// \file schema_replay.hpp
-/// The `hexdyn-replay/1` contract, part of io/schema.hpp (which includes this header at
+/// The `hexdyn-replay/2` contract, part of io/schema.hpp (which includes this header at
 /// its end; the generated Python schema holds it too). Same conventions as there.
 #include "hexdyn/io/schema.hpp"
 
 namespace hexdyn::schema {
 
-// ======================================================================= hexdyn-replay/1
+// ======================================================================= hexdyn-replay/2
 // A forward replay of a result file (replay/replay.hpp, docs/theory/replay.md): the stored
 // torques, with a joint PD on the planned angles, applied to the robot on the terrain through
 // the forward dynamics and the compliant contact. T samples at the result's own instants
@@ -17,8 +17,8 @@ namespace hexdyn::schema {
 // kContactForce, kFeetPosition, whose declarations in schema.hpp apply); the ones below
 // are the replay's own. Energies are cumulative from the start of the replay.
 
-inline constexpr const char* kReplaySchema = "hexdyn-replay/1";  ///< /meta attr `schema`
-inline constexpr std::int64_t kReplaySchemaVersion = 1;          ///< /meta `schema_version`
+inline constexpr const char* kReplaySchema = "hexdyn-replay/2";  ///< /meta attr `schema`
+inline constexpr std::int64_t kReplaySchemaVersion = 2;          ///< /meta `schema_version`
 
 // ---- /meta: kMetaSchema … kMetaWallTime as a result file's (config_yaml: the scene as
 // replayed, its replay: and contact: keys included), then ----
@@ -176,8 +176,8 @@ inline constexpr std::array kReplaySeriesDatasets{kTime,
                                                   kReplayEnergyKinetic,
                                                   kReplayEnergyPotential};
 /// Copied from the replayed result: the robot and the terrain (for readers and animate.py).
-inline constexpr std::array kReplayModelDatasets{kModelUrdf, kModelJointNames, kModelLegNames,
-                                                 kTerrainY, kTerrainZ};
+inline constexpr std::array kReplayModelDatasets{
+    kModelUrdf, kModelJointNames, kModelLegNames, kModelLegJointCounts, kTerrainY, kTerrainZ};
 /// Every dataset of the replay's report.
 inline constexpr std::array kReplayReportDatasets{kReplayCycleEnd,
                                                   kReplayPositionDrift,

@@ -1,13 +1,13 @@
 #pragma once
 /// \file schema_sweep.hpp
-/// The `hexdyn-sweep/3` contract, part of io/schema.hpp (which includes this header at
+/// The `hexdyn-sweep/4` contract, part of io/schema.hpp (which includes this header at
 /// its end; the generated Python schema holds it too). Same conventions as there.
 #include <array>
 
 #include "hexdyn/io/schema.hpp"
 
 namespace hexdyn::schema {
-// ======================================================================= hexdyn-sweep/3
+// ======================================================================= hexdyn-sweep/4
 // One row per scenario (N = product of the axis sizes, scenario i at the row-major grid
 // point, last axis fastest); metrics are NaN where /scenarios/status != 0.
 
@@ -262,7 +262,7 @@ inline constexpr std::array kScenarioDatasets{
     kScenarioWallTime};
 // clang-format on
 
-// ---- /runs/{id}: with --keep-runs, each computed scenario in the hexdyn-result/3 layout
+// ---- /runs/{id}: with --keep-runs, each computed scenario in the hexdyn-result/4 layout
 // (its own /meta, /model, kinematic and dynamic datasets below the group) ----
 inline constexpr const char* kRunsGroup = "/runs";
 inline constexpr const char* kRunGroup = "/runs/{id}";

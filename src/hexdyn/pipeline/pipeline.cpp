@@ -142,6 +142,8 @@ RunResult run_prepared_scene(const Scene& scene, const PreparedScene& prep, std:
       robot_urdf(prep.model, scene.robot.urdf ? scene.robot.urdf->name : "hexdyn_hexapod");
   result.joint_names.assign(prep.model.joint_source_names.begin(),
                             prep.model.joint_source_names.begin() + prep.model.joints());
+  for (int l = 0; l < prep.model.legs(); ++l)
+    result.leg_joint_counts.push_back(prep.model.leg(l).n_joints);
   if (scene.robot.urdf) {
     const auto mapping = leg_mapping_entries(*scene.robot.urdf);
     result.leg_mapping.assign(mapping.begin(), mapping.begin() + prep.model.legs());

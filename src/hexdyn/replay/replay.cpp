@@ -17,14 +17,76 @@
 namespace hexdyn {
 namespace {
 
+// The sums over the generalised coordinates below are taken in one fixed order, whatever the
+// robot's size and the compiler's vector width: the order of Eigen's reductions of fixed size
+// with two-lane packets, which the replay of a hexapod has always had (its results stay the
+// same bit for bit).
+
+/// Σ term(k), k = start … start + n − 1 (n ≥ 1), split in halves: term(start) alone, else the
+/// sum of the first ⌊n/2⌋ terms plus the sum of the others.
+template <class Term>
+double halves_sum(const Term& term, Eigen::Index start, Eigen::Index n) {
+  if (n == 1) return term(start);
+  const Eigen::Index half = n / 2;
+  return halves_sum(term, start, half) + halves_sum(term, start + half, n - half);
+}
+
+/// Σ term(k), k = 0 … n − 1, in two lanes: the even and the odd terms of the first 2⌊n/2⌋
+/// each summed in halves, the lanes added, then the last term when n is odd.
+template <class Term>
+double lane_sum(const Term& term, Eigen::Index n) {
+  if (n < 2) return n == 1 ? term(0) : 0.0;
+  const Eigen::Index pairs = n / 2;
+  const double even = halves_sum([&](Eigen::Index p) { return term(2 * p); }, 0, pairs);
+  const double odd = halves_sum([&](Eigen::Index p) { return term(2 * p + 1); }, 0, pairs);
+  const double sum = even + odd;
+  return 2 * pairs == n ? sum : sum + term(n - 1);
+}
+
+/// a · b (equal sizes) by lane_sum.
+template <class A, class B>
+double lane_dot(const A& a, const B& b) {
+  return lane_sum([&](Eigen::Index k) { return a[k] * b[k]; }, a.size());
+}
+
+/// Σ |a_k b_k| (the power of torques a at rates b) by lane_sum.
+template <class A, class B>
+double lane_abs_dot(const A& a, const B& b) {
+  return lane_sum([&](Eigen::Index k) { return std::abs(a[k] * b[k]); }, a.size());
+}
+
+/// J ν of a foot's 3 × (6 + joints) Jacobian: row `halves_row` summed in halves (halves_sum),
+/// the two others term by term from the first column. Row z in halves is Eigen's order for a
+/// product of its own; row x in halves its order for one nested in a product with a 3 × 3
+/// matrix (B (J ν)).
+Vec3 jacobian_times(const DofJacobian& J, const DofVector& nu, int halves_row = 2) {
+  Vec3 out;
+  for (int r = 0; r < 3; ++r) {
+    if (r == halves_row) {
+      out[r] = halves_sum([&](Eigen::Index k) { return J(r, k) * nu[k]; }, 0, nu.size());
+      continue;
+    }
+    double sum = J(r, 0) * nu[0];
+    for (Eigen::Index k = 1; k < nu.size(); ++k) sum += J(r, k) * nu[k];
+    out[r] = sum;
+  }
+  return out;
+}
+
+/// Per-leg 3-vectors, every entry zero (the unused legs' too).
+LegArray<Vec3> zero_vectors() {
+  LegArray<Vec3> v;
+  v.fill(Vec3::Zero());
+  return v;
+}
+
 /// The integrator's state: trunk pose and twist (accelerations unused), joint angles, rates.
 struct SimState {
   BaseState base;
-  VecJ q = VecJ::Zero();
-  VecJ qd = VecJ::Zero();
+  JointVector q, qd;  ///< model.joints() each
 
-  VecDof nu() const {
-    VecDof v;
+  DofVector nu() const {
+    DofVector v(6 + qd.size());
     v << base.v_W, base.omega_W, qd;
     return v;
   }
@@ -36,7 +98,7 @@ struct SimState {
 
 /// The planned joint angles, rates and feedforward torque at one instant.
 struct PlanPoint {
-  VecJ q, qd, tau;
+  JointVector q, qd, tau;
 };
 
 /// Linear interpolation of the plan between its samples k and k + 1 at t.
@@ -49,30 +111,33 @@ PlanPoint plan_at(const ReplayPlan& p, std::size_t k, double t) {
                    (1.0 - u) * p.tau_Nm[k] + u * p.tau_Nm[k1]};
 }
 
-/// The contact of every foot at a state: geometry, normals, forces and their linearisation.
+/// The contact of every foot at a state: geometry, normals, forces and their linearisation
+/// (the first `legs` entries of each per-leg array).
 struct Contacts {
-  std::array<TerrainContactPoint, kLegs> geometry;
-  FootNormals normals;
-  std::array<FootContactForce, kLegs> law;
-  std::array<Vec3, kLegs> force_W;
-  std::array<FootJacobian, kLegs> J;  ///< of the contact points (rnea.hpp foot_jacobians)
+  int legs = 0;  ///< the model's legs
+  LegArray<TerrainContactPoint> geometry;
+  FootNormals normals = zero_vectors();
+  LegArray<FootContactForce> law;
+  LegArray<Vec3> force_W = zero_vectors();
+  LegArray<DofJacobian> J;  ///< of the contact points (rnea.hpp foot_jacobians)
 };
 
 /// Fills `c` for state `s`.
 void evaluate_contacts(const RobotModel& model, RobotData& data, const ContactParams& params,
                        const ReplayPlan& plan, const SimState& s, Contacts& c) {
   update_kinematics(model, data, s.base, s.q);
-  for (int l = 0; l < kLegs; ++l) {
+  c.legs = model.legs();
+  for (int l = 0; l < c.legs; ++l) {
     const Vec3 centre_W = data.X_world_body[model.foot_body(l)].apply_point(model.p_foot_last[l]);
     c.geometry[l] =
         terrain_contact(plan.terrain_y_m, plan.terrain_z_m, centre_W, model.foot_radius_m[l]);
     c.normals[l] = c.geometry[l].normal_W;
   }
   foot_jacobians(model, data, s.base, s.q, &c.normals);
-  for (int l = 0; l < kLegs; ++l) c.J[l] = data.J_foot_W[l];
-  const VecDof nu = s.nu();
-  for (int l = 0; l < kLegs; ++l) {
-    const Vec3 v_point = c.J[l] * nu;
+  for (int l = 0; l < c.legs; ++l) c.J[l] = data.J_foot_W[l];
+  const DofVector nu = s.nu();
+  for (int l = 0; l < c.legs; ++l) {
+    const Vec3 v_point = jacobian_times(c.J[l], nu);
     c.law[l] = foot_contact_force(params, c.geometry[l].penetration_m, c.normals[l], v_point);
     c.force_W[l] = c.law[l].force_W;
   }
@@ -97,8 +162,8 @@ struct Integrator {
   double actuator_work_J = 0.0;  ///< ∫ τ·q̇ dt, signed
   /// Work the normal forces took from the robot; minus the energy stored in the contact
   /// springs (spring_energy), the energy the normal damping dissipated.
-  std::array<double, kLegs> normal_work_J{}, spring_at_start_J{}, slip_J{}, slip_distance_m{};
-  std::array<Vec3, kLegs> slip_displacement_m{};
+  LegArray<double> normal_work_J{}, spring_at_start_J{}, slip_J{}, slip_distance_m{};
+  LegArray<Vec3> slip_displacement_m = zero_vectors();
   long steps = 0, forced = 0;
   double max_step_s = 0.0;
   double h_next = 0.0;  ///< the next step to try [s]
@@ -131,8 +196,8 @@ std::string stop_reason(const SimState& s, double t);
 /// in it (linearised about the start, at the new velocities).
 struct Step {
   SimState next;
-  VecJ tau = VecJ::Zero();
-  std::array<Vec3, kLegs> force_W{};
+  JointVector tau;
+  LegArray<Vec3> force_W = zero_vectors();
 };
 
 /// The contact force of foot l as an affine function of its velocity at the step's end,
@@ -171,29 +236,30 @@ void implicit_step(Integrator& it, const SimState& s, const PlanPoint& p, double
   BaseState rest = s.base;
   rest.a_W.setZero();
   rest.omegadot_W.setZero();
-  VecDof f = -rnea(it.model, data, rest, s.q, s.qd, VecJ::Zero(), nullptr, nullptr);
-  MatDof A = crba(it.model, data, s.base, s.q);
+  const Eigen::Index n = s.q.size();
+  DofVector f = -rnea(it.model, data, rest, s.q, s.qd, JointVector::Zero(n), nullptr, nullptr);
+  DofMatrix A = crba(it.model, data, s.base, s.q);
   const double kp = it.gains.kp_Nmprad, kd = it.gains.kd_Nmsprad;
-  f.tail<kJoints>() += p.tau + kp * (p.q - s.q - h * s.qd) + kd * (p.qd - s.qd);
-  A.diagonal().tail<kJoints>().array() += h * (h * kp + kd);
-  const VecDof nu = s.nu();
-  std::array<AffineForce, kLegs> force;
-  for (int l = 0; l < kLegs; ++l) {
+  f.tail(n) += p.tau + kp * (p.q - s.q - h * s.qd) + kd * (p.qd - s.qd);
+  A.diagonal().tail(n).array() += h * (h * kp + kd);
+  const DofVector nu = s.nu();
+  LegArray<AffineForce> force;
+  for (int l = 0; l < c.legs; ++l) {
     if (!(c.geometry[l].penetration_m > 0.0)) continue;
-    const Vec3 v = c.J[l] * nu;
+    const Vec3 v = jacobian_times(c.J[l], nu);
     force[l] = affine_contact(it.contact, c.geometry[l], c.law[l], v, h);
     f += c.J[l].transpose() * (force[l].a + force[l].B * v);
     A -= h * c.J[l].transpose() * force[l].B * c.J[l];
   }
-  const VecDof nu_new = nu + A.partialPivLu().solve(h * f);
+  const DofVector nu_new = nu + A.partialPivLu().solve(h * f);
   out.next = s;
   out.next.base.v_W = nu_new.head<3>();
   out.next.base.omega_W = nu_new.segment<3>(3);
-  out.next.qd = nu_new.tail<kJoints>();
+  out.next.qd = nu_new.tail(n);
   out.tau = p.tau + kp * (p.q - s.q - h * out.next.qd) + kd * (p.qd - out.next.qd);
-  for (int l = 0; l < kLegs; ++l)
+  for (int l = 0; l < c.legs; ++l)
     out.force_W[l] = c.geometry[l].penetration_m > 0.0
-                         ? Vec3(force[l].a + force[l].B * (c.J[l] * nu_new))
+                         ? Vec3(force[l].a + force[l].B * jacobian_times(c.J[l], nu_new, 0))
                          : Vec3::Zero();
   advance_positions(out.next, h);
 }
@@ -204,7 +270,7 @@ void implicit_step(Integrator& it, const SimState& s, const PlanPoint& p, double
 /// shape the motion does not resolve (docs/theory/replay.md#integrator).
 double force_mismatch(const Contacts& at_end, const Step& step) {
   double worst = 0.0;
-  for (int l = 0; l < kLegs; ++l)
+  for (int l = 0; l < at_end.legs; ++l)
     worst =
         std::max(worst, std::abs(at_end.law[l].normal_N - at_end.normals[l].dot(step.force_W[l])));
   return worst;
@@ -213,13 +279,13 @@ double force_mismatch(const Contacts& at_end, const Step& step) {
 /// Adds an accepted step's spending and dissipation, with the forces that acted in it: the
 /// discrete balance of energy holds to the step's order.
 void account_step(Integrator& it, const Contacts& at_start, const Step& step, double h) {
-  it.actuator_energy_J += h * step.tau.cwiseProduct(step.next.qd).cwiseAbs().sum();
-  it.actuator_work_J += h * step.tau.dot(step.next.qd);
-  const VecDof nu_new = step.next.nu();
-  for (int l = 0; l < kLegs; ++l) {
+  it.actuator_energy_J += h * lane_abs_dot(step.tau, step.next.qd);
+  it.actuator_work_J += h * lane_dot(step.tau, step.next.qd);
+  const DofVector nu_new = step.next.nu();
+  for (int l = 0; l < at_start.legs; ++l) {
     if (step.force_W[l].isZero(0.0)) continue;
     const Vec3& n = at_start.normals[l];
-    const Vec3 v_new = at_start.J[l] * nu_new;
+    const Vec3 v_new = jacobian_times(at_start.J[l], nu_new);
     const Vec3& F = step.force_W[l];
     const Vec3 vt = v_new - n.dot(v_new) * n;
     it.normal_work_J[l] -= h * n.dot(F) * n.dot(v_new);
@@ -276,28 +342,29 @@ Vec3 record_sample(Integrator& it, const SimState& s, std::size_t k, ReplayResul
   RobotData& data = it.data;
   const Contacts& c = it.contacts;
   const ReplayPlan& plan = it.plan;
-  const VecJ tau = plan.tau_Nm[k] + it.gains.kp_Nmprad * (plan.q_rad[k] - s.q) +
-                   it.gains.kd_Nmsprad * (plan.qd_radps[k] - s.qd);
-  const VecDof& nu_dot =
+  const JointVector tau = plan.tau_Nm[k] + it.gains.kp_Nmprad * (plan.q_rad[k] - s.q) +
+                          it.gains.kd_Nmsprad * (plan.qd_radps[k] - s.qd);
+  const DofVector& nu_dot =
       forward_dynamics_joints(it.model, data, s.base, s.q, s.qd, tau, &c.force_W, &c.normals);
   BaseState b = s.base;
   b.a_W = nu_dot.head<3>();
   b.omegadot_W = nu_dot.segment<3>(3);
-  const VecDof nu = s.nu();
-  out.kinetic_J.push_back(0.5 * nu.dot(data.M * nu));
+  const DofVector nu = s.nu();
+  const DofVector momentum = data.M * nu;
+  out.kinetic_J.push_back(0.5 * lane_dot(nu, momentum));
   const Momentum& m = robot_momentum(it.model, data, s.base, s.q, s.qd);
   out.potential_J.push_back(-m.mass_kg * it.model.gravity_W.dot(m.com_W));
   out.t_s.push_back(plan.t_s[k]);
   out.base.push_back(b);
   out.q.push_back(s.q);
   out.qd.push_back(s.qd);
-  out.qdd.push_back(nu_dot.tail<kJoints>());
+  out.qdd.push_back(nu_dot.tail(s.q.size()));
   out.tau.push_back(tau);
   out.tau_ff.push_back(plan.tau_Nm[k]);
   out.tracking_error.push_back(s.q - plan.q_rad[k]);
-  std::array<Vec3, kLegs> foot, slip_v;
-  std::array<double, kLegs> fn, pen;
-  for (int l = 0; l < kLegs; ++l) {
+  LegArray<Vec3> foot = zero_vectors(), slip_v = zero_vectors();
+  LegArray<double> fn{}, pen{};
+  for (int l = 0; l < c.legs; ++l) {
     foot[l] = c.geometry[l].point_W;
     slip_v[l] = c.law[l].slip_velocity_W;
     fn[l] = c.law[l].normal_N;
@@ -310,12 +377,12 @@ Vec3 record_sample(Integrator& it, const SimState& s, std::size_t k, ReplayResul
   out.penetration_m.push_back(pen);
   out.slip_displacement_W.push_back(it.slip_displacement_m);
   out.slip_distance_m.push_back(it.slip_distance_m);
-  std::array<double, kLegs> damping{};
-  for (int l = 0; l < kLegs; ++l)
+  LegArray<double> damping{};
+  for (int l = 0; l < c.legs; ++l)
     damping[l] = it.normal_work_J[l] -
                  (spring_energy(it.contact, c.geometry[l].penetration_m) - it.spring_at_start_J[l]);
   if (out.t_s.size() == 1) {  // the first sample: the springs' energy at the start
-    for (int l = 0; l < kLegs; ++l)
+    for (int l = 0; l < c.legs; ++l)
       it.spring_at_start_J[l] = spring_energy(it.contact, c.geometry[l].penetration_m);
     damping.fill(0.0);
   }
@@ -386,7 +453,7 @@ void finish_report(const ReplayPlan& plan, const TerrainParams& terrain, bool co
     if (i > 0) {
       const double dt = r.t_s[i] - r.t_s[i - 1];
       const auto power = [&](std::size_t s) {
-        return plan.tau_Nm[s].cwiseProduct(plan.qd_radps[s]).cwiseAbs().sum();
+        return lane_abs_dot(plan.tau_Nm[s], plan.qd_radps[s]);
       };
       r.energy_plan_J += 0.5 * dt * (power(i) + power(i - 1));
     }
@@ -438,13 +505,15 @@ void check_mass_matrix(const RobotModel& model, RobotData& data, const ReplayPla
   crba(model, data, p.base.front(), p.q_rad.front());
   data.M_llt.compute(data.M);
   if (data.M_llt.info() == Eigen::Success) return;
-  for (int b = 1; b < kBodies; ++b)
-    if (!(model.inertia[b].mass_kg > 0.0))
+  for (int l = 0; l < model.legs(); ++l)
+    for (int j = 0; j < model.leg(l).n_joints; ++j) {
+      if (model.inertia[model.body(l, j)].mass_kg > 0.0) continue;
       throw ConfigError("robot.leg_inertia: the body of joint " +
-                        joint_name((b - 1) / 3, (b - 1) % 3) +
+                        joint_name(l, j, model.leg(l).n_joints) +
                         " has no mass, so the forward dynamics have no mass matrix to integrate; "
                         "a replay needs legs with mass (robot.leg_inertia: full, or links with "
                         "<inertial> in the URDF)");
+    }
   throw ConfigError(
       "robot: the mass matrix at the plan's first state is not positive definite "
       "(a body's inertia: robot.*.inertia or the URDF's <inertial>)");
@@ -537,7 +606,7 @@ ReplayResult replay_plan(const RobotModel& model, const ContactParams& contact,
   // (kinetic, potential, the contact springs) and what the contacts dissipated.
   double stored =
       r.kinetic_J.back() - r.kinetic_J.front() + r.potential_J.back() - r.potential_J.front();
-  for (int l = 0; l < kLegs; ++l)
+  for (int l = 0; l < model.legs(); ++l)
     stored += spring_energy(contact, it.contacts.geometry[l].penetration_m) -
               it.spring_at_start_J[l] + r.damping_energy_J.back()[l] + r.slip_energy_J.back()[l];
   r.actuator_work_J = it.actuator_work_J;

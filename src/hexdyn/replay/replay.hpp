@@ -21,6 +21,7 @@
 #include "hexdyn/core/base_state.hpp"
 #include "hexdyn/core/result.hpp"
 #include "hexdyn/core/scene.hpp"
+#include "hexdyn/core/sizes.hpp"
 #include "hexdyn/model/robot_model.hpp"
 
 namespace hexdyn {
@@ -39,9 +40,9 @@ inline constexpr double kFallTilt_rad = M_PI / 3.0;
 struct ReplayPlan {
   std::vector<double> t_s;            ///< [s]
   std::vector<BaseState> base;        ///< planned trunk pose and twist (accelerations unused)
-  std::vector<VecJ> q_rad;            ///< planned joint angles
-  std::vector<VecJ> qd_radps;         ///< planned joint rates
-  std::vector<VecJ> tau_Nm;           ///< stored joint torques: the feedforward
+  std::vector<JointVector> q_rad;     ///< planned joint angles (model.joints() each)
+  std::vector<JointVector> qd_radps;  ///< planned joint rates
+  std::vector<JointVector> tau_Nm;    ///< stored joint torques: the feedforward
   std::vector<double> cycle_start_s;  ///< start of each gait cycle (/gait/cycle_start)
   /// The terrain's height profile (/terrain/y, /terrain/z; planning/terrain.hpp).
   std::vector<double> terrain_y_m, terrain_z_m;
@@ -72,14 +73,16 @@ struct ArrivalTolerance {
 ArrivalTolerance arrival_tolerance(const TerrainParams& terrain);
 
 /// The replayed motion, sample by sample, and its report (schema_replay.hpp names each).
+/// Sized by the model: each joint vector has model.joints() entries; of each per-leg array
+/// (core/sizes.hpp LegArray) the first model.legs() entries are used, the others zero.
 struct ReplayResult {
   // --- per sample (T' ≤ T samples: the plan's instants up to the replay's end) ---
   std::vector<double> t_s;
   std::vector<BaseState> base;  ///< with the accelerations of the forward dynamics
-  std::vector<VecJ> q, qd, qdd, tau, tau_ff, tracking_error;
-  std::vector<std::array<Vec3, kLegs>> force_W, foot_W, slip_velocity_W, slip_displacement_W;
-  std::vector<std::array<double, kLegs>> normal_N, penetration_m, slip_distance_m;
-  std::vector<std::array<double, kLegs>> damping_energy_J, slip_energy_J;
+  std::vector<JointVector> q, qd, qdd, tau, tau_ff, tracking_error;
+  std::vector<LegArray<Vec3>> force_W, foot_W, slip_velocity_W, slip_displacement_W;
+  std::vector<LegArray<double>> normal_N, penetration_m, slip_distance_m;
+  std::vector<LegArray<double>> damping_energy_J, slip_energy_J;
   std::vector<double> actuator_energy_J, kinetic_J, potential_J;
   // --- report ---
   std::vector<double> cycle_end_s;
@@ -87,7 +90,7 @@ struct ReplayResult {
   double max_tracking_error_rad = 0.0;
   int max_tracking_error_joint = 0;
   double max_tracking_error_time_s = 0.0;
-  std::array<double, kLegs> slip_distance_total_m{}, slip_energy_total_J{}, damping_total_J{};
+  LegArray<double> slip_distance_total_m{}, slip_energy_total_J{}, damping_total_J{};
   double energy_J = 0.0;         ///< ∫ Σ|τ q̇| dt of the replay
   double energy_plan_J = 0.0;    ///< the same of the plan over the replayed span (trapezoid)
   double actuator_work_J = 0.0;  ///< ∫ τ·q̇ dt, signed

@@ -1,4 +1,4 @@
-// The hexdyn-replay/1 file (io/schema_replay.hpp).
+// The hexdyn-replay/2 file (io/schema_replay.hpp).
 #include "hexdyn/replay/replay_file.hpp"
 
 #include <sys/stat.h>
@@ -142,6 +142,7 @@ void add_model(Layout& b, const ReplaySource& src) {
   b.add(s::kModelUrdf, {}, src.urdf);
   b.add(s::kModelJointNames, {src.joint_names.size()}, src.joint_names);
   b.add(s::kModelLegNames, {src.leg_names.size()}, src.leg_names);
+  b.add(s::kModelLegJointCounts, {src.leg_joint_counts.size()}, src.leg_joint_counts);
   b.add(s::kLegCoordinate, {src.leg_names.size()}, src.leg_names);
   b.add(s::kJointCoordinate, {src.joint_names.size()}, src.joint_names);
   b.add(s::kXyzCoordinate, {3}, std::vector<std::string>{"x", "y", "z"});

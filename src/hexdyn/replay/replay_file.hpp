@@ -1,8 +1,9 @@
 #pragma once
 /// \file replay_file.hpp
 /// A result file read as a plan to replay (replay.hpp), and the replay written as a
-/// `hexdyn-replay/1` file (io/schema_replay.hpp, docs/user/replay.md); the command
+/// `hexdyn-replay/2` file (io/schema_replay.hpp, docs/user/replay.md); the command
 /// `hexdyn replay` is cli/replay_command.cpp.
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -34,6 +35,9 @@ struct ReplaySource {
   ReplayPlan plan;
   std::string urdf;
   std::vector<std::string> joint_names, leg_names;
+  /// Each leg's joints (/model/leg_joint_counts, the model's leg table for a result of
+  /// layout version 2 or 3).
+  std::vector<std::int32_t> leg_joint_counts;
   /// The result file (role "result file"), then the inputs its /meta input_sha256 records:
   /// an output may be none of them (io/output.hpp check_output_target).
   std::vector<InputFile> inputs;
@@ -41,9 +45,9 @@ struct ReplaySource {
   std::vector<std::string> warnings;
 };
 
-/// Reads `result_path` (a hexdyn-result/3 file with dynamics) while an InputFreeze lives
-/// (config/inputs.hpp: the stored URDF is kept as an input). Every series the replay reads
-/// is checked: finite, of the right shape, /time increasing, unit quaternions
+/// Reads `result_path` (a hexdyn-result/4 file with dynamics, or of versions 2 and 3) while an
+/// InputFreeze lives (config/inputs.hpp: the stored URDF is kept as an input). Every series the
+/// replay reads is checked: finite, of the right shape, /time increasing, unit quaternions
 /// (kReplayQuaternionTolerance), and the stored feet where the model puts them
 /// (kReplayFootTolerance_m). Throws IoError for a file that is not such a result (naming the
 /// file, the dataset, the sample and the value), ConfigError for a bad override or a key

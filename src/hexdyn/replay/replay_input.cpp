@@ -3,6 +3,7 @@
 #include <sys/stat.h>
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstring>
@@ -50,8 +51,9 @@ Vec3 row3(const std::vector<double>& v, std::size_t i) {
   return Vec3(v[3 * i], v[3 * i + 1], v[3 * i + 2]);
 }
 
-VecJ rowJ(const std::vector<double>& v, std::size_t i) {
-  return Eigen::Map<const VecJ>(v.data() + kJoints * i);
+/// Row i of a samples × n matrix (row-major values) as a joint vector.
+JointVector row_joints(const std::vector<double>& v, std::size_t i, Eigen::Index n) {
+  return Eigen::Map<const Eigen::VectorXd>(v.data() + static_cast<std::size_t>(n) * i, n);
 }
 
 /// The result file as an input of the replay: its identity and checksum.
@@ -94,15 +96,16 @@ void read_plan(const H5Reader& in, const std::string& file, const RobotModel& mo
   check_quaternions(quat, file);
   const auto vel = read_matrix(in, file, s::kBaseLinearVelocity.path, T, 3);
   const auto omega = read_matrix(in, file, s::kBaseAngularVelocity.path, T, 3);
-  const auto q = read_matrix(in, file, s::kJointPosition.path, T, kJoints);
-  const auto qd = read_matrix(in, file, s::kJointVelocity.path, T, kJoints);
-  const auto tau = read_matrix(in, file, s::kJointTorque.path, T, kJoints);
+  const auto J = static_cast<std::size_t>(model.joints());
+  const auto q = read_matrix(in, file, s::kJointPosition.path, T, J);
+  const auto qd = read_matrix(in, file, s::kJointVelocity.path, T, J);
+  const auto tau = read_matrix(in, file, s::kJointTorque.path, T, J);
   for (std::size_t i = 0; i < T; ++i) {
     const Eigen::Vector4d wxyz(quat[4 * i], quat[4 * i + 1], quat[4 * i + 2], quat[4 * i + 3]);
     p.base.push_back(trunk_state_from_row(model, row3(pos, i), wxyz, row3(vel, i), row3(omega, i)));
-    p.q_rad.push_back(rowJ(q, i));
-    p.qd_radps.push_back(rowJ(qd, i));
-    p.tau_Nm.push_back(rowJ(tau, i));
+    p.q_rad.push_back(row_joints(q, i, model.joints()));
+    p.qd_radps.push_back(row_joints(qd, i, model.joints()));
+    p.tau_Nm.push_back(row_joints(tau, i, model.joints()));
   }
   for (std::size_t k = 1; k < T; ++k)
     if (!(p.t_s[k] > p.t_s[k - 1]))
@@ -136,7 +139,7 @@ void check_feet(const H5Reader& in, const std::string& file, const RobotModel& m
       const Vec3 stored = row3(feet, static_cast<std::size_t>(legs) * i + leg);
       const double error = (fk_W - stored).norm();
       if (!(error <= kReplayFootTolerance_m))
-        throw IoError("replay: '" + file + "': " + path + " of leg " + leg_name(leg) +
+        throw IoError("replay: '" + file + "': " + path + " of leg " + model.leg(leg).name +
                       " at sample " + std::to_string(i) + " (t = " + format_number(p.t_s[i], 6) +
                       " s) is " + format_number(error, 6) +
                       " m from where the stored joints and trunk put it, expected " + "at most " +
@@ -144,6 +147,22 @@ void check_feet(const H5Reader& in, const std::string& file, const RobotModel& m
                       " m: the scene (/meta config_yaml, --set) or the robot is not the run's");
     }
   }
+}
+
+/// Each leg's joints: the model's leg table, which /model/leg_joint_counts (when the result has
+/// it) must equal.
+std::vector<std::int32_t> leg_joint_counts(const H5Reader& in, const std::string& file,
+                                           const RobotModel& model) {
+  std::vector<std::int32_t> counts;
+  for (int l = 0; l < model.legs(); ++l) counts.push_back(model.leg(l).n_joints);
+  if (!in.is_dataset(s::kModelLegJointCounts.path)) return counts;
+  const std::vector<std::int64_t> stored = in.read_ints(s::kModelLegJointCounts.path);
+  if (!std::equal(stored.begin(), stored.end(), counts.begin(), counts.end()))
+    throw IoError("replay: '" + file + "': " + s::kModelLegJointCounts.path +
+                  " does not match the legs of its own /model/urdf (" +
+                  std::to_string(counts.size()) +
+                  " legs): the file was edited or is not a hexdyn result");
+  return counts;
 }
 
 /// The keys --set may change in a replay: those of its integrator and its contact law.
@@ -212,10 +231,11 @@ ReplaySource read_replay_source(const std::string& result_path,
   src.inputs.push_back(result_input(result_path));
   const H5Reader in(result_path);
   const std::string meta = s::kMetaGroup;
-  // Layout version 2 has the same datasets (its energies by the trapezoid).
-  if (!in.has_attribute(meta, s::kAttrSchema) ||
-      (in.string_attribute(meta, s::kAttrSchema) != s::kResultSchema &&
-       in.string_attribute(meta, s::kAttrSchema) != std::string("hexdyn-result/2")))
+  // Layout versions 2 and 3 have the same datasets but /model/leg_joint_counts (version 2: its
+  // energies by the trapezoid).
+  const std::string schema =
+      in.has_attribute(meta, s::kAttrSchema) ? in.string_attribute(meta, s::kAttrSchema) : "";
+  if (schema != s::kResultSchema && schema != "hexdyn-result/4" && schema != "hexdyn-result/2")
     throw IoError("replay: '" + result_path + "' is not a " + s::kResultSchema + " file");
   src.created_utc = in.string_attribute(meta, s::kAttrCreatedUtc);
   if (in.has_attribute(meta, s::kAttrInputSha256)) {
@@ -230,12 +250,7 @@ ReplaySource read_replay_source(const std::string& result_path,
   src.scene = load_scene_from_string(scene_with_stored_robot(in, src),
                                      result_path + " /meta config_yaml", overrides);
   const RobotModel model = build_robot_model(src.scene.robot);
-  // The forward integrator (replay/replay.cpp) still holds six legs of three joints.
-  if (model.legs() != kLegs || model.joints() != kJoints)
-    throw ConfigError("replay: '" + result_path + "': the run's robot has " +
-                      std::to_string(model.legs()) + " legs and " + std::to_string(model.joints()) +
-                      " joints; the forward replay holds " + std::to_string(kLegs) + " legs of " +
-                      std::to_string(kJointsPerLeg) + " joints in this version");
+  src.leg_joint_counts = leg_joint_counts(in, result_path, model);
   read_plan(in, result_path, model, src.plan);
   check_feet(in, result_path, model, src.plan);
   return src;

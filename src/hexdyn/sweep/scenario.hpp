@@ -1,7 +1,7 @@
 #pragma once
 /// \file scenario.hpp
 /// One scenario of a sweep: run (or only validated) as `hexdyn run` would, and reduced
-/// to its summary row of /scenarios (schema.hpp, hexdyn-sweep/3). A scenario that cannot
+/// to its summary row of /scenarios (schema.hpp, hexdyn-sweep/4). A scenario that cannot
 /// be computed is a row with a status and a message, never an exception.
 #include <array>
 #include <cstddef>

@@ -1,4 +1,4 @@
-// hexdyn-result/3 writer: every dataset of the contract read back through the h5io
+// hexdyn-result/4 writer: every dataset of the contract read back through the h5io
 // readers with its shape, units and exact values; atomic replacement on failure.
 //
 // Setting HEXDYN_TEST_FIXTURE_DIR=<dir> keeps a copy of the synthetic result
@@ -346,8 +346,8 @@ TEST_CASE("output: every dataset of the contract round-trips (dynamics present)"
   namespace s = schema;
   const std::string meta = s::kMetaGroup;
   REQUIRE(in.is_group(meta));
-  CHECK(in.string_attribute(meta, s::kAttrSchema) == "hexdyn-result/3");
-  CHECK(in.int_attribute(meta, s::kAttrSchemaVersion) == 3);
+  CHECK(in.string_attribute(meta, s::kAttrSchema) == "hexdyn-result/4");
+  CHECK(in.int_attribute(meta, s::kAttrSchemaVersion) == 4);
   CHECK(in.string_attribute(meta, s::kAttrVersion) == kVersion);
   CHECK(in.string_attribute(meta, s::kAttrGitCommit) == kGitCommit);
   CHECK(in.string_attribute(meta, s::kAttrConfigYaml) == r.config_yaml);
@@ -366,6 +366,7 @@ TEST_CASE("output: every dataset of the contract round-trips (dynamics present)"
   CHECK(joints.back() == "L6_tibia");
   CHECK(in.read_strings(s::kModelLegNames.path) ==
         std::vector<std::string>{"L1", "L2", "L3", "L4", "L5", "L6"});
+  CHECK(in.read_ints(s::kModelLegJointCounts.path) == std::vector<std::int64_t>(6, 3));
   CHECK(in.read_doubles(s::kModelTotalMass.path).values == std::vector<double>{r.total_mass_kg});
 
   check_kinematics(in, r);

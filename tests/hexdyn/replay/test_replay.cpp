@@ -60,7 +60,7 @@ TEST_CASE("the paper's torques replayed climb the stairs, and the energy balance
   CHECK(gained == Approx(r.model.total_mass_kg * kGravity * rise).epsilon(0.05));
   CHECK(res.actuator_work_J > gained);
   // Every dissipation is non-negative and cumulative.
-  for (int l = 0; l < kLegs; ++l) {
+  for (int l = 0; l < r.model.legs(); ++l) {
     CHECK(res.slip_energy_total_J[l] >= 0.0);
     CHECK(res.damping_total_J[l] >= -1e-9);
     for (std::size_t i = 1; i < res.t_s.size(); ++i)
