@@ -117,11 +117,26 @@ void fill_leg_table(RobotModel& m) {
   m.n_bodies = 1 + m.n_joints;
 }
 
+namespace {
+
+/// The robot of the YAML keys has legs of a coxa, a femur and a tibia (core/scene.hpp).
+void check_yaml_robot_counts(const RobotParams& params) {
+  if (params.leg_joints != kYamlRobotLegJoints || params.legs < kMinLegs || params.legs > kMaxLegs)
+    throw std::logic_error("robot model: the YAML robot has legs of " +
+                           std::to_string(kYamlRobotLegJoints) + " joints, got " +
+                           std::to_string(params.legs) + " legs of " +
+                           std::to_string(params.leg_joints));
+}
+
+}  // namespace
+
 RobotModel build_robot_model(const RobotParams& params) {
   if (params.urdf) return build_robot_model(*params.urdf, params.ik_min_margin_m);
+  check_yaml_robot_counts(params);
   RobotModel m;
   const double l1 = params.link_length_m[0], l2 = params.link_length_m[1];
-  m.link_length_m = params.link_length_m;
+  for (std::size_t j = 0; j < m.link_length_m.size(); ++j)
+    m.link_length_m[j] = params.link_length_m[j];
   m.d1_m = params.joint_offset_m[0];
   m.trunk_only = to_inertia(params.trunk);
   m.payload = to_inertia(params.payload);
@@ -134,7 +149,7 @@ RobotModel build_robot_model(const RobotParams& params) {
   m.ik_min_margin_m = params.ik_min_margin_m;
   const Vec3 minus_y(0.0, -1.0, 0.0);
   // The tree: each leg's coxa, femur and tibia in turn, body b moved by joint b − 1.
-  for (int leg = 0, b_coxa = 1; leg < kLegs; ++leg, b_coxa += kJointsPerLeg) {
+  for (int leg = 0, b_coxa = 1; leg < params.legs; ++leg, b_coxa += params.leg_joints) {
     const double side = is_left(leg) ? -1.0 : 1.0;
     m.p_hip_B[leg] = params.hip_position_m[leg];
     m.R_B_H[leg] = rot_z(params.hip_yaw_rad[leg]);
@@ -159,7 +174,7 @@ RobotModel build_robot_model(const RobotParams& params) {
     m.R_parent_joint[b_tibia].setIdentity();
     m.p_parent_joint[b_tibia] = Vec3(l2, m.d3_signed_m[leg], 0.0);
     m.axis[b_tibia] = minus_y;
-    for (int j = 0; j < kJointsPerLeg; ++j) {
+    for (int j = 0; j < params.leg_joints; ++j) {
       m.inertia[b_coxa + j] = to_inertia(params.link[j]);
       if (params.leg_inertia == LegInertia::kMassless && params.link[j].mass_kg > 0.0) {
         // Massless legs: the link's mass becomes a point mass at the hip, part of the trunk
