@@ -370,23 +370,25 @@ void forward_dynamics_sample(const hexdyn::RobotModel& model, hexdyn::RobotData&
   root.v_W = Vec3(in.v.at(i));
   root.omega_W = Vec3(in.w.at(i));
   hexdyn::BaseState trunk = hexdyn::trunk_state_from_root_link(model, root);
-  std::array<Vec3, hexdyn::kLegs> forces;
+  const int legs = model.legs(), joints = model.joints();
+  hexdyn::LegArray<Vec3> forces;
   hexdyn::FootNormals normals;
-  for (int l = 0; l < hexdyn::kLegs; ++l) {
+  for (int l = 0; l < legs; ++l) {
     if (in.has_forces) forces[l] = Vec3(in.forces.at(i) + 3 * l);
     normals[l] = in.has_normals ? Vec3(in.normals.at(i) + 3 * l).normalized() : Vec3::UnitZ();
   }
-  const hexdyn::VecDof& nu_dot = hexdyn::forward_dynamics_joints(
-      model, data, trunk, hexdyn::VecJ(in.q.at(i)), hexdyn::VecJ(in.qd.at(i)),
-      hexdyn::VecJ(in.tau.at(i)), in.has_forces ? &forces : nullptr, &normals);
+  using JointsIn = Eigen::Map<const Eigen::VectorXd>;
+  const hexdyn::DofVector& nu_dot = hexdyn::forward_dynamics_joints(
+      model, data, trunk, JointsIn(in.q.at(i), joints), JointsIn(in.qd.at(i), joints),
+      JointsIn(in.tau.at(i), joints), in.has_forces ? &forces : nullptr, &normals);
   trunk.a_W = nu_dot.head<3>();
   trunk.omegadot_W = nu_dot.segment<3>(3);
   const hexdyn::BaseState out = hexdyn::root_link_state(model, trunk);
   Eigen::Map<Vec3> a_out(a_base), dw_out(dw_base);
-  Eigen::Map<hexdyn::VecJ> qdd_out(qdd);
+  Eigen::Map<Eigen::VectorXd> qdd_out(qdd, joints);
   a_out = out.a_W;
   dw_out = out.omegadot_W;
-  qdd_out = nu_dot.tail<hexdyn::kJoints>();
+  qdd_out = nu_dot.tail(joints);
 }
 
 /// forward_dynamics(scene, overrides, ...) → {"base_linear_acceleration",
@@ -399,7 +401,12 @@ py::dict forward_dynamics_file(
     const DoubleArray& base_angular_velocity, const DoubleArray& joint_velocity,
     const DoubleArray& joint_torque, const std::optional<DoubleArray>& foot_forces,
     const std::optional<DoubleArray>& foot_normals) {
-  const py::ssize_t J = hexdyn::kJoints, L = hexdyn::kLegs;
+  // The robot first: its joints and legs size the arrays.
+  const std::vector<hexdyn::Override> overrides = overrides_of(override_texts);
+  const hexdyn::Scene scene =
+      guard_yaml(scene_path, [&] { return hexdyn::load_scene(scene_path, overrides); });
+  const hexdyn::RobotModel model = hexdyn::build_robot_model(scene.robot);
+  const py::ssize_t J = model.joints(), L = model.legs();
   FdInputs in;
   using hexdyn_python::samples_of;
   in.p = samples_of(base_position, {3}, "base_position");
@@ -424,14 +431,10 @@ py::dict forward_dynamics_file(
        {&in.p, &in.quat, &in.q, &in.v, &in.w, &in.qd, &in.tau, &in.forces, &in.normals})
     hexdyn_python::check_finite(*s);
   hexdyn_python::check_unit_quaternions(in.quat);
-  const std::vector<hexdyn::Override> overrides = overrides_of(override_texts);
   const auto n = static_cast<std::size_t>(in.count);
   std::vector<double> a(3 * n), dw(3 * n), qdd(static_cast<std::size_t>(J) * n);
   {
     py::gil_scoped_release no_gil;
-    const hexdyn::Scene scene =
-        guard_yaml(scene_path, [&] { return hexdyn::load_scene(scene_path, overrides); });
-    const hexdyn::RobotModel model = hexdyn::build_robot_model(scene.robot);
     hexdyn_python::check_sphere_foot_normals(model, in.normals);
     hexdyn::RobotData data(model);
     for (std::size_t i = 0; i < n; ++i)
