@@ -20,8 +20,8 @@ void BM_Rnea(benchmark::State& state) {
   const RobotModel& model = bench::paper_setup().model;
   const std::vector<bench::SampleState> samples = all_states();
   RobotData data(model);
-  std::array<Vec3, kLegs> forces;
-  for (int l = 0; l < kLegs; ++l) forces[l] = Vec3(0.5, -0.3, 65.7 / 3.0);
+  LegArray<Vec3> forces;
+  for (int l = 0; l < model.legs(); ++l) forces[l] = Vec3(0.5, -0.3, 65.7 / 3.0);
   const bool with_forces = state.range(0) != 0;
   std::size_t i = 0;
   for (auto _ : state) {

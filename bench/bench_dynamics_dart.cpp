@@ -55,9 +55,9 @@ using namespace hexdyn;
 namespace dd = dart::dynamics;
 
 /// Foot forces of bench_dynamics.cpp: force of the terrain on each foot [N], world axes.
-std::array<Vec3, kLegs> foot_forces_W() {
-  std::array<Vec3, kLegs> f;
-  for (int l = 0; l < kLegs; ++l) f[l] = Vec3(0.5, -0.3, 65.7 / 3.0);
+LegArray<Vec3> foot_forces_W(const RobotModel& model) {
+  LegArray<Vec3> f;
+  for (int l = 0; l < model.legs(); ++l) f[l] = Vec3(0.5, -0.3, 65.7 / 3.0);
   return f;
 }
 
@@ -76,11 +76,12 @@ dd::Inertia dart_inertia(const RigidInertia& r) {
 /// The robot of a RobotModel as a DART skeleton, with the index maps between the two.
 struct DartRobot {
   dd::SkeletonPtr skeleton;
-  std::array<dd::BodyNode*, kBodies> body{};  ///< hexdyn body b → DART body node
-  std::array<int, kJoints> dof{};             ///< hexdyn joint k → DART dof index
+  BodyArray<dd::BodyNode*> body{};  ///< hexdyn body b → DART body node
+  JointArray<int> dof{};            ///< hexdyn joint k → DART dof index
   dd::FreeJoint* trunk_joint = nullptr;
-  Vec3 foot_tibia = Vec3::Zero();           ///< foot point in the tibia frame [m]
-  std::array<dd::BodyNode*, kLegs> foot{};  ///< each leg's foot body (RobotModel::foot_body)
+  Vec3 foot_tibia = Vec3::Zero();      ///< foot point in the tibia frame [m]
+  LegArray<dd::BodyNode*> foot{};      ///< each leg's foot body (RobotModel::foot_body)
+  int legs = 0, joints = 0, dofs = 0;  ///< the model's counts
 };
 
 DartRobot make_dart_robot(const RobotModel& model) {
@@ -97,7 +98,10 @@ DartRobot make_dart_robot(const RobotModel& model) {
 
   // Body b's frame in its parent's: T_ParentBodyToJoint · Rot(axis, q), child frame = joint
   // frame, as hexdyn's X_parent_body = (R_parent_joint · Rot(axis, q), p_parent_joint).
-  for (int b = 1; b < kBodies; ++b) {
+  r.legs = model.legs();
+  r.joints = model.joints();
+  r.dofs = model.dofs();
+  for (int b = 1; b < model.bodies(); ++b) {
     if (model.parent[b] < 0 || model.parent[b] >= b)
       throw std::logic_error("bench_dynamics_dart: bodies are not in topological order");
     dd::RevoluteJoint::Properties joint;
@@ -127,15 +131,15 @@ DartState to_dart(const DartRobot& r, const bench::SampleState& s) {
   const BaseState& b = s.base;
   const Mat3 B_R_W = b.W_R_B.transpose();
   const Vec3 omega_B = B_R_W * b.omega_W, v_B = B_R_W * b.v_W;
-  DartState d{Eigen::VectorXd::Zero(kDof), Eigen::VectorXd::Zero(kDof),
-              Eigen::VectorXd::Zero(kDof)};
+  DartState d{Eigen::VectorXd::Zero(r.dofs), Eigen::VectorXd::Zero(r.dofs),
+              Eigen::VectorXd::Zero(r.dofs)};
   const int t = static_cast<int>(r.trunk_joint->getIndexInSkeleton(0));
   d.q.segment<6>(t) = dd::FreeJoint::convertToPositions(isometry(b.W_R_B, b.p_W));
   d.dq.segment<3>(t) = omega_B;
   d.dq.segment<3>(t + 3) = v_B;
   d.ddq.segment<3>(t) = B_R_W * b.omegadot_W;
   d.ddq.segment<3>(t + 3) = B_R_W * b.a_W - omega_B.cross(v_B);
-  for (int k = 0; k < kJoints; ++k) {
+  for (int k = 0; k < r.joints; ++k) {
     d.q[r.dof[k]] = s.q[k];
     d.dq[r.dof[k]] = s.qd[k];
     d.ddq[r.dof[k]] = s.qdd[k];
@@ -146,26 +150,27 @@ DartState to_dart(const DartRobot& r, const bench::SampleState& s) {
 /// One DART inverse-dynamics evaluation: state, foot forces (world-axes force at the foot
 /// point, an offset in the tibia frame), then Skeleton::computeInverseDynamics with the
 /// external forces. Result: the generalised forces in DART dof order.
-void dart_inverse_dynamics(DartRobot& r, const DartState& s, const std::array<Vec3, kLegs>& F_W,
-                           VecDof& out) {
+void dart_inverse_dynamics(DartRobot& r, const DartState& s, const LegArray<Vec3>& F_W,
+                           DofVector& out) {
   dd::Skeleton& sk = *r.skeleton;
+  out.resize(r.dofs);
   sk.setPositions(s.q);
   sk.setVelocities(s.dq);
   sk.setAccelerations(s.ddq);
-  for (int l = 0; l < kLegs; ++l)
+  for (int l = 0; l < r.legs; ++l)
     r.foot[l]->setExtForce(F_W[l], r.foot_tibia, /*isForceLocal=*/false, /*isOffsetLocal=*/true);
   sk.computeInverseDynamics(/*withExternalForces=*/true, /*withDampingForces=*/false,
                             /*withSpringForces=*/false);
-  for (int i = 0; i < kDof; ++i) out[i] = sk.getForce(static_cast<std::size_t>(i));
+  for (int i = 0; i < r.dofs; ++i) out[i] = sk.getForce(static_cast<std::size_t>(i));
 }
 
 /// DART's generalised forces (DART order) in hexdyn's coordinates (dynamics.hpp).
-VecDof to_hexdyn(const DartRobot& r, const BaseState& b, const VecDof& dart) {
+DofVector to_hexdyn(const DartRobot& r, const BaseState& b, const DofVector& dart) {
   const int t = static_cast<int>(r.trunk_joint->getIndexInSkeleton(0));
-  VecDof tau;
+  DofVector tau(r.dofs);
   tau.head<3>() = b.W_R_B * dart.segment<3>(t + 3);  // force on the trunk [N]
   tau.segment<3>(3) = b.W_R_B * dart.segment<3>(t);  // moment about P0 [N m]
-  for (int k = 0; k < kJoints; ++k) tau[6 + k] = dart[r.dof[k]];
+  for (int k = 0; k < r.joints; ++k) tau[6 + k] = dart[r.dof[k]];
   return tau;
 }
 
@@ -175,7 +180,7 @@ struct Setup {
   std::vector<bench::SampleState> samples;
   DartRobot dart;
   std::vector<DartState> dart_samples;
-  std::array<Vec3, kLegs> forces = foot_forces_W();
+  LegArray<Vec3> forces = foot_forces_W(model);
 };
 
 Setup& setup() {
@@ -206,7 +211,7 @@ constexpr double kMaxAbsDiff = 1e-6;  ///< [N, N m]; the torques are O(10) N m
 /// False if DART's FreeJoint Jacobian is not the identity the conversion relies on.
 bool compare(Setup& s, RobotData& data, const bench::SampleState& x) {
   const DartState d = to_dart(s.dart, x);
-  VecDof dart_tau;
+  DofVector dart_tau;
   dart_inverse_dynamics(s.dart, d, s.forces, dart_tau);
   const dd::Joint& trunk_joint = *s.dart.trunk_joint;
   if (!trunk_joint.getRelativeJacobian().isIdentity(1e-12) ||
@@ -217,8 +222,8 @@ bool compare(Setup& s, RobotData& data, const bench::SampleState& x) {
                  DART_VERSION);
     return false;
   }
-  const VecDof& tau = rnea(s.model, data, x.base, x.q, x.qd, x.qdd, &s.forces);
-  const VecDof diff = (to_hexdyn(s.dart, x.base, dart_tau) - tau).cwiseAbs();
+  const DofVector& tau = rnea(s.model, data, x.base, x.q, x.qd, x.qdd, &s.forces);
+  const DofVector diff = (to_hexdyn(s.dart, x.base, dart_tau) - tau).cwiseAbs();
   int row = 0;
   const double e = diff.maxCoeff(&row);
   if (e > g_agreement.max_abs_diff) {
@@ -285,7 +290,7 @@ BENCHMARK(BM_HexdynRnea)->Unit(benchmark::kMicrosecond);
 
 void BM_DartInverseDynamics(benchmark::State& state) {
   Setup& s = setup();
-  VecDof tau;
+  DofVector tau;
   std::size_t i = 0;
   for (auto _ : state) {
     dart_inverse_dynamics(s.dart, s.dart_samples[i], s.forces, tau);
@@ -310,7 +315,7 @@ double median(std::vector<double> v) {
 void BM_DartRatio(benchmark::State& state) {
   Setup& s = setup();
   RobotData data(s.model);
-  VecDof tau;
+  DofVector tau;
   const double n = static_cast<double>(s.samples.size());
   const auto hexdyn_pass = [&] {
     for (const bench::SampleState& x : s.samples) {

@@ -48,7 +48,7 @@ inline const PaperSetup& paper_setup() {
 /// Trunk and joint state of sample i.
 struct SampleState {
   BaseState base;
-  VecJ q, qd, qdd;
+  JointVector q, qd, qdd;
 };
 
 inline SampleState sample_state(const KinematicsResult& kin, int i) {

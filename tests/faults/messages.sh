@@ -38,6 +38,9 @@ printf 'inherit: paper.yaml\ngait:\n  phases: {L1: 0, %s, L7: 0}\n' "$phases" > 
 printf 'inherit: paper.yaml\ngait:\n  phases: {%s}\n' "$phases" > phases_missing.yaml
 printf 'inherit: paper.yaml\ngait:\n  phases:\n    L1: 0\n    L1: 0.5\n' > phases_twice.yaml
 printf 'inherit: paper.yaml\ngait:\n  phases: {L1: 1, %s}\n' "$phases" > phases_range.yaml
+# A per-leg key of a quadruped (Solo-12: four legs) given for another count of legs.
+printf 'inherit: %s\nrobot:\n  nominal_pose: [[0, 0.8, -1.6], [0, 0.8, -1.6], [0, 0.8, -1.6]]\n' \
+  "$SRC/configs/robots/solo12_flat.yaml" > quad_pose.yaml
 axis='axes:\n  - key: gait.duty_factor\n    values: [1/2, 2/3]\n'
 printf "base: paper.yaml\nset: {output.tolerance: \"1e-2\"}\n$axis" > sweep_set.yaml
 printf "base: paper.yaml\naxes:\n  - key: terrain.riser_height\n    range: {from: 0.0, to: '0.07', count: 3}\n" \
@@ -92,6 +95,8 @@ refused phases_list 'phases_list\.yaml: gait\.phases: got \[0, 0\.5, 0\.5, 0, 0,
   validate phases_list.yaml
 refused phases_name 'phases_name\.yaml: gait\.phases: got the key L7, expected leg names \(L1, L2, L3, L4, L5, L6\)$' \
   run phases_name.yaml -o out/o.h5
+refused quad_pose 'quad_pose\.yaml: robot\.nominal_pose: got \[\[0, 0\.8, -1\.6\], \[0, 0\.8, -1\.6\], \[0, 0\.8, -1\.6\]\], expected \[coxa, femur, tibia\] rad, each a number in \[-6\.28319, 6\.28319\] \(every leg\); or 4 of them: a list in leg order L1 … L4, or a map by leg name L1 … L4$' \
+  validate quad_pose.yaml
 refused phases_missing 'phases_missing\.yaml: gait\.phases: got \{L2: 0\.5, .*\}, expected a map naming every leg once \(L1, .*\), L1 missing$' \
   validate phases_missing.yaml
 refused phases_twice 'phases_twice\.yaml: gait\.phases\.L1: duplicate key, first at line 4, again at line 5' \

@@ -20,7 +20,7 @@ inline RobotParams paper_robot_params() {
   p.link_length_m = {0.085, 0.120, 0.100};
   p.joint_offset_m = {0.008, 0.018, 0.020};
   const double hx = 0.08, hy = 0.2;
-  for (int leg = 0; leg < kLegs; ++leg) {
+  for (int leg = 0; leg < p.legs; ++leg) {
     const double x = is_left(leg) ? -hx : hx;
     const double y = (leg / 2 == 0) ? hy : (leg / 2 == 1 ? 0.0 : -hy);
     p.hip_position_m[leg] = Vec3(x, y, 0.0);
@@ -51,13 +51,13 @@ inline RobotParams random_robot_params(std::mt19937& rng) {
              Vec3(in(-0.02, 0.02), in(-0.02, 0.02), in(-0.01, 0.01))};
   p.payload = {in(0.5, 5.0), random_inertia(rng, 5e-3),
                Vec3(in(-0.03, 0.03), in(-0.03, 0.03), in(0.0, 0.05))};
-  for (int j = 0; j < kJointsPerLeg; ++j) {
+  for (int j = 0; j < p.leg_joints; ++j) {
     p.link_length_m[j] = in(0.05, 0.15);
     p.link[j] = {in(0.02, 0.3), random_inertia(rng, 1e-4),
                  Vec3(in(0.2, 0.8) * p.link_length_m[j], in(-0.01, 0.01), in(-0.01, 0.01))};
     p.joint_offset_m[j] = in(0.0, 0.03);
   }
-  for (int leg = 0; leg < kLegs; ++leg) {
+  for (int leg = 0; leg < p.legs; ++leg) {
     p.hip_position_m[leg] =
         Vec3(in(0.04, 0.12) * (is_left(leg) ? -1 : 1), in(-0.25, 0.25), in(-0.02, 0.02));
     p.hip_yaw_rad[leg] = (is_left(leg) ? M_PI : 0.0) + in(-0.5, 0.5);

@@ -1,5 +1,6 @@
 #include "hexdyn/config/actuators.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -166,8 +167,36 @@ Entry read_entry(Reader& r, const std::string& path) {
 /// The joint names the `joints` entry may use, for messages.
 std::string joint_list(const JointFacts& joints) {
   std::string list;
-  for (const auto& n : joints.names) list += (list.empty() ? "" : ", ") + n;
+  for (int k = 0; k < joints.count; ++k) list += (list.empty() ? "" : ", ") + joints.names[k];
   return list;
+}
+
+/// By place in a leg of three joints (docs/user/configuration.md#actuators).
+constexpr int kTypedLegJoints = 3;
+constexpr const char* kTypes[kTypedLegJoints] = {"coxa", "femur", "tibia"};
+
+/// "j1" … "j6": by place from the hip, in a leg of any length.
+std::string position_key(int place) { return "j" + std::to_string(place + 1); }
+
+/// The entries `actuators` may hold for this robot: default, joints, the types, and j1 … jm
+/// for its longest leg's m joints. A key not among them is refused before any value is read,
+/// so that a misspelt entry is named as such.
+void check_entry_names(Reader& r, const YAML::Node& section, const JointFacts& joints) {
+  int places = 0;
+  for (int k = 0; k < joints.count; ++k) places = std::max(places, joints.place[k] + 1);
+  std::vector<std::string> allowed = {"coxa", "default", "femur", "joints", "tibia"};
+  for (int p = 0; p < places; ++p) allowed.push_back(position_key(p));
+  for (const auto& kv : section) {
+    const std::string key = kv.first.as<std::string>();
+    if (std::find(allowed.begin(), allowed.end(), key) == allowed.end())
+      r.fail_unknown("actuators." + key, allowed);
+  }
+  for (int j = 0; j < kTypedLegJoints; ++j)
+    if (r.given(std::string("actuators.") + kTypes[j]) && r.given("actuators." + position_key(j)))
+      r.fail("actuators." + position_key(j), std::string("got both actuators.") + kTypes[j] +
+                                                 " and actuators." + position_key(j) +
+                                                 ", expected one of them (a leg of three joints' " +
+                                                 position_key(j) + " is its " + kTypes[j] + ")");
 }
 
 /// actuators.joints: one entry per joint named, by flat joint index.
@@ -210,20 +239,16 @@ DriveTrainParams read_actuators(Reader& r, const JointFacts& joints) {
   const YAML::Node section = r.peek("actuators");
   if (!section.IsMap())
     r.fail_value("actuators", section,
-                 "a mapping with default, coxa, femur, tibia and joints entries");
-  // By place in a leg of three joints (docs/user/configuration.md#actuators).
-  constexpr int kTypedLegJoints = 3;
-  static const char* kTypes[kTypedLegJoints] = {"coxa", "femur", "tibia"};
-  for (const auto& kv : section) {  // before the values: a misspelt entry is named as such
-    const std::string key = kv.first.as<std::string>();
-    if (key != "default" && key != "joints" && key != kTypes[0] && key != kTypes[1] &&
-        key != kTypes[2])
-      r.fail_unknown("actuators." + key, {"coxa", "default", "femur", "joints", "tibia"});
-  }
+                 "a mapping with default, coxa, femur, tibia, j1 … j6 and joints entries");
+  check_entry_names(r, section, joints);
   const Entry all = read_entry(r, "actuators.default");
   std::array<Entry, kTypedLegJoints> by_type;
   for (int j = 0; j < kTypedLegJoints; ++j)
     by_type[j] = read_entry(r, std::string("actuators.") + kTypes[j]);
+  LegJointArray<Entry> by_place;
+  for (int p = 0; p < kMaxLegJoints; ++p)
+    if (r.given("actuators." + position_key(p)))
+      by_place[p] = read_entry(r, "actuators." + position_key(p));
   const Entry untyped;  // a joint of a leg of other than three joints: no type entry
   const JointArray<Entry> by_joint = read_joint_entries(r, joints);
   out.joints.count = joints.count;
@@ -238,7 +263,10 @@ DriveTrainParams read_actuators(Reader& r, const JointFacts& joints) {
     a = base;
     std::array<bool, 11> given{};
     Inertia inertia;
-    for (const Entry* e : std::array<const Entry*, 3>{&all, &type_entry, &by_joint[k]}) {
+    // A type and its place are never both given (check_entry_names).
+    const std::array<const Entry*, 4> chain{&all, &type_entry, &by_place[joints.place[k]],
+                                            &by_joint[k]};
+    for (const Entry* e : chain) {
       if (!e->model.empty()) {  // another servo: none of a less specific entry's servo values
         for (int i = 0; i < kServoFields; ++i) {
           a.*fields()[i].member = base.*fields()[i].member;
@@ -259,7 +287,8 @@ DriveTrainParams read_actuators(Reader& r, const JointFacts& joints) {
         r.fail("actuators.joints." + joints.names[k] + "." + fields()[i].key,
                std::string("missing, expected it from actuators.default, ") +
                    (typed ? std::string("actuators.") + kTypes[joints.place[k]] + ", " : "") +
-                   "actuators.joints." + joints.names[k] + " or their model");
+                   "actuators." + position_key(joints.place[k]) + ", actuators.joints." +
+                   joints.names[k] + " or their model");
     a.armature_kgm2 =
         inertia.motor_side ? a.gear_ratio * a.gear_ratio * inertia.value_kgm2 : inertia.value_kgm2;
     record_joint(r, joints.names[k], a);

@@ -43,8 +43,7 @@ std::deque<LoadedEntry> loaded_entries;  ///< oldest first
 bool same_keys(const UrdfRobotKeys& a, const UrdfRobotKeys& b) {
   return a.path == b.path && a.trunk_link == b.trunk_link && a.forward_axis == b.forward_axis &&
          a.foot_links == b.foot_links && a.foot_offset_m == b.foot_offset_m &&
-         a.foot_radius_m == b.foot_radius_m && a.nominal_pose_rad == b.nominal_pose_rad &&
-         a.ik_min_margin_m == b.ik_min_margin_m;
+         a.foot_radius_m == b.foot_radius_m && a.ik_min_margin_m == b.ik_min_margin_m;
 }
 
 }  // namespace
@@ -71,16 +70,11 @@ LoadedUrdfRobot load_urdf_robot(const UrdfRobotKeys& keys) {
   opt.foot_radius = keys.foot_radius_m;
   LoadedUrdfRobot out;
   auto robot = std::make_shared<UrdfRobot>(read_urdf_robot_from_string(text, keys.path, opt));
-  const RobotModel model = build_robot_model(*robot, keys.ik_min_margin_m);
+  auto built = std::make_shared<const RobotModel>(build_robot_model(*robot, keys.ik_min_margin_m));
+  const RobotModel& model = *built;
   out.stance.resize(model.legs());
   for (int leg = 0; leg < model.legs(); ++leg) {
-    // robot.nominal_pose names at most six legs (config/leg_keys.hpp): a seventh and eighth
-    // leg stand at their default pose.
-    const std::optional<Vec3> pose = leg < static_cast<int>(keys.nominal_pose_rad.size())
-                                         ? keys.nominal_pose_rad[leg]
-                                         : std::nullopt;
-    out.stance[leg] = pose ? stance_at_pose(model, leg, *pose, "robot.nominal_pose")
-                           : default_nominal_stance(model, leg);
+    out.stance[leg] = default_nominal_stance(model, leg);
     for (int j = 0; j < model.leg(leg).n_joints; ++j) {
       const int k = model.joint(leg, j);
       const UrdfJoint& joint = robot->legs[leg].joints[j];
@@ -94,6 +88,7 @@ LoadedUrdfRobot load_urdf_robot(const UrdfRobotKeys& keys) {
   out.stance_radius_m = mean.radius_m;
   out.stance_depth_m = mean.depth_m;
   out.robot = std::move(robot);
+  out.model = std::move(built);
   const std::lock_guard<std::mutex> lock(loaded_mutex);
   if (loaded_entries.size() == kLoadedEntries) loaded_entries.pop_front();
   loaded_entries.push_back({keys, text, out});

@@ -136,12 +136,13 @@ void add_gait(std::deque<SceneKey>& t) {
   add({.path = "gait.phases",
        .kind = KeyKind::kText,
        .default_text = "the wave gait's",
-       .allowed_text = "a map `{L1: φ1, …, L6: φ6}` naming every leg once, each φ in [0, 1)",
+       .allowed_text = "a map `{L1: φ1, …, Ln: φn}` naming each of the robot's n legs once, "
+                       "each φ in [0, 1)",
        .meaning = "each leg's lift-off phase, the fraction of a cycle at which it lifts off "
                   "(it swings for 1 − β of a cycle); replaces the wave gait's phases, which "
                   "`-v` prints ([docs/theory/stages.md](docs/theory/stages.md#gait-planning))"});
   t.push_back({.path = "gait.phases.*",
-               .instances = "L1 L2 L3 L4 L5 L6",
+               .instances = "L1 L2 L3 L4 L5 L6 L7 L8",
                .range = {0.0, 1.0, false, true},
                .unit = "1",
                .required = true});

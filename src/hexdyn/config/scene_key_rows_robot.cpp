@@ -192,9 +192,10 @@ void add_urdf_robot(std::deque<SceneKey>& t) {
        .max_count = 3,
        .unit = "m",
        .default_text = "—",
-       .allowed_text = "`[x, y, z]`; or six `[x, y, z]` in the order L1 … L6 of "
-                       "`/model/leg_names`; or a map `{L1: [x, y, z], …, L6: [x, y, z]}` naming "
-                       "every leg (a missing leg is an error); numbers in [−10, 10] m",
+       .allowed_text = "`[x, y, z]`; or one per leg of the robot's n legs: a list of n "
+                       "`[x, y, z]` in the order L1 … Ln of `/model/leg_names`, or a map "
+                       "`{L1: [x, y, z], …, Ln: [x, y, z]}` naming every leg (a missing leg or "
+                       "another count is an error); numbers in [−10, 10] m",
        .meaning =
            "the foot point in each leg's last link frame: one for every leg, or each "
            "leg's own (feet mirrored between the sides). `validate` and `run` refuse a "
@@ -210,12 +211,13 @@ void add_urdf_robot(std::deque<SceneKey>& t) {
        .kind = KeyKind::kNumbers,
        .range = closed(-2 * M_PI, 2 * M_PI),
        .min_count = 3,
-       .max_count = 3,
+       .max_count = kMaxLegJoints,
        .unit = "rad",
        .default_text = "\"femur level, tibia plumb\"",
-       .allowed_text = "`[coxa, femur, tibia]`, 3 numbers in [−2π, 2π] rad inside the "
-                       "joint limits; or six of them: a list in leg order L1 … L6, or a "
-                       "map by leg name (`{L3: [0, 0, 1.5]}`)",
+       .allowed_text = "one angle per joint of a leg, `[coxa, femur, tibia]` for three "
+                       "joints, numbers in [−2π, 2π] rad inside the joint limits; or one per "
+                       "leg of the robot's n legs: a list of n in leg order L1 … Ln, or a map "
+                       "by leg name (`{L3: [0, 0, 1.5]}`); poses of legs of three joints only",
        .meaning = "the standing pose that sets `gait.foot_lateral`'s default; legs a map "
                   "does not name keep the default"});
   add({.path = "robot.ik_min_margin",

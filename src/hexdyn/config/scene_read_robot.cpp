@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "hexdyn/config/key_rules.hpp"
+#include "hexdyn/config/leg_keys.hpp"
 #include "hexdyn/config/scene_readers.hpp"
 #include "hexdyn/config/stance_keys.hpp"
 #include "hexdyn/config/table_keys.hpp"
@@ -22,50 +23,15 @@ BodyParams read_body(Reader& r, const std::string& path, const Vec3& com_default
   return b;
 }
 
-/// robot.foot_offset of legs L1 … L6 (config/robot_config.hpp): one [x, y, z] for every leg,
-/// six in leg order, or a map by leg name with every leg.
+/// robot.foot_offset (config/robot_config.hpp): one [x, y, z] for every leg, or one per leg
+/// (a list in leg order, a map naming every leg). It is read before the robot, whose legs the
+/// URDF reader then counts against it.
 std::vector<Vec3> read_foot_offsets(Reader& r) {
   const std::string key = "robot.foot_offset";
-  const Range range = scene_key(key).range;
-  const YAML::Node node = r.peek(key);
-  std::vector<Vec3> out(kLegs);
-  if (node.IsMap()) {  // every leg by name
-    for (const auto& kv : node) {
-      const std::string name = kv.first.IsScalar() ? kv.first.Scalar() : "?";
-      if (name.size() != 2 || name[0] != 'L' || name[1] < '1' || name[1] > '6')
-        r.fail(key + "." + name, "unknown leg, allowed here: L1, L2, L3, L4, L5, L6");
-    }
-    for (int leg = 0; leg < kLegs; ++leg) out[leg] = r.vec3(key + "." + leg_name(leg), range);
-    return out;
-  }
-  const std::string expected =
-      "[x, y, z], six [x, y, z] in the order L1 … L6 of /model/leg_names, or a map {L1: [x, y, "
-      "z], …, L6: [x, y, z]}, each coordinate " +
-      range.describe() + " m";
-  r.refuse_quoted_numbers(key, node, range.describe() + " m");
-  if (!node.IsSequence() || node.size() == 0) r.fail_value(key, node, expected);
-  if (!node[0].IsSequence()) {  // one point for every leg
-    if (node.size() != 3) r.fail_value(key, node, expected);
-    return {r.vec3(key, range)};
-  }
-  r.node(key);  // asked for: read below
-  if (node.size() != kLegs) r.fail_value(key, node, expected);
-  YAML::Node resolved(YAML::NodeType::Sequence);
-  for (int leg = 0; leg < kLegs; ++leg) {
-    const YAML::Node p = node[leg];
-    double v[3] = {0.0, 0.0, 0.0};
-    bool ok = p.IsSequence() && p.size() == 3;
-    for (std::size_t i = 0; ok && i < 3; ++i)
-      ok = p[i].IsScalar() && YAML::convert<double>::decode(p[i], v[i]) && std::isfinite(v[i]) &&
-           range.contains(v[i]);
-    if (!ok) r.fail_value(key, node, expected + " (" + leg_name(leg) + " is not)");
-    out[leg] = Vec3(v[0], v[1], v[2]);
-    YAML::Node xyz(YAML::NodeType::Sequence);
-    for (double x : v) xyz.push_back(x);
-    xyz.SetStyle(YAML::EmitterStyle::Flow);
-    resolved.push_back(xyz);
-  }
-  r.record(key, resolved);
+  const LegKeyValues feet =
+      read_leg_vectors(r, {key, "m", scene_key(key).range, true}, point_legs());
+  std::vector<Vec3> out(feet.count);
+  for (int leg = 0; leg < feet.count; ++leg) out[leg] = *feet.by_leg[leg];
   return out;
 }
 
@@ -81,11 +47,11 @@ double read_urdf_robot_keys(Reader& r, RobotParams& p, LoadedUrdfRobot& loaded) 
   k.foot_links = r.strings_or_none("robot.foot_links", kMinLegs, kMaxLegs);
   if (r.has("robot.foot_offset")) k.foot_offset_m = read_foot_offsets(r);
   if (r.has("robot.foot_radius")) k.foot_radius_m = number_key(r, "robot.foot_radius");
-  k.nominal_pose_rad = read_nominal_pose(r);
   k.ik_min_margin_m = p.ik_min_margin_m = number_key(r, "robot.ik_min_margin");
   loaded = load_urdf_robot(k);
   p.urdf = loaded.robot;
-  check_nominal_pose(r, k.nominal_pose_rad, *loaded.robot);
+  p.legs = loaded.model->legs();
+  read_nominal_pose(r, loaded);
   p.stance = loaded.stance;
   record_stance(r, loaded.stance);
   check_stance_radius(r, loaded.stance_radius_m);
@@ -98,8 +64,9 @@ double read_urdf_robot_keys(Reader& r, RobotParams& p, LoadedUrdfRobot& loaded) 
 /// default is the reference's mid-length.
 void read_links(Reader& r, RobotParams& p) {
   const bool follow = choice_key(r, "robot.links_follow_length") != "none";
-  const char* names[kJointsPerLeg] = {"coxa", "femur", "tibia"};
-  for (int j = 0; j < kJointsPerLeg; ++j) {
+  const char* names[kYamlRobotLegJoints] = {"coxa", "femur", "tibia"};
+  p.leg_joints = kYamlRobotLegJoints;
+  for (int j = 0; j < kYamlRobotLegJoints; ++j) {
     const std::string base = std::string("robot.") + names[j];
     p.link_length_m[j] = number_key(r, base + ".length");
     p.joint_offset_m[j] = number_key(r, base + ".offset");
@@ -123,7 +90,8 @@ void read_hips(Reader& r, RobotParams& p) {
   const double hip_z = number_key_or(r, "robot.hips.z", 0.0);
   const std::vector<double> zero3{0.0, 0.0, 0.0};
   const auto yaw = numbers_key(r, "robot.hips.yaw", &zero3);
-  for (int leg = 0; leg < kLegs; ++leg) {
+  p.legs = kYamlRobotLegs;
+  for (int leg = 0; leg < kYamlRobotLegs; ++leg) {
     const int row = leg / 2;  // 0 front, 1 middle, 2 rear
     const bool left = is_left(leg);
     p.hip_position_m[leg] = Vec3(left ? -hip_x : hip_x, hip_y[row], hip_z);

@@ -1,26 +1,21 @@
 #pragma once
 /// \file stance_keys.hpp
 /// Internal to config/: a URDF robot's robot.nominal_pose (config/robot_config.hpp) read and
-/// checked, and the stance it gave recorded in the resolved configuration.
-#include <array>
-#include <optional>
+/// checked against the robot's legs and joints, and the stance it gave recorded in the
+/// resolved configuration.
 #include <span>
 
+#include "hexdyn/config/robot_config.hpp"
 #include "hexdyn/config/scene_key_reader.hpp"
-#include "hexdyn/core/scene.hpp"
 
 namespace hexdyn {
 
-struct UrdfRobot;
-
-/// robot.nominal_pose by leg (config/leg_keys.hpp: one for every leg, six in leg order, or
-/// a map by leg name); none where it is not given.
-std::array<std::optional<Vec3>, kLegs> read_nominal_pose(scene_keys::Reader& r);
-
-/// Every given pose inside its leg's joint limits, else one line naming the leg, the joint,
-/// the angle and the limits.
-void check_nominal_pose(scene_keys::Reader& r, const std::array<std::optional<Vec3>, kLegs>& pose,
-                        const UrdfRobot& robot);
+/// robot.nominal_pose by leg (config/leg_keys.hpp: one for every leg, one per leg of the
+/// robot in leg order, or a map by leg name), each pose one angle per joint of its leg and
+/// inside the joint limits, else one line naming the key, the value and what is allowed. The
+/// legs it names stand at the pose given: their stances in `loaded` are replaced and the
+/// stance radius and depth are taken anew.
+void read_nominal_pose(scene_keys::Reader& r, LoadedUrdfRobot& loaded);
 
 /// auto.robot.nominal_pose of the resolved configuration: for each leg, the pose its stance
 /// stood at, how it was obtained, its radius and depth (model/stance.hpp), written anew by

@@ -2,8 +2,8 @@
 /// \file result.hpp
 /// Per-run result arrays, one row per output sample, in the units and frames of the
 /// `hexdyn-result/4` contract (io/schema.hpp). Matrices are row-major so that a
-/// (T, n) dataset is written straight from `.data()`; (T, 6, 3) datasets are stored
-/// as T × 18 with leg-major columns (3 l + axis).
+/// (T, n) dataset is written straight from `.data()`; (T, legs, 3) datasets are stored
+/// as T × 3 legs with leg-major columns (3 l + axis).
 #include <cstdint>
 #include <iosfwd>
 #include <string>
@@ -60,8 +60,6 @@ struct KinematicsResult {
   /// values; or, with zero = false, with values unset (but sample_kind zero) for a caller that
   /// writes every row.
   void resize(int samples, int legs, int joints, bool zero = true);
-  /// The same for six legs of three joints.
-  void resize(int samples, bool zero = true) { resize(samples, kLegs, kJoints, zero); }
 };
 
 /// One touchdown transient (/impacts/*).
@@ -78,33 +76,33 @@ struct ImpactRecord {
 /// The electrical side of a run with actuators (drive/drive.hpp compute_electrical;
 /// docs/theory/drive-train.md#current-and-electrical-power).
 struct ElectricalResult {
-  RowMatrix current_A;                ///< T×18, I [A]
-  RowMatrix power_W;                  ///< T×18, P⁺ (P = R I² + G k_t q̇ I; r P when P < 0) [W]
-  std::vector<double> total_power_W;  ///< T, Σ_k P⁺_k [W]
-  double energy_J = 0.0;              ///< trapezoid of total_power_W over the samples [J]
-  std::vector<double> energy_joint_J;  ///< 18, trapezoid of P⁺_k [J]
+  RowMatrix current_A;  ///< T×joints, I [A]
+  RowMatrix power_W;    ///< T×joints, P⁺ (P = R I² + G k_t q̇ I; r P when P < 0) [W]
+  std::vector<double> total_power_W;   ///< T, Σ_k P⁺_k [W]
+  double energy_J = 0.0;               ///< trapezoid of total_power_W over the samples [J]
+  std::vector<double> energy_joint_J;  ///< joints, trapezoid of P⁺_k [J]
   double copper_loss_J = 0.0;          ///< trapezoid of Σ R I² [J]
   double friction_loss_J = 0.0;        ///< trapezoid of Σ (τ_c |q̇| + b q̇²) [J]
   double regenerated_J = 0.0;          ///< trapezoid of Σ r max(0, −P) [J]
   double cost_of_transport = 0.0;      ///< energy_J / (m g d)
-  std::vector<double> rms_torque_Nm;   ///< 18, RMS of τ_drive over the run [N m]
-  /// 18, the largest RMS of τ_drive over any window of thermal_window_s in the run (the
+  std::vector<double> rms_torque_Nm;   ///< joints, RMS of τ_drive over the run [N m]
+  /// joints, the largest RMS of τ_drive over any window of thermal_window_s in the run (the
   /// run's RMS when the window is longer than the run) [N m].
   std::vector<double> window_rms_torque_Nm;
-  /// 18, each joint's continuous_torque (+inf: none), the rating the windowed RMS is against.
+  /// joints, each joint's continuous_torque (+inf: none), the rating the windowed RMS is against.
   std::vector<double> continuous_torque_Nm;
 };
 
 /// Output of the dynamic stages (inverse dynamics, contact, allocation, power).
 struct DynamicsResult {
-  RowMatrix joint_torque;   ///< T×18 [N m]
-  RowMatrix contact_force;  ///< T×18 = (T,6,3), terrain on foot, world [N]
-  RowMatrix penetration;    ///< T×6 [m]
-  /// T×6, |F_t| / F_n of the chosen force in the contact frame of each support or impact leg,
+  RowMatrix joint_torque;   ///< T×joints [N m]
+  RowMatrix contact_force;  ///< T×3 legs = (T,legs,3), terrain on foot, world [N]
+  RowMatrix penetration;    ///< T×legs [m]
+  /// T×legs, |F_t| / F_n of the chosen force in the contact frame of each support or impact leg,
   /// NaN on a swing leg and where a real force does not press the foot (F_n ≤ 0), 0 for a
   /// round-off force; never infinite (docs/theory/grip.md#utilised-friction).
   RowMatrix utilized_friction;
-  /// T×6, 1 where the leg cannot hold at the scene's μ: its friction held only with slack, or
+  /// T×legs, 1 where the leg cannot hold at the scene's μ: its friction held only with slack, or
   /// the sample needs more than μ and the leg is at its friction limit or binds the required
   /// friction (docs/theory/grip.md#slip-onset); 0 elsewhere.
   RowMatrixI8 slip;
@@ -112,14 +110,14 @@ struct DynamicsResult {
   /// does (docs/theory/grip.md#required-friction); empty when output.required_friction is
   /// false.
   std::vector<double> required_friction;
-  /// T, the leg whose friction binds at the required friction (0..5), −1 where none does;
+  /// T, the leg whose friction binds at the required friction (0 … legs − 1), −1 where none does;
   /// empty with required_friction.
   std::vector<std::int8_t> required_friction_leg;
   std::vector<ImpactRecord> impacts;
-  RowMatrix joint_power;                     ///< T×18 [W]
+  RowMatrix joint_power;                     ///< T×joints [W]
   std::vector<double> total_power_W;         ///< T, Σ|τ ω|
   double energy_total_J = 0.0;               ///< trapezoid of total_power_W over the samples
-  std::vector<double> energy_joint_J;        ///< 18, trapezoid of |τ_k ω_k| over the samples
+  std::vector<double> energy_joint_J;        ///< joints, trapezoid of |τ_k ω_k| over the samples
   std::vector<double> energy_cycle_J;        ///< Y, per gait cycle, sums to energy_total_J
   double distance_m = 0.0;                   ///< trunk travel for the cost of transport
   double cost_of_transport = 0.0;            ///< E / (m g d)
@@ -132,7 +130,7 @@ struct DynamicsResult {
   /// the message of an episode's worst sample for the log).
   std::vector<double> solver_max_violation;
   /// With actuators (Scene::actuators), else empty: the drive torques τ_drive = τ + J_a q̈ +
-  /// τ_c sgn(q̇) + b q̇ (T×18) [N m] and their bound at each sample (T×18) [N m]
+  /// τ_c sgn(q̇) + b q̇ (T×joints) [N m] and their bound at each sample (T×joints) [N m]
   /// (docs/theory/drive-train.md).
   RowMatrix drive_torque;
   RowMatrix drive_torque_limit;

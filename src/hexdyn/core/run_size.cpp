@@ -45,7 +45,7 @@ double planned_duration_s(const Scene& scene) {
 
 GridSizeBound planned_grid_bound(const Scene& scene) {
   const bool transients = scene.contact.model == ContactModel::kCompliant;
-  const double swings = kLegs * (static_cast<double>(scene.motion.cycles) + 1.0);
+  const double swings = scene.robot.legs * (static_cast<double>(scene.motion.cycles) + 1.0);
   const double duration = planned_duration_s(scene) + (transients ? kMaxTransientDuration_s : 0.0);
   return output_grid_bound(scene.output, duration, swings, swings, transients ? swings : 0.0);
 }

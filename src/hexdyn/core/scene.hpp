@@ -17,7 +17,7 @@ namespace hexdyn {
 
 inline constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
-struct UrdfRobot;  // model/urdf_robot.hpp: a hexapod read from a URDF file
+struct UrdfRobot;  // model/urdf_robot.hpp: a legged robot read from a URDF file
 
 /// Values per joint in flat joint order, resolved for a robot of `count` joints (its
 /// RobotModel::joints()): the first `count` entries of a fixed capacity are used.
@@ -58,29 +58,44 @@ struct NominalStance {
   std::string source;
 };
 
-/// Leg inertia model: the full coupled dynamics of the 18 links, or massless legs whose
+/// Leg inertia model: the full coupled dynamics of the leg links, or massless legs whose
 /// link masses are lumped into the trunk as point masses at their hips (coxa joints).
 enum class LegInertia { kFull, kMassless };
 
+/// The legs and joints of the robot of the YAML keys (robot.trunk, coxa, femur, tibia, hips):
+/// six legs L1 … L6 of three joints, coxa, femur, tibia (docs/theory/conventions.md).
+inline constexpr int kYamlRobotLegs = 6;
+inline constexpr int kYamlRobotLegJoints = 3;
+
 struct RobotParams {
+  /// The robot's legs: the YAML robot's six, or a URDF robot's (its legs read).
+  int legs = kYamlRobotLegs;
+  /// Joints of each leg of the YAML robot (a URDF robot's legs have their own counts).
+  int leg_joints = kYamlRobotLegJoints;
   BodyParams trunk;    ///< trunk structure, frame L0 at P0
   BodyParams payload;  ///< rigidly fixed to the trunk; com_m in the trunk frame
-  /// Links of every leg: coxa (i1), femur (i2), tibia (i3). COM and axes in the link frame
-  /// (x along the link from its joint, z the trunk normal at zero angles).
-  std::array<BodyParams, kJointsPerLeg> link;
-  std::array<double, kJointsPerLeg> link_length_m{};  ///< l1, l2, l3
+  /// Links of every leg, the first leg_joints used: coxa (i1), femur (i2), tibia (i3). COM
+  /// and axes in the link frame (x along the link from its joint, z the trunk normal at zero
+  /// angles).
+  LegJointArray<BodyParams> link;
+  LegJointArray<double> link_length_m{};  ///< l1, l2, l3
   /// DH joint offsets (assumed meaning): d1 along the coxa axis (femur axis below the
   /// coxa link), d2 and d3 along the femur and tibia axes (lateral link offsets,
   /// mirrored on the left so that every offset points forward at zero coxa angle).
-  std::array<double, kJointsPerLeg> joint_offset_m{};
-  /// Coxa joint positions in the trunk frame, legs 1..6 [m] (assumption).
-  std::array<Vec3, kLegs> hip_position_m;
+  LegJointArray<double> joint_offset_m{};
+  /// Coxa joint positions in the trunk frame, legs L1 … L6 (the first `legs`) [m]
+  /// (assumption).
+  LegArray<Vec3> hip_position_m = [] {
+    LegArray<Vec3> zero;
+    zero.fill(Vec3::Zero());
+    return zero;
+  }();
   /// Hip yaw: angle about the trunk z axis from trunk +x to the leg's outward axis;
   /// right legs 0, left legs π when the legs stand straight out [rad].
-  std::array<double, kLegs> hip_yaw_rad{};
+  LegArray<double> hip_yaw_rad{};
   /// Joint-angle limits used by IK checks [rad]: min, max per joint of a leg.
-  std::array<double, kJointsPerLeg> joint_min_rad{};
-  std::array<double, kJointsPerLeg> joint_max_rad{};
+  LegJointArray<double> joint_min_rad{};
+  LegJointArray<double> joint_max_rad{};
   /// Smallest allowed distance of the wrist point to the boundary of the leg's
   /// planar workspace (full extension or full fold) [m]: below it IK refuses.
   double ik_min_margin_m = 1e-4;
@@ -90,9 +105,9 @@ struct RobotParams {
   double foot_radius_m = 0.0;
   /// A robot read from its URDF (robot.urdf, config/robot_config.cpp), or null for the robot
   /// described by the YAML keys above. When set, build_robot_model builds the model from
-  /// it and every field above except ik_min_margin_m is unused.
+  /// it and every field above except legs and ik_min_margin_m is unused.
   std::shared_ptr<const UrdfRobot> urdf;
-  /// A URDF robot's standing pose of each leg, L1 … L6 (unused for the YAML robot).
+  /// A URDF robot's standing pose of each leg, L1 … Ln (unused for the YAML robot).
   std::vector<NominalStance> stance;
 };
 
@@ -136,7 +151,7 @@ struct GaitParams {
   double touchdown_speed_mps = 0.05;  ///< downward foot speed at touchdown
   double lift_fraction = 0.3;         ///< share of swing time spent lifting
   double lower_fraction = 0.2;        ///< nominal share of swing time spent lowering
-  /// gait.phases: each leg's lift-off phase in [0, 1), in leg order L1 … L6; empty: the wave
+  /// gait.phases: each leg's lift-off phase in [0, 1), in leg order L1 … Ln; empty: the wave
   /// gait's (planning/gait.hpp).
   std::vector<double> liftoff_phases;
 };

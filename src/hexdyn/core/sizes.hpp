@@ -40,6 +40,9 @@ using LegJacobian = Eigen::Matrix<double, 3, Eigen::Dynamic, 0, 3, kMaxLegJoints
 /// Per-leg storage: the first RobotModel::legs() entries are used.
 template <class T>
 using LegArray = std::array<T, kMaxLegs>;
+/// Per-joint storage of one leg, hip to foot: the first LegInfo::n_joints entries are used.
+template <class T>
+using LegJointArray = std::array<T, kMaxLegJoints>;
 /// Per-body storage: the first RobotModel::n_bodies entries are used (body 0: the trunk).
 template <class T>
 using BodyArray = std::array<T, kMaxBodies>;

@@ -31,8 +31,8 @@ PaperTrunk paper_trunk(const RobotParams& params) {
   t.only = to_inertia(params.trunk);
   t.body = combine_inertias(t.only, to_inertia(params.payload));
   if (params.leg_inertia != LegInertia::kMassless) return t;
-  for (int leg = 0; leg < kPaperLegs; ++leg)
-    for (int j = 0; j < kPaperLegJoints; ++j) {
+  for (int leg = 0; leg < params.legs; ++leg)
+    for (int j = 0; j < kYamlRobotLegJoints; ++j) {
       if (!(params.link[j].mass_kg > 0.0)) continue;
       RigidInertia point;
       point.mass_kg = params.link[j].mass_kg;
@@ -58,10 +58,10 @@ UrdfRobot paper_description(const RobotParams& params) {
   const Vec3 minus_y(0.0, -1.0, 0.0);
   const double l1 = params.link_length_m[0], l2 = params.link_length_m[1];
   const double d1 = params.joint_offset_m[0];
-  for (int leg = 0; leg < kPaperLegs; ++leg) {
+  for (int leg = 0; leg < params.legs; ++leg) {
     const double side = paper_left(leg) ? -1.0 : 1.0;
     UrdfLeg l;
-    l.joints.resize(kPaperLegJoints);
+    l.joints.resize(kYamlRobotLegJoints);
     l.joints[0].p_parent_joint = params.hip_position_m[leg];
     l.joints[0].R_parent_joint = rot_z(params.hip_yaw_rad[leg]);
     l.joints[0].axis = Vec3::UnitZ();
@@ -69,7 +69,7 @@ UrdfRobot paper_description(const RobotParams& params) {
     l.joints[1].axis = minus_y;
     l.joints[2].p_parent_joint = Vec3(l2, side * params.joint_offset_m[2], 0.0);
     l.joints[2].axis = minus_y;
-    for (int j = 0; j < kPaperLegJoints; ++j) {
+    for (int j = 0; j < kYamlRobotLegJoints; ++j) {
       UrdfJoint& joint = l.joints[j];
       joint.name = joint_name(leg, j);
       joint.link = joint.name + "_link";
@@ -94,12 +94,13 @@ UrdfRobot paper_description(const RobotParams& params) {
 
 void use_paper_closed_forms(RobotModel& m, const RobotParams& params) {
   m.leg_geometry = LegGeometry::kPaperPlanar;
-  m.link_length_m = params.link_length_m;
+  for (std::size_t j = 0; j < m.link_length_m.size(); ++j)
+    m.link_length_m[j] = params.link_length_m[j];
   m.d1_m = params.joint_offset_m[0];
   const PaperTrunk trunk = paper_trunk(params);
   m.trunk_only = trunk.only;
   m.payload = to_inertia(params.payload);
-  for (int leg = 0; leg < kPaperLegs; ++leg) {
+  for (int leg = 0; leg < params.legs; ++leg) {
     const double side = paper_left(leg) ? -1.0 : 1.0;
     // The outward direction from the right-side yaw ψ (hip_yaw = π − ψ on the left, mirrored
     // in x), so that legs straight out get exactly (±1, 0, 0).

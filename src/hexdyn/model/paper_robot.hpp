@@ -4,9 +4,9 @@
 /// description of the same kind a URDF gives (model/urdf_robot.hpp UrdfRobot), built by the
 /// one builder, build_robot_model(const UrdfRobot&) (docs/theory/model.md#one-description).
 ///
-/// The YAML robot has six legs of three revolute joints (coxa about the trunk normal, femur
-/// and tibia about −y of the coxa link), legs L1, L3, L5 on the left, their lateral offsets
-/// mirrored; link frames as docs/theory/model.md says. Its planar closed forms (the model's
+/// The YAML robot has legs of three revolute joints (six in the paper; coxa about the trunk
+/// normal, femur and tibia about −y of the coxa link), legs L1, L3, L5, … on the left, their
+/// lateral offsets mirrored; link frames as docs/theory/model.md says. Its planar closed forms (the model's
 /// LegGeometry::kPaperPlanar) are a shortcut the model keeps after the build
 /// (use_paper_closed_forms): the tree, the inertias, the limits and the foot points are the
 /// description's; tests check the shortcut against the chain kinematics of the same model.
@@ -14,12 +14,8 @@
 
 namespace hexdyn {
 
-/// Legs and joints per leg of the YAML robot.
-inline constexpr int kPaperLegs = 6;
-inline constexpr int kPaperLegJoints = 3;
-
 /// The YAML robot as a description: trunk (with the payload, and with massless legs' link
-/// masses as point masses at their hips), six legs of three joints named as joint_name
+/// masses as point masses at their hips), params.legs legs of three joints named as joint_name
 /// gives, limits from the keys (no effort or velocity limit: +inf), point or sphere feet at
 /// the tibia's end. `params.urdf` must be null.
 UrdfRobot paper_description(const RobotParams& params);

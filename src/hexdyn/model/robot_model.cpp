@@ -104,8 +104,22 @@ void fill_leg_table(RobotModel& m) {
   m.n_bodies = 1 + m.n_joints;
 }
 
+namespace {
+
+/// The robot of the YAML keys has legs of a coxa, a femur and a tibia (core/scene.hpp).
+void check_yaml_robot_counts(const RobotParams& params) {
+  if (params.leg_joints != kYamlRobotLegJoints || params.legs < kMinLegs || params.legs > kMaxLegs)
+    throw std::logic_error("robot model: the YAML robot has legs of " +
+                           std::to_string(kYamlRobotLegJoints) + " joints, got " +
+                           std::to_string(params.legs) + " legs of " +
+                           std::to_string(params.leg_joints));
+}
+
+}  // namespace
+
 RobotModel build_robot_model(const RobotParams& params) {
   if (params.urdf) return build_robot_model(*params.urdf, params.ik_min_margin_m);
+  check_yaml_robot_counts(params);
   // The one builder on the YAML robot's description, then its closed forms as a shortcut
   // (model/paper_robot.hpp).
   RobotModel m = build_robot_model(paper_description(params), params.ik_min_margin_m);

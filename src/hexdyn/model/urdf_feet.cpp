@@ -102,9 +102,15 @@ std::vector<CollisionShape> Reader::collision_shapes(
 void Reader::finish_feet(UrdfRobot& robot) const {
   const int n = robot.n_legs();
   if (opt_.foot_offset && opt_.foot_links.empty() && opt_.foot_offset->size() != 1 &&
-      static_cast<int>(opt_.foot_offset->size()) != n)
-    fail("robot.foot_offset: " + std::to_string(opt_.foot_offset->size()) +
-         " points, expected one for every leg or one per leg (" + std::to_string(n) + " legs)");
+      static_cast<int>(opt_.foot_offset->size()) != n) {
+    std::string points;
+    for (const Vec3& p : *opt_.foot_offset)
+      points += (points.empty() ? "[" : ", ") +
+                ("[" + num(p.x()) + ", " + num(p.y()) + ", " + num(p.z()) + "]");
+    fail("robot.foot_offset: got " + std::to_string(opt_.foot_offset->size()) + " points " +
+         points + "], expected one [x, y, z] for every leg or one per leg (" + std::to_string(n) +
+         " legs, " + leg_name(0) + " … " + leg_name(n - 1) + ")");
+  }
   for (int leg = 0; leg < n; ++leg) {
     UrdfLeg& l = robot.legs[leg];
     const std::string chain = "leg " + leg_name(leg) + " (chain '" + l.joints.front().name + "'): ";

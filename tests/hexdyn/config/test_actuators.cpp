@@ -20,6 +20,7 @@
 #include "hexdyn/config/config.hpp"
 #include "hexdyn/config/servo_table.hpp"
 #include "hexdyn/core/errors.hpp"
+#include "hexdyn/model/robot_model.hpp"
 #include "hexdyn/model/urdf_robot.hpp"
 
 namespace hexdyn {
@@ -110,10 +111,28 @@ void check_round_trip(const Scene& a) {
   const Scene b = load_scene_from_string(a.resolved_yaml, "resolved.yaml");
   CHECK(b.actuators.present == a.actuators.present);
   CHECK(b.allocation.objective == a.allocation.objective);
-  for (int k = 0; k < kJoints; ++k) {
+  REQUIRE(b.actuators.joints.size() == a.actuators.joints.size());
+  for (int k = 0; k < a.actuators.joints.size(); ++k) {
     INFO("joint " << k);
     check_same(a.actuators.joints[k], b.actuators.joints[k]);
   }
+}
+
+/// One joint of a scene's robot: its flat index, its name in the files and its place in
+/// its leg (0 at the hip).
+struct JointAt {
+  int k = 0, place = 0;
+  std::string name;
+};
+
+/// Every joint of the scene's robot, in flat order, from the model's leg table.
+std::vector<JointAt> joints_of(const Scene& s) {
+  const RobotModel m = build_robot_model(s.robot);
+  std::vector<JointAt> out;
+  for (int l = 0; l < m.legs(); ++l)
+    for (int j = 0; j < m.leg(l).n_joints; ++j)
+      out.push_back({m.joint(l, j), j, m.joint_source_names[m.joint(l, j)]});
+  return out;
 }
 
 const ServoSpec& servo(const char* name) {
@@ -160,16 +179,15 @@ TEST_CASE("actuators: joints over type over default over the model, field by fie
   l3_tibia.regeneration = 0.5;
   l3_tibia.thermal_window_s = 2.0;
   REQUIRE(mx.voltage_V == 12.0);
-  for (int k = 0; k < kJoints; ++k) {
-    const std::string name = joint_name(k / kJointsPerLeg, k % kJointsPerLeg);
-    INFO(name);
-    const ActuatorParams& got = s.actuators.joints[k];
-    if (name == "L2_femur")
+  for (const JointAt& j : joints_of(s)) {
+    INFO(j.name);
+    const ActuatorParams& got = s.actuators.joints[j.k];
+    if (j.name == "L2_femur")
       check_same(got, l2_femur);
-    else if (name == "L3_tibia")
+    else if (j.name == "L3_tibia")
       check_same(got, l3_tibia);
     else
-      check_same(got, k % kJointsPerLeg == 0 ? coxa : k % kJointsPerLeg == 1 ? femur : tibia);
+      check_same(got, j.place == 0 ? coxa : j.place == 1 ? femur : tibia);
   }
   check_round_trip(s);
 }
@@ -181,7 +199,7 @@ TEST_CASE("actuators: what no entry gives takes the built-in defaults", "[config
   expected.gear_ratio = 100.0;
   expected.torque_constant_NmpA = 0.01;
   expected.resistance_ohm = 2.0;
-  for (int k = 0; k < kJoints; ++k) check_same(s.actuators.joints[k], expected);
+  for (const JointAt& j : joints_of(s)) check_same(s.actuators.joints[j.k], expected);
   CHECK(expected.gear_efficiency == 1.0);
   CHECK(expected.voltage_V == kInf);
   CHECK(s.allocation.objective == AllocationObjective::kTorqueSquared);
@@ -206,22 +224,21 @@ TEST_CASE("actuators: rotor_inertia is the armature G² J_m with the joint's fin
       "    L2_coxa: {gear_ratio: 50}\n"
       "    L4_femur: {armature: 0.05}\n";
   const Scene s = paper_with(section);
-  for (int k = 0; k < kJoints; ++k) {
-    const std::string name = joint_name(k / kJointsPerLeg, k % kJointsPerLeg);
-    const int type = k % kJointsPerLeg;
+  for (const JointAt& at : joints_of(s)) {
+    const int type = at.place;
     double expected = type == 0 ? 100.0 * 100.0 * 1e-7 : type == 1 ? 200.0 * 200.0 * 1e-7 : 0.02;
-    if (name == "L1_tibia") expected = 300.0 * 300.0 * 2e-7;  // 0.018
-    if (name == "L2_coxa") expected = 50.0 * 50.0 * 1e-7;     // gear ratio of the joint entry
-    if (name == "L4_femur") expected = 0.05;                  // joint side, whatever G
-    INFO(name);
-    CHECK(s.actuators.joints[k].armature_kgm2 == Approx(expected).epsilon(1e-15));
+    if (at.name == "L1_tibia") expected = 300.0 * 300.0 * 2e-7;  // 0.018
+    if (at.name == "L2_coxa") expected = 50.0 * 50.0 * 1e-7;     // gear ratio of the joint entry
+    if (at.name == "L4_femur") expected = 0.05;                  // joint side, whatever G
+    INFO(at.name);
+    CHECK(s.actuators.joints[at.k].armature_kgm2 == Approx(expected).epsilon(1e-15));
   }
   // The resolved YAML states the joint side: armature, no rotor_inertia, for every joint.
   const YAML::Node joints = YAML::Load(s.resolved_yaml)["actuators"]["joints"];
-  for (int k = 0; k < kJoints; ++k) {
-    const YAML::Node j = joints[joint_name(k / kJointsPerLeg, k % kJointsPerLeg)];
+  for (const JointAt& at : joints_of(s)) {
+    const YAML::Node j = joints[at.name];
     REQUIRE(j.IsMap());
-    CHECK(j["armature"].as<double>() == s.actuators.joints[k].armature_kgm2);
+    CHECK(j["armature"].as<double>() == s.actuators.joints[at.k].armature_kgm2);
     CHECK_FALSE(j["rotor_inertia"].IsDefined());
   }
   check_round_trip(s);
@@ -291,11 +308,12 @@ TEST_CASE("actuators: the resolved YAML holds every joint, and nothing without t
   const Scene s = paper_with("actuators:\n  default: {model: dynamixel_mx106}\n");
   const YAML::Node r = YAML::Load(s.resolved_yaml);
   REQUIRE(r["actuators"]["joints"].IsMap());
-  CHECK(r["actuators"]["joints"].size() == static_cast<std::size_t>(kJoints));
-  for (int k = 0; k < kJoints; ++k) {
-    const YAML::Node j = r["actuators"]["joints"][joint_name(k / kJointsPerLeg, k % kJointsPerLeg)];
+  const std::vector<JointAt> all = joints_of(s);
+  CHECK(r["actuators"]["joints"].size() == all.size());
+  for (const JointAt& at : all) {
+    const YAML::Node j = r["actuators"]["joints"][at.name];
     REQUIRE(j.IsMap());
-    const ActuatorParams& a = s.actuators.joints[k];
+    const ActuatorParams& a = s.actuators.joints[at.k];
     CHECK(j["model"].as<std::string>() == "dynamixel_mx106");
     CHECK(j["gear_ratio"].as<double>() == a.gear_ratio);
     CHECK(j["torque_constant"].as<double>() == a.torque_constant_NmpA);
@@ -366,12 +384,15 @@ TEST_CASE("actuators: a URDF's <dynamics> give the friction below every entry",
   const Scene a = mark4_with(urdf, required);
   REQUIRE(a.robot.urdf);
   int damped = -1;
-  for (int k = 0; k < kJoints; ++k)
-    if (a.robot.urdf->legs[k / kJointsPerLeg].joints[k % kJointsPerLeg].name == "right_front_femur")
-      damped = k;
+  const std::vector<JointAt> all = joints_of(a);
+  for (const JointAt& at : all)
+    if (at.name == "right_front_femur") {
+      damped = at.k;
+      REQUIRE(at.place == 1);
+    }
   REQUIRE(damped >= 0);
-  REQUIRE(damped % kJointsPerLeg == 1);
-  for (int k = 0; k < kJoints; ++k) {
+  const int joints = static_cast<int>(all.size());
+  for (int k = 0; k < joints; ++k) {
     INFO("joint " << k);
     CHECK(a.actuators.joints[k].coulomb_friction_Nm == (k == damped ? 0.3 : 0.5));
     CHECK(a.actuators.joints[k].viscous_friction_Nmsprad == (k == damped ? 0.07 : 0.0));
@@ -382,9 +403,10 @@ TEST_CASE("actuators: a URDF's <dynamics> give the friction below every entry",
   const Scene b = mark4_with(urdf, required +
                                        "  femur: {coulomb_friction: 0.1}\n"
                                        "  joints: {right_front_femur: {viscous_friction: 0.3}}\n");
-  for (int k = 0; k < kJoints; ++k) {
+  for (const JointAt& at : all) {
+    const int k = at.k;
     INFO("joint " << k);
-    const bool femur = k % kJointsPerLeg == 1;
+    const bool femur = at.place == 1;
     CHECK(b.actuators.joints[k].coulomb_friction_Nm == (femur ? 0.1 : 0.5));
     CHECK(b.actuators.joints[k].viscous_friction_Nmsprad == (k == damped ? 0.3 : 0.0));
   }
@@ -394,7 +416,7 @@ TEST_CASE("actuators: a URDF's <dynamics> give the friction below every entry",
   REQUIRE(!std::isnan(mx.coulomb_friction_Nm));
   REQUIRE(!std::isnan(mx.viscous_friction_Nmsprad));
   const Scene c = mark4_with(urdf, "actuators:\n  default: {model: dynamixel_mx64}\n");
-  for (int k = 0; k < kJoints; ++k) {
+  for (int k = 0; k < joints; ++k) {
     CHECK(c.actuators.joints[k].coulomb_friction_Nm == mx.coulomb_friction_Nm);
     CHECK(c.actuators.joints[k].viscous_friction_Nmsprad == mx.viscous_friction_Nmsprad);
   }
@@ -456,6 +478,57 @@ TEST_CASE("actuators: the resolved YAML resolves to itself", "[config][actuators
                  << first_difference(c.scene.resolved_yaml, again.resolved_yaml));
     CHECK((again.resolved_yaml == c.scene.resolved_yaml));
   }
+}
+
+TEST_CASE("actuators: entries by place j1 … jm, for legs of any length", "[config][actuators]") {
+  // Solo-12: four legs of three joints HAA, HFE, KFE, named by its URDF.
+  const std::string solo = kSource + "/configs/robots/solo12_flat.yaml";
+  const std::string base =
+      "{default: {gear_ratio: 9, torque_constant: 0.025, resistance: 0.349}, j2: {gear_ratio: "
+      "12}, joints: {FL_KFE: {gear_ratio: 7}}}";
+  const Scene s = load_scene(solo, {{"actuators", base}});
+  const std::vector<JointAt> all = joints_of(s);
+  REQUIRE(all.size() == 12);
+  for (const JointAt& at : all) {
+    INFO(at.name);
+    const double expected = at.name == "FL_KFE" ? 7.0 : at.place == 1 ? 12.0 : 9.0;
+    CHECK(s.actuators.joints[at.k].gear_ratio == expected);
+  }
+  // j2 of a leg of three joints is its femur: the two entries are the same joints.
+  const Scene femur =
+      load_scene(solo, {{"actuators",
+                         "{default: {gear_ratio: 9, torque_constant: 0.025, resistance: 0.349}, "
+                         "femur: {gear_ratio: 12}, joints: {FL_KFE: {gear_ratio: 7}}}"}});
+  for (const JointAt& at : all)
+    CHECK(femur.actuators.joints[at.k].gear_ratio == s.actuators.joints[at.k].gear_ratio);
+  const Scene again = load_scene_from_string(s.resolved_yaml, "resolved.yaml");
+  for (const JointAt& at : all) check_same(again.actuators.joints[at.k], s.actuators.joints[at.k]);
+  // Both forms of one place, or a place beyond the robot's legs: one line each.
+  const auto error = [&](const std::string& value) {
+    try {
+      (void)load_scene(solo, {{"actuators", value}});
+    } catch (const ConfigError& e) {
+      const std::string msg = e.what();
+      CHECK(msg.find('\n') == std::string::npos);
+      return msg;
+    }
+    FAIL("no ConfigError was thrown for " << value);
+    return std::string();
+  };
+  CHECK(error("{default: {gear_ratio: 9, torque_constant: 0.025, resistance: 0.349}, j1: "
+              "{gear_ratio: 2}, coxa: {gear_ratio: 3}}")
+            .find("actuators.j1: got both actuators.coxa and actuators.j1, expected one of them") !=
+        std::string::npos);
+  const std::string j4 =
+      error("{default: {gear_ratio: 9, torque_constant: 0.025, resistance: 0.349}, j4: {}}");
+  CHECK(j4.find("actuators.j4") != std::string::npos);
+  CHECK(j4.find("j1, j2, j3") != std::string::npos);
+  CHECK(j4.find("j5") == std::string::npos);
+  // A required value no entry gives names the place among the entries that could.
+  CHECK(error("{default: {torque_constant: 0.025, resistance: 0.349}}")
+            .find("actuators.joints.FL_HAA.gear_ratio: missing, expected it from "
+                  "actuators.default, actuators.coxa, actuators.j1, actuators.joints.FL_HAA or "
+                  "their model") != std::string::npos);
 }
 
 }  // namespace hexdyn

@@ -100,8 +100,9 @@ TEST_CASE("config: the paper file loads with the paper's numbers", "[config]") {
   CHECK(s.robot.link[0].mass_kg == 0.150);
   CHECK(s.robot.link[1].mass_kg == 0.041);
   CHECK(s.robot.link[2].mass_kg == 0.110);
-  CHECK(s.robot.link_length_m == std::array<double, 3>{0.085, 0.120, 0.100});
-  CHECK(s.robot.joint_offset_m == std::array<double, 3>{0.008, 0.018, 0.020});
+  CHECK(s.robot.leg_joints == 3);
+  CHECK(s.robot.link_length_m == LegJointArray<double>{0.085, 0.120, 0.100});
+  CHECK(s.robot.joint_offset_m == LegJointArray<double>{0.008, 0.018, 0.020});
   CHECK(s.robot.trunk.inertia_kgm2 == Vec3(1.66e-2, 2.52e-3, 1.69e-2));
   // Whole robot: 6.7 kg (65.7 N).
   const RobotModel model = build_robot_model(s.robot);
@@ -125,7 +126,8 @@ TEST_CASE("config: the paper file loads with the paper's numbers", "[config]") {
   CHECK(s.output.sample_step_s == 0.05);
   // The hip layout is the one the test robot factory assumes.
   const RobotParams expected = test::paper_robot_params();
-  for (int leg = 0; leg < kLegs; ++leg) {
+  REQUIRE(s.robot.legs == expected.legs);
+  for (int leg = 0; leg < s.robot.legs; ++leg) {
     INFO("leg " << leg);
     CHECK(s.robot.hip_position_m[leg] == expected.hip_position_m[leg]);
     CHECK(std::abs(s.robot.hip_yaw_rad[leg] - expected.hip_yaw_rad[leg]) <= 1e-15);
@@ -346,7 +348,9 @@ void check_same_scene(const Scene& a, const Scene& b) {
   const RobotParams &ra = a.robot, &rb = b.robot;
   CHECK(same_body(ra.trunk, rb.trunk));
   CHECK(same_body(ra.payload, rb.payload));
-  for (int j = 0; j < kJointsPerLeg; ++j) CHECK(same_body(ra.link[j], rb.link[j]));
+  CHECK(ra.legs == rb.legs);
+  CHECK(ra.leg_joints == rb.leg_joints);
+  for (int j = 0; j < ra.leg_joints; ++j) CHECK(same_body(ra.link[j], rb.link[j]));
   CHECK(ra.link_length_m == rb.link_length_m);
   CHECK(ra.joint_offset_m == rb.joint_offset_m);
   CHECK(ra.hip_position_m == rb.hip_position_m);

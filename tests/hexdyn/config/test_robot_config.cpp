@@ -116,7 +116,8 @@ TEST_CASE("a URDF robot takes its effort limits per joint unless the scene gives
   REQUIRE(s.robot.urdf);
   REQUIRE(s.allocation.joint_torque_limit_Nm);
   const RobotModel m = build_robot_model(s.robot);
-  for (int k = 0; k < kJoints; ++k) {
+  REQUIRE(s.allocation.joint_torque_limit_Nm->size() == m.joints());
+  for (int k = 0; k < m.joints(); ++k) {
     CHECK((*s.allocation.joint_torque_limit_Nm)[k] == m.effort_limit_Nm[k]);
     CHECK(m.effort_limit_Nm[k] == 3.0);  // every <limit effort="3"> of the file
   }
@@ -139,7 +140,7 @@ TEST_CASE("a URDF robot's footholds default to its nominal stance radius", "[rob
   // Default pose "femur level, tibia plumb": the foot below the tibia joint, which is level
   // with the femur joint: radius = horizontal distance of the tibia joint from the coxa axis.
   BodyPoses poses;
-  VecJ q = VecJ::Zero();
+  const JointVector q = JointVector::Zero(m.joints());
   forward_kinematics_tree(m, q, poses);
   const Vec3 coxa = m.p_parent_joint[1];
   const Vec3 femur_B = poses.p_B[2], tibia_B = poses.p_B[3];  // at zero angles, leg L1
@@ -223,7 +224,8 @@ TEST_CASE("a URDF's sphere <collision> at a chain's end is its default foot, cen
   const Scene scene = load_scene(kPexodScene);
   REQUIRE(scene.robot.urdf);
   const RobotModel model = build_robot_model(scene.robot);
-  for (int leg = 0; leg < kLegs; ++leg) {
+  REQUIRE(model.legs() == 6);
+  for (int leg = 0; leg < model.legs(); ++leg) {
     const UrdfLeg& l = scene.robot.urdf->legs[leg];
     INFO(leg_name(leg) << ": " << l.joints[0].name);
     CHECK(l.foot_kind == FootSource::kSphereCollision);
@@ -238,10 +240,11 @@ TEST_CASE("a URDF's sphere <collision> at a chain's end is its default foot, cen
   CHECK(build_robot_model(point.robot).foot_radius_m[3] == 0.0);
 }
 
-TEST_CASE("robot.foot_offset: one point, six in leg order, or a map by leg name",
+TEST_CASE("robot.foot_offset: one point, one per leg in leg order, or a map by leg name",
           "[robot_config][feet]") {
+  constexpr int kPexodLegs = 6;
   std::string list = "[", map = "{";
-  for (int leg = 0; leg < kLegs; ++leg) {
+  for (int leg = 0; leg < kPexodLegs; ++leg) {
     const Vec3 p = pexod_foot(leg);
     std::ostringstream xyz;
     xyz << "[" << p.x() << ", " << p.y() << ", " << p.z() << "]";
@@ -254,7 +257,8 @@ TEST_CASE("robot.foot_offset: one point, six in leg order, or a map by leg name"
     INFO(value);
     const Scene scene = load_scene(kPexodScene, {{"robot.foot_offset", value}});
     const RobotModel model = build_robot_model(scene.robot);
-    for (int leg = 0; leg < kLegs; ++leg) {
+    REQUIRE(model.legs() == kPexodLegs);
+    for (int leg = 0; leg < kPexodLegs; ++leg) {
       CHECK(model.p_foot_last[leg] == pexod_foot(leg));
       CHECK(model.foot_radius_m[leg] == 0.0);  // a point, unless robot.foot_radius says
       // Inside the tibia's <collision> box (it reaches the sphere's centre).
@@ -263,7 +267,9 @@ TEST_CASE("robot.foot_offset: one point, six in leg order, or a map by leg name"
     }
     // The resolved configuration reruns to the same feet.
     const Scene again = load_scene_from_string(scene.resolved_yaml, kPexodScene);
-    CHECK(build_robot_model(again.robot).p_foot_last == model.p_foot_last);
+    const RobotModel again_model = build_robot_model(again.robot);
+    for (int leg = 0; leg < kPexodLegs; ++leg)
+      CHECK(again_model.p_foot_last[leg] == model.p_foot_last[leg]);
     const Scene sphere =
         load_scene(kPexodScene, {{"robot.foot_offset", value}, {"robot.foot_radius", "0.025"}});
     CHECK(build_robot_model(sphere.robot).foot_radius_m[5] == 0.025);
@@ -279,18 +285,24 @@ TEST_CASE("robot.foot_offset: one point, six in leg order, or a map by leg name"
     std::string value, expected;
   };
   const std::vector<Bad> bad = {
+      // Another count than the robot's six legs: the URDF reader, which counts them.
       {"[[0, 0, 0], [0, 0, 0]]",
-       "robot.foot_offset: got [[0, 0, 0], [0, 0, 0]], expected [x, y, "
-       "z], six [x, y, z] in the order L1 … L6 of /model/leg_names, or "
-       "a map {L1: [x, y, z], …, L6: [x, y, z]}"},
-      {"{L1: [0, 0, 0]}", "robot.foot_offset.L2: missing, this key is required"},
-      {"{L7: [0, 0, 0]}",
-       "robot.foot_offset.L7: unknown leg, allowed here: L1, L2, L3, L4, L5, L6"},
-      {"[0, 0]", "robot.foot_offset: got [0, 0], expected [x, y, z], six [x, y, z]"},
+       "robot.foot_offset: got 2 points [[0, 0, 0], [0, 0, 0]], expected one [x, y, z] for "
+       "every leg or one per leg (6 legs, L1 … L6)"},
+      {"{L1: [0, 0, 0]}",
+       "robot.foot_offset: got {L1: [0, 0, 0]}, expected a map naming every leg (L1 … Ln of the "
+       "robot's n legs), L2 missing"},
+      {"{L9: [0, 0, 0]}",
+       "robot.foot_offset: got the key L9, expected leg names (L1 … Ln of the robot's n legs)"},
+      {"[0, 0]",
+       "robot.foot_offset: got [0, 0], expected [x, y, z] m, each a number in [-10, 10] (every "
+       "leg); or one per leg: a list in leg order L1 … Ln, or a map naming every leg L1 … Ln"},
       {"[0, 0, 11]",
        "robot.foot_offset: got [0, 0, 11], expected a list of 3 numbers, each a "
        "number in [-10, 10]"},
-      {"[[0, 0, 0], [0, 0, 0], [0, 0, 0], [0, 0, 0], [0, 0, 0], [0, 0, x]]", "(L6 is not)"},
+      {"[[0, 0, 0], [0, 0, 0], [0, 0, 0], [0, 0, 0], [0, 0, 0], [0, 0, x]]",
+       "robot.foot_offset: item 6 (L6): got [0, 0, x], expected [x, y, z] m, each a number in "
+       "[-10, 10]"},
       {"7", "robot.foot_offset: got 7, expected [x, y, z]"},
   };
   for (const Bad& b : bad) {

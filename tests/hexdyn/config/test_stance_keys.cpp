@@ -27,6 +27,9 @@ namespace {
 namespace fs = std::filesystem;
 
 const std::string kMark4Urdf = std::string(HEXDYN_SOURCE_DIR) + "/robots/phantomx_mark4.urdf";
+/// The PhantomX Mark IV: six legs of three joints.
+constexpr int kMark4Legs = 6;
+constexpr int kMark4LegJoints = 3;
 
 std::string file_text(const std::string& path) {
   std::ifstream in(path);
@@ -89,7 +92,7 @@ struct FallbackRobot {
 /// Horizontal distance and height of the coxa joint above the foot of leg `leg` at joint
 /// angles q, by the tree's forward kinematics in the trunk frame (its z is the trunk normal).
 std::pair<double, double> fk_radius_depth(const RobotModel& m, int leg, const Vec3& q) {
-  VecJ q_all = VecJ::Zero();
+  JointVector q_all = JointVector::Zero(m.joints());
   for (int j = 0; j < m.leg(leg).n_joints; ++j) q_all[m.joint(leg, j)] = q[j];
   BodyPoses poses;
   forward_kinematics_tree(m, q_all, poses);
@@ -126,7 +129,7 @@ TEST_CASE(
   const RobotModel m = build_robot_model(s.robot);
   const UrdfRobot file = read_urdf_robot(robot.urdf);
   double mean = 0.0;
-  for (int leg = 0; leg < kLegs; ++leg) {
+  for (int leg = 0; leg < kMark4Legs; ++leg) {
     INFO(leg_name(leg));
     const NominalStance& st = s.robot.stance[leg];
     const auto [radius, depth] = fk_radius_depth(m, leg, st.q);
@@ -140,7 +143,7 @@ TEST_CASE(
       continue;
     }
     const UrdfLeg& l = file.legs[leg];
-    for (int j = 0; j < kJointsPerLeg; ++j)
+    for (int j = 0; j < kMark4LegJoints; ++j)
       CHECK(st.q[j] == Approx(0.5 * (l.joints[j].lower_rad + l.joints[j].upper_rad)).margin(1e-15));
   }
   CHECK(s.robot.stance[2].q[2] == Approx(0.4).margin(1e-15));  // [0.2, 0.6] as written
@@ -169,11 +172,11 @@ TEST_CASE(
   // The resolved configuration records each leg's stance.
   const YAML::Node rec = YAML::Load(s.resolved_yaml)["auto"]["robot"]["nominal_pose"];
   REQUIRE(rec.IsMap());
-  for (int leg = 0; leg < kLegs; ++leg) {
+  for (int leg = 0; leg < kMark4Legs; ++leg) {
     const NominalStance& st = s.robot.stance[leg];
     const YAML::Node e = rec[leg_name(leg)];
     CHECK(e["source"].as<std::string>() == st.source);
-    for (int j = 0; j < kJointsPerLeg; ++j) CHECK(e["pose"][j].as<double>() == st.q[j]);
+    for (int j = 0; j < kMark4LegJoints; ++j) CHECK(e["pose"][j].as<double>() == st.q[j]);
     CHECK(e["radius"].as<double>() == st.radius_m);
     CHECK(e["depth"].as<double>() == st.depth_m);
   }
@@ -188,12 +191,12 @@ TEST_CASE("when every leg falls back, the default spread is the mean of all six"
   const Scene s = load_scene(robot.scene);
   const RobotModel m = build_robot_model(s.robot);
   double mean = 0.0;
-  for (int leg = 0; leg < kLegs; ++leg) {
+  for (int leg = 0; leg < kMark4Legs; ++leg) {
     CHECK_FALSE(s.robot.stance[leg].from_pose);
-    mean += fk_radius_depth(m, leg, s.robot.stance[leg].q).first / kLegs;
+    mean += fk_radius_depth(m, leg, s.robot.stance[leg].q).first / kMark4Legs;
   }
   CHECK(s.gait.foot_lateral_m == Approx(mean).epsilon(1e-12));
-  REQUIRE(s.warnings.size() == kLegs);
+  REQUIRE(s.warnings.size() == kMark4Legs);
   for (const std::string& w : s.warnings) {
     CHECK(w.find("averaged into gait.foot_lateral's default") != std::string::npos);
     CHECK(w.find("the mean over all 6 legs, none at its pose") != std::string::npos);
@@ -208,21 +211,22 @@ TEST_CASE("robot.nominal_pose per leg fixes a fallback: a map by leg name, a lis
   CHECK(s.warnings.empty());
   const RobotModel m = build_robot_model(s.robot);
   double mean = 0.0;
-  for (int leg = 0; leg < kLegs; ++leg) {
+  for (int leg = 0; leg < kMark4Legs; ++leg) {
     const NominalStance& st = s.robot.stance[leg];
     CHECK(st.from_pose);
     CHECK(st.source == (leg == 2 || leg == 5 ? "robot.nominal_pose" : "nominal pose"));
     const auto [radius, depth] = fk_radius_depth(m, leg, st.q);
     CHECK(st.radius_m == Approx(radius).epsilon(1e-12));
     CHECK(st.depth_m == Approx(depth).epsilon(1e-12));
-    mean += radius / kLegs;
+    mean += radius / kMark4Legs;
   }
   CHECK(s.robot.stance[2].q == Vec3(0.0, -0.07, 0.5));
   CHECK(s.robot.stance[5].q == Vec3(0.0, 0.3, 1.0));
   CHECK(s.gait.foot_lateral_m == Approx(mean).epsilon(1e-12));
   // The resolved configuration reruns to the same stance and records nothing new.
   const Scene again = load_scene_from_string(s.resolved_yaml, "resolved");
-  for (int leg = 0; leg < kLegs; ++leg) CHECK(again.robot.stance[leg].q == s.robot.stance[leg].q);
+  for (int leg = 0; leg < kMark4Legs; ++leg)
+    CHECK(again.robot.stance[leg].q == s.robot.stance[leg].q);
   CHECK(again.gait.foot_lateral_m == s.gait.foot_lateral_m);
   CHECK(again.resolved_yaml == s.resolved_yaml);
   // One pose for every leg, six in a list and a map naming all six are the same stance.
@@ -235,7 +239,7 @@ TEST_CASE("robot.nominal_pose per leg fixes a fallback: a map by leg name, a lis
       robot.scene, {{"robot.nominal_pose", "{L1: " + p + ", L2: " + p + ", L3: " + p +
                                                ", L4: " + p + ", L5: " + p + ", L6: " + p + "}"}});
   for (const Scene* other : {&list, &map}) {
-    for (int leg = 0; leg < kLegs; ++leg) {
+    for (int leg = 0; leg < kMark4Legs; ++leg) {
       CHECK(other->robot.stance[leg].q == Vec3(0.0, 0.3, 0.5));
       CHECK(other->robot.stance[leg].radius_m == one.robot.stance[leg].radius_m);
       CHECK(other->robot.stance[leg].source == "robot.nominal_pose");
@@ -256,7 +260,7 @@ TEST_CASE(
   };
   const std::string forms =
       "expected [coxa, femur, tibia] rad, each a number in [-6.28319, 6.28319] (every leg); or "
-      "six of them: a list in leg order L1 … L6, or a map by leg name L1 … L6";
+      "6 of them: a list in leg order L1 … L6, or a map by leg name L1 … L6";
   CHECK(error("[1, 2]").find("robot.nominal_pose: got [1, 2], " + forms) != std::string::npos);
   CHECK(error("fold").find("robot.nominal_pose: got fold, " + forms) != std::string::npos);
   CHECK(error("{}").find("robot.nominal_pose: got {}, " + forms) != std::string::npos);
@@ -276,6 +280,84 @@ TEST_CASE(
   CHECK(error("{L3: [0, -0.07, 1]}")
             .find("robot.nominal_pose: got [0, -0.07, 1] for L3, whose joint left_middle_tibia "
                   "allows [0.2, 0.6] rad, expected each angle inside its joint's limits") !=
+        std::string::npos);
+}
+
+TEST_CASE("a quadruped's per-leg keys take its four legs, and refuse another count in one line",
+          "[stance][quadruped]") {
+  // Solo-12 (configs/robots/solo12_flat.yaml): four legs L1 … L4 of three joints.
+  const std::string solo = std::string(HEXDYN_SOURCE_DIR) + "/configs/robots/solo12_flat.yaml";
+  const Scene plain = load_scene(solo);
+  const RobotModel m0 = build_robot_model(plain.robot);
+  REQUIRE(m0.legs() == 4);
+  REQUIRE(plain.robot.legs == 4);
+  REQUIRE(plain.robot.stance.size() == 4);
+  // robot.nominal_pose: four poses in leg order, or a map by leg name.
+  const std::string list = "[[0, 0.8, -1.6], [0, 0.7, -1.4], [0, -0.8, 1.6], [0, -0.7, 1.4]]";
+  const std::string map =
+      "{L1: [0, 0.8, -1.6], L2: [0, 0.7, -1.4], L3: [0, -0.8, 1.6], L4: [0, -0.7, 1.4]}";
+  const Vec3 given[4] = {Vec3(0, 0.8, -1.6), Vec3(0, 0.7, -1.4), Vec3(0, -0.8, 1.6),
+                         Vec3(0, -0.7, 1.4)};
+  for (const std::string& value : {list, map}) {
+    INFO(value);
+    const Scene s = load_scene(solo, {{"robot.nominal_pose", value}});
+    const RobotModel m = build_robot_model(s.robot);
+    for (int leg = 0; leg < 4; ++leg) {
+      const NominalStance& st = s.robot.stance[leg];
+      CHECK(st.source == "robot.nominal_pose");
+      CHECK(st.q == given[leg]);
+      const auto [radius, depth] = fk_radius_depth(m, leg, st.q);
+      CHECK(st.radius_m == Approx(radius).epsilon(1e-12));
+      CHECK(st.depth_m == Approx(depth).epsilon(1e-12));
+    }
+    const Scene again = load_scene_from_string(s.resolved_yaml, "resolved");
+    CHECK(again.resolved_yaml == s.resolved_yaml);
+  }
+  // robot.foot_offset: the feet the description gives, as four points in leg order or a map.
+  std::string points = "[", named = "{";
+  for (int leg = 0; leg < 4; ++leg) {
+    const Vec3& p = m0.p_foot_last[leg];
+    std::ostringstream xyz;
+    xyz.precision(17);
+    xyz << "[" << p.x() << ", " << p.y() << ", " << p.z() << "]";
+    points += (leg ? ", " : "") + xyz.str();
+    named += (leg ? ", " : "") + leg_name(leg) + ": " + xyz.str();
+  }
+  points += "]";
+  named += "}";
+  for (const std::string& value : {points, named}) {
+    INFO(value);
+    const RobotModel m = build_robot_model(load_scene(solo, {{"robot.foot_offset", value}}).robot);
+    for (int leg = 0; leg < 4; ++leg) CHECK(m.p_foot_last[leg] == m0.p_foot_last[leg]);
+  }
+  // Another count, or a leg the robot does not have: one line with the key, the value and what
+  // is allowed.
+  const auto error = [&](const std::string& key, const std::string& value) {
+    const std::string e = config_error(solo, {{key, value}});
+    CHECK(e.find('\n') == std::string::npos);
+    return e;
+  };
+  const std::string six =
+      "[[0, 0.8, -1.6], [0, 0.8, -1.6], [0, 0.8, -1.6], [0, 0.8, -1.6], "
+      "[0, 0.8, -1.6], [0, 0.8, -1.6]]";
+  CHECK(error("robot.nominal_pose", six)
+            .find("robot.nominal_pose: got [[0, 0.8, -1.6], [0, 0.8, -1.6], [0, 0.8, -1.6], "
+                  "[0, 0.8, -1.6], [0, 0.8, -1.6], [0, 0.8, -1.6]], expected [coxa, femur, tibia] "
+                  "rad, each a number in [-6.28319, 6.28319] (every leg); or 4 of them: a list in "
+                  "leg order L1 … L4, or a map by leg name L1 … L4") != std::string::npos);
+  CHECK(error("robot.nominal_pose", "{L5: [0, 0.8, -1.6]}")
+            .find("robot.nominal_pose: got the key L5, expected leg names (L1, L2, L3, L4)") !=
+        std::string::npos);
+  CHECK(error("robot.nominal_pose", "[[0, 0.8, -1.6], [0, 0.8, -1.6], [0, 0.8, -1.6], [0, 0.8]]")
+            .find("robot.nominal_pose: item 4 (L4): got [0, 0.8], expected [coxa, femur, tibia] "
+                  "rad") != std::string::npos);
+  CHECK(error("robot.foot_offset", "[[0, 0, -0.1], [0, 0, -0.1], [0, 0, -0.1]]")
+            .find("robot.foot_offset: got 3 points [[0, 0, -0.1], [0, 0, -0.1], [0, 0, -0.1]], "
+                  "expected one [x, y, z] for every leg or one per leg (4 legs, L1 … L4)") !=
+        std::string::npos);
+  CHECK(error("robot.foot_offset", "{L1: [0, 0, -0.1], L3: [0, 0, -0.1]}")
+            .find("robot.foot_offset: got {L1: [0, 0, -0.1], L3: [0, 0, -0.1]}, expected a map "
+                  "naming every leg (L1 … Ln of the robot's n legs), L2 missing") !=
         std::string::npos);
 }
 

@@ -64,7 +64,8 @@ int support_relaxed(const RunResult& run, std::string* first) {
   for (int i = 0; i < run.kin.samples(); ++i) {
     if (run.dyn.solver_status[i] == SolverStatus::kOptimal) continue;
     bool impact = false;
-    for (int leg = 0; leg < kLegs; ++leg) impact = impact || run.kin.contact_phase(i, leg) == 1;
+    for (int leg = 0; leg < run.kin.contact_phase.cols(); ++leg)
+      impact = impact || run.kin.contact_phase(i, leg) == 1;
     if (!impact && n++ == 0 && first) *first = run.dyn.solver_messages[i];
   }
   return n;
@@ -129,7 +130,7 @@ int support_slips(const RunResult& run) {
   int n = 0;
   for (int i = 0; i < run.kin.samples(); ++i) {
     bool impact = false, slip = false;
-    for (int leg = 0; leg < kLegs; ++leg) {
+    for (int leg = 0; leg < run.kin.contact_phase.cols(); ++leg) {
       impact = impact || run.kin.contact_phase(i, leg) == 1;
       slip = slip || run.dyn.slip(i, leg) != 0;
     }

@@ -322,7 +322,7 @@ TEST_CASE("required friction: NaN and the reason where no friction helps", "[req
       // The support legs' torque limits cannot carry the trunk's weight, whatever the
       // friction: 0.05 N m against forces of tens of newtons on 0.1 m moment arms.
       alloc.torque_limit_Nm = 0.05;
-      s.split.tau0.setZero(kJoints);
+      s.split.tau0.setZero(s.legs.joints);
       RequiredFrictionSolver solver(make_allocation_backend(alloc));
       QpProblem qp;
       const AllocationLayout layout = build_at(alloc, s, 0.3, qp);

@@ -21,11 +21,15 @@
 namespace hexdyn {
 namespace {
 
+/// The robots here: the paper robot and the shipped hexapods, six legs of three joints.
+constexpr int kHexapodLegs = 6;
+constexpr int kHexapodLegJoints = 3;
+
 /// Following model.parent from leg l's foot body reaches the trunk in exactly n_joints steps,
 /// through body(l, n_joints − 1), …, body(l, 0); joint(l, j) moves body(l, j).
 void check_chain(const RobotModel& m, int l) {
   const LegInfo& leg = m.leg(l);
-  REQUIRE(leg.n_joints == kJointsPerLeg);
+  REQUIRE(leg.n_joints == kHexapodLegJoints);
   int b = m.foot_body(l);
   for (int j = leg.n_joints - 1; j >= 0; --j) {
     CHECK(b == m.body(l, j));
@@ -94,7 +98,7 @@ RawChain raw_chain(const urdf::ModelInterface& u, const std::string& link) {
 TEST_CASE("the paper robot's leg table", "[leg_table]") {
   const RobotParams p = test::paper_robot_params();
   const RobotModel m = build_robot_model(p);
-  REQUIRE(m.legs() == kLegs);
+  REQUIRE(m.legs() == kHexapodLegs);
   std::vector<Vec3> hips;
   for (int l = 0; l < m.legs(); ++l) {
     check_chain(m, l);
@@ -199,7 +203,7 @@ TEST_CASE("each shipped hexapod's leg table is its URDF's chains", "[leg_table]"
     const RobotModel m = build_robot_model(robot);
     const urdf::ModelInterfaceSharedPtr u = urdf::parseURDF(file_text(path));
     REQUIRE(u);
-    REQUIRE(m.legs() == kLegs);
+    REQUIRE(m.legs() == kHexapodLegs);
     int moving = 0;
     for (const auto& [jname, j] : u->joints_) moving += j->type != urdf::Joint::FIXED;
     int total = 0;

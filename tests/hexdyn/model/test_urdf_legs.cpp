@@ -162,8 +162,8 @@ TEST_CASE("urdf legs: foot links and foot offsets per leg, of any count", "[urdf
   for (int leg = 0; leg < 4; ++leg) CHECK(each.legs[leg].p_foot_last.y() == leg + 1.0);
   o.foot_offset->pop_back();
   CHECK(refusal(text, o) ==
-        "robot.urdf: robot.foot_offset: 3 points, expected one for every leg or one per leg (4 "
-        "legs)");
+        "robot.urdf: robot.foot_offset: got 3 points [[0, 1, 0], [0, 2, 0], [0, 3, 0]], expected "
+        "one [x, y, z] for every leg or one per leg (4 legs, L1 … L4)");
   UrdfReadOptions links;
   links.foot_links = {"leg3_foot", "leg2_foot", "leg1_foot", "leg0_foot"};
   CHECK(refusal(text, links).empty());

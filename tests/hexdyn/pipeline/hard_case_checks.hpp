@@ -96,7 +96,8 @@ inline int count_status(const RunResult& r, SolverStatus status) {
 
 inline int legs_in_phase(const RunResult& r, int i, ContactPhase ph) {
   int n = 0;
-  for (int l = 0; l < kLegs; ++l) n += r.kin.contact_phase(i, l) == static_cast<std::int8_t>(ph);
+  for (int l = 0; l < r.kin.contact_phase.cols(); ++l)
+    n += r.kin.contact_phase(i, l) == static_cast<std::int8_t>(ph);
   return n;
 }
 
@@ -107,7 +108,7 @@ inline double normal_force(const RunResult& r, int i, int l) {
 
 inline double sum_force(const RunResult& r, int i, int axis) {
   double s = 0.0;
-  for (int l = 0; l < kLegs; ++l) s += r.dyn.contact_force(i, 3 * l + axis);
+  for (int l = 0; l < r.kin.contact_phase.cols(); ++l) s += r.dyn.contact_force(i, 3 * l + axis);
   return s;
 }
 

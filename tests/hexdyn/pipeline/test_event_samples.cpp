@@ -46,9 +46,10 @@ void check_identities(const RunResult& r) {
   const KinematicsResult& k = r.kin;
   const DynamicsResult& d = r.dyn;
   const int T = k.samples();
+  const int joints = static_cast<int>(k.joint_velocity.cols());
   std::vector<double> P(T, 0.0);
   for (int i = 0; i < T; ++i)
-    for (int j = 0; j < kJoints; ++j)
+    for (int j = 0; j < joints; ++j)
       P[i] += std::abs(d.joint_torque(i, j) * k.joint_velocity(i, j));
   const double E = trapezoid_of(k.time_s, P);
   REQUIRE(E > 0.0);
@@ -59,7 +60,7 @@ void check_identities(const RunResult& r) {
   std::vector<char> jump(T, 0);
   for (int i = 0; i < T; ++i) jump[i] = k.sample_kind[i] == kSampleLeftLimit;
   double sum_joint = 0.0;
-  for (int j = 0; j < kJoints; ++j) {
+  for (int j = 0; j < joints; ++j) {
     std::vector<double> Pj(T);
     for (int i = 0; i < T; ++i) Pj[i] = d.joint_torque(i, j) * k.joint_velocity(i, j);
     const double Ej = cubic_abs_integral(k.time_s, jump, {Pj.data(), 1});
@@ -152,7 +153,7 @@ void check_terrain(const RunResult& r, const std::string& type) {
   for (int i = 0; i < k.samples(); ++i) {
     CHECK(k.base_position(i, 1) > r.terrain_y_m.front());
     CHECK(k.base_position(i, 1) < r.terrain_y_m.back());
-    for (int l = 0; l < kLegs; ++l) {
+    for (int l = 0; l < k.contact_phase.cols(); ++l) {
       const double y = k.foot_position(i, 3 * l + 1), z = k.foot_position(i, 3 * l + 2);
       CHECK(y > r.terrain_y_m.front());
       CHECK(y < r.terrain_y_m.back());

@@ -69,12 +69,13 @@ TEST_CASE("gait phases: other phases give the contact schedule they predict", "[
     const double tau = trunk.phase(r.kin.time_s[i]);
     if (tau < 0.02 || tau > trunk.cycles() - 0.02) continue;  // swings cut at the run's ends
     double u_min = 1.0;  // the sample's distance in phase from the nearest lift-off/touchdown
-    for (int leg = 0; leg < kLegs; ++leg) {
+    const int legs = prep.model.legs();
+    for (int leg = 0; leg < legs; ++leg) {
       const double u = tau - phi[leg] - std::floor(tau - phi[leg]);
       u_min = std::min({u_min, u, std::abs(u - (1.0 - beta)), 1.0 - u});
     }
     if (u_min < 1e-3) continue;  // event samples sit on a lift-off or a touchdown
-    for (int leg = 0; leg < kLegs; ++leg) {
+    for (int leg = 0; leg < legs; ++leg) {
       const double u = tau - phi[leg] - std::floor(tau - phi[leg]);
       const bool swing = u < 1.0 - beta;
       INFO("t " << r.kin.time_s[i] << " phase " << tau << " leg " << leg_name(leg));

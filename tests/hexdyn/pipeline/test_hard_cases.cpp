@@ -76,7 +76,7 @@ Stretch farthest_foot(const Scene& scene) {
   for (const LegPlan& lp : plan.gait.legs)
     for (const Swing& sw : lp.swings) times.push_back(sw.t_touchdown_s);
   Stretch s;
-  for (int leg = 0; leg < kLegs; ++leg)
+  for (int leg = 0; leg < model.legs(); ++leg)
     for (double t : times) {
       const double d = wrist_distance(model, leg, foot_in_hip_frame(model, plan, leg, t));
       if (d > s.distance_m) s = {leg, t, d};
@@ -130,12 +130,13 @@ TEST_CASE("hard: a leg within 1e-6 rad of full extension", "[hard][kinematics]")
     const int i = sample_at(r, far.t_s);
     REQUIRE(i >= 0);
     // The knee is ε short of straight (knee-up branch: β3 ≤ 0).
-    const double beta3 = r.kin.joint_position(i, joint_index(far.leg, 2));
+    const int knee = build_robot_model(scene.robot).joint(far.leg, 2);
+    const double beta3 = r.kin.joint_position(i, knee);
     CHECK(beta3 < 0.0);
     CHECK(-beta3 == Approx(eps).epsilon(0.01));
     // Near the singularity the joint rates are ~1/ε: huge, finite, and the sample is flagged
     // with the stretched leg's own torque row.
-    CHECK(std::abs(r.kin.joint_velocity(i, joint_index(far.leg, 2))) > 1e3);
+    CHECK(std::abs(r.kin.joint_velocity(i, knee)) > 1e3);
     INFO(r.dyn.solver_messages[i]);
     CHECK(r.dyn.solver_status[i] == SolverStatus::kRelaxed);
     CHECK(contains(r.dyn.solver_messages[i], "torque " + leg_name(far.leg) + "_"));
@@ -227,7 +228,7 @@ TEST_CASE("hard: three support feet nearly collinear", "[hard][allocation]") {
     ++tripods;
     std::vector<Eigen::Vector2d> feet;
     double y_feet = 0.0;
-    for (int l = 0; l < kLegs; ++l) {
+    for (int l = 0; l < r.kin.contact_phase.cols(); ++l) {
       if (r.kin.contact_phase(i, l) != static_cast<std::int8_t>(ContactPhase::kSupport)) continue;
       feet.emplace_back(r.kin.foot_position(i, 3 * l), r.kin.foot_position(i, 3 * l + 1));
       y_feet += feet.back().y() / 3.0;
@@ -284,7 +285,7 @@ TEST_CASE("hard: friction coefficient 0.01", "[hard][allocation]") {
     INFO("t = " << r.kin.time_s[i] << " s: " << msg);
     // Friction is never exceeded (contact rows give way last): no foot slips.
     CHECK_FALSE(contains(allocation_part(msg), "friction"));
-    for (int l = 0; l < kLegs; ++l) {
+    for (int l = 0; l < r.kin.contact_phase.cols(); ++l) {
       if (r.kin.contact_phase(i, l) != static_cast<std::int8_t>(ContactPhase::kSupport)) continue;
       const double fn = normal_force(r, i, l);
       const double ft = std::max(std::abs(r.dyn.contact_force(i, 3 * l)),
@@ -324,6 +325,7 @@ TEST_CASE("hard: torque limit too low for the load", "[hard][allocation]") {
   const Scene scene = paper_with({{"allocation.torque_limit", "1.0"}, {"output.tolerance", "0"}});
   const RunResult r = run_scene(scene);
   const RunResult ref = run_scene(paper_with({{"output.tolerance", "0"}}));  // 6 N m
+  const RobotModel model = build_robot_model(scene.robot);
   check_run_finite(r);
   REQUIRE(r.kin.time_s == ref.kin.time_s);
   const double mg = r.total_mass_kg * kGravity;
@@ -351,7 +353,7 @@ TEST_CASE("hard: torque limit too low for the load", "[hard][allocation]") {
         const int j = joint == "coxa" ? 0 : joint == "femur" ? 1 : 2;
         // (The message prints 3 significant digits.)
         CHECK(violation_of(msg, row) ==
-              Approx(std::abs(tau[joint_index(leg, j)]) - limit).epsilon(5e-3).margin(1e-6));
+              Approx(std::abs(tau[model.joint(leg, j)]) - limit).epsilon(5e-3).margin(1e-6));
       }
       CHECK(sum_force(r, i, 2) == Approx(mg).epsilon(0.03));
     } else if (ref.dyn.joint_torque.row(i).cwiseAbs().maxCoeff() <= limit - 1e-9 &&
@@ -444,7 +446,7 @@ TEST_CASE("hard: swing over a 0.1 m riser with a 1 um clearance", "[hard][gait]"
   const TerrainParams& tp = scene.terrain;
   // Every sampled foot is on or above the terrain; support feet exactly on it.
   for (int i = 0; i < r.kin.samples(); ++i)
-    for (int l = 0; l < kLegs; ++l) {
+    for (int l = 0; l < prep.model.legs(); ++l) {
       const double x = r.kin.foot_position(i, 3 * l), y = r.kin.foot_position(i, 3 * l + 1),
                    z = r.kin.foot_position(i, 3 * l + 2);
       INFO("t = " << r.kin.time_s[i] << " s, " << leg_name(l) << " at (" << x << ", " << y << ", "
@@ -458,7 +460,7 @@ TEST_CASE("hard: swing over a 0.1 m riser with a 1 um clearance", "[hard][gait]"
     return static_cast<int>(std::floor((y - tp.first_riser_y_m) / tp.tread_depth_m)) + 1;
   };
   int crossings = 0;
-  for (int leg = 0; leg < kLegs; ++leg)
+  for (int leg = 0; leg < prep.model.legs(); ++leg)
     for (const Swing& sw : prep.plan.gait.legs[leg].swings) {
       INFO(leg_name(leg) << " swing from " << sw.t_liftoff_s << " s");
       const double D = sw.t_touchdown_s - sw.t_liftoff_s;

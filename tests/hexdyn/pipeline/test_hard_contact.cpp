@@ -120,7 +120,7 @@ TEST_CASE("hard: stiff contact through the pipeline, K 1e9, p 1e-9 m, touchdown 
     int overloaded = 0;
     for (int i = 0; i < r.kin.samples(); ++i) {
       double impact_z = 0.0;
-      for (int l = 0; l < kLegs; ++l)
+      for (int l = 0; l < r.kin.contact_phase.cols(); ++l)
         if (r.kin.contact_phase(i, l) == static_cast<std::int8_t>(ContactPhase::kImpact))
           impact_z += normal_force(r, i, l);
       if (impact_z <= 2.0 * mg) continue;

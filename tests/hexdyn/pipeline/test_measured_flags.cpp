@@ -47,19 +47,23 @@ Worst worst_optimal_violation(const Scene& scene, const RunResult& r) {
     if (r.dyn.solver_status[i] != SolverStatus::kOptimal) continue;
     ++w.optimal;
     const BaseState base = base_state_at(r.kin, i);
-    const VecJ q = r.kin.joint_position.row(i).transpose();
-    const VecJ qd = r.kin.joint_velocity.row(i).transpose();
-    const VecJ qdd = r.kin.joint_acceleration.row(i).transpose();
-    std::array<Vec3, kLegs> F;
-    for (int l = 0; l < kLegs; ++l) F[l] = r.dyn.contact_force.row(i).segment<3>(3 * l).transpose();
-    const VecDof free = rnea(model, data, base, q, qd, qdd);  // right-hand side of the trunk rows
-    const VecDof residual = rnea(model, data, base, q, qd, qdd, &F);
+    const JointVector q = r.kin.joint_position.row(i).transpose();
+    const JointVector qd = r.kin.joint_velocity.row(i).transpose();
+    const JointVector qdd = r.kin.joint_acceleration.row(i).transpose();
+    LegArray<Vec3> F;
+    for (int l = 0; l < model.legs(); ++l)
+      F[l] = r.dyn.contact_force.row(i).segment<3>(3 * l).transpose();
+    const DofVector free = rnea(model, data, base, q, qd, qdd);  // the trunk rows' right side
+    const DofVector residual = rnea(model, data, base, q, qd, qdd, &F);
     for (int k = 0; k < 6; ++k)
       consider(std::abs(residual[k]), free[k], "trunk row " + std::to_string(k), i);
-    for (int k = 0; k < kJoints; ++k)
-      consider(std::abs(r.dyn.joint_torque(i, k)) - tmax, tmax,
-               "torque " + joint_name(k / 3, k % 3), i);
-    for (int l = 0; l < kLegs; ++l) {
+    for (int l = 0; l < model.legs(); ++l)
+      for (int j = 0; j < model.leg(l).n_joints; ++j) {
+        const int k = model.joint(l, j);
+        consider(std::abs(r.dyn.joint_torque(i, k)) - tmax, tmax,
+                 "torque " + model.joint_source_names[k], i);
+      }
+    for (int l = 0; l < model.legs(); ++l) {
       const auto phase = static_cast<ContactPhase>(r.kin.contact_phase(i, l));
       if (phase == ContactPhase::kSwing) {
         consider(F[l].norm(), 0.0, "swing force " + leg_name(l), i);

@@ -124,7 +124,7 @@ std::array<long, kStages> run_sample(const Scene& scene, const PreparedScene& pr
   robot_state_at(prep.model, prep.plan, kin.time_s[i], w.state);
   lap(kState);
   sample_contacts(kin, i, prep.plan.terrain, prep.touchdowns, w.contacts);
-  for (int l = 0; l < kLegs; ++l) w.normals[l] = w.contacts.W_R_contact[l].col(2);
+  for (int l = 0; l < prep.model.legs(); ++l) w.normals[l] = w.contacts.W_R_contact[l].col(2);
   lap(kContacts);
   const BaseState& base = w.state.trunk;
   rnea(prep.model, data, base, w.state.q, w.state.qd, w.state.qdd);

@@ -67,9 +67,9 @@ void check_torques_match_forces(const Scene& scene, const RunResult& r) {
     const ContactSplit& s = contact_split(
         model, data, base_state_at(r.kin, i), r.kin.joint_position.row(i).transpose(),
         r.kin.joint_velocity.row(i).transpose(), r.kin.joint_acceleration.row(i).transpose());
-    VecJ tau = s.tau0;
+    JointVector tau = s.tau0;
     double scale = 1.0 + s.tau0.cwiseAbs().maxCoeff();
-    for (int l = 0; l < kLegs; ++l) {
+    for (int l = 0; l < model.legs(); ++l) {
       tau -= s.JjT[l] * foot_vec(r.dyn.contact_force, i, l);
       scale =
           std::max(scale, (s.JjT[l] * foot_vec(r.dyn.contact_force, i, l)).cwiseAbs().maxCoeff());
@@ -119,9 +119,10 @@ TEST_CASE("solve_dynamics: energy is the integral of the power series, and the c
   REQUIRE(h_max > 10.0 * h_min);
 
   // Power per joint and in total, from the torques and the joint rates.
+  const int joints = static_cast<int>(k.joint_velocity.cols());
   std::vector<double> P(T, 0.0);
   for (int i = 0; i < T; ++i) {
-    for (int j = 0; j < kJoints; ++j) {
+    for (int j = 0; j < joints; ++j) {
       const double p = d.joint_torque(i, j) * k.joint_velocity(i, j);
       CHECK(d.joint_power(i, j) == p);
       P[i] += std::abs(p);
@@ -145,9 +146,9 @@ TEST_CASE("solve_dynamics: energy is the integral of the power series, and the c
   CHECK(std::abs(E - E_fine) <= 1e-3 * E_fine);
   CHECK(std::abs(trapezoid_energy(r, true) - E_fine) > 5.0 * std::abs(E - E_fine));
   CHECK(std::abs(fine.dyn.energy_total_J - E_fine) <= 1e-4 * E_fine);
-  REQUIRE(d.energy_joint_J.size() == static_cast<std::size_t>(kJoints));
+  REQUIRE(d.energy_joint_J.size() == static_cast<std::size_t>(joints));
   double sum_joint = 0.0;
-  for (int j = 0; j < kJoints; ++j) {
+  for (int j = 0; j < joints; ++j) {
     INFO("joint " << j);
     double E_joint_fine = 0.0;
     for (int i = 0; i + 1 < fine.kin.samples(); ++i)
@@ -163,7 +164,7 @@ TEST_CASE("solve_dynamics: energy is the integral of the power series, and the c
   // travel along the slope, s0/β per cycle horizontally.
   const RobotParams& rp = scene.robot;
   const double m = rp.trunk.mass_kg + rp.payload.mass_kg +
-                   kLegs * (rp.link[0].mass_kg + rp.link[1].mass_kg + rp.link[2].mass_kg);
+                   rp.legs * (rp.link[0].mass_kg + rp.link[1].mass_kg + rp.link[2].mass_kg);
   const double slope = std::atan(scene.terrain.riser_height_m / scene.terrain.tread_depth_m);
   const double distance =
       scene.motion.cycles * (scene.gait.stroke_m / scene.gait.duty_factor) / std::cos(slope);
@@ -180,7 +181,7 @@ TEST_CASE("solve_dynamics: energy is the integral of the power series, and the c
   const RobotModel model = build_robot_model(scene.robot);
   const MotionPlan plan = plan_motion(scene, model);
   std::vector<std::pair<int, double>> swing_ends;
-  for (int l = 0; l < kLegs; ++l)
+  for (int l = 0; l < model.legs(); ++l)
     for (const Swing& sw : plan.gait.legs[l].swings) swing_ends.emplace_back(l, sw.t_touchdown_s);
   REQUIRE(d.impacts.size() == swing_ends.size());
   for (const ImpactRecord& rec : d.impacts) {
@@ -217,7 +218,7 @@ TEST_CASE("solve_dynamics: a touchdown at zero approach speed produces no impact
   int touchdown_samples = 0;
   for (int i = 0; i < r.kin.samples(); ++i) {
     INFO("sample " << i << " t = " << r.kin.time_s[i] << " s: " << r.dyn.solver_messages[i]);
-    for (int l = 0; l < kLegs; ++l) CHECK(r.kin.contact_phase(i, l) != 1);
+    for (int l = 0; l < r.kin.contact_phase.cols(); ++l) CHECK(r.kin.contact_phase(i, l) != 1);
     CHECK_FALSE(contains(r.dyn.solver_messages[i], "impact"));
     CHECK(r.dyn.solver_status[i] == SolverStatus::kOptimal);
     for (const Touchdown& td : tds) touchdown_samples += r.kin.time_s[i] == td.t_s;

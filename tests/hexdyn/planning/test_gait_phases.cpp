@@ -25,7 +25,7 @@ namespace {
 double frac(double x) { return x - std::floor(x); }
 
 /// The hexapod's wave gait as six expressions, legs L1 … L6 (FL, FR, ML, MR, RL, RR).
-std::array<double, kLegs> six_leg_literals(double beta) {
+std::array<double, 6> six_leg_literals(double beta) {
   const double s = 1.0 - beta;
   return {frac(0.5 + 2.0 * s), frac(2.0 * s), frac(0.5 + s), frac(s), 0.5, 0.0};
 }
@@ -128,9 +128,9 @@ TEST_CASE("gait phases: six legs give the six expressions' bits for every duty f
   int checked = 0;
   for (double beta : betas) {
     const std::vector<double> general = wave_gait_phases(legs, beta);
-    const std::array<double, kLegs> literal = six_leg_literals(beta);
+    const std::array<double, 6> literal = six_leg_literals(beta);
     REQUIRE(general.size() == literal.size());
-    for (int leg = 0; leg < kLegs; ++leg) {
+    for (int leg = 0; leg < static_cast<int>(literal.size()); ++leg) {
       INFO("beta " << beta << " leg " << leg_name(leg));
       REQUIRE(general[leg] == literal[leg]);
       REQUIRE(same_bits(general[leg], literal[leg]));
@@ -222,7 +222,7 @@ TEST_CASE("gait phases: gait.phases puts every swing where its phase says", "[ga
   for (int k = 16; k < 64; k += 2) {
     const double tau = (k + 1) / 16.0;
     const double t = p.trunk.time_at_phase(tau);
-    for (int leg = 0; leg < kLegs; ++leg) {
+    for (int leg = 0; leg < static_cast<int>(p.gait.legs.size()); ++leg) {
       INFO("tau " << tau << " leg " << leg_name(leg));
       const bool expected = swinging(phi[leg], beta, tau);
       CHECK(leg_foot_motion(p.gait.legs[leg], t).in_swing == expected);
@@ -231,7 +231,7 @@ TEST_CASE("gait phases: gait.phases puts every swing where its phase says", "[ga
   }
   CHECK(differ > 0);  // the wave gait's schedule is another
   // Each leg's swings last 1 − β of a cycle and begin at its phase.
-  for (int leg = 0; leg < kLegs; ++leg)
+  for (int leg = 0; leg < static_cast<int>(p.gait.legs.size()); ++leg)
     for (const Swing& sw : p.gait.legs[leg].swings) {
       if (sw.t_liftoff_s <= 0.0 || sw.t_touchdown_s >= p.trunk.duration_s()) continue;
       const double start = p.trunk.phase(sw.t_liftoff_s);
@@ -252,7 +252,8 @@ TEST_CASE("gait phases: gait.phases equal to the wave gait's plan the same swing
         {"gait.phases", test::phases_text(wave_gait_phases(test::hexapod_legs(), beta))});
     const MotionPlan a = plan_paper(base), b = plan_paper(given);
     CHECK(a.gait.liftoff_phase == b.gait.liftoff_phase);
-    for (int leg = 0; leg < kLegs; ++leg) {
+    REQUIRE(a.gait.legs.size() == b.gait.legs.size());
+    for (int leg = 0; leg < static_cast<int>(a.gait.legs.size()); ++leg) {
       REQUIRE(a.gait.legs[leg].swings.size() == b.gait.legs[leg].swings.size());
       for (std::size_t i = 0; i < a.gait.legs[leg].swings.size(); ++i) {
         const Swing &x = a.gait.legs[leg].swings[i], &y = b.gait.legs[leg].swings[i];
