@@ -146,9 +146,22 @@ def members(g):
     return out
 
 
+def dimension_references(g, path, keep=None):
+    """The datasets (path, axis) that attach the dimension scale at `path` of group g, from its
+    HDF5 REFERENCE_LIST attribute; only those whose path is in `keep` when given."""
+    refs = set()
+    for ref, axis in g[path].attrs["REFERENCE_LIST"]:
+        name = g.file[ref].name
+        if keep is None or name in keep:
+            refs.add((name, int(axis)))
+    return refs
+
+
 def drop_new(diffs, ga, gb):
     """diffs without the lines of objects and attributes present in gb only (below an
-    object present in gb only: one line for the object); prints each as ignored."""
+    object present in gb only: one line for the object), and without a dimension scale's
+    REFERENCE_LIST that differs only by datasets present in gb only (HDF5's record of the
+    datasets attached to the scale); prints each as ignored."""
     only_b = members(gb) - members(ga)
     suffix = ": present in one file only"
     kept = []
@@ -156,8 +169,16 @@ def drop_new(diffs, ga, gb):
         where = d[:-len(suffix)] if d.endswith(suffix) else None
         if where is not None and where in only_b:
             print(f"compare_results: ignored (--allow-new-datasets): {where} (second file only)")
-        else:
-            kept.append(d)
+            continue
+        path = d[:-len("@REFERENCE_LIST: differs")] if d.endswith("@REFERENCE_LIST: differs") \
+            else None
+        if path is not None and path in ga and path in gb:
+            in_a = {"/" + m.lstrip("/") for m in members(ga) if "@" not in m}
+            if dimension_references(ga, path) == dimension_references(gb, path, in_a):
+                print(f"compare_results: ignored (--allow-new-datasets): {path}@REFERENCE_LIST "
+                      f"(datasets attached in the second file only)")
+                continue
+        kept.append(d)
     return kept
 
 

@@ -84,11 +84,31 @@ def main():
                                                     "--ignore-layout-version"), 1,
                "hexdyn-replay/1 file")
         expect("version 2 files", compare(p["v2"], p["v2"]), 0)
+        # A dimension scale's REFERENCE_LIST records the datasets attached to it: one attached
+        # in the second file only is allowed with the new dataset; one detached is not.
+        scaled = {k: os.path.join(d, f"{k}.h5") for k in ("dims", "dims_new", "dims_lost")}
+        for name, attached in (("dims", ["base/position"]),
+                               ("dims_new", ["base/position", "model/leg_joint_counts"]),
+                               ("dims_lost", [])):
+            write(scaled[name], extra={"model/leg": np.array([0, 1]),
+                                       "model/leg_joint_counts": np.array([3, 3])}
+                  if name != "dims" else {"model/leg": np.array([0, 1])})
+            with h5py.File(scaled[name], "a") as f:
+                f["model/leg"].make_scale("leg")
+                for ds in attached:
+                    f[ds].dims[0].attach_scale(f["model/leg"])
+        expect("a dataset attached to a scale in the second file only",
+               compare(scaled["dims"], scaled["dims_new"], "--allow-new-datasets"), 0,
+               "/model/leg@REFERENCE_LIST (datasets attached in the second file only)")
+        expect("the same, not allowed", compare(scaled["dims"], scaled["dims_new"]), 1,
+               "REFERENCE_LIST")
+        expect("a dataset detached from its scale",
+               compare(scaled["dims"], scaled["dims_lost"], "--allow-new-datasets"), 1)
     for f in failures:
         print(f"test_compare_results: {f}")
     if failures:
         return 1
-    print("test_compare_results: 13 cases pass")
+    print("test_compare_results: 16 cases pass")
     return 0
 
 
