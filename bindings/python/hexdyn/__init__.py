@@ -190,10 +190,7 @@ def _arrays(function, **arrays):
 
 
 _ROBOT_TEXT = """The robot is that of the scene file `scene` with the overrides `set` (as for run): the
-    robot `hexdyn run` builds, the one its /model/urdf describes, gravity -9.81 m/s² along z; a
-    URDF robot whose legs this build's other stages do not take yet (legs of other than three
-    revolute joints, more than six legs; docs/user/api.md) is built
-    for the dynamics alone from the scene's robot.* keys, its other keys not read."""
+    robot `hexdyn run` builds, the one its /model/urdf describes, gravity -9.81 m/s² along z."""
 
 _STATE_TEXT = """The arguments are in a result file's coordinates, each one state or T states along a first
     axis (all alike): base_position (3) [m], base_orientation (4) unit quaternion (w, x, y, z),

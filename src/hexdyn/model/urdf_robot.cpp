@@ -32,18 +32,6 @@ void check_fits(const UrdfRobot& robot, std::size_t capacity) {
                       std::to_string(capacity) + " (the bodies a robot model of this build holds)");
 }
 
-/// Refuses, in one line, a joint kind the leg kinematics do not take (a prismatic joint).
-void check_revolute(const UrdfRobot& robot) {
-  const std::string who = robot.source_path + ": robot '" + robot.name + "': ";
-  for (int leg = 0; leg < robot.n_legs(); ++leg)
-    for (const UrdfJoint& j : robot.legs[leg].joints)
-      if (j.type == UrdfJointType::kPrismatic)
-        throw ConfigError(who + "leg " + leg_name(leg) + ", joint '" + j.name + "' (link '" +
-                          j.link +
-                          "'): prismatic, expected revolute or continuous joints (prismatic "
-                          "joints are read, not yet simulated)");
-}
-
 }  // namespace
 
 RobotModel build_dynamics_model(const UrdfRobot& robot) {
@@ -104,7 +92,6 @@ RobotModel build_dynamics_model(const UrdfRobot& robot) {
 }
 
 RobotModel build_robot_model(const UrdfRobot& robot, double ik_min_margin_m) {
-  check_revolute(robot);
   RobotModel m = build_dynamics_model(robot);
   m.ik_min_margin_m = ik_min_margin_m;
   prepare_leg_chains(m);

@@ -237,38 +237,29 @@ TEST_CASE("urdf legs: each broken leg layout is refused in one line naming the l
                  "set robot.forward_axis"});
 }
 
-TEST_CASE(
-    "urdf legs: prismatic joints are read with their type, the model refuses them, the "
-    "dynamics' model takes them",
-    "[urdf_legs]") {
+TEST_CASE("urdf legs: prismatic joints are read with their type and built into the model",
+          "[urdf_legs]") {
   std::string text = legged_urdf(quadruped());
   const std::string knee = "<joint name=\"leg1_j3\" type=\"revolute\">";
   text.replace(text.find(knee), knee.size(), "<joint name=\"leg1_j3\" type=\"prismatic\">");
   const UrdfRobot robot = read_urdf_robot_from_string(text, "robot.urdf");
   CHECK(robot.legs[1].joints[2].type == UrdfJointType::kPrismatic);
   CHECK(robot.legs[1].joints[1].type == UrdfJointType::kRevolute);
-  try {
-    (void)build_robot_model(robot);
-    FAIL("a prismatic joint was built");
-  } catch (const ConfigError& e) {
-    CHECK(std::string(e.what()) ==
-          "robot.urdf: robot 'synthetic': leg L2, joint 'leg1_j3' (link 'leg1_l3'): prismatic, "
-          "expected revolute or continuous joints (prismatic joints are read, not yet "
-          "simulated)");
-  }
-  // The dynamics' part of the model takes it, typed, the other joints revolute; the tree is
-  // build_robot_model's of the same robot with the joint revolute.
-  const RobotModel dyn = build_dynamics_model(robot);
+  // The model takes it, typed, the other joints revolute; the tree is that of the same robot
+  // with the joint revolute; the leg is solved on its chain.
+  const RobotModel m = build_robot_model(robot);
   const RobotModel revolute =
       build_robot_model(read_urdf_robot_from_string(legged_urdf(quadruped()), "robot.urdf"));
-  REQUIRE(dyn.joints() == revolute.joints());
-  for (int k = 0; k < dyn.joints(); ++k) {
-    CHECK(dyn.prismatic(k) == (dyn.joint_source_names[k] == "leg1_j3"));
-    CHECK(dyn.joint_source_names[k] == revolute.joint_source_names[k]);
-    CHECK(dyn.axis[1 + k] == revolute.axis[1 + k]);
-    CHECK(dyn.p_parent_joint[1 + k] == revolute.p_parent_joint[1 + k]);
+  REQUIRE(m.joints() == revolute.joints());
+  for (int k = 0; k < m.joints(); ++k) {
+    CHECK(m.prismatic(k) == (m.joint_source_names[k] == "leg1_j3"));
+    CHECK(m.joint_source_names[k] == revolute.joint_source_names[k]);
+    CHECK(m.axis[1 + k] == revolute.axis[1 + k]);
+    CHECK(m.p_parent_joint[1 + k] == revolute.p_parent_joint[1 + k]);
   }
-  CHECK(dyn.total_mass_kg == revolute.total_mass_kg);
+  CHECK(m.total_mass_kg == revolute.total_mass_kg);
+  CHECK(m.leg_on_chain[1]);
+  CHECK_FALSE(m.leg_on_chain[0]);
 }
 
 TEST_CASE("urdf legs: a robot the model cannot hold is refused in one line when built",
