@@ -22,7 +22,8 @@
 ///   robot.nominal_pose  rad, in the description's signs, one angle per joint of a leg
 ///                       ([coxa, femur, tibia] for a leg of three joints): the standing
 ///                       pose whose horizontal foot distance is gait.foot_lateral's default
-///                       (default: model/stance.hpp "femur level, tibia plumb"); one for
+///                       (default: model/stance.hpp "femur level, tibia plumb", or
+///                       "hanging" for a rolling hip); one for
 ///                       every leg, a list of n in leg order L1 … Ln, or a map by leg
 ///                       name (legs not named keep the default); inside the joint limits
 ///   robot.ik_min_margin as for the YAML robot

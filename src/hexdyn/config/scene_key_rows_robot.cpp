@@ -213,7 +213,8 @@ void add_urdf_robot(std::deque<SceneKey>& t) {
        .min_count = 3,
        .max_count = kMaxLegJoints,
        .unit = "rad",
-       .default_text = "\"femur level, tibia plumb\"",
+       .default_text = "\"femur level, tibia plumb\"; a rolling hip: \"hanging\"; a leg of "
+                       "other than three revolute joints: the middle of its joint limits",
        .allowed_text = "one angle per joint of a leg, `[coxa, femur, tibia]` for three "
                        "joints, numbers in [−2π, 2π] rad inside the joint limits; or one per "
                        "leg of the robot's n legs: a list of n in leg order L1 … Ln, or a map "

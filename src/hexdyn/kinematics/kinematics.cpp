@@ -58,7 +58,9 @@ namespace {
   std::ostringstream msg;
   msg << "leg " << model.leg(leg).name << " at t = " << t << " s: foot target (" << f.p_W.x()
       << ", " << f.p_W.y() << ", " << f.p_W.z() << ") m not reachable: " << ik.reason << " (margin "
-      << ik.margin_m << " m, required >= " << model.ik_min_margin_m << " m)";
+      << ik.margin_m << " " << ik.margin_unit;
+  if (std::string(ik.margin_unit) == "m") msg << ", required >= " << model.ik_min_margin_m << " m";
+  msg << ")";
   throw ReachError(msg.str());
 }
 

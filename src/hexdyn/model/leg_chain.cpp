@@ -39,6 +39,7 @@ bool within_limits(const RobotModel& m, int leg, LegIkResult& r) {
     if (r.q[j] < lo || r.q[j] > hi) {
       r.reason = "joint " + m.joint_source_names[k] + " outside its limits";
       r.margin_m = std::min(r.q[j] - lo, hi - r.q[j]);
+      r.margin_unit = "rad";
       return false;
     }
   }

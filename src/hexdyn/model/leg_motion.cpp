@@ -79,6 +79,7 @@ RedundantLegMotion chain_leg_solve(const RobotModel& m, int leg, const Vec3& p_H
     if (r.q[j] < lo || r.q[j] > hi) {
       ik.reason = "joint " + m.joint_source_names[k] + " outside its limits";
       ik.margin_m = std::min(r.q[j] - lo, hi - r.q[j]);
+      ik.margin_unit = "rad";
       return r;
     }
   }

@@ -6,8 +6,8 @@
 ///
 /// The YAML robot has legs of three revolute joints (six in the paper; coxa about the trunk
 /// normal, femur and tibia about −y of the coxa link), legs L1, L3, L5, … on the left, their
-/// lateral offsets mirrored; link frames as docs/theory/model.md says. Its planar closed forms (the model's
-/// LegGeometry::kPaperPlanar) are a shortcut the model keeps after the build
+/// lateral offsets mirrored; link frames as docs/theory/model.md says. Its planar closed forms (the
+/// model's LegGeometry::kPaperPlanar) are a shortcut the model keeps after the build
 /// (use_paper_closed_forms): the tree, the inertias, the limits and the foot points are the
 /// description's; tests check the shortcut against the chain kinematics of the same model.
 #include "hexdyn/model/urdf_robot.hpp"

@@ -237,6 +237,7 @@ LegIkResult leg_inverse_kinematics(const RobotModel& m, int leg, const Vec3& p) 
     if (r.q[j] < lo || r.q[j] > hi) {
       r.reason = "joint " + joint_name(leg, j) + " outside its limits";
       r.margin_m = std::min(r.q[j] - lo, hi - r.q[j]);
+      r.margin_unit = "rad";
       return r;
     }
   }

@@ -245,6 +245,9 @@ Mat3 paper_leg_jacobian_dot_H(const RobotModel& model, int leg, const LegTrig& t
 struct LegIkResult {
   LegVector q = LegVector::Zero(3);  ///< the leg's joint positions (n_joints entries)
   double margin_m = 0.0;  ///< distance to the nearest workspace boundary (≥ ik_min_margin)
+  /// The unit of margin_m: "m", or "rad" when a joint is outside its limits (margin_m then the
+  /// angle to the nearer limit, negative).
+  const char* margin_unit = "m";
   bool ok = false;
   std::string reason;  ///< why not ok: "beyond full extension", "joint limit", ...
 };

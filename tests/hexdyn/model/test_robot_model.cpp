@@ -309,5 +309,26 @@ TEST_CASE("IK refuses a fully folded leg", "[robot_model]") {
   CHECK(std::abs(ik.margin_m) <= 1e-9);
 }
 
+TEST_CASE("IK outside a joint limit reports the angle past the limit in rad", "[robot_model]") {
+  // The foot of q, whose femur angle is 0.1 rad above a femur limit lowered to q[1] − 0.1: the
+  // closed form finds q again and refuses it, its margin the angle to the limit, in rad.
+  RobotParams params = test::paper_robot_params();
+  const Vec3 q(0.2, 0.4, -1.0);
+  params.joint_max_rad[1] = q[1] - 0.1;
+  const RobotModel model = build_robot_model(params);
+  const LegIkResult ik = leg_inverse_kinematics(model, 1, leg_foot_position_H(model, 1, q));
+  INFO(ik.reason);
+  CHECK_FALSE(ik.ok);
+  CHECK(ik.reason.find("outside its limits") != std::string::npos);
+  CHECK(std::string(ik.margin_unit) == "rad");
+  CHECK(ik.margin_m == Approx(-0.1).margin(1e-9));
+  // Within the limits, a reach margin is a length.
+  params.joint_max_rad[1] = q[1] + 0.1;
+  const RobotModel wide = build_robot_model(params);
+  const LegIkResult ok = leg_inverse_kinematics(wide, 1, leg_foot_position_H(wide, 1, q));
+  CHECK(ok.ok);
+  CHECK(std::string(ok.margin_unit) == "m");
+}
+
 }  // namespace
 }  // namespace hexdyn
