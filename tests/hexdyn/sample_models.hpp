@@ -6,6 +6,7 @@
 
 #include "hexdyn/core/scene.hpp"
 #include "hexdyn/model/robot_model.hpp"
+#include "hexdyn/paper_sizes.hpp"
 
 namespace hexdyn::test {
 
@@ -74,10 +75,10 @@ inline Vec3 random_leg_angles(std::mt19937& rng) {
 }
 
 /// Random state vector of all 18 joints.
-inline VecJ random_joint_vector(std::mt19937& rng, double lo, double hi) {
+inline PaperJointVector random_joint_vector(std::mt19937& rng, double lo, double hi) {
   std::uniform_real_distribution<double> u(lo, hi);
-  VecJ v;
-  for (int k = 0; k < kJoints; ++k) v[k] = u(rng);
+  PaperJointVector v;
+  for (int k = 0; k < kPaperJoints; ++k) v[k] = u(rng);
   return v;
 }
 

@@ -50,11 +50,6 @@
 
 namespace hexdyn {
 
-/// The six-leg, eighteen-joint sizes, for callers not yet sized by the model (they convert
-/// to and from DofVector, DofMatrix and DofJacobian without allocating).
-using VecDof = Eigen::Matrix<double, kDof, 1>;
-using MatDof = Eigen::Matrix<double, kDof, kDof>;
-using FootJacobian = Eigen::Matrix<double, 3, kDof>;
 /// Unit normal of the surface under each foot [1], world axes: where a sphere foot touches
 /// (file comment). Every algorithm that takes one reads +z under every foot when it is null.
 using FootNormals = LegArray<Vec3>;

@@ -200,25 +200,25 @@ Vec3 chain_foot_position_H(const RobotModel& m, int leg, const Vec3& q) {
 Mat3 chain_jacobian_H(const RobotModel& m, int leg, const Vec3& q) {
   const LegChainPose c = chain_pose(m, leg, q);
   Mat3 J;
-  for (int k = 0; k < kJointsPerLeg; ++k) J.col(k) = c.w_H[k].cross(c.p_foot_H - c.o_H[k]);
+  for (int k = 0; k < kChainJoints3; ++k) J.col(k) = c.w_H[k].cross(c.p_foot_H - c.o_H[k]);
   return J;
 }
 
 Mat3 chain_jacobian_dot_H(const RobotModel& m, int leg, const Vec3& q, const Vec3& qd) {
   const LegChainPose c = chain_pose(m, leg, q);
   Mat3 J;
-  for (int k = 0; k < kJointsPerLeg; ++k) J.col(k) = c.w_H[k].cross(c.p_foot_H - c.o_H[k]);
+  for (int k = 0; k < kChainJoints3; ++k) J.col(k) = c.w_H[k].cross(c.p_foot_H - c.o_H[k]);
   const Vec3 p_dot = J * qd;
   // Angular velocity of the link carrying joint k's axis, and the velocity of its origin.
-  std::array<Vec3, kJointsPerLeg> Omega, o_dot;
+  std::array<Vec3, kChainJoints3> Omega, o_dot;
   Omega[0].setZero();
   o_dot[0].setZero();
-  for (int k = 1; k < kJointsPerLeg; ++k) {
+  for (int k = 1; k < kChainJoints3; ++k) {
     Omega[k] = Omega[k - 1] + c.w_H[k - 1] * qd[k - 1];
     o_dot[k] = o_dot[k - 1] + Omega[k].cross(c.o_H[k] - c.o_H[k - 1]);
   }
   Mat3 Jd;
-  for (int k = 0; k < kJointsPerLeg; ++k) {
+  for (int k = 0; k < kChainJoints3; ++k) {
     const Vec3 w_dot = Omega[k].cross(c.w_H[k]);
     Jd.col(k) = w_dot.cross(c.p_foot_H - c.o_H[k]) + c.w_H[k].cross(p_dot - o_dot[k]);
   }

@@ -12,11 +12,14 @@
 
 namespace hexdyn {
 
+/// Joints of the chains of this file: three revolute joints.
+inline constexpr int kChainJoints3 = 3;
+
 /// Joint origins o_k, joint axes w_k (unit) and the foot point, all in H, for angles q.
 struct LegChainPose {
-  std::array<Vec3, kJointsPerLeg> o_H;  ///< joint origins [m]
-  std::array<Vec3, kJointsPerLeg> w_H;  ///< joint axes (unit)
-  std::array<Mat3, kJointsPerLeg> R_H;  ///< link frames → H
+  std::array<Vec3, kChainJoints3> o_H;  ///< joint origins [m]
+  std::array<Vec3, kChainJoints3> w_H;  ///< joint axes (unit)
+  std::array<Mat3, kChainJoints3> R_H;  ///< link frames → H
   Vec3 p_foot_H = Vec3::Zero();         ///< foot point [m]
 };
 LegChainPose chain_pose(const RobotModel& model, int leg, const Vec3& q);

@@ -15,6 +15,7 @@
 #include "hexdyn/dynamics/rnea.hpp"
 #include "hexdyn/kinematics/kinematics.hpp"
 #include "hexdyn/model/robot_model.hpp"
+#include "hexdyn/paper_sizes.hpp"
 #include "hexdyn/sample_models.hpp"
 
 namespace hexdyn {
@@ -169,7 +170,7 @@ TEST_CASE("touchdowns: foot effective mass equals the minimum-energy normal impu
     FootNormals normals;
     normals.fill(n);
     foot_jacobians(sphere, sd, base, q, &normals);
-    const FootJacobian J_contact = sd.J_foot_W[leg];
+    const PaperFootJacobian J_contact = sd.J_foot_W[leg];
     foot_jacobians(rm, rd, base, q);
     CHECK((J_contact - rd.J_foot_W[leg]).norm() > 1e-3);
   }

@@ -10,6 +10,7 @@
 
 #include "hexdyn/core/spatial.hpp"
 #include "hexdyn/dynamics/rnea.hpp"
+#include "hexdyn/paper_sizes.hpp"
 #include "hexdyn/sample_models.hpp"
 #include "hexdyn/tree_models.hpp"
 
@@ -46,7 +47,7 @@ inline Mat3 so3_left_jacobian(const Vec3& phi) {
 
 struct Sample {
   BaseState state;
-  VecJ q, qd, qdd;
+  PaperJointVector q, qd, qdd;
 };
 
 inline Sample random_sample(std::mt19937& rng) {
@@ -57,26 +58,26 @@ inline Sample random_sample(std::mt19937& rng) {
   s.state.omega_W = random_vec3(rng, -2.0, 2.0);
   s.state.a_W = random_vec3(rng, -3.0, 3.0);
   s.state.omegadot_W = random_vec3(rng, -5.0, 5.0);
-  for (int l = 0; l < kLegs; ++l) s.q.segment<3>(3 * l) = random_leg_angles(rng);
+  for (int l = 0; l < kPaperLegs; ++l) s.q.segment<3>(3 * l) = random_leg_angles(rng);
   s.qd = random_joint_vector(rng, -2.0, 2.0);
   s.qdd = random_joint_vector(rng, -5.0, 5.0);
   return s;
 }
 
-inline std::array<Vec3, kLegs> random_forces(std::mt19937& rng) {
-  std::array<Vec3, kLegs> F;
+inline std::array<Vec3, kPaperLegs> random_forces(std::mt19937& rng) {
+  std::array<Vec3, kPaperLegs> F;
   for (auto& f : F) f = random_vec3(rng, -20.0, 20.0);
   return F;
 }
 
-inline VecDof velocity_vector(const Sample& s) {
-  VecDof nu;
+inline PaperDofVector velocity_vector(const Sample& s) {
+  PaperDofVector nu;
   nu << s.state.v_W, s.state.omega_W, s.qd;
   return nu;
 }
 
-inline VecDof acceleration_vector(const Sample& s) {
-  VecDof a;
+inline PaperDofVector acceleration_vector(const Sample& s) {
+  PaperDofVector a;
   a << s.state.a_W, s.state.omegadot_W, s.qdd;
   return a;
 }

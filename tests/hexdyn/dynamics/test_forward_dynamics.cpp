@@ -14,23 +14,24 @@
 #include "hexdyn/dynamics/dynamics_samples.hpp"
 #include "hexdyn/dynamics/forward_dynamics.hpp"
 #include "hexdyn/model/root_link.hpp"
+#include "hexdyn/paper_sizes.hpp"
 
 namespace hexdyn {
 using namespace test;
 namespace {
 
-VecDof random_generalised_force(std::mt19937& rng) {
-  VecDof tau;
+PaperDofVector random_generalised_force(std::mt19937& rng) {
+  PaperDofVector tau;
   tau << random_vec3(rng, -30.0, 30.0), random_vec3(rng, -5.0, 5.0),
       random_joint_vector(rng, -3.0, 3.0);
   return tau;
 }
 
 /// The sample's state with the accelerations ν̇ (24).
-Sample with_acceleration(Sample s, const VecDof& nu_dot) {
+Sample with_acceleration(Sample s, const PaperDofVector& nu_dot) {
   s.state.a_W = nu_dot.head<3>();
   s.state.omegadot_W = nu_dot.segment<3>(3);
-  s.qdd = nu_dot.tail<kJoints>();
+  s.qdd = nu_dot.tail<kPaperJoints>();
   return s;
 }
 
@@ -40,21 +41,23 @@ void check_round_trip(const RobotModel& model, std::mt19937& rng, bool with_forc
   RobotData data(model);
   for (int n = 0; n < kStatesPerRobot; ++n) {
     const Sample s = random_sample(rng);
-    const VecDof tau = random_generalised_force(rng);
+    const PaperDofVector tau = random_generalised_force(rng);
     const auto F = random_forces(rng);
     const FootNormals normals = random_normals(rng);
     const auto* forces = with_forces ? &F : nullptr;
-    const VecDof nu_dot = forward_dynamics(model, data, s.state, s.q, s.qd, tau, forces, &normals);
+    const PaperDofVector nu_dot =
+        forward_dynamics(model, data, s.state, s.q, s.qd, tau, forces, &normals);
     const Sample a = with_acceleration(s, nu_dot);
-    const VecDof back = rnea(model, data, a.state, a.q, a.qd, a.qdd, forces, &normals);
+    const PaperDofVector back = rnea(model, data, a.state, a.q, a.qd, a.qdd, forces, &normals);
     CHECK((back - tau).norm() <= 1e-10 * std::max(1.0, tau.norm()));
     // The joint torques alone: the trunk rows of the inverse dynamics vanish.
-    const VecDof nu_dot_j = forward_dynamics_joints(model, data, s.state, s.q, s.qd,
-                                                    tau.tail<kJoints>(), forces, &normals);
+    const PaperDofVector nu_dot_j = forward_dynamics_joints(
+        model, data, s.state, s.q, s.qd, tau.tail<kPaperJoints>(), forces, &normals);
     const Sample aj = with_acceleration(s, nu_dot_j);
-    const VecDof back_j = rnea(model, data, aj.state, aj.q, aj.qd, aj.qdd, forces, &normals);
+    const PaperDofVector back_j =
+        rnea(model, data, aj.state, aj.q, aj.qd, aj.qdd, forces, &normals);
     CHECK(back_j.head<6>().norm() <= 1e-10 * std::max(1.0, tau.norm()));
-    CHECK((back_j.tail<kJoints>() - tau.tail<kJoints>()).norm() <=
+    CHECK((back_j.tail<kPaperJoints>() - tau.tail<kPaperJoints>()).norm() <=
           1e-10 * std::max(1.0, tau.norm()));
   }
 }
@@ -78,18 +81,18 @@ TEST_CASE("forward dynamics against a mass matrix from rnea columns, solved by L
   for (const RobotModel& model : sphere_foot_models(rng)) {
     RobotData data(model);
     const Sample s = random_sample(rng);
-    const VecDof tau = random_generalised_force(rng);
+    const PaperDofVector tau = random_generalised_force(rng);
     const auto F = random_forces(rng);
     const FootNormals normals = random_normals(rng);
-    const VecDof h = rnea(model, data, with_acceleration(s, VecDof::Zero()).state, s.q, s.qd,
-                          VecJ::Zero(), &F, &normals);
-    MatDof M;
-    for (int i = 0; i < kDof; ++i) {
-      const Sample a = with_acceleration(s, VecDof::Unit(i));
+    const PaperDofVector h = rnea(model, data, with_acceleration(s, PaperDofVector::Zero()).state,
+                                  s.q, s.qd, PaperJointVector::Zero(), &F, &normals);
+    PaperDofMatrix M;
+    for (int i = 0; i < kPaperDof; ++i) {
+      const Sample a = with_acceleration(s, PaperDofVector::Unit(i));
       M.col(i) = rnea(model, data, a.state, a.q, a.qd, a.qdd, &F, &normals) - h;
     }
-    const VecDof expected = M.partialPivLu().solve(tau - h);
-    const VecDof got = forward_dynamics(model, data, s.state, s.q, s.qd, tau, &F, &normals);
+    const PaperDofVector expected = M.partialPivLu().solve(tau - h);
+    const PaperDofVector got = forward_dynamics(model, data, s.state, s.q, s.qd, tau, &F, &normals);
     CHECK((got - expected).norm() <= 1e-10 * std::max(1.0, expected.norm()));
     CHECK((data.M - M).norm() <= 1e-12 * M.norm());
   }
@@ -102,7 +105,8 @@ TEST_CASE("forward dynamics refuses a model whose mass matrix is singular", "[dy
   RobotData data(model);
   std::mt19937 rng(47);
   const Sample s = random_sample(rng);
-  CHECK_THROWS_AS(forward_dynamics(model, data, s.state, s.q, s.qd, VecDof::Zero()), SolverError);
+  CHECK_THROWS_AS(forward_dynamics(model, data, s.state, s.q, s.qd, PaperDofVector::Zero()),
+                  SolverError);
 }
 
 // ---- the free robot ----
@@ -113,15 +117,15 @@ namespace {
 struct FreeState {
   Eigen::Vector4d quat;
   Vec3 p_W;
-  VecDof nu;
-  VecJ q;
+  PaperDofVector nu;
+  PaperJointVector q;
 };
 
 struct FreeRate {
   Eigen::Vector4d quat;
   Vec3 p_W;
-  VecDof nu;
-  VecJ q;
+  PaperDofVector nu;
+  PaperJointVector q;
 };
 
 BaseState base_state(const FreeState& x) {
@@ -143,8 +147,9 @@ FreeRate free_rate(const RobotModel& model, RobotData& data, const FreeState& x)
   FreeRate r;
   r.quat << -0.5 * w.dot(qv), 0.5 * (qw * w + w.cross(qv));
   r.p_W = x.nu.head<3>();
-  r.q = x.nu.tail<kJoints>();
-  r.nu = forward_dynamics(model, data, base_state(x), x.q, x.nu.tail<kJoints>(), VecDof::Zero());
+  r.q = x.nu.tail<kPaperJoints>();
+  r.nu = forward_dynamics(model, data, base_state(x), x.q, x.nu.tail<kPaperJoints>(),
+                          PaperDofVector::Zero());
   return r;
 }
 
@@ -190,13 +195,13 @@ TEST_CASE("the free robot keeps its kinetic energy and momentum for a second",
     x.p_W = s.state.p_W;
     x.nu = velocity_vector(s);
     x.q = s.q;
-    const double T0 = kinetic_energy(model, data, base_state(x), x.q, x.nu.tail<kJoints>());
-    const Momentum m0 = robot_momentum(model, data, base_state(x), x.q, x.nu.tail<kJoints>());
+    const double T0 = kinetic_energy(model, data, base_state(x), x.q, x.nu.tail<kPaperJoints>());
+    const Momentum m0 = robot_momentum(model, data, base_state(x), x.q, x.nu.tail<kPaperJoints>());
     double worst_T = 0.0, worst_L = 0.0, worst_H = 0.0;
     for (int step = 0; step < static_cast<int>(std::lround(duration / h)); ++step) {
       x = rk4_step(model, data, x, h);
       const BaseState b = base_state(x);
-      const VecJ qd = x.nu.tail<kJoints>();
+      const PaperJointVector qd = x.nu.tail<kPaperJoints>();
       const double T = kinetic_energy(model, data, b, x.q, qd);
       const Momentum m = robot_momentum(model, data, b, x.q, qd);
       worst_T = std::max(worst_T, std::abs(T - T0) / T0);

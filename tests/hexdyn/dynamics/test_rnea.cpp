@@ -12,6 +12,7 @@
 #include "hexdyn/core/spatial.hpp"
 #include "hexdyn/dynamics/dynamics_samples.hpp"
 #include "hexdyn/dynamics/rnea.hpp"
+#include "hexdyn/paper_sizes.hpp"
 #include "hexdyn/sample_models.hpp"
 
 namespace hexdyn {
@@ -20,22 +21,23 @@ namespace {
 
 /// World poses of all bodies through forward_kinematics_tree and the trunk pose.
 struct WorldPoses {
-  std::array<Mat3, kBodies> R;
-  std::array<Vec3, kBodies> p;
+  std::array<Mat3, kPaperBodies> R;
+  std::array<Vec3, kPaperBodies> p;
 };
 
-WorldPoses world_poses(const RobotModel& model, const BaseState& s, const VecJ& q) {
+WorldPoses world_poses(const RobotModel& model, const BaseState& s, const PaperJointVector& q) {
   BodyPoses b;
   forward_kinematics_tree(model, q, b);
   WorldPoses w;
-  for (int i = 0; i < kBodies; ++i) {
+  for (int i = 0; i < kPaperBodies; ++i) {
     w.R[i] = s.W_R_B * b.R_B[i];
     w.p[i] = s.p_W + s.W_R_B * b.p_B[i];
   }
   return w;
 }
 
-Vec3 foot_position_W(const RobotModel& model, const BaseState& s, const VecJ& q, int leg) {
+Vec3 foot_position_W(const RobotModel& model, const BaseState& s, const PaperJointVector& q,
+                     int leg) {
   BodyPoses b;
   forward_kinematics_tree(model, q, b);
   return s.p_W + s.W_R_B * tree_foot_position_B(model, b, leg);
@@ -109,16 +111,16 @@ TEST_CASE("rnea equals crba M times acceleration plus rnea at zero acceleration"
     RobotData data(model);
     for (int n = 0; n < kStatesPerRobot; ++n) {
       const Sample s = random_sample(rng);
-      const VecDof tau = rnea(model, data, s.state, s.q, s.qd, s.qdd);
+      const PaperDofVector tau = rnea(model, data, s.state, s.q, s.qd, s.qdd);
       BaseState s0 = s.state;
       s0.a_W.setZero();
       s0.omegadot_W.setZero();
-      const VecDof h = rnea(model, data, s0, s.q, s.qd, VecJ::Zero());
-      const MatDof M = crba(model, data, s.state, s.q);
-      const VecDof expected = M * acceleration_vector(s) + h;
+      const PaperDofVector h = rnea(model, data, s0, s.q, s.qd, PaperJointVector::Zero());
+      const PaperDofMatrix M = crba(model, data, s.state, s.q);
+      const PaperDofVector expected = M * acceleration_vector(s) + h;
       CHECK((tau - expected).norm() <= 1e-10 * std::max(1.0, tau.norm()));
       CHECK((M - M.transpose()).norm() <= 1e-14 * M.norm());
-      const Eigen::SelfAdjointEigenSolver<MatDof> eig(M);
+      const Eigen::SelfAdjointEigenSolver<PaperDofMatrix> eig(M);
       CHECK(eig.eigenvalues().minCoeff() > 0.0);
       // Trunk block: total mass times identity.
       CHECK((M.topLeftCorner<3, 3>() - model.total_mass_kg * Mat3::Identity()).norm() < 1e-12);
@@ -135,7 +137,8 @@ TEST_CASE("rnea at rest holds the weight of the robot", "[dynamics]") {
     s.state.omega_W.setZero();
     s.state.a_W.setZero();
     s.state.omegadot_W.setZero();
-    const VecDof tau = rnea(model, data, s.state, s.q, VecJ::Zero(), VecJ::Zero());
+    const PaperDofVector tau =
+        rnea(model, data, s.state, s.q, PaperJointVector::Zero(), PaperJointVector::Zero());
     const WorldPoses w = world_poses(model, s.state, s.q);
     const Vec3 g(0.0, 0.0, -kGravity);
     // Trunk rows: the wrench about P0 that supports the whole robot against gravity.
@@ -146,11 +149,11 @@ TEST_CASE("rnea at rest holds the weight of the robot", "[dynamics]") {
     CHECK((tau.head<3>() - support).norm() < 1e-10 * support.norm());
     CHECK((tau.segment<3>(3) - (c_W - s.state.p_W).cross(support)).norm() < 1e-10 * support.norm());
     // Joint rows: each joint holds the gravity moment of the bodies outboard of it.
-    for (int k = 0; k < kJoints; ++k) {
+    for (int k = 0; k < kPaperJoints; ++k) {
       const int bj = 1 + k;
       const Vec3 axis_W = w.R[bj] * model.axis[bj];
       double expected = 0.0;
-      for (int d = bj; d < kBodies; ++d) {
+      for (int d = bj; d < kPaperBodies; ++d) {
         int a = d;
         while (a > bj) a = model.parent[a];
         if (a != bj) continue;  // d is not in the subtree of bj
@@ -169,17 +172,17 @@ TEST_CASE("foot Jacobians match finite differences of the tree kinematics", "[dy
     RobotData data(model);
     const Sample s = random_sample(rng);
     foot_jacobians(model, data, s.state, s.q);
-    for (int l = 0; l < kLegs; ++l) {
+    for (int l = 0; l < kPaperLegs; ++l) {
       CHECK((data.p_foot_W[l] - foot_position_W(model, s.state, s.q, l)).norm() < 1e-14);
-      FootJacobian J_fd;
-      for (int i = 0; i < kDof; ++i) {
+      PaperFootJacobian J_fd;
+      for (int i = 0; i < kPaperDof; ++i) {
         // Move along generalised velocity e_i: p(t) = p + v t, R(t) = exp(ω t) R, q + q̇ t.
         auto foot_at = [&](double t) {
           BaseState st = s.state;
-          const VecDof e = VecDof::Unit(i);
+          const PaperDofVector e = PaperDofVector::Unit(i);
           st.p_W += e.head<3>() * t;
           st.W_R_B = so3_exp(e.segment<3>(3) * t) * s.state.W_R_B;
-          const VecJ q = s.q + e.tail<kJoints>() * t;
+          const PaperJointVector q = s.q + e.tail<kPaperJoints>() * t;
           return foot_position_W(model, st, q, l);
         };
         J_fd.col(i) = (foot_at(h) - foot_at(-h)) / (2.0 * h);
@@ -196,11 +199,11 @@ TEST_CASE("rnea with foot forces equals rnea without minus J^T F", "[dynamics]")
     for (int n = 0; n < kStatesPerRobot; ++n) {
       const Sample s = random_sample(rng);
       const auto F = random_forces(rng);
-      const VecDof tau_free = rnea(model, data, s.state, s.q, s.qd, s.qdd);
-      const VecDof tau_forced = rnea(model, data, s.state, s.q, s.qd, s.qdd, &F);
+      const PaperDofVector tau_free = rnea(model, data, s.state, s.q, s.qd, s.qdd);
+      const PaperDofVector tau_forced = rnea(model, data, s.state, s.q, s.qd, s.qdd, &F);
       foot_jacobians(model, data, s.state, s.q);
-      VecDof expected = tau_free;
-      for (int l = 0; l < kLegs; ++l) expected -= data.J_foot_W[l].transpose() * F[l];
+      PaperDofVector expected = tau_free;
+      for (int l = 0; l < kPaperLegs; ++l) expected -= data.J_foot_W[l].transpose() * F[l];
       CHECK((tau_forced - expected).norm() <= 1e-10 * std::max(1.0, tau_forced.norm()));
     }
   }
@@ -225,7 +228,7 @@ TEST_CASE("momentum rate equals gravity plus trunk wrench plus foot forces", "[d
 
     const Sample& s = traj.s0;
     const Momentum m0 = robot_momentum(model, data, s.state, s.q, s.qd);
-    const VecDof tau = rnea(model, data, s.state, s.q, s.qd, s.qdd, &F);
+    const PaperDofVector tau = rnea(model, data, s.state, s.q, s.qd, s.qdd, &F);
     foot_jacobians(model, data, s.state, s.q);
     BodyPoses b;
     forward_kinematics_tree(model, s.q, b);
@@ -236,7 +239,7 @@ TEST_CASE("momentum rate equals gravity plus trunk wrench plus foot forces", "[d
     const Vec3 f_base = tau.head<3>(), n_base = tau.segment<3>(3);
     Vec3 force = model.total_mass_kg * g + f_base;
     Vec3 moment = c_W.cross(model.total_mass_kg * g) + s.state.p_W.cross(f_base) + n_base;
-    for (int l = 0; l < kLegs; ++l) {
+    for (int l = 0; l < kPaperLegs; ++l) {
       force += F[l];
       moment += data.p_foot_W[l].cross(F[l]);
     }
@@ -252,16 +255,16 @@ TEST_CASE("kinetic energy and momentum agree with the mass matrix", "[dynamics]"
     RobotData data(model);
     for (int n = 0; n < kStatesPerRobot; ++n) {
       const Sample s = random_sample(rng);
-      const VecDof nu = velocity_vector(s);
-      const MatDof& M = crba(model, data, s.state, s.q);
-      const VecDof Mnu = M * nu;
+      const PaperDofVector nu = velocity_vector(s);
+      const PaperDofMatrix& M = crba(model, data, s.state, s.q);
+      const PaperDofVector Mnu = M * nu;
       const double T_matrix = 0.5 * nu.dot(Mnu);
 
       // Body by body from geometric Jacobian columns of the tree FK.
       const WorldPoses w = world_poses(model, s.state, s.q);
       double T_direct = 0.0;
       Vec3 L = Vec3::Zero(), H_P0 = Vec3::Zero();
-      for (int b = 0; b < kBodies; ++b) {
+      for (int b = 0; b < kPaperBodies; ++b) {
         const Vec3 c = w.p[b] + w.R[b] * model.inertia[b].com_m;
         Vec3 omega = s.state.omega_W;
         Vec3 v_c = s.state.v_W + s.state.omega_W.cross(c - s.state.p_W);
@@ -298,7 +301,7 @@ TEST_CASE("foot bias accelerations match finite differences of foot positions", 
     foot_jacobians(model, data, s.state, s.q);
     const auto J = data.J_foot_W;
     const auto bias = foot_bias_accelerations(model, data, s.state, s.q, s.qd);
-    for (int l = 0; l < kLegs; ++l) {
+    for (int l = 0; l < kPaperLegs; ++l) {
       auto velocity_at = [&](double t) {
         const Sample st = traj.at(t);
         foot_jacobians(model, data, st.state, st.q);
@@ -319,19 +322,19 @@ TEST_CASE("contact split reproduces rnea with foot forces", "[dynamics]") {
       const Sample s = random_sample(rng);
       const auto F = random_forces(rng);
       const ContactSplit split = contact_split(model, data, s.state, s.q, s.qd, s.qdd);
-      const VecDof tau = rnea(model, data, s.state, s.q, s.qd, s.qdd, &F);
+      const PaperDofVector tau = rnea(model, data, s.state, s.q, s.qd, s.qdd, &F);
       Vec6 trunk = split.trunk_rhs;
-      VecJ joints = split.tau0;
-      for (int l = 0; l < kLegs; ++l) {
+      PaperJointVector joints = split.tau0;
+      for (int l = 0; l < kPaperLegs; ++l) {
         trunk -= split.JbT[l] * F[l];
         joints -= split.JjT[l] * F[l];
         // Leg l's forces load only leg l's joints.
-        Eigen::Matrix<double, kJoints, 3> other_legs = split.JjT[l];
+        Eigen::Matrix<double, kPaperJoints, 3> other_legs = split.JjT[l];
         other_legs.middleRows<3>(3 * l).setZero();
         CHECK(other_legs.norm() == 0.0);
       }
       CHECK((trunk - tau.head<6>()).norm() <= 1e-10 * std::max(1.0, tau.norm()));
-      CHECK((joints - tau.tail<kJoints>()).norm() <= 1e-10 * std::max(1.0, tau.norm()));
+      CHECK((joints - tau.tail<kPaperJoints>()).norm() <= 1e-10 * std::max(1.0, tau.norm()));
     }
   }
 }
@@ -341,10 +344,10 @@ namespace {
 
 /// The tibia's angular-velocity Jacobian of leg l (3×24): ω_tibia = J_ω ν, from the tree's
 /// world poses alone: the trunk's ω and each leg joint's axis in world axes.
-Eigen::Matrix<double, 3, kDof> tibia_angular_jacobian(const RobotModel& model, const Sample& s,
-                                                      int l) {
+Eigen::Matrix<double, 3, kPaperDof> tibia_angular_jacobian(const RobotModel& model, const Sample& s,
+                                                           int l) {
   const WorldPoses w = world_poses(model, s.state, s.q);
-  Eigen::Matrix<double, 3, kDof> J = Eigen::Matrix<double, 3, kDof>::Zero();
+  Eigen::Matrix<double, 3, kPaperDof> J = Eigen::Matrix<double, 3, kPaperDof>::Zero();
   J.block<3, 3>(0, 3).setIdentity();
   for (int j = 0; j < model.leg(l).n_joints; ++j) {
     const int k = model.joint(l, j);
@@ -356,11 +359,11 @@ Eigen::Matrix<double, 3, kDof> tibia_angular_jacobian(const RobotModel& model, c
 }
 
 /// State s moved by t along the generalised velocity ν: p + v t, R = exp(ω t) R, q + q̇ t.
-Sample moved(const Sample& s, const VecDof& nu, double t) {
+Sample moved(const Sample& s, const PaperDofVector& nu, double t) {
   Sample m = s;
   m.state.p_W += nu.head<3>() * t;
   m.state.W_R_B = so3_exp(nu.segment<3>(3) * t) * s.state.W_R_B;
-  m.q = s.q + nu.tail<kJoints>() * t;
+  m.q = s.q + nu.tail<kPaperJoints>() * t;
   return m;
 }
 
@@ -376,7 +379,7 @@ TEST_CASE("sphere feet: the contact point's Jacobian against finite differences 
     const FootNormals n = random_normals(rng);
     foot_jacobians(model, data, s.state, s.q, &n);
     const WorldPoses w0 = world_poses(model, s.state, s.q);
-    for (int l = 0; l < kLegs; ++l) {
+    for (int l = 0; l < kPaperLegs; ++l) {
       const double r = model.foot_radius_m[l];
       const int tibia = model.foot_body(l);
       // The contact point is on the sphere, r below its centre along the normal.
@@ -384,9 +387,9 @@ TEST_CASE("sphere feet: the contact point's Jacobian against finite differences 
       CHECK((data.p_foot_W[l] - (center - r * n[l])).norm() < 1e-14);
       // The tibia's material point at the contact, frozen in the tibia, moved by the FK.
       const Vec3 material = w0.R[tibia].transpose() * (data.p_foot_W[l] - w0.p[tibia]);
-      FootJacobian J_material, J_rolling;
-      for (int i = 0; i < kDof; ++i) {
-        const VecDof e = VecDof::Unit(i);
+      PaperFootJacobian J_material, J_rolling;
+      for (int i = 0; i < kPaperDof; ++i) {
+        const PaperDofVector e = PaperDofVector::Unit(i);
         auto point_at = [&](double t) {
           const Sample m = moved(s, e, t);
           const WorldPoses w = world_poses(model, m.state, m.q);
@@ -405,14 +408,14 @@ TEST_CASE("sphere feet: the contact point's Jacobian against finite differences 
       // The contact point rolls with the centre: its rate differs from the material
       // point's by the tibia's rotation about the centre, ω × (−r n).
       const auto J_w = tibia_angular_jacobian(model, s, l);
-      const FootJacobian expected_rolling = data.J_foot_W[l] - r * skew(n[l]) * J_w;
+      const PaperFootJacobian expected_rolling = data.J_foot_W[l] - r * skew(n[l]) * J_w;
       CHECK((J_rolling - expected_rolling).cwiseAbs().maxCoeff() < 1e-7);
       // Rolling without slip: a motion that holds the material point still (J ν = 0)
       // moves the contact point by r ω × n, the arc the sphere rolls through.
-      VecDof nu = VecDof::Zero();
+      PaperDofVector nu = PaperDofVector::Zero();
       nu.segment<3>(3) = random_vec3(rng, -1.0, 1.0);
       nu.segment<3>(6 + 3 * l) = random_vec3(rng, -2.0, 2.0);
-      nu.head<3>() = -(data.J_foot_W[l].rightCols<kDof - 3>() * nu.tail<kDof - 3>());
+      nu.head<3>() = -(data.J_foot_W[l].rightCols<kPaperDof - 3>() * nu.tail<kPaperDof - 3>());
       REQUIRE((data.J_foot_W[l] * nu).norm() < 1e-12);
       const Vec3 omega = J_w * nu;
       auto rolled_at = [&](double t) {
@@ -436,12 +439,12 @@ TEST_CASE("sphere feet: a force at the contact point is the force at the centre 
       const Sample s = random_sample(rng);
       const auto F = random_forces(rng);
       const FootNormals n = random_normals(rng);
-      const VecDof tau = rnea(model, data, s.state, s.q, s.qd, s.qdd, &F, &n);
+      const PaperDofVector tau = rnea(model, data, s.state, s.q, s.qd, s.qdd, &F, &n);
       // τ = τ₀ − Σ J_cᵀ F − Σ J_ωᵀ ((p − c) × F): the centre's Jacobian and the tibia's
       // rotation, the contact point p = c − r n.
-      VecDof expected = rnea(point_feet, data_center, s.state, s.q, s.qd, s.qdd);
+      PaperDofVector expected = rnea(point_feet, data_center, s.state, s.q, s.qd, s.qdd);
       foot_jacobians(point_feet, data_center, s.state, s.q);
-      for (int l = 0; l < kLegs; ++l) {
+      for (int l = 0; l < kPaperLegs; ++l) {
         const Vec3 arm = -model.foot_radius_m[l] * n[l];
         expected -= data_center.J_foot_W[l].transpose() * F[l] +
                     tibia_angular_jacobian(model, s, l).transpose() * arm.cross(F[l]);
@@ -449,19 +452,19 @@ TEST_CASE("sphere feet: a force at the contact point is the force at the centre 
       CHECK((tau - expected).norm() <= 1e-10 * std::max(1.0, tau.norm()));
       // The contact split carries the same arms.
       const ContactSplit& split = contact_split(model, data, s.state, s.q, s.qd, s.qdd, &n);
-      VecJ joints = split.tau0;
+      PaperJointVector joints = split.tau0;
       Vec6 trunk = split.trunk_rhs;
-      for (int l = 0; l < kLegs; ++l) {
+      for (int l = 0; l < kPaperLegs; ++l) {
         joints -= split.JjT[l] * F[l];
         trunk -= split.JbT[l] * F[l];
       }
-      CHECK((joints - tau.tail<kJoints>()).norm() <= 1e-10 * std::max(1.0, tau.norm()));
+      CHECK((joints - tau.tail<kPaperJoints>()).norm() <= 1e-10 * std::max(1.0, tau.norm()));
       CHECK((trunk - tau.head<6>()).norm() <= 1e-10 * std::max(1.0, tau.norm()));
       // Without a normal, the surfaces are level: +z under every foot.
       FootNormals up;
       up.fill(Vec3::UnitZ());
-      const VecDof tau_default = rnea(model, data, s.state, s.q, s.qd, s.qdd, &F);
-      const VecDof tau_up = rnea(model, data, s.state, s.q, s.qd, s.qdd, &F, &up);
+      const PaperDofVector tau_default = rnea(model, data, s.state, s.q, s.qd, s.qdd, &F);
+      const PaperDofVector tau_up = rnea(model, data, s.state, s.q, s.qd, s.qdd, &F, &up);
       CHECK(tau_default == tau_up);
     }
   }
@@ -480,7 +483,7 @@ TEST_CASE("sphere feet: contact point accelerations match finite differences",
     const auto J = data.J_foot_W;
     const auto bias = foot_bias_accelerations(model, data, s.state, s.q, s.qd, &n);
     const WorldPoses w0 = world_poses(model, s.state, s.q);
-    for (int l = 0; l < kLegs; ++l) {
+    for (int l = 0; l < kPaperLegs; ++l) {
       // The material point at the contact, followed along the trajectory.
       const int tibia = model.foot_body(l);
       RobotModel frozen = model;  // a point foot at the material point

@@ -12,6 +12,7 @@
 #include "hexdyn/config/config.hpp"
 #include "hexdyn/kinematics/kinematics.hpp"
 #include "hexdyn/model/robot_model.hpp"
+#include "hexdyn/paper_sizes.hpp"
 
 namespace hexdyn {
 namespace {
@@ -73,7 +74,7 @@ FdErrors fd_errors(const Planned& p, const std::vector<double>& times, double h)
     robot_state_at(p.model, p.plan, t - h, sm);
     e.qd = std::max(e.qd, (s.qd - (sp.q - sm.q) / (2 * h)).cwiseAbs().maxCoeff());
     e.qdd = std::max(e.qdd, (s.qdd - (sp.q - 2.0 * s.q + sm.q) / (h * h)).cwiseAbs().maxCoeff());
-    for (int leg = 0; leg < kLegs; ++leg) {
+    for (int leg = 0; leg < kPaperLegs; ++leg) {
       const Vec3 v_fd = (sp.feet[leg].p_W - sm.feet[leg].p_W) / (2 * h);
       e.foot_v = std::max(e.foot_v, (s.feet[leg].v_W - v_fd).cwiseAbs().maxCoeff());
     }
@@ -124,10 +125,10 @@ TEST_CASE("kinematics: sampled joints put the feet where the gait plan wants the
   const KinematicsResult k = sample_kinematics(p.model, p.plan, times);
   BodyPoses poses;
   for (int i = 0; i < k.samples(); ++i) {
-    const VecJ q = k.joint_position.row(i).transpose();
+    const PaperJointVector q = k.joint_position.row(i).transpose();
     forward_kinematics_tree(p.model, q, poses);
     const BaseState trunk = p.plan.trunk.at(times[i]);
-    for (int leg = 0; leg < kLegs; ++leg) {
+    for (int leg = 0; leg < kPaperLegs; ++leg) {
       const Vec3 foot_W = trunk.p_W + trunk.W_R_B * tree_foot_position_B(p.model, poses, leg);
       const Vec3 planned = leg_foot_motion(p.plan.gait.legs[leg], times[i]).p_W;
       const Vec3 sampled = k.foot_position.row(i).segment<3>(3 * leg).transpose();
@@ -154,7 +155,7 @@ TEST_CASE("kinematics: a sphere foot's centre stands r above the planned contact
   for (int i = 0; i < k.samples(); ++i) {
     forward_kinematics_tree(p.model, k.joint_position.row(i).transpose(), poses);
     const BaseState trunk = p.plan.trunk.at(times[i]);
-    for (int leg = 0; leg < kLegs; ++leg) {
+    for (int leg = 0; leg < kPaperLegs; ++leg) {
       const Vec3 center_W = trunk.p_W + trunk.W_R_B * tree_foot_position_B(p.model, poses, leg);
       const Vec3 planned = leg_foot_motion(p.plan.gait.legs[leg], times[i]).p_W;
       const Vec3 contact = k.foot_position.row(i).segment<3>(3 * leg).transpose();
@@ -169,8 +170,9 @@ TEST_CASE("kinematics: a sphere foot's centre stands r above the planned contact
   RobotKinematicState s;
   for (double t : smooth_times(p, 200, 0.01)) {
     robot_state_at(p.model, p.plan, t, s);
-    for (int leg = 0; leg < kLegs; ++leg) {
-      const Vec3 q = s.q.segment<3>(joint_index(leg, 0)), qd = s.qd.segment<3>(joint_index(leg, 0));
+    for (int leg = 0; leg < kPaperLegs; ++leg) {
+      const Vec3 q = s.q.segment<3>(paper_joint_index(leg, 0)),
+                 qd = s.qd.segment<3>(paper_joint_index(leg, 0));
       const Vec3 v_W =
           s.trunk.v_W + s.trunk.W_R_B * p.model.R_B_H[leg] * leg_jacobian_H(p.model, leg, q) * qd;
       CHECK((v_W - s.feet[leg].v_W).norm() <= 1e-12);
@@ -190,15 +192,15 @@ TEST_CASE("kinematics: /com/position equals the mass-weighted mean of the bodies
   for (int i = 0; i <= 200; ++i) times.push_back(T * i / 200.0);
   const KinematicsResult k = sample_kinematics(p.model, p.plan, times);
   double total = rp.trunk.mass_kg + rp.payload.mass_kg;
-  for (int j = 0; j < kJointsPerLeg; ++j) total += kLegs * rp.link[j].mass_kg;
+  for (int j = 0; j < kPaperLegJoints; ++j) total += kPaperLegs * rp.link[j].mass_kg;
   BodyPoses poses;
   double moved = 0.0;
   for (int i = 0; i < k.samples(); ++i) {
-    const VecJ q = k.joint_position.row(i).transpose();
+    const PaperJointVector q = k.joint_position.row(i).transpose();
     forward_kinematics_tree(p.model, q, poses);
     Vec3 first_moment = rp.trunk.mass_kg * rp.trunk.com_m + rp.payload.mass_kg * rp.payload.com_m;
-    for (int leg = 0; leg < kLegs; ++leg)
-      for (int j = 0; j < kJointsPerLeg; ++j) {
+    for (int leg = 0; leg < kPaperLegs; ++leg)
+      for (int j = 0; j < kPaperLegJoints; ++j) {
         const int b = p.model.body(leg, j);
         first_moment += rp.link[j].mass_kg * (poses.p_B[b] + poses.R_B[b] * rp.link[j].com_m);
       }
@@ -259,7 +261,7 @@ TEST_CASE("kinematics: the shared sines and cosines give the tree FK's poses bit
       INFO("t " << times[i]);
       forward_kinematics_tree(model, s.q, from_q);
       forward_kinematics_tree(model, s.cos_q, s.sin_q, from_trig);
-      for (int b = 0; b < kBodies; ++b) {
+      for (int b = 0; b < kPaperBodies; ++b) {
         CHECK((from_q.R_B[b].array() == from_trig.R_B[b].array()).all());
         CHECK((from_q.p_B[b].array() == from_trig.p_B[b].array()).all());
       }

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "hexdyn/model/robot_model.hpp"
+#include "hexdyn/paper_sizes.hpp"
 #include "hexdyn/sample_models.hpp"
 
 namespace hexdyn {
@@ -47,7 +48,7 @@ TEST_CASE("leg IK inverts leg FK on the paper robot and random robots", "[robot_
   const auto robots = sample_robots();
   for (std::size_t r = 0; r < robots.size(); ++r) {
     const RobotModel model = build_robot_model(robots[r]);
-    for (int leg = 0; leg < kLegs; ++leg) {
+    for (int leg = 0; leg < kPaperLegs; ++leg) {
       for (int d = 0; d < kDrawsPerLeg; ++d) {
         const Vec3 q = test::random_leg_angles(rng);
         const Vec3 x = leg_foot_position_H(model, leg, q);
@@ -89,7 +90,7 @@ TEST_CASE("leg Jacobian matches central finite differences of the leg FK", "[rob
   double worst = 0.0;
   for (const RobotParams& params : sample_robots()) {
     const RobotModel model = build_robot_model(params);
-    for (int leg = 0; leg < kLegs; ++leg) {
+    for (int leg = 0; leg < kPaperLegs; ++leg) {
       for (int d = 0; d < 4; ++d) {
         const Vec3 q = test::random_leg_angles(rng);
         const Mat3 J = leg_jacobian_H(model, leg, q);
@@ -116,7 +117,7 @@ TEST_CASE("leg Jacobian derivative matches finite differences along q + qd t", "
   const double h = 1e-6;
   for (const RobotParams& params : sample_robots()) {
     const RobotModel model = build_robot_model(params);
-    for (int leg = 0; leg < kLegs; ++leg) {
+    for (int leg = 0; leg < kPaperLegs; ++leg) {
       for (int d = 0; d < 4; ++d) {
         const Vec3 q = test::random_leg_angles(rng);
         const Vec3 qd(rate(rng), rate(rng), rate(rng));
@@ -142,13 +143,13 @@ TEST_CASE("analytic leg FK equals the generic tree FK", "[robot_model]") {
   for (const RobotParams& params : sample_robots()) {
     const RobotModel model = build_robot_model(params);
     for (int d = 0; d < 5; ++d) {
-      VecJ q;
-      for (int leg = 0; leg < kLegs; ++leg)
-        q.segment<3>(joint_index(leg, 0)) = test::random_leg_angles(rng);
+      PaperJointVector q;
+      for (int leg = 0; leg < kPaperLegs; ++leg)
+        q.segment<3>(paper_joint_index(leg, 0)) = test::random_leg_angles(rng);
       BodyPoses poses;
       forward_kinematics_tree(model, q, poses);
-      for (int leg = 0; leg < kLegs; ++leg) {
-        const Vec3 q_leg = q.segment<3>(joint_index(leg, 0));
+      for (int leg = 0; leg < kPaperLegs; ++leg) {
+        const Vec3 q_leg = q.segment<3>(paper_joint_index(leg, 0));
         const Vec3 analytic =
             model.p_hip_B[leg] + model.R_B_H[leg] * leg_foot_position_H(model, leg, q_leg);
         const Vec3 tree = tree_foot_position_B(model, poses, leg);
@@ -177,7 +178,7 @@ TEST_CASE("rotation from cos and sin equals Eigen's AngleAxis bit for bit", "[ro
 TEST_CASE("hip frames follow the parameters", "[robot_model]") {
   for (const RobotParams& params : sample_robots()) {
     const RobotModel model = build_robot_model(params);
-    for (int leg = 0; leg < kLegs; ++leg) {
+    for (int leg = 0; leg < kPaperLegs; ++leg) {
       const double a = params.hip_yaw_rad[leg];
       Mat3 Rz;
       Rz << std::cos(a), -std::sin(a), 0, std::sin(a), std::cos(a), 0, 0, 0, 1;
@@ -200,7 +201,7 @@ TEST_CASE("total mass is the sum of the parameter masses", "[robot_model]") {
   for (const RobotParams& p : sample_robots()) {
     const RobotModel model = build_robot_model(p);
     const double links = p.link[0].mass_kg + p.link[1].mass_kg + p.link[2].mass_kg;
-    const double expected = p.trunk.mass_kg + p.payload.mass_kg + kLegs * links;
+    const double expected = p.trunk.mass_kg + p.payload.mass_kg + kPaperLegs * links;
     CHECK(std::abs(model.total_mass_kg - expected) <= 1e-12 * expected);
     // Body 0 carries trunk and payload together.
     CHECK(std::abs(model.inertia[0].mass_kg - (p.trunk.mass_kg + p.payload.mass_kg)) <= 1e-14);
@@ -212,7 +213,7 @@ TEST_CASE("total mass is the sum of the parameter masses", "[robot_model]") {
 TEST_CASE("paper robot: lateral foot offsets point forward on both sides", "[robot_model]") {
   const RobotParams p = test::paper_robot_params();
   const RobotModel model = build_robot_model(p);
-  for (int leg = 0; leg < kLegs; ++leg) {
+  for (int leg = 0; leg < kPaperLegs; ++leg) {
     const Vec3 foot_B =
         model.p_hip_B[leg] + model.R_B_H[leg] * leg_foot_position_H(model, leg, Vec3::Zero());
     const double reach = p.link_length_m[0] + p.link_length_m[1] + p.link_length_m[2];
@@ -228,7 +229,7 @@ TEST_CASE("IK refuses a target beyond reach with a negative margin", "[robot_mod
   for (const RobotParams& params : sample_robots()) {
     const RobotModel model = build_robot_model(params);
     const double L = params.link_length_m[0] + params.link_length_m[1] + params.link_length_m[2];
-    for (int leg = 0; leg < kLegs; ++leg) {
+    for (int leg = 0; leg < kPaperLegs; ++leg) {
       for (const Vec3& target : {Vec3(L + 0.05, 0.0, 0.0), Vec3(0.3 * L, 0.2 * L, -1.2 * L),
                                  Vec3(-0.8 * L, 1.1 * L, 0.3 * L)}) {
         const LegIkResult ik = leg_inverse_kinematics(model, leg, target);
@@ -249,7 +250,7 @@ TEST_CASE("IK refuses a target at full extension", "[robot_model]") {
   std::uniform_real_distribution<double> angle(-1.0, 1.0);
   for (const RobotParams& params : sample_robots()) {
     const RobotModel model = build_robot_model(params);
-    for (int leg = 0; leg < kLegs; ++leg) {
+    for (int leg = 0; leg < kPaperLegs; ++leg) {
       for (double knee : {0.0, -1e-6, -5e-7}) {
         const Vec3 q(angle(rng), angle(rng), knee);
         const Vec3 target = leg_foot_position_H(model, leg, q);
@@ -281,11 +282,11 @@ TEST_CASE("IK solves a knee-up pose with the wrist behind and above the femur ax
   const double phi = std::atan2(0.14 * std::sin(q[2]), 0.06 + 0.14 * std::cos(q[2]));
   REQUIRE(q[1] + phi < -M_PI);
   REQUIRE(leg_plane_rho(params, q) > 0.0);
-  for (int j = 0; j < kJointsPerLeg; ++j) {
+  for (int j = 0; j < kPaperLegJoints; ++j) {
     REQUIRE(q[j] > params.joint_min_rad[j]);
     REQUIRE(q[j] < params.joint_max_rad[j]);
   }
-  for (int leg = 0; leg < kLegs; ++leg) {
+  for (int leg = 0; leg < kPaperLegs; ++leg) {
     const Vec3 target = leg_foot_position_H(model, leg, q);
     const LegIkResult ik = leg_inverse_kinematics(model, leg, target);
     INFO("leg " << leg << " reason " << ik.reason << " q " << ik.q.transpose());

@@ -12,6 +12,7 @@
 #include "hexdyn/model/stance.hpp"
 #include "hexdyn/model/urdf.hpp"
 #include "hexdyn/model/urdf_reader.hpp"
+#include "hexdyn/paper_sizes.hpp"
 #include "hexdyn/sample_models.hpp"
 
 namespace hexdyn {
@@ -47,7 +48,7 @@ TEST_CASE("/model/urdf of a URDF robot reads back as the original description", 
     const RobotModel model = build_robot_model(original);
     UrdfReadOptions o;
     o.forward_axis = c.forward;  // the written root link is the original root link frame
-    for (int i = 1; i <= kLegs; ++i) o.foot_links.push_back("L" + std::to_string(i) + "_foot");
+    for (int i = 1; i <= kPaperLegs; ++i) o.foot_links.push_back("L" + std::to_string(i) + "_foot");
     const UrdfRobot back =
         read_urdf_robot_from_string(robot_urdf(model, original.name), "written", o);
     CHECK((back.B_R_U - original.B_R_U).cwiseAbs().maxCoeff() == 0.0);
@@ -55,9 +56,9 @@ TEST_CASE("/model/urdf of a URDF robot reads back as the original description", 
     CHECK((back.p_B_root - original.p_B_root).cwiseAbs().maxCoeff() <= 1e-12);
     CHECK(std::abs(back.total_mass_kg - original.total_mass_kg) <= 1e-12);
     check_inertia(back.trunk, original.trunk);
-    for (int leg = 0; leg < kLegs; ++leg) {
+    for (int leg = 0; leg < kPaperLegs; ++leg) {
       const UrdfLeg &a = back.legs[leg], &b = original.legs[leg];
-      for (int j = 0; j < kJointsPerLeg; ++j) {
+      for (int j = 0; j < kPaperLegJoints; ++j) {
         CHECK(a.joints[j].name == b.joints[j].name);  // the description's own joint names
         CHECK((a.joints[j].p_parent_joint - b.joints[j].p_parent_joint).cwiseAbs().maxCoeff() <=
               1e-12);
@@ -76,12 +77,12 @@ TEST_CASE("/model/urdf of a URDF robot reads back as the original description", 
     std::mt19937 rng(7);
     std::uniform_real_distribution<double> u(-0.5, 0.5);
     for (int trial = 0; trial < 10; ++trial) {
-      VecJ q;
-      for (int k = 0; k < kJoints; ++k) q[k] = u(rng);
+      PaperJointVector q;
+      for (int k = 0; k < kPaperJoints; ++k) q[k] = u(rng);
       BodyPoses pa, pb;
       forward_kinematics_tree(model, q, pa);
       forward_kinematics_tree(model_back, q, pb);
-      for (int leg = 0; leg < kLegs; ++leg)
+      for (int leg = 0; leg < kPaperLegs; ++leg)
         CHECK((tree_foot_position_B(model, pa, leg) - tree_foot_position_B(model_back, pb, leg))
                   .norm() <= 1e-12);
     }
@@ -94,8 +95,8 @@ TEST_CASE("hip directions: the legs' zero-pose directions, the paper's exactly +
     INFO(c.file);
     const RobotModel m = build_robot_model(read(c.file, c.forward));
     BodyPoses poses;
-    forward_kinematics_tree(m, VecJ::Zero(), poses);
-    for (int leg = 0; leg < kLegs; ++leg) {
+    forward_kinematics_tree(m, PaperJointVector::Zero(), poses);
+    for (int leg = 0; leg < kPaperLegs; ++leg) {
       Vec3 d = tree_foot_position_B(m, poses, leg) - m.p_parent_joint[m.body(leg, 0)];
       d.z() = 0.0;
       CHECK((m.hip_outward_B[leg] - d.normalized()).norm() <= 1e-12);
@@ -103,7 +104,7 @@ TEST_CASE("hip directions: the legs' zero-pose directions, the paper's exactly +
     }
   }
   const RobotModel paper = build_robot_model(test::paper_robot_params());
-  for (int leg = 0; leg < kLegs; ++leg)
+  for (int leg = 0; leg < kPaperLegs; ++leg)
     CHECK(paper.hip_outward_B[leg] == Vec3(is_left(leg) ? -1.0 : 1.0, 0.0, 0.0));
 }
 
@@ -112,10 +113,10 @@ TEST_CASE("default nominal stance: femur level, tibia plumb, inside the joint li
   for (const Case& c : kCases) {
     INFO(c.file);
     const RobotModel m = build_robot_model(read(c.file, c.forward));
-    for (int leg = 0; leg < kLegs; ++leg) {
+    for (int leg = 0; leg < kPaperLegs; ++leg) {
       const NominalStance s = default_nominal_stance(m, leg);
       REQUIRE(s.from_pose);
-      VecJ q = VecJ::Zero();
+      PaperJointVector q = PaperJointVector::Zero();
       for (int j = 0; j < m.leg(leg).n_joints; ++j) {
         const int k = m.joint(leg, j);
         q[k] = s.q[j];

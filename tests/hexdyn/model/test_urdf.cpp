@@ -9,6 +9,7 @@
 #include <string>
 
 #include "hexdyn/model/urdf.hpp"
+#include "hexdyn/paper_sizes.hpp"
 #include "hexdyn/sample_models.hpp"
 
 namespace {
@@ -204,15 +205,15 @@ TEST_CASE("urdf: structure, names, limits and total mass of the paper robot", "[
   for (const auto& [name, link] : doc.links) mass += link.mass;
   CHECK(std::abs(mass - model.total_mass_kg) < 1e-12);
   CHECK(std::abs(mass - 6.7) < 1e-12);
-  for (int leg = 0; leg < hexdyn::kLegs; ++leg) {
+  for (int leg = 0; leg < hexdyn::kPaperLegs; ++leg) {
     const std::string L = hexdyn::leg_name(leg);
-    for (int j = 0; j < hexdyn::kJointsPerLeg; ++j) {
+    for (int j = 0; j < hexdyn::kPaperLegJoints; ++j) {
       const UrdfJoint& jt = doc.joints.at(hexdyn::joint_name(leg, j));
       CHECK(jt.type == "revolute");
       CHECK(jt.has_axis);
       REQUIRE(jt.has_limit);
-      CHECK(jt.lower == model.joint_lower_rad[hexdyn::joint_index(leg, j)]);
-      CHECK(jt.upper == model.joint_upper_rad[hexdyn::joint_index(leg, j)]);
+      CHECK(jt.lower == model.joint_lower_rad[hexdyn::paper_joint_index(leg, j)]);
+      CHECK(jt.upper == model.joint_upper_rad[hexdyn::paper_joint_index(leg, j)]);
       CHECK(jt.effort == 6.0);
       CHECK(jt.velocity == 10.0);
       CHECK(doc.links.at(jt.child).has_inertial);
@@ -239,14 +240,14 @@ TEST_CASE("urdf: FK from the URDF numbers reproduces the simulated feet and COM"
     for (const auto& [name, link] : doc.links) mass += link.mass;
     CHECK(std::abs(mass - model.total_mass_kg) < 1e-12);
     for (int sample = 0; sample < 8; ++sample) {
-      const hexdyn::VecJ q = hexdyn::test::random_joint_vector(rng, -2.5, 2.5);
+      const hexdyn::PaperJointVector q = hexdyn::test::random_joint_vector(rng, -2.5, 2.5);
       hexdyn::BodyPoses poses;
       hexdyn::forward_kinematics_tree(model, q, poses);
       std::map<std::string, double> angles;
-      for (int leg = 0; leg < hexdyn::kLegs; ++leg)
-        for (int j = 0; j < hexdyn::kJointsPerLeg; ++j)
-          angles[hexdyn::joint_name(leg, j)] = q[hexdyn::joint_index(leg, j)];
-      for (int leg = 0; leg < hexdyn::kLegs; ++leg) {
+      for (int leg = 0; leg < hexdyn::kPaperLegs; ++leg)
+        for (int j = 0; j < hexdyn::kPaperLegJoints; ++j)
+          angles[hexdyn::joint_name(leg, j)] = q[hexdyn::paper_joint_index(leg, j)];
+      for (int leg = 0; leg < hexdyn::kPaperLegs; ++leg) {
         const Pose foot = urdf_link_pose(doc, hexdyn::leg_name(leg) + "_foot", angles);
         const Vec3 expected = hexdyn::tree_foot_position_B(model, poses, leg);
         INFO("robot " << robot << " leg " << leg);

@@ -20,6 +20,7 @@
 #include "hexdyn/model/leg_chain.hpp"
 #include "hexdyn/model/urdf.hpp"
 #include "hexdyn/model/urdf_reader.hpp"
+#include "hexdyn/paper_sizes.hpp"
 #include "hexdyn/sample_models.hpp"
 
 namespace hexdyn {
@@ -106,10 +107,11 @@ struct RawUrdf {
 };
 
 /// Random joint angles inside the limits (shrunk by 10 %), by URDF joint name and flat.
-VecJ random_joints(const RobotModel& m, std::mt19937& rng, std::map<std::string, double>& by_name) {
+PaperJointVector random_joints(const RobotModel& m, std::mt19937& rng,
+                               std::map<std::string, double>& by_name) {
   std::uniform_real_distribution<double> u(0.05, 0.95);
-  VecJ q;
-  for (int k = 0; k < kJoints; ++k) {
+  PaperJointVector q;
+  for (int k = 0; k < kPaperJoints; ++k) {
     const double lo = std::isfinite(m.joint_lower_rad[k]) ? m.joint_lower_rad[k] : -M_PI;
     const double hi = std::isfinite(m.joint_upper_rad[k]) ? m.joint_upper_rad[k] : M_PI;
     q[k] = lo + (hi - lo) * u(rng);
@@ -143,11 +145,11 @@ TEST_CASE("urdf reader: leg FK of the real robots equals the URDF's joints compo
     CHECK(l.robot.trunk_link == raw.model->getRoot()->name);
     for (int d = 0; d < 20; ++d) {
       std::map<std::string, double> by_name;
-      const VecJ q = random_joints(l.model, rng, by_name);
+      const PaperJointVector q = random_joints(l.model, rng, by_name);
       BodyPoses poses;
       forward_kinematics_tree(l.model, q, poses);
-      for (int leg = 0; leg < kLegs; ++leg) {
-        const Vec3 q_leg = q.segment<3>(joint_index(leg, 0));
+      for (int leg = 0; leg < kPaperLegs; ++leg) {
+        const Vec3 q_leg = q.segment<3>(paper_joint_index(leg, 0));
         const Vec3 p_B =
             l.model.p_hip_B[leg] + l.model.R_B_H[leg] * leg_foot_position_H(l.model, leg, q_leg);
         const Vec3 expected_U = raw.pose(l.robot.legs[leg].foot_source, by_name).second;
@@ -163,25 +165,26 @@ TEST_CASE("urdf reader: legs map to L1..L6 by hip position, URDF names kept", "[
   const Loaded mark4 = real_robots()[0];
   const char* side[2] = {"left", "right"};
   const char* row[3] = {"front", "middle", "back"};
-  for (int leg = 0; leg < kLegs; ++leg) {
+  for (int leg = 0; leg < kPaperLegs; ++leg) {
     const std::string prefix = std::string(side[leg % 2]) + "_" + row[leg / 2] + "_";
-    CHECK(mark4.model.joint_source_names[joint_index(leg, 0)] == prefix + "coxa");
-    CHECK(mark4.model.joint_source_names[joint_index(leg, 1)] == prefix + "femur");
-    CHECK(mark4.model.joint_source_names[joint_index(leg, 2)] == prefix + "tibia");
+    CHECK(mark4.model.joint_source_names[paper_joint_index(leg, 0)] == prefix + "coxa");
+    CHECK(mark4.model.joint_source_names[paper_joint_index(leg, 1)] == prefix + "femur");
+    CHECK(mark4.model.joint_source_names[paper_joint_index(leg, 2)] == prefix + "tibia");
     CHECK(mark4.robot.legs[leg].foot_source == "pxmark4/" + prefix + "foot_link");
-    for (int j = 0; j < 3; ++j) CHECK(mark4.model.effort_limit_Nm[joint_index(leg, j)] == 3.0);
+    for (int j = 0; j < 3; ++j)
+      CHECK(mark4.model.effort_limit_Nm[paper_joint_index(leg, j)] == 3.0);
   }
   CHECK(mark4.model.joint_lower_rad[1] == -1.710422666954443);
   CHECK(mark4.model.joint_upper_rad[2] == 2.181661564992912);
   // Kraby: hips from the raw URDF, in hexdyn's axes (forward +y): left x < 0, front first.
   const Loaded kraby = real_robots()[1];
   const RawUrdf raw(kKraby);
-  for (int leg = 0; leg < kLegs; ++leg) {
+  for (int leg = 0; leg < kPaperLegs; ++leg) {
     const Vec3 hip = raw.pose(kraby.robot.legs[leg].joints[0].link, {}).second;
     CHECK((hip.x() < 0.0) == is_left(leg));
     if (leg >= 2)
       CHECK(hip.y() < raw.pose(kraby.robot.legs[leg - 2].joints[0].link, {}).second.y());
-    CHECK(kraby.model.effort_limit_Nm[joint_index(leg, 0)] == 1.18);
+    CHECK(kraby.model.effort_limit_Nm[paper_joint_index(leg, 0)] == 1.18);
   }
 }
 
@@ -194,14 +197,14 @@ TEST_CASE("urdf reader: mass, centre of mass and inertia equal the sum over the 
     CHECK(std::abs(l.robot.total_mass_kg - raw.total_mass()) <= 1e-12);
     for (int d = 0; d < 10; ++d) {
       std::map<std::string, double> by_name;
-      const VecJ q = random_joints(l.model, rng, by_name);
+      const PaperJointVector q = random_joints(l.model, rng, by_name);
       BodyPoses poses;
       forward_kinematics_tree(l.model, q, poses);
       const auto [c_U, I_U] = raw.com_and_inertia(by_name);
       const Mat3& B_R_U = l.robot.B_R_U;
       CHECK((B_R_U.transpose() * center_of_mass_B(l.model, poses) - c_U).norm() <= 1e-12);
       Mat3 I_B = Mat3::Zero();
-      for (int b = 0; b < kBodies; ++b) {
+      for (int b = 0; b < kPaperBodies; ++b) {
         const RigidInertia& in = l.model.inertia[b];
         const Vec3 c = poses.p_B[b] + poses.R_B[b] * in.com_m;
         I_B += poses.R_B[b] * in.inertia_com * poses.R_B[b].transpose() +
@@ -223,9 +226,9 @@ TEST_CASE("urdf reader: RNEA of the loaded robots equals M(q) a + h from CRBA", 
     RobotData data(l.model);
     for (int n = 0; n < 10; ++n) {
       std::map<std::string, double> names;
-      const VecJ q = random_joints(l.model, rng, names);
-      VecJ qd, qdd;
-      for (int k = 0; k < kJoints; ++k) qd[k] = 2.0 * u(rng), qdd[k] = 5.0 * u(rng);
+      const PaperJointVector q = random_joints(l.model, rng, names);
+      PaperJointVector qd, qdd;
+      for (int k = 0; k < kPaperJoints; ++k) qd[k] = 2.0 * u(rng), qdd[k] = 5.0 * u(rng);
       BaseState s;
       s.W_R_B = bryant_to_rotation(Vec3(0.3 * u(rng), 0.3 * u(rng), u(rng)));
       s.p_W = Vec3(u(rng), u(rng), 0.2 + 0.1 * u(rng));
@@ -233,17 +236,17 @@ TEST_CASE("urdf reader: RNEA of the loaded robots equals M(q) a + h from CRBA", 
       s.omega_W = Vec3(u(rng), u(rng), u(rng));
       s.a_W = Vec3(u(rng), u(rng), u(rng));
       s.omegadot_W = Vec3(u(rng), u(rng), u(rng));
-      const VecDof tau = rnea(l.model, data, s, q, qd, qdd);
+      const PaperDofVector tau = rnea(l.model, data, s, q, qd, qdd);
       BaseState s0 = s;
       s0.a_W.setZero();
       s0.omegadot_W.setZero();
-      const VecDof h = rnea(l.model, data, s0, q, qd, VecJ::Zero());
-      const MatDof M = crba(l.model, data, s, q);
-      VecDof a;
+      const PaperDofVector h = rnea(l.model, data, s0, q, qd, PaperJointVector::Zero());
+      const PaperDofMatrix M = crba(l.model, data, s, q);
+      PaperDofVector a;
       a << s.a_W, s.omegadot_W, qdd;
       CHECK((tau - (M * a + h)).norm() <= 1e-10 * std::max(1.0, tau.norm()));
       CHECK((M.topLeftCorner<3, 3>() - l.model.total_mass_kg * Mat3::Identity()).norm() < 1e-12);
-      CHECK(Eigen::SelfAdjointEigenSolver<MatDof>(M).eigenvalues().minCoeff() > 0.0);
+      CHECK(Eigen::SelfAdjointEigenSolver<PaperDofMatrix>(M).eigenvalues().minCoeff() > 0.0);
     }
   }
 }
@@ -256,9 +259,9 @@ TEST_CASE("urdf reader: chain Jacobian and its derivative match finite differenc
   for (const Loaded& l : real_robots()) {
     for (int d = 0; d < 8; ++d) {
       std::map<std::string, double> names;
-      const VecJ q = random_joints(l.model, rng, names);
-      for (int leg = 0; leg < kLegs; ++leg) {
-        const Vec3 ql = q.segment<3>(joint_index(leg, 0));
+      const PaperJointVector q = random_joints(l.model, rng, names);
+      for (int leg = 0; leg < kPaperLegs; ++leg) {
+        const Vec3 ql = q.segment<3>(paper_joint_index(leg, 0));
         const Vec3 qd(rate(rng), rate(rng), rate(rng));
         Mat3 J_fd;
         for (int j = 0; j < 3; ++j) {
@@ -305,11 +308,11 @@ TEST_CASE("urdf reader: IK round trip on the real robots, closed form and numeri
     RobotModel numeric = l.model;
     for (auto& d : numeric.leg_ik) d.method = LegIkMethod::kNumeric;
     int draws = 0, recovered = 0, numeric_solved = 0;
-    for (int leg = 0; leg < kLegs; ++leg) {
+    for (int leg = 0; leg < kPaperLegs; ++leg) {
       REQUIRE(l.model.leg_ik[leg].method == LegIkMethod::kYawPitchPitch);
       for (int d = 0; d < 60; ++d) {
         std::map<std::string, double> names;
-        const Vec3 q = random_joints(l.model, rng, names).segment<3>(joint_index(leg, 0));
+        const Vec3 q = random_joints(l.model, rng, names).segment<3>(paper_joint_index(leg, 0));
         const Vec3 p = leg_foot_position_H(l.model, leg, q);
         const LegIkResult ik = leg_inverse_kinematics(l.model, leg, p);
         INFO(l.path << " leg " << leg << " q " << q.transpose() << " ik " << ik.q.transpose() << " "
@@ -345,7 +348,7 @@ TEST_CASE("urdf reader: chain kinematics equal the paper robot's closed forms", 
     const RobotModel paper = build_robot_model(params);
     RobotModel chain = paper;
     chain.leg_geometry = LegGeometry::kChain;
-    for (int leg = 0; leg < kLegs; ++leg) {
+    for (int leg = 0; leg < kPaperLegs; ++leg) {
       REQUIRE(chain.leg_ik[leg].method == LegIkMethod::kYawPitchPitch);
       for (int d = 0; d < 10; ++d) {
         const Vec3 q = test::random_leg_angles(rng);
@@ -373,7 +376,7 @@ TEST_CASE("urdf reader: chain kinematics equal the paper robot's closed forms", 
 
 void check_same_model(const RobotModel& a, const RobotModel& b, double tol) {
   CHECK(std::abs(a.total_mass_kg - b.total_mass_kg) <= tol);
-  for (int k = 0; k < kBodies; ++k) {
+  for (int k = 0; k < kPaperBodies; ++k) {
     INFO("body " << k);
     CHECK(a.parent[k] == b.parent[k]);
     CHECK((a.p_parent_joint[k] - b.p_parent_joint[k]).norm() <= tol);
@@ -383,7 +386,7 @@ void check_same_model(const RobotModel& a, const RobotModel& b, double tol) {
     CHECK((a.inertia[k].com_m - b.inertia[k].com_m).norm() <= tol);
     CHECK((a.inertia[k].inertia_com - b.inertia[k].inertia_com).norm() <= tol);
   }
-  for (int leg = 0; leg < kLegs; ++leg)
+  for (int leg = 0; leg < kPaperLegs; ++leg)
     CHECK((a.p_foot_last[leg] - b.p_foot_last[leg]).norm() <= tol);
 }
 
@@ -401,13 +404,13 @@ TEST_CASE("urdf reader: the paper robot written as URDF and read back is the sam
     const RobotModel back = build_robot_model(robot, paper.ik_min_margin_m);
     CHECK(robot.B_R_U == Mat3::Identity());
     check_same_model(paper, back, 1e-12);
-    for (int k = 0; k < kJoints; ++k) {
+    for (int k = 0; k < kPaperJoints; ++k) {
       CHECK(back.joint_source_names[k] == joint_name(k / 3, k % 3));
       CHECK(back.joint_lower_rad[k] == paper.joint_lower_rad[k]);
       CHECK(back.joint_upper_rad[k] == paper.joint_upper_rad[k]);
     }
     int compared = 0;
-    for (int leg = 0; leg < kLegs; ++leg) {
+    for (int leg = 0; leg < kPaperLegs; ++leg) {
       for (int d = 0; d < 20; ++d) {
         const Vec3 q = test::random_leg_angles(rng);
         const Vec3 p_B = paper.p_hip_B[leg] + paper.R_B_H[leg] * leg_foot_position_H(paper, leg, q);
@@ -488,7 +491,7 @@ TEST_CASE("urdf reader: each broken description is refused with one line naming 
   CHECK(refusal(kData + "no_foot_frame.urdf", offset).empty());
   const UrdfRobot with_offset = read_urdf_robot(kData + "no_foot_frame.urdf", offset);
   const UrdfRobot with_links = read_urdf_robot(kData + "valid_hexapod.urdf");
-  for (int leg = 0; leg < kLegs; ++leg)
+  for (int leg = 0; leg < kPaperLegs; ++leg)
     CHECK((with_offset.legs[leg].p_foot_last - with_links.legs[leg].p_foot_last).norm() <= 1e-15);
   // Kraby with the default forward axis cannot be mapped: the message says which key to set.
   const std::string kraby = refusal(kKraby);
@@ -659,7 +662,7 @@ TEST_CASE("urdf reader: the HumaRobotics PhantomX is refused for its inertias", 
 
 /// The hexapod's leg mapped from chain `chain` (its first joint's name).
 int leg_of_chain(const UrdfRobot& robot, const std::string& chain) {
-  for (int leg = 0; leg < kLegs; ++leg)
+  for (int leg = 0; leg < kPaperLegs; ++leg)
     if (robot.legs[leg].joints[0].name == chain) return leg;
   FAIL("no leg from chain " << chain);
   return -1;
@@ -668,7 +671,7 @@ int leg_of_chain(const UrdfRobot& robot, const std::string& chain) {
 /// Reads `text` with robot.foot_offset: `p` on leg `leg`, a point of no collision elsewhere.
 std::string offset_refusal(const std::string& text, int leg, const Vec3& p, UrdfRobot* out) {
   UrdfReadOptions o;
-  o.foot_offset = std::vector<Vec3>(kLegs, Vec3(0.1, 0.0, 0.0));
+  o.foot_offset = std::vector<Vec3>(kPaperLegs, Vec3(0.1, 0.0, 0.0));
   (*o.foot_offset)[leg] = p;
   try {
     *out = read_urdf_robot_from_string(text, "hexapod.urdf", o);
@@ -684,9 +687,9 @@ TEST_CASE("urdf reader: a sphere <collision> at a chain's end is the default foo
   // chain's end link (the cap) has its origin.
   const UrdfRobot kraby = read_urdf_robot(kKraby, kraby_options());
   UrdfReadOptions caps = kraby_options();
-  for (int i = 0; i < kLegs; ++i) caps.foot_links.push_back("endcap_" + std::to_string(i));
+  for (int i = 0; i < kPaperLegs; ++i) caps.foot_links.push_back("endcap_" + std::to_string(i));
   const UrdfRobot at_caps = read_urdf_robot(kKraby, caps);
-  for (int leg = 0; leg < kLegs; ++leg) {
+  for (int leg = 0; leg < kPaperLegs; ++leg) {
     const UrdfLeg& l = kraby.legs[leg];
     INFO(leg_name(leg) << " " << l.foot_source);
     CHECK(l.foot_kind == FootSource::kSphereCollision);
@@ -704,7 +707,7 @@ TEST_CASE("urdf reader: a sphere <collision> at a chain's end is the default foo
   const UrdfRobot back =
       read_urdf_robot_from_string(robot_urdf(model, "kraby"), "model.urdf", kraby_options());
   const RobotModel model_back = build_robot_model(back);
-  for (int leg = 0; leg < kLegs; ++leg) {
+  for (int leg = 0; leg < kPaperLegs; ++leg) {
     CHECK((model_back.p_foot_last[leg] - model.p_foot_last[leg]).norm() <= 1e-15);
     CHECK(model_back.foot_radius_m[leg] == model.foot_radius_m[leg]);
   }
@@ -714,10 +717,10 @@ TEST_CASE("urdf reader: robot.foot_offset per leg, checked against the collision
           "[urdf_reader][feet]") {
   // Leg order: each leg's own point lands on that leg, L1 … L6, whatever the chains' order.
   UrdfReadOptions o;
-  o.foot_offset.emplace(kLegs);
-  for (int leg = 0; leg < kLegs; ++leg) (*o.foot_offset)[leg] = Vec3(0.1, 0.001 * leg, 0.0);
+  o.foot_offset.emplace(kPaperLegs);
+  for (int leg = 0; leg < kPaperLegs; ++leg) (*o.foot_offset)[leg] = Vec3(0.1, 0.001 * leg, 0.0);
   const UrdfRobot r = read_urdf_robot(kData + "valid_hexapod.urdf", o);
-  for (int leg = 0; leg < kLegs; ++leg) {
+  for (int leg = 0; leg < kPaperLegs; ++leg) {
     CHECK(r.legs[leg].p_foot_last == (*o.foot_offset)[leg]);
     CHECK(r.legs[leg].foot_kind == FootSource::kFootOffset);
     CHECK(r.legs[leg].foot_check.find("not checked: no <collision>") == 0);

@@ -1,7 +1,7 @@
 // A robot of 4-joint legs through the whole pipeline: a walking quadruped 4x4 written as URDF
 // text (tests/hexdyn/urdf_writer.hpp) and a scene that points at it, in a temporary folder, run
 // by the pipeline. (A hexapod 6x4 has 24 joints, more than the scene reader's per-joint arrays
-// hold so far: config/robot_config.hpp's LoadedUrdfRobot is sized by kJoints = 18.) The run
+// hold so far: config/robot_config.hpp's LoadedUrdfRobot is sized by kPaperJoints = 18.) The run
 // completes, and its joint positions, put through a forward kinematics of the model's tree with the
 // trunk pose of each sample, give the planned feet; at sampled instants of the plan, the kinematics
 // stage's q̇ and q̈ equal central differences of its q.
@@ -12,6 +12,7 @@
 
 #include "hexdyn/config/config.hpp"
 #include "hexdyn/kinematics/kinematics.hpp"
+#include "hexdyn/paper_sizes.hpp"
 #include "hexdyn/pipeline/pipeline.hpp"
 #include "hexdyn/temp_dir.hpp"
 #include "hexdyn/urdf_writer.hpp"

@@ -14,6 +14,7 @@
 #include "hexdyn/contact/touchdowns.hpp"
 #include "hexdyn/dynamics/rnea.hpp"
 #include "hexdyn/model/robot_model.hpp"
+#include "hexdyn/paper_sizes.hpp"
 #include "hexdyn/pipeline/pipeline.hpp"
 
 namespace hexdyn {
@@ -31,13 +32,13 @@ TEST_CASE("fidelity: massless legs keep the robot's mass and its centre of mass 
   const RobotModel a = build_robot_model(full.robot);
   const RobotModel b = build_robot_model(light.robot);
   CHECK(b.total_mass_kg == Approx(a.total_mass_kg).epsilon(1e-14));
-  for (int k = 1; k < kBodies; ++k) CHECK(b.inertia[k].mass_kg == 0.0);
+  for (int k = 1; k < kPaperBodies; ++k) CHECK(b.inertia[k].mass_kg == 0.0);
   // Trunk COM: trunk, payload and every link mass placed at its hip, summed by hand.
   Vec3 moment = full.robot.trunk.mass_kg * full.robot.trunk.com_m +
                 full.robot.payload.mass_kg * full.robot.payload.com_m;
   double mass = full.robot.trunk.mass_kg + full.robot.payload.mass_kg;
-  for (int l = 0; l < kLegs; ++l)
-    for (int j = 0; j < kJointsPerLeg; ++j) {
+  for (int l = 0; l < kPaperLegs; ++l)
+    for (int j = 0; j < kPaperLegJoints; ++j) {
       moment += full.robot.link[j].mass_kg * full.robot.hip_position_m[l];
       mass += full.robot.link[j].mass_kg;
     }
@@ -53,12 +54,12 @@ TEST_CASE("fidelity: with massless legs the torques are the statics of the foot 
   double worst = 0.0;
   for (int i = 0; i < r.kin.samples(); ++i) {
     const BaseState base = base_state_at(r.kin, i);
-    const VecJ q = r.kin.joint_position.row(i).transpose();
+    const PaperJointVector q = r.kin.joint_position.row(i).transpose();
     foot_jacobians(model, data, base, q);
-    VecJ tau_static = VecJ::Zero();
-    for (int l = 0; l < kLegs; ++l) {
+    PaperJointVector tau_static = PaperJointVector::Zero();
+    for (int l = 0; l < kPaperLegs; ++l) {
       const Vec3 F = r.dyn.contact_force.row(i).segment<3>(3 * l).transpose();
-      tau_static -= data.J_foot_W[l].middleCols<kJoints>(6).transpose() * F;
+      tau_static -= data.J_foot_W[l].middleCols<kPaperJoints>(6).transpose() * F;
     }
     worst =
         std::max(worst, (r.dyn.joint_torque.row(i).transpose() - tau_static).cwiseAbs().maxCoeff());
@@ -86,7 +87,7 @@ TEST_CASE("fidelity: rigid touchdowns have no transient and balance the trunk at
   for (int i = 0; i < r.kin.samples(); ++i) {
     INFO("t = " << r.kin.time_s[i]);
     CHECK(r.dyn.solver_status[i] == SolverStatus::kOptimal);
-    for (int l = 0; l < kLegs; ++l) {
+    for (int l = 0; l < kPaperLegs; ++l) {
       CHECK(r.kin.contact_phase(i, l) != static_cast<std::int8_t>(ContactPhase::kImpact));
       CHECK(r.dyn.penetration(i, l) == 0.0);
     }
@@ -95,7 +96,7 @@ TEST_CASE("fidelity: rigid touchdowns have no transient and balance the trunk at
         model, data, base_state_at(r.kin, i), r.kin.joint_position.row(i).transpose(),
         r.kin.joint_velocity.row(i).transpose(), r.kin.joint_acceleration.row(i).transpose());
     Vec6 residual = split.trunk_rhs;
-    for (int l = 0; l < kLegs; ++l)
+    for (int l = 0; l < kPaperLegs; ++l)
       residual -= split.JbT[l] * r.dyn.contact_force.row(i).segment<3>(3 * l).transpose();
     worst_trunk = std::max(worst_trunk, residual.cwiseAbs().maxCoeff());
   }

@@ -29,6 +29,7 @@
 #include "hexdyn/dynamics/rnea.hpp"
 #include "hexdyn/kinematics/kinematics.hpp"
 #include "hexdyn/model/robot_model.hpp"
+#include "hexdyn/paper_sizes.hpp"
 #include "hexdyn/pipeline/pipeline.hpp"
 
 namespace hexdyn {
@@ -156,16 +157,16 @@ const PaperRun& paper_run() {
 constexpr double kUnnamedTolerance = 1e-6;
 
 /// The stored contact forces of sample i [N], world axes, per leg.
-std::array<Vec3, kLegs> stored_forces(const DynamicsResult& dyn, int i) {
-  std::array<Vec3, kLegs> F;
-  for (int l = 0; l < kLegs; ++l) F[l] = foot_vec(dyn.contact_force, i, l);
+std::array<Vec3, kPaperLegs> stored_forces(const DynamicsResult& dyn, int i) {
+  std::array<Vec3, kPaperLegs> F;
+  for (int l = 0; l < kPaperLegs; ++l) F[l] = foot_vec(dyn.contact_force, i, l);
   return F;
 }
 
 /// Some leg of sample i is in its touchdown transient.
 bool any_impact_leg(const KinematicsResult& kin, int i) {
   bool any_impact = false;
-  for (int l = 0; l < kLegs; ++l) any_impact = any_impact || kin.contact_phase(i, l) == 1;
+  for (int l = 0; l < kPaperLegs; ++l) any_impact = any_impact || kin.contact_phase(i, l) == 1;
   return any_impact;
 }
 
@@ -173,9 +174,9 @@ bool any_impact_leg(const KinematicsResult& kin, int i) {
 const ContactSplit& split_at(const RobotModel& model, RobotData& data, const KinematicsResult& kin,
                              int i) {
   const BaseState base = base_state_at(kin, i);
-  const VecJ q = kin.joint_position.row(i).transpose();
-  const VecJ qd = kin.joint_velocity.row(i).transpose();
-  const VecJ qdd = kin.joint_acceleration.row(i).transpose();
+  const PaperJointVector q = kin.joint_position.row(i).transpose();
+  const PaperJointVector qd = kin.joint_velocity.row(i).transpose();
+  const PaperJointVector qdd = kin.joint_acceleration.row(i).transpose();
   return contact_split(model, data, base, q, qd, qdd);
 }
 
@@ -373,8 +374,8 @@ void check_contacts(const PaperRun& r) {
   for (int i = 0; i < kin.samples(); ++i) {
     INFO("sample " << i << " t = " << kin.time_s[i] << " s, status " << dyn.solver_status[i]
                    << ", message '" << dyn.solver_messages[i] << "'");
-    const std::array<Vec3, kLegs> F = stored_forces(dyn, i);
-    for (int l = 0; l < kLegs; ++l) {
+    const std::array<Vec3, kPaperLegs> F = stored_forces(dyn, i);
+    for (int l = 0; l < kPaperLegs; ++l) {
       const Vec3 p = foot_vec(kin.foot_position, i, l);
       check_leg(r, i, l, F[l], r.plan.terrain.normal(p.x(), p.y()));
     }
@@ -394,23 +395,23 @@ void check_torques(const PaperRun& r) {
     const std::string& msg = dyn.solver_messages[i];
     INFO("sample " << i << " t = " << kin.time_s[i] << " s, status " << status << ", message '"
                    << msg << "'");
-    const std::array<Vec3, kLegs> F = stored_forces(dyn, i);
+    const std::array<Vec3, kPaperLegs> F = stored_forces(dyn, i);
     const ContactSplit& split = split_at(r.model, data, kin, i);
-    VecJ tau = split.tau0;
+    PaperJointVector tau = split.tau0;
     double tau_scale = 1.0 + split.tau0.cwiseAbs().maxCoeff();
-    for (int l = 0; l < kLegs; ++l) {
+    for (int l = 0; l < kPaperLegs; ++l) {
       tau -= split.JjT[l] * F[l];
       tau_scale = std::max(tau_scale, (split.JjT[l] * F[l]).cwiseAbs().maxCoeff());
     }
-    const VecJ tau_stored = dyn.joint_torque.row(i).transpose();
+    const PaperJointVector tau_stored = dyn.joint_torque.row(i).transpose();
     const double tau_res = (tau_stored - tau).cwiseAbs().maxCoeff();
     worst_tau_res = std::max(worst_tau_res, tau_res / tau_scale);
     CHECK(tau_res <= 1e-9 * tau_scale);
-    for (int k = 0; k < kJoints; ++k) {
+    for (int k = 0; k < kPaperJoints; ++k) {
       if (status == SolverStatus::kOptimal) {
         CHECK(std::abs(tau_stored[k]) <= tau_max + 1e-6);
       } else if (std::abs(tau_stored[k]) > tau_max + kUnnamedTolerance) {
-        CHECK(contains(msg, "torque " + joint_name(k / kJointsPerLeg, k % kJointsPerLeg)));
+        CHECK(contains(msg, "torque " + joint_name(k / kPaperLegJoints, k % kPaperLegJoints)));
       }
     }
   }
@@ -430,10 +431,10 @@ void check_trunk_rows(const PaperRun& r) {
     const std::string& msg = dyn.solver_messages[i];
     INFO("sample " << i << " t = " << kin.time_s[i] << " s, status " << status << ", message '"
                    << msg << "'");
-    const std::array<Vec3, kLegs> F = stored_forces(dyn, i);
+    const std::array<Vec3, kPaperLegs> F = stored_forces(dyn, i);
     const ContactSplit& split = split_at(r.model, data, kin, i);
     Vec6 trunk = Vec6::Zero();
-    for (int l = 0; l < kLegs; ++l) trunk += split.JbT[l] * F[l];
+    for (int l = 0; l < kPaperLegs; ++l) trunk += split.JbT[l] * F[l];
     const Vec6 trunk_res = trunk - split.trunk_rhs;
     const double trunk_force_res = trunk_res.head<3>().cwiseAbs().maxCoeff();
     const double trunk_moment_res = trunk_res.tail<3>().cwiseAbs().maxCoeff();
@@ -478,8 +479,8 @@ void check_momentum_balance(const PaperRun& r) {
     }
     ++checked;
     Vec3 force = gravity_force_W, moment = rate.com_W.cross(gravity_force_W);
-    const std::array<Vec3, kLegs> F = stored_forces(dyn, i);
-    for (int l = 0; l < kLegs; ++l) {
+    const std::array<Vec3, kPaperLegs> F = stored_forces(dyn, i);
+    for (int l = 0; l < kPaperLegs; ++l) {
       force += F[l];
       moment += foot_vec(kin.foot_position, i, l).cross(F[l]);
     }
@@ -544,10 +545,10 @@ void check_allocation_kkt(const PaperRun& r) {
   for (int i : kkt_samples) {
     INFO("KKT sample " << i << " t = " << kin.time_s[i] << " s");
     const ContactSplit& split = split_at(r.model, data, kin, i);
-    std::array<ContactPhase, kLegs> phase{};
-    std::array<double, kLegs> f_impact{};
-    std::array<Mat3, kLegs> W_R_c;
-    for (int l = 0; l < kLegs; ++l) {
+    std::array<ContactPhase, kPaperLegs> phase{};
+    std::array<double, kPaperLegs> f_impact{};
+    std::array<Mat3, kPaperLegs> W_R_c;
+    for (int l = 0; l < kPaperLegs; ++l) {
       phase[l] = static_cast<ContactPhase>(kin.contact_phase(i, l));
       const Vec3 p = foot_vec(kin.foot_position, i, l);
       W_R_c[l] = contact_frame(r.plan.terrain.normal(p.x(), p.y()));
@@ -568,10 +569,10 @@ void check_allocation_kkt(const PaperRun& r) {
     // the forces to ~1e-5 N where the smallest eigenvalue of H is ~0.01 m² (Ipopt's tol
     // 1e-9 bounds the scaled optimality error, not the distance to the optimum).
     CHECK(std::abs(out.objective - dyn.solver_objective[i]) <= 1e-9 * (1.0 + out.objective));
-    std::array<Vec3, kLegs> F_new;
-    VecJ tau_new;
+    std::array<Vec3, kPaperLegs> F_new;
+    PaperJointVector tau_new;
     forces_from_solution(split, layout, out.x, F_new, tau_new);
-    for (int l = 0; l < kLegs; ++l) {
+    for (int l = 0; l < kPaperLegs; ++l) {
       const double d = (F_new[l] - foot_vec(dyn.contact_force, i, l)).cwiseAbs().maxCoeff();
       worst_force_diff = std::max(worst_force_diff, d);
       CHECK(d <= kForceAgreement);

@@ -13,6 +13,7 @@
 #include "hexdyn/config/config.hpp"
 #include "hexdyn/core/errors.hpp"
 #include "hexdyn/model/robot_model.hpp"
+#include "hexdyn/paper_sizes.hpp"
 #include "hexdyn/planning/gait.hpp"
 #include "hexdyn/planning/motion.hpp"
 #include "hexdyn/planning/plan.hpp"
@@ -71,7 +72,7 @@ TEST_CASE("gait: swings of every leg are ordered, disjoint and inside the run", 
   for (double beta : kDutyFactors) {
     const Planned p = plan_duty(beta);
     const double T = p.plan.trunk.duration_s();
-    for (int leg = 0; leg < kLegs; ++leg) {
+    for (int leg = 0; leg < kPaperLegs; ++leg) {
       const auto& swings = p.plan.gait.legs[leg].swings;
       INFO("beta " << beta << " leg " << leg);
       REQUIRE(swings.size() >= static_cast<std::size_t>(p.plan.trunk.cycles()));
@@ -91,7 +92,7 @@ TEST_CASE("gait: steady-cycle support fraction equals the duty factor", "[gait]"
     const TrunkMotion& trunk = p.plan.trunk;
     const int n = trunk.cycles();
     REQUIRE(n == 5);
-    for (int leg = 0; leg < kLegs; ++leg) {
+    for (int leg = 0; leg < kPaperLegs; ++leg) {
       for (int k = 0; k < n; ++k) {
         // Swing time of this cycle in phase units, from the planned swing times.
         double swing = 0.0;
@@ -113,7 +114,7 @@ TEST_CASE("gait: at least three feet support the robot at every instant", "[gait
   for (double beta : kDutyFactors) {
     const Planned p = plan_duty(beta);
     const double T = p.plan.trunk.duration_s();
-    int fewest = kLegs;
+    int fewest = kPaperLegs;
     for (int i = 0; i <= 20000; ++i)
       fewest = std::min(fewest, support_count(p.plan.gait, T * i / 20000.0));
     for (double t : event_times(p.plan.gait))
@@ -121,7 +122,7 @@ TEST_CASE("gait: at least three feet support the robot at every instant", "[gait
     INFO("beta " << beta);
     CHECK(fewest >= 3);
     // The gait does lift legs: with β < 1 some instant has fewer than six in support.
-    CHECK(fewest < kLegs);
+    CHECK(fewest < kPaperLegs);
   }
 }
 
@@ -130,13 +131,13 @@ TEST_CASE("gait: the tripod alternates {1,4,5} and {2,3,6}, legs 2,3,6 first", "
   const GaitPlan& g = p.plan.gait;
   const double T = p.plan.trunk.duration_s();
   // 0-based groups: legs 2,3,6 → {1,2,5}; legs 1,4,5 → {0,3,4}.
-  const std::array<bool, kLegs> first_group{false, true, true, false, false, true};
+  const std::array<bool, kPaperLegs> first_group{false, true, true, false, false, true};
   int seen_first = 0, seen_second = 0;
   for (int i = 0; i <= 20000; ++i) {
     const double t = T * i / 20000.0;
-    std::array<bool, kLegs> swinging{};
+    std::array<bool, kPaperLegs> swinging{};
     int count = 0;
-    for (int leg = 0; leg < kLegs; ++leg) {
+    for (int leg = 0; leg < kPaperLegs; ++leg) {
       swinging[leg] = leg_foot_motion(g.legs[leg], t).in_swing;
       count += swinging[leg];
     }
@@ -144,8 +145,8 @@ TEST_CASE("gait: the tripod alternates {1,4,5} and {2,3,6}, legs 2,3,6 first", "
     if (count == 0) continue;
     REQUIRE(count == 3);
     const bool first = swinging == first_group;
-    std::array<bool, kLegs> second_group;
-    for (int leg = 0; leg < kLegs; ++leg) second_group[leg] = !first_group[leg];
+    std::array<bool, kPaperLegs> second_group;
+    for (int leg = 0; leg < kPaperLegs; ++leg) second_group[leg] = !first_group[leg];
     CHECK((first || swinging == second_group));
     (first ? seen_first : seen_second) += 1;
   }
@@ -174,7 +175,7 @@ TEST_CASE("gait: support feet stay at their touchdown point", "[gait]") {
   for (double beta : kDutyFactors) {
     const Planned p = plan_duty(beta);
     const double T = p.plan.trunk.duration_s();
-    for (int leg = 0; leg < kLegs; ++leg) {
+    for (int leg = 0; leg < kPaperLegs; ++leg) {
       const LegPlan& lp = p.plan.gait.legs[leg];
       INFO("beta " << beta << " leg " << leg);
       // Stance intervals [start, end) and the point the foot must hold.
@@ -222,7 +223,7 @@ TEST_CASE("gait: swing paths clear the terrain by the swing clearance", "[gait]"
     const Planned p = plan_duty(beta);
     const Terrain& terrain = p.plan.terrain;
     const double clearance = p.scene.gait.swing_clearance_m;
-    for (int leg = 0; leg < kLegs; ++leg) {
+    for (int leg = 0; leg < kPaperLegs; ++leg) {
       for (const Swing& sw : p.plan.gait.legs[leg].swings) {
         INFO("beta " << beta << " leg " << leg << " swing at " << sw.t_liftoff_s);
         const Vec3 &a = sw.p_liftoff_W, &b = sw.p_touchdown_W;
@@ -263,7 +264,7 @@ TEST_CASE("gait: touchdown speed, rest at lift-off, C2 swing paths", "[gait]") {
     const Planned p = plan_duty(beta);
     const double v_td = p.scene.gait.touchdown_speed_mps;
     REQUIRE(v_td > 0.0);
-    for (int leg = 0; leg < kLegs; ++leg) {
+    for (int leg = 0; leg < kPaperLegs; ++leg) {
       for (const Swing& sw : p.plan.gait.legs[leg].swings) {
         INFO("beta " << beta << " leg " << leg << " swing at " << sw.t_liftoff_s);
         const double t0 = sw.t_liftoff_s, t1 = sw.t_touchdown_s, D = t1 - t0;
@@ -371,7 +372,7 @@ TEST_CASE("gait: footholds keep the margin from every nosing and riser", "[gait]
     const Planned p = plan_duty(beta);
     const double margin = p.scene.gait.foothold_margin_m;
     REQUIRE(margin > 0.0);
-    for (int leg = 0; leg < kLegs; ++leg) {
+    for (int leg = 0; leg < kPaperLegs; ++leg) {
       const LegPlan& lp = p.plan.gait.legs[leg];
       INFO("beta " << beta << " leg " << leg);
       CHECK(p.plan.terrain.edge_distance(lp.p_initial_W.y()) >= margin - 1e-12);
@@ -388,7 +389,7 @@ TEST_CASE("gait: a sphere foot keeps the margin with the sphere, or names leg, s
   const Terrain& terrain = p.plan.terrain;
   const double margin = p.scene.gait.foothold_margin_m;
   int at_margin = 0;
-  for (int leg = 0; leg < kLegs; ++leg) {
+  for (int leg = 0; leg < kPaperLegs; ++leg) {
     const LegPlan& lp = p.plan.gait.legs[leg];
     std::vector<double> footholds = {lp.p_initial_W.y()};
     for (const Swing& sw : lp.swings) {
