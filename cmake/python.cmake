@@ -86,8 +86,7 @@ set(HEXDYN_PYTHON_INSTALL_DIR lib/python${Python3_VERSION_MAJOR}.${Python3_VERSI
 # for LTO; GCC would only warn about serial LTRANS jobs).
 pybind11_add_module(hexdyn_python MODULE NO_EXTRAS ${PROJECT_SOURCE_DIR}/bindings/python/module.cpp
                     ${PROJECT_SOURCE_DIR}/bindings/python/forward_dynamics_args.cpp
-                    ${PROJECT_SOURCE_DIR}/bindings/python/dynamics.cpp
-                    ${PROJECT_SOURCE_DIR}/bindings/python/dynamics_model.cpp)
+                    ${PROJECT_SOURCE_DIR}/bindings/python/dynamics.cpp)
 target_link_libraries(hexdyn_python PRIVATE hexdyn_pipeline hexdyn_io hexdyn_sweep yaml-cpp)
 target_compile_options(hexdyn_python PRIVATE ${HEXDYN_WARNINGS})
 set_target_properties(hexdyn_python PROPERTIES OUTPUT_NAME _hexdyn

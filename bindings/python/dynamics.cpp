@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
-#include "dynamics_model.hpp"
 #include "edge.hpp"
 #include "forward_dynamics_args.hpp"
+#include "hexdyn/config/config.hpp"
 #include "hexdyn/core/spatial.hpp"
 #include "hexdyn/dynamics/forward_dynamics.hpp"
 #include "hexdyn/model/root_link.hpp"
@@ -153,7 +153,8 @@ void add_names(py::dict& out, const hexdyn::RobotModel& model) {
 hexdyn::RobotModel load_model(const std::string& scene, const std::vector<std::string>& sets) {
   const std::vector<hexdyn::Override> overrides = overrides_of(sets);
   py::gil_scoped_release no_gil;
-  return guard_yaml(scene, [&] { return scene_dynamics_model(scene, overrides); });
+  return guard_yaml(
+      scene, [&] { return hexdyn::build_robot_model(hexdyn::load_scene(scene, overrides).robot); });
 }
 
 py::dict forward_dynamics_file(const std::string& scene, const std::vector<std::string>& sets,

@@ -110,7 +110,7 @@ LegIkResult ik_yaw_pitch_pitch(const RobotModel& m, int leg, const Vec3& p) {
     if (reach_b > reach_a) std::swap(q0, q0_other);
   }
   r = ypp_femur_tibia(m, leg, p, q0);
-  if (r.ok || !rolling_hip(d) || r.reason.find("outside its limits") == std::string::npos) return r;
+  if (r.ok || !rolling_hip(d) || std::string(r.margin_unit) != "rad") return r;  // a limit
   LegIkResult other = ypp_femur_tibia(m, leg, p, q0_other);
   return other.ok ? other : r;
 }
