@@ -127,7 +127,7 @@ void check_friction_velocity(const Reader& r, const ContactParams& c) {
 }
 
 void check_copper_loss(const Reader& r, const Scene& s) {
-  if (!s.actuators.present && s.allocation.objective == AllocationObjective::kCopperLoss)
+  if (!s.robot.drive.present && s.allocation.objective == AllocationObjective::kCopperLoss)
     r.fail("allocation.objective",
            "got copper_loss, expected torque_squared: the copper loss needs an actuators section "
            "(docs/user/configuration.md#actuators)");

@@ -19,11 +19,12 @@
 ///                       every leg (config/leg_keys.hpp)
 ///   robot.foot_radius   m, every foot a sphere of this radius centred at its foot point
 ///                       (default: a sphere <collision> foot's own radius, else 0)
-///   robot.nominal_pose  rad, in the description's signs, one angle per joint of a leg
+///   robot.nominal_pose  rad, in the description's signs, one position per joint of a leg
 ///                       ([coxa, femur, tibia] for a leg of three joints): the standing
 ///                       pose whose horizontal foot distance is gait.foot_lateral's default
-///                       (default: model/stance.hpp "femur level, tibia plumb", or
-///                       "hanging" for a rolling hip); one for
+///                       and toward which a leg of other than three revolute joints resolves
+///                       its redundancy (default: model/stance.hpp "femur level, tibia
+///                       plumb", "hanging" for a rolling hip, mid-range on a chain); one for
 ///                       every leg, a list of n in leg order L1 … Ln, or a map by leg
 ///                       name (legs not named keep the default); inside the joint limits
 ///   robot.ik_min_margin as for the YAML robot

@@ -215,11 +215,13 @@ void add_urdf_robot(std::deque<SceneKey>& t) {
        .unit = "rad",
        .default_text = "\"femur level, tibia plumb\"; a rolling hip: \"hanging\"; a leg of "
                        "other than three revolute joints: the middle of its joint limits",
-       .allowed_text = "one angle per joint of a leg, `[coxa, femur, tibia]` for three "
-                       "joints, numbers in [−2π, 2π] rad inside the joint limits; or one per "
-                       "leg of the robot's n legs: a list of n in leg order L1 … Ln, or a map "
-                       "by leg name (`{L3: [0, 0, 1.5]}`); poses of legs of three joints only",
-       .meaning = "the standing pose that sets `gait.foot_lateral`'s default; legs a map "
+       .allowed_text = "one position per joint of a leg, hip to foot (`[coxa, femur, tibia]` "
+                       "for three joints; m for a prismatic joint), numbers in [−2π, 2π] "
+                       "inside the joint limits; or one per leg of the robot's n legs: a list "
+                       "of n in leg order L1 … Ln, or a map by leg name (`{L3: [0, 0, 1.5]}`)",
+       .meaning = "the standing pose that sets `gait.foot_lateral`'s default; a leg of other "
+                  "than three revolute joints also resolves its redundancy toward it "
+                  "([docs/theory/model.md](docs/theory/model.md#redundant-legs)); legs a map "
                   "does not name keep the default"});
   add({.path = "robot.ik_min_margin",
        .range = nonnegative(0.1),

@@ -108,8 +108,8 @@ void read_allocation(Reader& r, Scene& s, const LoadedUrdfRobot& urdf) {
 /// objective is recorded in the resolved configuration.
 void read_drive_train(Reader& r, Scene& s, const LoadedUrdfRobot& urdf) {
   const JointFacts joints = urdf.robot ? urdf_joint_facts(urdf) : yaml_joint_facts();
-  s.actuators = read_actuators(r, joints);
-  if (s.actuators.present)
+  s.robot.drive = read_actuators(r, joints);
+  if (s.robot.drive.present)
     r.record("allocation.objective", YAML::Node(objective_word(s.allocation.objective)));
   check_copper_loss(r, s);
 }

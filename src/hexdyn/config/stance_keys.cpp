@@ -46,18 +46,11 @@ void read_nominal_pose(scene_keys::Reader& r, LoadedUrdfRobot& loaded) {
                          false};
   const LegKeyValues pose = read_leg_vectors(r, key, shape);
   if (!pose.given) return;
-  constexpr int kStanceJoints = 3;  // model/stance.hpp: the stance of a leg of three joints
   for (int leg = 0; leg < model.legs(); ++leg) {
     if (!pose.by_leg[leg]) continue;
     const LegVector& q = *pose.by_leg[leg];
     check_limits(r, q, loaded.robot->legs[leg], shape.names[leg]);
-    if (q.size() != kStanceJoints)
-      r.fail("robot.nominal_pose",
-             "got " + angles_text(q) + " for " + shape.names[leg] + ", a leg of " +
-                 std::to_string(q.size()) +
-                 " joints, expected poses of legs of three joints only: the stance of a longer "
-                 "leg is its default pose");
-    loaded.stance[leg] = stance_at_pose(model, leg, Vec3(q[0], q[1], q[2]), "robot.nominal_pose");
+    loaded.stance[leg] = stance_at_pose(model, leg, q, "robot.nominal_pose");
   }
   const StanceMean mean = stance_mean(loaded.stance);
   loaded.stance_radius_m = mean.radius_m;

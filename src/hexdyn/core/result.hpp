@@ -129,7 +129,7 @@ struct DynamicsResult {
   /// T, the largest measured violation of each sample [N or N m] (not written: it picks
   /// the message of an episode's worst sample for the log).
   std::vector<double> solver_max_violation;
-  /// With actuators (Scene::actuators), else empty: the drive torques τ_drive = τ + J_a q̈ +
+  /// With actuators (RobotModel::drive), else empty: the drive torques τ_drive = τ + J_a q̈ +
   /// τ_c sgn(q̇) + b q̇ (T×joints) [N m] and their bound at each sample (T×joints) [N m]
   /// (docs/theory/drive-train.md).
   RowMatrix drive_torque;

@@ -49,13 +49,42 @@ struct BodyParams {
 /// One leg's standing pose of a URDF robot and how it was obtained (model/stance.hpp): the
 /// legs' radii give gait.foot_lateral's default.
 struct NominalStance {
-  Vec3 q = Vec3::Zero();  ///< joint angles [rad], the description's signs and zero poses
+  /// The leg's joint positions, one per joint hip to foot [rad; m for a prismatic joint], the
+  /// description's signs and zero poses.
+  LegVector q = LegVector::Zero(3);
   double radius_m = 0.0;  ///< horizontal distance of the foot from the coxa joint [m]
   double depth_m = 0.0;   ///< height of the coxa joint above the foot, along the trunk normal [m]
   bool from_pose = true;  ///< false: the default pose was out of reach, mid-range used
   /// "nominal pose" (the default pose), "robot.nominal_pose" (given) or "fallback: mid-range
   /// joint angles (WHY)", WHY saying why the default pose was out of reach.
   std::string source;
+};
+
+/// One joint's drive train, resolved (config/actuators.hpp; docs/theory/drive-train.md): a
+/// geared DC motor. Joint side unless said; an optional value absent is +inf (a bound or a
+/// window that never applies).
+struct ActuatorParams {
+  std::string model;                        ///< the shipped table's name it started from, or ""
+  double gear_ratio = 1.0;                  ///< G [–], motor turns per joint turn
+  double torque_constant_NmpA = 0.0;        ///< k_t, motor side [N m/A]
+  double resistance_ohm = 0.0;              ///< R, winding [Ω]
+  double armature_kgm2 = 0.0;               ///< J_a = G² J_m, joint side [kg m²]
+  double coulomb_friction_Nm = 0.0;         ///< τ_c [N m]
+  double viscous_friction_Nmsprad = 0.0;    ///< b [N m s/rad]
+  double gear_efficiency = 1.0;             ///< η ∈ (0, 1]
+  double voltage_V = kInfinity;             ///< V, supply [V]; inf: no voltage bound
+  double peak_torque_Nm = kInfinity;        ///< |τ_drive| bound [N m]; inf: none
+  double continuous_torque_Nm = kInfinity;  ///< the thermal rating, RMS [N m]; inf: none
+  double regeneration = 0.0;                ///< r ∈ [0, 1], share of negative power recovered
+  double thermal_window_s = kInfinity;      ///< RMS window [s]; inf: the whole run
+};
+
+/// The drive trains of the robot's joints (scene key `actuators`), flat joint order: part of
+/// the robot (RobotParams::drive, RobotModel::drive). Absent (present = false): the paper's
+/// idealised joints, τ_drive = τ, no electrical results.
+struct DriveTrainParams {
+  bool present = false;
+  JointValues<ActuatorParams> joints;
 };
 
 /// Leg inertia model: the full coupled dynamics of the leg links, or massless legs whose
@@ -109,6 +138,9 @@ struct RobotParams {
   std::shared_ptr<const UrdfRobot> urdf;
   /// A URDF robot's standing pose of each leg, L1 … Ln (unused for the YAML robot).
   std::vector<NominalStance> stance;
+  /// The joints' drive trains (scene key `actuators`, config/actuators.hpp); the model
+  /// carries them (RobotModel::drive).
+  DriveTrainParams drive;
 };
 
 enum class TerrainType { kFlat, kSlope, kStairs };
@@ -249,32 +281,6 @@ struct AllocationParams {
   double slack_penalty = 1e6;
 };
 
-/// One joint's drive train, resolved (config/actuators.hpp; docs/theory/drive-train.md): a
-/// geared DC motor. Joint side unless said; an optional value absent is +inf (a bound or a
-/// window that never applies).
-struct ActuatorParams {
-  std::string model;                        ///< the shipped table's name it started from, or ""
-  double gear_ratio = 1.0;                  ///< G [–], motor turns per joint turn
-  double torque_constant_NmpA = 0.0;        ///< k_t, motor side [N m/A]
-  double resistance_ohm = 0.0;              ///< R, winding [Ω]
-  double armature_kgm2 = 0.0;               ///< J_a = G² J_m, joint side [kg m²]
-  double coulomb_friction_Nm = 0.0;         ///< τ_c [N m]
-  double viscous_friction_Nmsprad = 0.0;    ///< b [N m s/rad]
-  double gear_efficiency = 1.0;             ///< η ∈ (0, 1]
-  double voltage_V = kInfinity;             ///< V, supply [V]; inf: no voltage bound
-  double peak_torque_Nm = kInfinity;        ///< |τ_drive| bound [N m]; inf: none
-  double continuous_torque_Nm = kInfinity;  ///< the thermal rating, RMS [N m]; inf: none
-  double regeneration = 0.0;                ///< r ∈ [0, 1], share of negative power recovered
-  double thermal_window_s = kInfinity;      ///< RMS window [s]; inf: the whole run
-};
-
-/// The drive trains of the robot's joints (scene key `actuators`), flat joint order. Absent
-/// (present = false): the paper's idealised joints, τ_drive = τ, no electrical results.
-struct DriveTrainParams {
-  bool present = false;
-  JointValues<ActuatorParams> joints;
-};
-
 enum class OutputGrid { kUniform, kAdaptive };
 
 /// output.tolerance's default: the tightest tolerance whose refinement keeps the 1,000-scenario
@@ -315,7 +321,6 @@ struct Scene {
   ContactParams contact;
   ReplayParams replay;
   AllocationParams allocation;
-  DriveTrainParams actuators;  ///< actuators: (absent: the paper's ideal joints)
   OutputParams output;
   std::string resolved_yaml;  ///< the fully resolved configuration, as YAML
   std::string source_path;    ///< the file it was read from

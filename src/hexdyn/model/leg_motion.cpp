@@ -157,6 +157,11 @@ void prepare_serial_chains(RobotModel& m) {
   }
 }
 
+void set_leg_nominal_pose(RobotModel& m, int leg, const LegVector& q) {
+  m.leg_resolution[leg].q_nominal = q;
+  m.leg_ik[leg].q_start = q.head<3>();
+}
+
 Vec3 leg_foot_position(const RobotModel& m, int leg, const LegVector& q) {
   if (m.leg_on_chain[leg]) return chain_foot_position(m.leg_chain_table[leg], q);
   return leg_foot_position_H(m, leg, Vec3(q.head<3>()));

@@ -118,12 +118,26 @@ void check_yaml_robot_counts(const RobotParams& params) {
 }  // namespace
 
 RobotModel build_robot_model(const RobotParams& params) {
-  if (params.urdf) return build_robot_model(*params.urdf, params.ik_min_margin_m);
-  check_yaml_robot_counts(params);
-  // The one builder on the YAML robot's description, then its closed forms as a shortcut
-  // (model/paper_robot.hpp).
-  RobotModel m = build_robot_model(paper_description(params), params.ik_min_margin_m);
-  use_paper_closed_forms(m, params);
+  RobotModel m;
+  if (params.urdf) {
+    m = build_robot_model(*params.urdf, params.ik_min_margin_m);
+    // A leg on its chain resolves toward its stance: the default one is the resolution's own
+    // nominal pose, robot.nominal_pose replaces it (model/stance.hpp).
+    if (static_cast<int>(params.stance.size()) == m.legs())
+      for (int l = 0; l < m.legs(); ++l)
+        if (m.leg_on_chain[l]) set_leg_nominal_pose(m, l, params.stance[l].q);
+  } else {
+    check_yaml_robot_counts(params);
+    // The one builder on the YAML robot's description, then its closed forms as a shortcut
+    // (model/paper_robot.hpp).
+    m = build_robot_model(paper_description(params), params.ik_min_margin_m);
+    use_paper_closed_forms(m, params);
+  }
+  if (params.drive.present && params.drive.joints.size() != m.joints())
+    throw std::logic_error("robot model: drive trains for " +
+                           std::to_string(params.drive.joints.size()) + " joints, the robot has " +
+                           std::to_string(m.joints()));
+  m.drive = params.drive;
   return m;
 }
 

@@ -152,6 +152,10 @@ struct RobotModel {
   JointArray<double> effort_limit_Nm{};
   /// Velocity limit per joint from the description [rad/s]; +inf when it gives none.
   JointArray<double> velocity_limit_radps{};
+  /// The drive train of each joint, flat index (RobotParams::drive, scene key `actuators`):
+  /// gear, motor, friction and bounds (docs/theory/drive-train.md). Absent (drive.present
+  /// false): ideal joints, τ_drive = τ.
+  DriveTrainParams drive;
   double ik_min_margin_m = 1e-4;
   double total_mass_kg = 0.0;
   // --- leg geometry (file comment) ---
@@ -264,6 +268,11 @@ LegIkResult leg_inverse_kinematics(const RobotModel& model, int leg, const Vec3&
 /// by prepare_leg_chains); for a leg on its chain, leg_ik's outward direction from the chain's
 /// foot at zero joint positions.
 void prepare_serial_chains(RobotModel& model);
+
+/// Makes q (one position per joint of leg `leg`, inside its limits) the pose a leg on its chain
+/// resolves toward (leg_resolution[leg].q_nominal, and the numeric IK's start); the weights
+/// stay. Precondition: leg_on_chain[leg] and q.size() == leg(leg).n_joints.
+void set_leg_nominal_pose(RobotModel& model, int leg, const LegVector& q);
 
 /// Foot position of leg `leg` in its hip frame for its joint positions q (n_joints entries) [m].
 Vec3 leg_foot_position(const RobotModel& model, int leg, const LegVector& q);

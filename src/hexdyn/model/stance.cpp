@@ -19,11 +19,12 @@ void set_radius_and_depth(const RobotModel& model, int leg, const Vec3& p_H, Nom
 
 }  // namespace
 
-NominalStance stance_at_pose(const RobotModel& model, int leg, const Vec3& q, std::string source) {
+NominalStance stance_at_pose(const RobotModel& model, int leg, const LegVector& q,
+                             std::string source) {
   NominalStance s;
   s.q = q;
   s.source = std::move(source);
-  set_radius_and_depth(model, leg, leg_foot_position_H(model, leg, q), s);
+  set_radius_and_depth(model, leg, leg_foot_position(model, leg, q), s);
   return s;
 }
 
@@ -48,13 +49,8 @@ NominalStance hanging_stance(const RobotModel& model, int leg) {
 NominalStance default_nominal_stance(const RobotModel& model, int leg) {
   if (model.leg_on_chain[leg]) {
     // A leg solved on its chain stands at the redundant resolution's nominal pose.
-    const LegVector& q = model.leg_resolution[leg].q_nominal;
-    NominalStance s;
-    s.q = q.head<3>();
-    s.source = "nominal pose (middle of the joint limits; " + std::to_string(q.size()) +
-               " joints, the first three shown)";
-    set_radius_and_depth(model, leg, leg_foot_position(model, leg, q), s);
-    return s;
+    return stance_at_pose(model, leg, model.leg_resolution[leg].q_nominal,
+                          "nominal pose (middle of the joint limits)");
   }
   const LegIkData& d = model.leg_ik[leg];
   if (rolling_hip(d)) return hanging_stance(model, leg);
@@ -116,8 +112,9 @@ std::string stance_text(std::span<const NominalStance> stance) {
   std::ostringstream s;
   for (int leg = 0; leg < static_cast<int>(stance.size()); ++leg) {
     const NominalStance& l = stance[leg];
-    s << leg_name(leg) << ": " << l.source << ", q [" << l.q.x() << ", " << l.q.y() << ", "
-      << l.q.z() << "] rad, radius " << l.radius_m << " m, depth " << l.depth_m << " m\n";
+    s << leg_name(leg) << ": " << l.source << ", q [";
+    for (int j = 0; j < l.q.size(); ++j) s << (j ? ", " : "") << l.q[j];
+    s << "] rad, radius " << l.radius_m << " m, depth " << l.depth_m << " m\n";
   }
   const StanceMean m = stance_mean(stance);
   s << "stance radius " << m.radius_m << " m: " << mean_words(m, stance)

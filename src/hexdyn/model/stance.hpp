@@ -32,11 +32,14 @@
 namespace hexdyn {
 
 /// Stance of leg `leg` at joint angles q (FK in the hip frame), obtained as `source` says.
-NominalStance stance_at_pose(const RobotModel& model, int leg, const Vec3& q, std::string source);
+/// q: one position per joint of the leg.
+NominalStance stance_at_pose(const RobotModel& model, int leg, const LegVector& q,
+                             std::string source);
 
 /// Stance of leg `leg` at the default nominal pose, or its fallback (file comment). A leg solved
-/// on its chain (RobotModel::leg_on_chain) stands at its resolution's nominal pose (q: its first
-/// three joints).
+/// on its chain (RobotModel::leg_on_chain) stands at its resolution's nominal pose, the middle
+/// of its joint limits; a pose given by robot.nominal_pose replaces it, and the leg's
+/// redundancy then resolves toward that pose (set_leg_nominal_pose).
 NominalStance default_nominal_stance(const RobotModel& model, int leg);
 
 /// The stance radius and depth: the means over the legs whose stance is a pose, or over all

@@ -191,7 +191,7 @@ GridAccuracy refine_output_grid(const Scene& scene, const PreparedScene& prep,
     std::optional<StageTimer> clock(std::in_place, times, Stage::kRefinement);
     GridAssessment a;
     {
-      const ControlledSeries series(b, scene.actuators, energy_rule(scene.output.grid),
+      const ControlledSeries series(b, prep.model.drive, energy_rule(scene.output.grid),
                                     prep.model.joints(), prep.model.legs());
       a = assess_grid(series.t_s, series.jump, series.terms, series.integrals, series.peaks,
                       assess_tol, kMinRefinedStep_s, &reuse);

@@ -69,7 +69,7 @@ class SampleSolver {
         legs_(allocation_legs(model)),
         data_(model),
         backend_(make_allocation_backend(scene.allocation)) {
-    if (scene.actuators.present) rows_.weight = objective_weights(scene);
+    if (model.drive.present) rows_.weight = objective_weights(scene, model);
     // The required friction's probes are polygon problems (its cones become outer polygons),
     // so the active-set back end solves them whatever the scene's back end: Ipopt would
     // cost milliseconds per probe for the same feasibility verdict.
@@ -95,7 +95,7 @@ class SampleSolver {
     for (int l = 0; l < model_.legs(); ++l) normals[l] = c.W_R_contact[l].col(2);
     const ContactSplit& split = contact_split(model_, data_, base, q, qd, qdd, &normals);
     clock.emplace(times, Stage::kAllocation);
-    const bool drive = scene_.actuators.present;
+    const bool drive = model_.drive.present;
     if (drive) drive_rows(qd, qdd);
     AllocationLayout& layout = layout_;
     layout =
@@ -128,7 +128,7 @@ class SampleSolver {
   /// The drive train's rows of a sample at joint rates qd and accelerations qdd: offsets,
   /// bounds (a joint without a peak or voltage bound keeps the allocation's limit) and weights.
   void drive_rows(const JointVector& qd, const JointVector& qdd) {
-    const DriveTrainParams& drive = scene_.actuators;
+    const DriveTrainParams& drive = model_.drive;
     const AllocationParams& alloc = scene_.allocation;
     rows_.offset_Nm = drive_torque_offset(drive, qd, qdd);
     for (int k = 0; k < model_.joints(); ++k) {
@@ -187,13 +187,13 @@ class SampleSolver {
   /// The objective's weights of τ_drive²: 1 for torque_squared; for copper_loss each joint's
   /// R / (G k_t η)² over the largest, the same minimiser as the loss itself, while the slack
   /// penalties keep the scale they have against Σ τ² (docs/theory/drive-train.md#objective).
-  static JointVector objective_weights(const Scene& scene) {
-    const int joints = scene.actuators.joints.size();
+  static JointVector objective_weights(const Scene& scene, const RobotModel& model) {
+    const int joints = model.drive.joints.size();
     JointVector w = JointVector::Ones(joints);
     if (scene.allocation.objective != AllocationObjective::kCopperLoss) return w;
     double largest = 0.0;
     for (int k = 0; k < joints; ++k) {
-      w[k] = copper_loss_weight(scene.actuators.joints[k]);
+      w[k] = copper_loss_weight(model.drive.joints[k]);
       largest = std::max(largest, w[k]);
     }
     return w / largest;
@@ -296,7 +296,7 @@ DynamicsResult DynamicsSolver::solve(const KinematicsResult& kin, const ContactS
                       std::to_string(contacts.samples.size()) + " samples, expected " +
                       std::to_string(T));
   DynamicsResult dyn =
-      empty_result(model_, T, scene_.actuators.present, scene_.output.required_friction);
+      empty_result(model_, T, model_.drive.present, scene_.output.required_friction);
   const int L = model_.legs();
   for (int i = 0; i < T; ++i) {
     check_cancelled();
@@ -415,7 +415,7 @@ void finish_dynamics(const Scene& scene, const RobotModel& model, const MotionPl
   dyn.distance_m = power.distance_m;
   dyn.cost_of_transport = power.cost_of_transport;
   if (dyn.has_drive())
-    dyn.electrical = compute_electrical(scene.actuators, kin.time_s, kin.joint_velocity,
+    dyn.electrical = compute_electrical(model.drive, kin.time_s, kin.joint_velocity,
                                         dyn.drive_torque, model.total_mass_kg, dyn.distance_m);
 }
 

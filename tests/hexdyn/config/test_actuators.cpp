@@ -109,12 +109,12 @@ ActuatorParams from_table(const ServoSpec& s) {
 /// The resolved YAML reads back to the same drive train and objective.
 void check_round_trip(const Scene& a) {
   const Scene b = load_scene_from_string(a.resolved_yaml, "resolved.yaml");
-  CHECK(b.actuators.present == a.actuators.present);
+  CHECK(b.robot.drive.present == a.robot.drive.present);
   CHECK(b.allocation.objective == a.allocation.objective);
-  REQUIRE(b.actuators.joints.size() == a.actuators.joints.size());
-  for (int k = 0; k < a.actuators.joints.size(); ++k) {
+  REQUIRE(b.robot.drive.joints.size() == a.robot.drive.joints.size());
+  for (int k = 0; k < a.robot.drive.joints.size(); ++k) {
     INFO("joint " << k);
-    check_same(a.actuators.joints[k], b.actuators.joints[k]);
+    check_same(a.robot.drive.joints[k], b.robot.drive.joints[k]);
   }
 }
 
@@ -154,7 +154,7 @@ TEST_CASE("actuators: joints over type over default over the model, field by fie
       "    L2_femur: {resistance: 7, regeneration: 0.25}\n"
       "    L3_tibia: {model: dynamixel_mx64, peak_torque: 5}\n";
   const Scene s = paper_with(section);
-  REQUIRE(s.actuators.present);
+  REQUIRE(s.robot.drive.present);
   const ServoSpec &mx = servo("dynamixel_mx64"), &xm = servo("dynamixel_xm430_w350");
   // Every joint starts from the default entry: the MX-64 with its voltage and regeneration.
   ActuatorParams base = from_table(mx);
@@ -179,9 +179,13 @@ TEST_CASE("actuators: joints over type over default over the model, field by fie
   l3_tibia.regeneration = 0.5;
   l3_tibia.thermal_window_s = 2.0;
   REQUIRE(mx.voltage_V == 12.0);
+  // The drive train is part of the robot: the model built from the scene carries it.
+  const RobotModel model = build_robot_model(s.robot);
+  REQUIRE(model.drive.present);
+  REQUIRE(model.drive.joints.size() == model.joints());
   for (const JointAt& j : joints_of(s)) {
     INFO(j.name);
-    const ActuatorParams& got = s.actuators.joints[j.k];
+    const ActuatorParams& got = model.drive.joints[j.k];
     if (j.name == "L2_femur")
       check_same(got, l2_femur);
     else if (j.name == "L3_tibia")
@@ -199,7 +203,7 @@ TEST_CASE("actuators: what no entry gives takes the built-in defaults", "[config
   expected.gear_ratio = 100.0;
   expected.torque_constant_NmpA = 0.01;
   expected.resistance_ohm = 2.0;
-  for (const JointAt& j : joints_of(s)) check_same(s.actuators.joints[j.k], expected);
+  for (const JointAt& j : joints_of(s)) check_same(s.robot.drive.joints[j.k], expected);
   CHECK(expected.gear_efficiency == 1.0);
   CHECK(expected.voltage_V == kInf);
   CHECK(s.allocation.objective == AllocationObjective::kTorqueSquared);
@@ -231,14 +235,14 @@ TEST_CASE("actuators: rotor_inertia is the armature G² J_m with the joint's fin
     if (at.name == "L2_coxa") expected = 50.0 * 50.0 * 1e-7;     // gear ratio of the joint entry
     if (at.name == "L4_femur") expected = 0.05;                  // joint side, whatever G
     INFO(at.name);
-    CHECK(s.actuators.joints[at.k].armature_kgm2 == Approx(expected).epsilon(1e-15));
+    CHECK(s.robot.drive.joints[at.k].armature_kgm2 == Approx(expected).epsilon(1e-15));
   }
   // The resolved YAML states the joint side: armature, no rotor_inertia, for every joint.
   const YAML::Node joints = YAML::Load(s.resolved_yaml)["actuators"]["joints"];
   for (const JointAt& at : joints_of(s)) {
     const YAML::Node j = joints[at.name];
     REQUIRE(j.IsMap());
-    CHECK(j["armature"].as<double>() == s.actuators.joints[at.k].armature_kgm2);
+    CHECK(j["armature"].as<double>() == s.robot.drive.joints[at.k].armature_kgm2);
     CHECK_FALSE(j["rotor_inertia"].IsDefined());
   }
   check_round_trip(s);
@@ -313,7 +317,7 @@ TEST_CASE("actuators: the resolved YAML holds every joint, and nothing without t
   for (const JointAt& at : all) {
     const YAML::Node j = r["actuators"]["joints"][at.name];
     REQUIRE(j.IsMap());
-    const ActuatorParams& a = s.actuators.joints[at.k];
+    const ActuatorParams& a = s.robot.drive.joints[at.k];
     CHECK(j["model"].as<std::string>() == "dynamixel_mx106");
     CHECK(j["gear_ratio"].as<double>() == a.gear_ratio);
     CHECK(j["torque_constant"].as<double>() == a.torque_constant_NmpA);
@@ -327,7 +331,7 @@ TEST_CASE("actuators: the resolved YAML holds every joint, and nothing without t
   check_round_trip(s);
   // The paper scene as it is: neither key.
   const Scene plain = load_scene_from_string(paper_text(), kName);
-  CHECK_FALSE(plain.actuators.present);
+  CHECK_FALSE(plain.robot.drive.present);
   const YAML::Node p = YAML::Load(plain.resolved_yaml);
   CHECK_FALSE(p["actuators"].IsDefined());
   CHECK_FALSE(p["allocation"]["objective"].IsDefined());
@@ -394,8 +398,8 @@ TEST_CASE("actuators: a URDF's <dynamics> give the friction below every entry",
   const int joints = static_cast<int>(all.size());
   for (int k = 0; k < joints; ++k) {
     INFO("joint " << k);
-    CHECK(a.actuators.joints[k].coulomb_friction_Nm == (k == damped ? 0.3 : 0.5));
-    CHECK(a.actuators.joints[k].viscous_friction_Nmsprad == (k == damped ? 0.07 : 0.0));
+    CHECK(a.robot.drive.joints[k].coulomb_friction_Nm == (k == damped ? 0.3 : 0.5));
+    CHECK(a.robot.drive.joints[k].viscous_friction_Nmsprad == (k == damped ? 0.07 : 0.0));
   }
   check_round_trip(a);
   // The type's Coulomb friction over the URDF's, its damping kept (field by field); the
@@ -407,8 +411,8 @@ TEST_CASE("actuators: a URDF's <dynamics> give the friction below every entry",
     const int k = at.k;
     INFO("joint " << k);
     const bool femur = at.place == 1;
-    CHECK(b.actuators.joints[k].coulomb_friction_Nm == (femur ? 0.1 : 0.5));
-    CHECK(b.actuators.joints[k].viscous_friction_Nmsprad == (k == damped ? 0.3 : 0.0));
+    CHECK(b.robot.drive.joints[k].coulomb_friction_Nm == (femur ? 0.1 : 0.5));
+    CHECK(b.robot.drive.joints[k].viscous_friction_Nmsprad == (k == damped ? 0.3 : 0.0));
   }
   check_round_trip(b);
   // A model in the default entry gives friction too, over the URDF's.
@@ -417,8 +421,8 @@ TEST_CASE("actuators: a URDF's <dynamics> give the friction below every entry",
   REQUIRE(!std::isnan(mx.viscous_friction_Nmsprad));
   const Scene c = mark4_with(urdf, "actuators:\n  default: {model: dynamixel_mx64}\n");
   for (int k = 0; k < joints; ++k) {
-    CHECK(c.actuators.joints[k].coulomb_friction_Nm == mx.coulomb_friction_Nm);
-    CHECK(c.actuators.joints[k].viscous_friction_Nmsprad == mx.viscous_friction_Nmsprad);
+    CHECK(c.robot.drive.joints[k].coulomb_friction_Nm == mx.coulomb_friction_Nm);
+    CHECK(c.robot.drive.joints[k].viscous_friction_Nmsprad == mx.viscous_friction_Nmsprad);
   }
   // A URDF robot's joints are named by the URDF: the paper's names are unknown there.
   try {
@@ -432,7 +436,7 @@ TEST_CASE("actuators: a URDF's <dynamics> give the friction below every entry",
   }
   // Without the section the URDF's friction is not read: no drive train at all.
   const Scene none = mark4_with(urdf, "");
-  CHECK_FALSE(none.actuators.present);
+  CHECK_FALSE(none.robot.drive.present);
   const YAML::Node r = YAML::Load(none.resolved_yaml);
   CHECK_FALSE(r["actuators"].IsDefined());
   CHECK_FALSE(r["allocation"]["objective"].IsDefined());
@@ -492,7 +496,7 @@ TEST_CASE("actuators: entries by place j1 … jm, for legs of any length", "[con
   for (const JointAt& at : all) {
     INFO(at.name);
     const double expected = at.name == "FL_KFE" ? 7.0 : at.place == 1 ? 12.0 : 9.0;
-    CHECK(s.actuators.joints[at.k].gear_ratio == expected);
+    CHECK(s.robot.drive.joints[at.k].gear_ratio == expected);
   }
   // j2 of a leg of three joints is its femur: the two entries are the same joints.
   const Scene femur =
@@ -500,9 +504,10 @@ TEST_CASE("actuators: entries by place j1 … jm, for legs of any length", "[con
                          "{default: {gear_ratio: 9, torque_constant: 0.025, resistance: 0.349}, "
                          "femur: {gear_ratio: 12}, joints: {FL_KFE: {gear_ratio: 7}}}"}});
   for (const JointAt& at : all)
-    CHECK(femur.actuators.joints[at.k].gear_ratio == s.actuators.joints[at.k].gear_ratio);
+    CHECK(femur.robot.drive.joints[at.k].gear_ratio == s.robot.drive.joints[at.k].gear_ratio);
   const Scene again = load_scene_from_string(s.resolved_yaml, "resolved.yaml");
-  for (const JointAt& at : all) check_same(again.actuators.joints[at.k], s.actuators.joints[at.k]);
+  for (const JointAt& at : all)
+    check_same(again.robot.drive.joints[at.k], s.robot.drive.joints[at.k]);
   // Both forms of one place, or a place beyond the robot's legs: one line each.
   const auto error = [&](const std::string& value) {
     try {
