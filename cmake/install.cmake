@@ -35,7 +35,7 @@ install(FILES ${hexdyn_installed_schema_headers} DESTINATION ${HEXDYN_INSTALL_SH
 #                                                 by find_package(hexdyn COMPONENTS mpi))
 #   P/lib/pkgconfig/hexdyn.pc                     the same libraries for pkg-config
 set(HEXDYN_LAYERS core model urdf_reader planning kinematics dynamics contact allocation
-                  allocation_ipopt grip power drive pipeline process config io sweep envelope replay
+                  allocation_ipopt grip power drive balance pipeline process config io sweep envelope replay
                   replay_io)
 set(HEXDYN_INSTALL_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/hexdyn)
 

@@ -247,6 +247,21 @@ void add_motion_timing(std::deque<SceneKey>& t) {
                .range = closed(1, 100000),
                .unit = "1",
                .required = true});
+  add({.path = "motion.trunk",
+       .kind = KeyKind::kChoice,
+       .choices = "straight balanced",
+       .meaning = "`straight`: the trunk moves along the mean slope at a constant height and "
+                  "attitude (the paper); `balanced`: that path plus a horizontal offset that "
+                  "keeps the whole robot's ZMP in the support of the stance feet "
+                  "([docs/theory/balance.md](docs/theory/balance.md))",
+       .field = f::choice<&Scene::motion, &MotionParams::trunk>()});
+  add({.path = "motion.balance_margin",
+       .range = nonnegative(1.0),
+       .unit = "m",
+       .when = "balanced",
+       .meaning = "the balanced trunk's stability margin: the ZMP path's least distance "
+                  "from the edges of the support, where the feet leave room for it",
+       .field = f::number<&Scene::motion, &MotionParams::balance_margin_m>()});
   add({.path = "motion.ramp_duration",
        .range = positive(1e4),
        .unit = "s",

@@ -131,7 +131,7 @@ void add_robot_options(std::deque<SceneKey>& t) {
   add({.path = "robot.leg_inertia",
        .kind = KeyKind::kChoice,
        .choices = "full massless",
-       .meaning = "`full`: the 18 leg links in the dynamics (swing legs load the "
+       .meaning = "`full`: the leg links in the dynamics (swing legs load the "
                   "trunk); `massless`: link masses lumped at the hips",
        .field = f::choice<&Scene::robot, &RobotParams::leg_inertia>()});
   add({.path = "robot.foot_radius",

@@ -176,6 +176,9 @@ int read_travel(Reader& r, GaitParams& g, const TerrainParams& t, double stride_
 
 void read_motion(Reader& r, GaitParams& g, const TerrainParams& t, MotionParams& m) {
   read_posture(r, m);
+  m.trunk =
+      choice_key(r, "motion.trunk") == "balanced" ? TrunkPath::kBalanced : TrunkPath::kStraight;
+  m.balance_margin_m = number_key(r, "motion.balance_margin");
   // Stride: trunk travel per gait cycle along the slope (s0/β horizontally).
   const double stride_along_slope = (g.stroke_m / g.duty_factor) / std::cos(mean_slope_rad(t));
   const bool by_durations = r.has("motion.cycle_durations");

@@ -216,7 +216,15 @@ struct PostureParams {
   double trunk_clearance_m = 0.05;
 };
 
+/// motion.trunk: the straight path of the paper, or a balanced one (balance/balance.hpp): the
+/// straight path plus a horizontal offset that keeps the ZMP in the support.
+enum class TrunkPath { kStraight, kBalanced };
+
 struct MotionParams {
+  TrunkPath trunk = TrunkPath::kStraight;  ///< motion.trunk
+  /// motion.balance_margin: the balanced trunk's stability margin, the ZMP path's least
+  /// distance from the edges of the support where the feet leave room for it [m].
+  double balance_margin_m = 0.01;
   /// Cycle durations [s]; either given (paper) or derived from peak speed and ramp.
   std::vector<double> cycle_durations_s;
   double peak_speed_mps = 0.1;   ///< cruise speed of the trunk along the slope

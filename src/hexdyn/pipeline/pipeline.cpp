@@ -4,6 +4,7 @@
 #include <chrono>
 #include <optional>
 
+#include "hexdyn/balance/balance.hpp"
 #include "hexdyn/dynamics/rnea.hpp"
 #include "hexdyn/kinematics/kinematics.hpp"
 #include "hexdyn/model/urdf.hpp"
@@ -79,6 +80,11 @@ PreparedScene prepare_scene(const Scene& scene, StageTimes* times) {
   clock.emplace(times, Stage::kPlanning);  // plan_motion, with the posture timed on its own
   MotionPlan plan = plan_motion_with(scene, model, posture.p0_W, posture.foot_lateral_m);
   plan.posture = posture;
+  if (scene.motion.trunk == TrunkPath::kBalanced) {
+    BalanceOptions options;
+    options.margin_m = scene.motion.balance_margin_m;
+    balance_trunk(model, plan, options);
+  }
   clock.emplace(times, Stage::kTouchdowns);
   std::vector<Touchdown> touchdowns = physical_touchdowns(scene, model, plan);
   clock.emplace(times, Stage::kGrid);

@@ -69,6 +69,16 @@ std::vector<double> TrunkMotion::cycle_start_times() const {
 }
 
 BaseState TrunkMotion::at(double t) const {
+  BaseState x = straight_at(t);
+  if (!offset_) return x;
+  const OffsetState e = offset_->at(t);
+  x.p_W.head<2>() += e.e;
+  x.v_W.head<2>() += e.ed;
+  x.a_W.head<2>() += e.edd;
+  return x;
+}
+
+BaseState TrunkMotion::straight_at(double t) const {
   BaseState x;
   x.p_W = p0_W_ + travel(t) * direction_W_;
   x.v_W = speed(t) * direction_W_;

@@ -5,12 +5,18 @@
 /// e = (0, cos α0, sin α0) with a C² speed profile: a smootherstep ramp from rest to
 /// the cruise speed, cruise, and the mirrored ramp to rest. One gait cycle is one
 /// stride of travel, s0/β horizontally, so the gait phase τ = travel / stride.
+///
+/// A balanced trunk (motion.trunk: balanced, balance/balance.hpp) adds a horizontal offset
+/// e(t) (planning/trunk_offset.hpp) to P0's path: at() then returns the straight path plus
+/// e, ė, ë; travel, phase and the footholds stay those of the straight path.
+#include <memory>
 #include <vector>
 
 #include "hexdyn/core/base_state.hpp"
 #include "hexdyn/core/common.hpp"
 #include "hexdyn/core/scene.hpp"
 #include "hexdyn/planning/terrain.hpp"
+#include "hexdyn/planning/trunk_offset.hpp"
 
 namespace hexdyn {
 
@@ -18,8 +24,13 @@ class TrunkMotion {
  public:
   TrunkMotion(const MotionParams& motion, const GaitParams& gait, const Terrain& terrain);
 
-  /// Trunk state at t (ω and ω̇ zero: the attitude is constant).
+  /// Trunk state at t (ω and ω̇ zero: the attitude is constant), the offset included.
   BaseState at(double t_s) const;
+  /// The straight path's state at t, without the offset.
+  BaseState straight_at(double t_s) const;
+  /// Adds a horizontal offset to the path (null: none, the straight path).
+  void set_offset(std::shared_ptr<const TrunkOffset> offset) { offset_ = std::move(offset); }
+  const TrunkOffset* offset() const { return offset_.get(); }
   /// Travel along the slope s(t) [m], speed ṡ and acceleration s̈.
   double travel(double t_s) const;
   double speed(double t_s) const;
@@ -50,6 +61,7 @@ class TrunkMotion {
   Mat3 W_R_B_;
   double pitch_rad_ = 0.0, stride_m_ = 0.0, v_cruise_ = 0.0, t_ramp_ = 0.0, duration_s_ = 0.0;
   int cycles_ = 0;
+  std::shared_ptr<const TrunkOffset> offset_;
 };
 
 }  // namespace hexdyn

@@ -1,0 +1,426 @@
+#include "hexdyn/balance/balance.hpp"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <sstream>
+
+#include "hexdyn/balance/support_region.hpp"
+#include "hexdyn/core/errors.hpp"
+#include "hexdyn/dynamics/rnea.hpp"
+#include "hexdyn/kinematics/kinematics.hpp"
+
+namespace hexdyn {
+namespace {
+
+/// Breakpoints closer than this are one [s].
+constexpr double kSameInstant_s = 1e-9;
+/// A piece's last node is taken this much before its end, so that a leg touching down there is
+/// still on its swing path (the piece's own state) [s].
+constexpr double kEndNudge_s = 1e-11;
+/// Feet closer than this, or this near a line through others, do not widen a support [m].
+constexpr double kHullTolerance_m = 1e-9;
+
+using Vec4 = Eigen::Vector4d;
+using Mat4 = Eigen::Matrix4d;
+
+/// Whether `leg` stands at t (a swing holds [t_liftoff, t_touchdown)).
+bool in_stance(const LegPlan& leg, double t) {
+  for (const Swing& sw : leg.swings)
+    if (t >= sw.t_liftoff_s && t < sw.t_touchdown_s) return false;
+  return true;
+}
+
+/// Every instant where the ZMP's parts change smoothness (balance.hpp), sorted, on [0, T], with
+/// pieces longer than max_piece split evenly.
+std::vector<double> breakpoints(const MotionPlan& plan, double T, double max_piece) {
+  std::vector<double> t = {0.0, T};
+  const TrunkMotion& trunk = plan.trunk;
+  for (double r : {trunk.ramp_duration_s(), T - trunk.ramp_duration_s()})
+    if (r > 0.0 && r < T) t.push_back(r);
+  for (const LegPlan& leg : plan.gait.legs)
+    for (const Swing& sw : leg.swings) {
+      const double D = sw.t_touchdown_s - sw.t_liftoff_s;
+      for (double b : {sw.t_liftoff_s, sw.t_touchdown_s, sw.t_liftoff_s + sw.lift_end_u * D,
+                       sw.t_liftoff_s + sw.lower_start_u * D})
+        if (b > 0.0 && b < T) t.push_back(b);
+    }
+  std::sort(t.begin(), t.end());
+  std::vector<double> merged;
+  for (double b : t)
+    if (merged.empty() || b - merged.back() > kSameInstant_s) merged.push_back(b);
+  merged.back() = T;
+  std::vector<double> out;
+  for (std::size_t k = 0; k + 1 < merged.size(); ++k) {
+    const int parts =
+        std::max(1, static_cast<int>(std::ceil((merged[k + 1] - merged[k]) / max_piece)));
+    for (int j = 0; j < parts; ++j)
+      out.push_back(merged[k] + (merged[k + 1] - merged[k]) * j / parts);
+  }
+  out.push_back(T);
+  return out;
+}
+
+/// The whole robot's ZMP for the plan as it stands, on the plane that keeps the trunk's
+/// initial height above the feet (balance.hpp).
+class ZmpProbe {
+ public:
+  ZmpProbe(const RobotModel& model, const MotionPlan& plan)
+      : model_(model), plan_(plan), data_(model), state_(model) {
+    double feet_z = 0.0;
+    for (const LegPlan& leg : plan.gait.legs) feet_z += leg.p_initial_W.z();
+    feet_z /= static_cast<double>(plan.gait.legs.size());
+    height_m_ = plan.trunk.straight_at(0.0).p_W.z() - feet_z;
+  }
+  double height_m() const { return height_m_; }
+
+  Vec2 at(double t) {
+    robot_state_at(model_, plan_, t, state_);
+    const DofVector& tau = rnea(model_, data_, state_.trunk, state_.q, state_.qd, state_.qdd);
+    const Vec3 F = tau.head<3>();
+    const Vec3 M = tau.segment<3>(3) + state_.trunk.p_W.cross(F);  // about the world origin
+    const double z = plan_.trunk.straight_at(t).p_W.z() - height_m_;
+    return Vec2((z * F.x() - M.y()) / F.z(), (M.x() + z * F.y()) / F.z());
+  }
+
+ private:
+  const RobotModel& model_;
+  const MotionPlan& plan_;
+  RobotData data_;
+  RobotKinematicState state_;
+  double height_m_ = 0.0;
+};
+
+/// The pieces' geometry: breakpoints, each piece's support and each waypoint's region.
+struct Layout {
+  std::vector<double> t;                     ///< breakpoints t_0 … t_K
+  std::vector<SupportRegion> piece_support;  ///< hull of the stance feet, per piece
+  std::vector<SupportRegion> waypoint;       ///< shrunk hull of the feet shared, per breakpoint
+  std::vector<double> node_x;                ///< Chebyshev–Lobatto nodes on [0, 1], decreasing
+  int pieces() const { return static_cast<int>(t.size()) - 1; }
+};
+
+std::string legs_text(const RobotModel& model, const std::vector<int>& legs) {
+  std::string s;
+  for (int l : legs) s += (s.empty() ? "" : ", ") + model.leg(l).name;
+  return s.empty() ? "none" : s;
+}
+
+Layout make_layout(const RobotModel& model, const MotionPlan& plan, const BalanceOptions& o) {
+  Layout L;
+  const double T = plan.trunk.duration_s();
+  L.t = breakpoints(plan, T, o.max_piece_s);
+  const int K = L.pieces();
+  std::vector<std::vector<int>> stance(K);
+  for (int k = 0; k < K; ++k) {
+    const double mid = 0.5 * (L.t[k] + L.t[k + 1]);
+    std::vector<Vec2> feet;
+    for (int l = 0; l < model.legs(); ++l) {
+      if (!in_stance(plan.gait.legs[l], mid)) continue;
+      stance[k].push_back(l);
+      feet.push_back(leg_foot_motion(plan.gait.legs[l], mid).p_W.head<2>());
+    }
+    L.piece_support.push_back(convex_hull(feet, kHullTolerance_m));
+  }
+  L.waypoint.resize(K + 1);
+  for (int k = 1; k < K; ++k) {
+    std::vector<Vec2> shared;
+    std::vector<int> legs;
+    for (int l : stance[k])
+      if (std::find(stance[k - 1].begin(), stance[k - 1].end(), l) != stance[k - 1].end()) {
+        legs.push_back(l);
+        shared.push_back(leg_foot_motion(plan.gait.legs[l], L.t[k]).p_W.head<2>());
+      }
+    if (shared.empty()) {
+      std::ostringstream m;
+      m << "balanced trunk: at t = " << L.t[k] << " s the support changes from legs "
+        << legs_text(model, stance[k - 1]) << " to legs " << legs_text(model, stance[k])
+        << " with no foot in common, so the ZMP would have to jump; raise gait.duty_factor";
+      throw PlanningError(m.str());
+    }
+    L.waypoint[k] = shrink_to_fit(convex_hull(shared, kHullTolerance_m), o.margin_m, nullptr);
+  }
+  const int N = o.nodes - 1;
+  for (int j = 0; j <= N; ++j) L.node_x.push_back(0.5 * (1.0 + std::cos(M_PI * j / N)));
+  return L;
+}
+
+/// Chebyshev coefficients of the values f_j at y_j = cos(π j / N), j = 0 … N.
+std::vector<Vec2> chebyshev_fit(const std::vector<Vec2>& f) {
+  const int N = static_cast<int>(f.size()) - 1;
+  std::vector<Vec2> c(N + 1, Vec2::Zero());
+  for (int m = 0; m <= N; ++m) {
+    for (int j = 0; j <= N; ++j) {
+      const double half = (j == 0 || j == N) ? 0.5 : 1.0;
+      c[m] += half * f[j] * std::cos(M_PI * m * j / N);
+    }
+    c[m] *= 2.0 / N;
+  }
+  c[0] *= 0.5;
+  c[N] *= 0.5;
+  return c;
+}
+
+/// The two boundary functionals of a piece's waypoint hat functions and of its s: for a weight
+/// exp(−ω t) (start) and exp(−ω (T − t)) (end), each scaled by ω (trunk_offset.hpp).
+struct Functionals {
+  std::vector<Vec2> a;  ///< per breakpoint: (start, end) weight of its waypoint
+  Vec2 s_start = Vec2::Zero(), s_end = Vec2::Zero();
+};
+
+Functionals functionals(const Layout& L, const std::vector<std::vector<Vec2>>& cheb, double w) {
+  const int K = L.pieces();
+  const double T = L.t[K];
+  Functionals F;
+  F.a.assign(K + 1, Vec2::Zero());
+  for (int k = 0; k < K; ++k) {
+    const double t0 = L.t[k], t1 = L.t[k + 1];
+    const double to_start = std::exp(-w * t0), to_end = std::exp(-w * (T - t1));
+    OffsetPiece p{t0, t1, Vec2(1.0, 0.0), Vec2(0.0, 1.0), {}};  // x: left hat, y: right hat
+    const Vec2 lo = decaying_integral(p, w, t0, t1, Decay::kFromLower) * to_start;
+    const Vec2 hi = decaying_integral(p, w, t0, t1, Decay::kFromUpper) * to_end;
+    F.a[k] += Vec2(lo.x(), hi.x());
+    F.a[k + 1] += Vec2(lo.y(), hi.y());
+    OffsetPiece r{t0, t1, Vec2::Zero(), Vec2::Zero(), cheb[k]};  // forcing −s
+    F.s_start -= decaying_integral(r, w, t0, t1, Decay::kFromLower) * to_start;
+    F.s_end -= decaying_integral(r, w, t0, t1, Decay::kFromUpper) * to_end;
+  }
+  return F;
+}
+
+/// The waypoints nearest the targets g (weights c) inside their regions whose functionals
+/// equal F's s parts: w_k = Π_k(g_k + (a_k · λ) / (2 c_k)) with the four multipliers λ found by a
+/// damped semi-smooth Newton method on the residual.
+std::vector<Vec2> solve_waypoints(const std::vector<SupportRegion>& region,
+                                  const std::vector<Vec2>& g, const std::vector<double>& c,
+                                  const Functionals& F, double* residual) {
+  const int n = static_cast<int>(g.size());
+  std::vector<Vec2> w(n);
+  std::vector<Mat2> D(n);
+  const auto evaluate = [&](const Vec4& lam) {
+    Vec4 r = Vec4::Zero();
+    for (int k = 0; k < n; ++k) {
+      const Vec2 shift = (F.a[k].x() * lam.head<2>() + F.a[k].y() * lam.tail<2>()) / (2.0 * c[k]);
+      const Projection p = project(region[k], g[k] + shift);
+      w[k] = p.point;
+      D[k] = p.derivative;
+      r.head<2>() += F.a[k].x() * w[k];
+      r.tail<2>() += F.a[k].y() * w[k];
+    }
+    r.head<2>() -= F.s_start;
+    r.tail<2>() -= F.s_end;
+    return r;
+  };
+  Vec4 lam = Vec4::Zero();
+  Vec4 r = evaluate(lam);
+  const double scale = 1.0 + F.s_start.norm() + F.s_end.norm();
+  for (int it = 0; it < 100 && r.norm() > 1e-15 * scale; ++it) {
+    Mat4 J = Mat4::Zero();
+    for (int k = 0; k < n; ++k) {
+      const Vec2& a = F.a[k];
+      const Mat2 Dk = D[k] / (2.0 * c[k]);
+      J.block<2, 2>(0, 0) += a.x() * a.x() * Dk;
+      J.block<2, 2>(0, 2) += a.x() * a.y() * Dk;
+      J.block<2, 2>(2, 0) += a.y() * a.x() * Dk;
+      J.block<2, 2>(2, 2) += a.y() * a.y() * Dk;
+    }
+    J += (1e-14 * (J.trace() + 1e-300)) * Mat4::Identity();
+    const Vec4 step = -J.completeOrthogonalDecomposition().solve(r);
+    double t = 1.0, before = r.norm();
+    Vec4 trial;
+    for (int ls = 0; ls < 40; ++ls, t *= 0.5) {
+      trial = evaluate(lam + t * step);
+      if (trial.norm() < before * (1.0 - 1e-4 * t)) break;
+    }
+    if (!(trial.norm() < before)) break;
+    lam += t * step;
+    r = trial;
+  }
+  r = evaluate(lam);
+  *residual = r.norm() / scale;
+  return w;
+}
+
+/// Every swing kept out of the first and the last `settle_s` of the run, where the robot stands
+/// on all its feet while the trunk shifts its weight (balance.hpp): a swing that starts earlier
+/// lifts off later, one that ends later touches down earlier, each keeping its footholds, its
+/// lift and descent fractions and at least kLeastSwingShare of its duration.
+void settle_swings(MotionPlan& plan, double settle_s) {
+  constexpr double kLeastSwingShare = 1.0 / 3.0;
+  const double T = plan.trunk.duration_s();
+  for (LegPlan& leg : plan.gait.legs)
+    for (Swing& sw : leg.swings) {
+      const double D = sw.t_touchdown_s - sw.t_liftoff_s;
+      const double lo = std::max(sw.t_liftoff_s, settle_s);
+      const double td = std::min(sw.t_touchdown_s, T - settle_s);
+      if (td - lo >= kLeastSwingShare * D) {
+        sw.t_liftoff_s = lo;
+        sw.t_touchdown_s = td;
+      } else if (lo > sw.t_liftoff_s) {
+        sw.t_liftoff_s = sw.t_touchdown_s - kLeastSwingShare * D;
+      } else {
+        sw.t_touchdown_s = sw.t_liftoff_s + kLeastSwingShare * D;
+      }
+    }
+}
+
+/// PlanningError unless the ZMP p of the robot at rest lies in its support.
+void check_at_rest(const char* where, const Vec2& p, const SupportRegion& support) {
+  if (depth(support, p) >= -1e-9) return;
+  std::ostringstream m;
+  m << "balanced trunk: at the " << where << " the robot stands with its ZMP (" << p.x() << ", "
+    << p.y() << ") m outside its support by " << -depth(support, p)
+    << " m, so it cannot stand still there";
+  throw PlanningError(m.str());
+}
+
+/// Time of node j of piece k (balance.hpp): the last node just before the piece's end.
+double node_time(const Layout& L, int k, int j) {
+  return L.t[k] + L.node_x[j] * (L.t[k + 1] - L.t[k]) - (j == 0 ? kEndNudge_s : 0.0);
+}
+
+/// Solves, per axis, min Σ c_k (w_k − g_k)² + β Σ (w_{k+1} − w_k)² / Δ_k + (ρ/2) Σ (w_k − h_k)²
+/// subject to Σ a0_k w_k = f0 and Σ aT_k w_k = fT: a tridiagonal system bordered by the two
+/// equalities, solved through their Schur complement.
+Eigen::VectorXd smooth_step(const Eigen::VectorXd& diag, const Eigen::VectorXd& off,
+                            const Eigen::VectorXd& rhs, const Eigen::VectorXd& a0,
+                            const Eigen::VectorXd& aT, double f0, double fT) {
+  const int n = static_cast<int>(diag.size());
+  // Thomas algorithm on the symmetric tridiagonal (diag, off), several right-hand sides.
+  const auto solve = [&](const Eigen::VectorXd& b) {
+    Eigen::VectorXd c(n), d(n), x(n);
+    c[0] = n > 1 ? off[0] / diag[0] : 0.0;
+    d[0] = b[0] / diag[0];
+    for (int i = 1; i < n; ++i) {
+      const double m = diag[i] - off[i - 1] * c[i - 1];
+      c[i] = i + 1 < n ? off[i] / m : 0.0;
+      d[i] = (b[i] - off[i - 1] * d[i - 1]) / m;
+    }
+    x[n - 1] = d[n - 1];
+    for (int i = n - 2; i >= 0; --i) x[i] = d[i] - c[i] * x[i + 1];
+    return x;
+  };
+  const Eigen::VectorXd x0 = solve(rhs), y0 = solve(a0), yT = solve(aT);
+  Eigen::Matrix2d S;
+  S << a0.dot(y0), a0.dot(yT), aT.dot(y0), aT.dot(yT);
+  const Eigen::Vector2d mu =
+      S.completeOrthogonalDecomposition().solve(Eigen::Vector2d(a0.dot(x0) - f0, aT.dot(x0) - fT));
+  return x0 - mu[0] * y0 - mu[1] * yT;
+}
+
+/// Waypoints that keep the ZMP path smooth: ADMM on the smoothed objective of smooth_step
+/// (β = 1/ω², so that the path does not change faster than the pendulum can follow) with each
+/// waypoint held in its region; the exact projection solve_waypoints then polishes its answer
+/// into the regions and onto the two equalities.
+std::vector<Vec2> smooth_waypoints(const std::vector<SupportRegion>& region,
+                                   const std::vector<Vec2>& g, const std::vector<double>& c,
+                                   const std::vector<double>& t, const Functionals& F, double omega,
+                                   double* residual) {
+  const int n = static_cast<int>(g.size());
+  const double beta = 1.0 / (omega * omega), rho = 1.0 / omega;
+  Eigen::VectorXd diag(n), off = Eigen::VectorXd::Zero(std::max(n - 1, 1)), a0(n), aT(n);
+  for (int k = 0; k < n; ++k) {
+    diag[k] = 2.0 * c[k] + rho;
+    a0[k] = F.a[k].x();
+    aT[k] = F.a[k].y();
+  }
+  for (int k = 0; k + 1 < n; ++k) {
+    const double s = 2.0 * beta / (t[k + 1] - t[k]);
+    diag[k] += s;
+    diag[k + 1] += s;
+    off[k] = -s;
+  }
+  std::vector<Vec2> v(n), y(n, Vec2::Zero()), w(n);
+  for (int k = 0; k < n; ++k) v[k] = project(region[k], g[k]).point;
+  for (int it = 0; it < 400; ++it) {
+    for (int axis = 0; axis < 2; ++axis) {
+      Eigen::VectorXd rhs(n);
+      for (int k = 0; k < n; ++k)
+        rhs[k] = 2.0 * c[k] * g[k][axis] + rho * (v[k][axis] - y[k][axis]);
+      const Eigen::VectorXd x = smooth_step(diag, off, rhs, a0, aT, F.s_start[axis], F.s_end[axis]);
+      for (int k = 0; k < n; ++k) w[k][axis] = x[k];
+    }
+    double primal = 0.0;
+    for (int k = 0; k < n; ++k) {
+      v[k] = project(region[k], w[k] + y[k]).point;
+      y[k] += w[k] - v[k];
+      primal = std::max(primal, (w[k] - v[k]).norm());
+    }
+    if (primal < 1e-10) break;
+  }
+  return solve_waypoints(region, v, c, F, residual);
+}
+
+}  // namespace
+
+BalanceReport balance_trunk(const RobotModel& model, MotionPlan& plan, const BalanceOptions& o) {
+  ZmpProbe probe(model, plan);
+  BalanceReport rep;
+  rep.omega_radps = std::sqrt(model.gravity_W.norm() / probe.height_m());
+  settle_swings(plan, o.settle_periods / rep.omega_radps);
+  const Layout L = make_layout(model, plan, o);
+  const int K = L.pieces(), N = o.nodes - 1;
+  rep.pieces = K;
+  const double w = rep.omega_radps;
+  // Node values of s = p − u (u the current path's forcing, 0 on the straight path).
+  std::vector<std::vector<Vec2>> s(K, std::vector<Vec2>(N + 1)), s_prev;
+  std::vector<Vec2> g(K + 1);
+  std::vector<double> c(K + 1, 0.0);
+  for (int k = 0; k < K; ++k) {
+    c[k] += 0.5 * (L.t[k + 1] - L.t[k]);
+    c[k + 1] += 0.5 * (L.t[k + 1] - L.t[k]);
+  }
+  std::shared_ptr<const TrunkOffset> offset;
+  for (rep.iterations = 1;; ++rep.iterations) {
+    double change = 0.0;
+    for (int k = 0; k < K; ++k)
+      for (int j = 0; j <= N; ++j) {
+        const double t = node_time(L, k, j);
+        s[k][j] = probe.at(t) - (offset ? offset->forcing(t) : Vec2::Zero());
+        if (!s_prev.empty()) change = std::max(change, (s[k][j] - s_prev[k][j]).norm());
+      }
+    if (rep.iterations == 1) {
+      for (int k = 0; k < K; ++k) g[k] = s[k][N];
+      g[K] = s[K - 1][0];
+      check_at_rest("start", g[0], L.piece_support.front());
+      check_at_rest("end", g[K], L.piece_support.back());
+    }
+    if (!s_prev.empty() && change < o.tolerance_m) {
+      rep.zmp_error_m = change;
+      break;
+    }
+    if (rep.iterations >= o.max_iterations) {
+      std::ostringstream m;
+      m << "balanced trunk: the ZMP did not settle in " << o.max_iterations
+        << " iterations (last change " << change << " m, tolerance " << o.tolerance_m << " m)";
+      throw PlanningError(m.str());
+    }
+    std::vector<std::vector<Vec2>> cheb(K);
+    for (int k = 0; k < K; ++k) cheb[k] = chebyshev_fit(s[k]);
+    std::vector<SupportRegion> region = L.waypoint;
+    region[0] = SupportRegion{{s[0][N]}};  // at rest: ë = 0 needs z = s at both ends
+    region[K] = SupportRegion{{s[K - 1][0]}};
+    double residual = 0.0;
+    const std::vector<Vec2> wp =
+        smooth_waypoints(region, g, c, L.t, functionals(L, cheb, w), w, &residual);
+    std::vector<OffsetPiece> pieces(K);
+    for (int k = 0; k < K; ++k) pieces[k] = {L.t[k], L.t[k + 1], wp[k], wp[k + 1], cheb[k]};
+    offset = std::make_shared<const TrunkOffset>(w, std::move(pieces));
+    plan.trunk.set_offset(offset);
+    s_prev = s;
+  }
+  // Margins and offsets on the path that holds.
+  rep.smallest_margin_m = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < K; ++k)
+    for (int j = 0; j <= N; ++j) {
+      const double t = node_time(L, k, j);
+      rep.smallest_margin_m =
+          std::min(rep.smallest_margin_m, depth(L.piece_support[k], probe.at(t)));
+      if (offset) rep.largest_offset_m = std::max(rep.largest_offset_m, offset->at(t).e.norm());
+    }
+  return rep;
+}
+
+}  // namespace hexdyn

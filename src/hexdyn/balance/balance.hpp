@@ -1,0 +1,58 @@
+#pragma once
+/// \file balance.hpp
+/// The balanced trunk (motion.trunk: balanced; docs/theory/balance.md): a horizontal offset
+/// of the straight trunk path such that the zero-moment point (ZMP) of the whole robot's
+/// required contact wrench stays in the support of the stance feet, shrunk by a stability
+/// margin, on every instant outside touchdowns; on a line support (two feet: a trot, a pace) on
+/// the line itself.
+///
+/// Method. The ZMP p(t) on a horizontal plane that moves with the trunk's height is taken from
+/// the full inverse dynamics (dynamics/rnea.hpp, every leg's motion included). The offset e(t)
+/// obeys the linear inverted pendulum e − ë/ω² = z(t) − s(t) (planning/trunk_offset.hpp): z is
+/// the designed ZMP path, linear between waypoints at the breakpoints (every lift-off and
+/// touchdown, each swing's lift and descent boundaries, the ends of the speed ramps, and
+/// splits of long pieces), each waypoint inside the support the feet share on both sides of it;
+/// s is what the pendulum leaves out, sampled at Chebyshev–Lobatto nodes of each piece and
+/// interpolated. The waypoints nearest the straight path's ZMP that let the offset start and end
+/// at rest are found by a projected semi-smooth Newton method on four multipliers. s is then
+/// sampled again on the new path, until it changes by less than the tolerance: then p = z at
+/// every node, and between nodes to the interpolation's accuracy.
+///
+/// The robot starts and ends at rest, its ZMP under its centre of mass: before the first swing
+/// and after the last it stands on all its feet for settle_periods / ω while the trunk moves its
+/// weight (swings that would reach into those spans are shortened, footholds unchanged).
+#include <string>
+
+#include "hexdyn/model/robot_model.hpp"
+#include "hexdyn/planning/plan.hpp"
+
+namespace hexdyn {
+
+struct BalanceOptions {
+  double margin_m = 0.01;      ///< the stability margin: a waypoint's distance from the edges
+  double tolerance_m = 1e-11;  ///< largest change of s between the last two iterations [m]
+  int max_iterations = 60;     ///< iterations of s before PlanningError
+  int nodes = 9;               ///< Chebyshev–Lobatto nodes per piece
+  double max_piece_s = 0.06;   ///< longest piece [s]
+  /// The robot stands on all its feet for this many pendulum time constants 1/ω at the start
+  /// and at the end, while the trunk shifts its weight (swings shortened to keep out of them).
+  double settle_periods = 2.0;
+};
+
+/// What balance_trunk found.
+struct BalanceReport {
+  int iterations = 0;              ///< evaluations of s on the whole path
+  double zmp_error_m = 0.0;        ///< largest |p − z| at the nodes of the last path [m]
+  double smallest_margin_m = 0.0;  ///< least depth of p in the support of its piece, at the nodes
+  double omega_radps = 0.0;        ///< the pendulum's √(g / h)
+  int pieces = 0;
+  double largest_offset_m = 0.0;  ///< largest |e| at the nodes [m]
+};
+
+/// Plans the offset of plan.trunk (which must have none) and sets it. Throws PlanningError in
+/// one line when the robot does not stand statically balanced at the start or the end, when two
+/// consecutive supports share no foot, or when the iteration does not settle.
+BalanceReport balance_trunk(const RobotModel& model, MotionPlan& plan,
+                            const BalanceOptions& options);
+
+}  // namespace hexdyn
