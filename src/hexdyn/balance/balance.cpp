@@ -353,6 +353,107 @@ std::vector<Vec2> smooth_waypoints(const std::vector<SupportRegion>& region,
   return solve_waypoints(region, v, c, F, residual);
 }
 
+/// The pendulum fitted to the robot from its first offset e: per axis, the least-squares
+/// ΔP ≈ κ e + γ ë over the nodes (ΔP the change of the ZMP it made), then κ and a common
+/// ω² = mean of −κ/γ. Kept unchanged where the fit is not a pendulum (γ ≥ 0 or κ ≤ 0).
+void fit_pendulum(const Layout& L, const TrunkOffset& offset,
+                  const std::vector<std::vector<Vec2>>& before,
+                  const std::vector<std::vector<Vec2>>& after, double& omega, Vec2& kappa) {
+  Eigen::Matrix2d A[2] = {Eigen::Matrix2d::Zero(), Eigen::Matrix2d::Zero()};
+  Eigen::Vector2d b[2] = {Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero()};
+  for (int k = 0; k < L.pieces(); ++k)
+    for (std::size_t j = 0; j < L.node_x.size(); ++j) {
+      const OffsetState e = offset.at(node_time(L, k, static_cast<int>(j)));
+      const Vec2 dp = after[k][j] - before[k][j];
+      for (int axis = 0; axis < 2; ++axis) {
+        const Eigen::Vector2d x(e.e[axis], e.edd[axis]);
+        A[axis] += x * x.transpose();
+        b[axis] += x * dp[axis];
+      }
+    }
+  double omega2 = 0.0;
+  int fitted = 0;
+  Vec2 k = kappa;
+  for (int axis = 0; axis < 2; ++axis) {
+    const Eigen::Vector2d f = A[axis].completeOrthogonalDecomposition().solve(b[axis]);
+    if (!(f[0] > 0.0 && f[1] < 0.0)) continue;
+    k[axis] = f[0];
+    omega2 += -f[0] / f[1];
+    ++fitted;
+  }
+  if (fitted == 0) return;
+  kappa = k;
+  omega = std::sqrt(omega2 / fitted);
+}
+
+/// Anderson acceleration of a fixed-point iteration x ← G(x) (Walker & Ni, SIAM J. Numer. Anal.
+/// 49 (2011) 1715): from the last `depth` inputs and outputs, the combination whose residual
+/// G(x) − x is least in the least-squares sense.
+class AndersonMixer {
+ public:
+  explicit AndersonMixer(int depth) : depth_(depth) {}
+  /// out: G(x) of the input the last call returned (or of the first input); replaced by the next
+  /// input. `active` false: no mixing, the history restarts (the model changed).
+  void mix(std::vector<std::vector<Vec2>>& out, bool active) {
+    const Eigen::VectorXd g = flatten(out);
+    if (!active || last_in_.size() != g.size()) {
+      inputs_.clear();
+      outputs_.clear();
+      last_in_ = g;
+      inputs_.push_back(g);
+      outputs_.push_back(g);
+      return;
+    }
+    inputs_.back() = last_in_;
+    outputs_.back() = g;
+    const int m = static_cast<int>(inputs_.size());
+    Eigen::VectorXd next = g;
+    if (m >= 2) {
+      const Eigen::VectorXd f = g - last_in_;
+      Eigen::MatrixXd dF(g.size(), m - 1), dG(g.size(), m - 1);
+      for (int i = 0; i + 1 < m; ++i) {
+        dF.col(i) = (outputs_[i + 1] - inputs_[i + 1]) - (outputs_[i] - inputs_[i]);
+        dG.col(i) = outputs_[i + 1] - outputs_[i];
+      }
+      const Eigen::VectorXd gamma = dF.completeOrthogonalDecomposition().solve(f);
+      next = g - dG * gamma;
+    }
+    inputs_.push_back(next);
+    outputs_.push_back(next);
+    if (static_cast<int>(inputs_.size()) > depth_ + 1) {
+      inputs_.erase(inputs_.begin());
+      outputs_.erase(outputs_.begin());
+    }
+    last_in_ = next;
+    unflatten(next, out);
+  }
+
+ private:
+  static Eigen::VectorXd flatten(const std::vector<std::vector<Vec2>>& v) {
+    std::size_t n = 0;
+    for (const auto& row : v) n += 2 * row.size();
+    Eigen::VectorXd x(static_cast<Eigen::Index>(n));
+    Eigen::Index i = 0;
+    for (const auto& row : v)
+      for (const Vec2& p : row) {
+        x[i++] = p.x();
+        x[i++] = p.y();
+      }
+    return x;
+  }
+  static void unflatten(const Eigen::VectorXd& x, std::vector<std::vector<Vec2>>& v) {
+    Eigen::Index i = 0;
+    for (auto& row : v)
+      for (Vec2& p : row) {
+        p = Vec2(x[i], x[i + 1]);
+        i += 2;
+      }
+  }
+  int depth_;
+  Eigen::VectorXd last_in_;
+  std::vector<Eigen::VectorXd> inputs_, outputs_;
+};
+
 }  // namespace
 
 BalanceReport balance_trunk(const RobotModel& model, MotionPlan& plan, const BalanceOptions& o) {
@@ -363,54 +464,76 @@ BalanceReport balance_trunk(const RobotModel& model, MotionPlan& plan, const Bal
   const Layout L = make_layout(model, plan, o);
   const int K = L.pieces(), N = o.nodes - 1;
   rep.pieces = K;
-  const double w = rep.omega_radps;
-  // Node values of s = p − u (u the current path's forcing, 0 on the straight path).
-  std::vector<std::vector<Vec2>> s(K, std::vector<Vec2>(N + 1)), s_prev;
-  std::vector<Vec2> g(K + 1);
+  double w = rep.omega_radps;
+  Vec2 kappa = Vec2::Ones();  // the pendulum's gain per axis, fitted after the first pass
+  // P: the whole robot's ZMP at the nodes; s = P − κ (e − ë/ω²), the part the pendulum leaves
+  // out; z: the designed path there.
+  std::vector<std::vector<Vec2>> P(K, std::vector<Vec2>(N + 1)), s = P, P_first, z = P;
+  std::vector<Vec2> g(K + 1), wp;
   std::vector<double> c(K + 1, 0.0);
   for (int k = 0; k < K; ++k) {
     c[k] += 0.5 * (L.t[k + 1] - L.t[k]);
     c[k + 1] += 0.5 * (L.t[k + 1] - L.t[k]);
   }
   std::shared_ptr<const TrunkOffset> offset;
+  AndersonMixer mixer(6);
   for (rep.iterations = 1;; ++rep.iterations) {
-    double change = 0.0;
+    double error = 0.0;
     for (int k = 0; k < K; ++k)
       for (int j = 0; j <= N; ++j) {
-        const double t = node_time(L, k, j);
-        s[k][j] = probe.at(t) - (offset ? offset->forcing(t) : Vec2::Zero());
-        if (!s_prev.empty()) change = std::max(change, (s[k][j] - s_prev[k][j]).norm());
+        P[k][j] = probe.at(node_time(L, k, j));
+        if (offset) error = std::max(error, (P[k][j] - z[k][j]).norm());
       }
     if (rep.iterations == 1) {
-      for (int k = 0; k < K; ++k) g[k] = s[k][N];
-      g[K] = s[K - 1][0];
+      for (int k = 0; k < K; ++k) g[k] = P[k][N];
+      g[K] = P[K - 1][0];
       check_at_rest("start", g[0], L.piece_support.front());
       check_at_rest("end", g[K], L.piece_support.back());
+      P_first = P;
     }
-    if (!s_prev.empty() && change < o.tolerance_m) {
-      rep.zmp_error_m = change;
+    if (offset && error < o.tolerance_m) {
+      rep.zmp_error_m = error;
       break;
     }
     if (rep.iterations >= o.max_iterations) {
       std::ostringstream m;
       m << "balanced trunk: the ZMP did not settle in " << o.max_iterations
-        << " iterations (last change " << change << " m, tolerance " << o.tolerance_m << " m)";
+        << " passes (last error " << error << " m, tolerance " << o.tolerance_m << " m)";
       throw PlanningError(m.str());
     }
+    if (rep.iterations == 2) fit_pendulum(L, *offset, P_first, P, w, kappa);
+    for (int k = 0; k < K; ++k)
+      for (int j = 0; j <= N; ++j) {
+        Vec2 lip = Vec2::Zero();
+        if (offset) {
+          const OffsetState e = offset->at(node_time(L, k, j));
+          lip = e.e - e.edd / (w * w);
+        }
+        s[k][j] = P[k][j] - kappa.cwiseProduct(lip);
+      }
+    // Anderson mixing of the passes (s_in → s_out): the pendulum is a model, and its error makes
+    // plain passes contract slowly.
+    mixer.mix(s, rep.iterations >= 3);
     std::vector<std::vector<Vec2>> cheb(K);
     for (int k = 0; k < K; ++k) cheb[k] = chebyshev_fit(s[k]);
     std::vector<SupportRegion> region = L.waypoint;
     region[0] = SupportRegion{{s[0][N]}};  // at rest: ë = 0 needs z = s at both ends
     region[K] = SupportRegion{{s[K - 1][0]}};
     double residual = 0.0;
-    const std::vector<Vec2> wp =
-        smooth_waypoints(region, g, c, L.t, functionals(L, cheb, w), w, &residual);
+    wp = smooth_waypoints(region, g, c, L.t, functionals(L, cheb, w), w, &residual);
+    // The offset's forcing is (z − s) / κ.
+    const Vec2 inv = kappa.cwiseInverse();
     std::vector<OffsetPiece> pieces(K);
-    for (int k = 0; k < K; ++k) pieces[k] = {L.t[k], L.t[k + 1], wp[k], wp[k + 1], cheb[k]};
+    for (int k = 0; k < K; ++k) {
+      std::vector<Vec2> r = cheb[k];
+      for (Vec2& x : r) x = x.cwiseProduct(inv);
+      pieces[k] = {L.t[k], L.t[k + 1], wp[k].cwiseProduct(inv), wp[k + 1].cwiseProduct(inv), r};
+      for (int j = 0; j <= N; ++j) z[k][j] = wp[k] + (wp[k + 1] - wp[k]) * L.node_x[j];
+    }
     offset = std::make_shared<const TrunkOffset>(w, std::move(pieces));
     plan.trunk.set_offset(offset);
-    s_prev = s;
   }
+  rep.omega_radps = w;
   // Margins and offsets on the path that holds.
   rep.smallest_margin_m = std::numeric_limits<double>::infinity();
   for (int k = 0; k < K; ++k)

@@ -29,11 +29,11 @@
 namespace hexdyn {
 
 struct BalanceOptions {
-  double margin_m = 0.01;      ///< the stability margin: a waypoint's distance from the edges
-  double tolerance_m = 1e-11;  ///< largest change of s between the last two iterations [m]
-  int max_iterations = 60;     ///< iterations of s before PlanningError
-  int nodes = 9;               ///< Chebyshev–Lobatto nodes per piece
-  double max_piece_s = 0.06;   ///< longest piece [s]
+  double margin_m = 0.01;     ///< the stability margin: a waypoint's distance from the edges
+  double tolerance_m = 1e-9;  ///< largest |p − z| at the nodes that ends the passes [m]
+  int max_iterations = 60;    ///< iterations of s before PlanningError
+  int nodes = 9;              ///< Chebyshev–Lobatto nodes per piece
+  double max_piece_s = 0.06;  ///< longest piece [s]
   /// The robot stands on all its feet for this many pendulum time constants 1/ω at the start
   /// and at the end, while the trunk shifts its weight (swings shortened to keep out of them).
   double settle_periods = 2.0;

@@ -80,10 +80,11 @@ PreparedScene prepare_scene(const Scene& scene, StageTimes* times) {
   clock.emplace(times, Stage::kPlanning);  // plan_motion, with the posture timed on its own
   MotionPlan plan = plan_motion_with(scene, model, posture.p0_W, posture.foot_lateral_m);
   plan.posture = posture;
+  std::optional<BalanceReport> balance;
   if (scene.motion.trunk == TrunkPath::kBalanced) {
     BalanceOptions options;
     options.margin_m = scene.motion.balance_margin_m;
-    balance_trunk(model, plan, options);
+    balance = balance_trunk(model, plan, options);
   }
   clock.emplace(times, Stage::kTouchdowns);
   std::vector<Touchdown> touchdowns = physical_touchdowns(scene, model, plan);
@@ -101,8 +102,8 @@ PreparedScene prepare_scene(const Scene& scene, StageTimes* times) {
   }
   std::vector<std::int8_t> kind;
   std::vector<double> grid = build_output_grid(scene.output, t_end, events, &kind);
-  return PreparedScene{std::move(model), std::move(plan), std::move(touchdowns), std::move(grid),
-                       std::move(kind)};
+  return PreparedScene{std::move(model), std::move(plan), std::move(touchdowns),
+                       std::move(grid),  std::move(kind), balance};
 }
 
 SampleProblem sample_problem(const Scene& scene, const PreparedScene& prep, double t_s) {
@@ -122,6 +123,13 @@ RunResult run_scene(const Scene& scene, std::ostream* log) {
 RunResult run_prepared_scene(const Scene& scene, const PreparedScene& prep, std::ostream* log,
                              StageTimes* times) {
   const auto start = std::chrono::steady_clock::now();
+  if (log && prep.balance) {
+    const BalanceReport& b = *prep.balance;
+    *log << "hexdyn: balanced trunk: " << b.pieces << " pieces, " << b.iterations
+         << " passes, ZMP within " << b.zmp_error_m << " m of its path at the nodes, least margin "
+         << b.smallest_margin_m << " m, largest offset " << b.largest_offset_m << " m, omega "
+         << b.omega_radps << " rad/s\n";
+  }
   RunResult result;
   ContactSchedule contacts;
   result.kin = sample_with_contacts(prep, prep.grid, contacts, times);

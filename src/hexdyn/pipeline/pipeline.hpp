@@ -13,8 +13,10 @@
 /// Throws a hexdyn::Error subclass when the scene cannot be computed.
 #include <cstdint>
 #include <iosfwd>
+#include <optional>
 #include <vector>
 
+#include "hexdyn/balance/balance.hpp"
 #include "hexdyn/contact/touchdowns.hpp"
 #include "hexdyn/core/result.hpp"
 #include "hexdyn/core/scene.hpp"
@@ -36,6 +38,8 @@ struct PreparedScene {
   std::vector<Touchdown> touchdowns;
   std::vector<double> grid;              ///< [s], strictly increasing
   std::vector<std::int8_t> sample_kind;  ///< per grid point: planning/grid.hpp kSample*
+  /// motion.trunk: balanced: what planning the offset found (balance/balance.hpp).
+  std::optional<BalanceReport> balance;
 };
 /// `times` (may be null) receives the time of each stage (stage_times.hpp).
 PreparedScene prepare_scene(const Scene& scene, StageTimes* times = nullptr);
