@@ -319,7 +319,7 @@ std::vector<Vec2> smooth_waypoints(const std::vector<SupportRegion>& region,
                                    const std::vector<double>& t, const Functionals& F, double omega,
                                    double* residual) {
   const int n = static_cast<int>(g.size());
-  const double beta = 1.0 / (omega * omega), rho = 1.0 / omega;
+  const double beta = 16.0 / (omega * omega), rho = 1.0 / omega;
   Eigen::VectorXd diag(n), off = Eigen::VectorXd::Zero(std::max(n - 1, 1)), a0(n), aT(n);
   for (int k = 0; k < n; ++k) {
     diag[k] = 2.0 * c[k] + rho;

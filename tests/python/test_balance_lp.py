@@ -1,0 +1,108 @@
+"""The balanced trunk against an independent feasibility LP (docs/theory/balance.md#tests).
+
+For each scene given, hexdyn runs it; on every sample outside touchdowns (no leg in its impact
+transient), DART (python3-dartpy) gives the trunk wrench the robot's motion needs, and its
+response to a unit force on each support foot (the free-floating robot of the result's own
+/model/urdf, the stored state: tests/python/test_robots_dart.py). scipy's HiGHS then looks for
+foot forces on the support feet that meet the trunk's six equations inside the friction model
+of the scene (allocation.friction: pyramid4 or pyramid8, inscribed in the cone of
+contact.friction_coefficient, on horizontal ground: the contact frame's tangents are world x
+and y). A balanced scene must have no sample without such forces; its straight twin (the same
+scene with motion.trunk: straight) must have some, so that the check can fail.
+
+    /usr/bin/python3 tests/python/test_balance_lp.py HEXDYN SOURCE_DIR SCENE [SCENE ...]
+"""
+import argparse
+import math
+import os
+import sys
+import tempfile
+
+import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from common import cli_run  # noqa: E402
+
+try:
+    from scipy.optimize import linprog
+    from test_drive_dart import DartRobot, read_result
+    from test_robots_dart import dart_inverse_dynamics
+except ImportError as e:  # dartpy or scipy missing
+    print(f"skipped: {e} (pipelines/setup.sh installs python3-dartpy and python3-scipy)")
+    sys.exit(77)
+
+SUPPORT, IMPACT = 2, 1
+
+
+def friction_rows(mu, faces):
+    """Rows G (faces × 3) with G f ≤ 0 for one foot: the inscribed N-gon of the cone."""
+    reach = mu * math.cos(math.pi / faces)
+    return np.array([[math.cos(2 * math.pi * k / faces), math.sin(2 * math.pi * k / faces),
+                      -reach] for k in range(faces)])
+
+
+def feasible(robot, r, t, legs, mu, faces):
+    """Whether foot forces on `legs` within the friction model cancel the trunk wrench."""
+    zero = np.zeros((len(r["legs"]), 3))
+    w0, _ = dart_inverse_dynamics(robot, r, t, zero)
+    columns = []
+    for leg in legs:
+        for axis in range(3):
+            f = zero.copy()
+            f[leg, axis] = 1.0
+            w, _ = dart_inverse_dynamics(robot, r, t, f)
+            columns.append(w - w0)
+    B = np.array(columns).T
+    G = friction_rows(mu, faces)
+    A_ub = np.zeros((len(legs) * faces, 3 * len(legs)))
+    for i in range(len(legs)):
+        A_ub[i * faces:(i + 1) * faces, 3 * i:3 * i + 3] = G
+    res = linprog(np.zeros(3 * len(legs)), A_ub=A_ub, b_ub=np.zeros(len(A_ub)), A_eq=B,
+                  b_eq=-w0, bounds=[(None, None)] * (3 * len(legs)), method="highs")
+    return res.status == 0
+
+
+def infeasible_samples(hexdyn, scene, d, sets=()):
+    out = os.path.join(d, os.path.basename(scene).replace(".yaml", f"{len(sets)}.h5"))
+    rc, err = cli_run(hexdyn, scene, out, sets)
+    assert rc == 0, f"{scene}: {err}"
+    r = read_result(out)
+    robot = DartRobot(r)
+    contact = r["config"]["contact"]
+    mu = float(contact["friction_coefficient"])
+    faces = {"pyramid4": 4, "pyramid8": 8}[r["config"]["allocation"]["friction"]]
+    phase = r["/contacts/phase"]
+    bad, checked = [], 0
+    for t in range(len(phase)):
+        if np.any(phase[t] == IMPACT):
+            continue
+        legs = [leg for leg in range(len(r["legs"])) if phase[t][leg] == SUPPORT]
+        checked += 1
+        if not feasible(robot, r, t, legs, mu, faces):
+            bad.append(float(r["/time"][t]))
+    return bad, checked
+
+
+def main():
+    p = argparse.ArgumentParser()
+    p.add_argument("hexdyn")
+    p.add_argument("source_dir")
+    p.add_argument("scenes", nargs="+")
+    a = p.parse_args()
+    with tempfile.TemporaryDirectory() as d:
+        for scene in a.scenes:
+            path = os.path.join(a.source_dir, scene)
+            bad, checked = infeasible_samples(a.hexdyn, path, d)
+            print(f"{scene}: balanced, {checked} samples outside touchdowns, "
+                  f"{len(bad)} without feasible forces {bad[:5]}")
+            assert not bad, f"{scene}: no feasible forces at t = {bad[:10]} s"
+            straight, checked = infeasible_samples(a.hexdyn, path, d, ("motion.trunk=straight",))
+            print(f"{scene}: straight, {checked} samples outside touchdowns, "
+                  f"{len(straight)} without feasible forces")
+            assert straight, f"{scene}: the straight trunk is feasible everywhere too; " \
+                             "the check cannot tell"
+    print("test_balance_lp: ok")
+
+
+if __name__ == "__main__":
+    main()
