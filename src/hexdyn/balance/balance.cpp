@@ -17,9 +17,10 @@ namespace {
 
 /// Breakpoints closer than this are one [s].
 constexpr double kSameInstant_s = 1e-9;
-/// A piece's last node is taken this much before its end, so that a leg touching down there is
-/// still on its swing path (the piece's own state) [s].
-constexpr double kEndNudge_s = 1e-11;
+/// A piece's first and last nodes are taken this far inside it, so that every event merged
+/// into its breakpoints (within kSameInstant_s) lies outside: a leg touching down or lifting off
+/// there is in the piece's own state at both nodes [s].
+constexpr double kEndNudge_s = 2.0 * kSameInstant_s;
 /// Feet closer than this, or this near a line through others, do not widen a support [m].
 constexpr double kHullTolerance_m = 1e-9;
 
@@ -163,6 +164,23 @@ std::vector<Vec2> chebyshev_fit(const std::vector<Vec2>& f) {
   return c;
 }
 
+/// The Chebyshev series of a piece's node values f (f[0] at its end, f[N] at its start, both
+/// sampled kEndNudge_s inside it) with the two end values moved to the piece's ends along the
+/// series' own slope: the one-sided limits there, to O(kEndNudge_s²).
+std::vector<Vec2> end_corrected_fit(std::vector<Vec2> f, double span_s) {
+  const int N = static_cast<int>(f.size()) - 1;
+  const std::vector<Vec2> c = chebyshev_fit(f);
+  Vec2 slope_end = Vec2::Zero(), slope_start = Vec2::Zero();  // d/dy at y = 1 and y = −1
+  for (int m = 1; m <= N; ++m) {
+    slope_end += c[m] * static_cast<double>(m * m);
+    slope_start += c[m] * static_cast<double>(m % 2 ? m * m : -m * m);
+  }
+  const double dy_dt = 2.0 / span_s;
+  f[0] += kEndNudge_s * dy_dt * slope_end;
+  f[N] -= kEndNudge_s * dy_dt * slope_start;
+  return chebyshev_fit(f);
+}
+
 /// The two boundary functionals of a piece's waypoint hat functions and of its s: for a weight
 /// exp(−ω t) (start) and exp(−ω (T − t)) (end), each scaled by ω (trunk_offset.hpp).
 struct Functionals {
@@ -278,7 +296,9 @@ void check_at_rest(const char* where, const Vec2& p, const SupportRegion& suppor
 
 /// Time of node j of piece k (balance.hpp): the last node just before the piece's end.
 double node_time(const Layout& L, int k, int j) {
-  return L.t[k] + L.node_x[j] * (L.t[k + 1] - L.t[k]) - (j == 0 ? kEndNudge_s : 0.0);
+  const int N = static_cast<int>(L.node_x.size()) - 1;
+  const double nudge = j == 0 ? -kEndNudge_s : j == N ? kEndNudge_s : 0.0;
+  return L.t[k] + L.node_x[j] * (L.t[k + 1] - L.t[k]) + nudge;
 }
 
 /// Solves, per axis, min Σ c_k (w_k − g_k)² + β Σ (w_{k+1} − w_k)² / Δ_k + (ρ/2) Σ (w_k − h_k)²
@@ -515,7 +535,7 @@ BalanceReport balance_trunk(const RobotModel& model, MotionPlan& plan, const Bal
     // plain passes contract slowly.
     mixer.mix(s, rep.iterations >= 3);
     std::vector<std::vector<Vec2>> cheb(K);
-    for (int k = 0; k < K; ++k) cheb[k] = chebyshev_fit(s[k]);
+    for (int k = 0; k < K; ++k) cheb[k] = end_corrected_fit(s[k], L.t[k + 1] - L.t[k]);
     std::vector<SupportRegion> region = L.waypoint;
     region[0] = SupportRegion{{s[0][N]}};  // at rest: ë = 0 needs z = s at both ends
     region[K] = SupportRegion{{s[K - 1][0]}};
@@ -528,7 +548,10 @@ BalanceReport balance_trunk(const RobotModel& model, MotionPlan& plan, const Bal
       std::vector<Vec2> r = cheb[k];
       for (Vec2& x : r) x = x.cwiseProduct(inv);
       pieces[k] = {L.t[k], L.t[k + 1], wp[k].cwiseProduct(inv), wp[k + 1].cwiseProduct(inv), r};
-      for (int j = 0; j <= N; ++j) z[k][j] = wp[k] + (wp[k + 1] - wp[k]) * L.node_x[j];
+      for (int j = 0; j <= N; ++j) {
+        const double x = (node_time(L, k, j) - L.t[k]) / (L.t[k + 1] - L.t[k]);
+        z[k][j] = wp[k] + (wp[k + 1] - wp[k]) * x;
+      }
     }
     offset = std::make_shared<const TrunkOffset>(w, std::move(pieces));
     plan.trunk.set_offset(offset);
