@@ -476,72 +476,62 @@ class AndersonMixer {
 
 }  // namespace
 
-BalanceReport balance_trunk(const RobotModel& model, MotionPlan& plan, const BalanceOptions& o) {
-  ZmpProbe probe(model, plan);
-  BalanceReport rep;
-  rep.omega_radps = std::sqrt(model.gravity_W.norm() / probe.height_m());
-  settle_swings(plan, o.settle_periods / rep.omega_radps);
-  const Layout L = make_layout(model, plan, o);
-  const int K = L.pieces(), N = o.nodes - 1;
-  rep.pieces = K;
-  double w = rep.omega_radps;
-  Vec2 kappa = Vec2::Ones();  // the pendulum's gain per axis, fitted after the first pass
-  // P: the whole robot's ZMP at the nodes; s = P − κ (e − ë/ω²), the part the pendulum leaves
-  // out; z: the designed path there.
-  std::vector<std::vector<Vec2>> P(K, std::vector<Vec2>(N + 1)), s = P, P_first, z = P;
-  std::vector<Vec2> g(K + 1), wp;
-  std::vector<double> c(K + 1, 0.0);
-  for (int k = 0; k < K; ++k) {
-    c[k] += 0.5 * (L.t[k + 1] - L.t[k]);
-    c[k + 1] += 0.5 * (L.t[k + 1] - L.t[k]);
+namespace {
+
+/// Node values per piece and node (Layout::node_x order).
+using NodeValues = std::vector<std::vector<Vec2>>;
+
+/// The passes' state (balance.hpp): the pendulum (ω, κ), the ZMP P at the nodes, the path z
+/// there, the waypoints' targets g and weights c, and the offset of the last pass.
+struct Passes {
+  Passes(const Layout& layout, double omega) : L(layout), w(omega) {
+    const int K = L.pieces(), n = static_cast<int>(L.node_x.size());
+    P.assign(K, std::vector<Vec2>(n));
+    s = z = P;
+    g.resize(K + 1);
+    c.assign(K + 1, 0.0);
+    for (int k = 0; k < K; ++k) {
+      c[k] += 0.5 * (L.t[k + 1] - L.t[k]);
+      c[k + 1] += 0.5 * (L.t[k + 1] - L.t[k]);
+    }
   }
-  std::shared_ptr<const TrunkOffset> offset;
-  AndersonMixer mixer(6);
-  for (rep.iterations = 1;; ++rep.iterations) {
+
+  /// Samples P on the current path; returns the largest |P − z| (0 on the straight path).
+  double sample(ZmpProbe& probe) {
     double error = 0.0;
-    for (int k = 0; k < K; ++k)
-      for (int j = 0; j <= N; ++j) {
-        P[k][j] = probe.at(node_time(L, k, j));
+    for (int k = 0; k < L.pieces(); ++k)
+      for (std::size_t j = 0; j < L.node_x.size(); ++j) {
+        P[k][j] = probe.at(node_time(L, k, static_cast<int>(j)));
         if (offset) error = std::max(error, (P[k][j] - z[k][j]).norm());
       }
-    if (rep.iterations == 1) {
-      for (int k = 0; k < K; ++k) g[k] = P[k][N];
-      g[K] = P[K - 1][0];
-      check_at_rest("start", g[0], L.piece_support.front());
-      check_at_rest("end", g[K], L.piece_support.back());
-      P_first = P;
-    }
-    if (offset && error < o.tolerance_m) {
-      rep.zmp_error_m = error;
-      break;
-    }
-    if (rep.iterations >= o.max_iterations) {
-      std::ostringstream m;
-      m << "balanced trunk: the ZMP did not settle in " << o.max_iterations
-        << " passes (last error " << error << " m, tolerance " << o.tolerance_m << " m)";
-      throw PlanningError(m.str());
-    }
-    if (rep.iterations == 2) fit_pendulum(L, *offset, P_first, P, w, kappa);
-    for (int k = 0; k < K; ++k)
-      for (int j = 0; j <= N; ++j) {
+    return error;
+  }
+
+  /// s = P − κ (e − ë/ω²) at the nodes, mixed with the earlier passes.
+  void residual(bool mix) {
+    for (int k = 0; k < L.pieces(); ++k)
+      for (std::size_t j = 0; j < L.node_x.size(); ++j) {
         Vec2 lip = Vec2::Zero();
         if (offset) {
-          const OffsetState e = offset->at(node_time(L, k, j));
+          const OffsetState e = offset->at(node_time(L, k, static_cast<int>(j)));
           lip = e.e - e.edd / (w * w);
         }
         s[k][j] = P[k][j] - kappa.cwiseProduct(lip);
       }
-    // Anderson mixing of the passes (s_in → s_out): the pendulum is a model, and its error makes
-    // plain passes contract slowly.
-    mixer.mix(s, rep.iterations >= 3);
+    mixer.mix(s, mix);
+  }
+
+  /// The waypoints for s, and the offset whose forcing is (z − s) / κ.
+  std::shared_ptr<const TrunkOffset> plan_offset() {
+    const int K = L.pieces(), N = static_cast<int>(L.node_x.size()) - 1;
     std::vector<std::vector<Vec2>> cheb(K);
     for (int k = 0; k < K; ++k) cheb[k] = end_corrected_fit(s[k], L.t[k + 1] - L.t[k]);
     std::vector<SupportRegion> region = L.waypoint;
     region[0] = SupportRegion{{s[0][N]}};  // at rest: ë = 0 needs z = s at both ends
     region[K] = SupportRegion{{s[K - 1][0]}};
     double residual = 0.0;
-    wp = smooth_waypoints(region, g, c, L.t, functionals(L, cheb, w), w, &residual);
-    // The offset's forcing is (z − s) / κ.
+    const std::vector<Vec2> wp =
+        smooth_waypoints(region, g, c, L.t, functionals(L, cheb, w), w, &residual);
     const Vec2 inv = kappa.cwiseInverse();
     std::vector<OffsetPiece> pieces(K);
     for (int k = 0; k < K; ++k) {
@@ -554,9 +544,57 @@ BalanceReport balance_trunk(const RobotModel& model, MotionPlan& plan, const Bal
       }
     }
     offset = std::make_shared<const TrunkOffset>(w, std::move(pieces));
-    plan.trunk.set_offset(offset);
+    return offset;
   }
-  rep.omega_radps = w;
+
+  const Layout& L;
+  double w;
+  Vec2 kappa = Vec2::Ones();  ///< the pendulum's gain per axis, fitted after the first pass
+  NodeValues P, s, z, P_first;
+  std::vector<Vec2> g;
+  std::vector<double> c;
+  std::shared_ptr<const TrunkOffset> offset;
+  AndersonMixer mixer{6};
+};
+
+}  // namespace
+
+BalanceReport balance_trunk(const RobotModel& model, MotionPlan& plan, const BalanceOptions& o) {
+  ZmpProbe probe(model, plan);
+  BalanceReport rep;
+  rep.omega_radps = std::sqrt(model.gravity_W.norm() / probe.height_m());
+  settle_swings(plan, o.settle_periods / rep.omega_radps);
+  const Layout L = make_layout(model, plan, o);
+  const int K = L.pieces(), N = o.nodes - 1;
+  rep.pieces = K;
+  Passes passes(L, rep.omega_radps);
+  for (rep.iterations = 1;; ++rep.iterations) {
+    const double error = passes.sample(probe);
+    if (rep.iterations == 1) {
+      for (int k = 0; k < K; ++k) passes.g[k] = passes.P[k][N];
+      passes.g[K] = passes.P[K - 1][0];
+      check_at_rest("start", passes.g[0], L.piece_support.front());
+      check_at_rest("end", passes.g[K], L.piece_support.back());
+      passes.P_first = passes.P;
+    }
+    if (passes.offset && error < o.tolerance_m) {
+      rep.zmp_error_m = error;
+      break;
+    }
+    if (rep.iterations >= o.max_iterations) {
+      std::ostringstream m;
+      m << "balanced trunk: the ZMP did not settle in " << o.max_iterations
+        << " passes (last error " << error << " m, tolerance " << o.tolerance_m << " m)";
+      throw PlanningError(m.str());
+    }
+    if (rep.iterations == 2)
+      fit_pendulum(L, *passes.offset, passes.P_first, passes.P, passes.w, passes.kappa);
+    // Anderson mixing from the third pass on: the pendulum is a model, and its error makes
+    // plain passes contract slowly; the fit of the second pass changes the map, so it restarts.
+    passes.residual(rep.iterations >= 3);
+    plan.trunk.set_offset(passes.plan_offset());
+  }
+  rep.omega_radps = passes.w;
   // Margins and offsets on the path that holds.
   rep.smallest_margin_m = std::numeric_limits<double>::infinity();
   for (int k = 0; k < K; ++k)
@@ -564,7 +602,7 @@ BalanceReport balance_trunk(const RobotModel& model, MotionPlan& plan, const Bal
       const double t = node_time(L, k, j);
       rep.smallest_margin_m =
           std::min(rep.smallest_margin_m, depth(L.piece_support[k], probe.at(t)));
-      if (offset) rep.largest_offset_m = std::max(rep.largest_offset_m, offset->at(t).e.norm());
+      rep.largest_offset_m = std::max(rep.largest_offset_m, passes.offset->at(t).e.norm());
     }
   return rep;
 }

@@ -58,7 +58,8 @@ TEST_CASE("support region: the hull holds every foot, edges with all feet inside
   // point.
   const SupportRegion line = convex_hull({{0, 0}, {0.1, 0.1}, {0.3, 0.3}, {0.2, 0.2}}, 1e-9);
   REQUIRE(line.vertices.size() == 2);
-  CHECK((line.vertices[0] - Vec2(0, 0)).norm() + (line.vertices[1] - Vec2(0.3, 0.3)).norm() < 1e-15);
+  CHECK((line.vertices[0] - Vec2(0, 0)).norm() + (line.vertices[1] - Vec2(0.3, 0.3)).norm() <
+        1e-15);
   CHECK(convex_hull({{0.1, 0.2}, {0.1, 0.2}}, 1e-9).vertices.size() == 1);
 }
 
