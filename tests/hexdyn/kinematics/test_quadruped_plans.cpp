@@ -15,6 +15,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "hexdyn/config/config.hpp"
@@ -126,6 +127,35 @@ void check_posture(const RobotModel& m, const MotionPlan& plan) {
         CHECK(state.q[k] <= m.joint_upper_rad[k]);
       }
     }
+  }
+}
+
+TEST_CASE("quadrupeds: the stairs' risers are at least 40 % of the standing hip height",
+          "[quadruped][stance]") {
+  // The hip height above the ground of each scene's comment, and the riser measured against it.
+  for (const auto& [name, hip_height_m] :
+       {std::pair<std::string, double>{"solo12_crawl_stairs", 0.2263},
+        std::pair<std::string, double>{"anymal_c_crawl_stairs", 0.4641}}) {
+    INFO(name);
+    const Scene s =
+        load_scene(std::string(HEXDYN_SOURCE_DIR) + "/configs/robots/" + name + ".yaml");
+    const RobotModel m = build_robot_model(s.robot);
+    REQUIRE(static_cast<int>(s.robot.stance.size()) == m.legs());
+    // Every leg at its stance, the trunk level: the hip joint's height above the foot point
+    // from the tree's forward kinematics (the stance's depth), and above the ground the
+    // sphere's radius more (the foot stands on the sphere's lowest point).
+    JointVector q = JointVector::Zero(m.joints());
+    for (int leg = 0; leg < m.legs(); ++leg)
+      for (int j = 0; j < m.leg(leg).n_joints; ++j) q[m.joint(leg, j)] = s.robot.stance[leg].q[j];
+    BodyPoses poses;
+    forward_kinematics_tree(m, q, poses);
+    for (int leg = 0; leg < m.legs(); ++leg) {
+      const double depth =
+          m.p_parent_joint[m.body(leg, 0)].z() - tree_foot_position_B(m, poses, leg).z();
+      CHECK(depth == Approx(s.robot.stance[leg].depth_m).margin(1e-12));
+      CHECK(depth + m.foot_radius_m[leg] == Approx(hip_height_m).margin(1e-4));
+    }
+    CHECK(s.terrain.riser_height_m >= 0.4 * hip_height_m);
   }
 }
 
