@@ -60,6 +60,8 @@ PLAN = {
     "build/hexdyn run configs/robots/solo12_flat.yaml -o solo12_flat.h5 -v": "run",
     "build/hexdyn run configs/robots/solo12_flat.yaml -o solo12_lseq.h5 --set "
     "'gait.phases={L1: 0, L4: 0.25, L2: 0.5, L3: 0.75}'": "run",
+    "build/hexdyn run configs/robots/solo12_flat.yaml -o solo12_trot.h5 --set gait.pattern=trot "
+    "--set gait.duty_factor=0.6": "run",
     "mkdir -p solo12_figures": "run",
     "/usr/bin/python3 analysis/plot_kinematics.py solo12_flat.h5 solo12_figures": "run",
     "/usr/bin/python3 analysis/animate.py solo12_flat.h5 -o solo12_flat.gif --view 3d --fps 5 "

@@ -29,12 +29,13 @@ void print_leg_mapping(const Scene& scene, std::ostream& os) {
      << " m from the hips along their outward directions (gait.foot_lateral)\n";
 }
 
-/// -v: each leg's lift-off phase, from gait.phases or the wave gait (planning/gait.hpp).
+/// -v: each leg's lift-off phase, from gait.pattern or gait.phases (model/gait_pattern.hpp).
 void print_gait_phases(const Scene& scene, std::ostream& os) {
   const std::vector<double> phases =
       liftoff_phases(scene.gait, gait_legs(build_robot_model(scene.robot)));
-  os << "hexdyn: lift-off phases (fraction of a cycle; "
-     << (scene.gait.liftoff_phases.empty() ? "the wave gait's" : "gait.phases") << ", swings of "
+  const GaitPattern pattern = scene.gait.pattern;
+  os << "hexdyn: lift-off phases (fraction of a cycle; gait.pattern " << gait_pattern_word(pattern)
+     << (pattern == GaitPattern::kCustom ? ": gait.phases" : "") << ", swings of "
      << 1.0 - scene.gait.duty_factor << " of a cycle):";
   for (std::size_t leg = 0; leg < phases.size(); ++leg)
     os << (leg ? ", " : " ") << leg_name(static_cast<int>(leg)) << " " << phases[leg];

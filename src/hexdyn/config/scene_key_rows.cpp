@@ -133,14 +133,28 @@ void add_gait(std::deque<SceneKey>& t) {
                   "`lift_fraction + lower_fraction` < 0.95",
        .read = KeyRead::kTable,
        .field = f::number<&Scene::gait, &GaitParams::lower_fraction>()});
+}
+
+/// The gait's phases: the pattern, or the phases given (model/gait_pattern.hpp).
+void add_gait_phases(std::deque<SceneKey>& t) {
+  const SectionRows add{t, "gait"};
+  add({.path = "gait.pattern",
+       .kind = KeyKind::kChoice,
+       .choices = "wave trot pace bound custom",
+       .default_text = "`custom` with `gait.phases`, else `wave`",
+       .meaning = "how the legs' lift-off phases follow from their sides and ranks: the wave "
+                  "gait (the crawl on four legs), diagonal pairs, the sides, front against "
+                  "rear, or `gait.phases`; a pattern the robot's legs do not fit is an error "
+                  "([docs/theory/stages.md](docs/theory/stages.md#gait-patterns))"});
   add({.path = "gait.phases",
        .kind = KeyKind::kText,
-       .default_text = "the wave gait's",
+       .default_text = "—",
        .allowed_text = "a map `{L1: φ1, …, Ln: φn}` naming each of the robot's n legs once, "
                        "each φ in [0, 1)",
        .meaning = "each leg's lift-off phase, the fraction of a cycle at which it lifts off "
-                  "(it swings for 1 − β of a cycle); replaces the wave gait's phases, which "
-                  "`-v` prints ([docs/theory/stages.md](docs/theory/stages.md#gait-planning))"});
+                  "(it swings for 1 − β of a cycle), with `gait.pattern: custom` only; `-v` "
+                  "prints the phases of every pattern "
+                  "([docs/theory/stages.md](docs/theory/stages.md#gait-planning))"});
   t.push_back({.path = "gait.phases.*",
                .instances = "L1 L2 L3 L4 L5 L6 L7 L8",
                .range = {0.0, 1.0, false, true},
@@ -276,6 +290,7 @@ void add_motion_timing(std::deque<SceneKey>& t) {
 void add_terrain_gait_motion_rows(std::deque<SceneKey>& table) {
   add_terrain(table);
   add_gait(table);
+  add_gait_phases(table);
   add_motion_start(table);
   add_motion_timing(table);
 }

@@ -2,6 +2,8 @@
 // defaults come from the table (scene_key_table.hpp); rules across keys from key_rules.hpp.
 #include <cmath>
 #include <cstdio>
+#include <span>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -9,6 +11,8 @@
 #include "hexdyn/config/scene_readers.hpp"
 #include "hexdyn/config/table_keys.hpp"
 #include "hexdyn/core/run_size.hpp"
+#include "hexdyn/model/gait_pattern.hpp"
+#include "hexdyn/model/robot_model.hpp"
 
 namespace hexdyn::scene_keys {
 
@@ -70,12 +74,61 @@ std::vector<double> read_phases(Reader& r, int legs) {
   return phases;
 }
 
+/// The robot's legs by side and rank (model/gait_pattern.hpp): a URDF robot's model, else the
+/// YAML robot's, built here; empty when the YAML robot's model cannot be built (its keys'
+/// error comes where it is built for the run).
+std::vector<GaitLeg> robot_gait_legs(const RobotParams& robot, const LoadedUrdfRobot& urdf) {
+  if (urdf.model) return gait_legs(*urdf.model);
+  try {
+    return gait_legs(build_robot_model(robot));
+  } catch (const std::logic_error&) {
+    return {};
+  }
+}
+
+/// gait.pattern with gait.phases (docs/user/configuration.md#gait): custom takes the phases, the
+/// other patterns none. Without a pattern the phases mean custom and their absence wave, a
+/// choice recorded as the pattern used with `auto.gait.pattern: auto` beside it. A pattern that
+/// does not fit the robot's legs is refused in one line (gait_pattern_misfit); the phases of
+/// the others are recorded as `auto.gait.phases`, written anew by every read.
+void read_pattern(Reader& r, GaitParams& g, std::span<const GaitLeg> legs) {
+  const std::string key = "gait.pattern";
+  if (r.given(key)) {
+    const std::string word = choice_key(r, key);
+    for (int i = 0; i <= static_cast<int>(GaitPattern::kCustom); ++i)
+      if (gait_pattern_word(static_cast<GaitPattern>(i)) == word) g.pattern = GaitPattern(i);
+    const bool custom = g.pattern == GaitPattern::kCustom;
+    if (custom && g.liftoff_phases.empty())
+      r.fail(key,
+             "got custom without gait.phases, expected gait.phases {L1: φ, …} beside it, or "
+             "one of wave, trot, pace, bound");
+    if (!custom && !g.liftoff_phases.empty())
+      r.fail(key, "got " + word + " with gait.phases, expected custom with gait.phases, or " +
+                      word + " without them (its phases follow from the legs)");
+  } else {
+    (void)r.has(key);  // counted as asked for
+    g.pattern = g.liftoff_phases.empty() ? GaitPattern::kWave : GaitPattern::kCustom;
+    r.record(key, YAML::Node(gait_pattern_word(g.pattern)));
+    r.record("auto." + key, "auto");
+  }
+  if (g.pattern == GaitPattern::kCustom || legs.empty()) return;
+  const std::string misfit = gait_pattern_misfit(g.pattern, legs);
+  if (!misfit.empty()) r.fail(key, misfit);
+  const std::vector<double> phases = gait_pattern_phases(g.pattern, legs, g.duty_factor);
+  YAML::Node by_leg(YAML::NodeType::Map);
+  for (int leg = 0; leg < static_cast<int>(phases.size()); ++leg)
+    by_leg[leg_name(leg)] = phases[leg];
+  by_leg.SetStyle(YAML::EmitterStyle::Flow);
+  r.record("auto.gait.phases", by_leg);
+}
+
 }  // namespace
 
 void read_gait(Reader& r, Scene& s, const LoadedUrdfRobot& urdf) {
   read_table_keys(r, s, "gait");
   GaitParams& g = s.gait;
   g.liftoff_phases = read_phases(r, robot_leg_count(urdf));
+  read_pattern(r, g, robot_gait_legs(s.robot, urdf));
   // A URDF robot's footholds default to its nominal stance radius (config/robot_config.hpp),
   // an automatic choice the resolved configuration records beside the value.
   if (urdf.robot && !r.given("gait.foot_lateral")) r.record("auto.gait.foot_lateral", "auto");

@@ -171,6 +171,17 @@ inline double mean_slope_rad(const TerrainParams& t) {
   return 0.0;
 }
 
+/// gait.pattern: how each leg's lift-off phase is set (model/gait_pattern.hpp,
+/// docs/theory/stages.md#gait-patterns). The enumerators are in the order of the key's
+/// choices.
+enum class GaitPattern {
+  kWave,    ///< Song and Waldron's wave gait (the crawl on four legs, the tripod at β = ½ on six)
+  kTrot,    ///< diagonal pairs: alternate ranks, the sides opposite
+  kPace,    ///< the left legs against the right legs
+  kBound,   ///< the front half of each side against the rear half
+  kCustom,  ///< the phases of gait.phases
+};
+
 struct GaitParams {
   double duty_factor = 0.5;  ///< β ∈ [1/2, 1): support fraction of each leg
   double stroke_m = 0.125;   ///< s0: foot travel relative to the trunk per stance
@@ -183,8 +194,12 @@ struct GaitParams {
   double touchdown_speed_mps = 0.05;  ///< downward foot speed at touchdown
   double lift_fraction = 0.3;         ///< share of swing time spent lifting
   double lower_fraction = 0.2;        ///< nominal share of swing time spent lowering
-  /// gait.phases: each leg's lift-off phase in [0, 1), in leg order L1 … Ln; empty: the wave
-  /// gait's (planning/gait.hpp).
+  /// gait.pattern; a scene that gives gait.phases without it is kCustom, one that gives
+  /// neither kWave (config/scene_read_motion.cpp).
+  GaitPattern pattern = GaitPattern::kWave;
+  /// gait.phases: each leg's lift-off phase in [0, 1), in leg order L1 … Ln, given with
+  /// pattern kCustom; empty for the other patterns, whose phases follow from the legs
+  /// (model/gait_pattern.hpp).
   std::vector<double> liftoff_phases;
 };
 

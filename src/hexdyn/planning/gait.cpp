@@ -12,8 +12,6 @@
 namespace hexdyn {
 namespace {
 
-double frac(double x) { return x - std::floor(x); }
-
 // Smootherstep and derivatives on [0, 1].
 double S(double u) { return u * u * u * (10.0 + u * (-15.0 + 6.0 * u)); }
 double dS(double u) { return 30.0 * u * u * (1.0 - u) * (1.0 - u); }
@@ -69,48 +67,6 @@ Vec3 foothold(const RobotModel& model, const GaitParams& gait, const TrunkMotion
 }
 
 }  // namespace
-
-std::vector<GaitLeg> gait_legs(const RobotModel& model) {
-  std::vector<GaitLeg> legs;
-  for (int leg = 0; leg < model.legs(); ++leg)
-    legs.push_back({model.leg(leg).side, model.leg(leg).row});
-  return legs;
-}
-
-std::vector<double> wave_gait_phases(std::span<const GaitLeg> legs, double beta) {
-  const auto on_side = [&](LegSide side) {
-    return static_cast<int>(
-        std::count_if(legs.begin(), legs.end(), [&](const GaitLeg& g) { return g.side == side; }));
-  };
-  const int n_left = on_side(LegSide::kLeft), n_right = on_side(LegSide::kRight);
-  std::vector<int> seen(legs.size(), 0);  // legs of each rank: the left's, then the right's
-  for (const GaitLeg& g : legs) {
-    const bool left = g.side == LegSide::kLeft;
-    const int n_side = left ? n_left : n_right;
-    if (g.rank < 0 || g.rank >= n_side || ++seen[(left ? 0 : n_left) + g.rank] > 1)
-      throw std::invalid_argument("wave gait: rank " + std::to_string(g.rank) + " on a side of " +
-                                  std::to_string(n_side) +
-                                  " legs; the ranks of a side are 0 … n − 1, each once");
-  }
-  const double s = 1.0 - beta;
-  // Six legs: frac(o + k * s) with k = 2, 1, 0 gives the bits of frac(0.5 + 2.0 * s),
-  // frac(2.0 * s), frac(0.5 + s), frac(s), 0.5 and 0.0: 0.0 + x = x, 1.0 * s = s and
-  // 0.0 * s = +0 exactly for a finite s ≥ 0 (tests/hexdyn/planning/test_gait_phases.cpp).
-  std::vector<double> phase;
-  phase.reserve(legs.size());
-  for (const GaitLeg& g : legs) {
-    const bool left = g.side == LegSide::kLeft;
-    const double offset = left ? 0.5 : 0.0;
-    const int behind = (left ? n_left : n_right) - 1 - g.rank;  // legs behind it on its side
-    phase.push_back(frac(offset + static_cast<double>(behind) * s));
-  }
-  return phase;
-}
-
-std::vector<double> liftoff_phases(const GaitParams& gait, std::span<const GaitLeg> legs) {
-  if (!gait.liftoff_phases.empty()) return gait.liftoff_phases;
-  return wave_gait_phases(legs, gait.duty_factor);
-}
 
 GaitPlan plan_gait(const RobotModel& model, const GaitParams& gait, const TrunkMotion& trunk,
                    const Terrain& terrain) {

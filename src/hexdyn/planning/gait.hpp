@@ -1,16 +1,12 @@
 #pragma once
 /// \file gait.hpp
-/// Gait planning: periodic wave gaits for any duty factor β ∈ [1/2, 1), or lift-off phases
-/// given by the scene (gait.phases), footholds on the terrain, and C² swing-foot paths.
+/// Gait planning: periodic gaits for any duty factor β ∈ [1/2, 1), footholds on the terrain,
+/// and C² swing-foot paths.
 ///
-/// Phases (fraction of a cycle at which a leg lifts off): on each side the wave runs
-/// from rear to front, each leg lifting when the one behind it touches down, and the
-/// left side lags the right by half a cycle (Song & Waldron's wave gait). A side of n_s legs
-/// ranked r = 0 … n_s − 1 from front to rear, s = 1 − β:
-///   φ = frac(o + (n_s − 1 − r) s),  o = ½ on the left, 0 on the right.
-/// Six legs: φ6 = 0, φ4 = 1−β, φ2 = 2(1−β), φ5 = ½, φ3 = ½+(1−β), φ1 = ½+2(1−β)  (mod 1).
-/// At β = ½ this is the paper's tripod: legs 2-3-6 swing first, then 1-4-5.
-/// Each leg swings once per cycle, from its phase φ for 1 − β of a cycle.
+/// Phases (fraction of a cycle at which a leg lifts off): those of gait.pattern, the wave gait
+/// by default, or gait.phases (model/gait_pattern.hpp, which has the formulas: liftoff_phases,
+/// gait_legs, wave_gait_phases). Each leg swings once per cycle, from its phase φ for 1 − β of
+/// a cycle.
 /// Swings that straddle the start or the end of the run are shortened to it, so the
 /// robot starts and ends with all feet on the ground.
 ///
@@ -28,11 +24,11 @@
 /// transfer at z_a (smootherstep); a vertical descent reaching the foothold with the
 /// downward touchdown speed. Position is C² inside the swing, velocity and acceleration
 /// are zero at lift-off; the descent is shortened when needed so that it is monotone.
-#include <span>
 #include <vector>
 
 #include "hexdyn/core/common.hpp"
 #include "hexdyn/core/scene.hpp"
+#include "hexdyn/model/gait_pattern.hpp"
 #include "hexdyn/model/robot_model.hpp"
 #include "hexdyn/planning/motion.hpp"
 #include "hexdyn/planning/terrain.hpp"
@@ -64,27 +60,6 @@ struct GaitPlan {
   std::vector<double> liftoff_phase;  ///< per leg of the model, in [0, 1)
   std::vector<LegPlan> legs;          ///< per leg of the model (built once per plan)
 };
-
-/// A leg's place in the wave gait: its side (model/robot_model.hpp LegSide), and its rank on
-/// that side counted from the front (0 the front leg).
-struct GaitLeg {
-  LegSide side = LegSide::kLeft;
-  int rank = 0;
-};
-
-/// The model's legs in leg order, each with the side and front-to-rear row of its leg table
-/// (RobotModel::leg; for a hexapod L1 front left, L2 front right, … L6 rear right,
-/// docs/theory/conventions.md).
-std::vector<GaitLeg> gait_legs(const RobotModel& model);
-
-/// Lift-off phases φ ∈ [0, 1) of the wave gait above, one per leg of `legs`, in its order.
-/// The ranks on each side must be 0 … n_s − 1, each once (std::invalid_argument otherwise).
-/// For a hexapod's gait_legs() these are the six expressions above, operation for operation.
-std::vector<double> wave_gait_phases(std::span<const GaitLeg> legs, double duty_factor);
-
-/// The lift-off phases a plan uses: gait.phases when the scene gives them, else the wave
-/// gait's for `legs` and gait.duty_factor.
-std::vector<double> liftoff_phases(const GaitParams& gait, std::span<const GaitLeg> legs);
 
 /// Plans every swing of every leg over the whole run. Throws PlanningError when no
 /// foothold satisfies the margin, in one line naming the leg, the stance's start time, the

@@ -1,6 +1,7 @@
 // The hexdyn command line (src/main.cpp), run as a separate process in a scratch
 // directory: exit statuses, one-line error messages naming the key or the file, and
 // output files that are either complete or untouched.
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cctype>
 #include <set>
@@ -27,26 +28,37 @@ TEST_CASE("cli: --help and validate succeed", "[cli]") {
   CHECK(s.listing().empty());
 }
 
-TEST_CASE("cli: -v prints the lift-off phases, the wave gait's or gait.phases", "[cli]") {
+TEST_CASE("cli: -v prints the lift-off phases, the pattern's or gait.phases", "[cli]") {
   Scratch s;
   // The tripod of the paper: L2, L3, L6 lift off first.
   const Outcome tripod = run_cli(s, {"validate", kPaperConfig, "-v"});
   INFO(tripod.err);
   REQUIRE(tripod.status == 0);
-  CHECK(tripod.out.find("hexdyn: lift-off phases (fraction of a cycle; the wave gait's, swings "
+  CHECK(tripod.out.find("hexdyn: lift-off phases (fraction of a cycle; gait.pattern wave, swings "
                         "of 0.5 of a cycle): L1 0.5, L2 0, L3 0, L4 0.5, L5 0.5, L6 0\n") !=
         std::string::npos);
   // β = 3/4: each side's wave from rear to front a quarter cycle apart, the left half a cycle
   // after the right.
   const Outcome wave =
       run_cli(s, {"validate", kPaperConfig, "-v", "--set", "gait.duty_factor=3/4"});
-  CHECK(wave.out.find("the wave gait's, swings of 0.25 of a cycle): L1 0, L2 0.5, L3 0.75, L4 "
+  CHECK(wave.out.find("gait.pattern wave, swings of 0.25 of a cycle): L1 0, L2 0.5, L3 0.75, L4 "
                       "0.25, L5 0.5, L6 0\n") != std::string::npos);
   const Outcome given =
       run_cli(s, {"validate", kPaperConfig, "-v", "--set",
                   "gait.phases={L1: 0.125, L2: 0.5, L3: 0.5, L4: 0, L5: 0, L6: 0.5}"});
-  CHECK(given.out.find("gait.phases, swings of 0.5 of a cycle): L1 0.125, L2 0.5, L3 0.5, L4 0, "
-                       "L5 0, L6 0.5\n") != std::string::npos);
+  CHECK(given.out.find("gait.pattern custom: gait.phases, swings of 0.5 of a cycle): L1 0.125, "
+                       "L2 0.5, L3 0.5, L4 0, L5 0, L6 0.5\n") != std::string::npos);
+  // The trot of six legs is the tripod: alternate ranks, the sides opposite.
+  const Outcome trot = run_cli(s, {"validate", kPaperConfig, "-v", "--set", "gait.pattern=trot"});
+  CHECK(trot.out.find("gait.pattern trot, swings of 0.5 of a cycle): L1 0.5, L2 0, L3 0, L4 0.5, "
+                      "L5 0.5, L6 0\n") != std::string::npos);
+  // A bound needs an even number of legs on each side: one line, exit 2.
+  const Outcome bound = run_cli(s, {"validate", kPaperConfig, "--set", "gait.pattern=bound"});
+  const std::string said = bound.out + bound.err;
+  CHECK(bound.status == 2);
+  CHECK(said.find("gait.pattern: got bound for a robot of 6 legs (3 on the left, 3 on the "
+                  "right)") != std::string::npos);
+  CHECK(std::count(said.begin(), said.end(), '\n') == 1);
   const Outcome quiet = run_cli(s, {"validate", kPaperConfig});
   CHECK(quiet.out.find("lift-off") == std::string::npos);
 }

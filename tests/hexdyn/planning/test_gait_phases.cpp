@@ -34,25 +34,8 @@ bool same_bits(double a, double b) {
   return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b);
 }
 
-/// Legs of a robot with `per_side` legs on each side, in the leg order of
-/// docs/theory/conventions.md: front to rear, left before right in each pair.
-std::vector<GaitLeg> paired_legs(int per_side) {
-  std::vector<GaitLeg> legs;
-  for (int rank = 0; rank < per_side; ++rank) {
-    legs.push_back({LegSide::kLeft, rank});
-    legs.push_back({LegSide::kRight, rank});
-  }
-  return legs;
-}
-
-/// Whether a leg of lift-off phase phi is in swing at cycle phase tau (swing [phi, phi + 1 − β)
-/// modulo 1), counted without the planner.
-bool swinging(double phi, double beta, double tau) {
-  double u = tau - phi;
-  while (u < 0.0) u += 1.0;
-  while (u >= 1.0) u -= 1.0;
-  return u < 1.0 - beta;
-}
+using test::paired_legs;
+using test::swinging;
 
 /// Cycle phases spread over one cycle, none on a multiple of 1/48 (where a swing may begin or
 /// end for the duty factors below).

@@ -1,7 +1,8 @@
 // Footholds from the robot's own geometry (planning/gait.hpp): every foothold of a URDF
 // robot lies at gait.foot_lateral from its hip along the direction the hip's leg points at
 // zero angles (the URDF's hip yaw), made horizontal, moved only along y (s0/2 forward and
-// the snap to the treads); the paper robot's rule is x = hip x ± foot_lateral.
+// the snap to the treads), for six legs as for four; the paper robot's rule is x = hip x ±
+// foot_lateral.
 #include <catch2/catch.hpp>
 #include <cmath>
 
@@ -13,7 +14,8 @@ namespace hexdyn {
 
 TEST_CASE("footholds lie along each hip's direction at foot_lateral", "[gait][robots]") {
   const std::string src = HEXDYN_SOURCE_DIR;
-  for (const std::string name : {"phantomx_mark4_stairs", "kraby_stairs", "paper"}) {
+  for (const std::string name : {"phantomx_mark4_stairs", "kraby_stairs", "paper", "solo12_flat",
+                                 "anymal_c_crawl_stairs", "solo12_trot_flat"}) {
     INFO(name);
     const Scene s = load_scene(
         src + (name == "paper" ? "/configs/paper.yaml" : "/configs/robots/" + name + ".yaml"));
