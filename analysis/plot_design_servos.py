@@ -28,7 +28,9 @@ A combination (servo, duty factor, riser) climbs when
                    (1/0), reason, the electrical and mechanical cost of transport and
                    energy [J], copper loss, friction loss, regenerated [J], peak electrical
                    power [W], relaxed samples, relaxed gait samples, failed samples, thermal
-                   load, largest windowed RMS drive torque [N m].
+                   load, largest windowed RMS drive torque [N m], and with a thermal model
+                   the peak winding temperature [°C] and the first time a winding reaches
+                   its limit [s] (inf: never) over the joints.
 The answer (which servo climbs each riser, and at what electrical cost of transport) is
 printed to stderr.
 """
@@ -53,7 +55,10 @@ COLUMNS = ("id", "servo", RISER, DUTY, "status", "climbs", "reason",
            "cost_of_transport_electrical", "cost_of_transport", "energy_electrical", "energy",
            "energy_copper_loss", "energy_friction_loss", "energy_regenerated",
            "peak_electrical_power", "relaxed_samples", "relaxed_gait_samples", "failed_samples",
-           "thermal_load", "window_rms_max")
+           "thermal_load", "window_rms_max", "peak_winding_temperature_max",
+           "time_to_winding_limit_min")
+# The thermal model's columns (sweep layout 5 on; NaN for servos without a thermal model).
+THERMAL = ("peak_winding_temperature_max", "time_to_winding_limit_min")
 
 
 def climb_verdict(status, failed, relaxed_gait, thermal_load):
@@ -113,6 +118,8 @@ def servo_rows(sweep):
                else np.nan}
         for name in COLUMNS[7:15] + ("relaxed_samples", "failed_samples", "thermal_load"):
             row[name] = float(t[name][s])
+        for name in THERMAL:
+            row[name] = float(t[name][s]) if name in t else np.nan
         row["climbs"], row["reason"] = climb_verdict(status, row["failed_samples"], gait,
                                                      row["thermal_load"])
         rows.append(row)

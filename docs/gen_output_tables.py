@@ -1,6 +1,6 @@
 """Writes the tables of docs/user/output.md from src/hexdyn/io/schema.hpp.
 
-The file layouts hexdyn writes (hexdyn-result/4, hexdyn-sweep/4, hexdyn-envelope/2,
+The file layouts hexdyn writes (hexdyn-result/5, hexdyn-sweep/5, hexdyn-envelope/2,
 hexdyn-replay/2) are declared once, in the C++ header src/hexdyn/io/schema.hpp and the parts
 it includes. The declarations are those of the
 Python reader (`hexdyn.results.SCHEMA`, from the module hexdyn._schema the build generates
@@ -47,7 +47,7 @@ DEFAULT_DOC = os.path.join(HERE, "user", "output.md")
 BEGIN = re.compile(r"^<!-- BEGIN GENERATED: (\w+) -->$")
 END = "<!-- END GENERATED -->"
 
-# Section banners of the header: "// ====...==== hexdyn-result/4".
+# Section banners of the header: "// ====...==== hexdyn-result/5".
 SECTION = re.compile(r"^// =+ (hexdyn-[a-z]+/\d+)\s*$", re.M)
 # The name of each declaration and where it starts (the declarations themselves come from
 # hexdyn.results.SCHEMA; this only places names in sections and finds their comments).
@@ -70,6 +70,7 @@ RESULT_PRESENCE = {
     "kDynamicsDatasets": "dynamics",
     "kRequiredFrictionDatasets": "dynamics, unless output.required_friction is false",
     "kDriveTrainDatasets": "actuators",
+    "kThermalDatasets": "actuators with a thermal model",
 }
 
 

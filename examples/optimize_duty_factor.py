@@ -45,7 +45,7 @@ def main():
     ap.add_argument("--treads", type=int, default=3, help="treads climbed by every run (default 3)")
     ap.add_argument("--peak-speed", type=float, default=0.1, help="cruise speed [m/s] (default 0.1)")
     ap.add_argument("--ramp", type=float, default=0.8, help="speed ramp duration [s] (default 0.8)")
-    ap.add_argument("--output", help="write the optimal run's hexdyn-result/4 file here")
+    ap.add_argument("--output", help="write the optimal run's hexdyn-result/5 file here")
     a = ap.parse_args()
     fixed = equal_travel(a.treads, a.peak_speed, a.ramp)
 

@@ -401,7 +401,7 @@ PYBIND11_MODULE(_hexdyn, m) {
         "Computes a scene: (handle, {HDF5 path: array}, {/meta attribute: value}, "
         "{HDF5 path: units}).");
   m.def("write", &write_file, py::arg("handle"), py::arg("path"),
-        "Writes a computed scene's hexdyn-result/4 file, with the CLI's checks on the path.");
+        "Writes a computed scene's hexdyn-result/5 file, with the CLI's checks on the path.");
   m.def("validate", &validate_file, py::arg("scene"), py::arg("overrides"),
         "Checks a scene or sweep file as `hexdyn validate` does.");
   m.def("sample_problem", &sample_problem_file, py::arg("scene"), py::arg("overrides"),

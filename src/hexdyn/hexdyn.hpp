@@ -8,7 +8,7 @@
 ///                                              {hexdyn::parse_override("gait.duty_factor=3/4")});
 ///     hexdyn::RunResult r = hexdyn::run_scene(scene);     // computes; throws hexdyn::Error
 ///     double energy_J = r.dyn.energy_total_J;
-///     hexdyn::write_result_file("out.h5", r);             // hexdyn-result/4, as `hexdyn run`
+///     hexdyn::write_result_file("out.h5", r);             // hexdyn-result/5, as `hexdyn run`
 ///
 /// - load_scene(path, overrides) reads, inherits, overrides and validates a scene file
 ///   (config/config.hpp); parse_override("key.path=value") is one `--set`.

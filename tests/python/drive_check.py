@@ -30,8 +30,19 @@ KEYS = ("gear_ratio", "torque_constant", "resistance", "coulomb_friction", "visc
         "gear_efficiency", "voltage", "peak_torque", "continuous_torque", "regeneration",
         "thermal_window", "armature")
 OPTIONAL = ("voltage", "peak_torque", "continuous_torque", "thermal_window")  # absent = +inf
+# The three-phase and thermal keys (docs/theory/drive-train.md): absent = these defaults.
+DEFAULTS = {"voltage_utilization": 0.5, "thermal_resistance_winding": np.nan,
+            "thermal_capacity_winding": np.nan, "thermal_resistance_housing": np.nan,
+            "thermal_capacity_housing": np.nan, "ambient_temperature": 25.0,
+            "winding_temperature_limit": np.inf}
+COPPER_FACTOR = {"dc": 1.0, "three_phase_amplitude": 1.5, "three_phase_power": 1.0}
+THERMAL_DATASETS = (
+    "/thermal/winding_temperature", "/thermal/housing_temperature",
+    "/thermal/peak_winding_temperature", "/thermal/time_to_limit", "/thermal/limit_reached",
+    "/thermal/peak", "/thermal/first_time_to_limit")
 DRIVE_DATASETS = (
-    "/joints/drive_torque", "/joints/drive_torque_limit", "/joints/current",
+    "/joints/drive_torque", "/joints/drive_torque_limit", "/joints/drive_torque_lower_limit",
+    "/joints/current",
     "/joints/drive_torque_rms", "/joints/drive_torque_window_rms", "/power/electrical",
     "/power/electrical_total", "/energy/electrical", "/energy/electrical_per_joint",
     "/energy/copper_loss", "/energy/friction_loss", "/energy/regenerated",
@@ -44,7 +55,8 @@ INPUTS = ("/time", "/joints/torque", "/joints/velocity", "/joints/acceleration",
 def read_result(group):
     """{dataset: value} of a result (an h5py File or a sweep's /runs/<id> group), with
     "joints" (/model/joint_names) and "config" (/meta config_yaml parsed)."""
-    r = {k: group[k.lstrip("/")][()] for k in INPUTS + DRIVE_DATASETS if k.lstrip("/") in group}
+    r = {k: group[k.lstrip("/")][()] for k in INPUTS + DRIVE_DATASETS + THERMAL_DATASETS
+         if k.lstrip("/") in group}
     r["joints"] = [text(n) for n in group["model/joint_names"][()]]
     r["config"] = yaml.safe_load(text(group["meta"].attrs["config_yaml"]))
     r["urdf"] = text(group["model/urdf"][()])
@@ -67,6 +79,10 @@ def parameters(r):
             out[k] = np.array([float(joints[n].get(k, np.inf)) for n in r["joints"]])
         else:
             out[k] = np.array([float(joints[n][k]) for n in r["joints"]])
+    for k, default in DEFAULTS.items():
+        out[k] = np.array([float(joints[n].get(k, default)) for n in r["joints"]])
+    out["winding"] = np.array([joints[n].get("winding", "dc") for n in r["joints"]])
+    out["copper_factor"] = np.array([COPPER_FACTOR[w] for w in out["winding"]])
     return out
 
 
@@ -183,19 +199,25 @@ def recompute(r):
     terms = [tau, Ja * qdd, tc * np.sign(qd), b * qd]
     out["/joints/drive_torque"] = (sum(terms), sum(np.abs(x) for x in terms))
 
+    dc = p["winding"] == "dc"
     voltage = np.where(np.isfinite(p["voltage"]),
                        np.maximum(0.0, Gk * eta * (p["voltage"] - Gk * np.abs(qd)) / R), np.inf)
     bounded = np.isfinite(p["voltage"]) | np.isfinite(p["peak_torque"])
     limit = np.where(bounded, np.minimum(p["peak_torque"], voltage), torque_limits(r))
     voltage_terms = np.where(np.isfinite(voltage),
                              Gk * eta * (p["voltage"] + Gk * np.abs(qd)) / R, 0.0)
-    out["/joints/drive_torque_limit"] = (limit, np.maximum(limit, voltage_terms))
+    upper, lower, scale3 = three_phase_bounds(p, qd, torque_limits(r))
+    out["/joints/drive_torque_limit"] = (np.where(dc, limit, upper),
+                                         np.where(dc, np.maximum(limit, voltage_terms), scale3))
+    out["/joints/drive_torque_lower_limit"] = (np.where(dc, -limit, lower),
+                                               np.where(dc, np.maximum(limit, voltage_terms),
+                                                        scale3))
 
     td = r["/joints/drive_torque"]
     driving = td * qd >= 0
     current = np.where(driving, td / (Gk * eta), td * eta / Gk)
     out["/joints/current"] = (current, np.abs(current))
-    copper = R * current ** 2
+    copper = p["copper_factor"] * R * current ** 2
     mech = Gk * qd * current
     P = copper + mech
     P_scale = copper + np.abs(mech)
@@ -246,6 +268,139 @@ def recompute(r):
         "windowed maximum inside a piece": interior,
     }
     return out, counts
+
+
+def three_phase_bounds(p, qd, fallback):
+    """The bounds lower ≤ τ_drive ≤ upper of three-phase joints (docs/theory/drive-train.md#
+    voltage-limit): the q-axis voltage |R I + k_e ω_m| ≤ V_q, k_e = k_t / c, V_q = u V (√(3/2)
+    u V power-invariant), through the gearbox (η driving, 1/η back-driven), each side clamped
+    to [−peak, peak]; the
+    allocation's limit for a joint with neither. Returns (upper, lower, scale)."""
+    G, kt, R, eta = p["gear_ratio"], p["torque_constant"], p["resistance"], p["gear_efficiency"]
+    ke = kt / p["copper_factor"]
+    vq = np.where(p["winding"] == "three_phase_power", np.sqrt(1.5), 1.0) \
+        * p["voltage_utilization"] * p["voltage"]
+    wm = G * qd
+
+    def joint(tm):
+        return np.where(tm * qd >= 0, eta * G * tm, G * tm / eta)
+
+    with np.errstate(all="ignore"):
+        up_v = joint(kt * (vq - ke * wm) / R)
+        lo_v = joint(kt * (-vq - ke * wm) / R)
+        reach = np.abs(G * kt * (vq + np.abs(ke * wm)) / R) / np.minimum(eta, 1.0)
+    has_v = np.isfinite(p["voltage"])
+    peak = p["peak_torque"]
+    # Each side clamped to ±peak (past the speed where both sides pass the peak, the drive
+    # holds its current limit, as MIT's ActuatorModel clamps).
+    upper = np.clip(np.where(has_v, up_v, np.inf), -peak, peak)
+    lower = np.clip(np.where(has_v, lo_v, -np.inf), -peak, peak)
+    bounded = has_v | np.isfinite(peak)
+    upper = np.where(bounded, upper, fallback)
+    lower = np.where(bounded, lower, -fallback)
+    scale = np.where(has_v, reach, 0.0)
+    scale = np.maximum(np.maximum(np.abs(upper), np.abs(lower)), np.nan_to_num(scale))
+    return upper, lower, scale
+
+
+def thermal_matrices(p, k):
+    """The two-node network of joint k: dx/dt = A x + B P, x the rise over the ambient."""
+    R1, C1 = p["thermal_resistance_winding"][k], p["thermal_capacity_winding"][k]
+    R2, C2 = p["thermal_resistance_housing"][k], p["thermal_capacity_housing"][k]
+    A = np.array([[-1 / (R1 * C1), 1 / (R1 * C1)], [1 / (R1 * C2), -1 / (R1 * C2) - 1 / (R2 * C2)]])
+    return A, np.array([1 / C1, 0.0])
+
+
+def thermal_step(A, B, x, p0, slope, h):
+    """x after h under P = p0 + slope·s, exactly: the matrix exponential of the system
+    augmented by P and its slope (scipy), a method of its own against the program's modal
+    closed form."""
+    from scipy.linalg import expm
+    M = np.zeros((4, 4))
+    M[:2, :2] = A
+    M[:2, 2] = B
+    M[2, 3] = 1.0
+    return (expm(M * h) @ np.array([x[0], x[1], p0, slope]))[:2]
+
+
+def recompute_thermal(r, copper):
+    """/thermal/* recomputed here from the file's copper loss per joint (T×J) and /meta;
+    {dataset: (value, scale)} and the list of problems of the peak and the crossing."""
+    p = parameters(r)
+    t = r["/time"]
+    T, J = copper.shape
+    Tw, Th = np.full((T, J), np.nan), np.full((T, J), np.nan)
+    problems = []
+    for k in range(J):
+        if np.isnan(p["thermal_capacity_housing"][k]):
+            continue
+        A, B = thermal_matrices(p, k)
+        amb, lim = p["ambient_temperature"][k], p["winding_temperature_limit"][k]
+        x = np.zeros(2)
+        Tw[0, k] = Th[0, k] = amb
+        for i in range(1, T):
+            h = t[i] - t[i - 1]
+            if h > 0:
+                x = thermal_step(A, B, x, copper[i - 1, k], (copper[i, k] - copper[i - 1, k]) / h, h)
+            Tw[i, k], Th[i, k] = amb + x[0], amb + x[1]
+        peak = r["/thermal/peak_winding_temperature"][k]
+        if not peak >= np.max(Tw[:, k]) - 1e-9 * (np.max(Tw[:, k]) - amb):
+            problems.append(f"joint {k}: peak {peak} below the samples' largest {np.max(Tw[:, k])}")
+        when = r["/thermal/time_to_limit"][k]
+        reached = bool(r["/thermal/limit_reached"][k])
+        if reached != (peak >= lim):
+            problems.append(f"joint {k}: limit_reached {reached}, peak {peak}, limit {lim}")
+        if reached:
+            # The interval [t_j, t_n] holding the crossing: t_j the last sample before it.
+            j = int(np.searchsorted(t, when, side="left")) - 1
+            n = j + 1
+            x0 = np.array([Tw[j, k] - amb, Th[j, k] - amb])
+            slope = (copper[n, k] - copper[j, k]) / (t[n] - t[j])
+            at = amb + thermal_step(A, B, x0, copper[j, k], slope, when - t[j])[0]
+            before = Tw[:j + 1, k]
+            rise = lim - amb
+            if abs(at - lim) > 1e-9 * rise or np.any(before > lim + 1e-9 * rise):
+                problems.append(f"joint {k}: at the time to the limit {when} the winding is {at}, "
+                                f"limit {lim}")
+        elif when != np.inf:
+            problems.append(f"joint {k}: time to the limit {when}, expected +inf (not reached)")
+    scale = np.where(np.isnan(Tw), np.nan, np.maximum(np.abs(Tw), 1.0))
+    out = {"/thermal/winding_temperature": (Tw, scale),
+           "/thermal/housing_temperature": (Th, np.where(np.isnan(Th), np.nan, np.maximum(np.abs(Th), 1.0)))}
+    return out, problems
+
+
+def compare_nan(name, got, want, scale, problems):
+    """compare(), NaN in the file where NaN here."""
+    got, want = np.asarray(got, float), np.asarray(want, float)
+    if not np.array_equal(np.isnan(got), np.isnan(want)):
+        problems.append(f"{name}: NaN where there should be none, or none where there should be")
+        return
+    keep = ~np.isnan(want)
+    compare(name, got[keep], want[keep], np.asarray(scale)[keep], problems)
+
+
+def check_thermal(r, label):
+    """Every /thermal/* dataset of r against a second computation; returns the joints with a
+    thermal model and those that reach their limit."""
+    missing = [k for k in THERMAL_DATASETS if k not in r]
+    assert not missing, f"{label}: no {missing}"
+    p = parameters(r)
+    td, qd = r["/joints/drive_torque"], r["/joints/velocity"]
+    Gk, eta = p["gear_ratio"] * p["torque_constant"], p["gear_efficiency"]
+    current = np.where(td * qd >= 0, td / (Gk * eta), td * eta / Gk)
+    copper = p["copper_factor"] * p["resistance"] * current ** 2
+    out, problems = recompute_thermal(r, copper)
+    for name, (want, scale) in out.items():
+        compare_nan(name, r[name], want, scale, problems)
+    model = ~np.isnan(p["thermal_capacity_housing"])
+    peaks = r["/thermal/peak_winding_temperature"]
+    if not np.isclose(r["/thermal/peak"], np.max(peaks[model]), rtol=0, atol=0):
+        problems.append(f"/thermal/peak {r['/thermal/peak']} is not the largest joint peak")
+    if r["/thermal/first_time_to_limit"] != np.min(r["/thermal/time_to_limit"][model]):
+        problems.append("/thermal/first_time_to_limit is not the joints' least")
+    assert not problems, f"{label}:\n  " + "\n  ".join(problems)
+    return int(np.sum(model)), int(np.sum(r["/thermal/limit_reached"]))
 
 
 def check(r, label):

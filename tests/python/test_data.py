@@ -195,7 +195,7 @@ with tempfile.TemporaryDirectory() as d:
     # ---- write() of a read result: the objects of the file
     read.write(f"{d}/copy.h5")
     n = check_copy(f"{d}/run.h5", "/", f"{d}/copy.h5")
-    assert hexdyn.check_layout(f"{d}/copy.h5") == "hexdyn-result/4"
+    assert hexdyn.check_layout(f"{d}/copy.h5") == "hexdyn-result/5"
     print(f"copy of a file: {n} objects equal")
     # ... and of a kept run of a sweep, as a file of its own.
     cli("sweep", os.path.join(SRC, "configs", "sweeps", "smoke.yaml"), "-o", f"{d}/sweep.h5",

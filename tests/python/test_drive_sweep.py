@@ -146,7 +146,7 @@ def plain_sweep(d):
     table, ids, runs = sweep(d, "plain", {
         "name": "plain", "base": PAPER,
         "axes": [{"key": "terrain.riser_height", "values": [0.04, 0.05]}]})
-    for metric in DRIVE_METRICS:
+    for metric in DRIVE_METRICS + THERMAL_METRICS:
         assert np.all(np.isnan(table[metric])), f"without actuators: {metric} {table[metric]}"
     for i, sid in enumerate(ids):
         r = runs[sid]
@@ -156,8 +156,42 @@ def plain_sweep(d):
         print(f"plain scenario {sid}: drive metrics NaN, {n} transient samples")
 
 
+THERMAL_METRICS = ("peak_winding_temperature", "time_to_winding_limit",
+                   "peak_winding_temperature_max", "time_to_winding_limit_min")
+
+
+def thermal_sweep(d):
+    """Brushless modules with the thermal model: the sweep's thermal columns are the kept
+    runs' /thermal/* (per joint, and the largest peak and the earliest time over them); a
+    limit just above the ambient is reached (a finite time), the table's is not (+inf)."""
+    base = write_yaml(os.path.join(d, "thermal_base.yaml"), {
+        "inherit": PAPER, "actuators": {"default": {"model": "mini_cheetah_hip"}}})
+    table, ids, runs = sweep(d, "thermal", {
+        "name": "thermal", "base": base,
+        "axes": [{"name": "limit", "cases": [
+            {"label": "table", "actuators.default.winding_temperature_limit": 120},
+            {"label": "low", "actuators.default.winding_temperature_limit": 25.001}]}]})
+    for i, sid in enumerate(ids):
+        r = runs[sid]
+        label = f"thermal scenario {sid}"
+        drive_check.check(r, label)
+        drive_check.check_thermal(r, label)
+        same(f"{label} peak_winding_temperature", table["peak_winding_temperature"][i],
+             r["/thermal/peak_winding_temperature"])
+        same(f"{label} time_to_winding_limit", table["time_to_winding_limit"][i],
+             r["/thermal/time_to_limit"])
+        same(f"{label} peak_winding_temperature_max", table["peak_winding_temperature_max"][i],
+             r["/thermal/peak"])
+        same(f"{label} time_to_winding_limit_min", table["time_to_winding_limit_min"][i],
+             r["/thermal/first_time_to_limit"])
+        print(f"{label}: peak {float(r['/thermal/peak']):.4g} degC, first time to the limit "
+              f"{float(r['/thermal/first_time_to_limit']):.4g} s")
+    assert table["time_to_winding_limit_min"][0] == np.inf
+    assert np.isfinite(table["time_to_winding_limit_min"][1])
+
+
 with tempfile.TemporaryDirectory() as tmp:
-    for part in (servo_sweep, plain_sweep):
+    for part in (servo_sweep, plain_sweep, thermal_sweep):
         work = os.path.join(tmp, part.__name__)
         os.mkdir(work)
         part(work)

@@ -88,7 +88,7 @@ with tempfile.TemporaryDirectory() as d:
     # of hanging it), a directory, a device, a socket. A link to a result file opens.
     r.write(f"{d}/r.h5")
     os.symlink(f"{d}/r.h5", f"{d}/link.h5")
-    assert hexdyn.open_result(f"{d}/link.h5").meta["schema"] == "hexdyn-result/4"
+    assert hexdyn.open_result(f"{d}/link.h5").meta["schema"] == "hexdyn-result/5"
     os.mkfifo(f"{d}/fifo.h5")
     server = socket.socket(socket.AF_UNIX)
     server.bind(f"{d}/socket.h5")

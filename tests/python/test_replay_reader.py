@@ -191,10 +191,10 @@ def check_errors(d, result, replay):
     """One line for a file of the other kind, a missing dataset, a wrong shape, an
     undeclared dataset."""
     msg = raises(ValueError, hexdyn.open_replay, result)
-    check("\n" not in msg and "hexdyn-result/4" in msg and "hexdyn-replay/2" in msg
+    check("\n" not in msg and "hexdyn-result/5" in msg and "hexdyn-replay/2" in msg
           and result in msg, "open_replay(result): ValueError, one line naming both schemas", msg)
     msg = raises(ValueError, hexdyn.open_result, replay)
-    check("\n" not in msg and "hexdyn-replay/2" in msg and "hexdyn-result/4" in msg,
+    check("\n" not in msg and "hexdyn-replay/2" in msg and "hexdyn-result/5" in msg,
           "open_result(replay): ValueError, one line naming both schemas", msg)
     for edit, path, what in (("delete", "/energy/slip", "missing dataset"),
                              ("reshape", "/joints/tracking_error", "wrong shape"),

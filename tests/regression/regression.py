@@ -33,7 +33,7 @@ Tolerance rule, per quantity (rtol written next to each quantity in reference.js
 NaN must match NaN (written null in the JSON); rtol 0 means exact (integers, strings,
 counts, shapes). The rtol values are set in TOLERANCES below, with their reasons.
 
-Paper run (hexdyn-result/4) quantities:
+Paper run (hexdyn-result/5) quantities:
     samples                     T, number of samples
     total_mass                  /model/total_mass [kg]
     duration                    /time[-1] - /time[0] [s]
@@ -55,7 +55,7 @@ Paper run (hexdyn-result/4) quantities:
                                 intervals between two consecutive such samples [s]), _mean (its
                                 trapezoid time integral over those intervals / _time [N]),
                                 _min, _max [N], _mean_over_weight (_mean / (total_mass * 9.81))
-Smoke sweep (hexdyn-sweep/4) quantities: scenarios (count), and the /scenarios columns
+Smoke sweep (hexdyn-sweep/5) quantities: scenarios (count), and the /scenarios columns
     id, status, message, axis_0.., energy, cost_of_transport, peak_impact_force, duration,
     distance, peak_torque (N,18), rms_torque (N,18), relaxed_samples, failed_samples, samples.
 """
@@ -183,7 +183,7 @@ def trapezoid(y, t, axis=0):
 
 def paper_quantities(path):
     with h5py.File(path, "r") as f:
-        check_schema(f, "hexdyn-result/4", path)
+        check_schema(f, "hexdyn-result/5", path)
         t = f["/time"][()]
         tau = f["/joints/torque"][()]
         phase = f["/contacts/phase"][()]
@@ -234,7 +234,7 @@ def paper_quantities(path):
 
 def smoke_quantities(path):
     with h5py.File(path, "r") as f:
-        check_schema(f, "hexdyn-sweep/4", path)
+        check_schema(f, "hexdyn-sweep/5", path)
         s = f["/scenarios"]
         q = {"scenarios": int(s["id"].shape[0])}
         names = list(SMOKE_COLUMNS)

@@ -10,7 +10,7 @@ except (sweep files):
     /scenarios/wall_time_s
     /runs/<id>/meta attributes created_utc, wall_time_s
     /runs/<id>/solver/seconds
-With --result the files are hexdyn-result/4 files (a run of `hexdyn run`, or a group
+With --result the files are hexdyn-result/5 files (a run of `hexdyn run`, or a group
 given as FILE.h5:/runs/<id>): /meta created_utc, wall_time_s and /solver/seconds are
 ignored, and so is /meta input_sha256 (a kept run records its sweep's input files, a
 `hexdyn run` its scene's). Exit status 0 when equal, 1 with one line per difference otherwise.
@@ -166,7 +166,7 @@ def main():
     ap.add_argument("a")
     ap.add_argument("b")
     ap.add_argument("--result", action="store_true",
-                    help="compare hexdyn-result/4 layouts (FILE or FILE.h5:/runs/<id>)")
+                    help="compare hexdyn-result/5 layouts (FILE or FILE.h5:/runs/<id>)")
     args = ap.parse_args()
     fa, ga = open_target(args.a)
     fb, gb = open_target(args.b)

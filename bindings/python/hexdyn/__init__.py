@@ -21,7 +21,7 @@
     a["joint_acceleration"]       # (T, J) [rad/s²]: what those torques and forces do
     hexdyn.inverse_dynamics(...)  # the torques (and trunk wrench) of given accelerations
     hexdyn.mass_matrix("configs/paper.yaml", r["/base/orientation"], r["/joints/position"])
-    sw = hexdyn.open_sweep("smoke.h5")          # hexdyn-sweep/4: Sweep
+    sw = hexdyn.open_sweep("smoke.h5")          # hexdyn-sweep/5: Sweep
     env = hexdyn.open_envelope("envelope.h5")   # hexdyn-envelope/2: Envelope
     rep = hexdyn.open_replay("replay.h5")       # hexdyn-replay/2 (hexdyn replay): Replay
     st = hexdyn.open_study("study.h5")          # hexdyn-study/1 (analysis/study.py): Study

@@ -222,7 +222,7 @@ class FileKind:
     """One kind of hexdyn file, a row of FILE_KINDS.
 
     name             "hexdyn-result", the /meta schema without its version
-    schema           the schema of the current version, "hexdyn-result/4" (what is written)
+    schema           the schema of the current version, "hexdyn-result/5" (what is written)
     versions         the versions this reader opens (a tuple)
     type             the type the reader returns (Result, Sweep, ...)
     check(root, source, schema)   the checks at open (datasets against their declarations)
@@ -260,11 +260,14 @@ class FileKind:
 # (0.1.0) have the same paths; their energies are the trapezoid's, and /meta has no
 # energy_rule. Results of version 3, sweeps of version 3 (their kept runs) and replays of
 # version 1 have the same paths but /model/leg_joint_counts (schema.py LEG_JOINT_COUNTS).
+# Results and sweeps of version 4 have the same paths but the drive train's
+# /joints/drive_torque_lower_limit, the thermal model's /thermal/* and the sweep's thermal
+# columns, none of them required.
 FILE_KINDS = {k.name: k for k in (
-    FileKind(RESULT_SCHEMA, (2, 3, RESULT_SCHEMA_VERSION), Result,
+    FileKind(RESULT_SCHEMA, (2, 3, 4, RESULT_SCHEMA_VERSION), Result,
              _by_layout(RESULT_LAYOUT, RESULT_REQUIRED), _by_mapping(Result),
              layout=lambda root: RESULT_LAYOUT, meta_attributes=SCHEMA["kResultMetaAttributes"]),
-    FileKind(SWEEP_SCHEMA, (2, 3, SWEEP_SCHEMA_VERSION), Sweep, _check_sweep, _read_sweep,
+    FileKind(SWEEP_SCHEMA, (2, 3, 4, SWEEP_SCHEMA_VERSION), Sweep, _check_sweep, _read_sweep,
              meta_attributes=SCHEMA["kSweepMetaAttributes"], members=("runs", "hexdyn-result")),
     FileKind(ENVELOPE_SCHEMA, (ENVELOPE_SCHEMA_VERSION,), Envelope,
              _by_layout(_envelope_layout, ENVELOPE_REQUIRED), _by_mapping(Envelope, True),
@@ -357,7 +360,7 @@ def check_layout(file, source=None):
     kind, then (hexdyn.h5files.check_declared) no undeclared dataset, each with its declared
     units (results, envelopes, replays), every declared /meta attribute (results, sweeps,
     envelopes, replays), and each of a sweep's kept runs /runs/<id> as a result. Returns the
-    schema name ("hexdyn-sweep/4"). hexdyn.IoError in one line naming the file and the
+    schema name ("hexdyn-sweep/5"). hexdyn.IoError in one line naming the file and the
     dataset on a mismatch (and for a path that is no regular HDF5 file); ValueError for a
     file of no hexdyn schema or of a version this reader does not read."""
     if not isinstance(file, (h5py.File, h5py.Group)):

@@ -168,7 +168,8 @@ def coordinate_lists(kind):
 RESULT_LAYOUT = layout([SCHEMA["kTime"]], SCHEMA["kModelDatasets"], SCHEMA["kUrdfRobotDatasets"],
                        SCHEMA["kKinematicDatasets"], SCHEMA["kSphereFootDatasets"],
                        SCHEMA["kDynamicsDatasets"], SCHEMA["kRequiredFrictionDatasets"],
-                       SCHEMA["kDriveTrainDatasets"], *coordinate_lists("Result"))
+                       SCHEMA["kDriveTrainDatasets"], SCHEMA["kThermalDatasets"],
+                       *coordinate_lists("Result"))
 # /model/leg_joint_counts is new in layout version 4 (results) and 2 (replays): files of the
 # versions before, which the readers open too, have none.
 LEG_JOINT_COUNTS = SCHEMA["kModelLegJointCounts"].path

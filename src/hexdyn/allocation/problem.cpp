@@ -1,5 +1,6 @@
 #include "hexdyn/allocation/problem.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -186,11 +187,16 @@ LinearTerms linear_terms(const AllocationLegs& legs, const Split& split,
   return t;
 }
 
-/// Joint k's torque limit [N m]: a drive's bound, a URDF robot's effort limit, or one limit for
-/// every joint.
-double joint_torque_limit(const AllocationParams& alloc, const DriveRows* drive, int k) {
-  if (drive) return drive->limit_Nm[k];
-  return alloc.joint_torque_limit_Nm ? (*alloc.joint_torque_limit_Nm)[k] : alloc.torque_limit_Nm;
+/// Joint k's torque bounds lower ≤ τ ≤ upper [N m]: a drive's bounds, or ∓ a URDF robot's effort
+/// limit or one limit for every joint.
+struct TorqueBounds {
+  double lower, upper;
+};
+TorqueBounds joint_torque_bounds(const AllocationParams& alloc, const DriveRows* drive, int k) {
+  if (drive) return {drive->lower_Nm[k], drive->limit_Nm[k]};
+  const double limit =
+      alloc.joint_torque_limit_Nm ? (*alloc.joint_torque_limit_Nm)[k] : alloc.torque_limit_Nm;
+  return {-limit, limit};
 }
 
 /// A swing leg's torques are constants no force changes: the largest excess over its limit
@@ -200,7 +206,8 @@ void note_swing_leg_excess(const AllocationLegs& legs, const AllocationParams& a
                            AllocationLayout& layout) {
   for (int j = 0; j < legs.n_joints[l]; ++j) {
     const int k = legs.first_joint[l] + j;
-    const double excess = std::abs(tau_known[k]) - joint_torque_limit(alloc, drive, k);
+    const TorqueBounds b = joint_torque_bounds(alloc, drive, k);
+    const double excess = std::max(tau_known[k] - b.upper, b.lower - tau_known[k]);
     if (excess > layout.constant_excess_Nm) {
       layout.constant_excess_Nm = excess;
       std::ostringstream os;
@@ -224,10 +231,10 @@ int add_leg_rows(const AllocationLegs& legs, const AllocationParams& alloc, cons
   const int m = legs.n_joints[l];
   for (int j = 0; j < m; ++j, ++row) {
     const int kk = legs.first_joint[l] + j;
-    const double tmax = joint_torque_limit(alloc, drive, kk);
+    const TorqueBounds b = joint_torque_bounds(alloc, drive, kk);
     qp.C.row(row) = t.G.row(kk);
-    qp.lower[row] = t.tau_known[kk] - tmax;
-    qp.upper[row] = t.tau_known[kk] + tmax;
+    qp.lower[row] = t.tau_known[kk] - b.upper;
+    qp.upper[row] = t.tau_known[kk] - b.lower;
     qp.ineq_names[row] = row_names().torque(drive ? drive->bound[kk] : 0, l, j, m);
   }
   const bool support = phase[l] == ContactPhase::kSupport;

@@ -63,15 +63,17 @@ struct AllocationLayout {
 
 /// The drive train's part of one sample
 /// (docs/theory/drive-train.md#allocation-with-the-drive-train), for a robot with actuators: per
-/// joint the known offset τ_drive − τ = J_a q̈ + τ_c sgn(q̇) + b q̇ [N m], the bound on |τ_drive| [N
-/// m] with the kind of bound that gave it (1 peak, 2 voltage, 0 the allocation's own torque limit;
-/// drive/drive.hpp DriveBound) and the objective's weight of τ_drive² (1 for torque_squared, R / (G
-/// k_t η)² for copper_loss).
+/// joint the known offset τ_drive − τ = J_a q̈ + τ_c sgn(q̇) + b q̇ [N m], the bounds lower_Nm ≤
+/// τ_drive ≤ limit_Nm [N m] (lower_Nm = −limit_Nm but for a three-phase motor at speed) with the
+/// kind of bound that gave them (1 peak, 2 voltage, 0 the allocation's own torque limit;
+/// drive/drive.hpp DriveBound) and the objective's weight of τ_drive² (1 for torque_squared, c R /
+/// (G k_t η)² for copper_loss).
 /// The first joints entries are read (every vector starts at the capacity, zero offsets and
 /// limits, unit weights, so that a caller may fill them by index).
 struct DriveRows {
   JointVector offset_Nm = JointVector::Zero(kMaxJoints);
   JointVector limit_Nm = JointVector::Zero(kMaxJoints);
+  JointVector lower_Nm = JointVector::Zero(kMaxJoints);
   JointArray<std::int8_t> bound{};
   JointVector weight = JointVector::Ones(kMaxJoints);
 };
@@ -100,7 +102,7 @@ using AllocationSplit = ContactSplit;
 /// (the contact frames, world axes); the per-leg spans hold at least legs.legs entries. Sets
 /// qp.structure to a key of the row layout (the friction model and each leg's phase), so
 /// that back ends recognise problems built alike. With `drive` (not null), the torque rows
-/// bound the drive torques τ + offset by drive->limit_Nm and the objective is
+/// bound the drive torques τ + offset by drive->lower_Nm and drive->limit_Nm and the objective is
 /// Σ weight_k (τ_k + offset_k)²; without it, |τ| by the allocation's limits and Σ τ².
 AllocationLayout build_allocation_problem(const AllocationLegs& legs, const AllocationParams& alloc,
                                           const ContactParams& contact, const ContactSplit& split,

@@ -8,7 +8,7 @@ namespace hexdyn::cli {
 namespace {
 
 constexpr const char* kRunHelp =
-    R"(  Runs a scene and writes its hexdyn-result/4 file to FILE. -v prints a URDF robot's
+    R"(  Runs a scene and writes its hexdyn-result/5 file to FILE. -v prints a URDF robot's
   leg mapping (which chain of the description is L1 ... L6). While the stages compute, a
   progress line comes at most every --progress seconds (default 5). The run ends with a
   verdict line: samples, relaxed samples outside touchdowns, the largest required friction
@@ -36,7 +36,7 @@ them as rows with status config). --set applies to scene files only.
 )";
 
 constexpr const char* kSweepHelp =
-    R"(  Runs a parameter sweep and writes its hexdyn-sweep/4 file to FILE.
+    R"(  Runs a parameter sweep and writes its hexdyn-sweep/5 file to FILE.
 
 SWEEP is a sweep file (see configs/sweeps/stairs.yaml): a base scene and axes over its
 keys; every combination is a scenario. Run it under `mpirun -np N` or plainly (one
@@ -78,11 +78,11 @@ int sweep_row(const Args& args) { return args.program->sweep(args); }
 // clang-format off
 constexpr std::array kCommands{
     Command{"run", "CONFIG", kOutput | kSet | kAllowLarge | kVerbose | kProgress, kOutput,
-            "run a scene, write hexdyn-result/4", kRunHelp, run_command, true},
+            "run a scene, write hexdyn-result/5", kRunHelp, run_command, true},
     Command{"validate", "FILE", kSet | kVerbose, 0,
             "check a scene or sweep file and exit", kValidateHelp, validate_command},
     Command{"sweep", "SWEEP", kOutput | kKeepRuns | kResume | kVerbose | kProgress, kOutput,
-            "run a parameter sweep, write hexdyn-sweep/4", kSweepHelp, sweep_row, false,
+            "run a parameter sweep, write hexdyn-sweep/5", kSweepHelp, sweep_row, false,
             "fix keys with set: in the sweep file"},
     Command{"envelope", "ENVELOPE", kOutput | kVerbose, kOutput,
             "find the climbable riser, write hexdyn-envelope/2", kEnvelopeHelp, envelope_command,

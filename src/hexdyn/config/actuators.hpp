@@ -15,7 +15,8 @@
 /// entry that names a model replaces the servo: the servo's values a less specific entry gave
 /// (all but regeneration and thermal_window) go back to the defaults before the model's and
 /// the entry's own apply, so that one servo's armature never reaches another's joint.
-/// gear_ratio, torque_constant and resistance must be given for every joint.
+/// gear_ratio (or gear_stages), torque_constant and resistance must be given for every joint;
+/// the thermal model's four resistances and capacities all or none.
 #include <array>
 #include <string>
 #include <string_view>
@@ -31,11 +32,16 @@ namespace hexdyn::scene_keys {
 /// (config/scene_key_docs.hpp).
 struct ActuatorKey {
   std::string_view key;
-  Range range{};          ///< a number's; `model` names a servo instead
+  Range range{};          ///< a number's; `model`, `winding`, `gear_stages`: see allowed_text
   std::string_view unit;  ///< UDUNITS-2 ("" none, "1" dimensionless)
   std::string_view default_text;
   std::string_view meaning;
-  double ActuatorParams::*member = nullptr;  ///< the field (null: read by code: model, inertia)
+  /// The field (null: read by code: model, winding, gear stages, inertia).
+  double ActuatorParams::*member = nullptr;
+  /// A value of the motor itself: an entry naming another `model` resets it (false: of the
+  /// driver, the environment or the use: regeneration, thermal_window, ambient_temperature).
+  bool of_motor = true;
+  std::string_view allowed_text = {};  ///< the docs' "allowed" cell of a key read by code
 };
 
 /// Every key of an actuator entry, in the docs' order.

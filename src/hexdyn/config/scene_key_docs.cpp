@@ -153,8 +153,9 @@ std::string scene_key_markdown(std::string_view section) {
 std::string actuator_key_markdown() {
   std::string out = "| key | allowed | default | meaning |\n|---|---|---|---|\n";
   for (const scene_keys::ActuatorKey& k : scene_keys::actuator_keys()) {
-    const std::string allowed =
-        k.key == "model" ? "a name of the servo table" : range_text(k.range) + unit_text(k.unit);
+    const std::string allowed = !k.allowed_text.empty() ? std::string(k.allowed_text)
+                                : k.key == "model"      ? "a name of the servo table"
+                                                        : range_text(k.range) + unit_text(k.unit);
     out += "| `" + std::string(k.key) + "` | " + allowed + " | " + std::string(k.default_text) +
            " | " + page_links(k.meaning) + " |\n";
   }

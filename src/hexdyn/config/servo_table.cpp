@@ -110,6 +110,107 @@ constexpr BamM1 kBamMx106{2.1913757006745245, 2.9649903987776804, 0.026609234235
 constexpr BamM1 kBamXl330{0.3866957639281311, 4.017129222290597, 0.0018141672784458866,
                           0.01283272036582759, 0.003661672282824312};
 
+/// A brushless joint module: a three-phase motor of the stated winding convention (k_t per
+/// ampere of that current, R per phase), its joint-side values and its two-node thermal model
+/// (docs/user/servos.md#brushless-modules).
+struct Module {
+  const char* name;
+  const char* description;
+  double gear_ratio;            ///< G [–]
+  double torque_constant_NmpA;  ///< k_t, motor side [N m/A]
+  double resistance_ohm;        ///< R per phase [Ω]
+  double rotor_inertia_kgm2;    ///< J_m, motor side [kg m²] (NaN: not given)
+  double coulomb_friction_Nm;   ///< joint side [N m] (NaN: not given)
+  double viscous_friction_Nmsprad;
+  double voltage_V;               ///< the bus [V]
+  double voltage_utilization;     ///< u [–]
+  double peak_torque_Nm;          ///< joint side [N m]
+  std::array<double, 4> thermal;  ///< R_th,wh [K/W], C_th,w [J/K], R_th,ha [K/W], C_th,h [J/K]
+  double winding_limit_degC;      ///< [°C]
+  const char* sources;
+};
+
+constexpr ServoSpec from_module(const Module& m) {
+  ServoSpec s{m.name,
+              m.description,
+              m.gear_ratio,
+              m.torque_constant_NmpA,
+              m.resistance_ohm,
+              m.gear_ratio * m.gear_ratio * m.rotor_inertia_kgm2,
+              m.coulomb_friction_Nm,
+              m.viscous_friction_Nmsprad,
+              1.0,
+              m.voltage_V,
+              m.peak_torque_Nm,
+              kNotGiven,
+              m.sources};
+  s.winding = Winding::kThreePhaseAmplitude;
+  s.voltage_utilization = m.voltage_utilization;
+  s.thermal_resistance_winding_KpW = m.thermal[0];
+  s.thermal_capacity_winding_JpK = m.thermal[1];
+  s.thermal_resistance_housing_KpW = m.thermal[2];
+  s.thermal_capacity_housing_JpK = m.thermal[3];
+  s.winding_temperature_limit_degC = m.winding_limit_degC;
+  return s;
+}
+
+// mit-biomimetics/Cheetah-Software, common/include/Dynamics/MiniCheetah.h and ActuatorModel.h
+// (commit aa89b8a): _motorKT = 0.05 ("flux linkage * pole pairs"), _motorR = 0.173, _batteryV
+// = 24, _motorTauMax = 3 (motor side), ratios 6 / 6 / 9.33, rotor inertia 63e-6 kg m² about its
+// spin axis, joint damping 0.01, dry friction 0.2. ActuatorModel's τ = 1.5 kt (v − 2 kt ω) / R,
+// |v| ≤ V is the amplitude-invariant q axis with k_t = 1.5 kt, R per phase = 0.173 / 2 and a
+// phase amplitude of V / 2 (docs/theory/drive-train.md#voltage-limit).
+constexpr double kCheetahKt = 0.05, kCheetahR = 0.173, kCheetahTauMax = 3.0;
+// Assumed two-node thermal values of the brushless modules (no maker publishes them): the
+// winding's capacity from its copper mass (c = 385 J/(kg K)), the housing's from the module's
+// aluminium mass (c = 900 J/(kg K)), resistances giving time constants of tens of seconds
+// (winding) and several minutes (housing); limits: class-F-like 120 °C, the
+// demagnetisation-safe bound small outrunners are sold with. docs/user/servos.md#brushless-modules.
+constexpr std::array<double, 4> kSmallOutrunnerThermal{2.0, 8.0, 6.0, 30.0};
+constexpr std::array<double, 4> kCheetahThermal{1.0, 40.0, 2.5, 150.0};
+constexpr std::array<double, 4> kGoThermal{1.0, 50.0, 2.0, 200.0};
+constexpr std::array<double, 4> kAnydriveThermal{0.5, 150.0, 1.0, 800.0};
+
+constexpr Module kModules[] = {
+    {"odri_actuator",
+     "ODRI actuator module (Solo-12, Bolt): T-Motor Antigravity 4004 300 kV, two 3:1 belt stages",
+     9.0, 0.025, 0.23255, 4.5e-6, kNotGiven, kNotGiven, 24.0, 0.5, 2.5, kSmallOutrunnerThermal,
+     120.0,
+     "G = 9 (two 3:1 belt stages), 2.5 N m at 12 A: open_robot_actuator_hardware "
+     "mechanics/actuator_module_v1 README; k_t = 0.025 N m/A, J_m = 4.5e-6 kg m^2: "
+     "robot_properties_solo src/robot_properties_solo/config.py (motor_torque_constant, "
+     "motor_inertia); R = 0.23255 Ohm per phase: the motor identification of the actuator "
+     "module's documentation; "
+     "winding three_phase_amplitude, V = 24, u = 0.5, friction, thermal values, limit: ASSUMED"},
+    {"mini_cheetah_hip", "MIT Mini Cheetah module, abduction and hip: 6:1 planetary, at 24 V", 6.0,
+     1.5 * kCheetahKt, 0.5 * kCheetahR, 63e-6, 0.2, 0.01, 24.0, 0.5, 6.0 * kCheetahTauMax,
+     kCheetahThermal, 120.0,
+     "G = 6, kt = 0.05, R = 0.173, V = 24, tau_max = 3 N m motor side, rotor 63e-6 kg m^2, "
+     "damping 0.01, dry friction 0.2: Cheetah-Software common/include/Dynamics/MiniCheetah.h; "
+     "k_t = 1.5 kt, R = 0.173/2 per phase, u = 0.5: ActuatorModel.h read as the "
+     "amplitude-invariant q axis (docs/theory/drive-train.md#voltage-limit); thermal values, "
+     "limit: ASSUMED"},
+    {"mini_cheetah_knee", "MIT Mini Cheetah module, knee: 9.33:1 (planetary and belt), at 24 V",
+     9.33, 1.5 * kCheetahKt, 0.5 * kCheetahR, 63e-6, 0.2, 0.01, 24.0, 0.5, 9.33 * kCheetahTauMax,
+     kCheetahThermal, 120.0,
+     "G = 9.33 and the rest as mini_cheetah_hip: Cheetah-Software "
+     "common/include/Dynamics/MiniCheetah.h, ActuatorModel.h; thermal values, limit: ASSUMED"},
+    {"unitree_go_m8010_6", "Unitree GO-M8010-6, 6.33:1 planetary, at 24 V", 6.33,
+     1.5 * 0.5 * 24.0 / (6.33 * 30.0), 0.5 * 24.0 * 1.5 * 0.5 * 24.0 / (30.0 * 23.7), kNotGiven,
+     kNotGiven, kNotGiven, 24.0, 0.5, 23.7, kGoThermal, 120.0,
+     "G = 6.33, 23.7 N m peak, 30 rad/s at the output, 24 V: Unitree GO-M8010-6 product page; "
+     "30 V at most: GO-M8010-6 user manual V1.2; k_t from the no-load speed (u V = k_e G w_0, "
+     "k_t = 1.5 k_e) and R from the peak as the voltage-limited stall torque: DERIVED under "
+     "those ASSUMPTIONS; rotor inertia, friction: not published; thermal values, limit: ASSUMED"},
+    {"anydrive", "ANYbotics ANYdrive (ANYmal C), harmonic drive, at 48 V", 50.0,
+     1.5 * 0.5 * 48.0 / (50.0 * 7.5), 0.5 * 48.0 * 1.5 * 0.5 * 48.0 / (7.5 * 80.0), kNotGiven,
+     kNotGiven, kNotGiven, 48.0, 0.5, 80.0, kAnydriveThermal, 120.0,
+     "80 N m, 7.5 rad/s: robots/anymal_c.urdf <limit effort velocity> (ANYbotics' anymal_c "
+     "description); G = 50, V = 48: ASSUMED; k_t from the no-load speed, R from the peak as the "
+     "voltage-limited stall torque: DERIVED under those ASSUMPTIONS; thermal values, limit: "
+     "ASSUMED"},
+};
+
 constexpr std::array kServos{
     from_datasheet(
         "dynamixel_ax12a", "ROBOTIS Dynamixel AX-12A, cored DC motor, 254:1, at 12 V", kAx12a,
@@ -156,6 +257,11 @@ constexpr std::array kServos{
         "emanual.robotis.com/docs/en/dxl/x/xm430-w350/ Specifications; k_t = V/(G w_0), "
         "R = V/I_s, eta = tau_s/(G k_t I_s) (docs/user/servos.md#derived-values); armature, "
         "friction, continuous rating: not published (bam has no XM430 parameters)"),
+    from_module(kModules[0]),
+    from_module(kModules[1]),
+    from_module(kModules[2]),
+    from_module(kModules[3]),
+    from_module(kModules[4]),
 };
 
 }  // namespace

@@ -6,11 +6,18 @@
 /// of config/actuators.hpp then apply). Every servo gives G, k_t, R, η, V and the peak
 /// torque; the armature, the friction and the continuous rating may be NaN. A servo is the
 /// geared DC motor τ = η G k_t (V − G k_t ω) / R at the joint
-/// (docs/user/servos.md#the-motor-model).
+/// (docs/user/servos.md#the-motor-model); a brushless module is a three-phase motor of the
+/// stated winding convention (docs/theory/drive-train.md#three-phase-motors).
+#include <limits>
 #include <span>
 #include <string_view>
 
+#include "hexdyn/core/scene.hpp"
+
 namespace hexdyn {
+
+/// A value the table does not give.
+inline constexpr double kNotGivenValue = std::numeric_limits<double>::quiet_NaN();
 
 /// One servo of the table.
 struct ServoSpec {
@@ -27,6 +34,14 @@ struct ServoSpec {
   double peak_torque_Nm;            ///< stall torque at voltage_V [N m]
   double continuous_torque_Nm;      ///< continuous (thermal) rating [N m]
   const char* sources;              ///< where each value comes from, one line
+  // Three-phase motors and the thermal model (NaN: not given; the defaults apply).
+  Winding winding = Winding::kDc;                          ///< the convention of k_t and R
+  double voltage_utilization = kNotGivenValue;             ///< u, three-phase [–]
+  double thermal_resistance_winding_KpW = kNotGivenValue;  ///< R_th,wh [K/W]
+  double thermal_capacity_winding_JpK = kNotGivenValue;    ///< C_th,w [J/K]
+  double thermal_resistance_housing_KpW = kNotGivenValue;  ///< R_th,ha [K/W]
+  double thermal_capacity_housing_JpK = kNotGivenValue;    ///< C_th,h [J/K]
+  double winding_temperature_limit_degC = kNotGivenValue;  ///< the winding's rating [°C]
 };
 
 /// Every servo of the table, in the order docs/user/servos.md lists them.

@@ -77,7 +77,7 @@ DynamicsResult gather_samples(const std::vector<const DynamicsResult*>& parts,
   out.solver_messages = gather_entries<std::string>(
       parts, order, [](const D& d) -> auto& { return d.solver_messages; });
   if (!parts.empty() && parts.front()->has_drive())
-    for (RowMatrix D::*m : {&D::drive_torque, &D::drive_torque_limit})
+    for (RowMatrix D::*m : {&D::drive_torque, &D::drive_torque_limit, &D::drive_torque_lower_limit})
       out.*m = gather_rows<RowMatrix>(
           parts, order, [m](const D& d) -> auto& { return d.*m; });
   return out;

@@ -1,7 +1,7 @@
 #pragma once
 /// \file result.hpp
 /// Per-run result arrays, one row per output sample, in the units and frames of the
-/// `hexdyn-result/4` contract (io/schema.hpp). Matrices are row-major so that a
+/// `hexdyn-result/5` contract (io/schema.hpp). Matrices are row-major so that a
 /// (T, n) dataset is written straight from `.data()`; (T, legs, 3) datasets are stored
 /// as T × 3 legs with leg-major columns (3 l + axis).
 #include <cstdint>
@@ -77,11 +77,11 @@ struct ImpactRecord {
 /// docs/theory/drive-train.md#current-and-electrical-power).
 struct ElectricalResult {
   RowMatrix current_A;  ///< T×joints, I [A]
-  RowMatrix power_W;    ///< T×joints, P⁺ (P = R I² + G k_t q̇ I; r P when P < 0) [W]
+  RowMatrix power_W;    ///< T×joints, P⁺ (P = c R I² + G k_t q̇ I; r P when P < 0) [W]
   std::vector<double> total_power_W;   ///< T, Σ_k P⁺_k [W]
   double energy_J = 0.0;               ///< trapezoid of total_power_W over the samples [J]
   std::vector<double> energy_joint_J;  ///< joints, trapezoid of P⁺_k [J]
-  double copper_loss_J = 0.0;          ///< trapezoid of Σ R I² [J]
+  double copper_loss_J = 0.0;          ///< trapezoid of Σ c R I² [J]
   double friction_loss_J = 0.0;        ///< trapezoid of Σ (τ_c |q̇| + b q̇²) [J]
   double regenerated_J = 0.0;          ///< trapezoid of Σ r max(0, −P) [J]
   double cost_of_transport = 0.0;      ///< energy_J / (m g d)
@@ -91,6 +91,15 @@ struct ElectricalResult {
   std::vector<double> window_rms_torque_Nm;
   /// joints, each joint's continuous_torque (+inf: none), the rating the windowed RMS is against.
   std::vector<double> continuous_torque_Nm;
+  /// With a thermal model on some joint (ActuatorParams::thermal; drive/thermal.hpp), else
+  /// empty: T×joints winding and housing temperatures [°C], NaN for a joint without one.
+  RowMatrix winding_temperature_degC, housing_temperature_degC;
+  /// joints: the largest winding temperature over the run, between samples too [°C] (NaN:
+  /// no thermal model), and the first time it reaches the joint's limit [s] (+inf: never,
+  /// limit_reached 0; NaN: no thermal model).
+  std::vector<double> peak_winding_temperature_degC, time_to_limit_s;
+  std::vector<std::int8_t> limit_reached;
+  bool has_thermal() const { return winding_temperature_degC.rows() > 0; }
 };
 
 /// Output of the dynamic stages (inverse dynamics, contact, allocation, power).
@@ -130,10 +139,11 @@ struct DynamicsResult {
   /// the message of an episode's worst sample for the log).
   std::vector<double> solver_max_violation;
   /// With actuators (RobotModel::drive), else empty: the drive torques τ_drive = τ + J_a q̈ +
-  /// τ_c sgn(q̇) + b q̇ (T×joints) [N m] and their bound at each sample (T×joints) [N m]
-  /// (docs/theory/drive-train.md).
+  /// τ_c sgn(q̇) + b q̇ (T×joints) [N m] and their bounds at each sample, lower ≤ τ_drive ≤
+  /// limit (T×joints) [N m] (docs/theory/drive-train.md).
   RowMatrix drive_torque;
   RowMatrix drive_torque_limit;
+  RowMatrix drive_torque_lower_limit;
   ElectricalResult electrical;  ///< with actuators, after finish_dynamics
   bool has_drive() const { return drive_torque.rows() > 0; }
   bool present = false;

@@ -5,6 +5,7 @@
 /// the paper and which are assumptions is said in configs/paper.yaml.
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <memory>
 #include <optional>
@@ -60,16 +61,39 @@ struct NominalStance {
   std::string source;
 };
 
+/// The motor's current convention (scene key `winding`;
+/// docs/theory/drive-train.md#three-phase-motors): k_t is the motor's torque per ampere of the
+/// stated current I, and the copper loss is R I² (DC; power-invariant three-phase, I the q-axis
+/// current of the power-invariant transform) or (3/2) R I² (amplitude-invariant three-phase, I the
+/// q-axis current's amplitude), R per phase for a three-phase motor.
+enum class Winding : std::int8_t { kDc = 0, kThreePhaseAmplitude = 1, kThreePhasePower = 2 };
+
+/// The factor c of the copper loss c R I² of `w`: 3/2 amplitude-invariant, else 1.
+inline double copper_factor(Winding w) { return w == Winding::kThreePhaseAmplitude ? 1.5 : 1.0; }
+
+/// One joint's two-node thermal model (docs/theory/drive-train.md#thermal-model): winding and
+/// housing, each a heat capacity, the winding coupled to the housing and the housing to the
+/// ambient through thermal resistances. Absent (present = false): no thermal results.
+struct ThermalParams {
+  bool present = false;
+  double winding_housing_KpW = 0.0;   ///< R_th,wh, winding to housing [K/W]
+  double winding_capacity_JpK = 0.0;  ///< C_th,w [J/K]
+  double housing_ambient_KpW = 0.0;   ///< R_th,ha, housing to ambient [K/W]
+  double housing_capacity_JpK = 0.0;  ///< C_th,h [J/K]
+  double ambient_degC = 25.0;         ///< T_a, also the start temperature of both nodes [°C]
+  double limit_degC = kInfinity;      ///< the winding's rated temperature [°C]; inf: none
+};
+
 /// One joint's drive train, resolved (config/actuators.hpp; docs/theory/drive-train.md): a
-/// geared DC motor. Joint side unless said; an optional value absent is +inf (a bound or a
-/// window that never applies).
+/// geared DC or three-phase motor. Joint side unless said; an optional value absent is +inf (a
+/// bound or a window that never applies).
 struct ActuatorParams {
-  std::string model;                        ///< the shipped table's name it started from, or ""
-  double gear_ratio = 1.0;                  ///< G [–], motor turns per joint turn
-  double torque_constant_NmpA = 0.0;        ///< k_t, motor side [N m/A]
-  double resistance_ohm = 0.0;              ///< R, winding [Ω]
-  double armature_kgm2 = 0.0;               ///< J_a = G² J_m, joint side [kg m²]
-  double coulomb_friction_Nm = 0.0;         ///< τ_c [N m]
+  std::string model;                  ///< the shipped table's name it started from, or ""
+  double gear_ratio = 1.0;            ///< G [–], motor turns per joint turn
+  double torque_constant_NmpA = 0.0;  ///< k_t, motor side, per ampere of `winding`'s I [N m/A]
+  double resistance_ohm = 0.0;        ///< R, winding (per phase for three-phase) [Ω]
+  double armature_kgm2 = 0.0;         ///< J_a = G² J_m (+ the gear stages'), joint side [kg m²]
+  double coulomb_friction_Nm = 0.0;   ///< τ_c [N m]
   double viscous_friction_Nmsprad = 0.0;    ///< b [N m s/rad]
   double gear_efficiency = 1.0;             ///< η ∈ (0, 1]
   double voltage_V = kInfinity;             ///< V, supply [V]; inf: no voltage bound
@@ -77,7 +101,37 @@ struct ActuatorParams {
   double continuous_torque_Nm = kInfinity;  ///< the thermal rating, RMS [N m]; inf: none
   double regeneration = 0.0;                ///< r ∈ [0, 1], share of negative power recovered
   double thermal_window_s = kInfinity;      ///< RMS window [s]; inf: the whole run
+  /// Three-phase: the largest phase-voltage amplitude over the supply voltage (1/2 sinusoidal
+  /// PWM, 1/√3 space-vector PWM) [–].
+  double voltage_utilization = 0.5;
+  /// The thermal model's values (ThermalParams, thermal_params()); NaN: not given, no model.
+  double thermal_resistance_winding_KpW = std::numeric_limits<double>::quiet_NaN();
+  double thermal_capacity_winding_JpK = std::numeric_limits<double>::quiet_NaN();
+  double thermal_resistance_housing_KpW = std::numeric_limits<double>::quiet_NaN();
+  double thermal_capacity_housing_JpK = std::numeric_limits<double>::quiet_NaN();
+  double ambient_temperature_degC = 25.0;
+  double winding_temperature_limit_degC = kInfinity;
+  Winding winding = Winding::kDc;
+  /// The gear stages motor to joint, as given (ratio, inertia turning at the stage's output
+  /// [kg m²]); empty: one ratio `gear_ratio`. Kept for the resolved configuration.
+  std::vector<std::array<double, 2>> gear_stages;
 };
+
+/// The thermal model of `a` (present when its four resistances and capacities are given).
+inline ThermalParams thermal_params(const ActuatorParams& a) {
+  ThermalParams p;
+  p.present = !std::isnan(a.thermal_resistance_winding_KpW) &&
+              !std::isnan(a.thermal_capacity_winding_JpK) &&
+              !std::isnan(a.thermal_resistance_housing_KpW) &&
+              !std::isnan(a.thermal_capacity_housing_JpK);
+  p.winding_housing_KpW = a.thermal_resistance_winding_KpW;
+  p.winding_capacity_JpK = a.thermal_capacity_winding_JpK;
+  p.housing_ambient_KpW = a.thermal_resistance_housing_KpW;
+  p.housing_capacity_JpK = a.thermal_capacity_housing_JpK;
+  p.ambient_degC = a.ambient_temperature_degC;
+  p.limit_degC = a.winding_temperature_limit_degC;
+  return p;
+}
 
 /// The drive trains of the robot's joints (scene key `actuators`), flat joint order: part of
 /// the robot (RobotParams::drive, RobotModel::drive). Absent (present = false): the paper's

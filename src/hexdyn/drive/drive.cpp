@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <utility>
 
+#include "hexdyn/drive/thermal.hpp"
 #include "hexdyn/power/power.hpp"
 
 namespace hexdyn {
@@ -41,6 +43,35 @@ class PiecewiseLinear {
   std::vector<double> s_, c_;
 };
 
+/// The thermal series of e (ElectricalResult) from each joint's copper loss (T×joints), when
+/// some joint has a thermal model.
+void add_thermal(const DriveTrainParams& drive, const std::vector<double>& t,
+                 const RowMatrix& copper, ElectricalResult& e) {
+  const int J = drive.joints.size();
+  bool any = false;
+  for (int k = 0; k < J; ++k) any = any || thermal_params(drive.joints[k]).present;
+  if (!any || t.empty()) return;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const auto T = static_cast<Eigen::Index>(t.size());
+  e.winding_temperature_degC.setConstant(T, J, nan);
+  e.housing_temperature_degC.setConstant(T, J, nan);
+  e.peak_winding_temperature_degC.assign(J, nan);
+  e.time_to_limit_s.assign(J, nan);
+  e.limit_reached.assign(J, 0);
+  for (int k = 0; k < J; ++k) {
+    const ThermalParams p = thermal_params(drive.joints[k]);
+    if (!p.present) continue;
+    const ThermalTrace trace = simulate_thermal(p, t, copper.data() + k, J);
+    for (Eigen::Index i = 0; i < T; ++i) {
+      e.winding_temperature_degC(i, k) = trace.winding_degC[static_cast<std::size_t>(i)];
+      e.housing_temperature_degC(i, k) = trace.housing_degC[static_cast<std::size_t>(i)];
+    }
+    e.peak_winding_temperature_degC[k] = trace.peak_winding_degC;
+    e.time_to_limit_s[k] = trace.time_to_limit_s;
+    e.limit_reached[k] = trace.reached ? 1 : 0;
+  }
+}
+
 }  // namespace
 
 JointVector drive_torque_offset(const DriveTrainParams& drive, const JointVector& qd,
@@ -66,7 +97,10 @@ const char* bound_name(DriveBound bound) {
   return "";
 }
 
-DriveLimit drive_torque_limit(const ActuatorParams& a, double qd) {
+namespace {
+
+/// A DC motor's bound on |τ_drive| (docs/theory/drive-train.md#torque-bound).
+DriveLimit dc_torque_limit(const ActuatorParams& a, double qd) {
   DriveLimit out;
   if (std::isfinite(a.peak_torque_Nm)) out = {a.peak_torque_Nm, DriveBound::kPeak};
   if (std::isfinite(a.voltage_V)) {
@@ -75,12 +109,64 @@ DriveLimit drive_torque_limit(const ActuatorParams& a, double qd) {
         0.0, Gk * a.gear_efficiency * (a.voltage_V - Gk * std::abs(qd)) / a.resistance_ohm);
     if (v < out.limit_Nm) out = {v, DriveBound::kVoltage};
   }
+  out.lower_Nm = -out.limit_Nm;
   return out;
+}
+
+/// A three-phase motor's bounds: the voltage range through the gearbox, then the peak rating.
+DriveLimit three_phase_torque_limit(const ActuatorParams& a, double qd) {
+  DriveLimit out;
+  DriveBound upper = DriveBound::kNone, lower = DriveBound::kNone;
+  if (std::isfinite(a.voltage_V)) {
+    const MotorTorqueRange m = drive_voltage_range(a, a.gear_ratio * qd);
+    out.limit_Nm = joint_torque_of_motor(a, m.upper_Nm, qd);
+    out.lower_Nm = joint_torque_of_motor(a, m.lower_Nm, qd);
+    upper = lower = DriveBound::kVoltage;
+  }
+  // Each side clamped to ±peak, as MIT's ActuatorModel clamps the motor's torque: past the
+  // speed where even the full voltage drives more than the peak (both sides beyond it), the
+  // drive holds its current limit and the side stays at the peak.
+  if (std::isfinite(a.peak_torque_Nm)) {
+    const double peak = a.peak_torque_Nm;
+    if (out.limit_Nm > peak || out.limit_Nm < -peak) {
+      out.limit_Nm = std::clamp(out.limit_Nm, -peak, peak);
+      upper = DriveBound::kPeak;
+    }
+    if (out.lower_Nm > peak || out.lower_Nm < -peak) {
+      out.lower_Nm = std::clamp(out.lower_Nm, -peak, peak);
+      lower = DriveBound::kPeak;
+    }
+  }
+  out.bound = upper == DriveBound::kVoltage || lower == DriveBound::kVoltage ? DriveBound::kVoltage
+              : upper == DriveBound::kPeak || lower == DriveBound::kPeak     ? DriveBound::kPeak
+                                                                             : DriveBound::kNone;
+  return out;
+}
+
+}  // namespace
+
+DriveLimit drive_torque_limit(const ActuatorParams& a, double qd) {
+  return a.winding == Winding::kDc ? dc_torque_limit(a, qd) : three_phase_torque_limit(a, qd);
+}
+
+MotorTorqueRange drive_voltage_range(const ActuatorParams& a, double motor_speed) {
+  const double c = copper_factor(a.winding);
+  const double kt = a.torque_constant_NmpA;
+  const double ke = kt / c;
+  const double scale = a.winding == Winding::kThreePhasePower ? std::sqrt(1.5) : 1.0;
+  const double vq = scale * a.voltage_utilization * a.voltage_V;
+  return {kt * (-vq - ke * motor_speed) / a.resistance_ohm,
+          kt * (vq - ke * motor_speed) / a.resistance_ohm};
+}
+
+double joint_torque_of_motor(const ActuatorParams& a, double motor_torque, double qd) {
+  return motor_torque * qd >= 0.0 ? a.gear_efficiency * a.gear_ratio * motor_torque
+                                  : a.gear_ratio * motor_torque / a.gear_efficiency;
 }
 
 double copper_loss_weight(const ActuatorParams& a) {
   const double c = a.gear_ratio * a.torque_constant_NmpA * a.gear_efficiency;
-  return a.resistance_ohm / (c * c);
+  return copper_factor(a.winding) * a.resistance_ohm / (c * c);
 }
 
 double motor_current(const ActuatorParams& a, double tau, double qd) {
@@ -88,9 +174,13 @@ double motor_current(const ActuatorParams& a, double tau, double qd) {
   return tau * qd >= 0.0 ? tau / (Gk * a.gear_efficiency) : tau * a.gear_efficiency / Gk;
 }
 
+double copper_loss(const ActuatorParams& a, double I) {
+  return copper_factor(a.winding) * a.resistance_ohm * I * I;
+}
+
 double electrical_power(const ActuatorParams& a, double tau, double qd) {
   const double I = motor_current(a, tau, qd);
-  const double P = a.resistance_ohm * I * I + a.gear_ratio * a.torque_constant_NmpA * qd * I;
+  const double P = copper_loss(a, I) + a.gear_ratio * a.torque_constant_NmpA * qd * I;
   return P >= 0.0 ? P : a.regeneration * P;
 }
 
@@ -137,6 +227,7 @@ ElectricalResult compute_electrical(const DriveTrainParams& drive, const std::ve
   e.power_W.resize(T, J);
   e.total_power_W.assign(T, 0.0);
   std::vector<double> copper(T, 0.0), friction(T, 0.0), regenerated(T, 0.0);
+  RowMatrix joint_copper(T, J);
   for (int i = 0; i < T; ++i) {
     for (int k = 0; k < J; ++k) {
       const ActuatorParams& a = drive.joints[k];
@@ -146,7 +237,8 @@ ElectricalResult compute_electrical(const DriveTrainParams& drive, const std::ve
       e.current_A(i, k) = I;
       e.power_W(i, k) = drawn;
       e.total_power_W[i] += drawn;
-      copper[i] += a.resistance_ohm * I * I;
+      joint_copper(i, k) = copper_loss(a, I);
+      copper[i] += joint_copper(i, k);
       friction[i] += a.coulomb_friction_Nm * std::abs(w) + a.viscous_friction_Nmsprad * w * w;
       regenerated[i] += std::max(0.0, -drawn);  // r P of a negative P: what returns
     }
@@ -167,6 +259,7 @@ ElectricalResult compute_electrical(const DriveTrainParams& drive, const std::ve
     e.window_rms_torque_Nm[k] =
         largest_window_rms(t, tau.data() + k, J, drive.joints[k].thermal_window_s);
   }
+  add_thermal(drive, t, joint_copper, e);
   return e;
 }
 

@@ -191,6 +191,7 @@ const s::DatasetSpec* result_spec(const std::string& path) {
   find(s::kDynamicsDatasets);
   find(s::kRequiredFrictionDatasets);
   find(s::kDriveTrainDatasets);
+  find(s::kThermalDatasets);
   find(s::kResultCoordinates);
   find(s::kResultIndexCoordinates);
   return found;

@@ -1,6 +1,6 @@
 #pragma once
 /// \file output.hpp
-/// Writing a run as one `hexdyn-result/4` HDF5 file (schema.hpp; docs/user/output.md).
+/// Writing a run as one `hexdyn-result/5` HDF5 file (schema.hpp; docs/user/output.md).
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -87,7 +87,7 @@ void check_run_size(std::size_t samples, int legs, int joints, bool allow_large)
 /// samples and a 1.7 GB file) is far likelier than a wish.
 inline constexpr std::size_t kLargeResultSamples = 200000;
 
-/// Size of a `hexdyn-result/4` file of `samples` samples of a robot of `legs` legs and
+/// Size of a `hexdyn-result/5` file of `samples` samples of a robot of `legs` legs and
 /// `joints` joints (the shapes' L and J) [bytes], estimated from the schema: every
 /// per-sample dataset's row (schema.hpp shapes and element types, about 1.45 kB for 6 legs
 /// and 18 joints) plus 32 bytes per solver message and 64 kB for /meta and /model, uncompressed:

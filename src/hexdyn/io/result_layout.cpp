@@ -1,5 +1,7 @@
 #include "hexdyn/io/result_layout.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <numeric>
 #include <utility>
@@ -170,6 +172,29 @@ void add_gait_and_terrain(ResultLayout& layout, Builder& b, const RunResult& r) 
   }
 }
 
+/// The thermal model's datasets (schema.hpp kThermalDatasets).
+void add_thermal(Builder& b, const ElectricalResult& e, int T, int J) {
+  namespace s = schema;
+  const std::size_t t = to_size(T), j = to_size(J);
+  b.matrix(s::kWindingTemperature, e.winding_temperature_degC, T, J, {t, j});
+  b.matrix(s::kHousingTemperature, e.housing_temperature_degC, T, J, {t, j});
+  b.vector(s::kPeakWindingTemperature, e.peak_winding_temperature_degC, j);
+  b.vector(s::kTimeToWindingLimit, e.time_to_limit_s, j);
+  if (e.limit_reached.size() != j)
+    throw IoError(std::string(s::kWindingLimitReached.path) + " has " +
+                  std::to_string(e.limit_reached.size()) + " entries, expected " +
+                  std::to_string(j));
+  b.add(s::kWindingLimitReached, {j}, e.limit_reached);
+  double peak = -kInfinity, first = kInfinity;
+  for (std::size_t k = 0; k < j; ++k) {
+    if (!std::isnan(e.peak_winding_temperature_degC[k]))
+      peak = std::max(peak, e.peak_winding_temperature_degC[k]);
+    if (!std::isnan(e.time_to_limit_s[k])) first = std::min(first, e.time_to_limit_s[k]);
+  }
+  b.scalar(s::kThermalPeak, peak);
+  b.scalar(s::kThermalFirstLimit, first);
+}
+
 /// The drive train's datasets (schema.hpp kDriveTrainDatasets), for a scene with actuators.
 void add_drive_train(Builder& b, const DynamicsResult& d, int T, int J) {
   namespace s = schema;
@@ -177,6 +202,7 @@ void add_drive_train(Builder& b, const DynamicsResult& d, int T, int J) {
   const ElectricalResult& e = d.electrical;
   b.matrix(s::kDriveTorque, d.drive_torque, T, J, {t, j});
   b.matrix(s::kDriveTorqueLimit, d.drive_torque_limit, T, J, {t, j});
+  b.matrix(s::kDriveTorqueLowerLimit, d.drive_torque_lower_limit, T, J, {t, j});
   b.matrix(s::kMotorCurrent, e.current_A, T, J, {t, j});
   b.vector(s::kDriveTorqueRms, e.rms_torque_Nm, j);
   b.vector(s::kDriveTorqueWindowRms, e.window_rms_torque_Nm, j);
@@ -188,6 +214,7 @@ void add_drive_train(Builder& b, const DynamicsResult& d, int T, int J) {
   b.scalar(s::kEnergyFrictionLoss, e.friction_loss_J);
   b.scalar(s::kEnergyRegenerated, e.regenerated_J);
   b.scalar(s::kCostOfTransportElectrical, e.cost_of_transport);
+  if (e.has_thermal()) add_thermal(b, e, T, J);
 }
 
 void add_dynamics(Builder& b, const DynamicsResult& d, int T, std::size_t cycles, RobotCounts c) {

@@ -1,6 +1,6 @@
 #pragma once
 /// \file result_layout.hpp
-/// A run's `hexdyn-result/4` layout in memory: every dataset the file holds (path, units,
+/// A run's `hexdyn-result/5` layout in memory: every dataset the file holds (path, units,
 /// dims and values, in the element type of io/schema.hpp) and every /meta attribute, in
 /// the order the file is written. The one source of what a result file contains: the HDF5
 /// writer (output.hpp, write_result_layout) writes this list, and the Python module

@@ -1,8 +1,8 @@
 #pragma once
 /// \file schema.hpp
 /// The HDF5 contracts of hexdyn in one place (described in docs/user/output.md, whose
-/// tables are generated from this header): `hexdyn-result/4` (one run) here, and, in the
-/// headers this one includes at its end, `hexdyn-sweep/4` (a parameter sweep,
+/// tables are generated from this header): `hexdyn-result/5` (one run) here, and, in the
+/// headers this one includes at its end, `hexdyn-sweep/5` (a parameter sweep,
 /// schema_sweep.hpp), `hexdyn-envelope/2` (the climbable envelope, envelope/envelope.hpp,
 /// schema_envelope.hpp) and `hexdyn-replay/2` (schema_replay.hpp), each with its schema
 /// name and version, every /meta attribute, and for every dataset its path, `units`, shape,
@@ -35,10 +35,10 @@
 
 namespace hexdyn::schema {
 
-inline constexpr const char* kResultSchema = "hexdyn-result/4";  ///< /meta attr `schema`
-inline constexpr std::int64_t kResultSchemaVersion = 4;          ///< /meta attr `schema_version`
-inline constexpr const char* kSweepSchema = "hexdyn-sweep/4";    ///< sweep files' `schema`
-inline constexpr std::int64_t kSweepSchemaVersion = 4;           ///< sweep files' `schema_version`
+inline constexpr const char* kResultSchema = "hexdyn-result/5";  ///< /meta attr `schema`
+inline constexpr std::int64_t kResultSchemaVersion = 5;          ///< /meta attr `schema_version`
+inline constexpr const char* kSweepSchema = "hexdyn-sweep/5";    ///< sweep files' `schema`
+inline constexpr std::int64_t kSweepSchemaVersion = 5;           ///< sweep files' `schema_version`
 inline constexpr const char* kEnvelopeSchema = "hexdyn-envelope/2";  ///< envelope files' `schema`
 inline constexpr std::int64_t kEnvelopeSchemaVersion = 2;  ///< envelope files' `schema_version`
 
@@ -182,7 +182,7 @@ inline std::string at(const char* path, const std::string& value) {
   return s;
 }
 
-// ======================================================================= hexdyn-result/4
+// ======================================================================= hexdyn-result/5
 
 // ---- /meta: a group with attributes only ----
 inline constexpr const char* kMetaGroup = "/meta";
@@ -418,11 +418,18 @@ inline constexpr DatasetSpec kSolverMessages{"/solver/messages", "", Shape::kTex
 /// τ_drive = τ + J_a q̈ + τ_c sgn(q̇) + b q̇: the torque the joint's drive gives.
 inline constexpr DatasetSpec kDriveTorque{"/joints/drive_torque", "N m", Shape::kTJoint,
                                           Element::kFloat64, "drive torque"};
-/// The bound on |τ_drive| at the sample: min(peak_torque, G k_t η (V − G k_t |q̇|) / R), or the
-/// allocation's torque limit for a joint with neither.
+/// The bound τ_drive ≤ it at the sample: a DC motor's bound on |τ_drive|, min(peak_torque,
+/// G k_t η (V − G k_t |q̇|) / R); a three-phase motor's upper bound from its voltage range and
+/// peak rating; or the allocation's torque limit for a joint with neither.
 inline constexpr DatasetSpec kDriveTorqueLimit{"/joints/drive_torque_limit", "N m", Shape::kTJoint,
                                                Element::kFloat64, "bound on the drive torque"};
-/// I = τ_drive / (G k_t η) when driving (τ_drive q̇ ≥ 0), τ_drive η / (G k_t) when back-driven.
+/// The bound τ_drive ≥ it at the sample: −/joints/drive_torque_limit but for a three-phase
+/// motor at speed, whose voltage range is not symmetric (docs/theory/drive-train.md#voltage-limit).
+inline constexpr DatasetSpec kDriveTorqueLowerLimit{"/joints/drive_torque_lower_limit", "N m",
+                                                    Shape::kTJoint, Element::kFloat64,
+                                                    "lower bound on the drive torque"};
+/// I = τ_drive / (G k_t η) when driving (τ_drive q̇ ≥ 0), τ_drive η / (G k_t) when back-driven,
+/// in the convention of the actuator's `winding` (a three-phase motor's q-axis current).
 inline constexpr DatasetSpec kMotorCurrent{"/joints/current", "A", Shape::kTJoint,
                                            Element::kFloat64, "motor current"};
 /// RMS of τ_drive over the run (trapezoid rule of τ_drive² over /time).
@@ -433,7 +440,8 @@ inline constexpr DatasetSpec kDriveTorqueRms{"/joints/drive_torque_rms", "N m", 
 inline constexpr DatasetSpec kDriveTorqueWindowRms{
     "/joints/drive_torque_window_rms", "N m", Shape::kJ, Element::kFloat64,
     "largest RMS drive torque over a thermal window"};
-/// P⁺: P = R I² + G k_t q̇ I where P ≥ 0, r P where P < 0 (r: regeneration).
+/// P⁺: P = c R I² + G k_t q̇ I where P ≥ 0, r P where P < 0 (r: regeneration; c 3/2 for an
+/// amplitude-invariant three-phase winding, else 1).
 inline constexpr DatasetSpec kElectricalPower{"/power/electrical", "W", Shape::kTJoint,
                                               Element::kFloat64, "electrical power drawn"};
 inline constexpr DatasetSpec kElectricalTotalPower{
@@ -444,7 +452,7 @@ inline constexpr DatasetSpec kEnergyElectrical{"/energy/electrical", "J", Shape:
 inline constexpr DatasetSpec kEnergyElectricalJoint{"/energy/electrical_per_joint", "J", Shape::kJ,
                                                     Element::kFloat64,
                                                     "electrical energy drawn per joint"};
-/// Trapezoid rule of Σ R I².
+/// Trapezoid rule of Σ c R I².
 inline constexpr DatasetSpec kEnergyCopperLoss{"/energy/copper_loss", "J", Shape::kScalar,
                                                Element::kFloat64, "copper loss R I^2"};
 /// Trapezoid rule of Σ (τ_c |q̇| + b q̇²).
@@ -456,6 +464,38 @@ inline constexpr DatasetSpec kEnergyRegenerated{"/energy/regenerated", "J", Shap
 inline constexpr DatasetSpec kCostOfTransportElectrical{
     "/energy/cost_of_transport_electrical", "1", Shape::kScalar, Element::kFloat64,
     "electrical cost of transport E_el/(m g d)"};
+
+// ---- the thermal model: written only when some joint's actuator has one ----
+// (docs/theory/drive-train.md#thermal-model; NaN for a joint without one.)
+/// T_w, the winding node of the two-node model under the copper loss c R I² (linear between
+/// samples), both nodes at the ambient at the first sample.
+inline constexpr DatasetSpec kWindingTemperature{"/thermal/winding_temperature", "degC",
+                                                 Shape::kTJoint, Element::kFloat64,
+                                                 "winding temperature"};
+inline constexpr DatasetSpec kHousingTemperature{"/thermal/housing_temperature", "degC",
+                                                 Shape::kTJoint, Element::kFloat64,
+                                                 "housing temperature"};
+/// The largest T_w over the run, between samples too.
+inline constexpr DatasetSpec kPeakWindingTemperature{"/thermal/peak_winding_temperature", "degC",
+                                                     Shape::kJ, Element::kFloat64,
+                                                     "peak winding temperature"};
+/// The first /time at which T_w reaches the joint's winding_temperature_limit; +inf when it
+/// never does (then /thermal/limit_reached is 0).
+inline constexpr DatasetSpec kTimeToWindingLimit{"/thermal/time_to_limit", "s", Shape::kJ,
+                                                 Element::kFloat64,
+                                                 "time the winding reaches its limit"};
+/// 1 where T_w reaches the limit in the run, 0 elsewhere (CF flags kWindingLimitFlags).
+inline constexpr DatasetSpec kWindingLimitReached{"/thermal/limit_reached", "", Shape::kJ,
+                                                  Element::kInt8,
+                                                  "winding reaches its temperature limit"};
+/// The largest of /thermal/peak_winding_temperature.
+inline constexpr DatasetSpec kThermalPeak{"/thermal/peak", "degC", Shape::kScalar,
+                                          Element::kFloat64,
+                                          "peak winding temperature over the joints"};
+/// The least of /thermal/time_to_limit (+inf: no joint reaches its limit).
+inline constexpr DatasetSpec kThermalFirstLimit{"/thermal/first_time_to_limit", "s", Shape::kScalar,
+                                                Element::kFloat64,
+                                                "first time a winding reaches its limit"};
 
 // ---- coordinate variables: one per dimension (dimension_names), at the root ----
 // Group coordinates, in every file kind: each group G below the root (of the file, or of a
@@ -491,6 +531,7 @@ inline constexpr FlagSpec kContactPhaseFlags{"/contacts/phase", "swing impact su
 inline constexpr FlagSpec kSolverStatusFlags{"/solver/status", "optimal relaxed failed"};
 inline constexpr FlagSpec kSampleKindFlags{"/sample_kind", "ordinary left_limit"};
 inline constexpr FlagSpec kContactSlipFlags{"/contacts/slip", "holds slips"};
+inline constexpr FlagSpec kWindingLimitFlags{"/thermal/limit_reached", "below reached"};
 
 /// Every dataset present in every result file.
 inline constexpr std::array kModelDatasets{kModelUrdf, kModelJointNames, kModelLegNames,
@@ -523,9 +564,14 @@ inline constexpr std::array kDynamicsDatasets{
 inline constexpr std::array kRequiredFrictionDatasets{kRequiredFriction, kRequiredFrictionLeg};
 /// Datasets present when the scene had actuators (besides the dynamics).
 inline constexpr std::array kDriveTrainDatasets{
-    kDriveTorque, kDriveTorqueLimit, kMotorCurrent, kDriveTorqueRms, kDriveTorqueWindowRms,
-    kElectricalPower, kElectricalTotalPower, kEnergyElectrical, kEnergyElectricalJoint,
-    kEnergyCopperLoss, kEnergyFrictionLoss, kEnergyRegenerated, kCostOfTransportElectrical};
+    kDriveTorque, kDriveTorqueLimit, kDriveTorqueLowerLimit, kMotorCurrent, kDriveTorqueRms,
+    kDriveTorqueWindowRms, kElectricalPower, kElectricalTotalPower, kEnergyElectrical,
+    kEnergyElectricalJoint, kEnergyCopperLoss, kEnergyFrictionLoss, kEnergyRegenerated,
+    kCostOfTransportElectrical};
+/// Datasets present when some joint's actuator has a thermal model (besides the drive train's).
+inline constexpr std::array kThermalDatasets{
+    kWindingTemperature, kHousingTemperature, kPeakWindingTemperature, kTimeToWindingLimit,
+    kWindingLimitReached, kThermalPeak, kThermalFirstLimit};
 // clang-format on
 
 }  // namespace hexdyn::schema

@@ -201,8 +201,8 @@ inline constexpr std::array kReplayReportDatasets{kReplayCycleEnd,
                                                   kReplaySeconds};
 
 /// Every CF flag declaration of the four file kinds.
-inline constexpr std::array kFlags{kContactPhaseFlags,    kSolverStatusFlags,   kSampleKindFlags,
-                                   kContactSlipFlags,     kScenarioStatusFlags, kProbePassedFlags,
-                                   kReplayReachedTopFlags};
+inline constexpr std::array kFlags{kContactPhaseFlags,     kSolverStatusFlags,   kSampleKindFlags,
+                                   kContactSlipFlags,      kScenarioStatusFlags, kProbePassedFlags,
+                                   kReplayReachedTopFlags, kWindingLimitFlags};
 
 }  // namespace hexdyn::schema

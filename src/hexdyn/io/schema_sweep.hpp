@@ -1,13 +1,13 @@
 #pragma once
 /// \file schema_sweep.hpp
-/// The `hexdyn-sweep/4` contract, part of io/schema.hpp (which includes this header at
+/// The `hexdyn-sweep/5` contract, part of io/schema.hpp (which includes this header at
 /// its end; the generated Python schema holds it too). Same conventions as there.
 #include <array>
 
 #include "hexdyn/io/schema.hpp"
 
 namespace hexdyn::schema {
-// ======================================================================= hexdyn-sweep/4
+// ======================================================================= hexdyn-sweep/5
 // One row per scenario (N = product of the axis sizes, scenario i at the row-major grid
 // point, last axis fastest); metrics are NaN where /scenarios/status != 0.
 
@@ -197,6 +197,21 @@ inline constexpr DatasetSpec kScenarioDriveTorqueWindowRms{
 inline constexpr DatasetSpec kScenarioThermalLoad{
     "/scenarios/thermal_load", "1", Shape::kScenarios, Element::kFloat64,
     "largest windowed RMS drive torque over the continuous rating"};
+// The thermal model's metrics (actuators with a thermal model; NaN without, and for a joint
+// without one): the run's /thermal/peak_winding_temperature and /thermal/time_to_limit per
+// joint (+inf: never reached), /thermal/peak and /thermal/first_time_to_limit over them.
+inline constexpr DatasetSpec kScenarioPeakWindingTemperature{
+    "/scenarios/peak_winding_temperature", "degC", Shape::kScenarioJoints, Element::kFloat64,
+    "peak winding temperature"};
+inline constexpr DatasetSpec kScenarioTimeToWindingLimit{"/scenarios/time_to_winding_limit", "s",
+                                                         Shape::kScenarioJoints, Element::kFloat64,
+                                                         "time the winding reaches its limit"};
+inline constexpr DatasetSpec kScenarioPeakWindingTemperatureMax{
+    "/scenarios/peak_winding_temperature_max", "degC", Shape::kScenarios, Element::kFloat64,
+    "peak winding temperature over the joints"};
+inline constexpr DatasetSpec kScenarioTimeToWindingLimitMin{
+    "/scenarios/time_to_winding_limit_min", "s", Shape::kScenarios, Element::kFloat64,
+    "first time a winding reaches its limit"};
 // Grip (docs/theory/grip.md): the largest /contacts/required_friction over the support samples
 // (no leg in phase impact) and over the touchdown-transient samples (some leg in phase
 // impact), NaN samples skipped (NaN when none is finite, and with output.required_friction
@@ -254,7 +269,9 @@ inline constexpr std::array kScenarioDatasets{
     kScenarioEnergyElectrical, kScenarioEnergyCopperLoss, kScenarioEnergyFrictionLoss,
     kScenarioEnergyRegenerated, kScenarioCostOfTransportElectrical, kScenarioPeakElectricalPower,
     kScenarioPeakDriveTorqueGait, kScenarioPeakDriveTorqueTransient, kScenarioDriveTorqueWindowRms,
-    kScenarioThermalLoad, kScenarioRequiredFrictionSupport, kScenarioRequiredFrictionSupportLeg,
+    kScenarioThermalLoad, kScenarioPeakWindingTemperature, kScenarioTimeToWindingLimit,
+    kScenarioPeakWindingTemperatureMax, kScenarioTimeToWindingLimitMin,
+    kScenarioRequiredFrictionSupport, kScenarioRequiredFrictionSupportLeg,
     kScenarioRequiredFrictionSupportTime, kScenarioRequiredFrictionTransient,
     kScenarioRequiredFrictionTransientLeg, kScenarioRequiredFrictionTransientTime,
     kScenarioNoFrictionSamples, kScenarioPeakUtilizedFriction, kScenarioSlipSamples,
@@ -262,7 +279,7 @@ inline constexpr std::array kScenarioDatasets{
     kScenarioWallTime};
 // clang-format on
 
-// ---- /runs/{id}: with --keep-runs, each computed scenario in the hexdyn-result/4 layout
+// ---- /runs/{id}: with --keep-runs, each computed scenario in the hexdyn-result/5 layout
 // (its own /meta, /model, kinematic and dynamic datasets below the group) ----
 inline constexpr const char* kRunsGroup = "/runs";
 inline constexpr const char* kRunGroup = "/runs/{id}";

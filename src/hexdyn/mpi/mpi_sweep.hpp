@@ -10,7 +10,7 @@
 /// batches of indices sized to the measured cost, costly ones first in the tail, a
 /// crashed scenario retried once. Finished scenarios come back in batches and are
 /// appended to the checkpoint journal as they arrive; progress lines from the start; at
-/// the end rank 0 writes the `hexdyn-sweep/4` file and removes the checkpoint. Rank 0 also
+/// the end rank 0 writes the `hexdyn-sweep/5` file and removes the checkpoint. Rank 0 also
 /// computes: a second thread of rank 0 is worker 0 while its main thread, the only one
 /// calling MPI, polls for messages between 1 ms waits (if the MPI library does not allow
 /// threads, MPI_THREAD_FUNNELED, rank 0 only coordinates when there are other ranks).

@@ -34,7 +34,7 @@ struct SampleSolution {
   JointVector joint_torque;      ///< [N m], per joint
   /// With actuators: the drive torques τ + offset and their bounds [N m] (DriveRows).
   JointVector drive_torque;
-  JointVector drive_limit;
+  JointVector drive_limit, drive_lower_limit;
   /// Rows and cones the solution violates beyond kViolationThreshold, measured on it
   /// whatever the back end reported, largest first ("trunk force z by 120, torque L1_femur
   /// by 0.45"); empty when none.
@@ -107,6 +107,7 @@ class SampleSolver {
     if (drive) {
       s.drive_torque = s.joint_torque + rows_.offset_Nm;
       s.drive_limit = rows_.limit_Nm;
+      s.drive_lower_limit = rows_.lower_Nm;
     }
     clock.emplace(times, Stage::kVerdict);
     // Measured from the solution, not taken from the back end: every row and cone against
@@ -134,9 +135,14 @@ class SampleSolver {
     for (int k = 0; k < model_.joints(); ++k) {
       const DriveLimit lim = drive_torque_limit(drive.joints[k], qd[k]);
       rows_.bound[k] = static_cast<std::int8_t>(lim.bound);
-      rows_.limit_Nm[k] = lim.bound != DriveBound::kNone ? lim.limit_Nm
-                          : alloc.joint_torque_limit_Nm  ? (*alloc.joint_torque_limit_Nm)[k]
-                                                         : alloc.torque_limit_Nm;
+      if (lim.bound != DriveBound::kNone) {
+        rows_.limit_Nm[k] = lim.limit_Nm;
+        rows_.lower_Nm[k] = lim.lower_Nm;
+        continue;
+      }
+      rows_.limit_Nm[k] =
+          alloc.joint_torque_limit_Nm ? (*alloc.joint_torque_limit_Nm)[k] : alloc.torque_limit_Nm;
+      rows_.lower_Nm[k] = -rows_.limit_Nm[k];
     }
   }
 
@@ -277,6 +283,7 @@ DynamicsResult empty_result(const RobotModel& model, int T, bool drive, bool req
   if (drive) {
     dyn.drive_torque.setZero(T, J);
     dyn.drive_torque_limit.setZero(T, J);
+    dyn.drive_torque_lower_limit.setZero(T, J);
   }
   return dyn;
 }
@@ -329,6 +336,7 @@ DynamicsResult DynamicsSolver::solve(const KinematicsResult& kin, const ContactS
     if (dyn.has_drive()) {
       dyn.drive_torque.row(i) = solution.drive_torque.transpose();
       dyn.drive_torque_limit.row(i) = solution.drive_limit.transpose();
+      dyn.drive_torque_lower_limit.row(i) = solution.drive_lower_limit.transpose();
     }
     dyn.solver_seconds[i] = solution.outcome->seconds;
     dyn.solver_max_violation[i] = verdict.max_violation;

@@ -45,7 +45,7 @@ struct ReplaySource {
   std::vector<std::string> warnings;
 };
 
-/// Reads `result_path` (a hexdyn-result/4 file with dynamics, or of versions 2 and 3) while an
+/// Reads `result_path` (a hexdyn-result/5 file with dynamics, or of versions 2 and 3) while an
 /// InputFreeze lives (config/inputs.hpp: the stored URDF is kept as an input). Every series the
 /// replay reads is checked: finite, of the right shape, /time increasing, unit quaternions
 /// (kReplayQuaternionTolerance), and the stored feet where the model puts them

@@ -231,11 +231,12 @@ ReplaySource read_replay_source(const std::string& result_path,
   src.inputs.push_back(result_input(result_path));
   const H5Reader in(result_path);
   const std::string meta = s::kMetaGroup;
-  // Layout versions 2 and 3 have the same datasets but /model/leg_joint_counts (version 2: its
-  // energies by the trapezoid).
+  // Layout versions 2 to 4 have the same datasets the replay reads but
+  // /model/leg_joint_counts (versions 2 and 3; version 2: its energies by the trapezoid).
   const std::string schema =
       in.has_attribute(meta, s::kAttrSchema) ? in.string_attribute(meta, s::kAttrSchema) : "";
-  if (schema != s::kResultSchema && schema != "hexdyn-result/4" && schema != "hexdyn-result/2")
+  if (schema != s::kResultSchema && schema != "hexdyn-result/4" && schema != "hexdyn-result/3" &&
+      schema != "hexdyn-result/2")
     throw IoError("replay: '" + result_path + "' is not a " + s::kResultSchema + " file");
   src.created_utc = in.string_attribute(meta, s::kAttrCreatedUtc);
   if (in.has_attribute(meta, s::kAttrInputSha256)) {

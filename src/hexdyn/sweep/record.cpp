@@ -123,6 +123,8 @@ auto double_fields(S& s) {
                     &s.cost_of_transport_electrical,
                     &s.peak_electrical_power_W,
                     &s.thermal_load,
+                    &s.peak_winding_temperature_max_degC,
+                    &s.time_to_winding_limit_min_s,
                     &s.required_friction_support,
                     &s.required_friction_support_time_s,
                     &s.required_friction_transient,

@@ -23,7 +23,7 @@ std::uint32_t crc32(const void* data, std::size_t size, std::uint32_t crc = 0);
 std::uint64_t fnv1a64(std::string_view text, std::uint64_t h = 0xcbf29ce484222325ULL);
 
 /// A finished scenario: its row and, with --keep-runs and status ok, its full result as
-/// the bytes of an HDF5 file holding the `hexdyn-result/4` layout under /run
+/// the bytes of an HDF5 file holding the `hexdyn-result/5` layout under /run
 /// (encode_run_image); empty otherwise.
 struct ScenarioRecord {
   ScenarioSummary summary;
@@ -40,7 +40,7 @@ ScenarioRecord decode_record(const char* data, std::size_t size, bool with_image
                              std::size_t* image_offset = nullptr,
                              std::size_t* image_size = nullptr);
 
-/// The run of a computed scenario as an HDF5 file image: /run in the `hexdyn-result/4`
+/// The run of a computed scenario as an HDF5 file image: /run in the `hexdyn-result/5`
 /// layout. Built in a temporary file under `scratch_dir` (removed). Throws IoError.
 std::vector<char> encode_run_image(const RunResult& run, const std::string& scratch_dir);
 

@@ -90,6 +90,13 @@ RobotShape robot_shape(const RobotModel& model) {
 
 namespace {
 
+/// The thermal model's metrics of a row without one: NaN.
+void no_thermal_metrics(ScenarioSummary& s) {
+  s.peak_winding_temperature_max_degC = s.time_to_winding_limit_min_s = kNaN;
+  s.peak_winding_temperature_degC.fill(kNaN);
+  s.time_to_winding_limit_s.fill(kNaN);
+}
+
 /// The drive train's metrics of a row without actuators: NaN.
 void no_drive_metrics(ScenarioSummary& s) {
   s.energy_electrical_J = s.cost_of_transport_electrical = s.peak_electrical_power_W = kNaN;
@@ -98,6 +105,22 @@ void no_drive_metrics(ScenarioSummary& s) {
   for (auto* a : {&s.peak_drive_torque_gait_Nm, &s.peak_drive_torque_transient_Nm,
                   &s.drive_torque_window_rms_Nm})
     a->fill(kNaN);
+  no_thermal_metrics(s);
+}
+
+/// The thermal model's metrics of e (ElectricalResult; NaN without a thermal model).
+void thermal_metrics(const ElectricalResult& e, ScenarioSummary& s) {
+  if (!e.has_thermal()) return no_thermal_metrics(s);
+  s.peak_winding_temperature_max_degC = -kInfinity;
+  s.time_to_winding_limit_min_s = kInfinity;
+  for (std::size_t k = 0; k < e.peak_winding_temperature_degC.size(); ++k) {
+    s.peak_winding_temperature_degC[k] = e.peak_winding_temperature_degC[k];
+    s.time_to_winding_limit_s[k] = e.time_to_limit_s[k];
+    if (std::isnan(e.peak_winding_temperature_degC[k])) continue;
+    s.peak_winding_temperature_max_degC =
+        std::max(s.peak_winding_temperature_max_degC, e.peak_winding_temperature_degC[k]);
+    s.time_to_winding_limit_min_s = std::min(s.time_to_winding_limit_min_s, e.time_to_limit_s[k]);
+  }
 }
 
 /// True when some leg of sample i is in its touchdown transient (phase impact); false for a
@@ -138,6 +161,7 @@ void drive_metrics(const RunResult& run, ScenarioSummary& s) {
               s.peak_drive_torque_transient_Nm);
   std::copy(e.window_rms_torque_Nm.begin(), e.window_rms_torque_Nm.end(),
             s.drive_torque_window_rms_Nm.begin());
+  thermal_metrics(e, s);
   s.thermal_load = kNaN;  // NaN when no joint has a continuous rating
   for (int k = 0; k < static_cast<int>(e.continuous_torque_Nm.size()); ++k)
     if (std::isfinite(e.continuous_torque_Nm[k])) {

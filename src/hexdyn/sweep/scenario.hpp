@@ -1,7 +1,7 @@
 #pragma once
 /// \file scenario.hpp
 /// One scenario of a sweep: run (or only validated) as `hexdyn run` would, and reduced
-/// to its summary row of /scenarios (schema.hpp, hexdyn-sweep/4). A scenario that cannot
+/// to its summary row of /scenarios (schema.hpp, hexdyn-sweep/5). A scenario that cannot
 /// be computed is a row with a status and a message, never an exception.
 #include <array>
 #include <cstddef>
@@ -84,6 +84,11 @@ struct ScenarioSummary {
   JointArray<double> peak_drive_torque_gait_Nm{}, peak_drive_torque_transient_Nm{};
   JointArray<double> drive_torque_window_rms_Nm{};
   double thermal_load = 0.0;
+  // With a thermal model (NaN without; drive/thermal.hpp): per joint the peak winding
+  // temperature [°C] and the time it reaches its limit [s] (+inf: never), and over the joints
+  // the largest peak and the earliest time.
+  JointArray<double> peak_winding_temperature_degC{}, time_to_winding_limit_s{};
+  double peak_winding_temperature_max_degC = 0.0, time_to_winding_limit_min_s = 0.0;
   // Grip (docs/theory/grip.md; schema.hpp's kScenarioRequiredFriction* for the contract): the
   // largest required friction over support samples and over touchdown-transient samples
   // [1], each with its binding leg (0..5, −1 none) and time [s] (NaN, −1 where none is
@@ -114,7 +119,9 @@ auto per_joint_metrics(S& s) {
                                        &Summary::peak_torque_transient_Nm,
                                        &Summary::peak_drive_torque_gait_Nm,
                                        &Summary::peak_drive_torque_transient_Nm,
-                                       &Summary::drive_torque_window_rms_Nm};
+                                       &Summary::drive_torque_window_rms_Nm,
+                                       &Summary::peak_winding_temperature_degC,
+                                       &Summary::time_to_winding_limit_s};
   std::array<decltype(&s.peak_torque_Nm), kMembers.size()> metrics{};
   for (std::size_t i = 0; i < kMembers.size(); ++i) metrics[i] = &(s.*kMembers[i]);
   return metrics;

@@ -10,7 +10,7 @@
 ///   record.hpp            a finished scenario as bytes, checksums;
 ///   journal.hpp           the checkpoint journal's format;
 ///   checkpoint.hpp        the checkpoint directory: journals, identity, lock;
-///   sweep_file.hpp        the `hexdyn-sweep/4` writer (layout in io/schema.hpp);
+///   sweep_file.hpp        the `hexdyn-sweep/5` writer (layout in io/schema.hpp);
 ///   progress.hpp          progress lines.
 /// The distribution over ranks is in mpi/mpi_sweep.hpp. This header includes them all.
 #include "hexdyn/sweep/checkpoint.hpp"

@@ -258,6 +258,11 @@ void write_scenario_metrics(H5Writer& w, Labeller& labels, const std::vector<Sce
   per_joint(s::kScenarioPeakDriveTorqueTransient, &ScenarioSummary::peak_drive_torque_transient_Nm);
   per_joint(s::kScenarioDriveTorqueWindowRms, &ScenarioSummary::drive_torque_window_rms_Nm);
   doubles(s::kScenarioThermalLoad, &ScenarioSummary::thermal_load);
+  per_joint(s::kScenarioPeakWindingTemperature, &ScenarioSummary::peak_winding_temperature_degC);
+  per_joint(s::kScenarioTimeToWindingLimit, &ScenarioSummary::time_to_winding_limit_s);
+  doubles(s::kScenarioPeakWindingTemperatureMax,
+          &ScenarioSummary::peak_winding_temperature_max_degC);
+  doubles(s::kScenarioTimeToWindingLimitMin, &ScenarioSummary::time_to_winding_limit_min_s);
   doubles(s::kScenarioRequiredFrictionSupport, &ScenarioSummary::required_friction_support);
   counts(s::kScenarioRequiredFrictionSupportLeg, &ScenarioSummary::required_friction_support_leg);
   doubles(s::kScenarioRequiredFrictionSupportTime,

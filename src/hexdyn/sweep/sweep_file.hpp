@@ -1,6 +1,6 @@
 #pragma once
 /// \file sweep_file.hpp
-/// The `hexdyn-sweep/4` file: the layout is declared in io/schema.hpp (paths, units,
+/// The `hexdyn-sweep/5` file: the layout is declared in io/schema.hpp (paths, units,
 /// shapes: N scenarios, A axes), which this writer follows for every path and units string.
 #include <cstddef>
 #include <string>
@@ -20,7 +20,7 @@ struct SweepRunInfo {
   std::size_t resumed_scenarios = 0;  ///< rows taken from an earlier run's checkpoint
 };
 
-/// Writes the `hexdyn-sweep/4` file atomically (temporary name, fsync, rename):
+/// Writes the `hexdyn-sweep/5` file atomically (temporary name, fsync, rename):
 /// /meta, /axes/<i>/{key,values,labels}, /joint_names, /scenarios/* (one row per
 /// scenario, index order) and, when `runs_from` is given, each computed scenario's
 /// run image copied from the checkpoint's journals (Checkpoint::run_image, flushed) to

@@ -3,6 +3,7 @@
 // weights and the allocation's limit give the problem built without them; offsets d shift the
 // torque rows' bounds by d; with weights w the objective is Σ w (τ + d)², τ from
 // forces_from_solution; the torque rows and a swing leg's excess name the bound that gave it.
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <random>
@@ -90,6 +91,7 @@ TEST_CASE("allocation with drive rows: neutral rows give the problem built witho
     const Sample s = random_sample(41);
     DriveRows rows;  // offsets 0, weights 1 by default
     rows.limit_Nm.setConstant(alloc.torque_limit_Nm);
+    rows.lower_Nm = -rows.limit_Nm;
     QpProblem plain, driven;
     const AllocationLayout lp = build(alloc, s, plain);
     const AllocationLayout ld = build(alloc, s, driven, &rows);
@@ -130,6 +132,9 @@ TEST_CASE("allocation with drive rows: offsets shift the torque rows' bounds",
   rows.offset_Nm = JointVector::NullaryExpr(kJointCount, [&] { return u(rng); });
   rows.limit_Nm = JointVector::NullaryExpr(kJointCount, [&] { return 1.0 + u(rng); });
   rows.limit_Nm[joint_of(1, 1)] = 0.6;  // below |τ₀| − |d| ≥ 1: the swing leg's excess
+  // The lower bounds of a three-phase drive differ from −limit: lower ≤ τ + d ≤ limit.
+  rows.lower_Nm = JointVector::NullaryExpr(kJointCount, [&] { return -1.2 + u(rng); });
+  rows.lower_Nm[joint_of(1, 1)] = -0.6;
   QpProblem plain, driven;
   build(alloc, s, plain);
   const AllocationLayout ld = build(alloc, s, driven, &rows);
@@ -146,18 +151,19 @@ TEST_CASE("allocation with drive rows: offsets shift the torque rows' bounds",
     }
     ++torque_rows;
     // Without drive rows: τ₀' − τ_max ≤ G x ≤ τ₀' + τ_max (τ₀' the known part of τ); with them
-    // |τ₀' + d − G x| ≤ limit: the centre moves by d, the half-width is the drive's limit.
+    // lower ≤ τ₀' + d − G x ≤ limit: τ₀' + d − limit ≤ G x ≤ τ₀' + d − lower.
     const double centre = 0.5 * (plain.lower[i] + plain.upper[i]);
     CHECK(plain.upper[i] - plain.lower[i] == Approx(2.0 * alloc.torque_limit_Nm).epsilon(1e-14));
     CHECK(driven.lower[i] == Approx(centre + rows.offset_Nm[k] - rows.limit_Nm[k]).margin(1e-14));
-    CHECK(driven.upper[i] == Approx(centre + rows.offset_Nm[k] + rows.limit_Nm[k]).margin(1e-14));
+    CHECK(driven.upper[i] == Approx(centre + rows.offset_Nm[k] - rows.lower_Nm[k]).margin(1e-14));
   }
   CHECK(torque_rows == kTorqueRows);
   // The swing leg L2: no row, its drive torques τ₀ + d against the drive's limits.
   double excess = 0.0;
   for (int j = 0; j < kLegTable.n_joints[1]; ++j) {
     const int k = joint_of(1, j);
-    excess = std::max(excess, std::abs(s.split.tau0[k] + rows.offset_Nm[k]) - rows.limit_Nm[k]);
+    const double tau = s.split.tau0[k] + rows.offset_Nm[k];
+    excess = std::max({excess, tau - rows.limit_Nm[k], rows.lower_Nm[k] - tau});
   }
   REQUIRE(excess > 0.0);
   CHECK(ld.constant_excess_Nm == Approx(excess).epsilon(1e-14));
@@ -173,6 +179,7 @@ TEST_CASE("allocation with drive rows: the objective is Σ w (τ + d)² of the s
     DriveRows rows;
     rows.offset_Nm = JointVector::NullaryExpr(kJointCount, [&] { return u(rng); });
     rows.limit_Nm.setConstant(2.0);
+    rows.lower_Nm = -rows.limit_Nm;
     rows.weight = JointVector::NullaryExpr(kJointCount, [&] { return w(rng); });
     QpProblem qp;
     const AllocationLayout layout = build(alloc, s, qp, &rows);
@@ -205,6 +212,7 @@ TEST_CASE("allocation with drive rows: torque rows name the drive's bound", "[al
   for (std::int8_t swing_kind : {std::int8_t{0}, std::int8_t{1}, std::int8_t{2}}) {
     DriveRows rows;
     rows.limit_Nm.setConstant(alloc.torque_limit_Nm);
+    rows.lower_Nm = -rows.limit_Nm;
     for (int k = 0; k < kJointCount; ++k) rows.bound[k] = static_cast<std::int8_t>(k % 3);
     rows.bound[joint_of(1, 1)] = swing_kind;
     QpProblem qp;

@@ -87,6 +87,15 @@ void check_same(const ActuatorParams& a, const ActuatorParams& b) {
   CHECK(a.continuous_torque_Nm == b.continuous_torque_Nm);
   CHECK(a.regeneration == b.regeneration);
   CHECK(a.thermal_window_s == b.thermal_window_s);
+  CHECK(a.winding == b.winding);
+  CHECK(a.voltage_utilization == b.voltage_utilization);
+  const auto same = [](double x, double y) { return x == y || (std::isnan(x) && std::isnan(y)); };
+  CHECK(same(a.thermal_resistance_winding_KpW, b.thermal_resistance_winding_KpW));
+  CHECK(same(a.thermal_capacity_winding_JpK, b.thermal_capacity_winding_JpK));
+  CHECK(same(a.thermal_resistance_housing_KpW, b.thermal_resistance_housing_KpW));
+  CHECK(same(a.thermal_capacity_housing_JpK, b.thermal_capacity_housing_JpK));
+  CHECK(a.ambient_temperature_degC == b.ambient_temperature_degC);
+  CHECK(a.winding_temperature_limit_degC == b.winding_temperature_limit_degC);
 }
 
 /// The drive a servo of the table gives a joint by itself (NaN: the built-in default).
@@ -534,6 +543,106 @@ TEST_CASE("actuators: entries by place j1 … jm, for legs of any length", "[con
             .find("actuators.joints.FL_HAA.gear_ratio: missing, expected it from "
                   "actuators.default, actuators.coxa, actuators.j1, actuators.joints.FL_HAA or "
                   "their model") != std::string::npos);
+}
+
+TEST_CASE("actuators: three-phase, gear-stage and thermal keys, and their bad values",
+          "[config][actuators]") {
+  const std::string full = "  default: {gear_ratio: 9, torque_constant: 0.025, resistance: 0.2}\n";
+  struct Bad {
+    const char* key;
+    const char* value;
+    const char* what;
+  };
+  for (const Bad& b :
+       {Bad{"winding", "ac", "three_phase_amplitude"}, Bad{"voltage_utilization", "0", "(0, 1]"},
+        Bad{"voltage_utilization", "1.2", "(0, 1]"},
+        Bad{"thermal_resistance_winding", "-1", "(0, 10000]"},
+        Bad{"thermal_capacity_housing", "0", "(0, 1e+07]"},
+        Bad{"ambient_temperature", "2000", "[-100, 1000]"},
+        Bad{"winding_temperature_limit", "hot", "[-100, 1000]"}}) {
+    const std::string msg =
+        config_error("actuators:\n" + full + "  tibia: {" + b.key + ": " + b.value + "}\n");
+    INFO(msg);
+    CHECK(msg.rfind(kName + ": actuators.tibia." + b.key + ": got " + b.value, 0) == 0);
+    CHECK(msg.find(b.what) != std::string::npos);
+    CHECK(msg.find('\n') == std::string::npos);
+  }
+  check_error("actuators:\n" + full + "  femur: {gear_stages: []}\n", "actuators.femur.gear_stages",
+              "a list of 1 to 8 stages");
+  check_error("actuators:\n" + full + "  femur: {gear_stages: [{ratio: 0}]}\n",
+              "actuators.femur.gear_stages[0].ratio", "got 0");
+  check_error("actuators:\n" + full + "  femur: {gear_stages: [{ratio: 3}, {ratio: 3, mass: 1}]}\n",
+              "actuators.femur.gear_stages[1].mass", "unknown key");
+  check_error("actuators:\n" + full + "  femur: {gear_stages: [{inertia: 1.0e-6}]}\n",
+              "actuators.femur.gear_stages[0].ratio", "missing");
+  check_error("actuators:\n" + full + "  femur: {gear_ratio: 9, gear_stages: [{ratio: 9}]}\n",
+              "actuators.femur", "gear_ratio and gear_stages");
+  // Three of the thermal model's four values: the fourth is named, with the joint.
+  check_error("actuators:\n" + full +
+                  "  coxa: {thermal_resistance_winding: 2, thermal_capacity_winding: 8,"
+                  " thermal_resistance_housing: 6}\n",
+              "actuators.joints.L1_coxa.thermal_capacity_housing", "four values");
+}
+
+TEST_CASE("actuators: gear stages multiply their ratios and reflect their inertia",
+          "[config][actuators]") {
+  // Motor 3:1 then 4:1: G = 12; the rotor 2e-6 seen through 12, the first stage's output
+  // 1e-5 through the second stage's 4, the last stage's output 3e-4 as it is.
+  const Scene s = paper_with(
+      "actuators:\n"
+      "  default: {torque_constant: 0.025, resistance: 0.2, rotor_inertia: 2.0e-6,\n"
+      "            gear_stages: [{ratio: 3, inertia: 1.0e-5}, {ratio: 4, inertia: 3.0e-4}]}\n"
+      "  joints: {L1_coxa: {gear_ratio: 5}}\n");
+  for (const JointAt& at : joints_of(s)) {
+    const ActuatorParams& a = s.robot.drive.joints[at.k];
+    INFO(at.name);
+    if (at.name == "L1_coxa") {  // its own ratio: no stages, the rotor through 5
+      CHECK(a.gear_ratio == 5.0);
+      CHECK(a.armature_kgm2 == Approx(25.0 * 2e-6).epsilon(1e-15));
+      continue;
+    }
+    CHECK(a.gear_ratio == 12.0);
+    CHECK(a.armature_kgm2 == Approx(144.0 * 2e-6 + 16.0 * 1e-5 + 3e-4).epsilon(1e-15));
+  }
+  check_round_trip(s);
+}
+
+TEST_CASE("actuators: a brushless module of the table is three-phase with its thermal model",
+          "[config][actuators]") {
+  const Scene s = paper_with(
+      "actuators:\n"
+      "  default: {model: odri_actuator}\n"
+      "  tibia: {model: mini_cheetah_knee, ambient_temperature: 35}\n"
+      "  joints: {L1_coxa: {winding: three_phase_power, voltage_utilization: 0.57}}\n");
+  const ServoSpec& odri = servo("odri_actuator");
+  const ServoSpec& knee = servo("mini_cheetah_knee");
+  for (const JointAt& at : joints_of(s)) {
+    const ActuatorParams& a = s.robot.drive.joints[at.k];
+    const ServoSpec& m = at.place == 2 ? knee : odri;
+    INFO(at.name);
+    CHECK(a.model == m.name);
+    CHECK(a.gear_ratio == m.gear_ratio);
+    CHECK(a.armature_kgm2 == m.armature_kgm2);
+    CHECK(a.thermal_capacity_winding_JpK == m.thermal_capacity_winding_JpK);
+    CHECK(a.winding_temperature_limit_degC == m.winding_temperature_limit_degC);
+    CHECK(thermal_params(a).present);
+    CHECK(a.ambient_temperature_degC == (at.place == 2 ? 35.0 : 25.0));
+    CHECK(a.winding ==
+          (at.name == "L1_coxa" ? Winding::kThreePhasePower : Winding::kThreePhaseAmplitude));
+    CHECK(a.voltage_utilization == (at.name == "L1_coxa" ? 0.57 : 0.5));
+  }
+  // The resolved YAML states the winding and the thermal values, and reads back the same.
+  const YAML::Node j = YAML::Load(s.resolved_yaml)["actuators"]["joints"]["L2_tibia"];
+  CHECK(j["winding"].as<std::string>() == "three_phase_amplitude");
+  CHECK(j["thermal_resistance_housing"].as<double>() == knee.thermal_resistance_housing_KpW);
+  CHECK(j["ambient_temperature"].as<double>() == 35.0);
+  check_round_trip(s);
+  // A DC scene's record has none of the new keys.
+  const Scene dc = paper_with("actuators:\n  default: {model: dynamixel_mx64}\n");
+  const YAML::Node d = YAML::Load(dc.resolved_yaml)["actuators"]["joints"]["L1_coxa"];
+  for (const char* key : {"winding", "voltage_utilization", "ambient_temperature",
+                          "thermal_resistance_winding", "winding_temperature_limit"})
+    CHECK_FALSE(d[key].IsDefined());
 }
 
 }  // namespace hexdyn

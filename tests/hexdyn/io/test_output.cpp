@@ -1,4 +1,4 @@
-// hexdyn-result/4 writer: every dataset of the contract read back through the h5io
+// hexdyn-result/5 writer: every dataset of the contract read back through the h5io
 // readers with its shape, units and exact values; atomic replacement on failure.
 //
 // Setting HEXDYN_TEST_FIXTURE_DIR=<dir> keeps a copy of the synthetic result
@@ -346,8 +346,8 @@ TEST_CASE("output: every dataset of the contract round-trips (dynamics present)"
   namespace s = schema;
   const std::string meta = s::kMetaGroup;
   REQUIRE(in.is_group(meta));
-  CHECK(in.string_attribute(meta, s::kAttrSchema) == "hexdyn-result/4");
-  CHECK(in.int_attribute(meta, s::kAttrSchemaVersion) == 4);
+  CHECK(in.string_attribute(meta, s::kAttrSchema) == "hexdyn-result/5");
+  CHECK(in.int_attribute(meta, s::kAttrSchemaVersion) == 5);
   CHECK(in.string_attribute(meta, s::kAttrVersion) == kVersion);
   CHECK(in.string_attribute(meta, s::kAttrGitCommit) == kGitCommit);
   CHECK(in.string_attribute(meta, s::kAttrConfigYaml) == r.config_yaml);

@@ -1,4 +1,4 @@
-// The hexdyn-sweep/4 writer (src/hexdyn/sweep/sweep_file.*): the file read back holds the
+// The hexdyn-sweep/5 writer (src/hexdyn/sweep/sweep_file.*): the file read back holds the
 // axes, the rows in index order and the kept runs.
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -35,7 +35,7 @@ TEST_CASE("sweep: the sweep file holds axes, rows in index order and kept runs",
   write_sweep_file(out, spec, rows, sweep_robot_shape(factory), &cp, {2, 3.5, 1});
   const H5Reader r(out);
   CHECK(r.string_attribute("/meta", "schema") == schema::kSweepSchema);
-  CHECK(r.int_attribute("/meta", "schema_version") == 4);
+  CHECK(r.int_attribute("/meta", "schema_version") == 5);
   CHECK(r.string_attribute("/meta", "sweep_yaml") == spec.sweep_yaml);
   CHECK(r.string_attribute("/meta", "base_config_yaml") == spec.base_config_yaml);
   CHECK(r.int_attribute("/meta", "ranks") == 2);
@@ -58,7 +58,7 @@ TEST_CASE("sweep: the sweep file holds axes, rows in index order and kept runs",
   CHECK(energy[0] == rows[0].energy_J);
   CHECK(std::isnan(energy[3]));
   CHECK(r.dims("/scenarios/peak_torque") == std::vector<std::size_t>{4, 18});
-  // Kept runs: computed scenarios only, in the hexdyn-result/4 layout.
+  // Kept runs: computed scenarios only, in the hexdyn-result/5 layout.
   CHECK(r.string_attribute("/runs/000001/meta", "schema") == schema::kResultSchema);
   CHECK(r.read_doubles("/runs/000001/energy/total").values[0] == rows[1].energy_J);
   CHECK_FALSE(r.exists("/runs/000002"));
