@@ -82,7 +82,7 @@ class ZmpProbe {
     const DofVector& tau = rnea(model_, data_, state_.trunk, state_.q, state_.qd, state_.qdd);
     const Vec3 F = tau.head<3>();
     const Vec3 M = tau.segment<3>(3) + state_.trunk.p_W.cross(F);  // about the world origin
-    const double z = plan_.trunk.straight_at(t).p_W.z() - height_m_;
+    const double z = state_.trunk.p_W.z() - height_m_;             // the offset is horizontal
     return Vec2((z * F.x() - M.y()) / F.z(), (M.x() + z * F.y()) / F.z());
   }
 
@@ -99,7 +99,11 @@ struct Layout {
   std::vector<double> t;                     ///< breakpoints t_0 … t_K
   std::vector<SupportRegion> piece_support;  ///< hull of the stance feet, per piece
   std::vector<SupportRegion> waypoint;       ///< shrunk hull of the feet shared, per breakpoint
-  std::vector<double> node_x;                ///< Chebyshev–Lobatto nodes on [0, 1], decreasing
+  /// Per piece, its Chebyshev–Lobatto nodes on [0, 1], decreasing: BalanceOptions::line_nodes
+  /// on a piece whose support is a segment or a point, nodes on a polygon.
+  std::vector<std::vector<double>> node_x;
+  /// Nodes of piece k, n_k.
+  int nodes(int k) const { return static_cast<int>(node_x[k].size()); }
   int pieces() const { return static_cast<int>(t.size()) - 1; }
 };
 
@@ -143,8 +147,12 @@ Layout make_layout(const RobotModel& model, const MotionPlan& plan, const Balanc
     }
     L.waypoint[k] = shrink_to_fit(convex_hull(shared, kHullTolerance_m), o.margin_m, nullptr);
   }
-  const int N = o.nodes - 1;
-  for (int j = 0; j <= N; ++j) L.node_x.push_back(0.5 * (1.0 + std::cos(M_PI * j / N)));
+  for (int k = 0; k < K; ++k) {
+    const int N = (L.piece_support[k].vertices.size() <= 2 ? o.line_nodes : o.nodes) - 1;
+    std::vector<double> x;
+    for (int j = 0; j <= N; ++j) x.push_back(0.5 * (1.0 + std::cos(M_PI * j / N)));
+    L.node_x.push_back(std::move(x));
+  }
   return L;
 }
 
@@ -261,29 +269,6 @@ std::vector<Vec2> solve_waypoints(const std::vector<SupportRegion>& region,
   return w;
 }
 
-/// Every swing kept out of the first and the last `settle_s` of the run, where the robot stands
-/// on all its feet while the trunk shifts its weight (balance.hpp): a swing that starts earlier
-/// lifts off later, one that ends later touches down earlier, each keeping its footholds, its
-/// lift and descent fractions and at least kLeastSwingShare of its duration.
-void settle_swings(MotionPlan& plan, double settle_s) {
-  constexpr double kLeastSwingShare = 1.0 / 3.0;
-  const double T = plan.trunk.duration_s();
-  for (LegPlan& leg : plan.gait.legs)
-    for (Swing& sw : leg.swings) {
-      const double D = sw.t_touchdown_s - sw.t_liftoff_s;
-      const double lo = std::max(sw.t_liftoff_s, settle_s);
-      const double td = std::min(sw.t_touchdown_s, T - settle_s);
-      if (td - lo >= kLeastSwingShare * D) {
-        sw.t_liftoff_s = lo;
-        sw.t_touchdown_s = td;
-      } else if (lo > sw.t_liftoff_s) {
-        sw.t_liftoff_s = sw.t_touchdown_s - kLeastSwingShare * D;
-      } else {
-        sw.t_touchdown_s = sw.t_liftoff_s + kLeastSwingShare * D;
-      }
-    }
-}
-
 /// PlanningError unless the ZMP p of the robot at rest lies in its support.
 void check_at_rest(const char* where, const Vec2& p, const SupportRegion& support) {
   if (depth(support, p) >= -1e-9) return;
@@ -296,9 +281,9 @@ void check_at_rest(const char* where, const Vec2& p, const SupportRegion& suppor
 
 /// Time of node j of piece k (balance.hpp): the last node just before the piece's end.
 double node_time(const Layout& L, int k, int j) {
-  const int N = static_cast<int>(L.node_x.size()) - 1;
+  const int N = L.nodes(k) - 1;
   const double nudge = j == 0 ? -kEndNudge_s : j == N ? kEndNudge_s : 0.0;
-  return L.t[k] + L.node_x[j] * (L.t[k + 1] - L.t[k]) + nudge;
+  return L.t[k] + L.node_x[k][j] * (L.t[k + 1] - L.t[k]) + nudge;
 }
 
 /// Solves, per axis, min Σ c_k (w_k − g_k)² + β Σ (w_{k+1} − w_k)² / Δ_k + (ρ/2) Σ (w_k − h_k)²
@@ -382,8 +367,8 @@ void fit_pendulum(const Layout& L, const TrunkOffset& offset,
   Eigen::Matrix2d A[2] = {Eigen::Matrix2d::Zero(), Eigen::Matrix2d::Zero()};
   Eigen::Vector2d b[2] = {Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero()};
   for (int k = 0; k < L.pieces(); ++k)
-    for (std::size_t j = 0; j < L.node_x.size(); ++j) {
-      const OffsetState e = offset.at(node_time(L, k, static_cast<int>(j)));
+    for (int j = 0; j < L.nodes(k); ++j) {
+      const OffsetState e = offset.at(node_time(L, k, j));
       const Vec2 dp = after[k][j] - before[k][j];
       for (int axis = 0; axis < 2; ++axis) {
         const Eigen::Vector2d x(e.e[axis], e.edd[axis]);
@@ -485,8 +470,9 @@ using NodeValues = std::vector<std::vector<Vec2>>;
 /// there, the waypoints' targets g and weights c, and the offset of the last pass.
 struct Passes {
   Passes(const Layout& layout, double omega) : L(layout), w(omega) {
-    const int K = L.pieces(), n = static_cast<int>(L.node_x.size());
-    P.assign(K, std::vector<Vec2>(n));
+    const int K = L.pieces();
+    P.resize(K);
+    for (int k = 0; k < K; ++k) P[k].resize(L.nodes(k));
     s = z = P;
     g.resize(K + 1);
     c.assign(K + 1, 0.0);
@@ -500,8 +486,8 @@ struct Passes {
   double sample(ZmpProbe& probe) {
     double error = 0.0;
     for (int k = 0; k < L.pieces(); ++k)
-      for (std::size_t j = 0; j < L.node_x.size(); ++j) {
-        P[k][j] = probe.at(node_time(L, k, static_cast<int>(j)));
+      for (int j = 0; j < L.nodes(k); ++j) {
+        P[k][j] = probe.at(node_time(L, k, j));
         if (offset) error = std::max(error, (P[k][j] - z[k][j]).norm());
       }
     return error;
@@ -510,10 +496,10 @@ struct Passes {
   /// s = P − κ (e − ë/ω²) at the nodes, mixed with the earlier passes.
   void residual(bool mix) {
     for (int k = 0; k < L.pieces(); ++k)
-      for (std::size_t j = 0; j < L.node_x.size(); ++j) {
+      for (int j = 0; j < L.nodes(k); ++j) {
         Vec2 lip = Vec2::Zero();
         if (offset) {
-          const OffsetState e = offset->at(node_time(L, k, static_cast<int>(j)));
+          const OffsetState e = offset->at(node_time(L, k, j));
           lip = e.e - e.edd / (w * w);
         }
         s[k][j] = P[k][j] - kappa.cwiseProduct(lip);
@@ -523,11 +509,11 @@ struct Passes {
 
   /// The waypoints for s, and the offset whose forcing is (z − s) / κ.
   std::shared_ptr<const TrunkOffset> plan_offset() {
-    const int K = L.pieces(), N = static_cast<int>(L.node_x.size()) - 1;
+    const int K = L.pieces();
     std::vector<std::vector<Vec2>> cheb(K);
     for (int k = 0; k < K; ++k) cheb[k] = end_corrected_fit(s[k], L.t[k + 1] - L.t[k]);
     std::vector<SupportRegion> region = L.waypoint;
-    region[0] = SupportRegion{{s[0][N]}};  // at rest: ë = 0 needs z = s at both ends
+    region[0] = SupportRegion{{s[0].back()}};  // at rest: ë = 0 needs z = s at both ends
     region[K] = SupportRegion{{s[K - 1][0]}};
     double residual = 0.0;
     const std::vector<Vec2> wp =
@@ -538,7 +524,7 @@ struct Passes {
       std::vector<Vec2> r = cheb[k];
       for (Vec2& x : r) x = x.cwiseProduct(inv);
       pieces[k] = {L.t[k], L.t[k + 1], wp[k].cwiseProduct(inv), wp[k + 1].cwiseProduct(inv), r};
-      for (int j = 0; j <= N; ++j) {
+      for (int j = 0; j < L.nodes(k); ++j) {
         const double x = (node_time(L, k, j) - L.t[k]) / (L.t[k + 1] - L.t[k]);
         z[k][j] = wp[k] + (wp[k + 1] - wp[k]) * x;
       }
@@ -563,15 +549,14 @@ BalanceReport balance_trunk(const RobotModel& model, MotionPlan& plan, const Bal
   ZmpProbe probe(model, plan);
   BalanceReport rep;
   rep.omega_radps = std::sqrt(model.gravity_W.norm() / probe.height_m());
-  settle_swings(plan, o.settle_periods / rep.omega_radps);
   const Layout L = make_layout(model, plan, o);
-  const int K = L.pieces(), N = o.nodes - 1;
+  const int K = L.pieces();
   rep.pieces = K;
   Passes passes(L, rep.omega_radps);
   for (rep.iterations = 1;; ++rep.iterations) {
     const double error = passes.sample(probe);
     if (rep.iterations == 1) {
-      for (int k = 0; k < K; ++k) passes.g[k] = passes.P[k][N];
+      for (int k = 0; k < K; ++k) passes.g[k] = passes.P[k].back();
       passes.g[K] = passes.P[K - 1][0];
       check_at_rest("start", passes.g[0], L.piece_support.front());
       check_at_rest("end", passes.g[K], L.piece_support.back());
@@ -595,14 +580,14 @@ BalanceReport balance_trunk(const RobotModel& model, MotionPlan& plan, const Bal
     plan.trunk.set_offset(passes.plan_offset());
   }
   rep.omega_radps = passes.w;
-  // Margins and offsets on the path that holds.
+  // Margins and offsets on the path that holds: the last pass sampled the ZMP on it.
   rep.smallest_margin_m = std::numeric_limits<double>::infinity();
   for (int k = 0; k < K; ++k)
-    for (int j = 0; j <= N; ++j) {
-      const double t = node_time(L, k, j);
+    for (int j = 0; j < L.nodes(k); ++j) {
       rep.smallest_margin_m =
-          std::min(rep.smallest_margin_m, depth(L.piece_support[k], probe.at(t)));
-      rep.largest_offset_m = std::max(rep.largest_offset_m, passes.offset->at(t).e.norm());
+          std::min(rep.smallest_margin_m, depth(L.piece_support[k], passes.P[k][j]));
+      rep.largest_offset_m =
+          std::max(rep.largest_offset_m, passes.offset->at(node_time(L, k, j)).e.norm());
     }
   return rep;
 }

@@ -18,9 +18,9 @@
 /// sampled again on the new path, until it changes by less than the tolerance: then p = z at
 /// every node, and between nodes to the interpolation's accuracy.
 ///
-/// The robot starts and ends at rest, its ZMP under its centre of mass: before the first swing
-/// and after the last it stands on all its feet for settle_periods / ω while the trunk moves its
-/// weight (swings that would reach into those spans are shortened, footholds unchanged).
+/// The robot starts and ends at rest, its ZMP under its centre of mass: the plan of a balanced
+/// scene stands on all its feet for kSettlePeriods / ω before the first swing and after the
+/// last while the trunk moves its weight (planning/plan.hpp, settle_swings in gait.hpp).
 #include <string>
 
 #include "hexdyn/model/robot_model.hpp"
@@ -32,11 +32,12 @@ struct BalanceOptions {
   double margin_m = 0.01;     ///< the stability margin: a waypoint's distance from the edges
   double tolerance_m = 1e-9;  ///< largest |p − z| at the nodes that ends the passes [m]
   int max_iterations = 60;    ///< iterations of s before PlanningError
-  int nodes = 9;              ///< Chebyshev–Lobatto nodes per piece
+  int nodes = 9;              ///< Chebyshev–Lobatto nodes per piece on a polygon support
+  /// Nodes per piece on a segment or point support, where the ZMP has no room to miss its path
+  /// between nodes: a miss of 4e-8 m under Solo-12's weight is a moment beyond the
+  /// allocation's 1e-6 N m threshold (allocation/qp.hpp).
+  int line_nodes = 17;
   double max_piece_s = 0.06;  ///< longest piece [s]
-  /// The robot stands on all its feet for this many pendulum time constants 1/ω at the start
-  /// and at the end, while the trunk shifts its weight (swings shortened to keep out of them).
-  double settle_periods = 2.0;
 };
 
 /// What balance_trunk found.
@@ -47,6 +48,9 @@ struct BalanceReport {
   double omega_radps = 0.0;        ///< the pendulum's √(g / h)
   int pieces = 0;
   double largest_offset_m = 0.0;  ///< largest |e| at the nodes [m]
+  /// Posture searches the plan took: 1, or more when an automatic posture was searched again
+  /// with the offset because the legs could not follow the balanced path (pipeline.hpp).
+  int posture_rounds = 1;
 };
 
 /// Plans the offset of plan.trunk (which must have none) and sets it. Throws PlanningError in

@@ -69,6 +69,29 @@ void add_terrain_profile(const TerrainParams& terrain, const RobotModel& model, 
   result.terrain_type = terrain_type_name(terrain.type);
 }
 
+/// Rounds of posture search and balancing for an automatic posture (docs/theory/balance.md#reach).
+constexpr int kReachRounds = 3;
+
+/// Balances plan's trunk (balance/balance.hpp). With an automatic posture, a balanced path the
+/// legs cannot follow sends the posture search again with the offset on every candidate's
+/// trunk, and the trunk is balanced again at the new height, for up to kReachRounds rounds; a
+/// plan still out of reach is left for the kinematics stage to report in one line.
+BalanceReport balanced_plan(const Scene& scene, const RobotModel& model, MotionPlan& plan) {
+  BalanceOptions options;
+  options.margin_m = scene.motion.balance_margin_m;
+  BalanceReport report = balance_trunk(model, plan, options);
+  for (int round = 1; round < kReachRounds && plan.posture.mode == PostureMode::kAuto; ++round) {
+    if (motion_kinematic_margin(model, plan).admitted) break;
+    const std::shared_ptr<const TrunkOffset> offset = plan.trunk.shared_offset();
+    const PostureChoice posture = choose_posture(scene, model, PostureCheck::kAdmission, offset);
+    plan = plan_motion_with(scene, model, posture.p0_W, posture.foot_lateral_m);
+    plan.posture = posture;
+    report = balance_trunk(model, plan, options);
+    report.posture_rounds = round + 1;
+  }
+  return report;
+}
+
 }  // namespace
 
 PreparedScene prepare_scene(const Scene& scene, StageTimes* times) {
@@ -81,11 +104,7 @@ PreparedScene prepare_scene(const Scene& scene, StageTimes* times) {
   MotionPlan plan = plan_motion_with(scene, model, posture.p0_W, posture.foot_lateral_m);
   plan.posture = posture;
   std::optional<BalanceReport> balance;
-  if (scene.motion.trunk == TrunkPath::kBalanced) {
-    BalanceOptions options;
-    options.margin_m = scene.motion.balance_margin_m;
-    balance = balance_trunk(model, plan, options);
-  }
+  if (scene.motion.trunk == TrunkPath::kBalanced) balance = balanced_plan(scene, model, plan);
   clock.emplace(times, Stage::kTouchdowns);
   std::vector<Touchdown> touchdowns = physical_touchdowns(scene, model, plan);
   clock.emplace(times, Stage::kGrid);
@@ -128,7 +147,11 @@ RunResult run_prepared_scene(const Scene& scene, const PreparedScene& prep, std:
     *log << "hexdyn: balanced trunk: " << b.pieces << " pieces, " << b.iterations
          << " passes, ZMP within " << b.zmp_error_m << " m of its path at the nodes, least margin "
          << b.smallest_margin_m << " m, largest offset " << b.largest_offset_m << " m, omega "
-         << b.omega_radps << " rad/s\n";
+         << b.omega_radps << " rad/s";
+    if (b.posture_rounds > 1)
+      *log << ", posture searched " << b.posture_rounds << " times with the offset (height "
+           << prep.plan.posture.height_m << " m)";
+    *log << "\n";
   }
   RunResult result;
   ContactSchedule contacts;

@@ -31,6 +31,7 @@ class TrunkMotion {
   /// Adds a horizontal offset to the path (null: none, the straight path).
   void set_offset(std::shared_ptr<const TrunkOffset> offset) { offset_ = std::move(offset); }
   const TrunkOffset* offset() const { return offset_.get(); }
+  const std::shared_ptr<const TrunkOffset>& shared_offset() const { return offset_; }
   /// Travel along the slope s(t) [m], speed ṡ and acceleration s̈.
   double travel(double t_s) const;
   double speed(double t_s) const;

@@ -1,5 +1,7 @@
 #include "hexdyn/planning/plan.hpp"
 
+#include <cmath>
+
 namespace hexdyn {
 
 MotionPlan plan_motion_with(const Scene& scene, const RobotModel& model, const Vec3& p0_W,
@@ -11,6 +13,14 @@ MotionPlan plan_motion_with(const Scene& scene, const RobotModel& model, const V
   gait_params.foot_lateral_m = foot_lateral_m;
   TrunkMotion trunk(motion, gait_params, terrain);
   GaitPlan gait = plan_gait(model, gait_params, trunk, terrain);
+  if (scene.motion.trunk == TrunkPath::kBalanced && !gait.legs.empty()) {
+    double feet_z = 0.0;
+    for (const LegPlan& leg : gait.legs) feet_z += leg.p_initial_W.z();
+    const double h = p0_W.z() - feet_z / static_cast<double>(gait.legs.size());
+    if (h > 0.0)
+      settle_swings(gait, trunk.duration_s(),
+                    kSettlePeriods / std::sqrt(model.gravity_W.norm() / h));
+  }
   return MotionPlan{terrain, trunk, gait, PostureChoice{}};
 }
 

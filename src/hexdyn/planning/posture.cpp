@@ -48,8 +48,9 @@ struct Candidate {
 /// margins, the best candidate and its margin are those of complete evaluations.
 class PostureSearch {
  public:
-  PostureSearch(const Scene& scene, const RobotModel& model)
-      : scene_(scene), model_(model), terrain_(scene.terrain) {}
+  PostureSearch(const Scene& scene, const RobotModel& model,
+                std::shared_ptr<const TrunkOffset> offset)
+      : scene_(scene), model_(model), terrain_(scene.terrain), offset_(std::move(offset)) {}
 
   /// The margin of height h and spread w on margin_sample_times(plan, uniform): a candidate's,
   /// complete or, when it is below `below_m`, possibly stopped there; or the dense check of
@@ -73,7 +74,8 @@ class PostureSearch {
     motion.initial_position_m = p0_W;
     GaitParams gait = scene_.gait;
     gait.foot_lateral_m = w;
-    const TrunkMotion trunk(motion, gait, terrain_);
+    TrunkMotion trunk(motion, gait, terrain_);
+    if (offset_) trunk.set_offset(offset_);
     c.planned = true;
     margin_detail::MarginRequest request;
     request.below_m = below_m;
@@ -178,7 +180,8 @@ class PostureSearch {
   const Scene& scene_;
   const RobotModel& model_;
   Terrain terrain_;
-  std::deque<Spread> spreads_;  // deque: references stay valid as spreads are added
+  std::shared_ptr<const TrunkOffset> offset_;  ///< the balanced trunk's, or none
+  std::deque<Spread> spreads_;                 // deque: references stay valid as spreads are added
   int evaluations_ = 0;
 };
 
@@ -291,8 +294,9 @@ KinematicMargin motion_kinematic_margin(const RobotModel& model, const MotionPla
                                     margin_detail::foot_track(model, plan, uniform));
 }
 
-PostureChoice choose_posture(const Scene& scene, const RobotModel& model, PostureCheck check) {
-  PostureChoice c = best_posture(scene, model, check);
+PostureChoice choose_posture(const Scene& scene, const RobotModel& model, PostureCheck check,
+                             std::shared_ptr<const TrunkOffset> offset) {
+  PostureChoice c = best_posture(scene, model, check, std::move(offset));
   if (c.mode != PostureMode::kAuto || c.margin.admitted) return c;
   const double h_lo = searched_heights(scene, model).lo_m;
   std::ostringstream msg;
@@ -307,7 +311,8 @@ PostureChoice choose_posture(const Scene& scene, const RobotModel& model, Postur
   throw ReachError(msg.str());
 }
 
-PostureChoice best_posture(const Scene& scene, const RobotModel& model, PostureCheck check) {
+PostureChoice best_posture(const Scene& scene, const RobotModel& model, PostureCheck check,
+                           std::shared_ptr<const TrunkOffset> offset) {
   const PostureParams& p = scene.motion.posture;
   PostureChoice c;
   c.mode = p.mode;
@@ -322,7 +327,7 @@ PostureChoice best_posture(const Scene& scene, const RobotModel& model, PostureC
     c.p0_W = relative_start_position(scene.terrain, p.height_m, p.start_y_m);
     return c;
   }
-  PostureSearch search(scene, model);
+  PostureSearch search(scene, model, std::move(offset));
   // Heights are P0's; the default range and the trunk clearance are the hip plane's. The
   // trunk keeps its clearance above the terrain: no height below it is searched.
   const HeightRange range = searched_heights(scene, model);

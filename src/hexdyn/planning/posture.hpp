@@ -64,6 +64,7 @@
 /// docs/theory/stages.md#posture). The chosen posture is checked on a dense grid (5 ms); when no
 /// posture is admitted, plan_motion throws ReachError naming the limiting leg, instant,
 /// constraint and margin at the best posture found.
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -74,6 +75,7 @@
 namespace hexdyn {
 
 struct MotionPlan;
+class TrunkOffset;
 
 /// Height of the terrain's reference line at y [m] (file comment).
 double reference_line_height(const TerrainParams& terrain, double y_m);
@@ -133,18 +135,29 @@ struct PostureChoice {
 
 /// Resolves the scene's posture (file comment). For kAbsolute and kRelative nothing is
 /// searched and nothing is thrown; for kAuto, throws ReachError when no posture in the
-/// searched range admits the motion, PlanningError from the gait planner.
+/// searched range admits the motion, PlanningError from the gait planner. `offset`, when
+/// given, is the balanced trunk's horizontal offset (trunk_offset.hpp), a function of time
+/// alone: every candidate's trunk carries it, so that the height is chosen for the path the
+/// trunk will follow (docs/theory/balance.md#reach).
 PostureChoice choose_posture(const Scene& scene, const RobotModel& model,
-                             PostureCheck check = PostureCheck::kMargin);
+                             PostureCheck check = PostureCheck::kMargin,
+                             std::shared_ptr<const TrunkOffset> offset = nullptr);
 
 /// As choose_posture, but for kAuto the best posture found is returned also when it does
 /// not admit the motion (margin.admitted false) instead of throwing.
 PostureChoice best_posture(const Scene& scene, const RobotModel& model,
-                           PostureCheck check = PostureCheck::kMargin);
+                           PostureCheck check = PostureCheck::kMargin,
+                           std::shared_ptr<const TrunkOffset> offset = nullptr);
 
 /// The motion planned with an explicit start and foot spread (the scene's posture keys
-/// ignored). Throws PlanningError.
+/// ignored). A balanced scene's (motion.trunk: balanced) swings are kept out of its first and
+/// last kSettlePeriods / ω (settle_swings), ω = √(g / h) of the trunk's height h above the
+/// feet's mean at the start. Throws PlanningError.
 MotionPlan plan_motion_with(const Scene& scene, const RobotModel& model, const Vec3& p0_W,
                             double foot_lateral_m);
+
+/// A balanced scene's plan stands on all its feet for this many pendulum time constants 1/ω
+/// at the start and at the end, while the trunk shifts its weight (docs/theory/balance.md).
+inline constexpr double kSettlePeriods = 2.0;
 
 }  // namespace hexdyn

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <bit>
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <cstdint>
 #include <random>
 #include <stdexcept>
@@ -227,4 +228,45 @@ TEST_CASE("gait patterns: the resolved configuration records the pattern and its
 }
 
 }  // namespace
+
+// A balanced scene's plan stands on all its feet for 2/ω at each end (docs/theory/balance.md),
+// ω = √(g/h) from the plan's own trunk height above its feet; the straight twin's swings are the
+// same elsewhere: each settled swing keeps its footholds and is the straight one clipped to
+// [2/ω, T − 2/ω], or a third of its duration where the clip leaves less.
+TEST_CASE("gait: a balanced plan stands still for 2/omega at its start and end", "[gait]") {
+  const std::string solo =
+      std::string(HEXDYN_SOURCE_DIR) + "/configs/robots/solo12_trot_balanced.yaml";
+  const Scene balanced = load_scene(solo),
+              straight = load_scene(solo, {{"motion.trunk", "straight"}});
+  const RobotModel model = build_robot_model(balanced.robot);
+  const Vec3 p0(0.0, 0.0, 0.16);
+  const MotionPlan b = plan_motion_with(balanced, model, p0, balanced.gait.foot_lateral_m);
+  const MotionPlan s = plan_motion_with(straight, model, p0, straight.gait.foot_lateral_m);
+  double feet_z = 0.0;
+  for (const LegPlan& leg : s.gait.legs) feet_z += leg.p_initial_W.z();
+  const double h = p0.z() - feet_z / 4.0;
+  const double settle = 2.0 / std::sqrt(model.gravity_W.norm() / h), T = s.trunk.duration_s();
+  bool clipped = false;
+  for (int l = 0; l < 4; ++l) {
+    REQUIRE(b.gait.legs[l].swings.size() == s.gait.legs[l].swings.size());
+    for (std::size_t i = 0; i < s.gait.legs[l].swings.size(); ++i) {
+      const Swing& x = b.gait.legs[l].swings[i];
+      const Swing& y = s.gait.legs[l].swings[i];
+      CHECK(x.p_touchdown_W == y.p_touchdown_W);
+      CHECK(x.t_liftoff_s >= settle - 1e-12);
+      CHECK(x.t_touchdown_s <= T - settle + 1e-12);
+      const double D = y.t_touchdown_s - y.t_liftoff_s;
+      const double lo = std::max(y.t_liftoff_s, settle), td = std::min(y.t_touchdown_s, T - settle);
+      if (td - lo >= D / 3.0) {
+        CHECK(x.t_liftoff_s == Approx(lo).margin(1e-12));
+        CHECK(x.t_touchdown_s == Approx(td).margin(1e-12));
+      } else {
+        CHECK(x.t_touchdown_s - x.t_liftoff_s == Approx(D / 3.0).margin(1e-12));
+      }
+      clipped = clipped || x.t_liftoff_s != y.t_liftoff_s || x.t_touchdown_s != y.t_touchdown_s;
+    }
+  }
+  CHECK(clipped);  // the straight plan does swing within the spans
+}
+
 }  // namespace hexdyn
