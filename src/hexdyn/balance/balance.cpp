@@ -5,7 +5,9 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <sstream>
+#include <utility>
 
 #include "hexdyn/balance/support_region.hpp"
 #include "hexdyn/core/errors.hpp"
@@ -76,22 +78,53 @@ class ZmpProbe {
     height_m_ = plan.trunk.straight_at(0.0).p_W.z() - feet_z;
   }
   double height_m() const { return height_m_; }
+  /// Drops the wrench kept for its instant (the path changed).
+  void forget() { t_ = std::numeric_limits<double>::quiet_NaN(); }
 
   Vec2 at(double t) {
-    robot_state_at(model_, plan_, t, state_);
-    const DofVector& tau = rnea(model_, data_, state_.trunk, state_.q, state_.qd, state_.qdd);
-    const Vec3 F = tau.head<3>();
-    const Vec3 M = tau.segment<3>(3) + state_.trunk.p_W.cross(F);  // about the world origin
-    const double z = state_.trunk.p_W.z() - height_m_;             // the offset is horizontal
-    return Vec2((z * F.x() - M.y()) / F.z(), (M.x() + z * F.y()) / F.z());
+    wrench(t);
+    return Vec2((z_r_ * F_.x() - M_.y()) / F_.z(), (M_.x() + z_r_ * F_.y()) / F_.z());
+  }
+
+  /// The line of the ZMP plane on which two feet p1, p2 alone can supply the wrench at t
+  /// (docs/theory/balance.md#edges), as {p : a · p = b}: the moment about the line through the
+  /// feet vanishes, d · (M − p1 × F) = 0 with d = p2 − p1. Written with the ZMP p,
+  /// M = p × F + M_pz ẑ and M_pz = M_z − p_x F_y + p_y F_x; F and M_z are taken as the path's
+  /// (the offset moves M_x and M_y, the ZMP, far more than F or M_z).
+  std::pair<Vec2, double> edge_line(double t, const Vec3& p1, const Vec3& p2) {
+    wrench(t);
+    const Vec3 d = p2 - p1, c = F_.cross(d);
+    const Vec2 a(c.x() - d.z() * F_.y(), c.y() + d.z() * F_.x());
+    return {a, p1.dot(c) - c.z() * z_r_ - d.z() * M_.z()};
   }
 
  private:
   const RobotModel& model_;
+  /// The wrench the feet must supply at t, F and M about the world origin, and the ZMP
+  /// plane's height z_r there.
+  void wrench(double t) {
+    if (t == t_) return;
+    t_ = t;
+    robot_state_at(model_, plan_, t, state_);
+    const DofVector& tau = rnea(model_, data_, state_.trunk, state_.q, state_.qd, state_.qdd);
+    F_ = tau.head<3>();
+    M_ = tau.segment<3>(3) + state_.trunk.p_W.cross(F_);
+    z_r_ = state_.trunk.p_W.z() - height_m_;  // the offset is horizontal
+  }
+
   const MotionPlan& plan_;
   RobotData data_;
   RobotKinematicState state_;
   double height_m_ = 0.0;
+  Vec3 F_ = Vec3::Zero(), M_ = Vec3::Zero();
+  double z_r_ = 0.0;
+  double t_ = std::numeric_limits<double>::quiet_NaN();  ///< the instant F_, M_, z_r_ hold for
+};
+
+/// The stance feet of a waypoint's support, in the order of its hull's vertices [m, world]:
+/// two for a segment, three or more for a polygon.
+struct Edge {
+  std::vector<Vec3> feet_W;
 };
 
 /// The pieces' geometry: breakpoints, each piece's support and each waypoint's region.
@@ -99,6 +132,10 @@ struct Layout {
   std::vector<double> t;                     ///< breakpoints t_0 … t_K
   std::vector<SupportRegion> piece_support;  ///< hull of the stance feet, per piece
   std::vector<SupportRegion> waypoint;       ///< shrunk hull of the feet shared, per breakpoint
+  /// Per breakpoint, the feet of its support's hull, whose edges are taken on their exact lines
+  /// (edge_line), when the hull is a segment or a polygon.
+  std::vector<std::optional<Edge>> edge;
+  double margin_m = 0.0;
   /// Per piece, its Chebyshev–Lobatto nodes on [0, 1], decreasing: BalanceOptions::line_nodes
   /// on a piece whose support is a segment or a point, nodes on a polygon.
   std::vector<std::vector<double>> node_x;
@@ -130,13 +167,15 @@ Layout make_layout(const RobotModel& model, const MotionPlan& plan, const Balanc
     L.piece_support.push_back(convex_hull(feet, kHullTolerance_m));
   }
   L.waypoint.resize(K + 1);
+  L.edge.resize(K + 1);
+  L.margin_m = o.margin_m;
   for (int k = 1; k < K; ++k) {
     std::vector<Vec2> shared;
-    std::vector<int> legs;
+    std::vector<Vec3> shared_W;
     for (int l : stance[k])
       if (std::find(stance[k - 1].begin(), stance[k - 1].end(), l) != stance[k - 1].end()) {
-        legs.push_back(l);
-        shared.push_back(leg_foot_motion(plan.gait.legs[l], L.t[k]).p_W.head<2>());
+        shared_W.push_back(leg_foot_motion(plan.gait.legs[l], L.t[k]).p_W);
+        shared.push_back(shared_W.back().head<2>());
       }
     if (shared.empty()) {
       std::ostringstream m;
@@ -146,6 +185,17 @@ Layout make_layout(const RobotModel& model, const MotionPlan& plan, const Balanc
       throw PlanningError(m.str());
     }
     L.waypoint[k] = shrink_to_fit(convex_hull(shared, kHullTolerance_m), o.margin_m, nullptr);
+    const SupportRegion hull = convex_hull(shared, kHullTolerance_m);
+    if (hull.vertices.size() >= 2) {
+      Edge e;
+      for (const Vec2& v : hull.vertices)
+        for (std::size_t i = 0; i < shared.size(); ++i)
+          if ((shared[i] - v).norm() <= kHullTolerance_m) {
+            e.feet_W.push_back(shared_W[i]);
+            break;
+          }
+      if (e.feet_W.size() == hull.vertices.size()) L.edge[k] = std::move(e);
+    }
   }
   for (int k = 0; k < K; ++k) {
     const int N = (L.piece_support[k].vertices.size() <= 2 ? o.line_nodes : o.nodes) - 1;
@@ -493,6 +543,88 @@ struct Passes {
     return error;
   }
 
+  /// The region of waypoint k whose support is the two feet p1, p2 (update_edges). Before the
+  /// breakpoint the ZMP must lie on the side of the exact line (edge_line) where the piece
+  /// before has its other feet; after it, on the side where the piece after has them; both lines
+  /// are taken where they hold, just before and just after the breakpoint, since the wrench
+  /// jumps at a touchdown. The region is the strip between them over the feet, or, when the
+  /// two sides leave none, the line midway. Returns how far P is outside either side there.
+  double update_segment(ZmpProbe& probe, int k, const Vec3& p1, const Vec3& p2) {
+    const auto [a0, b0] = probe.edge_line(node_time(L, k - 1, 0), p1, p2);
+    const auto [a1, b1] = probe.edge_line(node_time(L, k, L.nodes(k) - 1), p1, p2);
+    if (!(a0.squaredNorm() > 0.0 && a1.squaredNorm() > 0.0)) return 0.0;
+    const auto other = [&](const SupportRegion& r) {
+      Vec2 sum = Vec2::Zero();
+      for (const Vec2& v : r.vertices) sum += v;
+      return Vec2(sum / static_cast<double>(std::max<std::size_t>(1, r.vertices.size())));
+    };
+    // Unit normals pointing into each side's support, offsets along them.
+    const double s0 = a0.dot(other(L.piece_support[k - 1])) >= b0 ? 1.0 : -1.0;
+    const double s1 = a1.dot(other(L.piece_support[k])) >= b1 ? 1.0 : -1.0;
+    const Vec2 n0 = s0 * a0 / a0.norm(), n1 = s1 * a1 / a1.norm();
+    const double c0 = s0 * b0 / a0.norm(), c1 = s1 * b1 / a1.norm();  // side: n · p ≥ c
+    const auto onto = [](const Vec2& q, const Vec2& n, double c) -> Vec2 {
+      return q - n * (n.dot(q) - c);
+    };
+    // The feet's ends moved toward each other by the margin; across, the strip is exact.
+    const Vec2 along = p2.head<2>() - p1.head<2>();
+    const double inset = std::min(L.margin_m, 0.25 * along.norm()) / along.norm();
+    const Vec2 q1 = p1.head<2>() + inset * along, q2 = p2.head<2>() - inset * along;
+    const bool strip = n0.dot(onto(q1, n1, c1)) >= c0 && n0.dot(onto(q2, n1, c1)) >= c0;
+    const SupportRegion region = strip
+                                     ? SupportRegion{{onto(q1, n0, c0), onto(q2, n0, c0),
+                                                      onto(q2, n1, c1), onto(q1, n1, c1)}}
+                                     : SupportRegion{{0.5 * (onto(q1, n0, c0) + onto(q1, n1, c1)),
+                                                      0.5 * (onto(q2, n0, c0) + onto(q2, n1, c1))}};
+    edge_region[k] = convex_hull(region.vertices, 0.0);
+    ++(strip ? strips : gaps);
+    if (!strip) return 0.0;  // no region holds both sides: the midway line is a compromise
+    return std::max({0.0, c0 - n0.dot(P[k - 1].front()), c1 - n1.dot(P[k].back())});
+  }
+
+  /// The waypoints' regions on the exact lines of their supports' edges for the path as it
+  /// stands (ZmpProbe::edge_line; docs/theory/balance.md#edges): two feet by update_segment; a
+  /// polygon's vertices where the lines of its two edges meet, just before the breakpoint,
+  /// shrunk by the margin. Returns how far the ZMP lies outside a two-foot region's sides.
+  double update_edges(ZmpProbe& probe) {
+    if (edge_region.empty()) edge_region = L.waypoint;
+    strips = gaps = 0;
+    double miss = 0.0;
+    for (int k = 1; k < L.pieces(); ++k) {
+      if (!L.edge[k]) continue;
+      const std::vector<Vec3>& f = L.edge[k]->feet_W;
+      // Just before the breakpoint: a foot touching down there is in its impact transient after
+      // it, and its swing's deceleration, felt before, leaves the wrench (so the line) with a
+      // jump there.
+      const double t = node_time(L, k - 1, 0);
+      const int n = static_cast<int>(f.size());
+      if (n == 2) {
+        miss = std::max(miss, update_segment(probe, k, f[0], f[1]));
+        continue;
+      }
+      // A polygon: each vertex where the exact lines of its two edges meet.
+      std::vector<std::pair<Vec2, double>> line(n);
+      for (int i = 0; i < n; ++i) line[i] = probe.edge_line(t, f[i], f[(i + 1) % n]);
+      SupportRegion poly;
+      for (int i = 0; i < n; ++i) {
+        const auto& [a1, b1] = line[(i + n - 1) % n];
+        const auto& [a2, b2] = line[i];
+        Mat2 A;
+        A << a1.x(), a1.y(), a2.x(), a2.y();
+        const double det = A.determinant();
+        if (!(std::abs(det) > 1e-12 * a1.norm() * a2.norm())) {
+          poly.vertices.clear();
+          break;
+        }
+        poly.vertices.push_back(A.inverse() * Vec2(b1, b2));
+      }
+      if (poly.vertices.size() == f.size())
+        edge_region[k] =
+            shrink_to_fit(convex_hull(poly.vertices, kHullTolerance_m), L.margin_m, nullptr);
+    }
+    return miss;
+  }
+
   /// s = P − κ (e − ë/ω²) at the nodes, mixed with the earlier passes.
   void residual(bool mix) {
     for (int k = 0; k < L.pieces(); ++k)
@@ -512,7 +644,7 @@ struct Passes {
     const int K = L.pieces();
     std::vector<std::vector<Vec2>> cheb(K);
     for (int k = 0; k < K; ++k) cheb[k] = end_corrected_fit(s[k], L.t[k + 1] - L.t[k]);
-    std::vector<SupportRegion> region = L.waypoint;
+    std::vector<SupportRegion> region = edge_region;
     region[0] = SupportRegion{{s[0].back()}};  // at rest: ë = 0 needs z = s at both ends
     region[K] = SupportRegion{{s[K - 1][0]}};
     double residual = 0.0;
@@ -539,6 +671,8 @@ struct Passes {
   NodeValues P, s, z, P_first;
   std::vector<Vec2> g;
   std::vector<double> c;
+  std::vector<SupportRegion> edge_region;  ///< the waypoints' regions, edges on their lines
+  int strips = 0, gaps = 0;                ///< two-foot waypoints of the last update_edges
   std::shared_ptr<const TrunkOffset> offset;
   AndersonMixer mixer{6};
 };
@@ -554,7 +688,7 @@ BalanceReport balance_trunk(const RobotModel& model, MotionPlan& plan, const Bal
   rep.pieces = K;
   Passes passes(L, rep.omega_radps);
   for (rep.iterations = 1;; ++rep.iterations) {
-    const double error = passes.sample(probe);
+    const double error = std::max(passes.sample(probe), passes.update_edges(probe));
     if (rep.iterations == 1) {
       for (int k = 0; k < K; ++k) passes.g[k] = passes.P[k].back();
       passes.g[K] = passes.P[K - 1][0];
@@ -578,6 +712,7 @@ BalanceReport balance_trunk(const RobotModel& model, MotionPlan& plan, const Bal
     // plain passes contract slowly; the fit of the second pass changes the map, so it restarts.
     passes.residual(rep.iterations >= 3);
     plan.trunk.set_offset(passes.plan_offset());
+    probe.forget();  // a new path
   }
   rep.omega_radps = passes.w;
   // Margins and offsets on the path that holds: the last pass sampled the ZMP on it.
