@@ -399,11 +399,22 @@ def check_scene(hexdyn, scene, d, sets=()):
             f"{active[0]} friction and {active[1]} torque rows active; "
             f"perturbed instant differs by {moved:.2g}")
     if has_drive:
-        bare_problem = Problem(robot, r, t_drive, setup, with_drive=False)
-        bare = max(difference(bare_problem, bare_problem.solve(), r, t_drive))
-        assert bare > TOLERANCE, f"{scene}: the drive offset moved the optimum by {bare:.3g}"
+        # Leaving the drive offset out must move the optimum where the offset is largest on the
+        # joints the foot forces load (a swing leg's offset moves no force), unless active
+        # friction faces pin the forces: of the 40 samples of largest offset, the 8 whose
+        # offset on those joints is largest, the largest move.
+        by_offset = sorted(ok, key=lambda t: -float(np.abs(drive_offset(r, t, drive)).max()))
+
+        def loaded_offset(t):
+            loaded = np.abs(Problem(robot, r, t, setup).joint_G).sum(axis=1) > 0
+            return float(np.abs(drive_offset(r, t, drive)[loaded]).max(initial=0.0))
+        bare = 0.0
+        for t_bare in sorted(by_offset[:40], key=loaded_offset)[-8:]:
+            bare_problem = Problem(robot, r, t_bare, setup, with_drive=False)
+            bare = max(bare, *difference(bare_problem, bare_problem.solve(), r, t_bare))
         line += f", without the drive offset by {bare:.2g}"
     print(line)
+    return bare if has_drive else None
 
 
 def main():
@@ -427,8 +438,12 @@ def main():
         cases += [(paper, (f"allocation.torque_limit={LOW_TORQUE_LIMIT}",)),
                   (paper, ("allocation.friction=cone",))]
     with tempfile.TemporaryDirectory() as d:
-        for scene, sets in cases:
-            check_scene(args.hexdyn, scene, d, sets)
+        moves = [check_scene(args.hexdyn, scene, d, sets) for scene, sets in cases]
+    # The check of the drive offset: leaving it out moves the optimum beyond the tolerance on
+    # some scene with a drive train (a gentle scene's may not: its forces hardly feel it).
+    moves = [m for m in moves if m is not None]
+    assert not moves or max(moves) > 10 * TOLERANCE, \
+        f"the drive offset moved no scene's optimum beyond {10 * TOLERANCE:g}: {moves}"
     return 0
 
 

@@ -122,19 +122,31 @@ class ZmpProbe {
 };
 
 /// The stance feet of a waypoint's support, in the order of its hull's vertices [m, world]:
-/// two for a segment, three or more for a polygon.
+/// two for a segment, three or more for a polygon; where its exact lines are evaluated.
 struct Edge {
   std::vector<Vec3> feet_W;
+  /// A two-foot waypoint that must hold on both sides of its breakpoint (update_segment), the
+  /// pieces before and after; otherwise -1 and the lines are taken at the node of piece `at`
+  /// nearest the breakpoint (`at_end`: its last node).
+  int before = -1, after = -1;
+  int at = 0;
+  bool at_end = true;
 };
 
 /// The pieces' geometry: breakpoints, each piece's support and each waypoint's region.
 struct Layout {
   std::vector<double> t;                     ///< breakpoints t_0 … t_K
   std::vector<SupportRegion> piece_support;  ///< hull of the stance feet, per piece
-  std::vector<SupportRegion> waypoint;       ///< shrunk hull of the feet shared, per breakpoint
-  /// Per breakpoint, the feet of its support's hull, whose edges are taken on their exact lines
+  /// The waypoints, in time order: one per breakpoint, and two (just before and just after)
+  /// at a breakpoint where a foot touches down and the feet shared are two, where the ZMP path
+  /// jumps (docs/theory/balance.md#edges). Piece k runs from waypoint left[k] to right[k].
+  std::vector<int> left, right;
+  std::vector<SupportRegion> waypoint;  ///< per waypoint, its region (shrunk hull of its feet)
+  /// Per waypoint, the feet of its support's hull, whose edges are taken on their exact lines
   /// (edge_line), when the hull is a segment or a polygon.
   std::vector<std::optional<Edge>> edge;
+  /// Per pair of consecutive waypoints, the time its smoothness term divides by [s].
+  std::vector<double> span_s;
   double margin_m = 0.0;
   /// Per piece, its Chebyshev–Lobatto nodes on [0, 1], decreasing: BalanceOptions::line_nodes
   /// on a piece whose support is a segment or a point, nodes on a polygon.
@@ -148,6 +160,28 @@ std::string legs_text(const RobotModel& model, const std::vector<int>& legs) {
   std::string s;
   for (int l : legs) s += (s.empty() ? "" : ", ") + model.leg(l).name;
   return s.empty() ? "none" : s;
+}
+
+/// Appends a waypoint standing on feet_W: its region the hull of their projections shrunk by
+/// the layout's margin, its edge the hull's feet in order (e: where its lines are taken).
+/// Returns its index.
+int add_waypoint(Layout& L, const std::vector<Vec3>& feet_W, Edge e) {
+  std::vector<Vec2> feet;
+  for (const Vec3& f : feet_W) feet.push_back(f.head<2>());
+  const SupportRegion hull = convex_hull(feet, kHullTolerance_m);
+  L.waypoint.push_back(shrink_to_fit(hull, L.margin_m, nullptr));
+  std::optional<Edge> edge;
+  if (hull.vertices.size() >= 2) {
+    for (const Vec2& v : hull.vertices)
+      for (std::size_t i = 0; i < feet.size(); ++i)
+        if ((feet[i] - v).norm() <= kHullTolerance_m) {
+          e.feet_W.push_back(feet_W[i]);
+          break;
+        }
+    if (e.feet_W.size() == hull.vertices.size()) edge = std::move(e);
+  }
+  L.edge.push_back(std::move(edge));
+  return static_cast<int>(L.waypoint.size()) - 1;
 }
 
 Layout make_layout(const RobotModel& model, const MotionPlan& plan, const BalanceOptions& o) {
@@ -166,17 +200,27 @@ Layout make_layout(const RobotModel& model, const MotionPlan& plan, const Balanc
     }
     L.piece_support.push_back(convex_hull(feet, kHullTolerance_m));
   }
-  L.waypoint.resize(K + 1);
-  L.edge.resize(K + 1);
   L.margin_m = o.margin_m;
+  const auto add = [&](const std::vector<Vec3>& feet_W, Edge e) {
+    return add_waypoint(L, feet_W, std::move(e));
+  };
+  const auto feet_at = [&](const std::vector<int>& legs, double t) {
+    std::vector<Vec3> f;
+    for (int l : legs) f.push_back(leg_foot_motion(plan.gait.legs[l], t).p_W);
+    return f;
+  };
+  L.left.assign(K, 0);
+  L.right.assign(K, 0);
+  L.left[0] = add(feet_at(stance[0], 0.0), Edge{});
   for (int k = 1; k < K; ++k) {
-    std::vector<Vec2> shared;
-    std::vector<Vec3> shared_W;
-    for (int l : stance[k])
-      if (std::find(stance[k - 1].begin(), stance[k - 1].end(), l) != stance[k - 1].end()) {
-        shared_W.push_back(leg_foot_motion(plan.gait.legs[l], L.t[k]).p_W);
-        shared.push_back(shared_W.back().head<2>());
-      }
+    std::vector<int> shared;
+    bool touchdown = false;
+    for (int l : stance[k]) {
+      const bool before =
+          std::find(stance[k - 1].begin(), stance[k - 1].end(), l) != stance[k - 1].end();
+      if (before) shared.push_back(l);
+      touchdown = touchdown || !before;
+    }
     if (shared.empty()) {
       std::ostringstream m;
       m << "balanced trunk: at t = " << L.t[k] << " s the support changes from legs "
@@ -184,19 +228,20 @@ Layout make_layout(const RobotModel& model, const MotionPlan& plan, const Balanc
         << " with no foot in common, so the ZMP would have to jump; raise gait.duty_factor";
       throw PlanningError(m.str());
     }
-    L.waypoint[k] = shrink_to_fit(convex_hull(shared, kHullTolerance_m), o.margin_m, nullptr);
-    const SupportRegion hull = convex_hull(shared, kHullTolerance_m);
-    if (hull.vertices.size() >= 2) {
-      Edge e;
-      for (const Vec2& v : hull.vertices)
-        for (std::size_t i = 0; i < shared.size(); ++i)
-          if ((shared[i] - v).norm() <= kHullTolerance_m) {
-            e.feet_W.push_back(shared_W[i]);
-            break;
-          }
-      if (e.feet_W.size() == hull.vertices.size()) L.edge[k] = std::move(e);
+    if (touchdown && shared.size() == 2) {
+      L.right[k - 1] = add(feet_at(stance[k - 1], L.t[k]), Edge{{}, -1, -1, k - 1, true});
+      L.span_s.push_back(L.t[k] - L.t[k - 1]);
+      L.left[k] = add(feet_at(stance[k], L.t[k]), Edge{{}, -1, -1, k, false});
+      L.span_s.push_back(o.max_piece_s);
+    } else {
+      L.right[k - 1] = L.left[k] = add(feet_at(shared, L.t[k]), Edge{{}, k - 1, k, k - 1, true});
+      L.span_s.push_back(L.t[k] - L.t[k - 1]);
     }
   }
+  L.right[K - 1] = add(feet_at(stance[K - 1], L.t[K]), Edge{});
+  L.span_s.push_back(L.t[K] - L.t[K - 1]);
+  L.edge.front().reset();  // the ends are pinned (at rest)
+  L.edge.back().reset();
   for (int k = 0; k < K; ++k) {
     const int N = (L.piece_support[k].vertices.size() <= 2 ? o.line_nodes : o.nodes) - 1;
     std::vector<double> x;
@@ -242,7 +287,7 @@ std::vector<Vec2> end_corrected_fit(std::vector<Vec2> f, double span_s) {
 /// The two boundary functionals of a piece's waypoint hat functions and of its s: for a weight
 /// exp(−ω t) (start) and exp(−ω (T − t)) (end), each scaled by ω (trunk_offset.hpp).
 struct Functionals {
-  std::vector<Vec2> a;  ///< per breakpoint: (start, end) weight of its waypoint
+  std::vector<Vec2> a;  ///< per waypoint: (start, end) weight
   Vec2 s_start = Vec2::Zero(), s_end = Vec2::Zero();
 };
 
@@ -250,15 +295,15 @@ Functionals functionals(const Layout& L, const std::vector<std::vector<Vec2>>& c
   const int K = L.pieces();
   const double T = L.t[K];
   Functionals F;
-  F.a.assign(K + 1, Vec2::Zero());
+  F.a.assign(L.waypoint.size(), Vec2::Zero());
   for (int k = 0; k < K; ++k) {
     const double t0 = L.t[k], t1 = L.t[k + 1];
     const double to_start = std::exp(-w * t0), to_end = std::exp(-w * (T - t1));
     OffsetPiece p{t0, t1, Vec2(1.0, 0.0), Vec2(0.0, 1.0), {}};  // x: left hat, y: right hat
     const Vec2 lo = decaying_integral(p, w, t0, t1, Decay::kFromLower) * to_start;
     const Vec2 hi = decaying_integral(p, w, t0, t1, Decay::kFromUpper) * to_end;
-    F.a[k] += Vec2(lo.x(), hi.x());
-    F.a[k + 1] += Vec2(lo.y(), hi.y());
+    F.a[L.left[k]] += Vec2(lo.x(), hi.x());
+    F.a[L.right[k]] += Vec2(lo.y(), hi.y());
     OffsetPiece r{t0, t1, Vec2::Zero(), Vec2::Zero(), cheb[k]};  // forcing −s
     F.s_start -= decaying_integral(r, w, t0, t1, Decay::kFromLower) * to_start;
     F.s_end -= decaying_integral(r, w, t0, t1, Decay::kFromUpper) * to_end;
@@ -337,42 +382,64 @@ double node_time(const Layout& L, int k, int j) {
 }
 
 /// Solves, per axis, min Σ c_k (w_k − g_k)² + β Σ (w_{k+1} − w_k)² / Δ_k + (ρ/2) Σ (w_k − h_k)²
-/// subject to Σ a0_k w_k = f0 and Σ aT_k w_k = fT: a tridiagonal system bordered by the two
-/// equalities, solved through their Schur complement.
-Eigen::VectorXd smooth_step(const Eigen::VectorXd& diag, const Eigen::VectorXd& off,
-                            const Eigen::VectorXd& rhs, const Eigen::VectorXd& a0,
-                            const Eigen::VectorXd& aT, double f0, double fT) {
-  const int n = static_cast<int>(diag.size());
-  // Thomas algorithm on the symmetric tridiagonal (diag, off), several right-hand sides.
-  const auto solve = [&](const Eigen::VectorXd& b) {
-    Eigen::VectorXd c(n), d(n), x(n);
-    c[0] = n > 1 ? off[0] / diag[0] : 0.0;
-    d[0] = b[0] / diag[0];
-    for (int i = 1; i < n; ++i) {
-      const double m = diag[i] - off[i - 1] * c[i - 1];
-      c[i] = i + 1 < n ? off[i] / m : 0.0;
-      d[i] = (b[i] - off[i - 1] * d[i - 1]) / m;
+/// (Δ_k: Layout::span_s) subject to Σ a0_k w_k = f0 and Σ aT_k w_k = fT: a tridiagonal system
+/// bordered by the two equalities, solved through their Schur complement. The matrix and the
+/// borders do not change between ADMM iterations: the Thomas algorithm's factors, the borders'
+/// solutions and the Schur complement are formed once, and a solve is one forward and one back
+/// substitution.
+class BorderedTridiagonal {
+ public:
+  BorderedTridiagonal(Eigen::VectorXd diag, Eigen::VectorXd off, Eigen::VectorXd a0,
+                      Eigen::VectorXd aT)
+      : n_(static_cast<int>(diag.size())),
+        diag_(std::move(diag)),
+        off_(std::move(off)),
+        a0_(std::move(a0)),
+        aT_(std::move(aT)),
+        c_(n_),
+        m_(n_) {
+    c_[0] = n_ > 1 ? off_[0] / diag_[0] : 0.0;
+    m_[0] = diag_[0];
+    for (int i = 1; i < n_; ++i) {
+      m_[i] = diag_[i] - off_[i - 1] * c_[i - 1];
+      c_[i] = i + 1 < n_ ? off_[i] / m_[i] : 0.0;
     }
-    x[n - 1] = d[n - 1];
-    for (int i = n - 2; i >= 0; --i) x[i] = d[i] - c[i] * x[i + 1];
-    return x;
-  };
-  const Eigen::VectorXd x0 = solve(rhs), y0 = solve(a0), yT = solve(aT);
-  Eigen::Matrix2d S;
-  S << a0.dot(y0), a0.dot(yT), aT.dot(y0), aT.dot(yT);
-  const Eigen::Vector2d mu =
-      S.completeOrthogonalDecomposition().solve(Eigen::Vector2d(a0.dot(x0) - f0, aT.dot(x0) - fT));
-  return x0 - mu[0] * y0 - mu[1] * yT;
-}
+    y0_ = substitute(a0_);
+    yT_ = substitute(aT_);
+    Eigen::Matrix2d S;
+    S << a0_.dot(y0_), a0_.dot(yT_), aT_.dot(y0_), aT_.dot(yT_);
+    schur_ = S.completeOrthogonalDecomposition();
+  }
 
-/// Waypoints that keep the ZMP path smooth: ADMM on the smoothed objective of smooth_step
+  Eigen::VectorXd solve(const Eigen::VectorXd& rhs, double f0, double fT) const {
+    const Eigen::VectorXd x0 = substitute(rhs);
+    const Eigen::Vector2d mu = schur_.solve(Eigen::Vector2d(a0_.dot(x0) - f0, aT_.dot(x0) - fT));
+    return x0 - mu[0] * y0_ - mu[1] * yT_;
+  }
+
+ private:
+  Eigen::VectorXd substitute(const Eigen::VectorXd& b) const {
+    Eigen::VectorXd d(n_), x(n_);
+    d[0] = b[0] / diag_[0];
+    for (int i = 1; i < n_; ++i) d[i] = (b[i] - off_[i - 1] * d[i - 1]) / m_[i];
+    x[n_ - 1] = d[n_ - 1];
+    for (int i = n_ - 2; i >= 0; --i) x[i] = d[i] - c_[i] * x[i + 1];
+    return x;
+  }
+
+  int n_;
+  Eigen::VectorXd diag_, off_, a0_, aT_, c_, m_, y0_, yT_;
+  Eigen::CompleteOrthogonalDecomposition<Eigen::Matrix2d> schur_;
+};
+
+/// Waypoints that keep the ZMP path smooth: ADMM on the smoothed objective of BorderedTridiagonal
 /// (β = 1/ω², so that the path does not change faster than the pendulum can follow) with each
 /// waypoint held in its region; the exact projection solve_waypoints then polishes its answer
 /// into the regions and onto the two equalities.
 std::vector<Vec2> smooth_waypoints(const std::vector<SupportRegion>& region,
                                    const std::vector<Vec2>& g, const std::vector<double>& c,
-                                   const std::vector<double>& t, const Functionals& F, double omega,
-                                   double* residual) {
+                                   const std::vector<double>& span_s, const Functionals& F,
+                                   double omega, double* residual) {
   const int n = static_cast<int>(g.size());
   const double beta = 16.0 / (omega * omega), rho = 1.0 / omega;
   Eigen::VectorXd diag(n), off = Eigen::VectorXd::Zero(std::max(n - 1, 1)), a0(n), aT(n);
@@ -382,11 +449,12 @@ std::vector<Vec2> smooth_waypoints(const std::vector<SupportRegion>& region,
     aT[k] = F.a[k].y();
   }
   for (int k = 0; k + 1 < n; ++k) {
-    const double s = 2.0 * beta / (t[k + 1] - t[k]);
+    const double s = 2.0 * beta / span_s[k];
     diag[k] += s;
     diag[k + 1] += s;
     off[k] = -s;
   }
+  const BorderedTridiagonal system(diag, off, a0, aT);
   std::vector<Vec2> v(n), y(n, Vec2::Zero()), w(n);
   for (int k = 0; k < n; ++k) v[k] = project(region[k], g[k]).point;
   for (int it = 0; it < 400; ++it) {
@@ -394,7 +462,7 @@ std::vector<Vec2> smooth_waypoints(const std::vector<SupportRegion>& region,
       Eigen::VectorXd rhs(n);
       for (int k = 0; k < n; ++k)
         rhs[k] = 2.0 * c[k] * g[k][axis] + rho * (v[k][axis] - y[k][axis]);
-      const Eigen::VectorXd x = smooth_step(diag, off, rhs, a0, aT, F.s_start[axis], F.s_end[axis]);
+      const Eigen::VectorXd x = system.solve(rhs, F.s_start[axis], F.s_end[axis]);
       for (int k = 0; k < n; ++k) w[k][axis] = x[k];
     }
     double primal = 0.0;
@@ -524,11 +592,11 @@ struct Passes {
     P.resize(K);
     for (int k = 0; k < K; ++k) P[k].resize(L.nodes(k));
     s = z = P;
-    g.resize(K + 1);
-    c.assign(K + 1, 0.0);
+    g.resize(L.waypoint.size());
+    c.assign(L.waypoint.size(), 0.0);
     for (int k = 0; k < K; ++k) {
-      c[k] += 0.5 * (L.t[k + 1] - L.t[k]);
-      c[k + 1] += 0.5 * (L.t[k + 1] - L.t[k]);
+      c[L.left[k]] += 0.5 * (L.t[k + 1] - L.t[k]);
+      c[L.right[k]] += 0.5 * (L.t[k + 1] - L.t[k]);
     }
   }
 
@@ -549,9 +617,11 @@ struct Passes {
   /// are taken where they hold, just before and just after the breakpoint, since the wrench
   /// jumps at a touchdown. The region is the strip between them over the feet, or, when the
   /// two sides leave none, the line midway. Returns how far P is outside either side there.
-  double update_segment(ZmpProbe& probe, int k, const Vec3& p1, const Vec3& p2) {
-    const auto [a0, b0] = probe.edge_line(node_time(L, k - 1, 0), p1, p2);
-    const auto [a1, b1] = probe.edge_line(node_time(L, k, L.nodes(k) - 1), p1, p2);
+  double update_segment(ZmpProbe& probe, int i, const Edge& e) {
+    const Vec3 &p1 = e.feet_W[0], &p2 = e.feet_W[1];
+    const int kb = e.before, ka = e.after;
+    const auto [a0, b0] = probe.edge_line(node_time(L, kb, 0), p1, p2);
+    const auto [a1, b1] = probe.edge_line(node_time(L, ka, L.nodes(ka) - 1), p1, p2);
     if (!(a0.squaredNorm() > 0.0 && a1.squaredNorm() > 0.0)) return 0.0;
     const auto other = [&](const SupportRegion& r) {
       Vec2 sum = Vec2::Zero();
@@ -559,8 +629,8 @@ struct Passes {
       return Vec2(sum / static_cast<double>(std::max<std::size_t>(1, r.vertices.size())));
     };
     // Unit normals pointing into each side's support, offsets along them.
-    const double s0 = a0.dot(other(L.piece_support[k - 1])) >= b0 ? 1.0 : -1.0;
-    const double s1 = a1.dot(other(L.piece_support[k])) >= b1 ? 1.0 : -1.0;
+    const double s0 = a0.dot(other(L.piece_support[kb])) >= b0 ? 1.0 : -1.0;
+    const double s1 = a1.dot(other(L.piece_support[ka])) >= b1 ? 1.0 : -1.0;
     const Vec2 n0 = s0 * a0 / a0.norm(), n1 = s1 * a1 / a1.norm();
     const double c0 = s0 * b0 / a0.norm(), c1 = s1 * b1 / a1.norm();  // side: n · p ≥ c
     const auto onto = [](const Vec2& q, const Vec2& n, double c) -> Vec2 {
@@ -576,10 +646,10 @@ struct Passes {
                                                       onto(q2, n1, c1), onto(q1, n1, c1)}}
                                      : SupportRegion{{0.5 * (onto(q1, n0, c0) + onto(q1, n1, c1)),
                                                       0.5 * (onto(q2, n0, c0) + onto(q2, n1, c1))}};
-    edge_region[k] = convex_hull(region.vertices, 0.0);
+    edge_region[i] = convex_hull(region.vertices, 0.0);
     ++(strip ? strips : gaps);
     if (!strip) return 0.0;  // no region holds both sides: the midway line is a compromise
-    return std::max({0.0, c0 - n0.dot(P[k - 1].front()), c1 - n1.dot(P[k].back())});
+    return std::max({0.0, c0 - n0.dot(P[kb].front()), c1 - n1.dot(P[ka].back())});
   }
 
   /// The waypoints' regions on the exact lines of their supports' edges for the path as it
@@ -590,16 +660,29 @@ struct Passes {
     if (edge_region.empty()) edge_region = L.waypoint;
     strips = gaps = 0;
     double miss = 0.0;
-    for (int k = 1; k < L.pieces(); ++k) {
-      if (!L.edge[k]) continue;
-      const std::vector<Vec3>& f = L.edge[k]->feet_W;
-      // Just before the breakpoint: a foot touching down there is in its impact transient after
-      // it, and its swing's deceleration, felt before, leaves the wrench (so the line) with a
-      // jump there.
-      const double t = node_time(L, k - 1, 0);
+    for (std::size_t slot = 0; slot < L.edge.size(); ++slot) {
+      if (!L.edge[slot]) continue;
+      const Edge& e = *L.edge[slot];
+      const std::vector<Vec3>& f = e.feet_W;
       const int n = static_cast<int>(f.size());
-      if (n == 2) {
-        miss = std::max(miss, update_segment(probe, k, f[0], f[1]));
+      if (n == 2 && e.before >= 0) {
+        miss = std::max(miss, update_segment(probe, static_cast<int>(slot), e));
+        continue;
+      }
+      // At the node nearest the breakpoint on the waypoint's side of it.
+      const int j = e.at_end ? 0 : L.nodes(e.at) - 1;
+      const double t = node_time(L, e.at, j);
+      if (n == 2) {  // one side only: the segment on its line, its ends moved inward
+        const auto [a, b] = probe.edge_line(t, f[0], f[1]);
+        if (!(a.squaredNorm() > 0.0)) continue;
+        const Vec2 along = f[1].head<2>() - f[0].head<2>();
+        const double inset = std::min(L.margin_m, 0.25 * along.norm()) / along.norm();
+        const auto onto = [&](const Vec2& q) -> Vec2 {
+          return q - a * ((a.dot(q) - b) / a.squaredNorm());
+        };
+        edge_region[slot] = SupportRegion{
+            {onto(f[0].head<2>() + inset * along), onto(f[1].head<2>() - inset * along)}};
+        miss = std::max(miss, std::abs(a.dot(P[e.at][j]) - b) / a.norm());
         continue;
       }
       // A polygon: each vertex where the exact lines of its two edges meet.
@@ -619,7 +702,7 @@ struct Passes {
         poly.vertices.push_back(A.inverse() * Vec2(b1, b2));
       }
       if (poly.vertices.size() == f.size())
-        edge_region[k] =
+        edge_region[slot] =
             shrink_to_fit(convex_hull(poly.vertices, kHullTolerance_m), L.margin_m, nullptr);
     }
     return miss;
@@ -645,20 +728,21 @@ struct Passes {
     std::vector<std::vector<Vec2>> cheb(K);
     for (int k = 0; k < K; ++k) cheb[k] = end_corrected_fit(s[k], L.t[k + 1] - L.t[k]);
     std::vector<SupportRegion> region = edge_region;
-    region[0] = SupportRegion{{s[0].back()}};  // at rest: ë = 0 needs z = s at both ends
-    region[K] = SupportRegion{{s[K - 1][0]}};
+    region.front() = SupportRegion{{s[0].back()}};  // at rest: ë = 0 needs z = s at both ends
+    region.back() = SupportRegion{{s[K - 1][0]}};
     double residual = 0.0;
     const std::vector<Vec2> wp =
-        smooth_waypoints(region, g, c, L.t, functionals(L, cheb, w), w, &residual);
+        smooth_waypoints(region, g, c, L.span_s, functionals(L, cheb, w), w, &residual);
     const Vec2 inv = kappa.cwiseInverse();
     std::vector<OffsetPiece> pieces(K);
     for (int k = 0; k < K; ++k) {
       std::vector<Vec2> r = cheb[k];
       for (Vec2& x : r) x = x.cwiseProduct(inv);
-      pieces[k] = {L.t[k], L.t[k + 1], wp[k].cwiseProduct(inv), wp[k + 1].cwiseProduct(inv), r};
+      const Vec2 &a = wp[L.left[k]], &b = wp[L.right[k]];
+      pieces[k] = {L.t[k], L.t[k + 1], a.cwiseProduct(inv), b.cwiseProduct(inv), r};
       for (int j = 0; j < L.nodes(k); ++j) {
         const double x = (node_time(L, k, j) - L.t[k]) / (L.t[k + 1] - L.t[k]);
-        z[k][j] = wp[k] + (wp[k + 1] - wp[k]) * x;
+        z[k][j] = a + (b - a) * x;
       }
     }
     offset = std::make_shared<const TrunkOffset>(w, std::move(pieces));
@@ -690,10 +774,13 @@ BalanceReport balance_trunk(const RobotModel& model, MotionPlan& plan, const Bal
   for (rep.iterations = 1;; ++rep.iterations) {
     const double error = std::max(passes.sample(probe), passes.update_edges(probe));
     if (rep.iterations == 1) {
-      for (int k = 0; k < K; ++k) passes.g[k] = passes.P[k].back();
-      passes.g[K] = passes.P[K - 1][0];
-      check_at_rest("start", passes.g[0], L.piece_support.front());
-      check_at_rest("end", passes.g[K], L.piece_support.back());
+      for (int k = 0; k < K; ++k) {
+        passes.g[L.left[k]] = passes.P[k].back();
+        passes.g[L.right[k]] = passes.P[k].front();  // a jump's waypoint before; the end
+      }
+      for (int k = 1; k < K; ++k) passes.g[L.left[k]] = passes.P[k].back();
+      check_at_rest("start", passes.g.front(), L.piece_support.front());
+      check_at_rest("end", passes.g.back(), L.piece_support.back());
       passes.P_first = passes.P;
     }
     if (passes.offset && error < o.tolerance_m) {
