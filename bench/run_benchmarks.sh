@@ -3,7 +3,8 @@
 # and prints one table of medians.
 #   bash bench/run_benchmarks.sh [BUILD_DIR] [extra Google Benchmark flags...]
 # BUILD_DIR defaults to build/ next to this directory. The paper-run benchmark alone takes
-# five whole paper runs (about 100 s).
+# five whole paper runs (about 100 s); the balanced trunk's (bench_balanced_trunk: each balanced
+# scene with the straight and the balanced trunk alternately) about 3 min.
 # bench_dynamics_dart (the inverse dynamics against DART's) needs Debian's libdart-dev: run
 # as root, the script installs it when missing and configures and builds the benchmarks
 # again; otherwise that benchmark is skipped.
@@ -68,18 +69,26 @@ done
 /usr/bin/python3 - "$out" <<'PY'
 import json, pathlib, sys
 rows = []
+skipped = set()
 for path in sorted(pathlib.Path(sys.argv[1]).glob("*.json")):
     text = path.read_text()
     if not text.strip():  # a --benchmark_filter that matched nothing in this executable
         continue
     data = json.loads(text)
     for b in data["benchmarks"]:
+        if b.get("error_occurred"):  # a skipped benchmark (a scene that throws): say why, once
+            if (path.stem, b["run_name"]) not in skipped:
+                skipped.add((path.stem, b["run_name"]))
+                rows.append((path.stem, b["run_name"], float("nan"), float("nan"), "",
+                             "skipped: " + b.get("error_message", "")[:100]))
+            continue
         if b.get("aggregate_name") != "median":
             continue
         counters = {k: v for k, v in b.items()
                     if k in ("ipopt_iterations", "status", "samples", "relaxed_samples",
                              "ipopt_ratio", "hexdyn_us", "dart_us", "dart_ratio",
-                             "max_abs_diff")}
+                             "max_abs_diff", "ratio", "balance_ms", "balance_share",
+                             "per_call")}
         extra = " ".join(f"{k}={v:g}" for k, v in counters.items())
         rows.append((path.stem, b["run_name"], b["real_time"], b["cpu_time"], b["time_unit"], extra))
 w = max([18] + [len(r[0]) for r in rows])

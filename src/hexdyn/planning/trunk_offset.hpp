@@ -17,11 +17,25 @@
 ///     ζ(t) = e^{−ω(t − t_k)} ζ_k + ω ∫_{t_k}^t e^{−ω(t − σ)} u(σ) dσ
 ///     e = (ξ + ζ) / 2,   ė = ω (ξ − ζ) / 2,   ë = ω² (e − u)
 ///
-/// both integrals over decaying exponentials (Gauss–Legendre quadrature, exact to rounding for
-/// the polynomial forcing of a short piece), so no growing mode is ever evaluated. ξ is swept
-/// backward from ξ(T) = 0 and ζ forward from ζ(0) = 0; the waypoints make ξ(0) = 0 and ζ(T) = 0
-/// hold as well (balance/balance.hpp), so the offset starts and ends at rest. Outside [0, T]
-/// the offset is 0.
+/// both integrals over decaying exponentials, so no growing mode is ever evaluated. ξ is swept
+/// backward from ξ(T) = 0 and ζ forward from ζ(0) = 0, piece by piece; the waypoints make
+/// ξ(0) = 0 and ζ(T) = 0 hold as well (balance/balance.hpp), so the offset starts and ends at
+/// rest. Outside [0, T] the offset is 0.
+///
+/// On a piece, ξ and ζ are Chebyshev series in y = 2x − 1, found once per piece: with
+/// a = ω (t_{k+1} − t_k) / 2, ξ' = a (ξ − u) in y, and the coefficients of a derivative
+/// (2j f_j = c_{j−1} f'_{j−1} − f'_{j+1}, c_0 = 2, else 1) turn it into the tridiagonal system
+///
+///     −a c_{j−1} ξ_{j−1} + 2j ξ_j + a ξ_{j+1} = a (u_{j+1} − c_{j−1} u_{j−1}),   j = 1 … M,
+///
+/// closed by ξ(1) = Σ ξ_j = ξ_{k+1}; ζ likewise with y → −y and ζ(−1) = ζ_k. The system is
+/// diagonally dominant for a < 2 (2j > 2a; the balanced trunk's pieces have a < 0.5) and carries
+/// no growing mode: its solution is O(|u| + |ξ_{k+1}|) whatever a. Past the forcing's degree n
+/// the coefficients fall as (a/2)^m / m!, so M = n + m with (a/2)^m / m! < 1e-20 is exact to
+/// rounding. The sweeps take each piece's end values from its series, and at() is one Clenshaw
+/// sum of e and ė and one of the forcing: no exponential. decaying_integral (16-point
+/// Gauss–Legendre, the nodes typed in, no library needed) remains for the waypoints' boundary
+/// functionals (balance/balance.cpp).
 #include <Eigen/Core>
 #include <vector>
 
@@ -62,6 +76,8 @@ class TrunkOffset {
   double omega_ = 1.0;
   std::vector<OffsetPiece> pieces_;
   std::vector<Vec2> xi_, zeta_;
+  /// Per piece, the Chebyshev coefficients in y of (e, ė): (ξ + ζ)/2 and ω (ξ − ζ)/2.
+  std::vector<std::vector<Eigen::Vector4d>> series_;
 };
 
 /// The forcing of `piece` at x ∈ [0, 1].
