@@ -15,14 +15,14 @@
 #                              relaxed counts and metrics (a failed one with its message)
 #   quadrupeds_table.txt        the same as a Markdown table
 #
-#   bash pipelines/quadrupeds.sh           # 79 scenarios, a few minutes on one core
+#   bash pipelines/quadrupeds.sh           # 248 scenarios, about 1.5 min on one core
 #   bash pipelines/quadrupeds.sh --quick   # configs/quadrupeds/sweeps/quick/, 16 scenarios with
 #                                          # kept runs, into results/quadrupeds/quick/
 # --hexdyn PATH runs that binary (its build tree's Python package) without installing or
 # building; --out DIR writes there instead (the ctest test pipeline.quadrupeds_quick does both).
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
-hexdyn_study_args quadrupeds 26 "$@"
+hexdyn_study_args quadrupeds 22 "$@"
 hexdyn_pipeline_start quadrupeds "$hexdyn" "$out" "$quick"
 sweeps="$HEXDYN_ROOT/configs/quadrupeds/sweeps"
 keep=()
