@@ -49,7 +49,7 @@ from figures import fit_suptitle, fraction_text, save_atomically, write_csv_atom
 from hexdyn import open_sweep
 from matplotlib.patches import Rectangle
 import matplotlib.pyplot as plt
-from matplotlib.ticker import FuncFormatter, NullFormatter
+from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
 import numpy as np
 
 SPEED, RISER = "motion.peak_speed", "terrain.riser_height"
@@ -167,18 +167,25 @@ def draw_series(ax, rows, x_key, y_key, color, style="-", label=None):
     return [r for r in rows if r["verdict"] == "failed"]
 
 
-def note_failed(ax, failed, x_key, unit, name="", slot=0):
-    """Lists the failed scenarios' x values by status at the panel's foot, `slot` lines up."""
+def note_failed(ax, failed, x_key, unit, name="", color="tab:red"):
+    """Marks the failed scenarios with crosses at the panel's foot, at their x, and returns a
+    line naming their x values by status (for the axis label)."""
     if not failed:
-        return
-    statuses = sorted({r["status"] for r in failed})
+        return ""
+    xs = sorted({r[x_key] for r in failed})
+    ax.plot(xs, [0.03] * len(xs), "x", color=color, ms=6, mew=1.5, clip_on=False,
+            transform=ax.get_xaxis_transform())
     parts = []
-    for st in statuses:
-        xs = sorted({r[x_key] for r in failed if r["status"] == st})
-        parts.append(", ".join(f"{x:g}" for x in xs) + f" {unit} ({st})")
-    text = (f"{name} " if name else "") + "failed: " + "; ".join(parts)
-    ax.text(0.02, 0.02 + 0.07 * slot, text, transform=ax.transAxes, fontsize=6,
-            color="tab:red", va="bottom")
+    for st in sorted({r["status"] for r in failed}):
+        values = sorted({r[x_key] for r in failed if r["status"] == st})
+        parts.append(", ".join(f"{x:g}" for x in values) + f" {unit} ({st})")
+    return (f"{name} " if name else "") + "failed (×): " + "; ".join(parts)
+
+
+def label_with_notes(ax, label, notes):
+    """The x axis label, the failed scenarios' lines under it."""
+    notes = [n for n in notes if n]
+    ax.set_xlabel("\n".join([label] + notes), fontsize=8 if notes else None)
 
 
 def note_failed_counts(ax, failed, total):
@@ -215,6 +222,7 @@ def robots_of(studies):
 def log_axis(ax):
     """A logarithmic y axis labelled with plain numbers."""
     ax.set_yscale("log")
+    ax.yaxis.set_major_locator(LogLocator(base=10.0, subs=(1.0, 2.0, 5.0)))
     ax.yaxis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
     ax.yaxis.set_minor_formatter(NullFormatter())
 
@@ -232,18 +240,19 @@ def legend_notes(ax):
 def plot_cot_speed(studies, outdir):
     flat = by_terrain(studies, "flat")
     robots = robots_of(flat)
-    fig, axes = panel_grid(1, max(len(robots), 1))
+    fig, axes = panel_grid(1, max(len(robots), 1), height=4.4)
     for ax, robot in zip(axes[0], robots):
-        for slot, s in enumerate(s for s in flat if s["robot"] == robot):
+        notes = []
+        for s in (s for s in flat if s["robot"] == robot):
             c = GAIT_COLORS.get(s["gait"], "tab:gray")
             name = f"{s['gait']} β={fraction_text(s['beta'])}"
             failed = draw_series(ax, s["rows"], "peak_speed", "cost_of_transport", c, "-",
                                  f"{name}, mechanical")
             draw_series(ax, s["rows"], "peak_speed", "cost_of_transport_electrical", c, "--",
                         f"{name}, electrical")
-            note_failed(ax, failed, "peak_speed", "m/s", s["gait"], slot)
+            notes.append(note_failed(ax, failed, "peak_speed", "m/s", s["gait"], c))
         log_axis(ax)
-        ax.set_xlabel("peak speed [m/s]")
+        label_with_notes(ax, "peak speed [m/s]", notes)
         ax.set_ylabel("cost of transport E/(m g d)")
         ax.set_title(f"{robot}, flat ground", fontsize=10)
         ax.grid(True, which="both", alpha=0.3)
@@ -331,6 +340,7 @@ def plot_metric(studies, outdir, key, ylabel, title, name, reference, log=False)
     (a line per gait and speed); `reference(study)` a horizontal line's (value, label)."""
     robots = robots_of(studies)
     fig, axes = panel_grid(max(len(robots), 1), 2)
+    notes = {}
     for s in studies:
         flat = s["terrain"] == "flat"
         ax = axes[robots.index(s["robot"])][0 if flat else 1]
@@ -338,8 +348,8 @@ def plot_metric(studies, outdir, key, ylabel, title, name, reference, log=False)
         gait = f"{s['gait']} β={fraction_text(s['beta'])}"
         if flat:
             failed = draw_series(ax, s["rows"], "peak_speed", key, c, "-", gait)
-            note_failed(ax, failed, "peak_speed", "m/s", s["gait"],
-                        0 if s["gait"] == "crawl" else 1)
+            notes.setdefault(ax, []).append(
+                note_failed(ax, failed, "peak_speed", "m/s", s["gait"], c))
         else:
             for v, style in zip(speeds_of(s), ("-", "--", ":", "-.") * 4):
                 rows = [r for r in s["rows"] if r["peak_speed"] == v]
@@ -349,7 +359,8 @@ def plot_metric(studies, outdir, key, ylabel, title, name, reference, log=False)
             ax.axhline(value, color="k", lw=0.8, ls=":")
             ax.annotate(label, (0.98, value), xycoords=("axes fraction", "data"), ha="right",
                         va="bottom", fontsize=7)
-        ax.set_xlabel("peak speed [m/s]" if flat else "riser height [m]")
+        label_with_notes(ax, "peak speed [m/s]" if flat else "riser height [m]",
+                         notes.get(ax, []))
         ax.set_ylabel(ylabel)
         ax.set_title(f"{s['robot']}, {'flat ground' if flat else 'stairs'}", fontsize=10)
         if log:
