@@ -97,8 +97,8 @@ def read_study(path):
         sc = sw.scenario(i)
         stairs = study["terrain"] == "stairs"
         riser = sc.get(RISER, cfg["terrain"].get("riser_height", 0.0)) if stairs else 0.0
-        row = {"riser_height": float(riser), "peak_speed": float(sc.get(SPEED,
-                                                                         cfg["motion"]["peak_speed"])),
+        speed = sc.get(SPEED, cfg["motion"]["peak_speed"])
+        row = {"riser_height": float(riser), "peak_speed": float(speed),
                "status": sw.status_names[i], "id": t["id"][i], "message": t["message"][i]}
         for key in COLUMNS:
             if key not in row and key in t:
@@ -133,8 +133,8 @@ def short(value, digits=3):
 
 
 def markdown_table(studies):
-    lines = ["| robot | gait | terrain | riser [m] | speed [m/s] | verdict | relaxed outside / in "
-             "all | CoT | CoT el. | μ required | T_w peak [°C] | message |",
+    lines = ["| robot | gait | terrain | riser [m] | speed [m/s] | verdict (status) | relaxed "
+             "outside touchdowns / all | CoT | CoT el. | μ required | T_w peak [°C] | message |",
              "|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for s in studies:
         for r in s["rows"]:
@@ -188,17 +188,16 @@ def label_with_notes(ax, label, notes):
     ax.set_xlabel("\n".join([label] + notes), fontsize=8 if notes else None)
 
 
-def note_failed_counts(ax, failed, total):
-    """The failed scenarios of a stairs panel counted by status (the envelope figure places
-    them)."""
+def failed_counts(failed, total):
+    """A line counting a stairs panel's failed scenarios by status (the envelope figure places
+    them), for the axis label."""
     if not failed:
-        return
+        return ""
     counts = {}
     for r in failed:
         counts[r["status"]] = counts.get(r["status"], 0) + 1
-    text = (f"failed: {len(failed)} of {total} scenarios ("
+    return (f"failed: {len(failed)} of {total} scenarios ("
             + ", ".join(f"{n} {st}" for st, n in sorted(counts.items())) + ")")
-    ax.text(0.02, 0.02, text, transform=ax.transAxes, fontsize=6, color="tab:red", va="bottom")
 
 
 def panel_grid(n_rows, n_cols, width=6.4, height=3.4):
@@ -295,9 +294,8 @@ def plot_cot_riser(studies, outdir):
             failed += draw_series(ax, rows, "riser_height", "cost_of_transport", c, "-",
                                   f"{v:g} m/s")
             draw_series(ax, rows, "riser_height", "cost_of_transport_electrical", c, "--")
-        note_failed_counts(ax, failed, len(s["rows"]))
         log_axis(ax)
-        ax.set_xlabel("riser height [m]")
+        label_with_notes(ax, "riser height [m]", [failed_counts(failed, len(s["rows"]))])
         ax.set_ylabel("cost of transport")
         ax.grid(True, which="both", alpha=0.3)
         legend_notes(ax)
