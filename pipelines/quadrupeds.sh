@@ -15,7 +15,7 @@
 #                              relaxed counts and metrics (a failed one with its message)
 #   quadrupeds_table.txt        the same as a Markdown table
 #
-#   bash pipelines/quadrupeds.sh           # 248 scenarios, about 1.5 min on one core
+#   bash pipelines/quadrupeds.sh           # 248 scenarios, about 2 min on one core
 #   bash pipelines/quadrupeds.sh --quick   # configs/quadrupeds/sweeps/quick/, 16 scenarios with
 #                                          # kept runs, into results/quadrupeds/quick/
 # --hexdyn PATH runs that binary (its build tree's Python package) without installing or
