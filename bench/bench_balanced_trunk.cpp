@@ -39,12 +39,15 @@ namespace {
 using hexdyn::bench::Clock;
 using hexdyn::bench::since;
 
-/// The balanced scenes of the issue: the two crawls (balanced in their files), the two trots
-/// and the two crawls up stairs (straight in their files, balanced by override).
-const char* const kScenes[] = {
-    "configs/robots/solo12_crawl_balanced.yaml", "configs/robots/anymal_c_crawl_balanced.yaml",
-    "configs/robots/solo12_trot_flat.yaml",      "configs/robots/anymal_c_trot_flat.yaml",
-    "configs/robots/solo12_crawl_stairs.yaml",   "configs/robots/anymal_c_crawl_stairs.yaml"};
+/// The balanced scenes of the issue: the two crawls on flat ground and up stairs and Solo-12's
+/// trot (balanced in their files), and ANYmal C's trot (straight in its file, balanced by
+/// override; its balanced run throws today, and the benchmark says so).
+const char* const kScenes[] = {"configs/robots/solo12_crawl_balanced.yaml",
+                               "configs/robots/anymal_c_crawl_balanced.yaml",
+                               "configs/robots/solo12_trot_balanced.yaml",
+                               "configs/robots/anymal_c_trot_flat.yaml",
+                               "configs/robots/solo12_crawl_stairs_balanced.yaml",
+                               "configs/robots/anymal_c_crawl_stairs_balanced.yaml"};
 
 hexdyn::Scene scene_with(const char* file, const char* trunk) {
   return hexdyn::load_scene(hexdyn::bench::source_file(file),
@@ -87,9 +90,11 @@ Spent time_scenario(const hexdyn::Scene& scene, int& passes) {
   });
 }
 
-/// balance_trunk alone on the straight scene's plan.
+/// balance_trunk alone on the balanced scene's plan at the straight scene's posture (its swings
+/// kept out of the standing spans at the ends, as plan_motion_with plans a balanced scene).
 Spent time_balance(const hexdyn::Scene& scene, const hexdyn::PreparedScene& straight) {
-  hexdyn::MotionPlan plan = straight.plan;
+  hexdyn::MotionPlan plan = hexdyn::plan_motion_with(
+      scene, straight.model, straight.plan.posture.p0_W, straight.plan.posture.foot_lateral_m);
   hexdyn::BalanceOptions options;
   options.margin_m = scene.motion.balance_margin_m;
   return timed([&] { benchmark::DoNotOptimize(balance_trunk(straight.model, plan, options)); });
