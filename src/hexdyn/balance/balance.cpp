@@ -603,11 +603,18 @@ struct Passes {
   /// Samples P on the current path; returns the largest |P − z| (0 on the straight path).
   double sample(ZmpProbe& probe) {
     double error = 0.0;
-    for (int k = 0; k < L.pieces(); ++k)
+    worst_m = 0.0;
+    for (int k = 0; k < L.pieces(); ++k) {
+      // A polygon piece's error is measured against its own tolerance (BalanceOptions).
+      const double scale = L.piece_support[k].vertices.size() <= 2 ? 1.0 : polygon_scale;
       for (int j = 0; j < L.nodes(k); ++j) {
         P[k][j] = probe.at(node_time(L, k, j));
-        if (offset) error = std::max(error, (P[k][j] - z[k][j]).norm());
+        if (!offset) continue;
+        const double e = (P[k][j] - z[k][j]).norm();
+        worst_m = std::max(worst_m, e);
+        error = std::max(error, scale * e);
       }
+    }
     return error;
   }
 
@@ -759,6 +766,8 @@ struct Passes {
   int strips = 0, gaps = 0;                ///< two-foot waypoints of the last update_edges
   std::shared_ptr<const TrunkOffset> offset;
   AndersonMixer mixer{6};
+  double polygon_scale = 1.0;  ///< tolerance_m / polygon_tolerance_m
+  double worst_m = 0.0;        ///< largest |P − z| of the last sample() [m]
 };
 
 }  // namespace
@@ -771,6 +780,7 @@ BalanceReport balance_trunk(const RobotModel& model, MotionPlan& plan, const Bal
   const int K = L.pieces();
   rep.pieces = K;
   Passes passes(L, rep.omega_radps);
+  passes.polygon_scale = o.tolerance_m / std::max(o.polygon_tolerance_m, o.tolerance_m);
   for (rep.iterations = 1;; ++rep.iterations) {
     const double error = std::max(passes.sample(probe), passes.update_edges(probe));
     if (rep.iterations == 1) {
@@ -784,7 +794,7 @@ BalanceReport balance_trunk(const RobotModel& model, MotionPlan& plan, const Bal
       passes.P_first = passes.P;
     }
     if (passes.offset && error < o.tolerance_m) {
-      rep.zmp_error_m = error;
+      rep.zmp_error_m = passes.worst_m;
       break;
     }
     if (rep.iterations >= o.max_iterations) {
