@@ -34,8 +34,8 @@ struct BalanceOptions {
   /// The same on pieces whose support is a polygon, where the margin leaves the ZMP room: a
   /// ten-thousandth of the default 0.01 m margin [m]. On a segment or a point, tolerance_m.
   double polygon_tolerance_m = 1e-6;
-  int max_iterations = 60;    ///< iterations of s before PlanningError
-  int nodes = 5;              ///< Chebyshev–Lobatto nodes per piece on a polygon support
+  int max_iterations = 60;  ///< iterations of s before PlanningError
+  int nodes = 5;            ///< Chebyshev–Lobatto nodes per piece on a polygon support
   /// Nodes per piece on a segment or point support, where the ZMP has no room to miss its path
   /// between nodes: a miss of 4e-8 m under Solo-12's weight is a moment beyond the
   /// allocation's 1e-6 N m threshold (allocation/qp.hpp).
