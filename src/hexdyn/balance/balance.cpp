@@ -9,7 +9,10 @@
 #include <sstream>
 #include <utility>
 
+#include "hexdyn/balance/anderson.hpp"
 #include "hexdyn/balance/support_region.hpp"
+#include "hexdyn/balance/waypoints.hpp"
+#include "hexdyn/balance/zmp_probe.hpp"
 #include "hexdyn/core/errors.hpp"
 #include "hexdyn/dynamics/rnea.hpp"
 #include "hexdyn/kinematics/kinematics.hpp"
@@ -25,9 +28,6 @@ constexpr double kSameInstant_s = 1e-9;
 constexpr double kEndNudge_s = 2.0 * kSameInstant_s;
 /// Feet closer than this, or this near a line through others, do not widen a support [m].
 constexpr double kHullTolerance_m = 1e-9;
-
-using Vec4 = Eigen::Vector4d;
-using Mat4 = Eigen::Matrix4d;
 
 /// Whether `leg` stands at t (a swing holds [t_liftoff, t_touchdown)).
 bool in_stance(const LegPlan& leg, double t) {
@@ -65,61 +65,6 @@ std::vector<double> breakpoints(const MotionPlan& plan, double T, double max_pie
   out.push_back(T);
   return out;
 }
-
-/// The whole robot's ZMP for the plan as it stands, on the plane that keeps the trunk's
-/// initial height above the feet (balance.hpp).
-class ZmpProbe {
- public:
-  ZmpProbe(const RobotModel& model, const MotionPlan& plan)
-      : model_(model), plan_(plan), data_(model), state_(model) {
-    double feet_z = 0.0;
-    for (const LegPlan& leg : plan.gait.legs) feet_z += leg.p_initial_W.z();
-    feet_z /= static_cast<double>(plan.gait.legs.size());
-    height_m_ = plan.trunk.straight_at(0.0).p_W.z() - feet_z;
-  }
-  double height_m() const { return height_m_; }
-  /// Drops the wrench kept for its instant (the path changed).
-  void forget() { t_ = std::numeric_limits<double>::quiet_NaN(); }
-
-  Vec2 at(double t) {
-    wrench(t);
-    return Vec2((z_r_ * F_.x() - M_.y()) / F_.z(), (M_.x() + z_r_ * F_.y()) / F_.z());
-  }
-
-  /// The line of the ZMP plane on which two feet p1, p2 alone can supply the wrench at t
-  /// (docs/theory/balance.md#edges), as {p : a · p = b}: the moment about the line through the
-  /// feet vanishes, d · (M − p1 × F) = 0 with d = p2 − p1. Written with the ZMP p,
-  /// M = p × F + M_pz ẑ and M_pz = M_z − p_x F_y + p_y F_x; F and M_z are taken as the path's
-  /// (the offset moves M_x and M_y, the ZMP, far more than F or M_z).
-  std::pair<Vec2, double> edge_line(double t, const Vec3& p1, const Vec3& p2) {
-    wrench(t);
-    const Vec3 d = p2 - p1, c = F_.cross(d);
-    const Vec2 a(c.x() - d.z() * F_.y(), c.y() + d.z() * F_.x());
-    return {a, p1.dot(c) - c.z() * z_r_ - d.z() * M_.z()};
-  }
-
- private:
-  const RobotModel& model_;
-  /// The wrench the feet must supply at t, F and M about the world origin, and the ZMP
-  /// plane's height z_r there.
-  void wrench(double t) {
-    if (t == t_) return;
-    t_ = t;
-    robot_state_at(model_, plan_, t, state_);
-    const DofVector& tau = rnea(model_, data_, state_.trunk, state_.q, state_.qd, state_.qdd);
-    F_ = tau.head<3>();
-    M_ = tau.segment<3>(3) + state_.trunk.p_W.cross(F_);
-    z_r_ = state_.trunk.p_W.z() - height_m_;  // the offset is horizontal
-  }
-
-  const MotionPlan& plan_;
-  RobotData data_;
-  RobotKinematicState state_;
-  double height_m_ = 0.0;
-  Vec3 F_ = Vec3::Zero(), M_ = Vec3::Zero();
-  double z_r_ = 0.0;
-  double t_ = std::numeric_limits<double>::quiet_NaN();  ///< the instant F_, M_, z_r_ hold for
-};
 
 /// The stance feet of a waypoint's support, in the order of its hull's vertices [m, world]:
 /// two for a segment, three or more for a polygon; where its exact lines are evaluated.
@@ -284,13 +229,6 @@ std::vector<Vec2> end_corrected_fit(std::vector<Vec2> f, double span_s) {
   return chebyshev_fit(f);
 }
 
-/// The two boundary functionals of a piece's waypoint hat functions and of its s: for a weight
-/// exp(−ω t) (start) and exp(−ω (T − t)) (end), each scaled by ω (trunk_offset.hpp).
-struct Functionals {
-  std::vector<Vec2> a;  ///< per waypoint: (start, end) weight
-  Vec2 s_start = Vec2::Zero(), s_end = Vec2::Zero();
-};
-
 Functionals functionals(const Layout& L, const std::vector<std::vector<Vec2>>& cheb, double w) {
   const int K = L.pieces();
   const double T = L.t[K];
@@ -311,59 +249,6 @@ Functionals functionals(const Layout& L, const std::vector<std::vector<Vec2>>& c
   return F;
 }
 
-/// The waypoints nearest the targets g (weights c) inside their regions whose functionals
-/// equal F's s parts: w_k = Π_k(g_k + (a_k · λ) / (2 c_k)) with the four multipliers λ found by a
-/// damped semi-smooth Newton method on the residual.
-std::vector<Vec2> solve_waypoints(const std::vector<SupportRegion>& region,
-                                  const std::vector<Vec2>& g, const std::vector<double>& c,
-                                  const Functionals& F, double* residual) {
-  const int n = static_cast<int>(g.size());
-  std::vector<Vec2> w(n);
-  std::vector<Mat2> D(n);
-  const auto evaluate = [&](const Vec4& lam) {
-    Vec4 r = Vec4::Zero();
-    for (int k = 0; k < n; ++k) {
-      const Vec2 shift = (F.a[k].x() * lam.head<2>() + F.a[k].y() * lam.tail<2>()) / (2.0 * c[k]);
-      const Projection p = project(region[k], g[k] + shift);
-      w[k] = p.point;
-      D[k] = p.derivative;
-      r.head<2>() += F.a[k].x() * w[k];
-      r.tail<2>() += F.a[k].y() * w[k];
-    }
-    r.head<2>() -= F.s_start;
-    r.tail<2>() -= F.s_end;
-    return r;
-  };
-  Vec4 lam = Vec4::Zero();
-  Vec4 r = evaluate(lam);
-  const double scale = 1.0 + F.s_start.norm() + F.s_end.norm();
-  for (int it = 0; it < 100 && r.norm() > 1e-15 * scale; ++it) {
-    Mat4 J = Mat4::Zero();
-    for (int k = 0; k < n; ++k) {
-      const Vec2& a = F.a[k];
-      const Mat2 Dk = D[k] / (2.0 * c[k]);
-      J.block<2, 2>(0, 0) += a.x() * a.x() * Dk;
-      J.block<2, 2>(0, 2) += a.x() * a.y() * Dk;
-      J.block<2, 2>(2, 0) += a.y() * a.x() * Dk;
-      J.block<2, 2>(2, 2) += a.y() * a.y() * Dk;
-    }
-    J += (1e-14 * (J.trace() + 1e-300)) * Mat4::Identity();
-    const Vec4 step = -J.completeOrthogonalDecomposition().solve(r);
-    double t = 1.0, before = r.norm();
-    Vec4 trial;
-    for (int ls = 0; ls < 40; ++ls, t *= 0.5) {
-      trial = evaluate(lam + t * step);
-      if (trial.norm() < before * (1.0 - 1e-4 * t)) break;
-    }
-    if (!(trial.norm() < before)) break;
-    lam += t * step;
-    r = trial;
-  }
-  r = evaluate(lam);
-  *residual = r.norm() / scale;
-  return w;
-}
-
 /// PlanningError unless the ZMP p of the robot at rest lies in its support.
 void check_at_rest(const char* where, const Vec2& p, const SupportRegion& support) {
   if (depth(support, p) >= -1e-9) return;
@@ -379,101 +264,6 @@ double node_time(const Layout& L, int k, int j) {
   const int N = L.nodes(k) - 1;
   const double nudge = j == 0 ? -kEndNudge_s : j == N ? kEndNudge_s : 0.0;
   return L.t[k] + L.node_x[k][j] * (L.t[k + 1] - L.t[k]) + nudge;
-}
-
-/// Solves, per axis, min Σ c_k (w_k − g_k)² + β Σ (w_{k+1} − w_k)² / Δ_k + (ρ/2) Σ (w_k − h_k)²
-/// (Δ_k: Layout::span_s) subject to Σ a0_k w_k = f0 and Σ aT_k w_k = fT: a tridiagonal system
-/// bordered by the two equalities, solved through their Schur complement. The matrix and the
-/// borders do not change between ADMM iterations: the Thomas algorithm's factors, the borders'
-/// solutions and the Schur complement are formed once, and a solve is one forward and one back
-/// substitution.
-class BorderedTridiagonal {
- public:
-  BorderedTridiagonal(Eigen::VectorXd diag, Eigen::VectorXd off, Eigen::VectorXd a0,
-                      Eigen::VectorXd aT)
-      : n_(static_cast<int>(diag.size())),
-        diag_(std::move(diag)),
-        off_(std::move(off)),
-        a0_(std::move(a0)),
-        aT_(std::move(aT)),
-        c_(n_),
-        m_(n_) {
-    c_[0] = n_ > 1 ? off_[0] / diag_[0] : 0.0;
-    m_[0] = diag_[0];
-    for (int i = 1; i < n_; ++i) {
-      m_[i] = diag_[i] - off_[i - 1] * c_[i - 1];
-      c_[i] = i + 1 < n_ ? off_[i] / m_[i] : 0.0;
-    }
-    y0_ = substitute(a0_);
-    yT_ = substitute(aT_);
-    Eigen::Matrix2d S;
-    S << a0_.dot(y0_), a0_.dot(yT_), aT_.dot(y0_), aT_.dot(yT_);
-    schur_ = S.completeOrthogonalDecomposition();
-  }
-
-  Eigen::VectorXd solve(const Eigen::VectorXd& rhs, double f0, double fT) const {
-    const Eigen::VectorXd x0 = substitute(rhs);
-    const Eigen::Vector2d mu = schur_.solve(Eigen::Vector2d(a0_.dot(x0) - f0, aT_.dot(x0) - fT));
-    return x0 - mu[0] * y0_ - mu[1] * yT_;
-  }
-
- private:
-  Eigen::VectorXd substitute(const Eigen::VectorXd& b) const {
-    Eigen::VectorXd d(n_), x(n_);
-    d[0] = b[0] / diag_[0];
-    for (int i = 1; i < n_; ++i) d[i] = (b[i] - off_[i - 1] * d[i - 1]) / m_[i];
-    x[n_ - 1] = d[n_ - 1];
-    for (int i = n_ - 2; i >= 0; --i) x[i] = d[i] - c_[i] * x[i + 1];
-    return x;
-  }
-
-  int n_;
-  Eigen::VectorXd diag_, off_, a0_, aT_, c_, m_, y0_, yT_;
-  Eigen::CompleteOrthogonalDecomposition<Eigen::Matrix2d> schur_;
-};
-
-/// Waypoints that keep the ZMP path smooth: ADMM on the smoothed objective of BorderedTridiagonal
-/// (β = 1/ω², so that the path does not change faster than the pendulum can follow) with each
-/// waypoint held in its region; the exact projection solve_waypoints then polishes its answer
-/// into the regions and onto the two equalities.
-std::vector<Vec2> smooth_waypoints(const std::vector<SupportRegion>& region,
-                                   const std::vector<Vec2>& g, const std::vector<double>& c,
-                                   const std::vector<double>& span_s, const Functionals& F,
-                                   double omega, double* residual) {
-  const int n = static_cast<int>(g.size());
-  const double beta = 16.0 / (omega * omega), rho = 1.0 / omega;
-  Eigen::VectorXd diag(n), off = Eigen::VectorXd::Zero(std::max(n - 1, 1)), a0(n), aT(n);
-  for (int k = 0; k < n; ++k) {
-    diag[k] = 2.0 * c[k] + rho;
-    a0[k] = F.a[k].x();
-    aT[k] = F.a[k].y();
-  }
-  for (int k = 0; k + 1 < n; ++k) {
-    const double s = 2.0 * beta / span_s[k];
-    diag[k] += s;
-    diag[k + 1] += s;
-    off[k] = -s;
-  }
-  const BorderedTridiagonal system(diag, off, a0, aT);
-  std::vector<Vec2> v(n), y(n, Vec2::Zero()), w(n);
-  for (int k = 0; k < n; ++k) v[k] = project(region[k], g[k]).point;
-  for (int it = 0; it < 400; ++it) {
-    for (int axis = 0; axis < 2; ++axis) {
-      Eigen::VectorXd rhs(n);
-      for (int k = 0; k < n; ++k)
-        rhs[k] = 2.0 * c[k] * g[k][axis] + rho * (v[k][axis] - y[k][axis]);
-      const Eigen::VectorXd x = system.solve(rhs, F.s_start[axis], F.s_end[axis]);
-      for (int k = 0; k < n; ++k) w[k][axis] = x[k];
-    }
-    double primal = 0.0;
-    for (int k = 0; k < n; ++k) {
-      v[k] = project(region[k], w[k] + y[k]).point;
-      y[k] += w[k] - v[k];
-      primal = std::max(primal, (w[k] - v[k]).norm());
-    }
-    if (primal < 1e-10) break;
-  }
-  return solve_waypoints(region, v, c, F, residual);
 }
 
 /// The pendulum fitted to the robot from its first offset e: per axis, the least-squares
@@ -508,74 +298,6 @@ void fit_pendulum(const Layout& L, const TrunkOffset& offset,
   kappa = k;
   omega = std::sqrt(omega2 / fitted);
 }
-
-/// Anderson acceleration of a fixed-point iteration x ← G(x) (Walker & Ni, SIAM J. Numer. Anal.
-/// 49 (2011) 1715): from the last `depth` inputs and outputs, the combination whose residual
-/// G(x) − x is least in the least-squares sense.
-class AndersonMixer {
- public:
-  explicit AndersonMixer(int depth) : depth_(depth) {}
-  /// out: G(x) of the input the last call returned (or of the first input); replaced by the next
-  /// input. `active` false: no mixing, the history restarts (the model changed).
-  void mix(std::vector<std::vector<Vec2>>& out, bool active) {
-    const Eigen::VectorXd g = flatten(out);
-    if (!active || last_in_.size() != g.size()) {
-      inputs_.clear();
-      outputs_.clear();
-      last_in_ = g;
-      inputs_.push_back(g);
-      outputs_.push_back(g);
-      return;
-    }
-    inputs_.back() = last_in_;
-    outputs_.back() = g;
-    const int m = static_cast<int>(inputs_.size());
-    Eigen::VectorXd next = g;
-    if (m >= 2) {
-      const Eigen::VectorXd f = g - last_in_;
-      Eigen::MatrixXd dF(g.size(), m - 1), dG(g.size(), m - 1);
-      for (int i = 0; i + 1 < m; ++i) {
-        dF.col(i) = (outputs_[i + 1] - inputs_[i + 1]) - (outputs_[i] - inputs_[i]);
-        dG.col(i) = outputs_[i + 1] - outputs_[i];
-      }
-      const Eigen::VectorXd gamma = dF.completeOrthogonalDecomposition().solve(f);
-      next = g - dG * gamma;
-    }
-    inputs_.push_back(next);
-    outputs_.push_back(next);
-    if (static_cast<int>(inputs_.size()) > depth_ + 1) {
-      inputs_.erase(inputs_.begin());
-      outputs_.erase(outputs_.begin());
-    }
-    last_in_ = next;
-    unflatten(next, out);
-  }
-
- private:
-  static Eigen::VectorXd flatten(const std::vector<std::vector<Vec2>>& v) {
-    std::size_t n = 0;
-    for (const auto& row : v) n += 2 * row.size();
-    Eigen::VectorXd x(static_cast<Eigen::Index>(n));
-    Eigen::Index i = 0;
-    for (const auto& row : v)
-      for (const Vec2& p : row) {
-        x[i++] = p.x();
-        x[i++] = p.y();
-      }
-    return x;
-  }
-  static void unflatten(const Eigen::VectorXd& x, std::vector<std::vector<Vec2>>& v) {
-    Eigen::Index i = 0;
-    for (auto& row : v)
-      for (Vec2& p : row) {
-        p = Vec2(x[i], x[i + 1]);
-        i += 2;
-      }
-  }
-  int depth_;
-  Eigen::VectorXd last_in_;
-  std::vector<Eigen::VectorXd> inputs_, outputs_;
-};
 
 }  // namespace
 

@@ -363,6 +363,7 @@ class Reader : public SpecReader {
   void walk(const SceneTree::Node& node, const std::string& prefix) {
     if (node.type != YAML::NodeType::Map) return;
     for (const SceneTree::Entry& kv : node.entries) {
+      if (kv.value->type == YAML::NodeType::Null) continue;  // null counts as absent
       const auto [from, to] = std::equal_range(
           reached_.begin(), reached_.end(), Reached{kv.value.get(), false},
           [](const Reached& a, const Reached& b) { return std::less<>()(a.node, b.node); });

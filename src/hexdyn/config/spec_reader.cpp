@@ -53,6 +53,7 @@ void SpecReader::check_keys(const YAML::Node& node, const std::string& path,
   if (!node.IsMap()) fail_not_map(path, node);
   for (const auto& kv : node) {
     const std::string key = kv.first.IsScalar() ? kv.first.Scalar() : yaml_inline(kv.first);
+    if (kv.second.IsNull()) continue;  // a key set to null counts as absent, wherever it is
     if (std::find(allowed.begin(), allowed.end(), key) == allowed.end())
       fail_unknown(path.empty() ? key : path + "." + key, allowed);
   }

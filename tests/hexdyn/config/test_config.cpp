@@ -153,6 +153,28 @@ TEST_CASE("config: a missing required key is named", "[config]") {
   check_override_refused("output.sample_step", "~");
 }
 
+// docs/user/configuration.md: a key set to null counts as absent, so an inheriting scene removes
+// a key its own choices do not allow (flat ground's height on stairs), and a misspelt key set
+// to null is nothing.
+TEST_CASE("config: a null key is absent, even where it is not allowed", "[config]") {
+  const std::string flat = std::string(HEXDYN_SOURCE_DIR) + "/configs/robots/solo12_flat.yaml";
+  const std::vector<Override> stairs = {
+      {"terrain.type", "stairs"},       {"terrain.riser_height", "0.05"},
+      {"terrain.tread_depth", "0.25"},  {"terrain.steps", "4"},
+      {"terrain.first_riser_y", "0.3"}, {"terrain.ground_height", "0.0"}};
+  auto with_null = stairs;
+  with_null.push_back({"terrain.height", "~"});
+  CHECK(load_scene(flat, with_null).terrain.type == TerrainType::kStairs);
+  with_null.push_back({"gait.stroek", "~"});
+  CHECK(load_scene(flat, with_null).terrain.riser_height_m == 0.05);
+  try {
+    (void)load_scene(flat, stairs);
+    FAIL("flat ground's terrain.height was accepted on stairs");
+  } catch (const ConfigError& e) {
+    CHECK(std::string(e.what()).find("terrain.height: unknown key") != std::string::npos);
+  }
+}
+
 TEST_CASE("config: a mistyped value is named with the value", "[config]") {
   const std::string msg = config_error(paper_text(), {{"contact.stiffness", "abc"}});
   check_names(msg, "contact.stiffness");
