@@ -502,7 +502,8 @@ BalanceReport balance_trunk(const RobotModel& model, MotionPlan& plan, const Bal
   const int K = L.pieces();
   rep.pieces = K;
   Passes passes(L, rep.omega_radps);
-  passes.polygon_scale = o.tolerance_m / std::max(o.polygon_tolerance_m, o.tolerance_m);
+  const double tolerance_m = o.tolerance_m;
+  passes.polygon_scale = tolerance_m / std::max(o.polygon_tolerance_m, tolerance_m);
   for (rep.iterations = 1;; ++rep.iterations) {
     const double error = std::max(passes.sample(probe), passes.update_edges(probe));
     if (rep.iterations == 1) {
@@ -515,14 +516,16 @@ BalanceReport balance_trunk(const RobotModel& model, MotionPlan& plan, const Bal
       check_at_rest("end", passes.g.back(), L.piece_support.back());
       passes.P_first = passes.P;
     }
-    if (passes.offset && error < o.tolerance_m) {
+    if (passes.offset && error < tolerance_m) {
       rep.zmp_error_m = passes.worst_m;
       break;
     }
     if (rep.iterations >= o.max_iterations) {
       std::ostringstream m;
       m << "balanced trunk: the ZMP did not settle in " << o.max_iterations
-        << " passes (last error " << error << " m, tolerance " << o.tolerance_m << " m)";
+        << " passes (its largest miss of its path at the nodes is " << error / tolerance_m
+        << " times its tolerance, " << tolerance_m << " m on a line support and "
+        << std::max(o.polygon_tolerance_m, tolerance_m) << " m on a polygon)";
       throw PlanningError(m.str());
     }
     if (rep.iterations == 2)

@@ -29,10 +29,13 @@
 namespace hexdyn {
 
 struct BalanceOptions {
-  double margin_m = 0.01;     ///< the stability margin: a waypoint's distance from the edges
-  double tolerance_m = 1e-9;  ///< largest |p − z| at the nodes that ends the passes [m]
+  double margin_m = 0.01;  ///< the stability margin: a waypoint's distance from the edges
+  /// Largest |p − z| at the nodes of a piece whose support is a line or a point that ends the
+  /// passes [m]: on a line the ZMP has no room, and the run's trunk rows then hold to 1e-9 of the
+  /// weight (ctest dynamics.robots_against_dart).
+  double tolerance_m = 1e-9;
   /// The same on pieces whose support is a polygon, where the margin leaves the ZMP room: a
-  /// ten-thousandth of the default 0.01 m margin [m]. On a segment or a point, tolerance_m.
+  /// ten-thousandth of the default 0.01 m margin [m].
   double polygon_tolerance_m = 1e-6;
   int max_iterations = 60;  ///< iterations of s before PlanningError
   int nodes = 5;            ///< Chebyshev–Lobatto nodes per piece on a polygon support
