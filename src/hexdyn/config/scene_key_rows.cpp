@@ -133,6 +133,16 @@ void add_gait(std::deque<SceneKey>& t) {
                   "`lift_fraction + lower_fraction` < 0.95",
        .read = KeyRead::kTable,
        .field = f::number<&Scene::gait, &GaitParams::lower_fraction>()});
+  add({.path = "gait.swing_profile",
+       .kind = KeyKind::kChoice,
+       .choices = "staged blended",
+       .meaning = "`staged`: the foot lifts, moves across at the apex, then descends (the "
+                  "paper); `blended`: it moves across over the whole swing while it lifts and "
+                  "descends, with a fraction of the peak horizontal acceleration, for fast gaits; "
+                  "a path that would not clear the terrain is an error "
+                  "([docs/theory/stages.md](docs/theory/stages.md#swing-profiles))",
+       .read = KeyRead::kTable,
+       .field = f::choice<&Scene::gait, &GaitParams::swing_profile>()});
 }
 
 /// The gait's phases: the pattern, or the phases given (model/gait_pattern.hpp).

@@ -236,6 +236,12 @@ enum class GaitPattern {
   kCustom,  ///< the phases of gait.phases
 };
 
+/// How a swing foot moves (gait.swing_profile; planning/gait.hpp).
+enum class SwingProfile {
+  kStaged,   ///< lift, then the horizontal transfer at the apex, then the descent (the paper)
+  kBlended,  ///< the horizontal transfer over the whole swing, the lift and descent within it
+};
+
 struct GaitParams {
   double duty_factor = 0.5;  ///< β ∈ [1/2, 1): support fraction of each leg
   double stroke_m = 0.125;   ///< s0: foot travel relative to the trunk per stance
@@ -248,6 +254,7 @@ struct GaitParams {
   double touchdown_speed_mps = 0.05;  ///< downward foot speed at touchdown
   double lift_fraction = 0.3;         ///< share of swing time spent lifting
   double lower_fraction = 0.2;        ///< nominal share of swing time spent lowering
+  SwingProfile swing_profile = SwingProfile::kStaged;  ///< gait.swing_profile
   /// gait.pattern; a scene that gives gait.phases without it is kCustom, one that gives
   /// neither kWave (config/scene_read_motion.cpp).
   GaitPattern pattern = GaitPattern::kWave;

@@ -6,6 +6,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "hexdyn/core/errors.hpp"
 
@@ -66,6 +67,48 @@ Vec3 foothold(const RobotModel& model, const GaitParams& gait, const TrunkMotion
   return Vec3(x, *y, terrain.height(x, *y));
 }
 
+/// How far the foot (its sphere) passes below the terrain on [ta, tb] of a swing, to within
+/// kResolution_m of its path: a chord of the path whose lower end is above the highest
+/// terrain under the sphere's shadow of the chord (Terrain::max_height_along) clears it; a
+/// chord that does not is split in two until it is shorter than the resolution, so that only
+/// the chords that cross a riser or a nosing are refined. Returns the depth and its time.
+std::pair<double, double> depth_below_terrain(const Swing& sw, const Terrain& terrain,
+                                              double radius_m, double ta, double tb, int level) {
+  constexpr double kResolution_m = 1e-7;
+  constexpr int kMaxLevel = 48;
+  const Vec3 a = swing_foot_position(sw, ta), b = swing_foot_position(sw, tb);
+  const double depth = terrain.max_height_along(a, b, radius_m) - std::min(a.z(), b.z());
+  if (depth <= 0.0 || (b - a).norm() < kResolution_m || level >= kMaxLevel)
+    return {depth, a.z() < b.z() ? ta : tb};
+  const double tm = 0.5 * (ta + tb);
+  const auto lo = depth_below_terrain(sw, terrain, radius_m, ta, tm, level + 1);
+  const auto hi = depth_below_terrain(sw, terrain, radius_m, tm, tb, level + 1);
+  return lo.first >= hi.first ? lo : hi;
+}
+
+/// PlanningError unless a blended swing's foot stays on or above the terrain
+/// (depth_below_terrain over kChords chords of its path). A staged swing clears by
+/// construction: it moves across only at the apex.
+void check_blended_clearance(const Swing& sw, const Terrain& terrain, double radius_m, int leg) {
+  constexpr int kChords = 64;
+  constexpr double kTolerance_m = 1e-9;
+  const double D = sw.t_touchdown_s - sw.t_liftoff_s;
+  for (int i = 0; i < kChords; ++i) {
+    const double ta = sw.t_liftoff_s + D * i / kChords;
+    const auto [depth, t] =
+        depth_below_terrain(sw, terrain, radius_m, ta, sw.t_liftoff_s + D * (i + 1) / kChords, 0);
+    if (depth > kTolerance_m) {
+      std::ostringstream m;
+      m << "leg " << leg_name(leg) << ", swing at t = " << t << " s: the blended swing path passes "
+        << depth
+        << " m below the terrain under it (a riser or nosing in its way); use "
+           "gait.swing_profile staged, a larger gait.swing_clearance or a shorter "
+           "gait.lift_fraction";
+      throw PlanningError(m.str());
+    }
+  }
+}
+
 }  // namespace
 
 GaitPlan plan_gait(const RobotModel& model, const GaitParams& gait, const TrunkMotion& trunk,
@@ -114,6 +157,14 @@ GaitPlan plan_gait(const RobotModel& model, const GaitParams& gait, const TrunkM
             lower, 4.0 * (sw.apex_z_m - sw.p_touchdown_W.z()) / (gait.touchdown_speed_mps * D));
       sw.lift_end_u = gait.lift_fraction;
       sw.lower_start_u = 1.0 - lower;
+      if (gait.swing_profile == SwingProfile::kBlended) {
+        sw.transfer_start_u = 0.0;
+        sw.transfer_end_u = 1.0;
+        check_blended_clearance(sw, terrain, model.foot_radius_m[leg], leg);
+      } else {
+        sw.transfer_start_u = sw.lift_end_u;
+        sw.transfer_end_u = sw.lower_start_u;
+      }
       lp.swings.push_back(sw);
       p_current = sw.p_touchdown_W;
     }
@@ -149,8 +200,9 @@ Vec3 swing_foot_position(const Swing& sw, double t) {
   const double ul = sw.lift_end_u, ud = sw.lower_start_u;
   const Vec3& p0 = sw.p_liftoff_W;
   const Vec3& p1 = sw.p_touchdown_W;
-  // Horizontal transfer on [ul, ud].
-  const double sigma = std::clamp((u - ul) / (ud - ul), 0.0, 1.0);
+  // Horizontal transfer on [us, ue].
+  const double us = sw.transfer_start_u, ue = sw.transfer_end_u;
+  const double sigma = std::clamp((u - us) / (ue - us), 0.0, 1.0);
   const Eigen::Vector2d dxy = p1.head<2>() - p0.head<2>();
   p.head<2>() = p0.head<2>() + dxy * S(sigma);
   // Vertical: lift, hold, descend.
@@ -178,8 +230,9 @@ FootMotion swing_foot_motion(const Swing& sw, double t) {
   const double ul = sw.lift_end_u, ud = sw.lower_start_u;
   const Vec3& p0 = sw.p_liftoff_W;
   const Vec3& p1 = sw.p_touchdown_W;
-  const double Dt = (ud - ul) * D;
-  const double sigma = std::clamp((u - ul) / (ud - ul), 0.0, 1.0);
+  const double us = sw.transfer_start_u, ue = sw.transfer_end_u;
+  const double Dt = (ue - us) * D;
+  const double sigma = std::clamp((u - us) / (ue - us), 0.0, 1.0);
   const Eigen::Vector2d dxy = p1.head<2>() - p0.head<2>();
   f.v_W.head<2>() = dxy * (dS(sigma) / Dt);
   f.a_W.head<2>() = dxy * (ddS(sigma) / (Dt * Dt));
@@ -216,9 +269,9 @@ FootNormal swing_foot_normal(const Swing& sw, const Vec3& n0, const Vec3& n1, do
   if (n0 == n1) return f;
   const double D = sw.t_touchdown_s - sw.t_liftoff_s;
   const double u = std::clamp((t - sw.t_liftoff_s) / D, 0.0, 1.0);
-  const double ul = sw.lift_end_u, ud = sw.lower_start_u;
-  const double Dt = (ud - ul) * D;
-  const double sigma = std::clamp((u - ul) / (ud - ul), 0.0, 1.0);
+  const double us = sw.transfer_start_u, ue = sw.transfer_end_u;
+  const double Dt = (ue - us) * D;
+  const double sigma = std::clamp((u - us) / (ue - us), 0.0, 1.0);
   const Vec3 dn = n1 - n0;
   const Vec3 m = n0 + S(sigma) * dn;
   const Vec3 md = dn * (dS(sigma) / Dt), mdd = dn * (ddS(sigma) / (Dt * Dt));

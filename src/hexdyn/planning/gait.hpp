@@ -23,7 +23,11 @@
 /// under the sphere's shadow, the segment widened by r, so the sphere clears by Δh); a horizontal
 /// transfer at z_a (smootherstep); a vertical descent reaching the foothold with the
 /// downward touchdown speed. Position is C² inside the swing, velocity and acceleration
-/// are zero at lift-off; the descent is shortened when needed so that it is monotone.
+/// are zero at lift-off; the descent is shortened when needed so that it is monotone. With
+/// gait.swing_profile blended the transfer spans the whole swing (σ = u) while the foot lifts
+/// and descends over the same fractions, so its peak horizontal acceleration is
+/// (ud − ul)² times the staged one; such a path is checked against the terrain under it
+/// (plan_gait; docs/theory/stages.md#swing-profiles).
 #include <vector>
 
 #include "hexdyn/core/common.hpp"
@@ -41,6 +45,9 @@ struct Swing {
   double apex_z_m = 0.0;       ///< z of the transfer segment
   double lift_end_u = 0.3;     ///< normalised time at which the lift ends
   double lower_start_u = 0.8;  ///< normalised time at which the descent starts
+  /// Normalised times between which the foot moves horizontally: [lift_end_u, lower_start_u]
+  /// for a staged swing, [0, 1] for a blended one.
+  double transfer_start_u = 0.3, transfer_end_u = 0.8;
   double touchdown_speed_mps = 0.0;
 };
 
@@ -63,7 +70,8 @@ struct GaitPlan {
 
 /// Plans every swing of every leg over the whole run. Throws PlanningError when no
 /// foothold satisfies the margin, in one line naming the leg, the stance's start time, the
-/// step and the margin.
+/// step and the margin; or when a blended swing's foot (its sphere) would pass below the
+/// terrain, naming the leg, the time and how deep.
 GaitPlan plan_gait(const RobotModel& model, const GaitParams& gait, const TrunkMotion& trunk,
                    const Terrain& terrain);
 

@@ -322,6 +322,98 @@ TEST_CASE("gait: touchdown speed, rest at lift-off, C2 swing paths", "[gait]") {
   }
 }
 
+TEST_CASE("gait: a blended swing moves across over the whole swing at (ud - ul)^2 the peak",
+          "[gait]") {
+  // The paper's stairs with 0.02 m of clearance, staged and blended: the same footholds, times
+  // and vertical motion; the blended foot moves across from lift-off to touchdown.
+  const std::vector<Override> base = {{"gait.swing_clearance", "0.02"}};
+  std::vector<Override> blended_overrides = base;
+  blended_overrides.push_back({"gait.swing_profile", "blended"});
+  const Planned staged = plan_scene(base), blended = plan_scene(blended_overrides);
+  const Terrain& terrain = blended.plan.terrain;
+  int swings = 0;
+  for (int leg = 0; leg < kPaperLegs; ++leg) {
+    const auto& s_sw = staged.plan.gait.legs[leg].swings;
+    const auto& b_sw = blended.plan.gait.legs[leg].swings;
+    REQUIRE(s_sw.size() == b_sw.size());
+    for (std::size_t k = 0; k < s_sw.size(); ++k) {
+      const Swing &a = s_sw[k], &b = b_sw[k];
+      INFO("leg " << leg << " swing at " << a.t_liftoff_s);
+      REQUIRE(a.t_liftoff_s == b.t_liftoff_s);
+      REQUIRE((a.p_touchdown_W - b.p_touchdown_W).norm() == 0.0);
+      const double t0 = a.t_liftoff_s, D = a.t_touchdown_s - t0;
+      const double dxy = (a.p_touchdown_W - a.p_liftoff_W).head<2>().norm();
+      if (dxy < 1e-6) continue;
+      ++swings;
+      // Peak horizontal accelerations by dense sampling, and the vertical motion compared.
+      double peak_staged = 0.0, peak_blended = 0.0, dz = 0.0, below = 0.0;
+      const int N = 4000;
+      for (int i = 0; i <= N; ++i) {
+        const double t = t0 + D * i / N;
+        const FootMotion fs = swing_foot_motion(a, t), fb = swing_foot_motion(b, t);
+        peak_staged = std::max(peak_staged, fs.a_W.head<2>().norm());
+        peak_blended = std::max(peak_blended, fb.a_W.head<2>().norm());
+        dz = std::max(dz, std::abs(fs.p_W.z() - fb.p_W.z()));
+        below = std::max(below, terrain.height(fb.p_W.x(), fb.p_W.y()) - fb.p_W.z());
+      }
+      const double ratio = (a.lower_start_u - a.lift_end_u) * (a.lower_start_u - a.lift_end_u);
+      CHECK(std::abs(peak_blended / peak_staged - ratio) <= 1e-3 * ratio);
+      CHECK(dz == 0.0);
+      CHECK(below <= 1e-12);
+      // Halfway through the lift the blended foot has moved across, the staged one not.
+      const double t_lift = t0 + 0.5 * a.lift_end_u * D;
+      CHECK((swing_foot_motion(a, t_lift).p_W - a.p_liftoff_W).head<2>().norm() == 0.0);
+      CHECK((swing_foot_motion(b, t_lift).p_W - b.p_liftoff_W).head<2>().norm() > 1e-3 * dxy);
+      // Rest at lift-off, straight down at touchdown, derivatives against central differences.
+      CHECK(swing_foot_motion(b, t0).v_W.norm() <= 1e-12);
+      CHECK(swing_foot_motion(b, t0 + D).v_W.head<2>().norm() <= 1e-12);
+      const double h = 1e-5;
+      double v_err = 0.0, a_err = 0.0;
+      for (int i = 1; i < 200; ++i) {
+        const double t = t0 + D * i / 200.0;
+        if (std::abs(t - (t0 + b.lift_end_u * D)) < 3 * h) continue;
+        if (std::abs(t - (t0 + b.lower_start_u * D)) < 3 * h) continue;
+        const FootMotion f = swing_foot_motion(b, t);
+        const Vec3 v_fd =
+            (swing_foot_motion(b, t + h).p_W - swing_foot_motion(b, t - h).p_W) / (2 * h);
+        const Vec3 a_fd =
+            (swing_foot_motion(b, t + h).v_W - swing_foot_motion(b, t - h).v_W) / (2 * h);
+        v_err = std::max(v_err, (f.v_W - v_fd).norm());
+        a_err = std::max(a_err, (f.a_W - a_fd).norm());
+      }
+      CHECK(v_err <= 1e-5 * dxy / D);
+      CHECK(a_err <= 1e-5 * peak_blended);
+    }
+  }
+  CHECK(swings > 12);
+}
+
+TEST_CASE("gait: a blended swing into a riser is refused, naming the leg and the depth", "[gait]") {
+  // A slow lift (0.7 of the swing): moving across while it lifts, a foot meets a 0.05 m riser.
+  const std::vector<Override> slow = {{"gait.lift_fraction", "0.7"}};
+  std::vector<Override> o = slow;
+  o.push_back({"gait.swing_profile", "blended"});
+  CHECK_THROWS_WITH(plan_scene(o),
+                    Catch::Matches("leg L[1-6], swing at t = .* s: the blended swing path passes "
+                                   "0.01[0-9]+ m below the terrain under it .*staged.*"));
+  // A second computation: the same swings planned staged, then moved across as blended (the
+  // transfer over the whole swing) and scanned densely, pass more than 1 cm below the terrain
+  // (the message names the first such swing, the scan finds the deepest).
+  const Planned p = plan_scene(slow);
+  double deepest = 0.0;
+  for (const LegPlan& leg : p.plan.gait.legs)
+    for (Swing sw : leg.swings) {
+      sw.transfer_start_u = 0.0;
+      sw.transfer_end_u = 1.0;
+      const double D = sw.t_touchdown_s - sw.t_liftoff_s;
+      for (int i = 0; i <= 20000; ++i) {
+        const Vec3 f = swing_foot_position(sw, sw.t_liftoff_s + D * i / 20000.0);
+        deepest = std::max(deepest, p.plan.terrain.height(f.x(), f.y()) - f.z());
+      }
+    }
+  CHECK(deepest > 0.01);
+}
+
 TEST_CASE("gait: a sphere foot's normal blends from lift-off to touchdown, C2", "[gait][sphere]") {
   // The normal under a sphere foot (docs/theory/model.md#sphere-feet): every terrain hexdyn
   // has keeps one normal over a run, so the blend is checked on made-up normals.
