@@ -103,6 +103,21 @@ SupportRegion shrink_to_fit(const SupportRegion& r, double margin, double* used)
   return r;
 }
 
+namespace {
+
+/// Whether p lies in the polygon r (on an edge counts): left of or on every edge, the sign
+/// of depth() without its square roots.
+bool inside(const SupportRegion& r, const Vec2& p) {
+  const int m = static_cast<int>(r.vertices.size());
+  for (int i = 0; i < m; ++i) {
+    const Vec2 a = r.vertices[i], b = r.vertices[(i + 1) % m];
+    if (cross(b - a, p - a) < 0.0) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
 Projection project(const SupportRegion& r, const Vec2& p) {
   Projection out;
   const int m = static_cast<int>(r.vertices.size());
@@ -110,7 +125,7 @@ Projection project(const SupportRegion& r, const Vec2& p) {
     out.point = r.vertices[0];
     return out;
   }
-  if (m >= 3 && depth(r, p) >= 0.0) {
+  if (m >= 3 && inside(r, p)) {
     out.point = p;
     out.derivative.setIdentity();
     return out;
