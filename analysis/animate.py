@@ -17,7 +17,7 @@ Draws, in each of ceil(duration * fps) frames (frame i at t0 + i / fps):
     frame in red; a strip below shows the phases of every leg over the whole run, the
     relaxed samples as red ticks, failed ones as black ticks, and the frame's time.
 
---replay REPLAY.h5 (a hexdyn-replay/2 file of `hexdyn replay RESULT.h5`) draws the replay
+--replay REPLAY.h5 (a hexdyn-replay/3 file of `hexdyn replay RESULT.h5`) draws the replay
 beside its plan RESULT.h5, two panels at the same instants (the plan's frames; a replay that
 ended early holds its last state, and says so); --ghost draws the replay alone with the
 plan's feet as ghosts (faded hollow markers) over it, --ghost-trunk the plan's trunk too. A
@@ -412,7 +412,7 @@ def load_inputs(args):
                          "replay with --replay")
     replay = load_motion(args.replay)
     if not replay.is_replay:
-        raise InputError(f"--replay {args.replay} is not a hexdyn-replay/2 file (/meta schema "
+        raise InputError(f"--replay {args.replay} is not a hexdyn-replay/3 file (/meta schema "
                          f"{replay.meta.get('schema', 'missing')}): make one with "
                          f"`hexdyn replay {args.result} -o REPLAY.h5`")
     ghost = "trunk" if args.ghost_trunk else "feet" if args.ghost else None

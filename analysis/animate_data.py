@@ -3,7 +3,7 @@
     from animate_data import load_motion, frames_of
     motion = load_motion("results/paper/paper.h5")           # or run="000003" on a sweep file
     frames = frames_of(motion, fps=25)
-    replay = load_motion("replay.h5")                        # a hexdyn-replay/2 file
+    replay = load_motion("replay.h5")                        # a hexdyn-replay/3 file
     replay_frames = frames_of(replay, times=frames.times)    # at the plan's frame times
     frames.times        # (F,) s, F = ceil(duration * fps), frame i at t0 + i / fps
     frames.feet         # (F,L,3) m, /feet/position interpolated linearly in /time
@@ -21,7 +21,7 @@ its L legs those of /model/leg_names, each with its foot link <leg>_foot; the fo
 kinematics is analysis/urdf_fk.py. The terrain is the height profile /terrain/y, /terrain/z
 (a polyline z(y), constant along x); a file without /terrain (hexdyn-result/1) has none.
 
-A replay (hexdyn-replay/2, `hexdyn replay`) carries the result's robot and terrain and its
+A replay (hexdyn-replay/3, `hexdyn replay`) carries the result's robot and terrain and its
 motion in the result's dataset names, so it is drawn the same way; it has no planned phases:
 its feet are in support where the compliant law's normal force /contacts/normal_force is
 positive, in swing elsewhere (Motion.phases).

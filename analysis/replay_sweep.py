@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """The slip-and-impact study's table (pipelines/replay.sh, docs/validation/replay.md): one line
-per hexdyn-replay/2 file of a directory, read with h5py.
+per hexdyn-replay/3 file of a directory, read with h5py.
 
     /usr/bin/python3 analysis/replay_sweep.py REPLAY_DIR OUT.csv [--table]
 
@@ -148,7 +148,7 @@ def markdown_table(rows):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("replays", help="directory of hexdyn-replay/2 files")
+    ap.add_argument("replays", help="directory of hexdyn-replay/3 files")
     ap.add_argument("csv", help="the CSV to write")
     ap.add_argument("--table", action="store_true", help="print a Markdown table")
     args = ap.parse_args()

@@ -1,7 +1,7 @@
 """Writes the tables of docs/user/output.md from src/hexdyn/io/schema.hpp.
 
 The file layouts hexdyn writes (hexdyn-result/5, hexdyn-sweep/5, hexdyn-envelope/2,
-hexdyn-replay/2) are declared once, in the C++ header src/hexdyn/io/schema.hpp and the parts
+hexdyn-replay/3) are declared once, in the C++ header src/hexdyn/io/schema.hpp and the parts
 it includes. The declarations are those of the
 Python reader (`hexdyn.results.SCHEMA`, from the module hexdyn._schema the build generates
 from the compiled header), so the tables say what the writers write and what the reader
@@ -243,7 +243,7 @@ def dataset_table(schema, kind, presence=None, datasets=None):
 
 def list_tables(schema, kind):
     """One dataset table per declaration list of datasets in the section of `kind`, in the
-    header's order, each under the list's comment: a file kind (hexdyn-replay/2) that holds
+    header's order, each under the list's comment: a file kind (hexdyn-replay/3) that holds
     datasets of a result file's names besides its own. The section's datasets that no list
     holds follow in a last table (the reader checks them when present)."""
     lines, listed = [], set()

@@ -52,6 +52,7 @@ PLAN = {
     "/usr/bin/python3 analysis/plot_grip.py results/paper/paper.h5 results/paper": "run",
     "build/hexdyn envelope configs/envelope/paper.yaml -o results/envelope/paper.h5 -v": SLOW,
     "build/hexdyn replay results/paper/paper.h5 -o results/paper/replay.h5": "run",
+    "build/hexdyn replay mx64.h5 -o mx64_replay.h5": "run",
     "build/hexdyn --help": "run",
     "build/hexdyn run configs/paper.yaml -o mx64.h5 --set actuators.default.model=dynamixel_mx64":
         "run",

@@ -27,6 +27,12 @@ accelerations must be hexdyn's prescribed ones (/joints/acceleration and the tru
    Coulomb term is then ±τ_c, and DART's friction slides), each leg in swing and in support
    among them. Each is checked with the three terms, then with each term left out of DART:
    the accelerations must then differ by more than 100 TOLERANCE (the check can fail).
+3. The replay driven through the same actuators (`hexdyn replay` of that result,
+   docs/theory/replay.md#driven-by-the-actuators): the replay file's /joints/drive_torque,
+   state and accelerations, and /contacts/force, checked as in 2 on the samples where every
+   joint turns at ≥ REPLAY_MIN_SPEED (its regularised Coulomb friction τ_c tanh(q̇ / 1e-3)
+   is then τ_c sgn(q̇) to 1e-21), each leg in swing (no normal force) and in support among
+   them; each term left out must again be seen.
    --synthetic checks instead a synthetic file (the rigid result plus τ_drive computed here
    from made-up per-joint J_a, τ_c, b, and its actuators section): the check of the check.
 
@@ -52,6 +58,7 @@ every joint slides and the torque is −τ_c sgn(q̇); the test asserts that DAR
 """
 import argparse
 import os
+import subprocess
 import sys
 import tempfile
 import xml.etree.ElementTree as ET
@@ -71,6 +78,7 @@ except ImportError:
 GRAVITY = 9.81            # m/s², along −z (src/hexdyn/core/common.hpp kGravity)
 TOLERANCE = 1e-8          # max |a_DART − a_hexdyn| over max(1, |a_hexdyn|), per sample
 MIN_SPEED = 0.01          # rad/s, the slowest joint of a drive-train sample
+REPLAY_MIN_SPEED = 0.025  # rad/s, the same for a replay's sample (25 stiction speeds)
 FRICTION_STEP = 1e-6      # s, the World step that gives DART's Coulomb friction
 IMPLICIT_STEP = 1e-3      # s, the skeleton step h of the implicit terms (any h < J_a/b)
 SCENE_DRIVE = {"gear_ratio": 200, "torque_constant": 0.0081, "resistance": 3.95,
@@ -91,22 +99,29 @@ def scene_value(name, key):
     return SCENE_DRIVE[key]
 
 
-def read_result(path):
-    """A result file's robot and series, as h5py reads them (docs/user/output.md)."""
+def read_result(path, replay=False):
+    """A result file's robot and series, as h5py reads them (docs/user/output.md); or a
+    replay file's (replay=True), every sample counted optimal and each leg's phase support
+    (2) where its normal force is positive, swing (0) elsewhere."""
+    own = ("/contacts/normal_force",) if replay else ("/contacts/phase", "/solver/status")
     with h5py.File(path, "r") as f:
         r = {k: f[k][()] for k in (
             "/time", "/base/position", "/base/orientation", "/base/linear_velocity",
             "/base/angular_velocity", "/base/linear_acceleration", "/base/angular_acceleration",
             "/joints/position", "/joints/velocity", "/joints/acceleration", "/joints/torque",
-            "/contacts/force", "/contacts/phase", "/solver/status", "/feet/position")}
+            "/contacts/force", "/feet/position") + own}
         if "/joints/drive_torque" in f:
             r["/joints/drive_torque"] = f["/joints/drive_torque"][()]
         r["urdf"] = text(f["/model/urdf"][()])
         r["joints"] = [text(n) for n in f["/model/joint_names"][()]]
         r["legs"] = [text(n) for n in f["/model/leg_names"][()]]
-        r["mass"] = float(f["/model/total_mass"][()])
+        if not replay:
+            r["mass"] = float(f["/model/total_mass"][()])
         r["config"] = yaml.safe_load(text(f["/meta"].attrs["config_yaml"]))
     r["file"] = os.path.basename(path)
+    if replay:
+        r["/solver/status"] = np.zeros(len(r["/time"]), dtype=int)
+        r["/contacts/phase"] = np.where(r["/contacts/normal_force"] > 0.0, 2, 0)
     return r
 
 
@@ -287,10 +302,10 @@ def check_rigid(r, robot):
     assert worst <= TOLERANCE, f"DART and hexdyn differ by {worst:.3g} relative"
 
 
-def drive_samples(r):
-    """Optimal samples on which every joint turns at ≥ MIN_SPEED; each leg must be in swing
+def drive_samples(r, min_speed=MIN_SPEED):
+    """Optimal samples on which every joint turns at ≥ min_speed; each leg must be in swing
     (phase 0) on some of them and in support (2) on others."""
-    moving = np.abs(r["/joints/velocity"]).min(axis=1) >= MIN_SPEED
+    moving = np.abs(r["/joints/velocity"]).min(axis=1) >= min_speed
     samples = np.flatnonzero((r["/solver/status"] == 0) & moving)
     phases = r["/contacts/phase"][samples]
     assert samples.size >= 20, f"only {samples.size} samples with every joint moving"
@@ -299,11 +314,11 @@ def drive_samples(r):
     return samples
 
 
-def check_drive(r, robot):
+def check_drive(r, robot, min_speed=MIN_SPEED):
     """The drive train on every drive_samples sample; and each term left out of DART."""
     p = drive_parameters(r)
     assert "/joints/drive_torque" in r, "the result has no /joints/drive_torque"
-    samples = drive_samples(r)
+    samples = drive_samples(r, min_speed)
     zero = np.zeros(len(r["joints"]))
     worst, least = 0.0, {"armature": np.inf, "viscous friction": np.inf,
                          "Coulomb friction": np.inf}
@@ -400,10 +415,16 @@ def main():
             check_drive(read_result(synthetic_drive_result(base, os.path.join(d, "synthetic.h5"))),
                         robot)
             return 0
-        r = read_result(real_drive_result(args.hexdyn, src, d))
+        drive = real_drive_result(args.hexdyn, src, d)
+        r = read_result(drive)
         robot = DartRobot(r)  # the robot as this run simulated it
         check_rigid(r, robot)  # /joints/torque is still τ_link
         check_drive(r, robot)
+        replay = os.path.join(d, "drive_replay.h5")
+        done = subprocess.run([args.hexdyn, "replay", drive, "-o", replay], capture_output=True,
+                              text=True)
+        assert done.returncode == 0, done.stderr
+        check_drive(read_result(replay, replay=True), robot, REPLAY_MIN_SPEED)
     return 0
 
 

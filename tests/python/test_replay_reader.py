@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""The reader of hexdyn-replay/2 files (hexdyn.open_replay, docs/user/output.md#hexdyn-replay2)
+"""The reader of hexdyn-replay/3 files (hexdyn.open_replay, docs/user/output.md#hexdyn-replay3)
 on a real replay, and the replay's stored series against second computations from them:
 
   test_replay_reader.py HEXDYN SOURCE_DIR
@@ -11,7 +11,7 @@ and replays it with `hexdyn replay`, then checks:
     its declared units; every dataset of kReplaySeriesDatasets, kReplayModelDatasets and
     kReplayReportDatasets there with its declared shape (T = len(/time), Y =
     len(/replay/cycle_end)), every other one declared too; /meta names the replayed file and
-    its created_utc; check_layout says hexdyn-replay/2;
+    its created_utc; check_layout says hexdyn-replay/3;
   - xarray: every group opened alone by xarray.open_dataset with both engines (h5netcdf,
     netcdf4), by Replay.to_xarray and by hexdyn.xr.open_replay: each variable on its declared dimensions, with the
     values h5py reads, and the time, joint and leg coordinates /time and /model/*;
@@ -94,7 +94,7 @@ def check_reader(result, replay):
     """open_replay against h5py, the declared layout and /meta; check_layout. The Replay."""
     rep = hexdyn.open_replay(replay)
     check(isinstance(rep, hexdyn.Replay), "open_replay returns a Replay")
-    check(hexdyn.check_layout(replay) == "hexdyn-replay/2", "check_layout: hexdyn-replay/2")
+    check(hexdyn.check_layout(replay) == "hexdyn-replay/3", "check_layout: hexdyn-replay/3")
     with h5py.File(replay, "r") as f, h5py.File(result, "r") as r:
         T, Y = f["time"].shape[0], f["replay/cycle_end"].shape[0]
         sizes = {"T": T, "Y": Y, "K": f["terrain/y"].shape[0], **hr.shape_sizes(f)}
@@ -191,10 +191,10 @@ def check_errors(d, result, replay):
     """One line for a file of the other kind, a missing dataset, a wrong shape, an
     undeclared dataset."""
     msg = raises(ValueError, hexdyn.open_replay, result)
-    check("\n" not in msg and "hexdyn-result/5" in msg and "hexdyn-replay/2" in msg
+    check("\n" not in msg and "hexdyn-result/5" in msg and "hexdyn-replay/3" in msg
           and result in msg, "open_replay(result): ValueError, one line naming both schemas", msg)
     msg = raises(ValueError, hexdyn.open_result, replay)
-    check("\n" not in msg and "hexdyn-replay/2" in msg and "hexdyn-result/5" in msg,
+    check("\n" not in msg and "hexdyn-replay/3" in msg and "hexdyn-result/5" in msg,
           "open_result(replay): ValueError, one line naming both schemas", msg)
     for edit, path, what in (("delete", "/energy/slip", "missing dataset"),
                              ("reshape", "/joints/tracking_error", "wrong shape"),

@@ -23,7 +23,7 @@
     hexdyn.mass_matrix("configs/paper.yaml", r["/base/orientation"], r["/joints/position"])
     sw = hexdyn.open_sweep("smoke.h5")          # hexdyn-sweep/5: Sweep
     env = hexdyn.open_envelope("envelope.h5")   # hexdyn-envelope/2: Envelope
-    rep = hexdyn.open_replay("replay.h5")       # hexdyn-replay/2 (hexdyn replay): Replay
+    rep = hexdyn.open_replay("replay.h5")       # hexdyn-replay/3 (hexdyn replay): Replay
     st = hexdyn.open_study("study.h5")          # hexdyn-study/1 (analysis/study.py): Study
     hexdyn.open_file("any.h5")                  # whichever of them the file is
     hexdyn.check_layout("any.h5")               # any of them against its schema

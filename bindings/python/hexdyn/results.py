@@ -272,7 +272,7 @@ FILE_KINDS = {k.name: k for k in (
     FileKind(ENVELOPE_SCHEMA, (ENVELOPE_SCHEMA_VERSION,), Envelope,
              _by_layout(_envelope_layout, ENVELOPE_REQUIRED), _by_mapping(Envelope, True),
              layout=_envelope_layout, meta_attributes=SCHEMA["kEnvelopeMetaAttributes"]),
-    FileKind(REPLAY_SCHEMA, (1, REPLAY_SCHEMA_VERSION), Replay,
+    FileKind(REPLAY_SCHEMA, (1, 2, REPLAY_SCHEMA_VERSION), Replay,
              _by_layout(REPLAY_LAYOUT, REPLAY_REQUIRED), _by_mapping(Replay),
              layout=lambda root: REPLAY_LAYOUT, meta_attributes=SCHEMA["kReplayMetaAttributes"]),
     FileKind(STUDY_SCHEMA, (STUDY_SCHEMA_VERSION,), Study, _check_study, _read_study),

@@ -58,7 +58,7 @@ constexpr const char* kEnvelopeHelp =
 
 constexpr const char* kReplayHelp =
     R"(  Replays a result's joint torques through the forward dynamics of the robot on its
-  terrain, with compliant contact and friction, and writes a hexdyn-replay/2 file to FILE
+  terrain, with compliant contact and friction, and writes a hexdyn-replay/3 file to FILE
   (docs/user/replay.md).
 
 Each joint is driven by its stored torque plus a PD on the planned angle and rate (gains
@@ -66,7 +66,10 @@ replay.kp [N m/rad] and replay.kd [N m s/rad]; 0 and 0 is open loop). The integr
 largest step is replay.step [s]. The contact's friction law reads contact.static_friction,
 contact.dynamic_friction, contact.stiction_velocity and contact.friction_velocity. --set
 changes a key of replay.* or contact.* for the replay (--set contact.static_friction=0.2);
-any other key would not change the stored plan and is refused. The robot and the scene are
+any other key would not change the stored plan and is refused. With actuators: the joints
+are driven through them (the planned drive torques, the armature and the joints' friction,
+each drive bounded by its torque-speed envelope unless replay.saturate is false), and the
+electrical energy and saturation are reported. The robot and the scene are
 the result's own (/meta config_yaml, /model/urdf): files edited since the run are not read.
 A progress line comes at most every --progress seconds (default 5). The report (trunk
 drift per gait cycle, tracking error, slip and touchdown energy, whether the robot reached
@@ -88,7 +91,7 @@ constexpr std::array kCommands{
             "find the climbable riser, write hexdyn-envelope/2", kEnvelopeHelp, envelope_command,
             true},
     Command{"replay", "RESULT", kOutput | kSet | kProgress, kOutput,
-            "replay a result's torques, write hexdyn-replay/2", kReplayHelp, replay_command, true},
+            "replay a result's torques, write hexdyn-replay/3", kReplayHelp, replay_command, true},
 };
 // clang-format on
 

@@ -50,6 +50,24 @@ void print_report(const RobotModel& model, const ReplayResult& r, const ReplaySo
      << "hexdyn: replay: balance of energy: joint work " << r.actuator_work_J << " J, residual "
      << r.energy_residual_J << " J; " << r.steps << " steps (" << r.forced_steps
      << " beyond the tolerance at the smallest step)\n";
+  if (!model.drive.present) return;
+  // The driven replay: electrical energy and saturation (docs/user/replay.md#actuators).
+  std::size_t worst = 0;
+  double saturated = 0.0;
+  for (std::size_t j = 0; j < r.saturation_time_s.size(); ++j) {
+    saturated += r.saturation_time_s[j];
+    if (r.saturation_time_s[j] > r.saturation_time_s[worst]) worst = j;
+  }
+  os << "hexdyn: replay: drives: electrical energy " << r.electrical_energy_J
+     << " J (inverse dynamics " << r.electrical_energy_plan_J << " J), copper loss "
+     << r.copper_loss_J.back() << " J, joint friction " << r.joint_friction_J.back() << " J; ";
+  if (saturated > 0.0)
+    os << "saturated for " << saturated << " joint-s in all, longest "
+       << joint_label(model, static_cast<int>(worst), src.joint_names) << " "
+       << r.saturation_time_s[worst] << " s\n";
+  else
+    os << (src.scene.replay.saturate ? "never saturated\n"
+                                     : "not bounded (replay.saturate: false)\n");
 }
 
 }  // namespace

@@ -110,6 +110,15 @@ void add_replay(std::deque<SceneKey>& t) {
                   "from the law at its end by more than this × the robot's weight",
        .read = table,
        .field = f::number<&Scene::replay, &ReplayParams::tolerance>()});
+  add({.path = "replay.saturate",
+       .kind = KeyKind::kChoice,
+       .choices = "true false",
+       .meaning = "with `actuators:`, bound each joint's drive torque by the torque–speed "
+                  "envelope the allocation used, at the replayed joint speed, and report the "
+                  "time each joint spent at its bound "
+                  "([replay](docs/theory/replay.md#driven-by-the-actuators))",
+       .read = table,
+       .field = f::flag<&Scene::replay, &ReplayParams::saturate>()});
 }
 
 void add_allocation(std::deque<SceneKey>& t) {

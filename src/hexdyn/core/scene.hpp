@@ -340,6 +340,9 @@ struct ReplayParams {
   /// replay.tolerance: a step is halved while the contact forces it applied differ from the
   /// contact law at its end by more than this fraction of the robot's weight [1].
   double tolerance = 0.05;
+  /// replay.saturate: with actuators, bound each joint's drive torque by its torque–speed
+  /// envelope at the joint's speed (drive/drive.hpp drive_torque_limit) [–].
+  bool saturate = true;
 };
 
 /// Allocation back end: the dense dual active-set QP (allocation/active_set_backend.hpp; with the

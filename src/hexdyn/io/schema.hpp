@@ -4,7 +4,7 @@
 /// tables are generated from this header): `hexdyn-result/5` (one run) here, and, in the
 /// headers this one includes at its end, `hexdyn-sweep/5` (a parameter sweep,
 /// schema_sweep.hpp), `hexdyn-envelope/2` (the climbable envelope, envelope/envelope.hpp,
-/// schema_envelope.hpp) and `hexdyn-replay/2` (schema_replay.hpp), each with its schema
+/// schema_envelope.hpp) and `hexdyn-replay/3` (schema_replay.hpp), each with its schema
 /// name and version, every /meta attribute, and for every dataset its path, `units`, shape,
 /// element type and `long_name`. The
 /// writers (io/result_layout.cpp, sweep/sweep_file.cpp, envelope/envelope_file.cpp) take

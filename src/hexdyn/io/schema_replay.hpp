@@ -1,12 +1,12 @@
 #pragma once
 /// \file schema_replay.hpp
-/// The `hexdyn-replay/2` contract, part of io/schema.hpp (which includes this header at
+/// The `hexdyn-replay/3` contract, part of io/schema.hpp (which includes this header at
 /// its end; the generated Python schema holds it too). Same conventions as there.
 #include "hexdyn/io/schema.hpp"
 
 namespace hexdyn::schema {
 
-// ======================================================================= hexdyn-replay/2
+// ======================================================================= hexdyn-replay/3
 // A forward replay of a result file (replay/replay.hpp, docs/theory/replay.md): the stored
 // torques, with a joint PD on the planned angles, applied to the robot on the terrain through
 // the forward dynamics and the compliant contact. T samples at the result's own instants
@@ -17,8 +17,8 @@ namespace hexdyn::schema {
 // kContactForce, kFeetPosition, whose declarations in schema.hpp apply); the ones below
 // are the replay's own. Energies are cumulative from the start of the replay.
 
-inline constexpr const char* kReplaySchema = "hexdyn-replay/2";  ///< /meta attr `schema`
-inline constexpr std::int64_t kReplaySchemaVersion = 2;          ///< /meta `schema_version`
+inline constexpr const char* kReplaySchema = "hexdyn-replay/3";  ///< /meta attr `schema`
+inline constexpr std::int64_t kReplaySchemaVersion = 3;          ///< /meta `schema_version`
 
 // ---- /meta: kMetaSchema … kMetaWallTime as a result file's (config_yaml: the scene as
 // replayed, its replay: and contact: keys included), then ----
@@ -149,6 +149,46 @@ inline constexpr DatasetSpec kReplayForcedSteps{"/replay/forced_steps", "1", Sha
 inline constexpr DatasetSpec kReplaySeconds{"/replay/seconds", "s", Shape::kScalar,
                                             Element::kFloat64, "wall time of the integration"};
 
+// ---- with actuators only (the driven replay, docs/theory/replay.md#driven-by-the-actuators):
+// /joints/drive_torque (kDriveTorque's name: the torque the drive gave, its feedforward the
+// plan's /joints/drive_torque, bounded by its envelope with replay.saturate), /joints/torque the
+// torque reaching the links (the drive torque less J_a q̈ and the joint's friction), and ----
+/// 1 where the joint's drive torque was at its torque–speed bound at the sample.
+inline constexpr DatasetSpec kReplaySaturated{"/joints/saturated", "", Shape::kTJoint,
+                                              Element::kInt8, "the drive torque at its bound"};
+inline constexpr FlagSpec kReplaySaturatedFlags{"/joints/saturated", "no yes"};
+/// Cumulative since the start [J]: electrical energy drawn (P⁺ of drive/drive.hpp), the
+/// windings' copper loss, the joints' friction loss (Coulomb and viscous).
+inline constexpr DatasetSpec kReplayEnergyElectrical{"/energy/electrical", "J", Shape::kT,
+                                                     Element::kFloat64,
+                                                     "electrical energy drawn by the drives"};
+inline constexpr DatasetSpec kReplayEnergyCopper{"/energy/copper_loss", "J", Shape::kT,
+                                                 Element::kFloat64,
+                                                 "energy lost in the drives' windings"};
+inline constexpr DatasetSpec kReplayEnergyJointFriction{
+    "/energy/joint_friction", "J", Shape::kT, Element::kFloat64, "energy lost to joint friction"};
+/// Per joint, the time its drive torque spent at its bound [s].
+inline constexpr DatasetSpec kReplaySaturationTime{"/replay/saturation_time", "s", Shape::kJ,
+                                                   Element::kFloat64,
+                                                   "time the drive torque spent at its bound"};
+/// The replay's electrical energy, and that of the plan's drive torques over the same span
+/// (the trapezoid of the electrical power at the plan's samples) [J].
+inline constexpr DatasetSpec kReplayElectricalEnergy{"/replay/electrical_energy", "J",
+                                                     Shape::kScalar, Element::kFloat64,
+                                                     "electrical energy of the replay"};
+inline constexpr DatasetSpec kReplayElectricalEnergyPlan{
+    "/replay/electrical_energy_inverse_dynamics", "J", Shape::kScalar, Element::kFloat64,
+    "inverse-dynamics electrical energy over the same span"};
+/// Every dataset a driven replay adds.
+inline constexpr std::array kReplayDriveDatasets{kDriveTorque,
+                                                 kReplaySaturated,
+                                                 kReplayEnergyElectrical,
+                                                 kReplayEnergyCopper,
+                                                 kReplayEnergyJointFriction,
+                                                 kReplaySaturationTime,
+                                                 kReplayElectricalEnergy,
+                                                 kReplayElectricalEnergyPlan};
+
 /// Every dataset of the replayed motion, in the result file's names and the replay's own.
 inline constexpr std::array kReplaySeriesDatasets{kTime,
                                                   kBasePosition,
@@ -201,8 +241,9 @@ inline constexpr std::array kReplayReportDatasets{kReplayCycleEnd,
                                                   kReplaySeconds};
 
 /// Every CF flag declaration of the four file kinds.
-inline constexpr std::array kFlags{kContactPhaseFlags,     kSolverStatusFlags,   kSampleKindFlags,
-                                   kContactSlipFlags,      kScenarioStatusFlags, kProbePassedFlags,
-                                   kReplayReachedTopFlags, kWindingLimitFlags};
+inline constexpr std::array kFlags{
+    kContactPhaseFlags,     kSolverStatusFlags,   kSampleKindFlags,
+    kContactSlipFlags,      kScenarioStatusFlags, kProbePassedFlags,
+    kReplayReachedTopFlags, kWindingLimitFlags,   kReplaySaturatedFlags};
 
 }  // namespace hexdyn::schema

@@ -13,6 +13,7 @@
 #include "hexdyn/dynamics/forward_dynamics.hpp"
 #include "hexdyn/model/root_link.hpp"
 #include "hexdyn/planning/terrain.hpp"
+#include "hexdyn/replay/joint_drive.hpp"
 
 namespace hexdyn {
 namespace {
@@ -106,9 +107,10 @@ PlanPoint plan_at(const ReplayPlan& p, std::size_t k, double t) {
   const std::size_t k1 = std::min(k + 1, p.t_s.size() - 1);
   const double span = p.t_s[k1] - p.t_s[k];
   const double u = span > 0.0 ? std::clamp((t - p.t_s[k]) / span, 0.0, 1.0) : 0.0;
+  const std::vector<JointVector>& tau = p.tau_drive_Nm.empty() ? p.tau_Nm : p.tau_drive_Nm;
   return PlanPoint{(1.0 - u) * p.q_rad[k] + u * p.q_rad[k1],
                    (1.0 - u) * p.qd_radps[k] + u * p.qd_radps[k1],
-                   (1.0 - u) * p.tau_Nm[k] + u * p.tau_Nm[k1]};
+                   (1.0 - u) * tau[k] + u * tau[k1]};
 }
 
 /// The contact of every foot at a state: geometry, normals, forces and their linearisation
@@ -164,6 +166,7 @@ struct Integrator {
   /// springs (spring_energy), the energy the normal damping dissipated.
   LegArray<double> normal_work_J{}, spring_at_start_J{}, slip_J{}, slip_distance_m{};
   LegArray<Vec3> slip_displacement_m = zero_vectors();
+  DriveSpending spent{};  ///< with actuators: what the drives spent
   long steps = 0, forced = 0;
   double max_step_s = 0.0;
   double h_next = 0.0;  ///< the next step to try [s]
@@ -198,6 +201,7 @@ struct Step {
   SimState next;
   JointVector tau;
   LegArray<Vec3> force_W = zero_vectors();
+  DrivenJoints drive;  ///< with actuators (then tau is drive.u)
 };
 
 /// The contact force of foot l as an affine function of its velocity at the step's end,
@@ -240,8 +244,14 @@ void implicit_step(Integrator& it, const SimState& s, const PlanPoint& p, double
   DofVector f = -rnea(it.model, data, rest, s.q, s.qd, JointVector::Zero(n), nullptr, nullptr);
   DofMatrix A = crba(it.model, data, s.base, s.q);
   const double kp = it.gains.kp_Nmprad, kd = it.gains.kd_Nmsprad;
-  f.tail(n) += p.tau + kp * (p.q - s.q - h * s.qd) + kd * (p.qd - s.qd);
-  A.diagonal().tail(n).array() += h * (h * kp + kd);
+  const bool driven = it.model.drive.present;
+  if (driven) {
+    add_driven_joint_rows(it.model.drive, it.gains, s.q, s.qd, p.q, p.qd, p.tau, h, f, A,
+                          out.drive);
+  } else {
+    f.tail(n) += p.tau + kp * (p.q - s.q - h * s.qd) + kd * (p.qd - s.qd);
+    A.diagonal().tail(n).array() += h * (h * kp + kd);
+  }
   const DofVector nu = s.nu();
   LegArray<AffineForce> force;
   for (int l = 0; l < c.legs; ++l) {
@@ -256,7 +266,12 @@ void implicit_step(Integrator& it, const SimState& s, const PlanPoint& p, double
   out.next.base.v_W = nu_new.head<3>();
   out.next.base.omega_W = nu_new.segment<3>(3);
   out.next.qd = nu_new.tail(n);
-  out.tau = p.tau + kp * (p.q - s.q - h * out.next.qd) + kd * (p.qd - out.next.qd);
+  if (driven) {
+    finish_driven_joints(it.gains, s.q, p.q, p.qd, p.tau, out.next.qd, h, out.drive);
+    out.tau = out.drive.u;
+  } else {
+    out.tau = p.tau + kp * (p.q - s.q - h * out.next.qd) + kd * (p.qd - out.next.qd);
+  }
   for (int l = 0; l < c.legs; ++l)
     out.force_W[l] = c.geometry[l].penetration_m > 0.0
                          ? Vec3(force[l].a + force[l].B * jacobian_times(c.J[l], nu_new, 0))
@@ -281,6 +296,8 @@ double force_mismatch(const Contacts& at_end, const Step& step) {
 void account_step(Integrator& it, const Contacts& at_start, const Step& step, double h) {
   it.actuator_energy_J += h * lane_abs_dot(step.tau, step.next.qd);
   it.actuator_work_J += h * lane_dot(step.tau, step.next.qd);
+  if (it.model.drive.present)
+    account_driven_step(it.model.drive, step.drive, step.next.qd, h, it.spent);
   const DofVector nu_new = step.next.nu();
   for (int l = 0; l < at_start.legs; ++l) {
     if (step.force_W[l].isZero(0.0)) continue;
@@ -334,6 +351,40 @@ bool integrate_interval(Integrator& it, SimState& s, std::size_t k, std::string&
   return true;
 }
 
+/// A driven sample's forward dynamics (docs/theory/replay.md#driven-by-the-actuators): the
+/// drive torque u (given in `tau`: feedforward and PD at the state) bounded by the envelope at
+/// the state's rates, the joints' friction by the regularised law, and
+/// (M + diag(0, J_a)) ν̇ = [0; u − τ_f] + Σ J_lᵀ F_l − h. Appends u and the bound flags to `out`,
+/// returns ν̇ and leaves in `tau` the torque reaching the links, u − τ_f − J_a q̈.
+DofVector driven_sample(Integrator& it, const SimState& s, JointVector& tau, ReplayResult& out) {
+  const Eigen::Index n = s.q.size();
+  JointVector u(n), flags(n), link(n);
+  for (Eigen::Index j = 0; j < n; ++j) {
+    const ActuatorParams& a = it.model.drive.joints[j];
+    bool at_bound = false;
+    u[j] = bounded_drive_torque(a, it.gains.saturate, tau[j], s.qd[j], at_bound);
+    flags[j] = at_bound ? 1.0 : 0.0;
+    link[j] = u[j] - joint_friction_torque(a, s.qd[j]);
+  }
+  const Contacts& c = it.contacts;
+  forward_dynamics_joints(it.model, it.data, s.base, s.q, s.qd, link, &c.force_W, &c.normals);
+  DofMatrix M = it.data.M;
+  DofVector rhs = -it.data.bias;
+  for (Eigen::Index j = 0; j < n; ++j) {
+    M(6 + j, 6 + j) += it.model.drive.joints[j].armature_kgm2;
+    rhs[6 + j] += link[j];
+  }
+  const DofVector nu_dot = M.llt().solve(rhs);
+  for (Eigen::Index j = 0; j < n; ++j)
+    tau[j] = link[j] - it.model.drive.joints[j].armature_kgm2 * nu_dot[6 + j];
+  out.tau_drive.push_back(u);
+  out.saturated.push_back(flags);
+  out.electrical_J.push_back(it.spent.electrical_J);
+  out.copper_loss_J.push_back(it.spent.copper_loss_J);
+  out.joint_friction_J.push_back(it.spent.joint_friction_J);
+  return nu_dot;
+}
+
 /// Appends the sample of state s at the plan's instant k: torques, forces and the forward
 /// dynamics evaluated at s, the cumulative energies and slips.
 /// it.contacts holds the contacts of s (integrate_interval leaves them so).
@@ -342,16 +393,27 @@ Vec3 record_sample(Integrator& it, const SimState& s, std::size_t k, ReplayResul
   RobotData& data = it.data;
   const Contacts& c = it.contacts;
   const ReplayPlan& plan = it.plan;
-  const JointVector tau = plan.tau_Nm[k] + it.gains.kp_Nmprad * (plan.q_rad[k] - s.q) +
-                          it.gains.kd_Nmsprad * (plan.qd_radps[k] - s.qd);
-  const DofVector& nu_dot =
-      forward_dynamics_joints(it.model, data, s.base, s.q, s.qd, tau, &c.force_W, &c.normals);
+  const bool driven = it.model.drive.present;
+  const JointVector& ff = driven ? plan.tau_drive_Nm[k] : plan.tau_Nm[k];
+  JointVector tau = ff + it.gains.kp_Nmprad * (plan.q_rad[k] - s.q) +
+                    it.gains.kd_Nmsprad * (plan.qd_radps[k] - s.qd);
+  DofVector nu_dot;
+  if (driven) {
+    nu_dot = driven_sample(it, s, tau, out);  // tau: the drive torque in, the link torque out
+  } else {
+    nu_dot =
+        forward_dynamics_joints(it.model, data, s.base, s.q, s.qd, tau, &c.force_W, &c.normals);
+  }
   BaseState b = s.base;
   b.a_W = nu_dot.head<3>();
   b.omegadot_W = nu_dot.segment<3>(3);
   const DofVector nu = s.nu();
   const DofVector momentum = data.M * nu;
-  out.kinetic_J.push_back(0.5 * lane_dot(nu, momentum));
+  double kinetic = 0.5 * lane_dot(nu, momentum);
+  if (driven)
+    for (Eigen::Index j = 0; j < s.qd.size(); ++j)
+      kinetic += 0.5 * it.model.drive.joints[j].armature_kgm2 * s.qd[j] * s.qd[j];
+  out.kinetic_J.push_back(kinetic);
   const Momentum& m = robot_momentum(it.model, data, s.base, s.q, s.qd);
   out.potential_J.push_back(-m.mass_kg * it.model.gravity_W.dot(m.com_W));
   out.t_s.push_back(plan.t_s[k]);
@@ -360,7 +422,7 @@ Vec3 record_sample(Integrator& it, const SimState& s, std::size_t k, ReplayResul
   out.qd.push_back(s.qd);
   out.qdd.push_back(nu_dot.tail(s.q.size()));
   out.tau.push_back(tau);
-  out.tau_ff.push_back(plan.tau_Nm[k]);
+  out.tau_ff.push_back(ff);
   out.tracking_error.push_back(s.q - plan.q_rad[k]);
   LegArray<Vec3> foot = zero_vectors(), slip_v = zero_vectors();
   LegArray<double> fn{}, pen{};
@@ -424,8 +486,8 @@ std::string fall_reason(const Integrator& it, const SimState& s, const Vec3& com
 }
 
 /// The report: drift at the cycle ends, tracking error, totals, arrival.
-void finish_report(const ReplayPlan& plan, const TerrainParams& terrain, bool completed,
-                   ReplayResult& r) {
+void finish_report(const ReplayPlan& plan, const TerrainParams& terrain,
+                   const DriveTrainParams& drive, bool completed, ReplayResult& r) {
   const std::size_t n = r.t_s.size();
   std::vector<double> ends(
       plan.cycle_start_s.begin() + std::min<std::size_t>(1, plan.cycle_start_s.size()),
@@ -452,11 +514,19 @@ void finish_report(const ReplayPlan& plan, const TerrainParams& terrain, bool co
     }
     if (i > 0) {
       const double dt = r.t_s[i] - r.t_s[i - 1];
-      const auto power = [&](std::size_t s) {
-        return lane_abs_dot(plan.tau_Nm[s], plan.qd_radps[s]);
-      };
+      const std::vector<JointVector>& tau =
+          plan.tau_drive_Nm.empty() ? plan.tau_Nm : plan.tau_drive_Nm;
+      const auto power = [&](std::size_t s) { return lane_abs_dot(tau[s], plan.qd_radps[s]); };
       r.energy_plan_J += 0.5 * dt * (power(i) + power(i - 1));
     }
+  }
+  if (!plan.tau_drive_Nm.empty() && drive.present) {
+    const auto power = [&](std::size_t i) {
+      return electrical_power_total(drive, plan.tau_drive_Nm[i], plan.qd_radps[i]);
+    };
+    for (std::size_t i = 1; i < n; ++i)
+      r.electrical_energy_plan_J += 0.5 * (r.t_s[i] - r.t_s[i - 1]) * (power(i) + power(i - 1));
+    r.electrical_energy_J = r.electrical_J.back();
   }
   r.slip_distance_total_m = r.slip_distance_m.back();
   r.slip_energy_total_J = r.slip_energy_J.back();
@@ -477,6 +547,8 @@ void check_plan(const ReplayPlan& p) {
   if (T < 2) throw ConfigError("replay: the plan has " + std::to_string(T) + " samples, needs 2");
   if (p.base.size() != T || p.q_rad.size() != T || p.qd_radps.size() != T || p.tau_Nm.size() != T)
     throw ConfigError("replay: the plan's series differ in length from its time");
+  if (!p.tau_drive_Nm.empty() && p.tau_drive_Nm.size() != T)
+    throw ConfigError("replay: the plan's drive torques differ in length from its time");
   if (p.terrain_y_m.size() < 2 || p.terrain_y_m.size() != p.terrain_z_m.size())
     throw ConfigError("replay: the terrain profile needs at least 2 vertices of y and z");
   for (std::size_t k = 1; k < T; ++k)
@@ -555,6 +627,7 @@ ReplayPlan plan_from_result(const RobotModel& model, const RunResult& r) {
     p.q_rad.push_back(k.joint_position.row(i).transpose());
     p.qd_radps.push_back(k.joint_velocity.row(i).transpose());
     p.tau_Nm.push_back(r.dyn.joint_torque.row(i).transpose());
+    if (r.dyn.has_drive()) p.tau_drive_Nm.push_back(r.dyn.drive_torque.row(i).transpose());
     if (!p.tau_Nm.back().allFinite())
       throw ConfigError("replay: the torque of sample " + std::to_string(i) +
                         " is not finite (a failed sample cannot be replayed)");
@@ -580,6 +653,12 @@ ReplayResult replay_plan(const RobotModel& model, const ContactParams& contact,
                          const ReplayParams& replay, const TerrainParams& terrain_params,
                          const ReplayPlan& plan) {
   check_plan(plan);
+  if (model.drive.present != !plan.tau_drive_Nm.empty())
+    throw ConfigError(model.drive.present
+                          ? "replay: the robot has actuators but the plan has no drive torques "
+                            "(/joints/drive_torque of a run with the same actuators:)"
+                          : "replay: the plan has drive torques but the robot no actuators "
+                            "(the scene's actuators: key)");
   check_replay_work(plan, replay);
   const auto start = std::chrono::steady_clock::now();
   Integrator it{model, contact, replay, plan, RobotData(model), Contacts{}};
@@ -601,7 +680,10 @@ ReplayResult replay_plan(const RobotModel& model, const ContactParams& contact,
     r.message = fall_reason(it, s, com_W, k + 1);
     completed = r.message.empty();
   }
-  finish_report(plan, terrain_params, completed, r);
+  finish_report(plan, terrain_params, model.drive, completed, r);
+  r.saturation_time_s = it.spent.saturated_s;
+  if (model.drive.present && r.saturation_time_s.empty())
+    r.saturation_time_s.assign(static_cast<std::size_t>(model.joints()), 0.0);
   // The balance of energy over the replay: what the joints did, less what the robot gained
   // (kinetic, potential, the contact springs) and what the contacts dissipated.
   double stored =
@@ -609,6 +691,7 @@ ReplayResult replay_plan(const RobotModel& model, const ContactParams& contact,
   for (int l = 0; l < model.legs(); ++l)
     stored += spring_energy(contact, it.contacts.geometry[l].penetration_m) -
               it.spring_at_start_J[l] + r.damping_energy_J.back()[l] + r.slip_energy_J.back()[l];
+  stored += it.spent.joint_friction_J;  // 0 without actuators
   r.actuator_work_J = it.actuator_work_J;
   r.energy_residual_J = it.actuator_work_J - stored;
   r.steps = it.steps;

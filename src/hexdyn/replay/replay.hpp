@@ -42,7 +42,10 @@ struct ReplayPlan {
   std::vector<BaseState> base;        ///< planned trunk pose and twist (accelerations unused)
   std::vector<JointVector> q_rad;     ///< planned joint angles (model.joints() each)
   std::vector<JointVector> qd_radps;  ///< planned joint rates
-  std::vector<JointVector> tau_Nm;    ///< stored joint torques: the feedforward
+  std::vector<JointVector> tau_Nm;    ///< stored joint torques (/joints/torque)
+  /// With actuators (RobotModel::drive): the planned drive torques τ_drive = τ + J_a q̈ +
+  /// τ_c sgn(q̇) + b q̇ (/joints/drive_torque), the feedforward; else empty and tau_Nm is.
+  std::vector<JointVector> tau_drive_Nm;
   std::vector<double> cycle_start_s;  ///< start of each gait cycle (/gait/cycle_start)
   /// The terrain's height profile (/terrain/y, /terrain/z; planning/terrain.hpp).
   std::vector<double> terrain_y_m, terrain_z_m;
@@ -84,6 +87,13 @@ struct ReplayResult {
   std::vector<LegArray<double>> normal_N, penetration_m, slip_distance_m;
   std::vector<LegArray<double>> damping_energy_J, slip_energy_J;
   std::vector<double> actuator_energy_J, kinetic_J, potential_J;
+  // --- per sample, with actuators only (RobotModel::drive; else empty) ---
+  /// The drive torque u the drive gave (feedforward and PD, at its bound when saturated),
+  /// and whether it was at its bound (1) or not (0) at the sample.
+  std::vector<JointVector> tau_drive, saturated;
+  /// Cumulative energies [J]: electrical drawn (electrical_power), copper loss, and the
+  /// joints' friction (Coulomb and viscous) dissipated.
+  std::vector<double> electrical_J, copper_loss_J, joint_friction_J;
   // --- report ---
   std::vector<double> cycle_end_s;
   std::vector<Vec3> position_drift_m, orientation_drift_rad;
@@ -97,6 +107,11 @@ struct ReplayResult {
   /// actuator_work_J less the gains in kinetic, potential and contact-spring energy and the
   /// contacts' dissipation: zero but for the integrator's error [J].
   double energy_residual_J = 0.0;
+  /// With actuators: per joint, the time its drive torque spent at its bound [s]; the
+  /// electrical energy of the replay and of the plan's drive torques over the same span
+  /// (trapezoid of electrical_power at the plan's samples) [J].
+  std::vector<double> saturation_time_s;
+  double electrical_energy_J = 0.0, electrical_energy_plan_J = 0.0;
   Vec3 final_position_error_m = Vec3::Zero();
   bool reached_top = false;
   std::string message;  ///< why it ended early, or ""
@@ -109,9 +124,13 @@ struct ReplayResult {
 };
 
 /// Replays `plan` on `model` (its gravity_W) with `contact`'s law and `replay`'s gains and
-/// step (docs/theory/replay.md). Starts from the plan's first state. Ends at the plan's last
-/// instant, or early with `message` when the state stops being finite or the robot falls
-/// (kFallHeightFraction, kFallTilt_rad: tested at the plan's instants); the samples up to
+/// step (docs/theory/replay.md). With actuators (model.drive.present, plan.tau_drive_Nm
+/// given) the joints are driven through them (docs/theory/replay.md#driven-by-the-actuators):
+/// the feedforward is the planned drive torque, the forward dynamics carry the armature and
+/// the joints' viscous and regularised Coulomb friction, and with replay.saturate the drive
+/// torque is bounded by its torque–speed envelope. Starts from the plan's first state. Ends at the
+/// plan's last instant, or early with `message` when the state stops being finite or the robot
+/// falls (kFallHeightFraction, kFallTilt_rad: tested at the plan's instants); the samples up to
 /// then are kept. Reports progress (core/progress.hpp). Throws ConfigError for a plan of
 /// fewer than 2 samples or mismatched sizes, a replay.step that takes more than
 /// kMaxReplaySteps steps, or a robot without a positive definite mass matrix (massless legs:

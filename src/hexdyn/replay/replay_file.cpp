@@ -1,4 +1,4 @@
-// The hexdyn-replay/2 file (io/schema_replay.hpp).
+// The hexdyn-replay/3 file (io/schema_replay.hpp).
 #include "hexdyn/replay/replay_file.hpp"
 
 #include <sys/stat.h>
@@ -138,6 +138,24 @@ void add_report(Layout& b, const RobotModel& m, const ReplayResult& r) {
   b.scalar(s::kReplaySeconds, r.seconds);
 }
 
+/// The driven replay's datasets (schema_replay.hpp kReplayDriveDatasets), with actuators.
+void add_drive(Layout& b, const RobotModel& m, const ReplayResult& r) {
+  if (!m.drive.present) return;
+  const std::size_t T = r.t_s.size(), J = static_cast<std::size_t>(m.joints());
+  b.add(s::kDriveTorque, {T, J}, joints(r.tau_drive, J));
+  std::vector<std::int8_t> flags;
+  for (const JointVector& row : r.saturated)
+    for (std::size_t j = 0; j < J; ++j)
+      flags.push_back(row[static_cast<Eigen::Index>(j)] != 0.0 ? std::int8_t{1} : std::int8_t{0});
+  b.add(s::kReplaySaturated, {T, J}, flags);
+  b.add(s::kReplayEnergyElectrical, {T}, r.electrical_J);
+  b.add(s::kReplayEnergyCopper, {T}, r.copper_loss_J);
+  b.add(s::kReplayEnergyJointFriction, {T}, r.joint_friction_J);
+  b.add(s::kReplaySaturationTime, {J}, r.saturation_time_s);
+  b.scalar(s::kReplayElectricalEnergy, r.electrical_energy_J);
+  b.scalar(s::kReplayElectricalEnergyPlan, r.electrical_energy_plan_J);
+}
+
 void add_model(Layout& b, const ReplaySource& src) {
   b.add(s::kModelUrdf, {}, src.urdf);
   b.add(s::kModelJointNames, {src.joint_names.size()}, src.joint_names);
@@ -170,6 +188,7 @@ void write_replay_file(const std::string& path, const ReplaySource& source, cons
   add_model(b, source);
   add_series(b, model, result);
   add_report(b, model, result);
+  add_drive(b, model, result);
   publish_atomically(path, [&](const std::string& tmp) {
     H5Writer writer(tmp, compressed_output(source.scene.resolved_yaml));
     write_meta(writer, source, result);

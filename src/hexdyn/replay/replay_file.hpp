@@ -1,7 +1,7 @@
 #pragma once
 /// \file replay_file.hpp
 /// A result file read as a plan to replay (replay.hpp), and the replay written as a
-/// `hexdyn-replay/2` file (io/schema_replay.hpp, docs/user/replay.md); the command
+/// `hexdyn-replay/3` file (io/schema_replay.hpp, docs/user/replay.md); the command
 /// `hexdyn replay` is cli/replay_command.cpp.
 #include <cstdint>
 #include <string>

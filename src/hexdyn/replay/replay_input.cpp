@@ -100,12 +100,17 @@ void read_plan(const H5Reader& in, const std::string& file, const RobotModel& mo
   const auto q = read_matrix(in, file, s::kJointPosition.path, T, J);
   const auto qd = read_matrix(in, file, s::kJointVelocity.path, T, J);
   const auto tau = read_matrix(in, file, s::kJointTorque.path, T, J);
+  // With actuators the drive torques are the feedforward (replay.hpp ReplayPlan).
+  const std::vector<double> drive = model.drive.present
+                                        ? read_matrix(in, file, s::kDriveTorque.path, T, J)
+                                        : std::vector<double>{};
   for (std::size_t i = 0; i < T; ++i) {
     const Eigen::Vector4d wxyz(quat[4 * i], quat[4 * i + 1], quat[4 * i + 2], quat[4 * i + 3]);
     p.base.push_back(trunk_state_from_row(model, row3(pos, i), wxyz, row3(vel, i), row3(omega, i)));
     p.q_rad.push_back(row_joints(q, i, model.joints()));
     p.qd_radps.push_back(row_joints(qd, i, model.joints()));
     p.tau_Nm.push_back(row_joints(tau, i, model.joints()));
+    if (!drive.empty()) p.tau_drive_Nm.push_back(row_joints(drive, i, model.joints()));
   }
   for (std::size_t k = 1; k < T; ++k)
     if (!(p.t_s[k] > p.t_s[k - 1]))

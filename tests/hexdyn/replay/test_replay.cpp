@@ -10,27 +10,14 @@
 #include "hexdyn/pipeline/pipeline.hpp"
 #include "hexdyn/pipeline/run.hpp"
 #include "hexdyn/replay/replay.hpp"
+#include "paper_replay.hpp"
 
 namespace {
 
 using namespace hexdyn;
 
-const std::string kPaper = HEXDYN_SOURCE_DIR "/configs/paper.yaml";
-
-struct Replayed {
-  Scene scene;
-  RobotModel model;
-  ReplayPlan plan;
-  ReplayResult result;
-};
-
-Replayed replay_paper(const std::vector<Override>& overrides) {
-  Replayed r{load_scene(kPaper, overrides), {}, {}, {}};
-  r.model = build_robot_model(r.scene.robot);
-  r.plan = plan_from_result(r.model, run_scene(r.scene));
-  r.result = replay_plan(r.model, r.scene.contact, r.scene.replay, r.scene.terrain, r.plan);
-  return r;
-}
+using test::replay_paper;
+using test::Replayed;
 
 double largest(const std::vector<Vec3>& v) {
   double m = 0.0;
