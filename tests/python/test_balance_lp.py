@@ -7,7 +7,11 @@ response to a unit force on each support foot (the free-floating robot of the re
 foot forces on the support feet that meet the trunk's six equations inside the friction model
 of the scene (allocation.friction: pyramid4 or pyramid8, inscribed in the cone of
 contact.friction_coefficient, on horizontal ground: the contact frame's tangents are world x
-and y). A balanced scene must have no sample without such forces; its straight twin (the same
+and y), each equation met to the planner's precision: the balanced trunk puts the ZMP within
+1e-9 m of a two-foot support's line (motion.balance tolerance, docs/theory/balance.md), a
+moment of 1e-9 m times the weight, and the equations are met within SLACK times that (HiGHS's
+own feasibility tolerance, 1e-7 in the wrench's units, is below it for a robot heavier than
+10 kg). A balanced scene must have no sample without such forces; its straight twin (the same
 scene with motion.trunk: straight) must have some, so that the check can fail.
 
     /usr/bin/python3 tests/python/test_balance_lp.py HEXDYN SOURCE_DIR SCENE [SCENE ...]
@@ -32,6 +36,8 @@ except ImportError as e:  # dartpy or scipy missing
     sys.exit(77)
 
 SUPPORT, IMPACT = 2, 1
+LINE_TOLERANCE_M = 1e-9  # the balanced trunk's ZMP tolerance on a line support
+SLACK = 2.0              # the equations' slack, in units of LINE_TOLERANCE_M × weight
 
 
 def friction_rows(mu, faces):
@@ -57,8 +63,12 @@ def feasible(robot, r, t, legs, mu, faces):
     A_ub = np.zeros((len(legs) * faces, 3 * len(legs)))
     for i in range(len(legs)):
         A_ub[i * faces:(i + 1) * faces, 3 * i:3 * i + 3] = G
-    res = linprog(np.zeros(3 * len(legs)), A_ub=A_ub, b_ub=np.zeros(len(A_ub)), A_eq=B,
-                  b_eq=-w0, bounds=[(None, None)] * (3 * len(legs)), method="highs")
+    # |B f + w0| ≤ slack on every row of the trunk's wrench.
+    slack = SLACK * LINE_TOLERANCE_M * np.linalg.norm(w0[3:6])  # w0: [moment; force]
+    A_ub = np.vstack([A_ub, B, -B])
+    b_ub = np.concatenate([np.zeros(len(legs) * faces), slack - w0, slack + w0])
+    res = linprog(np.zeros(3 * len(legs)), A_ub=A_ub, b_ub=b_ub,
+                  bounds=[(None, None)] * (3 * len(legs)), method="highs")
     return res.status == 0
 
 

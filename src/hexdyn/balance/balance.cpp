@@ -313,6 +313,8 @@ struct Passes {
     const int K = L.pieces();
     P.resize(K);
     for (int k = 0; k < K; ++k) P[k].resize(L.nodes(k));
+    W.resize(K);
+    for (int k = 0; k < K; ++k) W[k].resize(L.nodes(k));
     s = z = P;
     g.resize(L.waypoint.size());
     c.assign(L.waypoint.size(), 0.0);
@@ -330,7 +332,8 @@ struct Passes {
       // A polygon piece's error is measured against its own tolerance (BalanceOptions).
       const double scale = L.piece_support[k].vertices.size() <= 2 ? 1.0 : polygon_scale;
       for (int j = 0; j < L.nodes(k); ++j) {
-        P[k][j] = probe.at(node_time(L, k, j));
+        W[k][j] = probe.wrench_at(node_time(L, k, j));
+        P[k][j] = ZmpProbe::zmp(W[k][j]);
         if (!offset) continue;
         const double e = (P[k][j] - z[k][j]).norm();
         worst_m = std::max(worst_m, e);
@@ -346,11 +349,11 @@ struct Passes {
   /// are taken where they hold, just before and just after the breakpoint, since the wrench
   /// jumps at a touchdown. The region is the strip between them over the feet, or, when the
   /// two sides leave none, the line midway. Returns how far P is outside either side there.
-  double update_segment(ZmpProbe& probe, int i, const Edge& e) {
+  double update_segment(int i, const Edge& e) {
     const Vec3 &p1 = e.feet_W[0], &p2 = e.feet_W[1];
     const int kb = e.before, ka = e.after;
-    const auto [a0, b0] = probe.edge_line(node_time(L, kb, 0), p1, p2);
-    const auto [a1, b1] = probe.edge_line(node_time(L, ka, L.nodes(ka) - 1), p1, p2);
+    const auto [a0, b0] = ZmpProbe::edge_line(W[kb].front(), p1, p2);
+    const auto [a1, b1] = ZmpProbe::edge_line(W[ka].back(), p1, p2);
     if (!(a0.squaredNorm() > 0.0 && a1.squaredNorm() > 0.0)) return 0.0;
     const auto other = [&](const SupportRegion& r) {
       Vec2 sum = Vec2::Zero();
@@ -382,10 +385,11 @@ struct Passes {
   }
 
   /// The waypoints' regions on the exact lines of their supports' edges for the path as it
-  /// stands (ZmpProbe::edge_line; docs/theory/balance.md#edges): two feet by update_segment; a
+  /// stands, from the wrenches the last sample() took at the nodes (ZmpProbe::edge_line;
+  /// docs/theory/balance.md#edges): two feet by update_segment; a
   /// polygon's vertices where the lines of its two edges meet, just before the breakpoint,
   /// shrunk by the margin. Returns how far the ZMP lies outside a two-foot region's sides.
-  double update_edges(ZmpProbe& probe) {
+  double update_edges() {
     if (edge_region.empty()) edge_region = L.waypoint;
     strips = gaps = 0;
     double miss = 0.0;
@@ -395,14 +399,13 @@ struct Passes {
       const std::vector<Vec3>& f = e.feet_W;
       const int n = static_cast<int>(f.size());
       if (n == 2 && e.before >= 0) {
-        miss = std::max(miss, update_segment(probe, static_cast<int>(slot), e));
+        miss = std::max(miss, update_segment(static_cast<int>(slot), e));
         continue;
       }
       // At the node nearest the breakpoint on the waypoint's side of it.
       const int j = e.at_end ? 0 : L.nodes(e.at) - 1;
-      const double t = node_time(L, e.at, j);
       if (n == 2) {  // one side only: the segment on its line, its ends moved inward
-        const auto [a, b] = probe.edge_line(t, f[0], f[1]);
+        const auto [a, b] = ZmpProbe::edge_line(W[e.at][j], f[0], f[1]);
         if (!(a.squaredNorm() > 0.0)) continue;
         const Vec2 along = f[1].head<2>() - f[0].head<2>();
         const double inset = std::min(L.margin_m, 0.25 * along.norm()) / along.norm();
@@ -416,7 +419,7 @@ struct Passes {
       }
       // A polygon: each vertex where the exact lines of its two edges meet.
       std::vector<std::pair<Vec2, double>> line(n);
-      for (int i = 0; i < n; ++i) line[i] = probe.edge_line(t, f[i], f[(i + 1) % n]);
+      for (int i = 0; i < n; ++i) line[i] = ZmpProbe::edge_line(W[e.at][j], f[i], f[(i + 1) % n]);
       SupportRegion poly;
       for (int i = 0; i < n; ++i) {
         const auto& [a1, b1] = line[(i + n - 1) % n];
@@ -482,6 +485,7 @@ struct Passes {
   double w;
   Vec2 kappa = Vec2::Ones();  ///< the pendulum's gain per axis, fitted after the first pass
   NodeValues P, s, z, P_first;
+  std::vector<std::vector<ZmpWrench>> W;  ///< the wrench at the nodes of the last sample()
   std::vector<Vec2> g;
   std::vector<double> c;
   std::vector<SupportRegion> edge_region;  ///< the waypoints' regions, edges on their lines
@@ -505,7 +509,8 @@ BalanceReport balance_trunk(const RobotModel& model, MotionPlan& plan, const Bal
   const double tolerance_m = o.tolerance_m;
   passes.polygon_scale = tolerance_m / std::max(o.polygon_tolerance_m, tolerance_m);
   for (rep.iterations = 1;; ++rep.iterations) {
-    const double error = std::max(passes.sample(probe), passes.update_edges(probe));
+    const double sampled = passes.sample(probe);  // update_edges reads its wrenches
+    const double error = std::max(sampled, passes.update_edges());
     if (rep.iterations == 1) {
       for (int k = 0; k < K; ++k) {
         passes.g[L.left[k]] = passes.P[k].back();
@@ -534,7 +539,6 @@ BalanceReport balance_trunk(const RobotModel& model, MotionPlan& plan, const Bal
     // plain passes contract slowly; the fit of the second pass changes the map, so it restarts.
     passes.residual(rep.iterations >= 3);
     plan.trunk.set_offset(passes.plan_offset());
-    probe.forget();  // a new path
   }
   rep.omega_radps = passes.w;
   // Margins and offsets on the path that holds: the last pass sampled the ZMP on it.

@@ -174,6 +174,12 @@ GaitPlan plan_gait(const RobotModel& model, const GaitParams& gait, const TrunkM
   return plan;
 }
 
+double mean_initial_foot_z(const GaitPlan& gait) {
+  double feet_z = 0.0;
+  for (const LegPlan& leg : gait.legs) feet_z += leg.p_initial_W.z();
+  return feet_z / static_cast<double>(gait.legs.size());
+}
+
 void settle_swings(GaitPlan& gait, double duration_s, double settle_s) {
   constexpr double kLeastSwingShare = 1.0 / 3.0;
   const double T = duration_s;

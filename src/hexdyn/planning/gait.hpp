@@ -75,6 +75,11 @@ struct GaitPlan {
 GaitPlan plan_gait(const RobotModel& model, const GaitParams& gait, const TrunkMotion& trunk,
                    const Terrain& terrain);
 
+/// The mean height of the legs' footholds at t = 0 (LegPlan::p_initial_W) [m]: the trunk's
+/// height above its feet, as the balanced trunk's pendulum takes it, is measured from it.
+/// Precondition: gait.legs is not empty.
+double mean_initial_foot_z(const GaitPlan& gait);
+
 /// Every swing kept out of the first and the last `settle_s` of a run of duration_s, so that
 /// the robot stands on all its feet there while a balanced trunk shifts its weight
 /// (docs/theory/balance.md#the-passes): a swing that starts earlier lifts off later, one that

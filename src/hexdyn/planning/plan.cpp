@@ -14,9 +14,7 @@ MotionPlan plan_motion_with(const Scene& scene, const RobotModel& model, const V
   TrunkMotion trunk(motion, gait_params, terrain);
   GaitPlan gait = plan_gait(model, gait_params, trunk, terrain);
   if (scene.motion.trunk == TrunkPath::kBalanced && !gait.legs.empty()) {
-    double feet_z = 0.0;
-    for (const LegPlan& leg : gait.legs) feet_z += leg.p_initial_W.z();
-    const double h = p0_W.z() - feet_z / static_cast<double>(gait.legs.size());
+    const double h = p0_W.z() - mean_initial_foot_z(gait);
     if (h > 0.0)
       settle_swings(gait, trunk.duration_s(),
                     kSettlePeriods / std::sqrt(model.gravity_W.norm() / h));
