@@ -39,7 +39,7 @@ void add_driven_joint_rows(const DriveTrainParams& drive, const ReplayParams& ga
   const Eigen::Index n = q.size();
   const double kp = gains.kp_Nmprad, kd = gains.kd_Nmsprad;
   out.u.resize(n);
-  out.friction.resize(n);
+  out.friction_secant.resize(n);
   out.saturated.resize(n);
   for (Eigen::Index j = 0; j < n; ++j) {
     const ActuatorParams& a = drive.joints[j];
@@ -52,7 +52,7 @@ void add_driven_joint_rows(const DriveTrainParams& drive, const ReplayParams& ga
     f[r] += (at_bound ? u : command) - c * qd[j];
     A(r, r) += a.armature_kgm2 + h * c + (at_bound ? 0.0 : h * (h * kp + kd));
     out.u[j] = u;
-    out.friction[j] = c;
+    out.friction_secant[j] = c;
     out.saturated[j] = at_bound ? 1.0 : 0.0;
   }
 }
@@ -61,25 +61,28 @@ void finish_driven_joints(const ReplayParams& gains, const JointVector& q,
                           const JointVector& q_plan, const JointVector& qd_plan,
                           const JointVector& tau_plan, const JointVector& qd_new, double h,
                           DrivenJoints& out) {
-  for (Eigen::Index j = 0; j < q.size(); ++j) {
+  for (Eigen::Index j = 0; j < q.size(); ++j)
     if (out.saturated[j] == 0.0)
       out.u[j] = tau_plan[j] + gains.kp_Nmprad * (q_plan[j] - q[j] - h * qd_new[j]) +
                  gains.kd_Nmsprad * (qd_plan[j] - qd_new[j]);
-    out.friction[j] *= qd_new[j];
-  }
 }
 
 void account_driven_step(const DriveTrainParams& drive, const DrivenJoints& step,
                          const JointVector& qd_new, double h, DriveSpending& spent) {
-  if (spent.saturated_s.empty()) spent.saturated_s.assign(step.u.size(), 0.0);
   for (Eigen::Index j = 0; j < step.u.size(); ++j) {
     const ActuatorParams& a = drive.joints[j];
     const double u = step.u[j], w = qd_new[j];
-    spent.joint_friction_J += h * step.friction[j] * w;
+    spent.joint_friction_J += h * step.friction_secant[j] * w * w;
     spent.copper_loss_J += h * copper_loss(a, motor_current(a, u, w));
     spent.electrical_J += h * electrical_power(a, u, w);
     spent.saturated_s[j] += h * step.saturated[j];
   }
+}
+
+JointVector joint_armatures(const DriveTrainParams& drive) {
+  JointVector J(static_cast<Eigen::Index>(drive.joints.size()));
+  for (Eigen::Index j = 0; j < J.size(); ++j) J[j] = drive.joints[j].armature_kgm2;
+  return J;
 }
 
 double electrical_power_total(const DriveTrainParams& drive, const JointVector& u,

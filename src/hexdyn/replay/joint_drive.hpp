@@ -31,9 +31,10 @@ double bounded_drive_torque(const ActuatorParams& a, bool saturate, double comma
                             double qd_radps, bool& at_bound);
 
 /// A driven step's joints: the drive torque u (the bound, or the command at the step's new
-/// rates), the friction torque at the new rates (its secant's: c q̇), whether at the bound (1).
+/// rates), the friction's secant c of the step (its torque at the new rates c q̇), whether at
+/// the bound (1).
 struct DrivenJoints {
-  JointVector u, friction, saturated;
+  JointVector u, friction_secant, saturated;
 };
 
 /// Adds the joints' rows of a driven step of length h from rates qd and angles q towards the
@@ -42,14 +43,14 @@ struct DrivenJoints {
 /// start's rates lies beyond its envelope gives its bound over the step, the others the
 /// feedforward and the PD of `gains` linearised; every joint adds its armature to A and its
 /// friction secant as an implicit damper. Fills out.u with the bounds (others: the command
-/// at the start's rates), out.friction with the secants and out.saturated.
+/// at the start's rates), out.friction_secant and out.saturated.
 void add_driven_joint_rows(const DriveTrainParams& drive, const ReplayParams& gains,
                            const JointVector& q, const JointVector& qd, const JointVector& q_plan,
                            const JointVector& qd_plan, const JointVector& tau_plan, double h,
                            DofVector& f, DofMatrix& A, DrivenJoints& out);
 
 /// Completes `out` at the step's new rates qd_new: each unbounded joint's u the command at
-/// them, each friction the secant's torque c q̇_new.
+/// them.
 void finish_driven_joints(const ReplayParams& gains, const JointVector& q,
                           const JointVector& q_plan, const JointVector& qd_plan,
                           const JointVector& tau_plan, const JointVector& qd_new, double h,
@@ -62,10 +63,13 @@ struct DriveSpending {
 };
 
 /// Adds a step of length h with the joints `step` at rates qd_new: the friction's loss
-/// friction · q̇, the copper loss and electrical power of each drive at (u, q̇)
+/// c q̇², the copper loss and electrical power of each drive at (u, q̇)
 /// (drive/drive.hpp), and h to each joint at its bound.
 void account_driven_step(const DriveTrainParams& drive, const DrivenJoints& step,
                          const JointVector& qd_new, double h, DriveSpending& spent);
+
+/// The armature J_a of each joint [kg m²] (forward_dynamics' armature_kgm2).
+JointVector joint_armatures(const DriveTrainParams& drive);
 
 /// Σ_joints electrical_power(u_j, q̇_j) [W]: the drives' electrical power at a state.
 double electrical_power_total(const DriveTrainParams& drive, const JointVector& u,

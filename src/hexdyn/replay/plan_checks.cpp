@@ -11,11 +11,17 @@
 
 namespace hexdyn {
 
-void check_plan(const ReplayPlan& p) {
+void check_plan(const RobotModel& model, const ReplayPlan& p) {
   const std::size_t T = p.t_s.size();
   if (T < 2) throw ConfigError("replay: the plan has " + std::to_string(T) + " samples, needs 2");
   if (p.base.size() != T || p.q_rad.size() != T || p.qd_radps.size() != T || p.tau_Nm.size() != T)
     throw ConfigError("replay: the plan's series differ in length from its time");
+  if (model.drive.present != !p.tau_drive_Nm.empty())
+    throw ConfigError(model.drive.present
+                          ? "replay: the robot has actuators but the plan has no drive torques "
+                            "(/joints/drive_torque of a run with the same actuators:)"
+                          : "replay: the plan has drive torques but the robot no actuators "
+                            "(the scene's actuators: key)");
   if (!p.tau_drive_Nm.empty() && p.tau_drive_Nm.size() != T)
     throw ConfigError("replay: the plan's drive torques differ in length from its time");
   if (p.terrain_y_m.size() < 2 || p.terrain_y_m.size() != p.terrain_z_m.size())

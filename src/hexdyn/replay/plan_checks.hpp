@@ -9,9 +9,9 @@
 
 namespace hexdyn {
 
-/// At least 2 instants, strictly increasing, every series (and the drive torques, when given)
-/// as long as the time, a terrain profile of at least 2 vertices.
-void check_plan(const ReplayPlan& p);
+/// At least 2 instants, strictly increasing, every series as long as the time, a terrain
+/// profile of at least 2 vertices, and drive torques exactly when the robot has actuators.
+void check_plan(const RobotModel& model, const ReplayPlan& p);
 
 /// At most kMaxReplaySteps steps of replay.step over the plan's span
 /// (docs/user/replay.md#bounded-work-and-progress), so that at most 64 times as many halved

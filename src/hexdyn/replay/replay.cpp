@@ -167,7 +167,8 @@ struct Integrator {
   /// springs (spring_energy), the energy the normal damping dissipated.
   LegArray<double> normal_work_J{}, spring_at_start_J{}, slip_J{}, slip_distance_m{};
   LegArray<Vec3> slip_displacement_m = zero_vectors();
-  DriveSpending spent{};  ///< with actuators: what the drives spent
+  DriveSpending spent{};        ///< with actuators: what the drives spent
+  JointVector armature_kgm2{};  ///< with actuators: each joint's J_a (joint_armatures)
   long steps = 0, forced = 0;
   double max_step_s = 0.0;
   double h_next = 0.0;  ///< the next step to try [s]
@@ -355,9 +356,11 @@ bool integrate_interval(Integrator& it, SimState& s, std::size_t k, std::string&
 /// A driven sample's forward dynamics (docs/theory/replay.md#driven-by-the-actuators): the
 /// drive torque u (given in `tau`: feedforward and PD at the state) bounded by the envelope at
 /// the state's rates, the joints' friction by the regularised law, and
-/// (M + diag(0, J_a)) ν̇ = [0; u − τ_f] + Σ J_lᵀ F_l − h. Appends u and the bound flags to `out`,
-/// returns ν̇ and leaves in `tau` the torque reaching the links, u − τ_f − J_a q̈.
-DofVector driven_sample(Integrator& it, const SimState& s, JointVector& tau, ReplayResult& out) {
+/// (M + diag(0, J_a)) ν̇ = [0; u − τ_f] + Σ J_lᵀ F_l − h (data.M then holds M + diag(0, J_a)).
+/// Appends u and the bound flags to `out`, returns ν̇ and leaves in `tau` the torque reaching
+/// the links, u − τ_f − J_a q̈.
+const DofVector& driven_sample(Integrator& it, const SimState& s, JointVector& tau,
+                               ReplayResult& out) {
   const Eigen::Index n = s.q.size();
   JointVector u(n), flags(n), link(n);
   for (Eigen::Index j = 0; j < n; ++j) {
@@ -368,16 +371,9 @@ DofVector driven_sample(Integrator& it, const SimState& s, JointVector& tau, Rep
     link[j] = u[j] - joint_friction_torque(a, s.qd[j]);
   }
   const Contacts& c = it.contacts;
-  forward_dynamics_joints(it.model, it.data, s.base, s.q, s.qd, link, &c.force_W, &c.normals);
-  DofMatrix M = it.data.M;
-  DofVector rhs = -it.data.bias;
-  for (Eigen::Index j = 0; j < n; ++j) {
-    M(6 + j, 6 + j) += it.model.drive.joints[j].armature_kgm2;
-    rhs[6 + j] += link[j];
-  }
-  const DofVector nu_dot = M.llt().solve(rhs);
-  for (Eigen::Index j = 0; j < n; ++j)
-    tau[j] = link[j] - it.model.drive.joints[j].armature_kgm2 * nu_dot[6 + j];
+  const DofVector& nu_dot = forward_dynamics_joints(it.model, it.data, s.base, s.q, s.qd, link,
+                                                    &c.force_W, &c.normals, &it.armature_kgm2);
+  tau = link - it.armature_kgm2.cwiseProduct(nu_dot.tail(n));
   out.tau_drive.push_back(u);
   out.saturated.push_back(flags);
   out.electrical_J.push_back(it.spent.electrical_J);
@@ -398,23 +394,16 @@ Vec3 record_sample(Integrator& it, const SimState& s, std::size_t k, ReplayResul
   const JointVector& ff = driven ? plan.tau_drive_Nm[k] : plan.tau_Nm[k];
   JointVector tau = ff + it.gains.kp_Nmprad * (plan.q_rad[k] - s.q) +
                     it.gains.kd_Nmsprad * (plan.qd_radps[k] - s.qd);
-  DofVector nu_dot;
-  if (driven) {
-    nu_dot = driven_sample(it, s, tau, out);  // tau: the drive torque in, the link torque out
-  } else {
-    nu_dot =
-        forward_dynamics_joints(it.model, data, s.base, s.q, s.qd, tau, &c.force_W, &c.normals);
-  }
+  // Driven: tau in is the drive torque, out the link torque; data.M holds the armature.
+  const DofVector& nu_dot = driven ? driven_sample(it, s, tau, out)
+                                   : forward_dynamics_joints(it.model, data, s.base, s.q, s.qd, tau,
+                                                             &c.force_W, &c.normals);
   BaseState b = s.base;
   b.a_W = nu_dot.head<3>();
   b.omegadot_W = nu_dot.segment<3>(3);
   const DofVector nu = s.nu();
   const DofVector momentum = data.M * nu;
-  double kinetic = 0.5 * lane_dot(nu, momentum);
-  if (driven)
-    for (Eigen::Index j = 0; j < s.qd.size(); ++j)
-      kinetic += 0.5 * it.model.drive.joints[j].armature_kgm2 * s.qd[j] * s.qd[j];
-  out.kinetic_J.push_back(kinetic);
+  out.kinetic_J.push_back(0.5 * lane_dot(nu, momentum));  // with the armature's
   const Momentum& m = robot_momentum(it.model, data, s.base, s.q, s.qd);
   out.potential_J.push_back(-m.mass_kg * it.model.gravity_W.dot(m.com_W));
   out.t_s.push_back(plan.t_s[k]);
@@ -490,6 +479,7 @@ std::string fall_reason(const Integrator& it, const SimState& s, const Vec3& com
 void finish_report(const ReplayPlan& plan, const TerrainParams& terrain,
                    const DriveTrainParams& drive, bool completed, ReplayResult& r) {
   const std::size_t n = r.t_s.size();
+  const std::vector<JointVector>& tau = drive.present ? plan.tau_drive_Nm : plan.tau_Nm;
   std::vector<double> ends(
       plan.cycle_start_s.begin() + std::min<std::size_t>(1, plan.cycle_start_s.size()),
       plan.cycle_start_s.end());
@@ -515,13 +505,11 @@ void finish_report(const ReplayPlan& plan, const TerrainParams& terrain,
     }
     if (i > 0) {
       const double dt = r.t_s[i] - r.t_s[i - 1];
-      const std::vector<JointVector>& tau =
-          plan.tau_drive_Nm.empty() ? plan.tau_Nm : plan.tau_drive_Nm;
       const auto power = [&](std::size_t s) { return lane_abs_dot(tau[s], plan.qd_radps[s]); };
       r.energy_plan_J += 0.5 * dt * (power(i) + power(i - 1));
     }
   }
-  if (!plan.tau_drive_Nm.empty() && drive.present) {
+  if (drive.present) {
     const auto power = [&](std::size_t i) {
       return electrical_power_total(drive, plan.tau_drive_Nm[i], plan.qd_radps[i]);
     };
@@ -558,16 +546,14 @@ void plan_com_heights(Integrator& it, const Terrain& terrain) {
 ReplayResult replay_plan(const RobotModel& model, const ContactParams& contact,
                          const ReplayParams& replay, const TerrainParams& terrain_params,
                          const ReplayPlan& plan) {
-  check_plan(plan);
-  if (model.drive.present != !plan.tau_drive_Nm.empty())
-    throw ConfigError(model.drive.present
-                          ? "replay: the robot has actuators but the plan has no drive torques "
-                            "(/joints/drive_torque of a run with the same actuators:)"
-                          : "replay: the plan has drive torques but the robot no actuators "
-                            "(the scene's actuators: key)");
+  check_plan(model, plan);
   check_replay_work(plan, replay);
   const auto start = std::chrono::steady_clock::now();
   Integrator it{model, contact, replay, plan, RobotData(model), Contacts{}};
+  if (model.drive.present) {
+    it.armature_kgm2 = joint_armatures(model.drive);
+    it.spent.saturated_s.assign(static_cast<std::size_t>(model.joints()), 0.0);
+  }
   check_mass_matrix(model, it.data, plan);
   plan_com_heights(it, Terrain(terrain_params));
   SimState s;
@@ -588,8 +574,6 @@ ReplayResult replay_plan(const RobotModel& model, const ContactParams& contact,
   }
   finish_report(plan, terrain_params, model.drive, completed, r);
   r.saturation_time_s = it.spent.saturated_s;
-  if (model.drive.present && r.saturation_time_s.empty())
-    r.saturation_time_s.assign(static_cast<std::size_t>(model.joints()), 0.0);
   // The balance of energy over the replay: what the joints did, less what the robot gained
   // (kinetic, potential, the contact springs) and what the contacts dissipated.
   double stored =
