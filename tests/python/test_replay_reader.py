@@ -68,13 +68,18 @@ def check(ok, what, detail=""):
 
 
 def make_files(d):
-    """(result, replay) paths: the short paper run and its replay, through the CLI."""
+    """(result, replay, stick_slip) paths: the short paper run and its replays through the CLI,
+    with the regularised friction law (whose slip check_slip integrates) and with the default
+    stick-slip law (check_stick_slip)."""
     result, replay = os.path.join(d, "plan.h5"), os.path.join(d, "replay.h5")
+    stick_slip = os.path.join(d, "stick_slip.h5")
     cmd = [HEXDYN, "run", os.path.join(SRC, "configs", "paper.yaml"), "-o", result]
     subprocess.run(cmd + [a for s in SHORT for a in ("--set", s)], check=True,
                    capture_output=True)
-    subprocess.run([HEXDYN, "replay", result, "-o", replay], check=True, capture_output=True)
-    return result, replay
+    subprocess.run([HEXDYN, "replay", result, "-o", replay, "--set",
+                    "contact.friction_law=regularised"], check=True, capture_output=True)
+    subprocess.run([HEXDYN, "replay", result, "-o", stick_slip], check=True, capture_output=True)
+    return result, replay, stick_slip
 
 
 def declared_specs():
@@ -303,6 +308,32 @@ def check_slip(rep):
           f"{np.round(gap * 1e6, 2)} um within {np.round((rectangle + lag) * 1e6, 2)} um")
 
 
+def check_stick_slip(path):
+    """With the stick-slip law (docs/theory/replay.md#stick-slip) slip is the anchor's motion:
+    on an interval between samples at both of whose ends a foot is loaded (F_n > 1 N) below
+    0.9 mu_s F_n, its /contacts/slip_distance does not grow at all; and where it grows on a
+    loaded interval the foot ends the interval sliding, at |F_t| = mu_d F_n, for most of the
+    distance (a foot that slid within a step and stuck again before the sample is the rest)."""
+    with h5py.File(path, "r") as f:
+        force, fn = f["contacts/force"][()], f["contacts/normal_force"][()]
+        dist = f["contacts/slip_distance"][()]
+    mu = 0.3  # configs/paper.yaml's mu = mu_s = mu_d
+    ft = np.sqrt(np.maximum(0.0, np.sum(force ** 2, axis=-1) - fn ** 2))
+    held = (fn > 1.0) & (ft < 0.9 * mu * fn)
+    inc = np.diff(dist, axis=0)
+    both_held = held[1:] & held[:-1]
+    check(np.all(inc[both_held] == 0.0), "stick-slip: a foot held below 0.9 mu_s F_n at both "
+          "ends of an interval does not slip in it", f"{np.max(inc[both_held]):.3g} m")
+    loaded = (fn[1:] > 1.0) & (fn[:-1] > 1.0)
+    sliding = loaded & (np.abs(ft[1:] - mu * fn[1:]) <= 1e-9 * fn[1:])
+    total = np.sum(np.where(loaded, inc, 0.0))
+    share = np.sum(np.where(sliding, inc, 0.0)) / total if total > 0 else 1.0
+    check(share >= 0.5, "stick-slip: most slip on loaded intervals ends them sliding at mu_d F_n",
+          f"{100 * share:.1f} %")
+    print(f"     stick-slip: slip {np.round(dist[-1] * 1e6, 2)} um per foot; "
+          f"{100 * share:.1f} % of the loaded intervals' slip ends sliding")
+
+
 def check_series(result, rep):
     with h5py.File(result, "r") as f:
         t_plan, q_plan, tau_plan = (f[p][()] for p in ("time", "joints/position", "joints/torque"))
@@ -348,11 +379,12 @@ def check_series(result, rep):
 
 def main():
     with tempfile.TemporaryDirectory() as d:
-        result, replay = make_files(d)
+        result, replay, stick_slip = make_files(d)
         rep = check_reader(result, replay)
         check_xarray(replay, rep)
         check_errors(d, result, replay)
         check_series(result, rep)
+        check_stick_slip(stick_slip)
     if failures:
         print(f"{len(failures)} check(s) failed: {'; '.join(failures)}")
         return 1

@@ -63,8 +63,10 @@ constexpr const char* kReplayHelp =
 
 Each joint is driven by its stored torque plus a PD on the planned angle and rate (gains
 replay.kp [N m/rad] and replay.kd [N m s/rad]; 0 and 0 is open loop). The integrator's
-largest step is replay.step [s]. The contact's friction law reads contact.static_friction,
-contact.dynamic_friction, contact.stiction_velocity and contact.friction_velocity. --set
+largest step is replay.step [s]. The contact's friction law is contact.friction_law:
+stick_slip (default; contact.tangential_stiffness and contact.tangential_damping) or
+regularised (contact.stiction_velocity and contact.friction_velocity), both with
+contact.static_friction and contact.dynamic_friction. --set
 changes a key of replay.* or contact.* for the replay (--set contact.static_friction=0.2);
 any other key would not change the stored plan and is refused. With actuators: the joints
 are driven through them (the planned drive torques, the armature and the joints' friction,

@@ -21,6 +21,15 @@ void add_contact(std::deque<SceneKey>& t) {
                   "law; `rigid`: the foot supports from touchdown on, no transient",
        .read = table,
        .field = f::choice<&Scene::contact, &ContactParams::model>()});
+  add({.path = "contact.touchdown",
+       .kind = KeyKind::kChoice,
+       .choices = "paper loaded",
+       .meaning = "`loaded`: a touchdown's force rises through the impact and settles at the "
+                  "leg's share of the load, and the leg supports from touchdown on; `paper`: "
+                  "the isolated leg's impact, whose force falls back to zero "
+                  "([contact](docs/theory/contact.md#loaded-touchdowns))",
+       .read = table,
+       .field = f::choice<&Scene::contact, &ContactParams::touchdown>()});
   add({.path = "contact.stiffness",
        .range = positive(1e15),
        .required = true,
@@ -56,6 +65,12 @@ void add_contact(std::deque<SceneKey>& t) {
        .meaning = "μ",
        .read = table,
        .field = f::number<&Scene::contact, &ContactParams::friction_coefficient>()});
+}
+
+/// The forward replay's friction law (docs/theory/replay.md#tangential-force).
+void add_contact_friction(std::deque<SceneKey>& t) {
+  const SectionRows add{t, "contact"};
+  const KeyRead table = KeyRead::kTable;
   add({.path = "contact.static_friction",
        .range = positive(10.0),
        .unit = "1",
@@ -80,6 +95,27 @@ void add_contact(std::deque<SceneKey>& t) {
        .default_text = "max(1e-2, 10 v_s)",
        .allowed_text = "(v_s, 100] m/s",
        .meaning = "v_d, from where μ is μ_d"});
+  add({.path = "contact.friction_law",
+       .kind = KeyKind::kChoice,
+       .choices = "stick_slip regularised",
+       .meaning = "the replay's tangential law: `stick_slip`, a spring k_t to an anchor "
+                  "capped at μ_s F_n, sliding at μ_d F_n "
+                  "([stick–slip](docs/theory/replay.md#stick-slip)); `regularised`, μ(v) "
+                  "through v_s and v_d",
+       .read = table,
+       .field = f::choice<&Scene::contact, &ContactParams::friction_law>()});
+  add({.path = "contact.tangential_stiffness",
+       .range = positive(1e12),
+       .unit = "N/m",
+       .meaning = "k_t of `stick_slip`",
+       .read = table,
+       .field = f::number<&Scene::contact, &ContactParams::tangential_stiffness_Npm>()});
+  add({.path = "contact.tangential_damping",
+       .range = nonnegative(1e12),
+       .unit = "N s/m",
+       .meaning = "c_t of `stick_slip`",
+       .read = table,
+       .field = f::number<&Scene::contact, &ContactParams::tangential_damping_Nspm>()});
 }
 
 void add_replay(std::deque<SceneKey>& t) {
@@ -241,6 +277,7 @@ void add_output(std::deque<SceneKey>& t) {
 
 void add_run_key_rows(std::deque<SceneKey>& table) {
   add_contact(table);
+  add_contact_friction(table);
   add_replay(table);
   add_allocation(table);
   add_output(table);

@@ -62,6 +62,14 @@ struct ScaledImpact {
   double spring = 1.0;   ///< (e+1)/2
   double damping = 0.0;  ///< c
   double p_hat = 1.0;    ///< p/D
+  /// Loaded touchdown (contact.touchdown: loaded): the load l the leg takes over (the
+  /// settling's target), the load acting now (0 before the load's start τ_l, l from it), and
+  /// the settling test's band (a fraction of l) and time scale [τ]; l = 0 for the paper's.
+  double target = 0.0;
+  double load = 0.0;
+  double load_start = 0.0;
+  double settle_band = 0.02;
+  double settle_time = 1.0;
 
   double step(double u) const { return impact_step(u, 0.0, 0.0, p_hat, 1.0); }
   /// K δ^e + C STEP δ̇ before the clip, natural units; 0 out of contact.
@@ -95,7 +103,7 @@ struct ScaledImpact {
     f = raw;
     const double f_u =
         spring * e * (u_e / u) + damping * impact_step_derivative(u, 0.0, 0.0, p_hat, 1.0) * w;
-    rate = f_u * w - damping * S * f;
+    rate = f_u * w + damping * S * (load - f);
   }
   double force_rate(const double y[]) const {
     double f = 0.0, rate = 0.0;
@@ -105,19 +113,28 @@ struct ScaledImpact {
   /// An event function of the end of the transient, <= 0 exactly when it is over:
   /// rebounding (w < 0) and the force back at zero. While rebounding, the smaller of u and
   /// the unclipped force, both continuous; 1 otherwise.
+  /// Loaded: settled, the force within the band around l and changing by less than the band
+  /// over the settling time: max(|f − l| − b l, |ḟ| T − b l), continuous too.
   double end_function(const double y[]) const {
+    if (target > 0.0) {
+      if (load == 0.0) return 1.0;  // not before the load has started
+      double f = 0.0, rate = 0.0;
+      force_and_rate(y, f, rate);
+      if (!(f > 0.0)) rate = 0.0;  // out of contact or clipped: f = 0 is far from l anyway
+      return std::max(std::abs(f - target), std::abs(rate) * settle_time) - settle_band * target;
+    }
     if (!(y[1] < 0.0)) return 1.0;
     return y[0] > 0.0 ? std::min(y[0], raw_force(y[0], y[1])) : y[0];
   }
   bool ended(const double y[]) const { return end_function(y) <= 0.0; }
 };
 
-/// State y = (u, w, j): u' = w, w' = −f, j' = f.
+/// State y = (u, w, j): u' = w, w' = l − f, j' = f.
 int impact_rhs(double /*t*/, const double y[], double dydt[], void* params) {
   const auto& s = *static_cast<const ScaledImpact*>(params);
   const double f = s.force(y[0], y[1]);
   dydt[0] = y[1];
-  dydt[1] = -f;
+  dydt[1] = s.load - f;
   dydt[2] = f;
   return GSL_SUCCESS;
 }
@@ -173,6 +190,8 @@ void check_options(const ImpactOptions& o) {
     bad("absolute_tolerance must be in (0, 1)", o.absolute_tolerance);
   if (!(o.max_duration_s > 0.0)) bad("max_duration_s must be > 0", o.max_duration_s);
   if (o.max_steps < 1) bad("max_steps must be >= 1", static_cast<double>(o.max_steps));
+  if (!(o.settle_band > 0.0 && o.settle_band < 1.0))
+    bad("settle_band must be in (0, 1)", o.settle_band);
   if (o.samples_per_contact_time < 8)
     bad("samples_per_contact_time must be >= 8", o.samples_per_contact_time);
 }
@@ -235,7 +254,7 @@ ScaledImpact scaled_impact(const ContactParams& c, const ImpactScales& sc, doubl
 /// steps to locate events), the undamped contact time, the duration guard and the output
 /// sampling, all in natural units.
 struct TouchdownRun {
-  const ScaledImpact& s;
+  ScaledImpact& s;  ///< its load switches on at τ_l
   const ImpactScales& scales;
   const ImpactOptions& options;
   const gsl_odeiv2_system* sys;
@@ -403,7 +422,19 @@ bool integrate_transient(const TouchdownRun& run, TouchdownState& st, ImpactTran
     const double tau_prev = st.tau;
     const double y_prev[3] = {st.y[0], st.y[1], st.y[2]};
     const double cap = step_cap(run, st);
-    const double tau_target = std::min(st.tau + cap, run.tau_max);
+    double tau_target = std::min(st.tau + cap, run.tau_max);
+    // The load starts at τ_l: no step crosses it, and the stepper restarts there.
+    ScaledImpact& law = run.s;
+    if (law.load == 0.0 && law.target > 0.0) {
+      if (st.tau >= law.load_start) {
+        law.load = law.target;
+        gsl_odeiv2_evolve_reset(run.drv->e);
+        gsl_odeiv2_step_reset(run.drv->s);
+        law.force_and_rate(st.y, st.f_now, st.rate_now);
+      } else {
+        tau_target = std::min(tau_target, law.load_start);
+      }
+    }
     st.h = std::min(st.h, cap);
     const int status = gsl_odeiv2_evolve_apply(run.drv->e, run.drv->c, run.drv->s, run.sys, &st.tau,
                                                tau_target, &st.h, st.y);
@@ -434,6 +465,7 @@ bool integrate_transient(const TouchdownRun& run, TouchdownState& st, ImpactTran
     if (ev.ends_here) {
       st.tau = tau_prev + ev.dtau_end;
       std::copy(ev.y_end, ev.y_end + 3, st.y);
+      st.f_now = run.s.force(st.y[0], st.y[1]);
       return true;
     }
     st.max_u = std::max(st.max_u, st.y[0]);
@@ -451,7 +483,18 @@ bool integrate_transient(const TouchdownRun& run, TouchdownState& st, ImpactTran
 /// the transient ended, its last sample is the end, with zero force.
 void finish_transient(ImpactTransient& tr, const ImpactScales& sc, const TouchdownState& st,
                       bool ended, double v) {
-  if (ended) {
+  if (ended && tr.load_N > 0.0) {  // settled: the last sample is the end, at its force
+    const double t_end = st.tau * sc.time_scale;
+    const double f_end = std::max(0.0, st.f_now) * sc.force_scale;
+    if (!tr.t_s.empty() && !(t_end > tr.t_s.back())) {
+      tr.t_s.back() = t_end;
+    } else {
+      tr.t_s.push_back(t_end);
+      tr.force_N.push_back(f_end);
+      tr.penetration_m.push_back(std::max(0.0, st.y[0]) * sc.D);
+    }
+    tr.message = "ended: settled into support under the leg's load";
+  } else if (ended) {
     // Final sample: the force is zero at the end by definition.
     const double t_end = st.tau * sc.time_scale;
     if (!tr.t_s.empty() && !(t_end > tr.t_s.back())) {
@@ -477,11 +520,20 @@ void finish_transient(ImpactTransient& tr, const ImpactScales& sc, const Touchdo
 }  // namespace
 
 ImpactTransient simulate_touchdown(const ContactParams& c, double effective_mass_kg,
-                                   double approach_speed_mps, const ImpactOptions& options) {
+                                   double approach_speed_mps, const ImpactOptions& options,
+                                   double load_N, double load_delay_s) {
   check_touchdown_inputs(c, effective_mass_kg, approach_speed_mps, options);
+  if (!(std::isfinite(load_N) && load_N >= 0.0) ||
+      !(std::isfinite(load_delay_s) && load_delay_s >= 0.0)) {
+    std::ostringstream os;
+    os << "touchdown: the load and its delay must be finite and >= 0, got " << load_N << " N after "
+       << load_delay_s << " s";
+    throw SolverError(os.str());
+  }
   disable_gsl_abort();
 
   ImpactTransient tr;
+  tr.load_N = load_N;
   if (!(approach_speed_mps > 0.0)) {
     tr.message = "no impact: the foot does not approach the surface";
     return tr;
@@ -493,6 +545,14 @@ ImpactTransient simulate_touchdown(const ContactParams& c, double effective_mass
   ScaledImpact s = scaled_impact(c, sc, m, v);
   const double tau_contact = undamped_contact_time(c.exponent);
   const double n_out = options.samples_per_contact_time;
+  s.target = load_N / sc.force_scale;
+  s.load_start = load_delay_s / sc.time_scale;
+  s.load = s.load_start > 0.0 ? 0.0 : s.target;
+  tr.load_delay_s = load_delay_s;
+  s.settle_band = options.settle_band;
+  // The settling test's time scale: the undamped contact time, or the damper's m / C_max when
+  // shorter (an overdamped foot follows its load within it).
+  s.settle_time = s.damping > 0.0 ? std::min(tau_contact, 1.0 / s.damping) : tau_contact;
 
   gsl_odeiv2_system sys{impact_rhs, impact_jacobian, 3, &s};
   const double h_start = std::min(tau_contact / n_out, std::max(s.p_hat, 1e-6)) * 1e-2;

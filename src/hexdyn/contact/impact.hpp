@@ -47,13 +47,19 @@ struct ImpactOptions {
   /// or (elapsed time)/samples_per_contact_time once the contact lasts longer than that,
   /// so linear interpolation of the samples stays within ~1e-4 of the peak force.
   int samples_per_contact_time = 256;
+  /// Loaded touchdowns: the transient has settled once its force is within this fraction of
+  /// the load and would not leave that band within one undamped contact time at its rate.
+  double settle_band = 0.02;
 };
 
 /// One touchdown transient of a foot of effective mass m along the surface normal.
 struct ImpactTransient {
-  bool occurred = false;           ///< false for a zero (or separating) approach speed
-  bool truncated = false;          ///< a guard stopped the integration before the end
-  double duration_s = 0.0;         ///< touchdown to the first return of F_n to zero
+  bool occurred = false;      ///< false for a zero (or separating) approach speed
+  bool truncated = false;     ///< a guard stopped the integration before the end
+  double load_N = 0.0;        ///< the load L the leg takes over (0: the paper's transient)
+  double load_delay_s = 0.0;  ///< from the foot's first contact to the load's start [s]
+  /// Touchdown to the end: the first return of F_n to zero, or loaded, its settling at L.
+  double duration_s = 0.0;
   double peak_force_N = 0.0;       ///< largest F_n, located to solver precision
   double time_of_peak_s = 0.0;     ///< since touchdown
   double impulse_Ns = 0.0;         ///< ∫ F_n dt over the transient (integrated as a state)
@@ -68,12 +74,15 @@ struct ImpactTransient {
   std::vector<double> penetration_m;  ///< δ [m]
 };
 
-/// Integrates the touchdown transient m δ̈ = −F_n(δ, δ̇) from δ = 0, δ̇ = approach speed,
+/// Integrates the touchdown transient m δ̈ = L − F_n(δ, δ̇) from δ = 0, δ̇ = approach speed,
 /// in scaled variables with GSL's adaptive drivers: the explicit Runge–Kutta–Cash–Karp
 /// (4, 5) pair while the scaled damping allows output-sized steps, otherwise the implicit
 /// 4th-order Gauss stepper (rk4imp) with the analytic Jacobian.
-/// Gravity and the leg's drive are left out: the transient is short compared with the
-/// motion, and its force is what the impact adds to the quasi-static support.
+/// L = load_N is the load the leg takes over (docs/theory/contact.md#loaded-touchdowns),
+/// acting from load_delay_s after the first contact on (a step): L = 0 gives the paper's
+/// transient, in which gravity and the leg's drive are left out (its force is what the impact
+/// adds to the quasi-static support). With L > 0 the transient ends when it has settled
+/// (ImpactOptions::settle_band): its force is then L's, not zero.
 ///
 /// The transient ends at the first return of F_n to zero after touchdown, located within
 /// the step by regula falsi with the Illinois modification (falling back to bisection when
@@ -85,11 +94,12 @@ struct ImpactTransient {
 /// effective_mass_kg: foot's effective mass along the normal, > 0.
 /// approach_speed_mps: δ̇ at touchdown; ≤ 0 gives `occurred = false` and zero force.
 /// Throws ConfigError for non-physical contact parameters (K ≤ 0, e < 1, C_max < 0,
-/// p ≤ 0, non-finite values) and SolverError for a non-positive or non-finite mass or a
-/// non-finite speed. Guards (`max_duration_s`, `max_steps`) give `truncated = true`
-/// with the samples so far; the result is always finite.
+/// p ≤ 0, non-finite values) and SolverError for a non-positive or non-finite mass, a
+/// non-finite speed or a negative or non-finite load or delay. Guards (`max_duration_s`,
+/// `max_steps`) give `truncated = true` with the samples so far; the result is always finite.
 ImpactTransient simulate_touchdown(const ContactParams& c, double effective_mass_kg,
-                                   double approach_speed_mps, const ImpactOptions& options = {});
+                                   double approach_speed_mps, const ImpactOptions& options = {},
+                                   double load_N = 0.0, double load_delay_s = 0.0);
 
 /// F_n at time t after touchdown [N], linear interpolation of the dense samples;
 /// 0 before touchdown and after the end of the transient.

@@ -21,7 +21,10 @@ namespace hexdyn {
 /// One touchdown and its resolved transient.
 struct Touchdown {
   int leg = 0;
-  double t_s = 0.0;                 ///< instant the foot reaches the terrain
+  double t_s = 0.0;  ///< the plan's touchdown: the swing's end, where the leg's phase changes
+  /// Loaded: how long before t_s the foot meets the tread (touchdown_sink over the approach
+  /// speed); the transient's time (ImpactTransient::t_s) runs from that first contact. 0 else.
+  double contact_lead_s = 0.0;
   double approach_speed_mps = 0.0;  ///< foot speed into the terrain along −n
   double effective_mass_kg = 0.0;   ///< 1 / (nᵀ J M_leg⁻¹ Jᵀ n), trunk held fixed
   Vec3 normal_W = Vec3::UnitZ();
@@ -39,8 +42,27 @@ struct Touchdown {
 double foot_effective_mass(const RobotModel& model, RobotData& data, const BaseState& base,
                            const JointVector& q, int leg, const Vec3& n_W);
 
+/// The load a leg takes over at its touchdown at t_s on a surface of normal n_W [N], the input
+/// of a loaded transient (docs/theory/contact.md#loaded-touchdowns): of the robot's weight m g,
+/// the vertical share of the leg among the feet standing just after t_s (the landing one in,
+/// one lifting off at t_s out) that puts no moment about the centre of mass's vertical line,
+/// the minimum-norm such shares (least squares when the feet cannot balance it: two feet, or the
+/// centre of mass outside their polygon), taken along n_W and at least 0. Quasi-static: the
+/// trunk's acceleration is left out.
+double touchdown_load_share(const RobotModel& model, RobotData& data, const MotionPlan& plan,
+                            double t_s, int leg, const Vec3& n_W);
+
+/// How far below its planned height the robot stands at a foot's planned touchdown at t_s on
+/// p_W [m], so how much sooner the foot meets the tread (docs/theory/contact.md#loaded-touchdowns):
+/// the plane through the static penetrations (impact.hpp static_penetration) of the feet
+/// standing just before t_s under their quasi-static loads (as touchdown_load_share's), at
+/// p_W's x and y; at least 0.
+double touchdown_sink(const RobotModel& model, RobotData& data, const MotionPlan& plan,
+                      const ContactParams& contact, double t_s, const Vec3& p_W);
+
 /// Every touchdown of the plan with its transient integrated (impact.hpp; none for rigid
-/// contact), sorted by time then leg.
+/// contact; loaded under touchdown_load_share with contact.touchdown: loaded), sorted by time
+/// then leg.
 std::vector<Touchdown> resolve_touchdowns(const RobotModel& model, RobotData& data,
                                           const MotionPlan& plan, const ContactParams& contact);
 

@@ -316,20 +316,35 @@ struct MotionParams {
 /// support leg from the instant of touchdown, its impulse not resolved in time.
 enum class ContactModel { kCompliant, kRigid };
 
+/// What a compliant touchdown's transient carries (docs/theory/contact.md#loaded-touchdowns):
+/// the paper's isolated leg, whose force falls back to zero, or the leg's share of the load,
+/// which the force rises to and settles at while the allocation holds the trunk.
+enum class TouchdownModel { kPaper, kLoaded };
+
+/// The forward replay's tangential law (docs/theory/replay.md#tangential-force): stick–slip
+/// (contact/stick_slip.hpp: a spring to an anchor, capped at μ_s F_n, sliding at μ_d F_n) or
+/// the regularised Coulomb law of contact/simulation_contact.hpp.
+enum class FrictionLaw { kStickSlip, kRegularised };
+
 struct ContactParams {
-  ContactModel model = ContactModel::kCompliant;  ///< contact.model
-  double stiffness = 1e5;                         ///< K [N/m^e]
-  double exponent = 2.2;                          ///< e
-  double damping_max_Nspm = 10.0;                 ///< C_max [N·s/m]
-  double full_damping_depth_m = 1e-5;             ///< p [m]
-  double friction_coefficient = 0.3;              ///< μ
+  ContactModel model = ContactModel::kCompliant;       ///< contact.model
+  TouchdownModel touchdown = TouchdownModel::kLoaded;  ///< contact.touchdown
+  double stiffness = 1e5;                              ///< K [N/m^e]
+  double exponent = 2.2;                               ///< e
+  double damping_max_Nspm = 10.0;                      ///< C_max [N·s/m]
+  double full_damping_depth_m = 1e-5;                  ///< p [m]
+  double friction_coefficient = 0.3;                   ///< μ
   /// The tangential law of forward simulation (contact/simulation_contact.hpp, after
   /// MSC.ADAMS' contact friction): μ_s (contact.static_friction, default μ), μ_d
   /// (contact.dynamic_friction, default μ_s), and the transition speeds v_s < v_d.
-  double static_friction = 0.3;         ///< μ_s
-  double dynamic_friction = 0.3;        ///< μ_d
-  double stiction_velocity_mps = 1e-3;  ///< v_s [m/s]
-  double friction_velocity_mps = 1e-2;  ///< v_d [m/s]
+  double static_friction = 0.3;                        ///< μ_s
+  double dynamic_friction = 0.3;                       ///< μ_d
+  double stiction_velocity_mps = 1e-3;                 ///< v_s [m/s]
+  double friction_velocity_mps = 1e-2;                 ///< v_d [m/s]
+  FrictionLaw friction_law = FrictionLaw::kStickSlip;  ///< contact.friction_law
+  /// Stick–slip: k_t (contact.tangential_stiffness) and c_t (contact.tangential_damping).
+  double tangential_stiffness_Npm = 1e6;  ///< k_t [N/m]
+  double tangential_damping_Nspm = 1e3;   ///< c_t [N s/m]
 };
 
 /// `replay:` the forward replay of a result (replay/replay.hpp, docs/theory/replay.md).

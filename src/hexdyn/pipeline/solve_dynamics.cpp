@@ -98,9 +98,9 @@ class SampleSolver {
     const bool drive = model_.drive.present;
     if (drive) drive_rows(qd, qdd);
     AllocationLayout& layout = layout_;
-    layout =
-        build_allocation_problem(legs_, scene_.allocation, scene_.contact, split, c.phase,
-                                 c.impact_force_N, c.W_R_contact, qp_, drive ? &rows_ : nullptr);
+    layout = build_allocation_problem(legs_, scene_.allocation, scene_.contact, split,
+                                      allocation_phases(c), c.impact_force_N, c.W_R_contact, qp_,
+                                      drive ? &rows_ : nullptr);
     SampleSolution s;
     s.outcome = &backend_->solve(qp_);
     forces_from_solution(split, layout, s.outcome->x, s.foot_forces_W, s.joint_torque);
@@ -119,6 +119,17 @@ class SampleSolver {
     grip(c, layout, s, enough);
     s.constant_violation = layout.constant_violation;
     return s;
+  }
+
+  /// The legs' phases as the allocation sees them: a loaded touchdown's leg supports from its
+  /// touchdown on, its normal force the allocation's (docs/theory/contact.md#loaded-touchdowns);
+  /// the paper's transient prescribes it.
+  LegArray<ContactPhase> allocation_phases(const SampleContacts& c) const {
+    LegArray<ContactPhase> phase = c.phase;
+    if (scene_.contact.touchdown == TouchdownModel::kLoaded)
+      for (ContactPhase& p : phase)
+        if (p == ContactPhase::kImpact) p = ContactPhase::kSupport;
+    return phase;
   }
 
   /// The problem and layout of the last solve.

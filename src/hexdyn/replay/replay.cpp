@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "hexdyn/contact/simulation_contact.hpp"
+#include "hexdyn/contact/stick_slip.hpp"
 #include "hexdyn/core/errors.hpp"
 #include "hexdyn/core/progress.hpp"
 #include "hexdyn/dynamics/forward_dynamics.hpp"
@@ -146,6 +147,22 @@ void evaluate_contacts(const RobotModel& model, RobotData& data, const ContactPa
   }
 }
 
+/// With stick–slip (contact.friction_law), replaces the tangential forces in `c` by those of
+/// the feet's stick–slip states, and clears the state of a foot out of contact.
+void apply_stick_slip(const ContactParams& params, LegArray<TangentialContact>& state,
+                      Contacts& c) {
+  if (params.friction_law != FrictionLaw::kStickSlip) return;
+  for (int l = 0; l < c.legs; ++l) {
+    FootContactForce& f = c.law[l];
+    if (!(c.geometry[l].penetration_m > 0.0) || !(f.normal_N > 0.0)) state[l] = {};
+    f.tangential_W =
+        stick_slip_force(params, state[l], c.normals[l], f.normal_N, f.slip_velocity_W);
+    f.force_W = f.normal_N * c.normals[l] + f.tangential_W;
+    f.slip_power_W = -f.tangential_W.dot(f.slip_velocity_W);
+    c.force_W[l] = f.force_W;
+  }
+}
+
 /// Energy stored in a contact's spring at penetration δ: ∫ K δ^e dδ = K δ^(e+1)/(e+1) [J].
 double spring_energy(const ContactParams& c, double delta_m) {
   return delta_m > 0.0 ? c.stiffness * std::pow(delta_m, c.exponent + 1.0) / (c.exponent + 1.0)
@@ -167,6 +184,8 @@ struct Integrator {
   /// springs (spring_energy), the energy the normal damping dissipated.
   LegArray<double> normal_work_J{}, spring_at_start_J{}, slip_J{}, slip_distance_m{};
   LegArray<Vec3> slip_displacement_m = zero_vectors();
+  /// Stick–slip (contact.friction_law): each foot's spring deflection and mode.
+  LegArray<TangentialContact> tangential{};
   DriveSpending spent{};        ///< with actuators: what the drives spent
   JointVector armature_kgm2{};  ///< with actuators: each joint's J_a (joint_armatures)
   long steps = 0, forced = 0;
@@ -204,6 +223,9 @@ struct Step {
   JointVector tau;
   LegArray<Vec3> force_W = zero_vectors();
   DrivenJoints drive;  ///< with actuators (then tau is drive.u)
+  /// Stick–slip: the feet that slid in the step, and their tangential force's direction.
+  LegArray<bool> slid{};
+  LegArray<Vec3> slip_force_direction_W = zero_vectors();
 };
 
 /// The contact force of foot l as an affine function of its velocity at the step's end,
@@ -217,10 +239,22 @@ struct AffineForce {
 };
 
 AffineForce affine_contact(const ContactParams& params, const TerrainContactPoint& g,
-                           const FootContactForce& law, const Vec3& v_old, double h) {
+                           const FootContactForce& law, const TangentialContact& tangential,
+                           const Vec3* slip_force_direction, const Vec3& v_old, double h) {
   AffineForce out;
   const Vec3& n = g.normal_W;
   const Mat3 N = n * n.transpose();
+  if (params.friction_law == FrictionLaw::kStickSlip) {
+    // The normal force F_n(v) = fn0 + g·v over the step, then the stick or slip force.
+    const Vec3 grad = (law.dF_dv + h * law.dF_dp).transpose() * n;
+    const double fn0 = law.normal_N - n.dot(law.dF_dv * v_old);
+    const AffineTangentialForce t = slip_force_direction
+                                        ? slip_affine(params, *slip_force_direction, fn0, grad)
+                                        : stick_affine(params, tangential, n, h);
+    out.B = n * grad.transpose() + t.B_Nspm;
+    out.a = fn0 * n + t.a_N;
+    return out;
+  }
   const Mat3 P = Mat3::Identity() - N;
   const double s = law.slip_velocity_W.norm();
   const double c =
@@ -230,6 +264,26 @@ AffineForce affine_contact(const ContactParams& params, const TerrainContactPoin
   out.B = N * (law.dF_dv + h * law.dF_dp) - c * P;
   out.a = law.normal_N * n - N * law.dF_dv * v_old;
   return out;
+}
+
+/// Stick–slip: marks as sliding the feet not yet sliding in `out` whose tangential force at
+/// the step's end, F(ν_new) of `force`, exceeds their cap (friction_cap at its normal part),
+/// with their force's direction. Returns whether any foot was marked.
+bool capped_feet(const Integrator& it, const Contacts& c, const LegArray<AffineForce>& force,
+                 const DofVector& nu_new, Step& out) {
+  if (it.contact.friction_law != FrictionLaw::kStickSlip) return false;
+  bool marked = false;
+  for (int l = 0; l < c.legs; ++l) {
+    if (!(c.geometry[l].penetration_m > 0.0) || out.slid[l]) continue;
+    const Vec3& n = c.normals[l];
+    const Vec3 F = force[l].a + force[l].B * jacobian_times(c.J[l], nu_new);
+    const Vec3 Ft = F - n.dot(F) * n;
+    if (Ft.norm() <= friction_cap(it.contact, it.tangential[l], n.dot(F))) continue;
+    out.slid[l] = true;
+    out.slip_force_direction_W[l] = Ft.normalized();
+    marked = true;
+  }
+  return marked;
 }
 
 /// One linearly implicit Euler step of length h from s (contacts evaluated at s in
@@ -256,14 +310,26 @@ void implicit_step(Integrator& it, const SimState& s, const PlanPoint& p, double
   }
   const DofVector nu = s.nu();
   LegArray<AffineForce> force;
-  for (int l = 0; l < c.legs; ++l) {
-    if (!(c.geometry[l].penetration_m > 0.0)) continue;
-    const Vec3 v = jacobian_times(c.J[l], nu);
-    force[l] = affine_contact(it.contact, c.geometry[l], c.law[l], v, h);
-    f += c.J[l].transpose() * (force[l].a + force[l].B * v);
-    A -= h * c.J[l].transpose() * force[l].B * c.J[l];
+  LegArray<Vec3> v_start = zero_vectors();
+  for (int l = 0; l < c.legs; ++l) v_start[l] = jacobian_times(c.J[l], nu);
+  out.slid.fill(false);
+  DofVector nu_new = nu;
+  // Stick–slip's return mapping (contact/stick_slip.hpp): every foot sticks, then a foot whose
+  // stick force exceeds its cap slides and the step is solved again, until none does.
+  for (int pass = 0; pass <= c.legs; ++pass) {
+    DofVector rhs = f;
+    DofMatrix lhs = A;
+    for (int l = 0; l < c.legs; ++l) {
+      if (!(c.geometry[l].penetration_m > 0.0)) continue;
+      force[l] =
+          affine_contact(it.contact, c.geometry[l], c.law[l], it.tangential[l],
+                         out.slid[l] ? &out.slip_force_direction_W[l] : nullptr, v_start[l], h);
+      rhs += c.J[l].transpose() * (force[l].a + force[l].B * v_start[l]);
+      lhs -= h * c.J[l].transpose() * force[l].B * c.J[l];
+    }
+    nu_new = nu + lhs.partialPivLu().solve(h * rhs);
+    if (!capped_feet(it, c, force, nu_new, out)) break;
   }
-  const DofVector nu_new = nu + A.partialPivLu().solve(h * f);
   out.next = s;
   out.next.base.v_W = nu_new.head<3>();
   out.next.base.omega_W = nu_new.segment<3>(3);
@@ -301,16 +367,29 @@ void account_step(Integrator& it, const Contacts& at_start, const Step& step, do
   if (it.model.drive.present)
     account_driven_step(it.model.drive, step.drive, step.next.qd, h, it.spent);
   const DofVector nu_new = step.next.nu();
+  const bool stick_slip = it.contact.friction_law == FrictionLaw::kStickSlip;
   for (int l = 0; l < at_start.legs; ++l) {
-    if (step.force_W[l].isZero(0.0)) continue;
+    if (step.force_W[l].isZero(0.0)) {
+      it.tangential[l] = {};
+      continue;
+    }
     const Vec3& n = at_start.normals[l];
     const Vec3 v_new = jacobian_times(at_start.J[l], nu_new);
     const Vec3& F = step.force_W[l];
     const Vec3 vt = v_new - n.dot(v_new) * n;
     it.normal_work_J[l] -= h * n.dot(F) * n.dot(v_new);
     it.slip_J[l] -= h * (F - n.dot(F) * n).dot(vt);
-    it.slip_displacement_m[l] += h * vt;
-    it.slip_distance_m[l] += h * vt.norm();
+    // The slip: the foot's tangential motion, or with stick–slip its anchor's.
+    Vec3 slip = h * vt;
+    if (stick_slip) {
+      const TangentialUpdate u =
+          settle_stick_slip(it.contact, it.tangential[l], n, std::max(0.0, n.dot(F)), vt, h,
+                            step.slid[l] ? &step.slip_force_direction_W[l] : nullptr);
+      it.tangential[l] = u.next;
+      slip = u.slip_W;
+    }
+    it.slip_displacement_m[l] += slip;
+    it.slip_distance_m[l] += slip.norm();
   }
   ++it.steps;
   it.max_step_s = std::max(it.max_step_s, h);
@@ -343,6 +422,7 @@ bool integrate_interval(Integrator& it, SimState& s, std::size_t k, std::string&
     account_step(it, it.contacts, step, h);
     s = step.next;
     std::swap(it.contacts, at_end);  // at_end is overwritten by the next step
+    apply_stick_slip(it.contact, it.tangential, it.contacts);
     t += h;
     it.h_next = std::min(it.gains.step_s, 2.0 * h);
     why = stop_reason(s, t);
@@ -439,6 +519,8 @@ Vec3 record_sample(Integrator& it, const SimState& s, std::size_t k, ReplayResul
     damping.fill(0.0);
   }
   out.damping_energy_J.push_back(damping);
+  // With stick–slip, the tangential work includes what the tangential springs hold at the
+  // instant (at most (μ F_n)² / (2 k_t) per foot).
   out.slip_energy_J.push_back(it.slip_J);
   out.actuator_energy_J.push_back(it.actuator_energy_J);
   return m.com_W;
@@ -562,6 +644,7 @@ ReplayResult replay_plan(const RobotModel& model, const ContactParams& contact,
   s.qd = plan.qd_radps.front();
   ReplayResult r;
   evaluate_contacts(model, it.data, contact, plan, s, it.contacts);
+  apply_stick_slip(contact, it.tangential, it.contacts);
   record_sample(it, s, 0, r);
   bool completed = true;
   it.h_next = replay.step_s;
