@@ -119,7 +119,6 @@ std::vector<Touchdown> resolve_touchdowns(const RobotModel& model, RobotData& da
           load = touchdown_load_share(model, data, plan, td.t_s, leg, td.normal_W);
           const double sink = touchdown_sink(model, data, plan, contact, td.t_s, sw.p_touchdown_W);
           delay = sink / td.approach_speed_mps;
-          td.contact_lead_s = delay;  // the foot meets the tread before the plan's touchdown
         }
         td.transient = simulate_touchdown(contact, td.effective_mass_kg, td.approach_speed_mps,
                                           ImpactOptions{}, load, delay);
@@ -140,7 +139,7 @@ std::vector<ImpactRecord> impact_records(const std::vector<Touchdown>& touchdown
     ImpactRecord r;
     r.leg = td.leg;
     r.t_start_s = td.t_s;
-    r.duration_s = td.transient.duration_s - td.contact_lead_s;
+    r.duration_s = td.after_touchdown_s();
     r.peak_force_N = td.transient.peak_force_N;
     r.impulse_Ns = td.transient.impulse_Ns;
     r.effective_mass_kg = td.effective_mass_kg;
@@ -177,11 +176,10 @@ void sample_contacts(const KinematicsResult& kin, int i, const Terrain& terrain,
     out.W_R_contact[l] = contact_frame(terrain.normal(p.x(), p.y()));
   }
   for (const Touchdown& td : touchdowns) {
-    // The transient's own time runs from the first contact, contact_lead_s before td.t_s; its
-    // end as the output grid places it (pipeline.cpp), to the last bit.
-    const double after_touchdown_s = td.transient.duration_s - td.contact_lead_s;
-    if (!td.transient.occurred || t < td.t_s || t >= td.t_s + after_touchdown_s) continue;
-    const double since_contact = t - td.t_s + td.contact_lead_s;
+    // The transient's own time runs from the first contact, contact_lead_s() before td.t_s;
+    // its end as the output grid places it (pipeline.cpp), to the last bit.
+    if (!td.transient.occurred || t < td.t_s || t >= td.t_s + td.after_touchdown_s()) continue;
+    const double since_contact = t - td.t_s + td.contact_lead_s();
     if (out.phase[td.leg] == ContactPhase::kSwing) continue;
     out.phase[td.leg] = ContactPhase::kImpact;
     out.impact_force_N[td.leg] = transient_force_at(td.transient, since_contact);

@@ -22,13 +22,15 @@ namespace hexdyn {
 struct Touchdown {
   int leg = 0;
   double t_s = 0.0;  ///< the plan's touchdown: the swing's end, where the leg's phase changes
-  /// Loaded: how long before t_s the foot meets the tread (touchdown_sink over the approach
-  /// speed); the transient's time (ImpactTransient::t_s) runs from that first contact. 0 else.
-  double contact_lead_s = 0.0;
   double approach_speed_mps = 0.0;  ///< foot speed into the terrain along −n
   double effective_mass_kg = 0.0;   ///< 1 / (nᵀ J M_leg⁻¹ Jᵀ n), trunk held fixed
   Vec3 normal_W = Vec3::UnitZ();
   ImpactTransient transient;
+  /// Loaded: how long before t_s the foot meets the tread (touchdown_sink over the approach
+  /// speed), where the transient's own time starts; its load starts at t_s. 0 otherwise.
+  double contact_lead_s() const { return transient.load_delay_s; }
+  /// The transient's time from t_s on to its end [s].
+  double after_touchdown_s() const { return transient.duration_s - transient.load_delay_s; }
 };
 
 /// Effective mass of leg `leg`'s foot along n_W [kg]: the leg's operational-space inertia

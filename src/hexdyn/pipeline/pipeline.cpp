@@ -115,10 +115,9 @@ PreparedScene prepare_scene(const Scene& scene, StageTimes* times) {
   for (const LegPlan& leg : plan.gait.legs)
     for (const Swing& sw : leg.swings) events.push_back({sw.t_liftoff_s, 0.0, 0.0});
   for (const Touchdown& td : touchdowns) {
-    // From the plan's touchdown on (a loaded foot's first contact came contact_lead_s sooner).
-    const double lead = td.contact_lead_s;
-    const double d = td.transient.occurred ? td.transient.duration_s - lead : 0.0;
-    events.push_back({td.t_s, d, std::max(0.0, td.transient.time_of_peak_s - lead)});
+    // From the plan's touchdown on (a loaded foot's first contact came contact_lead_s() sooner).
+    const double d = td.transient.occurred ? td.after_touchdown_s() : 0.0;
+    events.push_back({td.t_s, d, std::max(0.0, td.transient.time_of_peak_s - td.contact_lead_s())});
     t_end = std::max(t_end, td.t_s + d);
   }
   std::vector<std::int8_t> kind;

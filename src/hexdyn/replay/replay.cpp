@@ -15,66 +15,16 @@
 #include "hexdyn/model/root_link.hpp"
 #include "hexdyn/planning/terrain.hpp"
 #include "hexdyn/replay/joint_drive.hpp"
+#include "hexdyn/replay/lane_sums.hpp"
 #include "hexdyn/replay/plan_checks.hpp"
+#include "hexdyn/replay/replay_report.hpp"
 
 namespace hexdyn {
 namespace {
 
-// The sums over the generalised coordinates below are taken in one fixed order, whatever the
-// robot's size and the compiler's vector width: the order of Eigen's reductions of fixed size
-// with two-lane packets, which the replay of a hexapod has always had (its results stay the
-// same bit for bit).
-
-/// Σ term(k), k = start … start + n − 1 (n ≥ 1), split in halves: term(start) alone, else the
-/// sum of the first ⌊n/2⌋ terms plus the sum of the others.
-template <class Term>
-double halves_sum(const Term& term, Eigen::Index start, Eigen::Index n) {
-  if (n == 1) return term(start);
-  const Eigen::Index half = n / 2;
-  return halves_sum(term, start, half) + halves_sum(term, start + half, n - half);
-}
-
-/// Σ term(k), k = 0 … n − 1, in two lanes: the even and the odd terms of the first 2⌊n/2⌋
-/// each summed in halves, the lanes added, then the last term when n is odd.
-template <class Term>
-double lane_sum(const Term& term, Eigen::Index n) {
-  if (n < 2) return n == 1 ? term(0) : 0.0;
-  const Eigen::Index pairs = n / 2;
-  const double even = halves_sum([&](Eigen::Index p) { return term(2 * p); }, 0, pairs);
-  const double odd = halves_sum([&](Eigen::Index p) { return term(2 * p + 1); }, 0, pairs);
-  const double sum = even + odd;
-  return 2 * pairs == n ? sum : sum + term(n - 1);
-}
-
-/// a · b (equal sizes) by lane_sum.
-template <class A, class B>
-double lane_dot(const A& a, const B& b) {
-  return lane_sum([&](Eigen::Index k) { return a[k] * b[k]; }, a.size());
-}
-
-/// Σ |a_k b_k| (the power of torques a at rates b) by lane_sum.
-template <class A, class B>
-double lane_abs_dot(const A& a, const B& b) {
-  return lane_sum([&](Eigen::Index k) { return std::abs(a[k] * b[k]); }, a.size());
-}
-
-/// J ν of a foot's 3 × (6 + joints) Jacobian: row `halves_row` summed in halves (halves_sum),
-/// the two others term by term from the first column. Row z in halves is Eigen's order for a
-/// product of its own; row x in halves its order for one nested in a product with a 3 × 3
-/// matrix (B (J ν)).
-Vec3 jacobian_times(const DofJacobian& J, const DofVector& nu, int halves_row = 2) {
-  Vec3 out;
-  for (int r = 0; r < 3; ++r) {
-    if (r == halves_row) {
-      out[r] = halves_sum([&](Eigen::Index k) { return J(r, k) * nu[k]; }, 0, nu.size());
-      continue;
-    }
-    double sum = J(r, 0) * nu[0];
-    for (Eigen::Index k = 1; k < nu.size(); ++k) sum += J(r, k) * nu[k];
-    out[r] = sum;
-  }
-  return out;
-}
+using replay_sums::jacobian_times;
+using replay_sums::lane_abs_dot;
+using replay_sums::lane_dot;
 
 /// Per-leg 3-vectors, every entry zero (the unused legs' too).
 LegArray<Vec3> zero_vectors() {
@@ -555,62 +505,6 @@ std::string fall_reason(const Integrator& it, const SimState& s, const Vec3& com
            format_number(tilt * 180.0 / M_PI, 3) + " degrees from the planned trunk (at most " +
            format_number(kFallTilt_rad * 180.0 / M_PI, 3) + ")";
   return "";
-}
-
-/// The report: drift at the cycle ends, tracking error, totals, arrival.
-void finish_report(const ReplayPlan& plan, const TerrainParams& terrain,
-                   const DriveTrainParams& drive, bool completed, ReplayResult& r) {
-  const std::size_t n = r.t_s.size();
-  const std::vector<JointVector>& tau = drive.present ? plan.tau_drive_Nm : plan.tau_Nm;
-  std::vector<double> ends(
-      plan.cycle_start_s.begin() + std::min<std::size_t>(1, plan.cycle_start_s.size()),
-      plan.cycle_start_s.end());
-  ends.push_back(plan.t_s.back());
-  for (double t_end : ends) {
-    if (t_end > r.t_s.back() + 1e-12) break;
-    const auto at = std::lower_bound(r.t_s.begin(), r.t_s.end(), t_end - 1e-12);
-    const std::size_t i = static_cast<std::size_t>(
-        std::min<std::ptrdiff_t>(at - r.t_s.begin(), static_cast<std::ptrdiff_t>(n) - 1));
-    const BaseState& pb = plan.base[i];
-    r.cycle_end_s.push_back(r.t_s[i]);
-    r.position_drift_m.push_back(r.base[i].p_W - pb.p_W);
-    const Eigen::AngleAxisd d(pb.W_R_B.transpose() * r.base[i].W_R_B);
-    r.orientation_drift_rad.push_back(d.angle() * d.axis());
-  }
-  for (std::size_t i = 0; i < n; ++i) {
-    Eigen::Index j = 0;
-    const double e = r.tracking_error[i].cwiseAbs().maxCoeff(&j);
-    if (e > r.max_tracking_error_rad) {
-      r.max_tracking_error_rad = e;
-      r.max_tracking_error_joint = static_cast<int>(j);
-      r.max_tracking_error_time_s = r.t_s[i];
-    }
-    if (i > 0) {
-      const double dt = r.t_s[i] - r.t_s[i - 1];
-      const auto power = [&](std::size_t s) { return lane_abs_dot(tau[s], plan.qd_radps[s]); };
-      r.energy_plan_J += 0.5 * dt * (power(i) + power(i - 1));
-    }
-  }
-  if (drive.present) {
-    const auto power = [&](std::size_t i) {
-      return electrical_power_total(drive, plan.tau_drive_Nm[i], plan.qd_radps[i]);
-    };
-    for (std::size_t i = 1; i < n; ++i)
-      r.electrical_energy_plan_J += 0.5 * (r.t_s[i] - r.t_s[i - 1]) * (power(i) + power(i - 1));
-    r.electrical_energy_J = r.electrical_J.back();
-  }
-  r.slip_distance_total_m = r.slip_distance_m.back();
-  r.slip_energy_total_J = r.slip_energy_J.back();
-  r.damping_total_J = r.damping_energy_J.back();
-  r.energy_J = r.actuator_energy_J.back();
-  const BaseState& end_plan = plan.base[n - 1];
-  const BaseState& end = r.base.back();
-  r.final_position_error_m = end.p_W - end_plan.p_W;
-  const ArrivalTolerance tol = arrival_tolerance(terrain);
-  const double tilt =
-      std::acos(std::clamp((end.W_R_B.col(2)).dot(end_plan.W_R_B.col(2)), -1.0, 1.0));
-  r.reached_top = completed && r.final_position_error_m.head<2>().norm() <= tol.horizontal_m &&
-                  std::abs(r.final_position_error_m.z()) <= tol.vertical_m && tilt <= tol.tilt_rad;
 }
 
 /// The planned centre of mass and the terrain under it at every plan instant.
