@@ -75,3 +75,34 @@ def same_dataset(path, file_value, file_dtype, mine):
     want = [text(v) for v in file_value]
     got = list(mine)
     return None if got == want and all(isinstance(g, str) for g in got) else f"{path}: strings differ"
+
+
+def swing_runs(phase):
+    """(first, last) sample of every run of swing samples (phase 0) with a contact sample on
+    both sides, in one leg's /contacts/phase column."""
+    runs, i, n = [], 0, len(phase)
+    while i < n:
+        if phase[i] != 0:
+            i += 1
+            continue
+        j = i
+        while j + 1 < n and phase[j + 1] == 0:
+            j += 1
+        if i > 0 and j + 1 < n:
+            runs.append((i, j))
+        i = j + 1
+    return runs
+
+
+def transfers(feet, phase, exact):
+    """(sample, leg) of every transfer sample of /feet/position `feet` (T, L, 3): in a swing, its
+    horizontal position more than `exact` from both the lift-off and the touchdown foothold."""
+    out = []
+    for leg in range(feet.shape[1]):
+        for i, j in swing_runs(phase[:, leg]):
+            lo, hi = feet[i - 1, leg, :2], feet[j + 1, leg, :2]
+            for k in range(i, j + 1):
+                p = feet[k, leg, :2]
+                if min(np.abs(p - lo).max(), np.abs(p - hi).max()) > exact:
+                    out.append((k, leg))
+    return out

@@ -22,7 +22,7 @@ import xml.etree.ElementTree as ET
 import h5py
 import numpy as np
 import yaml
-from common import args, cli_run
+from common import args, cli_run, swing_runs
 
 HEXDYN, SRC = args()
 TOL = 1e-9
@@ -71,21 +71,6 @@ def risers(ty, tz):
     same = (np.diff(ty) == 0.0) & (np.diff(tz) > 0.0)
     return ty[:-1][same]
 
-
-def swing_runs(phase):
-    """(first, last) sample of every run of swing samples with a contact sample on both sides."""
-    runs, i, n = [], 0, len(phase)
-    while i < n:
-        if phase[i] != 0:
-            i += 1
-            continue
-        j = i
-        while j + 1 < n and phase[j + 1] == 0:
-            j += 1
-        if i > 0 and j + 1 < n:
-            runs.append((i, j))
-        i = j + 1
-    return runs
 
 
 def check_clear(name, ty, tz, centre, phase, r, margin, clearance):

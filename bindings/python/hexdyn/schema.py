@@ -167,6 +167,7 @@ def coordinate_lists(kind):
 
 RESULT_LAYOUT = layout([SCHEMA["kTime"]], SCHEMA["kModelDatasets"], SCHEMA["kUrdfRobotDatasets"],
                        SCHEMA["kKinematicDatasets"], SCHEMA["kSphereFootDatasets"],
+                       SCHEMA["kHeightMapDatasets"],
                        SCHEMA["kDynamicsDatasets"], SCHEMA["kRequiredFrictionDatasets"],
                        SCHEMA["kDriveTrainDatasets"], SCHEMA["kThermalDatasets"],
                        *coordinate_lists("Result"))

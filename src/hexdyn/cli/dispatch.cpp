@@ -60,6 +60,9 @@ int main(int argc, char** argv, const Program& program) {
     if (!command)
       throw ConfigError(std::string("unknown command '") + argv[1] + "'; run 'hexdyn --help'");
     return parse_and_run(*command, argc, argv, program, input);
+  } catch (const ConfigErrors& e) {
+    for (const std::string& line : e.lines()) say("hexdyn: error: " + one_line(line));
+    return e.exit_status();
   } catch (const Error& e) {
     say("hexdyn: error: " + one_line(e.what()));
     return e.exit_status();

@@ -86,7 +86,7 @@ std::optional<std::string> why_not_text(int fd, std::uint64_t size) {
 }
 
 InputFile read_from_disk(const std::string& path, const std::string& absolute,
-                         std::size_t max_bytes, const std::string& expected) {
+                         std::size_t max_bytes, const std::string& expected, bool binary) {
   require_utf8(absolute, path + ": the file's path");
   // Special files are refused by their type before opening: a FIFO would block the
   // open, a device such as /dev/zero would never end.
@@ -100,7 +100,8 @@ InputFile read_from_disk(const std::string& path, const std::string& absolute,
   struct stat st {};
   if (::fstat(f.fd, &st) != 0 || !S_ISREG(st.st_mode))  // replaced since the stat above
     throw ConfigError(path + ": " + kind_of(st.st_mode) + ", expected " + expected);
-  if (const auto why = why_not_text(f.fd, static_cast<std::uint64_t>(st.st_size)))
+  if (const auto why =
+          binary ? std::nullopt : why_not_text(f.fd, static_cast<std::uint64_t>(st.st_size)))
     throw ConfigError(path + ": " + *why + ", expected " + expected);
   char limit[32];
   std::snprintf(limit, sizeof limit, "%.3g MiB", static_cast<double>(max_bytes) / (1 << 20));
@@ -120,10 +121,10 @@ InputFile read_from_disk(const std::string& path, const std::string& absolute,
     text->append(buf, static_cast<std::size_t>(n));
     if (text->size() > max_bytes) throw ConfigError(too_big);  // grew while read
   }
-  if (const void* nul = std::memchr(text->data(), '\0', text->size()))
+  if (const void* nul = binary ? nullptr : std::memchr(text->data(), '\0', text->size()))
     throw ConfigError(path + ": " + binary_file(static_cast<const char*>(nul) - text->data()) +
                       ", expected " + expected);
-  require_utf8(*text, path);
+  if (!binary) require_utf8(*text, path);
   InputFile file;
   file.path = path;
   file.absolute = absolute;
@@ -136,8 +137,11 @@ InputFile read_from_disk(const std::string& path, const std::string& absolute,
 
 }  // namespace
 
-InputFile read_input_text(const std::string& path, std::size_t max_bytes,
-                          const std::string& expected) {
+namespace {
+
+/// read_input_text and read_input_bytes: text checked or not.
+InputFile read_input(const std::string& path, std::size_t max_bytes, const std::string& expected,
+                     bool binary) {
   const std::string absolute = absolute_of(path);
   Store& s = store();
   {
@@ -154,7 +158,7 @@ InputFile read_input_text(const std::string& path, std::size_t max_bytes,
       }
     }
   }
-  InputFile file = read_from_disk(path, absolute, max_bytes, expected);
+  InputFile file = read_from_disk(path, absolute, max_bytes, expected, binary);
   const std::lock_guard<std::mutex> lock(s.mutex);
   if (s.freezes > 0) {
     // Another thread may have kept it meanwhile: the first kept wins.
@@ -166,6 +170,18 @@ InputFile read_input_text(const std::string& path, std::size_t max_bytes,
     }
   }
   return file;
+}
+
+}  // namespace
+
+InputFile read_input_text(const std::string& path, std::size_t max_bytes,
+                          const std::string& expected) {
+  return read_input(path, max_bytes, expected, false);
+}
+
+InputFile read_input_bytes(const std::string& path, std::size_t max_bytes,
+                           const std::string& expected) {
+  return read_input(path, max_bytes, expected, true);
 }
 
 InputFreeze::InputFreeze() {
@@ -203,9 +219,11 @@ void add_input(std::vector<InputFile>& inputs, const std::string& role, const st
   const bool listed = std::any_of(inputs.begin(), inputs.end(),
                                   [&](const InputFile& f) { return f.absolute == absolute; });
   if (listed) return;
-  InputFile file = role == "URDF" ? read_input_text(path, kMaxUrdfBytes, "a URDF file")
-                                  : read_input_text(path, kMaxConfigBytes,
-                                                    "a configuration file (a regular YAML file)");
+  InputFile file =
+      role == "URDF" ? read_input_text(path, kMaxUrdfBytes, "a URDF file")
+      : role == "height map"
+          ? read_input_bytes(path, kMaxHeightMapBytes, kHeightMapExpected)
+          : read_input_text(path, kMaxConfigBytes, "a configuration file (a regular YAML file)");
   file.role = role;
   inputs.push_back(std::move(file));
 }
@@ -231,6 +249,19 @@ std::string tree_urdf_path(const YAML::Node& tree) {
   return urdf.Scalar();
 }
 
+std::string tree_height_map_path(const YAML::Node& tree) {
+  if (!tree.IsMap()) return {};
+  const YAML::Node terrain = tree["terrain"];
+  if (!terrain.IsDefined() || !terrain.IsMap()) return {};
+  const YAML::Node type = terrain["type"];
+  if (!type.IsDefined() || !type.IsScalar() || type.Scalar() != "height_map") return {};
+  const YAML::Node map = terrain["height_map"];
+  if (!map.IsDefined() || !map.IsMap()) return {};
+  const YAML::Node file = map["file"];
+  if (!file.IsDefined() || !file.IsScalar()) return {};
+  return file.Scalar();
+}
+
 std::vector<InputFile> scene_inputs(const std::vector<std::string>& chain, const YAML::Node& tree) {
   std::vector<InputFile> inputs;
   for (std::size_t i = 0; i < chain.size(); ++i)
@@ -239,6 +270,8 @@ std::vector<InputFile> scene_inputs(const std::vector<std::string>& chain, const
   // the key (config/config.cpp).
   const std::string urdf = tree_urdf_path(tree);
   if (!urdf.empty() && !why_not_input_file(urdf)) add_input(inputs, "URDF", urdf);
+  const std::string map = tree_height_map_path(tree);
+  if (!map.empty() && !why_not_input_file(map)) add_input(inputs, "height map", map);
   return inputs;
 }
 

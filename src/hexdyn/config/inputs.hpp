@@ -4,9 +4,10 @@
 /// (docs/user/faults.md#inputs; /meta input_sha256: docs/user/output.md#provenance-of-the-inputs;
 /// a sweep's checkpoint identity: sweep/journal.hpp).
 ///
-/// A scene's inputs are its file, every file it inherits (in inheritance order) and the
-/// URDF its robot.urdf names (after `--set`). A sweep adds its own file first and the URDFs
-/// named by a robot.urdf axis or a case; an envelope adds its own file first.
+/// A scene's inputs are its file, every file it inherits (in inheritance order), the URDF
+/// its robot.urdf names and the height map its terrain.height_map.file names (after `--set`). A
+/// sweep adds its own file first and the URDFs named by a robot.urdf axis or a case; an envelope
+/// adds its own file first.
 ///
 /// Every input file is read through read_input_text, which refuses anything but a regular
 /// file of at most the reader's size before it reads, and text that is not UTF-8 (hexdyn
@@ -56,6 +57,16 @@ inline constexpr std::size_t kMaxUrdfBytes = std::size_t{16} << 20;
 InputFile read_input_text(const std::string& path, std::size_t max_bytes,
                           const std::string& expected);
 
+/// read_input_text without the text's checks: a binary input (a height map's .npy or HDF5
+/// file), kept and hashed the same way.
+InputFile read_input_bytes(const std::string& path, std::size_t max_bytes,
+                           const std::string& expected);
+
+/// Largest height map file read [bytes] (256 MiB: 32 million float64 heights).
+inline constexpr std::size_t kMaxHeightMapBytes = std::size_t{256} << 20;
+/// What a height map file is expected to be, in the errors that refuse one.
+inline constexpr const char* kHeightMapExpected = "a height map (a 2-D .npy array or an HDF5 file)";
+
 /// Keeps every input file read while at least one InputFreeze lives (any thread; the
 /// store is the process's, so a sweep's compute thread and the scenario processes it
 /// forks read what its main thread read). A command makes one for its whole length; the
@@ -96,6 +107,8 @@ std::vector<InputFile> without_texts(std::vector<InputFile> inputs);
 
 /// The file robot.urdf of a scene tree names (a URDF robot), or "" when there is none.
 std::string tree_urdf_path(const YAML::Node& tree);
+/// The file terrain.height_map.file of a scene tree names (terrain.type height_map), or "".
+std::string tree_height_map_path(const YAML::Node& tree);
 
 /// A scene's inputs: `chain` (the scene file, then each inherited file, as
 /// load_scene_tree lists them) and the URDF of `tree` (the merged tree, overrides applied)

@@ -17,6 +17,17 @@ namespace hexdyn {
 
 void resolve_file_relative_keys(YAML::Node& root, const std::string& file) {
   if (!root.IsMap()) return;
+  YAML::Node terrain = root["terrain"];
+  if (terrain.IsDefined() && terrain.IsMap() && terrain["height_map"].IsDefined() &&
+      terrain["height_map"].IsMap()) {
+    YAML::Node map_file = terrain["height_map"]["file"];
+    if (map_file.IsDefined() && map_file.IsScalar() && !map_file.Scalar().empty()) {
+      std::error_code ec;
+      const std::string name = map_file.Scalar();
+      const std::filesystem::path p = std::filesystem::absolute(path_beside(file, name), ec);
+      terrain["height_map"]["file"] = ec ? path_beside(file, name) : p.lexically_normal().string();
+    }
+  }
   YAML::Node robot = root["robot"];
   if (!robot.IsDefined() || !robot.IsMap()) return;
   YAML::Node urdf = robot["urdf"];

@@ -15,32 +15,127 @@ namespace f = key_fields;
 
 namespace {
 
+/// A measured terrain: a grid of heights from a file.
+void add_height_map_rows(std::deque<SceneKey>& t) {
+  const SectionRows add{t, "terrain"};
+  add({.path = "terrain.height_map.file",
+       .kind = KeyKind::kText,
+       .required = true,
+       .allowed_text = "a `.npy` file (a 2-D float64 or float32 array) or an HDF5 file (`.h5`, "
+                       "`.hdf5`), relative to the scene file",
+       .when = "height_map",
+       .meaning = "the heights: row i, column j at (origin x + j resolution, origin y + i "
+                  "resolution), at most 4e7 of them, every one finite "
+                  "([docs/theory/stages.md](docs/theory/stages.md#height-maps))"});
+  add({.path = "terrain.height_map.dataset",
+       .kind = KeyKind::kText,
+       .default_text = "`elevation`",
+       .allowed_text = "a dataset path in the HDF5 file",
+       .when = "height_map",
+       .meaning = "the 2-D dataset of heights in an HDF5 file (grid_map's layer name by default)"});
+  add({.path = "terrain.height_map.resolution",
+       .range = positive(10.0),
+       .unit = "m",
+       .required = true,
+       .when = "height_map",
+       .meaning = "spacing of the nodes along x and y"});
+  add({.path = "terrain.height_map.origin",
+       .kind = KeyKind::kNumbers,
+       .range = closed(-1e4, 1e4),
+       .min_count = 2,
+       .max_count = 2,
+       .unit = "m",
+       .required = true,
+       .when = "height_map",
+       .meaning = "[x, y] of node (row 0, column 0) in G0"});
+  add({.path = "terrain.height_map.edge_height",
+       .range = positive(1.0),
+       .unit = "m",
+       .when = "height_map",
+       .meaning = "a node whose neighbour is more than this above or below it is an edge: "
+                  "footholds keep gait.foothold_margin from it",
+       .field = f::number<&Scene::terrain, &TerrainParams::map_edge_height_m>()});
+  add({.path = "terrain.height_map.max_slope",
+       .range = open_interval(0.0, M_PI / 2),
+       .unit = "rad",
+       .when = "height_map",
+       .meaning = "ground steeper than this takes no foothold either",
+       .field = f::number<&Scene::terrain, &TerrainParams::map_max_slope_rad>()});
+  add({.path = "terrain.height_map.slope",
+       .range = open_interval(-M_PI / 3, M_PI / 3),
+       .unit = "rad",
+       .default_text = "the least-squares fit",
+       .when = "height_map",
+       .meaning = "inclination of the reference line the trunk follows; by default that of the "
+                  "least-squares line through every node"});
+}
+
+/// The stairs' keys beyond the uniform ones: the nosing and the perturbations of a list.
+void add_stairs_extra(std::deque<SceneKey>& t) {
+  const SectionRows add{t, "terrain"};
+  add({.path = "terrain.nosing",
+       .range = nonnegative(10.0),
+       .unit = "m",
+       .when = "stairs",
+       .meaning = "overhang of every tread's edge over the riser below, less than a tread; an "
+                  "entry's `nosing` overrides it",
+       .field = f::number<&Scene::terrain, &TerrainParams::nosing_m>()});
+  add({.path = "terrain.riser_scale",
+       .range = closed(0.0, 10.0),
+       .unit = "1",
+       .default_text = "1",
+       .when = "stairs",
+       .meaning = "factor on every riser (a sweep axis that scales a list of steps)"});
+  add({.path = "terrain.step_offset.step",
+       .kind = KeyKind::kInteger,
+       .range = closed(0, 100000),
+       .unit = "1",
+       .default_text = "0",
+       .when = "stairs",
+       .meaning = "the step (from 1) whose riser terrain.step_offset.riser changes; 0 none"});
+  add({.path = "terrain.step_offset.riser",
+       .range = closed(-1.0, 1.0),
+       .unit = "m",
+       .default_text = "0",
+       .when = "stairs",
+       .meaning = "added to that step's riser (after riser_scale): one worn or odd step, a "
+                  "sweep axis"});
+}
+
 void add_terrain(std::deque<SceneKey>& t) {
   const SectionRows add{t, "terrain"};
   add({.path = "terrain.type",
        .kind = KeyKind::kChoice,
-       .choices = "stairs flat slope",
+       .choices = "stairs flat slope height_map",
        .required = true,
        .meaning = "which keys below apply"});
   add({.path = "terrain.riser_height",
-       .range = nonnegative(1.0),
+       .range = closed(-1.0, 1.0),
        .unit = "m",
        .required = true,
        .when = "stairs",
-       .meaning = "riser h_s; 0 is flat ground"});
+       .meaning = "riser h_s: > 0 climbs along +y, < 0 descends, 0 is flat ground; with a "
+                  "list of steps, the riser of an entry that gives none (then optional)"});
   add({.path = "terrain.tread_depth",
        .range = positive(10.0),
        .unit = "m",
        .required = true,
        .when = "stairs",
-       .meaning = "tread b_s"});
+       .meaning = "tread b_s (the going, riser to riser); with a list of steps, the tread of an "
+                  "entry that gives none (then optional)"});
   add({.path = "terrain.steps",
-       .kind = KeyKind::kInteger,
-       .range = closed(1, 100000),
+       .kind = KeyKind::kText,
        .unit = "1",
        .required = true,
+       .allowed_text = "a count in [1, 100000], or a list of 1 to 100000 entries, each "
+                       "`{riser: h, tread: b, nosing: n}` (h in [−1, 1] m, b in (0, 10] m, n in "
+                       "[0, 10] m and less than the tread it overhangs) or `{landing: L}` (L in "
+                       "(0, 100] m)",
        .when = "stairs",
-       .meaning = "number of risers; the top tread is endless"});
+       .meaning = "the risers: a count of uniform ones, or step by step (a landing is a flat "
+                  "of length L); the last tread is endless "
+                  "([docs/theory/stages.md](docs/theory/stages.md#terrain))"});
+  add_stairs_extra(t);
   add({.path = "terrain.first_riser_y",
        .range = closed(-100.0, 100.0),
        .unit = "m",
@@ -299,6 +394,7 @@ void add_motion_timing(std::deque<SceneKey>& t) {
 
 void add_terrain_gait_motion_rows(std::deque<SceneKey>& table) {
   add_terrain(table);
+  add_height_map_rows(table);
   add_gait(table);
   add_gait_phases(table);
   add_motion_start(table);

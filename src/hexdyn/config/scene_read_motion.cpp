@@ -7,8 +7,10 @@
 #include <string>
 #include <vector>
 
+#include "hexdyn/config/height_map_keys.hpp"
 #include "hexdyn/config/key_rules.hpp"
 #include "hexdyn/config/scene_readers.hpp"
+#include "hexdyn/config/stair_steps.hpp"
 #include "hexdyn/config/table_keys.hpp"
 #include "hexdyn/core/run_size.hpp"
 #include "hexdyn/model/gait_pattern.hpp"
@@ -21,6 +23,9 @@ void read_terrain(Reader& r, TerrainParams& t) {
   if (type == "flat") {
     t.type = TerrainType::kFlat;
     t.ground_height_m = number_key(r, "terrain.height");
+  } else if (type == "height_map") {
+    t.type = TerrainType::kHeightMap;
+    read_height_map(r, t);
   } else if (type == "slope") {
     t.type = TerrainType::kSlope;
     t.slope_rad = number_key(r, "terrain.angle");
@@ -28,10 +33,8 @@ void read_terrain(Reader& r, TerrainParams& t) {
     t.ground_height_m = number_key(r, "terrain.ground_height");
   } else {
     t.type = TerrainType::kStairs;
-    t.riser_height_m = number_key(r, "terrain.riser_height");
-    t.tread_depth_m = number_key(r, "terrain.tread_depth");
-    t.steps = integer_key(r, "terrain.steps");
     t.first_riser_y_m = number_key(r, "terrain.first_riser_y");
+    read_stairs(r, t);
     t.ground_height_m = number_key(r, "terrain.ground_height");
   }
 }

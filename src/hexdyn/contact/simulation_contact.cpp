@@ -158,4 +158,13 @@ TerrainContactPoint terrain_contact(const std::vector<double>& y, const std::vec
   return out;
 }
 
+TerrainContactPoint height_map_contact(const HeightMap& map, const Vec3& p, double radius) {
+  TerrainContactPoint out;
+  out.normal_W = map.normal(p.x(), p.y());
+  const double d = (p.z() - map.height(p.x(), p.y())) * out.normal_W.z();
+  out.penetration_m = radius - d;
+  out.point_W = radius > 0.0 ? Vec3(p - radius * out.normal_W) : p;
+  return out;
+}
+
 }  // namespace hexdyn

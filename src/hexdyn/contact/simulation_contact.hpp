@@ -15,6 +15,7 @@
 /// Frames: world G0; the normal n is the terrain's outward unit normal at the contact point;
 /// v is the velocity of the foot's material point at the contact point.
 #include "hexdyn/core/common.hpp"
+#include "hexdyn/core/height_map.hpp"
 #include "hexdyn/core/scene.hpp"
 
 namespace hexdyn {
@@ -69,5 +70,13 @@ struct TerrainContactPoint {
 /// Throws ConfigError when K < 2 or the sizes of y_m and z_m differ.
 TerrainContactPoint terrain_contact(const std::vector<double>& y_m, const std::vector<double>& z_m,
                                     const Vec3& p_W, double radius_m);
+
+/// The contact of a point foot at p_W (radius 0) or of a sphere foot of centre p_W and radius
+/// `radius_m` with a height map (core/height_map.hpp; docs/theory/replay.md#height-maps): the
+/// surface's point below p is taken as the nearest, its bilinear normal n as the face's, and
+/// the distance of p to the tangent plane there, d = (p_z − z(p_x, p_y)) n_z, as the signed
+/// distance: δ = r − d, the contact point p − r n. Exact on a plane; on a curved or stepped
+/// map an approximation whose error grows with the curvature under the foot.
+TerrainContactPoint height_map_contact(const HeightMap& map, const Vec3& p_W, double radius_m);
 
 }  // namespace hexdyn

@@ -6,6 +6,8 @@
 /// scenario as failed with the message, and goes on.
 #include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace hexdyn {
 
@@ -36,6 +38,23 @@ class IoError : public Error {
 class ReachError : public Error {
  public:
   using Error::Error;
+};
+
+/// Several problems of one input, one line each (the bad steps of a step list): what() has
+/// them joined by line breaks; the CLI prints each as an error line of its own.
+class ConfigErrors : public ConfigError {
+ public:
+  explicit ConfigErrors(std::vector<std::string> lines)
+      : ConfigError(joined(lines)), lines_(std::move(lines)) {}
+  const std::vector<std::string>& lines() const { return lines_; }
+
+ private:
+  static std::string joined(const std::vector<std::string>& lines) {
+    std::string out;
+    for (const std::string& l : lines) out += (out.empty() ? "" : "\n") + l;
+    return out;
+  }
+  std::vector<std::string> lines_;
 };
 
 /// A planning failure (no foothold on a tread, a swing path that cannot clear).

@@ -6,10 +6,12 @@
 /// as T × 3 legs with leg-major columns (3 l + axis).
 #include <cstdint>
 #include <iosfwd>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "hexdyn/core/common.hpp"
+#include "hexdyn/core/height_map.hpp"
 
 namespace hexdyn {
 
@@ -123,10 +125,14 @@ struct DynamicsResult {
   /// empty with required_friction.
   std::vector<std::int8_t> required_friction_leg;
   std::vector<ImpactRecord> impacts;
-  RowMatrix joint_power;                     ///< T×joints [W]
-  std::vector<double> total_power_W;         ///< T, Σ|τ ω|
-  double energy_total_J = 0.0;               ///< trapezoid of total_power_W over the samples
-  std::vector<double> energy_joint_J;        ///< joints, trapezoid of |τ_k ω_k| over the samples
+  RowMatrix joint_power;               ///< T×joints [W]
+  std::vector<double> total_power_W;   ///< T, Σ|τ ω|
+  double energy_total_J = 0.0;         ///< trapezoid of total_power_W over the samples
+  std::vector<double> energy_joint_J;  ///< joints, trapezoid of |τ_k ω_k| over the samples
+  /// Joints: ∫max(0, τ_k ω_k) (≥ 0) and ∫min(0, τ_k ω_k) (≤ 0) by the energies' rule, so that
+  /// positive − negative = energy_joint_J and positive + negative = the net work [J].
+  std::vector<double> positive_work_joint_J, negative_work_joint_J;
+  double positive_work_J = 0.0, negative_work_J = 0.0;  ///< their sums over the joints [J]
   std::vector<double> energy_cycle_J;        ///< Y, per gait cycle, sums to energy_total_J
   double distance_m = 0.0;                   ///< trunk travel for the cost of transport
   double cost_of_transport = 0.0;            ///< E / (m g d)
@@ -216,6 +222,8 @@ struct RunResult {
   /// not written).
   std::vector<double> terrain_y_m, terrain_z_m;
   std::string terrain_type;
+  /// The height map the run stood on (terrain.type height_map), else null: /terrain/map_*.
+  std::shared_ptr<const HeightMap> terrain_map;
   /// Computed for a sweep's summary row alone (OutputParams::summary_only): some required
   /// friction values are upper bounds; write_result_file refuses it.
   bool summary_only = false;

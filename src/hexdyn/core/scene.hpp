@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "hexdyn/core/common.hpp"
+#include "hexdyn/core/height_map.hpp"
 
 namespace hexdyn {
 
@@ -197,17 +198,37 @@ struct RobotParams {
   DriveTrainParams drive;
 };
 
-enum class TerrainType { kFlat, kSlope, kStairs };
+enum class TerrainType { kFlat, kSlope, kStairs, kHeightMap };
+
+/// One step of a staircase given step by step (`terrain.steps` as a list;
+/// docs/theory/stages.md#terrain): the riser at the step's start, then the tread above it.
+struct StairStep {
+  double riser_m = 0.0;   ///< signed rise of the riser [m]: > 0 up, < 0 down along +y
+  double tread_m = 0.0;   ///< going: horizontal run from this riser to the next [m], > 0
+  double nosing_m = 0.0;  ///< overhang of the higher tread's edge over this riser [m], ≥ 0
+};
 
 struct TerrainParams {
   TerrainType type = TerrainType::kStairs;
   double ground_height_m = 0.0;   ///< flat: height; stairs: height before the first riser
   double slope_rad = 0.0;         ///< slope: inclination, rising along +y
   double slope_origin_y_m = 0.0;  ///< slope: y where the slope starts from ground height
-  double riser_height_m = 0.05;   ///< stairs: h_s
+  double riser_height_m = 0.05;   ///< stairs: h_s (< 0 descends along +y)
   double tread_depth_m = 0.25;    ///< stairs: b_s
   int steps = 10;                 ///< stairs: number of risers; the top tread is endless
   double first_riser_y_m = 0.0;   ///< stairs: y of the first riser
+  double nosing_m = 0.0;          ///< stairs: overhang of every nosing (terrain.nosing)
+  /// height_map: the grid (core/height_map.hpp), shared by the copies of a scene; its
+  /// reference line is ground_height_m + tan(slope_rad) y (slope_origin_y_m 0): the slope
+  /// terrain.height_map.slope gives, or the least-squares line through every node, and the
+  /// intercept fitted likewise.
+  std::shared_ptr<const HeightMap> map;
+  double map_edge_height_m = 0.02;  ///< height_map: a step higher than this is an edge [m]
+  double map_max_slope_rad = 0.35;  ///< height_map: ground steeper than this takes no foot
+  /// Stairs given step by step: `steps` entries, riser k at first_riser_y + Σ_{j<k} tread_j
+  /// (landings folded into the tread before them). Empty for uniform stairs (riser_height,
+  /// tread_depth, nosing). A list that is uniform with no nosing is read as uniform stairs.
+  std::vector<StairStep> step_list;
 };
 
 /// Inclination of the terrain's mean line along +y [rad]: atan(h_s / b_s) on stairs (the
@@ -215,9 +236,17 @@ struct TerrainParams {
 /// slope on a slope, 0 on flat ground.
 inline double mean_slope_rad(const TerrainParams& t) {
   switch (t.type) {
-    case TerrainType::kStairs:
-      return std::atan2(t.riser_height_m, t.tread_depth_m);
+    case TerrainType::kStairs: {
+      if (t.step_list.empty()) return std::atan2(t.riser_height_m, t.tread_depth_m);
+      double rise = 0.0, run = 0.0;  // over the whole list, the last tread included
+      for (const StairStep& s : t.step_list) {
+        rise += s.riser_m;
+        run += s.tread_m;
+      }
+      return std::atan2(rise, run);
+    }
     case TerrainType::kSlope:
+    case TerrainType::kHeightMap:
       return t.slope_rad;
     case TerrainType::kFlat:
       return 0.0;

@@ -75,6 +75,10 @@ struct EnvelopeSpec {
   /// design, the base scene's, and no `case` dimension in the file.
   CaseList cases;
   EnvelopeSearch search = EnvelopeSearch::kRiser;  ///< `search`: riser (default) or friction
+  /// `direction`: +1 up (default), −1 down: each probe's terrain.riser_height is direction ×
+  /// the riser searched, so that a descent's envelope is the deepest step the gait walks down
+  /// (the file's risers are magnitudes; /meta direction says which way).
+  int direction = 1;
   /// Number of cells: D × W × B × V (D = 1 without cases).
   int cell_count() const;
   /// The scan's risers: from, from + step, …, to (the last step may be shorter) [m].

@@ -43,6 +43,7 @@ void write_envelope_meta(H5Writer& w, const EnvelopeSpec& spec, const EnvelopeRe
   w.set_string_attribute(meta, s::kMetaEnvelopeName.name, spec.name);
   w.set_double_attribute(meta, s::kMetaEnvelopeTolerance.name, spec.tolerance_m);
   w.set_double_attribute(meta, s::kMetaEnvelopeStep.name, spec.riser_step_m);
+  w.set_string_attribute(meta, s::kMetaEnvelopeDirection.name, spec.direction < 0 ? "down" : "up");
   w.set_string_attribute(meta, s::kAttrInputSha256, input_sha256_text(spec.inputs));
 }
 

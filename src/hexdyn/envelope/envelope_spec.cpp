@@ -240,6 +240,16 @@ void read_search(const EnvelopeReader& r, const YAML::Node& root, EnvelopeSpec& 
   spec.criteria = {EnvelopeCriterion::kFriction};
 }
 
+/// `direction:` up (default) or down: the way the stairs are walked, the sign of every probe's
+/// riser.
+void read_direction(const EnvelopeReader& r, const YAML::Node& root, EnvelopeSpec& spec) {
+  if (!given(root["direction"])) return;
+  const YAML::Node d = root["direction"];
+  const std::string word = d.IsScalar() ? d.Scalar() : std::string();
+  if (word != "up" && word != "down") r.fail_value("direction", d, "up or down");
+  spec.direction = word == "down" ? -1 : 1;
+}
+
 /// Every cell's scene at the lowest riser must be valid (speed against ramp, ...): the
 /// probe's keys set on the base's SceneTree (no YAML per cell), as envelope_probe_scene
 /// sets them on the YAML tree, which it falls back to when a key runs through a non-map.
@@ -282,7 +292,7 @@ EnvelopeSpec load_envelope_spec(const std::string& path) {
   const EnvelopeReader r(path);
   r.check_keys(root, "",
                {"name", "base", "set", "cases", "riser", "tread_depth", "duty_factor", "peak_speed",
-                "criteria", "kinematic_margin", "search"});
+                "criteria", "kinematic_margin", "search", "direction"});
   spec.name =
       given(root["name"]) ? root["name"].Scalar() : std::filesystem::path(path).stem().string();
   std::vector<std::string> chain;
@@ -308,6 +318,7 @@ EnvelopeSpec load_envelope_spec(const std::string& path) {
   spec.peak_speed_mps = r.numbers(root["peak_speed"], "peak_speed", 1e-6, 10.0);
   read_criteria(r, root["criteria"], spec);
   read_search(r, root, spec);
+  read_direction(r, root, spec);
   if (given(root["kinematic_margin"]))
     spec.kinematic_margin_m = r.number(root["kinematic_margin"], "kinematic_margin", 0.0, 0.1);
   check_envelope_size(r, spec);
@@ -367,7 +378,7 @@ std::vector<Override> probe_overrides(const EnvelopeSpec& spec, int cell, double
   const auto text = exact_text;
   std::vector<Override> ov;
   if (spec.cases.size() > 0) ov = spec.cases.overrides(d);
-  const std::vector<Override> cell_keys = {{"terrain.riser_height", text(riser_m)},
+  const std::vector<Override> cell_keys = {{"terrain.riser_height", text(spec.direction * riser_m)},
                                            {"terrain.tread_depth", text(spec.tread_depth_m[w])},
                                            {"gait.duty_factor", text(spec.duty_factor[b])},
                                            {"motion.peak_speed", text(spec.peak_speed_mps[v])}};

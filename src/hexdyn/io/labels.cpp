@@ -187,6 +187,7 @@ const s::DatasetSpec* result_spec(const std::string& path) {
   find(s::kModelDatasets);
   find(s::kUrdfRobotDatasets);
   find(s::kSphereFootDatasets);
+  find(s::kHeightMapDatasets);
   find(s::kKinematicDatasets);
   find(s::kDynamicsDatasets);
   find(s::kRequiredFrictionDatasets);

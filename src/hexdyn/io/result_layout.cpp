@@ -162,6 +162,21 @@ void add_gait_and_terrain(ResultLayout& layout, Builder& b, const RunResult& r) 
   b.vector(s::kTerrainY, r.terrain_y_m, r.terrain_y_m.size());
   b.vector(s::kTerrainZ, r.terrain_z_m, r.terrain_y_m.size());
   layout.attributes.push_back({&s::kTerrainType, r.terrain_type});
+  if (const HeightMap* m = r.terrain_map.get()) {
+    const auto nx = static_cast<std::size_t>(m->nx), ny = static_cast<std::size_t>(m->ny);
+    std::vector<double> x(nx), y(ny);
+    for (std::size_t j = 0; j < nx; ++j) x[j] = m->x(static_cast<int>(j));
+    for (std::size_t i = 0; i < ny; ++i) y[i] = m->y(static_cast<int>(i));
+    b.add(s::kTerrainMapX, {nx}, std::move(x));
+    b.add(s::kTerrainMapY, {ny}, std::move(y));
+    b.add(s::kTerrainMapZ, {ny, nx}, m->z_m);
+    for (const auto& [coordinate, size] :
+         {std::pair{&s::kMapXCoordinate, nx}, std::pair{&s::kMapYCoordinate, ny}}) {
+      std::vector<std::int32_t> index(size);
+      for (std::size_t i = 0; i < size; ++i) index[i] = static_cast<std::int32_t>(i);
+      b.add(*coordinate, {size}, std::move(index));
+    }
+  }
   // The index coordinates of the dimensions `gait_cycle` and `terrain_point` (io/labels.hpp).
   for (const auto& [coordinate, size] :
        {std::pair{&s::kCycleCoordinate, r.cycle_start_s.size()},
@@ -264,6 +279,10 @@ void add_dynamics(Builder& b, const DynamicsResult& d, int T, std::size_t cycles
   b.scalar(s::kEnergyTotal, d.energy_total_J);
   b.vector(s::kEnergyJoint, d.energy_joint_J, j);
   b.vector(s::kEnergyCycle, d.energy_cycle_J, cycles);
+  b.scalar(s::kEnergyPositiveWork, d.positive_work_J);
+  b.scalar(s::kEnergyNegativeWork, d.negative_work_J);
+  b.vector(s::kEnergyPositiveWorkJoint, d.positive_work_joint_J, j);
+  b.vector(s::kEnergyNegativeWorkJoint, d.negative_work_joint_J, j);
   b.scalar(s::kCostOfTransport, d.cost_of_transport);
   b.scalar(s::kEnergyDistance, d.distance_m);
 

@@ -83,6 +83,9 @@ enum class Shape {
   kLegValues,           ///< (L), one number per leg
   kVector3,             ///< (3), one vector
   kTerrainPoints,       ///< (K), one entry per vertex of the terrain's height profile
+  kMapColumns,          ///< (MX), one entry per column (x) of a height map
+  kMapRows,             ///< (MY), one entry per row (y) of a height map
+  kMapGrid,             ///< (MY,MX), one entry per node of a height map
   kXyz,                 ///< (3) strings "x", "y", "z"
   kWxyz,                ///< (4) strings "w", "x", "y", "z"
   kAxes,                ///< (A), one entry per sweep axis
@@ -136,6 +139,9 @@ constexpr const char* dimension_names(Shape shape) {
     case Shape::kLegValues: return "leg";
     case Shape::kVector3: return "xyz";
     case Shape::kTerrainPoints: return "terrain_point";
+    case Shape::kMapColumns: return "map_x";
+    case Shape::kMapRows: return "map_y";
+    case Shape::kMapGrid: return "map_y map_x";
     case Shape::kXyz: return "xyz";
     case Shape::kWxyz: return "wxyz";
     case Shape::kAxes: return "axis";
@@ -325,8 +331,16 @@ inline constexpr DatasetSpec kTerrainY{"/terrain/y", "m", Shape::kTerrainPoints,
 /// Terrain height at each vertex of /terrain/y.
 inline constexpr DatasetSpec kTerrainZ{"/terrain/z", "m", Shape::kTerrainPoints, Element::kFloat64,
                                        "terrain height at each profile vertex"};
+/// A height map's grid as used (terrain.type height_map; docs/theory/stages.md#height-maps):
+/// the x of each column, the y of each row, and the height of each node, row-major.
+inline constexpr DatasetSpec kTerrainMapX{"/terrain/map_x", "m", Shape::kMapColumns,
+                                          Element::kFloat64, "x of each height map column"};
+inline constexpr DatasetSpec kTerrainMapY{"/terrain/map_y", "m", Shape::kMapRows, Element::kFloat64,
+                                          "y of each height map row"};
+inline constexpr DatasetSpec kTerrainMapZ{"/terrain/map_z", "m", Shape::kMapGrid, Element::kFloat64,
+                                          "height of each height map node"};
 inline constexpr const char* kTerrainGroup = "/terrain";
-/// "flat", "slope" or "stairs" (terrain.type), on the group /terrain.
+/// "flat", "slope", "stairs" or "height_map" (terrain.type), on the group /terrain.
 inline constexpr AttributeSpec kTerrainType{kTerrainGroup, "type", Element::kString};
 
 // ---- dynamics: written only when the dynamic stages ran ----
@@ -392,6 +406,23 @@ inline constexpr DatasetSpec kEnergyJoint{"/energy/per_joint", "J", Shape::kJ, E
 /// interpolant (the trapezoid's: /power/total interpolated linearly); sums to /energy/total.
 inline constexpr DatasetSpec kEnergyCycle{"/energy/cycle", "J", Shape::kCycles, Element::kFloat64,
                                           "energy per gait cycle"};
+/// ∫max(0, τ_k ω_k) summed over the joints, by the rule of /energy/total: the work the joints
+/// do on the robot. With /energy/negative_work: positive − negative = /energy/total,
+/// positive + negative = the net joint work.
+inline constexpr DatasetSpec kEnergyPositiveWork{
+    "/energy/positive_work", "J", Shape::kScalar, Element::kFloat64,
+    "positive joint work: integral of max(0, tau*omega)"};
+/// ∫min(0, τ_k ω_k) summed over the joints (≤ 0): the work the joints absorb (braking a
+/// descent, a touchdown).
+inline constexpr DatasetSpec kEnergyNegativeWork{
+    "/energy/negative_work", "J", Shape::kScalar, Element::kFloat64,
+    "negative joint work: integral of min(0, tau*omega)"};
+inline constexpr DatasetSpec kEnergyPositiveWorkJoint{"/energy/positive_work_per_joint", "J",
+                                                      Shape::kJ, Element::kFloat64,
+                                                      "positive work per joint"};
+inline constexpr DatasetSpec kEnergyNegativeWorkJoint{"/energy/negative_work_per_joint", "J",
+                                                      Shape::kJ, Element::kFloat64,
+                                                      "negative work per joint"};
 inline constexpr DatasetSpec kCostOfTransport{"/energy/cost_of_transport", "1", Shape::kScalar,
                                               Element::kFloat64, "cost of transport E/(m g d)"};
 inline constexpr DatasetSpec kEnergyDistance{"/energy/distance", "m", Shape::kScalar,
@@ -525,6 +556,10 @@ inline constexpr DatasetSpec kCycleCoordinate{"/gait_cycle", "1", Shape::kCycles
                                               "gait cycle index"};
 inline constexpr DatasetSpec kTerrainPointCoordinate{
     "/terrain_point", "1", Shape::kTerrainPoints, Element::kInt32, "terrain profile vertex index"};
+inline constexpr DatasetSpec kMapXCoordinate{"/map_x", "1", Shape::kMapColumns, Element::kInt32,
+                                             "height map column index"};
+inline constexpr DatasetSpec kMapYCoordinate{"/map_y", "1", Shape::kMapRows, Element::kInt32,
+                                             "height map row index"};
 
 // ---- CF flags on the datasets of codes ----
 inline constexpr FlagSpec kContactPhaseFlags{"/contacts/phase", "swing impact support"};
@@ -551,6 +586,9 @@ inline constexpr std::array kResultIndexCoordinates{kImpactCoordinate, kMessageC
                                                     kCycleCoordinate, kTerrainPointCoordinate};
 /// Datasets present when the robot was read from a URDF.
 inline constexpr std::array kUrdfRobotDatasets{kModelLegMapping};
+/// Datasets present on a height map (terrain.type height_map), with their index coordinates.
+inline constexpr std::array kHeightMapDatasets{kTerrainMapX, kTerrainMapY, kTerrainMapZ,
+                                               kMapXCoordinate, kMapYCoordinate};
 /// Datasets present when some foot is a sphere (robot.foot_radius, or a URDF's sphere foot).
 inline constexpr std::array kSphereFootDatasets{kFeetCenter};
 /// Datasets present when the dynamic stages ran.
@@ -558,7 +596,8 @@ inline constexpr std::array kSphereFootDatasets{kFeetCenter};
 inline constexpr std::array kDynamicsDatasets{
     kJointTorque, kContactForce, kContactPenetration, kContactUtilizedFriction, kContactSlip, kImpactLeg, kImpactStart, kImpactDuration,
     kImpactPeakForce, kImpactImpulse, kImpactEffectiveMass, kImpactApproachSpeed, kJointPower,
-    kTotalPower, kEnergyTotal, kEnergyJoint, kEnergyCycle, kCostOfTransport, kEnergyDistance,
+    kTotalPower, kEnergyTotal, kEnergyJoint, kEnergyCycle, kEnergyPositiveWork, kEnergyNegativeWork,
+    kEnergyPositiveWorkJoint, kEnergyNegativeWorkJoint, kCostOfTransport, kEnergyDistance,
     kSolverStatus, kSolverIterations, kSolverObjective, kSolverSeconds, kSolverMessages};
 /// Datasets present with the dynamics unless output.required_friction is false.
 inline constexpr std::array kRequiredFrictionDatasets{kRequiredFriction, kRequiredFrictionLeg};

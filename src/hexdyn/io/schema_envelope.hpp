@@ -24,11 +24,14 @@ inline constexpr AttributeSpec kMetaEnvelopeName{kMetaGroup, "name", Element::kS
 inline constexpr AttributeSpec kMetaEnvelopeTolerance{kMetaGroup, "riser_tolerance",
                                                       Element::kFloat64};
 inline constexpr AttributeSpec kMetaEnvelopeStep{kMetaGroup, "riser_step", Element::kFloat64};
+/// "up" or "down": the way the stairs were walked; the risers of the file are magnitudes.
+inline constexpr AttributeSpec kMetaEnvelopeDirection{kMetaGroup, "direction", Element::kString};
 /// Every /meta attribute of an envelope file.
 inline constexpr std::array kEnvelopeMetaAttributes{
     kMetaSchema,       kMetaSchemaVersion,     kMetaVersion,      kMetaGitCommit,
     kMetaCreatedUtc,   kMetaConfigYaml,        kMetaWallTime,     kMetaEnvelopeBaseConfigYaml,
-    kMetaEnvelopeName, kMetaEnvelopeTolerance, kMetaEnvelopeStep, kMetaInputSha256};
+    kMetaEnvelopeName, kMetaEnvelopeTolerance, kMetaEnvelopeStep, kMetaEnvelopeDirection,
+    kMetaInputSha256};
 
 // ---- the grid ----
 inline constexpr DatasetSpec kEnvelopeTreadDepth{"/axes/tread_depth", "m", Shape::kEnvelopeTreads,

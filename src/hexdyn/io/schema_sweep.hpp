@@ -168,6 +168,12 @@ inline constexpr DatasetSpec kScenarioPeakTorqueTransient{
 inline constexpr DatasetSpec kScenarioEnergyElectrical{"/scenarios/energy_electrical", "J",
                                                        Shape::kScenarios, Element::kFloat64,
                                                        "electrical energy drawn"};
+/// The run's /energy/positive_work and /energy/negative_work (≤ 0): on the way down the
+/// joints brake, and the negative part grows.
+inline constexpr DatasetSpec kScenarioPositiveWork{
+    "/scenarios/positive_work", "J", Shape::kScenarios, Element::kFloat64, "positive joint work"};
+inline constexpr DatasetSpec kScenarioNegativeWork{
+    "/scenarios/negative_work", "J", Shape::kScenarios, Element::kFloat64, "negative joint work"};
 /// The run's /energy/copper_loss, /energy/friction_loss and /energy/regenerated: with
 /// /scenarios/energy, the energy breakdown of each scenario.
 inline constexpr DatasetSpec kScenarioEnergyCopperLoss{"/scenarios/energy_copper_loss", "J",
@@ -267,7 +273,8 @@ inline constexpr std::array kScenarioDatasets{
     kScenarioPeakImpactForce, kScenarioPeakPower, kScenarioPeakContactForce, kScenarioPeakTorque,
     kScenarioRmsTorque, kScenarioPeakTorqueGait, kScenarioPeakTorqueTransient,
     kScenarioEnergyElectrical, kScenarioEnergyCopperLoss, kScenarioEnergyFrictionLoss,
-    kScenarioEnergyRegenerated, kScenarioCostOfTransportElectrical, kScenarioPeakElectricalPower,
+    kScenarioEnergyRegenerated, kScenarioPositiveWork, kScenarioNegativeWork,
+    kScenarioCostOfTransportElectrical, kScenarioPeakElectricalPower,
     kScenarioPeakDriveTorqueGait, kScenarioPeakDriveTorqueTransient, kScenarioDriveTorqueWindowRms,
     kScenarioThermalLoad, kScenarioPeakWindingTemperature, kScenarioTimeToWindingLimit,
     kScenarioPeakWindingTemperatureMax, kScenarioTimeToWindingLimitMin,

@@ -67,6 +67,7 @@ void add_terrain_profile(const TerrainParams& terrain, const RobotModel& model, 
   result.terrain_y_m = std::move(profile.y_m);
   result.terrain_z_m = std::move(profile.z_m);
   result.terrain_type = terrain_type_name(terrain.type);
+  result.terrain_map = terrain.map;
 }
 
 /// Rounds of posture search and balancing for an automatic posture (docs/theory/balance.md#reach).

@@ -430,6 +430,10 @@ void finish_dynamics(const Scene& scene, const RobotModel& model, const MotionPl
   dyn.total_power_W = std::move(power.total_power_W);
   dyn.energy_joint_J = std::move(power.energy_joint_J);
   dyn.energy_total_J = power.energy_total_J;
+  dyn.positive_work_joint_J = std::move(power.positive_work_joint_J);
+  dyn.negative_work_joint_J = std::move(power.negative_work_joint_J);
+  dyn.positive_work_J = power.positive_work_J;
+  dyn.negative_work_J = power.negative_work_J;
   dyn.energy_cycle_J = std::move(power.energy_cycle_J);
   dyn.distance_m = power.distance_m;
   dyn.cost_of_transport = power.cost_of_transport;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <sstream>
 #include <stdexcept>
@@ -18,12 +19,21 @@ double S(double u) { return u * u * u * (10.0 + u * (-15.0 + 6.0 * u)); }
 double dS(double u) { return 30.0 * u * u * (1.0 - u) * (1.0 - u); }
 double ddS(double u) { return 60.0 * u * (1.0 - u) * (1.0 - 2.0 * u); }
 
-/// Where on the stairs a leg wanted to stand: "step k of N" (the tread above the k-th riser),
-/// "step N of N (the top)" or "the ground before step 1".
+/// Where on the stairs a leg wanted to stand: "step k of N" (the tread behind the riser of
+/// step k), "step N of N (the last)" or "the ground before step 1".
 std::string step_words(const Terrain& terrain, double y) {
-  const int k = terrain.tread_index(y), n = terrain.params().steps;
+  const int k = terrain.tread_index(y), n = terrain.edge_count();
   if (k == 0) return "the ground before step 1";
-  return "step " + std::to_string(k) + " of " + std::to_string(n) + (k == n ? " (the top)" : "");
+  const int last = terrain.edge_step(n);
+  return "step " + std::to_string(terrain.edge_step(k)) + " of " + std::to_string(last) +
+         (k == n ? " (the last)" : "");
+}
+
+/// Depth of the tread containing y between its edges (+inf for the ground and the last).
+double tread_depth_at(const Terrain& terrain, double y) {
+  const int k = terrain.tread_index(y), n = terrain.edge_count();
+  if (k == 0 || k == n) return std::numeric_limits<double>::infinity();
+  return terrain.edge_y(k + 1) - terrain.edge_y(k);
 }
 
 /// The one-line error of a foothold that cannot keep the margin
@@ -34,15 +44,26 @@ std::string no_foothold_message(const Terrain& terrain, const GaitParams& gait, 
   s << "leg " << leg_name(leg) << ", stance from t = " << t_s << " s on "
     << step_words(terrain, y_nominal) << " (wanted y = " << y_nominal
     << " m): no foothold keeps gait.foothold_margin " << gait.foothold_margin_m << " m from the "
-    << "nosing and the riser";
+    << "edges of its tread";
+  const double depth = tread_depth_at(terrain, y_nominal);
   if (radius_m > 0.0)
-    s << " with its sphere foot of radius " << radius_m << " m: the tread depth "
-      << terrain.params().tread_depth_m
+    s << " with its sphere foot of radius " << radius_m << " m: the tread depth " << depth
       << " m is less than 2 (margin + radius) = " << 2.0 * (gait.foothold_margin_m + radius_m)
       << " m";
   else
-    s << ": the tread depth " << terrain.params().tread_depth_m
-      << " m is less than twice the margin";
+    s << ": the tread depth " << depth << " m is less than twice the margin";
+  return s.str();
+}
+
+/// The one-line error of a foothold that no point of a height map near it can take.
+std::string no_map_foothold_message(const GaitParams& gait, double radius_m, int leg, double t_s,
+                                    double x, double y) {
+  std::ostringstream s;
+  s << "leg " << leg_name(leg) << ", stance from t = " << t_s << " s at (" << x << ", " << y
+    << ") m on the height map: no point within " << kFootholdSearch_m
+    << " m along y keeps gait.foothold_margin " << gait.foothold_margin_m;
+  if (radius_m > 0.0) s << " + the foot's radius " << radius_m;
+  s << " m from an edge or ground steeper than terrain.height_map.max_slope";
   return s.str();
 }
 
@@ -60,7 +81,10 @@ Vec3 foothold(const RobotModel& model, const GaitParams& gait, const TrunkMotion
   const double y_wanted = y_nominal + 0.5 * gait.stroke_m;
   const double radius = model.foot_radius_m[leg];
   const std::optional<double> y =
-      terrain.valid_foothold_y(y_wanted, gait.foothold_margin_m + radius);
+      terrain.valid_foothold_at(x, y_wanted, gait.foothold_margin_m + radius);
+  if (!y && terrain.params().type == TerrainType::kHeightMap)
+    throw PlanningError(
+        no_map_foothold_message(gait, radius, leg, trunk.time_at_phase(tau_nominal), x, y_wanted));
   if (!y)
     throw PlanningError(no_foothold_message(terrain, gait, radius, leg,
                                             trunk.time_at_phase(tau_nominal), y_wanted));

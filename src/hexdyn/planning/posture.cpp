@@ -229,14 +229,24 @@ HeightRange searched_heights(const Scene& scene, const RobotModel& model) {
   return r;
 }
 
+/// A step list's reference line: through the first tread's centre at the mean slope.
+double list_reference_height(const TerrainParams& t, double y) {
+  const StairStep& first = t.step_list.front();
+  const double centre_y = t.first_riser_y_m + 0.5 * first.tread_m;
+  return t.ground_height_m + first.riser_m + std::tan(mean_slope_rad(t)) * (y - centre_y);
+}
+
 }  // namespace
 
 double reference_line_height(const TerrainParams& t, double y) {
   switch (t.type) {
     case TerrainType::kStairs:
-      return t.ground_height_m +
-             t.riser_height_m * ((y - t.first_riser_y_m) / t.tread_depth_m + 0.5);
+      if (t.step_list.empty())
+        return t.ground_height_m +
+               t.riser_height_m * ((y - t.first_riser_y_m) / t.tread_depth_m + 0.5);
+      return list_reference_height(t, y);
     case TerrainType::kSlope:
+    case TerrainType::kHeightMap:
       return t.ground_height_m + std::tan(t.slope_rad) * (y - t.slope_origin_y_m);
     case TerrainType::kFlat:
       return t.ground_height_m;
@@ -245,7 +255,26 @@ double reference_line_height(const TerrainParams& t, double y) {
 }
 
 double terrain_rise_above_reference(const TerrainParams& t) {
-  return t.type == TerrainType::kStairs ? 0.5 * t.riser_height_m : 0.0;
+  if (t.type == TerrainType::kHeightMap) {  // the highest node above the line
+    double rise = 0.0;
+    for (int i = 0; i < t.map->ny; ++i)
+      for (int j = 0; j < t.map->nx; ++j)
+        rise = std::max(rise, t.map->at(i, j) - reference_line_height(t, t.map->y(i)));
+    return rise;
+  }
+  if (t.type != TerrainType::kStairs) return 0.0;
+  if (t.step_list.empty() && t.nosing_m == 0.0) return 0.5 * std::abs(t.riser_height_m);
+  // The highest corner of a tread above the line: at the tread's start or end.
+  const Terrain terrain(t);
+  double rise = 0.0;
+  for (int k = 0; k <= terrain.edge_count(); ++k) {
+    for (int end = 0; end < 2; ++end) {
+      const int e = k + end;  // the edge at the tread's start (k) or end (k + 1)
+      if (e < 1 || e > terrain.edge_count()) continue;
+      rise = std::max(rise, terrain.tread_height(k) - reference_line_height(t, terrain.edge_y(e)));
+    }
+  }
+  return rise;
 }
 
 double terrain_origin_y(const TerrainParams& t) {
@@ -255,6 +284,7 @@ double terrain_origin_y(const TerrainParams& t) {
     case TerrainType::kSlope:
       return t.slope_origin_y_m;
     case TerrainType::kFlat:
+    case TerrainType::kHeightMap:
       return 0.0;
   }
   return 0.0;

@@ -80,8 +80,9 @@ class TrunkOffset;
 /// Height of the terrain's reference line at y [m] (file comment).
 double reference_line_height(const TerrainParams& terrain, double y_m);
 
-/// Highest rise of the terrain above its reference line [m]: h_s/2 on stairs (at the
-/// back of every tread, just past its riser), 0 on slopes and flat ground.
+/// Highest rise of the terrain above its reference line [m]: |h_s|/2 on uniform stairs (at
+/// the back of every tread going up, at its front going down), the highest tread corner above
+/// the line on other stairs, 0 on slopes and flat ground.
 double terrain_rise_above_reference(const TerrainParams& terrain);
 
 /// The terrain's origin along y: first riser, slope origin or 0 [m].

@@ -71,6 +71,25 @@ const std::vector<std::vector<double>>& joint_interval_energies(
   return own;
 }
 
+/// The positive and negative parts of each joint's work (PowerResult), from its energy and
+/// its signed integral by the same rule.
+void split_work(const KinematicsResult& kin, const std::vector<char>& jump, bool cubic,
+                PowerResult& p) {
+  const int J = static_cast<int>(p.joint_power.cols());
+  p.positive_work_joint_J.assign(J, 0.0);
+  p.negative_work_joint_J.assign(J, 0.0);
+  for (int j = 0; j < J; ++j) {
+    const double* y = p.joint_power.data() + j;
+    const double net =
+        cubic ? cubic_integral(kin.time_s, jump, {y, J}) : trapezoid(kin.time_s, y, J);
+    // |net| ≤ E_k holds for the rule's parts; the clamp keeps the signs through rounding.
+    p.positive_work_joint_J[j] = std::max(0.0, 0.5 * (p.energy_joint_J[j] + net));
+    p.negative_work_joint_J[j] = std::min(0.0, 0.5 * (net - p.energy_joint_J[j]));
+    p.positive_work_J += p.positive_work_joint_J[j];
+    p.negative_work_J += p.negative_work_joint_J[j];
+  }
+}
+
 }  // namespace
 
 PowerResult compute_power(const KinematicsResult& kin, const RowMatrix& joint_torque,
@@ -97,6 +116,7 @@ PowerResult compute_power(const KinematicsResult& kin, const RowMatrix& joint_to
     }
     for (double e : (*parts)[j]) p.energy_joint_J[j] += e;
   }
+  split_work(kin, jump, cubic, p);
   if (cubic) {
     for (double e : p.energy_joint_J) p.energy_total_J += e;
   } else {

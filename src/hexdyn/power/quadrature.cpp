@@ -286,6 +286,25 @@ double cubic_abs_integral(const std::vector<double>& t, const std::vector<char>&
   return sum;
 }
 
+double cubic_integral(const std::vector<double>& t, const std::vector<char>& jump, SeriesView y) {
+  const std::size_t T = t.size();
+  double sum = 0.0;
+  for (std::size_t s = 0; s + 1 < T;) {
+    const std::size_t e = piece_end(jump, s, T);
+    for (std::size_t k = s; k <= std::min(e, T - 2); ++k) {
+      const double h = t[k + 1] - t[k];
+      if (k == e) {
+        sum += 0.5 * h * (y[k] + y[k + 1]);
+        continue;
+      }
+      const Local L = local_polynomials(stencil_geometry(t, s, e, k), y);
+      sum += h * integral(L.p, 4, 0.0, 1.0);
+    }
+    s = e + 1;
+  }
+  return sum;
+}
+
 double cubic_abs_integral_between(const std::vector<double>& t, const std::vector<char>& jump,
                                   SeriesView y, double a, double b, const double* whole) {
   const std::size_t T = t.size();

@@ -71,6 +71,11 @@ void cubic_abs_integrals_batch(const std::vector<double>& t_s, const std::vector
 double cubic_abs_integral(const std::vector<double>& t_s, const std::vector<char>& jump,
                           SeriesView y);
 
+/// ∫y dt (signed) over [t_0, t_{T−1}] by the same stencils: ∫p_k over each smooth interval,
+/// the trapezoid over a jump interval. With cubic_abs_integral it splits ∫|y| into its positive
+/// and negative parts, (∫|y| ± ∫y) / 2, to rounding.
+double cubic_integral(const std::vector<double>& t_s, const std::vector<char>& jump, SeriesView y);
+
 /// ∫|y| dt over [a, b] ⊆ [t_0, t_{T−1}] (a ≤ b) by the rule: whole intervals as above, and the
 /// interval a bound falls in integrates its own p_k up to the bound, so that the integrals over
 /// adjacent spans add up to the whole (to rounding). `whole` (may be null; T − 1 entries): the

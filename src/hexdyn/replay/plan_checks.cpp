@@ -3,6 +3,8 @@
 #include "hexdyn/replay/plan_checks.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <string>
 
 #include "hexdyn/core/errors.hpp"
@@ -99,8 +101,17 @@ ReplayPlan plan_from_result(const RobotModel& model, const RunResult& r) {
 ArrivalTolerance arrival_tolerance(const TerrainParams& terrain) {
   ArrivalTolerance tol;
   if (terrain.type == TerrainType::kStairs) {
-    tol.horizontal_m = 0.5 * terrain.tread_depth_m;
-    tol.vertical_m = std::max(0.5 * terrain.riser_height_m, 0.01);
+    double going = terrain.tread_depth_m, rise = std::abs(terrain.riser_height_m);
+    if (!terrain.step_list.empty()) {  // the shallowest going, the highest riser
+      going = std::numeric_limits<double>::infinity();
+      rise = 0.0;
+      for (const StairStep& s : terrain.step_list) {
+        going = std::min(going, s.tread_m);
+        rise = std::max(rise, std::abs(s.riser_m));
+      }
+    }
+    tol.horizontal_m = 0.5 * going;
+    tol.vertical_m = std::max(0.5 * rise, 0.01);
   } else {
     tol.horizontal_m = tol.vertical_m = 0.05;
   }

@@ -84,7 +84,9 @@ void evaluate_contacts(const RobotModel& model, RobotData& data, const ContactPa
   for (int l = 0; l < c.legs; ++l) {
     const Vec3 centre_W = data.X_world_body[model.foot_body(l)].apply_point(model.p_foot_last[l]);
     c.geometry[l] =
-        terrain_contact(plan.terrain_y_m, plan.terrain_z_m, centre_W, model.foot_radius_m[l]);
+        plan.terrain_map
+            ? height_map_contact(*plan.terrain_map, centre_W, model.foot_radius_m[l])
+            : terrain_contact(plan.terrain_y_m, plan.terrain_z_m, centre_W, model.foot_radius_m[l]);
     c.normals[l] = c.geometry[l].normal_W;
   }
   foot_jacobians(model, data, s.base, s.q, &c.normals);

@@ -49,6 +49,9 @@ struct ReplayPlan {
   std::vector<double> cycle_start_s;  ///< start of each gait cycle (/gait/cycle_start)
   /// The terrain's height profile (/terrain/y, /terrain/z; planning/terrain.hpp).
   std::vector<double> terrain_y_m, terrain_z_m;
+  /// A height map's grid (/terrain/map_*), which the feet meet instead of the profile; null
+  /// on other terrain.
+  std::shared_ptr<const HeightMap> terrain_map;
 };
 
 /// The trunk's state (frame B, what dynamics/rnea.hpp takes) from one row of a result's

@@ -86,6 +86,25 @@ void check_quaternions(const std::vector<double>& wxyz, const std::string& file)
   }
 }
 
+/// The height map of a run on one (/terrain/map_x, map_y, map_z): its nodes evenly spaced.
+std::shared_ptr<const HeightMap> read_height_map(const H5Reader& in, const std::string& file) {
+  namespace s = schema;
+  const auto dims = in.dims(s::kTerrainMapZ.path);
+  if (dims.size() != 2 || dims[0] < 2 || dims[1] < 2)
+    throw IoError("replay: '" + file + "': " + s::kTerrainMapZ.path +
+                  " is not a grid of at least 2 x 2 heights");
+  const std::vector<double> x = read_matrix(in, file, s::kTerrainMapX.path, dims[1], 1);
+  const std::vector<double> y = read_matrix(in, file, s::kTerrainMapY.path, dims[0], 1);
+  auto m = std::make_shared<HeightMap>();
+  m->nx = static_cast<int>(dims[1]);
+  m->ny = static_cast<int>(dims[0]);
+  m->x0_m = x.front();
+  m->y0_m = y.front();
+  m->resolution_m = (x.back() - x.front()) / (m->nx - 1);
+  m->z_m = read_matrix(in, file, s::kTerrainMapZ.path, dims[0], dims[1]);
+  return m;
+}
+
 void read_plan(const H5Reader& in, const std::string& file, const RobotModel& model,
                ReplayPlan& p) {
   if (!in.is_dataset(s::kTime.path)) throw IoError("replay: '" + file + "' has no /time");
@@ -124,6 +143,7 @@ void read_plan(const H5Reader& in, const std::string& file, const RobotModel& mo
   const std::size_t V = in.dims(s::kTerrainY.path).empty() ? 0 : in.dims(s::kTerrainY.path)[0];
   p.terrain_y_m = read_matrix(in, file, s::kTerrainY.path, V, 1);
   p.terrain_z_m = read_matrix(in, file, s::kTerrainZ.path, V, 1);
+  if (in.is_dataset(s::kTerrainMapZ.path)) p.terrain_map = read_height_map(in, file);
 }
 
 /// The stored motion against the model: the feet placed by forward kinematics of the stored

@@ -129,7 +129,9 @@ auto double_fields(S& s) {
                     &s.required_friction_support_time_s,
                     &s.required_friction_transient,
                     &s.required_friction_transient_time_s,
-                    &s.peak_utilized_friction};
+                    &s.peak_utilized_friction,
+                    &s.positive_work_J,
+                    &s.negative_work_J};
 }
 
 /// The summary's integer fields after the sample counts, in record order.

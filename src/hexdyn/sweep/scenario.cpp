@@ -231,6 +231,7 @@ ScenarioSummary failed_summary(std::size_t index, ScenarioStatus status,
   s.message = message;
   s.duration_s = s.distance_m = s.energy_J = s.cost_of_transport = s.peak_impact_force_N = kNaN;
   s.peak_power_W = s.peak_contact_force_N = s.grid_energy_error = s.grid_peak_error = kNaN;
+  s.positive_work_J = s.negative_work_J = kNaN;
   for (auto* a : per_joint_metrics(s)) a->fill(kNaN);
   no_drive_metrics(s);
   no_grip_metrics(s);
@@ -254,6 +255,8 @@ ScenarioSummary summarize_run(const RunResult& run, std::size_t index) {
   }
   s.distance_m = d.distance_m;
   s.energy_J = d.energy_total_J;
+  s.positive_work_J = d.positive_work_J;
+  s.negative_work_J = d.negative_work_J;
   s.cost_of_transport = d.cost_of_transport;
   for (const ImpactRecord& im : d.impacts)
     s.peak_impact_force_N = std::max(s.peak_impact_force_N, im.peak_force_N);

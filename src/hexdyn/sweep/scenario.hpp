@@ -55,11 +55,13 @@ std::string status_codes_text();
 struct ScenarioSummary {
   std::size_t index = 0;
   ScenarioStatus status = ScenarioStatus::kOk;
-  std::string message;                ///< the error's one-line message; "" when ok
-  int samples = 0;                    ///< T output samples
-  double duration_s = 0.0;            ///< last minus first sample time [s]
-  double distance_m = 0.0;            ///< trunk travel used by the cost of transport [m]
-  double energy_J = 0.0;              ///< E = ∫ Σ|τ ω| dt [J]
+  std::string message;      ///< the error's one-line message; "" when ok
+  int samples = 0;          ///< T output samples
+  double duration_s = 0.0;  ///< last minus first sample time [s]
+  double distance_m = 0.0;  ///< trunk travel used by the cost of transport [m]
+  double energy_J = 0.0;    ///< E = ∫ Σ|τ ω| dt [J]
+  /// /energy/positive_work and /energy/negative_work: E's parts where τ ω > 0 and < 0 [J]
+  double positive_work_J = 0.0, negative_work_J = 0.0;
   double cost_of_transport = 0.0;     ///< E / (m g d) [1]
   double peak_impact_force_N = 0.0;   ///< largest touchdown peak; 0 without touchdowns [N]
   double peak_power_W = 0.0;          ///< max over samples of Σ|τ ω| [W]

@@ -248,6 +248,8 @@ void write_scenario_metrics(H5Writer& w, Labeller& labels, const std::vector<Sce
   per_joint(s::kScenarioRmsTorque, &ScenarioSummary::rms_torque_Nm);
   per_joint(s::kScenarioPeakTorqueGait, &ScenarioSummary::peak_torque_gait_Nm);
   per_joint(s::kScenarioPeakTorqueTransient, &ScenarioSummary::peak_torque_transient_Nm);
+  doubles(s::kScenarioPositiveWork, &ScenarioSummary::positive_work_J);
+  doubles(s::kScenarioNegativeWork, &ScenarioSummary::negative_work_J);
   doubles(s::kScenarioEnergyElectrical, &ScenarioSummary::energy_electrical_J);
   doubles(s::kScenarioEnergyCopperLoss, &ScenarioSummary::energy_copper_loss_J);
   doubles(s::kScenarioEnergyFrictionLoss, &ScenarioSummary::energy_friction_loss_J);

@@ -151,6 +151,10 @@ RunResult make_result(int T, bool dynamics, int impacts, int messages, unsigned 
   d.total_power_W = random_vector(rng, T);
   d.energy_total_J = 12.5;
   d.energy_joint_J = random_vector(rng, J);
+  d.positive_work_joint_J = random_vector(rng, J);
+  d.negative_work_joint_J = random_vector(rng, J);
+  d.positive_work_J = 9.5;
+  d.negative_work_J = -3.0;
   d.energy_cycle_J = random_vector(rng, 3);
   d.distance_m = 0.75;
   d.cost_of_transport = 0.253;
@@ -199,7 +203,10 @@ std::vector<std::size_t> expected_dims(schema::Shape shape, std::size_t T, std::
       return {4};
     case Shape::kAxes:
     case Shape::kCycles3:
-      break;  // not in this synthetic result
+    case Shape::kMapColumns:
+    case Shape::kMapRows:
+    case Shape::kMapGrid:
+      break;  // not in this synthetic result (no height map)
     case Shape::kScenarios:
     case Shape::kScenarioAxes:
     case Shape::kScenarioJoints:
@@ -407,6 +414,10 @@ TEST_CASE("output: every dataset of the contract round-trips (dynamics present)"
   check_values(in, s::kTotalPower.path, d.total_power_W);
   check_values(in, s::kEnergyTotal.path, std::vector<double>{d.energy_total_J});
   check_values(in, s::kEnergyJoint.path, d.energy_joint_J);
+  check_values(in, s::kEnergyPositiveWork.path, std::vector<double>{d.positive_work_J});
+  check_values(in, s::kEnergyNegativeWork.path, std::vector<double>{d.negative_work_J});
+  check_values(in, s::kEnergyPositiveWorkJoint.path, d.positive_work_joint_J);
+  check_values(in, s::kEnergyNegativeWorkJoint.path, d.negative_work_joint_J);
   check_values(in, s::kCostOfTransport.path, std::vector<double>{d.cost_of_transport});
   check_values(in, s::kEnergyDistance.path, std::vector<double>{d.distance_m});
   const std::vector<std::int64_t> status = in.read_ints(s::kSolverStatus.path);

@@ -39,6 +39,8 @@ RunResult result_of(int legs, int leg_joints, int T) {
   d.slip.setZero(T, legs);
   d.total_power_W.assign(static_cast<std::size_t>(T), 0.0);
   d.energy_joint_J.assign(static_cast<std::size_t>(J), 0.0);
+  d.positive_work_joint_J.assign(static_cast<std::size_t>(J), 0.0);
+  d.negative_work_joint_J.assign(static_cast<std::size_t>(J), 0.0);
   d.solver_status.assign(static_cast<std::size_t>(T), SolverStatus::kOptimal);
   d.solver_iterations.assign(static_cast<std::size_t>(T), 0.0);
   d.solver_objective.assign(static_cast<std::size_t>(T), 0.0);

@@ -125,9 +125,22 @@ TEST_CASE("compute_power: cubic energies of cubic powers per piece, and the know
     }
     exact += 0.5 * 1e-10 * (std::abs(power(j, 1.0 - 1e-10)) + std::abs(power(j, 1.0)));
     CHECK(p.energy_joint_J[j] == Approx(exact).epsilon(1e-8));
+    // The positive and negative parts, by the same midpoint sums of max(0, P) and min(0, P).
+    double positive = 0.0, negative = 0.0;
+    for (int piece = 0; piece < 2; ++piece) {
+      const double a = piece == 0 ? 0.0 : 1.0, b = piece == 0 ? 1.0 - 1e-10 : 2.0;
+      for (int i = 0; i < n; ++i) {
+        const double v = power(j, a + (i + 0.5) * (b - a) / n) * (b - a) / n;
+        (v > 0.0 ? positive : negative) += v;
+      }
+    }
+    CHECK(p.positive_work_joint_J[j] == Approx(positive).epsilon(1e-8).margin(1e-12));
+    CHECK(p.negative_work_joint_J[j] == Approx(negative).epsilon(1e-8).margin(1e-12));
+    CHECK(p.negative_work_joint_J[j] < 0.0);
     total += p.energy_joint_J[j];
   }
   CHECK(p.energy_total_J == Approx(total).epsilon(1e-15));
+  CHECK(p.positive_work_J - p.negative_work_J == Approx(p.energy_total_J).epsilon(1e-14));
   REQUIRE(p.energy_cycle_J.size() == 3);
   CHECK(p.energy_cycle_J[0] + p.energy_cycle_J[1] + p.energy_cycle_J[2] ==
         Approx(p.energy_total_J).epsilon(1e-13));
