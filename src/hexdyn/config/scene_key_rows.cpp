@@ -357,8 +357,9 @@ void add_motion_timing(std::deque<SceneKey>& t) {
        .allowed_text = "`{distance: D}` with D in (0, 1e4] m, or `{treads: N}` with N in "
                        "[1, 100000] (stairs only)",
        .meaning = "the trunk's travel along the slope instead of `cycles`: D, or N treads "
-                  "(N b_s across and N h_s up, N √(b_s² + h_s²) along the slope); the "
-                  "cycles follow from it ([below](#travel-instead-of-cycles))"});
+                  "(N b_s across and N h_s up, N √(b_s² + h_s²) along the slope; on a list "
+                  "of steps b_s is its mean going and h_s/b_s its mean slope); the cycles follow "
+                  "from it ([below](#travel-instead-of-cycles))"});
   t.push_back(
       {.path = "motion.travel.distance", .range = positive(1e4), .unit = "m", .required = true});
   t.push_back({.path = "motion.travel.treads",

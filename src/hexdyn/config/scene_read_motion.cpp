@@ -208,7 +208,13 @@ int read_travel(Reader& r, GaitParams& g, const TerrainParams& t, double stride_
   } else {
     const int treads = integer_key(r, "motion.travel.treads");
     check_treads_on_stairs(r, treads, t);
-    distance = treads * t.tread_depth_m / cos_slope;  // one tread: b_s across, h_s up
+    // One tread: b_s across, h_s up; on a list of steps its mean going.
+    double going = t.tread_depth_m;
+    if (!t.step_list.empty()) {
+      going = 0.0;
+      for (const StairStep& s : t.step_list) going += s.tread_m / t.step_list.size();
+    }
+    distance = treads * going / cos_slope;
   }
   const double ratio = distance / stride_along_slope;
   const double n = std::max(1.0, std::ceil(ratio - 1e-9));

@@ -1,6 +1,7 @@
 // terrain.steps as a list, terrain.nosing and the stairs' perturbations (stair_steps.hpp).
 #include "hexdyn/config/stair_steps.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 #include <string>
@@ -160,8 +161,12 @@ void read_step_list(Reader& r, TerrainParams& t, const YAML::Node& list) {
   bad.throw_if_any();
   check_overhangs(t, bad, list);
   bad.throw_if_any();
-  if (t.step_list.back().riser_m == 0.0 && t.step_list.size() == 1)
-    r.fail_value(kSteps, list, "at least one step with a riser (a landing alone is flat ground)");
+  const bool any_riser = std::any_of(t.step_list.begin(), t.step_list.end(),
+                                     [](const StairStep& s) { return s.riser_m != 0.0; });
+  if (!any_riser)
+    r.fail_value(kSteps, list,
+                 "at least one step with a riser (landings alone are flat ground: terrain.type "
+                 "flat)");
   t.steps = static_cast<int>(t.step_list.size());
   if (d.riser_m) t.riser_height_m = *d.riser_m;
   if (d.tread_m) t.tread_depth_m = *d.tread_m;

@@ -104,6 +104,8 @@ TEST_CASE("steps list: one line per bad step, with its index, value and what is 
   CHECK_THAT(error_lines({{"terrain.nosing", "0.25"}})[0],
              Catch::Contains("terrain.nosing: got 0.25, expected less than terrain.tread_depth"));
   CHECK_THAT(error_lines({{"terrain.steps", "[]"}})[0], Catch::Contains("terrain.steps: got []"));
+  CHECK_THAT(error_lines({{"terrain.steps", "[{landing: 1}, {riser: 0, tread: 0.3}]"}})[0],
+             Catch::Contains("expected at least one step with a riser"));
 }
 
 TEST_CASE("stairs perturbations: a scale on every riser, an offset on one", "[config][terrain]") {
