@@ -106,3 +106,12 @@ def transfers(feet, phase, exact):
                 if min(np.abs(p - lo).max(), np.abs(p - hi).max()) > exact:
                     out.append((k, leg))
     return out
+
+
+def segment_distance(py, pz, ty, tz):
+    """Distance of points (py, pz) (any shape) to the polyline of vertices (ty, tz)."""
+    a = np.stack([ty[:-1], tz[:-1]], axis=-1)
+    d = np.stack([ty[1:], tz[1:]], axis=-1) - a
+    p = np.stack([py, pz], axis=-1)[..., None, :] - a
+    s = np.clip((p * d).sum(-1) / np.maximum((d * d).sum(-1), 1e-300), 0.0, 1.0)
+    return np.linalg.norm(p - s[..., None] * d, axis=-1).min(-1)

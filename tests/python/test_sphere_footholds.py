@@ -22,7 +22,7 @@ import xml.etree.ElementTree as ET
 import h5py
 import numpy as np
 import yaml
-from common import args, cli_run, swing_runs
+from common import args, cli_run, segment_distance, swing_runs
 
 HEXDYN, SRC = args()
 TOL = 1e-9
@@ -48,15 +48,6 @@ def urdf_sphere_radius(path):
     radii = {float(s.get("radius")) for s in ET.parse(path).iter("sphere")}
     assert len(radii) == 1, radii
     return radii.pop()
-
-
-def segment_distance(py, pz, ty, tz):
-    """Distance of points (py, pz) (any shape) to the polyline of vertices (ty, tz)."""
-    a = np.stack([ty[:-1], tz[:-1]], axis=-1)
-    d = np.stack([ty[1:], tz[1:]], axis=-1) - a
-    p = np.stack([py, pz], axis=-1)[..., None, :] - a
-    s = np.clip((p * d).sum(-1) / np.maximum((d * d).sum(-1), 1e-300), 0.0, 1.0)
-    return np.linalg.norm(p - s[..., None] * d, axis=-1).min(-1)
 
 
 def highest_under(ty, tz, lo, hi):

@@ -34,7 +34,7 @@ import tempfile
 import h5py
 import numpy as np
 import yaml
-from common import args, cli_run, transfers
+from common import args, cli_run, segment_distance, transfers
 
 HEXDYN, SRC = args()
 TOL = 1e-9
@@ -53,15 +53,6 @@ def check(cond, what):
         failures.append(what)
         if not quiet:
             print("FAIL:", what)
-
-
-def segment_distance(py, pz, ty, tz):
-    """Distance of points (py, pz) (any shape) to the polyline of vertices (ty, tz)."""
-    a = np.stack([ty[:-1], tz[:-1]], axis=-1)
-    d = np.stack([ty[1:], tz[1:]], axis=-1) - a
-    p = np.stack([py, pz], axis=-1)[..., None, :] - a
-    s = np.clip((p * d).sum(-1) / np.maximum((d * d).sum(-1), 1e-300), 0.0, 1.0)
-    return np.linalg.norm(p - s[..., None] * d, axis=-1).min(-1)
 
 
 def highest_under(ty, tz, lo, hi):

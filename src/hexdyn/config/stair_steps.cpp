@@ -133,19 +133,18 @@ void check_overhangs(const TerrainParams& t, StepProblems& bad, const YAML::Node
   }
 }
 
-/// The uniform stairs a uniform list is, or nothing.
-bool read_as_uniform(TerrainParams& t) {
+/// A uniform list as the uniform stairs it spells out; any other list as it is.
+void read_as_uniform(TerrainParams& t) {
   const StairStep& f = t.step_list.front();
   for (const StairStep& s : t.step_list)
     if (s.riser_m != f.riser_m || s.tread_m != f.tread_m || s.nosing_m != f.nosing_m ||
         s.riser_m == 0.0)
-      return false;
+      return;
   t.riser_height_m = f.riser_m;
   t.tread_depth_m = f.tread_m;
   t.nosing_m = f.nosing_m;
   t.steps = static_cast<int>(t.step_list.size());
   t.step_list.clear();
-  return true;
 }
 
 void read_step_list(Reader& r, TerrainParams& t, const YAML::Node& list) {

@@ -101,6 +101,11 @@ double HeightMap::max_height_along(double ax, double ay, double bx, double by,
   return best == -kInf ? height(ax, ay) : best;
 }
 
+double HeightMap::node_clearance(int i, int j) const {
+  const int k = nearest_bad[static_cast<std::size_t>(i) * nx + j];
+  return k < 0 ? kInf : std::hypot(x(k % nx) - x(j), y(k / nx) - y(i));
+}
+
 double HeightMap::clearance(double x, double y) const {
   int i = 0, j = 0;
   double u = 0.0, w = 0.0;
@@ -151,7 +156,6 @@ void prepare_height_map(HeightMap& m, double edge_height_m, double max_slope_rad
       row_of[static_cast<std::size_t>(i) * nx + j] = arg[i];
     }
   }
-  m.clearance_m.assign(f.size(), kInf);
   m.nearest_bad.assign(f.size(), -1);
   for (int i = 0; i < ny; ++i) {
     line.assign(f.begin() + static_cast<std::ptrdiff_t>(i) * nx,
@@ -161,7 +165,6 @@ void prepare_height_map(HeightMap& m, double edge_height_m, double max_slope_rad
     transform_1d(line, out, v, z, arg);
     for (int j = 0; j < nx; ++j) {
       const std::size_t k = static_cast<std::size_t>(i) * nx + j;
-      m.clearance_m[k] = std::sqrt(out[j]) * r;
       if (arg[j] >= 0)  // column arg[j], the row its column pass found
         m.nearest_bad[k] = row_of[static_cast<std::size_t>(i) * nx + arg[j]] * nx + arg[j];
     }

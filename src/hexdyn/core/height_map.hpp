@@ -16,16 +16,16 @@ struct HeightMap {
   double y0_m = 0.0;          ///< y of row 0 [m]
   double resolution_m = 0.0;  ///< node spacing along x and y [m], > 0
   std::vector<double> z_m;    ///< ny × nx heights, row-major: node (i, j) at (x0 + j r, y0 + i r)
-  /// ny × nx: each node's distance to the nearest node that is no foothold (an edge: a
-  /// neighbour more than the edge height above or below it; or ground steeper than the
-  /// largest slope) [m]; +inf when there is none. Filled by prepare_height_map.
-  std::vector<double> clearance_m;
-  /// ny × nx: the index (row-major) of each node's nearest no-foothold node; −1 when none.
+  /// ny × nx: the index (row-major) of each node's nearest node that is no foothold (an
+  /// edge: a neighbour more than the edge height above or below it; or ground steeper than
+  /// the largest slope); −1 when there is none. Filled by prepare_height_map.
   std::vector<int> nearest_bad;
 
   double x(int j) const { return x0_m + j * resolution_m; }
   double y(int i) const { return y0_m + i * resolution_m; }
   double at(int i, int j) const { return z_m[static_cast<std::size_t>(i) * nx + j]; }
+  /// Distance of node (i, j) to its nearest no-foothold node [m]; +inf when there is none.
+  double node_clearance(int i, int j) const;
   /// Bilinear height at (x, y), the map's border continued outside it [m].
   double height(double x, double y) const;
   /// Gradient (∂z/∂x, ∂z/∂y) of the bilinear surface at (x, y) (0 outside the map).
@@ -41,7 +41,7 @@ struct HeightMap {
   double clearance(double x, double y) const;
 };
 
-/// Fills map.clearance_m and map.nearest_bad: a node is no foothold when a 4-neighbour's height
+/// Fills map.nearest_bad: a node is no foothold when a 4-neighbour's height
 /// differs from its own by more than edge_height_m, or when the central-difference slope at it
 /// exceeds max_slope_rad; the distances are exact Euclidean distances between nodes (Felzenszwalb
 /// and Huttenlocher's two-pass transform).

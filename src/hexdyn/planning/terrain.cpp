@@ -68,7 +68,9 @@ double Terrain::max_height_along(const Vec3& a, const Vec3& b, double radius_m) 
 double Terrain::mean_slope_rad() const { return hexdyn::mean_slope_rad(params_); }
 
 double Terrain::edge_distance(double y) const {
-  if (params_.type != TerrainType::kStairs || (uniform_ && params_.riser_height_m == 0.0))
+  // Uniform stairs of zero risers are flat ground (a list's zero risers make no edge).
+  if (params_.type != TerrainType::kStairs ||
+      (params_.step_list.empty() && params_.riser_height_m == 0.0))
     return kInf;
   const int k = tread_index(y), n = edge_count();
   // Tread k spans [edge k, edge k+1); the ground (k = 0) has no edge behind, the last tread

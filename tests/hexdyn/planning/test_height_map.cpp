@@ -41,7 +41,8 @@ TEST_CASE("height map: a plane is reproduced exactly, with its normal", "[terrai
     CHECK((m.normal(x, y) - n).norm() <= 1e-12);
   }
   // A gentle plane has no edge: every node keeps an infinite clearance.
-  for (double c : m.clearance_m) CHECK(std::isinf(c));
+  for (int i = 0; i < m.ny; ++i)
+    for (int j = 0; j < m.nx; ++j) CHECK(std::isinf(m.node_clearance(i, j)));
 }
 
 double bowl(double x, double y) { return x * x + 0.5 * y * y; }
@@ -113,7 +114,7 @@ TEST_CASE("height map: clearances are exact distances to the nearest no-foothold
     for (int j = 0; j < m.nx; ++j) {
       double d = std::numeric_limits<double>::infinity();
       for (const auto& [a, c] : bad) d = std::min(d, std::hypot(a - i, c - j) * m.resolution_m);
-      CHECK(m.clearance_m[static_cast<std::size_t>(i) * m.nx + j] == Approx(d).margin(1e-12));
+      CHECK(m.node_clearance(i, j) == Approx(d).margin(1e-12));
     }
 }
 
