@@ -36,7 +36,7 @@ install(FILES ${hexdyn_installed_schema_headers} DESTINATION ${HEXDYN_INSTALL_SH
 #   P/lib/pkgconfig/hexdyn.pc                     the same libraries for pkg-config
 set(HEXDYN_LAYERS core model urdf_reader planning kinematics dynamics contact allocation
                   allocation_ipopt grip power drive balance pipeline process config io sweep envelope replay
-                  replay_io)
+                  replay_io robustness)
 set(HEXDYN_INSTALL_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/hexdyn)
 
 # The layers name their include folders by absolute build paths: valid in the build tree
@@ -76,10 +76,10 @@ foreach(target hexdyn_io hexdyn_sweep)
 endforeach()
 
 # hexdyn::hexdyn: the stable entry points of <hexdyn/hexdyn.hpp> (scenes, runs, result
-# files) and the sweep, envelope and replay libraries; not MPI.
+# files) and the sweep, envelope, replay and robustness libraries; not MPI.
 add_library(hexdyn_package INTERFACE)
 target_link_libraries(hexdyn_package INTERFACE hexdyn_pipeline hexdyn_io hexdyn_sweep
-                                               hexdyn_envelope hexdyn_replay_io)
+                                               hexdyn_envelope hexdyn_replay_io hexdyn_robustness)
 set_target_properties(hexdyn_package PROPERTIES EXPORT_NAME hexdyn)
 add_library(hexdyn::hexdyn ALIAS hexdyn_package)
 
@@ -108,7 +108,7 @@ install(FILES ${CMAKE_BINARY_DIR}/package/hexdynConfig.cmake
 # pkg-config: the libraries of hexdyn::hexdyn in link order (static: every dependency is
 # public).
 set(HEXDYN_PC_LIBS "")
-foreach(layer replay_io replay envelope sweep io config process pipeline drive power grip allocation_ipopt
+foreach(layer replay_io envelope sweep robustness replay io config process pipeline drive power grip allocation_ipopt
               allocation
               contact dynamics
               kinematics planning urdf_reader model core)

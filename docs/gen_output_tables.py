@@ -1,7 +1,7 @@
 """Writes the tables of docs/user/output.md from src/hexdyn/io/schema.hpp.
 
 The file layouts hexdyn writes (hexdyn-result/5, hexdyn-sweep/5, hexdyn-envelope/2,
-hexdyn-replay/3) are declared once, in the C++ header src/hexdyn/io/schema.hpp and the parts
+hexdyn-replay/3, hexdyn-robustness/1) are declared once, in the C++ header src/hexdyn/io/schema.hpp and the parts
 it includes. The declarations are those of the
 Python reader (`hexdyn.results.SCHEMA`, from the module hexdyn._schema the build generates
 from the compiled header), so the tables say what the writers write and what the reader
@@ -17,7 +17,7 @@ docs/user/output.md holds one region per file kind between marker comments:
     ...
     <!-- END GENERATED -->
 
-(regions `result`, `sweep`, `envelope`, `replay`). This script rewrites the regions and leaves the
+(regions `result`, `sweep`, `envelope`, `replay`, `robustness`). This script rewrites the regions and leaves the
 text around them alone.
 
     PYTHONPATH=build/python /usr/bin/python3 docs/gen_output_tables.py          # rewrite
@@ -57,7 +57,8 @@ DECLARATION = re.compile(r"^inline\s+constexpr\s+[^;]*?\b(k\w+)\s*(?:=|\{)", re.
 REGIONS = {"result": ("kResultSchema", "kResultSchemaVersion"),
            "sweep": ("kSweepSchema", "kSweepSchemaVersion"),
            "envelope": ("kEnvelopeSchema", "kEnvelopeSchemaVersion"),
-           "replay": ("kReplaySchema", "kReplaySchemaVersion")}
+           "replay": ("kReplaySchema", "kReplaySchemaVersion"),
+           "robustness": ("kRobustnessSchema", "kRobustnessSchemaVersion")}
 # Regions whose datasets are tabled by the declaration lists of their section (list_tables).
 BY_LISTS = ("replay",)
 

@@ -24,6 +24,7 @@ set(HEXDYN_SWEEP_TESTS
   "travel_same_distance=travel"                  # motion.travel: a duty-factor x speed sweep, every trunk moves two treads; travel with cycles is one line
   "cases_axis_over_robots=cases"                 # a cases axis over two URDF robots: every scenario ok, kept run = hexdyn run --set, labels in the file and readers
   "grid_accuracy_against_converged=grid_accuracy"  # output.tolerance 1e-4 on the stair check grid: energies within 1e-4, peak torques within 1e-3 of a converged grid
+  "robustness_studies=robustness"                # studies per scenario: rows = the study alone, 1 rank = 2 ranks = killed and resumed
 )
 foreach(entry IN LISTS HEXDYN_SWEEP_TESTS)
   string(REPLACE "=" ";" pair "${entry}")

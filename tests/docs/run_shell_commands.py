@@ -53,9 +53,21 @@ PLAN = {
     "build/hexdyn envelope configs/envelope/paper.yaml -o results/envelope/paper.h5 -v": SLOW,
     "build/hexdyn replay results/paper/paper.h5 -o results/paper/replay.h5": "run",
     "build/hexdyn replay mx64.h5 -o mx64_replay.h5": "run",
+    "build/hexdyn robustness configs/paper.yaml -o results/paper/robustness.h5 --set "
+    "robustness.replays=20": "run",
     "build/hexdyn --help": "run",
     "build/hexdyn run configs/paper.yaml -o mx64.h5 --set actuators.default.model=dynamixel_mx64":
         "run",
+    # docs/user/robustness.md
+    "mkdir -p results/robustness": "run",
+    "build/hexdyn robustness configs/robustness/paper.yaml -o results/robustness/paper.h5": SLOW,
+    "build/hexdyn robustness configs/paper.yaml -o results/robustness/nominal.h5 --set "
+    "robustness.replays=20 -j 2": "run",
+    "build/hexdyn robustness results/paper/paper.h5 -o results/robustness/stored.h5 --set "
+    "robustness.replays=20 --set robustness.perturbations.friction.distribution=uniform --set "
+    "robustness.perturbations.friction.low=-0.1 --set robustness.perturbations.friction.high=0":
+        "run",
+    "bash pipelines/robustness.sh": PIPELINE + "its quick form is the test pipeline.robustness_quick",
     # docs/user/adding-a-robot.md
     "build/hexdyn validate configs/robots/solo12_flat.yaml -v": "run",
     "build/hexdyn run configs/robots/solo12_flat.yaml -o solo12_flat.h5 -v": "run",

@@ -177,7 +177,8 @@ def mutate_text(text, rng):
 # the drive train's without actuators, a split peak without a sample of its kind (no
 # touchdown transient), the thermal load without a continuous rating, the grip metrics
 # without a finite required friction of their kind (or with output.required_friction false)
-# and the utilised friction of a foot that pulls (+inf).
+# and the utilised friction of a foot that pulls (+inf), and a robustness study's success
+# fraction and interval without a study (docs/user/robustness.md#in-a-sweep).
 NAN_BY_CONTRACT = {
     "scenarios/" + name for name in (
         "energy_electrical", "energy_copper_loss", "energy_friction_loss", "energy_regenerated",
@@ -185,7 +186,8 @@ NAN_BY_CONTRACT = {
         "peak_drive_torque_transient", "drive_torque_window_rms", "thermal_load",
         "peak_torque_gait", "peak_torque_transient", "required_friction_support",
         "required_friction_support_time", "required_friction_transient",
-        "required_friction_transient_time", "peak_utilized_friction")}
+        "required_friction_transient_time", "peak_utilized_friction", "p_success",
+        "p_success_low", "p_success_high")}
 # Result datasets NaN by contract (docs/theory/grip.md): the utilised friction of a swing leg
 # (and where a relaxed sample's force does not press the foot), the required friction where no
 # mu suffices; also in a kept run's group. Never infinite.

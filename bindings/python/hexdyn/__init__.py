@@ -24,6 +24,7 @@
     sw = hexdyn.open_sweep("smoke.h5")          # hexdyn-sweep/5: Sweep
     env = hexdyn.open_envelope("envelope.h5")   # hexdyn-envelope/2: Envelope
     rep = hexdyn.open_replay("replay.h5")       # hexdyn-replay/3 (hexdyn replay): Replay
+    rob = hexdyn.open_robustness("rob.h5")      # hexdyn-robustness/1: Robustness
     st = hexdyn.open_study("study.h5")          # hexdyn-study/1 (analysis/study.py): Study
     hexdyn.open_file("any.h5")                  # whichever of them the file is
     hexdyn.check_layout("any.h5")               # any of them against its schema
@@ -53,9 +54,10 @@ from collections.abc import Mapping
 import numpy as np
 
 from ._version import __git_commit__, __version__
-from .results import (Envelope, Replay, Result, Study, Sweep, UnknownGroupError, check_layout,
-                      decode_text, joint_names, leg_joints, leg_names, open_envelope, open_file,
-                      open_replay, open_result, open_study, open_sweep)
+from .results import (Envelope, Replay, Result, Robustness, Study, Sweep, UnknownGroupError,
+                      check_layout, decode_text, joint_names, leg_joints, leg_names,
+                      open_envelope, open_file, open_replay, open_result, open_robustness,
+                      open_study, open_sweep)
 from .results import checked_path as _path
 
 _compiled = None
@@ -313,8 +315,9 @@ def __getattr__(name):
 
 __all__ = ["run", "validate", "sample_problem", "forward_dynamics", "inverse_dynamics",
            "mass_matrix", "Result", "Sweep", "Envelope",
-           "Replay", "Study", "open_file", "open_result", "open_sweep", "open_envelope",
-           "open_replay", "open_study", "check_layout", "leg_names", "joint_names",
+           "Replay", "Robustness", "Study", "open_file", "open_result", "open_sweep",
+           "open_envelope", "open_replay", "open_robustness", "open_study", "check_layout",
+           "leg_names", "joint_names",
            "leg_joints", "decode_text", "UnknownGroupError",
            "Error", "ConfigError", "IoError", "ReachError", "PlanningError", "SolverError",
            "InternalError", "__version__", "__git_commit__"]

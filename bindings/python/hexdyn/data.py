@@ -411,3 +411,43 @@ class Study:
 
     def __repr__(self):
         return f"Study({self.source!r}, {len(self)} runs, references={sorted(self.references)})"
+
+
+class Robustness(_Datasets):
+    """A hexdyn-robustness file read into memory (the file is closed), checked against the
+    schema: a plan replayed on perturbed worlds (`hexdyn robustness`,
+    docs/user/robustness.md).
+
+    rob[path]        numpy array of every dataset ("/replays/failure", "/perturbations/friction",
+                     "/summary/p_success"); text as str, a list of texts as a list of str
+    rob.units[path]  the `units` attribute; rob.shapes[path] the shape
+    rob.meta         /meta attributes; rob.config the scene with its robustness: section (dict)
+    rob.replays      the number of replays
+    rob.p_success    the success fraction; rob.interval its Wilson 95 % interval (low, high)
+    rob.failure_counts  {failure class: replays}
+    rob.to_xarray(group=None)   labelled (xarray): "replays", "perturbations", "summary",
+                     "tolerance"
+    """
+
+    @property
+    def replays(self):
+        return int(self.data[SCHEMA["kRobustReplayCount"].path])
+
+    @property
+    def p_success(self):
+        return float(self.data[SCHEMA["kRobustPSuccess"].path])
+
+    @property
+    def interval(self):
+        return (float(self.data[SCHEMA["kRobustWilsonLow"].path]),
+                float(self.data[SCHEMA["kRobustWilsonHigh"].path]))
+
+    @property
+    def failure_counts(self):
+        names = self.data[SCHEMA["kFailureClassCoordinate"].path]
+        counts = self.data[SCHEMA["kRobustFailureCount"].path]
+        return {str(n): int(c) for n, c in zip(names, counts)}
+
+    def __repr__(self):
+        return (f"Robustness({self.source!r}, replays={self.replays}, "
+                f"p_success={self.p_success:.4g})")

@@ -1,6 +1,6 @@
 """Readers of hexdyn's files, with h5py only, driven by one table of file kinds
 (FILE_KINDS): results (`hexdyn-result`), sweeps (`hexdyn-sweep`), envelopes
-(`hexdyn-envelope`), replays (`hexdyn-replay`) and studies (`hexdyn-study`, of
+(`hexdyn-envelope`), replays (`hexdyn-replay`), robustness studies (`hexdyn-robustness`) and studies (`hexdyn-study`, of
 analysis/study.py). Each row gives the kind's schema and the versions read (the schema's
 current one; docs/user/output.md#versions-read), its checks at open, its reader and the type
 it returns; open_file opens any of them, checked against its schema, and check_layout checks
@@ -30,6 +30,7 @@ declarations (hexdyn.schema: SCHEMA and the layouts). Shapes use size symbols: "
 
     env = open_envelope("envelope.h5")     # an Envelope; env.to_xarray() the /envelope group
     rep = open_replay("replay.h5")     # a Replay: rep["/joints/tracking_error"], rep.to_xarray()
+    rob = open_robustness("rob.h5")        # a Robustness: rob.p_success, rob["/replays/failure"]
     st = open_study("study.h5")            # a Study: st.rows, st.verdict, st.references
     open_file("any.h5")                    # whichever kind the file is
 
@@ -42,8 +43,8 @@ import h5py
 import numpy as np
 
 from .energy import ENERGY_RULE_CUBIC, ENERGY_RULE_TRAPEZOID, energy_by_rule
-from .data import (Envelope, Replay, Result, Study, Sweep, SweepAxis, UnknownGroupError,
-                   check_group)
+from .data import (Envelope, Replay, Result, Robustness, Study, Sweep, SweepAxis,
+                   UnknownGroupError, check_group)
 from .h5files import (check_datasets, check_declared, check_filetype_version,
                       check_regular_file, checked_path, datasets_below, decode_text,
                       element_of, file_identity, file_schema, group_attributes, io_error,
@@ -55,6 +56,8 @@ from .schema import (DECLARED, DYNAMICS_DATASETS, ENVELOPE_CASES_LAYOUT, ENVELOP
                      KINEMATIC_DATASETS, LEG_JOINT_COUNTS, META_ATTRIBUTES, META_GROUP,
                      MODEL_DATASETS, PHASE_IMPACT, PHASE_SUPPORT, PHASE_SWING, REPLAY_LAYOUT,
                      REPLAY_REQUIRED, REPLAY_SCHEMA, REPLAY_SCHEMA_VERSION, RESULT_LAYOUT,
+                     ROBUSTNESS_LAYOUT, ROBUSTNESS_REQUIRED, ROBUSTNESS_SCHEMA,
+                     ROBUSTNESS_SCHEMA_VERSION,
                      RESULT_REQUIRED, RESULT_SCHEMA, RESULT_SCHEMA_VERSION, SCENARIO_DATASETS,
                      SCENARIOS_GROUP, SCHEMA, SCHEMA_HEADER, SIZE_NAMES, SPECS, STUDY_GROUPS,
                      STUDY_SCHEMA, SWEEP_SIZE_NAMES,
@@ -275,6 +278,10 @@ FILE_KINDS = {k.name: k for k in (
     FileKind(REPLAY_SCHEMA, (1, 2, REPLAY_SCHEMA_VERSION), Replay,
              _by_layout(REPLAY_LAYOUT, REPLAY_REQUIRED), _by_mapping(Replay),
              layout=lambda root: REPLAY_LAYOUT, meta_attributes=SCHEMA["kReplayMetaAttributes"]),
+    FileKind(ROBUSTNESS_SCHEMA, (ROBUSTNESS_SCHEMA_VERSION,), Robustness,
+             _by_layout(ROBUSTNESS_LAYOUT, ROBUSTNESS_REQUIRED), _by_mapping(Robustness),
+             layout=lambda root: ROBUSTNESS_LAYOUT,
+             meta_attributes=SCHEMA["kRobustnessMetaAttributes"]),
     FileKind(STUDY_SCHEMA, (STUDY_SCHEMA_VERSION,), Study, _check_study, _read_study),
 )}
 
@@ -336,6 +343,11 @@ def open_envelope(path):
 def open_replay(path):
     """open_file of a replay file (`hexdyn replay`): a Replay."""
     return open_file(path, "hexdyn-replay")
+
+
+def open_robustness(path):
+    """open_file of a robustness file (`hexdyn robustness`): a Robustness."""
+    return open_file(path, "hexdyn-robustness")
 
 
 def open_study(path):

@@ -89,6 +89,8 @@ ENVELOPE_SCHEMA = SCHEMA["kEnvelopeSchema"]
 ENVELOPE_SCHEMA_VERSION = SCHEMA["kEnvelopeSchemaVersion"]
 REPLAY_SCHEMA = SCHEMA["kReplaySchema"]
 REPLAY_SCHEMA_VERSION = SCHEMA["kReplaySchemaVersion"]
+ROBUSTNESS_SCHEMA = SCHEMA["kRobustnessSchema"]
+ROBUSTNESS_SCHEMA_VERSION = SCHEMA["kRobustnessSchemaVersion"]
 # hexdyn-study/1 is written by analysis/study.py, not by the C++ side: no header declares it.
 STUDY_SCHEMA = "hexdyn-study/1"
 STUDY_SCHEMA_VERSION = 1
@@ -207,3 +209,12 @@ _REPLAY_OWN = [d for name, d in SCHEMA.items()
 REPLAY_LAYOUT = layout(*_REPLAY_LISTS, _REPLAY_OWN, *coordinate_lists("Replay"),
                        *coordinate_lists("Result"))
 REPLAY_REQUIRED = {d.path for decls in _REPLAY_LISTS for d in decls if d.path != LEG_JOINT_COUNTS}
+
+# hexdyn-robustness (schema_robustness.hpp): every file has the replays' outcomes and the
+# summary; the perturbations the study names, their coordinates (step, link, joint, xyz) and a
+# tolerance search's datasets are checked when present.
+ROBUSTNESS_LAYOUT = layout(SCHEMA["kRobustnessDatasets"], SCHEMA["kRobustToleranceDatasets"],
+                           SCHEMA["kRobustPerturbationDatasets"],
+                           SCHEMA["kRobustPerturbationCoordinates"],
+                           [SCHEMA["kJointCoordinate"], SCHEMA["kXyzCoordinate"]])
+ROBUSTNESS_REQUIRED = {d.path for d in SCHEMA["kRobustnessDatasets"]}

@@ -36,15 +36,17 @@ namespace schema = hexdyn::schema;
 /// n touchdowns, m solver messages, Y gait cycles, K vertices of
 /// the terrain profile or keys of a cases axis, N scenarios, A axes, V values of an axis; an
 /// envelope's W tread depths, B duty factors, S peak speeds, C criteria, P probes, D cases,
-/// R risers of a friction search; a height map's MX columns and MY rows.
+/// R risers of a friction search; a height map's MX columns and MY rows; a robustness study's RP
+/// replays, ST stair steps, LK leg links and PT perturbations searched.
 /// A number is a fixed size.
-constexpr std::array<std::pair<const char*, const char*>, 23> kSizeOfDimension{{
-    {"time", "T"},          {"joint", "J"},       {"leg", "L"},         {"xyz", "3"},
-    {"wxyz", "4"},          {"impact", "n"},      {"message", "m"},     {"gait_cycle", "Y"},
-    {"terrain_point", "K"}, {"scenario", "N"},    {"axis", "A"},        {"{key}", "V"},
-    {"{key}_key", "K"},     {"tread_depth", "W"}, {"duty_factor", "B"}, {"peak_speed", "S"},
-    {"criterion", "C"},     {"probe", "P"},       {"case", "D"},        {"case_key", "K"},
-    {"riser", "R"},         {"map_x", "MX"},      {"map_y", "MY"},
+constexpr std::array<std::pair<const char*, const char*>, 28> kSizeOfDimension{{
+    {"time", "T"},          {"joint", "J"},       {"leg", "L"},           {"xyz", "3"},
+    {"wxyz", "4"},          {"impact", "n"},      {"message", "m"},       {"gait_cycle", "Y"},
+    {"terrain_point", "K"}, {"scenario", "N"},    {"axis", "A"},          {"{key}", "V"},
+    {"{key}_key", "K"},     {"tread_depth", "W"}, {"duty_factor", "B"},   {"peak_speed", "S"},
+    {"criterion", "C"},     {"probe", "P"},       {"case", "D"},          {"case_key", "K"},
+    {"riser", "R"},         {"map_x", "MX"},      {"map_y", "MY"},        {"replay", "RP"},
+    {"step", "ST"},         {"link", "LK"},       {"failure_class", "6"}, {"perturbation", "PT"},
 }};
 
 /// A Python string literal of `text` (UTF-8 passed through; quotes, backslashes and control

@@ -27,6 +27,7 @@ enum Option : std::uint32_t {
   kResume = 1u << 4,      ///< --resume
   kVerbose = 1u << 5,     ///< -v, --verbose
   kProgress = 1u << 6,    ///< --progress SECONDS
+  kJobs = 1u << 7,        ///< -j N, --jobs N: threads of a command that computes in parallel
 };
 
 /// How an option is written: its name, an alias, and its value's name (nullptr for a flag).
@@ -73,6 +74,7 @@ struct Args {
   std::vector<Override> overrides;
   bool allow_large = false, keep_runs = false, resume = false, verbose = false;
   double progress_s = 5.0;
+  int jobs = 0;  ///< --jobs; 0: one per core (std::thread::hardware_concurrency)
   const Program* program = nullptr;
   int argc = 0;
   char** argv = nullptr;  ///< the process's arguments, as given

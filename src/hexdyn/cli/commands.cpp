@@ -56,6 +56,21 @@ constexpr const char* kEnvelopeHelp =
   cell and criterion.
 )";
 
+constexpr const char* kRobustnessHelp =
+    R"(  Plans the scene CONFIG once, as `hexdyn run` plans it (or takes the stored plan of
+  CONFIG, a result file of `hexdyn run`, whose scene --set may change in its replay.*,
+  contact.* and robustness.* keys), then replays the plan (as `hexdyn replay`) on
+  robustness.replays worlds whose risers, treads, nosings, friction,
+  masses, payload, actuators, foot placement and contact stiffness differ from the plan's by
+  errors drawn from the distributions of its robustness: section, and writes the
+  hexdyn-robustness/1 file FILE: each replay's outcome (reached the top, or slipped, stubbed a
+  toe, saturated, fell or drifted), its drawn errors, the probability of success with its
+  Wilson 95 % interval and, with robustness.tolerance, the largest error of each kind the plan
+  tolerates (docs/user/robustness.md; configs/robustness/paper.yaml shows the keys). The draws
+  depend on robustness.seed and the replay's index alone: FILE is the same for any --jobs
+  (default: one thread per core) but for its timing fields.
+)";
+
 constexpr const char* kReplayHelp =
     R"(  Replays a result's joint torques through the forward dynamics of the robot on its
   terrain, with compliant contact and friction, and writes a hexdyn-replay/3 file to FILE
@@ -94,6 +109,9 @@ constexpr std::array kCommands{
             true},
     Command{"replay", "RESULT", kOutput | kSet | kProgress, kOutput,
             "replay a result's torques, write hexdyn-replay/3", kReplayHelp, replay_command, true},
+    Command{"robustness", "CONFIG", kOutput | kSet | kProgress | kJobs, kOutput,
+            "replay a plan on perturbed worlds, write hexdyn-robustness/1", kRobustnessHelp,
+            robustness_command, true},
 };
 // clang-format on
 

@@ -1,5 +1,6 @@
 // The one option parser and the help written from the tables (cli/command.hpp).
 #include <array>
+#include <cstdlib>
 #include <cstring>
 #include <optional>
 #include <sstream>
@@ -19,6 +20,7 @@ constexpr std::array kOptions{
     OptionSpec{kResume, "--resume", nullptr, nullptr},
     OptionSpec{kVerbose, "-v", "--verbose", nullptr},
     OptionSpec{kProgress, "--progress", nullptr, "SECONDS"},
+    OptionSpec{kJobs, "-j", "--jobs", "N"},
 };
 
 bool is_help(const char* arg) { return !std::strcmp(arg, "--help") || !std::strcmp(arg, "-h"); }
@@ -73,6 +75,15 @@ void apply(Args& a, Option option, const std::string& value) {
     case kProgress:
       a.progress_s = parse_progress_interval(value);
       break;
+    case kJobs: {
+      char* end = nullptr;
+      const long n = std::strtol(value.c_str(), &end, 10);
+      if (value.empty() || *end != '\0' || n < 1 || n > 1024)
+        throw ConfigError("--jobs: got " + value +
+                          ", expected a whole number of threads in [1, 1024]");
+      a.jobs = static_cast<int>(n);
+      break;
+    }
   }
 }
 

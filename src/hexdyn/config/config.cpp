@@ -97,6 +97,7 @@ Scene scene_from_tree(const SceneTree& tree, const std::string& source_name, boo
   read_allocation(r, s, urdf);
   read_drive_train(r, s, urdf);
   read_output(r, s);
+  read_robustness(r, s);
   r.check_unknown();
   check_physical_plausibility(s, source_name);  // timings that no physical motion has
   // Before anything is planned or allocated: the motion's duration and output samples.

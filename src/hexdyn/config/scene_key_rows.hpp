@@ -28,5 +28,6 @@ class SectionRows {
 void add_robot_key_rows(std::deque<SceneKey>& table);            ///< scene_key_rows_robot.cpp
 void add_terrain_gait_motion_rows(std::deque<SceneKey>& table);  ///< scene_key_rows.cpp
 void add_run_key_rows(std::deque<SceneKey>& table);              ///< scene_key_rows_run.cpp
+void add_robustness_key_rows(std::deque<SceneKey>& table);       ///< scene_key_rows_robustness.cpp
 
 }  // namespace hexdyn

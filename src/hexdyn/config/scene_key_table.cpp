@@ -13,6 +13,7 @@ std::deque<SceneKey>& table() {
     add_robot_key_rows(rows);
     add_terrain_gait_motion_rows(rows);
     add_run_key_rows(rows);
+    add_robustness_key_rows(rows);
     return rows;
   }();
   return t;

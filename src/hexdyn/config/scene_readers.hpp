@@ -23,5 +23,7 @@ void read_drive_train(Reader& r, Scene& s, const LoadedUrdfRobot& urdf);  ///< s
 int robot_leg_count(const LoadedUrdfRobot& urdf);
 void read_auto_requests(Reader& r);     ///< scene_read_run.cpp
 void read_output(Reader& r, Scene& s);  ///< scene_read_run.cpp
+/// robustness: after the robot, terrain, contact and actuators it perturbs.
+void read_robustness(Reader& r, Scene& s);  ///< scene_read_robustness.cpp
 
 }  // namespace hexdyn::scene_keys

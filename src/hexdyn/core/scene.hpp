@@ -14,6 +14,7 @@
 
 #include "hexdyn/core/common.hpp"
 #include "hexdyn/core/height_map.hpp"
+#include "hexdyn/core/robustness_params.hpp"
 
 namespace hexdyn {
 
@@ -453,8 +454,9 @@ struct Scene {
   ReplayParams replay;
   AllocationParams allocation;
   OutputParams output;
-  std::string resolved_yaml;  ///< the fully resolved configuration, as YAML
-  std::string source_path;    ///< the file it was read from
+  RobustnessParams robustness;  ///< robustness: (a study's worlds; core/robustness_params.hpp)
+  std::string resolved_yaml;    ///< the fully resolved configuration, as YAML
+  std::string source_path;      ///< the file it was read from
   /// The input files read (scene, inherited files, URDF) with their SHA-256, one line
   /// "SHA256  ABSOLUTE_PATH" each (config/inputs.hpp); /meta input_sha256 of the result.
   std::string input_sha256;

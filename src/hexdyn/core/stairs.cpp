@@ -1,5 +1,7 @@
 #include "hexdyn/core/stairs.hpp"
 
+#include <algorithm>
+
 namespace hexdyn {
 
 namespace {
@@ -33,6 +35,13 @@ StairEdges stair_edges(const TerrainParams& p) {
     y += s.tread_m;
   }
   return e;
+}
+
+std::vector<StairStep> stair_step_list(const TerrainParams& t) {
+  if (t.type != TerrainType::kStairs) return {};
+  if (!t.step_list.empty()) return t.step_list;
+  return std::vector<StairStep>(static_cast<std::size_t>(std::max(t.steps, 0)),
+                                StairStep{t.riser_height_m, t.tread_depth_m, t.nosing_m});
 }
 
 }  // namespace hexdyn

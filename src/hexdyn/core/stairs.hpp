@@ -23,4 +23,8 @@ struct StairEdges {
 /// (−y) on a rising riser, ahead on a falling one.
 StairEdges stair_edges(const TerrainParams& params);
 
+/// The staircase of `params` step by step: its step_list, or `steps` copies of the uniform
+/// riser, tread and nosing; empty off stairs.
+std::vector<StairStep> stair_step_list(const TerrainParams& params);
+
 }  // namespace hexdyn

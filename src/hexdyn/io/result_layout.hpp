@@ -41,6 +41,12 @@ struct LayoutAttribute {
 struct ResultLayout {
   std::vector<LayoutAttribute> attributes;  ///< /meta, then /terrain's, in the order written
   std::vector<LayoutDataset> datasets;      ///< /model, kinematics, dynamics, in the order written
+  /// Appends the dataset of `spec` of shape `dims` ({} a scalar) holding `values`.
+  void add(const schema::DatasetSpec& spec, std::vector<std::size_t> dims, LayoutValues values) {
+    datasets.push_back(LayoutDataset{&spec, std::move(dims), std::move(values)});
+  }
+  /// Appends a scalar float64 dataset.
+  void scalar(const schema::DatasetSpec& spec, double v) { add(spec, {}, std::vector<double>{v}); }
 };
 
 /// The layout of `result`: /meta (created_utc = now), /model, the labelled coordinates

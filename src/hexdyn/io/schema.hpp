@@ -44,51 +44,60 @@ inline constexpr std::int64_t kEnvelopeSchemaVersion = 2;  ///< envelope files' 
 
 /// Shape of a dataset in terms of the run's sizes.
 enum class Shape {
-  kScalar,              ///< ()
-  kText,                ///< () variable-length UTF-8 string
-  kTextList,            ///< (m) variable-length UTF-8 strings, m may be 0
-  kJointNames,          ///< (J) strings, one per joint of the robot
-  kLegNames,            ///< (L) strings, one per leg of the robot
-  kJ,                   ///< (J), one number per joint
-  kT,                   ///< (T)
-  kT3,                  ///< (T,3)
-  kT4,                  ///< (T,4)
-  kTLeg,                ///< (T,L), one number per sample and leg
-  kTJoint,              ///< (T,J), one number per sample and joint
-  kTLegXyz,             ///< (T,L,3), one vector per sample and leg
-  kN,                   ///< (n), one entry per touchdown, n may be 0
-  kScenarios,           ///< (N), one entry per scenario, index order
-  kScenarioAxes,        ///< (N,A), one row per scenario, one column per axis
-  kScenarioJoints,      ///< (N,J), one row per scenario, one column per joint
-  kAxisValues,          ///< (V), one entry per value of an axis
-  kCaseKeys,            ///< (K), the keys a cases axis sets
-  kCaseValues,          ///< (V,K), one row per case, one column per key it sets
-  kEnvelopeTreads,      ///< (W), tread depths of an envelope
-  kEnvelopeDuties,      ///< (B), duty factors of an envelope
-  kEnvelopeSpeeds,      ///< (S), peak speeds of an envelope
-  kEnvelopeCriteria,    ///< (C), criteria of an envelope
-  kEnvelopeCells,       ///< (W,B,S), one entry per tread, duty factor and speed
-  kEnvelopeGrid,        ///< (W,B,S,C), one entry per cell and criterion
-  kEnvelopeProbes,      ///< (P), one entry per probe (a criterion evaluated at one riser)
-  kEnvelopeCases,       ///< (D), cases of an envelope with `cases:`
-  kEnvelopeCaseKeys,    ///< (K), keys its cases set
-  kEnvelopeCaseValues,  ///< (D,K), one row per case, one column per key
-  kEnvelopeCaseCells,   ///< (D,W,B,S), one entry per case, tread depth, duty factor and speed
-  kEnvelopeCaseGrid,    ///< (D,W,B,S,C), one entry per case, cell and criterion
-  kEnvelopeRisers,      ///< (R), risers of a friction search (`search: friction`)
-  kEnvelopeMuGrid,      ///< (W,B,S,R), one entry per cell and riser of a friction search
-  kEnvelopeCaseMuGrid,  ///< (D,W,B,S,R), one entry per case, cell and riser
-  kCycles,              ///< (Y), one entry per gait cycle
-  kCycles3,             ///< (Y,3), one vector per gait cycle (a replay's drift)
-  kLegValues,           ///< (L), one number per leg
-  kVector3,             ///< (3), one vector
-  kTerrainPoints,       ///< (K), one entry per vertex of the terrain's height profile
-  kMapColumns,          ///< (MX), one entry per column (x) of a height map
-  kMapRows,             ///< (MY), one entry per row (y) of a height map
-  kMapGrid,             ///< (MY,MX), one entry per node of a height map
-  kXyz,                 ///< (3) strings "x", "y", "z"
-  kWxyz,                ///< (4) strings "w", "x", "y", "z"
-  kAxes,                ///< (A), one entry per sweep axis
+  kScalar,               ///< ()
+  kText,                 ///< () variable-length UTF-8 string
+  kTextList,             ///< (m) variable-length UTF-8 strings, m may be 0
+  kJointNames,           ///< (J) strings, one per joint of the robot
+  kLegNames,             ///< (L) strings, one per leg of the robot
+  kJ,                    ///< (J), one number per joint
+  kT,                    ///< (T)
+  kT3,                   ///< (T,3)
+  kT4,                   ///< (T,4)
+  kTLeg,                 ///< (T,L), one number per sample and leg
+  kTJoint,               ///< (T,J), one number per sample and joint
+  kTLegXyz,              ///< (T,L,3), one vector per sample and leg
+  kN,                    ///< (n), one entry per touchdown, n may be 0
+  kScenarios,            ///< (N), one entry per scenario, index order
+  kScenarioAxes,         ///< (N,A), one row per scenario, one column per axis
+  kScenarioJoints,       ///< (N,J), one row per scenario, one column per joint
+  kAxisValues,           ///< (V), one entry per value of an axis
+  kCaseKeys,             ///< (K), the keys a cases axis sets
+  kCaseValues,           ///< (V,K), one row per case, one column per key it sets
+  kEnvelopeTreads,       ///< (W), tread depths of an envelope
+  kEnvelopeDuties,       ///< (B), duty factors of an envelope
+  kEnvelopeSpeeds,       ///< (S), peak speeds of an envelope
+  kEnvelopeCriteria,     ///< (C), criteria of an envelope
+  kEnvelopeCells,        ///< (W,B,S), one entry per tread, duty factor and speed
+  kEnvelopeGrid,         ///< (W,B,S,C), one entry per cell and criterion
+  kEnvelopeProbes,       ///< (P), one entry per probe (a criterion evaluated at one riser)
+  kEnvelopeCases,        ///< (D), cases of an envelope with `cases:`
+  kEnvelopeCaseKeys,     ///< (K), keys its cases set
+  kEnvelopeCaseValues,   ///< (D,K), one row per case, one column per key
+  kEnvelopeCaseCells,    ///< (D,W,B,S), one entry per case, tread depth, duty factor and speed
+  kEnvelopeCaseGrid,     ///< (D,W,B,S,C), one entry per case, cell and criterion
+  kEnvelopeRisers,       ///< (R), risers of a friction search (`search: friction`)
+  kEnvelopeMuGrid,       ///< (W,B,S,R), one entry per cell and riser of a friction search
+  kEnvelopeCaseMuGrid,   ///< (D,W,B,S,R), one entry per case, cell and riser
+  kCycles,               ///< (Y), one entry per gait cycle
+  kCycles3,              ///< (Y,3), one vector per gait cycle (a replay's drift)
+  kLegValues,            ///< (L), one number per leg
+  kVector3,              ///< (3), one vector
+  kTerrainPoints,        ///< (K), one entry per vertex of the terrain's height profile
+  kMapColumns,           ///< (MX), one entry per column (x) of a height map
+  kMapRows,              ///< (MY), one entry per row (y) of a height map
+  kMapGrid,              ///< (MY,MX), one entry per node of a height map
+  kXyz,                  ///< (3) strings "x", "y", "z"
+  kWxyz,                 ///< (4) strings "w", "x", "y", "z"
+  kAxes,                 ///< (A), one entry per sweep axis
+  kRobustReplays,        ///< (RP), one entry per replay of a robustness study
+  kRobustReplaySteps,    ///< (RP,ST), one entry per replay and stair step
+  kRobustReplayLinks,    ///< (RP,LK), one entry per replay and leg link
+  kRobustReplayJoints,   ///< (RP,J), one entry per replay and joint
+  kRobustReplayXyz,      ///< (RP,3), one vector per replay
+  kRobustSteps,          ///< (ST), stair steps of a robustness study
+  kRobustLinks,          ///< (LK), leg links of the robot (the body each joint moves)
+  kRobustClasses,        ///< (6), failure classes
+  kRobustPerturbations,  ///< (PT), the perturbations of a tolerance search
 };
 
 /// The netCDF dimensions of a shape's axes, space-separated, outermost first ("" for a
@@ -145,6 +154,15 @@ constexpr const char* dimension_names(Shape shape) {
     case Shape::kXyz: return "xyz";
     case Shape::kWxyz: return "wxyz";
     case Shape::kAxes: return "axis";
+    case Shape::kRobustReplays: return "replay";
+    case Shape::kRobustReplaySteps: return "replay step";
+    case Shape::kRobustReplayLinks: return "replay link";
+    case Shape::kRobustReplayJoints: return "replay joint";
+    case Shape::kRobustReplayXyz: return "replay xyz";
+    case Shape::kRobustSteps: return "step";
+    case Shape::kRobustLinks: return "link";
+    case Shape::kRobustClasses: return "failure_class";
+    case Shape::kRobustPerturbations: return "perturbation";
   }
   return "";
 }
@@ -621,3 +639,6 @@ inline constexpr std::array kThermalDatasets{
 #include "hexdyn/io/schema_envelope.hpp"  // IWYU pragma: export
 // The replay contract, in its own header (parsed as part of this one).
 #include "hexdyn/io/schema_replay.hpp"  // IWYU pragma: export
+// The robustness contract and every file kind's CF flags, in its own header (parsed as part
+// of this one).
+#include "hexdyn/io/schema_robustness.hpp"  // IWYU pragma: export

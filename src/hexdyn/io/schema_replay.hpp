@@ -240,10 +240,4 @@ inline constexpr std::array kReplayReportDatasets{kReplayCycleEnd,
                                                   kReplayForcedSteps,
                                                   kReplaySeconds};
 
-/// Every CF flag declaration of the four file kinds.
-inline constexpr std::array kFlags{
-    kContactPhaseFlags,     kSolverStatusFlags,   kSampleKindFlags,
-    kContactSlipFlags,      kScenarioStatusFlags, kProbePassedFlags,
-    kReplayReachedTopFlags, kWindingLimitFlags,   kReplaySaturatedFlags};
-
 }  // namespace hexdyn::schema

@@ -261,6 +261,32 @@ inline constexpr DatasetSpec kScenarioFailedSamples{
 inline constexpr DatasetSpec kScenarioRelaxedGaitSamples{"/scenarios/relaxed_gait_samples", "1",
                                                          Shape::kScenarios, Element::kInt32,
                                                          "relaxed samples outside touchdowns"};
+// A robustness study per scenario (scenes with robustness:, docs/user/robustness.md#in-a-sweep):
+// its replays (0 without a study), the success fraction and its Wilson 95 % interval (NaN
+// without), the replays of each failure class (robustness/outcome.hpp).
+inline constexpr DatasetSpec kScenarioReplays{"/scenarios/replays", "1", Shape::kScenarios,
+                                              Element::kInt32, "replays of the robustness study"};
+inline constexpr DatasetSpec kScenarioPSuccess{"/scenarios/p_success", "1", Shape::kScenarios,
+                                               Element::kFloat64,
+                                               "success fraction of the replays"};
+inline constexpr DatasetSpec kScenarioPSuccessLow{"/scenarios/p_success_low", "1",
+                                                  Shape::kScenarios, Element::kFloat64,
+                                                  "lower end of the 95 % Wilson interval"};
+inline constexpr DatasetSpec kScenarioPSuccessHigh{"/scenarios/p_success_high", "1",
+                                                   Shape::kScenarios, Element::kFloat64,
+                                                   "upper end of the 95 % Wilson interval"};
+inline constexpr DatasetSpec kScenarioReplaysSlipped{
+    "/scenarios/replays_slipped", "1", Shape::kScenarios, Element::kInt32, "replays that slipped"};
+inline constexpr DatasetSpec kScenarioReplaysStubbed{"/scenarios/replays_stubbed", "1",
+                                                     Shape::kScenarios, Element::kInt32,
+                                                     "replays that stubbed a toe"};
+inline constexpr DatasetSpec kScenarioReplaysSaturated{"/scenarios/replays_saturated", "1",
+                                                       Shape::kScenarios, Element::kInt32,
+                                                       "replays that saturated"};
+inline constexpr DatasetSpec kScenarioReplaysFell{"/scenarios/replays_fell", "1", Shape::kScenarios,
+                                                  Element::kInt32, "replays that fell"};
+inline constexpr DatasetSpec kScenarioReplaysDrifted{
+    "/scenarios/replays_drifted", "1", Shape::kScenarios, Element::kInt32, "replays that drifted"};
 /// Time to compute each scenario [s] (timing: differs between runs).
 inline constexpr DatasetSpec kScenarioWallTime{"/scenarios/wall_time_s", "s", Shape::kScenarios,
                                                Element::kFloat64, "time to compute the scenario"};
@@ -283,7 +309,9 @@ inline constexpr std::array kScenarioDatasets{
     kScenarioRequiredFrictionTransientLeg, kScenarioRequiredFrictionTransientTime,
     kScenarioNoFrictionSamples, kScenarioPeakUtilizedFriction, kScenarioSlipSamples,
     kScenarioGridEnergyError, kScenarioGridPeakError, kScenarioRelaxedSamples, kScenarioFailedSamples, kScenarioRelaxedGaitSamples,
-    kScenarioWallTime};
+    kScenarioReplays, kScenarioPSuccess, kScenarioPSuccessLow, kScenarioPSuccessHigh,
+    kScenarioReplaysSlipped, kScenarioReplaysStubbed, kScenarioReplaysSaturated,
+    kScenarioReplaysFell, kScenarioReplaysDrifted, kScenarioWallTime};
 // clang-format on
 
 // ---- /runs/{id}: with --keep-runs, each computed scenario in the hexdyn-result/5 layout

@@ -446,16 +446,18 @@ Vec3 record_sample(Integrator& it, const SimState& s, std::size_t k, ReplayResul
   out.tau.push_back(tau);
   out.tau_ff.push_back(ff);
   out.tracking_error.push_back(s.q - plan.q_rad[k]);
-  LegArray<Vec3> foot = zero_vectors(), slip_v = zero_vectors();
+  LegArray<Vec3> foot = zero_vectors(), slip_v = zero_vectors(), normal = zero_vectors();
   LegArray<double> fn{}, pen{};
   for (int l = 0; l < c.legs; ++l) {
     foot[l] = c.geometry[l].point_W;
+    normal[l] = c.geometry[l].normal_W;
     slip_v[l] = c.law[l].slip_velocity_W;
     fn[l] = c.law[l].normal_N;
     pen[l] = std::max(0.0, c.geometry[l].penetration_m);
   }
   out.force_W.push_back(c.force_W);
   out.foot_W.push_back(foot);
+  out.normal_W.push_back(normal);
   out.slip_velocity_W.push_back(slip_v);
   out.normal_N.push_back(fn);
   out.penetration_m.push_back(pen);
@@ -550,6 +552,7 @@ ReplayResult replay_plan(const RobotModel& model, const ContactParams& contact,
     const Vec3 com_W = record_sample(it, s, k + 1, r);
     r.message = fall_reason(it, s, com_W, k + 1);
     completed = r.message.empty();
+    r.fell = !completed;
   }
   finish_report(plan, terrain_params, model.drive, completed, r);
   r.saturation_time_s = it.spent.saturated_s;

@@ -89,6 +89,9 @@ struct ReplayResult {
   std::vector<LegArray<Vec3>> force_W, foot_W, slip_velocity_W, slip_displacement_W;
   std::vector<LegArray<double>> normal_N, penetration_m, slip_distance_m;
   std::vector<LegArray<double>> damping_energy_J, slip_energy_J;
+  /// Each foot's contact normal: the outward unit normal of the terrain's face nearest to it
+  /// (contact/simulation_contact.hpp), in contact or not.
+  std::vector<LegArray<Vec3>> normal_W;
   std::vector<double> actuator_energy_J, kinetic_J, potential_J;
   // --- per sample, with actuators only (RobotModel::drive; else empty) ---
   /// The drive torque u the drive gave (feedforward and PD, at its bound when saturated),
@@ -118,6 +121,7 @@ struct ReplayResult {
   Vec3 final_position_error_m = Vec3::Zero();
   bool reached_top = false;
   std::string message;  ///< why it ended early, or ""
+  bool fell = false;    ///< it ended early because the robot fell (kFallHeightFraction, ...)
   double max_step_s = 0.0;
   long steps = 0;
   /// Steps accepted at the smallest step with the contact force still beyond the tolerance

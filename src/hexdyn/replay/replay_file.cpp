@@ -20,15 +20,6 @@ namespace {
 
 namespace s = schema;
 
-/// Collects the datasets of the replay file in the order written.
-struct Layout {
-  ResultLayout layout;
-  void add(const s::DatasetSpec& spec, std::vector<std::size_t> dims, LayoutValues values) {
-    layout.datasets.push_back(LayoutDataset{&spec, std::move(dims), std::move(values)});
-  }
-  void scalar(const s::DatasetSpec& spec, double v) { add(spec, {}, std::vector<double>{v}); }
-};
-
 /// Rows of 3-vectors, 18-vectors or per-leg arrays flattened row-major.
 template <class Row, class Get>
 std::vector<double> flatten(const std::vector<Row>& rows, std::size_t width, Get get) {
@@ -60,7 +51,7 @@ std::vector<double> vec3s(const std::vector<Vec3>& rows) {
 }
 
 /// /base/*: the trunk frame's state moved to the root link frame (model/root_link.hpp).
-void add_base(Layout& b, const RobotModel& m, const std::vector<BaseState>& base) {
+void add_base(ResultLayout& b, const RobotModel& m, const std::vector<BaseState>& base) {
   std::vector<Vec3> p, v, w, a, alpha;
   std::vector<double> quat;
   for (const BaseState& trunk : base) {
@@ -84,7 +75,7 @@ void add_base(Layout& b, const RobotModel& m, const std::vector<BaseState>& base
   b.add(s::kBaseAngularAcceleration, {T, 3}, vec3s(alpha));
 }
 
-void add_series(Layout& b, const RobotModel& m, const ReplayResult& r) {
+void add_series(ResultLayout& b, const RobotModel& m, const ReplayResult& r) {
   const std::size_t T = r.t_s.size(), J = static_cast<std::size_t>(m.joints()),
                     L = static_cast<std::size_t>(m.legs());
   b.add(s::kTime, {T}, r.t_s);
@@ -109,7 +100,7 @@ void add_series(Layout& b, const RobotModel& m, const ReplayResult& r) {
   b.add(s::kReplayEnergyPotential, {T}, r.potential_J);
 }
 
-void add_report(Layout& b, const RobotModel& m, const ReplayResult& r) {
+void add_report(ResultLayout& b, const RobotModel& m, const ReplayResult& r) {
   const std::size_t Y = r.cycle_end_s.size(), L = static_cast<std::size_t>(m.legs());
   auto legs = [L](const auto& a) {
     return std::vector<double>(a.begin(), a.begin() + static_cast<std::ptrdiff_t>(L));
@@ -139,7 +130,7 @@ void add_report(Layout& b, const RobotModel& m, const ReplayResult& r) {
 }
 
 /// The driven replay's datasets (schema_replay.hpp kReplayDriveDatasets), with actuators.
-void add_drive(Layout& b, const RobotModel& m, const ReplayResult& r) {
+void add_drive(ResultLayout& b, const RobotModel& m, const ReplayResult& r) {
   if (!m.drive.present) return;
   const std::size_t T = r.t_s.size(), J = static_cast<std::size_t>(m.joints());
   b.add(s::kDriveTorque, {T, J}, joints(r.tau_drive, J));
@@ -156,7 +147,7 @@ void add_drive(Layout& b, const RobotModel& m, const ReplayResult& r) {
   b.scalar(s::kReplayElectricalEnergyPlan, r.electrical_energy_plan_J);
 }
 
-void add_model(Layout& b, const ReplaySource& src) {
+void add_model(ResultLayout& b, const ReplaySource& src) {
   b.add(s::kModelUrdf, {}, src.urdf);
   b.add(s::kModelJointNames, {src.joint_names.size()}, src.joint_names);
   b.add(s::kModelLegNames, {src.leg_names.size()}, src.leg_names);
@@ -184,7 +175,7 @@ void write_meta(H5Writer& w, const ReplaySource& src, const ReplayResult& r) {
 void write_replay_file(const std::string& path, const ReplaySource& source, const RobotModel& model,
                        const ReplayResult& result) {
   check_output_target(path, source.inputs);
-  Layout b;
+  ResultLayout b;
   add_model(b, source);
   add_series(b, model, result);
   add_report(b, model, result);
@@ -192,7 +183,7 @@ void write_replay_file(const std::string& path, const ReplaySource& source, cons
   publish_atomically(path, [&](const std::string& tmp) {
     H5Writer writer(tmp, compressed_output(source.scene.resolved_yaml));
     write_meta(writer, source, result);
-    write_layout(writer, b.layout);
+    write_layout(writer, b);
     writer.close();
   });
 }

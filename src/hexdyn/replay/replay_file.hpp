@@ -43,6 +43,8 @@ struct ReplaySource {
   std::vector<InputFile> inputs;
   /// One line per recorded input that is gone or changed on disk since the run (not read).
   std::vector<std::string> warnings;
+  /// /contacts/phase (T × L, ContactPhase codes): the feet the plan has in swing.
+  RowMatrixI8 contact_phase;
 };
 
 /// Reads `result_path` (a hexdyn-result/5 file with dynamics, or of versions 2 and 3) while an
@@ -51,9 +53,10 @@ struct ReplaySource {
 /// (kReplayQuaternionTolerance), and the stored feet where the model puts them
 /// (kReplayFootTolerance_m). Throws IoError for a file that is not such a result (naming the
 /// file, the dataset, the sample and the value), ConfigError for a bad override or a key
-/// outside replay.* and contact.*.
+/// outside replay.* and contact.* (and robustness.*, with `robustness`: a robustness study of
+/// the stored plan, robustness/robustness.hpp).
 ReplaySource read_replay_source(const std::string& result_path,
-                                const std::vector<Override>& overrides);
+                                const std::vector<Override>& overrides, bool robustness = false);
 
 /// Writes the replay of `source` to `path` atomically (publish_atomically), after
 /// check_output_target(path, source.inputs): the result file is never overwritten.

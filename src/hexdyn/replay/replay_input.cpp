@@ -191,13 +191,35 @@ std::vector<std::int32_t> leg_joint_counts(const H5Reader& in, const std::string
 }
 
 /// The keys --set may change in a replay: those of its integrator and its contact law.
-void check_replay_override(const Override& ov) {
+void check_replay_override(const Override& ov, bool robustness) {
   for (const char* prefix : {"replay.", "contact."})
     if (ov.key_path.rfind(prefix, 0) == 0) return;
+  if (robustness && ov.key_path.rfind("robustness.", 0) == 0) return;
   throw ConfigError("--set " + ov.key_path +
                     ": a replay follows the stored plan, which this key does not change; "
                     "expected a key of replay.* or contact.* (the integrator, the contact and "
-                    "friction laws)");
+                    "friction laws)" +
+                    (robustness ? std::string(" or robustness.*") : std::string()));
+}
+
+/// /contacts/phase (T × L, ContactPhase codes) of the result: which feet the plan has in swing.
+RowMatrixI8 read_phases(const H5Reader& in, const std::string& file, std::size_t T,
+                        Eigen::Index legs) {
+  if (!in.is_dataset(s::kContactPhase.path))
+    throw IoError("replay: '" + file + "' has no " + s::kContactPhase.path);
+  const std::vector<std::int64_t> v = in.read_ints(s::kContactPhase.path);
+  if (v.size() != T * static_cast<std::size_t>(legs))
+    throw IoError("replay: '" + file + "': " + s::kContactPhase.path + " has " +
+                  std::to_string(v.size()) + " values, expected " + std::to_string(T) +
+                  " samples of " + std::to_string(legs));
+  RowMatrixI8 phase(static_cast<Eigen::Index>(T), legs);
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    if (v[i] < 0 || v[i] > static_cast<std::int64_t>(ContactPhase::kSupport))
+      throw IoError("replay: '" + file + "': " + s::kContactPhase.path + " holds " +
+                    std::to_string(v[i]) + ", expected 0 (swing), 1 (impact) or 2 (support)");
+    phase.data()[i] = static_cast<std::int8_t>(v[i]);
+  }
+  return phase;
 }
 
 /// The scene the run used, from /meta config_yaml; a URDF robot built from the result's own
@@ -248,8 +270,8 @@ std::vector<std::string> changed_inputs(const std::vector<InputFile>& recorded) 
 }  // namespace
 
 ReplaySource read_replay_source(const std::string& result_path,
-                                const std::vector<Override>& overrides) {
-  for (const Override& ov : overrides) check_replay_override(ov);
+                                const std::vector<Override>& overrides, bool robustness) {
+  for (const Override& ov : overrides) check_replay_override(ov, robustness);
   const InputFreeze freeze;  // keeps the stored URDF as an input while the scene is read
   ReplaySource src;
   src.path = result_path;
@@ -279,6 +301,7 @@ ReplaySource read_replay_source(const std::string& result_path,
   src.leg_joint_counts = leg_joint_counts(in, result_path, model);
   read_plan(in, result_path, model, src.plan);
   check_feet(in, result_path, model, src.plan);
+  src.contact_phase = read_phases(in, result_path, src.plan.t_s.size(), model.legs());
   return src;
 }
 

@@ -131,14 +131,25 @@ auto double_fields(S& s) {
                     &s.required_friction_transient_time_s,
                     &s.peak_utilized_friction,
                     &s.positive_work_J,
-                    &s.negative_work_J};
+                    &s.negative_work_J,
+                    &s.p_success,
+                    &s.p_success_low,
+                    &s.p_success_high};
 }
 
 /// The summary's integer fields after the sample counts, in record order.
 template <class S>
 auto int_fields(S& s) {
-  return std::array{&s.required_friction_support_leg, &s.required_friction_transient_leg,
-                    &s.no_friction_samples, &s.slip_samples};
+  return std::array{&s.required_friction_support_leg,
+                    &s.required_friction_transient_leg,
+                    &s.no_friction_samples,
+                    &s.slip_samples,
+                    &s.robust_replays,
+                    &s.replays_slipped,
+                    &s.replays_stubbed,
+                    &s.replays_saturated,
+                    &s.replays_fell,
+                    &s.replays_drifted};
 }
 
 void append_record(std::vector<char>& b, const ScenarioRecord& r) {

@@ -6,11 +6,13 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include "hexdyn/config/config.hpp"
 #include "hexdyn/core/errors.hpp"
 #include "hexdyn/model/robot_model.hpp"
 #include "hexdyn/pipeline/pipeline.hpp"
+#include "hexdyn/robustness/robustness.hpp"
 #include "hexdyn/sweep/scenario_factory.hpp"
 
 namespace hexdyn {
@@ -307,6 +309,36 @@ std::optional<ScenarioSummary> check_scenario(const ScenarioInput& input) {
   }
 }
 
+namespace {
+
+/// The scenario's run; with a robustness: section, its study too (on one thread: the sweep's
+/// ranks are its parallelism), whose outcome fills the row's robustness columns.
+RunResult run_scenario_scene(const Scene& scene, std::optional<RobustnessResult>& study) {
+  if (scene.robustness.replays == 0) return run_scene(scene, nullptr);
+  RunResult run;
+  study = run_robustness(scene, 1, &run);
+  run.summary_only = scene.output.summary_only;
+  return run;
+}
+
+void add_study(ScenarioSummary& s, const std::optional<RobustnessResult>& study) {
+  if (!study) return;
+  s.robust_replays = static_cast<int>(study->outcomes.size());
+  s.p_success = study->p_success;
+  s.p_success_low = study->interval.low;
+  s.p_success_high = study->interval.high;
+  const auto count = [&](FailureClass c) {
+    return static_cast<int>(study->counts[static_cast<std::size_t>(c)]);
+  };
+  s.replays_slipped = count(FailureClass::kSlipped);
+  s.replays_stubbed = count(FailureClass::kStubbed);
+  s.replays_saturated = count(FailureClass::kSaturated);
+  s.replays_fell = count(FailureClass::kFell);
+  s.replays_drifted = count(FailureClass::kDrifted);
+}
+
+}  // namespace
+
 ScenarioOutcome run_scenario(const ScenarioInput& input, bool keep_run) {
   const auto start = std::chrono::steady_clock::now();
   const std::string source = scenario_source_name(input.id);
@@ -314,8 +346,10 @@ ScenarioOutcome run_scenario(const ScenarioInput& input, bool keep_run) {
   try {
     Scene scene = scene_from_yaml(parse_yaml_text(input.yaml, source), source);
     scene.output.summary_only = !keep_run;  // only its row is kept
-    RunResult run = run_scene(scene, nullptr);
+    std::optional<RobustnessResult> study;
+    RunResult run = run_scenario_scene(scene, study);
     out.summary = summarize_run(run, input.index);
+    add_study(out.summary, study);
     if (keep_run) out.run = std::move(run);
   } catch (const std::exception& e) {
     out.summary = failed_summary(input.index, classify_exception(e), e.what());
@@ -336,9 +370,11 @@ ScenarioOutcome run_scenario(const ScenarioFactory& factory, std::size_t index, 
     Scene scene = factory.scene(index, keep_run);
     scene.output.summary_only = !keep_run;  // only its row is kept
     t1 = Clock::now();
-    RunResult run = run_scene(scene, nullptr);
+    std::optional<RobustnessResult> study;
+    RunResult run = run_scenario_scene(scene, study);
     t2 = Clock::now();
     out.summary = summarize_run(run, index);
+    add_study(out.summary, study);
     if (keep_run) out.run = std::move(run);
   } catch (const std::exception& e) {
     if (t1 == t0) t1 = Clock::now();

@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <exception>
+#include <limits>
 #include <optional>
 #include <string>
 #include <type_traits>
@@ -107,6 +108,15 @@ struct ScenarioSummary {
   /// relaxed samples outside touchdown transients (no leg in phase impact): the gait itself
   /// asks for more than the robot can give (a transient's relaxed samples are by design)
   int relaxed_gait_samples = 0;
+  // A robustness study per scenario (the scene's robustness: section; docs/user/robustness.md
+  // #in-a-sweep): its replays (0 without a study), the success fraction with its Wilson 95 %
+  // interval (NaN without), and the replays of each failure class.
+  int robust_replays = 0;
+  double p_success = std::numeric_limits<double>::quiet_NaN();
+  double p_success_low = std::numeric_limits<double>::quiet_NaN();
+  double p_success_high = std::numeric_limits<double>::quiet_NaN();
+  int replays_slipped = 0, replays_stubbed = 0, replays_saturated = 0, replays_fell = 0,
+      replays_drifted = 0;
   double wall_time_s = 0.0;  ///< time to compute the scenario [s] (timing field)
 };
 

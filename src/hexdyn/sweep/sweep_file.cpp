@@ -207,24 +207,52 @@ void write_scenario_outcomes(H5Writer& w, Labeller& labels,
   labels.add(s::kScenarioMessage);
 }
 
+/// One column of a summary field, in scenario order.
+void double_column(H5Writer& w, Labeller& labels, const std::vector<ScenarioSummary>& rows,
+                   const s::DatasetSpec& d, double ScenarioSummary::*field) {
+  std::vector<double> v(rows.size());
+  for (std::size_t i = 0; i < rows.size(); ++i) v[i] = rows[i].*field;
+  write_doubles(w, d, {rows.size()}, v);
+  labels.add(d);
+}
+void count_column(H5Writer& w, Labeller& labels, const std::vector<ScenarioSummary>& rows,
+                  const s::DatasetSpec& d, int ScenarioSummary::*field) {
+  std::vector<std::int32_t> v(rows.size());
+  for (std::size_t i = 0; i < rows.size(); ++i) v[i] = rows[i].*field;
+  write_int32(w, d, {rows.size()}, v);
+  labels.add(d);
+}
+
+/// /scenarios' robustness columns (a scene with robustness:; docs/user/robustness.md#in-a-sweep).
+void write_study_columns(H5Writer& w, Labeller& labels, const std::vector<ScenarioSummary>& rows) {
+  const auto doubles = [&](const s::DatasetSpec& d, double ScenarioSummary::*field) {
+    double_column(w, labels, rows, d, field);
+  };
+  const auto counts = [&](const s::DatasetSpec& d, int ScenarioSummary::*field) {
+    count_column(w, labels, rows, d, field);
+  };
+  counts(s::kScenarioReplays, &ScenarioSummary::robust_replays);
+  doubles(s::kScenarioPSuccess, &ScenarioSummary::p_success);
+  doubles(s::kScenarioPSuccessLow, &ScenarioSummary::p_success_low);
+  doubles(s::kScenarioPSuccessHigh, &ScenarioSummary::p_success_high);
+  counts(s::kScenarioReplaysSlipped, &ScenarioSummary::replays_slipped);
+  counts(s::kScenarioReplaysStubbed, &ScenarioSummary::replays_stubbed);
+  counts(s::kScenarioReplaysSaturated, &ScenarioSummary::replays_saturated);
+  counts(s::kScenarioReplaysFell, &ScenarioSummary::replays_fell);
+  counts(s::kScenarioReplaysDrifted, &ScenarioSummary::replays_drifted);
+}
+
 /// /scenarios' metrics, one column per summary field in scenario order (per joint: n ×
 /// joints), with the units their declarations state.
 void write_scenario_metrics(H5Writer& w, Labeller& labels, const std::vector<ScenarioSummary>& rows,
                             int joints) {
   const std::size_t n = rows.size();
   const auto J = static_cast<std::size_t>(joints);
-  // One column of a summary field, in scenario order.
   const auto doubles = [&](const s::DatasetSpec& d, double ScenarioSummary::*field) {
-    std::vector<double> v(n);
-    for (std::size_t i = 0; i < n; ++i) v[i] = rows[i].*field;
-    write_doubles(w, d, {n}, v);
-    labels.add(d);
+    double_column(w, labels, rows, d, field);
   };
   const auto counts = [&](const s::DatasetSpec& d, int ScenarioSummary::*field) {
-    std::vector<std::int32_t> v(n);
-    for (std::size_t i = 0; i < n; ++i) v[i] = rows[i].*field;
-    write_int32(w, d, {n}, v);
-    labels.add(d);
+    count_column(w, labels, rows, d, field);
   };
   const auto per_joint = [&](const s::DatasetSpec& d, JointArray<double> ScenarioSummary::*field) {
     // A row of no computed run (joints 0) has no values: NaN.
@@ -282,6 +310,7 @@ void write_scenario_metrics(H5Writer& w, Labeller& labels, const std::vector<Sce
   counts(s::kScenarioRelaxedSamples, &ScenarioSummary::relaxed_samples);
   counts(s::kScenarioFailedSamples, &ScenarioSummary::failed_samples);
   counts(s::kScenarioRelaxedGaitSamples, &ScenarioSummary::relaxed_gait_samples);
+  write_study_columns(w, labels, rows);
   doubles(s::kScenarioWallTime, &ScenarioSummary::wall_time_s);
 }
 
