@@ -135,6 +135,25 @@ void warn(const std::vector<std::string>& warnings) {
   for (const std::string& w : warnings) warn("hexdyn: " + w, category, 2);
 }
 
+/// A file's layout as Python sees it: ({path: array}, {attribute: value}, {path: units}), the
+/// units of the datasets the writer gives a `units` attribute (their declaration's, when not
+/// ""); /meta attributes by name, any other object's as "OBJECT/NAME" ("/terrain/type").
+py::tuple layout_to_python(hexdyn::ResultLayout&& layout) {
+  py::dict datasets, attributes, units;
+  for (hexdyn::LayoutDataset& d : layout.datasets) {
+    const char* path = d.spec->path;
+    if (d.spec->units[0] != '\0') units[py::str(path)] = py::str(d.spec->units);
+    datasets[py::str(path)] = to_python(std::move(d));
+  }
+  for (const hexdyn::LayoutAttribute& a : layout.attributes) {
+    const std::string object = a.spec->object;
+    const std::string key = object == hexdyn::schema::kMetaGroup ? std::string(a.spec->name)
+                                                                 : object + "/" + a.spec->name;
+    std::visit([&](const auto& v) { attributes[py::str(key)] = py::cast(v); }, a.value);
+  }
+  return py::make_tuple(datasets, attributes, units);
+}
+
 /// run(scene, overrides, allow_large) → (handle, {path: array}, {attribute: value},
 /// {path: units}): the units of the datasets the writer gives a `units` attribute (their
 /// declaration's, when not "").
@@ -158,20 +177,32 @@ py::tuple run_file(const std::string& scene_path, const std::vector<std::string>
     layout = hexdyn::result_layout(handle->result);
   });
   warn(warnings);
-  py::dict datasets, attributes, units;
-  for (hexdyn::LayoutDataset& d : layout.datasets) {
-    const char* path = d.spec->path;
-    if (d.spec->units[0] != '\0') units[py::str(path)] = py::str(d.spec->units);
-    datasets[py::str(path)] = to_python(std::move(d));
-  }
-  // /meta attributes by name; any other object's as "OBJECT/NAME" ("/terrain/type").
-  for (const hexdyn::LayoutAttribute& a : layout.attributes) {
-    const std::string object = a.spec->object;
-    const std::string key = object == hexdyn::schema::kMetaGroup ? std::string(a.spec->name)
-                                                                 : object + "/" + a.spec->name;
-    std::visit([&](const auto& v) { attributes[py::str(key)] = py::cast(v); }, a.value);
-  }
-  return py::make_tuple(handle, datasets, attributes, units);
+  py::tuple file = layout_to_python(std::move(layout));
+  return py::make_tuple(handle, file[0], file[1], file[2]);
+}
+
+/// robustness(scene, overrides, threads) → ({path: array}, {attribute: value}, {path: units}):
+/// the scene's robustness study (robustness/robustness.hpp) on `threads` threads, as the file
+/// `hexdyn robustness` writes holds it.
+py::tuple robustness_file(const std::string& scene_path,
+                          const std::vector<std::string>& override_texts, int threads) {
+  hexdyn::ResultLayout layout;
+  const std::vector<hexdyn::Override> overrides = overrides_of(override_texts);
+  std::vector<std::string> warnings;
+  run_interruptible([&] {
+    guard_yaml(scene_path, [&] {
+      std::vector<hexdyn::InputFile> inputs;
+      const hexdyn::Scene scene = hexdyn::load_scene(scene_path, overrides, &inputs);
+      warnings = scene.warnings;
+      std::unique_lock<std::mutex> lock(ipopt_mutex, std::defer_lock);
+      if (scene.allocation.solver == hexdyn::AllocationSolver::kIpopt) lock.lock();
+      const hexdyn::RobustnessResult r = hexdyn::run_robustness(scene, std::max(1, threads));
+      layout = hexdyn::robustness_layout(scene, inputs, r);
+      return 0;
+    });
+  });
+  warn(warnings);
+  return layout_to_python(std::move(layout));
 }
 
 /// write(handle, path): the CLI's checks on the output path (a new path or a regular file
@@ -400,6 +431,9 @@ PYBIND11_MODULE(_hexdyn, m) {
   m.def("run", &run_file, py::arg("scene"), py::arg("overrides"), py::arg("allow_large"),
         "Computes a scene: (handle, {HDF5 path: array}, {/meta attribute: value}, "
         "{HDF5 path: units}).");
+  m.def("robustness", &robustness_file, py::arg("scene"), py::arg("overrides"), py::arg("threads"),
+        "Runs a scene's robustness study: ({HDF5 path: array}, {/meta attribute: value}, "
+        "{HDF5 path: units}) of its hexdyn-robustness/1 file.");
   m.def("write", &write_file, py::arg("handle"), py::arg("path"),
         "Writes a computed scene's hexdyn-result/5 file, with the CLI's checks on the path.");
   m.def("validate", &validate_file, py::arg("scene"), py::arg("overrides"),

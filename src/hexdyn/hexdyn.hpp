@@ -25,6 +25,8 @@
 /// - read_replay_source(result_path, overrides), replay_plan(...) and write_replay_file
 ///   (replay/replay_file.hpp, replay/replay.hpp) replay a result's torques forward, as
 ///   `hexdyn replay` (docs/theory/replay.md).
+/// - run_robustness(scene, threads) and write_robustness_file (robustness/robustness.hpp) run
+///   a scene's robustness study, as `hexdyn robustness` (docs/user/robustness.md).
 /// - Errors (core/errors.hpp): hexdyn::Error and its family ConfigError, IoError (exit
 ///   status 2), ReachError, PlanningError, SolverError (3); each message is one line.
 ///
@@ -46,4 +48,5 @@
 #include "hexdyn/io/result_layout.hpp"
 #include "hexdyn/pipeline/run.hpp"
 #include "hexdyn/replay/replay_file.hpp"
+#include "hexdyn/robustness/robustness.hpp"
 #include "hexdyn/version.hpp"

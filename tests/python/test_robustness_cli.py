@@ -14,7 +14,8 @@ second computations:
     and of the friction errors (uniform), at the 0.1 % level;
   - /summary against /replays: the success fraction, the failure counts per class, the
     Wilson interval from its closed form;
-  - hexdyn.open_robustness and xarray read every group, on the file's dimensions;
+  - hexdyn.open_robustness and xarray read every group, on the file's dimensions; the
+    in-process hexdyn.robustness returns the file's datasets;
   - bad input: an unknown perturbation, a riser error as large as a riser, an output onto
     the scene: one line naming the key (or the file), exit status 2, no output written and
     the scene untouched.
@@ -33,7 +34,7 @@ import xarray as xr
 from scipy import stats
 
 import hexdyn
-from common import args, cli_error
+from common import args, cli_error, file_datasets
 
 Z = 1.959963984540054
 failures = []
@@ -142,6 +143,20 @@ robustness:
           math.isclose(high, min(1.0, centre + half), abs_tol=1e-12), "the Wilson interval")
     print(f"     {n} replays: P = {p:.3f} [{low:.3f}, {high:.3f}], failures {dict(zip(names, counts))}")
 
+    # In process: hexdyn.robustness holds the file's datasets (timing aside), on any threads.
+    mem = hexdyn.robustness(scene, set={"robustness.replays": 6}, threads=2)
+    stored, _ = file_datasets(f"{tmp}/j1.h5")  # group coordinates left out
+    def same_values(x, y):
+        x, y = np.asarray(x), np.asarray(y)
+        if y.dtype.kind in "OSU":  # texts: bytes in the file, str in memory
+            return [hexdyn.decode_text(v) for v in x.ravel()] == \
+                [hexdyn.decode_text(v) for v in y.ravel()]
+        return np.array_equal(x, y, equal_nan=y.dtype.kind == "f")
+    differ = [p for p in stored
+              if p[1:] not in timing and not same_values(mem.data.get(p), stored[p][0])]
+    check(not differ and set(mem.data) == set(stored),
+          "hexdyn.robustness: the same datasets as the file of hexdyn robustness",
+          f"{differ} {set(mem.data) ^ set(stored)}")
     rob = hexdyn.open_robustness(f"{tmp}/draws.h5")
     check(rob.replays == n and rob.p_success == p and rob.interval == (low, high),
           "open_robustness: replays, p_success, interval")

@@ -139,6 +139,23 @@ def run(scene, set=None, *, allow_large=False):
                   handle=handle)
 
 
+def robustness(scene, set=None, *, threads=None):
+    """Runs the robustness study of the scene file `scene` with the overrides `set` (as for
+    run; its `robustness:` section, docs/user/robustness.md) on `threads` threads (default: one
+    per core) and returns a Robustness: the datasets of the hexdyn-robustness/1 file
+    `hexdyn robustness` writes, in memory (rob.p_success, rob.interval, rob["/replays/failure"]).
+    The result does not depend on `threads`."""
+    scene = _path(scene)
+    n = threads if threads is not None else (os.cpu_count() or 1)
+    if isinstance(n, bool) or not isinstance(n, int) or n < 1:
+        raise ValueError(f"threads: got {threads!r}, expected a whole number of threads >= 1")
+    datasets, attrs, units = _lib().robustness(scene, _overrides(set), n)
+    meta = {k: v for k, v in attrs.items() if not k.startswith("/")}
+    shapes = {p: tuple(getattr(v, "shape", ())) for p, v in datasets.items()}
+    return Robustness(f"hexdyn.robustness({os.fsdecode(scene)!r})", datasets, units, shapes, meta,
+                      {})
+
+
 def validate(scene, set=None):
     """Checks a scene file or a sweep file as `hexdyn validate` does; raises on the first error.
     Returns {"kind": "scene", "name": ..., "messages": [...], "warnings": [...]} ("messages":
@@ -313,7 +330,7 @@ def __getattr__(name):
     raise AttributeError(f"module 'hexdyn' has no attribute {name!r}")
 
 
-__all__ = ["run", "validate", "sample_problem", "forward_dynamics", "inverse_dynamics",
+__all__ = ["run", "robustness", "validate", "sample_problem", "forward_dynamics", "inverse_dynamics",
            "mass_matrix", "Result", "Sweep", "Envelope",
            "Replay", "Robustness", "Study", "open_file", "open_result", "open_sweep",
            "open_envelope", "open_replay", "open_robustness", "open_study", "check_layout",

@@ -14,6 +14,7 @@
 #include "hexdyn/config/inputs.hpp"
 #include "hexdyn/core/result.hpp"
 #include "hexdyn/core/scene.hpp"
+#include "hexdyn/io/result_layout.hpp"
 #include "hexdyn/model/robot_model.hpp"
 #include "hexdyn/replay/replay.hpp"
 #include "hexdyn/robustness/outcome.hpp"
@@ -75,6 +76,11 @@ RobustnessResult run_robustness(const Scene& scene, int threads, RunResult* plan
 /// The study of a given plan (a result file's: replay/replay_file.hpp read_replay_source with
 /// robustness) under `scene`'s robustness: section, its robot `plan.model`; as above.
 RobustnessResult run_robustness(const Scene& scene, const StudyPlan& plan, int threads);
+
+/// The `hexdyn-robustness/1` file of the study of `scene` in memory (io/result_layout.hpp):
+/// its /meta attributes (created_utc = now) and datasets, as write_robustness_file writes them.
+ResultLayout robustness_layout(const Scene& scene, const std::vector<InputFile>& inputs,
+                               const RobustnessResult& result);
 
 /// Writes the `hexdyn-robustness/1` file (io/schema_robustness.hpp) of the study of `scene`
 /// atomically, after check_output_target against `inputs` (the scene's files).

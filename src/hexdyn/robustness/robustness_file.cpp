@@ -7,6 +7,7 @@
 #include "hexdyn/io/schema.hpp"
 #include "hexdyn/process/atomic_file.hpp"
 #include "hexdyn/robustness/robustness.hpp"
+#include "hexdyn/version.hpp"
 
 namespace hexdyn {
 namespace {
@@ -127,31 +128,39 @@ void add_tolerance(ResultLayout& b, const RobustnessParams& spec, const Robustne
   b.add(s::kPerturbationCoordinate, {n}, names);
 }
 
-void write_meta(H5Writer& w, const Scene& scene, const std::vector<InputFile>& inputs,
-                const RobustnessResult& r) {
-  const std::string meta = s::kMetaGroup;
-  write_meta_header(w, meta, s::kRobustnessSchema, s::kRobustnessSchemaVersion);
-  w.set_string_attribute(meta, s::kAttrConfigYaml, scene.resolved_yaml);
-  w.set_double_attribute(meta, s::kAttrWallTime, r.seconds);
-  w.set_string_attribute(meta, s::kAttrInputSha256, input_sha256_text(inputs));
-  w.set_string_attribute(meta, s::kMetaRobustnessName.name, scene.name);
-  w.set_int_attribute(meta, s::kMetaRobustnessSeed.name,
-                      static_cast<std::int64_t>(scene.robustness.seed));
+void add_meta(ResultLayout& b, const Scene& scene, const std::vector<InputFile>& inputs,
+              const RobustnessResult& r) {
+  b.attributes = {{&s::kMetaSchema, std::string(s::kRobustnessSchema)},
+                  {&s::kMetaSchemaVersion, s::kRobustnessSchemaVersion},
+                  {&s::kMetaVersion, std::string(kVersion)},
+                  {&s::kMetaGitCommit, std::string(kGitCommit)},
+                  {&s::kMetaCreatedUtc, utc_timestamp_now()},
+                  {&s::kMetaConfigYaml, scene.resolved_yaml},
+                  {&s::kMetaWallTime, r.seconds},
+                  {&s::kMetaInputSha256, input_sha256_text(inputs)},
+                  {&s::kMetaRobustnessName, scene.name},
+                  {&s::kMetaRobustnessSeed, static_cast<std::int64_t>(scene.robustness.seed)}};
 }
 
 }  // namespace
 
-void write_robustness_file(const std::string& path, const Scene& scene,
-                           const std::vector<InputFile>& inputs, const RobustnessResult& result) {
-  check_output_target(path, inputs);
+ResultLayout robustness_layout(const Scene& scene, const std::vector<InputFile>& inputs,
+                               const RobustnessResult& result) {
   ResultLayout b;
+  add_meta(b, scene, inputs, result);
   add_replays(b, result);
   add_perturbations(b, scene.robustness, result);
   add_summary(b, result);
   add_tolerance(b, scene.robustness, result);
+  return b;
+}
+
+void write_robustness_file(const std::string& path, const Scene& scene,
+                           const std::vector<InputFile>& inputs, const RobustnessResult& result) {
+  check_output_target(path, inputs);
+  const ResultLayout b = robustness_layout(scene, inputs, result);
   publish_atomically(path, [&](const std::string& tmp) {
     H5Writer writer(tmp, compressed_output(scene.resolved_yaml));
-    write_meta(writer, scene, inputs, result);
     write_layout(writer, b);
     writer.close();
   });

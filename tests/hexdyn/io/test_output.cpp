@@ -230,6 +230,16 @@ std::vector<std::size_t> expected_dims(schema::Shape shape, std::size_t T, std::
     case Shape::kEnvelopeMuGrid:
     case Shape::kEnvelopeCaseMuGrid:
       break;  // shapes of the envelope file
+    case Shape::kRobustReplays:
+    case Shape::kRobustReplaySteps:
+    case Shape::kRobustReplayLinks:
+    case Shape::kRobustReplayJoints:
+    case Shape::kRobustReplayXyz:
+    case Shape::kRobustSteps:
+    case Shape::kRobustLinks:
+    case Shape::kRobustClasses:
+    case Shape::kRobustPerturbations:
+      break;  // shapes of the robustness file
     case Shape::kCycles:
       return {3};  // make_result's cycles
     case Shape::kTerrainPoints:

@@ -221,3 +221,50 @@ TEST_CASE("the scene refuses perturbations that would make a world unphysical") 
                  {"robustness.perturbations.nosing.high", "0"}},
                 "robustness.perturbations.nosing"));
 }
+
+TEST_CASE("the tolerated scale passes, a scale one bisection step larger fails") {
+  // μ lowered by a fixed 0.3 × s (uniform low = high): each scale's one replay is decided by s
+  // alone, so the search's answer can be checked by studies at that scale and just above it.
+  const std::vector<Override> study{{"robustness.replays", "1"},
+                                    {"robustness.perturbations.friction.distribution", "uniform"},
+                                    {"robustness.perturbations.friction.low", "-0.06"},
+                                    {"robustness.perturbations.friction.high", "-0.06"},
+                                    {"robustness.tolerance.replays", "1"},
+                                    {"robustness.tolerance.max_scale", "4.5"},
+                                    {"robustness.tolerance.bisections", "4"}};
+  const RobustnessResult r = run_robustness(paper(study), 1);
+  REQUIRE(r.tolerance.size() == 1);
+  const ToleranceResult& t = r.tolerance.front();
+  // μ = 0.3 − 0.06 s reaches 0 at s = 5: the scales searched stop short of it.
+  CHECK(t.max_scale == 4.5);
+  CHECK(t.probes == 5);
+  CHECK_FALSE(t.censored);
+  CHECK(t.magnitude == Approx(0.06 * t.scale));
+  const double step = 4.5 / 16.0;  // the bisection's resolution
+  const auto fraction_at = [&](double scale) {
+    std::vector<Override> o{
+        {"robustness.replays", "1"},
+        {"robustness.perturbations.friction.distribution", "uniform"},
+        {"robustness.perturbations.friction.low", std::to_string(-0.06 * scale)},
+        {"robustness.perturbations.friction.high", std::to_string(-0.06 * scale)}};
+    return run_robustness(paper(o), 1).p_success;
+  };
+  CHECK(fraction_at(t.scale) == 1.0);
+  CHECK(fraction_at(t.scale + step) == 0.0);
+}
+
+TEST_CASE("a tolerance search never draws an unphysical world") {
+  // Risers of 0.05 m with errors bounded at 0.02 m × s: s must stay below 2.5.
+  const RobustnessResult r =
+      run_robustness(paper({{"robustness.replays", "1"},
+                            {"robustness.perturbations.riser_height.distribution", "normal"},
+                            {"robustness.perturbations.riser_height.sigma", "0.001"},
+                            {"robustness.perturbations.riser_height.bound", "0.02"},
+                            {"robustness.tolerance.replays", "1"},
+                            {"robustness.tolerance.max_scale", "10"},
+                            {"robustness.tolerance.bisections", "0"}}),
+                     1);
+  REQUIRE(r.tolerance.size() == 1);
+  CHECK(r.tolerance.front().max_scale < 2.5);
+  CHECK(r.tolerance.front().max_scale > 2.5 * (1.0 - 1e-9));
+}
