@@ -197,7 +197,7 @@ void read_perturbations(Reader& r, TerrainParams& t) {
       t.riser_height_m *= scale;
       return;
     }
-    t.step_list.assign(t.steps, StairStep{t.riser_height_m, t.tread_depth_m, t.nosing_m});
+    t.step_list = stair_step_list(t);
   }
   for (StairStep& s : t.step_list) s.riser_m *= scale;
   if (step > 0) t.step_list[step - 1].riser_m += offset;

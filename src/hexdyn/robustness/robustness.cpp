@@ -23,12 +23,13 @@ double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-/// What every replay of a study shares, read-only.
+/// What every replay of a study shares, read-only (the model and plan are the StudyPlan's,
+/// which outlives the study).
 struct Study {
   const Scene& scene;
-  RobotModel model;
-  ReplayPlan plan;
-  RowMatrixI8 phase;
+  const RobotModel& model;
+  const ReplayPlan& plan;
+  const RowMatrixI8& phase;
   DrawSizes sizes;
   FailureBounds bounds;
   std::uint64_t seed = 1;
