@@ -221,6 +221,11 @@ void foot_jacobians(const RobotModel& model, RobotData& data, const BaseState& s
   fill_foot_jacobians(model, data, state, normals_W);
 }
 
+void foot_jacobians_at_poses(const RobotModel& model, RobotData& data, const BaseState& state,
+                             LegVectors normals_W) {
+  fill_foot_jacobians(model, data, state, normals_W);
+}
+
 const LegArray<Vec3>& foot_bias_accelerations(const RobotModel& model, RobotData& data,
                                               const BaseState& state, const JointVector& q,
                                               const JointVector& qd, LegVectors normals_W) {

@@ -169,6 +169,10 @@ const DofMatrix& crba(const RobotModel& model, RobotData& data, const BaseState&
 /// the leg, zero elsewhere. Uses only the pose of `state`.
 void foot_jacobians(const RobotModel& model, RobotData& data, const BaseState& state,
                     const JointVector& q, LegVectors normals_W = nullptr);
+/// foot_jacobians at the poses already in `data`: precondition, update_kinematics of `state`
+/// and its joint angles was the last call to change them (it saves a second pass).
+void foot_jacobians_at_poses(const RobotModel& model, RobotData& data, const BaseState& state,
+                             LegVectors normals_W = nullptr);
 
 /// Accelerations at zero generalised acceleration, J̇ ν (3 per leg) [m/s²], world axes, of
 /// the foot bodies' material points at the contact points (foot_jacobians): their classical

@@ -8,7 +8,6 @@
 #include <cmath>
 
 #include "hexdyn/core/common.hpp"
-#include "hexdyn/core/sizes.hpp"
 
 namespace hexdyn::replay_sums {
 
@@ -43,24 +42,6 @@ double lane_dot(const A& a, const B& b) {
 template <class A, class B>
 double lane_abs_dot(const A& a, const B& b) {
   return lane_sum([&](Eigen::Index k) { return std::abs(a[k] * b[k]); }, a.size());
-}
-
-/// J ν of a foot's 3 × (6 + joints) Jacobian: row `halves_row` summed in halves (halves_sum),
-/// the two others term by term from the first column. Row z in halves is Eigen's order for a
-/// product of its own; row x in halves its order for one nested in a product with a 3 × 3
-/// matrix (B (J ν)).
-inline Vec3 jacobian_times(const DofJacobian& J, const DofVector& nu, int halves_row = 2) {
-  Vec3 out;
-  for (int r = 0; r < 3; ++r) {
-    if (r == halves_row) {
-      out[r] = halves_sum([&](Eigen::Index k) { return J(r, k) * nu[k]; }, 0, nu.size());
-      continue;
-    }
-    double sum = J(r, 0) * nu[0];
-    for (Eigen::Index k = 1; k < nu.size(); ++k) sum += J(r, k) * nu[k];
-    out[r] = sum;
-  }
-  return out;
 }
 
 }  // namespace hexdyn::replay_sums

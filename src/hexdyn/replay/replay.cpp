@@ -1,5 +1,6 @@
 #include "hexdyn/replay/replay.hpp"
 
+#include <Eigen/Cholesky>
 #include <Eigen/LU>
 #include <algorithm>
 #include <chrono>
@@ -22,7 +23,6 @@
 namespace hexdyn {
 namespace {
 
-using replay_sums::jacobian_times;
 using replay_sums::lane_abs_dot;
 using replay_sums::lane_dot;
 
@@ -30,6 +30,17 @@ using replay_sums::lane_dot;
 LegArray<Vec3> zero_vectors() {
   LegArray<Vec3> v;
   v.fill(Vec3::Zero());
+  return v;
+}
+
+/// J ν of a foot's Jacobian J over the columns where it can be non-zero, the trunk's six and
+/// its leg's joints (dynamics/rnea.hpp foot_jacobians: the other legs' columns are zero) [m/s].
+Vec3 foot_velocity(const LegInfo& leg, const DofJacobian& J, const DofVector& nu) {
+  Vec3 v = J.leftCols<6>() * nu.head<6>();
+  for (int j = 0; j < leg.n_joints; ++j) {
+    const int k = 6 + leg.first_joint + j;
+    v += J.col(k) * nu[k];
+  }
   return v;
 }
 
@@ -89,11 +100,11 @@ void evaluate_contacts(const RobotModel& model, RobotData& data, const ContactPa
             : terrain_contact(plan.terrain_y_m, plan.terrain_z_m, centre_W, model.foot_radius_m[l]);
     c.normals[l] = c.geometry[l].normal_W;
   }
-  foot_jacobians(model, data, s.base, s.q, &c.normals);
+  foot_jacobians_at_poses(model, data, s.base, &c.normals);
   for (int l = 0; l < c.legs; ++l) c.J[l] = data.J_foot_W[l];
   const DofVector nu = s.nu();
   for (int l = 0; l < c.legs; ++l) {
-    const Vec3 v_point = jacobian_times(c.J[l], nu);
+    const Vec3 v_point = foot_velocity(model.leg(l), c.J[l], nu);
     c.law[l] = foot_contact_force(params, c.geometry[l].penetration_m, c.normals[l], v_point);
     c.force_W[l] = c.law[l].force_W;
   }
@@ -129,6 +140,8 @@ struct Integrator {
   const ReplayPlan& plan;
   RobotData data;
   Contacts contacts;
+  Eigen::LLT<DofMatrix> llt{};          ///< the step's factorisation (solve_step)
+  Eigen::PartialPivLU<DofMatrix> lu{};  ///< the same where Cholesky does not apply
   // cumulative since the start
   double actuator_energy_J = 0.0;
   double actuator_work_J = 0.0;  ///< ∫ τ·q̇ dt, signed
@@ -218,6 +231,28 @@ AffineForce affine_contact(const ContactParams& params, const TerrainContactPoin
   return out;
 }
 
+/// Adds foot l's contact to a step's system (implicit_step): −h Jᵀ B J to `lhs` and
+/// Jᵀ (a + B v₀) to `rhs`, over the columns where the foot's Jacobian J can be non-zero, the
+/// trunk's six and the leg's own joints (the other legs' columns of J are zero:
+/// dynamics/rnea.hpp foot_jacobians).
+void add_contact_rows(const LegInfo& leg, const DofJacobian& J, const AffineForce& force,
+                      const Vec3& v_start, double h, DofMatrix& lhs, DofVector& rhs) {
+  const int m = 6 + leg.n_joints;
+  std::array<int, 6 + kMaxLegJoints> column{};
+  Eigen::Matrix<double, 3, Eigen::Dynamic, 0, 3, 6 + kMaxLegJoints> Jc(3, m);
+  for (int i = 0; i < m; ++i) {
+    column[i] = i < 6 ? i : 6 + leg.first_joint + (i - 6);
+    Jc.col(i) = J.col(column[i]);
+  }
+  const Eigen::Matrix<double, Eigen::Dynamic, 3, 0, 6 + kMaxLegJoints, 3> JtB =
+      Jc.transpose() * force.B;
+  const Vec3 r = force.a + force.B * v_start;
+  for (int i = 0; i < m; ++i) {
+    rhs[column[i]] += Jc.col(i).dot(r);
+    for (int k = 0; k < m; ++k) lhs(column[i], column[k]) -= h * JtB.row(i).dot(Jc.col(k));
+  }
+}
+
 /// Stick–slip: marks as sliding the feet not yet sliding in `out` whose tangential force at
 /// the step's end, F(ν_new) of `force`, exceeds their cap (friction_cap at its normal part),
 /// with their force's direction. Returns whether any foot was marked.
@@ -228,7 +263,7 @@ bool capped_feet(const Integrator& it, const Contacts& c, const LegArray<AffineF
   for (int l = 0; l < c.legs; ++l) {
     if (!(c.geometry[l].penetration_m > 0.0) || out.slid[l]) continue;
     const Vec3& n = c.normals[l];
-    const Vec3 F = force[l].a + force[l].B * jacobian_times(c.J[l], nu_new);
+    const Vec3 F = force[l].a + force[l].B * foot_velocity(it.model.leg(l), c.J[l], nu_new);
     const Vec3 Ft = F - n.dot(F) * n;
     if (Ft.norm() <= friction_cap(it.contact, it.tangential[l], n.dot(F))) continue;
     out.slid[l] = true;
@@ -236,6 +271,19 @@ bool capped_feet(const Integrator& it, const Contacts& c, const LegArray<AffineF
     marked = true;
   }
   return marked;
+}
+
+/// The step's Δν from lhs Δν = rhs: by Cholesky while lhs is symmetric (every contact's B is,
+/// but a sliding foot's of stick–slip: contact/stick_slip.hpp slip_affine) and positive
+/// definite, else by LU with partial pivoting.
+DofVector solve_step(Integrator& it, const DofMatrix& lhs, const DofVector& rhs,
+                     const LegArray<bool>& slid) {
+  if (std::none_of(slid.begin(), slid.end(), [](bool s) { return s; })) {
+    it.llt.compute(lhs);
+    if (it.llt.info() == Eigen::Success) return it.llt.solve(rhs);
+  }
+  it.lu.compute(lhs);
+  return it.lu.solve(rhs);
 }
 
 /// One linearly implicit Euler step of length h from s (contacts evaluated at s in
@@ -263,7 +311,7 @@ void implicit_step(Integrator& it, const SimState& s, const PlanPoint& p, double
   const DofVector nu = s.nu();
   LegArray<AffineForce> force;
   LegArray<Vec3> v_start = zero_vectors();
-  for (int l = 0; l < c.legs; ++l) v_start[l] = jacobian_times(c.J[l], nu);
+  for (int l = 0; l < c.legs; ++l) v_start[l] = foot_velocity(it.model.leg(l), c.J[l], nu);
   out.slid.fill(false);
   DofVector nu_new = nu;
   // Stick–slip's return mapping (contact/stick_slip.hpp): every foot sticks, then a foot whose
@@ -276,10 +324,9 @@ void implicit_step(Integrator& it, const SimState& s, const PlanPoint& p, double
       force[l] =
           affine_contact(it.contact, c.geometry[l], c.law[l], it.tangential[l],
                          out.slid[l] ? &out.slip_force_direction_W[l] : nullptr, v_start[l], h);
-      rhs += c.J[l].transpose() * (force[l].a + force[l].B * v_start[l]);
-      lhs -= h * c.J[l].transpose() * force[l].B * c.J[l];
+      add_contact_rows(it.model.leg(l), c.J[l], force[l], v_start[l], h, lhs, rhs);
     }
-    nu_new = nu + lhs.partialPivLu().solve(h * rhs);
+    nu_new = nu + solve_step(it, lhs, h * rhs, out.slid);
     if (!capped_feet(it, c, force, nu_new, out)) break;
   }
   out.next = s;
@@ -293,9 +340,10 @@ void implicit_step(Integrator& it, const SimState& s, const PlanPoint& p, double
     out.tau = p.tau + kp * (p.q - s.q - h * out.next.qd) + kd * (p.qd - out.next.qd);
   }
   for (int l = 0; l < c.legs; ++l)
-    out.force_W[l] = c.geometry[l].penetration_m > 0.0
-                         ? Vec3(force[l].a + force[l].B * jacobian_times(c.J[l], nu_new, 0))
-                         : Vec3::Zero();
+    out.force_W[l] =
+        c.geometry[l].penetration_m > 0.0
+            ? Vec3(force[l].a + force[l].B * foot_velocity(it.model.leg(l), c.J[l], nu_new))
+            : Vec3::Zero();
   advance_positions(out.next, h);
 }
 
@@ -326,7 +374,7 @@ void account_step(Integrator& it, const Contacts& at_start, const Step& step, do
       continue;
     }
     const Vec3& n = at_start.normals[l];
-    const Vec3 v_new = jacobian_times(at_start.J[l], nu_new);
+    const Vec3 v_new = foot_velocity(it.model.leg(l), at_start.J[l], nu_new);
     const Vec3& F = step.force_W[l];
     const Vec3 vt = v_new - n.dot(v_new) * n;
     it.normal_work_J[l] -= h * n.dot(F) * n.dot(v_new);
