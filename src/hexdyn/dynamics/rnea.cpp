@@ -58,9 +58,10 @@ void forward_motion_pass(const RobotModel& model, RobotData& data, const Motion&
   }
 }
 
-/// Contact points and Jacobians from the body poses already in data.X_world_body.
-void fill_foot_jacobians(const RobotModel& model, RobotData& data, const BaseState& state,
-                         LegVectors normals_W) {
+}  // namespace
+
+void foot_jacobians_at_poses(const RobotModel& model, RobotData& data, const BaseState& state,
+                             LegVectors normals_W) {
   for (int l = 0; l < model.legs(); ++l) {
     const Vec3 r_foot = contact_point_foot(model, data, l, normals_W);
     const Vec3 p_foot_W = data.X_world_body[model.foot_body(l)].apply_point(r_foot);
@@ -77,8 +78,6 @@ void fill_foot_jacobians(const RobotModel& model, RobotData& data, const BaseSta
     }
   }
 }
-
-}  // namespace
 
 RobotData::RobotData(const RobotModel& model)
     : tau(DofVector::Zero(model.dofs())),
@@ -218,12 +217,7 @@ const DofMatrix& crba(const RobotModel& model, RobotData& data, const BaseState&
 void foot_jacobians(const RobotModel& model, RobotData& data, const BaseState& state,
                     const JointVector& q, LegVectors normals_W) {
   update_kinematics(model, data, state, q);
-  fill_foot_jacobians(model, data, state, normals_W);
-}
-
-void foot_jacobians_at_poses(const RobotModel& model, RobotData& data, const BaseState& state,
-                             LegVectors normals_W) {
-  fill_foot_jacobians(model, data, state, normals_W);
+  foot_jacobians_at_poses(model, data, state, normals_W);
 }
 
 const LegArray<Vec3>& foot_bias_accelerations(const RobotModel& model, RobotData& data,
@@ -288,7 +282,7 @@ const ContactSplit& contact_split(const RobotModel& model, RobotData& data, cons
                                   const JointVector& q, const JointVector& qd,
                                   const JointVector& qdd, LegVectors normals_W) {
   rnea(model, data, state, q, qd, qdd, nullptr);
-  fill_foot_jacobians(model, data, state, normals_W);  // kinematics already updated by rnea
+  foot_jacobians_at_poses(model, data, state, normals_W);  // kinematics already updated by rnea
   ContactSplit& s = data.split;
   s.trunk_rhs = data.tau.head<6>();
   const int n = model.joints();

@@ -1,7 +1,5 @@
 #include "hexdyn/replay/replay.hpp"
 
-#include <Eigen/Cholesky>
-#include <Eigen/LU>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -19,6 +17,7 @@
 #include "hexdyn/replay/lane_sums.hpp"
 #include "hexdyn/replay/plan_checks.hpp"
 #include "hexdyn/replay/replay_report.hpp"
+#include "hexdyn/replay/step_system.hpp"
 
 namespace hexdyn {
 namespace {
@@ -30,17 +29,6 @@ using replay_sums::lane_dot;
 LegArray<Vec3> zero_vectors() {
   LegArray<Vec3> v;
   v.fill(Vec3::Zero());
-  return v;
-}
-
-/// J ν of a foot's Jacobian J over the columns where it can be non-zero, the trunk's six and
-/// its leg's joints (dynamics/rnea.hpp foot_jacobians: the other legs' columns are zero) [m/s].
-Vec3 foot_velocity(const LegInfo& leg, const DofJacobian& J, const DofVector& nu) {
-  Vec3 v = J.leftCols<6>() * nu.head<6>();
-  for (int j = 0; j < leg.n_joints; ++j) {
-    const int k = 6 + leg.first_joint + j;
-    v += J.col(k) * nu[k];
-  }
   return v;
 }
 
@@ -140,8 +128,7 @@ struct Integrator {
   const ReplayPlan& plan;
   RobotData data;
   Contacts contacts;
-  Eigen::LLT<DofMatrix> llt{};          ///< the step's factorisation (solve_step)
-  Eigen::PartialPivLU<DofMatrix> lu{};  ///< the same where Cholesky does not apply
+  StepSolver solver{};  ///< the step's factorisations (step_system.hpp)
   // cumulative since the start
   double actuator_energy_J = 0.0;
   double actuator_work_J = 0.0;  ///< ∫ τ·q̇ dt, signed
@@ -193,66 +180,6 @@ struct Step {
   LegArray<Vec3> slip_force_direction_W = zero_vectors();
 };
 
-/// The contact force of foot l as an affine function of its velocity at the step's end,
-/// F(v) = a + B v (file comment of replay.hpp): the normal force linearised about the start
-/// (its stiffness over the step's displacement h v, its damping), the friction as the damper
-/// −(μ(s)/s) F_n P v of the start's slip speed s (its secant: always dissipative, so a step
-/// never reverses a slip the law would only slow down).
-struct AffineForce {
-  Vec3 a = Vec3::Zero();
-  Mat3 B = Mat3::Zero();
-};
-
-AffineForce affine_contact(const ContactParams& params, const TerrainContactPoint& g,
-                           const FootContactForce& law, const TangentialContact& tangential,
-                           const Vec3* slip_force_direction, const Vec3& v_old, double h) {
-  AffineForce out;
-  const Vec3& n = g.normal_W;
-  const Mat3 N = n * n.transpose();
-  if (params.friction_law == FrictionLaw::kStickSlip) {
-    // The normal force F_n(v) = fn0 + g·v over the step, then the stick or slip force.
-    const Vec3 grad = (law.dF_dv + h * law.dF_dp).transpose() * n;
-    const double fn0 = law.normal_N - n.dot(law.dF_dv * v_old);
-    const AffineTangentialForce t = slip_force_direction
-                                        ? slip_affine(params, *slip_force_direction, fn0, grad)
-                                        : stick_affine(params, tangential, n, h);
-    out.B = n * grad.transpose() + t.B_Nspm;
-    out.a = fn0 * n + t.a_N;
-    return out;
-  }
-  const Mat3 P = Mat3::Identity() - N;
-  const double s = law.slip_velocity_W.norm();
-  const double c =
-      law.normal_N * (s > 1e-12 * params.stiction_velocity_mps
-                          ? sliding_friction_coefficient(params, s) / s
-                          : 1.5 * params.static_friction / params.stiction_velocity_mps);
-  out.B = N * (law.dF_dv + h * law.dF_dp) - c * P;
-  out.a = law.normal_N * n - N * law.dF_dv * v_old;
-  return out;
-}
-
-/// Adds foot l's contact to a step's system (implicit_step): −h Jᵀ B J to `lhs` and
-/// Jᵀ (a + B v₀) to `rhs`, over the columns where the foot's Jacobian J can be non-zero, the
-/// trunk's six and the leg's own joints (the other legs' columns of J are zero:
-/// dynamics/rnea.hpp foot_jacobians).
-void add_contact_rows(const LegInfo& leg, const DofJacobian& J, const AffineForce& force,
-                      const Vec3& v_start, double h, DofMatrix& lhs, DofVector& rhs) {
-  const int m = 6 + leg.n_joints;
-  std::array<int, 6 + kMaxLegJoints> column{};
-  Eigen::Matrix<double, 3, Eigen::Dynamic, 0, 3, 6 + kMaxLegJoints> Jc(3, m);
-  for (int i = 0; i < m; ++i) {
-    column[i] = i < 6 ? i : 6 + leg.first_joint + (i - 6);
-    Jc.col(i) = J.col(column[i]);
-  }
-  const Eigen::Matrix<double, Eigen::Dynamic, 3, 0, 6 + kMaxLegJoints, 3> JtB =
-      Jc.transpose() * force.B;
-  const Vec3 r = force.a + force.B * v_start;
-  for (int i = 0; i < m; ++i) {
-    rhs[column[i]] += Jc.col(i).dot(r);
-    for (int k = 0; k < m; ++k) lhs(column[i], column[k]) -= h * JtB.row(i).dot(Jc.col(k));
-  }
-}
-
 /// Stick–slip: marks as sliding the feet not yet sliding in `out` whose tangential force at
 /// the step's end, F(ν_new) of `force`, exceeds their cap (friction_cap at its normal part),
 /// with their force's direction. Returns whether any foot was marked.
@@ -271,19 +198,6 @@ bool capped_feet(const Integrator& it, const Contacts& c, const LegArray<AffineF
     marked = true;
   }
   return marked;
-}
-
-/// The step's Δν from lhs Δν = rhs: by Cholesky while lhs is symmetric (every contact's B is,
-/// but a sliding foot's of stick–slip: contact/stick_slip.hpp slip_affine) and positive
-/// definite, else by LU with partial pivoting.
-DofVector solve_step(Integrator& it, const DofMatrix& lhs, const DofVector& rhs,
-                     const LegArray<bool>& slid) {
-  if (std::none_of(slid.begin(), slid.end(), [](bool s) { return s; })) {
-    it.llt.compute(lhs);
-    if (it.llt.info() == Eigen::Success) return it.llt.solve(rhs);
-  }
-  it.lu.compute(lhs);
-  return it.lu.solve(rhs);
 }
 
 /// One linearly implicit Euler step of length h from s (contacts evaluated at s in
@@ -326,7 +240,8 @@ void implicit_step(Integrator& it, const SimState& s, const PlanPoint& p, double
                          out.slid[l] ? &out.slip_force_direction_W[l] : nullptr, v_start[l], h);
       add_contact_rows(it.model.leg(l), c.J[l], force[l], v_start[l], h, lhs, rhs);
     }
-    nu_new = nu + solve_step(it, lhs, h * rhs, out.slid);
+    const bool symmetric = std::none_of(out.slid.begin(), out.slid.end(), [](bool b) { return b; });
+    nu_new = nu + it.solver.solve(lhs, h * rhs, symmetric);
     if (!capped_feet(it, c, force, nu_new, out)) break;
   }
   out.next = s;
