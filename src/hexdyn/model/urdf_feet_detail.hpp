@@ -1,7 +1,7 @@
 #pragma once
-// The URDF reader's internals, shared by model/urdf_reader.cpp and model/urdf_feet.cpp: the Reader
-// that turns a description into a UrdfRobot, and the small helpers both files use. Not installed (a
-// *_detail.hpp header); include model/urdf_reader.hpp instead.
+// The URDF reader's internals, shared by model/urdf_reader.cpp, urdf_reader_checks.cpp and
+// urdf_feet.cpp: the Reader that turns a description into a UrdfRobot, and the small helpers
+// the files share. Not installed (a *_detail.hpp header); include model/urdf_reader.hpp instead.
 
 #include <urdf_model/model.h>
 #include <urdf_world/types.h>
@@ -33,6 +33,9 @@ std::string num(double x);
 
 /// A URDF pose as a placement: its position [m] and its rotation (frame axes → parent axes).
 Placement to_placement(const urdf::Pose& pose);
+
+/// Whether a joint moves (every type but fixed).
+inline bool is_moving(const urdf::Joint& j) { return j.type != urdf::Joint::FIXED; }
 
 /// Reads one description: parse, check, collect the trunk, read the legs' chains and feet.
 class Reader {
