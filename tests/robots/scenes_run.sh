@@ -15,12 +15,10 @@ shift
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 failed=0
-count=0
 shopt -s nullglob
 scenes=()
 for folder in "$@"; do scenes+=("$folder"/*.yaml); done
 for scene in "${scenes[@]}"; do
-  count=$((count + 1))
   if ! "$hexdyn" run "$scene" -o "$work/r.h5" > /dev/null 2> "$work/err"; then
     echo "FAIL $(basename "$scene"): $(grep -v '^\[' "$work/err" | tail -1)"
     failed=$((failed + 1))
@@ -32,6 +30,7 @@ for scene in "${scenes[@]}"; do
   fi
   rm -f "$work/r.h5"
 done
+count=${#scenes[@]}
 if [ "$count" -eq 0 ]; then
   echo "FAIL no scene in $*"
   exit 1

@@ -32,7 +32,6 @@
 /// (scenario id) or "{key}" (an axis key) are templates: at().
 #include <array>
 #include <cstdint>
-#include <string>
 
 #include "hexdyn/io/dataset_spec.hpp"  // IWYU pragma: export
 
