@@ -48,20 +48,29 @@ struct SimState {
   }
 };
 
-/// The planned joint angles, rates and feedforward torque at one instant.
+/// What a step of [t, t + h] follows: the planned joint angles and rates at its end (the
+/// implicit PD's targets) and the feedforward torque at its start, the instant of the
+/// explicit gravity and velocity terms it was planned to balance
+/// (docs/theory/replay.md#integrator).
 struct PlanPoint {
   JointVector q, qd, tau;
 };
 
-/// Linear interpolation of the plan between its samples k and k + 1 at t.
-PlanPoint plan_at(const ReplayPlan& p, std::size_t k, double t) {
+/// The linear interpolation weight of the plan's sample k + 1 against k at t.
+double plan_weight(const ReplayPlan& p, std::size_t k, double t) {
   const std::size_t k1 = std::min(k + 1, p.t_s.size() - 1);
   const double span = p.t_s[k1] - p.t_s[k];
-  const double u = span > 0.0 ? std::clamp((t - p.t_s[k]) / span, 0.0, 1.0) : 0.0;
+  return span > 0.0 ? std::clamp((t - p.t_s[k]) / span, 0.0, 1.0) : 0.0;
+}
+
+/// The plan point of a step from t_start to t_end within the plan's samples k and k + 1.
+PlanPoint plan_at(const ReplayPlan& p, std::size_t k, double t_start, double t_end) {
+  const std::size_t k1 = std::min(k + 1, p.t_s.size() - 1);
+  const double u = plan_weight(p, k, t_end), u0 = plan_weight(p, k, t_start);
   const std::vector<JointVector>& tau = p.tau_drive_Nm.empty() ? p.tau_Nm : p.tau_drive_Nm;
   return PlanPoint{(1.0 - u) * p.q_rad[k] + u * p.q_rad[k1],
                    (1.0 - u) * p.qd_radps[k] + u * p.qd_radps[k1],
-                   (1.0 - u) * tau[k] + u * tau[k1]};
+                   (1.0 - u0) * tau[k] + u0 * tau[k1]};
 }
 
 /// The contact of every foot at a state: geometry, normals, forces and their linearisation
@@ -275,8 +284,10 @@ double force_mismatch(const Contacts& at_end, const Step& step) {
 }
 
 /// Adds an accepted step's spending and dissipation, with the forces that acted in it: the
-/// discrete balance of energy holds to the step's order.
-void account_step(Integrator& it, const Contacts& at_start, const Step& step, double h) {
+/// discrete balance of energy holds to the step's order. at_start, at_end: the contacts at
+/// the step's start and end.
+void account_step(Integrator& it, const Contacts& at_start, const Contacts& at_end,
+                  const Step& step, double h) {
   it.actuator_energy_J += h * lane_abs_dot(step.tau, step.next.qd);
   it.actuator_work_J += h * lane_dot(step.tau, step.next.qd);
   if (it.model.drive.present)
@@ -292,7 +303,11 @@ void account_step(Integrator& it, const Contacts& at_start, const Step& step, do
     const Vec3 v_new = foot_velocity(it.model.leg(l), at_start.J[l], nu_new);
     const Vec3& F = step.force_W[l];
     const Vec3 vt = v_new - n.dot(v_new) * n;
-    it.normal_work_J[l] -= h * n.dot(F) * n.dot(v_new);
+    // The normal work over the step's displacement, to second order (the Jacobians of both
+    // ends: the start's alone misses ½ h² J̇ν), as the spring's energy is taken at the ends'
+    // penetrations (docs/theory/replay.md#balance-of-energy).
+    const Vec3 v_mid = 0.5 * (v_new + foot_velocity(it.model.leg(l), at_end.J[l], nu_new));
+    it.normal_work_J[l] -= h * n.dot(F) * n.dot(v_mid);
     it.slip_J[l] -= h * (F - n.dot(F) * n).dot(vt);
     // The slip: the foot's tangential motion, or with stick–slip its anchor's.
     Vec3 slip = h * vt;
@@ -323,7 +338,7 @@ bool integrate_interval(Integrator& it, SimState& s, std::size_t k, std::string&
   while (t1 - t > 1e-12 * std::max(1.0, std::abs(t1))) {
     double h = std::min(it.h_next, t1 - t);
     for (;;) {
-      const PlanPoint p = plan_at(it.plan, k, t + h);
+      const PlanPoint p = plan_at(it.plan, k, t, t + h);
       implicit_step(it, s, p, h, step);
       if (!step.next.finite()) break;
       evaluate_contacts(it.model, it.data, it.contact, it.plan, step.next, at_end);
@@ -334,7 +349,7 @@ bool integrate_interval(Integrator& it, SimState& s, std::size_t k, std::string&
       }
       h *= 0.5;
     }
-    account_step(it, it.contacts, step, h);
+    account_step(it, it.contacts, at_end, step, h);
     s = step.next;
     std::swap(it.contacts, at_end);  // at_end is overwritten by the next step
     apply_stick_slip(it.contact, it.tangential, it.contacts);

@@ -11,10 +11,11 @@
 ///   (M − h ∂f/∂ν − h² ∂f/∂q) Δν = h f(q, ν),   ν ← ν + Δν,   q ← q ⊕ h ν
 /// where f is the generalised force (torques, contact forces, gravity and velocity terms):
 /// the PD and the contact linearised about the step's start (the contact's stiffness and
-/// damping, the friction's regularisation), the rest explicit. It is stable on stiff contact
-/// (a loaded foot of 2e6 N/m on a 0.1 kg leg at any step) and first order in h. The plan's
-/// instants are step boundaries; each stored sample is a state the integrator reached, with
-/// torques, forces and accelerations evaluated at that state.
+/// damping, the friction's regularisation), the rest explicit: the gravity and velocity
+/// terms and the planned feedforward at the step's start, the PD's targets at its end. It
+/// is stable on stiff contact (a loaded foot of 2e6 N/m on a 0.1 kg leg at any step) and
+/// first order in h. The plan's instants are step boundaries; each stored sample is a state
+/// the integrator reached, with torques, forces and accelerations evaluated at that state.
 #include <string>
 #include <vector>
 
