@@ -17,7 +17,10 @@ against readings of their files made here with h5py and csv:
     energies is the stored residual;
   - on each plan, the slipperier surface slips farther;
   - the convergence script's reference line has no error and the other line's drift error is
-    the distance between the two files' drifts.
+    the distance between the two files' drifts;
+  - the two-binary comparison (analysis/replay_against_binary.py), given the same binary
+    twice, prints equal columns, and its drift error is the distance between the final trunk
+    positions of the convergence script's two replays.
 
 usage: test_replay.py --hexdyn BUILD/hexdyn --source SOURCE_DIR   (PYTHONPATH=BUILD/python)
 """
@@ -150,6 +153,31 @@ def check_convergence(args, d):
           "drift error is the distance between the drifts")
 
 
+def check_against_binary(args, conv, d):
+    """analysis/replay_against_binary.py on the convergence script's plan: 2e-3 s against a
+    reference at 1e-3 s, the same binary as old and new."""
+    out = subprocess.run([sys.executable, os.path.join(args.source, "analysis",
+                                                       "replay_against_binary.py"),
+                          "--old", args.hexdyn, "--new", args.hexdyn,
+                          "--plan", f"paper={os.path.join(conv, 'result.h5')}",
+                          "--settings", "2e-3:0.05", "--reference", "1e-3:0.05", "--work", d],
+                         check=True, capture_output=True, text=True).stdout
+    rows = [[c.strip().strip("*") for c in line.strip("|").split("|")]
+            for line in out.splitlines()[2:]]
+    check(len(rows) == 2, "a reference row and a row per setting", out)
+    for r in rows:
+        check(r[2] == r[3] and r[4] == r[5] and r[6] == r[7] and r[8] == r[9],
+              "the same binary twice gives equal columns", " ".join(r))
+    check(float(rows[0][3]) == 0.0, "the reference has no drift error", rows[0][3])
+    pos = {}
+    for step in (2e-3, 1e-3):
+        with h5py.File(os.path.join(conv, "replays", f"step{step:g}_tol0.05.h5"), "r") as f:
+            pos[step] = f["base/position"][-1]
+    expected = np.linalg.norm(pos[2e-3] - pos[1e-3]) * 1e3
+    check(abs(float(rows[1][3]) - expected) <= 0.006, "drift error is the distance between the "
+          "final trunk positions", f"{rows[1][3]} mm against {expected:.4f} mm")
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--hexdyn", required=True)
@@ -158,6 +186,7 @@ def main():
     with tempfile.TemporaryDirectory() as d:
         check_pipeline(args, os.path.join(d, "sweep"))
         check_convergence(args, os.path.join(d, "convergence"))
+        check_against_binary(args, os.path.join(d, "convergence"), os.path.join(d, "binaries"))
     if failures:
         print(f"{len(failures)} check(s) failed", file=sys.stderr)
         sys.exit(1)
