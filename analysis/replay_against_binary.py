@@ -12,45 +12,41 @@ reference's) [J], and the slip and touchdown energies summed over the feet [mJ],
 
 A plan's key=value pairs are passed to both binaries' `hexdyn replay` as --set (for example
 contact.friction_law=regularised). The first row of each plan compares the old binary's
-replay at the reference setting with the new one's.
+replay at the reference setting with the new one's. Replays and reports are those of
+analysis/replay_convergence.py.
 """
 
 import argparse
 import os
-import subprocess
-import sys
 import tempfile
 
-import h5py
 import numpy as np
+from replay_convergence import replay
 
 SOURCE = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 
-def replay(binary, plan, sets, setting, out):
-    """The report of `binary replay plan` at setting "step:tolerance" with the --set pairs."""
-    step, tol = setting.split(":")
-    cmd = [binary, "replay", plan, "-o", out, "--set", f"replay.step={step}",
-           "--set", f"replay.tolerance={tol}"]
-    for kv in sets:
-        cmd += ["--set", kv]
-    proc = subprocess.run(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
-    if proc.returncode != 0:
-        sys.exit(f"replay_against_binary: {' '.join(cmd)} failed:\n{proc.stderr}")
-    with h5py.File(out, "r") as f:
-        r = f["replay"]
-        return {"p_mm": f["base/position"][-1] * 1e3, "E_J": float(r["energy"][()]),
-                "slip_mJ": float(r["slip_energy"][:].sum() * 1e3),
-                "td_mJ": float(r["touchdown_energy"][:].sum() * 1e3)}
+def report(binary, plan, sets, setting, out):
+    """The report of `binary replay plan` at setting "step:tolerance" with the key=value
+    overrides `sets` (replay_convergence.replay, once)."""
+    step, tol = (float(x) for x in setting.split(":"))
+    return replay(binary, plan, out, step, tol, 1, sets)
 
 
 def row(name, setting, old, new, ref):
-    def drift(x):
-        return np.linalg.norm(x["p_mm"] - ref["p_mm"])
-    return (f"| {name} | {setting.replace(':', ' s, ')} | {drift(old):.2f} | **{drift(new):.2f}** | "
-            f"{old['E_J'] - ref['E_J']:+.4f} | **{new['E_J'] - ref['E_J']:+.4f}** | "
-            f"{old['slip_mJ']:.2f} | **{new['slip_mJ']:.2f}** | {old['td_mJ']:.1f} | "
-            f"**{new['td_mJ']:.1f}** |")
+    # Both replays follow the same plan, so the distance between their drifts (replayed minus
+    # planned final trunk position) is the distance between their final trunk positions.
+    def drift_mm(x):
+        return np.linalg.norm(x["drift"] - ref["drift"]) * 1e3
+
+    def energy(x, key):
+        return x[key] * 1e3
+    return (f"| {name} | {setting.replace(':', ' s, ')} | {drift_mm(old):.2f} | "
+            f"**{drift_mm(new):.2f}** | {old['energy_J'] - ref['energy_J']:+.4f} | "
+            f"**{new['energy_J'] - ref['energy_J']:+.4f}** | "
+            f"{energy(old, 'slip_energy_J'):.2f} | **{energy(new, 'slip_energy_J'):.2f}** | "
+            f"{energy(old, 'touchdown_energy_J'):.1f} | "
+            f"**{energy(new, 'touchdown_energy_J'):.1f}** |")
 
 
 def main():
@@ -71,12 +67,12 @@ def main():
         name, rest = spec.split("=", 1)
         plan, *sets = rest.split(",")
         out = os.path.join(work, "replay.h5")
-        ref = replay(args.new, plan, sets, args.reference, out)
-        ref_old = replay(args.old, plan, sets, args.reference, out)
+        ref = report(args.new, plan, sets, args.reference, out)
+        ref_old = report(args.old, plan, sets, args.reference, out)
         print(row(name, args.reference + " (reference)", ref_old, ref, ref), flush=True)
         for setting in args.settings:
-            old = replay(args.old, plan, sets, setting, out)
-            new = replay(args.new, plan, sets, setting, out)
+            old = report(args.old, plan, sets, setting, out)
+            new = report(args.new, plan, sets, setting, out)
             print(row("", setting, old, new, ref), flush=True)
 
 

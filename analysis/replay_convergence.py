@@ -67,14 +67,16 @@ def read_report(path):
         }
 
 
-def replay(hexdyn, result, out, step, tol, repeat):
-    """Replays `result` at (step, tol) `repeat` times into `out`; the report with the median
-    wall time."""
+def replay(hexdyn, result, out, step, tol, repeat, sets=()):
+    """Replays `result` at (step, tol) `repeat` times into `out`, with the further key=value
+    overrides `sets`; the report with the median wall time."""
     seconds = []
+    cmd = [hexdyn, "replay", result, "-o", out, "--set", f"replay.step={step!r}",
+           "--set", f"replay.tolerance={tol!r}"]
+    for kv in sets:
+        cmd += ["--set", kv]
     for _ in range(repeat):
-        subprocess.run([hexdyn, "replay", result, "-o", out, "--set", f"replay.step={step!r}",
-                        "--set", f"replay.tolerance={tol!r}"], check=True,
-                       stderr=subprocess.DEVNULL)
+        subprocess.run(cmd, check=True, stderr=subprocess.DEVNULL)
         seconds.append(read_report(out)["seconds"])
     rep = read_report(out)
     rep["seconds"] = statistics.median(seconds)

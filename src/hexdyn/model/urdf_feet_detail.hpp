@@ -61,7 +61,8 @@ class Reader {
                   const std::vector<std::pair<std::string, Placement>>& group,
                   const RigidInertia& body) const;
   void check_joints();
-  void check_travel(const std::string& who, const urdf::JointLimits& l) const;
+  void check_limits(const std::string& who, const urdf::JointLimits& l, double bound,
+                    const std::string& beyond) const;
   void check_tree();
   void collect_trunk();
   /// Links fixed below `link` (itself included), with their placements in its frame.

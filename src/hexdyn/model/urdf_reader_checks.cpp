@@ -52,6 +52,15 @@ const char* type_name(int type) {
   }
 }
 
+/// A symmetric inertia tensor's principal moments, ascending [kg m2].
+Vec3 principal_moments(const Mat3& I) {
+  return Eigen::SelfAdjointEigenSolver<Mat3>(I, Eigen::EigenvaluesOnly).eigenvalues();
+}
+
+std::string moments_text(const Vec3& m) {
+  return "principal moments (" + num(m[0]) + ", " + num(m[1]) + ", " + num(m[2]) + ") kg m2";
+}
+
 }  // namespace
 
 void Reader::check_tree() {
@@ -96,9 +105,8 @@ void Reader::check_links() {
            "\">, expected coordinates within +-" + num(kMaxRobotCoordinate_m) +
            " m (the bound of a scene's robot.*.com)");
     if (I.isZero(0.0)) continue;  // a point mass, or massless
-    const Vec3 m = Eigen::SelfAdjointEigenSolver<Mat3>(I, Eigen::EigenvaluesOnly).eigenvalues();
-    const std::string moments =
-        "principal moments (" + num(m[0]) + ", " + num(m[1]) + ", " + num(m[2]) + ") kg m2";
+    const Vec3 m = principal_moments(I);
+    const std::string moments = moments_text(m);
     // A moment below zero beyond the rounding of the others (a zero moment comes out ±1e-19).
     if (m[0] < -kInertiaTriangleTolerance * m[2])
       fail(who + "inertia not positive definite (a negative moment): " + moments);
@@ -136,9 +144,8 @@ void Reader::check_body(const std::string& link,
   for (const auto& [name, X] : group)
     if (name != link) merged += (merged.empty() ? "'" : ", '") + name + "'";
   if (!merged.empty()) merged = ", of the body with the links fixed to it: " + merged;
-  const Vec3 m = Eigen::SelfAdjointEigenSolver<Mat3>(I, Eigen::EigenvaluesOnly).eigenvalues();
-  const std::string moments =
-      "principal moments (" + num(m[0]) + ", " + num(m[1]) + ", " + num(m[2]) + ") kg m2";
+  const Vec3 m = principal_moments(I);
+  const std::string moments = moments_text(m);
   if (!(m[0] > 0.0)) fail(who + ": inertia not positive definite: " + moments + merged);
   // Sorted ascending: the largest must not exceed the sum of the other two.
   if (m[2] > (m[0] + m[1]) * (1.0 + kInertiaTriangleTolerance))
@@ -148,14 +155,15 @@ void Reader::check_body(const std::string& link,
          moments + merged);
 }
 
-/// A prismatic joint's limits: finite, ordered, within the robot's coordinate bound [m].
-void Reader::check_travel(const std::string& who, const urdf::JointLimits& l) const {
+/// A joint's limits: finite, ordered, within ±bound; `beyond` completes the message of limits
+/// past the bound (their unit and the range allowed).
+void Reader::check_limits(const std::string& who, const urdf::JointLimits& l, double bound,
+                          const std::string& beyond) const {
   if (!std::isfinite(l.lower) || !std::isfinite(l.upper)) fail(who + "limits are not finite");
   if (l.lower > l.upper)
     fail(who + "lower limit " + num(l.lower) + " above upper limit " + num(l.upper));
-  if (l.lower < -kMaxRobotCoordinate_m || l.upper > kMaxRobotCoordinate_m)
-    fail(who + "limits [" + num(l.lower) + ", " + num(l.upper) + "] m, expected limits within +-" +
-         num(kMaxRobotCoordinate_m) + " m (the bound of a scene's robot.*.length)");
+  if (l.lower < -bound || l.upper > bound)
+    fail(who + "limits [" + num(l.lower) + ", " + num(l.upper) + "] " + beyond);
 }
 
 void Reader::check_joints() {
@@ -192,16 +200,14 @@ void Reader::check_joints() {
       if (!std::isfinite(l.velocity) || l.velocity < 0.0 || l.velocity > kMaxJointVelocity_radps)
         fail(who + "velocity limit " + num(l.velocity) + " rad/s, expected a number in [0, " +
              num(kMaxJointVelocity_radps) + "] (0: none)");
-      if (j->type == urdf::Joint::REVOLUTE) {
-        if (!std::isfinite(l.lower) || !std::isfinite(l.upper)) fail(who + "limits are not finite");
-        if (l.lower > l.upper)
-          fail(who + "lower limit " + num(l.lower) + " above upper limit " + num(l.upper));
-        if (l.lower < -kMaxJointAngle_rad || l.upper > kMaxJointAngle_rad)
-          fail(who + "limits [" + num(l.lower) + ", " + num(l.upper) +
-               "] rad, expected limits within [-4 pi, 4 pi] (" + num(-kMaxJointAngle_rad) + ", " +
-               num(kMaxJointAngle_rad) + ")");
-      }
-      if (j->type == urdf::Joint::PRISMATIC) check_travel(who, l);
+      if (j->type == urdf::Joint::REVOLUTE)
+        check_limits(who, l, kMaxJointAngle_rad,
+                     "rad, expected limits within [-4 pi, 4 pi] (" + num(-kMaxJointAngle_rad) +
+                         ", " + num(kMaxJointAngle_rad) + ")");
+      if (j->type == urdf::Joint::PRISMATIC)
+        check_limits(who, l, kMaxRobotCoordinate_m,
+                     "m, expected limits within +-" + num(kMaxRobotCoordinate_m) +
+                         " m (the bound of a scene's robot.*.length)");
     }
   }
 }
