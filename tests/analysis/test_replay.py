@@ -18,6 +18,8 @@ against readings of their files made here with h5py and csv:
   - on each plan, the slipperier surface slips farther;
   - the convergence script's reference line has no error and the other line's drift error is
     the distance between the two files' drifts;
+  - its --replay-set changes the replays and not the plan: a replay-only mu of 0.2 slips
+    farther than the scene's 0.3, the plan file keeps 0.3 and the replay file records 0.2;
   - the two-binary comparison (analysis/replay_against_binary.py), given the same binary
     twice, prints equal columns, and its drift error is the distance between the final trunk
     positions of the convergence script's two replays.
@@ -151,6 +153,27 @@ def check_convergence(args, d):
             check(same(f["replay/step"][()], step), f"replayed at step {step:g}")
     check(same(rows[2e-3]["drift_error_m"], np.linalg.norm(drift[2e-3] - drift[1e-3])),
           "drift error is the distance between the drifts")
+    return rows
+
+
+def check_replay_set(args, d, plain):
+    """--replay-set reaches every replay and not the plan: at μ 0.2 the same plan slips
+    farther than at the scene's 0.3, and the stored plan keeps the scene's μ."""
+    subprocess.run([sys.executable, os.path.join(args.source, "analysis",
+                                                 "replay_convergence.py"), d, "--hexdyn",
+                    args.hexdyn, "--steps", "2e-3", "--tolerances", "0.05",
+                    "--replay-set", "contact.static_friction=0.2",
+                    "--replay-set", "contact.dynamic_friction=0.2"], check=True)
+    with open(os.path.join(d, "replay_convergence.csv"), newline="") as f:
+        row = next(csv.DictReader(f))
+    check(float(row["slip_energy_J"]) > 2.0 * float(plain[2e-3]["slip_energy_J"]),
+          "a replay-only lower mu slips farther",
+          f"{row['slip_energy_J']} vs {plain[2e-3]['slip_energy_J']}")
+    for name, mu in (("result.h5", 0.3), (os.path.join("replays", "step0.002_tol0.05.h5"), 0.2)):
+        with h5py.File(os.path.join(d, name), "r") as f:
+            config = f["meta"].attrs["config_yaml"]
+        found = yaml.safe_load(config)["contact"]["static_friction"]
+        check(same(found, mu), f"{name} records mu {mu}", str(found))
 
 
 def check_against_binary(args, conv, d):
@@ -185,7 +208,8 @@ def main():
     args = ap.parse_args()
     with tempfile.TemporaryDirectory() as d:
         check_pipeline(args, os.path.join(d, "sweep"))
-        check_convergence(args, os.path.join(d, "convergence"))
+        plain = check_convergence(args, os.path.join(d, "convergence"))
+        check_replay_set(args, os.path.join(d, "replay_set"), plain)
         check_against_binary(args, os.path.join(d, "convergence"), os.path.join(d, "binaries"))
     if failures:
         print(f"{len(failures)} check(s) failed", file=sys.stderr)
