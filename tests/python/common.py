@@ -115,3 +115,22 @@ def segment_distance(py, pz, ty, tz):
     p = np.stack([py, pz], axis=-1)[..., None, :] - a
     s = np.clip((p * d).sum(-1) / np.maximum((d * d).sum(-1), 1e-300), 0.0, 1.0)
     return np.linalg.norm(p - s[..., None] * d, axis=-1).min(-1)
+
+
+FAILURES = []
+
+
+def check(ok, what, detail=""):
+    """Prints one line, "ok" or "FAIL", for a check that goes on after a failure; the failed
+    ones are counted in FAILURES (exit_status)."""
+    print(f"{'ok  ' if ok else 'FAIL'} {what}{': ' + detail if detail else ''}")
+    if not ok:
+        FAILURES.append(what)
+
+
+def exit_status():
+    """0, or 1 after a line naming every failed check."""
+    if FAILURES:
+        print(f"{len(FAILURES)} check(s) failed: {'; '.join(FAILURES)}")
+        return 1
+    return 0

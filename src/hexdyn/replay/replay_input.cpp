@@ -238,12 +238,12 @@ std::string scene_with_stored_robot(const H5Reader& in, const ReplaySource& src)
   keep_input(urdf);
   robot["urdf"] = urdf.path;
   robot["trunk_link"] = "trunk";
-  YAML::Node feet(YAML::NodeType::Sequence);
-  // One foot per leg of the run's robot (/model/leg_names), named as model/urdf.cpp writes them.
-  const auto leg_dims = in.dims(s::kModelLegNames.path);
-  const int legs = leg_dims.empty() ? 0 : static_cast<int>(leg_dims[0]);
-  for (int leg = 0; leg < legs; ++leg) feet.push_back(leg_name(leg) + "_foot");
-  robot["foot_links"] = feet;
+  // The feet as model/urdf.cpp writes them: a link "<leg>_foot" fixed to each leg's last link,
+  // with a sphere <collision> centred on it for a sphere foot. Found by the reader's default
+  // (docs/user/robots.md#feet): the sphere, with its radius, else the end of the fixed links.
+  // Named in robot.foot_links they would be point feet, and a sphere foot would sink by its
+  // radius into the terrain.
+  robot.remove("foot_links");
   robot.remove("foot_offset");
   return YAML::Dump(root) + "\n";
 }

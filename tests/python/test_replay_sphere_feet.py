@@ -1,0 +1,89 @@
+"""The replay of robots with sphere feet touches where the plan does (docs/theory/replay.md).
+
+The replay builds the robot from the result's own /model/urdf, whose feet are links
+"<leg>_foot", a sphere foot's with a sphere <collision> centred on it (model/urdf.cpp). Taken
+as point feet, the spheres' centres would be the contact points and the robot would sink by
+the radius into the terrain within its first tenth of a second. For ANYmal C on flat ground
+(configs/robots/anymal_c_crawl_balanced.yaml, r = 0.03 m, replayed with a PD stiff enough
+for its 52 kg) and Pexod on the paper's stairs (configs/robots/pexod_stairs.yaml, r = 0.025 m,
+the default PD), each plan shortened to one gait cycle, checked:
+  1. every foot of /model/urdf is a sphere: its radius r_l read from the XML with ElementTree;
+  2. the plan's contact points (/feet/position) lie r_l from its spheres' centres
+     (/feet/center), and at the first sample the replay's contact points are the plan's, to
+     1e-9 m (a point foot at the centre would be r_l higher);
+  3. the trunk's height stays within r/5 of the plan's over the whole replay (a point foot at
+     the centre sinks by r: its replay ends a radius low).
+
+    /usr/bin/python3 tests/python/test_replay_sphere_feet.py HEXDYN SOURCE_DIR
+"""
+import os
+import subprocess
+import sys
+import tempfile
+import xml.etree.ElementTree as ElementTree
+
+import h5py
+import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from common import args, check, cli_run, exit_status, text  # noqa: E402
+
+ONE_CYCLE = ("motion.cycles=1",)
+ROBOTS = (("ANYmal C, flat", "anymal_c_crawl_balanced.yaml", ("replay.kp=400", "replay.kd=4")),
+          ("Pexod, stairs", "pexod_stairs.yaml", ()))
+
+
+def foot_radii(urdf_text, legs):
+    """The sphere radius of each leg's foot link "<leg>_foot" in the URDF's XML (0: none)."""
+    root = ElementTree.fromstring(urdf_text)
+    radii = []
+    for leg in legs:
+        link = root.find(f"link[@name='{leg}_foot']")
+        sphere = None if link is None else link.find("collision/geometry/sphere")
+        radii.append(0.0 if sphere is None else float(sphere.get("radius")))
+    return np.array(radii)
+
+
+def study(binary, src, tmp, name, scene, replay_sets):
+    plan, rep = os.path.join(tmp, "plan.h5"), os.path.join(tmp, "replay.h5")
+    for f in (plan, rep):
+        if os.path.exists(f):
+            os.remove(f)
+    status, err = cli_run(binary, os.path.join(src, "configs", "robots", scene), plan,
+                          ONE_CYCLE)
+    assert status == 0, err
+    cmd = [binary, "replay", plan, "-o", rep]
+    for s in replay_sets:
+        cmd += ["--set", s]
+    p = subprocess.run(cmd, capture_output=True, text=True)
+    assert p.returncode == 0, p.stderr
+    with h5py.File(plan, "r") as f, h5py.File(rep, "r") as g:
+        legs = [text(n) for n in f["/model/leg_names"][()]]
+        r = foot_radii(text(f["/model/urdf"][()]), legs)
+        check(bool(np.all(r > 0)), f"{name}: every foot of /model/urdf is a sphere",
+              str(r.tolist()))
+        plan_feet, centres = f["/feet/position"][0], f["/feet/center"][0]
+        rep_feet = g["/feet/position"][0]
+        z_err = g["/base/position"][:, 2] - f["/base/position"][:len(g["/time"]), 2]
+        message = text(g["/replay/message"][()])
+    arm = np.linalg.norm(centres - plan_feet, axis=1)
+    check(float(np.max(np.abs(arm - r))) <= 1e-9, f"{name}: the plan's feet lie r from the centres",
+          str(arm.tolist()))
+    worst = float(np.max(np.abs(rep_feet - plan_feet)))
+    check(worst <= 1e-9, f"{name}: the replay's first contact points are the plan's",
+          f"worst {worst:.3g} m")
+    sink = float(np.max(np.abs(z_err)))
+    check(sink <= r.min() / 5, f"{name}: the trunk's height within r/5 of the plan's",
+          f"worst {sink * 1e3:.2f} mm, r {r.min() * 1e3:.0f} mm; {message or 'reached the end'}")
+
+
+def main():
+    binary, src = args()
+    with tempfile.TemporaryDirectory() as tmp:
+        for name, scene, replay_sets in ROBOTS:
+            study(binary, src, tmp, name, scene, replay_sets)
+    return exit_status()
+
+
+if __name__ == "__main__":
+    sys.exit(main())
