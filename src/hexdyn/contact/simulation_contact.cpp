@@ -158,11 +158,38 @@ TerrainContactPoint terrain_contact(const std::vector<double>& y, const std::vec
   return out;
 }
 
+namespace {
+
+/// The highest node of the cells that the square of half-side h around (x, y) overlaps (the
+/// border's cells outside the map): no point of the bilinear surface within that square is
+/// higher, since a bilinear cell lies below its highest node [m].
+double highest_node_near(const HeightMap& map, double x, double y, double h) {
+  const auto cell = [&](double v, double v0, int n) {
+    return std::clamp(static_cast<int>(std::floor((v - v0) / map.resolution_m)), 0, n - 1);
+  };
+  const int i1 = std::min(map.ny - 1, cell(y + h, map.y0_m, map.ny) + 1);
+  const int j1 = std::min(map.nx - 1, cell(x + h, map.x0_m, map.nx) + 1);
+  double best = -std::numeric_limits<double>::infinity();
+  for (int i = cell(y - h, map.y0_m, map.ny); i <= i1; ++i)
+    for (int j = cell(x - h, map.x0_m, map.nx); j <= j1; ++j) best = std::max(best, map.at(i, j));
+  return best;
+}
+
+}  // namespace
+
 TerrainContactPoint height_map_contact(const HeightMap& map, const Vec3& p, double radius) {
   TerrainContactPoint out;
   out.normal_W = map.normal(p.x(), p.y());
   const double d = (p.z() - map.height(p.x(), p.y())) * out.normal_W.z();
   out.penetration_m = radius - d;
+  // The tangent plane of a steep cell reaches far beyond the cell: under a sphere high above a
+  // slab's foot it would report a contact with the slab's side. A touching sphere's contact
+  // lies within r of its centre horizontally, so it is no deeper than its lowest point lies
+  // below the highest surface point there (on a plane the tangent plane's depth is never the
+  // larger; out of contact its distance is kept).
+  if (out.penetration_m > 0.0)
+    out.penetration_m =
+        std::min(out.penetration_m, radius + highest_node_near(map, p.x(), p.y(), radius) - p.z());
   out.point_W = radius > 0.0 ? Vec3(p - radius * out.normal_W) : p;
   return out;
 }

@@ -13,6 +13,7 @@
 
 #include "hexdyn/contact/impact.hpp"
 #include "hexdyn/contact/simulation_contact.hpp"
+#include "hexdyn/core/height_map.hpp"
 #include "hexdyn/planning/terrain.hpp"
 #include "hexdyn/sample_models.hpp"
 
@@ -432,5 +433,78 @@ TEST_CASE("terrain_contact on a slope and flat ground: the distance to the plane
       CHECK(c.penetration_m == Approx(r - (p - on_plane).dot(n)).margin(1e-13));
       CHECK((c.normal_W - n).norm() <= 1e-14);
     }
+  }
+}
+
+namespace {
+
+/// A height map of nx × ny nodes at spacing res from (0, 0), heights f(x, y).
+HeightMap sampled_map(int nx, int ny, double res, double (*f)(double, double)) {
+  HeightMap m;
+  m.nx = nx;
+  m.ny = ny;
+  m.resolution_m = res;
+  for (int i = 0; i < ny; ++i)
+    for (int j = 0; j < nx; ++j) m.z_m.push_back(f(j * res, i * res));
+  return m;
+}
+
+/// The distance from p to a surface z(x) that does not depend on y, the polyline through
+/// (x_k, z_k) continued flat beyond its ends, in the x–z plane: the nearest of its segments.
+double distance_to_profile(const std::vector<Eigen::Vector2d>& v, const Vec3& p) {
+  const Eigen::Vector2d q(p.x(), p.z());
+  std::vector<Eigen::Vector2d> pts = v;
+  pts.insert(pts.begin(), Eigen::Vector2d(v.front().x() - 10.0, v.front().y()));
+  pts.push_back(Eigen::Vector2d(v.back().x() + 10.0, v.back().y()));
+  double best = std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k + 1 < pts.size(); ++k) {
+    const Eigen::Vector2d a = pts[k], d = pts[k + 1] - pts[k];
+    const double t = std::clamp((q - a).dot(d) / d.squaredNorm(), 0.0, 1.0);
+    best = std::min(best, (q - (a + t * d)).norm());
+  }
+  return best;
+}
+
+double slab(double x, double) { return x >= 0.2 ? 0.1 : 0.0; }  // a 0.1 m slab from x = 0.2 m
+double tilted(double x, double y) { return 0.05 + 0.3 * x - 0.2 * y; }
+
+}  // namespace
+
+TEST_CASE("height_map_contact: no contact with a slab's side from far above its foot",
+          "[contact]") {
+  // The cell from x = 0.19 to 0.2 rises 0.1 m: its tangent plane (n_z about 0.1) passes close
+  // to any point above it. A sphere whose lowest point is above the slab's top cannot touch.
+  const HeightMap m = sampled_map(41, 11, 0.01, slab);
+  // The bilinear surface over x: flat at 0, the ramp of the cell [0.19, 0.2], flat at 0.1.
+  const std::vector<Eigen::Vector2d> profile{{0.19, 0.0}, {0.2, 0.1}};
+  std::mt19937 rng(4407);
+  int clear = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    const double r = uniform(rng, 0.0, 0.03);
+    const Vec3 p(uniform(rng, 0.15, 0.25), uniform(rng, 0.03, 0.07), uniform(rng, 0.0, 0.2));
+    if (p.z() < m.height(p.x(), p.y())) continue;  // inside the solid
+    const TerrainContactPoint c = height_map_contact(m, p, r);
+    if (distance_to_profile(profile, p) > r) {  // the sphere clears the surface
+      ++clear;
+      CHECK(c.penetration_m <= 0.0);
+    }
+    // In contact, never deeper than its lowest point lies below the highest surface (0.1 m).
+    if (c.penetration_m > 0.0) CHECK(c.penetration_m <= r + 0.1 - p.z() + 1e-15);
+  }
+  CHECK(clear > 50);
+}
+
+TEST_CASE("height_map_contact on a plane: the distance to the plane", "[contact]") {
+  const HeightMap m = sampled_map(41, 41, 0.01, tilted);
+  const Vec3 n = Vec3(-0.3, 0.2, 1.0).normalized();
+  const Vec3 on_plane(0.0, 0.0, tilted(0.0, 0.0));
+  std::mt19937 rng(4408);
+  for (int trial = 0; trial < 200; ++trial) {
+    const double r = uniform(rng, 0.0, 0.03);
+    const double x = uniform(rng, 0.05, 0.35), y = uniform(rng, 0.05, 0.35);
+    const Vec3 p(x, y, tilted(x, y) + uniform(rng, -0.01, 0.05));
+    const TerrainContactPoint c = height_map_contact(m, p, r);
+    CHECK(c.penetration_m == Approx(r - (p - on_plane).dot(n)).margin(1e-13));
+    CHECK((c.normal_W - n).norm() <= 1e-12);
   }
 }
