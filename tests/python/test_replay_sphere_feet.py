@@ -12,11 +12,17 @@ the default PD), each plan shortened to one gait cycle, checked:
      (/feet/center), and at the first sample the replay's contact points are the plan's, to
      1e-9 m (a point foot at the centre would be r_l higher);
   3. the trunk's height stays within r/5 of the plan's over the whole replay (a point foot at
-     the centre sinks by r: its replay ends a radius low).
+     the centre sinks by r: its replay ends a radius low);
+  4. ANYmal C replayed with the paper robot's gains (10 N m/rad, 0.1 N m s/rad) falls, and the
+     report adds one note naming replay.kp and docs/user/replay.md#gains, with a weight moment
+     m g l between /model/total_mass g times the trunk's height above the spheres' centres at
+     the first sample (its hips lie in the trunk's plane) and m g times 1 m; Pexod, which does
+     not fall, gets no note.
 
     /usr/bin/python3 tests/python/test_replay_sphere_feet.py HEXDYN SOURCE_DIR
 """
 import os
+import re
 import subprocess
 import sys
 import tempfile
@@ -75,13 +81,44 @@ def study(binary, src, tmp, name, scene, replay_sets):
     sink = float(np.max(np.abs(z_err)))
     check(sink <= r.min() / 5, f"{name}: the trunk's height within r/5 of the plan's",
           f"worst {sink * 1e3:.2f} mm, r {r.min() * 1e3:.0f} mm; {message or 'reached the end'}")
+    return plan
+
+
+def check_gain_note(binary, tmp, plan, name, heavy):
+    """Check 4: the note after a fall with the paper robot's gains."""
+    rep = os.path.join(tmp, "weak.h5")
+    if os.path.exists(rep):
+        os.remove(rep)
+    p = subprocess.run([binary, "replay", plan, "-o", rep, "--set", "replay.kp=10", "--set",
+                        "replay.kd=0.1"], capture_output=True, text=True)
+    assert p.returncode == 0, p.stderr
+    notes = [ln for ln in p.stderr.splitlines() if ln.startswith("hexdyn: replay: note:")]
+    fell = "the robot fell" in p.stderr
+    if not heavy:
+        check(not notes, f"{name}: no note with the paper robot's gains", "; ".join(notes))
+        return
+    check(fell and len(notes) == 1 and "replay.kp 10 N m/rad" in notes[0] and
+          "docs/user/replay.md#gains" in notes[0], f"{name}: falls with the note",
+          notes[0] if notes else p.stderr[-400:])
+    if len(notes) != 1:
+        return
+    with h5py.File(plan, "r") as f:
+        mass = float(f["/model/total_mass"][()])
+        # ANYmal's hips lie in its trunk's plane: standing, each leg reaches at least the trunk's
+        # height above its sphere's centre.
+        depth = float(f["/base/position"][0, 2] - np.max(f["/feet/center"][0, :, 2]))
+    moment = float(re.search(r"weight moment m g l of ([0-9.eE+-]+) N m", notes[0]).group(1))
+    check(mass * 9.81 * depth <= moment <= mass * 9.81 * 1.0,
+          f"{name}: the note's weight moment is m g times a reach", f"{moment} N m, m {mass} kg, "
+          f"standing depth {depth:.3f} m")
 
 
 def main():
     binary, src = args()
     with tempfile.TemporaryDirectory() as tmp:
         for name, scene, replay_sets in ROBOTS:
-            study(binary, src, tmp, name, scene, replay_sets)
+            plan = study(binary, src, tmp, name, scene, replay_sets)
+            check_gain_note(binary, tmp, plan, name, heavy=name.startswith("ANYmal"))
     return exit_status()
 
 

@@ -1,4 +1,5 @@
 // `hexdyn replay RESULT -o FILE` (cli/command.hpp; replay/replay_file.hpp).
+#include <algorithm>
 #include <iostream>
 
 #include "hexdyn/cli/subcommands.hpp"
@@ -26,12 +27,31 @@ std::string joint_label(const RobotModel& model, int k, const std::vector<std::s
   return "no joint";
 }
 
+/// After a fall, a note when the joint PD is weak against the robot's weight: its torque at
+/// 0.1 rad below a fiftieth of m g times the longest leg's reach (docs/user/replay.md#gains).
+/// The default gains give the paper robot 1 N m against 20 N m, a twentieth; ANYmal C has 375.
+void print_gain_note(const RobotModel& model, const ReplayResult& r, const ReplayParams& gains,
+                     std::ostream& os) {
+  if (!r.fell) return;
+  double reach = 0.0;
+  for (int l = 0; l < model.legs(); ++l) reach = std::max(reach, leg_reach_m(model, l));
+  const double weight_moment_Nm = model.total_mass_kg * kGravity * reach;
+  const double pd_Nm = 0.1 * gains.kp_Nmprad;
+  if (pd_Nm >= weight_moment_Nm / 50.0) return;
+  os << "hexdyn: replay: note: the joint PD gives " << pd_Nm << " N m at 0.1 rad (replay.kp "
+     << gains.kp_Nmprad << " N m/rad) against a weight moment m g l of " << weight_moment_Nm
+     << " N m (" << model.total_mass_kg << " kg, legs reaching " << reach
+     << " m): a robot this heavy may fall for want of feedback, whatever its plan; try stiffer "
+        "replay.kp and replay.kd (docs/user/replay.md#gains)\n";
+}
+
 /// The report on stderr, one line per item.
 void print_report(const RobotModel& model, const ReplayResult& r, const ReplaySource& src,
                   std::ostream& os) {
   os << "hexdyn: replay: " << (r.reached_top ? "reached" : "did not reach")
      << " the plan's end; final trunk position error " << r.final_position_error_m.norm() << " m\n";
   if (!r.message.empty()) os << "hexdyn: replay: ended early: " << r.message << "\n";
+  print_gain_note(model, r, src.scene.replay, os);
   for (std::size_t y = 0; y < r.cycle_end_s.size(); ++y)
     os << "hexdyn: replay: cycle end t = " << r.cycle_end_s[y] << " s: drift "
        << r.position_drift_m[y].transpose() << " m, " << r.orientation_drift_rad[y].transpose()
