@@ -160,18 +160,29 @@ TerrainContactPoint terrain_contact(const std::vector<double>& y, const std::vec
 
 namespace {
 
-/// The highest node of the cells that the square of half-side h around (x, y) overlaps (the
-/// border's cells outside the map): no point of the bilinear surface within that square is
-/// higher, since a bilinear cell lies below its highest node [m].
-double highest_node_near(const HeightMap& map, double x, double y, double h) {
+/// The distance of p from the nearest bounding box of the map's cells that overlap the square
+/// of half-side h around (p_x, p_y) [m]: each box spans its cell horizontally (a border cell's
+/// outward, where the map's border continues) and its nodes' heights vertically. The bilinear
+/// surface over a cell lies in its box, so no point of the surface within that square is
+/// nearer to p.
+double nearest_cell_box(const HeightMap& map, const Vec3& p, double h) {
+  constexpr double kInf = std::numeric_limits<double>::infinity();
   const auto cell = [&](double v, double v0, int n) {
-    return std::clamp(static_cast<int>(std::floor((v - v0) / map.resolution_m)), 0, n - 1);
+    return std::clamp(static_cast<int>(std::floor((v - v0) / map.resolution_m)), 0, n - 2);
   };
-  const int i1 = std::min(map.ny - 1, cell(y + h, map.y0_m, map.ny) + 1);
-  const int j1 = std::min(map.nx - 1, cell(x + h, map.x0_m, map.nx) + 1);
-  double best = -std::numeric_limits<double>::infinity();
-  for (int i = cell(y - h, map.y0_m, map.ny); i <= i1; ++i)
-    for (int j = cell(x - h, map.x0_m, map.nx); j <= j1; ++j) best = std::max(best, map.at(i, j));
+  const auto gap = [](double v, double lo, double hi) { return std::max({lo - v, 0.0, v - hi}); };
+  double best = kInf;
+  for (int i = cell(p.y() - h, map.y0_m, map.ny); i <= cell(p.y() + h, map.y0_m, map.ny); ++i)
+    for (int j = cell(p.x() - h, map.x0_m, map.nx); j <= cell(p.x() + h, map.x0_m, map.nx); ++j) {
+      const double z0 = map.at(i, j), z1 = map.at(i, j + 1), z2 = map.at(i + 1, j),
+                   z3 = map.at(i + 1, j + 1);
+      const double dx =
+          gap(p.x(), j == 0 ? -kInf : map.x(j), j == map.nx - 2 ? kInf : map.x(j + 1));
+      const double dy =
+          gap(p.y(), i == 0 ? -kInf : map.y(i), i == map.ny - 2 ? kInf : map.y(i + 1));
+      const double dz = gap(p.z(), std::min({z0, z1, z2, z3}), std::max({z0, z1, z2, z3}));
+      best = std::min(best, std::sqrt(dx * dx + dy * dy + dz * dz));
+    }
   return best;
 }
 
@@ -183,13 +194,12 @@ TerrainContactPoint height_map_contact(const HeightMap& map, const Vec3& p, doub
   const double d = (p.z() - map.height(p.x(), p.y())) * out.normal_W.z();
   out.penetration_m = radius - d;
   // The tangent plane of a steep cell reaches far beyond the cell: under a sphere high above a
-  // slab's foot it would report a contact with the slab's side. A touching sphere's contact
-  // lies within r of its centre horizontally, so it is no deeper than its lowest point lies
-  // below the highest surface point there (on a plane the tangent plane's depth is never the
-  // larger; out of contact its distance is kept).
-  if (out.penetration_m > 0.0)
-    out.penetration_m =
-        std::min(out.penetration_m, radius + highest_node_near(map, p.x(), p.y(), radius) - p.z());
+  // slab's foot, or beside it, it would report a contact with the slab's side. A centre above
+  // the surface is outside the solid, and a touching sphere touches within r of it, so it is
+  // no deeper than r less its distance from the nearest cell box there (on a plane the tangent
+  // plane's depth is never the larger; out of contact, and below the surface, it is kept).
+  if (out.penetration_m > 0.0 && p.z() >= map.height(p.x(), p.y()))
+    out.penetration_m = std::min(out.penetration_m, radius - nearest_cell_box(map, p, radius));
   out.point_W = radius > 0.0 ? Vec3(p - radius * out.normal_W) : p;
   return out;
 }

@@ -75,10 +75,10 @@ TerrainContactPoint terrain_contact(const std::vector<double>& y_m, const std::v
 /// `radius_m` with a height map (core/height_map.hpp; docs/theory/replay.md#height-maps): the
 /// surface's point below p is taken as the nearest, its bilinear normal n as the face's, and
 /// the distance of p to the tangent plane there, d = (p_z − z(p_x, p_y)) n_z, as the signed
-/// distance: δ = r − d, the contact point p − r n; a positive δ at most r + z_max − p_z, z_max
-/// the highest node of the cells within r of p horizontally (a steep cell's tangent plane
-/// reaches far beyond it). Exact on a plane; on a curved or stepped map an approximation whose
-/// error grows with the curvature under the foot.
+/// distance: δ = r − d, the contact point p − r n; for p above the surface a positive δ at most
+/// r less p's distance from the nearest bounding box of the cells within r of it horizontally
+/// (a steep cell's tangent plane reaches far beyond it). Exact on a plane; on a curved or
+/// stepped map an approximation whose error grows with the curvature under the foot.
 TerrainContactPoint height_map_contact(const HeightMap& map, const Vec3& p_W, double radius_m);
 
 }  // namespace hexdyn

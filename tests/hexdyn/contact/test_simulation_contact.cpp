@@ -466,32 +466,45 @@ double distance_to_profile(const std::vector<Eigen::Vector2d>& v, const Vec3& p)
 }
 
 double slab(double x, double) { return x >= 0.2 ? 0.1 : 0.0; }  // a 0.1 m slab from x = 0.2 m
+double wall(double x, double) { return x >= 0.2 && x <= 0.21 + 1e-9 ? 0.1 : 0.0; }  // 1 cm thick
 double tilted(double x, double y) { return 0.05 + 0.3 * x - 0.2 * y; }
 
 }  // namespace
 
-TEST_CASE("height_map_contact: no contact with a slab's side from far above its foot",
+TEST_CASE("height_map_contact: no contact with a slab's or a wall's side from above or beside",
           "[contact]") {
   // The cell from x = 0.19 to 0.2 rises 0.1 m: its tangent plane (n_z about 0.1) passes close
-  // to any point above it. A sphere whose lowest point is above the slab's top cannot touch.
-  const HeightMap m = sampled_map(41, 11, 0.01, slab);
-  // The bilinear surface over x: flat at 0, the ramp of the cell [0.19, 0.2], flat at 0.1.
-  const std::vector<Eigen::Vector2d> profile{{0.19, 0.0}, {0.2, 0.1}};
+  // to points far above it and beside it. The exact distance is that to the bilinear profile
+  // over x; the check fails without the bound (a swing foot high above the cell "touches").
+  struct Case {
+    double (*f)(double, double);
+    std::vector<Eigen::Vector2d> profile;
+  };
+  const Case cases[] = {{slab, {{0.19, 0.0}, {0.2, 0.1}}},
+                        {wall, {{0.19, 0.0}, {0.2, 0.1}, {0.21, 0.1}, {0.22, 0.0}}}};
   std::mt19937 rng(4407);
-  int clear = 0;
-  for (int trial = 0; trial < 200; ++trial) {
-    const double r = uniform(rng, 0.0, 0.03);
-    const Vec3 p(uniform(rng, 0.15, 0.25), uniform(rng, 0.03, 0.07), uniform(rng, 0.0, 0.2));
-    if (p.z() < m.height(p.x(), p.y())) continue;  // inside the solid
-    const TerrainContactPoint c = height_map_contact(m, p, r);
-    if (distance_to_profile(profile, p) > r) {  // the sphere clears the surface
-      ++clear;
-      CHECK(c.penetration_m <= 0.0);
+  for (const Case& k : cases) {
+    const HeightMap m = sampled_map(41, 11, 0.01, k.f);
+    int clear = 0, touching = 0;
+    for (int trial = 0; trial < 400; ++trial) {
+      const double r = uniform(rng, 0.0, 0.03);
+      const Vec3 p(uniform(rng, 0.15, 0.26), uniform(rng, 0.03, 0.07), uniform(rng, 0.0, 0.2));
+      if (p.z() < m.height(p.x(), p.y())) continue;  // inside the solid
+      const TerrainContactPoint c = height_map_contact(m, p, r);
+      const double d = distance_to_profile(k.profile, p);
+      // Within a cell the surface takes every height between its nodes' least and largest, so
+      // each point of the cell's bounding box lies within a cell diagonal, √2 res, of it: a
+      // sphere clearing the surface by more than that clears every box, and is not in contact.
+      if (d > r + std::sqrt(2.0) * m.resolution_m) {
+        ++clear;
+        CHECK(c.penetration_m <= 0.0);
+      } else if (d <= r) {
+        ++touching;
+      }
     }
-    // In contact, never deeper than its lowest point lies below the highest surface (0.1 m).
-    if (c.penetration_m > 0.0) CHECK(c.penetration_m <= r + 0.1 - p.z() + 1e-15);
+    CHECK(clear > 100);
+    CHECK(touching > 5);
   }
-  CHECK(clear > 50);
 }
 
 TEST_CASE("height_map_contact on a plane: the distance to the plane", "[contact]") {
