@@ -198,7 +198,8 @@ TerrainContactPoint height_map_contact(const HeightMap& map, const Vec3& p, doub
   // the surface is outside the solid, and a touching sphere touches within r of it, so it is
   // no deeper than r less its distance from the nearest cell box there (on a plane the tangent
   // plane's depth is never the larger; out of contact, and below the surface, it is kept).
-  if (out.penetration_m > 0.0 && p.z() >= map.height(p.x(), p.y()))
+  // d ≥ 0 is p_z ≥ z(p_x, p_y): the normal points up.
+  if (out.penetration_m > 0.0 && d >= 0.0)
     out.penetration_m = std::min(out.penetration_m, radius - nearest_cell_box(map, p, radius));
   out.point_W = radius > 0.0 ? Vec3(p - radius * out.normal_W) : p;
   return out;
