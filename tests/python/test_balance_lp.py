@@ -15,6 +15,8 @@ own feasibility tolerance, 1e-7 in the wrench's units, is below it for a robot h
 scene with motion.trunk: straight) must have some, so that the check can fail.
 
     /usr/bin/python3 tests/python/test_balance_lp.py HEXDYN SOURCE_DIR SCENE [SCENE ...]
+
+A SCENE may carry overrides after an @, as --set takes them: SCENE@key=value,key=value.
 """
 import argparse
 import math
@@ -73,7 +75,7 @@ def feasible(robot, r, t, legs, mu, faces):
 
 
 def infeasible_samples(hexdyn, scene, d, sets=()):
-    out = os.path.join(d, os.path.basename(scene).replace(".yaml", f"{len(sets)}.h5"))
+    out = os.path.join(d, os.path.basename(scene).replace(".yaml", f"{abs(hash(sets))}.h5"))
     rc, err = cli_run(hexdyn, scene, out, sets)
     assert rc == 0, f"{scene}: {err}"
     r = read_result(out)
@@ -101,12 +103,15 @@ def main():
     a = p.parse_args()
     with tempfile.TemporaryDirectory() as d:
         for scene in a.scenes:
-            path = os.path.join(a.source_dir, scene)
-            bad, checked = infeasible_samples(a.hexdyn, path, d)
+            name, _, given = scene.partition("@")
+            path = os.path.join(a.source_dir, name)
+            sets = tuple(x for x in given.split(",") if x)
+            bad, checked = infeasible_samples(a.hexdyn, path, d, sets)
             print(f"{scene}: balanced, {checked} samples outside touchdowns, "
                   f"{len(bad)} without feasible forces {bad[:5]}")
             assert not bad, f"{scene}: no feasible forces at t = {bad[:10]} s"
-            straight, checked = infeasible_samples(a.hexdyn, path, d, ("motion.trunk=straight",))
+            straight, checked = infeasible_samples(a.hexdyn, path, d,
+                                                   sets + ("motion.trunk=straight",))
             print(f"{scene}: straight, {checked} samples outside touchdowns, "
                   f"{len(straight)} without feasible forces")
             assert straight, f"{scene}: the straight trunk is feasible everywhere too; " \

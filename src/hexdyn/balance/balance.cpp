@@ -41,8 +41,9 @@ bool in_stance(const LegPlan& leg, double t) {
 std::vector<double> breakpoints(const MotionPlan& plan, double T, double max_piece) {
   std::vector<double> t = {0.0, T};
   const TrunkMotion& trunk = plan.trunk;
-  for (double r : {trunk.ramp_duration_s(), T - trunk.ramp_duration_s()})
-    if (r > 0.0 && r < T) t.push_back(r);
+  const double h = trunk.hold_s(), r = trunk.ramp_duration_s();
+  for (double b : {h, h + r, T - h - r, T - h})  // the travel's and its ramps' ends
+    if (b > 0.0 && b < T) t.push_back(b);
   for (const LegPlan& leg : plan.gait.legs)
     for (const Swing& sw : leg.swings) {
       const double D = sw.t_touchdown_s - sw.t_liftoff_s;

@@ -19,8 +19,9 @@
 /// every node, and between nodes to the interpolation's accuracy.
 ///
 /// The robot starts and ends at rest, its ZMP under its centre of mass: the plan of a balanced
-/// scene stands on all its feet for kSettlePeriods / ω before the first swing and after the
-/// last while the trunk moves its weight (planning/plan.hpp, settle_swings in gait.hpp).
+/// scene stands on all its feet for at least kSettlePeriods / ω before its travel and first
+/// swing and after its last while the trunk moves its weight (TrunkMotion's hold,
+/// settle_time_s in planning/posture.hpp).
 #include <string>
 
 #include "hexdyn/model/robot_model.hpp"

@@ -149,7 +149,7 @@ RunResult run_prepared_scene(const Scene& scene, const PreparedScene& prep, std:
     *log << "hexdyn: balanced trunk: " << b.pieces << " pieces, " << b.iterations
          << " passes, ZMP within " << b.zmp_error_m << " m of its path at the nodes, least margin "
          << b.smallest_margin_m << " m, largest offset " << b.largest_offset_m << " m, omega "
-         << b.omega_radps << " rad/s";
+         << b.omega_radps << " rad/s, standing " << prep.plan.trunk.hold_s() << " s at each end";
     if (b.posture_rounds > 1)
       *log << ", posture searched " << b.posture_rounds << " times with the offset (height "
            << prep.plan.posture.height_m << " m)";

@@ -204,25 +204,6 @@ double mean_initial_foot_z(const GaitPlan& gait) {
   return feet_z / static_cast<double>(gait.legs.size());
 }
 
-void settle_swings(GaitPlan& gait, double duration_s, double settle_s) {
-  constexpr double kLeastSwingShare = 1.0 / 3.0;
-  const double T = duration_s;
-  for (LegPlan& leg : gait.legs)
-    for (Swing& sw : leg.swings) {
-      const double D = sw.t_touchdown_s - sw.t_liftoff_s;
-      const double lo = std::max(sw.t_liftoff_s, settle_s);
-      const double td = std::min(sw.t_touchdown_s, T - settle_s);
-      if (td - lo >= kLeastSwingShare * D) {
-        sw.t_liftoff_s = lo;
-        sw.t_touchdown_s = td;
-      } else if (lo > sw.t_liftoff_s) {
-        sw.t_liftoff_s = sw.t_touchdown_s - kLeastSwingShare * D;
-      } else {
-        sw.t_touchdown_s = sw.t_liftoff_s + kLeastSwingShare * D;
-      }
-    }
-}
-
 Vec3 swing_foot_position(const Swing& sw, double t) {
   Vec3 p;
   const double D = sw.t_touchdown_s - sw.t_liftoff_s;

@@ -80,13 +80,6 @@ GaitPlan plan_gait(const RobotModel& model, const GaitParams& gait, const TrunkM
 /// Precondition: gait.legs is not empty.
 double mean_initial_foot_z(const GaitPlan& gait);
 
-/// Every swing kept out of the first and the last `settle_s` of a run of duration_s, so that
-/// the robot stands on all its feet there while a balanced trunk shifts its weight
-/// (docs/theory/balance.md#the-passes): a swing that starts earlier lifts off later, one that
-/// ends later touches down earlier, each keeping its footholds, its lift and descent fractions
-/// and at least a third of its duration.
-void settle_swings(GaitPlan& gait, double duration_s, double settle_s);
-
 /// Foot of one swing at time t ∈ [t_liftoff, t_touchdown].
 FootMotion swing_foot_motion(const Swing& swing, double t_s);
 

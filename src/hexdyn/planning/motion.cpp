@@ -13,8 +13,8 @@ double ramp_travel(double u) { return u * u * u * u * (2.5 + u * (-3.0 + u)); }
 
 }  // namespace
 
-TrunkMotion::TrunkMotion(const MotionParams& motion, const GaitParams& gait,
-                         const Terrain& terrain) {
+TrunkMotion::TrunkMotion(const MotionParams& motion, const GaitParams& gait, const Terrain& terrain,
+                         double hold_s) {
   pitch_rad_ = terrain.mean_slope_rad();
   direction_W_ = Vec3(0.0, std::cos(pitch_rad_), std::sin(pitch_rad_));
   W_R_B_ = bryant_to_rotation(Vec3(pitch_rad_, 0.0, 0.0));
@@ -23,38 +23,43 @@ TrunkMotion::TrunkMotion(const MotionParams& motion, const GaitParams& gait,
   cycles_ = motion.cycles;
   v_cruise_ = motion.peak_speed_mps;
   t_ramp_ = motion.ramp_duration_s;
-  duration_s_ = total_travel_m() / v_cruise_ + t_ramp_;
+  hold_s_ = hold_s;
+  duration_s_ = total_travel_m() / v_cruise_ + t_ramp_ + 2.0 * hold_s_;
 }
 
 double TrunkMotion::travel(double t) const {
-  t = std::clamp(t, 0.0, duration_s_);
+  const double T = moving_s();
+  t = std::clamp(t - hold_s_, 0.0, T);
   const double ramp_travel_m = 0.5 * v_cruise_ * t_ramp_;
   if (t < t_ramp_) return v_cruise_ * t_ramp_ * ramp_travel(t / t_ramp_);
-  if (t > duration_s_ - t_ramp_)
-    return total_travel_m() - v_cruise_ * t_ramp_ * ramp_travel((duration_s_ - t) / t_ramp_);
+  if (t > T - t_ramp_)
+    return total_travel_m() - v_cruise_ * t_ramp_ * ramp_travel((T - t) / t_ramp_);
   return ramp_travel_m + v_cruise_ * (t - t_ramp_);
 }
 
 double TrunkMotion::speed(double t) const {
-  if (t <= 0.0 || t >= duration_s_) return 0.0;
+  const double T = moving_s();
+  t -= hold_s_;
+  if (t <= 0.0 || t >= T) return 0.0;
   if (t < t_ramp_) return v_cruise_ * ramp_speed(t / t_ramp_);
-  if (t > duration_s_ - t_ramp_) return v_cruise_ * ramp_speed((duration_s_ - t) / t_ramp_);
+  if (t > T - t_ramp_) return v_cruise_ * ramp_speed((T - t) / t_ramp_);
   return v_cruise_;
 }
 
 double TrunkMotion::acceleration(double t) const {
-  if (t <= 0.0 || t >= duration_s_) return 0.0;
+  const double T = moving_s();
+  t -= hold_s_;
+  if (t <= 0.0 || t >= T) return 0.0;
   if (t < t_ramp_) return v_cruise_ / t_ramp_ * ramp_speed_d(t / t_ramp_);
-  if (t > duration_s_ - t_ramp_)
-    return -v_cruise_ / t_ramp_ * ramp_speed_d((duration_s_ - t) / t_ramp_);
+  if (t > T - t_ramp_) return -v_cruise_ / t_ramp_ * ramp_speed_d((T - t) / t_ramp_);
   return 0.0;
 }
 
 double TrunkMotion::time_at_travel(double s) const {
-  if (s <= 0.0) return 0.0;
-  if (s >= total_travel_m()) return duration_s_;
-  // travel() is continuous and strictly increasing on (0, T): bisection to round-off.
-  double lo = 0.0, hi = duration_s_;
+  if (s <= 0.0) return hold_s_;
+  if (s >= total_travel_m()) return duration_s_ - hold_s_;
+  // travel() is continuous and strictly increasing between the holds: bisection to round-off.
+  double lo = hold_s_, hi = duration_s_ - hold_s_;
   for (int i = 0; i < 200 && hi - lo > 1e-15 * duration_s_; ++i) {
     const double mid = 0.5 * (lo + hi);
     (travel(mid) < s ? lo : hi) = mid;

@@ -8,7 +8,9 @@
 ///
 /// A balanced trunk (motion.trunk: balanced, balance/balance.hpp) adds a horizontal offset
 /// e(t) (planning/trunk_offset.hpp) to P0's path: at() then returns the straight path plus
-/// e, ė, ë; travel, phase and the footholds stay those of the straight path.
+/// e, ė, ë; travel, phase and the footholds stay those of the straight path. Such a trunk
+/// also stands still for hold_s at the start and at the end (planning/plan.hpp,
+/// settle_time_s): the travel then runs over [hold_s, duration_s − hold_s].
 #include <memory>
 #include <vector>
 
@@ -22,7 +24,10 @@ namespace hexdyn {
 
 class TrunkMotion {
  public:
-  TrunkMotion(const MotionParams& motion, const GaitParams& gait, const Terrain& terrain);
+  /// hold_s ≥ 0: the time the trunk stands still before its travel starts and after it ends
+  /// [s]; 0 (every straight trunk) leaves the motion that of the speed profile alone.
+  TrunkMotion(const MotionParams& motion, const GaitParams& gait, const Terrain& terrain,
+              double hold_s = 0.0);
 
   /// Trunk state at t (ω and ω̇ zero: the attitude is constant), the offset included.
   BaseState at(double t_s) const;
@@ -36,7 +41,8 @@ class TrunkMotion {
   double travel(double t_s) const;
   double speed(double t_s) const;
   double acceleration(double t_s) const;
-  /// Inverse of travel(): the time at which the trunk has travelled s (0 ≤ s ≤ total).
+  /// Inverse of travel(): the time at which the trunk has travelled s (0 ≤ s ≤ total); the
+  /// end of the first hold for s ≤ 0, the start of the last for s ≥ total.
   double time_at_travel(double s_m) const;
   /// Gait phase in cycles, τ(t) = s(t) / stride, and its inverse.
   double phase(double t_s) const { return travel(t_s) / stride_m_; }
@@ -54,6 +60,7 @@ class TrunkMotion {
   int cycles() const { return cycles_; }
   double cruise_speed_mps() const { return v_cruise_; }
   double ramp_duration_s() const { return t_ramp_; }
+  double hold_s() const { return hold_s_; }  ///< standing still at each end [s]
   const Mat3& W_R_B() const { return W_R_B_; }
   double pitch_rad() const { return pitch_rad_; }
 
@@ -61,6 +68,9 @@ class TrunkMotion {
   Vec3 p0_W_, direction_W_;
   Mat3 W_R_B_;
   double pitch_rad_ = 0.0, stride_m_ = 0.0, v_cruise_ = 0.0, t_ramp_ = 0.0, duration_s_ = 0.0;
+  double hold_s_ = 0.0;
+  /// The travel's own duration, without the holds [s].
+  double moving_s() const { return duration_s_ - 2.0 * hold_s_; }
   int cycles_ = 0;
   std::shared_ptr<const TrunkOffset> offset_;
 };

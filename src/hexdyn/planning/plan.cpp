@@ -1,8 +1,17 @@
 #include "hexdyn/planning/plan.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace hexdyn {
+
+double settle_time_s(const Scene& scene, const RobotModel& model) {
+  if (scene.motion.trunk != TrunkPath::kBalanced || model.legs() == 0) return 0.0;
+  double reach_m = 0.0;
+  for (int l = 0; l < model.legs(); ++l) reach_m = std::max(reach_m, leg_reach_m(model, l));
+  const double g = model.gravity_W.norm();
+  return reach_m > 0.0 && g > 0.0 ? kSettlePeriods * std::sqrt(reach_m / g) : 0.0;
+}
 
 MotionPlan plan_motion_with(const Scene& scene, const RobotModel& model, const Vec3& p0_W,
                             double foot_lateral_m) {
@@ -11,14 +20,8 @@ MotionPlan plan_motion_with(const Scene& scene, const RobotModel& model, const V
   motion.initial_position_m = p0_W;
   GaitParams gait_params = scene.gait;
   gait_params.foot_lateral_m = foot_lateral_m;
-  TrunkMotion trunk(motion, gait_params, terrain);
+  TrunkMotion trunk(motion, gait_params, terrain, settle_time_s(scene, model));
   GaitPlan gait = plan_gait(model, gait_params, trunk, terrain);
-  if (scene.motion.trunk == TrunkPath::kBalanced && !gait.legs.empty()) {
-    const double h = p0_W.z() - mean_initial_foot_z(gait);
-    if (h > 0.0)
-      settle_swings(gait, trunk.duration_s(),
-                    kSettlePeriods / std::sqrt(model.gravity_W.norm() / h));
-  }
   return MotionPlan{terrain, trunk, gait, PostureChoice{}};
 }
 

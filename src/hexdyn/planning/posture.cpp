@@ -74,7 +74,7 @@ class PostureSearch {
     motion.initial_position_m = p0_W;
     GaitParams gait = scene_.gait;
     gait.foot_lateral_m = w;
-    TrunkMotion trunk(motion, gait, terrain_);
+    TrunkMotion trunk(motion, gait, terrain_, settle_time_s(scene_, model_));
     if (offset_) trunk.set_offset(offset_);
     c.planned = true;
     margin_detail::MarginRequest request;
@@ -386,7 +386,8 @@ PostureChoice best_posture(const Scene& scene, const RobotModel& model, PostureC
   if (!best.planned) throw PlanningError(best.planning_error);
   // The chosen posture on a dense grid (a sample at least every 5 ms).
   const double duration_s =
-      TrunkMotion(scene.motion, scene.gait, Terrain(scene.terrain)).duration_s();
+      TrunkMotion(scene.motion, scene.gait, Terrain(scene.terrain), settle_time_s(scene, model))
+          .duration_s();
   const int dense_uniform = static_cast<int>(std::ceil(duration_s / 0.005)) + 1;
   Candidate dense =
       search.evaluate(best.height_m, best.foot_lateral_m, dense_uniform, -kInf,

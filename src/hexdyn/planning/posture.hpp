@@ -151,14 +151,19 @@ PostureChoice best_posture(const Scene& scene, const RobotModel& model,
                            std::shared_ptr<const TrunkOffset> offset = nullptr);
 
 /// The motion planned with an explicit start and foot spread (the scene's posture keys
-/// ignored). A balanced scene's (motion.trunk: balanced) swings are kept out of its first and
-/// last kSettlePeriods / ω (settle_swings), ω = √(g / h) of the trunk's height h above the
-/// feet's mean at the start. Throws PlanningError.
+/// ignored). A balanced scene's (motion.trunk: balanced) trunk stands still for
+/// settle_time_s(scene, model) at the start and at the end, on all its feet, before its travel
+/// and its first swing and after its last (TrunkMotion's hold). Throws PlanningError.
 MotionPlan plan_motion_with(const Scene& scene, const RobotModel& model, const Vec3& p0_W,
                             double foot_lateral_m);
 
 /// A balanced scene's plan stands on all its feet for this many pendulum time constants 1/ω
 /// at the start and at the end, while the trunk shifts its weight (docs/theory/balance.md).
 inline constexpr double kSettlePeriods = 2.0;
+
+/// The hold of a balanced scene's trunk at each end [s]: kSettlePeriods / ω with ω = √(g / l),
+/// l the longest leg's reach (leg_reach_m), which bounds the trunk's height above its feet
+/// (the lowest ω, the longest settling) whatever posture is chosen; 0 for a straight trunk.
+double settle_time_s(const Scene& scene, const RobotModel& model);
 
 }  // namespace hexdyn
