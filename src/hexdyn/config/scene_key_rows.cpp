@@ -372,7 +372,8 @@ void add_motion_timing(std::deque<SceneKey>& t) {
        .choices = "straight balanced",
        .meaning = "`straight`: the trunk moves along the mean slope at a constant height and "
                   "attitude (the paper); `balanced`: that path plus a horizontal offset that "
-                  "keeps the whole robot's ZMP in the support of the stance feet "
+                  "keeps the whole robot's ZMP in the support of the stance feet, standing "
+                  "still on all of them for 2 √(l / g) at each end, l the longest leg's reach "
                   "([docs/theory/balance.md](docs/theory/balance.md))",
        .field = f::choice<&Scene::motion, &MotionParams::trunk>()});
   add({.path = "motion.balance_margin",

@@ -9,8 +9,8 @@
 /// A balanced trunk (motion.trunk: balanced, balance/balance.hpp) adds a horizontal offset
 /// e(t) (planning/trunk_offset.hpp) to P0's path: at() then returns the straight path plus
 /// e, ė, ë; travel, phase and the footholds stay those of the straight path. Such a trunk
-/// also stands still for hold_s at the start and at the end (planning/plan.hpp,
-/// settle_time_s): the travel then runs over [hold_s, duration_s − hold_s].
+/// also stands still for hold_s at the start and at the end (settle_time_s in
+/// planning/posture.hpp): the travel then runs over [hold_s, duration_s − hold_s].
 #include <memory>
 #include <vector>
 
