@@ -328,16 +328,20 @@ struct Passes {
   /// Samples P on the current path; returns the largest |P − z| (0 on the straight path).
   double sample(ZmpProbe& probe) {
     double error = 0.0;
-    worst_m = 0.0;
+    worst_m = line_worst_m = polygon_worst_m = largest_force_N = 0.0;
     for (int k = 0; k < L.pieces(); ++k) {
       // A polygon piece's error is measured against its own tolerance (BalanceOptions).
-      const double scale = L.piece_support[k].vertices.size() <= 2 ? 1.0 : polygon_scale;
+      const bool line = L.piece_support[k].vertices.size() <= 2;
+      const double scale = line ? 1.0 : polygon_scale;
       for (int j = 0; j < L.nodes(k); ++j) {
         W[k][j] = probe.wrench_at(node_time(L, k, j));
         P[k][j] = ZmpProbe::zmp(W[k][j]);
+        largest_force_N = std::max(largest_force_N, W[k][j].F.norm());
         if (!offset) continue;
         const double e = (P[k][j] - z[k][j]).norm();
         worst_m = std::max(worst_m, e);
+        (line ? line_worst_m : polygon_worst_m) =
+            std::max(line ? line_worst_m : polygon_worst_m, e);
         error = std::max(error, scale * e);
       }
     }
@@ -495,6 +499,9 @@ struct Passes {
   AndersonMixer mixer{6};
   double polygon_scale = 1.0;  ///< tolerance_m / polygon_tolerance_m
   double worst_m = 0.0;        ///< largest |P − z| of the last sample() [m]
+  /// The same on the pieces whose support is a line or a point, and on the polygons [m].
+  double line_worst_m = 0.0, polygon_worst_m = 0.0;
+  double largest_force_N = 0.0;  ///< largest |F| the feet supply at the nodes of the last sample()
 };
 
 }  // namespace
@@ -511,7 +518,8 @@ BalanceReport balance_trunk(const RobotModel& model, MotionPlan& plan, const Bal
   passes.polygon_scale = tolerance_m / std::max(o.polygon_tolerance_m, tolerance_m);
   for (rep.iterations = 1;; ++rep.iterations) {
     const double sampled = passes.sample(probe);  // update_edges reads its wrenches
-    const double error = std::max(sampled, passes.update_edges());
+    const double edge_miss_m = passes.update_edges();
+    const double error = std::max(sampled, edge_miss_m);
     if (rep.iterations == 1) {
       for (int k = 0; k < K; ++k) {
         passes.g[L.left[k]] = passes.P[k].back();
@@ -527,11 +535,23 @@ BalanceReport balance_trunk(const RobotModel& model, MotionPlan& plan, const Bal
       break;
     }
     if (rep.iterations >= o.max_iterations) {
+      // Stalled just short of the tolerance: kept when the miss is a moment the allocation
+      // cannot see (balance.hpp, kStallMoment_Nm) and a polygon's is far inside its margin.
+      const double line_miss_m = std::max(passes.line_worst_m, edge_miss_m);
+      rep.stall_moment_Nm = line_miss_m * passes.largest_force_N;
+      if (passes.offset && rep.stall_moment_Nm <= kStallMoment_Nm &&
+          passes.polygon_worst_m <= kStallPolygonShare * o.margin_m) {
+        rep.stalled = true;
+        rep.zmp_error_m = passes.worst_m;
+        break;
+      }
       std::ostringstream m;
       m << "balanced trunk: the ZMP did not settle in " << o.max_iterations
         << " passes (its largest miss of its path at the nodes is " << error / tolerance_m
         << " times its tolerance, " << tolerance_m << " m on a line support and "
-        << std::max(o.polygon_tolerance_m, tolerance_m) << " m on a polygon)";
+        << std::max(o.polygon_tolerance_m, tolerance_m) << " m on a polygon; a moment of "
+        << rep.stall_moment_Nm << " N m on a line, above the " << kStallMoment_Nm
+        << " N m a stall may leave)";
       throw PlanningError(m.str());
     }
     if (rep.iterations == 2)

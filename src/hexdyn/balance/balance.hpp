@@ -47,6 +47,15 @@ struct BalanceOptions {
   double max_piece_s = 0.06;  ///< longest piece [s]
 };
 
+/// Passes that reach BalanceOptions::max_iterations without the tolerance still hold when the
+/// ZMP's miss on a line support, times the largest force the feet supply, is at most this
+/// moment [N m]: a quarter of the allocation's threshold of a violated trunk moment row
+/// (kViolationThreshold, 1e-6 N m, allocation/qp.hpp), so that its trunk rows hold as on a
+/// path within the tolerance; and when a polygon's miss is at most kStallPolygonShare of the
+/// margin.
+inline constexpr double kStallMoment_Nm = 2.5e-7;
+inline constexpr double kStallPolygonShare = 0.01;
+
 /// What balance_trunk found.
 struct BalanceReport {
   int iterations = 0;              ///< evaluations of s on the whole path
@@ -58,11 +67,16 @@ struct BalanceReport {
   /// Posture searches the plan took: 1, or more when an automatic posture was searched again
   /// with the offset because the legs could not follow the balanced path (pipeline.hpp).
   int posture_rounds = 1;
+  /// True when the passes stopped at max_iterations short of the tolerance but within
+  /// kStallMoment_Nm (zmp_error_m is then their last miss).
+  bool stalled = false;
+  double stall_moment_Nm = 0.0;  ///< the last pass's line miss times the largest foot force
 };
 
 /// Plans the offset of plan.trunk (which must have none) and sets it. Throws PlanningError in
 /// one line when the robot does not stand statically balanced at the start or the end, when two
-/// consecutive supports share no foot, or when the iteration does not settle.
+/// consecutive supports share no foot, or when the iteration does not settle (within its
+/// tolerance, or at max_iterations within kStallMoment_Nm).
 BalanceReport balance_trunk(const RobotModel& model, MotionPlan& plan,
                             const BalanceOptions& options);
 

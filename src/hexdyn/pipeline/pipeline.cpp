@@ -150,6 +150,9 @@ RunResult run_prepared_scene(const Scene& scene, const PreparedScene& prep, std:
          << " passes, ZMP within " << b.zmp_error_m << " m of its path at the nodes, least margin "
          << b.smallest_margin_m << " m, largest offset " << b.largest_offset_m << " m, omega "
          << b.omega_radps << " rad/s, standing " << prep.plan.trunk.hold_s() << " s at each end";
+    if (b.stalled)
+      *log << ", stalled at " << b.iterations << " passes short of its tolerance by a moment of "
+           << b.stall_moment_Nm << " N m";
     if (b.posture_rounds > 1)
       *log << ", posture searched " << b.posture_rounds << " times with the offset (height "
            << prep.plan.posture.height_m << " m)";
