@@ -550,8 +550,12 @@ BalanceReport balance_trunk(const RobotModel& model, MotionPlan& plan, const Bal
         << " passes (its largest miss of its path at the nodes is " << error / tolerance_m
         << " times its tolerance, " << tolerance_m << " m on a line support and "
         << std::max(o.polygon_tolerance_m, tolerance_m) << " m on a polygon; a moment of "
-        << rep.stall_moment_Nm << " N m on a line, above the " << kStallMoment_Nm
-        << " N m a stall may leave)";
+        << rep.stall_moment_Nm << " N m on a line";
+      if (rep.stall_moment_Nm > kStallMoment_Nm)
+        m << ", above the " << kStallMoment_Nm << " N m a stall may leave)";
+      else
+        m << " and a miss of " << passes.polygon_worst_m << " m on a polygon, above the "
+          << kStallPolygonShare * o.margin_m << " m a stall may leave)";
       throw PlanningError(m.str());
     }
     if (rep.iterations == 2)
