@@ -17,7 +17,12 @@ the default PD), each plan shortened to one gait cycle, checked:
      report adds one note naming replay.kp and docs/user/replay.md#gains, with a weight moment
      m g l between /model/total_mass g times the trunk's height above the spheres' centres at
      the first sample (its hips lie in the trunk's plane) and m g times 1 m; Pexod, which does
-     not fall, gets no note.
+     not fall, gets no note;
+  5. replayed with replay.kp and replay.kd auto (the defaults), the report states the gains
+     and the weight moment, which lies in the bounds of 4: kp is 1.1 times it per rad for a
+     robot whose moment exceeds 50 N m (ANYmal C, which then reaches the plan's end), else the
+     paper robot's 10 N m/rad (Pexod), and kd is kp times 0.01 s; the replay file's
+     config_yaml holds those numbers and the requests beside them (auto: replay: kp: auto).
 
     /usr/bin/python3 tests/python/test_replay_sphere_feet.py HEXDYN SOURCE_DIR
 """
@@ -113,12 +118,58 @@ def check_gain_note(binary, tmp, plan, name, heavy):
           f"standing depth {depth:.3f} m")
 
 
+def standing_depth(plan):
+    """/model/total_mass and the trunk's height above the spheres' centres at the first sample."""
+    with h5py.File(plan, "r") as f:
+        mass = float(f["/model/total_mass"][()])
+        depth = float(f["/base/position"][0, 2] - np.max(f["/feet/center"][0, :, 2]))
+    return mass, depth
+
+
+def check_auto_gains(binary, tmp, plan, name, heavy):
+    """Check 5: the gains replay.kp: auto and replay.kd: auto resolve to for the robot."""
+    rep = os.path.join(tmp, "auto.h5")
+    if os.path.exists(rep):
+        os.remove(rep)
+    p = subprocess.run([binary, "replay", plan, "-o", rep, "--set", "replay.kp=auto", "--set",
+                        "replay.kd=auto"], capture_output=True, text=True)
+    assert p.returncode == 0, p.stderr
+    number = r"([0-9.eE+-]+)"
+    m = re.search(rf"joint PD kp {number} N m/rad, kd {number} N m s/rad \(replay.kp, replay.kd: "
+                  rf"auto, auto; weight moment {number} N m\)", p.stderr)
+    check(m is not None, f"{name}: the report states the auto gains", p.stderr[-400:])
+    if m is None:
+        return
+    kp, kd, moment = (float(x) for x in m.groups())  # as printed, to 6 digits
+    mass, depth = standing_depth(plan)
+    check(mass * 9.81 * depth <= moment <= mass * 9.81 * 1.0,
+          f"{name}: the weight moment is m g times a reach", f"{moment} N m, m {mass} kg")
+    with h5py.File(rep, "r") as f:
+        config = text(f["/meta"].attrs["config_yaml"])
+    replay = re.search(rf"\nreplay:\n  kp: {number}\n  kd: {number}\n", config)
+    requests = re.search(r"\nauto:\n(?:  .*\n)*  replay:\n    kp: auto\n    kd: auto\n", config)
+    check(replay is not None and requests is not None,
+          f"{name}: the replay file holds the gains used and the requests", config[-600:])
+    if replay is None:
+        return
+    kp_file, kd_file = float(replay.group(1)), float(replay.group(2))
+    expected = 1.1 * moment if moment > 50.0 else 10.0
+    check(heavy == (moment > 50.0) and abs(kp_file - expected) <= 1e-5 * expected and
+          abs(kp - kp_file) <= 1e-5 * kp_file and abs(kd_file - 0.01 * kp_file) <= 1e-12 * kp_file,
+          f"{name}: kp and kd follow the weight moment",
+          f"kp {kp_file}, kd {kd_file}, moment {moment}")
+    if heavy:
+        check("reached the plan's end" in p.stderr, f"{name}: reaches the end with them",
+              p.stderr[-400:])
+
+
 def main():
     binary, src = args()
     with tempfile.TemporaryDirectory() as tmp:
         for name, scene, replay_sets in ROBOTS:
             plan = study(binary, src, tmp, name, scene, replay_sets)
             check_gain_note(binary, tmp, plan, name, heavy=name.startswith("ANYmal"))
+            check_auto_gains(binary, tmp, plan, name, heavy=name.startswith("ANYmal"))
     return exit_status()
 
 

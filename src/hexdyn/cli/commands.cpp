@@ -77,8 +77,9 @@ constexpr const char* kReplayHelp =
   (docs/user/replay.md).
 
 Each joint is driven by its stored torque plus a PD on the planned angle and rate (gains
-replay.kp [N m/rad] and replay.kd [N m s/rad]; 0 and 0 is open loop). The integrator's
-largest step is replay.step [s]. The contact's friction law is contact.friction_law:
+replay.kp [N m/rad] and replay.kd [N m s/rad]; auto by default: 10 and 0.1, or 1.1 m g l and
+a hundredth of it for a robot whose weight moment m g l exceeds 50 N m; 0 and 0 is open
+loop). The integrator's largest step is replay.step [s]. The contact's friction law is contact.friction_law:
 stick_slip (default; contact.tangential_stiffness and contact.tangential_damping) or
 regularised (contact.stiction_velocity and contact.friction_velocity), both with
 contact.static_friction and contact.dynamic_friction. --set

@@ -1,6 +1,9 @@
 // `hexdyn replay RESULT -o FILE` (cli/command.hpp; replay/replay_file.hpp).
+#include <yaml-cpp/yaml.h>
+
 #include <algorithm>
 #include <iostream>
+#include <string>
 
 #include "hexdyn/cli/subcommands.hpp"
 #include "hexdyn/core/progress.hpp"
@@ -29,29 +32,43 @@ std::string joint_label(const RobotModel& model, int k, const std::vector<std::s
 
 /// After a fall, a note when the joint PD is weak against the robot's weight: its torque at
 /// 0.1 rad below a fiftieth of m g times the longest leg's reach (docs/user/replay.md#gains).
-/// The default gains give the paper robot 1 N m against 20 N m, a twentieth; ANYmal C has 375.
+/// The paper robot's 10 N m/rad give it 1 N m against 20 N m, a twentieth; ANYmal C has 375.
 void print_gain_note(const RobotModel& model, const ReplayResult& r, const ReplayParams& gains,
                      std::ostream& os) {
   if (!r.fell) return;
-  double reach = 0.0;
-  for (int l = 0; l < model.legs(); ++l) reach = std::max(reach, leg_reach_m(model, l));
-  const double weight_moment_Nm = model.total_mass_kg * kGravity * reach;
+  const double moment_Nm = weight_moment_Nm(model);
   const double pd_Nm = 0.1 * gains.kp_Nmprad;
-  if (pd_Nm >= weight_moment_Nm / 50.0) return;
+  if (pd_Nm >= moment_Nm / 50.0) return;
   os << "hexdyn: replay: note: the joint PD gives " << pd_Nm << " N m at 0.1 rad (replay.kp "
-     << gains.kp_Nmprad << " N m/rad) against a weight moment m g l of " << weight_moment_Nm
-     << " N m (" << model.total_mass_kg << " kg, legs reaching " << reach
-     << " m): a robot this heavy may fall for want of feedback, whatever its plan; try stiffer "
-        "replay.kp and replay.kd (docs/user/replay.md#gains)\n";
+     << gains.kp_Nmprad << " N m/rad) against a weight moment m g l of " << moment_Nm << " N m ("
+     << model.total_mass_kg << " kg): a robot this heavy may fall for want of feedback, whatever "
+     << "its plan; try stiffer replay.kp and replay.kd, or auto (docs/user/replay.md#gains)\n";
+}
+
+/// The scene as replayed: its resolved configuration with the gains used in place of `auto`,
+/// the request recorded beside them (auto.replay.kp: auto), as every automatic choice is.
+std::string replayed_yaml(const std::string& resolved, const ReplayParams& gains) {
+  YAML::Node root = YAML::Load(resolved);
+  if (gains.kp_auto) {
+    root["replay"]["kp"] = gains.kp_Nmprad;
+    root["auto"]["replay"]["kp"] = "auto";
+  }
+  if (gains.kd_auto) {
+    root["replay"]["kd"] = gains.kd_Nmsprad;
+    root["auto"]["replay"]["kd"] = "auto";
+  }
+  YAML::Emitter out;
+  out << root;
+  return std::string(out.c_str()) + "\n";
 }
 
 /// The report on stderr, one line per item.
 void print_report(const RobotModel& model, const ReplayResult& r, const ReplaySource& src,
-                  std::ostream& os) {
+                  const ReplayParams& gains, std::ostream& os) {
   os << "hexdyn: replay: " << (r.reached_top ? "reached" : "did not reach")
      << " the plan's end; final trunk position error " << r.final_position_error_m.norm() << " m\n";
   if (!r.message.empty()) os << "hexdyn: replay: ended early: " << r.message << "\n";
-  print_gain_note(model, r, src.scene.replay, os);
+  print_gain_note(model, r, gains, os);
   for (std::size_t y = 0; y < r.cycle_end_s.size(); ++y)
     os << "hexdyn: replay: cycle end t = " << r.cycle_end_s[y] << " s: drift "
        << r.position_drift_m[y].transpose() << " m, " << r.orientation_drift_rad[y].transpose()
@@ -93,15 +110,23 @@ void print_report(const RobotModel& model, const ReplayResult& r, const ReplaySo
 }  // namespace
 
 int replay_command(const Args& args) {
-  const ReplaySource src = read_replay_source(args.input, args.overrides);
+  ReplaySource src = read_replay_source(args.input, args.overrides);
   check_output_target(args.output, src.inputs);
   for (const std::string& w : src.warnings) std::cerr << "hexdyn: warning: replay: " << w << "\n";
   const RobotModel model = build_robot_model(src.scene.robot);
+  const ReplayParams gains = resolved_gains(src.scene.replay, model);
+  if (gains.kp_auto || gains.kd_auto)
+    std::cerr << "hexdyn: replay: joint PD kp " << gains.kp_Nmprad << " N m/rad, kd "
+              << gains.kd_Nmsprad
+              << " N m s/rad (replay.kp, replay.kd: " << (gains.kp_auto ? "auto" : "given") << ", "
+              << (gains.kd_auto ? "auto" : "given") << "; weight moment " << weight_moment_Nm(model)
+              << " N m)\n";
   const ProgressScope progress(std::cerr, "replay", args.progress_s);
-  const ReplayResult r =
-      replay_plan(model, src.scene.contact, src.scene.replay, src.scene.terrain, src.plan);
+  const ReplayResult r = replay_plan(model, src.scene.contact, gains, src.scene.terrain, src.plan);
+  src.scene.replay = gains;  // the scene as replayed
+  src.scene.resolved_yaml = replayed_yaml(src.scene.resolved_yaml, gains);
   write_replay_file(args.output, src, model, r);
-  print_report(model, r, src, std::cerr);
+  print_report(model, r, src, gains, std::cerr);
   std::cerr << "hexdyn: wrote " << args.output << " (" << r.t_s.size() << " samples, " << r.steps
             << " steps, " << r.seconds << " s)\n";
   return 0;

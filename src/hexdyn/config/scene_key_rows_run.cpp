@@ -124,14 +124,19 @@ void add_replay(std::deque<SceneKey>& t) {
   add({.path = "replay.kp",
        .range = nonnegative(1e9),
        .unit = "N m/rad",
-       .meaning = "joint PD stiffness on the planned angles (0 with `kd` 0: open loop)",
-       .read = table,
+       .default_text = "`auto`",
+       .allowed_text = "[0, 1e9] N m/rad, or `auto`",
+       .meaning = "joint PD stiffness on the planned angles (0 with `kd` 0: open loop); `auto`: "
+                  "10 N m/rad, or 1.1 m g l per rad for a robot whose weight moment m g l "
+                  "(l the longest leg's reach) exceeds 50 N m "
+                  "([docs/user/replay.md](docs/user/replay.md#gains))",
        .field = f::number<&Scene::replay, &ReplayParams::kp_Nmprad>()});
   add({.path = "replay.kd",
        .range = nonnegative(1e9),
        .unit = "N m s/rad",
-       .meaning = "joint PD damping on the planned rates",
-       .read = table,
+       .default_text = "`auto`",
+       .allowed_text = "[0, 1e9] N m s/rad, or `auto`",
+       .meaning = "joint PD damping on the planned rates; `auto`: the stiffness times 0.01 s",
        .field = f::number<&Scene::replay, &ReplayParams::kd_Nmsprad>()});
   add({.path = "replay.step",
        .range = positive(0.1),

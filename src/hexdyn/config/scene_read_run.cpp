@@ -67,7 +67,16 @@ void read_contact(Reader& r, Scene& s) {
   check_friction_velocity(r, c);
 }
 
-void read_replay(Reader& r, Scene& s) { read_table_keys(r, s, "replay"); }
+void read_replay(Reader& r, Scene& s) {
+  read_table_keys(r, s, "replay");
+  // The gains: numbers, or `auto` (the default), resolved for the robot when it is replayed
+  // (replay/replay.hpp resolved_gains); the resolved configuration keeps the word.
+  ReplayParams& p = s.replay;
+  p.kp_auto = r.absent_or_word("replay.kp", "auto");
+  if (!p.kp_auto) p.kp_Nmprad = number_key(r, "replay.kp");
+  p.kd_auto = r.absent_or_word("replay.kd", "auto");
+  if (!p.kd_auto) p.kd_Nmsprad = number_key(r, "replay.kd");
+}
 
 void read_allocation(Reader& r, Scene& s, const LoadedUrdfRobot& urdf) {
   read_table_keys(r, s, "allocation");

@@ -381,7 +381,10 @@ struct ContactParams {
 struct ReplayParams {
   double kp_Nmprad = 10.0;  ///< replay.kp: joint PD stiffness on the planned angles [N m/rad]
   double kd_Nmsprad = 0.1;  ///< replay.kd: joint PD damping on the planned rates [N m s/rad]
-  double step_s = 1e-3;     ///< replay.step: the integrator's largest step [s]
+  /// replay.kp: auto, replay.kd: auto (the defaults): the gains follow the robot
+  /// (replay/replay.hpp resolved_gains); kp_Nmprad and kd_Nmsprad then hold the light robot's.
+  bool kp_auto = true, kd_auto = true;
+  double step_s = 1e-3;  ///< replay.step: the integrator's largest step [s]
   /// replay.tolerance: a step is halved while the contact forces it applied differ from the
   /// contact law at its end by more than this fraction of the robot's weight [1].
   double tolerance = 0.05;

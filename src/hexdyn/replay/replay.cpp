@@ -501,6 +501,23 @@ void plan_com_heights(Integrator& it, const Terrain& terrain) {
 
 }  // namespace
 
+double weight_moment_Nm(const RobotModel& model) {
+  double reach_m = 0.0;
+  for (int l = 0; l < model.legs(); ++l) reach_m = std::max(reach_m, leg_reach_m(model, l));
+  return model.total_mass_kg * kGravity * reach_m;
+}
+
+ReplayParams resolved_gains(const ReplayParams& replay, const RobotModel& model) {
+  ReplayParams g = replay;
+  if (g.kp_auto) {
+    const double moment_Nm = weight_moment_Nm(model);
+    g.kp_Nmprad = moment_Nm > kAutoGainWeightMoment_Nm ? kAutoGainPerWeightMoment * moment_Nm
+                                                       : ReplayParams{}.kp_Nmprad;
+  }
+  if (g.kd_auto) g.kd_Nmsprad = 0.01 * g.kp_Nmprad;
+  return g;
+}
+
 ReplayResult replay_plan(const RobotModel& model, const ContactParams& contact,
                          const ReplayParams& replay, const TerrainParams& terrain_params,
                          const ReplayPlan& plan) {

@@ -34,6 +34,9 @@ struct Study {
   FailureBounds bounds;
   std::uint64_t seed = 1;
   LegArray<Vec3> start_feet_W{};  ///< the plan's foot points (sphere centres) at its first instant
+  /// The joint PD of every replay: the scene's, resolved for the planned robot (the controller
+  /// does not know a world's payload).
+  ReplayParams gains;
 };
 
 /// How far the robot must start above its planned first state on the terrain of `plan` so that
@@ -62,14 +65,14 @@ ReplayOutcome replay_world(const Study& s, const WorldDraw& draw) {
                             w.terrain_z_m == s.plan.terrain_z_m;
   ReplayResult r;
   if (same_terrain) {
-    r = replay_plan(w.model, w.contact, s.scene.replay, w.terrain, s.plan);
+    r = replay_plan(w.model, w.contact, s.gains, w.terrain, s.plan);
   } else {
     ReplayPlan plan = s.plan;  // the same torques and angles, on the world's terrain
     plan.terrain_y_m = w.terrain_y_m;
     plan.terrain_z_m = w.terrain_z_m;
     plan.terrain_map = w.terrain_map;
     plan.base.front().p_W.z() += start_lift(s, plan);
-    r = replay_plan(w.model, w.contact, s.scene.replay, w.terrain, plan);
+    r = replay_plan(w.model, w.contact, s.gains, w.terrain, plan);
   }
   return classify_replay(r, s.phase, s.plan, w, s.scene.terrain, s.bounds);
 }
@@ -176,6 +179,7 @@ Study make_study(const Scene& scene, const StudyPlan& plan) {
           scene.robustness.failure,
           scene.robustness.seed};
   s.sizes = world_draw_sizes(s.model, scene.terrain);
+  s.gains = resolved_gains(scene.replay, s.model);
   if (std::isnan(s.bounds.drift_m))
     s.bounds.drift_m = arrival_tolerance(scene.terrain).horizontal_m;
   BodyPoses poses;
