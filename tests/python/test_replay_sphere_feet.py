@@ -89,14 +89,22 @@ def study(binary, src, tmp, name, scene, replay_sets):
     return plan
 
 
-def check_gain_note(binary, tmp, plan, name, heavy):
-    """Check 4: the note after a fall with the paper robot's gains."""
-    rep = os.path.join(tmp, "weak.h5")
+def replay_with(binary, tmp, plan, file_name, sets):
+    """`hexdyn replay plan -o tmp/file_name --set ...` into a fresh file: (its path, the run)."""
+    rep = os.path.join(tmp, file_name)
     if os.path.exists(rep):
         os.remove(rep)
-    p = subprocess.run([binary, "replay", plan, "-o", rep, "--set", "replay.kp=10", "--set",
-                        "replay.kd=0.1"], capture_output=True, text=True)
+    cmd = [binary, "replay", plan, "-o", rep]
+    for x in sets:
+        cmd += ["--set", x]
+    p = subprocess.run(cmd, capture_output=True, text=True)
     assert p.returncode == 0, p.stderr
+    return rep, p
+
+
+def check_gain_note(binary, tmp, plan, name, heavy):
+    """Check 4: the note after a fall with the paper robot's gains."""
+    _, p = replay_with(binary, tmp, plan, "weak.h5", ("replay.kp=10", "replay.kd=0.1"))
     notes = [ln for ln in p.stderr.splitlines() if ln.startswith("hexdyn: replay: note:")]
     fell = "the robot fell" in p.stderr
     if not heavy:
@@ -128,12 +136,7 @@ def standing_depth(plan):
 
 def check_auto_gains(binary, tmp, plan, name, heavy):
     """Check 5: the gains replay.kp: auto and replay.kd: auto resolve to for the robot."""
-    rep = os.path.join(tmp, "auto.h5")
-    if os.path.exists(rep):
-        os.remove(rep)
-    p = subprocess.run([binary, "replay", plan, "-o", rep, "--set", "replay.kp=auto", "--set",
-                        "replay.kd=auto"], capture_output=True, text=True)
-    assert p.returncode == 0, p.stderr
+    rep, p = replay_with(binary, tmp, plan, "auto.h5", ("replay.kp=auto", "replay.kd=auto"))
     number = r"([0-9.eE+-]+)"
     m = re.search(rf"joint PD kp {number} N m/rad, kd {number} N m s/rad \(replay.kp, replay.kd: "
                   rf"auto, auto; weight moment {number} N m\)", p.stderr)
