@@ -1,7 +1,6 @@
 // `hexdyn replay RESULT -o FILE` (cli/command.hpp; replay/replay_file.hpp).
 #include <yaml-cpp/yaml.h>
 
-#include <algorithm>
 #include <iostream>
 #include <string>
 
@@ -30,15 +29,12 @@ std::string joint_label(const RobotModel& model, int k, const std::vector<std::s
   return "no joint";
 }
 
-/// After a fall, a note when the joint PD is weak against the robot's weight: its torque at
-/// 0.1 rad below a fiftieth of m g times the longest leg's reach (docs/user/replay.md#gains).
-/// The paper robot's 10 N m/rad give it 1 N m against 20 N m, a twentieth; ANYmal C has 375.
+/// After a fall, a note when the joint PD is weak against the robot's weight (weak_joint_pd).
 void print_gain_note(const RobotModel& model, const ReplayResult& r, const ReplayParams& gains,
                      std::ostream& os) {
-  if (!r.fell) return;
   const double moment_Nm = weight_moment_Nm(model);
+  if (!r.fell || !weak_joint_pd(gains.kp_Nmprad, moment_Nm)) return;
   const double pd_Nm = 0.1 * gains.kp_Nmprad;
-  if (pd_Nm >= moment_Nm / 50.0) return;
   os << "hexdyn: replay: note: the joint PD gives " << pd_Nm << " N m at 0.1 rad (replay.kp "
      << gains.kp_Nmprad << " N m/rad) against a weight moment m g l of " << moment_Nm << " N m ("
      << model.total_mass_kg << " kg): a robot this heavy may fall for want of feedback, whatever "

@@ -219,6 +219,12 @@ double leg_reach_m(const RobotModel& m, int leg) {
   return std::max(at_zero, segments + m.p_foot_last[leg].norm());
 }
 
+double longest_leg_reach_m(const RobotModel& m) {
+  double reach_m = 0.0;
+  for (int l = 0; l < m.legs(); ++l) reach_m = std::max(reach_m, leg_reach_m(m, l));
+  return reach_m;
+}
+
 bool has_prismatic_joints(const RobotModel& m) {
   return std::any_of(m.joint_type.begin(), m.joint_type.begin() + m.joints(),
                      [](JointType t) { return t == JointType::kPrismatic; });

@@ -307,6 +307,10 @@ void leg_motion(const RobotModel& model, int leg, const Vec3& p_H, const Mat3& F
 /// foot point, plus each prismatic joint's largest travel (max |limit|, 0 when unlimited).
 double leg_reach_m(const RobotModel& model, int leg);
 
+/// The largest leg_reach_m over the legs [m] (0 for a robot without legs): a bound on the trunk's
+/// height above its feet whatever the posture.
+double longest_leg_reach_m(const RobotModel& model);
+
 /// True when some joint of the model slides (JointType::kPrismatic).
 bool has_prismatic_joints(const RobotModel& model);
 

@@ -1,14 +1,12 @@
 #include "hexdyn/planning/plan.hpp"
 
-#include <algorithm>
 #include <cmath>
 
 namespace hexdyn {
 
 double settle_time_s(const Scene& scene, const RobotModel& model) {
-  if (scene.motion.trunk != TrunkPath::kBalanced || model.legs() == 0) return 0.0;
-  double reach_m = 0.0;
-  for (int l = 0; l < model.legs(); ++l) reach_m = std::max(reach_m, leg_reach_m(model, l));
+  if (scene.motion.trunk != TrunkPath::kBalanced) return 0.0;
+  const double reach_m = longest_leg_reach_m(model);
   const double g = model.gravity_W.norm();
   return reach_m > 0.0 && g > 0.0 ? kSettlePeriods * std::sqrt(reach_m / g) : 0.0;
 }

@@ -502,17 +502,19 @@ void plan_com_heights(Integrator& it, const Terrain& terrain) {
 }  // namespace
 
 double weight_moment_Nm(const RobotModel& model) {
-  double reach_m = 0.0;
-  for (int l = 0; l < model.legs(); ++l) reach_m = std::max(reach_m, leg_reach_m(model, l));
-  return model.total_mass_kg * kGravity * reach_m;
+  return model.total_mass_kg * model.gravity_W.norm() * longest_leg_reach_m(model);
+}
+
+bool weak_joint_pd(double kp_Nmprad, double weight_moment_Nm) {
+  return 0.1 * kp_Nmprad < weight_moment_Nm / 50.0;
 }
 
 ReplayParams resolved_gains(const ReplayParams& replay, const RobotModel& model) {
   ReplayParams g = replay;
   if (g.kp_auto) {
-    const double moment_Nm = weight_moment_Nm(model);
-    g.kp_Nmprad = moment_Nm > kAutoGainWeightMoment_Nm ? kAutoGainPerWeightMoment * moment_Nm
-                                                       : ReplayParams{}.kp_Nmprad;
+    const double moment_Nm = weight_moment_Nm(model), light_Nmprad = ReplayParams{}.kp_Nmprad;
+    g.kp_Nmprad = weak_joint_pd(light_Nmprad, moment_Nm) ? kAutoGainPerWeightMoment * moment_Nm
+                                                         : light_Nmprad;
   }
   if (g.kd_auto) g.kd_Nmsprad = 0.01 * g.kp_Nmprad;
   return g;

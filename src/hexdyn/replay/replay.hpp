@@ -147,19 +147,24 @@ ReplayResult replay_plan(const RobotModel& model, const ContactParams& contact,
                          const ReplayParams& replay, const TerrainParams& terrain,
                          const ReplayPlan& plan);
 
-/// A robot's weight moment m g l [N m] (model.total_mass_kg, kGravity, l the longest leg's
-/// reach, leg_reach_m) above which replay.kp: auto stiffens the joint PD.
-inline constexpr double kAutoGainWeightMoment_Nm = 50.0;
-/// replay.kp: auto on such a robot: this many N m/rad per N m of its weight moment.
-inline constexpr double kAutoGainPerWeightMoment = 1.1;
-
-/// The robot's weight moment m g l [N m] (kAutoGainWeightMoment_Nm).
+/// The robot's weight moment m g l [N m]: model.total_mass_kg, its gravity's magnitude and l
+/// the longest leg's reach (longest_leg_reach_m).
 double weight_moment_Nm(const RobotModel& model);
 
+/// Whether a joint PD of stiffness kp_Nmprad is weak against a weight moment: its torque at
+/// 0.1 rad is below a fiftieth of it (docs/user/replay.md#gains). The paper robot's 10 N m/rad
+/// give it 1 N m against 20 N m, a twentieth; ANYmal C's weight moment is 375 N m.
+bool weak_joint_pd(double kp_Nmprad, double weight_moment_Nm);
+
+/// replay.kp: auto on a robot for which ReplayParams' default stiffness is weak: this many
+/// N m/rad per N m of its weight moment.
+inline constexpr double kAutoGainPerWeightMoment = 1.1;
+
 /// The gains a replay of `model` uses (docs/user/replay.md#gains): given ones as given;
-/// replay.kp auto: ReplayParams' default 10 N m/rad (the paper robot's) for a robot whose weight
-/// moment is at most kAutoGainWeightMoment_Nm, else kAutoGainPerWeightMoment times it per rad;
-/// replay.kd auto: the stiffness times 0.01 s. The result's kp_auto and kd_auto stay as given.
+/// replay.kp auto: ReplayParams' default 10 N m/rad (the paper robot's) unless that is weak
+/// for the robot (weak_joint_pd: a weight moment above 50 N m), then kAutoGainPerWeightMoment
+/// times the weight moment per rad; replay.kd auto: the stiffness times 0.01 s. The result's
+/// kp_auto and kd_auto stay as given.
 ReplayParams resolved_gains(const ReplayParams& replay, const RobotModel& model);
 
 }  // namespace hexdyn

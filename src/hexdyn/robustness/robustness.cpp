@@ -36,7 +36,7 @@ struct Study {
   LegArray<Vec3> start_feet_W{};  ///< the plan's foot points (sphere centres) at its first instant
   /// The joint PD of every replay: the scene's, resolved for the planned robot (the controller
   /// does not know a world's payload).
-  ReplayParams gains;
+  ReplayParams gains{};
 };
 
 /// How far the robot must start above its planned first state on the terrain of `plan` so that
