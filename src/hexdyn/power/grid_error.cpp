@@ -277,6 +277,9 @@ void cubic_term_estimates(const std::vector<double>& t, const std::vector<char>&
                           const std::vector<SeriesView>& terms, const std::vector<Quadrature>& rule,
                           std::vector<std::vector<double>>& integral,
                           std::vector<std::vector<double>>& error, CubicEstimates* reuse) {
+  // The signed integrals too, kept for the energies' split into positive and negative work.
+  thread_local std::vector<std::vector<double>> signed_part;
+  signed_part.resize(terms.size());
   const std::size_t n = t.size() - 1;
   thread_local std::vector<char> keep;
   thread_local std::vector<std::ptrdiff_t> old_k;
@@ -291,15 +294,18 @@ void cubic_term_estimates(const std::vector<double>& t, const std::vector<char>&
     if (rule[i] != Quadrature::kCubic) continue;
     integral[i].assign(n, 0.0);
     error[i].assign(n, 0.0);
-    const CubicTarget target{terms[i], integral[i].data(), error[i].data()};
+    signed_part[i].assign(n, 0.0);
+    const CubicTarget target{terms[i], integral[i].data(), error[i].data(), signed_part[i].data()};
     if (!usable || reuse->integral[i].size() + 1 != reuse->t_s.size()) {
       fresh.push_back(target);
       continue;
     }
     for (std::size_t k = 0; k < n; ++k)
       if (keep[k]) {
-        integral[i][k] = reuse->integral[i][static_cast<std::size_t>(old_k[k])];
-        error[i][k] = reuse->error[i][static_cast<std::size_t>(old_k[k])];
+        const auto old = static_cast<std::size_t>(old_k[k]);
+        integral[i][k] = reuse->integral[i][old];
+        error[i][k] = reuse->error[i][old];
+        signed_part[i][k] = reuse->signed_integral[i][old];
       }
     rest.push_back(target);
   }
@@ -309,10 +315,12 @@ void cubic_term_estimates(const std::vector<double>& t, const std::vector<char>&
   reuse->t_s = t;
   reuse->integral.assign(terms.size(), {});
   reuse->error.assign(terms.size(), {});
+  reuse->signed_integral.assign(terms.size(), {});
   for (std::size_t i = 0; i < terms.size(); ++i)
     if (rule[i] == Quadrature::kCubic) {
       reuse->integral[i] = integral[i];
       reuse->error[i] = error[i];
+      reuse->signed_integral[i] = signed_part[i];
     }
 }
 

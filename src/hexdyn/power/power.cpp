@@ -71,17 +71,33 @@ const std::vector<std::vector<double>>& joint_interval_energies(
   return own;
 }
 
+/// Joint j's signed integral of τ_j ω_j by the piecewise-cubic rule: the sum of `known`'s
+/// interval terms when they belong to this grid (the same terms in the same order as
+/// cubic_integral's), else cubic_integral.
+double signed_joint_work(const KinematicsResult& kin, const RowMatrix& joint_power,
+                         const std::vector<char>& jump, const CubicEstimates* known, int j) {
+  const int J = static_cast<int>(joint_power.cols());
+  const std::size_t n = kin.time_s.empty() ? 0 : kin.time_s.size() - 1;
+  if (known && known->t_s == kin.time_s && known->signed_integral.size() > std::size_t(j) &&
+      known->signed_integral[j].size() == n) {
+    double sum = 0.0;
+    for (double v : known->signed_integral[j]) sum += v;
+    return sum;
+  }
+  return cubic_integral(kin.time_s, jump, {joint_power.data() + j, J});
+}
+
 /// The positive and negative parts of each joint's work (PowerResult), from its energy and
 /// its signed integral by the same rule.
 void split_work(const KinematicsResult& kin, const std::vector<char>& jump, bool cubic,
-                PowerResult& p) {
+                const CubicEstimates* known, PowerResult& p) {
   const int J = static_cast<int>(p.joint_power.cols());
   p.positive_work_joint_J.assign(J, 0.0);
   p.negative_work_joint_J.assign(J, 0.0);
   for (int j = 0; j < J; ++j) {
     const double* y = p.joint_power.data() + j;
     const double net =
-        cubic ? cubic_integral(kin.time_s, jump, {y, J}) : trapezoid(kin.time_s, y, J);
+        cubic ? signed_joint_work(kin, p.joint_power, jump, known, j) : trapezoid(kin.time_s, y, J);
     // |net| ≤ E_k holds for the rule's parts; the clamp keeps the signs through rounding.
     p.positive_work_joint_J[j] = std::max(0.0, 0.5 * (p.energy_joint_J[j] + net));
     p.negative_work_joint_J[j] = std::min(0.0, 0.5 * (net - p.energy_joint_J[j]));
@@ -116,7 +132,7 @@ PowerResult compute_power(const KinematicsResult& kin, const RowMatrix& joint_to
     }
     for (double e : (*parts)[j]) p.energy_joint_J[j] += e;
   }
-  split_work(kin, jump, cubic, p);
+  split_work(kin, jump, cubic, known, p);
   if (cubic) {
     for (double e : p.energy_joint_J) p.energy_total_J += e;
   } else {

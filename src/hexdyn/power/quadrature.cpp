@@ -221,15 +221,23 @@ double jump_integral(const std::vector<double>& t, SeriesView y, std::size_t k, 
 }
 
 /// ∫|y| over the part [a, b] ⊆ [0, 1] (in u) of interval k (not a jump interval) of stencil
-/// geometry g, and the estimated error over the whole interval when `error` is given.
+/// geometry g, the estimated error over the whole interval when `error` is given, and ∫y over
+/// the whole interval (cubic_integral's term) when `signed_part` is.
 double smooth_integral(const std::vector<double>& t, const StencilGeometry& g, SeriesView y,
-                       std::size_t k, double a, double b, double* error) {
+                       std::size_t k, double a, double b, double* error,
+                       double* signed_part = nullptr) {
   const double h = t[k + 1] - t[k];
   const Local L = local_polynomials(g, y);
   double ip = 0.0, iq = 0.0;
   abs_integrate(L, a, b, ip, iq);
   if (error) *error = L.bound ? 0.5 * h * std::abs(y[k + 1] - y[k]) : h * iq;
+  if (signed_part) *signed_part = h * integral(L.p, 4, 0.0, 1.0);
   return h * ip;
+}
+
+/// cubic_integral's term of the jump interval k: the trapezoid of y.
+double jump_signed(const std::vector<double>& t, SeriesView y, std::size_t k) {
+  return 0.5 * (t[k + 1] - t[k]) * (y[k] + y[k + 1]);
 }
 
 /// ∫|y| over the part [a, b] ⊆ [0, 1] (in u) of interval k of the piece [s, e], and the
@@ -259,12 +267,14 @@ void cubic_abs_integrals_batch(const std::vector<double>& t, const std::vector<c
         for (const CubicTarget& c : targets) {
           c.integral[k] = jump_integral(t, c.y, k, 0.0, 1.0);
           if (c.error) c.error[k] = 0.0;
+          if (c.signed_integral) c.signed_integral[k] = jump_signed(t, c.y, k);
         }
         continue;
       }
       const StencilGeometry g = stencil_geometry(t, s, e, k);
       for (const CubicTarget& c : targets)
-        c.integral[k] = smooth_integral(t, g, c.y, k, 0.0, 1.0, c.error ? c.error + k : nullptr);
+        c.integral[k] = smooth_integral(t, g, c.y, k, 0.0, 1.0, c.error ? c.error + k : nullptr,
+                                        c.signed_integral ? c.signed_integral + k : nullptr);
     }
     s = e + 1;
   }
@@ -292,13 +302,12 @@ double cubic_integral(const std::vector<double>& t, const std::vector<char>& jum
   for (std::size_t s = 0; s + 1 < T;) {
     const std::size_t e = piece_end(jump, s, T);
     for (std::size_t k = s; k <= std::min(e, T - 2); ++k) {
-      const double h = t[k + 1] - t[k];
       if (k == e) {
-        sum += 0.5 * h * (y[k] + y[k + 1]);
+        sum += jump_signed(t, y, k);
         continue;
       }
       const Local L = local_polynomials(stencil_geometry(t, s, e, k), y);
-      sum += h * integral(L.p, 4, 0.0, 1.0);
+      sum += (t[k + 1] - t[k]) * integral(L.p, 4, 0.0, 1.0);
     }
     s = e + 1;
   }

@@ -39,6 +39,8 @@ struct CubicEstimates {
   std::vector<double> t_s;                    ///< the grid they belong to
   std::vector<std::vector<double>> integral;  ///< per term (empty for a trapezoid term)
   std::vector<std::vector<double>> error;     ///< per term
+  /// per term, ∫p_k dt (signed) over each interval, as cubic_integral sums them
+  std::vector<std::vector<double>> signed_integral;
 };
 
 /// ∫|y| dt over every interval of the grid t_s (T increasing instants [s]) by the piecewise-cubic
@@ -58,6 +60,9 @@ struct CubicTarget {
   SeriesView y;
   double* integral = nullptr;
   double* error = nullptr;
+  /// when not null: ∫y dt (signed) over each interval by the same stencils, the terms
+  /// cubic_integral sums (T − 1 entries)
+  double* signed_integral = nullptr;
 };
 
 /// cubic_abs_integrals of several series on one grid at once (each interval's stencil is
