@@ -9,7 +9,10 @@
 //    problems it relaxes samples that an inscribed polygon shows feasible);
 //  - one leg that must carry a known force (h along a direction θ of its tangent plane, N
 //    along its normal), fixed by the trunk rows, whose μ* is known in closed form;
-//  - samples that no μ helps, NaN with the message that says why.
+//  - samples that no μ helps, NaN with the message that says why;
+//  - samples whose loaded feet are all in their touchdown transients (normal forces
+//    prescribed), certified without a probe where no tangential force meets the trunk rows,
+//    against the bisection.
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <iomanip>
@@ -349,6 +352,62 @@ TEST_CASE("required friction: NaN and the reason where no friction helps", "[req
                              joint_name(1, 1) + " (swing leg) by 0.5)");
     }
   }
+}
+
+TEST_CASE("required friction: prescribed normal forces, certified where no tangential force helps",
+          "[required_friction]") {
+  // A tripod (legs 0, 3, 4) in its touchdown transients, the other legs swinging. Level contact
+  // frames (the tangents horizontal): the vertical force row is Σ f̄_n whatever the friction, so
+  // a trunk wrench of the random sample (a 5 kg trunk, 49 N of it vertical against 30–45 N of
+  // impact force) is missed at every μ, and the certificate
+  // (docs/theory/grip.md#prescribed-normal-forces) settles it; a wrench made from the prescribed
+  // forces with tangential forces of up to half of them is met, and the certificate must not fire.
+  // Tilted frames give the tangential forces a vertical part: the probe decides. Every answer
+  // against the bisection.
+  std::mt19937 rng(11);
+  std::normal_distribution<double> g(0.0, 1.0);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  int certified = 0, met = 0;
+  for (int trial = 0; trial < 12; ++trial)
+    for (int kind = 0; kind < 3; ++kind) {  // 0 missed (level), 1 met (level), 2 tilted
+      Sample s = random_sample(rng, 0);
+      s.phase.fill(ContactPhase::kSwing);
+      Vec6 wrench = Vec6::Zero();
+      for (int l : {0, 3, 4}) {
+        s.phase[l] = ContactPhase::kImpact;
+        if (kind < 2)
+          s.frames[l] = Eigen::AngleAxisd(M_PI * u(rng), Vec3::UnitZ()).toRotationMatrix();
+        const Vec3 f =
+            s.frames[l] * Vec3(0.3 * s.impact[l] * u(rng), 0.3 * s.impact[l] * u(rng), s.impact[l]);
+        wrench += s.split.JbT[l] * f;
+      }
+      if (kind == 1) s.split.trunk_rhs = wrench;
+      for (FrictionModel model :
+           {FrictionModel::kPyramid4, FrictionModel::kPyramid8, FrictionModel::kCone}) {
+        const AllocationParams alloc = params(model);
+        RequiredFrictionSolver solver(make_allocation_backend(alloc));
+        QpProblem qp;
+        const AllocationLayout layout = build_at(alloc, s, 0.3, qp);
+        const RequiredFriction& r = solver.solve(qp, layout, nullptr);
+        const double expected = bisection_mu(alloc, s);
+        INFO("trial " << trial << " kind " << kind << " " << model_name(model) << ": " << r.mu
+                      << " vs " << expected << " (" << r.message << ")");
+        REQUIRE(std::isnan(r.mu) == std::isnan(expected));
+        if (!std::isnan(expected)) CHECK(std::abs(r.mu - expected) <= kAgreement);
+        const bool by_certificate = r.message.find("at the least miss") != std::string::npos;
+        if (kind == 0) {
+          CHECK(by_certificate);
+          CHECK(r.message.rfind("required friction: no friction coefficient up to 1000 admits "
+                                "the rows (trunk force z by ",
+                                0) == 0);
+        }
+        if (kind == 1) CHECK(!std::isnan(r.mu));
+        certified += by_certificate;
+        met += !std::isnan(r.mu);
+      }
+    }
+  CHECK(certified >= 36);  // every missed sample, under each model
+  CHECK(met >= 36);        // every sample made from the prescribed forces
 }
 
 }  // namespace hexdyn
