@@ -614,6 +614,16 @@ const RequiredFriction& RequiredFrictionSolver::solve(const QpProblem& qp,
       return s.out;
     }
     s.load(qp);
+    // Before the probe just below `enough`: the allocation's forces moved along the trunk rows'
+    // null space to the least tangential forces, which often use less (internal_forces.hpp).
+    if (allocation && enough > 0.0) {
+      const double moved = internal_force_use(qp, layout, *allocation, s.internal, leg);
+      if (moved < s.below_enough()) {
+        s.settle_below(moved, s.internal.x, leg);
+        s.last_nan = false;
+        return s.out;
+      }
+    }
     s.solve_polygonal(layout, allocation);
   } else {
     s.solve_cone(qp, layout, allocation);

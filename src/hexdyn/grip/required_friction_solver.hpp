@@ -17,6 +17,7 @@
 
 #include "hexdyn/allocation/goldfarb_idnani.hpp"
 #include "hexdyn/core/sizes.hpp"
+#include "hexdyn/grip/internal_forces.hpp"
 #include "hexdyn/grip/required_friction.hpp"
 
 namespace hexdyn {
@@ -162,9 +163,10 @@ struct RequiredFrictionSolver::Impl {
     answer_x = x;
   }
   bool probe_below_enough(const AllocationLayout& layout);
-  bool last_nan = false;  ///< the previous polygon problem had no μ* ≤ mu_max
-  int bad_row = -1;       ///< kRowViolated: the violated row; kWrongSign: the index in the set
-  int bad_side = 0;       ///< kRowViolated: the violated side
+  InternalForceWorkspace internal;  ///< internal_force_use's scratch
+  bool last_nan = false;            ///< the previous polygon problem had no μ* ≤ mu_max
+  int bad_row = -1;  ///< kRowViolated: the violated row; kWrongSign: the index in the set
+  int bad_side = 0;  ///< kRowViolated: the violated side
 
   Impl(std::unique_ptr<AllocationBackend> b, const RequiredFrictionOptions& o)
       : opt(o), backend(std::move(b)) {

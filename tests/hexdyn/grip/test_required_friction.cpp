@@ -12,7 +12,9 @@
 //  - samples that no μ helps, NaN with the message that says why;
 //  - samples whose loaded feet are all in their touchdown transients (normal forces
 //    prescribed), certified without a probe where no tangential force meets the trunk rows,
-//    against the bisection.
+//    against the bisection;
+//  - the bound of a held sample's internal forces (grip/internal_forces.hpp): never below the
+//    bisection's μ*, its forces holding every row at that friction.
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <iomanip>
@@ -23,6 +25,7 @@
 #include "hexdyn/allocation/backends.hpp"
 #include "hexdyn/allocation/problem.hpp"
 #include "hexdyn/core/spatial.hpp"
+#include "hexdyn/grip/internal_forces.hpp"
 #include "hexdyn/grip/required_friction.hpp"
 
 namespace hexdyn {
@@ -408,6 +411,46 @@ TEST_CASE("required friction: prescribed normal forces, certified where no tange
     }
   CHECK(certified >= 36);  // every missed sample, under each model
   CHECK(met >= 36);        // every sample made from the prescribed forces
+}
+
+TEST_CASE("required friction: the internal forces' bound is above mu* and its forces hold",
+          "[required_friction]") {
+  // Held samples (the allocation at μ = 0.8 holds every row) of the random problems: the
+  // forces moved along the trunk rows' null space use a friction u that bounds μ* from above,
+  // so u ≥ the bisection's μ*, and they hold every row of the problem built at μ = u.
+  int improved = 0, held = 0;
+  for (FrictionModel model : {FrictionModel::kPyramid4, FrictionModel::kPyramid8})
+    for (int variant = 0; variant < 3; ++variant) {
+      std::mt19937 rng(100 + variant);
+      for (int trial = 0; trial < 10; ++trial) {
+        const Sample s = random_sample(rng, variant);
+        const AllocationParams alloc = params(model);
+        QpProblem qp;
+        const AllocationLayout layout = build_at(alloc, s, 0.8, qp);
+        auto backend = make_allocation_backend(alloc);
+        const QpOutcome& a = backend->solve(qp);
+        double worst = 0.0;
+        describe_violations(qp, a.x, kViolationThreshold, &worst);
+        if (a.status != SolverStatus::kOptimal || worst > kViolationThreshold) continue;
+        ++held;
+        InternalForceWorkspace ws;
+        int leg = -1;
+        const double u = internal_force_use(qp, layout, a.x, ws, leg);
+        const double use = friction_use(qp, layout, a.x);
+        INFO(model_name(model) << " variant " << variant << " trial " << trial << ": u " << u
+                               << ", allocation's use " << use);
+        REQUIRE(u <= use);  // the step may be 0: x_a itself
+        const double expected = bisection_mu(alloc, s);
+        CHECK(u >= expected - kAgreement);
+        QpProblem at_u;
+        build_at(alloc, s, u * (1.0 + 1e-9), at_u);
+        CHECK(describe_violations(at_u, ws.x, kViolationThreshold, &worst).empty());
+        CHECK(leg >= 0);
+        improved += u < 0.99 * use;
+      }
+    }
+  CHECK(held >= 20);
+  CHECK(improved >= held / 4);  // the moves lower the friction the forces use
 }
 
 }  // namespace hexdyn
