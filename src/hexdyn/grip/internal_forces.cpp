@@ -69,7 +69,7 @@ double internal_force_use(const QpProblem& qp, const AllocationLayout& layout,
   ws.ldlt.compute(ws.schur);
   ws.trial = ws.inverse_weight.cwiseProduct(ws.gradient);  // D⁻¹ d
   ws.lambda.noalias() = -(ws.trunk_t.transpose() * ws.trial);
-  ws.lambda = ws.ldlt.solve(ws.lambda);
+  ws.ldlt.solveInPlace(ws.lambda);
   ws.dx = -ws.trial;
   ws.dx.noalias() -= ws.scaled * ws.lambda;
   if (!ws.dx.allFinite()) return kInf;

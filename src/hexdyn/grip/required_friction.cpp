@@ -1,92 +1,27 @@
 #include "hexdyn/grip/required_friction.hpp"
 
-#include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <iomanip>
 #include <limits>
 #include <sstream>
 #include <string>
 #include <utility>
-#include <vector>
 
+#include "hexdyn/grip/prescribed_normals.hpp"
 #include "hexdyn/grip/required_friction_solver.hpp"
 
 namespace hexdyn {
 namespace {
 
-/// The certificate of a sample whose trunk rows no friction coefficient up to `mu_max` can
-/// meet because every loaded foot's normal force is prescribed
-/// (docs/theory/grip.md#prescribed-normal-forces): each leg with variables is in its touchdown
-/// transient, its only variables its tangential forces, inside the circle of radius
-/// mu_max f̄_n that holds every face or cone of the friction model. With D the rows' scales 1 /
-/// max(1, |b_i|), the rows' miss ‖D (C x − b)‖₂ is at least |uᵀ D b| − σ_u X for every left
-/// singular vector u of D C (σ_u its singular value, 0 beyond the rank) and every x of norm at most
-/// X. Returns that bound at its best u (> 0: no x holds the rows to the probes' 1e-8 once it
-/// exceeds √6·1e-8); 0 when the sample has a support leg, whose normal force is unbounded above.
-double prescribed_trunk_miss(const QpProblem& qp, const AllocationLayout& layout, double mu_max) {
-  constexpr int R = AllocationLayout::kTrunkRows;
-  const int n = qp.variables();
-  if (n == 0 || qp.inequalities() < R) return 0.0;
-  double radius2 = 0.0;
-  int counted = 0;
-  for (int l = 0; l < layout.n_legs; ++l) {
-    const AllocationLayout::Leg& leg = layout.legs[l];
-    if (leg.count == 0) continue;
-    if (leg.count != 2 || (leg.friction_faces == 0 && leg.cone < 0)) return 0.0;
-    radius2 += leg.known_normal_force_N * leg.known_normal_force_N;
-    counted += leg.count;
-  }
-  if (counted != n) return 0.0;
-  const double X = mu_max * std::sqrt(radius2);
-  Eigen::Matrix<double, R, Eigen::Dynamic> M(R, n);
-  Eigen::Matrix<double, R, 1> b;
-  for (int i = 0; i < R; ++i) {
-    if (!(qp.lower[i] == qp.upper[i]) || !std::isfinite(qp.lower[i])) return 0.0;
-    const double scale = 1.0 / std::max(1.0, std::abs(qp.lower[i]));
-    M.row(i) = scale * qp.C.row(i);
-    b[i] = scale * qp.lower[i];
-  }
-  const Eigen::JacobiSVD<Eigen::Matrix<double, R, Eigen::Dynamic>> svd(M, Eigen::ComputeFullU);
-  double best = 0.0;
-  for (int k = 0; k < R; ++k) {
-    const double sigma = k < svd.singularValues().size() ? svd.singularValues()[k] : 0.0;
-    best = std::max(best, std::abs(svd.matrixU().col(k).dot(b)) - sigma * X);
-  }
-  return best;
+/// The message of a sample without μ*: no friction coefficient up to mu_max admits its rows,
+/// and, when `why` is not empty, what still fails there.
+std::string no_friction_message(double mu_max, const std::string& why) {
+  std::ostringstream s;
+  s << "required friction: no friction coefficient up to " << mu_max << " admits the rows";
+  if (!why.empty()) s << " (" << why << ")";
+  return s.str();
 }
-
-/// The trunk rows' misses at the forces that come closest to them (the least-squares forces of
-/// the scaled rows, tangential bounds aside), largest first, as describe_violations names rows:
-/// "trunk force z by 65.7, trunk moment x by 0.247".
-std::string prescribed_trunk_text(const QpProblem& qp) {
-  constexpr int R = AllocationLayout::kTrunkRows;
-  const int n = qp.variables();
-  Eigen::Matrix<double, R, Eigen::Dynamic> M(R, n);
-  Eigen::Matrix<double, R, 1> b, scale;
-  for (int i = 0; i < R; ++i) {
-    scale[i] = std::max(1.0, std::abs(qp.lower[i]));
-    M.row(i) = qp.C.row(i) / scale[i];
-    b[i] = qp.lower[i] / scale[i];
-  }
-  const Eigen::VectorXd x =
-      Eigen::JacobiSVD<Eigen::MatrixXd>(M, Eigen::ComputeThinU | Eigen::ComputeThinV).solve(b);
-  const Eigen::Matrix<double, R, 1> miss = (M * x - b).cwiseProduct(scale).cwiseAbs();
-  std::vector<int> rows;
-  for (int i = 0; i < R; ++i)
-    if (miss[i] > kProbeThreshold * scale[i]) rows.push_back(i);
-  std::stable_sort(rows.begin(), rows.end(), [&](int a, int c) { return miss[a] > miss[c]; });
-  std::ostringstream text;
-  text << std::setprecision(3);  // as describe_violations
-  for (std::size_t k = 0; k < rows.size(); ++k)
-    text << (k ? ", " : "") << qp.ineq_name(rows[k]) << " by " << miss[rows[k]];
-  return text.str();
-}
-
-/// A miss of prescribed_trunk_miss that certifies the sample: 100 times the largest miss a
-/// probe accepts (√6 · kProbeThreshold), far above the decomposition's rounding.
-constexpr double kCertifiedTrunkMiss = 1e-6;
 
 }  // namespace
 
@@ -413,12 +348,9 @@ bool RequiredFrictionSolver::Impl::upper_end(const AllocationLayout& layout,
   }
   std::string why;
   if (!feasible_at(layout, opt.mu_max, x_hi, opt.reasons ? &why : nullptr)) {
-    std::ostringstream s;
-    s << "required friction: no friction coefficient up to " << opt.mu_max << " admits the rows";
-    if (opt.reasons) s << " (" << why << ")";
     out.mu = std::numeric_limits<double>::quiet_NaN();
     out.method = RequiredFrictionMethod::kNone;
-    out.message = s.str();
+    out.message = no_friction_message(opt.mu_max, why);
     return false;
   }
   hi = std::min(opt.mu_max, friction_use(work, layout, x_hi));
@@ -590,15 +522,13 @@ const RequiredFriction& RequiredFrictionSolver::solve(const QpProblem& qp,
   if (prescribed_trunk_miss(qp, layout, s.opt.mu_max) > kCertifiedTrunkMiss) {
     // No probe needed: every loaded foot's normal force is prescribed, and no tangential force
     // closes the trunk rows (a touchdown transient's samples under the paper's impact).
-    std::ostringstream text;
-    text << "required friction: no friction coefficient up to " << s.opt.mu_max
-         << " admits the rows";
-    if (s.opt.reasons)
-      text << " (" << prescribed_trunk_text(qp)
-           << " at the least miss: every loaded foot's normal force is prescribed)";
     s.out.mu = std::numeric_limits<double>::quiet_NaN();
     s.out.method = RequiredFrictionMethod::kNone;
-    s.out.message = text.str();
+    s.out.message = no_friction_message(
+        s.opt.mu_max, s.opt.reasons ? prescribed_trunk_text(qp) +
+                                          " at the least miss: every loaded foot's normal "
+                                          "force is prescribed"
+                                    : std::string());
     s.last_nan = true;
     return s.out;
   }

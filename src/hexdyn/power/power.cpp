@@ -53,51 +53,45 @@ std::vector<char> jump_intervals(const KinematicsResult& kin) {
 
 namespace {
 
-/// Each joint's interval integrals of |τ_k ω_k| by the piecewise-cubic rule: `known`'s when
-/// they belong to this grid, else computed (all joints at once).
-const std::vector<std::vector<double>>& joint_interval_energies(
-    const KinematicsResult& kin, const RowMatrix& joint_power, const std::vector<char>& jump,
-    const CubicEstimates* known, std::vector<std::vector<double>>& own) {
+/// Each joint's interval integrals of |τ_k ω_k| and of τ_k ω_k by the piecewise-cubic rule:
+/// `known`'s when they belong to this grid, else computed into `own` (all joints at once).
+const CubicEstimates& joint_interval_estimates(const KinematicsResult& kin,
+                                               const RowMatrix& joint_power,
+                                               const std::vector<char>& jump,
+                                               const CubicEstimates* known, CubicEstimates& own) {
   const std::size_t n = kin.time_s.empty() ? 0 : kin.time_s.size() - 1;
-  const int J = static_cast<int>(joint_power.cols());
-  bool usable =
-      known && known->t_s == kin.time_s && known->integral.size() >= static_cast<std::size_t>(J);
-  for (int j = 0; usable && j < J; ++j) usable = known->integral[j].size() == n;
-  if (usable) return known->integral;
-  own.assign(J, std::vector<double>(n, 0.0));
+  const auto J = static_cast<std::size_t>(joint_power.cols());
+  bool usable = known && known->t_s == kin.time_s && known->integral.size() >= J &&
+                known->signed_integral.size() >= J;
+  for (std::size_t j = 0; usable && j < J; ++j)
+    usable = known->integral[j].size() == n && known->signed_integral[j].size() == n;
+  if (usable) return *known;
+  own.integral.assign(J, std::vector<double>(n, 0.0));
+  own.signed_integral.assign(J, std::vector<double>(n, 0.0));
   std::vector<CubicTarget> targets;
-  for (int j = 0; j < J; ++j) targets.push_back({{joint_power.data() + j, J}, own[j].data()});
+  for (std::size_t j = 0; j < J; ++j)
+    targets.push_back({{joint_power.data() + j, static_cast<int>(J)},
+                       own.integral[j].data(),
+                       nullptr,
+                       own.signed_integral[j].data()});
   cubic_abs_integrals_batch(kin.time_s, jump, targets);
   return own;
 }
 
-/// Joint j's signed integral of τ_j ω_j by the piecewise-cubic rule: the sum of `known`'s
-/// interval terms when they belong to this grid (the same terms in the same order as
-/// cubic_integral's), else cubic_integral.
-double signed_joint_work(const KinematicsResult& kin, const RowMatrix& joint_power,
-                         const std::vector<char>& jump, const CubicEstimates* known, int j) {
-  const int J = static_cast<int>(joint_power.cols());
-  const std::size_t n = kin.time_s.empty() ? 0 : kin.time_s.size() - 1;
-  if (known && known->t_s == kin.time_s && known->signed_integral.size() > std::size_t(j) &&
-      known->signed_integral[j].size() == n) {
-    double sum = 0.0;
-    for (double v : known->signed_integral[j]) sum += v;
-    return sum;
-  }
-  return cubic_integral(kin.time_s, jump, {joint_power.data() + j, J});
-}
-
 /// The positive and negative parts of each joint's work (PowerResult), from its energy and
-/// its signed integral by the same rule.
-void split_work(const KinematicsResult& kin, const std::vector<char>& jump, bool cubic,
-                const CubicEstimates* known, PowerResult& p) {
+/// its signed integral by the same rule: the sum of `parts`' signed interval terms (the cubic
+/// rule), or the trapezoid when `parts` is null.
+void split_work(const KinematicsResult& kin, const CubicEstimates* parts, PowerResult& p) {
   const int J = static_cast<int>(p.joint_power.cols());
   p.positive_work_joint_J.assign(J, 0.0);
   p.negative_work_joint_J.assign(J, 0.0);
   for (int j = 0; j < J; ++j) {
     const double* y = p.joint_power.data() + j;
-    const double net =
-        cubic ? signed_joint_work(kin, p.joint_power, jump, known, j) : trapezoid(kin.time_s, y, J);
+    double net = 0.0;
+    if (parts)
+      for (double v : parts->signed_integral[j]) net += v;
+    else
+      net = trapezoid(kin.time_s, y, J);
     // |net| ≤ E_k holds for the rule's parts; the clamp keeps the signs through rounding.
     p.positive_work_joint_J[j] = std::max(0.0, 0.5 * (p.energy_joint_J[j] + net));
     p.negative_work_joint_J[j] = std::min(0.0, 0.5 * (net - p.energy_joint_J[j]));
@@ -121,18 +115,18 @@ PowerResult compute_power(const KinematicsResult& kin, const RowMatrix& joint_to
   for (int i = 0; i < T; ++i) p.total_power_W[i] = abs_power.row(i).sum();
   const bool cubic = rule == Quadrature::kCubic;
   const std::vector<char> jump = cubic ? jump_intervals(kin) : std::vector<char>{};
-  std::vector<std::vector<double>> own;
-  const std::vector<std::vector<double>>* parts =
-      cubic ? &joint_interval_energies(kin, p.joint_power, jump, known, own) : nullptr;
+  CubicEstimates own;
+  const CubicEstimates* parts =
+      cubic ? &joint_interval_estimates(kin, p.joint_power, jump, known, own) : nullptr;
   p.energy_joint_J.assign(J, 0.0);
   for (int j = 0; j < J; ++j) {
     if (!cubic) {
       p.energy_joint_J[j] = trapezoid(kin.time_s, abs_power.data() + j, J);
       continue;
     }
-    for (double e : (*parts)[j]) p.energy_joint_J[j] += e;
+    for (double e : parts->integral[j]) p.energy_joint_J[j] += e;
   }
-  split_work(kin, jump, cubic, known, p);
+  split_work(kin, parts, p);
   if (cubic) {
     for (double e : p.energy_joint_J) p.energy_total_J += e;
   } else {
@@ -148,7 +142,7 @@ PowerResult compute_power(const KinematicsResult& kin, const RowMatrix& joint_to
     if (!cubic) e = trapezoid_between(kin.time_s, p.total_power_W.data(), a, b);
     for (int j = 0; cubic && j < J; ++j)
       e += cubic_abs_integral_between(kin.time_s, jump, {p.joint_power.data() + j, J}, a, b,
-                                      (*parts)[j].data());
+                                      parts->integral[j].data());
     p.energy_cycle_J.push_back(e);
   }
   p.distance_m = distance_m;

@@ -21,7 +21,7 @@ struct PowerResult {
   double energy_total_J = 0.0;         ///< ∫ total_power_W over the samples by the rule [J]
   std::vector<double> energy_cycle_J;  ///< Y, per gait cycle; sums to energy_total_J [J]
   /// Joints: the positive and negative parts of ∫τ_k ω_k, (E_k ± W_k) / 2 with W_k the signed
-  /// integral by the same rule (cubic_integral or the trapezoid): ≥ 0 and ≤ 0 [J].
+  /// integral by the same rule (CubicTarget::signed_integral, or the trapezoid): ≥ 0 and ≤ 0 [J].
   std::vector<double> positive_work_joint_J, negative_work_joint_J;
   double positive_work_J = 0.0, negative_work_J = 0.0;  ///< sums over the joints [J]
   double distance_m = 0.0;                              ///< travel for the cost of transport [m]

@@ -222,7 +222,7 @@ double jump_integral(const std::vector<double>& t, SeriesView y, std::size_t k, 
 
 /// ∫|y| over the part [a, b] ⊆ [0, 1] (in u) of interval k (not a jump interval) of stencil
 /// geometry g, the estimated error over the whole interval when `error` is given, and ∫y over
-/// the whole interval (cubic_integral's term) when `signed_part` is.
+/// the whole interval (CubicTarget::signed_integral) when `signed_part` is.
 double smooth_integral(const std::vector<double>& t, const StencilGeometry& g, SeriesView y,
                        std::size_t k, double a, double b, double* error,
                        double* signed_part = nullptr) {
@@ -235,7 +235,7 @@ double smooth_integral(const std::vector<double>& t, const StencilGeometry& g, S
   return h * ip;
 }
 
-/// cubic_integral's term of the jump interval k: the trapezoid of y.
+/// ∫y over the jump interval k (CubicTarget::signed_integral): the trapezoid of y.
 double jump_signed(const std::vector<double>& t, SeriesView y, std::size_t k) {
   return 0.5 * (t[k + 1] - t[k]) * (y[k] + y[k + 1]);
 }
@@ -293,24 +293,6 @@ double cubic_abs_integral(const std::vector<double>& t, const std::vector<char>&
   cubic_abs_integrals(t, jump, y, parts, nullptr);
   double sum = 0.0;
   for (double v : parts) sum += v;
-  return sum;
-}
-
-double cubic_integral(const std::vector<double>& t, const std::vector<char>& jump, SeriesView y) {
-  const std::size_t T = t.size();
-  double sum = 0.0;
-  for (std::size_t s = 0; s + 1 < T;) {
-    const std::size_t e = piece_end(jump, s, T);
-    for (std::size_t k = s; k <= std::min(e, T - 2); ++k) {
-      if (k == e) {
-        sum += jump_signed(t, y, k);
-        continue;
-      }
-      const Local L = local_polynomials(stencil_geometry(t, s, e, k), y);
-      sum += (t[k + 1] - t[k]) * integral(L.p, 4, 0.0, 1.0);
-    }
-    s = e + 1;
-  }
   return sum;
 }
 

@@ -39,7 +39,7 @@ struct CubicEstimates {
   std::vector<double> t_s;                    ///< the grid they belong to
   std::vector<std::vector<double>> integral;  ///< per term (empty for a trapezoid term)
   std::vector<std::vector<double>> error;     ///< per term
-  /// per term, ∫p_k dt (signed) over each interval, as cubic_integral sums them
+  /// per term, ∫y dt (signed) over each interval (CubicTarget::signed_integral)
   std::vector<std::vector<double>> signed_integral;
 };
 
@@ -60,8 +60,9 @@ struct CubicTarget {
   SeriesView y;
   double* integral = nullptr;
   double* error = nullptr;
-  /// when not null: ∫y dt (signed) over each interval by the same stencils, the terms
-  /// cubic_integral sums (T − 1 entries)
+  /// when not null: ∫y dt (signed) over each interval by the same stencils, ∫p_k over a smooth
+  /// interval and the trapezoid over a jump interval (T − 1 entries); their sum and that of the
+  /// |y| integrals split ∫|y| into its positive and negative parts, (∫|y| ± ∫y) / 2, to rounding
   double* signed_integral = nullptr;
 };
 
@@ -75,11 +76,6 @@ void cubic_abs_integrals_batch(const std::vector<double>& t_s, const std::vector
 /// The sum of cubic_abs_integrals: ∫|y| dt over [t_0, t_{T−1}] by the rule.
 double cubic_abs_integral(const std::vector<double>& t_s, const std::vector<char>& jump,
                           SeriesView y);
-
-/// ∫y dt (signed) over [t_0, t_{T−1}] by the same stencils: ∫p_k over each smooth interval,
-/// the trapezoid over a jump interval. With cubic_abs_integral it splits ∫|y| into its positive
-/// and negative parts, (∫|y| ± ∫y) / 2, to rounding.
-double cubic_integral(const std::vector<double>& t_s, const std::vector<char>& jump, SeriesView y);
 
 /// ∫|y| dt over [a, b] ⊆ [t_0, t_{T−1}] (a ≤ b) by the rule: whole intervals as above, and the
 /// interval a bound falls in integrates its own p_k up to the bound, so that the integrals over
