@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "hexdyn/contact/impact.hpp"
@@ -86,25 +87,61 @@ Vec3 segment_normal(const std::vector<double>& y, const std::vector<double>& z, 
   return Vec3(0.0, -dz / len, dy / len);
 }
 
+/// Squared distance from (py, pz) to segment k of the polyline (the first and last segments
+/// continued as rays beyond the ends, unless vertical) and its nearest point; false for a
+/// segment of zero length.
+bool segment_distance(const std::vector<double>& y, const std::vector<double>& z, std::size_t k,
+                      double py, double pz, NearestFeature& out) {
+  const std::size_t last = y.size() - 2;
+  const double dy = y[k + 1] - y[k], dz = z[k + 1] - z[k], len2 = dy * dy + dz * dz;
+  if (len2 == 0.0) return false;
+  const double u = ((py - y[k]) * dy + (pz - z[k]) * dz) / len2;
+  const double lo = k == 0 && dy > 0.0 ? -std::numeric_limits<double>::infinity() : 0.0;
+  const double hi = k == last && dy > 0.0 ? std::numeric_limits<double>::infinity() : 1.0;
+  const double uc = std::clamp(u, lo, hi);
+  const double cy = y[k] + uc * dy, cz = z[k] + uc * dz;
+  out = {(py - cy) * (py - cy) + (pz - cz) * (pz - cz), cy, cz, k, uc == 0.0 || uc == 1.0};
+  return true;
+}
+
+/// The segments [first, last] that can hold the nearest feature to (py, pz), y non-decreasing:
+/// the segment over py bounds the distance by d, and a segment whose y-span lies farther than d
+/// from py is farther than d from the point. The end segments (rays) are always candidates.
+std::pair<std::size_t, std::size_t> candidate_segments(const std::vector<double>& y,
+                                                       const std::vector<double>& z, double py,
+                                                       double pz) {
+  const std::size_t last = y.size() - 2;
+  if (!std::isfinite(py) || !std::isfinite(pz)) return {0, last};
+  const auto index = [&](auto it) { return static_cast<std::size_t>(it - y.begin()); };
+  const std::size_t above = index(std::upper_bound(y.begin(), y.end(), py));
+  const std::size_t k0 = std::min(last, above == 0 ? 0 : above - 1);
+  NearestFeature f;
+  const double d = segment_distance(y, z, k0, py, pz, f)
+                       ? std::sqrt(f.distance2)
+                       : std::hypot(py - y[k0], pz - z[k0]);  // a point: still a bound
+  const std::size_t from = index(std::lower_bound(y.begin(), y.end(), py - d));
+  const std::size_t to = index(std::upper_bound(y.begin(), y.end(), py + d));
+  return {from == 0 ? 0 : std::min(last, from - 1), to == 0 ? 0 : std::min(last, to - 1)};
+}
+
 /// The nearest feature of the polyline (its first and last segments continued as rays beyond
-/// the ends, unless vertical) to (py, pz). On a tie a face wins over a vertex.
+/// the ends, unless vertical) to (py, pz). On a tie a face wins over a vertex, and of two
+/// faces (or vertices) the first. Only the candidate segments are measured, in order: a
+/// segment left out is farther than the one over py, so the result is the full scan's.
 NearestFeature nearest_feature(const std::vector<double>& y, const std::vector<double>& z,
                                double py, double pz) {
   NearestFeature best;
   const std::size_t last = y.size() - 2;
-  for (std::size_t k = 0; k + 1 < y.size(); ++k) {
-    const double dy = y[k + 1] - y[k], dz = z[k + 1] - z[k], len2 = dy * dy + dz * dz;
-    if (len2 == 0.0) continue;
-    const double u = ((py - y[k]) * dy + (pz - z[k]) * dz) / len2;
-    const double lo = k == 0 && dy > 0.0 ? -std::numeric_limits<double>::infinity() : 0.0;
-    const double hi = k == last && dy > 0.0 ? std::numeric_limits<double>::infinity() : 1.0;
-    const double uc = std::clamp(u, lo, hi);
-    const double cy = y[k] + uc * dy, cz = z[k] + uc * dz;
-    const double d2 = (py - cy) * (py - cy) + (pz - cz) * (pz - cz);
-    const bool vertex = uc == 0.0 || uc == 1.0;
-    if (d2 < best.distance2 || (d2 == best.distance2 && best.vertex && !vertex))
-      best = {d2, cy, cz, k, vertex};
-  }
+  const auto [from, to] = candidate_segments(y, z, py, pz);
+  const auto consider = [&](std::size_t k) {
+    NearestFeature f;
+    if (!segment_distance(y, z, k, py, pz, f)) return;
+    if (f.distance2 < best.distance2 || (f.distance2 == best.distance2 && best.vertex && !f.vertex))
+      best = f;
+  };
+  if (from > 0) consider(0);
+  for (std::size_t k = from; k <= to; ++k) consider(k);
+  if (to < last) consider(last);
   return best;
 }
 
@@ -118,8 +155,13 @@ double profile_height(const std::vector<double>& y, const std::vector<double>& z
   };
   if (py < y.front()) return on(0);
   if (py > y.back()) return on(last);
+  // The segments whose y-span holds py (y non-decreasing): from the one before the first y ≥ py
+  // to the one at the last y ≤ py; the last of them with a positive span gives the height.
+  const auto index = [&](auto it) { return static_cast<std::size_t>(it - y.begin()); };
+  const std::size_t first_at = index(std::lower_bound(y.begin(), y.end(), py));
+  const std::size_t past = index(std::upper_bound(y.begin(), y.end(), py));
   double h = z.front();
-  for (std::size_t k = 0; k + 1 < y.size(); ++k)
+  for (std::size_t k = first_at == 0 ? 0 : first_at - 1; k + 1 < y.size() && k + 1 <= past; ++k)
     if (py >= y[k] && py <= y[k + 1] && y[k + 1] > y[k]) h = on(k);
   return h;
 }

@@ -115,6 +115,9 @@ RobotData::RobotData(const RobotModel& model)
 
 void update_kinematics(const RobotModel& model, RobotData& data, const BaseState& state,
                        const JointVector& q) {
+  if (data.kinematics_valid && data.kinematics_q.size() == q.size() && data.kinematics_q == q &&
+      data.kinematics_p_W == state.p_W && data.kinematics_W_R_B == state.W_R_B)
+    return;
   data.X_parent_body[0] = Transform::Identity();
   data.X_world_body[0] = Transform{state.W_R_B, state.p_W};
   for (int b = 1; b < model.bodies(); ++b) {
@@ -129,6 +132,10 @@ void update_kinematics(const RobotModel& model, RobotData& data, const BaseState
     }
     data.X_world_body[b] = data.X_world_body[model.parent[b]] * X;
   }
+  data.kinematics_q = q;
+  data.kinematics_p_W = state.p_W;
+  data.kinematics_W_R_B = state.W_R_B;
+  data.kinematics_valid = true;
 }
 
 const DofVector& rnea(const RobotModel& model, RobotData& data, const BaseState& state,

@@ -502,4 +502,34 @@ TEST_CASE("sphere feet: contact point accelerations match finite differences",
   }
 }
 
+TEST_CASE("update_kinematics keeps a state's transforms and recomputes on any change",
+          "[dynamics]") {
+  // One workspace asked for states in turn (the same state again, one joint angle changed, the
+  // trunk moved or turned) against a fresh workspace for each: the same transforms, bit for
+  // bit, and a change in any one input is never taken for the state before.
+  std::mt19937 rng(97);
+  for (const RobotModel& model : sample_models()) {
+    RobotData kept(model);
+    for (int n = 0; n < kStatesPerRobot; ++n) {
+      const Sample a = random_sample(rng);
+      Sample b = a;
+      const int which = n % 3;
+      if (which == 0) b.q[n % model.joints()] += 1e-9;
+      if (which == 1) b.state.p_W.z() += 1e-12;
+      if (which == 2) b.state.W_R_B = random_rotation(rng);
+      for (const Sample* s : std::initializer_list<const Sample*>{&a, &a, &b, &a, &b, &b}) {
+        update_kinematics(model, kept, s->state, s->q);
+        RobotData fresh(model);
+        update_kinematics(model, fresh, s->state, s->q);
+        for (int body = 0; body < model.bodies(); ++body) {
+          REQUIRE(kept.X_world_body[body].R == fresh.X_world_body[body].R);
+          REQUIRE(kept.X_world_body[body].p == fresh.X_world_body[body].p);
+          REQUIRE(kept.X_parent_body[body].R == fresh.X_parent_body[body].R);
+          REQUIRE(kept.X_parent_body[body].p == fresh.X_parent_body[body].p);
+        }
+      }
+    }
+  }
+}
+
 }  // namespace hexdyn
