@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <sstream>
 #include <string>
 #include <utility>
 
@@ -118,12 +119,23 @@ LegIkResult ik_yaw_pitch_pitch(const RobotModel& m, int leg, const Vec3& p) {
 /// Levenberg–Marquardt on the FK with the analytic Jacobian, from a fixed list of starts
 /// (the model's q_start first): the first start that converges to |p_foot − p| ≤ 1e-12 m
 /// inside the joint limits wins. The margin reported is the smallest singular value of
-/// the leg Jacobian [m/rad], the distance of the leg to a singular configuration.
+/// the leg Jacobian [m/rad], the distance of the leg to a singular configuration. When no
+/// start reaches the target, the margin is minus the smallest distance left between foot and
+/// target over the starts [m]: how far beyond the leg's reach the target lies, as far as the
+/// iteration found (a target within reach that no start converges to shows as a small miss).
 LegIkResult ik_numeric(const RobotModel& m, int leg, const Vec3& p) {
   const LegIkData& d = m.leg_ik[leg];
   LegIkResult best;
-  best.reason = "no joint angles reach the foot target (Levenberg-Marquardt did not converge)";
-  best.margin_m = -1.0;
+  double nearest_m = std::numeric_limits<double>::infinity();
+  const auto unreached = [&] {
+    LegIkResult r;
+    std::ostringstream why;
+    why << "no joint angles reach the foot target: the nearest foot position found is " << nearest_m
+        << " m from it (Levenberg-Marquardt)";
+    r.reason = why.str();
+    r.margin_m = -nearest_m;
+    return r;
+  };
   std::array<Vec3, 9> starts;
   starts[0] = d.q_start;
   int n = 1;
@@ -150,7 +162,10 @@ LegIkResult ik_numeric(const RobotModel& m, int leg, const Vec3& p) {
         if (lambda > 1e12) break;
       }
     }
-    if (!(e.norm() <= 1e-12)) continue;
+    if (!(e.norm() <= 1e-12)) {
+      if (e.norm() < nearest_m) nearest_m = e.norm();
+      continue;
+    }
     LegIkResult r;
     for (int j = 0; j < m.leg(leg).n_joints; ++j) q[j] = std::remainder(q[j], 2.0 * M_PI);
     r.q = q;
@@ -170,7 +185,8 @@ LegIkResult ik_numeric(const RobotModel& m, int leg, const Vec3& p) {
     r.ok = true;
     return r;
   }
-  return best;
+  // A start that converged outside the limits or near a singularity says more than a miss.
+  return best.reason.empty() ? unreached() : best;
 }
 
 }  // namespace
