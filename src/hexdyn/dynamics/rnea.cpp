@@ -115,7 +115,7 @@ RobotData::RobotData(const RobotModel& model)
 
 void update_kinematics(const RobotModel& model, RobotData& data, const BaseState& state,
                        const JointVector& q) {
-  if (data.kinematics_valid && data.kinematics_q.size() == q.size() && data.kinematics_q == q &&
+  if (data.kinematics_q.size() == q.size() && data.kinematics_q == q &&
       data.kinematics_p_W == state.p_W && data.kinematics_W_R_B == state.W_R_B)
     return;
   data.X_parent_body[0] = Transform::Identity();
@@ -135,7 +135,6 @@ void update_kinematics(const RobotModel& model, RobotData& data, const BaseState
   data.kinematics_q = q;
   data.kinematics_p_W = state.p_W;
   data.kinematics_W_R_B = state.W_R_B;
-  data.kinematics_valid = true;
 }
 
 const DofVector& rnea(const RobotModel& model, RobotData& data, const BaseState& state,

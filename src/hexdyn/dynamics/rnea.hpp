@@ -117,11 +117,10 @@ struct RobotData {
   /// A prismatic joint's axis in its parent's frame, R_pj a: parent_p_b(q) = p_pj + q R_pj a
   /// (its parent_R_b = R_fixed = R_pj, R_cos = R_sin = 0).
   BodyArray<Vec3> slide;
-  /// The trunk pose and joint angles X_parent_body and X_world_body were last computed for:
-  /// update_kinematics returns at once when called again with the same values, bit for bit
-  /// (the replay's step, the allocation's stages and the sample's kinematics each ask for the
-  /// same state's transforms in turn).
-  bool kinematics_valid = false;
+  /// The trunk pose and joint angles X_parent_body and X_world_body were last computed for
+  /// (kinematics_q empty before the first computation): update_kinematics returns at once when
+  /// called again with the same values, bit for bit (a replay step's bias forces, mass matrix
+  /// and contacts ask for one state's transforms in turn).
   Mat3 kinematics_W_R_B = Mat3::Zero();
   Vec3 kinematics_p_W = Vec3::Zero();
   JointVector kinematics_q;
@@ -152,7 +151,7 @@ struct RobotData {
 
 /// Fills data.X_parent_body and data.X_world_body for the trunk pose of `state`
 /// (W_R_B, p_W only) and joint angles q (model.joints()) [rad]; nothing when they already
-/// hold that pose and q (RobotData::kinematics_valid).
+/// hold that pose and q (RobotData::kinematics_q).
 void update_kinematics(const RobotModel& model, RobotData& data, const BaseState& state,
                        const JointVector& q);
 

@@ -126,16 +126,8 @@ LegIkResult ik_yaw_pitch_pitch(const RobotModel& m, int leg, const Vec3& p) {
 LegIkResult ik_numeric(const RobotModel& m, int leg, const Vec3& p) {
   const LegIkData& d = m.leg_ik[leg];
   LegIkResult best;
+  bool converged = false;  // some start reached the target, outside the limits or singular
   double nearest_m = std::numeric_limits<double>::infinity();
-  const auto unreached = [&] {
-    LegIkResult r;
-    std::ostringstream why;
-    why << "no joint angles reach the foot target: the nearest foot position found is " << nearest_m
-        << " m from it (Levenberg-Marquardt)";
-    r.reason = why.str();
-    r.margin_m = -nearest_m;
-    return r;
-  };
   std::array<Vec3, 9> starts;
   starts[0] = d.q_start;
   int n = 1;
@@ -166,6 +158,7 @@ LegIkResult ik_numeric(const RobotModel& m, int leg, const Vec3& p) {
       if (e.norm() < nearest_m) nearest_m = e.norm();
       continue;
     }
+    converged = true;
     LegIkResult r;
     for (int j = 0; j < m.leg(leg).n_joints; ++j) q[j] = std::remainder(q[j], 2.0 * M_PI);
     r.q = q;
@@ -186,7 +179,13 @@ LegIkResult ik_numeric(const RobotModel& m, int leg, const Vec3& p) {
     return r;
   }
   // A start that converged outside the limits or near a singularity says more than a miss.
-  return best.reason.empty() ? unreached() : best;
+  if (converged) return best;
+  std::ostringstream why;
+  why << "no joint angles reach the foot target: the nearest foot position found is " << nearest_m
+      << " m from it (Levenberg-Marquardt)";
+  best.reason = why.str();
+  best.margin_m = -nearest_m;
+  return best;
 }
 
 }  // namespace

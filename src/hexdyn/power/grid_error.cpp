@@ -283,7 +283,8 @@ void cubic_term_estimates(const std::vector<double>& t, const std::vector<char>&
   const std::size_t n = t.size() - 1;
   thread_local std::vector<char> keep;
   thread_local std::vector<std::ptrdiff_t> old_k;
-  const bool usable = reuse && reuse->integral.size() == terms.size() && !reuse->t_s.empty();
+  const bool usable = reuse && reuse->integral.size() == terms.size() &&
+                      reuse->signed_integral.size() == terms.size() && !reuse->t_s.empty();
   if (usable) kept_intervals(t, reuse->t_s, keep, old_k);
   // The terms whose estimates are all new, and those that keep some: each batch builds an
   // interval's stencil once for all its terms.
@@ -315,13 +316,15 @@ void cubic_term_estimates(const std::vector<double>& t, const std::vector<char>&
   reuse->t_s = t;
   reuse->integral.assign(terms.size(), {});
   reuse->error.assign(terms.size(), {});
-  reuse->signed_integral.assign(terms.size(), {});
-  for (std::size_t i = 0; i < terms.size(); ++i)
-    if (rule[i] == Quadrature::kCubic) {
-      reuse->integral[i] = integral[i];
-      reuse->error[i] = error[i];
-      reuse->signed_integral[i] = signed_part[i];
-    }
+  // The signed parts are this function's own: handed over, the thread's buffer takes the old.
+  reuse->signed_integral.resize(terms.size());
+  for (std::size_t i = 0; i < terms.size(); ++i) {
+    reuse->signed_integral[i].clear();
+    if (rule[i] != Quadrature::kCubic) continue;
+    reuse->integral[i] = integral[i];
+    reuse->error[i] = error[i];
+    reuse->signed_integral[i].swap(signed_part[i]);
+  }
 }
 
 }  // namespace
