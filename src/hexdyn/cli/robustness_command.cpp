@@ -69,8 +69,7 @@ int robustness_command(const Args& args) {
     check_output_target(args.output, src.inputs);
     for (const std::string& w : src.warnings)
       std::cerr << "hexdyn: warning: robustness: " << w << "\n";
-    const StudyPlan plan{build_robot_model(src.scene.robot), src.plan, src.contact_phase,
-                         src.joint_names};
+    const StudyPlan plan{build_robot_model(src.scene.robot), src.plan, src.joint_names};
     const ProgressScope progress(std::cerr, "robustness", args.progress_s, "replays");
     const RobustnessResult r = run_robustness(src.scene, plan, threads);
     write_robustness_file(args.output, src.scene, src.inputs, r);

@@ -160,6 +160,16 @@ void add_replay(std::deque<SceneKey>& t) {
                   "([replay](docs/theory/replay.md#driven-by-the-actuators))",
        .read = table,
        .field = f::flag<&Scene::replay, &ReplayParams::saturate>()});
+  add({.path = "replay.early_contact",
+       .kind = KeyKind::kChoice,
+       .choices = "follow hold",
+       .meaning = "a foot that meets the terrain while the plan still swings it: `follow`, the "
+                  "PD keeps damping towards the planned rates; `hold`, it damps that leg "
+                  "towards holding its foot still on the ground until the plan's touchdown, as "
+                  "a controller that detects contact does "
+                  "([early contact](docs/theory/replay.md#early-contact))",
+       .read = table,
+       .field = f::choice<&Scene::replay, &ReplayParams::early_contact>()});
 }
 
 void add_allocation(std::deque<SceneKey>& t) {

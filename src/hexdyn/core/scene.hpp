@@ -378,6 +378,11 @@ struct ContactParams {
 };
 
 /// `replay:` the forward replay of a result (replay/replay.hpp, docs/theory/replay.md).
+/// replay.early_contact: what the joint PD damps towards while a foot the plan still swings
+/// meets the terrain (docs/theory/replay.md#early-contact): the planned rates (`follow`), or rest
+/// for that leg's joints until the plan's touchdown (`hold`).
+enum class EarlyContact { kFollow, kHold };
+
 struct ReplayParams {
   double kp_Nmprad = 10.0;  ///< replay.kp: joint PD stiffness on the planned angles [N m/rad]
   double kd_Nmsprad = 0.1;  ///< replay.kd: joint PD damping on the planned rates [N m s/rad]
@@ -391,6 +396,7 @@ struct ReplayParams {
   /// replay.saturate: with actuators, bound each joint's drive torque by its torque–speed
   /// envelope at the joint's speed (drive/drive.hpp drive_torque_limit) [–].
   bool saturate = true;
+  EarlyContact early_contact = EarlyContact::kFollow;  ///< replay.early_contact
 };
 
 /// Allocation back end: the dense dual active-set QP (allocation/active_set_backend.hpp; with the

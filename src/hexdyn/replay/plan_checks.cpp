@@ -43,6 +43,13 @@ void check_replay_work(const ReplayPlan& p, const ReplayParams& replay) {
         format_number(steps, 3) + " steps over the plan's " + format_number(span_s, 6) +
         " s, expected at most " + format_number(kMaxReplaySteps, 6) +
         " steps: replay.step >= " + format_number(span_s / kMaxReplaySteps, 3) + " s");
+  const RowMatrixI8& phase = p.contact_phase;
+  if (replay.early_contact == EarlyContact::kHold &&
+      static_cast<std::size_t>(phase.rows()) != p.t_s.size())
+    throw ConfigError(
+        "replay.early_contact: hold needs the plan's contact phases, one row per "
+        "instant (/contacts/phase), got " +
+        std::to_string(phase.rows()) + " rows for " + std::to_string(p.t_s.size()) + " instants");
 }
 
 void check_mass_matrix(const RobotModel& model, RobotData& data, const ReplayPlan& p) {
@@ -92,6 +99,7 @@ ReplayPlan plan_from_result(const RobotModel& model, const RunResult& r) {
       throw ConfigError("replay: the torque of sample " + std::to_string(i) +
                         " is not finite (a failed sample cannot be replayed)");
   }
+  p.contact_phase = k.contact_phase;
   p.cycle_start_s = r.cycle_start_s;
   p.terrain_y_m = r.terrain_y_m;
   p.terrain_z_m = r.terrain_z_m;

@@ -107,6 +107,24 @@ void evaluate_contacts(const RobotModel& model, RobotData& data, const ContactPa
   }
 }
 
+/// replay.early_contact: hold (docs/theory/replay.md#early-contact). For each leg whose foot
+/// touches the terrain (c) while the plan swings it at its instant k (the step's start, or the
+/// sample), sets that leg's damping reference in `qd_ref` to the joint rates that hold the foot
+/// still under the trunk's twist in `nu`, the state's (step_system.hpp holding_rates).
+void hold_early_contacts(const RobotModel& model, const ReplayPlan& plan, const ReplayParams& gains,
+                         const Contacts& c, const DofVector& nu, std::size_t k,
+                         JointVector& qd_ref) {
+  if (gains.early_contact != EarlyContact::kHold) return;
+  const auto row = static_cast<Eigen::Index>(k);
+  for (int l = 0; l < c.legs; ++l) {
+    if (plan.contact_phase(row, l) != static_cast<std::int8_t>(ContactPhase::kSwing) ||
+        !(c.geometry[l].penetration_m > 0.0))
+      continue;
+    const LegInfo& leg = model.leg(l);
+    qd_ref.segment(leg.first_joint, leg.n_joints) = holding_rates(leg, c.J[l], nu);
+  }
+}
+
 /// With stick–slip (contact.friction_law), replaces the tangential forces in `c` by those of
 /// the feet's stick–slip states, and clears the state of a foot out of contact.
 void apply_stick_slip(const ContactParams& params, LegArray<TangentialContact>& state,
@@ -338,7 +356,8 @@ bool integrate_interval(Integrator& it, SimState& s, std::size_t k, std::string&
   while (t1 - t > 1e-12 * std::max(1.0, std::abs(t1))) {
     double h = std::min(it.h_next, t1 - t);
     for (;;) {
-      const PlanPoint p = plan_at(it.plan, k, t, t + h);
+      PlanPoint p = plan_at(it.plan, k, t, t + h);
+      hold_early_contacts(it.model, it.plan, it.gains, it.contacts, s.nu(), k, p.qd);
       implicit_step(it, s, p, h, step);
       if (!step.next.finite()) break;
       evaluate_contacts(it.model, it.data, it.contact, it.plan, step.next, at_end);
@@ -402,8 +421,10 @@ Vec3 record_sample(Integrator& it, const SimState& s, std::size_t k, ReplayResul
   const ReplayPlan& plan = it.plan;
   const bool driven = it.model.drive.present;
   const JointVector& ff = driven ? plan.tau_drive_Nm[k] : plan.tau_Nm[k];
-  JointVector tau = ff + it.gains.kp_Nmprad * (plan.q_rad[k] - s.q) +
-                    it.gains.kd_Nmsprad * (plan.qd_radps[k] - s.qd);
+  JointVector qd_ref = plan.qd_radps[k];
+  hold_early_contacts(it.model, plan, it.gains, c, s.nu(), k, qd_ref);
+  JointVector tau =
+      ff + it.gains.kp_Nmprad * (plan.q_rad[k] - s.q) + it.gains.kd_Nmsprad * (qd_ref - s.qd);
   // Driven: tau in is the drive torque, out the link torque; data.M holds the armature.
   const DofVector& nu_dot = driven ? driven_sample(it, s, tau, out)
                                    : forward_dynamics_joints(it.model, data, s.base, s.q, s.qd, tau,

@@ -53,6 +53,9 @@ struct ReplayPlan {
   /// A height map's grid (/terrain/map_*), which the feet meet instead of the profile; null
   /// on other terrain.
   std::shared_ptr<const HeightMap> terrain_map;
+  /// /contacts/phase (T × legs, ContactPhase codes): the feet the plan swings, stands on or
+  /// lands at each instant (replay.early_contact, the robustness study's stubbed toes).
+  RowMatrixI8 contact_phase;
 };
 
 /// The trunk's state (frame B, what dynamics/rnea.hpp takes) from one row of a result's

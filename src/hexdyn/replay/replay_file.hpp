@@ -43,8 +43,6 @@ struct ReplaySource {
   std::vector<InputFile> inputs;
   /// One line per recorded input that is gone or changed on disk since the run (not read).
   std::vector<std::string> warnings;
-  /// /contacts/phase (T × L, ContactPhase codes): the feet the plan has in swing.
-  RowMatrixI8 contact_phase;
 };
 
 /// Reads `result_path` (a hexdyn-result/5 file with dynamics, or of versions 2 and 3) while an

@@ -301,7 +301,7 @@ ReplaySource read_replay_source(const std::string& result_path,
   src.leg_joint_counts = leg_joint_counts(in, result_path, model);
   read_plan(in, result_path, model, src.plan);
   check_feet(in, result_path, model, src.plan);
-  src.contact_phase = read_phases(in, result_path, src.plan.t_s.size(), model.legs());
+  src.plan.contact_phase = read_phases(in, result_path, src.plan.t_s.size(), model.legs());
   return src;
 }
 

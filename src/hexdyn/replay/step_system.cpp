@@ -1,5 +1,6 @@
 #include "hexdyn/replay/step_system.hpp"
 
+#include <Eigen/QR>
 #include <array>
 
 namespace hexdyn {
@@ -19,6 +20,12 @@ FootColumns foot_columns(const LegInfo& leg) {
 }
 
 }  // namespace
+
+Eigen::VectorXd holding_rates(const LegInfo& leg, const DofJacobian& J, const DofVector& nu) {
+  const Eigen::MatrixXd J_leg = J.middleCols(6 + leg.first_joint, leg.n_joints);
+  const Vec3 v_trunk_W = J.leftCols<6>() * nu.head<6>();
+  return J_leg.completeOrthogonalDecomposition().solve(-v_trunk_W);
+}
 
 AffineForce affine_contact(const ContactParams& params, const TerrainContactPoint& g,
                            const FootContactForce& law, const TangentialContact& tangential,

@@ -29,7 +29,6 @@ struct Study {
   const Scene& scene;
   const RobotModel& model;
   const ReplayPlan& plan;
-  const RowMatrixI8& phase;
   DrawSizes sizes;
   FailureBounds bounds;
   std::uint64_t seed = 1;
@@ -74,7 +73,7 @@ ReplayOutcome replay_world(const Study& s, const WorldDraw& draw) {
     plan.base.front().p_W.z() += start_lift(s, plan);
     r = replay_plan(w.model, w.contact, s.gains, w.terrain, plan);
   }
-  return classify_replay(r, s.phase, s.plan, w, s.scene.terrain, s.bounds);
+  return classify_replay(r, s.plan.contact_phase, s.plan, w, s.scene.terrain, s.bounds);
 }
 
 /// Calls f(i) for i in [0, n) on `threads` threads (this one among them), each i once; the
@@ -171,13 +170,7 @@ ToleranceResult tolerated(const Study& s, Perturbation p, bool nominal_ok, int t
 /// The study of `plan` under `scene`'s robustness: section, with the first instant's feet by
 /// forward kinematics of the plan (a sphere foot's centre).
 Study make_study(const Scene& scene, const StudyPlan& plan) {
-  Study s{scene,
-          plan.model,
-          plan.plan,
-          plan.contact_phase,
-          {},
-          scene.robustness.failure,
-          scene.robustness.seed};
+  Study s{scene, plan.model, plan.plan, {}, scene.robustness.failure, scene.robustness.seed};
   s.sizes = world_draw_sizes(s.model, scene.terrain);
   s.gains = resolved_gains(scene.replay, s.model);
   if (std::isnan(s.bounds.drift_m))
@@ -197,7 +190,7 @@ int study_replays(const Scene& scene) {
 }
 
 StudyPlan plan_of_run(const RobotModel& model, const RunResult& run) {
-  StudyPlan p{model, plan_from_result(model, run), run.kin.contact_phase, run.joint_names};
+  StudyPlan p{model, plan_from_result(model, run), run.joint_names};
   for (int l = 0; static_cast<int>(p.joint_names.size()) < model.joints() && l < model.legs(); ++l)
     for (int j = 0; j < model.leg(l).n_joints; ++j)
       p.joint_names.push_back(joint_name(l, j, model.leg(l).n_joints));

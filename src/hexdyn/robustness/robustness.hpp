@@ -55,12 +55,11 @@ struct RobustnessResult {
 /// a scene without the section.
 int study_replays(const Scene& scene);
 
-/// The plan a study replays: the robot, the plan in the trunk frame (replay.hpp), its
-/// /contacts/phase (T × L: the feet in swing) and joint names (J).
+/// The plan a study replays: the robot, the plan in the trunk frame (replay.hpp, with its
+/// contact phases) and joint names (J).
 struct StudyPlan {
   RobotModel model;
   ReplayPlan plan;
-  RowMatrixI8 contact_phase;
   std::vector<std::string> joint_names;
 };
 /// The plan of a computed run of `model`'s robot.
