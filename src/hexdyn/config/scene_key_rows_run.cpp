@@ -164,9 +164,9 @@ void add_replay(std::deque<SceneKey>& t) {
        .kind = KeyKind::kChoice,
        .choices = "follow hold",
        .meaning = "a foot that meets the terrain while the plan still swings it: `follow`, the "
-                  "PD keeps damping towards the planned rates; `hold`, it damps that leg "
-                  "towards holding its foot still on the ground until the plan's touchdown, as "
-                  "a controller that detects contact does "
+                  "PD keeps damping towards the planned rates; `hold`, on a face it could stand "
+                  "on (within atan μ_s of level), it damps that leg towards holding its foot "
+                  "still until the plan's touchdown, as a controller that detects contact does "
                   "([early contact](docs/theory/replay.md#early-contact))",
        .read = table,
        .field = f::choice<&Scene::replay, &ReplayParams::early_contact>()});
