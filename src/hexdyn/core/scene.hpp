@@ -377,12 +377,13 @@ struct ContactParams {
   double tangential_damping_Nspm = 1e3;   ///< c_t [N s/m]
 };
 
-/// `replay:` the forward replay of a result (replay/replay.hpp, docs/theory/replay.md).
 /// replay.early_contact: what the joint PD damps towards while a foot the plan still swings
-/// meets the terrain (docs/theory/replay.md#early-contact): the planned rates (`follow`), or rest
-/// for that leg's joints until the plan's touchdown (`hold`).
+/// meets the terrain (docs/theory/replay.md#early-contact): the planned rates (`follow`), or, on
+/// a face the foot could stand on, the rates that hold it still until the plan's touchdown
+/// (`hold`).
 enum class EarlyContact { kFollow, kHold };
 
+/// `replay:` the forward replay of a result (replay/replay.hpp, docs/theory/replay.md).
 struct ReplayParams {
   double kp_Nmprad = 10.0;  ///< replay.kp: joint PD stiffness on the planned angles [N m/rad]
   double kd_Nmsprad = 0.1;  ///< replay.kd: joint PD damping on the planned rates [N m s/rad]
