@@ -161,10 +161,10 @@ struct Integrator {
 /// touches the terrain (c) while the plan swings it at its instant k (the step's start, or the
 /// sample), on a face it could stand on (tilted from the horizontal by at most atan μ_s: a
 /// tread, not a riser it stubs), sets that leg's damping reference in `qd_ref` to the joint
-/// rates that hold the foot still under the trunk's twist in `nu`, the state's
-/// (step_system.hpp holding_rates).
-void hold_early_contacts(const Integrator& it, const Contacts& c, const DofVector& nu,
-                         std::size_t k, JointVector& qd_ref) {
+/// rates that hold the foot still under the trunk's twist at state s (step_system.hpp
+/// holding_rates).
+void hold_early_contacts(const Integrator& it, const Contacts& c, const SimState& s, std::size_t k,
+                         JointVector& qd_ref) {
   if (it.gains.early_contact != EarlyContact::kHold) return;
   const auto row = static_cast<Eigen::Index>(k);
   const Vec3 up_W = -it.model.gravity_W.normalized();
@@ -174,7 +174,7 @@ void hold_early_contacts(const Integrator& it, const Contacts& c, const DofVecto
         !(c.geometry[l].penetration_m > 0.0) || c.normals[l].dot(up_W) < min_cos)
       continue;
     const LegInfo& leg = it.model.leg(l);
-    qd_ref.segment(leg.first_joint, leg.n_joints) = holding_rates(leg, c.J[l], nu);
+    qd_ref.segment(leg.first_joint, leg.n_joints) = holding_rates(leg, c.J[l], s.base);
   }
 }
 
@@ -360,7 +360,7 @@ bool integrate_interval(Integrator& it, SimState& s, std::size_t k, std::string&
     double h = std::min(it.h_next, t1 - t);
     for (;;) {
       PlanPoint p = plan_at(it.plan, k, t, t + h);
-      hold_early_contacts(it, it.contacts, s.nu(), k, p.qd);
+      hold_early_contacts(it, it.contacts, s, k, p.qd);
       implicit_step(it, s, p, h, step);
       if (!step.next.finite()) break;
       evaluate_contacts(it.model, it.data, it.contact, it.plan, step.next, at_end);
@@ -425,7 +425,7 @@ Vec3 record_sample(Integrator& it, const SimState& s, std::size_t k, ReplayResul
   const bool driven = it.model.drive.present;
   const JointVector& ff = driven ? plan.tau_drive_Nm[k] : plan.tau_Nm[k];
   JointVector qd_ref = plan.qd_radps[k];
-  hold_early_contacts(it, c, s.nu(), k, qd_ref);
+  hold_early_contacts(it, c, s, k, qd_ref);
   JointVector tau =
       ff + it.gains.kp_Nmprad * (plan.q_rad[k] - s.q) + it.gains.kd_Nmsprad * (qd_ref - s.qd);
   // Driven: tau in is the drive torque, out the link torque; data.M holds the armature.

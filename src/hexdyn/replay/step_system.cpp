@@ -21,10 +21,10 @@ FootColumns foot_columns(const LegInfo& leg) {
 
 }  // namespace
 
-Eigen::VectorXd holding_rates(const LegInfo& leg, const DofJacobian& J, const DofVector& nu) {
-  const Eigen::MatrixXd J_leg = J.middleCols(6 + leg.first_joint, leg.n_joints);
-  const Vec3 v_trunk_W = J.leftCols<6>() * nu.head<6>();
-  return J_leg.completeOrthogonalDecomposition().solve(-v_trunk_W);
+LegVector holding_rates(const LegInfo& leg, const DofJacobian& J, const BaseState& trunk) {
+  const LegJacobian J_leg = J.middleCols(6 + leg.first_joint, leg.n_joints);
+  const Vec3 v_trunk_W = J.leftCols<3>() * trunk.v_W + J.middleCols<3>(3) * trunk.omega_W;
+  return Eigen::CompleteOrthogonalDecomposition<LegJacobian>(J_leg).solve(-v_trunk_W);
 }
 
 AffineForce affine_contact(const ContactParams& params, const TerrainContactPoint& g,

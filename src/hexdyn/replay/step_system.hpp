@@ -11,6 +11,7 @@
 
 #include "hexdyn/contact/simulation_contact.hpp"
 #include "hexdyn/contact/stick_slip.hpp"
+#include "hexdyn/core/base_state.hpp"
 #include "hexdyn/core/common.hpp"
 #include "hexdyn/core/scene.hpp"
 #include "hexdyn/core/sizes.hpp"
@@ -40,11 +41,12 @@ struct AffineForce {
 };
 
 /// The rates of leg `leg`'s joints that hold its foot's contact point still while the trunk
-/// moves with the twist ν[0:6] (replay.early_contact: hold, docs/theory/replay.md#early-contact):
-/// q̇ = −J_leg⁺ J_trunk ν_trunk [rad/s], J_leg the leg's columns of the foot's Jacobian J and
-/// J_trunk its first six, the pseudo-inverse the least-squares, least-norm solution (exact when
-/// J_leg has full row rank; a leg of more joints moves with the least norm).
-Eigen::VectorXd holding_rates(const LegInfo& leg, const DofJacobian& J, const DofVector& nu);
+/// moves with the twist (v_W, ω_W) of `trunk` (replay.early_contact: hold,
+/// docs/theory/replay.md#early-contact): q̇ = −J_leg⁺ J_trunk ν_trunk [rad/s], J_leg the leg's
+/// columns of the foot's Jacobian J and J_trunk its first six, the pseudo-inverse the
+/// least-squares, least-norm solution (exact when J_leg has full row rank; a leg of more joints
+/// moves with the least norm). No allocation.
+LegVector holding_rates(const LegInfo& leg, const DofJacobian& J, const BaseState& trunk);
 
 /// The affine force of a foot with contact geometry g and law (at the step's start, foot
 /// velocity v_old) over a step of length h [s]. With stick–slip, the stick force of

@@ -74,8 +74,7 @@ const char* margin_criterion_name(MarginCriterion c) {
   return kNames[static_cast<std::size_t>(c)];
 }
 
-ReplayOutcome classify_replay(const ReplayResult& r, const RowMatrixI8& phase,
-                              const ReplayPlan& plan, const World& world,
+ReplayOutcome classify_replay(const ReplayResult& r, const ReplayPlan& plan, const World& world,
                               const TerrainParams& plan_terrain, const FailureBounds& b) {
   ReplayOutcome o;
   const int legs = world.model.legs();
@@ -96,7 +95,7 @@ ReplayOutcome classify_replay(const ReplayResult& r, const RowMatrixI8& phase,
   std::array<double, kFailureClassCount> at{};
   at.fill(kNaN);
   at[1] = slip_time(r, legs, b.slip_m);
-  at[2] = stub_time(r, phase, world, b);
+  at[2] = stub_time(r, plan.contact_phase, world, b);
   at[3] = saturation_time(r, b, o.saturation_s);
   if (!completed) at[4] = r.t_s.back();
   if (completed && (o.drift_m > b.drift_m ||

@@ -53,13 +53,12 @@ struct ReplayOutcome {
   double seconds = 0.0;  ///< wall time of the replay [s]
 };
 
-/// The outcome of replay `r` of a plan on `world`. `phase` is the plan's /contacts/phase (T × L,
-/// ContactPhase codes; its rows are the replay's samples); `plan` the replayed plan (its trunk
-/// at the end); `plan_terrain` the nominal terrain (the plan's height above it); `drift_m`
+/// The outcome of replay `r` of a plan on `world`. `plan` is the replayed plan: its trunk at the
+/// end, and its contact phases (ReplayPlan::contact_phase, whose rows are the replay's samples)
+/// for the stubbed toes; `plan_terrain` the nominal terrain (the plan's height above it); `drift_m`
 /// the resolved FailureBounds::drift_m. The failure is the class whose bound was passed first;
 /// a replay that ended early but for a fall counts as fallen.
-ReplayOutcome classify_replay(const ReplayResult& r, const RowMatrixI8& phase,
-                              const ReplayPlan& plan, const World& world,
+ReplayOutcome classify_replay(const ReplayResult& r, const ReplayPlan& plan, const World& world,
                               const TerrainParams& plan_terrain, const FailureBounds& bounds);
 
 /// The Wilson score interval of a binomial proportion: `successes` of `n` trials, z the

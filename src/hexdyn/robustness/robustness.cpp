@@ -73,7 +73,7 @@ ReplayOutcome replay_world(const Study& s, const WorldDraw& draw) {
     plan.base.front().p_W.z() += start_lift(s, plan);
     r = replay_plan(w.model, w.contact, s.gains, w.terrain, plan);
   }
-  return classify_replay(r, s.plan.contact_phase, s.plan, w, s.scene.terrain, s.bounds);
+  return classify_replay(r, s.plan, w, s.scene.terrain, s.bounds);
 }
 
 /// Calls f(i) for i in [0, n) on `threads` threads (this one among them), each i once; the

@@ -37,12 +37,10 @@ TEST_CASE("holding rates keep a foot still under the trunk's twist", "[replay]")
     for (int n = 0; n < 20; ++n) {
       const Sample s = random_sample(rng);
       foot_jacobians(model, data, s.state, s.q);
-      DofVector nu(kPaperDof);
-      nu << s.state.v_W, s.state.omega_W, s.qd;
       PaperJointVector held = s.qd;
       for (int l = 0; l < kPaperLegs; ++l) {
         const LegInfo& leg = model.leg(l);
-        held.segment(leg.first_joint, leg.n_joints) = holding_rates(leg, data.J_foot_W[l], nu);
+        held.segment(leg.first_joint, leg.n_joints) = holding_rates(leg, data.J_foot_W[l], s.state);
       }
       for (int l = 0; l < kPaperLegs; ++l) {
         // Near a singular leg the rates grow without bound and the differences' truncation
