@@ -13,7 +13,13 @@ other solvers, from the rows hexdyn.sample_problem returns (docs/user/api.md):
   c. The exact cone (allocation.friction cone): the same bisection on the SOCP
      min s  subject to  every row and cone relaxed by s (s >= -1),  feasible when s <= 0,
      solved by cvxopt.solvers.conelp (the touchdown legs' 16-gon faces as linear rows).
-  d. A touchdown transient sample where hexdyn says NaN (a leg in phase 1, the allocation
+  d. Two feet (a balanced trot's diagonal, configs/robots/solo12_trot_balanced.yaml): no force
+     gives a moment about the line through them, so the trunk rows have rank 5, and the planned
+     wrench meets that moment only to its rounding (about 1e-9 here), which no LP holds to
+     1e-10 at any mu. The reference takes the rows' least-squares part (numpy.linalg.lstsq):
+     what hexdyn drops below the allocation's threshold of 1e-6
+     (docs/theory/grip.md#the-trunk-rows-reach), and checks that it was below.
+  e. A touchdown transient sample where hexdyn says NaN (a leg in phase 1, the allocation
      relaxed): the LP is infeasible at mu = 1000.
 
 Samples of the paper scene (configs/paper.yaml): support samples at several times, a sample
@@ -40,6 +46,8 @@ import hexdyn  # noqa: E402
 
 HEXDYN, SRC = args()
 PAPER = os.path.join(SRC, "configs", "paper.yaml")
+TROT = os.path.join(SRC, "configs", "robots", "solo12_trot_balanced.yaml")
+UNREACHABLE = 1e-6    # the allocation's verdict threshold, relative to max(1, |b|)
 MU_MAX = 1e3          # hexdyn's largest mu (grip/required_friction.hpp)
 BRACKET = 1e-8        # bisection's final bracket
 AGREEMENT = 1e-6      # |hexdyn - reference|, absolute
@@ -131,11 +139,16 @@ def socp_feasible(p, mu):
         q[1, cone["tangent1"]] = q[2, cone["tangent2"]] = -1.0
         G = np.vstack([G, q])
         h = np.concatenate([h, np.zeros(3)])
-    A = np.hstack([C[:6], np.zeros((6, 1))])
+    A, b = C[:6], lower[:6]
+    U, sigma, _ = np.linalg.svd(A)
+    rank = int(np.sum(sigma > 1e-9 * sigma[0]))
+    if rank < 6:  # conelp needs independent equality rows: their range's basis
+        A, b = U[:, :rank].T @ A, U[:, :rank].T @ b
+    A = np.hstack([A, np.zeros((A.shape[0], 1))])
     c = np.eye(1, n + 1, n).ravel()
     sol = solvers.conelp(matrix(c), matrix(G), matrix(h),
                          dims={"l": rows + 1, "q": [3] * len(p["cones"]), "s": []},
-                         A=matrix(A), b=matrix(lower[:6]))
+                         A=matrix(A), b=matrix(b))
     assert sol["x"] is not None, f"cvxopt at mu = {mu}: {sol['status']}"
     x = np.array(sol["x"]).ravel()[:n]
     margin = np.max(G[:rows, :n] @ x - h[:rows], initial=-math.inf)
@@ -143,6 +156,20 @@ def socp_feasible(p, mu):
         use = math.hypot(x[cone["tangent1"]], x[cone["tangent2"]]) - mu * x[cone["normal"]]
         margin = max(margin, use)
     return margin <= 0.0
+
+
+def within_reach(p):
+    """(d): p with its trunk rows' part outside the range of their columns removed, when that
+    part is at most UNREACHABLE of each row's scale max(1, |b|); p itself otherwise."""
+    C, b = p["C"][:6], p["lower"][:6]
+    scale = np.maximum(1.0, np.abs(b))
+    x = np.linalg.lstsq(C / scale[:, None], b / scale, rcond=1e-9)[0]
+    part = b - C @ x
+    if np.max(np.abs(part) / scale) > UNREACHABLE:
+        return p
+    q = dict(p, lower=p["lower"].copy(), upper=p["upper"].copy())
+    q["lower"][:6] = q["upper"][:6] = b - part
+    return q
 
 
 def bisection(feasible):
@@ -165,16 +192,17 @@ def describe(model, overrides, t, p):
             f" status {p['status']}")
 
 
-def compare(model, overrides, t):
+def compare(model, overrides, t, scene=PAPER):
     """hexdyn's mu* of one sample against the bisection's; returns hexdyn's."""
     sets = dict(overrides, **{"allocation.friction": model})
-    p = hexdyn.sample_problem(PAPER, t, set=sets)
+    p = hexdyn.sample_problem(scene, t, set=sets)
     assert p["friction"] == model
     check_layout(p)
     if p["constant_excess_Nm"] > 1e-6:
         reference = math.nan
     else:
-        reference = bisection(lambda mu: (socp_feasible if p["cones"] else lp_feasible)(p, mu))
+        q = within_reach(p)
+        reference = bisection(lambda mu: (socp_feasible if q["cones"] else lp_feasible)(q, mu))
     ours = p["required_friction"]
     where = describe(model, overrides, t, p)
     print(f"{where}: hexdyn {ours!r}, reference {reference!r}")
@@ -208,7 +236,15 @@ SAMPLES = [
     ("pyramid4", FAST, 0.6479761648517712, "two legs in their touchdown transient"),
     ("cone", FAST, 0.6479761648517712, "two legs in their touchdown transient"),
 ]
-# (d): touchdown transients where no mu holds the trunk rows.
+# (d): a balanced trot's two feet (times of its grid where mu* is far below the friction its
+# allocation uses, 0.26-0.31).
+TROT_SAMPLES = [
+    ("pyramid8", 6.09),
+    ("pyramid4", 3.36),
+    ("pyramid8", 2.36),
+    ("cone", 4.36),
+]
+# (e): touchdown transients where no mu holds the trunk rows.
 NAN_SAMPLES = [
     ("pyramid4", {}, 1.7000286569047833),
     ("cone", {}, 1.7000286569047833),
@@ -221,6 +257,14 @@ def main():
         mus.append(compare(model, overrides, t)["required_friction"])
     assert all(math.isfinite(m) for m in mus), mus
     assert max(mus) > 0.5, f"every mu* is small: {mus}"
+    for model, t in TROT_SAMPLES:
+        p = compare(model, {}, t, TROT)
+        stance = [leg["count"] for leg in p["legs"] if leg["count"]]
+        assert stance == [3, 3], f"trot at t = {t!r} s: legs with forces {stance}, expected two"
+        assert np.linalg.matrix_rank(p["C"][:6]) == 5, f"trot at t = {t!r} s: trunk rows' rank"
+        if not p["cones"]:  # the rows as planned hold at no mu: the case this guards
+            assert not lp_feasible(p, MU_MAX), f"trot at t = {t!r} s: rows hold as planned"
+        assert math.isfinite(p["required_friction"]), f"trot at t = {t!r} s"
     for model, overrides, t in NAN_SAMPLES:
         p = compare(model, overrides, t)
         where = describe(model, overrides, t, p)

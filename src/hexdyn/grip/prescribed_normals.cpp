@@ -58,6 +58,23 @@ double prescribed_trunk_miss(const QpProblem& qp, const AllocationLayout& layout
   return best;
 }
 
+bool drop_unreachable_trunk_part(QpProblem& qp, double limit) {
+  const int n = qp.variables();
+  if (n == 0 || n > kMaxLegForces || qp.inequalities() < R) return false;
+  TrunkRows M;
+  TrunkVector b, scale;
+  if (!scaled_trunk_rows(qp, M, b, scale)) return false;
+  const Eigen::JacobiSVD<TrunkRows> svd(M, Eigen::ComputeFullU);
+  const auto& sigma = svd.singularValues();
+  TrunkVector r = b;
+  for (int k = 0; k < sigma.size(); ++k)
+    if (sigma[k] > 1e-9 * sigma[0]) r -= svd.matrixU().col(k).dot(b) * svd.matrixU().col(k);
+  const double largest = r.lpNorm<Eigen::Infinity>();
+  if (!(largest > 1e-12 && largest <= limit)) return false;
+  for (int i = 0; i < R; ++i) qp.lower[i] = qp.upper[i] = (b[i] - r[i]) * scale[i];
+  return true;
+}
+
 std::string prescribed_trunk_text(const QpProblem& qp) {
   TrunkRows M;
   TrunkVector b, scale;

@@ -27,6 +27,17 @@ double prescribed_trunk_miss(const QpProblem& qp, const AllocationLayout& layout
 /// decomposition's rounding.
 inline constexpr double kCertifiedTrunkMiss = 1e-6;
 
+/// The trunk rows' part that no forces can meet, whatever their bounds, dropped when it is
+/// below `limit`. The scaled rows D C x = D b of `qp` (as prescribed_trunk_miss) split D b
+/// into its projection onto the range of D C (singular values below 1e-9 of the largest
+/// counted as zero) and the rest r, the least miss any forces leave. When
+/// 1e-12 < max_i |r_i| ≤ limit, the rows' bounds move to b − r / D (each row by at most
+/// `limit` of its scale) and the function returns true; else `qp` is left as it was. Two feet
+/// give no moment about the line through them, so on a trot's diagonal a planned wrench whose
+/// moment about that line is off by rounding (1e-9 to 1e-7 N m on the balanced Solo-12 trots)
+/// has such a part (docs/theory/grip.md#the-trunk-rows-reach).
+bool drop_unreachable_trunk_part(QpProblem& qp, double limit);
+
 /// The trunk rows' misses at the forces that come closest to them (the least-squares forces of
 /// the scaled rows, tangential bounds aside), largest first, named as describe_violations names
 /// rows: "trunk force z by 65.7, trunk moment x by 0.247".

@@ -23,6 +23,19 @@ std::string no_friction_message(double mu_max, const std::string& why) {
   return s.str();
 }
 
+/// The number of legs with forces when each is a support leg (three forces, its normal force
+/// free), else -1 (a leg in its touchdown transient, whose normal force is prescribed).
+int support_legs_only(const AllocationLayout& layout) {
+  int standing = 0;
+  for (int l = 0; l < layout.n_legs; ++l) {
+    const int count = layout.legs[l].count;
+    if (count == 0) continue;
+    if (count != 3) return -1;
+    ++standing;
+  }
+  return standing;
+}
+
 }  // namespace
 
 /// Newton on the square system of the active rows in z = (x, μ), from z0; then check.
@@ -347,7 +360,15 @@ bool RequiredFrictionSolver::Impl::upper_end(const AllocationLayout& layout,
     if (std::isfinite(hi)) return true;
   }
   std::string why;
-  if (!feasible_at(layout, opt.mu_max, x_hi, opt.reasons ? &why : nullptr)) {
+  bool feasible = feasible_at(layout, opt.mu_max, x_hi, opt.reasons ? &why : nullptr);
+  // Rows that no forces meet by less than the allocation's own verdict threshold (three feet
+  // in a line, whose moment about it is off by rounding): μ* of the rows without that part.
+  // Only where every loaded foot is a support foot: a touchdown transient's prescribed normal
+  // forces leave misses of newtons, not of rounding.
+  if (!feasible && support_legs_only(layout) > 0 &&
+      drop_unreachable_trunk_part(work, kViolationThreshold))
+    feasible = feasible_at(layout, opt.mu_max, x_hi, opt.reasons ? &why : nullptr);
+  if (!feasible) {
     out.mu = std::numeric_limits<double>::quiet_NaN();
     out.method = RequiredFrictionMethod::kNone;
     out.message = no_friction_message(opt.mu_max, why);
@@ -456,6 +477,11 @@ bool RequiredFrictionSolver::Impl::probe_below_enough(const AllocationLayout& la
 void RequiredFrictionSolver::Impl::solve_polygonal(const AllocationLayout& layout,
                                                    const Eigen::VectorXd* allocation) {
   const int n = work.variables();
+  // On one or two feet (the trunk rows never of full rank) the rows' part no force meets is
+  // dropped before any probe, so that every probe and Newton's check see rows that can hold
+  // (drop_unreachable_trunk_part).
+  const int standing = support_legs_only(layout);
+  if (standing > 0 && standing <= 2) drop_unreachable_trunk_part(work, kViolationThreshold);
   const bool alike =
       has_warm && warm_structure == work.structure && warm_n == n && warm_m == work.inequalities();
   // The previous sample's active set, else the rows nearest to active at its answer (which

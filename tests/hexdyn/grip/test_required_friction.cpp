@@ -453,4 +453,60 @@ TEST_CASE("required friction: the internal forces' bound is above mu* and its fo
   CHECK(improved >= held / 4);  // the moves lower the friction the forces use
 }
 
+TEST_CASE(
+    "required friction: two feet and a moment about their line below the allocation's "
+    "threshold",
+    "[required_friction]") {
+  // A trot's diagonal: two feet, whose forces give no moment about the line through them.
+  // The trunk rows are made consistent from two chosen foot forces; a moment ε along the
+  // feet's line is then added, which no forces can meet. Below the allocation's verdict
+  // threshold (kViolationThreshold, the allocation keeps such a sample) μ* is the consistent
+  // problem's, found by bisection on feasibility; above it no friction helps and μ* is NaN.
+  std::mt19937 rng(1729);
+  int compared = 0;
+  for (int trial = 0; trial < 8; ++trial) {
+    for (FrictionModel model :
+         {FrictionModel::kPyramid4, FrictionModel::kPyramid8, FrictionModel::kCone}) {
+      std::mt19937 draw(rng());
+      Sample s = random_sample(draw, 0, 4);
+      s.phase[1] = s.phase[2] = ContactPhase::kSwing;  // legs 0 and 3 stand
+      const auto foot = [&](int l) {
+        const Mat3& S = s.split.JbT[l].bottomRows<3>();
+        return Vec3(S(2, 1), S(0, 2), S(1, 0));
+      };
+      std::normal_distribution<double> g(0.0, 1.0);
+      const Vec3 f0(3.0 * g(draw), 3.0 * g(draw), 25.0), f3(3.0 * g(draw), 3.0 * g(draw), 24.0);
+      s.split.trunk_rhs << f0 + f3, foot(0).cross(f0) + foot(3).cross(f3);
+      const Vec3 along = (foot(3) - foot(0)).normalized();
+      const AllocationParams alloc = params(model);
+      const bool cone = model == FrictionModel::kCone;
+      const double low = bisection_mu(alloc, s, cone ? kPolygon : 0, true);
+      const double high = cone ? bisection_mu(alloc, s, kPolygon, false) : low;
+      if (std::isnan(low) || std::isnan(high)) continue;  // a torque limit binds
+      for (double epsilon : {2e-7, 5e-7, 1e-4}) {
+        Sample off = s;
+        off.split.trunk_rhs.tail<3>() += epsilon * along;
+        INFO(model_name(model) << " trial " << trial << ", moment " << epsilon
+                               << " N m along the feet's line");
+        // No forces meet the rows to 1e-9, the oracle's probes.
+        CHECK(std::isnan(bisection_mu(alloc, off, cone ? kPolygon : 0, true)));
+        RequiredFrictionSolver solver(make_allocation_backend(alloc));
+        QpProblem qp;
+        const AllocationLayout layout = build_at(alloc, off, 0.3, qp);
+        const RequiredFriction& r = solver.solve(qp, layout, nullptr);
+        INFO(std::setprecision(12) << "hexdyn " << r.mu << " (" << r.message << "), consistent ["
+                                   << low << ", " << high << "]");
+        if (epsilon > kViolationThreshold) {
+          CHECK(std::isnan(r.mu));
+          CHECK(r.message.find("no friction coefficient") != std::string::npos);
+          continue;
+        }
+        CHECK(r.mu >= low - kAgreement * std::max(1.0, low));
+        CHECK(r.mu <= high + kAgreement * std::max(1.0, high));
+        ++compared;
+      }
+    }
+  }
+  CHECK(compared >= 30);
+}
 }  // namespace hexdyn
