@@ -213,14 +213,20 @@ Vec3 chain_foot_position_H(const RobotModel& m, int leg, const Vec3& q) {
 }
 
 Mat3 chain_jacobian_H(const RobotModel& m, int leg, const Vec3& q) {
-  const LegChainPose c = chain_pose(m, leg, q);
+  return chain_jacobian_H(chain_pose(m, leg, q));
+}
+
+Mat3 chain_jacobian_H(const LegChainPose& c) {
   Mat3 J;
   for (int k = 0; k < kChainJoints3; ++k) J.col(k) = c.w_H[k].cross(c.p_foot_H - c.o_H[k]);
   return J;
 }
 
 Mat3 chain_jacobian_dot_H(const RobotModel& m, int leg, const Vec3& q, const Vec3& qd) {
-  const LegChainPose c = chain_pose(m, leg, q);
+  return chain_jacobian_dot_H(chain_pose(m, leg, q), qd);
+}
+
+Mat3 chain_jacobian_dot_H(const LegChainPose& c, const Vec3& qd) {
   Mat3 J;
   for (int k = 0; k < kChainJoints3; ++k) J.col(k) = c.w_H[k].cross(c.p_foot_H - c.o_H[k]);
   const Vec3 p_dot = J * qd;

@@ -29,10 +29,15 @@ Vec3 chain_foot_position_H(const RobotModel& model, int leg, const Vec3& q);
 
 /// ∂p_foot_H/∂q, columns w_k × (p_foot − o_k) [m/rad].
 Mat3 chain_jacobian_H(const RobotModel& model, int leg, const Vec3& q);
+/// The same from a pose chain_pose gave: a caller that needs J and J̇ at one q computes the
+/// pose once (the same values, bit for bit).
+Mat3 chain_jacobian_H(const LegChainPose& pose);
 
 /// d/dt of chain_jacobian_H along joint rates qd, analytic: column k is
 /// ẇ_k × (p − o_k) + w_k × (ṗ − ȯ_k) with ẇ_k = Ω_k × w_k, Ω_k = Σ_{i<k} w_i q̇_i.
 Mat3 chain_jacobian_dot_H(const RobotModel& model, int leg, const Vec3& q, const Vec3& qd);
+/// The same from a pose chain_pose gave.
+Mat3 chain_jacobian_dot_H(const LegChainPose& pose, const Vec3& qd);
 
 /// A hip that rolls (abducts) rather than yaws: its first axis nearer the trunk plane than the
 /// trunk normal (a quadruped's HAA; a hexapod's coxa yaws).

@@ -101,14 +101,16 @@ void three_joint_motion(const RobotModel& m, int leg, const Vec3& p_H, const Mat
   const Vec3 q = out.ik.q;
   const bool paper = m.leg_geometry == LegGeometry::kPaperPlanar;
   const LegTrig trig = paper ? leg_trig(q) : LegTrig{};
-  const Mat3 J = paper ? paper_leg_jacobian_H(m, leg, trig) : leg_jacobian_H(m, leg, q);
+  // A chain leg's pose once for J and J̇ (chain_pose: three rotations about its axes).
+  const LegChainPose pose = paper ? LegChainPose{} : chain_pose(m, leg, q);
+  const Mat3 J = paper ? paper_leg_jacobian_H(m, leg, trig) : chain_jacobian_H(pose);
   const Eigen::PartialPivLU<Mat3> lu(J);
   // ṗ and p̈ in H formed inside the solves' right-hand sides, one expression each, and solved
   // into 3-vectors (a solve into a vector of dynamic size takes another path through Eigen's
   // triangular solves): the kinematics stage's operations as they were, the same bits.
   const Vec3 qd = lu.solve(F_R_H.transpose() * v_F);
   const Mat3 Jd =
-      paper ? paper_leg_jacobian_dot_H(m, leg, trig, qd) : leg_jacobian_dot_H(m, leg, q, qd);
+      paper ? paper_leg_jacobian_dot_H(m, leg, trig, qd) : chain_jacobian_dot_H(pose, qd);
   const Vec3 qdd = lu.solve(F_R_H.transpose() * a_F - Jd * qd);  // a fixed-size solve
   out.qd = qd;
   out.qdd = qdd;
