@@ -10,6 +10,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <array>
+#include <cmath>
 #include <string>
 
 #include "hexdyn/core/sizes.hpp"
@@ -25,6 +26,13 @@ using Mat3 = Eigen::Matrix3d;
 using Vec6 = Eigen::Matrix<double, 6, 1>;
 using Mat6 = Eigen::Matrix<double, 6, 6>;
 using Quat = Eigen::Quaterniond;
+
+/// std::remainder(x, 2π), the angle in [−π, π]. The remainder is exact (IEEE 754), and an angle
+/// already within ±π is its own remainder (a tie, x = ±π, keeps the even quotient 0), so the
+/// library call is needed only outside: the same bits, without its cost on most angles.
+inline double wrap_angle(double x) {
+  return std::abs(x) <= M_PI ? x : std::remainder(x, 2.0 * M_PI);
+}
 
 /// True for the left legs 1, 3, 5 of the YAML robot's numbering (0-based 0, 2, 4); a URDF
 /// robot's side is its leg table's (RobotModel::leg(l).side).

@@ -11,8 +11,9 @@
 namespace hexdyn {
 namespace {
 
+/// Eigen's AngleAxis rotation, term for term (rot_axis_cs, robot_model.hpp).
 Mat3 rot_axis(const Vec3& axis, double angle) {
-  return Eigen::AngleAxisd(angle, axis).toRotationMatrix();
+  return rot_axis_cs(axis, std::cos(angle), std::sin(angle));
 }
 
 /// Unit vector ⊥ a (a unit), the one closest to `hint` when hint is not along a.
@@ -68,8 +69,7 @@ LegIkResult ypp_femur_tibia(const RobotModel& m, int leg, const Vec3& p, double 
   const double q1 = std::atan2(ty, tx) - d.alpha_rad -
                     std::atan2(l3 * std::sin(delta), l2 + l3 * std::cos(delta));
   const double q2 = d.axis_sign * (delta - d.gamma_rad + d.alpha_rad);
-  r.q = Vec3(std::remainder(q0, 2.0 * M_PI), std::remainder(q1, 2.0 * M_PI),
-             std::remainder(q2, 2.0 * M_PI));
+  r.q = Vec3(wrap_angle(q0), wrap_angle(q1), wrap_angle(q2));
   if (!within_limits(m, leg, r)) return r;
   r.ok = true;
   return r;
@@ -101,9 +101,7 @@ LegIkResult ik_yaw_pitch_pitch(const RobotModel& m, int leg, const Vec3& p) {
   double q0 = phi + psi, q0_other = phi - psi;
   if (rolling_hip(d)) {
     // The root nearer the middle of the hip's range: the leg hangs rather than folds over.
-    const auto gap = [&](double q) {
-      return std::abs(std::remainder(q - d.q_start[0], 2.0 * M_PI));
-    };
+    const auto gap = [&](double q) { return std::abs(wrap_angle(q - d.q_start[0])); };
     if (gap(q0_other) < gap(q0)) std::swap(q0, q0_other);
   } else {
     const double reach_a = (rot_axis(a, q0) * d.outward_H).dot(p);
@@ -192,18 +190,22 @@ LegIkResult ik_numeric(const RobotModel& m, int leg, const Vec3& p) {
 
 LegChainPose chain_pose(const RobotModel& m, int leg, const Vec3& q) {
   LegChainPose c;
+  for (int k = 0; k < kChainJoints3; ++k) {
+    c.sin_q[k] = std::sin(q[k]);
+    c.cos_q[k] = std::cos(q[k]);
+  }
   const int b0 = m.body(leg, 0), b1 = m.body(leg, 1), b2 = m.body(leg, 2);
   c.o_H[0].setZero();
   c.w_H[0] = m.axis[b0];
-  c.R_H[0] = rot_axis(m.axis[b0], q[0]);
+  c.R_H[0] = rot_axis_cs(m.axis[b0], c.cos_q[0], c.sin_q[0]);
   c.o_H[1] = c.R_H[0] * m.p_parent_joint[b1];
   const Mat3 Rj1 = c.R_H[0] * m.R_parent_joint[b1];
   c.w_H[1] = Rj1 * m.axis[b1];
-  c.R_H[1] = Rj1 * rot_axis(m.axis[b1], q[1]);
+  c.R_H[1] = Rj1 * rot_axis_cs(m.axis[b1], c.cos_q[1], c.sin_q[1]);
   c.o_H[2] = c.o_H[1] + c.R_H[1] * m.p_parent_joint[b2];
   const Mat3 Rj2 = c.R_H[1] * m.R_parent_joint[b2];
   c.w_H[2] = Rj2 * m.axis[b2];
-  c.R_H[2] = Rj2 * rot_axis(m.axis[b2], q[2]);
+  c.R_H[2] = Rj2 * rot_axis_cs(m.axis[b2], c.cos_q[2], c.sin_q[2]);
   c.p_foot_H = c.o_H[2] + c.R_H[2] * m.p_foot_last[leg];
   return c;
 }

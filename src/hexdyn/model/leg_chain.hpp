@@ -17,10 +17,11 @@ inline constexpr int kChainJoints3 = 3;
 
 /// Joint origins o_k, joint axes w_k (unit) and the foot point, all in H, for angles q.
 struct LegChainPose {
-  std::array<Vec3, kChainJoints3> o_H;  ///< joint origins [m]
-  std::array<Vec3, kChainJoints3> w_H;  ///< joint axes (unit)
-  std::array<Mat3, kChainJoints3> R_H;  ///< link frames → H
-  Vec3 p_foot_H = Vec3::Zero();         ///< foot point [m]
+  std::array<Vec3, kChainJoints3> o_H;                 ///< joint origins [m]
+  std::array<Vec3, kChainJoints3> w_H;                 ///< joint axes (unit)
+  std::array<Mat3, kChainJoints3> R_H;                 ///< link frames → H
+  Vec3 p_foot_H = Vec3::Zero();                        ///< foot point [m]
+  std::array<double, kChainJoints3> cos_q{}, sin_q{};  ///< std::cos(q_k), std::sin(q_k)
 };
 LegChainPose chain_pose(const RobotModel& model, int leg, const Vec3& q);
 

@@ -121,14 +121,14 @@ void three_joint_motion(const RobotModel& m, int leg, const Vec3& p_H, const Mat
     out.sin_q[0] = trig.s1;
     out.cos_q[1] = trig.c2;
     out.sin_q[1] = trig.s2;
+    out.cos_q[2] = std::cos(q[2]);
+    out.sin_q[2] = std::sin(q[2]);
   } else {
-    for (int j = 0; j < 2; ++j) {
-      out.cos_q[j] = std::cos(q[j]);
-      out.sin_q[j] = std::sin(q[j]);
+    for (int j = 0; j < 3; ++j) {  // the pose's std::cos and std::sin of q
+      out.cos_q[j] = pose.cos_q[j];
+      out.sin_q[j] = pose.sin_q[j];
     }
   }
-  out.cos_q[2] = std::cos(q[2]);
-  out.sin_q[2] = std::sin(q[2]);
 }
 
 }  // namespace

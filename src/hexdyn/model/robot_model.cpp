@@ -214,15 +214,6 @@ Mat3 paper_leg_jacobian_dot_H(const RobotModel& m, int leg, const LegTrig& t, co
   return Jd;
 }
 
-namespace {
-
-/// std::remainder(x, 2π), the angle in [−π, π]. The remainder is exact (IEEE 754), and an angle
-/// already within ±π is its own remainder (a tie, x = ±π, keeps the even quotient 0), so the
-/// library call is needed only outside: the same bits, without its cost on most samples.
-double wrap_angle(double x) { return std::abs(x) <= M_PI ? x : std::remainder(x, 2.0 * M_PI); }
-
-}  // namespace
-
 LegIkResult leg_inverse_kinematics(const RobotModel& m, int leg, const Vec3& p) {
   if (m.leg_on_chain[leg]) return chain_leg_inverse_kinematics(m, leg, p);
   if (m.leg_geometry == LegGeometry::kChain) return chain_inverse_kinematics(m, leg, p);
