@@ -3,6 +3,9 @@
 /// normal forces are prescribed, and when no tangential force within mu_max times them closes
 /// the trunk rows, no friction coefficient up to mu_max admits the sample
 /// (docs/theory/grip.md#prescribed-normal-forces). It settles such samples without a probe.
+/// Beside it, from the same scaled trunk rows: their part that no forces meet, which the
+/// required friction drops when the allocation's own threshold would keep it
+/// (drop_unreachable_trunk_part, docs/theory/grip.md#the-trunk-rows-reach).
 #pragma once
 
 #include <string>
