@@ -364,8 +364,9 @@ bool RequiredFrictionSolver::Impl::upper_end(const AllocationLayout& layout,
   // Rows that no forces meet by less than the allocation's own verdict threshold (three feet
   // in a line, whose moment about it is off by rounding): μ* of the rows without that part.
   // Only where every loaded foot is a support foot: a touchdown transient's prescribed normal
-  // forces leave misses of newtons, not of rounding.
-  if (!feasible && support_legs_only(layout) > 0 &&
+  // forces leave misses of newtons, not of rounding. One or two feet had that part dropped
+  // before any probe (solve_polygonal, the only caller of the bisection).
+  if (!feasible && support_legs_only(layout) > 2 &&
       drop_unreachable_trunk_part(work, kViolationThreshold))
     feasible = feasible_at(layout, opt.mu_max, x_hi, opt.reasons ? &why : nullptr);
   if (!feasible) {
